@@ -1,0 +1,67 @@
+#pragma once
+
+#include <Eigen/Core>
+#include <array>
+#include <string>
+#include <vector>
+
+namespace isg::bim {
+
+// The plan model of FORMATS.md ("isg.plan" v1): what the BIM says. All coordinates are in the
+// plan frame B, in metres. Parsing fills every default, so nothing downstream sees a missing
+// field.
+
+// The room id used by doors that lead out of the building.
+inline constexpr const char* kOutside = "outside";
+
+struct Wall {
+  std::string id;
+  Eigen::Vector2d start = Eigen::Vector2d::Zero();
+  Eigen::Vector2d end = Eigen::Vector2d::Zero();
+  double thickness = 0.0;  // centred on the axis start → end
+  double height = 0.0;     // top of the wall above the level's elevation
+  double base = 0.0;       // bottom of the wall above the level's elevation
+};
+
+struct Door {
+  std::string id;
+  std::string wall;     // id of the wall the opening is in
+  double offset = 0.0;  // centre of the opening, metres from the wall's start along its axis
+  double width = 0.0;
+  double height = 0.0;  // from the wall's base
+  std::array<std::string, 2> rooms;  // the two rooms it joins (or kOutside)
+  bool rooms_inferred = false;       // true when `rooms` came from the outlines, not the file
+};
+
+struct Room {
+  std::string id;
+  std::string name;
+  std::vector<Eigen::Vector2d> outline;  // simple polygon along the inner wall faces, CCW
+};
+
+struct Level {
+  std::string id;
+  double elevation = 0.0;  // top of the floor
+  double height = 0.0;     // default wall height, floor to ceiling
+  std::vector<Wall> walls;
+  std::vector<Door> doors;
+  std::vector<Room> rooms;
+
+  const Wall* findWall(const std::string& wall_id) const;
+  const Door* findDoor(const std::string& door_id) const;
+  const Room* findRoom(const std::string& room_id) const;
+};
+
+struct Plan {
+  std::string name;
+  std::string source;  // file it was read from, for messages
+  std::vector<Level> levels;
+
+  const Level* findLevel(const std::string& level_id) const;
+  // The level that holds a wall / door / room with this id, or nullptr.
+  const Level* levelOfWall(const std::string& wall_id) const;
+  const Level* levelOfDoor(const std::string& door_id) const;
+  const Level* levelOfRoom(const std::string& room_id) const;
+};
+
+}  // namespace isg::bim

@@ -1,0 +1,235 @@
+#include "bim/plan_geometry.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+
+#include "bim/polygon.hpp"
+
+namespace isg::bim {
+
+namespace {
+
+// Walls whose axes are closer to parallel than this do not close each other's ends.
+constexpr double kParallelCosine = 0.1;
+// How far outside a wall's solid an endpoint may lie and still be taken as meeting it.
+constexpr double kJunctionTolerance = 1e-3;
+// Footprints are shrunk by this much before they cut faces, so that a face lying exactly on
+// another wall's side (collinear walls in a row) is not cut by it.
+constexpr double kTouchEpsilon = 1e-6;
+
+Eigen::Vector2d perpendicular(const Eigen::Vector2d& v) { return {-v.y(), v.x()}; }
+
+// How far the end of `wall` at `point`, leaving in direction `outward`, must continue to reach
+// the far side of `other`; nullopt when the end does not meet `other`.
+std::optional<double> extensionInto(const Eigen::Vector2d& point, const Eigen::Vector2d& outward,
+                                    const WallGeometry& other) {
+  const Eigen::Vector2d& m = other.left_normal;
+  const double cosine = m.dot(outward);
+  if (std::abs(cosine) < kParallelCosine) return std::nullopt;
+  const double half = 0.5 * other.wall->thickness;
+  const double distance =
+      distanceToSegment(point, other.wall->start, other.wall->end);
+  if (distance > half + kJunctionTolerance) return std::nullopt;
+  const double far_face = m.dot(other.wall->start) + (cosine > 0 ? half : -half);
+  const double e = (far_face - m.dot(point)) / cosine;
+  if (e <= 0.0) return std::nullopt;
+  return e;
+}
+
+// The part [lo, hi] of the line origin + s·direction (s in [s0, s1]) inside a convex CCW polygon
+// (Cyrus–Beck clipping); nullopt when they do not overlap.
+std::optional<AxisInterval> clipLineToConvex(const Eigen::Vector2d& origin,
+                                             const Eigen::Vector2d& direction, double s0,
+                                             double s1, const std::vector<Eigen::Vector2d>& poly) {
+  double lo = s0;
+  double hi = s1;
+  for (std::size_t i = 0; i < poly.size(); ++i) {
+    const Eigen::Vector2d& a = poly[i];
+    const Eigen::Vector2d& b = poly[(i + 1) % poly.size()];
+    const Eigen::Vector2d inward = perpendicular(b - a);  // CCW: interior on the left
+    const double num = inward.dot(origin - a);            // >= 0 inside
+    const double den = inward.dot(direction);
+    if (std::abs(den) < 1e-15) {
+      if (num < 0) return std::nullopt;
+      continue;
+    }
+    const double t = -num / den;
+    if (den > 0) {
+      lo = std::max(lo, t);
+    } else {
+      hi = std::min(hi, t);
+    }
+    if (lo >= hi) return std::nullopt;
+  }
+  return AxisInterval{lo, hi};
+}
+
+// Removes `cut` from a sorted list of disjoint intervals.
+void subtractInterval(std::vector<AxisInterval>& intervals, const AxisInterval& cut) {
+  std::vector<AxisInterval> out;
+  for (const auto& piece : intervals) {
+    if (cut.hi <= piece.lo || cut.lo >= piece.hi) {
+      out.push_back(piece);
+      continue;
+    }
+    if (cut.lo > piece.lo) out.push_back({piece.lo, cut.lo});
+    if (cut.hi < piece.hi) out.push_back({cut.hi, piece.hi});
+  }
+  intervals = std::move(out);
+}
+
+std::vector<Eigen::Vector2d> shrunk(const std::vector<Eigen::Vector2d>& rectangle, double by) {
+  Eigen::Vector2d centre = Eigen::Vector2d::Zero();
+  for (const auto& p : rectangle) centre += p;
+  centre /= double(rectangle.size());
+  std::vector<Eigen::Vector2d> out;
+  for (const auto& p : rectangle) {
+    const Eigen::Vector2d from_centre = p - centre;
+    const double norm = from_centre.norm();
+    out.push_back(norm > by ? Eigen::Vector2d(p - from_centre * (by / norm)) : centre);
+  }
+  return out;
+}
+
+}  // namespace
+
+std::vector<Eigen::Vector2d> WallGeometry::footprint() const {
+  const double half = 0.5 * wall->thickness;
+  const Eigen::Vector2d a = pointAt(-extend_start);
+  const Eigen::Vector2d b = pointAt(length + extend_end);
+  return {a - half * left_normal, b - half * left_normal, b + half * left_normal,
+          a + half * left_normal};
+}
+
+const WallGeometry* LevelGeometry::findWall(const std::string& wall_id) const {
+  for (const auto& w : walls) {
+    if (w.wall->id == wall_id) return &w;
+  }
+  return nullptr;
+}
+
+std::vector<RoomBoundary> LevelGeometry::boundariesOf(const std::string& room_id) const {
+  std::vector<RoomBoundary> out;
+  for (const auto& b : boundaries) {
+    if (b.room == room_id) out.push_back(b);
+  }
+  return out;
+}
+
+LevelGeometry computeLevelGeometry(const Level& level, const GeometryOptions& options) {
+  LevelGeometry geometry;
+  geometry.walls.reserve(level.walls.size());
+  for (const auto& wall : level.walls) {
+    WallGeometry g;
+    g.wall = &wall;
+    const Eigen::Vector2d along = wall.end - wall.start;
+    g.length = along.norm();
+    g.axis = along / g.length;
+    g.left_normal = perpendicular(g.axis);
+    geometry.walls.push_back(g);
+  }
+
+  // Close the joints: an end that meets another wall continues to that wall's far side.
+  for (auto& g : geometry.walls) {
+    for (const auto& other : geometry.walls) {
+      if (&other == &g) continue;
+      if (auto e = extensionInto(g.wall->start, -g.axis, other)) {
+        g.extend_start = std::max(g.extend_start, *e);
+      }
+      if (auto e = extensionInto(g.wall->end, g.axis, other)) {
+        g.extend_end = std::max(g.extend_end, *e);
+      }
+    }
+  }
+
+  std::vector<std::vector<Eigen::Vector2d>> cutters;
+  cutters.reserve(geometry.walls.size());
+  for (const auto& g : geometry.walls) cutters.push_back(shrunk(g.footprint(), kTouchEpsilon));
+
+  for (std::size_t i = 0; i < geometry.walls.size(); ++i) {
+    auto& g = geometry.walls[i];
+    for (int side : {+1, -1}) {
+      WallFace& face = side > 0 ? g.left : g.right;
+      face.side = side;
+      const Eigen::Vector2d n2 = side * g.left_normal;
+      const Eigen::Vector2d on_face = g.facePointAt(side, 0.0);
+      face.plane = Plane::throughPoint({n2.x(), n2.y(), 0.0}, {on_face.x(), on_face.y(), 0.0});
+      face.z_min = level.elevation + g.wall->base;
+      face.z_max = level.elevation + g.wall->height;
+      face.exposed = {{-g.extend_start, g.length + g.extend_end}};
+      for (std::size_t j = 0; j < geometry.walls.size(); ++j) {
+        if (j == i) continue;
+        if (auto cut = clipLineToConvex(on_face, g.axis, -g.extend_start,
+                                        g.length + g.extend_end, cutters[j])) {
+          subtractInterval(face.exposed, *cut);
+        }
+      }
+      for (const auto& door : level.doors) {
+        if (door.wall == g.wall->id) {
+          face.openings.push_back({door.offset - 0.5 * door.width, door.offset + 0.5 * door.width});
+        }
+      }
+      std::sort(face.openings.begin(), face.openings.end(),
+                [](const AxisInterval& a, const AxisInterval& b) { return a.lo < b.lo; });
+    }
+  }
+
+  const double min_cosine = std::cos(options.boundary_angle_deg * std::numbers::pi / 180.0);
+  for (const auto& room : level.rooms) {
+    const auto& outline = room.outline;
+    for (std::size_t e = 0; e < outline.size(); ++e) {
+      const Eigen::Vector2d& a = outline[e];
+      const Eigen::Vector2d& b = outline[(e + 1) % outline.size()];
+      const Eigen::Vector2d inward = perpendicular((b - a).normalized());
+      for (const auto& g : geometry.walls) {
+        for (const WallFace* face : {&g.left, &g.right}) {
+          const Eigen::Vector2d n2 = face->plane.normal.head<2>();
+          if (n2.dot(inward) < min_cosine) continue;
+          const double da = std::abs(face->plane.signedDistance({a.x(), a.y(), 0.0}));
+          const double db = std::abs(face->plane.signedDistance({b.x(), b.y(), 0.0}));
+          if (da > options.boundary_distance || db > options.boundary_distance) continue;
+          const double sa = (a - g.wall->start).dot(g.axis);
+          const double sb = (b - g.wall->start).dot(g.axis);
+          const double lo = std::min(sa, sb);
+          const double hi = std::max(sa, sb);
+          double overlap = 0.0;
+          for (const auto& piece : face->exposed) {
+            overlap += std::max(0.0, std::min(hi, piece.hi) - std::max(lo, piece.lo));
+          }
+          if (overlap < options.boundary_min_overlap) continue;
+          geometry.boundaries.push_back(
+              {room.id, int(e), g.wall->id, face->side, overlap, 0.5 * (da + db)});
+        }
+      }
+    }
+  }
+  return geometry;
+}
+
+std::optional<std::string> roomAt(const Level& level, const Eigen::Vector2d& point) {
+  for (const auto& room : level.rooms) {
+    if (containsPoint(room.outline, point)) return room.id;
+  }
+  return std::nullopt;
+}
+
+Eigen::Vector2d doorCentre(const Level& level, const Door& door) {
+  const Wall* wall = level.findWall(door.wall);
+  const Eigen::Vector2d axis = (wall->end - wall->start).normalized();
+  return wall->start + door.offset * axis;
+}
+
+std::array<std::string, 2> inferDoorRooms(const Level& level, const Door& door) {
+  const Wall* wall = level.findWall(door.wall);
+  const Eigen::Vector2d left = perpendicular((wall->end - wall->start).normalized());
+  const Eigen::Vector2d centre = doorCentre(level, door);
+  // Just beyond each face: outlines follow the inner faces, so 10 cm past a face is in the room.
+  const double reach = 0.5 * wall->thickness + 0.1;
+  std::array<std::string, 2> rooms;
+  rooms[0] = roomAt(level, centre + reach * left).value_or(kOutside);
+  rooms[1] = roomAt(level, centre - reach * left).value_or(kOutside);
+  return rooms;
+}
+
+}  // namespace isg::bim

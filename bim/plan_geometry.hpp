@@ -1,0 +1,96 @@
+#pragma once
+
+#include <Eigen/Core>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "bim/plan.hpp"
+#include "bim/plane.hpp"
+
+namespace isg::bim {
+
+// Geometry derived from a plan level: wall axes and faces, where walls meet, which faces bound
+// which room, which rooms a door joins. Everything is in the plan frame B.
+
+// A closed interval [lo, hi] along a wall's axis, measured from the wall's start.
+struct AxisInterval {
+  double lo = 0.0;
+  double hi = 0.0;
+  double length() const { return hi - lo; }
+};
+
+// One face of a wall: a vertical plane with the parts of it that are really exposed.
+struct WallFace {
+  int side = +1;  // +1: the face on the left of start → end, -1: the right one
+  Plane plane;    // normal points away from the wall, into the space the face looks at
+  // Exposed parts along the wall axis (0 = wall start). Where another wall abuts the face, the
+  // face is interrupted: a T-junction splits one face into two exposed pieces.
+  std::vector<AxisInterval> exposed;
+  std::vector<AxisInterval> openings;  // door openings (holes in the face, not interruptions)
+  double z_min = 0.0;                  // absolute z in B (level elevation + wall base)
+  double z_max = 0.0;
+};
+
+struct WallGeometry {
+  const Wall* wall = nullptr;
+  Eigen::Vector2d axis = Eigen::Vector2d::UnitX();         // unit, start → end
+  Eigen::Vector2d left_normal = Eigen::Vector2d::UnitY();  // axis turned +90°
+  double length = 0.0;
+  // How far the wall's solid continues past its start / end so that it closes the joint with
+  // the walls it meets there (0 for a free end). The solid spans [-extend_start, length +
+  // extend_end] along the axis.
+  double extend_start = 0.0;
+  double extend_end = 0.0;
+  WallFace left;
+  WallFace right;
+
+  const WallFace& face(int side) const { return side > 0 ? left : right; }
+  // A point of the wall's axis, or of one of its faces, at axis coordinate s (0 = start).
+  Eigen::Vector2d pointAt(double s) const { return wall->start + s * axis; }
+  Eigen::Vector2d facePointAt(int side, double s) const {
+    return pointAt(s) + side * 0.5 * wall->thickness * left_normal;
+  }
+  // The wall's footprint (including the end extensions) as a CCW rectangle.
+  std::vector<Eigen::Vector2d> footprint() const;
+};
+
+// A room edge that lies on a wall face looking into the room.
+struct RoomBoundary {
+  std::string room;
+  int edge = 0;  // outline edge from vertex `edge` to `edge + 1`
+  std::string wall;
+  int side = +1;           // which face of the wall
+  double overlap = 0.0;    // metres of the edge covered by the face's exposed parts
+  double distance = 0.0;   // mean distance of the edge's endpoints from the face plane
+};
+
+struct LevelGeometry {
+  std::vector<WallGeometry> walls;  // same order as Level::walls
+  std::vector<RoomBoundary> boundaries;
+
+  const WallGeometry* findWall(const std::string& wall_id) const;
+  std::vector<RoomBoundary> boundariesOf(const std::string& room_id) const;
+};
+
+struct GeometryOptions {
+  double boundary_distance = 0.05;   // an outline edge this close to a face lies on it
+  double boundary_angle_deg = 5.0;   // ... and this close in direction
+  double boundary_min_overlap = 0.05;
+};
+
+// Axes, normals, end extensions and exposed faces of every wall of a level, and which faces
+// bound which room.
+LevelGeometry computeLevelGeometry(const Level& level, const GeometryOptions& options = {});
+
+// The room whose outline contains `point` (the first one, in file order), or nullopt.
+std::optional<std::string> roomAt(const Level& level, const Eigen::Vector2d& point);
+
+// The rooms on either side of a door (left side first), inferred from the outlines: the point
+// just beyond each face of the wall at the door's centre. kOutside where no room contains it.
+std::array<std::string, 2> inferDoorRooms(const Level& level, const Door& door);
+
+// The centre of a door's opening on its wall's axis, in B (2D).
+Eigen::Vector2d doorCentre(const Level& level, const Door& door);
+
+}  // namespace isg::bim

@@ -1,0 +1,117 @@
+#pragma once
+
+#include <Eigen/Core>
+#include <array>
+#include <cstdint>
+#include <functional>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "bim/input_error.hpp"
+#include "bim/json_reader.hpp"
+#include "bim/plan.hpp"
+
+namespace isg::bim {
+
+// The scenario model of FORMATS.md ("isg.scenario" v1): one simulated run. Parsing fills every
+// default, so a bare plan becomes a scenario with the documented defaults.
+
+struct Route {
+  enum class Kind { kTour, kRooms, kWaypoints };
+  Kind kind = Kind::kTour;
+  std::vector<std::string> rooms;
+  std::vector<Eigen::Vector2d> waypoints;
+};
+
+struct RobotConfig {
+  std::string level;                         // id of the level the robot walks on
+  std::optional<std::string> start_room;     // start at the centre of this room ...
+  std::optional<Eigen::Vector3d> start_pose; // ... or at [x, y, yaw]; exactly one is set
+  Route route;
+  double speed = 0.5;  // m/s
+};
+
+struct LidarConfig {
+  double rate_hz = 10.0;
+  double range_noise_m = 0.01;
+  double min_range_m = 0.9;
+  double max_range_m = 100.0;
+  double dropout = 0.0;
+  std::array<double, 6> mount = {0.0, 0.0, 0.25, 0.0, 0.0, 0.0};  // x y z roll pitch yaw on R
+};
+
+struct OdometryConfig {
+  double rate_hz = 50.0;
+  double translation_noise = 0.02;  // std dev as a fraction of distance travelled
+  double heading_noise_deg_per_m = 0.5;
+  double heading_bias_deg_per_m = 0.0;
+};
+
+struct ExtraWall {
+  std::string id;     // generated: "extra0", "extra1", ... (unique in the file)
+  std::string level;  // defaults to the robot's level
+  Eigen::Vector2d start = Eigen::Vector2d::Zero();
+  Eigen::Vector2d end = Eigen::Vector2d::Zero();
+  double thickness = 0.1;
+  std::optional<double> height;  // defaults to the level's
+  double base = 0.0;
+};
+
+struct WallShift {
+  std::string wall;
+  double offset = 0.0;  // metres along the wall's left normal
+};
+
+struct Clutter {
+  std::string level;  // defaults to the robot's level
+  Eigen::Vector3d center = Eigen::Vector3d::Zero();  // z above the level's elevation
+  Eigen::Vector3d size = Eigen::Vector3d::Ones();    // full extents
+  double yaw = 0.0;
+};
+
+struct AsBuilt {
+  std::vector<std::string> missing_walls;
+  std::vector<ExtraWall> extra_walls;
+  std::vector<WallShift> wall_shifts;
+  std::vector<std::string> closed_doors;
+  std::vector<Clutter> clutter;
+
+  bool empty() const {
+    return missing_walls.empty() && extra_walls.empty() && wall_shifts.empty() &&
+           closed_doors.empty() && clutter.empty();
+  }
+};
+
+struct Scenario {
+  std::string source;     // the file given by the user (scenario or bare plan)
+  std::string plan_file;  // where the plan came from ("<inline>" for an inline plan)
+  Plan plan;
+  std::uint64_t seed = 0;
+  RobotConfig robot;
+  LidarConfig lidar;
+  OdometryConfig odometry;
+  AsBuilt as_built;
+};
+
+inline constexpr const char* kScenarioFormat = "isg.scenario";
+inline constexpr int kScenarioVersion = 1;
+
+// Reads a scenario, or a bare plan (which becomes a scenario with every default). Validation
+// errors throw InputError naming the file (the plan's own file for errors inside it), the JSON
+// pointer and the reason. Warnings are appended to `warnings` when given.
+Scenario loadScenario(const std::string& path, Warnings* warnings = nullptr);
+
+// Loads the plan a scenario names by file ("plan": "d1.json"): gets the string node, returns the
+// plan and where it came from. loadScenario resolves the name relative to the scenario's file;
+// built-in scenarios resolve it among the built-in plans.
+struct LoadedPlan {
+  Plan plan;
+  std::string file;
+};
+using PlanLoader = std::function<LoadedPlan(const JsonNode& plan_name)>;
+
+// Parses a scenario document, or a bare plan document (with every default).
+Scenario parseScenario(const JsonNode& root, const PlanLoader& load_plan);
+
+}  // namespace isg::bim

@@ -1,0 +1,293 @@
+#include <filesystem>
+#include <set>
+#include <sstream>
+
+#include "bim/json_reader.hpp"
+#include "bim/plan_parser.hpp"
+#include "bim/polygon.hpp"
+#include "bim/plan_geometry.hpp"
+#include "bim/scenario.hpp"
+
+namespace isg::bim {
+
+namespace {
+
+double numberInRange(const JsonNode& node, double lo, double hi, bool hi_open = false) {
+  const double v = node.number();
+  if (v < lo || v > hi || (hi_open && v >= hi)) {
+    node.fail("must be in [" + formatNumber(lo) + ", " + formatNumber(hi) + (hi_open ? ")" : "]") +
+              ", got " + formatNumber(v));
+  }
+  return v;
+}
+
+const Level& levelNamed(const Plan& plan, const JsonNode& node) {
+  const std::string id = node.nonEmptyString();
+  const Level* level = plan.findLevel(id);
+  if (level == nullptr) node.fail("no level " + inQuotes(id) + " in the plan");
+  return *level;
+}
+
+std::string roomOnLevel(const Level& level, const JsonNode& node) {
+  const std::string id = node.nonEmptyString();
+  if (level.findRoom(id) == nullptr) {
+    node.fail("no room " + inQuotes(id) + " on level " + inQuotes(level.id));
+  }
+  return id;
+}
+
+RobotConfig parseRobot(const std::optional<JsonNode>& node, const Plan& plan) {
+  RobotConfig robot;
+  robot.level = plan.levels.front().id;
+  if (!node) {
+    robot.start_room = plan.levels.front().rooms.empty()
+                           ? std::nullopt
+                           : std::optional(plan.levels.front().rooms.front().id);
+    return robot;
+  }
+  node->expectObject({"level", "start", "route", "speed"});
+  const Level* level = &plan.levels.front();
+  if (auto l = node->optionalField("level")) {
+    level = &levelNamed(plan, *l);
+    robot.level = level->id;
+  }
+  if (auto start = node->optionalField("start")) {
+    start->expectObject({"room", "pose"});
+    const bool has_room = start->has("room");
+    const bool has_pose = start->has("pose");
+    if (has_room == has_pose) start->fail("give exactly one of \"room\" and \"pose\"");
+    if (has_room) {
+      robot.start_room = roomOnLevel(*level, start->field("room"));
+    } else {
+      const JsonNode pose_node = start->field("pose");
+      const auto pose = pose_node.numbers(3);
+      robot.start_pose = Eigen::Vector3d(pose[0], pose[1], pose[2]);
+      const Eigen::Vector2d xy(pose[0], pose[1]);
+      for (const auto& g : computeLevelGeometry(*level).walls) {
+        if (containsPoint(g.footprint(), xy)) {
+          pose_node.fail("start position is inside wall " + inQuotes(g.wall->id));
+        }
+      }
+    }
+  } else if (!level->rooms.empty()) {
+    robot.start_room = level->rooms.front().id;
+  }
+  if (!robot.start_room && !robot.start_pose) {
+    node->fail("level " + inQuotes(level->id) + " has no rooms: give robot.start.pose");
+  }
+  if (auto route = node->optionalField("route")) {
+    if (route->isString()) {
+      const std::string kind = route->string();
+      if (kind != "tour") route->fail("unknown route " + inQuotes(kind) + " (expected \"tour\")");
+    } else {
+      route->expectObject({"rooms", "waypoints"});
+      if (route->has("rooms") == route->has("waypoints")) {
+        route->fail("give \"tour\", {\"rooms\": [...]} or {\"waypoints\": [...]}");
+      }
+      if (auto rooms = route->optionalField("rooms")) {
+        robot.route.kind = Route::Kind::kRooms;
+        for (const auto& r : rooms->elements(1)) robot.route.rooms.push_back(roomOnLevel(*level, r));
+      } else {
+        robot.route.kind = Route::Kind::kWaypoints;
+        for (const auto& w : route->field("waypoints").elements(1)) {
+          robot.route.waypoints.push_back(w.point2());
+        }
+      }
+    }
+  }
+  if (auto speed = node->optionalField("speed")) robot.speed = numberInRange(*speed, 0.01, 3.0);
+  return robot;
+}
+
+LidarConfig parseLidar(const JsonNode& node) {
+  node.expectObject({"rate_hz", "range_noise_m", "min_range_m", "max_range_m", "dropout", "mount"});
+  LidarConfig lidar;
+  if (auto v = node.optionalField("rate_hz")) lidar.rate_hz = numberInRange(*v, 5.0, 20.0);
+  if (auto v = node.optionalField("range_noise_m")) lidar.range_noise_m = v->nonNegativeNumber();
+  if (auto v = node.optionalField("min_range_m")) lidar.min_range_m = v->nonNegativeNumber();
+  if (auto v = node.optionalField("max_range_m")) {
+    lidar.max_range_m = v->positiveNumber();
+    if (lidar.max_range_m <= lidar.min_range_m) {
+      v->fail("max_range_m " + formatNumber(lidar.max_range_m) + " is not above min_range_m " +
+              formatNumber(lidar.min_range_m));
+    }
+  } else if (lidar.max_range_m <= lidar.min_range_m) {
+    node.field("min_range_m").fail("min_range_m must be below max_range_m (" +
+                                   formatNumber(lidar.max_range_m) + ")");
+  }
+  if (auto v = node.optionalField("dropout")) lidar.dropout = numberInRange(*v, 0.0, 1.0, true);
+  if (auto v = node.optionalField("mount")) {
+    const auto values = v->numbers(6);
+    std::copy(values.begin(), values.end(), lidar.mount.begin());
+  }
+  return lidar;
+}
+
+OdometryConfig parseOdometry(const JsonNode& node) {
+  node.expectObject({"rate_hz", "translation_noise", "heading_noise_deg_per_m",
+                     "heading_bias_deg_per_m"});
+  OdometryConfig odometry;
+  if (auto v = node.optionalField("rate_hz")) odometry.rate_hz = numberInRange(*v, 1.0, 1000.0);
+  if (auto v = node.optionalField("translation_noise")) {
+    odometry.translation_noise = v->nonNegativeNumber();
+  }
+  if (auto v = node.optionalField("heading_noise_deg_per_m")) {
+    odometry.heading_noise_deg_per_m = v->nonNegativeNumber();
+  }
+  if (auto v = node.optionalField("heading_bias_deg_per_m")) {
+    odometry.heading_bias_deg_per_m = v->number();
+  }
+  return odometry;
+}
+
+// A list of ids that must all name walls (or doors) of the plan, each at most once.
+template <typename Finder>
+std::vector<std::string> parseIdList(const JsonNode& node, const char* what, Finder exists) {
+  std::vector<std::string> ids;
+  std::set<std::string> seen;
+  for (const auto& item : node.elements()) {
+    const std::string id = item.nonEmptyString();
+    if (!exists(id)) item.fail(std::string("no ") + what + " " + inQuotes(id) + " in the plan");
+    if (!seen.insert(id).second) item.fail(inQuotes(id) + " is listed twice");
+    ids.push_back(id);
+  }
+  return ids;
+}
+
+std::string optionalLevel(const JsonNode& node, const Plan& plan, const std::string& fallback) {
+  if (auto l = node.optionalField("level")) return levelNamed(plan, *l).id;
+  return fallback;
+}
+
+AsBuilt parseAsBuilt(const JsonNode& node, const Plan& plan, const std::string& robot_level) {
+  node.expectObject({"missing_walls", "extra_walls", "wall_shifts", "closed_doors", "clutter"});
+  AsBuilt as_built;
+  auto is_wall = [&](const std::string& id) { return plan.levelOfWall(id) != nullptr; };
+  auto is_door = [&](const std::string& id) { return plan.levelOfDoor(id) != nullptr; };
+  if (auto v = node.optionalField("missing_walls")) {
+    as_built.missing_walls = parseIdList(*v, "wall", is_wall);
+  }
+  if (auto v = node.optionalField("closed_doors")) {
+    as_built.closed_doors = parseIdList(*v, "door", is_door);
+  }
+  if (auto v = node.optionalField("extra_walls")) {
+    for (const auto& item : v->elements()) {
+      item.expectObject({"start", "end", "thickness", "height", "base", "level"});
+      ExtraWall wall;
+      wall.id = "extra" + std::to_string(as_built.extra_walls.size());
+      wall.level = optionalLevel(item, plan, robot_level);
+      wall.start = item.field("start").point2();
+      wall.end = item.field("end").point2();
+      if ((wall.end - wall.start).norm() < 1e-6) {
+        item.field("end").fail("zero-length wall: end equals start");
+      }
+      wall.thickness = item.field("thickness").positiveNumber();
+      if (auto h = item.optionalField("height")) wall.height = h->positiveNumber();
+      if (auto b = item.optionalField("base")) wall.base = b->nonNegativeNumber();
+      const double top = wall.height.value_or(plan.findLevel(wall.level)->height);
+      if (wall.base >= top) item.field("base").fail("base is not below the wall's top");
+      as_built.extra_walls.push_back(wall);
+    }
+  }
+  if (auto v = node.optionalField("wall_shifts")) {
+    std::set<std::string> seen;
+    for (const auto& item : v->elements()) {
+      item.expectObject({"wall", "offset"});
+      WallShift shift;
+      const JsonNode wall = item.field("wall");
+      shift.wall = wall.nonEmptyString();
+      if (!is_wall(shift.wall)) wall.fail("no wall " + inQuotes(shift.wall) + " in the plan");
+      if (!seen.insert(shift.wall).second) wall.fail(inQuotes(shift.wall) + " is shifted twice");
+      for (const auto& missing : as_built.missing_walls) {
+        if (missing == shift.wall) wall.fail(inQuotes(shift.wall) + " is also in missing_walls");
+      }
+      shift.offset = item.field("offset").number();
+      as_built.wall_shifts.push_back(shift);
+    }
+  }
+  if (auto v = node.optionalField("clutter")) {
+    for (const auto& item : v->elements()) {
+      item.expectObject({"shape", "center", "size", "yaw", "level"});
+      Clutter clutter;
+      const JsonNode shape = item.field("shape");
+      if (shape.string() != "box") {
+        shape.fail("unknown shape " + inQuotes(shape.string()) + " (expected \"box\")");
+      }
+      clutter.level = optionalLevel(item, plan, robot_level);
+      clutter.center = item.field("center").point3();
+      const JsonNode size = item.field("size");
+      clutter.size = size.point3();
+      if ((clutter.size.array() <= 0.0).any()) size.fail("every extent must be > 0");
+      if (auto yaw = item.optionalField("yaw")) clutter.yaw = yaw->number();
+      as_built.clutter.push_back(clutter);
+    }
+  }
+  return as_built;
+}
+
+Scenario scenarioFromPlan(Plan plan, const std::string& path) {
+  Scenario scenario;
+  scenario.source = path;
+  scenario.plan_file = path;
+  scenario.plan = std::move(plan);
+  scenario.robot = parseRobot(std::nullopt, scenario.plan);
+  return scenario;
+}
+
+}  // namespace
+
+Scenario parseScenario(const JsonNode& root, const PlanLoader& load_plan) {
+  const std::string& path = root.source().file;
+  if (root.isObject() && root.has("format") && root.field("format").isString() &&
+      root.field("format").string() == kPlanFormat) {
+    return scenarioFromPlan(parsePlan(root), path);
+  }
+  root.expectObject({"$schema", "format", "version", "name", "plan", "seed", "robot", "lidar",
+                     "odometry", "as_built"});
+  if (root.has("format") && root.field("format").isString() &&
+      root.field("format").string() != kScenarioFormat) {
+    root.field("format").fail("unknown format " + inQuotes(root.field("format").string()) +
+                              " (expected \"isg.plan\" or \"isg.scenario\")");
+  }
+  checkFormatAndVersion(root, kScenarioFormat, kScenarioVersion);
+
+  Scenario scenario;
+  scenario.source = path;
+  const JsonNode plan_node = root.field("plan");
+  if (plan_node.isString()) {
+    plan_node.nonEmptyString();
+    LoadedPlan loaded = load_plan(plan_node);
+    scenario.plan = std::move(loaded.plan);
+    scenario.plan_file = std::move(loaded.file);
+  } else if (plan_node.isObject()) {
+    scenario.plan_file = "<inline>";
+    scenario.plan = parsePlan(plan_node);
+  } else {
+    plan_node.fail("expected a plan file name or an inline plan object, got " +
+                   describeJsonType(plan_node.raw()));
+  }
+
+  if (auto seed = root.optionalField("seed")) scenario.seed = seed->unsignedInteger();
+  scenario.robot = parseRobot(root.optionalField("robot"), scenario.plan);
+  if (auto lidar = root.optionalField("lidar")) scenario.lidar = parseLidar(*lidar);
+  if (auto odometry = root.optionalField("odometry")) scenario.odometry = parseOdometry(*odometry);
+  if (auto as_built = root.optionalField("as_built")) {
+    scenario.as_built = parseAsBuilt(*as_built, scenario.plan, scenario.robot.level);
+  }
+  return scenario;
+}
+
+Scenario loadScenario(const std::string& path, Warnings* warnings) {
+  const nlohmann::json document = readJsonFile(path);
+  const JsonSource source{path, warnings};
+  return parseScenario(JsonNode(document, "", source), [&](const JsonNode& plan_name) {
+    const std::filesystem::path plan_path =
+        (std::filesystem::path(path).parent_path() / plan_name.string()).lexically_normal();
+    if (!std::filesystem::exists(plan_path)) {
+      plan_name.fail("plan file " + inQuotes(plan_path.string()) + " does not exist");
+    }
+    return LoadedPlan{loadPlan(plan_path.string(), warnings), plan_path.string()};
+  });
+}
+
+}  // namespace isg::bim

@@ -1,0 +1,65 @@
+#include "cli/cmd_check.hpp"
+
+#include <cstdio>
+#include <iostream>
+
+#include "bim/plan_geometry.hpp"
+#include "bim/polygon.hpp"
+
+namespace isg::cli {
+
+CheckCommand::CheckCommand(CLI::App& parent) {
+  app_ = parent.add_subcommand("check", "Validate a plan or scenario and describe it");
+  app_->footer(
+      "Checks every rule of the isg.plan and isg.scenario formats. On the first violation it "
+      "prints the file, the JSON pointer and what is wrong, and exits with 1. Warnings (unknown "
+      "fields, clockwise outlines, doors whose rooms cannot be inferred) do not fail the check.\n\n" +
+      builtinWorldsHelp());
+  app_->add_option("input", input_, "plan or scenario file, or builtin:NAME")->required();
+  app_->add_flag("-v,--verbose", verbose_,
+                 "also list every room with its bounding wall faces and every door with its rooms");
+}
+
+int CheckCommand::run() {
+  const bim::Scenario scenario = loadInput(input_, "check");
+  const bim::Plan& plan = scenario.plan;
+  std::size_t walls = 0, doors = 0, rooms = 0;
+  for (const auto& level : plan.levels) {
+    walls += level.walls.size();
+    doors += level.doors.size();
+    rooms += level.rooms.size();
+  }
+  std::printf("%s: ok: plan \"%s\" (%s): %zu level%s, %zu walls, %zu doors, %zu rooms\n",
+              input_.c_str(), plan.name.c_str(), scenario.plan_file.c_str(), plan.levels.size(),
+              plan.levels.size() == 1 ? "" : "s", walls, doors, rooms);
+  const auto& ab = scenario.as_built;
+  if (!ab.empty()) {
+    std::printf("  as built: %zu missing walls, %zu extra walls, %zu shifted walls, "
+                "%zu closed doors, %zu clutter boxes\n",
+                ab.missing_walls.size(), ab.extra_walls.size(), ab.wall_shifts.size(),
+                ab.closed_doors.size(), ab.clutter.size());
+  }
+  if (!verbose_) return kExitOk;
+  for (const auto& level : plan.levels) {
+    const bim::LevelGeometry geometry = bim::computeLevelGeometry(level);
+    std::printf("  level %s: elevation %.3f m, height %.3f m\n", level.id.c_str(), level.elevation,
+                level.height);
+    for (const auto& room : level.rooms) {
+      std::printf("    room %-6s %-28s %zu sides, %.2f m², bounded by:", room.id.c_str(),
+                  ("\"" + room.name + "\"").c_str(), room.outline.size(),
+                  bim::signedArea(room.outline));
+      for (const auto& b : geometry.boundariesOf(room.id)) {
+        std::printf(" %s.%s(edge %d)", b.wall.c_str(), b.side > 0 ? "left" : "right", b.edge);
+      }
+      std::printf("\n");
+    }
+    for (const auto& door : level.doors) {
+      std::printf("    door %-6s in %-6s joins %s and %s%s\n", door.id.c_str(), door.wall.c_str(),
+                  door.rooms[0].c_str(), door.rooms[1].c_str(),
+                  door.rooms_inferred ? " (inferred)" : "");
+    }
+  }
+  return kExitOk;
+}
+
+}  // namespace isg::cli

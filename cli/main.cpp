@@ -1,0 +1,52 @@
+// isg: the iS-Graphs testbed's command line. Subcommands are thin: they parse flags and call the
+// modules. Exit codes: 0 success, 1 bad input (the message names the file, the JSON pointer and
+// what is wrong), 2 bad usage, 3 internal error.
+#include <CLI/CLI.hpp>
+#include <iostream>
+#include <memory>
+#include <vector>
+
+#include "bim/input_error.hpp"
+#include "cli/cmd_check.hpp"
+#include "cli/cmd_inspect.hpp"
+#include "cli/cmd_world.hpp"
+
+int main(int argc, char** argv) {
+  using namespace isg::cli;
+  CLI::App app{
+      "isg: a simulation-in-the-loop testbed for global localization of a legged robot against "
+      "architectural plans (iS-Graphs).",
+      "isg"};
+  app.require_subcommand(1, 1);
+  app.set_version_flag("--version", std::string("isg 0.1.0"));
+  app.footer("Run 'isg COMMAND --help' for the options of a command.");
+
+  std::vector<std::unique_ptr<Command>> commands;
+  commands.push_back(std::make_unique<WorldCommand>(app));
+  commands.push_back(std::make_unique<CheckCommand>(app));
+  commands.push_back(std::make_unique<InspectCommand>(app));
+
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    if (e.get_exit_code() == 0) return app.exit(e);  // --help, --version
+    std::cerr << "isg: " << e.what() << "\n";
+    std::cerr << "Run 'isg --help' (or 'isg COMMAND --help') for usage.\n";
+    return kExitUsage;
+  }
+
+  for (const auto& command : commands) {
+    if (!command->app()->parsed()) continue;
+    const std::string name = command->app()->get_name();
+    try {
+      return command->run();
+    } catch (const isg::bim::InputError& e) {
+      std::cerr << "isg " << name << ": error: " << e.what() << "\n";
+      return kExitBadInput;
+    } catch (const std::exception& e) {
+      std::cerr << "isg " << name << ": internal error: " << e.what() << "\n";
+      return kExitInternal;
+    }
+  }
+  return kExitUsage;
+}

@@ -1,0 +1,14 @@
+#pragma once
+
+#include "bim/plan.hpp"
+#include "bim/scenario.hpp"
+
+namespace isg::worlds {
+
+// The level as it was built: the plan's walls with a scenario's deviations applied. Missing walls
+// are gone (with their doors), shifted walls moved along their left normal (their doors move with
+// them), extra walls added with their generated ids. Doors listed as closed stay openings here;
+// the world generator fills them with a door leaf. Clutter is not a wall and is not included.
+bim::Level asBuiltLevel(const bim::Level& level, const bim::AsBuilt& as_built);
+
+}  // namespace isg::worlds

@@ -1,0 +1,258 @@
+#include "worlds/mjcf_generator.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <limits>
+#include <sstream>
+
+#include "bim/plan_geometry.hpp"
+#include "bim/polygon.hpp"
+#include "worlds/as_built.hpp"
+
+namespace isg::worlds {
+
+namespace {
+
+// Enough digits for micrometres on buildings kilometres across.
+std::string num(double v) {
+  if (std::abs(v) < 5e-13) v = 0.0;  // no "-0"
+  char buffer[32];
+  std::snprintf(buffer, sizeof buffer, "%.10g", v);
+  return buffer;
+}
+
+std::string vec(std::initializer_list<double> values) {
+  std::string out;
+  for (double v : values) {
+    if (!out.empty()) out += ' ';
+    out += num(v);
+  }
+  return out;
+}
+
+std::string xmlEscape(const std::string& text) {
+  std::string out;
+  for (char c : text) {
+    switch (c) {
+      case '&': out += "&amp;"; break;
+      case '<': out += "&lt;"; break;
+      case '>': out += "&gt;"; break;
+      case '"': out += "&quot;"; break;
+      case '\'': out += "&apos;"; break;
+      default: out += c;
+    }
+  }
+  return out;
+}
+
+struct Box2 {
+  Eigen::Vector2d lo = Eigen::Vector2d::Constant(std::numeric_limits<double>::infinity());
+  Eigen::Vector2d hi = Eigen::Vector2d::Constant(-std::numeric_limits<double>::infinity());
+  void add(const Eigen::Vector2d& p) {
+    lo = lo.cwiseMin(p);
+    hi = hi.cwiseMax(p);
+  }
+  bool valid() const { return (lo.array() <= hi.array()).all(); }
+};
+
+// Writes <geom type="box"> elements: a box given by its centre, half extents and yaw about z.
+class BoxWriter {
+ public:
+  explicit BoxWriter(std::ostringstream& out) : out_(out) {}
+
+  void box(const std::string& name, const std::string& cls, const std::string& material,
+           const Eigen::Vector3d& centre, const Eigen::Vector3d& half, double yaw) {
+    out_ << "    <geom name=\"" << xmlEscape(name) << "\" class=\"" << cls << "\" material=\""
+         << material << "\" pos=\"" << vec({centre.x(), centre.y(), centre.z()}) << "\" size=\""
+         << vec({half.x(), half.y(), half.z()}) << "\"";
+    if (std::abs(yaw) > 0.0) {
+      out_ << " quat=\"" << vec({std::cos(0.5 * yaw), 0.0, 0.0, std::sin(0.5 * yaw)}) << "\"";
+    }
+    out_ << "/>\n";
+  }
+
+  // A box spanning [s0, s1] along a wall's axis, the wall's thickness (or `thickness`) across,
+  // and [z0, z1] in height.
+  void wallPiece(const std::string& name, const std::string& material,
+                 const bim::WallGeometry& g, double s0, double s1, double thickness, double z0,
+                 double z1) {
+    if (s1 - s0 < 1e-6 || z1 - z0 < 1e-6) return;
+    const Eigen::Vector2d c = g.pointAt(0.5 * (s0 + s1));
+    box(name, "building", material, {c.x(), c.y(), 0.5 * (z0 + z1)},
+        {0.5 * (s1 - s0), 0.5 * thickness, 0.5 * (z1 - z0)}, std::atan2(g.axis.y(), g.axis.x()));
+  }
+
+ private:
+  std::ostringstream& out_;
+};
+
+bool contains(const std::vector<std::string>& ids, const std::string& id) {
+  return std::find(ids.begin(), ids.end(), id) != ids.end();
+}
+
+// Vertical room each slab may take: a slab never reaches into another level's space. Where a
+// level starts exactly at the ceiling of the one below, ceiling and floor are 0.5 mm each.
+struct SlabHeights {
+  double ceiling_top;
+  double floor_bottom;
+};
+
+SlabHeights slabHeights(const bim::Plan& plan, const bim::Level& level, double slab) {
+  constexpr double kMinSlab = 5e-4;
+  const double ceiling = level.elevation + level.height;
+  double above = std::numeric_limits<double>::infinity();
+  double below = std::numeric_limits<double>::infinity();
+  for (const auto& other : plan.levels) {
+    if (&other == &level) continue;
+    if (other.elevation >= ceiling) above = std::min(above, other.elevation - ceiling);
+    const double other_ceiling = other.elevation + other.height;
+    if (other_ceiling <= level.elevation) below = std::min(below, level.elevation - other_ceiling);
+  }
+  return {ceiling + std::min(slab, std::max(0.5 * above, kMinSlab)),
+          level.elevation - std::min(slab, std::max(0.5 * below, kMinSlab))};
+}
+
+void writeLevel(std::ostringstream& out, const bim::Plan& plan, const bim::Level& plan_level,
+                const bim::AsBuilt& as_built, const WorldOptions& options, Box2& world_box) {
+  const bim::Level level = asBuiltLevel(plan_level, as_built);
+  const bim::LevelGeometry geometry = bim::computeLevelGeometry(level);
+  BoxWriter writer(out);
+  out << "    <!-- level " << xmlEscape(level.id) << " -->\n";
+
+  Box2 box;
+  for (const auto& g : geometry.walls) {
+    for (const auto& p : g.footprint()) box.add(p);
+  }
+  for (const auto& room : level.rooms) {
+    for (const auto& p : room.outline) box.add(p);
+  }
+  world_box.add(box.lo);
+  world_box.add(box.hi);
+
+  const SlabHeights slabs = slabHeights(plan, level, options.slab_thickness);
+  const Eigen::Vector2d centre = 0.5 * (box.lo + box.hi);
+  const Eigen::Vector2d half = 0.5 * (box.hi - box.lo);
+  const Eigen::Vector2d floor_half = half.array() + options.floor_margin;
+  writer.box("floor/" + level.id, "building", "floor",
+             {centre.x(), centre.y(), 0.5 * (slabs.floor_bottom + level.elevation)},
+             {floor_half.x(), floor_half.y(), 0.5 * (level.elevation - slabs.floor_bottom)}, 0.0);
+  if (options.ceilings) {
+    const double ceiling = level.elevation + level.height;
+    writer.box("ceiling/" + level.id, "ceiling", "ceiling",
+               {centre.x(), centre.y(), 0.5 * (ceiling + slabs.ceiling_top)},
+               {half.x(), half.y(), 0.5 * (slabs.ceiling_top - ceiling)}, 0.0);
+  }
+
+  for (const auto& g : geometry.walls) {
+    const bim::Wall& wall = *g.wall;
+    const bool extra = wall.id.rfind("extra", 0) == 0 && plan_level.findWall(wall.id) == nullptr;
+    const std::string material = extra ? "extra_wall" : "wall";
+    const double z0 = level.elevation + wall.base;
+    const double z1 = level.elevation + wall.height;
+    std::vector<const bim::Door*> doors;
+    for (const auto& door : level.doors) {
+      if (door.wall == wall.id) doors.push_back(&door);
+    }
+    std::sort(doors.begin(), doors.end(),
+              [](const bim::Door* a, const bim::Door* b) { return a->offset < b->offset; });
+    double s = -g.extend_start;
+    int piece = 0;
+    for (const bim::Door* door : doors) {
+      const double lo = door->offset - 0.5 * door->width;
+      const double hi = door->offset + 0.5 * door->width;
+      if (lo - s >= 1e-6) {
+        writer.wallPiece("wall/" + wall.id + "/" + std::to_string(piece++), material, g, s, lo,
+                         wall.thickness, z0, z1);
+      }
+      writer.wallPiece("wall/" + wall.id + "/lintel/" + door->id, material, g, lo, hi,
+                       wall.thickness, z0 + door->height, z1);
+      if (contains(as_built.closed_doors, door->id)) {
+        writer.wallPiece("door/" + door->id, "door", g, lo, hi,
+                         std::min(options.door_leaf_thickness, wall.thickness), z0,
+                         z0 + door->height);
+      }
+      s = hi;
+    }
+    writer.wallPiece("wall/" + wall.id + "/" + std::to_string(piece), material, g, s,
+                     g.length + g.extend_end, wall.thickness, z0, z1);
+  }
+
+  for (std::size_t k = 0; k < as_built.clutter.size(); ++k) {
+    const auto& clutter = as_built.clutter[k];
+    if (clutter.level != level.id) continue;
+    writer.box("clutter/" + std::to_string(k), "building", "clutter",
+               {clutter.center.x(), clutter.center.y(), level.elevation + clutter.center.z()},
+               0.5 * clutter.size, clutter.yaw);
+  }
+
+  for (const auto& room : level.rooms) {
+    const Eigen::Vector2d c = bim::centroid(room.outline);
+    out << "    <site name=\"room/" << xmlEscape(room.id) << "\" pos=\""
+        << vec({c.x(), c.y(), level.elevation + 0.01}) << "\" size=\"0.08\" group=\""
+        << kBuildingGroup << "\" rgba=\".2 .5 .9 .6\"/>\n";
+  }
+}
+
+}  // namespace
+
+std::string generateMjcf(const bim::Plan& plan, const bim::AsBuilt& as_built,
+                         const WorldOptions& options) {
+  std::ostringstream body;
+  Box2 box;
+  double z_lo = std::numeric_limits<double>::infinity();
+  double z_hi = -std::numeric_limits<double>::infinity();
+  for (const auto& level : plan.levels) {
+    writeLevel(body, plan, level, as_built, options, box);
+    z_lo = std::min(z_lo, level.elevation);
+    z_hi = std::max(z_hi, level.elevation + level.height);
+  }
+  const Eigen::Vector2d centre = 0.5 * (box.lo + box.hi);
+  const Eigen::Vector2d size = box.hi - box.lo;
+  const double extent = std::max({size.x(), size.y(), z_hi - z_lo, 1.0});
+  // A camera straight above that sees the whole footprint with its 45° field of view.
+  const double top_height = z_hi + 0.6 * std::max(size.x(), size.y()) / std::tan(M_PI / 8.0);
+
+  std::ostringstream out;
+  out << "<!-- Generated by isg world from " << xmlEscape(plan.source.empty() ? plan.name : plan.source)
+      << ". Edit the plan, not this file. -->\n";
+  out << "<mujoco model=\"" << xmlEscape(plan.name) << "\">\n"
+      << "  <compiler autolimits=\"true\" angle=\"radian\"/>\n"
+      << "  <option timestep=\"0.002\"/>\n"
+      << "  <statistic center=\"" << vec({centre.x(), centre.y(), 0.5 * (z_lo + z_hi)})
+      << "\" extent=\"" << num(extent) << "\"/>\n"
+      << "  <visual>\n"
+      << "    <global offwidth=\"1920\" offheight=\"1080\"/>\n"
+      << "    <headlight ambient=\".35 .35 .35\" diffuse=\".45 .45 .45\" specular=\"0 0 0\"/>\n"
+      << "    <quality shadowsize=\"4096\"/>\n"
+      << "  </visual>\n"
+      << "  <asset>\n"
+      << "    <texture name=\"floor_grid\" type=\"2d\" builtin=\"checker\" rgb1=\".78 .76 .72\" "
+         "rgb2=\".70 .68 .64\" width=\"512\" height=\"512\"/>\n"
+      << "    <material name=\"floor\" texture=\"floor_grid\" texrepeat=\"1 1\" "
+         "texuniform=\"true\"/>\n"
+      << "    <material name=\"wall\" rgba=\".92 .90 .86 1\"/>\n"
+      << "    <material name=\"extra_wall\" rgba=\".88 .62 .50 1\"/>\n"
+      << "    <material name=\"ceiling\" rgba=\".96 .96 .96 .2\"/>\n"
+      << "    <material name=\"door\" rgba=\".55 .36 .22 1\"/>\n"
+      << "    <material name=\"clutter\" rgba=\".36 .47 .62 1\"/>\n"
+      << "  </asset>\n"
+      << "  <default>\n"
+      << "    <default class=\"building\">\n"
+      << "      <geom type=\"box\" group=\"" << kBuildingGroup << "\"/>\n"
+      << "    </default>\n"
+      << "    <default class=\"ceiling\">\n"
+      << "      <geom type=\"box\" group=\"" << kCeilingGroup << "\"/>\n"
+      << "    </default>\n"
+      << "  </default>\n"
+      << "  <worldbody>\n"
+      << "    <light name=\"sun\" directional=\"true\" castshadow=\"false\" pos=\""
+      << vec({centre.x(), centre.y(), z_hi + 10.0}) << "\" dir=\"0.3 0.2 -1\" diffuse=\".5 .5 .5\"/>\n"
+      << "    <camera name=\"top\" pos=\"" << vec({centre.x(), centre.y(), top_height})
+      << "\" xyaxes=\"1 0 0 0 1 0\" fovy=\"45\"/>\n"
+      << body.str() << "  </worldbody>\n"
+      << "</mujoco>\n";
+  return out.str();
+}
+
+}  // namespace isg::worlds

@@ -1,0 +1,60 @@
+#include "worlds/reference_plans.hpp"
+
+#include "bim/json_reader.hpp"
+#include "bim/plan_parser.hpp"
+
+namespace isg::worlds {
+
+namespace detail {
+const std::vector<std::pair<std::string_view, std::string_view>>& embeddedPlanFiles();
+}  // namespace detail
+
+namespace {
+
+std::string withoutJson(std::string_view name) {
+  std::string out(name);
+  if (out.size() > 5 && out.ends_with(".json")) out.resize(out.size() - 5);
+  return out;
+}
+
+}  // namespace
+
+std::vector<std::string> builtinNames() {
+  std::vector<std::string> names;
+  for (const auto& [file, text] : detail::embeddedPlanFiles()) names.push_back(withoutJson(file));
+  return names;
+}
+
+std::optional<std::string_view> builtinText(std::string_view name) {
+  const std::string wanted = withoutJson(name);
+  for (const auto& [file, text] : detail::embeddedPlanFiles()) {
+    if (withoutJson(file) == wanted) return text;
+  }
+  return std::nullopt;
+}
+
+bool isBuiltin(std::string_view argument) { return argument.starts_with(kBuiltinPrefix); }
+
+bim::Scenario loadScenarioOrBuiltin(const std::string& argument, bim::Warnings* warnings) {
+  if (!isBuiltin(argument)) return bim::loadScenario(argument, warnings);
+  const std::string name = argument.substr(kBuiltinPrefix.size());
+  const auto text = builtinText(name);
+  if (!text) {
+    std::string known;
+    for (const auto& n : builtinNames()) known += (known.empty() ? "" : ", ") + n;
+    throw bim::InputError(argument, "", "no such built-in world (built-ins: " + known + ")");
+  }
+  const nlohmann::json document = bim::parseJsonText(std::string(*text), argument);
+  const bim::JsonSource source{argument, warnings};
+  return bim::parseScenario(bim::JsonNode(document, "", source), [&](const bim::JsonNode& ref) {
+    const std::string plan_name = std::string(kBuiltinPrefix) + withoutJson(ref.string());
+    const auto plan_text = builtinText(ref.string());
+    if (!plan_text) ref.fail("no built-in plan \"" + ref.string() + "\"");
+    const nlohmann::json plan_document = bim::parseJsonText(std::string(*plan_text), plan_name);
+    const bim::JsonSource plan_source{plan_name, warnings};
+    return bim::LoadedPlan{bim::parsePlan(bim::JsonNode(plan_document, "", plan_source)),
+                           plan_name};
+  });
+}
+
+}  // namespace isg::worlds
