@@ -225,6 +225,11 @@ nlohmann::json parseJsonText(const std::string& text, const std::string& file) {
     throw InputError(file, "",
                      "invalid JSON at line " + std::to_string(line) + ", column " +
                          std::to_string(column) + ": " + what);
+  } catch (const nlohmann::json::exception& e) {
+    // A number too large for a double (1e999): JSON has no infinity, and neither do we.
+    std::string what = e.what();
+    if (auto bracket = what.find("] "); bracket != std::string::npos) what = what.substr(bracket + 2);
+    throw InputError(file, "", "invalid JSON: " + what + " (numbers must be finite)");
   }
 }
 

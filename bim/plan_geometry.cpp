@@ -14,9 +14,10 @@ namespace {
 constexpr double kParallelCosine = 0.1;
 // How far outside a wall's solid an endpoint may lie and still be taken as meeting it.
 constexpr double kJunctionTolerance = 1e-3;
-// Footprints are shrunk by this much before they cut faces, so that a face lying exactly on
-// another wall's side (collinear walls in a row) is not cut by it.
+// A face that lies on another wall's side (collinear walls in a row) only touches that wall and
+// is not cut by it; exposed pieces shorter than this are dropped.
 constexpr double kTouchEpsilon = 1e-6;
+constexpr double kMinExposed = 1e-3;
 
 Eigen::Vector2d perpendicular(const Eigen::Vector2d& v) { return {-v.y(), v.x()}; }
 
@@ -50,8 +51,9 @@ std::optional<AxisInterval> clipLineToConvex(const Eigen::Vector2d& origin,
     const Eigen::Vector2d inward = perpendicular(b - a);  // CCW: interior on the left
     const double num = inward.dot(origin - a);            // >= 0 inside
     const double den = inward.dot(direction);
-    if (std::abs(den) < 1e-15) {
-      if (num < 0) return std::nullopt;
+    if (std::abs(den) < 1e-12) {
+      // Parallel to this side: outside it, or lying on it (touching), the line is not cut.
+      if (num < kTouchEpsilon * (b - a).norm()) return std::nullopt;
       continue;
     }
     const double t = -num / den;
@@ -73,23 +75,10 @@ void subtractInterval(std::vector<AxisInterval>& intervals, const AxisInterval& 
       out.push_back(piece);
       continue;
     }
-    if (cut.lo > piece.lo) out.push_back({piece.lo, cut.lo});
-    if (cut.hi < piece.hi) out.push_back({cut.hi, piece.hi});
+    if (cut.lo - piece.lo >= kMinExposed) out.push_back({piece.lo, cut.lo});
+    if (piece.hi - cut.hi >= kMinExposed) out.push_back({cut.hi, piece.hi});
   }
   intervals = std::move(out);
-}
-
-std::vector<Eigen::Vector2d> shrunk(const std::vector<Eigen::Vector2d>& rectangle, double by) {
-  Eigen::Vector2d centre = Eigen::Vector2d::Zero();
-  for (const auto& p : rectangle) centre += p;
-  centre /= double(rectangle.size());
-  std::vector<Eigen::Vector2d> out;
-  for (const auto& p : rectangle) {
-    const Eigen::Vector2d from_centre = p - centre;
-    const double norm = from_centre.norm();
-    out.push_back(norm > by ? Eigen::Vector2d(p - from_centre * (by / norm)) : centre);
-  }
-  return out;
 }
 
 }  // namespace
@@ -145,7 +134,7 @@ LevelGeometry computeLevelGeometry(const Level& level, const GeometryOptions& op
 
   std::vector<std::vector<Eigen::Vector2d>> cutters;
   cutters.reserve(geometry.walls.size());
-  for (const auto& g : geometry.walls) cutters.push_back(shrunk(g.footprint(), kTouchEpsilon));
+  for (const auto& g : geometry.walls) cutters.push_back(g.footprint());
 
   for (std::size_t i = 0; i < geometry.walls.size(); ++i) {
     auto& g = geometry.walls[i];

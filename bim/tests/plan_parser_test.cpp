@@ -1,0 +1,113 @@
+#include "bim/plan_parser.hpp"
+
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+
+#include "bim/tests/test_plans.hpp"
+
+namespace isg::bim {
+namespace {
+
+using testing::parsePlanJson;
+using testing::twoRoomPlanJson;
+
+TEST(PlanParser, ReadsEveryFieldAndFillsDefaults) {
+  const Plan plan = parsePlanJson(twoRoomPlanJson());
+  EXPECT_EQ(plan.name, "two rooms");
+  ASSERT_EQ(plan.levels.size(), 1u);
+  const Level& level = plan.levels[0];
+  EXPECT_EQ(level.id, "L0");
+  EXPECT_DOUBLE_EQ(level.height, 3.0);
+  ASSERT_EQ(level.walls.size(), 5u);
+  EXPECT_EQ(level.walls[0].end, Eigen::Vector2d(6, 0));
+  EXPECT_DOUBLE_EQ(level.walls[0].thickness, 0.2);
+  EXPECT_DOUBLE_EQ(level.walls[0].height, 3.0);  // inherited from the level
+  EXPECT_DOUBLE_EQ(level.walls[4].height, 2.8);  // its own
+  EXPECT_DOUBLE_EQ(level.walls[0].base, 0.0);
+  ASSERT_EQ(level.doors.size(), 2u);
+  EXPECT_DOUBLE_EQ(level.doors[0].offset, 2.0);
+  EXPECT_EQ(level.rooms[1].name, "East");
+  EXPECT_EQ(level.rooms[1].outline.size(), 4u);
+}
+
+TEST(PlanParser, NameDefaultsToTheFileStem) {
+  auto doc = twoRoomPlanJson();
+  doc.erase("name");
+  EXPECT_EQ(parsePlanJson(doc, nullptr, "plans/office.json").name, "office");
+}
+
+TEST(PlanParser, ClockwiseOutlineIsReversedWithAWarning) {
+  auto doc = twoRoomPlanJson();
+  doc["levels"][0]["rooms"][0]["outline"] = {{0.1, 0.1}, {0.1, 3.9}, {2.95, 3.9}, {2.95, 0.1}};
+  Warnings warnings;
+  const Plan plan = parsePlanJson(doc, &warnings);
+  ASSERT_EQ(warnings.size(), 1u);
+  EXPECT_EQ(warnings[0].str(),
+            "test.json: /levels/0/rooms/0/outline: outline is clockwise; taken in "
+            "counter-clockwise order");
+  EXPECT_EQ(plan.levels[0].rooms[0].outline[0], Eigen::Vector2d(2.95, 0.1));
+  EXPECT_EQ(plan.levels[0].rooms[0].outline[1], Eigen::Vector2d(2.95, 3.9));
+}
+
+TEST(PlanParser, UnknownFieldsAreWarningsNotErrors) {
+  auto doc = twoRoomPlanJson();
+  doc["levels"][0]["walls"][2]["colour"] = "red";
+  doc["levels"][0]["rooms"][1]["a/b"] = 1;
+  Warnings warnings;
+  EXPECT_NO_THROW(parsePlanJson(doc, &warnings));
+  ASSERT_EQ(warnings.size(), 2u);
+  EXPECT_EQ(warnings[0].str(),
+            "test.json: /levels/0/walls/2/colour: unknown field \"colour\" (ignored)");
+  // JSON pointers escape '/' as ~1 (RFC 6901).
+  EXPECT_EQ(warnings[1].pointer, "/levels/0/rooms/1/a~1b");
+}
+
+TEST(PlanParser, DoorWithRoomsThatCannotBeInferredWarns) {
+  auto doc = twoRoomPlanJson();
+  doc["levels"][0]["doors"].erase(1);
+  doc["levels"][0]["rooms"].erase(1);  // no room east of the partition: D1 leads "outside"
+  Warnings warnings;
+  const Plan plan = parsePlanJson(doc, &warnings);
+  EXPECT_EQ(plan.levels[0].doors[0].rooms[1], "outside");
+  EXPECT_TRUE(warnings.empty());
+  doc["levels"][0]["rooms"].erase(0);  // no rooms at all: outside on both sides
+  parsePlanJson(doc, &warnings);
+  ASSERT_FALSE(warnings.empty());
+  EXPECT_THAT(warnings[0].message, ::testing::HasSubstr("cannot infer the rooms"));
+}
+
+TEST(PlanParser, ErrorCarriesFilePointerAndReason) {
+  auto doc = twoRoomPlanJson();
+  doc["levels"][0]["walls"][3]["thickness"] = -0.2;
+  try {
+    parsePlanJson(doc, nullptr, "plans/bad.json");
+    FAIL() << "expected an InputError";
+  } catch (const InputError& e) {
+    EXPECT_EQ(e.file(), "plans/bad.json");
+    EXPECT_EQ(e.pointer(), "/levels/0/walls/3/thickness");
+    EXPECT_EQ(e.reason(), "must be > 0, got -0.2");
+    EXPECT_STREQ(e.what(), "plans/bad.json: /levels/0/walls/3/thickness: must be > 0, got -0.2");
+  }
+}
+
+TEST(PlanParser, SyntaxErrorNamesLineAndColumn) {
+  try {
+    parseJsonText("{\n  \"format\": \"isg.plan\",\n  \"version\": 1,,\n}", "bad.json");
+    FAIL() << "expected an InputError";
+  } catch (const InputError& e) {
+    EXPECT_EQ(e.file(), "bad.json");
+    EXPECT_THAT(e.reason(), ::testing::StartsWith("invalid JSON at line 3, column 16: "));
+  }
+}
+
+TEST(PlanParser, MissingFileIsAnInputError) {
+  try {
+    loadPlan("/nonexistent/plan.json");
+    FAIL() << "expected an InputError";
+  } catch (const InputError& e) {
+    EXPECT_STREQ(e.what(), "/nonexistent/plan.json: cannot open file: No such file or directory");
+  }
+}
+
+}  // namespace
+}  // namespace isg::bim

@@ -1,0 +1,76 @@
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+
+#include "bim/scenario.hpp"
+
+namespace isg::bim {
+namespace {
+
+const std::string kPlans = std::string(ISG_SOURCE_DIR) + "/worlds/plans/";
+
+TEST(ScenarioParser, BarePlanGetsEveryDefault) {
+  const Scenario s = loadScenario(kPlans + "d1.json");
+  EXPECT_EQ(s.seed, 0u);
+  EXPECT_EQ(s.robot.level, "L0");
+  EXPECT_EQ(s.robot.start_room, "R1");  // the level's first room
+  EXPECT_FALSE(s.robot.start_pose);
+  EXPECT_EQ(s.robot.route.kind, Route::Kind::kTour);
+  EXPECT_DOUBLE_EQ(s.robot.speed, 0.5);
+  EXPECT_DOUBLE_EQ(s.lidar.rate_hz, 10.0);
+  EXPECT_DOUBLE_EQ(s.lidar.range_noise_m, 0.01);
+  EXPECT_DOUBLE_EQ(s.lidar.min_range_m, 0.9);
+  EXPECT_DOUBLE_EQ(s.lidar.max_range_m, 100.0);
+  EXPECT_DOUBLE_EQ(s.lidar.mount[2], 0.25);
+  EXPECT_DOUBLE_EQ(s.odometry.rate_hz, 50.0);
+  EXPECT_DOUBLE_EQ(s.odometry.translation_noise, 0.02);
+  EXPECT_DOUBLE_EQ(s.odometry.heading_noise_deg_per_m, 0.5);
+  EXPECT_TRUE(s.as_built.empty());
+}
+
+TEST(ScenarioParser, ReferenceScenarioResolvesItsPlanRelativeToItself) {
+  const Scenario s = loadScenario(kPlans + "d1.asbuilt.json");
+  EXPECT_EQ(s.plan.name, "D1 three offices and a corridor");
+  EXPECT_EQ(std::filesystem::path(s.plan_file).filename(), "d1.json");
+  EXPECT_EQ(s.seed, 1u);
+  ASSERT_EQ(s.as_built.wall_shifts.size(), 1u);
+  EXPECT_EQ(s.as_built.wall_shifts[0].wall, "W6");
+  EXPECT_DOUBLE_EQ(s.as_built.wall_shifts[0].offset, 0.05);
+  ASSERT_EQ(s.as_built.clutter.size(), 2u);
+  EXPECT_EQ(s.as_built.clutter[1].center, Eigen::Vector3d(10.8, 4.0, 0.5));
+  EXPECT_DOUBLE_EQ(s.as_built.clutter[1].yaw, 0.2);
+  EXPECT_EQ(s.as_built.clutter[1].level, "L0");
+  EXPECT_EQ(s.as_built.closed_doors, std::vector<std::string>{"D5"});
+}
+
+TEST(ScenarioParser, InlinePlanAndExplicitRobot) {
+  const auto dir = std::filesystem::temp_directory_path() / "isg_scenario_parser_test";
+  std::filesystem::create_directories(dir);
+  const auto path = (dir / "inline.json").string();
+  std::ofstream(path) << R"({
+    "format": "isg.scenario", "version": 1, "seed": 42,
+    "plan": {"format": "isg.plan", "version": 1, "levels": [{"id": "G", "height": 2.5,
+      "walls": [{"id": "A", "start": [0, 0], "end": [5, 0], "thickness": 0.2}]}]},
+    "robot": {"start": {"pose": [1.0, 2.0, 0.5]}, "route": {"waypoints": [[1, 2], [3, 2]]},
+              "speed": 0.8},
+    "lidar": {"rate_hz": 20, "mount": [0.1, 0, 0.3, 0, 0, 0]},
+    "as_built": {"extra_walls": [{"start": [0, 3], "end": [2, 3], "thickness": 0.1}]}
+  })";
+  const Scenario s = loadScenario(path);
+  EXPECT_EQ(s.plan_file, "<inline>");
+  EXPECT_EQ(s.seed, 42u);
+  EXPECT_EQ(s.robot.level, "G");
+  EXPECT_EQ(*s.robot.start_pose, Eigen::Vector3d(1.0, 2.0, 0.5));
+  EXPECT_EQ(s.robot.route.kind, Route::Kind::kWaypoints);
+  EXPECT_EQ(s.robot.route.waypoints.size(), 2u);
+  EXPECT_DOUBLE_EQ(s.lidar.rate_hz, 20.0);
+  EXPECT_DOUBLE_EQ(s.lidar.mount[0], 0.1);
+  ASSERT_EQ(s.as_built.extra_walls.size(), 1u);
+  EXPECT_EQ(s.as_built.extra_walls[0].id, "extra0");
+  EXPECT_EQ(s.as_built.extra_walls[0].level, "G");
+  std::filesystem::remove_all(dir);
+}
+
+}  // namespace
+}  // namespace isg::bim

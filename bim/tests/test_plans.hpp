@@ -1,0 +1,45 @@
+#pragma once
+
+#include <nlohmann/json.hpp>
+#include <string>
+
+#include "bim/json_reader.hpp"
+#include "bim/plan.hpp"
+#include "bim/plan_parser.hpp"
+
+namespace isg::bim::testing {
+
+// A 6 m × 4 m box with 0.2 m outer walls, split by a 0.1 m wall at x = 3 that meets the outer
+// walls in two T-junctions, one door in it and one to the outside. Every number in the geometry
+// tests is computed by hand from this plan.
+inline nlohmann::json twoRoomPlanJson() {
+  return nlohmann::json::parse(R"({
+    "format": "isg.plan", "version": 1, "name": "two rooms",
+    "levels": [{
+      "id": "L0", "elevation": 0.0, "height": 3.0,
+      "walls": [
+        {"id": "W1", "start": [0, 0], "end": [6, 0], "thickness": 0.2},
+        {"id": "W2", "start": [6, 0], "end": [6, 4], "thickness": 0.2},
+        {"id": "W3", "start": [6, 4], "end": [0, 4], "thickness": 0.2},
+        {"id": "W4", "start": [0, 4], "end": [0, 0], "thickness": 0.2},
+        {"id": "W5", "start": [3, 0], "end": [3, 4], "thickness": 0.1, "height": 2.8}
+      ],
+      "doors": [
+        {"id": "D1", "wall": "W5", "offset": 2.0, "width": 0.9, "height": 2.1},
+        {"id": "D2", "wall": "W1", "offset": 4.5, "width": 1.0, "height": 2.1, "rooms": ["R2", "outside"]}
+      ],
+      "rooms": [
+        {"id": "R1", "name": "West", "outline": [[0.1, 0.1], [2.95, 0.1], [2.95, 3.9], [0.1, 3.9]]},
+        {"id": "R2", "name": "East", "outline": [[3.05, 0.1], [5.9, 0.1], [5.9, 3.9], [3.05, 3.9]]}
+      ]
+    }]
+  })");
+}
+
+inline Plan parsePlanJson(const nlohmann::json& document, Warnings* warnings = nullptr,
+                          const std::string& file = "test.json") {
+  const JsonSource source{file, warnings};
+  return parsePlan(JsonNode(document, "", source));
+}
+
+}  // namespace isg::bim::testing

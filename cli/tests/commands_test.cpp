@@ -1,0 +1,82 @@
+// The isg command line as a user meets it: help, usage errors, and each command's output.
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+
+#include "cli/tests/cli_runner.hpp"
+
+namespace isg::cli {
+namespace {
+
+using ::testing::HasSubstr;
+using ::testing::StartsWith;
+
+TEST(Usage, HelpOnEveryCommandExitsZero) {
+  testing::Sandbox sandbox("usage_help");
+  for (const char* command : {"", "world ", "check ", "inspect "}) {
+    const auto result = sandbox.run(std::string(command) + "--help");
+    EXPECT_EQ(result.exit_code, 0) << command;
+    EXPECT_THAT(result.out, HasSubstr("Usage:")) << command;
+  }
+  EXPECT_THAT(sandbox.run("world --help").out, HasSubstr("builtin:NAME, NAME one of: d1, "));
+}
+
+TEST(Usage, BadUsageExitsTwo) {
+  testing::Sandbox sandbox("usage_bad");
+  auto result = sandbox.run("");
+  EXPECT_EQ(result.exit_code, 2);
+  EXPECT_THAT(result.err, HasSubstr("subcommand"));
+  result = sandbox.run("world");
+  EXPECT_EQ(result.exit_code, 2);
+  EXPECT_THAT(result.err, HasSubstr("input is required"));
+  result = sandbox.run("world builtin:d1 --frobnicate");
+  EXPECT_EQ(result.exit_code, 2);
+  result = sandbox.run("teleport");
+  EXPECT_EQ(result.exit_code, 2);
+}
+
+TEST(World, WritesMjcfToStandardOutputOrAFile) {
+  testing::Sandbox sandbox("world_output");
+  auto result = sandbox.run("world builtin:d2");
+  EXPECT_EQ(result.exit_code, 0) << result.err;
+  EXPECT_THAT(result.out, HasSubstr("<mujoco model=\"D2 hall, meeting room and store\">"));
+  result = sandbox.run("world builtin:d2.asbuilt -o d2.xml");
+  EXPECT_EQ(result.exit_code, 0) << result.err;
+  EXPECT_TRUE(result.out.empty());
+  EXPECT_THAT(result.err, StartsWith("isg world: wrote d2.xml ("));
+  EXPECT_THAT(sandbox.read("d2.xml"), HasSubstr("name=\"clutter/2\""));
+  result = sandbox.run("world builtin:d2 --no-ceilings");
+  EXPECT_THAT(result.out, ::testing::Not(HasSubstr("ceiling/L0")));
+}
+
+TEST(World, UnknownBuiltinListsTheBuiltins) {
+  testing::Sandbox sandbox("world_builtin");
+  const auto result = sandbox.run("world builtin:d9");
+  EXPECT_EQ(result.exit_code, 1);
+  EXPECT_EQ(result.err,
+            "isg world: error: builtin:d9: no such built-in world (built-ins: d1, d1.asbuilt, d2, "
+            "d2.asbuilt, d3, d3.asbuilt, d4, d4.asbuilt, d5, d5.asbuilt, d6, d6.asbuilt)\n");
+}
+
+TEST(Check, DescribesAValidScenario) {
+  testing::Sandbox sandbox("check");
+  const auto result = sandbox.run("check builtin:d3.asbuilt --verbose");
+  EXPECT_EQ(result.exit_code, 0) << result.err;
+  EXPECT_THAT(result.out,
+              StartsWith("builtin:d3.asbuilt: ok: plan \"D3 double-loaded corridor\" "
+                         "(builtin:d3): 1 level, 11 walls, 8 doors, 8 rooms\n"));
+  EXPECT_THAT(result.out, HasSubstr("as built: 0 missing walls, 1 extra walls, 1 shifted walls, "
+                                     "1 closed doors, 3 clutter boxes\n"));
+  EXPECT_THAT(result.out, HasSubstr("door D8     in W4     joins R8 and outside (inferred)"));
+}
+
+TEST(Inspect, DefaultWorldLoadsStepsAndProbes) {
+  testing::Sandbox sandbox("inspect");
+  const auto result = sandbox.run("inspect --steps 100");
+  EXPECT_EQ(result.exit_code, 0) << result.err;
+  EXPECT_THAT(result.out, StartsWith("isg inspect: builtin:d1.asbuilt (MuJoCo 2.2.2)\n"));
+  EXPECT_THAT(result.out, HasSubstr("stepped 100 times: 0.200 s of simulated time"));
+  EXPECT_THAT(result.out, HasSubstr("72/72 rays hit the building"));
+}
+
+}  // namespace
+}  // namespace isg::cli

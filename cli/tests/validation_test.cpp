@@ -1,0 +1,306 @@
+// Every validation rule of FORMATS.md, fed to the real `isg world` as a bad file: the message
+// names the file, the JSON pointer and what is wrong, the exit code is 1, nothing is written.
+#include <gtest/gtest.h>
+
+#include <functional>
+#include <nlohmann/json.hpp>
+
+#include "cli/tests/cli_runner.hpp"
+
+namespace isg::cli {
+namespace {
+
+using nlohmann::json;
+
+json validPlan() {
+  return json::parse(R"({
+    "format": "isg.plan", "version": 1, "name": "two rooms",
+    "levels": [{
+      "id": "L0", "elevation": 0.0, "height": 3.0,
+      "walls": [
+        {"id": "W1", "start": [0, 0], "end": [6, 0], "thickness": 0.2},
+        {"id": "W2", "start": [6, 0], "end": [6, 4], "thickness": 0.2},
+        {"id": "W3", "start": [6, 4], "end": [0, 4], "thickness": 0.2},
+        {"id": "W4", "start": [0, 4], "end": [0, 0], "thickness": 0.2},
+        {"id": "W5", "start": [3, 0], "end": [3, 4], "thickness": 0.1, "height": 2.8}
+      ],
+      "doors": [
+        {"id": "D1", "wall": "W5", "offset": 2.0, "width": 0.9, "height": 2.1},
+        {"id": "D2", "wall": "W1", "offset": 4.5, "width": 1.0, "height": 2.1, "rooms": ["R2", "outside"]}
+      ],
+      "rooms": [
+        {"id": "R1", "name": "West", "outline": [[0.1, 0.1], [2.95, 0.1], [2.95, 3.9], [0.1, 3.9]]},
+        {"id": "R2", "name": "East", "outline": [[3.05, 0.1], [5.9, 0.1], [5.9, 3.9], [3.05, 3.9]]}
+      ]
+    }]
+  })");
+}
+
+json validScenario() {
+  return json::parse(R"({
+    "format": "isg.scenario", "version": 1, "plan": "plan.json", "seed": 7,
+    "robot": {"level": "L0", "start": {"room": "R1"}, "route": "tour", "speed": 0.5},
+    "lidar": {"rate_hz": 10, "range_noise_m": 0.01, "min_range_m": 0.9, "max_range_m": 100.0,
+              "dropout": 0.0, "mount": [0.0, 0.0, 0.25, 0.0, 0.0, 0.0]},
+    "odometry": {"rate_hz": 50, "translation_noise": 0.02, "heading_noise_deg_per_m": 0.5},
+    "as_built": {
+      "missing_walls": [], "extra_walls": [{"start": [1, 1], "end": [1, 2], "thickness": 0.1}],
+      "wall_shifts": [{"wall": "W5", "offset": 0.05}], "closed_doors": ["D1"],
+      "clutter": [{"shape": "box", "center": [4, 3, 0.5], "size": [1, 1, 1], "yaw": 0.3}]
+    }
+  })");
+}
+
+struct Case {
+  std::string name;
+  // Which file is fed to `isg world`: "plan.json" or "scenario.json" (which names plan.json).
+  std::string input;
+  std::function<void(json& plan, json& scenario)> mutate;
+  std::string expected;  // the whole of stderr after "isg world: error: "
+  std::function<std::string(std::string)> edit_text = nullptr;  // on plan.json's text
+};
+
+std::ostream& operator<<(std::ostream& out, const Case& c) { return out << c.name; }
+
+std::vector<Case> cases() {
+  auto walls = [](json& p) -> json& { return p["levels"][0]["walls"]; };
+  auto doors = [](json& p) -> json& { return p["levels"][0]["doors"]; };
+  auto rooms = [](json& p) -> json& { return p["levels"][0]["rooms"]; };
+  return {
+      // --- plan: format and version
+      {"UnknownFormat", "plan.json", [](json& p, json&) { p["format"] = "isg.blueprint"; },
+       "plan.json: /format: unknown format \"isg.blueprint\" (expected \"isg.plan\" or "
+       "\"isg.scenario\")"},
+      {"UnknownVersion", "plan.json", [](json& p, json&) { p["version"] = 2; },
+       "plan.json: /version: unsupported version 2 (this build reads version 1)"},
+      {"MissingFormat", "plan.json", [](json& p, json&) { p.erase("format"); },
+       "plan.json: missing required field \"format\""},
+      // --- missing or mistyped fields
+      {"MissingField", "plan.json", [=](json& p, json&) { walls(p)[3].erase("thickness"); },
+       "plan.json: /levels/0/walls/3: missing required field \"thickness\""},
+      {"MistypedNumber", "plan.json", [=](json& p, json&) { walls(p)[3]["thickness"] = "0.2"; },
+       "plan.json: /levels/0/walls/3/thickness: expected a number, got a string"},
+      {"MistypedPoint", "plan.json", [=](json& p, json&) { walls(p)[1]["end"] = {6, 4, 0}; },
+       "plan.json: /levels/0/walls/1/end: expected an array of 2 numbers, got 3 elements"},
+      {"MistypedArray", "plan.json", [=](json& p, json&) { p["levels"][0]["rooms"] = "R1"; },
+       "plan.json: /levels/0/rooms: expected an array, got a string"},
+      {"NoLevels", "plan.json", [](json& p, json&) { p["levels"] = json::array(); },
+       "plan.json: /levels: expected at least 1 element, got 0"},
+      {"NonFiniteNumber", "plan.json", [](json&, json&) {},
+       "plan.json: invalid JSON: number overflow parsing '1e999' (numbers must be finite)",
+       [](std::string text) {
+         const std::string key = "\"thickness\":0.1";
+         return text.replace(text.find(key), key.size(), "\"thickness\":1e999");
+       }},
+      {"InvalidJson", "plan.json", [](json&, json&) {},
+       "plan.json: invalid JSON at line 1, column 2: syntax error while parsing object key - "
+       "unexpected ','; expected string literal",
+       [](std::string text) { return "{," + text; }},
+      // --- walls
+      {"ZeroLengthWall", "plan.json", [=](json& p, json&) { walls(p)[1]["end"] = {6, 0}; },
+       "plan.json: /levels/0/walls/1/end: zero-length wall: end equals start [6, 0]"},
+      {"ZeroThickness", "plan.json", [=](json& p, json&) { walls(p)[2]["thickness"] = 0; },
+       "plan.json: /levels/0/walls/2/thickness: must be > 0, got 0"},
+      {"NegativeThickness", "plan.json", [=](json& p, json&) { walls(p)[2]["thickness"] = -0.1; },
+       "plan.json: /levels/0/walls/2/thickness: must be > 0, got -0.1"},
+      {"BaseAboveTop", "plan.json", [=](json& p, json&) { walls(p)[4]["base"] = 2.8; },
+       "plan.json: /levels/0/walls/4/base: base 2.8 is not below the wall's top at 2.8"},
+      // --- doors
+      {"DoorPastWallEnd", "plan.json", [=](json& p, json&) { doors(p)[0]["offset"] = 3.7; },
+       "plan.json: /levels/0/doors/0/offset: opening from 3.25 to 4.15 m along the wall does not "
+       "fit inside wall \"W5\" (length 4 m)"},
+      {"DoorBeforeWallStart", "plan.json", [=](json& p, json&) { doors(p)[1]["offset"] = 0.4; },
+       "plan.json: /levels/0/doors/1/offset: opening from -0.1 to 0.9 m along the wall does not "
+       "fit inside wall \"W1\" (length 6 m)"},
+      {"DoorTallerThanWall", "plan.json", [=](json& p, json&) { doors(p)[0]["height"] = 2.9; },
+       "plan.json: /levels/0/doors/0/height: door is 2.9 m high, taller than wall \"W5\" (2.8 m "
+       "above its base)"},
+      {"DoorTallerThanRaisedWall", "plan.json",
+       [=](json& p, json&) { walls(p)[4]["base"] = 1.0; },
+       "plan.json: /levels/0/doors/0/height: door is 2.1 m high, taller than wall \"W5\" (1.8 m "
+       "above its base)"},
+      {"OverlappingDoors", "plan.json",
+       [=](json& p, json&) {
+         doors(p).push_back({{"id", "D3"}, {"wall", "W5"}, {"offset", 2.5}, {"width", 0.9},
+                             {"height", 2.0}});
+       },
+       "plan.json: /levels/0/doors/2/offset: opening overlaps door \"D1\" on wall \"W5\""},
+      {"DoorOnUnknownWall", "plan.json", [=](json& p, json&) { doors(p)[0]["wall"] = "W9"; },
+       "plan.json: /levels/0/doors/0/wall: no wall \"W9\" on level \"L0\""},
+      {"DoorToUnknownRoom", "plan.json",
+       [=](json& p, json&) { doors(p)[1]["rooms"] = {"R2", "R7"}; },
+       "plan.json: /levels/0/doors/1/rooms/1: no room \"R7\" on level \"L0\" (use \"outside\" for "
+       "the outside)"},
+      {"DoorJoiningOneRoom", "plan.json",
+       [=](json& p, json&) { doors(p)[1]["rooms"] = {"R2", "R2"}; },
+       "plan.json: /levels/0/doors/1/rooms: a door joins two different rooms, got \"R2\" twice"},
+      {"DoorWithThreeRooms", "plan.json",
+       [=](json& p, json&) { doors(p)[1]["rooms"] = {"R1", "R2", "outside"}; },
+       "plan.json: /levels/0/doors/1/rooms: a door joins exactly 2 rooms, got 3"},
+      // --- rooms
+      {"OutlineTooShort", "plan.json",
+       [=](json& p, json&) { rooms(p)[0]["outline"] = {{0.1, 0.1}, {2.95, 0.1}}; },
+       "plan.json: /levels/0/rooms/0/outline: an outline needs at least 3 vertices, got 2"},
+      {"SelfIntersectingOutline", "plan.json",
+       [=](json& p, json&) {
+         rooms(p)[0]["outline"] = {{0.1, 0.1}, {2.95, 3.9}, {2.95, 0.1}, {0.1, 3.9}};
+       },
+       "plan.json: /levels/0/rooms/0/outline: self-intersecting outline: edge 0 [0.1, 0.1]→[2.95, "
+       "3.9] meets edge 2 [2.95, 0.1]→[0.1, 3.9]"},
+      {"RepeatedVertex", "plan.json",
+       [=](json& p, json&) {
+         rooms(p)[0]["outline"] = {{0.1, 0.1}, {2.95, 0.1}, {2.95, 0.1}, {0.1, 3.9}};
+       },
+       "plan.json: /levels/0/rooms/0/outline: zero-length edge 1: vertex 1 repeats at [2.95, 0.1]"},
+      {"ReservedRoomId", "plan.json", [=](json& p, json&) { rooms(p)[0]["id"] = "outside"; },
+       "plan.json: /levels/0/rooms/0/id: \"outside\" is reserved for the outside of the building"},
+      // --- ids
+      {"DuplicateId", "plan.json", [=](json& p, json&) { rooms(p)[1]["id"] = "W3"; },
+       "plan.json: /levels/0/rooms/1/id: duplicate id \"W3\" (first used at "
+       "/levels/0/walls/2/id)"},
+      {"EmptyId", "plan.json", [=](json& p, json&) { walls(p)[0]["id"] = ""; },
+       "plan.json: /levels/0/walls/0/id: must not be empty"},
+      // --- scenario
+      {"MissingPlanFile", "scenario.json", [](json&, json& s) { s["plan"] = "nowhere.json"; },
+       "scenario.json: /plan: plan file \"nowhere.json\" does not exist"},
+      {"ErrorInsideReferencedPlan", "scenario.json",
+       [=](json& p, json&) { walls(p)[0]["thickness"] = 0; },
+       "plan.json: /levels/0/walls/0/thickness: must be > 0, got 0"},
+      {"ErrorInsideInlinePlan", "scenario.json",
+       [=](json& p, json& s) {
+         walls(p)[0]["thickness"] = 0;
+         s["plan"] = p;
+       },
+       "scenario.json: /plan/levels/0/walls/0/thickness: must be > 0, got 0"},
+      {"ScenarioUnknownVersion", "scenario.json", [](json&, json& s) { s["version"] = 3; },
+       "scenario.json: /version: unsupported version 3 (this build reads version 1)"},
+      {"NegativeSeed", "scenario.json", [](json&, json& s) { s["seed"] = -1; },
+       "scenario.json: /seed: must be >= 0, got -1"},
+      {"UnknownLevel", "scenario.json", [](json&, json& s) { s["robot"]["level"] = "L9"; },
+       "scenario.json: /robot/level: no level \"L9\" in the plan"},
+      {"UnknownStartRoom", "scenario.json",
+       [](json&, json& s) { s["robot"]["start"]["room"] = "R9"; },
+       "scenario.json: /robot/start/room: no room \"R9\" on level \"L0\""},
+      {"StartRoomAndPose", "scenario.json",
+       [](json&, json& s) { s["robot"]["start"]["pose"] = {1, 1, 0}; },
+       "scenario.json: /robot/start: give exactly one of \"room\" and \"pose\""},
+      {"StartInsideWall", "scenario.json",
+       [](json&, json& s) { s["robot"]["start"] = {{"pose", {3.02, 1.0, 0.0}}}; },
+       "scenario.json: /robot/start/pose: start position is inside wall \"W5\""},
+      {"UnknownRoute", "scenario.json", [](json&, json& s) { s["robot"]["route"] = "spiral"; },
+       "scenario.json: /robot/route: unknown route \"spiral\" (expected \"tour\")"},
+      {"RouteToUnknownRoom", "scenario.json",
+       [](json&, json& s) { s["robot"]["route"] = {{"rooms", {"R1", "R5"}}}; },
+       "scenario.json: /robot/route/rooms/1: no room \"R5\" on level \"L0\""},
+      {"ZeroSpeed", "scenario.json", [](json&, json& s) { s["robot"]["speed"] = 0; },
+       "scenario.json: /robot/speed: must be in [0.01, 3], got 0"},
+      {"LidarRate", "scenario.json", [](json&, json& s) { s["lidar"]["rate_hz"] = 40; },
+       "scenario.json: /lidar/rate_hz: must be in [5, 20], got 40"},
+      {"LidarRanges", "scenario.json", [](json&, json& s) { s["lidar"]["max_range_m"] = 0.5; },
+       "scenario.json: /lidar/max_range_m: max_range_m 0.5 is not above min_range_m 0.9"},
+      {"LidarDropout", "scenario.json", [](json&, json& s) { s["lidar"]["dropout"] = 1.0; },
+       "scenario.json: /lidar/dropout: must be in [0, 1), got 1"},
+      {"LidarMount", "scenario.json", [](json&, json& s) { s["lidar"]["mount"] = {0, 0, 0.25}; },
+       "scenario.json: /lidar/mount: expected an array of 6 numbers, got 3 elements"},
+      {"OdometryNoise", "scenario.json",
+       [](json&, json& s) { s["odometry"]["translation_noise"] = -0.1; },
+       "scenario.json: /odometry/translation_noise: must be >= 0, got -0.1"},
+      {"MissingWallUnknown", "scenario.json",
+       [](json&, json& s) { s["as_built"]["missing_walls"] = {"W8"}; },
+       "scenario.json: /as_built/missing_walls/0: no wall \"W8\" in the plan"},
+      {"ShiftOfUnknownWall", "scenario.json",
+       [](json&, json& s) { s["as_built"]["wall_shifts"][0]["wall"] = "W0"; },
+       "scenario.json: /as_built/wall_shifts/0/wall: no wall \"W0\" in the plan"},
+      {"ShiftOfMissingWall", "scenario.json",
+       [](json&, json& s) { s["as_built"]["missing_walls"] = {"W5"}; },
+       "scenario.json: /as_built/wall_shifts/0/wall: \"W5\" is also in missing_walls"},
+      {"ClosedUnknownDoor", "scenario.json",
+       [](json&, json& s) { s["as_built"]["closed_doors"] = {"D1", "D9"}; },
+       "scenario.json: /as_built/closed_doors/1: no door \"D9\" in the plan"},
+      {"ClosedDoorTwice", "scenario.json",
+       [](json&, json& s) { s["as_built"]["closed_doors"] = {"D1", "D1"}; },
+       "scenario.json: /as_built/closed_doors/1: \"D1\" is listed twice"},
+      {"ExtraWallZeroLength", "scenario.json",
+       [](json&, json& s) { s["as_built"]["extra_walls"][0]["end"] = {1, 1}; },
+       "scenario.json: /as_built/extra_walls/0/end: zero-length wall: end equals start"},
+      {"ClutterShape", "scenario.json",
+       [](json&, json& s) { s["as_built"]["clutter"][0]["shape"] = "sphere"; },
+       "scenario.json: /as_built/clutter/0/shape: unknown shape \"sphere\" (expected \"box\")"},
+      {"ClutterSize", "scenario.json",
+       [](json&, json& s) { s["as_built"]["clutter"][0]["size"] = {1, 0, 1}; },
+       "scenario.json: /as_built/clutter/0/size: every extent must be > 0"},
+  };
+}
+
+class Validation : public ::testing::TestWithParam<Case> {};
+
+TEST_P(Validation, BadFileIsRejectedWithItsLocationAndNothingIsWritten) {
+  const Case& c = GetParam();
+  testing::Sandbox sandbox("validation_" + c.name);
+  json plan = validPlan();
+  json scenario = validScenario();
+  c.mutate(plan, scenario);
+  std::string plan_text = plan.dump();
+  if (c.edit_text) plan_text = c.edit_text(plan_text);
+  sandbox.write("plan.json", plan_text);
+  sandbox.write("scenario.json", scenario.dump(2));
+  const std::size_t files_before = sandbox.fileCount();
+
+  const testing::RunResult result = sandbox.run("world " + c.input + " -o world.xml");
+
+  EXPECT_EQ(result.exit_code, 1);
+  EXPECT_EQ(result.err, "isg world: error: " + c.expected + "\n");
+  EXPECT_TRUE(result.out.empty());
+  EXPECT_FALSE(sandbox.exists("world.xml"));
+  EXPECT_EQ(sandbox.fileCount(), files_before);  // no temporary left behind either
+}
+
+INSTANTIATE_TEST_SUITE_P(EveryRule, Validation, ::testing::ValuesIn(cases()),
+                         [](const ::testing::TestParamInfo<Case>& info) { return info.param.name; });
+
+TEST(ValidInput, TheBaseFilesAreValidSoEachCaseFailsForItsOwnReason) {
+  testing::Sandbox sandbox("validation_base");
+  sandbox.write("plan.json", validPlan().dump());
+  sandbox.write("scenario.json", validScenario().dump());
+  for (const char* input : {"plan.json", "scenario.json"}) {
+    const auto result = sandbox.run(std::string("world ") + input + " -o world.xml");
+    EXPECT_EQ(result.exit_code, 0) << result.err;
+    EXPECT_TRUE(sandbox.exists("world.xml"));
+    std::filesystem::remove(sandbox.dir() / "world.xml");
+  }
+}
+
+TEST(ValidInput, MissingInputFile) {
+  testing::Sandbox sandbox("validation_missing");
+  const auto result = sandbox.run("world nothing.json -o world.xml");
+  EXPECT_EQ(result.exit_code, 1);
+  EXPECT_EQ(result.err,
+            "isg world: error: nothing.json: cannot open file: No such file or directory\n");
+  EXPECT_FALSE(sandbox.exists("world.xml"));
+}
+
+TEST(ValidInput, UnknownFieldIsAWarningAndTheWorldIsWritten) {
+  testing::Sandbox sandbox("validation_unknown_field");
+  json plan = validPlan();
+  plan["levels"][0]["walls"][0]["material"] = "concrete";
+  sandbox.write("plan.json", plan.dump());
+  const auto result = sandbox.run("world plan.json -o world.xml");
+  EXPECT_EQ(result.exit_code, 0);
+  EXPECT_EQ(result.err.substr(0, result.err.find('\n') + 1),
+            "isg world: warning: plan.json: /levels/0/walls/0/material: unknown field "
+            "\"material\" (ignored)\n");
+  EXPECT_TRUE(sandbox.exists("world.xml"));
+}
+
+TEST(ValidInput, UnwritableOutputIsABadInputError) {
+  testing::Sandbox sandbox("validation_unwritable");
+  sandbox.write("plan.json", validPlan().dump());
+  const auto result = sandbox.run("world plan.json -o no/such/dir/world.xml");
+  EXPECT_EQ(result.exit_code, 1);
+  EXPECT_EQ(result.err,
+            "isg world: error: no/such/dir/world.xml: cannot write: directory no/such/dir does "
+            "not exist\n");
+}
+
+}  // namespace
+}  // namespace isg::cli

@@ -1,0 +1,277 @@
+// The generated worlds, checked the way the simulated LiDAR will see them: mj_ray from inside
+// rooms against the faces the plan says are there.
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "bim/plan_geometry.hpp"
+#include "bim/polygon.hpp"
+#include "bim/synthetic_plan.hpp"
+#include "bim/json_reader.hpp"
+#include "bim/plan_parser.hpp"
+#include "sim/mujoco_world.hpp"
+#include "worlds/mjcf_generator.hpp"
+#include "worlds/reference_plans.hpp"
+
+namespace isg::worlds {
+namespace {
+
+constexpr double kMillimetre = 1e-3;
+constexpr unsigned kBuilding = 1u << kBuildingGroup;
+
+bim::Scenario builtin(const std::string& name) {
+  return loadScenarioOrBuiltin(std::string(kBuiltinPrefix) + name, nullptr);
+}
+
+bool startsWith(const std::string& s, const std::string& prefix) { return s.rfind(prefix, 0) == 0; }
+
+bool inOpening(const bim::WallFace& face, double s, double margin) {
+  for (const auto& o : face.openings) {
+    if (s > o.lo - margin && s < o.hi + margin) return true;
+  }
+  return false;
+}
+
+// For every face that bounds a room, casts rays from points 0.5 m inside the room straight at
+// the face, at 1 m height, and checks that each hits that wall at 0.5 m. Returns the rays cast.
+int checkRoomFaces(const bim::Plan& plan, const sim::MujocoWorld& world) {
+  int rays = 0;
+  for (const auto& level : plan.levels) {
+    const bim::LevelGeometry geometry = bim::computeLevelGeometry(level);
+    for (const auto& b : geometry.boundaries) {
+      const bim::WallGeometry& wall = *geometry.findWall(b.wall);
+      const bim::WallFace& face = wall.face(b.side);
+      const bim::Room& room = *level.findRoom(b.room);
+      const Eigen::Vector2d a = room.outline[b.edge];
+      const Eigen::Vector2d c = room.outline[(b.edge + 1) % room.outline.size()];
+      const Eigen::Vector2d n2 = face.plane.normal.head<2>();
+      for (double f : {0.2, 0.5, 0.8}) {
+        const Eigen::Vector2d on_edge = a + f * (c - a);
+        const double s = (on_edge - wall.wall->start).dot(wall.axis);
+        if (inOpening(face, s, 0.3)) continue;
+        bool exposed = false;
+        for (const auto& piece : face.exposed) exposed |= s > piece.lo + 0.3 && s < piece.hi - 0.3;
+        if (!exposed) continue;
+        const Eigen::Vector2d inside = on_edge + 0.5 * n2;
+        if (!bim::containsPoint(room.outline, inside)) continue;
+        const Eigen::Vector3d origin(inside.x(), inside.y(), level.elevation + 1.0);
+        const double expected = face.plane.signedDistance(origin);
+        const auto hit = world.ray(origin, -face.plane.normal, kBuilding);
+        ++rays;
+        if (!hit) {
+          ADD_FAILURE() << "no hit from room " << b.room << " towards " << b.wall;
+          continue;
+        }
+        EXPECT_NEAR(hit->distance, expected, kMillimetre) << b.room << " → " << b.wall;
+        EXPECT_TRUE(startsWith(world.geomName(hit->geom), "wall/" + b.wall + "/"))
+            << b.room << " → " << b.wall << " hit " << world.geomName(hit->geom);
+      }
+    }
+  }
+  return rays;
+}
+
+class ReferenceWorld : public ::testing::TestWithParam<std::string> {};
+
+TEST_P(ReferenceWorld, RaysFromInsideRoomsHitTheExpectedInnerFaces) {
+  const bim::Scenario scenario = builtin(GetParam());
+  const sim::MujocoWorld world = sim::MujocoWorld::fromXml(generateMjcf(scenario));
+  const int rays = checkRoomFaces(scenario.plan, world);
+  // Every room has four or more faces, most sampled at three points.
+  EXPECT_GT(rays, 4 * int(scenario.plan.levels[0].rooms.size()));
+}
+
+TEST_P(ReferenceWorld, EveryOpenDoorLetsARayThroughIntoTheNextRoom) {
+  const bim::Scenario scenario = builtin(GetParam());
+  const sim::MujocoWorld world = sim::MujocoWorld::fromXml(generateMjcf(scenario));
+  const bim::Level& level = scenario.plan.levels[0];
+  for (const auto& door : level.doors) {
+    const bim::Wall& wall = *level.findWall(door.wall);
+    const Eigen::Vector2d axis = (wall.end - wall.start).normalized();
+    const Eigen::Vector2d left(-axis.y(), axis.x());
+    const Eigen::Vector2d centre = bim::doorCentre(level, door);
+    for (int side : {+1, -1}) {
+      if (door.rooms[side > 0 ? 0 : 1] == bim::kOutside) continue;  // start inside the building
+      const Eigen::Vector2d from = centre + side * (0.5 * wall.thickness + 0.4) * left;
+      const Eigen::Vector3d origin(from.x(), from.y(), level.elevation + 1.0);
+      const auto hit = world.ray(origin, Eigen::Vector3d(-side * left.x(), -side * left.y(), 0),
+                                 kBuilding);
+      const double beyond_wall = 0.4 + wall.thickness + 0.05;
+      if (hit) {
+        EXPECT_GT(hit->distance, beyond_wall)
+            << "door " << door.id << " blocked by " << world.geomName(hit->geom);
+        EXPECT_FALSE(startsWith(world.geomName(hit->geom), "wall/" + wall.id + "/"));
+      }
+      // Just above the opening the lintel is in the way.
+      const Eigen::Vector3d high(from.x(), from.y(), level.elevation + wall.base + door.height + 0.1);
+      const auto lintel = world.ray(high, Eigen::Vector3d(-side * left.x(), -side * left.y(), 0),
+                                    kBuilding);
+      if (door.height + 0.1 < wall.height - wall.base) {
+        ASSERT_TRUE(lintel);
+        EXPECT_EQ(world.geomName(lintel->geom), "wall/" + wall.id + "/lintel/" + door.id);
+        EXPECT_NEAR(lintel->distance, 0.4, kMillimetre);
+      }
+    }
+  }
+}
+
+INSTANTIATE_TEST_SUITE_P(Plans, ReferenceWorld,
+                         ::testing::Values("d1", "d2", "d3", "d4", "d5", "d6"));
+
+TEST(AsBuiltWorld, ClosedDoorStopsTheRayAtItsLeaf) {
+  const bim::Scenario scenario = builtin("d1.asbuilt");  // D5, the entrance in W4 (x = 0), closed
+  const sim::MujocoWorld world = sim::MujocoWorld::fromXml(generateMjcf(scenario));
+  // D5 is centred at y = 8 - 6.9 = 1.1 on the wall x = 0; its 4 cm leaf spans x in [-0.02, 0.02].
+  const auto hit = world.ray({1.0, 1.1, 1.0}, {-1, 0, 0}, kBuilding);
+  ASSERT_TRUE(hit);
+  EXPECT_EQ(world.geomName(hit->geom), "door/D5");
+  EXPECT_NEAR(hit->distance, 1.0 - 0.02, kMillimetre);
+  // The same opening in the plan's own world lets the ray out of the building.
+  const sim::MujocoWorld plan_world = sim::MujocoWorld::fromXml(generateMjcf(scenario.plan));
+  EXPECT_FALSE(plan_world.ray({1.0, 1.1, 1.0}, {-1, 0, 0}, kBuilding));
+}
+
+TEST(AsBuiltWorld, ShiftedWallMovesAlongItsLeftNormal) {
+  const bim::Scenario scenario = builtin("d1.asbuilt");
+  // W6 runs (4, 2.2) → (4, 8): its left is -x, so +0.05 moves it to x = 3.95 and its west face
+  // from 3.925 to 3.875.
+  const sim::MujocoWorld built = sim::MujocoWorld::fromXml(generateMjcf(scenario));
+  const sim::MujocoWorld planned = sim::MujocoWorld::fromXml(generateMjcf(scenario.plan));
+  const Eigen::Vector3d origin(2.0, 5.0, 1.0);
+  const auto as_built = built.ray(origin, {1, 0, 0}, kBuilding);
+  const auto as_planned = planned.ray(origin, {1, 0, 0}, kBuilding);
+  ASSERT_TRUE(as_built && as_planned);
+  EXPECT_NEAR(as_planned->distance, 1.925, kMillimetre);
+  EXPECT_NEAR(as_built->distance, 1.875, kMillimetre);
+  EXPECT_THAT(built.geomName(as_built->geom), ::testing::StartsWith("wall/W6/"));
+}
+
+TEST(AsBuiltWorld, ClutterIsWhereTheScenarioSays) {
+  const bim::Scenario scenario = builtin("d1.asbuilt");
+  const sim::MujocoWorld world = sim::MujocoWorld::fromXml(generateMjcf(scenario));
+  // clutter/0: centre (1.0, 7.2, 0.4), size (1.2, 0.8, 0.8): its south face is y = 6.8.
+  auto hit = world.ray({1.0, 5.0, 0.4}, {0, 1, 0}, kBuilding);
+  ASSERT_TRUE(hit);
+  EXPECT_EQ(world.geomName(hit->geom), "clutter/0");
+  EXPECT_NEAR(hit->distance, 1.8, kMillimetre);
+  // Its top is z = 0.8: a ray down from 2 m above its centre stops 1.2 m down.
+  hit = world.ray({1.0, 7.2, 2.0}, {0, 0, -1}, kBuilding);
+  ASSERT_TRUE(hit);
+  EXPECT_NEAR(hit->distance, 1.2, kMillimetre);
+  // clutter/1: centre (10.8, 4.0), size (0.6, 1.6), yawed 0.2 rad. Coming back towards its centre
+  // along its own x axis from 2 m away, the face is met after 2 - 0.3 m.
+  const Eigen::Vector3d dir(std::cos(0.2), std::sin(0.2), 0.0);
+  const Eigen::Vector3d from = Eigen::Vector3d(10.8, 4.0, 0.5) - 2.0 * dir;
+  hit = world.ray(from, dir, kBuilding);
+  ASSERT_TRUE(hit);
+  EXPECT_EQ(world.geomName(hit->geom), "clutter/1");
+  EXPECT_NEAR(hit->distance, 1.7, kMillimetre);
+}
+
+TEST(AsBuiltWorld, ExtraWallStandsWhereTheScenarioSays) {
+  const bim::Scenario scenario = builtin("d3.asbuilt");  // 0.1 m wall at x = 17, y in [0.1, 1.8]
+  const sim::MujocoWorld world = sim::MujocoWorld::fromXml(generateMjcf(scenario));
+  const auto hit = world.ray({15.0, 1.0, 1.0}, {1, 0, 0}, kBuilding);
+  ASSERT_TRUE(hit);
+  EXPECT_EQ(world.geomName(hit->geom), "wall/extra0/0");
+  EXPECT_NEAR(hit->distance, 1.95, kMillimetre);
+}
+
+TEST(AsBuiltWorld, MissingWallIsGoneWithItsDoors) {
+  bim::Scenario scenario = builtin("d1");
+  scenario.as_built.missing_walls = {"W6"};  // the wall between offices 1 and 2
+  const sim::MujocoWorld world = sim::MujocoWorld::fromXml(generateMjcf(scenario));
+  EXPECT_EQ(world.geomId("wall/W6/0"), -1);
+  // From office 1 towards office 2 the ray now reaches W7's west face at x = 7.925.
+  const auto hit = world.ray({2.0, 5.0, 1.0}, {1, 0, 0}, kBuilding);
+  ASSERT_TRUE(hit);
+  EXPECT_NEAR(hit->distance, 5.925, kMillimetre);
+}
+
+TEST(GeneratedWorld, CeilingAndFloorAreAtTheLevelsHeights) {
+  const bim::Scenario scenario = builtin("d2");
+  const sim::MujocoWorld world = sim::MujocoWorld::fromXml(generateMjcf(scenario));
+  const auto up = world.ray({3, 3, 1}, {0, 0, 1}, 1u << kCeilingGroup);
+  ASSERT_TRUE(up);
+  EXPECT_EQ(world.geomName(up->geom), "ceiling/L0");
+  EXPECT_NEAR(up->distance, 2.0, kMillimetre);
+  const auto down = world.ray({3, 3, 1}, {0, 0, -1}, kBuilding);
+  ASSERT_TRUE(down);
+  EXPECT_EQ(world.geomName(down->geom), "floor/L0");
+  EXPECT_NEAR(down->distance, 1.0, kMillimetre);
+  // The ceiling is in its own group: the building group alone does not see it.
+  EXPECT_FALSE(world.ray({3, 3, 1}, {0, 0, 1}, kBuilding));
+}
+
+TEST(GeneratedWorld, NamesFollowThePlanIds) {
+  const bim::Scenario scenario = builtin("d1");
+  const sim::MujocoWorld world = sim::MujocoWorld::fromXml(generateMjcf(scenario));
+  // W5 holds three doors: four solid pieces and three lintels.
+  for (const char* name : {"wall/W5/0", "wall/W5/1", "wall/W5/2", "wall/W5/3",
+                           "wall/W5/lintel/D1", "wall/W5/lintel/D2", "wall/W5/lintel/D3",
+                           "floor/L0", "ceiling/L0"}) {
+    EXPECT_GE(world.geomId(name), 0) << name;
+  }
+  EXPECT_EQ(world.geomId("wall/W5/4"), -1);
+  EXPECT_GE(mj_name2id(&world.model(), mjOBJ_SITE, "room/R4"), 0);
+  for (int g = 0; g < world.model().ngeom; ++g) {
+    const int group = world.model().geom_group[g];
+    EXPECT_TRUE(group == kBuildingGroup || group == kCeilingGroup) << world.geomName(g);
+  }
+}
+
+TEST(GeneratedWorld, MjcfSetsAutolimits) {
+  const std::string mjcf = generateMjcf(builtin("d1").plan);
+  EXPECT_THAT(mjcf, ::testing::HasSubstr("<compiler autolimits=\"true\""));
+}
+
+bim::Plan parse(const nlohmann::json& document) {
+  const bim::JsonSource source{"test.json", nullptr};
+  return bim::parsePlan(bim::JsonNode(document, "", source));
+}
+
+TEST(AnyPlan, TwoHundredRoomGridWithLongWallsAndTJunctions) {
+  const bim::Plan plan = parse(bim::makeGridPlan({}));
+  const sim::MujocoWorld world = sim::MujocoWorld::fromXml(generateMjcf(plan));
+  EXPECT_GT(checkRoomFaces(plan, world), 200 * 4);
+}
+
+TEST(AnyPlan, SlantedWallsAndTwoLevels) {
+  // A triangle room with a 45° wall, on two levels stacked with no gap between them.
+  nlohmann::json level = {
+      {"id", "L0"}, {"elevation", 0.0}, {"height", 3.0},
+      {"walls",
+       {{{"id", "A0"}, {"start", {0, 0}}, {"end", {6, 0}}, {"thickness", 0.2}},
+        {{"id", "B0"}, {"start", {6, 0}}, {"end", {0, 6}}, {"thickness", 0.2}},
+        {{"id", "C0"}, {"start", {0, 6}}, {"end", {0, 0}}, {"thickness", 0.2}}}},
+      {"rooms",
+       {{{"id", "T0"},
+         {"outline", {{0.1, 0.1}, {5.9 - 0.1 * std::sqrt(2.0), 0.1}, {0.1, 5.9 - 0.1 * std::sqrt(2.0)}}}}}}};
+  nlohmann::json upper = level;
+  upper["id"] = "L1";
+  upper["elevation"] = 3.0;
+  for (auto& w : upper["walls"]) w["id"] = w["id"].get<std::string>().substr(0, 1) + "1";
+  upper["rooms"][0]["id"] = "T1";
+  const bim::Plan plan = parse({{"format", "isg.plan"}, {"version", 1}, {"levels", {level, upper}}});
+  const sim::MujocoWorld world = sim::MujocoWorld::fromXml(generateMjcf(plan));
+  checkRoomFaces(plan, world);
+  // From (1, 1) the slanted face x + y = 6 - 0.1·√2 is at (6 - 0.1·√2 - 2)/√2 along the normal.
+  const Eigen::Vector3d diagonal(1.0 / std::sqrt(2.0), 1.0 / std::sqrt(2.0), 0.0);
+  for (double z : {1.0, 4.0}) {
+    const auto hit = world.ray({1, 1, z}, diagonal, kBuilding);
+    ASSERT_TRUE(hit);
+    EXPECT_NEAR(hit->distance, (4.0 - 0.1 * std::sqrt(2.0)) / std::sqrt(2.0), kMillimetre);
+  }
+  // Up from level 0 the ceiling is at 3 m; down from level 1 the floor is at 3 m too.
+  const auto up = world.ray({1, 1, 1}, {0, 0, 1}, kBuilding | (1u << kCeilingGroup));
+  ASSERT_TRUE(up);
+  EXPECT_NEAR(up->distance, 2.0, kMillimetre);
+  const auto down = world.ray({1, 1, 4}, {0, 0, -1}, kBuilding);
+  ASSERT_TRUE(down);
+  EXPECT_EQ(world.geomName(down->geom), "floor/L1");
+  EXPECT_NEAR(down->distance, 1.0, kMillimetre);
+}
+
+}  // namespace
+}  // namespace isg::worlds
