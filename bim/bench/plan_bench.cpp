@@ -1,0 +1,43 @@
+// Parsing, validation and derived geometry of large plans: grids of rooms with long walls.
+#include <benchmark/benchmark.h>
+
+#include "bim/json_reader.hpp"
+#include "bim/plan_geometry.hpp"
+#include "bim/plan_parser.hpp"
+#include "bim/synthetic_plan.hpp"
+
+namespace isg::bim {
+namespace {
+
+GridPlanSpec gridOf(int rooms) {
+  GridPlanSpec spec;
+  spec.rows = rooms >= 200 ? 10 : 5;
+  spec.cols = rooms / spec.rows;
+  return spec;
+}
+
+void BM_ParseAndValidatePlan(benchmark::State& state) {
+  const nlohmann::json document = makeGridPlan(gridOf(int(state.range(0))));
+  const JsonSource source{"grid.json", nullptr};
+  for (auto _ : state) {
+    Plan plan = parsePlan(JsonNode(document, "", source));
+    benchmark::DoNotOptimize(plan);
+  }
+  state.counters["rooms"] = double(state.range(0));
+}
+BENCHMARK(BM_ParseAndValidatePlan)->Arg(50)->Arg(200)->Unit(benchmark::kMillisecond);
+
+void BM_LevelGeometry(benchmark::State& state) {
+  const JsonSource source{"grid.json", nullptr};
+  const nlohmann::json document = makeGridPlan(gridOf(int(state.range(0))));
+  const Plan plan = parsePlan(JsonNode(document, "", source));
+  for (auto _ : state) {
+    LevelGeometry g = computeLevelGeometry(plan.levels[0]);
+    benchmark::DoNotOptimize(g);
+  }
+  state.counters["rooms"] = double(state.range(0));
+}
+BENCHMARK(BM_LevelGeometry)->Arg(50)->Arg(200)->Unit(benchmark::kMillisecond);
+
+}  // namespace
+}  // namespace isg::bim
