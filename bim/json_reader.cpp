@@ -115,8 +115,8 @@ std::vector<JsonNode> JsonNode::elements() const {
 std::vector<JsonNode> JsonNode::elements(std::size_t min_size) const {
   auto out = elements();
   if (out.size() < min_size) {
-    fail("expected at least " + std::to_string(min_size) + " element" +
-         (min_size == 1 ? "" : "s") + ", got " + std::to_string(out.size()));
+    fail("expected at least " + std::to_string(min_size) + " element" + (min_size == 1 ? "" : "s") +
+         ", got " + std::to_string(out.size()));
   }
   return out;
 }
@@ -228,7 +228,8 @@ nlohmann::json parseJsonText(const std::string& text, const std::string& file) {
   } catch (const nlohmann::json::exception& e) {
     // A number too large for a double (1e999): JSON has no infinity, and neither do we.
     std::string what = e.what();
-    if (auto bracket = what.find("] "); bracket != std::string::npos) what = what.substr(bracket + 2);
+    if (auto bracket = what.find("] "); bracket != std::string::npos)
+      what = what.substr(bracket + 2);
     throw InputError(file, "", "invalid JSON: " + what + " (numbers must be finite)");
   }
 }

@@ -28,7 +28,7 @@ struct Door {
   std::string wall;     // id of the wall the opening is in
   double offset = 0.0;  // centre of the opening, metres from the wall's start along its axis
   double width = 0.0;
-  double height = 0.0;  // from the wall's base
+  double height = 0.0;               // from the wall's base
   std::array<std::string, 2> rooms;  // the two rooms it joins (or kOutside)
   bool rooms_inferred = false;       // true when `rooms` came from the outlines, not the file
 };

@@ -29,8 +29,7 @@ std::optional<double> extensionInto(const Eigen::Vector2d& point, const Eigen::V
   const double cosine = m.dot(outward);
   if (std::abs(cosine) < kParallelCosine) return std::nullopt;
   const double half = 0.5 * other.wall->thickness;
-  const double distance =
-      distanceToSegment(point, other.wall->start, other.wall->end);
+  const double distance = distanceToSegment(point, other.wall->start, other.wall->end);
   if (distance > half + kJunctionTolerance) return std::nullopt;
   const double far_face = m.dot(other.wall->start) + (cosine > 0 ? half : -half);
   const double e = (far_face - m.dot(point)) / cosine;
@@ -41,8 +40,8 @@ std::optional<double> extensionInto(const Eigen::Vector2d& point, const Eigen::V
 // The part [lo, hi] of the line origin + s·direction (s in [s0, s1]) inside a convex CCW polygon
 // (Cyrus–Beck clipping); nullopt when they do not overlap.
 std::optional<AxisInterval> clipLineToConvex(const Eigen::Vector2d& origin,
-                                             const Eigen::Vector2d& direction, double s0,
-                                             double s1, const std::vector<Eigen::Vector2d>& poly) {
+                                             const Eigen::Vector2d& direction, double s0, double s1,
+                                             const std::vector<Eigen::Vector2d>& poly) {
   double lo = s0;
   double hi = s1;
   for (std::size_t i = 0; i < poly.size(); ++i) {
@@ -149,8 +148,8 @@ LevelGeometry computeLevelGeometry(const Level& level, const GeometryOptions& op
       face.exposed = {{-g.extend_start, g.length + g.extend_end}};
       for (std::size_t j = 0; j < geometry.walls.size(); ++j) {
         if (j == i) continue;
-        if (auto cut = clipLineToConvex(on_face, g.axis, -g.extend_start,
-                                        g.length + g.extend_end, cutters[j])) {
+        if (auto cut = clipLineToConvex(on_face, g.axis, -g.extend_start, g.length + g.extend_end,
+                                        cutters[j])) {
           subtractInterval(face.exposed, *cut);
         }
       }

@@ -60,9 +60,9 @@ struct RoomBoundary {
   std::string room;
   int edge = 0;  // outline edge from vertex `edge` to `edge + 1`
   std::string wall;
-  int side = +1;           // which face of the wall
-  double overlap = 0.0;    // metres of the edge covered by the face's exposed parts
-  double distance = 0.0;   // mean distance of the edge's endpoints from the face plane
+  int side = +1;          // which face of the wall
+  double overlap = 0.0;   // metres of the edge covered by the face's exposed parts
+  double distance = 0.0;  // mean distance of the edge's endpoints from the face plane
 };
 
 struct LevelGeometry {
@@ -74,8 +74,8 @@ struct LevelGeometry {
 };
 
 struct GeometryOptions {
-  double boundary_distance = 0.05;   // an outline edge this close to a face lies on it
-  double boundary_angle_deg = 5.0;   // ... and this close in direction
+  double boundary_distance = 0.05;  // an outline edge this close to a face lies on it
+  double boundary_angle_deg = 5.0;  // ... and this close in direction
   double boundary_min_overlap = 0.05;
 };
 

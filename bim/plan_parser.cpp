@@ -21,7 +21,8 @@ class IdRegistry {
  public:
   void add(const JsonNode& id_node, const std::string& id) {
     auto [it, inserted] = first_use_.emplace(id, id_node.pointer());
-    if (!inserted) id_node.fail("duplicate id " + inQuotes(id) + " (first used at " + it->second + ")");
+    if (!inserted)
+      id_node.fail("duplicate id " + inQuotes(id) + " (first used at " + it->second + ")");
   }
 
  private:
@@ -57,7 +58,8 @@ Room parseRoom(const JsonNode& node, IdRegistry& ids) {
   Room room;
   const JsonNode id = node.field("id");
   room.id = id.nonEmptyString();
-  if (room.id == kOutside) id.fail(inQuotes(kOutside) + " is reserved for the outside of the building");
+  if (room.id == kOutside)
+    id.fail(inQuotes(kOutside) + " is reserved for the outside of the building");
   ids.add(id, room.id);
   room.name = room.id;
   if (auto name = node.optionalField("name")) room.name = name->string();
@@ -153,8 +155,8 @@ void checkDoorOverlaps(const std::vector<JsonNode>& door_nodes, const Level& lev
       if (a.wall != b.wall) continue;
       const double gap = std::abs(a.offset - b.offset) - 0.5 * (a.width + b.width);
       if (gap < -1e-9) {
-        door_nodes[i].field("offset").fail("opening overlaps door " + inQuotes(b.id) +
-                                           " on wall " + inQuotes(a.wall));
+        door_nodes[i].field("offset").fail("opening overlaps door " + inQuotes(b.id) + " on wall " +
+                                           inQuotes(a.wall));
       }
     }
   }
@@ -168,7 +170,8 @@ Level parseLevel(const JsonNode& node, IdRegistry& ids) {
   ids.add(id, level.id);
   if (auto e = node.optionalField("elevation")) level.elevation = e->number();
   level.height = node.field("height").positiveNumber();
-  for (const auto& w : node.field("walls").elements(1)) level.walls.push_back(parseWall(w, level, ids));
+  for (const auto& w : node.field("walls").elements(1))
+    level.walls.push_back(parseWall(w, level, ids));
   if (auto rooms = node.optionalField("rooms")) {
     for (const auto& r : rooms->elements()) level.rooms.push_back(parseRoom(r, ids));
   }

@@ -25,9 +25,9 @@ struct Route {
 };
 
 struct RobotConfig {
-  std::string level;                         // id of the level the robot walks on
-  std::optional<std::string> start_room;     // start at the centre of this room ...
-  std::optional<Eigen::Vector3d> start_pose; // ... or at [x, y, yaw]; exactly one is set
+  std::string level;                          // id of the level the robot walks on
+  std::optional<std::string> start_room;      // start at the centre of this room ...
+  std::optional<Eigen::Vector3d> start_pose;  // ... or at [x, y, yaw]; exactly one is set
   Route route;
   double speed = 0.5;  // m/s
 };
@@ -64,7 +64,7 @@ struct WallShift {
 };
 
 struct Clutter {
-  std::string level;  // defaults to the robot's level
+  std::string level;                                 // defaults to the robot's level
   Eigen::Vector3d center = Eigen::Vector3d::Zero();  // z above the level's elevation
   Eigen::Vector3d size = Eigen::Vector3d::Ones();    // full extents
   double yaw = 0.0;

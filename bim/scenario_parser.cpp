@@ -3,9 +3,9 @@
 #include <sstream>
 
 #include "bim/json_reader.hpp"
+#include "bim/plan_geometry.hpp"
 #include "bim/plan_parser.hpp"
 #include "bim/polygon.hpp"
-#include "bim/plan_geometry.hpp"
 #include "bim/scenario.hpp"
 
 namespace isg::bim {
@@ -86,7 +86,8 @@ RobotConfig parseRobot(const std::optional<JsonNode>& node, const Plan& plan) {
       }
       if (auto rooms = route->optionalField("rooms")) {
         robot.route.kind = Route::Kind::kRooms;
-        for (const auto& r : rooms->elements(1)) robot.route.rooms.push_back(roomOnLevel(*level, r));
+        for (const auto& r : rooms->elements(1))
+          robot.route.rooms.push_back(roomOnLevel(*level, r));
       } else {
         robot.route.kind = Route::Kind::kWaypoints;
         for (const auto& w : route->field("waypoints").elements(1)) {
@@ -112,8 +113,8 @@ LidarConfig parseLidar(const JsonNode& node) {
               formatNumber(lidar.min_range_m));
     }
   } else if (lidar.max_range_m <= lidar.min_range_m) {
-    node.field("min_range_m").fail("min_range_m must be below max_range_m (" +
-                                   formatNumber(lidar.max_range_m) + ")");
+    node.field("min_range_m")
+        .fail("min_range_m must be below max_range_m (" + formatNumber(lidar.max_range_m) + ")");
   }
   if (auto v = node.optionalField("dropout")) lidar.dropout = numberInRange(*v, 0.0, 1.0, true);
   if (auto v = node.optionalField("mount")) {
@@ -124,8 +125,8 @@ LidarConfig parseLidar(const JsonNode& node) {
 }
 
 OdometryConfig parseOdometry(const JsonNode& node) {
-  node.expectObject({"rate_hz", "translation_noise", "heading_noise_deg_per_m",
-                     "heading_bias_deg_per_m"});
+  node.expectObject(
+      {"rate_hz", "translation_noise", "heading_noise_deg_per_m", "heading_bias_deg_per_m"});
   OdometryConfig odometry;
   if (auto v = node.optionalField("rate_hz")) odometry.rate_hz = numberInRange(*v, 1.0, 1000.0);
   if (auto v = node.optionalField("translation_noise")) {

@@ -11,8 +11,8 @@ namespace isg::bim {
 struct GridPlanSpec {
   int rows = 10;
   int cols = 20;
-  double cell_width = 4.0;   // mean, metres
-  double cell_depth = 3.5;   // mean, metres
+  double cell_width = 4.0;  // mean, metres
+  double cell_depth = 3.5;  // mean, metres
   double wall_thickness = 0.15;
   double height = 3.0;
   bool give_door_rooms = false;  // false: doors leave "rooms" out and the parser infers them

@@ -13,7 +13,8 @@ CheckCommand::CheckCommand(CLI::App& parent) {
   app_->footer(
       "Checks every rule of the isg.plan and isg.scenario formats. On the first violation it "
       "prints the file, the JSON pointer and what is wrong, and exits with 1. Warnings (unknown "
-      "fields, clockwise outlines, doors whose rooms cannot be inferred) do not fail the check.\n\n" +
+      "fields, clockwise outlines, doors whose rooms cannot be inferred) do not fail the "
+      "check.\n\n" +
       builtinWorldsHelp());
   app_->add_option("input", input_, "plan or scenario file, or builtin:NAME")->required();
   app_->add_flag("-v,--verbose", verbose_,
@@ -34,10 +35,11 @@ int CheckCommand::run() {
               plan.levels.size() == 1 ? "" : "s", walls, doors, rooms);
   const auto& ab = scenario.as_built;
   if (!ab.empty()) {
-    std::printf("  as built: %zu missing walls, %zu extra walls, %zu shifted walls, "
-                "%zu closed doors, %zu clutter boxes\n",
-                ab.missing_walls.size(), ab.extra_walls.size(), ab.wall_shifts.size(),
-                ab.closed_doors.size(), ab.clutter.size());
+    std::printf(
+        "  as built: %zu missing walls, %zu extra walls, %zu shifted walls, "
+        "%zu closed doors, %zu clutter boxes\n",
+        ab.missing_walls.size(), ab.extra_walls.size(), ab.wall_shifts.size(),
+        ab.closed_doors.size(), ab.clutter.size());
   }
   if (!verbose_) return kExitOk;
   for (const auto& level : plan.levels) {

@@ -24,7 +24,8 @@ MujocoWorld MujocoWorld::fromXml(const std::string& mjcf) {
   char error[1024] = "";
   mjModel* model = mj_loadXML(kName, vfs.get(), error, sizeof error);
   mj_deleteVFS(vfs.get());
-  if (model == nullptr) throw std::runtime_error(std::string("MuJoCo could not compile the world: ") + error);
+  if (model == nullptr)
+    throw std::runtime_error(std::string("MuJoCo could not compile the world: ") + error);
   MujocoWorld world;
   world.model_.reset(model);
   world.data_.reset(mj_makeData(model));

@@ -82,7 +82,8 @@ std::string formatSummary(const WorldSummary& s) {
   out += line;
   out += "  rooms (horizontal rays from the centroid, 1.2 m above the floor):\n";
   for (const auto& r : s.rooms) {
-    std::snprintf(line, sizeof line, "    %-6s %-28s %3d/%d rays hit the building; nearest %-22s at %.3f m\n",
+    std::snprintf(line, sizeof line,
+                  "    %-6s %-28s %3d/%d rays hit the building; nearest %-22s at %.3f m\n",
                   r.room.c_str(), ("\"" + r.name + "\"").c_str(), r.hits, r.rays,
                   r.nearest_geom.c_str(), r.nearest);
     out += line;

@@ -17,8 +17,8 @@ struct RoomProbe {
   std::string name;
   Eigen::Vector3d origin = Eigen::Vector3d::Zero();  // room centroid, 1.2 m above the floor
   int rays = 0;
-  int hits = 0;                 // rays that hit the building
-  double nearest = -1.0;        // distance to the nearest hit, metres
+  int hits = 0;           // rays that hit the building
+  double nearest = -1.0;  // distance to the nearest hit, metres
   std::string nearest_geom;
 };
 

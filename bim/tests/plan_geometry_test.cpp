@@ -29,7 +29,8 @@ TEST_F(TwoRoomGeometry, EndsExtendToTheFarSideOfTheWallTheyMeet) {
   // Corners: each outer wall continues by half the other's thickness (0.1).
   EXPECT_NEAR(wall("W1").extend_start, 0.1, 1e-12);
   EXPECT_NEAR(wall("W1").extend_end, 0.1, 1e-12);
-  // T-junctions: the partition continues through the inner half of the outer wall to its outer face.
+  // T-junctions: the partition continues through the inner half of the outer wall to its outer
+  // face.
   EXPECT_NEAR(wall("W5").extend_start, 0.1, 1e-12);
   EXPECT_NEAR(wall("W5").extend_end, 0.1, 1e-12);
 }

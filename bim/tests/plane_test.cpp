@@ -26,7 +26,7 @@ TEST(Plane, TransformFollowsNPrimeEqualsRnAndDPrimeEqualsDMinusNPrimeDotT) {
   EXPECT_NEAR((q.normal - Eigen::Vector3d(0, 1, 0)).norm(), 0.0, 1e-12);
   EXPECT_NEAR(q.d, -5.0, 1e-12);
   // Every point of the plane maps onto the transformed plane.
-  for (const Eigen::Vector3d point : {Eigen::Vector3d(2, 0, 0), Eigen::Vector3d(2, -4, 9)}) {
+  for (const Eigen::Vector3d& point : {Eigen::Vector3d(2, 0, 0), Eigen::Vector3d(2, -4, 9)}) {
     EXPECT_NEAR(q.signedDistance(T * point), 0.0, 1e-12);
   }
 }

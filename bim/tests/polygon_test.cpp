@@ -16,7 +16,8 @@ TEST(Polygon, SignedAreaIsPositiveCounterClockwise) {
 }
 
 TEST(Polygon, CentroidOfAnEll) {
-  // Two rectangles: [0,2]x[0,1] (area 2, centre (1, .5)) and [0,1]x[1,2] (area 1, centre (.5, 1.5)).
+  // Two rectangles: [0,2]x[0,1] (area 2, centre (1, .5)) and [0,1]x[1,2] (area 1, centre
+  // (.5, 1.5)).
   const Eigen::Vector2d c = centroid(kEll);
   EXPECT_NEAR(c.x(), (2 * 1.0 + 1 * 0.5) / 3.0, 1e-12);
   EXPECT_NEAR(c.y(), (2 * 0.5 + 1 * 1.5) / 3.0, 1e-12);

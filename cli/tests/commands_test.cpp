@@ -61,11 +61,10 @@ TEST(Check, DescribesAValidScenario) {
   testing::Sandbox sandbox("check");
   const auto result = sandbox.run("check builtin:d3.asbuilt --verbose");
   EXPECT_EQ(result.exit_code, 0) << result.err;
-  EXPECT_THAT(result.out,
-              StartsWith("builtin:d3.asbuilt: ok: plan \"D3 double-loaded corridor\" "
-                         "(builtin:d3): 1 level, 11 walls, 8 doors, 8 rooms\n"));
+  EXPECT_THAT(result.out, StartsWith("builtin:d3.asbuilt: ok: plan \"D3 double-loaded corridor\" "
+                                     "(builtin:d3): 1 level, 11 walls, 8 doors, 8 rooms\n"));
   EXPECT_THAT(result.out, HasSubstr("as built: 0 missing walls, 1 extra walls, 1 shifted walls, "
-                                     "1 closed doors, 3 clutter boxes\n"));
+                                    "1 closed doors, 3 clutter boxes\n"));
   EXPECT_THAT(result.out, HasSubstr("door D8     in W4     joins R8 and outside (inferred)"));
 }
 

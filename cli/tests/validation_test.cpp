@@ -5,6 +5,7 @@
 #include <functional>
 #include <nlohmann/json.hpp>
 
+#include "bim/tests/test_plans.hpp"
 #include "cli/tests/cli_runner.hpp"
 
 namespace isg::cli {
@@ -12,29 +13,8 @@ namespace {
 
 using nlohmann::json;
 
-json validPlan() {
-  return json::parse(R"({
-    "format": "isg.plan", "version": 1, "name": "two rooms",
-    "levels": [{
-      "id": "L0", "elevation": 0.0, "height": 3.0,
-      "walls": [
-        {"id": "W1", "start": [0, 0], "end": [6, 0], "thickness": 0.2},
-        {"id": "W2", "start": [6, 0], "end": [6, 4], "thickness": 0.2},
-        {"id": "W3", "start": [6, 4], "end": [0, 4], "thickness": 0.2},
-        {"id": "W4", "start": [0, 4], "end": [0, 0], "thickness": 0.2},
-        {"id": "W5", "start": [3, 0], "end": [3, 4], "thickness": 0.1, "height": 2.8}
-      ],
-      "doors": [
-        {"id": "D1", "wall": "W5", "offset": 2.0, "width": 0.9, "height": 2.1},
-        {"id": "D2", "wall": "W1", "offset": 4.5, "width": 1.0, "height": 2.1, "rooms": ["R2", "outside"]}
-      ],
-      "rooms": [
-        {"id": "R1", "name": "West", "outline": [[0.1, 0.1], [2.95, 0.1], [2.95, 3.9], [0.1, 3.9]]},
-        {"id": "R2", "name": "East", "outline": [[3.05, 0.1], [5.9, 0.1], [5.9, 3.9], [3.05, 3.9]]}
-      ]
-    }]
-  })");
-}
+// The two-room plan of the bim tests: every case below breaks one rule of it.
+json validPlan() { return bim::testing::twoRoomPlanJson(); }
 
 json validScenario() {
   return json::parse(R"({
@@ -80,7 +60,10 @@ std::vector<Case> cases() {
        "plan.json: /levels/0/walls/3: missing required field \"thickness\""},
       {"MistypedNumber", "plan.json", [=](json& p, json&) { walls(p)[3]["thickness"] = "0.2"; },
        "plan.json: /levels/0/walls/3/thickness: expected a number, got a string"},
-      {"MistypedPoint", "plan.json", [=](json& p, json&) { walls(p)[1]["end"] = {6, 4, 0}; },
+      {"MistypedPoint", "plan.json",
+       [=](json& p, json&) {
+         walls(p)[1]["end"] = {6, 4, 0};
+       },
        "plan.json: /levels/0/walls/1/end: expected an array of 2 numbers, got 3 elements"},
       {"MistypedArray", "plan.json", [=](json& p, json&) { p["levels"][0]["rooms"] = "R1"; },
        "plan.json: /levels/0/rooms: expected an array, got a string"},
@@ -97,7 +80,10 @@ std::vector<Case> cases() {
        "unexpected ','; expected string literal",
        [](std::string text) { return "{," + text; }},
       // --- walls
-      {"ZeroLengthWall", "plan.json", [=](json& p, json&) { walls(p)[1]["end"] = {6, 0}; },
+      {"ZeroLengthWall", "plan.json",
+       [=](json& p, json&) {
+         walls(p)[1]["end"] = {6, 0};
+       },
        "plan.json: /levels/0/walls/1/end: zero-length wall: end equals start [6, 0]"},
       {"ZeroThickness", "plan.json", [=](json& p, json&) { walls(p)[2]["thickness"] = 0; },
        "plan.json: /levels/0/walls/2/thickness: must be > 0, got 0"},
@@ -115,31 +101,38 @@ std::vector<Case> cases() {
       {"DoorTallerThanWall", "plan.json", [=](json& p, json&) { doors(p)[0]["height"] = 2.9; },
        "plan.json: /levels/0/doors/0/height: door is 2.9 m high, taller than wall \"W5\" (2.8 m "
        "above its base)"},
-      {"DoorTallerThanRaisedWall", "plan.json",
-       [=](json& p, json&) { walls(p)[4]["base"] = 1.0; },
+      {"DoorTallerThanRaisedWall", "plan.json", [=](json& p, json&) { walls(p)[4]["base"] = 1.0; },
        "plan.json: /levels/0/doors/0/height: door is 2.1 m high, taller than wall \"W5\" (1.8 m "
        "above its base)"},
       {"OverlappingDoors", "plan.json",
        [=](json& p, json&) {
-         doors(p).push_back({{"id", "D3"}, {"wall", "W5"}, {"offset", 2.5}, {"width", 0.9},
-                             {"height", 2.0}});
+         doors(p).push_back(
+             {{"id", "D3"}, {"wall", "W5"}, {"offset", 2.5}, {"width", 0.9}, {"height", 2.0}});
        },
        "plan.json: /levels/0/doors/2/offset: opening overlaps door \"D1\" on wall \"W5\""},
       {"DoorOnUnknownWall", "plan.json", [=](json& p, json&) { doors(p)[0]["wall"] = "W9"; },
        "plan.json: /levels/0/doors/0/wall: no wall \"W9\" on level \"L0\""},
       {"DoorToUnknownRoom", "plan.json",
-       [=](json& p, json&) { doors(p)[1]["rooms"] = {"R2", "R7"}; },
+       [=](json& p, json&) {
+         doors(p)[1]["rooms"] = {"R2", "R7"};
+       },
        "plan.json: /levels/0/doors/1/rooms/1: no room \"R7\" on level \"L0\" (use \"outside\" for "
        "the outside)"},
       {"DoorJoiningOneRoom", "plan.json",
-       [=](json& p, json&) { doors(p)[1]["rooms"] = {"R2", "R2"}; },
+       [=](json& p, json&) {
+         doors(p)[1]["rooms"] = {"R2", "R2"};
+       },
        "plan.json: /levels/0/doors/1/rooms: a door joins two different rooms, got \"R2\" twice"},
       {"DoorWithThreeRooms", "plan.json",
-       [=](json& p, json&) { doors(p)[1]["rooms"] = {"R1", "R2", "outside"}; },
+       [=](json& p, json&) {
+         doors(p)[1]["rooms"] = {"R1", "R2", "outside"};
+       },
        "plan.json: /levels/0/doors/1/rooms: a door joins exactly 2 rooms, got 3"},
       // --- rooms
       {"OutlineTooShort", "plan.json",
-       [=](json& p, json&) { rooms(p)[0]["outline"] = {{0.1, 0.1}, {2.95, 0.1}}; },
+       [=](json& p, json&) {
+         rooms(p)[0]["outline"] = {{0.1, 0.1}, {2.95, 0.1}};
+       },
        "plan.json: /levels/0/rooms/0/outline: an outline needs at least 3 vertices, got 2"},
       {"SelfIntersectingOutline", "plan.json",
        [=](json& p, json&) {
@@ -182,15 +175,21 @@ std::vector<Case> cases() {
        [](json&, json& s) { s["robot"]["start"]["room"] = "R9"; },
        "scenario.json: /robot/start/room: no room \"R9\" on level \"L0\""},
       {"StartRoomAndPose", "scenario.json",
-       [](json&, json& s) { s["robot"]["start"]["pose"] = {1, 1, 0}; },
+       [](json&, json& s) {
+         s["robot"]["start"]["pose"] = {1, 1, 0};
+       },
        "scenario.json: /robot/start: give exactly one of \"room\" and \"pose\""},
       {"StartInsideWall", "scenario.json",
-       [](json&, json& s) { s["robot"]["start"] = {{"pose", {3.02, 1.0, 0.0}}}; },
+       [](json&, json& s) {
+         s["robot"]["start"] = {{"pose", {3.02, 1.0, 0.0}}};
+       },
        "scenario.json: /robot/start/pose: start position is inside wall \"W5\""},
       {"UnknownRoute", "scenario.json", [](json&, json& s) { s["robot"]["route"] = "spiral"; },
        "scenario.json: /robot/route: unknown route \"spiral\" (expected \"tour\")"},
       {"RouteToUnknownRoom", "scenario.json",
-       [](json&, json& s) { s["robot"]["route"] = {{"rooms", {"R1", "R5"}}}; },
+       [](json&, json& s) {
+         s["robot"]["route"] = {{"rooms", {"R1", "R5"}}};
+       },
        "scenario.json: /robot/route/rooms/1: no room \"R5\" on level \"L0\""},
       {"ZeroSpeed", "scenario.json", [](json&, json& s) { s["robot"]["speed"] = 0; },
        "scenario.json: /robot/speed: must be in [0.01, 3], got 0"},
@@ -200,7 +199,10 @@ std::vector<Case> cases() {
        "scenario.json: /lidar/max_range_m: max_range_m 0.5 is not above min_range_m 0.9"},
       {"LidarDropout", "scenario.json", [](json&, json& s) { s["lidar"]["dropout"] = 1.0; },
        "scenario.json: /lidar/dropout: must be in [0, 1), got 1"},
-      {"LidarMount", "scenario.json", [](json&, json& s) { s["lidar"]["mount"] = {0, 0, 0.25}; },
+      {"LidarMount", "scenario.json",
+       [](json&, json& s) {
+         s["lidar"]["mount"] = {0, 0, 0.25};
+       },
        "scenario.json: /lidar/mount: expected an array of 6 numbers, got 3 elements"},
       {"OdometryNoise", "scenario.json",
        [](json&, json& s) { s["odometry"]["translation_noise"] = -0.1; },
@@ -215,19 +217,27 @@ std::vector<Case> cases() {
        [](json&, json& s) { s["as_built"]["missing_walls"] = {"W5"}; },
        "scenario.json: /as_built/wall_shifts/0/wall: \"W5\" is also in missing_walls"},
       {"ClosedUnknownDoor", "scenario.json",
-       [](json&, json& s) { s["as_built"]["closed_doors"] = {"D1", "D9"}; },
+       [](json&, json& s) {
+         s["as_built"]["closed_doors"] = {"D1", "D9"};
+       },
        "scenario.json: /as_built/closed_doors/1: no door \"D9\" in the plan"},
       {"ClosedDoorTwice", "scenario.json",
-       [](json&, json& s) { s["as_built"]["closed_doors"] = {"D1", "D1"}; },
+       [](json&, json& s) {
+         s["as_built"]["closed_doors"] = {"D1", "D1"};
+       },
        "scenario.json: /as_built/closed_doors/1: \"D1\" is listed twice"},
       {"ExtraWallZeroLength", "scenario.json",
-       [](json&, json& s) { s["as_built"]["extra_walls"][0]["end"] = {1, 1}; },
+       [](json&, json& s) {
+         s["as_built"]["extra_walls"][0]["end"] = {1, 1};
+       },
        "scenario.json: /as_built/extra_walls/0/end: zero-length wall: end equals start"},
       {"ClutterShape", "scenario.json",
        [](json&, json& s) { s["as_built"]["clutter"][0]["shape"] = "sphere"; },
        "scenario.json: /as_built/clutter/0/shape: unknown shape \"sphere\" (expected \"box\")"},
       {"ClutterSize", "scenario.json",
-       [](json&, json& s) { s["as_built"]["clutter"][0]["size"] = {1, 0, 1}; },
+       [](json&, json& s) {
+         s["as_built"]["clutter"][0]["size"] = {1, 0, 1};
+       },
        "scenario.json: /as_built/clutter/0/size: every extent must be > 0"},
   };
 }
@@ -256,7 +266,9 @@ TEST_P(Validation, BadFileIsRejectedWithItsLocationAndNothingIsWritten) {
 }
 
 INSTANTIATE_TEST_SUITE_P(EveryRule, Validation, ::testing::ValuesIn(cases()),
-                         [](const ::testing::TestParamInfo<Case>& info) { return info.param.name; });
+                         [](const ::testing::TestParamInfo<Case>& param) {
+                           return param.param.name;
+                         });
 
 TEST(ValidInput, TheBaseFilesAreValidSoEachCaseFailsForItsOwnReason) {
   testing::Sandbox sandbox("validation_base");

@@ -10,7 +10,7 @@ namespace {
 TEST(AsBuiltLevel, AppliesEveryDeviation) {
   const bim::Scenario s = loadScenarioOrBuiltin("builtin:d3", nullptr);
   bim::AsBuilt as_built;
-  as_built.missing_walls = {"W7"};  // holds no door
+  as_built.missing_walls = {"W7"};        // holds no door
   as_built.wall_shifts = {{"W5", -0.1}};  // (0, 4) → (20, 4): left is +y, so it moves to y = 3.9
   bim::ExtraWall extra;
   extra.id = "extra0";

@@ -5,11 +5,11 @@
 
 #include <cmath>
 
+#include "bim/json_reader.hpp"
 #include "bim/plan_geometry.hpp"
+#include "bim/plan_parser.hpp"
 #include "bim/polygon.hpp"
 #include "bim/synthetic_plan.hpp"
-#include "bim/json_reader.hpp"
-#include "bim/plan_parser.hpp"
 #include "sim/mujoco_world.hpp"
 #include "worlds/mjcf_generator.hpp"
 #include "worlds/reference_plans.hpp"
@@ -95,8 +95,8 @@ TEST_P(ReferenceWorld, EveryOpenDoorLetsARayThroughIntoTheNextRoom) {
       if (door.rooms[side > 0 ? 0 : 1] == bim::kOutside) continue;  // start inside the building
       const Eigen::Vector2d from = centre + side * (0.5 * wall.thickness + 0.4) * left;
       const Eigen::Vector3d origin(from.x(), from.y(), level.elevation + 1.0);
-      const auto hit = world.ray(origin, Eigen::Vector3d(-side * left.x(), -side * left.y(), 0),
-                                 kBuilding);
+      const auto hit =
+          world.ray(origin, Eigen::Vector3d(-side * left.x(), -side * left.y(), 0), kBuilding);
       const double beyond_wall = 0.4 + wall.thickness + 0.05;
       if (hit) {
         EXPECT_GT(hit->distance, beyond_wall)
@@ -104,9 +104,10 @@ TEST_P(ReferenceWorld, EveryOpenDoorLetsARayThroughIntoTheNextRoom) {
         EXPECT_FALSE(startsWith(world.geomName(hit->geom), "wall/" + wall.id + "/"));
       }
       // Just above the opening the lintel is in the way.
-      const Eigen::Vector3d high(from.x(), from.y(), level.elevation + wall.base + door.height + 0.1);
-      const auto lintel = world.ray(high, Eigen::Vector3d(-side * left.x(), -side * left.y(), 0),
-                                    kBuilding);
+      const Eigen::Vector3d high(from.x(), from.y(),
+                                 level.elevation + wall.base + door.height + 0.1);
+      const auto lintel =
+          world.ray(high, Eigen::Vector3d(-side * left.x(), -side * left.y(), 0), kBuilding);
       if (door.height + 0.1 < wall.height - wall.base) {
         ASSERT_TRUE(lintel);
         EXPECT_EQ(world.geomName(lintel->geom), "wall/" + wall.id + "/lintel/" + door.id);
@@ -208,9 +209,8 @@ TEST(GeneratedWorld, NamesFollowThePlanIds) {
   const bim::Scenario scenario = builtin("d1");
   const sim::MujocoWorld world = sim::MujocoWorld::fromXml(generateMjcf(scenario));
   // W5 holds three doors: four solid pieces and three lintels.
-  for (const char* name : {"wall/W5/0", "wall/W5/1", "wall/W5/2", "wall/W5/3",
-                           "wall/W5/lintel/D1", "wall/W5/lintel/D2", "wall/W5/lintel/D3",
-                           "floor/L0", "ceiling/L0"}) {
+  for (const char* name : {"wall/W5/0", "wall/W5/1", "wall/W5/2", "wall/W5/3", "wall/W5/lintel/D1",
+                           "wall/W5/lintel/D2", "wall/W5/lintel/D3", "floor/L0", "ceiling/L0"}) {
     EXPECT_GE(world.geomId(name), 0) << name;
   }
   EXPECT_EQ(world.geomId("wall/W5/4"), -1);
@@ -240,20 +240,24 @@ TEST(AnyPlan, TwoHundredRoomGridWithLongWallsAndTJunctions) {
 TEST(AnyPlan, SlantedWallsAndTwoLevels) {
   // A triangle room with a 45° wall, on two levels stacked with no gap between them.
   nlohmann::json level = {
-      {"id", "L0"}, {"elevation", 0.0}, {"height", 3.0},
+      {"id", "L0"},
+      {"elevation", 0.0},
+      {"height", 3.0},
       {"walls",
        {{{"id", "A0"}, {"start", {0, 0}}, {"end", {6, 0}}, {"thickness", 0.2}},
         {{"id", "B0"}, {"start", {6, 0}}, {"end", {0, 6}}, {"thickness", 0.2}},
         {{"id", "C0"}, {"start", {0, 6}}, {"end", {0, 0}}, {"thickness", 0.2}}}},
       {"rooms",
        {{{"id", "T0"},
-         {"outline", {{0.1, 0.1}, {5.9 - 0.1 * std::sqrt(2.0), 0.1}, {0.1, 5.9 - 0.1 * std::sqrt(2.0)}}}}}}};
+         {"outline",
+          {{0.1, 0.1}, {5.9 - 0.1 * std::sqrt(2.0), 0.1}, {0.1, 5.9 - 0.1 * std::sqrt(2.0)}}}}}}};
   nlohmann::json upper = level;
   upper["id"] = "L1";
   upper["elevation"] = 3.0;
   for (auto& w : upper["walls"]) w["id"] = w["id"].get<std::string>().substr(0, 1) + "1";
   upper["rooms"][0]["id"] = "T1";
-  const bim::Plan plan = parse({{"format", "isg.plan"}, {"version", 1}, {"levels", {level, upper}}});
+  const bim::Plan plan =
+      parse({{"format", "isg.plan"}, {"version", 1}, {"levels", {level, upper}}});
   const sim::MujocoWorld world = sim::MujocoWorld::fromXml(generateMjcf(plan));
   checkRoomFaces(plan, world);
   // From (1, 1) the slanted face x + y = 6 - 0.1·√2 is at (6 - 0.1·√2 - 2)/√2 along the normal.
