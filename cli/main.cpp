@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "bim/input_error.hpp"
+#include "cli/cmd_agraph.hpp"
 #include "cli/cmd_check.hpp"
 #include "cli/cmd_inspect.hpp"
 #include "cli/cmd_world.hpp"
@@ -25,6 +26,7 @@ int main(int argc, char** argv) {
   commands.push_back(std::make_unique<WorldCommand>(app));
   commands.push_back(std::make_unique<CheckCommand>(app));
   commands.push_back(std::make_unique<InspectCommand>(app));
+  commands.push_back(std::make_unique<AGraphCommand>(app));
 
   try {
     app.parse(argc, argv);

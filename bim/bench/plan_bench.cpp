@@ -1,6 +1,8 @@
 // Parsing, validation and derived geometry of large plans: grids of rooms with long walls.
 #include <benchmark/benchmark.h>
 
+#include "bim/agraph.hpp"
+#include "bim/agraph_optimizer.hpp"
 #include "bim/json_reader.hpp"
 #include "bim/plan_geometry.hpp"
 #include "bim/plan_parser.hpp"
@@ -11,7 +13,7 @@ namespace {
 
 GridPlanSpec gridOf(int rooms) {
   GridPlanSpec spec;
-  spec.rows = rooms >= 200 ? 10 : 5;
+  spec.rows = rooms >= 1000 ? 20 : (rooms >= 200 ? 10 : 5);
   spec.cols = rooms / spec.rows;
   return spec;
 }
@@ -38,6 +40,40 @@ void BM_LevelGeometry(benchmark::State& state) {
   state.counters["rooms"] = double(state.range(0));
 }
 BENCHMARK(BM_LevelGeometry)->Arg(50)->Arg(200)->Unit(benchmark::kMillisecond);
+
+}  // namespace
+}  // namespace isg::bim
+
+namespace isg::bim {
+namespace {
+
+// The A-Graph of a plan: the "benchmark the build time" on 200 rooms (and 1000).
+void BM_BuildAGraph(benchmark::State& state) {
+  const JsonSource source{"grid.json", nullptr};
+  const nlohmann::json document = makeGridPlan(gridOf(int(state.range(0))));
+  const Plan plan = parsePlan(JsonNode(document, "", source));
+  for (auto _ : state) {
+    AGraph graph = buildAGraph(plan);
+    benchmark::DoNotOptimize(graph);
+  }
+  state.counters["rooms"] = double(state.range(0));
+}
+BENCHMARK(BM_BuildAGraph)->Arg(50)->Arg(200)->Arg(1000)->Unit(benchmark::kMillisecond);
+
+// One optimisation of the whole A-Graph from perturbed values, for scale.
+void BM_OptimizeAGraph(benchmark::State& state) {
+  const JsonSource source{"grid.json", nullptr};
+  const nlohmann::json document = makeGridPlan(gridOf(int(state.range(0))));
+  const Plan plan = parsePlan(JsonNode(document, "", source));
+  const AGraph graph = buildAGraph(plan);
+  for (auto _ : state) {
+    AGraphState graph_state(graph);
+    for (auto& r : graph_state.rooms) r.x() += 0.1;
+    benchmark::DoNotOptimize(graph_state.optimize());
+  }
+  state.counters["rooms"] = double(state.range(0));
+}
+BENCHMARK(BM_OptimizeAGraph)->Arg(50)->Arg(200)->Unit(benchmark::kMillisecond);
 
 }  // namespace
 }  // namespace isg::bim

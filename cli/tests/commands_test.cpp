@@ -2,6 +2,8 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
+#include <nlohmann/json.hpp>
+
 #include "cli/tests/cli_runner.hpp"
 
 namespace isg::cli {
@@ -12,7 +14,7 @@ using ::testing::StartsWith;
 
 TEST(Usage, HelpOnEveryCommandExitsZero) {
   testing::Sandbox sandbox("usage_help");
-  for (const char* command : {"", "world ", "check ", "inspect "}) {
+  for (const char* command : {"", "world ", "check ", "inspect ", "agraph "}) {
     const auto result = sandbox.run(std::string(command) + "--help");
     EXPECT_EQ(result.exit_code, 0) << command;
     EXPECT_THAT(result.out, HasSubstr("Usage:")) << command;
@@ -75,6 +77,46 @@ TEST(Inspect, DefaultWorldLoadsStepsAndProbes) {
   EXPECT_THAT(result.out, StartsWith("isg inspect: builtin:d1.asbuilt (MuJoCo 2.2.2)\n"));
   EXPECT_THAT(result.out, HasSubstr("stepped 100 times: 0.200 s of simulated time"));
   EXPECT_THAT(result.out, HasSubstr("72/72 rays hit the building"));
+}
+
+}  // namespace
+}  // namespace isg::cli
+
+namespace isg::cli {
+namespace {
+
+TEST(AGraph, WritesJsonAndSvgAndSummarises) {
+  testing::Sandbox sandbox("agraph");
+  const auto result = sandbox.run("agraph builtin:d1.asbuilt -o agraph.json --svg agraph.svg");
+  EXPECT_EQ(result.exit_code, 0) << result.err;
+  EXPECT_EQ(result.err,
+            "isg agraph: 14 wall surfaces, 7 walls, 4 rooms (3 four-wall, 1 two-wall, 0 other), 5 "
+            "doorways, 1 floor\n");
+  const auto doc = nlohmann::json::parse(sandbox.read("agraph.json"));
+  EXPECT_EQ(doc["format"], "isg.agraph");
+  EXPECT_EQ(doc["nodes"]["rooms"].size(), 4u);
+  EXPECT_EQ(doc["nodes"]["rooms"][3]["kind"], "two_wall");
+  // From the plan, not the as-built world: W6 is where the plan has it (x = 4, faces ±0.075).
+  int found = 0;
+  for (const auto& s : doc["nodes"]["wall_surfaces"]) {
+    if (s["id"] != "W6:left") continue;
+    ++found;
+    EXPECT_DOUBLE_EQ(s["closest_point"][0].get<double>(), 3.925);
+  }
+  EXPECT_EQ(found, 1);
+  // 7 walls × 2 surface edges, 16 room–surface edges, 9 doorway–room edges, 4 floor–room edges.
+  EXPECT_EQ(doc["edges"].size(), 14u + 16u + 9u + 4u);
+  const std::string svg = sandbox.read("agraph.svg");
+  EXPECT_THAT(svg, StartsWith("<svg xmlns=\"http://www.w3.org/2000/svg\""));
+  EXPECT_THAT(svg, HasSubstr("<title>doorway D3</title>"));
+}
+
+TEST(AGraph, UnknownLevelIsABadInput) {
+  testing::Sandbox sandbox("agraph_level");
+  const auto result = sandbox.run("agraph builtin:d1 --svg a.svg --level L7");
+  EXPECT_EQ(result.exit_code, 1);
+  EXPECT_EQ(result.err, "isg agraph: error: builtin:d1: no level \"L7\" in the plan (--level)\n");
+  EXPECT_FALSE(sandbox.exists("a.svg"));
 }
 
 }  // namespace

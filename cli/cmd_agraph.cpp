@@ -1,0 +1,54 @@
+#include "cli/cmd_agraph.hpp"
+
+#include <cstdio>
+#include <iostream>
+
+#include "bim/agraph.hpp"
+#include "bim/agraph_json.hpp"
+#include "bim/agraph_svg.hpp"
+
+namespace isg::cli {
+
+AGraphCommand::AGraphCommand(CLI::App& parent) {
+  app_ = parent.add_subcommand("agraph", "Build the architectural graph (A-Graph) of a plan");
+  app_->footer(
+      "Nodes: wall surfaces (planes in B), walls (two opposed surfaces and a centre), rooms "
+      "(four-wall, two-wall corridors, other polygons), doorways and one floor per level; edges "
+      "between them. JSON format: docs/agraph.md. Given a scenario, the A-Graph is built from its "
+      "plan: the localizer never sees the as-built deviations.\n\n" +
+      builtinWorldsHelp());
+  app_->add_option("input", input_, "plan or scenario file, or builtin:NAME")->required();
+  app_->add_option("-o,--output", output_, "JSON file to write (default: standard output)");
+  app_->add_option("--svg", svg_, "also write a picture of the plan with the graph over it");
+  app_->add_option("--level", level_, "level to draw in the SVG (default: the first)");
+}
+
+int AGraphCommand::run() {
+  const bim::Scenario scenario = loadInput(input_, "agraph");
+  const bim::Plan& plan = scenario.plan;
+  const std::string level = level_.empty() ? plan.levels.front().id : level_;
+  if (plan.findLevel(level) == nullptr) {
+    throw bim::InputError(input_, "", "no level \"" + level + "\" in the plan (--level)");
+  }
+  const bim::AGraph graph = bim::buildAGraph(plan);
+  const std::string json = bim::agraphJsonText(bim::agraphToJson(graph));
+  // Everything is computed before anything is written.
+  const std::string svg = svg_.empty() ? "" : bim::agraphToSvg(plan, graph, level);
+  if (!svg_.empty()) writeFileAtomically(svg_, svg);
+  if (output_.empty()) {
+    std::cout << json;
+  } else {
+    writeFileAtomically(output_, json);
+  }
+  int kinds[3] = {0, 0, 0};
+  for (const auto& r : graph.rooms) ++kinds[int(r.kind)];
+  std::fprintf(stderr,
+               "isg agraph: %zu wall surfaces, %zu walls, %zu rooms (%d four-wall, %d two-wall, %d "
+               "other), %zu doorways, %zu floor%s\n",
+               graph.surfaces.size(), graph.walls.size(), graph.rooms.size(), kinds[0], kinds[1],
+               kinds[2], graph.doorways.size(), graph.floors.size(),
+               graph.floors.size() == 1 ? "" : "s");
+  return kExitOk;
+}
+
+}  // namespace isg::cli
