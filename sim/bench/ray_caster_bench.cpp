@@ -1,0 +1,99 @@
+// The fast ray caster against MuJoCo's mj_ray on the same VLP-16 scans, in the largest
+// reference world (D6 as built) and in a 200-room plan. Each benchmark casts one full 10 Hz turn
+// (1808 × 16 rays) from each of a few sensor positions inside rooms; items/s = rays/s.
+#include <benchmark/benchmark.h>
+
+#include "bim/json_reader.hpp"
+#include "bim/plan_parser.hpp"
+#include "bim/polygon.hpp"
+#include "bim/synthetic_plan.hpp"
+#include "sim/mujoco_world.hpp"
+#include "sim/ray_caster.hpp"
+#include "sim/vlp16.hpp"
+#include "worlds/mjcf_generator.hpp"
+#include "worlds/reference_plans.hpp"
+
+namespace isg::sim {
+namespace {
+
+constexpr unsigned kGroups = (1u << worlds::kBuildingGroup) | (1u << worlds::kCeilingGroup);
+
+struct Scene {
+  bim::Scenario scenario;
+  MujocoWorld world;
+  std::vector<std::pair<Eigen::Vector3d, Eigen::Vector3d>> rays;  // origin, unit direction
+};
+
+Scene makeScene(bim::Scenario scenario) {
+  Scene scene{scenario, MujocoWorld::fromXml(worlds::generateMjcf(scenario)), {}};
+  const int sequences = Vlp16::sequencesPerTurn(10.0);
+  const auto& rooms = scenario.plan.levels[0].rooms;
+  // The sensor 0.71 m above the floor (0.46 m body + 0.25 m mount) at up to 8 room centroids.
+  for (std::size_t r = 0; r < rooms.size() && r < 8; ++r) {
+    const Eigen::Vector2d c = bim::centroid(rooms[r].outline);
+    const Eigen::Vector3d sensor(c.x(), c.y(), 0.71);
+    for (int s = 0; s < sequences; ++s) {
+      for (int l = 0; l < Vlp16::kLasers; ++l) {
+        const double az = Vlp16::azimuth(Vlp16::firingTime(s, l), 10.0);
+        scene.rays.emplace_back(sensor + Vlp16::origin(l), Vlp16::direction(l, az));
+      }
+    }
+  }
+  return scene;
+}
+
+const Scene& largestReference() {
+  static const Scene scene =
+      makeScene(worlds::loadScenarioOrBuiltin("builtin:d6.asbuilt", nullptr));
+  return scene;
+}
+
+const Scene& grid200() {
+  static const Scene scene = [] {
+    const bim::JsonSource source{"grid.json", nullptr};
+    const nlohmann::json doc = bim::makeGridPlan({});
+    bim::Scenario s;
+    s.plan = bim::parsePlan(bim::JsonNode(doc, "", source));
+    return makeScene(s);
+  }();
+  return scene;
+}
+
+void castWithMjRay(benchmark::State& state, const Scene& scene) {
+  const auto mask = groupArray(kGroups);
+  const mjModel* m = &scene.world.model();
+  const mjData* d = &scene.world.data();
+  std::size_t hits = 0;
+  for (auto _ : state) {
+    for (const auto& [origin, dir] : scene.rays) {
+      int geom = -1;
+      hits += mj_ray(m, d, origin.data(), dir.data(), mask.data(), 1, -1, &geom) >= 0;
+    }
+  }
+  state.SetItemsProcessed(state.iterations() * scene.rays.size());
+  state.counters["geoms"] = m->ngeom;
+  benchmark::DoNotOptimize(hits);
+}
+
+void castWithFastCaster(benchmark::State& state, const Scene& scene) {
+  const RayCaster caster(scene.world.model(), scene.world.data(), kGroups);
+  std::size_t hits = 0;
+  for (auto _ : state) {
+    for (const auto& [origin, dir] : scene.rays) hits += caster.cast(origin, dir).has_value();
+  }
+  state.SetItemsProcessed(state.iterations() * scene.rays.size());
+  state.counters["geoms"] = scene.world.model().ngeom;
+  benchmark::DoNotOptimize(hits);
+}
+
+void BM_MjRay_D6(benchmark::State& s) { castWithMjRay(s, largestReference()); }
+void BM_FastCaster_D6(benchmark::State& s) { castWithFastCaster(s, largestReference()); }
+void BM_MjRay_Grid200(benchmark::State& s) { castWithMjRay(s, grid200()); }
+void BM_FastCaster_Grid200(benchmark::State& s) { castWithFastCaster(s, grid200()); }
+BENCHMARK(BM_MjRay_D6)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_FastCaster_D6)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_MjRay_Grid200)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_FastCaster_Grid200)->Unit(benchmark::kMillisecond);
+
+}  // namespace
+}  // namespace isg::sim
