@@ -67,6 +67,9 @@ RayCaster::RayCaster(const mjModel& model, const mjData& data, unsigned groups)
         Eigen::Map<const Eigen::Matrix<double, 3, 3, Eigen::RowMajor>>(data.geom_xmat + 9 * g);
     box.half = Eigen::Map<const Eigen::Vector3d>(model.geom_size + 3 * g);
     box.geom = g;
+    box.axis_aligned = box.mat == Eigen::Matrix3d::Identity();
+    box.upright = box.mat(2, 2) == 1.0 && box.mat(2, 0) == 0.0 && box.mat(2, 1) == 0.0 &&
+                  box.mat(0, 2) == 0.0 && box.mat(1, 2) == 0.0;
     const Eigen::Vector3d extent = box.mat.cwiseAbs() * box.half;
     // A hair larger than the box, so that rounding never culls a box the exact test would hit.
     const Eigen::Vector3d pad = 1e-9 * (Eigen::Vector3d::Ones() + extent + box.pos.cwiseAbs());
@@ -196,29 +199,6 @@ void RayCaster::build(std::vector<int>& order, const std::vector<Eigen::Vector3d
   build(order, lo, hi, middle, end);
 }
 
-double RayCaster::intersectBox(const Box& box, const Eigen::Vector3d& origin,
-                               const Eigen::Vector3d& direction) const {
-  // The ray in the box's frame, then the slab test on its faces: the same arithmetic as
-  // MuJoCo's box case of mju_rayGeom.
-  const Eigen::Vector3d p = box.mat.transpose() * (origin - box.pos);
-  const Eigen::Vector3d v = box.mat.transpose() * direction;
-  double best = -1.0;
-  for (int i = 0; i < 3; ++i) {
-    if (std::abs(v[i]) <= mjMINVAL) continue;
-    for (int side = -1; side <= 1; side += 2) {
-      const double x = (side * box.half[i] - p[i]) / v[i];
-      if (x < 0) continue;
-      const int j = (i + 1) % 3, k = (i + 2) % 3;
-      const double pj = p[j] + x * v[j];
-      const double pk = p[k] + x * v[k];
-      if (std::abs(pj) <= box.half[j] && std::abs(pk) <= box.half[k] && (best < 0 || x < best)) {
-        best = x;
-      }
-    }
-  }
-  return best;
-}
-
 double RayCaster::intersectOther(int g, const Eigen::Vector3d& origin,
                                  const Eigen::Vector3d& direction) const {
   if (model_->geom_type[g] == mjGEOM_MESH) {
@@ -240,7 +220,7 @@ std::optional<RayCaster::Hit> RayCaster::cast(const Eigen::Vector3d& origin,
   for (int g : others_) consider(intersectOther(g, origin, direction), g);
   for (int g : moving_) consider(intersectOther(g, origin, direction), g);
 
-  for (const Box& box : large_) consider(intersectBox(box, origin, direction), box.geom);
+  for (const Box& box : large_) consider(intersectSlab(box, origin, direction), box.geom);
 
   if (!nodes_.empty()) {
     const Eigen::Vector3d inverse = direction.cwiseInverse();

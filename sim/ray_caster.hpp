@@ -3,6 +3,7 @@
 #include <mujoco/mujoco.h>
 
 #include <Eigen/Core>
+#include <cmath>
 #include <optional>
 #include <vector>
 
@@ -33,6 +34,8 @@ class RayCaster {
   // `direction` must be a unit vector for the distance to be metres (as for mj_ray).
   std::optional<Hit> cast(const Eigen::Vector3d& origin, const Eigen::Vector3d& direction) const;
 
+  friend class ScanCaster;
+
   int staticGeomCount() const { return int(boxes_.size() + large_.size() + others_.size()); }
   int nodeCount() const { return int(nodes_.size()); }
   int largeCount() const { return int(large_.size()); }
@@ -43,6 +46,8 @@ class RayCaster {
     Eigen::Matrix3d mat;  // columns: the box's axes in world coordinates
     Eigen::Vector3d half;
     int geom;
+    bool axis_aligned;  // mat is the identity
+    bool upright;       // turned about z only (every wall): the z row of mat is (0, 0, 1)
   };
   struct Node {
     Eigen::Vector3d lo, hi;
@@ -58,6 +63,9 @@ class RayCaster {
              const std::vector<Eigen::Vector3d>& hi, int begin, int end);
   double intersectBox(const Box& box, const Eigen::Vector3d& origin,
                       const Eigen::Vector3d& direction) const;
+  // The same result for an unrotated slab seen from above or below, in a few operations.
+  double intersectSlab(const Box& box, const Eigen::Vector3d& origin,
+                       const Eigen::Vector3d& direction) const;
   double intersectOther(int geom, const Eigen::Vector3d& origin,
                         const Eigen::Vector3d& direction) const;
 
@@ -76,6 +84,62 @@ class RayCaster {
   std::vector<int> others_;  // static non-box geoms that are seen (planes, meshes, ...)
   std::vector<int> moving_;  // geoms not welded to the world that are seen: tested every ray
 };
+
+// The exact tests, inline: they are the inner loop of every caster.
+
+inline double RayCaster::intersectBox(const Box& box, const Eigen::Vector3d& origin,
+                                      const Eigen::Vector3d& direction) const {
+  // The ray in the box's frame, then MuJoCo's face test (the box case of mju_rayGeom): the
+  // nearest face crossing that lands within its face. Only three faces can give it: the faces
+  // the ray enters through when it starts outside, the faces it leaves through when inside.
+  const Eigen::Vector3d d = origin - box.pos;
+  Eigen::Vector3d p, v;
+  if (box.upright) {
+    const auto& R = box.mat;
+    p << R(0, 0) * d[0] + R(1, 0) * d[1], R(0, 1) * d[0] + R(1, 1) * d[1], d[2];
+    v << R(0, 0) * direction[0] + R(1, 0) * direction[1],
+        R(0, 1) * direction[0] + R(1, 1) * direction[1], direction[2];
+  } else {
+    p = box.mat.transpose() * d;
+    v = box.mat.transpose() * direction;
+  }
+  const bool inside = std::abs(p[0]) <= box.half[0] && std::abs(p[1]) <= box.half[1] &&
+                      std::abs(p[2]) <= box.half[2];
+  double best = -1.0;
+  for (int i = 0; i < 3; ++i) {
+    if (std::abs(v[i]) <= mjMINVAL) continue;
+    const int side = (v[i] > 0) == inside ? 1 : -1;
+    const double x = (side * box.half[i] - p[i]) / v[i];
+    if (x < 0) continue;
+    const int j = (i + 1) % 3, k = (i + 2) % 3;
+    if (std::abs(p[j] + x * v[j]) <= box.half[j] && std::abs(p[k] + x * v[k]) <= box.half[k] &&
+        (best < 0 || x < best)) {
+      best = x;
+    }
+  }
+  return best;
+}
+
+inline double RayCaster::intersectSlab(const Box& box, const Eigen::Vector3d& origin,
+                                       const Eigen::Vector3d& direction) const {
+  if (!box.axis_aligned) return intersectBox(box, origin, direction);
+  const double pz = origin.z() - box.pos.z();
+  const double vz = direction.z();
+  // From above (below) the slab, a ray that leaves it behind never hits it.
+  if (pz >= box.half.z() && vz >= 0) return -1.0;
+  if (pz <= -box.half.z() && vz <= 0) return -1.0;
+  if (std::abs(pz) < box.half.z() || std::abs(vz) <= mjMINVAL) {
+    return intersectBox(box, origin, direction);
+  }
+  // Coming down onto the top face (or up onto the bottom one): if it lands within the face that
+  // is the nearest face hit, since z changes monotonically along the ray.
+  const double face = pz > 0 ? box.half.z() : -box.half.z();
+  const double x = (face - pz) / vz;
+  const double px = origin.x() - box.pos.x() + x * direction.x();
+  const double py = origin.y() - box.pos.y() + x * direction.y();
+  if (std::abs(px) <= box.half.x() && std::abs(py) <= box.half.y()) return x;
+  return intersectBox(box, origin, direction);
+}
 
 // Whether mj_ray would consider this geom at all for these groups (static geoms included, no
 // body excluded): not invisible (alpha 0), in a group that is seen (planes ignore groups).

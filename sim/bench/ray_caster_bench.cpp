@@ -9,6 +9,7 @@
 #include "bim/synthetic_plan.hpp"
 #include "sim/mujoco_world.hpp"
 #include "sim/ray_caster.hpp"
+#include "sim/scan_caster.hpp"
 #include "sim/vlp16.hpp"
 #include "worlds/mjcf_generator.hpp"
 #include "worlds/reference_plans.hpp"
@@ -22,6 +23,7 @@ struct Scene {
   bim::Scenario scenario;
   MujocoWorld world;
   std::vector<std::pair<Eigen::Vector3d, Eigen::Vector3d>> rays;  // origin, unit direction
+  std::vector<Eigen::Vector2d> sensors;  // one per turn: the turn's rays are rays[28928·i …]
 };
 
 Scene makeScene(bim::Scenario scenario) {
@@ -32,6 +34,7 @@ Scene makeScene(bim::Scenario scenario) {
   for (std::size_t r = 0; r < rooms.size() && r < 8; ++r) {
     const Eigen::Vector2d c = bim::centroid(rooms[r].outline);
     const Eigen::Vector3d sensor(c.x(), c.y(), 0.71);
+    scene.sensors.push_back(c);
     for (int s = 0; s < sequences; ++s) {
       for (int l = 0; l < Vlp16::kLasers; ++l) {
         const double az = Vlp16::azimuth(Vlp16::firingTime(s, l), 10.0);
@@ -86,11 +89,34 @@ void castWithFastCaster(benchmark::State& state, const Scene& scene) {
   benchmark::DoNotOptimize(hits);
 }
 
+// The scan path: prepared once per turn (included in the time), then every ray of the turn.
+void castWithScanCaster(benchmark::State& state, const Scene& scene) {
+  const RayCaster caster(scene.world.model(), scene.world.data(), kGroups);
+  ScanCaster scan(caster);
+  const std::size_t per_turn = scene.rays.size() / scene.sensors.size();
+  std::size_t hits = 0;
+  for (auto _ : state) {
+    for (std::size_t t = 0; t < scene.sensors.size(); ++t) {
+      scan.prepare(scene.sensors[t], 0.08);
+      for (std::size_t i = t * per_turn; i < (t + 1) * per_turn; ++i) {
+        hits += scan.cast(scene.rays[i].first, scene.rays[i].second).has_value();
+      }
+    }
+  }
+  state.SetItemsProcessed(state.iterations() * scene.rays.size());
+  state.counters["geoms"] = scene.world.model().ngeom;
+  benchmark::DoNotOptimize(hits);
+}
+
 void BM_MjRay_D6(benchmark::State& s) { castWithMjRay(s, largestReference()); }
 void BM_FastCaster_D6(benchmark::State& s) { castWithFastCaster(s, largestReference()); }
 void BM_MjRay_Grid200(benchmark::State& s) { castWithMjRay(s, grid200()); }
 void BM_FastCaster_Grid200(benchmark::State& s) { castWithFastCaster(s, grid200()); }
+void BM_ScanCaster_D6(benchmark::State& s) { castWithScanCaster(s, largestReference()); }
+void BM_ScanCaster_Grid200(benchmark::State& s) { castWithScanCaster(s, grid200()); }
 BENCHMARK(BM_MjRay_D6)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_ScanCaster_D6)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_ScanCaster_Grid200)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_FastCaster_D6)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_MjRay_Grid200)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_FastCaster_Grid200)->Unit(benchmark::kMillisecond);
