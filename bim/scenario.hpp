@@ -24,12 +24,21 @@ struct Route {
   std::vector<Eigen::Vector2d> waypoints;
 };
 
+// The trot's sway of the body: height bob, roll and pitch at the gait frequency.
+struct GaitSettings {
+  double frequency_hz = 1.8;
+  double bob_m = 0.015;
+  double roll_deg = 2.0;
+  double pitch_deg = 2.0;
+};
+
 struct RobotConfig {
   std::string level;                          // id of the level the robot walks on
   std::optional<std::string> start_room;      // start at the centre of this room ...
   std::optional<Eigen::Vector3d> start_pose;  // ... or at [x, y, yaw]; exactly one is set
   Route route;
   double speed = 0.5;  // m/s
+  GaitSettings gait;
 };
 
 struct LidarConfig {

@@ -45,7 +45,7 @@ RobotConfig parseRobot(const std::optional<JsonNode>& node, const Plan& plan) {
                            : std::optional(plan.levels.front().rooms.front().id);
     return robot;
   }
-  node->expectObject({"level", "start", "route", "speed"});
+  node->expectObject({"level", "start", "route", "speed", "gait"});
   const Level* level = &plan.levels.front();
   if (auto l = node->optionalField("level")) {
     level = &levelNamed(plan, *l);
@@ -97,6 +97,14 @@ RobotConfig parseRobot(const std::optional<JsonNode>& node, const Plan& plan) {
     }
   }
   if (auto speed = node->optionalField("speed")) robot.speed = numberInRange(*speed, 0.01, 3.0);
+  if (auto gait = node->optionalField("gait")) {
+    gait->expectObject({"frequency_hz", "bob_m", "roll_deg", "pitch_deg"});
+    auto& g = robot.gait;
+    if (auto v = gait->optionalField("frequency_hz")) g.frequency_hz = numberInRange(*v, 0.1, 10.0);
+    if (auto v = gait->optionalField("bob_m")) g.bob_m = numberInRange(*v, 0.0, 0.2);
+    if (auto v = gait->optionalField("roll_deg")) g.roll_deg = numberInRange(*v, 0.0, 20.0);
+    if (auto v = gait->optionalField("pitch_deg")) g.pitch_deg = numberInRange(*v, 0.0, 20.0);
+  }
   return robot;
 }
 

@@ -51,8 +51,9 @@ class RayCaster {
   };
   struct Node {
     Eigen::Vector3d lo, hi;
-    int first;  // leaf: first primitive index; inner: index of the right child (left = this + 1)
-    int count;  // leaf: number of primitives (> 0); inner: 0
+    int first =
+        0;  // leaf: first primitive index; inner: index of the right child (left = this + 1)
+    int count = 0;  // leaf: number of primitives (> 0); inner: 0
   };
   struct Pending {
     int node;

@@ -262,7 +262,7 @@ std::string generateMjcf(const bim::Plan& plan, const bim::AsBuilt& as_built,
       << "\" dir=\"0.3 0.2 -1\" diffuse=\".5 .5 .5\"/>\n"
       << "    <camera name=\"top\" pos=\"" << vec({centre.x(), centre.y(), top_height})
       << "\" xyaxes=\"1 0 0 0 1 0\" fovy=\"45\"/>\n"
-      << body.str() << "  </worldbody>\n"
+      << body.str() << options.extra_worldbody << "  </worldbody>\n"
       << "</mujoco>\n";
   return out.str();
 }

@@ -19,6 +19,8 @@ struct WorldOptions {
   double door_leaf_thickness = 0.04;  // a closed door's leaf, centred in the wall
   double floor_margin = 1.0;          // the floor slab reaches this far past the outer walls
   bool ceilings = true;
+  // MJCF inserted at the end of <worldbody> (the simulator's robot); the building never needs it.
+  std::string extra_worldbody;
 };
 
 // Generates the MuJoCo MJCF of a building: the plan with the scenario's as-built deviations.

@@ -111,3 +111,31 @@ TEST(PlanParser, MissingFileIsAnInputError) {
 
 }  // namespace
 }  // namespace isg::bim
+
+#include "bim/plan_json.hpp"
+
+namespace isg::bim {
+namespace {
+
+TEST(PlanJson, WrittenPlanParsesToTheSamePlan) {
+  const Plan plan = testing::parsePlanJson(testing::twoRoomPlanJson());
+  const nlohmann::json written = nlohmann::json::parse(planToJson(plan).dump());
+  Warnings warnings;
+  const Plan again = testing::parsePlanJson(written, &warnings, "again.json");
+  EXPECT_TRUE(warnings.empty());
+  ASSERT_EQ(again.levels.size(), 1u);
+  const Level& a = plan.levels[0];
+  const Level& b = again.levels[0];
+  ASSERT_EQ(a.walls.size(), b.walls.size());
+  for (std::size_t i = 0; i < a.walls.size(); ++i) {
+    EXPECT_EQ(a.walls[i].start, b.walls[i].start);
+    EXPECT_EQ(a.walls[i].height, b.walls[i].height);
+  }
+  ASSERT_EQ(a.doors.size(), b.doors.size());
+  EXPECT_EQ(b.doors[0].rooms, a.doors[0].rooms);  // inferred rooms are written out
+  EXPECT_FALSE(b.doors[0].rooms_inferred);
+  EXPECT_EQ(b.rooms[1].outline, a.rooms[1].outline);
+}
+
+}  // namespace
+}  // namespace isg::bim

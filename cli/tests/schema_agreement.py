@@ -85,6 +85,7 @@ SCENARIO_MUTATIONS = {
     "start with room and pose": setter(["robot", "start"], {"room": "R1", "pose": [1, 1, 0]}),
     "unknown route": setter(["robot", "route"], "spiral"),
     "zero speed": setter(["robot", "speed"], 0),
+    "gait at 50 Hz": setter(["robot", "gait"], {"frequency_hz": 50}),
     "lidar rate 40": setter(["lidar", "rate_hz"], 40),
     "dropout 1": setter(["lidar", "dropout"], 1.0),
     "mount of three": setter(["lidar", "mount"], [0, 0, 0.25]),

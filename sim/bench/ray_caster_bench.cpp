@@ -27,7 +27,7 @@ struct Scene {
 };
 
 Scene makeScene(bim::Scenario scenario) {
-  Scene scene{scenario, MujocoWorld::fromXml(worlds::generateMjcf(scenario)), {}};
+  Scene scene{scenario, MujocoWorld::fromXml(worlds::generateMjcf(scenario)), {}, {}};
   const int sequences = Vlp16::sequencesPerTurn(10.0);
   const auto& rooms = scenario.plan.levels[0].rooms;
   // The sensor 0.71 m above the floor (0.46 m body + 0.25 m mount) at up to 8 room centroids.

@@ -1,0 +1,26 @@
+#pragma once
+
+#include <cstdint>
+#include <optional>
+
+#include "cli/common.hpp"
+
+namespace isg::cli {
+
+// isg simulate PLAN|SCENARIO -o DATASET_DIR [--seed N] [--duration S]: synthesise a dataset.
+class SimulateCommand : public Command {
+ public:
+  explicit SimulateCommand(CLI::App& parent);
+  int run() override;
+
+ private:
+  std::string input_;
+  std::string output_;
+  std::optional<std::uint64_t> seed_;
+  double duration_ = -1.0;
+  int threads_ = 2;
+  bool force_ = false;
+  bool quiet_ = false;
+};
+
+}  // namespace isg::cli

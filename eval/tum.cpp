@@ -1,0 +1,70 @@
+#include "eval/tum.hpp"
+
+#include <cmath>
+#include <cstdio>
+#include <fstream>
+#include <sstream>
+#include <stdexcept>
+
+namespace isg::eval {
+
+std::string toTumText(const Trajectory& trajectory) {
+  std::string out;
+  out.reserve(trajectory.size() * 100);
+  char line[256];
+  for (const auto& p : trajectory) {
+    Eigen::Quaterniond q(p.pose.linear());
+    q.normalize();
+    if (q.w() < 0) q.coeffs() *= -1.0;
+    const Eigen::Vector3d t = p.pose.translation();
+    std::snprintf(line, sizeof line, "%.9f %.6f %.6f %.6f %.9f %.9f %.9f %.9f\n", p.t, t.x(), t.y(),
+                  t.z(), q.x(), q.y(), q.z(), q.w());
+    out += line;
+  }
+  return out;
+}
+
+Trajectory parseTum(const std::string& text, const std::string& file) {
+  Trajectory out;
+  std::istringstream in(text);
+  std::string line;
+  int number = 0;
+  while (std::getline(in, line)) {
+    ++number;
+    const auto first = line.find_first_not_of(" \t\r");
+    if (first == std::string::npos || line[first] == '#') continue;
+    std::istringstream fields(line);
+    double v[8];
+    for (double& x : v) {
+      if (!(fields >> x) || !std::isfinite(x)) {
+        throw std::runtime_error(file + ": line " + std::to_string(number) +
+                                 ": expected 8 numbers: t tx ty tz qx qy qz qw");
+      }
+    }
+    std::string extra;
+    if (fields >> extra) {
+      throw std::runtime_error(file + ": line " + std::to_string(number) + ": more than 8 fields");
+    }
+    const Eigen::Quaterniond q(v[7], v[4], v[5], v[6]);
+    if (std::abs(q.norm() - 1.0) > 1e-3) {
+      throw std::runtime_error(file + ": line " + std::to_string(number) +
+                               ": quaternion is not unit length");
+    }
+    StampedPose p;
+    p.t = v[0];
+    p.pose.translation() = Eigen::Vector3d(v[1], v[2], v[3]);
+    p.pose.linear() = q.normalized().toRotationMatrix();
+    out.push_back(p);
+  }
+  return out;
+}
+
+Trajectory readTum(const std::string& path) {
+  std::ifstream in(path);
+  if (!in) throw std::runtime_error(path + ": cannot open file");
+  std::ostringstream s;
+  s << in.rdbuf();
+  return parseTum(s.str(), path);
+}
+
+}  // namespace isg::eval

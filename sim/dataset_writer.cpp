@@ -1,0 +1,207 @@
+#include "sim/dataset_writer.hpp"
+
+#include <unistd.h>
+
+#include <atomic>
+#include <chrono>
+#include <cstdio>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <mutex>
+#include <nlohmann/json.hpp>
+#include <thread>
+
+#include "bim/input_error.hpp"
+#include "bim/plan_json.hpp"
+#include "sim/vlp16.hpp"
+
+namespace isg::sim {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+void writeFile(const fs::path& path, const std::string& content) {
+  std::ofstream out(path, std::ios::binary);
+  out << content;
+  if (!out) throw bim::InputError(path.string(), "", "cannot write file");
+}
+
+template <typename T>
+void append(std::string& out, T value) {
+  char bytes[sizeof(T)];
+  std::memcpy(bytes, &value, sizeof(T));
+  out.append(bytes, sizeof(T));
+}
+
+nlohmann::ordered_json metadata(const Simulation& sim, double duration,
+                                const DatasetOptions& options, int scans) {
+  using json = nlohmann::ordered_json;
+  const bim::Scenario& s = sim.scenario();
+  const auto& l = s.lidar;
+  const Eigen::Matrix4d R_T_L = sim.R_T_L().matrix();
+  json matrix = json::array();
+  for (int r = 0; r < 4; ++r)
+    matrix.push_back({R_T_L(r, 0), R_T_L(r, 1), R_T_L(r, 2), R_T_L(r, 3)});
+  json route = json::array();
+  for (const auto& p : sim.route().waypoints) route.push_back({p.x(), p.y()});
+  const auto& gait = sim.trajectory().gait();
+  return {
+      {"format", "isg.dataset"},
+      {"version", 1},
+      {"generator", "isg simulate 0.1.0"},
+      {"scenario", s.source},
+      {"plan_file", s.plan_file},
+      {"seed", s.seed},
+      {"duration_s", duration},
+      {"frames",
+       {{"B", "plan frame (ground truth, scans.tum)"},
+        {"M", "odometry frame: the start pose of the base (odometry.tum)"},
+        {"R", "robot base, x forward, y left, z up (groundtruth.tum is B_T_R)"},
+        {"L", "LiDAR: the frame of every point of scans/*.pcd, at the point's own firing time"}}},
+      {"extrinsics", {{"R_T_L", {{"xyz_rpy", l.mount}, {"matrix", matrix}}}}},
+      {"lidar",
+       {{"model", "Velodyne VLP-16"},
+        {"rate_hz", l.rate_hz},
+        {"scans", scans},
+        {"sequences_per_turn", Vlp16::sequencesPerTurn(l.rate_hz)},
+        {"firing_interval_s", Vlp16::kFiringInterval},
+        {"sequence_duration_s", Vlp16::kSequenceDuration},
+        {"elevation_deg_by_laser", Vlp16::kElevationDeg},
+        {"vertical_offset_mm_by_laser", Vlp16::kVerticalOffsetMm},
+        {"ring", "laser index by elevation: ring 0 = -15 deg"},
+        {"rotation", "clockwise seen from above"},
+        {"range_noise_m", l.range_noise_m},
+        {"range_quantum_m", 0.002},
+        {"min_range_m", l.min_range_m},
+        {"max_range_m", l.max_range_m},
+        {"dropout", l.dropout},
+        {"intensity",
+         "round(255 * reflectivity * |cos(incidence)|), reflectivity = mean of the surface colour"},
+        {"pcd_fields",
+         "x y z intensity ring time (float32 ×4, uint16, float32), time from the scan stamp"}}},
+      {"odometry",
+       {{"rate_hz", s.odometry.rate_hz},
+        {"translation_noise", s.odometry.translation_noise},
+        {"heading_noise_deg_per_m", s.odometry.heading_noise_deg_per_m},
+        {"heading_bias_deg_per_m", s.odometry.heading_bias_deg_per_m},
+        {"model", "random walk: std over 1 m = translation_noise m and heading_noise deg"}}},
+      {"groundtruth_rate_hz", options.groundtruth_rate},
+      {"robot",
+       {{"level", s.robot.level},
+        {"speed", s.robot.speed},
+        {"turn_rate_rad_s", gait.turn_rate},
+        {"standing_height_m", gait.standing_height},
+        {"gait",
+         {{"frequency_hz", gait.frequency_hz},
+          {"bob_m", gait.bob_m},
+          {"roll_deg", gait.roll_deg},
+          {"pitch_deg", gait.pitch_deg}}},
+        {"route", route},
+        {"visited_rooms", sim.route().visited_rooms},
+        {"skipped_rooms", sim.route().skipped_rooms}}},
+      {"plan", bim::planToJson(s.plan)},
+      {"as_built", bim::asBuiltToJson(s.as_built)}};
+}
+
+}  // namespace
+
+std::string pcdBinary(const LidarScan& scan) {
+  const std::size_t n = scan.points.size();
+  std::string out =
+      "# .PCD v0.7 - Point Cloud Data file format\n"
+      "VERSION 0.7\n"
+      "FIELDS x y z intensity ring time\n"
+      "SIZE 4 4 4 4 2 4\n"
+      "TYPE F F F F U F\n"
+      "COUNT 1 1 1 1 1 1\n"
+      "WIDTH " +
+      std::to_string(n) +
+      "\n"
+      "HEIGHT 1\n"
+      "VIEWPOINT 0 0 0 1 0 0 0\n"
+      "POINTS " +
+      std::to_string(n) +
+      "\n"
+      "DATA binary\n";
+  out.reserve(out.size() + n * 22);
+  for (const auto& p : scan.points) {
+    append(out, p.x);
+    append(out, p.y);
+    append(out, p.z);
+    append(out, p.intensity);
+    append(out, p.ring);
+    append(out, p.time);
+  }
+  return out;
+}
+
+DatasetSummary writeDataset(Simulation& sim, const std::string& dir, const DatasetOptions& options,
+                            const ProgressCallback& progress) {
+  const auto start = std::chrono::steady_clock::now();
+  const fs::path target(dir);
+  if (fs::exists(target) && !options.overwrite) {
+    throw bim::InputError(dir, "", "already exists (use --force to replace it)");
+  }
+  const fs::path parent = target.has_parent_path() ? target.parent_path() : fs::path(".");
+  if (!fs::is_directory(parent)) {
+    throw bim::InputError(dir, "",
+                          "cannot write: directory " + parent.string() + " does not exist");
+  }
+  const fs::path temporary =
+      parent / ("." + target.filename().string() + ".partial" + std::to_string(::getpid()));
+  fs::remove_all(temporary);
+  fs::create_directories(temporary / "scans");
+
+  DatasetSummary summary;
+  try {
+    const double duration =
+        options.duration < 0 ? sim.duration() : std::min(options.duration, sim.duration());
+    summary.sim_seconds = duration;
+    const int scans = sim.scanCount(duration);
+    summary.scans = scans;
+    std::atomic<int> next{0}, done{0};
+    std::atomic<std::size_t> points{0}, rays{0};
+    std::mutex report;
+    auto worker = [&] {
+      const auto lidar = sim.makeLidar();
+      for (int k = next++; k < scans; k = next++) {
+        const LidarScan scan = sim.scan(k, *lidar);
+        char name[32];
+        std::snprintf(name, sizeof name, "%06d.pcd", k);
+        writeFile(temporary / "scans" / name, pcdBinary(scan));
+        points += scan.points.size();
+        rays += std::size_t(scan.rays);
+        const int finished = ++done;
+        if (progress) {
+          std::lock_guard<std::mutex> lock(report);
+          progress(finished, scans);
+        }
+      }
+    };
+    std::vector<std::thread> pool;
+    for (int i = 1; i < std::max(1, options.threads); ++i) pool.emplace_back(worker);
+    worker();
+    for (auto& t : pool) t.join();
+    summary.points = points;
+    summary.rays = rays;
+
+    writeFile(temporary / "groundtruth.tum",
+              eval::toTumText(sim.groundTruth(duration, options.groundtruth_rate)));
+    writeFile(temporary / "odometry.tum", eval::toTumText(sim.odometry(duration)));
+    writeFile(temporary / "scans.tum", eval::toTumText(sim.scanPoses(duration)));
+    writeFile(temporary / "metadata.json", metadata(sim, duration, options, scans).dump(2) + "\n");
+    if (fs::exists(target)) fs::remove_all(target);
+    fs::rename(temporary, target);
+  } catch (...) {
+    std::error_code ignored;
+    fs::remove_all(temporary, ignored);
+    throw;
+  }
+  summary.wall_seconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  return summary;
+}
+
+}  // namespace isg::sim

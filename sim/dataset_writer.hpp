@@ -1,0 +1,40 @@
+#pragma once
+
+#include <functional>
+#include <string>
+
+#include "sim/lidar_simulator.hpp"
+#include "sim/simulation.hpp"
+
+namespace isg::sim {
+
+struct DatasetOptions {
+  double duration = -1.0;  // seconds; < 0: the whole route
+  double groundtruth_rate = 100.0;
+  bool overwrite = false;  // replace an existing dataset folder
+  int threads = 2;
+};
+
+struct DatasetSummary {
+  double sim_seconds = 0.0;
+  double wall_seconds = 0.0;
+  int scans = 0;
+  std::size_t points = 0;
+  std::size_t rays = 0;
+};
+
+// Called from the writing thread as scans complete: (scans done, scans in all).
+using ProgressCallback = std::function<void(int done, int total)>;
+
+// Writes the dataset folder of ARCHITECTURE.md: scans/NNNNNN.pcd (binary PCD, fields x y z
+// intensity ring time, LiDAR frame, not deskewed), groundtruth.tum (B_T_R), odometry.tum (M_T_R),
+// scans.tum (B_T_L at each scan stamp) and metadata.json. Everything is written into a temporary
+// folder beside `dir` and renamed into place at the end: a failed run leaves nothing behind.
+// Errors about the folder are InputErrors naming it.
+DatasetSummary writeDataset(Simulation& simulation, const std::string& dir,
+                            const DatasetOptions& options, const ProgressCallback& progress);
+
+// A scan as binary PCD v0.7 (what pcl::io::loadPCDFile reads).
+std::string pcdBinary(const LidarScan& scan);
+
+}  // namespace isg::sim

@@ -1,0 +1,153 @@
+#include "sim/occupancy_grid.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include "bim/plan_geometry.hpp"
+#include "bim/polygon.hpp"
+#include "worlds/as_built.hpp"
+
+namespace isg::sim {
+
+namespace {
+
+// Squared Euclidean distance transform of one line (Felzenszwalb & Huttenlocher, 2012).
+void distanceTransform1d(const std::vector<double>& f, std::vector<double>& d) {
+  const int n = int(f.size());
+  std::vector<int> v(n);
+  std::vector<double> z(n + 1);
+  int k = 0;
+  v[0] = 0;
+  z[0] = -std::numeric_limits<double>::infinity();
+  z[1] = std::numeric_limits<double>::infinity();
+  auto intersection = [&](int q, int r) {
+    return ((f[q] + double(q) * q) - (f[r] + double(r) * r)) / (2.0 * q - 2.0 * r);
+  };
+  for (int q = 1; q < n; ++q) {
+    double s = intersection(q, v[k]);
+    while (s <= z[k]) s = intersection(q, v[--k]);  // z[0] = -inf ends the loop
+    ++k;
+    v[k] = q;
+    z[k] = s;
+    z[k + 1] = std::numeric_limits<double>::infinity();
+  }
+  k = 0;
+  for (int q = 0; q < n; ++q) {
+    while (z[k + 1] < q) ++k;
+    d[q] = (q - v[k]) * (q - v[k]) + f[v[k]];
+  }
+}
+
+std::vector<Eigen::Vector2d> rectangle(const Eigen::Vector2d& centre, const Eigen::Vector2d& axis,
+                                       double half_length, double half_width) {
+  const Eigen::Vector2d u = axis * half_length;
+  const Eigen::Vector2d v = Eigen::Vector2d(-axis.y(), axis.x()) * half_width;
+  return {centre - u - v, centre + u - v, centre + u + v, centre - u + v};
+}
+
+}  // namespace
+
+template <typename Inside>
+void OccupancyGrid::paint(const std::vector<Eigen::Vector2d>& polygon, bool blocked,
+                          Inside inside_test) {
+  Eigen::Vector2d lo = polygon[0], hi = polygon[0];
+  for (const auto& p : polygon) {
+    lo = lo.cwiseMin(p);
+    hi = hi.cwiseMax(p);
+  }
+  const Eigen::Vector2i a = cellOf(lo).cwiseMax(0);
+  const Eigen::Vector2i b = cellOf(hi).cwiseMin(Eigen::Vector2i(width_ - 1, height_ - 1));
+  for (int y = a.y(); y <= b.y(); ++y) {
+    for (int x = a.x(); x <= b.x(); ++x) {
+      if (inside_test(centreOf({x, y}))) blocked_[y * width_ + x] = blocked;
+    }
+  }
+}
+
+OccupancyGrid::OccupancyGrid(const bim::Plan& plan, const bim::AsBuilt& as_built,
+                             const std::string& level_id, double resolution)
+    : resolution_(resolution) {
+  const bim::Level& plan_level = *plan.findLevel(level_id);
+  const bim::Level level = worlds::asBuiltLevel(plan_level, as_built);
+  const bim::LevelGeometry geometry = bim::computeLevelGeometry(level);
+  Eigen::Vector2d lo = Eigen::Vector2d::Constant(std::numeric_limits<double>::infinity()), hi = -lo;
+  for (const auto& g : geometry.walls) {
+    for (const auto& p : g.footprint()) {
+      lo = lo.cwiseMin(p);
+      hi = hi.cwiseMax(p);
+    }
+  }
+  for (const auto& r : level.rooms) {
+    for (const auto& p : r.outline) {
+      lo = lo.cwiseMin(p);
+      hi = hi.cwiseMax(p);
+    }
+  }
+  origin_ = lo - Eigen::Vector2d::Constant(2 * resolution);
+  width_ = int(std::ceil((hi.x() - origin_.x()) / resolution)) + 2;
+  height_ = int(std::ceil((hi.y() - origin_.y()) / resolution)) + 2;
+  blocked_.assign(std::size_t(width_) * height_, 1);
+
+  for (const auto& room : level.rooms) {
+    paint(room.outline, false,
+          [&](const Eigen::Vector2d& p) { return bim::containsPoint(room.outline, p); });
+  }
+  // A wall blocks where it stands lower than the robot can pass under.
+  constexpr double kRobotHeight = 0.9;
+  for (const auto& g : geometry.walls) {
+    if (g.wall->base > kRobotHeight) continue;
+    const auto footprint = g.footprint();
+    paint(footprint, true,
+          [&](const Eigen::Vector2d& p) { return bim::containsPoint(footprint, p); });
+  }
+  for (const auto& door : level.doors) {
+    const bool closed = std::find(as_built.closed_doors.begin(), as_built.closed_doors.end(),
+                                  door.id) != as_built.closed_doors.end();
+    const bool to_outside = door.rooms[0] == bim::kOutside || door.rooms[1] == bim::kOutside;
+    if (closed || to_outside) continue;
+    const bim::WallGeometry& g = *geometry.findWall(door.wall);
+    const auto opening = rectangle(g.pointAt(door.offset), g.axis, 0.5 * door.width,
+                                   0.5 * g.wall->thickness + resolution);
+    paint(opening, false, [&](const Eigen::Vector2d& p) { return bim::containsPoint(opening, p); });
+  }
+  for (const auto& c : as_built.clutter) {
+    if (c.level != level_id) continue;
+    const auto box = rectangle(c.center.head<2>(), {std::cos(c.yaw), std::sin(c.yaw)},
+                               0.5 * c.size.x(), 0.5 * c.size.y());
+    paint(box, true, [&](const Eigen::Vector2d& p) { return bim::containsPoint(box, p); });
+  }
+
+  // Clearance: exact Euclidean distance to the nearest blocked cell, columns then rows.
+  const double kFar = 1e12;
+  std::vector<double> field(std::size_t(width_) * height_);
+  for (std::size_t i = 0; i < field.size(); ++i) field[i] = blocked_[i] ? 0.0 : kFar;
+  std::vector<double> line, out;
+  line.resize(height_);
+  out.resize(height_);
+  for (int x = 0; x < width_; ++x) {
+    for (int y = 0; y < height_; ++y) line[y] = field[y * width_ + x];
+    distanceTransform1d(line, out);
+    for (int y = 0; y < height_; ++y) field[y * width_ + x] = out[y];
+  }
+  line.resize(width_);
+  out.resize(width_);
+  clearance_.resize(field.size());
+  for (int y = 0; y < height_; ++y) {
+    for (int x = 0; x < width_; ++x) line[x] = field[y * width_ + x];
+    distanceTransform1d(line, out);
+    for (int x = 0; x < width_; ++x)
+      clearance_[y * width_ + x] = float(std::sqrt(out[x]) * resolution);
+  }
+}
+
+Eigen::Vector2i OccupancyGrid::cellOf(const Eigen::Vector2d& p) const {
+  const Eigen::Vector2d q = (p - origin_) / resolution_;
+  return {int(std::floor(q.x())), int(std::floor(q.y()))};
+}
+
+Eigen::Vector2d OccupancyGrid::centreOf(const Eigen::Vector2i& c) const {
+  return origin_ + resolution_ * (c.cast<double>() + Eigen::Vector2d::Constant(0.5));
+}
+
+}  // namespace isg::sim

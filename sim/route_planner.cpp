@@ -1,0 +1,232 @@
+#include "sim/route_planner.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <map>
+#include <numbers>
+#include <queue>
+#include <set>
+#include <sstream>
+
+#include "bim/plan_geometry.hpp"
+#include "bim/polygon.hpp"
+
+namespace isg::sim {
+
+namespace {
+
+std::string formatPoint(const Eigen::Vector2d& p) {
+  std::ostringstream out;
+  out.precision(3);
+  out << "(" << p.x() << ", " << p.y() << ")";
+  return out.str();
+}
+
+bool segmentIsClear(const OccupancyGrid& grid, const Eigen::Vector2d& a, const Eigen::Vector2d& b) {
+  const double length = (b - a).norm();
+  const int steps = std::max(1, int(std::ceil(length / (0.5 * grid.resolution()))));
+  for (int i = 0; i <= steps; ++i) {
+    if (grid.clearanceAt(a + (b - a) * (double(i) / steps)) < kMinClearance) return false;
+  }
+  return true;
+}
+
+// Keeps only the points where the path must turn: from each kept point, the farthest later point
+// that a straight, clear segment reaches.
+std::vector<Eigen::Vector2d> straighten(const OccupancyGrid& grid,
+                                        const std::vector<Eigen::Vector2d>& path) {
+  if (path.size() <= 2) return path;
+  std::vector<Eigen::Vector2d> out{path.front()};
+  std::size_t i = 0;
+  while (i + 1 < path.size()) {
+    std::size_t j = path.size() - 1;
+    while (j > i + 1 && !segmentIsClear(grid, path[i], path[j])) --j;
+    out.push_back(path[j]);
+    i = j;
+  }
+  return out;
+}
+
+// The most open point of a room (ties: nearest its centroid); its centroid when that is open.
+Eigen::Vector2d roomCentre(const OccupancyGrid& grid, const bim::Room& room, bool prefer_centroid) {
+  const Eigen::Vector2d centroid = bim::centroid(room.outline);
+  if (prefer_centroid && bim::containsPoint(room.outline, centroid) &&
+      grid.clearanceAt(centroid) >= kMinClearance) {
+    return centroid;
+  }
+  Eigen::Vector2d lo = room.outline[0], hi = room.outline[0];
+  for (const auto& p : room.outline) {
+    lo = lo.cwiseMin(p);
+    hi = hi.cwiseMax(p);
+  }
+  const Eigen::Vector2i a = grid.cellOf(lo), b = grid.cellOf(hi);
+  double best_clearance = -1.0, best_distance = 0.0;
+  Eigen::Vector2d best = centroid;
+  for (int y = a.y(); y <= b.y(); ++y) {
+    for (int x = a.x(); x <= b.x(); ++x) {
+      const Eigen::Vector2d p = grid.centreOf({x, y});
+      if (!bim::containsPoint(room.outline, p)) continue;
+      const double c = grid.clearance({x, y});
+      const double d = (p - centroid).norm();
+      // Clearance in whole centimetres so that a symmetric room picks the cell nearest its centre.
+      const double rounded = std::floor(c * 100.0);
+      if (rounded > best_clearance || (rounded == best_clearance && d < best_distance)) {
+        best_clearance = rounded;
+        best_distance = d;
+        best = p;
+      }
+    }
+  }
+  return best;
+}
+
+}  // namespace
+
+std::vector<Eigen::Vector2d> findPath(const OccupancyGrid& grid, const Eigen::Vector2d& from,
+                                      const Eigen::Vector2d& to) {
+  const Eigen::Vector2i start = grid.cellOf(from), goal = grid.cellOf(to);
+  if (grid.clearance(start) < kMinClearance || grid.clearance(goal) < kMinClearance) return {};
+  const int w = grid.width();
+  const auto id = [w](const Eigen::Vector2i& c) { return c.y() * w + c.x(); };
+  std::vector<double> cost(std::size_t(w) * grid.height(), std::numeric_limits<double>::infinity());
+  std::vector<int> parent(cost.size(), -1);
+  using Entry = std::pair<double, int>;
+  std::priority_queue<Entry, std::vector<Entry>, std::greater<>> open;
+  const double r = grid.resolution();
+  auto heuristic = [&](const Eigen::Vector2i& c) { return r * (c - goal).cast<double>().norm(); };
+  cost[id(start)] = 0;
+  open.push({heuristic(start), id(start)});
+  static constexpr int kDx[] = {1, -1, 0, 0, 1, 1, -1, -1};
+  static constexpr int kDy[] = {0, 0, 1, -1, 1, -1, 1, -1};
+  while (!open.empty()) {
+    const auto [f, current] = open.top();
+    open.pop();
+    const Eigen::Vector2i c(current % w, current / w);
+    if (c == goal) break;
+    if (f - heuristic(c) > cost[current] + 1e-9) continue;  // stale entry
+    for (int k = 0; k < 8; ++k) {
+      const Eigen::Vector2i n(c.x() + kDx[k], c.y() + kDy[k]);
+      const double clearance = grid.clearance(n);
+      if (clearance < kMinClearance) continue;
+      // Costlier near walls: paths keep to the middle of rooms and doorways.
+      const double step =
+          r * (k < 4 ? 1.0 : std::numbers::sqrt2) * (1.0 + 3.0 * std::max(0.0, 1.0 - clearance));
+      const double g = cost[current] + step;
+      if (g < cost[id(n)]) {
+        cost[id(n)] = g;
+        parent[id(n)] = current;
+        open.push({g + heuristic(n), id(n)});
+      }
+    }
+  }
+  if (parent[id(goal)] < 0 && goal != start) return {};
+  std::vector<Eigen::Vector2d> path;
+  for (int cell = id(goal); cell != id(start); cell = parent[cell]) {
+    path.push_back(grid.centreOf({cell % w, cell / w}));
+  }
+  path.push_back(from);
+  std::reverse(path.begin(), path.end());
+  path.back() = to;
+  return path;
+}
+
+PlannedRoute planRoute(const bim::Scenario& scenario, const OccupancyGrid& grid,
+                       std::mt19937_64& rng) {
+  const bim::Level& level = *scenario.plan.findLevel(scenario.robot.level);
+  const std::string& file = scenario.source;
+  PlannedRoute route;
+
+  // Start.
+  Eigen::Vector2d start;
+  std::string start_room;
+  if (scenario.robot.start_pose) {
+    start = scenario.robot.start_pose->head<2>();
+    route.start_yaw = scenario.robot.start_pose->z();
+    start_room = bim::roomAt(level, start).value_or("");
+  } else {
+    start_room = *scenario.robot.start_room;
+    start = roomCentre(grid, *level.findRoom(start_room), true);
+    route.start_yaw =
+        std::uniform_real_distribution<double>(-std::numbers::pi, std::numbers::pi)(rng);
+  }
+  const double start_clearance = grid.clearanceAt(start);
+  if (start_clearance < kMinClearance) {
+    std::ostringstream reason;
+    reason.precision(2);
+    reason << "the robot cannot stand at " << formatPoint(start) << ": it is " << start_clearance
+           << " m from a wall, clutter or the outside, and needs " << kMinClearance << " m";
+    throw bim::InputError(file, "/robot/start", reason.str());
+  }
+  route.waypoints.push_back(start);
+  if (!start_room.empty()) route.visited_rooms.push_back(start_room);
+
+  auto go_to = [&](const Eigen::Vector2d& target) {
+    const auto path = findPath(grid, route.waypoints.back(), target);
+    if (path.empty()) return false;
+    const auto straight = straighten(grid, path);
+    route.waypoints.insert(route.waypoints.end(), straight.begin() + 1, straight.end());
+    return true;
+  };
+
+  const bim::Route& plan = scenario.robot.route;
+  if (plan.kind == bim::Route::Kind::kWaypoints) {
+    for (std::size_t i = 0; i < plan.waypoints.size(); ++i) {
+      if (!go_to(plan.waypoints[i])) {
+        throw bim::InputError(file, "/robot/route/waypoints/" + std::to_string(i),
+                              "no path from " + formatPoint(route.waypoints.back()) + " to " +
+                                  formatPoint(plan.waypoints[i]) + " keeps " +
+                                  "0.35 m from walls and clutter");
+      }
+    }
+    return route;
+  }
+  if (plan.kind == bim::Route::Kind::kRooms) {
+    for (std::size_t i = 0; i < plan.rooms.size(); ++i) {
+      if (!go_to(roomCentre(grid, *level.findRoom(plan.rooms[i]), true))) {
+        throw bim::InputError(file, "/robot/route/rooms/" + std::to_string(i),
+                              "room \"" + plan.rooms[i] + "\" cannot be reached from " +
+                                  formatPoint(route.waypoints.back()) +
+                                  " through open doors, keeping 0.35 m from walls and clutter");
+      }
+      route.visited_rooms.push_back(plan.rooms[i]);
+    }
+    return route;
+  }
+
+  // Tour: depth-first over the rooms joined by open doors, neighbours in id order.
+  std::map<std::string, std::set<std::string>> neighbours;
+  for (const auto& door : level.doors) {
+    if (door.rooms[0] == bim::kOutside || door.rooms[1] == bim::kOutside) continue;
+    if (std::find(scenario.as_built.closed_doors.begin(), scenario.as_built.closed_doors.end(),
+                  door.id) != scenario.as_built.closed_doors.end()) {
+      continue;
+    }
+    neighbours[door.rooms[0]].insert(door.rooms[1]);
+    neighbours[door.rooms[1]].insert(door.rooms[0]);
+  }
+  std::set<std::string> seen{start_room};
+  std::vector<std::string> stack;
+  for (auto it = neighbours[start_room].rbegin(); it != neighbours[start_room].rend(); ++it) {
+    stack.push_back(*it);
+  }
+  while (!stack.empty()) {
+    const std::string room = stack.back();
+    stack.pop_back();
+    if (seen.count(room)) continue;
+    seen.insert(room);
+    if (!go_to(roomCentre(grid, *level.findRoom(room), true))) {
+      route.skipped_rooms.push_back(room);
+      continue;
+    }
+    route.visited_rooms.push_back(room);
+    for (auto it = neighbours[room].rbegin(); it != neighbours[room].rend(); ++it) {
+      if (!seen.count(*it)) stack.push_back(*it);
+    }
+  }
+  for (const auto& room : level.rooms) {
+    if (!seen.count(room.id)) route.skipped_rooms.push_back(room.id);
+  }
+  return route;
+}
+
+}  // namespace isg::sim

@@ -1,0 +1,116 @@
+#include "sim/simulation.hpp"
+
+#include <cmath>
+
+#include "sim/odometry_model.hpp"
+#include "sim/robot_model.hpp"
+#include "worlds/mjcf_generator.hpp"
+
+namespace isg::sim {
+
+namespace {
+
+enum Stream : std::uint64_t { kRouteStream = 1, kOdometryStream = 2, kScanStream = 3 };
+
+GaitConfig gaitOf(const bim::RobotConfig& robot) {
+  GaitConfig gait;
+  gait.frequency_hz = robot.gait.frequency_hz;
+  gait.bob_m = robot.gait.bob_m;
+  gait.roll_deg = robot.gait.roll_deg;
+  gait.pitch_deg = robot.gait.pitch_deg;
+  return gait;
+}
+
+MujocoWorld buildWorld(const bim::Scenario& scenario, const Eigen::Isometry3d& R_T_L) {
+  worlds::WorldOptions options;
+  options.extra_worldbody = robotMjcf(R_T_L);
+  return MujocoWorld::fromXml(worlds::generateMjcf(scenario, options));
+}
+
+}  // namespace
+
+Eigen::Isometry3d mountTransform(const std::array<double, 6>& m) {
+  Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
+  T.translation() = Eigen::Vector3d(m[0], m[1], m[2]);
+  T.linear() = (Eigen::AngleAxisd(m[5], Eigen::Vector3d::UnitZ()) *
+                Eigen::AngleAxisd(m[4], Eigen::Vector3d::UnitY()) *
+                Eigen::AngleAxisd(m[3], Eigen::Vector3d::UnitX()))
+                   .toRotationMatrix();
+  return T;
+}
+
+Simulation::Simulation(const bim::Scenario& scenario)
+    : scenario_(scenario),
+      R_T_L_(mountTransform(scenario.lidar.mount)),
+      world_(buildWorld(scenario, R_T_L_)) {
+  grid_ =
+      std::make_unique<OccupancyGrid>(scenario_.plan, scenario_.as_built, scenario_.robot.level);
+  auto rng = generator(kRouteStream);
+  route_ = planRoute(scenario_, *grid_, rng);
+  const double floor_z = scenario_.plan.findLevel(scenario_.robot.level)->elevation;
+  trajectory_ = std::make_unique<Trajectory>(
+      route_.waypoints, route_.start_yaw, scenario_.robot.speed, floor_z, gaitOf(scenario_.robot));
+  poseRobot(world_.model(), world_.data(), trajectory_->pose(0.0), 0.0, 0.0);
+  lidar_ = makeLidar();
+}
+
+std::unique_ptr<LidarSimulator> Simulation::makeLidar() const {
+  // The sensor sees the building and its ceilings, never the robot.
+  const unsigned building = (1u << worlds::kBuildingGroup) | (1u << worlds::kCeilingGroup);
+  return std::make_unique<LidarSimulator>(world_, scenario_.lidar, building);
+}
+
+std::mt19937_64 Simulation::generator(std::uint64_t stream, std::uint64_t index) const {
+  const std::uint64_t seed = scenario_.seed;
+  std::seed_seq sequence{std::uint32_t(seed), std::uint32_t(seed >> 32), std::uint32_t(stream),
+                         std::uint32_t(index), std::uint32_t(index >> 32)};
+  return std::mt19937_64(sequence);
+}
+
+int Simulation::scanCount(double duration) const {
+  const double turn = lidar_->turnDuration();
+  if (duration < turn) return 0;
+  return int(std::floor((duration - turn) / scanPeriod() + 1e-9)) + 1;
+}
+
+LidarScan Simulation::scan(int index) { return scan(index, *lidar_); }
+
+LidarScan Simulation::scan(int index, LidarSimulator& lidar) const {
+  auto rng = generator(kScanStream, std::uint64_t(index));
+  return lidar.scan(
+      index * scanPeriod(), [this](double t) { return B_T_L(t); }, rng);
+}
+
+eval::Trajectory Simulation::groundTruth(double duration, double rate_hz) const {
+  eval::Trajectory out;
+  const int n = int(std::floor(duration * rate_hz + 1e-9));
+  for (int i = 0; i <= n; ++i) {
+    const double t = i / rate_hz;
+    out.push_back({t, trajectory_->pose(t)});
+  }
+  return out;
+}
+
+eval::Trajectory Simulation::odometry(double duration) const {
+  eval::Trajectory out;
+  auto rng = generator(kOdometryStream);
+  OdometryModel model(scenario_.odometry, trajectory_->pose(0.0));
+  const double rate = scenario_.odometry.rate_hz;
+  const int n = int(std::floor(duration * rate + 1e-9));
+  for (int i = 0; i <= n; ++i) {
+    const double t = i / rate;
+    out.push_back({t, model.update(trajectory_->pose(t), rng)});
+  }
+  return out;
+}
+
+eval::Trajectory Simulation::scanPoses(double duration) const {
+  eval::Trajectory out;
+  for (int k = 0; k < scanCount(duration); ++k) {
+    const double t = k * scanPeriod();
+    out.push_back({t, B_T_L(t)});
+  }
+  return out;
+}
+
+}  // namespace isg::sim

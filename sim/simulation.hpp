@@ -1,0 +1,64 @@
+#pragma once
+
+#include <Eigen/Geometry>
+#include <memory>
+#include <random>
+#include <vector>
+
+#include "bim/scenario.hpp"
+#include "eval/tum.hpp"
+#include "sim/lidar_simulator.hpp"
+#include "sim/mujoco_world.hpp"
+#include "sim/occupancy_grid.hpp"
+#include "sim/route_planner.hpp"
+#include "sim/trajectory.hpp"
+
+namespace isg::sim {
+
+// One scenario, simulated: the building as built with the robot in it, the planned route, the
+// trajectory, the VLP-16 and the odometry. Everything random is drawn from generators derived
+// from the scenario's seed and what is being drawn (the route, the odometry, scan k), so any
+// scan can be made on its own and the same seed always gives the same data.
+class Simulation {
+ public:
+  explicit Simulation(const bim::Scenario& scenario);
+
+  const bim::Scenario& scenario() const { return scenario_; }
+  const Trajectory& trajectory() const { return *trajectory_; }
+  const PlannedRoute& route() const { return route_; }
+  MujocoWorld& world() { return world_; }
+  const MujocoWorld& world() const { return world_; }
+  const OccupancyGrid& grid() const { return *grid_; }
+
+  // The time the route takes: the robot stops at its end.
+  double duration() const { return trajectory_->duration(); }
+  // The LiDAR on the base (scenario lidar.mount).
+  const Eigen::Isometry3d& R_T_L() const { return R_T_L_; }
+  double scanPeriod() const { return 1.0 / scenario_.lidar.rate_hz; }
+  // Scans whose whole turn fits in [0, duration].
+  int scanCount(double duration) const;
+  LidarScan scan(int index);
+  // The same scan with a sensor of the caller's (one per thread: a sensor keeps per-turn state).
+  LidarScan scan(int index, LidarSimulator& lidar) const;
+  std::unique_ptr<LidarSimulator> makeLidar() const;
+  Eigen::Isometry3d B_T_L(double t) const { return trajectory_->pose(t) * R_T_L_; }
+
+  eval::Trajectory groundTruth(double duration, double rate_hz) const;
+  eval::Trajectory odometry(double duration) const;   // M_T_R at odometry.rate_hz
+  eval::Trajectory scanPoses(double duration) const;  // B_T_L at each scan stamp
+
+  std::mt19937_64 generator(std::uint64_t stream, std::uint64_t index = 0) const;
+
+ private:
+  bim::Scenario scenario_;
+  Eigen::Isometry3d R_T_L_;
+  MujocoWorld world_;
+  std::unique_ptr<OccupancyGrid> grid_;
+  PlannedRoute route_;
+  std::unique_ptr<Trajectory> trajectory_;
+  std::unique_ptr<LidarSimulator> lidar_;
+};
+
+Eigen::Isometry3d mountTransform(const std::array<double, 6>& xyz_rpy);
+
+}  // namespace isg::sim

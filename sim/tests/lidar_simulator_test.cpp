@@ -1,0 +1,166 @@
+#include "sim/lidar_simulator.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <set>
+
+#include "bim/agraph.hpp"
+#include "sim/robot_model.hpp"
+#include "sim/simulation.hpp"
+#include "sim/vlp16.hpp"
+#include "worlds/mjcf_generator.hpp"
+#include "worlds/reference_plans.hpp"
+
+namespace isg::sim {
+namespace {
+
+constexpr unsigned kSensorGroups = (1u << worlds::kBuildingGroup) | (1u << worlds::kCeilingGroup);
+
+bim::Scenario builtin(const std::string& name) {
+  return worlds::loadScenarioOrBuiltin("builtin:" + name, nullptr);
+}
+
+Eigen::Isometry3d at(double x, double y, double z, double yaw = 0.0) {
+  Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
+  T.translation() = Eigen::Vector3d(x, y, z);
+  T.linear() = Eigen::AngleAxisd(yaw, Eigen::Vector3d::UnitZ()).toRotationMatrix();
+  return T;
+}
+
+TEST(Vlp16, RingsNumberLasersByElevation) {
+  std::set<int> rings;
+  for (int l = 0; l < Vlp16::kLasers; ++l) {
+    rings.insert(Vlp16::ring(l));
+    EXPECT_DOUBLE_EQ(Vlp16::kElevationDeg[l], -15.0 + 2.0 * Vlp16::ring(l)) << l;
+  }
+  EXPECT_EQ(rings.size(), 16u);
+  EXPECT_EQ(Vlp16::sequencesPerTurn(10.0), 1808);
+  EXPECT_NEAR(Vlp16::firingTime(1, 15), 55.296e-6 + 15 * 2.304e-6, 1e-15);
+}
+
+TEST(LidarSimulator, PointsCarryTheirRingElevationAndFiringTime) {
+  const auto scenario = builtin("d2");
+  const MujocoWorld world = MujocoWorld::fromXml(worlds::generateMjcf(scenario));
+  bim::LidarConfig config;
+  config.range_noise_m = 0.0;
+  LidarSimulator lidar(world, config, kSensorGroups);
+  std::mt19937_64 rng(1);
+  const LidarScan scan = lidar.scan(
+      0.0, [](double) { return at(3, 3, 0.71); }, rng);
+  EXPECT_EQ(scan.rays, 1808 * 16);
+  ASSERT_GT(scan.points.size(), 25000u);  // a closed room: nearly every ray returns
+  for (const auto& p : scan.points) {
+    const int laser = p.ring < 8 ? 2 * p.ring : 2 * (p.ring - 8) + 1;
+    const Eigen::Vector3d v = Eigen::Vector3d(p.x, p.y, p.z) - Vlp16::origin(laser);
+    const double elevation = std::asin(v.z() / v.norm()) * 180.0 / M_PI;
+    ASSERT_NEAR(elevation, -15.0 + 2.0 * p.ring, 1e-3);
+    // time = 55.296 µs × sequence + 2.304 µs × laser, for a whole number of sequences
+    const double sequences = (p.time - laser * Vlp16::kFiringInterval) / Vlp16::kSequenceDuration;
+    ASSERT_NEAR(sequences, std::round(sequences), 1e-3);
+    ASSERT_GE(p.intensity, 0.0f);
+    ASSERT_LE(p.intensity, 255.0f);
+  }
+}
+
+// RMS distance of points (in B) from the nearest of the room's wall faces, over points within
+// 10 cm of the room's footprint (not seen through a doorway), between floor and ceiling, whose
+// nearest face is within `gate`.
+double wallResidualRms(const std::vector<Eigen::Vector3d>& points, const bim::AGraph& graph,
+                       const std::string& room, double gate) {
+  const auto& r = graph.rooms[graph.findRoom(room)];
+  Eigen::Vector2d lo = r.outline[0], hi = r.outline[0];
+  for (const auto& v : r.outline) {
+    lo = lo.cwiseMin(v);
+    hi = hi.cwiseMax(v);
+  }
+  double sum = 0.0;
+  int n = 0;
+  for (const auto& p : points) {
+    if (p.z() < 0.1 || p.z() > 2.9) continue;
+    if ((p.head<2>().array() < lo.array() - 0.1).any() ||
+        (p.head<2>().array() > hi.array() + 0.1).any()) {
+      continue;
+    }
+    double best = 1e9;
+    for (int s : r.surfaces)
+      best = std::min(best, std::abs(graph.surfaces[s].plane.signedDistance(p)));
+    if (best > gate) continue;
+    sum += best * best;
+    ++n;
+  }
+  EXPECT_GT(n, 5000);
+  return std::sqrt(sum / n);
+}
+
+TEST(LidarSimulator, StaticScanLiesOnTheRoomsWallsWithTheConfiguredNoise) {
+  const auto scenario = builtin("d2");  // the plan itself: no clutter in the way
+  const MujocoWorld world = MujocoWorld::fromXml(worlds::generateMjcf(scenario));
+  const bim::AGraph graph = bim::buildAGraph(scenario.plan);
+  bim::LidarConfig config;  // 1 cm noise, 2 mm quantum
+  LidarSimulator lidar(world, config, kSensorGroups);
+  std::mt19937_64 rng(2);
+  const Eigen::Isometry3d pose = at(2.5, 3.0, 0.71, 0.4);
+  const LidarScan scan = lidar.scan(
+      0.0, [&](double) { return pose; }, rng);
+  std::vector<Eigen::Vector3d> points;
+  for (const auto& p : scan.points) points.push_back(pose * Eigen::Vector3d(p.x, p.y, p.z));
+  const double rms = wallResidualRms(points, graph, "R1", 0.08);
+  // σ = 1 cm plus the 2 mm quantum (0.58 mm RMS): about 1.0 cm.
+  EXPECT_NEAR(rms, std::hypot(0.01, 0.002 / std::sqrt(12.0)), 0.0015);
+}
+
+TEST(LidarSimulator, MotionDistortsAScanAndDeskewingRemovesIt) {
+  const auto scenario = builtin("d2");
+  const MujocoWorld world = MujocoWorld::fromXml(worlds::generateMjcf(scenario));
+  const bim::AGraph graph = bim::buildAGraph(scenario.plan);
+  bim::LidarConfig config;
+  config.range_noise_m = 0.002;
+  LidarSimulator lidar(world, config, kSensorGroups);
+  std::mt19937_64 rng(3);
+  // Walking at 1.5 m/s while turning at 1 rad/s: 15 cm and 5.7° during one turn.
+  auto pose = [](double t) { return at(1.8 + 1.5 * t, 2.5, 0.71, 0.2 + 1.0 * t); };
+  const LidarScan scan = lidar.scan(0.0, pose, rng);
+  std::vector<Eigen::Vector3d> skewed, deskewed;
+  for (const auto& p : scan.points) {
+    const Eigen::Vector3d q(p.x, p.y, p.z);
+    skewed.push_back(pose(scan.stamp) * q);             // all points from the stamp's pose
+    deskewed.push_back(pose(scan.stamp + p.time) * q);  // each from its own firing's pose
+  }
+  // The reference: the same sensor standing still (door jambs and corners add a few millimetres
+  // to the 2 mm noise in every case).
+  const LidarScan still = lidar.scan(
+      0.0, [&](double) { return pose(0.05); }, rng);
+  std::vector<Eigen::Vector3d> standing;
+  for (const auto& p : still.points)
+    standing.push_back(pose(0.05) * Eigen::Vector3d(p.x, p.y, p.z));
+  const double rms_still = wallResidualRms(standing, graph, "R1", 0.5);
+  const double rms_skewed = wallResidualRms(skewed, graph, "R1", 0.5);
+  const double rms_deskewed = wallResidualRms(deskewed, graph, "R1", 0.5);
+  EXPECT_LT(rms_still, 0.008);
+  EXPECT_GT(rms_skewed, 5.0 * rms_still);
+  EXPECT_LT(rms_deskewed, 1.15 * rms_still);
+}
+
+TEST(LidarSimulator, RobotNeverSeesItself) {
+  Simulation sim(builtin("d1.asbuilt"));
+  const Eigen::Isometry3d B_T_R = sim.trajectory().pose(3.0);
+  poseRobot(sim.world().model(), sim.world().data(), B_T_R, 0.0, 0.0);
+  // The robot is there for rays that look for it: straight down from the sensor onto its back.
+  const Eigen::Vector3d sensor = (B_T_R * sim.R_T_L()).translation();
+  const auto robot_hit =
+      sim.world().ray(sensor, -Eigen::Vector3d::UnitZ(), 1u << worlds::kRobotGroup);
+  ASSERT_TRUE(robot_hit);
+  EXPECT_EQ(sim.world().geomName(robot_hit->geom).rfind("robot/", 0), 0u);
+  // ... but the sensor's scans have no point near it.
+  const LidarScan scan = sim.scan(30);
+  const RobotBox box = robotBodyBox();
+  for (const auto& p : scan.points) {
+    const Eigen::Vector3d in_R = sim.R_T_L() * Eigen::Vector3d(p.x, p.y, p.z);
+    const bool inside = ((in_R - box.centre).cwiseAbs().array() <= box.half.array() + 0.1).all();
+    ASSERT_FALSE(inside) << in_R.transpose();
+  }
+}
+
+}  // namespace
+}  // namespace isg::sim

@@ -1,0 +1,156 @@
+#include "sim/simulation.hpp"
+
+#include <gtest/gtest.h>
+#include <pcl/io/pcd_io.h>
+#include <pcl/point_cloud.h>
+#include <pcl/point_types.h>
+
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+
+#include "sim/dataset_writer.hpp"
+#include "sim/odometry_model.hpp"
+#include "worlds/reference_plans.hpp"
+
+namespace isg::sim {
+namespace {
+
+namespace fs = std::filesystem;
+
+bim::Scenario builtin(const std::string& name) {
+  return worlds::loadScenarioOrBuiltin("builtin:" + name, nullptr);
+}
+
+std::string slurp(const fs::path& p) {
+  std::ifstream in(p, std::ios::binary);
+  std::ostringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+class TourOfEveryReferencePlan : public ::testing::TestWithParam<std::string> {};
+
+TEST_P(TourOfEveryReferencePlan, VisitsEveryRoomKeepingClearOfWallsAndClutter) {
+  Simulation sim(builtin(GetParam()));
+  const auto& rooms = sim.scenario().plan.levels[0].rooms;
+  EXPECT_EQ(sim.route().visited_rooms.size(), rooms.size());
+  EXPECT_TRUE(sim.route().skipped_rooms.empty());
+  // The base's centre, every 5 cm of the way, keeps 0.35 m from walls, clutter and closed doors.
+  const Trajectory& t = sim.trajectory();
+  double least = 1e9;
+  for (double s = 0.0; s <= t.duration(); s += 0.1) {
+    least = std::min(least, sim.grid().clearanceAt(t.planar(s).xy));
+  }
+  EXPECT_GE(least, kMinClearance - 1e-6);  // clearances are stored as float
+}
+
+INSTANTIATE_TEST_SUITE_P(AsBuilt, TourOfEveryReferencePlan,
+                         ::testing::Values("d1.asbuilt", "d2.asbuilt", "d3.asbuilt", "d4.asbuilt",
+                                           "d5.asbuilt", "d6.asbuilt"));
+
+TEST(Trajectory, TurnsOnTheSpotThenWalksWithTheGaitsSway) {
+  GaitConfig gait;
+  const Trajectory t({{0, 0}, {2, 0}, {2, 1}}, 0.0, 0.5, 0.0, gait);
+  // 4 s along x, a quarter turn at 0.8 rad/s, 2 s along y.
+  EXPECT_NEAR(t.duration(), 4.0 + (M_PI / 2) / 0.8 + 2.0, 1e-9);
+  EXPECT_NEAR((t.planar(2.0).xy - Eigen::Vector2d(1, 0)).norm(), 0.0, 1e-12);
+  const double mid_turn = 4.0 + (M_PI / 4) / 0.8;
+  EXPECT_NEAR((t.planar(mid_turn).xy - Eigen::Vector2d(2, 0)).norm(), 0.0, 1e-12);
+  EXPECT_NEAR(t.planar(mid_turn).yaw, M_PI / 4, 1e-12);
+  // Height bobs by ±1.5 cm around 0.46 m while walking; at rest it stands still.
+  double lo = 1e9, hi = -1e9;
+  for (double s = 1.0; s < 3.0; s += 0.001) {
+    const double z = t.pose(s).translation().z();
+    lo = std::min(lo, z);
+    hi = std::max(hi, z);
+  }
+  EXPECT_NEAR(hi, 0.46 + 0.015, 2e-4);
+  EXPECT_NEAR(lo, 0.46 - 0.015, 2e-4);
+  EXPECT_NEAR(t.pose(t.duration() + 1.0).translation().z(), 0.46, 1e-12);
+}
+
+TEST(Odometry, ErrorGrowsAsTheConfiguredRandomWalk) {
+  bim::OdometryConfig config;
+  config.translation_noise = 0.02;
+  config.heading_noise_deg_per_m = 0.0;
+  // 400 robots walk 1 m straight, odometry at 50 Hz: the position error's std is 2 cm.
+  double sum2 = 0.0;
+  const int runs = 400;
+  for (int k = 0; k < runs; ++k) {
+    std::mt19937_64 rng(k);
+    OdometryModel model(config, Eigen::Isometry3d::Identity());
+    Eigen::Isometry3d estimate;
+    for (int i = 1; i <= 100; ++i) {
+      Eigen::Isometry3d truth = Eigen::Isometry3d::Identity();
+      truth.translation().x() = i * 0.01;
+      estimate = model.update(truth, rng);
+    }
+    sum2 += (estimate.translation() - Eigen::Vector3d(1, 0, 0)).head<2>().squaredNorm() / 2.0;
+  }
+  EXPECT_NEAR(std::sqrt(sum2 / runs), 0.02, 0.002);
+}
+
+TEST(Dataset, WritesEveryFileAndPclReadsTheScans) {
+  const fs::path dir = fs::temp_directory_path() / "isg_dataset_test";
+  fs::remove_all(dir);
+  Simulation sim(builtin("d1.asbuilt"));
+  DatasetOptions options;
+  options.duration = 2.0;
+  const DatasetSummary s = writeDataset(sim, dir.string(), options, nullptr);
+  // Turns of 0.09998 s (1808 sequences) starting every 0.1 s that end by 2 s: k = 0 … 19.
+  EXPECT_EQ(s.scans, 20);
+  for (const char* f : {"groundtruth.tum", "odometry.tum", "scans.tum", "metadata.json"}) {
+    EXPECT_TRUE(fs::exists(dir / f)) << f;
+  }
+  EXPECT_EQ(eval::readTum((dir / "groundtruth.tum").string()).size(), 201u);  // 100 Hz
+  EXPECT_EQ(eval::readTum((dir / "odometry.tum").string()).size(), 101u);     // 50 Hz
+  EXPECT_EQ(eval::readTum((dir / "scans.tum").string()).size(), 20u);
+  pcl::PCLPointCloud2 cloud;
+  ASSERT_EQ(pcl::io::loadPCDFile((dir / "scans" / "000007.pcd").string(), cloud), 0);
+  EXPECT_GT(cloud.width, 20000u);
+  std::string fields;
+  for (const auto& f : cloud.fields) fields += f.name + " ";
+  EXPECT_EQ(fields, "x y z intensity ring time ");
+  pcl::PointCloud<pcl::PointXYZI> xyzi;
+  pcl::fromPCLPointCloud2(cloud, xyzi);
+  const LidarScan again = sim.scan(7);
+  ASSERT_EQ(xyzi.size(), again.points.size());
+  EXPECT_EQ(xyzi[100].x, again.points[100].x);
+  EXPECT_EQ(xyzi[100].intensity, again.points[100].intensity);
+  // An existing folder is not replaced without --force.
+  EXPECT_THROW(writeDataset(sim, dir.string(), options, nullptr), bim::InputError);
+  fs::remove_all(dir);
+}
+
+TEST(Dataset, SameSeedSameBytesOtherSeedOtherBytes) {
+  const fs::path root = fs::temp_directory_path() / "isg_determinism_test";
+  fs::remove_all(root);
+  fs::create_directories(root);
+  auto make = [&](const std::string& name, std::uint64_t seed, int threads) {
+    bim::Scenario s = builtin("d2.asbuilt");
+    s.seed = seed;
+    Simulation sim(s);
+    DatasetOptions options;
+    options.duration = 1.5;
+    options.threads = threads;
+    writeDataset(sim, (root / name).string(), options, nullptr);
+  };
+  make("a", 11, 1);
+  make("b", 11, 2);  // another thread count: the same bytes
+  make("c", 12, 2);
+  std::size_t files = 0;
+  for (const auto& entry : fs::recursive_directory_iterator(root / "a")) {
+    if (!entry.is_regular_file()) continue;
+    const fs::path relative = fs::relative(entry.path(), root / "a");
+    EXPECT_EQ(slurp(entry.path()), slurp(root / "b" / relative)) << relative;
+    ++files;
+  }
+  EXPECT_EQ(files, 4u + 15u);  // 15 turns end by 1.5 s
+  EXPECT_NE(slurp(root / "a" / "scans" / "000003.pcd"), slurp(root / "c" / "scans" / "000003.pcd"));
+  EXPECT_NE(slurp(root / "a" / "odometry.tum"), slurp(root / "c" / "odometry.tum"));
+  fs::remove_all(root);
+}
+
+}  // namespace
+}  // namespace isg::sim

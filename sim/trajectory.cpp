@@ -1,0 +1,74 @@
+#include "sim/trajectory.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+namespace isg::sim {
+
+namespace {
+
+double wrapAngle(double a) { return std::remainder(a, 2.0 * M_PI); }
+
+}  // namespace
+
+Trajectory::Trajectory(const std::vector<Eigen::Vector2d>& waypoints, double start_yaw,
+                       double speed, double floor_z, const GaitConfig& gait)
+    : gait_(gait), floor_z_(floor_z), start_(waypoints.front()), start_yaw_(start_yaw) {
+  double t = 0.0;
+  double yaw = start_yaw;
+  Eigen::Vector2d at = waypoints.front();
+  for (std::size_t i = 1; i < waypoints.size(); ++i) {
+    const Eigen::Vector2d step = waypoints[i] - at;
+    const double length = step.norm();
+    if (length < 1e-6) continue;
+    const double heading = std::atan2(step.y(), step.x());
+    const double turn = wrapAngle(heading - yaw);
+    if (std::abs(turn) > 1e-9) {
+      const double dt = std::abs(turn) / gait.turn_rate;
+      segments_.push_back({t, t + dt, at, at, yaw, yaw + turn});
+      t += dt;
+    }
+    yaw += turn;
+    segments_.push_back({t, t + length / speed, at, waypoints[i], yaw, yaw});
+    t += length / speed;
+    at = waypoints[i];
+  }
+}
+
+Trajectory::PlanarState Trajectory::planar(double t) const {
+  if (segments_.empty() || t <= 0.0) return {start_, start_yaw_, false};
+  if (t >= duration()) {
+    const Segment& last = segments_.back();
+    return {last.to, last.yaw1, false};
+  }
+  const auto it = std::upper_bound(segments_.begin(), segments_.end(), t,
+                                   [](double value, const Segment& s) { return value < s.t1; });
+  const Segment& s = *it;
+  const double a = (t - s.t0) / (s.t1 - s.t0);
+  return {s.from + a * (s.to - s.from), s.yaw0 + a * (s.yaw1 - s.yaw0), true};
+}
+
+double Trajectory::swayWeight(double t) const {
+  constexpr double kRamp = 0.25;
+  const double d = duration();
+  if (t <= 0.0 || t >= d) return 0.0;
+  return std::min({1.0, t / kRamp, (d - t) / kRamp});
+}
+
+Eigen::Isometry3d Trajectory::pose(double t) const {
+  const PlanarState p = planar(t);
+  const double w = swayWeight(t);
+  const double phase = gaitPhase(t);
+  const double z = floor_z_ + gait_.standing_height + w * gait_.bob_m * std::sin(phase);
+  const double roll = w * gait_.roll_deg * M_PI / 180.0 * std::sin(phase + M_PI / 2);
+  const double pitch = w * gait_.pitch_deg * M_PI / 180.0 * std::sin(phase + M_PI / 3);
+  Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
+  T.translation() = Eigen::Vector3d(p.xy.x(), p.xy.y(), z);
+  T.linear() = (Eigen::AngleAxisd(p.yaw, Eigen::Vector3d::UnitZ()) *
+                Eigen::AngleAxisd(pitch, Eigen::Vector3d::UnitY()) *
+                Eigen::AngleAxisd(roll, Eigen::Vector3d::UnitX()))
+                   .toRotationMatrix();
+  return T;
+}
+
+}  // namespace isg::sim
