@@ -10,6 +10,7 @@
 #include "cli/cmd_agraph.hpp"
 #include "cli/cmd_check.hpp"
 #include "cli/cmd_inspect.hpp"
+#include "cli/cmd_render.hpp"
 #include "cli/cmd_simulate.hpp"
 #include "cli/cmd_world.hpp"
 
@@ -29,6 +30,7 @@ int main(int argc, char** argv) {
   commands.push_back(std::make_unique<InspectCommand>(app));
   commands.push_back(std::make_unique<AGraphCommand>(app));
   commands.push_back(std::make_unique<SimulateCommand>(app));
+  commands.push_back(std::make_unique<RenderCommand>(app));
 
   try {
     app.parse(argc, argv);

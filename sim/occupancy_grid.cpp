@@ -136,8 +136,13 @@ OccupancyGrid::OccupancyGrid(const bim::Plan& plan, const bim::AsBuilt& as_built
   for (int y = 0; y < height_; ++y) {
     for (int x = 0; x < width_; ++x) line[x] = field[y * width_ + x];
     distanceTransform1d(line, out);
-    for (int x = 0; x < width_; ++x)
-      clearance_[y * width_ + x] = float(std::sqrt(out[x]) * resolution);
+    // Centre-to-centre distances can overstate the distance from a point of this cell to the
+    // obstacle's true surface by up to one cell diagonal: subtract it, so the clearance is a
+    // lower bound everywhere in the cell.
+    for (int x = 0; x < width_; ++x) {
+      const double d = std::sqrt(out[x]) * resolution - std::sqrt(2.0) * resolution;
+      clearance_[y * width_ + x] = float(std::max(0.0, d));
+    }
   }
 }
 

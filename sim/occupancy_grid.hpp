@@ -27,7 +27,8 @@ class OccupancyGrid {
     return c.x() >= 0 && c.y() >= 0 && c.x() < width_ && c.y() < height_;
   }
   bool blocked(const Eigen::Vector2i& c) const { return !inside(c) || blocked_[index(c)]; }
-  // Metres from the cell's centre to the nearest blocked cell's centre (0 for blocked cells).
+  // A lower bound, in metres, of the distance from any point of the cell to the nearest wall,
+  // clutter or closed door (0 for blocked cells).
   double clearance(const Eigen::Vector2i& c) const {
     return inside(c) ? clearance_[index(c)] : 0.0;
   }

@@ -151,11 +151,10 @@ PlannedRoute planRoute(const bim::Scenario& scenario, const OccupancyGrid& grid,
   }
   const double start_clearance = grid.clearanceAt(start);
   if (start_clearance < kMinClearance) {
-    std::ostringstream reason;
-    reason.precision(2);
-    reason << "the robot cannot stand at " << formatPoint(start) << ": it is " << start_clearance
-           << " m from a wall, clutter or the outside, and needs " << kMinClearance << " m";
-    throw bim::InputError(file, "/robot/start", reason.str());
+    throw bim::InputError(file, "/robot/start",
+                          "the robot cannot stand at " + formatPoint(start) +
+                              ": it is less than 0.35 m from a wall, clutter or the outside of "
+                              "the building");
   }
   route.waypoints.push_back(start);
   if (!start_room.empty()) route.visited_rooms.push_back(start_room);

@@ -14,7 +14,8 @@ using ::testing::StartsWith;
 
 TEST(Usage, HelpOnEveryCommandExitsZero) {
   testing::Sandbox sandbox("usage_help");
-  for (const char* command : {"", "world ", "check ", "inspect ", "agraph "}) {
+  for (const char* command :
+       {"", "world ", "check ", "inspect ", "agraph ", "simulate ", "render "}) {
     const auto result = sandbox.run(std::string(command) + "--help");
     EXPECT_EQ(result.exit_code, 0) << command;
     EXPECT_THAT(result.out, HasSubstr("Usage:")) << command;
@@ -117,6 +118,60 @@ TEST(AGraph, UnknownLevelIsABadInput) {
   EXPECT_EQ(result.exit_code, 1);
   EXPECT_EQ(result.err, "isg agraph: error: builtin:d1: no level \"L7\" in the plan (--level)\n");
   EXPECT_FALSE(sandbox.exists("a.svg"));
+}
+
+}  // namespace
+}  // namespace isg::cli
+
+namespace isg::cli {
+namespace {
+
+TEST(Simulate, WritesADatasetAndSummarises) {
+  testing::Sandbox sandbox("simulate");
+  auto result = sandbox.run("simulate builtin:d2 -o ds --duration 1 --seed 3");
+  EXPECT_EQ(result.exit_code, 0) << result.err;
+  EXPECT_THAT(result.out, StartsWith("isg simulate: wrote ds: 10 scans, "));
+  EXPECT_THAT(result.out, HasSubstr("1.0 s of robot time in"));
+  EXPECT_TRUE(sandbox.exists("ds/scans/000009.pcd"));
+  EXPECT_FALSE(sandbox.exists("ds/scans/000010.pcd"));
+  const auto metadata = nlohmann::json::parse(sandbox.read("ds/metadata.json"));
+  EXPECT_EQ(metadata["format"], "isg.dataset");
+  EXPECT_EQ(metadata["seed"], 3);
+  EXPECT_EQ(metadata["plan"]["levels"][0]["rooms"].size(), 3u);
+  // An existing dataset is kept unless --force.
+  result = sandbox.run("simulate builtin:d2 -o ds --duration 1");
+  EXPECT_EQ(result.exit_code, 1);
+  EXPECT_EQ(result.err, "isg simulate: error: ds: already exists (use --force to replace it)\n");
+  result = sandbox.run("simulate builtin:d2 -o ds --duration 0.5 --force");
+  EXPECT_EQ(result.exit_code, 0) << result.err;
+  EXPECT_FALSE(sandbox.exists("ds/scans/000005.pcd"));
+}
+
+TEST(Simulate, StartInsideClearanceIsAClearError) {
+  testing::Sandbox sandbox("simulate_start");
+  sandbox.write("scenario.json", R"({"format": "isg.scenario", "version": 1,
+    "plan": {"format": "isg.plan", "version": 1, "levels": [{"id": "L0", "height": 3,
+      "walls": [{"id": "A", "start": [0, 0], "end": [4, 0], "thickness": 0.2},
+                {"id": "B", "start": [4, 0], "end": [4, 4], "thickness": 0.2},
+                {"id": "C", "start": [4, 4], "end": [0, 4], "thickness": 0.2},
+                {"id": "D", "start": [0, 4], "end": [0, 0], "thickness": 0.2}],
+      "rooms": [{"id": "R", "outline": [[0.1, 0.1], [3.9, 0.1], [3.9, 3.9], [0.1, 3.9]]}]}]},
+    "robot": {"start": {"pose": [0.3, 2.0, 0.0]}}})");
+  const auto result = sandbox.run("simulate scenario.json -o ds");
+  EXPECT_EQ(result.exit_code, 1);
+  EXPECT_EQ(result.err,
+            "isg simulate: error: scenario.json: /robot/start: the robot cannot stand at (0.3, 2): "
+            "it is less than 0.35 m from a wall, clutter or the outside of the building\n");
+  EXPECT_FALSE(sandbox.exists("ds"));
+}
+
+TEST(Render, WritesTwoPictures) {
+  testing::Sandbox sandbox("render");
+  const auto result = sandbox.run("render builtin:d1 -o pictures --width 320 --height 180");
+  EXPECT_EQ(result.exit_code, 0) << result.err;
+  EXPECT_THAT(result.out, StartsWith("isg render: wrote pictures/top.png and pictures/chase.png"));
+  EXPECT_EQ(sandbox.read("pictures/top.png").substr(1, 3), "PNG");
+  EXPECT_EQ(sandbox.read("pictures/chase.png").substr(1, 3), "PNG");
 }
 
 }  // namespace

@@ -1,0 +1,58 @@
+#include "cli/cmd_render.hpp"
+
+#include <algorithm>
+#include <cstdio>
+#include <filesystem>
+
+#include "sim/renderer.hpp"
+#include "sim/robot_model.hpp"
+#include "sim/simulation.hpp"
+
+namespace isg::cli {
+
+RenderCommand::RenderCommand(CLI::App& parent) {
+  app_ = parent.add_subcommand("render", "Draw the world and the walking robot as PNG pictures");
+  app_->footer(
+      "Writes DIR/top.png (the building from above, ceilings hidden) and DIR/chase.png (behind "
+      "the robot) at robot time T on its route. Renders on the CPU through EGL (Mesa, surfaceless "
+      "platform): no display and no GPU needed.\n\n" +
+      builtinWorldsHelp());
+  app_->add_option("input", input_, "plan or scenario file, or builtin:NAME")->required();
+  app_->add_option("-o,--output", output_, "folder for the pictures (created if missing)")
+      ->required();
+  app_->add_option("--time", time_, "robot time in seconds (default: a quarter of the route)")
+      ->check(CLI::NonNegativeNumber);
+  app_->add_option("--width", width_, "picture width in pixels")->check(CLI::Range(16, 1920));
+  app_->add_option("--height", height_, "picture height in pixels")->check(CLI::Range(16, 1080));
+}
+
+int RenderCommand::run() {
+  const bim::Scenario scenario = loadInput(input_, "render");
+  sim::Simulation simulation(scenario);
+  namespace fs = std::filesystem;
+  const fs::path dir(output_);
+  const fs::path parent = dir.has_parent_path() ? dir.parent_path() : fs::path(".");
+  if (!fs::is_directory(parent)) {
+    throw bim::InputError(output_, "",
+                          "cannot write: directory " + parent.string() + " does not exist");
+  }
+  fs::create_directories(dir);
+  const double t =
+      time_ < 0 ? 0.25 * simulation.duration() : std::min(time_, simulation.duration());
+  const auto& trajectory = simulation.trajectory();
+  const Eigen::Isometry3d B_T_R = trajectory.pose(t);
+  auto& world = simulation.world();
+  sim::poseRobot(world.model(), world.data(), B_T_R, trajectory.gaitPhase(t),
+                 trajectory.swayWeight(t));
+  sim::Renderer renderer(world.model(), width_, height_);
+  const std::string top = (dir / "top.png").string();
+  const std::string chase = (dir / "chase.png").string();
+  sim::writePng(top, renderer.topDown(world.data()));
+  sim::writePng(chase, renderer.chase(world.data(), B_T_R));
+  std::printf("isg render: wrote %s and %s at t = %.1f s (robot at %.2f, %.2f; %s)\n", top.c_str(),
+              chase.c_str(), t, B_T_R.translation().x(), B_T_R.translation().y(),
+              renderer.glRenderer().c_str());
+  return kExitOk;
+}
+
+}  // namespace isg::cli

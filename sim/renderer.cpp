@@ -1,0 +1,154 @@
+#include "sim/renderer.hpp"
+
+#include <EGL/egl.h>
+#include <EGL/eglext.h>
+#include <GL/gl.h>
+#include <png.h>
+
+#include <cmath>
+#include <cstdio>
+#include <stdexcept>
+
+#include "sim/odometry_model.hpp"
+#include "worlds/mjcf_generator.hpp"
+
+namespace isg::sim {
+
+struct Renderer::Egl {
+  EGLDisplay display = EGL_NO_DISPLAY;
+  EGLContext context = EGL_NO_CONTEXT;
+
+  Egl() {
+    // No display and no GPU here: Mesa's surfaceless platform gives a context without either.
+    auto get_platform_display = reinterpret_cast<PFNEGLGETPLATFORMDISPLAYEXTPROC>(
+        eglGetProcAddress("eglGetPlatformDisplayEXT"));
+    if (get_platform_display == nullptr) fail("eglGetPlatformDisplayEXT is not available");
+    display = get_platform_display(EGL_PLATFORM_SURFACELESS_MESA, EGL_DEFAULT_DISPLAY, nullptr);
+    if (display == EGL_NO_DISPLAY)
+      fail("no surfaceless EGL display (is Mesa's libegl-mesa0 installed?)");
+    EGLint major = 0, minor = 0;
+    if (!eglInitialize(display, &major, &minor)) fail("eglInitialize failed");
+    const EGLint attributes[] = {EGL_RED_SIZE,
+                                 8,
+                                 EGL_GREEN_SIZE,
+                                 8,
+                                 EGL_BLUE_SIZE,
+                                 8,
+                                 EGL_DEPTH_SIZE,
+                                 24,
+                                 EGL_RENDERABLE_TYPE,
+                                 EGL_OPENGL_BIT,
+                                 EGL_SURFACE_TYPE,
+                                 EGL_PBUFFER_BIT,
+                                 EGL_NONE};
+    EGLConfig config;
+    EGLint count = 0;
+    if (!eglChooseConfig(display, attributes, &config, 1, &count) || count < 1) {
+      fail("no EGL config with 8-bit RGB, a depth buffer and desktop OpenGL");
+    }
+    if (!eglBindAPI(EGL_OPENGL_API)) fail("eglBindAPI(EGL_OPENGL_API) failed");
+    context = eglCreateContext(display, config, EGL_NO_CONTEXT, nullptr);
+    if (context == EGL_NO_CONTEXT) fail("eglCreateContext failed");
+    if (!eglMakeCurrent(display, EGL_NO_SURFACE, EGL_NO_SURFACE, context)) {
+      fail("eglMakeCurrent without a surface failed (EGL_KHR_surfaceless_context missing?)");
+    }
+  }
+  ~Egl() {
+    if (display != EGL_NO_DISPLAY) {
+      eglMakeCurrent(display, EGL_NO_SURFACE, EGL_NO_SURFACE, EGL_NO_CONTEXT);
+      if (context != EGL_NO_CONTEXT) eglDestroyContext(display, context);
+      eglTerminate(display);
+    }
+  }
+  [[noreturn]] void fail(const std::string& what) {
+    char code[32];
+    std::snprintf(code, sizeof code, " (EGL error 0x%x)", eglGetError());
+    throw std::runtime_error("headless rendering: " + what + code);
+  }
+};
+
+Renderer::Renderer(const mjModel& model, int width, int height)
+    : egl_(std::make_unique<Egl>()), model_(model), width_(width), height_(height) {
+  if (width > model.vis.global.offwidth || height > model.vis.global.offheight) {
+    throw std::runtime_error("picture larger than the world's offscreen buffer (" +
+                             std::to_string(model.vis.global.offwidth) + "x" +
+                             std::to_string(model.vis.global.offheight) + ")");
+  }
+  const char* name = reinterpret_cast<const char*>(glGetString(GL_RENDERER));
+  gl_renderer_ = name ? name : "unknown";
+  mjv_defaultScene(&scene_);
+  mjv_makeScene(&model, &scene_, 4000);
+  mjr_defaultContext(&context_);
+  mjr_makeContext(&model, &context_, mjFONTSCALE_100);
+  mjr_setBuffer(mjFB_OFFSCREEN, &context_);
+  mjv_defaultOption(&option_);
+  option_.geomgroup[worlds::kRobotGroup] = 1;
+}
+
+Renderer::~Renderer() {
+  mjr_freeContext(&context_);
+  mjv_freeScene(&scene_);
+}
+
+Image Renderer::render(mjData& data, mjvCamera& camera, bool ceilings) {
+  option_.geomgroup[worlds::kCeilingGroup] = ceilings;
+  mjv_updateScene(&model_, &data, &option_, nullptr, &camera, mjCAT_ALL, &scene_);
+  const mjrRect viewport = {0, 0, width_, height_};
+  mjr_render(viewport, &scene_, &context_);
+  Image image{width_, height_, std::vector<unsigned char>(std::size_t(3) * width_ * height_)};
+  std::vector<unsigned char> flipped(image.rgb.size());
+  mjr_readPixels(flipped.data(), nullptr, viewport, &context_);
+  // OpenGL's rows start at the bottom; pictures start at the top.
+  for (int y = 0; y < height_; ++y) {
+    std::copy_n(flipped.begin() + std::size_t(3) * width_ * (height_ - 1 - y), 3 * width_,
+                image.rgb.begin() + std::size_t(3) * width_ * y);
+  }
+  return image;
+}
+
+Image Renderer::topDown(mjData& data) {
+  mjvCamera camera;
+  mjv_defaultCamera(&camera);
+  camera.type = mjCAMERA_FIXED;
+  camera.fixedcamid = mj_name2id(&model_, mjOBJ_CAMERA, "top");
+  return render(data, camera, false);
+}
+
+Image Renderer::chase(mjData& data, const Eigen::Isometry3d& B_T_R) {
+  mjvCamera camera;
+  mjv_defaultCamera(&camera);
+  camera.type = mjCAMERA_FREE;
+  const Eigen::Vector3d p = B_T_R.translation();
+  camera.lookat[0] = p.x();
+  camera.lookat[1] = p.y();
+  camera.lookat[2] = p.z();
+  camera.distance = 3.2;
+  camera.elevation = -32.0;
+  // MuJoCo's free camera looks along its azimuth: from behind the robot is its own heading.
+  camera.azimuth = yawOf(B_T_R.linear()) * 180.0 / M_PI;
+  return render(data, camera, false);
+}
+
+void writePng(const std::string& path, const Image& image) {
+  FILE* file = std::fopen(path.c_str(), "wb");
+  if (file == nullptr) throw std::runtime_error(path + ": cannot write file");
+  png_structp png = png_create_write_struct(PNG_LIBPNG_VER_STRING, nullptr, nullptr, nullptr);
+  png_infop info = png ? png_create_info_struct(png) : nullptr;
+  if (png == nullptr || info == nullptr || setjmp(png_jmpbuf(png))) {
+    png_destroy_write_struct(&png, &info);
+    std::fclose(file);
+    throw std::runtime_error(path + ": cannot write PNG");
+  }
+  png_init_io(png, file);
+  png_set_IHDR(png, info, image.width, image.height, 8, PNG_COLOR_TYPE_RGB, PNG_INTERLACE_NONE,
+               PNG_COMPRESSION_TYPE_DEFAULT, PNG_FILTER_TYPE_DEFAULT);
+  png_write_info(png, info);
+  for (int y = 0; y < image.height; ++y) {
+    png_write_row(png, const_cast<png_bytep>(image.rgb.data() + std::size_t(3) * image.width * y));
+  }
+  png_write_end(png, nullptr);
+  png_destroy_write_struct(&png, &info);
+  std::fclose(file);
+}
+
+}  // namespace isg::sim

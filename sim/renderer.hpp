@@ -1,0 +1,51 @@
+#pragma once
+
+#include <mujoco/mujoco.h>
+
+#include <Eigen/Geometry>
+#include <memory>
+#include <string>
+#include <vector>
+
+namespace isg::sim {
+
+// Pictures of a MuJoCo world without a display or a GPU: an OpenGL context from EGL on Mesa's
+// surfaceless platform (software rendering), MuJoCo's own renderer into its offscreen buffer.
+struct Image {
+  int width = 0;
+  int height = 0;
+  std::vector<unsigned char> rgb;  // row 0 at the top
+};
+
+class Renderer {
+ public:
+  // Throws std::runtime_error with the EGL step that failed when no context can be made.
+  Renderer(const mjModel& model, int width, int height);
+  ~Renderer();
+  Renderer(const Renderer&) = delete;
+  Renderer& operator=(const Renderer&) = delete;
+
+  // The whole building from straight above (the world's "top" camera), ceilings hidden.
+  Image topDown(mjData& data);
+  // Behind and above the robot at B_T_R, looking at it.
+  Image chase(mjData& data, const Eigen::Isometry3d& B_T_R);
+
+  const std::string& glRenderer() const { return gl_renderer_; }
+
+ private:
+  Image render(mjData& data, mjvCamera& camera, bool ceilings);
+
+  struct Egl;
+  std::unique_ptr<Egl> egl_;
+  const mjModel& model_;
+  int width_, height_;
+  mjvScene scene_;
+  mjrContext context_;
+  mjvOption option_;
+  std::string gl_renderer_;
+};
+
+// Writes an 8-bit RGB PNG; throws std::runtime_error naming the path on failure.
+void writePng(const std::string& path, const Image& image);
+
+}  // namespace isg::sim
