@@ -5,6 +5,7 @@
 #include <nlohmann/json.hpp>
 
 #include "cli/tests/cli_runner.hpp"
+#include "worlds/reference_plans.hpp"
 
 namespace isg::cli {
 namespace {
@@ -172,6 +173,28 @@ TEST(Render, WritesTwoPictures) {
   EXPECT_THAT(result.out, StartsWith("isg render: wrote pictures/top.png and pictures/chase.png"));
   EXPECT_EQ(sandbox.read("pictures/top.png").substr(1, 3), "PNG");
   EXPECT_EQ(sandbox.read("pictures/chase.png").substr(1, 3), "PNG");
+}
+
+}  // namespace
+}  // namespace isg::cli
+
+namespace isg::cli {
+namespace {
+
+std::string worlds_plan_d1() { return std::string(*worlds::builtinText("d1")); }
+
+TEST(Simulate, UnreachableRoomOnTheRouteIsAClearError) {
+  testing::Sandbox sandbox("simulate_unreachable");
+  // D1 as built with its offices' doors closed: office 2 can only be reached through D2 or D4.
+  sandbox.write("scenario.json", R"({"format": "isg.scenario", "version": 1, "plan": "d1.json",
+    "robot": {"start": {"room": "R4"}, "route": {"rooms": ["R1", "R2"]}},
+    "as_built": {"closed_doors": ["D2", "D4"]}})");
+  sandbox.write("d1.json", worlds_plan_d1());
+  const auto result = sandbox.run("simulate scenario.json -o ds");
+  EXPECT_EQ(result.exit_code, 1);
+  EXPECT_THAT(result.err, StartsWith("isg simulate: error: scenario.json: /robot/route/rooms/1: "
+                                     "room \"R2\" cannot be reached from ("));
+  EXPECT_FALSE(sandbox.exists("ds"));
 }
 
 }  // namespace

@@ -123,3 +123,28 @@ BENCHMARK(BM_FastCaster_Grid200)->Unit(benchmark::kMillisecond);
 
 }  // namespace
 }  // namespace isg::sim
+
+#include "sim/simulation.hpp"
+
+namespace isg::sim {
+namespace {
+
+// Whole VLP-16 turns as `isg simulate` makes them (poses, casting, noise, points) in D6 as built,
+// on one thread. Real time is 10 turns per second: the real-time factor per thread is
+// (turns per second) / 10.
+void BM_SimulateTurn_D6(benchmark::State& state) {
+  static Simulation sim(worlds::loadScenarioOrBuiltin("builtin:d6.asbuilt", nullptr));
+  const auto lidar = sim.makeLidar();
+  int k = 0;
+  std::size_t points = 0;
+  for (auto _ : state)
+    points += sim.scan(k++ % sim.scanCount(sim.duration()), *lidar).points.size();
+  state.SetItemsProcessed(state.iterations());
+  state.counters["real_time_factor"] =
+      benchmark::Counter(double(state.iterations()) / 10.0, benchmark::Counter::kIsRate);
+  benchmark::DoNotOptimize(points);
+}
+BENCHMARK(BM_SimulateTurn_D6)->Unit(benchmark::kMillisecond);
+
+}  // namespace
+}  // namespace isg::sim

@@ -164,3 +164,41 @@ TEST(LidarSimulator, RobotNeverSeesItself) {
 
 }  // namespace
 }  // namespace isg::sim
+
+namespace isg::sim {
+namespace {
+
+TEST(LidarSimulator, RangeLimitsAndDropout) {
+  const auto scenario = worlds::loadScenarioOrBuiltin("builtin:d2", nullptr);
+  const MujocoWorld world = MujocoWorld::fromXml(worlds::generateMjcf(scenario));
+  const auto pose = [](double) {
+    Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
+    T.translation() = Eigen::Vector3d(2.0, 3.0, 0.71);
+    return T;
+  };
+  bim::LidarConfig config;
+  LidarSimulator all(world, config, kSensorGroups);
+  std::mt19937_64 rng(4);
+  const std::size_t full = all.scan(0.0, pose, rng).points.size();
+  config.dropout = 0.5;
+  LidarSimulator half(world, config, kSensorGroups);
+  const double kept = double(half.scan(0.0, pose, rng).points.size()) / full;
+  EXPECT_NEAR(kept, 0.5, 0.02);
+  config.dropout = 0.0;
+  config.min_range_m = 2.0;
+  config.max_range_m = 3.0;
+  LidarSimulator banded(world, config, kSensorGroups);
+  const LidarScan scan = banded.scan(0.0, pose, rng);
+  ASSERT_FALSE(scan.points.empty());
+  for (const auto& p : scan.points) {
+    const int laser = p.ring < 8 ? 2 * p.ring : 2 * (p.ring - 8) + 1;
+    const double range = (Eigen::Vector3d(p.x, p.y, p.z) - Vlp16::origin(laser)).norm();
+    ASSERT_GE(range, 2.0 - 1e-4);
+    ASSERT_LE(range, 3.0 + 1e-4);
+    // Ranges come in 2 mm steps.
+    ASSERT_NEAR(range / 0.002, std::round(range / 0.002), 1e-2);
+  }
+}
+
+}  // namespace
+}  // namespace isg::sim
