@@ -211,17 +211,7 @@ double RayCaster::intersectOther(int g, const Eigen::Vector3d& origin,
 std::optional<RayCaster::Hit> RayCaster::cast(const Eigen::Vector3d& origin,
                                               const Eigen::Vector3d& direction) const {
   Hit best;
-  auto consider = [&best](double x, int geom) {
-    if (x >= 0 &&
-        (best.distance < 0 || x < best.distance || (x == best.distance && geom < best.geom))) {
-      best = {x, geom};
-    }
-  };
-  for (int g : others_) consider(intersectOther(g, origin, direction), g);
-  for (int g : moving_) consider(intersectOther(g, origin, direction), g);
-
-  for (const Box& box : large_) consider(intersectSlab(box, origin, direction), box.geom);
-
+  castAlwaysTested(origin, direction, best);
   if (!nodes_.empty()) {
     const Eigen::Vector3d inverse = direction.cwiseInverse();
     Pending stack[64];
@@ -236,7 +226,7 @@ std::optional<RayCaster::Hit> RayCaster::cast(const Eigen::Vector3d& origin,
       if (node.count > 0) {
         for (int i = node.first; i < node.first + node.count; ++i) {
           const Box& box = boxes_[fragment_box_[i]];
-          consider(intersectBox(box, origin, direction), box.geom);
+          best.consider(intersectBox(box, origin, direction), box.geom);
         }
         continue;
       }

@@ -30,6 +30,14 @@ class RayCaster {
   struct Hit {
     double distance = -1.0;
     int geom = -1;
+    // Keeps the nearer of this and (x, geom); equal distances go to the lower geom id, as in
+    // mj_ray's loop over geoms. Every caster decides through this one rule.
+    void consider(double x, int candidate) {
+      if (x >= 0 && (distance < 0 || x < distance || (x == distance && candidate < geom))) {
+        distance = x;
+        geom = candidate;
+      }
+    }
   };
   // `direction` must be a unit vector for the distance to be metres (as for mj_ray).
   std::optional<Hit> cast(const Eigen::Vector3d& origin, const Eigen::Vector3d& direction) const;
@@ -69,6 +77,10 @@ class RayCaster {
                        const Eigen::Vector3d& direction) const;
   double intersectOther(int geom, const Eigen::Vector3d& origin,
                         const Eigen::Vector3d& direction) const;
+  // The geoms every ray tests whatever its direction: building-wide slabs, non-box static geoms
+  // and moving geoms.
+  void castAlwaysTested(const Eigen::Vector3d& origin, const Eigen::Vector3d& direction,
+                        Hit& best) const;
 
   const mjModel* model_;
   const mjData* data_;
@@ -140,6 +152,13 @@ inline double RayCaster::intersectSlab(const Box& box, const Eigen::Vector3d& or
   const double py = origin.y() - box.pos.y() + x * direction.y();
   if (std::abs(px) <= box.half.x() && std::abs(py) <= box.half.y()) return x;
   return intersectBox(box, origin, direction);
+}
+
+inline void RayCaster::castAlwaysTested(const Eigen::Vector3d& origin,
+                                        const Eigen::Vector3d& direction, Hit& best) const {
+  for (const Box& box : large_) best.consider(intersectSlab(box, origin, direction), box.geom);
+  for (int g : others_) best.consider(intersectOther(g, origin, direction), g);
+  for (int g : moving_) best.consider(intersectOther(g, origin, direction), g);
 }
 
 // Whether mj_ray would consider this geom at all for these groups (static geoms included, no

@@ -1,6 +1,7 @@
 #include "sim/scan_caster.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <limits>
 
@@ -30,15 +31,15 @@ int ScanCaster::sectorOf(double x, double y) const {
 void ScanCaster::prepare(const Eigen::Vector2d& centre, double radius) {
   centre_ = centre;
   radius_ = radius;
-  candidates_.clear();
   everywhere_.clear();
-  std::vector<std::vector<Candidate>> per_sector(sectors_);
+  // First pass: each box's least distance and the sectors [first, last] it may occupy.
+  spans_.clear();
   const auto& boxes = caster_.boxes_;
   for (int b = 0; b < int(boxes.size()); ++b) {
     const auto& box = boxes[b];
     // The box's footprint: exact for boxes standing upright, else its bounding rectangle.
-    std::vector<Eigen::Vector2d> corners;
-    if (std::abs(box.mat(2, 2)) > 1.0 - 1e-12) {
+    std::array<Eigen::Vector2d, 4> corners;
+    if (box.upright) {
       const Eigen::Vector2d c = box.pos.head<2>();
       const Eigen::Vector2d u = box.mat.col(0).head<2>() * box.half.x();
       const Eigen::Vector2d v = box.mat.col(1).head<2>() * box.half.y();
@@ -47,11 +48,12 @@ void ScanCaster::prepare(const Eigen::Vector2d& centre, double radius) {
       const Eigen::Vector3d e = box.mat.cwiseAbs() * box.half;
       const Eigen::Vector2d lo = box.pos.head<2>() - e.head<2>(),
                             hi = box.pos.head<2>() + e.head<2>();
-      corners = {lo, {hi.x(), lo.y()}, hi, {lo.x(), hi.y()}};
+      corners = {lo, Eigen::Vector2d(hi.x(), lo.y()), hi, Eigen::Vector2d(lo.x(), hi.y())};
     }
     // Least distance from the disc to the footprint (0 when they touch).
+    const std::vector<Eigen::Vector2d> polygon(corners.begin(), corners.end());
     double distance =
-        bim::containsPoint(corners, centre) ? 0.0 : std::numeric_limits<double>::infinity();
+        bim::containsPoint(polygon, centre) ? 0.0 : std::numeric_limits<double>::infinity();
     for (int i = 0; i < 4; ++i) {
       distance =
           std::min(distance, bim::distanceToSegment(centre, corners[i], corners[(i + 1) % 4]));
@@ -69,31 +71,32 @@ void ScanCaster::prepare(const Eigen::Vector2d& centre, double radius) {
     double lo = std::numeric_limits<double>::infinity(), hi = -lo;
     for (const auto& q : corners) {
       const Eigen::Vector2d d = q - centre;
-      double a = std::atan2(d.y(), d.x()) - base;
-      a = std::remainder(a, 2 * kPi);
+      const double a = std::remainder(std::atan2(d.y(), d.x()) - base, 2 * kPi);
       const double widen =
           std::asin(std::min(1.0, (radius + pad) / std::max(d.norm(), 1e-9))) + 1e-9;
       lo = std::min(lo, a - widen);
       hi = std::max(hi, a + widen);
     }
-    // Walk the sectors from lo to hi (through the wrap at ±π).
-    const int first = sectorOf(std::cos(base + lo), std::sin(base + lo));
-    const int last = sectorOf(std::cos(base + hi), std::sin(base + hi));
-    for (int k = first;; k = (k + 1) % sectors_) {
-      per_sector[k].push_back({min_distance, b});
-      if (k == last) break;
-    }
+    spans_.push_back({min_distance, b, sectorOf(std::cos(base + lo), std::sin(base + lo)),
+                      sectorOf(std::cos(base + hi), std::sin(base + hi))});
   }
+  // Second pass: count, then fill in order of distance, so every sector comes out sorted.
+  std::sort(spans_.begin(), spans_.end(),
+            [](const Span& a, const Span& b) { return a.min_distance < b.min_distance; });
   sector_begin_.assign(sectors_ + 1, 0);
-  for (int k = 0; k < sectors_; ++k) {
-    auto& list = per_sector[k];
-    std::sort(list.begin(), list.end(), [](const Candidate& a, const Candidate& b) {
-      return a.min_distance < b.min_distance;
-    });
-    sector_begin_[k] = int(candidates_.size());
-    candidates_.insert(candidates_.end(), list.begin(), list.end());
+  auto for_each_sector = [this](const Span& span, auto&& f) {
+    for (int k = span.first;; k = (k + 1) % sectors_) {
+      f(k);
+      if (k == span.last) break;
+    }
+  };
+  for (const auto& span : spans_) for_each_sector(span, [&](int k) { ++sector_begin_[k + 1]; });
+  for (int k = 0; k < sectors_; ++k) sector_begin_[k + 1] += sector_begin_[k];
+  candidates_.resize(sector_begin_[sectors_]);
+  fill_.assign(sector_begin_.begin(), sector_begin_.end() - 1);
+  for (const auto& span : spans_) {
+    for_each_sector(span, [&](int k) { candidates_[fill_[k]++] = {span.min_distance, span.box}; });
   }
-  sector_begin_[sectors_] = int(candidates_.size());
 }
 
 std::optional<RayCaster::Hit> ScanCaster::cast(const Eigen::Vector3d& origin,
@@ -104,27 +107,17 @@ std::optional<RayCaster::Hit> ScanCaster::cast(const Eigen::Vector3d& origin,
     return caster_.cast(origin, direction);
   }
   RayCaster::Hit best;
-  auto consider = [&best](double x, int geom) {
-    if (x >= 0 &&
-        (best.distance < 0 || x < best.distance || (x == best.distance && geom < best.geom))) {
-      best = {x, geom};
-    }
-  };
-  for (const auto& box : caster_.large_) {
-    consider(caster_.intersectSlab(box, origin, direction), box.geom);
-  }
-  for (int g : caster_.others_) consider(caster_.intersectOther(g, origin, direction), g);
-  for (int g : caster_.moving_) consider(caster_.intersectOther(g, origin, direction), g);
+  caster_.castAlwaysTested(origin, direction, best);
   for (const auto& c : everywhere_) {
     const auto& box = caster_.boxes_[c.box];
-    consider(caster_.intersectBox(box, origin, direction), box.geom);
+    best.consider(caster_.intersectBox(box, origin, direction), box.geom);
   }
   const int k = sectorOf(direction.x(), direction.y());
   for (int i = sector_begin_[k]; i < sector_begin_[k + 1]; ++i) {
     const Candidate& c = candidates_[i];
     if (best.distance >= 0 && c.min_distance > best.distance) break;
     const auto& box = caster_.boxes_[c.box];
-    consider(caster_.intersectBox(box, origin, direction), box.geom);
+    best.consider(caster_.intersectBox(box, origin, direction), box.geom);
   }
   if (best.distance < 0) return std::nullopt;
   return best;

@@ -41,6 +41,13 @@ class ScanCaster {
   std::vector<int> sector_begin_;  // CSR: candidates of sector k are [begin[k], begin[k+1])
   std::vector<Candidate> candidates_;
   std::vector<Candidate> everywhere_;  // boxes within reach of the disc: in every sector
+  // Scratch space of prepare(), kept to avoid allocating every turn.
+  struct Span {
+    double min_distance;
+    int box, first, last;
+  };
+  std::vector<Span> spans_;
+  std::vector<int> fill_;
 };
 
 }  // namespace isg::sim
