@@ -9,6 +9,7 @@
 #include "bim/input_error.hpp"
 #include "cli/cmd_agraph.hpp"
 #include "cli/cmd_check.hpp"
+#include "cli/cmd_eval.hpp"
 #include "cli/cmd_inspect.hpp"
 #include "cli/cmd_render.hpp"
 #include "cli/cmd_simulate.hpp"
@@ -31,6 +32,7 @@ int main(int argc, char** argv) {
   commands.push_back(std::make_unique<AGraphCommand>(app));
   commands.push_back(std::make_unique<SimulateCommand>(app));
   commands.push_back(std::make_unique<RenderCommand>(app));
+  commands.push_back(std::make_unique<EvalCommand>(app));
 
   try {
     app.parse(argc, argv);

@@ -199,3 +199,47 @@ TEST(Simulate, UnreachableRoomOnTheRouteIsAClearError) {
 
 }  // namespace
 }  // namespace isg::cli
+
+namespace isg::cli {
+namespace {
+
+TEST(Eval, PrintsApeLikeEvoAndJson) {
+  testing::Sandbox sandbox("eval");
+  sandbox.write("gt.tum", "0 0 0 0 0 0 0 1\n1 1 0 0 0 0 0 1\n2 2 0 0 0 0 0 1\n3 3 0 0 0 0 0 1\n");
+  // Off by 0.1, 0.2, 0.3, 0.4 m in y: rmse √(0.3/4), mean 0.25.
+  sandbox.write("est.tum",
+                "0 0 0.1 0 0 0 0 1\n1 1 0.2 0 0 0 0 1\n2.005 2 0.3 0 0 0 0 1\n3 3 0.4 0 0 0 0 1\n");
+  auto result = sandbox.run("eval gt.tum est.tum");
+  EXPECT_EQ(result.exit_code, 0) << result.err;
+  EXPECT_THAT(result.out, HasSubstr("Found 4 of max. 4 possible matching timestamps"));
+  EXPECT_THAT(result.out, HasSubstr("APE w.r.t. translation part (m)\n(not aligned)\n\n"
+                                    "       max\t0.400000\n      mean\t0.250000\n"));
+  EXPECT_THAT(result.out, HasSubstr("      rmse\t0.273861\n"));
+  result = sandbox.run("eval gt.tum est.tum --json --t-max-diff 0.001");
+  EXPECT_EQ(result.exit_code, 0) << result.err;
+  const auto doc = nlohmann::json::parse(result.out);
+  EXPECT_EQ(doc["pairs"], 3);  // 2.005 is 5 ms from 2: outside a 1 ms window
+  EXPECT_NEAR(doc["ape"]["translation_m"]["mean"].get<double>(), (0.1 + 0.2 + 0.4) / 3, 1e-9);
+}
+
+TEST(Eval, BadInputNamesTheFile) {
+  testing::Sandbox sandbox("eval_bad");
+  sandbox.write("gt.tum", "0 0 0 0 0 0 0 1\n1 1 0 0 0 0 0 1\n");
+  sandbox.write("bad.tum", "0 0 0 0 0 0 0 1\n1 1 0\n");
+  sandbox.write("late.tum", "50 0 0 0 0 0 0 1\n");
+  auto result = sandbox.run("eval gt.tum bad.tum");
+  EXPECT_EQ(result.exit_code, 1);
+  EXPECT_EQ(result.err,
+            "isg eval: error: bad.tum: line 2: expected 8 numbers: t tx ty tz qx qy qz qw\n");
+  result = sandbox.run("eval gt.tum missing.tum");
+  EXPECT_EQ(result.exit_code, 1);
+  EXPECT_EQ(result.err, "isg eval: error: missing.tum: cannot open file\n");
+  result = sandbox.run("eval gt.tum late.tum");
+  EXPECT_EQ(result.exit_code, 1);
+  EXPECT_THAT(result.err, HasSubstr("late.tum: no pose of the estimate is within 0.010000 s"));
+  result = sandbox.run("eval gt.tum gt.tum --align affine");
+  EXPECT_EQ(result.exit_code, 2);
+}
+
+}  // namespace
+}  // namespace isg::cli

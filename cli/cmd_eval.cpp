@@ -1,0 +1,124 @@
+#include "cli/cmd_eval.hpp"
+
+#include <cstdio>
+#include <iostream>
+#include <nlohmann/json.hpp>
+
+#include "eval/ape.hpp"
+
+namespace isg::cli {
+
+namespace {
+
+eval::Trajectory readTrajectory(const std::string& path) {
+  try {
+    return eval::readTum(path);
+  } catch (const std::runtime_error& e) {
+    // readTum's messages already start with the file name.
+    std::string what = e.what();
+    if (what.rfind(path + ": ", 0) == 0) what = what.substr(path.size() + 2);
+    throw bim::InputError(path, "", what);
+  }
+}
+
+void printStatistics(const char* title, const std::string& alignment, const eval::Statistics& s) {
+  std::printf("%s\n(%s)\n\n", title, alignment.c_str());
+  const std::pair<const char*, double> rows[] = {
+      {"max", s.max},   {"mean", s.mean}, {"median", s.median}, {"min", s.min},
+      {"rmse", s.rmse}, {"sse", s.sse},   {"std", s.std}};
+  for (const auto& [name, value] : rows) std::printf("%10s\t%.6f\n", name, value);
+  std::printf("\n");
+}
+
+nlohmann::ordered_json toJson(const eval::Statistics& s) {
+  return {{"count", s.count}, {"rmse", s.rmse}, {"mean", s.mean}, {"median", s.median},
+          {"std", s.std},     {"min", s.min},   {"max", s.max},   {"sse", s.sse}};
+}
+
+}  // namespace
+
+EvalCommand::EvalCommand(CLI::App& parent) {
+  app_ =
+      parent.add_subcommand("eval", "Absolute (and relative) pose error of a trajectory, as evo");
+  app_->footer(
+      "Both files are TUM trajectories (t tx ty tz qx qy qz qw). Poses are associated as evo "
+      "does: for each stamp of the shorter trajectory, the nearest stamp of the other within "
+      "--t-max-diff seconds, no interpolation. Alignment is none by default (global "
+      "localization is judged in the plan frame); se3 / sim3 use Umeyama's method on the "
+      "associated positions. --project xy then zeroes z and keeps only yaw (the paper's 2D "
+      "APE). Statistics: rmse, mean, median, std (population), min, max, sse; translation in "
+      "metres, rotation as the angle of R_ref⁻¹·R_est in degrees.");
+  app_->add_option("reference", reference_, "ground truth, TUM")->required();
+  app_->add_option("estimate", estimate_, "estimated trajectory, TUM")->required();
+  app_->add_option("--align", align_, "none, se3 or sim3")
+      ->check(CLI::IsMember({"none", "se3", "sim3"}));
+  app_->add_option("--project", project_, "xy: compare in the plane")->check(CLI::IsMember({"xy"}));
+  app_->add_option("--t-max-diff", max_diff_, "association window in seconds")
+      ->check(CLI::PositiveNumber);
+  app_->add_option("--rpe", rpe_delta_, "also the relative pose error over this many poses")
+      ->check(CLI::Range(1, 1000000));
+  app_->add_flag("--json", json_, "print JSON instead of evo's text layout");
+}
+
+int EvalCommand::run() {
+  const eval::Trajectory reference = readTrajectory(reference_);
+  const eval::Trajectory estimate = readTrajectory(estimate_);
+  eval::ErrorOptions options;
+  options.align = align_ == "se3"
+                      ? eval::Alignment::kSE3
+                      : (align_ == "sim3" ? eval::Alignment::kSim3 : eval::Alignment::kNone);
+  options.project_xy = project_ == "xy";
+  options.max_diff = max_diff_;
+  eval::ErrorResult ape;
+  try {
+    ape = eval::absolutePoseError(reference, estimate, options);
+  } catch (const std::invalid_argument& e) {
+    throw bim::InputError(estimate_, "", e.what());
+  }
+  std::optional<eval::ErrorResult> rpe;
+  if (rpe_delta_ > 0) {
+    options.rpe_delta = rpe_delta_;
+    rpe = eval::relativePoseError(reference, estimate, options);
+  }
+  const std::string alignment =
+      options.align == eval::Alignment::kNone
+          ? "not aligned"
+          : (options.align == eval::Alignment::kSE3 ? "with SE(3) Umeyama alignment"
+                                                    : "with Sim(3) Umeyama alignment");
+  const std::string how = alignment + (options.project_xy ? ", projected to xy" : "");
+  if (json_) {
+    nlohmann::ordered_json out = {{"reference", reference_},
+                                  {"estimate", estimate_},
+                                  {"align", eval::toString(options.align)},
+                                  {"project", options.project_xy ? "xy" : "none"},
+                                  {"t_max_diff", options.max_diff},
+                                  {"pairs", ape.association.reference.size()},
+                                  {"ape",
+                                   {{"translation_m", toJson(ape.translation_stats)},
+                                    {"rotation_deg", toJson(ape.rotation_stats)}}}};
+    if (ape.alignment) out["alignment"] = {{"scale", ape.alignment->scale}};
+    if (rpe) {
+      out["rpe"] = {{"delta", rpe_delta_},
+                    {"translation_m", toJson(rpe->translation_stats)},
+                    {"rotation_deg", toJson(rpe->rotation_stats)}};
+    }
+    std::cout << out.dump(2) << "\n";
+    return kExitOk;
+  }
+  std::printf(
+      "Found %zu of max. %zu possible matching timestamps between\n\t%s\nand:\t%s\n"
+      "...with max. time diff.: %g (s)\n\n",
+      ape.association.reference.size(), std::min(reference.size(), estimate.size()),
+      reference_.c_str(), estimate_.c_str(), options.max_diff);
+  printStatistics("APE w.r.t. translation part (m)", how, ape.translation_stats);
+  printStatistics("APE w.r.t. rotation angle in degrees (deg)", how, ape.rotation_stats);
+  if (rpe) {
+    char title[96];
+    std::snprintf(title, sizeof title, "RPE w.r.t. translation part (m) for delta = %d (frames)",
+                  rpe_delta_);
+    printStatistics(title, how, rpe->translation_stats);
+  }
+  return kExitOk;
+}
+
+}  // namespace isg::cli
