@@ -1,6 +1,7 @@
 #include "eval/alignment.hpp"
 
 #include <Eigen/SVD>
+#include <algorithm>
 #include <stdexcept>
 
 namespace isg::eval {
@@ -42,7 +43,7 @@ Similarity umeyama(const std::vector<Eigen::Vector3d>& from, const std::vector<E
     s(2, 2) = -1.0;  // no reflection
   Similarity out;
   out.rotation = svd.matrixU() * s * svd.matrixV().transpose();
-  out.scale = with_scale ? (svd.singularValues().asDiagonal() * s).trace() / variance_from : 1.0;
+  out.scale = with_scale ? (singular.asDiagonal() * s).trace() / variance_from : 1.0;
   out.translation = mean_to - out.scale * out.rotation * mean_from;
   return out;
 }
