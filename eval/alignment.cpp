@@ -36,8 +36,10 @@ Similarity umeyama(const std::vector<Eigen::Vector3d>& from, const std::vector<E
   covariance /= double(n);
   const Eigen::JacobiSVD<Eigen::Matrix3d> svd(covariance,
                                               Eigen::ComputeFullU | Eigen::ComputeFullV);
-  if (svd.rank() < 2)
+  const Eigen::Vector3d singular = svd.singularValues();
+  if (!(singular(1) > 1e-12 * std::max(singular(0), 1e-300))) {
     throw std::invalid_argument("umeyama: degenerate point sets (collinear or equal)");
+  }
   Eigen::Matrix3d s = Eigen::Matrix3d::Identity();
   if (svd.matrixU().determinant() * svd.matrixV().determinant() < 0.0)
     s(2, 2) = -1.0;  // no reflection
