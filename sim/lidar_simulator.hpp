@@ -10,17 +10,13 @@
 #include "sim/mujoco_world.hpp"
 #include "sim/ray_caster.hpp"
 #include "sim/scan_caster.hpp"
+#include "slam/messages.hpp"
 
 namespace isg::sim {
 
-// One return of the simulated VLP-16, in the LiDAR frame L *at its own firing instant* (as the
-// real sensor reports it: not deskewed).
-struct LidarPoint {
-  float x, y, z;
-  float intensity;  // 0–255: reflectivity × |cos(incidence)|
-  std::uint16_t ring;
-  float time;  // seconds after the scan's stamp
-};
+// One return of the simulated VLP-16: the localizer's own point type (slam/messages.hpp), in the
+// LiDAR frame L at its own firing instant (as the real sensor reports it: not deskewed).
+using LidarPoint = slam::ScanPoint;
 
 struct LidarScan {
   double stamp = 0.0;  // time of the turn's first firing

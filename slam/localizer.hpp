@@ -1,0 +1,48 @@
+#pragma once
+
+#include <Eigen/Geometry>
+#include <nlohmann/json.hpp>
+#include <optional>
+#include <string>
+
+#include "slam/messages.hpp"
+
+namespace isg::slam {
+
+// A localization method: sensor data in, poses out. The testbed's loop and `isg slam` feed any
+// implementation the same way, in time order; nothing here knows about the simulator.
+class Localizer {
+ public:
+  virtual ~Localizer() = default;
+
+  virtual std::string name() const = 0;
+  virtual void pushOdometry(const Odometry& odometry) = 0;
+  virtual void pushScan(const Scan& scan) = 0;
+
+  // The latest estimate of the base in the map frame M, once there is one.
+  virtual std::optional<Odometry> poseInMap() const = 0;
+  // B_T_M, once the method knows where its map lies in the plan frame B.
+  virtual std::optional<Eigen::Isometry3d> mapInPlan() const = 0;
+  // The method's graph (or state) for the run folder's sgraph.json.
+  virtual nlohmann::json graph() const = 0;
+};
+
+// The baseline: odometry alone, its map frame placed in the plan by a pose given from outside
+// (the evaluation's "dead reckoning started at the true pose").
+class DeadReckoning : public Localizer {
+ public:
+  explicit DeadReckoning(std::optional<Eigen::Isometry3d> B_T_M = std::nullopt) : B_T_M_(B_T_M) {}
+
+  std::string name() const override { return "dead-reckoning"; }
+  void pushOdometry(const Odometry& odometry) override { latest_ = odometry; }
+  void pushScan(const Scan&) override {}
+  std::optional<Odometry> poseInMap() const override { return latest_; }
+  std::optional<Eigen::Isometry3d> mapInPlan() const override { return B_T_M_; }
+  nlohmann::json graph() const override { return {{"method", name()}}; }
+
+ private:
+  std::optional<Eigen::Isometry3d> B_T_M_;
+  std::optional<Odometry> latest_;
+};
+
+}  // namespace isg::slam

@@ -1,0 +1,61 @@
+#pragma once
+
+#include <pcl/point_cloud.h>
+#include <pcl/point_types.h>
+
+#include <Eigen/Core>
+#include <vector>
+
+#include "bim/plane.hpp"
+#include "slam/messages.hpp"
+
+namespace isg::slam {
+
+// Planes from one (deskewed) scan: ALGORITHMS.md §3. Defaults are the documented starting values.
+struct PlaneExtractionOptions {
+  double min_range = 0.5;  // metres: closer points are the robot or noise
+  double max_range = 30.0;
+  double voxel = 0.1;  // voxel grid leaf
+  double ransac_distance = 0.04;
+  int min_inliers = 100;  // after the voxel grid
+  int max_planes = 30;
+  // Inliers of one RANSAC plane are split where they are this far apart, so that two coplanar
+  // walls (a corridor's two sides of a doorway, the same wall in two rooms) are separate.
+  double cluster_tolerance = 0.3;
+  double vertical_max_normal_z = 0.2;    // |n_z| below this: a wall
+  double horizontal_min_normal_z = 0.9;  // above this: a floor or a ceiling
+};
+
+enum class PlaneOrientation { kVertical, kHorizontal, kOblique };
+
+struct PlaneObservation {
+  bim::Plane plane;  // in the scan's frame, normal towards the frame's origin (the sensor)
+  Eigen::Vector3d centroid = Eigen::Vector3d::Zero();
+  int points = 0;
+  PlaneOrientation orientation = PlaneOrientation::kOblique;
+  // Walls: the inliers' extent along the wall (the horizontal direction in the plane) and in z.
+  Eigen::Vector3d start = Eigen::Vector3d::Zero(), end = Eigen::Vector3d::Zero();
+  double z_min = 0.0, z_max = 0.0;
+  double rms = 0.0;  // inliers' RMS distance from the plane
+};
+
+// Range crop and voxel grid of a scan, as a PCL cloud in the scan's frame.
+pcl::PointCloud<pcl::PointXYZ>::Ptr preprocess(const Scan& scan,
+                                               const PlaneExtractionOptions& options);
+
+// Sequential RANSAC (PCL SACMODEL_PLANE), removing each plane's inliers, each plane's inliers
+// split by Euclidean clustering; planes fitted again by least squares to each cluster.
+std::vector<PlaneObservation> extractPlanes(const pcl::PointCloud<pcl::PointXYZ>& cloud,
+                                            const PlaneExtractionOptions& options);
+
+// The building's dominant yaw in [0, π/2), from the vertical planes' normals (a histogram of
+// their yaw modulo 90°, weighted by points, refined by the mean of the peak's neighbourhood), so
+// that x/y classification works whatever the robot's start heading.
+double dominantYaw(const std::vector<PlaneObservation>& planes);
+
+enum class WallAxis { kX, kY, kOther };
+// x: normal within `tolerance` of the dominant direction (either sense); y: of its perpendicular.
+WallAxis classifyWall(const PlaneObservation& plane, double dominant_yaw,
+                      double tolerance_rad = 20.0 * 3.14159265358979 / 180.0);
+
+}  // namespace isg::slam
