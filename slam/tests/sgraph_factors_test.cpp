@@ -30,10 +30,10 @@ void expectJacobiansMatch(const ceres::CostFunction& cost,
   ASSERT_EQ(results.local_jacobians.size(), results.local_numeric_jacobians.size());
   for (std::size_t b = 0; b < results.local_jacobians.size(); ++b) {
     const auto& user = results.local_jacobians[b];
-    const auto& numeric = results.local_numeric_jacobians[b];
+    const auto& reference = results.local_numeric_jacobians[b];
     for (int r = 0; r < user.rows(); ++r) {
       for (int c = 0; c < user.cols(); ++c) {
-        EXPECT_NEAR(user(r, c), numeric(r, c), 1e-6 * std::max(1.0, std::abs(numeric(r, c))))
+        EXPECT_NEAR(user(r, c), reference(r, c), 1e-6 * std::max(1.0, std::abs(reference(r, c))))
             << "block " << b << " (" << r << ", " << c << ")";
       }
     }
