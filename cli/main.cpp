@@ -13,6 +13,7 @@
 #include "cli/cmd_inspect.hpp"
 #include "cli/cmd_render.hpp"
 #include "cli/cmd_simulate.hpp"
+#include "cli/cmd_slam.hpp"
 #include "cli/cmd_world.hpp"
 
 int main(int argc, char** argv) {
@@ -32,6 +33,7 @@ int main(int argc, char** argv) {
   commands.push_back(std::make_unique<AGraphCommand>(app));
   commands.push_back(std::make_unique<SimulateCommand>(app));
   commands.push_back(std::make_unique<RenderCommand>(app));
+  commands.push_back(std::make_unique<SlamCommand>(app));
   commands.push_back(std::make_unique<EvalCommand>(app));
 
   try {

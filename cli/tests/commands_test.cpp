@@ -243,3 +243,27 @@ TEST(Eval, BadInputNamesTheFile) {
 
 }  // namespace
 }  // namespace isg::cli
+
+namespace isg::cli {
+namespace {
+
+TEST(Slam, ReplaysADatasetAndWritesTheRun) {
+  testing::Sandbox sandbox("slam");
+  ASSERT_EQ(sandbox.run("simulate builtin:d2 -o ds --duration 12 -q").exit_code, 0);
+  const auto result = sandbox.run("slam ds -o run -q");
+  EXPECT_EQ(result.exit_code, 0) << result.err;
+  EXPECT_THAT(result.out, StartsWith("isg slam: 120 scans, "));
+  EXPECT_THAT(result.out, HasSubstr("APE rmse after SE(3) alignment: keyframes "));
+  for (const char* f : {"run/estimate_map.tum", "run/keyframes.tum", "run/sgraph.json"}) {
+    EXPECT_TRUE(sandbox.exists(f)) << f;
+  }
+  const auto graph = nlohmann::json::parse(sandbox.read("run/sgraph.json"));
+  EXPECT_EQ(graph["frame"], "M");
+  EXPECT_GT(graph["planes"].size(), 3u);
+  const auto missing = sandbox.run("slam nowhere -o run2");
+  EXPECT_EQ(missing.exit_code, 1);
+  EXPECT_EQ(missing.err, "isg slam: error: nowhere: not a dataset folder (no such directory)\n");
+}
+
+}  // namespace
+}  // namespace isg::cli

@@ -1,0 +1,91 @@
+#include "cli/cmd_slam.hpp"
+
+#include <chrono>
+#include <cstdio>
+#include <filesystem>
+
+#include "cli/progress_bar.hpp"
+#include "eval/ape.hpp"
+#include "sim/dataset_reader.hpp"
+#include "slam/sgraph.hpp"
+
+namespace isg::cli {
+
+SlamCommand::SlamCommand(CLI::App& parent) {
+  app_ = parent.add_subcommand("slam",
+                               "Replay a dataset through the S-Graph (SLAM in the map frame M)");
+  app_->footer(
+      "Feeds the dataset's odometry and scans, in time order, to the S-Graph: keyframes every "
+      "1 m or 0.5 rad, deskewing, wall planes from PCL RANSAC, association, and a sliding-window "
+      "Ceres optimisation after each keyframe. Writes RUN_DIR/estimate_map.tum (the pose in M at "
+      "each scan, as known online), keyframes.tum (the final keyframe poses) and sgraph.json. "
+      "Rooms and the plan (--plan, the iS-Graph) come with issues 5 and 6.");
+  app_->add_option("dataset", dataset_, "dataset folder made by isg simulate (or in its format)")
+      ->required();
+  app_->add_option("-o,--output", output_, "run folder to create")->required();
+  app_->add_flag("--force", force_, "replace RUN_DIR if it exists");
+  app_->add_flag("-q,--quiet", quiet_, "no progress bar");
+}
+
+int SlamCommand::run() {
+  namespace fs = std::filesystem;
+  const sim::DatasetReader dataset(dataset_);
+  if (fs::exists(output_) && !force_) {
+    throw bim::InputError(output_, "", "already exists (use --force to replace it)");
+  }
+  slam::SGraph graph(dataset.R_T_L());
+  const auto& odometry = dataset.odometry();
+  const double turn =
+      dataset.metadata().value("lidar", nlohmann::json::object()).value("rate_hz", 10.0);
+  std::size_t next_odometry = 0;
+  eval::Trajectory online;
+  ProgressBar bar("isg slam", quiet_);
+  const auto start = std::chrono::steady_clock::now();
+  for (int k = 0; k < dataset.scanCount(); ++k) {
+    const double stamp = dataset.scanStamp(k);
+    // A scan is complete at the end of its turn: the odometry up to then is known.
+    while (next_odometry < odometry.size() && odometry[next_odometry].t <= stamp + 1.0 / turn) {
+      graph.addOdometry({odometry[next_odometry].t, odometry[next_odometry].pose});
+      ++next_odometry;
+    }
+    graph.addScan(dataset.scan(k));
+    if (const auto pose = graph.poseAt(stamp)) online.push_back({stamp, *pose});
+    bar.update(double(k + 1) / dataset.scanCount(),
+               std::to_string(graph.keyframes().size()) + " keyframes, " +
+                   std::to_string(graph.planes().size()) + " planes");
+  }
+  bar.finish();
+  const double wall =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  eval::Trajectory keyframes;
+  for (const auto& kf : graph.keyframes()) keyframes.push_back({kf.stamp, kf.pose()});
+  fs::create_directories(output_);
+  writeFileAtomically((fs::path(output_) / "estimate_map.tum").string(), eval::toTumText(online));
+  writeFileAtomically((fs::path(output_) / "keyframes.tum").string(), eval::toTumText(keyframes));
+  writeFileAtomically((fs::path(output_) / "sgraph.json").string(), graph.toJson().dump(1) + "\n");
+  std::printf("isg slam: %d scans, %zu keyframes, %zu wall planes in %.1f s\n", dataset.scanCount(),
+              graph.keyframes().size(), graph.planes().size(), wall);
+  if (!dataset.groundTruth().empty() && keyframes.size() >= 3) {
+    // Against the ground truth, after SE(3) alignment (M is arbitrary): the online estimate at
+    // every scan, the final keyframes, and odometry alone at the same keyframe instants.
+    eval::ErrorOptions se3;
+    se3.align = eval::Alignment::kSE3;
+    eval::Trajectory odometry_at_keyframes;
+    for (const auto& kf : graph.keyframes())
+      odometry_at_keyframes.push_back({kf.stamp, kf.odometry});
+    const double rmse_online =
+        eval::absolutePoseError(dataset.groundTruth(), online, se3).translation_stats.rmse;
+    const double rmse_keyframes =
+        eval::absolutePoseError(dataset.groundTruth(), keyframes, se3).translation_stats.rmse;
+    const double rmse_odometry =
+        eval::absolutePoseError(dataset.groundTruth(), odometry_at_keyframes, se3)
+            .translation_stats.rmse;
+    std::printf(
+        "  APE rmse after SE(3) alignment: keyframes %.3f m (odometry at the same "
+        "instants %.3f m, %.1fx), online at every scan %.3f m\n",
+        rmse_keyframes, rmse_odometry, rmse_odometry / rmse_keyframes, rmse_online);
+  }
+  return kExitOk;
+}
+
+}  // namespace isg::cli

@@ -1,0 +1,88 @@
+#pragma once
+
+#include <Eigen/Geometry>
+#include <deque>
+#include <nlohmann/json.hpp>
+#include <optional>
+#include <vector>
+
+#include "slam/messages.hpp"
+#include "slam/odometry_buffer.hpp"
+#include "slam/plane_extraction.hpp"
+#include "slam/plane_map.hpp"
+
+namespace isg::slam {
+
+// Tuning of the S-Graph (ALGORITHMS.md §3); the defaults are documented starting values.
+struct SGraphOptions {
+  double keyframe_distance = 1.0;  // m of odometry since the last keyframe
+  double keyframe_angle = 0.5;     // rad
+  PlaneExtractionOptions extraction;
+  AssociationOptions association;
+  double sigma_plane_angle = 2.0 * 3.14159265358979 / 180.0;  // rad
+  double sigma_plane_distance = 0.03;                         // m
+  // Odometry between keyframes: σ = floor + per_metre · √distance (a random walk).
+  double sigma_odometry_translation_floor = 0.01;
+  double sigma_odometry_translation_per_metre = 0.03;
+  double sigma_odometry_rotation_floor = 0.002;
+  double sigma_odometry_rotation_per_metre = 0.012;
+  double huber = 1.0;         // on whitened plane residuals
+  int window = 25;            // keyframes optimised after each new one; older ones are held
+  int anchors_per_plane = 8;  // held older observations kept for each plane in the window
+  int max_iterations = 10;
+};
+
+// The S-Graph's keyframe and wall layers: keyframe poses in M constrained by odometry, wall
+// planes observed from them. Each new keyframe triggers an optimisation over a sliding window of
+// recent keyframes and the planes they see, anchored by older observations of those planes:
+// the cost of one optimisation stays bounded however long the run.
+class SGraph {
+ public:
+  SGraph(const Eigen::Isometry3d& R_T_L, const SGraphOptions& options = {});
+
+  void addOdometry(const Odometry& odometry);
+  // Deskews the scan with odometry and, when the robot has moved enough since the last keyframe,
+  // makes a keyframe of it. Returns whether it did.
+  bool addScan(Scan scan);
+
+  struct Keyframe {
+    double stamp = 0.0;
+    Eigen::Isometry3d odometry = Eigen::Isometry3d::Identity();  // M_T_R by odometry alone
+    Eigen::Vector3d position = Eigen::Vector3d::Zero();          // estimate
+    Eigen::Quaterniond orientation = Eigen::Quaterniond::Identity();
+    std::vector<std::pair<int, PlaneObservation>> observations;  // (map plane, observation in L)
+    Eigen::Isometry3d pose() const;
+  };
+  struct Plane {
+    MapPlane map;
+    Eigen::Vector4d parameters;    // [n, d] in M, optimised
+    std::vector<int> observed_by;  // keyframe indices
+  };
+
+  const std::deque<Keyframe>& keyframes() const { return keyframes_; }
+  const std::deque<Plane>& planes() const { return planes_; }
+  // M_T_R at the latest odometry: the last keyframe's estimate and the odometry since it.
+  std::optional<Odometry> latestPose() const;
+  // M_T_R at time t (within the buffered odometry), corrected by the last keyframe before it.
+  std::optional<Eigen::Isometry3d> poseAt(double t) const;
+  nlohmann::json toJson() const;
+
+  struct Timing {
+    double extraction_s = 0.0;  // deskew + preprocessing + planes + association
+    double optimisation_s = 0.0;
+  };
+  const std::vector<Timing>& timings() const { return timings_; }
+
+ private:
+  void optimise();
+
+  Eigen::Isometry3d R_T_L_;
+  SGraphOptions options_;
+  OdometryBuffer odometry_;
+  std::optional<Odometry> latest_odometry_;
+  std::deque<Keyframe> keyframes_;
+  std::deque<Plane> planes_;
+  std::vector<Timing> timings_;
+};
+
+}  // namespace isg::slam
