@@ -4,9 +4,12 @@
 #include <cstdio>
 #include <filesystem>
 
+#include "bim/json_reader.hpp"
+#include "bim/plan_parser.hpp"
 #include "cli/progress_bar.hpp"
 #include "eval/ape.hpp"
 #include "sim/dataset_reader.hpp"
+#include "sim/room_evaluation.hpp"
 #include "slam/sgraph.hpp"
 
 namespace isg::cli {
@@ -84,6 +87,21 @@ int SlamCommand::run() {
         "  APE rmse after SE(3) alignment: keyframes %.3f m (odometry at the same "
         "instants %.3f m, %.1fx), online at every scan %.3f m\n",
         rmse_keyframes, rmse_odometry, rmse_odometry / rmse_keyframes, rmse_online);
+    // Rooms against the dataset's plan, when it records one.
+    if (dataset.metadata().contains("plan")) {
+      const bim::JsonSource source{dataset_ + "/metadata.json", nullptr};
+      const bim::Plan plan =
+          bim::parsePlan(bim::JsonNode(dataset.metadata()["plan"], "/plan", source));
+      const auto alignment =
+          *eval::absolutePoseError(dataset.groundTruth(), keyframes, se3).alignment;
+      const std::string level = dataset.metadata()
+                                    .value("robot", nlohmann::json::object())
+                                    .value("level", plan.levels[0].id);
+      const auto report = sim::evaluateRooms(plan, level, graph, dataset.groundTruth(), alignment);
+      std::printf("  rooms: %zu detected of %zu walked through (%.0f %%), widths within %.3f m\n",
+                  report.detected.size(), report.walked.size(), 100.0 * report.rate(),
+                  report.worst_width_error);
+    }
   }
   return kExitOk;
 }

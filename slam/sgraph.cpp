@@ -7,6 +7,7 @@
 #include <cmath>
 #include <set>
 
+#include "bim/agraph_factors.hpp"
 #include "bim/plane_manifold.hpp"
 #include "slam/sgraph_factors.hpp"
 
@@ -122,6 +123,21 @@ bool SGraph::addScan(Scan scan) {
   timing.extraction_s = seconds(start);
   const auto optimisation_start = std::chrono::steady_clock::now();
   optimise();
+  // Walls seen now may complete rooms the robot stood in a little earlier: look again from every
+  // keyframe of the window.
+  {
+    std::vector<PlaneObservation> weighted;
+    for (const auto& p : planes_) {
+      PlaneObservation o;
+      o.plane = p.map.plane;
+      o.orientation = PlaneOrientation::kVertical;
+      o.points = int(10 * p.map.observations * std::max(0.5, (p.map.end - p.map.start).norm()));
+      weighted.push_back(o);
+    }
+    const double dominant = dominantYaw(weighted);
+    for (int k = std::max(0, index - options_.window + 1); k <= index; ++k)
+      detectRooms(k, dominant);
+  }
   timing.optimisation_s = seconds(optimisation_start);
   timings_.push_back(timing);
   return true;
@@ -193,6 +209,29 @@ void SGraph::optimise() {
       }
     }
   }
+  // Rooms whose planes are all in the problem: their centres follow the room factors.
+  std::vector<int> active_rooms;
+  for (int r = 0; r < int(rooms_.size()); ++r) {
+    Room& room = rooms_[r];
+    const auto& pairs = room.candidate.pairs;
+    const int count = room.candidate.four_wall ? 2 : 1;
+    bool all = true;
+    for (int i = 0; i < count; ++i)
+      all = all && planes.count(pairs[i][0]) && planes.count(pairs[i][1]);
+    if (!all) continue;
+    active_rooms.push_back(r);
+    if (room.candidate.four_wall) {
+      problem.AddResidualBlock(
+          bim::FourWallRoomFactor::create(options_.sigma_room), nullptr, room.centre.data(),
+          planes_[pairs[0][0]].parameters.data(), planes_[pairs[0][1]].parameters.data(),
+          planes_[pairs[1][0]].parameters.data(), planes_[pairs[1][1]].parameters.data());
+    } else {
+      const Eigen::Vector2d axis_point = keyframes_[room.keyframes.front()].position.head<2>();
+      problem.AddResidualBlock(bim::TwoWallRoomFactor::create(axis_point, options_.sigma_room),
+                               nullptr, room.centre.data(), planes_[pairs[0][0]].parameters.data(),
+                               planes_[pairs[0][1]].parameters.data());
+    }
+  }
   ceres::Solver::Options solver;
   solver.linear_solver_type = ceres::SPARSE_NORMAL_CHOLESKY;
   solver.max_num_iterations = options_.max_iterations;
@@ -203,6 +242,93 @@ void SGraph::optimise() {
     Plane& p = planes_[plane];
     p.map.plane = bim::toPlane(p.parameters);
   }
+}
+
+void SGraph::detectRooms(int keyframe, double dominant) {
+  std::vector<MapPlane> walls;
+  for (const auto& p : planes_) walls.push_back(p.map);
+  if (walls.size() < 2) return;
+  const Eigen::Vector2d point = keyframes_[keyframe].position.head<2>();
+  const auto candidate = detectRoom(point, walls, dominant, options_.rooms);
+  if (!candidate) return;
+  auto same_planes = [](const RoomCandidate& a, const RoomCandidate& b) {
+    if (a.four_wall != b.four_wall) return false;
+    std::vector<int> pa, pb;
+    for (int i = 0; i < (a.four_wall ? 2 : 1); ++i) {
+      pa.insert(pa.end(), {a.pairs[i][0], a.pairs[i][1]});
+      pb.insert(pb.end(), {b.pairs[i][0], b.pairs[i][1]});
+    }
+    std::sort(pa.begin(), pa.end());
+    std::sort(pb.begin(), pb.end());
+    return pa == pb;
+  };
+  // A corridor's centre moves along its axis with the keyframe it is seen from: the same
+  // corridor has the same direction, mid-plane and width.
+  auto same_corridor = [this](const Room& room, const RoomCandidate& c) {
+    if (room.candidate.four_wall || c.four_wall) return false;
+    const bim::Plane& a = planes_[room.candidate.pairs[0][0]].map.plane;
+    const bim::Plane& b = planes_[c.pairs[0][0]].map.plane;
+    if (std::abs(a.normal.dot(b.normal)) < std::cos(10.0 * M_PI / 180.0)) return false;
+    const Eigen::Vector2d n = a.normal.head<2>().normalized();
+    return std::abs(n.dot(room.centre - c.centre)) < 0.2 &&
+           std::abs(room.candidate.widths[0] - c.widths[0]) < 0.2;
+  };
+  for (auto& room : rooms_) {
+    // The same room: the same walls, or (walls re-associated since) the same place and shape.
+    const bool close = room.candidate.four_wall && candidate->four_wall &&
+                       (room.centre - candidate->centre).norm() < 0.5 &&
+                       std::abs(room.candidate.widths[0] - candidate->widths[0]) < 0.3 &&
+                       std::abs(room.candidate.widths[1] - candidate->widths[1]) < 0.3;
+    if (same_planes(room.candidate, *candidate) || close || same_corridor(room, *candidate)) {
+      if (std::find(room.keyframes.begin(), room.keyframes.end(), keyframe) ==
+          room.keyframes.end()) {
+        room.keyframes.push_back(keyframe);
+      }
+      return;
+    }
+  }
+  Room room;
+  room.candidate = *candidate;
+  room.centre = candidate->centre;
+  room.keyframes = {keyframe};
+  rooms_.push_back(room);
+}
+
+std::vector<int> SGraph::confirmedRooms() const {
+  // Inside a room: in front of all its walls.
+  auto contains = [this](const Room& room, const Eigen::Vector2d& point) {
+    for (int i = 0; i < (room.candidate.four_wall ? 2 : 1); ++i) {
+      for (int plane : room.candidate.pairs[i]) {
+        if (planes_[plane].map.plane.signedDistance({point.x(), point.y(), 1.0}) <= 0) return false;
+      }
+    }
+    return true;
+  };
+  auto area = [](const Room& r) {
+    return r.candidate.four_wall ? r.candidate.widths[0] * r.candidate.widths[1] : 1e300;
+  };
+  std::vector<int> out;
+  for (int i = 0; i < int(rooms_.size()); ++i) {
+    const Room& room = rooms_[i];
+    // Corridors must be stood in twice; four-wall rooms are already checked by their walls' cover.
+    if (!room.candidate.four_wall && room.keyframes.size() < 2) continue;
+    bool encloses_smaller = false;
+    for (int j = 0; j < int(rooms_.size()) && !encloses_smaller; ++j) {
+      const Room& other = rooms_[j];
+      encloses_smaller = j != i && other.candidate.four_wall && room.candidate.four_wall &&
+                         area(other) < area(room) - 0.5 && contains(room, other.centre);
+    }
+    if (!encloses_smaller) out.push_back(i);
+  }
+  return out;
+}
+
+std::optional<Eigen::Vector2d> SGraph::floorCentre() const {
+  const auto confirmed = confirmedRooms();
+  if (confirmed.empty()) return std::nullopt;
+  Eigen::Vector2d sum = Eigen::Vector2d::Zero();
+  for (int r : confirmed) sum += rooms_[r].centre;
+  return sum / double(confirmed.size());
 }
 
 nlohmann::json SGraph::toJson() const {
@@ -224,7 +350,27 @@ nlohmann::json SGraph::toJson() const {
          {"end", {p.map.end.x(), p.map.end.y()}},
          {"observations", p.map.observations}});
   }
-  return {{"frame", "M"}, {"keyframes", keyframes}, {"planes", planes}};
+  nlohmann::json rooms = nlohmann::json::array();
+  for (int i : confirmedRooms()) {
+    const auto& r = rooms_[i];
+    nlohmann::json pairs = nlohmann::json::array();
+    for (int k = 0; k < (r.candidate.four_wall ? 2 : 1); ++k) {
+      pairs.push_back({r.candidate.pairs[k][0], r.candidate.pairs[k][1]});
+    }
+    nlohmann::json widths = r.candidate.four_wall
+                                ? nlohmann::json{r.candidate.widths[0], r.candidate.widths[1]}
+                                : nlohmann::json{r.candidate.widths[0]};
+    rooms.push_back({{"id", i},
+                     {"kind", r.candidate.four_wall ? "four_wall" : "two_wall"},
+                     {"centre", {r.centre.x(), r.centre.y()}},
+                     {"plane_pairs", pairs},
+                     {"widths", widths},
+                     {"keyframes", r.keyframes.size()}});
+  }
+  nlohmann::json out = {
+      {"frame", "M"}, {"keyframes", keyframes}, {"planes", planes}, {"rooms", rooms}};
+  if (const auto floor = floorCentre()) out["floor"] = {{"centre", {floor->x(), floor->y()}}};
+  return out;
 }
 
 }  // namespace isg::slam

@@ -10,6 +10,7 @@
 #include "slam/odometry_buffer.hpp"
 #include "slam/plane_extraction.hpp"
 #include "slam/plane_map.hpp"
+#include "slam/room_detection.hpp"
 
 namespace isg::slam {
 
@@ -30,6 +31,8 @@ struct SGraphOptions {
   int window = 25;            // keyframes optimised after each new one; older ones are held
   int anchors_per_plane = 8;  // held older observations kept for each plane in the window
   int max_iterations = 10;
+  RoomDetectionOptions rooms;
+  double sigma_room = 0.05;  // m, room-centre factors
 };
 
 // The S-Graph's keyframe and wall layers: keyframe poses in M constrained by odometry, wall
@@ -59,7 +62,20 @@ class SGraph {
     std::vector<int> observed_by;  // keyframe indices
   };
 
+  struct Room {
+    RoomCandidate candidate;
+    Eigen::Vector2d centre = Eigen::Vector2d::Zero();  // ρ, optimised with the room factor
+    std::vector<int> keyframes;                        // keyframes that stood in it
+  };
+  // The floor node: the centre of the rooms (one level).
+  std::optional<Eigen::Vector2d> floorCentre() const;
+
   const std::deque<Keyframe>& keyframes() const { return keyframes_; }
+  // Every room candidate seen so far, and the confirmed ones: not enclosing a smaller four-wall
+  // candidate (a rectangle over two rooms whose dividing wall was not yet mapped when it was
+  // found), and for corridors stood in at two keyframes or more.
+  const std::deque<Room>& roomCandidates() const { return rooms_; }
+  std::vector<int> confirmedRooms() const;
   const std::deque<Plane>& planes() const { return planes_; }
   // M_T_R at the latest odometry: the last keyframe's estimate and the odometry since it.
   std::optional<Odometry> latestPose() const;
@@ -75,6 +91,7 @@ class SGraph {
 
  private:
   void optimise();
+  void detectRooms(int keyframe, double dominant_yaw);
 
   Eigen::Isometry3d R_T_L_;
   SGraphOptions options_;
@@ -82,6 +99,7 @@ class SGraph {
   std::optional<Odometry> latest_odometry_;
   std::deque<Keyframe> keyframes_;
   std::deque<Plane> planes_;
+  std::deque<Room> rooms_;
   std::vector<Timing> timings_;
 };
 
