@@ -1,5 +1,6 @@
 #include "cli/cmd_slam.hpp"
 
+#include <algorithm>
 #include <chrono>
 #include <cstdio>
 #include <filesystem>
@@ -98,9 +99,17 @@ int SlamCommand::run() {
                                     .value("robot", nlohmann::json::object())
                                     .value("level", plan.levels[0].id);
       const auto report = sim::evaluateRooms(plan, level, graph, dataset.groundTruth(), alignment);
-      std::printf("  rooms: %zu detected of %zu walked through (%.0f %%), widths within %.3f m\n",
-                  report.detected.size(), report.walked.size(), 100.0 * report.rate(),
-                  report.worst_width_error);
+      std::string missed;
+      for (const auto& id : report.walked) {
+        if (std::find(report.detected.begin(), report.detected.end(), id) ==
+            report.detected.end()) {
+          missed += (missed.empty() ? "" : ", ") + id;
+        }
+      }
+      std::printf(
+          "  rooms: %zu detected of %zu walked through (%.0f %%), widths within %.3f m%s%s\n",
+          report.detected.size(), report.walked.size(), 100.0 * report.rate(),
+          report.worst_width_error, missed.empty() ? "" : "; missed: ", missed.c_str());
     }
   }
   return kExitOk;

@@ -10,11 +10,11 @@
 
 namespace isg::sim {
 
-// How well an S-Graph found the rooms (issue 5's measure): of the plan's rooms the robot walked
-// through (a ground-truth pose inside the outline), those matched by a confirmed S-Graph room
-// whose centre, taken into B by `B_from_M`, lies inside the plan room and whose widths are within
-// `tolerance` of the A-Graph room's (sorted; a corridor's one width against the room's narrower
-// one).
+// How well an S-Graph found the rooms (issue 5's measure): of the plan's four-wall rooms and
+// corridors the robot walked through (a ground-truth pose inside the outline), those matched by a
+// confirmed S-Graph room whose centre, taken into B by `B_from_M`, lies inside the plan room and
+// whose widths are within `tolerance` of the A-Graph room's (sorted; a corridor's one width against
+// the room's narrower one).
 struct RoomDetectionReport {
   std::vector<std::string> walked;    // plan room ids
   std::vector<std::string> detected;  // of those

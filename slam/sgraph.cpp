@@ -101,10 +101,7 @@ bool SGraph::addScan(Scan scan) {
   for (const auto& observation : extractPlanes(*cloud, options_.extraction)) {
     if (observation.orientation != PlaneOrientation::kVertical) continue;
     const PlaneObservation in_map = toMap(observation, M_T_L);
-    std::vector<MapPlane> candidates;
-    candidates.reserve(planes_.size());
-    for (const auto& p : planes_) candidates.push_back(p.map);
-    int plane = associate(in_map, candidates, options_.association);
+    int plane = associate(in_map, activeWalls(), options_.association);
     if (plane < 0) {
       Plane created;
       created.map = {in_map.plane, in_map.start.head<2>(), in_map.end.head<2>(), 0};
@@ -123,11 +120,13 @@ bool SGraph::addScan(Scan scan) {
   timing.extraction_s = seconds(start);
   const auto optimisation_start = std::chrono::steady_clock::now();
   optimise();
+  mergeDuplicatePlanes(std::max(0, index - options_.window + 1));
   // Walls seen now may complete rooms the robot stood in a little earlier: look again from every
   // keyframe of the window.
   {
     std::vector<PlaneObservation> weighted;
     for (const auto& p : planes_) {
+      if (p.merged_into >= 0) continue;
       PlaneObservation o;
       o.plane = p.map.plane;
       o.orientation = PlaneOrientation::kVertical;
@@ -244,9 +243,75 @@ void SGraph::optimise() {
   }
 }
 
-void SGraph::detectRooms(int keyframe, double dominant) {
+std::vector<MapPlane> SGraph::activeWalls() const {
   std::vector<MapPlane> walls;
-  for (const auto& p : planes_) walls.push_back(p.map);
+  walls.reserve(planes_.size());
+  for (const auto& p : planes_) {
+    walls.push_back(p.map);
+    if (p.merged_into >= 0) {
+      // Never associated, never a room's wall: normal upwards, extent nowhere.
+      walls.back().plane = {Eigen::Vector3d::UnitZ(), 1e9};
+      walls.back().start = walls.back().end = Eigen::Vector2d::Constant(1e9);
+    }
+  }
+  return walls;
+}
+
+void SGraph::mergeDuplicatePlanes(int first_keyframe) {
+  std::set<int> recent;
+  for (int k = first_keyframe; k < int(keyframes_.size()); ++k) {
+    for (const auto& [plane, observation] : keyframes_[k].observations) recent.insert(plane);
+  }
+  for (int j : recent) {
+    Plane& pj = planes_[j];
+    if (pj.merged_into >= 0) continue;
+    // Compare j, as one more observation, with every other active plane.
+    PlaneObservation as_observation;
+    as_observation.plane = pj.map.plane;
+    as_observation.start = Eigen::Vector3d(pj.map.start.x(), pj.map.start.y(), 0.0);
+    as_observation.end = Eigen::Vector3d(pj.map.end.x(), pj.map.end.y(), 0.0);
+    as_observation.centroid = 0.5 * (as_observation.start + as_observation.end);
+    auto walls = activeWalls();
+    walls[j].plane = {Eigen::Vector3d::UnitZ(), 1e9};  // not with itself
+    AssociationOptions strict = options_.association;
+    strict.max_angle_deg = 5.0;
+    strict.max_distance = 0.06;
+    const int i = associate(as_observation, walls, strict);
+    if (i < 0) continue;
+    // Keep the plane observed most; move the other's observations over.
+    const int keep = planes_[i].map.observations >= pj.map.observations ? i : j;
+    const int drop = keep == i ? j : i;
+    Plane& kept = planes_[keep];
+    Plane& dropped = planes_[drop];
+    for (int k : dropped.observed_by) {
+      for (auto& [plane, observation] : keyframes_[k].observations) {
+        if (plane == drop) plane = keep;
+      }
+      kept.observed_by.push_back(k);
+    }
+    std::sort(kept.observed_by.begin(), kept.observed_by.end());
+    kept.observed_by.erase(std::unique(kept.observed_by.begin(), kept.observed_by.end()),
+                           kept.observed_by.end());
+    PlaneObservation extent;
+    extent.start = Eigen::Vector3d(dropped.map.start.x(), dropped.map.start.y(), 0.0);
+    extent.end = Eigen::Vector3d(dropped.map.end.x(), dropped.map.end.y(), 0.0);
+    extend(kept.map, extent);
+    kept.map.observations += dropped.map.observations;
+    dropped.merged_into = keep;
+    dropped.observed_by.clear();
+    // Rooms built on the dropped plane now stand on the kept one.
+    for (auto& room : rooms_) {
+      for (auto& pair : room.candidate.pairs) {
+        for (int& p : pair) {
+          if (p == drop) p = keep;
+        }
+      }
+    }
+  }
+}
+
+void SGraph::detectRooms(int keyframe, double dominant) {
+  const std::vector<MapPlane> walls = activeWalls();
   if (walls.size() < 2) return;
   const Eigen::Vector2d point = keyframes_[keyframe].position.head<2>();
   const auto candidate = detectRoom(point, walls, dominant, options_.rooms);

@@ -60,6 +60,7 @@ class SGraph {
     MapPlane map;
     Eigen::Vector4d parameters;    // [n, d] in M, optimised
     std::vector<int> observed_by;  // keyframe indices
+    int merged_into = -1;          // >= 0: found to be the same surface as that plane
   };
 
   struct Room {
@@ -92,6 +93,10 @@ class SGraph {
  private:
   void optimise();
   void detectRooms(int keyframe, double dominant_yaw);
+  // Planes of the window that turned out to be the same surface (created before the optimisation
+  // brought them together) are merged into the one observed most.
+  void mergeDuplicatePlanes(int first_keyframe);
+  std::vector<MapPlane> activeWalls() const;  // merged planes get an empty, far-away extent
 
   Eigen::Isometry3d R_T_L_;
   SGraphOptions options_;
