@@ -12,6 +12,7 @@
 #include "sim/dataset_reader.hpp"
 #include "sim/room_evaluation.hpp"
 #include "slam/sgraph.hpp"
+#include "slam/timing_report.hpp"
 
 namespace isg::cli {
 
@@ -67,8 +68,10 @@ int SlamCommand::run() {
   writeFileAtomically((fs::path(output_) / "estimate_map.tum").string(), eval::toTumText(online));
   writeFileAtomically((fs::path(output_) / "keyframes.tum").string(), eval::toTumText(keyframes));
   writeFileAtomically((fs::path(output_) / "sgraph.json").string(), graph.toJson().dump(1) + "\n");
-  std::printf("isg slam: %d scans, %zu keyframes, %zu wall planes in %.1f s\n", dataset.scanCount(),
-              graph.keyframes().size(), graph.planes().size(), wall);
+  std::printf("isg slam: %d scans, %zu keyframes, %zu wall planes, %zu rooms in %.1f s\n",
+              dataset.scanCount(), graph.keyframes().size(), graph.planes().size(),
+              graph.confirmedRooms().size(), wall);
+  std::printf("%s", slam::formatTiming(slam::timingAt(graph.timings(), {50, 200, 500})).c_str());
   if (!dataset.groundTruth().empty() && keyframes.size() >= 3) {
     // Against the ground truth, after SE(3) alignment (M is arbitrary): the online estimate at
     // every scan, the final keyframes, and odometry alone at the same keyframe instants.

@@ -25,6 +25,11 @@ PlaneObservation toMap(const PlaneObservation& o, const Eigen::Isometry3d& M_T_L
   out.centroid = M_T_L * o.centroid;
   out.start = M_T_L * o.start;
   out.end = M_T_L * o.end;
+  // The height range in M: the observation's corners at its lowest and highest points.
+  const double z0 = (M_T_L * Eigen::Vector3d(o.start.x(), o.start.y(), o.z_min)).z();
+  const double z1 = (M_T_L * Eigen::Vector3d(o.start.x(), o.start.y(), o.z_max)).z();
+  out.z_min = std::min(z0, z1);
+  out.z_max = std::max(z0, z1);
   return out;
 }
 

@@ -15,6 +15,7 @@ struct MapPlane {
   Eigen::Vector2d start = Eigen::Vector2d::Zero();
   Eigen::Vector2d end = Eigen::Vector2d::Zero();
   int observations = 0;
+  double z_min = 0.0, z_max = 0.0;  // heights at which it has been seen, in M
 };
 
 struct AssociationOptions {

@@ -22,6 +22,8 @@ struct RoomDetectionOptions {
   double min_coverage = 0.5;  // share of a side its wall's observed extent must cover
   double axis_tolerance_deg = 15.0;
   double corridor_min_length_ratio = 2.5;  // corridor: observed length ≥ this × width
+  // A room's wall has been seen over at least this height: a box of clutter has not.
+  double min_wall_height = 1.2;
 };
 
 struct RoomCandidate {

@@ -104,13 +104,16 @@ bool SGraph::addScan(Scan scan) {
     int plane = associate(in_map, activeWalls(), options_.association);
     if (plane < 0) {
       Plane created;
-      created.map = {in_map.plane, in_map.start.head<2>(), in_map.end.head<2>(), 0};
+      created.map = {in_map.plane, in_map.start.head<2>(), in_map.end.head<2>(), 0, in_map.z_min,
+                     in_map.z_max};
       created.parameters = bim::toVector(in_map.plane);
       planes_.push_back(created);
       plane = int(planes_.size()) - 1;
     }
     Plane& p = planes_[plane];
     extend(p.map, in_map);
+    p.map.z_min = std::min(p.map.z_min, in_map.z_min);
+    p.map.z_max = std::max(p.map.z_max, in_map.z_max);
     ++p.map.observations;
     p.observed_by.push_back(index);
     keyframe.observations.emplace_back(plane, observation);
@@ -297,6 +300,8 @@ void SGraph::mergeDuplicatePlanes(int first_keyframe) {
     extent.end = Eigen::Vector3d(dropped.map.end.x(), dropped.map.end.y(), 0.0);
     extend(kept.map, extent);
     kept.map.observations += dropped.map.observations;
+    kept.map.z_min = std::min(kept.map.z_min, dropped.map.z_min);
+    kept.map.z_max = std::max(kept.map.z_max, dropped.map.z_max);
     dropped.merged_into = keep;
     dropped.observed_by.clear();
     // Rooms built on the dropped plane now stand on the kept one.

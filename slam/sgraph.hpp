@@ -85,8 +85,8 @@ class SGraph {
   nlohmann::json toJson() const;
 
   struct Timing {
-    double extraction_s = 0.0;  // deskew + preprocessing + planes + association
-    double optimisation_s = 0.0;
+    double extraction_s = 0.0;    // deskew + preprocessing + planes + association
+    double optimisation_s = 0.0;  // the window optimisation, plane merging and room detection
   };
   const std::vector<Timing>& timings() const { return timings_; }
 

@@ -253,6 +253,7 @@ TEST(Slam, ReplaysADatasetAndWritesTheRun) {
   const auto result = sandbox.run("slam ds -o run -q");
   EXPECT_EQ(result.exit_code, 0) << result.err;
   EXPECT_THAT(result.out, StartsWith("isg slam: 120 scans, "));
+  EXPECT_THAT(result.out, HasSubstr(" rooms in "));
   EXPECT_THAT(result.out, HasSubstr("APE rmse after SE(3) alignment: keyframes "));
   for (const char* f : {"run/estimate_map.tum", "run/keyframes.tum", "run/sgraph.json"}) {
     EXPECT_TRUE(sandbox.exists(f)) << f;

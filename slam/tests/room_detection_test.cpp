@@ -64,6 +64,17 @@ TEST(RoomDetection, CorridorIsATwoWallRoom) {
   EXPECT_NEAR((room->centre - Eigen::Vector2d(5.0, 0.9)).norm(), 0.0, 1e-9);
 }
 
+TEST(RoomDetection, LowBoxesOfClutterAreNotWalls) {
+  auto walls = box();
+  MapPlane clutter = wall({-1, 0}, {2.5, 0.5}, {2.5, 2.0});  // a box's face between the walls
+  clutter.z_min = -0.4;
+  clutter.z_max = 0.4;
+  walls.push_back(clutter);
+  const auto room = detectRoom({1.0, 1.0}, walls, 0.0);
+  ASSERT_TRUE(room);
+  EXPECT_NEAR(room->widths[0], 4.0, 1e-9);
+}
+
 TEST(RoomDetection, NearestWallsWinAndNarrowGapsAreNoRoom) {
   auto walls = box();
   // A second wall beyond the east one (the next room's far wall, facing the same way).

@@ -1,0 +1,51 @@
+#include "slam/timing_report.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+
+namespace isg::slam {
+
+namespace {
+
+double percentile(std::vector<double> v, double q) {
+  std::sort(v.begin(), v.end());
+  const std::size_t i =
+      std::min(v.size() - 1, std::size_t(std::ceil(q * v.size())) - (q > 0 ? 1 : 0));
+  return v[i];
+}
+
+}  // namespace
+
+std::vector<TimingAt> timingAt(const std::vector<SGraph::Timing>& timings,
+                               const std::vector<int>& sizes) {
+  std::vector<TimingAt> out;
+  for (int n : sizes) {
+    const int lo = std::max(0, n - 10), hi = std::min(int(timings.size()), n + 10);
+    if (hi - lo < 5) continue;
+    std::vector<double> extraction, optimisation;
+    for (int k = lo; k < hi; ++k) {
+      extraction.push_back(1e3 * timings[k].extraction_s);
+      optimisation.push_back(1e3 * timings[k].optimisation_s);
+    }
+    out.push_back({n, hi - lo, percentile(extraction, 0.5), percentile(extraction, 0.95),
+                   percentile(optimisation, 0.5), percentile(optimisation, 0.95)});
+  }
+  return out;
+}
+
+std::string formatTiming(const std::vector<TimingAt>& rows) {
+  std::string out;
+  char line[256];
+  for (const auto& r : rows) {
+    std::snprintf(line, sizeof line,
+                  "  at %4d keyframes: extraction + association median %.1f ms, p95 %.1f ms; "
+                  "optimisation, merging and rooms median %.1f ms, p95 %.1f ms\n",
+                  r.keyframes, r.extraction_median_ms, r.extraction_p95_ms,
+                  r.optimisation_median_ms, r.optimisation_p95_ms);
+    out += line;
+  }
+  return out;
+}
+
+}  // namespace isg::slam

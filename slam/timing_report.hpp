@@ -1,0 +1,22 @@
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "slam/sgraph.hpp"
+
+namespace isg::slam {
+
+// Median and 95th percentile of the per-keyframe times around given graph sizes (keyframes
+// [n - 10, n + 10)), to show whether the cost stays bounded as the graph grows.
+struct TimingAt {
+  int keyframes = 0;
+  int samples = 0;
+  double extraction_median_ms = 0, extraction_p95_ms = 0;
+  double optimisation_median_ms = 0, optimisation_p95_ms = 0;
+};
+std::vector<TimingAt> timingAt(const std::vector<SGraph::Timing>& timings,
+                               const std::vector<int>& sizes);
+std::string formatTiming(const std::vector<TimingAt>& rows);
+
+}  // namespace isg::slam
