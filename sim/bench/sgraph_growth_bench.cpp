@@ -1,7 +1,7 @@
-// The S-Graph's cost per keyframe as the graph grows (issue 5): a long tour of a 60-room grid
+// The S-Graph's cost per keyframe as the graph grows (issue 5): a long tour of a 120-room grid
 // plan, simulated in memory and fed to the S-Graph; times per keyframe (extraction + association,
 // and the optimisation) reported as median and p95 around 50, 200 and 500 keyframes. Run it on
-// its own: it simulates and maps about 20 minutes of walking.
+// its own: it simulates and maps about half an hour of walking.
 #include <benchmark/benchmark.h>
 
 #include "bim/json_reader.hpp"
@@ -16,8 +16,8 @@ namespace {
 
 void BM_SGraphGrowth(benchmark::State& state) {
   bim::GridPlanSpec spec;
-  spec.rows = 6;
-  spec.cols = 10;
+  spec.rows = 10;
+  spec.cols = 12;
   const nlohmann::json document = bim::makeGridPlan(spec);
   const bim::JsonSource source{"grid.json", nullptr};
   bim::Scenario scenario;

@@ -9,8 +9,13 @@ namespace {
 MapPlane wall(const Eigen::Vector2d& normal, const Eigen::Vector2d& from,
               const Eigen::Vector2d& to) {
   const Eigen::Vector2d mid = 0.5 * (from + to);
-  return {bim::Plane::throughPoint({normal.x(), normal.y(), 0.0}, {mid.x(), mid.y(), 0.0}), from,
-          to, 3};
+  // Seen from 0.4 m below the sensor's base height to 2.5 m above it: a full-height wall.
+  return {bim::Plane::throughPoint({normal.x(), normal.y(), 0.0}, {mid.x(), mid.y(), 0.0}),
+          from,
+          to,
+          3,
+          -0.4,
+          2.5};
 }
 
 // The room [0, 4] × [0, 3] with its four walls facing inwards, fully observed.
