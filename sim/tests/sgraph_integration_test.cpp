@@ -44,3 +44,37 @@ TEST(SGraphOnSimulatedData, KeyframesBeatOdometryOnD1AsBuilt) {
 
 }  // namespace
 }  // namespace isg::sim
+
+#include "slam/sgraph_localizer.hpp"
+
+namespace isg::sim {
+namespace {
+
+TEST(SGraphOnSimulatedData, AsALocalizerItTracksTheBaseInItsMap) {
+  Simulation sim(worlds::loadScenarioOrBuiltin("builtin:d2.asbuilt", nullptr));
+  const double duration = 12.0;
+  const eval::Trajectory odometry = sim.odometry(duration);
+  slam::SGraphLocalizer localizer(sim.R_T_L());
+  slam::Localizer& method = localizer;
+  EXPECT_EQ(method.name(), "s-graph");
+  EXPECT_FALSE(method.poseInMap());
+  std::size_t next = 0;
+  for (int k = 0; k < sim.scanCount(duration); ++k) {
+    const LidarScan scan = sim.scan(k);
+    while (next < odometry.size() && odometry[next].t <= scan.stamp + sim.scanPeriod()) {
+      method.pushOdometry({odometry[next].t, odometry[next].pose});
+      ++next;
+    }
+    method.pushScan({scan.stamp, scan.points});
+  }
+  ASSERT_TRUE(method.poseInMap());
+  EXPECT_FALSE(method.mapInPlan());  // no plan: it knows only its own map frame
+  // In M (the start pose), the base has moved as the ground truth says, within a few centimetres.
+  const Eigen::Isometry3d truth =
+      sim.trajectory().pose(0.0).inverse() * sim.trajectory().pose(method.poseInMap()->stamp);
+  EXPECT_LT((method.poseInMap()->M_T_R.translation() - truth.translation()).head<2>().norm(), 0.05);
+  EXPECT_GT(method.graph()["planes"].size(), 3u);
+}
+
+}  // namespace
+}  // namespace isg::sim
