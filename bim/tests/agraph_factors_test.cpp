@@ -3,6 +3,8 @@
 #include <ceres/gradient_checker.h>
 #include <gtest/gtest.h>
 
+#include "bim/tests/jacobian_check.hpp"
+
 #include <random>
 
 #include "bim/agraph.hpp"
@@ -13,18 +15,6 @@ namespace {
 
 Eigen::Vector4d plane(const Eigen::Vector3d& normal, const Eigen::Vector3d& point) {
   return toVector(Plane::throughPoint(normal, point));
-}
-
-// Checks a cost function's Jacobians (in the manifolds' tangent spaces) against numeric
-// differentiation at the given parameters.
-void expectJacobiansMatchNumeric(const ceres::CostFunction& cost,
-                                 const std::vector<const ceres::Manifold*>& manifolds,
-                                 const std::vector<double*>& parameters) {
-  ceres::NumericDiffOptions numeric;
-  ceres::GradientChecker checker(&cost, &manifolds, numeric);
-  ceres::GradientChecker::ProbeResults results;
-  EXPECT_TRUE(checker.Probe(parameters.data(), 1e-7, &results)) << results.error_log;
-  EXPECT_LT(results.maximum_relative_error, 1e-7);
 }
 
 TEST(PlaneManifold, PlusMinusRoundTrip) {
@@ -109,7 +99,8 @@ TEST(WallFactor, ZeroAtEquationOneAndJacobiansMatch) {
   EXPECT_NEAR(residual.norm(), 1.0, 1e-9);
   PlaneManifold pm;
   a = plane({-0.99, 0.1, 0.02}, {3.9, 0.3, 0});
-  expectJacobiansMatchNumeric(*cost, {nullptr, &pm, &pm}, {centre.data(), a.data(), b.data()});
+  isg::testing::expectJacobiansMatchNumeric(*cost, {nullptr, &pm, &pm},
+                                            {centre.data(), a.data(), b.data()});
 }
 
 TEST(FourWallRoomFactor, ZeroAtTheRoomCentreAndJacobiansMatch) {
@@ -130,8 +121,9 @@ TEST(FourWallRoomFactor, ZeroAtTheRoomCentreAndJacobiansMatch) {
       (fourWallRoomCentre(toPlane(x1), toPlane(x2), toPlane(y1), toPlane(y2)) - room).norm(), 0.0,
       1e-12);
   PlaneManifold pm;
-  expectJacobiansMatchNumeric(*cost, {nullptr, &pm, &pm, &pm, &pm},
-                              {room.data(), x1.data(), x2.data(), y1.data(), y2.data()});
+  isg::testing::expectJacobiansMatchNumeric(
+      *cost, {nullptr, &pm, &pm, &pm, &pm},
+      {room.data(), x1.data(), x2.data(), y1.data(), y2.data()});
 }
 
 TEST(TwoWallRoomFactor, ZeroOnTheCorridorAxisEvenThroughTheOrigin) {
@@ -146,7 +138,8 @@ TEST(TwoWallRoomFactor, ZeroOnTheCorridorAxisEvenThroughTheOrigin) {
   cost->Evaluate(params, residual.data(), nullptr);
   EXPECT_NEAR(residual.norm(), 0.0, 1e-12);
   PlaneManifold pm;
-  expectJacobiansMatchNumeric(*cost, {nullptr, &pm, &pm}, {room.data(), a.data(), b.data()});
+  isg::testing::expectJacobiansMatchNumeric(*cost, {nullptr, &pm, &pm},
+                                            {room.data(), a.data(), b.data()});
 }
 
 TEST(DoorwayFactor, ZeroWhenBothRoomsSeeTheDoorWhereItIs) {
@@ -164,8 +157,8 @@ TEST(DoorwayFactor, ZeroWhenBothRoomsSeeTheDoorWhereItIs) {
   EXPECT_NEAR(residual.head<2>().norm(), 0.0, 1e-12);
   EXPECT_NEAR(residual.tail<2>().norm(), 1.0, 1e-9);
   EXPECT_NEAR((residual.head<2>() - residual.tail<2>()).norm(), 1.0, 1e-9);
-  expectJacobiansMatchNumeric(*cost, {nullptr, nullptr, nullptr},
-                              {r1.data(), r2.data(), door.data()});
+  isg::testing::expectJacobiansMatchNumeric(*cost, {nullptr, nullptr, nullptr},
+                                            {r1.data(), r2.data(), door.data()});
 }
 
 TEST(PlanePriorFactor, MinimalResidualAndJacobians) {
@@ -183,7 +176,7 @@ TEST(PlanePriorFactor, MinimalResidualAndJacobians) {
   EXPECT_NEAR(residual(0), 1.0, 1e-9);
   EXPECT_NEAR(residual(1), 0.0, 1e-9);
   EXPECT_NEAR(residual(2), 1.0, 1e-9);
-  expectJacobiansMatchNumeric(*cost, {&pm}, {p.data()});
+  isg::testing::expectJacobiansMatchNumeric(*cost, {&pm}, {p.data()});
 }
 
 }  // namespace

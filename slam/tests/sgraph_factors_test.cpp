@@ -4,6 +4,8 @@
 #include <ceres/manifold.h>
 #include <gtest/gtest.h>
 
+#include "bim/tests/jacobian_check.hpp"
+
 #include <memory>
 
 namespace isg::slam {
@@ -16,28 +18,6 @@ Eigen::Isometry3d pose(double x, double y, double z, double yaw, double pitch = 
                 Eigen::AngleAxisd(pitch, Eigen::Vector3d::UnitY()))
                    .toRotationMatrix();
   return T;
-}
-
-void expectJacobiansMatch(const ceres::CostFunction& cost,
-                          const std::vector<const ceres::Manifold*>& manifolds,
-                          const std::vector<double*>& parameters) {
-  ceres::NumericDiffOptions numeric;
-  ceres::GradientChecker checker(&cost, &manifolds, numeric);
-  ceres::GradientChecker::ProbeResults results;
-  checker.Probe(parameters.data(), 1e-6, &results);
-  // Mixed tolerance: relative for large entries, absolute for entries that are (nearly) zero,
-  // where a relative error means nothing.
-  ASSERT_EQ(results.local_jacobians.size(), results.local_numeric_jacobians.size());
-  for (std::size_t b = 0; b < results.local_jacobians.size(); ++b) {
-    const auto& user = results.local_jacobians[b];
-    const auto& reference = results.local_numeric_jacobians[b];
-    for (int r = 0; r < user.rows(); ++r) {
-      for (int c = 0; c < user.cols(); ++c) {
-        EXPECT_NEAR(user(r, c), reference(r, c), 1e-6 * std::max(1.0, std::abs(reference(r, c))))
-            << "block " << b << " (" << r << ", " << c << ")";
-      }
-    }
-  }
 }
 
 TEST(PosePlaneFactor, ResidualByHandAndJacobians) {
@@ -66,8 +46,8 @@ TEST(PosePlaneFactor, ResidualByHandAndJacobians) {
   q = Eigen::Quaterniond(pose(0, 0, 0, 0.3, 0.1).rotation());
   ceres::EigenQuaternionManifold quaternion;
   bim::PlaneManifold plane;
-  expectJacobiansMatch(*cost, {nullptr, &quaternion, &plane},
-                       {position.data(), q.coeffs().data(), wall.data()});
+  isg::testing::expectJacobiansMatchNumeric(*cost, {nullptr, &quaternion, &plane},
+                                            {position.data(), q.coeffs().data(), wall.data()});
 }
 
 TEST(OdometryFactor, ZeroAtTheMeasurementAndJacobians) {
@@ -87,8 +67,9 @@ TEST(OdometryFactor, ZeroAtTheMeasurementAndJacobians) {
   EXPECT_NEAR(residual.head<3>().norm(), 0.0, 1e-9);
   EXPECT_NEAR(residual.tail<3>().norm(), 2 * std::sin(0.005) / 0.01, 1e-9);
   ceres::EigenQuaternionManifold quaternion;
-  expectJacobiansMatch(*cost, {nullptr, &quaternion, nullptr, &quaternion},
-                       {pa.data(), qa.coeffs().data(), pb.data(), qb.coeffs().data()});
+  isg::testing::expectJacobiansMatchNumeric(
+      *cost, {nullptr, &quaternion, nullptr, &quaternion},
+      {pa.data(), qa.coeffs().data(), pb.data(), qb.coeffs().data()});
 }
 
 }  // namespace
