@@ -5,6 +5,7 @@
 #include <nlohmann/json.hpp>
 
 #include "eval/ape.hpp"
+#include "eval/coverage.hpp"
 
 namespace isg::cli {
 
@@ -86,6 +87,7 @@ int EvalCommand::run() {
           : (options.align == eval::Alignment::kSE3 ? "with SE(3) Umeyama alignment"
                                                     : "with Sim(3) Umeyama alignment");
   const std::string how = alignment + (options.project_xy ? ", projected to xy" : "");
+  const eval::Coverage coverage = eval::localizationCoverage(reference, estimate);
   if (json_) {
     nlohmann::ordered_json out = {{"reference", reference_},
                                   {"estimate", estimate_},
@@ -93,6 +95,9 @@ int EvalCommand::run() {
                                   {"project", options.project_xy ? "xy" : "none"},
                                   {"t_max_diff", options.max_diff},
                                   {"pairs", ape.association.reference.size()},
+                                  {"localized", coverage.localized},
+                                  {"time_to_first_localization_s", coverage.time_to_first},
+                                  {"share_localized", coverage.share},
                                   {"ape",
                                    {{"translation_m", toJson(ape.translation_stats)},
                                     {"rotation_deg", toJson(ape.rotation_stats)}}}};
@@ -110,6 +115,8 @@ int EvalCommand::run() {
       "...with max. time diff.: %g (s)\n\n",
       ape.association.reference.size(), std::min(reference.size(), estimate.size()),
       reference_.c_str(), estimate_.c_str(), options.max_diff);
+  std::printf("localized after %.2f s, for %.1f %% of the run\n\n", coverage.time_to_first,
+              100.0 * coverage.share);
   printStatistics("APE w.r.t. translation part (m)", how, ape.translation_stats);
   printStatistics("APE w.r.t. rotation angle in degrees (deg)", how, ape.rotation_stats);
   if (rpe) {

@@ -268,3 +268,24 @@ TEST(Slam, ReplaysADatasetAndWritesTheRun) {
 
 }  // namespace
 }  // namespace isg::cli
+
+namespace isg::cli {
+namespace {
+
+TEST(Eval, ReportsWhenTheEstimateStarts) {
+  testing::Sandbox sandbox("eval_coverage");
+  sandbox.write(
+      "gt.tum",
+      "0 0 0 0 0 0 0 1\n1 1 0 0 0 0 0 1\n2 2 0 0 0 0 0 1\n3 3 0 0 0 0 0 1\n4 4 0 0 0 0 0 1\n");
+  sandbox.write("est.tum", "1 1 0 0 0 0 0 1\n2 2 0 0 0 0 0 1\n3 3 0 0 0 0 0 1\n4 4 0 0 0 0 0 1\n");
+  auto result = sandbox.run("eval gt.tum est.tum");
+  EXPECT_EQ(result.exit_code, 0) << result.err;
+  EXPECT_THAT(result.out, HasSubstr("localized after 1.00 s, for 75.0 % of the run\n"));
+  result = sandbox.run("eval gt.tum est.tum --json");
+  const auto doc = nlohmann::json::parse(result.out);
+  EXPECT_EQ(doc["localized"], true);
+  EXPECT_DOUBLE_EQ(doc["share_localized"].get<double>(), 0.75);
+}
+
+}  // namespace
+}  // namespace isg::cli

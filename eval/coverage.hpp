@@ -1,0 +1,19 @@
+#pragma once
+
+#include "eval/tum.hpp"
+
+namespace isg::eval {
+
+// How much of a run a global localizer was localized for (ALGORITHMS.md §7). A localizer's
+// estimate in B has rows only once it is localized, so: localized when it has any row; the time
+// to first localization is the first estimate's stamp less the first ground-truth stamp; the share
+// localized is the part of the ground truth's span from that first estimate to the end.
+struct Coverage {
+  bool localized = false;
+  double time_to_first = 0.0;  // seconds (meaningless when not localized)
+  double share = 0.0;          // 0 … 1
+};
+
+Coverage localizationCoverage(const Trajectory& ground_truth, const Trajectory& estimate);
+
+}  // namespace isg::eval
