@@ -98,16 +98,19 @@ bool SGraph::addScan(Scan scan) {
 
   const auto cloud = preprocess(scan, options_.extraction);
   const Eigen::Isometry3d M_T_L = initial * R_T_L_;
+  // The map as association sees it, kept in step as this keyframe's observations change it.
+  std::vector<MapPlane> walls = activeWalls();
   for (const auto& observation : extractPlanes(*cloud, options_.extraction)) {
     if (observation.orientation != PlaneOrientation::kVertical) continue;
     const PlaneObservation in_map = toMap(observation, M_T_L);
-    int plane = associate(in_map, activeWalls(), options_.association);
+    int plane = associate(in_map, walls, options_.association);
     if (plane < 0) {
       Plane created;
       created.map = {in_map.plane, in_map.start.head<2>(), in_map.end.head<2>(), 0, in_map.z_min,
                      in_map.z_max};
       created.parameters = bim::toVector(in_map.plane);
       planes_.push_back(created);
+      walls.push_back(created.map);
       plane = int(planes_.size()) - 1;
     }
     Plane& p = planes_[plane];
@@ -116,6 +119,7 @@ bool SGraph::addScan(Scan scan) {
     p.map.z_max = std::max(p.map.z_max, in_map.z_max);
     ++p.map.observations;
     p.observed_by.push_back(index);
+    walls[plane] = p.map;
     keyframe.observations.emplace_back(plane, observation);
   }
   keyframes_.push_back(std::move(keyframe));
@@ -137,8 +141,10 @@ bool SGraph::addScan(Scan scan) {
       weighted.push_back(o);
     }
     const double dominant = dominantYaw(weighted);
-    for (int k = std::max(0, index - options_.window + 1); k <= index; ++k)
-      detectRooms(k, dominant);
+    const std::vector<MapPlane> walls_now = activeWalls();
+    for (int k = std::max(0, index - options_.window + 1); k <= index; ++k) {
+      detectRooms(k, dominant, walls_now);
+    }
   }
   timing.optimisation_s = seconds(optimisation_start);
   timings_.push_back(timing);
@@ -315,8 +321,7 @@ void SGraph::mergeDuplicatePlanes(int first_keyframe) {
   }
 }
 
-void SGraph::detectRooms(int keyframe, double dominant) {
-  const std::vector<MapPlane> walls = activeWalls();
+void SGraph::detectRooms(int keyframe, double dominant, const std::vector<MapPlane>& walls) {
   if (walls.size() < 2) return;
   const Eigen::Vector2d point = keyframes_[keyframe].position.head<2>();
   const auto candidate = detectRoom(point, walls, dominant, options_.rooms);

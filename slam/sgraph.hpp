@@ -92,7 +92,7 @@ class SGraph {
 
  private:
   void optimise();
-  void detectRooms(int keyframe, double dominant_yaw);
+  void detectRooms(int keyframe, double dominant_yaw, const std::vector<MapPlane>& walls);
   // Planes of the window that turned out to be the same surface (created before the optimisation
   // brought them together) are merged into the one observed most.
   void mergeDuplicatePlanes(int first_keyframe);
