@@ -1,5 +1,6 @@
 #include "bim/synthetic_plan.hpp"
 
+#include <random>
 #include <string>
 #include <vector>
 
@@ -13,9 +14,13 @@ double varied(double mean, int index) {
   return mean * (1.0 + kPattern[index % 8]);
 }
 
-std::vector<double> lines(int count, double mean) {
+std::vector<double> lines(int count, double mean, std::uint64_t seed) {
+  std::mt19937_64 rng(seed);
+  std::uniform_real_distribution<double> factor(0.8, 1.2);
   std::vector<double> out{0.0};
-  for (int i = 0; i < count; ++i) out.push_back(out.back() + varied(mean, i));
+  for (int i = 0; i < count; ++i) {
+    out.push_back(out.back() + (seed == 0 ? varied(mean, i) : mean * factor(rng)));
+  }
   return out;
 }
 
@@ -23,8 +28,10 @@ std::vector<double> lines(int count, double mean) {
 
 nlohmann::json makeGridPlan(const GridPlanSpec& spec) {
   using nlohmann::json;
-  const std::vector<double> xs = lines(spec.cols, spec.cell_width);
-  const std::vector<double> ys = lines(spec.rows, spec.cell_depth);
+  const std::vector<double> xs = lines(spec.cols, spec.cell_width, spec.size_seed);
+  // Rows draw from another stream than columns.
+  const std::vector<double> ys =
+      lines(spec.rows, spec.cell_depth, spec.size_seed == 0 ? 0 : spec.size_seed ^ 0x9e3779b9ULL);
   const double half = 0.5 * spec.wall_thickness;
   auto room_id = [&](int r, int c) { return "R" + std::to_string(r * spec.cols + c + 1); };
 

@@ -1,5 +1,6 @@
 #pragma once
 
+#include <cstdint>
 #include <nlohmann/json.hpp>
 
 namespace isg::bim {
@@ -16,6 +17,9 @@ struct GridPlanSpec {
   double wall_thickness = 0.15;
   double height = 3.0;
   bool give_door_rooms = false;  // false: doors leave "rooms" out and the parser infers them
+  // 0: sizes vary in a fixed pattern of period 8 (so a wide grid repeats itself, as real
+  // buildings do); otherwise each row and column size is drawn, ±20 %, from this seed.
+  std::uint64_t size_seed = 0;
 };
 
 // The plan as a JSON document in the "isg.plan" v1 format.

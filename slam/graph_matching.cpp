@@ -1,0 +1,480 @@
+#include "slam/graph_matching.hpp"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <map>
+#include <set>
+
+namespace isg::slam {
+
+namespace {
+
+constexpr double kPi = 3.14159265358979323846;
+
+double wrapAngle(double a) { return std::remainder(a, 2.0 * kPi); }
+// Difference of two axes (directions modulo π).
+double axisDifference(double a, double b) { return std::abs(std::remainder(a - b, kPi)); }
+
+Eigen::Matrix2d rotation(double yaw) { return Eigen::Rotation2Dd(yaw).toRotationMatrix(); }
+
+Eigen::Vector2d apply(const Eigen::Vector3d& x_y_yaw, const Eigen::Vector2d& p) {
+  return rotation(x_y_yaw.z()) * p + x_y_yaw.head<2>();
+}
+
+double yawOfNormal(const bim::Plane& plane) {
+  return std::atan2(plane.normal.y(), plane.normal.x());
+}
+
+bool pointInPolygon(const std::vector<Eigen::Vector2d>& polygon, const Eigen::Vector2d& p) {
+  bool inside = false;
+  for (std::size_t i = 0, j = polygon.size() - 1; i < polygon.size(); j = i++) {
+    const Eigen::Vector2d& a = polygon[i];
+    const Eigen::Vector2d& b = polygon[j];
+    if ((a.y() > p.y()) != (b.y() > p.y()) &&
+        p.x() < (b.x() - a.x()) * (p.y() - a.y()) / (b.y() - a.y()) + a.x()) {
+      inside = !inside;
+    }
+  }
+  return inside;
+}
+
+}  // namespace
+
+const char* toString(MatchStatus status) {
+  switch (status) {
+    case MatchStatus::kNotYet:
+      return "not yet";
+    case MatchStatus::kAmbiguous:
+      return "ambiguous";
+    case MatchStatus::kMatched:
+      return "matched";
+    case MatchStatus::kContradicted:
+      return "contradicted";
+  }
+  return "?";
+}
+
+Eigen::Isometry3d MatchResult::B_T_M() const {
+  Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
+  T.linear() = Eigen::AngleAxisd(best.x_y_yaw.z(), Eigen::Vector3d::UnitZ()).toRotationMatrix();
+  T.translation() = Eigen::Vector3d(best.x_y_yaw.x(), best.x_y_yaw.y(), 0.0);
+  return T;
+}
+
+nlohmann::json MatchResult::toJson() const {
+  nlohmann::json rooms = nlohmann::json::array(), planes = nlohmann::json::array();
+  for (const auto& [s, a] : best.rooms) rooms.push_back({s, a});
+  for (const auto& [s, a] : best.planes) planes.push_back({s, a});
+  return {{"status", toString(status)},
+          {"reason", reason},
+          {"x_y_yaw", {best.x_y_yaw.x(), best.x_y_yaw.y(), best.x_y_yaw.z()}},
+          {"score", best.score},
+          {"second_score", second_score},
+          {"hypotheses", hypotheses},
+          {"clusters", clusters},
+          {"rooms", rooms},
+          {"planes", planes},
+          {"doors_passed", best.doors_passed},
+          {"doors_missing", best.doors_missing},
+          {"rooms_contradicted", best.rooms_contradicted},
+          {"plane_rms", best.plane_rms},
+          {"unexplained_length", best.unexplained_length},
+          {"seconds", seconds}};
+}
+
+GraphMatcher::GraphMatcher(const bim::AGraph& graph, const MatchingOptions& options)
+    : graph_(&graph), options_(options) {
+  // The grid's extent: every surface segment and room outline.
+  Eigen::Vector2d lo = Eigen::Vector2d::Constant(1e300), hi = Eigen::Vector2d::Constant(-1e300);
+  auto grow = [&](const Eigen::Vector2d& p) {
+    lo = lo.cwiseMin(p);
+    hi = hi.cwiseMax(p);
+  };
+  for (const auto& s : graph.surfaces) {
+    for (const auto& [a, b] : s.segments) grow(a), grow(b);
+  }
+  for (const auto& r : graph.rooms) {
+    for (const auto& p : r.outline) grow(p);
+  }
+  if (lo.x() > hi.x()) lo = hi = Eigen::Vector2d::Zero();
+  const double margin = 2.0;
+  origin_ = lo - Eigen::Vector2d::Constant(margin);
+  columns_ = int(std::ceil((hi.x() - lo.x() + 2 * margin) / cell_)) + 1;
+  rows_ = int(std::ceil((hi.y() - lo.y() + 2 * margin) / cell_)) + 1;
+  cells_.resize(std::size_t(columns_) * rows_);
+  auto insert_box = [&](Eigen::Vector2d a, Eigen::Vector2d b, double pad, auto&& add) {
+    const Eigen::Vector2d box_lo = a.cwiseMin(b) - Eigen::Vector2d::Constant(pad);
+    const Eigen::Vector2d box_hi = a.cwiseMax(b) + Eigen::Vector2d::Constant(pad);
+    const int c0 = std::max(0, int((box_lo.x() - origin_.x()) / cell_));
+    const int c1 = std::min(columns_ - 1, int((box_hi.x() - origin_.x()) / cell_));
+    const int r0 = std::max(0, int((box_lo.y() - origin_.y()) / cell_));
+    const int r1 = std::min(rows_ - 1, int((box_hi.y() - origin_.y()) / cell_));
+    for (int r = r0; r <= r1; ++r) {
+      for (int c = c0; c <= c1; ++c) add(cells_[std::size_t(r) * columns_ + c]);
+    }
+  };
+  // A surface is found from any S-plane whose middle could lie within the tolerances of it.
+  const double surface_pad = options_.plane_distance + options_.plane_gap + 0.5;
+  for (int i = 0; i < int(graph.surfaces.size()); ++i) {
+    const auto& s = graph.surfaces[i];
+    surface_yaw_.push_back(yawOfNormal(s.plane));
+    for (const auto& [a, b] : s.segments) {
+      insert_box(a, b, surface_pad, [&](Cell& cell) {
+        if (cell.surfaces.empty() || cell.surfaces.back() != i) cell.surfaces.push_back(i);
+      });
+    }
+  }
+  for (int i = 0; i < int(graph.rooms.size()); ++i) {
+    const auto& r = graph.rooms[i];
+    room_yaw_.push_back(r.pairs.empty() ? 0.0 : yawOfNormal(graph.surfaces[r.pairs[0][0]].plane));
+    if (r.outline.empty()) continue;
+    Eigen::Vector2d a = r.outline[0], b = r.outline[0];
+    for (const auto& p : r.outline) a = a.cwiseMin(p), b = b.cwiseMax(p);
+    insert_box(a, b, options_.centre_tolerance, [&](Cell& cell) { cell.rooms.push_back(i); });
+  }
+  doors_of_room_.resize(graph.rooms.size());
+  for (int d = 0; d < int(graph.doorways.size()); ++d) {
+    for (int r : graph.doorways[d].rooms) {
+      if (r >= 0 && r < int(graph.rooms.size())) doors_of_room_[r].push_back(d);
+    }
+  }
+}
+
+const GraphMatcher::Cell* GraphMatcher::cellAt(const Eigen::Vector2d& p) const {
+  const int c = int(std::floor((p.x() - origin_.x()) / cell_));
+  const int r = int(std::floor((p.y() - origin_.y()) / cell_));
+  if (c < 0 || r < 0 || c >= columns_ || r >= rows_) return nullptr;
+  return &cells_[std::size_t(r) * columns_ + c];
+}
+
+bool GraphMatcher::joinedByDoor(int a, int b) const {
+  for (int d : doors_of_room_[a]) {
+    const auto& rooms = graph_->doorways[d].rooms;
+    if (std::find(rooms.begin(), rooms.end(), b) != rooms.end()) return true;
+  }
+  return false;
+}
+
+int GraphMatcher::matchRoom(const MatchRoom& room, const Eigen::Vector3d& x_y_yaw,
+                            double* distance_out) const {
+  const Eigen::Vector2d centre = apply(x_y_yaw, room.centre);
+  const Cell* cell = cellAt(centre);
+  if (!cell) return -1;
+  const double axis = room.axis_yaw + x_y_yaw.z();
+  const double axis_tolerance = 20.0 * kPi / 180.0;
+  int best = -1;
+  double best_distance = 1e300;
+  for (int i : cell->rooms) {
+    const auto& a = graph_->rooms[i];
+    double distance = 0.0;
+    if (room.four_wall) {
+      if (a.kind != bim::RoomKind::kFourWall) continue;
+      distance = (a.centre - centre).norm();
+      if (distance > options_.centre_tolerance) continue;
+      const double d0 = axisDifference(axis, room_yaw_[i]);
+      const bool same_order = d0 < axis_tolerance;
+      const bool swapped = std::abs(d0 - kPi / 2) < axis_tolerance;
+      if (!same_order && !swapped) continue;
+      const double w0 = same_order ? a.widths[0] : a.widths[1];
+      const double w1 = same_order ? a.widths[1] : a.widths[0];
+      if (std::abs(w0 - room.widths[0]) > options_.width_tolerance ||
+          std::abs(w1 - room.widths[1]) > options_.width_tolerance) {
+        continue;
+      }
+    } else {
+      if (a.kind != bim::RoomKind::kTwoWall) continue;
+      if (axisDifference(axis, room_yaw_[i]) > axis_tolerance) continue;
+      if (std::abs(a.widths[0] - room.widths[0]) > options_.width_tolerance) continue;
+      // Across the corridor the centre is known; along it, only that it is inside.
+      const Eigen::Vector2d n = graph_->surfaces[a.pairs[0][0]].plane.normal.head<2>().normalized();
+      distance = std::abs(n.dot(centre - a.centre));
+      if (distance > options_.centre_tolerance) continue;
+      const Eigen::Vector2d along(-n.y(), n.x());
+      double lo = 1e300, hi = -1e300;
+      for (const auto& p : a.outline) {
+        lo = std::min(lo, along.dot(p));
+        hi = std::max(hi, along.dot(p));
+      }
+      const double s = along.dot(centre);
+      if (s < lo - options_.centre_tolerance || s > hi + options_.centre_tolerance) continue;
+    }
+    if (distance < best_distance) {
+      best_distance = distance;
+      best = i;
+    }
+  }
+  *distance_out = best_distance;
+  return best;
+}
+
+int GraphMatcher::matchPlane(const MatchPlane& plane, const Eigen::Vector3d& x_y_yaw,
+                             double* overlap, double* distance) const {
+  const Eigen::Vector2d a = apply(x_y_yaw, plane.start);
+  const Eigen::Vector2d b = apply(x_y_yaw, plane.end);
+  const Eigen::Vector2d middle = 0.5 * (a + b);
+  const Cell* cell = cellAt(middle);
+  if (!cell) return -1;
+  const double yaw = yawOfNormal(plane.plane) + x_y_yaw.z();
+  const double angle_tolerance = options_.plane_angle_deg * kPi / 180.0;
+  int best = -1;
+  double best_distance = 1e300;
+  for (int i : cell->surfaces) {
+    const auto& s = graph_->surfaces[i];
+    if (std::abs(wrapAngle(yaw - surface_yaw_[i])) > angle_tolerance) continue;
+    const double offset = std::abs(s.plane.signedDistance({middle.x(), middle.y(), 0.0}));
+    if (offset > options_.plane_distance || offset >= best_distance) continue;
+    // The S-plane's extent must reach the surface's exposed parts.
+    const Eigen::Vector2d along(-s.plane.normal.y(), s.plane.normal.x());
+    const double lo = std::min(along.dot(a), along.dot(b));
+    const double hi = std::max(along.dot(a), along.dot(b));
+    double shared = 0.0, gap = 1e300;
+    for (const auto& [p, q] : s.segments) {
+      const double slo = std::min(along.dot(p), along.dot(q));
+      const double shi = std::max(along.dot(p), along.dot(q));
+      const double o = std::min(hi, shi) - std::max(lo, slo);
+      shared += std::max(0.0, o);
+      gap = std::min(gap, std::max(0.0, -o));
+    }
+    if (shared <= 0.0 && gap > options_.plane_gap) continue;
+    best = i;
+    best_distance = offset;
+    *overlap = shared;
+  }
+  *distance = best_distance;
+  return best;
+}
+
+Verification GraphMatcher::verify(const MatchInput& input, const Eigen::Vector3d& x_y_yaw) const {
+  Verification v;
+  v.x_y_yaw = x_y_yaw;
+  std::vector<int> room_match(input.rooms.size(), -1);
+  std::map<int, double> a_rooms;  // matched A-rooms and their best fit weight
+  auto fit = [](double error, double sigma) {
+    return std::exp(-0.5 * (error / sigma) * (error / sigma));
+  };
+  for (std::size_t i = 0; i < input.rooms.size(); ++i) {
+    const MatchRoom& room = input.rooms[i];
+    double distance = 0.0;
+    room_match[i] = matchRoom(room, x_y_yaw, &distance);
+    if (room_match[i] >= 0) {
+      v.rooms.emplace_back(room.id, room_match[i]);
+      double& weight = a_rooms[room_match[i]];
+      weight = std::max(weight, fit(distance, options_.room_sigma));
+      continue;
+    }
+    if (!room.four_wall) continue;
+    // An unmatched four-wall room standing inside a four-wall room of the plan that it does not
+    // fit is evidence against this transform.
+    const Eigen::Vector2d centre = apply(x_y_yaw, room.centre);
+    if (const Cell* cell = cellAt(centre)) {
+      for (int r : cell->rooms) {
+        const auto& a = graph_->rooms[r];
+        if (a.kind == bim::RoomKind::kFourWall && pointInPolygon(a.outline, centre)) {
+          ++v.rooms_contradicted;
+          break;
+        }
+      }
+    }
+  }
+  double shared_total = 0.0, squared = 0.0;
+  for (const MatchPlane& plane : input.planes) {
+    if (plane.length() < options_.min_plane_length) continue;
+    double overlap = 0.0, distance = 0.0;
+    const int s = matchPlane(plane, x_y_yaw, &overlap, &distance);
+    if (s < 0) {
+      v.unexplained_length += plane.length();
+      continue;
+    }
+    v.planes.emplace_back(plane.id, s);
+    shared_total += std::min(overlap, plane.length()) * fit(distance, options_.plane_sigma);
+    squared += distance * distance;
+  }
+  if (!v.planes.empty()) v.plane_rms = std::sqrt(squared / double(v.planes.size()));
+  for (const auto& [i, j] : input.transitions) {
+    const int a = room_match[i], b = room_match[j];
+    if (a < 0 || b < 0 || a == b) continue;
+    if (joinedByDoor(a, b)) {
+      ++v.doors_passed;
+    } else {
+      ++v.doors_missing;
+    }
+  }
+  double rooms_total = 0.0;
+  for (const auto& [a, weight] : a_rooms) rooms_total += weight;
+  v.score = shared_total - options_.unexplained_penalty * v.unexplained_length +
+            options_.room_score * rooms_total +
+            options_.door_score * double(v.doors_passed - v.doors_missing) -
+            options_.room_score * double(v.rooms_contradicted);
+  return v;
+}
+
+Eigen::Vector3d GraphMatcher::refine(const MatchInput& input,
+                                     const Verification& verification) const {
+  std::vector<const MatchPlane*> planes_by_id;
+  for (const auto& p : input.planes) {
+    if (p.id >= int(planes_by_id.size())) planes_by_id.resize(p.id + 1, nullptr);
+    planes_by_id[p.id] = &p;
+  }
+  std::vector<const MatchRoom*> rooms_by_id;
+  for (const auto& r : input.rooms) {
+    if (r.id >= int(rooms_by_id.size())) rooms_by_id.resize(r.id + 1, nullptr);
+    rooms_by_id[r.id] = &r;
+  }
+  // Gauss-Newton on (x, y, yaw): point-to-plane distances of each matched S-plane's two ends to
+  // its surface, and four-wall room centres. Residuals beyond 0.3 m are left out (outliers).
+  Eigen::Vector3d x = verification.x_y_yaw;
+  for (int iteration = 0; iteration < 5; ++iteration) {
+    Eigen::Matrix3d H = Eigen::Matrix3d::Zero();
+    Eigen::Vector3d g = Eigen::Vector3d::Zero();
+    const Eigen::Matrix2d R = rotation(x.z());
+    auto add = [&](double r, const Eigen::Vector3d& J) {
+      if (std::abs(r) > 0.3) return;
+      H += J * J.transpose();
+      g += J * r;
+    };
+    for (const auto& [s, a] : verification.planes) {
+      const MatchPlane& p = *planes_by_id[s];
+      const Eigen::Vector2d n = graph_->surfaces[a].plane.normal.head<2>();
+      const double d = graph_->surfaces[a].plane.d;
+      for (const Eigen::Vector2d& point : {p.start, p.end}) {
+        const Eigen::Vector2d q = R * point + x.head<2>();
+        const Eigen::Vector2d dq_dyaw = R * Eigen::Vector2d(-point.y(), point.x());
+        add(n.dot(q) + d, Eigen::Vector3d(n.x(), n.y(), n.dot(dq_dyaw)));
+      }
+    }
+    for (const auto& [s, a] : verification.rooms) {
+      const MatchRoom& room = *rooms_by_id[s];
+      if (!room.four_wall) continue;
+      const Eigen::Vector2d q = R * room.centre + x.head<2>();
+      const Eigen::Vector2d dq_dyaw = R * Eigen::Vector2d(-room.centre.y(), room.centre.x());
+      const Eigen::Vector2d r = q - graph_->rooms[a].centre;
+      add(r.x(), Eigen::Vector3d(1.0, 0.0, dq_dyaw.x()));
+      add(r.y(), Eigen::Vector3d(0.0, 1.0, dq_dyaw.y()));
+    }
+    if (std::abs(H.determinant()) < 1e-9) break;
+    const Eigen::Vector3d step = -H.ldlt().solve(g);
+    x += step;
+    if (step.norm() < 1e-6) break;
+  }
+  x.z() = wrapAngle(x.z());
+  return x;
+}
+
+MatchResult GraphMatcher::match(const MatchInput& input) const {
+  const auto start = std::chrono::steady_clock::now();
+  MatchResult result;
+  // 1. Hypotheses from every compatible (S four-wall room, A four-wall room) pair.
+  std::vector<Eigen::Vector3d> hypotheses;
+  for (const MatchRoom& s : input.rooms) {
+    if (!s.four_wall) continue;
+    for (int i = 0; i < int(graph_->rooms.size()); ++i) {
+      const auto& a = graph_->rooms[i];
+      if (a.kind != bim::RoomKind::kFourWall) continue;
+      for (int k = 0; k < 4; ++k) {
+        const bool swapped = k % 2 == 1;
+        const double w0 = swapped ? a.widths[1] : a.widths[0];
+        const double w1 = swapped ? a.widths[0] : a.widths[1];
+        if (std::abs(w0 - s.widths[0]) > options_.width_tolerance ||
+            std::abs(w1 - s.widths[1]) > options_.width_tolerance) {
+          continue;
+        }
+        const double yaw = wrapAngle(room_yaw_[i] + k * kPi / 2 - s.axis_yaw);
+        const Eigen::Vector2d t = a.centre - rotation(yaw) * s.centre;
+        hypotheses.emplace_back(t.x(), t.y(), yaw);
+      }
+    }
+  }
+  result.hypotheses = int(hypotheses.size());
+  if (hypotheses.empty()) {
+    result.reason = input.rooms.empty() ? "no room in the S-Graph yet"
+                                        : "no S-Graph room fits a plan room in kind and size";
+    result.seconds =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    return result;
+  }
+  // 2. Each checked against the whole S-Graph.
+  std::vector<Verification> verified;
+  verified.reserve(hypotheses.size());
+  for (const auto& h : hypotheses) verified.push_back(verify(input, h));
+  std::sort(verified.begin(), verified.end(),
+            [](const Verification& a, const Verification& b) { return a.score > b.score; });
+  // 3. Clusters: the same answer proposed by several room pairs. Two transforms are the same
+  // answer when they put the S-Graph's rooms in the same place.
+  Eigen::Vector2d middle = Eigen::Vector2d::Zero();
+  for (const auto& r : input.rooms) middle += r.centre / double(input.rooms.size());
+  std::vector<const Verification*> representatives;
+  for (const auto& v : verified) {
+    bool joined = false;
+    for (const auto* r : representatives) {
+      if ((apply(v.x_y_yaw, middle) - apply(r->x_y_yaw, middle)).norm() <
+              options_.cluster_distance &&
+          std::abs(wrapAngle(v.x_y_yaw.z() - r->x_y_yaw.z())) <
+              options_.cluster_yaw_deg * kPi / 180.0) {
+        joined = true;
+        break;
+      }
+    }
+    if (!joined) representatives.push_back(&v);
+  }
+  result.clusters = int(representatives.size());
+  // 4. The best few answers, each refined over its correspondences and checked again, so that
+  // the first and the second are compared at their best.
+  std::vector<Verification> finalists;
+  for (std::size_t i = 0; i < representatives.size() && i < 4; ++i) {
+    Verification refined = verify(input, refine(input, *representatives[i]));
+    finalists.push_back(refined.score >= representatives[i]->score ? refined : *representatives[i]);
+  }
+  std::sort(finalists.begin(), finalists.end(),
+            [](const Verification& a, const Verification& b) { return a.score > b.score; });
+  result.best = finalists[0];
+  for (std::size_t i = 1; i < finalists.size(); ++i) {
+    // Refinement may bring two clusters to the same answer: the second must be distinct.
+    const bool same =
+        (apply(finalists[i].x_y_yaw, middle) - apply(result.best.x_y_yaw, middle)).norm() <
+            options_.cluster_distance &&
+        std::abs(wrapAngle(finalists[i].x_y_yaw.z() - result.best.x_y_yaw.z())) <
+            options_.cluster_yaw_deg * kPi / 180.0;
+    if (!same) {
+      result.second = finalists[i];
+      break;
+    }
+  }
+  if (result.second.score == 0.0 && representatives.size() > finalists.size()) {
+    result.second = *representatives[finalists.size()];
+  }
+  result.second_score = result.second.score;
+
+  std::set<int> a_rooms;
+  for (const auto& [s, a] : result.best.rooms) a_rooms.insert(a);
+  std::set<int> own_planes;
+  for (const auto& r : input.rooms) {
+    for (const auto& [s, a] : result.best.rooms) {
+      if (s == r.id) own_planes.insert(r.planes.begin(), r.planes.end());
+    }
+  }
+  int planes_outside = 0;
+  for (const auto& [s, a] : result.best.planes) planes_outside += own_planes.count(s) ? 0 : 1;
+  const bool supported = int(a_rooms.size()) >= options_.min_rooms ||
+                         (a_rooms.size() == 1 && planes_outside >= options_.min_planes_outside);
+  char text[256];
+  std::snprintf(text, sizeof text,
+                "best: %zu rooms, %zu planes (%d outside its rooms), %d doors, score %.1f; "
+                "second answer %.1f",
+                a_rooms.size(), result.best.planes.size(), planes_outside, result.best.doors_passed,
+                result.best.score, result.second_score);
+  if (!supported || result.best.score <= 0.0) {
+    result.status = MatchStatus::kNotYet;
+    result.reason = std::string("too little evidence: ") + text;
+  } else if (result.second_score >= options_.ambiguity_ratio * result.best.score) {
+    result.status = MatchStatus::kAmbiguous;
+    result.reason = std::string("two answers explain the map alike: ") + text;
+  } else {
+    result.status = MatchStatus::kMatched;
+    result.reason = text;
+  }
+  result.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  return result;
+}
+
+}  // namespace isg::slam
