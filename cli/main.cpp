@@ -12,6 +12,7 @@
 #include "cli/cmd_eval.hpp"
 #include "cli/cmd_inspect.hpp"
 #include "cli/cmd_render.hpp"
+#include "cli/cmd_run.hpp"
 #include "cli/cmd_simulate.hpp"
 #include "cli/cmd_slam.hpp"
 #include "cli/cmd_world.hpp"
@@ -34,6 +35,7 @@ int main(int argc, char** argv) {
   commands.push_back(std::make_unique<SimulateCommand>(app));
   commands.push_back(std::make_unique<RenderCommand>(app));
   commands.push_back(std::make_unique<SlamCommand>(app));
+  commands.push_back(std::make_unique<RunCommand>(app));
   commands.push_back(std::make_unique<EvalCommand>(app));
 
   try {

@@ -101,6 +101,16 @@ bool SGraph::addScan(Scan scan) {
   // The map as association sees it, kept in step as this keyframe's observations change it.
   std::vector<MapPlane> walls = activeWalls();
   for (const auto& observation : extractPlanes(*cloud, options_.extraction)) {
+    if (observation.orientation == PlaneOrientation::kHorizontal) {
+      // The floor: a horizontal plane well below the sensor, facing up.
+      const bim::Plane in_M = observation.plane.transformed(M_T_L);
+      const double z = -in_M.d / in_M.normal.z();
+      if (in_M.normal.z() > 0.9 && z < M_T_L.translation().z() - 0.3) {
+        floor_sum_ += z;
+        ++floor_count_;
+      }
+      continue;
+    }
     if (observation.orientation != PlaneOrientation::kVertical) continue;
     const PlaneObservation in_map = toMap(observation, M_T_L);
     int plane = associate(in_map, walls, options_.association);
@@ -240,6 +250,7 @@ void SGraph::optimise() {
                                planes_[pairs[0][1]].parameters.data());
     }
   }
+  if (window_hook_) window_hook_(problem, planes, active_rooms);
   ceres::Solver::Options solver;
   solver.linear_solver_type = ceres::SPARSE_NORMAL_CHOLESKY;
   solver.max_num_iterations = options_.max_iterations;
@@ -396,6 +407,11 @@ std::vector<int> SGraph::confirmedRooms() const {
     if (!encloses_smaller) out.push_back(i);
   }
   return out;
+}
+
+std::optional<double> SGraph::floorHeight() const {
+  if (floor_count_ == 0) return std::nullopt;
+  return floor_sum_ / floor_count_;
 }
 
 std::optional<Eigen::Vector2d> SGraph::floorCentre() const {

@@ -2,8 +2,10 @@
 
 #include <Eigen/Geometry>
 #include <deque>
+#include <functional>
 #include <nlohmann/json.hpp>
 #include <optional>
+#include <set>
 #include <vector>
 
 #include "slam/messages.hpp"
@@ -11,6 +13,10 @@
 #include "slam/plane_extraction.hpp"
 #include "slam/plane_map.hpp"
 #include "slam/room_detection.hpp"
+
+namespace ceres {
+class Problem;
+}
 
 namespace isg::slam {
 
@@ -84,6 +90,18 @@ class SGraph {
   std::optional<Eigen::Isometry3d> poseAt(double t) const;
   nlohmann::json toJson() const;
 
+  // The floor's height in M (from the floor planes seen below the sensor), once seen.
+  std::optional<double> floorHeight() const;
+
+  // More factors for every window optimisation: the iS-Graph's link to the plan. Called with the
+  // problem, the plane indices in the window and the rooms whose planes all are; it may add
+  // blocks of its own and factors on planeParameters / roomCentre of those.
+  using WindowHook = std::function<void(ceres::Problem& problem, const std::set<int>& planes,
+                                        const std::vector<int>& rooms)>;
+  void setWindowHook(WindowHook hook) { window_hook_ = std::move(hook); }
+  double* planeParameters(int plane) { return planes_[plane].parameters.data(); }
+  double* roomCentre(int room) { return rooms_[room].centre.data(); }
+
   struct Timing {
     double extraction_s = 0.0;    // deskew + preprocessing + planes + association
     double optimisation_s = 0.0;  // the window optimisation, plane merging and room detection
@@ -106,6 +124,9 @@ class SGraph {
   std::deque<Plane> planes_;
   std::deque<Room> rooms_;
   std::vector<Timing> timings_;
+  WindowHook window_hook_;
+  double floor_sum_ = 0.0;
+  int floor_count_ = 0;
 };
 
 }  // namespace isg::slam

@@ -1,0 +1,27 @@
+#pragma once
+
+#include <cstdint>
+#include <optional>
+
+#include "cli/common.hpp"
+
+namespace isg::cli {
+
+// isg run [PLAN|SCENARIO] [-o RUN_DIR]: the simulation in the loop with a localizer.
+class RunCommand : public Command {
+ public:
+  explicit RunCommand(CLI::App& parent);
+  int run() override;
+
+ private:
+  std::string input_;
+  std::string output_;
+  std::string method_ = "is-graphs";
+  std::optional<std::uint64_t> seed_;
+  double duration_ = -1.0;
+  int threads_ = 2;
+  bool force_ = false;
+  bool quiet_ = false;
+};
+
+}  // namespace isg::cli

@@ -1,0 +1,228 @@
+#include "slam/isgraph_localizer.hpp"
+
+#include <cmath>
+
+#include "bim/agraph_factors.hpp"
+#include "slam/merging_factors.hpp"
+
+namespace isg::slam {
+
+namespace {
+
+constexpr double kPi = 3.14159265358979323846;
+
+Eigen::Vector2d applyPlanar(const Eigen::Vector3d& x_y_yaw, const Eigen::Vector2d& p) {
+  return Eigen::Rotation2Dd(x_y_yaw.z()) * p + x_y_yaw.head<2>();
+}
+
+}  // namespace
+
+ISGraphLocalizer::ISGraphLocalizer(const Eigen::Isometry3d& R_T_L, const bim::AGraph& plan,
+                                   const ISGraphOptions& options)
+    : options_(options),
+      plan_(&plan),
+      graph_(R_T_L, options.sgraph),
+      matcher_(plan, options.matching),
+      plan_state_(plan) {
+  graph_.setWindowHook(
+      [this](ceres::Problem& problem, const std::set<int>& planes, const std::vector<int>& rooms) {
+        addPlanFactors(problem, planes, rooms);
+      });
+}
+
+void ISGraphLocalizer::pushScan(const Scan& scan) {
+  if (graph_.addScan(scan)) onKeyframe(scan.stamp);
+}
+
+std::optional<Eigen::Isometry3d> ISGraphLocalizer::mapInPlan() const {
+  if (!localized_) return std::nullopt;
+  Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
+  T.linear() = Eigen::AngleAxisd(B_T_M_.z(), Eigen::Vector3d::UnitZ()).toRotationMatrix();
+  T.translation() = Eigen::Vector3d(B_T_M_.x(), B_T_M_.y(), B_T_M_z_);
+  return T;
+}
+
+MatchInput ISGraphLocalizer::matchInput() const {
+  MatchInput input;
+  const auto& planes = graph_.planes();
+  const auto& candidates = graph_.roomCandidates();
+  std::map<int, int> room_of_keyframe;
+  for (int r : graph_.confirmedRooms()) {
+    const auto& room = candidates[r];
+    MatchRoom m;
+    m.id = r;
+    m.four_wall = room.candidate.four_wall;
+    m.centre = room.centre;
+    const Eigen::Vector3d& n = planes[room.candidate.pairs[0][0]].map.plane.normal;
+    m.axis_yaw = std::atan2(n.y(), n.x());
+    m.widths = room.candidate.widths;
+    for (int i = 0; i < (m.four_wall ? 2 : 1); ++i) {
+      m.planes.push_back(room.candidate.pairs[i][0]);
+      m.planes.push_back(room.candidate.pairs[i][1]);
+    }
+    for (int k : room.keyframes) room_of_keyframe[k] = int(input.rooms.size());
+    input.rooms.push_back(m);
+  }
+  for (int i = 0; i < int(planes.size()); ++i) {
+    const auto& p = planes[i];
+    // Walls only: clutter seen over a short height is not in the plan.
+    if (p.merged_into >= 0 || p.map.z_max - p.map.z_min < options_.sgraph.rooms.min_wall_height) {
+      continue;
+    }
+    input.planes.push_back({i, p.map.plane, p.map.start, p.map.end});
+  }
+  // Consecutive keyframes in two different rooms: the robot walked from one into the other.
+  std::set<std::pair<int, int>> transitions;
+  for (auto it = room_of_keyframe.begin(); it != room_of_keyframe.end(); ++it) {
+    const auto next = room_of_keyframe.find(it->first + 1);
+    if (next != room_of_keyframe.end() && next->second != it->second) {
+      transitions.insert({std::min(it->second, next->second), std::max(it->second, next->second)});
+    }
+  }
+  input.transitions.assign(transitions.begin(), transitions.end());
+  return input;
+}
+
+void ISGraphLocalizer::record(double stamp, MatchStatus status, const std::string& reason) {
+  if (status == status_ && !events_.empty()) return;
+  status_ = status;
+  events_.push_back({stamp, int(graph_.keyframes().size()) - 1, status, reason});
+}
+
+void ISGraphLocalizer::adopt(const Verification& answer) {
+  B_T_M_ = answer.x_y_yaw;
+  plane_matches_.clear();
+  room_matches_.clear();
+  for (const auto& [s, a] : answer.planes) plane_matches_[s] = a;
+  for (const auto& [s, a] : answer.rooms) room_matches_[s] = a;
+  // z: walls do not observe it; the floor does. The floor of the first matched room's level.
+  double elevation = plan_->floors.empty() ? 0.0 : plan_->floors[0].elevation;
+  if (!answer.rooms.empty()) {
+    const int floor = plan_->rooms[answer.rooms[0].second].floor;
+    if (floor >= 0) elevation = plan_->floors[floor].elevation;
+  }
+  B_T_M_z_ = elevation - graph_.floorHeight().value_or(0.0);
+  localized_ = true;
+}
+
+void ISGraphLocalizer::onKeyframe(double stamp) {
+  const int keyframes = int(graph_.keyframes().size());
+  const MatchInput input = matchInput();
+  if (localized_) {
+    // The correspondences at the current B_T_M, for the next optimisations.
+    const Verification now = matcher_.verify(input, B_T_M_);
+    plane_matches_.clear();
+    room_matches_.clear();
+    for (const auto& [s, a] : now.planes) plane_matches_[s] = a;
+    for (const auto& [s, a] : now.rooms) room_matches_[s] = a;
+  }
+  const bool new_rooms = input.rooms.size() != rooms_at_last_attempt_;
+  const bool due =
+      !localized_ && keyframes - keyframes_at_last_attempt_ >= options_.retry_keyframes;
+  if (!new_rooms && !due) return;
+  rooms_at_last_attempt_ = input.rooms.size();
+  keyframes_at_last_attempt_ = keyframes;
+  MatchResult result = matcher_.match(input);
+  matching_times_.push_back(result.seconds);
+  last_match_ = result;
+  if (!localized_) {
+    record(stamp, result.status, result.reason);
+    if (result.status == MatchStatus::kMatched) adopt(result.best);
+    return;
+  }
+  if (result.status != MatchStatus::kMatched) return;  // the merge stands on its own evidence
+  // A unique answer elsewhere than where the merge is: the first match was wrong.
+  Eigen::Vector2d middle = Eigen::Vector2d::Zero();
+  for (const auto& r : input.rooms) middle += r.centre / double(input.rooms.size());
+  const double apart =
+      (applyPlanar(result.best.x_y_yaw, middle) - applyPlanar(B_T_M_, middle)).norm();
+  const double turned = std::abs(std::remainder(result.best.x_y_yaw.z() - B_T_M_.z(), 2 * kPi));
+  if (apart > 2 * options_.matching.cluster_distance ||
+      turned > 2 * options_.matching.cluster_yaw_deg * kPi / 180.0) {
+    record(stamp, MatchStatus::kContradicted,
+           "a new unique answer " + std::to_string(apart) + " m away: " + result.reason);
+    adopt(result.best);
+    record(stamp, MatchStatus::kMatched, result.reason);
+  }
+}
+
+void ISGraphLocalizer::addSurface(ceres::Problem& problem, int surface) {
+  if (!surfaces_in_problem_.insert(surface).second) return;
+  double* block = plan_state_.planes[surface].data();
+  problem.AddParameterBlock(block, 4, &plane_manifold_);
+  problem.AddResidualBlock(
+      bim::PlanePriorFactor::create(bim::toVector(plan_->surfaces[surface].plane),
+                                    options_.plan.plane_angle, options_.plan.plane_distance),
+      nullptr, block);
+}
+
+void ISGraphLocalizer::addPlanFactors(ceres::Problem& problem, const std::set<int>& planes,
+                                      const std::vector<int>& rooms) {
+  if (!localized_) return;
+  surfaces_in_problem_.clear();
+  for (int p : planes) {
+    const auto it = plane_matches_.find(p);
+    if (it == plane_matches_.end()) continue;
+    addSurface(problem, it->second);
+    problem.AddResidualBlock(
+        PlanePlaneFactor::create(options_.sigma_plane_angle, options_.sigma_plane_distance),
+        &huber_, graph_.planeParameters(p), B_T_M_.data(), plan_state_.planes[it->second].data());
+  }
+  for (int r : rooms) {
+    const auto it = room_matches_.find(r);
+    if (it == room_matches_.end()) continue;
+    const bim::RoomNode& node = plan_->rooms[it->second];
+    // A corridor's S-centre lies wherever along it the robot first saw it, not at the plan's
+    // centre: only four-wall rooms give a room-to-room factor.
+    if (node.kind != bim::RoomKind::kFourWall) continue;
+    for (const auto& pair : node.pairs) addSurface(problem, pair[0]), addSurface(problem, pair[1]);
+    double* centre = plan_state_.rooms[it->second].data();
+    problem.AddResidualBlock(
+        bim::FourWallRoomFactor::create(options_.plan.room), nullptr, centre,
+        plan_state_.planes[node.pairs[0][0]].data(), plan_state_.planes[node.pairs[0][1]].data(),
+        plan_state_.planes[node.pairs[1][0]].data(), plan_state_.planes[node.pairs[1][1]].data());
+    problem.AddResidualBlock(RoomRoomFactor::create(options_.sigma_room), nullptr,
+                             graph_.roomCentre(r), B_T_M_.data(), centre);
+  }
+  // The plan's walls between surfaces in the problem.
+  for (std::size_t w = 0; w < plan_->walls.size(); ++w) {
+    const auto& wall = plan_->walls[w];
+    if (!surfaces_in_problem_.count(wall.left_surface) ||
+        !surfaces_in_problem_.count(wall.right_surface)) {
+      continue;
+    }
+    problem.AddResidualBlock(bim::WallFactor::create(wall.anchor, options_.plan.wall), nullptr,
+                             plan_state_.walls[w].data(),
+                             plan_state_.planes[wall.left_surface].data(),
+                             plan_state_.planes[wall.right_surface].data());
+  }
+}
+
+nlohmann::json ISGraphLocalizer::graph() const {
+  nlohmann::json out = graph_.toJson();
+  nlohmann::json planes = nlohmann::json::array(), rooms = nlohmann::json::array(),
+                 events = nlohmann::json::array();
+  for (const auto& [s, a] : plane_matches_) planes.push_back({s, plan_->surfaces[a].id});
+  for (const auto& [s, a] : room_matches_) rooms.push_back({s, plan_->rooms[a].id});
+  for (const auto& e : events_) {
+    events.push_back({{"stamp", e.stamp},
+                      {"keyframe", e.keyframe},
+                      {"status", toString(e.status)},
+                      {"reason", e.reason}});
+  }
+  nlohmann::json is_graph = {{"status", toString(status_)},
+                             {"localized", localized_},
+                             {"plane_matches", planes},
+                             {"room_matches", rooms},
+                             {"events", events}};
+  if (localized_) {
+    is_graph["B_T_M"] = {
+        {"x", B_T_M_.x()}, {"y", B_T_M_.y()}, {"z", B_T_M_z_}, {"yaw", B_T_M_.z()}};
+  }
+  if (last_match_) is_graph["last_match"] = last_match_->toJson();
+  out["method"] = name();
+  out["matching"] = is_graph;
+  return out;
+}
+
+}  // namespace isg::slam

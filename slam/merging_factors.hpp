@@ -1,0 +1,79 @@
+#pragma once
+
+#include <ceres/autodiff_cost_function.h>
+
+#include <Eigen/Core>
+
+#include "bim/plane_manifold.hpp"
+
+namespace isg::slam {
+
+// Graph merging (ALGORITHMS.md §6): factors between the S-Graph (in M) and the A-Graph (in B)
+// through B_T_M. B_T_M is a planar transform [x, y, yaw] (walls do not observe roll, pitch or z;
+// the level is flat); its z is held and does not enter these factors.
+
+template <typename T>
+Eigen::Matrix<T, 3, 3> yawRotation(const T& yaw) {
+  using std::cos;
+  using std::sin;
+  Eigen::Matrix<T, 3, 3> R = Eigen::Matrix<T, 3, 3>::Identity();
+  R(0, 0) = cos(yaw);
+  R(0, 1) = -sin(yaw);
+  R(1, 0) = sin(yaw);
+  R(1, 1) = cos(yaw);
+  return R;
+}
+
+// Plane-to-plane: (B_T_M · π_M) ⊖ π_B on the plane manifold, whitened.
+// Parameters: π_M (4), B_T_M [x, y, yaw] (3), π_B (4).
+struct PlanePlaneFactor {
+  PlanePlaneFactor(double sigma_angle, double sigma_distance)
+      : weights_(1.0 / sigma_angle, 1.0 / sigma_angle, 1.0 / sigma_distance) {}
+
+  template <typename T>
+  bool operator()(const T* plane_M, const T* B_T_M, const T* plane_B, T* residual) const {
+    const Eigen::Matrix<T, 3, 3> R = yawRotation(B_T_M[2]);
+    const Eigen::Matrix<T, 3, 1> t(B_T_M[0], B_T_M[1], T(0));
+    const Eigen::Matrix<T, 3, 1> n = R * Eigen::Matrix<T, 3, 1>(plane_M[0], plane_M[1], plane_M[2]);
+    Eigen::Matrix<T, 4, 1> in_B;
+    in_B << n, plane_M[3] - n.dot(t);
+    const Eigen::Matrix<T, 4, 1> b(plane_B[0], plane_B[1], plane_B[2], plane_B[3]);
+    const Eigen::Matrix<T, 3, 1> e = bim::planeMinus(in_B, b);
+    for (int i = 0; i < 3; ++i) residual[i] = T(weights_(i)) * e(i);
+    return true;
+  }
+
+  static ceres::CostFunction* create(double sigma_angle, double sigma_distance) {
+    return new ceres::AutoDiffCostFunction<PlanePlaneFactor, 3, 4, 3, 4>(
+        new PlanePlaneFactor(sigma_angle, sigma_distance));
+  }
+
+ private:
+  Eigen::Vector3d weights_;
+};
+
+// Room-to-room: ρ_B − B_T_M · ρ_M, whitened. Parameters: ρ_M (2), B_T_M (3), ρ_B (2).
+struct RoomRoomFactor {
+  explicit RoomRoomFactor(double sigma) : weight_(1.0 / sigma) {}
+
+  template <typename T>
+  bool operator()(const T* room_M, const T* B_T_M, const T* room_B, T* residual) const {
+    using std::cos;
+    using std::sin;
+    const T c = cos(B_T_M[2]), s = sin(B_T_M[2]);
+    const T x = c * room_M[0] - s * room_M[1] + B_T_M[0];
+    const T y = s * room_M[0] + c * room_M[1] + B_T_M[1];
+    residual[0] = T(weight_) * (room_B[0] - x);
+    residual[1] = T(weight_) * (room_B[1] - y);
+    return true;
+  }
+
+  static ceres::CostFunction* create(double sigma) {
+    return new ceres::AutoDiffCostFunction<RoomRoomFactor, 2, 2, 3, 2>(new RoomRoomFactor(sigma));
+  }
+
+ private:
+  double weight_;
+};
+
+}  // namespace isg::slam
