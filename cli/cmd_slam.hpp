@@ -4,7 +4,7 @@
 
 namespace isg::cli {
 
-// isg slam DATASET_DIR -o RUN_DIR: replay a dataset through the S-Graph.
+// isg slam DATASET_DIR [--plan PLAN] -o RUN_DIR: replay a dataset through a localizer.
 class SlamCommand : public Command {
  public:
   explicit SlamCommand(CLI::App& parent);
@@ -12,6 +12,8 @@ class SlamCommand : public Command {
 
  private:
   std::string dataset_;
+  std::string plan_;
+  std::string method_;
   std::string output_;
   bool force_ = false;
   bool quiet_ = false;

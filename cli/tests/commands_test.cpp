@@ -252,18 +252,78 @@ TEST(Slam, ReplaysADatasetAndWritesTheRun) {
   ASSERT_EQ(sandbox.run("simulate builtin:d2 -o ds --duration 12 -q").exit_code, 0);
   const auto result = sandbox.run("slam ds -o run -q");
   EXPECT_EQ(result.exit_code, 0) << result.err;
-  EXPECT_THAT(result.out, StartsWith("isg slam: 120 scans, "));
-  EXPECT_THAT(result.out, HasSubstr(" rooms in "));
-  EXPECT_THAT(result.out, HasSubstr("APE rmse after SE(3) alignment: keyframes "));
-  for (const char* f : {"run/estimate_map.tum", "run/keyframes.tum", "run/sgraph.json"}) {
+  EXPECT_THAT(result.out, StartsWith("isg slam: wrote run (s-graph on ds, seed "));
+  EXPECT_THAT(result.out, HasSubstr("  not localized in the plan\n"));
+  EXPECT_THAT(result.out, HasSubstr("  APE in M after SE(3) alignment: rmse "));
+  EXPECT_THAT(result.out, HasSubstr(" rooms\n"));
+  for (const char* f : {"run/estimate_map.tum", "run/keyframes.tum", "run/sgraph.json",
+                        "run/metrics.json", "run/report.svg", "run/estimate.tum"}) {
     EXPECT_TRUE(sandbox.exists(f)) << f;
   }
+  EXPECT_EQ(sandbox.read("run/estimate.tum"), "");  // never localized in B
   const auto graph = nlohmann::json::parse(sandbox.read("run/sgraph.json"));
   EXPECT_EQ(graph["frame"], "M");
   EXPECT_GT(graph["planes"].size(), 3u);
   const auto missing = sandbox.run("slam nowhere -o run2");
   EXPECT_EQ(missing.exit_code, 1);
   EXPECT_EQ(missing.err, "isg slam: error: nowhere: not a dataset folder (no such directory)\n");
+  const auto no_plan = sandbox.run("slam ds -o run3 --method is-graphs");
+  EXPECT_EQ(no_plan.exit_code, 2);
+  EXPECT_EQ(no_plan.err, "isg slam: --method is-graphs needs --plan PLAN\n");
+  EXPECT_FALSE(sandbox.exists("run3"));
+}
+
+// The loop and the replay of a dataset recorded with the same seed give the very same result.
+TEST(Run, LoopAndReplayAgreeAndTheRunFolderIsComplete) {
+  testing::Sandbox sandbox("run");
+  const auto loop = sandbox.run("run builtin:d1.asbuilt -o loop -q");
+  ASSERT_EQ(loop.exit_code, 0) << loop.err;
+  EXPECT_THAT(loop.out, StartsWith("isg run: wrote loop (is-graphs on builtin:d1.asbuilt, seed 1)\n"
+                                   "  localized at t = "));
+  EXPECT_THAT(loop.out, HasSubstr("x real time\n"));
+  for (const char* f : {"groundtruth.tum", "odometry.tum", "estimate.tum", "estimate_map.tum",
+                        "metrics.json", "agraph.json", "sgraph.json", "report.svg"}) {
+    EXPECT_TRUE(sandbox.exists(std::string("loop/") + f)) << f;
+  }
+  const auto metrics = nlohmann::json::parse(sandbox.read("loop/metrics.json"));
+  EXPECT_TRUE(metrics["localized"].get<bool>());
+  EXPECT_LT(metrics["ape_B"]["rmse"].get<double>(), 0.10);
+  EXPECT_EQ(metrics["matching_status"], "matched");
+  const auto graph = nlohmann::json::parse(sandbox.read("loop/sgraph.json"));
+  EXPECT_TRUE(graph["matching"]["localized"].get<bool>());
+  EXPECT_GE(graph["matching"]["room_matches"].size(), 2u);
+  EXPECT_THAT(sandbox.read("loop/report.svg"), HasSubstr("first localized pose"));
+
+  ASSERT_EQ(sandbox.run("simulate builtin:d1.asbuilt -o ds -q").exit_code, 0);
+  const auto replay = sandbox.run("slam ds --plan builtin:d1 -o replay -q");
+  ASSERT_EQ(replay.exit_code, 0) << replay.err;
+  EXPECT_EQ(sandbox.read("replay/estimate.tum"), sandbox.read("loop/estimate.tum"));
+  EXPECT_EQ(sandbox.read("replay/estimate_map.tum"), sandbox.read("loop/estimate_map.tum"));
+  EXPECT_FALSE(sandbox.read("loop/estimate.tum").empty());
+}
+
+TEST(Run, BadInputAndUsage) {
+  testing::Sandbox sandbox("run_errors");
+  const auto help = sandbox.run("run --help");
+  EXPECT_EQ(help.exit_code, 0);
+  EXPECT_THAT(help.out, HasSubstr("builtin:d1.asbuilt"));
+  const auto method = sandbox.run("run --method magic");
+  EXPECT_EQ(method.exit_code, 2);
+  const auto missing = sandbox.run("run nowhere.json -o r");
+  EXPECT_EQ(missing.exit_code, 1);
+  EXPECT_FALSE(sandbox.exists("r"));
+  sandbox.write("taken", "x");
+  const auto taken = sandbox.run("run builtin:d1 -o taken");
+  EXPECT_EQ(taken.exit_code, 1);
+  EXPECT_EQ(taken.err, "isg run: error: taken: already exists (use --force to replace it)\n");
+  // Dead reckoning knows the true start: localized from the first pose, in B.
+  const auto dead = sandbox.run("run builtin:d2 --method dead-reckoning --duration 10 -o dr -q");
+  ASSERT_EQ(dead.exit_code, 0) << dead.err;
+  const auto metrics = nlohmann::json::parse(sandbox.read("dr/metrics.json"));
+  EXPECT_EQ(metrics["method"], "dead-reckoning");
+  EXPECT_NEAR(metrics["time_to_localize"].get<double>(), 0.0, 0.2);
+  EXPECT_NEAR(metrics["ape_B"]["rmse"].get<double>(),
+              metrics["ape_odometry_from_true_start"]["rmse"].get<double>(), 0.01);
 }
 
 }  // namespace
