@@ -15,6 +15,7 @@
 #include "cli/cmd_run.hpp"
 #include "cli/cmd_simulate.hpp"
 #include "cli/cmd_slam.hpp"
+#include "cli/cmd_table.hpp"
 #include "cli/cmd_world.hpp"
 
 int main(int argc, char** argv) {
@@ -37,6 +38,7 @@ int main(int argc, char** argv) {
   commands.push_back(std::make_unique<SlamCommand>(app));
   commands.push_back(std::make_unique<RunCommand>(app));
   commands.push_back(std::make_unique<EvalCommand>(app));
+  commands.push_back(std::make_unique<TableCommand>(app));
 
   try {
     app.parse(argc, argv);

@@ -302,6 +302,40 @@ TEST(Run, LoopAndReplayAgreeAndTheRunFolderIsComplete) {
   EXPECT_FALSE(sandbox.read("loop/estimate.tum").empty());
 }
 
+// The short regression suite against the committed baseline (eval/baselines/short_suite.csv),
+// and a deliberately degraded run (stopped before it could localize) that must fail the check.
+TEST(Table, ShortSuiteAgainstTheCommittedBaseline) {
+  testing::Sandbox sandbox("table");
+  for (const char* world : {"d1", "d2"}) {
+    for (const char* method : {"is-graphs", "dead-reckoning"}) {
+      const auto r = sandbox.run(std::string("run builtin:") + world + " --method " + method +
+                                 " -o suite/" + world + "-" + method + " -q");
+      ASSERT_EQ(r.exit_code, 0) << r.err;
+    }
+  }
+  const std::string baseline = std::string(ISG_SOURCE_DIR) + "/eval/baselines/short_suite.csv";
+  const auto ok = sandbox.run(
+      "table suite/d1-is-graphs suite/d1-dead-reckoning "
+      "suite/d2-is-graphs suite/d2-dead-reckoning --baseline '" +
+      baseline + "' --tolerance 0.01");
+  EXPECT_EQ(ok.exit_code, 0) << ok.err;
+  EXPECT_THAT(ok.out, HasSubstr("| world | is-graphs | dead-reckoning |\n"));
+  EXPECT_THAT(ok.err, HasSubstr("no cell regressed"));
+
+  ASSERT_EQ(sandbox.run("run builtin:d2 --duration 6 -o degraded -q").exit_code, 0);
+  const auto bad = sandbox.run(
+      "table suite/d1-is-graphs suite/d1-dead-reckoning degraded "
+      "suite/d2-dead-reckoning --baseline '" +
+      baseline + "'");
+  EXPECT_EQ(bad.exit_code, 4);
+  EXPECT_THAT(bad.err, HasSubstr("isg table: regression: d2 / is-graphs: failed (baseline "));
+  const auto csv = sandbox.run("table degraded --format csv");
+  EXPECT_EQ(csv.out, "world,is-graphs\nd2,-\n");
+  const auto missing = sandbox.run("table nowhere");
+  EXPECT_EQ(missing.exit_code, 1);
+  EXPECT_EQ(missing.err, "isg table: error: nowhere: not a run folder (no metrics.json)\n");
+}
+
 TEST(Run, BadInputAndUsage) {
   testing::Sandbox sandbox("run_errors");
   const auto help = sandbox.run("run --help");

@@ -1,0 +1,103 @@
+#include "cli/cmd_table.hpp"
+
+#include <algorithm>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <sstream>
+
+#include "bim/json_reader.hpp"
+#include "cli/methods.hpp"
+#include "eval/table.hpp"
+
+namespace isg::cli {
+
+TableCommand::TableCommand(CLI::App& parent) {
+  app_ = parent.add_subcommand("table", "APE table of run folders, like the paper's Table I");
+  app_->footer(
+      "Reads RUN_DIR/metrics.json of each run folder (made by isg run or isg slam) and prints one "
+      "row per world and one column per method: the APE RMSE in the plan frame B (2D, no "
+      "alignment, from the first localized pose on), or \"-\" where the method never localized. "
+      "With --baseline, compares each cell of the baseline table (CSV, as --format csv writes "
+      "it) with the runs and exits with code 4, naming every cell that is worse by more than "
+      "--tolerance metres, failed, or has no run.\n\n"
+      "Example: for m in is-graphs dead-reckoning; do isg run builtin:d1 --method $m -o "
+      "runs/d1-$m; "
+      "done; isg table runs/* --format csv > baseline.csv");
+  app_->add_option("runs", runs_, "run folders")->required();
+  app_->add_option("--format", format_, "md, csv or latex")
+      ->check(CLI::IsMember({"md", "csv", "latex"}))
+      ->capture_default_str();
+  app_->add_option("--baseline", baseline_, "baseline table (CSV) to check the runs against");
+  app_->add_option("--tolerance", tolerance_, "metres a cell may exceed its baseline")
+      ->check(CLI::NonNegativeNumber)
+      ->capture_default_str();
+  app_->add_option("-o,--output", output_, "write the table to this file instead of stdout");
+}
+
+int TableCommand::run() {
+  namespace fs = std::filesystem;
+  // The testbed's methods first, in their order (iS-Graphs, then the baselines), like the paper.
+  std::vector<std::pair<std::string, nlohmann::json>> runs;
+  for (const auto& dir : runs_) {
+    const std::string path = (fs::path(dir) / "metrics.json").string();
+    if (!fs::is_regular_file(path)) {
+      throw bim::InputError(dir, "", "not a run folder (no metrics.json)");
+    }
+    runs.emplace_back(dir, bim::readJsonFile(path));
+  }
+  auto rank = [](const nlohmann::json& metrics) {
+    const auto& names = methodNames();
+    const auto it = std::find(names.begin(), names.end(), metrics.value("method", ""));
+    return int(it - names.begin());
+  };
+  std::stable_sort(runs.begin(), runs.end(),
+                   [&](const auto& a, const auto& b) { return rank(a.second) < rank(b.second); });
+  eval::ResultTable table;
+  for (const auto& [dir, metrics] : runs) {
+    std::string world = metrics.value("world", dir);
+    if (world.rfind("builtin:", 0) == 0) world = world.substr(8);
+    const std::string method = metrics.value("method", "?");
+    std::optional<double> value;
+    if (metrics.value("localized", false) && metrics.contains("ape_B")) {
+      value = metrics["ape_B"].value("rmse", 0.0);
+    }
+    if (table.find(world, method) != nullptr) {
+      throw bim::InputError(dir, "", "a second run of " + world + " with " + method);
+    }
+    table.set(world, method, value);
+  }
+  const eval::TableFormat format = format_ == "csv"     ? eval::TableFormat::kCsv
+                                   : format_ == "latex" ? eval::TableFormat::kLatex
+                                                        : eval::TableFormat::kMarkdown;
+  const std::string text = eval::formatTable(
+      table, format, "APE RMSE in B [m] (2D, no alignment, from the first localized pose on)");
+  if (output_.empty()) {
+    std::printf("%s", text.c_str());
+  } else {
+    writeFileAtomically(output_, text);
+  }
+  if (baseline_.empty()) return kExitOk;
+  std::ifstream in(baseline_);
+  if (!in) throw bim::InputError(baseline_, "", "cannot read (no such file?)");
+  std::stringstream content;
+  content << in.rdbuf();
+  eval::ResultTable baseline;
+  try {
+    baseline = eval::parseTableCsv(content.str());
+  } catch (const std::invalid_argument& e) {
+    throw bim::InputError(baseline_, "", e.what());
+  }
+  const auto regressions = eval::findRegressions(baseline, table, tolerance_);
+  for (const auto& r : regressions) {
+    std::fprintf(stderr, "isg table: regression: %s (tolerance %.3f m)\n", r.describe().c_str(),
+                 tolerance_);
+  }
+  if (!regressions.empty()) return kExitRegression;
+  std::fprintf(stderr, "isg table: no cell regressed against %s (tolerance %.3f m)\n",
+               baseline_.c_str(), tolerance_);
+  return kExitOk;
+}
+
+}  // namespace isg::cli

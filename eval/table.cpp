@@ -1,0 +1,198 @@
+#include "eval/table.hpp"
+
+#include <cstdio>
+#include <sstream>
+#include <stdexcept>
+
+namespace isg::eval {
+
+namespace {
+
+int indexOf(std::vector<std::string>& names, const std::string& name, bool add) {
+  for (std::size_t i = 0; i < names.size(); ++i) {
+    if (names[i] == name) return int(i);
+  }
+  if (!add) return -1;
+  names.push_back(name);
+  return int(names.size()) - 1;
+}
+
+std::string cell(const std::optional<double>& value) {
+  if (!value) return "-";
+  char b[32];
+  std::snprintf(b, sizeof b, "%.3f", *value);
+  return b;
+}
+
+std::vector<std::string> splitCsv(const std::string& line) {
+  std::vector<std::string> out;
+  std::string field;
+  std::istringstream in(line);
+  while (std::getline(in, field, ',')) {
+    while (!field.empty() && (field.back() == ' ' || field.back() == '\r')) field.pop_back();
+    while (!field.empty() && field.front() == ' ') field.erase(field.begin());
+    out.push_back(field);
+  }
+  if (!line.empty() && line.back() == ',') out.emplace_back();
+  return out;
+}
+
+std::string latexEscape(const std::string& text) {
+  std::string out;
+  for (char c : text) {
+    if (c == '_' || c == '&' || c == '%' || c == '#') out += '\\';
+    out += c;
+  }
+  return out;
+}
+
+}  // namespace
+
+void ResultTable::set(const std::string& row, const std::string& column,
+                      std::optional<double> value) {
+  const int r = indexOf(rows, row, true);
+  const int c = indexOf(columns, column, true);
+  cells.resize(rows.size());
+  present.resize(rows.size());
+  for (std::size_t i = 0; i < rows.size(); ++i) {
+    cells[i].resize(columns.size());
+    present[i].resize(columns.size(), false);
+  }
+  cells[r][c] = value;
+  present[r][c] = true;
+}
+
+const std::optional<double>* ResultTable::find(const std::string& row,
+                                               const std::string& column) const {
+  auto& self = const_cast<ResultTable&>(*this);
+  const int r = indexOf(self.rows, row, false);
+  const int c = indexOf(self.columns, column, false);
+  if (r < 0 || c < 0 || !present[r][c]) return nullptr;
+  return &cells[r][c];
+}
+
+std::string formatTable(const ResultTable& table, TableFormat format, const std::string& caption) {
+  std::ostringstream out;
+  switch (format) {
+    case TableFormat::kCsv:
+      out << "world";
+      for (const auto& c : table.columns) out << "," << c;
+      out << "\n";
+      for (std::size_t r = 0; r < table.rows.size(); ++r) {
+        out << table.rows[r];
+        for (std::size_t c = 0; c < table.columns.size(); ++c) {
+          out << "," << (table.present[r][c] ? cell(table.cells[r][c]) : "");
+        }
+        out << "\n";
+      }
+      break;
+    case TableFormat::kMarkdown:
+      if (!caption.empty()) out << caption << "\n\n";
+      out << "| world |";
+      for (const auto& c : table.columns) out << " " << c << " |";
+      out << "\n|---|";
+      for (std::size_t c = 0; c < table.columns.size(); ++c) out << "---:|";
+      out << "\n";
+      for (std::size_t r = 0; r < table.rows.size(); ++r) {
+        out << "| " << table.rows[r] << " |";
+        for (std::size_t c = 0; c < table.columns.size(); ++c) {
+          out << " " << (table.present[r][c] ? cell(table.cells[r][c]) : "") << " |";
+        }
+        out << "\n";
+      }
+      break;
+    case TableFormat::kLatex:
+      out << "\\begin{table}\n\\centering\n";
+      if (!caption.empty()) out << "\\caption{" << latexEscape(caption) << "}\n";
+      out << "\\begin{tabular}{l";
+      for (std::size_t c = 0; c < table.columns.size(); ++c) out << "r";
+      out << "}\n\\hline\nWorld";
+      for (const auto& c : table.columns) out << " & " << latexEscape(c);
+      out << " \\\\\n\\hline\n";
+      for (std::size_t r = 0; r < table.rows.size(); ++r) {
+        out << latexEscape(table.rows[r]);
+        for (std::size_t c = 0; c < table.columns.size(); ++c) {
+          out << " & " << (table.present[r][c] ? cell(table.cells[r][c]) : "");
+        }
+        out << " \\\\\n";
+      }
+      out << "\\hline\n\\end{tabular}\n\\end{table}\n";
+      break;
+  }
+  return out.str();
+}
+
+ResultTable parseTableCsv(const std::string& text) {
+  ResultTable table;
+  std::istringstream in(text);
+  std::string line;
+  std::vector<std::string> header;
+  int number = 0;
+  while (std::getline(in, line)) {
+    ++number;
+    if (line.empty() || line == "\r") continue;
+    const auto fields = splitCsv(line);
+    if (header.empty()) {
+      if (fields.size() < 2 || fields[0] != "world") {
+        throw std::invalid_argument("line 1: expected a header \"world,<method>,...\"");
+      }
+      header = fields;
+      continue;
+    }
+    if (fields.size() != header.size()) {
+      throw std::invalid_argument("line " + std::to_string(number) + ": " +
+                                  std::to_string(fields.size()) + " fields, the header has " +
+                                  std::to_string(header.size()));
+    }
+    for (std::size_t c = 1; c < fields.size(); ++c) {
+      if (fields[c].empty()) continue;  // no run for this cell
+      if (fields[c] == "-") {
+        table.set(fields[0], header[c], std::nullopt);
+        continue;
+      }
+      std::size_t used = 0;
+      double value = 0.0;
+      try {
+        value = std::stod(fields[c], &used);
+      } catch (const std::exception&) {
+        used = 0;
+      }
+      if (used != fields[c].size()) {
+        throw std::invalid_argument("line " + std::to_string(number) + ": \"" + fields[c] +
+                                    "\" is neither a number nor \"-\"");
+      }
+      table.set(fields[0], header[c], value);
+    }
+  }
+  if (header.empty()) throw std::invalid_argument("empty: expected a header \"world,...\"");
+  return table;
+}
+
+std::string Regression::describe() const {
+  std::string text = row + " / " + column + ": ";
+  if (no_run) return text + "no run (baseline " + cell(baseline) + ")";
+  if (!value && baseline) return text + "failed (baseline " + cell(baseline) + ")";
+  if (!value && !baseline) return text + "no run (baseline -)";
+  return text + cell(value) + " m, baseline " + cell(baseline) + " m";
+}
+
+std::vector<Regression> findRegressions(const ResultTable& baseline, const ResultTable& table,
+                                        double tolerance) {
+  std::vector<Regression> out;
+  for (std::size_t r = 0; r < baseline.rows.size(); ++r) {
+    for (std::size_t c = 0; c < baseline.columns.size(); ++c) {
+      if (!baseline.present[r][c]) continue;
+      const auto& expected = baseline.cells[r][c];
+      const auto* got = table.find(baseline.rows[r], baseline.columns[c]);
+      if (got == nullptr) {
+        out.push_back({baseline.rows[r], baseline.columns[c], expected, std::nullopt, true});
+        continue;
+      }
+      const bool worse = expected && (!*got || **got > *expected + tolerance);
+      if (worse) out.push_back({baseline.rows[r], baseline.columns[c], expected, *got, false});
+    }
+  }
+  return out;
+}
+
+}  // namespace isg::eval

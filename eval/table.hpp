@@ -1,0 +1,42 @@
+#pragma once
+
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace isg::eval {
+
+// A results table like the paper's Table I: one row per world, one column per method, each cell
+// the APE RMSE in metres, or nothing ("-") where the method failed (never localized).
+struct ResultTable {
+  std::vector<std::string> rows;                          // worlds, in first-seen order
+  std::vector<std::string> columns;                       // methods, in first-seen order
+  std::vector<std::vector<std::optional<double>>> cells;  // [row][column]
+  std::vector<std::vector<bool>> present;                 // a run exists for the cell
+
+  // Sets a cell, adding its row and column when new.
+  void set(const std::string& row, const std::string& column, std::optional<double> value);
+  const std::optional<double>* find(const std::string& row, const std::string& column) const;
+};
+
+enum class TableFormat { kMarkdown, kCsv, kLatex };
+
+std::string formatTable(const ResultTable& table, TableFormat format,
+                        const std::string& caption = "");
+
+// Reads a table written as CSV (the baseline). Throws std::invalid_argument with the line.
+ResultTable parseTableCsv(const std::string& text);
+
+struct Regression {
+  std::string row, column;
+  std::optional<double> baseline, value;
+  bool no_run = false;  // the baseline has the cell, the runs do not
+  std::string describe() const;
+};
+
+// Cells worse than the baseline by more than `tolerance` metres, cells that failed where the
+// baseline has a number, and cells of the baseline with no run at all.
+std::vector<Regression> findRegressions(const ResultTable& baseline, const ResultTable& table,
+                                        double tolerance);
+
+}  // namespace isg::eval

@@ -1,0 +1,72 @@
+#include "eval/table.hpp"
+
+#include <gtest/gtest.h>
+
+namespace isg::eval {
+namespace {
+
+ResultTable sample() {
+  ResultTable t;
+  t.set("d1", "is-graphs", 0.028);
+  t.set("d1", "dead-reckoning", 0.099);
+  t.set("d2", "is-graphs", std::nullopt);  // failed
+  return t;
+}
+
+TEST(Table, FormatsAsCsvMarkdownAndLatex) {
+  const ResultTable t = sample();
+  EXPECT_EQ(formatTable(t, TableFormat::kCsv),
+            "world,is-graphs,dead-reckoning\nd1,0.028,0.099\nd2,-,\n");
+  EXPECT_EQ(formatTable(t, TableFormat::kMarkdown),
+            "| world | is-graphs | dead-reckoning |\n|---|---:|---:|\n"
+            "| d1 | 0.028 | 0.099 |\n| d2 | - |  |\n");
+  const std::string latex = formatTable(t, TableFormat::kLatex, "APE_B");
+  EXPECT_NE(latex.find("\\caption{APE\\_B}"), std::string::npos);
+  EXPECT_NE(latex.find("World & is-graphs & dead-reckoning \\\\"), std::string::npos);
+  EXPECT_NE(latex.find("d2 & - &  \\\\"), std::string::npos);
+}
+
+TEST(Table, CsvRoundTrips) {
+  const ResultTable t = sample();
+  const ResultTable back = parseTableCsv(formatTable(t, TableFormat::kCsv));
+  EXPECT_EQ(formatTable(back, TableFormat::kCsv), formatTable(t, TableFormat::kCsv));
+  EXPECT_EQ(back.find("d2", "dead-reckoning"), nullptr);
+  ASSERT_NE(back.find("d2", "is-graphs"), nullptr);
+  EXPECT_FALSE(back.find("d2", "is-graphs")->has_value());
+}
+
+TEST(Table, BadCsvNamesTheLine) {
+  EXPECT_THROW(parseTableCsv(""), std::invalid_argument);
+  try {
+    parseTableCsv("world,a\nd1,0.1\nd2,fast\n");
+    FAIL();
+  } catch (const std::invalid_argument& e) {
+    EXPECT_STREQ(e.what(), "line 3: \"fast\" is neither a number nor \"-\"");
+  }
+  try {
+    parseTableCsv("world,a,b\nd1,0.1\n");
+    FAIL();
+  } catch (const std::invalid_argument& e) {
+    EXPECT_STREQ(e.what(), "line 2: 2 fields, the header has 3");
+  }
+}
+
+TEST(Table, RegressionsNameTheCell) {
+  const ResultTable baseline = parseTableCsv(
+      "world,is-graphs,dead-reckoning\nd1,0.028,0.099\n"
+      "d2,0.030,0.100\nd3,-,0.2\n");
+  ResultTable now;
+  now.set("d1", "is-graphs", 0.037);         // within 0.01
+  now.set("d1", "dead-reckoning", 0.120);    // worse by 0.021
+  now.set("d2", "is-graphs", std::nullopt);  // failed
+  now.set("d2", "dead-reckoning", 0.05);     // better
+  now.set("d3", "is-graphs", std::nullopt);  // failed, as the baseline
+  const auto regressions = findRegressions(baseline, now, 0.01);
+  ASSERT_EQ(regressions.size(), 3u);
+  EXPECT_EQ(regressions[0].describe(), "d1 / dead-reckoning: 0.120 m, baseline 0.099 m");
+  EXPECT_EQ(regressions[1].describe(), "d2 / is-graphs: failed (baseline 0.030)");
+  EXPECT_EQ(regressions[2].describe(), "d3 / dead-reckoning: no run (baseline 0.200)");
+}
+
+}  // namespace
+}  // namespace isg::eval
