@@ -102,12 +102,12 @@ int RunCommand::run() {
   record.sim_seconds = loop.sim_seconds;
   record.wall_seconds = loop.wall_seconds;
   record.graph = localizer->graph();
-  const nlohmann::json metrics = runMetrics(record);
+  const RunEvaluation evaluation = evaluateRun(record);
   if (const auto parent = fs::path(output_).parent_path(); !parent.empty()) {
     fs::create_directories(parent);
   }
-  writeRunFolder(output_, record, metrics, force_);
-  std::printf("%s", runSummary("isg run", output_, metrics).c_str());
+  writeRunFolder(output_, record, evaluation, force_);
+  std::printf("%s", runSummary("isg run", output_, evaluation.metrics).c_str());
   return kExitOk;
 }
 

@@ -104,8 +104,8 @@ int SlamCommand::run() {
                                                : 0.0;
   record.wall_seconds = wall;
   record.graph = localizer->graph();
-  const nlohmann::json metrics = runMetrics(record);
-  writeRunFolder(output_, record, metrics, force_);
+  const RunEvaluation evaluation = evaluateRun(record);
+  writeRunFolder(output_, record, evaluation, force_);
 
   // The S-Graph's own measures: keyframes, rooms against the plan, timings.
   const slam::SGraph* graph = nullptr;
@@ -114,7 +114,7 @@ int SlamCommand::run() {
   } else if (const auto* i = dynamic_cast<const slam::ISGraphLocalizer*>(localizer.get())) {
     graph = &i->sgraph();
   }
-  std::printf("%s", runSummary("isg slam", output_, metrics).c_str());
+  std::printf("%s", runSummary("isg slam", output_, evaluation.metrics).c_str());
   if (graph == nullptr) return kExitOk;
   eval::Trajectory keyframes;
   for (const auto& kf : graph->keyframes()) keyframes.push_back({kf.stamp, kf.pose()});

@@ -1,10 +1,7 @@
 #include "cli/run_folder.hpp"
 
-#include <unistd.h>
-
 #include <cstdio>
 #include <filesystem>
-#include <fstream>
 
 #include "bim/agraph_json.hpp"
 #include "bim/input_error.hpp"
@@ -12,6 +9,7 @@
 #include "eval/ape.hpp"
 #include "eval/coverage.hpp"
 #include "eval/report_svg.hpp"
+#include "sim/atomic_folder.hpp"
 
 namespace isg::cli {
 
@@ -34,16 +32,11 @@ eval::Trajectory odometryInPlan(const RunRecord& run) {
   return out;
 }
 
-void writeText(const fs::path& path, const std::string& text) {
-  std::ofstream out(path, std::ios::binary);
-  out << text;
-  if (!out) throw bim::InputError(path.string(), "", "cannot write");
-}
-
 }  // namespace
 
-nlohmann::json runMetrics(const RunRecord& run) {
-  nlohmann::json m;
+RunEvaluation evaluateRun(const RunRecord& run) {
+  RunEvaluation evaluation;
+  nlohmann::json& m = evaluation.metrics;
   m["world"] = run.world;
   m["method"] = run.method;
   m["seed"] = run.seed;
@@ -64,6 +57,10 @@ nlohmann::json runMetrics(const RunRecord& run) {
     const auto ape = eval::absolutePoseError(run.ground_truth, run.estimate, planar);
     m["ape_B"] = statisticsJson(ape.translation_stats);
     m["ape_B_rotation_deg"] = statisticsJson(ape.rotation_stats);
+    for (std::size_t i = 0; i < ape.translation.size(); ++i) {
+      evaluation.error_over_time.emplace_back(run.estimate[ape.association.estimate[i]].t,
+                                              ape.translation[i]);
+    }
   }
   if (run.estimate_map.size() >= 3) {
     eval::ErrorOptions se3 = planar;
@@ -71,22 +68,24 @@ nlohmann::json runMetrics(const RunRecord& run) {
     m["ape_M_se3"] = statisticsJson(
         eval::absolutePoseError(run.ground_truth, run.estimate_map, se3).translation_stats);
   }
-  const eval::Trajectory dead_reckoning = odometryInPlan(run);
-  if (!dead_reckoning.empty()) {
-    m["ape_odometry_from_true_start"] = statisticsJson(
-        eval::absolutePoseError(run.ground_truth, dead_reckoning, planar).translation_stats);
+  evaluation.dead_reckoning = odometryInPlan(run);
+  if (!evaluation.dead_reckoning.empty()) {
+    m["ape_odometry_from_true_start"] =
+        statisticsJson(eval::absolutePoseError(run.ground_truth, evaluation.dead_reckoning, planar)
+                           .translation_stats);
   }
   if (run.graph.contains("matching")) {
     const auto& matching = run.graph["matching"];
     m["matching_status"] = matching.value("status", "");
     m["matching_events"] = matching.value("events", nlohmann::json::array());
   }
-  return m;
+  return evaluation;
 }
 
 namespace {
 
-std::string reportFor(const RunRecord& run, const nlohmann::json& metrics) {
+std::string reportFor(const RunRecord& run, const RunEvaluation& evaluation) {
+  const nlohmann::json& metrics = evaluation.metrics;
   eval::ReportInput input;
   input.title = "isg run: " + run.world + " — " + run.method;
   char line[256];
@@ -127,54 +126,29 @@ std::string reportFor(const RunRecord& run, const nlohmann::json& metrics) {
   }
   input.ground_truth = run.ground_truth;
   input.estimate = run.estimate;
-  input.odometry = odometryInPlan(run);
-  if (!run.estimate.empty()) {
-    eval::ErrorOptions planar;
-    planar.project_xy = true;
-    const auto ape = eval::absolutePoseError(run.ground_truth, run.estimate, planar);
-    for (std::size_t i = 0; i < ape.translation.size(); ++i) {
-      input.error_over_time.emplace_back(run.estimate[ape.association.estimate[i]].t,
-                                         ape.translation[i]);
-    }
-  }
+  input.odometry = evaluation.dead_reckoning;
+  input.error_over_time = evaluation.error_over_time;
   input.localized_at = run.localized_at;
   return eval::reportSvg(input);
 }
 
 }  // namespace
 
-void writeRunFolder(const std::string& dir, const RunRecord& run, const nlohmann::json& metrics,
+void writeRunFolder(const std::string& dir, const RunRecord& run, const RunEvaluation& evaluation,
                     bool force) {
-  const fs::path target(dir);
-  if (fs::exists(target) && !force) {
-    throw bim::InputError(dir, "", "already exists (use --force to replace it)");
-  }
-  const fs::path parent = target.has_parent_path() ? target.parent_path() : fs::path(".");
-  if (!fs::is_directory(parent)) {
-    throw bim::InputError(dir, "",
-                          "cannot write: directory " + parent.string() + " does not exist");
-  }
-  const fs::path temporary =
-      parent / ("." + target.filename().string() + ".partial" + std::to_string(::getpid()));
-  fs::remove_all(temporary);
-  fs::create_directories(temporary);
-  try {
-    writeText(temporary / "groundtruth.tum", eval::toTumText(run.ground_truth));
-    writeText(temporary / "odometry.tum", eval::toTumText(run.odometry));
-    writeText(temporary / "estimate.tum", eval::toTumText(run.estimate));
-    writeText(temporary / "estimate_map.tum", eval::toTumText(run.estimate_map));
-    writeText(temporary / "metrics.json", metrics.dump(2) + "\n");
-    if (run.agraph)
-      writeText(temporary / "agraph.json", bim::agraphJsonText(bim::agraphToJson(*run.agraph)));
-    writeText(temporary / "sgraph.json", run.graph.dump(1) + "\n");
-    writeText(temporary / "report.svg", reportFor(run, metrics));
-    if (fs::exists(target)) fs::remove_all(target);
-    fs::rename(temporary, target);
-  } catch (...) {
-    std::error_code ignored;
-    fs::remove_all(temporary, ignored);
-    throw;
-  }
+  sim::writeFolderAtomically(dir, force, [&](const fs::path& temporary) {
+    sim::writeFile(temporary / "groundtruth.tum", eval::toTumText(run.ground_truth));
+    sim::writeFile(temporary / "odometry.tum", eval::toTumText(run.odometry));
+    sim::writeFile(temporary / "estimate.tum", eval::toTumText(run.estimate));
+    sim::writeFile(temporary / "estimate_map.tum", eval::toTumText(run.estimate_map));
+    sim::writeFile(temporary / "metrics.json", evaluation.metrics.dump(2) + "\n");
+    if (run.agraph) {
+      sim::writeFile(temporary / "agraph.json",
+                     bim::agraphJsonText(bim::agraphToJson(*run.agraph)));
+    }
+    sim::writeFile(temporary / "sgraph.json", run.graph.dump(1) + "\n");
+    sim::writeFile(temporary / "report.svg", reportFor(run, evaluation));
+  });
 }
 
 std::string runSummary(const std::string& command, const std::string& dir,

@@ -3,6 +3,8 @@
 #include <nlohmann/json.hpp>
 #include <optional>
 #include <string>
+#include <utility>
+#include <vector>
 
 #include "bim/agraph.hpp"
 #include "bim/plan.hpp"
@@ -26,16 +28,22 @@ struct RunRecord {
   nlohmann::json graph;  // the localizer's final graph (sgraph.json)
 };
 
-// metrics.json: localization (when, share), APE in B (2D, no alignment, from the first localized
-// pose on — the paper's measure), the map-frame APE after SE(3) alignment, odometry from the true
-// start for comparison, speed. ALGORITHMS.md §7 and docs/evaluation.md.
-nlohmann::json runMetrics(const RunRecord& run);
+// A run, evaluated once for metrics.json, the report and the summary.
+struct RunEvaluation {
+  // metrics.json: localization (when, share), APE in B (2D, no alignment, from the first
+  // localized pose on — the paper's measure), the map-frame APE after SE(3) alignment, odometry
+  // from the true start for comparison, speed. ALGORITHMS.md §7 and docs/evaluation.md.
+  nlohmann::json metrics;
+  eval::Trajectory dead_reckoning;                         // odometry from the true start, in B
+  std::vector<std::pair<double, double>> error_over_time;  // (t, APE in B)
+};
+RunEvaluation evaluateRun(const RunRecord& run);
 
 // Writes the run folder of ARCHITECTURE.md (groundtruth.tum, odometry.tum, estimate.tum,
 // estimate_map.tum, metrics.json, agraph.json, sgraph.json, report.svg) all at once: into a
 // temporary folder beside it, renamed into place at the end. An existing folder is an InputError
 // unless `force`.
-void writeRunFolder(const std::string& dir, const RunRecord& run, const nlohmann::json& metrics,
+void writeRunFolder(const std::string& dir, const RunRecord& run, const RunEvaluation& evaluation,
                     bool force);
 
 // The summary printed at the end of a run.

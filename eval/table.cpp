@@ -1,5 +1,6 @@
 #include "eval/table.hpp"
 
+#include <algorithm>
 #include <cstdio>
 #include <sstream>
 #include <stdexcept>
@@ -8,11 +9,14 @@ namespace isg::eval {
 
 namespace {
 
-int indexOf(std::vector<std::string>& names, const std::string& name, bool add) {
-  for (std::size_t i = 0; i < names.size(); ++i) {
-    if (names[i] == name) return int(i);
-  }
-  if (!add) return -1;
+int indexOf(const std::vector<std::string>& names, const std::string& name) {
+  const auto it = std::find(names.begin(), names.end(), name);
+  return it == names.end() ? -1 : int(it - names.begin());
+}
+
+int indexOrAdd(std::vector<std::string>& names, const std::string& name) {
+  const int i = indexOf(names, name);
+  if (i >= 0) return i;
   names.push_back(name);
   return int(names.size()) - 1;
 }
@@ -50,8 +54,8 @@ std::string latexEscape(const std::string& text) {
 
 void ResultTable::set(const std::string& row, const std::string& column,
                       std::optional<double> value) {
-  const int r = indexOf(rows, row, true);
-  const int c = indexOf(columns, column, true);
+  const int r = indexOrAdd(rows, row);
+  const int c = indexOrAdd(columns, column);
   cells.resize(rows.size());
   present.resize(rows.size());
   for (std::size_t i = 0; i < rows.size(); ++i) {
@@ -64,9 +68,8 @@ void ResultTable::set(const std::string& row, const std::string& column,
 
 const std::optional<double>* ResultTable::find(const std::string& row,
                                                const std::string& column) const {
-  auto& self = const_cast<ResultTable&>(*this);
-  const int r = indexOf(self.rows, row, false);
-  const int c = indexOf(self.columns, column, false);
+  const int r = indexOf(rows, row);
+  const int c = indexOf(columns, column);
   if (r < 0 || c < 0 || !present[r][c]) return nullptr;
   return &cells[r][c];
 }

@@ -14,6 +14,7 @@
 
 #include "bim/input_error.hpp"
 #include "bim/plan_json.hpp"
+#include "sim/atomic_folder.hpp"
 #include "sim/vlp16.hpp"
 
 namespace isg::sim {
@@ -21,12 +22,6 @@ namespace isg::sim {
 namespace fs = std::filesystem;
 
 namespace {
-
-void writeFile(const fs::path& path, const std::string& content) {
-  std::ofstream out(path, std::ios::binary);
-  out << content;
-  if (!out) throw bim::InputError(path.string(), "", "cannot write file");
-}
 
 template <typename T>
 void append(std::string& out, T value) {
@@ -140,22 +135,9 @@ std::string pcdBinary(const LidarScan& scan) {
 DatasetSummary writeDataset(Simulation& sim, const std::string& dir, const DatasetOptions& options,
                             const ProgressCallback& progress) {
   const auto start = std::chrono::steady_clock::now();
-  const fs::path target(dir);
-  if (fs::exists(target) && !options.overwrite) {
-    throw bim::InputError(dir, "", "already exists (use --force to replace it)");
-  }
-  const fs::path parent = target.has_parent_path() ? target.parent_path() : fs::path(".");
-  if (!fs::is_directory(parent)) {
-    throw bim::InputError(dir, "",
-                          "cannot write: directory " + parent.string() + " does not exist");
-  }
-  const fs::path temporary =
-      parent / ("." + target.filename().string() + ".partial" + std::to_string(::getpid()));
-  fs::remove_all(temporary);
-  fs::create_directories(temporary / "scans");
-
   DatasetSummary summary;
-  try {
+  writeFolderAtomically(dir, options.overwrite, [&](const fs::path& temporary) {
+    fs::create_directories(temporary / "scans");
     const double duration =
         options.duration < 0 ? sim.duration() : std::min(options.duration, sim.duration());
     summary.sim_seconds = duration;
@@ -192,13 +174,7 @@ DatasetSummary writeDataset(Simulation& sim, const std::string& dir, const Datas
     writeFile(temporary / "odometry.tum", eval::toTumText(sim.odometry(duration)));
     writeFile(temporary / "scans.tum", eval::toTumText(sim.scanPoses(duration)));
     writeFile(temporary / "metadata.json", metadata(sim, duration, options, scans).dump(2) + "\n");
-    if (fs::exists(target)) fs::remove_all(target);
-    fs::rename(temporary, target);
-  } catch (...) {
-    std::error_code ignored;
-    fs::remove_all(temporary, ignored);
-    throw;
-  }
+  });
   summary.wall_seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return summary;

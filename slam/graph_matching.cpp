@@ -361,6 +361,18 @@ Eigen::Vector3d GraphMatcher::refine(const MatchInput& input,
   return x;
 }
 
+Eigen::Vector2d GraphMatcher::middleOf(const MatchInput& input) {
+  Eigen::Vector2d middle = Eigen::Vector2d::Zero();
+  for (const auto& r : input.rooms) middle += r.centre / double(input.rooms.size());
+  return middle;
+}
+
+bool GraphMatcher::sameAnswer(const Eigen::Vector3d& a, const Eigen::Vector3d& b,
+                              const Eigen::Vector2d& middle, double scale) const {
+  return (apply(a, middle) - apply(b, middle)).norm() < scale * options_.cluster_distance &&
+         std::abs(wrapAngle(a.z() - b.z())) < scale * options_.cluster_yaw_deg * kPi / 180.0;
+}
+
 MatchResult GraphMatcher::match(const MatchInput& input) const {
   const auto start = std::chrono::steady_clock::now();
   MatchResult result;
@@ -401,20 +413,12 @@ MatchResult GraphMatcher::match(const MatchInput& input) const {
             [](const Verification& a, const Verification& b) { return a.score > b.score; });
   // 3. Clusters: the same answer proposed by several room pairs. Two transforms are the same
   // answer when they put the S-Graph's rooms in the same place.
-  Eigen::Vector2d middle = Eigen::Vector2d::Zero();
-  for (const auto& r : input.rooms) middle += r.centre / double(input.rooms.size());
+  const Eigen::Vector2d middle = middleOf(input);
   std::vector<const Verification*> representatives;
   for (const auto& v : verified) {
-    bool joined = false;
-    for (const auto* r : representatives) {
-      if ((apply(v.x_y_yaw, middle) - apply(r->x_y_yaw, middle)).norm() <
-              options_.cluster_distance &&
-          std::abs(wrapAngle(v.x_y_yaw.z() - r->x_y_yaw.z())) <
-              options_.cluster_yaw_deg * kPi / 180.0) {
-        joined = true;
-        break;
-      }
-    }
+    const bool joined = std::any_of(
+        representatives.begin(), representatives.end(),
+        [&](const Verification* r) { return sameAnswer(v.x_y_yaw, r->x_y_yaw, middle); });
     if (!joined) representatives.push_back(&v);
   }
   result.clusters = int(representatives.size());
@@ -428,19 +432,14 @@ MatchResult GraphMatcher::match(const MatchInput& input) const {
   std::sort(finalists.begin(), finalists.end(),
             [](const Verification& a, const Verification& b) { return a.score > b.score; });
   result.best = finalists[0];
-  for (std::size_t i = 1; i < finalists.size(); ++i) {
-    // Refinement may bring two clusters to the same answer: the second must be distinct.
-    const bool same =
-        (apply(finalists[i].x_y_yaw, middle) - apply(result.best.x_y_yaw, middle)).norm() <
-            options_.cluster_distance &&
-        std::abs(wrapAngle(finalists[i].x_y_yaw.z() - result.best.x_y_yaw.z())) <
-            options_.cluster_yaw_deg * kPi / 180.0;
-    if (!same) {
-      result.second = finalists[i];
-      break;
-    }
-  }
-  if (result.second.score == 0.0 && representatives.size() > finalists.size()) {
+  // Refinement may bring two clusters to the same answer: the second must be distinct. If all
+  // finalists came together, the next cluster is the second.
+  const auto second = std::find_if(
+      finalists.begin() + 1, finalists.end(),
+      [&](const Verification& v) { return !sameAnswer(v.x_y_yaw, result.best.x_y_yaw, middle); });
+  if (second != finalists.end()) {
+    result.second = *second;
+  } else if (representatives.size() > finalists.size()) {
     result.second = *representatives[finalists.size()];
   }
   result.second_score = result.second.score;

@@ -112,6 +112,11 @@ class GraphMatcher {
   MatchResult match(const MatchInput& input) const;
   // Checks one B_T_M (x, y, yaw) against the S-Graph: the correspondences it implies.
   Verification verify(const MatchInput& input, const Eigen::Vector3d& x_y_yaw) const;
+  // Whether two B_T_M are the same answer: they put the S-Graph's rooms (around `middle`, their
+  // mean centre: middleOf) within `scale` × the clustering tolerances of each other.
+  bool sameAnswer(const Eigen::Vector3d& a, const Eigen::Vector3d& b, const Eigen::Vector2d& middle,
+                  double scale = 1.0) const;
+  static Eigen::Vector2d middleOf(const MatchInput& input);
   // Refines B_T_M by least squares over a verification's correspondences.
   Eigen::Vector3d refine(const MatchInput& input, const Verification& verification) const;
 

@@ -9,8 +9,6 @@ namespace isg::slam {
 
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
-
 Eigen::Vector2d applyPlanar(const Eigen::Vector3d& x_y_yaw, const Eigen::Vector2d& p) {
   return Eigen::Rotation2Dd(x_y_yaw.z()) * p + x_y_yaw.head<2>();
 }
@@ -132,13 +130,11 @@ void ISGraphLocalizer::onKeyframe(double stamp) {
   }
   if (result.status != MatchStatus::kMatched) return;  // the merge stands on its own evidence
   // A unique answer elsewhere than where the merge is: the first match was wrong.
-  Eigen::Vector2d middle = Eigen::Vector2d::Zero();
-  for (const auto& r : input.rooms) middle += r.centre / double(input.rooms.size());
-  const double apart =
-      (applyPlanar(result.best.x_y_yaw, middle) - applyPlanar(B_T_M_, middle)).norm();
-  const double turned = std::abs(std::remainder(result.best.x_y_yaw.z() - B_T_M_.z(), 2 * kPi));
-  if (apart > 2 * options_.matching.cluster_distance ||
-      turned > 2 * options_.matching.cluster_yaw_deg * kPi / 180.0) {
+  // Twice the clustering tolerances: the merge has moved B_T_M a little since it was adopted.
+  const Eigen::Vector2d middle = GraphMatcher::middleOf(input);
+  if (!matcher_.sameAnswer(result.best.x_y_yaw, B_T_M_, middle, 2.0)) {
+    const double apart =
+        (applyPlanar(result.best.x_y_yaw, middle) - applyPlanar(B_T_M_, middle)).norm();
     record(stamp, MatchStatus::kContradicted,
            "a new unique answer " + std::to_string(apart) + " m away: " + result.reason);
     adopt(result.best);

@@ -36,8 +36,6 @@ TEST_P(ISGraphInTheLoop, LocalizedInThePlanWithinTheBound) {
   EXPECT_LE(ape.translation_stats.rmse, as_built ? 0.10 : 0.05) << world;
   // Localized well before the end: at least half the run is in B.
   EXPECT_LT(*loop.localized_at - loop.ground_truth.front().t, 0.5 * loop.sim_seconds) << world;
-  // Every matched room is the one the robot stood in: the estimate is in the right place, so
-  // the error would be metres, not centimetres, otherwise — checked by the bound above.
 }
 
 INSTANTIATE_TEST_SUITE_P(ReferenceWorlds, ISGraphInTheLoop,

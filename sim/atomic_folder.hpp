@@ -1,0 +1,19 @@
+#pragma once
+
+#include <filesystem>
+#include <functional>
+#include <string>
+
+namespace isg::sim {
+
+// Creates the folder `dir` all at once: `fill` writes into a temporary folder beside it, which is
+// renamed into place when `fill` returns; if it throws, the temporary folder is removed and
+// nothing is left half-written. An existing `dir` is an InputError unless `overwrite`, and so is
+// a parent directory that does not exist. Used for dataset and run folders.
+void writeFolderAtomically(const std::string& dir, bool overwrite,
+                           const std::function<void(const std::filesystem::path&)>& fill);
+
+// One file of such a folder; a failure is an InputError naming it.
+void writeFile(const std::filesystem::path& path, const std::string& content);
+
+}  // namespace isg::sim
