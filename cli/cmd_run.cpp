@@ -1,15 +1,13 @@
 #include "cli/cmd_run.hpp"
 
-#include <cstdio>
 #include <filesystem>
 #include <iostream>
 
 #include "bim/agraph.hpp"
-#include "cli/methods.hpp"
 #include "cli/progress_bar.hpp"
-#include "cli/run_folder.hpp"
+#include "cli/run_session.hpp"
+#include "sim/scan_pipeline.hpp"
 #include "sim/simulation.hpp"
-#include "sim/testbed_loop.hpp"
 #include "worlds/reference_plans.hpp"
 
 namespace isg::cli {
@@ -33,18 +31,24 @@ RunCommand::RunCommand(CLI::App& parent) {
       "odometry feed the localizer in-process, in time order; the iS-Graph matches its S-Graph "
       "to the plan's A-Graph and, once the match is unique, localizes in the plan frame B. "
       "Writes RUN_DIR: groundtruth.tum, odometry.tum, estimate.tum (B, rows only once "
-      "localized), estimate_map.tum (M), metrics.json, agraph.json, sgraph.json (with the "
-      "matching log and B_T_M), report.svg. With no INPUT, runs the built-in default world (" +
-      std::string(worlds::kDefaultWorld) + ").\n\n" + builtinWorldsHelp());
-  app_->add_option("input", input_, "plan or scenario file, or builtin:NAME")
+      "localized), estimate_map.tum (M), keyframes.tum (map-building methods), metrics.json, "
+      "agraph.json, sgraph.json (with the matching log and B_T_M), report.svg "
+      "(docs/evaluation.md). With no PLAN|SCENARIO, runs the built-in default world (" +
+      std::string(worlds::kDefaultWorld) + ").\n\n" + methodHelp(methods_) + "\n" +
+      builtinWorldsHelp());
+  app_->add_option("input", input_, "PLAN|SCENARIO: plan or scenario file, or builtin:NAME")
+      ->option_text("PLAN|SCENARIO")
       ->default_str(std::string(worlds::kDefaultWorld));
-  app_->add_option("-o,--output", output_, "run folder to create (default: runs/<world>-<method>)");
-  app_->add_option("--method", method_, "localizer: is-graphs, s-graph or dead-reckoning")
-      ->check(CLI::IsMember(methodNames()))
+  app_->add_option("-o,--output", output_, "RUN_DIR to create")
+      ->option_text("RUN_DIR")
+      ->default_str("runs/<world>-<method>");
+  app_->add_option("--method", method_, "localization method (see below)")
+      ->check(CLI::IsMember(methods_.names()))
       ->capture_default_str();
-  app_->add_option("--seed", seed_, "seed for every random draw (default: the scenario's)");
-  app_->add_option("--duration", duration_, "seconds of robot time (default: the whole route)")
-      ->check(CLI::PositiveNumber);
+  app_->add_option("--seed", seed_, "seed for every random draw")->default_str("the scenario's");
+  app_->add_option("--duration", duration_, "seconds of robot time")
+      ->check(CLI::PositiveNumber)
+      ->default_str("the whole route");
   app_->add_option("--threads", threads_, "threads: one localizes, the others cast scans ahead")
       ->check(CLI::Range(1, 64))
       ->capture_default_str();
@@ -61,53 +65,34 @@ int RunCommand::run() {
   }
   bim::Scenario scenario = loadInput(input, "run");
   if (seed_) scenario.seed = *seed_;
-  sim::Simulation simulation(scenario);
+  const sim::Simulation simulation(scenario);
   for (const auto& room : simulation.route().skipped_rooms) {
     std::cerr << "isg run: warning: room " << room << " cannot be reached; the tour skips it\n";
   }
   const bim::AGraph agraph = bim::buildAGraph(scenario.plan);
-  // Dead reckoning is given the true start: M is the start pose.
-  const Eigen::Isometry3d B_T_M_true =
-      simulation.trajectory().pose(0.0) * simulation.odometry(0.0).front().pose.inverse();
-  auto localizer = makeLocalizer(method_, simulation.R_T_L(), agraph, B_T_M_true);
+  run::SensorStreams streams = sim::sensorStreams(simulation, duration_);
 
-  sim::LoopOptions options;
-  options.duration = duration_;
-  options.threads = threads_;
+  run::LocalizerContext context;
+  context.plan = &scenario.plan;
+  context.agraph = &agraph;
+  context.level = scenario.robot.level;
+  context.R_T_L = streams.R_T_L;
+  context.start_B_T_M = run::trueStartB_T_M(streams);
+  const auto localizer = methods_.make(method_, context);
+
+  run::RunSetup setup{input, localizer->name(), scenario.seed, &scenario.plan, &agraph,
+                      scenario.robot.level};
   ProgressBar bar("isg run", quiet_);
-  const double period = simulation.scanPeriod();
-  options.progress = [&](int done, int total, const slam::Localizer& l) {
-    if (done % 10 != 0 && done != total) return;
-    char detail[160];
-    std::snprintf(detail, sizeof detail, "%.0f s of robot time, %s", done * period,
-                  l.mapInPlan() ? "localized" : "not localized yet");
-    bar.update(total > 0 ? double(done) / total : 1.0, detail);
-  };
-  const sim::LoopResult loop = sim::runLoop(simulation, *localizer, options);
+  const double period = streams.scan_period;
+  const int scans = int(streams.scan_stamps.size());
+  sim::LookaheadScans source(simulation, scans, threads_ - 1);
+  const run::RunRecord record = run::runLocalizer(std::move(setup), *localizer, std::move(streams),
+                                                  source, progressOn(bar, period));
   bar.finish();
-
-  RunRecord record;
-  record.world = input;
-  record.method = localizer->name();
-  record.seed = scenario.seed;
-  record.plan = &scenario.plan;
-  record.agraph = &agraph;
-  record.level = scenario.robot.level;
-  record.ground_truth = loop.ground_truth;
-  record.odometry = loop.odometry;
-  record.estimate = loop.estimate;
-  record.estimate_map = loop.estimate_map;
-  record.localized_at = loop.localized_at;
-  record.scans = loop.scans;
-  record.sim_seconds = loop.sim_seconds;
-  record.wall_seconds = loop.wall_seconds;
-  record.graph = localizer->graph();
-  const RunEvaluation evaluation = evaluateRun(record);
   if (const auto parent = fs::path(output_).parent_path(); !parent.empty()) {
     fs::create_directories(parent);
   }
-  writeRunFolder(output_, record, evaluation, force_);
-  std::printf("%s", runSummary("isg run", output_, evaluation.metrics).c_str());
+  finishRun("isg run", output_, force_, record);
   return kExitOk;
 }
 

@@ -4,6 +4,7 @@
 #include <optional>
 
 #include "cli/common.hpp"
+#include "run/builtin_methods.hpp"
 
 namespace isg::cli {
 
@@ -14,6 +15,7 @@ class RunCommand : public Command {
   int run() override;
 
  private:
+  const run::LocalizerRegistry methods_ = run::builtinMethods();
   std::string input_;
   std::string output_;
   std::string method_ = "is-graphs";

@@ -1,6 +1,7 @@
 #pragma once
 
 #include "cli/common.hpp"
+#include "run/builtin_methods.hpp"
 
 namespace isg::cli {
 
@@ -11,6 +12,7 @@ class SlamCommand : public Command {
   int run() override;
 
  private:
+  const run::LocalizerRegistry methods_ = run::builtinMethods();
   std::string dataset_;
   std::string plan_;
   std::string method_;

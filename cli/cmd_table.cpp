@@ -4,12 +4,11 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
-#include <nlohmann/json.hpp>
 #include <sstream>
 
-#include "bim/json_reader.hpp"
-#include "cli/methods.hpp"
 #include "eval/table.hpp"
+#include "run/builtin_methods.hpp"
+#include "run/run_metrics.hpp"
 
 namespace isg::cli {
 
@@ -37,36 +36,25 @@ TableCommand::TableCommand(CLI::App& parent) {
 }
 
 int TableCommand::run() {
-  namespace fs = std::filesystem;
   // The testbed's methods first, in their order (iS-Graphs, then the baselines), like the paper.
-  std::vector<std::pair<std::string, nlohmann::json>> runs;
-  for (const auto& dir : runs_) {
-    const std::string path = (fs::path(dir) / "metrics.json").string();
-    if (!fs::is_regular_file(path)) {
-      throw bim::InputError(dir, "", "not a run folder (no metrics.json)");
-    }
-    runs.emplace_back(dir, bim::readJsonFile(path));
-  }
-  auto rank = [](const nlohmann::json& metrics) {
-    const auto& names = methodNames();
-    const auto it = std::find(names.begin(), names.end(), metrics.value("method", ""));
-    return int(it - names.begin());
+  std::vector<std::pair<std::string, run::RunMetrics>> runs;
+  for (const auto& dir : runs_) runs.emplace_back(dir, run::readMetrics(dir));
+  const std::vector<std::string> names = run::builtinMethods().names();
+  auto rank = [&](const run::RunMetrics& metrics) {
+    return int(std::find(names.begin(), names.end(), metrics.method) - names.begin());
   };
   std::stable_sort(runs.begin(), runs.end(),
                    [&](const auto& a, const auto& b) { return rank(a.second) < rank(b.second); });
   eval::ResultTable table;
   for (const auto& [dir, metrics] : runs) {
-    std::string world = metrics.value("world", dir);
+    std::string world = metrics.world;
     if (world.rfind("builtin:", 0) == 0) world = world.substr(8);
-    const std::string method = metrics.value("method", "?");
     std::optional<double> value;
-    if (metrics.value("localized", false) && metrics.contains("ape_B")) {
-      value = metrics["ape_B"].value("rmse", 0.0);
+    if (metrics.localized) value = metrics.ape_B->rmse;
+    if (table.find(world, metrics.method) != nullptr) {
+      throw bim::InputError(dir, "", "a second run of " + world + " with " + metrics.method);
     }
-    if (table.find(world, method) != nullptr) {
-      throw bim::InputError(dir, "", "a second run of " + world + " with " + method);
-    }
-    table.set(world, method, value);
+    table.set(world, metrics.method, value);
   }
   const eval::TableFormat format = format_ == "csv"     ? eval::TableFormat::kCsv
                                    : format_ == "latex" ? eval::TableFormat::kLatex

@@ -5,10 +5,13 @@
 
 #include "bim/input_error.hpp"
 #include "bim/scenario.hpp"
+#include "run/atomic_folder.hpp"
 
 namespace isg::cli {
 
-// Exit codes of every subcommand (ARCHITECTURE.md).
+using run::writeFileAtomically;
+
+// Exit codes of every subcommand (docs/architecture.md).
 inline constexpr int kExitOk = 0;
 inline constexpr int kExitBadInput = 1;
 inline constexpr int kExitUsage = 2;
@@ -16,10 +19,6 @@ inline constexpr int kExitInternal = 3;
 
 // Loads a plan or scenario (a file or "builtin:NAME") and prints its warnings to stderr.
 bim::Scenario loadInput(const std::string& argument, const std::string& command);
-
-// Writes `content` to `path` so that a reader never sees a half-written file: to a temporary
-// file beside it, then renamed over it. A failure is an InputError naming the path.
-void writeFileAtomically(const std::string& path, const std::string& content);
 
 // The text listing the built-in worlds, for --help.
 std::string builtinWorldsHelp();

@@ -24,6 +24,46 @@ std::string toTumText(const Trajectory& trajectory) {
   return out;
 }
 
+namespace {
+
+// x rounded to `decimals` places as printf's "%.Nf" does (the exact binary value, ties to even)
+// and read back as strtod does (the double nearest that decimal): the integer N = round(x·10^k)
+// is found from the product and its exact error (fma), and N / 10^k is correctly rounded by IEEE
+// division, which is strtod's nearest double to N·10^-k. Exact while |x|·10^k < 2^53.
+double quantise(double x, double scale) {
+  const double p = x * scale;
+  double n = std::nearbyint(p);                 // ties to even on p; keeps the sign of zero
+  const double error = std::fma(x, scale, -p);  // x·scale = p + error, exactly
+  const double rest = p - n;                    // exact; only a half-way p can round wrongly
+  if (rest == 0.5 && error > 0) n += 1.0;       // x·scale lies just above the half
+  if (rest == -0.5 && error < 0) n -= 1.0;      // just below the negative half
+  return n / scale;
+}
+
+}  // namespace
+
+double quantisedTime(double t) { return quantise(t, 1e9); }
+
+Trajectory quantised(const Trajectory& trajectory) {
+  Trajectory out;
+  out.reserve(trajectory.size());
+  for (const auto& p : trajectory) {
+    Eigen::Quaterniond q(p.pose.linear());
+    q.normalize();
+    if (q.w() < 0) q.coeffs() *= -1.0;
+    const Eigen::Vector3d t = p.pose.translation();
+    StampedPose r;
+    r.t = quantisedTime(p.t);
+    r.pose.translation() = Eigen::Vector3d(quantise(t.x(), 1e6), quantise(t.y(), 1e6),
+                                           quantise(t.z(), 1e6));
+    const Eigen::Quaterniond read(quantise(q.w(), 1e9), quantise(q.x(), 1e9),
+                                  quantise(q.y(), 1e9), quantise(q.z(), 1e9));
+    r.pose.linear() = read.normalized().toRotationMatrix();
+    out.push_back(r);
+  }
+  return out;
+}
+
 Trajectory parseTum(const std::string& text, const std::string& file) {
   Trajectory out;
   std::istringstream in(text);

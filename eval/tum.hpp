@@ -17,6 +17,14 @@ using Trajectory = std::vector<StampedPose>;
 // decimals (qw ≥ 0, so that equal rotations print equally).
 std::string toTumText(const Trajectory& trajectory);
 
+// The trajectory as its TUM text carries it: each number rounded as toTumText prints it and read
+// back as parseTum reads it — bit for bit parseTum(toTumText(trajectory)), without the text. A
+// run quantises its streams with this once, so that the live loop and the replay of a recorded
+// dataset see the very same numbers.
+Trajectory quantised(const Trajectory& trajectory);
+// A time as a TUM row keeps it (nanoseconds).
+double quantisedTime(double t);
+
 // Parses TUM text; '#' lines and blank lines are skipped. A malformed line throws
 // std::runtime_error naming `file` and the line number.
 Trajectory parseTum(const std::string& text, const std::string& file);

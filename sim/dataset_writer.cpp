@@ -10,41 +10,34 @@
 #include <fstream>
 #include <mutex>
 #include <nlohmann/json.hpp>
+#include <exception>
 #include <thread>
 
 #include "bim/input_error.hpp"
 #include "bim/plan_json.hpp"
-#include "sim/atomic_folder.hpp"
+#include "run/atomic_folder.hpp"
+#include "run/dataset_format.hpp"
 #include "sim/vlp16.hpp"
 
 namespace isg::sim {
 
 namespace fs = std::filesystem;
+using run::writeFile;
+using run::writeFolderAtomically;
 
 namespace {
-
-template <typename T>
-void append(std::string& out, T value) {
-  char bytes[sizeof(T)];
-  std::memcpy(bytes, &value, sizeof(T));
-  out.append(bytes, sizeof(T));
-}
 
 nlohmann::ordered_json metadata(const Simulation& sim, double duration,
                                 const DatasetOptions& options, int scans) {
   using json = nlohmann::ordered_json;
   const bim::Scenario& s = sim.scenario();
   const auto& l = s.lidar;
-  const Eigen::Matrix4d R_T_L = sim.R_T_L().matrix();
-  json matrix = json::array();
-  for (int r = 0; r < 4; ++r)
-    matrix.push_back({R_T_L(r, 0), R_T_L(r, 1), R_T_L(r, 2), R_T_L(r, 3)});
   json route = json::array();
   for (const auto& p : sim.route().waypoints) route.push_back({p.x(), p.y()});
   const auto& gait = sim.trajectory().gait();
   return {
-      {"format", "isg.dataset"},
-      {"version", 1},
+      {"format", run::dataset::kFormat},
+      {"version", run::dataset::kVersion},
       {"generator", "isg simulate 0.1.0"},
       {"scenario", s.source},
       {"plan_file", s.plan_file},
@@ -55,7 +48,7 @@ nlohmann::ordered_json metadata(const Simulation& sim, double duration,
         {"M", "odometry frame: the start pose of the base (odometry.tum)"},
         {"R", "robot base, x forward, y left, z up (groundtruth.tum is B_T_R)"},
         {"L", "LiDAR: the frame of every point of scans/*.pcd, at the point's own firing time"}}},
-      {"extrinsics", {{"R_T_L", {{"xyz_rpy", l.mount}, {"matrix", matrix}}}}},
+      {"extrinsics", run::dataset::extrinsicsJson(l.mount, sim.R_T_L())},
       {"lidar",
        {{"model", "Velodyne VLP-16"},
         {"rate_hz", l.rate_hz},
@@ -102,42 +95,12 @@ nlohmann::ordered_json metadata(const Simulation& sim, double duration,
 
 }  // namespace
 
-std::string pcdBinary(const LidarScan& scan) {
-  const std::size_t n = scan.points.size();
-  std::string out =
-      "# .PCD v0.7 - Point Cloud Data file format\n"
-      "VERSION 0.7\n"
-      "FIELDS x y z intensity ring time\n"
-      "SIZE 4 4 4 4 2 4\n"
-      "TYPE F F F F U F\n"
-      "COUNT 1 1 1 1 1 1\n"
-      "WIDTH " +
-      std::to_string(n) +
-      "\n"
-      "HEIGHT 1\n"
-      "VIEWPOINT 0 0 0 1 0 0 0\n"
-      "POINTS " +
-      std::to_string(n) +
-      "\n"
-      "DATA binary\n";
-  out.reserve(out.size() + n * 22);
-  for (const auto& p : scan.points) {
-    append(out, p.x);
-    append(out, p.y);
-    append(out, p.z);
-    append(out, p.intensity);
-    append(out, p.ring);
-    append(out, p.time);
-  }
-  return out;
-}
-
 DatasetSummary writeDataset(Simulation& sim, const std::string& dir, const DatasetOptions& options,
                             const ProgressCallback& progress) {
   const auto start = std::chrono::steady_clock::now();
   DatasetSummary summary;
   writeFolderAtomically(dir, options.overwrite, [&](const fs::path& temporary) {
-    fs::create_directories(temporary / "scans");
+    fs::create_directories(temporary / run::dataset::kScans);
     const double duration =
         options.duration < 0 ? sim.duration() : std::min(options.duration, sim.duration());
     summary.sim_seconds = duration;
@@ -146,34 +109,42 @@ DatasetSummary writeDataset(Simulation& sim, const std::string& dir, const Datas
     std::atomic<int> next{0}, done{0};
     std::atomic<std::size_t> points{0}, rays{0};
     std::mutex report;
+    std::exception_ptr error;  // the first worker's error, rethrown here after the join
     auto worker = [&] {
-      const auto lidar = sim.makeLidar();
-      for (int k = next++; k < scans; k = next++) {
-        const LidarScan scan = sim.scan(k, *lidar);
-        char name[32];
-        std::snprintf(name, sizeof name, "%06d.pcd", k);
-        writeFile(temporary / "scans" / name, pcdBinary(scan));
-        points += scan.points.size();
-        rays += std::size_t(scan.rays);
-        const int finished = ++done;
-        if (progress) {
-          std::lock_guard<std::mutex> lock(report);
-          progress(finished, scans);
+      try {
+        const auto lidar = sim.makeLidar();
+        for (int k = next++; k < scans; k = next++) {
+          const LidarScan scan = sim.scan(k, *lidar);
+          writeFile(temporary / run::dataset::kScans / run::dataset::scanFileName(k),
+                    run::dataset::pcdBinary(scan.points));
+          points += scan.points.size();
+          rays += std::size_t(scan.rays);
+          const int finished = ++done;
+          if (progress) {
+            std::lock_guard<std::mutex> lock(report);
+            progress(finished, scans);
+          }
         }
+      } catch (...) {
+        std::lock_guard<std::mutex> lock(report);
+        if (!error) error = std::current_exception();
+        next = scans;  // the others stop after their current scan
       }
     };
     std::vector<std::thread> pool;
     for (int i = 1; i < std::max(1, options.threads); ++i) pool.emplace_back(worker);
     worker();
     for (auto& t : pool) t.join();
+    if (error) std::rethrow_exception(error);
     summary.points = points;
     summary.rays = rays;
 
-    writeFile(temporary / "groundtruth.tum",
-              eval::toTumText(sim.groundTruth(duration, options.groundtruth_rate)));
-    writeFile(temporary / "odometry.tum", eval::toTumText(sim.odometry(duration)));
-    writeFile(temporary / "scans.tum", eval::toTumText(sim.scanPoses(duration)));
-    writeFile(temporary / "metadata.json", metadata(sim, duration, options, scans).dump(2) + "\n");
+    using namespace run::dataset;
+    writeFile(temporary / kGroundTruth,
+              trajectoryText(sim.groundTruth(duration, options.groundtruth_rate)));
+    writeFile(temporary / kOdometry, trajectoryText(sim.odometry(duration)));
+    writeFile(temporary / kScanPoses, trajectoryText(sim.scanPoses(duration)));
+    writeFile(temporary / kMetadata, metadata(sim, duration, options, scans).dump(2) + "\n");
   });
   summary.wall_seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();

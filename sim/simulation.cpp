@@ -81,8 +81,8 @@ LidarScan Simulation::scan(int index, LidarSimulator& lidar) const {
       index * scanPeriod(), [this](double t) { return B_T_L(t); }, rng);
 }
 
-eval::Trajectory Simulation::groundTruth(double duration, double rate_hz) const {
-  eval::Trajectory out;
+run::Trajectory Simulation::groundTruth(double duration, double rate_hz) const {
+  run::Trajectory out;
   const int n = int(std::floor(duration * rate_hz + 1e-9));
   for (int i = 0; i <= n; ++i) {
     const double t = i / rate_hz;
@@ -91,8 +91,8 @@ eval::Trajectory Simulation::groundTruth(double duration, double rate_hz) const 
   return out;
 }
 
-eval::Trajectory Simulation::odometry(double duration) const {
-  eval::Trajectory out;
+run::Trajectory Simulation::odometry(double duration) const {
+  run::Trajectory out;
   auto rng = generator(kOdometryStream);
   OdometryModel model(scenario_.odometry, trajectory_->pose(0.0));
   const double rate = scenario_.odometry.rate_hz;
@@ -104,8 +104,8 @@ eval::Trajectory Simulation::odometry(double duration) const {
   return out;
 }
 
-eval::Trajectory Simulation::scanPoses(double duration) const {
-  eval::Trajectory out;
+run::Trajectory Simulation::scanPoses(double duration) const {
+  run::Trajectory out;
   for (int k = 0; k < scanCount(duration); ++k) {
     const double t = k * scanPeriod();
     out.push_back({t, B_T_L(t)});

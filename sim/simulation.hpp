@@ -6,7 +6,7 @@
 #include <vector>
 
 #include "bim/scenario.hpp"
-#include "eval/tum.hpp"
+#include "run/sensor_streams.hpp"
 #include "sim/lidar_simulator.hpp"
 #include "sim/mujoco_world.hpp"
 #include "sim/occupancy_grid.hpp"
@@ -43,9 +43,9 @@ class Simulation {
   std::unique_ptr<LidarSimulator> makeLidar() const;
   Eigen::Isometry3d B_T_L(double t) const { return trajectory_->pose(t) * R_T_L_; }
 
-  eval::Trajectory groundTruth(double duration, double rate_hz) const;
-  eval::Trajectory odometry(double duration) const;   // M_T_R at odometry.rate_hz
-  eval::Trajectory scanPoses(double duration) const;  // B_T_L at each scan stamp
+  run::Trajectory groundTruth(double duration, double rate_hz) const;
+  run::Trajectory odometry(double duration) const;   // M_T_R at odometry.rate_hz
+  run::Trajectory scanPoses(double duration) const;  // B_T_L at each scan stamp
 
   std::mt19937_64 generator(std::uint64_t stream, std::uint64_t index = 0) const;
 

@@ -194,6 +194,12 @@ void ISGraphLocalizer::addPlanFactors(ceres::Problem& problem, const std::set<in
   }
 }
 
+std::vector<StatusChange> ISGraphLocalizer::statusChanges() const {
+  std::vector<StatusChange> out;
+  for (const auto& e : events_) out.push_back({e.stamp, e.keyframe, toString(e.status), e.reason});
+  return out;
+}
+
 nlohmann::json ISGraphLocalizer::graph() const {
   nlohmann::json out = graph_.toJson();
   nlohmann::json planes = nlohmann::json::array(), rooms = nlohmann::json::array(),

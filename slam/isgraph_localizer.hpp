@@ -56,6 +56,9 @@ class ISGraphLocalizer : public Localizer {
   std::optional<Odometry> poseInMap() const override { return graph_.latestPose(); }
   std::optional<Eigen::Isometry3d> mapInPlan() const override;
   nlohmann::json graph() const override;
+  std::optional<std::string> searchStatus() const override { return toString(status_); }
+  std::vector<StatusChange> statusChanges() const override;
+  std::optional<MapDiagnostics> mapDiagnostics() const override { return graph_.diagnostics(); }
 
   const SGraph& sgraph() const { return graph_; }
   MatchStatus status() const { return status_; }

@@ -5,6 +5,9 @@
 #include <optional>
 #include <string>
 
+#include <vector>
+
+#include "slam/map_diagnostics.hpp"
 #include "slam/messages.hpp"
 
 namespace isg::slam {
@@ -25,6 +28,13 @@ class Localizer {
   virtual std::optional<Eigen::Isometry3d> mapInPlan() const = 0;
   // The method's graph (or state) for the run folder's sgraph.json.
   virtual nlohmann::json graph() const = 0;
+
+  // For methods that search for their place in the plan: the search's status now ("matched",
+  // "ambiguous", ...) and every change of it. Methods that do not search have none.
+  virtual std::optional<std::string> searchStatus() const { return std::nullopt; }
+  virtual std::vector<StatusChange> statusChanges() const { return {}; }
+  // For methods that build a map: its keyframes, planes, rooms and timings.
+  virtual std::optional<MapDiagnostics> mapDiagnostics() const { return std::nullopt; }
 };
 
 // The baseline: odometry alone, its map frame placed in the plan by a pose given from outside

@@ -1,4 +1,5 @@
 #include "slam/plane_extraction.hpp"
+#include "slam/pcl_planes.hpp"
 
 #include <pcl/ModelCoefficients.h>
 #include <pcl/filters/extract_indices.h>
@@ -88,6 +89,10 @@ pcl::PointCloud<pcl::PointXYZ>::Ptr preprocess(const Scan& scan,
   grid.setLeafSize(float(options.voxel), float(options.voxel), float(options.voxel));
   grid.filter(*filtered);
   return filtered;
+}
+
+std::vector<PlaneObservation> extractPlanes(const Scan& scan, const PlaneExtractionOptions& options) {
+  return extractPlanes(*preprocess(scan, options), options);
 }
 
 std::vector<PlaneObservation> extractPlanes(const pcl::PointCloud<pcl::PointXYZ>& input,

@@ -1,8 +1,5 @@
 #pragma once
 
-#include <pcl/point_cloud.h>
-#include <pcl/point_types.h>
-
 #include <Eigen/Core>
 #include <vector>
 
@@ -39,14 +36,11 @@ struct PlaneObservation {
   double rms = 0.0;  // inliers' RMS distance from the plane
 };
 
-// Range crop and voxel grid of a scan, as a PCL cloud in the scan's frame.
-pcl::PointCloud<pcl::PointXYZ>::Ptr preprocess(const Scan& scan,
-                                               const PlaneExtractionOptions& options);
-
-// Sequential RANSAC (PCL SACMODEL_PLANE), removing each plane's inliers, each plane's inliers
-// split by Euclidean clustering; planes fitted again by least squares to each cluster.
-std::vector<PlaneObservation> extractPlanes(const pcl::PointCloud<pcl::PointXYZ>& cloud,
-                                            const PlaneExtractionOptions& options);
+// The planes of a scan, in the scan's frame: range crop and voxel grid, then sequential RANSAC
+// (PCL SACMODEL_PLANE) removing each plane's inliers, each plane's inliers split by Euclidean
+// clustering, planes fitted again by least squares to each cluster. PCL stays behind this call
+// (slam/pcl_planes.hpp is slam's own): no user of slam compiles PCL.
+std::vector<PlaneObservation> extractPlanes(const Scan& scan, const PlaneExtractionOptions& options);
 
 // The building's dominant yaw in [0, π/2), from the vertical planes' normals (a histogram of
 // their yaw modulo 90°, weighted by points, refined by the mean of the peak's neighbourhood), so

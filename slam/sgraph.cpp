@@ -96,11 +96,10 @@ bool SGraph::addScan(Scan scan) {
   keyframe.orientation = Eigen::Quaterniond(initial.rotation());
   const int index = int(keyframes_.size());
 
-  const auto cloud = preprocess(scan, options_.extraction);
   const Eigen::Isometry3d M_T_L = initial * R_T_L_;
   // The map as association sees it, kept in step as this keyframe's observations change it.
   std::vector<MapPlane> walls = activeWalls();
-  for (const auto& observation : extractPlanes(*cloud, options_.extraction)) {
+  for (const auto& observation : extractPlanes(scan, options_.extraction)) {
     if (observation.orientation == PlaneOrientation::kHorizontal) {
       // The floor: a horizontal plane well below the sensor, facing up.
       const bim::Plane in_M = observation.plane.transformed(M_T_L);
@@ -420,6 +419,18 @@ std::optional<Eigen::Vector2d> SGraph::floorCentre() const {
   Eigen::Vector2d sum = Eigen::Vector2d::Zero();
   for (int r : confirmed) sum += rooms_[r].centre;
   return sum / double(confirmed.size());
+}
+
+MapDiagnostics SGraph::diagnostics() const {
+  MapDiagnostics out;
+  for (const auto& kf : keyframes_) out.keyframes.push_back({kf.stamp, kf.pose(), kf.odometry});
+  out.planes = planes_.size();
+  for (int r : confirmedRooms()) {
+    const Room& room = rooms_[r];
+    out.rooms.push_back({room.centre, room.candidate.four_wall, room.candidate.widths});
+  }
+  out.timings = timings_;
+  return out;
 }
 
 nlohmann::json SGraph::toJson() const {

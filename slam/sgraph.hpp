@@ -8,6 +8,7 @@
 #include <set>
 #include <vector>
 
+#include "slam/map_diagnostics.hpp"
 #include "slam/messages.hpp"
 #include "slam/odometry_buffer.hpp"
 #include "slam/plane_extraction.hpp"
@@ -102,11 +103,10 @@ class SGraph {
   double* planeParameters(int plane) { return planes_[plane].parameters.data(); }
   double* roomCentre(int room) { return rooms_[room].centre.data(); }
 
-  struct Timing {
-    double extraction_s = 0.0;    // deskew + preprocessing + planes + association
-    double optimisation_s = 0.0;  // the window optimisation, plane merging and room detection
-  };
+  using Timing = KeyframeTiming;
   const std::vector<Timing>& timings() const { return timings_; }
+  // The map as plain data (slam/map_diagnostics.hpp).
+  MapDiagnostics diagnostics() const;
 
  private:
   void optimise();

@@ -6,7 +6,7 @@
 namespace isg::slam {
 
 // The S-Graph behind the Localizer interface: what the testbed's loop and `isg slam` feed. It
-// localizes in its own map frame M only; the plan comes with the iS-Graph (issue 6).
+// localizes in its own map frame M only; the plan comes with the iS-Graph (isgraph_localizer.hpp).
 class SGraphLocalizer : public Localizer {
  public:
   SGraphLocalizer(const Eigen::Isometry3d& R_T_L, const SGraphOptions& options = {})
@@ -18,6 +18,7 @@ class SGraphLocalizer : public Localizer {
   std::optional<Odometry> poseInMap() const override { return graph_.latestPose(); }
   std::optional<Eigen::Isometry3d> mapInPlan() const override { return std::nullopt; }
   nlohmann::json graph() const override { return graph_.toJson(); }
+  std::optional<MapDiagnostics> mapDiagnostics() const override { return graph_.diagnostics(); }
 
   const SGraph& sgraph() const { return graph_; }
 

@@ -17,7 +17,7 @@ double percentile(std::vector<double> v, double q) {
 
 }  // namespace
 
-std::vector<TimingAt> timingAt(const std::vector<SGraph::Timing>& timings,
+std::vector<TimingAt> timingAt(const std::vector<KeyframeTiming>& timings,
                                const std::vector<int>& sizes) {
   std::vector<TimingAt> out;
   for (int n : sizes) {

@@ -3,7 +3,7 @@
 #include <string>
 #include <vector>
 
-#include "slam/sgraph.hpp"
+#include "slam/map_diagnostics.hpp"
 
 namespace isg::slam {
 
@@ -15,7 +15,7 @@ struct TimingAt {
   double extraction_median_ms = 0, extraction_p95_ms = 0;
   double optimisation_median_ms = 0, optimisation_p95_ms = 0;
 };
-std::vector<TimingAt> timingAt(const std::vector<SGraph::Timing>& timings,
+std::vector<TimingAt> timingAt(const std::vector<KeyframeTiming>& timings,
                                const std::vector<int>& sizes);
 std::string formatTiming(const std::vector<TimingAt>& rows);
 

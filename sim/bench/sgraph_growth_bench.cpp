@@ -1,4 +1,4 @@
-// The S-Graph's cost per keyframe as the graph grows (issue 5): a long tour of a 120-room grid
+// The S-Graph's cost per keyframe as the graph grows: a long tour of a 120-room grid
 // plan, simulated in memory and fed to the S-Graph; times per keyframe (extraction + association,
 // and the optimisation) reported as median and p95 around 50, 200 and 500 keyframes. Run it on
 // its own: it simulates and maps about half an hour of walking.
@@ -7,9 +7,11 @@
 #include "bim/json_reader.hpp"
 #include "bim/plan_parser.hpp"
 #include "bim/synthetic_plan.hpp"
+#include "run/builtin_methods.hpp"
+#include "run/driver.hpp"
+#include "run/map_diagnosis.hpp"
+#include "sim/scan_pipeline.hpp"
 #include "sim/simulation.hpp"
-#include "slam/sgraph.hpp"
-#include "slam/timing_report.hpp"
 
 namespace isg::sim {
 namespace {
@@ -26,28 +28,27 @@ void BM_SGraphGrowth(benchmark::State& state) {
   scenario.robot.start_room = "R1";
   scenario.seed = 1;
   for (auto _ : state) {
-    Simulation sim(scenario);
-    const double duration = sim.duration();
-    const eval::Trajectory odometry = sim.odometry(duration);
-    slam::SGraph graph(sim.R_T_L());
-    const auto lidar = sim.makeLidar();
-    std::size_t next = 0;
-    for (int k = 0; k < sim.scanCount(duration) && graph.keyframes().size() < 520; ++k) {
-      const LidarScan scan = sim.scan(k, *lidar);
-      while (next < odometry.size() && odometry[next].t <= scan.stamp + sim.scanPeriod()) {
-        graph.addOdometry({odometry[next].t, odometry[next].pose});
-        ++next;
-      }
-      graph.addScan({scan.stamp, scan.points});
+    const Simulation sim(scenario);
+    const run::SensorStreams streams = sensorStreams(sim, -1.0);
+    run::LocalizerContext context;
+    context.R_T_L = sim.R_T_L();
+    const auto localizer = run::builtinMethods().make("s-graph", context);
+    run::LocalizerDriver driver(*localizer, streams.odometry, streams.scan_period);
+    LookaheadScans scans(sim, int(streams.scan_stamps.size()), 1);
+    std::size_t keyframes = 0;
+    for (int k = 0; k < int(streams.scan_stamps.size()) && keyframes < 520; ++k) {
+      driver.feed(scans.scan(k));
+      if (k % 50 == 0) keyframes = localizer->mapDiagnostics()->keyframes.size();
     }
-    for (const auto& row : slam::timingAt(graph.timings(), {50, 200, 500})) {
+    const auto map = *localizer->mapDiagnostics();
+    for (const auto& row : run::diagnoseMap(map, {}, nullptr, "").timing) {
       const std::string at = std::to_string(row.keyframes);
       state.counters["extract_med_ms@" + at] = row.extraction_median_ms;
       state.counters["extract_p95_ms@" + at] = row.extraction_p95_ms;
       state.counters["optim_med_ms@" + at] = row.optimisation_median_ms;
       state.counters["optim_p95_ms@" + at] = row.optimisation_p95_ms;
     }
-    state.counters["keyframes"] = double(graph.keyframes().size());
+    state.counters["keyframes"] = double(map.keyframes.size());
   }
 }
 BENCHMARK(BM_SGraphGrowth)->Iterations(1)->Unit(benchmark::kSecond);

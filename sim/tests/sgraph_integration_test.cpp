@@ -1,79 +1,53 @@
-// The S-Graph on data from the simulator, in memory: its keyframe trajectory, after SE(3)
-// alignment (its map frame is arbitrary), must beat odometry alone by a wide margin.
+// The S-Graph on data from the simulator, in memory, through the run driver as `isg run` feeds
+// it: its keyframe trajectory, after SE(3) alignment (its map frame is arbitrary), must beat
+// odometry alone by a wide margin; as a localizer it tracks the base in its own frame M.
 #include <gtest/gtest.h>
 
-#include "eval/ape.hpp"
+#include "run/builtin_methods.hpp"
+#include "run/driver.hpp"
+#include "run/map_diagnosis.hpp"
+#include "sim/scan_pipeline.hpp"
 #include "sim/simulation.hpp"
-#include "slam/sgraph.hpp"
 #include "worlds/reference_plans.hpp"
 
 namespace isg::sim {
 namespace {
 
-TEST(SGraphOnSimulatedData, KeyframesBeatOdometryOnD1AsBuilt) {
-  Simulation sim(worlds::loadScenarioOrBuiltin("builtin:d1.asbuilt", nullptr));
-  const double duration = sim.duration();
-  const eval::Trajectory odometry = sim.odometry(duration);
-  slam::SGraph graph(sim.R_T_L());
-  std::size_t next = 0;
-  const auto lidar = sim.makeLidar();
-  for (int k = 0; k < sim.scanCount(duration); ++k) {
-    const LidarScan scan = sim.scan(k, *lidar);
-    while (next < odometry.size() && odometry[next].t <= scan.stamp + sim.scanPeriod()) {
-      graph.addOdometry({odometry[next].t, odometry[next].pose});
-      ++next;
-    }
-    graph.addScan({scan.stamp, scan.points});
-  }
-  ASSERT_GT(graph.keyframes().size(), 15u);
-  EXPECT_GT(graph.planes().size(), 8u);
-  eval::Trajectory keyframes, odometry_at_keyframes;
-  for (const auto& kf : graph.keyframes()) {
-    keyframes.push_back({kf.stamp, kf.pose()});
-    odometry_at_keyframes.push_back({kf.stamp, kf.odometry});
-  }
-  const eval::Trajectory truth = sim.groundTruth(duration, 100.0);
-  eval::ErrorOptions se3;
-  se3.align = eval::Alignment::kSE3;
-  const double slam = eval::absolutePoseError(truth, keyframes, se3).translation_stats.rmse;
-  const double odo =
-      eval::absolutePoseError(truth, odometry_at_keyframes, se3).translation_stats.rmse;
-  EXPECT_LT(slam, 0.03);
-  EXPECT_GT(odo, 3.0 * slam);
+run::RunRecord runSGraph(const Simulation& sim, double duration) {
+  run::LocalizerContext context;
+  context.R_T_L = sim.R_T_L();
+  const auto localizer = run::builtinMethods().make("s-graph", context);
+  EXPECT_EQ(localizer->name(), "s-graph");
+  EXPECT_FALSE(localizer->poseInMap());
+  run::SensorStreams streams = sensorStreams(sim, duration);
+  LookaheadScans scans(sim, int(streams.scan_stamps.size()), 1);
+  return run::runLocalizer({}, *localizer, std::move(streams), scans);
 }
 
-}  // namespace
-}  // namespace isg::sim
-
-#include "slam/sgraph_localizer.hpp"
-
-namespace isg::sim {
-namespace {
+TEST(SGraphOnSimulatedData, KeyframesBeatOdometryOnD1AsBuilt) {
+  const Simulation sim(worlds::loadScenarioOrBuiltin("builtin:d1.asbuilt", nullptr));
+  const run::RunRecord record = runSGraph(sim, -1.0);
+  ASSERT_TRUE(record.map.has_value());
+  ASSERT_GT(record.map->keyframes.size(), 15u);
+  EXPECT_GT(record.map->planes, 8u);
+  const run::MapDiagnosis diagnosis =
+      run::diagnoseMap(*record.map, record.streams.ground_truth, nullptr, "");
+  ASSERT_TRUE(diagnosis.keyframe_ape_rmse && diagnosis.odometry_ape_rmse);
+  EXPECT_LT(*diagnosis.keyframe_ape_rmse, 0.03);
+  EXPECT_GT(*diagnosis.odometry_ape_rmse, 3.0 * *diagnosis.keyframe_ape_rmse);
+}
 
 TEST(SGraphOnSimulatedData, AsALocalizerItTracksTheBaseInItsMap) {
-  Simulation sim(worlds::loadScenarioOrBuiltin("builtin:d2.asbuilt", nullptr));
-  const double duration = 12.0;
-  const eval::Trajectory odometry = sim.odometry(duration);
-  slam::SGraphLocalizer localizer(sim.R_T_L());
-  slam::Localizer& method = localizer;
-  EXPECT_EQ(method.name(), "s-graph");
-  EXPECT_FALSE(method.poseInMap());
-  std::size_t next = 0;
-  for (int k = 0; k < sim.scanCount(duration); ++k) {
-    const LidarScan scan = sim.scan(k);
-    while (next < odometry.size() && odometry[next].t <= scan.stamp + sim.scanPeriod()) {
-      method.pushOdometry({odometry[next].t, odometry[next].pose});
-      ++next;
-    }
-    method.pushScan({scan.stamp, scan.points});
-  }
-  ASSERT_TRUE(method.poseInMap());
-  EXPECT_FALSE(method.mapInPlan());  // no plan: it knows only its own map frame
+  const Simulation sim(worlds::loadScenarioOrBuiltin("builtin:d2.asbuilt", nullptr));
+  const run::RunRecord record = runSGraph(sim, 12.0);
+  ASSERT_FALSE(record.estimate_map.empty());
+  EXPECT_TRUE(record.estimate.empty());  // no plan: it knows only its own map frame
+  EXPECT_FALSE(record.search_status.has_value());
   // In M (the start pose), the base has moved as the ground truth says, within a few centimetres.
-  const Eigen::Isometry3d truth =
-      sim.trajectory().pose(0.0).inverse() * sim.trajectory().pose(method.poseInMap()->stamp);
-  EXPECT_LT((method.poseInMap()->M_T_R.translation() - truth.translation()).head<2>().norm(), 0.05);
-  EXPECT_GT(method.graph()["planes"].size(), 3u);
+  const auto& last = record.estimate_map.back();
+  const Eigen::Isometry3d truth = sim.trajectory().pose(0.0).inverse() * sim.trajectory().pose(last.t);
+  EXPECT_LT((last.pose.translation() - truth.translation()).head<2>().norm(), 0.05);
+  EXPECT_GT(record.graph["planes"].size(), 3u);
 }
 
 }  // namespace

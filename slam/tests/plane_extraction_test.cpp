@@ -1,3 +1,4 @@
+#include "slam/pcl_planes.hpp"
 #include "slam/plane_extraction.hpp"
 
 #include <gtest/gtest.h>

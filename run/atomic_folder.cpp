@@ -1,12 +1,14 @@
-#include "sim/atomic_folder.hpp"
+#include "run/atomic_folder.hpp"
 
 #include <unistd.h>
 
+#include <cerrno>
+#include <cstring>
 #include <fstream>
 
 #include "bim/input_error.hpp"
 
-namespace isg::sim {
+namespace isg::run {
 
 namespace fs = std::filesystem;
 
@@ -42,4 +44,34 @@ void writeFolderAtomically(const std::string& dir, bool overwrite,
   }
 }
 
-}  // namespace isg::sim
+void writeFileAtomically(const std::string& path, const std::string& content) {
+  const fs::path target(path);
+  const fs::path dir = target.has_parent_path() ? target.parent_path() : fs::path(".");
+  if (!fs::is_directory(dir)) {
+    throw bim::InputError(path, "", "cannot write: directory " + dir.string() + " does not exist");
+  }
+  const fs::path temporary =
+      dir / ("." + target.filename().string() + ".tmp" + std::to_string(::getpid()));
+  {
+    std::ofstream out(temporary, std::ios::binary | std::ios::trunc);
+    if (!out) {
+      throw bim::InputError(path, "", std::string("cannot write: ") + std::strerror(errno));
+    }
+    out << content;
+    out.flush();
+    if (!out) {
+      std::error_code ignored;
+      fs::remove(temporary, ignored);
+      throw bim::InputError(path, "", "cannot write: write failed");
+    }
+  }
+  std::error_code error;
+  fs::rename(temporary, target, error);
+  if (error) {
+    std::error_code ignored;
+    fs::remove(temporary, ignored);
+    throw bim::InputError(path, "", "cannot write: " + error.message());
+  }
+}
+
+}  // namespace isg::run

@@ -1,23 +1,25 @@
-#include "sim/dataset_reader.hpp"
+#include "run/dataset_reader.hpp"
 
 #include <pcl/PCLPointCloud2.h>
 #include <pcl/io/pcd_io.h>
 
 #include <algorithm>
+#include <cmath>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
 
 #include "bim/input_error.hpp"
 #include "bim/json_reader.hpp"
+#include "run/dataset_format.hpp"
 
-namespace isg::sim {
+namespace isg::run {
 
 namespace fs = std::filesystem;
 
 namespace {
 
-eval::Trajectory readTrajectory(const fs::path& path) {
+Trajectory readTrajectory(const fs::path& path) {
   try {
     return eval::readTum(path.string());
   } catch (const std::runtime_error& e) {
@@ -31,7 +33,7 @@ DatasetReader::DatasetReader(const std::string& dir) : dir_(dir) {
   const fs::path root(dir);
   if (!fs::is_directory(root))
     throw bim::InputError(dir, "", "not a dataset folder (no such directory)");
-  const fs::path metadata_path = root / "metadata.json";
+  const fs::path metadata_path = root / dataset::kMetadata;
   metadata_ = bim::readJsonFile(metadata_path.string());
   try {
     const auto& m = metadata_.at("extrinsics").at("R_T_L").at("matrix");
@@ -44,23 +46,47 @@ DatasetReader::DatasetReader(const std::string& dir) : dir_(dir) {
     throw bim::InputError(metadata_path.string(), "/extrinsics/R_T_L/matrix",
                           "expected a 4 × 4 array of numbers");
   }
-  odometry_ = readTrajectory(root / "odometry.tum");
-  if (fs::exists(root / "groundtruth.tum"))
-    ground_truth_ = readTrajectory(root / "groundtruth.tum");
-  const eval::Trajectory stamps = readTrajectory(root / "scans.tum");
-  for (const auto& entry : fs::directory_iterator(root / "scans")) {
+  odometry_ = readTrajectory(root / dataset::kOdometry);
+  if (fs::exists(root / dataset::kGroundTruth))
+    ground_truth_ = readTrajectory(root / dataset::kGroundTruth);
+  const Trajectory stamps = readTrajectory(root / dataset::kScanPoses);
+  for (const auto& entry : fs::directory_iterator(root / dataset::kScans)) {
     if (entry.path().extension() == ".pcd") scan_files_.push_back(entry.path().string());
   }
   std::sort(scan_files_.begin(), scan_files_.end());
   if (stamps.size() != scan_files_.size()) {
-    throw bim::InputError((root / "scans.tum").string(), "",
+    throw bim::InputError((root / dataset::kScanPoses).string(), "",
                           std::to_string(stamps.size()) + " stamps for " +
                               std::to_string(scan_files_.size()) + " scans in scans/");
   }
   for (const auto& s : stamps) scan_stamps_.push_back(s.t);
+  double rate = 10.0;
+  if (const auto lidar = metadata_.find("lidar");
+      lidar != metadata_.end() && lidar->is_object() && lidar->contains("rate_hz")) {
+    const auto& value = (*lidar)["rate_hz"];
+    if (!value.is_number() || !(value.get<double>() > 0.0) || !std::isfinite(value.get<double>())) {
+      throw bim::InputError(metadata_path.string(), "/lidar/rate_hz", "expected a positive number");
+    }
+    rate = value.get<double>();
+  }
+  scan_period_ = 1.0 / rate;
 }
 
-slam::Scan DatasetReader::scan(int index) const {
+SensorStreams DatasetReader::streams() const {
+  SensorStreams out;
+  out.ground_truth = ground_truth_;
+  out.odometry = odometry_;
+  out.scan_stamps = scan_stamps_;
+  out.scan_period = scan_period_;
+  out.R_T_L = R_T_L_;
+  const double span =
+      scan_stamps_.empty() ? 0.0 : scan_stamps_.back() - scan_stamps_.front() + scan_period_;
+  const auto recorded = metadata_.find("duration_s");
+  out.duration = recorded != metadata_.end() && recorded->is_number() ? recorded->get<double>() : span;
+  return out;
+}
+
+slam::Scan DatasetReader::scan(int index) {
   const std::string& path = scan_files_[index];
   pcl::PCLPointCloud2 cloud;
   if (pcl::io::loadPCDFile(path, cloud) != 0) throw bim::InputError(path, "", "cannot read PCD");
@@ -109,4 +135,4 @@ slam::Scan DatasetReader::scan(int index) const {
   return scan;
 }
 
-}  // namespace isg::sim
+}  // namespace isg::run

@@ -4,7 +4,7 @@
 #include <functional>
 #include <string>
 
-namespace isg::sim {
+namespace isg::run {
 
 // Creates the folder `dir` all at once: `fill` writes into a temporary folder beside it, which is
 // renamed into place when `fill` returns; if it throws, the temporary folder is removed and
@@ -16,4 +16,8 @@ void writeFolderAtomically(const std::string& dir, bool overwrite,
 // One file of such a folder; a failure is an InputError naming it.
 void writeFile(const std::filesystem::path& path, const std::string& content);
 
-}  // namespace isg::sim
+// Writes `content` to `path` so that a reader never sees a half-written file: to a temporary
+// file beside it, then renamed over it. A failure is an InputError naming the path.
+void writeFileAtomically(const std::string& path, const std::string& content);
+
+}  // namespace isg::run

@@ -1,4 +1,4 @@
-#include "sim/room_evaluation.hpp"
+#include "run/room_evaluation.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -6,14 +6,14 @@
 #include "bim/agraph.hpp"
 #include "bim/polygon.hpp"
 
-namespace isg::sim {
+namespace isg::run {
 
 RoomDetectionReport evaluateRooms(const bim::Plan& plan, const std::string& level_id,
-                                  const slam::SGraph& graph, const eval::Trajectory& ground_truth,
-                                  const eval::Similarity& B_from_M, double tolerance) {
+                                  const std::vector<slam::MapRoom>& rooms,
+                                  const Trajectory& ground_truth, const eval::Similarity& B_from_M,
+                                  double tolerance) {
   RoomDetectionReport report;
   const bim::AGraph agraph = bim::buildAGraph(plan);
-  const auto confirmed = graph.confirmedRooms();
   for (const auto& room : agraph.rooms) {
     // The S-Graph's rooms are four-wall rooms and corridors: a plan room of another shape (an
     // L-shaped hall) cannot be found as one, and is left out of the measure.
@@ -26,18 +26,17 @@ RoomDetectionReport evaluateRooms(const bim::Plan& plan, const std::string& leve
     std::vector<double> plan_widths = room.widths;
     std::sort(plan_widths.begin(), plan_widths.end());
     double best = 1e9;
-    for (int r : confirmed) {
-      const auto& s = graph.roomCandidates()[r];
+    for (const auto& s : rooms) {
       const Eigen::Vector3d centre_M(s.centre.x(), s.centre.y(), 0.0);
       const Eigen::Vector2d centre_B = B_from_M.apply(centre_M).head<2>();
       if (!bim::containsPoint(room.outline, centre_B)) continue;
       double error = 1e9;
-      if (s.candidate.four_wall && plan_widths.size() == 2) {
-        std::array<double, 2> w = s.candidate.widths;
+      if (s.four_wall && plan_widths.size() == 2) {
+        std::array<double, 2> w = s.widths;
         std::sort(w.begin(), w.end());
         error = std::max(std::abs(w[0] - plan_widths[0]), std::abs(w[1] - plan_widths[1]));
-      } else if (!s.candidate.four_wall && !plan_widths.empty()) {
-        error = std::abs(s.candidate.widths[0] - plan_widths[0]);
+      } else if (!s.four_wall && !plan_widths.empty()) {
+        error = std::abs(s.widths[0] - plan_widths[0]);
       }
       best = std::min(best, error);
     }
@@ -49,4 +48,4 @@ RoomDetectionReport evaluateRooms(const bim::Plan& plan, const std::string& leve
   return report;
 }
 
-}  // namespace isg::sim
+}  // namespace isg::run

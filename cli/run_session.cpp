@@ -1,0 +1,36 @@
+#include "cli/run_session.hpp"
+
+#include <cstdio>
+
+#include "run/run_folder.hpp"
+#include "run/run_report.hpp"
+
+namespace isg::cli {
+
+std::string methodHelp(const run::LocalizerRegistry& registry) {
+  return "Methods:\n" + registry.help();
+}
+
+run::RunProgress progressOn(ProgressBar& bar, double scan_period) {
+  return [&bar, scan_period](int done, int total, const slam::Localizer& localizer) {
+    if (done % 10 != 0 && done != total) return;
+    std::string state = localizer.mapInPlan() ? "localized" : "not localized yet";
+    if (const auto status = localizer.searchStatus(); status && !localizer.mapInPlan()) {
+      state += " (matching: " + *status + ")";
+    }
+    char detail[200];
+    std::snprintf(detail, sizeof detail, "%.0f s of robot time, %s", done * scan_period,
+                  state.c_str());
+    bar.update(total > 0 ? double(done) / total : 1.0, detail);
+  };
+}
+
+run::RunEvaluation finishRun(const std::string& command, const std::string& dir, bool force,
+                             const run::RunRecord& record) {
+  run::RunEvaluation evaluation = run::evaluateRun(record);
+  run::writeRunFolder(dir, record, evaluation, force);
+  std::printf("%s", run::runSummary(command, dir, evaluation.metrics).c_str());
+  return evaluation;
+}
+
+}  // namespace isg::cli

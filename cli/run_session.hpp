@@ -1,0 +1,27 @@
+#pragma once
+
+#include <string>
+
+#include "cli/progress_bar.hpp"
+#include "run/driver.hpp"
+#include "run/evaluate_run.hpp"
+#include "run/localizer_registry.hpp"
+#include "run/run_record.hpp"
+
+namespace isg::cli {
+
+// What `isg run` and `isg slam` share around the run driver: the methods on offer, the progress
+// line, and the end of a run (evaluate once, write the folder, print the summary).
+
+// The footer text listing the methods of `registry`, one line each.
+std::string methodHelp(const run::LocalizerRegistry& registry);
+
+// A progress callback drawing `bar`: robot time so far and the localizer's state.
+run::RunProgress progressOn(ProgressBar& bar, double scan_period);
+
+// Evaluates the run, writes its folder (run::writeRunFolder) and prints the summary; returns
+// the evaluation.
+run::RunEvaluation finishRun(const std::string& command, const std::string& dir, bool force,
+                             const run::RunRecord& record);
+
+}  // namespace isg::cli

@@ -1,0 +1,13 @@
+#include "run/builtin_methods.hpp"
+
+namespace isg::run {
+
+LocalizerRegistry builtinMethods() {
+  LocalizerRegistry registry;
+  addISGraphs(registry);
+  addSGraph(registry);
+  addDeadReckoning(registry);
+  return registry;
+}
+
+}  // namespace isg::run

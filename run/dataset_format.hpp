@@ -1,0 +1,41 @@
+#pragma once
+
+#include <Eigen/Geometry>
+#include <nlohmann/json.hpp>
+#include <string>
+#include <vector>
+
+#include "run/sensor_streams.hpp"
+#include "slam/messages.hpp"
+
+namespace isg::run {
+
+// The dataset folder (docs/formats.md, "Datasets"): what `isg simulate` writes and `isg slam`
+// replays. The writer (sim/dataset_writer) and the reader (run/dataset_reader) share these names
+// and encodings, so the format is defined once.
+namespace dataset {
+
+inline constexpr const char* kMetadata = "metadata.json";
+inline constexpr const char* kGroundTruth = "groundtruth.tum";  // B_T_R
+inline constexpr const char* kOdometry = "odometry.tum";        // M_T_R
+inline constexpr const char* kScanPoses = "scans.tum";          // B_T_L at each scan stamp
+inline constexpr const char* kScans = "scans";                  // scans/NNNNNN.pcd
+inline constexpr const char* kFormat = "isg.dataset";
+inline constexpr int kVersion = 1;
+
+// "000042.pcd": scans sort by name in time order.
+std::string scanFileName(int index);
+
+// A trajectory file's text (TUM, eval::toTumText).
+std::string trajectoryText(const Trajectory& trajectory);
+
+// A scan as binary PCD v0.7 with the Velodyne driver's point layout: fields x y z intensity
+// (float32) ring (uint16) time (float32, seconds from the scan stamp), in the LiDAR frame.
+std::string pcdBinary(const std::vector<slam::ScanPoint>& points);
+
+// metadata.json's "extrinsics" entry: R_T_L as the mount's xyz + roll/pitch/yaw and as a matrix.
+nlohmann::ordered_json extrinsicsJson(const std::array<double, 6>& xyz_rpy,
+                                      const Eigen::Isometry3d& R_T_L);
+
+}  // namespace dataset
+}  // namespace isg::run

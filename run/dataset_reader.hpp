@@ -1,0 +1,44 @@
+#pragma once
+
+#include <Eigen/Geometry>
+#include <nlohmann/json.hpp>
+#include <string>
+#include <vector>
+
+#include "run/driver.hpp"
+#include "run/sensor_streams.hpp"
+#include "slam/messages.hpp"
+
+namespace isg::run {
+
+// A dataset folder (run/dataset_format.hpp, docs/formats.md) opened for replay: metadata,
+// odometry and ground truth at once, scans one at a time. Any dataset in the format, not only
+// ours: PCD fields are found by name. Problems are InputErrors naming the file.
+class DatasetReader : public ScanSource {
+ public:
+  explicit DatasetReader(const std::string& dir);
+
+  const nlohmann::json& metadata() const { return metadata_; }
+  const Eigen::Isometry3d& R_T_L() const { return R_T_L_; }
+  const Trajectory& odometry() const { return odometry_; }
+  const Trajectory& groundTruth() const { return ground_truth_; }
+  int scanCount() const { return int(scan_files_.size()); }
+  double scanStamp(int index) const { return scan_stamps_[index]; }
+  // Seconds per LiDAR turn (metadata lidar.rate_hz; 10 Hz when it is not given).
+  double scanPeriod() const { return scan_period_; }
+  // What the run's driver is fed: the dataset's streams, with the duration the metadata records
+  // (duration_s) or, without it, the scans' span.
+  SensorStreams streams() const;
+  slam::Scan scan(int index) override;
+
+ private:
+  std::string dir_;
+  nlohmann::json metadata_;
+  Eigen::Isometry3d R_T_L_ = Eigen::Isometry3d::Identity();
+  Trajectory odometry_, ground_truth_;
+  double scan_period_ = 0.1;
+  std::vector<std::string> scan_files_;
+  std::vector<double> scan_stamps_;
+};
+
+}  // namespace isg::run

@@ -1,0 +1,67 @@
+#include "run/evaluate_run.hpp"
+
+#include "eval/ape.hpp"
+#include "eval/coverage.hpp"
+
+namespace isg::run {
+
+namespace {
+
+// Odometry with its frame M placed at the true start pose: dead reckoning.
+Trajectory odometryInPlan(const SensorStreams& streams) {
+  Trajectory out;
+  if (streams.ground_truth.empty() || streams.odometry.empty()) return out;
+  const Eigen::Isometry3d B_T_M = trueStartB_T_M(streams);
+  for (const auto& p : streams.odometry) out.push_back({p.t, B_T_M * p.pose});
+  return out;
+}
+
+}  // namespace
+
+RunEvaluation evaluateRun(const RunRecord& run) {
+  RunEvaluation evaluation;
+  RunMetrics& m = evaluation.metrics;
+  const SensorStreams& streams = run.streams;
+  m.world = run.setup.world;
+  m.method = run.setup.method;
+  m.seed = run.setup.seed;
+  m.scans = run.scans;
+  m.sim_seconds = streams.duration;
+  m.wall_seconds = run.wall_seconds;
+  m.real_time_factor = run.wall_seconds > 0 ? streams.duration / run.wall_seconds : 0.0;
+  const eval::Coverage coverage = eval::localizationCoverage(streams.ground_truth, run.estimate);
+  m.localized = coverage.localized;
+  if (coverage.localized) {
+    m.time_to_localize = coverage.time_to_first;
+    m.share_localized = coverage.share;
+  }
+  eval::ErrorOptions planar;
+  planar.align = eval::Alignment::kNone;
+  planar.project_xy = true;
+  if (!run.estimate.empty()) {
+    const auto ape = eval::absolutePoseError(streams.ground_truth, run.estimate, planar);
+    m.ape_B = ape.translation_stats;
+    m.ape_B_rotation_deg = ape.rotation_stats;
+    for (std::size_t i = 0; i < ape.translation.size(); ++i) {
+      evaluation.error_over_time.emplace_back(run.estimate[ape.association.estimate[i]].t,
+                                              ape.translation[i]);
+    }
+  }
+  if (run.estimate_map.size() >= 3) {
+    eval::ErrorOptions se3 = planar;
+    se3.align = eval::Alignment::kSE3;
+    m.ape_M_se3 =
+        eval::absolutePoseError(streams.ground_truth, run.estimate_map, se3).translation_stats;
+  }
+  evaluation.dead_reckoning = odometryInPlan(streams);
+  if (!evaluation.dead_reckoning.empty()) {
+    m.ape_odometry_from_true_start =
+        eval::absolutePoseError(streams.ground_truth, evaluation.dead_reckoning, planar)
+            .translation_stats;
+  }
+  m.matching_status = run.search_status;
+  m.matching_events = run.status_changes;
+  return evaluation;
+}
+
+}  // namespace isg::run

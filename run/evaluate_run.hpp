@@ -1,0 +1,23 @@
+#pragma once
+
+#include <utility>
+#include <vector>
+
+#include "run/run_metrics.hpp"
+#include "run/run_record.hpp"
+
+namespace isg::run {
+
+// A run, evaluated once for metrics.json, the report and the summary (docs/evaluation.md):
+// localization (when, share), APE in B (2D, no alignment, from the first localized pose on —
+// the paper's measure), the map-frame APE after SE(3) alignment, odometry from the true start for
+// comparison, speed, and the method's search log.
+struct RunEvaluation {
+  RunMetrics metrics;
+  Trajectory dead_reckoning;                               // odometry from the true start, in B
+  std::vector<std::pair<double, double>> error_over_time;  // (t, APE in B)
+};
+
+RunEvaluation evaluateRun(const RunRecord& run);
+
+}  // namespace isg::run

@@ -1,0 +1,15 @@
+#include "run/builtin_methods.hpp"
+#include "slam/isgraph_localizer.hpp"
+
+namespace isg::run {
+
+void addISGraphs(LocalizerRegistry& registry) {
+  registry.add({"is-graphs",
+                "the S-Graph matched to and merged with the plan's A-Graph: global localization "
+                "in the plan (docs/matching.md)",
+                /*needs_plan=*/true, /*given_start=*/false, [](const LocalizerContext& c) {
+                  return std::make_unique<slam::ISGraphLocalizer>(c.R_T_L, *c.agraph);
+                }});
+}
+
+}  // namespace isg::run

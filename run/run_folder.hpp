@@ -1,0 +1,18 @@
+#pragma once
+
+#include <string>
+
+#include "run/evaluate_run.hpp"
+#include "run/run_record.hpp"
+
+namespace isg::run {
+
+// Writes the run folder (docs/evaluation.md) all at once — into a temporary folder beside it,
+// renamed into place at the end: groundtruth.tum, odometry.tum, estimate.tum (B, rows only once
+// localized), estimate_map.tum (M), metrics.json, sgraph.json, report.svg; agraph.json when the
+// run has a plan; keyframes.tum when the method builds a map. An existing folder is an
+// InputError unless `force`.
+void writeRunFolder(const std::string& dir, const RunRecord& run, const RunEvaluation& evaluation,
+                    bool force);
+
+}  // namespace isg::run

@@ -1,0 +1,153 @@
+#include "run/run_metrics.hpp"
+
+#include <filesystem>
+
+#include "bim/input_error.hpp"
+#include "bim/json_reader.hpp"
+
+namespace isg::run {
+
+namespace {
+
+nlohmann::json statisticsJson(const Statistics& s) {
+  return {{"count", s.count}, {"rmse", s.rmse}, {"mean", s.mean}, {"median", s.median},
+          {"std", s.std},     {"min", s.min},   {"max", s.max},   {"sse", s.sse}};
+}
+
+// Reads fields of one JSON object, naming the file and the field's pointer when one is wrong.
+class FieldReader {
+ public:
+  FieldReader(const nlohmann::json& object, std::string pointer, const std::string& file)
+      : object_(object), pointer_(std::move(pointer)), file_(file) {
+    if (!object_.is_object()) fail(pointer_, "expected an object");
+  }
+
+  template <typename T>
+  T required(const char* key) const {
+    if (!object_.contains(key)) fail(pointer_ + "/" + key, "missing");
+    return get<T>(key);
+  }
+  template <typename T>
+  std::optional<T> optional(const char* key) const {
+    if (!object_.contains(key)) return std::nullopt;
+    return get<T>(key);
+  }
+  std::optional<Statistics> statistics(const char* key) const {
+    if (!object_.contains(key)) return std::nullopt;
+    const FieldReader s(object_[key], pointer_ + "/" + key, file_);
+    Statistics out;
+    out.count = s.required<int>("count");
+    out.rmse = s.required<double>("rmse");
+    out.mean = s.required<double>("mean");
+    out.median = s.required<double>("median");
+    out.std = s.required<double>("std");
+    out.min = s.required<double>("min");
+    out.max = s.required<double>("max");
+    out.sse = s.required<double>("sse");
+    return out;
+  }
+  const nlohmann::json& object() const { return object_; }
+  const std::string& pointer() const { return pointer_; }
+  [[noreturn]] void fail(const std::string& pointer, const std::string& what) const {
+    throw bim::InputError(file_, pointer, what);
+  }
+
+ private:
+  template <typename T>
+  T get(const char* key) const {
+    const nlohmann::json& value = object_[key];
+    const std::string pointer = pointer_ + "/" + key;
+    if constexpr (std::is_same_v<T, bool>) {
+      if (!value.is_boolean()) fail(pointer, "expected true or false");
+    } else if constexpr (std::is_same_v<T, std::string>) {
+      if (!value.is_string()) fail(pointer, "expected a string");
+    } else if constexpr (std::is_integral_v<T>) {
+      if (!value.is_number_integer() || (std::is_unsigned_v<T> && value.get<double>() < 0)) {
+        fail(pointer, "expected an integer");
+      }
+    } else {
+      if (!value.is_number()) fail(pointer, "expected a number");
+    }
+    return value.get<T>();
+  }
+
+  const nlohmann::json& object_;
+  std::string pointer_;
+  const std::string& file_;
+};
+
+}  // namespace
+
+nlohmann::json metricsToJson(const RunMetrics& m) {
+  nlohmann::json j;
+  j["world"] = m.world;
+  j["method"] = m.method;
+  j["seed"] = m.seed;
+  j["scans"] = m.scans;
+  j["sim_seconds"] = m.sim_seconds;
+  j["wall_seconds"] = m.wall_seconds;
+  j["real_time_factor"] = m.real_time_factor;
+  j["localized"] = m.localized;
+  if (m.time_to_localize) j["time_to_localize"] = *m.time_to_localize;
+  if (m.share_localized) j["share_localized"] = *m.share_localized;
+  if (m.ape_B) j["ape_B"] = statisticsJson(*m.ape_B);
+  if (m.ape_B_rotation_deg) j["ape_B_rotation_deg"] = statisticsJson(*m.ape_B_rotation_deg);
+  if (m.ape_M_se3) j["ape_M_se3"] = statisticsJson(*m.ape_M_se3);
+  if (m.ape_odometry_from_true_start) {
+    j["ape_odometry_from_true_start"] = statisticsJson(*m.ape_odometry_from_true_start);
+  }
+  if (m.matching_status) {
+    j["matching_status"] = *m.matching_status;
+    nlohmann::json events = nlohmann::json::array();
+    for (const auto& e : m.matching_events) {
+      events.push_back(
+          {{"stamp", e.stamp}, {"keyframe", e.keyframe}, {"status", e.status}, {"reason", e.reason}});
+    }
+    j["matching_events"] = events;
+  }
+  return j;
+}
+
+RunMetrics metricsFromJson(const nlohmann::json& document, const std::string& file) {
+  const FieldReader r(document, "", file);
+  RunMetrics m;
+  m.world = r.required<std::string>("world");
+  m.method = r.required<std::string>("method");
+  m.seed = r.required<std::uint64_t>("seed");
+  m.scans = r.required<int>("scans");
+  m.sim_seconds = r.required<double>("sim_seconds");
+  m.wall_seconds = r.required<double>("wall_seconds");
+  m.real_time_factor = r.required<double>("real_time_factor");
+  m.localized = r.required<bool>("localized");
+  m.time_to_localize = r.optional<double>("time_to_localize");
+  m.share_localized = r.optional<double>("share_localized");
+  m.ape_B = r.statistics("ape_B");
+  m.ape_B_rotation_deg = r.statistics("ape_B_rotation_deg");
+  m.ape_M_se3 = r.statistics("ape_M_se3");
+  m.ape_odometry_from_true_start = r.statistics("ape_odometry_from_true_start");
+  m.matching_status = r.optional<std::string>("matching_status");
+  if (document.contains("matching_events")) {
+    const auto& events = document["matching_events"];
+    if (!events.is_array()) r.fail("/matching_events", "expected an array");
+    for (std::size_t i = 0; i < events.size(); ++i) {
+      const FieldReader e(events[i], "/matching_events/" + std::to_string(i), file);
+      m.matching_events.push_back({e.required<double>("stamp"), e.required<int>("keyframe"),
+                                   e.required<std::string>("status"),
+                                   e.required<std::string>("reason")});
+    }
+  }
+  if (m.localized && (!m.time_to_localize || !m.share_localized || !m.ape_B)) {
+    r.fail("/localized", "a localized run needs time_to_localize, share_localized and ape_B");
+  }
+  return m;
+}
+
+RunMetrics readMetrics(const std::string& run_dir) {
+  const std::string path = (std::filesystem::path(run_dir) / kMetricsFile).string();
+  if (!std::filesystem::is_regular_file(path)) {
+    throw bim::InputError(run_dir, "", "not a run folder (no metrics.json)");
+  }
+  return metricsFromJson(bim::readJsonFile(path), path);
+}
+
+}  // namespace isg::run

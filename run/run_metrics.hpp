@@ -1,0 +1,48 @@
+#pragma once
+
+#include <cstdint>
+#include <nlohmann/json.hpp>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "eval/ape.hpp"
+#include "slam/map_diagnostics.hpp"
+
+namespace isg::run {
+
+using eval::Statistics;
+
+// A run's measures: what metrics.json holds (docs/evaluation.md names every field). Typed here;
+// JSON only where the file is written or read (metricsToJson, readMetrics), so `isg run`,
+// `isg slam`, `isg table` and the report share one spelling of each name.
+struct RunMetrics {
+  std::string world;   // what the user named (file, builtin:NAME or dataset folder)
+  std::string method;  // the localizer's name
+  std::uint64_t seed = 0;
+  int scans = 0;
+  double sim_seconds = 0.0;   // robot time
+  double wall_seconds = 0.0;  // wall-clock time of the loop
+  double real_time_factor = 0.0;
+  bool localized = false;
+  std::optional<double> time_to_localize;  // s from the first ground-truth stamp
+  std::optional<double> share_localized;   // of the ground truth's span, 0 … 1
+  std::optional<Statistics> ape_B;         // 2D, no alignment, from the first localized pose on
+  std::optional<Statistics> ape_B_rotation_deg;
+  std::optional<Statistics> ape_M_se3;                     // the map-frame estimate, SE(3)-aligned
+  std::optional<Statistics> ape_odometry_from_true_start;  // dead reckoning, for comparison
+  std::optional<std::string> matching_status;              // methods that search for a match
+  std::vector<slam::StatusChange> matching_events;
+};
+
+nlohmann::json metricsToJson(const RunMetrics& metrics);
+// Reads metrics.json's content; a missing or mistyped field is an InputError naming `file` and
+// the field's JSON pointer.
+RunMetrics metricsFromJson(const nlohmann::json& document, const std::string& file);
+// RUN_DIR/metrics.json, read and checked.
+RunMetrics readMetrics(const std::string& run_dir);
+
+// The file name inside a run folder.
+inline constexpr const char* kMetricsFile = "metrics.json";
+
+}  // namespace isg::run

@@ -1,0 +1,42 @@
+#pragma once
+
+#include <cstdint>
+#include <nlohmann/json.hpp>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "bim/agraph.hpp"
+#include "bim/plan.hpp"
+#include "run/sensor_streams.hpp"
+#include "slam/map_diagnostics.hpp"
+
+namespace isg::run {
+
+// What a run is: the world, the method and the seed, and the plan it is measured in.
+struct RunSetup {
+  std::string world;   // what the user named: a file, builtin:NAME, or the dataset folder
+  std::string method;  // the localizer's name
+  std::uint64_t seed = 0;
+  const bim::Plan* plan = nullptr;  // for agraph.json and the report; may be null
+  const bim::AGraph* agraph = nullptr;
+  std::string level;
+};
+
+// What one run produced, from the live loop (`isg run`) or a replay (`isg slam`): the streams it
+// was fed, what the localizer said after each scan, and what it can tell about itself.
+struct RunRecord {
+  RunSetup setup;
+  SensorStreams streams;
+  Trajectory estimate_map;             // M, after each scan
+  Trajectory estimate;                 // B, from the first localized pose on
+  std::optional<double> localized_at;  // stamp of the first pose in B
+  int scans = 0;
+  double wall_seconds = 0.0;
+  nlohmann::json graph;  // the localizer's final graph (sgraph.json)
+  std::optional<std::string> search_status;
+  std::vector<slam::StatusChange> status_changes;
+  std::optional<slam::MapDiagnostics> map;
+};
+
+}  // namespace isg::run

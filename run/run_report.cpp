@@ -1,0 +1,91 @@
+#include "run/run_report.hpp"
+
+#include <cstdio>
+
+#include "bim/plan_geometry.hpp"
+#include "eval/report_svg.hpp"
+
+namespace isg::run {
+
+namespace {
+
+std::string format(const char* pattern, auto... values) {
+  char text[512];
+  std::snprintf(text, sizeof text, pattern, values...);
+  return text;
+}
+
+}  // namespace
+
+std::string reportSvg(const RunRecord& run, const RunEvaluation& evaluation) {
+  const RunMetrics& m = evaluation.metrics;
+  eval::ReportInput input;
+  input.title = "isg run: " + run.setup.world + " — " + run.setup.method;
+  if (m.localized) {
+    input.summary.push_back(format(
+        "localized at t = %.1f s (%.0f %% of the run); APE in B (2D, no alignment) rmse %.3f m, "
+        "max %.3f m",
+        *m.time_to_localize, 100.0 * *m.share_localized, m.ape_B->rmse, m.ape_B->max));
+  } else {
+    input.summary.push_back("never localized in the plan");
+  }
+  if (m.ape_odometry_from_true_start) {
+    input.summary.push_back(
+        format("odometry from the true start: APE rmse %.3f m; %.1f s of robot time in %.1f s "
+               "(%.1fx real time), seed %llu",
+               m.ape_odometry_from_true_start->rmse, m.sim_seconds, m.wall_seconds,
+               m.real_time_factor, static_cast<unsigned long long>(m.seed)));
+  }
+  if (const bim::Plan* plan = run.setup.plan) {
+    const bim::Level* level = plan->findLevel(run.setup.level);
+    if (level == nullptr && !plan->levels.empty()) level = &plan->levels[0];
+    if (level != nullptr) {
+      for (const auto& wall : bim::computeLevelGeometry(*level).walls) {
+        input.walls.push_back(wall.footprint());
+      }
+    }
+  }
+  if (const bim::AGraph* agraph = run.setup.agraph) {
+    for (const auto& room : agraph->rooms) {
+      if (room.level == run.setup.level) input.labels.emplace_back(room.id, room.centre);
+    }
+  }
+  input.ground_truth = run.streams.ground_truth;
+  input.estimate = run.estimate;
+  input.odometry = evaluation.dead_reckoning;
+  input.error_over_time = evaluation.error_over_time;
+  input.localized_at = run.localized_at;
+  return eval::reportSvg(input);
+}
+
+std::string runSummary(const std::string& command, const std::string& dir, const RunMetrics& m) {
+  std::string out = format("%s: wrote %s (%s on %s, seed %llu)\n", command.c_str(), dir.c_str(),
+                           m.method.c_str(), m.world.c_str(),
+                           static_cast<unsigned long long>(m.seed));
+  if (m.localized) {
+    out += format(
+        "  localized at t = %.1f s (%.0f %% of the run localized)\n"
+        "  APE in B (2D, no alignment, from then on): rmse %.3f m, median %.3f m, max %.3f m "
+        "over %d poses\n",
+        *m.time_to_localize, 100.0 * *m.share_localized, m.ape_B->rmse, m.ape_B->median,
+        m.ape_B->max, m.ape_B->count);
+  } else {
+    out += "  not localized in the plan";
+    if (m.matching_status) out += " (matching: " + *m.matching_status + ")";
+    out += "\n";
+  }
+  if (m.ape_M_se3) {
+    out += format("  APE in M after SE(3) alignment: rmse %.3f m\n", m.ape_M_se3->rmse);
+  }
+  if (m.ape_odometry_from_true_start) {
+    out += format("  odometry from the true start: APE rmse %.3f m\n",
+                  m.ape_odometry_from_true_start->rmse);
+  }
+  if (m.sim_seconds > 0) {
+    out += format("  %.1f s of robot time in %.1f s: %.1fx real time\n", m.sim_seconds,
+                  m.wall_seconds, m.real_time_factor);
+  }
+  return out;
+}
+
+}  // namespace isg::run

@@ -1,0 +1,47 @@
+#pragma once
+
+#include <Eigen/Geometry>
+#include <array>
+#include <cstddef>
+#include <string>
+#include <vector>
+
+namespace isg::slam {
+
+// What a localizer that builds a map can tell about it, as plain data: the keyframe estimates
+// (with the odometry at the same instants, to compare), the wall planes and confirmed rooms, and
+// the time each keyframe cost. `isg slam` reports these; nothing outside slam needs the S-Graph.
+struct KeyframeTiming {
+  double extraction_s = 0.0;    // deskew + preprocessing + planes + association
+  double optimisation_s = 0.0;  // the window optimisation, plane merging and room detection
+};
+
+struct MapKeyframe {
+  double stamp = 0.0;
+  Eigen::Isometry3d estimate = Eigen::Isometry3d::Identity();  // M_T_R, optimised
+  Eigen::Isometry3d odometry = Eigen::Isometry3d::Identity();  // M_T_R by odometry alone
+};
+
+struct MapRoom {
+  Eigen::Vector2d centre = Eigen::Vector2d::Zero();  // in M
+  bool four_wall = true;                             // else a corridor: widths[0] only
+  std::array<double, 2> widths{0.0, 0.0};            // metres
+};
+
+struct MapDiagnostics {
+  std::vector<MapKeyframe> keyframes;
+  std::size_t planes = 0;
+  std::vector<MapRoom> rooms;  // confirmed rooms
+  std::vector<KeyframeTiming> timings;
+};
+
+// One change of a global localizer's status (e.g. the matcher's "not yet" → "matched"), for the
+// run's log and metrics.json's `matching_events`.
+struct StatusChange {
+  double stamp = 0.0;
+  int keyframe = 0;
+  std::string status;
+  std::string reason;
+};
+
+}  // namespace isg::slam
