@@ -10,7 +10,7 @@
 
 namespace isg::bim {
 
-// The architectural graph (paper §III, ALGORITHMS.md §4): the plan's wall surfaces, walls, rooms,
+// The architectural graph (paper §III, docs/agraph.md): the plan's wall surfaces, walls, rooms,
 // doorways and floors as nodes in the plan frame B, joined by the edges their factors follow.
 
 // Wall surfaces are classified as the paper does: |n_x| ≥ |n_y| → x-surface, else y-surface.

@@ -8,12 +8,12 @@
 
 namespace isg::bim {
 
-// The A-Graph's factors as Ceres cost functions (paper §III, ALGORITHMS.md §3–4). Planes are
+// The A-Graph's factors as Ceres cost functions (paper §III, docs/agraph.md). Planes are
 // 4-vectors [n, d] on the PlaneManifold, centres plain vectors. The room factors are the same in
 // the S-Graph, which uses these classes too. Residuals are whitened by 1/sigma.
 //
 // Every factor works with closest points cp = -d·n: the maths of "flip the planes to d ≤ 0 and
-// take |d|·n" in ALGORITHMS.md, without the flip (cp does not change when a plane is flipped).
+// take |d|·n" (docs/agraph.md), without the flip (cp does not change when a plane is flipped).
 
 template <typename T>
 Eigen::Matrix<T, 3, 1> closestPoint(const T* plane) {
@@ -76,9 +76,9 @@ struct FourWallRoomFactor {
 };
 
 // Two-wall room (corridor): ρ − [m + (c − (c·n̂)n̂)].xy with m = ½(cp₁ + cp₂) and c a point on the
-// corridor's axis. ALGORITHMS.md writes n̂ = m/|m|, which is n̂ = ±n except where the corridor's
-// mid-plane passes through the origin of B and m = 0; we use the planes' normal, which is the
-// same wherever both are defined and never singular. Parameters: ρ (2), π₁, π₂ (4 each).
+// corridor's axis. The textbook form n̂ = m/|m| (docs/agraph.md), which is n̂ = ±n except where the
+// corridor's mid-plane passes through the origin of B and m = 0; we use the planes' normal, which
+// is the same wherever both are defined and never singular. Parameters: ρ (2), π₁, π₂ (4 each).
 struct TwoWallRoomFactor {
   TwoWallRoomFactor(const Eigen::Vector2d& axis_point, double sigma)
       : axis_point_(axis_point.x(), axis_point.y(), 0.0), weight_(1.0 / sigma) {}

@@ -1,6 +1,7 @@
 #pragma once
 
 #include <ceres/ceres.h>
+#include <numbers>
 
 #include <Eigen/Core>
 #include <memory>
@@ -14,7 +15,7 @@ namespace isg::bim {
 // Standard deviations of the A-Graph's factors. The plan is exact up to how it was drawn, so
 // the defaults are a centimetre and half a degree.
 struct AGraphSigmas {
-  double plane_angle = 0.5 * 3.14159265358979 / 180.0;  // rad, plane priors
+  double plane_angle = 0.5 * std::numbers::pi / 180.0;  // rad, plane priors
   double plane_distance = 0.01;                         // m, plane priors
   double wall = 0.01;                                   // m, wall centres
   double room = 0.01;                                   // m, room centres

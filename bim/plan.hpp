@@ -7,7 +7,7 @@
 
 namespace isg::bim {
 
-// The plan model of FORMATS.md ("isg.plan" v1): what the BIM says. All coordinates are in the
+// The plan model of docs/formats.md ("isg.plan" v1): what the BIM says. All coordinates are in the
 // plan frame B, in metres. Parsing fills every default, so nothing downstream sees a missing
 // field.
 

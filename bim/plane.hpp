@@ -5,7 +5,7 @@
 
 namespace isg::bim {
 
-// A plane π = (n, d) with unit normal n and n·p + d = 0 for its points (ARCHITECTURE.md). The
+// A plane π = (n, d) with unit normal n and n·p + d = 0 for its points (docs/conventions.md). The
 // one convention everywhere: plan surfaces, S-Graph planes and the factors between them.
 struct Plane {
   Eigen::Vector3d normal = Eigen::Vector3d::UnitZ();

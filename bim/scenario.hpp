@@ -14,7 +14,7 @@
 
 namespace isg::bim {
 
-// The scenario model of FORMATS.md ("isg.scenario" v1): one simulated run. Parsing fills every
+// The scenario model of docs/formats.md ("isg.scenario" v1): one simulated run. Parsing fills every
 // default, so a bare plan becomes a scenario with the documented defaults.
 
 struct Route {

@@ -17,7 +17,9 @@ AGraphCommand::AGraphCommand(CLI::App& parent) {
       "between them. JSON format: docs/agraph.md. Given a scenario, the A-Graph is built from its "
       "plan: the localizer never sees the as-built deviations.\n\n" +
       builtinWorldsHelp());
-  app_->add_option("input", input_, "plan or scenario file, or builtin:NAME")->required();
+  app_->add_option("input", input_, "plan or scenario file, or builtin:NAME")
+      ->option_text("PLAN")
+      ->required();
   app_->add_option("-o,--output", output_, "JSON file to write (default: standard output)");
   app_->add_option("--svg", svg_, "also write a picture of the plan with the graph over it");
   app_->add_option("--level", level_, "level to draw in the SVG (default: the first)");

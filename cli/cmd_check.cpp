@@ -16,7 +16,9 @@ CheckCommand::CheckCommand(CLI::App& parent) {
       "fields, clockwise outlines, doors whose rooms cannot be inferred) do not fail the "
       "check.\n\n" +
       builtinWorldsHelp());
-  app_->add_option("input", input_, "plan or scenario file, or builtin:NAME")->required();
+  app_->add_option("input", input_, "plan or scenario file, or builtin:NAME")
+      ->option_text("PLAN|SCENARIO")
+      ->required();
   app_->add_flag("-v,--verbose", verbose_,
                  "also list every room with its bounding wall faces and every door with its rooms");
 }

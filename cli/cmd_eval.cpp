@@ -49,13 +49,17 @@ EvalCommand::EvalCommand(CLI::App& parent) {
       "associated positions. --project xy then zeroes z and keeps only yaw (the paper's 2D "
       "APE). Statistics: rmse, mean, median, std (population), min, max, sse; translation in "
       "metres, rotation as the angle of R_ref⁻¹·R_est in degrees.");
-  app_->add_option("reference", reference_, "ground truth, TUM")->required();
-  app_->add_option("estimate", estimate_, "estimated trajectory, TUM")->required();
+  app_->add_option("reference", reference_, "ground truth, TUM")->option_text("GT.tum")->required();
+  app_->add_option("estimate", estimate_, "estimated trajectory, TUM")
+      ->option_text("EST.tum")
+      ->required();
   app_->add_option("--align", align_, "none, se3 or sim3")
-      ->check(CLI::IsMember({"none", "se3", "sim3"}));
+      ->check(CLI::IsMember({"none", "se3", "sim3"}))
+      ->capture_default_str();
   app_->add_option("--project", project_, "xy: compare in the plane")->check(CLI::IsMember({"xy"}));
   app_->add_option("--t-max-diff", max_diff_, "association window in seconds")
-      ->check(CLI::PositiveNumber);
+      ->check(CLI::PositiveNumber)
+      ->capture_default_str();
   app_->add_option("--rpe", rpe_delta_, "also the relative pose error over this many poses")
       ->check(CLI::Range(1, 1000000));
   app_->add_flag("--json", json_, "print JSON instead of evo's text layout");
@@ -96,16 +100,15 @@ int EvalCommand::run() {
                                   {"t_max_diff", options.max_diff},
                                   {"pairs", ape.association.reference.size()},
                                   {"localized", coverage.localized},
-                                  {"time_to_first_localization_s", coverage.time_to_first},
+                                  {"time_to_localize", coverage.time_to_first},
                                   {"share_localized", coverage.share},
-                                  {"ape",
-                                   {{"translation_m", toJson(ape.translation_stats)},
-                                    {"rotation_deg", toJson(ape.rotation_stats)}}}};
+                                  {"ape", toJson(ape.translation_stats)},
+                                  {"ape_rotation_deg", toJson(ape.rotation_stats)}};
     if (ape.alignment) out["alignment"] = {{"scale", ape.alignment->scale}};
     if (rpe) {
-      out["rpe"] = {{"delta", rpe_delta_},
-                    {"translation_m", toJson(rpe->translation_stats)},
-                    {"rotation_deg", toJson(rpe->rotation_stats)}};
+      out["rpe_delta"] = rpe_delta_;
+      out["rpe"] = toJson(rpe->translation_stats);
+      out["rpe_rotation_deg"] = toJson(rpe->rotation_stats);
     }
     std::cout << out.dump(2) << "\n";
     return kExitOk;

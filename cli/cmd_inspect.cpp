@@ -19,8 +19,11 @@ InspectCommand::InspectCommand(CLI::App& parent) {
       "and reports how many hit the building and the nearest geom.\n\n" +
       builtinWorldsHelp());
   app_->add_option("input", input_, "plan or scenario file, or builtin:NAME")
+      ->option_text("PLAN|SCENARIO")
       ->default_str(std::string(worlds::kDefaultWorld));
-  app_->add_option("--steps", steps_, "physics steps to run")->check(CLI::Range(0, 10000000));
+  app_->add_option("--steps", steps_, "physics steps to run")
+      ->check(CLI::Range(0, 10000000))
+      ->capture_default_str();
 }
 
 int InspectCommand::run() {

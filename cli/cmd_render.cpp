@@ -17,13 +17,19 @@ RenderCommand::RenderCommand(CLI::App& parent) {
       "the robot) at robot time T on its route. Renders on the CPU through EGL (Mesa, surfaceless "
       "platform): no display and no GPU needed.\n\n" +
       builtinWorldsHelp());
-  app_->add_option("input", input_, "plan or scenario file, or builtin:NAME")->required();
+  app_->add_option("input", input_, "plan or scenario file, or builtin:NAME")
+      ->option_text("PLAN|SCENARIO")
+      ->required();
   app_->add_option("-o,--output", output_, "folder for the pictures (created if missing)")
       ->required();
   app_->add_option("--time", time_, "robot time in seconds (default: a quarter of the route)")
       ->check(CLI::NonNegativeNumber);
-  app_->add_option("--width", width_, "picture width in pixels")->check(CLI::Range(16, 1920));
-  app_->add_option("--height", height_, "picture height in pixels")->check(CLI::Range(16, 1080));
+  app_->add_option("--width", width_, "picture width in pixels")
+      ->check(CLI::Range(16, 1920))
+      ->capture_default_str();
+  app_->add_option("--height", height_, "picture height in pixels")
+      ->check(CLI::Range(16, 1080))
+      ->capture_default_str();
 }
 
 int RenderCommand::run() {

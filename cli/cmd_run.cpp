@@ -36,7 +36,7 @@ RunCommand::RunCommand(CLI::App& parent) {
       "(docs/evaluation.md). With no PLAN|SCENARIO, runs the built-in default world (" +
       std::string(worlds::kDefaultWorld) + ").\n\n" + methodHelp(methods_) + "\n" +
       builtinWorldsHelp());
-  app_->add_option("input", input_, "PLAN|SCENARIO: plan or scenario file, or builtin:NAME")
+  app_->add_option("input", input_, "plan or scenario file, or builtin:NAME")
       ->option_text("PLAN|SCENARIO")
       ->default_str(std::string(worlds::kDefaultWorld));
   app_->add_option("-o,--output", output_, "RUN_DIR to create")
@@ -80,8 +80,8 @@ int RunCommand::run() {
   context.start_B_T_M = run::trueStartB_T_M(streams);
   const auto localizer = methods_.make(method_, context);
 
-  run::RunSetup setup{input, localizer->name(), scenario.seed, &scenario.plan, &agraph,
-                      scenario.robot.level};
+  run::RunSetup setup{input,          localizer->name(), scenario.seed,
+                      &scenario.plan, &agraph,           scenario.robot.level};
   ProgressBar bar("isg run", quiet_);
   const double period = streams.scan_period;
   const int scans = int(streams.scan_stamps.size());

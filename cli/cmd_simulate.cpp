@@ -17,14 +17,21 @@ SimulateCommand::SimulateCommand(CLI::App& parent) {
       "The robot walks the scenario's route (default: a tour of every room reachable through "
       "open doors) in the building as built; its VLP-16 scans, its odometry and the ground truth "
       "are written to DATASET_DIR: scans/NNNNNN.pcd, groundtruth.tum, odometry.tum, scans.tum, "
-      "metadata.json (ARCHITECTURE.md). The same seed gives a byte-identical dataset.\n\n" +
+      "metadata.json (docs/formats.md). The same seed gives a byte-identical dataset.\n\n" +
       builtinWorldsHelp());
-  app_->add_option("input", input_, "plan or scenario file, or builtin:NAME")->required();
-  app_->add_option("-o,--output", output_, "dataset folder to create")->required();
-  app_->add_option("--seed", seed_, "seed for every random draw (default: the scenario's)");
-  app_->add_option("--duration", duration_, "seconds to simulate (default: the whole route)")
+  app_->add_option("input", input_, "plan or scenario file, or builtin:NAME")
+      ->option_text("PLAN|SCENARIO")
+      ->required();
+  app_->add_option("-o,--output", output_, "dataset folder to create")
+      ->option_text("DATASET_DIR")
+      ->required();
+  app_->add_option("--seed", seed_, "seed for every random draw")->default_str("the scenario's");
+  app_->add_option("--duration", duration_, "seconds to simulate")
+      ->default_str("the whole route")
       ->check(CLI::PositiveNumber);
-  app_->add_option("--threads", threads_, "threads casting scans")->check(CLI::Range(1, 64));
+  app_->add_option("--threads", threads_, "threads casting scans")
+      ->check(CLI::Range(1, 64))
+      ->capture_default_str();
   app_->add_flag("--force", force_, "replace DATASET_DIR if it exists");
   app_->add_flag("-q,--quiet", quiet_, "no progress bar");
 }

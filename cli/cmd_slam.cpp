@@ -37,8 +37,7 @@ SlamCommand::SlamCommand(CLI::App& parent) {
       "keyframes.tum, metrics.json, sgraph.json, report.svg, ...; docs/evaluation.md) and "
       "reports APE, the map's rooms and per-keyframe timings.\n\n" +
       methodHelp(methods_));
-  app_->add_option("dataset", dataset_,
-                   "DATASET_DIR: dataset folder made by isg simulate (or in its format)")
+  app_->add_option("dataset", dataset_, "dataset folder made by isg simulate (or in its format)")
       ->option_text("DATASET_DIR")
       ->required();
   app_->add_option("--plan", plan_,
@@ -47,9 +46,7 @@ SlamCommand::SlamCommand(CLI::App& parent) {
   app_->add_option("--method", method_, "localization method (see below)")
       ->check(CLI::IsMember(methods_.names()))
       ->default_str("is-graphs with --plan, s-graph without");
-  app_->add_option("-o,--output", output_, "RUN_DIR to create")
-      ->option_text("RUN_DIR")
-      ->required();
+  app_->add_option("-o,--output", output_, "RUN_DIR to create")->option_text("RUN_DIR")->required();
   app_->add_flag("--force", force_, "replace RUN_DIR if it exists");
   app_->add_flag("-q,--quiet", quiet_, "no progress bar");
 }
@@ -70,7 +67,8 @@ int SlamCommand::run() {
   run::SensorStreams streams = dataset.streams();
   const std::string fallback_level = plan && !plan->levels.empty() ? plan->levels[0].id : "";
   const auto& robot = dataset.metadata().value("robot", nlohmann::json::object());
-  const std::string level = robot.is_object() ? robot.value("level", fallback_level) : fallback_level;
+  const std::string level =
+      robot.is_object() ? robot.value("level", fallback_level) : fallback_level;
 
   run::LocalizerContext context;
   context.plan = plan ? &*plan : nullptr;
@@ -80,8 +78,9 @@ int SlamCommand::run() {
   context.start_B_T_M = run::trueStartB_T_M(streams);
   const auto localizer = methods_.make(method, context);
 
-  run::RunSetup setup{dataset_, localizer->name(), dataset.metadata().value("seed", std::uint64_t{0}),
-                      context.plan, context.agraph, level};
+  run::RunSetup setup{
+      dataset_,     localizer->name(), dataset.metadata().value("seed", std::uint64_t{0}),
+      context.plan, context.agraph,    level};
   ProgressBar bar("isg slam", quiet_);
   const double period = streams.scan_period;
   const run::RunRecord record = run::runLocalizer(std::move(setup), *localizer, std::move(streams),

@@ -24,7 +24,9 @@ TableCommand::TableCommand(CLI::App& parent) {
       "Example: for m in is-graphs dead-reckoning; do isg run builtin:d1 --method $m -o "
       "runs/d1-$m; "
       "done; isg table runs/* --format csv > baseline.csv");
-  app_->add_option("runs", runs_, "run folders")->required();
+  app_->add_option("runs", runs_, "run folders made by isg run or isg slam")
+      ->option_text("RUN_DIR")
+      ->required();
   app_->add_option("--format", format_, "md, csv or latex")
       ->check(CLI::IsMember({"md", "csv", "latex"}))
       ->capture_default_str();

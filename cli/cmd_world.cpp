@@ -16,7 +16,9 @@ WorldCommand::WorldCommand(CLI::App& parent) {
       "room/R1. The world is compiled with MuJoCo before it is written, and nothing is written "
       "when the input is invalid. Look at it with: mujoco-simulate world.xml\n\n" +
       builtinWorldsHelp());
-  app_->add_option("input", input_, "plan or scenario file, or builtin:NAME")->required();
+  app_->add_option("input", input_, "plan or scenario file, or builtin:NAME")
+      ->option_text("PLAN|SCENARIO")
+      ->required();
   app_->add_option("-o,--output", output_, "MJCF file to write (default: standard output)");
   app_->add_flag("--no-ceilings", no_ceilings_, "leave the ceiling slabs out (for looking at it)");
 }

@@ -23,6 +23,20 @@ bim::Scenario loadInput(const std::string& argument, const std::string& command)
 // The text listing the built-in worlds, for --help.
 std::string builtinWorldsHelp();
 
+// Help text that names positionals as the README does (PLAN|SCENARIO, DATASET_DIR, RUN_DIR):
+// a positional with an option_text is shown by that text, in the usage line and in its list.
+class HelpFormatter : public CLI::Formatter {
+ public:
+  std::string make_option_name(const CLI::Option* option, bool is_positional) const override {
+    if (is_positional && !option->get_option_text().empty()) return option->get_option_text();
+    return CLI::Formatter::make_option_name(option, is_positional);
+  }
+  std::string make_option_opts(const CLI::Option* option) const override {
+    if (!option->nonpositional() && !option->get_option_text().empty()) return "";
+    return CLI::Formatter::make_option_opts(option);
+  }
+};
+
 // A subcommand: registers its options on construction, runs after a successful parse.
 class Command {
  public:

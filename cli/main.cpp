@@ -24,6 +24,7 @@ int main(int argc, char** argv) {
       "isg: a simulation-in-the-loop testbed for global localization of a legged robot against "
       "architectural plans (iS-Graphs).",
       "isg"};
+  app.formatter(std::make_shared<HelpFormatter>());  // before the subcommands: they inherit it
   app.require_subcommand(1, 1);
   app.set_version_flag("--version", std::string("isg 0.1.0"));
   app.footer("Run 'isg COMMAND --help' for the options of a command.");

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <numbers>
 #include <numeric>
 #include <stdexcept>
 
@@ -11,7 +12,7 @@ namespace {
 
 double angleDeg(const Eigen::Matrix3d& a, const Eigen::Matrix3d& b) {
   const double c = std::clamp(((a.transpose() * b).trace() - 1.0) / 2.0, -1.0, 1.0);
-  return std::acos(c) * 180.0 / M_PI;
+  return std::acos(c) * 180.0 / std::numbers::pi;
 }
 
 struct Prepared {

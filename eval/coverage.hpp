@@ -4,7 +4,7 @@
 
 namespace isg::eval {
 
-// How much of a run a global localizer was localized for (ALGORITHMS.md §7). A localizer's
+// How much of a run a global localizer was localized for (docs/evaluation.md). A localizer's
 // estimate in B has rows only once it is localized, so: localized when it has any row; the time
 // to first localization is the first estimate's stamp less the first ground-truth stamp; the share
 // localized is the part of the ground truth's span from that first estimate to the end.

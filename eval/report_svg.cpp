@@ -33,49 +33,61 @@ std::string number(double v) {
 
 }  // namespace
 
-std::string reportSvg(const ReportInput& input) {
-  // The plan's extent decides the map's scale; the chart sits below it.
-  Eigen::Vector2d lo = Eigen::Vector2d::Constant(std::numeric_limits<double>::infinity());
-  Eigen::Vector2d hi = -lo;
-  auto grow = [&](const Eigen::Vector2d& p) {
-    lo = lo.cwiseMin(p);
-    hi = hi.cwiseMax(p);
-  };
-  for (const auto& polygon : input.walls) {
-    for (const auto& p : polygon) grow(p);
-  }
-  for (const auto& pose : input.ground_truth) grow(pose.pose.translation().head<2>());
-  if (!std::isfinite(lo.x())) lo = hi = Eigen::Vector2d::Zero();
-  const Eigen::Vector2d size = (hi - lo).cwiseMax(Eigen::Vector2d::Constant(1.0));
-  const double width = 1000.0, margin = 30.0;
-  const double scale = (width - 2 * margin) / size.x();
-  const double header = 30.0 + 18.0 * double(input.summary.size());
-  const double map_height = size.y() * scale + 2 * margin;
-  const double chart_top = header + map_height + 20.0, chart_height = 180.0;
-  const double height = chart_top + chart_height + 50.0;
-  auto X = [&](double x) { return number(margin + (x - lo.x()) * scale); };
-  auto Y = [&](double y) { return number(header + margin + (hi.y() - y) * scale); };
+namespace {
 
-  std::ostringstream svg;
-  svg << "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"" << number(width) << "\" height=\""
-      << number(height) << "\" viewBox=\"0 0 " << number(width) << " " << number(height)
+// Where everything goes: the plan's extent decides the map's scale; the chart sits below it.
+struct Layout {
+  explicit Layout(const ReportInput& input) {
+    lo = Eigen::Vector2d::Constant(std::numeric_limits<double>::infinity());
+    hi = -lo;
+    auto grow = [&](const Eigen::Vector2d& p) {
+      lo = lo.cwiseMin(p);
+      hi = hi.cwiseMax(p);
+    };
+    for (const auto& polygon : input.walls) {
+      for (const auto& p : polygon) grow(p);
+    }
+    for (const auto& pose : input.ground_truth) grow(pose.pose.translation().head<2>());
+    if (!std::isfinite(lo.x())) lo = hi = Eigen::Vector2d::Zero();
+    const Eigen::Vector2d size = (hi - lo).cwiseMax(Eigen::Vector2d::Constant(1.0));
+    scale = (width - 2 * margin) / size.x();
+    header = 30.0 + 18.0 * double(input.summary.size());
+    map_height = size.y() * scale + 2 * margin;
+    chart_top = header + map_height + 20.0;
+    height = chart_top + chart_height + 50.0;
+  }
+  std::string X(double x) const { return number(margin + (x - lo.x()) * scale); }
+  std::string Y(double y) const { return number(header + margin + (hi.y() - y) * scale); }
+
+  static constexpr double width = 1000.0, margin = 30.0, chart_height = 180.0;
+  Eigen::Vector2d lo, hi;
+  double scale = 1.0, header = 0.0, map_height = 0.0, chart_top = 0.0, height = 0.0;
+};
+
+void drawHeader(std::ostringstream& svg, const ReportInput& input, const Layout& l) {
+  svg << "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"" << number(l.width) << "\" height=\""
+      << number(l.height) << "\" viewBox=\"0 0 " << number(l.width) << " " << number(l.height)
       << "\" font-family=\"sans-serif\">\n";
   svg << "<rect width=\"100%\" height=\"100%\" fill=\"white\"/>\n";
-  svg << "<text x=\"" << margin << "\" y=\"22\" font-size=\"18\" font-weight=\"bold\">"
+  svg << "<text x=\"" << l.margin << "\" y=\"22\" font-size=\"18\" font-weight=\"bold\">"
       << escape(input.title) << "</text>\n";
   for (std::size_t i = 0; i < input.summary.size(); ++i) {
-    svg << "<text x=\"" << margin << "\" y=\"" << number(42 + 18.0 * i) << "\" font-size=\"13\">"
+    svg << "<text x=\"" << l.margin << "\" y=\"" << number(42 + 18.0 * i) << "\" font-size=\"13\">"
         << escape(input.summary[i]) << "</text>\n";
   }
+}
+
+// The plan's walls and room names, the trajectories, the start and the first localized pose.
+void drawMap(std::ostringstream& svg, const ReportInput& input, const Layout& l) {
   svg << "<g fill=\"#9a9a9a\" stroke=\"#555\" stroke-width=\"0.5\">\n";
   for (const auto& polygon : input.walls) {
     svg << "<polygon points=\"";
-    for (const auto& p : polygon) svg << X(p.x()) << "," << Y(p.y()) << " ";
+    for (const auto& p : polygon) svg << l.X(p.x()) << "," << l.Y(p.y()) << " ";
     svg << "\"/>\n";
   }
   svg << "</g>\n<g font-size=\"11\" fill=\"#777\" text-anchor=\"middle\">\n";
   for (const auto& [name, p] : input.labels) {
-    svg << "<text x=\"" << X(p.x()) << "\" y=\"" << Y(p.y()) << "\">" << escape(name)
+    svg << "<text x=\"" << l.X(p.x()) << "\" y=\"" << l.Y(p.y()) << "\">" << escape(name)
         << "</text>\n";
   }
   svg << "</g>\n";
@@ -86,7 +98,7 @@ std::string reportSvg(const ReportInput& input) {
     const std::size_t step = std::max<std::size_t>(1, trajectory.size() / 4000);
     for (std::size_t i = 0; i < trajectory.size(); i += step) {
       const auto t = trajectory[i].pose.translation();
-      svg << X(t.x()) << "," << Y(t.y()) << " ";
+      svg << l.X(t.x()) << "," << l.Y(t.y()) << " ";
     }
     svg << "\"/>\n";
   };
@@ -95,24 +107,26 @@ std::string reportSvg(const ReportInput& input) {
   path(input.estimate, "stroke=\"#1f6fd0\" stroke-width=\"1.5\" stroke-opacity=\"0.85\"");
   if (!input.estimate.empty()) {
     const auto p = input.estimate.front().pose.translation();
-    svg << "<circle cx=\"" << X(p.x()) << "\" cy=\"" << Y(p.y())
+    svg << "<circle cx=\"" << l.X(p.x()) << "\" cy=\"" << l.Y(p.y())
         << "\" r=\"7\" fill=\"none\" stroke=\"#d02020\" stroke-width=\"2.5\"/>\n";
-    svg << "<text x=\"" << X(p.x()) << "\" y=\"" << number(std::stod(Y(p.y())) - 11)
+    svg << "<text x=\"" << l.X(p.x()) << "\" y=\"" << number(std::stod(l.Y(p.y())) - 11)
         << "\" font-size=\"12\" fill=\"#d02020\" text-anchor=\"middle\">localized</text>\n";
   }
   if (!input.ground_truth.empty()) {
     const auto p = input.ground_truth.front().pose.translation();
-    svg << "<rect x=\"" << number(std::stod(X(p.x())) - 5) << "\" y=\""
-        << number(std::stod(Y(p.y())) - 5) << "\" width=\"10\" height=\"10\" fill=\"black\"/>\n";
+    svg << "<rect x=\"" << number(std::stod(l.X(p.x())) - 5) << "\" y=\""
+        << number(std::stod(l.Y(p.y())) - 5) << "\" width=\"10\" height=\"10\" fill=\"black\"/>\n";
   }
-  // Legend.
-  const double legend_y = header + map_height - 8;
+}
+
+void drawLegend(std::ostringstream& svg, const Layout& l) {
+  const double legend_y = l.header + l.map_height - 8;
   const std::pair<const char*, const char*> legend[] = {
       {"black", "ground truth"},
       {"#1f6fd0", "estimate in B (once localized)"},
       {"#e8a0a0", "odometry from the true start"},
       {"#d02020", "first localized pose"}};
-  double lx = margin;
+  double lx = l.margin;
   for (const auto& [colour, text] : legend) {
     svg << "<line x1=\"" << lx << "\" y1=\"" << number(legend_y) << "\" x2=\"" << lx + 20
         << "\" y2=\"" << number(legend_y) << "\" stroke=\"" << colour
@@ -120,20 +134,24 @@ std::string reportSvg(const ReportInput& input) {
         << "\" font-size=\"12\">" << text << "</text>\n";
     lx += 60 + 7.0 * std::string(text).size();
   }
-  // APE over time.
+}
+
+// The APE over time, with the moment of the first localization.
+void drawChart(std::ostringstream& svg, const ReportInput& input, const Layout& l) {
   double t0 = input.ground_truth.empty() ? 0.0 : input.ground_truth.front().t;
   double t1 = input.ground_truth.empty() ? 1.0 : input.ground_truth.back().t;
   if (t1 <= t0) t1 = t0 + 1.0;
   double e_max = 0.05;
   for (const auto& [t, e] : input.error_over_time) e_max = std::max(e_max, e);
   e_max = std::ceil(e_max * 20.0) / 20.0;
-  const double cx0 = margin + 50, cx1 = width - margin;
+  const double top = l.chart_top, height = l.chart_height;
+  const double cx0 = l.margin + 50, cx1 = l.width - l.margin;
   auto CX = [&](double t) { return number(cx0 + (t - t0) / (t1 - t0) * (cx1 - cx0)); };
-  auto CY = [&](double e) { return number(chart_top + chart_height * (1.0 - e / e_max)); };
-  svg << "<text x=\"" << margin << "\" y=\"" << number(chart_top - 6)
+  auto CY = [&](double e) { return number(top + height * (1.0 - e / e_max)); };
+  svg << "<text x=\"" << l.margin << "\" y=\"" << number(top - 6)
       << "\" font-size=\"13\">APE in B (2D, no alignment), metres, over time</text>\n";
-  svg << "<rect x=\"" << number(cx0) << "\" y=\"" << number(chart_top) << "\" width=\""
-      << number(cx1 - cx0) << "\" height=\"" << number(chart_height)
+  svg << "<rect x=\"" << number(cx0) << "\" y=\"" << number(top) << "\" width=\""
+      << number(cx1 - cx0) << "\" height=\"" << number(height)
       << "\" fill=\"none\" stroke=\"#444\"/>\n";
   for (int i = 0; i <= 4; ++i) {
     const double e = e_max * i / 4.0;
@@ -146,12 +164,12 @@ std::string reportSvg(const ReportInput& input) {
   }
   for (int i = 0; i <= 5; ++i) {
     const double t = t0 + (t1 - t0) * i / 5.0;
-    svg << "<text x=\"" << CX(t) << "\" y=\"" << number(chart_top + chart_height + 14)
+    svg << "<text x=\"" << CX(t) << "\" y=\"" << number(top + height + 14)
         << "\" font-size=\"10\" text-anchor=\"middle\">" << number(t - t0) << " s</text>\n";
   }
   if (input.localized_at) {
-    svg << "<line x1=\"" << CX(*input.localized_at) << "\" y1=\"" << number(chart_top) << "\" x2=\""
-        << CX(*input.localized_at) << "\" y2=\"" << number(chart_top + chart_height)
+    svg << "<line x1=\"" << CX(*input.localized_at) << "\" y1=\"" << number(top) << "\" x2=\""
+        << CX(*input.localized_at) << "\" y2=\"" << number(top + height)
         << "\" stroke=\"#d02020\" stroke-dasharray=\"3 3\"/>\n";
   }
   if (!input.error_over_time.empty()) {
@@ -159,10 +177,20 @@ std::string reportSvg(const ReportInput& input) {
     for (const auto& [t, e] : input.error_over_time) svg << CX(t) << "," << CY(e) << " ";
     svg << "\"/>\n";
   } else {
-    svg << "<text x=\"" << number(0.5 * (cx0 + cx1)) << "\" y=\""
-        << number(chart_top + chart_height / 2)
+    svg << "<text x=\"" << number(0.5 * (cx0 + cx1)) << "\" y=\"" << number(top + height / 2)
         << "\" font-size=\"14\" text-anchor=\"middle\" fill=\"#d02020\">never localized</text>\n";
   }
+}
+
+}  // namespace
+
+std::string reportSvg(const ReportInput& input) {
+  const Layout layout(input);
+  std::ostringstream svg;
+  drawHeader(svg, input, layout);
+  drawMap(svg, input, layout);
+  drawLegend(svg, layout);
+  drawChart(svg, input, layout);
   svg << "</svg>\n";
   return svg.str();
 }

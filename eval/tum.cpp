@@ -54,10 +54,10 @@ Trajectory quantised(const Trajectory& trajectory) {
     const Eigen::Vector3d t = p.pose.translation();
     StampedPose r;
     r.t = quantisedTime(p.t);
-    r.pose.translation() = Eigen::Vector3d(quantise(t.x(), 1e6), quantise(t.y(), 1e6),
-                                           quantise(t.z(), 1e6));
-    const Eigen::Quaterniond read(quantise(q.w(), 1e9), quantise(q.x(), 1e9),
-                                  quantise(q.y(), 1e9), quantise(q.z(), 1e9));
+    r.pose.translation() =
+        Eigen::Vector3d(quantise(t.x(), 1e6), quantise(t.y(), 1e6), quantise(t.z(), 1e6));
+    const Eigen::Quaterniond read(quantise(q.w(), 1e9), quantise(q.x(), 1e9), quantise(q.y(), 1e9),
+                                  quantise(q.z(), 1e9));
     r.pose.linear() = read.normalized().toRotationMatrix();
     out.push_back(r);
   }

@@ -82,7 +82,8 @@ SensorStreams DatasetReader::streams() const {
   const double span =
       scan_stamps_.empty() ? 0.0 : scan_stamps_.back() - scan_stamps_.front() + scan_period_;
   const auto recorded = metadata_.find("duration_s");
-  out.duration = recorded != metadata_.end() && recorded->is_number() ? recorded->get<double>() : span;
+  out.duration =
+      recorded != metadata_.end() && recorded->is_number() ? recorded->get<double>() : span;
   return out;
 }
 

@@ -56,10 +56,11 @@ std::string formatMapDiagnosis(const MapDiagnosis& d) {
         missed += (missed.empty() ? "" : ", ") + id;
       }
     }
-    std::snprintf(line, sizeof line,
-                  "  rooms: %zu detected of %zu walked through (%.0f %%), widths within %.3f m%s%s\n",
-                  r->detected.size(), r->walked.size(), 100.0 * r->rate(), r->worst_width_error,
-                  missed.empty() ? "" : "; missed: ", missed.c_str());
+    std::snprintf(
+        line, sizeof line,
+        "  rooms: %zu detected of %zu walked through (%.0f %%), widths within %.3f m%s%s\n",
+        r->detected.size(), r->walked.size(), 100.0 * r->rate(), r->worst_width_error,
+        missed.empty() ? "" : "; missed: ", missed.c_str());
     out += line;
   }
   return out;

@@ -100,8 +100,10 @@ nlohmann::json metricsToJson(const RunMetrics& m) {
     j["matching_status"] = *m.matching_status;
     nlohmann::json events = nlohmann::json::array();
     for (const auto& e : m.matching_events) {
-      events.push_back(
-          {{"stamp", e.stamp}, {"keyframe", e.keyframe}, {"status", e.status}, {"reason", e.reason}});
+      events.push_back({{"stamp", e.stamp},
+                        {"keyframe", e.keyframe},
+                        {"status", e.status},
+                        {"reason", e.reason}});
     }
     j["matching_events"] = events;
   }

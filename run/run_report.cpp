@@ -59,9 +59,9 @@ std::string reportSvg(const RunRecord& run, const RunEvaluation& evaluation) {
 }
 
 std::string runSummary(const std::string& command, const std::string& dir, const RunMetrics& m) {
-  std::string out = format("%s: wrote %s (%s on %s, seed %llu)\n", command.c_str(), dir.c_str(),
-                           m.method.c_str(), m.world.c_str(),
-                           static_cast<unsigned long long>(m.seed));
+  std::string out =
+      format("%s: wrote %s (%s on %s, seed %llu)\n", command.c_str(), dir.c_str(), m.method.c_str(),
+             m.world.c_str(), static_cast<unsigned long long>(m.seed));
   if (m.localized) {
     out += format(
         "  localized at t = %.1f s (%.0f %% of the run localized)\n"

@@ -18,11 +18,11 @@ using eval::Trajectory;
 // trajectories hold exactly the numbers a dataset's TUM files carry (quantiseStreams), so that a
 // replay sees what the live loop saw.
 struct SensorStreams {
-  Trajectory ground_truth;          // B_T_R
-  Trajectory odometry;              // M_T_R, as the localizer gets it
-  std::vector<double> scan_stamps;  // each scan's first firing
-  double scan_period = 0.1;         // seconds per LiDAR turn
-  double duration = 0.0;            // seconds of robot time the run covers
+  Trajectory ground_truth;                                  // B_T_R
+  Trajectory odometry;                                      // M_T_R, as the localizer gets it
+  std::vector<double> scan_stamps;                          // each scan's first firing
+  double scan_period = 0.1;                                 // seconds per LiDAR turn
+  double duration = 0.0;                                    // seconds of robot time the run covers
   Eigen::Isometry3d R_T_L = Eigen::Isometry3d::Identity();  // the LiDAR on the base
 };
 

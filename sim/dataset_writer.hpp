@@ -26,11 +26,11 @@ struct DatasetSummary {
 // Called from the writing thread as scans complete: (scans done, scans in all).
 using ProgressCallback = std::function<void(int done, int total)>;
 
-// Writes the dataset folder (run/dataset_format.hpp, docs/formats.md): scans/NNNNNN.pcd (binary PCD, fields x y z
-// intensity ring time, LiDAR frame, not deskewed), groundtruth.tum (B_T_R), odometry.tum (M_T_R),
-// scans.tum (B_T_L at each scan stamp) and metadata.json. Everything is written into a temporary
-// folder beside `dir` and renamed into place at the end: a failed run leaves nothing behind.
-// Errors about the folder are InputErrors naming it.
+// Writes the dataset folder (run/dataset_format.hpp, docs/formats.md): scans/NNNNNN.pcd (binary
+// PCD, fields x y z intensity ring time, LiDAR frame, not deskewed), groundtruth.tum (B_T_R),
+// odometry.tum (M_T_R), scans.tum (B_T_L at each scan stamp) and metadata.json. Everything is
+// written into a temporary folder beside `dir` and renamed into place at the end: a failed run
+// leaves nothing behind. Errors about the folder are InputErrors naming it.
 DatasetSummary writeDataset(Simulation& simulation, const std::string& dir,
                             const DatasetOptions& options, const ProgressCallback& progress);
 

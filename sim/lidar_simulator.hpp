@@ -24,7 +24,7 @@ struct LidarScan {
   int rays = 0;
 };
 
-// The VLP-16 of ALGORITHMS.md §1 in a MuJoCo world. Each laser fires from the sensor's pose at
+// The VLP-16 of docs/simulation.md in a MuJoCo world. Each laser fires from the sensor's pose at
 // its own instant, so a scan taken while moving carries real motion distortion.
 class LidarSimulator {
  public:

@@ -1,6 +1,7 @@
 #include "sim/odometry_model.hpp"
 
 #include <cmath>
+#include <numbers>
 
 namespace isg::sim {
 
@@ -16,23 +17,23 @@ Eigen::Isometry3d OdometryModel::update(const Eigen::Isometry3d& B_T_R, std::mt1
   const double yaw1 = yawOf(B_T_R.linear());
   const Eigen::Vector2d world_step = (B_T_R.translation() - previous_.translation()).head<2>();
   const Eigen::Vector2d step = Eigen::Rotation2Dd(-yaw0) * world_step;
-  const double turn = std::remainder(yaw1 - yaw0, 2 * M_PI);
+  const double turn = std::remainder(yaw1 - yaw0, 2 * std::numbers::pi);
   const double distance = step.norm();
   previous_ = B_T_R;
 
   std::normal_distribution<double> n(0.0, 1.0);
   const double sigma_xy = config_.translation_noise * std::sqrt(distance);
   const double heading_var =
-      std::pow(config_.heading_noise_deg_per_m * M_PI / 180.0, 2) * distance +
+      std::pow(config_.heading_noise_deg_per_m * std::numbers::pi / 180.0, 2) * distance +
       kRotationNoise * kRotationNoise * std::abs(turn);
   const double dx = step.x() + sigma_xy * n(rng);
   const double dy = step.y() + sigma_xy * n(rng);
   const double dyaw = turn + std::sqrt(heading_var) * n(rng) +
-                      config_.heading_bias_deg_per_m * M_PI / 180.0 * distance;
+                      config_.heading_bias_deg_per_m * std::numbers::pi / 180.0 * distance;
   const Eigen::Vector2d moved = Eigen::Rotation2Dd(planar_.z()) * Eigen::Vector2d(dx, dy);
   planar_.x() += moved.x();
   planar_.y() += moved.y();
-  planar_.z() = std::remainder(planar_.z() + dyaw, 2 * M_PI);
+  planar_.z() = std::remainder(planar_.z() + dyaw, 2 * std::numbers::pi);
 
   // Height, roll and pitch relative to the start, from the truth.
   const Eigen::Matrix3d tilt =

@@ -7,7 +7,7 @@
 
 namespace isg::sim {
 
-// Legged odometry (ALGORITHMS.md §2): the true motion between two ticks, with noise that grows
+// Legged odometry (docs/simulation.md): the true motion between two ticks, with noise that grows
 // with distance and rotation, integrated in the map frame M (the start pose, which the localizer
 // does not know in B).
 //

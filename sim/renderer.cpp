@@ -4,6 +4,7 @@
 #include <EGL/eglext.h>
 #include <GL/gl.h>
 #include <png.h>
+#include <numbers>
 
 #include <cmath>
 #include <cstdio>
@@ -125,7 +126,7 @@ Image Renderer::chase(mjData& data, const Eigen::Isometry3d& B_T_R) {
   camera.distance = 3.2;
   camera.elevation = -32.0;
   // MuJoCo's free camera looks along its azimuth: from behind the robot is its own heading.
-  camera.azimuth = yawOf(B_T_R.linear()) * 180.0 / M_PI;
+  camera.azimuth = yawOf(B_T_R.linear()) * 180.0 / std::numbers::pi;
   return render(data, camera, false);
 }
 

@@ -2,6 +2,7 @@
 
 #include <cmath>
 #include <cstdio>
+#include <numbers>
 
 #include "worlds/mjcf_generator.hpp"
 
@@ -76,7 +77,7 @@ void poseRobot(const mjModel& m, mjData& d, const Eigen::Isometry3d& B_T_R, doub
   d.mocap_quat[4 * mocap + 3] = q.z();
   for (int i = 0; i < 4; ++i) {
     // Trot: diagonal legs (FL + RR, FR + RL) swing together, half a cycle apart.
-    const double phase = gait_phase + ((i == 0 || i == 3) ? 0.0 : M_PI);
+    const double phase = gait_phase + ((i == 0 || i == 3) ? 0.0 : std::numbers::pi);
     const double swing = sway_weight * std::sin(phase);
     const double lift = sway_weight * std::max(0.0, std::sin(phase));
     const std::string leg = kLegs[i];

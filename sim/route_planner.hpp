@@ -21,7 +21,7 @@ struct PlannedRoute {
   std::vector<std::string> skipped_rooms;  // a tour's rooms that cannot be reached
 };
 
-// Plans the scenario's route on its robot level as built (ALGORITHMS.md, issue 3):
+// Plans the scenario's route on its robot level as built (docs/simulation.md):
 // - "tour": a depth-first walk over the rooms joined by open doors, from the start room, reaching
 //   each room's most open point; rooms that cannot be reached are skipped (and listed);
 // - {"rooms": [...]}: those rooms in order; one that cannot be reached is an error;

@@ -4,14 +4,13 @@
 #include <array>
 #include <cmath>
 #include <limits>
+#include <numbers>
 
 #include "bim/polygon.hpp"
 
 namespace isg::sim {
 
 namespace {
-
-constexpr double kPi = 3.14159265358979323846;
 
 // A monotonic stand-in for atan2 on [0, 4): cheaper, and only its order matters for sectors.
 inline double diamondAngle(double x, double y) {
@@ -71,7 +70,7 @@ void ScanCaster::prepare(const Eigen::Vector2d& centre, double radius) {
     double lo = std::numeric_limits<double>::infinity(), hi = -lo;
     for (const auto& q : corners) {
       const Eigen::Vector2d d = q - centre;
-      const double a = std::remainder(std::atan2(d.y(), d.x()) - base, 2 * kPi);
+      const double a = std::remainder(std::atan2(d.y(), d.x()) - base, 2 * std::numbers::pi);
       const double widen =
           std::asin(std::min(1.0, (radius + pad) / std::max(d.norm(), 1e-9))) + 1e-9;
       lo = std::min(lo, a - widen);

@@ -6,8 +6,7 @@ namespace isg::sim {
 
 run::SensorStreams sensorStreams(const Simulation& simulation, double duration,
                                  double groundtruth_rate) {
-  const double d =
-      duration < 0 ? simulation.duration() : std::min(duration, simulation.duration());
+  const double d = duration < 0 ? simulation.duration() : std::min(duration, simulation.duration());
   run::SensorStreams streams;
   streams.duration = d;
   streams.ground_truth = simulation.groundTruth(d, groundtruth_rate);
@@ -19,8 +18,7 @@ run::SensorStreams sensorStreams(const Simulation& simulation, double duration,
   return streams;
 }
 
-LookaheadScans::LookaheadScans(const Simulation& simulation, int scans, int workers,
-                               int lookahead)
+LookaheadScans::LookaheadScans(const Simulation& simulation, int scans, int workers, int lookahead)
     : simulation_(simulation), scans_(scans), lookahead_(lookahead) {
   for (int i = 0; i < std::max(1, workers); ++i) pool_.emplace_back([this] { work(); });
 }
@@ -49,9 +47,8 @@ void LookaheadScans::work() {
     int k;
     {
       std::unique_lock<std::mutex> lock(mutex_);
-      changed_.wait(lock, [&] {
-        return stop_ || next_to_make_ < std::min(scans_, consumed_ + lookahead_);
-      });
+      changed_.wait(
+          lock, [&] { return stop_ || next_to_make_ < std::min(scans_, consumed_ + lookahead_); });
       if (stop_ || next_to_make_ >= scans_) return;
       k = next_to_make_++;
     }

@@ -2,12 +2,13 @@
 
 #include <algorithm>
 #include <cmath>
+#include <numbers>
 
 namespace isg::sim {
 
 namespace {
 
-double wrapAngle(double a) { return std::remainder(a, 2.0 * M_PI); }
+double wrapAngle(double a) { return std::remainder(a, 2.0 * std::numbers::pi); }
 
 }  // namespace
 
@@ -60,8 +61,10 @@ Eigen::Isometry3d Trajectory::pose(double t) const {
   const double w = swayWeight(t);
   const double phase = gaitPhase(t);
   const double z = floor_z_ + gait_.standing_height + w * gait_.bob_m * std::sin(phase);
-  const double roll = w * gait_.roll_deg * M_PI / 180.0 * std::sin(phase + M_PI / 2);
-  const double pitch = w * gait_.pitch_deg * M_PI / 180.0 * std::sin(phase + M_PI / 3);
+  const double roll =
+      w * gait_.roll_deg * std::numbers::pi / 180.0 * std::sin(phase + std::numbers::pi / 2);
+  const double pitch =
+      w * gait_.pitch_deg * std::numbers::pi / 180.0 * std::sin(phase + std::numbers::pi / 3);
   Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
   T.translation() = Eigen::Vector3d(p.xy.x(), p.xy.y(), z);
   T.linear() = (Eigen::AngleAxisd(p.yaw, Eigen::Vector3d::UnitZ()) *

@@ -2,11 +2,12 @@
 
 #include <Eigen/Core>
 #include <Eigen/Geometry>
+#include <numbers>
 #include <vector>
 
 namespace isg::sim {
 
-// How the legged base moves (ALGORITHMS.md, issue 3): it turns on the spot at each corner of its
+// How the legged base moves (docs/simulation.md): it turns on the spot at each corner of its
 // route, as a legged robot does, then walks straight at its speed; while it moves, a trot makes
 // its body bob, roll and pitch at the gait frequency.
 struct GaitConfig {
@@ -37,7 +38,7 @@ class Trajectory {
 
   // Phase of the trot (radians, growing while the robot moves) and how strongly it sways (0 at
   // rest, 1 in motion, ramped over a quarter of a second at the start and the end).
-  double gaitPhase(double t) const { return 2.0 * M_PI * gait_.frequency_hz * t; }
+  double gaitPhase(double t) const { return 2.0 * std::numbers::pi * gait_.frequency_hz * t; }
   double swayWeight(double t) const;
 
   const GaitConfig& gait() const { return gait_; }

@@ -3,10 +3,11 @@
 #include <Eigen/Core>
 #include <array>
 #include <cmath>
+#include <numbers>
 
 namespace isg::sim {
 
-// The Velodyne VLP-16's geometry and timing (ALGORITHMS.md §1, from the sensor's manual).
+// The Velodyne VLP-16's geometry and timing (docs/simulation.md, from the sensor's manual).
 // Lasers are numbered in firing order; `ring` numbers them by elevation (ring 0 = −15°), as the
 // common Velodyne drivers do. The head spins clockwise seen from above, as the real one does.
 struct Vlp16 {
@@ -35,11 +36,11 @@ struct Vlp16 {
 
   // The head's angle at time t into a turn: clockwise, so the azimuth (counter-clockwise from
   // the sensor's x axis) decreases from 0.
-  static double azimuth(double t, double rate_hz) { return -2.0 * M_PI * rate_hz * t; }
+  static double azimuth(double t, double rate_hz) { return -2.0 * std::numbers::pi * rate_hz * t; }
 
   // Unit direction of a laser in the sensor frame L at a given azimuth.
   static Eigen::Vector3d direction(int laser, double azimuth) {
-    const double el = kElevationDeg[laser] * M_PI / 180.0;
+    const double el = kElevationDeg[laser] * std::numbers::pi / 180.0;
     return {std::cos(el) * std::cos(azimuth), std::cos(el) * std::sin(azimuth), std::sin(el)};
   }
 

@@ -4,17 +4,18 @@
 #include <chrono>
 #include <cmath>
 #include <map>
+#include <numbers>
 #include <set>
 
 namespace isg::slam {
 
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
-
-double wrapAngle(double a) { return std::remainder(a, 2.0 * kPi); }
+double wrapAngle(double a) { return std::remainder(a, 2.0 * std::numbers::pi); }
 // Difference of two axes (directions modulo π).
-double axisDifference(double a, double b) { return std::abs(std::remainder(a - b, kPi)); }
+double axisDifference(double a, double b) {
+  return std::abs(std::remainder(a - b, std::numbers::pi));
+}
 
 Eigen::Matrix2d rotation(double yaw) { return Eigen::Rotation2Dd(yaw).toRotationMatrix(); }
 
@@ -162,7 +163,7 @@ int GraphMatcher::matchRoom(const MatchRoom& room, const Eigen::Vector3d& x_y_ya
   const Cell* cell = cellAt(centre);
   if (!cell) return -1;
   const double axis = room.axis_yaw + x_y_yaw.z();
-  const double axis_tolerance = 20.0 * kPi / 180.0;
+  const double axis_tolerance = 20.0 * std::numbers::pi / 180.0;
   int best = -1;
   double best_distance = 1e300;
   for (int i : cell->rooms) {
@@ -174,7 +175,7 @@ int GraphMatcher::matchRoom(const MatchRoom& room, const Eigen::Vector3d& x_y_ya
       if (distance > options_.centre_tolerance) continue;
       const double d0 = axisDifference(axis, room_yaw_[i]);
       const bool same_order = d0 < axis_tolerance;
-      const bool swapped = std::abs(d0 - kPi / 2) < axis_tolerance;
+      const bool swapped = std::abs(d0 - std::numbers::pi / 2) < axis_tolerance;
       if (!same_order && !swapped) continue;
       const double w0 = same_order ? a.widths[0] : a.widths[1];
       const double w1 = same_order ? a.widths[1] : a.widths[0];
@@ -216,7 +217,7 @@ int GraphMatcher::matchPlane(const MatchPlane& plane, const Eigen::Vector3d& x_y
   const Cell* cell = cellAt(middle);
   if (!cell) return -1;
   const double yaw = yawOfNormal(plane.plane) + x_y_yaw.z();
-  const double angle_tolerance = options_.plane_angle_deg * kPi / 180.0;
+  const double angle_tolerance = options_.plane_angle_deg * std::numbers::pi / 180.0;
   int best = -1;
   double best_distance = 1e300;
   for (int i : cell->surfaces) {
@@ -370,7 +371,8 @@ Eigen::Vector2d GraphMatcher::middleOf(const MatchInput& input) {
 bool GraphMatcher::sameAnswer(const Eigen::Vector3d& a, const Eigen::Vector3d& b,
                               const Eigen::Vector2d& middle, double scale) const {
   return (apply(a, middle) - apply(b, middle)).norm() < scale * options_.cluster_distance &&
-         std::abs(wrapAngle(a.z() - b.z())) < scale * options_.cluster_yaw_deg * kPi / 180.0;
+         std::abs(wrapAngle(a.z() - b.z())) <
+             scale * options_.cluster_yaw_deg * std::numbers::pi / 180.0;
 }
 
 MatchResult GraphMatcher::match(const MatchInput& input) const {
@@ -391,7 +393,7 @@ MatchResult GraphMatcher::match(const MatchInput& input) const {
             std::abs(w1 - s.widths[1]) > options_.width_tolerance) {
           continue;
         }
-        const double yaw = wrapAngle(room_yaw_[i] + k * kPi / 2 - s.axis_yaw);
+        const double yaw = wrapAngle(room_yaw_[i] + k * std::numbers::pi / 2 - s.axis_yaw);
         const Eigen::Vector2d t = a.centre - rotation(yaw) * s.centre;
         hypotheses.emplace_back(t.x(), t.y(), yaw);
       }
@@ -456,12 +458,15 @@ MatchResult GraphMatcher::match(const MatchInput& input) const {
   for (const auto& [s, a] : result.best.planes) planes_outside += own_planes.count(s) ? 0 : 1;
   const bool supported = int(a_rooms.size()) >= options_.min_rooms ||
                          (a_rooms.size() == 1 && planes_outside >= options_.min_planes_outside);
+  auto plural = [](std::size_t n) { return n == 1 ? "" : "s"; };
   char text[256];
   std::snprintf(text, sizeof text,
-                "best: %zu rooms, %zu planes (%d outside its rooms), %d doors, score %.1f; "
+                "best: %zu room%s, %zu plane%s (%d outside its rooms), %d door%s, score %.1f; "
                 "second answer %.1f",
-                a_rooms.size(), result.best.planes.size(), planes_outside, result.best.doors_passed,
-                result.best.score, result.second_score);
+                a_rooms.size(), plural(a_rooms.size()), result.best.planes.size(),
+                plural(result.best.planes.size()), planes_outside, result.best.doors_passed,
+                plural(std::size_t(result.best.doors_passed)), result.best.score,
+                result.second_score);
   if (!supported || result.best.score <= 0.0) {
     result.status = MatchStatus::kNotYet;
     result.reason = std::string("too little evidence: ") + text;

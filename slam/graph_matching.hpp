@@ -13,7 +13,7 @@
 
 namespace isg::slam {
 
-// Graph matching (ALGORITHMS.md §5): which S-Graph rooms and wall planes are which A-Graph rooms
+// Graph matching (docs/matching.md): which S-Graph rooms and wall planes are which A-Graph rooms
 // and wall surfaces, and so where the map frame M lies in the plan frame B. Polynomial
 // hypothesise-and-verify: every (S-room, A-room) pair of compatible kind and size proposes the
 // few B_T_M its walls allow; each proposal is checked against the whole S-Graph through a grid

@@ -1,6 +1,7 @@
 #pragma once
 
 #include <ceres/ceres.h>
+#include <numbers>
 
 #include <Eigen/Geometry>
 #include <map>
@@ -24,7 +25,7 @@ struct ISGraphOptions {
   bim::AGraphSigmas plan;  // the A-Graph's own factors and plane priors
   // Merging factors. Plane-to-plane is robust (Huber): as built, a wall may stand a few
   // centimetres from where the plan draws it.
-  double sigma_plane_angle = 2.0 * 3.14159265358979 / 180.0;
+  double sigma_plane_angle = 2.0 * std::numbers::pi / 180.0;
   double sigma_plane_distance = 0.04;
   double sigma_room = 0.1;
   // While not localized, matching is tried again after a new room is confirmed or after this

@@ -8,7 +8,7 @@
 
 namespace isg::slam {
 
-// Graph merging (ALGORITHMS.md §6): factors between the S-Graph (in M) and the A-Graph (in B)
+// Graph merging (docs/matching.md): factors between the S-Graph (in M) and the A-Graph (in B)
 // through B_T_M. B_T_M is a planar transform [x, y, yaw] (walls do not observe roll, pitch or z;
 // the level is flat); its z is held and does not enter these factors.
 

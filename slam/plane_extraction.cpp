@@ -7,6 +7,7 @@
 #include <pcl/search/kdtree.h>
 #include <pcl/segmentation/extract_clusters.h>
 #include <pcl/segmentation/sac_segmentation.h>
+#include <numbers>
 
 #include <Eigen/Eigenvalues>
 #include <array>
@@ -15,8 +16,6 @@
 namespace isg::slam {
 
 namespace {
-
-constexpr double kPi = 3.14159265358979323846;
 
 // Least-squares plane of a cluster, its normal turned towards the origin (the sensor).
 PlaneObservation fitPlane(const pcl::PointCloud<pcl::PointXYZ>& cloud,
@@ -91,7 +90,8 @@ pcl::PointCloud<pcl::PointXYZ>::Ptr preprocess(const Scan& scan,
   return filtered;
 }
 
-std::vector<PlaneObservation> extractPlanes(const Scan& scan, const PlaneExtractionOptions& options) {
+std::vector<PlaneObservation> extractPlanes(const Scan& scan,
+                                            const PlaneExtractionOptions& options) {
   return extractPlanes(*preprocess(scan, options), options);
 }
 
@@ -145,13 +145,13 @@ double dominantYaw(const std::vector<PlaneObservation>& planes) {
   constexpr int kBins = 90;
   std::array<double, kBins> histogram{};
   auto modulo90 = [](double yaw) {
-    double a = std::fmod(yaw, kPi / 2);
-    return a < 0 ? a + kPi / 2 : a;
+    double a = std::fmod(yaw, std::numbers::pi / 2);
+    return a < 0 ? a + std::numbers::pi / 2 : a;
   };
   for (const auto& p : planes) {
     if (p.orientation != PlaneOrientation::kVertical) continue;
     const double a = modulo90(std::atan2(p.plane.normal.y(), p.plane.normal.x()));
-    histogram[std::min(kBins - 1, int(a / (kPi / 2) * kBins))] += p.points;
+    histogram[std::min(kBins - 1, int(a / (std::numbers::pi / 2) * kBins))] += p.points;
   }
   // The peak of the histogram smoothed over ±2° (circularly: 0° and 89° are neighbours).
   int best = 0;
@@ -165,13 +165,13 @@ double dominantYaw(const std::vector<PlaneObservation>& planes) {
     }
   }
   // Refine: the weighted circular mean (period 90°) of the planes within 5° of the peak.
-  const double peak = (best + 0.5) * (kPi / 2) / kBins;
+  const double peak = (best + 0.5) * (std::numbers::pi / 2) / kBins;
   double s = 0, c = 0;
   for (const auto& p : planes) {
     if (p.orientation != PlaneOrientation::kVertical) continue;
     const double a = modulo90(std::atan2(p.plane.normal.y(), p.plane.normal.x()));
-    const double d = std::remainder(a - peak, kPi / 2);
-    if (std::abs(d) > 5.0 * kPi / 180.0) continue;
+    const double d = std::remainder(a - peak, std::numbers::pi / 2);
+    if (std::abs(d) > 5.0 * std::numbers::pi / 180.0) continue;
     s += p.points * std::sin(4 * a);
     c += p.points * std::cos(4 * a);
   }
@@ -182,9 +182,10 @@ double dominantYaw(const std::vector<PlaneObservation>& planes) {
 WallAxis classifyWall(const PlaneObservation& plane, double dominant_yaw, double tolerance) {
   if (plane.orientation != PlaneOrientation::kVertical) return WallAxis::kOther;
   const double yaw = std::atan2(plane.plane.normal.y(), plane.plane.normal.x());
-  const double d = std::abs(std::remainder(yaw - dominant_yaw, kPi));  // either sense: [0, π/2]
+  const double d =
+      std::abs(std::remainder(yaw - dominant_yaw, std::numbers::pi));  // either sense: [0, π/2]
   if (d < tolerance) return WallAxis::kX;
-  if (std::abs(d - kPi / 2) < tolerance) return WallAxis::kY;
+  if (std::abs(d - std::numbers::pi / 2) < tolerance) return WallAxis::kY;
   return WallAxis::kOther;
 }
 

@@ -1,6 +1,7 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <numbers>
 #include <vector>
 
 #include "bim/plane.hpp"
@@ -8,7 +9,7 @@
 
 namespace isg::slam {
 
-// Planes from one (deskewed) scan: ALGORITHMS.md §3. Defaults are the documented starting values.
+// Planes from one (deskewed) scan: docs/slam.md. Defaults are the documented starting values.
 struct PlaneExtractionOptions {
   double min_range = 0.5;  // metres: closer points are the robot or noise
   double max_range = 30.0;
@@ -40,7 +41,8 @@ struct PlaneObservation {
 // (PCL SACMODEL_PLANE) removing each plane's inliers, each plane's inliers split by Euclidean
 // clustering, planes fitted again by least squares to each cluster. PCL stays behind this call
 // (slam/pcl_planes.hpp is slam's own): no user of slam compiles PCL.
-std::vector<PlaneObservation> extractPlanes(const Scan& scan, const PlaneExtractionOptions& options);
+std::vector<PlaneObservation> extractPlanes(const Scan& scan,
+                                            const PlaneExtractionOptions& options);
 
 // The building's dominant yaw in [0, π/2), from the vertical planes' normals (a histogram of
 // their yaw modulo 90°, weighted by points, refined by the mean of the peak's neighbourhood), so
@@ -50,6 +52,6 @@ double dominantYaw(const std::vector<PlaneObservation>& planes);
 enum class WallAxis { kX, kY, kOther };
 // x: normal within `tolerance` of the dominant direction (either sense); y: of its perpendicular.
 WallAxis classifyWall(const PlaneObservation& plane, double dominant_yaw,
-                      double tolerance_rad = 20.0 * 3.14159265358979 / 180.0);
+                      double tolerance_rad = 20.0 * std::numbers::pi / 180.0);
 
 }  // namespace isg::slam

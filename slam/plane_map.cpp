@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <numbers>
 
 namespace isg::slam {
 
@@ -35,7 +36,7 @@ PlaneObservation toMap(const PlaneObservation& o, const Eigen::Isometry3d& M_T_L
 
 int associate(const PlaneObservation& o, const std::vector<MapPlane>& map,
               const AssociationOptions& options) {
-  const double min_cos = std::cos(options.max_angle_deg * M_PI / 180.0);
+  const double min_cos = std::cos(options.max_angle_deg * std::numbers::pi / 180.0);
   int best = -1;
   double best_distance = options.max_distance;
   for (int i = 0; i < int(map.size()); ++i) {

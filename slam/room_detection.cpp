@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <numbers>
 #include <optional>
 
 #include "bim/agraph.hpp"
@@ -61,7 +62,7 @@ double extentLength(const MapPlane& wall) { return (wall.end - wall.start).norm(
 std::optional<RoomCandidate> detectRoom(const Eigen::Vector2d& point,
                                         const std::vector<MapPlane>& planes, double dominant_yaw,
                                         const RoomDetectionOptions& options) {
-  const double min_cos = std::cos(options.axis_tolerance_deg * M_PI / 180.0);
+  const double min_cos = std::cos(options.axis_tolerance_deg * std::numbers::pi / 180.0);
   const Eigen::Vector2d ux(std::cos(dominant_yaw), std::sin(dominant_yaw));
   const Eigen::Vector2d uy(-ux.y(), ux.x());
   const auto xs = wallsAround(point, planes, ux, min_cos, options.min_wall_height);

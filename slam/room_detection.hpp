@@ -10,7 +10,7 @@
 
 namespace isg::slam {
 
-// Rooms from the S-Graph's wall planes (ALGORITHMS.md §3; their code uses a free-space skeleton
+// Rooms from the S-Graph's wall planes (docs/slam.md; their code uses a free-space skeleton
 // we do not have, so we use our own evidence). Around a point the robot walked through, a
 // four-wall room is two opposed x-planes and two opposed y-planes — normals facing each other,
 // the point between them, the nearest such walls on each side, widths ≥ 1 m — whose observed

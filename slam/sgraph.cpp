@@ -1,6 +1,7 @@
 #include "slam/sgraph.hpp"
 
 #include <ceres/ceres.h>
+#include <numbers>
 
 #include <algorithm>
 #include <chrono>
@@ -353,7 +354,7 @@ void SGraph::detectRooms(int keyframe, double dominant, const std::vector<MapPla
     if (room.candidate.four_wall || c.four_wall) return false;
     const bim::Plane& a = planes_[room.candidate.pairs[0][0]].map.plane;
     const bim::Plane& b = planes_[c.pairs[0][0]].map.plane;
-    if (std::abs(a.normal.dot(b.normal)) < std::cos(10.0 * M_PI / 180.0)) return false;
+    if (std::abs(a.normal.dot(b.normal)) < std::cos(10.0 * std::numbers::pi / 180.0)) return false;
     const Eigen::Vector2d n = a.normal.head<2>().normalized();
     return std::abs(n.dot(room.centre - c.centre)) < 0.2 &&
            std::abs(room.candidate.widths[0] - c.widths[0]) < 0.2;

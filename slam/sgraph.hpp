@@ -4,6 +4,7 @@
 #include <deque>
 #include <functional>
 #include <nlohmann/json.hpp>
+#include <numbers>
 #include <optional>
 #include <set>
 #include <vector>
@@ -21,13 +22,13 @@ class Problem;
 
 namespace isg::slam {
 
-// Tuning of the S-Graph (ALGORITHMS.md §3); the defaults are documented starting values.
+// Tuning of the S-Graph (docs/slam.md); the defaults are documented starting values.
 struct SGraphOptions {
   double keyframe_distance = 1.0;  // m of odometry since the last keyframe
   double keyframe_angle = 0.5;     // rad
   PlaneExtractionOptions extraction;
   AssociationOptions association;
-  double sigma_plane_angle = 2.0 * 3.14159265358979 / 180.0;  // rad
+  double sigma_plane_angle = 2.0 * std::numbers::pi / 180.0;  // rad
   double sigma_plane_distance = 0.03;                         // m
   // Odometry between keyframes: σ = floor + per_metre · √distance (a random walk).
   double sigma_odometry_translation_floor = 0.01;

@@ -9,7 +9,7 @@
 
 namespace isg::slam {
 
-// The S-Graph's keyframe factors (ALGORITHMS.md §3), as Ceres AutoDiff cost functions. A keyframe
+// The S-Graph's keyframe factors (docs/slam.md), as Ceres AutoDiff cost functions. A keyframe
 // pose M_T_R is two parameter blocks: its position (3) and its orientation as an Eigen quaternion
 // [x, y, z, w] (4, on ceres::EigenQuaternionManifold). Planes are [n, d] on bim::PlaneManifold.
 // The room factors are the A-Graph's (bim/agraph_factors.hpp): the same maths, written once.

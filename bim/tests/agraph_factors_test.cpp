@@ -128,7 +128,8 @@ TEST(FourWallRoomFactor, ZeroAtTheRoomCentreAndJacobiansMatch) {
 
 TEST(TwoWallRoomFactor, ZeroOnTheCorridorAxisEvenThroughTheOrigin) {
   // A corridor y in [-1, 1] along x: its mid-plane passes through the origin (m = 0), where
-  // ALGORITHMS.md's n̂ = m/|m| is undefined. The factor uses the normal and stays defined.
+  // the textbook n̂ = m/|m| is undefined (docs/agraph.md). The factor uses the normal and stays
+  // defined.
   Eigen::Vector4d a = plane({0, 1, 0}, {0, -1, 0});
   Eigen::Vector4d b = plane({0, -1, 0}, {0, 1, 0});
   Eigen::Vector2d room(7, 0);

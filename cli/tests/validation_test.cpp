@@ -1,4 +1,4 @@
-// Every validation rule of FORMATS.md, fed to the real `isg world` as a bad file: the message
+// Every validation rule of docs/formats.md, fed to the real `isg world` as a bad file: the message
 // names the file, the JSON pointer and what is wrong, the exit code is 1, nothing is written.
 #include <gtest/gtest.h>
 

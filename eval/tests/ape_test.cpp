@@ -1,6 +1,7 @@
 #include "eval/ape.hpp"
 
 #include <gtest/gtest.h>
+#include <numbers>
 
 #include <random>
 
@@ -92,7 +93,7 @@ TEST(Ape, HandComputedWithoutAlignment) {
   est.push_back(pose(0, 0, 0.1, 0));
   est.push_back(pose(1, 1, 0.2, 0));
   est.push_back(pose(2, 2, 0, 0.3));
-  est.push_back(pose(3, 3, 0, 0, M_PI / 2));
+  est.push_back(pose(3, 3, 0, 0, std::numbers::pi / 2));
   const ErrorResult r = absolutePoseError(ref, est, {});
   EXPECT_EQ(r.translation_stats.count, 4);
   EXPECT_NEAR(r.translation_stats.max, 0.3, 1e-12);

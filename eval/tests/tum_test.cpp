@@ -2,6 +2,7 @@
 
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
+#include <numbers>
 
 #include <cmath>
 #include <cstring>
@@ -41,7 +42,7 @@ TEST(Tum, MalformedLineNamesFileAndLine) {
 TEST(Tum, QuantisedIsTheTextRoundTripBitForBit) {
   std::mt19937_64 rng(7);
   std::uniform_real_distribution<double> time(0.0, 5000.0), coordinate(-300.0, 300.0),
-      angle(-M_PI, M_PI);
+      angle(-std::numbers::pi, std::numbers::pi);
   Trajectory t;
   for (int i = 0; i < 20000; ++i) {
     StampedPose p;

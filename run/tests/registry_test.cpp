@@ -20,7 +20,7 @@ TEST(LocalizerRegistry, BuiltinMethodsInTableOrder) {
 TEST(LocalizerRegistry, MakesWhatTheContextAllows) {
   const LocalizerRegistry registry = builtinMethods();
   LocalizerContext context;
-  EXPECT_THROW(registry.make("is-graphs", context), std::invalid_argument);  // no plan
+  EXPECT_THROW(registry.make("is-graphs", context), std::invalid_argument);       // no plan
   EXPECT_THROW(registry.make("dead-reckoning", context), std::invalid_argument);  // no start
   EXPECT_THROW(registry.make("nonsense", context), std::invalid_argument);
   EXPECT_EQ(registry.make("s-graph", context)->name(), "s-graph");

@@ -67,12 +67,11 @@ class SyntheticDataset : public ::testing::Test {
           for (int step = 0; step < 900; ++step) {
             const double azimuth = 2.0 * std::numbers::pi * step / 900;
             const Eigen::Vector3d d_L(std::cos(elevation) * std::cos(azimuth),
-                                      std::cos(elevation) * std::sin(azimuth),
-                                      std::sin(elevation));
+                                      std::cos(elevation) * std::sin(azimuth), std::sin(elevation));
             const double range = insideBox(B_T_L.translation(), B_T_L.linear() * d_L, room);
             const Eigen::Vector3d p = range * d_L;
-            points.push_back({float(p.x()), float(p.y()), float(p.z()), 100.0f,
-                              std::uint16_t(ring), float(period * step / 900)});
+            points.push_back({float(p.x()), float(p.y()), float(p.z()), 100.0f, std::uint16_t(ring),
+                              float(period * step / 900)});
           }
         }
         writeFile(tmp / dataset::kScans / dataset::scanFileName(k), dataset::pcdBinary(points));

@@ -1,6 +1,7 @@
 #include "sim/lidar_simulator.hpp"
 
 #include <gtest/gtest.h>
+#include <numbers>
 
 #include <cmath>
 #include <set>
@@ -53,7 +54,7 @@ TEST(LidarSimulator, PointsCarryTheirRingElevationAndFiringTime) {
   for (const auto& p : scan.points) {
     const int laser = p.ring < 8 ? 2 * p.ring : 2 * (p.ring - 8) + 1;
     const Eigen::Vector3d v = Eigen::Vector3d(p.x, p.y, p.z) - Vlp16::origin(laser);
-    const double elevation = std::asin(v.z() / v.norm()) * 180.0 / M_PI;
+    const double elevation = std::asin(v.z() / v.norm()) * 180.0 / std::numbers::pi;
     ASSERT_NEAR(elevation, -15.0 + 2.0 * p.ring, 1e-3);
     // time = 55.296 µs × sequence + 2.304 µs × laser, for a whole number of sequences
     const double sequences = (p.time - laser * Vlp16::kFiringInterval) / Vlp16::kSequenceDuration;

@@ -45,7 +45,8 @@ TEST(SGraphOnSimulatedData, AsALocalizerItTracksTheBaseInItsMap) {
   EXPECT_FALSE(record.search_status.has_value());
   // In M (the start pose), the base has moved as the ground truth says, within a few centimetres.
   const auto& last = record.estimate_map.back();
-  const Eigen::Isometry3d truth = sim.trajectory().pose(0.0).inverse() * sim.trajectory().pose(last.t);
+  const Eigen::Isometry3d truth =
+      sim.trajectory().pose(0.0).inverse() * sim.trajectory().pose(last.t);
   EXPECT_LT((last.pose.translation() - truth.translation()).head<2>().norm(), 0.05);
   EXPECT_GT(record.graph["planes"].size(), 3u);
 }

@@ -4,6 +4,7 @@
 #include <pcl/io/pcd_io.h>
 #include <pcl/point_cloud.h>
 #include <pcl/point_types.h>
+#include <numbers>
 
 #include <filesystem>
 #include <fstream>
@@ -53,11 +54,11 @@ TEST(Trajectory, TurnsOnTheSpotThenWalksWithTheGaitsSway) {
   GaitConfig gait;
   const Trajectory t({{0, 0}, {2, 0}, {2, 1}}, 0.0, 0.5, 0.0, gait);
   // 4 s along x, a quarter turn at 0.8 rad/s, 2 s along y.
-  EXPECT_NEAR(t.duration(), 4.0 + (M_PI / 2) / 0.8 + 2.0, 1e-9);
+  EXPECT_NEAR(t.duration(), 4.0 + (std::numbers::pi / 2) / 0.8 + 2.0, 1e-9);
   EXPECT_NEAR((t.planar(2.0).xy - Eigen::Vector2d(1, 0)).norm(), 0.0, 1e-12);
-  const double mid_turn = 4.0 + (M_PI / 4) / 0.8;
+  const double mid_turn = 4.0 + (std::numbers::pi / 4) / 0.8;
   EXPECT_NEAR((t.planar(mid_turn).xy - Eigen::Vector2d(2, 0)).norm(), 0.0, 1e-12);
-  EXPECT_NEAR(t.planar(mid_turn).yaw, M_PI / 4, 1e-12);
+  EXPECT_NEAR(t.planar(mid_turn).yaw, std::numbers::pi / 4, 1e-12);
   // Height bobs by ±1.5 cm around 0.46 m while walking; at rest it stands still.
   double lo = 1e9, hi = -1e9;
   for (double s = 1.0; s < 3.0; s += 0.001) {

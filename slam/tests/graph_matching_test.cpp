@@ -1,6 +1,7 @@
 #include "slam/graph_matching.hpp"
 
 #include <gtest/gtest.h>
+#include <numbers>
 
 #include <cmath>
 #include <random>
@@ -28,7 +29,9 @@ bim::AGraph referenceAGraph(const std::string& name) {
   return bim::buildAGraph(bim::loadPlan(path));
 }
 
-double angleError(double a, double b) { return std::abs(std::remainder(a - b, 2 * M_PI)); }
+double angleError(double a, double b) {
+  return std::abs(std::remainder(a - b, 2 * std::numbers::pi));
+}
 
 // The matched answer is the truth: transform within 5 cm / 0.5°, every room the right one.
 void expectRight(const MatchResult& result, const testing::CutSGraph& cut,
@@ -39,7 +42,8 @@ void expectRight(const MatchResult& result, const testing::CutSGraph& cut,
   const Eigen::Vector2d at_match =
       Eigen::Rotation2Dd(result.best.x_y_yaw.z()) * probe + result.best.x_y_yaw.head<2>();
   EXPECT_LT((at_truth - at_match).norm(), 0.05) << context;
-  EXPECT_LT(angleError(result.best.x_y_yaw.z(), truth.z()), 0.5 * M_PI / 180.0) << context;
+  EXPECT_LT(angleError(result.best.x_y_yaw.z(), truth.z()), 0.5 * std::numbers::pi / 180.0)
+      << context;
   for (const auto& [s, a] : result.best.rooms) {
     EXPECT_EQ(a, cut.a_room_of_s_room[s]) << context << " S-room " << s;
   }

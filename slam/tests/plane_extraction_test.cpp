@@ -1,14 +1,13 @@
-#include "slam/pcl_planes.hpp"
 #include "slam/plane_extraction.hpp"
+#include "slam/pcl_planes.hpp"
 
 #include <gtest/gtest.h>
+#include <numbers>
 
 #include <random>
 
 namespace isg::slam {
 namespace {
-
-constexpr double kPi = 3.14159265358979323846;
 
 // A synthetic scan: points on axis-aligned rectangles (walls, floor, ceiling) of a room, seen
 // from `sensor`, the whole turned by `yaw` about the sensor; 1 cm noise along each normal.
@@ -73,7 +72,8 @@ TEST(PlaneExtraction, RecoversTheRoomsSixPlanesWhateverTheHeading) {
     for (int i = 0; i < 6; ++i) EXPECT_NEAR(d[i], expected[i], 0.01);
     // The dominant direction is the room's, modulo 90°.
     const double dominant = dominantYaw(planes);
-    EXPECT_NEAR(std::remainder(dominant - yaw, kPi / 2), 0.0, 0.5 * kPi / 180);
+    EXPECT_NEAR(std::remainder(dominant - yaw, std::numbers::pi / 2), 0.0,
+                0.5 * std::numbers::pi / 180);
     int x = 0, y = 0;
     for (const auto& p : planes) {
       const WallAxis axis = classifyWall(p, dominant);

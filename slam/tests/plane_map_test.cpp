@@ -1,6 +1,7 @@
 #include "slam/plane_map.hpp"
 
 #include <gtest/gtest.h>
+#include <numbers>
 
 #include <random>
 
@@ -31,7 +32,7 @@ TEST(PlaneAssociation, HoldsUnderNoise) {
                                      mapPlane(observe({0, -1, 0}, {0, 2}, {8, 2})),
                                      mapPlane(observe({-1, 0, 0}, {10, 0}, {10, 2}))};
   std::mt19937 rng(3);
-  std::normal_distribution<double> angle(0.0, 2.0 * M_PI / 180.0), offset(0.0, 0.03);
+  std::normal_distribution<double> angle(0.0, 2.0 * std::numbers::pi / 180.0), offset(0.0, 0.03);
   for (int k = 0; k < 200; ++k) {
     const int truth = k % 3;
     const double a = angle(rng);
@@ -74,7 +75,8 @@ TEST(PlaneAssociation, OppositeFacesAndFarCoplanarPiecesAreSeparate) {
 TEST(PlaneAssociation, ObservationsMoveIntoTheMapFrame) {
   PlaneObservation o = observe({1, 0, 0}, {-2, -1}, {-2, 1});  // x = -2 in L, facing +x
   Eigen::Isometry3d M_T_L = Eigen::Isometry3d::Identity();
-  M_T_L.linear() = Eigen::AngleAxisd(M_PI / 2, Eigen::Vector3d::UnitZ()).toRotationMatrix();
+  M_T_L.linear() =
+      Eigen::AngleAxisd(std::numbers::pi / 2, Eigen::Vector3d::UnitZ()).toRotationMatrix();
   M_T_L.translation() = Eigen::Vector3d(5, 0, 0);
   const PlaneObservation m = toMap(o, M_T_L);
   // L's x axis is M's y: the wall is y = -2 in M, facing +y.

@@ -3,6 +3,7 @@
 #include <ceres/gradient_checker.h>
 #include <ceres/manifold.h>
 #include <gtest/gtest.h>
+#include <numbers>
 
 #include "bim/tests/jacobian_check.hpp"
 
@@ -24,7 +25,7 @@ TEST(PosePlaneFactor, ResidualByHandAndJacobians) {
   // The wall x = 5 in M (normal -x, facing the robot), the robot at (1, 2) turned by 90°, the
   // LiDAR 0.25 m above the base. Turned by 90°, L's y axis points along M's -x, so in L the wall
   // is 4 m away with normal n_L = Rᵀ(-1, 0, 0) = (0, 1, 0).
-  const Eigen::Isometry3d M_T_R = pose(1, 2, 0.46, M_PI / 2);
+  const Eigen::Isometry3d M_T_R = pose(1, 2, 0.46, std::numbers::pi / 2);
   Eigen::Isometry3d R_T_L = Eigen::Isometry3d::Identity();
   R_T_L.translation() = Eigen::Vector3d(0, 0, 0.25);
   Eigen::Vector4d wall(-1, 0, 0, 5);

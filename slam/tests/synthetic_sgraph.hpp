@@ -7,6 +7,7 @@
 #include <Eigen/Geometry>
 #include <algorithm>
 #include <cmath>
+#include <numbers>
 #include <random>
 #include <set>
 #include <vector>
@@ -23,7 +24,8 @@ struct CutSGraph {
 };
 
 inline Eigen::Vector3d randomPlanarTransform(std::mt19937_64& rng, double extent = 50.0) {
-  std::uniform_real_distribution<double> position(-extent, extent), yaw(-M_PI, M_PI);
+  std::uniform_real_distribution<double> position(-extent, extent),
+      yaw(-std::numbers::pi, std::numbers::pi);
   return {position(rng), position(rng), yaw(rng)};
 }
 

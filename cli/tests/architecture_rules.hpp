@@ -1,0 +1,176 @@
+#pragma once
+
+// The one-way module rule of docs/architecture.md, checked from the sources: every module's
+// `#include "…"` and `#include <…>` lines and the libraries its CMakeLists.txt links. A module's
+// tests/ and bench/ follow the module's own rule.
+
+#include <algorithm>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <regex>
+#include <set>
+#include <sstream>
+#include <string>
+#include <vector>
+
+namespace isg::architecture {
+
+namespace fs = std::filesystem;
+
+// The allowed direct dependencies between modules (the arrows of docs/architecture.md).
+inline const std::map<std::string, std::set<std::string>>& allowedModules() {
+  static const std::map<std::string, std::set<std::string>> allowed{
+      {"bim", {}},
+      {"worlds", {"bim"}},
+      {"eval", {}},
+      {"slam", {"bim"}},
+      {"run", {"bim", "eval", "slam"}},
+      {"sim", {"bim", "worlds", "run", "slam"}},
+      {"cli", {"bim", "worlds", "eval", "slam", "run", "sim"}},
+  };
+  return allowed;
+}
+
+// Where a module may reach into another only for some headers.
+inline bool headerAllowed(const std::string& from, const std::string& header) {
+  // sim produces the sensor messages the localizer consumes; everything else of slam it sees
+  // through run/ (the registry, the driver).
+  if (from == "sim" && header.rfind("slam/", 0) == 0) return header == "slam/messages.hpp";
+  // slam's PCL header is slam's own: no user of slam compiles PCL.
+  if (header == "slam/pcl_planes.hpp") return from == "slam";
+  return true;
+}
+
+struct Violation {
+  std::string file;  // relative to the root
+  int line = 0;
+  std::string what;
+  std::string str() const { return file + ":" + std::to_string(line) + ": " + what; }
+};
+
+inline std::string join(const std::set<std::string>& names) {
+  std::string out;
+  for (const auto& n : names) out += (out.empty() ? "" : ", ") + n;
+  return out.empty() ? "none" : out;
+}
+
+// "slam/sgraph.cpp" → "slam", "slam/tests/x.cpp" → "slam"; "" for files outside the modules.
+inline std::string moduleOf(const fs::path& relative) {
+  const std::string first = relative.begin()->string();
+  return allowedModules().count(first) ? first : "";
+}
+
+inline void checkIncludes(const fs::path& root, const fs::path& relative,
+                          std::vector<Violation>& out) {
+  const std::string module = moduleOf(relative);
+  const bool header = relative.extension() == ".hpp" || relative.extension() == ".h";
+  const bool in_tests = relative.string().find("/tests/") != std::string::npos ||
+                        relative.string().find("/bench/") != std::string::npos;
+  std::ifstream in(root / relative);
+  const std::regex quoted(R"(^\s*#\s*include\s*"([^"]+)\")");
+  const std::regex angled(R"(^\s*#\s*include\s*<([^>]+)>)");
+  std::string line;
+  int number = 0;
+  while (std::getline(in, line)) {
+    ++number;
+    std::smatch m;
+    if (std::regex_search(line, m, quoted)) {
+      const std::string target = m[1];
+      const auto slash = target.find('/');
+      if (slash == std::string::npos) continue;  // a file beside it (generated, tests' own)
+      const std::string to = target.substr(0, slash);
+      if (!allowedModules().count(to) || to == module) continue;
+      if (!allowedModules().at(module).count(to)) {
+        out.push_back({relative.string(), number,
+                       module + " may not include \"" + target +
+                           "\" (allowed: " + join(allowedModules().at(module)) + ")"});
+      } else if (!headerAllowed(module, target)) {
+        out.push_back({relative.string(), number,
+                       module + " may not include \"" + target + "\" (docs/architecture.md)"});
+      }
+    } else if (std::regex_search(line, m, angled)) {
+      const std::string target = m[1];
+      if (target.rfind("mujoco/", 0) == 0 && module != "sim") {
+        out.push_back({relative.string(), number,
+                       module + " may not include MuJoCo (<" + target + ">): only sim runs it"});
+      }
+      if (target.rfind("pcl/", 0) == 0) {
+        const bool private_pcl = relative == fs::path("slam/pcl_planes.hpp") ||
+                                 (!header && (module == "slam" || module == "run")) ||
+                                 (in_tests && module == "sim");
+        if (!private_pcl) {
+          out.push_back({relative.string(), number,
+                         module + " may not include PCL (<" + target +
+                             ">) here: PCL stays inside slam's and run's sources"});
+        }
+      }
+    }
+  }
+}
+
+// The calls of a CMakeLists.txt that link libraries: (line of each token, token).
+inline void checkLinks(const fs::path& root, const fs::path& relative,
+                       std::vector<Violation>& out) {
+  const std::string module = moduleOf(relative);
+  std::ifstream in(root / relative);
+  std::stringstream buffer;
+  buffer << in.rdbuf();
+  const std::string text = buffer.str();
+  const std::regex call(R"((target_link_libraries|isg_add_tests|isg_add_bench)\s*\()");
+  for (auto it = std::sregex_iterator(text.begin(), text.end(), call); it != std::sregex_iterator();
+       ++it) {
+    const std::size_t open = it->position() + it->length();
+    const std::size_t close = text.find(')', open);
+    const int line = 1 + int(std::count(text.begin(), text.begin() + it->position(), '\n'));
+    std::istringstream arguments(text.substr(open, close - open));
+    std::vector<std::string> tokens;
+    for (std::string t; arguments >> t;) tokens.push_back(t);
+    if (tokens.empty()) continue;
+    // The target's module: isg_<m>, <m>_tests, <m>_bench, or the helper's first argument.
+    std::string target = tokens[0];
+    for (const char* suffix : {"_tests", "_bench"}) {
+      const std::string s = suffix;
+      if (target.size() > s.size() && target.compare(target.size() - s.size(), s.size(), s) == 0)
+        target = target.substr(0, target.size() - s.size());
+    }
+    if (target.rfind("isg_", 0) == 0) target = target.substr(4);
+    if (target != module) continue;  // another target (the isg executable, a test helper)
+    for (std::size_t i = 1; i < tokens.size(); ++i) {
+      const std::string& library = tokens[i];
+      if (library.rfind("mujoco", 0) == 0 && module != "sim") {
+        out.push_back({relative.string(), line, module + " may not link " + library});
+      }
+      if (library.rfind("isg_", 0) != 0) continue;
+      const std::string to = library.substr(4);
+      if (to == module || !allowedModules().count(to)) continue;
+      if (!allowedModules().at(module).count(to)) {
+        out.push_back({relative.string(), line,
+                       module + " may not link " + library +
+                           " (allowed: " + join(allowedModules().at(module)) + ")"});
+      }
+    }
+  }
+}
+
+// Every violation under `root`, in file order.
+inline std::vector<Violation> check(const fs::path& root) {
+  std::vector<fs::path> files;
+  for (const auto& [module, _] : allowedModules()) {
+    if (!fs::is_directory(root / module)) continue;
+    for (const auto& entry : fs::recursive_directory_iterator(root / module)) {
+      if (entry.is_regular_file()) files.push_back(fs::relative(entry.path(), root));
+    }
+  }
+  std::sort(files.begin(), files.end());
+  std::vector<Violation> out;
+  for (const auto& file : files) {
+    const auto ext = file.extension();
+    if (ext == ".cpp" || ext == ".hpp" || ext == ".h" || ext == ".in")
+      checkIncludes(root, file, out);
+    if (file.filename() == "CMakeLists.txt") checkLinks(root, file, out);
+  }
+  return out;
+}
+
+}  // namespace isg::architecture

@@ -1,0 +1,77 @@
+// The module rule of docs/architecture.md holds for the whole tree, and the checker finds a bad
+// include or link, naming file and line.
+#include <gtest/gtest.h>
+
+#include <fstream>
+
+#include "architecture_rules.hpp"
+
+namespace isg::architecture {
+namespace {
+
+TEST(Architecture, EveryIncludeAndLinkFollowsTheModuleRule) {
+  const auto violations = check(ISG_SOURCE_DIR);
+  std::string all;
+  for (const auto& v : violations) all += v.str() + "\n";
+  EXPECT_TRUE(violations.empty()) << all;
+}
+
+class ArchitectureChecker : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    root_ = fs::temp_directory_path() / ("isg_arch_" + std::to_string(::getpid()));
+    fs::remove_all(root_);
+    for (const char* m : {"slam", "run", "sim", "worlds"}) fs::create_directories(root_ / m);
+    write("slam/sgraph.cpp", "#include \"slam/sgraph.hpp\"\n#include \"bim/plane.hpp\"\n");
+    write("run/driver.cpp", "#include \"slam/localizer.hpp\"\n#include \"eval/tum.hpp\"\n");
+    write("run/CMakeLists.txt",
+          "add_library(isg_run driver.cpp)\ntarget_link_libraries(isg_run PUBLIC isg_slam\n"
+          "  isg_eval PRIVATE ${PCL_LIBRARIES})\nisg_add_tests(run)\n");
+  }
+  void TearDown() override { fs::remove_all(root_); }
+  void write(const std::string& file, const std::string& text) {
+    fs::create_directories((root_ / file).parent_path());
+    std::ofstream(root_ / file) << text;
+  }
+  std::vector<std::string> found() {
+    std::vector<std::string> out;
+    for (const auto& v : check(root_)) out.push_back(v.str());
+    return out;
+  }
+  fs::path root_;
+};
+
+TEST_F(ArchitectureChecker, ACleanTreePasses) { EXPECT_TRUE(found().empty()); }
+
+TEST_F(ArchitectureChecker, ABadIncludeIsNamedWithFileAndLine) {
+  write("slam/bad.cpp", "#include <vector>\n\n#include \"sim/simulation.hpp\"\n");
+  write("sim/loop.cpp", "#include \"slam/messages.hpp\"\n#include \"slam/sgraph.hpp\"\n");
+  write("run/x.hpp", "#include <mujoco/mujoco.h>\n#include <pcl/point_types.h>\n");
+  write("worlds/tests/t.cpp", "#include \"sim/mujoco_world.hpp\"\n");
+  EXPECT_EQ(found(), (std::vector<std::string>{
+                         "run/x.hpp:1: run may not include MuJoCo (<mujoco/mujoco.h>): only sim "
+                         "runs it",
+                         "run/x.hpp:2: run may not include PCL (<pcl/point_types.h>) here: PCL "
+                         "stays inside slam's and run's sources",
+                         "sim/loop.cpp:2: sim may not include \"slam/sgraph.hpp\" "
+                         "(docs/architecture.md)",
+                         "slam/bad.cpp:3: slam may not include \"sim/simulation.hpp\" (allowed: "
+                         "bim)",
+                         "worlds/tests/t.cpp:1: worlds may not include \"sim/mujoco_world.hpp\" "
+                         "(allowed: bim)"}));
+}
+
+TEST_F(ArchitectureChecker, ABadLinkIsNamedWithFileAndLine) {
+  write("run/CMakeLists.txt",
+        "add_library(isg_run driver.cpp)\n\ntarget_link_libraries(isg_run PUBLIC isg_slam\n"
+        "  isg_sim mujoco::mujoco)\n");
+  write("worlds/CMakeLists.txt", "isg_add_tests(worlds isg_sim)\n");
+  EXPECT_EQ(found(), (std::vector<std::string>{
+                         "run/CMakeLists.txt:3: run may not link isg_sim (allowed: bim, eval, "
+                         "slam)",
+                         "run/CMakeLists.txt:3: run may not link mujoco::mujoco",
+                         "worlds/CMakeLists.txt:1: worlds may not link isg_sim (allowed: bim)"}));
+}
+
+}  // namespace
+}  // namespace isg::architecture
