@@ -2,9 +2,13 @@
 
 #include <cerrno>
 #include <cmath>
+#include <cstdio>
 #include <cstring>
+#include <filesystem>
 #include <fstream>
 #include <sstream>
+
+#include "bim/limits.hpp"
 
 namespace isg::bim {
 
@@ -77,8 +81,7 @@ JsonNode JsonNode::field(std::string_view key) const {
   if (!value_->is_object()) fail("expected an object, got " + describeJsonType(*value_));
   auto it = value_->find(key);
   if (it == value_->end()) {
-    throw InputError(source_->file, pointer_,
-                     "missing required field \"" + std::string(key) + "\"");
+    throw InputError(source_->file, appendPointer(pointer_, key), "missing required field");
   }
   return JsonNode(*it, appendPointer(pointer_, key), *source_);
 }
@@ -121,6 +124,25 @@ std::vector<JsonNode> JsonNode::elements(std::size_t min_size) const {
   return out;
 }
 
+std::vector<JsonNode> JsonNode::elements(std::size_t min_size, std::size_t max_size,
+                                         const std::string& what) const {
+  if (!value_->is_array()) fail("expected an array, got " + describeJsonType(*value_));
+  if (value_->size() > max_size) {
+    fail(std::to_string(value_->size()) + " " + what + "; at most " + std::to_string(max_size) +
+         " are supported (docs/formats.md, Limits)");
+  }
+  return elements(min_size);
+}
+
+double JsonNode::numberInRange(double lo, double hi, bool hi_open) const {
+  const double v = number();
+  if (v < lo || v > hi || (hi_open && v >= hi)) {
+    fail("must be in [" + formatNumber(lo) + ", " + formatNumber(hi) + (hi_open ? ")" : "]") +
+         ", got " + formatNumber(v));
+  }
+  return v;
+}
+
 double JsonNode::number() const {
   if (!value_->is_number()) fail("expected a number, got " + describeJsonType(*value_));
   const double v = value_->get<double>();
@@ -159,6 +181,52 @@ std::string JsonNode::nonEmptyString() const {
   return s;
 }
 
+namespace {
+
+// The first control character (U+0000-U+001F, U+007F) of a UTF-8 string, or npos.
+std::size_t findControlCharacter(const std::string& text) {
+  for (std::size_t i = 0; i < text.size(); ++i) {
+    const auto byte = static_cast<unsigned char>(text[i]);
+    if (byte < 0x20 || byte == 0x7f) return i;
+  }
+  return std::string::npos;
+}
+
+std::string describeByte(char c) {
+  char buffer[16];
+  std::snprintf(buffer, sizeof buffer, "U+%04X",
+                static_cast<unsigned>(static_cast<unsigned char>(c)));
+  return buffer;
+}
+
+}  // namespace
+
+std::string JsonNode::text() const {
+  std::string s = string();
+  if (s.size() > limits::kMaxTextBytes) {
+    fail("text of " + std::to_string(s.size()) + " bytes; at most " +
+         std::to_string(limits::kMaxTextBytes) + " are supported");
+  }
+  if (auto at = findControlCharacter(s); at != std::string::npos) {
+    fail("control character " + describeByte(s[at]) + " at byte " + std::to_string(at) +
+         " (not allowed in names)");
+  }
+  return s;
+}
+
+std::string JsonNode::identifier() const {
+  std::string s = nonEmptyString();
+  if (s.size() > limits::kMaxIdBytes) {
+    fail("id of " + std::to_string(s.size()) + " bytes; at most " +
+         std::to_string(limits::kMaxIdBytes) + " are supported");
+  }
+  if (auto at = findControlCharacter(s); at != std::string::npos) {
+    fail("control character " + describeByte(s[at]) + " at byte " + std::to_string(at) +
+         " (not allowed in ids)");
+  }
+  return s;
+}
+
 bool JsonNode::boolean() const {
   if (!value_->is_boolean()) fail("expected a boolean, got " + describeJsonType(*value_));
   return value_->get<bool>();
@@ -179,6 +247,15 @@ std::vector<double> JsonNode::numbers(std::size_t exact_size) const {
 Eigen::Vector2d JsonNode::point2() const {
   auto v = numbers(2);
   return {v[0], v[1]};
+}
+
+Eigen::Vector2d JsonNode::position2() const {
+  const Eigen::Vector2d p = point2();
+  if (p.cwiseAbs().maxCoeff() > limits::kMaxCoordinate) {
+    fail("coordinate " + formatNumber(p.cwiseAbs().maxCoeff()) + " is out of range: points must " +
+         "lie within ±" + formatNumber(limits::kMaxCoordinate) + " m of the origin");
+  }
+  return p;
 }
 
 Eigen::Vector3d JsonNode::point3() const {
@@ -203,38 +280,140 @@ void checkFormatAndVersion(const JsonNode& root, const std::string& format, int 
   }
 }
 
-nlohmann::json parseJsonText(const std::string& text, const std::string& file) {
-  try {
-    return nlohmann::json::parse(text);
-  } catch (const nlohmann::json::parse_error& e) {
-    // nlohmann reports a byte offset; people want a line and a column.
-    std::size_t line = 1;
-    std::size_t column = 1;
-    const std::size_t end = std::min<std::size_t>(e.byte == 0 ? 0 : e.byte - 1, text.size());
-    for (std::size_t i = 0; i < end; ++i) {
-      if (text[i] == '\n') {
-        ++line;
-        column = 1;
-      } else {
-        ++column;
-      }
+namespace {
+
+// Builds the document like nlohmann's own DOM parser and keeps the JSON pointer of the value
+// being read, so that an error inside a value (a number too large for a double) names it.
+class PointerTrackingSax : public nlohmann::json_sax<nlohmann::json> {
+ public:
+  explicit PointerTrackingSax(nlohmann::json& result) : dom_(result, false) {}
+
+  bool null() override { return scalar(dom_.null()); }
+  bool boolean(bool v) override { return scalar(dom_.boolean(v)); }
+  bool number_integer(number_integer_t v) override { return scalar(dom_.number_integer(v)); }
+  bool number_unsigned(number_unsigned_t v) override { return scalar(dom_.number_unsigned(v)); }
+  bool number_float(number_float_t v, const string_t& text) override {
+    return scalar(dom_.number_float(v, text));
+  }
+  bool string(string_t& v) override { return scalar(dom_.string(v)); }
+  bool binary(binary_t& v) override { return scalar(dom_.binary(v)); }
+  bool start_object(std::size_t n) override {
+    frames_.push_back({false, 0, ""});
+    return dom_.start_object(n);
+  }
+  bool key(string_t& k) override {
+    frames_.back().key = k;
+    return dom_.key(k);
+  }
+  bool end_object() override {
+    frames_.pop_back();
+    return scalar(dom_.end_object());
+  }
+  bool start_array(std::size_t n) override {
+    frames_.push_back({true, 0, ""});
+    return dom_.start_array(n);
+  }
+  bool end_array() override {
+    frames_.pop_back();
+    return scalar(dom_.end_array());
+  }
+  bool parse_error(std::size_t position, const std::string& token,
+                   const nlohmann::detail::exception& error) override {
+    error_position_ = position;
+    error_ = error.what();
+    (void)token;
+    return false;
+  }
+
+  // Where the parser was when it stopped: the value it was reading.
+  std::string pointer() const {
+    std::string out;
+    for (const auto& f : frames_) {
+      out = f.is_array ? appendPointer(out, f.index) : appendPointer(out, f.key);
     }
-    std::string what = e.what();
-    // Drop nlohmann's "[json.exception.parse_error.101] parse error at line 1, column 2: " prefix.
-    if (auto colon = what.find(": "); colon != std::string::npos) what = what.substr(colon + 2);
-    throw InputError(file, "",
-                     "invalid JSON at line " + std::to_string(line) + ", column " +
-                         std::to_string(column) + ": " + what);
-  } catch (const nlohmann::json::exception& e) {
+    return out;
+  }
+  const std::string& error() const { return error_; }
+  std::size_t errorPosition() const { return error_position_; }
+
+ private:
+  struct Frame {
+    bool is_array;
+    std::size_t index;
+    std::string key;
+  };
+  // A finished value moves its array on to the next index.
+  bool scalar(bool ok) {
+    if (!frames_.empty() && frames_.back().is_array) ++frames_.back().index;
+    return ok;
+  }
+
+  nlohmann::detail::json_sax_dom_parser<nlohmann::json> dom_;
+  std::vector<Frame> frames_;
+  std::string error_;
+  std::size_t error_position_ = 0;
+};
+
+}  // namespace
+
+nlohmann::json parseJsonText(const std::string& text, const std::string& file) {
+  nlohmann::json document;
+  PointerTrackingSax sax(document);
+  if (nlohmann::json::sax_parse(text, &sax, nlohmann::json::input_format_t::json, false)) {
+    return document;
+  }
+  std::string what = sax.error();
+  // Drop nlohmann's "[json.exception.parse_error.101] parse error at line 1, column 2: " prefix.
+  if (auto colon = what.find(": "); colon != std::string::npos) {
+    what = what.substr(colon + 2);
+  } else if (auto bracket = what.find("] "); bracket != std::string::npos) {
+    what = what.substr(bracket + 2);
+  }
+  // nlohmann reports a byte offset; people want a line and a column.
+  std::size_t line = 1;
+  std::size_t column = 1;
+  const std::size_t position = sax.errorPosition();
+  const std::size_t end = std::min<std::size_t>(position == 0 ? 0 : position - 1, text.size());
+  for (std::size_t i = 0; i < end; ++i) {
+    if (text[i] == '\n') {
+      ++line;
+      column = 1;
+    } else {
+      ++column;
+    }
+  }
+  const std::string where =
+      "at line " + std::to_string(line) + ", column " + std::to_string(column);
+  if (sax.error().find("out_of_range") != std::string::npos) {
     // A number too large for a double (1e999): JSON has no infinity, and neither do we.
-    std::string what = e.what();
-    if (auto bracket = what.find("] "); bracket != std::string::npos)
-      what = what.substr(bracket + 2);
-    throw InputError(file, "", "invalid JSON: " + what + " (numbers must be finite)");
+    throw InputError(file, sax.pointer(), what + " " + where + " (numbers must be finite)");
+  }
+  throw InputError(file, "", "invalid JSON " + where + ": " + what);
+}
+
+void checkReadableFile(const std::string& path, std::uintmax_t max_bytes) {
+  std::error_code error;
+  const auto status = std::filesystem::status(path, error);
+  if (error || !std::filesystem::exists(status)) {
+    throw InputError(
+        path, "",
+        "cannot open file: " + (error ? error.message() : std::string(std::strerror(ENOENT))));
+  }
+  // Devices and pipes (/dev/zero, a FIFO) could be read forever: only regular files are read.
+  if (std::filesystem::is_directory(status))
+    throw InputError(path, "", "is a directory, not a file");
+  if (!std::filesystem::is_regular_file(status)) throw InputError(path, "", "not a regular file");
+  const std::uintmax_t bytes = std::filesystem::file_size(path, error);
+  if (error) throw InputError(path, "", "cannot read file: " + error.message());
+  if (bytes > max_bytes) {
+    throw InputError(path, "",
+                     "file is " + std::to_string(bytes) + " bytes; at most " +
+                         std::to_string(max_bytes) + " are read (docs/formats.md, Limits)");
   }
 }
 
 nlohmann::json readJsonFile(const std::string& path) {
+  checkReadableFile(path, limits::kMaxJsonFileBytes);
   std::ifstream in(path, std::ios::binary);
   if (!in) throw InputError(path, "", std::string("cannot open file: ") + std::strerror(errno));
   std::ostringstream buffer;

@@ -40,19 +40,31 @@ class JsonNode {
   // Array access.
   std::vector<JsonNode> elements() const;
   std::vector<JsonNode> elements(std::size_t min_size) const;
+  // At least `min_size` and at most `max_size` elements; `what` names them in the message
+  // ("walls"), which points at the stated limit.
+  std::vector<JsonNode> elements(std::size_t min_size, std::size_t max_size,
+                                 const std::string& what) const;
 
   // Scalars.
   double number() const;          // finite
   double positiveNumber() const;  // finite and > 0
   double nonNegativeNumber() const;
+  double numberInRange(double lo, double hi, bool hi_open = false) const;  // [lo, hi] or [lo, hi)
   std::uint64_t unsignedInteger() const;
   std::string string() const;
   std::string nonEmptyString() const;
+  // An id: non-empty, at most limits::kMaxIdBytes bytes, no control characters (they would
+  // break the XML of a world and every message that quotes the id).
+  std::string identifier() const;
+  // Free text (a name, a file name): at most limits::kMaxTextBytes bytes, no control characters.
+  std::string text() const;
   bool boolean() const;
 
   // [x, y] and [x, y, z] arrays of finite numbers.
   Eigen::Vector2d point2() const;
   Eigen::Vector3d point3() const;
+  // A point of the plan: [x, y] with |x|, |y| <= limits::kMaxCoordinate.
+  Eigen::Vector2d position2() const;
   std::vector<double> numbers(std::size_t exact_size) const;
 
   bool isString() const { return value_->is_string(); }
@@ -85,6 +97,9 @@ void checkFormatAndVersion(const JsonNode& root, const std::string& format, int 
 // Reads and parses a JSON file; a missing file or a syntax error is an InputError naming the
 // file (and the line and column of a syntax error).
 nlohmann::json readJsonFile(const std::string& path);
+// Fails unless `path` is a regular file of at most `max_bytes` bytes: a device such as /dev/zero
+// or a FIFO is never read, and no file is read past a stated limit.
+void checkReadableFile(const std::string& path, std::uintmax_t max_bytes);
 nlohmann::json parseJsonText(const std::string& text, const std::string& file);
 
 }  // namespace isg::bim

@@ -3,7 +3,9 @@
 #include <algorithm>
 #include <cmath>
 #include <numbers>
+#include <unordered_map>
 
+#include "bim/box_grid.hpp"
 #include "bim/polygon.hpp"
 
 namespace isg::bim {
@@ -118,9 +120,21 @@ LevelGeometry computeLevelGeometry(const Level& level, const GeometryOptions& op
     geometry.walls.push_back(g);
   }
 
+  // Pairs of walls come from grids over their boxes: plans with thousands of walls stay
+  // near-linear. An end meets a wall only within half its thickness (plus the tolerance) of it.
+  std::vector<Box2> reach_boxes;
+  reach_boxes.reserve(geometry.walls.size());
+  for (const auto& g : geometry.walls) {
+    reach_boxes.push_back(Box2::around(g.wall->start, g.wall->end)
+                              .grown(0.5 * g.wall->thickness + 2 * kJunctionTolerance));
+  }
+  const BoxGrid reach_grid(std::move(reach_boxes));
+
   // Close the joints: an end that meets another wall continues to that wall's far side.
   for (auto& g : geometry.walls) {
-    for (const auto& other : geometry.walls) {
+    const Box2 ends = Box2::around(g.wall->start, g.wall->end);
+    for (int j : reach_grid.candidates(ends)) {
+      const WallGeometry& other = geometry.walls[std::size_t(j)];
       if (&other == &g) continue;
       if (auto e = extensionInto(g.wall->start, -g.axis, other)) {
         g.extend_start = std::max(g.extend_start, *e);
@@ -132,8 +146,15 @@ LevelGeometry computeLevelGeometry(const Level& level, const GeometryOptions& op
   }
 
   std::vector<std::vector<Eigen::Vector2d>> cutters;
+  std::vector<Box2> cutter_boxes;
   cutters.reserve(geometry.walls.size());
-  for (const auto& g : geometry.walls) cutters.push_back(g.footprint());
+  for (const auto& g : geometry.walls) {
+    cutters.push_back(g.footprint());
+    cutter_boxes.push_back(Box2::around(cutters.back()).grown(kJunctionTolerance));
+  }
+  const BoxGrid cutter_grid(cutter_boxes);
+  std::unordered_map<std::string, std::vector<const Door*>> doors_by_wall;
+  for (const auto& door : level.doors) doors_by_wall[door.wall].push_back(&door);
 
   for (std::size_t i = 0; i < geometry.walls.size(); ++i) {
     auto& g = geometry.walls[i];
@@ -146,17 +167,16 @@ LevelGeometry computeLevelGeometry(const Level& level, const GeometryOptions& op
       face.z_min = level.elevation + g.wall->base;
       face.z_max = level.elevation + g.wall->height;
       face.exposed = {{-g.extend_start, g.length + g.extend_end}};
-      for (std::size_t j = 0; j < geometry.walls.size(); ++j) {
-        if (j == i) continue;
+      for (int j : cutter_grid.candidates(cutter_boxes[i])) {
+        if (std::size_t(j) == i) continue;
         if (auto cut = clipLineToConvex(on_face, g.axis, -g.extend_start, g.length + g.extend_end,
-                                        cutters[j])) {
+                                        cutters[std::size_t(j)])) {
           subtractInterval(face.exposed, *cut);
         }
       }
-      for (const auto& door : level.doors) {
-        if (door.wall == g.wall->id) {
-          face.openings.push_back({door.offset - 0.5 * door.width, door.offset + 0.5 * door.width});
-        }
+      for (const Door* door : doors_by_wall[g.wall->id]) {
+        face.openings.push_back(
+            {door->offset - 0.5 * door->width, door->offset + 0.5 * door->width});
       }
       std::sort(face.openings.begin(), face.openings.end(),
                 [](const AxisInterval& a, const AxisInterval& b) { return a.lo < b.lo; });
@@ -170,7 +190,8 @@ LevelGeometry computeLevelGeometry(const Level& level, const GeometryOptions& op
       const Eigen::Vector2d& a = outline[e];
       const Eigen::Vector2d& b = outline[(e + 1) % outline.size()];
       const Eigen::Vector2d inward = perpendicular((b - a).normalized());
-      for (const auto& g : geometry.walls) {
+      for (int j : cutter_grid.candidates(Box2::around(a, b).grown(options.boundary_distance))) {
+        const WallGeometry& g = geometry.walls[std::size_t(j)];
         for (const WallFace* face : {&g.left, &g.right}) {
           const Eigen::Vector2d n2 = face->plane.normal.head<2>();
           if (n2.dot(inward) < min_cosine) continue;
@@ -208,15 +229,46 @@ Eigen::Vector2d doorCentre(const Level& level, const Door& door) {
   return wall->start + door.offset * axis;
 }
 
+namespace {
+
+std::vector<Box2> roomBoxes(const Level& level) {
+  std::vector<Box2> boxes;
+  boxes.reserve(level.rooms.size());
+  for (const auto& room : level.rooms) boxes.push_back(Box2::around(room.outline).grown(1e-9));
+  return boxes;
+}
+
+}  // namespace
+
+RoomLocator::RoomLocator(const Level& level) : level_(&level), grid_(roomBoxes(level)) {}
+
+std::optional<std::string> RoomLocator::roomAt(const Eigen::Vector2d& point) const {
+  for (int i : grid_.candidates(Box2{point, point})) {
+    const Room& room = level_->rooms[std::size_t(i)];
+    if (containsPoint(room.outline, point)) return room.id;
+  }
+  return std::nullopt;
+}
+
 std::array<std::string, 2> inferDoorRooms(const Level& level, const Door& door) {
-  const Wall* wall = level.findWall(door.wall);
-  const Eigen::Vector2d left = perpendicular((wall->end - wall->start).normalized());
-  const Eigen::Vector2d centre = doorCentre(level, door);
+  return inferDoorRooms(level, door, RoomLocator(level));
+}
+
+std::array<std::string, 2> inferDoorRooms(const Level& level, const Door& door,
+                                          const RoomLocator& locator) {
+  return inferDoorRooms(*level.findWall(door.wall), door, locator);
+}
+
+std::array<std::string, 2> inferDoorRooms(const Wall& wall, const Door& door,
+                                          const RoomLocator& locator) {
+  const Eigen::Vector2d axis = (wall.end - wall.start).normalized();
+  const Eigen::Vector2d left = perpendicular(axis);
+  const Eigen::Vector2d centre = wall.start + door.offset * axis;
   // Just beyond each face: outlines follow the inner faces, so 10 cm past a face is in the room.
-  const double reach = 0.5 * wall->thickness + 0.1;
+  const double reach = 0.5 * wall.thickness + 0.1;
   std::array<std::string, 2> rooms;
-  rooms[0] = roomAt(level, centre + reach * left).value_or(kOutside);
-  rooms[1] = roomAt(level, centre - reach * left).value_or(kOutside);
+  rooms[0] = locator.roomAt(centre + reach * left).value_or(kOutside);
+  rooms[1] = locator.roomAt(centre - reach * left).value_or(kOutside);
   return rooms;
 }
 

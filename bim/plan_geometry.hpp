@@ -5,6 +5,7 @@
 #include <string>
 #include <vector>
 
+#include "bim/box_grid.hpp"
 #include "bim/plan.hpp"
 #include "bim/plane.hpp"
 
@@ -86,9 +87,25 @@ LevelGeometry computeLevelGeometry(const Level& level, const GeometryOptions& op
 // The room whose outline contains `point` (the first one, in file order), or nullopt.
 std::optional<std::string> roomAt(const Level& level, const Eigen::Vector2d& point);
 
+// roomAt for many points: a grid over the rooms' boxes, so each look-up tests only the rooms
+// whose box holds the point. The level must outlive it.
+class RoomLocator {
+ public:
+  explicit RoomLocator(const Level& level);
+  std::optional<std::string> roomAt(const Eigen::Vector2d& point) const;
+
+ private:
+  const Level* level_;
+  BoxGrid grid_;
+};
+
 // The rooms on either side of a door (left side first), inferred from the outlines: the point
 // just beyond each face of the wall at the door's centre. kOutside where no room contains it.
 std::array<std::string, 2> inferDoorRooms(const Level& level, const Door& door);
+std::array<std::string, 2> inferDoorRooms(const Level& level, const Door& door,
+                                          const RoomLocator& rooms);
+std::array<std::string, 2> inferDoorRooms(const Wall& wall, const Door& door,
+                                          const RoomLocator& rooms);
 
 // The centre of a door's opening on its wall's axis, in B (2D).
 Eigen::Vector2d doorCentre(const Level& level, const Door& door);

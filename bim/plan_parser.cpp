@@ -3,8 +3,12 @@
 #include <algorithm>
 #include <filesystem>
 #include <map>
+#include <optional>
 #include <sstream>
+#include <unordered_map>
 
+#include "bim/box_grid.hpp"
+#include "bim/limits.hpp"
 #include "bim/plan_geometry.hpp"
 #include "bim/polygon.hpp"
 
@@ -33,18 +37,20 @@ Wall parseWall(const JsonNode& node, const Level& level, IdRegistry& ids) {
   node.expectObject({"id", "start", "end", "thickness", "height", "base", "name"});
   Wall wall;
   const JsonNode id = node.field("id");
-  wall.id = id.nonEmptyString();
+  wall.id = id.identifier();
   ids.add(id, wall.id);
-  wall.start = node.field("start").point2();
-  wall.end = node.field("end").point2();
-  if ((wall.end - wall.start).norm() < 1e-6) {
+  wall.start = node.field("start").position2();
+  wall.end = node.field("end").position2();
+  if ((wall.end - wall.start).norm() < limits::kMinSize) {
     node.field("end").fail("zero-length wall: end equals start " + formatPoint(wall.start));
   }
-  wall.thickness = node.field("thickness").positiveNumber();
+  wall.thickness = node.field("thickness").numberInRange(limits::kMinSize, limits::kMaxThickness);
   wall.height = level.height;
-  if (auto h = node.optionalField("height")) wall.height = h->positiveNumber();
+  if (auto h = node.optionalField("height")) {
+    wall.height = h->numberInRange(limits::kMinSize, limits::kMaxHeight);
+  }
   if (auto b = node.optionalField("base")) {
-    wall.base = b->nonNegativeNumber();
+    wall.base = b->numberInRange(0.0, limits::kMaxHeight);
     if (wall.base >= wall.height) {
       b->fail("base " + formatNumber(wall.base) + " is not below the wall's top at " +
               formatNumber(wall.height));
@@ -57,18 +63,18 @@ Room parseRoom(const JsonNode& node, IdRegistry& ids) {
   node.expectObject({"id", "name", "outline"});
   Room room;
   const JsonNode id = node.field("id");
-  room.id = id.nonEmptyString();
+  room.id = id.identifier();
   if (room.id == kOutside)
     id.fail(inQuotes(kOutside) + " is reserved for the outside of the building");
   ids.add(id, room.id);
   room.name = room.id;
-  if (auto name = node.optionalField("name")) room.name = name->string();
+  if (auto name = node.optionalField("name")) room.name = name->text();
   const JsonNode outline = node.field("outline");
-  const auto vertices = outline.elements();
+  const auto vertices = outline.elements(0, limits::kMaxOutlineVertices, "vertices");
   if (vertices.size() < 3) {
     outline.fail("an outline needs at least 3 vertices, got " + std::to_string(vertices.size()));
   }
-  for (const auto& v : vertices) room.outline.push_back(v.point2());
+  for (const auto& v : vertices) room.outline.push_back(v.position2());
   for (std::size_t i = 0; i < room.outline.size(); ++i) {
     const auto& a = room.outline[i];
     const auto& b = room.outline[(i + 1) % room.outline.size()];
@@ -95,23 +101,35 @@ Room parseRoom(const JsonNode& node, IdRegistry& ids) {
 }
 
 // Doors are parsed after walls and rooms, whose ids they reference.
-Door parseDoor(const JsonNode& node, const Level& level, IdRegistry& ids) {
+// Walls and rooms of a level by id, so that checking thousands of doors stays linear.
+struct LevelIndex {
+  std::unordered_map<std::string, const Wall*> walls;
+  std::unordered_map<std::string, const Room*> rooms;
+
+  explicit LevelIndex(const Level& level) {
+    for (const auto& w : level.walls) walls.emplace(w.id, &w);
+    for (const auto& r : level.rooms) rooms.emplace(r.id, &r);
+  }
+};
+
+Door parseDoor(const JsonNode& node, const Level& level, const LevelIndex& index, IdRegistry& ids) {
   node.expectObject({"id", "wall", "offset", "width", "height", "rooms", "name"});
   Door door;
   const JsonNode id = node.field("id");
-  door.id = id.nonEmptyString();
+  door.id = id.identifier();
   ids.add(id, door.id);
   const JsonNode wall_node = node.field("wall");
   door.wall = wall_node.nonEmptyString();
-  const Wall* wall = level.findWall(door.wall);
+  const auto found_wall = index.walls.find(door.wall);
+  const Wall* wall = found_wall == index.walls.end() ? nullptr : found_wall->second;
   if (wall == nullptr) {
     wall_node.fail("no wall " + inQuotes(door.wall) + " on level " + inQuotes(level.id));
   }
   const JsonNode offset = node.field("offset");
   door.offset = offset.number();
-  door.width = node.field("width").positiveNumber();
+  door.width = node.field("width").numberInRange(limits::kMinSize, limits::kMaxLevelExtent);
   const JsonNode height = node.field("height");
-  door.height = height.positiveNumber();
+  door.height = height.numberInRange(limits::kMinSize, limits::kMaxHeight);
 
   const double length = (wall->end - wall->start).norm();
   const double lo = door.offset - 0.5 * door.width;
@@ -134,8 +152,8 @@ Door parseDoor(const JsonNode& node, const Level& level, IdRegistry& ids) {
       rooms->fail("a door joins exactly 2 rooms, got " + std::to_string(items.size()));
     }
     for (std::size_t k = 0; k < 2; ++k) {
-      door.rooms[k] = items[k].nonEmptyString();
-      if (door.rooms[k] != kOutside && level.findRoom(door.rooms[k]) == nullptr) {
+      door.rooms[k] = items[k].identifier();
+      if (door.rooms[k] != kOutside && !index.rooms.contains(door.rooms[k])) {
         items[k].fail("no room " + inQuotes(door.rooms[k]) + " on level " + inQuotes(level.id) +
                       " (use " + inQuotes(kOutside) + " for the outside)");
       }
@@ -147,18 +165,59 @@ Door parseDoor(const JsonNode& node, const Level& level, IdRegistry& ids) {
   return door;
 }
 
+// Doors are compared with the earlier doors of their own wall only; a wall's doors sorted by
+// where they start make the check O(n log n) however many doors a level has.
 void checkDoorOverlaps(const std::vector<JsonNode>& door_nodes, const Level& level) {
+  std::map<std::string, std::vector<std::size_t>> doors_by_wall;
   for (std::size_t i = 0; i < level.doors.size(); ++i) {
-    for (std::size_t j = 0; j < i; ++j) {
-      const Door& a = level.doors[i];
-      const Door& b = level.doors[j];
-      if (a.wall != b.wall) continue;
-      const double gap = std::abs(a.offset - b.offset) - 0.5 * (a.width + b.width);
-      if (gap < -1e-9) {
-        door_nodes[i].field("offset").fail("opening overlaps door " + inQuotes(b.id) + " on wall " +
-                                           inQuotes(a.wall));
+    doors_by_wall[level.doors[i].wall].push_back(i);
+  }
+  std::optional<std::pair<std::size_t, std::size_t>> first;  // (later door, earlier door)
+  for (auto& [wall, indices] : doors_by_wall) {
+    auto lo = [&](std::size_t i) { return level.doors[i].offset - 0.5 * level.doors[i].width; };
+    auto hi = [&](std::size_t i) { return level.doors[i].offset + 0.5 * level.doors[i].width; };
+    std::sort(indices.begin(), indices.end(), [&](std::size_t a, std::size_t b) {
+      return lo(a) < lo(b) || (lo(a) == lo(b) && a < b);
+    });
+    // Sweep: every earlier-starting door still open when this one starts overlaps it.
+    std::vector<std::size_t> open;
+    // The sweep stops at a wall's first overlap, so it stays linear even when every door of a
+    // wall overlaps every other; the message names the earliest such pair in file order.
+    bool found = false;
+    for (std::size_t i : indices) {
+      std::erase_if(open, [&](std::size_t j) { return hi(j) - lo(i) <= 1e-9; });
+      for (std::size_t j : open) {
+        const auto pair = std::make_pair(std::max(i, j), std::min(i, j));
+        if (!first || pair < *first) first = pair;
+        found = true;
       }
+      if (found) break;
+      open.push_back(i);
     }
+  }
+  if (first) {
+    const Door& a = level.doors[first->first];
+    const Door& b = level.doors[first->second];
+    door_nodes[first->first].field("offset").fail("opening overlaps door " + inQuotes(b.id) +
+                                                  " on wall " + inQuotes(a.wall));
+  }
+}
+
+// The walls and outlines of a level must fit in a square of limits::kMaxLevelExtent: the route
+// grid and the world are built over that square.
+void checkLevelExtent(const JsonNode& node, const Level& level) {
+  std::vector<Eigen::Vector2d> points;
+  for (const auto& w : level.walls) {
+    points.push_back(w.start);
+    points.push_back(w.end);
+  }
+  for (const auto& r : level.rooms) points.insert(points.end(), r.outline.begin(), r.outline.end());
+  const Box2 box = Box2::around(points);
+  const Eigen::Vector2d size = box.hi - box.lo;
+  if (size.maxCoeff() > limits::kMaxLevelExtent) {
+    node.fail("level " + inQuotes(level.id) + " spans " + formatNumber(size.x()) + " m × " +
+              formatNumber(size.y()) + " m; at most " + formatNumber(limits::kMaxLevelExtent) +
+              " m on a side is supported (docs/formats.md, Limits)");
   }
 }
 
@@ -166,24 +225,44 @@ Level parseLevel(const JsonNode& node, IdRegistry& ids) {
   node.expectObject({"id", "name", "elevation", "height", "walls", "doors", "rooms"});
   Level level;
   const JsonNode id = node.field("id");
-  level.id = id.nonEmptyString();
+  level.id = id.identifier();
   ids.add(id, level.id);
-  if (auto e = node.optionalField("elevation")) level.elevation = e->number();
-  level.height = node.field("height").positiveNumber();
-  for (const auto& w : node.field("walls").elements(1))
-    level.walls.push_back(parseWall(w, level, ids));
-  if (auto rooms = node.optionalField("rooms")) {
-    for (const auto& r : rooms->elements()) level.rooms.push_back(parseRoom(r, ids));
+  if (auto name = node.optionalField("name")) name->text();
+  if (auto e = node.optionalField("elevation")) {
+    level.elevation = e->numberInRange(-limits::kMaxCoordinate, limits::kMaxCoordinate);
   }
+  level.height = node.field("height").numberInRange(limits::kMinSize, limits::kMaxHeight);
+  for (const auto& w : node.field("walls").elements(1, limits::kMaxWallsPerLevel, "walls")) {
+    level.walls.push_back(parseWall(w, level, ids));
+  }
+  if (auto rooms = node.optionalField("rooms")) {
+    std::size_t vertices = 0;
+    for (const auto& r : rooms->elements(0, limits::kMaxRoomsPerLevel, "rooms")) {
+      level.rooms.push_back(parseRoom(r, ids));
+      vertices += level.rooms.back().outline.size();
+      if (vertices > limits::kMaxVerticesPerLevel) {
+        r.field("outline").fail("the level's outlines have " + std::to_string(vertices) +
+                                " vertices so far; at most " +
+                                std::to_string(limits::kMaxVerticesPerLevel) +
+                                " per level are supported (docs/formats.md, Limits)");
+      }
+    }
+  }
+  checkLevelExtent(node, level);
+
   std::vector<JsonNode> door_nodes;
-  if (auto doors = node.optionalField("doors")) door_nodes = doors->elements();
-  for (const auto& d : door_nodes) level.doors.push_back(parseDoor(d, level, ids));
+  if (auto doors = node.optionalField("doors")) {
+    door_nodes = doors->elements(0, limits::kMaxDoorsPerLevel, "doors");
+  }
+  const LevelIndex index(level);
+  for (const auto& d : door_nodes) level.doors.push_back(parseDoor(d, level, index, ids));
   checkDoorOverlaps(door_nodes, level);
 
+  const RoomLocator rooms(level);
   for (std::size_t i = 0; i < level.doors.size(); ++i) {
     Door& door = level.doors[i];
     if (!door.rooms[0].empty()) continue;
-    door.rooms = inferDoorRooms(level, door);
+    door.rooms = inferDoorRooms(*index.walls.at(door.wall), door, rooms);
     door.rooms_inferred = true;
     if (door.rooms[0] == door.rooms[1]) {
       door_nodes[i].warn("cannot infer the rooms this door joins: " + inQuotes(door.rooms[0]) +
@@ -201,9 +280,9 @@ Plan parsePlan(const JsonNode& root) {
   Plan plan;
   plan.source = root.source().file;
   plan.name = std::filesystem::path(plan.source).stem().string();
-  if (auto name = root.optionalField("name")) plan.name = name->string();
+  if (auto name = root.optionalField("name")) plan.name = name->text();
   IdRegistry ids;
-  for (const auto& level : root.field("levels").elements(1)) {
+  for (const auto& level : root.field("levels").elements(1, limits::kMaxLevels, "levels")) {
     plan.levels.push_back(parseLevel(level, ids));
   }
   return plan;

@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "bim/box_grid.hpp"
+
 namespace isg::bim {
 
 namespace {
@@ -90,8 +92,18 @@ bool segmentsIntersect(const Eigen::Vector2d& a0, const Eigen::Vector2d& a1,
 std::optional<std::pair<int, int>> findSelfIntersection(const Polygon2& polygon) {
   const int n = static_cast<int>(polygon.size());
   auto vertex = [&](int i) -> const Eigen::Vector2d& { return polygon[((i % n) + n) % n]; };
+  // Edge pairs come from a grid over the edges' boxes (grown by the intersection tests'
+  // tolerance), so a simple outline of 10^5 vertices is checked in near-linear time.
+  std::vector<Box2> boxes;
+  boxes.reserve(polygon.size());
   for (int i = 0; i < n; ++i) {
-    for (int j = i + 1; j < n; ++j) {
+    const Box2 box = Box2::around(vertex(i), vertex(i + 1));
+    boxes.push_back(box.grown(1e-9 * std::max(1.0, (box.hi - box.lo).maxCoeff())));
+  }
+  const BoxGrid grid(std::move(boxes));
+  for (int i = 0; i < n; ++i) {
+    for (int j : grid.candidates(grid.box(i))) {
+      if (j <= i) continue;
       const bool neighbours = (j == i + 1) || (i == 0 && j == n - 1);
       if (neighbours) {
         // Neighbours share a vertex; they are only wrong when they fold back onto each other.

@@ -1,8 +1,12 @@
+#include <algorithm>
+#include <cmath>
 #include <filesystem>
 #include <set>
 #include <sstream>
 
+#include "bim/box_grid.hpp"
 #include "bim/json_reader.hpp"
+#include "bim/limits.hpp"
 #include "bim/plan_geometry.hpp"
 #include "bim/plan_parser.hpp"
 #include "bim/polygon.hpp"
@@ -12,24 +16,15 @@ namespace isg::bim {
 
 namespace {
 
-double numberInRange(const JsonNode& node, double lo, double hi, bool hi_open = false) {
-  const double v = node.number();
-  if (v < lo || v > hi || (hi_open && v >= hi)) {
-    node.fail("must be in [" + formatNumber(lo) + ", " + formatNumber(hi) + (hi_open ? ")" : "]") +
-              ", got " + formatNumber(v));
-  }
-  return v;
-}
-
 const Level& levelNamed(const Plan& plan, const JsonNode& node) {
-  const std::string id = node.nonEmptyString();
+  const std::string id = node.identifier();
   const Level* level = plan.findLevel(id);
   if (level == nullptr) node.fail("no level " + inQuotes(id) + " in the plan");
   return *level;
 }
 
 std::string roomOnLevel(const Level& level, const JsonNode& node) {
-  const std::string id = node.nonEmptyString();
+  const std::string id = node.identifier();
   if (level.findRoom(id) == nullptr) {
     node.fail("no room " + inQuotes(id) + " on level " + inQuotes(level.id));
   }
@@ -61,6 +56,10 @@ RobotConfig parseRobot(const std::optional<JsonNode>& node, const Plan& plan) {
     } else {
       const JsonNode pose_node = start->field("pose");
       const auto pose = pose_node.numbers(3);
+      if (std::max(std::abs(pose[0]), std::abs(pose[1])) > limits::kMaxCoordinate) {
+        pose_node.fail("start position is out of range: points must lie within ±" +
+                       formatNumber(limits::kMaxCoordinate) + " m of the origin");
+      }
       robot.start_pose = Eigen::Vector3d(pose[0], pose[1], pose[2]);
       const Eigen::Vector2d xy(pose[0], pose[1]);
       for (const auto& g : computeLevelGeometry(*level).walls) {
@@ -86,24 +85,25 @@ RobotConfig parseRobot(const std::optional<JsonNode>& node, const Plan& plan) {
       }
       if (auto rooms = route->optionalField("rooms")) {
         robot.route.kind = Route::Kind::kRooms;
-        for (const auto& r : rooms->elements(1))
+        for (const auto& r : rooms->elements(1, limits::kMaxScenarioItems, "rooms"))
           robot.route.rooms.push_back(roomOnLevel(*level, r));
       } else {
         robot.route.kind = Route::Kind::kWaypoints;
-        for (const auto& w : route->field("waypoints").elements(1)) {
-          robot.route.waypoints.push_back(w.point2());
+        const JsonNode waypoints = route->field("waypoints");
+        for (const auto& w : waypoints.elements(1, limits::kMaxScenarioItems, "waypoints")) {
+          robot.route.waypoints.push_back(w.position2());
         }
       }
     }
   }
-  if (auto speed = node->optionalField("speed")) robot.speed = numberInRange(*speed, 0.01, 3.0);
+  if (auto speed = node->optionalField("speed")) robot.speed = speed->numberInRange(0.01, 3.0);
   if (auto gait = node->optionalField("gait")) {
     gait->expectObject({"frequency_hz", "bob_m", "roll_deg", "pitch_deg"});
     auto& g = robot.gait;
-    if (auto v = gait->optionalField("frequency_hz")) g.frequency_hz = numberInRange(*v, 0.1, 10.0);
-    if (auto v = gait->optionalField("bob_m")) g.bob_m = numberInRange(*v, 0.0, 0.2);
-    if (auto v = gait->optionalField("roll_deg")) g.roll_deg = numberInRange(*v, 0.0, 20.0);
-    if (auto v = gait->optionalField("pitch_deg")) g.pitch_deg = numberInRange(*v, 0.0, 20.0);
+    if (auto v = gait->optionalField("frequency_hz")) g.frequency_hz = v->numberInRange(0.1, 10.0);
+    if (auto v = gait->optionalField("bob_m")) g.bob_m = v->numberInRange(0.0, 0.2);
+    if (auto v = gait->optionalField("roll_deg")) g.roll_deg = v->numberInRange(0.0, 20.0);
+    if (auto v = gait->optionalField("pitch_deg")) g.pitch_deg = v->numberInRange(0.0, 20.0);
   }
   return robot;
 }
@@ -111,11 +111,12 @@ RobotConfig parseRobot(const std::optional<JsonNode>& node, const Plan& plan) {
 LidarConfig parseLidar(const JsonNode& node) {
   node.expectObject({"rate_hz", "range_noise_m", "min_range_m", "max_range_m", "dropout", "mount"});
   LidarConfig lidar;
-  if (auto v = node.optionalField("rate_hz")) lidar.rate_hz = numberInRange(*v, 5.0, 20.0);
-  if (auto v = node.optionalField("range_noise_m")) lidar.range_noise_m = v->nonNegativeNumber();
-  if (auto v = node.optionalField("min_range_m")) lidar.min_range_m = v->nonNegativeNumber();
+  if (auto v = node.optionalField("rate_hz")) lidar.rate_hz = v->numberInRange(5.0, 20.0);
+  if (auto v = node.optionalField("range_noise_m"))
+    lidar.range_noise_m = v->numberInRange(0.0, 1.0);
+  if (auto v = node.optionalField("min_range_m")) lidar.min_range_m = v->numberInRange(0.0, 100.0);
   if (auto v = node.optionalField("max_range_m")) {
-    lidar.max_range_m = v->positiveNumber();
+    lidar.max_range_m = v->numberInRange(limits::kMinSize, 1000.0);
     if (lidar.max_range_m <= lidar.min_range_m) {
       v->fail("max_range_m " + formatNumber(lidar.max_range_m) + " is not above min_range_m " +
               formatNumber(lidar.min_range_m));
@@ -124,9 +125,12 @@ LidarConfig parseLidar(const JsonNode& node) {
     node.field("min_range_m")
         .fail("min_range_m must be below max_range_m (" + formatNumber(lidar.max_range_m) + ")");
   }
-  if (auto v = node.optionalField("dropout")) lidar.dropout = numberInRange(*v, 0.0, 1.0, true);
+  if (auto v = node.optionalField("dropout")) lidar.dropout = v->numberInRange(0.0, 1.0, true);
   if (auto v = node.optionalField("mount")) {
     const auto values = v->numbers(6);
+    if (std::max({std::abs(values[0]), std::abs(values[1]), std::abs(values[2])}) > 10.0) {
+      v->fail("the LiDAR must be mounted within 10 m of the robot's reference point");
+    }
     std::copy(values.begin(), values.end(), lidar.mount.begin());
   }
   return lidar;
@@ -136,15 +140,15 @@ OdometryConfig parseOdometry(const JsonNode& node) {
   node.expectObject(
       {"rate_hz", "translation_noise", "heading_noise_deg_per_m", "heading_bias_deg_per_m"});
   OdometryConfig odometry;
-  if (auto v = node.optionalField("rate_hz")) odometry.rate_hz = numberInRange(*v, 1.0, 1000.0);
+  if (auto v = node.optionalField("rate_hz")) odometry.rate_hz = v->numberInRange(1.0, 1000.0);
   if (auto v = node.optionalField("translation_noise")) {
-    odometry.translation_noise = v->nonNegativeNumber();
+    odometry.translation_noise = v->numberInRange(0.0, 1.0);
   }
   if (auto v = node.optionalField("heading_noise_deg_per_m")) {
-    odometry.heading_noise_deg_per_m = v->nonNegativeNumber();
+    odometry.heading_noise_deg_per_m = v->numberInRange(0.0, 90.0);
   }
   if (auto v = node.optionalField("heading_bias_deg_per_m")) {
-    odometry.heading_bias_deg_per_m = v->number();
+    odometry.heading_bias_deg_per_m = v->numberInRange(-90.0, 90.0);
   }
   return odometry;
 }
@@ -155,7 +159,7 @@ std::vector<std::string> parseIdList(const JsonNode& node, const char* what, Fin
   std::vector<std::string> ids;
   std::set<std::string> seen;
   for (const auto& item : node.elements()) {
-    const std::string id = item.nonEmptyString();
+    const std::string id = item.identifier();
     if (!exists(id)) item.fail(std::string("no ") + what + " " + inQuotes(id) + " in the plan");
     if (!seen.insert(id).second) item.fail(inQuotes(id) + " is listed twice");
     ids.push_back(id);
@@ -180,19 +184,23 @@ AsBuilt parseAsBuilt(const JsonNode& node, const Plan& plan, const std::string& 
     as_built.closed_doors = parseIdList(*v, "door", is_door);
   }
   if (auto v = node.optionalField("extra_walls")) {
-    for (const auto& item : v->elements()) {
+    for (const auto& item : v->elements(0, limits::kMaxScenarioItems, "extra walls")) {
       item.expectObject({"start", "end", "thickness", "height", "base", "level"});
       ExtraWall wall;
       wall.id = "extra" + std::to_string(as_built.extra_walls.size());
       wall.level = optionalLevel(item, plan, robot_level);
-      wall.start = item.field("start").point2();
-      wall.end = item.field("end").point2();
-      if ((wall.end - wall.start).norm() < 1e-6) {
+      wall.start = item.field("start").position2();
+      wall.end = item.field("end").position2();
+      if ((wall.end - wall.start).norm() < limits::kMinSize) {
         item.field("end").fail("zero-length wall: end equals start");
       }
-      wall.thickness = item.field("thickness").positiveNumber();
-      if (auto h = item.optionalField("height")) wall.height = h->positiveNumber();
-      if (auto b = item.optionalField("base")) wall.base = b->nonNegativeNumber();
+      wall.thickness =
+          item.field("thickness").numberInRange(limits::kMinSize, limits::kMaxThickness);
+      if (auto h = item.optionalField("height")) {
+        wall.height = h->numberInRange(limits::kMinSize, limits::kMaxHeight);
+      }
+      if (auto b = item.optionalField("base"))
+        wall.base = b->numberInRange(0.0, limits::kMaxHeight);
       const double top = wall.height.value_or(plan.findLevel(wall.level)->height);
       if (wall.base >= top) item.field("base").fail("base is not below the wall's top");
       as_built.extra_walls.push_back(wall);
@@ -204,18 +212,19 @@ AsBuilt parseAsBuilt(const JsonNode& node, const Plan& plan, const std::string& 
       item.expectObject({"wall", "offset"});
       WallShift shift;
       const JsonNode wall = item.field("wall");
-      shift.wall = wall.nonEmptyString();
+      shift.wall = wall.identifier();
       if (!is_wall(shift.wall)) wall.fail("no wall " + inQuotes(shift.wall) + " in the plan");
       if (!seen.insert(shift.wall).second) wall.fail(inQuotes(shift.wall) + " is shifted twice");
       for (const auto& missing : as_built.missing_walls) {
         if (missing == shift.wall) wall.fail(inQuotes(shift.wall) + " is also in missing_walls");
       }
-      shift.offset = item.field("offset").number();
+      shift.offset =
+          item.field("offset").numberInRange(-limits::kMaxWallShift, limits::kMaxWallShift);
       as_built.wall_shifts.push_back(shift);
     }
   }
   if (auto v = node.optionalField("clutter")) {
-    for (const auto& item : v->elements()) {
+    for (const auto& item : v->elements(0, limits::kMaxScenarioItems, "clutter boxes")) {
       item.expectObject({"shape", "center", "size", "yaw", "level"});
       Clutter clutter;
       const JsonNode shape = item.field("shape");
@@ -223,15 +232,61 @@ AsBuilt parseAsBuilt(const JsonNode& node, const Plan& plan, const std::string& 
         shape.fail("unknown shape " + inQuotes(shape.string()) + " (expected \"box\")");
       }
       clutter.level = optionalLevel(item, plan, robot_level);
-      clutter.center = item.field("center").point3();
+      const JsonNode center = item.field("center");
+      clutter.center = center.point3();
+      if (clutter.center.cwiseAbs().maxCoeff() > limits::kMaxCoordinate) {
+        center.fail("out of range: points must lie within ±" +
+                    formatNumber(limits::kMaxCoordinate) + " m of the origin");
+      }
       const JsonNode size = item.field("size");
       clutter.size = size.point3();
-      if ((clutter.size.array() <= 0.0).any()) size.fail("every extent must be > 0");
-      if (auto yaw = item.optionalField("yaw")) clutter.yaw = yaw->number();
+      if (clutter.size.minCoeff() < limits::kMinSize ||
+          clutter.size.maxCoeff() > limits::kMaxLevelExtent) {
+        size.fail("every extent must be in [" + formatNumber(limits::kMinSize) + ", " +
+                  formatNumber(limits::kMaxLevelExtent) + "] m");
+      }
+      if (auto yaw = item.optionalField("yaw")) clutter.yaw = yaw->numberInRange(-100.0, 100.0);
       as_built.clutter.push_back(clutter);
     }
   }
   return as_built;
+}
+
+// With its extra walls, clutter and shifted walls, each level must still fit in a square of
+// limits::kMaxLevelExtent: the world and the route grid are built over it.
+void checkAsBuiltExtent(const JsonNode& node, const Plan& plan, const AsBuilt& as_built) {
+  for (const auto& level : plan.levels) {
+    std::vector<Eigen::Vector2d> points;
+    for (const auto& w : level.walls) {
+      points.push_back(w.start);
+      points.push_back(w.end);
+    }
+    for (const auto& r : level.rooms)
+      points.insert(points.end(), r.outline.begin(), r.outline.end());
+    for (const auto& w : as_built.extra_walls) {
+      if (w.level != level.id) continue;
+      points.push_back(w.start);
+      points.push_back(w.end);
+    }
+    for (const auto& c : as_built.clutter) {
+      if (c.level != level.id) continue;
+      const double reach = 0.5 * c.size.head<2>().norm();
+      points.push_back(c.center.head<2>() - Eigen::Vector2d::Constant(reach));
+      points.push_back(c.center.head<2>() + Eigen::Vector2d::Constant(reach));
+    }
+    double shift = 0.0;
+    for (const auto& s : as_built.wall_shifts) {
+      if (plan.levelOfWall(s.wall) == &level) shift = std::max(shift, std::abs(s.offset));
+    }
+    const Box2 box = Box2::around(points).grown(shift);
+    const Eigen::Vector2d size = box.hi - box.lo;
+    if (size.maxCoeff() > limits::kMaxLevelExtent) {
+      node.fail("with its as-built changes level " + inQuotes(level.id) + " spans " +
+                formatNumber(size.x()) + " m × " + formatNumber(size.y()) + " m; at most " +
+                formatNumber(limits::kMaxLevelExtent) +
+                " m on a side is supported (docs/formats.md, Limits)");
+    }
+  }
 }
 
 Scenario scenarioFromPlan(Plan plan, const std::string& path) {
@@ -259,11 +314,13 @@ Scenario parseScenario(const JsonNode& root, const PlanLoader& load_plan) {
                               " (expected \"isg.plan\" or \"isg.scenario\")");
   }
   checkFormatAndVersion(root, kScenarioFormat, kScenarioVersion);
+  if (auto name = root.optionalField("name")) name->text();
 
   Scenario scenario;
   scenario.source = path;
   const JsonNode plan_node = root.field("plan");
   if (plan_node.isString()) {
+    plan_node.text();
     plan_node.nonEmptyString();
     LoadedPlan loaded = load_plan(plan_node);
     scenario.plan = std::move(loaded.plan);
@@ -282,6 +339,7 @@ Scenario parseScenario(const JsonNode& root, const PlanLoader& load_plan) {
   if (auto odometry = root.optionalField("odometry")) scenario.odometry = parseOdometry(*odometry);
   if (auto as_built = root.optionalField("as_built")) {
     scenario.as_built = parseAsBuilt(*as_built, scenario.plan, scenario.robot.level);
+    checkAsBuiltExtent(*as_built, scenario.plan, scenario.as_built);
   }
   return scenario;
 }

@@ -66,9 +66,7 @@ int SlamCommand::run() {
   const bim::AGraph agraph = plan ? bim::buildAGraph(*plan) : bim::AGraph{};
   run::SensorStreams streams = dataset.streams();
   const std::string fallback_level = plan && !plan->levels.empty() ? plan->levels[0].id : "";
-  const auto& robot = dataset.metadata().value("robot", nlohmann::json::object());
-  const std::string level =
-      robot.is_object() ? robot.value("level", fallback_level) : fallback_level;
+  const std::string level = dataset.robotLevel().empty() ? fallback_level : dataset.robotLevel();
 
   run::LocalizerContext context;
   context.plan = plan ? &*plan : nullptr;
@@ -78,9 +76,8 @@ int SlamCommand::run() {
   context.start_B_T_M = run::trueStartB_T_M(streams);
   const auto localizer = methods_.make(method, context);
 
-  run::RunSetup setup{
-      dataset_,     localizer->name(), dataset.metadata().value("seed", std::uint64_t{0}),
-      context.plan, context.agraph,    level};
+  run::RunSetup setup{dataset_,     localizer->name(), dataset.seed(),
+                      context.plan, context.agraph,    level};
   ProgressBar bar("isg slam", quiet_);
   const double period = streams.scan_period;
   const run::RunRecord record = run::runLocalizer(std::move(setup), *localizer, std::move(streams),

@@ -1,8 +1,5 @@
 #include "run/dataset_reader.hpp"
 
-#include <pcl/PCLPointCloud2.h>
-#include <pcl/io/pcd_io.h>
-
 #include <algorithm>
 #include <cmath>
 #include <cstring>
@@ -12,6 +9,7 @@
 #include "bim/input_error.hpp"
 #include "bim/json_reader.hpp"
 #include "run/dataset_format.hpp"
+#include "run/pcd_reader.hpp"
 
 namespace isg::run {
 
@@ -29,23 +27,57 @@ Trajectory readTrajectory(const fs::path& path) {
 
 }  // namespace
 
+void DatasetReader::readMetadata(const std::string& file) {
+  const bim::JsonSource source{file, nullptr};
+  const bim::JsonNode root(metadata_, "", source);
+  if (!root.isObject()) root.fail("expected an object, got " + bim::describeJsonType(metadata_));
+  const bim::JsonNode matrix = root.field("extrinsics").field("R_T_L").field("matrix");
+  const auto rows = matrix.elements();
+  if (rows.size() != 4) matrix.fail("expected a 4 × 4 array of numbers");
+  Eigen::Matrix4d T;
+  for (int r = 0; r < 4; ++r) {
+    const auto row = rows[std::size_t(r)].numbers(4);
+    for (int c = 0; c < 4; ++c) T(r, c) = row[std::size_t(c)];
+  }
+  // A rigid transform: a rotation (orthonormal, det +1) and a last row of 0 0 0 1. Anything else
+  // (an all-zero matrix) would poison every point and the optimiser with it.
+  const Eigen::Matrix3d R = T.topLeftCorner<3, 3>();
+  const double orthogonality =
+      (R.transpose() * R - Eigen::Matrix3d::Identity()).cwiseAbs().maxCoeff();
+  if (orthogonality > 1e-6 || R.determinant() < 0.5) {
+    matrix.fail("the upper-left 3 × 3 block is not a rotation (orthonormal with determinant +1)");
+  }
+  if ((T.row(3) - Eigen::RowVector4d(0, 0, 0, 1)).cwiseAbs().maxCoeff() > 1e-9) {
+    matrix.fail("the last row must be 0 0 0 1");
+  }
+  if (T.col(3).head<3>().cwiseAbs().maxCoeff() > 10.0) {
+    matrix.fail("the LiDAR must be mounted within 10 m of the robot's reference point");
+  }
+  R_T_L_.matrix() = T;
+  if (auto lidar = root.optionalField("lidar")) {
+    if (auto rate = lidar->optionalField("rate_hz"))
+      scan_period_ = 1.0 / rate->numberInRange(0.1, 1000.0);
+  }
+  if (auto seed = root.optionalField("seed")) seed_ = seed->unsignedInteger();
+  if (auto duration = root.optionalField("duration_s")) {
+    duration_ = duration->numberInRange(0.0, 1e7);
+  }
+  if (auto robot = root.optionalField("robot")) {
+    if (auto level = robot->optionalField("level")) robot_level_ = level->identifier();
+  }
+  if (auto plan = root.optionalField("plan")) {
+    if (!plan->isObject())
+      plan->fail("expected the plan object, got " + bim::describeJsonType(plan->raw()));
+  }
+}
+
 DatasetReader::DatasetReader(const std::string& dir) : dir_(dir) {
   const fs::path root(dir);
   if (!fs::is_directory(root))
     throw bim::InputError(dir, "", "not a dataset folder (no such directory)");
   const fs::path metadata_path = root / dataset::kMetadata;
   metadata_ = bim::readJsonFile(metadata_path.string());
-  try {
-    const auto& m = metadata_.at("extrinsics").at("R_T_L").at("matrix");
-    Eigen::Matrix4d T;
-    for (int r = 0; r < 4; ++r) {
-      for (int c = 0; c < 4; ++c) T(r, c) = m.at(r).at(c).get<double>();
-    }
-    R_T_L_.matrix() = T;
-  } catch (const nlohmann::json::exception&) {
-    throw bim::InputError(metadata_path.string(), "/extrinsics/R_T_L/matrix",
-                          "expected a 4 × 4 array of numbers");
-  }
+  readMetadata(metadata_path.string());
   odometry_ = readTrajectory(root / dataset::kOdometry);
   if (fs::exists(root / dataset::kGroundTruth))
     ground_truth_ = readTrajectory(root / dataset::kGroundTruth);
@@ -60,16 +92,6 @@ DatasetReader::DatasetReader(const std::string& dir) : dir_(dir) {
                               std::to_string(scan_files_.size()) + " scans in scans/");
   }
   for (const auto& s : stamps) scan_stamps_.push_back(s.t);
-  double rate = 10.0;
-  if (const auto lidar = metadata_.find("lidar");
-      lidar != metadata_.end() && lidar->is_object() && lidar->contains("rate_hz")) {
-    const auto& value = (*lidar)["rate_hz"];
-    if (!value.is_number() || !(value.get<double>() > 0.0) || !std::isfinite(value.get<double>())) {
-      throw bim::InputError(metadata_path.string(), "/lidar/rate_hz", "expected a positive number");
-    }
-    rate = value.get<double>();
-  }
-  scan_period_ = 1.0 / rate;
 }
 
 SensorStreams DatasetReader::streams() const {
@@ -81,58 +103,14 @@ SensorStreams DatasetReader::streams() const {
   out.R_T_L = R_T_L_;
   const double span =
       scan_stamps_.empty() ? 0.0 : scan_stamps_.back() - scan_stamps_.front() + scan_period_;
-  const auto recorded = metadata_.find("duration_s");
-  out.duration =
-      recorded != metadata_.end() && recorded->is_number() ? recorded->get<double>() : span;
+  out.duration = duration_.value_or(span);
   return out;
 }
 
 slam::Scan DatasetReader::scan(int index) {
-  const std::string& path = scan_files_[index];
-  pcl::PCLPointCloud2 cloud;
-  if (pcl::io::loadPCDFile(path, cloud) != 0) throw bim::InputError(path, "", "cannot read PCD");
-  auto field = [&](const char* name) -> const pcl::PCLPointField* {
-    for (const auto& f : cloud.fields) {
-      if (f.name == name) return &f;
-    }
-    return nullptr;
-  };
-  const auto* x = field("x");
-  const auto* y = field("y");
-  const auto* z = field("z");
-  const auto* time = field("time");
-  if (!x || !y || !z || !time) throw bim::InputError(path, "", "needs fields x, y, z and time");
-  const auto* intensity = field("intensity");
-  const auto* ring = field("ring");
-  auto read_float = [&](const std::uint8_t* point, const pcl::PCLPointField* f) -> float {
-    if (f->datatype == pcl::PCLPointField::FLOAT32) {
-      float v;
-      std::memcpy(&v, point + f->offset, 4);
-      return v;
-    }
-    if (f->datatype == pcl::PCLPointField::FLOAT64) {
-      double v;
-      std::memcpy(&v, point + f->offset, 8);
-      return float(v);
-    }
-    if (f->datatype == pcl::PCLPointField::UINT16) {
-      std::uint16_t v;
-      std::memcpy(&v, point + f->offset, 2);
-      return float(v);
-    }
-    throw bim::InputError(path, "", "field " + f->name + " has an unsupported type");
-  };
   slam::Scan scan;
-  scan.stamp = scan_stamps_[index];
-  const std::size_t n = std::size_t(cloud.width) * cloud.height;
-  scan.points.reserve(n);
-  for (std::size_t i = 0; i < n; ++i) {
-    const std::uint8_t* point = cloud.data.data() + i * cloud.point_step;
-    scan.points.push_back({read_float(point, x), read_float(point, y), read_float(point, z),
-                           intensity ? read_float(point, intensity) : 0.0f,
-                           std::uint16_t(ring ? read_float(point, ring) : 0.0f),
-                           read_float(point, time)});
-  }
+  scan.stamp = scan_stamps_[std::size_t(index)];
+  scan.points = readPcd(scan_files_[std::size_t(index)]);
   return scan;
 }
 

@@ -1,7 +1,9 @@
 #pragma once
 
 #include <Eigen/Geometry>
+#include <cstdint>
 #include <nlohmann/json.hpp>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -19,6 +21,10 @@ class DatasetReader : public ScanSource {
   explicit DatasetReader(const std::string& dir);
 
   const nlohmann::json& metadata() const { return metadata_; }
+  // Checked fields of metadata.json (docs/formats.md): the run's seed (0 when not recorded) and
+  // the robot's level (empty when not recorded).
+  std::uint64_t seed() const { return seed_; }
+  const std::string& robotLevel() const { return robot_level_; }
   const Eigen::Isometry3d& R_T_L() const { return R_T_L_; }
   const Trajectory& odometry() const { return odometry_; }
   const Trajectory& groundTruth() const { return ground_truth_; }
@@ -32,8 +38,13 @@ class DatasetReader : public ScanSource {
   slam::Scan scan(int index) override;
 
  private:
+  void readMetadata(const std::string& file);
+
   std::string dir_;
   nlohmann::json metadata_;
+  std::uint64_t seed_ = 0;
+  std::string robot_level_;
+  std::optional<double> duration_;
   Eigen::Isometry3d R_T_L_ = Eigen::Isometry3d::Identity();
   Trajectory odometry_, ground_truth_;
   double scan_period_ = 0.1;

@@ -48,9 +48,10 @@ std::vector<Eigen::Vector2d> rectangle(const Eigen::Vector2d& centre, const Eige
 
 }  // namespace
 
-template <typename Inside>
-void OccupancyGrid::paint(const std::vector<Eigen::Vector2d>& polygon, bool blocked,
-                          Inside inside_test) {
+void OccupancyGrid::paint(const std::vector<Eigen::Vector2d>& polygon, bool blocked) {
+  // Scanline fill with exactly bim::containsPoint's rule at each cell centre (the same crossing
+  // formula, and the same "within 1e-9 of an edge is inside"), in time proportional to the cells
+  // and crossings instead of cells × vertices: an outline of 10^5 vertices stays cheap.
   Eigen::Vector2d lo = polygon[0], hi = polygon[0];
   for (const auto& p : polygon) {
     lo = lo.cwiseMin(p);
@@ -58,9 +59,63 @@ void OccupancyGrid::paint(const std::vector<Eigen::Vector2d>& polygon, bool bloc
   }
   const Eigen::Vector2i a = cellOf(lo).cwiseMax(0);
   const Eigen::Vector2i b = cellOf(hi).cwiseMin(Eigen::Vector2i(width_ - 1, height_ - 1));
+  if (a.x() > b.x() || a.y() > b.y()) return;
+  const int rows = b.y() - a.y() + 1;
+  const std::size_t n = polygon.size();
+  auto row_y = [&](int y) { return centreOf({a.x(), y}).y(); };
+  // The rows whose centre y lies in [y0, y1], clamped to the painted range.
+  auto rows_between = [&](double y0, double y1) {
+    const int first = std::max(a.y(), int(std::floor((y0 - origin_.y()) / resolution_ - 0.5)) - 1);
+    const int last = std::min(b.y(), int(std::ceil((y1 - origin_.y()) / resolution_ - 0.5)) + 1);
+    return std::make_pair(first, last);
+  };
+
+  std::vector<std::vector<double>> crossings(static_cast<std::size_t>(rows));
+  std::vector<char> on_edge(std::size_t(rows) * std::size_t(b.x() - a.x() + 1), 0);
+  constexpr double kOnEdge = 1e-9;
+  for (std::size_t i = 0, j = n - 1; i < n; j = i++) {
+    const Eigen::Vector2d& p = polygon[i];
+    const Eigen::Vector2d& q = polygon[j];
+    const auto [first, last] =
+        rows_between(std::min(p.y(), q.y()) - kOnEdge, std::max(p.y(), q.y()) + kOnEdge);
+    for (int y = first; y <= last; ++y) {
+      const double cy = row_y(y);
+      if ((p.y() > cy) != (q.y() > cy)) {
+        crossings[std::size_t(y - a.y())].push_back(p.x() + (cy - p.y()) * (q.x() - p.x()) /
+                                                                (q.y() - p.y()));
+      }
+      // Centres within kOnEdge of the edge count as inside: find them among the cells the edge
+      // passes at this row's height.
+      double x0 = std::min(p.x(), q.x());
+      double x1 = std::max(p.x(), q.x());
+      if (std::abs(q.y() - p.y()) > kOnEdge) {
+        const double t0 = std::clamp((cy - kOnEdge - p.y()) / (q.y() - p.y()), 0.0, 1.0);
+        const double t1 = std::clamp((cy + kOnEdge - p.y()) / (q.y() - p.y()), 0.0, 1.0);
+        x0 = std::min(p.x() + t0 * (q.x() - p.x()), p.x() + t1 * (q.x() - p.x()));
+        x1 = std::max(p.x() + t0 * (q.x() - p.x()), p.x() + t1 * (q.x() - p.x()));
+      }
+      const int cx0 = std::max(a.x(), cellOf({x0 - kOnEdge, cy}).x() - 1);
+      const int cx1 = std::min(b.x(), cellOf({x1 + kOnEdge, cy}).x() + 1);
+      for (int x = cx0; x <= cx1; ++x) {
+        if (bim::distanceToSegment(centreOf({x, y}), p, q) < kOnEdge) {
+          on_edge[std::size_t(y - a.y()) * std::size_t(b.x() - a.x() + 1) +
+                  std::size_t(x - a.x())] = 1;
+        }
+      }
+    }
+  }
   for (int y = a.y(); y <= b.y(); ++y) {
+    auto& xs = crossings[std::size_t(y - a.y())];
+    std::sort(xs.begin(), xs.end());
+    // Inside when an odd number of crossings lie strictly right of the centre.
+    std::size_t right_from = 0;  // first crossing > cx
     for (int x = a.x(); x <= b.x(); ++x) {
-      if (inside_test(centreOf({x, y}))) blocked_[y * width_ + x] = blocked;
+      const double cx = centreOf({x, y}).x();
+      while (right_from < xs.size() && !(xs[right_from] > cx)) ++right_from;
+      const bool inside =
+          ((xs.size() - right_from) % 2 == 1) ||
+          on_edge[std::size_t(y - a.y()) * std::size_t(b.x() - a.x() + 1) + std::size_t(x - a.x())];
+      if (inside) blocked_[std::size_t(index({x, y}))] = blocked;
     }
   }
 }
@@ -84,22 +139,33 @@ OccupancyGrid::OccupancyGrid(const bim::Plan& plan, const bim::AsBuilt& as_built
       hi = hi.cwiseMax(p);
     }
   }
-  origin_ = lo - Eigen::Vector2d::Constant(2 * resolution);
-  width_ = int(std::ceil((hi.x() - origin_.x()) / resolution)) + 2;
-  height_ = int(std::ceil((hi.y() - origin_.y()) / resolution)) + 2;
+  // A very large level gets coarser cells rather than gigabytes of grid (docs/simulation.md).
+  const Eigen::Vector2d span = hi - lo;
+  const double cells = (span.x() / resolution + 6) * (span.y() / resolution + 6);
+  if (cells > kMaxCells) resolution_ = resolution * std::sqrt(cells / kMaxCells);
+  origin_ = lo - Eigen::Vector2d::Constant(2 * resolution_);
+  width_ = int(std::ceil((hi.x() - origin_.x()) / resolution_)) + 2;
+  height_ = int(std::ceil((hi.y() - origin_.y()) / resolution_)) + 2;
   blocked_.assign(std::size_t(width_) * height_, 1);
 
   for (const auto& room : level.rooms) {
-    paint(room.outline, false,
-          [&](const Eigen::Vector2d& p) { return bim::containsPoint(room.outline, p); });
+    paint(room.outline, false);
+  }
+  // Where a wall of the plan is missing in the building, its footprint is floor: the rooms on
+  // either side join, as in the world. (Walls still standing are painted over it below.)
+  const bim::LevelGeometry plan_geometry = bim::computeLevelGeometry(plan_level);
+  for (const auto& g : plan_geometry.walls) {
+    if (std::find(as_built.missing_walls.begin(), as_built.missing_walls.end(), g.wall->id) !=
+        as_built.missing_walls.end()) {
+      paint(g.footprint(), false);
+    }
   }
   // A wall blocks where it stands lower than the robot can pass under.
   constexpr double kRobotHeight = 0.9;
   for (const auto& g : geometry.walls) {
     if (g.wall->base > kRobotHeight) continue;
     const auto footprint = g.footprint();
-    paint(footprint, true,
-          [&](const Eigen::Vector2d& p) { return bim::containsPoint(footprint, p); });
+    paint(footprint, true);
   }
   for (const auto& door : level.doors) {
     const bool closed = std::find(as_built.closed_doors.begin(), as_built.closed_doors.end(),
@@ -108,14 +174,14 @@ OccupancyGrid::OccupancyGrid(const bim::Plan& plan, const bim::AsBuilt& as_built
     if (closed || to_outside) continue;
     const bim::WallGeometry& g = *geometry.findWall(door.wall);
     const auto opening = rectangle(g.pointAt(door.offset), g.axis, 0.5 * door.width,
-                                   0.5 * g.wall->thickness + resolution);
-    paint(opening, false, [&](const Eigen::Vector2d& p) { return bim::containsPoint(opening, p); });
+                                   0.5 * g.wall->thickness + resolution_);
+    paint(opening, false);
   }
   for (const auto& c : as_built.clutter) {
     if (c.level != level_id) continue;
     const auto box = rectangle(c.center.head<2>(), {std::cos(c.yaw), std::sin(c.yaw)},
                                0.5 * c.size.x(), 0.5 * c.size.y());
-    paint(box, true, [&](const Eigen::Vector2d& p) { return bim::containsPoint(box, p); });
+    paint(box, true);
   }
 
   // Clearance: exact Euclidean distance to the nearest blocked cell, columns then rows.
@@ -140,7 +206,7 @@ OccupancyGrid::OccupancyGrid(const bim::Plan& plan, const bim::AsBuilt& as_built
     // obstacle's true surface by up to one cell diagonal: subtract it, so the clearance is a
     // lower bound everywhere in the cell.
     for (int x = 0; x < width_; ++x) {
-      const double d = std::sqrt(out[x]) * resolution - std::sqrt(2.0) * resolution;
+      const double d = std::sqrt(out[x]) * resolution_ - std::sqrt(2.0) * resolution_;
       clearance_[y * width_ + x] = float(std::max(0.0, d));
     }
   }

@@ -17,6 +17,9 @@ class OccupancyGrid {
   OccupancyGrid(const bim::Plan& plan, const bim::AsBuilt& as_built, const std::string& level,
                 double resolution = 0.05);
 
+  // At most this many cells: a larger level gets coarser cells than asked for.
+  static constexpr double kMaxCells = 8e6;
+
   int width() const { return width_; }
   int height() const { return height_; }
   double resolution() const { return resolution_; }
@@ -36,8 +39,8 @@ class OccupancyGrid {
 
  private:
   int index(const Eigen::Vector2i& c) const { return c.y() * width_ + c.x(); }
-  template <typename Inside>
-  void paint(const std::vector<Eigen::Vector2d>& polygon, bool blocked, Inside inside_test);
+  // Sets every cell whose centre bim::containsPoint puts inside `polygon`.
+  void paint(const std::vector<Eigen::Vector2d>& polygon, bool blocked);
 
   double resolution_;
   Eigen::Vector2d origin_;  // xy of cell (0, 0)'s corner

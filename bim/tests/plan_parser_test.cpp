@@ -85,8 +85,8 @@ TEST(PlanParser, ErrorCarriesFilePointerAndReason) {
   } catch (const InputError& e) {
     EXPECT_EQ(e.file(), "plans/bad.json");
     EXPECT_EQ(e.pointer(), "/levels/0/walls/3/thickness");
-    EXPECT_EQ(e.reason(), "must be > 0, got -0.2");
-    EXPECT_STREQ(e.what(), "plans/bad.json: /levels/0/walls/3/thickness: must be > 0, got -0.2");
+    EXPECT_EQ(e.reason(), "must be in [0.001, 10], got -0.2");
+    EXPECT_STREQ(e.what(), "plans/bad.json: /levels/0/walls/3/thickness: must be in [0.001, 10], got -0.2");
   }
 }
 

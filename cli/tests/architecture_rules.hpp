@@ -97,12 +97,11 @@ inline void checkIncludes(const fs::path& root, const fs::path& relative,
       }
       if (target.rfind("pcl/", 0) == 0) {
         const bool private_pcl = relative == fs::path("slam/pcl_planes.hpp") ||
-                                 (!header && (module == "slam" || module == "run")) ||
-                                 (in_tests && module == "sim");
+                                 (!header && module == "slam") || (in_tests && module == "sim");
         if (!private_pcl) {
           out.push_back({relative.string(), number,
                          module + " may not include PCL (<" + target +
-                             ">) here: PCL stays inside slam's and run's sources"});
+                             ">) here: PCL stays inside slam's sources"});
         }
       }
     }

@@ -52,7 +52,7 @@ TEST_F(ArchitectureChecker, ABadIncludeIsNamedWithFileAndLine) {
                          "run/x.hpp:1: run may not include MuJoCo (<mujoco/mujoco.h>): only sim "
                          "runs it",
                          "run/x.hpp:2: run may not include PCL (<pcl/point_types.h>) here: PCL "
-                         "stays inside slam's and run's sources",
+                         "stays inside slam's sources",
                          "sim/loop.cpp:2: sim may not include \"slam/sgraph.hpp\" "
                          "(docs/architecture.md)",
                          "slam/bad.cpp:3: slam may not include \"sim/simulation.hpp\" (allowed: "

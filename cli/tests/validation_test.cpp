@@ -54,10 +54,10 @@ std::vector<Case> cases() {
       {"UnknownVersion", "plan.json", [](json& p, json&) { p["version"] = 2; },
        "plan.json: /version: unsupported version 2 (this build reads version 1)"},
       {"MissingFormat", "plan.json", [](json& p, json&) { p.erase("format"); },
-       "plan.json: missing required field \"format\""},
+       "plan.json: /format: missing required field"},
       // --- missing or mistyped fields
       {"MissingField", "plan.json", [=](json& p, json&) { walls(p)[3].erase("thickness"); },
-       "plan.json: /levels/0/walls/3: missing required field \"thickness\""},
+       "plan.json: /levels/0/walls/3/thickness: missing required field"},
       {"MistypedNumber", "plan.json", [=](json& p, json&) { walls(p)[3]["thickness"] = "0.2"; },
        "plan.json: /levels/0/walls/3/thickness: expected a number, got a string"},
       {"MistypedPoint", "plan.json",
@@ -70,7 +70,8 @@ std::vector<Case> cases() {
       {"NoLevels", "plan.json", [](json& p, json&) { p["levels"] = json::array(); },
        "plan.json: /levels: expected at least 1 element, got 0"},
       {"NonFiniteNumber", "plan.json", [](json&, json&) {},
-       "plan.json: invalid JSON: number overflow parsing '1e999' (numbers must be finite)",
+       "plan.json: /levels/0/walls/4/thickness: number overflow parsing '1e999' at line 1, column "
+       "692 (numbers must be finite)",
        [](std::string text) {
          const std::string key = "\"thickness\":0.1";
          return text.replace(text.find(key), key.size(), "\"thickness\":1e999");
@@ -86,9 +87,9 @@ std::vector<Case> cases() {
        },
        "plan.json: /levels/0/walls/1/end: zero-length wall: end equals start [6, 0]"},
       {"ZeroThickness", "plan.json", [=](json& p, json&) { walls(p)[2]["thickness"] = 0; },
-       "plan.json: /levels/0/walls/2/thickness: must be > 0, got 0"},
+       "plan.json: /levels/0/walls/2/thickness: must be in [0.001, 10], got 0"},
       {"NegativeThickness", "plan.json", [=](json& p, json&) { walls(p)[2]["thickness"] = -0.1; },
-       "plan.json: /levels/0/walls/2/thickness: must be > 0, got -0.1"},
+       "plan.json: /levels/0/walls/2/thickness: must be in [0.001, 10], got -0.1"},
       {"BaseAboveTop", "plan.json", [=](json& p, json&) { walls(p)[4]["base"] = 2.8; },
        "plan.json: /levels/0/walls/4/base: base 2.8 is not below the wall's top at 2.8"},
       // --- doors
@@ -158,13 +159,13 @@ std::vector<Case> cases() {
        "scenario.json: /plan: plan file \"nowhere.json\" does not exist"},
       {"ErrorInsideReferencedPlan", "scenario.json",
        [=](json& p, json&) { walls(p)[0]["thickness"] = 0; },
-       "plan.json: /levels/0/walls/0/thickness: must be > 0, got 0"},
+       "plan.json: /levels/0/walls/0/thickness: must be in [0.001, 10], got 0"},
       {"ErrorInsideInlinePlan", "scenario.json",
        [=](json& p, json& s) {
          walls(p)[0]["thickness"] = 0;
          s["plan"] = p;
        },
-       "scenario.json: /plan/levels/0/walls/0/thickness: must be > 0, got 0"},
+       "scenario.json: /plan/levels/0/walls/0/thickness: must be in [0.001, 10], got 0"},
       {"ScenarioUnknownVersion", "scenario.json", [](json&, json& s) { s["version"] = 3; },
        "scenario.json: /version: unsupported version 3 (this build reads version 1)"},
       {"NegativeSeed", "scenario.json", [](json&, json& s) { s["seed"] = -1; },
@@ -206,7 +207,7 @@ std::vector<Case> cases() {
        "scenario.json: /lidar/mount: expected an array of 6 numbers, got 3 elements"},
       {"OdometryNoise", "scenario.json",
        [](json&, json& s) { s["odometry"]["translation_noise"] = -0.1; },
-       "scenario.json: /odometry/translation_noise: must be >= 0, got -0.1"},
+       "scenario.json: /odometry/translation_noise: must be in [0, 1], got -0.1"},
       {"MissingWallUnknown", "scenario.json",
        [](json&, json& s) { s["as_built"]["missing_walls"] = {"W8"}; },
        "scenario.json: /as_built/missing_walls/0: no wall \"W8\" in the plan"},
@@ -238,7 +239,7 @@ std::vector<Case> cases() {
        [](json&, json& s) {
          s["as_built"]["clutter"][0]["size"] = {1, 0, 1};
        },
-       "scenario.json: /as_built/clutter/0/size: every extent must be > 0"},
+       "scenario.json: /as_built/clutter/0/size: every extent must be in [0.001, 1000] m"},
   };
 }
 
