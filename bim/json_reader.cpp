@@ -209,7 +209,7 @@ std::string JsonNode::text() const {
   }
   if (auto at = findControlCharacter(s); at != std::string::npos) {
     fail("control character " + describeByte(s[at]) + " at byte " + std::to_string(at) +
-         " (not allowed in names)");
+         " (control characters are not allowed)");
   }
   return s;
 }

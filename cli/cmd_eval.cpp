@@ -6,21 +6,11 @@
 
 #include "eval/ape.hpp"
 #include "eval/coverage.hpp"
+#include "run/trajectory_file.hpp"
 
 namespace isg::cli {
 
 namespace {
-
-eval::Trajectory readTrajectory(const std::string& path) {
-  try {
-    return eval::readTum(path);
-  } catch (const std::runtime_error& e) {
-    // readTum's messages already start with the file name.
-    std::string what = e.what();
-    if (what.rfind(path + ": ", 0) == 0) what = what.substr(path.size() + 2);
-    throw bim::InputError(path, "", what);
-  }
-}
 
 void printStatistics(const char* title, const std::string& alignment, const eval::Statistics& s) {
   std::printf("%s\n(%s)\n\n", title, alignment.c_str());
@@ -66,8 +56,8 @@ EvalCommand::EvalCommand(CLI::App& parent) {
 }
 
 int EvalCommand::run() {
-  const eval::Trajectory reference = readTrajectory(reference_);
-  const eval::Trajectory estimate = readTrajectory(estimate_);
+  const eval::Trajectory reference = run::readTrajectoryFile(reference_);
+  const eval::Trajectory estimate = run::readTrajectoryFile(estimate_);
   eval::ErrorOptions options;
   options.align = align_ == "se3"
                       ? eval::Alignment::kSE3

@@ -5,7 +5,9 @@
 
 #include "bim/agraph.hpp"
 #include "cli/progress_bar.hpp"
+#include "cli/route_check.hpp"
 #include "cli/run_session.hpp"
+#include "run/atomic_folder.hpp"
 #include "sim/scan_pipeline.hpp"
 #include "sim/simulation.hpp"
 #include "worlds/reference_plans.hpp"
@@ -60,15 +62,16 @@ int RunCommand::run() {
   namespace fs = std::filesystem;
   const std::string input = input_.empty() ? std::string(worlds::kDefaultWorld) : input_;
   if (output_.empty()) output_ = "runs/" + worldName(input) + "-" + method_;
-  if (fs::exists(output_) && !force_) {
-    throw bim::InputError(output_, "", "already exists (use --force to replace it)");
+  // Before the run, not after it: a folder that cannot be written fails at once.
+  if (const auto parent = fs::path(output_).parent_path(); !parent.empty()) {
+    std::error_code ignored;
+    fs::create_directories(parent, ignored);
   }
+  run::checkCanCreateFolder(output_, force_);
   bim::Scenario scenario = loadInput(input, "run");
   if (seed_) scenario.seed = *seed_;
   const sim::Simulation simulation(scenario);
-  for (const auto& room : simulation.route().skipped_rooms) {
-    std::cerr << "isg run: warning: room " << room << " cannot be reached; the tour skips it\n";
-  }
+  checkRoute("isg run", scenario, simulation, duration_);
   const bim::AGraph agraph = bim::buildAGraph(scenario.plan);
   run::SensorStreams streams = sim::sensorStreams(simulation, duration_);
 
@@ -89,9 +92,6 @@ int RunCommand::run() {
   const run::RunRecord record = run::runLocalizer(std::move(setup), *localizer, std::move(streams),
                                                   source, progressOn(bar, period));
   bar.finish();
-  if (const auto parent = fs::path(output_).parent_path(); !parent.empty()) {
-    fs::create_directories(parent);
-  }
   finishRun("isg run", output_, force_, record);
   return kExitOk;
 }

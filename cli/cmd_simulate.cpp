@@ -5,6 +5,8 @@
 #include <iostream>
 
 #include "cli/progress_bar.hpp"
+#include "cli/route_check.hpp"
+#include "run/atomic_folder.hpp"
 #include "sim/dataset_writer.hpp"
 #include "sim/simulation.hpp"
 
@@ -40,10 +42,8 @@ int SimulateCommand::run() {
   bim::Scenario scenario = loadInput(input_, "simulate");
   if (seed_) scenario.seed = *seed_;
   sim::Simulation simulation(scenario);
-  for (const auto& room : simulation.route().skipped_rooms) {
-    std::cerr << "isg simulate: warning: room " << room
-              << " cannot be reached; the tour skips it\n";
-  }
+  checkRoute("isg simulate", scenario, simulation, duration_);
+  run::checkCanCreateFolder(output_, force_);
   sim::DatasetOptions options;
   options.duration = duration_;
   options.overwrite = force_;

@@ -6,9 +6,11 @@
 
 #include "bim/agraph.hpp"
 #include "bim/json_reader.hpp"
+#include "bim/plan_json.hpp"
 #include "bim/plan_parser.hpp"
 #include "cli/progress_bar.hpp"
 #include "cli/run_session.hpp"
+#include "run/atomic_folder.hpp"
 #include "run/dataset_reader.hpp"
 #include "run/map_diagnosis.hpp"
 
@@ -16,13 +18,30 @@ namespace isg::cli {
 
 namespace {
 
-// The plan to localize in (--plan), or, for the report only, the one the dataset records.
-std::optional<bim::Plan> replayPlan(const std::string& plan_argument,
+// The plan to localize in (--plan), or, for the report only, the one the dataset records. A
+// --plan that is not the recorded one is an error unless --other-plan says it is meant: the
+// result of localizing in another building is meaningless, and should never pass unnoticed.
+std::optional<bim::Plan> replayPlan(const std::string& plan_argument, bool other_plan,
                                     const run::DatasetReader& dataset, const std::string& dir) {
-  if (!plan_argument.empty()) return loadInput(plan_argument, "slam").plan;
-  if (!dataset.metadata().contains("plan")) return std::nullopt;
-  const bim::JsonSource source{dir + "/metadata.json", nullptr};
-  return bim::parsePlan(bim::JsonNode(dataset.metadata()["plan"], "/plan", source));
+  const std::string metadata_file = (std::filesystem::path(dir) / "metadata.json").string();
+  const bim::JsonSource source{metadata_file, nullptr};
+  std::optional<bim::Plan> recorded;
+  if (dataset.metadata().contains("plan")) {
+    recorded = bim::parsePlan(bim::JsonNode(dataset.metadata()["plan"], "/plan", source));
+  }
+  if (plan_argument.empty()) return recorded;
+  bim::Plan given = loadInput(plan_argument, "slam").plan;
+  if (recorded && !other_plan) {
+    // Compared as the dataset records plans: every default filled in, the name left out.
+    auto levels = [](const bim::Plan& plan) { return bim::planToJson(plan)["levels"]; };
+    if (levels(*recorded) != levels(given)) {
+      throw bim::InputError(metadata_file, "/plan",
+                            "the dataset was recorded in plan \"" + recorded->name + "\", not in " +
+                                plan_argument +
+                                " (give --other-plan to localize in a different plan on purpose)");
+    }
+  }
+  return given;
 }
 
 }  // namespace
@@ -47,6 +66,8 @@ SlamCommand::SlamCommand(CLI::App& parent) {
       ->check(CLI::IsMember(methods_.names()))
       ->default_str("is-graphs with --plan, s-graph without");
   app_->add_option("-o,--output", output_, "RUN_DIR to create")->option_text("RUN_DIR")->required();
+  app_->add_flag("--other-plan", other_plan_,
+                 "localize in a --plan other than the one the dataset was recorded in");
   app_->add_flag("--force", force_, "replace RUN_DIR if it exists");
   app_->add_flag("-q,--quiet", quiet_, "no progress bar");
 }
@@ -54,15 +75,14 @@ SlamCommand::SlamCommand(CLI::App& parent) {
 int SlamCommand::run() {
   namespace fs = std::filesystem;
   run::DatasetReader dataset(dataset_);
-  if (fs::exists(output_) && !force_) {
-    throw bim::InputError(output_, "", "already exists (use --force to replace it)");
-  }
+  // Before the replay, not after it: a folder that cannot be written fails at once.
+  run::checkCanCreateFolder(output_, force_);
   const std::string method = !method_.empty() ? method_ : plan_.empty() ? "s-graph" : "is-graphs";
   if (methods_.find(method)->needs_plan && plan_.empty()) {
     std::fprintf(stderr, "isg slam: --method %s needs --plan PLAN\n", method.c_str());
     return kExitUsage;
   }
-  const std::optional<bim::Plan> plan = replayPlan(plan_, dataset, dataset_);
+  const std::optional<bim::Plan> plan = replayPlan(plan_, other_plan_, dataset, dataset_);
   const bim::AGraph agraph = plan ? bim::buildAGraph(*plan) : bim::AGraph{};
   run::SensorStreams streams = dataset.streams();
   const std::string fallback_level = plan && !plan->levels.empty() ? plan->levels[0].id : "";

@@ -18,6 +18,7 @@ class SlamCommand : public Command {
   std::string method_;
   std::string output_;
   bool force_ = false;
+  bool other_plan_ = false;
   bool quiet_ = false;
 };
 

@@ -52,7 +52,7 @@ int TableCommand::run() {
     std::string world = metrics.world;
     if (world.rfind("builtin:", 0) == 0) world = world.substr(8);
     std::optional<double> value;
-    if (metrics.localized) value = metrics.ape_B->rmse;
+    if (metrics.localized && metrics.ape_B) value = metrics.ape_B->rmse;
     if (table.find(world, metrics.method) != nullptr) {
       throw bim::InputError(dir, "", "a second run of " + world + " with " + metrics.method);
     }

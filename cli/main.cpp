@@ -1,6 +1,6 @@
 // isg: the iS-Graphs testbed's command line. Subcommands are thin: they parse flags and call the
 // modules. Exit codes: 0 success, 1 bad input (the message names the file, the JSON pointer and
-// what is wrong), 2 bad usage, 3 internal error.
+// what is wrong), 2 bad usage, 3 internal error, 128 + N stopped by signal N (Ctrl-C: 130).
 #include <CLI/CLI.hpp>
 #include <iostream>
 #include <memory>
@@ -17,6 +17,7 @@
 #include "cli/cmd_slam.hpp"
 #include "cli/cmd_table.hpp"
 #include "cli/cmd_world.hpp"
+#include "cli/interrupt.hpp"
 
 int main(int argc, char** argv) {
   using namespace isg::cli;
@@ -50,11 +51,15 @@ int main(int argc, char** argv) {
     return kExitUsage;
   }
 
+  installInterruptHandlers();
   for (const auto& command : commands) {
     if (!command->app()->parsed()) continue;
     const std::string name = command->app()->get_name();
     try {
       return command->run();
+    } catch (const Interrupted& e) {
+      std::cerr << "isg " << name << ": " << e.what() << "; nothing was written\n";
+      return 128 + e.signalNumber();
     } catch (const isg::bim::InputError& e) {
       std::cerr << "isg " << name << ": error: " << e.what() << "\n";
       return kExitBadInput;

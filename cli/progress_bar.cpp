@@ -1,5 +1,7 @@
 #include "cli/progress_bar.hpp"
 
+#include "cli/interrupt.hpp"
+
 #include <unistd.h>
 
 #include <algorithm>
@@ -13,6 +15,8 @@ ProgressBar::ProgressBar(std::string label, bool quiet)
 ProgressBar::~ProgressBar() { finish(); }
 
 void ProgressBar::update(double fraction, const std::string& detail) {
+  // Every long command reports here once per scan, drawn or quiet: the place to notice Ctrl-C.
+  throwIfInterrupted();
   if (!enabled_) return;
   const auto now = std::chrono::steady_clock::now();
   if (drawn_ && fraction < 1.0 && now - last_ < std::chrono::milliseconds(100)) return;

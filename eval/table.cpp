@@ -28,24 +28,97 @@ std::string cell(const std::optional<double>& value) {
   return b;
 }
 
-std::vector<std::string> splitCsv(const std::string& line) {
+// One CSV line's fields (RFC 4180): a field in double quotes may hold commas and doubled quotes;
+// spaces around an unquoted field are dropped.
+std::vector<std::string> splitCsv(std::string line) {
+  if (!line.empty() && line.back() == '\r') line.pop_back();
   std::vector<std::string> out;
-  std::string field;
-  std::istringstream in(line);
-  while (std::getline(in, field, ',')) {
-    while (!field.empty() && (field.back() == ' ' || field.back() == '\r')) field.pop_back();
-    while (!field.empty() && field.front() == ' ') field.erase(field.begin());
+  std::size_t i = 0;
+  while (true) {
+    std::string field;
+    while (i < line.size() && line[i] == ' ') ++i;
+    if (i < line.size() && line[i] == '"') {
+      ++i;
+      while (i < line.size()) {
+        if (line[i] == '"' && i + 1 < line.size() && line[i + 1] == '"') {
+          field += '"';
+          i += 2;
+        } else if (line[i] == '"') {
+          ++i;
+          break;
+        } else {
+          field += line[i++];
+        }
+      }
+      while (i < line.size() && line[i] != ',') ++i;
+    } else {
+      while (i < line.size() && line[i] != ',') field += line[i++];
+      while (!field.empty() && field.back() == ' ') field.pop_back();
+    }
     out.push_back(field);
+    if (i >= line.size()) break;
+    ++i;  // the comma
   }
-  if (!line.empty() && line.back() == ',') out.emplace_back();
+  return out;
+}
+
+// A CSV field, quoted when it holds a comma, a quote or surrounding spaces; line breaks, which
+// would split the row, become spaces.
+std::string csvField(std::string text) {
+  for (char& c : text) {
+    if (c == '\n' || c == '\r') c = ' ';
+  }
+  const bool quote = text.find_first_of(",\"") != std::string::npos ||
+                     (!text.empty() && (text.front() == ' ' || text.back() == ' '));
+  if (!quote) return text;
+  std::string out = "\"";
+  for (char c : text) out += c == '"' ? std::string("\"\"") : std::string(1, c);
+  return out + "\"";
+}
+
+// Markdown table cells: '|' would end the cell, a line break the row.
+std::string markdownCell(std::string text) {
+  std::string out;
+  for (char c : text) {
+    if (c == '|') {
+      out += "\\|";
+    } else {
+      out += (c == '\n' || c == '\r') ? ' ' : c;
+    }
+  }
   return out;
 }
 
 std::string latexEscape(const std::string& text) {
   std::string out;
   for (char c : text) {
-    if (c == '_' || c == '&' || c == '%' || c == '#') out += '\\';
-    out += c;
+    switch (c) {
+      case '_':
+      case '&':
+      case '%':
+      case '#':
+      case '$':
+      case '{':
+      case '}':
+        out += '\\';
+        out += c;
+        break;
+      case '~':
+        out += "\\textasciitilde{}";
+        break;
+      case '^':
+        out += "\\textasciicircum{}";
+        break;
+      case '\\':
+        out += "\\textbackslash{}";
+        break;
+      case '\n':
+      case '\r':
+        out += ' ';
+        break;
+      default:
+        out += c;
+    }
   }
   return out;
 }
@@ -79,10 +152,10 @@ std::string formatTable(const ResultTable& table, TableFormat format, const std:
   switch (format) {
     case TableFormat::kCsv:
       out << "world";
-      for (const auto& c : table.columns) out << "," << c;
+      for (const auto& c : table.columns) out << "," << csvField(c);
       out << "\n";
       for (std::size_t r = 0; r < table.rows.size(); ++r) {
-        out << table.rows[r];
+        out << csvField(table.rows[r]);
         for (std::size_t c = 0; c < table.columns.size(); ++c) {
           out << "," << (table.present[r][c] ? cell(table.cells[r][c]) : "");
         }
@@ -92,12 +165,12 @@ std::string formatTable(const ResultTable& table, TableFormat format, const std:
     case TableFormat::kMarkdown:
       if (!caption.empty()) out << caption << "\n\n";
       out << "| world |";
-      for (const auto& c : table.columns) out << " " << c << " |";
+      for (const auto& c : table.columns) out << " " << markdownCell(c) << " |";
       out << "\n|---|";
       for (std::size_t c = 0; c < table.columns.size(); ++c) out << "---:|";
       out << "\n";
       for (std::size_t r = 0; r < table.rows.size(); ++r) {
-        out << "| " << table.rows[r] << " |";
+        out << "| " << markdownCell(table.rows[r]) << " |";
         for (std::size_t c = 0; c < table.columns.size(); ++c) {
           out << " " << (table.present[r][c] ? cell(table.cells[r][c]) : "") << " |";
         }

@@ -2,6 +2,7 @@
 
 #include <cmath>
 #include <cstdio>
+#include <filesystem>
 #include <fstream>
 #include <sstream>
 #include <stdexcept>
@@ -64,6 +65,17 @@ Trajectory quantised(const Trajectory& trajectory) {
   return out;
 }
 
+TumError::TumError(std::string file, int line, std::string reason)
+    : std::runtime_error(file + ": " +
+                         (line > 0 ? "line " + std::to_string(line) + ": " + reason : reason)),
+      file_(std::move(file)),
+      line_(line),
+      reason_(std::move(reason)) {}
+
+std::string TumError::located() const {
+  return line_ > 0 ? "line " + std::to_string(line_) + ": " + reason_ : reason_;
+}
+
 Trajectory parseTum(const std::string& text, const std::string& file) {
   Trajectory out;
   std::istringstream in(text);
@@ -77,18 +89,20 @@ Trajectory parseTum(const std::string& text, const std::string& file) {
     double v[8];
     for (double& x : v) {
       if (!(fields >> x) || !std::isfinite(x)) {
-        throw std::runtime_error(file + ": line " + std::to_string(number) +
-                                 ": expected 8 numbers: t tx ty tz qx qy qz qw");
+        throw TumError(file, number, "expected 8 numbers: t tx ty tz qx qy qz qw");
       }
     }
     std::string extra;
-    if (fields >> extra) {
-      throw std::runtime_error(file + ": line " + std::to_string(number) + ": more than 8 fields");
-    }
+    if (fields >> extra) throw TumError(file, number, "more than 8 fields");
     const Eigen::Quaterniond q(v[7], v[4], v[5], v[6]);
     if (std::abs(q.norm() - 1.0) > 1e-3) {
-      throw std::runtime_error(file + ": line " + std::to_string(number) +
-                               ": quaternion is not unit length");
+      throw TumError(file, number, "quaternion is not unit length");
+    }
+    // Association and interpolation need time order; a file out of order is damaged.
+    if (!out.empty() && !(v[0] > out.back().t)) {
+      throw TumError(file, number,
+                     "time " + std::to_string(v[0]) + " does not come after the previous pose's " +
+                         std::to_string(out.back().t) + " (poses must be in increasing time)");
     }
     StampedPose p;
     p.t = v[0];
@@ -100,8 +114,18 @@ Trajectory parseTum(const std::string& text, const std::string& file) {
 }
 
 Trajectory readTum(const std::string& path) {
+  std::error_code error;
+  const auto status = std::filesystem::status(path, error);
+  if (!std::filesystem::exists(status)) throw TumError(path, 0, "cannot open file");
+  if (!std::filesystem::is_regular_file(status)) throw TumError(path, 0, "not a regular file");
+  const auto bytes = std::filesystem::file_size(path, error);
+  if (!error && bytes > kMaxTumBytes) {
+    throw TumError(path, 0,
+                   "file is " + std::to_string(bytes) + " bytes; at most " +
+                       std::to_string(kMaxTumBytes) + " are read");
+  }
   std::ifstream in(path);
-  if (!in) throw std::runtime_error(path + ": cannot open file");
+  if (!in) throw TumError(path, 0, "cannot open file");
   std::ostringstream s;
   s << in.rdbuf();
   return parseTum(s.str(), path);

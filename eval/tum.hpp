@@ -1,6 +1,8 @@
 #pragma once
 
 #include <Eigen/Geometry>
+#include <cstdint>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -25,9 +27,30 @@ Trajectory quantised(const Trajectory& trajectory);
 // A time as a TUM row keeps it (nanoseconds).
 double quantisedTime(double t);
 
-// Parses TUM text; '#' lines and blank lines are skipped. A malformed line throws
-// std::runtime_error naming `file` and the line number.
+// A TUM file that cannot be read: which file, which line (0 for the whole file), what is wrong.
+class TumError : public std::runtime_error {
+ public:
+  TumError(std::string file, int line, std::string reason);
+  const std::string& file() const { return file_; }
+  int line() const { return line_; }
+  const std::string& reason() const { return reason_; }
+  // "line 3: reason", or the reason alone for the whole file.
+  std::string located() const;
+
+ private:
+  std::string file_;
+  int line_;
+  std::string reason_;
+};
+
+// The largest TUM file read (about 10^7 poses).
+inline constexpr std::uintmax_t kMaxTumBytes = 1u << 30;
+
+// Parses TUM text; '#' lines and blank lines are skipped. A malformed line, or a time that does
+// not increase, throws TumError naming `file` and the line number. An empty trajectory is
+// returned as such: the caller says whether it needs poses.
 Trajectory parseTum(const std::string& text, const std::string& file);
+// Reads a regular file of at most kMaxTumBytes (a device or a FIFO is never read).
 Trajectory readTum(const std::string& path);
 
 }  // namespace isg::eval

@@ -1,8 +1,10 @@
 #include "run/atomic_folder.hpp"
 
+#include <signal.h>
 #include <unistd.h>
 
 #include <cerrno>
+#include <cstdio>
 #include <cstring>
 #include <fstream>
 
@@ -13,13 +15,54 @@ namespace isg::run {
 namespace fs = std::filesystem;
 
 void writeFile(const fs::path& path, const std::string& content) {
-  std::ofstream out(path, std::ios::binary);
-  out << content;
-  if (!out) throw bim::InputError(path.string(), "", "cannot write file");
+  // C stdio rather than a stream: errno then says why a write failed (a full disk, a quota).
+  std::FILE* file = std::fopen(path.c_str(), "wb");
+  if (file == nullptr) {
+    throw bim::InputError(path.string(), "", std::string("cannot write: ") + std::strerror(errno));
+  }
+  const bool written = std::fwrite(content.data(), 1, content.size(), file) == content.size();
+  const int write_errno = errno;
+  const bool closed = std::fclose(file) == 0;
+  if (!written || !closed) {
+    throw bim::InputError(
+        path.string(), "",
+        std::string("cannot write: ") + std::strerror(!written ? write_errno : errno));
+  }
 }
 
-void writeFolderAtomically(const std::string& dir, bool overwrite,
-                           const std::function<void(const fs::path&)>& fill) {
+namespace {
+
+// ".NAME.partial" + pid: the temporary folder a run writes NAME in.
+std::string partialPrefix(const fs::path& target) {
+  return "." + target.filename().string() + ".partial";
+}
+
+// Removes the temporary folders of earlier runs that were killed (SIGKILL, a power cut) while
+// writing `target`: their process is gone. A folder of a process still running is left alone.
+void removeStalePartials(const fs::path& parent, const fs::path& target) {
+  const std::string prefix = partialPrefix(target);
+  std::error_code error;
+  for (const auto& entry : fs::directory_iterator(parent, error)) {
+    const std::string name = entry.path().filename().string();
+    if (name.rfind(prefix, 0) != 0) continue;
+    const std::string digits = name.substr(prefix.size());
+    if (digits.empty() || digits.find_first_not_of("0123456789") != std::string::npos ||
+        digits.size() > 9) {
+      continue;
+    }
+    const pid_t pid = static_cast<pid_t>(std::stol(digits));
+    if (pid == ::getpid() || (::kill(pid, 0) != 0 && errno == ESRCH)) {
+      std::error_code ignored;
+      fs::remove_all(entry.path(), ignored);
+    }
+  }
+}
+
+}  // namespace
+
+namespace {
+
+fs::path createTemporaryFolder(const std::string& dir, bool overwrite) {
   const fs::path target(dir);
   if (fs::exists(target) && !overwrite) {
     throw bim::InputError(dir, "", "already exists (use --force to replace it)");
@@ -29,14 +72,40 @@ void writeFolderAtomically(const std::string& dir, bool overwrite,
     throw bim::InputError(dir, "",
                           "cannot write: directory " + parent.string() + " does not exist");
   }
-  const fs::path temporary =
-      parent / ("." + target.filename().string() + ".partial" + std::to_string(::getpid()));
-  fs::remove_all(temporary);
-  fs::create_directories(temporary);
+  removeStalePartials(parent, target);
+  const fs::path temporary = parent / (partialPrefix(target) + std::to_string(::getpid()));
+  std::error_code error;
+  fs::create_directories(temporary, error);
+  if (error) throw bim::InputError(dir, "", "cannot write: " + error.message());
+  return temporary;
+}
+
+}  // namespace
+
+void checkCanCreateFolder(const std::string& dir, bool overwrite) {
+  std::error_code ignored;
+  fs::remove(createTemporaryFolder(dir, overwrite), ignored);
+}
+
+void writeFolderAtomically(const std::string& dir, bool overwrite,
+                           const std::function<void(const fs::path&)>& fill) {
+  const fs::path target(dir);
+  const fs::path temporary = createTemporaryFolder(dir, overwrite);
+  std::error_code error;
   try {
-    fill(temporary);
+    try {
+      fill(temporary);
+    } catch (const bim::InputError& e) {
+      // A file inside the temporary folder is named as it would have been in the real one.
+      const std::string file = e.file();
+      const std::string inside = temporary.string() + "/";
+      if (file.rfind(inside, 0) != 0) throw;
+      throw bim::InputError((target / file.substr(inside.size())).string(), e.pointer(),
+                            e.reason());
+    }
     if (fs::exists(target)) fs::remove_all(target);
-    fs::rename(temporary, target);
+    fs::rename(temporary, target, error);
+    if (error) throw bim::InputError(dir, "", "cannot write: " + error.message());
   } catch (...) {
     std::error_code ignored;
     fs::remove_all(temporary, ignored);

@@ -13,6 +13,11 @@ namespace isg::run {
 void writeFolderAtomically(const std::string& dir, bool overwrite,
                            const std::function<void(const std::filesystem::path&)>& fill);
 
+// The checks writeFolderAtomically starts with, for a command to run before hours of work:
+// `dir` may be created (it does not exist, or `overwrite`; its parent exists and is writable).
+// Probes by creating and removing the temporary folder; earlier runs' stale ones are removed.
+void checkCanCreateFolder(const std::string& dir, bool overwrite);
+
 // One file of such a folder; a failure is an InputError naming it.
 void writeFile(const std::filesystem::path& path, const std::string& content);
 

@@ -10,22 +10,11 @@
 #include "bim/json_reader.hpp"
 #include "run/dataset_format.hpp"
 #include "run/pcd_reader.hpp"
+#include "run/trajectory_file.hpp"
 
 namespace isg::run {
 
 namespace fs = std::filesystem;
-
-namespace {
-
-Trajectory readTrajectory(const fs::path& path) {
-  try {
-    return eval::readTum(path.string());
-  } catch (const std::runtime_error& e) {
-    throw bim::InputError(path.string(), "", e.what());
-  }
-}
-
-}  // namespace
 
 void DatasetReader::readMetadata(const std::string& file) {
   const bim::JsonSource source{file, nullptr};
@@ -78,10 +67,14 @@ DatasetReader::DatasetReader(const std::string& dir) : dir_(dir) {
   const fs::path metadata_path = root / dataset::kMetadata;
   metadata_ = bim::readJsonFile(metadata_path.string());
   readMetadata(metadata_path.string());
-  odometry_ = readTrajectory(root / dataset::kOdometry);
+  odometry_ = readTrajectoryFile((root / dataset::kOdometry).string());
   if (fs::exists(root / dataset::kGroundTruth))
-    ground_truth_ = readTrajectory(root / dataset::kGroundTruth);
-  const Trajectory stamps = readTrajectory(root / dataset::kScanPoses);
+    ground_truth_ = readTrajectoryFile((root / dataset::kGroundTruth).string());
+  const Trajectory stamps = readTrajectoryFile((root / dataset::kScanPoses).string());
+  if (!fs::is_directory(root / dataset::kScans)) {
+    throw bim::InputError((root / dataset::kScans).string(), "",
+                          "not a folder: a dataset keeps its LiDAR scans in scans/");
+  }
   for (const auto& entry : fs::directory_iterator(root / dataset::kScans)) {
     if (entry.path().extension() == ".pcd") scan_files_.push_back(entry.path().string());
   }

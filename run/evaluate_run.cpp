@@ -3,6 +3,9 @@
 #include "eval/ape.hpp"
 #include "eval/coverage.hpp"
 
+#include <stdexcept>
+#include <string>
+
 namespace isg::run {
 
 namespace {
@@ -29,35 +32,54 @@ RunEvaluation evaluateRun(const RunRecord& run) {
   m.sim_seconds = streams.duration;
   m.wall_seconds = run.wall_seconds;
   m.real_time_factor = run.wall_seconds > 0 ? streams.duration / run.wall_seconds : 0.0;
-  const eval::Coverage coverage = eval::localizationCoverage(streams.ground_truth, run.estimate);
+  const bool has_truth = !streams.ground_truth.empty();
+  if (!has_truth) m.notes.push_back("no ground truth: no APE (a dataset without groundtruth.tum)");
+  // Without ground truth, when the localizer first answered is still known from the odometry.
+  const eval::Coverage coverage =
+      eval::localizationCoverage(has_truth ? streams.ground_truth : streams.odometry, run.estimate);
   m.localized = coverage.localized;
   if (coverage.localized) {
     m.time_to_localize = coverage.time_to_first;
     m.share_localized = coverage.share;
   }
+  // An error measure that cannot be computed (no pose of the estimate near the ground truth's
+  // stamps, a map trajectory too short or straight to align) is left out with a note saying why.
+  auto attempt = [&](const char* what, const auto& compute) {
+    try {
+      compute();
+    } catch (const std::invalid_argument& e) {
+      m.notes.push_back(std::string(what) + " not computed: " + e.what());
+    }
+  };
   eval::ErrorOptions planar;
   planar.align = eval::Alignment::kNone;
   planar.project_xy = true;
-  if (!run.estimate.empty()) {
-    const auto ape = eval::absolutePoseError(streams.ground_truth, run.estimate, planar);
-    m.ape_B = ape.translation_stats;
-    m.ape_B_rotation_deg = ape.rotation_stats;
-    for (std::size_t i = 0; i < ape.translation.size(); ++i) {
-      evaluation.error_over_time.emplace_back(run.estimate[ape.association.estimate[i]].t,
-                                              ape.translation[i]);
-    }
+  if (has_truth && !run.estimate.empty()) {
+    attempt("APE in B", [&] {
+      const auto ape = eval::absolutePoseError(streams.ground_truth, run.estimate, planar);
+      m.ape_B = ape.translation_stats;
+      m.ape_B_rotation_deg = ape.rotation_stats;
+      for (std::size_t i = 0; i < ape.translation.size(); ++i) {
+        evaluation.error_over_time.emplace_back(run.estimate[ape.association.estimate[i]].t,
+                                                ape.translation[i]);
+      }
+    });
   }
-  if (run.estimate_map.size() >= 3) {
+  if (has_truth && run.estimate_map.size() >= 3) {
     eval::ErrorOptions se3 = planar;
     se3.align = eval::Alignment::kSE3;
-    m.ape_M_se3 =
-        eval::absolutePoseError(streams.ground_truth, run.estimate_map, se3).translation_stats;
+    attempt("APE in M (SE(3)-aligned)", [&] {
+      m.ape_M_se3 =
+          eval::absolutePoseError(streams.ground_truth, run.estimate_map, se3).translation_stats;
+    });
   }
   evaluation.dead_reckoning = odometryInPlan(streams);
   if (!evaluation.dead_reckoning.empty()) {
-    m.ape_odometry_from_true_start =
-        eval::absolutePoseError(streams.ground_truth, evaluation.dead_reckoning, planar)
-            .translation_stats;
+    attempt("APE of the odometry", [&] {
+      m.ape_odometry_from_true_start =
+          eval::absolutePoseError(streams.ground_truth, evaluation.dead_reckoning, planar)
+              .translation_stats;
+    });
   }
   m.matching_status = run.search_status;
   m.matching_events = run.status_changes;

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cstdio>
+#include <stdexcept>
 
 #include "eval/ape.hpp"
 
@@ -22,10 +23,19 @@ MapDiagnosis diagnoseMap(const slam::MapDiagnostics& map, const Trajectory& grou
   }
   eval::ErrorOptions se3;
   se3.align = eval::Alignment::kSE3;
-  const auto keyframe_ape = eval::absolutePoseError(ground_truth, keyframes, se3);
-  out.keyframe_ape_rmse = keyframe_ape.translation_stats.rmse;
-  out.odometry_ape_rmse =
-      eval::absolutePoseError(ground_truth, odometry, se3).translation_stats.rmse;
+  eval::ErrorResult keyframe_ape;
+  try {
+    keyframe_ape = eval::absolutePoseError(ground_truth, keyframes, se3);
+    out.keyframe_ape_rmse = keyframe_ape.translation_stats.rmse;
+    out.odometry_ape_rmse =
+        eval::absolutePoseError(ground_truth, odometry, se3).translation_stats.rmse;
+  } catch (const std::invalid_argument& e) {
+    // Keyframes on a straight line (a short run) cannot be aligned: say so, measure nothing.
+    out.keyframe_ape_rmse.reset();
+    out.odometry_ape_rmse.reset();
+    out.note = std::string("keyframe APE not computed: ") + e.what();
+    return out;
+  }
   if (plan != nullptr && keyframe_ape.alignment) {
     out.room_detection =
         evaluateRooms(*plan, level, map.rooms, ground_truth, *keyframe_ape.alignment);
@@ -49,6 +59,7 @@ std::string formatMapDiagnosis(const MapDiagnosis& d) {
                   *d.odometry_ape_rmse / std::max(*d.keyframe_ape_rmse, 1e-12));
     out += line;
   }
+  if (d.note) out += "  note: " + *d.note + "\n";
   if (const auto& r = d.room_detection) {
     std::string missed;
     for (const auto& id : r->walked) {

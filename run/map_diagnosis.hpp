@@ -20,6 +20,7 @@ struct MapDiagnosis {
   std::optional<double> odometry_ape_rmse;  // odometry at the keyframes' stamps, likewise
   std::optional<RoomDetectionReport> room_detection;  // with a plan as well
   std::vector<slam::TimingAt> timing;                 // around 50, 200 and 500 keyframes
+  std::optional<std::string> note;                    // why a measure is missing
 };
 
 MapDiagnosis diagnoseMap(const slam::MapDiagnostics& map, const Trajectory& ground_truth,

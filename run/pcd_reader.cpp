@@ -15,6 +15,16 @@ namespace isg::run {
 
 namespace {
 
+// Quoted bytes of a damaged file, with anything unprintable shown as '?', at most 60 of them.
+std::string printable(std::string_view text) {
+  std::string out;
+  for (char c : text.substr(0, 60)) {
+    const auto byte = static_cast<unsigned char>(c);
+    out += byte < 0x20 || byte >= 0x7f ? '?' : c;
+  }
+  return "\"" + out + "\"";
+}
+
 struct PcdField {
   std::string name;
   int size = 4;
@@ -132,7 +142,7 @@ class PcdParser {
     double value = 0.0;
     const auto [end, error] = std::from_chars(token.data(), token.data() + token.size(), value);
     if (error != std::errc() || end != token.data() + token.size()) {
-      failLine("not a number: \"" + std::string(token.substr(0, 40)) + "\"");
+      failLine("not a number: " + printable(token));
     }
     return value;
   }
@@ -141,8 +151,7 @@ class PcdParser {
     std::size_t value = 0;
     const auto [end, error] = std::from_chars(token.data(), token.data() + token.size(), value);
     if (error != std::errc() || end != token.data() + token.size()) {
-      failLine(std::string(what) + " must be a non-negative integer, got \"" +
-               std::string(token.substr(0, 40)) + "\"");
+      failLine(std::string(what) + " must be a non-negative integer, got " + printable(token));
     }
     return value;
   }
@@ -227,10 +236,10 @@ class PcdParser {
           failLine("DATA binary_compressed is not supported (write DATA binary or ascii)");
         }
         if (header.data != "binary" && header.data != "ascii") {
-          failLine("unknown DATA \"" + header.data.substr(0, 40) + "\" (expected binary or ascii)");
+          failLine("unknown DATA " + printable(header.data) + " (expected binary or ascii)");
         }
       } else {
-        failLine("not a PCD header line: \"" + std::string(line.substr(0, 60)) + "\"");
+        failLine("not a PCD header line: " + printable(line));
       }
     }
     if (header.fields.empty()) failHeader("no FIELDS line");
@@ -253,8 +262,8 @@ class PcdParser {
           (f.type == 'F' && (size == 4 || size == 8)) ||
           ((f.type == 'U' || f.type == 'I') && (size == 1 || size == 2 || size == 4 || size == 8));
       if (!valid) {
-        failHeader("field " + f.name + " has TYPE " + std::string(types[i].substr(0, 8)) +
-                   " SIZE " + std::string(sizes[i].substr(0, 8)) + ", not a PCD number type");
+        failHeader("field " + printable(f.name) + " has TYPE " + printable(types[i]) + " SIZE " +
+                   printable(sizes[i]) + ", not a PCD number type");
       }
       if (f.count < 1) failHeader("field " + f.name + " has COUNT 0");
       f.size = int(size);

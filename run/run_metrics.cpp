@@ -107,6 +107,7 @@ nlohmann::json metricsToJson(const RunMetrics& m) {
     }
     j["matching_events"] = events;
   }
+  if (!m.notes.empty()) j["notes"] = m.notes;
   return j;
 }
 
@@ -138,8 +139,16 @@ RunMetrics metricsFromJson(const nlohmann::json& document, const std::string& fi
                                    e.required<std::string>("reason")});
     }
   }
-  if (m.localized && (!m.time_to_localize || !m.share_localized || !m.ape_B)) {
-    r.fail("/localized", "a localized run needs time_to_localize, share_localized and ape_B");
+  if (document.contains("notes")) {
+    const auto& notes = document["notes"];
+    if (!notes.is_array()) r.fail("/notes", "expected an array of strings");
+    for (std::size_t i = 0; i < notes.size(); ++i) {
+      if (!notes[i].is_string()) r.fail("/notes/" + std::to_string(i), "expected a string");
+      m.notes.push_back(notes[i].get<std::string>());
+    }
+  }
+  if (m.localized && (!m.time_to_localize || !m.share_localized)) {
+    r.fail("/localized", "a localized run needs time_to_localize and share_localized");
   }
   return m;
 }

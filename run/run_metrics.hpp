@@ -33,6 +33,8 @@ struct RunMetrics {
   std::optional<Statistics> ape_odometry_from_true_start;  // dead reckoning, for comparison
   std::optional<std::string> matching_status;              // methods that search for a match
   std::vector<slam::StatusChange> matching_events;
+  // Why a measure is missing ("no ground truth: no APE", "APE in M … not computed: …").
+  std::vector<std::string> notes;
 };
 
 nlohmann::json metricsToJson(const RunMetrics& metrics);

@@ -21,11 +21,14 @@ std::string reportSvg(const RunRecord& run, const RunEvaluation& evaluation) {
   const RunMetrics& m = evaluation.metrics;
   eval::ReportInput input;
   input.title = "isg run: " + run.setup.world + " — " + run.setup.method;
-  if (m.localized) {
+  if (m.localized && m.ape_B) {
     input.summary.push_back(format(
         "localized at t = %.1f s (%.0f %% of the run); APE in B (2D, no alignment) rmse %.3f m, "
         "max %.3f m",
         *m.time_to_localize, 100.0 * *m.share_localized, m.ape_B->rmse, m.ape_B->max));
+  } else if (m.localized) {
+    input.summary.push_back(format("localized at t = %.1f s (%.0f %% of the run); no APE",
+                                   *m.time_to_localize, 100.0 * *m.share_localized));
   } else {
     input.summary.push_back("never localized in the plan");
   }
@@ -63,12 +66,14 @@ std::string runSummary(const std::string& command, const std::string& dir, const
       format("%s: wrote %s (%s on %s, seed %llu)\n", command.c_str(), dir.c_str(), m.method.c_str(),
              m.world.c_str(), static_cast<unsigned long long>(m.seed));
   if (m.localized) {
-    out += format(
-        "  localized at t = %.1f s (%.0f %% of the run localized)\n"
-        "  APE in B (2D, no alignment, from then on): rmse %.3f m, median %.3f m, max %.3f m "
-        "over %d poses\n",
-        *m.time_to_localize, 100.0 * *m.share_localized, m.ape_B->rmse, m.ape_B->median,
-        m.ape_B->max, m.ape_B->count);
+    out += format("  localized at t = %.1f s (%.0f %% of the run localized)\n", *m.time_to_localize,
+                  100.0 * *m.share_localized);
+    if (m.ape_B) {
+      out += format(
+          "  APE in B (2D, no alignment, from then on): rmse %.3f m, median %.3f m, max %.3f m "
+          "over %d poses\n",
+          m.ape_B->rmse, m.ape_B->median, m.ape_B->max, m.ape_B->count);
+    }
   } else {
     out += "  not localized in the plan";
     if (m.matching_status) out += " (matching: " + *m.matching_status + ")";
@@ -81,6 +86,7 @@ std::string runSummary(const std::string& command, const std::string& dir, const
     out += format("  odometry from the true start: APE rmse %.3f m\n",
                   m.ape_odometry_from_true_start->rmse);
   }
+  for (const auto& note : m.notes) out += "  note: " + note + "\n";
   if (m.sim_seconds > 0) {
     out += format("  %.1f s of robot time in %.1f s: %.1fx real time\n", m.sim_seconds,
                   m.wall_seconds, m.real_time_factor);

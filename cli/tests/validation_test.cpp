@@ -2,6 +2,7 @@
 // names the file, the JSON pointer and what is wrong, the exit code is 1, nothing is written.
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <functional>
 #include <nlohmann/json.hpp>
 
@@ -240,6 +241,67 @@ std::vector<Case> cases() {
          s["as_built"]["clutter"][0]["size"] = {1, 0, 1};
        },
        "scenario.json: /as_built/clutter/0/size: every extent must be in [0.001, 1000] m"},
+      // --- what MuJoCo and the XML of a world can hold (docs/formats.md, Limits)
+      {"ControlCharacterInId", "plan.json",
+       [=](json& p, json&) { walls(p)[0]["id"] = std::string("W\0x", 3); },
+       "plan.json: /levels/0/walls/0/id: control character U+0000 at byte 1 (not allowed in "
+       "ids)"},
+      {"ControlCharacterInName", "plan.json",
+       [=](json& p, json&) { rooms(p)[0]["name"] = "Office\n2"; },
+       "plan.json: /levels/0/rooms/0/name: control character U+000A at byte 6 (control "
+       "characters are not allowed)"},
+      {"ControlCharacterInPlanPath", "scenario.json",
+       [](json&, json& s) { s["plan"] = std::string("plan\0.json", 10); },
+       "scenario.json: /plan: control character U+0000 at byte 4 (control characters are not "
+       "allowed)"},
+      {"UnderflowingThickness", "plan.json",
+       [=](json& p, json&) { walls(p)[2]["thickness"] = 1e-300; },
+       "plan.json: /levels/0/walls/2/thickness: must be in [0.001, 10], got 1e-300"},
+      {"FarCoordinate", "plan.json",
+       [=](json& p, json&) {
+         walls(p)[0]["end"] = {1e6, 0};
+       },
+       "plan.json: /levels/0/walls/0/end: coordinate 1e+06 is out of range: points must lie "
+       "within ±10000 m of the origin"},
+      {"LevelTooLarge", "plan.json",
+       [=](json& p, json&) {
+         walls(p)[0]["end"] = {2000, 0};
+       },
+       "plan.json: /levels/0: level \"L0\" spans 2000 m × 4 m; at most 1000 m on a side is "
+       "supported (docs/formats.md, Limits)"},
+      {"TooManyWalls", "plan.json",
+       [=](json& p, json&) {
+         json many = json::array();
+         for (int i = 0; i < 20001; ++i) {
+           many.push_back({{"id", "X" + std::to_string(i)},
+                           {"start", {0.01 * i, 0}},
+                           {"end", {0.01 * i, 1}},
+                           {"thickness", 0.005}});
+         }
+         walls(p) = many;
+       },
+       "plan.json: /levels/0/walls: 20001 walls; at most 20000 are supported (docs/formats.md, "
+       "Limits)"},
+      {"TooManyOutlineVertices", "plan.json",
+       [=](json& p, json&) {
+         json outline = json::array();
+         for (int i = 0; i < 100001; ++i) {
+           const double a = 2 * 3.14159265358979 * i / 100001;
+           outline.push_back({2 + std::cos(a), 2 + std::sin(a)});
+         }
+         rooms(p)[0]["outline"] = outline;
+       },
+       "plan.json: /levels/0/rooms/0/outline: 100001 vertices; at most 100000 are supported "
+       "(docs/formats.md, Limits)"},
+      {"WallShiftTooFar", "scenario.json",
+       [](json&, json& s) { s["as_built"]["wall_shifts"][0]["offset"] = 50; },
+       "scenario.json: /as_built/wall_shifts/0/offset: must be in [-10, 10], got 50"},
+      {"AsBuiltTooLarge", "scenario.json",
+       [](json&, json& s) {
+         s["as_built"]["extra_walls"][0]["end"] = {1, 2000};
+       },
+       "scenario.json: /as_built: with its as-built changes level \"L0\" spans 6.1 m × 2000.1 "
+       "m; at most 1000 m on a side is supported (docs/formats.md, Limits)"},
   };
 }
 
@@ -303,6 +365,34 @@ TEST(ValidInput, UnknownFieldIsAWarningAndTheWorldIsWritten) {
             "isg world: warning: plan.json: /levels/0/walls/0/material: unknown field "
             "\"material\" (ignored)\n");
   EXPECT_TRUE(sandbox.exists("world.xml"));
+}
+
+TEST(ValidInput, DevicesAndFoldersAreNotRead) {
+  testing::Sandbox sandbox("validation_devices");
+  auto result = sandbox.run("check /dev/zero");
+  EXPECT_EQ(result.exit_code, 1);
+  EXPECT_EQ(result.err, "isg check: error: /dev/zero: not a regular file\n");
+  std::filesystem::create_directories(sandbox.dir() / "folder.json");
+  result = sandbox.run("world folder.json -o world.xml");
+  EXPECT_EQ(result.exit_code, 1);
+  EXPECT_EQ(result.err, "isg world: error: folder.json: is a directory, not a file\n");
+  EXPECT_FALSE(sandbox.exists("world.xml"));
+}
+
+TEST(ValidInput, AHugeOutlineIsCheckedQuickly) {
+  // 100 000 vertices on a circle inside the first room: near-linear checks accept it at once
+  // (the timing is the test's timeout, not an assertion).
+  testing::Sandbox sandbox("validation_huge_outline");
+  json plan = validPlan();
+  json outline = json::array();
+  for (int i = 0; i < 100000; ++i) {
+    const double a = 2 * 3.14159265358979 * i / 100000;
+    outline.push_back({2 + std::cos(a), 2 + std::sin(a)});
+  }
+  plan["levels"][0]["rooms"][0]["outline"] = outline;
+  sandbox.write("plan.json", plan.dump());
+  const auto result = sandbox.run("check plan.json");
+  EXPECT_EQ(result.exit_code, 0) << result.err;
 }
 
 TEST(ValidInput, UnwritableOutputIsABadInputError) {

@@ -69,10 +69,13 @@ TEST(RunMetrics, BadFieldsAreNamedByPointer) {
   j["matching_events"][1]["status"] = 4;
   EXPECT_EQ(message(j), "runs/x/metrics.json: /matching_events/1/status: expected a string");
   j = metricsToJson(localizedRun());
-  j.erase("ape_B");
+  j.erase("share_localized");
   EXPECT_EQ(message(j),
-            "runs/x/metrics.json: /localized: a localized run needs time_to_localize, "
-            "share_localized and ape_B");
+            "runs/x/metrics.json: /localized: a localized run needs time_to_localize and "
+            "share_localized");
+  j = metricsToJson(localizedRun());
+  j["notes"] = {"no ground truth", 3};
+  EXPECT_EQ(message(j), "runs/x/metrics.json: /notes/1: expected a string");
   EXPECT_EQ(message(nlohmann::json::array()), "runs/x/metrics.json: expected an object");
 }
 

@@ -1,0 +1,33 @@
+#include "cli/interrupt.hpp"
+
+#include <csignal>
+#include <string>
+
+namespace isg::cli {
+
+namespace {
+
+// A signal handler can reach nothing but a flag of static storage: this one variable is the
+// process-wide state the C signal interface forces on us.
+volatile std::sig_atomic_t received_signal = 0;
+
+extern "C" void raiseInterruptFlag(int signal_number) { received_signal = signal_number; }
+
+}  // namespace
+
+Interrupted::Interrupted(int signal_number)
+    : std::runtime_error(signal_number == SIGINT
+                             ? "interrupted (Ctrl-C)"
+                             : "stopped by signal " + std::to_string(signal_number)),
+      signal_number_(signal_number) {}
+
+void installInterruptHandlers() {
+  std::signal(SIGINT, raiseInterruptFlag);
+  std::signal(SIGTERM, raiseInterruptFlag);
+}
+
+void throwIfInterrupted() {
+  if (received_signal != 0) throw Interrupted(received_signal);
+}
+
+}  // namespace isg::cli

@@ -1,0 +1,41 @@
+#include "cli/route_check.hpp"
+
+#include <algorithm>
+#include <cstdio>
+
+#include "bim/input_error.hpp"
+#include "bim/json_reader.hpp"
+
+namespace isg::cli {
+
+double checkRoute(const std::string& command, const bim::Scenario& scenario,
+                  const sim::Simulation& simulation, double duration) {
+  const auto& route = simulation.route();
+  for (const auto& room : route.skipped_rooms) {
+    std::fprintf(stderr, "%s: warning: room %s cannot be reached; the tour skips it\n",
+                 command.c_str(), room.c_str());
+  }
+  const double route_seconds = simulation.duration();
+  const double seconds = duration < 0 ? route_seconds : std::min(duration, route_seconds);
+  if (simulation.scanCount(seconds) == 0) {
+    const std::string why =
+        route_seconds <= 0.0
+            ? "the robot has nowhere to go: the route from its start reaches no other room or "
+              "point (a one-room plan, or every door closed)"
+            : "the route takes " + bim::formatNumber(route_seconds) +
+                  " s, shorter than one LiDAR turn";
+    throw bim::InputError(
+        scenario.source, "/robot/route",
+        "no scan would be recorded: " + why + "; give robot.route.waypoints (docs/formats.md)");
+  }
+  if (duration > route_seconds + 1e-9) {
+    std::fprintf(stderr,
+                 "%s: warning: --duration %s s is longer than the route (%s s); the run ends "
+                 "with the route\n",
+                 command.c_str(), bim::formatNumber(duration).c_str(),
+                 bim::formatNumber(route_seconds).c_str());
+  }
+  return seconds;
+}
+
+}  // namespace isg::cli
