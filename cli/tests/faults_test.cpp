@@ -150,6 +150,30 @@ TEST(Faults, ADurationLongerThanTheRouteIsAWarning) {
       << result.err;
 }
 
+TEST(Determinism, TheThreadCountDoesNotChangeARun) {
+  testing::Sandbox sandbox("determinism_threads");
+  for (const char* threads : {"1", "2", "4"}) {
+    const auto result =
+        sandbox.run(std::string("run builtin:d1.asbuilt --duration 8 -q --threads ") + threads +
+                    " -o r" + threads);
+    ASSERT_EQ(result.exit_code, 0) << result.err;
+  }
+  // Byte for byte, except the matcher's own timing in sgraph.json (wall-clock seconds).
+  auto sgraph = [&](const std::string& dir) {
+    json j = json::parse(sandbox.read(dir + "/sgraph.json"));
+    j["matching"]["last_match"].erase("seconds");
+    return j;
+  };
+  for (const char* file : {"estimate.tum", "estimate_map.tum", "keyframes.tum"}) {
+    EXPECT_TRUE(sandbox.read(std::string("r1/") + file) == sandbox.read(std::string("r2/") + file))
+        << file;
+    EXPECT_TRUE(sandbox.read(std::string("r1/") + file) == sandbox.read(std::string("r4/") + file))
+        << file;
+  }
+  EXPECT_TRUE(sgraph("r1") == sgraph("r2"));
+  EXPECT_TRUE(sgraph("r1") == sgraph("r4"));
+}
+
 TEST(Faults, MissingWallsOpenTheWay) {
   // The wall between the two rooms is missing and its door is closed: the tour still reaches
   // the second room, through the gap the missing wall leaves.

@@ -138,13 +138,15 @@ TEST(Dataset, SameSeedSameBytesOtherSeedOtherBytes) {
     writeDataset(sim, (root / name).string(), options, nullptr);
   };
   make("a", 11, 1);
-  make("b", 11, 2);  // another thread count: the same bytes
+  make("b", 11, 2);  // other thread counts: the same bytes
+  make("d", 11, 4);
   make("c", 12, 2);
   std::size_t files = 0;
   for (const auto& entry : fs::recursive_directory_iterator(root / "a")) {
     if (!entry.is_regular_file()) continue;
     const fs::path relative = fs::relative(entry.path(), root / "a");
     EXPECT_EQ(slurp(entry.path()), slurp(root / "b" / relative)) << relative;
+    EXPECT_EQ(slurp(entry.path()), slurp(root / "d" / relative)) << relative;
     ++files;
   }
   EXPECT_EQ(files, 4u + 15u);  // 15 turns end by 1.5 s
