@@ -35,6 +35,19 @@ TEST(Table, CsvRoundTrips) {
   EXPECT_FALSE(back.find("d2", "is-graphs")->has_value());
 }
 
+TEST(Table, NamesWithSeparatorsAreQuotedOrEscaped) {
+  ResultTable t;
+  t.set("plans/a,b \"x\".json", "is-graphs", 0.5);
+  t.set("c|d_e", "is-graphs", 0.25);
+  const std::string csv = formatTable(t, TableFormat::kCsv);
+  EXPECT_EQ(csv, "world,is-graphs\n\"plans/a,b \"\"x\"\".json\",0.500\nc|d_e,0.250\n");
+  const ResultTable back = parseTableCsv(csv);
+  ASSERT_NE(back.find("plans/a,b \"x\".json", "is-graphs"), nullptr);
+  EXPECT_DOUBLE_EQ(**back.find("plans/a,b \"x\".json", "is-graphs"), 0.5);
+  EXPECT_NE(formatTable(t, TableFormat::kMarkdown).find("| c\\|d_e | 0.250 |"), std::string::npos);
+  EXPECT_NE(formatTable(t, TableFormat::kLatex).find("c|d\\_e & 0.250"), std::string::npos);
+}
+
 TEST(Table, BadCsvNamesTheLine) {
   EXPECT_THROW(parseTableCsv(""), std::invalid_argument);
   try {
