@@ -201,30 +201,25 @@ std::string describeByte(char c) {
 
 }  // namespace
 
-std::string JsonNode::text() const {
-  std::string s = string();
-  if (s.size() > limits::kMaxTextBytes) {
-    fail("text of " + std::to_string(s.size()) + " bytes; at most " +
-         std::to_string(limits::kMaxTextBytes) + " are supported");
+std::string JsonNode::checkedText(std::string s, std::size_t max_bytes, const char* what,
+                                  const char* control_rule) const {
+  if (s.size() > max_bytes) {
+    fail(std::string(what) + " of " + std::to_string(s.size()) + " bytes; at most " +
+         std::to_string(max_bytes) + " are supported");
   }
   if (auto at = findControlCharacter(s); at != std::string::npos) {
-    fail("control character " + describeByte(s[at]) + " at byte " + std::to_string(at) +
-         " (control characters are not allowed)");
+    fail("control character " + describeByte(s[at]) + " at byte " + std::to_string(at) + " (" +
+         control_rule + ")");
   }
   return s;
 }
 
+std::string JsonNode::text() const {
+  return checkedText(string(), limits::kMaxTextBytes, "text", "control characters are not allowed");
+}
+
 std::string JsonNode::identifier() const {
-  std::string s = nonEmptyString();
-  if (s.size() > limits::kMaxIdBytes) {
-    fail("id of " + std::to_string(s.size()) + " bytes; at most " +
-         std::to_string(limits::kMaxIdBytes) + " are supported");
-  }
-  if (auto at = findControlCharacter(s); at != std::string::npos) {
-    fail("control character " + describeByte(s[at]) + " at byte " + std::to_string(at) +
-         " (not allowed in ids)");
-  }
-  return s;
+  return checkedText(nonEmptyString(), limits::kMaxIdBytes, "id", "not allowed in ids");
 }
 
 bool JsonNode::boolean() const {

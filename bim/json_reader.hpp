@@ -75,6 +75,11 @@ class JsonNode {
   void warn(const std::string& message) const;
 
  private:
+  // `s` unless it is longer than `max_bytes` or holds a control character (`control_rule` says
+  // why not); `what` names it in the message.
+  std::string checkedText(std::string s, std::size_t max_bytes, const char* what,
+                          const char* control_rule) const;
+
   const nlohmann::json* value_;
   std::string pointer_;
   const JsonSource* source_;

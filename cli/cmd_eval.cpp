@@ -48,7 +48,7 @@ EvalCommand::EvalCommand(CLI::App& parent) {
       ->capture_default_str();
   app_->add_option("--project", project_, "xy: compare in the plane")->check(CLI::IsMember({"xy"}));
   app_->add_option("--t-max-diff", max_diff_, "association window in seconds")
-      ->check(CLI::PositiveNumber)
+      ->check(positiveNumber())
       ->capture_default_str();
   app_->add_option("--rpe", rpe_delta_, "also the relative pose error over this many poses")
       ->check(CLI::Range(1, 1000000));

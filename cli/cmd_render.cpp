@@ -23,7 +23,7 @@ RenderCommand::RenderCommand(CLI::App& parent) {
   app_->add_option("-o,--output", output_, "folder for the pictures (created if missing)")
       ->required();
   app_->add_option("--time", time_, "robot time in seconds (default: a quarter of the route)")
-      ->check(CLI::NonNegativeNumber);
+      ->check(nonNegativeNumber());
   app_->add_option("--width", width_, "picture width in pixels")
       ->check(CLI::Range(16, 1920))
       ->capture_default_str();
@@ -42,7 +42,9 @@ int RenderCommand::run() {
     throw bim::InputError(output_, "",
                           "cannot write: directory " + parent.string() + " does not exist");
   }
-  fs::create_directories(dir);
+  std::error_code error;
+  fs::create_directories(dir, error);
+  if (error) throw bim::InputError(output_, "", "cannot write: " + error.message());
   const double t =
       time_ < 0 ? 0.25 * simulation.duration() : std::min(time_, simulation.duration());
   const auto& trajectory = simulation.trajectory();

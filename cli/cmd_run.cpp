@@ -49,7 +49,7 @@ RunCommand::RunCommand(CLI::App& parent) {
       ->capture_default_str();
   app_->add_option("--seed", seed_, "seed for every random draw")->default_str("the scenario's");
   app_->add_option("--duration", duration_, "seconds of robot time")
-      ->check(CLI::PositiveNumber)
+      ->check(positiveNumber())
       ->default_str("the whole route");
   app_->add_option("--threads", threads_, "threads: one localizes, the others cast scans ahead")
       ->check(CLI::Range(1, 64))

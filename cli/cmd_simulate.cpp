@@ -30,7 +30,7 @@ SimulateCommand::SimulateCommand(CLI::App& parent) {
   app_->add_option("--seed", seed_, "seed for every random draw")->default_str("the scenario's");
   app_->add_option("--duration", duration_, "seconds to simulate")
       ->default_str("the whole route")
-      ->check(CLI::PositiveNumber);
+      ->check(positiveNumber());
   app_->add_option("--threads", threads_, "threads casting scans")
       ->check(CLI::Range(1, 64))
       ->capture_default_str();

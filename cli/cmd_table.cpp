@@ -32,7 +32,7 @@ TableCommand::TableCommand(CLI::App& parent) {
       ->capture_default_str();
   app_->add_option("--baseline", baseline_, "baseline table (CSV) to check the runs against");
   app_->add_option("--tolerance", tolerance_, "metres a cell may exceed its baseline")
-      ->check(CLI::NonNegativeNumber)
+      ->check(nonNegativeNumber())
       ->capture_default_str();
   app_->add_option("-o,--output", output_, "write the table to this file instead of stdout");
 }

@@ -1,5 +1,7 @@
 #include "cli/common.hpp"
 
+#include <cmath>
+
 #include <cstdio>
 #include <iostream>
 
@@ -21,5 +23,31 @@ std::string builtinWorldsHelp() {
          "built-in world written builtin:NAME, NAME one of: " +
          names + ".";
 }
+
+namespace {
+
+CLI::Validator numberCheck(bool allow_zero) {
+  return CLI::Validator(
+      [allow_zero](std::string& text) -> std::string {
+        double value = 0.0;
+        std::size_t used = 0;
+        try {
+          value = std::stod(text, &used);
+        } catch (const std::exception&) {
+          return "expected a number, got " + text;
+        }
+        if (used != text.size() || !std::isfinite(value)) return "expected a number, got " + text;
+        if (allow_zero ? value < 0.0 : value <= 0.0) {
+          return std::string(allow_zero ? "must be >= 0" : "must be > 0") + ", got " + text;
+        }
+        return "";
+      },
+      allow_zero ? "NUMBER >= 0" : "NUMBER > 0", allow_zero ? "non-negative" : "positive");
+}
+
+}  // namespace
+
+CLI::Validator positiveNumber() { return numberCheck(false); }
+CLI::Validator nonNegativeNumber() { return numberCheck(true); }
 
 }  // namespace isg::cli

@@ -17,6 +17,10 @@ inline constexpr int kExitBadInput = 1;
 inline constexpr int kExitUsage = 2;
 inline constexpr int kExitInternal = 3;
 
+// Option checks with plain messages ("--duration: must be > 0, got -1"), for finite numbers.
+CLI::Validator positiveNumber();
+CLI::Validator nonNegativeNumber();
+
 // Loads a plan or scenario (a file or "builtin:NAME") and prints its warnings to stderr.
 bim::Scenario loadInput(const std::string& argument, const std::string& command);
 
