@@ -10,7 +10,7 @@ namespace isg::cli {
 // Exit code of `isg table --baseline` when a cell regressed.
 inline constexpr int kExitRegression = 4;
 
-// isg table RUN_DIR... [--format md|csv|latex] [--baseline TABLE.csv --tolerance X]
+// isg table RUN_DIR... [--format md|csv|latex] [--measure M] [--baseline TABLE.csv --tolerance X]
 class TableCommand : public Command {
  public:
   explicit TableCommand(CLI::App& parent);
@@ -19,6 +19,7 @@ class TableCommand : public Command {
  private:
   std::vector<std::string> runs_;
   std::string format_ = "md";
+  std::string measure_ = "ape";
   std::string baseline_;
   double tolerance_ = 0.01;
   std::string output_;

@@ -4,16 +4,27 @@
 
 namespace isg::eval {
 
-Coverage localizationCoverage(const Trajectory& ground_truth, const Trajectory& estimate) {
+Coverage localizationCoverage(const Trajectory& ground_truth, const Trajectory& estimate,
+                              double max_gap) {
   Coverage out;
   if (ground_truth.empty() || estimate.empty()) return out;
   const auto by_time = [](const StampedPose& a, const StampedPose& b) { return a.t < b.t; };
   const double start = std::min_element(ground_truth.begin(), ground_truth.end(), by_time)->t;
   const double end = std::max_element(ground_truth.begin(), ground_truth.end(), by_time)->t;
-  const double first = std::min_element(estimate.begin(), estimate.end(), by_time)->t;
+  std::vector<double> stamps;
+  stamps.reserve(estimate.size());
+  for (const auto& p : estimate) stamps.push_back(p.t);
+  std::sort(stamps.begin(), stamps.end());
+  const double first = stamps.front();
+  for (std::size_t i = 1; i < stamps.size(); ++i) {
+    const double gap = stamps[i] - stamps[i - 1];
+    if (gap > max_gap) out.lost_seconds += gap;
+  }
+  if (end - stamps.back() > max_gap) out.lost_seconds += end - stamps.back();
   out.localized = true;
   out.time_to_first = first - start;
-  out.share = end > start ? std::clamp((end - first) / (end - start), 0.0, 1.0) : 1.0;
+  out.share =
+      end > start ? std::clamp((end - first - out.lost_seconds) / (end - start), 0.0, 1.0) : 1.0;
   return out;
 }
 

@@ -21,6 +21,8 @@ int indexOrAdd(std::vector<std::string>& names, const std::string& name) {
   return int(names.size()) - 1;
 }
 
+constexpr const char* kWrongMark = "✗";
+
 std::string cell(const std::optional<double>& value) {
   if (!value) return "-";
   char b[32];
@@ -126,17 +128,26 @@ std::string latexEscape(const std::string& text) {
 }  // namespace
 
 void ResultTable::set(const std::string& row, const std::string& column,
-                      std::optional<double> value) {
+                      std::optional<double> value, bool wrongly_localized) {
   const int r = indexOrAdd(rows, row);
   const int c = indexOrAdd(columns, column);
   cells.resize(rows.size());
   present.resize(rows.size());
+  wrong.resize(rows.size());
   for (std::size_t i = 0; i < rows.size(); ++i) {
     cells[i].resize(columns.size());
     present[i].resize(columns.size(), false);
+    wrong[i].resize(columns.size(), false);
   }
   cells[r][c] = value;
   present[r][c] = true;
+  wrong[r][c] = wrongly_localized;
+}
+
+bool ResultTable::isWrong(const std::string& row, const std::string& column) const {
+  const int r = indexOf(rows, row);
+  const int c = indexOf(columns, column);
+  return r >= 0 && c >= 0 && present[r][c] && wrong[r][c];
 }
 
 const std::optional<double>* ResultTable::find(const std::string& row,
@@ -149,6 +160,11 @@ const std::optional<double>* ResultTable::find(const std::string& row,
 
 std::string formatTable(const ResultTable& table, TableFormat format, const std::string& caption) {
   std::ostringstream out;
+  const auto text = [&](std::size_t r, std::size_t c) -> std::string {
+    if (!table.present[r][c]) return "";
+    if (table.wrong[r][c]) return format == TableFormat::kLatex ? "$\\times$" : kWrongMark;
+    return cell(table.cells[r][c]);
+  };
   switch (format) {
     case TableFormat::kCsv:
       out << "world";
@@ -157,7 +173,7 @@ std::string formatTable(const ResultTable& table, TableFormat format, const std:
       for (std::size_t r = 0; r < table.rows.size(); ++r) {
         out << csvField(table.rows[r]);
         for (std::size_t c = 0; c < table.columns.size(); ++c) {
-          out << "," << (table.present[r][c] ? cell(table.cells[r][c]) : "");
+          out << "," << text(r, c);
         }
         out << "\n";
       }
@@ -172,7 +188,7 @@ std::string formatTable(const ResultTable& table, TableFormat format, const std:
       for (std::size_t r = 0; r < table.rows.size(); ++r) {
         out << "| " << markdownCell(table.rows[r]) << " |";
         for (std::size_t c = 0; c < table.columns.size(); ++c) {
-          out << " " << (table.present[r][c] ? cell(table.cells[r][c]) : "") << " |";
+          out << " " << text(r, c) << " |";
         }
         out << "\n";
       }
@@ -188,7 +204,7 @@ std::string formatTable(const ResultTable& table, TableFormat format, const std:
       for (std::size_t r = 0; r < table.rows.size(); ++r) {
         out << latexEscape(table.rows[r]);
         for (std::size_t c = 0; c < table.columns.size(); ++c) {
-          out << " & " << (table.present[r][c] ? cell(table.cells[r][c]) : "");
+          out << " & " << text(r, c);
         }
         out << " \\\\\n";
       }
@@ -226,6 +242,10 @@ ResultTable parseTableCsv(const std::string& text) {
         table.set(fields[0], header[c], std::nullopt);
         continue;
       }
+      if (fields[c] == kWrongMark) {
+        table.set(fields[0], header[c], std::nullopt, true);
+        continue;
+      }
       std::size_t used = 0;
       double value = 0.0;
       try {
@@ -235,7 +255,7 @@ ResultTable parseTableCsv(const std::string& text) {
       }
       if (used != fields[c].size()) {
         throw std::invalid_argument("line " + std::to_string(number) + ": \"" + fields[c] +
-                                    "\" is neither a number nor \"-\"");
+                                    "\" is neither a number, \"-\" nor \"" + kWrongMark + "\"");
       }
       table.set(fields[0], header[c], value);
     }
@@ -247,6 +267,7 @@ ResultTable parseTableCsv(const std::string& text) {
 std::string Regression::describe() const {
   std::string text = row + " / " + column + ": ";
   if (no_run) return text + "no run (baseline " + cell(baseline) + ")";
+  if (wrong) return text + "wrongly localized (baseline " + cell(baseline) + ")";
   if (!value && baseline) return text + "failed (baseline " + cell(baseline) + ")";
   if (!value && !baseline) return text + "no run (baseline -)";
   return text + cell(value) + " m, baseline " + cell(baseline) + " m";
@@ -264,7 +285,15 @@ std::vector<Regression> findRegressions(const ResultTable& baseline, const Resul
         out.push_back({baseline.rows[r], baseline.columns[c], expected, std::nullopt, true});
         continue;
       }
-      const bool worse = expected && (!*got || **got > *expected + tolerance);
+      const bool baseline_wrong = baseline.wrong[r][c];
+      if (table.isWrong(baseline.rows[r], baseline.columns[c])) {
+        if (!baseline_wrong) {
+          out.push_back({baseline.rows[r], baseline.columns[c], expected, *got, false, true});
+        }
+        continue;
+      }
+      const bool worse =
+          !baseline_wrong && expected && (!*got || **got > *expected + tolerance);
       if (worse) out.push_back({baseline.rows[r], baseline.columns[c], expected, *got, false});
     }
   }

@@ -7,16 +7,20 @@
 namespace isg::eval {
 
 // A results table like the paper's Table I: one row per world, one column per method, each cell
-// the APE RMSE in metres, or nothing ("-") where the method failed (never localized).
+// the APE RMSE in metres, nothing ("-") where the method failed (never localized), or "✗" where it
+// was wrongly localized (eval/wrong_localization.hpp): a number would hide that.
 struct ResultTable {
   std::vector<std::string> rows;                          // worlds, in first-seen order
   std::vector<std::string> columns;                       // methods, in first-seen order
   std::vector<std::vector<std::optional<double>>> cells;  // [row][column]
   std::vector<std::vector<bool>> present;                 // a run exists for the cell
+  std::vector<std::vector<bool>> wrong;                   // the run was wrongly localized
 
   // Sets a cell, adding its row and column when new.
-  void set(const std::string& row, const std::string& column, std::optional<double> value);
+  void set(const std::string& row, const std::string& column, std::optional<double> value,
+           bool wrongly_localized = false);
   const std::optional<double>* find(const std::string& row, const std::string& column) const;
+  bool isWrong(const std::string& row, const std::string& column) const;
 };
 
 enum class TableFormat { kMarkdown, kCsv, kLatex };
@@ -31,11 +35,13 @@ struct Regression {
   std::string row, column;
   std::optional<double> baseline, value;
   bool no_run = false;  // the baseline has the cell, the runs do not
+  bool wrong = false;   // wrongly localized where the baseline was not
   std::string describe() const;
 };
 
 // Cells worse than the baseline by more than `tolerance` metres, cells that failed where the
-// baseline has a number, and cells of the baseline with no run at all.
+// baseline has a number, cells wrongly localized where the baseline was not, and cells of the
+// baseline with no run at all.
 std::vector<Regression> findRegressions(const ResultTable& baseline, const ResultTable& table,
                                         double tolerance);
 

@@ -2,6 +2,7 @@
 
 #include "eval/ape.hpp"
 #include "eval/coverage.hpp"
+#include "eval/wrong_localization.hpp"
 
 #include <stdexcept>
 #include <string>
@@ -81,8 +82,25 @@ RunEvaluation evaluateRun(const RunRecord& run) {
               .translation_stats;
     });
   }
+  if (has_truth && coverage.localized) {
+    const eval::WrongLocalization wrong =
+        eval::wrongLocalization(streams.ground_truth, run.estimate);
+    m.wrongly_localized = wrong.wrong;
+    m.time_wrongly_localized = wrong.seconds;
+    m.max_error_B = wrong.max_error;
+  }
   m.matching_status = run.search_status;
   m.matching_events = run.status_changes;
+  bool lost = false;
+  for (const auto& change : run.status_changes) {
+    if (change.status == "lost") {
+      lost = true;
+      m.lost_at.push_back(change.stamp);
+    } else if (change.status == "matched" && lost) {
+      lost = false;
+      m.relocalized_at.push_back(change.stamp);
+    }
+  }
   return evaluation;
 }
 

@@ -46,6 +46,19 @@ class FieldReader {
     out.sse = s.required<double>("sse");
     return out;
   }
+  // An optional array of numbers (empty when absent).
+  std::vector<double> numbers(const char* key) const {
+    std::vector<double> out;
+    if (!object_.contains(key)) return out;
+    const nlohmann::json& array = object_[key];
+    const std::string pointer = pointer_ + "/" + key;
+    if (!array.is_array()) fail(pointer, "expected an array of numbers");
+    for (std::size_t i = 0; i < array.size(); ++i) {
+      if (!array[i].is_number()) fail(pointer + "/" + std::to_string(i), "expected a number");
+      out.push_back(array[i].get<double>());
+    }
+    return out;
+  }
   const nlohmann::json& object() const { return object_; }
   const std::string& pointer() const { return pointer_; }
   [[noreturn]] void fail(const std::string& pointer, const std::string& what) const {
@@ -96,8 +109,13 @@ nlohmann::json metricsToJson(const RunMetrics& m) {
   if (m.ape_odometry_from_true_start) {
     j["ape_odometry_from_true_start"] = statisticsJson(*m.ape_odometry_from_true_start);
   }
+  if (m.wrongly_localized) j["wrongly_localized"] = *m.wrongly_localized;
+  if (m.time_wrongly_localized) j["time_wrongly_localized"] = *m.time_wrongly_localized;
+  if (m.max_error_B) j["max_error_B"] = *m.max_error_B;
   if (m.matching_status) {
     j["matching_status"] = *m.matching_status;
+    j["lost_at"] = m.lost_at;
+    j["relocalized_at"] = m.relocalized_at;
     nlohmann::json events = nlohmann::json::array();
     for (const auto& e : m.matching_events) {
       events.push_back({{"stamp", e.stamp},
@@ -128,7 +146,12 @@ RunMetrics metricsFromJson(const nlohmann::json& document, const std::string& fi
   m.ape_B_rotation_deg = r.statistics("ape_B_rotation_deg");
   m.ape_M_se3 = r.statistics("ape_M_se3");
   m.ape_odometry_from_true_start = r.statistics("ape_odometry_from_true_start");
+  m.wrongly_localized = r.optional<bool>("wrongly_localized");
+  m.time_wrongly_localized = r.optional<double>("time_wrongly_localized");
+  m.max_error_B = r.optional<double>("max_error_B");
   m.matching_status = r.optional<std::string>("matching_status");
+  m.lost_at = r.numbers("lost_at");
+  m.relocalized_at = r.numbers("relocalized_at");
   if (document.contains("matching_events")) {
     const auto& events = document["matching_events"];
     if (!events.is_array()) r.fail("/matching_events", "expected an array");

@@ -31,8 +31,16 @@ struct RunMetrics {
   std::optional<Statistics> ape_B_rotation_deg;
   std::optional<Statistics> ape_M_se3;                     // the map-frame estimate, SE(3)-aligned
   std::optional<Statistics> ape_odometry_from_true_start;  // dead reckoning, for comparison
-  std::optional<std::string> matching_status;              // methods that search for a match
+  // Wrong localization (eval/wrong_localization.hpp): rows more than 1 m off; the run is wrong
+  // when they last longer than 5 s on end. With ground truth and a localized run only.
+  std::optional<bool> wrongly_localized;
+  std::optional<double> time_wrongly_localized;  // s
+  std::optional<double> max_error_B;             // m, the largest 2D error of any row in B
+  std::optional<std::string> matching_status;    // methods that search for a match
   std::vector<slam::StatusChange> matching_events;
+  // Stamps where the search status became "lost", and where it became "matched" again after.
+  std::vector<double> lost_at;
+  std::vector<double> relocalized_at;
   // Why a measure is missing ("no ground truth: no APE", "APE in M … not computed: …").
   std::vector<std::string> notes;
 };

@@ -32,6 +32,10 @@ std::string reportSvg(const RunRecord& run, const RunEvaluation& evaluation) {
   } else {
     input.summary.push_back("never localized in the plan");
   }
+  if (m.wrongly_localized && *m.wrongly_localized) {
+    input.summary.push_back(format("WRONGLY LOCALIZED: %.1f s more than 1 m off (max %.2f m)",
+                                   *m.time_wrongly_localized, *m.max_error_B));
+  }
   if (m.ape_odometry_from_true_start) {
     input.summary.push_back(
         format("odometry from the true start: APE rmse %.3f m; %.1f s of robot time in %.1f s "
@@ -74,10 +78,26 @@ std::string runSummary(const std::string& command, const std::string& dir, const
           "over %d poses\n",
           m.ape_B->rmse, m.ape_B->median, m.ape_B->max, m.ape_B->count);
     }
+    if (m.wrongly_localized && *m.wrongly_localized) {
+      out += format(
+          "  WRONGLY LOCALIZED: %.1f s with the pose more than 1 m off (max %.2f m)\n",
+          *m.time_wrongly_localized, *m.max_error_B);
+    } else if (m.time_wrongly_localized && *m.time_wrongly_localized > 0) {
+      out += format("  more than 1 m off for %.1f s in all, never 5 s on end\n",
+                    *m.time_wrongly_localized);
+    }
   } else {
     out += "  not localized in the plan";
     if (m.matching_status) out += " (matching: " + *m.matching_status + ")";
     out += "\n";
+  }
+  if (!m.lost_at.empty()) {
+    std::string times;
+    for (std::size_t i = 0; i < m.lost_at.size(); ++i) {
+      times += format("%s%.1f s", i ? ", " : "", m.lost_at[i]);
+      if (i < m.relocalized_at.size()) times += format(" (relocalized at %.1f s)", m.relocalized_at[i]);
+    }
+    out += "  lost at " + times + "\n";
   }
   if (m.ape_M_se3) {
     out += format("  APE in M after SE(3) alignment: rmse %.3f m\n", m.ape_M_se3->rmse);

@@ -23,6 +23,17 @@ TEST(Coverage, LocalizedAfterAQuarterOfTheRun) {
   EXPECT_NEAR(c.share, 0.75, 1e-9);
 }
 
+TEST(Coverage, TimeLostIsNotLocalized) {
+  // Ground truth 0 … 40 s; rows 10 … 20 s, lost 20 … 25 s, rows 25 … 35 s, lost to the end.
+  Trajectory estimate = stamps(10, 20, 0.1);
+  const Trajectory later = stamps(25, 35, 0.1);
+  estimate.insert(estimate.end(), later.begin(), later.end());
+  const Coverage c = localizationCoverage(stamps(0, 40, 0.01), estimate);
+  EXPECT_NEAR(c.time_to_first, 10.0, 1e-9);
+  EXPECT_NEAR(c.lost_seconds, 10.0, 1e-6);
+  EXPECT_NEAR(c.share, 20.0 / 40.0, 1e-6);
+}
+
 TEST(Coverage, NeverLocalized) {
   const Coverage c = localizationCoverage(stamps(0, 30, 0.01), {});
   EXPECT_FALSE(c.localized);

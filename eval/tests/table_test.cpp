@@ -54,7 +54,7 @@ TEST(Table, BadCsvNamesTheLine) {
     parseTableCsv("world,a\nd1,0.1\nd2,fast\n");
     FAIL();
   } catch (const std::invalid_argument& e) {
-    EXPECT_STREQ(e.what(), "line 3: \"fast\" is neither a number nor \"-\"");
+    EXPECT_STREQ(e.what(), "line 3: \"fast\" is neither a number, \"-\" nor \"✗\"");
   }
   try {
     parseTableCsv("world,a,b\nd1,0.1\n");
@@ -79,6 +79,30 @@ TEST(Table, RegressionsNameTheCell) {
   EXPECT_EQ(regressions[0].describe(), "d1 / dead-reckoning: 0.120 m, baseline 0.099 m");
   EXPECT_EQ(regressions[1].describe(), "d2 / is-graphs: failed (baseline 0.030)");
   EXPECT_EQ(regressions[2].describe(), "d3 / dead-reckoning: no run (baseline 0.200)");
+}
+
+TEST(Table, WrongLocalizationIsMarkedAndARegression) {
+  ResultTable now;
+  now.set("d1", "is-graphs", 0.4, true);  // an APE, but wrongly localized on the way
+  now.set("d1", "odometry", 0.3);
+  EXPECT_EQ(formatTable(now, TableFormat::kCsv), "world,is-graphs,odometry\nd1,✗,0.300\n");
+  EXPECT_NE(formatTable(now, TableFormat::kMarkdown).find("| d1 | ✗ | 0.300 |"),
+            std::string::npos);
+  EXPECT_NE(formatTable(now, TableFormat::kLatex).find("d1 & $\\times$ & 0.300"),
+            std::string::npos);
+  const ResultTable back = parseTableCsv(formatTable(now, TableFormat::kCsv));
+  EXPECT_TRUE(back.isWrong("d1", "is-graphs"));
+  EXPECT_FALSE(back.isWrong("d1", "odometry"));
+  // Against a baseline that localized right: a regression; against one that was wrong too: not.
+  const auto regressions = findRegressions(parseTableCsv("world,is-graphs\nd1,0.5\n"), now, 0.01);
+  ASSERT_EQ(regressions.size(), 1u);
+  EXPECT_EQ(regressions[0].describe(), "d1 / is-graphs: wrongly localized (baseline 0.500)");
+  EXPECT_TRUE(findRegressions(back, now, 0.01).empty());
+  // A baseline cell that was wrong is not held against a run that now localizes right.
+  ResultTable fixed;
+  fixed.set("d1", "is-graphs", 0.05);
+  fixed.set("d1", "odometry", 0.3);
+  EXPECT_TRUE(findRegressions(back, fixed, 0.01).empty());
 }
 
 }  // namespace

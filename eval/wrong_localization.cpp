@@ -1,0 +1,48 @@
+#include "eval/wrong_localization.hpp"
+
+#include <algorithm>
+
+#include "eval/association.hpp"
+
+namespace isg::eval {
+
+WrongLocalization wrongLocalization(const Trajectory& ground_truth, const Trajectory& estimate,
+                                    const WrongLocalizationOptions& options) {
+  WrongLocalization out;
+  if (ground_truth.empty() || estimate.empty()) return out;
+  const Association pairs = associate(ground_truth, estimate, options.max_diff);
+  // Associated rows in the estimate's time order, each with its 2D error.
+  struct Row {
+    double t;
+    double error;
+  };
+  std::vector<Row> rows;
+  rows.reserve(pairs.estimate.size());
+  for (std::size_t i = 0; i < pairs.estimate.size(); ++i) {
+    const StampedPose& e = estimate[pairs.estimate[i]];
+    const StampedPose& g = ground_truth[pairs.reference[i]];
+    rows.push_back({e.t, (e.pose.translation() - g.pose.translation()).head<2>().norm()});
+  }
+  std::sort(rows.begin(), rows.end(), [](const Row& a, const Row& b) { return a.t < b.t; });
+  double stretch_start = 0.0;
+  bool in_stretch = false;
+  for (std::size_t i = 0; i < rows.size(); ++i) {
+    out.max_error = std::max(out.max_error, rows[i].error);
+    const bool off = rows[i].error > options.max_error;
+    const bool continues = in_stretch && off && rows[i].t - rows[i - 1].t <= options.max_gap;
+    if (continues) {
+      out.seconds += rows[i].t - rows[i - 1].t;
+    } else if (off) {
+      stretch_start = rows[i].t;
+    }
+    in_stretch = off;
+    if (!off) continue;
+    const double length = rows[i].t - stretch_start;
+    out.longest = std::max(out.longest, length);
+    if (length > options.max_duration && !out.first_wrong_at) out.first_wrong_at = stretch_start;
+  }
+  out.wrong = out.longest > options.max_duration;
+  return out;
+}
+
+}  // namespace isg::eval
