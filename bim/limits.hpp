@@ -32,6 +32,9 @@ inline constexpr std::size_t kMaxOutlineVertices = 100'000;
 inline constexpr std::size_t kMaxVerticesPerLevel = 200'000;
 // Waypoints of a route, extra walls and clutter boxes of a scenario.
 inline constexpr std::size_t kMaxScenarioItems = 10'000;
+// Kidnaps of one run, and the latest robot time one may happen at (a week).
+inline constexpr std::size_t kMaxKidnaps = 1'000;
+inline constexpr double kMaxRobotSeconds = 604'800.0;
 
 // Ids ("W1") and free text (names, file names inside a document): bytes, no control characters.
 inline constexpr std::size_t kMaxIdBytes = 128;

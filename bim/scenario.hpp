@@ -32,6 +32,15 @@ struct GaitSettings {
   double pitch_deg = 2.0;
 };
 
+// The robot lifted at `time` and put down elsewhere (the kidnapped-robot problem): at a room's
+// most open point with a heading drawn from the seed, or at a pose [x, y, yaw]. Exactly one of
+// room and pose is set. Odometry does not see the jump; ground truth does.
+struct Kidnap {
+  double time = 0.0;  // seconds of robot time
+  std::optional<std::string> room;
+  std::optional<Eigen::Vector3d> pose;
+};
+
 struct RobotConfig {
   std::string level;                          // id of the level the robot walks on
   std::optional<std::string> start_room;      // start at the centre of this room ...
@@ -39,6 +48,7 @@ struct RobotConfig {
   Route route;
   double speed = 0.5;  // m/s
   GaitSettings gait;
+  std::vector<Kidnap> kidnap;  // in time order
 };
 
 struct LidarConfig {

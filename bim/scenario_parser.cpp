@@ -31,6 +31,48 @@ std::string roomOnLevel(const Level& level, const JsonNode& node) {
   return id;
 }
 
+// A pose [x, y, yaw] on a level: in range and not inside a wall.
+Eigen::Vector3d poseOnLevel(const Level& level, const JsonNode& pose_node, const char* what) {
+  const auto pose = pose_node.numbers(3);
+  if (std::max(std::abs(pose[0]), std::abs(pose[1])) > limits::kMaxCoordinate) {
+    pose_node.fail(std::string(what) + " is out of range: points must lie within ±" +
+                   formatNumber(limits::kMaxCoordinate) + " m of the origin");
+  }
+  if (std::abs(pose[2]) > 100.0) pose_node.fail("the yaw must be within ±100 rad");
+  const Eigen::Vector2d xy(pose[0], pose[1]);
+  for (const auto& g : computeLevelGeometry(level).walls) {
+    if (containsPoint(g.footprint(), xy)) {
+      pose_node.fail(std::string(what) + " is inside wall " + inQuotes(g.wall->id));
+    }
+  }
+  return Eigen::Vector3d(pose[0], pose[1], pose[2]);
+}
+
+std::vector<Kidnap> parseKidnaps(const JsonNode& node, const Level& level) {
+  std::vector<Kidnap> out;
+  for (const auto& item : node.elements(0, limits::kMaxKidnaps, "kidnaps")) {
+    item.expectObject({"time", "to"});
+    Kidnap kidnap;
+    const JsonNode time = item.field("time");
+    kidnap.time = time.numberInRange(0.0, limits::kMaxRobotSeconds, true);
+    if (kidnap.time <= 0.0) time.fail("a kidnap must come after the start (time > 0)");
+    if (!out.empty() && kidnap.time <= out.back().time) {
+      time.fail("kidnaps must be in time order: " + formatNumber(kidnap.time) + " s is not after " +
+                formatNumber(out.back().time) + " s");
+    }
+    const JsonNode to = item.field("to");
+    to.expectObject({"room", "pose"});
+    if (to.has("room") == to.has("pose")) to.fail("give exactly one of \"room\" and \"pose\"");
+    if (to.has("room")) {
+      kidnap.room = roomOnLevel(level, to.field("room"));
+    } else {
+      kidnap.pose = poseOnLevel(level, to.field("pose"), "kidnap position");
+    }
+    out.push_back(kidnap);
+  }
+  return out;
+}
+
 RobotConfig parseRobot(const std::optional<JsonNode>& node, const Plan& plan) {
   RobotConfig robot;
   robot.level = plan.levels.front().id;
@@ -40,7 +82,7 @@ RobotConfig parseRobot(const std::optional<JsonNode>& node, const Plan& plan) {
                            : std::optional(plan.levels.front().rooms.front().id);
     return robot;
   }
-  node->expectObject({"level", "start", "route", "speed", "gait"});
+  node->expectObject({"level", "start", "route", "speed", "gait", "kidnap"});
   const Level* level = &plan.levels.front();
   if (auto l = node->optionalField("level")) {
     level = &levelNamed(plan, *l);
@@ -54,19 +96,7 @@ RobotConfig parseRobot(const std::optional<JsonNode>& node, const Plan& plan) {
     if (has_room) {
       robot.start_room = roomOnLevel(*level, start->field("room"));
     } else {
-      const JsonNode pose_node = start->field("pose");
-      const auto pose = pose_node.numbers(3);
-      if (std::max(std::abs(pose[0]), std::abs(pose[1])) > limits::kMaxCoordinate) {
-        pose_node.fail("start position is out of range: points must lie within ±" +
-                       formatNumber(limits::kMaxCoordinate) + " m of the origin");
-      }
-      robot.start_pose = Eigen::Vector3d(pose[0], pose[1], pose[2]);
-      const Eigen::Vector2d xy(pose[0], pose[1]);
-      for (const auto& g : computeLevelGeometry(*level).walls) {
-        if (containsPoint(g.footprint(), xy)) {
-          pose_node.fail("start position is inside wall " + inQuotes(g.wall->id));
-        }
-      }
+      robot.start_pose = poseOnLevel(*level, start->field("pose"), "start position");
     }
   } else if (!level->rooms.empty()) {
     robot.start_room = level->rooms.front().id;
@@ -105,6 +135,7 @@ RobotConfig parseRobot(const std::optional<JsonNode>& node, const Plan& plan) {
     if (auto v = gait->optionalField("roll_deg")) g.roll_deg = v->numberInRange(0.0, 20.0);
     if (auto v = gait->optionalField("pitch_deg")) g.pitch_deg = v->numberInRange(0.0, 20.0);
   }
+  if (auto kidnap = node->optionalField("kidnap")) robot.kidnap = parseKidnaps(*kidnap, *level);
   return robot;
 }
 

@@ -39,7 +39,9 @@ TableCommand::TableCommand(CLI::App& parent) {
       ->check(CLI::IsMember({"ape", "time-wrong", "time-to-localize"}))
       ->capture_default_str();
   app_->add_option("--baseline", baseline_, "baseline table (CSV) to check the runs against");
-  app_->add_option("--tolerance", tolerance_, "how much a cell may exceed its baseline (metres, or seconds for the time measures)")
+  app_->add_option(
+          "--tolerance", tolerance_,
+          "how much a cell may exceed its baseline (metres, or seconds for the time measures)")
       ->check(nonNegativeNumber())
       ->capture_default_str();
   app_->add_option("-o,--output", output_, "write the table to this file instead of stdout");

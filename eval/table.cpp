@@ -292,8 +292,7 @@ std::vector<Regression> findRegressions(const ResultTable& baseline, const Resul
         }
         continue;
       }
-      const bool worse =
-          !baseline_wrong && expected && (!*got || **got > *expected + tolerance);
+      const bool worse = !baseline_wrong && expected && (!*got || **got > *expected + tolerance);
       if (worse) out.push_back({baseline.rows[r], baseline.columns[c], expected, *got, false});
     }
   }

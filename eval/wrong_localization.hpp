@@ -15,7 +15,7 @@ struct WrongLocalizationOptions {
   double max_duration = 5.0;  // s
   // Consecutive estimate rows further apart than this are not one stretch: the localizer stopped
   // reporting between them (lost), so that time is not counted as wrong.
-  double max_gap = 1.0;  // s
+  double max_gap = 1.0;    // s
   double max_diff = 0.01;  // s, associating estimate rows with ground-truth stamps (as APE)
 };
 

@@ -79,9 +79,8 @@ std::string runSummary(const std::string& command, const std::string& dir, const
           m.ape_B->rmse, m.ape_B->median, m.ape_B->max, m.ape_B->count);
     }
     if (m.wrongly_localized && *m.wrongly_localized) {
-      out += format(
-          "  WRONGLY LOCALIZED: %.1f s with the pose more than 1 m off (max %.2f m)\n",
-          *m.time_wrongly_localized, *m.max_error_B);
+      out += format("  WRONGLY LOCALIZED: %.1f s with the pose more than 1 m off (max %.2f m)\n",
+                    *m.time_wrongly_localized, *m.max_error_B);
     } else if (m.time_wrongly_localized && *m.time_wrongly_localized > 0) {
       out += format("  more than 1 m off for %.1f s in all, never 5 s on end\n",
                     *m.time_wrongly_localized);
@@ -95,7 +94,8 @@ std::string runSummary(const std::string& command, const std::string& dir, const
     std::string times;
     for (std::size_t i = 0; i < m.lost_at.size(); ++i) {
       times += format("%s%.1f s", i ? ", " : "", m.lost_at[i]);
-      if (i < m.relocalized_at.size()) times += format(" (relocalized at %.1f s)", m.relocalized_at[i]);
+      if (i < m.relocalized_at.size())
+        times += format(" (relocalized at %.1f s)", m.relocalized_at[i]);
     }
     out += "  lost at " + times + "\n";
   }

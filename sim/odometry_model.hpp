@@ -22,6 +22,8 @@ class OdometryModel {
 
   // The estimate M_T_R after moving to the true pose B_T_R.
   Eigen::Isometry3d update(const Eigen::Isometry3d& B_T_R, std::mt19937_64& rng);
+  // The robot was carried to B_T_R (a kidnap): the legs did not move, so odometry does not see it.
+  void teleport(const Eigen::Isometry3d& B_T_R) { previous_ = B_T_R; }
 
   static constexpr double kRotationNoise = 0.01;  // rad per √rad
 

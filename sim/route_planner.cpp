@@ -82,6 +82,17 @@ Eigen::Vector2d roomCentre(const OccupancyGrid& grid, const bim::Room& room, boo
 
 }  // namespace
 
+Eigen::Vector2d roomGoal(const OccupancyGrid& grid, const bim::Room& room) {
+  return roomCentre(grid, room, true);
+}
+
+std::vector<Eigen::Vector2d> straightPath(const OccupancyGrid& grid, const Eigen::Vector2d& from,
+                                          const Eigen::Vector2d& to) {
+  const auto path = findPath(grid, from, to);
+  if (path.empty()) return path;
+  return straighten(grid, path);
+}
+
 std::vector<Eigen::Vector2d> findPath(const OccupancyGrid& grid, const Eigen::Vector2d& from,
                                       const Eigen::Vector2d& to) {
   const Eigen::Vector2i start = grid.cellOf(from), goal = grid.cellOf(to);
@@ -157,12 +168,14 @@ PlannedRoute planRoute(const bim::Scenario& scenario, const OccupancyGrid& grid,
                               "the building");
   }
   route.waypoints.push_back(start);
-  if (!start_room.empty()) route.visited_rooms.push_back(start_room);
+  if (!start_room.empty()) {
+    route.visited_rooms.push_back(start_room);
+    route.targets.push_back({start_room, start_room, 0, start});
+  }
 
   auto go_to = [&](const Eigen::Vector2d& target) {
-    const auto path = findPath(grid, route.waypoints.back(), target);
-    if (path.empty()) return false;
-    const auto straight = straighten(grid, path);
+    const auto straight = straightPath(grid, route.waypoints.back(), target);
+    if (straight.empty()) return false;
     route.waypoints.insert(route.waypoints.end(), straight.begin() + 1, straight.end());
     return true;
   };
@@ -176,6 +189,8 @@ PlannedRoute planRoute(const bim::Scenario& scenario, const OccupancyGrid& grid,
                                   formatPoint(plan.waypoints[i]) + " keeps " +
                                   "0.35 m from walls and clutter");
       }
+      route.targets.push_back({"", "waypoint " + std::to_string(i), int(route.waypoints.size()) - 1,
+                               plan.waypoints[i]});
     }
     return route;
   }
@@ -188,6 +203,8 @@ PlannedRoute planRoute(const bim::Scenario& scenario, const OccupancyGrid& grid,
                                   " through open doors, keeping 0.35 m from walls and clutter");
       }
       route.visited_rooms.push_back(plan.rooms[i]);
+      route.targets.push_back(
+          {plan.rooms[i], plan.rooms[i], int(route.waypoints.size()) - 1, route.waypoints.back()});
     }
     return route;
   }
@@ -218,6 +235,7 @@ PlannedRoute planRoute(const bim::Scenario& scenario, const OccupancyGrid& grid,
       continue;
     }
     route.visited_rooms.push_back(room);
+    route.targets.push_back({room, room, int(route.waypoints.size()) - 1, route.waypoints.back()});
     for (auto it = neighbours[room].rbegin(); it != neighbours[room].rend(); ++it) {
       if (!seen.count(*it)) stack.push_back(*it);
     }

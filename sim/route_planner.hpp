@@ -14,11 +14,30 @@ namespace isg::sim {
 // The robot's centre keeps at least this far from walls, clutter and closed doors.
 inline constexpr double kMinClearance = 0.35;
 
+// A place the route goes to: a room (tour, rooms) or a waypoint of the scenario's list.
+struct RouteTarget {
+  std::string room;   // empty for a waypoint
+  std::string label;  // the room's id, or "waypoint N"
+  int waypoint = 0;   // index of the leg's waypoint at which it is reached
+  Eigen::Vector2d goal = Eigen::Vector2d::Zero();  // where the robot goes for it
+};
+
+// After a kidnap (scenario robot.kidnap): put down at waypoints[0] at `time`, the robot goes on
+// to the targets it had not reached yet.
+struct KidnapLeg {
+  double time = 0.0;
+  std::vector<Eigen::Vector2d> waypoints;
+  double start_yaw = 0.0;
+  std::vector<RouteTarget> targets;
+};
+
 struct PlannedRoute {
   std::vector<Eigen::Vector2d> waypoints;  // polyline of the robot's centre; [0] is the start
   double start_yaw = 0.0;
+  std::vector<RouteTarget> targets;  // of `waypoints`, in order
+  std::vector<KidnapLeg> kidnaps;
   std::vector<std::string> visited_rooms;  // in the order the route reaches them
-  std::vector<std::string> skipped_rooms;  // a tour's rooms that cannot be reached
+  std::vector<std::string> skipped_rooms;  // rooms (and waypoints after a kidnap) not reachable
 };
 
 // Plans the scenario's route on its robot level as built (docs/simulation.md):
@@ -31,6 +50,14 @@ struct PlannedRoute {
 // from `rng`. Errors are InputErrors naming the scenario file and the JSON pointer.
 PlannedRoute planRoute(const bim::Scenario& scenario, const OccupancyGrid& grid,
                        std::mt19937_64& rng);
+
+// Where the route goes in a room: its centroid when open enough, else its most open point.
+Eigen::Vector2d roomGoal(const OccupancyGrid& grid, const bim::Room& room);
+
+// The A* path from `from` to `to`, straightened where a straight line keeps kMinClearance; empty
+// when there is none.
+std::vector<Eigen::Vector2d> straightPath(const OccupancyGrid& grid, const Eigen::Vector2d& from,
+                                          const Eigen::Vector2d& to);
 
 // The A* path between two points (cell centres, endpoints included), or empty when there is none.
 std::vector<Eigen::Vector2d> findPath(const OccupancyGrid& grid, const Eigen::Vector2d& from,

@@ -1,5 +1,7 @@
 #include "sim/simulation.hpp"
 
+#include "sim/kidnap_planner.hpp"
+
 #include <cmath>
 
 #include "sim/odometry_model.hpp"
@@ -50,6 +52,7 @@ Simulation::Simulation(const bim::Scenario& scenario)
   const double floor_z = scenario_.plan.findLevel(scenario_.robot.level)->elevation;
   trajectory_ = std::make_unique<Trajectory>(
       route_.waypoints, route_.start_yaw, scenario_.robot.speed, floor_z, gaitOf(scenario_.robot));
+  planKidnaps(scenario_, *grid_, route_, *trajectory_, rng);
   poseRobot(world_.model(), world_.data(), trajectory_->pose(0.0), 0.0, 0.0);
   lidar_ = makeLidar();
 }
@@ -97,8 +100,15 @@ run::Trajectory Simulation::odometry(double duration) const {
   OdometryModel model(scenario_.odometry, trajectory_->pose(0.0));
   const double rate = scenario_.odometry.rate_hz;
   const int n = int(std::floor(duration * rate + 1e-9));
+  const std::vector<double> jumps = trajectory_->jumps();
+  std::size_t next_jump = 0;
   for (int i = 0; i <= n; ++i) {
     const double t = i / rate;
+    // A kidnap since the last tick: the legs moved until the lift, not with it.
+    for (; next_jump < jumps.size() && jumps[next_jump] <= t; ++next_jump) {
+      model.update(trajectory_->poseBefore(jumps[next_jump]), rng);
+      model.teleport(trajectory_->pose(jumps[next_jump]));
+    }
     out.push_back({t, model.update(trajectory_->pose(t), rng)});
   }
   return out;

@@ -19,12 +19,25 @@ struct GaitConfig {
   double turn_rate = 0.8;         // rad/s when turning on the spot
 };
 
+// A kidnap makes a new leg: at its time the robot is lifted from wherever the current leg has it
+// and put down at the new leg's first waypoint, facing its start yaw.
 class Trajectory {
  public:
   Trajectory(const std::vector<Eigen::Vector2d>& waypoints, double start_yaw, double speed,
              double floor_z, const GaitConfig& gait);
 
-  double duration() const { return segments_.empty() ? 0.0 : segments_.back().t1; }
+  // Continues with a new leg from `time` on (after the current leg's start, before its end).
+  void appendLeg(double time, const std::vector<Eigen::Vector2d>& waypoints, double start_yaw);
+
+  // When the last leg ends: the robot stops there.
+  double duration() const { return legs_.back().end(); }
+  int legs() const { return int(legs_.size()); }
+  // When the robot reaches waypoint `index` of leg `leg` (the leg's start for index 0).
+  double arrival(int leg, int index) const { return legs_[leg].arrivals[index]; }
+  // The kidnaps' times (each leg's start but the first).
+  std::vector<double> jumps() const;
+  // The pose at `t` as the leg before t's leg had it: where the robot was lifted, at a jump.
+  Eigen::Isometry3d poseBefore(double t) const;
 
   struct PlanarState {
     Eigen::Vector2d xy = Eigen::Vector2d::Zero();
@@ -49,11 +62,23 @@ class Trajectory {
     Eigen::Vector2d from, to;
     double yaw0, yaw1;
   };
-  std::vector<Segment> segments_;
+  struct Leg {
+    double start = 0.0;
+    Eigen::Vector2d from = Eigen::Vector2d::Zero();
+    double yaw = 0.0;
+    std::vector<Segment> segments;
+    std::vector<double> arrivals;  // per waypoint
+    double end() const { return segments.empty() ? start : segments.back().t1; }
+  };
+  Leg makeLeg(double start, const std::vector<Eigen::Vector2d>& waypoints, double start_yaw) const;
+  int legAt(double t) const;
+  PlanarState planarInLeg(const Leg& leg, double t) const;
+  Eigen::Isometry3d poseOf(const PlanarState& p, double t) const;
+
+  std::vector<Leg> legs_;
   GaitConfig gait_;
   double floor_z_;
-  Eigen::Vector2d start_;
-  double start_yaw_;
+  double speed_;
 };
 
 }  // namespace isg::sim

@@ -52,6 +52,8 @@ const char* toString(MatchStatus status) {
       return "matched";
     case MatchStatus::kContradicted:
       return "contradicted";
+    case MatchStatus::kLost:
+      return "lost";
   }
   return "?";
 }
@@ -244,6 +246,17 @@ int GraphMatcher::matchPlane(const MatchPlane& plane, const Eigen::Vector3d& x_y
   }
   *distance = best_distance;
   return best;
+}
+
+bool GraphMatcher::planeAgrees(const MatchPlane& plane, int surface, const Eigen::Vector3d& x_y_yaw,
+                               double angle_deg, double distance) const {
+  const auto& s = graph_->surfaces[surface];
+  const double yaw = yawOfNormal(plane.plane) + x_y_yaw.z();
+  if (std::abs(wrapAngle(yaw - surface_yaw_[surface])) > angle_deg * std::numbers::pi / 180.0) {
+    return false;
+  }
+  const Eigen::Vector2d middle = apply(x_y_yaw, 0.5 * (plane.start + plane.end));
+  return std::abs(s.plane.signedDistance({middle.x(), middle.y(), 0.0})) <= distance;
 }
 
 Verification GraphMatcher::verify(const MatchInput& input, const Eigen::Vector3d& x_y_yaw) const {

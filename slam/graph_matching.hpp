@@ -75,7 +75,9 @@ struct MatchingOptions {
   double ambiguity_ratio = 0.8;
 };
 
-enum class MatchStatus { kNotYet, kAmbiguous, kMatched, kContradicted };
+// kLost: was matched, then the world stopped agreeing with the graph; a fresh S-Graph segment is
+// being matched again (docs/matching.md).
+enum class MatchStatus { kNotYet, kAmbiguous, kMatched, kContradicted, kLost };
 const char* toString(MatchStatus status);
 
 // One B_T_M checked against the S-Graph: what it explains.
@@ -134,6 +136,13 @@ class GraphMatcher {
                  double* distance) const;
   bool joinedByDoor(int a, int b) const;
 
+ public:
+  // Whether an S-plane, seen from B_T_M, lies within `angle_deg` and `distance` of an A-surface
+  // (its normal and the distance of the S-plane's middle to the surface's plane).
+  bool planeAgrees(const MatchPlane& plane, int surface, const Eigen::Vector3d& x_y_yaw,
+                   double angle_deg, double distance) const;
+
+ private:
   const bim::AGraph* graph_;
   MatchingOptions options_;
   // A uniform grid over the plan: each cell lists the surfaces passing near it and the rooms

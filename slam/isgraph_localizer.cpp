@@ -22,6 +22,15 @@ ISGraphLocalizer::ISGraphLocalizer(const Eigen::Isometry3d& R_T_L, const bim::AG
       graph_(R_T_L, options.sgraph),
       matcher_(plan, options.matching),
       plan_state_(plan) {
+  // The box of the plan's walls: a pose in B outside it (with a margin) is no pose in the building.
+  plan_lo_ = Eigen::Vector2d::Constant(1e300);
+  plan_hi_ = Eigen::Vector2d::Constant(-1e300);
+  for (const auto& surface : plan.surfaces) {
+    for (const auto& [a, b] : surface.segments) {
+      plan_lo_ = plan_lo_.cwiseMin(a).cwiseMin(b);
+      plan_hi_ = plan_hi_.cwiseMax(a).cwiseMax(b);
+    }
+  }
   graph_.setWindowHook(
       [this](ceres::Problem& problem, const std::set<int>& planes, const std::vector<int>& rooms) {
         addPlanFactors(problem, planes, rooms);
@@ -40,12 +49,12 @@ std::optional<Eigen::Isometry3d> ISGraphLocalizer::mapInPlan() const {
   return T;
 }
 
-MatchInput ISGraphLocalizer::matchInput() const {
+MatchInput matchInputOf(const SGraph& graph, double min_wall_height) {
   MatchInput input;
-  const auto& planes = graph_.planes();
-  const auto& candidates = graph_.roomCandidates();
+  const auto& planes = graph.planes();
+  const auto& candidates = graph.roomCandidates();
   std::map<int, int> room_of_keyframe;
-  for (int r : graph_.confirmedRooms()) {
+  for (int r : graph.confirmedRooms()) {
     const auto& room = candidates[r];
     MatchRoom m;
     m.id = r;
@@ -64,7 +73,7 @@ MatchInput ISGraphLocalizer::matchInput() const {
   for (int i = 0; i < int(planes.size()); ++i) {
     const auto& p = planes[i];
     // Walls only: clutter seen over a short height is not in the plan.
-    if (p.merged_into >= 0 || p.map.z_max - p.map.z_min < options_.sgraph.rooms.min_wall_height) {
+    if (p.merged_into >= 0 || p.map.z_max - p.map.z_min < min_wall_height) {
       continue;
     }
     input.planes.push_back({i, p.map.plane, p.map.start, p.map.end});
@@ -103,16 +112,120 @@ void ISGraphLocalizer::adopt(const Verification& answer) {
   localized_ = true;
 }
 
+std::string ISGraphLocalizer::lostReason(const MatchInput& input) {
+  char text[256];
+  const auto& keyframe = graph_.keyframes().back();
+  // The scan no longer agrees with the recent map: the robot is not where the graph thinks.
+  if (keyframe.registration.attempted && !keyframe.registration.agrees) {
+    std::snprintf(text, sizeof text,
+                  "the scan does not agree with the recent map (%.0f %% of its points near it)",
+                  100.0 * keyframe.registration.inlier_share);
+    return text;
+  }
+  // The pose must be in the building.
+  if (const auto pose = graph_.latestPose()) {
+    const Eigen::Vector2d p = applyPlanar(B_T_M_, pose->M_T_R.translation().head<2>());
+    const double margin = options_.outside_margin;
+    if ((p.array() < plan_lo_.array() - margin).any() ||
+        (p.array() > plan_hi_.array() + margin).any()) {
+      std::snprintf(text, sizeof text, "the pose (%.1f, %.1f) is outside the building", p.x(),
+                    p.y());
+      return text;
+    }
+  }
+  // Held correspondences: those that left the hold gate are dropped; if most of the ones the
+  // latest keyframe sees left it, the plan contradicts what the robot sees now.
+  std::map<int, const MatchPlane*> by_id;
+  for (const auto& plane : input.planes) by_id[plane.id] = &plane;
+  std::set<int> seen_now;
+  for (const auto& [plane, observation] : keyframe.observations) seen_now.insert(plane);
+  int seen_matched = 0, seen_disagreeing = 0;
+  for (auto it = plane_matches_.begin(); it != plane_matches_.end();) {
+    const auto plane = by_id.find(it->first);
+    if (plane == by_id.end()) {  // merged into another plane, or no longer a wall
+      it = plane_matches_.erase(it);
+      continue;
+    }
+    const bool agrees = matcher_.planeAgrees(*plane->second, it->second, B_T_M_,
+                                             options_.hold_angle_deg, options_.hold_distance);
+    if (seen_now.count(it->first)) {
+      ++seen_matched;
+      seen_disagreeing += agrees ? 0 : 1;
+    }
+    it = agrees ? std::next(it) : plane_matches_.erase(it);
+  }
+  if (seen_matched >= options_.lost_min_planes &&
+      seen_disagreeing > options_.lost_disagreeing_share * seen_matched) {
+    std::snprintf(text, sizeof text, "%d of the %d matched walls seen now disagree with the plan",
+                  seen_disagreeing, seen_matched);
+    return text;
+  }
+  if (int(plane_matches_.size()) < options_.lost_min_held) {
+    std::snprintf(text, sizeof text, "only %zu plan correspondences left", plane_matches_.size());
+    return text;
+  }
+  return "";
+}
+
+void ISGraphLocalizer::lose(double stamp, const std::string& reason) {
+  record(stamp, MatchStatus::kLost, reason);
+  ++losses_;
+  localized_ = false;
+  plane_matches_.clear();
+  room_matches_.clear();
+  graph_.startNewSegment(stamp, reason);
+  rooms_at_last_attempt_ = 0;
+  keyframes_at_last_attempt_ = 0;
+}
+
+void ISGraphLocalizer::checkForContradiction(double stamp) {
+  // The S-Graph as it would be without the merge: optimised on its own evidence, so that the
+  // answer it is matched to does not bias the judgement.
+  SGraph unmerged = graph_;
+  unmerged.optimiseAll(false);
+  const MatchInput input = matchInputOf(unmerged, options_.sgraph.rooms.min_wall_height);
+  MatchResult result = matcher_.match(input);
+  matching_times_.push_back(result.seconds);
+  last_match_ = result;
+  if (result.status != MatchStatus::kMatched) return;  // the merge stands on its own evidence
+  // Twice the clustering tolerances: the merge has moved B_T_M a little since it was adopted.
+  const Eigen::Vector2d middle = GraphMatcher::middleOf(input);
+  if (matcher_.sameAnswer(result.best.x_y_yaw, B_T_M_, middle, 2.0)) return;
+  // A unique answer elsewhere: the first match was wrong. Adopt the new one on the unmerged
+  // graph, and re-optimise every keyframe under it, so that nothing stays where the wrong
+  // B_T_M pulled it.
+  const double apart =
+      (applyPlanar(result.best.x_y_yaw, middle) - applyPlanar(B_T_M_, middle)).norm();
+  record(stamp, MatchStatus::kContradicted,
+         "a new unique answer " + std::to_string(apart) + " m away: " + result.reason);
+  ++contradictions_;
+  graph_ = std::move(unmerged);
+  adopt(result.best);
+  graph_.optimiseAll(true);
+  record(stamp, MatchStatus::kMatched, result.reason);
+}
+
 void ISGraphLocalizer::onKeyframe(double stamp) {
   const int keyframes = int(graph_.keyframes().size());
-  const MatchInput input = matchInput();
+  MatchInput input = matchInput();
   if (localized_) {
-    // The correspondences at the current B_T_M, for the next optimisations.
+    const std::string why = lostReason(input);
+    if (!why.empty()) {
+      lose(stamp, why);
+      return;
+    }
+    // New S-planes gain correspondences at the current B_T_M; held ones stay as they are.
     const Verification now = matcher_.verify(input, B_T_M_);
-    plane_matches_.clear();
-    room_matches_.clear();
-    for (const auto& [s, a] : now.planes) plane_matches_[s] = a;
-    for (const auto& [s, a] : now.rooms) room_matches_[s] = a;
+    for (const auto& [s, a] : now.planes) plane_matches_.emplace(s, a);
+    for (const auto& [s, a] : now.rooms) room_matches_.emplace(s, a);
+  } else if (keyframes > 1 && graph_.keyframes().back().registration.attempted &&
+             !graph_.keyframes().back().registration.agrees) {
+    // Not localized, and the world stopped agreeing with the map: the map so far would mislead
+    // the matcher. Start again from here.
+    graph_.startNewSegment(stamp, "the scan does not agree with the recent map");
+    rooms_at_last_attempt_ = 0;
+    keyframes_at_last_attempt_ = 0;
+    return;
   }
   const bool new_rooms = input.rooms.size() != rooms_at_last_attempt_;
   const bool due =
@@ -120,26 +233,15 @@ void ISGraphLocalizer::onKeyframe(double stamp) {
   if (!new_rooms && !due) return;
   rooms_at_last_attempt_ = input.rooms.size();
   keyframes_at_last_attempt_ = keyframes;
+  if (localized_) {
+    checkForContradiction(stamp);
+    return;
+  }
   MatchResult result = matcher_.match(input);
   matching_times_.push_back(result.seconds);
   last_match_ = result;
-  if (!localized_) {
-    record(stamp, result.status, result.reason);
-    if (result.status == MatchStatus::kMatched) adopt(result.best);
-    return;
-  }
-  if (result.status != MatchStatus::kMatched) return;  // the merge stands on its own evidence
-  // A unique answer elsewhere than where the merge is: the first match was wrong.
-  // Twice the clustering tolerances: the merge has moved B_T_M a little since it was adopted.
-  const Eigen::Vector2d middle = GraphMatcher::middleOf(input);
-  if (!matcher_.sameAnswer(result.best.x_y_yaw, B_T_M_, middle, 2.0)) {
-    const double apart =
-        (applyPlanar(result.best.x_y_yaw, middle) - applyPlanar(B_T_M_, middle)).norm();
-    record(stamp, MatchStatus::kContradicted,
-           "a new unique answer " + std::to_string(apart) + " m away: " + result.reason);
-    adopt(result.best);
-    record(stamp, MatchStatus::kMatched, result.reason);
-  }
+  record(stamp, result.status, result.reason);
+  if (result.status == MatchStatus::kMatched) adopt(result.best);
 }
 
 void ISGraphLocalizer::addSurface(ceres::Problem& problem, int surface) {
@@ -156,14 +258,22 @@ void ISGraphLocalizer::addPlanFactors(ceres::Problem& problem, const std::set<in
                                       const std::vector<int>& rooms) {
   if (!localized_) return;
   surfaces_in_problem_.clear();
+  // Whether the window's correspondences fix B_T_M: x and y need surface normals in two
+  // directions (or a matched four-wall room); yaw any one surface.
+  std::vector<Eigen::Vector2d> normals;
+  bool room_fixes = false;
+  bool any = false;
   for (int p : planes) {
     const auto it = plane_matches_.find(p);
     if (it == plane_matches_.end()) continue;
+    any = true;
+    normals.push_back(plan_->surfaces[it->second].plane.normal.head<2>().normalized());
     addSurface(problem, it->second);
     problem.AddResidualBlock(
         PlanePlaneFactor::create(options_.sigma_plane_angle, options_.sigma_plane_distance),
         &huber_, graph_.planeParameters(p), B_T_M_.data(), plan_state_.planes[it->second].data());
   }
+  if (!any) return;
   for (int r : rooms) {
     const auto it = room_matches_.find(r);
     if (it == room_matches_.end()) continue;
@@ -179,6 +289,21 @@ void ISGraphLocalizer::addPlanFactors(ceres::Problem& problem, const std::set<in
         plan_state_.planes[node.pairs[1][0]].data(), plan_state_.planes[node.pairs[1][1]].data());
     problem.AddResidualBlock(RoomRoomFactor::create(options_.sigma_room), nullptr,
                              graph_.roomCentre(r), B_T_M_.data(), centre);
+    room_fixes = true;
+  }
+  const double spread = std::sin(options_.min_normal_spread_deg * std::numbers::pi / 180.0);
+  bool spans = room_fixes;
+  for (std::size_t i = 0; i < normals.size() && !spans; ++i) {
+    for (std::size_t j = i + 1; j < normals.size() && !spans; ++j) {
+      spans = std::abs(normals[i].x() * normals[j].y() - normals[i].y() * normals[j].x()) >= spread;
+    }
+  }
+  problem.AddResidualBlock(
+      PlanarPriorFactor::create(B_T_M_, options_.sigma_B_T_M_translation, options_.sigma_B_T_M_yaw),
+      nullptr, B_T_M_.data());
+  if (!spans) {
+    problem.SetParameterBlockConstant(B_T_M_.data());
+    ++held_constant_;
   }
   // The plan's walls between surfaces in the problem.
   for (std::size_t w = 0; w < plan_->walls.size(); ++w) {
@@ -214,6 +339,9 @@ nlohmann::json ISGraphLocalizer::graph() const {
   }
   nlohmann::json is_graph = {{"status", toString(status_)},
                              {"localized", localized_},
+                             {"contradictions", contradictions_},
+                             {"times_lost", losses_},
+                             {"windows_with_B_T_M_held", held_constant_},
                              {"plane_matches", planes},
                              {"room_matches", rooms},
                              {"events", events}};

@@ -29,9 +29,28 @@ struct ISGraphOptions {
   double sigma_plane_distance = 0.04;
   double sigma_room = 0.1;
   // While not localized, matching is tried again after a new room is confirmed or after this
-  // many keyframes; once localized, the correspondences are refreshed at every keyframe and a
-  // full match runs again with every new room, to catch a contradiction.
+  // many keyframes; once localized, new S-planes gain correspondences as they are mapped and a
+  // full match runs again with every new room, on the S-Graph optimised without the plan, to
+  // catch a contradiction.
   int retry_keyframes = 5;
+  // Holding the plan (docs/matching.md). A correspondence, once made, is kept while its S-plane
+  // stays within these of its surface at the current B_T_M: far looser than the matcher's
+  // tolerances, so that drift the merge has not yet corrected does not drop it.
+  double hold_angle_deg = 20.0;
+  double hold_distance = 0.5;  // m
+  // Lost: of the held correspondences the latest keyframe observes (at least lost_min_planes),
+  // more than this share disagree; or fewer than lost_min_held remain in the segment.
+  int lost_min_planes = 3;
+  double lost_disagreeing_share = 0.5;
+  int lost_min_held = 3;
+  // Lost: the pose in B further than this outside the box of the plan's walls on the level.
+  double outside_margin = 1.0;  // m
+  // B_T_M is never free: a weak prior at its value before each optimisation, and held constant
+  // when the window's correspondences do not fix it (surface normals not spanning two directions
+  // at least this far apart, and no matched four-wall room).
+  double sigma_B_T_M_translation = 0.5;                     // m
+  double sigma_B_T_M_yaw = 5.0 * std::numbers::pi / 180.0;  // rad
+  double min_normal_spread_deg = 30.0;
 };
 
 // One change of the matching status, for the run's log.
@@ -41,6 +60,9 @@ struct MatchEvent {
   MatchStatus status = MatchStatus::kNotYet;
   std::string reason;
 };
+
+// The S-Graph as the matcher sees it (walls of a minimum height, confirmed rooms, transitions).
+MatchInput matchInputOf(const SGraph& graph, double min_wall_height);
 
 // The iS-Graph (paper §IV–V): the S-Graph, matched against the plan's A-Graph, then merged with
 // it. Until the match is unique it localizes in M only; from then on B_T_M is part of every
@@ -66,7 +88,9 @@ class ISGraphLocalizer : public Localizer {
   const std::vector<MatchEvent>& events() const { return events_; }
   const std::optional<MatchResult>& lastMatch() const { return last_match_; }
   // The S-Graph as the matcher sees it now.
-  MatchInput matchInput() const;
+  MatchInput matchInput() const {
+    return matchInputOf(graph_, options_.sgraph.rooms.min_wall_height);
+  }
   // Seconds spent in full matching attempts, one entry per attempt.
   const std::vector<double>& matchingTimes() const { return matching_times_; }
 
@@ -74,6 +98,12 @@ class ISGraphLocalizer : public Localizer {
   void onKeyframe(double stamp);
   void record(double stamp, MatchStatus status, const std::string& reason);
   void adopt(const Verification& answer);
+  // Why the localized graph no longer agrees with the world or the plan; empty while it does.
+  // Drops held correspondences that left the hold gate.
+  std::string lostReason(const MatchInput& input);
+  void lose(double stamp, const std::string& reason);
+  // A full match while localized, judged on the S-Graph optimised without the plan.
+  void checkForContradiction(double stamp);
   void addPlanFactors(ceres::Problem& problem, const std::set<int>& planes,
                       const std::vector<int>& rooms);
   void addSurface(ceres::Problem& problem, int surface);
@@ -98,6 +128,10 @@ class ISGraphLocalizer : public Localizer {
   std::size_t rooms_at_last_attempt_ = 0;
   int keyframes_at_last_attempt_ = 0;
   std::set<int> surfaces_in_problem_;  // per optimisation
+  Eigen::Vector2d plan_lo_ = Eigen::Vector2d::Zero(), plan_hi_ = Eigen::Vector2d::Zero();
+  int contradictions_ = 0;
+  int losses_ = 0;
+  int held_constant_ = 0;  // optimisations in which B_T_M was held (under-constrained)
 };
 
 }  // namespace isg::slam

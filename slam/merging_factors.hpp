@@ -76,4 +76,33 @@ struct RoomRoomFactor {
   double weight_;
 };
 
+// A weak prior on B_T_M [x, y, yaw] at a value: keeps it from running off where the window's
+// correspondences constrain it poorly. Residual [(x − x₀)/σ_t, (y − y₀)/σ_t, wrap(yaw − yaw₀)/σ_r].
+struct PlanarPriorFactor {
+  PlanarPriorFactor(const Eigen::Vector3d& value, double sigma_translation, double sigma_yaw)
+      : value_(value), weight_t_(1.0 / sigma_translation), weight_r_(1.0 / sigma_yaw) {}
+
+  template <typename T>
+  bool operator()(const T* x, T* residual) const {
+    using std::atan2;
+    using std::cos;
+    using std::sin;
+    residual[0] = T(weight_t_) * (x[0] - T(value_.x()));
+    residual[1] = T(weight_t_) * (x[1] - T(value_.y()));
+    const T dyaw = x[2] - T(value_.z());
+    residual[2] = T(weight_r_) * atan2(sin(dyaw), cos(dyaw));
+    return true;
+  }
+
+  static ceres::CostFunction* create(const Eigen::Vector3d& value, double sigma_translation,
+                                     double sigma_yaw) {
+    return new ceres::AutoDiffCostFunction<PlanarPriorFactor, 3, 3>(
+        new PlanarPriorFactor(value, sigma_translation, sigma_yaw));
+  }
+
+ private:
+  Eigen::Vector3d value_;
+  double weight_t_, weight_r_;
+};
+
 }  // namespace isg::slam

@@ -56,7 +56,11 @@ void SGraph::addOdometry(const Odometry& odometry) {
 
 std::optional<Odometry> SGraph::latestPose() const {
   if (!latest_odometry_) return std::nullopt;
-  if (keyframes_.empty()) return latest_odometry_;
+  if (keyframes_.empty()) {
+    Odometry out = *latest_odometry_;
+    out.M_T_R = start_correction_ * out.M_T_R;
+    return out;
+  }
   const Keyframe& k = keyframes_.back();
   Odometry out = *latest_odometry_;
   out.M_T_R = k.pose() * k.odometry.inverse() * latest_odometry_->M_T_R;
@@ -69,7 +73,7 @@ std::optional<Eigen::Isometry3d> SGraph::poseAt(double t) const {
   // The last keyframe at or before t.
   const auto it = std::upper_bound(keyframes_.begin(), keyframes_.end(), t,
                                    [](double s, const Keyframe& k) { return s < k.stamp; });
-  if (it == keyframes_.begin()) return odometry;
+  if (it == keyframes_.begin()) return start_correction_ * *odometry;
   const Keyframe& k = *(it - 1);
   return k.pose() * k.odometry.inverse() * *odometry;
 }
@@ -89,10 +93,14 @@ bool SGraph::addScan(Scan scan) {
   Keyframe keyframe;
   keyframe.stamp = scan.stamp;
   keyframe.odometry = *odometry_at_scan;
-  const Eigen::Isometry3d initial =
+  Eigen::Isometry3d initial =
       keyframes_.empty()
-          ? *odometry_at_scan
+          ? start_correction_ * *odometry_at_scan
           : keyframes_.back().pose() * keyframes_.back().odometry.inverse() * *odometry_at_scan;
+  if (options_.registration.enabled) {
+    keyframe.cloud = downsampleScan(scan, options_.registration);
+    if (!keyframes_.empty()) initial = registerKeyframe(keyframe, initial);
+  }
   keyframe.position = initial.translation();
   keyframe.orientation = Eigen::Quaterniond(initial.rotation());
   const int index = int(keyframes_.size());
@@ -133,10 +141,13 @@ bool SGraph::addScan(Scan scan) {
     keyframe.observations.emplace_back(plane, observation);
   }
   keyframes_.push_back(std::move(keyframe));
+  // Only the latest keyframes' clouds make the local map: older ones are let go.
+  const int stale = int(keyframes_.size()) - 1 - options_.registration.local_map_keyframes;
+  if (stale >= 0) std::vector<Eigen::Vector3f>().swap(keyframes_[stale].cloud);
   Timing timing;
   timing.extraction_s = seconds(start);
   const auto optimisation_start = std::chrono::steady_clock::now();
-  optimise();
+  optimise(std::max(1, int(keyframes_.size()) - options_.window), true, options_.max_iterations);
   mergeDuplicatePlanes(std::max(0, index - options_.window + 1));
   // Walls seen now may complete rooms the robot stood in a little earlier: look again from every
   // keyframe of the window.
@@ -161,10 +172,91 @@ bool SGraph::addScan(Scan scan) {
   return true;
 }
 
-void SGraph::optimise() {
+std::pair<double, double> SGraph::odometrySigmas(double distance) const {
+  return {options_.sigma_odometry_translation_floor +
+              options_.sigma_odometry_translation_per_metre * std::sqrt(distance),
+          options_.sigma_odometry_rotation_floor +
+              options_.sigma_odometry_rotation_per_metre * std::sqrt(distance)};
+}
+
+Eigen::Isometry3d SGraph::registerKeyframe(Keyframe& keyframe, const Eigen::Isometry3d& predicted) {
+  const ScanRegistrationOptions& options = options_.registration;
+  const int n = int(keyframes_.size());
+  std::vector<LocalMap::Part> parts;
+  for (int k = std::max(0, n - options.local_map_keyframes); k < n; ++k) {
+    if (!keyframes_[k].cloud.empty())
+      parts.push_back({&keyframes_[k].cloud, keyframes_[k].pose() * R_T_L_});
+  }
+  if (parts.empty() || keyframe.cloud.empty()) return predicted;
+  const LocalMap map(parts, options);
+  const Keyframe& previous = keyframes_.back();
+  const double distance = (previous.odometry.inverse() * keyframe.odometry).translation().norm();
+  const auto [sigma_t, sigma_r] = odometrySigmas(distance);
+  const Eigen::Matrix3d prior =
+      Eigen::Vector3d(1.0 / (sigma_t * sigma_t), 1.0 / (sigma_t * sigma_t),
+                      1.0 / (sigma_r * sigma_r))
+          .asDiagonal();
+  const RegistrationResult result =
+      registerScan(keyframe.cloud, predicted, R_T_L_, map, prior, options);
+  KeyframeRegistration& r = keyframe.registration;
+  r.attempted = true;
+  r.agrees = result.agrees;
+  r.inlier_share = result.inlier_share;
+  r.inlier_share_predicted = result.inlier_share_predicted;
+  if (!result.agrees) return predicted;
+  r.correction = result.correction;
+  const Eigen::Isometry3d corrected = result.apply(predicted);
+  // The motion from the previous keyframe in its heading frame, and the registration's
+  // information turned into that frame: e_M = R(yaw_i) · e_i.
+  const double yaw_i = yawOf(previous.pose().linear());
+  const Eigen::Matrix2d R_i = Eigen::Rotation2Dd(yaw_i).toRotationMatrix();
+  const Eigen::Vector2d moved = corrected.translation().head<2>() - previous.position.head<2>();
+  r.measured.head<2>() = R_i.transpose() * moved;
+  r.measured.z() = std::remainder(yawOf(corrected.linear()) - yaw_i, 2.0 * std::numbers::pi);
+  Eigen::Matrix3d R3 = Eigen::Matrix3d::Identity();
+  R3.topLeftCorner<2, 2>() = R_i;
+  const Eigen::Matrix3d information = R3.transpose() * result.information * R3;
+  // Directions the scan does not see (a corridor's axis) have no information: a tiny floor keeps
+  // the square root defined without adding any.
+  const Eigen::LLT<Eigen::Matrix3d> llt(information + 1e-9 * Eigen::Matrix3d::Identity());
+  if (llt.info() != Eigen::Success) {
+    r.agrees = false;
+    return predicted;
+  }
+  r.sqrt_information = llt.matrixU();
+  return corrected;
+}
+
+void SGraph::optimiseAll(bool with_hook, int max_iterations) {
+  optimise(1, with_hook, max_iterations);
+}
+
+void SGraph::startNewSegment(double stamp, const std::string& reason) {
+  if (keyframes_.empty()) return;
+  Segment ended;
+  ended.start = segment_start_;
+  ended.end = stamp;
+  ended.keyframes = int(keyframes_.size());
+  ended.planes = int(planes_.size());
+  ended.rooms = int(confirmedRooms().size());
+  ended.reason = reason;
+  segments_.push_back(ended);
+  for (const auto& kf : keyframes_) past_keyframes_.push_back({kf.stamp, kf.pose(), kf.odometry});
+  // M continues: the new segment's first keyframe at the latest estimate.
+  const Keyframe& last = keyframes_.back();
+  start_correction_ = last.pose() * last.odometry.inverse();
+  keyframes_.clear();
+  planes_.clear();
+  rooms_.clear();
+  floor_sum_ = 0.0;
+  floor_count_ = 0;
+  segment_start_ = stamp;
+}
+
+void SGraph::optimise(int first, bool with_hook, int max_iterations) {
   const int n = int(keyframes_.size());
   if (n < 2) return;
-  const int first = std::max(1, n - options_.window);  // keyframe 0 fixes the gauge (M)
+  first = std::clamp(first, 1, n - 1);  // keyframe 0 fixes the gauge (M)
   ceres::Problem::Options problem_options;
   // The manifolds and the loss live on this stack frame, not in the problem.
   problem_options.manifold_ownership = ceres::DO_NOT_TAKE_OWNERSHIP;
@@ -191,15 +283,18 @@ void SGraph::optimise() {
     const Keyframe& a = keyframes_[k - 1];
     const Keyframe& b = keyframes_[k];
     const Eigen::Isometry3d delta = a.odometry.inverse() * b.odometry;
-    const double distance = delta.translation().norm();
-    const double sigma_t = options_.sigma_odometry_translation_floor +
-                           options_.sigma_odometry_translation_per_metre * std::sqrt(distance);
-    const double sigma_r = options_.sigma_odometry_rotation_floor +
-                           options_.sigma_odometry_rotation_per_metre * std::sqrt(distance);
+    const auto [sigma_t, sigma_r] = odometrySigmas(delta.translation().norm());
     problem.AddResidualBlock(
         OdometryFactor::create(delta, sigma_t, sigma_r), nullptr, keyframes_[k - 1].position.data(),
         keyframes_[k - 1].orientation.coeffs().data(), keyframes_[k].position.data(),
         keyframes_[k].orientation.coeffs().data());
+    const KeyframeRegistration& registration = b.registration;
+    if (registration.attempted && registration.agrees) {
+      problem.AddResidualBlock(
+          ScanMatchFactor::create(registration.measured, registration.sqrt_information), &huber,
+          keyframes_[k - 1].position.data(), keyframes_[k - 1].orientation.coeffs().data(),
+          keyframes_[k].position.data(), keyframes_[k].orientation.coeffs().data());
+    }
   }
   // Planes seen in the window, their observations from the window, and a few older, held ones.
   std::set<int> planes;
@@ -250,10 +345,10 @@ void SGraph::optimise() {
                                planes_[pairs[0][1]].parameters.data());
     }
   }
-  if (window_hook_) window_hook_(problem, planes, active_rooms);
+  if (with_hook && window_hook_) window_hook_(problem, planes, active_rooms);
   ceres::Solver::Options solver;
   solver.linear_solver_type = ceres::SPARSE_NORMAL_CHOLESKY;
-  solver.max_num_iterations = options_.max_iterations;
+  solver.max_num_iterations = max_iterations;
   solver.num_threads = 1;
   ceres::Solver::Summary summary;
   ceres::Solve(solver, &problem, &summary);
@@ -424,6 +519,7 @@ std::optional<Eigen::Vector2d> SGraph::floorCentre() const {
 
 MapDiagnostics SGraph::diagnostics() const {
   MapDiagnostics out;
+  out.keyframes = past_keyframes_;
   for (const auto& kf : keyframes_) out.keyframes.push_back({kf.stamp, kf.pose(), kf.odometry});
   out.planes = planes_.size();
   for (int r : confirmedRooms()) {
@@ -441,7 +537,12 @@ nlohmann::json SGraph::toJson() const {
     keyframes.push_back({{"stamp", k.stamp},
                          {"position", {k.position.x(), k.position.y(), k.position.z()}},
                          {"orientation_xyzw", {q.x(), q.y(), q.z(), q.w()}},
-                         {"planes", k.observations.size()}});
+                         {"planes", k.observations.size()},
+                         {"registration",
+                          {{"attempted", k.registration.attempted},
+                           {"agrees", k.registration.agrees},
+                           {"inlier_share", k.registration.inlier_share},
+                           {"inlier_share_predicted", k.registration.inlier_share_predicted}}}});
   }
   for (std::size_t i = 0; i < planes_.size(); ++i) {
     const auto& p = planes_[i];
@@ -470,8 +571,18 @@ nlohmann::json SGraph::toJson() const {
                      {"widths", widths},
                      {"keyframes", r.keyframes.size()}});
   }
-  nlohmann::json out = {
-      {"frame", "M"}, {"keyframes", keyframes}, {"planes", planes}, {"rooms", rooms}};
+  nlohmann::json segments = nlohmann::json::array();
+  for (const auto& segment : segments_) {
+    segments.push_back({{"start", segment.start},
+                        {"end", segment.end},
+                        {"keyframes", segment.keyframes},
+                        {"planes", segment.planes},
+                        {"rooms", segment.rooms},
+                        {"ended_because", segment.reason}});
+  }
+  nlohmann::json out = {{"frame", "M"},         {"keyframes", keyframes},
+                        {"planes", planes},     {"rooms", rooms},
+                        {"segments", segments}, {"segment_start", segment_start_}};
   if (const auto floor = floorCentre()) out["floor"] = {{"centre", {floor->x(), floor->y()}}};
   return out;
 }

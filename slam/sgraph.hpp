@@ -15,6 +15,7 @@
 #include "slam/plane_extraction.hpp"
 #include "slam/plane_map.hpp"
 #include "slam/room_detection.hpp"
+#include "slam/scan_registration.hpp"
 
 namespace ceres {
 class Problem;
@@ -40,7 +41,20 @@ struct SGraphOptions {
   int anchors_per_plane = 8;  // held older observations kept for each plane in the window
   int max_iterations = 10;
   RoomDetectionOptions rooms;
-  double sigma_room = 0.05;  // m, room-centre factors
+  double sigma_room = 0.05;              // m, room-centre factors
+  ScanRegistrationOptions registration;  // LiDAR odometry between keyframes
+};
+
+// What LiDAR odometry made of one keyframe (slam/scan_registration.hpp).
+struct KeyframeRegistration {
+  bool attempted = false;  // a local map to register against existed
+  bool agrees = true;      // the scan agreed with the local map (no factor otherwise)
+  double inlier_share = 0.0;
+  double inlier_share_predicted = 0.0;
+  Eigen::Vector3d correction = Eigen::Vector3d::Zero();  // applied to the odometry prediction
+  // The factor to the previous keyframe: motion (x, y in its heading frame, yaw) and S.
+  Eigen::Vector3d measured = Eigen::Vector3d::Zero();
+  Eigen::Matrix3d sqrt_information = Eigen::Matrix3d::Zero();
 };
 
 // The S-Graph's keyframe and wall layers: keyframe poses in M constrained by odometry, wall
@@ -62,6 +76,8 @@ class SGraph {
     Eigen::Vector3d position = Eigen::Vector3d::Zero();          // estimate
     Eigen::Quaterniond orientation = Eigen::Quaterniond::Identity();
     std::vector<std::pair<int, PlaneObservation>> observations;  // (map plane, observation in L)
+    KeyframeRegistration registration;
+    std::vector<Eigen::Vector3f> cloud;  // downsampled scan in L; kept for the local map only
     Eigen::Isometry3d pose() const;
   };
   struct Plane {
@@ -92,6 +108,18 @@ class SGraph {
   std::optional<Eigen::Isometry3d> poseAt(double t) const;
   nlohmann::json toJson() const;
 
+  // Ends the current segment and starts a fresh, empty map (the odometry buffer stays): what a
+  // localizer does when the world stopped agreeing with its graph (kidnapped, lost). The new
+  // segment's first keyframe continues M from the latest pose, so M stays one frame. The old
+  // segment's keyframes stay in diagnostics() and toJson()'s "segments".
+  void startNewSegment(double stamp, const std::string& reason);
+  int segment() const { return int(segments_.size()); }
+
+  // Optimises every keyframe (the first held), plane and room of the segment at once, with or
+  // without the window hook's factors: a contradiction is judged on a map not optimised under
+  // the answer it contradicts (docs/matching.md).
+  void optimiseAll(bool with_hook, int max_iterations = 20);
+
   // The floor's height in M (from the floor planes seen below the sensor), once seen.
   std::optional<double> floorHeight() const;
 
@@ -110,12 +138,17 @@ class SGraph {
   MapDiagnostics diagnostics() const;
 
  private:
-  void optimise();
+  // Optimises the keyframes from `first` on (the one before held) and what they observe.
+  void optimise(int first, bool with_hook, int max_iterations);
   void detectRooms(int keyframe, double dominant_yaw, const std::vector<MapPlane>& walls);
   // Planes of the window that turned out to be the same surface (created before the optimisation
   // brought them together) are merged into the one observed most.
   void mergeDuplicatePlanes(int first_keyframe);
   std::vector<MapPlane> activeWalls() const;  // merged planes get an empty, far-away extent
+  // LiDAR odometry for a new keyframe predicted at `predicted`: registers its cloud to the
+  // latest keyframes' and returns the corrected pose (the prediction when it cannot).
+  Eigen::Isometry3d registerKeyframe(Keyframe& keyframe, const Eigen::Isometry3d& predicted);
+  std::pair<double, double> odometrySigmas(double distance) const;  // translation, rotation
 
   Eigen::Isometry3d R_T_L_;
   SGraphOptions options_;
@@ -126,6 +159,15 @@ class SGraph {
   std::deque<Room> rooms_;
   std::vector<Timing> timings_;
   WindowHook window_hook_;
+  Eigen::Isometry3d start_correction_ = Eigen::Isometry3d::Identity();
+  struct Segment {
+    double start = 0.0, end = 0.0;
+    int keyframes = 0, planes = 0, rooms = 0;
+    std::string reason;  // why it ended
+  };
+  std::vector<Segment> segments_;            // ended ones
+  std::vector<MapKeyframe> past_keyframes_;  // of the ended segments, for diagnostics
+  double segment_start_ = 0.0;
   double floor_sum_ = 0.0;
   int floor_count_ = 0;
 };

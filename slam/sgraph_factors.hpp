@@ -92,4 +92,49 @@ struct OdometryFactor {
   double weight_t_, weight_r_;
 };
 
+// LiDAR odometry between two keyframes (slam/scan_registration.hpp): the registered planar motion
+// of keyframe j relative to keyframe i — (x, y) in i's heading frame and the change of yaw —
+// against the estimated one, whitened by the registration's information (an upper-triangular
+// square root S, SᵀS = information in i's frame). Height, roll and pitch are left to odometry.
+struct ScanMatchFactor {
+  ScanMatchFactor(const Eigen::Vector3d& measured, const Eigen::Matrix3d& sqrt_information)
+      : measured_(measured), sqrt_information_(sqrt_information) {}
+
+  template <typename T>
+  static T yawOf(const Eigen::Map<const Eigen::Quaternion<T>>& q) {
+    using std::atan2;
+    return atan2(T(2.0) * (q.w() * q.z() + q.x() * q.y()),
+                 T(1.0) - T(2.0) * (q.y() * q.y() + q.z() * q.z()));
+  }
+
+  template <typename T>
+  bool operator()(const T* p_i, const T* q_i, const T* p_j, const T* q_j, T* residual) const {
+    using std::atan2;
+    using std::cos;
+    using std::sin;
+    const Eigen::Map<const Eigen::Quaternion<T>> qi(q_i), qj(q_j);
+    const T yaw_i = yawOf(qi);
+    const T dx = p_j[0] - p_i[0], dy = p_j[1] - p_i[1];
+    const T c = cos(yaw_i), s = sin(yaw_i);
+    Eigen::Matrix<T, 3, 1> e;
+    e(0) = c * dx + s * dy - T(measured_.x());
+    e(1) = -s * dx + c * dy - T(measured_.y());
+    const T dyaw = yawOf(qj) - yaw_i - T(measured_.z());
+    e(2) = atan2(sin(dyaw), cos(dyaw));
+    const Eigen::Matrix<T, 3, 1> r = sqrt_information_.cast<T>() * e;
+    for (int k = 0; k < 3; ++k) residual[k] = r(k);
+    return true;
+  }
+
+  static ceres::CostFunction* create(const Eigen::Vector3d& measured,
+                                     const Eigen::Matrix3d& sqrt_information) {
+    return new ceres::AutoDiffCostFunction<ScanMatchFactor, 3, 3, 4, 3, 4>(
+        new ScanMatchFactor(measured, sqrt_information));
+  }
+
+ private:
+  Eigen::Vector3d measured_;
+  Eigen::Matrix3d sqrt_information_;
+};
+
 }  // namespace isg::slam

@@ -86,8 +86,7 @@ TEST(Table, WrongLocalizationIsMarkedAndARegression) {
   now.set("d1", "is-graphs", 0.4, true);  // an APE, but wrongly localized on the way
   now.set("d1", "odometry", 0.3);
   EXPECT_EQ(formatTable(now, TableFormat::kCsv), "world,is-graphs,odometry\nd1,✗,0.300\n");
-  EXPECT_NE(formatTable(now, TableFormat::kMarkdown).find("| d1 | ✗ | 0.300 |"),
-            std::string::npos);
+  EXPECT_NE(formatTable(now, TableFormat::kMarkdown).find("| d1 | ✗ | 0.300 |"), std::string::npos);
   EXPECT_NE(formatTable(now, TableFormat::kLatex).find("d1 & $\\times$ & 0.300"),
             std::string::npos);
   const ResultTable back = parseTableCsv(formatTable(now, TableFormat::kCsv));

@@ -1,0 +1,225 @@
+#include "slam/scan_registration.hpp"
+
+#include <pcl/kdtree/kdtree_flann.h>
+#include <pcl/point_cloud.h>
+#include <pcl/point_types.h>
+
+#include <Eigen/Eigenvalues>
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+
+namespace isg::slam {
+
+namespace {
+
+// Points grouped by voxel: each voxel's key, and its points' sum and count.
+struct VoxelCentroids {
+  double size;
+  std::vector<std::pair<std::uint64_t, Eigen::Vector3d>> keyed;  // (voxel key, point)
+
+  explicit VoxelCentroids(double voxel) : size(voxel) {}
+  void add(const Eigen::Vector3d& p) {
+    // 21 bits per axis around the origin: ±(2^20 · voxel), 200 km at 0.2 m.
+    auto axis = [this](double v) {
+      return std::uint64_t(std::int64_t(std::floor(v / size)) + (1 << 20)) & 0x1FFFFF;
+    };
+    keyed.emplace_back((axis(p.x()) << 42) | (axis(p.y()) << 21) | axis(p.z()), p);
+  }
+  // One centroid per voxel, in key order.
+  std::vector<Eigen::Vector3d> centroids() {
+    std::stable_sort(keyed.begin(), keyed.end(),
+                     [](const auto& a, const auto& b) { return a.first < b.first; });
+    std::vector<Eigen::Vector3d> out;
+    for (std::size_t i = 0; i < keyed.size();) {
+      std::size_t j = i;
+      Eigen::Vector3d sum = Eigen::Vector3d::Zero();
+      while (j < keyed.size() && keyed[j].first == keyed[i].first) sum += keyed[j++].second;
+      out.push_back(sum / double(j - i));
+      i = j;
+    }
+    return out;
+  }
+};
+
+Eigen::Matrix2d rotation(double yaw) { return Eigen::Rotation2Dd(yaw).toRotationMatrix(); }
+
+}  // namespace
+
+std::vector<Eigen::Vector3f> downsampleScan(const Scan& scan,
+                                            const ScanRegistrationOptions& options) {
+  VoxelCentroids voxels(options.voxel);
+  voxels.keyed.reserve(scan.points.size());
+  for (const auto& p : scan.points) {
+    const Eigen::Vector3d v(p.x, p.y, p.z);
+    const double range = v.norm();
+    if (!std::isfinite(range) || range < options.min_range || range > options.max_range) continue;
+    voxels.add(v);
+  }
+  std::vector<Eigen::Vector3f> out;
+  for (const auto& c : voxels.centroids()) out.push_back(c.cast<float>());
+  return out;
+}
+
+struct LocalMap::Index {
+  pcl::KdTreeFLANN<pcl::PointXYZ> tree;
+};
+
+LocalMap::~LocalMap() = default;
+LocalMap::LocalMap(LocalMap&&) noexcept = default;
+LocalMap& LocalMap::operator=(LocalMap&&) noexcept = default;
+
+LocalMap::LocalMap(const std::vector<Part>& parts, const ScanRegistrationOptions& options)
+    : index_(std::make_unique<Index>()) {
+  VoxelCentroids voxels(options.voxel);
+  for (const auto& part : parts) {
+    for (const auto& p : *part.cloud) voxels.add(part.M_T_L * p.cast<double>());
+  }
+  points_ = voxels.centroids();
+  if (points_.empty()) return;
+  auto cloud = pcl::make_shared<pcl::PointCloud<pcl::PointXYZ>>();
+  cloud->reserve(points_.size());
+  for (const auto& p : points_)
+    cloud->push_back(pcl::PointXYZ(float(p.x()), float(p.y()), float(p.z())));
+  index_->tree.setSortedResults(true);
+  index_->tree.setInputCloud(cloud);
+  // Normals by PCA of each point's neighbourhood; none where it is not a plane.
+  normals_.assign(points_.size(), Eigen::Vector3d::Zero());
+  std::vector<int> indices;
+  std::vector<float> distances;
+  for (std::size_t i = 0; i < points_.size(); ++i) {
+    const int found =
+        index_->tree.nearestKSearch((*cloud)[i], options.normal_neighbours, indices, distances);
+    int used = 0;
+    Eigen::Vector3d mean = Eigen::Vector3d::Zero();
+    for (int k = 0; k < found; ++k) {
+      if (distances[k] > options.normal_radius * options.normal_radius) break;
+      mean += points_[indices[k]];
+      ++used;
+    }
+    if (used < 5) continue;
+    mean /= double(used);
+    Eigen::Matrix3d covariance = Eigen::Matrix3d::Zero();
+    for (int k = 0; k < used; ++k) {
+      const Eigen::Vector3d d = points_[indices[k]] - mean;
+      covariance += d * d.transpose();
+    }
+    const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> solver(covariance);
+    const Eigen::Vector3d values = solver.eigenvalues();
+    const double total = values.sum();
+    // A plane: thin across (λ0 small) and spread both ways within it (λ1 not small). Points
+    // along one ring of the LiDAR are a line, whose "normal" is any direction across it.
+    if (total <= 0.0 || values(0) / total > options.max_planarity ||
+        values(1) / total < options.min_spread) {
+      continue;
+    }
+    normals_[i] = solver.eigenvectors().col(0).normalized();
+  }
+}
+
+int LocalMap::nearest(const Eigen::Vector3d& q, double max_distance, double* distance) const {
+  if (points_.empty()) return -1;
+  std::vector<int> index(1);
+  std::vector<float> squared(1);
+  const pcl::PointXYZ query(float(q.x()), float(q.y()), float(q.z()));
+  if (index_->tree.nearestKSearch(query, 1, index, squared) < 1) return -1;
+  const double d = std::sqrt(double(squared[0]));
+  if (d > max_distance) return -1;
+  *distance = d;
+  return index[0];
+}
+
+Eigen::Isometry3d planarCorrection(const Eigen::Vector3d& correction,
+                                   const Eigen::Vector2d& pivot) {
+  Eigen::Isometry3d delta = Eigen::Isometry3d::Identity();
+  delta.linear() = Eigen::AngleAxisd(correction.z(), Eigen::Vector3d::UnitZ()).toRotationMatrix();
+  const Eigen::Vector2d t = pivot - rotation(correction.z()) * pivot + correction.head<2>();
+  delta.translation() = Eigen::Vector3d(t.x(), t.y(), 0.0);
+  return delta;
+}
+
+Eigen::Isometry3d RegistrationResult::apply(const Eigen::Isometry3d& M_T_R_predicted) const {
+  return planarCorrection(correction, M_T_R_predicted.translation().head<2>()) * M_T_R_predicted;
+}
+
+RegistrationResult registerScan(const std::vector<Eigen::Vector3f>& scan_in_L,
+                                const Eigen::Isometry3d& M_T_R_predicted,
+                                const Eigen::Isometry3d& R_T_L, const LocalMap& map,
+                                const Eigen::Matrix3d& prior_information,
+                                const ScanRegistrationOptions& options) {
+  RegistrationResult result;
+  if (map.empty() || scan_in_L.empty()) return result;
+  const Eigen::Isometry3d M_T_L = M_T_R_predicted * R_T_L;
+  const Eigen::Vector2d pivot = M_T_R_predicted.translation().head<2>();
+  // The scan in M at the prediction, relative to the pivot in x and y.
+  std::vector<Eigen::Vector3d> points;
+  points.reserve(scan_in_L.size());
+  for (const auto& p : scan_in_L) {
+    Eigen::Vector3d q = M_T_L * p.cast<double>();
+    q.head<2>() -= pivot;
+    points.push_back(q);
+  }
+  result.points = int(points.size());
+  const double sigma2 = options.point_sigma * options.point_sigma;
+  auto transformed = [&](const Eigen::Vector3d& x, const Eigen::Vector3d& q) {
+    Eigen::Vector3d out = q;
+    out.head<2>() = rotation(x.z()) * q.head<2>() + pivot + x.head<2>();
+    return out;
+  };
+  auto share_within = [&](const Eigen::Vector3d& x) {
+    int near = 0;
+    for (const auto& q : points) {
+      double d = 0.0;
+      if (map.nearest(transformed(x, q), options.max_correspondence_end, &d) >= 0) ++near;
+    }
+    return double(near) / double(points.size());
+  };
+  result.inlier_share_predicted = share_within(Eigen::Vector3d::Zero());
+
+  Eigen::Vector3d x = Eigen::Vector3d::Zero();
+  Eigen::Matrix3d scan_information = Eigen::Matrix3d::Zero();
+  const int iterations = std::max(1, options.iterations);
+  for (int it = 0; it < iterations; ++it) {
+    const double fraction = iterations == 1 ? 1.0 : double(it) / double(iterations - 1);
+    const double max_distance =
+        options.max_correspondence_start +
+        fraction * (options.max_correspondence_end - options.max_correspondence_start);
+    Eigen::Matrix3d H = Eigen::Matrix3d::Zero();
+    Eigen::Vector3d g = Eigen::Vector3d::Zero();
+    int used = 0;
+    for (const auto& q : points) {
+      const Eigen::Vector3d p = transformed(x, q);
+      double d = 0.0;
+      const int m = map.nearest(p, max_distance, &d);
+      if (m < 0) continue;
+      const Eigen::Vector3d& n = map.normal(m);
+      if (n.isZero() || std::abs(n.z()) > options.max_normal_z) continue;
+      const double r = n.dot(p - map.point(m));
+      // d(p)/d(yaw) about the pivot: the rotated point's lever arm turned by 90°.
+      const Eigen::Vector2d arm = p.head<2>() - pivot - x.head<2>();
+      const Eigen::Vector3d J(n.x(), n.y(), n.x() * -arm.y() + n.y() * arm.x());
+      const double w = std::abs(r) <= options.huber ? 1.0 : options.huber / std::abs(r);
+      H += w * J * J.transpose();
+      g += w * J * r;
+      ++used;
+    }
+    result.correspondences = used;
+    if (used < 10) break;
+    const double scale =
+        options.effective_points / std::max(double(used), options.effective_points);
+    scan_information = H * (scale / sigma2);
+    const Eigen::Matrix3d total = scan_information + prior_information;
+    const Eigen::Vector3d gradient = g * (scale / sigma2) + prior_information * x;
+    const Eigen::Vector3d step = -total.ldlt().solve(gradient);
+    if (!step.allFinite()) break;
+    x += step;
+    if (step.head<2>().norm() < 1e-4 && std::abs(step.z()) < 1e-5 && fraction >= 1.0) break;
+  }
+  result.correction = x;
+  result.information = scan_information;
+  result.inlier_share = share_within(x);
+  result.agrees = result.inlier_share >= options.min_inlier_share;
+  return result;
+}
+
+}  // namespace isg::slam

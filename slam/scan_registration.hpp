@@ -1,0 +1,96 @@
+#pragma once
+
+#include <Eigen/Geometry>
+#include <memory>
+#include <vector>
+
+#include "slam/messages.hpp"
+
+namespace isg::slam {
+
+// LiDAR odometry (docs/slam.md): each keyframe's scan registered to a local map made of the
+// recent keyframes' scans, by point-to-plane ICP in the plane (x, y, yaw), fused with the leg
+// odometry's prediction as a prior. Height, roll and pitch stay the odometry's (a legged base's
+// IMU and leg kinematics observe them well); the walls constrain the planar pose.
+struct ScanRegistrationOptions {
+  bool enabled = true;
+  double voxel = 0.2;  // m, scan and local-map points
+  double min_range = 0.5, max_range = 30.0;
+  int local_map_keyframes = 8;  // the latest keyframes' scans make the local map
+  int normal_neighbours = 10;
+  double normal_radius = 0.6;   // m, neighbours for a map point's normal
+  double max_planarity = 0.05;  // smallest eigenvalue share: above, no normal (an edge, clutter)
+  double min_spread = 0.1;      // middle eigenvalue share: below, a line (one ring), no normal
+  double max_normal_z = 0.7;    // map normals steeper than this do not constrain (x, y, yaw)
+  int iterations = 12;
+  double max_correspondence_start = 0.8;  // m, shrinking linearly to ...
+  double max_correspondence_end = 0.25;   // m
+  double huber = 0.1;                     // m, on point-to-plane residuals
+  double point_sigma = 0.05;              // m
+  // Neighbouring scan points are not independent: the information of a registration is that of
+  // this many points, however many there are (docs/slam.md).
+  double effective_points = 60.0;
+  // Below this share of scan points within max_correspondence_end of the local map, the scan does
+  // not agree with the recent map: no factor, and the localizer is told (a kidnap, a failure).
+  double min_inlier_share = 0.25;
+};
+
+// Voxel-grid centroids of a scan's points within the range limits, in the scan's frame; the same
+// points give the same cloud (sorted by voxel).
+std::vector<Eigen::Vector3f> downsampleScan(const Scan& scan,
+                                            const ScanRegistrationOptions& options);
+
+// The recent map: points in M with normals, searchable. Built from keyframe clouds and poses.
+class LocalMap {
+ public:
+  struct Part {
+    const std::vector<Eigen::Vector3f>* cloud;  // in the keyframe's LiDAR frame
+    Eigen::Isometry3d M_T_L;
+  };
+  LocalMap(const std::vector<Part>& parts, const ScanRegistrationOptions& options);
+  ~LocalMap();
+  LocalMap(LocalMap&&) noexcept;
+  LocalMap& operator=(LocalMap&&) noexcept;
+
+  bool empty() const { return points_.empty(); }
+  std::size_t size() const { return points_.size(); }
+  // The nearest map point to q: index, or -1 when none within max_distance.
+  int nearest(const Eigen::Vector3d& q, double max_distance, double* distance) const;
+  const Eigen::Vector3d& point(int i) const { return points_[i]; }
+  // Unit normal, or zero where the neighbourhood is not planar.
+  const Eigen::Vector3d& normal(int i) const { return normals_[i]; }
+
+ private:
+  struct Index;
+  std::vector<Eigen::Vector3d> points_;
+  std::vector<Eigen::Vector3d> normals_;
+  std::unique_ptr<Index> index_;
+};
+
+struct RegistrationResult {
+  // The correction to the predicted pose: a rotation by yaw about the base's predicted position
+  // and a translation, in M: M_T_R = Δ · M_T_R_predicted.
+  Eigen::Vector3d correction = Eigen::Vector3d::Zero();  // dx, dy, dyaw
+  // The scan's own information on (dx, dy, dyaw), prior excluded, scaled to effective_points.
+  Eigen::Matrix3d information = Eigen::Matrix3d::Zero();
+  double inlier_share = 0.0;            // after registration
+  double inlier_share_predicted = 0.0;  // at the odometry's prediction
+  int points = 0;                       // scan points used
+  int correspondences = 0;              // at the last iteration
+  bool agrees = false;                  // inlier_share ≥ min_inlier_share
+  Eigen::Isometry3d apply(const Eigen::Isometry3d& M_T_R_predicted) const;
+};
+
+// Registers a scan (deskewed, downsampled, in L) predicted at M_T_R with the LiDAR at R_T_L,
+// against the local map; `prior_information` (on dx, dy, dyaw) is the odometry's confidence in
+// the prediction.
+RegistrationResult registerScan(const std::vector<Eigen::Vector3f>& scan_in_L,
+                                const Eigen::Isometry3d& M_T_R_predicted,
+                                const Eigen::Isometry3d& R_T_L, const LocalMap& map,
+                                const Eigen::Matrix3d& prior_information,
+                                const ScanRegistrationOptions& options);
+
+// Δ for a planar correction (dx, dy, dyaw) about `pivot` (x, y in M).
+Eigen::Isometry3d planarCorrection(const Eigen::Vector3d& correction, const Eigen::Vector2d& pivot);
+
+}  // namespace isg::slam
