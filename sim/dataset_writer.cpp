@@ -32,6 +32,13 @@ nlohmann::ordered_json metadata(const Simulation& sim, double duration,
   using json = nlohmann::ordered_json;
   const bim::Scenario& s = sim.scenario();
   const auto& l = s.lidar;
+  // Where each kidnap put the robot down (the planned pose, in B).
+  json kidnaps = json::array();
+  for (const auto& leg : sim.route().kidnaps) {
+    kidnaps.push_back(
+        {{"time", leg.time},
+         {"to", {leg.waypoints.front().x(), leg.waypoints.front().y(), leg.start_yaw}}});
+  }
   json route = json::array();
   for (const auto& p : sim.route().waypoints) route.push_back({p.x(), p.y()});
   const auto& gait = sim.trajectory().gait();
@@ -88,7 +95,8 @@ nlohmann::ordered_json metadata(const Simulation& sim, double duration,
           {"pitch_deg", gait.pitch_deg}}},
         {"route", route},
         {"visited_rooms", sim.route().visited_rooms},
-        {"skipped_rooms", sim.route().skipped_rooms}}},
+        {"skipped_rooms", sim.route().skipped_rooms},
+        {"kidnaps", kidnaps}}},
       {"plan", bim::planToJson(s.plan)},
       {"as_built", bim::asBuiltToJson(s.as_built)}};
 }

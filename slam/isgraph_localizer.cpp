@@ -19,6 +19,8 @@ ISGraphLocalizer::ISGraphLocalizer(const Eigen::Isometry3d& R_T_L, const bim::AG
                                    const ISGraphOptions& options)
     : options_(options),
       plan_(&plan),
+      R_T_L_(R_T_L),
+      plan_field_(plan),
       graph_(R_T_L, options.sgraph),
       matcher_(plan, options.matching),
       plan_state_(plan) {
@@ -110,17 +112,60 @@ void ISGraphLocalizer::adopt(const Verification& answer) {
   }
   B_T_M_z_ = elevation - graph_.floorHeight().value_or(0.0);
   localized_ = true;
+  plan_shares_.clear();  // measured under another answer, or none
+  plan_collapsed_ = 0;
+}
+
+double ISGraphLocalizer::planShare() const {
+  const auto& keyframe = graph_.keyframes().back();
+  if (keyframe.cloud.empty()) return -1.0;
+  const Eigen::Isometry3d M_T_L = keyframe.pose() * R_T_L_;
+  const double sensor_z = M_T_L.translation().z();
+  int used = 0, near = 0;
+  for (const auto& p : keyframe.cloud) {
+    const Eigen::Vector3d q = M_T_L * p.cast<double>();
+    if (q.z() < sensor_z - 0.4 || q.z() > sensor_z + 1.2) continue;  // floor, ceiling
+    ++used;
+    const Eigen::Vector2d in_B = applyPlanar(B_T_M_, q.head<2>());
+    if (plan_field_.distance(in_B) <= options_.plan_share_distance) ++near;
+  }
+  return used > 0 ? double(near) / used : -1.0;
 }
 
 std::string ISGraphLocalizer::lostReason(const MatchInput& input) {
   char text[256];
   const auto& keyframe = graph_.keyframes().back();
-  // The scan no longer agrees with the recent map: the robot is not where the graph thinks.
-  if (keyframe.registration.attempted && !keyframe.registration.agrees) {
-    std::snprintf(text, sizeof text,
-                  "the scan does not agree with the recent map (%.0f %% of its points near it)",
-                  100.0 * keyframe.registration.inlier_share);
-    return text;
+  // The scan against the recent map and against the plan: the robot is not where the graph
+  // thinks when both disagree, or when the plan disagrees more and more.
+  const double plan_share = planShare();
+  if (plan_share >= 0.0) {
+    std::vector<double> recent(plan_shares_.begin(), plan_shares_.end());
+    double median = -1.0;
+    if (recent.size() >= 3) {
+      std::nth_element(recent.begin(), recent.begin() + recent.size() / 2, recent.end());
+      median = recent[recent.size() / 2];
+    }
+    const bool map_disagrees = keyframe.registration.attempted &&
+                               keyframe.registration.inlier_share < options_.suspect_share;
+    if (median > 0.0 && map_disagrees && plan_share < options_.plan_share_drop * median) {
+      std::snprintf(text, sizeof text,
+                    "the scan agrees neither with the recent map (%.0f %% of its points near it) "
+                    "nor with the plan (%.0f %% of its wall points on a plan wall, %.0f %% before)",
+                    100.0 * keyframe.registration.inlier_share, 100.0 * plan_share, 100.0 * median);
+      return text;
+    }
+    plan_collapsed_ = median > 0.0 && plan_share < options_.plan_share_collapse * median
+                          ? plan_collapsed_ + 1
+                          : 0;
+    if (plan_collapsed_ >= 2) {
+      std::snprintf(text, sizeof text,
+                    "the scans no longer agree with the plan (%.0f %% of the wall points on a plan "
+                    "wall, %.0f %% before)",
+                    100.0 * plan_share, 100.0 * median);
+      return text;
+    }
+    plan_shares_.push_back(plan_share);
+    while (int(plan_shares_.size()) > options_.plan_share_history) plan_shares_.pop_front();
   }
   // The pose must be in the building.
   if (const auto pose = graph_.latestPose()) {
@@ -173,6 +218,8 @@ void ISGraphLocalizer::lose(double stamp, const std::string& reason) {
   localized_ = false;
   plane_matches_.clear();
   room_matches_.clear();
+  plan_shares_.clear();
+  plan_collapsed_ = 0;
   graph_.startNewSegment(stamp, reason);
   rooms_at_last_attempt_ = 0;
   keyframes_at_last_attempt_ = 0;

@@ -4,6 +4,7 @@
 #include <numbers>
 
 #include <Eigen/Geometry>
+#include <deque>
 #include <map>
 #include <memory>
 #include <optional>
@@ -15,6 +16,7 @@
 #include "bim/plane_manifold.hpp"
 #include "slam/graph_matching.hpp"
 #include "slam/localizer.hpp"
+#include "slam/plan_distance_field.hpp"
 #include "slam/sgraph.hpp"
 
 namespace isg::slam {
@@ -51,6 +53,16 @@ struct ISGraphOptions {
   double sigma_B_T_M_translation = 0.5;                     // m
   double sigma_B_T_M_yaw = 5.0 * std::numbers::pi / 180.0;  // rad
   double min_normal_spread_deg = 30.0;
+  // Plan agreement of a keyframe's scan: the share of its points at wall height (−0.4 … +1.2 m
+  // about the sensor) within plan_share_distance of a plan surface, at the pose in B. Lost when
+  // the scan disagrees with the recent map (registration share below suspect_share) and its plan
+  // share falls below plan_share_drop × the median of the last keyframes'; or when the plan share
+  // stays below plan_share_collapse × that median for two keyframes in a row.
+  double plan_share_distance = 0.2;  // m
+  double suspect_share = 0.5;
+  double plan_share_drop = 0.5;
+  double plan_share_collapse = 0.3;
+  int plan_share_history = 10;
 };
 
 // One change of the matching status, for the run's log.
@@ -101,6 +113,8 @@ class ISGraphLocalizer : public Localizer {
   // Why the localized graph no longer agrees with the world or the plan; empty while it does.
   // Drops held correspondences that left the hold gate.
   std::string lostReason(const MatchInput& input);
+  // The latest keyframe's plan agreement (see ISGraphOptions), or -1 without a cloud.
+  double planShare() const;
   void lose(double stamp, const std::string& reason);
   // A full match while localized, judged on the S-Graph optimised without the plan.
   void checkForContradiction(double stamp);
@@ -110,6 +124,10 @@ class ISGraphLocalizer : public Localizer {
 
   ISGraphOptions options_;
   const bim::AGraph* plan_;
+  Eigen::Isometry3d R_T_L_;
+  PlanDistanceField plan_field_;
+  std::deque<double> plan_shares_;  // of the latest localized keyframes
+  int plan_collapsed_ = 0;          // keyframes in a row with a collapsed plan share
   SGraph graph_;
   GraphMatcher matcher_;
   bim::AGraphState plan_state_;

@@ -166,6 +166,37 @@ TEST(Simulate, StartInsideClearanceIsAClearError) {
   EXPECT_FALSE(sandbox.exists("ds"));
 }
 
+// Kidnaps the parser cannot judge: the simulator knows when the route ends and where the robot
+// can stand.
+TEST(Simulate, KidnapsTheRouteCannotHaveAreClearErrors) {
+  testing::Sandbox sandbox("simulate_kidnap");
+  const std::string plan = R"("plan": {"format": "isg.plan", "version": 1, "levels": [{"id": "L0",
+      "height": 3, "walls": [{"id": "A", "start": [0, 0], "end": [8, 0], "thickness": 0.2},
+                {"id": "B", "start": [8, 0], "end": [8, 4], "thickness": 0.2},
+                {"id": "C", "start": [8, 4], "end": [0, 4], "thickness": 0.2},
+                {"id": "D", "start": [0, 4], "end": [0, 0], "thickness": 0.2}],
+      "rooms": [{"id": "R", "outline": [[0.1, 0.1], [7.9, 0.1], [7.9, 3.9], [0.1, 3.9]]}]}]})";
+  sandbox.write("late.json", R"({"format": "isg.scenario", "version": 1, )" + plan + R"(,
+    "robot": {"start": {"pose": [1, 2, 0]}, "route": {"waypoints": [[7, 2]]},
+              "kidnap": [{"time": 30, "to": {"pose": [4, 2, 0]}}]}})");
+  auto result = sandbox.run("simulate late.json -o ds");
+  EXPECT_EQ(result.exit_code, 1);
+  EXPECT_EQ(result.err,
+            "isg simulate: error: late.json: /robot/kidnap/0/time: the robot's route ends at "
+            "12.00 s, before the kidnap at 30.00 s\n");
+  sandbox.write("cluttered.json", R"({"format": "isg.scenario", "version": 1, )" + plan + R"(,
+    "robot": {"start": {"pose": [1, 2, 0]}, "route": {"waypoints": [[7, 2]]},
+              "kidnap": [{"time": 5, "to": {"pose": [4, 3, 0]}}]},
+    "as_built": {"clutter": [{"shape": "box", "center": [4, 3, 0.5], "size": [1, 1, 1]}]}})");
+  result = sandbox.run("simulate cluttered.json -o ds");
+  EXPECT_EQ(result.exit_code, 1);
+  EXPECT_EQ(result.err,
+            "isg simulate: error: cluttered.json: /robot/kidnap/0/to: the robot cannot be put "
+            "down at (4, 3): it is less than 0.35 m from a wall, clutter or the outside of the "
+            "building\n");
+  EXPECT_FALSE(sandbox.exists("ds"));
+}
+
 TEST(Render, WritesTwoPictures) {
   testing::Sandbox sandbox("render");
   const auto result = sandbox.run("render builtin:d1 -o pictures --width 320 --height 180");

@@ -193,6 +193,36 @@ std::vector<Case> cases() {
          s["robot"]["route"] = {{"rooms", {"R1", "R5"}}};
        },
        "scenario.json: /robot/route/rooms/1: no room \"R5\" on level \"L0\""},
+      {"KidnapNotAList", "scenario.json", [](json&, json& s) { s["robot"]["kidnap"] = 5; },
+       "scenario.json: /robot/kidnap: expected an array, got a number"},
+      {"KidnapAtTheStart", "scenario.json",
+       [](json&, json& s) {
+         s["robot"]["kidnap"] = {{{"time", 0}, {"to", {{"room", "R2"}}}}};
+       },
+       "scenario.json: /robot/kidnap/0/time: a kidnap must come after the start (time > 0)"},
+      {"KidnapsOutOfOrder", "scenario.json",
+       [](json&, json& s) {
+         s["robot"]["kidnap"] = {{{"time", 20}, {"to", {{"room", "R2"}}}},
+                                 {{"time", 10}, {"to", {{"room", "R3"}}}}};
+       },
+       "scenario.json: /robot/kidnap/1/time: kidnaps must be in time order: 10 s is not after "
+       "20 s"},
+      {"KidnapToUnknownRoom", "scenario.json",
+       [](json&, json& s) {
+         s["robot"]["kidnap"] = {{{"time", 10}, {"to", {{"room", "R9"}}}}};
+       },
+       "scenario.json: /robot/kidnap/0/to/room: no room \"R9\" on level \"L0\""},
+      {"KidnapToRoomAndPose", "scenario.json",
+       [](json&, json& s) {
+         s["robot"]["kidnap"] = {
+             {{"time", 10}, {"to", {{"room", "R2"}, {"pose", {1.0, 1.0, 0.0}}}}}};
+       },
+       "scenario.json: /robot/kidnap/0/to: give exactly one of \"room\" and \"pose\""},
+      {"KidnapIntoAWall", "scenario.json",
+       [](json&, json& s) {
+         s["robot"]["kidnap"] = {{{"time", 10}, {"to", {{"pose", {3.02, 1.0, 0.0}}}}}};
+       },
+       "scenario.json: /robot/kidnap/0/to/pose: kidnap position is inside wall \"W5\""},
       {"ZeroSpeed", "scenario.json", [](json&, json& s) { s["robot"]["speed"] = 0; },
        "scenario.json: /robot/speed: must be in [0.01, 3], got 0"},
       {"LidarRate", "scenario.json", [](json&, json& s) { s["lidar"]["rate_hz"] = 40; },

@@ -6,10 +6,13 @@
 #include <pcl/point_types.h>
 #include <numbers>
 
+#include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <set>
 #include <sstream>
 
+#include "bim/polygon.hpp"
 #include "sim/dataset_writer.hpp"
 #include "sim/odometry_model.hpp"
 #include "worlds/reference_plans.hpp"
@@ -69,6 +72,60 @@ TEST(Trajectory, TurnsOnTheSpotThenWalksWithTheGaitsSway) {
   EXPECT_NEAR(hi, 0.46 + 0.015, 2e-4);
   EXPECT_NEAR(lo, 0.46 - 0.015, 2e-4);
   EXPECT_NEAR(t.pose(t.duration() + 1.0).translation().z(), 0.46, 1e-12);
+}
+
+TEST(Trajectory, AKidnapStartsANewLegAtItsTime) {
+  GaitConfig gait;
+  Trajectory t({{0, 0}, {4, 0}}, 0.0, 0.5, 0.0, gait);  // 8 s along x
+  t.appendLeg(3.0, {{10, 5}, {10, 7}}, 0.3);            // lifted at 3 s to (10, 5)
+  EXPECT_EQ(t.jumps(), std::vector<double>{3.0});
+  EXPECT_NEAR((t.planar(2.999).xy - Eigen::Vector2d(1.4995, 0)).norm(), 0.0, 1e-9);
+  EXPECT_NEAR((t.planar(3.0).xy - Eigen::Vector2d(10, 5)).norm(), 0.0, 1e-12);
+  EXPECT_NEAR((t.poseBefore(3.0).translation().head<2>() - Eigen::Vector2d(1.5, 0)).norm(), 0.0,
+              1e-12);
+  // It turns from 0.3 rad to face +y (π/2 at 0.8 rad/s), then walks 2 m at 0.5 m/s.
+  const double turn = (std::numbers::pi / 2 - 0.3) / 0.8;
+  EXPECT_NEAR(t.duration(), 3.0 + turn + 4.0, 1e-9);
+  EXPECT_NEAR(t.arrival(1, 1), t.duration(), 1e-12);
+  EXPECT_NEAR((t.planar(t.duration()).xy - Eigen::Vector2d(10, 7)).norm(), 0.0, 1e-12);
+}
+
+// D1 as built, kidnapped from its tour halfway into the room farthest from the robot then: the
+// ground truth jumps into that room, the odometry goes on as if nothing happened, and the tour
+// goes on with the rooms not yet visited.
+TEST(Simulation, KidnappedRobotJumpsUnseenByOdometry) {
+  bim::Scenario scenario = builtin("d1.asbuilt");
+  const Simulation plain(scenario);
+  const double when = std::round(plain.duration() / 2.0);
+  const Eigen::Vector2d then = plain.trajectory().planar(when).xy;
+  const bim::Room* farthest = nullptr;
+  for (const auto& room : scenario.plan.levels[0].rooms) {
+    if (!farthest || (bim::centroid(room.outline) - then).norm() >
+                         (bim::centroid(farthest->outline) - then).norm()) {
+      farthest = &room;
+    }
+  }
+  scenario.robot.kidnap.push_back({when, farthest->id, std::nullopt});
+  const Simulation sim(scenario);
+  const auto truth = sim.groundTruth(sim.duration(), 50.0);
+  const auto odometry = sim.odometry(sim.duration());
+  // Largest step between consecutive rows: the truth's at the kidnap; the odometry's a walk's.
+  auto largest_step = [](const run::Trajectory& t, double* at) {
+    double largest = 0.0;
+    for (std::size_t i = 1; i < t.size(); ++i) {
+      const double step = (t[i].pose.translation() - t[i - 1].pose.translation()).norm();
+      if (step > largest) largest = step, *at = t[i].t;
+    }
+    return largest;
+  };
+  double truth_at = 0.0, odometry_at = 0.0;
+  EXPECT_GT(largest_step(truth, &truth_at), 1.0);
+  EXPECT_NEAR(truth_at, when, 0.02);
+  EXPECT_LT(largest_step(odometry, &odometry_at), 0.05);  // ≤ 0.5 m/s · 0.02 s, plus noise
+  EXPECT_TRUE(bim::containsPoint(farthest->outline, sim.trajectory().planar(when).xy));
+  // Every room is reached once the tour resumes.
+  std::set<std::string> visited(sim.route().visited_rooms.begin(), sim.route().visited_rooms.end());
+  EXPECT_EQ(visited.size(), scenario.plan.levels[0].rooms.size());
 }
 
 TEST(Odometry, ErrorGrowsAsTheConfiguredRandomWalk) {

@@ -21,14 +21,15 @@ import sys
 ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
 PLANS = os.path.join(ROOT, "worlds", "plans")
 
-# The stress levels: (heading bias °/m, LiDAR dropout, clutter boxes, close a door).
+# The stress levels: heading bias °/m, heading noise °/m, translation noise (share of distance),
+# LiDAR dropout, clutter boxes, close a door, remove a wall. Noise None: the scenario default.
 LEVELS = [
-    (0.0, 0.0, 0, False),
-    (1.5, 0.0, 20, False),
-    (1.5, 0.5, 20, True),
-    (2.0, 0.7, 24, False),
-    (3.0, 0.5, 20, True),
-    (3.0, 0.7, 24, True),
+    dict(bias=0.0, noise=None, translation=None, dropout=0.0, clutter=0, door=False, wall=False),
+    dict(bias=1.5, noise=None, translation=None, dropout=0.0, clutter=20, door=False, wall=False),
+    dict(bias=1.5, noise=None, translation=None, dropout=0.5, clutter=20, door=True, wall=False),
+    dict(bias=-2.0, noise=1.5, translation=0.05, dropout=0.7, clutter=24, door=False, wall=True),
+    dict(bias=3.0, noise=None, translation=None, dropout=0.5, clutter=20, door=True, wall=False),
+    dict(bias=-3.0, noise=2.0, translation=0.05, dropout=0.6, clutter=24, door=True, wall=True),
 ]
 
 
@@ -79,7 +80,8 @@ def clutter_boxes(plan, rng, count):
 
 
 def make_scenario(world, level, seed, out_dir, attempt=0):
-    bias, dropout, clutter, close_door = LEVELS[level]
+    stress = LEVELS[level]
+    bias, dropout, clutter, close_door = stress["bias"], stress["dropout"], stress["clutter"], stress["door"]
     rng = random.Random(f"{world}/{level}/{seed}/{attempt}")
     base = json.load(open(os.path.join(PLANS, f"{world}.asbuilt.json")))
     plan = json.load(open(os.path.join(PLANS, base["plan"])))
@@ -88,6 +90,10 @@ def make_scenario(world, level, seed, out_dir, attempt=0):
     scenario.pop("$schema", None)
     scenario["seed"] = seed
     scenario["odometry"] = {"heading_bias_deg_per_m": bias}
+    if stress["noise"] is not None:
+        scenario["odometry"]["heading_noise_deg_per_m"] = stress["noise"]
+    if stress["translation"] is not None:
+        scenario["odometry"]["translation_noise"] = stress["translation"]
     scenario["lidar"] = {"dropout": dropout}
     as_built = dict(base.get("as_built", {}))
     as_built["clutter"] = list(as_built.get("clutter", [])) + clutter_boxes(plan, rng, clutter)
@@ -95,11 +101,98 @@ def make_scenario(world, level, seed, out_dir, attempt=0):
         closed = set(as_built.get("closed_doors", []))
         doors = [d["id"] for d in plan["levels"][0]["doors"] if d["id"] not in closed]
         as_built["closed_doors"] = sorted(closed | {rng.choice(doors)})
+    if stress["wall"]:
+        # An interior wall (one with a door) that the scenario does not already change.
+        changed = set(as_built.get("missing_walls", [])) | {
+            w["wall"] for w in as_built.get("wall_shifts", [])}
+        with_doors = sorted({d["wall"] for d in plan["levels"][0]["doors"]} - changed)
+        as_built["missing_walls"] = sorted(set(as_built.get("missing_walls", [])) |
+                                           {rng.choice(with_doors)})
+        missing = set(as_built["missing_walls"])
+        doors_gone = {d["id"] for d in plan["levels"][0]["doors"] if d["wall"] in missing}
+        if "closed_doors" in as_built:
+            as_built["closed_doors"] = [d for d in as_built["closed_doors"] if d not in doors_gone]
     scenario["as_built"] = as_built
     name = f"{world}-L{level}-s{seed}"
     path = os.path.join(out_dir, name + ".json")
     json.dump(scenario, open(path, "w"), indent=1)
     return name, path, bias
+
+
+def read_tum(path):
+    rows = []
+    for line in open(path):
+        if line.strip() and not line.startswith("#"):
+            v = [float(x) for x in line.split()]
+            rows.append((v[0], v[1], v[2]))
+    return rows
+
+
+def nearest(rows, t):
+    import bisect
+    i = bisect.bisect_left([r[0] for r in rows], t)
+    best = min((j for j in (i - 1, i) if 0 <= j < len(rows)), key=lambda j: abs(rows[j][0] - t))
+    return rows[best]
+
+
+def kidnap_suite(args):
+    """Each world as built walked once, then again with a kidnap midway into a room at least 4 m
+    from where the robot is then; reports detection, relocalization and the error after it."""
+    os.makedirs(os.path.join(args.out, "scenarios"), exist_ok=True)
+    results = []
+    for world in args.worlds.split(","):
+        for seed in [int(x) for x in args.seeds.split(",")]:
+            base = json.load(open(os.path.join(PLANS, f"{world}.asbuilt.json")))
+            plan = json.load(open(os.path.join(PLANS, base["plan"])))
+            shutil.copy(os.path.join(PLANS, base["plan"]), os.path.join(args.out, "scenarios"))
+            base.pop("$schema", None)
+            base["seed"] = seed
+            plain = os.path.join(args.out, "scenarios", f"{world}-s{seed}.json")
+            json.dump(base, open(plain, "w"), indent=1)
+            plain_run = os.path.join(args.out, "runs", f"{world}-s{seed}")
+            subprocess.run([args.isg, "run", plain, "-o", plain_run, "--force", "-q",
+                            "--threads", args.threads], check=True, capture_output=True)
+            duration = json.load(open(os.path.join(plain_run, "metrics.json")))["sim_seconds"]
+            when = round(duration / 2, 1)
+            _, x, y = nearest(read_tum(os.path.join(plain_run, "groundtruth.tum")), when)
+            rng = random.Random(f"kidnap/{world}/{seed}")
+            far = []
+            for room in plan["levels"][0]["rooms"]:
+                xs = [p[0] for p in room["outline"]]
+                ys = [p[1] for p in room["outline"]]
+                cx, cy = sum(xs) / len(xs), sum(ys) / len(ys)
+                if ((cx - x) ** 2 + (cy - y) ** 2) ** 0.5 >= 4.0:
+                    far.append(room["id"])
+            target = rng.choice(sorted(far))
+            base["robot"] = {"kidnap": [{"time": when, "to": {"room": target}}]}
+            name = f"{world}-s{seed}-kidnap"
+            path = os.path.join(args.out, "scenarios", name + ".json")
+            json.dump(base, open(path, "w"), indent=1)
+            run_dir = os.path.join(args.out, "runs", name)
+            subprocess.run([args.isg, "run", path, "-o", run_dir, "--force", "-q",
+                            "--threads", args.threads], check=True, capture_output=True)
+            m = json.load(open(os.path.join(run_dir, "metrics.json")))
+            truth = read_tum(os.path.join(run_dir, "groundtruth.tum"))
+            after = [r for r in read_tum(os.path.join(run_dir, "estimate.tum")) if r[0] >= when]
+            errors = [((r[1] - g[1]) ** 2 + (r[2] - g[2]) ** 2) ** 0.5
+                      for r in after for g in [nearest(truth, r[0])]]
+            lost = [t for t in m.get("lost_at", []) if t >= when]
+            back = [t for t in m.get("relocalized_at", []) if t >= when]
+            row = dict(run=name, kidnap_at=when, to=target,
+                       detected_after=round(lost[0] - when, 1) if lost else None,
+                       relocalized_after=round(back[0] - when, 1) if back else None,
+                       wrong=m.get("wrongly_localized"),
+                       time_wrong=m.get("time_wrongly_localized"),
+                       max_error_after=round(max(errors), 2) if errors else None,
+                       rows_over_1m_after=sum(e > 1.0 for e in errors),
+                       ape_B=m["ape_B"]["rmse"] if "ape_B" in m else None)
+            results.append(row)
+            print(row, flush=True)
+    bad = [r for r in results if r["wrong"] or r["relocalized_after"] is None or
+           r["relocalized_after"] > 60.0]
+    print(f"\n{len(results)} kidnaps: {len(results) - len(bad)} detected and relocalized "
+          f"within 60 s with no wrong stretch; {len(bad)} not")
+    return 1 if bad else 0
 
 
 def main():
@@ -110,7 +203,11 @@ def main():
     parser.add_argument("--seeds", default="1,2")
     parser.add_argument("--levels", default=",".join(str(i) for i in range(len(LEVELS))))
     parser.add_argument("--threads", default="2")
+    parser.add_argument("--kidnap", action="store_true",
+                        help="the kidnap suite instead: each world as built, kidnapped midway")
     args = parser.parse_args()
+    if args.kidnap:
+        return kidnap_suite(args)
     scenarios = os.path.join(args.out, "scenarios")
     os.makedirs(scenarios, exist_ok=True)
     rows = []
