@@ -212,6 +212,15 @@ std::string ISGraphLocalizer::lostReason(const MatchInput& input) {
   return "";
 }
 
+void ISGraphLocalizer::assumeMatch(double stamp, const Eigen::Vector3d& x_y_yaw,
+                                   const std::string& reason) {
+  const MatchInput input = matchInput();
+  record(stamp, MatchStatus::kMatched, reason);
+  adopt(matcher_.verify(input, x_y_yaw));
+  rooms_at_last_attempt_ = input.rooms.size();
+  keyframes_at_last_attempt_ = int(graph_.keyframes().size());
+}
+
 void ISGraphLocalizer::lose(double stamp, const std::string& reason) {
   record(stamp, MatchStatus::kLost, reason);
   ++losses_;

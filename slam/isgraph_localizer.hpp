@@ -95,6 +95,11 @@ class ISGraphLocalizer : public Localizer {
   std::vector<StatusChange> statusChanges() const override;
   std::optional<MapDiagnostics> mapDiagnostics() const override { return graph_.diagnostics(); }
 
+  // Takes `x_y_yaw` as B_T_M, as if matched, with the correspondences it implies now: a hint from
+  // outside (an operator's initial pose), or a test's wrong first match. It is checked like any
+  // match: contradicted by a unique answer elsewhere, or lost.
+  void assumeMatch(double stamp, const Eigen::Vector3d& x_y_yaw, const std::string& reason);
+
   const SGraph& sgraph() const { return graph_; }
   MatchStatus status() const { return status_; }
   const std::vector<MatchEvent>& events() const { return events_; }

@@ -156,14 +156,15 @@ def kidnap_suite(args):
             when = round(duration / 2, 1)
             _, x, y = nearest(read_tum(os.path.join(plain_run, "groundtruth.tum")), when)
             rng = random.Random(f"kidnap/{world}/{seed}")
-            far = []
+            distance = {}
             for room in plan["levels"][0]["rooms"]:
                 xs = [p[0] for p in room["outline"]]
                 ys = [p[1] for p in room["outline"]]
                 cx, cy = sum(xs) / len(xs), sum(ys) / len(ys)
-                if ((cx - x) ** 2 + (cy - y) ** 2) ** 0.5 >= 4.0:
-                    far.append(room["id"])
-            target = rng.choice(sorted(far))
+                distance[room["id"]] = ((cx - x) ** 2 + (cy - y) ** 2) ** 0.5
+            # A room at least 4 m away; in a small building, the farthest one.
+            far = sorted(r for r, d in distance.items() if d >= 4.0)
+            target = rng.choice(far) if far else max(distance, key=distance.get)
             base["robot"] = {"kidnap": [{"time": when, "to": {"room": target}}]}
             name = f"{world}-s{seed}-kidnap"
             path = os.path.join(args.out, "scenarios", name + ".json")
