@@ -1,5 +1,6 @@
 #include "slam/isgraph_localizer.hpp"
 
+#include <algorithm>
 #include <cmath>
 
 #include "bim/agraph_factors.hpp"
@@ -147,7 +148,12 @@ std::string ISGraphLocalizer::lostReason(const MatchInput& input) {
     }
     const bool map_disagrees = keyframe.registration.attempted &&
                                keyframe.registration.inlier_share < options_.suspect_share;
-    if (median > 0.0 && map_disagrees && plan_share < options_.plan_share_drop * median) {
+    // Without a history of plan shares yet (just localized), a scan that does not agree with
+    // the recent map at all is enough.
+    const bool plan_disagrees =
+        median > 0.0 ? plan_share < options_.plan_share_drop * median
+                     : keyframe.registration.attempted && !keyframe.registration.agrees;
+    if (map_disagrees && plan_disagrees) {
       std::snprintf(text, sizeof text,
                     "the scan agrees neither with the recent map (%.0f %% of its points near it) "
                     "nor with the plan (%.0f %% of its wall points on a plan wall, %.0f %% before)",
