@@ -87,6 +87,14 @@ double WallSurfaceNode::exposedLength() const {
   return total;
 }
 
+Eigen::AlignedBox2d AGraph::surfaceBounds() const {
+  Eigen::AlignedBox2d box;  // default-constructed: empty
+  for (const auto& surface : surfaces) {
+    for (const auto& [a, b] : surface.segments) box.extend(a).extend(b);
+  }
+  return box;
+}
+
 int AGraph::findSurface(const std::string& id) const {
   for (std::size_t i = 0; i < surfaces.size(); ++i) {
     if (surfaces[i].id == id) return int(i);

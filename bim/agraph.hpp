@@ -1,6 +1,7 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <Eigen/Geometry>
 #include <string>
 #include <vector>
 
@@ -92,6 +93,9 @@ struct AGraph {
 
   int findSurface(const std::string& id) const;
   int findRoom(const std::string& id) const;
+  // The box of every wall surface segment in B (empty when there are none). Shared by whoever
+  // needs "the building's extent", so that they all agree on it.
+  Eigen::AlignedBox2d surfaceBounds() const;
 };
 
 struct AGraphOptions {

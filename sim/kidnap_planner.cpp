@@ -5,16 +5,6 @@
 
 namespace isg::sim {
 
-namespace {
-
-std::string format(const char* pattern, double a, double b = 0.0) {
-  char text[128];
-  std::snprintf(text, sizeof text, pattern, a, b);
-  return text;
-}
-
-}  // namespace
-
 void planKidnaps(const bim::Scenario& scenario, const OccupancyGrid& grid, PlannedRoute& route,
                  Trajectory& trajectory, std::mt19937_64& rng) {
   if (scenario.robot.kidnap.empty()) return;
@@ -24,9 +14,11 @@ void planKidnaps(const bim::Scenario& scenario, const OccupancyGrid& grid, Plann
     const bim::Kidnap& kidnap = scenario.robot.kidnap[i];
     const std::string pointer = "/robot/kidnap/" + std::to_string(i);
     if (kidnap.time >= trajectory.duration()) {
-      throw bim::InputError(file, pointer + "/time",
-                            format("the robot's route ends at %.2f s, before the kidnap at %.2f s",
-                                   trajectory.duration(), kidnap.time));
+      char reason[128];
+      std::snprintf(reason, sizeof reason,
+                    "the robot's route ends at %.2f s, before the kidnap at %.2f s",
+                    trajectory.duration(), kidnap.time);
+      throw bim::InputError(file, pointer + "/time", reason);
     }
     // What the current leg had not reached by then.
     const int leg = trajectory.legs() - 1;
@@ -48,11 +40,7 @@ void planKidnaps(const bim::Scenario& scenario, const OccupancyGrid& grid, Plann
       next.start_yaw = kidnap.pose->z();
     }
     if (grid.clearanceAt(at) < kMinClearance) {
-      throw bim::InputError(file, pointer + "/to",
-                            format("the robot cannot be put down at (%.3g, %.3g): it is less "
-                                   "than 0.35 m from a wall, clutter or the outside of the "
-                                   "building",
-                                   at.x(), at.y()));
+      throw bim::InputError(file, pointer + "/to", tooCloseReason(at, "be put down"));
     }
     next.waypoints.push_back(at);
     if (kidnap.room) next.targets.push_back({*kidnap.room, *kidnap.room, 0, at});

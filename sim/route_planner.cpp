@@ -13,14 +13,19 @@
 
 namespace isg::sim {
 
-namespace {
-
 std::string formatPoint(const Eigen::Vector2d& p) {
   std::ostringstream out;
   out.precision(3);
   out << "(" << p.x() << ", " << p.y() << ")";
   return out.str();
 }
+
+std::string tooCloseReason(const Eigen::Vector2d& p, const std::string& what) {
+  return "the robot cannot " + what + " at " + formatPoint(p) +
+         ": it is less than 0.35 m from a wall, clutter or the outside of the building";
+}
+
+namespace {
 
 bool segmentIsClear(const OccupancyGrid& grid, const Eigen::Vector2d& a, const Eigen::Vector2d& b) {
   const double length = (b - a).norm();
@@ -162,10 +167,7 @@ PlannedRoute planRoute(const bim::Scenario& scenario, const OccupancyGrid& grid,
   }
   const double start_clearance = grid.clearanceAt(start);
   if (start_clearance < kMinClearance) {
-    throw bim::InputError(file, "/robot/start",
-                          "the robot cannot stand at " + formatPoint(start) +
-                              ": it is less than 0.35 m from a wall, clutter or the outside of "
-                              "the building");
+    throw bim::InputError(file, "/robot/start", tooCloseReason(start, "stand"));
   }
   route.waypoints.push_back(start);
   if (!start_room.empty()) {

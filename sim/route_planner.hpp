@@ -51,6 +51,13 @@ struct PlannedRoute {
 PlannedRoute planRoute(const bim::Scenario& scenario, const OccupancyGrid& grid,
                        std::mt19937_64& rng);
 
+// "(x, y)" with 3 significant digits, as error messages name points.
+std::string formatPoint(const Eigen::Vector2d& p);
+
+// The error's reason when the robot cannot `what` ("stand", "be put down") at p: closer than
+// kMinClearance to something.
+std::string tooCloseReason(const Eigen::Vector2d& p, const std::string& what);
+
 // Where the route goes in a room: its centroid when open enough, else its most open point.
 Eigen::Vector2d roomGoal(const OccupancyGrid& grid, const bim::Room& room);
 

@@ -89,18 +89,13 @@ nlohmann::json MatchResult::toJson() const {
 GraphMatcher::GraphMatcher(const bim::AGraph& graph, const MatchingOptions& options)
     : graph_(&graph), options_(options) {
   // The grid's extent: every surface segment and room outline.
-  Eigen::Vector2d lo = Eigen::Vector2d::Constant(1e300), hi = Eigen::Vector2d::Constant(-1e300);
-  auto grow = [&](const Eigen::Vector2d& p) {
-    lo = lo.cwiseMin(p);
-    hi = hi.cwiseMax(p);
-  };
-  for (const auto& s : graph.surfaces) {
-    for (const auto& [a, b] : s.segments) grow(a), grow(b);
-  }
+  Eigen::AlignedBox2d bounds = graph.surfaceBounds();
   for (const auto& r : graph.rooms) {
-    for (const auto& p : r.outline) grow(p);
+    for (const auto& p : r.outline) bounds.extend(p);
   }
-  if (lo.x() > hi.x()) lo = hi = Eigen::Vector2d::Zero();
+  if (bounds.isEmpty())
+    bounds = Eigen::AlignedBox2d(Eigen::Vector2d::Zero(), Eigen::Vector2d::Zero());
+  const Eigen::Vector2d lo = bounds.min(), hi = bounds.max();
   const double margin = 2.0;
   origin_ = lo - Eigen::Vector2d::Constant(margin);
   columns_ = int(std::ceil((hi.x() - lo.x() + 2 * margin) / cell_)) + 1;

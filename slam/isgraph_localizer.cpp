@@ -26,14 +26,7 @@ ISGraphLocalizer::ISGraphLocalizer(const Eigen::Isometry3d& R_T_L, const bim::AG
       matcher_(plan, options.matching),
       plan_state_(plan) {
   // The box of the plan's walls: a pose in B outside it (with a margin) is no pose in the building.
-  plan_lo_ = Eigen::Vector2d::Constant(1e300);
-  plan_hi_ = Eigen::Vector2d::Constant(-1e300);
-  for (const auto& surface : plan.surfaces) {
-    for (const auto& [a, b] : surface.segments) {
-      plan_lo_ = plan_lo_.cwiseMin(a).cwiseMin(b);
-      plan_hi_ = plan_hi_.cwiseMax(a).cwiseMax(b);
-    }
-  }
+  plan_bounds_ = plan.surfaceBounds();
   graph_.setWindowHook(
       [this](ceres::Problem& problem, const std::set<int>& planes, const std::vector<int>& rooms) {
         addPlanFactors(problem, planes, rooms);
@@ -176,9 +169,9 @@ std::string ISGraphLocalizer::lostReason(const MatchInput& input) {
   // The pose must be in the building.
   if (const auto pose = graph_.latestPose()) {
     const Eigen::Vector2d p = applyPlanar(B_T_M_, pose->M_T_R.translation().head<2>());
-    const double margin = options_.outside_margin;
-    if ((p.array() < plan_lo_.array() - margin).any() ||
-        (p.array() > plan_hi_.array() + margin).any()) {
+    const Eigen::Vector2d margin = Eigen::Vector2d::Constant(options_.outside_margin);
+    const Eigen::AlignedBox2d building(plan_bounds_.min() - margin, plan_bounds_.max() + margin);
+    if (!building.contains(p)) {
       std::snprintf(text, sizeof text, "the pose (%.1f, %.1f) is outside the building", p.x(),
                     p.y());
       return text;

@@ -3,31 +3,15 @@
 #include <algorithm>
 #include <cmath>
 
+#include "bim/polygon.hpp"
+
 namespace isg::slam {
 
-namespace {
-
-double segmentDistance(const Eigen::Vector2d& p, const Eigen::Vector2d& a,
-                       const Eigen::Vector2d& b) {
-  const Eigen::Vector2d ab = b - a;
-  const double squared = ab.squaredNorm();
-  const double s = squared > 0.0 ? std::clamp((p - a).dot(ab) / squared, 0.0, 1.0) : 0.0;
-  return (a + s * ab - p).norm();
-}
-
-}  // namespace
-
 PlanDistanceField::PlanDistanceField(const bim::AGraph& plan, double cap) : cap_(cap) {
-  Eigen::Vector2d lo = Eigen::Vector2d::Constant(1e300), hi = Eigen::Vector2d::Constant(-1e300);
-  for (const auto& surface : plan.surfaces) {
-    for (const auto& [a, b] : surface.segments) {
-      lo = lo.cwiseMin(a).cwiseMin(b);
-      hi = hi.cwiseMax(a).cwiseMax(b);
-    }
-  }
-  if (lo.x() > hi.x()) return;  // no surfaces: every distance is the cap
-  origin_ = lo - Eigen::Vector2d::Constant(cap);
-  const Eigen::Vector2d extent = hi - lo + Eigen::Vector2d::Constant(2.0 * cap);
+  const Eigen::AlignedBox2d bounds = plan.surfaceBounds();
+  if (bounds.isEmpty()) return;  // no surfaces: every distance is the cap
+  origin_ = bounds.min() - Eigen::Vector2d::Constant(cap);
+  const Eigen::Vector2d extent = bounds.sizes() + Eigen::Vector2d::Constant(2.0 * cap);
   constexpr double kMaxCells = 4e6;
   resolution_ = std::max(0.1, std::sqrt(extent.x() * extent.y() / kMaxCells));
   columns_ = int(std::ceil(extent.x() / resolution_)) + 1;
@@ -46,7 +30,7 @@ PlanDistanceField::PlanDistanceField(const bim::AGraph& plan, double cap) : cap_
         for (int c = c0; c <= c1; ++c) {
           const Eigen::Vector2d centre = origin_ + resolution_ * Eigen::Vector2d(c + 0.5, r + 0.5);
           float& cell = cells_[std::size_t(r) * columns_ + c];
-          cell = std::min(cell, float(segmentDistance(centre, a, b)));
+          cell = std::min(cell, float(bim::distanceToSegment(centre, a, b)));
         }
       }
     }

@@ -63,6 +63,10 @@ std::vector<Eigen::Vector3f> downsampleScan(const Scan& scan,
 
 struct LocalMap::Index {
   pcl::KdTreeFLANN<pcl::PointXYZ> tree;
+  // The nearest-neighbour query's outputs, kept to spare an allocation per query (a registration
+  // makes some 10^4): a LocalMap is searched from one thread at a time.
+  std::vector<int> index = std::vector<int>(1);
+  std::vector<float> squared = std::vector<float>(1);
 };
 
 LocalMap::~LocalMap() = default;
@@ -119,14 +123,12 @@ LocalMap::LocalMap(const std::vector<Part>& parts, const ScanRegistrationOptions
 
 int LocalMap::nearest(const Eigen::Vector3d& q, double max_distance, double* distance) const {
   if (points_.empty()) return -1;
-  std::vector<int> index(1);
-  std::vector<float> squared(1);
   const pcl::PointXYZ query(float(q.x()), float(q.y()), float(q.z()));
-  if (index_->tree.nearestKSearch(query, 1, index, squared) < 1) return -1;
-  const double d = std::sqrt(double(squared[0]));
+  if (index_->tree.nearestKSearch(query, 1, index_->index, index_->squared) < 1) return -1;
+  const double d = std::sqrt(double(index_->squared[0]));
   if (d > max_distance) return -1;
   *distance = d;
-  return index[0];
+  return index_->index[0];
 }
 
 Eigen::Isometry3d planarCorrection(const Eigen::Vector3d& correction,
@@ -174,24 +176,35 @@ RegistrationResult registerScan(const std::vector<Eigen::Vector3f>& scan_in_L,
     }
     return double(near) / double(points.size());
   };
-  result.inlier_share_predicted = share_within(Eigen::Vector3d::Zero());
 
+  // Each pass finds every point's nearest map point anyway: the shares come from those passes
+  // (the first, at the prediction; the last at the final tolerance) rather than from passes of
+  // their own.
+  if (options.max_correspondence_start < options.max_correspondence_end) {
+    result.inlier_share_predicted = share_within(Eigen::Vector3d::Zero());
+  }
   Eigen::Vector3d x = Eigen::Vector3d::Zero();
   Eigen::Matrix3d scan_information = Eigen::Matrix3d::Zero();
+  // The tolerance shrinks stage by stage; once a stage's step is below a millimetre the estimate
+  // has settled at that tolerance, and the passes left go to the final tolerance.
   const int iterations = std::max(1, options.iterations);
-  for (int it = 0; it < iterations; ++it) {
-    const double fraction = iterations == 1 ? 1.0 : double(it) / double(iterations - 1);
+  const int last_stage = iterations - 1;
+  bool final_share_known = false;
+  for (int pass = 0, stage = 0; pass < iterations; ++pass) {
+    const double fraction = iterations == 1 ? 1.0 : double(stage) / double(last_stage);
     const double max_distance =
         options.max_correspondence_start +
         fraction * (options.max_correspondence_end - options.max_correspondence_start);
+    const double near_distance = std::min(max_distance, options.max_correspondence_end);
     Eigen::Matrix3d H = Eigen::Matrix3d::Zero();
     Eigen::Vector3d g = Eigen::Vector3d::Zero();
-    int used = 0;
+    int used = 0, near = 0;
     for (const auto& q : points) {
       const Eigen::Vector3d p = transformed(x, q);
       double d = 0.0;
       const int m = map.nearest(p, max_distance, &d);
       if (m < 0) continue;
+      if (d <= near_distance) ++near;
       const Eigen::Vector3d& n = map.normal(m);
       if (n.isZero() || std::abs(n.z()) > options.max_normal_z) continue;
       const double r = n.dot(p - map.point(m));
@@ -203,6 +216,10 @@ RegistrationResult registerScan(const std::vector<Eigen::Vector3f>& scan_in_L,
       g += w * J * r;
       ++used;
     }
+    const double share = double(near) / double(points.size());
+    if (pass == 0 && max_distance >= options.max_correspondence_end) {
+      result.inlier_share_predicted = share;
+    }
     result.correspondences = used;
     if (used < 10) break;
     const double scale =
@@ -213,11 +230,19 @@ RegistrationResult registerScan(const std::vector<Eigen::Vector3f>& scan_in_L,
     const Eigen::Vector3d step = -total.ldlt().solve(gradient);
     if (!step.allFinite()) break;
     x += step;
-    if (step.head<2>().norm() < 1e-4 && std::abs(step.z()) < 1e-5 && fraction >= 1.0) break;
+    if (stage == last_stage) {
+      // At the final tolerance the last step is small: the share before it is the share at x.
+      result.inlier_share = share;
+      final_share_known = true;
+      if (step.head<2>().norm() < 1e-4 && std::abs(step.z()) < 1e-5) break;
+    } else {
+      const bool settled = step.head<2>().norm() < 1e-3 && std::abs(step.z()) < 1e-4;
+      stage = settled ? last_stage : stage + 1;
+    }
   }
   result.correction = x;
   result.information = scan_information;
-  result.inlier_share = share_within(x);
+  if (!final_share_known) result.inlier_share = share_within(x);
   result.agrees = result.inlier_share >= options.min_inlier_share;
   return result;
 }

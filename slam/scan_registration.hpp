@@ -30,6 +30,11 @@ struct ScanRegistrationOptions {
   // Neighbouring scan points are not independent: the information of a registration is that of
   // this many points, however many there are (docs/slam.md).
   double effective_points = 60.0;
+  // The scan-match factor enters the window with this share of the registration's information.
+  // Consecutive registrations share most of their local map, so their errors are correlated, not
+  // independent; at full weight the chain of them outweighed the plane observations and the plan
+  // (APE on D1–D6 as built, docs/slam.md).
+  double factor_information_share = 0.2;
   // Below this share of scan points within max_correspondence_end of the local map, the scan does
   // not agree with the recent map: no factor, and the localizer is told (a kidnap, a failure).
   double min_inlier_share = 0.25;
@@ -54,7 +59,8 @@ class LocalMap {
 
   bool empty() const { return points_.empty(); }
   std::size_t size() const { return points_.size(); }
-  // The nearest map point to q: index, or -1 when none within max_distance.
+  // The nearest map point to q: index, or -1 when none within max_distance. Not for concurrent
+  // use: the query reuses the map's scratch space.
   int nearest(const Eigen::Vector3d& q, double max_distance, double* distance) const;
   const Eigen::Vector3d& point(int i) const { return points_[i]; }
   // Unit normal, or zero where the neighbourhood is not planar.

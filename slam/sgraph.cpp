@@ -215,7 +215,8 @@ Eigen::Isometry3d SGraph::registerKeyframe(Keyframe& keyframe, const Eigen::Isom
   r.measured.z() = std::remainder(yawOf(corrected.linear()) - yaw_i, 2.0 * std::numbers::pi);
   Eigen::Matrix3d R3 = Eigen::Matrix3d::Identity();
   R3.topLeftCorner<2, 2>() = R_i;
-  const Eigen::Matrix3d information = R3.transpose() * result.information * R3;
+  const Eigen::Matrix3d information =
+      options.factor_information_share * (R3.transpose() * result.information * R3);
   // Directions the scan does not see (a corridor's axis) have no information: a tiny floor keeps
   // the square root defined without adding any.
   const Eigen::LLT<Eigen::Matrix3d> llt(information + 1e-9 * Eigen::Matrix3d::Identity());

@@ -29,6 +29,14 @@ TEST_F(TwoRoomAGraph, NodeCounts) {
   ASSERT_EQ(graph.floors.size(), 1u);
 }
 
+TEST_F(TwoRoomAGraph, SurfaceBoundsAreTheOuterFacesOfTheOuterWalls) {
+  // The outer walls are 0.2 m thick about lines x ∈ {0, 6}, y ∈ {0, 4}: their outer faces.
+  const Eigen::AlignedBox2d bounds = graph.surfaceBounds();
+  EXPECT_NEAR((bounds.min() - Eigen::Vector2d(-0.1, -0.1)).norm(), 0.0, 1e-9);
+  EXPECT_NEAR((bounds.max() - Eigen::Vector2d(6.1, 4.1)).norm(), 0.0, 1e-9);
+  EXPECT_TRUE(AGraph{}.surfaceBounds().isEmpty());
+}
+
 TEST_F(TwoRoomAGraph, SurfacesArePlanesOfTheFacesWithTheirExposedParts) {
   const auto& s =
       surface("W1:left");  // y = 0.1, looking +y, between W4 and the partition and beyond
