@@ -244,7 +244,9 @@ TEST(Faults, InterruptedSimulationLeavesNothing) {
   }
 }
 
-// A full disk and a read-only folder need a small tmpfs: root only.
+// A full disk and a read-only folder need a small tmpfs: root only. Each test process mounts its
+// own: CTest runs the tests of this fixture side by side, and a shared mount point let one test's
+// read-only tmpfs land on the other's.
 class FullDisk : public ::testing::Test {
  protected:
   void SetUp() override {
@@ -259,7 +261,8 @@ class FullDisk : public ::testing::Test {
     mounted_ = ::mount("tmpfs", mount_point_.c_str(), "tmpfs", 0, options) == 0;
     return mounted_;
   }
-  fs::path mount_point_ = fs::temp_directory_path() / "isg_cli_test_full_disk";
+  fs::path mount_point_ =
+      fs::temp_directory_path() / ("isg_cli_test_full_disk_" + std::to_string(::getpid()));
   bool mounted_ = false;
 };
 
