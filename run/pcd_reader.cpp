@@ -1,5 +1,6 @@
 #include "run/pcd_reader.hpp"
 
+#include <algorithm>
 #include <array>
 #include <charconv>
 #include <cmath>
@@ -119,7 +120,7 @@ class PcdParser {
     const std::size_t stop = end == std::string_view::npos ? bytes_.size() : end;
     std::string_view line = bytes_.substr(position_, stop - position_);
     if (!line.empty() && line.back() == '\r') line.remove_suffix(1);
-    position_ = stop + 1;
+    position_ = std::min(stop + 1, bytes_.size());  // a last line without '\n' ends the file
     ++line_;
     return line;
   }

@@ -47,6 +47,17 @@ TEST(Faults, EmptyOrGarbagePcdIsNamedNotACrash) {
             "isg slam: error: ds/scans/000003.pcd: line 4: not a PCD header line: "
             "\"??garbage\"\n");
 
+  // A header whose last line, "DATA binary", has no line end: no data, not a read past the end.
+  sandbox.write("ds/scans/000003.pcd",
+                "VERSION 0.7\nFIELDS x y z intensity ring time\nSIZE 4 4 4 4 2 4\n"
+                "TYPE F F F F U F\nCOUNT 1 1 1 1 1 1\nWIDTH 2\nHEIGHT 1\n"
+                "VIEWPOINT 0 0 0 1 0 0 0\nPOINTS 2\nDATA binary");
+  result = sandbox.run("slam ds -q -o out");
+  EXPECT_EQ(result.exit_code, 1);
+  EXPECT_EQ(result.err,
+            "isg slam: error: ds/scans/000003.pcd: data: 2 points need 44 bytes, the file holds "
+            "0\n");
+
   // A binary file cut short.
   const std::string whole = sandbox.read("ds/scans/000004.pcd");
   sandbox.write("ds/scans/000003.pcd", whole.substr(0, whole.size() - 100));
