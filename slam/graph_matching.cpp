@@ -58,6 +58,11 @@ const char* toString(MatchStatus status) {
   return "?";
 }
 
+double Verification::unexplainedShare() const {
+  const double total = explained_length + unexplained_length;
+  return total > 0.0 ? unexplained_length / total : 0.0;
+}
+
 Eigen::Isometry3d MatchResult::B_T_M() const {
   Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
   T.linear() = Eigen::AngleAxisd(best.x_y_yaw.z(), Eigen::Vector3d::UnitZ()).toRotationMatrix();
@@ -82,6 +87,7 @@ nlohmann::json MatchResult::toJson() const {
           {"doors_missing", best.doors_missing},
           {"rooms_contradicted", best.rooms_contradicted},
           {"plane_rms", best.plane_rms},
+          {"explained_length", best.explained_length},
           {"unexplained_length", best.unexplained_length},
           {"seconds", seconds}};
 }
@@ -296,6 +302,7 @@ Verification GraphMatcher::verify(const MatchInput& input, const Eigen::Vector3d
       continue;
     }
     v.planes.emplace_back(plane.id, s);
+    v.explained_length += plane.length();
     shared_total += std::min(overlap, plane.length()) * fit(distance, options_.plane_sigma);
     squared += distance * distance;
   }
@@ -469,15 +476,19 @@ MatchResult GraphMatcher::match(const MatchInput& input) const {
   auto plural = [](std::size_t n) { return n == 1 ? "" : "s"; };
   char text[256];
   std::snprintf(text, sizeof text,
-                "best: %zu room%s, %zu plane%s (%d outside its rooms), %d door%s, score %.1f; "
-                "second answer %.1f",
+                "best: %zu room%s, %zu plane%s (%d outside its rooms), %d door%s, %.1f of %.1f m "
+                "of wall explained, score %.1f; second answer %.1f",
                 a_rooms.size(), plural(a_rooms.size()), result.best.planes.size(),
                 plural(result.best.planes.size()), planes_outside, result.best.doors_passed,
-                plural(std::size_t(result.best.doors_passed)), result.best.score,
+                plural(std::size_t(result.best.doors_passed)), result.best.explained_length,
+                result.best.explained_length + result.best.unexplained_length, result.best.score,
                 result.second_score);
   if (!supported || result.best.score <= 0.0) {
     result.status = MatchStatus::kNotYet;
     result.reason = std::string("too little evidence: ") + text;
+  } else if (result.best.unexplainedShare() > options_.max_unexplained_share) {
+    result.status = MatchStatus::kNotYet;
+    result.reason = std::string("the plan leaves too much of the mapped wall unexplained: ") + text;
   } else if (result.second_score >= options_.ambiguity_ratio * result.best.score) {
     result.status = MatchStatus::kAmbiguous;
     result.reason = std::string("two answers explain the map alike: ") + text;

@@ -73,6 +73,12 @@ struct MatchingOptions {
   int min_rooms = 2;
   int min_planes_outside = 4;
   double ambiguity_ratio = 0.8;
+  // And the best answer must explain most of the mapped wall: of the S-planes used as evidence, at
+  // most this share of their length may have no A-surface. The right answer leaves unexplained
+  // only what the building has and its plan lacks (extra walls, tall clutter); an answer that fits
+  // one room but not the walls around it leaves whole walls. Failing it is "not yet": the map
+  // grows and the share of a right answer falls (docs/matching.md).
+  double max_unexplained_share = 0.25;
 };
 
 // kLost: was matched, then the world stopped agreeing with the graph; a fresh S-Graph segment is
@@ -90,7 +96,10 @@ struct Verification {
   int doors_missing = 0;                    // transitions between matched rooms without one
   int rooms_contradicted = 0;               // S-rooms landing on an A-room of another size
   double plane_rms = 0.0;                   // m, matched planes' distance residual
+  double explained_length = 0.0;            // m of S-plane with a surface (evidence planes)
   double unexplained_length = 0.0;          // m of S-plane no surface explains
+  // unexplained / (explained + unexplained); 0 with no evidence plane.
+  double unexplainedShare() const;
 };
 
 struct MatchResult {

@@ -25,8 +25,10 @@ ISGraphLocalizer::ISGraphLocalizer(const Eigen::Isometry3d& R_T_L, const bim::AG
       graph_(R_T_L, options.sgraph),
       matcher_(plan, options.matching),
       plan_state_(plan) {
-  // The box of the plan's walls: a pose in B outside it (with a margin) is no pose in the building.
-  plan_bounds_ = plan.surfaceBounds();
+  // The box of the plan's walls and the margin: a pose in B outside it is no pose in the building.
+  const Eigen::AlignedBox2d walls = plan.surfaceBounds();
+  const Eigen::Vector2d margin = Eigen::Vector2d::Constant(options.outside_margin);
+  building_ = Eigen::AlignedBox2d(walls.min() - margin, walls.max() + margin);
   graph_.setWindowHook(
       [this](ceres::Problem& problem, const std::set<int>& planes, const std::vector<int>& rooms) {
         addPlanFactors(problem, planes, rooms);
@@ -169,9 +171,7 @@ std::string ISGraphLocalizer::lostReason(const MatchInput& input) {
   // The pose must be in the building.
   if (const auto pose = graph_.latestPose()) {
     const Eigen::Vector2d p = applyPlanar(B_T_M_, pose->M_T_R.translation().head<2>());
-    const Eigen::Vector2d margin = Eigen::Vector2d::Constant(options_.outside_margin);
-    const Eigen::AlignedBox2d building(plan_bounds_.min() - margin, plan_bounds_.max() + margin);
-    if (!building.contains(p)) {
+    if (!building_.contains(p)) {
       std::snprintf(text, sizeof text, "the pose (%.1f, %.1f) is outside the building", p.x(),
                     p.y());
       return text;

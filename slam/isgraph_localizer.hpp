@@ -151,7 +151,7 @@ class ISGraphLocalizer : public Localizer {
   std::size_t rooms_at_last_attempt_ = 0;
   int keyframes_at_last_attempt_ = 0;
   std::set<int> surfaces_in_problem_;  // per optimisation
-  Eigen::AlignedBox2d plan_bounds_;
+  Eigen::AlignedBox2d building_;       // the plan's walls' box grown by outside_margin
   int contradictions_ = 0;
   int losses_ = 0;
   int held_constant_ = 0;  // optimisations in which B_T_M was held (under-constrained)

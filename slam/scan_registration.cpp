@@ -231,9 +231,10 @@ RegistrationResult registerScan(const std::vector<Eigen::Vector3f>& scan_in_L,
     if (!step.allFinite()) break;
     x += step;
     if (stage == last_stage) {
-      // At the final tolerance the last step is small: the share before it is the share at x.
+      // At the final tolerance, after a step under a millimetre the share before it is the share
+      // at x; after a larger one (the pass budget ran out first) it is counted again below.
       result.inlier_share = share;
-      final_share_known = true;
+      final_share_known = step.head<2>().norm() < 1e-3 && std::abs(step.z()) < 1e-4;
       if (step.head<2>().norm() < 1e-4 && std::abs(step.z()) < 1e-5) break;
     } else {
       const bool settled = step.head<2>().norm() < 1e-3 && std::abs(step.z()) < 1e-4;
