@@ -212,6 +212,16 @@ def main():
     scenarios = os.path.join(args.out, "scenarios")
     os.makedirs(scenarios, exist_ok=True)
     rows = []
+
+    def write_summary():
+        # After every run, so that an interrupted suite keeps what it measured.
+        fields = ["run", "bias", "localized", "wrong", "time_wrong", "max_error", "ape_B", "ape_M",
+                  "ape_odometry", "lost", "status", "rtf", "error"]
+        with open(os.path.join(args.out, "summary.csv"), "w", newline="") as f:
+            writer = csv.DictWriter(f, fieldnames=fields)
+            writer.writeheader()
+            writer.writerows(rows)
+
     for world in args.worlds.split(","):
         for level in [int(x) for x in args.levels.split(",")]:
             for seed in [int(x) for x in args.seeds.split(",")]:
@@ -238,6 +248,7 @@ def main():
                 if result.returncode != 0:
                     print(f"{name}: exit {result.returncode}: {result.stderr.strip()[:200]}")
                     rows.append({"run": name, "bias": bias, "error": result.stderr.strip()[:200]})
+                    write_summary()
                     continue
                 m = json.load(open(os.path.join(run_dir, "metrics.json")))
                 row = {
@@ -252,16 +263,11 @@ def main():
                     "rtf": m["real_time_factor"],
                 }
                 rows.append(row)
+                write_summary()
                 print(f"{name}: localized={row['localized']} wrong={row['wrong']} "
                       f"max_error={row['max_error'] if row['max_error'] == '' else round(row['max_error'], 2)} "
                       f"ape_B={row['ape_B']} ape_M={row['ape_M']} odo={row['ape_odometry']:.2f} "
                       f"lost={row['lost']} rtf={row['rtf']:.1f}", flush=True)
-    fields = ["run", "bias", "localized", "wrong", "time_wrong", "max_error", "ape_B", "ape_M",
-              "ape_odometry", "lost", "status", "rtf", "error"]
-    with open(os.path.join(args.out, "summary.csv"), "w", newline="") as f:
-        writer = csv.DictWriter(f, fieldnames=fields)
-        writer.writeheader()
-        writer.writerows(rows)
     done = [r for r in rows if "error" not in r]
     localized = [r for r in done if r["localized"]]
     wrong = [r for r in done if r["wrong"]]
