@@ -10,6 +10,7 @@
 #include <string>
 
 #include "bim/agraph.hpp"
+#include "eval/wrong_localization.hpp"
 #include "run/driver.hpp"
 #include "sim/scan_pipeline.hpp"
 #include "sim/simulation.hpp"
@@ -54,14 +55,7 @@ Outcome runD3WithoutW6(double max_unexplained_share) {
           std::abs(std::remainder(last->best.x_y_yaw.z() - true_yaw, 2.0 * std::numbers::pi));
     }
   }
-  // Ground truth is at 100 Hz, estimate rows at the odometry's stamps: match by stamp.
-  std::size_t g = 0;
-  for (const auto& row : driver.estimate()) {
-    while (g + 1 < streams.ground_truth.size() && streams.ground_truth[g].t < row.t - 1e-6) ++g;
-    const double error =
-        (streams.ground_truth[g].pose.translation() - row.pose.translation()).head<2>().norm();
-    outcome.worst_error = std::max(outcome.worst_error, error);
-  }
+  outcome.worst_error = eval::wrongLocalization(streams.ground_truth, driver.estimate()).max_error;
   return outcome;
 }
 
