@@ -45,7 +45,7 @@ RunCommand::RunCommand(CLI::App& parent) {
       ->option_text("RUN_DIR")
       ->default_str("runs/<world>-<method>");
   app_->add_option("--method", method_, "localization method (see below)")
-      ->check(CLI::IsMember(methods_.names()))
+      ->check(CLI::IsMember(methods_.acceptedNames()))
       ->capture_default_str();
   app_->add_option("--seed", seed_, "seed for every random draw")->default_str("the scenario's");
   app_->add_option("--duration", duration_, "seconds of robot time")
@@ -54,6 +54,9 @@ RunCommand::RunCommand(CLI::App& parent) {
   app_->add_option("--threads", threads_, "threads: one localizes, the others cast scans ahead")
       ->check(CLI::Range(1, 64))
       ->capture_default_str();
+  app_->add_option("--method-option", method_options_,
+                   "a setting of the method, KEY=VALUE (repeatable; the methods below say which)")
+      ->option_text("KEY=VALUE");
   app_->add_flag("--force", force_, "replace RUN_DIR if it exists");
   app_->add_flag("-q,--quiet", quiet_, "no progress bar");
 }
@@ -61,6 +64,7 @@ RunCommand::RunCommand(CLI::App& parent) {
 int RunCommand::run() {
   namespace fs = std::filesystem;
   const std::string input = input_.empty() ? std::string(worlds::kDefaultWorld) : input_;
+  method_ = methods_.canonical(method_);
   if (output_.empty()) output_ = "runs/" + worldName(input) + "-" + method_;
   // Before the run, not after it: a folder that cannot be written fails at once.
   if (const auto parent = fs::path(output_).parent_path(); !parent.empty()) {
@@ -81,7 +85,9 @@ int RunCommand::run() {
   context.level = scenario.robot.level;
   context.R_T_L = streams.R_T_L;
   context.start_B_T_M = run::trueStartB_T_M(streams);
-  const auto localizer = methods_.make(method_, context);
+  context.seed = scenario.seed;
+  context.options = methodOptions(method_options_);
+  const auto localizer = makeMethod(methods_, method_, context);
 
   run::RunSetup setup{input,          localizer->name(), scenario.seed,
                       &scenario.plan, &agraph,           scenario.robot.level};

@@ -18,6 +18,7 @@ class RunCommand : public Command {
   const run::LocalizerRegistry methods_ = run::builtinMethods();
   std::string input_;
   std::string output_;
+  std::vector<std::string> method_options_;
   std::string method_ = "is-graphs";
   std::optional<std::uint64_t> seed_;
   double duration_ = -1.0;

@@ -63,11 +63,14 @@ SlamCommand::SlamCommand(CLI::App& parent) {
                    "the building's plan (file or builtin:NAME): localize in it (iS-Graph)")
       ->option_text("PLAN");
   app_->add_option("--method", method_, "localization method (see below)")
-      ->check(CLI::IsMember(methods_.names()))
+      ->check(CLI::IsMember(methods_.acceptedNames()))
       ->default_str("is-graphs with --plan, s-graph without");
   app_->add_option("-o,--output", output_, "RUN_DIR to create")->option_text("RUN_DIR")->required();
   app_->add_flag("--other-plan", other_plan_,
                  "localize in a --plan other than the one the dataset was recorded in");
+  app_->add_option("--method-option", method_options_,
+                   "a setting of the method, KEY=VALUE (repeatable; the methods below say which)")
+      ->option_text("KEY=VALUE");
   app_->add_flag("--force", force_, "replace RUN_DIR if it exists");
   app_->add_flag("-q,--quiet", quiet_, "no progress bar");
 }
@@ -94,7 +97,9 @@ int SlamCommand::run() {
   context.level = level;
   context.R_T_L = streams.R_T_L;
   context.start_B_T_M = run::trueStartB_T_M(streams);
-  const auto localizer = methods_.make(method, context);
+  context.seed = dataset.seed();
+  context.options = methodOptions(method_options_);
+  const auto localizer = makeMethod(methods_, method, context);
 
   run::RunSetup setup{dataset_,     localizer->name(), dataset.seed(),
                       context.plan, context.agraph,    level};

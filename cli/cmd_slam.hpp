@@ -15,6 +15,7 @@ class SlamCommand : public Command {
   const run::LocalizerRegistry methods_ = run::builtinMethods();
   std::string dataset_;
   std::string plan_;
+  std::vector<std::string> method_options_;
   std::string method_;
   std::string output_;
   bool force_ = false;

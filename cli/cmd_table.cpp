@@ -4,6 +4,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <map>
 #include <sstream>
 
 #include "eval/table.hpp"
@@ -24,9 +25,12 @@ TableCommand::TableCommand(CLI::App& parent) {
       "With --baseline, compares each cell of the baseline table (CSV, as --format csv writes "
       "it) with the runs and exits with code 4, naming every cell that is worse by more than "
       "--tolerance (in the measure's unit), failed, was wrongly localized, or has no run.\n\n"
-      "Example: for m in is-graphs dead-reckoning; do isg run builtin:d1 --method $m -o "
-      "runs/d1-$m; "
-      "done; isg table runs/* --format csv > baseline.csv");
+      "Runs of one world and method with different seeds make one cell: their mean, a number "
+      "only when every seed localized, ✗ when any was wrong. A last row counts the worlds each "
+      "method localized correctly.\n\n"
+      "Example: for m in is-graphs amcl odometry; do for s in 1 2 3; do isg run builtin:d1 "
+      "--method $m --seed $s -o runs/d1-$m-$s; done; done; isg table runs/* --format csv > "
+      "baseline.csv");
   app_->add_option("runs", runs_, "run folders made by isg run or isg slam")
       ->option_text("RUN_DIR")
       ->required();
@@ -47,44 +51,108 @@ TableCommand::TableCommand(CLI::App& parent) {
   app_->add_option("-o,--output", output_, "write the table to this file instead of stdout");
 }
 
+namespace {
+
+// The runs of one cell: one per seed.
+struct CellRuns {
+  std::vector<std::uint64_t> seeds;
+  std::vector<std::optional<double>> values;
+  bool wrong = false;
+};
+
+}  // namespace
+
 int TableCommand::run() {
+  const run::LocalizerRegistry methods = run::builtinMethods();
   // The testbed's methods first, in their order (iS-Graphs, then the baselines), like the paper.
   std::vector<std::pair<std::string, run::RunMetrics>> runs;
-  for (const auto& dir : runs_) runs.emplace_back(dir, run::readMetrics(dir));
-  const std::vector<std::string> names = run::builtinMethods().names();
+  for (const auto& dir : runs_) {
+    runs.emplace_back(dir, run::readMetrics(dir));
+    runs.back().second.method = methods.canonical(runs.back().second.method);  // old names
+  }
+  const std::vector<std::string> names = methods.names();
   auto rank = [&](const run::RunMetrics& metrics) {
     return int(std::find(names.begin(), names.end(), metrics.method) - names.begin());
   };
   std::stable_sort(runs.begin(), runs.end(),
                    [&](const auto& a, const auto& b) { return rank(a.second) < rank(b.second); });
-  eval::ResultTable table;
+  // Cells in first-seen order; several seeds of a world and method make one cell.
+  std::vector<std::pair<std::string, std::string>> order;
+  std::map<std::pair<std::string, std::string>, CellRuns> cells;
+  std::vector<std::string> uncounted;
   for (const auto& [dir, metrics] : runs) {
     std::string world = metrics.world;
     if (world.rfind("builtin:", 0) == 0) world = world.substr(8);
+    const run::MethodInfo* info = methods.find(metrics.method);
+    const bool slam_only = info != nullptr && info->slam_only;
+    const std::string column = slam_only ? metrics.method + " (SE(3) in M)" : metrics.method;
     std::optional<double> value;
-    if (measure_ == "ape") {
+    if (slam_only) {
+      if (measure_ == "ape" && metrics.ape_M_se3) value = metrics.ape_M_se3->rmse;
+      if (std::find(uncounted.begin(), uncounted.end(), column) == uncounted.end()) {
+        uncounted.push_back(column);
+      }
+    } else if (measure_ == "ape") {
       if (metrics.localized && metrics.ape_B) value = metrics.ape_B->rmse;
     } else if (measure_ == "time-wrong") {
       if (metrics.localized) value = metrics.time_wrongly_localized;
     } else if (metrics.localized) {
       value = metrics.time_to_localize;
     }
-    if (table.find(world, metrics.method) != nullptr) {
-      throw bim::InputError(dir, "", "a second run of " + world + " with " + metrics.method);
+    const auto key = std::make_pair(world, column);
+    if (!cells.count(key)) order.push_back(key);
+    CellRuns& cell = cells[key];
+    if (std::find(cell.seeds.begin(), cell.seeds.end(), metrics.seed) != cell.seeds.end()) {
+      throw bim::InputError(dir, "",
+                            "a second run of " + world + " with " + metrics.method + " and seed " +
+                                std::to_string(metrics.seed));
     }
-    const bool wrong = measure_ == "ape" && metrics.wrongly_localized.value_or(false);
-    table.set(world, metrics.method, value, wrong);
+    cell.seeds.push_back(metrics.seed);
+    cell.values.push_back(value);
+    cell.wrong = cell.wrong || (measure_ == "ape" && metrics.wrongly_localized.value_or(false));
+  }
+  eval::ResultTable table;
+  table.uncounted = uncounted;
+  std::size_t most_seeds = 0;
+  for (const auto& key : order) {
+    const CellRuns& cell = cells.at(key);
+    most_seeds = std::max(most_seeds, cell.values.size());
+    // A number only when every seed gave one: a world a method fails on one seed in three is not
+    // a world it localizes in.
+    std::optional<double> mean = 0.0;
+    for (const auto& v : cell.values) {
+      if (!v) {
+        mean.reset();
+        break;
+      }
+      *mean += *v / double(cell.values.size());
+    }
+    table.set(key.first, key.second, mean, cell.wrong);
   }
   const eval::TableFormat format = format_ == "csv"     ? eval::TableFormat::kCsv
                                    : format_ == "latex" ? eval::TableFormat::kLatex
                                                         : eval::TableFormat::kMarkdown;
-  const char* caption =
+  std::string caption =
       measure_ == "time-wrong"
           ? "Seconds localized more than 1 m off the ground truth (2D); - never localized"
       : measure_ == "time-to-localize"
           ? "Seconds to the first localization; - never localized"
           : "APE RMSE in B [m] (2D, no alignment, from the first localized pose on); - never "
             "localized, ✗ wrongly localized (more than 1 m off for more than 5 s)";
+  if (most_seeds > 1) {
+    caption += ". Each cell is the mean over its seeds (up to " + std::to_string(most_seeds) +
+               "), a number only when every seed localized, ✗ when any seed was wrong";
+  }
+  std::string given;
+  for (const auto& column : table.columns) {
+    const run::MethodInfo* info = methods.find(column);
+    if (info != nullptr && info->given_start) given += (given.empty() ? "" : ", ") + column;
+  }
+  if (!given.empty()) {
+    caption += ". Given their start pose (trackers, not global localization): " + given +
+               " (docs/baselines.md)";
+  }
+  if (!uncounted.empty()) caption += ". SLAM only: APE of the map frame M after SE(3) alignment";
   const std::string text = eval::formatTable(table, format, caption);
   if (output_.empty()) {
     std::printf("%s", text.c_str());
@@ -102,6 +170,7 @@ int TableCommand::run() {
   } catch (const std::invalid_argument& e) {
     throw bim::InputError(baseline_, "", e.what());
   }
+  for (auto& column : baseline.columns) column = methods.canonical(column);  // renamed methods
   const auto regressions = eval::findRegressions(baseline, table, tolerance_);
   for (const auto& r : regressions) {
     std::fprintf(stderr, "isg table: regression: %s (tolerance %.3f m)\n", r.describe().c_str(),

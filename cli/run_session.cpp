@@ -2,6 +2,7 @@
 
 #include <cstdio>
 
+#include "bim/input_error.hpp"
 #include "run/run_folder.hpp"
 #include "run/run_report.hpp"
 
@@ -9,6 +10,31 @@ namespace isg::cli {
 
 std::string methodHelp(const run::LocalizerRegistry& registry) {
   return "Methods:\n" + registry.help();
+}
+
+std::map<std::string, std::string> methodOptions(const std::vector<std::string>& arguments) {
+  std::map<std::string, std::string> options;
+  for (const auto& argument : arguments) {
+    const std::size_t equals = argument.find('=');
+    if (equals == std::string::npos || equals == 0) {
+      throw bim::InputError("--method-option " + argument, "", "expected KEY=VALUE");
+    }
+    const std::string key = argument.substr(0, equals);
+    if (!options.emplace(key, argument.substr(equals + 1)).second) {
+      throw bim::InputError("--method-option " + argument, "", key + " is given twice");
+    }
+  }
+  return options;
+}
+
+std::unique_ptr<slam::Localizer> makeMethod(const run::LocalizerRegistry& registry,
+                                            const std::string& method,
+                                            const run::LocalizerContext& context) {
+  try {
+    return registry.make(method, context);
+  } catch (const std::invalid_argument& e) {
+    throw bim::InputError("--method " + method, "", e.what());
+  }
 }
 
 run::RunProgress progressOn(ProgressBar& bar, double scan_period) {

@@ -1,6 +1,9 @@
 #pragma once
 
+#include <map>
+#include <memory>
 #include <string>
+#include <vector>
 
 #include "cli/progress_bar.hpp"
 #include "run/driver.hpp"
@@ -15,6 +18,15 @@ namespace isg::cli {
 
 // The footer text listing the methods of `registry`, one line each.
 std::string methodHelp(const run::LocalizerRegistry& registry);
+
+// The --method-option KEY=VALUE arguments as a map. A malformed or repeated one is bad input.
+std::map<std::string, std::string> methodOptions(const std::vector<std::string>& arguments);
+
+// Builds the method; what the method refuses (an unknown option, a bad value, a plan it cannot
+// use) is bad input naming the method.
+std::unique_ptr<slam::Localizer> makeMethod(const run::LocalizerRegistry& registry,
+                                            const std::string& method,
+                                            const run::LocalizerContext& context);
 
 // A progress callback drawing `bar`: robot time so far and the localizer's state.
 run::RunProgress progressOn(ProgressBar& bar, double scan_period);

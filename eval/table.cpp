@@ -160,55 +160,67 @@ const std::optional<double>* ResultTable::find(const std::string& row,
 
 std::string formatTable(const ResultTable& table, TableFormat format, const std::string& caption) {
   std::ostringstream out;
+  const bool latex = format == TableFormat::kLatex;
   const auto text = [&](std::size_t r, std::size_t c) -> std::string {
     if (!table.present[r][c]) return "";
-    if (table.wrong[r][c]) return format == TableFormat::kLatex ? "$\\times$" : kWrongMark;
+    if (table.wrong[r][c]) return latex ? "$\\times$" : kWrongMark;
+    if (latex && !table.cells[r][c]) return "$-$";
     return cell(table.cells[r][c]);
   };
+  const auto count = [&](std::size_t c) -> std::string {
+    if (indexOf(table.uncounted, table.columns[c]) >= 0) return "n/a";
+    int n = 0;
+    for (std::size_t r = 0; r < table.rows.size(); ++r) {
+      n += table.present[r][c] && !table.wrong[r][c] && table.cells[r][c].has_value();
+    }
+    return std::to_string(n) + "/" + std::to_string(table.rows.size());
+  };
+  // One line of any format: the row's label, then its cells.
+  const auto line = [&](const std::string& label, const auto& field, const char* open,
+                        const char* separator, const char* close) {
+    out << open << label;
+    for (std::size_t c = 0; c < table.columns.size(); ++c) out << separator << field(c);
+    out << close << "\n";
+  };
+  const auto header = [&](std::size_t c) { return table.columns[c]; };
   switch (format) {
     case TableFormat::kCsv:
-      out << "world";
-      for (const auto& c : table.columns) out << "," << csvField(c);
-      out << "\n";
+      line(
+          "world", [&](std::size_t c) { return csvField(header(c)); }, "", ",", "");
       for (std::size_t r = 0; r < table.rows.size(); ++r) {
-        out << csvField(table.rows[r]);
-        for (std::size_t c = 0; c < table.columns.size(); ++c) {
-          out << "," << text(r, c);
-        }
-        out << "\n";
+        line(
+            csvField(table.rows[r]), [&](std::size_t c) { return text(r, c); }, "", ",", "");
       }
+      line(kCountRowLabel, count, "", ",", "");
       break;
     case TableFormat::kMarkdown:
       if (!caption.empty()) out << caption << "\n\n";
-      out << "| world |";
-      for (const auto& c : table.columns) out << " " << markdownCell(c) << " |";
-      out << "\n|---|";
-      for (std::size_t c = 0; c < table.columns.size(); ++c) out << "---:|";
-      out << "\n";
+      line(
+          "world", [&](std::size_t c) { return markdownCell(header(c)); }, "| ", " | ", " |");
+      line(
+          "---", [](std::size_t) { return std::string("---:"); }, "|", "|", "|");
       for (std::size_t r = 0; r < table.rows.size(); ++r) {
-        out << "| " << markdownCell(table.rows[r]) << " |";
-        for (std::size_t c = 0; c < table.columns.size(); ++c) {
-          out << " " << text(r, c) << " |";
-        }
-        out << "\n";
+        line(
+            markdownCell(table.rows[r]), [&](std::size_t c) { return text(r, c); }, "| ", " | ",
+            " |");
       }
+      line("*" + std::string(kCountRowLabel) + "*", count, "| ", " | ", " |");
       break;
     case TableFormat::kLatex:
-      out << "\\begin{table}\n\\centering\n";
+      out << "% needs \\usepackage{booktabs}\n\\begin{table}\n\\centering\n";
       if (!caption.empty()) out << "\\caption{" << latexEscape(caption) << "}\n";
-      out << "\\begin{tabular}{l";
-      for (std::size_t c = 0; c < table.columns.size(); ++c) out << "r";
-      out << "}\n\\hline\nWorld";
-      for (const auto& c : table.columns) out << " & " << latexEscape(c);
-      out << " \\\\\n\\hline\n";
+      out << "\\begin{tabular}{l" << std::string(table.columns.size(), 'c') << "}\n\\toprule\n";
+      line(
+          "World", [&](std::size_t c) { return latexEscape(header(c)); }, "", " & ", " \\\\");
+      out << "\\midrule\n";
       for (std::size_t r = 0; r < table.rows.size(); ++r) {
-        out << latexEscape(table.rows[r]);
-        for (std::size_t c = 0; c < table.columns.size(); ++c) {
-          out << " & " << text(r, c);
-        }
-        out << " \\\\\n";
+        line(
+            latexEscape(table.rows[r]), [&](std::size_t c) { return text(r, c); }, "", " & ",
+            " \\\\");
       }
-      out << "\\hline\n\\end{tabular}\n\\end{table}\n";
+      out << "\\midrule\n";
+      line("Localized correctly", count, "", " & ", " \\\\");
+      out << "\\bottomrule\n\\end{tabular}\n\\end{table}\n";
       break;
   }
   return out.str();
@@ -231,6 +243,7 @@ ResultTable parseTableCsv(const std::string& text) {
       header = fields;
       continue;
     }
+    if (fields[0] == kCountRowLabel) continue;  // derived from the cells above it
     if (fields.size() != header.size()) {
       throw std::invalid_argument("line " + std::to_string(number) + ": " +
                                   std::to_string(fields.size()) + " fields, the header has " +

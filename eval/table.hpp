@@ -15,6 +15,9 @@ struct ResultTable {
   std::vector<std::vector<std::optional<double>>> cells;  // [row][column]
   std::vector<std::vector<bool>> present;                 // a run exists for the cell
   std::vector<std::vector<bool>> wrong;                   // the run was wrongly localized
+  // Columns whose numbers are not localizations in B (SLAM alone, measured in its own frame):
+  // their count in the last row is "n/a".
+  std::vector<std::string> uncounted;
 
   // Sets a cell, adding its row and column when new.
   void set(const std::string& row, const std::string& column, std::optional<double> value,
@@ -25,10 +28,17 @@ struct ResultTable {
 
 enum class TableFormat { kMarkdown, kCsv, kLatex };
 
+// The label of the last row: how many rows each column localized correctly (a number, not ✗).
+inline constexpr const char* kCountRowLabel = "localized correctly";
+
+// The table with a last row counting, per column, the rows with a number that is not wrong
+// ("n/a" for uncounted columns). LaTeX uses booktabs (\toprule, \midrule, \bottomrule), like
+// the paper, with "$-$" for never localized and "$\times$" for wrong.
 std::string formatTable(const ResultTable& table, TableFormat format,
                         const std::string& caption = "");
 
-// Reads a table written as CSV (the baseline). Throws std::invalid_argument with the line.
+// Reads a table written as CSV (the baseline); its count row, derived from the cells, is skipped.
+// Throws std::invalid_argument with the line.
 ResultTable parseTableCsv(const std::string& text);
 
 struct Regression {

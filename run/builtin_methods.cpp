@@ -5,6 +5,8 @@ namespace isg::run {
 LocalizerRegistry builtinMethods() {
   LocalizerRegistry registry;
   addISGraphs(registry);
+  addAmcl(registry);
+  addNdtUkf(registry);
   addSGraph(registry);
   addDeadReckoning(registry);
   return registry;

@@ -9,12 +9,20 @@ void LocalizerRegistry::add(MethodInfo method) {
   if (find(method.name) != nullptr) {
     throw std::invalid_argument("method " + method.name + " is registered twice");
   }
+  for (const auto& alias : method.aliases) {
+    if (find(alias) != nullptr) {
+      throw std::invalid_argument("alias " + alias + " of " + method.name + " is taken");
+    }
+  }
   methods_.push_back(std::move(method));
 }
 
 const MethodInfo* LocalizerRegistry::find(const std::string& name) const {
   for (const auto& m : methods_) {
     if (m.name == name) return &m;
+    for (const auto& alias : m.aliases) {
+      if (alias == name) return &m;
+    }
   }
   return nullptr;
 }
@@ -25,9 +33,27 @@ std::vector<std::string> LocalizerRegistry::names() const {
   return out;
 }
 
+std::vector<std::string> LocalizerRegistry::acceptedNames() const {
+  std::vector<std::string> out;
+  for (const auto& m : methods_) {
+    out.push_back(m.name);
+    out.insert(out.end(), m.aliases.begin(), m.aliases.end());
+  }
+  return out;
+}
+
+std::string LocalizerRegistry::canonical(const std::string& name) const {
+  const MethodInfo* method = find(name);
+  return method != nullptr ? method->name : name;
+}
+
 std::string LocalizerRegistry::help() const {
   std::string out;
-  for (const auto& m : methods_) out += "  " + m.name + ": " + m.summary + "\n";
+  for (const auto& m : methods_) {
+    out += "  " + m.name;
+    for (const auto& alias : m.aliases) out += " (or " + alias + ")";
+    out += ": " + m.summary + "\n";
+  }
   return out;
 }
 
@@ -35,7 +61,7 @@ std::unique_ptr<slam::Localizer> LocalizerRegistry::make(const std::string& name
                                                          const LocalizerContext& context) const {
   const MethodInfo* method = find(name);
   if (method == nullptr) throw std::invalid_argument("unknown method " + name);
-  if (method->needs_plan && context.agraph == nullptr) {
+  if (method->needs_plan && (context.plan == nullptr || context.agraph == nullptr)) {
     throw std::invalid_argument("method " + name + " needs a plan");
   }
   if (method->given_start && !context.start_B_T_M) {

@@ -1,7 +1,9 @@
 #pragma once
 
 #include <Eigen/Geometry>
+#include <cstdint>
 #include <functional>
+#include <map>
 #include <memory>
 #include <optional>
 #include <string>
@@ -22,15 +24,25 @@ struct LocalizerContext {
   // The start hint: where M lies in B at the start (the true start pose). Only methods that are
   // given their start (dead reckoning, trackers) read it; global localizers never do.
   std::optional<Eigen::Isometry3d> start_B_T_M;
+  // The run's seed: methods that draw at random (particle filters, a perturbed start) draw from
+  // a generator seeded with it, so a run is reproducible.
+  std::uint64_t seed = 0;
+  // Settings from --method-option KEY=VALUE (run/method_options.hpp): each method reads its own
+  // and rejects the keys it does not know.
+  std::map<std::string, std::string> options;
 };
 
 // A localization method as the command line offers it.
 struct MethodInfo {
-  std::string name;     // what --method takes
-  std::string summary;  // one line for --help
+  std::string name = {};     // what --method takes
+  std::string summary = {};  // one line for --help
   bool needs_plan = false;
   bool given_start = false;  // reads LocalizerContext::start_B_T_M
-  std::function<std::unique_ptr<slam::Localizer>(const LocalizerContext&)> make;
+  // SLAM only: never localizes in B; tables show its map-frame APE after SE(3) alignment.
+  bool slam_only = false;
+  std::function<std::unique_ptr<slam::Localizer>(const LocalizerContext&)> make = {};
+  // Older names --method still takes for it (a renamed method keeps its command line working).
+  std::vector<std::string> aliases = {};
 };
 
 // The methods a run can use, by name, in the order they were added (the order of tables'
@@ -39,9 +51,14 @@ class LocalizerRegistry {
  public:
   // Throws std::invalid_argument when the name is taken or the entry has no factory.
   void add(MethodInfo method);
+  // The method with this name or alias, or nullptr.
   const MethodInfo* find(const std::string& name) const;
   std::vector<std::string> names() const;
-  // "is-graphs: …\ns-graph: …" for --help.
+  // names() and every alias: what --method accepts.
+  std::vector<std::string> acceptedNames() const;
+  // The method's name for a name or alias; an unknown name unchanged (old run folders).
+  std::string canonical(const std::string& name) const;
+  // "  is-graphs: …\n  s-graph: …" for --help (aliases in parentheses).
   std::string help() const;
   // Builds the method. Throws std::invalid_argument for an unknown name, or when the method
   // needs a plan (or a start) that the context lacks: the caller checks find() first.

@@ -4,10 +4,11 @@
 namespace isg::run {
 
 void addISGraphs(LocalizerRegistry& registry) {
-  registry.add({"is-graphs",
-                "the S-Graph matched to and merged with the plan's A-Graph: global localization "
-                "in the plan (docs/matching.md)",
-                /*needs_plan=*/true, /*given_start=*/false, [](const LocalizerContext& c) {
+  registry.add({.name = "is-graphs",
+                .summary = "the S-Graph matched to and merged with the plan's A-Graph: global "
+                           "localization in the plan (docs/matching.md)",
+                .needs_plan = true,
+                .make = [](const LocalizerContext& c) {
                   return std::make_unique<slam::ISGraphLocalizer>(c.R_T_L, *c.agraph);
                 }});
 }

@@ -4,10 +4,11 @@
 namespace isg::run {
 
 void addSGraph(LocalizerRegistry& registry) {
-  registry.add({"s-graph",
-                "the S-Graph alone: SLAM in its own map frame M, never localized in the plan "
-                "(docs/slam.md)",
-                /*needs_plan=*/false, /*given_start=*/false, [](const LocalizerContext& c) {
+  registry.add({.name = "s-graph",
+                .summary = "the S-Graph alone: SLAM in its own map frame M, never localized in "
+                           "the plan (docs/slam.md)",
+                .slam_only = true,
+                .make = [](const LocalizerContext& c) {
                   return std::make_unique<slam::SGraphLocalizer>(c.R_T_L);
                 }});
 }

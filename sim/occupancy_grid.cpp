@@ -4,6 +4,7 @@
 #include <cmath>
 #include <limits>
 
+#include "bim/distance_transform.hpp"
 #include "bim/plan_geometry.hpp"
 #include "bim/polygon.hpp"
 #include "worlds/as_built.hpp"
@@ -11,33 +12,6 @@
 namespace isg::sim {
 
 namespace {
-
-// Squared Euclidean distance transform of one line (Felzenszwalb & Huttenlocher, 2012).
-void distanceTransform1d(const std::vector<double>& f, std::vector<double>& d) {
-  const int n = int(f.size());
-  std::vector<int> v(n);
-  std::vector<double> z(n + 1);
-  int k = 0;
-  v[0] = 0;
-  z[0] = -std::numeric_limits<double>::infinity();
-  z[1] = std::numeric_limits<double>::infinity();
-  auto intersection = [&](int q, int r) {
-    return ((f[q] + double(q) * q) - (f[r] + double(r) * r)) / (2.0 * q - 2.0 * r);
-  };
-  for (int q = 1; q < n; ++q) {
-    double s = intersection(q, v[k]);
-    while (s <= z[k]) s = intersection(q, v[--k]);  // z[0] = -inf ends the loop
-    ++k;
-    v[k] = q;
-    z[k] = s;
-    z[k + 1] = std::numeric_limits<double>::infinity();
-  }
-  k = 0;
-  for (int q = 0; q < n; ++q) {
-    while (z[k + 1] < q) ++k;
-    d[q] = (q - v[k]) * (q - v[k]) + f[v[k]];
-  }
-}
 
 std::vector<Eigen::Vector2d> rectangle(const Eigen::Vector2d& centre, const Eigen::Vector2d& axis,
                                        double half_length, double half_width) {
@@ -184,31 +158,15 @@ OccupancyGrid::OccupancyGrid(const bim::Plan& plan, const bim::AsBuilt& as_built
     paint(box, true);
   }
 
-  // Clearance: exact Euclidean distance to the nearest blocked cell, columns then rows.
-  const double kFar = 1e12;
-  std::vector<double> field(std::size_t(width_) * height_);
-  for (std::size_t i = 0; i < field.size(); ++i) field[i] = blocked_[i] ? 0.0 : kFar;
-  std::vector<double> line, out;
-  line.resize(height_);
-  out.resize(height_);
-  for (int x = 0; x < width_; ++x) {
-    for (int y = 0; y < height_; ++y) line[y] = field[y * width_ + x];
-    distanceTransform1d(line, out);
-    for (int y = 0; y < height_; ++y) field[y * width_ + x] = out[y];
-  }
-  line.resize(width_);
-  out.resize(width_);
+  // Clearance: exact Euclidean distance to the nearest blocked cell.
+  const std::vector<double> field = bim::squaredDistanceTransform(blocked_, width_, height_);
   clearance_.resize(field.size());
-  for (int y = 0; y < height_; ++y) {
-    for (int x = 0; x < width_; ++x) line[x] = field[y * width_ + x];
-    distanceTransform1d(line, out);
+  for (std::size_t i = 0; i < field.size(); ++i) {
     // Centre-to-centre distances can overstate the distance from a point of this cell to the
     // obstacle's true surface by up to one cell diagonal: subtract it, so the clearance is a
     // lower bound everywhere in the cell.
-    for (int x = 0; x < width_; ++x) {
-      const double d = std::sqrt(out[x]) * resolution_ - std::sqrt(2.0) * resolution_;
-      clearance_[y * width_ + x] = float(std::max(0.0, d));
-    }
+    const double d = std::sqrt(field[i]) * resolution_ - std::sqrt(2.0) * resolution_;
+    clearance_[i] = float(std::max(0.0, d));
   }
 }
 

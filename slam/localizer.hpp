@@ -43,7 +43,7 @@ class DeadReckoning : public Localizer {
  public:
   explicit DeadReckoning(std::optional<Eigen::Isometry3d> B_T_M = std::nullopt) : B_T_M_(B_T_M) {}
 
-  std::string name() const override { return "dead-reckoning"; }
+  std::string name() const override { return "odometry"; }
   void pushOdometry(const Odometry& odometry) override { latest_ = odometry; }
   void pushScan(const Scan&) override {}
   std::optional<Odometry> poseInMap() const override { return latest_; }

@@ -340,7 +340,7 @@ TEST(Run, LoopAndReplayAgreeAndTheRunFolderIsComplete) {
 TEST(Table, ShortSuiteAgainstTheCommittedBaseline) {
   testing::Sandbox sandbox("table");
   for (const char* world : {"d1", "d2"}) {
-    for (const char* method : {"is-graphs", "dead-reckoning"}) {
+    for (const char* method : {"is-graphs", "odometry"}) {
       const auto r = sandbox.run(std::string("run builtin:") + world + " --method " + method +
                                  " -o suite/" + world + "-" + method + " -q");
       ASSERT_EQ(r.exit_code, 0) << r.err;
@@ -348,22 +348,23 @@ TEST(Table, ShortSuiteAgainstTheCommittedBaseline) {
   }
   const std::string baseline = std::string(ISG_SOURCE_DIR) + "/eval/baselines/short_suite.csv";
   const auto ok = sandbox.run(
-      "table suite/d1-is-graphs suite/d1-dead-reckoning "
-      "suite/d2-is-graphs suite/d2-dead-reckoning --baseline '" +
+      "table suite/d1-is-graphs suite/d1-odometry "
+      "suite/d2-is-graphs suite/d2-odometry --baseline '" +
       baseline + "' --tolerance 0.01");
   EXPECT_EQ(ok.exit_code, 0) << ok.err;
-  EXPECT_THAT(ok.out, HasSubstr("| world | is-graphs | dead-reckoning |\n"));
+  EXPECT_THAT(ok.out, HasSubstr("| world | is-graphs | odometry |\n"));
+  EXPECT_THAT(ok.out, HasSubstr("| *localized correctly* | 2/2 | 2/2 |\n"));
   EXPECT_THAT(ok.err, HasSubstr("no cell regressed"));
 
   ASSERT_EQ(sandbox.run("run builtin:d2 --duration 6 -o degraded -q").exit_code, 0);
   const auto bad = sandbox.run(
-      "table suite/d1-is-graphs suite/d1-dead-reckoning degraded "
-      "suite/d2-dead-reckoning --baseline '" +
+      "table suite/d1-is-graphs suite/d1-odometry degraded "
+      "suite/d2-odometry --baseline '" +
       baseline + "'");
   EXPECT_EQ(bad.exit_code, 4);
   EXPECT_THAT(bad.err, HasSubstr("isg table: regression: d2 / is-graphs: failed (baseline "));
   const auto csv = sandbox.run("table degraded --format csv");
-  EXPECT_EQ(csv.out, "world,is-graphs\nd2,-\n");
+  EXPECT_EQ(csv.out, "world,is-graphs\nd2,-\nlocalized correctly,0/1\n");
   const auto missing = sandbox.run("table nowhere");
   EXPECT_EQ(missing.exit_code, 1);
   EXPECT_EQ(missing.err, "isg table: error: nowhere: not a run folder (no metrics.json)\n");
@@ -387,7 +388,7 @@ TEST(Run, BadInputAndUsage) {
   const auto dead = sandbox.run("run builtin:d2 --method dead-reckoning --duration 10 -o dr -q");
   ASSERT_EQ(dead.exit_code, 0) << dead.err;
   const auto metrics = nlohmann::json::parse(sandbox.read("dr/metrics.json"));
-  EXPECT_EQ(metrics["method"], "dead-reckoning");
+  EXPECT_EQ(metrics["method"], "odometry");  // dead-reckoning is its old name
   EXPECT_NEAR(metrics["time_to_localize"].get<double>(), 0.0, 0.2);
   EXPECT_NEAR(metrics["ape_B"]["rmse"].get<double>(),
               metrics["ape_odometry_from_true_start"]["rmse"].get<double>(), 0.01);

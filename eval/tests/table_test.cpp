@@ -8,7 +8,7 @@ namespace {
 ResultTable sample() {
   ResultTable t;
   t.set("d1", "is-graphs", 0.028);
-  t.set("d1", "dead-reckoning", 0.099);
+  t.set("d1", "odometry", 0.099);
   t.set("d2", "is-graphs", std::nullopt);  // failed
   return t;
 }
@@ -16,21 +16,37 @@ ResultTable sample() {
 TEST(Table, FormatsAsCsvMarkdownAndLatex) {
   const ResultTable t = sample();
   EXPECT_EQ(formatTable(t, TableFormat::kCsv),
-            "world,is-graphs,dead-reckoning\nd1,0.028,0.099\nd2,-,\n");
+            "world,is-graphs,odometry\nd1,0.028,0.099\nd2,-,\nlocalized correctly,1/2,1/2\n");
   EXPECT_EQ(formatTable(t, TableFormat::kMarkdown),
-            "| world | is-graphs | dead-reckoning |\n|---|---:|---:|\n"
-            "| d1 | 0.028 | 0.099 |\n| d2 | - |  |\n");
+            "| world | is-graphs | odometry |\n|---|---:|---:|\n"
+            "| d1 | 0.028 | 0.099 |\n| d2 | - |  |\n| *localized correctly* | 1/2 | 1/2 |\n");
   const std::string latex = formatTable(t, TableFormat::kLatex, "APE_B");
   EXPECT_NE(latex.find("\\caption{APE\\_B}"), std::string::npos);
-  EXPECT_NE(latex.find("World & is-graphs & dead-reckoning \\\\"), std::string::npos);
-  EXPECT_NE(latex.find("d2 & - &  \\\\"), std::string::npos);
+  EXPECT_NE(latex.find("\\toprule\nWorld & is-graphs & odometry \\\\\n\\midrule\n"),
+            std::string::npos);
+  EXPECT_NE(latex.find("d2 & $-$ &  \\\\"), std::string::npos);
+  EXPECT_NE(latex.find("\\midrule\nLocalized correctly & 1/2 & 1/2 \\\\\n\\bottomrule"),
+            std::string::npos);
+}
+
+// A wrong cell is not a correct localization, and a SLAM-only column has no count.
+TEST(Table, TheLastRowCountsCorrectLocalizations) {
+  ResultTable t;
+  t.set("d1", "amcl", 0.1);
+  t.set("d2", "amcl", std::nullopt, true);
+  t.set("d3", "amcl", 0.2);
+  t.set("d1", "s-graph", 0.05);
+  t.uncounted = {"s-graph"};
+  EXPECT_EQ(formatTable(t, TableFormat::kCsv),
+            "world,amcl,s-graph\nd1,0.100,0.050\nd2,✗,\nd3,0.200,\n"
+            "localized correctly,2/3,n/a\n");
 }
 
 TEST(Table, CsvRoundTrips) {
   const ResultTable t = sample();
   const ResultTable back = parseTableCsv(formatTable(t, TableFormat::kCsv));
   EXPECT_EQ(formatTable(back, TableFormat::kCsv), formatTable(t, TableFormat::kCsv));
-  EXPECT_EQ(back.find("d2", "dead-reckoning"), nullptr);
+  EXPECT_EQ(back.find("d2", "odometry"), nullptr);
   ASSERT_NE(back.find("d2", "is-graphs"), nullptr);
   EXPECT_FALSE(back.find("d2", "is-graphs")->has_value());
 }
@@ -40,7 +56,9 @@ TEST(Table, NamesWithSeparatorsAreQuotedOrEscaped) {
   t.set("plans/a,b \"x\".json", "is-graphs", 0.5);
   t.set("c|d_e", "is-graphs", 0.25);
   const std::string csv = formatTable(t, TableFormat::kCsv);
-  EXPECT_EQ(csv, "world,is-graphs\n\"plans/a,b \"\"x\"\".json\",0.500\nc|d_e,0.250\n");
+  EXPECT_EQ(csv,
+            "world,is-graphs\n\"plans/a,b \"\"x\"\".json\",0.500\nc|d_e,0.250\n"
+            "localized correctly,2/2\n");
   const ResultTable back = parseTableCsv(csv);
   ASSERT_NE(back.find("plans/a,b \"x\".json", "is-graphs"), nullptr);
   EXPECT_DOUBLE_EQ(**back.find("plans/a,b \"x\".json", "is-graphs"), 0.5);
@@ -66,26 +84,26 @@ TEST(Table, BadCsvNamesTheLine) {
 
 TEST(Table, RegressionsNameTheCell) {
   const ResultTable baseline = parseTableCsv(
-      "world,is-graphs,dead-reckoning\nd1,0.028,0.099\n"
+      "world,is-graphs,odometry\nd1,0.028,0.099\n"
       "d2,0.030,0.100\nd3,-,0.2\n");
   ResultTable now;
   now.set("d1", "is-graphs", 0.037);         // within 0.01
-  now.set("d1", "dead-reckoning", 0.120);    // worse by 0.021
+  now.set("d1", "odometry", 0.120);          // worse by 0.021
   now.set("d2", "is-graphs", std::nullopt);  // failed
-  now.set("d2", "dead-reckoning", 0.05);     // better
+  now.set("d2", "odometry", 0.05);           // better
   now.set("d3", "is-graphs", std::nullopt);  // failed, as the baseline
   const auto regressions = findRegressions(baseline, now, 0.01);
   ASSERT_EQ(regressions.size(), 3u);
-  EXPECT_EQ(regressions[0].describe(), "d1 / dead-reckoning: 0.120 m, baseline 0.099 m");
+  EXPECT_EQ(regressions[0].describe(), "d1 / odometry: 0.120 m, baseline 0.099 m");
   EXPECT_EQ(regressions[1].describe(), "d2 / is-graphs: failed (baseline 0.030)");
-  EXPECT_EQ(regressions[2].describe(), "d3 / dead-reckoning: no run (baseline 0.200)");
+  EXPECT_EQ(regressions[2].describe(), "d3 / odometry: no run (baseline 0.200)");
 }
 
 TEST(Table, WrongLocalizationIsMarkedAndARegression) {
   ResultTable now;
   now.set("d1", "is-graphs", 0.4, true);  // an APE, but wrongly localized on the way
   now.set("d1", "odometry", 0.3);
-  EXPECT_EQ(formatTable(now, TableFormat::kCsv), "world,is-graphs,odometry\nd1,✗,0.300\n");
+  EXPECT_EQ(formatTable(now, TableFormat::kCsv), "world,is-graphs,odometry\nd1,✗,0.300\nlocalized correctly,0/1,1/1\n");
   EXPECT_NE(formatTable(now, TableFormat::kMarkdown).find("| d1 | ✗ | 0.300 |"), std::string::npos);
   EXPECT_NE(formatTable(now, TableFormat::kLatex).find("d1 & $\\times$ & 0.300"),
             std::string::npos);

@@ -9,12 +9,36 @@ namespace {
 
 TEST(LocalizerRegistry, BuiltinMethodsInTableOrder) {
   const LocalizerRegistry registry = builtinMethods();
-  EXPECT_EQ(registry.names(), (std::vector<std::string>{"is-graphs", "s-graph", "dead-reckoning"}));
+  EXPECT_EQ(registry.names(),
+            (std::vector<std::string>{"is-graphs", "amcl", "ndt-ukf", "s-graph", "odometry"}));
   EXPECT_TRUE(registry.find("is-graphs")->needs_plan);
+  EXPECT_TRUE(registry.find("amcl")->needs_plan);
+  EXPECT_FALSE(registry.find("amcl")->given_start);
+  EXPECT_TRUE(registry.find("ndt-ukf")->given_start);
   EXPECT_FALSE(registry.find("s-graph")->needs_plan);
-  EXPECT_TRUE(registry.find("dead-reckoning")->given_start);
-  EXPECT_EQ(registry.find("amcl"), nullptr);
+  EXPECT_TRUE(registry.find("s-graph")->slam_only);
+  EXPECT_TRUE(registry.find("odometry")->given_start);
+  EXPECT_EQ(registry.find("cartographer"), nullptr);
   EXPECT_NE(registry.help().find("  s-graph: "), std::string::npos);
+  EXPECT_NE(registry.help().find("  odometry (or dead-reckoning): "), std::string::npos);
+}
+
+// The old name of a renamed method still works on the command line and in old run folders.
+TEST(LocalizerRegistry, AnAliasFindsTheRenamedMethod) {
+  const LocalizerRegistry registry = builtinMethods();
+  EXPECT_EQ(registry.find("dead-reckoning"), registry.find("odometry"));
+  EXPECT_EQ(registry.canonical("dead-reckoning"), "odometry");
+  EXPECT_EQ(registry.canonical("someone-elses"), "someone-elses");
+  const auto accepted = registry.acceptedNames();
+  EXPECT_NE(std::find(accepted.begin(), accepted.end(), "dead-reckoning"), accepted.end());
+  LocalizerRegistry mine;
+  addDeadReckoning(mine);
+  EXPECT_THROW(mine.add({.name = "dead-reckoning",
+                         .make =
+                             [](const LocalizerContext&) {
+                               return std::make_unique<slam::DeadReckoning>();
+                             }}),
+               std::invalid_argument);
 }
 
 TEST(LocalizerRegistry, MakesWhatTheContextAllows) {
@@ -22,12 +46,14 @@ TEST(LocalizerRegistry, MakesWhatTheContextAllows) {
   LocalizerContext context;
   EXPECT_THROW(registry.make("is-graphs", context), std::invalid_argument);       // no plan
   EXPECT_THROW(registry.make("dead-reckoning", context), std::invalid_argument);  // no start
+  EXPECT_THROW(registry.make("amcl", context), std::invalid_argument);            // no plan
   EXPECT_THROW(registry.make("nonsense", context), std::invalid_argument);
   EXPECT_EQ(registry.make("s-graph", context)->name(), "s-graph");
   Eigen::Isometry3d start = Eigen::Isometry3d::Identity();
   start.translation() = Eigen::Vector3d(2, 3, 0);
   context.start_B_T_M = start;
   const auto dead_reckoning = registry.make("dead-reckoning", context);
+  EXPECT_EQ(dead_reckoning->name(), "odometry");
   ASSERT_TRUE(dead_reckoning->mapInPlan());
   EXPECT_TRUE(dead_reckoning->mapInPlan()->isApprox(start));
   EXPECT_FALSE(dead_reckoning->searchStatus());
@@ -38,9 +64,11 @@ TEST(LocalizerRegistry, ANewMethodAddsItselfOnce) {
   LocalizerRegistry registry;
   addSGraph(registry);
   EXPECT_THROW(addSGraph(registry), std::invalid_argument);
-  EXPECT_THROW(registry.add({"empty", "no factory", false, false, {}}), std::invalid_argument);
-  registry.add({"still", "stands at the origin", false, false,
-                [](const LocalizerContext&) { return std::make_unique<slam::DeadReckoning>(); }});
+  EXPECT_THROW(registry.add({.name = "empty", .summary = "no factory"}), std::invalid_argument);
+  registry.add(
+      {.name = "still", .summary = "stands at the origin", .make = [](const LocalizerContext&) {
+         return std::make_unique<slam::DeadReckoning>();
+       }});
   EXPECT_EQ(registry.names(), (std::vector<std::string>{"s-graph", "still"}));
 }
 

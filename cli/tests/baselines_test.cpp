@@ -1,0 +1,96 @@
+// The paper's baselines in the loop: each runs on D1 as built, and the row is checked against the
+// committed baseline table (eval/baselines/table1_d1.csv), as CI's second regression check.
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+
+#include <nlohmann/json.hpp>
+
+#include "cli/tests/cli_runner.hpp"
+
+namespace isg::cli {
+namespace {
+
+using ::testing::HasSubstr;
+
+double apeB(testing::Sandbox& sandbox, const std::string& run) {
+  const auto metrics = nlohmann::json::parse(sandbox.read(run + "/metrics.json"));
+  return metrics.at("ape_B").at("rmse").get<double>();
+}
+
+TEST(Baselines, D1AsBuiltAgainstTheCommittedTable) {
+  testing::Sandbox sandbox("baselines");
+  for (const char* method : {"is-graphs", "amcl", "ndt-ukf", "odometry"}) {
+    const auto r = sandbox.run(std::string("run builtin:d1.asbuilt --seed 1 --method ") + method +
+                               " -o d1-" + method + " -q");
+    ASSERT_EQ(r.exit_code, 0) << method << ": " << r.err;
+  }
+  // The tracker, from a start 0.3 m and 5° off, follows D1 as built within 0.15 m (RMSE).
+  const auto ndt = nlohmann::json::parse(sandbox.read("d1-ndt-ukf/metrics.json"));
+  EXPECT_TRUE(ndt["localized"].get<bool>());
+  EXPECT_LE(apeB(sandbox, "d1-ndt-ukf"), 0.15);
+  EXPECT_FALSE(ndt["wrongly_localized"].get<bool>());
+  // AMCL localizes from its uniform start, and is not wrong.
+  const auto amcl = nlohmann::json::parse(sandbox.read("d1-amcl/metrics.json"));
+  EXPECT_TRUE(amcl["localized"].get<bool>());
+  EXPECT_FALSE(amcl["wrongly_localized"].get<bool>());
+  EXPECT_GT(amcl["time_to_localize"].get<double>(), 1.0);  // it had to search
+
+  const std::string baseline = std::string(ISG_SOURCE_DIR) + "/eval/baselines/table1_d1.csv";
+  const auto table = sandbox.run("table d1-is-graphs d1-amcl d1-ndt-ukf d1-odometry --baseline '" +
+                                 baseline + "' --tolerance 0.02");
+  EXPECT_EQ(table.exit_code, 0) << table.err;
+  EXPECT_THAT(table.out, HasSubstr("| world | is-graphs | amcl | ndt-ukf | odometry |\n"));
+  EXPECT_THAT(table.out, HasSubstr("Given their start pose (trackers, not global localization): "
+                                   "ndt-ukf, odometry"));
+  EXPECT_THAT(table.out, HasSubstr("| *localized correctly* | 1/1 | 1/1 | 1/1 | 1/1 |\n"));
+  EXPECT_THAT(table.err, HasSubstr("no cell regressed"));
+}
+
+// Two seeds of a world and method make one cell: their mean; a seed that never localized makes
+// the cell "-"; the same seed twice is bad input.
+TEST(Baselines, SeedsOfOneCellAreAveraged) {
+  testing::Sandbox sandbox("baselines_seeds");
+  for (const char* seed : {"1", "2"}) {
+    const auto r =
+        sandbox.run(std::string("run builtin:d2 --method odometry --duration 8 --seed ") + seed +
+                    " -o odo-" + seed + " -q");
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+  }
+  ASSERT_EQ(
+      sandbox.run("run builtin:d2 --method amcl --duration 1 --seed 1 -o amcl-1 -q").exit_code, 0);
+  const double mean = 0.5 * (apeB(sandbox, "odo-1") + apeB(sandbox, "odo-2"));
+  char expected[64];
+  std::snprintf(expected, sizeof expected, "d2,-,%.3f\n", mean);
+  const auto csv = sandbox.run("table odo-1 odo-2 amcl-1 --format csv");
+  ASSERT_EQ(csv.exit_code, 0) << csv.err;
+  EXPECT_EQ(csv.out,
+            std::string("world,amcl,odometry\n") + expected + "localized correctly,0/1,1/1\n");
+  const auto twice = sandbox.run("table odo-1 odo-1");
+  EXPECT_EQ(twice.exit_code, 1);
+  EXPECT_EQ(twice.err, "isg table: error: odo-1: a second run of d2 with odometry and seed 1\n");
+}
+
+TEST(Baselines, MethodOptionsAreCheckedAndNamed) {
+  testing::Sandbox sandbox("baselines_options");
+  const auto unknown =
+      sandbox.run("run builtin:d1 --method amcl --method-option particle=100 -o r -q");
+  EXPECT_EQ(unknown.exit_code, 1);
+  EXPECT_EQ(unknown.err,
+            "isg run: error: --method amcl: particle=100: amcl has no option particle (it has "
+            "alpha_fast, alpha_slow, min_particles, particles)\n");
+  const auto bad = sandbox.run("run builtin:d1 --method ndt-ukf --method-option start_error=-1 -q");
+  EXPECT_EQ(bad.exit_code, 1);
+  EXPECT_THAT(bad.err, HasSubstr("start_error=-1: ndt-ukf's start_error must be a number in [0"));
+  const auto malformed = sandbox.run("run builtin:d1 --method amcl --method-option particles -q");
+  EXPECT_EQ(malformed.exit_code, 1);
+  EXPECT_EQ(malformed.err, "isg run: error: --method-option particles: expected KEY=VALUE\n");
+  EXPECT_FALSE(sandbox.exists("r"));
+  const auto more = sandbox.run(
+      "run builtin:d2 --method amcl --duration 2 --method-option particles=5000 -o big -q");
+  ASSERT_EQ(more.exit_code, 0) << more.err;
+  const auto graph = nlohmann::json::parse(sandbox.read("big/sgraph.json"));
+  EXPECT_EQ(graph["particles"].get<int>(), 5000);  // the uniform start, before any resampling
+}
+
+}  // namespace
+}  // namespace isg::cli

@@ -1,0 +1,28 @@
+#include "run/builtin_methods.hpp"
+#include "run/method_options.hpp"
+#include "slam/amcl_localizer.hpp"
+
+namespace isg::run {
+
+void addAmcl(LocalizerRegistry& registry) {
+  registry.add(
+      {.name = "amcl",
+       .summary = "2D Monte Carlo localization as ROS AMCL (KLD sampling, likelihood field of the "
+                  "plan, augmented MCL), global start, nav2's defaults; options particles, "
+                  "min_particles, alpha_slow, alpha_fast (docs/baselines.md)",
+       .needs_plan = true,
+       .make = [](const LocalizerContext& c) {
+         slam::AmclOptions options;
+         MethodOptions given(c.options, "amcl");
+         auto& f = options.filter;
+         f.max_particles = given.integer("particles", f.max_particles, 1, 10000000);
+         f.min_particles = given.integer(
+             "min_particles", std::min(f.min_particles, f.max_particles), 1, f.max_particles);
+         f.alpha_slow = given.number("alpha_slow", f.alpha_slow, 0.0, 1.0);
+         f.alpha_fast = given.number("alpha_fast", f.alpha_fast, 0.0, 1.0);
+         given.finish();
+         return std::make_unique<slam::AmclLocalizer>(*c.plan, c.level, c.R_T_L, options, c.seed);
+       }});
+}
+
+}  // namespace isg::run

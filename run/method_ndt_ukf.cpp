@@ -1,0 +1,44 @@
+#include <random>
+
+#include "run/builtin_methods.hpp"
+#include "run/method_options.hpp"
+#include "slam/ndt_ukf_localizer.hpp"
+
+namespace isg::run {
+
+void addNdtUkf(LocalizerRegistry& registry) {
+  registry.add(
+      {.name = "ndt-ukf",
+       .summary = "hdl_localization's design: PCL NDT against a cloud of the plan's walls, an "
+                  "unscented Kalman filter with the odometry; a tracker started from the true "
+                  "start perturbed by start_error (0.3 m) and start_yaw_error_deg (5°) in a "
+                  "direction drawn from the seed (docs/baselines.md)",
+       .needs_plan = true,
+       .given_start = true,
+       .make = [](const LocalizerContext& c) {
+         MethodOptions given(c.options, "ndt-ukf");
+         const double error = given.number("start_error", 0.3, 0.0, 100.0);
+         const double yaw_error = given.number("start_yaw_error_deg", 5.0, 0.0, 180.0);
+         slam::NdtUkfOptions options;
+         options.scan_voxel = given.number("scan_voxel", options.scan_voxel, 0.01, 10.0);
+         options.ndt_resolution = given.number("ndt_resolution", options.ndt_resolution, 0.1, 10.0);
+         given.finish();
+         // The perturbation: its size is stated, its direction and the turn's sign come from
+         // the seed (its own stream, so other draws of the run do not shift it).
+         std::mt19937_64 rng(c.seed ^ 0x6e64742d756b66ULL);
+         std::uniform_real_distribution<double> unit(0.0, 1.0);
+         const double direction = 2.0 * M_PI * unit(rng);
+         const double sign = unit(rng) < 0.5 ? -1.0 : 1.0;
+         // M is the base's frame at the start: the turn is about the start pose.
+         Eigen::Isometry3d start = *c.start_B_T_M;
+         start.translation() +=
+             error * Eigen::Vector3d(std::cos(direction), std::sin(direction), 0);
+         start.linear() =
+             Eigen::AngleAxisd(sign * yaw_error * M_PI / 180.0, Eigen::Vector3d::UnitZ())
+                 .toRotationMatrix() *
+             start.linear();
+         return std::make_unique<slam::NdtUkfLocalizer>(*c.plan, c.level, c.R_T_L, start, options);
+       }});
+}
+
+}  // namespace isg::run
