@@ -125,6 +125,21 @@ std::string latexEscape(const std::string& text) {
   return out;
 }
 
+// A caption in LaTeX: escaped, with the table's marks as the cells write them ("✗" → $\times$,
+// a lone "-" → $-$).
+std::string latexCaption(const std::string& caption) {
+  std::string text = latexEscape(caption);
+  const auto replace = [&](const std::string& from, const std::string& to) {
+    for (std::size_t at = text.find(from); at != std::string::npos;
+         at = text.find(from, at + to.size())) {
+      text.replace(at, from.size(), to);
+    }
+  };
+  replace(kWrongMark, "$\\times$");
+  replace(" - ", " $-$ ");
+  return text;
+}
+
 }  // namespace
 
 void ResultTable::set(const std::string& row, const std::string& column,
@@ -208,7 +223,7 @@ std::string formatTable(const ResultTable& table, TableFormat format, const std:
       break;
     case TableFormat::kLatex:
       out << "% needs \\usepackage{booktabs}\n\\begin{table}\n\\centering\n";
-      if (!caption.empty()) out << "\\caption{" << latexEscape(caption) << "}\n";
+      if (!caption.empty()) out << "\\caption{" << latexCaption(caption) << "}\n";
       out << "\\begin{tabular}{l" << std::string(table.columns.size(), 'c') << "}\n\\toprule\n";
       line(
           "World", [&](std::size_t c) { return latexEscape(header(c)); }, "", " & ", " \\\\");

@@ -11,8 +11,10 @@ void addNdtUkf(LocalizerRegistry& registry) {
       {.name = "ndt-ukf",
        .summary = "hdl_localization's design: PCL NDT against a cloud of the plan's walls, an "
                   "unscented Kalman filter with the odometry; a tracker started from the true "
-                  "start perturbed by start_error (0.3 m) and start_yaw_error_deg (5°) in a "
-                  "direction drawn from the seed (docs/baselines.md)",
+                  "start moved start_error (0.3 m) in a direction drawn from the seed and turned "
+                  "start_yaw_error_deg (5°); options those two, scan_voxel (0.4 m), "
+                  "ndt_resolution (1 m), map_relief (0.01 m), wall_band (0.2 m) "
+                  "(docs/baselines.md)",
        .needs_plan = true,
        .given_start = true,
        .make = [](const LocalizerContext& c) {
@@ -22,6 +24,8 @@ void addNdtUkf(LocalizerRegistry& registry) {
          slam::NdtUkfOptions options;
          options.scan_voxel = given.number("scan_voxel", options.scan_voxel, 0.01, 10.0);
          options.ndt_resolution = given.number("ndt_resolution", options.ndt_resolution, 0.1, 10.0);
+         options.map_relief = given.number("map_relief", options.map_relief, 0.0, 1.0);
+         options.wall_band = given.number("wall_band", options.wall_band, 0.0, 10.0);
          given.finish();
          // The perturbation: its size is stated, its direction and the turn's sign come from
          // the seed (its own stream, so other draws of the run do not shift it).

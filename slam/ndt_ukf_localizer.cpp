@@ -25,10 +25,14 @@ Cloud::Ptr voxelise(const Cloud::Ptr& cloud, double leaf) {
   return out;
 }
 
-// The plan's exposed wall faces of one level as points, floor to wall top, with the door
-// openings left out up to the door's top.
-Cloud::Ptr planCloud(const bim::Plan& plan, const std::string& level_id, double step,
-                     double voxel) {
+// The plan's exposed wall faces of one level as points on a `spacing` grid, floor to wall top,
+// with the door openings left out up to the door's top. Each point stands ±relief off its face,
+// in a checkerboard: a perfectly flat NDT cell has a smallest covariance eigenvalue of zero, which
+// PCL computes as slightly negative for some cells and then drops the cell ("Invalid eigen
+// value"); ±1 cm, a wall's finish tolerance, keeps every wall cell, and is far below PCL's own
+// floor on that eigenvalue (1 % of the largest, about (3 cm)² for 1 m cells).
+Cloud::Ptr planCloud(const bim::Plan& plan, const std::string& level_id, double spacing,
+                     double relief) {
   const bim::Level* level = plan.findLevel(level_id);
   if (level == nullptr) throw std::invalid_argument("the plan has no level \"" + level_id + "\"");
   const bim::LevelGeometry geometry = bim::computeLevelGeometry(*level);
@@ -45,14 +49,19 @@ Cloud::Ptr planCloud(const bim::Plan& plan, const std::string& level_id, double 
     }
     for (int side : {+1, -1}) {
       const bim::WallFace& face = wall.face(side);
+      const Eigen::Vector2d outward = side * wall.left_normal;
       for (const auto& piece : face.exposed) {
-        for (double s = piece.lo; s <= piece.hi + 1e-9; s += step) {
-          const Eigen::Vector2d xy = wall.facePointAt(side, s);
-          for (double z = face.z_min; z <= face.z_max + 1e-9; z += step) {
+        int i = 0;
+        for (double s = piece.lo; s <= piece.hi + 1e-9; s += spacing, ++i) {
+          int j = 0;
+          for (double z = face.z_min; z <= face.z_max + 1e-9; z += spacing, ++j) {
             const bool in_hole = std::any_of(holes.begin(), holes.end(), [&](const Hole& h) {
               return s > h.lo && s < h.hi && z < h.top;
             });
-            if (!in_hole) cloud->push_back(pcl::PointXYZ(float(xy.x()), float(xy.y()), float(z)));
+            if (in_hole) continue;
+            const Eigen::Vector2d xy =
+                wall.facePointAt(side, s) + ((i + j) % 2 == 0 ? relief : -relief) * outward;
+            cloud->push_back(pcl::PointXYZ(float(xy.x()), float(xy.y()), float(z)));
           }
         }
       }
@@ -61,7 +70,7 @@ Cloud::Ptr planCloud(const bim::Plan& plan, const std::string& level_id, double 
   if (cloud->empty()) {
     throw std::invalid_argument("level \"" + level_id + "\" has no wall to register against");
   }
-  return voxelise(cloud, voxel);
+  return cloud;
 }
 
 // The state: x, y, z, yaw of the base in B, then its velocity vx, vy, vz, ω in B.
@@ -96,7 +105,10 @@ NdtUkfLocalizer::NdtUkfLocalizer(const bim::Plan& plan, const std::string& level
       R_T_L_(R_T_L),
       start_B_T_M_(start_B_T_M),
       registration_(std::make_unique<Registration>()) {
-  registration_->map = planCloud(plan, level, options.map_sample_step, options.map_voxel);
+  registration_->map = planCloud(plan, level, options.map_spacing, options.map_relief);
+  const bim::Level* plan_level = plan.findLevel(level);
+  floor_ = plan_level->elevation;
+  ceiling_ = plan_level->elevation + plan_level->height;
   auto& ndt = registration_->ndt;
   ndt.setResolution(float(options.ndt_resolution));
   ndt.setStepSize(options.ndt_step_size);
@@ -170,15 +182,28 @@ void NdtUkfLocalizer::pushScan(const Scan& scan) {
     cloud->push_back(pcl::PointXYZ(float(q.x()), float(q.y()), float(q.z())));
   }
   ++scans_;
+  const Eigen::Isometry3d guess_B_T_R = poseOf(filter_->mean(), tilt);
+  if (options_.wall_band > 0.0) {
+    // Only what the map can explain: the walls' height, less a band at the floor and ceiling
+    // (at the predicted pose), which the walls-only map has no points for.
+    Cloud::Ptr walls(new Cloud);
+    for (const auto& p : *cloud) {
+      const double z = (guess_B_T_R * Eigen::Vector3d(p.x, p.y, p.z)).z();
+      if (z > floor_ + options_.wall_band && z < ceiling_ - options_.wall_band) walls->push_back(p);
+    }
+    cloud = walls;
+  }
   if (cloud->size() >= 10) {
     const Cloud::Ptr filtered = voxelise(cloud, options_.scan_voxel);
     auto& ndt = registration_->ndt;
     ndt.setInputSource(filtered);
     Cloud aligned;
-    const Eigen::Matrix4f guess = poseOf(filter_->mean(), tilt).matrix().cast<float>();
+    const Eigen::Matrix4f guess = guess_B_T_R.matrix().cast<float>();
     ndt.align(aligned, guess);
     last_converged_ = ndt.hasConverged();
     last_fitness_ = ndt.getFitnessScore();
+    iterations_ += ndt.getFinalNumIteration();
+    ++registrations_;
     Eigen::Isometry3d measured(ndt.getFinalTransformation().cast<double>());
     const Pose2 planar = planarPose(measured);
     Eigen::Vector4d z(planar.x, planar.y, measured.translation().z(), planar.yaw);
@@ -199,6 +224,7 @@ nlohmann::json NdtUkfLocalizer::graph() const {
           {"state", {s[0], s[1], s[2], s[3], s[4], s[5], s[6], s[7]}},
           {"position_std", std::sqrt(filter_->covariance().topLeftCorner<2, 2>().trace())},
           {"last_ndt_converged", last_converged_},
+          {"ndt_iterations_mean", registrations_ > 0 ? double(iterations_) / registrations_ : 0.0},
           {"last_ndt_fitness", last_fitness_}};
 }
 

@@ -14,16 +14,22 @@ namespace isg::slam {
 // that carries the pose and velocity forward with the odometry; NDT's pose is the filter's
 // measurement. A tracker: it is given its start pose (docs/baselines.md).
 struct NdtUkfOptions {
-  // The map cloud: the plan's exposed wall faces, floor to wall top, sampled on this grid and
-  // voxelised at map_voxel (hdl's global map is downsampled at 0.1 m).
-  double map_sample_step = 0.05;
-  double map_voxel = 0.1;
-  double scan_voxel = 0.25;     // hdl_localization: 0.1 (docs/baselines.md says why not here)
+  // The map cloud: the plan's exposed wall faces, floor to wall top, sampled on a grid of this
+  // spacing (hdl's global map is downsampled at 0.1 m), each point ±map_relief off its face.
+  double map_spacing = 0.1;
+  double map_relief = 0.01;
+  // Scan points within this of the floor or the ceiling (at the predicted pose) are dropped: the
+  // walls-only map cannot explain them. 0 keeps them.
+  double wall_band = 0.2;
+  double scan_voxel = 0.4;      // hdl_localization: 0.1 (docs/baselines.md says why not here)
   double scan_min_range = 0.3;  // closer points are the robot itself
   // NDT as hdl_localization sets it up: 1 m cells; PCL's defaults otherwise.
   double ndt_resolution = 1.0;
   double ndt_step_size = 0.1;
-  double ndt_epsilon = 0.01;
+  // hdl_localization's transformation epsilon is 0.01 m of step; PCL 1.13's NDT compares the
+  // step's *squared* translation with its epsilon, so the same test is 0.01² here (0.01 would
+  // stop every registration after its first step, as any step of at most 0.1 m passes).
+  double ndt_epsilon = 1e-4;
   int ndt_max_iterations = 35;
   // The filter's noise, as hdl_localization's pose estimator: process noise per second on
   // position 1.0, on heading 0.5, on velocity 1.0 (times dt); measurement noise 0.01 on
@@ -65,7 +71,10 @@ class NdtUkfLocalizer : public Localizer {
   std::optional<Odometry> latest_;
   std::optional<Odometry> last_scan_odometry_;  // M_T_R at the last scan
   std::optional<Eigen::Isometry3d> B_T_M_;
+  double floor_ = 0.0, ceiling_ = 0.0;  // the level's, in B
   int scans_ = 0;
+  int registrations_ = 0;
+  long iterations_ = 0;  // NDT's, summed over the registrations
   double last_fitness_ = 0.0;
   bool last_converged_ = false;
 };

@@ -19,16 +19,28 @@ double apeB(testing::Sandbox& sandbox, const std::string& run) {
 
 TEST(Baselines, D1AsBuiltAgainstTheCommittedTable) {
   testing::Sandbox sandbox("baselines");
-  for (const char* method : {"is-graphs", "amcl", "ndt-ukf", "odometry"}) {
+  for (const char* method : {"is-graphs", "amcl", "odometry"}) {
     const auto r = sandbox.run(std::string("run builtin:d1.asbuilt --seed 1 --method ") + method +
                                " -o d1-" + method + " -q");
     ASSERT_EQ(r.exit_code, 0) << method << ": " << r.err;
   }
-  // The tracker, from a start 0.3 m and 5° off, follows D1 as built within 0.15 m (RMSE).
-  const auto ndt = nlohmann::json::parse(sandbox.read("d1-ndt-ukf/metrics.json"));
-  EXPECT_TRUE(ndt["localized"].get<bool>());
-  EXPECT_LE(apeB(sandbox, "d1-ndt-ukf"), 0.15);
-  EXPECT_FALSE(ndt["wrongly_localized"].get<bool>());
+  // The tracker, from a start 0.3 m and 5° off, follows D1 as built within 0.15 m (RMSE, the
+  // mean of seeds 1–3, measured 0.065 m; seed 2 alone is 0.117 m: it stays about 0.3 m off for
+  // its first 12 s, docs/baselines.md).
+  double ndt_mean = 0.0;
+  for (const char* seed : {"1", "2", "3"}) {
+    const std::string run = std::string("ndt-") + seed;
+    ASSERT_EQ(sandbox
+                  .run(std::string("run builtin:d1.asbuilt --method ndt-ukf -q --seed ") + seed +
+                       " -o " + run)
+                  .exit_code,
+              0);
+    const auto ndt = nlohmann::json::parse(sandbox.read(run + "/metrics.json"));
+    EXPECT_TRUE(ndt["localized"].get<bool>());
+    EXPECT_FALSE(ndt["wrongly_localized"].get<bool>());
+    ndt_mean += apeB(sandbox, run) / 3.0;
+  }
+  EXPECT_LE(ndt_mean, 0.15);
   // AMCL localizes from its uniform start, and is not wrong.
   const auto amcl = nlohmann::json::parse(sandbox.read("d1-amcl/metrics.json"));
   EXPECT_TRUE(amcl["localized"].get<bool>());
@@ -36,7 +48,7 @@ TEST(Baselines, D1AsBuiltAgainstTheCommittedTable) {
   EXPECT_GT(amcl["time_to_localize"].get<double>(), 1.0);  // it had to search
 
   const std::string baseline = std::string(ISG_SOURCE_DIR) + "/eval/baselines/table1_d1.csv";
-  const auto table = sandbox.run("table d1-is-graphs d1-amcl d1-ndt-ukf d1-odometry --baseline '" +
+  const auto table = sandbox.run("table d1-is-graphs d1-amcl ndt-1 d1-odometry --baseline '" +
                                  baseline + "' --tolerance 0.02");
   EXPECT_EQ(table.exit_code, 0) << table.err;
   EXPECT_THAT(table.out, HasSubstr("| world | is-graphs | amcl | ndt-ukf | odometry |\n"));
@@ -77,7 +89,7 @@ TEST(Baselines, MethodOptionsAreCheckedAndNamed) {
   EXPECT_EQ(unknown.exit_code, 1);
   EXPECT_EQ(unknown.err,
             "isg run: error: --method amcl: particle=100: amcl has no option particle (it has "
-            "alpha_fast, alpha_slow, min_particles, particles)\n");
+            "alpha_fast, alpha_slow, min_particles, particles, update_min_a, update_min_d)\n");
   const auto bad = sandbox.run("run builtin:d1 --method ndt-ukf --method-option start_error=-1 -q");
   EXPECT_EQ(bad.exit_code, 1);
   EXPECT_THAT(bad.err, HasSubstr("start_error=-1: ndt-ukf's start_error must be a number in [0"));

@@ -21,6 +21,9 @@ TEST(Table, FormatsAsCsvMarkdownAndLatex) {
             "| world | is-graphs | odometry |\n|---|---:|---:|\n"
             "| d1 | 0.028 | 0.099 |\n| d2 | - |  |\n| *localized correctly* | 1/2 | 1/2 |\n");
   const std::string latex = formatTable(t, TableFormat::kLatex, "APE_B");
+  EXPECT_NE(formatTable(t, TableFormat::kLatex, "in B; - never, ✗ wrong")
+                .find("\\caption{in B; $-$ never, $\\times$ wrong}"),
+            std::string::npos);
   EXPECT_NE(latex.find("\\caption{APE\\_B}"), std::string::npos);
   EXPECT_NE(latex.find("\\toprule\nWorld & is-graphs & odometry \\\\\n\\midrule\n"),
             std::string::npos);
