@@ -21,7 +21,9 @@ TableCommand::TableCommand(CLI::App& parent) {
       "alignment, from the first localized pose on), \"-\" where the method never localized, or "
       "\"✗\" where it was wrongly localized (a pose more than 1 m off for more than 5 s on end, "
       "docs/evaluation.md). --measure time-wrong tabulates the seconds spent more than 1 m off "
-      "instead, --measure time-to-localize the seconds to the first localization. "
+      "instead, --measure time-to-localize the seconds to the first localization, "
+      "--measure distance-to-localize the metres walked by then and --measure rooms-to-localize "
+      "the plan rooms the robot had stood in by then. "
       "With --baseline, compares each cell of the baseline table (CSV, as --format csv writes "
       "it) with the runs and exits with code 4, naming every cell that is worse by more than "
       "--tolerance (in the measure's unit), failed, was wrongly localized, or has no run.\n\n"
@@ -39,13 +41,14 @@ TableCommand::TableCommand(CLI::App& parent) {
       ->capture_default_str();
   app_->add_option("--measure", measure_,
                    "ape: APE RMSE in B [m]; time-wrong: seconds more than 1 m off; "
-                   "time-to-localize: seconds to the first localization")
-      ->check(CLI::IsMember({"ape", "time-wrong", "time-to-localize"}))
+                   "time-to-localize: seconds to the first localization; distance-to-localize: "
+                   "metres walked by then; rooms-to-localize: plan rooms stood in by then")
+      ->check(CLI::IsMember(
+          {"ape", "time-wrong", "time-to-localize", "distance-to-localize", "rooms-to-localize"}))
       ->capture_default_str();
   app_->add_option("--baseline", baseline_, "baseline table (CSV) to check the runs against");
-  app_->add_option(
-          "--tolerance", tolerance_,
-          "how much a cell may exceed its baseline (metres, or seconds for the time measures)")
+  app_->add_option("--tolerance", tolerance_,
+                   "how much a cell may exceed its baseline, in the measure's unit")
       ->check(nonNegativeNumber())
       ->capture_default_str();
   app_->add_option("-o,--output", output_, "write the table to this file instead of stdout");
@@ -96,6 +99,12 @@ int TableCommand::run() {
       if (metrics.localized && metrics.ape_B) value = metrics.ape_B->rmse;
     } else if (measure_ == "time-wrong") {
       if (metrics.localized) value = metrics.time_wrongly_localized;
+    } else if (measure_ == "distance-to-localize") {
+      if (metrics.localized) value = metrics.distance_to_localize;
+    } else if (measure_ == "rooms-to-localize") {
+      if (metrics.localized && metrics.rooms_visited_to_localize) {
+        value = double(*metrics.rooms_visited_to_localize);
+      }
     } else if (metrics.localized) {
       value = metrics.time_to_localize;
     }
@@ -135,8 +144,11 @@ int TableCommand::run() {
   std::string caption =
       measure_ == "time-wrong"
           ? "Seconds localized more than 1 m off the ground truth (2D); - never localized"
-      : measure_ == "time-to-localize"
-          ? "Seconds to the first localization; - never localized"
+      : measure_ == "time-to-localize" ? "Seconds to the first localization; - never localized"
+      : measure_ == "distance-to-localize"
+          ? "Metres walked (2D) to the first localization; - never localized"
+      : measure_ == "rooms-to-localize"
+          ? "Plan rooms stood in by the first localization; - never localized"
           : "APE RMSE in B [m] (2D, no alignment, from the first localized pose on); - never "
             "localized, ✗ wrongly localized (more than 1 m off for more than 5 s)";
   if (most_seeds > 1) {

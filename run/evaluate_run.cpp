@@ -1,9 +1,11 @@
 #include "run/evaluate_run.hpp"
 
+#include "bim/polygon.hpp"
 #include "eval/ape.hpp"
 #include "eval/coverage.hpp"
 #include "eval/wrong_localization.hpp"
 
+#include <set>
 #include <stdexcept>
 #include <string>
 
@@ -18,6 +20,25 @@ Trajectory odometryInPlan(const SensorStreams& streams) {
   const Eigen::Isometry3d B_T_M = trueStartB_T_M(streams);
   for (const auto& p : streams.odometry) out.push_back({p.t, B_T_M * p.pose});
   return out;
+}
+
+// How far the robot walked (2D, along the ground truth) until `until`, and how many plan rooms
+// of the level it had stood in by then.
+std::pair<double, int> walkedUntil(const Trajectory& truth, double until, const bim::AGraph* plan,
+                                   const std::string& level) {
+  double distance = 0.0;
+  std::set<int> rooms;
+  for (std::size_t i = 0; i < truth.size() && truth[i].t <= until; ++i) {
+    const Eigen::Vector2d p = truth[i].pose.translation().head<2>();
+    if (i > 0) distance += (p - truth[i - 1].pose.translation().head<2>()).norm();
+    if (plan == nullptr) continue;
+    for (int r = 0; r < int(plan->rooms.size()); ++r) {
+      const auto& room = plan->rooms[r];
+      const bool on_level = level.empty() || room.floor < 0 || plan->floors[room.floor].id == level;
+      if (on_level && !rooms.count(r) && bim::containsPoint(room.outline, p)) rooms.insert(r);
+    }
+  }
+  return {distance, int(rooms.size())};
 }
 
 }  // namespace
@@ -42,6 +63,13 @@ RunEvaluation evaluateRun(const RunRecord& run) {
   if (coverage.localized) {
     m.time_to_localize = coverage.time_to_first;
     m.share_localized = coverage.share;
+    if (has_truth) {
+      const auto [distance, rooms] =
+          walkedUntil(streams.ground_truth, streams.ground_truth.front().t + coverage.time_to_first,
+                      run.setup.agraph, run.setup.level);
+      m.distance_to_localize = distance;
+      if (run.setup.agraph != nullptr) m.rooms_visited_to_localize = rooms;
+    }
   }
   // An error measure that cannot be computed (no pose of the estimate near the ground truth's
   // stamps, a map trajectory too short or straight to align) is left out with a note saying why.

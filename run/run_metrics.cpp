@@ -102,6 +102,8 @@ nlohmann::json metricsToJson(const RunMetrics& m) {
   j["real_time_factor"] = m.real_time_factor;
   j["localized"] = m.localized;
   if (m.time_to_localize) j["time_to_localize"] = *m.time_to_localize;
+  if (m.distance_to_localize) j["distance_to_localize"] = *m.distance_to_localize;
+  if (m.rooms_visited_to_localize) j["rooms_visited_to_localize"] = *m.rooms_visited_to_localize;
   if (m.share_localized) j["share_localized"] = *m.share_localized;
   if (m.ape_B) j["ape_B"] = statisticsJson(*m.ape_B);
   if (m.ape_B_rotation_deg) j["ape_B_rotation_deg"] = statisticsJson(*m.ape_B_rotation_deg);
@@ -141,6 +143,8 @@ RunMetrics metricsFromJson(const nlohmann::json& document, const std::string& fi
   m.real_time_factor = r.required<double>("real_time_factor");
   m.localized = r.required<bool>("localized");
   m.time_to_localize = r.optional<double>("time_to_localize");
+  m.distance_to_localize = r.optional<double>("distance_to_localize");
+  m.rooms_visited_to_localize = r.optional<int>("rooms_visited_to_localize");
   m.share_localized = r.optional<double>("share_localized");
   m.ape_B = r.statistics("ape_B");
   m.ape_B_rotation_deg = r.statistics("ape_B_rotation_deg");

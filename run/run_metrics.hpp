@@ -26,8 +26,11 @@ struct RunMetrics {
   double real_time_factor = 0.0;
   bool localized = false;
   std::optional<double> time_to_localize;  // s from the first ground-truth stamp
-  std::optional<double> share_localized;   // of the ground truth's span, 0 … 1
-  std::optional<Statistics> ape_B;         // 2D, no alignment, from the first localized pose on
+  // By then (with ground truth): metres walked (2D) and plan rooms of the level stood in.
+  std::optional<double> distance_to_localize;
+  std::optional<int> rooms_visited_to_localize;
+  std::optional<double> share_localized;  // of the ground truth's span, 0 … 1
+  std::optional<Statistics> ape_B;        // 2D, no alignment, from the first localized pose on
   std::optional<Statistics> ape_B_rotation_deg;
   std::optional<Statistics> ape_M_se3;                     // the map-frame estimate, SE(3)-aligned
   std::optional<Statistics> ape_odometry_from_true_start;  // dead reckoning, for comparison

@@ -17,15 +17,31 @@ std::string format(const char* pattern, auto... values) {
 
 }  // namespace
 
+namespace {
+
+// ", after 6.2 m and 2 rooms": what the robot had walked by its first localization.
+std::string walkedBy(const RunMetrics& m) {
+  if (!m.distance_to_localize) return "";
+  std::string out = format(", after %.1f m", *m.distance_to_localize);
+  if (m.rooms_visited_to_localize) {
+    out += format(" and %d room%s", *m.rooms_visited_to_localize,
+                  *m.rooms_visited_to_localize == 1 ? "" : "s");
+  }
+  return out;
+}
+
+}  // namespace
+
 std::string reportSvg(const RunRecord& run, const RunEvaluation& evaluation) {
   const RunMetrics& m = evaluation.metrics;
   eval::ReportInput input;
   input.title = "isg run: " + run.setup.world + " — " + run.setup.method;
   if (m.localized && m.ape_B) {
     input.summary.push_back(format(
-        "localized at t = %.1f s (%.0f %% of the run); APE in B (2D, no alignment) rmse %.3f m, "
-        "max %.3f m",
-        *m.time_to_localize, 100.0 * *m.share_localized, m.ape_B->rmse, m.ape_B->max));
+        "localized at t = %.1f s%s (%.0f %% of the run); APE in B (2D, no alignment) rmse %.3f "
+        "m, max %.3f m",
+        *m.time_to_localize, walkedBy(m).c_str(), 100.0 * *m.share_localized, m.ape_B->rmse,
+        m.ape_B->max));
   } else if (m.localized) {
     input.summary.push_back(format("localized at t = %.1f s (%.0f %% of the run); no APE",
                                    *m.time_to_localize, 100.0 * *m.share_localized));
@@ -70,8 +86,8 @@ std::string runSummary(const std::string& command, const std::string& dir, const
       format("%s: wrote %s (%s on %s, seed %llu)\n", command.c_str(), dir.c_str(), m.method.c_str(),
              m.world.c_str(), static_cast<unsigned long long>(m.seed));
   if (m.localized) {
-    out += format("  localized at t = %.1f s (%.0f %% of the run localized)\n", *m.time_to_localize,
-                  100.0 * *m.share_localized);
+    out += format("  localized at t = %.1f s%s (%.0f %% of the run localized)\n",
+                  *m.time_to_localize, walkedBy(m).c_str(), 100.0 * *m.share_localized);
     if (m.ape_B) {
       out += format(
           "  APE in B (2D, no alignment, from then on): rmse %.3f m, median %.3f m, max %.3f m "

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <map>
 #include <numbers>
+#include <optional>
 #include <set>
 
 namespace isg::slam {
@@ -89,7 +90,39 @@ nlohmann::json MatchResult::toJson() const {
           {"plane_rms", best.plane_rms},
           {"explained_length", best.explained_length},
           {"unexplained_length", best.unexplained_length},
+          {"candidates", candidatesJson()},
           {"seconds", seconds}};
+}
+
+nlohmann::json MatchResult::candidatesJson() const {
+  // The best answer first, then the others with what separates each from it.
+  auto answer = [](const Verification& v) {
+    return nlohmann::json{
+        {"B_T_M", {{"x", v.x_y_yaw.x()}, {"y", v.x_y_yaw.y()}, {"yaw", v.x_y_yaw.z()}}},
+        {"score", v.score},
+        {"rooms", v.rooms.size()},
+        {"planes", v.planes.size()},
+        {"explained_length", v.explained_length},
+        {"unexplained_length", v.unexplained_length}};
+  };
+  nlohmann::json out = nlohmann::json::array();
+  if (hypotheses == 0) return out;
+  out.push_back(answer(best));
+  out.back()["best"] = true;
+  for (const Candidate& c : candidates) {
+    nlohmann::json j = answer(c.answer);
+    const Distinction& d = c.from_best;
+    j["decisive_evidence_for_best"] = d.evidence;
+    j["walls_only_best_explains"] = d.walls_for;
+    j["walls_only_this_explains"] = d.walls_against;
+    j["rooms_only_best_explains"] = d.rooms_for;
+    j["rooms_only_this_explains"] = d.rooms_against;
+    j["doorways_only_best_walks_through"] = d.doors_for;
+    j["doorways_only_this_walks_through"] = d.doors_against;
+    j["would_separate"] = d.separating_rooms;
+    out.push_back(j);
+  }
+  return out;
 }
 
 GraphMatcher::GraphMatcher(const bim::AGraph& graph, const MatchingOptions& options)
@@ -143,6 +176,38 @@ GraphMatcher::GraphMatcher(const bim::AGraph& graph, const MatchingOptions& opti
       if (r >= 0 && r < int(graph.rooms.size())) doors_of_room_[r].push_back(d);
     }
   }
+  // The plan's wall corners (seeds, slam/match_seeds.cpp): segment ends that meet. Each arm is
+  // as long as its surface reaches from the corner, across doorways: an S-plane spans them.
+  std::set<std::array<int, 4>> paired;
+  for (int i = 0; i < int(graph.surfaces.size()); ++i) {
+    const auto& si = graph.surfaces[i];
+    for (int a = 0; a < int(si.segments.size()); ++a) {
+      for (const Eigen::Vector2d& end : {si.segments[a].first, si.segments[a].second}) {
+        const Cell* cell = cellAt(end);
+        if (!cell) continue;
+        for (int j : cell->surfaces) {
+          if (j <= i) continue;
+          const auto& sj = graph.surfaces[j];
+          for (int b = 0; b < int(sj.segments.size()); ++b) {
+            if (!paired.insert({i, a, j, b}).second) continue;
+            auto corner =
+                cornerOf(si.plane, si.segments[a].first, si.segments[a].second, sj.plane,
+                         sj.segments[b].first, sj.segments[b].second, options_.corner_gap);
+            if (!corner) continue;
+            for (int k = 0; k < 2; ++k) {
+              for (const auto& [p, q] : (k == 0 ? si : sj).segments) {
+                for (const Eigen::Vector2d& x : {p, q}) {
+                  corner->arm[k] =
+                      std::max(corner->arm[k], corner->arm_direction[k].dot(x - corner->point));
+                }
+              }
+            }
+            corners_.push_back(*corner);
+          }
+        }
+      }
+    }
+  }
 }
 
 const GraphMatcher::Cell* GraphMatcher::cellAt(const Eigen::Vector2d& p) const {
@@ -162,6 +227,8 @@ bool GraphMatcher::joinedByDoor(int a, int b) const {
 
 int GraphMatcher::matchRoom(const MatchRoom& room, const Eigen::Vector3d& x_y_yaw,
                             double* distance_out) const {
+  const double width_tolerance = options_.width_tolerance;
+  const double centre_tolerance = options_.centre_tolerance;
   const Eigen::Vector2d centre = apply(x_y_yaw, room.centre);
   const Cell* cell = cellAt(centre);
   if (!cell) return -1;
@@ -175,25 +242,25 @@ int GraphMatcher::matchRoom(const MatchRoom& room, const Eigen::Vector3d& x_y_ya
     if (room.four_wall) {
       if (a.kind != bim::RoomKind::kFourWall) continue;
       distance = (a.centre - centre).norm();
-      if (distance > options_.centre_tolerance) continue;
+      if (distance > centre_tolerance) continue;
       const double d0 = axisDifference(axis, room_yaw_[i]);
       const bool same_order = d0 < axis_tolerance;
       const bool swapped = std::abs(d0 - std::numbers::pi / 2) < axis_tolerance;
       if (!same_order && !swapped) continue;
       const double w0 = same_order ? a.widths[0] : a.widths[1];
       const double w1 = same_order ? a.widths[1] : a.widths[0];
-      if (std::abs(w0 - room.widths[0]) > options_.width_tolerance ||
-          std::abs(w1 - room.widths[1]) > options_.width_tolerance) {
+      if (std::abs(w0 - room.widths[0]) > width_tolerance ||
+          std::abs(w1 - room.widths[1]) > width_tolerance) {
         continue;
       }
     } else {
       if (a.kind != bim::RoomKind::kTwoWall) continue;
       if (axisDifference(axis, room_yaw_[i]) > axis_tolerance) continue;
-      if (std::abs(a.widths[0] - room.widths[0]) > options_.width_tolerance) continue;
+      if (std::abs(a.widths[0] - room.widths[0]) > width_tolerance) continue;
       // Across the corridor the centre is known; along it, only that it is inside.
       const Eigen::Vector2d n = graph_->surfaces[a.pairs[0][0]].plane.normal.head<2>().normalized();
       distance = std::abs(n.dot(centre - a.centre));
-      if (distance > options_.centre_tolerance) continue;
+      if (distance > centre_tolerance) continue;
       const Eigen::Vector2d along(-n.y(), n.x());
       double lo = 1e300, hi = -1e300;
       for (const auto& p : a.outline) {
@@ -201,7 +268,7 @@ int GraphMatcher::matchRoom(const MatchRoom& room, const Eigen::Vector3d& x_y_ya
         hi = std::max(hi, along.dot(p));
       }
       const double s = along.dot(centre);
-      if (s < lo - options_.centre_tolerance || s > hi + options_.centre_tolerance) continue;
+      if (s < lo - centre_tolerance || s > hi + centre_tolerance) continue;
     }
     if (distance < best_distance) {
       best_distance = distance;
@@ -287,6 +354,7 @@ Verification GraphMatcher::verify(const MatchInput& input, const Eigen::Vector3d
         const auto& a = graph_->rooms[r];
         if (a.kind == bim::RoomKind::kFourWall && pointInPolygon(a.outline, centre)) {
           ++v.rooms_contradicted;
+          v.contradicted.push_back(room.id);
           break;
         }
       }
@@ -307,13 +375,17 @@ Verification GraphMatcher::verify(const MatchInput& input, const Eigen::Vector3d
     squared += distance * distance;
   }
   if (!v.planes.empty()) v.plane_rms = std::sqrt(squared / double(v.planes.size()));
-  for (const auto& [i, j] : input.transitions) {
-    const int a = room_match[i], b = room_match[j];
+  v.transition_doors.assign(input.transitions.size(), 0);
+  for (std::size_t t = 0; t < input.transitions.size(); ++t) {
+    const int a = room_match[input.transitions[t].first];
+    const int b = room_match[input.transitions[t].second];
     if (a < 0 || b < 0 || a == b) continue;
     if (joinedByDoor(a, b)) {
       ++v.doors_passed;
+      v.transition_doors[t] = 1;
     } else {
       ++v.doors_missing;
+      v.transition_doors[t] = -1;
     }
   }
   double rooms_total = 0.0;
@@ -380,6 +452,10 @@ Eigen::Vector3d GraphMatcher::refine(const MatchInput& input,
 Eigen::Vector2d GraphMatcher::middleOf(const MatchInput& input) {
   Eigen::Vector2d middle = Eigen::Vector2d::Zero();
   for (const auto& r : input.rooms) middle += r.centre / double(input.rooms.size());
+  if (!input.rooms.empty()) return middle;
+  // No room yet: the middle of the walls.
+  for (const auto& p : input.planes)
+    middle += 0.5 * (p.start + p.end) / double(input.planes.size());
   return middle;
 }
 
@@ -392,111 +468,77 @@ bool GraphMatcher::sameAnswer(const Eigen::Vector3d& a, const Eigen::Vector3d& b
 
 MatchResult GraphMatcher::match(const MatchInput& input) const {
   const auto start = std::chrono::steady_clock::now();
-  MatchResult result;
-  // 1. Hypotheses from every compatible (S four-wall room, A four-wall room) pair.
+  // 1. Hypotheses from the rooms: four-wall rooms and corridors.
   std::vector<Eigen::Vector3d> hypotheses;
-  for (const MatchRoom& s : input.rooms) {
-    if (!s.four_wall) continue;
-    for (int i = 0; i < int(graph_->rooms.size()); ++i) {
-      const auto& a = graph_->rooms[i];
-      if (a.kind != bim::RoomKind::kFourWall) continue;
-      for (int k = 0; k < 4; ++k) {
-        const bool swapped = k % 2 == 1;
-        const double w0 = swapped ? a.widths[1] : a.widths[0];
-        const double w1 = swapped ? a.widths[0] : a.widths[1];
-        if (std::abs(w0 - s.widths[0]) > options_.width_tolerance ||
-            std::abs(w1 - s.widths[1]) > options_.width_tolerance) {
-          continue;
-        }
-        const double yaw = wrapAngle(room_yaw_[i] + k * std::numbers::pi / 2 - s.axis_yaw);
-        const Eigen::Vector2d t = a.centre - rotation(yaw) * s.centre;
-        hypotheses.emplace_back(t.x(), t.y(), yaw);
-      }
-    }
+  seedFromFourWallRooms(input, hypotheses);
+  seedFromCorridors(input, hypotheses);
+  MatchResult result = evaluate(input, hypotheses);
+  // When the rooms do not settle it (none seeds, or their best answer is not accepted), corners
+  // of long walls propose more: the right answer in a building of halls, or the one a room that
+  // is not in the plan hid.
+  if (result.status != MatchStatus::kMatched) {
+    const std::size_t from_rooms = hypotheses.size();
+    seedFromCorners(input, hypotheses);
+    if (hypotheses.size() > from_rooms) result = evaluate(input, hypotheses);
   }
+  if (result.hypotheses == 0) {
+    result.reason = input.rooms.empty() && input.planes.empty()
+                        ? "no room in the S-Graph yet"
+                        : "no S-Graph room or corner fits the plan in kind and size";
+  }
+  result.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  return result;
+}
+
+MatchResult GraphMatcher::evaluate(const MatchInput& input,
+                                   const std::vector<Eigen::Vector3d>& hypotheses) const {
+  MatchResult result;
   result.hypotheses = int(hypotheses.size());
-  if (hypotheses.empty()) {
-    result.reason = input.rooms.empty() ? "no room in the S-Graph yet"
-                                        : "no S-Graph room fits a plan room in kind and size";
-    result.seconds =
-        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-    return result;
-  }
+  if (hypotheses.empty()) return result;
   // 2. Each checked against the whole S-Graph.
   std::vector<Verification> verified;
   verified.reserve(hypotheses.size());
   for (const auto& h : hypotheses) verified.push_back(verify(input, h));
   std::sort(verified.begin(), verified.end(),
             [](const Verification& a, const Verification& b) { return a.score > b.score; });
-  // 3. Clusters: the same answer proposed by several room pairs. Two transforms are the same
-  // answer when they put the S-Graph's rooms in the same place.
+  // 3. Clusters: the same answer proposed by several seeds. Two transforms are the same answer
+  // when they put the S-Graph in the same place (sameAnswer; its images computed once each).
   const Eigen::Vector2d middle = middleOf(input);
+  const double yaw_tolerance = options_.cluster_yaw_deg * std::numbers::pi / 180.0;
   std::vector<const Verification*> representatives;
+  std::vector<Eigen::Vector2d> placed;  // where each representative puts the middle
   for (const auto& v : verified) {
-    const bool joined = std::any_of(
-        representatives.begin(), representatives.end(),
-        [&](const Verification* r) { return sameAnswer(v.x_y_yaw, r->x_y_yaw, middle); });
-    if (!joined) representatives.push_back(&v);
+    const Eigen::Vector2d image = apply(v.x_y_yaw, middle);
+    bool joined = false;
+    for (std::size_t r = 0; r < representatives.size() && !joined; ++r) {
+      joined = (image - placed[r]).norm() < options_.cluster_distance &&
+               std::abs(wrapAngle(v.x_y_yaw.z() - representatives[r]->x_y_yaw.z())) < yaw_tolerance;
+    }
+    if (joined) continue;
+    representatives.push_back(&v);
+    placed.push_back(image);
   }
   result.clusters = int(representatives.size());
   // 4. The best few answers, each refined over its correspondences and checked again, so that
-  // the first and the second are compared at their best.
+  // they are compared at their best.
   std::vector<Verification> finalists;
-  for (std::size_t i = 0; i < representatives.size() && i < 4; ++i) {
+  for (std::size_t i = 0; i < representatives.size() && int(i) < options_.finalists; ++i) {
     Verification refined = verify(input, refine(input, *representatives[i]));
     finalists.push_back(refined.score >= representatives[i]->score ? refined : *representatives[i]);
   }
   std::sort(finalists.begin(), finalists.end(),
             [](const Verification& a, const Verification& b) { return a.score > b.score; });
   result.best = finalists[0];
-  // Refinement may bring two clusters to the same answer: the second must be distinct. If all
-  // finalists came together, the next cluster is the second.
-  const auto second = std::find_if(
-      finalists.begin() + 1, finalists.end(),
-      [&](const Verification& v) { return !sameAnswer(v.x_y_yaw, result.best.x_y_yaw, middle); });
-  if (second != finalists.end()) {
-    result.second = *second;
-  } else if (representatives.size() > finalists.size()) {
-    result.second = *representatives[finalists.size()];
+  // Refinement may bring two clusters to the same answer: the others must be distinct. If all
+  // finalists came together, the next cluster is the other answer.
+  for (std::size_t i = 1; i < finalists.size(); ++i) {
+    if (sameAnswer(finalists[i].x_y_yaw, result.best.x_y_yaw, middle)) continue;
+    result.candidates.push_back({finalists[i], {}});
   }
-  result.second_score = result.second.score;
-
-  std::set<int> a_rooms;
-  for (const auto& [s, a] : result.best.rooms) a_rooms.insert(a);
-  std::set<int> own_planes;
-  for (const auto& r : input.rooms) {
-    for (const auto& [s, a] : result.best.rooms) {
-      if (s == r.id) own_planes.insert(r.planes.begin(), r.planes.end());
-    }
+  if (result.candidates.empty() && representatives.size() > finalists.size()) {
+    result.candidates.push_back({*representatives[finalists.size()], {}});
   }
-  int planes_outside = 0;
-  for (const auto& [s, a] : result.best.planes) planes_outside += own_planes.count(s) ? 0 : 1;
-  const bool supported = int(a_rooms.size()) >= options_.min_rooms ||
-                         (a_rooms.size() == 1 && planes_outside >= options_.min_planes_outside);
-  auto plural = [](std::size_t n) { return n == 1 ? "" : "s"; };
-  char text[256];
-  std::snprintf(text, sizeof text,
-                "best: %zu room%s, %zu plane%s (%d outside its rooms), %d door%s, %.1f of %.1f m "
-                "of wall explained, score %.1f; second answer %.1f",
-                a_rooms.size(), plural(a_rooms.size()), result.best.planes.size(),
-                plural(result.best.planes.size()), planes_outside, result.best.doors_passed,
-                plural(std::size_t(result.best.doors_passed)), result.best.explained_length,
-                result.best.explained_length + result.best.unexplained_length, result.best.score,
-                result.second_score);
-  if (!supported || result.best.score <= 0.0) {
-    result.status = MatchStatus::kNotYet;
-    result.reason = std::string("too little evidence: ") + text;
-  } else if (result.best.unexplainedShare() > options_.max_unexplained_share) {
-    result.status = MatchStatus::kNotYet;
-    result.reason = std::string("the plan leaves too much of the mapped wall unexplained: ") + text;
-  } else if (result.second_score >= options_.ambiguity_ratio * result.best.score) {
-    result.status = MatchStatus::kAmbiguous;
-    result.reason = std::string("two answers explain the map alike: ") + text;
-  } else {
-    result.status = MatchStatus::kMatched;
-    result.reason = text;
-  }
-  result.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  decide(input, result);
   return result;
 }
 

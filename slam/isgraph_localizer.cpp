@@ -246,6 +246,11 @@ void ISGraphLocalizer::checkForContradiction(double stamp) {
   // Twice the clustering tolerances: the merge has moved B_T_M a little since it was adopted.
   const Eigen::Vector2d middle = GraphMatcher::middleOf(input);
   if (matcher_.sameAnswer(result.best.x_y_yaw, B_T_M_, middle, 2.0)) return;
+  // The new answer must also lead the one held now decisively, on the same map.
+  if (!matcher_.decisive(
+          matcher_.distinguish(input, result.best, matcher_.verify(input, B_T_M_)))) {
+    return;
+  }
   // A unique answer elsewhere: the first match was wrong. Adopt the new one on the unmerged
   // graph, and re-optimise every keyframe under it, so that nothing stays where the wrong
   // B_T_M pulled it.

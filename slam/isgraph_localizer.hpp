@@ -31,10 +31,12 @@ struct ISGraphOptions {
   double sigma_plane_distance = 0.04;
   double sigma_room = 0.1;
   // While not localized, matching is tried again after a new room is confirmed or after this
-  // many keyframes; once localized, new S-planes gain correspondences as they are mapped and a
-  // full match runs again with every new room, on the S-Graph optimised without the plan, to
+  // many keyframes: every keyframe, because what decides between two answers is often not a new
+  // room but a wall or a room's size settling, and an attempt costs milliseconds
+  // (docs/matching.md). Once localized, new S-planes gain correspondences as they are mapped and
+  // a full match runs again with every new room, on the S-Graph optimised without the plan, to
   // catch a contradiction.
-  int retry_keyframes = 5;
+  int retry_keyframes = 1;
   // Holding the plan (docs/matching.md). A correspondence, once made, is kept while its S-plane
   // stays within these of its surface at the current B_T_M: far looser than the matcher's
   // tolerances, so that drift the merge has not yet corrected does not drop it.
