@@ -112,13 +112,14 @@ nlohmann::json MatchResult::candidatesJson() const {
   for (const Candidate& c : candidates) {
     nlohmann::json j = answer(c.answer);
     const Distinction& d = c.from_best;
-    j["decisive_evidence_for_best"] = d.evidence;
-    j["walls_only_best_explains"] = d.walls_for;
-    j["walls_only_this_explains"] = d.walls_against;
-    j["rooms_only_best_explains"] = d.rooms_for;
-    j["rooms_only_this_explains"] = d.rooms_against;
-    j["doorways_only_best_walks_through"] = d.doors_for;
-    j["doorways_only_this_walks_through"] = d.doors_against;
+    j["evidence_for_best"] = d.evidence;
+    j["disagreement"] = d.disagreement;
+    j["walls_for_best"] = d.walls_for;
+    j["walls_for_this"] = d.walls_against;
+    j["rooms_for_best"] = d.rooms_for;
+    j["rooms_for_this"] = d.rooms_against;
+    j["doorways_for_best"] = d.doors_for;
+    j["doorways_for_this"] = d.doors_against;
     j["would_separate"] = d.separating_rooms;
     out.push_back(j);
   }

@@ -132,11 +132,13 @@ struct Verification {
 
 // What separates the best answer from another one: the evidence on which they disagree.
 struct Distinction {
-  double walls_for = 0.0, walls_against = 0.0;  // m of S-wall only the best / the other explains
-  int rooms_for = 0, rooms_against = 0;         // S-rooms only the best / the other explains
-  int doors_for = 0, doors_against = 0;         // transitions through a doorway under one only
-  double evidence = 0.0;                        // in metres of wall, for the best
-  double disagreement = 0.0;                    // Σ |difference| over every element, metres
+  // Walls (m of score) and rooms, doorways (counts) whose score favours the best / the other;
+  // an element counts when its scores differ by ≥ 5 % of its wall's length or half a room's.
+  double walls_for = 0.0, walls_against = 0.0;
+  int rooms_for = 0, rooms_against = 0;
+  int doors_for = 0, doors_against = 0;
+  double evidence = 0.0;      // in metres of wall, for the best
+  double disagreement = 0.0;  // Σ |difference| over every element, metres
   // Where to look: A-rooms (ids) the other answer's turn of the plan maps onto nothing alike, so
   // that seeing them would separate the two; empty when the plan is symmetric under it.
   std::vector<std::string> separating_rooms;

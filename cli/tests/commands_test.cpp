@@ -392,6 +392,12 @@ TEST(Run, BadInputAndUsage) {
   EXPECT_NEAR(metrics["time_to_localize"].get<double>(), 0.0, 0.2);
   EXPECT_NEAR(metrics["ape_B"]["rmse"].get<double>(),
               metrics["ape_odometry_from_true_start"]["rmse"].get<double>(), 0.01);
+  // By then it had walked (at 0.5 m/s) at most 0.1 m, standing in its start room only.
+  EXPECT_LT(metrics["distance_to_localize"].get<double>(), 0.1);
+  EXPECT_EQ(metrics["rooms_visited_to_localize"].get<int>(), 1);
+  const auto rooms = sandbox.run("table dr --measure rooms-to-localize --format csv");
+  ASSERT_EQ(rooms.exit_code, 0) << rooms.err;
+  EXPECT_NE(rooms.out.find("d2,1.000"), std::string::npos) << rooms.out;
 }
 
 }  // namespace

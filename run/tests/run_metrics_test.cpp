@@ -18,6 +18,8 @@ RunMetrics localizedRun() {
   m.real_time_factor = 20.0;
   m.localized = true;
   m.time_to_localize = 14.5;
+  m.distance_to_localize = 4.7;
+  m.rooms_visited_to_localize = 2;
   m.share_localized = 0.64;
   Statistics s;
   s.count = 258;
@@ -35,6 +37,8 @@ TEST(RunMetrics, JsonRoundTripKeepsEveryField) {
   const nlohmann::json j = metricsToJson(m);
   EXPECT_EQ(j["ape_B"]["rmse"].get<double>(), 0.028);
   EXPECT_EQ(j["matching_events"][1]["keyframe"].get<int>(), 9);
+  EXPECT_EQ(j["distance_to_localize"].get<double>(), 4.7);
+  EXPECT_EQ(j["rooms_visited_to_localize"].get<int>(), 2);
   EXPECT_FALSE(j.contains("ape_B_rotation_deg"));
   const RunMetrics back = metricsFromJson(j, "metrics.json");
   EXPECT_EQ(metricsToJson(back), j);
