@@ -336,31 +336,6 @@ Verification GraphMatcher::verify(const MatchInput& input, const Eigen::Vector3d
   auto fit = [](double error, double sigma) {
     return std::exp(-0.5 * (error / sigma) * (error / sigma));
   };
-  for (std::size_t i = 0; i < input.rooms.size(); ++i) {
-    const MatchRoom& room = input.rooms[i];
-    double distance = 0.0;
-    room_match[i] = matchRoom(room, x_y_yaw, &distance);
-    if (room_match[i] >= 0) {
-      v.rooms.emplace_back(room.id, room_match[i]);
-      double& weight = a_rooms[room_match[i]];
-      weight = std::max(weight, fit(distance, options_.room_sigma));
-      continue;
-    }
-    if (!room.four_wall) continue;
-    // An unmatched four-wall room standing inside a four-wall room of the plan that it does not
-    // fit is evidence against this transform.
-    const Eigen::Vector2d centre = apply(x_y_yaw, room.centre);
-    if (const Cell* cell = cellAt(centre)) {
-      for (int r : cell->rooms) {
-        const auto& a = graph_->rooms[r];
-        if (a.kind == bim::RoomKind::kFourWall && pointInPolygon(a.outline, centre)) {
-          ++v.rooms_contradicted;
-          v.contradicted.push_back(room.id);
-          break;
-        }
-      }
-    }
-  }
   double shared_total = 0.0, squared = 0.0;
   for (const MatchPlane& plane : input.planes) {
     if (plane.length() < options_.min_plane_length) continue;
@@ -374,6 +349,39 @@ Verification GraphMatcher::verify(const MatchInput& input, const Eigen::Vector3d
     v.explained_length += plane.length();
     shared_total += std::min(overlap, plane.length()) * fit(distance, options_.plane_sigma);
     squared += distance * distance;
+  }
+  for (std::size_t i = 0; i < input.rooms.size(); ++i) {
+    const MatchRoom& room = input.rooms[i];
+    double distance = 0.0;
+    room_match[i] = matchRoom(room, x_y_yaw, &distance);
+    if (room_match[i] >= 0) {
+      v.rooms.emplace_back(room.id, room_match[i]);
+      double& weight = a_rooms[room_match[i]];
+      weight = std::max(weight, fit(distance, options_.room_sigma));
+      continue;
+    }
+    if (!room.four_wall) continue;
+    // An unmatched four-wall room standing inside a four-wall room of the plan that it does not
+    // fit is evidence against this transform — unless each of its walls lies on a plan surface:
+    // then it is the plan's walls around a space the building has and the plan divides (as
+    // built, a wall is missing), not a contradiction.
+    const bool walls_explained =
+        !room.planes.empty() && std::all_of(room.planes.begin(), room.planes.end(), [&](int p) {
+          return std::any_of(v.planes.begin(), v.planes.end(),
+                             [&](const auto& m) { return m.first == p; });
+        });
+    if (walls_explained) continue;
+    const Eigen::Vector2d centre = apply(x_y_yaw, room.centre);
+    if (const Cell* cell = cellAt(centre)) {
+      for (int r : cell->rooms) {
+        const auto& a = graph_->rooms[r];
+        if (a.kind == bim::RoomKind::kFourWall && pointInPolygon(a.outline, centre)) {
+          ++v.rooms_contradicted;
+          v.contradicted.push_back(room.id);
+          break;
+        }
+      }
+    }
   }
   if (!v.planes.empty()) v.plane_rms = std::sqrt(squared / double(v.planes.size()));
   v.transition_doors.assign(input.transitions.size(), 0);
@@ -469,19 +477,14 @@ bool GraphMatcher::sameAnswer(const Eigen::Vector3d& a, const Eigen::Vector3d& b
 
 MatchResult GraphMatcher::match(const MatchInput& input) const {
   const auto start = std::chrono::steady_clock::now();
-  // 1. Hypotheses from the rooms: four-wall rooms and corridors.
+  // 1. Hypotheses from four-wall rooms, corridors and corners of long walls: corners propose the
+  // right answer in a building of halls, and the one that a room missing from the plan (as built,
+  // a wall is missing) hides from the room seeds, so that it is always among the answers compared.
   std::vector<Eigen::Vector3d> hypotheses;
   seedFromFourWallRooms(input, hypotheses);
   seedFromCorridors(input, hypotheses);
+  seedFromCorners(input, hypotheses);
   MatchResult result = evaluate(input, hypotheses);
-  // When the rooms do not settle it (none seeds, or their best answer is not accepted), corners
-  // of long walls propose more: the right answer in a building of halls, or the one a room that
-  // is not in the plan hid.
-  if (result.status != MatchStatus::kMatched) {
-    const std::size_t from_rooms = hypotheses.size();
-    seedFromCorners(input, hypotheses);
-    if (hypotheses.size() > from_rooms) result = evaluate(input, hypotheses);
-  }
   if (result.hypotheses == 0) {
     result.reason = input.rooms.empty() && input.planes.empty()
                         ? "no room in the S-Graph yet"

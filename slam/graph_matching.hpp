@@ -97,9 +97,9 @@ struct MatchingOptions {
   double decisive_sigmas = 2.0;
   int finalists = 6;  // distinct answers refined and compared
   // Seeds beyond four-wall rooms (docs/matching.md): corridors slide along their axis until a
-  // wall across them lines up; corners of two long walls (constellations) seed when the rooms do
-  // not settle the answer. Corner arms shorter than min_corner_arm are not used, and only the
-  // max_corners corners with the longest arms.
+  // wall across them lines up; corners of two long walls (constellations) seed too, at every
+  // attempt. Corner arms shorter than min_corner_arm are not used, and only the max_corners
+  // corners with the longest arms.
   double min_corner_arm = 1.5;  // m
   int max_corners = 6;
   double corner_gap = 0.6;  // m, between two walls' ends to make a corner

@@ -1,9 +1,9 @@
 // A wrong match that fits one room but not the walls around it (docs/matching.md, decision): D3
 // as built with its wall W6 missing makes the start room and its neighbour one space, whose walls
 // fit the plan's room R2 turned by 90°. Before the acceptance bound on the unexplained share of
-// the mapped wall, that answer was adopted at 14 s and held for 40 s, up to 9.6 m off. With the
-// bound it is refused; the room seeds then settle nothing, and corners of the mapped walls propose
-// the right answer. In cli/tests because it drives the localizer (slam) with the simulator (sim).
+// the mapped wall, that answer was adopted at 14 s and held for 40 s, up to 9.6 m off. Now the
+// bound refuses it, and corners of the mapped walls propose the right answer, which no room pair
+// does. In cli/tests because it drives the localizer (slam) with the simulator (sim).
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -72,9 +72,8 @@ TEST(UnexplainedWalls, ARoomThatFitsTurnedBy90DegreesIsNotMatched) {
   EXPECT_LT(outcome.worst_error, 1.0);
 }
 
-// The test above can fail: without the bound, and without the corner seeds that propose the right
-// answer once the rooms settle nothing, the same run adopts the turned answer, as it did before
-// either existed.
+// The test above can fail: without the bound and without the corner seeds that propose the right
+// answer, the same run adopts the turned answer, as it did before either existed.
 TEST(UnexplainedWalls, WithoutTheBoundTheTurnedAnswerIsAdopted) {
   slam::MatchingOptions matching;
   matching.max_unexplained_share = 1.0;
