@@ -3,7 +3,6 @@
 #include <Eigen/Geometry>
 #include <cstdint>
 #include <functional>
-#include <random>
 #include <vector>
 
 #include "bim/scenario.hpp"
@@ -18,10 +17,18 @@ namespace isg::sim {
 // LiDAR frame L at its own firing instant (as the real sensor reports it: not deskewed).
 using LidarPoint = slam::ScanPoint;
 
+// CPU seconds one turn spent in each of its stages (for the run's stage timing).
+struct ScanTiming {
+  double poses_s = 0.0;    // the sensor's poses and every ray's origin and direction
+  double casting_s = 0.0;  // the rays against the building
+  double noise_s = 0.0;    // noise, quantisation, dropout, intensity: the points
+};
+
 struct LidarScan {
   double stamp = 0.0;  // time of the turn's first firing
   std::vector<LidarPoint> points;
   int rays = 0;
+  ScanTiming timing;
 };
 
 // The VLP-16 of docs/simulation.md in a MuJoCo world. Each laser fires from the sensor's pose at
@@ -34,24 +41,50 @@ class LidarSimulator {
   // B_T_L(t) for t in [stamp, stamp + 1/rate]: the sensor pose in the plan frame.
   using PoseAt = std::function<Eigen::Isometry3d(double t)>;
 
-  // One full turn starting at `stamp`. Noise, quantisation and dropout draw from `rng`.
-  LidarScan scan(double stamp, const PoseAt& B_T_L, std::mt19937_64& rng);
+  // One full turn starting at `stamp`. Noise and dropout draw from generators seeded by `seed`
+  // and the block of firing sequences (kBlockSequences), so that a turn is the same whichever
+  // thread makes it, and every ray draws whether or not it hits: one ray's outcome never shifts
+  // another's noise.
+  LidarScan scan(double stamp, const PoseAt& B_T_L, std::uint64_t seed);
+
+  static constexpr int kBlockSequences = 64;
+  static constexpr int kPoseStride = 8;  // sequences between two exact poses of the sensor
 
   double turnDuration() const { return sequences_ * kSequence; }
   int raysPerTurn() const { return sequences_ * 16; }
 
-  // The unit normal of the geom's surface at a point on it (boxes: the face the point lies on).
+  // The unit normal of the geom's surface at a point on it (boxes: the face the point lies on),
+  // with the geoms where they stood when the sensor was made (the building is static).
   Eigen::Vector3d surfaceNormal(int geom, const Eigen::Vector3d& point,
                                 const Eigen::Vector3d& direction) const;
 
  private:
   static constexpr double kSequence = 55.296e-6;
+  struct Firing {
+    Eigen::Vector3d direction;  // unit, in L
+    double time;                // from the turn's start
+  };
   const MujocoWorld& world_;
   bim::LidarConfig config_;
   RayCaster caster_;
   ScanCaster scan_caster_;
   int sequences_;
   std::vector<float> reflectivity_;  // per geom, from its colour
+  struct GeomShape {
+    int type = 0;
+    Eigen::Vector3d pos = Eigen::Vector3d::Zero();
+    Eigen::Matrix3d R = Eigen::Matrix3d::Identity();  // columns: the geom's axes in B
+    Eigen::Vector3d inverse_half = Eigen::Vector3d::Zero();
+  };
+  std::vector<GeomShape> shapes_;  // per geom, at construction
+  // The firing table: every (sequence, laser)'s direction and instant, computed once, so that no
+  // ray calls a trigonometric function.
+  std::vector<Firing> firings_;
+  // Scratch space of scan(), kept to avoid allocating every turn.
+  std::vector<Eigen::Vector3d> positions_;
+  std::vector<Eigen::Matrix3d> rotations_;
+  std::vector<Eigen::Vector3d> origins_, directions_;
+  std::vector<RayCaster::Hit> hits_;
 };
 
 }  // namespace isg::sim

@@ -4,6 +4,7 @@
 
 #include <cmath>
 
+#include "sim/fast_random.hpp"
 #include "sim/odometry_model.hpp"
 #include "sim/robot_model.hpp"
 #include "worlds/mjcf_generator.hpp"
@@ -79,9 +80,9 @@ int Simulation::scanCount(double duration) const {
 LidarScan Simulation::scan(int index) { return scan(index, *lidar_); }
 
 LidarScan Simulation::scan(int index, LidarSimulator& lidar) const {
-  auto rng = generator(kScanStream, std::uint64_t(index));
   return lidar.scan(
-      index * scanPeriod(), [this](double t) { return B_T_L(t); }, rng);
+      index * scanPeriod(), [this](double t) { return B_T_L(t); },
+      deriveSeed(scenario_.seed, kScanStream, std::uint64_t(index)));
 }
 
 run::Trajectory Simulation::groundTruth(double duration, double rate_hz) const {

@@ -137,9 +137,20 @@ void BM_SimulateTurn_D6(benchmark::State& state) {
   const auto lidar = sim.makeLidar();
   int k = 0;
   std::size_t points = 0;
-  for (auto _ : state)
-    points += sim.scan(k++ % sim.scanCount(sim.duration()), *lidar).points.size();
+  ScanTiming timing;
+  for (auto _ : state) {
+    const LidarScan scan = sim.scan(k++ % sim.scanCount(sim.duration()), *lidar);
+    points += scan.points.size();
+    timing.poses_s += scan.timing.poses_s;
+    timing.casting_s += scan.timing.casting_s;
+    timing.noise_s += scan.timing.noise_s;
+  }
   state.SetItemsProcessed(state.iterations());
+  // Each stage's share of a turn, in ms (means over the iterations).
+  const double n = double(state.iterations());
+  state.counters["poses_ms"] = 1e3 * timing.poses_s / n;
+  state.counters["casting_ms"] = 1e3 * timing.casting_s / n;
+  state.counters["noise_ms"] = 1e3 * timing.noise_s / n;
   state.counters["real_time_factor"] =
       benchmark::Counter(double(state.iterations()) / 10.0, benchmark::Counter::kIsRate);
   benchmark::DoNotOptimize(points);
