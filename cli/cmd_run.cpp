@@ -59,6 +59,8 @@ RunCommand::RunCommand(CLI::App& parent) {
       ->option_text("KEY=VALUE");
   app_->add_flag("--force", force_, "replace RUN_DIR if it exists");
   app_->add_flag("-q,--quiet", quiet_, "no progress bar");
+  app_->add_flag("--timing", timing_,
+                 "print where the time went, by stage (also in metrics.json; docs/performance.md)");
 }
 
 int RunCommand::run() {
@@ -98,7 +100,7 @@ int RunCommand::run() {
   const run::RunRecord record = run::runLocalizer(std::move(setup), *localizer, std::move(streams),
                                                   source, progressOn(bar, period));
   bar.finish();
-  finishRun("isg run", output_, force_, record);
+  finishRun("isg run", output_, force_, record, timing_);
   return kExitOk;
 }
 

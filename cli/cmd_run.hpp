@@ -25,6 +25,7 @@ class RunCommand : public Command {
   int threads_ = 2;
   bool force_ = false;
   bool quiet_ = false;
+  bool timing_ = false;
 };
 
 }  // namespace isg::cli

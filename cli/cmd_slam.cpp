@@ -73,6 +73,8 @@ SlamCommand::SlamCommand(CLI::App& parent) {
       ->option_text("KEY=VALUE");
   app_->add_flag("--force", force_, "replace RUN_DIR if it exists");
   app_->add_flag("-q,--quiet", quiet_, "no progress bar");
+  app_->add_flag("--timing", timing_,
+                 "print where the time went, by stage (also in metrics.json; docs/performance.md)");
 }
 
 int SlamCommand::run() {
@@ -108,7 +110,7 @@ int SlamCommand::run() {
   const run::RunRecord record = run::runLocalizer(std::move(setup), *localizer, std::move(streams),
                                                   dataset, progressOn(bar, period));
   bar.finish();
-  finishRun("isg slam", output_, force_, record);
+  finishRun("isg slam", output_, force_, record, timing_);
   if (record.map) {
     const run::MapDiagnosis diagnosis =
         run::diagnoseMap(*record.map, record.streams.ground_truth, context.plan, level);

@@ -21,6 +21,7 @@ class SlamCommand : public Command {
   bool force_ = false;
   bool other_plan_ = false;
   bool quiet_ = false;
+  bool timing_ = false;
 };
 
 }  // namespace isg::cli

@@ -1,5 +1,8 @@
 #include "cli/run_session.hpp"
 
+#include <sys/resource.h>
+
+#include <chrono>
 #include <cstdio>
 
 #include "bim/input_error.hpp"
@@ -52,10 +55,20 @@ run::RunProgress progressOn(ProgressBar& bar, double scan_period) {
 }
 
 run::RunEvaluation finishRun(const std::string& command, const std::string& dir, bool force,
-                             const run::RunRecord& record) {
+                             const run::RunRecord& record, bool print_timing) {
+  using Clock = std::chrono::steady_clock;
+  auto start = Clock::now();
   run::RunEvaluation evaluation = run::evaluateRun(record);
+  run::RunTiming& timing = *evaluation.metrics.timing;
+  timing.stages.push_back(
+      {"evaluation", std::chrono::duration<double>(Clock::now() - start).count()});
+  struct rusage usage {};
+  if (getrusage(RUSAGE_SELF, &usage) == 0) timing.peak_memory_mb = usage.ru_maxrss / 1024.0;
+  start = Clock::now();
   run::writeRunFolder(dir, record, evaluation, force);
+  const double writing = std::chrono::duration<double>(Clock::now() - start).count();
   std::printf("%s", run::runSummary(command, dir, evaluation.metrics).c_str());
+  if (print_timing) std::printf("%s", run::timingTable(evaluation.metrics, writing).c_str());
   return evaluation;
 }
 

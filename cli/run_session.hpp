@@ -31,9 +31,9 @@ std::unique_ptr<slam::Localizer> makeMethod(const run::LocalizerRegistry& regist
 // A progress callback drawing `bar`: robot time so far and the localizer's state.
 run::RunProgress progressOn(ProgressBar& bar, double scan_period);
 
-// Evaluates the run, writes its folder (run::writeRunFolder) and prints the summary; returns
-// the evaluation.
+// Evaluates the run, writes its folder (run::writeRunFolder) and prints the summary (and, with
+// `print_timing`, the stage timing); returns the evaluation.
 run::RunEvaluation finishRun(const std::string& command, const std::string& dir, bool force,
-                             const run::RunRecord& record);
+                             const run::RunRecord& record, bool print_timing = false);
 
 }  // namespace isg::cli

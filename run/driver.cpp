@@ -1,16 +1,34 @@
 #include "run/driver.hpp"
 
+#include <algorithm>
 #include <chrono>
 
 namespace isg::run {
 
-void LocalizerDriver::feed(const slam::Scan& scan) {
-  while (next_odometry_ < odometry_.size() &&
-         odometry_[next_odometry_].t <= scan.stamp + scan_period_) {
+void LocalizerDriver::pushOdometryUntil(double t) {
+  while (next_odometry_ < odometry_.size() && odometry_[next_odometry_].t <= t) {
     localizer_.pushOdometry({odometry_[next_odometry_].t, odometry_[next_odometry_].pose});
     ++next_odometry_;
   }
+}
+
+bool LocalizerDriver::wants(double stamp) {
+  pushOdometryUntil(stamp + scan_period_);
+  return localizer_.wantsScan(stamp);
+}
+
+void LocalizerDriver::feed(const slam::Scan& scan) {
+  pushOdometryUntil(scan.stamp + scan_period_);
   localizer_.pushScan(scan);
+  record();
+}
+
+void LocalizerDriver::skip(double stamp) {
+  pushOdometryUntil(stamp + scan_period_);
+  record();
+}
+
+void LocalizerDriver::record() {
   const auto pose = localizer_.poseInMap();
   if (!pose) return;
   if (!estimate_map_.empty() && estimate_map_.back().t >= pose->stamp) return;
@@ -30,16 +48,46 @@ RunRecord runLocalizer(RunSetup setup, slam::Localizer& localizer, SensorStreams
   const SensorStreams& s = record.streams;
   LocalizerDriver driver(localizer, s.odometry, s.scan_period);
   const int total = int(s.scan_stamps.size());
+  int read = 0;
+  using Clock = std::chrono::steady_clock;
+  Clock::duration in_localizer{}, waiting{};
   for (int k = 0; k < total; ++k) {
-    slam::Scan scan = scans.scan(k);
-    scan.stamp = s.scan_stamps[k];
-    driver.feed(scan);
+    const double stamp = s.scan_stamps[k];
+    auto mark = Clock::now();
+    const bool wanted = driver.wants(stamp);
+    auto now = Clock::now();
+    in_localizer += now - mark;
+    mark = now;
+    if (wanted) {
+      slam::Scan scan = scans.scan(k);
+      scan.stamp = stamp;
+      now = Clock::now();
+      waiting += now - mark;
+      mark = now;
+      driver.feed(scan);
+      ++read;
+    } else {
+      scans.skip(k);
+      now = Clock::now();
+      waiting += now - mark;
+      mark = now;
+      driver.skip(stamp);
+    }
+    in_localizer += Clock::now() - mark;
     if (progress) progress(k + 1, total, localizer);
   }
   record.estimate_map = driver.estimateMap();
   record.estimate = driver.estimate();
   record.localized_at = driver.localizedAt();
   record.scans = total;
+  record.scans_read = read;
+  record.localizer_seconds = std::chrono::duration<double>(in_localizer).count();
+  record.scan_wait_seconds = std::chrono::duration<double>(waiting).count();
+  record.stage_times = scans.stageTimes();
+  const slam::StageTimes localizer_stages = localizer.stageTimes();
+  record.stage_times.add(localizer_stages);
+  record.stage_times.add("localizer, other",
+                         std::max(0.0, record.localizer_seconds - localizer_stages.total()));
   record.graph = localizer.graph();
   record.search_status = localizer.searchStatus();
   record.status_changes = localizer.statusChanges();

@@ -54,6 +54,13 @@ RunEvaluation evaluateRun(const RunRecord& run) {
   m.sim_seconds = streams.duration;
   m.wall_seconds = run.wall_seconds;
   m.real_time_factor = run.wall_seconds > 0 ? streams.duration / run.wall_seconds : 0.0;
+  RunTiming timing;
+  for (const auto& [stage, seconds] : run.stage_times.stages())
+    timing.stages.push_back({stage, seconds});
+  timing.scans_read = run.scans_read;
+  timing.localizer_seconds = run.localizer_seconds;
+  timing.scan_wait_seconds = run.scan_wait_seconds;
+  m.timing = timing;
   const bool has_truth = !streams.ground_truth.empty();
   if (!has_truth) m.notes.push_back("no ground truth: no APE (a dataset without groundtruth.tum)");
   // Without ground truth, when the localizer first answered is still known from the odometry.

@@ -127,6 +127,21 @@ nlohmann::json metricsToJson(const RunMetrics& m) {
     }
     j["matching_events"] = events;
   }
+  if (m.timing) {
+    nlohmann::json stages = nlohmann::json::array();
+    for (const auto& s : m.timing->stages) {
+      stages.push_back(
+          {{"stage", s.stage},
+           {"seconds", s.seconds},
+           {"ms_per_robot_second", m.sim_seconds > 0 ? 1e3 * s.seconds / m.sim_seconds : 0.0}});
+    }
+    nlohmann::json t = {{"stages", stages},
+                        {"scans_read", m.timing->scans_read},
+                        {"localizer_seconds", m.timing->localizer_seconds},
+                        {"scan_wait_seconds", m.timing->scan_wait_seconds}};
+    if (m.timing->peak_memory_mb) t["peak_memory_mb"] = *m.timing->peak_memory_mb;
+    j["timing"] = t;
+  }
   if (!m.notes.empty()) j["notes"] = m.notes;
   return j;
 }
@@ -156,6 +171,22 @@ RunMetrics metricsFromJson(const nlohmann::json& document, const std::string& fi
   m.matching_status = r.optional<std::string>("matching_status");
   m.lost_at = r.numbers("lost_at");
   m.relocalized_at = r.numbers("relocalized_at");
+  if (document.contains("timing")) {
+    const FieldReader t(document["timing"], "/timing", file);
+    RunTiming timing;
+    timing.scans_read = t.required<int>("scans_read");
+    timing.localizer_seconds = t.required<double>("localizer_seconds");
+    timing.scan_wait_seconds = t.required<double>("scan_wait_seconds");
+    timing.peak_memory_mb = t.optional<double>("peak_memory_mb");
+    if (!t.object().contains("stages")) t.fail("/timing/stages", "missing");
+    const nlohmann::json& stages = t.object()["stages"];
+    if (!stages.is_array()) t.fail("/timing/stages", "expected an array");
+    for (std::size_t i = 0; i < stages.size(); ++i) {
+      const FieldReader s(stages[i], "/timing/stages/" + std::to_string(i), file);
+      timing.stages.push_back({s.required<std::string>("stage"), s.required<double>("seconds")});
+    }
+    m.timing = timing;
+  }
   if (document.contains("matching_events")) {
     const auto& events = document["matching_events"];
     if (!events.is_array()) r.fail("/matching_events", "expected an array");

@@ -13,6 +13,19 @@ namespace isg::run {
 
 using eval::Statistics;
 
+// Where a run's time went (metrics.json `timing`, `isg run --timing`; docs/performance.md).
+struct RunTiming {
+  struct Stage {
+    std::string stage;
+    double seconds = 0.0;  // CPU seconds, summed over threads
+  };
+  std::vector<Stage> stages;             // the scan source's, the localizer's, then the evaluation
+  int scans_read = 0;                    // the localizer skipped the others: they were never made
+  double localizer_seconds = 0.0;        // wall time in the localizer's calls
+  double scan_wait_seconds = 0.0;        // wall time the loop waited for scans
+  std::optional<double> peak_memory_mb;  // the process's peak resident set
+};
+
 // A run's measures: what metrics.json holds (docs/evaluation.md names every field). Typed here;
 // JSON only where the file is written or read (metricsToJson, readMetrics), so `isg run`,
 // `isg slam`, `isg table` and the report share one spelling of each name.
@@ -44,6 +57,7 @@ struct RunMetrics {
   // Stamps where the search status became "lost", and where it became "matched" again after.
   std::vector<double> lost_at;
   std::vector<double> relocalized_at;
+  std::optional<RunTiming> timing;
   // Why a measure is missing ("no ground truth: no APE", "APE in M … not computed: …").
   std::vector<std::string> notes;
 };

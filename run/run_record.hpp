@@ -10,6 +10,7 @@
 #include "bim/plan.hpp"
 #include "run/sensor_streams.hpp"
 #include "slam/map_diagnostics.hpp"
+#include "slam/stage_times.hpp"
 
 namespace isg::run {
 
@@ -32,7 +33,15 @@ struct RunRecord {
   Trajectory estimate;                 // B, from the first localized pose on
   std::optional<double> localized_at;  // stamp of the first pose in B
   int scans = 0;
+  int scans_read = 0;  // by the localizer; the others were skipped (never made or read)
   double wall_seconds = 0.0;
+  // Where the time went: seconds by stage, the scan source's (poses, casting, noise on every
+  // thread; or reading) then the localizer's (deskew, extraction, ..., matching, and "localizer,
+  // other" for the rest of its calls); and the loop's wall time in the localizer's calls and
+  // waiting for scans (on one thread, making them).
+  slam::StageTimes stage_times;
+  double localizer_seconds = 0.0;
+  double scan_wait_seconds = 0.0;
   nlohmann::json graph;  // the localizer's final graph (sgraph.json)
   std::optional<std::string> search_status;
   std::vector<slam::StatusChange> status_changes;

@@ -81,6 +81,33 @@ std::string reportSvg(const RunRecord& run, const RunEvaluation& evaluation) {
   return eval::reportSvg(input);
 }
 
+std::string timingTable(const RunMetrics& m, double writing_seconds) {
+  if (!m.timing) return "";
+  const RunTiming& t = *m.timing;
+  const double robot = m.sim_seconds > 0 ? m.sim_seconds : 1.0;
+  std::string out = format(
+      "  where the time went (%.1f s of robot time; %d of %d scans read, the others never made):\n"
+      "    %-22s %9s %14s\n",
+      m.sim_seconds, t.scans_read, m.scans, "stage", "seconds", "ms per robot-s");
+  double total = 0.0;
+  auto row = [&](const std::string& stage, double seconds) {
+    out += format("    %-22s %9.2f %14.2f\n", stage.c_str(), seconds, 1e3 * seconds / robot);
+  };
+  for (const auto& s : t.stages) {
+    row(s.stage, s.seconds);
+    total += s.seconds;
+  }
+  row("writing the run folder", writing_seconds);
+  total += writing_seconds;
+  row("all stages", total);
+  out += format(
+      "    the loop: %.2f s of wall time; its thread %.2f s in the localizer, %.2f s waiting for "
+      "(or making) scans\n",
+      m.wall_seconds, t.localizer_seconds, t.scan_wait_seconds);
+  if (t.peak_memory_mb) out += format("    peak memory: %.0f MB\n", *t.peak_memory_mb);
+  return out;
+}
+
 std::string runSummary(const std::string& command, const std::string& dir, const RunMetrics& m) {
   std::string out =
       format("%s: wrote %s (%s on %s, seed %llu)\n", command.c_str(), dir.c_str(), m.method.c_str(),

@@ -12,6 +12,10 @@ namespace isg::run {
 std::string reportSvg(const RunRecord& run, const RunEvaluation& evaluation);
 
 // The summary printed at the end of a run ("isg run: wrote DIR (...)", localization, APE, speed).
+// The stage timing of metrics.timing as a table: seconds and ms per robot-second by stage, the
+// loop's wall time and where the localizer's thread spent it; `writing_seconds`: the run folder.
+std::string timingTable(const RunMetrics& metrics, double writing_seconds);
+
 std::string runSummary(const std::string& command, const std::string& dir,
                        const RunMetrics& metrics);
 

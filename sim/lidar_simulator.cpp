@@ -80,24 +80,39 @@ Eigen::Vector3d LidarSimulator::surfaceNormal(int geom, const Eigen::Vector3d& p
   }
 }
 
+int LidarSimulator::blockCount() const {
+  return (sequences_ + kBlockSequences - 1) / kBlockSequences;
+}
+
 LidarScan LidarSimulator::scan(double stamp, const PoseAt& B_T_L, std::uint64_t seed) {
+  return scanBlocks(stamp, B_T_L, seed, 0, blockCount());
+}
+
+LidarScan LidarSimulator::scanBlocks(double stamp, const PoseAt& B_T_L, std::uint64_t seed,
+                                     int first_block, int last_block) {
   using Clock = std::chrono::steady_clock;
   auto seconds = [](Clock::time_point a, Clock::time_point b) {
     return std::chrono::duration<double>(b - a).count();
   };
   LidarScan out;
   out.stamp = stamp;
-  out.points.reserve(std::size_t(sequences_) * Vlp16::kLasers);
+  const int first_sequence = first_block * kBlockSequences;
+  const int last_sequence = std::min(sequences_, last_block * kBlockSequences);
+  if (first_sequence >= last_sequence) return out;
+  out.points.reserve(std::size_t(last_sequence - first_sequence) * Vlp16::kLasers);
   auto mark = Clock::now();
   // Sensor poses every kPoseStride sequences (0.44 ms) and at the turn's end; each laser's pose
   // is interpolated linearly between them. The gait sways the sensor at about 2 Hz: over 0.44 ms
   // its path departs from a straight line by under 0.1 µm and its rotation from slerp by under
   // 1e-7 rad, far below the sensor's 2 mm range steps.
-  const int samples = (sequences_ + kPoseStride - 1) / kPoseStride + 1;
-  positions_.resize(samples);
-  rotations_.resize(samples);
+  // Samples j cover sequences [j·stride, (j+1)·stride); those of the blocks asked for only, so
+  // that a turn made in parts is the very same as one made whole.
+  const int first_sample = first_sequence / kPoseStride;
+  const int last_sample = (last_sequence + kPoseStride - 1) / kPoseStride;
+  positions_.resize(last_sample + 1);
+  rotations_.resize(last_sample + 1);
   Eigen::Vector2d lo = Eigen::Vector2d::Constant(1e300), hi = -lo;
-  for (int j = 0; j < samples; ++j) {
+  for (int j = first_sample; j <= last_sample; ++j) {
     const int s = std::min(sequences_, j * kPoseStride);
     const Eigen::Isometry3d T = B_T_L(stamp + s * kSequence);
     positions_[j] = T.translation();
@@ -117,7 +132,7 @@ LidarScan LidarSimulator::scan(double stamp, const PoseAt& B_T_L, std::uint64_t 
   origins_.resize(per_block);
   directions_.resize(per_block);
   hits_.resize(per_block);
-  for (int block = 0; block * kBlockSequences < sequences_; ++block) {
+  for (int block = first_block; block < last_block; ++block) {
     const int first = block * kBlockSequences;
     const int last = std::min(sequences_, first + kBlockSequences);
     // The block's rays in B.

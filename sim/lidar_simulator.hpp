@@ -46,6 +46,11 @@ class LidarSimulator {
   // thread makes it, and every ray draws whether or not it hits: one ray's outcome never shifts
   // another's noise.
   LidarScan scan(double stamp, const PoseAt& B_T_L, std::uint64_t seed);
+  // Blocks [first_block, last_block) of that turn only: its points are exactly those blocks'
+  // points of the whole turn, so parts made apart and joined in order are the whole turn.
+  LidarScan scanBlocks(double stamp, const PoseAt& B_T_L, std::uint64_t seed, int first_block,
+                       int last_block);
+  int blockCount() const;
 
   static constexpr int kBlockSequences = 64;
   static constexpr int kPoseStride = 8;  // sequences between two exact poses of the sensor

@@ -19,8 +19,12 @@ run::SensorStreams sensorStreams(const Simulation& simulation, double duration,
 }
 
 LookaheadScans::LookaheadScans(const Simulation& simulation, int scans, int workers, int lookahead)
-    : simulation_(simulation), scans_(scans), lookahead_(lookahead) {
-  for (int i = 0; i < std::max(1, workers); ++i) pool_.emplace_back([this] { work(); });
+    : simulation_(simulation),
+      scans_(scans),
+      workers_(std::max(0, workers)),
+      lookahead_(lookahead),
+      own_lidar_(simulation.makeLidar()) {
+  for (int i = 0; i < workers_; ++i) pool_.emplace_back([this] { work(); });
 }
 
 LookaheadScans::~LookaheadScans() {
@@ -30,6 +34,39 @@ LookaheadScans::~LookaheadScans() {
   }
   changed_.notify_all();
   for (auto& t : pool_) t.join();
+}
+
+void LookaheadScans::account(const LidarScan& scan) {
+  timing_.poses_s += scan.timing.poses_s;
+  timing_.casting_s += scan.timing.casting_s;
+  timing_.noise_s += scan.timing.noise_s;
+}
+
+void LookaheadScans::helpWithJob(std::unique_lock<std::mutex>& lock, LidarSimulator& lidar) {
+  while (job_ && job_->next_part < job_->parts) {
+    const int part = job_->next_part++;
+    const int index = job_->index, parts = job_->parts;
+    const int blocks = lidar.blockCount();
+    lock.unlock();
+    std::optional<LidarScan> made;
+    std::exception_ptr error;
+    try {
+      made =
+          simulation_.scanBlocks(index, lidar, part * blocks / parts, (part + 1) * blocks / parts);
+    } catch (...) {
+      error = std::current_exception();
+    }
+    lock.lock();
+    if (error) {
+      if (!error_) error_ = error;
+      stop_ = true;
+    } else {
+      account(*made);
+      job_->made[part] = std::move(*made);
+    }
+    ++job_->done;
+    changed_.notify_all();
+  }
 }
 
 void LookaheadScans::work() {
@@ -43,41 +80,98 @@ void LookaheadScans::work() {
     changed_.notify_all();
     return;
   }
+  std::unique_lock<std::mutex> lock(mutex_);
   while (true) {
-    int k;
-    {
-      std::unique_lock<std::mutex> lock(mutex_);
-      changed_.wait(
-          lock, [&] { return stop_ || next_to_make_ < std::min(scans_, consumed_ + lookahead_); });
-      if (stop_ || next_to_make_ >= scans_) return;
-      k = next_to_make_++;
+    auto ahead_wanted = [&] {
+      next_ahead_ = std::max(next_ahead_, consumed_);
+      while (next_ahead_ < scans_ && (ready_.count(next_ahead_) || making_.count(next_ahead_)))
+        ++next_ahead_;
+      return prefetching() && next_ahead_ < std::min(scans_, consumed_ + lookahead_);
+    };
+    changed_.wait(
+        lock, [&] { return stop_ || (job_ && job_->next_part < job_->parts) || ahead_wanted(); });
+    if (stop_) return;
+    if (job_ && job_->next_part < job_->parts) {
+      helpWithJob(lock, *lidar);
+      continue;
     }
+    const int k = next_ahead_++;
+    making_.insert(k);
+    lock.unlock();
+    std::optional<LidarScan> made;
+    std::exception_ptr error;
     try {
-      LidarScan scan = simulation_.scan(k, *lidar);
-      std::lock_guard<std::mutex> lock(mutex_);
-      ready_.emplace(k, std::move(scan));
+      made = simulation_.scan(k, *lidar);
     } catch (...) {
       // The consumer rethrows it on its own thread: a worker's error never ends the process.
-      std::lock_guard<std::mutex> lock(mutex_);
-      if (!error_) error_ = std::current_exception();
+      error = std::current_exception();
+    }
+    lock.lock();
+    making_.erase(k);
+    if (error) {
+      if (!error_) error_ = error;
       stop_ = true;
+    } else {
+      account(*made);
+      ++made_;
+      if (k >= consumed_) ready_.emplace(k, std::move(*made));  // else skipped meanwhile
     }
     changed_.notify_all();
   }
 }
 
 slam::Scan LookaheadScans::scan(int index) {
+  std::unique_lock<std::mutex> lock(mutex_);
+  if (error_) std::rethrow_exception(error_);
+  consumed_ = index + 1;
+  ++streak_;
+  ready_.erase(ready_.begin(), ready_.lower_bound(index));  // made ahead, then skipped
   LidarScan scan;
-  {
-    std::unique_lock<std::mutex> lock(mutex_);
+  if (!ready_.count(index) && !making_.count(index)) {
+    // Not made ahead: made now, in parts, by this thread and every idle worker.
+    job_ = Job{index, workers_ + 1, 0, 0, std::vector<LidarScan>(workers_ + 1)};
+    changed_.notify_all();
+    helpWithJob(lock, *own_lidar_);
+    changed_.wait(lock, [&] { return job_->done == job_->parts || error_; });
+    if (error_) std::rethrow_exception(error_);
+    scan = std::move(job_->made[0]);
+    for (int p = 1; p < job_->parts; ++p) {
+      LidarScan& part = job_->made[p];
+      scan.points.insert(scan.points.end(), part.points.begin(), part.points.end());
+      scan.rays += part.rays;
+    }
+    job_.reset();
+    ++made_;
+  } else {
     changed_.wait(lock, [&] { return ready_.count(index) > 0 || error_; });
     if (error_) std::rethrow_exception(error_);
     scan = std::move(ready_[index]);
     ready_.erase(index);
-    consumed_ = index + 1;
   }
   changed_.notify_all();
   return {scan.stamp, std::move(scan.points)};
+}
+
+void LookaheadScans::skip(int index) {
+  std::lock_guard<std::mutex> lock(mutex_);
+  consumed_ = index + 1;
+  streak_ = 0;
+  ready_.erase(ready_.begin(), ready_.upper_bound(index));
+  changed_.notify_all();
+}
+
+slam::StageTimes LookaheadScans::stageTimes() const {
+  std::lock_guard<std::mutex> lock(mutex_);
+  slam::StageTimes times;
+  times.add("poses", timing_.poses_s);
+  times.add("casting", timing_.casting_s);
+  times.add("noise", timing_.noise_s);
+  return times;
+}
+
+int LookaheadScans::scansMade() const {
+  std::lock_guard<std::mutex> lock(mutex_);
+  return made_;
 }
 
 }  // namespace isg::sim

@@ -3,7 +3,10 @@
 #include <condition_variable>
 #include <exception>
 #include <map>
+#include <memory>
 #include <mutex>
+#include <optional>
+#include <set>
 #include <thread>
 #include <vector>
 
@@ -20,10 +23,16 @@ namespace isg::sim {
 run::SensorStreams sensorStreams(const Simulation& simulation, double duration,
                                  double groundtruth_rate = 100.0);
 
-// Scans cast by worker threads ahead of the loop that consumes them in order, at most
-// `lookahead` ahead: the live loop's ScanSource. `workers` threads (at least one) each own a
-// sensor; every scan is drawn from its own seeded generator, so the result does not depend on
-// the number of threads. The threads stop when the source is destroyed, also on an exception.
+// The live loop's ScanSource: scans made when they are needed, by the calling thread and
+// `workers` more (0: the caller alone). Two ways, chosen by what the localizer has been doing:
+//  - while it reads every scan (kStreak in a row), the workers make whole scans ahead of it, at
+//    most `lookahead` ahead;
+//  - while it skips scans (a keyframe every metre, a filter update every 20 cm), nothing is made
+//    ahead, where most of it would be thrown away: a scan asked for is split into parts (blocks
+//    of firing sequences) made by the caller and the idle workers together.
+// Every scan is the same whichever way and by whichever thread it is made (each block draws from
+// its own seeded generator), so results do not depend on the number of threads. Worker threads
+// stop when the source is destroyed, also on an exception.
 class LookaheadScans : public run::ScanSource {
  public:
   LookaheadScans(const Simulation& simulation, int scans, int workers, int lookahead = 16);
@@ -32,16 +41,37 @@ class LookaheadScans : public run::ScanSource {
   LookaheadScans& operator=(const LookaheadScans&) = delete;
 
   slam::Scan scan(int index) override;
+  void skip(int index) override;
+  // Seconds spent making scans, by stage (poses, casting, noise), summed over threads; scans made
+  // ahead and then skipped included.
+  slam::StageTimes stageTimes() const override;
+  int scansMade() const;
+
+  static constexpr int kStreak = 3;
 
  private:
+  // A scan asked for and not made ahead: its parts, taken by whoever is free.
+  struct Job {
+    int index = -1;
+    int parts = 0, next_part = 0, done = 0;
+    std::vector<LidarScan> made;
+  };
   void work();
+  bool prefetching() const { return streak_ >= kStreak; }
+  // Makes parts of the current job until none is left; called with `lock` held.
+  void helpWithJob(std::unique_lock<std::mutex>& lock, LidarSimulator& lidar);
+  void account(const LidarScan& scan);  // with the mutex held
 
   const Simulation& simulation_;
-  const int scans_, lookahead_;
-  std::mutex mutex_;
+  const int scans_, workers_, lookahead_;
+  std::unique_ptr<LidarSimulator> own_lidar_;  // the calling thread's
+  mutable std::mutex mutex_;
   std::condition_variable changed_;
   std::map<int, LidarScan> ready_;
-  int next_to_make_ = 0, consumed_ = 0;
+  std::set<int> making_;  // made ahead, in progress
+  std::optional<Job> job_;
+  int next_ahead_ = 0, consumed_ = 0, streak_ = 0, made_ = 0;
+  ScanTiming timing_;
   bool stop_ = false;
   std::exception_ptr error_;  // the first worker error, rethrown by scan()
   std::vector<std::thread> pool_;

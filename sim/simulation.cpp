@@ -80,9 +80,14 @@ int Simulation::scanCount(double duration) const {
 LidarScan Simulation::scan(int index) { return scan(index, *lidar_); }
 
 LidarScan Simulation::scan(int index, LidarSimulator& lidar) const {
-  return lidar.scan(
+  return scanBlocks(index, lidar, 0, lidar.blockCount());
+}
+
+LidarScan Simulation::scanBlocks(int index, LidarSimulator& lidar, int first_block,
+                                 int last_block) const {
+  return lidar.scanBlocks(
       index * scanPeriod(), [this](double t) { return B_T_L(t); },
-      deriveSeed(scenario_.seed, kScanStream, std::uint64_t(index)));
+      deriveSeed(scenario_.seed, kScanStream, std::uint64_t(index)), first_block, last_block);
 }
 
 run::Trajectory Simulation::groundTruth(double duration, double rate_hz) const {

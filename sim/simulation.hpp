@@ -40,6 +40,8 @@ class Simulation {
   LidarScan scan(int index);
   // The same scan with a sensor of the caller's (one per thread: a sensor keeps per-turn state).
   LidarScan scan(int index, LidarSimulator& lidar) const;
+  // Blocks [first_block, last_block) of scan `index` (LidarSimulator::scanBlocks).
+  LidarScan scanBlocks(int index, LidarSimulator& lidar, int first_block, int last_block) const;
   std::unique_ptr<LidarSimulator> makeLidar() const;
   Eigen::Isometry3d B_T_L(double t) const { return trajectory_->pose(t) * R_T_L_; }
 

@@ -27,15 +27,21 @@ AmclLocalizer::AmclLocalizer(const bim::Plan& plan, const std::string& level,
   }
 }
 
+bool AmclLocalizer::wantsScan(double) const {
+  if (!latest_) return false;               // no odometry yet
+  if (!last_update_odometry_) return true;  // global localization: the first scan always updates
+  const Pose2 odometry = planarPose(latest_->M_T_R);
+  const OdometryMotion moved = decomposeOdometry(*last_update_odometry_, odometry);
+  const double turned = std::abs(angleDifference(odometry.yaw, last_update_odometry_->yaw));
+  return moved.trans >= options_.update_min_d || turned >= options_.update_min_a;
+}
+
 void AmclLocalizer::pushScan(const Scan& scan) {
-  if (!latest_) return;  // no odometry yet
+  if (!wantsScan(scan.stamp)) return;
   const Pose2 odometry = planarPose(latest_->M_T_R);
   if (!last_update_odometry_) {
-    filter_.initUniform();  // global localization: the first scan always updates
+    filter_.initUniform();
   } else {
-    const OdometryMotion moved = decomposeOdometry(*last_update_odometry_, odometry);
-    const double turned = std::abs(angleDifference(odometry.yaw, last_update_odometry_->yaw));
-    if (moved.trans < options_.update_min_d && turned < options_.update_min_a) return;
     filter_.motionUpdate(*last_update_odometry_, odometry);
   }
   last_update_odometry_ = odometry;

@@ -36,6 +36,7 @@ class AmclLocalizer : public Localizer {
   std::string name() const override { return "amcl"; }
   void pushOdometry(const Odometry& odometry) override { latest_ = odometry; }
   void pushScan(const Scan& scan) override;
+  bool wantsScan(double stamp) const override;
   std::optional<Odometry> poseInMap() const override { return latest_; }
   std::optional<Eigen::Isometry3d> mapInPlan() const override { return B_T_M_; }
   nlohmann::json graph() const override;

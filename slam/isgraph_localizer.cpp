@@ -1,6 +1,7 @@
 #include "slam/isgraph_localizer.hpp"
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 
 #include "bim/agraph_factors.hpp"
@@ -36,8 +37,19 @@ ISGraphLocalizer::ISGraphLocalizer(const Eigen::Isometry3d& R_T_L, const bim::AG
 }
 
 void ISGraphLocalizer::pushScan(const Scan& scan) {
-  if (graph_.addScan(scan)) onKeyframe(scan.stamp);
+  if (!graph_.addScan(scan)) return;
+  const auto start = std::chrono::steady_clock::now();
+  onKeyframe(scan.stamp);
+  matching_s_ += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
+
+StageTimes ISGraphLocalizer::stageTimes() const {
+  StageTimes times = graph_.stageTimes();
+  times.add("matching", matching_s_);
+  return times;
+}
+
+bool ISGraphLocalizer::wantsScan(double stamp) const { return graph_.wouldKeyframe(stamp); }
 
 std::optional<Eigen::Isometry3d> ISGraphLocalizer::mapInPlan() const {
   if (!localized_) return std::nullopt;

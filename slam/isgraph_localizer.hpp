@@ -90,12 +90,14 @@ class ISGraphLocalizer : public Localizer {
   std::string name() const override { return "is-graphs"; }
   void pushOdometry(const Odometry& odometry) override { graph_.addOdometry(odometry); }
   void pushScan(const Scan& scan) override;
+  bool wantsScan(double stamp) const override;
   std::optional<Odometry> poseInMap() const override { return graph_.latestPose(); }
   std::optional<Eigen::Isometry3d> mapInPlan() const override;
   nlohmann::json graph() const override;
   std::optional<std::string> searchStatus() const override { return toString(status_); }
   std::vector<StatusChange> statusChanges() const override;
   std::optional<MapDiagnostics> mapDiagnostics() const override { return graph_.diagnostics(); }
+  StageTimes stageTimes() const override;
 
   // Takes `x_y_yaw` as B_T_M, as if matched, with the correspondences it implies now: a hint from
   // outside (an operator's initial pose), or a test's wrong first match. It is checked like any
@@ -150,6 +152,7 @@ class ISGraphLocalizer : public Localizer {
   std::optional<MatchResult> last_match_;
   std::vector<MatchEvent> events_;
   std::vector<double> matching_times_;
+  double matching_s_ = 0.0;  // onKeyframe in all: matching, verification, contradictions
   std::size_t rooms_at_last_attempt_ = 0;
   int keyframes_at_last_attempt_ = 0;
   std::set<int> surfaces_in_problem_;  // per optimisation

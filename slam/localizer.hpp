@@ -9,6 +9,7 @@
 
 #include "slam/map_diagnostics.hpp"
 #include "slam/messages.hpp"
+#include "slam/stage_times.hpp"
 
 namespace isg::slam {
 
@@ -21,6 +22,11 @@ class Localizer {
   virtual std::string name() const = 0;
   virtual void pushOdometry(const Odometry& odometry) = 0;
   virtual void pushScan(const Scan& scan) = 0;
+  // Whether pushScan would read the scan stamped `stamp`, given the odometry pushed so far (up to
+  // the end of that scan's turn). When it says no, a loop may leave the scan unmade and not push
+  // it at all: the method must then end up exactly as if it had been pushed. Methods that read
+  // every scan keep the default.
+  virtual bool wantsScan(double /*stamp*/) const { return true; }
 
   // The latest estimate of the base in the map frame M, once there is one.
   virtual std::optional<Odometry> poseInMap() const = 0;
@@ -35,6 +41,10 @@ class Localizer {
   virtual std::vector<StatusChange> statusChanges() const { return {}; }
   // For methods that build a map: its keyframes, planes, rooms and timings.
   virtual std::optional<MapDiagnostics> mapDiagnostics() const { return std::nullopt; }
+  // Seconds spent in each of the method's stages so far (deskew, extraction, matching, ...), for
+  // the run's stage timing. Methods that do not report stages have none: their time shows as the
+  // localizer's own.
+  virtual StageTimes stageTimes() const { return {}; }
 };
 
 // The baseline: odometry alone, its map frame placed in the plan by a pose given from outside
@@ -46,6 +56,7 @@ class DeadReckoning : public Localizer {
   std::string name() const override { return "odometry"; }
   void pushOdometry(const Odometry& odometry) override { latest_ = odometry; }
   void pushScan(const Scan&) override {}
+  bool wantsScan(double) const override { return false; }
   std::optional<Odometry> poseInMap() const override { return latest_; }
   std::optional<Eigen::Isometry3d> mapInPlan() const override { return B_T_M_; }
   nlohmann::json graph() const override { return {{"method", name()}}; }

@@ -78,26 +78,33 @@ std::optional<Eigen::Isometry3d> SGraph::poseAt(double t) const {
   return k.pose() * k.odometry.inverse() * *odometry;
 }
 
+bool SGraph::wouldKeyframe(double stamp) const {
+  const auto odometry_at_scan = odometry_.at(stamp);
+  if (!odometry_at_scan) return false;  // no odometry yet for this instant
+  if (keyframes_.empty()) return true;
+  const Eigen::Isometry3d delta = keyframes_.back().odometry.inverse() * *odometry_at_scan;
+  const double moved = delta.translation().head<2>().norm();
+  const double turned = std::abs(yawOf(delta.linear()));
+  return moved >= options_.keyframe_distance || turned >= options_.keyframe_angle;
+}
+
 bool SGraph::addScan(Scan scan) {
   const auto start = std::chrono::steady_clock::now();
-  const auto odometry_at_scan = odometry_.at(scan.stamp);
-  if (!odometry_at_scan) return false;  // no odometry yet for this instant
-  if (!keyframes_.empty()) {
-    const Eigen::Isometry3d delta = keyframes_.back().odometry.inverse() * *odometry_at_scan;
-    const double moved = delta.translation().head<2>().norm();
-    const double turned = std::abs(yawOf(delta.linear()));
-    if (moved < options_.keyframe_distance && turned < options_.keyframe_angle) return false;
-  }
+  if (!wouldKeyframe(scan.stamp)) return false;
+  const Eigen::Isometry3d odometry_at_scan = *odometry_.at(scan.stamp);
+  StageClock deskew_clock(stage_times_, "deskew");
   deskew(scan, odometry_, R_T_L_);
+  deskew_clock.stop();
 
   Keyframe keyframe;
   keyframe.stamp = scan.stamp;
-  keyframe.odometry = *odometry_at_scan;
+  keyframe.odometry = odometry_at_scan;
   Eigen::Isometry3d initial =
       keyframes_.empty()
-          ? start_correction_ * *odometry_at_scan
-          : keyframes_.back().pose() * keyframes_.back().odometry.inverse() * *odometry_at_scan;
+          ? start_correction_ * odometry_at_scan
+          : keyframes_.back().pose() * keyframes_.back().odometry.inverse() * odometry_at_scan;
   if (options_.registration.enabled) {
+    StageClock clock(stage_times_, "registration");
     keyframe.cloud = downsampleScan(scan, options_.registration);
     if (!keyframes_.empty()) initial = registerKeyframe(keyframe, initial);
   }
@@ -108,7 +115,11 @@ bool SGraph::addScan(Scan scan) {
   const Eigen::Isometry3d M_T_L = initial * R_T_L_;
   // The map as association sees it, kept in step as this keyframe's observations change it.
   std::vector<MapPlane> walls = activeWalls();
-  for (const auto& observation : extractPlanes(scan, options_.extraction)) {
+  StageClock extraction_clock(stage_times_, "extraction");
+  const std::vector<PlaneObservation> observations = extractPlanes(scan, options_.extraction);
+  extraction_clock.stop();
+  StageClock association_clock(stage_times_, "association");
+  for (const auto& observation : observations) {
     if (observation.orientation == PlaneOrientation::kHorizontal) {
       // The floor: a horizontal plane well below the sensor, facing up.
       const bim::Plane in_M = observation.plane.transformed(M_T_L);
@@ -140,6 +151,7 @@ bool SGraph::addScan(Scan scan) {
     walls[plane] = p.map;
     keyframe.observations.emplace_back(plane, observation);
   }
+  association_clock.stop();
   keyframes_.push_back(std::move(keyframe));
   // Only the latest keyframes' clouds make the local map: older ones are let go.
   const int stale = int(keyframes_.size()) - 1 - options_.registration.local_map_keyframes;
@@ -147,8 +159,11 @@ bool SGraph::addScan(Scan scan) {
   Timing timing;
   timing.extraction_s = seconds(start);
   const auto optimisation_start = std::chrono::steady_clock::now();
+  StageClock optimisation_clock(stage_times_, "optimisation");
   optimise(std::max(1, int(keyframes_.size()) - options_.window), true, options_.max_iterations);
   mergeDuplicatePlanes(std::max(0, index - options_.window + 1));
+  optimisation_clock.stop();
+  StageClock rooms_clock(stage_times_, "rooms");
   // Walls seen now may complete rooms the robot stood in a little earlier: look again from every
   // keyframe of the window.
   {
@@ -167,6 +182,7 @@ bool SGraph::addScan(Scan scan) {
       detectRooms(k, dominant, walls_now);
     }
   }
+  rooms_clock.stop();
   timing.optimisation_s = seconds(optimisation_start);
   timings_.push_back(timing);
   return true;

@@ -16,6 +16,7 @@
 #include "slam/plane_map.hpp"
 #include "slam/room_detection.hpp"
 #include "slam/scan_registration.hpp"
+#include "slam/stage_times.hpp"
 
 namespace ceres {
 class Problem;
@@ -69,6 +70,9 @@ class SGraph {
   // Deskews the scan with odometry and, when the robot has moved enough since the last keyframe,
   // makes a keyframe of it. Returns whether it did.
   bool addScan(Scan scan);
+  // Whether addScan(scan at `stamp`) would make a keyframe of it (and so read it): odometry covers
+  // the instant and the robot moved or turned enough since the last keyframe.
+  bool wouldKeyframe(double stamp) const;
 
   struct Keyframe {
     double stamp = 0.0;
@@ -134,6 +138,8 @@ class SGraph {
 
   using Timing = KeyframeTiming;
   const std::vector<Timing>& timings() const { return timings_; }
+  // Seconds in each stage of addScan over the whole run.
+  const StageTimes& stageTimes() const { return stage_times_; }
   // The map as plain data (slam/map_diagnostics.hpp).
   MapDiagnostics diagnostics() const;
 
@@ -158,6 +164,7 @@ class SGraph {
   std::deque<Plane> planes_;
   std::deque<Room> rooms_;
   std::vector<Timing> timings_;
+  StageTimes stage_times_;
   WindowHook window_hook_;
   Eigen::Isometry3d start_correction_ = Eigen::Isometry3d::Identity();
   struct Segment {
