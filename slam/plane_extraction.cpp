@@ -1,5 +1,7 @@
 #include "slam/plane_extraction.hpp"
 #include "slam/pcl_planes.hpp"
+#include "slam/plane_fit.hpp"
+#include "slam/range_image_planes.hpp"
 
 #include <pcl/ModelCoefficients.h>
 #include <pcl/filters/extract_indices.h>
@@ -15,26 +17,20 @@
 
 namespace isg::slam {
 
-namespace {
-
-// Least-squares plane of a cluster, its normal turned towards the origin (the sensor).
-PlaneObservation fitPlane(const pcl::PointCloud<pcl::PointXYZ>& cloud,
-                          const std::vector<int>& indices, const PlaneExtractionOptions& options) {
+PlaneObservation observePlane(const std::vector<Eigen::Vector3d>& points, int support,
+                              const PlaneExtractionOptions& options) {
   PlaneObservation out;
   Eigen::Vector3d mean = Eigen::Vector3d::Zero();
-  for (int i : indices) mean += cloud[i].getVector3fMap().cast<double>();
-  mean /= double(indices.size());
+  for (const auto& p : points) mean += p;
+  mean /= double(points.size());
   Eigen::Matrix3d covariance = Eigen::Matrix3d::Zero();
-  for (int i : indices) {
-    const Eigen::Vector3d d = cloud[i].getVector3fMap().cast<double>() - mean;
-    covariance += d * d.transpose();
-  }
+  for (const auto& p : points) covariance += (p - mean) * (p - mean).transpose();
   const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> solver(covariance);
   Eigen::Vector3d normal = solver.eigenvectors().col(0);
   if (normal.dot(-mean) < 0) normal = -normal;  // towards the sensor
   out.plane = bim::Plane::throughPoint(normal, mean);
   out.centroid = mean;
-  out.points = int(indices.size());
+  out.points = support;
   const double nz = std::abs(normal.z());
   out.orientation = nz < options.vertical_max_normal_z
                         ? PlaneOrientation::kVertical
@@ -47,25 +43,30 @@ PlaneObservation fitPlane(const pcl::PointCloud<pcl::PointXYZ>& cloud,
   double lo = 1e300, hi = -1e300, sum2 = 0.0;
   out.z_min = 1e300;
   out.z_max = -1e300;
-  for (int i : indices) {
-    const Eigen::Vector3d p = cloud[i].getVector3fMap().cast<double>();
+  for (const auto& p : points) {
     const double s = along.dot(p - mean);
-    if (s < lo) {
-      lo = s;
-      out.start = p;
-    }
-    if (s > hi) {
-      hi = s;
-      out.end = p;
-    }
+    lo = std::min(lo, s);
+    hi = std::max(hi, s);
     out.z_min = std::min(out.z_min, p.z());
     out.z_max = std::max(out.z_max, p.z());
-    sum2 += std::pow(out.plane.signedDistance(p), 2);
+    const double d = out.plane.signedDistance(p);
+    sum2 += d * d;
   }
   // Extent endpoints projected onto the plane, at the centroid's height.
   out.start = mean + lo * along;
   out.end = mean + hi * along;
-  out.rms = std::sqrt(sum2 / indices.size());
+  out.rms = std::sqrt(sum2 / double(points.size()));
+  return out;
+}
+
+namespace {
+
+// The cluster's points as doubles, for observePlane.
+std::vector<Eigen::Vector3d> pointsOf(const pcl::PointCloud<pcl::PointXYZ>& cloud,
+                                      const std::vector<int>& indices) {
+  std::vector<Eigen::Vector3d> out;
+  out.reserve(indices.size());
+  for (int i : indices) out.push_back(cloud[i].getVector3fMap().cast<double>());
   return out;
 }
 
@@ -92,6 +93,9 @@ pcl::PointCloud<pcl::PointXYZ>::Ptr preprocess(const Scan& scan,
 
 std::vector<PlaneObservation> extractPlanes(const Scan& scan,
                                             const PlaneExtractionOptions& options) {
+  if (options.method == PlaneExtractionOptions::Method::kRangeImage) {
+    if (auto planes = extractPlanesOnRangeImage(scan, options)) return std::move(*planes);
+  }
   return extractPlanes(*preprocess(scan, options), options);
 }
 
@@ -130,7 +134,8 @@ std::vector<PlaneObservation> extractPlanes(const pcl::PointCloud<pcl::PointXYZ>
     clustering.setInputCloud(plane_cloud);
     clustering.extract(clusters);
     for (const auto& cluster : clusters) {
-      planes.push_back(fitPlane(*plane_cloud, cluster.indices, options));
+      planes.push_back(observePlane(pointsOf(*plane_cloud, cluster.indices),
+                                    int(cluster.indices.size()), options));
     }
 
     auto rest = pcl::make_shared<pcl::PointCloud<pcl::PointXYZ>>();

@@ -11,15 +11,27 @@ namespace isg::slam {
 
 // Planes from one (deskewed) scan: docs/slam.md. Defaults are the documented starting values.
 struct PlaneExtractionOptions {
+  enum class Method {
+    kRangeImage,  // organised scans (points with rings) on the range image; RANSAC otherwise
+    kRansac,      // always sequential RANSAC on the voxel-filtered cloud
+  };
+  Method method = Method::kRangeImage;
   double min_range = 0.5;  // metres: closer points are the robot or noise
   double max_range = 30.0;
-  double voxel = 0.1;  // voxel grid leaf
-  double ransac_distance = 0.04;
-  int min_inliers = 100;  // after the voxel grid
+  double voxel = 0.1;  // voxel leaf: RANSAC's grid; the range image counts support in voxels
+  double ransac_distance = 0.04;  // a point's distance from its plane, both methods
+  int min_inliers = 100;          // support: points after the voxel grid, voxels on the range image
   int max_planes = 30;
-  // Inliers of one RANSAC plane are split where they are this far apart, so that two coplanar
-  // walls (a corridor's two sides of a doorway, the same wall in two rooms) are separate.
+  // A plane's points are split where they are this far apart, so that two coplanar walls (a
+  // corridor's two sides of a doorway, the same wall in two rooms) are separate.
   double cluster_tolerance = 0.3;
+  // Range image: azimuth bin; a region's cells turn within normal_angle_deg of its plane;
+  // adjacent regions within merge_angle_deg (and the plane distance) are one; neighbours across
+  // rings are close up to ring_gap_factor × the rings' spacing at their range.
+  double image_column_deg = 0.8;
+  double normal_angle_deg = 15.0;
+  double merge_angle_deg = 5.0;
+  double ring_gap_factor = 4.0;
   double vertical_max_normal_z = 0.2;    // |n_z| below this: a wall
   double horizontal_min_normal_z = 0.9;  // above this: a floor or a ceiling
 };
@@ -37,10 +49,12 @@ struct PlaneObservation {
   double rms = 0.0;  // inliers' RMS distance from the plane
 };
 
-// The planes of a scan, in the scan's frame: range crop and voxel grid, then sequential RANSAC
-// (PCL SACMODEL_PLANE) removing each plane's inliers, each plane's inliers split by Euclidean
-// clustering, planes fitted again by least squares to each cluster. PCL stays behind this call
-// (slam/pcl_planes.hpp is slam's own): no user of slam compiles PCL.
+// The planes of a scan, in the scan's frame, largest support first. Organised scans (Method
+// kRangeImage): region growing on the range image (slam/range_image_planes.hpp). Otherwise range
+// crop and voxel grid, then sequential RANSAC (PCL SACMODEL_PLANE) removing each plane's
+// inliers, each plane's inliers split by Euclidean clustering, planes fitted again by least
+// squares to each cluster. PCL stays behind this call (slam/pcl_planes.hpp is slam's own): no
+// user of slam compiles PCL.
 std::vector<PlaneObservation> extractPlanes(const Scan& scan,
                                             const PlaneExtractionOptions& options);
 

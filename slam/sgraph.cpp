@@ -106,6 +106,7 @@ bool SGraph::addScan(Scan scan) {
   if (options_.registration.enabled) {
     StageClock clock(stage_times_, "registration");
     keyframe.cloud = downsampleScan(scan, options_.registration);
+    clock.stop();
     if (!keyframes_.empty()) initial = registerKeyframe(keyframe, initial);
   }
   keyframe.position = initial.translation();
@@ -204,7 +205,10 @@ Eigen::Isometry3d SGraph::registerKeyframe(Keyframe& keyframe, const Eigen::Isom
       parts.push_back({&keyframes_[k].cloud, keyframes_[k].pose() * R_T_L_});
   }
   if (parts.empty() || keyframe.cloud.empty()) return predicted;
+  StageClock map_clock(stage_times_, "local map");
   const LocalMap map(parts, options);
+  map_clock.stop();
+  StageClock clock(stage_times_, "registration");
   const Keyframe& previous = keyframes_.back();
   const double distance = (previous.odometry.inverse() * keyframe.odometry).translation().norm();
   const auto [sigma_t, sigma_r] = odometrySigmas(distance);
