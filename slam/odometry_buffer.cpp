@@ -1,6 +1,7 @@
 #include "slam/odometry_buffer.hpp"
 
 #include <algorithm>
+#include <cmath>
 
 namespace isg::slam {
 
@@ -30,14 +31,42 @@ int deskew(Scan& scan, const OdometryBuffer& odometry, const Eigen::Isometry3d& 
   const auto at_stamp = odometry.at(scan.stamp);
   if (!at_stamp) return int(scan.points.size());
   const Eigen::Isometry3d L0_T_M = (*at_stamp * R_T_L).inverse();
+  // L0_T_L(t) exactly every kStep, linearly in between: within 0.5 ms the sensor turns by under
+  // 1e-3 rad, so the interpolated rotation departs from the exact one by under 1e-7 (a micrometre
+  // at 10 m); a point whose neighbouring samples are not both covered is deskewed exactly.
+  constexpr double kStep = 0.5e-3;
+  double span = 0.0;
+  for (const auto& p : scan.points) span = std::max(span, double(p.time));
+  const int samples = int(std::ceil(span / kStep)) + 2;
+  std::vector<Eigen::Matrix3d> rotations(samples);
+  std::vector<Eigen::Vector3d> translations(samples);
+  std::vector<char> covered(samples, 0);
+  for (int j = 0; j < samples; ++j) {
+    if (const auto at = odometry.at(scan.stamp + j * kStep)) {
+      const Eigen::Isometry3d L0_T_L = L0_T_M * (*at * R_T_L);
+      rotations[j] = L0_T_L.linear();
+      translations[j] = L0_T_L.translation();
+      covered[j] = 1;
+    }
+  }
   int missed = 0;
   for (auto& p : scan.points) {
-    const auto at_point = odometry.at(scan.stamp + p.time);
-    if (!at_point) {
-      ++missed;
-      continue;
+    const double t = std::max(0.0, double(p.time));
+    const int j = std::min(samples - 2, int(t / kStep));
+    const Eigen::Vector3d v(p.x, p.y, p.z);
+    Eigen::Vector3d q;
+    if (covered[j] && covered[j + 1]) {
+      const double a = t / kStep - j;
+      q = rotations[j] * v + a * ((rotations[j + 1] - rotations[j]) * v) + translations[j] +
+          a * (translations[j + 1] - translations[j]);
+    } else {
+      const auto at_point = odometry.at(scan.stamp + p.time);
+      if (!at_point) {
+        ++missed;
+        continue;
+      }
+      q = L0_T_M * (*at_point * R_T_L) * v;
     }
-    const Eigen::Vector3d q = L0_T_M * (*at_point * R_T_L) * Eigen::Vector3d(p.x, p.y, p.z);
     p.x = float(q.x());
     p.y = float(q.y());
     p.z = float(q.z());

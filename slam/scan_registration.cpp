@@ -1,13 +1,10 @@
 #include "slam/scan_registration.hpp"
 
-#include <pcl/kdtree/kdtree_flann.h>
-#include <pcl/point_cloud.h>
-#include <pcl/point_types.h>
-
 #include <Eigen/Eigenvalues>
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <nanoflann.hpp>
 
 namespace isg::slam {
 
@@ -62,16 +59,36 @@ std::vector<Eigen::Vector3f> downsampleScan(const Scan& scan,
 }
 
 struct LocalMap::Index {
-  pcl::KdTreeFLANN<pcl::PointXYZ> tree;
-  // The nearest-neighbour query's outputs, kept to spare an allocation per query (a registration
-  // makes some 10^4): a LocalMap is searched from one thread at a time.
-  std::vector<int> index = std::vector<int>(1);
-  std::vector<float> squared = std::vector<float>(1);
+  // nanoflann's view of the map's points.
+  struct Cloud {
+    const std::vector<Eigen::Vector3d>* points = nullptr;
+    std::size_t kdtree_get_point_count() const { return points->size(); }
+    double kdtree_get_pt(std::size_t i, std::size_t axis) const { return (*points)[i][int(axis)]; }
+    template <class Box>
+    bool kdtree_get_bbox(Box&) const {
+      return false;
+    }
+  };
+  using Tree = nanoflann::KDTreeSingleIndexAdaptor<nanoflann::L2_Simple_Adaptor<double, Cloud>,
+                                                   Cloud, 3, int>;
+  Cloud cloud;
+  std::unique_ptr<Tree> tree;
 };
 
 LocalMap::~LocalMap() = default;
-LocalMap::LocalMap(LocalMap&&) noexcept = default;
-LocalMap& LocalMap::operator=(LocalMap&&) noexcept = default;
+LocalMap::LocalMap(LocalMap&& other) noexcept
+    : points_(std::move(other.points_)),
+      normals_(std::move(other.normals_)),
+      index_(std::move(other.index_)) {
+  if (index_) index_->cloud.points = &points_;
+}
+LocalMap& LocalMap::operator=(LocalMap&& other) noexcept {
+  points_ = std::move(other.points_);
+  normals_ = std::move(other.normals_);
+  index_ = std::move(other.index_);
+  if (index_) index_->cloud.points = &points_;
+  return *this;
+}
 
 LocalMap::LocalMap(const std::vector<Part>& parts, const ScanRegistrationOptions& options)
     : index_(std::make_unique<Index>()) {
@@ -80,24 +97,22 @@ LocalMap::LocalMap(const std::vector<Part>& parts, const ScanRegistrationOptions
     for (const auto& p : *part.cloud) voxels.add(part.M_T_L * p.cast<double>());
   }
   points_ = voxels.centroids();
+  index_->cloud.points = &points_;
   if (points_.empty()) return;
-  auto cloud = pcl::make_shared<pcl::PointCloud<pcl::PointXYZ>>();
-  cloud->reserve(points_.size());
-  for (const auto& p : points_)
-    cloud->push_back(pcl::PointXYZ(float(p.x()), float(p.y()), float(p.z())));
-  index_->tree.setSortedResults(true);
-  index_->tree.setInputCloud(cloud);
+  index_->tree = std::make_unique<Index::Tree>(3, index_->cloud,
+                                               nanoflann::KDTreeSingleIndexAdaptorParams(10));
   // Normals by PCA of each point's neighbourhood; none where it is not a plane.
   normals_.assign(points_.size(), Eigen::Vector3d::Zero());
-  std::vector<int> indices;
-  std::vector<float> distances;
+  const int k_max = std::max(1, options.normal_neighbours);
+  std::vector<int> indices(k_max);
+  std::vector<double> squared(k_max);
   for (std::size_t i = 0; i < points_.size(); ++i) {
     const int found =
-        index_->tree.nearestKSearch((*cloud)[i], options.normal_neighbours, indices, distances);
+        int(index_->tree->knnSearch(points_[i].data(), k_max, indices.data(), squared.data()));
     int used = 0;
     Eigen::Vector3d mean = Eigen::Vector3d::Zero();
     for (int k = 0; k < found; ++k) {
-      if (distances[k] > options.normal_radius * options.normal_radius) break;
+      if (squared[k] > options.normal_radius * options.normal_radius) break;
       mean += points_[indices[k]];
       ++used;
     }
@@ -123,12 +138,14 @@ LocalMap::LocalMap(const std::vector<Part>& parts, const ScanRegistrationOptions
 
 int LocalMap::nearest(const Eigen::Vector3d& q, double max_distance, double* distance) const {
   if (points_.empty()) return -1;
-  const pcl::PointXYZ query(float(q.x()), float(q.y()), float(q.z()));
-  if (index_->tree.nearestKSearch(query, 1, index_->index, index_->squared) < 1) return -1;
-  const double d = std::sqrt(double(index_->squared[0]));
-  if (d > max_distance) return -1;
-  *distance = d;
-  return index_->index[0];
+  int index = -1;
+  double squared = 0.0;
+  nanoflann::KNNResultSet<double, int> result(1);
+  result.init(&index, &squared);
+  index_->tree->findNeighbors(result, q.data(), nanoflann::SearchParams());
+  if (result.size() < 1 || squared > max_distance * max_distance) return -1;
+  *distance = std::sqrt(squared);
+  return index;
 }
 
 Eigen::Isometry3d planarCorrection(const Eigen::Vector3d& correction,

@@ -45,7 +45,8 @@ struct ScanRegistrationOptions {
 std::vector<Eigen::Vector3f> downsampleScan(const Scan& scan,
                                             const ScanRegistrationOptions& options);
 
-// The recent map: points in M with normals, searchable. Built from keyframe clouds and poses.
+// The recent map: points in M with normals, searchable (a nanoflann k-d tree). Built from
+// keyframe clouds and poses.
 class LocalMap {
  public:
   struct Part {
@@ -59,8 +60,8 @@ class LocalMap {
 
   bool empty() const { return points_.empty(); }
   std::size_t size() const { return points_.size(); }
-  // The nearest map point to q: index, or -1 when none within max_distance. Not for concurrent
-  // use: the query reuses the map's scratch space.
+  // The nearest map point to q: index, or -1 when none within max_distance. Safe to call from
+  // several threads at once.
   int nearest(const Eigen::Vector3d& q, double max_distance, double* distance) const;
   const Eigen::Vector3d& point(int i) const { return points_[i]; }
   // Unit normal, or zero where the neighbourhood is not planar.
