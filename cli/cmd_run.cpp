@@ -51,7 +51,8 @@ RunCommand::RunCommand(CLI::App& parent) {
   app_->add_option("--duration", duration_, "seconds of robot time")
       ->check(positiveNumber())
       ->default_str("the whole route");
-  app_->add_option("--threads", threads_, "threads: one localizes, the others cast scans ahead")
+  app_->add_option("--threads", threads_,
+                   "threads: the localizer's and the simulator's; the results never depend on it")
       ->check(CLI::Range(1, 64))
       ->capture_default_str();
   app_->add_option("--method-option", method_options_,
@@ -89,6 +90,7 @@ int RunCommand::run() {
   context.start_B_T_M = run::trueStartB_T_M(streams);
   context.seed = scenario.seed;
   context.options = methodOptions(method_options_);
+  context.threads = threads_;
   const auto localizer = makeMethod(methods_, method_, context);
 
   run::RunSetup setup{input,          localizer->name(), scenario.seed,

@@ -71,6 +71,10 @@ SlamCommand::SlamCommand(CLI::App& parent) {
   app_->add_option("--method-option", method_options_,
                    "a setting of the method, KEY=VALUE (repeatable; the methods below say which)")
       ->option_text("KEY=VALUE");
+  app_->add_option("--threads", threads_,
+                   "threads for the localizer's own work; the results never depend on it")
+      ->check(CLI::Range(1, 64))
+      ->capture_default_str();
   app_->add_flag("--force", force_, "replace RUN_DIR if it exists");
   app_->add_flag("-q,--quiet", quiet_, "no progress bar");
   app_->add_flag("--timing", timing_,
@@ -101,6 +105,7 @@ int SlamCommand::run() {
   context.start_B_T_M = run::trueStartB_T_M(streams);
   context.seed = dataset.seed();
   context.options = methodOptions(method_options_);
+  context.threads = threads_;
   const auto localizer = makeMethod(methods_, method, context);
 
   run::RunSetup setup{dataset_,     localizer->name(), dataset.seed(),

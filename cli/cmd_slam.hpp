@@ -22,6 +22,7 @@ class SlamCommand : public Command {
   bool other_plan_ = false;
   bool quiet_ = false;
   bool timing_ = false;
+  int threads_ = 2;
 };
 
 }  // namespace isg::cli

@@ -27,6 +27,8 @@ struct LocalizerContext {
   // The run's seed: methods that draw at random (particle filters, a perturbed start) draw from
   // a generator seeded with it, so a run is reproducible.
   std::uint64_t seed = 0;
+  // Threads the method may use for its own work (--threads); its results never depend on it.
+  int threads = 1;
   // Settings from --method-option KEY=VALUE (run/method_options.hpp): each method reads its own
   // and rejects the keys it does not know.
   std::map<std::string, std::string> options;

@@ -9,7 +9,9 @@ void addISGraphs(LocalizerRegistry& registry) {
                            "localization in the plan (docs/matching.md)",
                 .needs_plan = true,
                 .make = [](const LocalizerContext& c) {
-                  return std::make_unique<slam::ISGraphLocalizer>(c.R_T_L, *c.agraph);
+                  slam::ISGraphOptions options;
+                  options.sgraph.threads = c.threads;
+                  return std::make_unique<slam::ISGraphLocalizer>(c.R_T_L, *c.agraph, options);
                 }});
 }
 

@@ -9,7 +9,9 @@ void addSGraph(LocalizerRegistry& registry) {
                            "the plan (docs/slam.md)",
                 .slam_only = true,
                 .make = [](const LocalizerContext& c) {
-                  return std::make_unique<slam::SGraphLocalizer>(c.R_T_L);
+                  slam::SGraphOptions options;
+                  options.threads = c.threads;
+                  return std::make_unique<slam::SGraphLocalizer>(c.R_T_L, options);
                 }});
 }
 

@@ -4,7 +4,9 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <functional>
 #include <nanoflann.hpp>
+#include <numeric>
 
 namespace isg::slam {
 
@@ -90,7 +92,8 @@ LocalMap& LocalMap::operator=(LocalMap&& other) noexcept {
   return *this;
 }
 
-LocalMap::LocalMap(const std::vector<Part>& parts, const ScanRegistrationOptions& options)
+LocalMap::LocalMap(const std::vector<Part>& parts, const ScanRegistrationOptions& options,
+                   ThreadPool* pool)
     : index_(std::make_unique<Index>()) {
   VoxelCentroids voxels(options.voxel);
   for (const auto& part : parts) {
@@ -104,9 +107,8 @@ LocalMap::LocalMap(const std::vector<Part>& parts, const ScanRegistrationOptions
   // Normals by PCA of each point's neighbourhood; none where it is not a plane.
   normals_.assign(points_.size(), Eigen::Vector3d::Zero());
   const int k_max = std::max(1, options.normal_neighbours);
-  std::vector<int> indices(k_max);
-  std::vector<double> squared(k_max);
-  for (std::size_t i = 0; i < points_.size(); ++i) {
+  // Each point's normal on its own: items of points on the pool's threads, if any.
+  auto normal = [&](std::size_t i, std::vector<int>& indices, std::vector<double>& squared) {
     const int found =
         int(index_->tree->knnSearch(points_[i].data(), k_max, indices.data(), squared.data()));
     int used = 0;
@@ -116,7 +118,7 @@ LocalMap::LocalMap(const std::vector<Part>& parts, const ScanRegistrationOptions
       mean += points_[indices[k]];
       ++used;
     }
-    if (used < 5) continue;
+    if (used < 5) return;
     mean /= double(used);
     Eigen::Matrix3d covariance = Eigen::Matrix3d::Zero();
     for (int k = 0; k < used; ++k) {
@@ -130,9 +132,22 @@ LocalMap::LocalMap(const std::vector<Part>& parts, const ScanRegistrationOptions
     // along one ring of the LiDAR are a line, whose "normal" is any direction across it.
     if (total <= 0.0 || values(0) / total > options.max_planarity ||
         values(1) / total < options.min_spread) {
-      continue;
+      return;
     }
     normals_[i] = solver.eigenvectors().col(0).normalized();
+  };
+  constexpr int kItem = 512;
+  const int items = itemCount(int(points_.size()), kItem);
+  const std::function<void(int)> item_normals = [&](int item) {
+    std::vector<int> indices(k_max);
+    std::vector<double> squared(k_max);
+    const std::size_t end = std::min(points_.size(), std::size_t(item + 1) * kItem);
+    for (std::size_t i = std::size_t(item) * kItem; i < end; ++i) normal(i, indices, squared);
+  };
+  if (pool != nullptr) {
+    pool->run(items, item_normals);
+  } else {
+    for (int i = 0; i < items; ++i) item_normals(i);
   }
 }
 
@@ -165,7 +180,7 @@ RegistrationResult registerScan(const std::vector<Eigen::Vector3f>& scan_in_L,
                                 const Eigen::Isometry3d& M_T_R_predicted,
                                 const Eigen::Isometry3d& R_T_L, const LocalMap& map,
                                 const Eigen::Matrix3d& prior_information,
-                                const ScanRegistrationOptions& options) {
+                                const ScanRegistrationOptions& options, ThreadPool* pool) {
   RegistrationResult result;
   if (map.empty() || scan_in_L.empty()) return result;
   const Eigen::Isometry3d M_T_L = M_T_R_predicted * R_T_L;
@@ -185,14 +200,35 @@ RegistrationResult registerScan(const std::vector<Eigen::Vector3f>& scan_in_L,
     out.head<2>() = rotation(x.z()) * q.head<2>() + pivot + x.head<2>();
     return out;
   };
-  auto share_within = [&](const Eigen::Vector3d& x) {
-    int near = 0;
-    for (const auto& q : points) {
-      double d = 0.0;
-      if (map.nearest(transformed(x, q), options.max_correspondence_end, &d) >= 0) ++near;
+  // The points go in items of kItem, on the pool's threads when there is one; each item's sums
+  // are added in item order, so the result does not depend on the number of threads.
+  constexpr int kItem = 256;
+  const int items = itemCount(int(points.size()), kItem);
+  auto for_items = [&](const std::function<void(int)>& task) {
+    if (pool != nullptr) {
+      pool->run(items, task);
+    } else {
+      for (int i = 0; i < items; ++i) task(i);
     }
-    return double(near) / double(points.size());
   };
+  auto share_within = [&](const Eigen::Vector3d& x) {
+    std::vector<int> near(items, 0);
+    for_items([&](int item) {
+      const int end = std::min(int(points.size()), (item + 1) * kItem);
+      for (int i = item * kItem; i < end; ++i) {
+        double d = 0.0;
+        if (map.nearest(transformed(x, points[i]), options.max_correspondence_end, &d) >= 0)
+          ++near[item];
+      }
+    });
+    return double(std::accumulate(near.begin(), near.end(), 0)) / double(points.size());
+  };
+  struct Sums {
+    Eigen::Matrix3d H = Eigen::Matrix3d::Zero();
+    Eigen::Vector3d g = Eigen::Vector3d::Zero();
+    int used = 0, near = 0;
+  };
+  std::vector<Sums> sums(items);
 
   // Each pass finds every point's nearest map point anyway: the shares come from those passes
   // (the first, at the prediction; the last at the final tolerance) rather than from passes of
@@ -213,25 +249,36 @@ RegistrationResult registerScan(const std::vector<Eigen::Vector3f>& scan_in_L,
         options.max_correspondence_start +
         fraction * (options.max_correspondence_end - options.max_correspondence_start);
     const double near_distance = std::min(max_distance, options.max_correspondence_end);
+    for_items([&](int item) {
+      Sums& s = sums[item];
+      s = Sums();
+      const int end = std::min(int(points.size()), (item + 1) * kItem);
+      for (int i = item * kItem; i < end; ++i) {
+        const Eigen::Vector3d p = transformed(x, points[i]);
+        double d = 0.0;
+        const int m = map.nearest(p, max_distance, &d);
+        if (m < 0) continue;
+        if (d <= near_distance) ++s.near;
+        const Eigen::Vector3d& n = map.normal(m);
+        if (n.isZero() || std::abs(n.z()) > options.max_normal_z) continue;
+        const double r = n.dot(p - map.point(m));
+        // d(p)/d(yaw) about the pivot: the rotated point's lever arm turned by 90°.
+        const Eigen::Vector2d arm = p.head<2>() - pivot - x.head<2>();
+        const Eigen::Vector3d J(n.x(), n.y(), n.x() * -arm.y() + n.y() * arm.x());
+        const double w = std::abs(r) <= options.huber ? 1.0 : options.huber / std::abs(r);
+        s.H += w * J * J.transpose();
+        s.g += w * J * r;
+        ++s.used;
+      }
+    });
     Eigen::Matrix3d H = Eigen::Matrix3d::Zero();
     Eigen::Vector3d g = Eigen::Vector3d::Zero();
     int used = 0, near = 0;
-    for (const auto& q : points) {
-      const Eigen::Vector3d p = transformed(x, q);
-      double d = 0.0;
-      const int m = map.nearest(p, max_distance, &d);
-      if (m < 0) continue;
-      if (d <= near_distance) ++near;
-      const Eigen::Vector3d& n = map.normal(m);
-      if (n.isZero() || std::abs(n.z()) > options.max_normal_z) continue;
-      const double r = n.dot(p - map.point(m));
-      // d(p)/d(yaw) about the pivot: the rotated point's lever arm turned by 90°.
-      const Eigen::Vector2d arm = p.head<2>() - pivot - x.head<2>();
-      const Eigen::Vector3d J(n.x(), n.y(), n.x() * -arm.y() + n.y() * arm.x());
-      const double w = std::abs(r) <= options.huber ? 1.0 : options.huber / std::abs(r);
-      H += w * J * J.transpose();
-      g += w * J * r;
-      ++used;
+    for (const Sums& s : sums) {
+      H += s.H;
+      g += s.g;
+      used += s.used;
+      near += s.near;
     }
     const double share = double(near) / double(points.size());
     if (pass == 0 && max_distance >= options.max_correspondence_end) {

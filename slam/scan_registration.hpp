@@ -5,6 +5,7 @@
 #include <vector>
 
 #include "slam/messages.hpp"
+#include "slam/thread_pool.hpp"
 
 namespace isg::slam {
 
@@ -53,7 +54,9 @@ class LocalMap {
     const std::vector<Eigen::Vector3f>* cloud;  // in the keyframe's LiDAR frame
     Eigen::Isometry3d M_T_L;
   };
-  LocalMap(const std::vector<Part>& parts, const ScanRegistrationOptions& options);
+  // `pool`: threads for the normals (none: this thread); the map is the same either way.
+  LocalMap(const std::vector<Part>& parts, const ScanRegistrationOptions& options,
+           ThreadPool* pool = nullptr);
   ~LocalMap();
   LocalMap(LocalMap&&) noexcept;
   LocalMap& operator=(LocalMap&&) noexcept;
@@ -90,12 +93,13 @@ struct RegistrationResult {
 
 // Registers a scan (deskewed, downsampled, in L) predicted at M_T_R with the LiDAR at R_T_L,
 // against the local map; `prior_information` (on dx, dy, dyaw) is the odometry's confidence in
-// the prediction.
+// the prediction. `pool`: threads for the correspondences (none: this thread); the result is the
+// same either way.
 RegistrationResult registerScan(const std::vector<Eigen::Vector3f>& scan_in_L,
                                 const Eigen::Isometry3d& M_T_R_predicted,
                                 const Eigen::Isometry3d& R_T_L, const LocalMap& map,
                                 const Eigen::Matrix3d& prior_information,
-                                const ScanRegistrationOptions& options);
+                                const ScanRegistrationOptions& options, ThreadPool* pool = nullptr);
 
 // Δ for a planar correction (dx, dy, dyaw) about `pivot` (x, y in M).
 Eigen::Isometry3d planarCorrection(const Eigen::Vector3d& correction, const Eigen::Vector2d& pivot);

@@ -47,7 +47,9 @@ Eigen::Isometry3d SGraph::Keyframe::pose() const {
 }
 
 SGraph::SGraph(const Eigen::Isometry3d& R_T_L, const SGraphOptions& options)
-    : R_T_L_(R_T_L), options_(options) {}
+    : R_T_L_(R_T_L), options_(options) {
+  if (options.threads > 1) pool_ = std::make_shared<ThreadPool>(options.threads);
+}
 
 void SGraph::addOdometry(const Odometry& odometry) {
   odometry_.push(odometry);
@@ -206,7 +208,7 @@ Eigen::Isometry3d SGraph::registerKeyframe(Keyframe& keyframe, const Eigen::Isom
   }
   if (parts.empty() || keyframe.cloud.empty()) return predicted;
   StageClock map_clock(stage_times_, "local map");
-  const LocalMap map(parts, options);
+  const LocalMap map(parts, options, pool_.get());
   map_clock.stop();
   StageClock clock(stage_times_, "registration");
   const Keyframe& previous = keyframes_.back();
@@ -217,7 +219,7 @@ Eigen::Isometry3d SGraph::registerKeyframe(Keyframe& keyframe, const Eigen::Isom
                       1.0 / (sigma_r * sigma_r))
           .asDiagonal();
   const RegistrationResult result =
-      registerScan(keyframe.cloud, predicted, R_T_L_, map, prior, options);
+      registerScan(keyframe.cloud, predicted, R_T_L_, map, prior, options, pool_.get());
   KeyframeRegistration& r = keyframe.registration;
   r.attempted = true;
   r.agrees = result.agrees;

@@ -3,6 +3,7 @@
 #include <Eigen/Geometry>
 #include <deque>
 #include <functional>
+#include <memory>
 #include <nlohmann/json.hpp>
 #include <numbers>
 #include <optional>
@@ -17,6 +18,7 @@
 #include "slam/room_detection.hpp"
 #include "slam/scan_registration.hpp"
 #include "slam/stage_times.hpp"
+#include "slam/thread_pool.hpp"
 
 namespace ceres {
 class Problem;
@@ -41,6 +43,9 @@ struct SGraphOptions {
   int window = 25;            // keyframes optimised after each new one; older ones are held
   int anchors_per_plane = 8;  // held older observations kept for each plane in the window
   int max_iterations = 10;
+  // Threads for the graph's own loops (the registration's local map and correspondences), the
+  // caller's included. Results are the same whatever the number (slam/thread_pool.hpp).
+  int threads = 1;
   RoomDetectionOptions rooms;
   double sigma_room = 0.05;              // m, room-centre factors
   ScanRegistrationOptions registration;  // LiDAR odometry between keyframes
@@ -165,6 +170,8 @@ class SGraph {
   std::deque<Room> rooms_;
   std::vector<Timing> timings_;
   StageTimes stage_times_;
+  // When options.threads > 1; a copy of the graph (checkForContradiction) shares it.
+  std::shared_ptr<ThreadPool> pool_;
   WindowHook window_hook_;
   Eigen::Isometry3d start_correction_ = Eigen::Isometry3d::Identity();
   struct Segment {
