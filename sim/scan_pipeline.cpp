@@ -84,7 +84,8 @@ void LookaheadScans::work() {
   while (true) {
     auto ahead_wanted = [&] {
       next_ahead_ = std::max(next_ahead_, consumed_);
-      while (next_ahead_ < scans_ && (ready_.count(next_ahead_) || making_.count(next_ahead_)))
+      while (next_ahead_ < scans_ && (ready_.count(next_ahead_) || making_.count(next_ahead_) ||
+                                      (job_ && job_->index == next_ahead_)))
         ++next_ahead_;
       return prefetching() && next_ahead_ < std::min(scans_, consumed_ + lookahead_);
     };
@@ -123,7 +124,7 @@ void LookaheadScans::work() {
 slam::Scan LookaheadScans::scan(int index) {
   std::unique_lock<std::mutex> lock(mutex_);
   if (error_) std::rethrow_exception(error_);
-  consumed_ = index + 1;
+  consumed_ = index;  // scans before it are done with; it is index + 1 once this one is taken
   ++streak_;
   ready_.erase(ready_.begin(), ready_.lower_bound(index));  // made ahead, then skipped
   LidarScan scan;
@@ -148,6 +149,7 @@ slam::Scan LookaheadScans::scan(int index) {
     scan = std::move(ready_[index]);
     ready_.erase(index);
   }
+  consumed_ = index + 1;
   changed_.notify_all();
   return {scan.stamp, std::move(scan.points)};
 }
