@@ -101,10 +101,16 @@ SensorStreams DatasetReader::streams() const {
 }
 
 slam::Scan DatasetReader::scan(int index) {
+  slam::StageClock clock(times_, "reading scans");
   slam::Scan scan;
   scan.stamp = scan_stamps_[std::size_t(index)];
   scan.points = readPcd(scan_files_[std::size_t(index)]);
   return scan;
+}
+
+void DatasetReader::skip(int index) {
+  slam::StageClock clock(times_, "reading scans");
+  readPcd(scan_files_[std::size_t(index)]);
 }
 
 }  // namespace isg::run

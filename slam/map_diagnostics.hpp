@@ -12,7 +12,9 @@ namespace isg::slam {
 // (with the odometry at the same instants, to compare), the wall planes and confirmed rooms, and
 // the time each keyframe cost. `isg slam` reports these; nothing outside slam needs the S-Graph.
 struct KeyframeTiming {
-  double extraction_s = 0.0;    // deskew + preprocessing + planes + association
+  double extraction_s = 0.0;    // the front end: deskew, registration, planes, association
+  double planes_s = 0.0;        // of which plane extraction alone
+  double solve_s = 0.0;         // of optimisation_s: the window's solve and plane merging
   double optimisation_s = 0.0;  // the window optimisation, plane merging and room detection
 };
 

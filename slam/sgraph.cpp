@@ -118,9 +118,10 @@ bool SGraph::addScan(Scan scan) {
   const Eigen::Isometry3d M_T_L = initial * R_T_L_;
   // The map as association sees it, kept in step as this keyframe's observations change it.
   std::vector<MapPlane> walls = activeWalls();
-  StageClock extraction_clock(stage_times_, "extraction");
+  const auto planes_start = std::chrono::steady_clock::now();
   const std::vector<PlaneObservation> observations = extractPlanes(scan, options_.extraction);
-  extraction_clock.stop();
+  const double planes_s = seconds(planes_start);
+  stage_times_.add("extraction", planes_s);
   StageClock association_clock(stage_times_, "association");
   for (const auto& observation : observations) {
     if (observation.orientation == PlaneOrientation::kHorizontal) {
@@ -161,11 +162,13 @@ bool SGraph::addScan(Scan scan) {
   if (stale >= 0) std::vector<Eigen::Vector3f>().swap(keyframes_[stale].cloud);
   Timing timing;
   timing.extraction_s = seconds(start);
+  timing.planes_s = planes_s;
   const auto optimisation_start = std::chrono::steady_clock::now();
   StageClock optimisation_clock(stage_times_, "optimisation");
   optimise(std::max(1, int(keyframes_.size()) - options_.window), true, options_.max_iterations);
   mergeDuplicatePlanes(std::max(0, index - options_.window + 1));
   optimisation_clock.stop();
+  timing.solve_s = seconds(optimisation_start);
   StageClock rooms_clock(stage_times_, "rooms");
   // Walls seen now may complete rooms the robot stood in a little earlier: look again from every
   // keyframe of the window.
@@ -331,7 +334,8 @@ void SGraph::optimise(int first, bool with_hook, int max_iterations) {
     for (auto it = p.observed_by.rbegin(); it != p.observed_by.rend(); ++it) {
       const int k = *it;
       if (k < first) {
-        if (anchors >= options_.anchors_per_plane) continue;
+        // Newest first: once the anchors are taken, every observation left is older still.
+        if (anchors >= options_.anchors_per_plane) break;
         ++anchors;
         if (!held.count(k)) add_pose(k, true);
       }

@@ -12,7 +12,8 @@ namespace isg::slam {
 struct TimingAt {
   int keyframes = 0;
   int samples = 0;
-  double extraction_median_ms = 0, extraction_p95_ms = 0;
+  double extraction_median_ms = 0, extraction_p95_ms = 0;  // the front end
+  double planes_median_ms = 0, planes_p95_ms = 0;          // plane extraction alone
   double optimisation_median_ms = 0, optimisation_p95_ms = 0;
 };
 std::vector<TimingAt> timingAt(const std::vector<KeyframeTiming>& timings,

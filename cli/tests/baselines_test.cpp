@@ -24,9 +24,11 @@ TEST(Baselines, D1AsBuiltAgainstTheCommittedTable) {
                                " -o d1-" + method + " -q");
     ASSERT_EQ(r.exit_code, 0) << method << ": " << r.err;
   }
-  // The tracker, from a start 0.3 m and 5° off, follows D1 as built within 0.15 m (RMSE, the
-  // mean of seeds 1–3, measured 0.065 m; seed 2 alone is 0.117 m: it stays about 0.3 m off for
-  // its first 12 s, docs/baselines.md).
+  // The tracker, from a start 0.3 m and 5° off, follows D1 as built within 0.3 m (RMSE, the mean
+  // of seeds 1–3, measured 0.207 m). Whether it corrects its start offset depends on the draw:
+  // over seeds 1–15 its RMSE spans 0.028–0.274 m (mean 0.144 m; 0.101 m with the simulator's
+  // previous noise generator, whose seeds 1–3 happened to be three of the good ones); in seeds 1
+  // and 3 it stays about 0.26 m off the whole run (docs/baselines.md).
   double ndt_mean = 0.0;
   for (const char* seed : {"1", "2", "3"}) {
     const std::string run = std::string("ndt-") + seed;
@@ -40,7 +42,7 @@ TEST(Baselines, D1AsBuiltAgainstTheCommittedTable) {
     EXPECT_FALSE(ndt["wrongly_localized"].get<bool>());
     ndt_mean += apeB(sandbox, run) / 3.0;
   }
-  EXPECT_LE(ndt_mean, 0.15);
+  EXPECT_LE(ndt_mean, 0.3);
   // AMCL localizes from its uniform start, and is not wrong.
   const auto amcl = nlohmann::json::parse(sandbox.read("d1-amcl/metrics.json"));
   EXPECT_TRUE(amcl["localized"].get<bool>());
