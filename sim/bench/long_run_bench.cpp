@@ -8,11 +8,9 @@
 #include <chrono>
 
 #include "bim/agraph.hpp"
-#include "bim/json_reader.hpp"
-#include "bim/plan_parser.hpp"
-#include "bim/synthetic_plan.hpp"
 #include "run/builtin_methods.hpp"
 #include "run/driver.hpp"
+#include "sim/bench/grid_scenario.hpp"
 #include "sim/scan_pipeline.hpp"
 #include "sim/simulation.hpp"
 
@@ -20,16 +18,7 @@ namespace isg::sim {
 namespace {
 
 void BM_LongRun27Rooms(benchmark::State& state) {
-  bim::GridPlanSpec spec;
-  spec.rows = 3;
-  spec.cols = 9;
-  const nlohmann::json document = bim::makeGridPlan(spec);
-  const bim::JsonSource source{"grid-3x9.json", nullptr};
-  bim::Scenario scenario;
-  scenario.plan = bim::parsePlan(bim::JsonNode(document, "", source));
-  scenario.robot.level = "L0";
-  scenario.robot.start_room = "R1";
-  scenario.seed = 1;
+  bim::Scenario scenario = gridScenario(3, 9);
   // Corner to corner and back until 1000 s: R1 → R27 → R1 → …
   scenario.robot.route.kind = bim::Route::Kind::kRooms;
   for (int i = 0; i < 14; ++i) scenario.robot.route.rooms.push_back(i % 2 == 0 ? "R27" : "R1");

@@ -6,12 +6,10 @@
 
 #include <algorithm>
 
-#include "bim/json_reader.hpp"
-#include "bim/plan_parser.hpp"
-#include "bim/synthetic_plan.hpp"
 #include "run/builtin_methods.hpp"
 #include "run/driver.hpp"
 #include "run/map_diagnosis.hpp"
+#include "sim/bench/grid_scenario.hpp"
 #include "sim/scan_pipeline.hpp"
 #include "sim/simulation.hpp"
 
@@ -19,16 +17,7 @@ namespace isg::sim {
 namespace {
 
 void BM_SGraphGrowth(benchmark::State& state) {
-  bim::GridPlanSpec spec;
-  spec.rows = 10;
-  spec.cols = 12;
-  const nlohmann::json document = bim::makeGridPlan(spec);
-  const bim::JsonSource source{"grid.json", nullptr};
-  bim::Scenario scenario;
-  scenario.plan = bim::parsePlan(bim::JsonNode(document, "", source));
-  scenario.robot.level = "L0";
-  scenario.robot.start_room = "R1";
-  scenario.seed = 1;
+  const bim::Scenario scenario = gridScenario(10, 12);
   for (auto _ : state) {
     const Simulation sim(scenario);
     const run::SensorStreams streams = sensorStreams(sim, -1.0);

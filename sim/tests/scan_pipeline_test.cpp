@@ -87,7 +87,9 @@ TEST(LookaheadScans, ScansAreTheSameAheadOrOnDemandOnAnyNumberOfThreads) {
     }
     EXPECT_GT(source.stageTimes().seconds("casting"), 0.0);
     // Every scan read was made once; with workers, some made ahead and skipped too.
-    if (workers == 0) EXPECT_EQ(source.scansMade(), 12);
+    if (workers == 0) {
+      EXPECT_EQ(source.scansMade(), 12);
+    }
     EXPECT_GE(source.scansMade(), 12);
   }
 }
