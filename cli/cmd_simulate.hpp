@@ -2,12 +2,14 @@
 
 #include <cstdint>
 #include <optional>
+#include <string>
 
 #include "cli/common.hpp"
 
 namespace isg::cli {
 
-// isg simulate PLAN|SCENARIO -o DATASET_DIR [--seed N] [--duration S]: synthesise a dataset.
+// isg simulate PLAN|SCENARIO -o DATASET_DIR [--seed N] [--duration S] [--pcd DATA]: synthesise a
+// dataset.
 class SimulateCommand : public Command {
  public:
   explicit SimulateCommand(CLI::App& parent);
@@ -19,6 +21,7 @@ class SimulateCommand : public Command {
   std::optional<std::uint64_t> seed_;
   double duration_ = -1.0;
   int threads_ = 2;
+  std::string pcd_ = "binary_compressed";
   bool force_ = false;
   bool quiet_ = false;
 };

@@ -29,9 +29,18 @@ std::string scanFileName(int index);
 // A trajectory file's text (TUM, eval::toTumText).
 std::string trajectoryText(const Trajectory& trajectory);
 
-// A scan as binary PCD v0.7 with the Velodyne driver's point layout: fields x y z intensity
-// (float32) ring (uint16) time (float32, seconds from the scan stamp), in the LiDAR frame.
-std::string pcdBinary(const std::vector<slam::ScanPoint>& points);
+// How a scan's PCD file stores its points: "binary" (point after point, 22 bytes each) or
+// "binary_compressed" (PCL's: field after field, LZF-compressed; about a third of the size).
+enum class PcdData { kBinary, kBinaryCompressed };
+inline constexpr PcdData kDefaultPcdData = PcdData::kBinaryCompressed;
+const char* pcdDataName(PcdData data);  // the PCD header's word: "binary", "binary_compressed"
+
+// A scan as PCD v0.7 with the Velodyne driver's point layout: fields x y z intensity (float32)
+// ring (uint16) time (float32, seconds from the scan stamp), in the LiDAR frame.
+std::string pcdBytes(const std::vector<slam::ScanPoint>& points, PcdData data);
+inline std::string pcdBinary(const std::vector<slam::ScanPoint>& points) {
+  return pcdBytes(points, PcdData::kBinary);
+}
 
 // metadata.json's "extrinsics" entry: R_T_L as the mount's xyz + roll/pitch/yaw and as a matrix.
 nlohmann::ordered_json extrinsicsJson(const std::array<double, 6>& xyz_rpy,

@@ -9,6 +9,8 @@
 #include <optional>
 #include <sstream>
 
+#include <lzf.h>
+
 #include "bim/input_error.hpp"
 #include "bim/json_reader.hpp"
 
@@ -78,9 +80,19 @@ class PcdParser {
       }
       for (std::size_t i = 0; i < n; ++i) {
         const char* point = data.data() + i * header.point_bytes;
-        keep(binaryValue(point, *x), binaryValue(point, *y), binaryValue(point, *z),
-             intensity ? binaryValue(point, *intensity) : 0.0,
-             ring ? binaryValue(point, *ring) : 0.0, binaryValue(point, *time));
+        auto value = [point](const PcdField& f) { return binaryValue(point + f.offset, f); };
+        keep(value(*x), value(*y), value(*z), intensity ? value(*intensity) : 0.0,
+             ring ? value(*ring) : 0.0, value(*time));
+      }
+    } else if (header.data == "binary_compressed") {
+      // Field after field: field f of point i sits at n · offset(f) + i · bytes(f).
+      const std::string columns = decompress(header, n);
+      auto value = [&](const PcdField& f, std::size_t i) {
+        return binaryValue(columns.data() + n * f.offset + i * f.size * f.count, f);
+      };
+      for (std::size_t i = 0; i < n; ++i) {
+        keep(value(*x, i), value(*y, i), value(*z, i), intensity ? value(*intensity, i) : 0.0,
+             ring ? value(*ring, i) : 0.0, value(*time, i));
       }
     } else {
       std::vector<double> values(header.tokens_per_point);
@@ -164,8 +176,38 @@ class PcdParser {
     return nullptr;
   }
 
-  static double binaryValue(const char* point, const PcdField& f) {
-    const char* at = point + f.offset;
+  // The field-major bytes of DATA binary_compressed: two little-endian uint32 (compressed and
+  // uncompressed size) and LZF data, which must unpack to exactly n points.
+  std::string decompress(const PcdHeader& header, std::size_t n) const {
+    const std::string_view data = bytes_.substr(position_);
+    if (data.size() < 8) {
+      fail("data: binary_compressed needs 8 bytes of sizes, the file holds " +
+           std::to_string(data.size()));
+    }
+    std::uint32_t sizes[2];
+    std::memcpy(sizes, data.data(), sizeof sizes);
+    const std::size_t compressed = sizes[0], raw = sizes[1];
+    if (compressed > data.size() - 8) {
+      fail("data: " + std::to_string(compressed) + " compressed bytes announced, the file holds " +
+           std::to_string(data.size() - 8));
+    }
+    if (n > kMaxCompressedBytes / header.point_bytes || raw != n * header.point_bytes) {
+      fail("data: " + std::to_string(n) + " points need " + std::to_string(n * header.point_bytes) +
+           " bytes, the file unpacks to " + std::to_string(raw));
+    }
+    std::string columns(raw, '\0');
+    if (raw == 0) return columns;
+    const unsigned unpacked =
+        lzf_decompress(data.data() + 8, unsigned(compressed), columns.data(), unsigned(raw));
+    if (unpacked != raw) {
+      fail("data: the LZF data is damaged (unpacks to " + std::to_string(unpacked) + " of " +
+           std::to_string(raw) + " bytes)");
+    }
+    return columns;
+  }
+
+  // The value of field f stored at `at`.
+  static double binaryValue(const char* at, const PcdField& f) {
     auto read = [at]<typename T>(T) {
       T v;
       std::memcpy(&v, at, sizeof v);
@@ -233,11 +275,10 @@ class PcdParser {
         header.points = asciiCount(args[0], "POINTS");
       } else if (key == "DATA" && args.size() == 1) {
         header.data = std::string(args[0]);
-        if (header.data == "binary_compressed") {
-          failLine("DATA binary_compressed is not supported (write DATA binary or ascii)");
-        }
-        if (header.data != "binary" && header.data != "ascii") {
-          failLine("unknown DATA " + printable(header.data) + " (expected binary or ascii)");
+        if (header.data != "binary" && header.data != "ascii" &&
+            header.data != "binary_compressed") {
+          failLine("unknown DATA " + printable(header.data) +
+                   " (expected ascii, binary or binary_compressed)");
         }
       } else {
         failLine("not a PCD header line: " + printable(line));

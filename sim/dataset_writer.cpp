@@ -74,6 +74,7 @@ nlohmann::ordered_json metadata(const Simulation& sim, double duration,
         {"dropout", l.dropout},
         {"intensity",
          "round(255 * reflectivity * |cos(incidence)|), reflectivity = mean of the surface colour"},
+        {"pcd_data", run::dataset::pcdDataName(options.pcd)},
         {"pcd_fields",
          "x y z intensity ring time (float32 ×4, uint16, float32), time from the scan stamp"}}},
       {"odometry",
@@ -115,7 +116,7 @@ DatasetSummary writeDataset(Simulation& sim, const std::string& dir, const Datas
     const int scans = sim.scanCount(duration);
     summary.scans = scans;
     std::atomic<int> next{0}, done{0};
-    std::atomic<std::size_t> points{0}, rays{0};
+    std::atomic<std::size_t> points{0}, rays{0}, scan_bytes{0};
     std::mutex report;
     std::exception_ptr error;  // the first worker's error, rethrown here after the join
     auto worker = [&] {
@@ -123,8 +124,9 @@ DatasetSummary writeDataset(Simulation& sim, const std::string& dir, const Datas
         const auto lidar = sim.makeLidar();
         for (int k = next++; k < scans; k = next++) {
           const LidarScan scan = sim.scan(k, *lidar);
-          writeFile(temporary / run::dataset::kScans / run::dataset::scanFileName(k),
-                    run::dataset::pcdBinary(scan.points));
+          const std::string bytes = run::dataset::pcdBytes(scan.points, options.pcd);
+          writeFile(temporary / run::dataset::kScans / run::dataset::scanFileName(k), bytes);
+          scan_bytes += bytes.size();
           points += scan.points.size();
           rays += std::size_t(scan.rays);
           const int finished = ++done;
@@ -146,6 +148,7 @@ DatasetSummary writeDataset(Simulation& sim, const std::string& dir, const Datas
     if (error) std::rethrow_exception(error);
     summary.points = points;
     summary.rays = rays;
+    summary.scan_bytes = scan_bytes;
 
     using namespace run::dataset;
     writeFile(temporary / kGroundTruth,

@@ -3,6 +3,7 @@
 #include <functional>
 #include <string>
 
+#include "run/dataset_format.hpp"
 #include "sim/lidar_simulator.hpp"
 #include "sim/simulation.hpp"
 
@@ -13,6 +14,7 @@ struct DatasetOptions {
   double groundtruth_rate = 100.0;
   bool overwrite = false;  // replace an existing dataset folder
   int threads = 2;
+  run::dataset::PcdData pcd = run::dataset::kDefaultPcdData;
 };
 
 struct DatasetSummary {
@@ -21,16 +23,18 @@ struct DatasetSummary {
   int scans = 0;
   std::size_t points = 0;
   std::size_t rays = 0;
+  std::size_t scan_bytes = 0;  // of scans/*.pcd, headers included
 };
 
 // Called from the writing thread as scans complete: (scans done, scans in all).
 using ProgressCallback = std::function<void(int done, int total)>;
 
-// Writes the dataset folder (run/dataset_format.hpp, docs/formats.md): scans/NNNNNN.pcd (binary
-// PCD, fields x y z intensity ring time, LiDAR frame, not deskewed), groundtruth.tum (B_T_R),
-// odometry.tum (M_T_R), scans.tum (B_T_L at each scan stamp) and metadata.json. Everything is
-// written into a temporary folder beside `dir` and renamed into place at the end: a failed run
-// leaves nothing behind. Errors about the folder are InputErrors naming it.
+// Writes the dataset folder (run/dataset_format.hpp, docs/formats.md): scans/NNNNNN.pcd (PCD,
+// DATA as options.pcd, fields x y z intensity ring time, LiDAR frame, not deskewed),
+// groundtruth.tum (B_T_R), odometry.tum (M_T_R), scans.tum (B_T_L at each scan stamp) and
+// metadata.json. Everything is written into a temporary folder beside `dir` and renamed into place
+// at the end: a failed run leaves nothing behind. Errors about the folder are InputErrors naming
+// it.
 DatasetSummary writeDataset(Simulation& simulation, const std::string& dir,
                             const DatasetOptions& options, const ProgressCallback& progress);
 
