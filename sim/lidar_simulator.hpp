@@ -22,6 +22,12 @@ struct ScanTiming {
   double poses_s = 0.0;    // the sensor's poses and every ray's origin and direction
   double casting_s = 0.0;  // the rays against the building
   double noise_s = 0.0;    // noise, quantisation, dropout, intensity: the points
+  ScanTiming& operator+=(const ScanTiming& other) {
+    poses_s += other.poses_s;
+    casting_s += other.casting_s;
+    noise_s += other.noise_s;
+    return *this;
+  }
 };
 
 struct LidarScan {

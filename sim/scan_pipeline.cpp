@@ -36,11 +36,7 @@ LookaheadScans::~LookaheadScans() {
   for (auto& t : pool_) t.join();
 }
 
-void LookaheadScans::account(const LidarScan& scan) {
-  timing_.poses_s += scan.timing.poses_s;
-  timing_.casting_s += scan.timing.casting_s;
-  timing_.noise_s += scan.timing.noise_s;
-}
+void LookaheadScans::account(const LidarScan& scan) { timing_ += scan.timing; }
 
 void LookaheadScans::helpWithJob(std::unique_lock<std::mutex>& lock, LidarSimulator& lidar) {
   while (job_ && job_->next_part < job_->parts) {

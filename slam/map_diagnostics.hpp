@@ -16,6 +16,10 @@ struct KeyframeTiming {
   double planes_s = 0.0;        // of which plane extraction alone
   double solve_s = 0.0;         // of optimisation_s: the window's solve and plane merging
   double optimisation_s = 0.0;  // the window optimisation, plane merging and room detection
+  // The window problem's size: what its solve time follows. Bounded by the window and the
+  // anchors per plane, whatever the length of the run.
+  int window_residuals = 0;
+  int window_parameters = 0;
 };
 
 struct MapKeyframe {

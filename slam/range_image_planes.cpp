@@ -8,6 +8,7 @@
 #include <numeric>
 
 #include "slam/plane_fit.hpp"
+#include "slam/voxel_key.hpp"
 
 namespace isg::slam {
 
@@ -125,12 +126,7 @@ int findRoot(std::vector<int>& parent, int a) {
 int voxelSupport(const std::vector<Eigen::Vector3d>& points, double voxel) {
   std::vector<std::uint64_t> keys;
   keys.reserve(points.size());
-  for (const auto& p : points) {
-    auto key = [voxel](double x) {
-      return std::uint64_t(std::int64_t(std::floor(x / voxel)) + (1 << 20)) & 0x1fffff;
-    };
-    keys.push_back(key(p.x()) << 42 | key(p.y()) << 21 | key(p.z()));
-  }
+  for (const auto& p : points) keys.push_back(voxelKey(p, voxel));
   std::sort(keys.begin(), keys.end());
   return int(std::unique(keys.begin(), keys.end()) - keys.begin());
 }

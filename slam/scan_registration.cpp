@@ -8,6 +8,8 @@
 #include <nanoflann.hpp>
 #include <numeric>
 
+#include "slam/voxel_key.hpp"
+
 namespace isg::slam {
 
 namespace {
@@ -18,13 +20,7 @@ struct VoxelCentroids {
   std::vector<std::pair<std::uint64_t, Eigen::Vector3d>> keyed;  // (voxel key, point)
 
   explicit VoxelCentroids(double voxel) : size(voxel) {}
-  void add(const Eigen::Vector3d& p) {
-    // 21 bits per axis around the origin: ±(2^20 · voxel), 200 km at 0.2 m.
-    auto axis = [this](double v) {
-      return std::uint64_t(std::int64_t(std::floor(v / size)) + (1 << 20)) & 0x1FFFFF;
-    };
-    keyed.emplace_back((axis(p.x()) << 42) | (axis(p.y()) << 21) | axis(p.z()), p);
-  }
+  void add(const Eigen::Vector3d& p) { keyed.emplace_back(voxelKey(p, size), p); }
   // One centroid per voxel, in key order.
   std::vector<Eigen::Vector3d> centroids() {
     std::stable_sort(keyed.begin(), keyed.end(),

@@ -169,6 +169,8 @@ bool SGraph::addScan(Scan scan) {
   mergeDuplicatePlanes(std::max(0, index - options_.window + 1));
   optimisation_clock.stop();
   timing.solve_s = seconds(optimisation_start);
+  timing.window_residuals = last_window_size_.first;
+  timing.window_parameters = last_window_size_.second;
   StageClock rooms_clock(stage_times_, "rooms");
   // Walls seen now may complete rooms the robot stood in a little earlier: look again from every
   // keyframe of the window.
@@ -379,23 +381,27 @@ void SGraph::optimise(int first, bool with_hook, int max_iterations) {
   solver.num_threads = 1;
   ceres::Solver::Summary summary;
   ceres::Solve(solver, &problem, &summary);
+  last_window_size_ = {problem.NumResidualBlocks(), problem.NumParameterBlocks()};
   for (int plane : planes) {
     Plane& p = planes_[plane];
     p.map.plane = bim::toPlane(p.parameters);
   }
 }
 
+MapPlane SGraph::wallOf(const Plane& p) {
+  MapPlane wall = p.map;
+  if (p.merged_into >= 0) {
+    // Never associated, never a room's wall: normal upwards, extent nowhere.
+    wall.plane = {Eigen::Vector3d::UnitZ(), 1e9};
+    wall.start = wall.end = Eigen::Vector2d::Constant(1e9);
+  }
+  return wall;
+}
+
 std::vector<MapPlane> SGraph::activeWalls() const {
   std::vector<MapPlane> walls;
   walls.reserve(planes_.size());
-  for (const auto& p : planes_) {
-    walls.push_back(p.map);
-    if (p.merged_into >= 0) {
-      // Never associated, never a room's wall: normal upwards, extent nowhere.
-      walls.back().plane = {Eigen::Vector3d::UnitZ(), 1e9};
-      walls.back().start = walls.back().end = Eigen::Vector2d::Constant(1e9);
-    }
-  }
+  for (const auto& p : planes_) walls.push_back(wallOf(p));
   return walls;
 }
 
@@ -404,6 +410,12 @@ void SGraph::mergeDuplicatePlanes(int first_keyframe) {
   for (int k = first_keyframe; k < int(keyframes_.size()); ++k) {
     for (const auto& [plane, observation] : keyframes_[k].observations) recent.insert(plane);
   }
+  // The map as association sees it, made once (a copy per recent plane made this stage grow
+  // with the map) and kept equal to activeWalls() as merges change it.
+  std::vector<MapPlane> walls = activeWalls();
+  AssociationOptions strict = options_.association;
+  strict.max_angle_deg = 5.0;
+  strict.max_distance = 0.06;
   for (int j : recent) {
     Plane& pj = planes_[j];
     if (pj.merged_into >= 0) continue;
@@ -413,12 +425,10 @@ void SGraph::mergeDuplicatePlanes(int first_keyframe) {
     as_observation.start = Eigen::Vector3d(pj.map.start.x(), pj.map.start.y(), 0.0);
     as_observation.end = Eigen::Vector3d(pj.map.end.x(), pj.map.end.y(), 0.0);
     as_observation.centroid = 0.5 * (as_observation.start + as_observation.end);
-    auto walls = activeWalls();
+    const bim::Plane own = walls[j].plane;
     walls[j].plane = {Eigen::Vector3d::UnitZ(), 1e9};  // not with itself
-    AssociationOptions strict = options_.association;
-    strict.max_angle_deg = 5.0;
-    strict.max_distance = 0.06;
     const int i = associate(as_observation, walls, strict);
+    walls[j].plane = own;
     if (i < 0) continue;
     // Keep the plane observed most; move the other's observations over.
     const int keep = planes_[i].map.observations >= pj.map.observations ? i : j;
@@ -443,6 +453,8 @@ void SGraph::mergeDuplicatePlanes(int first_keyframe) {
     kept.map.z_max = std::max(kept.map.z_max, dropped.map.z_max);
     dropped.merged_into = keep;
     dropped.observed_by.clear();
+    walls[keep] = wallOf(kept);
+    walls[drop] = wallOf(dropped);
     // Rooms built on the dropped plane now stand on the kept one.
     for (auto& room : rooms_) {
       for (auto& pair : room.candidate.pairs) {

@@ -8,6 +8,7 @@
 #include <numbers>
 #include <optional>
 #include <set>
+#include <utility>
 #include <vector>
 
 #include "slam/map_diagnostics.hpp"
@@ -155,7 +156,8 @@ class SGraph {
   // Planes of the window that turned out to be the same surface (created before the optimisation
   // brought them together) are merged into the one observed most.
   void mergeDuplicatePlanes(int first_keyframe);
-  std::vector<MapPlane> activeWalls() const;  // merged planes get an empty, far-away extent
+  std::vector<MapPlane> activeWalls() const;   // merged planes get an empty, far-away extent
+  static MapPlane wallOf(const Plane& plane);  // one entry of activeWalls()
   // LiDAR odometry for a new keyframe predicted at `predicted`: registers its cloud to the
   // latest keyframes' and returns the corrected pose (the prediction when it cannot).
   Eigen::Isometry3d registerKeyframe(Keyframe& keyframe, const Eigen::Isometry3d& predicted);
@@ -169,6 +171,7 @@ class SGraph {
   std::deque<Plane> planes_;
   std::deque<Room> rooms_;
   std::vector<Timing> timings_;
+  std::pair<int, int> last_window_size_{0, 0};  // residual and parameter blocks of the last solve
   StageTimes stage_times_;
   // When options.threads > 1; a copy of the graph (checkForContradiction) shares it.
   std::shared_ptr<ThreadPool> pool_;

@@ -18,10 +18,10 @@ double percentile(std::vector<double> v, double q) {
 }  // namespace
 
 std::vector<TimingAt> timingAt(const std::vector<KeyframeTiming>& timings,
-                               const std::vector<int>& sizes) {
+                               const std::vector<int>& sizes, int half_width) {
   std::vector<TimingAt> out;
   for (int n : sizes) {
-    const int lo = std::max(0, n - 10), hi = std::min(int(timings.size()), n + 10);
+    const int lo = std::max(0, n - half_width), hi = std::min(int(timings.size()), n + half_width);
     if (hi - lo < 5) continue;
     std::vector<double> extraction, planes, optimisation;
     for (int k = lo; k < hi; ++k) {

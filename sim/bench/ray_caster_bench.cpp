@@ -141,9 +141,7 @@ void BM_SimulateTurn_D6(benchmark::State& state) {
   for (auto _ : state) {
     const LidarScan scan = sim.scan(k++ % sim.scanCount(sim.duration()), *lidar);
     points += scan.points.size();
-    timing.poses_s += scan.timing.poses_s;
-    timing.casting_s += scan.timing.casting_s;
-    timing.noise_s += scan.timing.noise_s;
+    timing += scan.timing;
   }
   state.SetItemsProcessed(state.iterations());
   // Each stage's share of a turn, in ms (means over the iterations).
