@@ -118,10 +118,9 @@ bool SGraph::addScan(Scan scan) {
   const Eigen::Isometry3d M_T_L = initial * R_T_L_;
   // The map as association sees it, kept in step as this keyframe's observations change it.
   std::vector<MapPlane> walls = activeWalls();
-  const auto planes_start = std::chrono::steady_clock::now();
+  StageClock extraction_clock(stage_times_, "extraction");
   const std::vector<PlaneObservation> observations = extractPlanes(scan, options_.extraction);
-  const double planes_s = seconds(planes_start);
-  stage_times_.add("extraction", planes_s);
+  const double planes_s = extraction_clock.stop();
   StageClock association_clock(stage_times_, "association");
   for (const auto& observation : observations) {
     if (observation.orientation == PlaneOrientation::kHorizontal) {
@@ -163,12 +162,10 @@ bool SGraph::addScan(Scan scan) {
   Timing timing;
   timing.extraction_s = seconds(start);
   timing.planes_s = planes_s;
-  const auto optimisation_start = std::chrono::steady_clock::now();
   StageClock optimisation_clock(stage_times_, "optimisation");
   optimise(std::max(1, int(keyframes_.size()) - options_.window), true, options_.max_iterations);
   mergeDuplicatePlanes(std::max(0, index - options_.window + 1));
-  optimisation_clock.stop();
-  timing.solve_s = seconds(optimisation_start);
+  timing.solve_s = optimisation_clock.stop();
   timing.window_residuals = last_window_size_.first;
   timing.window_parameters = last_window_size_.second;
   StageClock rooms_clock(stage_times_, "rooms");
@@ -190,8 +187,7 @@ bool SGraph::addScan(Scan scan) {
       detectRooms(k, dominant, walls_now);
     }
   }
-  rooms_clock.stop();
-  timing.optimisation_s = seconds(optimisation_start);
+  timing.optimisation_s = timing.solve_s + rooms_clock.stop();
   timings_.push_back(timing);
   return true;
 }

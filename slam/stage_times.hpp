@@ -51,11 +51,14 @@ class StageClock {
   StageClock(const StageClock&) = delete;
   StageClock& operator=(const StageClock&) = delete;
 
-  void stop() {
-    if (!times_) return;
-    times_->add(stage_,
-                std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count());
+  // Adds the time so far to the stage (once) and returns it, for a caller that also keeps it.
+  double stop() {
+    if (!times_) return 0.0;
+    const double seconds =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
+    times_->add(stage_, seconds);
     times_ = nullptr;
+    return seconds;
   }
 
  private:
