@@ -1,5 +1,6 @@
 #include "run/atomic_folder.hpp"
 
+#include <fcntl.h>
 #include <signal.h>
 #include <unistd.h>
 
@@ -58,6 +59,14 @@ void removeStalePartials(const fs::path& parent, const fs::path& target) {
   }
 }
 
+// Exchanges the two paths in one step (Linux renameat2 RENAME_EXCHANGE), so that `target` always
+// holds a whole folder, the old one or the new one. Replacing it by removing it first left a
+// half-removed folder at the output path when the process was killed meanwhile (the kill test
+// caught it). False where the file system cannot exchange; the caller then removes and renames.
+bool swapFolders(const fs::path& a, const fs::path& b) {
+  return ::renameat2(AT_FDCWD, a.c_str(), AT_FDCWD, b.c_str(), RENAME_EXCHANGE) == 0;
+}
+
 }  // namespace
 
 namespace {
@@ -102,6 +111,12 @@ void writeFolderAtomically(const std::string& dir, bool overwrite,
       if (file.rfind(inside, 0) != 0) throw;
       throw bim::InputError((target / file.substr(inside.size())).string(), e.pointer(),
                             e.reason());
+    }
+    if (fs::exists(target) && swapFolders(temporary, target)) {
+      // The old folder now has the temporary name: if this process dies while removing it, the
+      // next run to the same path removes it (removeStalePartials).
+      fs::remove_all(temporary, error);
+      return;
     }
     if (fs::exists(target)) fs::remove_all(target);
     fs::rename(temporary, target, error);

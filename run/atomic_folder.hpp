@@ -7,9 +7,10 @@
 namespace isg::run {
 
 // Creates the folder `dir` all at once: `fill` writes into a temporary folder beside it, which is
-// renamed into place when `fill` returns; if it throws, the temporary folder is removed and
-// nothing is left half-written. An existing `dir` is an InputError unless `overwrite`, and so is
-// a parent directory that does not exist. Used for dataset and run folders.
+// renamed into place when `fill` returns (an existing folder is exchanged with it in one step,
+// then removed); if it throws, the temporary folder is removed and nothing is left half-written. An
+// existing `dir` is an InputError unless `overwrite`, and so is a parent directory that does not
+// exist. Used for dataset and run folders.
 void writeFolderAtomically(const std::string& dir, bool overwrite,
                            const std::function<void(const std::filesystem::path&)>& fill);
 
