@@ -34,16 +34,20 @@ namespace {
 void appendLzf(std::string& out, const std::string& bytes) {
   constexpr std::size_t kProbeBytes = 4096;
   constexpr double kWorthIt = 0.9;
-  std::string packed(bytes.size() + bytes.size() / 16 + 64, '\0');
   const std::size_t probe = std::min(bytes.size(), kProbeBytes);
+  char probe_out[kProbeBytes];
   const unsigned probed =
-      probe == 0 ? 0 : lzf_compress(bytes.data(), unsigned(probe), packed.data(), unsigned(probe));
+      probe == 0 ? 0 : lzf_compress(bytes.data(), unsigned(probe), probe_out, unsigned(probe));
   // lzf_compress returns 0 when the result would not fit in `probe` bytes: no gain at all.
   if (probe > 0 && probed > 0 && probed < kWorthIt * probe) {
+    // Compressed straight into `out`: LZF's worst case is 1 control byte per 32 literals.
+    const std::size_t at = out.size();
+    const std::size_t bound = bytes.size() + bytes.size() / 32 + 64;
+    out.resize(at + bound);
     const unsigned size =
-        lzf_compress(bytes.data(), unsigned(bytes.size()), packed.data(), unsigned(packed.size()));
+        lzf_compress(bytes.data(), unsigned(bytes.size()), out.data() + at, unsigned(bound));
     if (size == 0) throw std::runtime_error("PCD: LZF compression failed");
-    out.append(packed.data(), size);
+    out.resize(at + size);
     return;
   }
   constexpr std::size_t kLiteralRun = 32;  // LZF's longest literal run
@@ -101,6 +105,7 @@ std::string pcdBytes(const std::vector<slam::ScanPoint>& points, PcdData data) {
   }
   // Field after field (all x, then all y, ...) as one LZF stream, behind two little-endian
   // uint32: the compressed and the uncompressed size (PCL's layout, read by PCL and its tools).
+  out.reserve(header + 8 + raw + raw / 32 + 6 * 64);
   out.resize(header + 8);
   std::string column;
   each_field([&]<typename T>(T slam::ScanPoint::*member) {

@@ -163,11 +163,12 @@ bool SGraph::addScan(Scan scan) {
   timing.extraction_s = seconds(start);
   timing.planes_s = planes_s;
   StageClock optimisation_clock(stage_times_, "optimisation");
-  optimise(std::max(1, int(keyframes_.size()) - options_.window), true, options_.max_iterations);
+  const WindowSize window = optimise(std::max(1, int(keyframes_.size()) - options_.window), true,
+                                     options_.max_iterations);
   mergeDuplicatePlanes(std::max(0, index - options_.window + 1));
   timing.solve_s = optimisation_clock.stop();
-  timing.window_residuals = last_window_size_.first;
-  timing.window_parameters = last_window_size_.second;
+  timing.window_residuals = window.residual_blocks;
+  timing.window_parameters = window.parameter_blocks;
   StageClock rooms_clock(stage_times_, "rooms");
   // Walls seen now may complete rooms the robot stood in a little earlier: look again from every
   // keyframe of the window.
@@ -277,9 +278,9 @@ void SGraph::startNewSegment(double stamp, const std::string& reason) {
   segment_start_ = stamp;
 }
 
-void SGraph::optimise(int first, bool with_hook, int max_iterations) {
+SGraph::WindowSize SGraph::optimise(int first, bool with_hook, int max_iterations) {
   const int n = int(keyframes_.size());
-  if (n < 2) return;
+  if (n < 2) return {};
   first = std::clamp(first, 1, n - 1);  // keyframe 0 fixes the gauge (M)
   ceres::Problem::Options problem_options;
   // The manifolds and the loss live on this stack frame, not in the problem.
@@ -377,11 +378,11 @@ void SGraph::optimise(int first, bool with_hook, int max_iterations) {
   solver.num_threads = 1;
   ceres::Solver::Summary summary;
   ceres::Solve(solver, &problem, &summary);
-  last_window_size_ = {problem.NumResidualBlocks(), problem.NumParameterBlocks()};
   for (int plane : planes) {
     Plane& p = planes_[plane];
     p.map.plane = bim::toPlane(p.parameters);
   }
+  return {problem.NumResidualBlocks(), problem.NumParameterBlocks()};
 }
 
 MapPlane SGraph::wallOf(const Plane& p) {

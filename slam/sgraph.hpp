@@ -150,8 +150,13 @@ class SGraph {
   MapDiagnostics diagnostics() const;
 
  private:
-  // Optimises the keyframes from `first` on (the one before held) and what they observe.
-  void optimise(int first, bool with_hook, int max_iterations);
+  struct WindowSize {
+    int residual_blocks = 0;
+    int parameter_blocks = 0;
+  };
+  // Optimises the keyframes from `first` on (the one before held) and what they observe;
+  // returns the size of the problem solved.
+  WindowSize optimise(int first, bool with_hook, int max_iterations);
   void detectRooms(int keyframe, double dominant_yaw, const std::vector<MapPlane>& walls);
   // Planes of the window that turned out to be the same surface (created before the optimisation
   // brought them together) are merged into the one observed most.
@@ -171,7 +176,6 @@ class SGraph {
   std::deque<Plane> planes_;
   std::deque<Room> rooms_;
   std::vector<Timing> timings_;
-  std::pair<int, int> last_window_size_{0, 0};  // residual and parameter blocks of the last solve
   StageTimes stage_times_;
   // When options.threads > 1; a copy of the graph (checkForContradiction) shares it.
   std::shared_ptr<ThreadPool> pool_;
