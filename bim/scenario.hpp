@@ -67,6 +67,19 @@ struct OdometryConfig {
   double heading_bias_deg_per_m = 0.0;
 };
 
+// An inertial unit on the base with the continuous-time noise model Kalibr documents: white noise
+// of a given density and a bias that random-walks, per axis. Defaults are those published for the
+// ADIS16448 MEMS unit of the EuRoC MAV dataset.
+struct ImuConfig {
+  double rate_hz = 200.0;
+  std::array<double, 6> mount = {0.0, 0.0, 0.0, 0.0, 0.0, 0.0};  // x y z roll pitch yaw on R
+  double gyroscope_noise_density = 1.6968e-4;                    // rad/s/√Hz
+  double gyroscope_random_walk = 1.9393e-5;                      // rad/s²/√Hz
+  double accelerometer_noise_density = 2.0e-3;                   // m/s²/√Hz
+  double accelerometer_random_walk = 3.0e-3;                     // m/s³/√Hz
+  double gravity = 9.81;  // m/s², along −z of the plan frame
+};
+
 struct ExtraWall {
   std::string id;     // generated: "extra0", "extra1", ... (unique in the file)
   std::string level;  // defaults to the robot's level
@@ -110,6 +123,7 @@ struct Scenario {
   RobotConfig robot;
   LidarConfig lidar;
   OdometryConfig odometry;
+  ImuConfig imu;
   AsBuilt as_built;
 };
 

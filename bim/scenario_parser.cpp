@@ -139,6 +139,17 @@ RobotConfig parseRobot(const std::optional<JsonNode>& node, const Plan& plan) {
   return robot;
 }
 
+// [x, y, z, roll, pitch, yaw] of a sensor on the robot base.
+std::array<double, 6> parseMount(const JsonNode& node, const std::string& sensor) {
+  const auto values = node.numbers(6);
+  if (std::max({std::abs(values[0]), std::abs(values[1]), std::abs(values[2])}) > 10.0) {
+    node.fail("the " + sensor + " must be mounted within 10 m of the robot's reference point");
+  }
+  std::array<double, 6> mount;
+  std::copy(values.begin(), values.end(), mount.begin());
+  return mount;
+}
+
 LidarConfig parseLidar(const JsonNode& node) {
   node.expectObject({"rate_hz", "range_noise_m", "min_range_m", "max_range_m", "dropout", "mount"});
   LidarConfig lidar;
@@ -157,13 +168,7 @@ LidarConfig parseLidar(const JsonNode& node) {
         .fail("min_range_m must be below max_range_m (" + formatNumber(lidar.max_range_m) + ")");
   }
   if (auto v = node.optionalField("dropout")) lidar.dropout = v->numberInRange(0.0, 1.0, true);
-  if (auto v = node.optionalField("mount")) {
-    const auto values = v->numbers(6);
-    if (std::max({std::abs(values[0]), std::abs(values[1]), std::abs(values[2])}) > 10.0) {
-      v->fail("the LiDAR must be mounted within 10 m of the robot's reference point");
-    }
-    std::copy(values.begin(), values.end(), lidar.mount.begin());
-  }
+  if (auto v = node.optionalField("mount")) lidar.mount = parseMount(*v, "LiDAR");
   return lidar;
 }
 
@@ -182,6 +187,24 @@ OdometryConfig parseOdometry(const JsonNode& node) {
     odometry.heading_bias_deg_per_m = v->numberInRange(-90.0, 90.0);
   }
   return odometry;
+}
+
+ImuConfig parseImu(const JsonNode& node) {
+  node.expectObject({"rate_hz", "mount", "gyroscope_noise_density", "gyroscope_random_walk",
+                     "accelerometer_noise_density", "accelerometer_random_walk", "gravity"});
+  ImuConfig imu;
+  if (auto v = node.optionalField("rate_hz")) imu.rate_hz = v->numberInRange(10.0, 2000.0);
+  if (auto v = node.optionalField("mount")) imu.mount = parseMount(*v, "IMU");
+  if (auto v = node.optionalField("gyroscope_noise_density"))
+    imu.gyroscope_noise_density = v->numberInRange(0.0, 1.0);
+  if (auto v = node.optionalField("gyroscope_random_walk"))
+    imu.gyroscope_random_walk = v->numberInRange(0.0, 1.0);
+  if (auto v = node.optionalField("accelerometer_noise_density"))
+    imu.accelerometer_noise_density = v->numberInRange(0.0, 10.0);
+  if (auto v = node.optionalField("accelerometer_random_walk"))
+    imu.accelerometer_random_walk = v->numberInRange(0.0, 10.0);
+  if (auto v = node.optionalField("gravity")) imu.gravity = v->numberInRange(0.0, 30.0);
+  return imu;
 }
 
 // A list of ids that must all name walls (or doors) of the plan, each at most once.
@@ -338,7 +361,7 @@ Scenario parseScenario(const JsonNode& root, const PlanLoader& load_plan) {
     return scenarioFromPlan(parsePlan(root), path);
   }
   root.expectObject({"$schema", "format", "version", "name", "plan", "seed", "robot", "lidar",
-                     "odometry", "as_built"});
+                     "odometry", "imu", "as_built"});
   if (root.has("format") && root.field("format").isString() &&
       root.field("format").string() != kScenarioFormat) {
     root.field("format").fail("unknown format " + inQuotes(root.field("format").string()) +
@@ -368,6 +391,7 @@ Scenario parseScenario(const JsonNode& root, const PlanLoader& load_plan) {
   scenario.robot = parseRobot(root.optionalField("robot"), scenario.plan);
   if (auto lidar = root.optionalField("lidar")) scenario.lidar = parseLidar(*lidar);
   if (auto odometry = root.optionalField("odometry")) scenario.odometry = parseOdometry(*odometry);
+  if (auto imu = root.optionalField("imu")) scenario.imu = parseImu(*imu);
   if (auto as_built = root.optionalField("as_built")) {
     scenario.as_built = parseAsBuilt(*as_built, scenario.plan, scenario.robot.level);
     checkAsBuiltExtent(*as_built, scenario.plan, scenario.as_built);

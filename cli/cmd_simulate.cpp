@@ -4,6 +4,7 @@
 #include <cstdio>
 #include <iostream>
 
+#include "cli/cmd_export.hpp"
 #include "cli/progress_bar.hpp"
 #include "cli/route_check.hpp"
 #include "run/atomic_folder.hpp"
@@ -17,9 +18,10 @@ SimulateCommand::SimulateCommand(CLI::App& parent) {
       parent.add_subcommand("simulate", "Synthesise a dataset: walk the robot, record its sensors");
   app_->footer(
       "The robot walks the scenario's route (default: a tour of every room reachable through "
-      "open doors) in the building as built; its VLP-16 scans, its odometry and the ground truth "
-      "are written to DATASET_DIR: scans/NNNNNN.pcd, groundtruth.tum, odometry.tum, scans.tum, "
-      "metadata.json (docs/formats.md). The same seed gives a byte-identical dataset.\n\n" +
+      "open doors) in the building as built; its VLP-16 scans, its IMU, its odometry and the "
+      "ground truth are written to DATASET_DIR: scans/NNNNNN.pcd, imu.csv, groundtruth.tum, "
+      "odometry.tum, scans.tum, metadata.json (docs/formats.md). The same seed gives a "
+      "byte-identical dataset.\n\n" +
       builtinWorldsHelp());
   app_->add_option("input", input_, "plan or scenario file, or builtin:NAME")
       ->option_text("PLAN|SCENARIO")
@@ -36,10 +38,18 @@ SimulateCommand::SimulateCommand(CLI::App& parent) {
       ->capture_default_str();
   app_->add_option("--pcd", pcd_,
                    "how scans store their points: binary_compressed (LZF, as PCL writes it; about "
-                   "a third of the size) or binary (uncompressed)")
+                   "0.8 of the size on simulated scans) or binary (uncompressed)")
       ->check(CLI::IsMember({"binary_compressed", "binary"}))
       ->capture_default_str();
-  app_->add_flag("--force", force_, "replace DATASET_DIR if it exists");
+  app_->add_option(
+          "--rosbag", rosbag_,
+          "also write the dataset as a ROS 1 bag (as isg export DATASET_DIR --rosbag does)")
+      ->option_text("OUT.bag");
+  app_->add_option("--stamp-offset", stamp_offset_,
+                   "with --rosbag: seconds added to every dataset time in the bag")
+      ->check(CLI::Range(0.0, 4.0e9))
+      ->capture_default_str();
+  app_->add_flag("--force", force_, "replace DATASET_DIR (and OUT.bag) if it exists");
   app_->add_flag("-q,--quiet", quiet_, "no progress bar");
 }
 
@@ -49,6 +59,10 @@ int SimulateCommand::run() {
   sim::Simulation simulation(scenario);
   checkRoute("isg simulate", scenario, simulation, duration_);
   run::checkCanCreateFolder(output_, force_);
+  if (!rosbag_.empty()) {
+    // Checked before hours of simulation, as the folder is.
+    run::AtomicFile probe(rosbag_, force_);
+  }
   sim::DatasetOptions options;
   options.duration = duration_;
   options.overwrite = force_;
@@ -75,6 +89,9 @@ int SimulateCommand::run() {
       summary.scan_bytes / 1e6, pcd_.c_str(), summary.sim_seconds, summary.wall_seconds,
       summary.wall_seconds > 0 ? summary.sim_seconds / summary.wall_seconds : 0.0,
       simulation.route().visited_rooms.size());
+  if (!rosbag_.empty()) {
+    exportRosbagWithProgress("isg simulate", output_, rosbag_, stamp_offset_, force_, quiet_);
+  }
   return kExitOk;
 }
 

@@ -8,8 +8,8 @@
 
 namespace isg::cli {
 
-// isg simulate PLAN|SCENARIO -o DATASET_DIR [--seed N] [--duration S] [--pcd DATA]: synthesise a
-// dataset.
+// isg simulate PLAN|SCENARIO -o DATASET_DIR [--seed N] [--duration S] [--pcd DATA]
+// [--rosbag OUT.bag]: synthesise a dataset (and a bag of it).
 class SimulateCommand : public Command {
  public:
   explicit SimulateCommand(CLI::App& parent);
@@ -22,6 +22,8 @@ class SimulateCommand : public Command {
   double duration_ = -1.0;
   int threads_ = 2;
   std::string pcd_ = "binary_compressed";
+  std::string rosbag_;  // also write the dataset as this bag
+  double stamp_offset_ = 1e9;
   bool force_ = false;
   bool quiet_ = false;
 };

@@ -10,6 +10,7 @@
 #include "cli/cmd_agraph.hpp"
 #include "cli/cmd_check.hpp"
 #include "cli/cmd_eval.hpp"
+#include "cli/cmd_export.hpp"
 #include "cli/cmd_inspect.hpp"
 #include "cli/cmd_render.hpp"
 #include "cli/cmd_run.hpp"
@@ -36,6 +37,7 @@ int main(int argc, char** argv) {
   commands.push_back(std::make_unique<InspectCommand>(app));
   commands.push_back(std::make_unique<AGraphCommand>(app));
   commands.push_back(std::make_unique<SimulateCommand>(app));
+  commands.push_back(std::make_unique<ExportCommand>(app));
   commands.push_back(std::make_unique<RenderCommand>(app));
   commands.push_back(std::make_unique<SlamCommand>(app));
   commands.push_back(std::make_unique<RunCommand>(app));

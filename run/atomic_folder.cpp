@@ -71,18 +71,24 @@ bool swapFolders(const fs::path& a, const fs::path& b) {
 
 namespace {
 
-fs::path createTemporaryFolder(const std::string& dir, bool overwrite) {
-  const fs::path target(dir);
+// Checks that `path` may be written and names its temporary twin beside it (stale twins of killed
+// processes removed).
+fs::path temporaryPathFor(const std::string& path, bool overwrite) {
+  const fs::path target(path);
   if (fs::exists(target) && !overwrite) {
-    throw bim::InputError(dir, "", "already exists (use --force to replace it)");
+    throw bim::InputError(path, "", "already exists (use --force to replace it)");
   }
   const fs::path parent = target.has_parent_path() ? target.parent_path() : fs::path(".");
   if (!fs::is_directory(parent)) {
-    throw bim::InputError(dir, "",
+    throw bim::InputError(path, "",
                           "cannot write: directory " + parent.string() + " does not exist");
   }
   removeStalePartials(parent, target);
-  const fs::path temporary = parent / (partialPrefix(target) + std::to_string(::getpid()));
+  return parent / (partialPrefix(target) + std::to_string(::getpid()));
+}
+
+fs::path createTemporaryFolder(const std::string& dir, bool overwrite) {
+  const fs::path temporary = temporaryPathFor(dir, overwrite);
   std::error_code error;
   fs::create_directories(temporary, error);
   if (error) throw bim::InputError(dir, "", "cannot write: " + error.message());
@@ -126,6 +132,24 @@ void writeFolderAtomically(const std::string& dir, bool overwrite,
     fs::remove_all(temporary, ignored);
     throw;
   }
+}
+
+AtomicFile::AtomicFile(const std::string& path, bool overwrite)
+    : path_(path), temporary_(temporaryPathFor(path, overwrite)) {
+  if (fs::is_directory(path_)) throw bim::InputError(path, "", "is a directory");
+}
+
+AtomicFile::~AtomicFile() {
+  if (committed_) return;
+  std::error_code ignored;
+  fs::remove(temporary_, ignored);
+}
+
+void AtomicFile::commit() {
+  std::error_code error;
+  fs::rename(temporary_, path_, error);  // replaces an existing file in one step
+  if (error) throw bim::InputError(path_.string(), "", "cannot write: " + error.message());
+  committed_ = true;
 }
 
 void writeFileAtomically(const std::string& path, const std::string& content) {

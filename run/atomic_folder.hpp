@@ -19,6 +19,25 @@ void writeFolderAtomically(const std::string& dir, bool overwrite,
 // Probes by creating and removing the temporary folder; earlier runs' stale ones are removed.
 void checkCanCreateFolder(const std::string& dir, bool overwrite);
 
+// A file too large to build in memory, made all at once: the caller writes temporary() (beside
+// `path`, named like writeFolderAtomically's folders so that a killed process's leftover is
+// removed by the next write to the same path), then commit() renames it into place. Destroyed
+// uncommitted (an error, an interrupt), it removes the temporary file. An existing `path` is an
+// InputError unless `overwrite`, as is a directory at `path` or a missing parent directory.
+class AtomicFile {
+ public:
+  AtomicFile(const std::string& path, bool overwrite);
+  ~AtomicFile();
+  AtomicFile(const AtomicFile&) = delete;
+  AtomicFile& operator=(const AtomicFile&) = delete;
+  const std::filesystem::path& temporary() const { return temporary_; }
+  void commit();
+
+ private:
+  std::filesystem::path path_, temporary_;
+  bool committed_ = false;
+};
+
 // One file of such a folder; a failure is an InputError naming it.
 void writeFile(const std::filesystem::path& path, const std::string& content);
 

@@ -19,6 +19,20 @@ std::string scanFileName(int index) {
 
 std::string trajectoryText(const Trajectory& trajectory) { return eval::toTumText(trajectory); }
 
+std::string imuText(const std::vector<slam::ImuSample>& samples) {
+  std::string out = "t,ax,ay,az,gx,gy,gz\n";
+  out.reserve(out.size() + samples.size() * 120);
+  char line[256];
+  for (const auto& s : samples) {
+    const Eigen::Vector3d& a = s.accelerometer;
+    const Eigen::Vector3d& g = s.gyroscope;
+    const int n = std::snprintf(line, sizeof line, "%.6f,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g\n", s.t,
+                                a.x(), a.y(), a.z(), g.x(), g.y(), g.z());
+    out.append(line, std::size_t(n));
+  }
+  return out;
+}
+
 const char* pcdDataName(PcdData data) {
   return data == PcdData::kBinary ? "binary" : "binary_compressed";
 }
@@ -118,12 +132,16 @@ std::string pcdBytes(const std::vector<slam::ScanPoint>& points, PcdData data) {
   return out;
 }
 
+nlohmann::ordered_json mountJson(const std::array<double, 6>& xyz_rpy, const Eigen::Isometry3d& T) {
+  const Eigen::Matrix4d M = T.matrix();
+  nlohmann::ordered_json matrix = nlohmann::ordered_json::array();
+  for (int r = 0; r < 4; ++r) matrix.push_back({M(r, 0), M(r, 1), M(r, 2), M(r, 3)});
+  return {{"xyz_rpy", xyz_rpy}, {"matrix", matrix}};
+}
+
 nlohmann::ordered_json extrinsicsJson(const std::array<double, 6>& xyz_rpy,
                                       const Eigen::Isometry3d& R_T_L) {
-  const Eigen::Matrix4d T = R_T_L.matrix();
-  nlohmann::ordered_json matrix = nlohmann::ordered_json::array();
-  for (int r = 0; r < 4; ++r) matrix.push_back({T(r, 0), T(r, 1), T(r, 2), T(r, 3)});
-  return {{"R_T_L", {{"xyz_rpy", xyz_rpy}, {"matrix", matrix}}}};
+  return {{"R_T_L", mountJson(xyz_rpy, R_T_L)}};
 }
 
 }  // namespace isg::run::dataset

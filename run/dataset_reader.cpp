@@ -9,6 +9,7 @@
 #include "bim/input_error.hpp"
 #include "bim/json_reader.hpp"
 #include "run/dataset_format.hpp"
+#include "run/imu_file.hpp"
 #include "run/pcd_reader.hpp"
 #include "run/trajectory_file.hpp"
 
@@ -16,11 +17,12 @@ namespace isg::run {
 
 namespace fs = std::filesystem;
 
-void DatasetReader::readMetadata(const std::string& file) {
-  const bim::JsonSource source{file, nullptr};
-  const bim::JsonNode root(metadata_, "", source);
-  if (!root.isObject()) root.fail("expected an object, got " + bim::describeJsonType(metadata_));
-  const bim::JsonNode matrix = root.field("extrinsics").field("R_T_L").field("matrix");
+namespace {
+
+// A sensor's mount from metadata.json: a rigid transform (a rotation, orthonormal with
+// determinant +1, and a last row of 0 0 0 1) within 10 m. Anything else (an all-zero matrix)
+// would poison every point and the optimiser with it.
+Eigen::Isometry3d mountOf(const bim::JsonNode& matrix, const std::string& sensor) {
   const auto rows = matrix.elements();
   if (rows.size() != 4) matrix.fail("expected a 4 × 4 array of numbers");
   Eigen::Matrix4d T;
@@ -28,8 +30,6 @@ void DatasetReader::readMetadata(const std::string& file) {
     const auto row = rows[std::size_t(r)].numbers(4);
     for (int c = 0; c < 4; ++c) T(r, c) = row[std::size_t(c)];
   }
-  // A rigid transform: a rotation (orthonormal, det +1) and a last row of 0 0 0 1. Anything else
-  // (an all-zero matrix) would poison every point and the optimiser with it.
   const Eigen::Matrix3d R = T.topLeftCorner<3, 3>();
   const double orthogonality =
       (R.transpose() * R - Eigen::Matrix3d::Identity()).cwiseAbs().maxCoeff();
@@ -40,9 +40,31 @@ void DatasetReader::readMetadata(const std::string& file) {
     matrix.fail("the last row must be 0 0 0 1");
   }
   if (T.col(3).head<3>().cwiseAbs().maxCoeff() > 10.0) {
-    matrix.fail("the LiDAR must be mounted within 10 m of the robot's reference point");
+    matrix.fail("the " + sensor + " must be mounted within 10 m of the robot's reference point");
   }
-  R_T_L_.matrix() = T;
+  Eigen::Isometry3d out;
+  out.matrix() = T;
+  return out;
+}
+
+}  // namespace
+
+void DatasetReader::readMetadata(const std::string& file) {
+  const bim::JsonSource source{file, nullptr};
+  const bim::JsonNode root(metadata_, "", source);
+  if (!root.isObject()) root.fail("expected an object, got " + bim::describeJsonType(metadata_));
+  R_T_L_ = mountOf(root.field("extrinsics").field("R_T_L").field("matrix"), "LiDAR");
+  if (auto imu = root.field("extrinsics").optionalField("R_T_I")) {
+    R_T_I_ = mountOf(imu->field("matrix"), "IMU");
+  }
+  if (auto imu = root.optionalField("imu")) {
+    ImuNoise noise;
+    noise.rate_hz = imu->field("rate_hz").numberInRange(1.0, 100000.0);
+    noise.gyroscope_noise_density = imu->field("gyroscope_noise_density").numberInRange(0.0, 1e3);
+    noise.accelerometer_noise_density =
+        imu->field("accelerometer_noise_density").numberInRange(0.0, 1e3);
+    imu_noise_ = noise;
+  }
   if (auto lidar = root.optionalField("lidar")) {
     if (auto rate = lidar->optionalField("rate_hz"))
       scan_period_ = 1.0 / rate->numberInRange(0.1, 1000.0);
@@ -85,6 +107,7 @@ DatasetReader::DatasetReader(const std::string& dir) : dir_(dir) {
                               std::to_string(scan_files_.size()) + " scans in scans/");
   }
   for (const auto& s : stamps) scan_stamps_.push_back(s.t);
+  if (fs::exists(root / dataset::kImu)) imu_ = readImuFile((root / dataset::kImu).string());
 }
 
 SensorStreams DatasetReader::streams() const {

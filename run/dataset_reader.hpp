@@ -26,6 +26,17 @@ class DatasetReader : public ScanSource {
   std::uint64_t seed() const { return seed_; }
   const std::string& robotLevel() const { return robot_level_; }
   const Eigen::Isometry3d& R_T_L() const { return R_T_L_; }
+  // The IMU's mount (extrinsics.R_T_I; identity when not recorded) and its stream (imu.csv;
+  // empty when the dataset has none).
+  const Eigen::Isometry3d& R_T_I() const { return R_T_I_; }
+  const std::vector<slam::ImuSample>& imu() const { return imu_; }
+  // metadata.json's imu noise model, when recorded: what a consumer's covariances come from.
+  struct ImuNoise {
+    double rate_hz = 0.0;
+    double gyroscope_noise_density = 0.0;      // rad/s/√Hz
+    double accelerometer_noise_density = 0.0;  // m/s²/√Hz
+  };
+  const std::optional<ImuNoise>& imuNoise() const { return imu_noise_; }
   const Trajectory& odometry() const { return odometry_; }
   const Trajectory& groundTruth() const { return ground_truth_; }
   int scanCount() const { return int(scan_files_.size()); }
@@ -50,6 +61,9 @@ class DatasetReader : public ScanSource {
   std::string robot_level_;
   std::optional<double> duration_;
   Eigen::Isometry3d R_T_L_ = Eigen::Isometry3d::Identity();
+  Eigen::Isometry3d R_T_I_ = Eigen::Isometry3d::Identity();
+  std::vector<slam::ImuSample> imu_;
+  std::optional<ImuNoise> imu_noise_;
   Trajectory odometry_, ground_truth_;
   double scan_period_ = 0.1;
   std::vector<std::string> scan_files_;

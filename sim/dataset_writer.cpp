@@ -28,7 +28,7 @@ using run::writeFolderAtomically;
 namespace {
 
 nlohmann::ordered_json metadata(const Simulation& sim, double duration,
-                                const DatasetOptions& options, int scans) {
+                                const DatasetOptions& options, int scans, int imu_samples) {
   using json = nlohmann::ordered_json;
   const bim::Scenario& s = sim.scenario();
   const auto& l = s.lidar;
@@ -42,6 +42,9 @@ nlohmann::ordered_json metadata(const Simulation& sim, double duration,
   json route = json::array();
   for (const auto& p : sim.route().waypoints) route.push_back({p.x(), p.y()});
   const auto& gait = sim.trajectory().gait();
+  json extrinsics = run::dataset::extrinsicsJson(l.mount, sim.R_T_L());
+  extrinsics["R_T_I"] = run::dataset::mountJson(s.imu.mount, sim.R_T_I());
+  const auto& imu = s.imu;
   return {
       {"format", run::dataset::kFormat},
       {"version", run::dataset::kVersion},
@@ -54,8 +57,9 @@ nlohmann::ordered_json metadata(const Simulation& sim, double duration,
        {{"B", "plan frame (ground truth, scans.tum)"},
         {"M", "odometry frame: the start pose of the base (odometry.tum)"},
         {"R", "robot base, x forward, y left, z up (groundtruth.tum is B_T_R)"},
-        {"L", "LiDAR: the frame of every point of scans/*.pcd, at the point's own firing time"}}},
-      {"extrinsics", run::dataset::extrinsicsJson(l.mount, sim.R_T_L())},
+        {"L", "LiDAR: the frame of every point of scans/*.pcd, at the point's own firing time"},
+        {"I", "IMU: the frame of imu.csv's readings"}}},
+      {"extrinsics", extrinsics},
       {"lidar",
        {{"model", "Velodyne VLP-16"},
         {"rate_hz", l.rate_hz},
@@ -83,6 +87,23 @@ nlohmann::ordered_json metadata(const Simulation& sim, double duration,
         {"heading_noise_deg_per_m", s.odometry.heading_noise_deg_per_m},
         {"heading_bias_deg_per_m", s.odometry.heading_bias_deg_per_m},
         {"model", "random walk: std over 1 m = translation_noise m and heading_noise deg"}}},
+      {"imu",
+       {{"file", run::dataset::kImu},
+        {"rate_hz", imu.rate_hz},
+        {"samples", imu_samples},
+        {"frame", "I"},
+        {"columns",
+         "t,ax,ay,az,gx,gy,gz: seconds, specific force in m/s² (gravity included: "
+         "+g upwards at rest), angular velocity in rad/s, all in I"},
+        {"gravity_m_s2", imu.gravity},
+        {"gyroscope_noise_density", imu.gyroscope_noise_density},
+        {"gyroscope_random_walk", imu.gyroscope_random_walk},
+        {"accelerometer_noise_density", imu.accelerometer_noise_density},
+        {"accelerometer_random_walk", imu.accelerometer_random_walk},
+        {"noise_units",
+         "densities in rad/s/√Hz and m/s²/√Hz, random walks in rad/s²/√Hz and "
+         "m/s³/√Hz (Kalibr's imu.yaml); biases start at zero"},
+        {"kidnaps", "not felt: the lift has no modelled motion"}}},
       {"groundtruth_rate_hz", options.groundtruth_rate},
       {"robot",
        {{"level", s.robot.level},
@@ -155,7 +176,10 @@ DatasetSummary writeDataset(Simulation& sim, const std::string& dir, const Datas
               trajectoryText(sim.groundTruth(duration, options.groundtruth_rate)));
     writeFile(temporary / kOdometry, trajectoryText(sim.odometry(duration)));
     writeFile(temporary / kScanPoses, trajectoryText(sim.scanPoses(duration)));
-    writeFile(temporary / kMetadata, metadata(sim, duration, options, scans).dump(2) + "\n");
+    const std::vector<ImuSample> imu = sim.imu(duration);
+    writeFile(temporary / kImu, imuText(imu));
+    writeFile(temporary / kMetadata,
+              metadata(sim, duration, options, scans, int(imu.size())).dump(2) + "\n");
   });
   summary.wall_seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();

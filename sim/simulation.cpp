@@ -5,6 +5,7 @@
 #include <cmath>
 
 #include "sim/fast_random.hpp"
+#include "sim/imu_simulator.hpp"
 #include "sim/odometry_model.hpp"
 #include "sim/robot_model.hpp"
 #include "worlds/mjcf_generator.hpp"
@@ -13,7 +14,12 @@ namespace isg::sim {
 
 namespace {
 
-enum Stream : std::uint64_t { kRouteStream = 1, kOdometryStream = 2, kScanStream = 3 };
+enum Stream : std::uint64_t {
+  kRouteStream = 1,
+  kOdometryStream = 2,
+  kScanStream = 3,
+  kImuStream = 4
+};
 
 GaitConfig gaitOf(const bim::RobotConfig& robot) {
   GaitConfig gait;
@@ -45,6 +51,7 @@ Eigen::Isometry3d mountTransform(const std::array<double, 6>& m) {
 Simulation::Simulation(const bim::Scenario& scenario)
     : scenario_(scenario),
       R_T_L_(mountTransform(scenario.lidar.mount)),
+      R_T_I_(mountTransform(scenario.imu.mount)),
       world_(buildWorld(scenario, R_T_L_)) {
   grid_ =
       std::make_unique<OccupancyGrid>(scenario_.plan, scenario_.as_built, scenario_.robot.level);
@@ -118,6 +125,11 @@ run::Trajectory Simulation::odometry(double duration) const {
     out.push_back({t, model.update(trajectory_->pose(t), rng)});
   }
   return out;
+}
+
+std::vector<ImuSample> Simulation::imu(double duration) const {
+  return simulateImu(*trajectory_, scenario_.imu, duration,
+                     deriveSeed(scenario_.seed, kImuStream, 0));
 }
 
 run::Trajectory Simulation::scanPoses(double duration) const {

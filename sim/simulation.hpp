@@ -7,6 +7,7 @@
 
 #include "bim/scenario.hpp"
 #include "run/sensor_streams.hpp"
+#include "sim/imu_simulator.hpp"
 #include "sim/lidar_simulator.hpp"
 #include "sim/mujoco_world.hpp"
 #include "sim/occupancy_grid.hpp"
@@ -46,14 +47,18 @@ class Simulation {
   Eigen::Isometry3d B_T_L(double t) const { return trajectory_->pose(t) * R_T_L_; }
 
   run::Trajectory groundTruth(double duration, double rate_hz) const;
-  run::Trajectory odometry(double duration) const;   // M_T_R at odometry.rate_hz
-  run::Trajectory scanPoses(double duration) const;  // B_T_L at each scan stamp
+  run::Trajectory odometry(double duration) const;    // M_T_R at odometry.rate_hz
+  run::Trajectory scanPoses(double duration) const;   // B_T_L at each scan stamp
+  std::vector<ImuSample> imu(double duration) const;  // the IMU stream (scenario imu)
+  // The IMU on the base (scenario imu.mount).
+  const Eigen::Isometry3d& R_T_I() const { return R_T_I_; }
 
   std::mt19937_64 generator(std::uint64_t stream, std::uint64_t index = 0) const;
 
  private:
   bim::Scenario scenario_;
   Eigen::Isometry3d R_T_L_;
+  Eigen::Isometry3d R_T_I_;
   MujocoWorld world_;
   std::unique_ptr<OccupancyGrid> grid_;
   PlannedRoute route_;

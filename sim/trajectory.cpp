@@ -10,6 +10,21 @@ namespace {
 
 double wrapAngle(double a) { return std::remainder(a, 2.0 * std::numbers::pi); }
 
+// Seconds over which the trot's sway eases in at the start and out at the end.
+constexpr double kSwayEase = 0.5;
+
+// The quintic smootherstep on [0, 1] and its derivatives: 0 → 1 with zero slope and curvature at
+// both ends, so a quantity eased by it stays twice differentiable.
+struct Smoothstep {
+  double value, rate, acceleration;
+};
+Smoothstep smootherstep(double u) {
+  if (u <= 0.0) return {0.0, 0.0, 0.0};
+  if (u >= 1.0) return {1.0, 0.0, 0.0};
+  return {u * u * u * (10.0 + u * (-15.0 + 6.0 * u)), 30.0 * u * u * (1.0 - u) * (1.0 - u),
+          60.0 * u * (1.0 - u) * (1.0 - 2.0 * u)};
+}
+
 }  // namespace
 
 Trajectory::Trajectory(const std::vector<Eigen::Vector2d>& waypoints, double start_yaw,
@@ -38,13 +53,14 @@ Trajectory::Leg Trajectory::makeLeg(double start, const std::vector<Eigen::Vecto
     const double heading = std::atan2(step.y(), step.x());
     const double turn = wrapAngle(heading - yaw);
     if (std::abs(turn) > 1e-9) {
-      const double dt = std::abs(turn) / gait_.turn_rate;
-      leg.segments.push_back({t, t + dt, at, at, yaw, yaw + turn});
-      t += dt;
+      const RestToRestProfile profile(std::abs(turn), gait_.turn_rate, gait_.turn_acceleration);
+      leg.segments.push_back({t, t + profile.duration(), at, at, yaw, yaw + turn, profile});
+      t += profile.duration();
     }
     yaw += turn;
-    leg.segments.push_back({t, t + length / speed_, at, waypoints[i], yaw, yaw});
-    t += length / speed_;
+    const RestToRestProfile profile(length, speed_, gait_.acceleration);
+    leg.segments.push_back({t, t + profile.duration(), at, waypoints[i], yaw, yaw, profile});
+    t += profile.duration();
     at = waypoints[i];
     leg.arrivals.push_back(t);
   }
@@ -77,43 +93,89 @@ Trajectory::PlanarState Trajectory::planarInLeg(const Leg& leg, double t) const 
   const auto it = std::upper_bound(leg.segments.begin(), leg.segments.end(), t,
                                    [](double value, const Segment& s) { return value < s.t1; });
   const Segment& s = *it;
-  const double a = (t - s.t0) / (s.t1 - s.t0);
-  return {s.from + a * (s.to - s.from), s.yaw0 + a * (s.yaw1 - s.yaw0), true};
+  const MotionState m = s.profile.at(t - s.t0);
+  PlanarState state;
+  state.moving = true;
+  state.xy = s.from;
+  state.yaw = s.yaw0;
+  if (s.yaw1 != s.yaw0) {  // a turn on the spot
+    const double sign = s.yaw1 > s.yaw0 ? 1.0 : -1.0;
+    state.yaw += sign * m.distance;
+    state.yaw_rate = sign * m.rate;
+    state.yaw_acceleration = sign * m.acceleration;
+  } else {
+    const Eigen::Vector2d along = (s.to - s.from).normalized();
+    state.xy += m.distance * along;
+    state.velocity = m.rate * along;
+    state.acceleration = m.acceleration * along;
+  }
+  return state;
 }
 
 Trajectory::PlanarState Trajectory::planar(double t) const {
   return planarInLeg(legs_[legAt(t)], t);
 }
 
-double Trajectory::swayWeight(double t) const {
-  constexpr double kRamp = 0.25;
+Trajectory::Eased Trajectory::sway(double t) const {
   const double d = duration();
-  if (t <= 0.0 || t >= d) return 0.0;
-  return std::min({1.0, t / kRamp, (d - t) / kRamp});
+  if (t <= 0.0 || t >= d) return {};
+  const Smoothstep in = smootherstep(t / kSwayEase);
+  const Smoothstep out = smootherstep((d - t) / kSwayEase);
+  // The product of the two eases, and its derivatives in t (d/dt of `out` flips the sign).
+  const double in_rate = in.rate / kSwayEase, in_acc = in.acceleration / (kSwayEase * kSwayEase);
+  const double out_rate = -out.rate / kSwayEase;
+  const double out_acc = out.acceleration / (kSwayEase * kSwayEase);
+  return {in.value * out.value, in_rate * out.value + in.value * out_rate,
+          in_acc * out.value + 2.0 * in_rate * out_rate + in.value * out_acc};
 }
 
-Eigen::Isometry3d Trajectory::pose(double t) const { return poseOf(planar(t), t); }
+Eigen::Isometry3d Trajectory::pose(double t) const { return kinematics(t).B_T_R; }
+
+BaseKinematics Trajectory::kinematics(double t) const { return kinematicsOf(planar(t), t); }
 
 Eigen::Isometry3d Trajectory::poseBefore(double t) const {
   const int leg = legAt(t);
-  return poseOf(planarInLeg(legs_[leg > 0 && legs_[leg].start == t ? leg - 1 : leg], t), t);
+  return kinematicsOf(planarInLeg(legs_[leg > 0 && legs_[leg].start == t ? leg - 1 : leg], t), t)
+      .B_T_R;
 }
 
-Eigen::Isometry3d Trajectory::poseOf(const PlanarState& p, double t) const {
-  const double w = swayWeight(t);
+BaseKinematics Trajectory::kinematicsOf(const PlanarState& p, double t) const {
+  const Eased w = sway(t);
+  const double omega = 2.0 * std::numbers::pi * gait_.frequency_hz;
   const double phase = gaitPhase(t);
-  const double z = floor_z_ + gait_.standing_height + w * gait_.bob_m * std::sin(phase);
-  const double roll =
-      w * gait_.roll_deg * std::numbers::pi / 180.0 * std::sin(phase + std::numbers::pi / 2);
-  const double pitch =
-      w * gait_.pitch_deg * std::numbers::pi / 180.0 * std::sin(phase + std::numbers::pi / 3);
-  Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
-  T.translation() = Eigen::Vector3d(p.xy.x(), p.xy.y(), z);
-  T.linear() = (Eigen::AngleAxisd(p.yaw, Eigen::Vector3d::UnitZ()) *
-                Eigen::AngleAxisd(pitch, Eigen::Vector3d::UnitY()) *
-                Eigen::AngleAxisd(roll, Eigen::Vector3d::UnitX()))
-                   .toRotationMatrix();
-  return T;
+  // amplitude · w(t) · sin(phase + offset), with its first and second derivatives.
+  auto swayed = [&](double amplitude, double offset) {
+    const double s = std::sin(phase + offset), c = std::cos(phase + offset);
+    return Eased{
+        amplitude * w.value * s, amplitude * (w.rate * s + w.value * omega * c),
+        amplitude * (w.acceleration * s + 2.0 * w.rate * omega * c - w.value * omega * omega * s)};
+  };
+  constexpr double kDeg = std::numbers::pi / 180.0;
+  const Eased bob = swayed(gait_.bob_m, 0.0);
+  const Eased roll = swayed(gait_.roll_deg * kDeg, std::numbers::pi / 2);
+  const Eased pitch = swayed(gait_.pitch_deg * kDeg, std::numbers::pi / 3);
+
+  BaseKinematics k;
+  k.B_T_R.translation() =
+      Eigen::Vector3d(p.xy.x(), p.xy.y(), floor_z_ + gait_.standing_height + bob.value);
+  k.B_T_R.linear() = (Eigen::AngleAxisd(p.yaw, Eigen::Vector3d::UnitZ()) *
+                      Eigen::AngleAxisd(pitch.value, Eigen::Vector3d::UnitY()) *
+                      Eigen::AngleAxisd(roll.value, Eigen::Vector3d::UnitX()))
+                         .toRotationMatrix();
+  k.velocity = Eigen::Vector3d(p.velocity.x(), p.velocity.y(), bob.rate);
+  k.acceleration = Eigen::Vector3d(p.acceleration.x(), p.acceleration.y(), bob.acceleration);
+  // Body rates of R = Rz(yaw) Ry(pitch) Rx(roll), and their derivatives in t.
+  const double sr = std::sin(roll.value), cr = std::cos(roll.value);
+  const double sp = std::sin(pitch.value), cp = std::cos(pitch.value);
+  const double dr = roll.rate, dp = pitch.rate, dy = p.yaw_rate;
+  const double ddr = roll.acceleration, ddp = pitch.acceleration, ddy = p.yaw_acceleration;
+  k.angular_velocity =
+      Eigen::Vector3d(dr - dy * sp, dp * cr + dy * cp * sr, -dp * sr + dy * cp * cr);
+  k.angular_acceleration = Eigen::Vector3d(
+      ddr - ddy * sp - dy * cp * dp,
+      ddp * cr - dp * sr * dr + ddy * cp * sr - dy * sp * dp * sr + dy * cp * cr * dr,
+      -ddp * sr - dp * cr * dr + ddy * cp * cr - dy * sp * dp * cr - dy * cp * sr * dr);
+  return k;
 }
 
 }  // namespace isg::sim

@@ -5,18 +5,33 @@
 #include <numbers>
 #include <vector>
 
+#include "sim/motion_profile.hpp"
+
 namespace isg::sim {
 
 // How the legged base moves (docs/simulation.md): it turns on the spot at each corner of its
-// route, as a legged robot does, then walks straight at its speed; while it moves, a trot makes
-// its body bob, roll and pitch at the gait frequency.
+// route, as a legged robot does, then walks straight at its speed, starting and stopping each
+// with bounded acceleration; while it moves, a trot makes its body bob, roll and pitch at the
+// gait frequency.
 struct GaitConfig {
   double frequency_hz = 1.8;
   double bob_m = 0.015;
   double roll_deg = 2.0;
   double pitch_deg = 2.0;
-  double standing_height = 0.46;  // base above the floor
-  double turn_rate = 0.8;         // rad/s when turning on the spot
+  double standing_height = 0.46;   // base above the floor
+  double turn_rate = 0.8;          // rad/s when turning on the spot
+  double acceleration = 1.5;       // m/s², largest when starting or stopping a straight
+  double turn_acceleration = 3.0;  // rad/s², largest when starting or stopping a turn
+};
+
+// The base's motion at one instant, as an inertial sensor on it would feel it: B_T_R, the
+// velocity and acceleration of R's origin in B, and R's angular velocity and acceleration in R.
+struct BaseKinematics {
+  Eigen::Isometry3d B_T_R = Eigen::Isometry3d::Identity();
+  Eigen::Vector3d velocity = Eigen::Vector3d::Zero();
+  Eigen::Vector3d acceleration = Eigen::Vector3d::Zero();
+  Eigen::Vector3d angular_velocity = Eigen::Vector3d::Zero();
+  Eigen::Vector3d angular_acceleration = Eigen::Vector3d::Zero();
 };
 
 // A kidnap makes a new leg: at its time the robot is lifted from wherever the current leg has it
@@ -43,16 +58,23 @@ class Trajectory {
     Eigen::Vector2d xy = Eigen::Vector2d::Zero();
     double yaw = 0.0;
     bool moving = false;
+    Eigen::Vector2d velocity = Eigen::Vector2d::Zero();
+    Eigen::Vector2d acceleration = Eigen::Vector2d::Zero();
+    double yaw_rate = 0.0;
+    double yaw_acceleration = 0.0;
   };
   PlanarState planar(double t) const;
 
   // B_T_R: the base pose in the plan frame, with the gait's sway.
   Eigen::Isometry3d pose(double t) const;
+  // The pose with its first and second derivatives, exact (not differenced). A kidnap is not
+  // felt: within each leg the motion is smooth, and the lift itself has no modelled motion.
+  BaseKinematics kinematics(double t) const;
 
   // Phase of the trot (radians, growing while the robot moves) and how strongly it sways (0 at
-  // rest, 1 in motion, ramped over a quarter of a second at the start and the end).
+  // rest, 1 in motion, eased in over half a second at the start and out at the end).
   double gaitPhase(double t) const { return 2.0 * std::numbers::pi * gait_.frequency_hz * t; }
-  double swayWeight(double t) const;
+  double swayWeight(double t) const { return sway(t).value; }
 
   const GaitConfig& gait() const { return gait_; }
 
@@ -61,7 +83,12 @@ class Trajectory {
     double t0, t1;
     Eigen::Vector2d from, to;
     double yaw0, yaw1;
+    RestToRestProfile profile;  // along from→to, or from yaw0 to yaw1
   };
+  struct Eased {
+    double value = 0.0, rate = 0.0, acceleration = 0.0;
+  };
+  Eased sway(double t) const;
   struct Leg {
     double start = 0.0;
     Eigen::Vector2d from = Eigen::Vector2d::Zero();
@@ -73,7 +100,7 @@ class Trajectory {
   Leg makeLeg(double start, const std::vector<Eigen::Vector2d>& waypoints, double start_yaw) const;
   int legAt(double t) const;
   PlanarState planarInLeg(const Leg& leg, double t) const;
-  Eigen::Isometry3d poseOf(const PlanarState& p, double t) const;
+  BaseKinematics kinematicsOf(const PlanarState& p, double t) const;
 
   std::vector<Leg> legs_;
   GaitConfig gait_;

@@ -28,4 +28,12 @@ struct Odometry {
   Eigen::Isometry3d M_T_R = Eigen::Isometry3d::Identity();
 };
 
+// One reading of an IMU, in its own frame I: specific force (m/s², gravity included: a unit at
+// rest reads +g upwards) and angular velocity (rad/s).
+struct ImuSample {
+  double t = 0.0;
+  Eigen::Vector3d accelerometer = Eigen::Vector3d::Zero();
+  Eigen::Vector3d gyroscope = Eigen::Vector3d::Zero();
+};
+
 }  // namespace isg::slam

@@ -26,6 +26,11 @@ TEST(ScenarioParser, BarePlanGetsEveryDefault) {
   EXPECT_DOUBLE_EQ(s.odometry.rate_hz, 50.0);
   EXPECT_DOUBLE_EQ(s.odometry.translation_noise, 0.02);
   EXPECT_DOUBLE_EQ(s.odometry.heading_noise_deg_per_m, 0.5);
+  EXPECT_DOUBLE_EQ(s.imu.rate_hz, 200.0);
+  EXPECT_EQ(s.imu.mount, (std::array<double, 6>{0, 0, 0, 0, 0, 0}));
+  EXPECT_DOUBLE_EQ(s.imu.gyroscope_noise_density, 1.6968e-4);
+  EXPECT_DOUBLE_EQ(s.imu.accelerometer_random_walk, 3.0e-3);
+  EXPECT_DOUBLE_EQ(s.imu.gravity, 9.81);
   EXPECT_TRUE(s.as_built.empty());
 }
 
@@ -55,6 +60,8 @@ TEST(ScenarioParser, InlinePlanAndExplicitRobot) {
     "robot": {"start": {"pose": [1.0, 2.0, 0.5]}, "route": {"waypoints": [[1, 2], [3, 2]]},
               "speed": 0.8},
     "lidar": {"rate_hz": 20, "mount": [0.1, 0, 0.3, 0, 0, 0]},
+    "imu": {"rate_hz": 400, "mount": [0, 0.05, 0.1, 0, 0, 3.14159], "gyroscope_random_walk": 0,
+            "gravity": 9.80665},
     "as_built": {"extra_walls": [{"start": [0, 3], "end": [2, 3], "thickness": 0.1}]}
   })";
   const Scenario s = loadScenario(path);
@@ -66,6 +73,11 @@ TEST(ScenarioParser, InlinePlanAndExplicitRobot) {
   EXPECT_EQ(s.robot.route.waypoints.size(), 2u);
   EXPECT_DOUBLE_EQ(s.lidar.rate_hz, 20.0);
   EXPECT_DOUBLE_EQ(s.lidar.mount[0], 0.1);
+  EXPECT_DOUBLE_EQ(s.imu.rate_hz, 400.0);
+  EXPECT_DOUBLE_EQ(s.imu.mount[5], 3.14159);
+  EXPECT_DOUBLE_EQ(s.imu.gyroscope_random_walk, 0.0);
+  EXPECT_DOUBLE_EQ(s.imu.gyroscope_noise_density, 1.6968e-4);  // the default
+  EXPECT_DOUBLE_EQ(s.imu.gravity, 9.80665);
   ASSERT_EQ(s.as_built.extra_walls.size(), 1u);
   EXPECT_EQ(s.as_built.extra_walls[0].id, "extra0");
   EXPECT_EQ(s.as_built.extra_walls[0].level, "G");

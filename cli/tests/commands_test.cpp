@@ -185,7 +185,7 @@ TEST(Simulate, KidnapsTheRouteCannotHaveAreClearErrors) {
   EXPECT_EQ(result.exit_code, 1);
   EXPECT_EQ(result.err,
             "isg simulate: error: late.json: /robot/kidnap/0/time: the robot's route ends at "
-            "12.00 s, before the kidnap at 30.00 s\n");
+            "12.52 s, before the kidnap at 30.00 s\n");
   sandbox.write("cluttered.json", R"({"format": "isg.scenario", "version": 1, )" + plan + R"(,
     "robot": {"start": {"pose": [1, 2, 0]}, "route": {"waypoints": [[7, 2]]},
               "kidnap": [{"time": 5, "to": {"pose": [4, 3, 0]}}]},

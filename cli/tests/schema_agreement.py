@@ -90,6 +90,9 @@ SCENARIO_MUTATIONS = {
     "dropout 1": setter(["lidar", "dropout"], 1.0),
     "mount of three": setter(["lidar", "mount"], [0, 0, 0.25]),
     "negative odometry noise": setter(["odometry", "translation_noise"], -0.1),
+    "imu at 5 Hz": setter(["imu", "rate_hz"], 5),
+    "imu mount of three": setter(["imu", "mount"], [0, 0, 0.1]),
+    "negative gyroscope noise": setter(["imu", "gyroscope_noise_density"], -1e-4),
     "clutter sphere": setter(["as_built", "clutter", 0, "shape"], "sphere"),
     "clutter zero size": setter(["as_built", "clutter", 0, "size"], [1, 0, 1]),
     "extra wall without thickness": deleter(["as_built", "extra_walls", 0, "thickness"]),
@@ -134,6 +137,7 @@ def main():
     base_scenario["robot"] = {"level": "L0", "start": {"room": "R1"}, "route": "tour", "speed": 0.5}
     base_scenario["lidar"] = {"rate_hz": 10, "dropout": 0.0, "mount": [0, 0, 0.25, 0, 0, 0]}
     base_scenario["odometry"] = {"rate_hz": 50, "translation_noise": 0.02}
+    base_scenario["imu"] = {"rate_hz": 400, "mount": [0.1, 0, 0.05, 0, 0, 0], "gravity": 9.80665}
     base_scenario["as_built"]["extra_walls"] = [{"start": [1, 1], "end": [1, 2], "thickness": 0.1}]
     base_plan["levels"][0]["walls"][0]["colour"] = "grey"  # unknown fields: fine for both
 

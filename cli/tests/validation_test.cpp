@@ -239,6 +239,17 @@ std::vector<Case> cases() {
       {"OdometryNoise", "scenario.json",
        [](json&, json& s) { s["odometry"]["translation_noise"] = -0.1; },
        "scenario.json: /odometry/translation_noise: must be in [0, 1], got -0.1"},
+      {"ImuRate", "scenario.json", [](json&, json& s) { s["imu"]["rate_hz"] = 5; },
+       "scenario.json: /imu/rate_hz: must be in [10, 2000], got 5"},
+      {"ImuMountFar", "scenario.json",
+       [](json&, json& s) {
+         s["imu"]["mount"] = {0, 12, 0, 0, 0, 0};
+       },
+       "scenario.json: /imu/mount: the IMU must be mounted within 10 m of the robot's reference "
+       "point"},
+      {"ImuNoise", "scenario.json",
+       [](json&, json& s) { s["imu"]["accelerometer_random_walk"] = -1; },
+       "scenario.json: /imu/accelerometer_random_walk: must be in [0, 10], got -1"},
       {"MissingWallUnknown", "scenario.json",
        [](json&, json& s) { s["as_built"]["missing_walls"] = {"W8"}; },
        "scenario.json: /as_built/missing_walls/0: no wall \"W8\" in the plan"},

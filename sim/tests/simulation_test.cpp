@@ -56,12 +56,21 @@ INSTANTIATE_TEST_SUITE_P(AsBuilt, TourOfEveryReferencePlan,
 TEST(Trajectory, TurnsOnTheSpotThenWalksWithTheGaitsSway) {
   GaitConfig gait;
   const Trajectory t({{0, 0}, {2, 0}, {2, 1}}, 0.0, 0.5, 0.0, gait);
-  // 4 s along x, a quarter turn at 0.8 rad/s, 2 s along y.
-  EXPECT_NEAR(t.duration(), 4.0 + (std::numbers::pi / 2) / 0.8 + 2.0, 1e-9);
-  EXPECT_NEAR((t.planar(2.0).xy - Eigen::Vector2d(1, 0)).norm(), 0.0, 1e-12);
-  const double mid_turn = 4.0 + (std::numbers::pi / 4) / 0.8;
+  // Each movement starts and stops along raised-cosine ramps of π·rate / (2·acceleration):
+  // 0.5236 s at 0.5 m/s and 1.5 m/s², 0.4189 s at 0.8 rad/s and 3 rad/s²; each ramp pair costs
+  // one ramp's time over moving at full rate throughout.
+  const double walk_ramp = std::numbers::pi * 0.5 / 3.0, turn_ramp = std::numbers::pi * 0.8 / 6.0;
+  const double first = 4.0 + walk_ramp, turn = (std::numbers::pi / 2) / 0.8 + turn_ramp;
+  EXPECT_NEAR(t.duration(), first + turn + 2.0 + walk_ramp, 1e-9);
+  // The ramps are symmetric: halfway in time is halfway along.
+  EXPECT_NEAR((t.planar(first / 2).xy - Eigen::Vector2d(1, 0)).norm(), 0.0, 1e-12);
+  EXPECT_NEAR(t.planar(first / 2).velocity.x(), 0.5, 1e-12);
+  EXPECT_NEAR(t.planar(walk_ramp / 2).acceleration.x(), 1.5, 1e-12);  // the peak, mid-ramp
+  EXPECT_NEAR(t.planar(first).velocity.norm(), 0.0, 1e-12);           // stopped at the corner
+  const double mid_turn = first + turn / 2;
   EXPECT_NEAR((t.planar(mid_turn).xy - Eigen::Vector2d(2, 0)).norm(), 0.0, 1e-12);
   EXPECT_NEAR(t.planar(mid_turn).yaw, std::numbers::pi / 4, 1e-12);
+  EXPECT_NEAR(t.planar(mid_turn).yaw_rate, 0.8, 1e-12);
   // Height bobs by ±1.5 cm around 0.46 m while walking; at rest it stands still.
   double lo = 1e9, hi = -1e9;
   for (double s = 1.0; s < 3.0; s += 0.001) {
@@ -76,16 +85,19 @@ TEST(Trajectory, TurnsOnTheSpotThenWalksWithTheGaitsSway) {
 
 TEST(Trajectory, AKidnapStartsANewLegAtItsTime) {
   GaitConfig gait;
-  Trajectory t({{0, 0}, {4, 0}}, 0.0, 0.5, 0.0, gait);  // 8 s along x
+  const double walk_ramp = std::numbers::pi * 0.5 / 3.0, turn_ramp = std::numbers::pi * 0.8 / 6.0;
+  Trajectory t({{0, 0}, {4, 0}}, 0.0, 0.5, 0.0, gait);  // 8 s (and a ramp) along x
   t.appendLeg(3.0, {{10, 5}, {10, 7}}, 0.3);            // lifted at 3 s to (10, 5)
   EXPECT_EQ(t.jumps(), std::vector<double>{3.0});
-  EXPECT_NEAR((t.planar(2.999).xy - Eigen::Vector2d(1.4995, 0)).norm(), 0.0, 1e-9);
+  // Past its first ramp it has covered half a ramp's time less than at full speed throughout.
+  const double x_at_3 = 0.5 * (3.0 - walk_ramp / 2);
+  EXPECT_NEAR((t.planar(2.999).xy - Eigen::Vector2d(x_at_3 - 0.0005, 0)).norm(), 0.0, 1e-9);
   EXPECT_NEAR((t.planar(3.0).xy - Eigen::Vector2d(10, 5)).norm(), 0.0, 1e-12);
-  EXPECT_NEAR((t.poseBefore(3.0).translation().head<2>() - Eigen::Vector2d(1.5, 0)).norm(), 0.0,
+  EXPECT_NEAR((t.poseBefore(3.0).translation().head<2>() - Eigen::Vector2d(x_at_3, 0)).norm(), 0.0,
               1e-12);
   // It turns from 0.3 rad to face +y (π/2 at 0.8 rad/s), then walks 2 m at 0.5 m/s.
-  const double turn = (std::numbers::pi / 2 - 0.3) / 0.8;
-  EXPECT_NEAR(t.duration(), 3.0 + turn + 4.0, 1e-9);
+  const double turn = (std::numbers::pi / 2 - 0.3) / 0.8 + turn_ramp;
+  EXPECT_NEAR(t.duration(), 3.0 + turn + 4.0 + walk_ramp, 1e-9);
   EXPECT_NEAR(t.arrival(1, 1), t.duration(), 1e-12);
   EXPECT_NEAR((t.planar(t.duration()).xy - Eigen::Vector2d(10, 7)).norm(), 0.0, 1e-12);
 }
@@ -158,12 +170,31 @@ TEST(Dataset, WritesEveryFileAndPclReadsTheScans) {
   const DatasetSummary s = writeDataset(sim, dir.string(), options, nullptr);
   // Turns of 0.09998 s (1808 sequences) starting every 0.1 s that end by 2 s: k = 0 … 19.
   EXPECT_EQ(s.scans, 20);
-  for (const char* f : {"groundtruth.tum", "odometry.tum", "scans.tum", "metadata.json"}) {
+  for (const char* f :
+       {"groundtruth.tum", "odometry.tum", "scans.tum", "imu.csv", "metadata.json"}) {
     EXPECT_TRUE(fs::exists(dir / f)) << f;
   }
   EXPECT_EQ(eval::readTum((dir / "groundtruth.tum").string()).size(), 201u);  // 100 Hz
   EXPECT_EQ(eval::readTum((dir / "odometry.tum").string()).size(), 101u);     // 50 Hz
   EXPECT_EQ(eval::readTum((dir / "scans.tum").string()).size(), 20u);
+  // imu.csv: a header line and 401 samples at 200 Hz; at rest at t = 0 it reads +g upwards.
+  std::istringstream imu(slurp(dir / "imu.csv"));
+  std::string line;
+  std::getline(imu, line);
+  EXPECT_EQ(line, "t,ax,ay,az,gx,gy,gz");
+  std::vector<std::vector<double>> rows;
+  while (std::getline(imu, line)) {
+    std::vector<double> row;
+    std::istringstream fields(line);
+    for (std::string field; std::getline(fields, field, ',');) row.push_back(std::stod(field));
+    ASSERT_EQ(row.size(), 7u) << line;
+    rows.push_back(row);
+  }
+  ASSERT_EQ(rows.size(), 401u);
+  EXPECT_EQ(rows[1][0], 0.005);
+  // Within 5 sigma of the white noise (2e-3 m/s²/√Hz and 1.7e-4 rad/s/√Hz at 200 Hz).
+  EXPECT_NEAR(rows[0][3], 9.81, 5 * 2e-3 * std::sqrt(200.0));
+  EXPECT_NEAR(rows[0][6], 0.0, 5 * 1.7e-4 * std::sqrt(200.0));
   pcl::PCLPointCloud2 cloud;
   ASSERT_EQ(pcl::io::loadPCDFile((dir / "scans" / "000007.pcd").string(), cloud), 0);
   EXPECT_GT(cloud.width, 20000u);
@@ -206,9 +237,10 @@ TEST(Dataset, SameSeedSameBytesOtherSeedOtherBytes) {
     EXPECT_EQ(slurp(entry.path()), slurp(root / "d" / relative)) << relative;
     ++files;
   }
-  EXPECT_EQ(files, 4u + 15u);  // 15 turns end by 1.5 s
+  EXPECT_EQ(files, 5u + 15u);  // 15 turns end by 1.5 s
   EXPECT_NE(slurp(root / "a" / "scans" / "000003.pcd"), slurp(root / "c" / "scans" / "000003.pcd"));
   EXPECT_NE(slurp(root / "a" / "odometry.tum"), slurp(root / "c" / "odometry.tum"));
+  EXPECT_NE(slurp(root / "a" / "imu.csv"), slurp(root / "c" / "imu.csv"));
   fs::remove_all(root);
 }
 

@@ -1,0 +1,15 @@
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "slam/messages.hpp"
+
+namespace isg::run {
+
+// A dataset's imu.csv (docs/formats.md): the header line "t,ax,ay,az,gx,gy,gz", then one sample
+// per line. Any problem (no file, a wrong header, a line that is not 7 finite numbers, times that
+// do not increase) is a bim::InputError naming the file and the line.
+std::vector<slam::ImuSample> readImuFile(const std::string& path);
+
+}  // namespace isg::run

@@ -1,0 +1,147 @@
+#include "run/rosbag_export.hpp"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <vector>
+
+#include "run/dataset_reader.hpp"
+#include "run/ros_messages.hpp"
+#include "run/rosbag_writer.hpp"
+
+namespace isg::run {
+
+namespace {
+
+using namespace rosbag_names;
+
+// The twist of `child` between two poses of it, in `child`: the backward difference, which is
+// what an odometry source knows at the later time.
+struct Twist {
+  Eigen::Vector3d linear = Eigen::Vector3d::Zero();
+  Eigen::Vector3d angular = Eigen::Vector3d::Zero();
+};
+Twist twistBetween(const StampedPose& before, const StampedPose& after) {
+  const double dt = after.t - before.t;
+  if (!(dt > 0.0)) return {};
+  const Eigen::Isometry3d step = before.pose.inverse() * after.pose;
+  const Eigen::AngleAxisd turn(step.linear());
+  Twist out;
+  out.linear =
+      after.pose.linear().transpose() * (after.pose.translation() - before.pose.translation()) / dt;
+  out.angular = turn.angle() * turn.axis() / dt;
+  return out;
+}
+
+// What goes into the bag, in time order: one entry per message (a pose also makes its /tf).
+enum class Kind { kTfStatic, kOdometry, kImu, kCloud, kGroundTruth };
+struct Entry {
+  double t;
+  Kind kind;
+  int index;
+};
+
+}  // namespace
+
+RosbagSummary exportRosbag(const std::string& dataset_dir, const std::string& bag_path,
+                           const RosbagExportOptions& options,
+                           const std::function<void(int, int)>& progress) {
+  const auto start = std::chrono::steady_clock::now();
+  DatasetReader dataset(dataset_dir);
+  const auto stamp = [&](double t) { return RosTime::fromSeconds(t + options.stamp_offset); };
+
+  std::vector<Entry> entries;
+  entries.push_back({0.0, Kind::kTfStatic, 0});
+  for (int i = 0; i < int(dataset.odometry().size()); ++i)
+    entries.push_back({dataset.odometry()[i].t, Kind::kOdometry, i});
+  for (int i = 0; i < int(dataset.imu().size()); ++i)
+    entries.push_back({dataset.imu()[i].t, Kind::kImu, i});
+  for (int i = 0; i < dataset.scanCount(); ++i)
+    entries.push_back({dataset.scanStamp(i), Kind::kCloud, i});
+  for (int i = 0; i < int(dataset.groundTruth().size()); ++i)
+    entries.push_back({dataset.groundTruth()[i].t, Kind::kGroundTruth, i});
+  std::stable_sort(entries.begin(), entries.end(), [](const Entry& a, const Entry& b) {
+    return a.t != b.t ? a.t < b.t : a.kind < b.kind;
+  });
+
+  RosbagWriter bag(bag_path, options.overwrite);
+  const int tf_static = bag.connect(kTfStaticTopic, ros1::tfMessageType(), true);
+  const int odometry = bag.connect(kOdometryTopic, ros1::odometryType());
+  const int tf = bag.connect(kTfTopic, ros1::tfMessageType());
+  const int imu = dataset.imu().empty() ? -1 : bag.connect(kImuTopic, ros1::imuType());
+  const int cloud = bag.connect(kCloudTopic, ros1::pointCloud2Type());
+  const int ground_truth =
+      dataset.groundTruth().empty() ? -1 : bag.connect(kGroundTruthTopic, ros1::odometryType());
+  // Per-sample variances of the discretised white noise: density² × rate.
+  double gyroscope_variance = 0.0, accelerometer_variance = 0.0;
+  if (const auto& noise = dataset.imuNoise()) {
+    gyroscope_variance = std::pow(noise->gyroscope_noise_density, 2) * noise->rate_hz;
+    accelerometer_variance = std::pow(noise->accelerometer_noise_density, 2) * noise->rate_hz;
+  }
+
+  const double first = entries.size() > 1 ? std::min(0.0, entries[1].t) : 0.0;
+  int scans_done = 0;
+  for (const Entry& e : entries) {
+    switch (e.kind) {
+      case Kind::kTfStatic: {
+        const RosTime t = stamp(std::max(0.0, first));
+        std::vector<ros1::StampedTransform> mounts = {
+            {t, kBaseFrame, kLidarFrame, dataset.R_T_L()}};
+        if (imu >= 0) mounts.push_back({t, kBaseFrame, kImuFrame, dataset.R_T_I()});
+        bag.write(tf_static, t, ros1::tfMessage(mounts));
+        break;
+      }
+      case Kind::kOdometry: {
+        const auto& poses = dataset.odometry();
+        const Twist twist =
+            e.index > 0 ? twistBetween(poses[e.index - 1], poses[e.index]) : Twist{};
+        const RosTime t = stamp(e.t);
+        bag.write(odometry, t,
+                  ros1::odometry(poses[e.index].pose, twist.linear, twist.angular, t,
+                                 std::uint32_t(e.index), kOdometryFrame, kBaseFrame));
+        bag.write(tf, t, ros1::tfMessage({{t, kOdometryFrame, kBaseFrame, poses[e.index].pose}}));
+        break;
+      }
+      case Kind::kImu: {
+        const RosTime t = stamp(e.t);
+        bag.write(imu, t,
+                  ros1::imu(dataset.imu()[e.index], t, std::uint32_t(e.index), kImuFrame,
+                            gyroscope_variance, accelerometer_variance));
+        break;
+      }
+      case Kind::kCloud: {
+        const slam::Scan scan = dataset.scan(e.index);
+        const RosTime t = stamp(e.t);
+        bag.write(cloud, t, ros1::pointCloud2(scan.points, t, std::uint32_t(e.index), kLidarFrame));
+        if (progress) progress(++scans_done, dataset.scanCount());
+        break;
+      }
+      case Kind::kGroundTruth: {
+        const auto& poses = dataset.groundTruth();
+        const Twist twist =
+            e.index > 0 ? twistBetween(poses[e.index - 1], poses[e.index]) : Twist{};
+        const RosTime t = stamp(e.t);
+        bag.write(ground_truth, t,
+                  ros1::odometry(poses[e.index].pose, twist.linear, twist.angular, t,
+                                 std::uint32_t(e.index), kPlanFrame, kBaseFrame));
+        break;
+      }
+    }
+  }
+  bag.close();
+
+  RosbagSummary summary;
+  const char* topics[] = {kTfStaticTopic, kOdometryTopic, kTfTopic,
+                          kImuTopic,      kCloudTopic,    kGroundTruthTopic};
+  const int connections[] = {tf_static, odometry, tf, imu, cloud, ground_truth};
+  for (int i = 0; i < 6; ++i) {
+    if (connections[i] >= 0) summary.messages[topics[i]] = bag.counts()[connections[i]];
+  }
+  summary.bytes = bag.bytesWritten();
+  summary.dataset_seconds = dataset.streams().duration;
+  summary.wall_seconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  return summary;
+}
+
+}  // namespace isg::run

@@ -1,0 +1,212 @@
+#include "sim/imu_simulator.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <numbers>
+#include <string>
+#include <vector>
+
+#include "run/dataset_format.hpp"
+#include "sim/simulation.hpp"
+#include "worlds/reference_plans.hpp"
+
+namespace isg::sim {
+namespace {
+
+Eigen::Matrix3d expSO3(const Eigen::Vector3d& w) {
+  const double angle = w.norm();
+  if (angle < 1e-15) return Eigen::Matrix3d::Identity();
+  return Eigen::AngleAxisd(angle, w / angle).toRotationMatrix();
+}
+
+double angleBetween(const Eigen::Matrix3d& a, const Eigen::Matrix3d& b) {
+  return Eigen::AngleAxisd(a.transpose() * b).angle();
+}
+
+bim::ImuConfig noiseless(const std::array<double, 6>& mount) {
+  bim::ImuConfig config;
+  config.mount = mount;
+  config.gyroscope_noise_density = config.gyroscope_random_walk = 0.0;
+  config.accelerometer_noise_density = config.accelerometer_random_walk = 0.0;
+  return config;
+}
+
+// An IMU off the base's origin and tilted, so that the lever arm and the mount's rotation count.
+constexpr std::array<double, 6> kOffsetMount = {0.2, -0.1, 0.3, 0.1, -0.05, 0.4};
+
+TEST(BaseKinematics, AreTheDerivativesOfThePose) {
+  GaitConfig gait;
+  const Trajectory t({{0, 0}, {3, 0}, {3, 2}, {1, 3}}, 0.4, 0.5, 1.0, gait);
+  const double h = 1e-4;
+  for (double s = h; s < t.duration() - h; s += 0.037) {
+    const BaseKinematics k = t.kinematics(s);
+    const Eigen::Isometry3d before = t.pose(s - h), after = t.pose(s + h);
+    const Eigen::Vector3d velocity = (after.translation() - before.translation()) / (2 * h);
+    const Eigen::Vector3d acceleration =
+        (after.translation() - 2 * k.B_T_R.translation() + before.translation()) / (h * h);
+    const Eigen::AngleAxisd turn(before.linear().transpose() * after.linear());
+    const Eigen::Vector3d angular_velocity = turn.angle() * turn.axis() / (2 * h);
+    const Eigen::Vector3d angular_acceleration =
+        (t.kinematics(s + h).angular_velocity - t.kinematics(s - h).angular_velocity) / (2 * h);
+    EXPECT_LT((k.velocity - velocity).norm(), 1e-6) << s;
+    EXPECT_LT((k.acceleration - acceleration).norm(), 2e-3) << s;
+    EXPECT_LT((k.angular_velocity - angular_velocity).norm(), 1e-5) << s;
+    EXPECT_LT((k.angular_acceleration - angular_acceleration).norm(), 1e-5) << s;
+  }
+}
+
+TEST(Imu, AtRestItReadsGravityUpwardsAndNoRotation) {
+  GaitConfig gait;
+  const Trajectory t({{1, 1}}, 0.7, 0.5, 0.0, gait);  // one waypoint: it stands
+  const Eigen::Isometry3d R_T_I = mountTransform({0, 0, 0, 0, 0, std::numbers::pi / 2});
+  const ImuSample s = idealImuSample(t, R_T_I, 9.81, 3.0);
+  EXPECT_LT((s.accelerometer - Eigen::Vector3d(0, 0, 9.81)).norm(), 1e-12);
+  EXPECT_LT(s.gyroscope.norm(), 1e-12);
+  // Rolled 90° about x, its y axis points down: it reads -g along y.
+  const ImuSample rolled =
+      idealImuSample(t, mountTransform({0, 0, 0, std::numbers::pi / 2, 0, 0}), 9.81, 3.0);
+  EXPECT_LT((rolled.accelerometer - Eigen::Vector3d(0, 9.81, 0)).norm(), 1e-12);
+}
+
+class D1Imu : public ::testing::Test {
+ protected:
+  static void SetUpTestSuite() {
+    sim_ = new Simulation(worlds::loadScenarioOrBuiltin("builtin:d1.asbuilt", nullptr));
+  }
+  static void TearDownTestSuite() { delete sim_; }
+  static Simulation* sim_;
+};
+Simulation* D1Imu::sim_ = nullptr;
+
+// Orientation of I in B from integrating the noiseless gyroscope over the whole run, starting
+// from the true one: within 1 mrad of ground truth throughout.
+TEST_F(D1Imu, IntegratedGyroscopeFollowsTheTrueOrientation) {
+  const Trajectory& t = sim_->trajectory();
+  const auto samples = simulateImu(t, noiseless(kOffsetMount), t.duration(), 1);
+  const Eigen::Matrix3d R_R_I = mountTransform(kOffsetMount).linear();
+  Eigen::Matrix3d B_R_I = t.pose(0.0).linear() * R_R_I;
+  double worst = 0.0;
+  for (std::size_t k = 1; k < samples.size(); ++k) {
+    const double dt = samples[k].t - samples[k - 1].t;
+    B_R_I = B_R_I * expSO3(0.5 * (samples[k - 1].gyroscope + samples[k].gyroscope) * dt);
+    worst = std::max(worst, angleBetween(B_R_I, t.pose(samples[k].t).linear() * R_R_I));
+  }
+  EXPECT_GT(t.duration(), 40.0);
+  EXPECT_LT(worst, 1e-3);
+  RecordProperty("worst_angle_rad", std::to_string(worst));
+}
+
+// Over every 1 s window (starting each 0.5 s), the noiseless accelerometer, rotated by the true
+// orientation with gravity taken out and integrated twice from the true velocity, moves the IMU
+// as far as ground truth does: within 1 cm.
+TEST_F(D1Imu, DoubleIntegratedAccelerometerMatchesTheDisplacement) {
+  const Trajectory& t = sim_->trajectory();
+  const double g = 9.81;
+  const auto samples = simulateImu(t, noiseless(kOffsetMount), t.duration(), 1);
+  const Eigen::Isometry3d R_T_I = mountTransform(kOffsetMount);
+  auto imuPosition = [&](double s) -> Eigen::Vector3d { return (t.pose(s) * R_T_I).translation(); };
+  auto worldAcceleration = [&](const ImuSample& s) -> Eigen::Vector3d {
+    return t.pose(s.t).linear() * R_T_I.linear() * s.accelerometer - Eigen::Vector3d(0, 0, g);
+  };
+  const std::size_t window = 200;  // 1 s at 200 Hz
+  double worst = 0.0;
+  int windows = 0;
+  for (std::size_t first = 0; first + window < samples.size(); first += window / 2, ++windows) {
+    const BaseKinematics k = t.kinematics(samples[first].t);
+    Eigen::Vector3d velocity =
+        k.velocity + k.B_T_R.linear() * k.angular_velocity.cross(R_T_I.translation());
+    Eigen::Vector3d displacement = Eigen::Vector3d::Zero();
+    for (std::size_t i = first; i < first + window; ++i) {
+      const double dt = samples[i + 1].t - samples[i].t;
+      const Eigen::Vector3d a0 = worldAcceleration(samples[i]);
+      const Eigen::Vector3d a1 = worldAcceleration(samples[i + 1]);
+      // Exact for an acceleration linear over the step.
+      displacement += velocity * dt + (2 * a0 + a1) / 6 * dt * dt;
+      velocity += (a0 + a1) / 2 * dt;
+    }
+    const Eigen::Vector3d truth =
+        imuPosition(samples[first + window].t) - imuPosition(samples[first].t);
+    worst = std::max(worst, (displacement - truth).norm());
+  }
+  EXPECT_GT(windows, 80);
+  EXPECT_LT(worst, 0.01);
+  RecordProperty("worst_window_error_m", std::to_string(worst));
+}
+
+// Allan deviation of a stationary unit's readings (per axis, non-overlapping clusters of `m`).
+std::vector<double> allanDeviation(const std::vector<ImuSample>& samples, bool gyroscope,
+                                   const Eigen::Vector3d& truth, std::size_t m) {
+  std::vector<double> out;
+  for (int axis = 0; axis < 3; ++axis) {
+    std::vector<double> means;
+    for (std::size_t first = 0; first + m <= samples.size(); first += m) {
+      double sum = 0.0;
+      for (std::size_t i = first; i < first + m; ++i) {
+        const Eigen::Vector3d& v = gyroscope ? samples[i].gyroscope : samples[i].accelerometer;
+        sum += v[axis] - truth[axis];
+      }
+      means.push_back(sum / double(m));
+    }
+    double sum = 0.0;
+    for (std::size_t k = 1; k < means.size(); ++k) sum += std::pow(means[k] - means[k - 1], 2);
+    out.push_back(std::sqrt(sum / (2.0 * double(means.size() - 1))));
+  }
+  return out;
+}
+
+TEST(Imu, AllanDeviationOfWhiteNoiseAtOneSecondIsTheDensity) {
+  GaitConfig gait;
+  const Trajectory still({{0, 0}}, 0.0, 0.5, 0.0, gait);
+  bim::ImuConfig config;
+  config.gyroscope_random_walk = config.accelerometer_random_walk = 0.0;
+  const auto samples = simulateImu(still, config, 3000.0, 7);
+  // For white noise of density σ, the Allan deviation is σ / √τ: σ itself at τ = 1 s.
+  for (double adev : allanDeviation(samples, true, Eigen::Vector3d::Zero(), 200)) {
+    EXPECT_NEAR(adev, config.gyroscope_noise_density, 0.1 * config.gyroscope_noise_density);
+  }
+  for (double adev : allanDeviation(samples, false, Eigen::Vector3d(0, 0, 9.81), 200)) {
+    EXPECT_NEAR(adev, config.accelerometer_noise_density, 0.1 * config.accelerometer_noise_density);
+  }
+}
+
+TEST(Imu, BiasRandomWalkGrowsAsConfigured) {
+  GaitConfig gait;
+  const Trajectory still({{0, 0}}, 0.0, 0.5, 0.0, gait);
+  bim::ImuConfig config;  // the defaults, at 50 Hz to keep the run short
+  config.rate_hz = 50.0;
+  const auto samples = simulateImu(still, config, 6000.0, 3);
+  // White noise plus a random walk of strength σ_b: ADEV(τ)² = σ²/τ + σ_b² τ / 3.
+  const double tau = 50.0;
+  auto expected = [tau](double density, double walk) {
+    return std::sqrt(density * density / tau + walk * walk * tau / 3.0);
+  };
+  // 120 clusters per axis: the estimate's own spread is ~1/√(2·119) ≈ 6.5 %; three axes pooled.
+  auto pooled = [](const std::vector<double>& per_axis) {
+    double sum = 0.0;
+    for (double a : per_axis) sum += a * a;
+    return std::sqrt(sum / double(per_axis.size()));
+  };
+  const double gyro = pooled(allanDeviation(samples, true, Eigen::Vector3d::Zero(), 2500));
+  const double accel = pooled(allanDeviation(samples, false, Eigen::Vector3d(0, 0, 9.81), 2500));
+  EXPECT_NEAR(gyro, expected(config.gyroscope_noise_density, config.gyroscope_random_walk),
+              0.15 * expected(config.gyroscope_noise_density, config.gyroscope_random_walk));
+  EXPECT_NEAR(
+      accel, expected(config.accelerometer_noise_density, config.accelerometer_random_walk),
+      0.15 * expected(config.accelerometer_noise_density, config.accelerometer_random_walk));
+}
+
+TEST(Imu, SameSeedSameBytes) {
+  GaitConfig gait;
+  const Trajectory t({{0, 0}, {2, 0}, {2, 2}}, 0.0, 0.5, 0.0, gait);
+  bim::ImuConfig config;
+  const std::string a = run::dataset::imuText(simulateImu(t, config, t.duration(), 5));
+  const std::string b = run::dataset::imuText(simulateImu(t, config, t.duration(), 5));
+  const std::string c = run::dataset::imuText(simulateImu(t, config, t.duration(), 6));
+  EXPECT_EQ(a, b);
+  EXPECT_NE(a, c);
+  EXPECT_EQ(a.substr(0, a.find('\n')), "t,ax,ay,az,gx,gy,gz");
+}
+
+}  // namespace
+}  // namespace isg::sim
