@@ -92,6 +92,28 @@ std::vector<Eigen::Vector2d> WallGeometry::footprint() const {
           a + half * left_normal};
 }
 
+std::vector<std::vector<Eigen::Vector2d>> WallGeometry::footprintPieces() const {
+  std::vector<AxisInterval> openings = left.openings;
+  openings.insert(openings.end(), right.openings.begin(), right.openings.end());
+  std::sort(openings.begin(), openings.end(),
+            [](const AxisInterval& a, const AxisInterval& b) { return a.lo < b.lo; });
+  const double half = 0.5 * wall->thickness;
+  std::vector<std::vector<Eigen::Vector2d>> pieces;
+  auto piece = [&](double from, double to) {
+    if (to - from < 1e-9) return;
+    const Eigen::Vector2d a = pointAt(from), b = pointAt(to);
+    pieces.push_back({a - half * left_normal, b - half * left_normal, b + half * left_normal,
+                      a + half * left_normal});
+  };
+  double at = -extend_start;
+  for (const AxisInterval& o : openings) {
+    piece(at, o.lo);
+    at = std::max(at, o.hi);
+  }
+  piece(at, length + extend_end);
+  return pieces;
+}
+
 const WallGeometry* LevelGeometry::findWall(const std::string& wall_id) const {
   for (const auto& w : walls) {
     if (w.wall->id == wall_id) return &w;

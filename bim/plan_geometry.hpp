@@ -54,6 +54,9 @@ struct WallGeometry {
   }
   // The wall's footprint (including the end extensions) as a CCW rectangle.
   std::vector<Eigen::Vector2d> footprint() const;
+  // The footprint with its door openings cut out, as a plan is drawn: one CCW rectangle per solid
+  // piece, in order along the axis.
+  std::vector<std::vector<Eigen::Vector2d>> footprintPieces() const;
 };
 
 // A room edge that lies on a wall face looking into the room.

@@ -135,6 +135,10 @@ inline constexpr int kScenarioVersion = 1;
 // pointer and the reason. Warnings are appended to `warnings` when given.
 Scenario loadScenario(const std::string& path, Warnings* warnings = nullptr);
 
+// A scenario's "as_built" object on its own (as a dataset's metadata.json records it), checked
+// against `plan` as loadScenario checks it; errors name the node's file and JSON pointer.
+AsBuilt parseAsBuiltJson(const JsonNode& node, const Plan& plan, const std::string& robot_level);
+
 // Loads the plan a scenario names by file ("plan": "d1.json"): gets the string node, returns the
 // plan and where it came from. loadScenario resolves the name relative to the scenario's file;
 // built-in scenarios resolve it among the built-in plans.

@@ -354,6 +354,10 @@ Scenario scenarioFromPlan(Plan plan, const std::string& path) {
 
 }  // namespace
 
+AsBuilt parseAsBuiltJson(const JsonNode& node, const Plan& plan, const std::string& robot_level) {
+  return parseAsBuilt(node, plan, robot_level);
+}
+
 Scenario parseScenario(const JsonNode& root, const PlanLoader& load_plan) {
   const std::string& path = root.source().file;
   if (root.isObject() && root.has("format") && root.field("format").isString() &&

@@ -22,8 +22,8 @@ ExportCommand::ExportCommand(CLI::App& parent) {
       ->required();
   app_->add_option("--rosbag", rosbag_, "the bag to write")->option_text("OUT.bag")->required();
   app_->add_option("--stamp-offset", stamp_offset_,
-                   "seconds added to every dataset time (ROS reads a zero stamp as no time)")
-      ->check(CLI::Range(0.0, 4.0e9))
+                   "whole seconds added to every dataset time (ROS reads a zero stamp as no time)")
+      ->check(CLI::Range(0u, 4000000000u))
       ->capture_default_str();
   app_->add_flag("--force", force_, "replace OUT.bag if it exists");
   app_->add_flag("-q,--quiet", quiet_, "no progress bar");
@@ -35,8 +35,8 @@ int ExportCommand::run() {
 }
 
 void exportRosbagWithProgress(const std::string& command, const std::string& dataset_dir,
-                              const std::string& bag_path, double stamp_offset, bool overwrite,
-                              bool quiet) {
+                              const std::string& bag_path, std::uint32_t stamp_offset,
+                              bool overwrite, bool quiet) {
   run::RosbagExportOptions options;
   options.stamp_offset = stamp_offset;
   options.overwrite = overwrite;

@@ -1,5 +1,6 @@
 #pragma once
 
+#include <cstdint>
 #include <string>
 
 #include "cli/common.hpp"
@@ -15,7 +16,7 @@ class ExportCommand : public Command {
  private:
   std::string input_;
   std::string rosbag_;
-  double stamp_offset_ = 1e9;
+  std::uint32_t stamp_offset_ = 1000000000;
   bool force_ = false;
   bool quiet_ = false;
 };
@@ -23,7 +24,7 @@ class ExportCommand : public Command {
 // Writes `dataset_dir` as a bag with a progress bar and prints what it wrote (shared by
 // `isg export` and `isg simulate --rosbag`).
 void exportRosbagWithProgress(const std::string& command, const std::string& dataset_dir,
-                              const std::string& bag_path, double stamp_offset, bool overwrite,
-                              bool quiet);
+                              const std::string& bag_path, std::uint32_t stamp_offset,
+                              bool overwrite, bool quiet);
 
 }  // namespace isg::cli

@@ -93,8 +93,8 @@ int RunCommand::run() {
   context.threads = threads_;
   const auto localizer = makeMethod(methods_, method_, context);
 
-  run::RunSetup setup{input,          localizer->name(), scenario.seed,
-                      &scenario.plan, &agraph,           scenario.robot.level};
+  run::RunSetup setup{input,   localizer->name(),    scenario.seed,     &scenario.plan,
+                      &agraph, scenario.robot.level, &scenario.as_built};
   ProgressBar bar("isg run", quiet_);
   const double period = streams.scan_period;
   const int scans = int(streams.scan_stamps.size());

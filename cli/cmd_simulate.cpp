@@ -46,8 +46,8 @@ SimulateCommand::SimulateCommand(CLI::App& parent) {
           "also write the dataset as a ROS 1 bag (as isg export DATASET_DIR --rosbag does)")
       ->option_text("OUT.bag");
   app_->add_option("--stamp-offset", stamp_offset_,
-                   "with --rosbag: seconds added to every dataset time in the bag")
-      ->check(CLI::Range(0.0, 4.0e9))
+                   "with --rosbag: whole seconds added to every dataset time in the bag")
+      ->check(CLI::Range(0u, 4000000000u))
       ->capture_default_str();
   app_->add_flag("--force", force_, "replace DATASET_DIR (and OUT.bag) if it exists");
   app_->add_flag("-q,--quiet", quiet_, "no progress bar");

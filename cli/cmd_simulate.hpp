@@ -23,7 +23,7 @@ class SimulateCommand : public Command {
   int threads_ = 2;
   std::string pcd_ = "binary_compressed";
   std::string rosbag_;  // also write the dataset as this bag
-  double stamp_offset_ = 1e9;
+  std::uint32_t stamp_offset_ = 1000000000;
   bool force_ = false;
   bool quiet_ = false;
 };

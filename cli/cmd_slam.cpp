@@ -108,8 +108,20 @@ int SlamCommand::run() {
   context.threads = threads_;
   const auto localizer = makeMethod(methods_, method, context);
 
-  run::RunSetup setup{dataset_,     localizer->name(), dataset.seed(),
-                      context.plan, context.agraph,    level};
+  // What was built differently, for the report: recorded with the dataset's own plan.
+  std::optional<bim::AsBuilt> as_built;
+  if (plan && (plan_.empty() || !other_plan_) && dataset.metadata().contains("as_built")) {
+    const bim::JsonSource source{(fs::path(dataset_) / "metadata.json").string(), nullptr};
+    as_built = bim::parseAsBuiltJson(
+        bim::JsonNode(dataset.metadata()["as_built"], "/as_built", source), *plan, level);
+  }
+  run::RunSetup setup{dataset_,
+                      localizer->name(),
+                      dataset.seed(),
+                      context.plan,
+                      context.agraph,
+                      level,
+                      as_built ? &*as_built : nullptr};
   ProgressBar bar("isg slam", quiet_);
   const double period = streams.scan_period;
   const run::RunRecord record = run::runLocalizer(std::move(setup), *localizer, std::move(streams),

@@ -2,40 +2,44 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstdio>
 #include <limits>
 #include <sstream>
+
+#include "eval/svg_chart.hpp"
 
 namespace isg::eval {
 
 namespace {
 
-std::string escape(const std::string& text) {
-  std::string out;
-  for (char c : text) {
-    if (c == '&')
-      out += "&amp;";
-    else if (c == '<')
-      out += "&lt;";
-    else if (c == '>')
-      out += "&gt;";
-    else
-      out += c;
+constexpr const char* kEstimateColour = "#1f6fd0";
+constexpr const char* kAlignedColour = "#8e44ad";
+constexpr const char* kLocalizedColour = "#d02020";
+
+struct OverlayStyle {
+  const char* legend;
+  const char* svg;  // fill and stroke
+};
+OverlayStyle styleOf(MapOverlay::Kind kind) {
+  switch (kind) {
+    case MapOverlay::Kind::kExtraWall:
+      return {"extra wall (as built)", "fill=\"#e67e22\" stroke=\"#a04000\" stroke-width=\"0.5\""};
+    case MapOverlay::Kind::kShiftedWall:
+      return {"shifted wall (as built)",
+              "fill=\"#f5b041\" stroke=\"#a04000\" stroke-width=\"0.5\""};
+    case MapOverlay::Kind::kMissingWall:
+      return {"wall not built",
+              "fill=\"none\" stroke=\"#a04000\" stroke-width=\"1\" stroke-dasharray=\"3 2\""};
+    case MapOverlay::Kind::kClosedDoor:
+      return {"closed door", "fill=\"#6e2c00\" stroke=\"#6e2c00\" stroke-width=\"1.5\""};
+    case MapOverlay::Kind::kClutter:
+      return {"clutter",
+              "fill=\"#d7bde2\" fill-opacity=\"0.8\" stroke=\"#7d3c98\" "
+              "stroke-width=\"0.7\""};
   }
-  return out;
+  return {"", ""};
 }
 
-std::string number(double v) {
-  char b[32];
-  std::snprintf(b, sizeof b, "%.1f", v);
-  return b;
-}
-
-}  // namespace
-
-namespace {
-
-// Where everything goes: the plan's extent decides the map's scale; the chart sits below it.
+// Where everything goes: the map's extent decides its scale; the two charts sit below it.
 struct Layout {
   explicit Layout(const ReportInput& input) {
     lo = Eigen::Vector2d::Constant(std::numeric_limits<double>::infinity());
@@ -47,138 +51,221 @@ struct Layout {
     for (const auto& polygon : input.walls) {
       for (const auto& p : polygon) grow(p);
     }
-    for (const auto& pose : input.ground_truth) grow(pose.pose.translation().head<2>());
+    for (const auto& overlay : input.overlays) {
+      for (const auto& p : overlay.polygon) grow(p);
+    }
+    for (const auto* trajectory : {&input.ground_truth, &input.estimate}) {
+      for (const auto& pose : *trajectory) grow(pose.pose.translation().head<2>());
+    }
     if (!std::isfinite(lo.x())) lo = hi = Eigen::Vector2d::Zero();
     const Eigen::Vector2d size = (hi - lo).cwiseMax(Eigen::Vector2d::Constant(1.0));
     scale = (width - 2 * margin) / size.x();
     header = 30.0 + 18.0 * double(input.summary.size());
-    map_height = size.y() * scale + 2 * margin;
-    chart_top = header + map_height + 20.0;
-    height = chart_top + chart_height + 50.0;
+    legend_top = header + size.y() * scale + 2 * margin;
+    map_height = size.y() * scale + 2 * margin + 60.0;  // three legend rows and the scale bar
+    chart_top = header + map_height + 30.0;
+    heading_top = chart_top + chart_height + 55.0;
+    height = heading_top + chart_height + 40.0;
   }
-  std::string X(double x) const { return number(margin + (x - lo.x()) * scale); }
-  std::string Y(double y) const { return number(header + margin + (hi.y() - y) * scale); }
+  double px(double x) const { return margin + (x - lo.x()) * scale; }
+  double py(double y) const { return header + margin + (hi.y() - y) * scale; }
+  std::string X(double x) const { return svgNumber(px(x)); }
+  std::string Y(double y) const { return svgNumber(py(y)); }
 
-  static constexpr double width = 1000.0, margin = 30.0, chart_height = 180.0;
+  static constexpr double width = 1000.0, margin = 30.0, chart_height = 150.0;
   Eigen::Vector2d lo, hi;
-  double scale = 1.0, header = 0.0, map_height = 0.0, chart_top = 0.0, height = 0.0;
+  double scale = 1.0, header = 0.0, legend_top = 0.0, map_height = 0.0, chart_top = 0.0,
+         heading_top = 0.0, height = 0.0;
 };
 
 void drawHeader(std::ostringstream& svg, const ReportInput& input, const Layout& l) {
-  svg << "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"" << number(l.width) << "\" height=\""
-      << number(l.height) << "\" viewBox=\"0 0 " << number(l.width) << " " << number(l.height)
-      << "\" font-family=\"sans-serif\">\n";
+  svg << "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"" << svgNumber(l.width)
+      << "\" height=\"" << svgNumber(l.height) << "\" viewBox=\"0 0 " << svgNumber(l.width) << " "
+      << svgNumber(l.height) << "\" font-family=\"sans-serif\">\n";
   svg << "<rect width=\"100%\" height=\"100%\" fill=\"white\"/>\n";
   svg << "<text x=\"" << l.margin << "\" y=\"22\" font-size=\"18\" font-weight=\"bold\">"
-      << escape(input.title) << "</text>\n";
+      << svgEscape(input.title) << "</text>\n";
   for (std::size_t i = 0; i < input.summary.size(); ++i) {
-    svg << "<text x=\"" << l.margin << "\" y=\"" << number(42 + 18.0 * i) << "\" font-size=\"13\">"
-        << escape(input.summary[i]) << "</text>\n";
+    svg << "<text x=\"" << l.margin << "\" y=\"" << svgNumber(42 + 18.0 * double(i))
+        << "\" font-size=\"13\">" << svgEscape(input.summary[i]) << "</text>\n";
   }
 }
 
-// The plan's walls and room names, the trajectories, the start and the first localized pose.
-void drawMap(std::ostringstream& svg, const ReportInput& input, const Layout& l) {
-  svg << "<g fill=\"#9a9a9a\" stroke=\"#555\" stroke-width=\"0.5\">\n";
-  for (const auto& polygon : input.walls) {
-    svg << "<polygon points=\"";
-    for (const auto& p : polygon) svg << l.X(p.x()) << "," << l.Y(p.y()) << " ";
-    svg << "\"/>\n";
+void polygon(std::ostringstream& svg, const Layout& l, const std::vector<Eigen::Vector2d>& points,
+             const std::string& style) {
+  svg << "<polygon " << style << " points=\"";
+  for (const auto& p : points) svg << l.X(p.x()) << "," << l.Y(p.y()) << " ";
+  svg << "\"/>\n";
+}
+
+bool inside(const std::vector<Eigen::Vector2d>& outline, const Eigen::Vector2d& p) {
+  bool in = false;
+  for (std::size_t i = 0, j = outline.size() - 1; i < outline.size(); j = i++) {
+    const Eigen::Vector2d& a = outline[i];
+    const Eigen::Vector2d& b = outline[j];
+    if ((a.y() > p.y()) != (b.y() > p.y()) &&
+        p.x() < (b.x() - a.x()) * (p.y() - a.y()) / (b.y() - a.y()) + a.x()) {
+      in = !in;
+    }
   }
-  svg << "</g>\n<g font-size=\"11\" fill=\"#777\" text-anchor=\"middle\">\n";
-  for (const auto& [name, p] : input.labels) {
-    svg << "<text x=\"" << l.X(p.x()) << "\" y=\"" << l.Y(p.y()) << "\">" << escape(name)
-        << "</text>\n";
+  return in;
+}
+
+// Where a room's name goes: among points around its centre (rings of 0.5 m, eight directions,
+// inside the outline when there is one), the one whose text box keeps farthest from the paths,
+// up to 0.6 m of clearance; nearer the centre on a tie.
+Eigen::Vector2d placeLabel(const RoomLabel& label, const std::vector<Eigen::Vector2d>& paths,
+                           const Layout& l) {
+  const double half_width = 0.5 * 6.5 * double(label.text.size()) / l.scale;
+  const double half_height = 0.5 * 11.0 / l.scale;
+  auto clearance = [&](const Eigen::Vector2d& c) {
+    double best = std::numeric_limits<double>::infinity();
+    for (const auto& p : paths) {
+      const double dx = std::max(0.0, std::abs(p.x() - c.x()) - half_width);
+      const double dy = std::max(0.0, std::abs(p.y() - (c.y() + half_height)) - half_height);
+      best = std::min(best, std::hypot(dx, dy));
+    }
+    return best;
+  };
+  Eigen::Vector2d best_point = label.centre;
+  double best_score = -1.0;
+  for (int ring = 0; ring <= 6; ++ring) {
+    const double r = 0.5 * ring;
+    for (int k = 0; k < (ring == 0 ? 1 : 8); ++k) {
+      const double a = k * std::acos(-1.0) / 4.0;
+      const Eigen::Vector2d c = label.centre + r * Eigen::Vector2d(std::cos(a), std::sin(a));
+      if (!label.outline.empty() && !inside(label.outline, c)) continue;
+      const double score = std::min(0.6, clearance(c)) - 0.001 * r;
+      if (score > best_score + 1e-9) {
+        best_score = score;
+        best_point = c;
+      }
+    }
+  }
+  return best_point;
+}
+
+void path(std::ostringstream& svg, const Layout& l, const Trajectory& trajectory,
+          const std::string& style) {
+  if (trajectory.empty()) return;
+  svg << "<polyline fill=\"none\" " << style << " points=\"";
+  // At most ~4000 vertices: enough for the eye, small enough to open quickly.
+  const std::size_t step = std::max<std::size_t>(1, trajectory.size() / 4000);
+  for (std::size_t i = 0; i < trajectory.size(); i += step) {
+    const auto t = trajectory[i].pose.translation();
+    svg << l.X(t.x()) << "," << l.Y(t.y()) << " ";
+  }
+  svg << "\"/>\n";
+}
+
+// The plan's walls, the as-built changes, the trajectories, the start, the first localized pose
+// and the room names.
+void drawMap(std::ostringstream& svg, const ReportInput& input, const Layout& l) {
+  svg << "<g>\n";
+  for (const auto& wall : input.walls) {
+    polygon(svg, l, wall, "fill=\"#9a9a9a\" stroke=\"#555\" stroke-width=\"0.5\"");
+  }
+  for (const auto& overlay : input.overlays) {
+    polygon(svg, l, overlay.polygon, styleOf(overlay.kind).svg);
   }
   svg << "</g>\n";
-  auto path = [&](const Trajectory& trajectory, const std::string& style) {
-    if (trajectory.empty()) return;
-    svg << "<polyline fill=\"none\" " << style << " points=\"";
-    // At most ~4000 vertices: enough for the eye, small enough to open quickly.
-    const std::size_t step = std::max<std::size_t>(1, trajectory.size() / 4000);
-    for (std::size_t i = 0; i < trajectory.size(); i += step) {
-      const auto t = trajectory[i].pose.translation();
-      svg << l.X(t.x()) << "," << l.Y(t.y()) << " ";
-    }
-    svg << "\"/>\n";
-  };
-  path(input.odometry, "stroke=\"#e8a0a0\" stroke-width=\"1.2\" stroke-dasharray=\"4 3\"");
-  path(input.ground_truth, "stroke=\"black\" stroke-width=\"1.5\"");
-  path(input.estimate, "stroke=\"#1f6fd0\" stroke-width=\"1.5\" stroke-opacity=\"0.85\"");
-  if (!input.estimate.empty()) {
+  path(svg, l, input.odometry, "stroke=\"#e8a0a0\" stroke-width=\"1.2\" stroke-dasharray=\"4 3\"");
+  path(svg, l, input.ground_truth, "stroke=\"black\" stroke-width=\"1.5\"");
+  const std::string estimate_colour =
+      input.estimate_is_localization ? kEstimateColour : kAlignedColour;
+  path(svg, l, input.estimate,
+       "stroke=\"" + estimate_colour + "\" stroke-width=\"1.5\" stroke-opacity=\"0.85\"");
+  if (!input.estimate.empty() && input.estimate_is_localization) {
     const auto p = input.estimate.front().pose.translation();
-    svg << "<circle cx=\"" << l.X(p.x()) << "\" cy=\"" << l.Y(p.y())
-        << "\" r=\"7\" fill=\"none\" stroke=\"#d02020\" stroke-width=\"2.5\"/>\n";
-    svg << "<text x=\"" << l.X(p.x()) << "\" y=\"" << number(std::stod(l.Y(p.y())) - 11)
-        << "\" font-size=\"12\" fill=\"#d02020\" text-anchor=\"middle\">localized</text>\n";
+    svg << "<circle cx=\"" << l.X(p.x()) << "\" cy=\"" << l.Y(p.y()) << "\" r=\"7\" fill=\"none\" "
+        << "stroke=\"" << kLocalizedColour << "\" stroke-width=\"2.5\"/>\n";
+    svg << "<text x=\"" << l.X(p.x()) << "\" y=\"" << svgNumber(l.py(p.y()) - 11)
+        << "\" font-size=\"12\" fill=\"" << kLocalizedColour
+        << "\" text-anchor=\"middle\">localized</text>\n";
   }
   if (!input.ground_truth.empty()) {
     const auto p = input.ground_truth.front().pose.translation();
-    svg << "<rect x=\"" << number(std::stod(l.X(p.x())) - 5) << "\" y=\""
-        << number(std::stod(l.Y(p.y())) - 5) << "\" width=\"10\" height=\"10\" fill=\"black\"/>\n";
+    svg << "<rect x=\"" << svgNumber(l.px(p.x()) - 5) << "\" y=\"" << svgNumber(l.py(p.y()) - 5)
+        << "\" width=\"10\" height=\"10\" fill=\"black\"/>\n";
   }
+  std::vector<Eigen::Vector2d> paths;
+  for (const auto* trajectory : {&input.ground_truth, &input.estimate}) {
+    const std::size_t step = std::max<std::size_t>(1, trajectory->size() / 3000);
+    for (std::size_t i = 0; i < trajectory->size(); i += step) {
+      paths.push_back((*trajectory)[i].pose.translation().head<2>());
+    }
+  }
+  svg << "<g font-size=\"11\" fill=\"#555\" text-anchor=\"middle\">\n";
+  for (const auto& label : input.labels) {
+    const Eigen::Vector2d at = placeLabel(label, paths, l);
+    svg << "<text x=\"" << l.X(at.x()) << "\" y=\"" << l.Y(at.y()) << "\">" << svgEscape(label.text)
+        << "</text>\n";
+  }
+  svg << "</g>\n";
 }
 
-void drawLegend(std::ostringstream& svg, const Layout& l) {
-  const double legend_y = l.header + l.map_height - 8;
-  const std::pair<const char*, const char*> legend[] = {
-      {"black", "ground truth"},
-      {"#1f6fd0", "estimate in B (once localized)"},
-      {"#e8a0a0", "odometry from the true start"},
-      {"#d02020", "first localized pose"}};
-  double lx = l.margin;
-  for (const auto& [colour, text] : legend) {
-    svg << "<line x1=\"" << lx << "\" y1=\"" << number(legend_y) << "\" x2=\"" << lx + 20
-        << "\" y2=\"" << number(legend_y) << "\" stroke=\"" << colour
-        << "\" stroke-width=\"3\"/><text x=\"" << lx + 25 << "\" y=\"" << number(legend_y + 4)
-        << "\" font-size=\"12\">" << text << "</text>\n";
-    lx += 60 + 7.0 * std::string(text).size();
-  }
+// A round number of metres, about a sixth of the map's width.
+double scaleBarMetres(const Layout& l) { return niceStep((l.hi.x() - l.lo.x()) / 6.0, 1); }
+
+// The scale bar, bottom right under the map (the legend keeps left of it).
+void drawScaleBar(std::ostringstream& svg, const Layout& l) {
+  const double metres = scaleBarMetres(l);
+  const double length = metres * l.scale;
+  const double x1 = l.width - l.margin, x0 = x1 - length;
+  const double y = l.legend_top + 20;
+  svg << "<g stroke=\"black\" stroke-width=\"2\"><line x1=\"" << svgNumber(x0) << "\" y1=\""
+      << svgNumber(y) << "\" x2=\"" << svgNumber(x1) << "\" y2=\"" << svgNumber(y) << "\"/>"
+      << "<line x1=\"" << svgNumber(x0) << "\" y1=\"" << svgNumber(y - 5) << "\" x2=\""
+      << svgNumber(x0) << "\" y2=\"" << svgNumber(y + 5) << "\"/><line x1=\"" << svgNumber(x1)
+      << "\" y1=\"" << svgNumber(y - 5) << "\" x2=\"" << svgNumber(x1) << "\" y2=\""
+      << svgNumber(y + 5) << "\"/></g>\n";
+  svg << "<text x=\"" << svgNumber(0.5 * (x0 + x1)) << "\" y=\"" << svgNumber(y - 8)
+      << "\" font-size=\"12\" text-anchor=\"middle\">" << tickLabel(metres, metres)
+      << " m</text>\n";
 }
 
-// The APE over time, with the moment of the first localization.
-void drawChart(std::ostringstream& svg, const ReportInput& input, const Layout& l) {
-  double t0 = input.ground_truth.empty() ? 0.0 : input.ground_truth.front().t;
-  double t1 = input.ground_truth.empty() ? 1.0 : input.ground_truth.back().t;
-  if (t1 <= t0) t1 = t0 + 1.0;
-  double e_max = 0.05;
-  for (const auto& [t, e] : input.error_over_time) e_max = std::max(e_max, e);
-  e_max = std::ceil(e_max * 20.0) / 20.0;
-  const double top = l.chart_top, height = l.chart_height;
-  const double cx0 = l.margin + 50, cx1 = l.width - l.margin;
-  auto CX = [&](double t) { return number(cx0 + (t - t0) / (t1 - t0) * (cx1 - cx0)); };
-  auto CY = [&](double e) { return number(top + height * (1.0 - e / e_max)); };
-  svg << "<text x=\"" << l.margin << "\" y=\"" << number(top - 6)
-      << "\" font-size=\"13\">APE in B (2D, no alignment), metres, over time</text>\n";
-  svg << "<rect x=\"" << number(cx0) << "\" y=\"" << number(top) << "\" width=\""
-      << number(cx1 - cx0) << "\" height=\"" << number(height)
-      << "\" fill=\"none\" stroke=\"#444\"/>\n";
-  for (int i = 0; i <= 4; ++i) {
-    const double e = e_max * i / 4.0;
-    char label[32];
-    std::snprintf(label, sizeof label, "%.3f", e);
-    svg << "<text x=\"" << number(cx0 - 5) << "\" y=\"" << number(std::stod(CY(e)) + 4)
-        << "\" font-size=\"10\" text-anchor=\"end\">" << label << "</text>\n";
-    svg << "<line x1=\"" << number(cx0) << "\" y1=\"" << CY(e) << "\" x2=\"" << number(cx1)
-        << "\" y2=\"" << CY(e) << "\" stroke=\"#ddd\"/>\n";
+void drawLegend(std::ostringstream& svg, const ReportInput& input, const Layout& l) {
+  double y = l.legend_top + 12;
+  double x = l.margin;
+  const double right = l.width - l.margin - scaleBarMetres(l) * l.scale - 30;
+  // The swatch is made once the entry's place is known (it may start a new line).
+  auto entry = [&](const auto& swatch, const std::string& text) {
+    const double width = 30 + 6.3 * double(text.size());
+    if (x + width > right && x > l.margin) {  // a new line, clear of the scale bar
+      x = l.margin;
+      y += 16;
+    }
+    svg << swatch() << "<text x=\"" << svgNumber(x + 25) << "\" y=\"" << svgNumber(y + 4)
+        << "\" font-size=\"12\">" << svgEscape(text) << "</text>\n";
+    x += width + 12;
+  };
+  auto line = [&](const std::string& colour) {
+    return [&x, &y, colour] {
+      return "<line x1=\"" + svgNumber(x) + "\" y1=\"" + svgNumber(y) + "\" x2=\"" +
+             svgNumber(x + 20) + "\" y2=\"" + svgNumber(y) + "\" stroke=\"" + colour +
+             "\" stroke-width=\"3\"/>";
+    };
+  };
+  entry(line("black"), "ground truth");
+  if (!input.estimate.empty() || input.estimate_is_localization) {
+    entry(line(input.estimate_is_localization ? kEstimateColour : kAlignedColour),
+          input.estimate_label);
   }
-  for (int i = 0; i <= 5; ++i) {
-    const double t = t0 + (t1 - t0) * i / 5.0;
-    svg << "<text x=\"" << CX(t) << "\" y=\"" << number(top + height + 14)
-        << "\" font-size=\"10\" text-anchor=\"middle\">" << number(t - t0) << " s</text>\n";
-  }
-  if (input.localized_at) {
-    svg << "<line x1=\"" << CX(*input.localized_at) << "\" y1=\"" << number(top) << "\" x2=\""
-        << CX(*input.localized_at) << "\" y2=\"" << number(top + height)
-        << "\" stroke=\"#d02020\" stroke-dasharray=\"3 3\"/>\n";
-  }
-  if (!input.error_over_time.empty()) {
-    svg << "<polyline fill=\"none\" stroke=\"#1f6fd0\" stroke-width=\"1.2\" points=\"";
-    for (const auto& [t, e] : input.error_over_time) svg << CX(t) << "," << CY(e) << " ";
-    svg << "\"/>\n";
-  } else {
-    svg << "<text x=\"" << number(0.5 * (cx0 + cx1)) << "\" y=\"" << number(top + height / 2)
-        << "\" font-size=\"14\" text-anchor=\"middle\" fill=\"#d02020\">never localized</text>\n";
+  if (!input.odometry.empty()) entry(line("#e8a0a0"), "odometry from the true start");
+  if (input.estimate_is_localization) entry(line(kLocalizedColour), "first localized pose");
+  for (auto kind : {MapOverlay::Kind::kExtraWall, MapOverlay::Kind::kShiftedWall,
+                    MapOverlay::Kind::kMissingWall, MapOverlay::Kind::kClosedDoor,
+                    MapOverlay::Kind::kClutter}) {
+    const bool present = std::any_of(input.overlays.begin(), input.overlays.end(),
+                                     [&](const MapOverlay& o) { return o.kind == kind; });
+    if (!present) continue;
+    const OverlayStyle style = styleOf(kind);
+    entry(
+        [&] {
+          return "<rect x=\"" + svgNumber(x + 2) + "\" y=\"" + svgNumber(y - 5) +
+                 "\" width=\"16\" height=\"10\" " + style.svg + "/>";
+        },
+        style.legend);
   }
 }
 
@@ -189,8 +276,27 @@ std::string reportSvg(const ReportInput& input) {
   std::ostringstream svg;
   drawHeader(svg, input, layout);
   drawMap(svg, input, layout);
-  drawLegend(svg, layout);
-  drawChart(svg, input, layout);
+  drawLegend(svg, input, layout);
+  drawScaleBar(svg, layout);
+  const double t0 = input.ground_truth.empty() ? 0.0 : input.ground_truth.front().t;
+  const double t1 = input.ground_truth.empty() ? 1.0 : input.ground_truth.back().t;
+  const std::string colour = input.estimate_is_localization ? kEstimateColour : kAlignedColour;
+  ChartPanel position;
+  position.title = input.error_title + ": position error, metres";
+  position.x0 = t0;
+  position.x1 = t1;
+  position.y_floor = 0.05;
+  position.series = {{input.error_over_time, colour, ""}};
+  position.marker_x = input.localized_at;
+  position.empty_text = input.empty_chart_text;
+  drawChartPanel(svg, position, layout.margin, layout.chart_top, layout.width - 2 * layout.margin,
+                 layout.chart_height);
+  ChartPanel heading = position;
+  heading.title = input.error_title + ": heading error, degrees";
+  heading.y_floor = 1.0;
+  heading.series = {{input.heading_error_over_time, colour, ""}};
+  drawChartPanel(svg, heading, layout.margin, layout.heading_top, layout.width - 2 * layout.margin,
+                 layout.chart_height);
   svg << "</svg>\n";
   return svg.str();
 }

@@ -10,19 +10,40 @@
 
 namespace isg::eval {
 
-// A run's report as one SVG picture: the plan (as polygons the caller draws it with), the
-// ground-truth and estimated trajectories in B, where localization happened, and the APE over
-// time below. Plain data in, so that eval stays free of the plan model.
+// What the building was as built, beside the plan: drawn over the plan's walls.
+struct MapOverlay {
+  enum class Kind { kExtraWall, kShiftedWall, kMissingWall, kClosedDoor, kClutter };
+  Kind kind = Kind::kExtraWall;
+  std::vector<Eigen::Vector2d> polygon;
+};
+
+// A room's name, placed near its centre where no path runs (within its outline when given).
+struct RoomLabel {
+  std::string text;
+  Eigen::Vector2d centre = Eigen::Vector2d::Zero();
+  std::vector<Eigen::Vector2d> outline;
+};
+
+// A run's report as one SVG picture (plain data in, so that eval stays free of the plan model):
+// the plan from above (walls with their door openings, the as-built changes, room names), the
+// trajectories, where localization happened, a metre scale bar; below it the position error and
+// the heading error over time, on round-number axes.
 struct ReportInput {
   std::string title;
   std::vector<std::string> summary;  // lines printed under the title
   std::vector<std::vector<Eigen::Vector2d>> walls;
-  std::vector<std::pair<std::string, Eigen::Vector2d>> labels;  // room names at their centres
+  std::vector<MapOverlay> overlays;
+  std::vector<RoomLabel> labels;
   Trajectory ground_truth;
-  Trajectory estimate;  // in B, from the first localized pose on
+  Trajectory estimate;  // in B (from the first localized pose on), or aligned: see below
+  std::string estimate_label = "estimate in B (once localized)";
+  bool estimate_is_localization = true;  // false: an aligned SLAM estimate, drawn in another hue
   Trajectory odometry;  // odometry placed at the true start (dead reckoning), drawn faintly
-  std::vector<std::pair<double, double>> error_over_time;  // (t, APE metres)
-  std::optional<double> localized_at;                      // seconds
+  std::string error_title = "APE in B (2D, no alignment)";
+  std::vector<std::pair<double, double>> error_over_time;          // (t, metres)
+  std::vector<std::pair<double, double>> heading_error_over_time;  // (t, degrees)
+  std::optional<double> localized_at;                              // seconds
+  std::string empty_chart_text = "never localized";
 };
 
 std::string reportSvg(const ReportInput& input);

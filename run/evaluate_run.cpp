@@ -96,8 +96,9 @@ RunEvaluation evaluateRun(const RunRecord& run) {
       m.ape_B = ape.translation_stats;
       m.ape_B_rotation_deg = ape.rotation_stats;
       for (std::size_t i = 0; i < ape.translation.size(); ++i) {
-        evaluation.error_over_time.emplace_back(run.estimate[ape.association.estimate[i]].t,
-                                                ape.translation[i]);
+        const double t = run.estimate[ape.association.estimate[i]].t;
+        evaluation.error_over_time.emplace_back(t, ape.translation[i]);
+        evaluation.heading_error_over_time.emplace_back(t, ape.rotation_deg[i]);
       }
     });
   }
@@ -105,8 +106,16 @@ RunEvaluation evaluateRun(const RunRecord& run) {
     eval::ErrorOptions se3 = planar;
     se3.align = eval::Alignment::kSE3;
     attempt("APE in M (SE(3)-aligned)", [&] {
-      m.ape_M_se3 =
-          eval::absolutePoseError(streams.ground_truth, run.estimate_map, se3).translation_stats;
+      const auto ape = eval::absolutePoseError(streams.ground_truth, run.estimate_map, se3);
+      m.ape_M_se3 = ape.translation_stats;
+      for (const auto& pose : run.estimate_map) {
+        evaluation.aligned_map_estimate.push_back({pose.t, ape.alignment->apply(pose.pose)});
+      }
+      for (std::size_t i = 0; i < ape.translation.size(); ++i) {
+        const double t = run.estimate_map[ape.association.estimate[i]].t;
+        evaluation.map_error_over_time.emplace_back(t, ape.translation[i]);
+        evaluation.map_heading_error_over_time.emplace_back(t, ape.rotation_deg[i]);
+      }
     });
   }
   evaluation.dead_reckoning = odometryInPlan(streams);

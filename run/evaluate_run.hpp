@@ -15,7 +15,13 @@ namespace isg::run {
 struct RunEvaluation {
   RunMetrics metrics;
   Trajectory dead_reckoning;                               // odometry from the true start, in B
-  std::vector<std::pair<double, double>> error_over_time;  // (t, APE in B)
+  std::vector<std::pair<double, double>> error_over_time;  // (t, APE in B, metres)
+  std::vector<std::pair<double, double>> heading_error_over_time;  // (t, degrees)
+  // The map-frame estimate SE(3)-aligned to the ground truth, and its errors over time: what a
+  // method that never localizes in B (s-graph) is judged and drawn by.
+  Trajectory aligned_map_estimate;
+  std::vector<std::pair<double, double>> map_error_over_time;
+  std::vector<std::pair<double, double>> map_heading_error_over_time;
 };
 
 RunEvaluation evaluateRun(const RunRecord& run);

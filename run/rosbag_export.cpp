@@ -48,7 +48,7 @@ RosbagSummary exportRosbag(const std::string& dataset_dir, const std::string& ba
                            const std::function<void(int, int)>& progress) {
   const auto start = std::chrono::steady_clock::now();
   DatasetReader dataset(dataset_dir);
-  const auto stamp = [&](double t) { return RosTime::fromSeconds(t + options.stamp_offset); };
+  const auto stamp = [&](double t) { return RosTime::fromSeconds(t, options.stamp_offset); };
 
   std::vector<Entry> entries;
   entries.push_back({0.0, Kind::kTfStatic, 0});

@@ -23,9 +23,10 @@ inline constexpr const char* kImuFrame = "imu";         // I
 }  // namespace rosbag_names
 
 struct RosbagExportOptions {
-  // Added to every dataset time: ROS reads a zero stamp as "no time" (tf's "latest"), so dataset
-  // time 0 becomes 1e9 s (2001-09-09), and bag time T is dataset time T − 1e9.
-  double stamp_offset = 1e9;
+  // Whole seconds added to every dataset time: ROS reads a zero stamp as "no time" (tf's
+  // "latest"), so dataset time 0 becomes 1000000000 s (2001-09-09), and bag time T is dataset
+  // time T − 1e9.
+  std::uint32_t stamp_offset = 1000000000;
   bool overwrite = false;
 };
 

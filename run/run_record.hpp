@@ -8,6 +8,7 @@
 
 #include "bim/agraph.hpp"
 #include "bim/plan.hpp"
+#include "bim/scenario.hpp"
 #include "run/sensor_streams.hpp"
 #include "slam/map_diagnostics.hpp"
 #include "slam/stage_times.hpp"
@@ -22,6 +23,7 @@ struct RunSetup {
   const bim::Plan* plan = nullptr;  // for agraph.json and the report; may be null
   const bim::AGraph* agraph = nullptr;
   std::string level;
+  const bim::AsBuilt* as_built = nullptr;  // what the simulated building changed; may be null
 };
 
 // What one run produced, from the live loop (`isg run`) or a replay (`isg slam`): the streams it

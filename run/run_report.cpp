@@ -4,6 +4,7 @@
 
 #include "bim/plan_geometry.hpp"
 #include "eval/report_svg.hpp"
+#include "run/builtin_methods.hpp"
 
 namespace isg::run {
 
@@ -26,6 +27,66 @@ std::string walkedBy(const RunMetrics& m) {
   if (m.rooms_visited_to_localize) {
     out += format(" and %d room%s", *m.rooms_visited_to_localize,
                   *m.rooms_visited_to_localize == 1 ? "" : "s");
+  }
+  return out;
+}
+
+}  // namespace
+
+namespace {
+
+std::vector<Eigen::Vector2d> rectangle(const Eigen::Vector2d& centre, const Eigen::Vector2d& along,
+                                       double half_length, double half_width) {
+  const Eigen::Vector2d u = along.normalized();
+  const Eigen::Vector2d n(-u.y(), u.x());
+  return {centre - half_length * u - half_width * n, centre + half_length * u - half_width * n,
+          centre + half_length * u + half_width * n, centre - half_length * u + half_width * n};
+}
+
+// What was built differently from the plan on `level`, as shapes over the plan's walls.
+std::vector<eval::MapOverlay> asBuiltOverlays(const bim::Level& level,
+                                              const bim::LevelGeometry& geometry,
+                                              const bim::AsBuilt& as_built) {
+  using Kind = eval::MapOverlay::Kind;
+  std::vector<eval::MapOverlay> out;
+  for (const auto& id : as_built.missing_walls) {
+    if (const auto* wall = geometry.findWall(id))
+      out.push_back({Kind::kMissingWall, wall->footprint()});
+  }
+  for (const auto& shift : as_built.wall_shifts) {
+    const auto* wall = geometry.findWall(shift.wall);
+    if (wall == nullptr) continue;
+    for (auto piece : wall->footprintPieces()) {
+      for (auto& p : piece) p += shift.offset * wall->left_normal;
+      out.push_back({Kind::kShiftedWall, piece});
+    }
+  }
+  for (const auto& extra : as_built.extra_walls) {
+    if (extra.level != level.id || (extra.end - extra.start).norm() < 1e-9) continue;
+    out.push_back({Kind::kExtraWall,
+                   rectangle(0.5 * (extra.start + extra.end), extra.end - extra.start,
+                             0.5 * (extra.end - extra.start).norm(), 0.5 * extra.thickness)});
+  }
+  for (const auto& id : as_built.closed_doors) {
+    for (const auto& door : level.doors) {
+      if (door.id != id) continue;
+      const auto* wall = geometry.findWall(door.wall);
+      if (wall == nullptr) continue;
+      // The leaf, 4 cm thick, across the opening in the middle of the wall.
+      double offset = 0.0;
+      for (const auto& shift : as_built.wall_shifts) {
+        if (shift.wall == door.wall) offset = shift.offset;
+      }
+      out.push_back(
+          {Kind::kClosedDoor, rectangle(wall->pointAt(door.offset) + offset * wall->left_normal,
+                                        wall->axis, 0.5 * door.width, 0.02)});
+    }
+  }
+  for (const auto& box : as_built.clutter) {
+    if (box.level != level.id) continue;
+    const Eigen::Vector2d along(std::cos(box.yaw), std::sin(box.yaw));
+    out.push_back({Kind::kClutter,
+                   rectangle(box.center.head<2>(), along, 0.5 * box.size.x(), 0.5 * box.size.y())});
   }
   return out;
 }
@@ -63,21 +124,51 @@ std::string reportSvg(const RunRecord& run, const RunEvaluation& evaluation) {
     const bim::Level* level = plan->findLevel(run.setup.level);
     if (level == nullptr && !plan->levels.empty()) level = &plan->levels[0];
     if (level != nullptr) {
-      for (const auto& wall : bim::computeLevelGeometry(*level).walls) {
-        input.walls.push_back(wall.footprint());
+      const bim::LevelGeometry geometry = bim::computeLevelGeometry(*level);
+      for (const auto& wall : geometry.walls) {
+        for (auto& piece : wall.footprintPieces()) input.walls.push_back(std::move(piece));
+      }
+      if (run.setup.as_built != nullptr) {
+        input.overlays = asBuiltOverlays(*level, geometry, *run.setup.as_built);
+      }
+      for (const auto& room : level->rooms) {
+        const bim::AGraph* agraph = run.setup.agraph;
+        Eigen::Vector2d centre = Eigen::Vector2d::Zero();
+        for (const auto& p : room.outline) centre += p / double(room.outline.size());
+        if (agraph != nullptr) {
+          for (const auto& node : agraph->rooms) {
+            if (node.id == room.id) centre = node.centre;
+          }
+        }
+        input.labels.push_back({room.id, centre, room.outline});
       }
     }
   }
-  if (const bim::AGraph* agraph = run.setup.agraph) {
-    for (const auto& room : agraph->rooms) {
-      if (room.level == run.setup.level) input.labels.emplace_back(room.id, room.centre);
-    }
-  }
   input.ground_truth = run.streams.ground_truth;
-  input.estimate = run.estimate;
   input.odometry = evaluation.dead_reckoning;
-  input.error_over_time = evaluation.error_over_time;
   input.localized_at = run.localized_at;
+  const MethodInfo* method = builtinMethods().find(run.setup.method);
+  if (method != nullptr && method->slam_only && !evaluation.aligned_map_estimate.empty()) {
+    // A method that does not localize in the plan (SLAM only): its map, aligned after the fact.
+    input.estimate = evaluation.aligned_map_estimate;
+    input.estimate_is_localization = false;
+    input.estimate_label = "estimate in M, SE(3)-aligned to the ground truth";
+    input.error_title = "APE in M after SE(3) alignment";
+    input.error_over_time = evaluation.map_error_over_time;
+    input.heading_error_over_time = evaluation.map_heading_error_over_time;
+    input.summary[0] = format(
+        "%s does not localize in the plan: drawn is its map-frame estimate, SE(3)-aligned to the",
+        run.setup.method.c_str());
+    input.summary.insert(
+        input.summary.begin() + 1,
+        format("ground truth after the run: APE in M rmse %.3f m — the map's quality, not a "
+               "localization",
+               m.ape_M_se3 ? m.ape_M_se3->rmse : 0.0));
+  } else {
+    input.estimate = run.estimate;
+    input.error_over_time = evaluation.error_over_time;
+    input.heading_error_over_time = evaluation.heading_error_over_time;
+  }
   return eval::reportSvg(input);
 }
 

@@ -73,6 +73,19 @@ TEST_F(TwoRoomGeometry, OpeningsOnBothFaces) {
   }
 }
 
+TEST_F(TwoRoomGeometry, FootprintPiecesLeaveTheDoorOpen) {
+  // W1 runs from x = -0.1 to 6.1 (its corner extensions), 0.2 thick, with a door at x 4–5.
+  const auto pieces = wall("W1").footprintPieces();
+  ASSERT_EQ(pieces.size(), 2u);
+  EXPECT_NEAR((pieces[0][0] - Eigen::Vector2d(-0.1, -0.1)).norm(), 0.0, 1e-12);
+  EXPECT_NEAR((pieces[0][2] - Eigen::Vector2d(4.0, 0.1)).norm(), 0.0, 1e-12);
+  EXPECT_NEAR((pieces[1][0] - Eigen::Vector2d(5.0, -0.1)).norm(), 0.0, 1e-12);
+  EXPECT_NEAR((pieces[1][2] - Eigen::Vector2d(6.1, 0.1)).norm(), 0.0, 1e-12);
+  // A wall without a door is one piece: its footprint.
+  ASSERT_EQ(wall("W2").footprintPieces().size(), 1u);
+  EXPECT_EQ(wall("W2").footprintPieces()[0], wall("W2").footprint());
+}
+
 TEST_F(TwoRoomGeometry, RoomsAreBoundedByTheFacesLookingIntoThem) {
   const auto r1 = geometry.boundariesOf("R1");
   ASSERT_EQ(r1.size(), 4u);

@@ -150,6 +150,42 @@ TEST(Simulate, WritesADatasetAndSummarises) {
   EXPECT_FALSE(sandbox.exists("ds/scans/000005.pcd"));
 }
 
+// isg export: a dataset as a ROS 1 bag (read back by python3-rosbag in rosbag_oracle.py), and
+// its bad input.
+TEST(Export, WritesABagAndRefusesBadInput) {
+  testing::Sandbox sandbox("export");
+  ASSERT_EQ(sandbox.run("simulate builtin:d2 -o ds --duration 1 -q --rosbag ds.bag").exit_code, 0);
+  ASSERT_TRUE(sandbox.exists("ds.bag"));
+  auto result = sandbox.run("export ds --rosbag again.bag -q");
+  EXPECT_EQ(result.exit_code, 0) << result.err;
+  EXPECT_THAT(result.out, StartsWith("isg export: wrote again.bag: "));
+  EXPECT_THAT(result.out, HasSubstr("/velodyne_points 10"));
+  EXPECT_THAT(result.out, HasSubstr("/imu/data 201"));
+  EXPECT_EQ(sandbox.read("ds.bag"), sandbox.read("again.bag"));  // same dataset, same bytes
+  result = sandbox.run("export ds --rosbag again.bag -q");
+  EXPECT_EQ(result.exit_code, 1);
+  EXPECT_EQ(result.err,
+            "isg export: error: again.bag: already exists (use --force to replace it)\n");
+  result = sandbox.run("export nowhere --rosbag x.bag -q");
+  EXPECT_EQ(result.exit_code, 1);
+  EXPECT_EQ(result.err, "isg export: error: nowhere: not a dataset folder (no such directory)\n");
+  EXPECT_FALSE(sandbox.exists("x.bag"));
+  sandbox.write("ds/imu.csv", "t,ax,ay,az,gx,gy,gz\n0,0,0,9.81,0,0\n");
+  result = sandbox.run("export ds --rosbag x.bag -q");
+  EXPECT_EQ(result.exit_code, 1);
+  EXPECT_EQ(result.err,
+            "isg export: error: ds/imu.csv: line 2: expected 7 comma-separated numbers: "
+            "t,ax,ay,az,gx,gy,gz\n");
+  EXPECT_FALSE(sandbox.exists("x.bag"));
+  // Refused before simulating: an existing bag without --force.
+  result = sandbox.run("simulate builtin:d2 -o ds2 --duration 1 -q --rosbag ds.bag");
+  EXPECT_EQ(result.exit_code, 1);
+  EXPECT_EQ(result.err,
+            "isg simulate: error: ds.bag: already exists (use --force to replace it)\n");
+  EXPECT_FALSE(sandbox.exists("ds2"));
+  EXPECT_EQ(sandbox.run("export --help").exit_code, 0);
+}
+
 TEST(Simulate, StartInsideClearanceIsAClearError) {
   testing::Sandbox sandbox("simulate_start");
   sandbox.write("scenario.json", R"({"format": "isg.scenario", "version": 1,

@@ -1,0 +1,60 @@
+// Dataset synthesis end to end, as `isg simulate` and `isg export` do it: D1 as built to a
+// compressed dataset on two threads (robot seconds per wall second: the real-time factor), and
+// that dataset exported as a ROS 1 bag (MB/s of bag written). Both include the file system's
+// cost (docs/performance.md, "Datasets").
+#include <benchmark/benchmark.h>
+#include <unistd.h>
+
+#include <filesystem>
+
+#include "run/rosbag_export.hpp"
+#include "sim/dataset_writer.hpp"
+#include "sim/simulation.hpp"
+#include "worlds/reference_plans.hpp"
+
+namespace isg::sim {
+namespace {
+
+namespace fs = std::filesystem;
+
+fs::path scratch() {
+  return fs::temp_directory_path() / ("isg_dataset_bench_" + std::to_string(::getpid()));
+}
+
+void BM_SimulateToCompressedDataset_D1(benchmark::State& state) {
+  Simulation sim(worlds::loadScenarioOrBuiltin("builtin:d1.asbuilt", nullptr));
+  const fs::path dir = scratch();
+  fs::create_directories(dir);
+  DatasetOptions options;
+  options.threads = 2;
+  options.overwrite = true;
+  DatasetSummary summary;
+  for (auto _ : state) summary = writeDataset(sim, (dir / "ds").string(), options, nullptr);
+  state.counters["real_time_factor"] = benchmark::Counter(
+      summary.sim_seconds * double(state.iterations()), benchmark::Counter::kIsRate);
+  state.counters["MB"] = double(summary.scan_bytes) / 1e6;
+  fs::remove_all(dir);
+}
+BENCHMARK(BM_SimulateToCompressedDataset_D1)->Unit(benchmark::kSecond)->UseRealTime();
+
+void BM_ExportRosbag_D1(benchmark::State& state) {
+  const fs::path dir = scratch();
+  fs::create_directories(dir);
+  {
+    Simulation sim(worlds::loadScenarioOrBuiltin("builtin:d1.asbuilt", nullptr));
+    writeDataset(sim, (dir / "ds").string(), DatasetOptions{}, nullptr);
+  }
+  run::RosbagExportOptions options;
+  options.overwrite = true;
+  run::RosbagSummary summary;
+  for (auto _ : state) {
+    summary = run::exportRosbag((dir / "ds").string(), (dir / "d1.bag").string(), options, nullptr);
+  }
+  state.SetBytesProcessed(std::int64_t(summary.bytes) * std::int64_t(state.iterations()));
+  state.counters["bag_MB"] = double(summary.bytes) / 1e6;
+  fs::remove_all(dir);
+}
+BENCHMARK(BM_ExportRosbag_D1)->Unit(benchmark::kSecond)->UseRealTime();
+
+}  // namespace
+}  // namespace isg::sim
