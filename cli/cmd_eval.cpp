@@ -6,6 +6,8 @@
 
 #include "eval/ape.hpp"
 #include "eval/coverage.hpp"
+#include "eval/report_svg.hpp"
+#include "run/atomic_folder.hpp"
 #include "run/trajectory_file.hpp"
 
 namespace isg::cli {
@@ -53,6 +55,43 @@ EvalCommand::EvalCommand(CLI::App& parent) {
   app_->add_option("--rpe", rpe_delta_, "also the relative pose error over this many poses")
       ->check(CLI::Range(1, 1000000));
   app_->add_flag("--json", json_, "print JSON instead of evo's text layout");
+  app_->add_option("--plot", plot_,
+                   "also draw both trajectories from above and the APE over time (as evo's --plot)")
+      ->option_text("OUT.svg");
+}
+
+void EvalCommand::writePlot(const eval::Trajectory& reference, const eval::Trajectory& estimate,
+                            const eval::ErrorResult& ape, const std::string& how,
+                            const eval::Coverage& coverage) const {
+  eval::ReportInput input;
+  input.title = "isg eval: " + estimate_ + " against " + reference_;
+  char line[256];
+  std::snprintf(line, sizeof line,
+                "APE (%s): rmse %.3f m, median %.3f m, max %.3f m over %d poses; rotation rmse "
+                "%.2f deg",
+                how.c_str(), ape.translation_stats.rmse, ape.translation_stats.median,
+                ape.translation_stats.max, ape.translation_stats.count, ape.rotation_stats.rmse);
+  input.summary.push_back(line);
+  input.ground_truth = reference;
+  // The estimate as it was compared: aligned when an alignment was asked for.
+  for (const auto& pose : estimate) {
+    input.estimate.push_back({pose.t, ape.alignment ? ape.alignment->apply(pose.pose) : pose.pose});
+  }
+  input.estimate_label = ape.alignment ? "estimate, aligned" : "estimate";
+  // The first pose is marked as a localization only when the estimate starts after the reference
+  // and was not aligned after the fact.
+  input.estimate_is_localization =
+      !ape.alignment && coverage.localized && coverage.time_to_first > 0.0;
+  input.error_title = "APE (" + how + ")";
+  for (std::size_t i = 0; i < ape.translation.size(); ++i) {
+    const double t = estimate[ape.association.estimate[i]].t;
+    input.error_over_time.emplace_back(t, ape.translation[i]);
+    input.heading_error_over_time.emplace_back(t, ape.rotation_deg[i]);
+  }
+  if (input.estimate_is_localization) {
+    input.localized_at = reference.front().t + coverage.time_to_first;
+  }
+  run::writeFileAtomically(plot_, eval::reportSvg(input));
 }
 
 int EvalCommand::run() {
@@ -82,6 +121,7 @@ int EvalCommand::run() {
                                                     : "with Sim(3) Umeyama alignment");
   const std::string how = alignment + (options.project_xy ? ", projected to xy" : "");
   const eval::Coverage coverage = eval::localizationCoverage(reference, estimate);
+  if (!plot_.empty()) writePlot(reference, estimate, ape, how, coverage);
   if (json_) {
     nlohmann::ordered_json out = {{"reference", reference_},
                                   {"estimate", estimate_},

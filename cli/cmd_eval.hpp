@@ -1,10 +1,13 @@
 #pragma once
 
 #include "cli/common.hpp"
+#include "eval/ape.hpp"
+#include "eval/coverage.hpp"
 
 namespace isg::cli {
 
-// isg eval GT.tum EST.tum [--align none|se3|sim3] [--project xy] [--json]: APE (and RPE) as evo.
+// isg eval GT.tum EST.tum [--align none|se3|sim3] [--project xy] [--json] [--plot OUT.svg]: APE
+// (and RPE) as evo.
 class EvalCommand : public Command {
  public:
   explicit EvalCommand(CLI::App& parent);
@@ -18,6 +21,11 @@ class EvalCommand : public Command {
   double max_diff_ = 0.01;
   int rpe_delta_ = 0;
   bool json_ = false;
+  std::string plot_;
+
+  void writePlot(const eval::Trajectory& reference, const eval::Trajectory& estimate,
+                 const eval::ErrorResult& ape, const std::string& how,
+                 const eval::Coverage& coverage) const;
 };
 
 }  // namespace isg::cli

@@ -4,6 +4,7 @@
 #include <cstdio>
 #include <filesystem>
 
+#include "bim/plan_geometry.hpp"
 #include "sim/renderer.hpp"
 #include "sim/robot_model.hpp"
 #include "sim/simulation.hpp"
@@ -13,8 +14,10 @@ namespace isg::cli {
 RenderCommand::RenderCommand(CLI::App& parent) {
   app_ = parent.add_subcommand("render", "Draw the world and the walking robot as PNG pictures");
   app_->footer(
-      "Writes DIR/top.png (the building from above, ceilings hidden) and DIR/chase.png (behind "
-      "the robot) at robot time T on its route. Renders on the CPU through EGL (Mesa, surfaceless "
+      "Writes DIR/top.png (the building from above in perspective, ceilings hidden), DIR/plan.png "
+      "(straight down and orthographic to the eye, so walls show as footprints and door openings "
+      "as gaps, with the robot's whole route drawn in red) and DIR/chase.png (behind the robot) "
+      "at robot time T on its route. Renders on the CPU through EGL (Mesa, surfaceless "
       "platform): no display and no GPU needed.\n\n" +
       builtinWorldsHelp());
   app_->add_option("input", input_, "plan or scenario file, or builtin:NAME")
@@ -54,12 +57,30 @@ int RenderCommand::run() {
                  trajectory.swayWeight(t));
   sim::Renderer renderer(world.model(), width_, height_);
   const std::string top = (dir / "top.png").string();
+  const std::string plan = (dir / "plan.png").string();
   const std::string chase = (dir / "chase.png").string();
   sim::writePng(top, renderer.topDown(world.data()));
+  // The plan view frames the robot's level; the route is drawn 5 cm above its floor.
+  const bim::Level& level = *scenario.plan.findLevel(scenario.robot.level);
+  Eigen::Vector2d lo = Eigen::Vector2d::Constant(1e18), hi = -lo;
+  for (const auto& wall : bim::computeLevelGeometry(level).walls) {
+    for (const auto& p : wall.footprint()) {
+      lo = lo.cwiseMin(p);
+      hi = hi.cwiseMax(p);
+    }
+  }
+  std::vector<Eigen::Vector3d> route;
+  for (double s = 0.0; s <= simulation.duration(); s += 0.25) {
+    const Eigen::Vector3d p = trajectory.pose(s).translation();
+    route.emplace_back(p.x(), p.y(), level.elevation + 0.05);
+    lo = lo.cwiseMin(p.head<2>());
+    hi = hi.cwiseMax(p.head<2>());
+  }
+  sim::writePng(plan, renderer.planView(world.data(), lo, hi, route));
   sim::writePng(chase, renderer.chase(world.data(), B_T_R));
-  std::printf("isg render: wrote %s and %s at t = %.1f s (robot at %.2f, %.2f; %s)\n", top.c_str(),
-              chase.c_str(), t, B_T_R.translation().x(), B_T_R.translation().y(),
-              renderer.glRenderer().c_str());
+  std::printf("isg render: wrote %s, %s and %s at t = %.1f s (robot at %.2f, %.2f; %s)\n",
+              top.c_str(), plan.c_str(), chase.c_str(), t, B_T_R.translation().x(),
+              B_T_R.translation().y(), renderer.glRenderer().c_str());
   return kExitOk;
 }
 

@@ -6,6 +6,7 @@
 #include <png.h>
 #include <numbers>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <cstring>
@@ -127,9 +128,11 @@ Renderer::~Renderer() {
   mjv_freeScene(&scene_);
 }
 
-Image Renderer::render(mjData& data, mjvCamera& camera, bool ceilings) {
+Image Renderer::render(mjData& data, mjvCamera& camera, bool ceilings,
+                       const std::function<void(mjvScene&)>& adjust) {
   option_.geomgroup[worlds::kCeilingGroup] = ceilings;
   mjv_updateScene(&model_, &data, &option_, nullptr, &camera, mjCAT_ALL, &scene_);
+  if (adjust) adjust(scene_);
   const mjrRect viewport = {0, 0, width_, height_};
   mjr_render(viewport, &scene_, &context_);
   Image image{width_, height_, std::vector<unsigned char>(std::size_t(3) * width_ * height_)};
@@ -164,6 +167,64 @@ Image Renderer::chase(mjData& data, const Eigen::Isometry3d& B_T_R) {
   // MuJoCo's free camera looks along its azimuth: from behind the robot is its own heading.
   camera.azimuth = yawOf(B_T_R.linear()) * 180.0 / std::numbers::pi;
   return render(data, camera, false);
+}
+
+Image Renderer::planView(mjData& data, const Eigen::Vector2d& lo, const Eigen::Vector2d& hi,
+                         const std::vector<Eigen::Vector3d>& route) {
+  mjvCamera camera;
+  mjv_defaultCamera(&camera);
+  camera.type = mjCAMERA_FREE;
+  return render(data, camera, false, [&](mjvScene& scene) {
+    // MuJoCo 2.2.2 renders in perspective only. A camera 1 km above the building with a field of
+    // view just wide enough is orthographic to the eye: a 3 m wall's top and foot differ by 0.3 %
+    // of their distance, well under a pixel, so walls are seen as their footprints and door
+    // openings as gaps.
+    constexpr double kDistance = 1000.0;
+    const Eigen::Vector2d centre = 0.5 * (lo + hi);
+    const Eigen::Vector2d size = (hi - lo).cwiseMax(Eigen::Vector2d::Constant(1.0)) * 1.06;
+    const double aspect = double(width_) / double(height_);
+    const double half_height = 0.5 * std::max(size.y(), size.x() / aspect);
+    for (int eye = 0; eye < 2; ++eye) {
+      mjvGLCamera& c = scene.camera[eye];
+      c.pos[0] = float(centre.x());
+      c.pos[1] = float(centre.y());
+      c.pos[2] = float(kDistance);
+      c.forward[0] = 0.0f;
+      c.forward[1] = 0.0f;
+      c.forward[2] = -1.0f;
+      c.up[0] = 0.0f;
+      c.up[1] = 1.0f;
+      c.up[2] = 0.0f;
+      c.frustum_near = float(kDistance - 100.0);
+      c.frustum_far = float(kDistance + 100.0);
+      c.frustum_center = 0.0f;
+      c.frustum_top = float(half_height * c.frustum_near / kDistance);
+      c.frustum_bottom = -c.frustum_top;
+    }
+    // A plan is a cut below the lintels: the wall above each door (worlds/mjcf_generator.hpp
+    // names it wall/<wall>/lintel/<door>) is left out, so the opening shows.
+    int kept = 0;
+    for (int i = 0; i < scene.ngeom; ++i) {
+      const mjvGeom& g = scene.geoms[i];
+      const char* name =
+          g.objtype == mjOBJ_GEOM ? mj_id2name(&model_, mjOBJ_GEOM, g.objid) : nullptr;
+      if (name != nullptr && std::strstr(name, "/lintel/") != nullptr) continue;
+      scene.geoms[kept++] = g;
+    }
+    scene.ngeom = kept;
+    // The route as a red line just above the floor.
+    for (std::size_t i = 1; i < route.size() && scene.ngeom < scene.maxgeom; ++i) {
+      mjvGeom& g = scene.geoms[scene.ngeom++];
+      const mjtNum size3[3] = {0, 0, 0};
+      const float red[4] = {0.85f, 0.1f, 0.1f, 1.0f};
+      mjv_initGeom(&g, mjGEOM_CAPSULE, size3, nullptr, nullptr, red);
+      mjtNum from[3] = {route[i - 1].x(), route[i - 1].y(), route[i - 1].z()};
+      mjtNum to[3] = {route[i].x(), route[i].y(), route[i].z()};
+      mjv_makeConnector(&g, mjGEOM_CAPSULE, std::max(0.02, 0.004 * size.x()), from[0], from[1],
+                        from[2], to[0], to[1], to[2]);
+      g.category = mjCAT_DECOR;
+    }
+  });
 }
 
 void writePng(const std::string& path, const Image& image) {

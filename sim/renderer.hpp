@@ -3,6 +3,7 @@
 #include <mujoco/mujoco.h>
 
 #include <Eigen/Geometry>
+#include <functional>
 #include <memory>
 #include <string>
 #include <vector>
@@ -27,13 +28,20 @@ class Renderer {
 
   // The whole building from straight above (the world's "top" camera), ceilings hidden.
   Image topDown(mjData& data);
+  // The building as a plan: straight down, orthographic to the eye (walls as footprints, door
+  // openings as gaps), framing [lo, hi] of B, ceilings hidden, with `route` (points in B) drawn as
+  // a red line.
+  Image planView(mjData& data, const Eigen::Vector2d& lo, const Eigen::Vector2d& hi,
+                 const std::vector<Eigen::Vector3d>& route);
   // Behind and above the robot at B_T_R, looking at it.
   Image chase(mjData& data, const Eigen::Isometry3d& B_T_R);
 
   const std::string& glRenderer() const { return gl_renderer_; }
 
  private:
-  Image render(mjData& data, mjvCamera& camera, bool ceilings);
+  // `adjust` changes the scene between MuJoCo's update and the drawing (cameras, extra geoms).
+  Image render(mjData& data, mjvCamera& camera, bool ceilings,
+               const std::function<void(mjvScene&)>& adjust = nullptr);
 
   struct Egl;
   std::unique_ptr<Egl> egl_;

@@ -289,6 +289,18 @@ TEST(Eval, PrintsApeLikeEvoAndJson) {
   const auto doc = nlohmann::json::parse(result.out);
   EXPECT_EQ(doc["pairs"], 3);  // 2.005 is 5 ms from 2: outside a 1 ms window
   EXPECT_NEAR(doc["ape"]["mean"].get<double>(), (0.1 + 0.2 + 0.4) / 3, 1e-9);
+  // --plot: both trajectories from above and the errors over time, as evo's --plot.
+  result = sandbox.run("eval gt.tum est.tum --plot plot.svg");
+  EXPECT_EQ(result.exit_code, 0) << result.err;
+  const std::string svg = sandbox.read("plot.svg");
+  EXPECT_THAT(svg, HasSubstr("rmse 0.274 m, median 0.250 m, max 0.400 m over 4 poses"));
+  EXPECT_THAT(svg, HasSubstr("position error, metres"));
+  EXPECT_THAT(svg, HasSubstr("heading error, degrees"));
+  EXPECT_THAT(svg, HasSubstr(">0.4</text>"));  // the error axis ends on a round tick
+  result = sandbox.run("eval gt.tum est.tum --plot nowhere/plot.svg");
+  EXPECT_EQ(result.exit_code, 1);
+  EXPECT_EQ(result.err,
+            "isg eval: error: nowhere/plot.svg: cannot write: directory nowhere does not exist\n");
 }
 
 TEST(Eval, BadInputNamesTheFile) {

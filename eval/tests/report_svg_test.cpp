@@ -1,0 +1,84 @@
+#include "eval/report_svg.hpp"
+
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+
+#include "eval/svg_chart.hpp"
+
+namespace isg::eval {
+namespace {
+
+using ::testing::HasSubstr;
+using ::testing::Not;
+
+TEST(NiceTicks, StepsAreOneTwoOrFiveTimesAPowerOfTen) {
+  EXPECT_DOUBLE_EQ(niceStep(0.013, 4), 0.005);  // not 0.00325
+  EXPECT_DOUBLE_EQ(niceStep(8.4, 5), 2.0);
+  EXPECT_DOUBLE_EQ(niceStep(47.9, 8), 10.0);  // 5.99 → 10
+  EXPECT_DOUBLE_EQ(niceStep(435.2, 8), 100.0);
+  EXPECT_DOUBLE_EQ(niceStep(1.0, 5), 0.2);
+  EXPECT_EQ(niceTicks(0.0, 47.9, 8), (std::vector<double>{0, 10, 20, 30, 40}));
+  EXPECT_EQ(niceTicks(-0.3, 0.25, 4), (std::vector<double>{-0.2, 0.0, 0.2}));
+  EXPECT_EQ(tickLabel(0.05, 0.01), "0.05");
+  EXPECT_EQ(tickLabel(20.0, 10.0), "20");
+  EXPECT_EQ(tickLabel(2.5, 0.5), "2.5");
+}
+
+Trajectory straight(double t0, double t1, double y) {
+  Trajectory out;
+  for (double t = t0; t <= t1 + 1e-9; t += 0.5) {
+    Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();
+    pose.translation() = Eigen::Vector3d(t, y, 0);
+    out.push_back({t, pose});
+  }
+  return out;
+}
+
+TEST(ReportSvg, DrawsTheMapTheLegendTheScaleBarAndBothPanels) {
+  ReportInput input;
+  input.title = "isg run: a & b";
+  input.walls = {{{0, -0.1}, {4, -0.1}, {4, 0.1}, {0, 0.1}}, {{5, -0.1}, {10, -0.1}, {10, 0.1}}};
+  input.overlays = {{MapOverlay::Kind::kClutter, {{1, 1}, {2, 1}, {2, 2}, {1, 2}}}};
+  input.labels = {{"R1", {5, 2}, {{0, 0}, {10, 0}, {10, 4}, {0, 4}}}};
+  input.ground_truth = straight(0, 10, 2);
+  input.estimate = straight(3, 10, 2.02);
+  input.localized_at = 3.0;
+  for (double t = 3; t <= 10; t += 0.5) {
+    input.error_over_time.emplace_back(t, 0.02);
+    input.heading_error_over_time.emplace_back(t, 0.7);
+  }
+  const std::string svg = reportSvg(input);
+  EXPECT_THAT(svg, HasSubstr("isg run: a &amp; b"));
+  EXPECT_THAT(svg, HasSubstr(">clutter</text>"));
+  EXPECT_THAT(svg, Not(HasSubstr(">closed door</text>")));  // only what is there
+  EXPECT_THAT(svg, HasSubstr(">2 m</text>"));               // the scale bar: 10 m / 6 → 2
+  EXPECT_THAT(svg, HasSubstr("heading error, degrees"));
+  EXPECT_THAT(svg, HasSubstr(">10 s</text>"));  // round time ticks: 0, 2, 4, ... 10
+  EXPECT_THAT(svg, HasSubstr(">0.04</text>"));  // round error ticks up to 0.05
+  EXPECT_THAT(svg, HasSubstr(">first localized pose</text>"));
+  // The room's name keeps off the path along y = 2: not at its centre (5, 2).
+  const std::size_t label = svg.find(">R1</text>");
+  ASSERT_NE(label, std::string::npos);
+  const std::size_t y_at = svg.rfind(" y=\"", label);
+  const double y_px = std::stod(svg.substr(y_at + 4));
+  const std::size_t path_y = svg.find("polyline fill=\"none\" stroke=\"black\"");
+  ASSERT_NE(path_y, std::string::npos);
+  const std::size_t first_point = svg.find("points=\"", path_y) + 8;
+  const double path_px = std::stod(svg.substr(svg.find(',', first_point) + 1));
+  EXPECT_GT(std::abs(y_px - path_px), 20.0);
+}
+
+TEST(ReportSvg, AnAlignedSlamEstimateIsNotCalledALocalization) {
+  ReportInput input;
+  input.ground_truth = straight(0, 10, 2);
+  input.estimate = straight(0, 10, 2.01);
+  input.estimate_is_localization = false;
+  input.estimate_label = "estimate in M, SE(3)-aligned to the ground truth";
+  const std::string svg = reportSvg(input);
+  EXPECT_THAT(svg, HasSubstr(">estimate in M, SE(3)-aligned to the ground truth</text>"));
+  EXPECT_THAT(svg, Not(HasSubstr("first localized pose")));
+  EXPECT_THAT(svg, Not(HasSubstr(">localized</text>")));
+}
+
+}  // namespace
+}  // namespace isg::eval
