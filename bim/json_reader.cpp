@@ -407,14 +407,18 @@ void checkReadableFile(const std::string& path, std::uintmax_t max_bytes) {
   }
 }
 
-nlohmann::json readJsonFile(const std::string& path) {
-  checkReadableFile(path, limits::kMaxJsonFileBytes);
+std::string readCheckedFile(const std::string& path, std::uintmax_t max_bytes) {
+  checkReadableFile(path, max_bytes);
   std::ifstream in(path, std::ios::binary);
   if (!in) throw InputError(path, "", std::string("cannot open file: ") + std::strerror(errno));
   std::ostringstream buffer;
   buffer << in.rdbuf();
   if (in.bad()) throw InputError(path, "", "cannot read file");
-  return parseJsonText(buffer.str(), path);
+  return buffer.str();
+}
+
+nlohmann::json readJsonFile(const std::string& path) {
+  return parseJsonText(readCheckedFile(path, limits::kMaxJsonFileBytes), path);
 }
 
 }  // namespace isg::bim

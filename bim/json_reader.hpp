@@ -105,6 +105,8 @@ nlohmann::json readJsonFile(const std::string& path);
 // Fails unless `path` is a regular file of at most `max_bytes` bytes: a device such as /dev/zero
 // or a FIFO is never read, and no file is read past a stated limit.
 void checkReadableFile(const std::string& path, std::uintmax_t max_bytes);
+// The whole of a file checked by checkReadableFile; problems are InputErrors naming it.
+std::string readCheckedFile(const std::string& path, std::uintmax_t max_bytes);
 nlohmann::json parseJsonText(const std::string& text, const std::string& file);
 
 }  // namespace isg::bim

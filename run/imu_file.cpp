@@ -19,17 +19,6 @@ constexpr const char* kHeader = "t,ax,ay,az,gx,gy,gz";
 // As for TUM files: 1 GiB is ~8 M samples (11 hours at 200 Hz), read whole into memory.
 constexpr std::uintmax_t kMaxImuBytes = std::uintmax_t(1) << 30;
 
-std::string readText(const std::string& path) {
-  bim::checkReadableFile(path, kMaxImuBytes);
-  std::ifstream in(path, std::ios::binary);
-  if (!in)
-    throw bim::InputError(path, "", std::string("cannot open file: ") + std::strerror(errno));
-  std::ostringstream buffer;
-  buffer << in.rdbuf();
-  if (in.bad()) throw bim::InputError(path, "", "cannot read file");
-  return buffer.str();
-}
-
 // The seven numbers of one line, or false.
 bool parseLine(const std::string& line, double (&values)[7]) {
   const char* at = line.c_str();
@@ -51,7 +40,7 @@ bool parseLine(const std::string& line, double (&values)[7]) {
 }  // namespace
 
 std::vector<slam::ImuSample> readImuFile(const std::string& path) {
-  const std::string text = readText(path);
+  const std::string text = bim::readCheckedFile(path, kMaxImuBytes);
   std::istringstream in(text);
   std::string line;
   if (!std::getline(in, line) || (line != kHeader && line != std::string(kHeader) + "\r")) {

@@ -342,14 +342,7 @@ std::vector<slam::ScanPoint> parsePcd(std::string_view bytes, const std::string&
 }
 
 std::vector<slam::ScanPoint> readPcd(const std::string& path) {
-  bim::checkReadableFile(path, kMaxPcdBytes);
-  std::ifstream in(path, std::ios::binary);
-  if (!in)
-    throw bim::InputError(path, "", std::string("cannot open file: ") + std::strerror(errno));
-  std::ostringstream buffer;
-  buffer << in.rdbuf();
-  if (in.bad()) throw bim::InputError(path, "", "cannot read file");
-  return parsePcd(buffer.str(), path);
+  return parsePcd(bim::readCheckedFile(path, kMaxPcdBytes), path);
 }
 
 }  // namespace isg::run

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <vector>
 
+#include "bim/input_error.hpp"
 #include "run/dataset_reader.hpp"
 #include "run/ros_messages.hpp"
 #include "run/rosbag_writer.hpp"
@@ -48,10 +49,18 @@ RosbagSummary exportRosbag(const std::string& dataset_dir, const std::string& ba
                            const std::function<void(int, int)>& progress) {
   const auto start = std::chrono::steady_clock::now();
   DatasetReader dataset(dataset_dir);
-  const auto stamp = [&](double t) { return RosTime::fromSeconds(t, options.stamp_offset); };
+  const auto stamp = [&](double t) {
+    try {
+      return RosTime::fromSeconds(t, options.stamp_offset);
+    } catch (const std::invalid_argument&) {
+      throw bim::InputError(dataset_dir, "",
+                            "time " + std::to_string(t) + " s plus the stamp offset of " +
+                                std::to_string(options.stamp_offset) +
+                                " s is not a ROS time (0 to 2^32 s)");
+    }
+  };
 
   std::vector<Entry> entries;
-  entries.push_back({0.0, Kind::kTfStatic, 0});
   for (int i = 0; i < int(dataset.odometry().size()); ++i)
     entries.push_back({dataset.odometry()[i].t, Kind::kOdometry, i});
   for (int i = 0; i < int(dataset.imu().size()); ++i)
@@ -60,6 +69,12 @@ RosbagSummary exportRosbag(const std::string& dataset_dir, const std::string& ba
     entries.push_back({dataset.scanStamp(i), Kind::kCloud, i});
   for (int i = 0; i < int(dataset.groundTruth().size()); ++i)
     entries.push_back({dataset.groundTruth()[i].t, Kind::kGroundTruth, i});
+  // The mounts come first, at the first message's time.
+  double earliest = 0.0;
+  for (std::size_t i = 0; i < entries.size(); ++i) {
+    earliest = i == 0 ? entries[i].t : std::min(earliest, entries[i].t);
+  }
+  entries.push_back({earliest, Kind::kTfStatic, 0});
   std::stable_sort(entries.begin(), entries.end(), [](const Entry& a, const Entry& b) {
     return a.t != b.t ? a.t < b.t : a.kind < b.kind;
   });
@@ -79,12 +94,19 @@ RosbagSummary exportRosbag(const std::string& dataset_dir, const std::string& ba
     accelerometer_variance = std::pow(noise->accelerometer_noise_density, 2) * noise->rate_hz;
   }
 
-  const double first = entries.size() > 1 ? std::min(0.0, entries[1].t) : 0.0;
+  // Pose i of `poses` as nav_msgs/Odometry of base_link in `frame`.
+  auto writePose = [&](int connection, const Trajectory& poses, int i, const char* frame) {
+    const Twist twist = i > 0 ? twistBetween(poses[i - 1], poses[i]) : Twist{};
+    const RosTime t = stamp(poses[i].t);
+    bag.write(connection, t,
+              ros1::odometry(poses[i].pose, twist.linear, twist.angular, t, std::uint32_t(i), frame,
+                             kBaseFrame));
+  };
   int scans_done = 0;
   for (const Entry& e : entries) {
     switch (e.kind) {
       case Kind::kTfStatic: {
-        const RosTime t = stamp(std::max(0.0, first));
+        const RosTime t = stamp(e.t);
         std::vector<ros1::StampedTransform> mounts = {
             {t, kBaseFrame, kLidarFrame, dataset.R_T_L()}};
         if (imu >= 0) mounts.push_back({t, kBaseFrame, kImuFrame, dataset.R_T_I()});
@@ -92,14 +114,11 @@ RosbagSummary exportRosbag(const std::string& dataset_dir, const std::string& ba
         break;
       }
       case Kind::kOdometry: {
-        const auto& poses = dataset.odometry();
-        const Twist twist =
-            e.index > 0 ? twistBetween(poses[e.index - 1], poses[e.index]) : Twist{};
         const RosTime t = stamp(e.t);
-        bag.write(odometry, t,
-                  ros1::odometry(poses[e.index].pose, twist.linear, twist.angular, t,
-                                 std::uint32_t(e.index), kOdometryFrame, kBaseFrame));
-        bag.write(tf, t, ros1::tfMessage({{t, kOdometryFrame, kBaseFrame, poses[e.index].pose}}));
+        writePose(odometry, dataset.odometry(), e.index, kOdometryFrame);
+        bag.write(
+            tf, t,
+            ros1::tfMessage({{t, kOdometryFrame, kBaseFrame, dataset.odometry()[e.index].pose}}));
         break;
       }
       case Kind::kImu: {
@@ -116,16 +135,9 @@ RosbagSummary exportRosbag(const std::string& dataset_dir, const std::string& ba
         if (progress) progress(++scans_done, dataset.scanCount());
         break;
       }
-      case Kind::kGroundTruth: {
-        const auto& poses = dataset.groundTruth();
-        const Twist twist =
-            e.index > 0 ? twistBetween(poses[e.index - 1], poses[e.index]) : Twist{};
-        const RosTime t = stamp(e.t);
-        bag.write(ground_truth, t,
-                  ros1::odometry(poses[e.index].pose, twist.linear, twist.angular, t,
-                                 std::uint32_t(e.index), kPlanFrame, kBaseFrame));
+      case Kind::kGroundTruth:
+        writePose(ground_truth, dataset.groundTruth(), e.index, kPlanFrame);
         break;
-      }
     }
   }
   bag.close();

@@ -235,12 +235,14 @@ TEST(Simulate, KidnapsTheRouteCannotHaveAreClearErrors) {
   EXPECT_FALSE(sandbox.exists("ds"));
 }
 
-TEST(Render, WritesTwoPictures) {
+TEST(Render, WritesThreePictures) {
   testing::Sandbox sandbox("render");
   const auto result = sandbox.run("render builtin:d1 -o pictures --width 320 --height 180");
   EXPECT_EQ(result.exit_code, 0) << result.err;
-  EXPECT_THAT(result.out, StartsWith("isg render: wrote pictures/top.png and pictures/chase.png"));
+  EXPECT_THAT(result.out, StartsWith("isg render: wrote pictures/top.png, pictures/plan.png and "
+                                     "pictures/chase.png"));
   EXPECT_EQ(sandbox.read("pictures/top.png").substr(1, 3), "PNG");
+  EXPECT_EQ(sandbox.read("pictures/plan.png").substr(1, 3), "PNG");
   EXPECT_EQ(sandbox.read("pictures/chase.png").substr(1, 3), "PNG");
 }
 

@@ -242,9 +242,7 @@ std::vector<Case> cases() {
       {"ImuRate", "scenario.json", [](json&, json& s) { s["imu"]["rate_hz"] = 5; },
        "scenario.json: /imu/rate_hz: must be in [10, 2000], got 5"},
       {"ImuMountFar", "scenario.json",
-       [](json&, json& s) {
-         s["imu"]["mount"] = {0, 12, 0, 0, 0, 0};
-       },
+       [](json&, json& s) { s["imu"]["mount"] = {0, 12, 0, 0, 0, 0}; },
        "scenario.json: /imu/mount: the IMU must be mounted within 10 m of the robot's reference "
        "point"},
       {"ImuNoise", "scenario.json",
