@@ -112,8 +112,13 @@ int SlamCommand::run() {
   std::optional<bim::AsBuilt> as_built;
   if (plan && (plan_.empty() || !other_plan_) && dataset.metadata().contains("as_built")) {
     const bim::JsonSource source{(fs::path(dataset_) / "metadata.json").string(), nullptr};
-    as_built = bim::parseAsBuiltJson(
-        bim::JsonNode(dataset.metadata()["as_built"], "/as_built", source), *plan, level);
+    try {
+      as_built = bim::parseAsBuiltJson(
+          bim::JsonNode(dataset.metadata()["as_built"], "/as_built", source), *plan, level);
+    } catch (const bim::InputError& e) {
+      // Only the report's drawing needs it: say so, and replay without it.
+      std::fprintf(stderr, "isg slam: warning: the as-built changes are not drawn: %s\n", e.what());
+    }
   }
   run::RunSetup setup{dataset_,
                       localizer->name(),
