@@ -34,14 +34,17 @@ bool parseLine(const std::string& line, double (&values)[7]) {
     }
   }
   while (*at == ' ' || *at == '\r') ++at;
-  return *at == '\0';
+  return at == line.c_str() + line.size();  // the whole line: no byte after a NUL either
 }
 
 }  // namespace
 
 std::vector<slam::ImuSample> readImuFile(const std::string& path) {
-  const std::string text = bim::readCheckedFile(path, kMaxImuBytes);
-  std::istringstream in(text);
+  return parseImuText(bim::readCheckedFile(path, kMaxImuBytes), path);
+}
+
+std::vector<slam::ImuSample> parseImuText(std::string_view text, const std::string& path) {
+  std::istringstream in{std::string(text)};
   std::string line;
   if (!std::getline(in, line) || (line != kHeader && line != std::string(kHeader) + "\r")) {
     throw bim::InputError(path, "", std::string("line 1: expected the header \"") + kHeader + "\"");

@@ -1,6 +1,7 @@
 #pragma once
 
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "slam/messages.hpp"
@@ -11,5 +12,7 @@ namespace isg::run {
 // per line. Any problem (no file, a wrong header, a line that is not 7 finite numbers, times that
 // do not increase) is a bim::InputError naming the file and the line.
 std::vector<slam::ImuSample> readImuFile(const std::string& path);
+// The same for text already in memory; errors name `file`.
+std::vector<slam::ImuSample> parseImuText(std::string_view text, const std::string& file);
 
 }  // namespace isg::run
