@@ -43,7 +43,7 @@ RunCommand::RunCommand(CLI::App& parent) {
       ->default_str(std::string(worlds::kDefaultWorld));
   app_->add_option("-o,--output", output_, "RUN_DIR to create")
       ->option_text("RUN_DIR")
-      ->default_str("runs/<world>-<method>");
+      ->default_str("runs/<world>-<method>-seed-<seed>");
   app_->add_option("--method", method_, "localization method (see below)")
       ->check(CLI::IsMember(methods_.acceptedNames()))
       ->capture_default_str();
@@ -68,15 +68,18 @@ int RunCommand::run() {
   namespace fs = std::filesystem;
   const std::string input = input_.empty() ? std::string(worlds::kDefaultWorld) : input_;
   method_ = methods_.canonical(method_);
-  if (output_.empty()) output_ = "runs/" + worldName(input) + "-" + method_;
+  bim::Scenario scenario = loadInput(input, "run");
+  if (seed_) scenario.seed = *seed_;
+  // The seed is in the default name, so that the seeds of one world and method do not collide.
+  if (output_.empty()) {
+    output_ = "runs/" + worldName(input) + "-" + method_ + "-seed-" + std::to_string(scenario.seed);
+  }
   // Before the run, not after it: a folder that cannot be written fails at once.
   if (const auto parent = fs::path(output_).parent_path(); !parent.empty()) {
     std::error_code ignored;
     fs::create_directories(parent, ignored);
   }
   run::checkCanCreateFolder(output_, force_);
-  bim::Scenario scenario = loadInput(input, "run");
-  if (seed_) scenario.seed = *seed_;
   const sim::Simulation simulation(scenario);
   checkRoute("isg run", scenario, simulation, duration_);
   const bim::AGraph agraph = bim::buildAGraph(scenario.plan);

@@ -27,9 +27,12 @@ TableCommand::TableCommand(CLI::App& parent) {
       "With --baseline, compares each cell of the baseline table (CSV, as --format csv writes "
       "it) with the runs and exits with code 4, naming every cell that is worse by more than "
       "--tolerance (in the measure's unit), failed, was wrongly localized, or has no run.\n\n"
-      "Runs of one world and method with different seeds make one cell: their mean, a number "
-      "only when every seed localized, ✗ when any was wrong. A last row counts the worlds each "
-      "method localized correctly.\n\n"
+      "Runs of one world and method with different seeds make one cell: mean ± sample standard "
+      "deviation over the seeds that localized correctly, k/n seeds localized correctly, w✗ "
+      "seeds wrongly localized. In CSV the method's column holds the mean (a number only when "
+      "every seed localized, ✗ when any was wrong: that is what --baseline compares) and four "
+      "columns \"METHOD: std\", \": localized\", \": runs\", \": wrong\" follow it. A last row "
+      "counts the worlds each method localized correctly on every seed.\n\n"
       "Example: for m in is-graphs amcl odometry; do for s in 1 2 3; do isg run builtin:d1 "
       "--method $m --seed $s -o runs/d1-$m-$s; done; done; isg table runs/* --format csv > "
       "baseline.csv");
@@ -60,6 +63,7 @@ namespace {
 struct CellRuns {
   std::vector<std::uint64_t> seeds;
   std::vector<std::optional<double>> values;
+  std::vector<bool> wrong_runs;
   bool wrong = false;
 };
 
@@ -118,7 +122,9 @@ int TableCommand::run() {
     }
     cell.seeds.push_back(metrics.seed);
     cell.values.push_back(value);
-    cell.wrong = cell.wrong || (measure_ == "ape" && metrics.wrongly_localized.value_or(false));
+    const bool wrong = measure_ == "ape" && metrics.wrongly_localized.value_or(false);
+    cell.wrong_runs.push_back(wrong);
+    cell.wrong = cell.wrong || wrong;
   }
   eval::ResultTable table;
   table.uncounted = uncounted;
@@ -138,6 +144,12 @@ int TableCommand::run() {
     }
     table.set(key.first, key.second, mean, cell.wrong);
   }
+  if (most_seeds > 1) {
+    for (const auto& key : order) {
+      const CellRuns& cell = cells.at(key);
+      table.setStats(key.first, key.second, eval::cellStats(cell.values, cell.wrong_runs));
+    }
+  }
   const eval::TableFormat format = format_ == "csv"     ? eval::TableFormat::kCsv
                                    : format_ == "latex" ? eval::TableFormat::kLatex
                                                         : eval::TableFormat::kMarkdown;
@@ -152,8 +164,11 @@ int TableCommand::run() {
           : "APE RMSE in B [m] (2D, no alignment, from the first localized pose on); - never "
             "localized, ✗ wrongly localized (more than 1 m off for more than 5 s)";
   if (most_seeds > 1) {
-    caption += ". Each cell is the mean over its seeds (up to " + std::to_string(most_seeds) +
-               "), a number only when every seed localized, ✗ when any seed was wrong";
+    caption += ". Each cell aggregates its seeds (up to " + std::to_string(most_seeds) +
+               "): mean ± sample standard deviation over the seeds localized correctly, then "
+               "k/n seeds localized correctly and w✗ seeds wrongly localized; CSV gives the mean "
+               "(a number only when every seed localized, ✗ when any was wrong) and the "
+               "statistics in columns of their own";
   }
   std::string given;
   for (const auto& column : table.columns) {

@@ -1,6 +1,7 @@
 #include "eval/table.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <sstream>
 #include <stdexcept>
@@ -22,6 +23,19 @@ int indexOrAdd(std::vector<std::string>& names, const std::string& name) {
 }
 
 constexpr const char* kWrongMark = "✗";
+
+// The CSV statistics columns that follow a method's column, in order.
+constexpr const char* kStatsSuffixes[] = {": std", ": localized", ": runs", ": wrong"};
+
+bool isStatsColumn(const std::string& header) {
+  for (const char* suffix : kStatsSuffixes) {
+    const std::string s = suffix;
+    if (header.size() > s.size() && header.compare(header.size() - s.size(), s.size(), s) == 0) {
+      return true;
+    }
+  }
+  return false;
+}
 
 std::string cell(const std::optional<double>& value) {
   if (!value) return "-";
@@ -140,7 +154,53 @@ std::string latexCaption(const std::string& caption) {
   return text;
 }
 
+std::string statsCell(const CellStats& s, bool latex) {
+  std::string text;
+  if (s.mean) {
+    text = cell(s.mean);
+    if (s.std) text += (latex ? " $\\pm$ " : " ± ") + cell(s.std);
+    text += " ";
+  }
+  text += std::to_string(s.localized) + "/" + std::to_string(s.runs);
+  if (s.wrong > 0) text += " " + std::to_string(s.wrong) + (latex ? "$\\times$" : kWrongMark);
+  return text;
+}
+
 }  // namespace
+
+CellStats cellStats(const std::vector<std::optional<double>>& values,
+                    const std::vector<bool>& wrong) {
+  CellStats s;
+  s.runs = int(values.size());
+  std::vector<double> correct;
+  for (std::size_t i = 0; i < values.size(); ++i) {
+    const bool is_wrong = i < wrong.size() && wrong[i];
+    s.wrong += is_wrong;
+    if (values[i] && !is_wrong) correct.push_back(*values[i]);
+  }
+  s.localized = int(correct.size());
+  if (correct.empty()) return s;
+  double sum = 0.0;
+  for (double v : correct) sum += v;
+  s.mean = sum / double(correct.size());
+  if (correct.size() >= 2) {
+    double squares = 0.0;
+    for (double v : correct) squares += (v - *s.mean) * (v - *s.mean);
+    s.std = std::sqrt(squares / double(correct.size() - 1));
+  }
+  return s;
+}
+
+void ResultTable::setStats(const std::string& row, const std::string& column,
+                           const CellStats& cell_stats) {
+  const int r = indexOf(rows, row);
+  const int c = indexOf(columns, column);
+  if (r < 0 || c < 0)
+    throw std::logic_error("setStats: the cell " + row + " / " + column + " is not set");
+  stats.resize(rows.size());
+  for (auto& line : stats) line.resize(columns.size());
+  stats[r][c] = cell_stats;
+}
 
 void ResultTable::set(const std::string& row, const std::string& column,
                       std::optional<double> value, bool wrongly_localized) {
@@ -176,8 +236,13 @@ const std::optional<double>* ResultTable::find(const std::string& row,
 std::string formatTable(const ResultTable& table, TableFormat format, const std::string& caption) {
   std::ostringstream out;
   const bool latex = format == TableFormat::kLatex;
+  const bool with_stats = !table.stats.empty();
+  const auto statsOf = [&](std::size_t r, std::size_t c) {
+    return r < table.stats.size() && c < table.stats[r].size() ? table.stats[r][c] : CellStats{};
+  };
   const auto text = [&](std::size_t r, std::size_t c) -> std::string {
     if (!table.present[r][c]) return "";
+    if (with_stats && format != TableFormat::kCsv) return statsCell(statsOf(r, c), latex);
     if (table.wrong[r][c]) return latex ? "$\\times$" : kWrongMark;
     if (latex && !table.cells[r][c]) return "$-$";
     return cell(table.cells[r][c]);
@@ -199,15 +264,45 @@ std::string formatTable(const ResultTable& table, TableFormat format, const std:
   };
   const auto header = [&](std::size_t c) { return table.columns[c]; };
   switch (format) {
-    case TableFormat::kCsv:
+    case TableFormat::kCsv: {
+      // With statistics, each method's column is followed by its four statistics columns.
+      const auto withStats = [&](std::size_t c, const auto& main, const auto& extra) {
+        std::string fields = main(c);
+        if (!with_stats) return fields;
+        for (int k = 0; k < 4; ++k) fields += "," + std::string(extra(c, k));
+        return fields;
+      };
       line(
-          "world", [&](std::size_t c) { return csvField(header(c)); }, "", ",", "");
+          "world",
+          [&](std::size_t c) {
+            return withStats(
+                c, [&](std::size_t i) { return csvField(header(i)); },
+                [&](std::size_t i, int k) {
+                  return csvField(header(i) + std::string(kStatsSuffixes[k]));
+                });
+          },
+          "", ",", "");
       for (std::size_t r = 0; r < table.rows.size(); ++r) {
         line(
-            csvField(table.rows[r]), [&](std::size_t c) { return text(r, c); }, "", ",", "");
+            csvField(table.rows[r]),
+            [&](std::size_t c) {
+              return withStats(
+                  c, [&](std::size_t i) { return text(r, i); },
+                  [&](std::size_t i, int k) -> std::string {
+                    if (!table.present[r][i]) return "";
+                    const CellStats s = statsOf(r, i);
+                    if (k == 0) return s.std ? cell(s.std) : "";
+                    return std::to_string(k == 1 ? s.localized : k == 2 ? s.runs : s.wrong);
+                  });
+            },
+            "", ",", "");
       }
-      line(kCountRowLabel, count, "", ",", "");
+      line(
+          kCountRowLabel,
+          [&](std::size_t c) { return withStats(c, count, [](std::size_t, int) { return ""; }); },
+          "", ",", "");
       break;
+    }
     case TableFormat::kMarkdown:
       if (!caption.empty()) out << caption << "\n\n";
       line(
@@ -265,7 +360,8 @@ ResultTable parseTableCsv(const std::string& text) {
                                   std::to_string(header.size()));
     }
     for (std::size_t c = 1; c < fields.size(); ++c) {
-      if (fields[c].empty()) continue;  // no run for this cell
+      if (fields[c].empty()) continue;         // no run for this cell
+      if (isStatsColumn(header[c])) continue;  // derived from the runs, not compared
       if (fields[c] == "-") {
         table.set(fields[0], header[c], std::nullopt);
         continue;

@@ -6,6 +6,22 @@
 
 namespace isg::eval {
 
+// What a cell's runs (one per seed) add up to: how many there were, how many localized correctly
+// (a number, not wrong), how many were wrongly localized, and the mean and sample standard
+// deviation of the numbers of the correct ones.
+struct CellStats {
+  int runs = 0;
+  int localized = 0;  // correctly: a number and not wrong
+  int wrong = 0;
+  std::optional<double> mean;  // over the correct runs
+  std::optional<double> std;   // sample (n − 1) standard deviation; needs two correct runs
+};
+
+// The statistics of a cell's values, one per run (nullopt: never localized), `wrong` flags run
+// by run.
+CellStats cellStats(const std::vector<std::optional<double>>& values,
+                    const std::vector<bool>& wrong);
+
 // A results table like the paper's Table I: one row per world, one column per method, each cell
 // the APE RMSE in metres, nothing ("-") where the method failed (never localized), or "✗" where it
 // was wrongly localized (eval/wrong_localization.hpp): a number would hide that.
@@ -18,10 +34,16 @@ struct ResultTable {
   // Columns whose numbers are not localizations in B (SLAM alone, measured in its own frame):
   // their count in the last row is "n/a".
   std::vector<std::string> uncounted;
+  // Per cell, when the cells aggregate several runs ([row][column]; empty: one run per cell).
+  // Markdown and LaTeX then show "mean ± std k/n" (and "w✗"), CSV adds four columns per method
+  // ("<method>: std", ": localized", ": runs", ": wrong") that parseTableCsv skips.
+  std::vector<std::vector<CellStats>> stats;
 
   // Sets a cell, adding its row and column when new.
   void set(const std::string& row, const std::string& column, std::optional<double> value,
            bool wrongly_localized = false);
+  // Sets the statistics of a cell set before.
+  void setStats(const std::string& row, const std::string& column, const CellStats& cell_stats);
   const std::optional<double>* find(const std::string& row, const std::string& column) const;
   bool isWrong(const std::string& row, const std::string& column) const;
 };
@@ -37,7 +59,8 @@ inline constexpr const char* kCountRowLabel = "localized correctly";
 std::string formatTable(const ResultTable& table, TableFormat format,
                         const std::string& caption = "");
 
-// Reads a table written as CSV (the baseline); its count row, derived from the cells, is skipped.
+// Reads a table written as CSV (the baseline); its count row, derived from the cells, and the
+// statistics columns ("<method>: std" ...) are skipped.
 // Throws std::invalid_argument with the line.
 ResultTable parseTableCsv(const std::string& text);
 

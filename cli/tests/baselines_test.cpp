@@ -3,6 +3,8 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
+#include <cmath>
+
 #include <nlohmann/json.hpp>
 
 #include "cli/tests/cli_runner.hpp"
@@ -60,28 +62,40 @@ TEST(Baselines, D1AsBuiltAgainstTheCommittedTable) {
   EXPECT_THAT(table.err, HasSubstr("no cell regressed"));
 }
 
-// Two seeds of a world and method make one cell: their mean; a seed that never localized makes
-// the cell "-"; the same seed twice is bad input.
-TEST(Baselines, SeedsOfOneCellAreAveraged) {
+// Two seeds of a world and method make one cell: their mean, sample standard deviation and counts;
+// a seed that never localized makes the cell "-"; the same seed twice is bad input. Run folders
+// made without -o carry the seed in their name, so seeds do not collide.
+TEST(Baselines, SeedsOfOneCellAreAggregated) {
   testing::Sandbox sandbox("baselines_seeds");
   for (const char* seed : {"1", "2"}) {
-    const auto r =
-        sandbox.run(std::string("run builtin:d2 --method odometry --duration 8 --seed ") + seed +
-                    " -o odo-" + seed + " -q");
+    const auto r = sandbox.run(
+        std::string("run builtin:d2 --method odometry --duration 8 --seed ") + seed + " -q");
     ASSERT_EQ(r.exit_code, 0) << r.err;
   }
+  ASSERT_TRUE(sandbox.exists("runs/d2-odometry-seed-1/metrics.json"));
+  ASSERT_TRUE(sandbox.exists("runs/d2-odometry-seed-2/metrics.json"));
   ASSERT_EQ(
       sandbox.run("run builtin:d2 --method amcl --duration 1 --seed 1 -o amcl-1 -q").exit_code, 0);
-  const double mean = 0.5 * (apeB(sandbox, "odo-1") + apeB(sandbox, "odo-2"));
-  char expected[64];
-  std::snprintf(expected, sizeof expected, "d2,-,%.3f\n", mean);
-  const auto csv = sandbox.run("table odo-1 odo-2 amcl-1 --format csv");
+  const double a = apeB(sandbox, "runs/d2-odometry-seed-1");
+  const double b = apeB(sandbox, "runs/d2-odometry-seed-2");
+  const double mean = 0.5 * (a + b);
+  const double std = std::abs(a - b) / std::sqrt(2.0);  // sample deviation of two numbers
+  char expected[128];
+  std::snprintf(expected, sizeof expected, "d2,-,,0,1,0,%.3f,%.3f,2,2,0\n", mean, std);
+  const auto csv =
+      sandbox.run("table runs/d2-odometry-seed-1 runs/d2-odometry-seed-2 amcl-1 --format csv");
   ASSERT_EQ(csv.exit_code, 0) << csv.err;
   EXPECT_EQ(csv.out,
-            std::string("world,amcl,odometry\n") + expected + "localized correctly,0/1,1/1\n");
-  const auto twice = sandbox.run("table odo-1 odo-1");
+            std::string("world,amcl,amcl: std,amcl: localized,amcl: runs,amcl: wrong,odometry,"
+                        "odometry: std,odometry: localized,odometry: runs,odometry: wrong\n") +
+                expected + "localized correctly,0/1,,,,,1/1,,,,\n");
+  char shown[128];
+  std::snprintf(shown, sizeof shown, "| d2 | 0/1 | %.3f ± %.3f 2/2 |", mean, std);
+  const auto md = sandbox.run("table runs/d2-odometry-seed-1 runs/d2-odometry-seed-2 amcl-1");
+  EXPECT_THAT(md.out, HasSubstr(shown));
+  const auto twice = sandbox.run("table amcl-1 amcl-1");
   EXPECT_EQ(twice.exit_code, 1);
-  EXPECT_EQ(twice.err, "isg table: error: odo-1: a second run of d2 with odometry and seed 1\n");
+  EXPECT_EQ(twice.err, "isg table: error: amcl-1: a second run of d2 with amcl and seed 1\n");
 }
 
 TEST(Baselines, MethodOptionsAreCheckedAndNamed) {

@@ -2,6 +2,8 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
+
 namespace isg::eval {
 namespace {
 
@@ -106,7 +108,8 @@ TEST(Table, WrongLocalizationIsMarkedAndARegression) {
   ResultTable now;
   now.set("d1", "is-graphs", 0.4, true);  // an APE, but wrongly localized on the way
   now.set("d1", "odometry", 0.3);
-  EXPECT_EQ(formatTable(now, TableFormat::kCsv), "world,is-graphs,odometry\nd1,✗,0.300\nlocalized correctly,0/1,1/1\n");
+  EXPECT_EQ(formatTable(now, TableFormat::kCsv),
+            "world,is-graphs,odometry\nd1,✗,0.300\nlocalized correctly,0/1,1/1\n");
   EXPECT_NE(formatTable(now, TableFormat::kMarkdown).find("| d1 | ✗ | 0.300 |"), std::string::npos);
   EXPECT_NE(formatTable(now, TableFormat::kLatex).find("d1 & $\\times$ & 0.300"),
             std::string::npos);
@@ -126,4 +129,40 @@ TEST(Table, WrongLocalizationIsMarkedAndARegression) {
 }
 
 }  // namespace
+// Three seeds: 0.02 and 0.04 localized, one wrong. Mean 0.03, sample std sqrt(2e-4) = 0.01414.
+TEST(Table, CellStatsOverSeeds) {
+  const CellStats s = cellStats({0.02, 0.04, std::nullopt}, {false, false, true});
+  EXPECT_EQ(s.runs, 3);
+  EXPECT_EQ(s.localized, 2);
+  EXPECT_EQ(s.wrong, 1);
+  EXPECT_NEAR(*s.mean, 0.03, 1e-12);
+  EXPECT_NEAR(*s.std, std::sqrt(2e-4), 1e-12);
+  const CellStats one = cellStats({0.5, std::nullopt}, {false, false});
+  EXPECT_EQ(one.localized, 1);
+  EXPECT_FALSE(one.std.has_value());  // one correct run has no spread
+  EXPECT_FALSE(cellStats({std::nullopt}, {false}).mean.has_value());
+}
+
+TEST(Table, AggregatedCellsShowMeanStdAndCounts) {
+  ResultTable t;
+  t.set("d1", "is-graphs", 0.03);
+  t.setStats("d1", "is-graphs", cellStats({0.02, 0.04}, {false, false}));
+  t.set("d2", "is-graphs", std::nullopt, true);
+  t.setStats("d2", "is-graphs", cellStats({0.02, 0.04, 3.0}, {false, false, true}));
+  EXPECT_EQ(formatTable(t, TableFormat::kMarkdown),
+            "| world | is-graphs |\n|---|---:|\n| d1 | 0.030 ± 0.014 2/2 |\n"
+            "| d2 | 0.030 ± 0.014 2/3 1✗ |\n| *localized correctly* | 1/2 |\n");
+  const std::string csv = formatTable(t, TableFormat::kCsv);
+  EXPECT_EQ(csv,
+            "world,is-graphs,is-graphs: std,is-graphs: localized,is-graphs: runs,is-graphs: wrong\n"
+            "d1,0.030,0.014,2,2,0\nd2,✗,0.014,2,3,1\nlocalized correctly,1/2,,,,\n");
+  EXPECT_NE(formatTable(t, TableFormat::kLatex).find("d2 & 0.030 $\\pm$ 0.014 2/3 1$\\times$"),
+            std::string::npos);
+  // The statistics columns are not methods: a baseline read back has the one column.
+  const ResultTable back = parseTableCsv(csv);
+  EXPECT_EQ(back.columns, std::vector<std::string>{"is-graphs"});
+  EXPECT_NEAR(**back.find("d1", "is-graphs"), 0.03, 1e-12);
+  EXPECT_TRUE(back.isWrong("d2", "is-graphs"));
+}
+
 }  // namespace isg::eval
