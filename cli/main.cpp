@@ -11,6 +11,7 @@
 #include "cli/cmd_check.hpp"
 #include "cli/cmd_eval.hpp"
 #include "cli/cmd_export.hpp"
+#include "cli/cmd_generate.hpp"
 #include "cli/cmd_inspect.hpp"
 #include "cli/cmd_render.hpp"
 #include "cli/cmd_run.hpp"
@@ -34,6 +35,7 @@ int main(int argc, char** argv) {
   std::vector<std::unique_ptr<Command>> commands;
   commands.push_back(std::make_unique<WorldCommand>(app));
   commands.push_back(std::make_unique<CheckCommand>(app));
+  commands.push_back(std::make_unique<GenerateCommand>(app));
   commands.push_back(std::make_unique<InspectCommand>(app));
   commands.push_back(std::make_unique<AGraphCommand>(app));
   commands.push_back(std::make_unique<SimulateCommand>(app));

@@ -1,0 +1,161 @@
+#include "cli/cmd_generate.hpp"
+
+#include <cstdio>
+#include <filesystem>
+#include <stdexcept>
+
+#include "cli/progress_bar.hpp"
+#include "run/atomic_folder.hpp"
+#include "sim/simulation.hpp"
+
+namespace isg::cli {
+
+GenerateCommand::GenerateCommand(CLI::App& parent) {
+  app_ = parent.add_subcommand("generate", "Procedural buildings: plans and as-built scenarios");
+  app_->footer(
+      "Writes DIR/<family>-<seed>.json (the plan) and DIR/<family>-<seed>.asbuilt.json (a "
+      "scenario on it: the building as built, a start office drawn from the seed, a tour of every "
+      "room) for seeds SEED … SEED+COUNT-1 of each family; the same seed gives the same bytes. "
+      "Families: office (bands of offices on both sides of corridors, joined by a spine), l-shape, "
+      "t-shape, u-shape (a band with one or two arms), hotel (identical rooms on one corridor; "
+      "with the asymmetry, one suite of two rooms), twin-wings (a wing and its half-turned twin; "
+      "with the asymmetry, one office split in two), hall (an open hall with free-standing "
+      "partitions between two rows of offices); 'all' is every family. Every building is checked "
+      "as isg check and isg run would check it (the plan and scenario parse with no warning, the "
+      "MuJoCo world builds, the tour reaches every room) before DIR is written, all at once. "
+      "docs/sweeps.md (\"Generated buildings\").\n\n"
+      "Example: isg generate all -o buildings --count 8 --rooms 16 --clutter-per-room 1.5");
+  app_->add_option("family", families_, "families to generate, or all")
+      ->option_text("FAMILY...")
+      ->required()
+      ->check(CLI::IsMember([] {
+        auto names = worlds::generatorFamilies();
+        names.push_back("all");
+        return names;
+      }()));
+  app_->add_option("-o,--output", output_, "DIR to create")->option_text("DIR")->required();
+  app_->add_option("--count", count_, "buildings per family")
+      ->check(CLI::Range(1, 10000))
+      ->capture_default_str();
+  app_->add_option("--seed", seed_, "seed of the first building; the next ones count up")
+      ->capture_default_str();
+  app_->add_option("--rooms", spec_.rooms, "offices per building (up to 5000)")
+      ->default_str("the family's: office, l/t/u-shape 24, hotel 22, twin-wings 10, hall 12");
+  app_->add_option("--room-width", spec_.room_width, "mean office width along its corridor [m]")
+      ->capture_default_str();
+  app_->add_option("--room-depth", spec_.room_depth, "office depth from its corridor [m]")
+      ->capture_default_str();
+  app_->add_option("--size-spread", spec_.size_spread,
+                   "relative spread of office widths, 0 … 0.4 (hotel: always 0)")
+      ->capture_default_str();
+  app_->add_option("--corridor-width", spec_.corridor_width, "corridor width [m]")
+      ->capture_default_str();
+  app_->add_option("--doors", spec_.doors,
+                   "where an office's door sits on its corridor side: center, random (20–80 %), "
+                   "corner")
+      ->check(CLI::IsMember({"center", "random", "corner"}))
+      ->capture_default_str();
+  app_->add_option("--connecting-doors", spec_.connecting_doors,
+                   "share of neighbouring offices with a door between them (what a closed door "
+                   "can shut without cutting a room off)")
+      ->capture_default_str();
+  app_->add_flag("--symmetric", symmetric_,
+                 "hotel and twin-wings without their one asymmetry: no route can tell the halves "
+                 "apart");
+  app_->add_option("--partitions", spec_.partitions, "partitions in a hall")
+      ->default_str("one per 40 m² of hall");
+  app_->add_option("--wall-thickness", spec_.wall_thickness, "[m]")->capture_default_str();
+  app_->add_option("--height", spec_.height, "storey height [m]")->capture_default_str();
+  app_->add_option(
+          "--clutter-per-room", spec_.clutter_per_room,
+          "as built: mean clutter boxes per office, 0 … 4 (in its corners, clear of doors)")
+      ->capture_default_str();
+  app_->add_option("--shifted-walls", spec_.shifted_walls,
+                   "as built: share of inner walls moved 3–8 cm")
+      ->capture_default_str();
+  app_->add_option("--missing-walls", spec_.missing_walls,
+                   "as built: share of door-less walls between offices left unbuilt")
+      ->capture_default_str();
+  app_->add_option("--extra-walls", spec_.extra_walls,
+                   "as built: share of offices with an unplanned partition")
+      ->capture_default_str();
+  app_->add_option("--closed-doors", spec_.closed_doors,
+                   "as built: share of doors closed, among those whose closing cuts no room off")
+      ->capture_default_str();
+  app_->add_flag("--no-verify", no_verify_,
+                 "skip building each world and planning its tour (large batches, trusted "
+                 "parameters)");
+  app_->add_flag("--force", force_, "replace DIR if it exists");
+  app_->add_flag("-q,--quiet", quiet_, "no progress bar");
+}
+
+int GenerateCommand::run() {
+  std::vector<std::string> families;
+  for (const auto& f : families_) {
+    if (f == "all") {
+      for (const auto& g : worlds::generatorFamilies()) families.push_back(g);
+    } else {
+      families.push_back(f);
+    }
+  }
+  spec_.asymmetry = !symmetric_;
+  // Bad parameters fail before anything is written, naming the option.
+  std::vector<worlds::GeneratedBuilding> buildings;
+  for (const auto& family : families) {
+    for (int i = 0; i < count_; ++i) {
+      worlds::GeneratorSpec spec = spec_;
+      spec.family = family;
+      spec.seed = seed_ + std::uint64_t(i);
+      try {
+        buildings.push_back(worlds::generateBuilding(spec));
+      } catch (const std::invalid_argument& e) {
+        const std::string what = e.what();
+        const auto colon = what.find(':');
+        std::string option = "--" + what.substr(0, colon);
+        for (char& c : option) c = c == ' ' ? '-' : c;
+        throw bim::InputError(
+            option, "",
+            what.substr(colon + 2) + " (" + family + ", seed " + std::to_string(spec.seed) + ")");
+      }
+    }
+  }
+  if (const auto parent = std::filesystem::path(output_).parent_path(); !parent.empty()) {
+    std::error_code ignored;
+    std::filesystem::create_directories(parent, ignored);
+  }
+  ProgressBar bar("isg generate", quiet_);
+  std::size_t offices = 0, largest = 0;
+  run::writeFolderAtomically(output_, force_, [&](const std::filesystem::path& dir) {
+    for (std::size_t k = 0; k < buildings.size(); ++k) {
+      const auto& b = buildings[k];
+      run::writeFile(dir / (b.name + ".json"), b.plan.dump(2) + "\n");
+      const std::string scenario_path = (dir / (b.name + ".asbuilt.json")).string();
+      run::writeFile(scenario_path, b.scenario.dump(2) + "\n");
+      offices += std::size_t(b.offices);
+      largest = std::max(largest, std::size_t(b.offices));
+      bar.update(double(k + 1) / double(buildings.size()), b.name);
+      if (no_verify_) continue;
+      // As isg check and isg run would read it: a warning is a generator bug too.
+      bim::Warnings warnings;
+      const bim::Scenario scenario = bim::loadScenario(scenario_path, &warnings);
+      if (!warnings.empty()) {
+        throw std::logic_error("generated " + b.name +
+                               " reads with a warning: " + warnings.front().str());
+      }
+      const sim::Simulation simulation(scenario);
+      if (!simulation.route().skipped_rooms.empty()) {
+        throw std::logic_error("generated " + b.name + ": the tour cannot reach room " +
+                               simulation.route().skipped_rooms.front());
+      }
+    }
+  });
+  bar.finish();
+  std::printf(
+      "isg generate: wrote %s: %zu buildings (%zu plans and %zu as-built scenarios), %zu offices "
+      "in all, up to %zu in one%s\n",
+      output_.c_str(), buildings.size(), buildings.size(), buildings.size(), offices, largest,
+      no_verify_ ? "" : "; each parsed, built and toured");
+  return kExitOk;
+}
+
+}  // namespace isg::cli

@@ -1,0 +1,54 @@
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+
+#include "cli/tests/cli_runner.hpp"
+
+namespace isg::cli {
+namespace {
+
+using ::testing::HasSubstr;
+
+// Every family's building passes isg check, the same seed gives the same bytes, and a run on a
+// generated building localizes.
+TEST(Generate, EveryFamilyPassesCheckAndIsReproducible) {
+  testing::Sandbox sandbox("generate_all");
+  const auto made = sandbox.run("generate all -o a --count 2 --seed 5 -q");
+  ASSERT_EQ(made.exit_code, 0) << made.err;
+  EXPECT_THAT(made.out, HasSubstr("wrote a: 14 buildings (14 plans and 14 as-built scenarios)"));
+  for (const char* family :
+       {"office", "l-shape", "t-shape", "u-shape", "hotel", "twin-wings", "hall"}) {
+    for (const char* seed : {"5", "6"}) {
+      const std::string name = std::string(family) + "-" + seed;
+      for (const std::string& file : {name + ".json", name + ".asbuilt.json"}) {
+        const auto check = sandbox.run("check a/" + file);
+        EXPECT_EQ(check.exit_code, 0) << file << ": " << check.err;
+        EXPECT_THAT(check.out, HasSubstr("a/" + file + ": ok"));
+        EXPECT_EQ(check.err, "") << file;  // not even a warning
+      }
+    }
+  }
+  ASSERT_EQ(sandbox.run("generate office -o b --seed 6 -q").exit_code, 0);
+  EXPECT_EQ(sandbox.read("b/office-6.json"), sandbox.read("a/office-6.json"));
+  EXPECT_EQ(sandbox.read("b/office-6.asbuilt.json"), sandbox.read("a/office-6.asbuilt.json"));
+  EXPECT_NE(sandbox.read("a/office-5.json"), sandbox.read("a/office-6.json"));
+}
+
+TEST(Generate, BadParametersNameTheOptionAndWriteNothing) {
+  testing::Sandbox sandbox("generate_bad");
+  const auto narrow = sandbox.run("generate hotel -o g --corridor-width 0.5");
+  EXPECT_EQ(narrow.exit_code, 1);
+  EXPECT_EQ(narrow.err,
+            "isg generate: error: --corridor-width: must be in [1.2, 6] m (a robot and a door must "
+            "fit) (hotel, seed 1)\n");
+  EXPECT_FALSE(sandbox.exists("g"));
+  const auto family = sandbox.run("generate castle -o g");
+  EXPECT_EQ(family.exit_code, 2);
+  EXPECT_THAT(family.err, HasSubstr("castle not in {office,l-shape,t-shape,u-shape,hotel,"));
+  ASSERT_EQ(sandbox.run("generate hall -o g -q").exit_code, 0);
+  const auto again = sandbox.run("generate hall -o g -q");
+  EXPECT_EQ(again.exit_code, 1);
+  EXPECT_THAT(again.err, HasSubstr("exists"));
+}
+
+}  // namespace
+}  // namespace isg::cli

@@ -1,0 +1,715 @@
+#include "worlds/plan_generator.hpp"
+
+#include <Eigen/Core>
+#include <algorithm>
+#include <cmath>
+#include <map>
+#include <optional>
+#include <queue>
+#include <random>
+#include <set>
+#include <stdexcept>
+
+namespace isg::worlds {
+
+namespace {
+
+using nlohmann::json;
+
+enum class Kind { kOffice, kCorridor, kHall };
+
+// One rectangle of the floor: an office, a corridor piece or a hall.
+struct Space {
+  Kind kind = Kind::kOffice;
+  double x0 = 0, y0 = 0, x1 = 0, y1 = 0;
+  double door_fraction = -1.0;  // where along its corridor side the door sits; < 0: by the rule
+};
+
+// Coordinates on a millimetre grid, so that sides meant to coincide do.
+double mm(double v) { return std::round(v * 1000.0) / 1000.0; }
+
+class Floor {
+ public:
+  Floor(const GeneratorSpec& spec, std::mt19937_64& rng) : spec_(spec), rng_(rng) {}
+
+  void add(Kind kind, double x0, double y0, double x1, double y1, double door_fraction = -1.0) {
+    spaces.push_back({kind, mm(x0), mm(y0), mm(x1), mm(y1), door_fraction});
+  }
+
+  // Office widths filling `length`: the mean width, spread by ±size_spread, the last one taking
+  // what is left (merged into its neighbour when that would be under 60 % of the mean).
+  std::vector<double> widths(double length) {
+    std::uniform_real_distribution<double> unit(-1.0, 1.0);
+    const double mean = spec_.room_width;
+    std::vector<double> out;
+    double left = length;
+    while (left > 1e-9) {
+      double w = mean * (1.0 + spec_.size_spread * unit(rng_));
+      if (left - w < 0.6 * mean) w = left;
+      out.push_back(w);
+      left -= w;
+    }
+    if (out.size() > 1 && out.back() < 0.6 * mean) {
+      out[out.size() - 2] += out.back();
+      out.pop_back();
+    }
+    return out;
+  }
+
+  // Offices side by side along x over [a, b], from y0 to y1.
+  void officesAlongX(double a, double b, double y0, double y1) {
+    if (b - a < 1.6) return;  // too short for an office with a door: left outside
+    double x = a;
+    for (double w : widths(b - a)) {
+      add(Kind::kOffice, x, y0, x + w, y1);
+      x += w;
+    }
+  }
+
+  // Offices one above the other along y over [a, b], from x0 to x1.
+  void officesAlongY(double a, double b, double x0, double x1) {
+    if (b - a < 1.6) return;
+    double y = a;
+    for (double w : widths(b - a)) {
+      add(Kind::kOffice, x0, y, x1, y + w);
+      y += w;
+    }
+  }
+
+  std::vector<Space> spaces;
+
+ private:
+  const GeneratorSpec& spec_;
+  std::mt19937_64& rng_;
+};
+
+int roomsOr(int rooms, int fallback) { return rooms > 0 ? rooms : fallback; }
+
+// Bands of offices on both sides of a middle space (a corridor, or a hall), stacked back to back,
+// joined by a spine corridor across the bands in the middle. As many bands as keep the floor
+// about twice as long as it is deep.
+void bandedFloor(const GeneratorSpec& s, Floor& floor, Kind middle, int default_rooms) {
+  const int n = roomsOr(s.rooms, default_rooms);
+  const double d = s.room_depth, c = s.corridor_width;
+  const auto middleDepth = [&](double length) {
+    return middle == Kind::kHall ? mm(std::clamp(length / 3.0, 6.0, 12.0)) : c;
+  };
+  const double band_guess = 2 * d + middleDepth(n * s.room_width / 2.0);
+  const int bands = std::max(1, int(std::lround(std::sqrt(n * s.room_width / (4.0 * band_guess)))));
+  const int per_row = std::max(2, (n + 2 * bands - 1) / (2 * bands));
+  const double length = mm(per_row * s.room_width);
+  const double m = middleDepth(length);
+  const double spine = mm(0.5 * (length - c));
+  for (int b = 0; b < bands; ++b) {
+    const double base = b * (2 * d + m);
+    // Rows next to the spine are cut by it.
+    auto row = [&](double y0, double y1, bool cut) {
+      if (!cut) return floor.officesAlongX(0, length, y0, y1);
+      floor.officesAlongX(0, spine, y0, y1);
+      floor.officesAlongX(spine + c, length, y0, y1);
+    };
+    row(base, base + d, b > 0);
+    floor.add(middle, 0, base + d, length, base + d + m);
+    row(base + d + m, base + 2 * d + m, b + 1 < bands);
+    if (b + 1 < bands) {
+      floor.add(Kind::kCorridor, spine, base + d + m, spine + c, base + 2 * d + m + d);
+    }
+  }
+}
+
+// L, T or U: a band of offices on both sides of a corridor, with one or two arms (offices on both
+// sides of a corridor) rising from its corridor.
+void armedFloor(const GeneratorSpec& s, Floor& floor, char shape) {
+  const int n = roomsOr(s.rooms, 24);
+  const int arms = shape == 'U' ? 2 : 1;
+  const int per_arm_side = std::max(2, int(std::lround(n / (2.0 * (arms + 1)))));
+  const int per_band_row = std::max(2, (n - 2 * arms * per_arm_side + 1) / 2);
+  const double d = s.room_depth, c = s.corridor_width, arm = 2 * d + c;
+  const double length = mm(per_band_row * s.room_width + arms * arm);
+  const double rise = mm(per_arm_side * s.room_width);
+  std::vector<double> arm_at;
+  if (shape == 'L') arm_at = {0.0};
+  if (shape == 'T') arm_at = {mm(0.5 * (length - arm))};
+  if (shape == 'U') arm_at = {0.0, mm(length - arm)};
+  floor.officesAlongX(0, length, 0, d);
+  floor.add(Kind::kCorridor, 0, d, length, d + c);
+  double x = 0.0;
+  for (double a : arm_at) {
+    floor.officesAlongX(x, a, d + c, 2 * d + c);
+    x = a + arm;
+    floor.officesAlongY(d + c, d + c + rise, a, a + d);
+    floor.add(Kind::kCorridor, a + d, d + c, a + d + c, d + c + rise);
+    floor.officesAlongY(d + c, d + c + rise, a + d + c, a + arm);
+  }
+  floor.officesAlongX(x, length, d + c, 2 * d + c);
+}
+
+// A hotel floor: identical rooms on both sides of one corridor. With the asymmetry, the first two
+// rooms of the north row are one suite, so a half turn does not map the floor onto itself.
+void hotel(const GeneratorSpec& s, Floor& floor) {
+  const int per_row = std::max(2, (roomsOr(s.rooms, 22) + 1) / 2);
+  const double d = s.room_depth, c = s.corridor_width, w = s.room_width;
+  const double fraction = s.doors == "center" ? 0.5 : 0.3;  // every room alike
+  for (int i = 0; i < per_row; ++i) floor.add(Kind::kOffice, i * w, 0, (i + 1) * w, d, fraction);
+  floor.add(Kind::kCorridor, 0, d, per_row * w, d + c);
+  for (int i = 0; i < per_row; ++i) {
+    if (s.asymmetry && i == 0) {
+      floor.add(Kind::kOffice, 0, d + c, 2 * w, 2 * d + c, 0.5 * (1.0 - fraction));
+      ++i;
+      continue;
+    }
+    // A half turn maps the south room at x to the north room at length − x: its door mirrored.
+    floor.add(Kind::kOffice, i * w, d + c, (i + 1) * w, 2 * d + c, 1.0 - fraction);
+  }
+}
+
+// Twin wings: a south wing of offices and a north wing that is the south one turned by a half
+// turn. With the asymmetry, the south wing's last office is split in two.
+void twinWings(const GeneratorSpec& s, Floor& floor, std::mt19937_64& rng) {
+  const int per_wing = std::max(2, (roomsOr(s.rooms, 10) + 1) / 2);
+  const double d = s.room_depth, c = s.corridor_width;
+  std::vector<double> widths = floor.widths(per_wing * s.room_width);
+  for (double& w : widths) w = mm(w);
+  double length = 0.0;
+  for (double w : widths) length += w;
+  std::uniform_real_distribution<double> placement(0.2, 0.8);
+  std::vector<double> fractions;
+  for (std::size_t i = 0; i < widths.size(); ++i) {
+    fractions.push_back(s.doors == "center" ? 0.5 : placement(rng));
+  }
+  double x = 0.0;
+  for (std::size_t i = 0; i < widths.size(); ++i) {
+    const bool split = s.asymmetry && i + 1 == widths.size();
+    if (split) {
+      const double half = mm(0.5 * widths[i]);
+      floor.add(Kind::kOffice, x, 0, x + half, d, 0.5);
+      floor.add(Kind::kOffice, x + half, 0, x + widths[i], d, 0.5);
+    } else {
+      floor.add(Kind::kOffice, x, 0, x + widths[i], d, fractions[i]);
+    }
+    // Its half-turned twin in the north wing.
+    floor.add(Kind::kOffice, length - x - widths[i], d + c, length - x, 2 * d + c,
+              1.0 - fractions[i]);
+    x += widths[i];
+  }
+  floor.add(Kind::kCorridor, 0, d, length, d + c);
+}
+
+// The grid the spaces tile: cell (i, j) spans [xs[i], xs[i+1]] × [ys[j], ys[j+1]].
+struct Grid {
+  std::vector<double> xs, ys;
+  std::vector<std::vector<int>> owner;  // [i][j]: index of the space, -1 outside
+
+  int at(int i, int j) const {
+    if (i < 0 || j < 0 || i >= int(owner.size()) || j >= int(owner[0].size())) return -1;
+    return owner[i][j];
+  }
+};
+
+Grid gridOf(const std::vector<Space>& spaces) {
+  std::set<double> xs, ys;
+  for (const Space& s : spaces) {
+    xs.insert({s.x0, s.x1});
+    ys.insert({s.y0, s.y1});
+  }
+  Grid g{{xs.begin(), xs.end()}, {ys.begin(), ys.end()}, {}};
+  g.owner.assign(g.xs.size() - 1, std::vector<int>(g.ys.size() - 1, -1));
+  for (int k = 0; k < int(spaces.size()); ++k) {
+    const Space& s = spaces[k];
+    for (std::size_t i = 0; i + 1 < g.xs.size(); ++i) {
+      const double cx = 0.5 * (g.xs[i] + g.xs[i + 1]);
+      if (cx < s.x0 || cx > s.x1) continue;
+      for (std::size_t j = 0; j + 1 < g.ys.size(); ++j) {
+        const double cy = 0.5 * (g.ys[j] + g.ys[j + 1]);
+        if (cy >= s.y0 && cy <= s.y1) g.owner[i][j] = k;
+      }
+    }
+  }
+  return g;
+}
+
+struct Wall {
+  double x0 = 0, y0 = 0, x1 = 0, y1 = 0;
+  bool outer = false;
+  bool vertical() const { return x0 == x1; }
+  double start() const { return vertical() ? y0 : x0; }
+  double end() const { return vertical() ? y1 : x1; }
+  double line() const { return vertical() ? x0 : y0; }
+};
+
+// Walls along every grid line where the owners on its two sides differ, one wall per unbroken run
+// of one kind (outer: the outside on one side), so long walls run past T-junctions.
+std::vector<Wall> wallsOf(const Grid& g) {
+  std::vector<Wall> out;
+  const int nx = int(g.xs.size()) - 1, ny = int(g.ys.size()) - 1;
+  for (int vertical = 0; vertical < 2; ++vertical) {
+    const int lines = vertical ? nx + 1 : ny + 1;
+    const int cells = vertical ? ny : nx;
+    const std::vector<double>& along = vertical ? g.ys : g.xs;
+    const auto sides = [&](int l, int m) {
+      return vertical ? std::make_pair(g.at(l - 1, m), g.at(l, m))
+                      : std::make_pair(g.at(m, l - 1), g.at(m, l));
+    };
+    for (int l = 0; l < lines; ++l) {
+      const double at = vertical ? g.xs[l] : g.ys[l];
+      int k = 0;
+      while (k < cells) {
+        const auto [a, b] = sides(l, k);
+        if (a == b) {
+          ++k;
+          continue;
+        }
+        const bool outer = a < 0 || b < 0;
+        int end = k + 1;
+        while (end < cells) {
+          const auto [p, q] = sides(l, end);
+          if (p == q || (p < 0 || q < 0) != outer) break;
+          ++end;
+        }
+        out.push_back(vertical ? Wall{at, along[k], at, along[end], outer}
+                               : Wall{along[k], at, along[end], at, outer});
+        k = end;
+      }
+    }
+  }
+  return out;
+}
+
+// The stretch of a wall two touching spaces share, in metres from the wall's start.
+struct Side {
+  int wall = -1;
+  double from = 0, to = 0;
+  double length() const { return to - from; }
+};
+
+std::optional<Side> sharedSide(const Space& a, const Space& b, const std::vector<Wall>& walls) {
+  struct Touch {
+    bool vertical;
+    double line, lo, hi;
+  };
+  std::vector<Touch> touches;
+  if (a.x1 == b.x0 || a.x0 == b.x1) {
+    touches.push_back(
+        {true, a.x1 == b.x0 ? a.x1 : a.x0, std::max(a.y0, b.y0), std::min(a.y1, b.y1)});
+  }
+  if (a.y1 == b.y0 || a.y0 == b.y1) {
+    touches.push_back(
+        {false, a.y1 == b.y0 ? a.y1 : a.y0, std::max(a.x0, b.x0), std::min(a.x1, b.x1)});
+  }
+  for (const Touch& t : touches) {
+    if (t.hi - t.lo < 1e-6) continue;
+    for (int w = 0; w < int(walls.size()); ++w) {
+      const Wall& wall = walls[w];
+      if (wall.vertical() != t.vertical || wall.line() != t.line) continue;
+      if (wall.start() <= t.lo + 1e-9 && wall.end() >= t.hi - 1e-9) {
+        return Side{w, t.lo - wall.start(), t.hi - wall.start()};
+      }
+    }
+  }
+  return std::nullopt;
+}
+
+struct Door {
+  int wall = -1;
+  double offset = 0, width = 0.9;
+  int a = -1, b = -1;  // the spaces it joins
+  Eigen::Vector2d centre(const std::vector<Wall>& walls) const {
+    const Wall& w = walls[wall];
+    return w.vertical() ? Eigen::Vector2d(w.x0, w.y0 + offset)
+                        : Eigen::Vector2d(w.x0 + offset, w.y0);
+  }
+};
+
+// Spaces reached from space 0 through the doors not in `closed`.
+std::vector<bool> reached(int spaces, const std::vector<Door>& doors,
+                          const std::vector<bool>& closed) {
+  std::vector<std::vector<int>> next(spaces);
+  for (std::size_t d = 0; d < doors.size(); ++d) {
+    if (!closed.empty() && closed[d]) continue;
+    next[doors[d].a].push_back(doors[d].b);
+    next[doors[d].b].push_back(doors[d].a);
+  }
+  std::vector<bool> seen(spaces, false);
+  std::queue<int> open;
+  open.push(0);
+  seen[0] = true;
+  while (!open.empty()) {
+    const int s = open.front();
+    open.pop();
+    for (int t : next[s]) {
+      if (!seen[t]) {
+        seen[t] = true;
+        open.push(t);
+      }
+    }
+  }
+  return seen;
+}
+
+bool allTrue(const std::vector<bool>& v) {
+  return std::all_of(v.begin(), v.end(), [](bool b) { return b; });
+}
+
+// Distance between two segments that do not cross (the least of the end points' distances).
+double segmentDistance(const Eigen::Vector2d& a0, const Eigen::Vector2d& a1,
+                       const Eigen::Vector2d& b0, const Eigen::Vector2d& b1) {
+  const auto pointToSegment = [](const Eigen::Vector2d& p, const Eigen::Vector2d& s0,
+                                 const Eigen::Vector2d& s1) {
+    const Eigen::Vector2d d = s1 - s0;
+    if (d.squaredNorm() < 1e-12) return (p - s0).norm();  // a point
+    const double t = std::clamp((p - s0).dot(d) / d.squaredNorm(), 0.0, 1.0);
+    return (s0 + t * d - p).norm();
+  };
+  return std::min({pointToSegment(a0, b0, b1), pointToSegment(a1, b0, b1),
+                   pointToSegment(b0, a0, a1), pointToSegment(b1, a0, a1)});
+}
+
+bool crosses(const Eigen::Vector2d& a0, const Eigen::Vector2d& a1, const Eigen::Vector2d& b0,
+             const Eigen::Vector2d& b1) {
+  const auto cross = [](const Eigen::Vector2d& u, const Eigen::Vector2d& v) {
+    return u.x() * v.y() - u.y() * v.x();
+  };
+  const double d1 = cross(a1 - a0, b0 - a0), d2 = cross(a1 - a0, b1 - a0);
+  const double d3 = cross(b1 - b0, a0 - b0), d4 = cross(b1 - b0, a1 - b0);
+  return d1 * d2 < 0 && d3 * d4 < 0;
+}
+
+json point(double x, double y) { return json::array({mm(x), mm(y)}); }
+
+}  // namespace
+
+const std::vector<std::string>& generatorFamilies() {
+  static const std::vector<std::string> kFamilies = {"office", "l-shape",    "t-shape", "u-shape",
+                                                     "hotel",  "twin-wings", "hall"};
+  return kFamilies;
+}
+
+GeneratedBuilding generateBuilding(const GeneratorSpec& spec) {
+  const auto& families = generatorFamilies();
+  if (std::find(families.begin(), families.end(), spec.family) == families.end()) {
+    throw std::invalid_argument("family: unknown family \"" + spec.family + "\"");
+  }
+  const auto require = [](bool ok, const std::string& what) {
+    if (!ok) throw std::invalid_argument(what);
+  };
+  const double t = spec.wall_thickness;
+  require(t >= 0.05 && t <= 0.5, "wall thickness: must be in [0.05, 0.5] m");
+  require(spec.rooms >= 0 && spec.rooms <= 5000, "rooms: must be in [0, 5000] (0: the family's)");
+  require(spec.room_width >= 2.0 && spec.room_width <= 20.0, "room width: must be in [2, 20] m");
+  require(spec.room_depth >= 3.0 && spec.room_depth <= 20.0, "room depth: must be in [3, 20] m");
+  require(spec.corridor_width >= 1.2 && spec.corridor_width <= 6.0,
+          "corridor width: must be in [1.2, 6] m (a robot and a door must fit)");
+  require(spec.size_spread >= 0.0 && spec.size_spread <= 0.4, "size spread: must be in [0, 0.4]");
+  require(spec.doors == "center" || spec.doors == "random" || spec.doors == "corner",
+          "doors: must be center, random or corner");
+  require(spec.height >= 2.4 && spec.height <= 10.0, "height: must be in [2.4, 10] m");
+  for (const auto& [value, name] :
+       {std::pair{spec.connecting_doors, "connecting doors"},
+        std::pair{spec.shifted_walls, "shifted walls"},
+        std::pair{spec.missing_walls, "missing walls"}, std::pair{spec.extra_walls, "extra walls"},
+        std::pair{spec.closed_doors, "closed doors"}}) {
+    require(value >= 0.0 && value <= 1.0, std::string(name) + ": must be a share in [0, 1]");
+  }
+  require(spec.clutter_per_room >= 0.0 && spec.clutter_per_room <= 4.0,
+          "clutter per room: must be in [0, 4]");
+
+  // Separate streams for the plan and for the as-built changes, so that a denser clutter does
+  // not move the walls.
+  std::mt19937_64 rng(spec.seed * 0x9E3779B97F4A7C15ULL + 1);
+  std::mt19937_64 built_rng(spec.seed * 0xD1B54A32D192ED03ULL + 7);
+  std::uniform_real_distribution<double> unit(0.0, 1.0);
+
+  GeneratorSpec s = spec;
+  if (s.family == "hotel") s.size_spread = 0.0;
+  // Suites drawn at random would break the half-turn symmetry these two families are about.
+  if (s.family == "hotel" || s.family == "twin-wings") s.connecting_doors = 0.0;
+  Floor floor(s, rng);
+  if (s.family == "office") bandedFloor(s, floor, Kind::kCorridor, 24);
+  if (s.family == "l-shape") armedFloor(s, floor, 'L');
+  if (s.family == "t-shape") armedFloor(s, floor, 'T');
+  if (s.family == "u-shape") armedFloor(s, floor, 'U');
+  if (s.family == "hotel") hotel(s, floor);
+  if (s.family == "twin-wings") twinWings(s, floor, rng);
+  if (s.family == "hall") bandedFloor(s, floor, Kind::kHall, 12);
+  // Corridors and halls first: the search for reachable rooms starts from space 0.
+  std::vector<Space> spaces = floor.spaces;
+  std::stable_partition(spaces.begin(), spaces.end(),
+                        [](const Space& x) { return x.kind != Kind::kOffice; });
+  const Grid grid = gridOf(spaces);
+  const std::vector<Wall> walls = wallsOf(grid);
+  const int n = int(spaces.size());
+
+  // Doors: each office to the corridor or hall it shares most with, corridors to each other.
+  const double end_margin = 0.5 * t + 0.15;
+  std::vector<Door> doors;
+  const auto addDoor = [&](int a, int b, const Side& side, double fraction, double width) {
+    const double lo = side.from + end_margin + 0.5 * width;
+    const double hi = side.to - end_margin - 0.5 * width;
+    if (hi < lo) return false;
+    doors.push_back(
+        {side.wall, std::clamp(side.from + fraction * side.length(), lo, hi), width, a, b});
+    return true;
+  };
+  std::vector<std::vector<std::pair<int, Side>>> touching(n);
+  for (int a = 0; a < n; ++a) {
+    for (int b = a + 1; b < n; ++b) {
+      if (auto side = sharedSide(spaces[a], spaces[b], walls)) {
+        touching[a].push_back({b, *side});
+        touching[b].push_back({a, *side});
+      }
+    }
+  }
+  std::uniform_real_distribution<double> placement(0.2, 0.8);
+  for (int a = 0; a < n; ++a) {
+    if (spaces[a].kind == Kind::kOffice) {
+      const std::pair<int, Side>* best = nullptr;
+      for (const auto& candidate : touching[a]) {
+        if (spaces[candidate.first].kind == Kind::kOffice) continue;
+        if (best == nullptr || candidate.second.length() > best->second.length()) best = &candidate;
+      }
+      const double drawn = placement(rng);  // drawn for every office, so the rule does not shift
+      const double corner = unit(rng) < 0.5 ? 0.1 : 0.9;  // the streams of later rooms
+      if (best == nullptr) continue;
+      double fraction = spaces[a].door_fraction;
+      if (fraction < 0) fraction = s.doors == "center" ? 0.5 : s.doors == "corner" ? corner : drawn;
+      addDoor(a, best->first, best->second, fraction, 0.9);
+    } else {
+      for (const auto& [b, side] : touching[a]) {
+        if (b < a || spaces[b].kind == Kind::kOffice) continue;
+        addDoor(a, b, side, 0.5, std::min(2.0, side.length() - 2.0 * end_margin));
+      }
+    }
+  }
+  // Doors between neighbouring offices (suites), drawn for every pair so that the share does not
+  // shift later draws.
+  for (int a = 0; a < n; ++a) {
+    for (const auto& [b, side] : touching[a]) {
+      const bool draw = unit(rng) < s.connecting_doors;
+      if (b > a && draw && spaces[a].kind == Kind::kOffice && spaces[b].kind == Kind::kOffice) {
+        addDoor(a, b, side, 0.5, 0.9);
+      }
+    }
+  }
+  // Offices no corridor reaches get a door to a reached neighbour.
+  for (bool grew = true; grew;) {
+    grew = false;
+    const std::vector<bool> seen = reached(n, doors, {});
+    for (int a = 0; a < n && !grew; ++a) {
+      if (seen[a]) continue;
+      for (const auto& [b, side] : touching[a]) {
+        if (seen[b] && addDoor(a, b, side, 0.5, 0.9)) {
+          grew = true;
+          break;
+        }
+      }
+    }
+  }
+  if (!allTrue(reached(n, doors, {}))) {
+    throw std::invalid_argument("rooms: these parameters leave a room without a door that fits");
+  }
+
+  // The hall's partitions: free-standing walls clear of the hall's sides, of its doors and of
+  // each other.
+  std::vector<std::pair<Eigen::Vector2d, Eigen::Vector2d>> partitions;
+  for (int h = 0; h < n; ++h) {
+    if (spaces[h].kind != Kind::kHall) continue;
+    const Space& hs = spaces[h];
+    const double area = (hs.x1 - hs.x0) * (hs.y1 - hs.y0);
+    const int wanted = s.partitions >= 0 ? s.partitions : int(area / 40.0);
+    const std::size_t before = partitions.size();
+    for (int attempt = 0; attempt < 100 * wanted && int(partitions.size() - before) < wanted;
+         ++attempt) {
+      const bool along_x = unit(rng) < 0.5;
+      const double length = mm(2.0 + 2.0 * unit(rng));
+      const double clear = 2.0;
+      const double span_x = hs.x1 - hs.x0 - 2 * clear - (along_x ? length : 0.0);
+      const double span_y = hs.y1 - hs.y0 - 2 * clear - (along_x ? 0.0 : length);
+      if (span_x <= 0 || span_y <= 0) continue;
+      const Eigen::Vector2d p0(mm(hs.x0 + clear + span_x * unit(rng)),
+                               mm(hs.y0 + clear + span_y * unit(rng)));
+      const Eigen::Vector2d p1 =
+          p0 + (along_x ? Eigen::Vector2d(length, 0) : Eigen::Vector2d(0, length));
+      bool ok = true;
+      for (const auto& [q0, q1] : partitions) {
+        ok = ok && !crosses(p0, p1, q0, q1) && segmentDistance(p0, p1, q0, q1) >= 1.6;
+      }
+      for (const Door& d : doors) {
+        const Eigen::Vector2d c = d.centre(walls);
+        ok = ok && segmentDistance(p0, p1, c, c) >= 2.5;
+      }
+      if (ok) partitions.push_back({p0, p1});
+    }
+  }
+
+  GeneratedBuilding out;
+  out.name = spec.family + "-" + std::to_string(spec.seed);
+  json wall_list = json::array(), door_list = json::array(), room_list = json::array();
+  for (std::size_t w = 0; w < walls.size(); ++w) {
+    wall_list.push_back({{"id", "W" + std::to_string(w + 1)},
+                         {"start", point(walls[w].x0, walls[w].y0)},
+                         {"end", point(walls[w].x1, walls[w].y1)},
+                         {"thickness", t}});
+  }
+  for (std::size_t p = 0; p < partitions.size(); ++p) {
+    wall_list.push_back({{"id", "P" + std::to_string(p + 1)},
+                         {"start", point(partitions[p].first.x(), partitions[p].first.y())},
+                         {"end", point(partitions[p].second.x(), partitions[p].second.y())},
+                         {"thickness", 0.1}});
+  }
+  for (std::size_t d = 0; d < doors.size(); ++d) {
+    door_list.push_back({{"id", "D" + std::to_string(d + 1)},
+                         {"wall", "W" + std::to_string(doors[d].wall + 1)},
+                         {"offset", mm(doors[d].offset)},
+                         {"width", mm(doors[d].width)},
+                         {"height", 2.1}});
+  }
+  std::vector<std::string> ids(n);
+  int offices = 0, corridors = 0, halls = 0;
+  for (int k = 0; k < n; ++k) {
+    const Space& sp = spaces[k];
+    std::string name;
+    if (sp.kind == Kind::kOffice) {
+      ids[k] = "R" + std::to_string(++offices);
+      name = "Office " + std::to_string(offices);
+    } else if (sp.kind == Kind::kCorridor) {
+      ids[k] = "C" + std::to_string(++corridors);
+      name = "Corridor " + std::to_string(corridors);
+    } else {
+      ids[k] = "H" + std::to_string(++halls);
+      name = "Hall " + std::to_string(halls);
+    }
+    const double h = 0.5 * t;
+    room_list.push_back({{"id", ids[k]},
+                         {"name", name},
+                         {"outline",
+                          {point(sp.x0 + h, sp.y0 + h), point(sp.x1 - h, sp.y0 + h),
+                           point(sp.x1 - h, sp.y1 - h), point(sp.x0 + h, sp.y1 - h)}}});
+  }
+  out.offices = offices;
+  out.corridors = corridors + halls;
+  char title[160];
+  std::snprintf(title, sizeof title, "generated %s: %d offices, %d corridors or halls, seed %llu",
+                spec.family.c_str(), offices, corridors + halls, (unsigned long long)spec.seed);
+  out.plan = {{"format", "isg.plan"},
+              {"version", 1},
+              {"name", title},
+              {"levels",
+               {{{"id", "L0"},
+                 {"elevation", 0.0},
+                 {"height", s.height},
+                 {"walls", wall_list},
+                 {"doors", door_list},
+                 {"rooms", room_list}}}}};
+
+  // As built. Which spaces each wall bounds, and which walls carry doors.
+  std::vector<std::set<int>> bounds(walls.size());
+  for (int a = 0; a < n; ++a) {
+    for (const auto& [b, side] : touching[a]) bounds[side.wall].insert({a, b});
+  }
+  std::vector<bool> has_door(walls.size(), false);
+  for (const Door& d : doors) has_door[d.wall] = true;
+  json shifts = json::array(), missing = json::array();
+  for (std::size_t w = 0; w < walls.size(); ++w) {
+    const bool between_offices = !walls[w].outer && !has_door[w] && !bounds[w].empty() &&
+                                 std::all_of(bounds[w].begin(), bounds[w].end(), [&](int k) {
+                                   return spaces[k].kind == Kind::kOffice;
+                                 });
+    const double draw_missing = unit(built_rng), draw_shift = unit(built_rng);
+    const double offset = (0.03 + 0.05 * unit(built_rng)) * (unit(built_rng) < 0.5 ? -1 : 1);
+    if (between_offices && draw_missing < s.missing_walls) {
+      missing.push_back("W" + std::to_string(w + 1));
+    } else if (!walls[w].outer && draw_shift < s.shifted_walls) {
+      shifts.push_back({{"wall", "W" + std::to_string(w + 1)}, {"offset", mm(offset)}});
+    }
+  }
+  std::vector<bool> closed(doors.size(), false);
+  json closed_list = json::array();
+  for (std::size_t d = 0; d < doors.size(); ++d) {
+    if (unit(built_rng) >= s.closed_doors) continue;
+    closed[d] = true;
+    if (allTrue(reached(n, doors, closed))) {
+      closed_list.push_back("D" + std::to_string(d + 1));
+    } else {
+      closed[d] = false;  // would cut a room off
+    }
+  }
+  json clutter = json::array(), extra = json::array();
+  for (int k = 0; k < n; ++k) {
+    const Space& sp = spaces[k];
+    if (sp.kind != Kind::kOffice) continue;
+    const double h = 0.5 * t;
+    const double ix0 = sp.x0 + h, ix1 = sp.x1 - h, iy0 = sp.y0 + h, iy1 = sp.y1 - h;
+    std::vector<Eigen::Vector2d> door_centres;
+    const Door* own = nullptr;
+    for (const Door& d : doors) {
+      if (d.a == k || d.b == k) {
+        door_centres.push_back(d.centre(walls));
+        if (own == nullptr) own = &d;
+      }
+    }
+    const int boxes =
+        int(s.clutter_per_room) + (unit(built_rng) < s.clutter_per_room - int(s.clutter_per_room));
+    std::vector<int> corners = {0, 1, 2, 3};
+    std::shuffle(corners.begin(), corners.end(), built_rng);
+    int placed = 0;
+    for (int corner : corners) {
+      const Eigen::Vector3d size(mm(0.4 + 0.6 * unit(built_rng)), mm(0.4 + 0.6 * unit(built_rng)),
+                                 mm(0.5 + 0.7 * unit(built_rng)));
+      const double yaw = mm(0.4 * unit(built_rng) - 0.2);
+      if (placed >= boxes) continue;  // the draws above are made for every corner, placed or not
+      if (ix1 - ix0 < size.x() + 2.0 || iy1 - iy0 < size.y() + 2.0) continue;
+      const double inset = 0.25;
+      const double cx = (corner & 1) ? ix1 - inset - 0.5 * size.x() : ix0 + inset + 0.5 * size.x();
+      const double cy = (corner & 2) ? iy1 - inset - 0.5 * size.y() : iy0 + inset + 0.5 * size.y();
+      bool clear = true;
+      for (const auto& c : door_centres)
+        clear = clear && (c - Eigen::Vector2d(cx, cy)).norm() >= 1.8;
+      if (!clear) continue;
+      clutter.push_back({{"shape", "box"},
+                         {"center", {mm(cx), mm(cy), mm(0.5 * size.z())}},
+                         {"size", {size.x(), size.y(), size.z()}},
+                         {"yaw", yaw}});
+      ++placed;
+    }
+    // An unplanned partition: parallel to the door's wall, 1 m before the far side, 40 % long.
+    if (unit(built_rng) < s.extra_walls && own != nullptr) {
+      const bool door_wall_vertical = walls[own->wall].vertical();
+      const Eigen::Vector2d door = own->centre(walls);
+      if (door_wall_vertical && ix1 - ix0 >= 3.0) {
+        const double x = door.x() < 0.5 * (sp.x0 + sp.x1) ? ix1 - 1.0 : ix0 + 1.0;
+        const double mid = 0.5 * (iy0 + iy1), half = 0.2 * (iy1 - iy0);
+        extra.push_back(
+            {{"start", point(x, mid - half)}, {"end", point(x, mid + half)}, {"thickness", 0.1}});
+      } else if (!door_wall_vertical && iy1 - iy0 >= 3.0) {
+        const double y = door.y() < 0.5 * (sp.y0 + sp.y1) ? iy1 - 1.0 : iy0 + 1.0;
+        const double mid = 0.5 * (ix0 + ix1), half = 0.2 * (ix1 - ix0);
+        extra.push_back(
+            {{"start", point(mid - half, y)}, {"end", point(mid + half, y)}, {"thickness", 0.1}});
+      }
+    }
+  }
+  // The robot starts in an office drawn from the seed and tours every room.
+  std::vector<int> office_index;
+  for (int k = 0; k < n; ++k) {
+    if (spaces[k].kind == Kind::kOffice) office_index.push_back(k);
+  }
+  const int start = office_index.empty() ? 0
+                                         : office_index[std::uniform_int_distribution<std::size_t>(
+                                               0, office_index.size() - 1)(built_rng)];
+  json as_built = json::object();
+  if (!missing.empty()) as_built["missing_walls"] = missing;
+  if (!extra.empty()) as_built["extra_walls"] = extra;
+  if (!shifts.empty()) as_built["wall_shifts"] = shifts;
+  if (!closed_list.empty()) as_built["closed_doors"] = closed_list;
+  if (!clutter.empty()) as_built["clutter"] = clutter;
+  out.scenario = {
+      {"format", "isg.scenario"},
+      {"version", 1},
+      {"plan", out.name + ".json"},
+      {"seed", spec.seed},
+      {"robot", {{"level", "L0"}, {"start", {{"room", ids[start]}}}, {"route", "tour"}}},
+      {"as_built", as_built}};
+  return out;
+}
+
+}  // namespace isg::worlds

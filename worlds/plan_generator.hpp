@@ -1,0 +1,59 @@
+#pragma once
+
+#include <cstdint>
+#include <nlohmann/json.hpp>
+#include <string>
+#include <vector>
+
+namespace isg::worlds {
+
+// Procedural buildings (docs/sweeps.md, "Generated buildings"): a plan in the "isg.plan" v1
+// format and an as-built scenario on it, both deterministic in the seed. Every building is a set
+// of axis-aligned rectangles (offices, corridors, a hall) that tile its floor; walls run along
+// the rectangles' shared sides and are merged into long walls where they line up, so faces meet
+// in T-junctions as in real buildings. Each room gets a door to a corridor or hall it touches
+// (or, failing that, to a neighbour already reachable), corridors meet through wide doorways,
+// and every room is reachable from every other.
+
+// The families on offer, in the order --help lists them.
+const std::vector<std::string>& generatorFamilies();
+
+struct GeneratorSpec {
+  std::string family = "office";
+  std::uint64_t seed = 1;
+  int rooms = 0;              // target number of offices (corridors and halls not counted); 0: the
+                              // family's default
+  double room_width = 4.0;    // mean width of an office along its corridor, metres
+  double room_depth = 5.0;    // depth of an office from its corridor, metres
+  double size_spread = 0.25;  // relative spread of office widths (0: all alike); hotel: forced 0
+  double corridor_width = 1.8;     // metres
+  std::string doors = "random";    // where a room's door sits along its corridor side: center,
+                                   // random (20–80 %), corner (near one end)
+  double connecting_doors = 0.15;  // share of neighbouring offices with a door between them
+                                   // (hotel, twin-wings: none, to keep their symmetry)
+  bool asymmetry = true;           // twin-wings and hotel: one change that breaks the symmetry
+  int partitions = -1;             // hall: free-standing partitions (-1: one per 40 m² of hall)
+  double wall_thickness = 0.2;
+  double height = 3.0;
+  // As-built deviations, by density.
+  double clutter_per_room = 1.0;  // mean clutter boxes per office
+  double shifted_walls = 0.1;     // share of inner walls moved 3–8 cm
+  double missing_walls = 0.0;     // share of office–office walls without doors left unbuilt
+  double extra_walls = 0.0;       // share of offices with an unplanned partition
+  double closed_doors = 0.0;      // share of doors closed among those that can be (the rooms
+                                  // stay connected)
+};
+
+struct GeneratedBuilding {
+  std::string name;         // "<family>-<seed>"
+  nlohmann::json plan;      // "isg.plan" v1
+  nlohmann::json scenario;  // "isg.scenario" v1, "plan": "<name>.json", as-built deviations
+  int offices = 0;
+  int corridors = 0;
+};
+
+// The building of `spec`. Throws std::invalid_argument naming the parameter for a family it does
+// not know or parameters that cannot make a building (e.g. a corridor too narrow for a door).
+GeneratedBuilding generateBuilding(const GeneratorSpec& spec);
+
+}  // namespace isg::worlds

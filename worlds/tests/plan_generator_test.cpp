@@ -1,0 +1,161 @@
+#include "worlds/plan_generator.hpp"
+
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <queue>
+#include <set>
+
+#include "bim/scenario.hpp"
+
+namespace isg::worlds {
+namespace {
+
+namespace fs = std::filesystem;
+
+// Writes the building's two files to a fresh folder and reads its scenario as isg check does.
+bim::Scenario load(const GeneratedBuilding& b, bim::Warnings* warnings) {
+  const fs::path dir = fs::path(testing::TempDir()) / ("generator_" + b.name);
+  fs::create_directories(dir);
+  std::ofstream(dir / (b.name + ".json")) << b.plan.dump(2);
+  std::ofstream(dir / (b.name + ".asbuilt.json")) << b.scenario.dump(2);
+  return bim::loadScenario((dir / (b.name + ".asbuilt.json")).string(), warnings);
+}
+
+// Rooms reached from the first through the doors, leaving out `closed`.
+std::set<std::string> reachable(const bim::Level& level, const std::vector<std::string>& closed) {
+  std::map<std::string, std::vector<std::string>> next;
+  for (const auto& d : level.doors) {
+    if (std::find(closed.begin(), closed.end(), d.id) != closed.end()) continue;
+    next[d.rooms[0]].push_back(d.rooms[1]);
+    next[d.rooms[1]].push_back(d.rooms[0]);
+  }
+  std::set<std::string> seen = {level.rooms.front().id};
+  std::queue<std::string> open;
+  open.push(level.rooms.front().id);
+  while (!open.empty()) {
+    for (const auto& r : next[open.front()]) {
+      if (seen.insert(r).second) open.push(r);
+    }
+    open.pop();
+  }
+  return seen;
+}
+
+TEST(PlanGenerator, EveryFamilyReadsWithoutWarningAndEveryRoomIsReachable) {
+  std::size_t closed = 0, missing = 0, extra = 0, clutter = 0;
+  for (const auto& family : generatorFamilies()) {
+    for (std::uint64_t seed : {1, 2}) {
+      GeneratorSpec spec;
+      spec.family = family;
+      spec.seed = seed;
+      spec.closed_doors = 0.5;
+      spec.missing_walls = 0.3;
+      spec.extra_walls = 0.3;
+      const GeneratedBuilding b = generateBuilding(spec);
+      bim::Warnings warnings;
+      const bim::Scenario s = load(b, &warnings);
+      EXPECT_TRUE(warnings.empty()) << b.name << ": " << warnings.front().str();
+      const bim::Level& level = s.plan.levels.at(0);
+      EXPECT_EQ(int(level.rooms.size()), b.offices + b.corridors) << b.name;
+      // Every door joins two rooms (none opens to the outside), and with the closed doors shut
+      // every room is still reached.
+      for (const auto& d : level.doors) {
+        EXPECT_NE(d.rooms[0], bim::kOutside) << b.name << " " << d.id;
+        EXPECT_NE(d.rooms[1], bim::kOutside) << b.name << " " << d.id;
+      }
+      EXPECT_EQ(reachable(level, s.as_built.closed_doors).size(), level.rooms.size()) << b.name;
+      closed += s.as_built.closed_doors.size();
+      missing += s.as_built.missing_walls.size();
+      extra += s.as_built.extra_walls.size();
+      clutter += s.as_built.clutter.size();
+    }
+  }
+  // The densities asked for were applied somewhere.
+  EXPECT_GT(closed, 5u);
+  EXPECT_GT(missing, 5u);
+  EXPECT_GT(extra, 5u);
+  EXPECT_GT(clutter, 50u);
+}
+
+TEST(PlanGenerator, SameSeedSameBuildingOtherSeedOtherBuilding) {
+  GeneratorSpec spec;
+  spec.family = "office";
+  spec.seed = 7;
+  const auto a = generateBuilding(spec), b = generateBuilding(spec);
+  EXPECT_EQ(a.plan.dump(), b.plan.dump());
+  EXPECT_EQ(a.scenario.dump(), b.scenario.dump());
+  spec.seed = 8;
+  EXPECT_NE(generateBuilding(spec).plan.dump(), a.plan.dump());
+  // More clutter does not move a wall: the plan and the as-built changes draw from separate
+  // streams.
+  spec.clutter_per_room = 3.0;
+  spec.seed = 7;
+  EXPECT_EQ(generateBuilding(spec).plan.dump(), a.plan.dump());
+}
+
+TEST(PlanGenerator, RoomCountFollowsTheRequestUpToFiveHundred) {
+  for (const char* family : {"office", "l-shape", "hall"}) {
+    GeneratorSpec spec;
+    spec.family = family;
+    spec.rooms = 500;
+    const GeneratedBuilding b = generateBuilding(spec);
+    EXPECT_GE(b.offices, 450) << family;
+    EXPECT_LE(b.offices, 560) << family;
+    bim::Warnings warnings;
+    EXPECT_EQ(load(b, &warnings).plan.levels[0].rooms.size(), std::size_t(b.offices + b.corridors));
+  }
+}
+
+// The wall segments of a plan as a set, after an optional half turn about the plan's centre.
+std::set<std::array<long, 4>> segments(const nlohmann::json& plan, bool half_turn) {
+  double max_x = 0, max_y = 0;
+  for (const auto& w : plan["levels"][0]["walls"]) {
+    max_x = std::max({max_x, w["start"][0].get<double>(), w["end"][0].get<double>()});
+    max_y = std::max({max_y, w["start"][1].get<double>(), w["end"][1].get<double>()});
+  }
+  std::set<std::array<long, 4>> out;
+  for (const auto& w : plan["levels"][0]["walls"]) {
+    auto p = [&](const nlohmann::json& v, int i) {
+      const double c = v[i].get<double>();
+      return std::lround(1000 * (half_turn ? (i == 0 ? max_x : max_y) - c : c));
+    };
+    std::array<long, 4> s = {p(w["start"], 0), p(w["start"], 1), p(w["end"], 0), p(w["end"], 1)};
+    if (std::make_pair(s[2], s[3]) < std::make_pair(s[0], s[1])) s = {s[2], s[3], s[0], s[1]};
+    out.insert(s);
+  }
+  return out;
+}
+
+TEST(PlanGenerator, SymmetricFamiliesAreHalfTurnSymmetricBarTheirOneAsymmetry) {
+  for (const char* family : {"twin-wings", "hotel"}) {
+    GeneratorSpec spec;
+    spec.family = family;
+    spec.asymmetry = false;
+    spec.doors = "center";
+    const GeneratedBuilding symmetric = generateBuilding(spec);
+    EXPECT_EQ(segments(symmetric.plan, false), segments(symmetric.plan, true)) << family;
+    spec.asymmetry = true;
+    const GeneratedBuilding broken = generateBuilding(spec);
+    EXPECT_NE(segments(broken.plan, false), segments(broken.plan, true)) << family;
+  }
+}
+
+TEST(PlanGenerator, ImpossibleParametersNameTheParameter) {
+  GeneratorSpec spec;
+  spec.corridor_width = 0.5;
+  try {
+    generateBuilding(spec);
+    FAIL();
+  } catch (const std::invalid_argument& e) {
+    EXPECT_STREQ(e.what(), "corridor width: must be in [1.2, 6] m (a robot and a door must fit)");
+  }
+  spec = {};
+  spec.family = "castle";
+  EXPECT_THROW(generateBuilding(spec), std::invalid_argument);
+}
+
+}  // namespace
+}  // namespace isg::worlds
