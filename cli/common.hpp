@@ -16,6 +16,8 @@ inline constexpr int kExitOk = 0;
 inline constexpr int kExitBadInput = 1;
 inline constexpr int kExitUsage = 2;
 inline constexpr int kExitInternal = 3;
+// isg sweep: some cell failed or has not run (the table holds the others).
+inline constexpr int kExitIncomplete = 5;
 
 // Option checks with plain messages ("--duration: must be > 0, got -1"), for finite numbers.
 CLI::Validator positiveNumber();

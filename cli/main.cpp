@@ -17,6 +17,7 @@
 #include "cli/cmd_run.hpp"
 #include "cli/cmd_simulate.hpp"
 #include "cli/cmd_slam.hpp"
+#include "cli/cmd_sweep.hpp"
 #include "cli/cmd_table.hpp"
 #include "cli/cmd_world.hpp"
 #include "cli/interrupt.hpp"
@@ -45,6 +46,7 @@ int main(int argc, char** argv) {
   commands.push_back(std::make_unique<RunCommand>(app));
   commands.push_back(std::make_unique<EvalCommand>(app));
   commands.push_back(std::make_unique<TableCommand>(app));
+  commands.push_back(std::make_unique<SweepCommand>(app));
 
   try {
     app.parse(argc, argv);

@@ -1,0 +1,176 @@
+#include "cli/cmd_sweep.hpp"
+
+#include <cstdio>
+#include <filesystem>
+
+#include "cli/slurm_backend.hpp"
+#include "cli/suite.hpp"
+#include "cli/sweep_collect.hpp"
+#include "cli/sweep_pool.hpp"
+#include "run/atomic_folder.hpp"
+#include "run/builtin_methods.hpp"
+
+namespace isg::cli {
+
+namespace {
+
+namespace fs = std::filesystem;
+
+// Generated worlds are written into SWEEP_DIR/worlds/ once; the same seed gives the same bytes,
+// so a sweep started again finds them as they were.
+void writeGeneratedWorlds(const Suite& suite, const fs::path& dir) {
+  for (const auto& world : suite.worlds) {
+    if (!world.generate) continue;
+    const fs::path scenario = dir / world.input;
+    if (fs::exists(scenario)) continue;
+    fs::create_directories(scenario.parent_path());
+    const worlds::GeneratedBuilding b = worlds::generateBuilding(*world.generate);
+    run::writeFileAtomically((dir / "worlds" / (b.name + ".json")).string(), b.plan.dump(2) + "\n");
+    run::writeFileAtomically(scenario.string(), b.scenario.dump(2) + "\n");
+  }
+}
+
+}  // namespace
+
+SweepCommand::SweepCommand(CLI::App& parent) {
+  app_ = parent.add_subcommand(
+      "sweep", "Run a suite: worlds × seeds × methods, on local processes or on Slurm");
+  app_->footer(
+      "SUITE.json (\"isg.suite\" v1, docs/sweeps.md) names worlds (built-ins, plan or scenario "
+      "files, generator specs), seeds, methods and run options. Each cell is an isg run into "
+      "SWEEP_DIR/<world>/<method>/seed-<n>/; SWEEP_DIR/sweep.json records the cells. Started "
+      "again, a sweep skips the cells that finished (a killed sweep finishes the rest; nothing "
+      "is half-written). A failed cell is recorded in SWEEP_DIR/<world>/<method>/seed-<n>"
+      ".failed.json with its error (the whole output in SWEEP_DIR/logs/) and the others go on. "
+      "At the end SWEEP_DIR/table.md and table.csv hold the table isg table would make, and the "
+      "exit code is 0 only when every cell finished (5 when any failed or did not run).\n\n"
+      "--backend slurm writes SWEEP_DIR/sweep.sbatch, an array job with one task per cell left "
+      "(--cpus-per-task, --time and --mem from the suite's \"slurm\" object), and submits it with "
+      "sbatch (--dry-run: only writes it; --wait: waits for the array, then collects). "
+      "isg sweep --collect SWEEP_DIR makes the table from whatever is there, for either "
+      "backend.\n\n"
+      "Example: isg sweep suite.json -o sweeps/nightly --jobs 2; isg sweep --collect "
+      "sweeps/nightly");
+  app_->add_option("input", input_, "the suite; with --collect or --cell, the sweep folder")
+      ->option_text("SUITE.json|SWEEP_DIR")
+      ->required();
+  app_->add_option("-o,--output", output_, "SWEEP_DIR: where the runs go (made if missing)")
+      ->option_text("SWEEP_DIR");
+  app_->add_option("--jobs", jobs_, "cells run at once (local backend)")
+      ->check(CLI::Range(1, 256))
+      ->capture_default_str();
+  app_->add_option("--backend", backend_, "local: child processes here; slurm: an sbatch array")
+      ->check(CLI::IsMember({"local", "slurm"}))
+      ->capture_default_str();
+  app_->add_flag("--dry-run", dry_run_, "slurm: write sweep.sbatch, do not submit it");
+  app_->add_flag("--wait", wait_,
+                 "slurm: wait until the array has ended (sbatch --wait), then "
+                 "collect");
+  app_->add_flag("--collect", collect_,
+                 "tabulate SWEEP_DIR (table.md, table.csv) and list failed and missing cells");
+  app_->add_option("--cell", cell_, "run one cell of SWEEP_DIR (what a Slurm task runs)")
+      ->option_text("K")
+      ->check(CLI::NonNegativeNumber);
+  app_->add_option("--measure", measure_, "the table's measure, as isg table's --measure")
+      ->check(CLI::IsMember(
+          {"ape", "time-wrong", "time-to-localize", "distance-to-localize", "rooms-to-localize"}))
+      ->capture_default_str();
+  app_->add_flag("-q,--quiet", quiet_, "no progress lines");
+}
+
+int SweepCommand::collect(const std::string& sweep_dir) const {
+  const SweepPlan plan = readSweepPlan(sweep_dir);
+  const SweepCollection c = collectSweep(sweep_dir, plan.cells, measure_);
+  const std::string md =
+      eval::formatTable(c.table.table, eval::TableFormat::kMarkdown, c.table.caption);
+  const std::string csv = eval::formatTable(c.table.table, eval::TableFormat::kCsv);
+  run::writeFileAtomically((fs::path(sweep_dir) / "table.md").string(), md);
+  run::writeFileAtomically((fs::path(sweep_dir) / "table.csv").string(), csv);
+  std::printf("%s\n", md.c_str());
+  for (const auto& f : c.failed) std::printf("failed: %s\n", f.c_str());
+  for (const auto& m : c.missing) std::printf("not run: %s\n", m.c_str());
+  std::printf(
+      "isg sweep: %s: %d of %zu cells finished, %zu failed, %zu not run; wrote %s/table.md "
+      "and table.csv\n",
+      sweep_dir.c_str(), c.finished, plan.cells.size(), c.failed.size(), c.missing.size(),
+      sweep_dir.c_str());
+  return c.failed.empty() && c.missing.empty() ? kExitOk : kExitIncomplete;
+}
+
+int SweepCommand::run() {
+  const auto usage = [](const char* message) {
+    std::fprintf(stderr, "isg sweep: %s\nRun 'isg sweep --help' for usage.\n", message);
+    return kExitUsage;
+  };
+  if (collect_ && cell_ >= 0) return usage("--collect and --cell: give one of them");
+  if (collect_) return collect(input_);
+  if (cell_ >= 0) {
+    const SweepPlan plan = readSweepPlan(input_);
+    if (std::size_t(cell_) >= plan.cells.size()) {
+      throw bim::InputError((fs::path(input_) / kSweepPlanFile).string(), "/cells",
+                            "no cell " + std::to_string(cell_) + " (the sweep has " +
+                                std::to_string(plan.cells.size()) + ")");
+    }
+    const PoolOutcome o = runCells(input_, plan.cells, {std::size_t(cell_)}, 1, quiet_);
+    return o.failed == 0 ? kExitOk : kExitIncomplete;
+  }
+  if (output_.empty()) return usage("isg sweep SUITE.json needs -o SWEEP_DIR");
+  const Suite suite = loadSuite(input_, run::builtinMethods());
+  const std::vector<SweepCell> cells = sweepCells(suite);
+  fs::create_directories(output_);
+  // A sweep folder holds one suite's cells: starting it again with other cells would mix them.
+  const fs::path plan_path = fs::path(output_) / kSweepPlanFile;
+  const std::string plan_text = sweepPlanJson(suite, cells);
+  if (fs::exists(plan_path)) {
+    const SweepPlan before = readSweepPlan(output_);
+    bool same = before.cells.size() == cells.size();
+    for (std::size_t i = 0; same && i < cells.size(); ++i) {
+      same = before.cells[i].dir == cells[i].dir && before.cells[i].arguments == cells[i].arguments;
+    }
+    if (!same) {
+      throw bim::InputError(plan_path.string(), "",
+                            "this sweep folder holds another suite's cells (" +
+                                std::to_string(before.cells.size()) + " cells of " +
+                                before.suite_file + "); give another -o or remove it");
+    }
+  } else {
+    run::writeFileAtomically(plan_path.string(), plan_text);
+  }
+  writeGeneratedWorlds(suite, output_);
+  std::vector<std::size_t> all(cells.size());
+  for (std::size_t i = 0; i < cells.size(); ++i) all[i] = i;
+
+  if (backend_ == "slurm") {
+    std::vector<std::size_t> pending;
+    for (std::size_t i : all) {
+      if (!cellFinished(output_, cells[i])) pending.push_back(i);
+    }
+    if (pending.empty()) {
+      std::printf("isg sweep: every cell of %s has finished; nothing to submit\n", output_.c_str());
+      return collect(output_);
+    }
+    const std::string isg = fs::read_symlink("/proc/self/exe").string();
+    const std::string script = writeSlurmScript(output_, suite, pending, isg);
+    if (dry_run_) {
+      std::printf("isg sweep: wrote %s (%zu array tasks); submit it with: sbatch %s\n",
+                  script.c_str(), pending.size(), script.c_str());
+      return kExitOk;
+    }
+    const std::string job = submitSlurm(script, wait_);
+    std::printf("isg sweep: submitted %s as Slurm job %s (%zu array tasks)\n", script.c_str(),
+                job.c_str(), pending.size());
+    if (!wait_) {
+      std::printf("isg sweep: when it has ended: isg sweep --collect %s\n", output_.c_str());
+      return kExitOk;
+    }
+    return collect(output_);
+  }
+  const PoolOutcome o = runCells(output_, cells, all, jobs_, quiet_);
+  if (!quiet_) {
+    std::fprintf(stderr, "isg sweep: %d cells ran, %d had finished before, %d failed\n", o.finished,
+                 o.skipped, o.failed);
+  }
+  return collect(output_);
+}
+
+}  // namespace isg::cli

@@ -1,0 +1,261 @@
+#include "cli/suite.hpp"
+
+#include <filesystem>
+#include <set>
+
+#include "bim/json_reader.hpp"
+
+namespace isg::cli {
+
+namespace {
+
+namespace fs = std::filesystem;
+
+// A generator parameter of the suite: the JSON name is the command line's without the dashes.
+worlds::GeneratorSpec generatorSpec(const bim::JsonNode& node) {
+  node.expectObject({"family", "seed", "count", "rooms", "room_width", "room_depth", "size_spread",
+                     "corridor_width", "doors", "symmetric", "partitions", "wall_thickness",
+                     "height", "clutter_per_room", "shifted_walls", "missing_walls", "extra_walls",
+                     "closed_doors", "connecting_doors"});
+  worlds::GeneratorSpec spec;
+  spec.family = node.field("family").identifier();
+  const auto& families = worlds::generatorFamilies();
+  if (std::find(families.begin(), families.end(), spec.family) == families.end()) {
+    std::string list;
+    for (const auto& f : families) list += (list.empty() ? "" : ", ") + f;
+    node.field("family").fail("unknown family " + bim::inQuotes(spec.family) + " (one of " + list +
+                              ")");
+  }
+  const auto number = [&](const char* key, double& into) {
+    if (auto v = node.optionalField(key)) into = v->number();
+  };
+  if (auto v = node.optionalField("seed")) spec.seed = v->unsignedInteger();
+  if (auto v = node.optionalField("rooms")) spec.rooms = int(v->numberInRange(0, 5000));
+  if (auto v = node.optionalField("partitions")) spec.partitions = int(v->numberInRange(0, 10000));
+  if (auto v = node.optionalField("doors")) spec.doors = v->string();
+  if (auto v = node.optionalField("symmetric")) spec.asymmetry = !v->boolean();
+  number("room_width", spec.room_width);
+  number("room_depth", spec.room_depth);
+  number("size_spread", spec.size_spread);
+  number("corridor_width", spec.corridor_width);
+  number("wall_thickness", spec.wall_thickness);
+  number("height", spec.height);
+  number("clutter_per_room", spec.clutter_per_room);
+  number("shifted_walls", spec.shifted_walls);
+  number("missing_walls", spec.missing_walls);
+  number("extra_walls", spec.extra_walls);
+  number("closed_doors", spec.closed_doors);
+  number("connecting_doors", spec.connecting_doors);
+  // The generator's own checks, reported at this node.
+  try {
+    (void)worlds::generateBuilding(spec);
+  } catch (const std::invalid_argument& e) {
+    node.fail(e.what());
+  }
+  return spec;
+}
+
+std::string worldName(const std::string& input) {
+  if (input.rfind("builtin:", 0) == 0) return input.substr(8);
+  std::string stem = fs::path(input).filename().string();
+  for (const char* suffix : {".json"}) {
+    const std::string s = suffix;
+    if (stem.size() > s.size() && stem.compare(stem.size() - s.size(), s.size(), s) == 0) {
+      stem.resize(stem.size() - s.size());
+    }
+  }
+  return stem;
+}
+
+}  // namespace
+
+Suite loadSuite(const std::string& path, const run::LocalizerRegistry& methods) {
+  const nlohmann::json document = bim::readJsonFile(path);
+  const bim::JsonSource source{path, nullptr};
+  const bim::JsonNode root(document, "", source);
+  root.expectObject(
+      {"$schema", "format", "version", "name", "worlds", "seeds", "methods", "run", "slurm"});
+  bim::checkFormatAndVersion(root, kSuiteFormat, kSuiteVersion);
+  Suite suite;
+  suite.file = path;
+  suite.name = root.has("name") ? root.field("name").text() : fs::path(path).stem().string();
+  const fs::path base = fs::absolute(fs::path(path)).parent_path();
+  std::set<std::string> names;
+  const auto addWorld = [&](const bim::JsonNode& at, SuiteWorld world) {
+    if (!names.insert(world.name).second) {
+      at.fail("a second world named " + bim::inQuotes(world.name) +
+              " (world names are the table's rows and folder names)");
+    }
+    suite.worlds.push_back(std::move(world));
+  };
+  for (const auto& entry : root.field("worlds").elements(1, 100000, "worlds")) {
+    if (entry.isString()) {
+      const std::string input = entry.nonEmptyString();
+      SuiteWorld world;
+      world.name = worldName(input);
+      if (input.rfind("builtin:", 0) == 0) {
+        world.input = input;
+      } else {
+        const fs::path file = fs::path(input).is_absolute() ? fs::path(input) : base / input;
+        if (!fs::is_regular_file(file)) {
+          entry.fail("no such plan or scenario file: " + file.string());
+        }
+        world.input = fs::weakly_canonical(file).string();
+      }
+      addWorld(entry, world);
+      continue;
+    }
+    entry.expectObject({"generate"});
+    const bim::JsonNode spec_node = entry.field("generate");
+    const worlds::GeneratorSpec first = generatorSpec(spec_node);
+    const std::uint64_t count =
+        spec_node.has("count") ? spec_node.field("count").unsignedInteger() : 1;
+    if (count < 1 || count > 10000) spec_node.field("count").fail("must be in [1, 10000]");
+    for (std::uint64_t i = 0; i < count; ++i) {
+      worlds::GeneratorSpec spec = first;
+      spec.seed = first.seed + i;
+      SuiteWorld world;
+      world.name = spec.family + "-" + std::to_string(spec.seed);
+      world.input = "worlds/" + world.name + ".asbuilt.json";
+      world.generate = spec;
+      addWorld(spec_node, world);
+    }
+  }
+  std::set<std::uint64_t> seen_seeds;
+  for (const auto& s : root.field("seeds").elements(1, 100000, "seeds")) {
+    const std::uint64_t seed = s.unsignedInteger();
+    if (!seen_seeds.insert(seed).second) s.fail("seed " + std::to_string(seed) + " twice");
+    suite.seeds.push_back(seed);
+  }
+  for (const auto& m : root.field("methods").elements(1, 100, "methods")) {
+    const std::string name = m.nonEmptyString();
+    if (methods.find(name) == nullptr) {
+      std::string list;
+      for (const auto& n : methods.names()) list += (list.empty() ? "" : ", ") + n;
+      m.fail("unknown method " + bim::inQuotes(name) + " (one of " + list + ")");
+    }
+    const std::string canonical = methods.canonical(name);
+    if (std::find(suite.methods.begin(), suite.methods.end(), canonical) != suite.methods.end()) {
+      m.fail("method " + bim::inQuotes(canonical) + " twice");
+    }
+    suite.methods.push_back(canonical);
+  }
+  if (auto run = root.optionalField("run")) {
+    run->expectObject({"duration", "threads", "method_options"});
+    if (auto d = run->optionalField("duration")) suite.duration = d->positiveNumber();
+    if (auto t = run->optionalField("threads")) suite.threads = int(t->numberInRange(1, 64));
+    if (auto options = run->optionalField("method_options")) {
+      if (!options->isObject()) options->fail("expected an object: method → {KEY: VALUE}");
+      for (const auto& [method, settings] : options->raw().items()) {
+        const bim::JsonNode node = options->field(method);
+        if (methods.find(method) == nullptr) node.fail("unknown method " + bim::inQuotes(method));
+        if (!settings.is_object()) node.fail("expected an object {KEY: VALUE}");
+        for (const auto& [key, value] : settings.items()) {
+          const bim::JsonNode v = node.field(key);
+          std::string text;
+          if (value.is_string()) {
+            text = v.string();
+          } else if (value.is_number()) {
+            text = value.dump();
+          } else {
+            v.fail("expected a number or a string");
+          }
+          suite.method_options[methods.canonical(method)][key] = text;
+        }
+      }
+    }
+  }
+  if (auto slurm = root.optionalField("slurm")) {
+    slurm->expectObject({"cpus_per_task", "time", "mem", "partition", "options"});
+    if (auto c = slurm->optionalField("cpus_per_task")) {
+      suite.slurm.cpus_per_task = int(c->numberInRange(1, 1024));
+    }
+    if (auto t = slurm->optionalField("time")) suite.slurm.time = t->identifier();
+    if (auto m = slurm->optionalField("mem")) suite.slurm.mem = m->identifier();
+    if (auto p = slurm->optionalField("partition")) suite.slurm.partition = p->identifier();
+    if (auto o = slurm->optionalField("options")) {
+      for (const auto& option : o->elements(0, 100, "options")) {
+        suite.slurm.options.push_back(option.identifier());
+      }
+    }
+  }
+  return suite;
+}
+
+std::vector<SweepCell> sweepCells(const Suite& suite) {
+  std::vector<SweepCell> cells;
+  for (const auto& world : suite.worlds) {
+    for (const auto& method : suite.methods) {
+      for (const std::uint64_t seed : suite.seeds) {
+        SweepCell cell{world.name,
+                       method,
+                       seed,
+                       world.name + "/" + method + "/seed-" + std::to_string(seed),
+                       {}};
+        cell.arguments = {"run",       world.input,
+                          "--method",  method,
+                          "--seed",    std::to_string(seed),
+                          "-o",        cell.dir,
+                          "--threads", std::to_string(suite.threads),
+                          "-q"};
+        if (suite.duration) {
+          cell.arguments.push_back("--duration");
+          cell.arguments.push_back(bim::formatNumber(*suite.duration));
+        }
+        if (const auto it = suite.method_options.find(method); it != suite.method_options.end()) {
+          for (const auto& [key, value] : it->second) {
+            cell.arguments.push_back("--method-option");
+            cell.arguments.push_back(key + "=" + value);
+          }
+        }
+        cells.push_back(std::move(cell));
+      }
+    }
+  }
+  return cells;
+}
+
+std::string sweepPlanJson(const Suite& suite, const std::vector<SweepCell>& cells) {
+  nlohmann::json list = nlohmann::json::array();
+  for (const auto& c : cells) {
+    list.push_back({{"world", c.world},
+                    {"method", c.method},
+                    {"seed", c.seed},
+                    {"dir", c.dir},
+                    {"arguments", c.arguments}});
+  }
+  const nlohmann::json plan = {{"format", "isg.sweep"},
+                               {"version", 1},
+                               {"name", suite.name},
+                               {"suite", fs::absolute(suite.file).string()},
+                               {"cells", list}};
+  return plan.dump(1) + "\n";
+}
+
+SweepPlan readSweepPlan(const std::string& sweep_dir) {
+  const std::string path = (fs::path(sweep_dir) / kSweepPlanFile).string();
+  if (!fs::exists(path)) {
+    throw bim::InputError(path, "",
+                          "no such file: " + sweep_dir +
+                              " is not a sweep folder (isg sweep SUITE.json -o DIR makes one)");
+  }
+  const nlohmann::json document = bim::readJsonFile(path);
+  const bim::JsonSource source{path, nullptr};
+  const bim::JsonNode root(document, "", source);
+  bim::checkFormatAndVersion(root, "isg.sweep", 1);
+  SweepPlan plan;
+  plan.name = root.field("name").text();
+  plan.suite_file = root.field("suite").text();
+  for (const auto& c : root.field("cells").elements()) {
+    SweepCell cell;
+    cell.world = c.field("world").text();
+    cell.method = c.field("method").text();
+    cell.seed = c.field("seed").unsignedInteger();
+    cell.dir = c.field("dir").text();
+    for (const auto& a : c.field("arguments").elements()) cell.arguments.push_back(a.string());
+    plan.cells.push_back(std::move(cell));
+  }
+  return plan;
+}
+
+}  // namespace isg::cli

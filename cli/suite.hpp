@@ -1,0 +1,73 @@
+#pragma once
+
+#include <cstdint>
+#include <map>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "run/localizer_registry.hpp"
+#include "worlds/plan_generator.hpp"
+
+namespace isg::cli {
+
+// A sweep suite ("isg.suite" v1, docs/sweeps.md): worlds × seeds × methods and how to run them.
+
+struct SuiteWorld {
+  std::string name;   // the table's row and the folder of its runs
+  std::string input;  // what isg run reads: "builtin:NAME" or an absolute path; generated worlds:
+                      // "worlds/<name>.asbuilt.json", relative to the sweep folder
+  std::optional<worlds::GeneratorSpec> generate;
+};
+
+struct SlurmSettings {
+  int cpus_per_task = 1;
+  std::string time = "01:00:00";     // sbatch --time
+  std::string mem = "4G";            // sbatch --mem
+  std::string partition;             // empty: the cluster's default
+  std::vector<std::string> options;  // more sbatch options, written as given ("--qos=low")
+};
+
+struct Suite {
+  std::string file;  // where it was read from
+  std::string name;
+  std::vector<SuiteWorld> worlds;
+  std::vector<std::uint64_t> seeds;
+  std::vector<std::string> methods;                                          // canonical names
+  std::optional<double> duration;                                            // isg run --duration
+  int threads = 1;                                                           // isg run --threads
+  std::map<std::string, std::map<std::string, std::string>> method_options;  // method → KEY → VALUE
+  SlurmSettings slurm;
+};
+
+inline constexpr const char* kSuiteFormat = "isg.suite";
+inline constexpr int kSuiteVersion = 1;
+
+// Reads and checks a suite; errors are InputErrors naming the file, the JSON pointer and what is
+// wrong (an unknown method, a world file that does not exist, a repeated world name ...).
+Suite loadSuite(const std::string& path, const run::LocalizerRegistry& methods);
+
+// One run of the sweep.
+struct SweepCell {
+  std::string world, method;
+  std::uint64_t seed = 0;
+  std::string dir;                     // "<world>/<method>/seed-<n>", relative to the sweep folder
+  std::vector<std::string> arguments;  // isg's arguments for it, from "run" on
+};
+
+// The cells in world, method, seed order; paths in the arguments are relative to the sweep
+// folder (isg run is started there).
+std::vector<SweepCell> sweepCells(const Suite& suite);
+
+// SWEEP_DIR/sweep.json ("isg.sweep" v1): the suite resolved into its cells, written when a sweep
+// starts, so that a sweep started again, a Slurm task and --collect all see the same cells.
+inline constexpr const char* kSweepPlanFile = "sweep.json";
+std::string sweepPlanJson(const Suite& suite, const std::vector<SweepCell>& cells);
+struct SweepPlan {
+  std::string name, suite_file;
+  std::vector<SweepCell> cells;
+};
+// Reads SWEEP_DIR/sweep.json; a missing or foreign file is an InputError naming it.
+SweepPlan readSweepPlan(const std::string& sweep_dir);
+
+}  // namespace isg::cli

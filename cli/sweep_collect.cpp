@@ -1,0 +1,45 @@
+#include "cli/sweep_collect.hpp"
+
+#include <filesystem>
+
+#include "bim/json_reader.hpp"
+#include "cli/sweep_pool.hpp"
+#include "run/builtin_methods.hpp"
+#include "run/run_metrics.hpp"
+
+namespace isg::cli {
+
+SweepCollection collectSweep(const std::string& sweep_dir, const std::vector<SweepCell>& cells,
+                             const std::string& measure) {
+  namespace fs = std::filesystem;
+  SweepCollection out;
+  std::vector<std::pair<std::string, run::RunMetrics>> runs;
+  runs.reserve(cells.size());
+  for (const auto& cell : cells) {
+    const fs::path dir = fs::path(sweep_dir) / cell.dir;
+    if (cellFinished(sweep_dir, cell)) {
+      run::RunMetrics metrics = run::readMetrics(dir.string());
+      // The row is the suite's world name (a generated world's file is worlds/NAME.asbuilt.json).
+      metrics.world = cell.world;
+      runs.emplace_back(dir.string(), std::move(metrics));
+      ++out.finished;
+      continue;
+    }
+    const std::string record = failureRecordPath(sweep_dir, cell);
+    if (!fs::exists(record)) {
+      out.missing.push_back(cell.dir);
+      continue;
+    }
+    std::string error = "no error line";
+    const nlohmann::json failure = bim::readJsonFile(record);
+    if (failure.contains("error") && failure["error"].is_array() && !failure["error"].empty() &&
+        failure["error"].back().is_string()) {
+      error = failure["error"].back().get<std::string>();
+    }
+    out.failed.push_back(cell.dir + ": " + error);
+  }
+  out.table = tabulateRuns(std::move(runs), measure, run::builtinMethods());
+  return out;
+}
+
+}  // namespace isg::cli
