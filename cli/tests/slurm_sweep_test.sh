@@ -1,0 +1,56 @@
+#!/usr/bin/env bash
+# A sweep through a real one-node Slurm cluster (ci/slurm-cluster) gives the same table, cell for
+# cell, as the same suite on the local backend. Skipped (exit 77) when not root: the cluster's
+# daemons need it.
+#   slurm_sweep_test.sh ISG REPO_ROOT
+set -euo pipefail
+isg=$1
+root=$2
+if [[ $(id -u) != 0 ]]; then
+  echo "skipped: starting slurmctld and slurmd needs root (running as $(id -un))"
+  exit 77
+fi
+work=$(mktemp -d /tmp/isg_slurm_test.XXXXXX)
+cluster=$work/cluster
+cleanup() {
+  "$root/ci/slurm-cluster" stop "$cluster" > /dev/null || true
+  rm -rf "$work"
+}
+trap cleanup EXIT
+"$root/ci/slurm-cluster" start "$cluster"
+export SLURM_CONF=$cluster/slurm.conf
+
+cd "$work"
+cat > suite.json <<'JSON'
+{
+  "format": "isg.suite", "version": 1, "name": "slurm-test",
+  "worlds": ["builtin:d1", {"generate": {"family": "hotel", "rooms": 6, "seed": 2}}],
+  "seeds": [1, 2],
+  "methods": ["is-graphs", "odometry"],
+  "run": {"duration": 40, "threads": 1},
+  "slurm": {"cpus_per_task": 1, "time": "00:10:00", "mem": "2G"}
+}
+JSON
+fail() { echo "FAIL: $*" >&2; exit 1; }
+
+"$isg" sweep suite.json -o slurm --backend slurm --wait > slurm.out || fail "the Slurm sweep exited $?"
+grep -q "as Slurm job [0-9]* (8 array tasks)" slurm.out || fail "not submitted as an 8-task array: $(cat slurm.out)"
+tasks=$(ls slurm/logs/slurm-*_*.out | wc -l)
+((tasks == 8)) || fail "expected 8 Slurm task logs, found $tasks"
+"$isg" sweep suite.json -o local --jobs 2 -q > local.out || fail "the local sweep exited $?"
+cmp slurm/table.csv local/table.csv || {
+  diff slurm/table.csv local/table.csv >&2
+  fail "the Slurm and local tables differ"
+}
+# Every cell's numbers, not only the table's means: the run folders' APE agree.
+for m in local/*/*/seed-*/metrics.json; do
+  s=slurm/${m#local/}
+  a=$(grep -o '"rmse": [0-9.e+-]*' "$m")
+  b=$(grep -o '"rmse": [0-9.e+-]*' "$s")
+  [[ $a == "$b" ]] || fail "$m: $a, Slurm's $b"
+done
+# --collect on the Slurm folder gives the same table again.
+"$isg" sweep --collect slurm > /dev/null || fail "--collect exited $?"
+cmp slurm/table.csv local/table.csv || fail "--collect changed the table"
+echo "ok: 8 cells through Slurm ($(grep -o 'job [0-9]*' slurm.out)), table equal to the local backend's:"
+cat local/table.csv
