@@ -30,8 +30,15 @@ worlds::GeneratorSpec generatorSpec(const bim::JsonNode& node) {
     if (auto v = node.optionalField(key)) into = v->number();
   };
   if (auto v = node.optionalField("seed")) spec.seed = v->unsignedInteger();
-  if (auto v = node.optionalField("rooms")) spec.rooms = int(v->numberInRange(0, 5000));
-  if (auto v = node.optionalField("partitions")) spec.partitions = int(v->numberInRange(0, 10000));
+  const auto integer = [&](const char* key, int& into, std::uint64_t most) {
+    if (auto v = node.optionalField(key)) {
+      const std::uint64_t value = v->unsignedInteger();
+      if (value > most) v->fail("must be at most " + std::to_string(most));
+      into = int(value);
+    }
+  };
+  integer("rooms", spec.rooms, 5000);
+  integer("partitions", spec.partitions, 10000);
   if (auto v = node.optionalField("doors")) spec.doors = v->string();
   if (auto v = node.optionalField("symmetric")) spec.asymmetry = !v->boolean();
   number("room_width", spec.room_width);

@@ -35,7 +35,7 @@ struct Running {
 // Starts `isg ARGUMENTS` in `dir` with its output in `log`; the child dies with its parent.
 pid_t startChild(const std::string& isg, const std::vector<std::string>& arguments,
                  const fs::path& dir, const fs::path& log) {
-  std::vector<std::string> argv_storage = {isg};
+  std::vector<std::string> argv_storage = {"isg"};
   argv_storage.insert(argv_storage.end(), arguments.begin(), arguments.end());
   std::vector<char*> argv;
   for (auto& a : argv_storage) argv.push_back(a.data());
@@ -56,7 +56,7 @@ pid_t startChild(const std::string& isg, const std::vector<std::string>& argumen
     dup2(in, 0);
     dup2(out, 1);
     dup2(out, 2);
-    execv(argv[0], argv.data());
+    execv(isg.c_str(), argv.data());
     _exit(127);
   }
   return pid;
@@ -109,7 +109,8 @@ bool cellFinished(const std::string& sweep_dir, const SweepCell& cell) {
 
 PoolOutcome runCells(const std::string& sweep_dir, const std::vector<SweepCell>& cells,
                      const std::vector<std::size_t>& indices, int jobs, bool quiet) {
-  const std::string isg = fs::read_symlink("/proc/self/exe").string();
+  // This very executable, even if a rebuild has replaced its file since the sweep started.
+  const std::string isg = "/proc/self/exe";
   const fs::path dir = fs::absolute(sweep_dir);
   PoolOutcome outcome;
   std::vector<std::size_t> pending;
@@ -133,6 +134,22 @@ PoolOutcome runCells(const std::string& sweep_dir, const std::vector<SweepCell>&
     for (const auto& [pid, r] : running) waitpid(pid, nullptr, 0);
     running.clear();
   };
+  // The line about the cell that ended last, printed once the free slot is filled again, so that
+  // "running" counts what runs.
+  std::string report;
+  const auto printReport = [&] {
+    if (quiet || report.empty()) return;
+    const int done = outcome.finished + outcome.skipped;
+    const std::size_t left = pending.size() - next + running.size();
+    std::string eta;
+    if (outcome.finished > 0 && left > 0) {
+      const double mean = seconds_run / outcome.finished;
+      eta = ", ETA " + duration(mean * std::ceil(double(left) / double(std::max(1, jobs))));
+    }
+    std::fprintf(stderr, "isg sweep: %d/%zu done, %zu running, %d failed%s — %s\n", done, total,
+                 running.size(), outcome.failed, eta.c_str(), report.c_str());
+    report.clear();
+  };
   try {
     while (next < pending.size() || !running.empty()) {
       throwIfInterrupted();
@@ -144,6 +161,7 @@ PoolOutcome runCells(const std::string& sweep_dir, const std::vector<SweepCell>&
         running[startChild(isg, cell.arguments, dir, log)] = {pending[next], Clock::now()};
         ++next;
       }
+      printReport();
       int status = 0;
       const pid_t pid = waitpid(-1, &status, WNOHANG);
       if (pid <= 0 || !running.count(pid)) {
@@ -180,19 +198,9 @@ PoolOutcome runCells(const std::string& sweep_dir, const std::vector<SweepCell>&
                                                : "signal " + std::to_string(WTERMSIG(status));
         what = "FAILED (" + reason + ")" + (lines.empty() ? "" : ": " + lines.back());
       }
-      if (!quiet) {
-        const int done = outcome.finished + outcome.skipped;
-        const std::size_t left = pending.size() - next + running.size();
-        std::string eta;
-        if (outcome.finished > 0 && left > 0) {
-          const double mean = seconds_run / outcome.finished;
-          eta = ", ETA " + duration(mean * std::ceil(double(left) / double(std::max(1, jobs))));
-        }
-        std::fprintf(stderr, "isg sweep: %d/%zu done, %zu running, %d failed%s — %s %s\n", done,
-                     total, running.size(), outcome.failed, eta.c_str(), cell.dir.c_str(),
-                     what.c_str());
-      }
+      report = cell.dir + " " + what;
     }
+    printReport();
   } catch (...) {
     stopChildren();
     throw;
