@@ -3,6 +3,7 @@
 #include <cstdio>
 #include <filesystem>
 
+#include "cli/interrupt.hpp"
 #include "cli/slurm_backend.hpp"
 #include "cli/suite.hpp"
 #include "cli/sweep_collect.hpp"
@@ -165,7 +166,17 @@ int SweepCommand::run() {
     }
     return collect(output_);
   }
-  const PoolOutcome o = runCells(output_, cells, all, jobs_, quiet_);
+  PoolOutcome o;
+  try {
+    o = runCells(output_, cells, all, jobs_, quiet_);
+  } catch (const Interrupted& e) {
+    // Not "nothing was written": the cells that finished stay, and are what a restart skips.
+    std::fprintf(stderr,
+                 "isg sweep: %s; the running cells were stopped and left nothing, the finished "
+                 "ones are kept: run the same command again to finish the sweep\n",
+                 e.what());
+    return 128 + e.signalNumber();
+  }
   if (!quiet_) {
     std::fprintf(stderr, "isg sweep: %d cells ran, %d had finished before, %d failed\n", o.finished,
                  o.skipped, o.failed);

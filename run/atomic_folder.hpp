@@ -31,6 +31,7 @@ class AtomicFile {
   AtomicFile(const AtomicFile&) = delete;
   AtomicFile& operator=(const AtomicFile&) = delete;
   const std::filesystem::path& temporary() const { return temporary_; }
+  const std::filesystem::path& path() const { return path_; }
   void commit();
 
  private:

@@ -117,10 +117,14 @@ SensorStreams DatasetReader::streams() const {
   out.scan_stamps = scan_stamps_;
   out.scan_period = scan_period_;
   out.R_T_L = R_T_L_;
+  out.duration = duration();
+  return out;
+}
+
+double DatasetReader::duration() const {
   const double span =
       scan_stamps_.empty() ? 0.0 : scan_stamps_.back() - scan_stamps_.front() + scan_period_;
-  out.duration = duration_.value_or(span);
-  return out;
+  return duration_.value_or(span);
 }
 
 slam::Scan DatasetReader::scan(int index) {

@@ -46,6 +46,8 @@ class DatasetReader : public ScanSource {
   // What the run's driver is fed: the dataset's streams, with the duration the metadata records
   // (duration_s) or, without it, the scans' span.
   SensorStreams streams() const;
+  // The duration streams() carries, without copying the streams.
+  double duration() const;
   slam::Scan scan(int index) override;
   // A scan the localizer will not read is still read and checked: a damaged file is reported
   // whichever scans the method reads, and a replay gives the same verdict for every method.

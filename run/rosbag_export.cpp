@@ -150,7 +150,7 @@ RosbagSummary exportRosbag(const std::string& dataset_dir, const std::string& ba
     if (connections[i] >= 0) summary.messages[topics[i]] = bag.counts()[connections[i]];
   }
   summary.bytes = bag.bytesWritten();
-  summary.dataset_seconds = dataset.streams().duration;
+  summary.dataset_seconds = dataset.duration();
   summary.wall_seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return summary;

@@ -69,8 +69,7 @@ RosTime RosTime::fromSeconds(double seconds, std::uint32_t offset) {
   return {std::uint32_t(sec), std::uint32_t(total % 1000000000u)};
 }
 
-RosbagWriter::RosbagWriter(const std::string& path, bool overwrite)
-    : file_(path, overwrite), path_(path) {
+RosbagWriter::RosbagWriter(const std::string& path, bool overwrite) : file_(path, overwrite) {
   out_.open(file_.temporary(), std::ios::binary | std::ios::trunc);
   if (!out_) throw bim::InputError(path, "", std::string("cannot write: ") + std::strerror(errno));
   put(kVersionLine);
@@ -158,14 +157,16 @@ void RosbagWriter::close() {
   out_ << bagHeaderRecord(index_position, std::uint32_t(connections_.size()),
                           std::uint32_t(chunks_.size()));
   out_.close();
-  if (!out_) throw bim::InputError(path_, "", "cannot write: write failed");
+  if (!out_) throw bim::InputError(file_.path().string(), "", "cannot write: write failed");
   file_.commit();
   closed_ = true;
 }
 
 void RosbagWriter::put(const std::string& bytes) {
   out_.write(bytes.data(), std::streamsize(bytes.size()));
-  if (!out_) throw bim::InputError(path_, "", std::string("cannot write: ") + std::strerror(errno));
+  if (!out_)
+    throw bim::InputError(file_.path().string(), "",
+                          std::string("cannot write: ") + std::strerror(errno));
   position_ += bytes.size();
 }
 

@@ -68,7 +68,6 @@ class RosbagWriter {
 
   AtomicFile file_;
   std::ofstream out_;
-  std::string path_;
   std::uint64_t position_ = 0;
   std::vector<Connection> connections_;
   std::vector<std::uint64_t> counts_;

@@ -4,7 +4,7 @@
 #include <random>
 
 #include "sim/fast_random.hpp"
-#include "sim/simulation.hpp"
+#include "sim/mount_transform.hpp"
 
 namespace isg::sim {
 

@@ -38,16 +38,6 @@ MujocoWorld buildWorld(const bim::Scenario& scenario, const Eigen::Isometry3d& R
 
 }  // namespace
 
-Eigen::Isometry3d mountTransform(const std::array<double, 6>& m) {
-  Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
-  T.translation() = Eigen::Vector3d(m[0], m[1], m[2]);
-  T.linear() = (Eigen::AngleAxisd(m[5], Eigen::Vector3d::UnitZ()) *
-                Eigen::AngleAxisd(m[4], Eigen::Vector3d::UnitY()) *
-                Eigen::AngleAxisd(m[3], Eigen::Vector3d::UnitX()))
-                   .toRotationMatrix();
-  return T;
-}
-
 Simulation::Simulation(const bim::Scenario& scenario)
     : scenario_(scenario),
       R_T_L_(mountTransform(scenario.lidar.mount)),

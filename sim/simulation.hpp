@@ -9,6 +9,7 @@
 #include "run/sensor_streams.hpp"
 #include "sim/imu_simulator.hpp"
 #include "sim/lidar_simulator.hpp"
+#include "sim/mount_transform.hpp"
 #include "sim/mujoco_world.hpp"
 #include "sim/occupancy_grid.hpp"
 #include "sim/route_planner.hpp"
@@ -65,7 +66,5 @@ class Simulation {
   std::unique_ptr<Trajectory> trajectory_;
   std::unique_ptr<LidarSimulator> lidar_;
 };
-
-Eigen::Isometry3d mountTransform(const std::array<double, 6>& xyz_rpy);
 
 }  // namespace isg::sim

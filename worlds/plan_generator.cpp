@@ -144,17 +144,22 @@ void armedFloor(const GeneratorSpec& s, Floor& floor, char shape) {
   floor.officesAlongX(x, length, d + c, 2 * d + c);
 }
 
-// A hotel floor: identical rooms on both sides of one corridor. With the asymmetry, the first two
-// rooms of the north row are one suite, so a half turn does not map the floor onto itself.
-void hotel(const GeneratorSpec& s, Floor& floor) {
+// A hotel floor: identical rooms on both sides of one corridor. The seed draws the room size
+// (±15 % of the given width and depth), where the doors sit and, with the asymmetry, which two
+// neighbouring north rooms are one suite, so that a half turn does not map the floor onto itself.
+void hotel(const GeneratorSpec& s, Floor& floor, std::mt19937_64& rng) {
   const int per_row = std::max(2, (roomsOr(s.rooms, 22) + 1) / 2);
-  const double d = s.room_depth, c = s.corridor_width, w = s.room_width;
-  const double fraction = s.doors == "center" ? 0.5 : 0.3;  // every room alike
+  std::uniform_real_distribution<double> scale(0.85, 1.15), placement(0.2, 0.8);
+  const double w = mm(s.room_width * scale(rng)), d = mm(s.room_depth * scale(rng));
+  const double c = s.corridor_width;
+  const double drawn = placement(rng);
+  const double fraction = s.doors == "center" ? 0.5 : s.doors == "corner" ? 0.1 : drawn;
+  const int suite = std::uniform_int_distribution<int>(0, per_row - 2)(rng);
   for (int i = 0; i < per_row; ++i) floor.add(Kind::kOffice, i * w, 0, (i + 1) * w, d, fraction);
   floor.add(Kind::kCorridor, 0, d, per_row * w, d + c);
   for (int i = 0; i < per_row; ++i) {
-    if (s.asymmetry && i == 0) {
-      floor.add(Kind::kOffice, 0, d + c, 2 * w, 2 * d + c, 0.5 * (1.0 - fraction));
+    if (s.asymmetry && i == suite) {
+      floor.add(Kind::kOffice, i * w, d + c, (i + 2) * w, 2 * d + c, 0.5 * (1.0 - fraction));
       ++i;
       continue;
     }
@@ -428,7 +433,7 @@ GeneratedBuilding generateBuilding(const GeneratorSpec& spec) {
   if (s.family == "l-shape") armedFloor(s, floor, 'L');
   if (s.family == "t-shape") armedFloor(s, floor, 'T');
   if (s.family == "u-shape") armedFloor(s, floor, 'U');
-  if (s.family == "hotel") hotel(s, floor);
+  if (s.family == "hotel") hotel(s, floor, rng);
   if (s.family == "twin-wings") twinWings(s, floor, rng);
   if (s.family == "hall") bandedFloor(s, floor, Kind::kHall, 12);
   // Corridors and halls first: the search for reachable rooms starts from space 0.

@@ -96,6 +96,21 @@ TEST(PlanGenerator, SameSeedSameBuildingOtherSeedOtherBuilding) {
   EXPECT_EQ(generateBuilding(spec).plan.dump(), a.plan.dump());
 }
 
+// Seeds make different buildings in every family: the walls and doors differ, not only the name.
+TEST(PlanGenerator, EverySeedIsAnotherBuilding) {
+  for (const auto& family : generatorFamilies()) {
+    std::set<std::string> layouts;
+    for (std::uint64_t seed = 1; seed <= 8; ++seed) {
+      GeneratorSpec spec;
+      spec.family = family;
+      spec.seed = seed;
+      const auto level = generateBuilding(spec).plan["levels"][0];
+      layouts.insert(level["walls"].dump() + level["doors"].dump());
+    }
+    EXPECT_EQ(layouts.size(), 8u) << family;
+  }
+}
+
 TEST(PlanGenerator, RoomCountFollowsTheRequestUpToFiveHundred) {
   for (const char* family : {"office", "l-shape", "hall"}) {
     GeneratorSpec spec;
