@@ -14,17 +14,6 @@
 
 namespace isg::cli {
 
-namespace {
-
-// "builtin:d1.asbuilt" → "d1.asbuilt", "plans/office.json" → "office".
-std::string worldName(const std::string& input) {
-  const std::string prefix = "builtin:";
-  if (input.rfind(prefix, 0) == 0) return input.substr(prefix.size());
-  return std::filesystem::path(input).stem().string();
-}
-
-}  // namespace
-
 RunCommand::RunCommand(CLI::App& parent) {
   app_ = parent.add_subcommand(
       "run", "Simulation in the loop: walk the robot, localize it in the plan, measure the error");

@@ -3,6 +3,7 @@
 #include <cmath>
 
 #include <cstdio>
+#include <filesystem>
 #include <iostream>
 
 #include "worlds/reference_plans.hpp"
@@ -14,6 +15,12 @@ bim::Scenario loadInput(const std::string& argument, const std::string& command)
   bim::Scenario scenario = worlds::loadScenarioOrBuiltin(argument, &warnings);
   for (const auto& w : warnings) std::cerr << "isg " << command << ": warning: " << w.str() << "\n";
   return scenario;
+}
+
+std::string worldName(const std::string& input) {
+  const std::string prefix = "builtin:";
+  if (input.rfind(prefix, 0) == 0) return input.substr(prefix.size());
+  return std::filesystem::path(input).stem().string();
 }
 
 std::string builtinWorldsHelp() {

@@ -23,6 +23,10 @@ inline constexpr int kExitIncomplete = 5;
 CLI::Validator positiveNumber();
 CLI::Validator nonNegativeNumber();
 
+// A world's short name, for folder names and table rows: "builtin:d1.asbuilt" → "d1.asbuilt",
+// "plans/office.asbuilt.json" → "office.asbuilt".
+std::string worldName(const std::string& input);
+
 // Loads a plan or scenario (a file or "builtin:NAME") and prints its warnings to stderr.
 bim::Scenario loadInput(const std::string& argument, const std::string& command);
 

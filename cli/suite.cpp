@@ -4,6 +4,7 @@
 #include <set>
 
 #include "bim/json_reader.hpp"
+#include "cli/common.hpp"
 
 namespace isg::cli {
 
@@ -60,18 +61,6 @@ worlds::GeneratorSpec generatorSpec(const bim::JsonNode& node) {
     node.fail(e.what());
   }
   return spec;
-}
-
-std::string worldName(const std::string& input) {
-  if (input.rfind("builtin:", 0) == 0) return input.substr(8);
-  std::string stem = fs::path(input).filename().string();
-  for (const char* suffix : {".json"}) {
-    const std::string s = suffix;
-    if (stem.size() > s.size() && stem.compare(stem.size() - s.size(), s.size(), s) == 0) {
-      stem.resize(stem.size() - s.size());
-    }
-  }
-  return stem;
 }
 
 }  // namespace
