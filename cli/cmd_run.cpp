@@ -57,6 +57,8 @@ int RunCommand::run() {
   namespace fs = std::filesystem;
   const std::string input = input_.empty() ? std::string(worlds::kDefaultWorld) : input_;
   method_ = methods_.canonical(method_);
+  const std::map<std::string, std::string> options = methodOptions(method_options_);
+  checkMethodOptions(methods_, method_, options);
   bim::Scenario scenario = loadInput(input, "run");
   if (seed_) scenario.seed = *seed_;
   // The seed is in the default name, so that the seeds of one world and method do not collide.
@@ -81,7 +83,7 @@ int RunCommand::run() {
   context.R_T_L = streams.R_T_L;
   context.start_B_T_M = run::trueStartB_T_M(streams);
   context.seed = scenario.seed;
-  context.options = methodOptions(method_options_);
+  context.options = options;
   context.threads = threads_;
   const auto localizer = makeMethod(methods_, method_, context);
 

@@ -91,6 +91,8 @@ int SlamCommand::run() {
     std::fprintf(stderr, "isg slam: --method %s needs --plan PLAN\n", method.c_str());
     return kExitUsage;
   }
+  const std::map<std::string, std::string> options = methodOptions(method_options_);
+  checkMethodOptions(methods_, method, options);
   const std::optional<bim::Plan> plan = replayPlan(plan_, other_plan_, dataset, dataset_);
   const bim::AGraph agraph = plan ? bim::buildAGraph(*plan) : bim::AGraph{};
   run::SensorStreams streams = dataset.streams();
@@ -104,7 +106,7 @@ int SlamCommand::run() {
   context.R_T_L = streams.R_T_L;
   context.start_B_T_M = run::trueStartB_T_M(streams);
   context.seed = dataset.seed();
-  context.options = methodOptions(method_options_);
+  context.options = options;
   context.threads = threads_;
   const auto localizer = makeMethod(methods_, method, context);
 

@@ -30,6 +30,15 @@ std::map<std::string, std::string> methodOptions(const std::vector<std::string>&
   return options;
 }
 
+void checkMethodOptions(const run::LocalizerRegistry& registry, const std::string& method,
+                        const std::map<std::string, std::string>& options) {
+  try {
+    registry.checkOptions(method, options);
+  } catch (const std::invalid_argument& e) {
+    throw bim::InputError("--method " + method, "", e.what());
+  }
+}
+
 std::unique_ptr<slam::Localizer> makeMethod(const run::LocalizerRegistry& registry,
                                             const std::string& method,
                                             const run::LocalizerContext& context) {

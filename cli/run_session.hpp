@@ -22,6 +22,11 @@ std::string methodHelp(const run::LocalizerRegistry& registry);
 // The --method-option KEY=VALUE arguments as a map. A malformed or repeated one is bad input.
 std::map<std::string, std::string> methodOptions(const std::vector<std::string>& arguments);
 
+// Checks the method's options before anything is built, so a misspelt key fails at once and not
+// after the world is made; bad input naming the method.
+void checkMethodOptions(const run::LocalizerRegistry& registry, const std::string& method,
+                        const std::map<std::string, std::string>& options);
+
 // Builds the method; what the method refuses (an unknown option, a bad value, a plan it cannot
 // use) is bad input naming the method.
 std::unique_ptr<slam::Localizer> makeMethod(const run::LocalizerRegistry& registry,

@@ -158,6 +158,12 @@ Suite loadSuite(const std::string& path, const run::LocalizerRegistry& methods) 
           }
           suite.method_options[methods.canonical(method)][key] = text;
         }
+        // The method's own check, here rather than in each cell's run.
+        try {
+          methods.checkOptions(method, suite.method_options[methods.canonical(method)]);
+        } catch (const std::invalid_argument& e) {
+          node.fail(e.what());
+        }
       }
     }
   }

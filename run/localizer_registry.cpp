@@ -2,6 +2,8 @@
 
 #include <stdexcept>
 
+#include "run/method_options.hpp"
+
 namespace isg::run {
 
 void LocalizerRegistry::add(MethodInfo method) {
@@ -57,6 +59,17 @@ std::string LocalizerRegistry::help() const {
   return out;
 }
 
+void LocalizerRegistry::checkOptions(const std::string& name,
+                                     const std::map<std::string, std::string>& options) const {
+  const MethodInfo* method = find(name);
+  if (method == nullptr) throw std::invalid_argument("unknown method " + name);
+  if (method->check_options) {
+    method->check_options(options);
+  } else {
+    MethodOptions(options, method->name).finish();  // none known: any key is refused
+  }
+}
+
 std::unique_ptr<slam::Localizer> LocalizerRegistry::make(const std::string& name,
                                                          const LocalizerContext& context) const {
   const MethodInfo* method = find(name);
@@ -67,6 +80,7 @@ std::unique_ptr<slam::Localizer> LocalizerRegistry::make(const std::string& name
   if (method->given_start && !context.start_B_T_M) {
     throw std::invalid_argument("method " + name + " needs the start pose");
   }
+  checkOptions(name, context.options);
   return method->make(context);
 }
 

@@ -43,6 +43,9 @@ struct MethodInfo {
   // SLAM only: never localizes in B; tables show its map-frame APE after SE(3) alignment.
   bool slam_only = false;
   std::function<std::unique_ptr<slam::Localizer>(const LocalizerContext&)> make = {};
+  // Reads the options as make() does, without a world: throws std::invalid_argument for a bad
+  // value or a key the method does not know. Empty: the method takes no options.
+  std::function<void(const std::map<std::string, std::string>&)> check_options = {};
   // Older names --method still takes for it (a renamed method keeps its command line working).
   std::vector<std::string> aliases = {};
 };
@@ -60,10 +63,15 @@ class LocalizerRegistry {
   std::vector<std::string> acceptedNames() const;
   // The method's name for a name or alias; an unknown name unchanged (old run folders).
   std::string canonical(const std::string& name) const;
+  // Throws std::invalid_argument (naming the key) when the method does not take these options:
+  // a sweep checks a suite's options before any run, make() checks them too.
+  void checkOptions(const std::string& name,
+                    const std::map<std::string, std::string>& options) const;
   // "  is-graphs: …\n  s-graph: …" for --help (aliases in parentheses).
   std::string help() const;
-  // Builds the method. Throws std::invalid_argument for an unknown name, or when the method
-  // needs a plan (or a start) that the context lacks: the caller checks find() first.
+  // Builds the method. Throws std::invalid_argument for an unknown name, options the method does
+  // not take, or when the method needs a plan (or a start) that the context lacks: the caller
+  // checks find() first.
   std::unique_ptr<slam::Localizer> make(const std::string& name,
                                         const LocalizerContext& context) const;
 

@@ -6,6 +6,31 @@
 
 namespace isg::run {
 
+namespace {
+
+// The method's settings: how far its start is moved, and the tracker's own.
+struct NdtUkfSettings {
+  double start_error = 0.3;          // m
+  double start_yaw_error_deg = 5.0;  // degrees
+  slam::NdtUkfOptions tracker;
+};
+
+NdtUkfSettings ndtUkfSettings(const std::map<std::string, std::string>& options) {
+  NdtUkfSettings s;
+  MethodOptions given(options, "ndt-ukf");
+  s.start_error = given.number("start_error", s.start_error, 0.0, 100.0);
+  s.start_yaw_error_deg = given.number("start_yaw_error_deg", s.start_yaw_error_deg, 0.0, 180.0);
+  auto& t = s.tracker;
+  t.scan_voxel = given.number("scan_voxel", t.scan_voxel, 0.01, 10.0);
+  t.ndt_resolution = given.number("ndt_resolution", t.ndt_resolution, 0.1, 10.0);
+  t.map_relief = given.number("map_relief", t.map_relief, 0.0, 1.0);
+  t.wall_band = given.number("wall_band", t.wall_band, 0.0, 10.0);
+  given.finish();
+  return s;
+}
+
+}  // namespace
+
 void addNdtUkf(LocalizerRegistry& registry) {
   registry.add(
       {.name = "ndt-ukf",
@@ -17,32 +42,30 @@ void addNdtUkf(LocalizerRegistry& registry) {
                   "(docs/baselines.md)",
        .needs_plan = true,
        .given_start = true,
-       .make = [](const LocalizerContext& c) {
-         MethodOptions given(c.options, "ndt-ukf");
-         const double error = given.number("start_error", 0.3, 0.0, 100.0);
-         const double yaw_error = given.number("start_yaw_error_deg", 5.0, 0.0, 180.0);
-         slam::NdtUkfOptions options;
-         options.scan_voxel = given.number("scan_voxel", options.scan_voxel, 0.01, 10.0);
-         options.ndt_resolution = given.number("ndt_resolution", options.ndt_resolution, 0.1, 10.0);
-         options.map_relief = given.number("map_relief", options.map_relief, 0.0, 1.0);
-         options.wall_band = given.number("wall_band", options.wall_band, 0.0, 10.0);
-         given.finish();
-         // The perturbation: its size is stated, its direction and the turn's sign come from
-         // the seed (its own stream, so other draws of the run do not shift it).
-         std::mt19937_64 rng(c.seed ^ 0x6e64742d756b66ULL);
-         std::uniform_real_distribution<double> unit(0.0, 1.0);
-         const double direction = 2.0 * M_PI * unit(rng);
-         const double sign = unit(rng) < 0.5 ? -1.0 : 1.0;
-         // M is the base's frame at the start: the turn is about the start pose.
-         Eigen::Isometry3d start = *c.start_B_T_M;
-         start.translation() +=
-             error * Eigen::Vector3d(std::cos(direction), std::sin(direction), 0);
-         start.linear() =
-             Eigen::AngleAxisd(sign * yaw_error * M_PI / 180.0, Eigen::Vector3d::UnitZ())
-                 .toRotationMatrix() *
-             start.linear();
-         return std::make_unique<slam::NdtUkfLocalizer>(*c.plan, c.level, c.R_T_L, start, options);
-       }});
+       .make =
+           [](const LocalizerContext& c) {
+             const NdtUkfSettings settings = ndtUkfSettings(c.options);
+             const double error = settings.start_error;
+             const double yaw_error = settings.start_yaw_error_deg;
+             const slam::NdtUkfOptions& options = settings.tracker;
+             // The perturbation: its size is stated, its direction and the turn's sign come from
+             // the seed (its own stream, so other draws of the run do not shift it).
+             std::mt19937_64 rng(c.seed ^ 0x6e64742d756b66ULL);
+             std::uniform_real_distribution<double> unit(0.0, 1.0);
+             const double direction = 2.0 * M_PI * unit(rng);
+             const double sign = unit(rng) < 0.5 ? -1.0 : 1.0;
+             // M is the base's frame at the start: the turn is about the start pose.
+             Eigen::Isometry3d start = *c.start_B_T_M;
+             start.translation() +=
+                 error * Eigen::Vector3d(std::cos(direction), std::sin(direction), 0);
+             start.linear() =
+                 Eigen::AngleAxisd(sign * yaw_error * M_PI / 180.0, Eigen::Vector3d::UnitZ())
+                     .toRotationMatrix() *
+                 start.linear();
+             return std::make_unique<slam::NdtUkfLocalizer>(*c.plan, c.level, c.R_T_L, start,
+                                                            options);
+           },
+       .check_options = [](const auto& options) { (void)ndtUkfSettings(options); }});
 }
 
 }  // namespace isg::run

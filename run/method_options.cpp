@@ -3,6 +3,8 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "bim/json_reader.hpp"
+
 namespace isg::run {
 
 double MethodOptions::number(const std::string& key, double fallback, double lo, double hi) {
@@ -18,8 +20,8 @@ double MethodOptions::number(const std::string& key, double fallback, double lo,
   }
   if (used == 0 || used != it->second.size() || !(value >= lo && value <= hi)) {
     throw std::invalid_argument(key + "=" + it->second + ": " + method_ + "'s " + key +
-                                " must be a number in [" + std::to_string(lo) + ", " +
-                                std::to_string(hi) + "]");
+                                " must be a number in [" + bim::formatNumber(lo) + ", " +
+                                bim::formatNumber(hi) + "]");
   }
   return value;
 }

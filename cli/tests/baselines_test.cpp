@@ -112,6 +112,13 @@ TEST(Baselines, MethodOptionsAreCheckedAndNamed) {
   const auto malformed = sandbox.run("run builtin:d1 --method amcl --method-option particles -q");
   EXPECT_EQ(malformed.exit_code, 1);
   EXPECT_EQ(malformed.err, "isg run: error: --method-option particles: expected KEY=VALUE\n");
+  // A method without options takes none: a key is refused, not ignored.
+  const auto none =
+      sandbox.run("run builtin:d1 --method odometry --method-option particles=10 -o r -q");
+  EXPECT_EQ(none.exit_code, 1);
+  EXPECT_EQ(none.err,
+            "isg run: error: --method odometry: particles=10: odometry has no option particles "
+            "(it has none)\n");
   EXPECT_FALSE(sandbox.exists("r"));
   const auto more = sandbox.run(
       "run builtin:d2 --method amcl --duration 2 --method-option particles=5000 -o big -q");

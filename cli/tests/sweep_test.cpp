@@ -71,18 +71,18 @@ TEST(Sweep, RunsEveryCellAndTabulatesAsIsgTable) {
 
 TEST(Sweep, AFailedCellIsRecordedAndTheOthersGoOn) {
   testing::Sandbox sandbox("sweep_fail");
-  sandbox.write("suite.json",
-                suite(R"(["builtin:d2"])", "[1]", R"(["odometry", "amcl"])",
-                      R"({"duration": 4, "method_options": {"amcl": {"particle": 100}}})"));
+  // A plan file that exists (the suite is read) but that isg run refuses.
+  sandbox.write("broken.json", R"({"format": "isg.plan", "version": 1})");
+  sandbox.write("suite.json", suite(R"(["builtin:d2", "broken.json"])", "[1]", R"(["odometry"])",
+                                    R"({"duration": 4})"));
   const auto r = sandbox.run("sweep suite.json -o out -q");
   EXPECT_EQ(r.exit_code, 5);
   EXPECT_TRUE(sandbox.exists("out/d2/odometry/seed-1/metrics.json"));
-  EXPECT_FALSE(sandbox.exists("out/d2/amcl/seed-1"));
-  const std::string record = sandbox.read("out/d2/amcl/seed-1.failed.json");
+  EXPECT_FALSE(sandbox.exists("out/broken/odometry/seed-1"));
+  const std::string record = sandbox.read("out/broken/odometry/seed-1.failed.json");
   EXPECT_THAT(record, HasSubstr("\"exit_code\": 1"));
-  EXPECT_THAT(record, HasSubstr("amcl has no option particle"));
-  EXPECT_THAT(r.out, HasSubstr("failed: d2/amcl/seed-1: isg run: error: --method amcl: "
-                               "particle=100: amcl has no option particle"));
+  EXPECT_THAT(record, HasSubstr("broken.json: /levels: missing required field"));
+  EXPECT_THAT(r.out, HasSubstr("failed: broken/odometry/seed-1: isg run: error: "));
   EXPECT_THAT(r.out, HasSubstr("1 of 2 cells finished, 1 failed, 0 not run"));
 }
 
@@ -103,6 +103,18 @@ TEST(Sweep, BadSuitesNameTheFileAndThePlace) {
   const auto generated = sandbox.run("sweep g.json -o out");
   EXPECT_EQ(generated.exit_code, 1);
   EXPECT_THAT(generated.err, HasSubstr("g.json: /worlds/0/generate: corridor width: must be in"));
+  // A method's options are checked when the suite is read, not cell by cell.
+  sandbox.write("o.json", suite(R"(["builtin:d2"])", "[1]", R"(["amcl"])",
+                                R"({"method_options": {"amcl": {"particle": 100}}})"));
+  const auto option = sandbox.run("sweep o.json -o out");
+  EXPECT_EQ(option.exit_code, 1);
+  EXPECT_THAT(option.err, HasSubstr("isg sweep: error: o.json: /run/method_options/amcl: "
+                                    "particle=100: amcl has no option particle (it has "));
+  sandbox.write("n.json", suite(R"(["builtin:d2"])", "[1]", R"(["odometry"])",
+                                R"({"method_options": {"dead-reckoning": {"particles": 1}}})"));
+  EXPECT_THAT(sandbox.run("sweep n.json -o out").err,
+              HasSubstr("/run/method_options/dead-reckoning: particles=1: odometry has no option "
+                        "particles (it has none)"));
   sandbox.write("s.json", suite(R"(["builtin:d2"])", "[1, 1]", R"(["odometry"])", "{}"));
   EXPECT_THAT(sandbox.run("sweep s.json -o out").err, HasSubstr("/seeds/1: seed 1 twice"));
   EXPECT_EQ(sandbox.run("sweep s.json").exit_code, 2);  // no -o

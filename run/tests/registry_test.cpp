@@ -60,6 +60,37 @@ TEST(LocalizerRegistry, MakesWhatTheContextAllows) {
   EXPECT_FALSE(dead_reckoning->mapDiagnostics());
 }
 
+// Options are checked without a world (a sweep checks its suite before any run), by each
+// method's own reader; a method that reads none refuses every key.
+TEST(LocalizerRegistry, ChecksOptionsWithoutAWorld) {
+  const LocalizerRegistry registry = builtinMethods();
+  EXPECT_NO_THROW(registry.checkOptions("amcl", {{"particles", "5000"}, {"alpha_fast", "0.1"}}));
+  EXPECT_NO_THROW(registry.checkOptions("ndt-ukf", {{"start_error", "0"}}));
+  EXPECT_NO_THROW(registry.checkOptions("is-graphs", {}));
+  const auto message = [&](const std::string& method,
+                           const std::map<std::string, std::string>& options) {
+    try {
+      registry.checkOptions(method, options);
+    } catch (const std::invalid_argument& e) {
+      return std::string(e.what());
+    }
+    return std::string("accepted");
+  };
+  EXPECT_EQ(message("amcl", {{"particles", "0"}}),
+            "particles=0: amcl's particles must be a number in [1, 1e+07]");
+  EXPECT_EQ(message("ndt-ukf", {{"wall_band", "x"}}),
+            "wall_band=x: ndt-ukf's wall_band must be a number in [0, 10]");
+  EXPECT_EQ(message("dead-reckoning", {{"particles", "10"}}),
+            "particles=10: odometry has no option particles (it has none)");
+  EXPECT_EQ(message("is-graphs", {{"threshold", "1"}}),
+            "threshold=1: is-graphs has no option threshold (it has none)");
+  EXPECT_EQ(message("nonsense", {}), "unknown method nonsense");
+  // make() checks them too.
+  LocalizerContext context;
+  context.options = {{"speed", "2"}};
+  EXPECT_THROW(registry.make("s-graph", context), std::invalid_argument);
+}
+
 TEST(LocalizerRegistry, ANewMethodAddsItselfOnce) {
   LocalizerRegistry registry;
   addSGraph(registry);
