@@ -47,7 +47,8 @@ SweepCommand::SweepCommand(CLI::App& parent) {
       "exit code is 0 only when every cell finished (5 when any failed or did not run).\n\n"
       "--backend slurm writes SWEEP_DIR/sweep.sbatch, an array job with one task per cell left "
       "(--cpus-per-task, --time and --mem from the suite's \"slurm\" object), and submits it with "
-      "sbatch (--dry-run: only writes it; --wait: waits for the array, then collects). "
+      "sbatch (--dry-run: only writes it; --wait: waits for the array, then collects); more cells "
+      "than the cluster's MaxArraySize (scontrol show config) go as several arrays of it. "
       "isg sweep --collect SWEEP_DIR makes the table from whatever is there, for either "
       "backend.\n\n"
       "Example: isg sweep suite.json -o sweeps/nightly --jobs 2; isg sweep --collect "
@@ -65,7 +66,7 @@ SweepCommand::SweepCommand(CLI::App& parent) {
       ->capture_default_str();
   app_->add_flag("--dry-run", dry_run_, "slurm: write sweep.sbatch, do not submit it");
   app_->add_flag("--wait", wait_,
-                 "slurm: wait until the array has ended (sbatch --wait), then "
+                 "slurm: wait until the arrays have ended (sbatch --wait), then "
                  "collect");
   app_->add_flag("--collect", collect_,
                  "tabulate SWEEP_DIR (table.md, table.csv) and list failed and missing cells");
@@ -151,15 +152,24 @@ int SweepCommand::run() {
       return collect(output_);
     }
     const std::string isg = fs::read_symlink("/proc/self/exe").string();
-    const std::string script = writeSlurmScript(output_, suite, pending, isg);
+    const std::size_t max_array_size = suite.slurm.max_array_size.value_or(slurmMaxArraySize());
+    const std::string script = writeSlurmScript(output_, suite, pending, isg, max_array_size);
+    const std::vector<SlurmArray> arrays = slurmArrays(pending.size(), max_array_size);
+    const std::string split = arrays.size() == 1
+                                  ? ""
+                                  : " in " + std::to_string(arrays.size()) + " arrays of at most " +
+                                        std::to_string(max_array_size) + " tasks";
     if (dry_run_) {
-      std::printf("isg sweep: wrote %s (%zu array tasks); submit it with: sbatch %s\n",
-                  script.c_str(), pending.size(), script.c_str());
+      std::printf("isg sweep: wrote %s (%zu array tasks%s); submit it with:\n", script.c_str(),
+                  pending.size(), split.c_str());
+      for (const auto& array : arrays) std::printf("  %s\n", sbatchCommand(script, array).c_str());
       return kExitOk;
     }
-    const std::string job = submitSlurm(script, wait_);
-    std::printf("isg sweep: submitted %s as Slurm job %s (%zu array tasks)\n", script.c_str(),
-                job.c_str(), pending.size());
+    const std::vector<std::string> jobs = submitSlurm(script, arrays, wait_);
+    std::string ids;
+    for (const auto& id : jobs) ids += (ids.empty() ? "" : ", ") + id;
+    std::printf("isg sweep: submitted %s as Slurm job%s %s (%zu array tasks%s)\n", script.c_str(),
+                jobs.size() == 1 ? "" : "s", ids.c_str(), pending.size(), split.c_str());
     if (!wait_) {
       std::printf("isg sweep: when it has ended: isg sweep --collect %s\n", output_.c_str());
       return kExitOk;

@@ -168,13 +168,18 @@ Suite loadSuite(const std::string& path, const run::LocalizerRegistry& methods) 
     }
   }
   if (auto slurm = root.optionalField("slurm")) {
-    slurm->expectObject({"cpus_per_task", "time", "mem", "partition", "options"});
+    slurm->expectObject({"cpus_per_task", "time", "mem", "partition", "max_array_size", "options"});
     if (auto c = slurm->optionalField("cpus_per_task")) {
       suite.slurm.cpus_per_task = int(c->numberInRange(1, 1024));
     }
     if (auto t = slurm->optionalField("time")) suite.slurm.time = t->identifier();
     if (auto m = slurm->optionalField("mem")) suite.slurm.mem = m->identifier();
     if (auto p = slurm->optionalField("partition")) suite.slurm.partition = p->identifier();
+    if (auto m = slurm->optionalField("max_array_size")) {
+      const std::uint64_t most = m->unsignedInteger();
+      if (most < 1 || most > 100000000) m->fail("must be in [1, 100000000]");
+      suite.slurm.max_array_size = std::size_t(most);
+    }
     if (auto o = slurm->optionalField("options")) {
       for (const auto& option : o->elements(0, 100, "options")) {
         suite.slurm.options.push_back(option.identifier());

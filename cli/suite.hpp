@@ -26,6 +26,8 @@ struct SlurmSettings {
   std::string mem = "4G";            // sbatch --mem
   std::string partition;             // empty: the cluster's default
   std::vector<std::string> options;  // more sbatch options, written as given ("--qos=low")
+  // Tasks per array at most; unset: the cluster's MaxArraySize (slurmMaxArraySize()).
+  std::optional<std::size_t> max_array_size;
 };
 
 struct Suite {

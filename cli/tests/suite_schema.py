@@ -35,6 +35,9 @@ MUTATIONS = [
     ("65 threads", lambda s: s.setdefault("run", {}).__setitem__("threads", 65)),
     ("a wrong version", lambda s: s.__setitem__("version", 2)),
     ("zero CPUs per task", lambda s: s.setdefault("slurm", {}).__setitem__("cpus_per_task", 0)),
+    ("arrays of no task", lambda s: s.setdefault("slurm", {}).__setitem__("max_array_size", 0)),
+    ("arrays of 2.5 tasks",
+     lambda s: s.setdefault("slurm", {}).__setitem__("max_array_size", 2.5)),
 ]
 
 

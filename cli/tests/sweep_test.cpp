@@ -184,5 +184,32 @@ TEST(Sweep, SlurmDryRunWritesAnArrayScript) {
   EXPECT_EQ(sandbox.read("out/slurm-cells.txt"), "0\n1\n2\n3\n4\n");
 }
 
+// More cells than an array may hold: several arrays of one script, each told where its cells
+// start in slurm-cells.txt.
+TEST(Sweep, SlurmSplitsCellsBeyondTheArraySize) {
+  testing::Sandbox sandbox("sweep_slurm_split");
+  sandbox.write("suite.json",
+                R"({"format": "isg.suite", "version": 1, "name": "split",
+                    "worlds": ["builtin:d1", "builtin:d2", "builtin:d3"], "seeds": [1, 2, 3],
+                    "methods": ["odometry"], "slurm": {"max_array_size": 4}})");
+  const auto r = sandbox.run("sweep suite.json -o out --backend slurm --dry-run");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const std::string script = "out/sweep.sbatch";
+  EXPECT_THAT(r.out, HasSubstr("(9 array tasks in 3 arrays of at most 4 tasks); submit it with:\n"
+                               "  sbatch --array=0-3 '" +
+                               script + "' 0\n  sbatch --array=0-3 '" + script +
+                               "' 4\n  sbatch --array=0-0 '" + script + "' 8\n"));
+  const std::string text = sandbox.read("out/sweep.sbatch");
+  EXPECT_THAT(text, HasSubstr("#SBATCH --array=0-3\n"));
+  EXPECT_THAT(text, HasSubstr("offset=${1:-0}\n"));
+  EXPECT_THAT(text, HasSubstr("$((offset + SLURM_ARRAY_TASK_ID + 1))p"));
+  // The script as Slurm would run task 1 of the second array: line 4 + 1 + 1 of the cells, cell 5.
+  const std::string fake = "cd '" + sandbox.dir().string() +
+                           "' && SLURM_ARRAY_TASK_ID=1 bash -c \"$(sed 's/^exec /echo /' "
+                           "out/sweep.sbatch)\" task 4 > task.txt";
+  ASSERT_EQ(std::system(fake.c_str()), 0);
+  EXPECT_THAT(sandbox.read("task.txt"), HasSubstr(" sweep --cell 5 "));
+}
+
 }  // namespace
 }  // namespace isg::cli

@@ -1,0 +1,61 @@
+#include "sim/occupancy_grid.hpp"
+
+#include <gtest/gtest.h>
+
+#include "bim/plan_geometry.hpp"
+#include "sim/route_planner.hpp"
+#include "worlds/reference_plans.hpp"
+
+namespace isg::sim {
+namespace {
+
+// A wall shifted as built carries its doorways with it, and the strip of its planned footprint it
+// left is floor: the doorway stays open whichever way the wall moved and by however much a
+// scenario may shift it. (The grid once kept that strip blocked: a shift wider than a cell shut
+// every door of the wall.)
+TEST(OccupancyGrid, AShiftedWallKeepsItsDoorwaysOpen) {
+  const bim::Scenario scenario = worlds::loadScenarioOrBuiltin("builtin:d1", nullptr);
+  const bim::Plan& plan = scenario.plan;
+  const bim::Level& level = plan.levels.at(0);
+  const bim::Door* door = nullptr;
+  for (const auto& d : level.doors) {
+    if (d.rooms[0] != bim::kOutside && d.rooms[1] != bim::kOutside) {
+      door = &d;
+      break;
+    }
+  }
+  ASSERT_NE(door, nullptr);
+  const bim::LevelGeometry planned = bim::computeLevelGeometry(level);
+  const bim::WallGeometry& wall = *planned.findWall(door->wall);
+  const Eigen::Vector2d centre = wall.pointAt(door->offset);
+  const bim::Room* a = level.findRoom(door->rooms[0]);
+  const bim::Room* b = level.findRoom(door->rooms[1]);
+  for (const double offset : {-0.12, -0.08, -0.03, 0.03, 0.08, 0.12}) {
+    bim::AsBuilt as_built;
+    as_built.wall_shifts.push_back({door->wall, offset});
+    const OccupancyGrid grid(plan, as_built, level.id);
+    // Across the doorway, from 0.3 m before the planned wall to 0.3 m beyond it, the robot keeps
+    // its clearance: half the 0.9 m door less the cell's diagonal (0.07 m) is more than 0.35 m.
+    for (double s = -0.3; s <= 0.3; s += 0.01) {
+      const Eigen::Vector2d p = centre + s * wall.left_normal;
+      EXPECT_GE(grid.clearanceAt(p), kMinClearance) << "shift " << offset << ", s " << s;
+    }
+    // Beside the doorway, the wall stands where it was moved to, and no longer where it was.
+    const Eigen::Vector2d beside = centre + (0.5 * door->width + 0.3) * wall.axis;
+    EXPECT_TRUE(grid.blocked(grid.cellOf(beside + offset * wall.left_normal)));
+    if (std::abs(offset) >= 0.08) {
+      // The vacated strip: the planned face on the side the wall moved away from.
+      const double side = offset > 0 ? -1.0 : 1.0;
+      const Eigen::Vector2d vacated =
+          beside + side * (0.5 * wall.wall->thickness - 0.02) * wall.left_normal;
+      EXPECT_FALSE(grid.blocked(grid.cellOf(vacated))) << "shift " << offset;
+    }
+    ASSERT_NE(a, nullptr);
+    ASSERT_NE(b, nullptr);
+    EXPECT_FALSE(findPath(grid, roomGoal(grid, *a), roomGoal(grid, *b)).empty())
+        << "shift " << offset;
+  }
+}
+
+}  // namespace
+}  // namespace isg::sim
