@@ -62,7 +62,8 @@ GenerateCommand::GenerateCommand(CLI::App& parent) {
   app_->add_flag("--symmetric", symmetric_,
                  "hotel and twin-wings without their one asymmetry: no route can tell the halves "
                  "apart");
-  app_->add_option("--partitions", spec_.partitions, "partitions in a hall")
+  app_->add_option("--partitions", spec_.partitions,
+                   "partitions in a hall, at most (a hall takes those that fit)")
       ->default_str("one per 40 m² of hall");
   app_->add_option("--wall-thickness", spec_.wall_thickness, "[m]")->capture_default_str();
   app_->add_option("--height", spec_.height, "storey height [m]")->capture_default_str();

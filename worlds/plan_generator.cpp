@@ -514,7 +514,11 @@ GeneratedBuilding generateBuilding(const GeneratorSpec& spec) {
   }
 
   // The hall's partitions: free-standing walls clear of the hall's sides, of its doors and of
-  // each other.
+  // each other. Only what is near the hall is checked: another hall's partitions are more than
+  // 4 m away (2 m clear of each side), a door farther than 2.5 m from the hall's box cannot come
+  // within 2.5 m of a partition inside it. A hall takes what fits: placing stops after
+  // kMaxMisses draws in a row that did not fit, so asking for more than fits costs little.
+  constexpr int kMaxMisses = 1000;
   std::vector<std::pair<Eigen::Vector2d, Eigen::Vector2d>> partitions;
   for (int h = 0; h < n; ++h) {
     if (spaces[h].kind != Kind::kHall) continue;
@@ -522,8 +526,18 @@ GeneratedBuilding generateBuilding(const GeneratorSpec& spec) {
     const double area = (hs.x1 - hs.x0) * (hs.y1 - hs.y0);
     const int wanted = s.partitions >= 0 ? s.partitions : int(area / 40.0);
     const std::size_t before = partitions.size();
-    for (int attempt = 0; attempt < 100 * wanted && int(partitions.size() - before) < wanted;
+    std::vector<Eigen::Vector2d> near_doors;
+    for (const Door& d : doors) {
+      const Eigen::Vector2d c = d.centre(walls);
+      const double dx = std::max({hs.x0 - c.x(), 0.0, c.x() - hs.x1});
+      const double dy = std::max({hs.y0 - c.y(), 0.0, c.y() - hs.y1});
+      if (std::hypot(dx, dy) < 2.5) near_doors.push_back(c);
+    }
+    int misses = 0;
+    for (long attempt = 0;
+         attempt < 100L * wanted && int(partitions.size() - before) < wanted && misses < kMaxMisses;
          ++attempt) {
+      ++misses;
       const bool along_x = unit(rng) < 0.5;
       const double length = mm(2.0 + 2.0 * unit(rng));
       const double clear = 2.0;
@@ -535,14 +549,17 @@ GeneratedBuilding generateBuilding(const GeneratorSpec& spec) {
       const Eigen::Vector2d p1 =
           p0 + (along_x ? Eigen::Vector2d(length, 0) : Eigen::Vector2d(0, length));
       bool ok = true;
-      for (const auto& [q0, q1] : partitions) {
-        ok = ok && !crosses(p0, p1, q0, q1) && segmentDistance(p0, p1, q0, q1) >= 1.6;
+      for (std::size_t q = before; ok && q < partitions.size(); ++q) {
+        const auto& [q0, q1] = partitions[q];
+        ok = !crosses(p0, p1, q0, q1) && segmentDistance(p0, p1, q0, q1) >= 1.6;
       }
-      for (const Door& d : doors) {
-        const Eigen::Vector2d c = d.centre(walls);
-        ok = ok && segmentDistance(p0, p1, c, c) >= 2.5;
+      for (std::size_t k = 0; ok && k < near_doors.size(); ++k) {
+        ok = segmentDistance(p0, p1, near_doors[k], near_doors[k]) >= 2.5;
       }
-      if (ok) partitions.push_back({p0, p1});
+      if (ok) {
+        partitions.push_back({p0, p1});
+        misses = 0;
+      }
     }
   }
 

@@ -8,6 +8,7 @@
 #include <queue>
 #include <set>
 
+#include "bim/polygon.hpp"
 #include "bim/scenario.hpp"
 
 namespace isg::worlds {
@@ -122,6 +123,52 @@ TEST(PlanGenerator, RoomCountFollowsTheRequestUpToFiveHundred) {
     bim::Warnings warnings;
     EXPECT_EQ(load(b, &warnings).plan.levels[0].rooms.size(), std::size_t(b.offices + b.corridors));
   }
+}
+
+// Asked for far more partitions than fit, a hall takes what fits, and each keeps its distances:
+// 1.6 m from the others and 2.5 m from every door centre.
+TEST(PlanGenerator, AHallTakesThePartitionsThatFit) {
+  GeneratorSpec spec;
+  spec.family = "hall";
+  spec.rooms = 40;
+  const GeneratedBuilding fewer = generateBuilding(spec);
+  spec.partitions = 10000;
+  const GeneratedBuilding b = generateBuilding(spec);
+  bim::Warnings warnings;
+  const bim::Scenario s = load(b, &warnings);
+  EXPECT_TRUE(warnings.empty());
+  const bim::Level& level = s.plan.levels.at(0);
+  std::vector<std::pair<Eigen::Vector2d, Eigen::Vector2d>> partitions;
+  std::map<std::string, const bim::Wall*> walls;
+  for (const auto& w : level.walls) {
+    walls[w.id] = &w;
+    if (w.id[0] == 'P') partitions.emplace_back(w.start, w.end);
+  }
+  const auto countIn = [](const GeneratedBuilding& g) {
+    int n = 0;
+    for (const auto& w : g.plan["levels"][0]["walls"]) n += w["id"].get<std::string>()[0] == 'P';
+    return n;
+  };
+  EXPECT_GT(int(partitions.size()), countIn(fewer) + 10);  // the default: one per 40 m²
+  EXPECT_LT(partitions.size(), 10000u);
+  const auto distance = [](const auto& a, const auto& b) {
+    return std::min({bim::distanceToSegment(a.first, b.first, b.second),
+                     bim::distanceToSegment(a.second, b.first, b.second),
+                     bim::distanceToSegment(b.first, a.first, a.second),
+                     bim::distanceToSegment(b.second, a.first, a.second)});
+  };
+  for (std::size_t i = 0; i < partitions.size(); ++i) {
+    for (std::size_t j = i + 1; j < partitions.size(); ++j) {
+      EXPECT_GE(distance(partitions[i], partitions[j]), 1.6 - 1e-9) << i << " " << j;
+    }
+    for (const auto& d : level.doors) {
+      const bim::Wall& w = *walls.at(d.wall);
+      const Eigen::Vector2d c = w.start + d.offset * (w.end - w.start).normalized();
+      EXPECT_GE(bim::distanceToSegment(c, partitions[i].first, partitions[i].second), 2.5 - 1e-9)
+          << d.id;
+    }
+  }
+  EXPECT_EQ(generateBuilding(spec).plan, b.plan);  // what fits is the seed's, every time
 }
 
 // The wall segments of a plan as a set, after an optional half turn about the plan's centre.
