@@ -68,7 +68,11 @@ worlds::GeneratorSpec generatorSpec(const bim::JsonNode& node) {
 Suite loadSuite(const std::string& path, const run::LocalizerRegistry& methods) {
   const nlohmann::json document = bim::readJsonFile(path);
   const bim::JsonSource source{path, nullptr};
-  const bim::JsonNode root(document, "", source);
+  return parseSuite(bim::JsonNode(document, "", source), path, methods);
+}
+
+Suite parseSuite(const bim::JsonNode& root, const std::string& path,
+                 const run::LocalizerRegistry& methods) {
   root.expectObject(
       {"$schema", "format", "version", "name", "worlds", "seeds", "methods", "run", "slurm"});
   bim::checkFormatAndVersion(root, kSuiteFormat, kSuiteVersion);
@@ -81,6 +85,10 @@ Suite loadSuite(const std::string& path, const run::LocalizerRegistry& methods) 
     if (!names.insert(world.name).second) {
       at.fail("a second world named " + bim::inQuotes(world.name) +
               " (world names are the table's rows and folder names)");
+    }
+    if (suite.worlds.size() >= kMaxSweepCells) {
+      at.fail("more than " + std::to_string(kMaxSweepCells) +
+              " worlds (the most cells of a sweep)");
     }
     suite.worlds.push_back(std::move(world));
   };
@@ -135,6 +143,14 @@ Suite loadSuite(const std::string& path, const run::LocalizerRegistry& methods) 
       m.fail("method " + bim::inQuotes(canonical) + " twice");
     }
     suite.methods.push_back(canonical);
+  }
+  const std::uint64_t cells =
+      std::uint64_t(suite.worlds.size()) * suite.methods.size() * suite.seeds.size();
+  if (cells > kMaxSweepCells) {
+    root.fail(std::to_string(cells) + " cells (" + std::to_string(suite.worlds.size()) +
+              " worlds × " + std::to_string(suite.methods.size()) + " methods × " +
+              std::to_string(suite.seeds.size()) + " seeds); a sweep holds at most " +
+              std::to_string(kMaxSweepCells) + ": split the suite");
   }
   if (auto run = root.optionalField("run")) {
     run->expectObject({"duration", "threads", "method_options"});

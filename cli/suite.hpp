@@ -6,6 +6,7 @@
 #include <string>
 #include <vector>
 
+#include "bim/json_reader.hpp"
 #include "run/localizer_registry.hpp"
 #include "worlds/plan_generator.hpp"
 
@@ -48,6 +49,13 @@ inline constexpr int kSuiteVersion = 1;
 // Reads and checks a suite; errors are InputErrors naming the file, the JSON pointer and what is
 // wrong (an unknown method, a world file that does not exist, a repeated world name ...).
 Suite loadSuite(const std::string& path, const run::LocalizerRegistry& methods);
+// The same from a document already read; `path` names it and anchors its relative world files.
+Suite parseSuite(const bim::JsonNode& root, const std::string& path,
+                 const run::LocalizerRegistry& methods);
+
+// At most this many cells (worlds × methods × seeds) in one sweep: more is an error naming the
+// count, before anything is written (a sweep of millions of runs is several sweeps).
+inline constexpr std::uint64_t kMaxSweepCells = 1000000;
 
 // One run of the sweep.
 struct SweepCell {

@@ -103,6 +103,14 @@ TEST(Sweep, BadSuitesNameTheFileAndThePlace) {
   const auto generated = sandbox.run("sweep g.json -o out");
   EXPECT_EQ(generated.exit_code, 1);
   EXPECT_THAT(generated.err, HasSubstr("g.json: /worlds/0/generate: corridor width: must be in"));
+  // A sweep of more than a million cells is refused before anything is made.
+  std::string seeds = "[1";
+  for (int i = 2; i <= 51; ++i) seeds += ", " + std::to_string(i);
+  sandbox.write("h.json", suite(R"([{"generate": {"family": "hall", "count": 10000}}])",
+                                seeds + "]", R"(["odometry", "is-graphs"])", "{}"));
+  EXPECT_THAT(sandbox.run("sweep h.json -o out").err,
+              HasSubstr("h.json: 1020000 cells (10000 worlds × 2 methods × 51 seeds); a sweep "
+                        "holds at most 1000000: split the suite"));
   // A method's options are checked when the suite is read, not cell by cell.
   sandbox.write("o.json", suite(R"(["builtin:d2"])", "[1]", R"(["amcl"])",
                                 R"({"method_options": {"amcl": {"particle": 100}}})"));

@@ -1,0 +1,74 @@
+// libFuzzer harness: bytes → the suite reader of `isg sweep` (with every generator spec checked by
+// building it, as the reader does), then the cells and the sweep.json text a sweep would write,
+// read back. Any InputError is the expected answer to a bad suite; anything else (a crash, a
+// sanitizer report, another exception) is a bug.
+//
+// Bound of the harness, not of the reader: a suite asking for more than kMostRooms offices in all
+// is skipped, because building large generated worlds is legitimately slow (0.5–1 s for 5000
+// offices, several times that under the sanitizers: cli_bench and docs/sweeps.md measure it) and
+// would read as a libFuzzer timeout. Relative world files resolve against the working folder.
+#include <cstdint>
+#include <filesystem>
+#include <fstream>
+#include <string>
+
+#include "bim/input_error.hpp"
+#include "bim/json_reader.hpp"
+#include "cli/suite.hpp"
+#include "run/builtin_methods.hpp"
+
+namespace {
+
+constexpr std::uint64_t kMostRooms = 2000;
+constexpr std::uint64_t kMostCells = 20000;
+
+// Offices the suite's generator specs ask for, counted as the reader will build them: the first
+// building of each spec, with its room count or the family's default (under 40).
+std::uint64_t roomsAskedFor(const nlohmann::json& suite) {
+  std::uint64_t rooms = 0;
+  if (!suite.is_object() || !suite.contains("worlds") || !suite["worlds"].is_array()) return 0;
+  for (const auto& world : suite["worlds"]) {
+    if (!world.is_object() || !world.contains("generate")) continue;
+    const auto& spec = world["generate"];
+    rooms += 40;
+    if (spec.is_object() && spec.contains("rooms") && spec["rooms"].is_number()) {
+      const double asked = spec["rooms"].get<double>();
+      if (asked > 0) rooms += asked < 1e9 ? std::uint64_t(asked) : std::uint64_t(1e9);
+    }
+    if (spec.is_object() && spec.contains("partitions") && spec["partitions"].is_number()) {
+      rooms += 10;  // a hall filled with partitions costs as much as some more rooms
+    }
+  }
+  return rooms;
+}
+
+}  // namespace
+
+extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
+  using namespace isg;
+  static const run::LocalizerRegistry methods = run::builtinMethods();
+  const std::string text(reinterpret_cast<const char*>(data), size);
+  try {
+    const nlohmann::json document = bim::parseJsonText(text, "fuzz.json");
+    if (roomsAskedFor(document) > kMostRooms) return 0;
+    const bim::JsonSource source{"fuzz.json", nullptr};
+    const cli::Suite suite =
+        cli::parseSuite(bim::JsonNode(document, "", source), "fuzz.json", methods);
+    if (suite.worlds.size() * suite.methods.size() * suite.seeds.size() > kMostCells) return 0;
+    const std::vector<cli::SweepCell> cells = cli::sweepCells(suite);
+    // sweep.json as a sweep writes it, and read back as a restarted sweep reads it.
+    const std::string dir = std::filesystem::temp_directory_path() / "isg_suite_fuzzer";
+    std::filesystem::create_directories(dir);
+    std::ofstream(std::filesystem::path(dir) / cli::kSweepPlanFile)
+        << cli::sweepPlanJson(suite, cells);
+    const cli::SweepPlan plan = cli::readSweepPlan(dir);
+    if (plan.cells.size() != cells.size()) __builtin_trap();
+    for (std::size_t i = 0; i < cells.size(); ++i) {
+      if (plan.cells[i].dir != cells[i].dir || plan.cells[i].arguments != cells[i].arguments) {
+        __builtin_trap();  // a restarted sweep would refuse its own folder
+      }
+    }
+  } catch (const bim::InputError&) {
+  }
+  return 0;
+}
