@@ -92,8 +92,10 @@ std::vector<SlurmArray> slurmArrays(std::size_t tasks, std::size_t max_array_siz
   return arrays;
 }
 
-std::string sbatchCommand(const std::string& script, const SlurmArray& array) {
-  return "sbatch --array=0-" + std::to_string(array.count - 1) + " " + shellQuote(script) + " " +
+std::string sbatchCommand(const std::string& script, const SlurmArray& array,
+                          const std::string& options) {
+  return "sbatch " + (options.empty() ? "" : options + " ") + "--array=0-" +
+         std::to_string(array.count - 1) + " " + shellQuote(script) + " " +
          std::to_string(array.offset);
 }
 
@@ -103,10 +105,9 @@ std::vector<std::string> submitSlurm(const std::string& script,
   // and the arrays run side by side.
   std::vector<FILE*> pipes;
   for (const auto& array : arrays) {
-    std::string command = sbatchCommand(script, array);
-    command.insert(std::string("sbatch").size(),
-                   std::string(" --parsable") + (wait ? " --wait" : ""));
-    FILE* pipe = popen((command + " 2>&1").c_str(), "r");
+    const std::string command =
+        sbatchCommand(script, array, wait ? "--parsable --wait" : "--parsable") + " 2>&1";
+    FILE* pipe = popen(command.c_str(), "r");
     if (pipe == nullptr) {
       for (FILE* p : pipes) pclose(p);
       throw bim::InputError(script, "", "cannot start sbatch");

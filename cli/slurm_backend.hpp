@@ -39,8 +39,9 @@ struct SlurmArray {
 // MaxArraySize is submitted as several arrays of the same script).
 std::vector<SlurmArray> slurmArrays(std::size_t tasks, std::size_t max_array_size);
 
-// "sbatch --array=0-N SCRIPT OFFSET": the command that submits one array.
-std::string sbatchCommand(const std::string& script, const SlurmArray& array);
+// "sbatch [OPTIONS] --array=0-N SCRIPT OFFSET": the command that submits one array.
+std::string sbatchCommand(const std::string& script, const SlurmArray& array,
+                          const std::string& options = "");
 
 // Submits every array with `sbatch --parsable` (with --wait, all at once, returning when every
 // task of every array has ended). Returns the job ids. A missing sbatch or a refused submission

@@ -162,6 +162,7 @@ Suite parseSuite(const bim::JsonNode& root, const std::string& path,
         const bim::JsonNode node = options->field(method);
         if (methods.find(method) == nullptr) node.fail("unknown method " + bim::inQuotes(method));
         if (!settings.is_object()) node.fail("expected an object {KEY: VALUE}");
+        auto& given = suite.method_options[methods.canonical(method)];
         for (const auto& [key, value] : settings.items()) {
           const bim::JsonNode v = node.field(key);
           std::string text;
@@ -172,11 +173,11 @@ Suite parseSuite(const bim::JsonNode& root, const std::string& path,
           } else {
             v.fail("expected a number or a string");
           }
-          suite.method_options[methods.canonical(method)][key] = text;
+          given[key] = text;
         }
         // The method's own check, here rather than in each cell's run.
         try {
-          methods.checkOptions(method, suite.method_options[methods.canonical(method)]);
+          methods.checkOptions(method, given);
         } catch (const std::invalid_argument& e) {
           node.fail(e.what());
         }
@@ -264,7 +265,10 @@ SweepPlan readSweepPlan(const std::string& sweep_dir) {
   }
   const nlohmann::json document = bim::readJsonFile(path);
   const bim::JsonSource source{path, nullptr};
-  const bim::JsonNode root(document, "", source);
+  return parseSweepPlan(bim::JsonNode(document, "", source));
+}
+
+SweepPlan parseSweepPlan(const bim::JsonNode& root) {
   bim::checkFormatAndVersion(root, "isg.sweep", 1);
   SweepPlan plan;
   plan.name = root.field("name").text();

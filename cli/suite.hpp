@@ -79,5 +79,7 @@ struct SweepPlan {
 };
 // Reads SWEEP_DIR/sweep.json; a missing or foreign file is an InputError naming it.
 SweepPlan readSweepPlan(const std::string& sweep_dir);
+// The same from a document already read.
+SweepPlan parseSweepPlan(const bim::JsonNode& root);
 
 }  // namespace isg::cli

@@ -45,9 +45,6 @@ void addNdtUkf(LocalizerRegistry& registry) {
        .make =
            [](const LocalizerContext& c) {
              const NdtUkfSettings settings = ndtUkfSettings(c.options);
-             const double error = settings.start_error;
-             const double yaw_error = settings.start_yaw_error_deg;
-             const slam::NdtUkfOptions& options = settings.tracker;
              // The perturbation: its size is stated, its direction and the turn's sign come from
              // the seed (its own stream, so other draws of the run do not shift it).
              std::mt19937_64 rng(c.seed ^ 0x6e64742d756b66ULL);
@@ -56,14 +53,14 @@ void addNdtUkf(LocalizerRegistry& registry) {
              const double sign = unit(rng) < 0.5 ? -1.0 : 1.0;
              // M is the base's frame at the start: the turn is about the start pose.
              Eigen::Isometry3d start = *c.start_B_T_M;
-             start.translation() +=
-                 error * Eigen::Vector3d(std::cos(direction), std::sin(direction), 0);
-             start.linear() =
-                 Eigen::AngleAxisd(sign * yaw_error * M_PI / 180.0, Eigen::Vector3d::UnitZ())
-                     .toRotationMatrix() *
-                 start.linear();
+             start.translation() += settings.start_error *
+                                    Eigen::Vector3d(std::cos(direction), std::sin(direction), 0);
+             start.linear() = Eigen::AngleAxisd(sign * settings.start_yaw_error_deg * M_PI / 180.0,
+                                                Eigen::Vector3d::UnitZ())
+                                  .toRotationMatrix() *
+                              start.linear();
              return std::make_unique<slam::NdtUkfLocalizer>(*c.plan, c.level, c.R_T_L, start,
-                                                            options);
+                                                            settings.tracker);
            },
        .check_options = [](const auto& options) { (void)ndtUkfSettings(options); }});
 }

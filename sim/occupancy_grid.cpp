@@ -130,14 +130,14 @@ OccupancyGrid::OccupancyGrid(const bim::Plan& plan, const bim::AsBuilt& as_built
   // it left is floor too: left blocked, that strip (up to the shift, 8 cm) would lie across each
   // of its doorways and shut them. (Walls as they stand are painted over it below.)
   const bim::LevelGeometry plan_geometry = bim::computeLevelGeometry(plan_level);
-  const auto listed = [](const auto& list, const std::string& id) {
-    return std::find(list.begin(), list.end(), id) != list.end();
-  };
   for (const auto& g : plan_geometry.walls) {
+    const std::string& id = g.wall->id;
+    const bool missing = std::find(as_built.missing_walls.begin(), as_built.missing_walls.end(),
+                                   id) != as_built.missing_walls.end();
     const bool shifted =
         std::any_of(as_built.wall_shifts.begin(), as_built.wall_shifts.end(),
-                    [&](const bim::WallShift& s) { return s.wall == g.wall->id && s.offset != 0; });
-    if (listed(as_built.missing_walls, g.wall->id) || shifted) paint(g.footprint(), false);
+                    [&](const bim::WallShift& s) { return s.wall == id && s.offset != 0; });
+    if (missing || shifted) paint(g.footprint(), false);
   }
   // A wall blocks where it stands lower than the robot can pass under.
   constexpr double kRobotHeight = 0.9;

@@ -1,15 +1,14 @@
 // libFuzzer harness: bytes → the suite reader of `isg sweep` (with every generator spec checked by
 // building it, as the reader does), then the cells and the sweep.json text a sweep would write,
-// read back. Any InputError is the expected answer to a bad suite; anything else (a crash, a
-// sanitizer report, another exception) is a bug.
+// read back. An InputError from the reader is the expected answer to a bad suite; anything else
+// (a crash, a sanitizer report, an exception after the suite was accepted) is a bug.
 //
 // Bound of the harness, not of the reader: a suite asking for more than kMostRooms offices in all
 // is skipped, because building large generated worlds is legitimately slow (0.5–1 s for 5000
 // offices, several times that under the sanitizers: cli_bench and docs/sweeps.md measure it) and
 // would read as a libFuzzer timeout. Relative world files resolve against the working folder.
 #include <cstdint>
-#include <filesystem>
-#include <fstream>
+#include <optional>
 #include <string>
 
 #include "bim/input_error.hpp"
@@ -48,27 +47,28 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   using namespace isg;
   static const run::LocalizerRegistry methods = run::builtinMethods();
   const std::string text(reinterpret_cast<const char*>(data), size);
+  std::optional<cli::Suite> suite;
   try {
     const nlohmann::json document = bim::parseJsonText(text, "fuzz.json");
     if (roomsAskedFor(document) > kMostRooms) return 0;
     const bim::JsonSource source{"fuzz.json", nullptr};
-    const cli::Suite suite =
-        cli::parseSuite(bim::JsonNode(document, "", source), "fuzz.json", methods);
-    if (suite.worlds.size() * suite.methods.size() * suite.seeds.size() > kMostCells) return 0;
-    const std::vector<cli::SweepCell> cells = cli::sweepCells(suite);
-    // sweep.json as a sweep writes it, and read back as a restarted sweep reads it.
-    const std::string dir = std::filesystem::temp_directory_path() / "isg_suite_fuzzer";
-    std::filesystem::create_directories(dir);
-    std::ofstream(std::filesystem::path(dir) / cli::kSweepPlanFile)
-        << cli::sweepPlanJson(suite, cells);
-    const cli::SweepPlan plan = cli::readSweepPlan(dir);
-    if (plan.cells.size() != cells.size()) __builtin_trap();
-    for (std::size_t i = 0; i < cells.size(); ++i) {
-      if (plan.cells[i].dir != cells[i].dir || plan.cells[i].arguments != cells[i].arguments) {
-        __builtin_trap();  // a restarted sweep would refuse its own folder
-      }
-    }
+    suite = cli::parseSuite(bim::JsonNode(document, "", source), "fuzz.json", methods);
   } catch (const bim::InputError&) {
+    return 0;
+  }
+  if (suite->worlds.size() * suite->methods.size() * suite->seeds.size() > kMostCells) return 0;
+  // From here on nothing may throw: sweep.json as a sweep writes it must read back, as a
+  // restarted sweep reads it, to the same cells.
+  const std::vector<cli::SweepCell> cells = cli::sweepCells(*suite);
+  const nlohmann::json written =
+      bim::parseJsonText(cli::sweepPlanJson(*suite, cells), "sweep.json");
+  const bim::JsonSource plan_source{"sweep.json", nullptr};
+  const cli::SweepPlan plan = cli::parseSweepPlan(bim::JsonNode(written, "", plan_source));
+  if (plan.cells.size() != cells.size()) __builtin_trap();
+  for (std::size_t i = 0; i < cells.size(); ++i) {
+    if (plan.cells[i].dir != cells[i].dir || plan.cells[i].arguments != cells[i].arguments) {
+      __builtin_trap();  // a restarted sweep would refuse its own folder
+    }
   }
   return 0;
 }
