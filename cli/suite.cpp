@@ -5,6 +5,7 @@
 
 #include "bim/json_reader.hpp"
 #include "cli/common.hpp"
+#include "worlds/reference_plans.hpp"
 
 namespace isg::cli {
 
@@ -94,10 +95,19 @@ Suite parseSuite(const bim::JsonNode& root, const std::string& path,
   };
   for (const auto& entry : root.field("worlds").elements(1, 100000, "worlds")) {
     if (entry.isString()) {
-      const std::string input = entry.nonEmptyString();
+      // text(): a world's name becomes a folder name and a table row, and sweep.json must read
+      // back what it was written with, so control characters are refused here.
+      const std::string input = entry.text();
+      if (input.empty()) entry.fail("must not be empty");
       SuiteWorld world;
       world.name = worldName(input);
-      if (input.rfind("builtin:", 0) == 0) {
+      if (worlds::isBuiltin(input)) {
+        // Checked now, not when its cells run: a misspelt built-in would fail every one of them.
+        if (!worlds::builtinText(world.name)) {
+          std::string list;
+          for (const auto& n : worlds::builtinNames()) list += (list.empty() ? "" : ", ") + n;
+          entry.fail("no built-in world " + bim::inQuotes(world.name) + " (one of " + list + ")");
+        }
         world.input = input;
       } else {
         const fs::path file = fs::path(input).is_absolute() ? fs::path(input) : base / input;

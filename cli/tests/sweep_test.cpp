@@ -98,6 +98,14 @@ TEST(Sweep, BadSuitesNameTheFileAndThePlace) {
   const auto world = sandbox.run("sweep w.json -o out");
   EXPECT_EQ(world.exit_code, 1);
   EXPECT_THAT(world.err, HasSubstr("w.json: /worlds/0: no such plan or scenario file: "));
+  sandbox.write("b.json", suite(R"(["builtin:d7"])", "[1]", R"(["odometry"])", "{}"));
+  EXPECT_THAT(sandbox.run("sweep b.json -o out").err,
+              HasSubstr("b.json: /worlds/0: no built-in world \"d7\" (one of d1, d1.asbuilt,"));
+  // A world's name is a folder name: control characters are refused (and sweep.json, which must
+  // read back, never holds one).
+  sandbox.write("c.json", suite(R"(["builtin:d1\u007f"])", "[1]", R"(["odometry"])", "{}"));
+  EXPECT_THAT(sandbox.run("sweep c.json -o out").err,
+              HasSubstr("c.json: /worlds/0: control character U+007F at byte 10"));
   sandbox.write("g.json", suite(R"([{"generate": {"family": "hotel", "corridor_width": 0.3}}])",
                                 "[1]", R"(["odometry"])", "{}"));
   const auto generated = sandbox.run("sweep g.json -o out");
