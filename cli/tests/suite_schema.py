@@ -24,6 +24,7 @@ MUTATIONS = [
     ("empty worlds", lambda s: s.__setitem__("worlds", [])),
     ("a number as a world", lambda s: s["worlds"].append(3)),
     ("an unknown family", lambda s: s["worlds"].append({"generate": {"family": "castle"}})),
+    ("a control character in a world", lambda s: s["worlds"].append("builtin:d1\x7f")),
     ("a generator without family", lambda s: s["worlds"].append({"generate": {"seed": 1}})),
     ("a fractional room count",
      lambda s: s["worlds"].append({"generate": {"family": "hall", "rooms": 2.5}})),
