@@ -23,6 +23,26 @@ std::string shellQuote(const std::string& text) {
   return out + "'";
 }
 
+// A value on an #SBATCH line. sbatch splits such a line at white space, takes backslash as an
+// escape and an unquoted '#' as the start of a comment, so a value holding any of them (a sweep
+// folder "runs #2", a suite named "nightly run") goes in double quotes, backslash-escaped.
+std::string sbatchValue(const std::string& text) {
+  if (text.find_first_of(" \t\"'\\#") == std::string::npos) return text;
+  std::string out = "\"";
+  for (char c : text) {
+    if (c == '"' || c == '\\') out += '\\';
+    out += c;
+  }
+  return out + "\"";
+}
+
+// A literal path in an --output pattern: '%' starts a replacement symbol there, "%%" is one '%'.
+std::string slurmFilenamePattern(const std::string& path) {
+  std::string out;
+  for (char c : path) out += c == '%' ? std::string("%%") : std::string(1, c);
+  return out;
+}
+
 }  // namespace
 
 std::string slurmScript(const std::string& sweep_dir, const Suite& suite, std::size_t tasks,
@@ -36,13 +56,16 @@ std::string slurmScript(const std::string& sweep_dir, const Suite& suite, std::s
   s += "# are more than the cluster's MaxArraySize), task T runs the cell on line OFFSET+T+1 of\n";
   s += "# slurm-cells.txt. Submit again with isg sweep SUITE -o SWEEP_DIR --backend slurm:\n";
   s += "# finished cells are left out.\n";
-  s += "#SBATCH --job-name=isg-" + suite.name + "\n";
+  s += "#SBATCH --job-name=" + sbatchValue("isg-" + suite.name) + "\n";
   s += "#SBATCH --array=0-" + std::to_string(first_array - 1) + "\n";
   s += "#SBATCH --cpus-per-task=" + std::to_string(suite.slurm.cpus_per_task) + "\n";
-  s += "#SBATCH --time=" + suite.slurm.time + "\n";
-  s += "#SBATCH --mem=" + suite.slurm.mem + "\n";
-  if (!suite.slurm.partition.empty()) s += "#SBATCH --partition=" + suite.slurm.partition + "\n";
-  s += "#SBATCH --output=" + dir + "/logs/slurm-%A_%a.out\n";
+  s += "#SBATCH --time=" + sbatchValue(suite.slurm.time) + "\n";
+  s += "#SBATCH --mem=" + sbatchValue(suite.slurm.mem) + "\n";
+  if (!suite.slurm.partition.empty()) {
+    s += "#SBATCH --partition=" + sbatchValue(suite.slurm.partition) + "\n";
+  }
+  s +=
+      "#SBATCH --output=" + sbatchValue(slurmFilenamePattern(dir) + "/logs/slurm-%A_%a.out") + "\n";
   for (const auto& option : suite.slurm.options) s += "#SBATCH " + option + "\n";
   s += "set -eu\n";
   s += "offset=${1:-0}\n";

@@ -25,7 +25,7 @@ export SLURM_CONF=$cluster/slurm.conf
 cd "$work"
 cat > suite.json <<'JSON'
 {
-  "format": "isg.suite", "version": 1, "name": "slurm-test",
+  "format": "isg.suite", "version": 1, "name": "slurm test",
   "worlds": ["builtin:d1", {"generate": {"family": "hotel", "rooms": 6, "seed": 2}}],
   "seeds": [1, 2],
   "methods": ["is-graphs", "odometry"],
@@ -34,26 +34,29 @@ cat > suite.json <<'JSON'
 }
 JSON
 fail() { echo "FAIL: $*" >&2; exit 1; }
+# A sweep folder and a suite name that sbatch's #SBATCH parser would split or cut short (a space,
+# a '#') and a '%' that Slurm's --output pattern would read as a replacement symbol.
+out="slurm run #1 (50%)"
 
-"$isg" sweep suite.json -o slurm --backend slurm --wait > slurm.out || fail "the Slurm sweep exited $?"
+"$isg" sweep suite.json -o "$out" --backend slurm --wait > slurm.out || fail "the Slurm sweep exited $?"
 grep -q "as Slurm jobs [0-9]*, [0-9]* (8 array tasks in 2 arrays of at most 5 tasks)" slurm.out ||
   fail "not submitted as two arrays of 8 tasks in all: $(cat slurm.out)"
-tasks=$(ls slurm/logs/slurm-*_*.out | wc -l)
-((tasks == 8)) || fail "expected 8 Slurm task logs, found $tasks"
+tasks=$(ls "$out"/logs/slurm-*_*.out | wc -l)
+((tasks == 8)) || fail "expected 8 Slurm task logs in '$out/logs', found $tasks"
 "$isg" sweep suite.json -o local --jobs 2 -q > local.out || fail "the local sweep exited $?"
-cmp slurm/table.csv local/table.csv || {
-  diff slurm/table.csv local/table.csv >&2
+cmp "$out/table.csv" local/table.csv || {
+  diff "$out/table.csv" local/table.csv >&2
   fail "the Slurm and local tables differ"
 }
 # Every cell's numbers, not only the table's means: the run folders' APE agree.
 for m in local/*/*/seed-*/metrics.json; do
-  s=slurm/${m#local/}
+  s=$out/${m#local/}
   a=$(grep -o '"rmse": [0-9.e+-]*' "$m")
   b=$(grep -o '"rmse": [0-9.e+-]*' "$s")
   [[ $a == "$b" ]] || fail "$m: $a, Slurm's $b"
 done
 # --collect on the Slurm folder gives the same table again.
-"$isg" sweep --collect slurm > /dev/null || fail "--collect exited $?"
-cmp slurm/table.csv local/table.csv || fail "--collect changed the table"
+"$isg" sweep --collect "$out" > /dev/null || fail "--collect exited $?"
+cmp "$out/table.csv" local/table.csv || fail "--collect changed the table"
 echo "ok: 8 cells through Slurm ($(grep -o 'jobs [0-9]*, [0-9]*' slurm.out)), table equal to the local backend's:"
 cat local/table.csv

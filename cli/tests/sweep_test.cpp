@@ -106,6 +106,13 @@ TEST(Sweep, BadSuitesNameTheFileAndThePlace) {
   sandbox.write("c.json", suite(R"(["builtin:d1\u007f"])", "[1]", R"(["odometry"])", "{}"));
   EXPECT_THAT(sandbox.run("sweep c.json -o out").err,
               HasSubstr("c.json: /worlds/0: control character U+007F at byte 10"));
+  // Nor may it be "..", which would put the run folders outside the sweep, or a file of the sweep.
+  sandbox.write("...json", "{}");  // refused by its name before it is read
+  sandbox.write("dots.json", suite(R"(["...json"])", "[1]", R"(["odometry"])", "{}"));
+  EXPECT_THAT(sandbox.run("sweep dots.json -o out").err,
+              HasSubstr("dots.json: /worlds/0: a world named \"..\" (its file's name without "
+                        ".json) cannot name a folder of the sweep: rename the file"));
+  EXPECT_FALSE(sandbox.exists("out"));
   sandbox.write("g.json", suite(R"([{"generate": {"family": "hotel", "corridor_width": 0.3}}])",
                                 "[1]", R"(["odometry"])", "{}"));
   const auto generated = sandbox.run("sweep g.json -o out");
@@ -198,6 +205,23 @@ TEST(Sweep, SlurmDryRunWritesAnArrayScript) {
   // Submitted again, only the cells left are in the array.
   ASSERT_EQ(sandbox.run("sweep suite.json -o out --backend slurm --dry-run").exit_code, 0);
   EXPECT_EQ(sandbox.read("out/slurm-cells.txt"), "0\n1\n2\n3\n4\n");
+}
+
+// sbatch reads #SBATCH lines as words, with quotes, backslash escapes and '#' comments, and the
+// --output pattern reads '%': a suite name and a sweep folder holding them still arrive whole.
+TEST(Sweep, SlurmScriptQuotesWhatSbatchWouldSplit) {
+  testing::Sandbox sandbox("sweep_slurm_quotes");
+  sandbox.write("suite.json",
+                R"({"format": "isg.suite", "version": 1, "name": "nightly \"big\" run",
+                    "worlds": ["builtin:d1"], "seeds": [1], "methods": ["odometry"],
+                    "slurm": {"partition": "short"}})");
+  const auto r = sandbox.run("sweep suite.json -o 'runs #2 (50%)' --backend slurm --dry-run");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const std::string script = sandbox.read("runs #2 (50%)/sweep.sbatch");
+  EXPECT_THAT(script, HasSubstr("#SBATCH --job-name=\"isg-nightly \\\"big\\\" run\"\n"));
+  EXPECT_THAT(script, HasSubstr("#SBATCH --partition=short\n"));
+  EXPECT_THAT(script, HasSubstr("#SBATCH --output=\"" + sandbox.dir().string() +
+                                "/runs #2 (50%%)/logs/slurm-%A_%a.out\"\n"));
 }
 
 // More cells than an array may hold: several arrays of one script, each told where its cells
