@@ -5,6 +5,7 @@
 #include <filesystem>
 
 #include "bim/plan_geometry.hpp"
+#include "run/atomic_folder.hpp"
 #include "sim/renderer.hpp"
 #include "sim/robot_model.hpp"
 #include "sim/simulation.hpp"
@@ -40,11 +41,7 @@ int RenderCommand::run() {
   sim::Simulation simulation(scenario);
   namespace fs = std::filesystem;
   const fs::path dir(output_);
-  const fs::path parent = dir.has_parent_path() ? dir.parent_path() : fs::path(".");
-  if (!fs::is_directory(parent)) {
-    throw bim::InputError(output_, "",
-                          "cannot write: directory " + parent.string() + " does not exist");
-  }
+  run::requireParentFolder(output_);
   std::error_code error;
   fs::create_directories(dir, error);
   if (error) throw bim::InputError(output_, "", "cannot write: " + error.message());

@@ -119,7 +119,12 @@ int SweepCommand::run() {
   if (output_.empty()) return usage("isg sweep SUITE.json needs -o SWEEP_DIR");
   const Suite suite = loadSuite(input_, run::builtinMethods());
   const std::vector<SweepCell> cells = sweepCells(suite);
-  fs::create_directories(output_);
+  if (fs::exists(output_) && !fs::is_directory(output_)) {
+    throw bim::InputError(output_, "", "exists and is not a folder; give -o a sweep folder");
+  }
+  std::error_code made;
+  fs::create_directories(output_, made);
+  if (made) throw bim::InputError(output_, "", "cannot make the sweep folder: " + made.message());
   // A sweep folder holds one suite's cells: starting it again with other cells would mix them.
   const fs::path plan_path = fs::path(output_) / kSweepPlanFile;
   const std::string plan_text = sweepPlanJson(suite, cells);

@@ -69,6 +69,18 @@ bool swapFolders(const fs::path& a, const fs::path& b) {
 
 }  // namespace
 
+fs::path requireParentFolder(const std::string& path) {
+  const fs::path target(path);
+  const fs::path parent = target.has_parent_path() ? target.parent_path() : fs::path(".");
+  if (!fs::is_directory(parent)) {
+    throw bim::InputError(path, "",
+                          fs::exists(parent)
+                              ? "cannot write: " + parent.string() + " is not a directory"
+                              : "cannot write: directory " + parent.string() + " does not exist");
+  }
+  return parent;
+}
+
 namespace {
 
 // Checks that `path` may be written and names its temporary twin beside it (stale twins of killed
@@ -78,11 +90,7 @@ fs::path temporaryPathFor(const std::string& path, bool overwrite) {
   if (fs::exists(target) && !overwrite) {
     throw bim::InputError(path, "", "already exists (use --force to replace it)");
   }
-  const fs::path parent = target.has_parent_path() ? target.parent_path() : fs::path(".");
-  if (!fs::is_directory(parent)) {
-    throw bim::InputError(path, "",
-                          "cannot write: directory " + parent.string() + " does not exist");
-  }
+  const fs::path parent = requireParentFolder(path);
   removeStalePartials(parent, target);
   return parent / (partialPrefix(target) + std::to_string(::getpid()));
 }
@@ -154,10 +162,7 @@ void AtomicFile::commit() {
 
 void writeFileAtomically(const std::string& path, const std::string& content) {
   const fs::path target(path);
-  const fs::path dir = target.has_parent_path() ? target.parent_path() : fs::path(".");
-  if (!fs::is_directory(dir)) {
-    throw bim::InputError(path, "", "cannot write: directory " + dir.string() + " does not exist");
-  }
+  const fs::path dir = requireParentFolder(path);
   const fs::path temporary =
       dir / ("." + target.filename().string() + ".tmp" + std::to_string(::getpid()));
   {

@@ -42,6 +42,10 @@ class AtomicFile {
 // One file of such a folder; a failure is an InputError naming it.
 void writeFile(const std::filesystem::path& path, const std::string& content);
 
+// The folder `path` would be written into (its parent, "." for a bare name) exists: an InputError
+// naming `path` says the folder does not exist, or is a file, otherwise. Returns that folder.
+std::filesystem::path requireParentFolder(const std::string& path);
+
 // Writes `content` to `path` so that a reader never sees a half-written file: to a temporary
 // file beside it, then renamed over it. A failure is an InputError naming the path.
 void writeFileAtomically(const std::string& path, const std::string& content);

@@ -303,6 +303,11 @@ TEST(Eval, PrintsApeLikeEvoAndJson) {
   EXPECT_EQ(result.exit_code, 1);
   EXPECT_EQ(result.err,
             "isg eval: error: nowhere/plot.svg: cannot write: directory nowhere does not exist\n");
+  // Its parent a file, not a folder.
+  result = sandbox.run("eval gt.tum est.tum --plot gt.tum/plot.svg");
+  EXPECT_EQ(result.exit_code, 1);
+  EXPECT_EQ(result.err,
+            "isg eval: error: gt.tum/plot.svg: cannot write: gt.tum is not a directory\n");
 }
 
 TEST(Eval, BadInputNamesTheFile) {

@@ -142,6 +142,14 @@ TEST(Sweep, BadSuitesNameTheFileAndThePlace) {
   EXPECT_THAT(sandbox.run("sweep s.json -o out").err, HasSubstr("/seeds/1: seed 1 twice"));
   EXPECT_EQ(sandbox.run("sweep s.json").exit_code, 2);  // no -o
   EXPECT_FALSE(sandbox.exists("out"));
+  // -o naming a file: refused, the file left as it was.
+  sandbox.write("d.json", suite(R"(["builtin:d2"])", "[1]", R"(["odometry"])", "{}"));
+  sandbox.write("notes.txt", "mine\n");
+  const auto file = sandbox.run("sweep d.json -o notes.txt");
+  EXPECT_EQ(file.exit_code, 1);
+  EXPECT_THAT(file.err, HasSubstr("isg sweep: error: notes.txt: exists and is not a folder; give "
+                                  "-o a sweep folder"));
+  EXPECT_EQ(sandbox.read("notes.txt"), "mine\n");
 }
 
 // Killed with SIGKILL midway (its running cells die with it), then started again: the sweep
