@@ -72,7 +72,7 @@ SweepCommand::SweepCommand(CLI::App& parent) {
                  "tabulate SWEEP_DIR (table.md, table.csv) and list failed and missing cells");
   app_->add_option("--cell", cell_, "run one cell of SWEEP_DIR (what a Slurm task runs)")
       ->option_text("K")
-      ->check(CLI::NonNegativeNumber);
+      ->check(CLI::Range(0L, long(kMaxSweepCells) - 1));
   app_->add_option("--measure", measure_, "the table's measure, as isg table's --measure")
       ->check(CLI::IsMember(
           {"ape", "time-wrong", "time-to-localize", "distance-to-localize", "rooms-to-localize"}))

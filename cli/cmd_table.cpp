@@ -7,7 +7,9 @@
 #include <map>
 #include <sstream>
 
+#include "bim/input_error.hpp"
 #include "cli/run_table.hpp"
+#include "cli/suite.hpp"
 #include "eval/table.hpp"
 #include "run/builtin_methods.hpp"
 #include "run/run_metrics.hpp"
@@ -62,7 +64,15 @@ int TableCommand::run() {
   const run::LocalizerRegistry methods = run::builtinMethods();
   // The testbed's methods first, in their order (iS-Graphs, then the baselines), like the paper.
   std::vector<std::pair<std::string, run::RunMetrics>> runs;
-  for (const auto& dir : runs_) runs.emplace_back(dir, run::readMetrics(dir));
+  for (const auto& dir : runs_) {
+    // A sweep folder given for its run folders: say which command reads it.
+    if (std::filesystem::is_regular_file(std::filesystem::path(dir) / kSweepPlanFile)) {
+      throw bim::InputError(dir, "",
+                            "a sweep folder, not a run folder: isg sweep --collect " + dir +
+                                " tabulates it (or give its run folders, " + dir + "/*/*/seed-*)");
+    }
+    runs.emplace_back(dir, run::readMetrics(dir));
+  }
   const auto [table, caption] = tabulateRuns(std::move(runs), measure_, methods);
   const eval::TableFormat format = format_ == "csv"     ? eval::TableFormat::kCsv
                                    : format_ == "latex" ? eval::TableFormat::kLatex

@@ -67,6 +67,12 @@ TEST(Sweep, RunsEveryCellAndTabulatesAsIsgTable) {
   const auto collected = sandbox.run("sweep --collect out");
   EXPECT_EQ(collected.exit_code, 0);
   EXPECT_EQ(sandbox.read("out/table.csv"), csv);
+  // isg table given the sweep folder itself points to --collect.
+  const auto folder = sandbox.run("table out");
+  EXPECT_EQ(folder.exit_code, 1);
+  EXPECT_EQ(folder.err,
+            "isg table: error: out: a sweep folder, not a run folder: isg sweep --collect out "
+            "tabulates it (or give its run folders, out/*/*/seed-*)\n");
 }
 
 TEST(Sweep, AFailedCellIsRecordedAndTheOthersGoOn) {
@@ -150,6 +156,8 @@ TEST(Sweep, BadSuitesNameTheFileAndThePlace) {
   EXPECT_THAT(file.err, HasSubstr("isg sweep: error: notes.txt: exists and is not a folder; give "
                                   "-o a sweep folder"));
   EXPECT_EQ(sandbox.read("notes.txt"), "mine\n");
+  EXPECT_THAT(sandbox.run("sweep --cell -1 out").err,
+              HasSubstr("--cell: Value -1 not in range 0 to 999999"));
 }
 
 // Killed with SIGKILL midway (its running cells die with it), then started again: the sweep
