@@ -86,8 +86,8 @@ int SweepCommand::collect(const std::string& sweep_dir) const {
   const std::string md =
       eval::formatTable(c.table.table, eval::TableFormat::kMarkdown, c.table.caption);
   const std::string csv = eval::formatTable(c.table.table, eval::TableFormat::kCsv);
-  run::writeFileAtomically((fs::path(sweep_dir) / "table.md").string(), md);
-  run::writeFileAtomically((fs::path(sweep_dir) / "table.csv").string(), csv);
+  run::writeFileAtomically((fs::path(sweep_dir) / kSweepTableMarkdownFile).string(), md);
+  run::writeFileAtomically((fs::path(sweep_dir) / kSweepTableCsvFile).string(), csv);
   std::printf("%s\n", md.c_str());
   for (const auto& f : c.failed) std::printf("failed: %s\n", f.c_str());
   for (const auto& m : c.missing) std::printf("not run: %s\n", m.c_str());

@@ -70,7 +70,7 @@ std::string slurmScript(const std::string& sweep_dir, const Suite& suite, std::s
   s += "set -eu\n";
   s += "offset=${1:-0}\n";
   s += "cell=$(sed -n \"$((offset + SLURM_ARRAY_TASK_ID + 1))p\" " +
-       shellQuote(dir + "/slurm-cells.txt") + ")\n";
+       shellQuote(dir + "/" + kSlurmCellsFile) + ")\n";
   s += "exec " + shellQuote(isg) + " sweep --cell \"$cell\" " + shellQuote(dir) + "\n";
   return s;
 }
@@ -81,8 +81,8 @@ std::string writeSlurmScript(const std::string& sweep_dir, const Suite& suite,
   std::string list;
   for (std::size_t i : pending) list += std::to_string(i) + "\n";
   fs::create_directories(fs::path(sweep_dir) / "logs");
-  run::writeFileAtomically((fs::path(sweep_dir) / "slurm-cells.txt").string(), list);
-  const std::string script = (fs::path(sweep_dir) / "sweep.sbatch").string();
+  run::writeFileAtomically((fs::path(sweep_dir) / kSlurmCellsFile).string(), list);
+  const std::string script = (fs::path(sweep_dir) / kSlurmScriptFile).string();
   run::writeFileAtomically(script,
                            slurmScript(sweep_dir, suite, pending.size(), isg, max_array_size));
   fs::permissions(script, fs::perms::owner_exec | fs::perms::group_exec, fs::perm_options::add);

@@ -1,5 +1,6 @@
 #include "cli/suite.hpp"
 
+#include <algorithm>
 #include <filesystem>
 #include <set>
 
@@ -85,13 +86,13 @@ Suite parseSuite(const bim::JsonNode& root, const std::string& path,
   const auto addWorld = [&](const bim::JsonNode& at, SuiteWorld world) {
     // A world's name is the first folder of its run folders in SWEEP_DIR: "." and ".." would put
     // them beside or outside the sweep, the names of the sweep's own files would collide.
-    for (const char* reserved :
-         {".", "..", kSweepPlanFile, "table.md", "table.csv", "sweep.sbatch", "slurm-cells.txt"}) {
-      if (world.name == reserved) {
-        at.fail("a world named " + bim::inQuotes(world.name) +
-                " (its file's name without .json) cannot name a folder of the sweep: rename "
-                "the file");
-      }
+    const bool reserved = world.name == "." || world.name == ".." ||
+                          std::find(kSweepFolderFiles.begin(), kSweepFolderFiles.end(),
+                                    world.name) != kSweepFolderFiles.end();
+    if (reserved) {
+      at.fail("a world named " + bim::inQuotes(world.name) +
+              " (its file's name without .json) cannot name a folder of the sweep: rename "
+              "the file");
     }
     if (!names.insert(world.name).second) {
       at.fail("a second world named " + bim::inQuotes(world.name) +

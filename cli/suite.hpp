@@ -1,5 +1,6 @@
 #pragma once
 
+#include <array>
 #include <cstdint>
 #include <map>
 #include <optional>
@@ -72,6 +73,14 @@ std::vector<SweepCell> sweepCells(const Suite& suite);
 // SWEEP_DIR/sweep.json ("isg.sweep" v1): the suite resolved into its cells, written when a sweep
 // starts, so that a sweep started again, a Slurm task and --collect all see the same cells.
 inline constexpr const char* kSweepPlanFile = "sweep.json";
+// The other files at the top of a sweep folder: the table at the end, the Slurm backend's script
+// and its list of cells. With sweep.json, names no world may take (its run folders go beside).
+inline constexpr const char* kSweepTableMarkdownFile = "table.md";
+inline constexpr const char* kSweepTableCsvFile = "table.csv";
+inline constexpr const char* kSlurmScriptFile = "sweep.sbatch";
+inline constexpr const char* kSlurmCellsFile = "slurm-cells.txt";
+inline constexpr std::array<const char*, 5> kSweepFolderFiles = {
+    kSweepPlanFile, kSweepTableMarkdownFile, kSweepTableCsvFile, kSlurmScriptFile, kSlurmCellsFile};
 std::string sweepPlanJson(const Suite& suite, const std::vector<SweepCell>& cells);
 struct SweepPlan {
   std::string name, suite_file;

@@ -118,6 +118,11 @@ TEST(Sweep, BadSuitesNameTheFileAndThePlace) {
   EXPECT_THAT(sandbox.run("sweep dots.json -o out").err,
               HasSubstr("dots.json: /worlds/0: a world named \"..\" (its file's name without "
                         ".json) cannot name a folder of the sweep: rename the file"));
+  sandbox.write("table.csv.json", "{}");
+  sandbox.write("table.json", suite(R"(["table.csv.json"])", "[1]", R"(["odometry"])", "{}"));
+  EXPECT_THAT(sandbox.run("sweep table.json -o out").err,
+              HasSubstr("table.json: /worlds/0: a world named \"table.csv\" (its file's name "
+                        "without .json) cannot name a folder of the sweep"));
   EXPECT_FALSE(sandbox.exists("out"));
   sandbox.write("g.json", suite(R"([{"generate": {"family": "hotel", "corridor_width": 0.3}}])",
                                 "[1]", R"(["odometry"])", "{}"));
