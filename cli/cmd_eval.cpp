@@ -8,6 +8,7 @@
 #include "eval/coverage.hpp"
 #include "eval/report_svg.hpp"
 #include "run/atomic_folder.hpp"
+#include "run/output_path.hpp"
 #include "run/trajectory_file.hpp"
 
 namespace isg::cli {
@@ -60,6 +61,11 @@ EvalCommand::EvalCommand(CLI::App& parent) {
       ->option_text("OUT.svg");
 }
 
+std::string EvalCommand::rpeNotComputable(std::size_t associated) const {
+  return "not computable: no two associated poses are " + std::to_string(rpe_delta_) +
+         " frames apart (" + std::to_string(associated) + " poses associated)";
+}
+
 void EvalCommand::writePlot(const eval::Trajectory& reference, const eval::Trajectory& estimate,
                             const eval::ErrorResult& ape, const std::string& how,
                             const eval::Coverage& coverage) const {
@@ -91,10 +97,13 @@ void EvalCommand::writePlot(const eval::Trajectory& reference, const eval::Traje
   if (input.estimate_is_localization) {
     input.localized_at = reference.front().t + coverage.time_to_first;
   }
-  run::writeFileAtomically(plot_, eval::reportSvg(input));
+  run::writeFileAtomically(plot_, run::outputMark(run::OutputKind::kSvg, eval::reportSvg(input)));
 }
 
 int EvalCommand::run() {
+  if (!plot_.empty()) {
+    run::checkOutputPath(plot_, {run::OutputKind::kSvg, {reference_, estimate_}, true, false});
+  }
   const eval::Trajectory reference = run::readTrajectoryFile(reference_);
   const eval::Trajectory estimate = run::readTrajectoryFile(estimate_);
   eval::ErrorOptions options;
@@ -137,8 +146,15 @@ int EvalCommand::run() {
     if (ape.alignment) out["alignment"] = {{"scale", ape.alignment->scale}};
     if (rpe) {
       out["rpe_delta"] = rpe_delta_;
-      out["rpe"] = toJson(rpe->translation_stats);
-      out["rpe_rotation_deg"] = toJson(rpe->rotation_stats);
+      if (rpe->translation_stats.count == 0) {
+        // No statistics of nothing: a 0 would read as a perfect estimate.
+        out["rpe"] = nullptr;
+        out["rpe_rotation_deg"] = nullptr;
+        out["rpe_note"] = rpeNotComputable(ape.association.reference.size());
+      } else {
+        out["rpe"] = toJson(rpe->translation_stats);
+        out["rpe_rotation_deg"] = toJson(rpe->rotation_stats);
+      }
     }
     std::cout << out.dump(2) << "\n";
     return kExitOk;
@@ -156,7 +172,11 @@ int EvalCommand::run() {
     char title[96];
     std::snprintf(title, sizeof title, "RPE w.r.t. translation part (m) for delta = %d (frames)",
                   rpe_delta_);
-    printStatistics(title, how, rpe->translation_stats);
+    if (rpe->translation_stats.count == 0) {
+      std::printf("%s: %s\n", title, rpeNotComputable(ape.association.reference.size()).c_str());
+    } else {
+      printStatistics(title, how, rpe->translation_stats);
+    }
   }
   return kExitOk;
 }

@@ -23,6 +23,7 @@ class EvalCommand : public Command {
   bool json_ = false;
   std::string plot_;
 
+  std::string rpeNotComputable(std::size_t associated) const;
   void writePlot(const eval::Trajectory& reference, const eval::Trajectory& estimate,
                  const eval::ErrorResult& ape, const std::string& how,
                  const eval::Coverage& coverage) const;

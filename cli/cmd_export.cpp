@@ -3,6 +3,7 @@
 #include <cstdio>
 
 #include "cli/progress_bar.hpp"
+#include "run/output_path.hpp"
 #include "run/rosbag_export.hpp"
 
 namespace isg::cli {
@@ -30,6 +31,7 @@ ExportCommand::ExportCommand(CLI::App& parent) {
 }
 
 int ExportCommand::run() {
+  run::checkOutputPath(rosbag_, {run::OutputKind::kBag, {input_}, force_});
   exportRosbagWithProgress("isg export", input_, rosbag_, stamp_offset_, force_, quiet_);
   return kExitOk;
 }

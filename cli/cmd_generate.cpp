@@ -1,9 +1,12 @@
 #include "cli/cmd_generate.hpp"
 
+#include <algorithm>
 #include <cstdio>
 #include <filesystem>
+#include <limits>
 #include <stdexcept>
 
+#include "cli/interrupt.hpp"
 #include "cli/progress_bar.hpp"
 #include "run/atomic_folder.hpp"
 #include "sim/simulation.hpp"
@@ -38,6 +41,7 @@ GenerateCommand::GenerateCommand(CLI::App& parent) {
       ->check(CLI::Range(1, 10000))
       ->capture_default_str();
   app_->add_option("--seed", seed_, "seed of the first building; the next ones count up")
+      ->check(seedNumber())
       ->capture_default_str();
   app_->add_option("--rooms", spec_.rooms, "offices per building (up to 5000)")
       ->default_str("the family's: office, l/t/u-shape 24, hotel 22, twin-wings 10, hall 12");
@@ -91,14 +95,28 @@ GenerateCommand::GenerateCommand(CLI::App& parent) {
 }
 
 int GenerateCommand::run() {
+  // Each family once ("hall hall" is one family: its buildings would have the same names).
   std::vector<std::string> families;
+  const auto add = [&](const std::string& family) {
+    if (std::find(families.begin(), families.end(), family) == families.end()) {
+      families.push_back(family);
+    }
+  };
   for (const auto& f : families_) {
     if (f == "all") {
-      for (const auto& g : worlds::generatorFamilies()) families.push_back(g);
+      for (const auto& g : worlds::generatorFamilies()) add(g);
     } else {
-      families.push_back(f);
+      add(f);
     }
   }
+  if (seed_ > std::numeric_limits<std::uint64_t>::max() - std::uint64_t(count_ - 1)) {
+    throw bim::InputError("--seed", "",
+                          "seeds " + std::to_string(seed_) + " and the " +
+                              std::to_string(count_ - 1) + " after it pass 2^64 - 1");
+  }
+  // The output rule before any work: not the working directory, nor an earlier folder of
+  // anything but generated buildings.
+  run::checkOutputPath(output_, {run::OutputKind::kBuildings, {}, force_});
   spec_.asymmetry = !symmetric_;
   // Bad parameters fail before anything is written, naming the option.
   std::vector<worlds::GeneratedBuilding> buildings;
@@ -107,6 +125,7 @@ int GenerateCommand::run() {
       worlds::GeneratorSpec spec = spec_;
       spec.family = family;
       spec.seed = seed_ + std::uint64_t(i);
+      throwIfInterrupted();
       try {
         buildings.push_back(worlds::generateBuilding(spec));
       } catch (const std::invalid_argument& e) {
@@ -126,30 +145,39 @@ int GenerateCommand::run() {
   }
   ProgressBar bar("isg generate", quiet_);
   std::size_t offices = 0, largest = 0;
-  run::writeFolderAtomically(output_, force_, [&](const std::filesystem::path& dir) {
-    for (std::size_t k = 0; k < buildings.size(); ++k) {
-      const auto& b = buildings[k];
-      run::writeFile(dir / (b.name + ".json"), b.plan.dump(2) + "\n");
-      const std::string scenario_path = (dir / (b.name + ".asbuilt.json")).string();
-      run::writeFile(scenario_path, b.scenario.dump(2) + "\n");
-      offices += std::size_t(b.offices);
-      largest = std::max(largest, std::size_t(b.offices));
-      bar.update(double(k + 1) / double(buildings.size()), b.name);
-      if (no_verify_) continue;
-      // As isg check and isg run would read it: a warning is a generator bug too.
-      bim::Warnings warnings;
-      const bim::Scenario scenario = bim::loadScenario(scenario_path, &warnings);
-      if (!warnings.empty()) {
-        throw std::logic_error("generated " + b.name +
-                               " reads with a warning: " + warnings.front().str());
-      }
-      const sim::Simulation simulation(scenario);
-      if (!simulation.route().skipped_rooms.empty()) {
-        throw std::logic_error("generated " + b.name + ": the tour cannot reach room " +
-                               simulation.route().skipped_rooms.front());
-      }
-    }
-  });
+  run::writeFolderAtomically(
+      output_, run::OutputKind::kBuildings, force_, [&](const std::filesystem::path& dir) {
+        for (std::size_t k = 0; k < buildings.size(); ++k) {
+          const auto& b = buildings[k];
+          run::writeFile(dir / (b.name + ".json"), b.plan.dump(2) + "\n");
+          const std::string scenario_path = (dir / (b.name + ".asbuilt.json")).string();
+          run::writeFile(scenario_path, b.scenario.dump(2) + "\n");
+          offices += std::size_t(b.offices);
+          largest = std::max(largest, std::size_t(b.offices));
+          bar.update(double(k + 1) / double(buildings.size()), b.name);
+          if (no_verify_) continue;
+          // As isg check and isg run would read it: a warning is a generator bug too.
+          bim::Warnings warnings;
+          const bim::Scenario scenario = bim::loadScenario(scenario_path, &warnings);
+          if (!warnings.empty()) {
+            throw std::logic_error("generated " + b.name +
+                                   " reads with a warning: " + warnings.front().str());
+          }
+          const sim::Simulation simulation(scenario);
+          if (!simulation.route().skipped_rooms.empty()) {
+            // Never written: a building the robot cannot tour would give a table number for part
+            // of it. Bad input for the parameters that made it, naming the room.
+            throw bim::InputError(b.name, "",
+                                  "the tour cannot reach room " +
+                                      simulation.route().skipped_rooms.front() +
+                                      " of the generated building; nothing was written: change the "
+                                      "generator's parameters");
+          }
+        }
+        // The last building's checks may have taken a while: an interrupt then still means nothing
+        // is written.
+        throwIfInterrupted();
+      });
   bar.finish();
   std::printf(
       "isg generate: wrote %s: %zu buildings (%zu plans and %zu as-built scenarios), %zu offices "

@@ -37,10 +37,16 @@ RenderCommand::RenderCommand(CLI::App& parent) {
 }
 
 int RenderCommand::run() {
-  const bim::Scenario scenario = loadInput(input_, "render");
-  sim::Simulation simulation(scenario);
   namespace fs = std::filesystem;
   const fs::path dir(output_);
+  // The folder may hold other files; of the pictures, only earlier ones of ours are replaced.
+  run::checkOutputPath(output_, {run::OutputKind::kPictures, {inputFile(input_)}});
+  for (const char* name : {"top.png", "plan.png", "chase.png"}) {
+    run::checkOutputPath((dir / name).string(),
+                         {run::OutputKind::kPng, {inputFile(input_)}, true, false});
+  }
+  const bim::Scenario scenario = loadInput(input_, "render");
+  sim::Simulation simulation(scenario);
   run::requireParentFolder(output_);
   std::error_code error;
   fs::create_directories(dir, error);

@@ -11,6 +11,7 @@
 #include "sim/scan_pipeline.hpp"
 #include "sim/simulation.hpp"
 #include "worlds/reference_plans.hpp"
+#include "worlds/world_hash.hpp"
 
 namespace isg::cli {
 
@@ -36,7 +37,9 @@ RunCommand::RunCommand(CLI::App& parent) {
   app_->add_option("--method", method_, "localization method (see below)")
       ->check(CLI::IsMember(methods_.acceptedNames()))
       ->capture_default_str();
-  app_->add_option("--seed", seed_, "seed for every random draw")->default_str("the scenario's");
+  app_->add_option("--seed", seed_, "seed for every random draw")
+      ->check(seedNumber())
+      ->default_str("the scenario's");
   app_->add_option("--duration", duration_, "seconds of robot time")
       ->check(positiveNumber())
       ->default_str("the whole route");
@@ -65,12 +68,14 @@ int RunCommand::run() {
   if (output_.empty()) {
     output_ = "runs/" + worldName(input) + "-" + method_ + "-seed-" + std::to_string(scenario.seed);
   }
-  // Before the run, not after it: a folder that cannot be written fails at once.
+  // Before the run, not after it: a folder that cannot be written fails at once; the output rule
+  // before its parent folders are made.
+  run::checkOutputPath(output_, {run::OutputKind::kRunFolder, {inputFile(input)}, force_});
   if (const auto parent = fs::path(output_).parent_path(); !parent.empty()) {
     std::error_code ignored;
     fs::create_directories(parent, ignored);
   }
-  run::checkCanCreateFolder(output_, force_);
+  run::checkCanCreateFolder(output_, run::OutputKind::kRunFolder, force_, {inputFile(input)});
   const sim::Simulation simulation(scenario);
   checkRoute("isg run", scenario, simulation, duration_);
   const bim::AGraph agraph = bim::buildAGraph(scenario.plan);
@@ -87,8 +92,9 @@ int RunCommand::run() {
   context.threads = threads_;
   const auto localizer = makeMethod(methods_, method_, context);
 
-  run::RunSetup setup{input,   localizer->name(),    scenario.seed,     &scenario.plan,
-                      &agraph, scenario.robot.level, &scenario.as_built};
+  run::RunSetup setup{
+      input,          localizer->name(), scenario.seed,        worlds::worldHash(scenario),
+      &scenario.plan, &agraph,           scenario.robot.level, &scenario.as_built};
   ProgressBar bar("isg run", quiet_);
   const double period = streams.scan_period;
   const int scans = int(streams.scan_stamps.size());

@@ -29,7 +29,9 @@ SimulateCommand::SimulateCommand(CLI::App& parent) {
   app_->add_option("-o,--output", output_, "dataset folder to create")
       ->option_text("DATASET_DIR")
       ->required();
-  app_->add_option("--seed", seed_, "seed for every random draw")->default_str("the scenario's");
+  app_->add_option("--seed", seed_, "seed for every random draw")
+      ->check(seedNumber())
+      ->default_str("the scenario's");
   app_->add_option("--duration", duration_, "seconds to simulate")
       ->default_str("the whole route")
       ->check(positiveNumber());
@@ -58,10 +60,12 @@ int SimulateCommand::run() {
   if (seed_) scenario.seed = *seed_;
   sim::Simulation simulation(scenario);
   checkRoute("isg simulate", scenario, simulation, duration_);
-  run::checkCanCreateFolder(output_, force_);
+  run::checkCanCreateFolder(output_, run::OutputKind::kDataset, force_, {inputFile(input_)});
   if (!rosbag_.empty()) {
-    // Checked before hours of simulation, as the folder is.
-    run::AtomicFile probe(rosbag_, force_);
+    // Checked before hours of simulation, as the folder is: the bag may not be the scenario, nor
+    // lie in the dataset it is made from.
+    run::checkOutputPath(rosbag_, {run::OutputKind::kBag, {inputFile(input_), output_}, force_});
+    run::AtomicFile probe(rosbag_, run::OutputKind::kBag, force_);
   }
   sim::DatasetOptions options;
   options.duration = duration_;

@@ -85,7 +85,7 @@ int SlamCommand::run() {
   namespace fs = std::filesystem;
   run::DatasetReader dataset(dataset_);
   // Before the replay, not after it: a folder that cannot be written fails at once.
-  run::checkCanCreateFolder(output_, force_);
+  run::checkCanCreateFolder(output_, run::OutputKind::kRunFolder, force_, {dataset_, plan_});
   const std::string method = !method_.empty() ? method_ : plan_.empty() ? "s-graph" : "is-graphs";
   if (methods_.find(method)->needs_plan && plan_.empty()) {
     std::fprintf(stderr, "isg slam: --method %s needs --plan PLAN\n", method.c_str());
@@ -122,13 +122,9 @@ int SlamCommand::run() {
       std::fprintf(stderr, "isg slam: warning: the as-built changes are not drawn: %s\n", e.what());
     }
   }
-  run::RunSetup setup{dataset_,
-                      localizer->name(),
-                      dataset.seed(),
-                      context.plan,
-                      context.agraph,
-                      level,
-                      as_built ? &*as_built : nullptr};
+  run::RunSetup setup{
+      dataset_,     localizer->name(), dataset.seed(), "",
+      context.plan, context.agraph,    level,          as_built ? &*as_built : nullptr};
   ProgressBar bar("isg slam", quiet_);
   const double period = streams.scan_period;
   const run::RunRecord record = run::runLocalizer(std::move(setup), *localizer, std::move(streams),

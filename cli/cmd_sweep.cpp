@@ -7,9 +7,13 @@
 #include "cli/slurm_backend.hpp"
 #include "cli/suite.hpp"
 #include "cli/sweep_collect.hpp"
+#include "cli/sweep_lock.hpp"
 #include "cli/sweep_pool.hpp"
+#include "cli/sweep_worlds.hpp"
 #include "run/atomic_folder.hpp"
 #include "run/builtin_methods.hpp"
+#include "run/output_path.hpp"
+#include "worlds/reference_plans.hpp"
 
 namespace isg::cli {
 
@@ -17,17 +21,20 @@ namespace {
 
 namespace fs = std::filesystem;
 
-// Generated worlds are written into SWEEP_DIR/worlds/ once; the same seed gives the same bytes,
-// so a sweep started again finds them as they were.
-void writeGeneratedWorlds(const Suite& suite, const fs::path& dir) {
-  for (const auto& world : suite.worlds) {
-    if (!world.generate) continue;
-    const fs::path scenario = dir / world.input;
-    if (fs::exists(scenario)) continue;
-    fs::create_directories(scenario.parent_path());
-    const worlds::GeneratedBuilding b = worlds::generateBuilding(*world.generate);
-    run::writeFileAtomically((dir / "worlds" / (b.name + ".json")).string(), b.plan.dump(2) + "\n");
-    run::writeFileAtomically(scenario.string(), b.scenario.dump(2) + "\n");
+// Moves the finished (or damaged) cells of `worlds` aside, with their failure records: they ran
+// on a world that has changed since.
+void moveWorldCellsAside(const std::string& sweep_dir, const std::vector<SweepCell>& cells,
+                         const std::vector<ChangedWorld>& worlds) {
+  for (const auto& cell : cells) {
+    bool changed = false;
+    for (const auto& w : worlds) changed = changed || w.name == cell.world;
+    if (!changed) continue;
+    std::error_code ignored;
+    fs::remove(failureRecordPath(sweep_dir, cell), ignored);
+    if (!fs::exists(fs::symlink_status(fs::path(sweep_dir) / cell.dir))) continue;
+    const std::string aside = moveCellAside(sweep_dir, cell);
+    std::fprintf(stderr, "isg sweep: %s ran on the world before it changed; moved to %s\n",
+                 cell.dir.c_str(), aside.c_str());
   }
 }
 
@@ -77,6 +84,9 @@ SweepCommand::SweepCommand(CLI::App& parent) {
       ->check(CLI::IsMember(
           {"ape", "time-wrong", "time-to-localize", "distance-to-localize", "rooms-to-localize"}))
       ->capture_default_str();
+  app_->add_flag("--rerun-changed", rerun_changed_,
+                 "when a world's content changed since the sweep folder's cells ran (its file "
+                 "edited, a generator spec changed): run its cells again instead of refusing");
   app_->add_flag("-q,--quiet", quiet_, "no progress lines");
 }
 
@@ -117,14 +127,23 @@ int SweepCommand::run() {
     return o.failed == 0 ? kExitOk : kExitIncomplete;
   }
   if (output_.empty()) return usage("isg sweep SUITE.json needs -o SWEEP_DIR");
-  const Suite suite = loadSuite(input_, run::builtinMethods());
-  const std::vector<SweepCell> cells = sweepCells(suite);
-  if (fs::exists(output_) && !fs::is_directory(output_)) {
-    throw bim::InputError(output_, "", "exists and is not a folder; give -o a sweep folder");
+  Suite suite = loadSuite(input_, run::builtinMethods());
+  // The output rule: not the working directory or what holds it, not the suite or its world
+  // files, and an existing folder only if it is a sweep's (or empty).
+  std::vector<std::string> inputs = {input_};
+  for (const auto& world : suite.worlds) {
+    if (!world.generate && !worlds::isBuiltin(world.input)) inputs.push_back(world.input);
   }
+  run::checkOutputPath(output_, {run::OutputKind::kSweep, inputs});
   std::error_code made;
   fs::create_directories(output_, made);
   if (made) throw bim::InputError(output_, "", "cannot make the sweep folder: " + made.message());
+  if (!run::folderOutputKind(output_)) run::writeOutputMarker(output_, run::OutputKind::kSweep);
+  // One sweep at a time in a folder, from here to the end (the lock goes with the process).
+  const SweepLock lock(output_);
+  // Every world read (generated ones written) and hashed, before any cell runs.
+  prepareSweepWorlds(suite, output_);
+  const std::vector<SweepCell> cells = sweepCells(suite);
   // A sweep folder holds one suite's cells: starting it again with other cells would mix them.
   const fs::path plan_path = fs::path(output_) / kSweepPlanFile;
   const std::string plan_text = sweepPlanJson(suite, cells);
@@ -140,10 +159,24 @@ int SweepCommand::run() {
                                 std::to_string(before.cells.size()) + " cells of " +
                                 before.suite_file + "); give another -o or remove it");
     }
-  } else {
-    run::writeFileAtomically(plan_path.string(), plan_text);
+    // The same cells of a changed world would mix two buildings in one row.
+    const std::vector<ChangedWorld> changed = changedWorlds(suite, before);
+    if (!changed.empty() && !rerun_changed_) {
+      std::string list;
+      for (const auto& w : changed) {
+        list += (list.empty() ? "" : "; ") + w.name + " (" + w.before.substr(0, 19) + "… then, " +
+                w.now.substr(0, 19) + "… now)";
+      }
+      throw bim::InputError(input_, "",
+                            "world" + std::string(changed.size() > 1 ? "s" : "") +
+                                " changed since this sweep ran in " + output_ + ": " + list +
+                                "; --rerun-changed runs their cells again on the world as it is "
+                                "now (the old runs are moved to " +
+                                output_ + "/" + kSweepAsideFolder + "), or give another -o");
+    }
+    moveWorldCellsAside(output_, before.cells, changed);
   }
-  writeGeneratedWorlds(suite, output_);
+  run::writeFileAtomically(plan_path.string(), plan_text);
   std::vector<std::size_t> all(cells.size());
   for (std::size_t i = 0; i < cells.size(); ++i) all[i] = i;
 

@@ -23,6 +23,7 @@ class SweepCommand : public Command {
   bool dry_run_ = false;
   bool wait_ = false;
   bool collect_ = false;
+  bool rerun_changed_ = false;
   long cell_ = -1;
   std::string measure_ = "ape";
   bool quiet_ = false;

@@ -12,6 +12,7 @@
 #include "cli/suite.hpp"
 #include "eval/table.hpp"
 #include "run/builtin_methods.hpp"
+#include "run/output_path.hpp"
 #include "run/run_metrics.hpp"
 
 namespace isg::cli {
@@ -62,6 +63,15 @@ TableCommand::TableCommand(CLI::App& parent) {
 
 int TableCommand::run() {
   const run::LocalizerRegistry methods = run::builtinMethods();
+  const run::OutputKind outputKind = format_ == "csv"     ? run::OutputKind::kTableCsv
+                                     : format_ == "latex" ? run::OutputKind::kTableLatex
+                                                          : run::OutputKind::kTableMarkdown;
+  if (!output_.empty()) {
+    // Replaced only if isg wrote it: never a run folder, the baseline or a file of the user's.
+    std::vector<std::string> inputs = runs_;
+    inputs.push_back(baseline_);
+    run::checkOutputPath(output_, {outputKind, inputs, true, false});
+  }
   // The testbed's methods first, in their order (iS-Graphs, then the baselines), like the paper.
   std::vector<std::pair<std::string, run::RunMetrics>> runs;
   for (const auto& dir : runs_) {
@@ -81,7 +91,7 @@ int TableCommand::run() {
   if (output_.empty()) {
     std::printf("%s", text.c_str());
   } else {
-    writeFileAtomically(output_, text);
+    writeFileAtomically(output_, run::outputMark(outputKind, text));
   }
   if (baseline_.empty()) return kExitOk;
   std::ifstream in(baseline_);

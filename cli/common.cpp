@@ -1,5 +1,6 @@
 #include "cli/common.hpp"
 
+#include <charconv>
 #include <cmath>
 
 #include <cstdio>
@@ -15,6 +16,10 @@ bim::Scenario loadInput(const std::string& argument, const std::string& command)
   bim::Scenario scenario = worlds::loadScenarioOrBuiltin(argument, &warnings);
   for (const auto& w : warnings) std::cerr << "isg " << command << ": warning: " << w.str() << "\n";
   return scenario;
+}
+
+std::string inputFile(const std::string& argument) {
+  return argument.rfind("builtin:", 0) == 0 ? std::string() : argument;
 }
 
 std::string worldName(const std::string& input) {
@@ -53,6 +58,22 @@ CLI::Validator numberCheck(bool allow_zero) {
 }
 
 }  // namespace
+
+CLI::Validator seedNumber() {
+  return CLI::Validator(
+      [](std::string& text) -> std::string {
+        std::uint64_t value = 0;
+        const char* end = text.data() + text.size();
+        const bool digits =
+            !text.empty() && text.find_first_not_of("0123456789") == std::string::npos;
+        const auto [at, error] = std::from_chars(text.data(), end, value);
+        if (!digits || error != std::errc() || at != end) {
+          return "expected an integer 0 … 18446744073709551615, got " + text;
+        }
+        return "";
+      },
+      "SEED", "seed");
+}
 
 CLI::Validator positiveNumber() { return numberCheck(false); }
 CLI::Validator nonNegativeNumber() { return numberCheck(true); }

@@ -22,10 +22,16 @@ inline constexpr int kExitIncomplete = 5;
 // Option checks with plain messages ("--duration: must be > 0, got -1"), for finite numbers.
 CLI::Validator positiveNumber();
 CLI::Validator nonNegativeNumber();
+// A seed as the suite reader takes it: a decimal integer 0 … 2^64 − 1, no sign (CLI11 alone would
+// wrap "-1" and 2^64 silently).
+CLI::Validator seedNumber();
 
 // A world's short name, for folder names and table rows: "builtin:d1.asbuilt" → "d1.asbuilt",
 // "plans/office.asbuilt.json" → "office.asbuilt".
 std::string worldName(const std::string& input);
+
+// The file a PLAN|SCENARIO argument names ("" for a built-in world), for the output rule's inputs.
+std::string inputFile(const std::string& argument);
 
 // Loads a plan or scenario (a file or "builtin:NAME") and prints its warnings to stderr.
 bim::Scenario loadInput(const std::string& argument, const std::string& command);

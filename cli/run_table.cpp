@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <map>
+#include <set>
 
 #include "bim/input_error.hpp"
 
@@ -15,12 +16,39 @@ struct CellRuns {
   std::vector<std::optional<double>> values;
   std::vector<bool> wrong_runs;
   bool wrong = false;
+  int failed = 0, not_run = 0;
 };
+
+// A world's row: its name, and the start of its hash when runs of that name are of different
+// worlds (runs without a hash, from before hashes were recorded, count as one more world).
+std::map<std::string, std::string> rowNames(
+    const std::vector<std::pair<std::string, run::RunMetrics>>& runs) {
+  std::map<std::string, std::set<std::string>> hashes;
+  for (const auto& [dir, metrics] : runs) {
+    hashes[shortWorld(metrics.world)].insert(metrics.world_hash.value_or(""));
+  }
+  std::map<std::string, std::string> rows;  // key: name + "\n" + hash
+  for (const auto& [dir, metrics] : runs) {
+    const std::string name = shortWorld(metrics.world);
+    const std::string hash = metrics.world_hash.value_or("");
+    std::string row = name;
+    if (hashes[name].size() > 1) {
+      row += hash.empty() ? " [no world hash]" : " [" + hash.substr(7, 8) + "]";
+    }
+    rows[name + "\n" + hash] = row;
+  }
+  return rows;
+}
 
 }  // namespace
 
+std::string shortWorld(const std::string& world) {
+  return world.rfind("builtin:", 0) == 0 ? world.substr(8) : world;
+}
+
 RunTable tabulateRuns(std::vector<std::pair<std::string, run::RunMetrics>> runs,
-                      const std::string& measure, const run::LocalizerRegistry& methods) {
+                      const std::string& measure, const run::LocalizerRegistry& methods,
+                      const std::vector<AbsentRun>& absent) {
   for (auto& run : runs) run.second.method = methods.canonical(run.second.method);  // old names
   const std::vector<std::string> names = methods.names();
   auto rank = [&](const run::RunMetrics& metrics) {
@@ -32,9 +60,12 @@ RunTable tabulateRuns(std::vector<std::pair<std::string, run::RunMetrics>> runs,
   std::vector<std::pair<std::string, std::string>> order;
   std::map<std::pair<std::string, std::string>, CellRuns> cells;
   std::vector<std::string> uncounted;
+  const std::map<std::string, std::string> row_names = rowNames(runs);
+  bool split_rows = false;
   for (const auto& [dir, metrics] : runs) {
-    std::string world = metrics.world;
-    if (world.rfind("builtin:", 0) == 0) world = world.substr(8);
+    const std::string world =
+        row_names.at(shortWorld(metrics.world) + "\n" + metrics.world_hash.value_or(""));
+    split_rows = split_rows || world != shortWorld(metrics.world);
     const run::MethodInfo* info = methods.find(metrics.method);
     const bool slam_only = info != nullptr && info->slam_only;
     const std::string column = slam_only ? metrics.method + " (SE(3) in M)" : metrics.method;
@@ -71,6 +102,21 @@ RunTable tabulateRuns(std::vector<std::pair<std::string, run::RunMetrics>> runs,
     cell.wrong_runs.push_back(wrong);
     cell.wrong = cell.wrong || wrong;
   }
+  // The seeds without a result count in their cell: as runs, never as localized.
+  bool any_absent = false;
+  for (const auto& a : absent) {
+    const run::MethodInfo* info = methods.find(a.method);
+    const std::string column =
+        info != nullptr && info->slam_only ? a.method + " (SE(3) in M)" : a.method;
+    const auto key = std::make_pair(shortWorld(a.world), column);
+    if (!cells.count(key)) order.push_back(key);
+    CellRuns& cell = cells[key];
+    cell.seeds.push_back(a.seed);
+    cell.values.push_back(std::nullopt);
+    cell.wrong_runs.push_back(false);
+    (a.failed ? cell.failed : cell.not_run) += 1;
+    any_absent = true;
+  }
   eval::ResultTable table;
   table.uncounted = uncounted;
   std::size_t most_seeds = 0;
@@ -89,10 +135,16 @@ RunTable tabulateRuns(std::vector<std::pair<std::string, run::RunMetrics>> runs,
     }
     table.set(key.first, key.second, mean, cell.wrong);
   }
-  if (most_seeds > 1) {
+  // Statistics whenever a cell has several seeds, or seeds without a result: a lone "-" would
+  // read as "never localized".
+  const bool with_stats = most_seeds > 1 || any_absent;
+  if (with_stats) {
     for (const auto& key : order) {
       const CellRuns& cell = cells.at(key);
-      table.setStats(key.first, key.second, eval::cellStats(cell.values, cell.wrong_runs));
+      eval::CellStats stats = eval::cellStats(cell.values, cell.wrong_runs);
+      stats.failed = cell.failed;
+      stats.not_run = cell.not_run;
+      table.setStats(key.first, key.second, stats);
     }
   }
   std::string caption =
@@ -105,12 +157,23 @@ RunTable tabulateRuns(std::vector<std::pair<std::string, run::RunMetrics>> runs,
           ? "Plan rooms stood in by the first localization; - never localized"
           : "APE RMSE in B [m] (2D, no alignment, from the first localized pose on); - never "
             "localized, ✗ wrongly localized (more than 1 m off for more than 5 s)";
-  if (most_seeds > 1) {
+  if (with_stats) {
     caption += ". Each cell aggregates its seeds (up to " + std::to_string(most_seeds) +
                "): mean ± sample standard deviation over the seeds localized correctly, then "
-               "k/n seeds localized correctly and w✗ seeds wrongly localized; CSV gives the mean "
-               "(a number only when every seed localized, ✗ when any was wrong) and the "
-               "statistics in columns of their own";
+               "k/n seeds localized correctly and w✗ seeds wrongly localized";
+    if (any_absent) {
+      caption +=
+          " (n counts the suite's seeds: those that failed or have not run are said, and "
+          "count as not localized)";
+    }
+    caption +=
+        "; CSV gives the mean (a number only when every seed localized, ✗ when any was wrong) "
+        "and the statistics in columns of their own";
+  }
+  if (split_rows) {
+    caption +=
+        ". Rows marked [hash] are different buildings of one name, told apart by the "
+        "start of their content hash";
   }
   std::string given;
   for (const auto& column : table.columns) {

@@ -14,12 +14,24 @@ namespace isg::cli {
 // registry's order, cells aggregated over seeds (docs/evaluation.md), with a caption that says
 // what the cells are. `runs` are (run folder, its metrics) pairs; `measure` is one of ape,
 // time-wrong, time-to-localize, distance-to-localize, rooms-to-localize. Two runs of one world,
-// method and seed are bad input naming the second folder.
+// method and seed are bad input naming the second folder. Runs of one world name whose world
+// hashes differ are different buildings: their rows are told apart by the hash ("w [1a2b3c4d]").
+// `absent` are the seeds a sweep asked for that have no run (failed, or not run): their cells
+// count them, so a table never looks complete when it is not.
+// "builtin:d1" → "d1"; anything else as it is.
+std::string shortWorld(const std::string& world);
+
 struct RunTable {
   eval::ResultTable table;
   std::string caption;
 };
+struct AbsentRun {
+  std::string world, method;  // the suite's world name, the method's canonical name
+  std::uint64_t seed = 0;
+  bool failed = false;  // false: not run (yet)
+};
 RunTable tabulateRuns(std::vector<std::pair<std::string, run::RunMetrics>> runs,
-                      const std::string& measure, const run::LocalizerRegistry& methods);
+                      const std::string& measure, const run::LocalizerRegistry& methods,
+                      const std::vector<AbsentRun>& absent = {});
 
 }  // namespace isg::cli

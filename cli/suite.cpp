@@ -232,11 +232,9 @@ std::vector<SweepCell> sweepCells(const Suite& suite) {
   for (const auto& world : suite.worlds) {
     for (const auto& method : suite.methods) {
       for (const std::uint64_t seed : suite.seeds) {
-        SweepCell cell{world.name,
-                       method,
-                       seed,
-                       world.name + "/" + method + "/seed-" + std::to_string(seed),
-                       {}};
+        SweepCell cell{world.name, method,
+                       seed,       world.name + "/" + method + "/seed-" + std::to_string(seed),
+                       {},         world.hash};
         cell.arguments = {"run",       world.input,
                           "--method",  method,
                           "--seed",    std::to_string(seed),
@@ -269,12 +267,38 @@ std::string sweepPlanJson(const Suite& suite, const std::vector<SweepCell>& cell
                     {"dir", c.dir},
                     {"arguments", c.arguments}});
   }
-  const nlohmann::json plan = {{"format", "isg.sweep"},
-                               {"version", 1},
-                               {"name", suite.name},
-                               {"suite", fs::absolute(suite.file).string()},
-                               {"cells", list}};
+  nlohmann::json worlds = nlohmann::json::array();
+  for (const auto& w : suite.worlds) {
+    nlohmann::json entry = {{"name", w.name}, {"input", w.input}, {"hash", w.hash}};
+    if (w.generate) entry["generate"] = generatorSpecJson(*w.generate);
+    worlds.push_back(entry);
+  }
+  const nlohmann::json plan = {
+      {"format", "isg.sweep"}, {"version", 1},
+      {"name", suite.name},    {"suite", fs::absolute(suite.file).string()},
+      {"worlds", worlds},      {"cells", list}};
   return plan.dump(1) + "\n";
+}
+
+nlohmann::json generatorSpecJson(const worlds::GeneratorSpec& s) {
+  return {{"family", s.family},
+          {"seed", s.seed},
+          {"rooms", s.rooms},
+          {"room_width", s.room_width},
+          {"room_depth", s.room_depth},
+          {"size_spread", s.size_spread},
+          {"corridor_width", s.corridor_width},
+          {"doors", s.doors},
+          {"connecting_doors", s.connecting_doors},
+          {"symmetric", !s.asymmetry},
+          {"partitions", s.partitions},
+          {"wall_thickness", s.wall_thickness},
+          {"height", s.height},
+          {"clutter_per_room", s.clutter_per_room},
+          {"shifted_walls", s.shifted_walls},
+          {"missing_walls", s.missing_walls},
+          {"extra_walls", s.extra_walls},
+          {"closed_doors", s.closed_doors}};
 }
 
 SweepPlan readSweepPlan(const std::string& sweep_dir) {
@@ -294,6 +318,13 @@ SweepPlan parseSweepPlan(const bim::JsonNode& root) {
   SweepPlan plan;
   plan.name = root.field("name").text();
   plan.suite_file = root.field("suite").text();
+  if (root.has("worlds")) {
+    for (const auto& w : root.field("worlds").elements()) {
+      const std::string name = w.field("name").text();
+      plan.world_hashes[name] = w.field("hash").text();
+      if (w.has("generate")) plan.world_specs[name] = w.field("generate").raw();
+    }
+  }
   for (const auto& c : root.field("cells").elements()) {
     SweepCell cell;
     cell.world = c.field("world").text();
@@ -301,6 +332,9 @@ SweepPlan parseSweepPlan(const bim::JsonNode& root) {
     cell.seed = c.field("seed").unsignedInteger();
     cell.dir = c.field("dir").text();
     for (const auto& a : c.field("arguments").elements()) cell.arguments.push_back(a.string());
+    if (const auto it = plan.world_hashes.find(cell.world); it != plan.world_hashes.end()) {
+      cell.world_hash = it->second;
+    }
     plan.cells.push_back(std::move(cell));
   }
   return plan;

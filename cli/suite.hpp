@@ -20,6 +20,7 @@ struct SuiteWorld {
   std::string input;  // what isg run reads: "builtin:NAME" or an absolute path; generated worlds:
                       // "worlds/<name>.asbuilt.json", relative to the sweep folder
   std::optional<worlds::GeneratorSpec> generate;
+  std::string hash;  // worlds::worldHash, once the sweep has read (or written) the world
 };
 
 struct SlurmSettings {
@@ -64,10 +65,11 @@ struct SweepCell {
   std::uint64_t seed = 0;
   std::string dir;                     // "<world>/<method>/seed-<n>", relative to the sweep folder
   std::vector<std::string> arguments;  // isg's arguments for it, from "run" on
+  std::string world_hash;  // what its metrics.json must say (empty: a sweep.json without hashes)
 };
 
 // The cells in world, method, seed order; paths in the arguments are relative to the sweep
-// folder (isg run is started there).
+// folder (isg run is started there). Each cell carries its world's hash (empty until set).
 std::vector<SweepCell> sweepCells(const Suite& suite);
 
 // SWEEP_DIR/sweep.json ("isg.sweep" v1): the suite resolved into its cells, written when a sweep
@@ -79,12 +81,27 @@ inline constexpr const char* kSweepTableMarkdownFile = "table.md";
 inline constexpr const char* kSweepTableCsvFile = "table.csv";
 inline constexpr const char* kSlurmScriptFile = "sweep.sbatch";
 inline constexpr const char* kSlurmCellsFile = "slurm-cells.txt";
-inline constexpr std::array<const char*, 5> kSweepFolderFiles = {
-    kSweepPlanFile, kSweepTableMarkdownFile, kSweepTableCsvFile, kSlurmScriptFile, kSlurmCellsFile};
+// The folders of the sweep's own: the children's logs, generated worlds, cells moved aside.
+inline constexpr const char* kSweepLogsFolder = "logs";
+inline constexpr const char* kSweepWorldsFolder = "worlds";
+inline constexpr const char* kSweepAsideFolder = ".aside";
+// The lock a running sweep holds (its pid inside), and the output marker.
+inline constexpr const char* kSweepLockFile = ".lock";
+inline constexpr std::array<const char*, 10> kSweepFolderFiles = {
+    kSweepPlanFile,     kSweepTableMarkdownFile, kSweepTableCsvFile,
+    kSlurmScriptFile,   kSlurmCellsFile,         kSweepLogsFolder,
+    kSweepWorldsFolder, kSweepAsideFolder,       kSweepLockFile,
+    ".isg-output"};
 std::string sweepPlanJson(const Suite& suite, const std::vector<SweepCell>& cells);
+// A generator spec as sweep.json records it (every parameter, by the suite's names).
+nlohmann::json generatorSpecJson(const worlds::GeneratorSpec& spec);
 struct SweepPlan {
   std::string name, suite_file;
   std::vector<SweepCell> cells;
+  // Per world name: its content hash and, for a generated world, its generator spec (as JSON);
+  // empty for a sweep.json written before they were recorded.
+  std::map<std::string, std::string> world_hashes;
+  std::map<std::string, nlohmann::json> world_specs;
 };
 // Reads SWEEP_DIR/sweep.json; a missing or foreign file is an InputError naming it.
 SweepPlan readSweepPlan(const std::string& sweep_dir);

@@ -17,8 +17,11 @@
 #include <nlohmann/json.hpp>
 #include <thread>
 
+#include "bim/input_error.hpp"
 #include "cli/interrupt.hpp"
 #include "run/atomic_folder.hpp"
+#include "run/builtin_methods.hpp"
+#include "run/run_metrics.hpp"
 
 namespace isg::cli {
 
@@ -103,8 +106,54 @@ std::string failureRecordPath(const std::string& sweep_dir, const SweepCell& cel
   return (fs::path(sweep_dir) / (cell.dir + ".failed.json")).string();
 }
 
+CellCheck checkCell(const std::string& sweep_dir, const SweepCell& cell) {
+  using State = CellCheck::State;
+  const fs::path dir = fs::path(sweep_dir) / cell.dir;
+  std::error_code error;
+  const fs::file_status status = fs::symlink_status(dir, error);
+  if (!fs::exists(status)) return {State::kMissing, ""};
+  if (!fs::is_directory(status)) return {State::kDamaged, "not a folder"};
+  run::RunMetrics metrics;
+  try {
+    metrics = run::readMetrics(dir.string());
+  } catch (const std::exception& e) {
+    return {State::kDamaged, e.what()};
+  }
+  if (metrics.seed != cell.seed) {
+    return {State::kDamaged, "its metrics.json is of seed " + std::to_string(metrics.seed)};
+  }
+  if (run::builtinMethods().canonical(metrics.method) != cell.method) {
+    return {State::kDamaged, "its metrics.json is of method " + metrics.method};
+  }
+  if (!cell.world_hash.empty() && metrics.world_hash != cell.world_hash) {
+    return {State::kDamaged, metrics.world_hash
+                                 ? "it ran on another world (" + *metrics.world_hash + ", not " +
+                                       cell.world_hash + ")"
+                                 : "its metrics.json names no world hash: not a run of this sweep "
+                                   "(or of an isg before world hashes)"};
+  }
+  return {State::kFinished, ""};
+}
+
 bool cellFinished(const std::string& sweep_dir, const SweepCell& cell) {
-  return fs::exists(fs::path(sweep_dir) / cell.dir / "metrics.json");
+  return checkCell(sweep_dir, cell).state == CellCheck::State::kFinished;
+}
+
+std::string moveCellAside(const std::string& sweep_dir, const SweepCell& cell) {
+  const fs::path base = fs::path(kSweepAsideFolder) / cell.dir;
+  fs::path relative = base;
+  for (int k = 2; fs::exists(fs::symlink_status(fs::path(sweep_dir) / relative)); ++k) {
+    relative = base.string() + "." + std::to_string(k);
+  }
+  const fs::path to = fs::path(sweep_dir) / relative;
+  std::error_code error;
+  fs::create_directories(to.parent_path(), error);
+  if (!error) fs::rename(fs::path(sweep_dir) / cell.dir, to, error);
+  if (error) {
+    throw bim::InputError((fs::path(sweep_dir) / cell.dir).string(), "",
+                          "cannot move it aside to " + to.string() + ": " + error.message());
+  }
+  return relative.string();
 }
 
 PoolOutcome runCells(const std::string& sweep_dir, const std::vector<SweepCell>& cells,
@@ -115,11 +164,20 @@ PoolOutcome runCells(const std::string& sweep_dir, const std::vector<SweepCell>&
   PoolOutcome outcome;
   std::vector<std::size_t> pending;
   for (std::size_t i : indices) {
-    if (cellFinished(sweep_dir, cells[i])) {
+    const CellCheck check = checkCell(sweep_dir, cells[i]);
+    std::error_code ignored;
+    if (check.state == CellCheck::State::kFinished) {
       ++outcome.skipped;
-    } else {
-      pending.push_back(i);
+      // A failure record of an earlier attempt no longer says anything true.
+      fs::remove(failureRecordPath(sweep_dir, cells[i]), ignored);
+      continue;
     }
+    if (check.state == CellCheck::State::kDamaged) {
+      const std::string aside = moveCellAside(sweep_dir, cells[i]);
+      std::fprintf(stderr, "isg sweep: %s: %s; moved to %s, running it again\n",
+                   cells[i].dir.c_str(), check.why.c_str(), aside.c_str());
+    }
+    pending.push_back(i);
   }
   const std::size_t total = indices.size();
   if (!quiet && outcome.skipped > 0) {
@@ -173,17 +231,24 @@ PoolOutcome runCells(const std::string& sweep_dir, const std::vector<SweepCell>&
       const SweepCell& cell = cells[r.index];
       const double seconds = std::chrono::duration<double>(Clock::now() - r.start).count();
       const fs::path log = dir / "logs" / (cell.dir + ".log");
-      const bool ok =
-          WIFEXITED(status) && WEXITSTATUS(status) == 0 && cellFinished(sweep_dir, cell);
+      const CellCheck check = checkCell(sweep_dir, cell);
+      const bool ok = WIFEXITED(status) && WEXITSTATUS(status) == 0 &&
+                      check.state == CellCheck::State::kFinished;
       std::string what;
       if (ok) {
         ++outcome.finished;
         seconds_run += seconds;
-        fs::remove(failureRecordPath(sweep_dir, cell));
+        std::error_code ignored;
+        fs::remove(failureRecordPath(sweep_dir, cell), ignored);
         what = "done in " + duration(seconds);
       } else {
         ++outcome.failed;
-        const auto lines = lastLines(log, 20);
+        auto lines = lastLines(log, 20);
+        if (WIFEXITED(status) && WEXITSTATUS(status) == 0) {
+          // The run ended well but its folder is not this cell's (its world changed meanwhile).
+          lines.push_back("isg sweep: the run folder is not this cell's: " +
+                          (check.why.empty() ? std::string("missing") : check.why));
+        }
         nlohmann::json record = {{"world", cell.world},
                                  {"method", cell.method},
                                  {"seed", cell.seed},

@@ -26,7 +26,21 @@ PoolOutcome runCells(const std::string& sweep_dir, const std::vector<SweepCell>&
 // The failure record of a cell, beside its run folder.
 std::string failureRecordPath(const std::string& sweep_dir, const SweepCell& cell);
 
-// True when the cell's run folder is complete.
+// What a cell's folder holds: a finished run of this cell (metrics.json reads, and is of the
+// cell's world — its content hash —, method and seed), nothing, or something else (a damaged or
+// foreign folder: `why` says what).
+struct CellCheck {
+  enum class State { kFinished, kMissing, kDamaged };
+  State state = State::kMissing;
+  std::string why;
+};
+CellCheck checkCell(const std::string& sweep_dir, const SweepCell& cell);
+
+// True when the cell's run folder is complete and is this cell's.
 bool cellFinished(const std::string& sweep_dir, const SweepCell& cell);
+
+// Moves a damaged cell's folder out of the way, to SWEEP_DIR/.aside/<cell dir>[.N] (kept, never
+// removed: it may be all that is left of a long run), and returns that path relative to SWEEP_DIR.
+std::string moveCellAside(const std::string& sweep_dir, const SweepCell& cell);
 
 }  // namespace isg::cli

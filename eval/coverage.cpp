@@ -11,9 +11,20 @@ Coverage localizationCoverage(const Trajectory& ground_truth, const Trajectory& 
   const auto by_time = [](const StampedPose& a, const StampedPose& b) { return a.t < b.t; };
   const double start = std::min_element(ground_truth.begin(), ground_truth.end(), by_time)->t;
   const double end = std::max_element(ground_truth.begin(), ground_truth.end(), by_time)->t;
+  // Only the estimate's rows within the ground truth's span say anything; rows before it mean
+  // the method was localized when the ground truth began (time 0, never a negative time).
   std::vector<double> stamps;
-  stamps.reserve(estimate.size());
-  for (const auto& p : estimate) stamps.push_back(p.t);
+  stamps.reserve(estimate.size() + 1);
+  bool before = false;
+  for (const auto& p : estimate) {
+    if (p.t < start) {
+      before = true;
+    } else if (p.t <= end) {
+      stamps.push_back(p.t);
+    }
+  }
+  if (before) stamps.push_back(start);
+  if (stamps.empty()) return out;
   std::sort(stamps.begin(), stamps.end());
   const double first = stamps.front();
   for (std::size_t i = 1; i < stamps.size(); ++i) {

@@ -25,7 +25,9 @@ int indexOrAdd(std::vector<std::string>& names, const std::string& name) {
 constexpr const char* kWrongMark = "✗";
 
 // The CSV statistics columns that follow a method's column, in order.
-constexpr const char* kStatsSuffixes[] = {": std", ": localized", ": runs", ": wrong"};
+constexpr const char* kStatsSuffixes[] = {": std",   ": localized", ": runs",
+                                          ": wrong", ": failed",    ": not run"};
+constexpr int kStatsColumns = int(std::size(kStatsSuffixes));
 
 bool isStatsColumn(const std::string& header) {
   for (const char* suffix : kStatsSuffixes) {
@@ -37,11 +39,14 @@ bool isStatsColumn(const std::string& header) {
   return false;
 }
 
+// Three decimals, every digit before them: the largest double has 309 (a fixed buffer cut them).
 std::string cell(const std::optional<double>& value) {
   if (!value) return "-";
-  char b[32];
-  std::snprintf(b, sizeof b, "%.3f", *value);
-  return b;
+  const int size = std::snprintf(nullptr, 0, "%.3f", *value);
+  std::string text(std::size_t(size) + 1, '\0');
+  std::snprintf(text.data(), text.size(), "%.3f", *value);
+  text.resize(std::size_t(size));
+  return text;
 }
 
 // One CSV line's fields (RFC 4180): a field in double quotes may hold commas and doubled quotes;
@@ -163,6 +168,8 @@ std::string statsCell(const CellStats& s, bool latex) {
   }
   text += std::to_string(s.localized) + "/" + std::to_string(s.runs);
   if (s.wrong > 0) text += " " + std::to_string(s.wrong) + (latex ? "$\\times$" : kWrongMark);
+  if (s.failed > 0) text += ", " + std::to_string(s.failed) + " failed";
+  if (s.not_run > 0) text += ", " + std::to_string(s.not_run) + " not run";
   return text;
 }
 
@@ -180,13 +187,29 @@ CellStats cellStats(const std::vector<std::optional<double>>& values,
   }
   s.localized = int(correct.size());
   if (correct.empty()) return s;
+  // Values near the largest double would overflow a plain sum to inf: then the sums are taken of
+  // the values divided by the largest magnitude (any finite input gives a finite mean).
+  double scale = 1.0;
   double sum = 0.0;
   for (double v : correct) sum += v;
-  s.mean = sum / double(correct.size());
+  if (!std::isfinite(sum)) {
+    scale = 0.0;
+    for (double v : correct) scale = std::max(scale, std::abs(v));
+    sum = 0.0;
+    for (double v : correct) sum += v / scale;
+  }
+  const double mean = sum / double(correct.size());
+  s.mean = mean * scale;
   if (correct.size() >= 2) {
     double squares = 0.0;
-    for (double v : correct) squares += (v - *s.mean) * (v - *s.mean);
-    s.std = std::sqrt(squares / double(correct.size() - 1));
+    for (double v : correct) squares += (v / scale - mean) * (v / scale - mean);
+    if (!std::isfinite(squares) && scale == 1.0) {
+      for (double v : correct) scale = std::max(scale, std::abs(v));
+      const double scaled_mean = mean / scale;
+      squares = 0.0;
+      for (double v : correct) squares += (v / scale - scaled_mean) * (v / scale - scaled_mean);
+    }
+    s.std = std::sqrt(squares / double(correct.size() - 1)) * scale;
   }
   return s;
 }
@@ -269,7 +292,7 @@ std::string formatTable(const ResultTable& table, TableFormat format, const std:
       const auto withStats = [&](std::size_t c, const auto& main, const auto& extra) {
         std::string fields = main(c);
         if (!with_stats) return fields;
-        for (int k = 0; k < 4; ++k) fields += "," + std::string(extra(c, k));
+        for (int k = 0; k < kStatsColumns; ++k) fields += "," + std::string(extra(c, k));
         return fields;
       };
       line(
@@ -292,7 +315,8 @@ std::string formatTable(const ResultTable& table, TableFormat format, const std:
                     if (!table.present[r][i]) return "";
                     const CellStats s = statsOf(r, i);
                     if (k == 0) return s.std ? cell(s.std) : "";
-                    return std::to_string(k == 1 ? s.localized : k == 2 ? s.runs : s.wrong);
+                    const int counts[] = {0, s.localized, s.runs, s.wrong, s.failed, s.not_run};
+                    return std::to_string(counts[k]);
                   });
             },
             "", ",", "");
@@ -380,6 +404,12 @@ ResultTable parseTableCsv(const std::string& text) {
       if (used != fields[c].size()) {
         throw std::invalid_argument("line " + std::to_string(number) + ": \"" + fields[c] +
                                     "\" is neither a number, \"-\" nor \"" + kWrongMark + "\"");
+      }
+      // Every measure of a table is a finite amount >= 0: a nan or inf baseline would never
+      // compare worse, and the regression gate could never fail.
+      if (!std::isfinite(value) || value < 0.0) {
+        throw std::invalid_argument("line " + std::to_string(number) + ", " + header[c] + ": \"" +
+                                    fields[c] + "\" is not a finite number >= 0");
       }
       table.set(fields[0], header[c], value);
     }

@@ -13,6 +13,9 @@ struct CellStats {
   int runs = 0;
   int localized = 0;  // correctly: a number and not wrong
   int wrong = 0;
+  // Of `runs`, the seeds a sweep asked for that have no result: the run failed, or has not run.
+  int failed = 0;
+  int not_run = 0;
   std::optional<double> mean;  // over the correct runs
   std::optional<double> std;   // sample (n − 1) standard deviation; needs two correct runs
 };
@@ -35,8 +38,9 @@ struct ResultTable {
   // their count in the last row is "n/a".
   std::vector<std::string> uncounted;
   // Per cell, when the cells aggregate several runs ([row][column]; empty: one run per cell).
-  // Markdown and LaTeX then show "mean ± std k/n" (and "w✗"), CSV adds four columns per method
-  // ("<method>: std", ": localized", ": runs", ": wrong") that parseTableCsv skips.
+  // Markdown and LaTeX then show "mean ± std k/n" (and "w✗", "f failed", "m not run"), CSV adds
+  // six columns per method ("<method>: std", ": localized", ": runs", ": wrong", ": failed",
+  // ": not run") that parseTableCsv skips.
   std::vector<std::vector<CellStats>> stats;
 
   // Sets a cell, adding its row and column when new.

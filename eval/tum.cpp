@@ -94,6 +94,17 @@ Trajectory parseTum(const std::string& text, const std::string& file) {
     }
     std::string extra;
     if (fields >> extra) throw TumError(file, number, "more than 8 fields");
+    const auto outOfRange = [&](const char* what, double value, const char* limit) {
+      char text[160];
+      std::snprintf(text, sizeof text, "%s %g is out of range (%s)", what, value, limit);
+      throw TumError(file, number, text);
+    };
+    if (std::abs(v[0]) > kMaxTumTime) outOfRange("time", v[0], "|t| at most 1e10 s");
+    for (int k = 1; k <= 3; ++k) {
+      if (std::abs(v[k]) > kMaxTumCoordinate) {
+        outOfRange(k == 1 ? "tx" : k == 2 ? "ty" : "tz", v[k], "at most 1e9 m from the origin");
+      }
+    }
     const Eigen::Quaterniond q(v[7], v[4], v[5], v[6]);
     if (std::abs(q.norm() - 1.0) > 1e-3) {
       throw TumError(file, number, "quaternion is not unit length");

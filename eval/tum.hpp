@@ -45,6 +45,10 @@ class TumError : public std::runtime_error {
 
 // The largest TUM file read (about 10^7 poses).
 inline constexpr std::uintmax_t kMaxTumBytes = 1u << 30;
+// The largest time (s; a Unix epoch stamp until the year 2286) and coordinate (m; 150 Earth radii)
+// a TUM row may hold: beyond them errors overflow to inf and statistics to nan.
+inline constexpr double kMaxTumTime = 1e10;
+inline constexpr double kMaxTumCoordinate = 1e9;
 
 // Parses TUM text; '#' lines and blank lines are skipped. A malformed line, or a time that does
 // not increase, throws TumError naming `file` and the line number. An empty trajectory is

@@ -83,20 +83,18 @@ fs::path requireParentFolder(const std::string& path) {
 
 namespace {
 
-// Checks that `path` may be written and names its temporary twin beside it (stale twins of killed
-// processes removed).
-fs::path temporaryPathFor(const std::string& path, bool overwrite) {
-  const fs::path target(path);
-  if (fs::exists(target) && !overwrite) {
-    throw bim::InputError(path, "", "already exists (use --force to replace it)");
-  }
-  const fs::path parent = requireParentFolder(path);
+// Checks `path` against the output rule and names its temporary twin beside it (stale twins of
+// killed processes removed).
+fs::path temporaryPathFor(const std::string& path, const OutputRule& rule) {
+  const fs::path target = checkOutputPath(path, rule);
+  requireParentFolder(path);
+  const fs::path parent = target.parent_path();
   removeStalePartials(parent, target);
   return parent / (partialPrefix(target) + std::to_string(::getpid()));
 }
 
-fs::path createTemporaryFolder(const std::string& dir, bool overwrite) {
-  const fs::path temporary = temporaryPathFor(dir, overwrite);
+fs::path createTemporaryFolder(const std::string& dir, const OutputRule& rule) {
+  const fs::path temporary = temporaryPathFor(dir, rule);
   std::error_code error;
   fs::create_directories(temporary, error);
   if (error) throw bim::InputError(dir, "", "cannot write: " + error.message());
@@ -105,34 +103,53 @@ fs::path createTemporaryFolder(const std::string& dir, bool overwrite) {
 
 }  // namespace
 
-void checkCanCreateFolder(const std::string& dir, bool overwrite) {
+void checkCanCreateFolder(const std::string& dir, OutputKind kind, bool overwrite,
+                          const std::vector<std::string>& inputs) {
   std::error_code ignored;
-  fs::remove(createTemporaryFolder(dir, overwrite), ignored);
+  fs::remove(createTemporaryFolder(dir, {kind, inputs, overwrite}), ignored);
 }
 
-void writeFolderAtomically(const std::string& dir, bool overwrite,
+void writeFolderAtomically(const std::string& dir, OutputKind kind, bool overwrite,
                            const std::function<void(const fs::path&)>& fill) {
-  const fs::path target(dir);
-  const fs::path temporary = createTemporaryFolder(dir, overwrite);
+  const OutputRule rule{kind, {}, overwrite};
+  const fs::path temporary = createTemporaryFolder(dir, rule);
+  const fs::path target = checkOutputPath(dir, rule);
   std::error_code error;
   try {
     try {
       fill(temporary);
+      writeOutputMarker(temporary, kind);
     } catch (const bim::InputError& e) {
       // A file inside the temporary folder is named as it would have been in the real one.
       const std::string file = e.file();
       const std::string inside = temporary.string() + "/";
       if (file.rfind(inside, 0) != 0) throw;
-      throw bim::InputError((target / file.substr(inside.size())).string(), e.pointer(),
+      throw bim::InputError((fs::path(dir) / file.substr(inside.size())).string(), e.pointer(),
                             e.reason());
     }
+    // Checked again at the last moment: what the path holds now is what gets replaced.
+    checkOutputPath(dir, rule);
     if (fs::exists(target) && swapFolders(temporary, target)) {
       // The old folder now has the temporary name: if this process dies while removing it, the
       // next run to the same path removes it (removeStalePartials).
       fs::remove_all(temporary, error);
       return;
     }
-    if (fs::exists(target)) fs::remove_all(target);
+    if (fs::exists(target)) {
+      // No exchange on this file system: the old folder is moved aside, never removed before the
+      // new one is in place.
+      const fs::path aside = temporary.string() + ".replaced";
+      fs::rename(target, aside, error);
+      if (error) throw bim::InputError(dir, "", "cannot replace: " + error.message());
+      fs::rename(temporary, target, error);
+      if (error) {
+        std::error_code ignored;
+        fs::rename(aside, target, ignored);
+        throw bim::InputError(dir, "", "cannot write: " + error.message());
+      }
+      fs::remove_all(aside, error);
+      return;
+    }
     fs::rename(temporary, target, error);
     if (error) throw bim::InputError(dir, "", "cannot write: " + error.message());
   } catch (...) {
@@ -142,10 +159,9 @@ void writeFolderAtomically(const std::string& dir, bool overwrite,
   }
 }
 
-AtomicFile::AtomicFile(const std::string& path, bool overwrite)
-    : path_(path), temporary_(temporaryPathFor(path, overwrite)) {
-  if (fs::is_directory(path_)) throw bim::InputError(path, "", "is a directory");
-}
+AtomicFile::AtomicFile(const std::string& path, OutputKind kind, bool overwrite)
+    : path_(checkOutputPath(path, {kind, {}, overwrite})),
+      temporary_(temporaryPathFor(path, {kind, {}, overwrite})) {}
 
 AtomicFile::~AtomicFile() {
   if (committed_) return;

@@ -3,30 +3,38 @@
 #include <filesystem>
 #include <functional>
 #include <string>
+#include <vector>
+
+#include "run/output_path.hpp"
 
 namespace isg::run {
 
 // Creates the folder `dir` all at once: `fill` writes into a temporary folder beside it, which is
 // renamed into place when `fill` returns (an existing folder is exchanged with it in one step,
-// then removed); if it throws, the temporary folder is removed and nothing is left half-written. An
-// existing `dir` is an InputError unless `overwrite`, and so is a parent directory that does not
-// exist. Used for dataset and run folders.
-void writeFolderAtomically(const std::string& dir, bool overwrite,
+// then removed); if it throws, the temporary folder is removed and nothing is left half-written.
+// `dir` follows the output rule (checkOutputPath: an existing folder is replaced only with
+// `overwrite` and only if it is an output of ours of `kind`); a parent directory that does not
+// exist is an InputError. The folder gets the marker of `kind` (kOutputMarkerFile). Used for
+// dataset, run and generated-building folders.
+void writeFolderAtomically(const std::string& dir, OutputKind kind, bool overwrite,
                            const std::function<void(const std::filesystem::path&)>& fill);
 
-// The checks writeFolderAtomically starts with, for a command to run before hours of work:
-// `dir` may be created (it does not exist, or `overwrite`; its parent exists and is writable).
-// Probes by creating and removing the temporary folder; earlier runs' stale ones are removed.
-void checkCanCreateFolder(const std::string& dir, bool overwrite);
+// The checks writeFolderAtomically starts with, for a command to run before hours of work: the
+// output rule with the command's `inputs`, and that the folder may be created (its parent exists
+// and is writable). Probes by creating and removing the temporary folder; earlier runs' stale ones
+// are removed.
+void checkCanCreateFolder(const std::string& dir, OutputKind kind, bool overwrite,
+                          const std::vector<std::string>& inputs = {});
 
 // A file too large to build in memory, made all at once: the caller writes temporary() (beside
 // `path`, named like writeFolderAtomically's folders so that a killed process's leftover is
 // removed by the next write to the same path), then commit() renames it into place. Destroyed
-// uncommitted (an error, an interrupt), it removes the temporary file. An existing `path` is an
-// InputError unless `overwrite`, as is a directory at `path` or a missing parent directory.
+// uncommitted (an error, an interrupt), it removes the temporary file. `path` follows the output
+// rule for `kind` (an existing file is replaced only with `overwrite` and only if it is ours); a
+// missing parent directory is an InputError.
 class AtomicFile {
  public:
-  AtomicFile(const std::string& path, bool overwrite);
+  AtomicFile(const std::string& path, OutputKind kind, bool overwrite);
   ~AtomicFile();
   AtomicFile(const AtomicFile&) = delete;
   AtomicFile& operator=(const AtomicFile&) = delete;

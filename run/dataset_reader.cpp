@@ -107,6 +107,7 @@ DatasetReader::DatasetReader(const std::string& dir) : dir_(dir) {
                               std::to_string(scan_files_.size()) + " scans in scans/");
   }
   for (const auto& s : stamps) scan_stamps_.push_back(s.t);
+  scan_poses_ = stamps;
   if (fs::exists(root / dataset::kImu)) imu_ = readImuFile((root / dataset::kImu).string());
 }
 

@@ -21,6 +21,7 @@ class DatasetReader : public ScanSource {
   explicit DatasetReader(const std::string& dir);
 
   const nlohmann::json& metadata() const { return metadata_; }
+  const std::string& dir() const { return dir_; }
   // Checked fields of metadata.json (docs/formats.md): the run's seed (0 when not recorded) and
   // the robot's level (empty when not recorded).
   std::uint64_t seed() const { return seed_; }
@@ -41,6 +42,8 @@ class DatasetReader : public ScanSource {
   const Trajectory& groundTruth() const { return ground_truth_; }
   int scanCount() const { return int(scan_files_.size()); }
   double scanStamp(int index) const { return scan_stamps_[index]; }
+  // scans.tum: B_T_L at each scan's stamp.
+  const Trajectory& scanPoses() const { return scan_poses_; }
   // Seconds per LiDAR turn (metadata lidar.rate_hz; 10 Hz when it is not given).
   double scanPeriod() const { return scan_period_; }
   // What the run's driver is fed: the dataset's streams, with the duration the metadata records
@@ -62,6 +65,7 @@ class DatasetReader : public ScanSource {
   std::uint64_t seed_ = 0;
   std::string robot_level_;
   std::optional<double> duration_;
+  Trajectory scan_poses_;
   Eigen::Isometry3d R_T_L_ = Eigen::Isometry3d::Identity();
   Eigen::Isometry3d R_T_I_ = Eigen::Isometry3d::Identity();
   std::vector<slam::ImuSample> imu_;

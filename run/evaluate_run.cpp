@@ -50,6 +50,7 @@ RunEvaluation evaluateRun(const RunRecord& run) {
   m.world = run.setup.world;
   m.method = run.setup.method;
   m.seed = run.setup.seed;
+  if (!run.setup.world_hash.empty()) m.world_hash = run.setup.world_hash;
   m.scans = run.scans;
   m.sim_seconds = streams.duration;
   m.wall_seconds = run.wall_seconds;

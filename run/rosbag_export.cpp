@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "bim/input_error.hpp"
+#include "run/dataset_check.hpp"
 #include "run/dataset_reader.hpp"
 #include "run/ros_messages.hpp"
 #include "run/rosbag_writer.hpp"
@@ -49,6 +50,9 @@ RosbagSummary exportRosbag(const std::string& dataset_dir, const std::string& ba
                            const std::function<void(int, int)>& progress) {
   const auto start = std::chrono::steady_clock::now();
   DatasetReader dataset(dataset_dir);
+  // A bag of files that disagree with their metadata would carry the lie (IMU covariances come
+  // from the rate, topics from what is declared): the first disagreement is said instead.
+  checkDatasetAgainstMetadata(dataset);
   const auto stamp = [&](double t) {
     try {
       return RosTime::fromSeconds(t, options.stamp_offset);

@@ -51,8 +51,11 @@ std::string bagHeaderRecord(std::uint64_t index_position, std::uint32_t connecti
   const std::string header =
       field("op", bytesOf(std::uint8_t(kBagHeader))) + field("index_pos", bytesOf(index_position)) +
       field("conn_count", bytesOf(connections)) + field("chunk_count", bytesOf(chunks));
-  // Padded with spaces so that the record can be rewritten in place when the bag is closed.
-  return record(header, std::string(kBagHeaderRecordSize - header.size() - 8, ' '));
+  // Padded with spaces so that the record can be rewritten in place when the bag is closed; the
+  // padding starts with our mark, which readers skip and --force looks for (run/output_path.hpp).
+  std::string padding(kBagHeaderRecordSize - header.size() - 8, ' ');
+  padding.replace(0, std::strlen(kWrittenByIsg), kWrittenByIsg);
+  return record(header, padding);
 }
 
 }  // namespace
@@ -69,7 +72,8 @@ RosTime RosTime::fromSeconds(double seconds, std::uint32_t offset) {
   return {std::uint32_t(sec), std::uint32_t(total % 1000000000u)};
 }
 
-RosbagWriter::RosbagWriter(const std::string& path, bool overwrite) : file_(path, overwrite) {
+RosbagWriter::RosbagWriter(const std::string& path, bool overwrite)
+    : file_(path, OutputKind::kBag, overwrite) {
   out_.open(file_.temporary(), std::ios::binary | std::ios::trunc);
   if (!out_) throw bim::InputError(path, "", std::string("cannot write: ") + std::strerror(errno));
   put(kVersionLine);

@@ -12,7 +12,7 @@ namespace fs = std::filesystem;
 
 void writeRunFolder(const std::string& dir, const RunRecord& run, const RunEvaluation& evaluation,
                     bool force) {
-  writeFolderAtomically(dir, force, [&](const fs::path& temporary) {
+  writeFolderAtomically(dir, OutputKind::kRunFolder, force, [&](const fs::path& temporary) {
     writeFile(temporary / "groundtruth.tum", eval::toTumText(run.streams.ground_truth));
     writeFile(temporary / "odometry.tum", eval::toTumText(run.streams.odometry));
     writeFile(temporary / "estimate.tum", eval::toTumText(run.estimate));

@@ -1,5 +1,6 @@
 #include "run/run_metrics.hpp"
 
+#include <cmath>
 #include <filesystem>
 
 #include "bim/input_error.hpp"
@@ -35,16 +36,28 @@ class FieldReader {
   std::optional<Statistics> statistics(const char* key) const {
     if (!object_.contains(key)) return std::nullopt;
     const FieldReader s(object_[key], pointer_ + "/" + key, file_);
+    // Statistics of errors (metres, degrees): counts and values are never negative.
     Statistics out;
     out.count = s.required<int>("count");
-    out.rmse = s.required<double>("rmse");
-    out.mean = s.required<double>("mean");
-    out.median = s.required<double>("median");
-    out.std = s.required<double>("std");
-    out.min = s.required<double>("min");
-    out.max = s.required<double>("max");
-    out.sse = s.required<double>("sse");
+    if (out.count < 0) fail(pointer_ + "/" + key + "/count", "must be >= 0");
+    out.rmse = s.measure("rmse");
+    out.mean = s.measure("mean");
+    out.median = s.measure("median");
+    out.std = s.measure("std");
+    out.min = s.measure("min");
+    out.max = s.measure("max");
+    out.sse = s.measure("sse");
     return out;
+  }
+  // A required number that is finite and >= 0 (a time, a distance, an error).
+  double measure(const char* key) const {
+    const double value = required<double>(key);
+    if (value < 0.0) fail(pointer_ + "/" + key, "must be >= 0, got " + object_[key].dump());
+    return value;
+  }
+  std::optional<double> optionalMeasure(const char* key) const {
+    if (!object_.contains(key)) return std::nullopt;
+    return measure(key);
   }
   // An optional array of numbers (empty when absent).
   std::vector<double> numbers(const char* key) const {
@@ -54,7 +67,9 @@ class FieldReader {
     const std::string pointer = pointer_ + "/" + key;
     if (!array.is_array()) fail(pointer, "expected an array of numbers");
     for (std::size_t i = 0; i < array.size(); ++i) {
-      if (!array[i].is_number()) fail(pointer + "/" + std::to_string(i), "expected a number");
+      if (!array[i].is_number() || !std::isfinite(array[i].get<double>())) {
+        fail(pointer + "/" + std::to_string(i), "expected a finite number");
+      }
       out.push_back(array[i].get<double>());
     }
     return out;
@@ -80,6 +95,7 @@ class FieldReader {
       }
     } else {
       if (!value.is_number()) fail(pointer, "expected a number");
+      if (!std::isfinite(value.get<double>())) fail(pointer, "expected a finite number");
     }
     return value.get<T>();
   }
@@ -89,6 +105,12 @@ class FieldReader {
   const std::string& file_;
 };
 
+bool isContentHash(const std::string& text) {
+  const std::string prefix = "sha256:";
+  return text.size() == prefix.size() + 64 && text.rfind(prefix, 0) == 0 &&
+         text.find_first_not_of("0123456789abcdef", prefix.size()) == std::string::npos;
+}
+
 }  // namespace
 
 nlohmann::json metricsToJson(const RunMetrics& m) {
@@ -96,6 +118,7 @@ nlohmann::json metricsToJson(const RunMetrics& m) {
   j["world"] = m.world;
   j["method"] = m.method;
   j["seed"] = m.seed;
+  if (m.world_hash) j["world_hash"] = *m.world_hash;
   j["scans"] = m.scans;
   j["sim_seconds"] = m.sim_seconds;
   j["wall_seconds"] = m.wall_seconds;
@@ -152,22 +175,31 @@ RunMetrics metricsFromJson(const nlohmann::json& document, const std::string& fi
   m.world = r.required<std::string>("world");
   m.method = r.required<std::string>("method");
   m.seed = r.required<std::uint64_t>("seed");
+  m.world_hash = r.optional<std::string>("world_hash");
+  if (m.world_hash && !isContentHash(*m.world_hash)) {
+    r.fail("/world_hash", "expected \"sha256:\" and 64 hex digits");
+  }
   m.scans = r.required<int>("scans");
-  m.sim_seconds = r.required<double>("sim_seconds");
-  m.wall_seconds = r.required<double>("wall_seconds");
-  m.real_time_factor = r.required<double>("real_time_factor");
+  if (m.scans < 0) r.fail("/scans", "must be >= 0");
+  m.sim_seconds = r.measure("sim_seconds");
+  m.wall_seconds = r.measure("wall_seconds");
+  m.real_time_factor = r.measure("real_time_factor");
   m.localized = r.required<bool>("localized");
-  m.time_to_localize = r.optional<double>("time_to_localize");
-  m.distance_to_localize = r.optional<double>("distance_to_localize");
+  m.time_to_localize = r.optionalMeasure("time_to_localize");
+  m.distance_to_localize = r.optionalMeasure("distance_to_localize");
   m.rooms_visited_to_localize = r.optional<int>("rooms_visited_to_localize");
-  m.share_localized = r.optional<double>("share_localized");
+  if (m.rooms_visited_to_localize && *m.rooms_visited_to_localize < 0) {
+    r.fail("/rooms_visited_to_localize", "must be >= 0");
+  }
+  m.share_localized = r.optionalMeasure("share_localized");
+  if (m.share_localized && *m.share_localized > 1.0) r.fail("/share_localized", "must be <= 1");
   m.ape_B = r.statistics("ape_B");
   m.ape_B_rotation_deg = r.statistics("ape_B_rotation_deg");
   m.ape_M_se3 = r.statistics("ape_M_se3");
   m.ape_odometry_from_true_start = r.statistics("ape_odometry_from_true_start");
   m.wrongly_localized = r.optional<bool>("wrongly_localized");
-  m.time_wrongly_localized = r.optional<double>("time_wrongly_localized");
-  m.max_error_B = r.optional<double>("max_error_B");
+  m.time_wrongly_localized = r.optionalMeasure("time_wrongly_localized");
+  m.max_error_B = r.optionalMeasure("max_error_B");
   m.matching_status = r.optional<std::string>("matching_status");
   m.lost_at = r.numbers("lost_at");
   m.relocalized_at = r.numbers("relocalized_at");

@@ -33,6 +33,9 @@ struct RunMetrics {
   std::string world;   // what the user named (file, builtin:NAME or dataset folder)
   std::string method;  // the localizer's name
   std::uint64_t seed = 0;
+  // The content hash of the world (worlds::worldHash), when the run had one: isg table and
+  // isg sweep never mix runs of different worlds that share a name.
+  std::optional<std::string> world_hash;
   int scans = 0;
   double sim_seconds = 0.0;   // robot time
   double wall_seconds = 0.0;  // wall-clock time of the loop

@@ -20,6 +20,7 @@ struct RunSetup {
   std::string world;   // what the user named: a file, builtin:NAME, or the dataset folder
   std::string method;  // the localizer's name
   std::uint64_t seed = 0;
+  std::string world_hash;           // worlds::worldHash of the world; empty when there is none
   const bim::Plan* plan = nullptr;  // for agraph.json and the report; may be null
   const bim::AGraph* agraph = nullptr;
   std::string level;

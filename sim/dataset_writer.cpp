@@ -129,58 +129,59 @@ DatasetSummary writeDataset(Simulation& sim, const std::string& dir, const Datas
                             const ProgressCallback& progress) {
   const auto start = std::chrono::steady_clock::now();
   DatasetSummary summary;
-  writeFolderAtomically(dir, options.overwrite, [&](const fs::path& temporary) {
-    fs::create_directories(temporary / run::dataset::kScans);
-    const double duration =
-        options.duration < 0 ? sim.duration() : std::min(options.duration, sim.duration());
-    summary.sim_seconds = duration;
-    const int scans = sim.scanCount(duration);
-    summary.scans = scans;
-    std::atomic<int> next{0}, done{0};
-    std::atomic<std::size_t> points{0}, rays{0}, scan_bytes{0};
-    std::mutex report;
-    std::exception_ptr error;  // the first worker's error, rethrown here after the join
-    auto worker = [&] {
-      try {
-        const auto lidar = sim.makeLidar();
-        for (int k = next++; k < scans; k = next++) {
-          const LidarScan scan = sim.scan(k, *lidar);
-          const std::string bytes = run::dataset::pcdBytes(scan.points, options.pcd);
-          writeFile(temporary / run::dataset::kScans / run::dataset::scanFileName(k), bytes);
-          scan_bytes += bytes.size();
-          points += scan.points.size();
-          rays += std::size_t(scan.rays);
-          const int finished = ++done;
-          if (progress) {
+  writeFolderAtomically(
+      dir, run::OutputKind::kDataset, options.overwrite, [&](const fs::path& temporary) {
+        fs::create_directories(temporary / run::dataset::kScans);
+        const double duration =
+            options.duration < 0 ? sim.duration() : std::min(options.duration, sim.duration());
+        summary.sim_seconds = duration;
+        const int scans = sim.scanCount(duration);
+        summary.scans = scans;
+        std::atomic<int> next{0}, done{0};
+        std::atomic<std::size_t> points{0}, rays{0}, scan_bytes{0};
+        std::mutex report;
+        std::exception_ptr error;  // the first worker's error, rethrown here after the join
+        auto worker = [&] {
+          try {
+            const auto lidar = sim.makeLidar();
+            for (int k = next++; k < scans; k = next++) {
+              const LidarScan scan = sim.scan(k, *lidar);
+              const std::string bytes = run::dataset::pcdBytes(scan.points, options.pcd);
+              writeFile(temporary / run::dataset::kScans / run::dataset::scanFileName(k), bytes);
+              scan_bytes += bytes.size();
+              points += scan.points.size();
+              rays += std::size_t(scan.rays);
+              const int finished = ++done;
+              if (progress) {
+                std::lock_guard<std::mutex> lock(report);
+                progress(finished, scans);
+              }
+            }
+          } catch (...) {
             std::lock_guard<std::mutex> lock(report);
-            progress(finished, scans);
+            if (!error) error = std::current_exception();
+            next = scans;  // the others stop after their current scan
           }
-        }
-      } catch (...) {
-        std::lock_guard<std::mutex> lock(report);
-        if (!error) error = std::current_exception();
-        next = scans;  // the others stop after their current scan
-      }
-    };
-    std::vector<std::thread> pool;
-    for (int i = 1; i < std::max(1, options.threads); ++i) pool.emplace_back(worker);
-    worker();
-    for (auto& t : pool) t.join();
-    if (error) std::rethrow_exception(error);
-    summary.points = points;
-    summary.rays = rays;
-    summary.scan_bytes = scan_bytes;
+        };
+        std::vector<std::thread> pool;
+        for (int i = 1; i < std::max(1, options.threads); ++i) pool.emplace_back(worker);
+        worker();
+        for (auto& t : pool) t.join();
+        if (error) std::rethrow_exception(error);
+        summary.points = points;
+        summary.rays = rays;
+        summary.scan_bytes = scan_bytes;
 
-    using namespace run::dataset;
-    writeFile(temporary / kGroundTruth,
-              trajectoryText(sim.groundTruth(duration, options.groundtruth_rate)));
-    writeFile(temporary / kOdometry, trajectoryText(sim.odometry(duration)));
-    writeFile(temporary / kScanPoses, trajectoryText(sim.scanPoses(duration)));
-    const std::vector<ImuSample> imu = sim.imu(duration);
-    writeFile(temporary / kImu, imuText(imu));
-    writeFile(temporary / kMetadata,
-              metadata(sim, duration, options, scans, int(imu.size())).dump(2) + "\n");
-  });
+        using namespace run::dataset;
+        writeFile(temporary / kGroundTruth,
+                  trajectoryText(sim.groundTruth(duration, options.groundtruth_rate)));
+        writeFile(temporary / kOdometry, trajectoryText(sim.odometry(duration)));
+        writeFile(temporary / kScanPoses, trajectoryText(sim.scanPoses(duration)));
+        const std::vector<ImuSample> imu = sim.imu(duration);
+        writeFile(temporary / kImu, imuText(imu));
+        writeFile(temporary / kMetadata,
+                  metadata(sim, duration, options, scans, int(imu.size())).dump(2) + "\n");
+      });
   summary.wall_seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return summary;

@@ -10,9 +10,17 @@
 #include <set>
 #include <stdexcept>
 
+#include "bim/input_error.hpp"
+#include "bim/json_reader.hpp"
+#include "bim/plan_parser.hpp"
+#include "bim/scenario.hpp"
+
 namespace isg::worlds {
 
 namespace {
+
+// The width of an office door, and the narrowest opening the robot is sent through.
+constexpr double kOfficeDoorWidth = 0.9;
 
 using nlohmann::json;
 
@@ -419,7 +427,10 @@ const std::vector<std::string>& generatorFamilies() {
   return kFamilies;
 }
 
-GeneratedBuilding generateBuilding(const GeneratorSpec& spec) {
+namespace {
+
+// The building, before it is read as isg check reads it.
+GeneratedBuilding generateUnchecked(const GeneratorSpec& spec) {
   const auto& families = generatorFamilies();
   if (std::find(families.begin(), families.end(), spec.family) == families.end()) {
     throw std::invalid_argument("family: unknown family \"" + spec.family + "\"");
@@ -434,6 +445,12 @@ GeneratedBuilding generateBuilding(const GeneratorSpec& spec) {
   require(spec.room_depth >= 3.0 && spec.room_depth <= 20.0, "room depth: must be in [3, 20] m");
   require(spec.corridor_width >= 1.2 && spec.corridor_width <= 6.0,
           "corridor width: must be in [1.2, 6] m (a robot and a door must fit)");
+  // The free width between a corridor's walls is the corridor width less one wall thickness (half
+  // of each wall stands in it); the robot needs 1 m of it (its 0.35 m clearance on each side, and
+  // the joints between corridors at least an office door wide).
+  require(spec.corridor_width - t >= 1.0 - 1e-9,
+          "corridor width: must be at least 1 m more than the wall thickness (" +
+              std::to_string(t).substr(0, 4) + " m): its free width is what the robot walks in");
   require(spec.size_spread >= 0.0 && spec.size_spread <= 0.4, "size spread: must be in [0, 0.4]");
   require(spec.doors == "center" || spec.doors == "random" || spec.doors == "corner",
           "doors: must be center, random or corner");
@@ -477,9 +494,10 @@ GeneratedBuilding generateBuilding(const GeneratorSpec& spec) {
   // Doors: each office to the corridor or hall it shares most with, corridors to each other.
   const double end_margin = 0.5 * t + 0.15;
   std::vector<Door> doors;
-  const auto addDoor = [&](int a, int b, const Side& side, double fraction, double width) {
-    const double lo = side.from + end_margin + 0.5 * width;
-    const double hi = side.to - end_margin - 0.5 * width;
+  const auto addDoor = [&](int a, int b, const Side& side, double fraction, double width,
+                           double margin) {
+    const double lo = side.from + margin + 0.5 * width;
+    const double hi = side.to - margin - 0.5 * width;
     if (hi < lo) return false;
     doors.push_back(
         {side.wall, std::clamp(side.from + fraction * side.length(), lo, hi), width, a, b});
@@ -507,11 +525,21 @@ GeneratedBuilding generateBuilding(const GeneratorSpec& spec) {
       if (best == nullptr) continue;
       double fraction = spaces[a].door_fraction;
       if (fraction < 0) fraction = s.doors == "center" ? 0.5 : s.doors == "corner" ? corner : drawn;
-      addDoor(a, best->first, best->second, fraction, 0.9);
+      addDoor(a, best->first, best->second, fraction, kOfficeDoorWidth, end_margin);
     } else {
       for (const auto& [b, side] : touching[a]) {
         if (b < a || spaces[b].kind == Kind::kOffice) continue;
-        addDoor(a, b, side, 0.5, std::min(2.0, side.length() - 2.0 * end_margin));
+        // Two corridors meet across the narrower one's width: the opening keeps clear of the
+        // crossing walls' ends, and where that would leave it narrower than an office door (a
+        // corridor under 1.4 m), it takes all of the free width between those walls, so the
+        // robot passes wherever the corridor itself lets it.
+        double width = std::min(2.0, side.length() - 2.0 * end_margin);
+        double margin = end_margin;
+        if (width < kOfficeDoorWidth) {
+          margin = 0.5 * t + 0.02;
+          width = side.length() - 2.0 * margin;
+        }
+        addDoor(a, b, side, 0.5, width, margin);
       }
     }
   }
@@ -521,7 +549,7 @@ GeneratedBuilding generateBuilding(const GeneratorSpec& spec) {
     for (const auto& [b, side] : touching[a]) {
       const bool draw = unit(rng) < s.connecting_doors;
       if (b > a && draw && spaces[a].kind == Kind::kOffice && spaces[b].kind == Kind::kOffice) {
-        addDoor(a, b, side, 0.5, 0.9);
+        addDoor(a, b, side, 0.5, kOfficeDoorWidth, end_margin);
       }
     }
   }
@@ -532,7 +560,7 @@ GeneratedBuilding generateBuilding(const GeneratorSpec& spec) {
     for (int a = 0; a < n && !grew; ++a) {
       if (seen[a]) continue;
       for (const auto& [b, side] : touching[a]) {
-        if (seen[b] && addDoor(a, b, side, 0.5, 0.9)) {
+        if (seen[b] && addDoor(a, b, side, 0.5, kOfficeDoorWidth, end_margin)) {
           grew = true;
           break;
         }
@@ -769,6 +797,56 @@ GeneratedBuilding generateBuilding(const GeneratorSpec& spec) {
       {"robot", {{"level", "L0"}, {"start", {{"room", ids[start]}}}, {"route", "tour"}}},
       {"as_built", as_built}};
   return out;
+}
+
+// Why the building's plan or scenario is refused, as isg check would refuse it (a plan limit:
+// rooms, extent, clutter items ...); nullopt when both read without error or warning.
+std::optional<std::string> refusal(const GeneratedBuilding& b) {
+  try {
+    bim::Warnings warnings;
+    const bim::JsonSource plan_source{b.name + ".json", &warnings};
+    bim::Plan plan = bim::parsePlan(bim::JsonNode(b.plan, "", plan_source));
+    const bim::JsonSource scenario_source{b.name + ".asbuilt.json", &warnings};
+    bim::parseScenario(bim::JsonNode(b.scenario, "", scenario_source), [&](const bim::JsonNode&) {
+      return bim::LoadedPlan{plan, plan_source.file};
+    });
+    if (!warnings.empty()) return warnings.front().str();
+  } catch (const bim::InputError& e) {
+    return std::string(e.what());
+  }
+  return std::nullopt;
+}
+
+}  // namespace
+
+GeneratedBuilding generateBuilding(const GeneratorSpec& spec) {
+  GeneratedBuilding building = generateUnchecked(spec);
+  const std::optional<std::string> why = refusal(building);
+  if (!why) return building;
+  // Too many rooms for the plan's limits (its corridors count as rooms, a one-corridor floor
+  // grows longer than a level may be): the largest count that works is found and said, so that
+  // the message is a range the user can act on.
+  const int asked = spec.rooms > 0 ? spec.rooms : 0;
+  int good = 0;
+  for (int lo = 1, hi = asked - 1; lo <= hi;) {
+    GeneratorSpec fewer = spec;
+    fewer.rooms = lo + (hi - lo) / 2;
+    if (refusal(generateUnchecked(fewer))) {
+      hi = fewer.rooms - 1;
+    } else {
+      good = fewer.rooms;
+      lo = fewer.rooms + 1;
+    }
+  }
+  if (good > 0) {
+    throw std::invalid_argument("rooms: " + std::to_string(asked) + " offices make a " +
+                                spec.family + " isg check refuses (" + *why +
+                                "); with these parameters at most " + std::to_string(good));
+  }
+  throw std::invalid_argument("family: the " + spec.family +
+                              " of these parameters is refused by "
+                              "isg check (" +
+                              *why + ")");
 }
 
 }  // namespace isg::worlds

@@ -81,14 +81,15 @@ TEST(Baselines, SeedsOfOneCellAreAggregated) {
   const double mean = 0.5 * (a + b);
   const double std = std::abs(a - b) / std::sqrt(2.0);  // sample deviation of two numbers
   char expected[128];
-  std::snprintf(expected, sizeof expected, "d2,-,,0,1,0,%.3f,%.3f,2,2,0\n", mean, std);
+  std::snprintf(expected, sizeof expected, "d2,-,,0,1,0,0,0,%.3f,%.3f,2,2,0,0,0\n", mean, std);
   const auto csv =
       sandbox.run("table runs/d2-odometry-seed-1 runs/d2-odometry-seed-2 amcl-1 --format csv");
   ASSERT_EQ(csv.exit_code, 0) << csv.err;
   EXPECT_EQ(csv.out,
-            std::string("world,amcl,amcl: std,amcl: localized,amcl: runs,amcl: wrong,odometry,"
-                        "odometry: std,odometry: localized,odometry: runs,odometry: wrong\n") +
-                expected + "localized correctly,0/1,,,,,1/1,,,,\n");
+            std::string("world,amcl,amcl: std,amcl: localized,amcl: runs,amcl: wrong,amcl: failed,"
+                        "amcl: not run,odometry,odometry: std,odometry: localized,odometry: runs,"
+                        "odometry: wrong,odometry: failed,odometry: not run\n") +
+                expected + "localized correctly,0/1,,,,,,,1/1,,,,,,\n");
   char shown[128];
   std::snprintf(shown, sizeof shown, "| d2 | 0/1 | %.3f ± %.3f 2/2 |", mean, std);
   const auto md = sandbox.run("table runs/d2-odometry-seed-1 runs/d2-odometry-seed-2 amcl-1");

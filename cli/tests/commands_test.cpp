@@ -112,6 +112,7 @@ TEST(AGraph, WritesJsonAndSvgAndSummarises) {
   EXPECT_EQ(doc["edges"].size(), 14u + 16u + 9u + 4u);
   const std::string svg = sandbox.read("agraph.svg");
   EXPECT_THAT(svg, StartsWith("<svg xmlns=\"http://www.w3.org/2000/svg\""));
+  EXPECT_THAT(svg, HasSubstr("<!-- written by isg -->"));  // what lets a second run replace it
   EXPECT_THAT(svg, HasSubstr("<title>doorway D3</title>"));
 }
 
@@ -440,7 +441,7 @@ TEST(Run, BadInputAndUsage) {
   sandbox.write("taken", "x");
   const auto taken = sandbox.run("run builtin:d1 -o taken");
   EXPECT_EQ(taken.exit_code, 1);
-  EXPECT_EQ(taken.err, "isg run: error: taken: already exists (use --force to replace it)\n");
+  EXPECT_EQ(taken.err, "isg run: error: taken: exists and is not a folder; give a run folder\n");
   // Dead reckoning knows the true start: localized from the first pose, in B.
   const auto dead = sandbox.run("run builtin:d2 --method dead-reckoning --duration 10 -o dr -q");
   ASSERT_EQ(dead.exit_code, 0) << dead.err;

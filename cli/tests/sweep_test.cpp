@@ -159,7 +159,7 @@ TEST(Sweep, BadSuitesNameTheFileAndThePlace) {
   const auto file = sandbox.run("sweep d.json -o notes.txt");
   EXPECT_EQ(file.exit_code, 1);
   EXPECT_THAT(file.err, HasSubstr("isg sweep: error: notes.txt: exists and is not a folder; give "
-                                  "-o a sweep folder"));
+                                  "a sweep folder"));
   EXPECT_EQ(sandbox.read("notes.txt"), "mine\n");
   EXPECT_THAT(sandbox.run("sweep --cell -1 out").err,
               HasSubstr("--cell: Value -1 not in range 0 to 999999"));

@@ -154,8 +154,9 @@ TEST(Table, AggregatedCellsShowMeanStdAndCounts) {
             "| d2 | 0.030 ± 0.014 2/3 1✗ |\n| *localized correctly* | 1/2 |\n");
   const std::string csv = formatTable(t, TableFormat::kCsv);
   EXPECT_EQ(csv,
-            "world,is-graphs,is-graphs: std,is-graphs: localized,is-graphs: runs,is-graphs: wrong\n"
-            "d1,0.030,0.014,2,2,0\nd2,✗,0.014,2,3,1\nlocalized correctly,1/2,,,,\n");
+            "world,is-graphs,is-graphs: std,is-graphs: localized,is-graphs: runs,is-graphs: wrong,"
+            "is-graphs: failed,is-graphs: not run\n"
+            "d1,0.030,0.014,2,2,0,0,0\nd2,✗,0.014,2,3,1,0,0\nlocalized correctly,1/2,,,,,,\n");
   EXPECT_NE(formatTable(t, TableFormat::kLatex).find("d2 & 0.030 $\\pm$ 0.014 2/3 1$\\times$"),
             std::string::npos);
   // The statistics columns are not methods: a baseline read back has the one column.
@@ -163,6 +164,47 @@ TEST(Table, AggregatedCellsShowMeanStdAndCounts) {
   EXPECT_EQ(back.columns, std::vector<std::string>{"is-graphs"});
   EXPECT_NEAR(**back.find("d1", "is-graphs"), 0.03, 1e-12);
   EXPECT_TRUE(back.isWrong("d2", "is-graphs"));
+}
+
+TEST(Table, SeedsWithoutAResultAreCountedAndSaid) {
+  // A sweep of three seeds where one failed and one has not run: 1/3, never "every seed".
+  ResultTable t;
+  t.set("d2", "is-graphs", std::nullopt);
+  CellStats s = cellStats({0.014, std::nullopt, std::nullopt}, {false, false, false});
+  s.failed = 1;
+  s.not_run = 1;
+  t.setStats("d2", "is-graphs", s);
+  EXPECT_EQ(formatTable(t, TableFormat::kMarkdown),
+            "| world | is-graphs |\n|---|---:|\n| d2 | 0.014 1/3, 1 failed, 1 not run |\n"
+            "| *localized correctly* | 0/1 |\n");
+  EXPECT_NE(formatTable(t, TableFormat::kCsv).find("d2,-,,1,3,0,1,1\n"), std::string::npos);
+}
+
+TEST(Table, AnyFiniteNumberIsPrintedWhole) {
+  ResultTable t;
+  t.set("big", "m", 1e30);
+  t.set("max", "m", 1.7976931348623157e308);
+  const std::string md = formatTable(t, TableFormat::kMarkdown);
+  EXPECT_NE(md.find("| big | 1000000000000000019884624838656.000 |"), std::string::npos) << md;
+  // 309 digits before the point, all of them.
+  const std::size_t at = md.find("| max | ");
+  ASSERT_NE(at, std::string::npos);
+  EXPECT_EQ(md.substr(at + 8, md.find(' ', at + 8) - at - 8).size(), 309u + 4u);
+  // The mean of two huge values is finite, not inf.
+  const CellStats huge = cellStats({1.5e308, 1.7e308}, {false, false});
+  EXPECT_DOUBLE_EQ(*huge.mean, 1.6e308);
+  EXPECT_NEAR(*huge.std / 1e307, std::sqrt(2.0), 1e-9);
+}
+
+TEST(Table, ABaselineCellMustBeAFiniteNumberAtLeastZero) {
+  for (const std::string cell : {"nan", "inf", "-inf", "-0.5", "1e999"}) {
+    try {
+      parseTableCsv("world,is-graphs\nd1," + cell + "\n");
+      ADD_FAILURE() << cell << " was accepted";
+    } catch (const std::invalid_argument& e) {
+      EXPECT_NE(std::string(e.what()).find("line 2"), std::string::npos) << e.what();
+    }
+  }
 }
 
 }  // namespace isg::eval

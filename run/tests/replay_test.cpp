@@ -50,7 +50,7 @@ class SyntheticDataset : public ::testing::Test {
     Eigen::Isometry3d R_T_L = Eigen::Isometry3d::Identity();
     R_T_L.translation().z() = 0.5;
     const Eigen::Vector3d room(8, 5, 3);
-    writeFolderAtomically(dir_.string(), false, [&](const fs::path& tmp) {
+    writeFolderAtomically(dir_.string(), OutputKind::kDataset, false, [&](const fs::path& tmp) {
       Trajectory truth, odometry, scan_poses;
       for (int i = 0; i <= int(duration * 100); ++i) truth.push_back({i / 100.0, B_T_R(i / 100.0)});
       for (int i = 0; i <= int(duration * 50); ++i) {

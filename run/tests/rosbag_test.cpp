@@ -147,10 +147,27 @@ TEST(RosbagWriter, LeavesNothingUnlessClosedAndKeepsAnExistingBag) {
   } catch (const bim::InputError& e) {
     EXPECT_EQ(std::string(e.what()), path + ": already exists (use --force to replace it)");
   }
+  // --force replaces only a bag of ours: a file of the user's is never replaced.
+  try {
+    RosbagWriter bag(path, true);
+    FAIL() << "a file isg did not write was replaced";
+  } catch (const bim::InputError& e) {
+    EXPECT_EQ(std::string(e.what()),
+              path +
+                  ": not replaced: it is not a ROS bag that isg wrote (--force replaces only "
+                  "those); remove it yourself or give another path");
+  }
+  EXPECT_EQ(slurp(path), "old");
+  fs::remove(path);
+  RosbagWriter(path, false).close();
+  const std::string first = slurp(path);
+  EXPECT_NE(first.find(kWrittenByIsg), std::string::npos);  // the mark, in the header's padding
   RosbagWriter replaced(path, true);
-  EXPECT_EQ(slurp(path), "old");  // until it is closed
+  replaced.connect("/a", {"std_msgs/String", "992ce8a1687cec8c8bd883ec73ca41d1", "string data\n"});
+  EXPECT_EQ(slurp(path), first);  // until it is closed
   replaced.close();
   EXPECT_EQ(slurp(path).substr(0, 13), "#ROSBAG V2.0\n");
+  EXPECT_NE(slurp(path), first);
   fs::remove_all(dir);
 }
 

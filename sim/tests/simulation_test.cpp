@@ -237,7 +237,7 @@ TEST(Dataset, SameSeedSameBytesOtherSeedOtherBytes) {
     EXPECT_EQ(slurp(entry.path()), slurp(root / "d" / relative)) << relative;
     ++files;
   }
-  EXPECT_EQ(files, 5u + 15u);  // 15 turns end by 1.5 s
+  EXPECT_EQ(files, 6u + 15u);  // five files, the output marker and 15 turns ending by 1.5 s
   EXPECT_NE(slurp(root / "a" / "scans" / "000003.pcd"), slurp(root / "c" / "scans" / "000003.pcd"));
   EXPECT_NE(slurp(root / "a" / "odometry.tum"), slurp(root / "c" / "odometry.tum"));
   EXPECT_NE(slurp(root / "a" / "imu.csv"), slurp(root / "c" / "imu.csv"));

@@ -1,0 +1,90 @@
+#include "cli/sweep_worlds.hpp"
+
+#include <filesystem>
+
+#include "bim/content_hash.hpp"
+#include "bim/input_error.hpp"
+#include "bim/json_reader.hpp"
+#include "bim/limits.hpp"
+#include "run/atomic_folder.hpp"
+#include "sim/simulation.hpp"
+#include "worlds/reference_plans.hpp"
+#include "worlds/world_hash.hpp"
+
+namespace isg::cli {
+
+namespace {
+
+namespace fs = std::filesystem;
+
+// Writes `text` to `path` unless the file already holds exactly it.
+void writeIfChanged(const fs::path& path, const std::string& text) {
+  if (fs::is_regular_file(path)) {
+    try {
+      if (bim::readCheckedFile(path.string(), bim::limits::kMaxJsonFileBytes) == text) return;
+    } catch (const bim::InputError&) {
+      // Unreadable: written anew below.
+    }
+  }
+  run::writeFileAtomically(path.string(), text);
+}
+
+// A file's bytes as far as they can be read ("" when not at all).
+std::string rawBytes(const std::string& path) {
+  try {
+    return bim::readCheckedFile(path, bim::limits::kMaxJsonFileBytes);
+  } catch (const bim::InputError&) {
+    return "";
+  }
+}
+
+}  // namespace
+
+void prepareSweepWorlds(Suite& suite, const std::string& sweep_dir) {
+  const fs::path dir(sweep_dir);
+  for (auto& world : suite.worlds) {
+    if (!world.generate) {
+      try {
+        bim::Warnings warnings;
+        world.hash = worlds::worldHash(worlds::loadScenarioOrBuiltin(world.input, &warnings));
+      } catch (const bim::InputError&) {
+        // A world that does not read fails its own cells (recorded, the others go on); its
+        // file's bytes still tell when it has changed.
+        world.hash = bim::contentHash("unreadable world\n" + rawBytes(world.input));
+      }
+      continue;
+    }
+    // The same spec gives the same bytes: a file that differs is of an older spec, rewritten.
+    const worlds::GeneratedBuilding b = worlds::generateBuilding(*world.generate);
+    const fs::path scenario_path = dir / world.input;
+    std::error_code error;
+    fs::create_directories(scenario_path.parent_path(), error);
+    writeIfChanged(dir / kSweepWorldsFolder / (b.name + ".json"), b.plan.dump(2) + "\n");
+    writeIfChanged(scenario_path, b.scenario.dump(2) + "\n");
+    bim::Warnings warnings;
+    const bim::Scenario scenario = bim::loadScenario(scenario_path.string(), &warnings);
+    const sim::Simulation simulation(scenario);
+    if (!simulation.route().skipped_rooms.empty()) {
+      std::string rooms;
+      for (const auto& r : simulation.route().skipped_rooms)
+        rooms += (rooms.empty() ? "" : ", ") + r;
+      throw bim::InputError(suite.file, "/worlds",
+                            "generated world " + world.name + ": its tour cannot reach room" +
+                                (simulation.route().skipped_rooms.size() > 1 ? "s " : " ") + rooms +
+                                "; change the generator's parameters");
+    }
+    world.hash = worlds::worldHash(scenario);
+  }
+}
+
+std::vector<ChangedWorld> changedWorlds(const Suite& suite, const SweepPlan& before) {
+  std::vector<ChangedWorld> changed;
+  for (const auto& world : suite.worlds) {
+    const auto it = before.world_hashes.find(world.name);
+    if (it == before.world_hashes.end() || it->second == world.hash) continue;
+    changed.push_back({world.name, it->second, world.hash});
+  }
+  return changed;
+}
+
+}  // namespace isg::cli

@@ -1,0 +1,34 @@
+#include "worlds/world_hash.hpp"
+
+#include "bim/content_hash.hpp"
+#include "bim/json_reader.hpp"
+#include "bim/limits.hpp"
+#include "worlds/reference_plans.hpp"
+
+namespace isg::worlds {
+
+namespace {
+
+// The bytes a world was read from: a built-in's text or a file's content.
+std::string bytesOf(const std::string& name) {
+  if (isBuiltin(name)) {
+    const auto text = builtinText(name.substr(kBuiltinPrefix.size()));
+    return text ? std::string(*text) : std::string();
+  }
+  return bim::readCheckedFile(name, bim::limits::kMaxJsonFileBytes);
+}
+
+}  // namespace
+
+std::string worldHash(const bim::Scenario& scenario) {
+  // Length-prefixed parts, so that no two different pairs of files give one text.
+  const std::string scenario_bytes = bytesOf(scenario.source);
+  std::string text = "isg world\n" + std::to_string(scenario_bytes.size()) + "\n" + scenario_bytes;
+  if (scenario.plan_file != "<inline>" && scenario.plan_file != scenario.source) {
+    const std::string plan_bytes = bytesOf(scenario.plan_file);
+    text += "\n" + std::to_string(plan_bytes.size()) + "\n" + plan_bytes;
+  }
+  return bim::contentHash(text);
+}
+
+}  // namespace isg::worlds
