@@ -19,6 +19,7 @@ GenerateCommand::GenerateCommand(CLI::App& parent) {
       "Writes DIR/<family>-<seed>.json (the plan) and DIR/<family>-<seed>.asbuilt.json (a "
       "scenario on it: the building as built, a start office drawn from the seed, a tour of every "
       "room) for seeds SEED … SEED+COUNT-1 of each family; the same seed gives the same bytes. "
+      "FAMILY given twice is generated once. "
       "Families: office (bands of offices on both sides of corridors, joined by a spine), l-shape, "
       "t-shape, u-shape (a band with one or two arms), hotel (identical rooms on one corridor; "
       "with the asymmetry, one suite of two rooms), twin-wings (a wing and its half-turned twin; "
@@ -43,7 +44,10 @@ GenerateCommand::GenerateCommand(CLI::App& parent) {
   app_->add_option("--seed", seed_, "seed of the first building; the next ones count up")
       ->check(seedNumber())
       ->capture_default_str();
-  app_->add_option("--rooms", spec_.rooms, "offices per building (up to 5000)")
+  app_->add_option("--rooms", spec_.rooms,
+                   "offices per building, up to 5000 where the plan's limits allow: corridors are "
+                   "rooms too (5000 a level) and a level is at most 1 km long (a hotel is one "
+                   "corridor: about 430 rooms of 4 m); beyond, the message says how many fit")
       ->default_str("the family's: office, l/t/u-shape 24, hotel 22, twin-wings 10, hall 12");
   app_->add_option("--room-width", spec_.room_width, "mean office width along its corridor [m]")
       ->capture_default_str();
@@ -89,7 +93,7 @@ GenerateCommand::GenerateCommand(CLI::App& parent) {
       ->capture_default_str();
   app_->add_flag("--no-verify", no_verify_,
                  "skip building each world and planning its tour (large batches, trusted "
-                 "parameters)");
+                 "parameters); plans and scenarios are still checked as isg check checks them");
   app_->add_flag("--force", force_, "replace DIR if it exists");
   app_->add_flag("-q,--quiet", quiet_, "no progress bar");
 }

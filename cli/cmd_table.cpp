@@ -8,6 +8,7 @@
 #include <sstream>
 
 #include "bim/input_error.hpp"
+#include "bim/json_reader.hpp"
 #include "cli/run_table.hpp"
 #include "cli/suite.hpp"
 #include "eval/table.hpp"
@@ -74,7 +75,21 @@ int TableCommand::run() {
   }
   // The testbed's methods first, in their order (iS-Graphs, then the baselines), like the paper.
   std::vector<std::pair<std::string, run::RunMetrics>> runs;
+  std::vector<AbsentRun> failed;
   for (const auto& dir : runs_) {
+    // A sweep's failure record (what SWEEP_DIR/*/*/seed-* also matches): a seed that failed,
+    // counted in its cell as such.
+    if (const std::string suffix = ".failed.json";
+        dir.size() > suffix.size() &&
+        dir.compare(dir.size() - suffix.size(), suffix.size(), suffix) == 0 &&
+        std::filesystem::is_regular_file(dir)) {
+      const nlohmann::json record = bim::readJsonFile(dir);
+      const bim::JsonSource source{dir, nullptr};
+      const bim::JsonNode root(record, "", source);
+      failed.push_back({root.field("world").text(), methods.canonical(root.field("method").text()),
+                        root.field("seed").unsignedInteger(), true});
+      continue;
+    }
     // A sweep folder given for its run folders: say which command reads it.
     if (std::filesystem::is_regular_file(std::filesystem::path(dir) / kSweepPlanFile)) {
       throw bim::InputError(dir, "",
@@ -83,7 +98,7 @@ int TableCommand::run() {
     }
     runs.emplace_back(dir, run::readMetrics(dir));
   }
-  const auto [table, caption] = tabulateRuns(std::move(runs), measure_, methods);
+  const auto [table, caption] = tabulateRuns(std::move(runs), measure_, methods, failed);
   const eval::TableFormat format = format_ == "csv"     ? eval::TableFormat::kCsv
                                    : format_ == "latex" ? eval::TableFormat::kLatex
                                                         : eval::TableFormat::kMarkdown;

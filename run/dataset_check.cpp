@@ -75,6 +75,33 @@ void checkDatasetAgainstMetadata(const DatasetReader& dataset) {
                                      number(1.0 / *period) + " Hz apart on average");
     }
   }
+  // scans.tum: the LiDAR's pose at each stamp, which the ground truth and the mount also give.
+  const Trajectory& truth = dataset.groundTruth();
+  const Trajectory& poses = dataset.scanPoses();
+  for (std::size_t i = 0; i < poses.size() && !truth.empty(); ++i) {
+    const auto B_p_R = groundTruthAt(truth, poses[i].t);
+    const std::string file = (dir / dataset::kScanPoses).string();
+    if (!B_p_R) {
+      throw bim::InputError(file, "",
+                            "scan " + std::to_string(i) + " at " + number(poses[i].t) +
+                                " s lies outside the ground truth's time span");
+    }
+    // The mount's offset turned by the base's orientation at that time: from the nearest row.
+    std::size_t k = 0;
+    while (k + 1 < truth.size() && truth[k + 1].t <= poses[i].t + 1e-9) ++k;
+    const Eigen::Vector3d expected =
+        *B_p_R + truth[k].pose.linear() * dataset.R_T_L().translation();
+    const double off = (poses[i].pose.translation() - expected).norm();
+    if (off > 0.01) {
+      throw bim::InputError(file, "",
+                            "scan " + std::to_string(i) + " at " + number(poses[i].t) +
+                                " s: the LiDAR pose is " + number(off) +
+                                " m from the ground truth's (" + dataset::kGroundTruth +
+                                " and the mount in metadata.json): the files do not belong "
+                                "together");
+    }
+  }
+
   if (const auto duration = numberAt(m, {"duration_s"}); duration && !stamps.empty()) {
     // Every scan's turn ends within the duration, and one more turn would not have.
     const double period = dataset.scanPeriod();
@@ -107,35 +134,6 @@ void checkDatasetAgainstMetadata(const DatasetReader& dataset) {
         disagree("/imu/rate_hz", "says " + number(*rate) + " Hz, " + imu_file + "'s samples are " +
                                      number(1.0 / *period) + " Hz apart on average");
       }
-    }
-  }
-
-  // scans.tum: the LiDAR's pose at each stamp, which the ground truth and the mount also give.
-  const Trajectory& truth = dataset.groundTruth();
-  const Trajectory& poses = dataset.scanPoses();
-  for (std::size_t i = 0; i < poses.size() && !truth.empty(); ++i) {
-    const auto B_p_R = groundTruthAt(truth, poses[i].t);
-    const std::string file = (dir / dataset::kScanPoses).string();
-    if (!B_p_R) {
-      throw bim::InputError(file, "",
-                            "scan " + std::to_string(i) + " at " + number(poses[i].t) +
-                                " s lies outside the ground truth's time span");
-    }
-    // The mount's offset turned by the base's orientation at that time: from the nearest row.
-    std::size_t k = 0;
-    while (k + 1 < truth.size() && truth[k + 1].t <= poses[i].t + 1e-9) ++k;
-    const Eigen::Vector3d expected =
-        *B_p_R + truth[k].pose.linear() * dataset.R_T_L().translation();
-    const double off = (poses[i].pose.translation() - expected).norm();
-    if (off > 0.01) {
-      throw bim::InputError(file, "",
-                            "scan " + std::to_string(i) + " at " + number(poses[i].t) +
-                                " s: the "
-                                "LiDAR pose is " +
-                                number(off) + " m from the ground truth's (" +
-                                dataset::kGroundTruth +
-                                " and the mount in metadata.json): the "
-                                "files do not belong together");
     }
   }
 }

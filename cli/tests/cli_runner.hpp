@@ -42,10 +42,12 @@ class Sandbox {
     return s.str();
   }
 
-  // `arguments` is passed to a shell, after `cd` into the sandbox.
-  RunResult run(const std::string& arguments) const {
-    const std::string command = "cd '" + dir_.string() + "' && '" + std::string(ISG_EXECUTABLE) +
-                                "' " + arguments + " > .stdout 2> .stderr < /dev/null";
+  // `arguments` is passed to a shell, after `cd` into the sandbox (or its folder `subdir`).
+  RunResult run(const std::string& arguments, const std::string& subdir = "") const {
+    const std::string out = (dir_ / ".stdout").string(), err = (dir_ / ".stderr").string();
+    const std::string command = "cd '" + (dir_ / subdir).string() + "' && '" +
+                                std::string(ISG_EXECUTABLE) + "' " + arguments + " > '" + out +
+                                "' 2> '" + err + "' < /dev/null";
     const int status = std::system(command.c_str());
     RunResult result;
     result.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;

@@ -1,7 +1,7 @@
 #!/usr/bin/env python3
-"""Kill tests: `isg simulate` and `isg run` are killed at random moments (SIGKILL, SIGTERM or
-SIGINT, from a seeded generator), and the output path must never hold a partial dataset or run
-folder: either nothing, or the complete folder. After SIGTERM and SIGINT the process's own
+"""Kill tests: `isg simulate`, `isg run` and `isg generate` are killed at random moments
+(SIGKILL, SIGTERM or SIGINT, from a seeded generator), and the output path must never hold a
+partial dataset, run or buildings folder: either nothing, or the complete folder. After SIGTERM and SIGINT the process's own
 temporary folder may not remain either; after SIGKILL the next complete run to the same path must
 remove the one left behind.
 Usage: kill_test.py ISG_EXECUTABLE [--rounds 20] [--seed 1]
@@ -24,6 +24,12 @@ COMMANDS = {
                  ["metadata.json", "groundtruth.tum", "odometry.tum", "scans.tum", "scans"]),
     "run": (["run", "builtin:d3", "--duration", "100", "-q"],
             ["metrics.json", "estimate.tum", "groundtruth.tum", "report.svg"]),
+    # Buildings are checked one by one before the folder is written: a signal during the last
+    # one's check (the moment an earlier version deferred to the end and exited 0) must leave
+    # nothing.
+    "generate": (["generate", "office", "--count", "6", "--rooms", "30", "-q"],
+                 [f"office-{k}{ext}" for k in range(1, 7) for ext in (".json", ".asbuilt.json")]
+                 + [".isg-output"]),
 }
 
 

@@ -1,0 +1,186 @@
+// Numbers that cannot be right are input errors, never a table entry with exit 0; the generator
+// keeps its advertised ranges or says the one that holds; an export checks a dataset against its
+// metadata.
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <nlohmann/json.hpp>
+
+#include "cli/tests/cli_runner.hpp"
+
+namespace isg::cli {
+namespace {
+
+namespace fs = std::filesystem;
+using ::testing::HasSubstr;
+
+const char* kPose = " 0 0 0 0 0 0 1\n";
+
+TEST(HonestNumbers, TumValuesOutOfRangeAreInputErrors) {
+  testing::Sandbox sandbox("numbers_tum");
+  sandbox.write("gt.tum", std::string("0") + kPose + "1" + kPose + "2" + kPose);
+  sandbox.write("huge.tum", "0 1e308 0 0 0 0 0 1\n1 0 0 0 0 0 0 1\n");
+  const auto huge = sandbox.run("eval gt.tum huge.tum");
+  EXPECT_EQ(huge.exit_code, 1);
+  EXPECT_THAT(huge.err, HasSubstr("huge.tum: line 1: tx 1e+308 is out of range (at most 1e9 m "
+                                  "from the origin)"));
+  sandbox.write("early.tum", std::string("-1e300") + kPose + "1" + kPose);
+  const auto early = sandbox.run("eval gt.tum early.tum");
+  EXPECT_EQ(early.exit_code, 1);
+  EXPECT_THAT(early.err, HasSubstr("line 1: time -1e+300 is out of range (|t| at most 1e10 s)"));
+  // An estimate that starts before the ground truth was localized when it began: time 0.
+  sandbox.write("before.tum", std::string("-5") + kPose + "1" + kPose + "2" + kPose);
+  const auto before = sandbox.run("eval gt.tum before.tum --json");
+  ASSERT_EQ(before.exit_code, 0) << before.err;
+  EXPECT_EQ(nlohmann::json::parse(before.out)["time_to_localize"], 0.0);
+}
+
+TEST(HonestNumbers, RpeWithNoPairsIsNotComputable) {
+  testing::Sandbox sandbox("numbers_rpe");
+  std::string text;
+  for (int i = 0; i < 88; ++i) text += std::to_string(i) + kPose;
+  sandbox.write("a.tum", text);
+  const auto r = sandbox.run("eval a.tum a.tum --rpe 1000000");
+  EXPECT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_THAT(r.out, HasSubstr("RPE w.r.t. translation part (m) for delta = 1000000 (frames): not "
+                               "computable: no two associated poses are 1000000 frames apart (88 "
+                               "poses associated)"));
+  const auto json = sandbox.run("eval a.tum a.tum --rpe 1000000 --json");
+  const auto doc = nlohmann::json::parse(json.out);
+  EXPECT_TRUE(doc["rpe"].is_null());
+  EXPECT_THAT(doc["rpe_note"].get<std::string>(), HasSubstr("not computable"));
+}
+
+TEST(HonestNumbers, MetricsAndBaselinesHoldFiniteNonNegativeMeasures) {
+  testing::Sandbox sandbox("numbers_metrics");
+  ASSERT_EQ(sandbox.run("run builtin:d2 --method dead-reckoning --duration 3 -o r -q").exit_code,
+            0);
+  auto metrics = nlohmann::json::parse(sandbox.read("r/metrics.json"));
+  metrics["ape_B"]["rmse"] = -0.5;
+  sandbox.write("r/metrics.json", metrics.dump(2));
+  const auto negative = sandbox.run("table r");
+  EXPECT_EQ(negative.exit_code, 1);
+  EXPECT_THAT(negative.err, HasSubstr("r/metrics.json: /ape_B/rmse: must be >= 0, got -0.5"));
+  metrics["ape_B"]["rmse"] = 0.02;
+  sandbox.write("r/metrics.json", metrics.dump(2));
+  sandbox.write("base.csv", "world,odometry\nd2,nan\n");
+  const auto nan = sandbox.run("table r --baseline base.csv");
+  EXPECT_EQ(nan.exit_code, 1);
+  EXPECT_THAT(nan.err,
+              HasSubstr("base.csv: line 2, odometry: \"nan\" is not a finite number >= 0"));
+  sandbox.write("base.csv", "world,odometry\nd2,inf\n");
+  EXPECT_EQ(sandbox.run("table r --baseline base.csv").exit_code, 1);
+}
+
+TEST(HonestNumbers, SeedsOnTheCommandLineAreCheckedLikeTheSuites) {
+  testing::Sandbox sandbox("numbers_seed");
+  for (const char* seed : {"-1", "18446744073709551616", "1.5", "0x10", ""}) {
+    const auto r =
+        sandbox.run(std::string("run builtin:d1 --duration 1 -o r --seed '") + seed + "'");
+    EXPECT_EQ(r.exit_code, 2) << seed;
+    EXPECT_THAT(r.err, HasSubstr("expected an integer 0 … 18446744073709551615")) << seed;
+  }
+  EXPECT_FALSE(sandbox.exists("r"));
+  const auto biggest =
+      sandbox.run("generate hall -o g --seed 18446744073709551615 --count 2 -q --no-verify");
+  EXPECT_EQ(biggest.exit_code, 1);
+  EXPECT_THAT(biggest.err, HasSubstr("pass 2^64 - 1"));
+}
+
+TEST(HonestGenerator, CountsAndRangesAreWhatItSays) {
+  testing::Sandbox sandbox("generator_ranges");
+  const auto twice = sandbox.run("generate hall hall -o g -q");
+  ASSERT_EQ(twice.exit_code, 0) << twice.err;
+  EXPECT_THAT(twice.out, HasSubstr("wrote g: 1 buildings (1 plans and 1 as-built scenarios)"));
+  // The documented narrowest corridor tours every room in every family with arms.
+  for (const char* family : {"l-shape", "t-shape", "u-shape"}) {
+    const auto r = sandbox.run(std::string("generate ") + family +
+                               " --corridor-width 1.2 -o narrow-" + family + " -q");
+    EXPECT_EQ(r.exit_code, 0) << family << ": " << r.err;
+  }
+  // Corridors narrower than what a wall leaves free are refused by name.
+  const auto walls = sandbox.run("generate office --corridor-width 1.2 --wall-thickness 0.5 -o x");
+  EXPECT_EQ(walls.exit_code, 1);
+  EXPECT_THAT(walls.err, HasSubstr("--corridor-width: must be at least 1 m more than the wall"));
+  // A hotel is one corridor: thousands of rooms are longer than a level may be; the message says
+  // how many fit.
+  const auto hotel = sandbox.run("generate hotel --rooms 3000 -o h -q");
+  EXPECT_EQ(hotel.exit_code, 1);
+  EXPECT_THAT(hotel.err, HasSubstr("--rooms: 3000 offices make a hotel isg check refuses ("));
+  EXPECT_THAT(hotel.err, HasSubstr("at most 1000 m on a side"));
+  EXPECT_THAT(hotel.err, HasSubstr("; with these parameters at most "));
+  EXPECT_FALSE(sandbox.exists("h"));
+}
+
+TEST(HonestGenerator, UnverifiedBuildingsStillReadAsIsgCheckReadsThem) {
+  testing::Sandbox sandbox("generator_noverify");
+  const auto r =
+      sandbox.run("generate office --rooms 2000 --clutter-per-room 4 --no-verify -o g -q");
+  if (r.exit_code == 0) {
+    EXPECT_EQ(sandbox.run("check g/office-1.asbuilt.json").exit_code, 0);
+  } else {
+    // Refused with the count that works, never written half-checked.
+    EXPECT_EQ(r.exit_code, 1) << r.err;
+    EXPECT_THAT(r.err, HasSubstr("with these parameters at most"));
+    EXPECT_FALSE(sandbox.exists("g"));
+  }
+}
+
+// A dataset whose metadata lies is never exported as if it told the truth.
+TEST(HonestExport, TheDatasetIsCheckedAgainstItsMetadata) {
+  testing::Sandbox sandbox("export_metadata");
+  ASSERT_EQ(sandbox.run("simulate builtin:d1 --duration 2 -o ds -q").exit_code, 0);
+  const std::string original = sandbox.read("ds/metadata.json");
+  const auto lie = [&](const std::string& pointer, const nlohmann::json& value) {
+    auto m = nlohmann::json::parse(original);
+    m[nlohmann::json::json_pointer(pointer)] = value;
+    sandbox.write("ds/metadata.json", m.dump(2));
+    const auto r = sandbox.run("export ds --rosbag b.bag -q");
+    sandbox.write("ds/metadata.json", original);
+    EXPECT_FALSE(sandbox.exists("b.bag")) << pointer;
+    return r;
+  };
+  const auto imu_rate = lie("/imu/rate_hz", 400);
+  EXPECT_EQ(imu_rate.exit_code, 1);
+  EXPECT_THAT(imu_rate.err, HasSubstr("ds/metadata.json: /imu/rate_hz: says 400 Hz, "));
+  EXPECT_THAT(lie("/imu/samples", 7).err, HasSubstr("/imu/samples: says 7 samples"));
+  EXPECT_THAT(lie("/lidar/rate_hz", 20).err, HasSubstr("/lidar/rate_hz: says 20 Hz"));
+  EXPECT_THAT(lie("/lidar/scans", 3).err, HasSubstr("/lidar/scans: says 3 scans, the dataset has"));
+  EXPECT_THAT(lie("/duration_s", 10).err, HasSubstr("/duration_s: says 10 s, the last scan's"));
+  // An IMU declared but with an empty file.
+  const std::string imu = sandbox.read("ds/imu.csv");
+  sandbox.write("ds/imu.csv", imu.substr(0, imu.find('\n') + 1));
+  const auto empty = sandbox.run("export ds --rosbag b.bag -q");
+  EXPECT_EQ(empty.exit_code, 1);
+  EXPECT_THAT(empty.err, HasSubstr("/imu/samples: says"));
+  EXPECT_THAT(empty.err, HasSubstr("has none"));
+  sandbox.write("ds/imu.csv", imu);
+  // scans.tum shifted in time by 0.5 s: its poses are no longer the LiDAR's at those stamps.
+  std::istringstream rows(sandbox.read("ds/scans.tum"));
+  std::string shifted, line;
+  while (std::getline(rows, line)) {
+    if (line.empty() || line[0] == '#') {
+      shifted += line + "\n";
+      continue;
+    }
+    std::istringstream fields(line);
+    double t = 0;
+    fields >> t;
+    std::string rest;
+    std::getline(fields, rest);
+    char stamp[32];
+    std::snprintf(stamp, sizeof stamp, "%.9f", t + 0.5);
+    shifted += stamp + rest + "\n";
+  }
+  const std::string scans = sandbox.read("ds/scans.tum");
+  sandbox.write("ds/scans.tum", shifted);
+  const auto moved = sandbox.run("export ds --rosbag b.bag -q");
+  EXPECT_EQ(moved.exit_code, 1);
+  EXPECT_THAT(moved.err, HasSubstr("ds/scans.tum: scan "));
+  sandbox.write("ds/scans.tum", scans);
+  EXPECT_EQ(sandbox.run("export ds --rosbag b.bag -q").exit_code, 0);
+}
+
+}  // namespace
+}  // namespace isg::cli

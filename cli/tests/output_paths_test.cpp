@@ -1,0 +1,165 @@
+// The output-path rule (docs/architecture.md, "Output paths"), as an adversarial user tries it:
+// every reproduction of the data-safety findings gives a clear error, exit 1, and every file
+// beside, above and inside the refused path is still there afterwards.
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <map>
+
+#include "cli/tests/cli_runner.hpp"
+
+namespace isg::cli {
+namespace {
+
+namespace fs = std::filesystem;
+using ::testing::HasSubstr;
+
+// Every regular file under `dir` with its content.
+std::map<std::string, std::string> snapshot(const fs::path& dir) {
+  std::map<std::string, std::string> files;
+  for (const auto& e : fs::recursive_directory_iterator(dir)) {
+    if (!e.is_regular_file()) continue;
+    std::ifstream in(e.path(), std::ios::binary);
+    std::ostringstream text;
+    text << in.rdbuf();
+    files[fs::relative(e.path(), dir).string()] = text.str();
+  }
+  return files;
+}
+
+// A user's tree: s/keep/important, s/p/mine.txt, s/notes.txt.
+void userTree(const testing::Sandbox& sandbox) {
+  fs::create_directories(sandbox.dir() / "s/keep");
+  fs::create_directories(sandbox.dir() / "s/p");
+  sandbox.write("s/keep/important", "do not lose me\n");
+  sandbox.write("s/p/mine.txt", "mine\n");
+  sandbox.write("s/notes.txt", "notes\n");
+}
+
+TEST(OutputPaths, TheWorkingDirectoryAndItsAncestorsAreNeverAnOutput) {
+  testing::Sandbox sandbox("out_cwd");
+  userTree(sandbox);
+  const auto before = snapshot(sandbox.dir());
+  struct Case {
+    std::string where, arguments, expected;
+  };
+  const std::vector<Case> cases = {
+      {"s/p", "generate hall -o . --force -q",
+       "isg generate: error: .: refused as an output: it is the working directory"},
+      {"s/p", "generate hall -o ./ --force -q",
+       "isg generate: error: ./: refused as an output: it is the working directory"},
+      {"s", "run builtin:d1 --method odometry --duration 2 -o out/.. --force -q",
+       "isg run: error: out/..: refused as an output: it is the working directory"},
+      {"s/p", "run builtin:d1 --method odometry --duration 2 -o .. --force",
+       "which holds the working directory"},
+      {"s/p", "simulate builtin:d1 --duration 1 -o ../p --force -q",
+       "isg simulate: error: ../p: refused as an output: it is the working directory"},
+      {"s/p", "simulate builtin:d1 --duration 1 -o / --force -q", "it is the file system's root"},
+      {"s/p", "render builtin:d1 -o .", "it is the working directory"},
+  };
+  for (const auto& c : cases) {
+    const auto r = sandbox.run(c.arguments, c.where);
+    EXPECT_EQ(r.exit_code, 1) << c.arguments << "\n" << r.err;
+    EXPECT_THAT(r.err, HasSubstr(c.expected)) << c.arguments;
+    EXPECT_EQ(snapshot(sandbox.dir()), before) << c.arguments;
+    EXPECT_FALSE(fs::exists(sandbox.dir() / "s/out")) << c.arguments;
+  }
+}
+
+TEST(OutputPaths, ForceReplacesOnlyAnOutputOfOursOfTheSameKind) {
+  testing::Sandbox sandbox("out_force");
+  userTree(sandbox);
+  // A folder of the user's is not replaced by --force.
+  const auto mine = sandbox.run("run builtin:d1 --method odometry --duration 2 -o s/keep --force");
+  EXPECT_EQ(mine.exit_code, 1);
+  EXPECT_THAT(mine.err,
+              HasSubstr("s/keep: not replaced: --force replaces only a run folder that isg wrote, "
+                        "and this folder has no .isg-output marker"));
+  EXPECT_EQ(sandbox.read("s/keep/important"), "do not lose me\n");
+  // One of ours of another kind is not either: a dataset is not a run folder.
+  ASSERT_EQ(sandbox.run("simulate builtin:d1 --duration 1 -o ds -q").exit_code, 0);
+  const auto other = sandbox.run("run builtin:d1 --method odometry --duration 2 -o ds --force");
+  EXPECT_EQ(other.exit_code, 1);
+  EXPECT_THAT(other.err, HasSubstr("ds: not replaced: it is a dataset folder of isg, not a run "
+                                   "folder"));
+  EXPECT_TRUE(sandbox.exists("ds/imu.csv"));
+  // One of ours of the same kind is, all at once, with its marker.
+  ASSERT_EQ(sandbox.run("run builtin:d1 --method odometry --duration 2 -o r -q").exit_code, 0);
+  EXPECT_THAT(sandbox.read("r/.isg-output"), HasSubstr("\"kind\":\"run\""));
+  const auto again = sandbox.run("run builtin:d1 --method odometry --duration 3 -o r --force -q");
+  EXPECT_EQ(again.exit_code, 0) << again.err;
+  EXPECT_THAT(sandbox.read("r/metrics.json"), HasSubstr("\"sim_seconds\": 3"));
+  // The input's own folder or files are never the output.
+  fs::copy_file(fs::path(ISG_SOURCE_DIR) / "worlds/plans/d1.json", sandbox.dir() / "s/p/d1.json");
+  const std::string plan = sandbox.read("s/p/d1.json");
+  const auto self = sandbox.run("world s/p/d1.json -o s/p/d1.json");
+  EXPECT_EQ(self.exit_code, 1);
+  EXPECT_EQ(self.err,
+            "isg world: error: s/p/d1.json: refused as an output: it is the input "
+            "s/p/d1.json\n");
+  const auto holder = sandbox.run("run s/p/d1.json --duration 2 -o s/p --force -q");
+  EXPECT_EQ(holder.exit_code, 1);
+  EXPECT_THAT(holder.err, HasSubstr("s/p: refused as an output: it holds the input s/p/d1.json"));
+  EXPECT_EQ(sandbox.read("s/p/d1.json"), plan);
+  EXPECT_EQ(sandbox.read("s/p/mine.txt"), "mine\n");
+}
+
+TEST(OutputPaths, AnExportNeverReplacesTheDatasetsOwnFilesOrAUsersFile) {
+  testing::Sandbox sandbox("out_export");
+  userTree(sandbox);
+  ASSERT_EQ(sandbox.run("simulate builtin:d1 --duration 1 -o ds -q").exit_code, 0);
+  const auto before = snapshot(sandbox.dir());
+  const auto inside = sandbox.run("export ds --rosbag ds/imu.csv --force -q");
+  EXPECT_EQ(inside.exit_code, 1);
+  EXPECT_EQ(inside.err,
+            "isg export: error: ds/imu.csv: refused as an output: it lies inside the input folder "
+            "ds\n");
+  const auto users = sandbox.run("export ds --rosbag s/notes.txt --force -q");
+  EXPECT_EQ(users.exit_code, 1);
+  EXPECT_THAT(users.err, HasSubstr("s/notes.txt: not replaced: it is not a ROS bag that isg "
+                                   "wrote (--force replaces only those)"));
+  const auto folder = sandbox.run("export ds --rosbag ds --force -q");
+  EXPECT_EQ(folder.exit_code, 1);
+  EXPECT_THAT(folder.err, HasSubstr("ds: refused as an output: it is the input ds"));
+  EXPECT_EQ(snapshot(sandbox.dir()), before);
+  // A bag of ours is replaced with --force.
+  ASSERT_EQ(sandbox.run("export ds --rosbag b.bag -q").exit_code, 0);
+  EXPECT_EQ(sandbox.run("export ds --rosbag b.bag -q").exit_code, 1);
+  EXPECT_EQ(sandbox.run("export ds --rosbag b.bag --force -q").exit_code, 0);
+}
+
+TEST(OutputPaths, SingleFileOutputsReplaceOnlyTheirOwnFiles) {
+  testing::Sandbox sandbox("out_files");
+  userTree(sandbox);
+  // isg world, isg agraph, isg table and isg eval --plot replace their own earlier file when run
+  // again, and nothing else.
+  ASSERT_EQ(sandbox.run("world builtin:d1 -o w.xml").exit_code, 0);
+  EXPECT_EQ(sandbox.run("world builtin:d1 -o w.xml").exit_code, 0);
+  const auto world = sandbox.run("world builtin:d1 -o s/notes.txt");
+  EXPECT_EQ(world.exit_code, 1);
+  EXPECT_THAT(world.err, HasSubstr("s/notes.txt: not replaced: it is not an MJCF world that isg "
+                                   "wrote; remove it yourself or give another path"));
+  ASSERT_EQ(sandbox.run("agraph builtin:d1 -o a.json --svg a.svg").exit_code, 0);
+  EXPECT_EQ(sandbox.run("agraph builtin:d1 -o a.json --svg a.svg").exit_code, 0);
+  EXPECT_EQ(sandbox.run("agraph builtin:d1 --svg s/notes.txt").exit_code, 1);
+  ASSERT_EQ(sandbox.run("run builtin:d1 --method odometry --duration 2 -o r -q").exit_code, 0);
+  for (const char* format : {"md", "csv", "latex"}) {
+    const std::string out = std::string("t.") + format;
+    ASSERT_EQ(sandbox.run("table r --format " + std::string(format) + " -o " + out).exit_code, 0);
+    EXPECT_EQ(sandbox.run("table r --format " + std::string(format) + " -o " + out).exit_code, 0)
+        << format;
+    EXPECT_EQ(sandbox.run("table r --format " + std::string(format) + " -o s/notes.txt").exit_code,
+              1);
+  }
+  EXPECT_EQ(sandbox.run("table r -o r/metrics.json").exit_code, 1);  // an input's own file
+  ASSERT_EQ(sandbox.run("eval r/groundtruth.tum r/odometry.tum --plot p.svg").exit_code, 0);
+  EXPECT_EQ(sandbox.run("eval r/groundtruth.tum r/odometry.tum --plot p.svg").exit_code, 0);
+  EXPECT_EQ(sandbox.run("eval r/groundtruth.tum r/odometry.tum --plot r/odometry.tum").exit_code,
+            1);
+  EXPECT_EQ(sandbox.read("s/notes.txt"), "notes\n");
+  EXPECT_EQ(sandbox.read("s/keep/important"), "do not lose me\n");
+}
+
+}  // namespace
+}  // namespace isg::cli
