@@ -839,9 +839,13 @@ GeneratedBuilding generateBuilding(const GeneratorSpec& spec) {
     }
   }
   if (good > 0) {
-    throw std::invalid_argument("rooms: " + std::to_string(asked) + " offices make a " +
-                                spec.family + " isg check refuses (" + *why +
-                                "); with these parameters at most " + std::to_string(good));
+    throw std::invalid_argument("rooms: " + std::to_string(asked) +
+                                " offices make a plan isg check refuses (" + *why + "); " +
+                                (std::string("aeiou").find(spec.family[0]) != std::string::npos
+                                     ? "an "
+                                     : "a ") +
+                                spec.family + " of these parameters holds at most " +
+                                std::to_string(good));
   }
   throw std::invalid_argument("family: the " + spec.family +
                               " of these parameters is refused by "

@@ -107,9 +107,9 @@ TEST(HonestGenerator, CountsAndRangesAreWhatItSays) {
   // how many fit.
   const auto hotel = sandbox.run("generate hotel --rooms 3000 -o h -q");
   EXPECT_EQ(hotel.exit_code, 1);
-  EXPECT_THAT(hotel.err, HasSubstr("--rooms: 3000 offices make a hotel isg check refuses ("));
+  EXPECT_THAT(hotel.err, HasSubstr("--rooms: 3000 offices make a plan isg check refuses ("));
   EXPECT_THAT(hotel.err, HasSubstr("at most 1000 m on a side"));
-  EXPECT_THAT(hotel.err, HasSubstr("; with these parameters at most "));
+  EXPECT_THAT(hotel.err, HasSubstr("; a hotel of these parameters holds at most "));
   EXPECT_FALSE(sandbox.exists("h"));
 }
 
@@ -122,7 +122,7 @@ TEST(HonestGenerator, UnverifiedBuildingsStillReadAsIsgCheckReadsThem) {
   } else {
     // Refused with the count that works, never written half-checked.
     EXPECT_EQ(r.exit_code, 1) << r.err;
-    EXPECT_THAT(r.err, HasSubstr("with these parameters at most"));
+    EXPECT_THAT(r.err, HasSubstr("of these parameters holds at most"));
     EXPECT_FALSE(sandbox.exists("g"));
   }
 }

@@ -157,6 +157,16 @@ TEST(OutputPaths, SingleFileOutputsReplaceOnlyTheirOwnFiles) {
   EXPECT_EQ(sandbox.run("eval r/groundtruth.tum r/odometry.tum --plot p.svg").exit_code, 0);
   EXPECT_EQ(sandbox.run("eval r/groundtruth.tum r/odometry.tum --plot r/odometry.tum").exit_code,
             1);
+  // isg render adds its pictures to a folder, replacing only pictures of its own (PNG text chunk).
+  ASSERT_EQ(sandbox.run("render builtin:d1 -o pics --width 64 --height 48").exit_code, 0);
+  EXPECT_EQ(sandbox.run("render builtin:d1 -o pics --width 64 --height 48").exit_code, 0);
+  sandbox.write("s/top.png", "a picture of the user's\n");
+  const auto render = sandbox.run("render builtin:d1 -o s --width 64 --height 48");
+  EXPECT_EQ(render.exit_code, 1);
+  EXPECT_THAT(render.err, HasSubstr("s/top.png: not replaced: it is not a PNG picture that isg "
+                                    "wrote"));
+  EXPECT_FALSE(sandbox.exists("s/plan.png"));
+  EXPECT_EQ(sandbox.read("s/top.png"), "a picture of the user's\n");
   EXPECT_EQ(sandbox.read("s/notes.txt"), "notes\n");
   EXPECT_EQ(sandbox.read("s/keep/important"), "do not lose me\n");
 }
