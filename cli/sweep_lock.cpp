@@ -15,7 +15,8 @@ namespace isg::cli {
 
 SweepLock::SweepLock(const std::string& sweep_dir) {
   const std::string path = (std::filesystem::path(sweep_dir) / kSweepLockFile).string();
-  fd_ = ::open(path.c_str(), O_RDWR | O_CREAT | O_CLOEXEC, 0644);
+  // Never through a symlink: the pid written below would truncate whatever it points to.
+  fd_ = ::open(path.c_str(), O_RDWR | O_CREAT | O_CLOEXEC | O_NOFOLLOW, 0644);
   if (fd_ < 0) {
     throw bim::InputError(path, "",
                           std::string("cannot open the sweep's lock: ") + std::strerror(errno));

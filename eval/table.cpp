@@ -370,9 +370,22 @@ ResultTable parseTableCsv(const std::string& text) {
     ++number;
     if (line.empty() || line == "\r") continue;
     const auto fields = splitCsv(line);
+    // Names are text: a control character (a quoted line break, a NUL) in a world or method name
+    // would be written back as something else, and the baseline would name a cell no run has.
+    for (const std::string& field : fields) {
+      const auto control = std::find_if(field.begin(), field.end(), [](char c) {
+        return static_cast<unsigned char>(c) < 0x20 || c == 0x7f;
+      });
+      if (control != field.end()) {
+        throw std::invalid_argument("line " + std::to_string(number) +
+                                    ": a control character in a field");
+      }
+    }
     if (header.empty()) {
-      if (fields.size() < 2 || fields[0] != "world") {
-        throw std::invalid_argument("line 1: expected a header \"world,<method>,...\"");
+      // A header of "world" alone is a table without methods, as formatTable writes it.
+      if (fields[0] != "world") {
+        throw std::invalid_argument("line " + std::to_string(number) +
+                                    ": expected a header \"world,<method>,...\"");
       }
       header = fields;
       continue;

@@ -153,12 +153,20 @@ fs::path checkOutputPath(const std::string& path, const OutputRule& rule) {
 void writeOutputMarker(const fs::path& folder, OutputKind kind) {
   const nlohmann::json marker = {{"written_by", "isg"}, {"kind", infoOf(kind).name}};
   const fs::path file = folder / kOutputMarkerFile;
-  std::ofstream out(file, std::ios::binary | std::ios::trunc);
-  out << marker.dump() << "\n";
-  out.flush();
-  if (!out) {
-    throw bim::InputError(file.string(), "", std::string("cannot write: ") + std::strerror(errno));
+  // Written beside and renamed over: a marker path that is a symlink is replaced, never followed.
+  const fs::path temporary = folder / (std::string(kOutputMarkerFile) + ".tmp");
+  {
+    std::ofstream out(temporary, std::ios::binary | std::ios::trunc);
+    out << marker.dump() << "\n";
+    out.flush();
+    if (!out) {
+      throw bim::InputError(file.string(), "",
+                            std::string("cannot write: ") + std::strerror(errno));
+    }
   }
+  std::error_code error;
+  fs::rename(temporary, file, error);
+  if (error) throw bim::InputError(file.string(), "", "cannot write: " + error.message());
 }
 
 std::optional<OutputKind> folderOutputKind(const fs::path& folder) {

@@ -5,6 +5,7 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 #include <sys/file.h>
+#include <sys/wait.h>
 #include <unistd.h>
 
 #include <filesystem>
@@ -48,6 +49,39 @@ TEST(SweepIntegrity, ASecondSweepIntoOneFolderIsRefusedNamingTheHolder) {
                                     std::to_string(::getpid()) + ")"));
   ::close(fd);  // the holder ends: the lock goes with it
   EXPECT_EQ(sandbox.run("sweep suite.json -o out -q").exit_code, 0);
+}
+
+// Two real sweeps at once into one folder: the second is refused while the first runs, and the
+// first finishes every cell once.
+TEST(SweepIntegrity, TwoSweepsAtOnceOneIsRefused) {
+  testing::Sandbox sandbox("sweep_two");
+  sandbox.write("suite.json", suiteOf(R"(["builtin:d1", "builtin:d2"])", "[1, 2, 3]"));
+  const pid_t first = ::fork();
+  ASSERT_GE(first, 0);
+  if (first == 0) {
+    if (::chdir(sandbox.dir().c_str()) != 0) ::_exit(126);
+    const int null = ::open("/dev/null", O_WRONLY);
+    ::dup2(null, 1);
+    ::dup2(null, 2);
+    ::execl(ISG_EXECUTABLE, "isg", "sweep", "suite.json", "-o", "out", "-q", nullptr);
+    ::_exit(127);
+  }
+  // Until the first holds the lock (its pid in the lock file).
+  const std::string pid = std::to_string(first);
+  for (int i = 0; i < 600 && sandbox.read("out/.lock") != pid + "\n"; ++i) {
+    ::usleep(10000);
+  }
+  ASSERT_EQ(sandbox.read("out/.lock"), pid + "\n");
+  const auto second = sandbox.run("sweep suite.json -o out -q");
+  int status = 0;
+  ::waitpid(first, &status, 0);
+  EXPECT_EQ(second.exit_code, 1);
+  EXPECT_THAT(second.err, HasSubstr("another isg sweep is running in this folder (pid " + pid));
+  ASSERT_TRUE(WIFEXITED(status));
+  EXPECT_EQ(WEXITSTATUS(status), 0);
+  EXPECT_FALSE(fs::exists(sandbox.dir() / "out/d1/odometry/seed-1.failed.json"));
+  const auto again = sandbox.run("sweep suite.json -o out");
+  EXPECT_THAT(again.err, HasSubstr("6 of 6 cells finished before; running the other 0"));
 }
 
 TEST(SweepIntegrity, AWorldEditedBetweenTwoStartsIsRefusedOrRunAgainNeverMixed) {

@@ -207,4 +207,37 @@ TEST(Table, ABaselineCellMustBeAFiniteNumberAtLeastZero) {
   }
 }
 
+// What formatTable writes, parseTableCsv reads: a table without methods is a header of "world"
+// alone and its count row.
+TEST(Table, ATableWithoutMethodsReadsBack) {
+  const ResultTable empty;
+  const std::string csv = formatTable(empty, TableFormat::kCsv);
+  EXPECT_EQ(csv, "world\nlocalized correctly\n");
+  const ResultTable back = parseTableCsv(csv);
+  EXPECT_TRUE(back.rows.empty());
+  EXPECT_TRUE(back.columns.empty());
+}
+
+// A control character in a name would be written back as something else (a quoted line break as
+// a space): refused, naming the line.
+TEST(Table, NamesWithControlCharactersAreRefused) {
+  for (const std::string csv :
+       {std::string("world,\"a\rb\"\nd1,0.1\n"), std::string("world,a\nd\x01,0.1\n"),
+        std::string("\nworld,a\0\n", 10)}) {
+    try {
+      parseTableCsv(csv);
+      ADD_FAILURE() << "accepted";
+    } catch (const std::invalid_argument& e) {
+      EXPECT_NE(std::string(e.what()).find("a control character in a field"), std::string::npos)
+          << e.what();
+    }
+  }
+  try {
+    parseTableCsv("\nnot a header\n");
+    FAIL();
+  } catch (const std::invalid_argument& e) {
+    EXPECT_STREQ(e.what(), "line 2: expected a header \"world,<method>,...\"");
+  }
+}
+
 }  // namespace isg::eval
