@@ -6,6 +6,7 @@
 #include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <limits>
 #include <sstream>
 
 #include "bim/limits.hpp"
@@ -168,6 +169,18 @@ std::uint64_t JsonNode::unsignedInteger() const {
     fail("must be >= 0, got " + std::to_string(value_->get<std::int64_t>()));
   }
   fail("expected a non-negative integer, got " + describeJsonType(*value_));
+}
+
+std::int64_t JsonNode::integer() const {
+  if (value_->is_number_unsigned()) {
+    const std::uint64_t v = value_->get<std::uint64_t>();
+    if (v > std::uint64_t(std::numeric_limits<std::int64_t>::max())) {
+      fail("too large: " + std::to_string(v));
+    }
+    return std::int64_t(v);
+  }
+  if (value_->is_number_integer()) return value_->get<std::int64_t>();
+  fail("expected an integer, got " + describeJsonType(*value_));
 }
 
 std::string JsonNode::string() const {

@@ -51,6 +51,7 @@ class JsonNode {
   double nonNegativeNumber() const;
   double numberInRange(double lo, double hi, bool hi_open = false) const;  // [lo, hi] or [lo, hi)
   std::uint64_t unsignedInteger() const;
+  std::int64_t integer() const;  // any integer a 64-bit signed one holds
   std::string string() const;
   std::string nonEmptyString() const;
   // An id: non-empty, at most limits::kMaxIdBytes bytes, no control characters (they would

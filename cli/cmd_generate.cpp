@@ -6,9 +6,9 @@
 #include <limits>
 #include <stdexcept>
 
-#include "cli/interrupt.hpp"
 #include "cli/progress_bar.hpp"
 #include "run/atomic_folder.hpp"
+#include "run/interrupt.hpp"
 #include "sim/simulation.hpp"
 
 namespace isg::cli {
@@ -129,7 +129,7 @@ int GenerateCommand::run() {
       worlds::GeneratorSpec spec = spec_;
       spec.family = family;
       spec.seed = seed_ + std::uint64_t(i);
-      throwIfInterrupted();
+      run::throwIfInterrupted();
       try {
         buildings.push_back(worlds::generateBuilding(spec));
       } catch (const std::invalid_argument& e) {
@@ -180,7 +180,7 @@ int GenerateCommand::run() {
         }
         // The last building's checks may have taken a while: an interrupt then still means nothing
         // is written.
-        throwIfInterrupted();
+        run::throwIfInterrupted();
       });
   bar.finish();
   std::printf(

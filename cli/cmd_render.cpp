@@ -53,7 +53,7 @@ int RenderCommand::run() {
   if (error) throw bim::InputError(output_, "", "cannot write: " + error.message());
   const double t =
       time_ < 0 ? 0.25 * simulation.duration() : std::min(time_, simulation.duration());
-  const auto& trajectory = simulation.trajectory();
+  const auto& trajectory = simulation.baseMotion();
   const Eigen::Isometry3d B_T_R = trajectory.pose(t);
   auto& world = simulation.world();
   sim::poseRobot(world.model(), world.data(), B_T_R, trajectory.gaitPhase(t),

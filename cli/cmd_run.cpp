@@ -66,7 +66,8 @@ int RunCommand::run() {
   if (seed_) scenario.seed = *seed_;
   // The seed is in the default name, so that the seeds of one world and method do not collide.
   if (output_.empty()) {
-    output_ = "runs/" + worldName(input) + "-" + method_ + "-seed-" + std::to_string(scenario.seed);
+    output_ = "runs/" + worlds::worldName(input) + "-" + method_ + "-seed-" +
+              std::to_string(scenario.seed);
   }
   // Before the run, not after it: a folder that cannot be written fails at once; the output rule
   // before its parent folders are made.

@@ -3,16 +3,16 @@
 #include <cstdio>
 #include <filesystem>
 
-#include "cli/interrupt.hpp"
-#include "cli/slurm_backend.hpp"
-#include "cli/suite.hpp"
-#include "cli/sweep_collect.hpp"
-#include "cli/sweep_lock.hpp"
-#include "cli/sweep_pool.hpp"
-#include "cli/sweep_worlds.hpp"
 #include "run/atomic_folder.hpp"
 #include "run/builtin_methods.hpp"
+#include "run/interrupt.hpp"
 #include "run/output_path.hpp"
+#include "sweep/collect.hpp"
+#include "sweep/lock.hpp"
+#include "sweep/pool.hpp"
+#include "sweep/prepare_worlds.hpp"
+#include "sweep/slurm_backend.hpp"
+#include "sweep/suite.hpp"
 #include "worlds/reference_plans.hpp"
 
 namespace isg::cli {
@@ -23,16 +23,16 @@ namespace fs = std::filesystem;
 
 // Moves the finished (or damaged) cells of `worlds` aside, with their failure records: they ran
 // on a world that has changed since.
-void moveWorldCellsAside(const std::string& sweep_dir, const std::vector<SweepCell>& cells,
-                         const std::vector<ChangedWorld>& worlds) {
+void moveWorldCellsAside(const std::string& sweep_dir, const std::vector<sweep::SweepCell>& cells,
+                         const std::vector<sweep::ChangedWorld>& worlds) {
   for (const auto& cell : cells) {
     bool changed = false;
     for (const auto& w : worlds) changed = changed || w.name == cell.world;
     if (!changed) continue;
     std::error_code ignored;
-    fs::remove(failureRecordPath(sweep_dir, cell), ignored);
+    fs::remove(sweep::failureRecordPath(sweep_dir, cell), ignored);
     if (!fs::exists(fs::symlink_status(fs::path(sweep_dir) / cell.dir))) continue;
-    const std::string aside = moveCellAside(sweep_dir, cell);
+    const std::string aside = sweep::moveCellAside(sweep_dir, cell);
     std::fprintf(stderr, "isg sweep: %s ran on the world before it changed; moved to %s\n",
                  cell.dir.c_str(), aside.c_str());
   }
@@ -85,7 +85,7 @@ SweepCommand::SweepCommand(CLI::App& parent) {
                  "tabulate SWEEP_DIR (table.md, table.csv) and list failed and missing cells");
   app_->add_option("--cell", cell_, "run one cell of SWEEP_DIR (what a Slurm task runs)")
       ->option_text("K")
-      ->check(CLI::Range(0L, long(kMaxSweepCells) - 1));
+      ->check(CLI::Range(0L, long(sweep::kMaxSweepCells) - 1));
   app_->add_option("--measure", measure_, "the table's measure, as isg table's --measure")
       ->check(CLI::IsMember(
           {"ape", "time-wrong", "time-to-localize", "distance-to-localize", "rooms-to-localize"}))
@@ -97,13 +97,13 @@ SweepCommand::SweepCommand(CLI::App& parent) {
 }
 
 int SweepCommand::collect(const std::string& sweep_dir) const {
-  const SweepPlan plan = readSweepPlan(sweep_dir);
-  const SweepCollection c = collectSweep(sweep_dir, plan.cells, measure_);
+  const sweep::SweepPlan plan = sweep::readSweepPlan(sweep_dir);
+  const sweep::SweepCollection c = sweep::collectSweep(sweep_dir, plan.cells, measure_);
   const std::string md =
       eval::formatTable(c.table.table, eval::TableFormat::kMarkdown, c.table.caption);
   const std::string csv = eval::formatTable(c.table.table, eval::TableFormat::kCsv);
-  run::writeFileAtomically((fs::path(sweep_dir) / kSweepTableMarkdownFile).string(), md);
-  run::writeFileAtomically((fs::path(sweep_dir) / kSweepTableCsvFile).string(), csv);
+  run::writeFileAtomically((fs::path(sweep_dir) / sweep::kSweepTableMarkdownFile).string(), md);
+  run::writeFileAtomically((fs::path(sweep_dir) / sweep::kSweepTableCsvFile).string(), csv);
   std::printf("%s\n", md.c_str());
   for (const auto& f : c.failed) std::printf("failed: %s\n", f.c_str());
   for (const auto& m : c.missing) std::printf("not run: %s\n", m.c_str());
@@ -123,17 +123,18 @@ int SweepCommand::run() {
   if (collect_ && cell_ >= 0) return usage("--collect and --cell: give one of them");
   if (collect_) return collect(input_);
   if (cell_ >= 0) {
-    const SweepPlan plan = readSweepPlan(input_);
+    const sweep::SweepPlan plan = sweep::readSweepPlan(input_);
     if (std::size_t(cell_) >= plan.cells.size()) {
-      throw bim::InputError((fs::path(input_) / kSweepPlanFile).string(), "/cells",
+      throw bim::InputError((fs::path(input_) / sweep::kSweepPlanFile).string(), "/cells",
                             "no cell " + std::to_string(cell_) + " (the sweep has " +
                                 std::to_string(plan.cells.size()) + ")");
     }
-    const PoolOutcome o = runCells(input_, plan.cells, {std::size_t(cell_)}, 1, quiet_);
+    const sweep::PoolOutcome o =
+        sweep::runCells(input_, plan.cells, {std::size_t(cell_)}, 1, quiet_);
     return o.failed == 0 ? kExitOk : kExitIncomplete;
   }
   if (output_.empty()) return usage("isg sweep SUITE.json needs -o SWEEP_DIR");
-  Suite suite = loadSuite(input_, run::builtinMethods());
+  sweep::Suite suite = sweep::loadSuite(input_, run::builtinMethods());
   // The output rule: not the working directory or what holds it, not the suite or its world
   // files, and an existing folder only if it is a sweep's (or empty).
   std::vector<std::string> inputs = {input_};
@@ -146,15 +147,15 @@ int SweepCommand::run() {
   if (made) throw bim::InputError(output_, "", "cannot make the sweep folder: " + made.message());
   if (!run::folderOutputKind(output_)) run::writeOutputMarker(output_, run::OutputKind::kSweep);
   // One sweep at a time in a folder, from here to the end (the lock goes with the process).
-  const SweepLock lock(output_);
+  const sweep::SweepLock lock(output_);
   // Every world read (generated ones written) and hashed, before any cell runs.
-  prepareSweepWorlds(suite, output_);
-  const std::vector<SweepCell> cells = sweepCells(suite);
+  sweep::prepareSweepWorlds(suite, output_);
+  const std::vector<sweep::SweepCell> cells = sweep::sweepCells(suite);
   // A sweep folder holds one suite's cells: starting it again with other cells would mix them.
-  const fs::path plan_path = fs::path(output_) / kSweepPlanFile;
-  const std::string plan_text = sweepPlanJson(suite, cells);
+  const fs::path plan_path = fs::path(output_) / sweep::kSweepPlanFile;
+  const std::string plan_text = sweep::sweepPlanJson(suite, cells);
   if (fs::exists(plan_path)) {
-    const SweepPlan before = readSweepPlan(output_);
+    const sweep::SweepPlan before = sweep::readSweepPlan(output_);
     bool same = before.cells.size() == cells.size();
     for (std::size_t i = 0; same && i < cells.size(); ++i) {
       same = before.cells[i].dir == cells[i].dir && before.cells[i].arguments == cells[i].arguments;
@@ -166,7 +167,7 @@ int SweepCommand::run() {
                                 before.suite_file + "); give another -o or remove it");
     }
     // The same cells of a changed world would mix two buildings in one row.
-    const std::vector<ChangedWorld> changed = changedWorlds(suite, before);
+    const std::vector<sweep::ChangedWorld> changed = sweep::changedWorlds(suite, before);
     if (!changed.empty() && !rerun_changed_) {
       std::string list;
       for (const auto& w : changed) {
@@ -178,7 +179,7 @@ int SweepCommand::run() {
                                 " changed since this sweep ran in " + output_ + ": " + list +
                                 "; --rerun-changed runs their cells again on the world as it is "
                                 "now (the old runs are moved to " +
-                                output_ + "/" + kSweepAsideFolder + "), or give another -o");
+                                output_ + "/" + sweep::kSweepAsideFolder + "), or give another -o");
     }
     moveWorldCellsAside(output_, before.cells, changed);
   }
@@ -189,16 +190,19 @@ int SweepCommand::run() {
   if (backend_ == "slurm") {
     std::vector<std::size_t> pending;
     for (std::size_t i : all) {
-      if (!cellFinished(output_, cells[i])) pending.push_back(i);
+      if (!sweep::cellFinished(output_, cells[i])) pending.push_back(i);
     }
     if (pending.empty()) {
       std::printf("isg sweep: every cell of %s has finished; nothing to submit\n", output_.c_str());
       return collect(output_);
     }
     const std::string isg = fs::read_symlink("/proc/self/exe").string();
-    const std::size_t max_array_size = suite.slurm.max_array_size.value_or(slurmMaxArraySize());
-    const std::string script = writeSlurmScript(output_, suite, pending, isg, max_array_size);
-    const std::vector<SlurmArray> arrays = slurmArrays(pending.size(), max_array_size);
+    const std::size_t max_array_size =
+        suite.slurm.max_array_size.value_or(sweep::slurmMaxArraySize());
+    const std::string script =
+        sweep::writeSlurmScript(output_, suite, pending, isg, max_array_size);
+    const std::vector<sweep::SlurmArray> arrays =
+        sweep::slurmArrays(pending.size(), max_array_size);
     const std::string split = arrays.size() == 1
                                   ? ""
                                   : " in " + std::to_string(arrays.size()) + " arrays of at most " +
@@ -206,10 +210,11 @@ int SweepCommand::run() {
     if (dry_run_) {
       std::printf("isg sweep: wrote %s (%zu array tasks%s); submit it with:\n", script.c_str(),
                   pending.size(), split.c_str());
-      for (const auto& array : arrays) std::printf("  %s\n", sbatchCommand(script, array).c_str());
+      for (const auto& array : arrays)
+        std::printf("  %s\n", sweep::sbatchCommand(script, array).c_str());
       return kExitOk;
     }
-    const std::vector<std::string> jobs = submitSlurm(script, arrays, wait_);
+    const std::vector<std::string> jobs = sweep::submitSlurm(script, arrays, wait_);
     std::string ids;
     for (const auto& id : jobs) ids += (ids.empty() ? "" : ", ") + id;
     std::printf("isg sweep: submitted %s as Slurm job%s %s (%zu array tasks%s)\n", script.c_str(),
@@ -220,10 +225,10 @@ int SweepCommand::run() {
     }
     return collect(output_);
   }
-  PoolOutcome o;
+  sweep::PoolOutcome o;
   try {
-    o = runCells(output_, cells, all, jobs_, quiet_);
-  } catch (const Interrupted& e) {
+    o = sweep::runCells(output_, cells, all, jobs_, quiet_);
+  } catch (const run::Interrupted& e) {
     // Not "nothing was written": the cells that finished stay, and are what a restart skips.
     std::fprintf(stderr,
                  "isg sweep: %s; the running cells were stopped and left nothing, the finished "

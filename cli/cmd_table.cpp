@@ -9,12 +9,12 @@
 
 #include "bim/input_error.hpp"
 #include "bim/json_reader.hpp"
-#include "cli/run_table.hpp"
-#include "cli/suite.hpp"
 #include "eval/table.hpp"
 #include "run/builtin_methods.hpp"
 #include "run/output_path.hpp"
 #include "run/run_metrics.hpp"
+#include "sweep/run_table.hpp"
+#include "sweep/suite.hpp"
 
 namespace isg::cli {
 
@@ -75,7 +75,7 @@ int TableCommand::run() {
   }
   // The testbed's methods first, in their order (iS-Graphs, then the baselines), like the paper.
   std::vector<std::pair<std::string, run::RunMetrics>> runs;
-  std::vector<AbsentRun> failed;
+  std::vector<sweep::AbsentRun> failed;
   for (const auto& dir : runs_) {
     // A sweep's failure record (what SWEEP_DIR/*/*/seed-* also matches): a seed that failed,
     // counted in its cell as such.
@@ -91,14 +91,14 @@ int TableCommand::run() {
       continue;
     }
     // A sweep folder given for its run folders: say which command reads it.
-    if (std::filesystem::is_regular_file(std::filesystem::path(dir) / kSweepPlanFile)) {
+    if (std::filesystem::is_regular_file(std::filesystem::path(dir) / sweep::kSweepPlanFile)) {
       throw bim::InputError(dir, "",
                             "a sweep folder, not a run folder: isg sweep --collect " + dir +
                                 " tabulates it (or give its run folders, " + dir + "/*/*/seed-*)");
     }
     runs.emplace_back(dir, run::readMetrics(dir));
   }
-  const auto [table, caption] = tabulateRuns(std::move(runs), measure_, methods, failed);
+  const auto [table, caption] = sweep::tabulateRuns(std::move(runs), measure_, methods, failed);
   const eval::TableFormat format = format_ == "csv"     ? eval::TableFormat::kCsv
                                    : format_ == "latex" ? eval::TableFormat::kLatex
                                                         : eval::TableFormat::kMarkdown;

@@ -7,9 +7,6 @@
 
 namespace isg::cli {
 
-// Exit code of `isg table --baseline` when a cell regressed.
-inline constexpr int kExitRegression = 4;
-
 // isg table RUN_DIR... [--format md|csv|latex] [--measure M] [--baseline TABLE.csv --tolerance X]
 class TableCommand : public Command {
  public:

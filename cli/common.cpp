@@ -22,12 +22,6 @@ std::string inputFile(const std::string& argument) {
   return argument.rfind("builtin:", 0) == 0 ? std::string() : argument;
 }
 
-std::string worldName(const std::string& input) {
-  const std::string prefix = "builtin:";
-  if (input.rfind(prefix, 0) == 0) return input.substr(prefix.size());
-  return std::filesystem::path(input).stem().string();
-}
-
 std::string builtinWorldsHelp() {
   std::string names;
   for (const auto& n : worlds::builtinNames()) names += (names.empty() ? "" : ", ") + n;

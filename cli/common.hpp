@@ -16,6 +16,8 @@ inline constexpr int kExitOk = 0;
 inline constexpr int kExitBadInput = 1;
 inline constexpr int kExitUsage = 2;
 inline constexpr int kExitInternal = 3;
+// isg table --baseline: a cell is worse than its baseline.
+inline constexpr int kExitRegression = 4;
 // isg sweep: some cell failed or has not run (the table holds the others).
 inline constexpr int kExitIncomplete = 5;
 
@@ -25,10 +27,6 @@ CLI::Validator nonNegativeNumber();
 // A seed as the suite reader takes it: a decimal integer 0 … 2^64 − 1, no sign (CLI11 alone would
 // wrap "-1" and 2^64 silently).
 CLI::Validator seedNumber();
-
-// A world's short name, for folder names and table rows: "builtin:d1.asbuilt" → "d1.asbuilt",
-// "plans/office.asbuilt.json" → "office.asbuilt".
-std::string worldName(const std::string& input);
 
 // The file a PLAN|SCENARIO argument names ("" for a built-in world), for the output rule's inputs.
 std::string inputFile(const std::string& argument);

@@ -20,7 +20,7 @@
 #include "cli/cmd_sweep.hpp"
 #include "cli/cmd_table.hpp"
 #include "cli/cmd_world.hpp"
-#include "cli/interrupt.hpp"
+#include "run/interrupt.hpp"
 
 int main(int argc, char** argv) {
   using namespace isg::cli;
@@ -57,13 +57,13 @@ int main(int argc, char** argv) {
     return kExitUsage;
   }
 
-  installInterruptHandlers();
+  isg::run::installInterruptHandlers();
   for (const auto& command : commands) {
     if (!command->app()->parsed()) continue;
     const std::string name = command->app()->get_name();
     try {
       return command->run();
-    } catch (const Interrupted& e) {
+    } catch (const isg::run::Interrupted& e) {
       std::cerr << "isg " << name << ": " << e.what() << "; nothing was written\n";
       return 128 + e.signalNumber();
     } catch (const isg::bim::InputError& e) {

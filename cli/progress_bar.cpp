@@ -1,6 +1,6 @@
 #include "cli/progress_bar.hpp"
 
-#include "cli/interrupt.hpp"
+#include "run/interrupt.hpp"
 
 #include <unistd.h>
 
@@ -16,7 +16,7 @@ ProgressBar::~ProgressBar() { finish(); }
 
 void ProgressBar::update(double fraction, const std::string& detail) {
   // Every long command reports here once per scan, drawn or quiet: the place to notice Ctrl-C.
-  throwIfInterrupted();
+  run::throwIfInterrupted();
   if (!enabled_) return;
   const auto now = std::chrono::steady_clock::now();
   if (drawn_ && fraction < 1.0 && now - last_ < std::chrono::milliseconds(100)) return;

@@ -138,10 +138,10 @@ RunEvaluation evaluateRun(const RunRecord& run) {
   m.matching_events = run.status_changes;
   bool lost = false;
   for (const auto& change : run.status_changes) {
-    if (change.status == "lost") {
+    if (change.status == slam::MatchStatus::kLost) {
       lost = true;
       m.lost_at.push_back(change.stamp);
-    } else if (change.status == "matched" && lost) {
+    } else if (change.status == slam::MatchStatus::kMatched && lost) {
       lost = false;
       m.relocalized_at.push_back(change.stamp);
     }

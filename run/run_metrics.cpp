@@ -2,6 +2,8 @@
 
 #include <cmath>
 #include <filesystem>
+#include <limits>
+#include <string_view>
 
 #include "bim/input_error.hpp"
 #include "bim/json_reader.hpp"
@@ -15,95 +17,43 @@ nlohmann::json statisticsJson(const Statistics& s) {
           {"std", s.std},     {"min", s.min},   {"max", s.max},   {"sse", s.sse}};
 }
 
-// Reads fields of one JSON object, naming the file and the field's pointer when one is wrong.
-class FieldReader {
- public:
-  FieldReader(const nlohmann::json& object, std::string pointer, const std::string& file)
-      : object_(object), pointer_(std::move(pointer)), file_(file) {
-    if (!object_.is_object()) fail(pointer_, "expected an object");
-  }
+// metrics.json's fields read through bim::JsonNode, which names the file and the field's pointer
+// when one is missing or wrong. Every measure is finite and >= 0 (a time, a distance, an error).
+int countOf(const bim::JsonNode& node) {
+  const std::int64_t value = node.integer();
+  if (value < 0) node.fail("must be >= 0, got " + std::to_string(value));
+  if (value > std::numeric_limits<int>::max()) node.fail("too large: " + std::to_string(value));
+  return int(value);
+}
 
-  template <typename T>
-  T required(const char* key) const {
-    if (!object_.contains(key)) fail(pointer_ + "/" + key, "missing");
-    return get<T>(key);
-  }
-  template <typename T>
-  std::optional<T> optional(const char* key) const {
-    if (!object_.contains(key)) return std::nullopt;
-    return get<T>(key);
-  }
-  std::optional<Statistics> statistics(const char* key) const {
-    if (!object_.contains(key)) return std::nullopt;
-    const FieldReader s(object_[key], pointer_ + "/" + key, file_);
-    // Statistics of errors (metres, degrees): counts and values are never negative.
-    Statistics out;
-    out.count = s.required<int>("count");
-    if (out.count < 0) fail(pointer_ + "/" + key + "/count", "must be >= 0");
-    out.rmse = s.measure("rmse");
-    out.mean = s.measure("mean");
-    out.median = s.measure("median");
-    out.std = s.measure("std");
-    out.min = s.measure("min");
-    out.max = s.measure("max");
-    out.sse = s.measure("sse");
-    return out;
-  }
-  // A required number that is finite and >= 0 (a time, a distance, an error).
-  double measure(const char* key) const {
-    const double value = required<double>(key);
-    if (value < 0.0) fail(pointer_ + "/" + key, "must be >= 0, got " + object_[key].dump());
-    return value;
-  }
-  std::optional<double> optionalMeasure(const char* key) const {
-    if (!object_.contains(key)) return std::nullopt;
-    return measure(key);
-  }
-  // An optional array of numbers (empty when absent).
-  std::vector<double> numbers(const char* key) const {
-    std::vector<double> out;
-    if (!object_.contains(key)) return out;
-    const nlohmann::json& array = object_[key];
-    const std::string pointer = pointer_ + "/" + key;
-    if (!array.is_array()) fail(pointer, "expected an array of numbers");
-    for (std::size_t i = 0; i < array.size(); ++i) {
-      if (!array[i].is_number() || !std::isfinite(array[i].get<double>())) {
-        fail(pointer + "/" + std::to_string(i), "expected a finite number");
-      }
-      out.push_back(array[i].get<double>());
-    }
-    return out;
-  }
-  const nlohmann::json& object() const { return object_; }
-  const std::string& pointer() const { return pointer_; }
-  [[noreturn]] void fail(const std::string& pointer, const std::string& what) const {
-    throw bim::InputError(file_, pointer, what);
-  }
+std::optional<double> optionalMeasure(const bim::JsonNode& object, std::string_view key) {
+  if (const auto field = object.optionalField(key)) return field->nonNegativeNumber();
+  return std::nullopt;
+}
 
- private:
-  template <typename T>
-  T get(const char* key) const {
-    const nlohmann::json& value = object_[key];
-    const std::string pointer = pointer_ + "/" + key;
-    if constexpr (std::is_same_v<T, bool>) {
-      if (!value.is_boolean()) fail(pointer, "expected true or false");
-    } else if constexpr (std::is_same_v<T, std::string>) {
-      if (!value.is_string()) fail(pointer, "expected a string");
-    } else if constexpr (std::is_integral_v<T>) {
-      if (!value.is_number_integer() || (std::is_unsigned_v<T> && value.get<double>() < 0)) {
-        fail(pointer, "expected an integer");
-      }
-    } else {
-      if (!value.is_number()) fail(pointer, "expected a number");
-      if (!std::isfinite(value.get<double>())) fail(pointer, "expected a finite number");
-    }
-    return value.get<T>();
-  }
+std::optional<Statistics> optionalStatistics(const bim::JsonNode& object, std::string_view key) {
+  const auto field = object.optionalField(key);
+  if (!field) return std::nullopt;
+  Statistics out;
+  out.count = countOf(field->field("count"));
+  out.rmse = field->field("rmse").nonNegativeNumber();
+  out.mean = field->field("mean").nonNegativeNumber();
+  out.median = field->field("median").nonNegativeNumber();
+  out.std = field->field("std").nonNegativeNumber();
+  out.min = field->field("min").nonNegativeNumber();
+  out.max = field->field("max").nonNegativeNumber();
+  out.sse = field->field("sse").nonNegativeNumber();
+  return out;
+}
 
-  const nlohmann::json& object_;
-  std::string pointer_;
-  const std::string& file_;
-};
+// An optional array of finite numbers (empty when absent).
+std::vector<double> optionalNumbers(const bim::JsonNode& object, std::string_view key) {
+  std::vector<double> out;
+  if (const auto field = object.optionalField(key)) {
+    for (const auto& element : field->elements()) out.push_back(element.number());
+  }
+  return out;
+}
 
 bool isContentHash(const std::string& text) {
   const std::string prefix = "sha256:";
@@ -145,7 +95,7 @@ nlohmann::json metricsToJson(const RunMetrics& m) {
     for (const auto& e : m.matching_events) {
       events.push_back({{"stamp", e.stamp},
                         {"keyframe", e.keyframe},
-                        {"status", e.status},
+                        {"status", slam::toString(e.status)},
                         {"reason", e.reason}});
     }
     j["matching_events"] = events;
@@ -170,75 +120,78 @@ nlohmann::json metricsToJson(const RunMetrics& m) {
 }
 
 RunMetrics metricsFromJson(const nlohmann::json& document, const std::string& file) {
-  const FieldReader r(document, "", file);
+  const bim::JsonSource source{file, nullptr};
+  const bim::JsonNode root(document, "", source);
   RunMetrics m;
-  m.world = r.required<std::string>("world");
-  m.method = r.required<std::string>("method");
-  m.seed = r.required<std::uint64_t>("seed");
-  m.world_hash = r.optional<std::string>("world_hash");
-  if (m.world_hash && !isContentHash(*m.world_hash)) {
-    r.fail("/world_hash", "expected \"sha256:\" and 64 hex digits");
+  m.world = root.field("world").string();
+  m.method = root.field("method").string();
+  m.seed = root.field("seed").unsignedInteger();
+  if (const auto hash = root.optionalField("world_hash")) {
+    m.world_hash = hash->string();
+    if (!isContentHash(*m.world_hash)) hash->fail("expected \"sha256:\" and 64 hex digits");
   }
-  m.scans = r.required<int>("scans");
-  if (m.scans < 0) r.fail("/scans", "must be >= 0");
-  m.sim_seconds = r.measure("sim_seconds");
-  m.wall_seconds = r.measure("wall_seconds");
-  m.real_time_factor = r.measure("real_time_factor");
-  m.localized = r.required<bool>("localized");
-  m.time_to_localize = r.optionalMeasure("time_to_localize");
-  m.distance_to_localize = r.optionalMeasure("distance_to_localize");
-  m.rooms_visited_to_localize = r.optional<int>("rooms_visited_to_localize");
-  if (m.rooms_visited_to_localize && *m.rooms_visited_to_localize < 0) {
-    r.fail("/rooms_visited_to_localize", "must be >= 0");
+  m.scans = countOf(root.field("scans"));
+  m.sim_seconds = root.field("sim_seconds").nonNegativeNumber();
+  m.wall_seconds = root.field("wall_seconds").nonNegativeNumber();
+  m.real_time_factor = root.field("real_time_factor").nonNegativeNumber();
+  m.localized = root.field("localized").boolean();
+  m.time_to_localize = optionalMeasure(root, "time_to_localize");
+  m.distance_to_localize = optionalMeasure(root, "distance_to_localize");
+  if (const auto rooms = root.optionalField("rooms_visited_to_localize")) {
+    m.rooms_visited_to_localize = countOf(*rooms);
   }
-  m.share_localized = r.optionalMeasure("share_localized");
-  if (m.share_localized && *m.share_localized > 1.0) r.fail("/share_localized", "must be <= 1");
-  m.ape_B = r.statistics("ape_B");
-  m.ape_B_rotation_deg = r.statistics("ape_B_rotation_deg");
-  m.ape_M_se3 = r.statistics("ape_M_se3");
-  m.ape_odometry_from_true_start = r.statistics("ape_odometry_from_true_start");
-  m.wrongly_localized = r.optional<bool>("wrongly_localized");
-  m.time_wrongly_localized = r.optionalMeasure("time_wrongly_localized");
-  m.max_error_B = r.optionalMeasure("max_error_B");
-  m.matching_status = r.optional<std::string>("matching_status");
-  m.lost_at = r.numbers("lost_at");
-  m.relocalized_at = r.numbers("relocalized_at");
-  if (document.contains("timing")) {
-    const FieldReader t(document["timing"], "/timing", file);
+  if (const auto share = root.optionalField("share_localized")) {
+    m.share_localized = share->numberInRange(0.0, 1.0);
+  }
+  m.ape_B = optionalStatistics(root, "ape_B");
+  m.ape_B_rotation_deg = optionalStatistics(root, "ape_B_rotation_deg");
+  m.ape_M_se3 = optionalStatistics(root, "ape_M_se3");
+  m.ape_odometry_from_true_start = optionalStatistics(root, "ape_odometry_from_true_start");
+  if (const auto wrong = root.optionalField("wrongly_localized")) {
+    m.wrongly_localized = wrong->boolean();
+  }
+  m.time_wrongly_localized = optionalMeasure(root, "time_wrongly_localized");
+  m.max_error_B = optionalMeasure(root, "max_error_B");
+  if (const auto status = root.optionalField("matching_status")) {
+    m.matching_status = status->string();
+  }
+  m.lost_at = optionalNumbers(root, "lost_at");
+  m.relocalized_at = optionalNumbers(root, "relocalized_at");
+  if (const auto t = root.optionalField("timing")) {
     RunTiming timing;
-    timing.scans_read = t.required<int>("scans_read");
-    timing.localizer_seconds = t.required<double>("localizer_seconds");
-    timing.scan_wait_seconds = t.required<double>("scan_wait_seconds");
-    timing.peak_memory_mb = t.optional<double>("peak_memory_mb");
-    if (!t.object().contains("stages")) t.fail("/timing/stages", "missing");
-    const nlohmann::json& stages = t.object()["stages"];
-    if (!stages.is_array()) t.fail("/timing/stages", "expected an array");
-    for (std::size_t i = 0; i < stages.size(); ++i) {
-      const FieldReader s(stages[i], "/timing/stages/" + std::to_string(i), file);
-      timing.stages.push_back({s.required<std::string>("stage"), s.required<double>("seconds")});
+    timing.scans_read = countOf(t->field("scans_read"));
+    timing.localizer_seconds = t->field("localizer_seconds").number();
+    timing.scan_wait_seconds = t->field("scan_wait_seconds").number();
+    if (const auto peak = t->optionalField("peak_memory_mb"))
+      timing.peak_memory_mb = peak->number();
+    for (const auto& stage : t->field("stages").elements()) {
+      timing.stages.push_back({stage.field("stage").string(), stage.field("seconds").number()});
     }
     m.timing = timing;
   }
-  if (document.contains("matching_events")) {
-    const auto& events = document["matching_events"];
-    if (!events.is_array()) r.fail("/matching_events", "expected an array");
-    for (std::size_t i = 0; i < events.size(); ++i) {
-      const FieldReader e(events[i], "/matching_events/" + std::to_string(i), file);
-      m.matching_events.push_back({e.required<double>("stamp"), e.required<int>("keyframe"),
-                                   e.required<std::string>("status"),
-                                   e.required<std::string>("reason")});
+  if (const auto events = root.optionalField("matching_events")) {
+    for (const auto& e : events->elements()) {
+      const double stamp = e.field("stamp").number();
+      const std::int64_t keyframe = e.field("keyframe").integer();
+      const bim::JsonNode status_node = e.field("status");
+      const std::string word = status_node.string();
+      const auto status = slam::matchStatusFromString(word);
+      if (!status) {
+        status_node.fail("unknown status \"" + word +
+                         "\" (one of \"not yet\", \"ambiguous\", \"matched\", \"contradicted\", "
+                         "\"lost\")");
+      }
+      if (keyframe < -1 || keyframe > std::numeric_limits<int>::max()) {
+        e.field("keyframe").fail("out of range: " + std::to_string(keyframe));
+      }
+      m.matching_events.push_back({stamp, int(keyframe), *status, e.field("reason").string()});
     }
   }
-  if (document.contains("notes")) {
-    const auto& notes = document["notes"];
-    if (!notes.is_array()) r.fail("/notes", "expected an array of strings");
-    for (std::size_t i = 0; i < notes.size(); ++i) {
-      if (!notes[i].is_string()) r.fail("/notes/" + std::to_string(i), "expected a string");
-      m.notes.push_back(notes[i].get<std::string>());
-    }
+  if (const auto notes = root.optionalField("notes")) {
+    for (const auto& note : notes->elements()) m.notes.push_back(note.string());
   }
   if (m.localized && (!m.time_to_localize || !m.share_localized)) {
-    r.fail("/localized", "a localized run needs time_to_localize and share_localized");
+    root.field("localized").fail("a localized run needs time_to_localize and share_localized");
   }
   return m;
 }

@@ -41,7 +41,7 @@ nlohmann::ordered_json metadata(const Simulation& sim, double duration,
   }
   json route = json::array();
   for (const auto& p : sim.route().waypoints) route.push_back({p.x(), p.y()});
-  const auto& gait = sim.trajectory().gait();
+  const auto& gait = sim.baseMotion().gait();
   json extrinsics = run::dataset::extrinsicsJson(l.mount, sim.R_T_L());
   extrinsics["R_T_I"] = run::dataset::mountJson(s.imu.mount, sim.R_T_I());
   const auto& imu = s.imu;

@@ -8,7 +8,7 @@
 
 namespace isg::sim {
 
-ImuSample idealImuSample(const Trajectory& trajectory, const Eigen::Isometry3d& R_T_I,
+ImuSample idealImuSample(const BaseMotion& trajectory, const Eigen::Isometry3d& R_T_I,
                          double gravity, double t) {
   const BaseKinematics k = trajectory.kinematics(t);
   const Eigen::Matrix3d& B_R_R = k.B_T_R.linear();
@@ -25,7 +25,7 @@ ImuSample idealImuSample(const Trajectory& trajectory, const Eigen::Isometry3d& 
   return sample;
 }
 
-std::vector<ImuSample> simulateImu(const Trajectory& trajectory, const bim::ImuConfig& config,
+std::vector<ImuSample> simulateImu(const BaseMotion& trajectory, const bim::ImuConfig& config,
                                    double duration, std::uint64_t seed) {
   const Eigen::Isometry3d R_T_I = mountTransform(config.mount);
   const double dt = 1.0 / config.rate_hz;

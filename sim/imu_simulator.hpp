@@ -6,7 +6,7 @@
 #include <vector>
 
 #include "bim/scenario.hpp"
-#include "sim/trajectory.hpp"
+#include "sim/base_motion.hpp"
 #include "slam/messages.hpp"
 
 namespace isg::sim {
@@ -15,14 +15,14 @@ using slam::ImuSample;
 
 // What a perfect IMU mounted at R_T_I on the base reads at `t`: the trajectory's exact
 // derivatives, the lever arm's centripetal and tangential accelerations included.
-ImuSample idealImuSample(const Trajectory& trajectory, const Eigen::Isometry3d& R_T_I,
+ImuSample idealImuSample(const BaseMotion& trajectory, const Eigen::Isometry3d& R_T_I,
                          double gravity, double t);
 
 // The IMU stream of [0, duration] at config.rate_hz (sample i at i / rate), with Kalibr's
 // continuous-time noise model discretised at that rate: per axis, white noise of standard
 // deviation density / √Δt, plus a bias that starts at zero and steps by random_walk · √Δt · N(0, 1)
 // each sample. Every draw comes from `seed`.
-std::vector<ImuSample> simulateImu(const Trajectory& trajectory, const bim::ImuConfig& config,
+std::vector<ImuSample> simulateImu(const BaseMotion& trajectory, const bim::ImuConfig& config,
                                    double duration, std::uint64_t seed);
 
 }  // namespace isg::sim

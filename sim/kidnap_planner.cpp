@@ -6,7 +6,7 @@
 namespace isg::sim {
 
 void planKidnaps(const bim::Scenario& scenario, const OccupancyGrid& grid, PlannedRoute& route,
-                 Trajectory& trajectory, std::mt19937_64& rng) {
+                 BaseMotion& trajectory, std::mt19937_64& rng) {
   if (scenario.robot.kidnap.empty()) return;
   const bim::Level& level = *scenario.plan.findLevel(scenario.robot.level);
   const std::string& file = scenario.source;

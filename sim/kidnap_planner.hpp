@@ -3,9 +3,9 @@
 #include <random>
 
 #include "bim/scenario.hpp"
+#include "sim/base_motion.hpp"
 #include "sim/occupancy_grid.hpp"
 #include "sim/route_planner.hpp"
-#include "sim/trajectory.hpp"
 
 namespace isg::sim {
 
@@ -17,6 +17,6 @@ namespace isg::sim {
 // ended at the kidnap's time, or the target is less than kMinClearance from a wall, clutter or
 // the outside of the building.
 void planKidnaps(const bim::Scenario& scenario, const OccupancyGrid& grid, PlannedRoute& route,
-                 Trajectory& trajectory, std::mt19937_64& rng);
+                 BaseMotion& trajectory, std::mt19937_64& rng);
 
 }  // namespace isg::sim

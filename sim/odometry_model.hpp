@@ -34,7 +34,4 @@ class OdometryModel {
   Eigen::Vector3d planar_ = Eigen::Vector3d::Zero();  // x, y, yaw in M
 };
 
-// Yaw of a rotation about z (the heading of a base whose roll and pitch are small).
-double yawOf(const Eigen::Matrix3d& R);
-
 }  // namespace isg::sim

@@ -12,6 +12,7 @@
 #include <cstring>
 #include <stdexcept>
 
+#include "bim/angles.hpp"
 #include "bim/input_error.hpp"
 #include "run/atomic_folder.hpp"
 #include "sim/odometry_model.hpp"
@@ -166,7 +167,7 @@ Image Renderer::chase(mjData& data, const Eigen::Isometry3d& B_T_R) {
   camera.distance = 3.2;
   camera.elevation = -32.0;
   // MuJoCo's free camera looks along its azimuth: from behind the robot is its own heading.
-  camera.azimuth = yawOf(B_T_R.linear()) * 180.0 / std::numbers::pi;
+  camera.azimuth = bim::yawOf(B_T_R.linear()) * 180.0 / std::numbers::pi;
   return render(data, camera, false);
 }
 

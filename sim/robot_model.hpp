@@ -5,7 +5,7 @@
 #include <Eigen/Geometry>
 #include <string>
 
-#include "sim/trajectory.hpp"
+#include "sim/base_motion.hpp"
 
 namespace isg::sim {
 

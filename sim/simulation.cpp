@@ -48,10 +48,10 @@ Simulation::Simulation(const bim::Scenario& scenario)
   auto rng = generator(kRouteStream);
   route_ = planRoute(scenario_, *grid_, rng);
   const double floor_z = scenario_.plan.findLevel(scenario_.robot.level)->elevation;
-  trajectory_ = std::make_unique<Trajectory>(
+  base_motion_ = std::make_unique<BaseMotion>(
       route_.waypoints, route_.start_yaw, scenario_.robot.speed, floor_z, gaitOf(scenario_.robot));
-  planKidnaps(scenario_, *grid_, route_, *trajectory_, rng);
-  poseRobot(world_.model(), world_.data(), trajectory_->pose(0.0), 0.0, 0.0);
+  planKidnaps(scenario_, *grid_, route_, *base_motion_, rng);
+  poseRobot(world_.model(), world_.data(), base_motion_->pose(0.0), 0.0, 0.0);
   lidar_ = makeLidar();
 }
 
@@ -92,7 +92,7 @@ run::Trajectory Simulation::groundTruth(double duration, double rate_hz) const {
   const int n = int(std::floor(duration * rate_hz + 1e-9));
   for (int i = 0; i <= n; ++i) {
     const double t = i / rate_hz;
-    out.push_back({t, trajectory_->pose(t)});
+    out.push_back({t, base_motion_->pose(t)});
   }
   return out;
 }
@@ -100,25 +100,25 @@ run::Trajectory Simulation::groundTruth(double duration, double rate_hz) const {
 run::Trajectory Simulation::odometry(double duration) const {
   run::Trajectory out;
   auto rng = generator(kOdometryStream);
-  OdometryModel model(scenario_.odometry, trajectory_->pose(0.0));
+  OdometryModel model(scenario_.odometry, base_motion_->pose(0.0));
   const double rate = scenario_.odometry.rate_hz;
   const int n = int(std::floor(duration * rate + 1e-9));
-  const std::vector<double> jumps = trajectory_->jumps();
+  const std::vector<double> jumps = base_motion_->jumps();
   std::size_t next_jump = 0;
   for (int i = 0; i <= n; ++i) {
     const double t = i / rate;
     // A kidnap since the last tick: the legs moved until the lift, not with it.
     for (; next_jump < jumps.size() && jumps[next_jump] <= t; ++next_jump) {
-      model.update(trajectory_->poseBefore(jumps[next_jump]), rng);
-      model.teleport(trajectory_->pose(jumps[next_jump]));
+      model.update(base_motion_->poseBefore(jumps[next_jump]), rng);
+      model.teleport(base_motion_->pose(jumps[next_jump]));
     }
-    out.push_back({t, model.update(trajectory_->pose(t), rng)});
+    out.push_back({t, model.update(base_motion_->pose(t), rng)});
   }
   return out;
 }
 
 std::vector<ImuSample> Simulation::imu(double duration) const {
-  return simulateImu(*trajectory_, scenario_.imu, duration,
+  return simulateImu(*base_motion_, scenario_.imu, duration,
                      deriveSeed(scenario_.seed, kImuStream, 0));
 }
 

@@ -7,13 +7,13 @@
 
 #include "bim/scenario.hpp"
 #include "run/sensor_streams.hpp"
+#include "sim/base_motion.hpp"
 #include "sim/imu_simulator.hpp"
 #include "sim/lidar_simulator.hpp"
 #include "sim/mount_transform.hpp"
 #include "sim/mujoco_world.hpp"
 #include "sim/occupancy_grid.hpp"
 #include "sim/route_planner.hpp"
-#include "sim/trajectory.hpp"
 
 namespace isg::sim {
 
@@ -26,14 +26,14 @@ class Simulation {
   explicit Simulation(const bim::Scenario& scenario);
 
   const bim::Scenario& scenario() const { return scenario_; }
-  const Trajectory& trajectory() const { return *trajectory_; }
+  const BaseMotion& baseMotion() const { return *base_motion_; }
   const PlannedRoute& route() const { return route_; }
   MujocoWorld& world() { return world_; }
   const MujocoWorld& world() const { return world_; }
   const OccupancyGrid& grid() const { return *grid_; }
 
   // The time the route takes: the robot stops at its end.
-  double duration() const { return trajectory_->duration(); }
+  double duration() const { return base_motion_->duration(); }
   // The LiDAR on the base (scenario lidar.mount).
   const Eigen::Isometry3d& R_T_L() const { return R_T_L_; }
   double scanPeriod() const { return 1.0 / scenario_.lidar.rate_hz; }
@@ -45,7 +45,7 @@ class Simulation {
   // Blocks [first_block, last_block) of scan `index` (LidarSimulator::scanBlocks).
   LidarScan scanBlocks(int index, LidarSimulator& lidar, int first_block, int last_block) const;
   std::unique_ptr<LidarSimulator> makeLidar() const;
-  Eigen::Isometry3d B_T_L(double t) const { return trajectory_->pose(t) * R_T_L_; }
+  Eigen::Isometry3d B_T_L(double t) const { return base_motion_->pose(t) * R_T_L_; }
 
   run::Trajectory groundTruth(double duration, double rate_hz) const;
   run::Trajectory odometry(double duration) const;    // M_T_R at odometry.rate_hz
@@ -63,7 +63,7 @@ class Simulation {
   MujocoWorld world_;
   std::unique_ptr<OccupancyGrid> grid_;
   PlannedRoute route_;
-  std::unique_ptr<Trajectory> trajectory_;
+  std::unique_ptr<BaseMotion> base_motion_;
   std::unique_ptr<LidarSimulator> lidar_;
 };
 

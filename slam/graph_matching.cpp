@@ -8,11 +8,12 @@
 #include <optional>
 #include <set>
 
+#include "bim/angles.hpp"
+
 namespace isg::slam {
 
 namespace {
 
-double wrapAngle(double a) { return std::remainder(a, 2.0 * std::numbers::pi); }
 // Difference of two axes (directions modulo π).
 double axisDifference(double a, double b) {
   return std::abs(std::remainder(a - b, std::numbers::pi));
@@ -42,22 +43,6 @@ bool pointInPolygon(const std::vector<Eigen::Vector2d>& polygon, const Eigen::Ve
 }
 
 }  // namespace
-
-const char* toString(MatchStatus status) {
-  switch (status) {
-    case MatchStatus::kNotYet:
-      return "not yet";
-    case MatchStatus::kAmbiguous:
-      return "ambiguous";
-    case MatchStatus::kMatched:
-      return "matched";
-    case MatchStatus::kContradicted:
-      return "contradicted";
-    case MatchStatus::kLost:
-      return "lost";
-  }
-  return "?";
-}
 
 double Verification::unexplainedShare() const {
   const double total = explained_length + unexplained_length;
@@ -293,7 +278,7 @@ int GraphMatcher::matchPlane(const MatchPlane& plane, const Eigen::Vector3d& x_y
   double best_distance = 1e300;
   for (int i : cell->surfaces) {
     const auto& s = graph_->surfaces[i];
-    if (std::abs(wrapAngle(yaw - surface_yaw_[i])) > angle_tolerance) continue;
+    if (std::abs(bim::wrapAngle(yaw - surface_yaw_[i])) > angle_tolerance) continue;
     const double offset = std::abs(s.plane.signedDistance({middle.x(), middle.y(), 0.0}));
     if (offset > options_.plane_distance || offset >= best_distance) continue;
     // The S-plane's extent must reach the surface's exposed parts.
@@ -321,7 +306,8 @@ bool GraphMatcher::planeAgrees(const MatchPlane& plane, int surface, const Eigen
                                double angle_deg, double distance) const {
   const auto& s = graph_->surfaces[surface];
   const double yaw = yawOfNormal(plane.plane) + x_y_yaw.z();
-  if (std::abs(wrapAngle(yaw - surface_yaw_[surface])) > angle_deg * std::numbers::pi / 180.0) {
+  if (std::abs(bim::wrapAngle(yaw - surface_yaw_[surface])) >
+      angle_deg * std::numbers::pi / 180.0) {
     return false;
   }
   const Eigen::Vector2d middle = apply(x_y_yaw, 0.5 * (plane.start + plane.end));
@@ -454,7 +440,7 @@ Eigen::Vector3d GraphMatcher::refine(const MatchInput& input,
     x += step;
     if (step.norm() < 1e-6) break;
   }
-  x.z() = wrapAngle(x.z());
+  x.z() = bim::wrapAngle(x.z());
   return x;
 }
 
@@ -471,7 +457,7 @@ Eigen::Vector2d GraphMatcher::middleOf(const MatchInput& input) {
 bool GraphMatcher::sameAnswer(const Eigen::Vector3d& a, const Eigen::Vector3d& b,
                               const Eigen::Vector2d& middle, double scale) const {
   return (apply(a, middle) - apply(b, middle)).norm() < scale * options_.cluster_distance &&
-         std::abs(wrapAngle(a.z() - b.z())) <
+         std::abs(bim::wrapAngle(a.z() - b.z())) <
              scale * options_.cluster_yaw_deg * std::numbers::pi / 180.0;
 }
 
@@ -515,8 +501,9 @@ MatchResult GraphMatcher::evaluate(const MatchInput& input,
     const Eigen::Vector2d image = apply(v.x_y_yaw, middle);
     bool joined = false;
     for (std::size_t r = 0; r < representatives.size() && !joined; ++r) {
-      joined = (image - placed[r]).norm() < options_.cluster_distance &&
-               std::abs(wrapAngle(v.x_y_yaw.z() - representatives[r]->x_y_yaw.z())) < yaw_tolerance;
+      joined =
+          (image - placed[r]).norm() < options_.cluster_distance &&
+          std::abs(bim::wrapAngle(v.x_y_yaw.z() - representatives[r]->x_y_yaw.z())) < yaw_tolerance;
     }
     if (joined) continue;
     representatives.push_back(&v);

@@ -11,6 +11,7 @@
 
 #include "bim/agraph.hpp"
 #include "bim/plane.hpp"
+#include "slam/match_status.hpp"
 
 namespace isg::slam {
 
@@ -104,11 +105,6 @@ struct MatchingOptions {
   int max_corners = 6;
   double corner_gap = 0.6;  // m, between two walls' ends to make a corner
 };
-
-// kLost: was matched, then the world stopped agreeing with the graph; a fresh S-Graph segment is
-// being matched again (docs/matching.md).
-enum class MatchStatus { kNotYet, kAmbiguous, kMatched, kContradicted, kLost };
-const char* toString(MatchStatus status);
 
 // One B_T_M checked against the S-Graph: what it explains.
 struct Verification {

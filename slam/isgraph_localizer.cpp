@@ -54,8 +54,8 @@ bool ISGraphLocalizer::wantsScan(double stamp) const { return graph_.wouldKeyfra
 std::optional<Eigen::Isometry3d> ISGraphLocalizer::mapInPlan() const {
   if (!localized_) return std::nullopt;
   Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
-  T.linear() = Eigen::AngleAxisd(B_T_M_.z(), Eigen::Vector3d::UnitZ()).toRotationMatrix();
-  T.translation() = Eigen::Vector3d(B_T_M_.x(), B_T_M_.y(), B_T_M_z_);
+  T.linear() = Eigen::AngleAxisd(B_T_M_x_y_yaw_.z(), Eigen::Vector3d::UnitZ()).toRotationMatrix();
+  T.translation() = Eigen::Vector3d(B_T_M_x_y_yaw_.x(), B_T_M_x_y_yaw_.y(), B_T_M_z_);
   return T;
 }
 
@@ -107,7 +107,7 @@ void ISGraphLocalizer::record(double stamp, MatchStatus status, const std::strin
 }
 
 void ISGraphLocalizer::adopt(const Verification& answer) {
-  B_T_M_ = answer.x_y_yaw;
+  B_T_M_x_y_yaw_ = answer.x_y_yaw;
   plane_matches_.clear();
   room_matches_.clear();
   for (const auto& [s, a] : answer.planes) plane_matches_[s] = a;
@@ -134,13 +134,13 @@ double ISGraphLocalizer::planShare() const {
     const Eigen::Vector3d q = M_T_L * p.cast<double>();
     if (q.z() < sensor_z - 0.4 || q.z() > sensor_z + 1.2) continue;  // floor, ceiling
     ++used;
-    const Eigen::Vector2d in_B = applyPlanar(B_T_M_, q.head<2>());
+    const Eigen::Vector2d in_B = applyPlanar(B_T_M_x_y_yaw_, q.head<2>());
     if (plan_field_.distance(in_B) <= options_.plan_share_distance) ++near;
   }
   return used > 0 ? double(near) / used : -1.0;
 }
 
-std::string ISGraphLocalizer::lostReason(const MatchInput& input) {
+std::string ISGraphLocalizer::updateAgreement(const MatchInput& input) {
   char text[256];
   const auto& keyframe = graph_.keyframes().back();
   // The scan against the recent map and against the plan: the robot is not where the graph
@@ -182,7 +182,7 @@ std::string ISGraphLocalizer::lostReason(const MatchInput& input) {
   }
   // The pose must be in the building.
   if (const auto pose = graph_.latestPose()) {
-    const Eigen::Vector2d p = applyPlanar(B_T_M_, pose->M_T_R.translation().head<2>());
+    const Eigen::Vector2d p = applyPlanar(B_T_M_x_y_yaw_, pose->M_T_R.translation().head<2>());
     if (!building_.contains(p)) {
       std::snprintf(text, sizeof text, "the pose (%.1f, %.1f) is outside the building", p.x(),
                     p.y());
@@ -202,7 +202,7 @@ std::string ISGraphLocalizer::lostReason(const MatchInput& input) {
       it = plane_matches_.erase(it);
       continue;
     }
-    const bool agrees = matcher_.planeAgrees(*plane->second, it->second, B_T_M_,
+    const bool agrees = matcher_.planeAgrees(*plane->second, it->second, B_T_M_x_y_yaw_,
                                              options_.hold_angle_deg, options_.hold_distance);
     if (seen_now.count(it->first)) {
       ++seen_matched;
@@ -257,17 +257,17 @@ void ISGraphLocalizer::checkForContradiction(double stamp) {
   if (result.status != MatchStatus::kMatched) return;  // the merge stands on its own evidence
   // Twice the clustering tolerances: the merge has moved B_T_M a little since it was adopted.
   const Eigen::Vector2d middle = GraphMatcher::middleOf(input);
-  if (matcher_.sameAnswer(result.best.x_y_yaw, B_T_M_, middle, 2.0)) return;
+  if (matcher_.sameAnswer(result.best.x_y_yaw, B_T_M_x_y_yaw_, middle, 2.0)) return;
   // The new answer must also lead the one held now decisively, on the same map.
   if (!matcher_.decisive(
-          matcher_.distinguish(input, result.best, matcher_.verify(input, B_T_M_)))) {
+          matcher_.distinguish(input, result.best, matcher_.verify(input, B_T_M_x_y_yaw_)))) {
     return;
   }
   // A unique answer elsewhere: the first match was wrong. Adopt the new one on the unmerged
   // graph, and re-optimise every keyframe under it, so that nothing stays where the wrong
   // B_T_M pulled it.
   const double apart =
-      (applyPlanar(result.best.x_y_yaw, middle) - applyPlanar(B_T_M_, middle)).norm();
+      (applyPlanar(result.best.x_y_yaw, middle) - applyPlanar(B_T_M_x_y_yaw_, middle)).norm();
   record(stamp, MatchStatus::kContradicted,
          "a new unique answer " + std::to_string(apart) + " m away: " + result.reason);
   ++contradictions_;
@@ -281,13 +281,13 @@ void ISGraphLocalizer::onKeyframe(double stamp) {
   const int keyframes = int(graph_.keyframes().size());
   MatchInput input = matchInput();
   if (localized_) {
-    const std::string why = lostReason(input);
+    const std::string why = updateAgreement(input);
     if (!why.empty()) {
       lose(stamp, why);
       return;
     }
     // New S-planes gain correspondences at the current B_T_M; held ones stay as they are.
-    const Verification now = matcher_.verify(input, B_T_M_);
+    const Verification now = matcher_.verify(input, B_T_M_x_y_yaw_);
     for (const auto& [s, a] : now.planes) plane_matches_.emplace(s, a);
     for (const auto& [s, a] : now.rooms) room_matches_.emplace(s, a);
   } else if (keyframes > 1 && graph_.keyframes().back().registration.attempted &&
@@ -343,7 +343,8 @@ void ISGraphLocalizer::addPlanFactors(ceres::Problem& problem, const std::set<in
     addSurface(problem, it->second);
     problem.AddResidualBlock(
         PlanePlaneFactor::create(options_.sigma_plane_angle, options_.sigma_plane_distance),
-        &huber_, graph_.planeParameters(p), B_T_M_.data(), plan_state_.planes[it->second].data());
+        &huber_, graph_.planeParameters(p), B_T_M_x_y_yaw_.data(),
+        plan_state_.planes[it->second].data());
   }
   if (!any) return;
   for (int r : rooms) {
@@ -360,7 +361,7 @@ void ISGraphLocalizer::addPlanFactors(ceres::Problem& problem, const std::set<in
         plan_state_.planes[node.pairs[0][0]].data(), plan_state_.planes[node.pairs[0][1]].data(),
         plan_state_.planes[node.pairs[1][0]].data(), plan_state_.planes[node.pairs[1][1]].data());
     problem.AddResidualBlock(RoomRoomFactor::create(options_.sigma_room), nullptr,
-                             graph_.roomCentre(r), B_T_M_.data(), centre);
+                             graph_.roomCentre(r), B_T_M_x_y_yaw_.data(), centre);
     room_fixes = true;
   }
   const double spread = std::sin(options_.min_normal_spread_deg * std::numbers::pi / 180.0);
@@ -371,10 +372,11 @@ void ISGraphLocalizer::addPlanFactors(ceres::Problem& problem, const std::set<in
     }
   }
   problem.AddResidualBlock(
-      PlanarPriorFactor::create(B_T_M_, options_.sigma_B_T_M_translation, options_.sigma_B_T_M_yaw),
-      nullptr, B_T_M_.data());
+      PlanarPriorFactor::create(B_T_M_x_y_yaw_, options_.sigma_B_T_M_translation,
+                                options_.sigma_B_T_M_yaw),
+      nullptr, B_T_M_x_y_yaw_.data());
   if (!spans) {
-    problem.SetParameterBlockConstant(B_T_M_.data());
+    problem.SetParameterBlockConstant(B_T_M_x_y_yaw_.data());
     ++held_constant_;
   }
   // The plan's walls between surfaces in the problem.
@@ -391,11 +393,7 @@ void ISGraphLocalizer::addPlanFactors(ceres::Problem& problem, const std::set<in
   }
 }
 
-std::vector<StatusChange> ISGraphLocalizer::statusChanges() const {
-  std::vector<StatusChange> out;
-  for (const auto& e : events_) out.push_back({e.stamp, e.keyframe, toString(e.status), e.reason});
-  return out;
-}
+std::vector<StatusChange> ISGraphLocalizer::statusChanges() const { return events_; }
 
 nlohmann::json ISGraphLocalizer::graph() const {
   nlohmann::json out = graph_.toJson();
@@ -418,8 +416,10 @@ nlohmann::json ISGraphLocalizer::graph() const {
                              {"room_matches", rooms},
                              {"events", events}};
   if (localized_) {
-    is_graph["B_T_M"] = {
-        {"x", B_T_M_.x()}, {"y", B_T_M_.y()}, {"z", B_T_M_z_}, {"yaw", B_T_M_.z()}};
+    is_graph["B_T_M"] = {{"x", B_T_M_x_y_yaw_.x()},
+                         {"y", B_T_M_x_y_yaw_.y()},
+                         {"z", B_T_M_z_},
+                         {"yaw", B_T_M_x_y_yaw_.z()}};
   }
   if (last_match_) is_graph["last_match"] = last_match_->toJson();
   out["method"] = name();

@@ -67,14 +67,6 @@ struct ISGraphOptions {
   int plan_share_history = 10;
 };
 
-// One change of the matching status, for the run's log.
-struct MatchEvent {
-  double stamp = 0.0;
-  int keyframe = 0;
-  MatchStatus status = MatchStatus::kNotYet;
-  std::string reason;
-};
-
 // The S-Graph as the matcher sees it (walls of a minimum height, confirmed rooms, transitions).
 MatchInput matchInputOf(const SGraph& graph, double min_wall_height);
 
@@ -106,7 +98,7 @@ class ISGraphLocalizer : public Localizer {
 
   const SGraph& sgraph() const { return graph_; }
   MatchStatus status() const { return status_; }
-  const std::vector<MatchEvent>& events() const { return events_; }
+  const std::vector<StatusChange>& events() const { return events_; }
   const std::optional<MatchResult>& lastMatch() const { return last_match_; }
   // The S-Graph as the matcher sees it now.
   MatchInput matchInput() const {
@@ -119,9 +111,10 @@ class ISGraphLocalizer : public Localizer {
   void onKeyframe(double stamp);
   void record(double stamp, MatchStatus status, const std::string& reason);
   void adopt(const Verification& answer);
-  // Why the localized graph no longer agrees with the world or the plan; empty while it does.
-  // Drops held correspondences that left the hold gate.
-  std::string lostReason(const MatchInput& input);
+  // Takes the latest keyframe into the localized graph's agreement with the world and the plan
+  // (the plan-share history, the collapse count; held correspondences that left the hold gate are
+  // dropped) and says why the graph no longer agrees; empty while it does.
+  std::string updateAgreement(const MatchInput& input);
   // The latest keyframe's plan agreement (see ISGraphOptions), or -1 without a cloud.
   double planShare() const;
   void lose(double stamp, const std::string& reason);
@@ -145,12 +138,14 @@ class ISGraphLocalizer : public Localizer {
 
   MatchStatus status_ = MatchStatus::kNotYet;
   bool localized_ = false;
-  Eigen::Vector3d B_T_M_ = Eigen::Vector3d::Zero();  // x, y, yaw: optimised
+  // B_T_M in the plane (x, y, yaw; the merging optimises these three) and its height, which the
+  // floors give: mapInPlan() makes the Isometry3d of the two.
+  Eigen::Vector3d B_T_M_x_y_yaw_ = Eigen::Vector3d::Zero();
   double B_T_M_z_ = 0.0;
   std::map<int, int> plane_matches_;  // S-plane → A-surface
   std::map<int, int> room_matches_;   // S-room → A-room
   std::optional<MatchResult> last_match_;
-  std::vector<MatchEvent> events_;
+  std::vector<StatusChange> events_;
   std::vector<double> matching_times_;
   double matching_s_ = 0.0;  // onKeyframe in all: matching, verification, contradictions
   std::size_t rooms_at_last_attempt_ = 0;

@@ -35,8 +35,10 @@ class Localizer {
   // The method's graph (or state) for the run folder's sgraph.json.
   virtual nlohmann::json graph() const = 0;
 
-  // For methods that search for their place in the plan: the search's status now ("matched",
-  // "ambiguous", ...) and every change of it. Methods that do not search have none.
+  // For methods that search for their place in the plan: the search's status now, in words for
+  // the summary and metrics.json's `matching_status` (the matcher's status, "matched", or AMCL's
+  // particles and heaviest cluster), and every change of the matcher's status, typed
+  // (MatchStatus). Methods that do not search have none.
   virtual std::optional<std::string> searchStatus() const { return std::nullopt; }
   virtual std::vector<StatusChange> statusChanges() const { return {}; }
   // For methods that build a map: its keyframes, planes, rooms and timings.

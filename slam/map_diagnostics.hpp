@@ -6,6 +6,8 @@
 #include <string>
 #include <vector>
 
+#include "slam/match_status.hpp"
+
 namespace isg::slam {
 
 // What a localizer that builds a map can tell about it, as plain data: the keyframe estimates
@@ -46,7 +48,7 @@ struct MapDiagnostics {
 struct StatusChange {
   double stamp = 0.0;
   int keyframe = 0;
-  std::string status;
+  MatchStatus status = MatchStatus::kNotYet;
   std::string reason;
 };
 

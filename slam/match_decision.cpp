@@ -9,13 +9,12 @@
 #include <numbers>
 #include <set>
 
+#include "bim/angles.hpp"
 #include "slam/graph_matching.hpp"
 
 namespace isg::slam {
 
 namespace {
-
-double wrapAngle(double a) { return std::remainder(a, 2.0 * std::numbers::pi); }
 
 Eigen::Vector2d apply(const Eigen::Vector3d& x_y_yaw, const Eigen::Vector2d& p) {
   return Eigen::Rotation2Dd(x_y_yaw.z()) * p + x_y_yaw.head<2>();
@@ -23,7 +22,7 @@ Eigen::Vector2d apply(const Eigen::Vector3d& x_y_yaw, const Eigen::Vector2d& p) 
 
 // a ∘ b⁻¹ for planar transforms (x, y, yaw).
 Eigen::Vector3d relative(const Eigen::Vector3d& a, const Eigen::Vector3d& b) {
-  const double yaw = wrapAngle(a.z() - b.z());
+  const double yaw = bim::wrapAngle(a.z() - b.z());
   const Eigen::Vector2d t = a.head<2>() - Eigen::Rotation2Dd(yaw) * b.head<2>();
   return {t.x(), t.y(), yaw};
 }

@@ -7,17 +7,14 @@
 #include <numbers>
 #include <set>
 
+#include "bim/angles.hpp"
 #include "slam/graph_matching.hpp"
 
 namespace isg::slam {
 
 namespace {
 
-double wrapAngle(double a) { return std::remainder(a, 2.0 * std::numbers::pi); }
-
 Eigen::Vector2d normal2(const bim::Plane& plane) { return plane.normal.head<2>().normalized(); }
-
-double yawOf(const Eigen::Vector2d& v) { return std::atan2(v.y(), v.x()); }
 
 Eigen::Matrix2d rotation(double yaw) { return Eigen::Rotation2Dd(yaw).toRotationMatrix(); }
 
@@ -27,8 +24,9 @@ class UniqueTransforms {
  public:
   explicit UniqueTransforms(std::vector<Eigen::Vector3d>& out) : out_(out) {}
   void add(const Eigen::Vector3d& h) {
-    const std::array<long, 3> key{std::lround(h.x() / 0.02), std::lround(h.y() / 0.02),
-                                  std::lround(wrapAngle(h.z()) / (0.2 * std::numbers::pi / 180))};
+    const std::array<long, 3> key{
+        std::lround(h.x() / 0.02), std::lround(h.y() / 0.02),
+        std::lround(bim::wrapAngle(h.z()) / (0.2 * std::numbers::pi / 180))};
     if (seen_.insert(key).second) out_.push_back(h);
   }
 
@@ -63,7 +61,7 @@ std::optional<GraphMatcher::Corner> GraphMatcher::cornerOf(
     if (along.norm() < 1e-6) return std::nullopt;
     corner.arm_direction[k] = along.normalized();
     corner.arm[k] = along.norm();
-    corner.normal_yaw[k] = yawOf(normals[k]);
+    corner.normal_yaw[k] = bim::headingOf(normals[k]);
   }
   return corner;
 }
@@ -85,7 +83,7 @@ void GraphMatcher::seedFromFourWallRooms(const MatchInput& input,
             std::abs(w1 - s.widths[1]) > options_.width_tolerance) {
           continue;
         }
-        const double yaw = wrapAngle(room_yaw_[i] + k * std::numbers::pi / 2 - s.axis_yaw);
+        const double yaw = bim::wrapAngle(room_yaw_[i] + k * std::numbers::pi / 2 - s.axis_yaw);
         const Eigen::Vector2d t = a.centre - rotation(yaw) * s.centre;
         out.emplace_back(t.x(), t.y(), yaw);
       }
@@ -109,7 +107,7 @@ void GraphMatcher::seedFromCorridors(const MatchInput& input,
       const Eigen::Vector2d a_along(-a_normal.y(), a_normal.x());
       UniqueTransforms unique(out);
       for (int turn = 0; turn < 2; ++turn) {
-        const double yaw = wrapAngle(room_yaw_[i] + turn * std::numbers::pi - s.axis_yaw);
+        const double yaw = bim::wrapAngle(room_yaw_[i] + turn * std::numbers::pi - s.axis_yaw);
         const Eigen::Matrix2d R = rotation(yaw);
         // Across the axis: the S-centre on the A-centre's line.
         const Eigen::Vector2d centre = R * s.centre;
@@ -124,9 +122,9 @@ void GraphMatcher::seedFromCorridors(const MatchInput& input,
           const double lo = std::min(a_normal.dot(p0 - a.centre), a_normal.dot(p1 - a.centre));
           const double hi = std::max(a_normal.dot(p0 - a.centre), a_normal.dot(p1 - a.centre));
           const double s_along = a_along.dot(0.5 * (p0 + p1));
-          const double yaw_n = yawOf(n);
+          const double yaw_n = bim::headingOf(n);
           for (int k = 0; k < int(graph_->surfaces.size()); ++k) {
-            if (std::abs(wrapAngle(yaw_n - surface_yaw_[k])) > angle) continue;
+            if (std::abs(bim::wrapAngle(yaw_n - surface_yaw_[k])) > angle) continue;
             const auto& surface = graph_->surfaces[k];
             bool spans = false;
             for (const auto& [u, v] : surface.segments) {
@@ -192,8 +190,8 @@ void GraphMatcher::seedFromCorners(const MatchInput& input,
       for (int order = 0; order < 2; ++order) {
         // S's first wall on A's wall `order`, the second on the other.
         const int k0 = order, k1 = 1 - order;
-        const double yaw = wrapAngle(a.normal_yaw[k0] - s.normal_yaw[0]);
-        if (std::abs(wrapAngle(s.normal_yaw[1] + yaw - a.normal_yaw[k1])) > angle) continue;
+        const double yaw = bim::wrapAngle(a.normal_yaw[k0] - s.normal_yaw[0]);
+        if (std::abs(bim::wrapAngle(s.normal_yaw[1] + yaw - a.normal_yaw[k1])) > angle) continue;
         const Eigen::Matrix2d R = rotation(yaw);
         if ((R * s.arm_direction[0]).dot(a.arm_direction[k0]) < 0.9 ||
             (R * s.arm_direction[1]).dot(a.arm_direction[k1]) < 0.9) {

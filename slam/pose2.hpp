@@ -3,6 +3,8 @@
 #include <Eigen/Geometry>
 #include <cmath>
 
+#include "bim/angles.hpp"
+
 namespace isg::slam {
 
 // A pose in the plane: what 2D localizers (AMCL) estimate.
@@ -19,17 +21,9 @@ struct Pose2 {
   }
 };
 
-// a − b wrapped to (−π, π].
-inline double angleDifference(double a, double b) {
-  double d = std::remainder(a - b, 2.0 * M_PI);
-  if (d <= -M_PI) d += 2.0 * M_PI;
-  return d;
-}
-
 // The planar part of a 3D pose: x, y and the heading of its x axis.
 inline Pose2 planarPose(const Eigen::Isometry3d& T) {
-  const Eigen::Vector3d x_axis = T.linear().col(0);
-  return {T.translation().x(), T.translation().y(), std::atan2(x_axis.y(), x_axis.x())};
+  return {T.translation().x(), T.translation().y(), bim::yawOf(T.linear())};
 }
 
 // A planar pose as a 3D transform (a turn about z, then x, y and the given z).

@@ -429,8 +429,8 @@ const std::vector<std::string>& generatorFamilies() {
 
 namespace {
 
-// The building, before it is read as isg check reads it.
-GeneratedBuilding generateUnchecked(const GeneratorSpec& spec) {
+// The spec's ranges (docs/sweeps.md): every value the generator promises to build.
+void checkSpec(const GeneratorSpec& spec) {
   const auto& families = generatorFamilies();
   if (std::find(families.begin(), families.end(), spec.family) == families.end()) {
     throw std::invalid_argument("family: unknown family \"" + spec.family + "\"");
@@ -464,17 +464,21 @@ GeneratedBuilding generateUnchecked(const GeneratorSpec& spec) {
   }
   require(spec.clutter_per_room >= 0.0 && spec.clutter_per_room <= 4.0,
           "clutter per room: must be in [0, 4]");
+}
 
-  // Separate streams for the plan and for the as-built changes, so that a denser clutter does
-  // not move the walls.
-  std::mt19937_64 rng(spec.seed * 0x9E3779B97F4A7C15ULL + 1);
-  std::mt19937_64 built_rng(spec.seed * 0xD1B54A32D192ED03ULL + 7);
-  std::uniform_real_distribution<double> unit(0.0, 1.0);
+// The floor as the stages below build it up: its spaces (corridors and halls first), the walls
+// between them, which spaces touch along which side, the doors and the halls' partitions.
+struct Layout {
+  std::vector<Space> spaces;
+  std::vector<Wall> walls;
+  std::vector<std::vector<std::pair<int, Side>>> touching;  // per space: (neighbour, side)
+  std::vector<Door> doors;
+  std::vector<std::pair<Eigen::Vector2d, Eigen::Vector2d>> partitions;
+  int size() const { return int(spaces.size()); }
+};
 
-  GeneratorSpec s = spec;
-  if (s.family == "hotel") s.size_spread = 0.0;
-  // Suites drawn at random would break the half-turn symmetry these two families are about.
-  if (s.family == "hotel" || s.family == "twin-wings") s.connecting_doors = 0.0;
+// The family's spaces, their walls and which of them touch. Draws office widths from `rng`.
+Layout layOut(const GeneratorSpec& s, std::mt19937_64& rng) {
   Floor floor(s, rng);
   if (s.family == "office") bandedFloor(s, floor, Kind::kCorridor, 24);
   if (s.family == "l-shape") armedFloor(s, floor, 'L');
@@ -483,35 +487,44 @@ GeneratedBuilding generateUnchecked(const GeneratorSpec& spec) {
   if (s.family == "hotel") hotel(s, floor, rng);
   if (s.family == "twin-wings") twinWings(s, floor, rng);
   if (s.family == "hall") bandedFloor(s, floor, Kind::kHall, 12);
+  Layout layout;
   // Corridors and halls first: the search for reachable rooms starts from space 0.
-  std::vector<Space> spaces = floor.spaces;
-  std::stable_partition(spaces.begin(), spaces.end(),
+  layout.spaces = floor.spaces;
+  std::stable_partition(layout.spaces.begin(), layout.spaces.end(),
                         [](const Space& x) { return x.kind != Kind::kOffice; });
-  const Grid grid = gridOf(spaces);
-  const std::vector<Wall> walls = wallsOf(grid);
-  const int n = int(spaces.size());
+  layout.walls = wallsOf(gridOf(layout.spaces));
+  const int n = layout.size();
+  layout.touching.resize(n);
+  for (int a = 0; a < n; ++a) {
+    for (int b = a + 1; b < n; ++b) {
+      if (auto side = sharedSide(layout.spaces[a], layout.spaces[b], layout.walls)) {
+        layout.touching[a].push_back({b, *side});
+        layout.touching[b].push_back({a, *side});
+      }
+    }
+  }
+  return layout;
+}
 
-  // Doors: each office to the corridor or hall it shares most with, corridors to each other.
+// Doors: each office to the corridor or hall it shares most with, corridors to each other,
+// suites between neighbouring offices, then a door for every office no corridor reaches. Every
+// draw is made whether or not it is used, so that one setting does not shift the later draws.
+void placeDoors(const GeneratorSpec& s, Layout& layout, std::mt19937_64& rng) {
+  std::uniform_real_distribution<double> unit(0.0, 1.0);
+  const double t = s.wall_thickness;
   const double end_margin = 0.5 * t + 0.15;
-  std::vector<Door> doors;
+  const std::vector<Space>& spaces = layout.spaces;
+  const auto& touching = layout.touching;
+  const int n = layout.size();
   const auto addDoor = [&](int a, int b, const Side& side, double fraction, double width,
                            double margin) {
     const double lo = side.from + margin + 0.5 * width;
     const double hi = side.to - margin - 0.5 * width;
     if (hi < lo) return false;
-    doors.push_back(
+    layout.doors.push_back(
         {side.wall, std::clamp(side.from + fraction * side.length(), lo, hi), width, a, b});
     return true;
   };
-  std::vector<std::vector<std::pair<int, Side>>> touching(n);
-  for (int a = 0; a < n; ++a) {
-    for (int b = a + 1; b < n; ++b) {
-      if (auto side = sharedSide(spaces[a], spaces[b], walls)) {
-        touching[a].push_back({b, *side});
-        touching[b].push_back({a, *side});
-      }
-    }
-  }
   std::uniform_real_distribution<double> placement(0.2, 0.8);
   for (int a = 0; a < n; ++a) {
     if (spaces[a].kind == Kind::kOffice) {
@@ -556,7 +569,7 @@ GeneratedBuilding generateUnchecked(const GeneratorSpec& spec) {
   // Offices no corridor reaches get a door to a reached neighbour.
   for (bool grew = true; grew;) {
     grew = false;
-    const std::vector<bool> seen = reached(n, doors, {});
+    const std::vector<bool> seen = reached(n, layout.doors, {});
     for (int a = 0; a < n && !grew; ++a) {
       if (seen[a]) continue;
       for (const auto& [b, side] : touching[a]) {
@@ -567,26 +580,29 @@ GeneratedBuilding generateUnchecked(const GeneratorSpec& spec) {
       }
     }
   }
-  if (!allTrue(reached(n, doors, {}))) {
+  if (!allTrue(reached(n, layout.doors, {}))) {
     throw std::invalid_argument("rooms: these parameters leave a room without a door that fits");
   }
+}
 
-  // The hall's partitions: free-standing walls clear of the hall's sides, of its doors and of
-  // each other. Only what is near the hall is checked: another hall's partitions are more than
-  // 4 m away (2 m clear of each side), a door farther than 2.5 m from the hall's box cannot come
-  // within 2.5 m of a partition inside it. A hall takes what fits: placing stops after
-  // kMaxMisses draws in a row that did not fit, so asking for more than fits costs little.
+// The hall's partitions: free-standing walls clear of the hall's sides, of its doors and of
+// each other. Only what is near the hall is checked: another hall's partitions are more than
+// 4 m away (2 m clear of each side), a door farther than 2.5 m from the hall's box cannot come
+// within 2.5 m of a partition inside it. A hall takes what fits: placing stops after
+// kMaxMisses draws in a row that did not fit, so asking for more than fits costs little.
+void placePartitions(const GeneratorSpec& s, Layout& layout, std::mt19937_64& rng) {
+  std::uniform_real_distribution<double> unit(0.0, 1.0);
   constexpr int kMaxMisses = 1000;
-  std::vector<std::pair<Eigen::Vector2d, Eigen::Vector2d>> partitions;
-  for (int h = 0; h < n; ++h) {
-    if (spaces[h].kind != Kind::kHall) continue;
-    const Space& hs = spaces[h];
+  auto& partitions = layout.partitions;
+  for (int h = 0; h < layout.size(); ++h) {
+    if (layout.spaces[h].kind != Kind::kHall) continue;
+    const Space& hs = layout.spaces[h];
     const double area = (hs.x1 - hs.x0) * (hs.y1 - hs.y0);
     const int wanted = s.partitions >= 0 ? s.partitions : int(area / 40.0);
     const std::size_t before = partitions.size();
     std::vector<Eigen::Vector2d> near_doors;
-    for (const Door& d : doors) {
-      const Eigen::Vector2d c = d.centre(walls);
+    for (const Door& d : layout.doors) {
+      const Eigen::Vector2d c = d.centre(layout.walls);
       const double dx = std::max({hs.x0 - c.x(), 0.0, c.x() - hs.x1});
       const double dy = std::max({hs.y0 - c.y(), 0.0, c.y() - hs.y1});
       if (std::hypot(dx, dy) < 2.5) near_doors.push_back(c);
@@ -620,9 +636,17 @@ GeneratedBuilding generateUnchecked(const GeneratorSpec& spec) {
       }
     }
   }
+}
 
-  GeneratedBuilding out;
-  out.name = spec.family + "-" + std::to_string(spec.seed);
+// The plan ("isg.plan"): walls W<n>, partitions P<n>, doors D<n>, rooms R<n> (offices), C<n>
+// (corridors) and H<n> (halls). Returns each space's room id.
+std::vector<std::string> writePlan(const GeneratorSpec& spec, const GeneratorSpec& s,
+                                   const Layout& layout, GeneratedBuilding& out) {
+  const double t = s.wall_thickness;
+  const auto& walls = layout.walls;
+  const auto& partitions = layout.partitions;
+  const auto& doors = layout.doors;
+  const int n = layout.size();
   json wall_list = json::array(), door_list = json::array(), room_list = json::array();
   for (std::size_t w = 0; w < walls.size(); ++w) {
     wall_list.push_back({{"id", "W" + std::to_string(w + 1)},
@@ -646,7 +670,7 @@ GeneratedBuilding generateUnchecked(const GeneratorSpec& spec) {
   std::vector<std::string> ids(n);
   int offices = 0, corridors = 0, halls = 0;
   for (int k = 0; k < n; ++k) {
-    const Space& sp = spaces[k];
+    const Space& sp = layout.spaces[k];
     std::string name;
     if (sp.kind == Kind::kOffice) {
       ids[k] = "R" + std::to_string(++offices);
@@ -680,19 +704,27 @@ GeneratedBuilding generateUnchecked(const GeneratorSpec& spec) {
                  {"walls", wall_list},
                  {"doors", door_list},
                  {"rooms", room_list}}}}};
+  return ids;
+}
 
-  // As built. Which spaces each wall bounds, and which walls carry doors.
+// As built, walls: inner walls shifted, walls between two offices (no door) missing. Three draws
+// a wall, whatever it is.
+void drawWallChanges(const GeneratorSpec& s, const Layout& layout, std::mt19937_64& built_rng,
+                     json& as_built) {
+  std::uniform_real_distribution<double> unit(0.0, 1.0);
+  const auto& walls = layout.walls;
+  // Which spaces each wall bounds, and which walls carry doors.
   std::vector<std::set<int>> bounds(walls.size());
-  for (int a = 0; a < n; ++a) {
-    for (const auto& [b, side] : touching[a]) bounds[side.wall].insert({a, b});
+  for (int a = 0; a < layout.size(); ++a) {
+    for (const auto& [b, side] : layout.touching[a]) bounds[side.wall].insert({a, b});
   }
   std::vector<bool> has_door(walls.size(), false);
-  for (const Door& d : doors) has_door[d.wall] = true;
+  for (const Door& d : layout.doors) has_door[d.wall] = true;
   json shifts = json::array(), missing = json::array();
   for (std::size_t w = 0; w < walls.size(); ++w) {
     const bool between_offices = !walls[w].outer && !has_door[w] && !bounds[w].empty() &&
                                  std::all_of(bounds[w].begin(), bounds[w].end(), [&](int k) {
-                                   return spaces[k].kind == Kind::kOffice;
+                                   return layout.spaces[k].kind == Kind::kOffice;
                                  });
     const double draw_missing = unit(built_rng), draw_shift = unit(built_rng);
     const double offset = (0.03 + 0.05 * unit(built_rng)) * (unit(built_rng) < 0.5 ? -1 : 1);
@@ -702,9 +734,18 @@ GeneratedBuilding generateUnchecked(const GeneratorSpec& spec) {
       shifts.push_back({{"wall", "W" + std::to_string(w + 1)}, {"offset", mm(offset)}});
     }
   }
-  // Every space is reached through the open doors (checked above); closing a door keeps it so
-  // exactly when its two sides stay joined without it.
-  std::vector<std::vector<int>> doors_of(static_cast<std::size_t>(n));
+  if (!missing.empty()) as_built["missing_walls"] = missing;
+  if (!shifts.empty()) as_built["wall_shifts"] = shifts;
+}
+
+// As built, doors: closed where closing keeps every space reached. Every space is reached through
+// the open doors (placeDoors checked it); closing a door keeps it so exactly when its two sides
+// stay joined without it.
+void drawClosedDoors(const GeneratorSpec& s, const Layout& layout, std::mt19937_64& built_rng,
+                     json& as_built) {
+  std::uniform_real_distribution<double> unit(0.0, 1.0);
+  const auto& doors = layout.doors;
+  std::vector<std::vector<int>> doors_of(static_cast<std::size_t>(layout.size()));
   for (std::size_t d = 0; d < doors.size(); ++d) {
     doors_of[std::size_t(doors[d].a)].push_back(int(d));
     doors_of[std::size_t(doors[d].b)].push_back(int(d));
@@ -720,15 +761,25 @@ GeneratedBuilding generateUnchecked(const GeneratorSpec& spec) {
       closed[d] = false;  // would cut a room off
     }
   }
+  if (!closed_list.empty()) as_built["closed_doors"] = closed_list;
+}
+
+// As built, offices: clutter boxes in their corners, clear of the doors, and an unplanned
+// partition. The draws of each corner are made whether or not a box is placed there.
+void drawOfficeContents(const GeneratorSpec& s, const Layout& layout, std::mt19937_64& built_rng,
+                        json& as_built) {
+  std::uniform_real_distribution<double> unit(0.0, 1.0);
+  const double t = s.wall_thickness;
+  const auto& walls = layout.walls;
   json clutter = json::array(), extra = json::array();
-  for (int k = 0; k < n; ++k) {
-    const Space& sp = spaces[k];
+  for (int k = 0; k < layout.size(); ++k) {
+    const Space& sp = layout.spaces[k];
     if (sp.kind != Kind::kOffice) continue;
     const double h = 0.5 * t;
     const double ix0 = sp.x0 + h, ix1 = sp.x1 - h, iy0 = sp.y0 + h, iy1 = sp.y1 - h;
     std::vector<Eigen::Vector2d> door_centres;
     const Door* own = nullptr;
-    for (const Door& d : doors) {
+    for (const Door& d : layout.doors) {
       if (d.a == k || d.b == k) {
         door_centres.push_back(d.centre(walls));
         if (own == nullptr) own = &d;
@@ -775,20 +826,44 @@ GeneratedBuilding generateUnchecked(const GeneratorSpec& spec) {
       }
     }
   }
+  if (!clutter.empty()) as_built["clutter"] = clutter;
+  if (!extra.empty()) as_built["extra_walls"] = extra;
+}
+
+// The building, before it is read as isg check reads it: the spec checked, the floor laid out,
+// doors and partitions placed (the plan's stream), then what was built otherwise (the as-built
+// stream) and where the robot starts. The stages draw in this order, always.
+GeneratedBuilding generateUnchecked(const GeneratorSpec& spec) {
+  checkSpec(spec);
+  // Separate streams for the plan and for the as-built changes, so that a denser clutter does
+  // not move the walls.
+  std::mt19937_64 rng(spec.seed * 0x9E3779B97F4A7C15ULL + 1);
+  std::mt19937_64 built_rng(spec.seed * 0xD1B54A32D192ED03ULL + 7);
+
+  GeneratorSpec s = spec;
+  if (s.family == "hotel") s.size_spread = 0.0;
+  // Suites drawn at random would break the half-turn symmetry these two families are about.
+  if (s.family == "hotel" || s.family == "twin-wings") s.connecting_doors = 0.0;
+  Layout layout = layOut(s, rng);
+  placeDoors(s, layout, rng);
+  placePartitions(s, layout, rng);
+
+  GeneratedBuilding out;
+  out.name = spec.family + "-" + std::to_string(spec.seed);
+  const std::vector<std::string> ids = writePlan(spec, s, layout, out);
+
+  json as_built = json::object();
+  drawWallChanges(s, layout, built_rng, as_built);
+  drawClosedDoors(s, layout, built_rng, as_built);
+  drawOfficeContents(s, layout, built_rng, as_built);
   // The robot starts in an office drawn from the seed and tours every room.
   std::vector<int> office_index;
-  for (int k = 0; k < n; ++k) {
-    if (spaces[k].kind == Kind::kOffice) office_index.push_back(k);
+  for (int k = 0; k < layout.size(); ++k) {
+    if (layout.spaces[k].kind == Kind::kOffice) office_index.push_back(k);
   }
   const int start = office_index.empty() ? 0
                                          : office_index[std::uniform_int_distribution<std::size_t>(
                                                0, office_index.size() - 1)(built_rng)];
-  json as_built = json::object();
-  if (!missing.empty()) as_built["missing_walls"] = missing;
-  if (!extra.empty()) as_built["extra_walls"] = extra;
-  if (!shifts.empty()) as_built["wall_shifts"] = shifts;
-  if (!closed_list.empty()) as_built["closed_doors"] = closed_list;
-  if (!clutter.empty()) as_built["clutter"] = clutter;
   out.scenario = {
       {"format", "isg.scenario"},
       {"version", 1},
@@ -839,13 +914,10 @@ GeneratedBuilding generateBuilding(const GeneratorSpec& spec) {
     }
   }
   if (good > 0) {
-    throw std::invalid_argument("rooms: " + std::to_string(asked) +
-                                " offices make a plan isg check refuses (" + *why + "); " +
-                                (std::string("aeiou").find(spec.family[0]) != std::string::npos
-                                     ? "an "
-                                     : "a ") +
-                                spec.family + " of these parameters holds at most " +
-                                std::to_string(good));
+    throw std::invalid_argument(
+        "rooms: " + std::to_string(asked) + " offices make a plan isg check refuses (" + *why +
+        "); " + (std::string("aeiou").find(spec.family[0]) != std::string::npos ? "an " : "a ") +
+        spec.family + " of these parameters holds at most " + std::to_string(good));
   }
   throw std::invalid_argument("family: the " + spec.family +
                               " of these parameters is refused by "

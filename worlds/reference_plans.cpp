@@ -1,5 +1,7 @@
 #include "worlds/reference_plans.hpp"
 
+#include <filesystem>
+
 #include "bim/json_reader.hpp"
 #include "bim/plan_parser.hpp"
 
@@ -55,6 +57,11 @@ bim::Scenario loadScenarioOrBuiltin(const std::string& argument, bim::Warnings* 
     return bim::LoadedPlan{bim::parsePlan(bim::JsonNode(plan_document, "", plan_source)),
                            plan_name};
   });
+}
+
+std::string worldName(const std::string& argument) {
+  if (isBuiltin(argument)) return argument.substr(kBuiltinPrefix.size());
+  return std::filesystem::path(argument).stem().string();
 }
 
 }  // namespace isg::worlds

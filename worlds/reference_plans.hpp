@@ -25,6 +25,10 @@ std::optional<std::string_view> builtinText(std::string_view name);
 
 bool isBuiltin(std::string_view argument);
 
+// A world's short name, for folder names and table rows: "builtin:d1.asbuilt" → "d1.asbuilt",
+// "plans/office.asbuilt.json" → "office.asbuilt".
+std::string worldName(const std::string& argument);
+
 // Loads a scenario (or bare plan) from a file path, or from a built-in ("builtin:NAME"), whose
 // plan reference resolves among the built-ins. Errors are InputErrors as for files.
 bim::Scenario loadScenarioOrBuiltin(const std::string& argument, bim::Warnings* warnings);

@@ -162,6 +162,23 @@ TEST(DoorwayFactor, ZeroWhenBothRoomsSeeTheDoorWhereItIs) {
                                             {r1.data(), r2.data(), door.data()});
 }
 
+TEST(OutsideDoorwayFactor, ZeroWhenTheRoomSeesTheDoorWhereItIs) {
+  Eigen::Vector2d room(2, 1);
+  Eigen::Vector3d door(3, 4, 0);
+  std::unique_ptr<ceres::CostFunction> cost(
+      OutsideDoorwayFactor::create(door.head<2>() - room, 0.02));
+  double* params[] = {room.data(), door.data()};
+  Eigen::Vector2d residual;
+  cost->Evaluate(params, residual.data(), nullptr);
+  EXPECT_NEAR(residual.norm(), 0.0, 1e-12);
+  // The door 2 cm further along x than the room sees it: (ρ + ᵖD − D)/σ = −0.02/0.02 = −1.
+  door.x() += 0.02;
+  cost->Evaluate(params, residual.data(), nullptr);
+  EXPECT_NEAR(residual(0), -1.0, 1e-9);
+  EXPECT_NEAR(residual(1), 0.0, 1e-12);
+  isg::testing::expectJacobiansMatchNumeric(*cost, {nullptr, nullptr}, {room.data(), door.data()});
+}
+
 TEST(PlanePriorFactor, MinimalResidualAndJacobians) {
   const Eigen::Vector4d measured(0, 1, 0, -3);  // y = 3
   Eigen::Vector4d p = measured;

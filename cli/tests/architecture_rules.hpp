@@ -27,7 +27,8 @@ inline const std::map<std::string, std::set<std::string>>& allowedModules() {
       {"slam", {"bim"}},
       {"run", {"bim", "eval", "slam"}},
       {"sim", {"bim", "worlds", "run", "slam"}},
-      {"cli", {"bim", "worlds", "eval", "slam", "run", "sim"}},
+      {"sweep", {"bim", "worlds", "eval", "run", "sim"}},
+      {"cli", {"bim", "worlds", "eval", "slam", "run", "sim", "sweep"}},
   };
   return allowed;
 }

@@ -7,6 +7,7 @@
 #include <numbers>
 
 #include "bim/agraph.hpp"
+#include "bim/angles.hpp"
 #include "run/driver.hpp"
 #include "sim/scan_pipeline.hpp"
 #include "sim/simulation.hpp"
@@ -15,8 +16,6 @@
 
 namespace isg::sim {
 namespace {
-
-double yawOf(const Eigen::Isometry3d& T) { return std::atan2(T.linear()(1, 0), T.linear()(0, 0)); }
 
 // The contradiction path (docs/matching.md): a wrong first match — the true B_T_M turned by 180°
 // about the first room the S-Graph confirms, so that room still fits — is injected; the lost
@@ -37,7 +36,8 @@ TEST(ISGraphContradiction, AWrongFirstMatchIsContradictedAndEveryKeyframeReoptim
   slam::ISGraphLocalizer localizer(simulation.R_T_L(), plan, options);
   run::SensorStreams streams = sensorStreams(simulation, -1.0);
   const Eigen::Isometry3d B_T_M = run::trueStartB_T_M(streams);
-  const Eigen::Vector3d truth(B_T_M.translation().x(), B_T_M.translation().y(), yawOf(B_T_M));
+  const Eigen::Vector3d truth(B_T_M.translation().x(), B_T_M.translation().y(),
+                              bim::yawOf(B_T_M.linear()));
   LookaheadScans scans(simulation, int(streams.scan_stamps.size()), 1);
   run::LocalizerDriver driver(localizer, streams.odometry, streams.scan_period);
   bool injected = false;
@@ -67,13 +67,12 @@ TEST(ISGraphContradiction, AWrongFirstMatchIsContradictedAndEveryKeyframeReoptim
   const auto final_B_T_M = localizer.mapInPlan();
   ASSERT_TRUE(final_B_T_M.has_value());
   EXPECT_LT((final_B_T_M->translation().head<2>() - truth.head<2>()).norm(), 0.15);
-  EXPECT_LT(std::abs(std::remainder(yawOf(*final_B_T_M) - truth.z(), 2.0 * std::numbers::pi)),
-            0.02);
+  EXPECT_LT(std::abs(bim::wrapAngle(bim::yawOf(final_B_T_M->linear()) - truth.z())), 0.02);
   // Every wall of the map, the early ones included, is where the plan has a wall: at most a
   // tenth of the S-planes' length is left unexplained (clutter and the extra wall as built).
   const slam::MatchInput input = localizer.matchInput();
   const Eigen::Vector3d now(final_B_T_M->translation().x(), final_B_T_M->translation().y(),
-                            yawOf(*final_B_T_M));
+                            bim::yawOf(final_B_T_M->linear()));
   const slam::GraphMatcher matcher(plan);
   const slam::Verification check = matcher.verify(input, now);
   double length = 0.0;

@@ -28,7 +28,8 @@ RunMetrics localizedRun() {
   m.ape_B = s;
   m.ape_M_se3 = s;
   m.matching_status = "matched";
-  m.matching_events = {{0.0, 0, "not yet", "too little evidence"}, {14.5, 9, "matched", "best"}};
+  m.matching_events = {{0.0, 0, slam::MatchStatus::kNotYet, "too little evidence"},
+                       {14.5, 9, slam::MatchStatus::kMatched, "best"}};
   return m;
 }
 
@@ -42,6 +43,72 @@ TEST(RunMetrics, JsonRoundTripKeepsEveryField) {
   EXPECT_FALSE(j.contains("ape_B_rotation_deg"));
   const RunMetrics back = metricsFromJson(j, "metrics.json");
   EXPECT_EQ(metricsToJson(back), j);
+}
+
+// Every field of RunMetrics set to a value of its own, written and read back: each one survives,
+// and a reader that dropped one would write a different document.
+TEST(RunMetrics, JsonRoundTripOfARunWithEveryFieldSet) {
+  RunMetrics m = localizedRun();
+  m.world_hash = "sha256:" + std::string(64, 'a');
+  Statistics rotation;
+  rotation.count = 258;
+  rotation.rmse = 0.9;
+  rotation.mean = 0.7;
+  rotation.median = 0.6;
+  rotation.std = 0.2;
+  rotation.min = 0.01;
+  rotation.max = 2.5;
+  m.ape_B_rotation_deg = rotation;
+  Statistics odometry;
+  odometry.count = 400;
+  odometry.rmse = 0.31;
+  m.ape_odometry_from_true_start = odometry;
+  m.wrongly_localized = true;
+  m.time_wrongly_localized = 6.5;
+  m.max_error_B = 3.25;
+  m.matching_events.push_back(
+      {20.0, 12, slam::MatchStatus::kLost, "the scans no longer agree with the plan"});
+  m.matching_events.push_back({31.5, 17, slam::MatchStatus::kMatched, "best"});
+  m.lost_at = {20.0};
+  m.relocalized_at = {31.5};
+  RunTiming timing;
+  timing.stages = {{"scans", 1.25}, {"matching", 0.5}};
+  timing.scans_read = 42;
+  timing.localizer_seconds = 0.75;
+  timing.scan_wait_seconds = 0.125;
+  timing.peak_memory_mb = 96.5;
+  m.timing = timing;
+  m.notes = {"APE in M not computed: too few poses"};
+
+  const nlohmann::json j = metricsToJson(m);
+  const RunMetrics back = metricsFromJson(j, "metrics.json");
+  EXPECT_EQ(metricsToJson(back), j);
+  EXPECT_EQ(back.world_hash, m.world_hash);
+  ASSERT_TRUE(back.ape_B_rotation_deg);
+  EXPECT_EQ(back.ape_B_rotation_deg->median, 0.6);
+  EXPECT_EQ(back.ape_B_rotation_deg->min, 0.01);
+  ASSERT_TRUE(back.ape_odometry_from_true_start);
+  EXPECT_EQ(back.ape_odometry_from_true_start->rmse, 0.31);
+  EXPECT_EQ(back.wrongly_localized, true);
+  EXPECT_EQ(back.time_wrongly_localized, 6.5);
+  EXPECT_EQ(back.max_error_B, 3.25);
+  ASSERT_EQ(back.matching_events.size(), 4u);
+  EXPECT_EQ(back.matching_events[2].status, slam::MatchStatus::kLost);
+  EXPECT_EQ(j["matching_events"][2]["status"], "lost");
+  EXPECT_EQ(back.matching_events[2].keyframe, 12);
+  EXPECT_EQ(back.lost_at, std::vector<double>{20.0});
+  EXPECT_EQ(back.relocalized_at, std::vector<double>{31.5});
+  ASSERT_TRUE(back.timing);
+  ASSERT_EQ(back.timing->stages.size(), 2u);
+  EXPECT_EQ(back.timing->stages[1].stage, "matching");
+  EXPECT_EQ(back.timing->stages[1].seconds, 0.5);
+  EXPECT_EQ(back.timing->scans_read, 42);
+  EXPECT_EQ(back.timing->localizer_seconds, 0.75);
+  EXPECT_EQ(back.timing->scan_wait_seconds, 0.125);
+  EXPECT_EQ(back.timing->peak_memory_mb, 96.5);
+  EXPECT_EQ(back.notes, m.notes);
+  // The derived rate is written from the stage and the robot time: 0.5 s over 40 s.
+  EXPECT_EQ(j["timing"]["stages"][1]["ms_per_robot_second"].get<double>(), 12.5);
 }
 
 TEST(RunMetrics, ANotLocalizedRunHasNoApeInB) {
@@ -65,13 +132,18 @@ TEST(RunMetrics, BadFieldsAreNamedByPointer) {
   };
   nlohmann::json j = metricsToJson(localizedRun());
   j.erase("seed");
-  EXPECT_EQ(message(j), "runs/x/metrics.json: /seed: missing");
+  EXPECT_EQ(message(j), "runs/x/metrics.json: /seed: missing required field");
   j = metricsToJson(localizedRun());
   j["ape_B"]["rmse"] = "small";
-  EXPECT_EQ(message(j), "runs/x/metrics.json: /ape_B/rmse: expected a number");
+  EXPECT_EQ(message(j), "runs/x/metrics.json: /ape_B/rmse: expected a number, got a string");
   j = metricsToJson(localizedRun());
   j["matching_events"][1]["status"] = 4;
-  EXPECT_EQ(message(j), "runs/x/metrics.json: /matching_events/1/status: expected a string");
+  EXPECT_EQ(message(j),
+            "runs/x/metrics.json: /matching_events/1/status: expected a string, got a number");
+  j["matching_events"][1]["status"] = "found";
+  EXPECT_EQ(message(j),
+            "runs/x/metrics.json: /matching_events/1/status: unknown status \"found\" (one of "
+            "\"not yet\", \"ambiguous\", \"matched\", \"contradicted\", \"lost\")");
   j = metricsToJson(localizedRun());
   j.erase("share_localized");
   EXPECT_EQ(message(j),
@@ -79,8 +151,9 @@ TEST(RunMetrics, BadFieldsAreNamedByPointer) {
             "share_localized");
   j = metricsToJson(localizedRun());
   j["notes"] = {"no ground truth", 3};
-  EXPECT_EQ(message(j), "runs/x/metrics.json: /notes/1: expected a string");
-  EXPECT_EQ(message(nlohmann::json::array()), "runs/x/metrics.json: expected an object");
+  EXPECT_EQ(message(j), "runs/x/metrics.json: /notes/1: expected a string, got a number");
+  EXPECT_EQ(message(nlohmann::json::array()),
+            "runs/x/metrics.json: expected an object, got an array");
 }
 
 }  // namespace

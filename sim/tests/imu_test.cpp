@@ -37,7 +37,7 @@ constexpr std::array<double, 6> kOffsetMount = {0.2, -0.1, 0.3, 0.1, -0.05, 0.4}
 
 TEST(BaseKinematics, AreTheDerivativesOfThePose) {
   GaitConfig gait;
-  const Trajectory t({{0, 0}, {3, 0}, {3, 2}, {1, 3}}, 0.4, 0.5, 1.0, gait);
+  const BaseMotion t({{0, 0}, {3, 0}, {3, 2}, {1, 3}}, 0.4, 0.5, 1.0, gait);
   const double h = 1e-4;
   for (double s = h; s < t.duration() - h; s += 0.037) {
     const BaseKinematics k = t.kinematics(s);
@@ -58,7 +58,7 @@ TEST(BaseKinematics, AreTheDerivativesOfThePose) {
 
 TEST(Imu, AtRestItReadsGravityUpwardsAndNoRotation) {
   GaitConfig gait;
-  const Trajectory t({{1, 1}}, 0.7, 0.5, 0.0, gait);  // one waypoint: it stands
+  const BaseMotion t({{1, 1}}, 0.7, 0.5, 0.0, gait);  // one waypoint: it stands
   const Eigen::Isometry3d R_T_I = mountTransform({0, 0, 0, 0, 0, std::numbers::pi / 2});
   const ImuSample s = idealImuSample(t, R_T_I, 9.81, 3.0);
   EXPECT_LT((s.accelerometer - Eigen::Vector3d(0, 0, 9.81)).norm(), 1e-12);
@@ -82,7 +82,7 @@ Simulation* D1Imu::sim_ = nullptr;
 // Orientation of I in B from integrating the noiseless gyroscope over the whole run, starting
 // from the true one: within 1 mrad of ground truth throughout.
 TEST_F(D1Imu, IntegratedGyroscopeFollowsTheTrueOrientation) {
-  const Trajectory& t = sim_->trajectory();
+  const BaseMotion& t = sim_->baseMotion();
   const auto samples = simulateImu(t, noiseless(kOffsetMount), t.duration(), 1);
   const Eigen::Matrix3d R_R_I = mountTransform(kOffsetMount).linear();
   Eigen::Matrix3d B_R_I = t.pose(0.0).linear() * R_R_I;
@@ -101,7 +101,7 @@ TEST_F(D1Imu, IntegratedGyroscopeFollowsTheTrueOrientation) {
 // orientation with gravity taken out and integrated twice from the true velocity, moves the IMU
 // as far as ground truth does: within 1 cm.
 TEST_F(D1Imu, DoubleIntegratedAccelerometerMatchesTheDisplacement) {
-  const Trajectory& t = sim_->trajectory();
+  const BaseMotion& t = sim_->baseMotion();
   const double g = 9.81;
   const auto samples = simulateImu(t, noiseless(kOffsetMount), t.duration(), 1);
   const Eigen::Isometry3d R_T_I = mountTransform(kOffsetMount);
@@ -157,7 +157,7 @@ std::vector<double> allanDeviation(const std::vector<ImuSample>& samples, bool g
 
 TEST(Imu, AllanDeviationOfWhiteNoiseAtOneSecondIsTheDensity) {
   GaitConfig gait;
-  const Trajectory still({{0, 0}}, 0.0, 0.5, 0.0, gait);
+  const BaseMotion still({{0, 0}}, 0.0, 0.5, 0.0, gait);
   bim::ImuConfig config;
   config.gyroscope_random_walk = config.accelerometer_random_walk = 0.0;
   const auto samples = simulateImu(still, config, 3000.0, 7);
@@ -172,7 +172,7 @@ TEST(Imu, AllanDeviationOfWhiteNoiseAtOneSecondIsTheDensity) {
 
 TEST(Imu, BiasRandomWalkGrowsAsConfigured) {
   GaitConfig gait;
-  const Trajectory still({{0, 0}}, 0.0, 0.5, 0.0, gait);
+  const BaseMotion still({{0, 0}}, 0.0, 0.5, 0.0, gait);
   bim::ImuConfig config;  // the defaults, at 50 Hz to keep the run short
   config.rate_hz = 50.0;
   const auto samples = simulateImu(still, config, 6000.0, 3);
@@ -198,7 +198,7 @@ TEST(Imu, BiasRandomWalkGrowsAsConfigured) {
 
 TEST(Imu, SameSeedSameBytes) {
   GaitConfig gait;
-  const Trajectory t({{0, 0}, {2, 0}, {2, 2}}, 0.0, 0.5, 0.0, gait);
+  const BaseMotion t({{0, 0}, {2, 0}, {2, 2}}, 0.0, 0.5, 0.0, gait);
   bim::ImuConfig config;
   const std::string a = run::dataset::imuText(simulateImu(t, config, t.duration(), 5));
   const std::string b = run::dataset::imuText(simulateImu(t, config, t.duration(), 5));

@@ -36,7 +36,7 @@ TEST_P(ISGraphInTheLoop, LocalizedInThePlanWithinTheBound) {
   ASSERT_TRUE(record.localized_at.has_value()) << world;
   EXPECT_EQ(record.search_status, "matched");
   for (const auto& change : record.status_changes) {
-    EXPECT_NE(change.status, "contradicted") << change.reason;
+    EXPECT_NE(change.status, slam::MatchStatus::kContradicted) << change.reason;
   }
   const run::RunMetrics metrics = run::evaluateRun(record).metrics;
   ASSERT_TRUE(metrics.ape_B.has_value());

@@ -145,7 +145,7 @@ TEST(LidarSimulator, MotionDistortsAScanAndDeskewingRemovesIt) {
 
 TEST(LidarSimulator, RobotNeverSeesItself) {
   Simulation sim(builtin("d1.asbuilt"));
-  const Eigen::Isometry3d B_T_R = sim.trajectory().pose(3.0);
+  const Eigen::Isometry3d B_T_R = sim.baseMotion().pose(3.0);
   poseRobot(sim.world().model(), sim.world().data(), B_T_R, 0.0, 0.0);
   // The robot is there for rays that look for it: straight down from the sensor onto its back.
   const Eigen::Vector3d sensor = (B_T_R * sim.R_T_L()).translation();

@@ -32,8 +32,8 @@ int countGrey(const Image& image) {
 TEST(Renderer, HeadlessPicturesShowTheBuildingAndTheRobot) {
   Simulation sim(worlds::loadScenarioOrBuiltin("builtin:d3.asbuilt", nullptr));
   const double t = 20.0;
-  const Eigen::Isometry3d B_T_R = sim.trajectory().pose(t);
-  poseRobot(sim.world().model(), sim.world().data(), B_T_R, sim.trajectory().gaitPhase(t), 1.0);
+  const Eigen::Isometry3d B_T_R = sim.baseMotion().pose(t);
+  poseRobot(sim.world().model(), sim.world().data(), B_T_R, sim.baseMotion().gaitPhase(t), 1.0);
   Renderer renderer(sim.world().model(), 640, 360);
   const Image top = renderer.topDown(sim.world().data());
   const Image chase = renderer.chase(sim.world().data(), B_T_R);
@@ -61,7 +61,7 @@ TEST(Renderer, PlanViewShowsDoorOpeningsAndTheRoute) {
   }
   std::vector<Eigen::Vector3d> route;
   for (double t = 0.0; t <= sim.duration(); t += 0.25) {
-    const Eigen::Vector3d p = sim.trajectory().pose(t).translation();
+    const Eigen::Vector3d p = sim.baseMotion().pose(t).translation();
     route.emplace_back(p.x(), p.y(), level.elevation + 0.05);
   }
   const int width = 800, height = 450;

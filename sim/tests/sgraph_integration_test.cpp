@@ -46,7 +46,7 @@ TEST(SGraphOnSimulatedData, AsALocalizerItTracksTheBaseInItsMap) {
   // In M (the start pose), the base has moved as the ground truth says, within a few centimetres.
   const auto& last = record.estimate_map.back();
   const Eigen::Isometry3d truth =
-      sim.trajectory().pose(0.0).inverse() * sim.trajectory().pose(last.t);
+      sim.baseMotion().pose(0.0).inverse() * sim.baseMotion().pose(last.t);
   EXPECT_LT((last.pose.translation() - truth.translation()).head<2>().norm(), 0.05);
   EXPECT_GT(record.graph["planes"].size(), 3u);
 }

@@ -41,7 +41,7 @@ TEST_P(TourOfEveryReferencePlan, VisitsEveryRoomKeepingClearOfWallsAndClutter) {
   EXPECT_EQ(sim.route().visited_rooms.size(), rooms.size());
   EXPECT_TRUE(sim.route().skipped_rooms.empty());
   // The base's centre, every 5 cm of the way, keeps 0.35 m from walls, clutter and closed doors.
-  const Trajectory& t = sim.trajectory();
+  const BaseMotion& t = sim.baseMotion();
   double least = 1e9;
   for (double s = 0.0; s <= t.duration(); s += 0.1) {
     least = std::min(least, sim.grid().clearanceAt(t.planar(s).xy));
@@ -53,9 +53,9 @@ INSTANTIATE_TEST_SUITE_P(AsBuilt, TourOfEveryReferencePlan,
                          ::testing::Values("d1.asbuilt", "d2.asbuilt", "d3.asbuilt", "d4.asbuilt",
                                            "d5.asbuilt", "d6.asbuilt"));
 
-TEST(Trajectory, TurnsOnTheSpotThenWalksWithTheGaitsSway) {
+TEST(BaseMotion, TurnsOnTheSpotThenWalksWithTheGaitsSway) {
   GaitConfig gait;
-  const Trajectory t({{0, 0}, {2, 0}, {2, 1}}, 0.0, 0.5, 0.0, gait);
+  const BaseMotion t({{0, 0}, {2, 0}, {2, 1}}, 0.0, 0.5, 0.0, gait);
   // Each movement starts and stops along raised-cosine ramps of π·rate / (2·acceleration):
   // 0.5236 s at 0.5 m/s and 1.5 m/s², 0.4189 s at 0.8 rad/s and 3 rad/s²; each ramp pair costs
   // one ramp's time over moving at full rate throughout.
@@ -83,10 +83,10 @@ TEST(Trajectory, TurnsOnTheSpotThenWalksWithTheGaitsSway) {
   EXPECT_NEAR(t.pose(t.duration() + 1.0).translation().z(), 0.46, 1e-12);
 }
 
-TEST(Trajectory, AKidnapStartsANewLegAtItsTime) {
+TEST(BaseMotion, AKidnapStartsANewLegAtItsTime) {
   GaitConfig gait;
   const double walk_ramp = std::numbers::pi * 0.5 / 3.0, turn_ramp = std::numbers::pi * 0.8 / 6.0;
-  Trajectory t({{0, 0}, {4, 0}}, 0.0, 0.5, 0.0, gait);  // 8 s (and a ramp) along x
+  BaseMotion t({{0, 0}, {4, 0}}, 0.0, 0.5, 0.0, gait);  // 8 s (and a ramp) along x
   t.appendLeg(3.0, {{10, 5}, {10, 7}}, 0.3);            // lifted at 3 s to (10, 5)
   EXPECT_EQ(t.jumps(), std::vector<double>{3.0});
   // Past its first ramp it has covered half a ramp's time less than at full speed throughout.
@@ -109,7 +109,7 @@ TEST(Simulation, KidnappedRobotJumpsUnseenByOdometry) {
   bim::Scenario scenario = builtin("d1.asbuilt");
   const Simulation plain(scenario);
   const double when = std::round(plain.duration() / 2.0);
-  const Eigen::Vector2d then = plain.trajectory().planar(when).xy;
+  const Eigen::Vector2d then = plain.baseMotion().planar(when).xy;
   const bim::Room* farthest = nullptr;
   for (const auto& room : scenario.plan.levels[0].rooms) {
     if (!farthest || (bim::centroid(room.outline) - then).norm() >
@@ -134,7 +134,7 @@ TEST(Simulation, KidnappedRobotJumpsUnseenByOdometry) {
   EXPECT_GT(largest_step(truth, &truth_at), 1.0);
   EXPECT_NEAR(truth_at, when, 0.02);
   EXPECT_LT(largest_step(odometry, &odometry_at), 0.05);  // ≤ 0.5 m/s · 0.02 s, plus noise
-  EXPECT_TRUE(bim::containsPoint(farthest->outline, sim.trajectory().planar(when).xy));
+  EXPECT_TRUE(bim::containsPoint(farthest->outline, sim.baseMotion().planar(when).xy));
   // Every room is reached once the tour resumes.
   std::set<std::string> visited(sim.route().visited_rooms.begin(), sim.route().visited_rooms.end());
   EXPECT_EQ(visited.size(), scenario.plan.levels[0].rooms.size());

@@ -208,7 +208,7 @@ TEST(AmclLocalizer, ConvergesFromAUniformStartInThreeUnequalRooms) {
       if (amcl.mapInPlan()) {
         const Pose2 estimate = planarPose(*amcl.mapInPlan() * M_T_R);
         EXPECT_LT((estimate.position() - truth.position()).norm(), 0.3) << "seed " << seed;
-        EXPECT_LT(std::abs(angleDifference(estimate.yaw, truth.yaw)), 0.2) << "seed " << seed;
+        EXPECT_LT(std::abs(bim::angleDifference(estimate.yaw, truth.yaw)), 0.2) << "seed " << seed;
       }
     }
     EXPECT_GE(localized_after, 1) << "seed " << seed;

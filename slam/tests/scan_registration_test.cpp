@@ -1,5 +1,7 @@
 #include "slam/scan_registration.hpp"
 
+#include "bim/angles.hpp"
+
 #include <gtest/gtest.h>
 
 #include <Eigen/Eigenvalues>
@@ -54,8 +56,6 @@ Eigen::Isometry3d planarPose(double x, double y, double yaw) {
   return T;
 }
 
-double yawOf(const Eigen::Isometry3d& T) { return std::atan2(T.linear()(1, 0), T.linear()(0, 0)); }
-
 TEST(ScanRegistration, DownsamplingKeepsOneCentroidPerVoxel) {
   Scan scan;
   // Two points in one 0.2 m voxel, one in another, one too close, one too far.
@@ -91,7 +91,7 @@ TEST(ScanRegistration, RecoversThePoseFromAWrongPrediction) {
   const Eigen::Isometry3d corrected = r.apply(predicted);
   EXPECT_NEAR(corrected.translation().x(), 4.0, 0.02);
   EXPECT_NEAR(corrected.translation().y(), 3.2, 0.02);
-  EXPECT_NEAR(yawOf(corrected), 0.05, 0.3 * std::numbers::pi / 180);
+  EXPECT_NEAR(bim::yawOf(corrected.linear()), 0.05, 0.3 * std::numbers::pi / 180);
   EXPECT_TRUE(r.agrees);
   EXPECT_GT(r.inlier_share, 0.9);
   EXPECT_LT(r.inlier_share_predicted, r.inlier_share);

@@ -4,9 +4,9 @@
 #include <string>
 #include <vector>
 
-#include "cli/suite.hpp"
+#include "sweep/suite.hpp"
 
-namespace isg::cli {
+namespace isg::sweep {
 
 // Runs sweep cells as child `isg run` processes, `jobs` at a time (docs/sweeps.md). A cell whose
 // run folder already holds metrics.json is finished and skipped, so a sweep started again does
@@ -43,4 +43,4 @@ bool cellFinished(const std::string& sweep_dir, const SweepCell& cell);
 // removed: it may be all that is left of a long run), and returns that path relative to SWEEP_DIR.
 std::string moveCellAside(const std::string& sweep_dir, const SweepCell& cell);
 
-}  // namespace isg::cli
+}  // namespace isg::sweep

@@ -1,14 +1,13 @@
-#include "cli/suite.hpp"
+#include "sweep/suite.hpp"
 
 #include <algorithm>
 #include <filesystem>
 #include <set>
 
 #include "bim/json_reader.hpp"
-#include "cli/common.hpp"
 #include "worlds/reference_plans.hpp"
 
-namespace isg::cli {
+namespace isg::sweep {
 
 namespace {
 
@@ -111,7 +110,7 @@ Suite parseSuite(const bim::JsonNode& root, const std::string& path,
       const std::string input = entry.text();
       if (input.empty()) entry.fail("must not be empty");
       SuiteWorld world;
-      world.name = worldName(input);
+      world.name = worlds::worldName(input);
       if (worlds::isBuiltin(input)) {
         // Checked now, not when its cells run: a misspelt built-in would fail every one of them.
         if (!worlds::builtinText(world.name)) {
@@ -340,4 +339,4 @@ SweepPlan parseSweepPlan(const bim::JsonNode& root) {
   return plan;
 }
 
-}  // namespace isg::cli
+}  // namespace isg::sweep

@@ -2,7 +2,7 @@
 
 #include <stdexcept>
 
-namespace isg::cli {
+namespace isg::run {
 
 // Ctrl-C and SIGTERM end a long command cleanly: the signal only raises a flag, the command's
 // progress callback throws Interrupted at the next scan, and the exception unwinds through the
@@ -23,4 +23,4 @@ void installInterruptHandlers();
 // Throws Interrupted once a signal has arrived.
 void throwIfInterrupted();
 
-}  // namespace isg::cli
+}  // namespace isg::run

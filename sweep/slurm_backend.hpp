@@ -4,9 +4,9 @@
 #include <string>
 #include <vector>
 
-#include "cli/suite.hpp"
+#include "sweep/suite.hpp"
 
-namespace isg::cli {
+namespace isg::sweep {
 
 // The Slurm backend of isg sweep (docs/sweeps.md): one array task per cell left to run. The task
 // runs `isg sweep --cell K SWEEP_DIR`, which runs cell K as the local backend would (same run
@@ -49,4 +49,4 @@ std::string sbatchCommand(const std::string& script, const SlurmArray& array,
 std::vector<std::string> submitSlurm(const std::string& script,
                                      const std::vector<SlurmArray>& arrays, bool wait);
 
-}  // namespace isg::cli
+}  // namespace isg::sweep

@@ -11,7 +11,7 @@
 #include "run/localizer_registry.hpp"
 #include "worlds/plan_generator.hpp"
 
-namespace isg::cli {
+namespace isg::sweep {
 
 // A sweep suite ("isg.suite" v1, docs/sweeps.md): worlds × seeds × methods and how to run them.
 
@@ -108,4 +108,4 @@ SweepPlan readSweepPlan(const std::string& sweep_dir);
 // The same from a document already read.
 SweepPlan parseSweepPlan(const bim::JsonNode& root);
 
-}  // namespace isg::cli
+}  // namespace isg::sweep

@@ -2,7 +2,7 @@
 
 #include <string>
 
-namespace isg::cli {
+namespace isg::sweep {
 
 // The lock a sweep holds on its folder while it runs (SWEEP_DIR/.lock, an flock): a second
 // `isg sweep` into the same folder is refused with an InputError naming the holder's pid, rather
@@ -18,4 +18,4 @@ class SweepLock {
   int fd_ = -1;
 };
 
-}  // namespace isg::cli
+}  // namespace isg::sweep

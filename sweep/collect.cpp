@@ -1,13 +1,13 @@
-#include "cli/sweep_collect.hpp"
+#include "sweep/collect.hpp"
 
 #include <filesystem>
 
 #include "bim/json_reader.hpp"
-#include "cli/sweep_pool.hpp"
 #include "run/builtin_methods.hpp"
 #include "run/run_metrics.hpp"
+#include "sweep/pool.hpp"
 
-namespace isg::cli {
+namespace isg::sweep {
 
 SweepCollection collectSweep(const std::string& sweep_dir, const std::vector<SweepCell>& cells,
                              const std::string& measure) {
@@ -57,4 +57,4 @@ SweepCollection collectSweep(const std::string& sweep_dir, const std::vector<Swe
   return out;
 }
 
-}  // namespace isg::cli
+}  // namespace isg::sweep

@@ -8,7 +8,10 @@
 #include "run/localizer_registry.hpp"
 #include "run/run_metrics.hpp"
 
-namespace isg::cli {
+namespace isg::sweep {
+
+// "builtin:d1" → "d1"; anything else as it is.
+std::string shortWorld(const std::string& world);
 
 // The table of `isg table` and `isg sweep --collect`: rows worlds, columns methods in the
 // registry's order, cells aggregated over seeds (docs/evaluation.md), with a caption that says
@@ -18,9 +21,6 @@ namespace isg::cli {
 // hashes differ are different buildings: their rows are told apart by the hash ("w [1a2b3c4d]").
 // `absent` are the seeds a sweep asked for that have no run (failed, or not run): their cells
 // count them, so a table never looks complete when it is not.
-// "builtin:d1" → "d1"; anything else as it is.
-std::string shortWorld(const std::string& world);
-
 struct RunTable {
   eval::ResultTable table;
   std::string caption;
@@ -34,4 +34,4 @@ RunTable tabulateRuns(std::vector<std::pair<std::string, run::RunMetrics>> runs,
                       const std::string& measure, const run::LocalizerRegistry& methods,
                       const std::vector<AbsentRun>& absent = {});
 
-}  // namespace isg::cli
+}  // namespace isg::sweep

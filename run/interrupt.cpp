@@ -1,9 +1,9 @@
-#include "cli/interrupt.hpp"
+#include "run/interrupt.hpp"
 
 #include <csignal>
 #include <string>
 
-namespace isg::cli {
+namespace isg::run {
 
 namespace {
 
@@ -30,4 +30,4 @@ void throwIfInterrupted() {
   if (received_signal != 0) throw Interrupted(received_signal);
 }
 
-}  // namespace isg::cli
+}  // namespace isg::run

@@ -3,10 +3,10 @@
 #include <string>
 #include <vector>
 
-#include "cli/run_table.hpp"
-#include "cli/suite.hpp"
+#include "sweep/run_table.hpp"
+#include "sweep/suite.hpp"
 
-namespace isg::cli {
+namespace isg::sweep {
 
 // What a sweep folder holds: the table of its finished cells (as isg table makes it) and which
 // cells failed (with the first line of their error) or have not run yet.
@@ -21,4 +21,4 @@ struct SweepCollection {
 SweepCollection collectSweep(const std::string& sweep_dir, const std::vector<SweepCell>& cells,
                              const std::string& measure = "ape");
 
-}  // namespace isg::cli
+}  // namespace isg::sweep

@@ -6,8 +6,8 @@
 #include <fstream>
 #include <sstream>
 
-#include "cli/sweep_collect.hpp"
 #include "run/run_metrics.hpp"
+#include "sweep/collect.hpp"
 
 namespace {
 
@@ -29,14 +29,14 @@ isg::eval::Statistics statsOf(double rmse) {
 // A sweep folder of 1000 finished cells, made once.
 struct SweepFixture {
   fs::path dir = fs::temp_directory_path() / "isg_bench_sweep_1000";
-  std::vector<isg::cli::SweepCell> cells;
+  std::vector<isg::sweep::SweepCell> cells;
 
   SweepFixture() {
     fs::remove_all(dir);
     for (int w = 0; w < 50; ++w) {
       for (const char* method : {"is-graphs", "amcl"}) {
         for (int seed = 1; seed <= 10; ++seed) {
-          isg::cli::SweepCell cell;
+          isg::sweep::SweepCell cell;
           cell.world = "office-" + std::to_string(w);
           cell.method = method;
           cell.seed = std::uint64_t(seed);
@@ -74,7 +74,7 @@ struct SweepFixture {
 void BM_CollectSweep_1000RunFolders(benchmark::State& state) {
   const SweepFixture f;  // written before the timed loop
   for (auto _ : state) {
-    const auto collected = isg::cli::collectSweep(f.dir.string(), f.cells);
+    const auto collected = isg::sweep::collectSweep(f.dir.string(), f.cells);
     if (collected.finished != 1000) state.SkipWithError("not every cell was read");
     benchmark::DoNotOptimize(collected.table.table.rows.size());
   }

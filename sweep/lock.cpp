@@ -1,4 +1,4 @@
-#include "cli/sweep_lock.hpp"
+#include "sweep/lock.hpp"
 
 #include <fcntl.h>
 #include <sys/file.h>
@@ -9,9 +9,9 @@
 #include <filesystem>
 
 #include "bim/input_error.hpp"
-#include "cli/suite.hpp"
+#include "sweep/suite.hpp"
 
-namespace isg::cli {
+namespace isg::sweep {
 
 SweepLock::SweepLock(const std::string& sweep_dir) {
   const std::string path = (std::filesystem::path(sweep_dir) / kSweepLockFile).string();
@@ -49,4 +49,4 @@ SweepLock::~SweepLock() {
   if (fd_ >= 0) ::close(fd_);
 }
 
-}  // namespace isg::cli
+}  // namespace isg::sweep

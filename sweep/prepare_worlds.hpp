@@ -3,9 +3,9 @@
 #include <string>
 #include <vector>
 
-#include "cli/suite.hpp"
+#include "sweep/suite.hpp"
 
-namespace isg::cli {
+namespace isg::sweep {
 
 // Reads every world of the suite as isg run will (a bad file fails here, not in each of its
 // cells) and sets its content hash (worlds::worldHash). Generated worlds are written into
@@ -22,4 +22,4 @@ struct ChangedWorld {
 };
 std::vector<ChangedWorld> changedWorlds(const Suite& suite, const SweepPlan& before);
 
-}  // namespace isg::cli
+}  // namespace isg::sweep

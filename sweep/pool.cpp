@@ -1,4 +1,4 @@
-#include "cli/sweep_pool.hpp"
+#include "sweep/pool.hpp"
 
 #include <fcntl.h>
 #include <signal.h>
@@ -18,12 +18,12 @@
 #include <thread>
 
 #include "bim/input_error.hpp"
-#include "cli/interrupt.hpp"
 #include "run/atomic_folder.hpp"
 #include "run/builtin_methods.hpp"
+#include "run/interrupt.hpp"
 #include "run/run_metrics.hpp"
 
-namespace isg::cli {
+namespace isg::sweep {
 
 namespace {
 
@@ -211,7 +211,7 @@ PoolOutcome runCells(const std::string& sweep_dir, const std::vector<SweepCell>&
   };
   try {
     while (next < pending.size() || !running.empty()) {
-      throwIfInterrupted();
+      run::throwIfInterrupted();
       while (next < pending.size() && int(running.size()) < jobs) {
         const SweepCell& cell = cells[pending[next]];
         const fs::path log = dir / "logs" / (cell.dir + ".log");
@@ -274,4 +274,4 @@ PoolOutcome runCells(const std::string& sweep_dir, const std::vector<SweepCell>&
   return outcome;
 }
 
-}  // namespace isg::cli
+}  // namespace isg::sweep

@@ -36,9 +36,9 @@ struct BaseKinematics {
 
 // A kidnap makes a new leg: at its time the robot is lifted from wherever the current leg has it
 // and put down at the new leg's first waypoint, facing its start yaw.
-class Trajectory {
+class BaseMotion {
  public:
-  Trajectory(const std::vector<Eigen::Vector2d>& waypoints, double start_yaw, double speed,
+  BaseMotion(const std::vector<Eigen::Vector2d>& waypoints, double start_yaw, double speed,
              double floor_z, const GaitConfig& gait);
 
   // Continues with a new leg from `time` on (after the current leg's start, before its end).

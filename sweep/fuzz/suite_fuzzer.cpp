@@ -13,8 +13,8 @@
 
 #include "bim/input_error.hpp"
 #include "bim/json_reader.hpp"
-#include "cli/suite.hpp"
 #include "run/builtin_methods.hpp"
+#include "sweep/suite.hpp"
 
 namespace {
 
@@ -47,23 +47,23 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   using namespace isg;
   static const run::LocalizerRegistry methods = run::builtinMethods();
   const std::string text(reinterpret_cast<const char*>(data), size);
-  std::optional<cli::Suite> suite;
+  std::optional<sweep::Suite> suite;
   try {
     const nlohmann::json document = bim::parseJsonText(text, "fuzz.json");
     if (roomsAskedFor(document) > kMostRooms) return 0;
     const bim::JsonSource source{"fuzz.json", nullptr};
-    suite = cli::parseSuite(bim::JsonNode(document, "", source), "fuzz.json", methods);
+    suite = sweep::parseSuite(bim::JsonNode(document, "", source), "fuzz.json", methods);
   } catch (const bim::InputError&) {
     return 0;
   }
   if (suite->worlds.size() * suite->methods.size() * suite->seeds.size() > kMostCells) return 0;
   // From here on nothing may throw: sweep.json as a sweep writes it must read back, as a
   // restarted sweep reads it, to the same cells.
-  const std::vector<cli::SweepCell> cells = cli::sweepCells(*suite);
+  const std::vector<sweep::SweepCell> cells = sweep::sweepCells(*suite);
   const nlohmann::json written =
-      bim::parseJsonText(cli::sweepPlanJson(*suite, cells), "sweep.json");
+      bim::parseJsonText(sweep::sweepPlanJson(*suite, cells), "sweep.json");
   const bim::JsonSource plan_source{"sweep.json", nullptr};
-  const cli::SweepPlan plan = cli::parseSweepPlan(bim::JsonNode(written, "", plan_source));
+  const sweep::SweepPlan plan = sweep::parseSweepPlan(bim::JsonNode(written, "", plan_source));
   if (plan.cells.size() != cells.size()) __builtin_trap();
   for (std::size_t i = 0; i < cells.size(); ++i) {
     if (plan.cells[i].dir != cells[i].dir || plan.cells[i].arguments != cells[i].arguments) {

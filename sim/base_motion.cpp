@@ -1,14 +1,14 @@
-#include "sim/trajectory.hpp"
+#include "sim/base_motion.hpp"
 
 #include <algorithm>
 #include <cmath>
 #include <numbers>
 
+#include "bim/angles.hpp"
+
 namespace isg::sim {
 
 namespace {
-
-double wrapAngle(double a) { return std::remainder(a, 2.0 * std::numbers::pi); }
 
 // Seconds over which the trot's sway eases in at the start and out at the end.
 constexpr double kSwayEase = 0.5;
@@ -27,13 +27,13 @@ Smoothstep smootherstep(double u) {
 
 }  // namespace
 
-Trajectory::Trajectory(const std::vector<Eigen::Vector2d>& waypoints, double start_yaw,
+BaseMotion::BaseMotion(const std::vector<Eigen::Vector2d>& waypoints, double start_yaw,
                        double speed, double floor_z, const GaitConfig& gait)
     : gait_(gait), floor_z_(floor_z), speed_(speed) {
   legs_.push_back(makeLeg(0.0, waypoints, start_yaw));
 }
 
-Trajectory::Leg Trajectory::makeLeg(double start, const std::vector<Eigen::Vector2d>& waypoints,
+BaseMotion::Leg BaseMotion::makeLeg(double start, const std::vector<Eigen::Vector2d>& waypoints,
                                     double start_yaw) const {
   Leg leg;
   leg.start = start;
@@ -51,7 +51,7 @@ Trajectory::Leg Trajectory::makeLeg(double start, const std::vector<Eigen::Vecto
       continue;
     }
     const double heading = std::atan2(step.y(), step.x());
-    const double turn = wrapAngle(heading - yaw);
+    const double turn = bim::wrapAngle(heading - yaw);
     if (std::abs(turn) > 1e-9) {
       const RestToRestProfile profile(std::abs(turn), gait_.turn_rate, gait_.turn_acceleration);
       leg.segments.push_back({t, t + profile.duration(), at, at, yaw, yaw + turn, profile});
@@ -67,24 +67,24 @@ Trajectory::Leg Trajectory::makeLeg(double start, const std::vector<Eigen::Vecto
   return leg;
 }
 
-void Trajectory::appendLeg(double time, const std::vector<Eigen::Vector2d>& waypoints,
+void BaseMotion::appendLeg(double time, const std::vector<Eigen::Vector2d>& waypoints,
                            double start_yaw) {
   legs_.push_back(makeLeg(time, waypoints, start_yaw));
 }
 
-std::vector<double> Trajectory::jumps() const {
+std::vector<double> BaseMotion::jumps() const {
   std::vector<double> out;
   for (std::size_t i = 1; i < legs_.size(); ++i) out.push_back(legs_[i].start);
   return out;
 }
 
-int Trajectory::legAt(double t) const {
+int BaseMotion::legAt(double t) const {
   int leg = 0;
   while (leg + 1 < int(legs_.size()) && legs_[leg + 1].start <= t) ++leg;
   return leg;
 }
 
-Trajectory::PlanarState Trajectory::planarInLeg(const Leg& leg, double t) const {
+BaseMotion::PlanarState BaseMotion::planarInLeg(const Leg& leg, double t) const {
   if (leg.segments.empty() || t <= leg.start) return {leg.from, leg.yaw, false};
   if (t >= leg.end()) {
     const Segment& last = leg.segments.back();
@@ -112,11 +112,11 @@ Trajectory::PlanarState Trajectory::planarInLeg(const Leg& leg, double t) const 
   return state;
 }
 
-Trajectory::PlanarState Trajectory::planar(double t) const {
+BaseMotion::PlanarState BaseMotion::planar(double t) const {
   return planarInLeg(legs_[legAt(t)], t);
 }
 
-Trajectory::Eased Trajectory::sway(double t) const {
+BaseMotion::Eased BaseMotion::sway(double t) const {
   const double d = duration();
   if (t <= 0.0 || t >= d) return {};
   const Smoothstep in = smootherstep(t / kSwayEase);
@@ -129,17 +129,17 @@ Trajectory::Eased Trajectory::sway(double t) const {
           in_acc * out.value + 2.0 * in_rate * out_rate + in.value * out_acc};
 }
 
-Eigen::Isometry3d Trajectory::pose(double t) const { return kinematics(t).B_T_R; }
+Eigen::Isometry3d BaseMotion::pose(double t) const { return kinematics(t).B_T_R; }
 
-BaseKinematics Trajectory::kinematics(double t) const { return kinematicsOf(planar(t), t); }
+BaseKinematics BaseMotion::kinematics(double t) const { return kinematicsOf(planar(t), t); }
 
-Eigen::Isometry3d Trajectory::poseBefore(double t) const {
+Eigen::Isometry3d BaseMotion::poseBefore(double t) const {
   const int leg = legAt(t);
   return kinematicsOf(planarInLeg(legs_[leg > 0 && legs_[leg].start == t ? leg - 1 : leg], t), t)
       .B_T_R;
 }
 
-BaseKinematics Trajectory::kinematicsOf(const PlanarState& p, double t) const {
+BaseKinematics BaseMotion::kinematicsOf(const PlanarState& p, double t) const {
   const Eased w = sway(t);
   const double omega = 2.0 * std::numbers::pi * gait_.frequency_hz;
   const double phase = gaitPhase(t);

@@ -1,4 +1,4 @@
-#include "cli/sweep_worlds.hpp"
+#include "sweep/prepare_worlds.hpp"
 
 #include <filesystem>
 
@@ -11,7 +11,7 @@
 #include "worlds/reference_plans.hpp"
 #include "worlds/world_hash.hpp"
 
-namespace isg::cli {
+namespace isg::sweep {
 
 namespace {
 
@@ -87,4 +87,4 @@ std::vector<ChangedWorld> changedWorlds(const Suite& suite, const SweepPlan& bef
   return changed;
 }
 
-}  // namespace isg::cli
+}  // namespace isg::sweep

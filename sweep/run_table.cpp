@@ -1,4 +1,4 @@
-#include "cli/run_table.hpp"
+#include "sweep/run_table.hpp"
 
 #include <algorithm>
 #include <map>
@@ -6,7 +6,7 @@
 
 #include "bim/input_error.hpp"
 
-namespace isg::cli {
+namespace isg::sweep {
 
 namespace {
 
@@ -188,4 +188,4 @@ RunTable tabulateRuns(std::vector<std::pair<std::string, run::RunMetrics>> runs,
   return {table, caption};
 }
 
-}  // namespace isg::cli
+}  // namespace isg::sweep

@@ -1,4 +1,4 @@
-#include "cli/slurm_backend.hpp"
+#include "sweep/slurm_backend.hpp"
 
 #include <sys/wait.h>
 
@@ -10,7 +10,7 @@
 #include "bim/input_error.hpp"
 #include "run/atomic_folder.hpp"
 
-namespace isg::cli {
+namespace isg::sweep {
 
 namespace {
 
@@ -172,4 +172,4 @@ std::vector<std::string> submitSlurm(const std::string& script,
   return ids;
 }
 
-}  // namespace isg::cli
+}  // namespace isg::sweep
