@@ -1,6 +1,6 @@
 #include "run/builtin_methods.hpp"
 #include "run/method_options.hpp"
-#include "slam/amcl_localizer.hpp"
+#include "slam/baselines/amcl_localizer.hpp"
 
 namespace isg::run {
 

@@ -1,5 +1,5 @@
 #include "run/builtin_methods.hpp"
-#include "slam/isgraph_localizer.hpp"
+#include "slam/isgraph/isgraph_localizer.hpp"
 
 namespace isg::run {
 

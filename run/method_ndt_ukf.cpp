@@ -2,7 +2,7 @@
 
 #include "run/builtin_methods.hpp"
 #include "run/method_options.hpp"
-#include "slam/ndt_ukf_localizer.hpp"
+#include "slam/baselines/ndt_ukf_localizer.hpp"
 
 namespace isg::run {
 

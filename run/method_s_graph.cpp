@@ -1,5 +1,5 @@
 #include "run/builtin_methods.hpp"
-#include "slam/sgraph_localizer.hpp"
+#include "slam/sgraph/sgraph_localizer.hpp"
 
 namespace isg::run {
 

@@ -25,10 +25,15 @@ inline const std::map<std::string, std::set<std::string>>& allowedModules() {
       {"worlds", {"bim"}},
       {"eval", {}},
       {"slam", {"bim"}},
-      {"run", {"bim", "eval", "slam"}},
+      {"slam/sgraph", {"bim", "slam"}},
+      {"slam/isgraph", {"bim", "slam", "slam/sgraph"}},
+      {"slam/baselines", {"bim", "slam"}},
+      {"run", {"bim", "eval", "slam", "slam/sgraph", "slam/isgraph", "slam/baselines"}},
       {"sim", {"bim", "worlds", "run", "slam"}},
       {"sweep", {"bim", "worlds", "eval", "run", "sim"}},
-      {"cli", {"bim", "worlds", "eval", "slam", "run", "sim", "sweep"}},
+      {"cli",
+       {"bim", "worlds", "eval", "slam", "slam/sgraph", "slam/isgraph", "slam/baselines", "run",
+        "sim", "sweep"}},
   };
   return allowed;
 }
@@ -39,7 +44,7 @@ inline bool headerAllowed(const std::string& from, const std::string& header) {
   // through run/ (the registry, the driver).
   if (from == "sim" && header.rfind("slam/", 0) == 0) return header == "slam/messages.hpp";
   // slam's PCL header is slam's own: no user of slam compiles PCL.
-  if (header == "slam/pcl_planes.hpp") return from == "slam";
+  if (header == "slam/sgraph/pcl_planes.hpp") return from == "slam/sgraph";
   return true;
 }
 
@@ -56,10 +61,27 @@ inline std::string join(const std::set<std::string>& names) {
   return out.empty() ? "none" : out;
 }
 
-// "slam/sgraph.cpp" → "slam", "slam/tests/x.cpp" → "slam"; "" for files outside the modules.
-inline std::string moduleOf(const fs::path& relative) {
-  const std::string first = relative.begin()->string();
-  return allowedModules().count(first) ? first : "";
+// The module a path is in, the longest one that holds it: "slam/sgraph/sgraph.cpp" →
+// "slam/sgraph", "slam/tests/x.cpp" → "slam", "run/driver.hpp" → "run"; "" outside the modules.
+inline std::string moduleOf(const std::string& path) {
+  std::string best;
+  for (const auto& [module, _] : allowedModules()) {
+    if (path.size() > module.size() && path.compare(0, module.size(), module) == 0 &&
+        path[module.size()] == '/' && module.size() > best.size())
+      best = module;
+  }
+  return best;
+}
+inline std::string moduleOf(const fs::path& relative) { return moduleOf(relative.string()); }
+
+// The module whose library is isg_<name>: a module's library is named after its last folder
+// ("slam/sgraph" → isg_sgraph); "" for other names.
+inline std::string moduleOfLibrary(const std::string& name) {
+  for (const auto& [module, _] : allowedModules()) {
+    const auto slash = module.rfind('/');
+    if ((slash == std::string::npos ? module : module.substr(slash + 1)) == name) return module;
+  }
+  return "";
 }
 
 inline void checkIncludes(const fs::path& root, const fs::path& relative,
@@ -78,10 +100,9 @@ inline void checkIncludes(const fs::path& root, const fs::path& relative,
     std::smatch m;
     if (std::regex_search(line, m, quoted)) {
       const std::string target = m[1];
-      const auto slash = target.find('/');
-      if (slash == std::string::npos) continue;  // a file beside it (generated, tests' own)
-      const std::string to = target.substr(0, slash);
-      if (!allowedModules().count(to) || to == module) continue;
+      if (target.find('/') == std::string::npos) continue;  // a file beside it (generated, tests')
+      const std::string to = moduleOf(target);
+      if (to.empty() || to == module) continue;
       if (!allowedModules().at(module).count(to)) {
         out.push_back({relative.string(), number,
                        module + " may not include \"" + target +
@@ -97,8 +118,9 @@ inline void checkIncludes(const fs::path& root, const fs::path& relative,
                        module + " may not include MuJoCo (<" + target + ">): only sim runs it"});
       }
       if (target.rfind("pcl/", 0) == 0) {
-        const bool private_pcl = relative == fs::path("slam/pcl_planes.hpp") ||
-                                 (!header && module == "slam") || (in_tests && module == "sim");
+        const bool private_pcl = relative == fs::path("slam/sgraph/pcl_planes.hpp") ||
+                                 (!header && (module == "slam" || module.rfind("slam/", 0) == 0)) ||
+                                 (in_tests && module == "sim");
         if (!private_pcl) {
           out.push_back({relative.string(), number,
                          module + " may not include PCL (<" + target +
@@ -135,15 +157,16 @@ inline void checkLinks(const fs::path& root, const fs::path& relative,
         target = target.substr(0, target.size() - s.size());
     }
     if (target.rfind("isg_", 0) == 0) target = target.substr(4);
-    if (target != module) continue;  // another target (the isg executable, a test helper)
+    if (moduleOfLibrary(target) != module)
+      continue;  // another target (the isg executable, a test helper)
     for (std::size_t i = 1; i < tokens.size(); ++i) {
       const std::string& library = tokens[i];
       if (library.rfind("mujoco", 0) == 0 && module != "sim") {
         out.push_back({relative.string(), line, module + " may not link " + library});
       }
       if (library.rfind("isg_", 0) != 0) continue;
-      const std::string to = library.substr(4);
-      if (to == module || !allowedModules().count(to)) continue;
+      const std::string to = moduleOfLibrary(library.substr(4));
+      if (to.empty() || to == module) continue;
       if (!allowedModules().at(module).count(to)) {
         out.push_back({relative.string(), line,
                        module + " may not link " + library +
@@ -155,14 +178,13 @@ inline void checkLinks(const fs::path& root, const fs::path& relative,
 
 // Every violation under `root`, in file order.
 inline std::vector<Violation> check(const fs::path& root) {
-  std::vector<fs::path> files;
+  std::set<fs::path> files;  // a set: a nested module's files are also under its parent's folder
   for (const auto& [module, _] : allowedModules()) {
     if (!fs::is_directory(root / module)) continue;
     for (const auto& entry : fs::recursive_directory_iterator(root / module)) {
-      if (entry.is_regular_file()) files.push_back(fs::relative(entry.path(), root));
+      if (entry.is_regular_file()) files.insert(fs::relative(entry.path(), root));
     }
   }
-  std::sort(files.begin(), files.end());
   std::vector<Violation> out;
   for (const auto& file : files) {
     const auto ext = file.extension();

@@ -22,7 +22,8 @@ class ArchitectureChecker : public ::testing::Test {
     root_ = fs::temp_directory_path() / ("isg_arch_" + std::to_string(::getpid()));
     fs::remove_all(root_);
     for (const char* m : {"slam", "run", "sim", "worlds"}) fs::create_directories(root_ / m);
-    write("slam/sgraph.cpp", "#include \"slam/sgraph.hpp\"\n#include \"bim/plane.hpp\"\n");
+    write("slam/sgraph/sgraph.cpp",
+          "#include \"slam/sgraph/sgraph.hpp\"\n#include \"bim/plane.hpp\"\n");
     write("run/driver.cpp", "#include \"slam/localizer.hpp\"\n#include \"eval/tum.hpp\"\n");
     write("run/CMakeLists.txt",
           "add_library(isg_run driver.cpp)\ntarget_link_libraries(isg_run PUBLIC isg_slam\n"
@@ -45,20 +46,34 @@ TEST_F(ArchitectureChecker, ACleanTreePasses) { EXPECT_TRUE(found().empty()); }
 
 TEST_F(ArchitectureChecker, ABadIncludeIsNamedWithFileAndLine) {
   write("slam/bad.cpp", "#include <vector>\n\n#include \"sim/simulation.hpp\"\n");
-  write("sim/loop.cpp", "#include \"slam/messages.hpp\"\n#include \"slam/sgraph.hpp\"\n");
+  write("sim/loop.cpp",
+        "#include \"slam/messages.hpp\"\n#include \"slam/sgraph/sgraph.hpp\"\n"
+        "#include \"slam/localizer.hpp\"\n");
+  write("slam/baselines/amcl.cpp",
+        "#include \"slam/localizer.hpp\"\n"
+        "#include \"slam/isgraph/graph_matching.hpp\"\n");
+  write("slam/sgraph/tests/t.cpp",
+        "#include \"slam/sgraph/sgraph.hpp\"\n#include \"run/driver.hpp\"\n");
   write("run/x.hpp", "#include <mujoco/mujoco.h>\n#include <pcl/point_types.h>\n");
   write("worlds/tests/t.cpp", "#include \"sim/mujoco_world.hpp\"\n");
-  EXPECT_EQ(found(), (std::vector<std::string>{
-                         "run/x.hpp:1: run may not include MuJoCo (<mujoco/mujoco.h>): only sim "
-                         "runs it",
-                         "run/x.hpp:2: run may not include PCL (<pcl/point_types.h>) here: PCL "
-                         "stays inside slam's sources",
-                         "sim/loop.cpp:2: sim may not include \"slam/sgraph.hpp\" "
-                         "(docs/architecture.md)",
-                         "slam/bad.cpp:3: slam may not include \"sim/simulation.hpp\" (allowed: "
-                         "bim)",
-                         "worlds/tests/t.cpp:1: worlds may not include \"sim/mujoco_world.hpp\" "
-                         "(allowed: bim)"}));
+  EXPECT_EQ(found(),
+            (std::vector<std::string>{
+                "run/x.hpp:1: run may not include MuJoCo (<mujoco/mujoco.h>): only sim "
+                "runs it",
+                "run/x.hpp:2: run may not include PCL (<pcl/point_types.h>) here: PCL "
+                "stays inside slam's sources",
+                "sim/loop.cpp:2: sim may not include \"slam/sgraph/sgraph.hpp\" "
+                "(allowed: bim, run, slam, worlds)",
+                "sim/loop.cpp:3: sim may not include \"slam/localizer.hpp\" "
+                "(docs/architecture.md)",
+                "slam/bad.cpp:3: slam may not include \"sim/simulation.hpp\" (allowed: "
+                "bim)",
+                "slam/baselines/amcl.cpp:2: slam/baselines may not include "
+                "\"slam/isgraph/graph_matching.hpp\" (allowed: bim, slam)",
+                "slam/sgraph/tests/t.cpp:2: slam/sgraph may not include \"run/driver.hpp\" "
+                "(allowed: bim, slam)",
+                "worlds/tests/t.cpp:1: worlds may not include \"sim/mujoco_world.hpp\" "
+                "(allowed: bim)"}));
 }
 
 TEST_F(ArchitectureChecker, ABadLinkIsNamedWithFileAndLine) {
@@ -66,10 +81,17 @@ TEST_F(ArchitectureChecker, ABadLinkIsNamedWithFileAndLine) {
         "add_library(isg_run driver.cpp)\n\ntarget_link_libraries(isg_run PUBLIC isg_slam\n"
         "  isg_sim mujoco::mujoco)\n");
   write("worlds/CMakeLists.txt", "isg_add_tests(worlds isg_sim)\n");
+  write("slam/sgraph/CMakeLists.txt",
+        "add_library(isg_sgraph sgraph.cpp)\ntarget_link_libraries(isg_sgraph PUBLIC isg_slam "
+        "isg_isgraph)\nisg_add_tests(sgraph isg_baselines)\n");
   EXPECT_EQ(found(), (std::vector<std::string>{
                          "run/CMakeLists.txt:3: run may not link isg_sim (allowed: bim, eval, "
-                         "slam)",
+                         "slam, slam/baselines, slam/isgraph, slam/sgraph)",
                          "run/CMakeLists.txt:3: run may not link mujoco::mujoco",
+                         "slam/sgraph/CMakeLists.txt:2: slam/sgraph may not link isg_isgraph "
+                         "(allowed: bim, slam)",
+                         "slam/sgraph/CMakeLists.txt:3: slam/sgraph may not link isg_baselines "
+                         "(allowed: bim, slam)",
                          "worlds/CMakeLists.txt:1: worlds may not link isg_sim (allowed: bim)"}));
 }
 

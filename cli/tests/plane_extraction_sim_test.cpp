@@ -8,7 +8,7 @@
 
 #include "bim/agraph.hpp"
 #include "sim/simulation.hpp"
-#include "slam/plane_extraction.hpp"
+#include "slam/sgraph/plane_extraction.hpp"
 #include "worlds/reference_plans.hpp"
 
 namespace isg::sim {

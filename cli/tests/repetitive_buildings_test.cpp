@@ -20,7 +20,7 @@
 #include "run/driver.hpp"
 #include "sim/scan_pipeline.hpp"
 #include "sim/simulation.hpp"
-#include "slam/isgraph_localizer.hpp"
+#include "slam/isgraph/isgraph_localizer.hpp"
 #include "worlds/reference_plans.hpp"
 
 namespace isg::sim {

@@ -1,0 +1,246 @@
+#pragma once
+
+#include <Eigen/Geometry>
+#include <array>
+#include <nlohmann/json.hpp>
+#include <optional>
+#include <string>
+#include <unordered_map>
+#include <utility>
+#include <vector>
+
+#include "bim/agraph.hpp"
+#include "bim/plane.hpp"
+#include "slam/match_status.hpp"
+
+namespace isg::slam {
+
+// Graph matching (docs/matching.md): which S-Graph rooms and wall planes are which A-Graph rooms
+// and wall surfaces, and so where the map frame M lies in the plan frame B. Polynomial
+// hypothesise-and-verify: every (S-room, A-room) pair of compatible kind and size proposes the
+// few B_T_M its walls allow; each proposal is checked against the whole S-Graph through a grid
+// index of the plan; proposals that agree are clustered, and only a unique, well-supported best
+// cluster is accepted. A wrong global match is the worst failure, so anything less is "not yet"
+// or "ambiguous" and the localizer simply tries again after the next map update.
+
+// What the matcher needs of the S-Graph, in M. Built by the localizer from its graph.
+struct MatchRoom {
+  int id = -1;  // the S-Graph's room index
+  bool four_wall = false;
+  Eigen::Vector2d centre = Eigen::Vector2d::Zero();
+  // The normal direction (yaw, in M) of the first plane pair and the pairs' widths; corridors
+  // have one pair.
+  double axis_yaw = 0.0;
+  std::array<double, 2> widths{0.0, 0.0};
+  std::vector<int> planes;  // ids of its wall planes
+};
+
+struct MatchPlane {
+  int id = -1;       // the S-Graph's plane index
+  bim::Plane plane;  // in M; normal towards the space it was seen from
+  Eigen::Vector2d start = Eigen::Vector2d::Zero(), end = Eigen::Vector2d::Zero();
+  double length() const { return (end - start).norm(); }
+};
+
+struct MatchInput {
+  std::vector<MatchRoom> rooms;
+  std::vector<MatchPlane> planes;
+  // Pairs of indices into `rooms` the robot walked between directly (consecutive keyframes):
+  // when both are matched, their A-rooms must share a doorway.
+  std::vector<std::pair<int, int>> transitions;
+};
+
+struct MatchingOptions {
+  double width_tolerance = 0.35;   // m, between an S-room's and an A-room's widths
+  double centre_tolerance = 0.45;  // m, between room centres once transformed
+  double plane_angle_deg = 8.0;
+  double plane_distance = 0.15;   // m, from the S-plane's middle to the A-surface
+  double plane_gap = 0.5;         // m, between the S-plane's extent and the surface's exposed parts
+  double min_plane_length = 0.6;  // shorter S-planes are not used as evidence
+  double room_score = 3.0;        // score of a matched room, in metres of matched wall
+  // Evidence is weighted by how well it fits, exp(-½(e/σ)²): a transform 15 cm off that still
+  // passes the tolerances scores far less than the right one.
+  double plane_sigma = 0.05;  // m
+  double room_sigma = 0.15;   // m
+  // Each metre of S-plane the plan does not explain counts against a transform: shifted along a
+  // row of rooms, long walls still match but the cross walls do not. Less than a matched metre
+  // gains, because as built a building has walls and clutter its plan lacks.
+  double unexplained_penalty = 0.5;
+  double door_score = 2.0;  // a walked transition through a plan doorway (or its penalty)
+  // Clustering: two hypotheses within these are the same answer.
+  double cluster_distance = 0.3;
+  double cluster_yaw_deg = 5.0;
+  // Acceptance (docs/matching.md), first on the best answer alone: ≥ min_rooms matched rooms, or
+  // one room and ≥ min_planes_outside matched planes that are not its walls, or, with no room,
+  // ≥ min_planes_without_rooms matched planes facing two directions at least 30° apart.
+  int min_rooms = 2;
+  int min_planes_outside = 4;
+  int min_planes_without_rooms = 8;
+  // And it must explain most of the S-Graph on its own: of the S-planes used as evidence, at most
+  // this share of their length may have no A-surface, and at least min_room_share of the S-rooms
+  // must have an A-room. The right answer leaves unexplained only what the building has and its
+  // plan lacks (extra walls, tall clutter, a missing wall joining two rooms); an answer that fits
+  // one room but not the walls around it leaves whole walls. Failing it is "not yet".
+  double max_unexplained_share = 0.25;
+  double min_room_share = 0.5;
+  // Then against every other answer among the finalists, on what distinguishes them: the score
+  // is a sum over the S-Graph's walls, rooms and walked doorways, so what both answers explain
+  // alike cancels, and the difference is the evidence on which they disagree. The best must lead
+  // every other answer by at least min_decisive_evidence (in the score's metres of wall); else
+  // "ambiguous". Not a ratio: the more of a symmetric building the robot has seen, the larger
+  // both totals, however decisive the part where the answers differ.
+  double min_decisive_evidence = 4.0;  // m
+  // And by at least decisive_sigmas × √(disagreement), the disagreement being the sum of the
+  // absolute differences (in the same metres) over every element: read each metre of evidence
+  // as noise of unit variance, a lead that the noise of the disagreeing part could make is not
+  // decisive. Two answers that each explain walls the other does not (an early, bent map, or a
+  // near-repeat shifted by a room) must differ by more than two that disagree only on one room.
+  double decisive_sigmas = 2.0;
+  int finalists = 6;  // distinct answers refined and compared
+  // Seeds beyond four-wall rooms (docs/matching.md): corridors slide along their axis until a
+  // wall across them lines up; corners of two long walls (constellations) seed too, at every
+  // attempt. Corner arms shorter than min_corner_arm are not used, and only the max_corners
+  // corners with the longest arms.
+  double min_corner_arm = 1.5;  // m
+  int max_corners = 6;
+  double corner_gap = 0.6;  // m, between two walls' ends to make a corner
+};
+
+// One B_T_M checked against the S-Graph: what it explains.
+struct Verification {
+  Eigen::Vector3d x_y_yaw = Eigen::Vector3d::Zero();  // B_T_M in the plane (z is not observed)
+  double score = 0.0;
+  std::vector<std::pair<int, int>> rooms;   // (S-room id, A-room index)
+  std::vector<std::pair<int, int>> planes;  // (S-plane id, A-surface index)
+  int doors_passed = 0;                     // transitions through a plan doorway
+  int doors_missing = 0;                    // transitions between matched rooms without one
+  int rooms_contradicted = 0;               // S-rooms landing on an A-room of another size
+  std::vector<int> contradicted;            // their ids
+  // Per input transition: +1 through a plan doorway, -1 between matched rooms without one, 0 not
+  // both matched.
+  std::vector<int> transition_doors;
+  double plane_rms = 0.0;           // m, matched planes' distance residual
+  double explained_length = 0.0;    // m of S-plane with a surface (evidence planes)
+  double unexplained_length = 0.0;  // m of S-plane no surface explains
+  // unexplained / (explained + unexplained); 0 with no evidence plane.
+  double unexplainedShare() const;
+};
+
+// What separates the best answer from another one: the evidence on which they disagree.
+struct Distinction {
+  // Walls (m of score) and rooms, doorways (counts) whose score favours the best / the other;
+  // an element counts when its scores differ by ≥ 5 % of its wall's length or half a room's.
+  double walls_for = 0.0, walls_against = 0.0;
+  int rooms_for = 0, rooms_against = 0;
+  int doors_for = 0, doors_against = 0;
+  double evidence = 0.0;      // in metres of wall, for the best
+  double disagreement = 0.0;  // Σ |difference| over every element, metres
+  // Where to look: A-rooms (ids) the other answer's turn of the plan maps onto nothing alike, so
+  // that seeing them would separate the two; empty when the plan is symmetric under it.
+  std::vector<std::string> separating_rooms;
+  std::string describe() const;
+};
+
+struct Candidate {
+  Verification answer;
+  Distinction from_best;
+};
+
+struct MatchResult {
+  MatchStatus status = MatchStatus::kNotYet;
+  Verification best;  // the best answer (meaningful when matched or ambiguous)
+  double second_score = 0.0;
+  Verification second;  // the other answer the best leads least (by decisive evidence)
+  // The other finalists, each with what separates it from the best, least separated first.
+  std::vector<Candidate> candidates;
+  int hypotheses = 0;
+  int clusters = 0;
+  std::string reason;  // why not matched, or the evidence of the match, in words
+  double seconds = 0.0;
+  Eigen::Isometry3d B_T_M() const;  // from best.x_y_yaw, z = 0
+  nlohmann::json toJson() const;
+  // The best answer and the other candidates, each with its B_T_M, score and what separates it
+  // from the best (the evidence on which they disagree, the plan rooms that would tell them apart).
+  nlohmann::json candidatesJson() const;
+};
+
+class GraphMatcher {
+ public:
+  explicit GraphMatcher(const bim::AGraph& graph, const MatchingOptions& options = {});
+
+  // One matching attempt over the whole S-Graph.
+  MatchResult match(const MatchInput& input) const;
+  // Checks one B_T_M (x, y, yaw) against the S-Graph: the correspondences it implies.
+  Verification verify(const MatchInput& input, const Eigen::Vector3d& x_y_yaw) const;
+  // Whether two B_T_M are the same answer: they put the S-Graph's rooms (around `middle`, their
+  // mean centre: middleOf) within `scale` × the clustering tolerances of each other.
+  bool sameAnswer(const Eigen::Vector3d& a, const Eigen::Vector3d& b, const Eigen::Vector2d& middle,
+                  double scale = 1.0) const;
+  static Eigen::Vector2d middleOf(const MatchInput& input);
+  // What separates `best` from `other`, both verified on `input` (see MatchingOptions).
+  Distinction distinguish(const MatchInput& input, const Verification& best,
+                          const Verification& other) const;
+  // Whether a distinction is decisive (see MatchingOptions); `needed` gets the lead it needs.
+  bool decisive(const Distinction& d, double* needed = nullptr) const;
+  // Refines B_T_M by least squares over a verification's correspondences.
+  Eigen::Vector3d refine(const MatchInput& input, const Verification& verification) const;
+
+  const bim::AGraph& graph() const { return *graph_; }
+  const MatchingOptions& options() const { return options_; }
+
+ private:
+  struct Cell {
+    std::vector<int> surfaces;
+    std::vector<int> rooms;
+  };
+  // A wall corner of the plan: two exposed surface segments meeting within corner_gap.
+  struct Corner {
+    Eigen::Vector2d point = Eigen::Vector2d::Zero();  // where the two walls' lines cross
+    std::array<double, 2> normal_yaw{};               // each wall's normal
+    std::array<Eigen::Vector2d, 2> arm_direction;     // from the corner along each wall
+    std::array<double, 2> arm{};                      // m of wall along each arm
+  };
+  // The corners two walls (S-planes or A-surface segments) make: their ends within corner_gap
+  // of the crossing of their lines, normals at least 60° apart.
+  static std::optional<Corner> cornerOf(const bim::Plane& p, Eigen::Vector2d p_start,
+                                        Eigen::Vector2d p_end, const bim::Plane& q,
+                                        Eigen::Vector2d q_start, Eigen::Vector2d q_end, double gap);
+  const Cell* cellAt(const Eigen::Vector2d& p) const;
+  int matchRoom(const MatchRoom& room, const Eigen::Vector3d& x_y_yaw, double* distance) const;
+  int matchPlane(const MatchPlane& plane, const Eigen::Vector3d& x_y_yaw, double* overlap,
+                 double* distance) const;
+  // Seeds (slam/isgraph/match_seeds.cpp): the B_T_M each kind of local structure proposes.
+  void seedFromFourWallRooms(const MatchInput& input, std::vector<Eigen::Vector3d>& out) const;
+  void seedFromCorridors(const MatchInput& input, std::vector<Eigen::Vector3d>& out) const;
+  void seedFromCorners(const MatchInput& input, std::vector<Eigen::Vector3d>& out) const;
+  // Verifies, clusters and refines the hypotheses, then decides.
+  MatchResult evaluate(const MatchInput& input,
+                       const std::vector<Eigen::Vector3d>& hypotheses) const;
+  // Decision (slam/isgraph/match_decision.cpp): support, adequacy, then decisive evidence.
+  void decide(const MatchInput& input, MatchResult& result) const;
+  std::vector<std::string> separatingRooms(const Eigen::Vector3d& best,
+                                           const Eigen::Vector3d& other) const;
+  bool joinedByDoor(int a, int b) const;
+
+ public:
+  // Whether an S-plane, seen from B_T_M, lies within `angle_deg` and `distance` of an A-surface
+  // (its normal and the distance of the S-plane's middle to the surface's plane).
+  bool planeAgrees(const MatchPlane& plane, int surface, const Eigen::Vector3d& x_y_yaw,
+                   double angle_deg, double distance) const;
+
+ private:
+  const bim::AGraph* graph_;
+  MatchingOptions options_;
+  // A uniform grid over the plan: each cell lists the surfaces passing near it and the rooms
+  // whose centre (four-wall) or outline (corridor) is near it.
+  Eigen::Vector2d origin_ = Eigen::Vector2d::Zero();
+  double cell_ = 2.0;
+  int columns_ = 0, rows_ = 0;
+  std::vector<Cell> cells_;
+  std::vector<double> surface_yaw_;  // yaw of each surface's normal
+  std::vector<double> room_yaw_;     // yaw of each room's first pair normal
+  std::vector<std::vector<int>> doors_of_room_;
+  std::vector<Corner> corners_;
+};
+
+}  // namespace isg::slam

@@ -1,0 +1,430 @@
+#include "slam/isgraph/isgraph_localizer.hpp"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+
+#include "bim/agraph_factors.hpp"
+#include "slam/isgraph/merging_factors.hpp"
+
+namespace isg::slam {
+
+namespace {
+
+Eigen::Vector2d applyPlanar(const Eigen::Vector3d& x_y_yaw, const Eigen::Vector2d& p) {
+  return Eigen::Rotation2Dd(x_y_yaw.z()) * p + x_y_yaw.head<2>();
+}
+
+}  // namespace
+
+ISGraphLocalizer::ISGraphLocalizer(const Eigen::Isometry3d& R_T_L, const bim::AGraph& plan,
+                                   const ISGraphOptions& options)
+    : options_(options),
+      plan_(&plan),
+      R_T_L_(R_T_L),
+      plan_field_(plan),
+      graph_(R_T_L, options.sgraph),
+      matcher_(plan, options.matching),
+      plan_state_(plan) {
+  // The box of the plan's walls and the margin: a pose in B outside it is no pose in the building.
+  const Eigen::AlignedBox2d walls = plan.surfaceBounds();
+  const Eigen::Vector2d margin = Eigen::Vector2d::Constant(options.outside_margin);
+  building_ = Eigen::AlignedBox2d(walls.min() - margin, walls.max() + margin);
+  graph_.setWindowHook(
+      [this](ceres::Problem& problem, const std::set<int>& planes, const std::vector<int>& rooms) {
+        addPlanFactors(problem, planes, rooms);
+      });
+}
+
+void ISGraphLocalizer::pushScan(const Scan& scan) {
+  if (!graph_.addScan(scan)) return;
+  const auto start = std::chrono::steady_clock::now();
+  onKeyframe(scan.stamp);
+  matching_s_ += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
+
+StageTimes ISGraphLocalizer::stageTimes() const {
+  StageTimes times = graph_.stageTimes();
+  times.add("matching", matching_s_);
+  return times;
+}
+
+bool ISGraphLocalizer::wantsScan(double stamp) const { return graph_.wouldKeyframe(stamp); }
+
+std::optional<Eigen::Isometry3d> ISGraphLocalizer::mapInPlan() const {
+  if (!localized_) return std::nullopt;
+  Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
+  T.linear() = Eigen::AngleAxisd(B_T_M_x_y_yaw_.z(), Eigen::Vector3d::UnitZ()).toRotationMatrix();
+  T.translation() = Eigen::Vector3d(B_T_M_x_y_yaw_.x(), B_T_M_x_y_yaw_.y(), B_T_M_z_);
+  return T;
+}
+
+MatchInput matchInputOf(const SGraph& graph, double min_wall_height) {
+  MatchInput input;
+  const auto& planes = graph.planes();
+  const auto& candidates = graph.roomCandidates();
+  std::map<int, int> room_of_keyframe;
+  for (int r : graph.confirmedRooms()) {
+    const auto& room = candidates[r];
+    MatchRoom m;
+    m.id = r;
+    m.four_wall = room.candidate.four_wall;
+    m.centre = room.centre;
+    const Eigen::Vector3d& n = planes[room.candidate.pairs[0][0]].map.plane.normal;
+    m.axis_yaw = std::atan2(n.y(), n.x());
+    m.widths = room.candidate.widths;
+    for (int i = 0; i < (m.four_wall ? 2 : 1); ++i) {
+      m.planes.push_back(room.candidate.pairs[i][0]);
+      m.planes.push_back(room.candidate.pairs[i][1]);
+    }
+    for (int k : room.keyframes) room_of_keyframe[k] = int(input.rooms.size());
+    input.rooms.push_back(m);
+  }
+  for (int i = 0; i < int(planes.size()); ++i) {
+    const auto& p = planes[i];
+    // Walls only: clutter seen over a short height is not in the plan.
+    if (p.merged_into >= 0 || p.map.z_max - p.map.z_min < min_wall_height) {
+      continue;
+    }
+    input.planes.push_back({i, p.map.plane, p.map.start, p.map.end});
+  }
+  // Consecutive keyframes in two different rooms: the robot walked from one into the other.
+  std::set<std::pair<int, int>> transitions;
+  for (auto it = room_of_keyframe.begin(); it != room_of_keyframe.end(); ++it) {
+    const auto next = room_of_keyframe.find(it->first + 1);
+    if (next != room_of_keyframe.end() && next->second != it->second) {
+      transitions.insert({std::min(it->second, next->second), std::max(it->second, next->second)});
+    }
+  }
+  input.transitions.assign(transitions.begin(), transitions.end());
+  return input;
+}
+
+void ISGraphLocalizer::record(double stamp, MatchStatus status, const std::string& reason) {
+  if (status == status_ && !events_.empty()) return;
+  status_ = status;
+  events_.push_back({stamp, int(graph_.keyframes().size()) - 1, status, reason});
+}
+
+void ISGraphLocalizer::adopt(const Verification& answer) {
+  B_T_M_x_y_yaw_ = answer.x_y_yaw;
+  plane_matches_.clear();
+  room_matches_.clear();
+  for (const auto& [s, a] : answer.planes) plane_matches_[s] = a;
+  for (const auto& [s, a] : answer.rooms) room_matches_[s] = a;
+  // z: walls do not observe it; the floor does. The floor of the first matched room's level.
+  double elevation = plan_->floors.empty() ? 0.0 : plan_->floors[0].elevation;
+  if (!answer.rooms.empty()) {
+    const int floor = plan_->rooms[answer.rooms[0].second].floor;
+    if (floor >= 0) elevation = plan_->floors[floor].elevation;
+  }
+  B_T_M_z_ = elevation - graph_.floorHeight().value_or(0.0);
+  localized_ = true;
+  plan_shares_.clear();  // measured under another answer, or none
+  plan_collapsed_ = 0;
+}
+
+double ISGraphLocalizer::planShare() const {
+  const auto& keyframe = graph_.keyframes().back();
+  if (keyframe.cloud.empty()) return -1.0;
+  const Eigen::Isometry3d M_T_L = keyframe.pose() * R_T_L_;
+  const double sensor_z = M_T_L.translation().z();
+  int used = 0, near = 0;
+  for (const auto& p : keyframe.cloud) {
+    const Eigen::Vector3d q = M_T_L * p.cast<double>();
+    if (q.z() < sensor_z - 0.4 || q.z() > sensor_z + 1.2) continue;  // floor, ceiling
+    ++used;
+    const Eigen::Vector2d in_B = applyPlanar(B_T_M_x_y_yaw_, q.head<2>());
+    if (plan_field_.distance(in_B) <= options_.plan_share_distance) ++near;
+  }
+  return used > 0 ? double(near) / used : -1.0;
+}
+
+std::string ISGraphLocalizer::updateAgreement(const MatchInput& input) {
+  char text[256];
+  const auto& keyframe = graph_.keyframes().back();
+  // The scan against the recent map and against the plan: the robot is not where the graph
+  // thinks when both disagree, or when the plan disagrees more and more.
+  const double plan_share = planShare();
+  if (plan_share >= 0.0) {
+    std::vector<double> recent(plan_shares_.begin(), plan_shares_.end());
+    double median = -1.0;
+    if (recent.size() >= 3) {
+      std::nth_element(recent.begin(), recent.begin() + recent.size() / 2, recent.end());
+      median = recent[recent.size() / 2];
+    }
+    const bool map_disagrees = keyframe.registration.attempted &&
+                               keyframe.registration.inlier_share < options_.suspect_share;
+    // Without a history of plan shares yet (just localized), a scan that does not agree with
+    // the recent map at all is enough.
+    const bool plan_disagrees =
+        median > 0.0 ? plan_share < options_.plan_share_drop * median
+                     : keyframe.registration.attempted && !keyframe.registration.agrees;
+    if (map_disagrees && plan_disagrees) {
+      std::snprintf(text, sizeof text,
+                    "the scan agrees neither with the recent map (%.0f %% of its points near it) "
+                    "nor with the plan (%.0f %% of its wall points on a plan wall, %.0f %% before)",
+                    100.0 * keyframe.registration.inlier_share, 100.0 * plan_share, 100.0 * median);
+      return text;
+    }
+    plan_collapsed_ = median > 0.0 && plan_share < options_.plan_share_collapse * median
+                          ? plan_collapsed_ + 1
+                          : 0;
+    if (plan_collapsed_ >= 2) {
+      std::snprintf(text, sizeof text,
+                    "the scans no longer agree with the plan (%.0f %% of the wall points on a plan "
+                    "wall, %.0f %% before)",
+                    100.0 * plan_share, 100.0 * median);
+      return text;
+    }
+    plan_shares_.push_back(plan_share);
+    while (int(plan_shares_.size()) > options_.plan_share_history) plan_shares_.pop_front();
+  }
+  // The pose must be in the building.
+  if (const auto pose = graph_.latestPose()) {
+    const Eigen::Vector2d p = applyPlanar(B_T_M_x_y_yaw_, pose->M_T_R.translation().head<2>());
+    if (!building_.contains(p)) {
+      std::snprintf(text, sizeof text, "the pose (%.1f, %.1f) is outside the building", p.x(),
+                    p.y());
+      return text;
+    }
+  }
+  // Held correspondences: those that left the hold gate are dropped; if most of the ones the
+  // latest keyframe sees left it, the plan contradicts what the robot sees now.
+  std::map<int, const MatchPlane*> by_id;
+  for (const auto& plane : input.planes) by_id[plane.id] = &plane;
+  std::set<int> seen_now;
+  for (const auto& [plane, observation] : keyframe.observations) seen_now.insert(plane);
+  int seen_matched = 0, seen_disagreeing = 0;
+  for (auto it = plane_matches_.begin(); it != plane_matches_.end();) {
+    const auto plane = by_id.find(it->first);
+    if (plane == by_id.end()) {  // merged into another plane, or no longer a wall
+      it = plane_matches_.erase(it);
+      continue;
+    }
+    const bool agrees = matcher_.planeAgrees(*plane->second, it->second, B_T_M_x_y_yaw_,
+                                             options_.hold_angle_deg, options_.hold_distance);
+    if (seen_now.count(it->first)) {
+      ++seen_matched;
+      seen_disagreeing += agrees ? 0 : 1;
+    }
+    it = agrees ? std::next(it) : plane_matches_.erase(it);
+  }
+  if (seen_matched >= options_.lost_min_planes &&
+      seen_disagreeing > options_.lost_disagreeing_share * seen_matched) {
+    std::snprintf(text, sizeof text, "%d of the %d matched walls seen now disagree with the plan",
+                  seen_disagreeing, seen_matched);
+    return text;
+  }
+  if (int(plane_matches_.size()) < options_.lost_min_held) {
+    std::snprintf(text, sizeof text, "only %zu plan correspondences left", plane_matches_.size());
+    return text;
+  }
+  return "";
+}
+
+void ISGraphLocalizer::assumeMatch(double stamp, const Eigen::Vector3d& x_y_yaw,
+                                   const std::string& reason) {
+  const MatchInput input = matchInput();
+  record(stamp, MatchStatus::kMatched, reason);
+  adopt(matcher_.verify(input, x_y_yaw));
+  rooms_at_last_attempt_ = input.rooms.size();
+  keyframes_at_last_attempt_ = int(graph_.keyframes().size());
+}
+
+void ISGraphLocalizer::lose(double stamp, const std::string& reason) {
+  record(stamp, MatchStatus::kLost, reason);
+  ++losses_;
+  localized_ = false;
+  plane_matches_.clear();
+  room_matches_.clear();
+  plan_shares_.clear();
+  plan_collapsed_ = 0;
+  graph_.startNewSegment(stamp, reason);
+  rooms_at_last_attempt_ = 0;
+  keyframes_at_last_attempt_ = 0;
+}
+
+void ISGraphLocalizer::checkForContradiction(double stamp) {
+  // The S-Graph as it would be without the merge: optimised on its own evidence, so that the
+  // answer it is matched to does not bias the judgement.
+  SGraph unmerged = graph_;
+  unmerged.optimiseAll(false);
+  const MatchInput input = matchInputOf(unmerged, options_.sgraph.rooms.min_wall_height);
+  MatchResult result = matcher_.match(input);
+  matching_times_.push_back(result.seconds);
+  last_match_ = result;
+  if (result.status != MatchStatus::kMatched) return;  // the merge stands on its own evidence
+  // Twice the clustering tolerances: the merge has moved B_T_M a little since it was adopted.
+  const Eigen::Vector2d middle = GraphMatcher::middleOf(input);
+  if (matcher_.sameAnswer(result.best.x_y_yaw, B_T_M_x_y_yaw_, middle, 2.0)) return;
+  // The new answer must also lead the one held now decisively, on the same map.
+  if (!matcher_.decisive(
+          matcher_.distinguish(input, result.best, matcher_.verify(input, B_T_M_x_y_yaw_)))) {
+    return;
+  }
+  // A unique answer elsewhere: the first match was wrong. Adopt the new one on the unmerged
+  // graph, and re-optimise every keyframe under it, so that nothing stays where the wrong
+  // B_T_M pulled it.
+  const double apart =
+      (applyPlanar(result.best.x_y_yaw, middle) - applyPlanar(B_T_M_x_y_yaw_, middle)).norm();
+  record(stamp, MatchStatus::kContradicted,
+         "a new unique answer " + std::to_string(apart) + " m away: " + result.reason);
+  ++contradictions_;
+  graph_ = std::move(unmerged);
+  adopt(result.best);
+  graph_.optimiseAll(true);
+  record(stamp, MatchStatus::kMatched, result.reason);
+}
+
+void ISGraphLocalizer::onKeyframe(double stamp) {
+  const int keyframes = int(graph_.keyframes().size());
+  MatchInput input = matchInput();
+  if (localized_) {
+    const std::string why = updateAgreement(input);
+    if (!why.empty()) {
+      lose(stamp, why);
+      return;
+    }
+    // New S-planes gain correspondences at the current B_T_M; held ones stay as they are.
+    const Verification now = matcher_.verify(input, B_T_M_x_y_yaw_);
+    for (const auto& [s, a] : now.planes) plane_matches_.emplace(s, a);
+    for (const auto& [s, a] : now.rooms) room_matches_.emplace(s, a);
+  } else if (keyframes > 1 && graph_.keyframes().back().registration.attempted &&
+             !graph_.keyframes().back().registration.agrees) {
+    // Not localized, and the world stopped agreeing with the map: the map so far would mislead
+    // the matcher. Start again from here.
+    graph_.startNewSegment(stamp, "the scan does not agree with the recent map");
+    rooms_at_last_attempt_ = 0;
+    keyframes_at_last_attempt_ = 0;
+    return;
+  }
+  const bool new_rooms = input.rooms.size() != rooms_at_last_attempt_;
+  const bool due =
+      !localized_ && keyframes - keyframes_at_last_attempt_ >= options_.retry_keyframes;
+  if (!new_rooms && !due) return;
+  rooms_at_last_attempt_ = input.rooms.size();
+  keyframes_at_last_attempt_ = keyframes;
+  if (localized_) {
+    checkForContradiction(stamp);
+    return;
+  }
+  MatchResult result = matcher_.match(input);
+  matching_times_.push_back(result.seconds);
+  last_match_ = result;
+  record(stamp, result.status, result.reason);
+  if (result.status == MatchStatus::kMatched) adopt(result.best);
+}
+
+void ISGraphLocalizer::addSurface(ceres::Problem& problem, int surface) {
+  if (!surfaces_in_problem_.insert(surface).second) return;
+  double* block = plan_state_.planes[surface].data();
+  problem.AddParameterBlock(block, 4, &plane_manifold_);
+  problem.AddResidualBlock(
+      bim::PlanePriorFactor::create(bim::toVector(plan_->surfaces[surface].plane),
+                                    options_.plan.plane_angle, options_.plan.plane_distance),
+      nullptr, block);
+}
+
+void ISGraphLocalizer::addPlanFactors(ceres::Problem& problem, const std::set<int>& planes,
+                                      const std::vector<int>& rooms) {
+  if (!localized_) return;
+  surfaces_in_problem_.clear();
+  // Whether the window's correspondences fix B_T_M: x and y need surface normals in two
+  // directions (or a matched four-wall room); yaw any one surface.
+  std::vector<Eigen::Vector2d> normals;
+  bool room_fixes = false;
+  bool any = false;
+  for (int p : planes) {
+    const auto it = plane_matches_.find(p);
+    if (it == plane_matches_.end()) continue;
+    any = true;
+    normals.push_back(plan_->surfaces[it->second].plane.normal.head<2>().normalized());
+    addSurface(problem, it->second);
+    problem.AddResidualBlock(
+        PlanePlaneFactor::create(options_.sigma_plane_angle, options_.sigma_plane_distance),
+        &huber_, graph_.planeParameters(p), B_T_M_x_y_yaw_.data(),
+        plan_state_.planes[it->second].data());
+  }
+  if (!any) return;
+  for (int r : rooms) {
+    const auto it = room_matches_.find(r);
+    if (it == room_matches_.end()) continue;
+    const bim::RoomNode& node = plan_->rooms[it->second];
+    // A corridor's S-centre lies wherever along it the robot first saw it, not at the plan's
+    // centre: only four-wall rooms give a room-to-room factor.
+    if (node.kind != bim::RoomKind::kFourWall) continue;
+    for (const auto& pair : node.pairs) addSurface(problem, pair[0]), addSurface(problem, pair[1]);
+    double* centre = plan_state_.rooms[it->second].data();
+    problem.AddResidualBlock(
+        bim::FourWallRoomFactor::create(options_.plan.room), nullptr, centre,
+        plan_state_.planes[node.pairs[0][0]].data(), plan_state_.planes[node.pairs[0][1]].data(),
+        plan_state_.planes[node.pairs[1][0]].data(), plan_state_.planes[node.pairs[1][1]].data());
+    problem.AddResidualBlock(RoomRoomFactor::create(options_.sigma_room), nullptr,
+                             graph_.roomCentre(r), B_T_M_x_y_yaw_.data(), centre);
+    room_fixes = true;
+  }
+  const double spread = std::sin(options_.min_normal_spread_deg * std::numbers::pi / 180.0);
+  bool spans = room_fixes;
+  for (std::size_t i = 0; i < normals.size() && !spans; ++i) {
+    for (std::size_t j = i + 1; j < normals.size() && !spans; ++j) {
+      spans = std::abs(normals[i].x() * normals[j].y() - normals[i].y() * normals[j].x()) >= spread;
+    }
+  }
+  problem.AddResidualBlock(
+      PlanarPriorFactor::create(B_T_M_x_y_yaw_, options_.sigma_B_T_M_translation,
+                                options_.sigma_B_T_M_yaw),
+      nullptr, B_T_M_x_y_yaw_.data());
+  if (!spans) {
+    problem.SetParameterBlockConstant(B_T_M_x_y_yaw_.data());
+    ++held_constant_;
+  }
+  // The plan's walls between surfaces in the problem.
+  for (std::size_t w = 0; w < plan_->walls.size(); ++w) {
+    const auto& wall = plan_->walls[w];
+    if (!surfaces_in_problem_.count(wall.left_surface) ||
+        !surfaces_in_problem_.count(wall.right_surface)) {
+      continue;
+    }
+    problem.AddResidualBlock(bim::WallFactor::create(wall.anchor, options_.plan.wall), nullptr,
+                             plan_state_.walls[w].data(),
+                             plan_state_.planes[wall.left_surface].data(),
+                             plan_state_.planes[wall.right_surface].data());
+  }
+}
+
+std::vector<StatusChange> ISGraphLocalizer::statusChanges() const { return events_; }
+
+nlohmann::json ISGraphLocalizer::graph() const {
+  nlohmann::json out = graph_.toJson();
+  nlohmann::json planes = nlohmann::json::array(), rooms = nlohmann::json::array(),
+                 events = nlohmann::json::array();
+  for (const auto& [s, a] : plane_matches_) planes.push_back({s, plan_->surfaces[a].id});
+  for (const auto& [s, a] : room_matches_) rooms.push_back({s, plan_->rooms[a].id});
+  for (const auto& e : events_) {
+    events.push_back({{"stamp", e.stamp},
+                      {"keyframe", e.keyframe},
+                      {"status", toString(e.status)},
+                      {"reason", e.reason}});
+  }
+  nlohmann::json is_graph = {{"status", toString(status_)},
+                             {"localized", localized_},
+                             {"contradictions", contradictions_},
+                             {"times_lost", losses_},
+                             {"windows_with_B_T_M_held", held_constant_},
+                             {"plane_matches", planes},
+                             {"room_matches", rooms},
+                             {"events", events}};
+  if (localized_) {
+    is_graph["B_T_M"] = {{"x", B_T_M_x_y_yaw_.x()},
+                         {"y", B_T_M_x_y_yaw_.y()},
+                         {"z", B_T_M_z_},
+                         {"yaw", B_T_M_x_y_yaw_.z()}};
+  }
+  if (last_match_) is_graph["last_match"] = last_match_->toJson();
+  out["method"] = name();
+  out["matching"] = is_graph;
+  return out;
+}
+
+}  // namespace isg::slam

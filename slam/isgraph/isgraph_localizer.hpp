@@ -1,0 +1,160 @@
+#pragma once
+
+#include <ceres/ceres.h>
+#include <numbers>
+
+#include <Eigen/Geometry>
+#include <deque>
+#include <map>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "bim/agraph.hpp"
+#include "bim/agraph_optimizer.hpp"
+#include "bim/plane_manifold.hpp"
+#include "slam/isgraph/graph_matching.hpp"
+#include "slam/isgraph/plan_distance_field.hpp"
+#include "slam/localizer.hpp"
+#include "slam/sgraph/sgraph.hpp"
+
+namespace isg::slam {
+
+struct ISGraphOptions {
+  SGraphOptions sgraph;
+  MatchingOptions matching;
+  bim::AGraphSigmas plan;  // the A-Graph's own factors and plane priors
+  // Merging factors. Plane-to-plane is robust (Huber): as built, a wall may stand a few
+  // centimetres from where the plan draws it.
+  double sigma_plane_angle = 2.0 * std::numbers::pi / 180.0;
+  double sigma_plane_distance = 0.04;
+  double sigma_room = 0.1;
+  // While not localized, matching is tried again after a new room is confirmed or after this
+  // many keyframes: every keyframe, because what decides between two answers is often not a new
+  // room but a wall or a room's size settling, and an attempt costs milliseconds
+  // (docs/matching.md). Once localized, new S-planes gain correspondences as they are mapped and
+  // a full match runs again with every new room, on the S-Graph optimised without the plan, to
+  // catch a contradiction.
+  int retry_keyframes = 1;
+  // Holding the plan (docs/matching.md). A correspondence, once made, is kept while its S-plane
+  // stays within these of its surface at the current B_T_M: far looser than the matcher's
+  // tolerances, so that drift the merge has not yet corrected does not drop it.
+  double hold_angle_deg = 20.0;
+  double hold_distance = 0.5;  // m
+  // Lost: of the held correspondences the latest keyframe observes (at least lost_min_planes),
+  // more than this share disagree; or fewer than lost_min_held remain in the segment.
+  int lost_min_planes = 3;
+  double lost_disagreeing_share = 0.5;
+  int lost_min_held = 3;
+  // Lost: the pose in B further than this outside the box of the plan's walls on the level.
+  double outside_margin = 1.0;  // m
+  // B_T_M is never free: a weak prior at its value before each optimisation, and held constant
+  // when the window's correspondences do not fix it (surface normals not spanning two directions
+  // at least this far apart, and no matched four-wall room).
+  double sigma_B_T_M_translation = 0.5;                     // m
+  double sigma_B_T_M_yaw = 5.0 * std::numbers::pi / 180.0;  // rad
+  double min_normal_spread_deg = 30.0;
+  // Plan agreement of a keyframe's scan: the share of its points at wall height (−0.4 … +1.2 m
+  // about the sensor) within plan_share_distance of a plan surface, at the pose in B. Lost when
+  // the scan disagrees with the recent map (registration share below suspect_share) and its plan
+  // share falls below plan_share_drop × the median of the last keyframes'; or when the plan share
+  // stays below plan_share_collapse × that median for two keyframes in a row.
+  double plan_share_distance = 0.2;  // m
+  double suspect_share = 0.5;
+  double plan_share_drop = 0.5;
+  double plan_share_collapse = 0.3;
+  int plan_share_history = 10;
+};
+
+// The S-Graph as the matcher sees it (walls of a minimum height, confirmed rooms, transitions).
+MatchInput matchInputOf(const SGraph& graph, double min_wall_height);
+
+// The iS-Graph (paper §IV–V): the S-Graph, matched against the plan's A-Graph, then merged with
+// it. Until the match is unique it localizes in M only; from then on B_T_M is part of every
+// window optimisation, with plane-to-plane and room-to-room factors and the A-Graph's own wall
+// and room factors and plane priors, and its pose in B is B_T_M · M_T_R.
+class ISGraphLocalizer : public Localizer {
+ public:
+  ISGraphLocalizer(const Eigen::Isometry3d& R_T_L, const bim::AGraph& plan,
+                   const ISGraphOptions& options = {});
+
+  std::string name() const override { return "is-graphs"; }
+  void pushOdometry(const Odometry& odometry) override { graph_.addOdometry(odometry); }
+  void pushScan(const Scan& scan) override;
+  bool wantsScan(double stamp) const override;
+  std::optional<Odometry> poseInMap() const override { return graph_.latestPose(); }
+  std::optional<Eigen::Isometry3d> mapInPlan() const override;
+  nlohmann::json graph() const override;
+  std::optional<std::string> searchStatus() const override { return toString(status_); }
+  std::vector<StatusChange> statusChanges() const override;
+  std::optional<MapDiagnostics> mapDiagnostics() const override { return graph_.diagnostics(); }
+  StageTimes stageTimes() const override;
+
+  // Takes `x_y_yaw` as B_T_M, as if matched, with the correspondences it implies now: a hint from
+  // outside (an operator's initial pose), or a test's wrong first match. It is checked like any
+  // match: contradicted by a unique answer elsewhere, or lost.
+  void assumeMatch(double stamp, const Eigen::Vector3d& x_y_yaw, const std::string& reason);
+
+  const SGraph& sgraph() const { return graph_; }
+  MatchStatus status() const { return status_; }
+  const std::vector<StatusChange>& events() const { return events_; }
+  const std::optional<MatchResult>& lastMatch() const { return last_match_; }
+  // The S-Graph as the matcher sees it now.
+  MatchInput matchInput() const {
+    return matchInputOf(graph_, options_.sgraph.rooms.min_wall_height);
+  }
+  // Seconds spent in full matching attempts, one entry per attempt.
+  const std::vector<double>& matchingTimes() const { return matching_times_; }
+
+ private:
+  void onKeyframe(double stamp);
+  void record(double stamp, MatchStatus status, const std::string& reason);
+  void adopt(const Verification& answer);
+  // Takes the latest keyframe into the localized graph's agreement with the world and the plan
+  // (the plan-share history, the collapse count; held correspondences that left the hold gate are
+  // dropped) and says why the graph no longer agrees; empty while it does.
+  std::string updateAgreement(const MatchInput& input);
+  // The latest keyframe's plan agreement (see ISGraphOptions), or -1 without a cloud.
+  double planShare() const;
+  void lose(double stamp, const std::string& reason);
+  // A full match while localized, judged on the S-Graph optimised without the plan.
+  void checkForContradiction(double stamp);
+  void addPlanFactors(ceres::Problem& problem, const std::set<int>& planes,
+                      const std::vector<int>& rooms);
+  void addSurface(ceres::Problem& problem, int surface);
+
+  ISGraphOptions options_;
+  const bim::AGraph* plan_;
+  Eigen::Isometry3d R_T_L_;
+  PlanDistanceField plan_field_;
+  std::deque<double> plan_shares_;  // of the latest localized keyframes
+  int plan_collapsed_ = 0;          // keyframes in a row with a collapsed plan share
+  SGraph graph_;
+  GraphMatcher matcher_;
+  bim::AGraphState plan_state_;
+  bim::PlaneManifold plane_manifold_;
+  ceres::HuberLoss huber_{1.0};
+
+  MatchStatus status_ = MatchStatus::kNotYet;
+  bool localized_ = false;
+  // B_T_M in the plane (x, y, yaw; the merging optimises these three) and its height, which the
+  // floors give: mapInPlan() makes the Isometry3d of the two.
+  Eigen::Vector3d B_T_M_x_y_yaw_ = Eigen::Vector3d::Zero();
+  double B_T_M_z_ = 0.0;
+  std::map<int, int> plane_matches_;  // S-plane → A-surface
+  std::map<int, int> room_matches_;   // S-room → A-room
+  std::optional<MatchResult> last_match_;
+  std::vector<StatusChange> events_;
+  std::vector<double> matching_times_;
+  double matching_s_ = 0.0;  // onKeyframe in all: matching, verification, contradictions
+  std::size_t rooms_at_last_attempt_ = 0;
+  int keyframes_at_last_attempt_ = 0;
+  std::set<int> surfaces_in_problem_;  // per optimisation
+  Eigen::AlignedBox2d building_;       // the plan's walls' box grown by outside_margin
+  int contradictions_ = 0;
+  int losses_ = 0;
+  int held_constant_ = 0;  // optimisations in which B_T_M was held (under-constrained)
+};
+
+}  // namespace isg::slam

@@ -1,0 +1,71 @@
+#pragma once
+
+#include <Eigen/Core>
+#include <numbers>
+#include <vector>
+
+#include "bim/plane.hpp"
+#include "slam/messages.hpp"
+
+namespace isg::slam {
+
+// Planes from one (deskewed) scan: docs/slam.md. Defaults are the documented starting values.
+struct PlaneExtractionOptions {
+  enum class Method {
+    kRangeImage,  // organised scans (points with rings) on the range image; RANSAC otherwise
+    kRansac,      // always sequential RANSAC on the voxel-filtered cloud
+  };
+  Method method = Method::kRangeImage;
+  double min_range = 0.5;  // metres: closer points are the robot or noise
+  double max_range = 30.0;
+  double voxel = 0.1;  // voxel leaf: RANSAC's grid; the range image counts support in voxels
+  double ransac_distance = 0.04;  // a point's distance from its plane, both methods
+  int min_inliers = 100;          // support: points after the voxel grid, voxels on the range image
+  int max_planes = 30;
+  // A plane's points are split where they are this far apart, so that two coplanar walls (a
+  // corridor's two sides of a doorway, the same wall in two rooms) are separate.
+  double cluster_tolerance = 0.3;
+  // Range image: azimuth bin; a region's cells turn within normal_angle_deg of its plane;
+  // adjacent regions within merge_angle_deg (and the plane distance) are one; neighbours across
+  // rings are close up to ring_gap_factor × the rings' spacing at their range.
+  double image_column_deg = 0.8;
+  double normal_angle_deg = 15.0;
+  double merge_angle_deg = 5.0;
+  double ring_gap_factor = 4.0;
+  double vertical_max_normal_z = 0.2;    // |n_z| below this: a wall
+  double horizontal_min_normal_z = 0.9;  // above this: a floor or a ceiling
+};
+
+enum class PlaneOrientation { kVertical, kHorizontal, kOblique };
+
+struct PlaneObservation {
+  bim::Plane plane;  // in the scan's frame, normal towards the frame's origin (the sensor)
+  Eigen::Vector3d centroid = Eigen::Vector3d::Zero();
+  int points = 0;
+  PlaneOrientation orientation = PlaneOrientation::kOblique;
+  // Walls: the inliers' extent along the wall (the horizontal direction in the plane) and in z.
+  Eigen::Vector3d start = Eigen::Vector3d::Zero(), end = Eigen::Vector3d::Zero();
+  double z_min = 0.0, z_max = 0.0;
+  double rms = 0.0;  // inliers' RMS distance from the plane
+};
+
+// The planes of a scan, in the scan's frame, largest support first. Organised scans (Method
+// kRangeImage): region growing on the range image (slam/sgraph/range_image_planes.hpp). Otherwise
+// range crop and voxel grid, then sequential RANSAC (PCL SACMODEL_PLANE) removing each plane's
+// inliers, each plane's inliers split by Euclidean clustering, planes fitted again by least
+// squares to each cluster. PCL stays behind this call (slam/sgraph/pcl_planes.hpp is slam's own):
+// no user of slam compiles PCL.
+std::vector<PlaneObservation> extractPlanes(const Scan& scan,
+                                            const PlaneExtractionOptions& options);
+
+// The building's dominant yaw in [0, π/2), from the vertical planes' normals (a histogram of
+// their yaw modulo 90°, weighted by points, refined by the mean of the peak's neighbourhood), so
+// that x/y classification works whatever the robot's start heading.
+double dominantYaw(const std::vector<PlaneObservation>& planes);
+
+enum class WallAxis { kX, kY, kOther };
+// x: normal within `tolerance` of the dominant direction (either sense); y: of its perpendicular.
+WallAxis classifyWall(const PlaneObservation& plane, double dominant_yaw,
+                      double tolerance_rad = 20.0 * std::numbers::pi / 180.0);
+
+}  // namespace isg::slam

@@ -1,0 +1,58 @@
+#include "slam/sgraph/plane_map.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+
+namespace isg::slam {
+
+namespace {
+
+// The gap between two segments' projections onto a direction (negative when they overlap).
+double gapAlong(const Eigen::Vector2d& direction, const Eigen::Vector2d& a0,
+                const Eigen::Vector2d& a1, const Eigen::Vector2d& b0, const Eigen::Vector2d& b1) {
+  const double a_lo = std::min(direction.dot(a0), direction.dot(a1));
+  const double a_hi = std::max(direction.dot(a0), direction.dot(a1));
+  const double b_lo = std::min(direction.dot(b0), direction.dot(b1));
+  const double b_hi = std::max(direction.dot(b0), direction.dot(b1));
+  return std::max(a_lo, b_lo) - std::min(a_hi, b_hi);
+}
+
+}  // namespace
+
+PlaneObservation toMap(const PlaneObservation& o, const Eigen::Isometry3d& M_T_L) {
+  PlaneObservation out = o;
+  out.plane = o.plane.transformed(M_T_L);
+  out.centroid = M_T_L * o.centroid;
+  out.start = M_T_L * o.start;
+  out.end = M_T_L * o.end;
+  // The height range in M: the observation's corners at its lowest and highest points.
+  const double z0 = (M_T_L * Eigen::Vector3d(o.start.x(), o.start.y(), o.z_min)).z();
+  const double z1 = (M_T_L * Eigen::Vector3d(o.start.x(), o.start.y(), o.z_max)).z();
+  out.z_min = std::min(z0, z1);
+  out.z_max = std::max(z0, z1);
+  return out;
+}
+
+int associate(const PlaneObservation& o, const std::vector<MapPlane>& map,
+              const AssociationOptions& options) {
+  const double min_cos = std::cos(options.max_angle_deg * std::numbers::pi / 180.0);
+  int best = -1;
+  double best_distance = options.max_distance;
+  for (int i = 0; i < int(map.size()); ++i) {
+    const MapPlane& m = map[i];
+    if (m.plane.normal.dot(o.plane.normal) < min_cos) continue;
+    const double distance = std::abs(m.plane.signedDistance(o.centroid));
+    if (distance > best_distance) continue;
+    Eigen::Vector2d along(-m.plane.normal.y(), m.plane.normal.x());
+    if (along.norm() < 1e-6) along = Eigen::Vector2d::UnitX();
+    along.normalize();
+    const double gap = gapAlong(along, m.start, m.end, o.start.head<2>(), o.end.head<2>());
+    if (gap > options.max_gap) continue;
+    best = i;
+    best_distance = distance;
+  }
+  return best;
+}
+
+}  // namespace isg::slam

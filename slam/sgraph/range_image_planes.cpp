@@ -1,0 +1,287 @@
+#include "slam/sgraph/range_image_planes.hpp"
+
+#include <Eigen/Eigenvalues>
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <numbers>
+#include <numeric>
+
+#include "slam/sgraph/plane_fit.hpp"
+#include "slam/sgraph/voxel_key.hpp"
+
+namespace isg::slam {
+
+namespace {
+
+constexpr int kMinRings = 4;
+constexpr int kMaxRings = 128;  // more rows than any spinning LiDAR has: not rings
+
+// The scan as an image: rows are rings (by elevation), columns azimuth bins. Each cell holds the
+// mean of its points and the points themselves (CSR).
+struct RangeImage {
+  int rows = 0, cols = 0;
+  std::vector<Eigen::Vector3d> points;  // cropped, in the scan's frame
+  std::vector<int> first;               // points of cell k: order[first[k] .. first[k + 1])
+  std::vector<int> order;
+  std::vector<Eigen::Vector3d> mean;
+  std::vector<double> range;      // |mean|
+  std::vector<double> ring_step;  // elevation from row r to row r + 1, radians
+  int cell(int r, int c) const { return r * cols + c; }
+  bool valid(int k) const { return first[k + 1] > first[k]; }
+};
+
+std::optional<RangeImage> buildImage(const Scan& scan, const PlaneExtractionOptions& options) {
+  RangeImage image;
+  const double lo2 = options.min_range * options.min_range;
+  const double hi2 = options.max_range * options.max_range;
+  std::vector<int> cell_of;
+  int max_ring = -1;
+  std::vector<char> seen(kMaxRings, 0);
+  image.cols = std::max(8, int(std::lround(360.0 / options.image_column_deg)));
+  image.points.reserve(scan.points.size());
+  cell_of.reserve(scan.points.size());
+  for (const auto& p : scan.points) {
+    const double r2 = double(p.x) * p.x + double(p.y) * p.y + double(p.z) * p.z;
+    if (r2 < lo2 || r2 > hi2) continue;
+    if (p.ring >= kMaxRings) return std::nullopt;
+    const double azimuth = std::atan2(double(p.y), double(p.x));  // (-π, π]
+    int c = int((azimuth + std::numbers::pi) / (2 * std::numbers::pi) * image.cols);
+    c = std::clamp(c, 0, image.cols - 1);
+    image.points.emplace_back(p.x, p.y, p.z);
+    cell_of.push_back(int(p.ring) * image.cols + c);
+    max_ring = std::max(max_ring, int(p.ring));
+    seen[p.ring] = 1;
+  }
+  if (std::count(seen.begin(), seen.end(), 1) < kMinRings) return std::nullopt;
+  image.rows = max_ring + 1;
+  const int cells = image.rows * image.cols;
+  image.first.assign(cells + 1, 0);
+  for (int k : cell_of) ++image.first[k + 1];
+  for (int k = 0; k < cells; ++k) image.first[k + 1] += image.first[k];
+  image.order.resize(cell_of.size());
+  std::vector<int> fill(image.first.begin(), image.first.end() - 1);
+  for (int i = 0; i < int(cell_of.size()); ++i) image.order[fill[cell_of[i]]++] = i;
+  image.mean.assign(cells, Eigen::Vector3d::Zero());
+  image.range.assign(cells, 0.0);
+  std::vector<double> elevation_sum(image.rows, 0.0);
+  std::vector<int> elevation_count(image.rows, 0);
+  for (int k = 0; k < cells; ++k) {
+    if (!image.valid(k)) continue;
+    Eigen::Vector3d sum = Eigen::Vector3d::Zero();
+    for (int i = image.first[k]; i < image.first[k + 1]; ++i) sum += image.points[image.order[i]];
+    image.mean[k] = sum / double(image.first[k + 1] - image.first[k]);
+    image.range[k] = image.mean[k].norm();
+    const int r = k / image.cols;
+    elevation_sum[r] += std::atan2(image.mean[k].z(), image.mean[k].head<2>().norm());
+    ++elevation_count[r];
+  }
+  // The rings' spacing in elevation, from the data (2° on a VLP-16); rows without points take
+  // their neighbours' spacing.
+  image.ring_step.assign(image.rows, 0.0);
+  double fallback = 0.0;
+  for (int r = 0; r + 1 < image.rows; ++r) {
+    if (elevation_count[r] > 0 && elevation_count[r + 1] > 0) {
+      image.ring_step[r] = std::abs(elevation_sum[r + 1] / elevation_count[r + 1] -
+                                    elevation_sum[r] / elevation_count[r]);
+      fallback = std::max(fallback, image.ring_step[r]);
+    }
+  }
+  for (auto& step : image.ring_step) {
+    if (step == 0.0) step = fallback;
+  }
+  return image;
+}
+
+// Running sums of weighted points, for a region's least-squares plane.
+struct PlaneSums {
+  double weight = 0.0;
+  Eigen::Vector3d sum = Eigen::Vector3d::Zero();
+  Eigen::Matrix3d outer = Eigen::Matrix3d::Zero();
+  void add(const Eigen::Vector3d& p, double w) {
+    weight += w;
+    sum += w * p;
+    outer += w * p * p.transpose();
+  }
+  void add(const PlaneSums& other) {
+    weight += other.weight;
+    sum += other.sum;
+    outer += other.outer;
+  }
+  Eigen::Vector3d centroid() const { return sum / weight; }
+  Eigen::Vector3d normal() const {
+    const Eigen::Vector3d c = centroid();
+    const Eigen::Matrix3d covariance = outer / weight - c * c.transpose();
+    return Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d>(covariance).eigenvectors().col(0);
+  }
+};
+
+int findRoot(std::vector<int>& parent, int a) {
+  while (parent[a] != a) a = parent[a] = parent[parent[a]];
+  return a;
+}
+
+// The number of distinct `voxel`-sized cells the points fall in: the support RANSAC on a
+// voxel-filtered cloud would count, whatever the points' density.
+int voxelSupport(const std::vector<Eigen::Vector3d>& points, double voxel) {
+  std::vector<std::uint64_t> keys;
+  keys.reserve(points.size());
+  for (const auto& p : points) keys.push_back(voxelKey(p, voxel));
+  std::sort(keys.begin(), keys.end());
+  return int(std::unique(keys.begin(), keys.end()) - keys.begin());
+}
+
+}  // namespace
+
+std::optional<std::vector<PlaneObservation>> extractPlanesOnRangeImage(
+    const Scan& scan, const PlaneExtractionOptions& options) {
+  const auto built = buildImage(scan, options);
+  if (!built) return std::nullopt;
+  const RangeImage& image = *built;
+  const int rows = image.rows, cols = image.cols, cells = rows * cols;
+  // Two cells are neighbours on one surface only when close: along a ring within the cluster
+  // tolerance; across rings within that or a few times the rings' spacing at that range (so that
+  // a floor, seen at a grazing angle, stays one surface).
+  auto close = [&](int a, int b, bool across_rings) {
+    if (!image.valid(a) || !image.valid(b)) return false;
+    double limit = options.cluster_tolerance;
+    if (across_rings) {
+      const int r = std::min(a / cols, b / cols);
+      limit = std::max(limit, options.ring_gap_factor * std::min(image.range[a], image.range[b]) *
+                                  image.ring_step[r]);
+    }
+    return (image.mean[a] - image.mean[b]).squaredNorm() <= limit * limit;
+  };
+  auto left = [&](int k) { return k % cols == 0 ? k + cols - 1 : k - 1; };
+  auto right = [&](int k) { return k % cols == cols - 1 ? k - cols + 1 : k + 1; };
+
+  // Each cell's normal from its neighbours' means: the cross product of the differences along
+  // the ring and across the rings (one-sided where a neighbour is missing or far).
+  std::vector<Eigen::Vector3d> normal(cells, Eigen::Vector3d::Zero());
+  std::vector<char> has_normal(cells, 0);
+  for (int k = 0; k < cells; ++k) {
+    if (!image.valid(k)) continue;
+    const int r = k / cols;
+    const int l = left(k), rr = right(k);
+    const int down = r > 0 ? k - cols : -1, up = r + 1 < rows ? k + cols : -1;
+    const bool has_l = close(k, l, false), has_r = close(k, rr, false);
+    const bool has_d = down >= 0 && close(k, down, true), has_u = up >= 0 && close(k, up, true);
+    if ((!has_l && !has_r) || (!has_d && !has_u)) continue;
+    const Eigen::Vector3d along = image.mean[has_r ? rr : k] - image.mean[has_l ? l : k];
+    const Eigen::Vector3d across = image.mean[has_u ? up : k] - image.mean[has_d ? down : k];
+    Eigen::Vector3d n = along.cross(across);
+    const double norm = n.norm();
+    if (norm < 1e-12) continue;
+    n /= norm;
+    if (n.dot(image.mean[k]) > 0) n = -n;  // towards the sensor
+    normal[k] = n;
+    has_normal[k] = 1;
+  }
+
+  // Region growing: from each unlabelled cell with a normal, to neighbours that are close, lie
+  // within the plane distance of the region's plane and (when they have a normal) turn alike.
+  const double cos_angle = std::cos(options.normal_angle_deg * std::numbers::pi / 180.0);
+  std::vector<int> label(cells, -1);
+  std::vector<PlaneSums> sums;
+  std::vector<int> queue;
+  queue.reserve(cells);
+  for (int seed = 0; seed < cells; ++seed) {
+    if (!has_normal[seed] || label[seed] >= 0) continue;
+    const int region = int(sums.size());
+    sums.emplace_back();
+    PlaneSums& s = sums.back();
+    Eigen::Vector3d n = normal[seed];
+    double d = -n.dot(image.mean[seed]);
+    double refit_at = 3.0;
+    auto take = [&](int k) {
+      label[k] = region;
+      s.add(image.mean[k], double(image.first[k + 1] - image.first[k]));
+      queue.push_back(k);
+    };
+    queue.clear();
+    take(seed);
+    for (std::size_t head = 0; head < queue.size(); ++head) {
+      const int k = queue[head];
+      const int r = k / cols;
+      const int neighbours[4] = {left(k), right(k), r > 0 ? k - cols : -1,
+                                 r + 1 < rows ? k + cols : -1};
+      for (int i = 0; i < 4; ++i) {
+        const int q = neighbours[i];
+        if (q < 0 || label[q] >= 0 || !close(k, q, i >= 2)) continue;
+        if (std::abs(n.dot(image.mean[q]) + d) > options.ransac_distance) continue;
+        if (has_normal[q] && std::abs(normal[q].dot(n)) < cos_angle) continue;
+        take(q);
+      }
+      if (double(queue.size()) >= refit_at) {
+        n = s.normal();
+        d = -n.dot(s.centroid());
+        refit_at *= 2;
+      }
+    }
+  }
+
+  // Regions that touch and lie on one plane are one surface (growth can stop at a noisy cell).
+  const int regions = int(sums.size());
+  std::vector<int> parent(regions);
+  std::iota(parent.begin(), parent.end(), 0);
+  std::vector<Eigen::Vector3d> region_normal(regions), region_centroid(regions);
+  for (int g = 0; g < regions; ++g) {
+    region_normal[g] = sums[g].normal();
+    region_centroid[g] = sums[g].centroid();
+  }
+  const double cos_merge = std::cos(options.merge_angle_deg * std::numbers::pi / 180.0);
+  auto coplanar = [&](int a, int b) {
+    if (std::abs(region_normal[a].dot(region_normal[b])) < cos_merge) return false;
+    return std::abs(region_normal[a].dot(region_centroid[b] - region_centroid[a])) <=
+               options.ransac_distance &&
+           std::abs(region_normal[b].dot(region_centroid[a] - region_centroid[b])) <=
+               options.ransac_distance;
+  };
+  for (int k = 0; k < cells; ++k) {
+    if (label[k] < 0) continue;
+    const int r = k / cols;
+    const int neighbours[2] = {right(k), r + 1 < rows ? k + cols : -1};
+    for (int i = 0; i < 2; ++i) {
+      const int q = neighbours[i];
+      if (q < 0 || label[q] < 0 || label[q] == label[k]) continue;
+      const int a = findRoot(parent, label[k]), b = findRoot(parent, label[q]);
+      if (a == b || !close(k, q, i == 1) || !coplanar(label[k], label[q])) continue;
+      parent[std::max(a, b)] = std::min(a, b);
+    }
+  }
+
+  // Each surface: least squares on its points, then again on those within the plane distance.
+  std::vector<std::vector<int>> members(regions);
+  for (int k = 0; k < cells; ++k) {
+    if (label[k] >= 0) members[findRoot(parent, label[k])].push_back(k);
+  }
+  std::vector<PlaneObservation> planes;
+  std::vector<Eigen::Vector3d> points, inliers;
+  for (int g = 0; g < regions; ++g) {
+    if (members[g].empty()) continue;
+    points.clear();
+    for (int k : members[g]) {
+      for (int i = image.first[k]; i < image.first[k + 1]; ++i)
+        points.push_back(image.points[image.order[i]]);
+    }
+    if (int(points.size()) < options.min_inliers) continue;  // fewer points than voxels needed
+    PlaneSums all;
+    for (const auto& p : points) all.add(p, 1.0);
+    const Eigen::Vector3d n = all.normal(), c = all.centroid();
+    inliers.clear();
+    for (const auto& p : points) {
+      if (std::abs(n.dot(p - c)) <= options.ransac_distance) inliers.push_back(p);
+    }
+    if (int(inliers.size()) < options.min_inliers) continue;
+    const int support = voxelSupport(inliers, options.voxel);
+    if (support < options.min_inliers) continue;
+    planes.push_back(observePlane(inliers, support, options));
+  }
+  std::stable_sort(
+      planes.begin(), planes.end(),
+      [](const PlaneObservation& a, const PlaneObservation& b) { return a.points > b.points; });
+  if (int(planes.size()) > options.max_planes) planes.resize(options.max_planes);
+  return planes;
+}
+
+}  // namespace isg::slam

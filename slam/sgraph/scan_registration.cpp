@@ -1,0 +1,311 @@
+#include "slam/sgraph/scan_registration.hpp"
+
+#include <Eigen/Eigenvalues>
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <functional>
+#include <nanoflann.hpp>
+#include <numeric>
+
+#include "slam/sgraph/voxel_key.hpp"
+
+namespace isg::slam {
+
+namespace {
+
+// Points grouped by voxel: each voxel's key, and its points' sum and count.
+struct VoxelCentroids {
+  double size;
+  std::vector<std::pair<std::uint64_t, Eigen::Vector3d>> keyed;  // (voxel key, point)
+
+  explicit VoxelCentroids(double voxel) : size(voxel) {}
+  void add(const Eigen::Vector3d& p) { keyed.emplace_back(voxelKey(p, size), p); }
+  // One centroid per voxel, in key order.
+  std::vector<Eigen::Vector3d> centroids() {
+    std::stable_sort(keyed.begin(), keyed.end(),
+                     [](const auto& a, const auto& b) { return a.first < b.first; });
+    std::vector<Eigen::Vector3d> out;
+    for (std::size_t i = 0; i < keyed.size();) {
+      std::size_t j = i;
+      Eigen::Vector3d sum = Eigen::Vector3d::Zero();
+      while (j < keyed.size() && keyed[j].first == keyed[i].first) sum += keyed[j++].second;
+      out.push_back(sum / double(j - i));
+      i = j;
+    }
+    return out;
+  }
+};
+
+Eigen::Matrix2d rotation(double yaw) { return Eigen::Rotation2Dd(yaw).toRotationMatrix(); }
+
+}  // namespace
+
+std::vector<Eigen::Vector3f> downsampleScan(const Scan& scan,
+                                            const ScanRegistrationOptions& options) {
+  VoxelCentroids voxels(options.voxel);
+  voxels.keyed.reserve(scan.points.size());
+  for (const auto& p : scan.points) {
+    const Eigen::Vector3d v(p.x, p.y, p.z);
+    const double range = v.norm();
+    if (!std::isfinite(range) || range < options.min_range || range > options.max_range) continue;
+    voxels.add(v);
+  }
+  std::vector<Eigen::Vector3f> out;
+  for (const auto& c : voxels.centroids()) out.push_back(c.cast<float>());
+  return out;
+}
+
+struct LocalMap::Index {
+  // nanoflann's view of the map's points.
+  struct Cloud {
+    const std::vector<Eigen::Vector3d>* points = nullptr;
+    std::size_t kdtree_get_point_count() const { return points->size(); }
+    double kdtree_get_pt(std::size_t i, std::size_t axis) const { return (*points)[i][int(axis)]; }
+    template <class Box>
+    bool kdtree_get_bbox(Box&) const {
+      return false;
+    }
+  };
+  using Tree = nanoflann::KDTreeSingleIndexAdaptor<nanoflann::L2_Simple_Adaptor<double, Cloud>,
+                                                   Cloud, 3, int>;
+  Cloud cloud;
+  std::unique_ptr<Tree> tree;
+};
+
+LocalMap::~LocalMap() = default;
+LocalMap::LocalMap(LocalMap&& other) noexcept
+    : points_(std::move(other.points_)),
+      normals_(std::move(other.normals_)),
+      index_(std::move(other.index_)) {
+  if (index_) index_->cloud.points = &points_;
+}
+LocalMap& LocalMap::operator=(LocalMap&& other) noexcept {
+  points_ = std::move(other.points_);
+  normals_ = std::move(other.normals_);
+  index_ = std::move(other.index_);
+  if (index_) index_->cloud.points = &points_;
+  return *this;
+}
+
+LocalMap::LocalMap(const std::vector<Part>& parts, const ScanRegistrationOptions& options,
+                   ThreadPool* pool)
+    : index_(std::make_unique<Index>()) {
+  VoxelCentroids voxels(options.voxel);
+  for (const auto& part : parts) {
+    for (const auto& p : *part.cloud) voxels.add(part.M_T_L * p.cast<double>());
+  }
+  points_ = voxels.centroids();
+  index_->cloud.points = &points_;
+  if (points_.empty()) return;
+  index_->tree = std::make_unique<Index::Tree>(3, index_->cloud,
+                                               nanoflann::KDTreeSingleIndexAdaptorParams(10));
+  // Normals by PCA of each point's neighbourhood; none where it is not a plane.
+  normals_.assign(points_.size(), Eigen::Vector3d::Zero());
+  const int k_max = std::max(1, options.normal_neighbours);
+  // Each point's normal on its own: items of points on the pool's threads, if any.
+  auto normal = [&](std::size_t i, std::vector<int>& indices, std::vector<double>& squared) {
+    const int found =
+        int(index_->tree->knnSearch(points_[i].data(), k_max, indices.data(), squared.data()));
+    int used = 0;
+    Eigen::Vector3d mean = Eigen::Vector3d::Zero();
+    for (int k = 0; k < found; ++k) {
+      if (squared[k] > options.normal_radius * options.normal_radius) break;
+      mean += points_[indices[k]];
+      ++used;
+    }
+    if (used < 5) return;
+    mean /= double(used);
+    Eigen::Matrix3d covariance = Eigen::Matrix3d::Zero();
+    for (int k = 0; k < used; ++k) {
+      const Eigen::Vector3d d = points_[indices[k]] - mean;
+      covariance += d * d.transpose();
+    }
+    const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> solver(covariance);
+    const Eigen::Vector3d values = solver.eigenvalues();
+    const double total = values.sum();
+    // A plane: thin across (λ0 small) and spread both ways within it (λ1 not small). Points
+    // along one ring of the LiDAR are a line, whose "normal" is any direction across it.
+    if (total <= 0.0 || values(0) / total > options.max_planarity ||
+        values(1) / total < options.min_spread) {
+      return;
+    }
+    normals_[i] = solver.eigenvectors().col(0).normalized();
+  };
+  constexpr int kItem = 512;
+  const int items = itemCount(int(points_.size()), kItem);
+  const std::function<void(int)> item_normals = [&](int item) {
+    std::vector<int> indices(k_max);
+    std::vector<double> squared(k_max);
+    const std::size_t end = std::min(points_.size(), std::size_t(item + 1) * kItem);
+    for (std::size_t i = std::size_t(item) * kItem; i < end; ++i) normal(i, indices, squared);
+  };
+  if (pool != nullptr) {
+    pool->run(items, item_normals);
+  } else {
+    for (int i = 0; i < items; ++i) item_normals(i);
+  }
+}
+
+int LocalMap::nearest(const Eigen::Vector3d& q, double max_distance, double* distance) const {
+  if (points_.empty()) return -1;
+  int index = -1;
+  double squared = 0.0;
+  nanoflann::KNNResultSet<double, int> result(1);
+  result.init(&index, &squared);
+  index_->tree->findNeighbors(result, q.data(), nanoflann::SearchParams());
+  if (result.size() < 1 || squared > max_distance * max_distance) return -1;
+  *distance = std::sqrt(squared);
+  return index;
+}
+
+Eigen::Isometry3d planarCorrection(const Eigen::Vector3d& correction,
+                                   const Eigen::Vector2d& pivot) {
+  Eigen::Isometry3d delta = Eigen::Isometry3d::Identity();
+  delta.linear() = Eigen::AngleAxisd(correction.z(), Eigen::Vector3d::UnitZ()).toRotationMatrix();
+  const Eigen::Vector2d t = pivot - rotation(correction.z()) * pivot + correction.head<2>();
+  delta.translation() = Eigen::Vector3d(t.x(), t.y(), 0.0);
+  return delta;
+}
+
+Eigen::Isometry3d RegistrationResult::apply(const Eigen::Isometry3d& M_T_R_predicted) const {
+  return planarCorrection(correction, M_T_R_predicted.translation().head<2>()) * M_T_R_predicted;
+}
+
+RegistrationResult registerScan(const std::vector<Eigen::Vector3f>& scan_in_L,
+                                const Eigen::Isometry3d& M_T_R_predicted,
+                                const Eigen::Isometry3d& R_T_L, const LocalMap& map,
+                                const Eigen::Matrix3d& prior_information,
+                                const ScanRegistrationOptions& options, ThreadPool* pool) {
+  RegistrationResult result;
+  if (map.empty() || scan_in_L.empty()) return result;
+  const Eigen::Isometry3d M_T_L = M_T_R_predicted * R_T_L;
+  const Eigen::Vector2d pivot = M_T_R_predicted.translation().head<2>();
+  // The scan in M at the prediction, relative to the pivot in x and y.
+  std::vector<Eigen::Vector3d> points;
+  points.reserve(scan_in_L.size());
+  for (const auto& p : scan_in_L) {
+    Eigen::Vector3d q = M_T_L * p.cast<double>();
+    q.head<2>() -= pivot;
+    points.push_back(q);
+  }
+  result.points = int(points.size());
+  const double sigma2 = options.point_sigma * options.point_sigma;
+  auto transformed = [&](const Eigen::Vector3d& x, const Eigen::Vector3d& q) {
+    Eigen::Vector3d out = q;
+    out.head<2>() = rotation(x.z()) * q.head<2>() + pivot + x.head<2>();
+    return out;
+  };
+  // The points go in items of kItem, on the pool's threads when there is one; each item's sums
+  // are added in item order, so the result does not depend on the number of threads.
+  constexpr int kItem = 256;
+  const int items = itemCount(int(points.size()), kItem);
+  auto for_items = [&](const std::function<void(int)>& task) {
+    if (pool != nullptr) {
+      pool->run(items, task);
+    } else {
+      for (int i = 0; i < items; ++i) task(i);
+    }
+  };
+  auto share_within = [&](const Eigen::Vector3d& x) {
+    std::vector<int> near(items, 0);
+    for_items([&](int item) {
+      const int end = std::min(int(points.size()), (item + 1) * kItem);
+      for (int i = item * kItem; i < end; ++i) {
+        double d = 0.0;
+        if (map.nearest(transformed(x, points[i]), options.max_correspondence_end, &d) >= 0)
+          ++near[item];
+      }
+    });
+    return double(std::accumulate(near.begin(), near.end(), 0)) / double(points.size());
+  };
+  struct Sums {
+    Eigen::Matrix3d H = Eigen::Matrix3d::Zero();
+    Eigen::Vector3d g = Eigen::Vector3d::Zero();
+    int used = 0, near = 0;
+  };
+  std::vector<Sums> sums(items);
+
+  // Each pass finds every point's nearest map point anyway: the shares come from those passes
+  // (the first, at the prediction; the last at the final tolerance) rather than from passes of
+  // their own.
+  if (options.max_correspondence_start < options.max_correspondence_end) {
+    result.inlier_share_predicted = share_within(Eigen::Vector3d::Zero());
+  }
+  Eigen::Vector3d x = Eigen::Vector3d::Zero();
+  Eigen::Matrix3d scan_information = Eigen::Matrix3d::Zero();
+  // The tolerance shrinks stage by stage; once a stage's step is below a millimetre the estimate
+  // has settled at that tolerance, and the passes left go to the final tolerance.
+  const int iterations = std::max(1, options.iterations);
+  const int last_stage = iterations - 1;
+  bool final_share_known = false;
+  for (int pass = 0, stage = 0; pass < iterations; ++pass) {
+    const double fraction = iterations == 1 ? 1.0 : double(stage) / double(last_stage);
+    const double max_distance =
+        options.max_correspondence_start +
+        fraction * (options.max_correspondence_end - options.max_correspondence_start);
+    const double near_distance = std::min(max_distance, options.max_correspondence_end);
+    for_items([&](int item) {
+      Sums& s = sums[item];
+      s = Sums();
+      const int end = std::min(int(points.size()), (item + 1) * kItem);
+      for (int i = item * kItem; i < end; ++i) {
+        const Eigen::Vector3d p = transformed(x, points[i]);
+        double d = 0.0;
+        const int m = map.nearest(p, max_distance, &d);
+        if (m < 0) continue;
+        if (d <= near_distance) ++s.near;
+        const Eigen::Vector3d& n = map.normal(m);
+        if (n.isZero() || std::abs(n.z()) > options.max_normal_z) continue;
+        const double r = n.dot(p - map.point(m));
+        // d(p)/d(yaw) about the pivot: the rotated point's lever arm turned by 90°.
+        const Eigen::Vector2d arm = p.head<2>() - pivot - x.head<2>();
+        const Eigen::Vector3d J(n.x(), n.y(), n.x() * -arm.y() + n.y() * arm.x());
+        const double w = std::abs(r) <= options.huber ? 1.0 : options.huber / std::abs(r);
+        s.H += w * J * J.transpose();
+        s.g += w * J * r;
+        ++s.used;
+      }
+    });
+    Eigen::Matrix3d H = Eigen::Matrix3d::Zero();
+    Eigen::Vector3d g = Eigen::Vector3d::Zero();
+    int used = 0, near = 0;
+    for (const Sums& s : sums) {
+      H += s.H;
+      g += s.g;
+      used += s.used;
+      near += s.near;
+    }
+    const double share = double(near) / double(points.size());
+    if (pass == 0 && max_distance >= options.max_correspondence_end) {
+      result.inlier_share_predicted = share;
+    }
+    result.correspondences = used;
+    if (used < 10) break;
+    const double scale =
+        options.effective_points / std::max(double(used), options.effective_points);
+    scan_information = H * (scale / sigma2);
+    const Eigen::Matrix3d total = scan_information + prior_information;
+    const Eigen::Vector3d gradient = g * (scale / sigma2) + prior_information * x;
+    const Eigen::Vector3d step = -total.ldlt().solve(gradient);
+    if (!step.allFinite()) break;
+    x += step;
+    if (stage == last_stage) {
+      // At the final tolerance, after a step under a millimetre the share before it is the share
+      // at x; after a larger one (the pass budget ran out first) it is counted again below.
+      result.inlier_share = share;
+      final_share_known = step.head<2>().norm() < 1e-3 && std::abs(step.z()) < 1e-4;
+      if (step.head<2>().norm() < 1e-4 && std::abs(step.z()) < 1e-5) break;
+    } else {
+      const bool settled = step.head<2>().norm() < 1e-3 && std::abs(step.z()) < 1e-4;
+      stage = settled ? last_stage : stage + 1;
+    }
+  }
+  result.correction = x;
+  result.information = scan_information;
+  if (!final_share_known) result.inlier_share = share_within(x);
+  result.agrees = result.inlier_share >= options.min_inlier_share;
+  return result;
+}
+
+}  // namespace isg::slam

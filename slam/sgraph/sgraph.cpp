@@ -1,0 +1,625 @@
+#include "slam/sgraph/sgraph.hpp"
+
+#include <ceres/ceres.h>
+#include <numbers>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <set>
+
+#include "bim/agraph_factors.hpp"
+#include "bim/angles.hpp"
+#include "bim/plane_manifold.hpp"
+#include "slam/sgraph/sgraph_factors.hpp"
+
+namespace isg::slam {
+
+namespace {
+
+double seconds(std::chrono::steady_clock::time_point since) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - since).count();
+}
+
+// Extends a map plane's extent with an observation already in M.
+void extend(MapPlane& m, const PlaneObservation& o) {
+  Eigen::Vector2d along(-m.plane.normal.y(), m.plane.normal.x());
+  if (along.norm() < 1e-6) return;
+  along.normalize();
+  double lo = std::min(along.dot(m.start), along.dot(m.end));
+  double hi = std::max(along.dot(m.start), along.dot(m.end));
+  lo = std::min({lo, along.dot(o.start.head<2>()), along.dot(o.end.head<2>())});
+  hi = std::max({hi, along.dot(o.start.head<2>()), along.dot(o.end.head<2>())});
+  const Eigen::Vector2d base = -m.plane.d * m.plane.normal.head<2>();
+  const Eigen::Vector2d origin = base - along.dot(base) * along;
+  m.start = origin + lo * along;
+  m.end = origin + hi * along;
+}
+
+}  // namespace
+
+Eigen::Isometry3d SGraph::Keyframe::pose() const {
+  Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
+  T.linear() = orientation.normalized().toRotationMatrix();
+  T.translation() = position;
+  return T;
+}
+
+SGraph::SGraph(const Eigen::Isometry3d& R_T_L, const SGraphOptions& options)
+    : R_T_L_(R_T_L), options_(options) {
+  if (options.threads > 1) pool_ = std::make_shared<ThreadPool>(options.threads);
+}
+
+void SGraph::addOdometry(const Odometry& odometry) {
+  odometry_.push(odometry);
+  latest_odometry_ = odometry;
+}
+
+std::optional<Odometry> SGraph::latestPose() const {
+  if (!latest_odometry_) return std::nullopt;
+  if (keyframes_.empty()) {
+    Odometry out = *latest_odometry_;
+    out.M_T_R = start_correction_ * out.M_T_R;
+    return out;
+  }
+  const Keyframe& k = keyframes_.back();
+  Odometry out = *latest_odometry_;
+  out.M_T_R = k.pose() * k.odometry.inverse() * latest_odometry_->M_T_R;
+  return out;
+}
+
+std::optional<Eigen::Isometry3d> SGraph::poseAt(double t) const {
+  const auto odometry = odometry_.at(t);
+  if (!odometry) return std::nullopt;
+  // The last keyframe at or before t.
+  const auto it = std::upper_bound(keyframes_.begin(), keyframes_.end(), t,
+                                   [](double s, const Keyframe& k) { return s < k.stamp; });
+  if (it == keyframes_.begin()) return start_correction_ * *odometry;
+  const Keyframe& k = *(it - 1);
+  return k.pose() * k.odometry.inverse() * *odometry;
+}
+
+bool SGraph::wouldKeyframe(double stamp) const {
+  const auto odometry_at_scan = odometry_.at(stamp);
+  if (!odometry_at_scan) return false;  // no odometry yet for this instant
+  if (keyframes_.empty()) return true;
+  const Eigen::Isometry3d delta = keyframes_.back().odometry.inverse() * *odometry_at_scan;
+  const double moved = delta.translation().head<2>().norm();
+  const double turned = std::abs(bim::yawOf(delta.linear()));
+  return moved >= options_.keyframe_distance || turned >= options_.keyframe_angle;
+}
+
+bool SGraph::addScan(Scan scan) {
+  const auto start = std::chrono::steady_clock::now();
+  if (!wouldKeyframe(scan.stamp)) return false;
+  const Eigen::Isometry3d odometry_at_scan = *odometry_.at(scan.stamp);
+  StageClock deskew_clock(stage_times_, "deskew");
+  deskew(scan, odometry_, R_T_L_);
+  deskew_clock.stop();
+
+  Keyframe keyframe;
+  keyframe.stamp = scan.stamp;
+  keyframe.odometry = odometry_at_scan;
+  Eigen::Isometry3d initial =
+      keyframes_.empty()
+          ? start_correction_ * odometry_at_scan
+          : keyframes_.back().pose() * keyframes_.back().odometry.inverse() * odometry_at_scan;
+  if (options_.registration.enabled) {
+    StageClock clock(stage_times_, "registration");
+    keyframe.cloud = downsampleScan(scan, options_.registration);
+    clock.stop();
+    if (!keyframes_.empty()) initial = registerKeyframe(keyframe, initial);
+  }
+  keyframe.position = initial.translation();
+  keyframe.orientation = Eigen::Quaterniond(initial.rotation());
+  const int index = int(keyframes_.size());
+
+  const Eigen::Isometry3d M_T_L = initial * R_T_L_;
+  // The map as association sees it, kept in step as this keyframe's observations change it.
+  std::vector<MapPlane> walls = activeWalls();
+  StageClock extraction_clock(stage_times_, "extraction");
+  const std::vector<PlaneObservation> observations = extractPlanes(scan, options_.extraction);
+  const double planes_s = extraction_clock.stop();
+  StageClock association_clock(stage_times_, "association");
+  for (const auto& observation : observations) {
+    if (observation.orientation == PlaneOrientation::kHorizontal) {
+      // The floor: a horizontal plane well below the sensor, facing up.
+      const bim::Plane in_M = observation.plane.transformed(M_T_L);
+      const double z = -in_M.d / in_M.normal.z();
+      if (in_M.normal.z() > 0.9 && z < M_T_L.translation().z() - 0.3) {
+        floor_sum_ += z;
+        ++floor_count_;
+      }
+      continue;
+    }
+    if (observation.orientation != PlaneOrientation::kVertical) continue;
+    const PlaneObservation in_map = toMap(observation, M_T_L);
+    int plane = associate(in_map, walls, options_.association);
+    if (plane < 0) {
+      Plane created;
+      created.map = {in_map.plane, in_map.start.head<2>(), in_map.end.head<2>(), 0, in_map.z_min,
+                     in_map.z_max};
+      created.parameters = bim::toVector(in_map.plane);
+      planes_.push_back(created);
+      walls.push_back(created.map);
+      plane = int(planes_.size()) - 1;
+    }
+    Plane& p = planes_[plane];
+    extend(p.map, in_map);
+    p.map.z_min = std::min(p.map.z_min, in_map.z_min);
+    p.map.z_max = std::max(p.map.z_max, in_map.z_max);
+    ++p.map.observations;
+    p.observed_by.push_back(index);
+    walls[plane] = p.map;
+    keyframe.observations.emplace_back(plane, observation);
+  }
+  association_clock.stop();
+  keyframes_.push_back(std::move(keyframe));
+  // Only the latest keyframes' clouds make the local map: older ones are let go.
+  const int stale = int(keyframes_.size()) - 1 - options_.registration.local_map_keyframes;
+  if (stale >= 0) std::vector<Eigen::Vector3f>().swap(keyframes_[stale].cloud);
+  Timing timing;
+  timing.extraction_s = seconds(start);
+  timing.planes_s = planes_s;
+  StageClock optimisation_clock(stage_times_, "optimisation");
+  const WindowSize window = optimise(std::max(1, int(keyframes_.size()) - options_.window), true,
+                                     options_.max_iterations);
+  mergeDuplicatePlanes(std::max(0, index - options_.window + 1));
+  timing.solve_s = optimisation_clock.stop();
+  timing.window_residuals = window.residual_blocks;
+  timing.window_parameters = window.parameter_blocks;
+  StageClock rooms_clock(stage_times_, "rooms");
+  // Walls seen now may complete rooms the robot stood in a little earlier: look again from every
+  // keyframe of the window.
+  {
+    std::vector<PlaneObservation> weighted;
+    for (const auto& p : planes_) {
+      if (p.merged_into >= 0) continue;
+      PlaneObservation o;
+      o.plane = p.map.plane;
+      o.orientation = PlaneOrientation::kVertical;
+      o.points = int(10 * p.map.observations * std::max(0.5, (p.map.end - p.map.start).norm()));
+      weighted.push_back(o);
+    }
+    const double dominant = dominantYaw(weighted);
+    const std::vector<MapPlane> walls_now = activeWalls();
+    for (int k = std::max(0, index - options_.window + 1); k <= index; ++k) {
+      detectRooms(k, dominant, walls_now);
+    }
+  }
+  timing.optimisation_s = timing.solve_s + rooms_clock.stop();
+  timings_.push_back(timing);
+  return true;
+}
+
+std::pair<double, double> SGraph::odometrySigmas(double distance) const {
+  return {options_.sigma_odometry_translation_floor +
+              options_.sigma_odometry_translation_per_metre * std::sqrt(distance),
+          options_.sigma_odometry_rotation_floor +
+              options_.sigma_odometry_rotation_per_metre * std::sqrt(distance)};
+}
+
+Eigen::Isometry3d SGraph::registerKeyframe(Keyframe& keyframe, const Eigen::Isometry3d& predicted) {
+  const ScanRegistrationOptions& options = options_.registration;
+  const int n = int(keyframes_.size());
+  std::vector<LocalMap::Part> parts;
+  for (int k = std::max(0, n - options.local_map_keyframes); k < n; ++k) {
+    if (!keyframes_[k].cloud.empty())
+      parts.push_back({&keyframes_[k].cloud, keyframes_[k].pose() * R_T_L_});
+  }
+  if (parts.empty() || keyframe.cloud.empty()) return predicted;
+  StageClock map_clock(stage_times_, "local map");
+  const LocalMap map(parts, options, pool_.get());
+  map_clock.stop();
+  StageClock clock(stage_times_, "registration");
+  const Keyframe& previous = keyframes_.back();
+  const double distance = (previous.odometry.inverse() * keyframe.odometry).translation().norm();
+  const auto [sigma_t, sigma_r] = odometrySigmas(distance);
+  const Eigen::Matrix3d prior =
+      Eigen::Vector3d(1.0 / (sigma_t * sigma_t), 1.0 / (sigma_t * sigma_t),
+                      1.0 / (sigma_r * sigma_r))
+          .asDiagonal();
+  const RegistrationResult result =
+      registerScan(keyframe.cloud, predicted, R_T_L_, map, prior, options, pool_.get());
+  KeyframeRegistration& r = keyframe.registration;
+  r.attempted = true;
+  r.agrees = result.agrees;
+  r.inlier_share = result.inlier_share;
+  r.inlier_share_predicted = result.inlier_share_predicted;
+  if (!result.agrees) return predicted;
+  r.correction = result.correction;
+  const Eigen::Isometry3d corrected = result.apply(predicted);
+  // The motion from the previous keyframe in its heading frame, and the registration's
+  // information turned into that frame: e_M = R(yaw_i) · e_i.
+  const double yaw_i = bim::yawOf(previous.pose().linear());
+  const Eigen::Matrix2d R_i = Eigen::Rotation2Dd(yaw_i).toRotationMatrix();
+  const Eigen::Vector2d moved = corrected.translation().head<2>() - previous.position.head<2>();
+  r.measured.head<2>() = R_i.transpose() * moved;
+  r.measured.z() = bim::wrapAngle(bim::yawOf(corrected.linear()) - yaw_i);
+  Eigen::Matrix3d R3 = Eigen::Matrix3d::Identity();
+  R3.topLeftCorner<2, 2>() = R_i;
+  const Eigen::Matrix3d information =
+      options.factor_information_share * (R3.transpose() * result.information * R3);
+  // Directions the scan does not see (a corridor's axis) have no information: a tiny floor keeps
+  // the square root defined without adding any.
+  const Eigen::LLT<Eigen::Matrix3d> llt(information + 1e-9 * Eigen::Matrix3d::Identity());
+  if (llt.info() != Eigen::Success) {
+    r.agrees = false;
+    return predicted;
+  }
+  r.sqrt_information = llt.matrixU();
+  return corrected;
+}
+
+void SGraph::optimiseAll(bool with_hook, int max_iterations) {
+  optimise(1, with_hook, max_iterations);
+}
+
+void SGraph::startNewSegment(double stamp, const std::string& reason) {
+  if (keyframes_.empty()) return;
+  Segment ended;
+  ended.start = segment_start_;
+  ended.end = stamp;
+  ended.keyframes = int(keyframes_.size());
+  ended.planes = int(planes_.size());
+  ended.rooms = int(confirmedRooms().size());
+  ended.reason = reason;
+  segments_.push_back(ended);
+  for (const auto& kf : keyframes_) past_keyframes_.push_back({kf.stamp, kf.pose(), kf.odometry});
+  // M continues: the new segment's first keyframe at the latest estimate.
+  const Keyframe& last = keyframes_.back();
+  start_correction_ = last.pose() * last.odometry.inverse();
+  keyframes_.clear();
+  planes_.clear();
+  rooms_.clear();
+  floor_sum_ = 0.0;
+  floor_count_ = 0;
+  segment_start_ = stamp;
+}
+
+SGraph::WindowSize SGraph::optimise(int first, bool with_hook, int max_iterations) {
+  const int n = int(keyframes_.size());
+  if (n < 2) return {};
+  first = std::clamp(first, 1, n - 1);  // keyframe 0 fixes the gauge (M)
+  ceres::Problem::Options problem_options;
+  // The manifolds and the loss live on this stack frame, not in the problem.
+  problem_options.manifold_ownership = ceres::DO_NOT_TAKE_OWNERSHIP;
+  problem_options.loss_function_ownership = ceres::DO_NOT_TAKE_OWNERSHIP;
+  ceres::Problem problem(problem_options);
+  ceres::EigenQuaternionManifold quaternion;
+  bim::PlaneManifold plane_manifold;
+  ceres::HuberLoss huber(options_.huber);
+
+  std::set<int> held;  // keyframes in the problem whose poses do not move
+  auto add_pose = [&](int k, bool fixed) {
+    Keyframe& kf = keyframes_[k];
+    problem.AddParameterBlock(kf.position.data(), 3);
+    problem.AddParameterBlock(kf.orientation.coeffs().data(), 4, &quaternion);
+    if (fixed) {
+      problem.SetParameterBlockConstant(kf.position.data());
+      problem.SetParameterBlockConstant(kf.orientation.coeffs().data());
+      held.insert(k);
+    }
+  };
+  add_pose(first - 1, true);
+  for (int k = first; k < n; ++k) {
+    add_pose(k, false);
+    const Keyframe& a = keyframes_[k - 1];
+    const Keyframe& b = keyframes_[k];
+    const Eigen::Isometry3d delta = a.odometry.inverse() * b.odometry;
+    const auto [sigma_t, sigma_r] = odometrySigmas(delta.translation().norm());
+    problem.AddResidualBlock(
+        OdometryFactor::create(delta, sigma_t, sigma_r), nullptr, keyframes_[k - 1].position.data(),
+        keyframes_[k - 1].orientation.coeffs().data(), keyframes_[k].position.data(),
+        keyframes_[k].orientation.coeffs().data());
+    const KeyframeRegistration& registration = b.registration;
+    if (registration.attempted && registration.agrees) {
+      problem.AddResidualBlock(
+          ScanMatchFactor::create(registration.measured, registration.sqrt_information), &huber,
+          keyframes_[k - 1].position.data(), keyframes_[k - 1].orientation.coeffs().data(),
+          keyframes_[k].position.data(), keyframes_[k].orientation.coeffs().data());
+    }
+  }
+  // Planes seen in the window, their observations from the window, and a few older, held ones.
+  std::set<int> planes;
+  for (int k = first; k < n; ++k) {
+    for (const auto& [plane, observation] : keyframes_[k].observations) planes.insert(plane);
+  }
+  for (int plane : planes) {
+    Plane& p = planes_[plane];
+    problem.AddParameterBlock(p.parameters.data(), 4, &plane_manifold);
+    int anchors = 0;
+    for (auto it = p.observed_by.rbegin(); it != p.observed_by.rend(); ++it) {
+      const int k = *it;
+      if (k < first) {
+        // Newest first: once the anchors are taken, every observation left is older still.
+        if (anchors >= options_.anchors_per_plane) break;
+        ++anchors;
+        if (!held.count(k)) add_pose(k, true);
+      }
+      for (const auto& [observed, observation] : keyframes_[k].observations) {
+        if (observed != plane) continue;
+        problem.AddResidualBlock(
+            PosePlaneFactor::create(bim::toVector(observation.plane), R_T_L_,
+                                    options_.sigma_plane_angle, options_.sigma_plane_distance),
+            &huber, keyframes_[k].position.data(), keyframes_[k].orientation.coeffs().data(),
+            p.parameters.data());
+      }
+    }
+  }
+  // Rooms whose planes are all in the problem: their centres follow the room factors.
+  std::vector<int> active_rooms;
+  for (int r = 0; r < int(rooms_.size()); ++r) {
+    Room& room = rooms_[r];
+    const auto& pairs = room.candidate.pairs;
+    const int count = room.candidate.four_wall ? 2 : 1;
+    bool all = true;
+    for (int i = 0; i < count; ++i)
+      all = all && planes.count(pairs[i][0]) && planes.count(pairs[i][1]);
+    if (!all) continue;
+    active_rooms.push_back(r);
+    if (room.candidate.four_wall) {
+      problem.AddResidualBlock(
+          bim::FourWallRoomFactor::create(options_.sigma_room), nullptr, room.centre.data(),
+          planes_[pairs[0][0]].parameters.data(), planes_[pairs[0][1]].parameters.data(),
+          planes_[pairs[1][0]].parameters.data(), planes_[pairs[1][1]].parameters.data());
+    } else {
+      const Eigen::Vector2d axis_point = keyframes_[room.keyframes.front()].position.head<2>();
+      problem.AddResidualBlock(bim::TwoWallRoomFactor::create(axis_point, options_.sigma_room),
+                               nullptr, room.centre.data(), planes_[pairs[0][0]].parameters.data(),
+                               planes_[pairs[0][1]].parameters.data());
+    }
+  }
+  if (with_hook && window_hook_) window_hook_(problem, planes, active_rooms);
+  ceres::Solver::Options solver;
+  solver.linear_solver_type = ceres::SPARSE_NORMAL_CHOLESKY;
+  solver.max_num_iterations = max_iterations;
+  solver.num_threads = 1;
+  ceres::Solver::Summary summary;
+  ceres::Solve(solver, &problem, &summary);
+  for (int plane : planes) {
+    Plane& p = planes_[plane];
+    p.map.plane = bim::toPlane(p.parameters);
+  }
+  return {problem.NumResidualBlocks(), problem.NumParameterBlocks()};
+}
+
+MapPlane SGraph::wallOf(const Plane& p) {
+  MapPlane wall = p.map;
+  if (p.merged_into >= 0) {
+    // Never associated, never a room's wall: normal upwards, extent nowhere.
+    wall.plane = {Eigen::Vector3d::UnitZ(), 1e9};
+    wall.start = wall.end = Eigen::Vector2d::Constant(1e9);
+  }
+  return wall;
+}
+
+std::vector<MapPlane> SGraph::activeWalls() const {
+  std::vector<MapPlane> walls;
+  walls.reserve(planes_.size());
+  for (const auto& p : planes_) walls.push_back(wallOf(p));
+  return walls;
+}
+
+void SGraph::mergeDuplicatePlanes(int first_keyframe) {
+  std::set<int> recent;
+  for (int k = first_keyframe; k < int(keyframes_.size()); ++k) {
+    for (const auto& [plane, observation] : keyframes_[k].observations) recent.insert(plane);
+  }
+  // The map as association sees it, made once (a copy per recent plane made this stage grow
+  // with the map) and kept equal to activeWalls() as merges change it.
+  std::vector<MapPlane> walls = activeWalls();
+  AssociationOptions strict = options_.association;
+  strict.max_angle_deg = 5.0;
+  strict.max_distance = 0.06;
+  for (int j : recent) {
+    Plane& pj = planes_[j];
+    if (pj.merged_into >= 0) continue;
+    // Compare j, as one more observation, with every other active plane.
+    PlaneObservation as_observation;
+    as_observation.plane = pj.map.plane;
+    as_observation.start = Eigen::Vector3d(pj.map.start.x(), pj.map.start.y(), 0.0);
+    as_observation.end = Eigen::Vector3d(pj.map.end.x(), pj.map.end.y(), 0.0);
+    as_observation.centroid = 0.5 * (as_observation.start + as_observation.end);
+    const bim::Plane own = walls[j].plane;
+    walls[j].plane = {Eigen::Vector3d::UnitZ(), 1e9};  // not with itself
+    const int i = associate(as_observation, walls, strict);
+    walls[j].plane = own;
+    if (i < 0) continue;
+    // Keep the plane observed most; move the other's observations over.
+    const int keep = planes_[i].map.observations >= pj.map.observations ? i : j;
+    const int drop = keep == i ? j : i;
+    Plane& kept = planes_[keep];
+    Plane& dropped = planes_[drop];
+    for (int k : dropped.observed_by) {
+      for (auto& [plane, observation] : keyframes_[k].observations) {
+        if (plane == drop) plane = keep;
+      }
+      kept.observed_by.push_back(k);
+    }
+    std::sort(kept.observed_by.begin(), kept.observed_by.end());
+    kept.observed_by.erase(std::unique(kept.observed_by.begin(), kept.observed_by.end()),
+                           kept.observed_by.end());
+    PlaneObservation extent;
+    extent.start = Eigen::Vector3d(dropped.map.start.x(), dropped.map.start.y(), 0.0);
+    extent.end = Eigen::Vector3d(dropped.map.end.x(), dropped.map.end.y(), 0.0);
+    extend(kept.map, extent);
+    kept.map.observations += dropped.map.observations;
+    kept.map.z_min = std::min(kept.map.z_min, dropped.map.z_min);
+    kept.map.z_max = std::max(kept.map.z_max, dropped.map.z_max);
+    dropped.merged_into = keep;
+    dropped.observed_by.clear();
+    walls[keep] = wallOf(kept);
+    walls[drop] = wallOf(dropped);
+    // Rooms built on the dropped plane now stand on the kept one.
+    for (auto& room : rooms_) {
+      for (auto& pair : room.candidate.pairs) {
+        for (int& p : pair) {
+          if (p == drop) p = keep;
+        }
+      }
+    }
+  }
+}
+
+void SGraph::detectRooms(int keyframe, double dominant, const std::vector<MapPlane>& walls) {
+  if (walls.size() < 2) return;
+  const Eigen::Vector2d point = keyframes_[keyframe].position.head<2>();
+  const auto candidate = detectRoom(point, walls, dominant, options_.rooms);
+  if (!candidate) return;
+  auto same_planes = [](const RoomCandidate& a, const RoomCandidate& b) {
+    if (a.four_wall != b.four_wall) return false;
+    std::vector<int> pa, pb;
+    for (int i = 0; i < (a.four_wall ? 2 : 1); ++i) {
+      pa.insert(pa.end(), {a.pairs[i][0], a.pairs[i][1]});
+      pb.insert(pb.end(), {b.pairs[i][0], b.pairs[i][1]});
+    }
+    std::sort(pa.begin(), pa.end());
+    std::sort(pb.begin(), pb.end());
+    return pa == pb;
+  };
+  // A corridor's centre moves along its axis with the keyframe it is seen from: the same
+  // corridor has the same direction, mid-plane and width.
+  auto same_corridor = [this](const Room& room, const RoomCandidate& c) {
+    if (room.candidate.four_wall || c.four_wall) return false;
+    const bim::Plane& a = planes_[room.candidate.pairs[0][0]].map.plane;
+    const bim::Plane& b = planes_[c.pairs[0][0]].map.plane;
+    if (std::abs(a.normal.dot(b.normal)) < std::cos(10.0 * std::numbers::pi / 180.0)) return false;
+    const Eigen::Vector2d n = a.normal.head<2>().normalized();
+    return std::abs(n.dot(room.centre - c.centre)) < 0.2 &&
+           std::abs(room.candidate.widths[0] - c.widths[0]) < 0.2;
+  };
+  for (auto& room : rooms_) {
+    // The same room: the same walls, or (walls re-associated since) the same place and shape.
+    const bool close = room.candidate.four_wall && candidate->four_wall &&
+                       (room.centre - candidate->centre).norm() < 0.5 &&
+                       std::abs(room.candidate.widths[0] - candidate->widths[0]) < 0.3 &&
+                       std::abs(room.candidate.widths[1] - candidate->widths[1]) < 0.3;
+    if (same_planes(room.candidate, *candidate) || close || same_corridor(room, *candidate)) {
+      if (std::find(room.keyframes.begin(), room.keyframes.end(), keyframe) ==
+          room.keyframes.end()) {
+        room.keyframes.push_back(keyframe);
+      }
+      return;
+    }
+  }
+  Room room;
+  room.candidate = *candidate;
+  room.centre = candidate->centre;
+  room.keyframes = {keyframe};
+  rooms_.push_back(room);
+}
+
+std::vector<int> SGraph::confirmedRooms() const {
+  // Inside a room: in front of all its walls.
+  auto contains = [this](const Room& room, const Eigen::Vector2d& point) {
+    for (int i = 0; i < (room.candidate.four_wall ? 2 : 1); ++i) {
+      for (int plane : room.candidate.pairs[i]) {
+        if (planes_[plane].map.plane.signedDistance({point.x(), point.y(), 1.0}) <= 0) return false;
+      }
+    }
+    return true;
+  };
+  auto area = [](const Room& r) {
+    return r.candidate.four_wall ? r.candidate.widths[0] * r.candidate.widths[1] : 1e300;
+  };
+  std::vector<int> out;
+  for (int i = 0; i < int(rooms_.size()); ++i) {
+    const Room& room = rooms_[i];
+    // Corridors must be stood in twice; four-wall rooms are already checked by their walls' cover.
+    if (!room.candidate.four_wall && room.keyframes.size() < 2) continue;
+    bool encloses_smaller = false;
+    for (int j = 0; j < int(rooms_.size()) && !encloses_smaller; ++j) {
+      const Room& other = rooms_[j];
+      encloses_smaller = j != i && other.candidate.four_wall && room.candidate.four_wall &&
+                         area(other) < area(room) - 0.5 && contains(room, other.centre);
+    }
+    if (!encloses_smaller) out.push_back(i);
+  }
+  return out;
+}
+
+std::optional<double> SGraph::floorHeight() const {
+  if (floor_count_ == 0) return std::nullopt;
+  return floor_sum_ / floor_count_;
+}
+
+std::optional<Eigen::Vector2d> SGraph::floorCentre() const {
+  const auto confirmed = confirmedRooms();
+  if (confirmed.empty()) return std::nullopt;
+  Eigen::Vector2d sum = Eigen::Vector2d::Zero();
+  for (int r : confirmed) sum += rooms_[r].centre;
+  return sum / double(confirmed.size());
+}
+
+MapDiagnostics SGraph::diagnostics() const {
+  MapDiagnostics out;
+  out.keyframes = past_keyframes_;
+  for (const auto& kf : keyframes_) out.keyframes.push_back({kf.stamp, kf.pose(), kf.odometry});
+  out.planes = planes_.size();
+  for (int r : confirmedRooms()) {
+    const Room& room = rooms_[r];
+    out.rooms.push_back({room.centre, room.candidate.four_wall, room.candidate.widths});
+  }
+  out.timings = timings_;
+  return out;
+}
+
+nlohmann::json SGraph::toJson() const {
+  nlohmann::json keyframes = nlohmann::json::array(), planes = nlohmann::json::array();
+  for (const auto& k : keyframes_) {
+    const Eigen::Quaterniond q = k.orientation.normalized();
+    keyframes.push_back({{"stamp", k.stamp},
+                         {"position", {k.position.x(), k.position.y(), k.position.z()}},
+                         {"orientation_xyzw", {q.x(), q.y(), q.z(), q.w()}},
+                         {"planes", k.observations.size()},
+                         {"registration",
+                          {{"attempted", k.registration.attempted},
+                           {"agrees", k.registration.agrees},
+                           {"inlier_share", k.registration.inlier_share},
+                           {"inlier_share_predicted", k.registration.inlier_share_predicted}}}});
+  }
+  for (std::size_t i = 0; i < planes_.size(); ++i) {
+    const auto& p = planes_[i];
+    planes.push_back(
+        {{"id", i},
+         {"n", {p.map.plane.normal.x(), p.map.plane.normal.y(), p.map.plane.normal.z()}},
+         {"d", p.map.plane.d},
+         {"start", {p.map.start.x(), p.map.start.y()}},
+         {"end", {p.map.end.x(), p.map.end.y()}},
+         {"observations", p.map.observations}});
+  }
+  nlohmann::json rooms = nlohmann::json::array();
+  for (int i : confirmedRooms()) {
+    const auto& r = rooms_[i];
+    nlohmann::json pairs = nlohmann::json::array();
+    for (int k = 0; k < (r.candidate.four_wall ? 2 : 1); ++k) {
+      pairs.push_back({r.candidate.pairs[k][0], r.candidate.pairs[k][1]});
+    }
+    nlohmann::json widths = r.candidate.four_wall
+                                ? nlohmann::json{r.candidate.widths[0], r.candidate.widths[1]}
+                                : nlohmann::json{r.candidate.widths[0]};
+    rooms.push_back({{"id", i},
+                     {"kind", r.candidate.four_wall ? "four_wall" : "two_wall"},
+                     {"centre", {r.centre.x(), r.centre.y()}},
+                     {"plane_pairs", pairs},
+                     {"widths", widths},
+                     {"keyframes", r.keyframes.size()}});
+  }
+  nlohmann::json segments = nlohmann::json::array();
+  for (const auto& segment : segments_) {
+    segments.push_back({{"start", segment.start},
+                        {"end", segment.end},
+                        {"keyframes", segment.keyframes},
+                        {"planes", segment.planes},
+                        {"rooms", segment.rooms},
+                        {"ended_because", segment.reason}});
+  }
+  nlohmann::json out = {{"frame", "M"},         {"keyframes", keyframes},
+                        {"planes", planes},     {"rooms", rooms},
+                        {"segments", segments}, {"segment_start", segment_start_}};
+  if (const auto floor = floorCentre()) out["floor"] = {{"centre", {floor->x(), floor->y()}}};
+  return out;
+}
+
+}  // namespace isg::slam

@@ -1,0 +1,196 @@
+#pragma once
+
+#include <Eigen/Geometry>
+#include <deque>
+#include <functional>
+#include <memory>
+#include <nlohmann/json.hpp>
+#include <numbers>
+#include <optional>
+#include <set>
+#include <utility>
+#include <vector>
+
+#include "slam/map_diagnostics.hpp"
+#include "slam/messages.hpp"
+#include "slam/odometry_buffer.hpp"
+#include "slam/sgraph/plane_extraction.hpp"
+#include "slam/sgraph/plane_map.hpp"
+#include "slam/sgraph/room_detection.hpp"
+#include "slam/sgraph/scan_registration.hpp"
+#include "slam/stage_times.hpp"
+#include "slam/thread_pool.hpp"
+
+namespace ceres {
+class Problem;
+}
+
+namespace isg::slam {
+
+// Tuning of the S-Graph (docs/slam.md); the defaults are documented starting values.
+struct SGraphOptions {
+  double keyframe_distance = 1.0;  // m of odometry since the last keyframe
+  double keyframe_angle = 0.5;     // rad
+  PlaneExtractionOptions extraction;
+  AssociationOptions association;
+  double sigma_plane_angle = 2.0 * std::numbers::pi / 180.0;  // rad
+  double sigma_plane_distance = 0.03;                         // m
+  // Odometry between keyframes: σ = floor + per_metre · √distance (a random walk).
+  double sigma_odometry_translation_floor = 0.01;
+  double sigma_odometry_translation_per_metre = 0.03;
+  double sigma_odometry_rotation_floor = 0.002;
+  double sigma_odometry_rotation_per_metre = 0.012;
+  double huber = 1.0;         // on whitened plane residuals
+  int window = 25;            // keyframes optimised after each new one; older ones are held
+  int anchors_per_plane = 8;  // held older observations kept for each plane in the window
+  int max_iterations = 10;
+  // Threads for the graph's own loops (the registration's local map and correspondences), the
+  // caller's included. Results are the same whatever the number (slam/thread_pool.hpp).
+  int threads = 1;
+  RoomDetectionOptions rooms;
+  double sigma_room = 0.05;              // m, room-centre factors
+  ScanRegistrationOptions registration;  // LiDAR odometry between keyframes
+};
+
+// What LiDAR odometry made of one keyframe (slam/sgraph/scan_registration.hpp).
+struct KeyframeRegistration {
+  bool attempted = false;  // a local map to register against existed
+  bool agrees = true;      // the scan agreed with the local map (no factor otherwise)
+  double inlier_share = 0.0;
+  double inlier_share_predicted = 0.0;
+  Eigen::Vector3d correction = Eigen::Vector3d::Zero();  // applied to the odometry prediction
+  // The factor to the previous keyframe: motion (x, y in its heading frame, yaw) and S.
+  Eigen::Vector3d measured = Eigen::Vector3d::Zero();
+  Eigen::Matrix3d sqrt_information = Eigen::Matrix3d::Zero();
+};
+
+// The S-Graph's keyframe and wall layers: keyframe poses in M constrained by odometry, wall
+// planes observed from them. Each new keyframe triggers an optimisation over a sliding window of
+// recent keyframes and the planes they see, anchored by older observations of those planes:
+// the cost of one optimisation stays bounded however long the run.
+class SGraph {
+ public:
+  SGraph(const Eigen::Isometry3d& R_T_L, const SGraphOptions& options = {});
+
+  void addOdometry(const Odometry& odometry);
+  // Deskews the scan with odometry and, when the robot has moved enough since the last keyframe,
+  // makes a keyframe of it. Returns whether it did.
+  bool addScan(Scan scan);
+  // Whether addScan(scan at `stamp`) would make a keyframe of it (and so read it): odometry covers
+  // the instant and the robot moved or turned enough since the last keyframe.
+  bool wouldKeyframe(double stamp) const;
+
+  struct Keyframe {
+    double stamp = 0.0;
+    Eigen::Isometry3d odometry = Eigen::Isometry3d::Identity();  // M_T_R by odometry alone
+    Eigen::Vector3d position = Eigen::Vector3d::Zero();          // estimate
+    Eigen::Quaterniond orientation = Eigen::Quaterniond::Identity();
+    std::vector<std::pair<int, PlaneObservation>> observations;  // (map plane, observation in L)
+    KeyframeRegistration registration;
+    std::vector<Eigen::Vector3f> cloud;  // downsampled scan in L; kept for the local map only
+    Eigen::Isometry3d pose() const;
+  };
+  struct Plane {
+    MapPlane map;
+    Eigen::Vector4d parameters;    // [n, d] in M, optimised
+    std::vector<int> observed_by;  // keyframe indices
+    int merged_into = -1;          // >= 0: found to be the same surface as that plane
+  };
+
+  struct Room {
+    RoomCandidate candidate;
+    Eigen::Vector2d centre = Eigen::Vector2d::Zero();  // ρ, optimised with the room factor
+    std::vector<int> keyframes;                        // keyframes that stood in it
+  };
+  // The floor node: the centre of the rooms (one level).
+  std::optional<Eigen::Vector2d> floorCentre() const;
+
+  const std::deque<Keyframe>& keyframes() const { return keyframes_; }
+  // Every room candidate seen so far, and the confirmed ones: not enclosing a smaller four-wall
+  // candidate (a rectangle over two rooms whose dividing wall was not yet mapped when it was
+  // found), and for corridors stood in at two keyframes or more.
+  const std::deque<Room>& roomCandidates() const { return rooms_; }
+  std::vector<int> confirmedRooms() const;
+  const std::deque<Plane>& planes() const { return planes_; }
+  // M_T_R at the latest odometry: the last keyframe's estimate and the odometry since it.
+  std::optional<Odometry> latestPose() const;
+  // M_T_R at time t (within the buffered odometry), corrected by the last keyframe before it.
+  std::optional<Eigen::Isometry3d> poseAt(double t) const;
+  nlohmann::json toJson() const;
+
+  // Ends the current segment and starts a fresh, empty map (the odometry buffer stays): what a
+  // localizer does when the world stopped agreeing with its graph (kidnapped, lost). The new
+  // segment's first keyframe continues M from the latest pose, so M stays one frame. The old
+  // segment's keyframes stay in diagnostics() and toJson()'s "segments".
+  void startNewSegment(double stamp, const std::string& reason);
+  int segment() const { return int(segments_.size()); }
+
+  // Optimises every keyframe (the first held), plane and room of the segment at once, with or
+  // without the window hook's factors: a contradiction is judged on a map not optimised under
+  // the answer it contradicts (docs/matching.md).
+  void optimiseAll(bool with_hook, int max_iterations = 20);
+
+  // The floor's height in M (from the floor planes seen below the sensor), once seen.
+  std::optional<double> floorHeight() const;
+
+  // More factors for every window optimisation: the iS-Graph's link to the plan. Called with the
+  // problem, the plane indices in the window and the rooms whose planes all are; it may add
+  // blocks of its own and factors on planeParameters / roomCentre of those.
+  using WindowHook = std::function<void(ceres::Problem& problem, const std::set<int>& planes,
+                                        const std::vector<int>& rooms)>;
+  void setWindowHook(WindowHook hook) { window_hook_ = std::move(hook); }
+  double* planeParameters(int plane) { return planes_[plane].parameters.data(); }
+  double* roomCentre(int room) { return rooms_[room].centre.data(); }
+
+  using Timing = KeyframeTiming;
+  const std::vector<Timing>& timings() const { return timings_; }
+  // Seconds in each stage of addScan over the whole run.
+  const StageTimes& stageTimes() const { return stage_times_; }
+  // The map as plain data (slam/map_diagnostics.hpp).
+  MapDiagnostics diagnostics() const;
+
+ private:
+  struct WindowSize {
+    int residual_blocks = 0;
+    int parameter_blocks = 0;
+  };
+  // Optimises the keyframes from `first` on (the one before held) and what they observe;
+  // returns the size of the problem solved.
+  WindowSize optimise(int first, bool with_hook, int max_iterations);
+  void detectRooms(int keyframe, double dominant_yaw, const std::vector<MapPlane>& walls);
+  // Planes of the window that turned out to be the same surface (created before the optimisation
+  // brought them together) are merged into the one observed most.
+  void mergeDuplicatePlanes(int first_keyframe);
+  std::vector<MapPlane> activeWalls() const;   // merged planes get an empty, far-away extent
+  static MapPlane wallOf(const Plane& plane);  // one entry of activeWalls()
+  // LiDAR odometry for a new keyframe predicted at `predicted`: registers its cloud to the
+  // latest keyframes' and returns the corrected pose (the prediction when it cannot).
+  Eigen::Isometry3d registerKeyframe(Keyframe& keyframe, const Eigen::Isometry3d& predicted);
+  std::pair<double, double> odometrySigmas(double distance) const;  // translation, rotation
+
+  Eigen::Isometry3d R_T_L_;
+  SGraphOptions options_;
+  OdometryBuffer odometry_;
+  std::optional<Odometry> latest_odometry_;
+  std::deque<Keyframe> keyframes_;
+  std::deque<Plane> planes_;
+  std::deque<Room> rooms_;
+  std::vector<Timing> timings_;
+  StageTimes stage_times_;
+  // When options.threads > 1; a copy of the graph (checkForContradiction) shares it.
+  std::shared_ptr<ThreadPool> pool_;
+  WindowHook window_hook_;
+  Eigen::Isometry3d start_correction_ = Eigen::Isometry3d::Identity();
+  struct Segment {
+    double start = 0.0, end = 0.0;
+    int keyframes = 0, planes = 0, rooms = 0;
+    std::string reason;  // why it ended
+  };
+  std::vector<Segment> segments_;            // ended ones
+  std::vector<MapKeyframe> past_keyframes_;  // of the ended segments, for diagnostics
+  double segment_start_ = 0.0;
+  double floor_sum_ = 0.0;
+  int floor_count_ = 0;
+};
+
+}  // namespace isg::slam

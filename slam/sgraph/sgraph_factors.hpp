@@ -1,0 +1,140 @@
+#pragma once
+
+#include <ceres/autodiff_cost_function.h>
+#include <ceres/rotation.h>
+
+#include <Eigen/Geometry>
+
+#include "bim/plane_manifold.hpp"
+
+namespace isg::slam {
+
+// The S-Graph's keyframe factors (docs/slam.md), as Ceres AutoDiff cost functions. A keyframe
+// pose M_T_R is two parameter blocks: its position (3) and its orientation as an Eigen quaternion
+// [x, y, z, w] (4, on ceres::EigenQuaternionManifold). Planes are [n, d] on bim::PlaneManifold.
+// The room factors are the A-Graph's (bim/agraph_factors.hpp): the same maths, written once.
+
+// A plane observed in the LiDAR frame of a keyframe: e = (M_T_L⁻¹ · π_M) ⊖ z in the minimal
+// (azimuth, elevation, distance) form, whitened. M_T_L = M_T_R · R_T_L.
+// For T = (R, t), T⁻¹ · π = (Rᵀn, d + n·t).
+struct PosePlaneFactor {
+  PosePlaneFactor(const Eigen::Vector4d& measured, const Eigen::Isometry3d& R_T_L,
+                  double sigma_angle, double sigma_distance)
+      : measured_(measured),
+        R_T_L_rotation_(R_T_L.rotation()),
+        R_T_L_translation_(R_T_L.translation()),
+        weights_(1.0 / sigma_angle, 1.0 / sigma_angle, 1.0 / sigma_distance) {}
+
+  template <typename T>
+  bool operator()(const T* position, const T* orientation, const T* plane, T* residual) const {
+    const Eigen::Map<const Eigen::Quaternion<T>> q(orientation);
+    const Eigen::Map<const Eigen::Matrix<T, 3, 1>> p(position);
+    // M_T_L = M_T_R · R_T_L.
+    const Eigen::Matrix<T, 3, 3> R = q.toRotationMatrix() * R_T_L_rotation_.cast<T>();
+    const Eigen::Matrix<T, 3, 1> t = q * R_T_L_translation_.cast<T>() + p;
+    const Eigen::Matrix<T, 3, 1> n(plane[0], plane[1], plane[2]);
+    Eigen::Matrix<T, 4, 1> predicted;
+    predicted.template head<3>() = R.transpose() * n;
+    predicted(3) = plane[3] + n.dot(t);
+    const Eigen::Matrix<T, 3, 1> e = bim::planeMinus(predicted, measured_);
+    for (int i = 0; i < 3; ++i) residual[i] = T(weights_(i)) * e(i);
+    return true;
+  }
+
+  static ceres::CostFunction* create(const Eigen::Vector4d& measured,
+                                     const Eigen::Isometry3d& R_T_L, double sigma_angle,
+                                     double sigma_distance) {
+    return new ceres::AutoDiffCostFunction<PosePlaneFactor, 3, 3, 4, 4>(
+        new PosePlaneFactor(measured, R_T_L, sigma_angle, sigma_distance));
+  }
+
+ private:
+  Eigen::Vector4d measured_;
+  Eigen::Matrix3d R_T_L_rotation_;
+  Eigen::Vector3d R_T_L_translation_;
+  Eigen::Vector3d weights_;
+};
+
+// Odometry between two keyframes: the measured relative pose Δ = M_T_Ri⁻¹ · M_T_Rj against the
+// estimated one; residual [translation error (3), 2·vec(q_error) (3)], whitened per component.
+struct OdometryFactor {
+  OdometryFactor(const Eigen::Isometry3d& measured, double sigma_translation, double sigma_rotation)
+      : dq_(measured.rotation()),
+        dt_(measured.translation()),
+        weight_t_(1.0 / sigma_translation),
+        weight_r_(1.0 / sigma_rotation) {}
+
+  template <typename T>
+  bool operator()(const T* p_i, const T* q_i, const T* p_j, const T* q_j, T* residual) const {
+    const Eigen::Map<const Eigen::Quaternion<T>> qi(q_i), qj(q_j);
+    const Eigen::Map<const Eigen::Matrix<T, 3, 1>> pi(p_i), pj(p_j);
+    const Eigen::Quaternion<T> qi_inverse = qi.conjugate();
+    const Eigen::Matrix<T, 3, 1> estimated_t = qi_inverse * (pj - pi);
+    const Eigen::Quaternion<T> estimated_q = qi_inverse * qj;
+    const Eigen::Quaternion<T> error_q = dq_.cast<T>().conjugate() * estimated_q;
+    const Eigen::Matrix<T, 3, 1> error_t = estimated_t - dt_.cast<T>();
+    for (int k = 0; k < 3; ++k) {
+      residual[k] = T(weight_t_) * error_t(k);
+      residual[3 + k] = T(weight_r_) * T(2.0) * error_q.vec()(k);
+    }
+    return true;
+  }
+
+  static ceres::CostFunction* create(const Eigen::Isometry3d& measured, double sigma_translation,
+                                     double sigma_rotation) {
+    return new ceres::AutoDiffCostFunction<OdometryFactor, 6, 3, 4, 3, 4>(
+        new OdometryFactor(measured, sigma_translation, sigma_rotation));
+  }
+
+ private:
+  Eigen::Quaterniond dq_;
+  Eigen::Vector3d dt_;
+  double weight_t_, weight_r_;
+};
+
+// LiDAR odometry between two keyframes (slam/sgraph/scan_registration.hpp): the registered planar
+// motion of keyframe j relative to keyframe i — (x, y) in i's heading frame and the change of yaw —
+// against the estimated one, whitened by the registration's information (an upper-triangular
+// square root S, SᵀS = information in i's frame). Height, roll and pitch are left to odometry.
+struct ScanMatchFactor {
+  ScanMatchFactor(const Eigen::Vector3d& measured, const Eigen::Matrix3d& sqrt_information)
+      : measured_(measured), sqrt_information_(sqrt_information) {}
+
+  template <typename T>
+  static T yawOf(const Eigen::Map<const Eigen::Quaternion<T>>& q) {
+    using std::atan2;
+    return atan2(T(2.0) * (q.w() * q.z() + q.x() * q.y()),
+                 T(1.0) - T(2.0) * (q.y() * q.y() + q.z() * q.z()));
+  }
+
+  template <typename T>
+  bool operator()(const T* p_i, const T* q_i, const T* p_j, const T* q_j, T* residual) const {
+    using std::atan2;
+    using std::cos;
+    using std::sin;
+    const Eigen::Map<const Eigen::Quaternion<T>> qi(q_i), qj(q_j);
+    const T yaw_i = yawOf(qi);
+    const T dx = p_j[0] - p_i[0], dy = p_j[1] - p_i[1];
+    const T c = cos(yaw_i), s = sin(yaw_i);
+    Eigen::Matrix<T, 3, 1> e;
+    e(0) = c * dx + s * dy - T(measured_.x());
+    e(1) = -s * dx + c * dy - T(measured_.y());
+    const T dyaw = yawOf(qj) - yaw_i - T(measured_.z());
+    e(2) = atan2(sin(dyaw), cos(dyaw));
+    const Eigen::Matrix<T, 3, 1> r = sqrt_information_.cast<T>() * e;
+    for (int k = 0; k < 3; ++k) residual[k] = r(k);
+    return true;
+  }
+
+  static ceres::CostFunction* create(const Eigen::Vector3d& measured,
+                                     const Eigen::Matrix3d& sqrt_information) {
+    return new ceres::AutoDiffCostFunction<ScanMatchFactor, 3, 3, 4, 3, 4>(
+        new ScanMatchFactor(measured, sqrt_information));
+  }
+
+ private:
+  Eigen::Vector3d measured_;
+  Eigen::Matrix3d sqrt_information_;
+};
+
+}  // namespace isg::slam

@@ -1,0 +1,31 @@
+#pragma once
+
+#include "slam/localizer.hpp"
+#include "slam/sgraph/sgraph.hpp"
+
+namespace isg::slam {
+
+// The S-Graph behind the Localizer interface: what the testbed's loop and `isg slam` feed. It
+// localizes in its own map frame M only; the plan comes with the iS-Graph (isgraph_localizer.hpp).
+class SGraphLocalizer : public Localizer {
+ public:
+  SGraphLocalizer(const Eigen::Isometry3d& R_T_L, const SGraphOptions& options = {})
+      : graph_(R_T_L, options) {}
+
+  std::string name() const override { return "s-graph"; }
+  void pushOdometry(const Odometry& odometry) override { graph_.addOdometry(odometry); }
+  void pushScan(const Scan& scan) override { graph_.addScan(scan); }
+  bool wantsScan(double stamp) const override { return graph_.wouldKeyframe(stamp); }
+  std::optional<Odometry> poseInMap() const override { return graph_.latestPose(); }
+  std::optional<Eigen::Isometry3d> mapInPlan() const override { return std::nullopt; }
+  nlohmann::json graph() const override { return graph_.toJson(); }
+  std::optional<MapDiagnostics> mapDiagnostics() const override { return graph_.diagnostics(); }
+  StageTimes stageTimes() const override { return graph_.stageTimes(); }
+
+  const SGraph& sgraph() const { return graph_; }
+
+ private:
+  SGraph graph_;
+};
+
+}  // namespace isg::slam

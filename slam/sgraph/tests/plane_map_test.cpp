@@ -1,0 +1,89 @@
+#include "slam/sgraph/plane_map.hpp"
+
+#include <gtest/gtest.h>
+#include <numbers>
+
+#include <random>
+
+namespace isg::slam {
+namespace {
+
+// An observation of the wall {p : n·p + d = 0} seen between `from` and `to` (on the wall).
+PlaneObservation observe(const Eigen::Vector3d& normal, const Eigen::Vector2d& from,
+                         const Eigen::Vector2d& to) {
+  PlaneObservation o;
+  const Eigen::Vector3d a(from.x(), from.y(), 1.5), b(to.x(), to.y(), 1.5);
+  o.plane = bim::Plane::throughPoint(normal, 0.5 * (a + b));
+  o.centroid = 0.5 * (a + b);
+  o.start = a;
+  o.end = b;
+  o.points = 500;
+  o.orientation = PlaneOrientation::kVertical;
+  return o;
+}
+
+MapPlane mapPlane(const PlaneObservation& o) {
+  return {o.plane, o.start.head<2>(), o.end.head<2>(), 1};
+}
+
+TEST(PlaneAssociation, HoldsUnderNoise) {
+  // Two walls of a corridor: y = 0 (normal +y) and y = 2 (normal -y), and a far wall x = 10.
+  const std::vector<MapPlane> map = {mapPlane(observe({0, 1, 0}, {0, 0}, {8, 0})),
+                                     mapPlane(observe({0, -1, 0}, {0, 2}, {8, 2})),
+                                     mapPlane(observe({-1, 0, 0}, {10, 0}, {10, 2}))};
+  std::mt19937 rng(3);
+  std::normal_distribution<double> angle(0.0, 2.0 * std::numbers::pi / 180.0), offset(0.0, 0.03);
+  for (int k = 0; k < 200; ++k) {
+    const int truth = k % 3;
+    const double a = angle(rng);
+    const Eigen::Vector3d n =
+        Eigen::AngleAxisd(a, Eigen::Vector3d::UnitZ()) * map[truth].plane.normal;
+    const Eigen::Vector2d shift = offset(rng) * map[truth].plane.normal.head<2>();
+    const Eigen::Vector2d from =
+        map[truth].start + 0.3 * (map[truth].end - map[truth].start) + shift;
+    const Eigen::Vector2d to = map[truth].start + 0.6 * (map[truth].end - map[truth].start) + shift;
+    EXPECT_EQ(associate(observe(n, from, to), map), truth) << k;
+  }
+}
+
+TEST(PlaneAssociation, ParallelWallsThirtyCentimetresApartNeverMerge) {
+  // A wall with a 0.3 m step: y = 4 for x in [0, 3] and y = 4.3 for x in [3, 6], both seen from
+  // below (normal -y). Observations of each piece, with 3 cm noise, go to their own plane.
+  const std::vector<MapPlane> map = {mapPlane(observe({0, -1, 0}, {0, 4}, {3, 4})),
+                                     mapPlane(observe({0, -1, 0}, {3, 4.3}, {6, 4.3}))};
+  std::mt19937 rng(4);
+  std::normal_distribution<double> offset(0.0, 0.03);
+  for (int k = 0; k < 100; ++k) {
+    const double e = offset(rng);
+    EXPECT_EQ(associate(observe({0, -1, 0}, {1, 4 + e}, {2.5, 4 + e}), map), 0);
+    EXPECT_EQ(associate(observe({0, -1, 0}, {3.5, 4.3 + e}, {5, 4.3 + e}), map), 1);
+  }
+  // A piece 0.3 m off either: a new plane.
+  EXPECT_EQ(associate(observe({0, -1, 0}, {1, 3.7}, {2, 3.7}), map), -1);
+}
+
+TEST(PlaneAssociation, OppositeFacesAndFarCoplanarPiecesAreSeparate) {
+  const std::vector<MapPlane> map = {mapPlane(observe({0, 1, 0}, {0, 0}, {3, 0}))};
+  // The other face of the same wall (normal the other way): another surface.
+  EXPECT_EQ(associate(observe({0, -1, 0}, {0, 0}, {3, 0}), map), -1);
+  // The same plane 0.8 m beyond the known extent (a doorway): the same surface.
+  EXPECT_EQ(associate(observe({0, 1, 0}, {3.8, 0}, {5, 0}), map), 0);
+  // The same plane 3 m beyond it: another wall in another room.
+  EXPECT_EQ(associate(observe({0, 1, 0}, {6, 0}, {8, 0}), map), -1);
+}
+
+TEST(PlaneAssociation, ObservationsMoveIntoTheMapFrame) {
+  PlaneObservation o = observe({1, 0, 0}, {-2, -1}, {-2, 1});  // x = -2 in L, facing +x
+  Eigen::Isometry3d M_T_L = Eigen::Isometry3d::Identity();
+  M_T_L.linear() =
+      Eigen::AngleAxisd(std::numbers::pi / 2, Eigen::Vector3d::UnitZ()).toRotationMatrix();
+  M_T_L.translation() = Eigen::Vector3d(5, 0, 0);
+  const PlaneObservation m = toMap(o, M_T_L);
+  // L's x axis is M's y: the wall is y = -2 in M, facing +y.
+  EXPECT_NEAR((m.plane.normal - Eigen::Vector3d(0, 1, 0)).norm(), 0.0, 1e-12);
+  EXPECT_NEAR(m.plane.d, 2.0, 1e-12);
+  EXPECT_NEAR(m.centroid.y(), -2.0, 1e-12);
+}
+
+}  // namespace
+}  // namespace isg::slam

@@ -1,0 +1,193 @@
+#include "slam/sgraph/range_image_planes.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <numbers>
+#include <optional>
+#include <random>
+
+#include "slam/sgraph/pcl_planes.hpp"
+
+namespace isg::slam {
+namespace {
+
+// Rectangles corner + a·u + b·v, a, b in [0, 1].
+struct Rectangle {
+  Eigen::Vector3d corner, u, v;
+};
+
+// A VLP-16-like organised scan of rectangles, cast exactly: 16 rings from −15° to +15° in 2°
+// steps, `columns` azimuths per turn, the sensor at `sensor` turned by `yaw`; Gaussian range
+// noise. Points in the sensor's frame, with their ring.
+Scan castScan(const std::vector<Rectangle>& scene, const Eigen::Vector3d& sensor, double yaw,
+              double noise = 0.01, int columns = 1800) {
+  std::mt19937 rng(11);
+  std::normal_distribution<double> n(0.0, noise);
+  const Eigen::Matrix3d R = Eigen::AngleAxisd(yaw, Eigen::Vector3d::UnitZ()).toRotationMatrix();
+  Scan scan;
+  for (int c = 0; c < columns; ++c) {
+    const double azimuth = 2 * std::numbers::pi * c / columns;
+    for (int ring = 0; ring < 16; ++ring) {
+      const double elevation = (-15.0 + 2.0 * ring) * std::numbers::pi / 180.0;
+      const Eigen::Vector3d d_L(std::cos(elevation) * std::cos(azimuth),
+                                std::cos(elevation) * std::sin(azimuth), std::sin(elevation));
+      const Eigen::Vector3d d = R * d_L;
+      double best = std::numeric_limits<double>::infinity();
+      for (const auto& r : scene) {
+        const Eigen::Vector3d normal = r.u.cross(r.v);
+        const double along = normal.dot(d);
+        if (std::abs(along) < 1e-12) continue;
+        const double t = normal.dot(r.corner - sensor) / along;
+        if (t <= 0 || t >= best) continue;
+        const Eigen::Vector3d q = sensor + t * d - r.corner;
+        const double a = q.dot(r.u) / r.u.squaredNorm(), b = q.dot(r.v) / r.v.squaredNorm();
+        if (a >= 0 && a <= 1 && b >= 0 && b <= 1) best = t;
+      }
+      if (!std::isfinite(best) || best > 100) continue;
+      const Eigen::Vector3d p = (best + n(rng)) * d_L;
+      scan.points.push_back({float(p.x()), float(p.y()), float(p.z()), 100.0f, std::uint16_t(ring),
+                             float(c * 1e-4 / columns)});
+    }
+  }
+  return scan;
+}
+
+// The room [0, 6] × [0, 4] × [0, 3], walls floor and ceiling.
+std::vector<Rectangle> room() {
+  return {{{0, 0, 0}, {6, 0, 0}, {0, 0, 3}}, {{0, 4, 0}, {6, 0, 0}, {0, 0, 3}},
+          {{0, 0, 0}, {0, 4, 0}, {0, 0, 3}}, {{6, 0, 0}, {0, 4, 0}, {0, 0, 3}},
+          {{0, 0, 0}, {6, 0, 0}, {0, 4, 0}}, {{0, 0, 3}, {6, 0, 0}, {0, 4, 0}}};
+}
+
+// The room's true planes in the sensor's frame, normals towards the sensor.
+std::vector<bim::Plane> truePlanes(const Eigen::Vector3d& sensor, double yaw) {
+  const Eigen::Matrix3d R = Eigen::AngleAxisd(-yaw, Eigen::Vector3d::UnitZ()).toRotationMatrix();
+  std::vector<bim::Plane> out;
+  const std::vector<std::pair<Eigen::Vector3d, double>> world = {
+      {Eigen::Vector3d::UnitY(), 0.0}, {-Eigen::Vector3d::UnitY(), 4.0},
+      {Eigen::Vector3d::UnitX(), 0.0}, {-Eigen::Vector3d::UnitX(), 6.0},
+      {Eigen::Vector3d::UnitZ(), 0.0}, {-Eigen::Vector3d::UnitZ(), 3.0}};
+  for (const auto& [n, offset] : world) {
+    // n·x = n·(point on the plane): the point is offset along |n|'s axis.
+    const Eigen::Vector3d point = n.cwiseAbs() * offset;
+    out.push_back(bim::Plane::throughPoint(R * n, R * (point - sensor)));
+  }
+  return out;
+}
+
+double angleDeg(const Eigen::Vector3d& a, const Eigen::Vector3d& b) {
+  return std::acos(std::clamp(std::abs(a.dot(b)), 0.0, 1.0)) * 180.0 / std::numbers::pi;
+}
+
+// The observed plane nearest to `truth` (normal within 5°), if any.
+const PlaneObservation* match(const std::vector<PlaneObservation>& planes,
+                              const bim::Plane& truth) {
+  const PlaneObservation* best = nullptr;
+  for (const auto& p : planes) {
+    if (angleDeg(p.plane.normal, truth.normal) > 5.0) continue;
+    if (p.plane.normal.dot(truth.normal) < 0) continue;
+    if (!best || std::abs(p.plane.d - truth.d) < std::abs(best->plane.d - truth.d)) best = &p;
+  }
+  return best;
+}
+
+TEST(RangeImagePlanes, RecoversTheRoomsWallsAndFloorToHalfADegreeAndACentimetre) {
+  const Eigen::Vector3d sensor(2.0, 1.5, 0.7);
+  for (double yaw : {0.0, 0.5, 2.3}) {
+    SCOPED_TRACE(yaw);
+    const Scan scan = castScan(room(), sensor, yaw);
+    const auto planes = extractPlanesOnRangeImage(scan, PlaneExtractionOptions());
+    ASSERT_TRUE(planes.has_value());
+    int vertical = 0, horizontal = 0;
+    for (const auto& p : *planes) {
+      vertical += p.orientation == PlaneOrientation::kVertical;
+      horizontal += p.orientation == PlaneOrientation::kHorizontal;
+      EXPECT_NE(p.orientation, PlaneOrientation::kOblique);
+      EXPECT_LT(p.rms, 0.015);
+      EXPECT_GE(p.points, PlaneExtractionOptions().min_inliers);
+    }
+    // Four walls. The ceiling is out of sight (the top ring, at +15°, meets it 8.6 m away); the
+    // floor's nearest rings are 0.4 m apart there, so each is an observation of its own.
+    EXPECT_EQ(vertical, 4);
+    EXPECT_GE(horizontal, 1);
+    auto truths = truePlanes(sensor, yaw);
+    truths.pop_back();  // the ceiling
+    for (const auto& truth : truths) {
+      const PlaneObservation* found = match(*planes, truth);
+      ASSERT_NE(found, nullptr) << truth.normal.transpose() << " " << truth.d;
+      EXPECT_LT(angleDeg(found->plane.normal, truth.normal), 0.5);
+      EXPECT_NEAR(found->plane.d, truth.d, 0.01);
+    }
+  }
+}
+
+TEST(RangeImagePlanes, AGapSplitsAWallAndAWallThirtyCentimetresBehindIsItsOwn) {
+  // The wall y = 0 with a 1 m gap at x ∈ [2.5, 3.5] (floor to ceiling), a wall behind it at
+  // y = −3; and a 0.3 m deep niche in x = 6 (a wall 30 cm behind, parallel, at y ∈ [1.5, 2.5]).
+  std::vector<Rectangle> scene = {
+      {{0, 0, 0}, {2.5, 0, 0}, {0, 0, 3}},   {{3.5, 0, 0}, {2.5, 0, 0}, {0, 0, 3}},
+      {{-2, -3, 0}, {10, 0, 0}, {0, 0, 3}},  {{0, 4, 0}, {6, 0, 0}, {0, 0, 3}},
+      {{0, 0, 0}, {0, 4, 0}, {0, 0, 3}},     {{6, 0, 0}, {0, 1.5, 0}, {0, 0, 3}},
+      {{6, 2.5, 0}, {0, 1.5, 0}, {0, 0, 3}}, {{6.3, 1.5, 0}, {0, 1, 0}, {0, 0, 3}},
+      {{-2, -3, 0}, {10, 0, 0}, {0, 7, 0}},  {{-2, -3, 3}, {10, 0, 0}, {0, 7, 0}}};
+  const Eigen::Vector3d sensor(3.0, 2.0, 0.7);
+  const Scan scan = castScan(scene, sensor, 0.0);
+  PlaneExtractionOptions options;
+  options.min_inliers = 30;
+  const auto planes = extractPlanesOnRangeImage(scan, options);
+  ASSERT_TRUE(planes.has_value());
+  // Facing the sensor from y = 0 (d = 2 m): the wall's two sides of the gap are two
+  // observations, neither spanning the gap.
+  int at_y0 = 0, at_x6 = 0, at_x63 = 0;
+  for (const auto& p : *planes) {
+    if (p.orientation != PlaneOrientation::kVertical) continue;
+    // Normals face the sensor at (3, 2): +y for the wall y = 0, −x for x = 6 and x = 6.3.
+    if (p.plane.normal.y() > 0.99 && std::abs(p.plane.d - 2.0) < 0.02) ++at_y0;
+    if (p.plane.normal.x() < -0.99 && std::abs(p.plane.d - 3.0) < 0.02) ++at_x6;
+    if (p.plane.normal.x() < -0.99 && std::abs(p.plane.d - 3.3) < 0.02) ++at_x63;
+  }
+  EXPECT_EQ(at_x63, 1);  // the niche's back wall, 30 cm behind: its own plane
+  EXPECT_EQ(at_x6, 2);   // the niche splits x = 6 in two as well
+  EXPECT_EQ(at_y0, 2);
+  for (const auto& p : *planes) {
+    if (p.orientation != PlaneOrientation::kVertical) continue;
+    if (p.plane.normal.y() > 0.99 && std::abs(p.plane.d - 2.0) < 0.02) {
+      const double lo = std::min(p.start.x(), p.end.x()) + 3.0;  // in the room's x
+      const double hi = std::max(p.start.x(), p.end.x()) + 3.0;
+      EXPECT_TRUE(hi < 2.6 || lo > 3.4) << lo << " " << hi;
+    }
+  }
+}
+
+TEST(RangeImagePlanes, AScanWithoutRingsIsLeftToRansac) {
+  Scan scan = castScan(room(), Eigen::Vector3d(2.0, 1.5, 0.7), 0.3);
+  for (auto& p : scan.points) p.ring = 0;
+  EXPECT_FALSE(extractPlanesOnRangeImage(scan, PlaneExtractionOptions()).has_value());
+  // extractPlanes falls back to RANSAC and still finds the four walls.
+  int walls = 0;
+  for (const auto& p : extractPlanes(scan, PlaneExtractionOptions()))
+    walls += p.orientation == PlaneOrientation::kVertical;
+  EXPECT_EQ(walls, 4);
+}
+
+TEST(RangeImagePlanes, AgreesWithRansacOnEveryPlaneBothFind) {
+  const Eigen::Vector3d sensor(1.2, 2.9, 0.7);
+  const Scan scan = castScan(room(), sensor, 1.1);
+  PlaneExtractionOptions options;
+  const auto image = extractPlanesOnRangeImage(scan, options);
+  ASSERT_TRUE(image.has_value());
+  options.method = PlaneExtractionOptions::Method::kRansac;
+  const auto ransac = extractPlanes(scan, options);
+  ASSERT_GE(ransac.size(), 5u);
+  for (const auto& r : ransac) {
+    const PlaneObservation* found = match(*image, r.plane);
+    ASSERT_NE(found, nullptr);
+    EXPECT_LT(angleDeg(found->plane.normal, r.plane.normal), 0.5);
+    EXPECT_NEAR(found->plane.d, r.plane.d, 0.01);
+    EXPECT_EQ(found->orientation, r.orientation);
+  }
+}
+
+}  // namespace
+}  // namespace isg::slam

@@ -1,0 +1,71 @@
+#include "slam/sgraph/sgraph_factors.hpp"
+
+#include <ceres/gradient_checker.h>
+#include <ceres/manifold.h>
+#include <gtest/gtest.h>
+#include <numbers>
+
+#include "bim/tests/jacobian_check.hpp"
+#include "slam/sgraph/tests/test_poses.hpp"
+
+#include <memory>
+
+namespace isg::slam {
+namespace {
+
+using isg::slam::testing::pose;
+
+TEST(PosePlaneFactor, ResidualByHandAndJacobians) {
+  // The wall x = 5 in M (normal -x, facing the robot), the robot at (1, 2) turned by 90°, the
+  // LiDAR 0.25 m above the base. Turned by 90°, L's y axis points along M's -x, so in L the wall
+  // is 4 m away with normal n_L = Rᵀ(-1, 0, 0) = (0, 1, 0).
+  const Eigen::Isometry3d M_T_R = pose(1, 2, 0.46, std::numbers::pi / 2);
+  Eigen::Isometry3d R_T_L = Eigen::Isometry3d::Identity();
+  R_T_L.translation() = Eigen::Vector3d(0, 0, 0.25);
+  Eigen::Vector4d wall(-1, 0, 0, 5);
+  const Eigen::Vector4d measured(0, 1, 0, 4);
+  Eigen::Vector3d position = M_T_R.translation();
+  Eigen::Quaterniond q(M_T_R.rotation());
+  std::unique_ptr<ceres::CostFunction> cost(PosePlaneFactor::create(measured, R_T_L, 0.01, 0.02));
+  double* params[] = {position.data(), q.coeffs().data(), wall.data()};
+  Eigen::Vector3d residual;
+  cost->Evaluate(params, residual.data(), nullptr);
+  EXPECT_NEAR(residual.norm(), 0.0, 1e-9);
+  // The robot 2 cm nearer the wall: the distance residual is -0.02 / 0.02 = -1.
+  position.x() += 0.02;
+  cost->Evaluate(params, residual.data(), nullptr);
+  EXPECT_NEAR(residual(0), 0.0, 1e-9);
+  EXPECT_NEAR(residual(1), 0.0, 1e-9);
+  EXPECT_NEAR(residual(2), -1.0, 1e-9);
+  // Jacobians (through both manifolds) against numeric differentiation, at a tilted pose.
+  q = Eigen::Quaterniond(pose(0, 0, 0, 0.3, 0.1).rotation());
+  ceres::EigenQuaternionManifold quaternion;
+  bim::PlaneManifold plane;
+  isg::testing::expectJacobiansMatchNumeric(*cost, {nullptr, &quaternion, &plane},
+                                            {position.data(), q.coeffs().data(), wall.data()});
+}
+
+TEST(OdometryFactor, ZeroAtTheMeasurementAndJacobians) {
+  const Eigen::Isometry3d a = pose(1, 2, 0, 0.3), b = pose(2.5, 2.2, 0.05, 0.8, 0.02);
+  const Eigen::Isometry3d delta = a.inverse() * b;
+  std::unique_ptr<ceres::CostFunction> cost(OdometryFactor::create(delta, 0.05, 0.01));
+  Eigen::Vector3d pa = a.translation(), pb = b.translation();
+  Eigen::Quaterniond qa(a.rotation()), qb(b.rotation());
+  double* params[] = {pa.data(), qa.coeffs().data(), pb.data(), qb.coeffs().data()};
+  Eigen::Matrix<double, 6, 1> residual;
+  cost->Evaluate(params, residual.data(), nullptr);
+  EXPECT_NEAR(residual.norm(), 0.0, 1e-9);
+  // Keyframe j turned by a further 0.01 rad about z: the rotation residual is 1 (2·sin(0.005) /
+  // 0.01 ≈ 1) and the translation one 0.
+  qb = qb * Eigen::Quaterniond(Eigen::AngleAxisd(0.01, Eigen::Vector3d::UnitZ()));
+  cost->Evaluate(params, residual.data(), nullptr);
+  EXPECT_NEAR(residual.head<3>().norm(), 0.0, 1e-9);
+  EXPECT_NEAR(residual.tail<3>().norm(), 2 * std::sin(0.005) / 0.01, 1e-9);
+  ceres::EigenQuaternionManifold quaternion;
+  isg::testing::expectJacobiansMatchNumeric(
+      *cost, {nullptr, &quaternion, nullptr, &quaternion},
+      {pa.data(), qa.coeffs().data(), pb.data(), qb.coeffs().data()});
+}
+
+}  // namespace
+}  // namespace isg::slam
