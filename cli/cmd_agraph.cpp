@@ -6,7 +6,7 @@
 #include "bim/agraph.hpp"
 #include "bim/agraph_json.hpp"
 #include "bim/agraph_svg.hpp"
-#include "run/output_path.hpp"
+#include "sensors/output_path.hpp"
 
 namespace isg::cli {
 
@@ -35,17 +35,17 @@ int AGraphCommand::run() {
   }
   // Replaced only if isg wrote them; never the plan itself.
   if (!svg_.empty()) {
-    run::checkOutputPath(svg_, {run::OutputKind::kSvg, {inputFile(input_)}, true, false});
+    sensors::checkOutputPath(svg_, {sensors::OutputKind::kSvg, {inputFile(input_)}, true, false});
   }
   if (!output_.empty()) {
-    run::checkOutputPath(output_,
-                         {run::OutputKind::kAgraphJson, {inputFile(input_), svg_}, true, false});
+    sensors::checkOutputPath(
+        output_, {sensors::OutputKind::kAgraphJson, {inputFile(input_), svg_}, true, false});
   }
   const bim::AGraph graph = bim::buildAGraph(plan);
   const std::string json = bim::agraphJsonText(bim::agraphToJson(graph));
   // Everything is computed before anything is written.
   const std::string svg = svg_.empty() ? "" : bim::agraphToSvg(plan, graph, level);
-  if (!svg_.empty()) writeFileAtomically(svg_, run::outputMark(run::OutputKind::kSvg, svg));
+  if (!svg_.empty()) writeFileAtomically(svg_, sensors::outputMark(sensors::OutputKind::kSvg, svg));
   if (output_.empty()) {
     std::cout << json;
   } else {

@@ -7,9 +7,9 @@
 #include "eval/ape.hpp"
 #include "eval/coverage.hpp"
 #include "eval/report_svg.hpp"
-#include "run/atomic_folder.hpp"
-#include "run/output_path.hpp"
-#include "run/trajectory_file.hpp"
+#include "sensors/atomic_folder.hpp"
+#include "sensors/output_path.hpp"
+#include "sensors/trajectory_file.hpp"
 
 namespace isg::cli {
 
@@ -97,15 +97,17 @@ void EvalCommand::writePlot(const eval::Trajectory& reference, const eval::Traje
   if (input.estimate_is_localization) {
     input.localized_at = reference.front().t + coverage.time_to_first;
   }
-  run::writeFileAtomically(plot_, run::outputMark(run::OutputKind::kSvg, eval::reportSvg(input)));
+  sensors::writeFileAtomically(
+      plot_, sensors::outputMark(sensors::OutputKind::kSvg, eval::reportSvg(input)));
 }
 
 int EvalCommand::run() {
   if (!plot_.empty()) {
-    run::checkOutputPath(plot_, {run::OutputKind::kSvg, {reference_, estimate_}, true, false});
+    sensors::checkOutputPath(plot_,
+                             {sensors::OutputKind::kSvg, {reference_, estimate_}, true, false});
   }
-  const eval::Trajectory reference = run::readTrajectoryFile(reference_);
-  const eval::Trajectory estimate = run::readTrajectoryFile(estimate_);
+  const eval::Trajectory reference = sensors::readTrajectoryFile(reference_);
+  const eval::Trajectory estimate = sensors::readTrajectoryFile(estimate_);
   eval::ErrorOptions options;
   options.align = align_ == "se3"
                       ? eval::Alignment::kSE3

@@ -3,8 +3,8 @@
 #include <cstdio>
 
 #include "cli/progress_bar.hpp"
-#include "run/output_path.hpp"
-#include "run/rosbag_export.hpp"
+#include "sensors/output_path.hpp"
+#include "sensors/rosbag_export.hpp"
 
 namespace isg::cli {
 
@@ -31,7 +31,7 @@ ExportCommand::ExportCommand(CLI::App& parent) {
 }
 
 int ExportCommand::run() {
-  run::checkOutputPath(rosbag_, {run::OutputKind::kBag, {input_}, force_});
+  sensors::checkOutputPath(rosbag_, {sensors::OutputKind::kBag, {input_}, force_});
   exportRosbagWithProgress("isg export", input_, rosbag_, stamp_offset_, force_, quiet_);
   return kExitOk;
 }
@@ -39,15 +39,16 @@ int ExportCommand::run() {
 void exportRosbagWithProgress(const std::string& command, const std::string& dataset_dir,
                               const std::string& bag_path, std::uint32_t stamp_offset,
                               bool overwrite, bool quiet) {
-  run::RosbagExportOptions options;
+  sensors::RosbagExportOptions options;
   options.stamp_offset = stamp_offset;
   options.overwrite = overwrite;
   ProgressBar bar(command, quiet);
-  const auto summary = run::exportRosbag(dataset_dir, bag_path, options, [&](int done, int total) {
-    char detail[64];
-    std::snprintf(detail, sizeof detail, "%d/%d scans", done, total);
-    bar.update(total > 0 ? double(done) / total : 1.0, detail);
-  });
+  const auto summary =
+      sensors::exportRosbag(dataset_dir, bag_path, options, [&](int done, int total) {
+        char detail[64];
+        std::snprintf(detail, sizeof detail, "%d/%d scans", done, total);
+        bar.update(total > 0 ? double(done) / total : 1.0, detail);
+      });
   bar.finish();
   std::string counts;
   for (const auto& [topic, n] : summary.messages) {

@@ -7,8 +7,8 @@
 #include <stdexcept>
 
 #include "cli/progress_bar.hpp"
-#include "run/atomic_folder.hpp"
 #include "run/interrupt.hpp"
+#include "sensors/atomic_folder.hpp"
 #include "sim/simulation.hpp"
 
 namespace isg::cli {
@@ -120,7 +120,7 @@ int GenerateCommand::run() {
   }
   // The output rule before any work: not the working directory, nor an earlier folder of
   // anything but generated buildings.
-  run::checkOutputPath(output_, {run::OutputKind::kBuildings, {}, force_});
+  sensors::checkOutputPath(output_, {sensors::OutputKind::kBuildings, {}, force_});
   spec_.asymmetry = !symmetric_;
   // Bad parameters fail before anything is written, naming the option.
   std::vector<worlds::GeneratedBuilding> buildings;
@@ -149,13 +149,13 @@ int GenerateCommand::run() {
   }
   ProgressBar bar("isg generate", quiet_);
   std::size_t offices = 0, largest = 0;
-  run::writeFolderAtomically(
-      output_, run::OutputKind::kBuildings, force_, [&](const std::filesystem::path& dir) {
+  sensors::writeFolderAtomically(
+      output_, sensors::OutputKind::kBuildings, force_, [&](const std::filesystem::path& dir) {
         for (std::size_t k = 0; k < buildings.size(); ++k) {
           const auto& b = buildings[k];
-          run::writeFile(dir / (b.name + ".json"), b.plan.dump(2) + "\n");
+          sensors::writeFile(dir / (b.name + ".json"), b.plan.dump(2) + "\n");
           const std::string scenario_path = (dir / (b.name + ".asbuilt.json")).string();
-          run::writeFile(scenario_path, b.scenario.dump(2) + "\n");
+          sensors::writeFile(scenario_path, b.scenario.dump(2) + "\n");
           offices += std::size_t(b.offices);
           largest = std::max(largest, std::size_t(b.offices));
           bar.update(double(k + 1) / double(buildings.size()), b.name);

@@ -5,7 +5,7 @@
 #include <filesystem>
 
 #include "bim/plan_geometry.hpp"
-#include "run/atomic_folder.hpp"
+#include "sensors/atomic_folder.hpp"
 #include "sim/renderer.hpp"
 #include "sim/robot_model.hpp"
 #include "sim/simulation.hpp"
@@ -40,14 +40,14 @@ int RenderCommand::run() {
   namespace fs = std::filesystem;
   const fs::path dir(output_);
   // The folder may hold other files; of the pictures, only earlier ones of ours are replaced.
-  run::checkOutputPath(output_, {run::OutputKind::kPictures, {inputFile(input_)}});
+  sensors::checkOutputPath(output_, {sensors::OutputKind::kPictures, {inputFile(input_)}});
   for (const char* name : {"top.png", "plan.png", "chase.png"}) {
-    run::checkOutputPath((dir / name).string(),
-                         {run::OutputKind::kPng, {inputFile(input_)}, true, false});
+    sensors::checkOutputPath((dir / name).string(),
+                             {sensors::OutputKind::kPng, {inputFile(input_)}, true, false});
   }
   const bim::Scenario scenario = loadInput(input_, "render");
   sim::Simulation simulation(scenario);
-  run::requireParentFolder(output_);
+  sensors::requireParentFolder(output_);
   std::error_code error;
   fs::create_directories(dir, error);
   if (error) throw bim::InputError(output_, "", "cannot write: " + error.message());

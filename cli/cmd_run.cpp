@@ -7,7 +7,7 @@
 #include "cli/progress_bar.hpp"
 #include "cli/route_check.hpp"
 #include "cli/run_session.hpp"
-#include "run/atomic_folder.hpp"
+#include "sensors/atomic_folder.hpp"
 #include "sim/scan_pipeline.hpp"
 #include "sim/simulation.hpp"
 #include "worlds/reference_plans.hpp"
@@ -71,23 +71,24 @@ int RunCommand::run() {
   }
   // Before the run, not after it: a folder that cannot be written fails at once; the output rule
   // before its parent folders are made.
-  run::checkOutputPath(output_, {run::OutputKind::kRunFolder, {inputFile(input)}, force_});
+  sensors::checkOutputPath(output_, {sensors::OutputKind::kRunFolder, {inputFile(input)}, force_});
   if (const auto parent = fs::path(output_).parent_path(); !parent.empty()) {
     std::error_code ignored;
     fs::create_directories(parent, ignored);
   }
-  run::checkCanCreateFolder(output_, run::OutputKind::kRunFolder, force_, {inputFile(input)});
+  sensors::checkCanCreateFolder(output_, sensors::OutputKind::kRunFolder, force_,
+                                {inputFile(input)});
   const sim::Simulation simulation(scenario);
   checkRoute("isg run", scenario, simulation, duration_);
   const bim::AGraph agraph = bim::buildAGraph(scenario.plan);
-  run::SensorStreams streams = sim::sensorStreams(simulation, duration_);
+  sensors::SensorStreams streams = sim::sensorStreams(simulation, duration_);
 
   run::LocalizerContext context;
   context.plan = &scenario.plan;
   context.agraph = &agraph;
   context.level = scenario.robot.level;
   context.R_T_L = streams.R_T_L;
-  context.start_B_T_M = run::trueStartB_T_M(streams);
+  context.start_B_T_M = sensors::trueStartB_T_M(streams);
   context.seed = scenario.seed;
   context.options = options;
   context.threads = threads_;

@@ -7,7 +7,7 @@
 #include "cli/cmd_export.hpp"
 #include "cli/progress_bar.hpp"
 #include "cli/route_check.hpp"
-#include "run/atomic_folder.hpp"
+#include "sensors/atomic_folder.hpp"
 #include "sim/dataset_writer.hpp"
 #include "sim/simulation.hpp"
 
@@ -60,19 +60,21 @@ int SimulateCommand::run() {
   if (seed_) scenario.seed = *seed_;
   sim::Simulation simulation(scenario);
   checkRoute("isg simulate", scenario, simulation, duration_);
-  run::checkCanCreateFolder(output_, run::OutputKind::kDataset, force_, {inputFile(input_)});
+  sensors::checkCanCreateFolder(output_, sensors::OutputKind::kDataset, force_,
+                                {inputFile(input_)});
   if (!rosbag_.empty()) {
     // Checked before hours of simulation, as the folder is: the bag may not be the scenario, nor
     // lie in the dataset it is made from.
-    run::checkOutputPath(rosbag_, {run::OutputKind::kBag, {inputFile(input_), output_}, force_});
-    run::AtomicFile probe(rosbag_, run::OutputKind::kBag, force_);
+    sensors::checkOutputPath(rosbag_,
+                             {sensors::OutputKind::kBag, {inputFile(input_), output_}, force_});
+    sensors::AtomicFile probe(rosbag_, sensors::OutputKind::kBag, force_);
   }
   sim::DatasetOptions options;
   options.duration = duration_;
   options.overwrite = force_;
   options.threads = threads_;
-  options.pcd =
-      pcd_ == "binary" ? run::dataset::PcdData::kBinary : run::dataset::PcdData::kBinaryCompressed;
+  options.pcd = pcd_ == "binary" ? sensors::dataset::PcdData::kBinary
+                                 : sensors::dataset::PcdData::kBinaryCompressed;
   ProgressBar bar("isg simulate", quiet_);
   const auto start = std::chrono::steady_clock::now();
   const double period = simulation.scanPeriod();

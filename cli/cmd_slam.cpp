@@ -10,9 +10,9 @@
 #include "bim/plan_parser.hpp"
 #include "cli/progress_bar.hpp"
 #include "cli/run_session.hpp"
-#include "run/atomic_folder.hpp"
-#include "run/dataset_reader.hpp"
 #include "run/map_diagnosis.hpp"
+#include "sensors/atomic_folder.hpp"
+#include "sensors/dataset_reader.hpp"
 
 namespace isg::cli {
 
@@ -22,7 +22,7 @@ namespace {
 // --plan that is not the recorded one is an error unless --other-plan says it is meant: the
 // result of localizing in another building is meaningless, and should never pass unnoticed.
 std::optional<bim::Plan> replayPlan(const std::string& plan_argument, bool other_plan,
-                                    const run::DatasetReader& dataset, const std::string& dir) {
+                                    const sensors::DatasetReader& dataset, const std::string& dir) {
   const std::string metadata_file = (std::filesystem::path(dir) / "metadata.json").string();
   const bim::JsonSource source{metadata_file, nullptr};
   std::optional<bim::Plan> recorded;
@@ -83,9 +83,10 @@ SlamCommand::SlamCommand(CLI::App& parent) {
 
 int SlamCommand::run() {
   namespace fs = std::filesystem;
-  run::DatasetReader dataset(dataset_);
+  sensors::DatasetReader dataset(dataset_);
   // Before the replay, not after it: a folder that cannot be written fails at once.
-  run::checkCanCreateFolder(output_, run::OutputKind::kRunFolder, force_, {dataset_, plan_});
+  sensors::checkCanCreateFolder(output_, sensors::OutputKind::kRunFolder, force_,
+                                {dataset_, plan_});
   const std::string method = !method_.empty() ? method_ : plan_.empty() ? "s-graph" : "is-graphs";
   if (methods_.find(method)->needs_plan && plan_.empty()) {
     std::fprintf(stderr, "isg slam: --method %s needs --plan PLAN\n", method.c_str());
@@ -95,7 +96,7 @@ int SlamCommand::run() {
   checkMethodOptions(methods_, method, options);
   const std::optional<bim::Plan> plan = replayPlan(plan_, other_plan_, dataset, dataset_);
   const bim::AGraph agraph = plan ? bim::buildAGraph(*plan) : bim::AGraph{};
-  run::SensorStreams streams = dataset.streams();
+  sensors::SensorStreams streams = dataset.streams();
   const std::string fallback_level = plan && !plan->levels.empty() ? plan->levels[0].id : "";
   const std::string level = dataset.robotLevel().empty() ? fallback_level : dataset.robotLevel();
 
@@ -104,7 +105,7 @@ int SlamCommand::run() {
   context.agraph = plan ? &agraph : nullptr;
   context.level = level;
   context.R_T_L = streams.R_T_L;
-  context.start_B_T_M = run::trueStartB_T_M(streams);
+  context.start_B_T_M = sensors::trueStartB_T_M(streams);
   context.seed = dataset.seed();
   context.options = options;
   context.threads = threads_;

@@ -3,10 +3,10 @@
 #include <cstdio>
 #include <filesystem>
 
-#include "run/atomic_folder.hpp"
 #include "run/builtin_methods.hpp"
 #include "run/interrupt.hpp"
-#include "run/output_path.hpp"
+#include "sensors/atomic_folder.hpp"
+#include "sensors/output_path.hpp"
 #include "sweep/collect.hpp"
 #include "sweep/lock.hpp"
 #include "sweep/pool.hpp"
@@ -102,8 +102,8 @@ int SweepCommand::collect(const std::string& sweep_dir) const {
   const std::string md =
       eval::formatTable(c.table.table, eval::TableFormat::kMarkdown, c.table.caption);
   const std::string csv = eval::formatTable(c.table.table, eval::TableFormat::kCsv);
-  run::writeFileAtomically((fs::path(sweep_dir) / sweep::kSweepTableMarkdownFile).string(), md);
-  run::writeFileAtomically((fs::path(sweep_dir) / sweep::kSweepTableCsvFile).string(), csv);
+  sensors::writeFileAtomically((fs::path(sweep_dir) / sweep::kSweepTableMarkdownFile).string(), md);
+  sensors::writeFileAtomically((fs::path(sweep_dir) / sweep::kSweepTableCsvFile).string(), csv);
   std::printf("%s\n", md.c_str());
   for (const auto& f : c.failed) std::printf("failed: %s\n", f.c_str());
   for (const auto& m : c.missing) std::printf("not run: %s\n", m.c_str());
@@ -141,11 +141,12 @@ int SweepCommand::run() {
   for (const auto& world : suite.worlds) {
     if (!world.generate && !worlds::isBuiltin(world.input)) inputs.push_back(world.input);
   }
-  run::checkOutputPath(output_, {run::OutputKind::kSweep, inputs});
+  sensors::checkOutputPath(output_, {sensors::OutputKind::kSweep, inputs});
   std::error_code made;
   fs::create_directories(output_, made);
   if (made) throw bim::InputError(output_, "", "cannot make the sweep folder: " + made.message());
-  if (!run::folderOutputKind(output_)) run::writeOutputMarker(output_, run::OutputKind::kSweep);
+  if (!sensors::folderOutputKind(output_))
+    sensors::writeOutputMarker(output_, sensors::OutputKind::kSweep);
   // One sweep at a time in a folder, from here to the end (the lock goes with the process).
   const sweep::SweepLock lock(output_);
   // Every world read (generated ones written) and hashed, before any cell runs.
@@ -183,7 +184,7 @@ int SweepCommand::run() {
     }
     moveWorldCellsAside(output_, before.cells, changed);
   }
-  run::writeFileAtomically(plan_path.string(), plan_text);
+  sensors::writeFileAtomically(plan_path.string(), plan_text);
   std::vector<std::size_t> all(cells.size());
   for (std::size_t i = 0; i < cells.size(); ++i) all[i] = i;
 

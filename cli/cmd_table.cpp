@@ -11,8 +11,8 @@
 #include "bim/json_reader.hpp"
 #include "eval/table.hpp"
 #include "run/builtin_methods.hpp"
-#include "run/output_path.hpp"
 #include "run/run_metrics.hpp"
+#include "sensors/output_path.hpp"
 #include "sweep/run_table.hpp"
 #include "sweep/suite.hpp"
 
@@ -64,14 +64,14 @@ TableCommand::TableCommand(CLI::App& parent) {
 
 int TableCommand::run() {
   const run::LocalizerRegistry methods = run::builtinMethods();
-  const run::OutputKind outputKind = format_ == "csv"     ? run::OutputKind::kTableCsv
-                                     : format_ == "latex" ? run::OutputKind::kTableLatex
-                                                          : run::OutputKind::kTableMarkdown;
+  const sensors::OutputKind outputKind = format_ == "csv"     ? sensors::OutputKind::kTableCsv
+                                         : format_ == "latex" ? sensors::OutputKind::kTableLatex
+                                                              : sensors::OutputKind::kTableMarkdown;
   if (!output_.empty()) {
     // Replaced only if isg wrote it: never a run folder, the baseline or a file of the user's.
     std::vector<std::string> inputs = runs_;
     inputs.push_back(baseline_);
-    run::checkOutputPath(output_, {outputKind, inputs, true, false});
+    sensors::checkOutputPath(output_, {outputKind, inputs, true, false});
   }
   // The testbed's methods first, in their order (iS-Graphs, then the baselines), like the paper.
   std::vector<std::pair<std::string, run::RunMetrics>> runs;
@@ -106,7 +106,7 @@ int TableCommand::run() {
   if (output_.empty()) {
     std::printf("%s", text.c_str());
   } else {
-    writeFileAtomically(output_, run::outputMark(outputKind, text));
+    writeFileAtomically(output_, sensors::outputMark(outputKind, text));
   }
   if (baseline_.empty()) return kExitOk;
   std::ifstream in(baseline_);

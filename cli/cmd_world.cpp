@@ -2,7 +2,7 @@
 
 #include <iostream>
 
-#include "run/output_path.hpp"
+#include "sensors/output_path.hpp"
 #include "sim/mujoco_world.hpp"
 #include "worlds/mjcf_generator.hpp"
 
@@ -29,7 +29,8 @@ int WorldCommand::run() {
   worlds::WorldOptions options;
   options.ceilings = !no_ceilings_;
   if (!output_.empty()) {
-    run::checkOutputPath(output_, {run::OutputKind::kMjcf, {inputFile(input_)}, true, false});
+    sensors::checkOutputPath(output_,
+                             {sensors::OutputKind::kMjcf, {inputFile(input_)}, true, false});
   }
   const std::string mjcf = worlds::generateMjcf(scenario, options);
   // A world that MuJoCo cannot compile is our bug, never the user's: refuse to write it.
@@ -38,7 +39,7 @@ int WorldCommand::run() {
     std::cout << mjcf;
     return kExitOk;
   }
-  writeFileAtomically(output_, run::outputMark(run::OutputKind::kMjcf, mjcf));
+  writeFileAtomically(output_, sensors::outputMark(sensors::OutputKind::kMjcf, mjcf));
   std::cerr << "isg world: wrote " << output_ << " (" << world.model().ngeom << " geoms, "
             << world.model().nsite << " room sites)\n";
   return kExitOk;

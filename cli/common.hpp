@@ -5,11 +5,11 @@
 
 #include "bim/input_error.hpp"
 #include "bim/scenario.hpp"
-#include "run/atomic_folder.hpp"
+#include "sensors/atomic_folder.hpp"
 
 namespace isg::cli {
 
-using run::writeFileAtomically;
+using sensors::writeFileAtomically;
 
 // Exit codes of every subcommand (docs/architecture.md).
 inline constexpr int kExitOk = 0;

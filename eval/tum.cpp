@@ -95,9 +95,9 @@ Trajectory parseTum(const std::string& text, const std::string& file) {
     std::string extra;
     if (fields >> extra) throw TumError(file, number, "more than 8 fields");
     const auto outOfRange = [&](const char* what, double value, const char* limit) {
-      char text[160];
-      std::snprintf(text, sizeof text, "%s %g is out of range (%s)", what, value, limit);
-      throw TumError(file, number, text);
+      char message[160];
+      std::snprintf(message, sizeof message, "%s %g is out of range (%s)", what, value, limit);
+      throw TumError(file, number, message);
     };
     if (std::abs(v[0]) > kMaxTumTime) outOfRange("time", v[0], "|t| at most 1e10 s");
     for (int k = 1; k <= 3; ++k) {

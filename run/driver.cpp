@@ -17,7 +17,7 @@ bool LocalizerDriver::wants(double stamp) {
   return localizer_.wantsScan(stamp);
 }
 
-void LocalizerDriver::feed(const slam::Scan& scan) {
+void LocalizerDriver::feed(const sensors::Scan& scan) {
   pushOdometryUntil(scan.stamp + scan_period_);
   localizer_.pushScan(scan);
   record();
@@ -39,13 +39,13 @@ void LocalizerDriver::record() {
   }
 }
 
-RunRecord runLocalizer(RunSetup setup, slam::Localizer& localizer, SensorStreams streams,
-                       ScanSource& scans, const RunProgress& progress) {
+RunRecord runLocalizer(RunSetup setup, slam::Localizer& localizer, sensors::SensorStreams streams,
+                       sensors::ScanSource& scans, const RunProgress& progress) {
   const auto start = std::chrono::steady_clock::now();
   RunRecord record;
   record.setup = std::move(setup);
   record.streams = std::move(streams);
-  const SensorStreams& s = record.streams;
+  const sensors::SensorStreams& s = record.streams;
   LocalizerDriver driver(localizer, s.odometry, s.scan_period);
   const int total = int(s.scan_stamps.size());
   int read = 0;
@@ -59,7 +59,7 @@ RunRecord runLocalizer(RunSetup setup, slam::Localizer& localizer, SensorStreams
     in_localizer += now - mark;
     mark = now;
     if (wanted) {
-      slam::Scan scan = scans.scan(k);
+      sensors::Scan scan = scans.scan(k);
       scan.stamp = stamp;
       now = Clock::now();
       waiting += now - mark;
@@ -84,7 +84,7 @@ RunRecord runLocalizer(RunSetup setup, slam::Localizer& localizer, SensorStreams
   record.localizer_seconds = std::chrono::duration<double>(in_localizer).count();
   record.scan_wait_seconds = std::chrono::duration<double>(waiting).count();
   record.stage_times = scans.stageTimes();
-  const slam::StageTimes localizer_stages = localizer.stageTimes();
+  const sensors::StageTimes localizer_stages = localizer.stageTimes();
   record.stage_times.add(localizer_stages);
   record.stage_times.add("localizer, other",
                          std::max(0.0, record.localizer_seconds - localizer_stages.total()));

@@ -4,24 +4,11 @@
 #include <optional>
 
 #include "run/run_record.hpp"
-#include "run/sensor_streams.hpp"
+#include "sensors/scan_source.hpp"
+#include "sensors/sensor_streams.hpp"
 #include "slam/localizer.hpp"
 
 namespace isg::run {
-
-// Where a run's scans come from: the simulator casting them (sim/), or a recorded dataset
-// (DatasetReader). For each k = 0, 1, … in order, either `scan(k)` or `skip(k)` is called once:
-// skip when the localizer will not read scan k, so that it need not be made or read at all. The
-// scan's stamp is the stream's, so a source only fills the points.
-class ScanSource {
- public:
-  virtual ~ScanSource() = default;
-  virtual slam::Scan scan(int index) = 0;
-  virtual void skip(int /*index*/) {}
-  // Seconds the source spent by stage (the simulator's poses, casting, noise; a dataset's
-  // reading), for the run's stage timing.
-  virtual slam::StageTimes stageTimes() const { return {}; }
-};
 
 // Feeds a localizer as the robot would: for each scan, the odometry up to the end of its turn
 // (when the scan is complete), then the scan; and records what the localizer says.
@@ -33,7 +20,7 @@ class LocalizerDriver {
   // Pushes the odometry up to the end of the turn starting at `stamp` and says whether the
   // localizer will read that scan (Localizer::wantsScan). Either feed or skip follows.
   bool wants(double stamp);
-  void feed(const slam::Scan& scan);
+  void feed(const sensors::Scan& scan);
   // The scan at `stamp` goes unread: the odometry is pushed and the estimate recorded as feed
   // would, without the scan.
   void skip(double stamp);
@@ -62,7 +49,7 @@ using RunProgress = std::function<void(int done, int total, const slam::Localize
 // LocalizerDriver (each scan stamped with the stream's stamp) and collects the record. Streams
 // hold what a dataset stores (quantiseStreams), so the same streams and scans give the same
 // record, bit for bit, whoever produced them.
-RunRecord runLocalizer(RunSetup setup, slam::Localizer& localizer, SensorStreams streams,
-                       ScanSource& scans, const RunProgress& progress = {});
+RunRecord runLocalizer(RunSetup setup, slam::Localizer& localizer, sensors::SensorStreams streams,
+                       sensors::ScanSource& scans, const RunProgress& progress = {});
 
 }  // namespace isg::run

@@ -14,10 +14,10 @@ namespace isg::run {
 namespace {
 
 // Odometry with its frame M placed at the true start pose: dead reckoning.
-Trajectory odometryInPlan(const SensorStreams& streams) {
+Trajectory odometryInPlan(const sensors::SensorStreams& streams) {
   Trajectory out;
   if (streams.ground_truth.empty() || streams.odometry.empty()) return out;
-  const Eigen::Isometry3d B_T_M = trueStartB_T_M(streams);
+  const Eigen::Isometry3d B_T_M = sensors::trueStartB_T_M(streams);
   for (const auto& p : streams.odometry) out.push_back({p.t, B_T_M * p.pose});
   return out;
 }
@@ -46,7 +46,7 @@ std::pair<double, int> walkedUntil(const Trajectory& truth, double until, const 
 RunEvaluation evaluateRun(const RunRecord& run) {
   RunEvaluation evaluation;
   RunMetrics& m = evaluation.metrics;
-  const SensorStreams& streams = run.streams;
+  const sensors::SensorStreams& streams = run.streams;
   m.world = run.setup.world;
   m.method = run.setup.method;
   m.seed = run.setup.seed;

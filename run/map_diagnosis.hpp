@@ -5,7 +5,7 @@
 
 #include "bim/plan.hpp"
 #include "run/room_evaluation.hpp"
-#include "run/sensor_streams.hpp"
+#include "sensors/sensor_streams.hpp"
 #include "slam/map_diagnostics.hpp"
 #include "slam/timing_report.hpp"
 
@@ -23,7 +23,7 @@ struct MapDiagnosis {
   std::optional<std::string> note;                    // why a measure is missing
 };
 
-MapDiagnosis diagnoseMap(const slam::MapDiagnostics& map, const Trajectory& ground_truth,
+MapDiagnosis diagnoseMap(const slam::MapDiagnostics& map, const sensors::Trajectory& ground_truth,
                          const bim::Plan* plan, const std::string& level);
 
 // The lines `isg slam` prints.

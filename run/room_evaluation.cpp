@@ -10,8 +10,8 @@ namespace isg::run {
 
 RoomDetectionReport evaluateRooms(const bim::Plan& plan, const std::string& level_id,
                                   const std::vector<slam::MapRoom>& rooms,
-                                  const Trajectory& ground_truth, const eval::Similarity& B_from_M,
-                                  double tolerance) {
+                                  const sensors::Trajectory& ground_truth,
+                                  const eval::Similarity& B_from_M, double tolerance) {
   RoomDetectionReport report;
   const bim::AGraph agraph = bim::buildAGraph(plan);
   for (const auto& room : agraph.rooms) {

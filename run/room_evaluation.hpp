@@ -5,7 +5,7 @@
 
 #include "bim/plan.hpp"
 #include "eval/alignment.hpp"
-#include "run/sensor_streams.hpp"
+#include "sensors/sensor_streams.hpp"
 #include "slam/map_diagnostics.hpp"
 
 namespace isg::run {
@@ -24,7 +24,7 @@ struct RoomDetectionReport {
 
 RoomDetectionReport evaluateRooms(const bim::Plan& plan, const std::string& level,
                                   const std::vector<slam::MapRoom>& rooms,
-                                  const Trajectory& ground_truth, const eval::Similarity& B_from_M,
-                                  double tolerance = 0.1);
+                                  const sensors::Trajectory& ground_truth,
+                                  const eval::Similarity& B_from_M, double tolerance = 0.1);
 
 }  // namespace isg::run

@@ -9,11 +9,15 @@
 #include "bim/agraph.hpp"
 #include "bim/plan.hpp"
 #include "bim/scenario.hpp"
-#include "run/sensor_streams.hpp"
+#include "sensors/sensor_streams.hpp"
+#include "sensors/stage_times.hpp"
 #include "slam/map_diagnostics.hpp"
-#include "slam/stage_times.hpp"
 
 namespace isg::run {
+
+// A run's trajectories are the sensor streams' type (TUM rows).
+using sensors::StampedPose;
+using sensors::Trajectory;
 
 // What a run is: the world, the method and the seed, and the plan it is measured in.
 struct RunSetup {
@@ -31,7 +35,7 @@ struct RunSetup {
 // was fed, what the localizer said after each scan, and what it can tell about itself.
 struct RunRecord {
   RunSetup setup;
-  SensorStreams streams;
+  sensors::SensorStreams streams;
   Trajectory estimate_map;             // M, after each scan
   Trajectory estimate;                 // B, from the first localized pose on
   std::optional<double> localized_at;  // stamp of the first pose in B
@@ -42,7 +46,7 @@ struct RunRecord {
   // thread; or reading) then the localizer's (deskew, extraction, ..., matching, and "localizer,
   // other" for the rest of its calls); and the loop's wall time in the localizer's calls and
   // waiting for scans (on one thread, making them).
-  slam::StageTimes stage_times;
+  sensors::StageTimes stage_times;
   double localizer_seconds = 0.0;
   double scan_wait_seconds = 0.0;
   nlohmann::json graph;  // the localizer's final graph (sgraph.json)

@@ -15,15 +15,15 @@
 
 #include "bim/input_error.hpp"
 #include "bim/plan_json.hpp"
-#include "run/atomic_folder.hpp"
-#include "run/dataset_format.hpp"
+#include "sensors/atomic_folder.hpp"
+#include "sensors/dataset_format.hpp"
 #include "sim/vlp16.hpp"
 
 namespace isg::sim {
 
 namespace fs = std::filesystem;
-using run::writeFile;
-using run::writeFolderAtomically;
+using sensors::writeFile;
+using sensors::writeFolderAtomically;
 
 namespace {
 
@@ -42,12 +42,12 @@ nlohmann::ordered_json metadata(const Simulation& sim, double duration,
   json route = json::array();
   for (const auto& p : sim.route().waypoints) route.push_back({p.x(), p.y()});
   const auto& gait = sim.baseMotion().gait();
-  json extrinsics = run::dataset::extrinsicsJson(l.mount, sim.R_T_L());
-  extrinsics["R_T_I"] = run::dataset::mountJson(s.imu.mount, sim.R_T_I());
+  json extrinsics = sensors::dataset::extrinsicsJson(l.mount, sim.R_T_L());
+  extrinsics["R_T_I"] = sensors::dataset::mountJson(s.imu.mount, sim.R_T_I());
   const auto& imu = s.imu;
   return {
-      {"format", run::dataset::kFormat},
-      {"version", run::dataset::kVersion},
+      {"format", sensors::dataset::kFormat},
+      {"version", sensors::dataset::kVersion},
       {"generator", "isg simulate 0.1.0"},
       {"scenario", s.source},
       {"plan_file", s.plan_file},
@@ -78,7 +78,7 @@ nlohmann::ordered_json metadata(const Simulation& sim, double duration,
         {"dropout", l.dropout},
         {"intensity",
          "round(255 * reflectivity * |cos(incidence)|), reflectivity = mean of the surface colour"},
-        {"pcd_data", run::dataset::pcdDataName(options.pcd)},
+        {"pcd_data", sensors::dataset::pcdDataName(options.pcd)},
         {"pcd_fields",
          "x y z intensity ring time (float32 ×4, uint16, float32), time from the scan stamp"}}},
       {"odometry",
@@ -88,7 +88,7 @@ nlohmann::ordered_json metadata(const Simulation& sim, double duration,
         {"heading_bias_deg_per_m", s.odometry.heading_bias_deg_per_m},
         {"model", "random walk: std over 1 m = translation_noise m and heading_noise deg"}}},
       {"imu",
-       {{"file", run::dataset::kImu},
+       {{"file", sensors::dataset::kImu},
         {"rate_hz", imu.rate_hz},
         {"samples", imu_samples},
         {"frame", "I"},
@@ -130,8 +130,8 @@ DatasetSummary writeDataset(Simulation& sim, const std::string& dir, const Datas
   const auto start = std::chrono::steady_clock::now();
   DatasetSummary summary;
   writeFolderAtomically(
-      dir, run::OutputKind::kDataset, options.overwrite, [&](const fs::path& temporary) {
-        fs::create_directories(temporary / run::dataset::kScans);
+      dir, sensors::OutputKind::kDataset, options.overwrite, [&](const fs::path& temporary) {
+        fs::create_directories(temporary / sensors::dataset::kScans);
         const double duration =
             options.duration < 0 ? sim.duration() : std::min(options.duration, sim.duration());
         summary.sim_seconds = duration;
@@ -146,8 +146,9 @@ DatasetSummary writeDataset(Simulation& sim, const std::string& dir, const Datas
             const auto lidar = sim.makeLidar();
             for (int k = next++; k < scans; k = next++) {
               const LidarScan scan = sim.scan(k, *lidar);
-              const std::string bytes = run::dataset::pcdBytes(scan.points, options.pcd);
-              writeFile(temporary / run::dataset::kScans / run::dataset::scanFileName(k), bytes);
+              const std::string bytes = sensors::dataset::pcdBytes(scan.points, options.pcd);
+              writeFile(temporary / sensors::dataset::kScans / sensors::dataset::scanFileName(k),
+                        bytes);
               scan_bytes += bytes.size();
               points += scan.points.size();
               rays += std::size_t(scan.rays);
@@ -172,7 +173,7 @@ DatasetSummary writeDataset(Simulation& sim, const std::string& dir, const Datas
         summary.rays = rays;
         summary.scan_bytes = scan_bytes;
 
-        using namespace run::dataset;
+        using namespace sensors::dataset;
         writeFile(temporary / kGroundTruth,
                   trajectoryText(sim.groundTruth(duration, options.groundtruth_rate)));
         writeFile(temporary / kOdometry, trajectoryText(sim.odometry(duration)));

@@ -3,7 +3,7 @@
 #include <functional>
 #include <string>
 
-#include "run/dataset_format.hpp"
+#include "sensors/dataset_format.hpp"
 #include "sim/lidar_simulator.hpp"
 #include "sim/simulation.hpp"
 
@@ -14,7 +14,7 @@ struct DatasetOptions {
   double groundtruth_rate = 100.0;
   bool overwrite = false;  // replace an existing dataset folder
   int threads = 2;
-  run::dataset::PcdData pcd = run::dataset::kDefaultPcdData;
+  sensors::dataset::PcdData pcd = sensors::dataset::kDefaultPcdData;
 };
 
 struct DatasetSummary {
@@ -29,7 +29,7 @@ struct DatasetSummary {
 // Called from the writing thread as scans complete: (scans done, scans in all).
 using ProgressCallback = std::function<void(int done, int total)>;
 
-// Writes the dataset folder (run/dataset_format.hpp, docs/formats.md): scans/NNNNNN.pcd (PCD,
+// Writes the dataset folder (sensors/dataset_format.hpp, docs/formats.md): scans/NNNNNN.pcd (PCD,
 // DATA as options.pcd, fields x y z intensity ring time, LiDAR frame, not deskewed),
 // groundtruth.tum (B_T_R), odometry.tum (M_T_R), scans.tum (B_T_L at each scan stamp) and
 // metadata.json. Everything is written into a temporary folder beside `dir` and renamed into place

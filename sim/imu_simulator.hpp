@@ -6,12 +6,12 @@
 #include <vector>
 
 #include "bim/scenario.hpp"
+#include "sensors/messages.hpp"
 #include "sim/base_motion.hpp"
-#include "slam/messages.hpp"
 
 namespace isg::sim {
 
-using slam::ImuSample;
+using sensors::ImuSample;
 
 // What a perfect IMU mounted at R_T_I on the base reads at `t`: the trajectory's exact
 // derivatives, the lever arm's centripetal and tangential accelerations included.

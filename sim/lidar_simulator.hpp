@@ -6,16 +6,16 @@
 #include <vector>
 
 #include "bim/scenario.hpp"
+#include "sensors/messages.hpp"
 #include "sim/mujoco_world.hpp"
 #include "sim/ray_caster.hpp"
 #include "sim/scan_caster.hpp"
-#include "slam/messages.hpp"
 
 namespace isg::sim {
 
-// One return of the simulated VLP-16: the localizer's own point type (slam/messages.hpp), in the
+// One return of the simulated VLP-16: the localizer's own point type (sensors/messages.hpp), in the
 // LiDAR frame L at its own firing instant (as the real sensor reports it: not deskewed).
-using LidarPoint = slam::ScanPoint;
+using LidarPoint = sensors::ScanPoint;
 
 // CPU seconds one turn spent in each of its stages (for the run's stage timing).
 struct ScanTiming {

@@ -14,7 +14,7 @@
 
 #include "bim/angles.hpp"
 #include "bim/input_error.hpp"
-#include "run/atomic_folder.hpp"
+#include "sensors/atomic_folder.hpp"
 #include "sim/odometry_model.hpp"
 #include "worlds/mjcf_generator.hpp"
 
@@ -231,7 +231,7 @@ Image Renderer::planView(mjData& data, const Eigen::Vector2d& lo, const Eigen::V
 
 void writePng(const std::string& path, const Image& image) {
   // Written beside its place and renamed into it: a reader never sees half a picture.
-  run::AtomicFile atomic(path, run::OutputKind::kPng, true);
+  sensors::AtomicFile atomic(path, sensors::OutputKind::kPng, true);
   FILE* file = std::fopen(atomic.temporary().c_str(), "wb");
   if (file == nullptr) {
     throw bim::InputError(path, "", std::string("cannot write: ") + std::strerror(errno));
@@ -246,11 +246,11 @@ void writePng(const std::string& path, const Image& image) {
   png_init_io(png, file);
   png_set_IHDR(png, info, image.width, image.height, 8, PNG_COLOR_TYPE_RGB, PNG_INTERLACE_NONE,
                PNG_COMPRESSION_TYPE_DEFAULT, PNG_FILTER_TYPE_DEFAULT);
-  // The mark that lets isg render replace this picture, and nothing else (run/output_path.hpp).
+  // The mark that lets isg render replace this picture, and nothing else (sensors/output_path.hpp).
   png_text software{};
   software.compression = PNG_TEXT_COMPRESSION_NONE;
   software.key = const_cast<char*>("Software");
-  software.text = const_cast<char*>(run::kWrittenByIsg);
+  software.text = const_cast<char*>(sensors::kWrittenByIsg);
   png_set_text(png, info, &software, 1);
   png_write_info(png, info);
   for (int y = 0; y < image.height; ++y) {

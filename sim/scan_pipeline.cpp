@@ -4,17 +4,17 @@
 
 namespace isg::sim {
 
-run::SensorStreams sensorStreams(const Simulation& simulation, double duration,
-                                 double groundtruth_rate) {
+sensors::SensorStreams sensorStreams(const Simulation& simulation, double duration,
+                                     double groundtruth_rate) {
   const double d = duration < 0 ? simulation.duration() : std::min(duration, simulation.duration());
-  run::SensorStreams streams;
+  sensors::SensorStreams streams;
   streams.duration = d;
   streams.ground_truth = simulation.groundTruth(d, groundtruth_rate);
   streams.odometry = simulation.odometry(d);
   for (const auto& pose : simulation.scanPoses(d)) streams.scan_stamps.push_back(pose.t);
   streams.scan_period = simulation.scanPeriod();
   streams.R_T_L = simulation.R_T_L();
-  run::quantiseStreams(streams);  // as the dataset's TUM files will hold them
+  sensors::quantiseStreams(streams);  // as the dataset's TUM files will hold them
   return streams;
 }
 
@@ -117,7 +117,7 @@ void LookaheadScans::work() {
   }
 }
 
-slam::Scan LookaheadScans::scan(int index) {
+sensors::Scan LookaheadScans::scan(int index) {
   std::unique_lock<std::mutex> lock(mutex_);
   if (error_) std::rethrow_exception(error_);
   consumed_ = index;  // scans before it are done with; it is index + 1 once this one is taken
@@ -158,9 +158,9 @@ void LookaheadScans::skip(int index) {
   changed_.notify_all();
 }
 
-slam::StageTimes LookaheadScans::stageTimes() const {
+sensors::StageTimes LookaheadScans::stageTimes() const {
   std::lock_guard<std::mutex> lock(mutex_);
-  slam::StageTimes times;
+  sensors::StageTimes times;
   times.add("poses", timing_.poses_s);
   times.add("casting", timing_.casting_s);
   times.add("noise", timing_.noise_s);

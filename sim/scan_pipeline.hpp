@@ -10,18 +10,18 @@
 #include <thread>
 #include <vector>
 
-#include "run/driver.hpp"
-#include "run/sensor_streams.hpp"
+#include "sensors/scan_source.hpp"
+#include "sensors/sensor_streams.hpp"
 #include "sim/simulation.hpp"
 
 namespace isg::sim {
 
 // The simulation's sensor streams for a run of `duration` seconds of robot time (< 0: the whole
 // route, and never more): ground truth at `groundtruth_rate`, odometry, scan stamps, the LiDAR
-// mount; quantised as a dataset stores them (run::quantiseStreams), so that a recorded dataset
+// mount; quantised as a dataset stores them (sensors::quantiseStreams), so that a recorded dataset
 // replays to the very same result.
-run::SensorStreams sensorStreams(const Simulation& simulation, double duration,
-                                 double groundtruth_rate = 100.0);
+sensors::SensorStreams sensorStreams(const Simulation& simulation, double duration,
+                                     double groundtruth_rate = 100.0);
 
 // The live loop's ScanSource: scans made when they are needed, by the calling thread and
 // `workers` more (0: the caller alone). Two ways, chosen by what the localizer has been doing:
@@ -33,18 +33,18 @@ run::SensorStreams sensorStreams(const Simulation& simulation, double duration,
 // Every scan is the same whichever way and by whichever thread it is made (each block draws from
 // its own seeded generator), so results do not depend on the number of threads. Worker threads
 // stop when the source is destroyed, also on an exception.
-class LookaheadScans : public run::ScanSource {
+class LookaheadScans : public sensors::ScanSource {
  public:
   LookaheadScans(const Simulation& simulation, int scans, int workers, int lookahead = 16);
   ~LookaheadScans() override;
   LookaheadScans(const LookaheadScans&) = delete;
   LookaheadScans& operator=(const LookaheadScans&) = delete;
 
-  slam::Scan scan(int index) override;
+  sensors::Scan scan(int index) override;
   void skip(int index) override;
   // Seconds spent making scans, by stage (poses, casting, noise), summed over threads; scans made
   // ahead and then skipped included.
-  slam::StageTimes stageTimes() const override;
+  sensors::StageTimes stageTimes() const override;
   int scansMade() const;
 
   static constexpr int kStreak = 3;

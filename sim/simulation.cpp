@@ -87,8 +87,8 @@ LidarScan Simulation::scanBlocks(int index, LidarSimulator& lidar, int first_blo
       deriveSeed(scenario_.seed, kScanStream, std::uint64_t(index)), first_block, last_block);
 }
 
-run::Trajectory Simulation::groundTruth(double duration, double rate_hz) const {
-  run::Trajectory out;
+sensors::Trajectory Simulation::groundTruth(double duration, double rate_hz) const {
+  sensors::Trajectory out;
   const int n = int(std::floor(duration * rate_hz + 1e-9));
   for (int i = 0; i <= n; ++i) {
     const double t = i / rate_hz;
@@ -97,8 +97,8 @@ run::Trajectory Simulation::groundTruth(double duration, double rate_hz) const {
   return out;
 }
 
-run::Trajectory Simulation::odometry(double duration) const {
-  run::Trajectory out;
+sensors::Trajectory Simulation::odometry(double duration) const {
+  sensors::Trajectory out;
   auto rng = generator(kOdometryStream);
   OdometryModel model(scenario_.odometry, base_motion_->pose(0.0));
   const double rate = scenario_.odometry.rate_hz;
@@ -122,8 +122,8 @@ std::vector<ImuSample> Simulation::imu(double duration) const {
                      deriveSeed(scenario_.seed, kImuStream, 0));
 }
 
-run::Trajectory Simulation::scanPoses(double duration) const {
-  run::Trajectory out;
+sensors::Trajectory Simulation::scanPoses(double duration) const {
+  sensors::Trajectory out;
   for (int k = 0; k < scanCount(duration); ++k) {
     const double t = k * scanPeriod();
     out.push_back({t, B_T_L(t)});

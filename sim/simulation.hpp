@@ -6,7 +6,7 @@
 #include <vector>
 
 #include "bim/scenario.hpp"
-#include "run/sensor_streams.hpp"
+#include "sensors/sensor_streams.hpp"
 #include "sim/base_motion.hpp"
 #include "sim/imu_simulator.hpp"
 #include "sim/lidar_simulator.hpp"
@@ -47,10 +47,10 @@ class Simulation {
   std::unique_ptr<LidarSimulator> makeLidar() const;
   Eigen::Isometry3d B_T_L(double t) const { return base_motion_->pose(t) * R_T_L_; }
 
-  run::Trajectory groundTruth(double duration, double rate_hz) const;
-  run::Trajectory odometry(double duration) const;    // M_T_R at odometry.rate_hz
-  run::Trajectory scanPoses(double duration) const;   // B_T_L at each scan stamp
-  std::vector<ImuSample> imu(double duration) const;  // the IMU stream (scenario imu)
+  sensors::Trajectory groundTruth(double duration, double rate_hz) const;
+  sensors::Trajectory odometry(double duration) const;   // M_T_R at odometry.rate_hz
+  sensors::Trajectory scanPoses(double duration) const;  // B_T_L at each scan stamp
+  std::vector<ImuSample> imu(double duration) const;     // the IMU stream (scenario imu)
   // The IMU on the base (scenario imu.mount).
   const Eigen::Isometry3d& R_T_I() const { return R_T_I_; }
 

@@ -7,9 +7,9 @@
 
 #include <vector>
 
+#include "sensors/messages.hpp"
+#include "sensors/stage_times.hpp"
 #include "slam/map_diagnostics.hpp"
-#include "slam/messages.hpp"
-#include "slam/stage_times.hpp"
 
 namespace isg::slam {
 
@@ -20,8 +20,8 @@ class Localizer {
   virtual ~Localizer() = default;
 
   virtual std::string name() const = 0;
-  virtual void pushOdometry(const Odometry& odometry) = 0;
-  virtual void pushScan(const Scan& scan) = 0;
+  virtual void pushOdometry(const sensors::Odometry& odometry) = 0;
+  virtual void pushScan(const sensors::Scan& scan) = 0;
   // Whether pushScan would read the scan stamped `stamp`, given the odometry pushed so far (up to
   // the end of that scan's turn). When it says no, a loop may leave the scan unmade and not push
   // it at all: the method must then end up exactly as if it had been pushed. Methods that read
@@ -29,7 +29,7 @@ class Localizer {
   virtual bool wantsScan(double /*stamp*/) const { return true; }
 
   // The latest estimate of the base in the map frame M, once there is one.
-  virtual std::optional<Odometry> poseInMap() const = 0;
+  virtual std::optional<sensors::Odometry> poseInMap() const = 0;
   // B_T_M, once the method knows where its map lies in the plan frame B.
   virtual std::optional<Eigen::Isometry3d> mapInPlan() const = 0;
   // The method's graph (or state) for the run folder's sgraph.json.
@@ -46,7 +46,7 @@ class Localizer {
   // Seconds spent in each of the method's stages so far (deskew, extraction, matching, ...), for
   // the run's stage timing. Methods that do not report stages have none: their time shows as the
   // localizer's own.
-  virtual StageTimes stageTimes() const { return {}; }
+  virtual sensors::StageTimes stageTimes() const { return {}; }
 };
 
 // The baseline: odometry alone, its map frame placed in the plan by a pose given from outside
@@ -56,16 +56,16 @@ class DeadReckoning : public Localizer {
   explicit DeadReckoning(std::optional<Eigen::Isometry3d> B_T_M = std::nullopt) : B_T_M_(B_T_M) {}
 
   std::string name() const override { return "odometry"; }
-  void pushOdometry(const Odometry& odometry) override { latest_ = odometry; }
-  void pushScan(const Scan&) override {}
+  void pushOdometry(const sensors::Odometry& odometry) override { latest_ = odometry; }
+  void pushScan(const sensors::Scan&) override {}
   bool wantsScan(double) const override { return false; }
-  std::optional<Odometry> poseInMap() const override { return latest_; }
+  std::optional<sensors::Odometry> poseInMap() const override { return latest_; }
   std::optional<Eigen::Isometry3d> mapInPlan() const override { return B_T_M_; }
   nlohmann::json graph() const override { return {{"method", name()}}; }
 
  private:
   std::optional<Eigen::Isometry3d> B_T_M_;
-  std::optional<Odometry> latest_;
+  std::optional<sensors::Odometry> latest_;
 };
 
 }  // namespace isg::slam

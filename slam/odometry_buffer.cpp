@@ -5,7 +5,7 @@
 
 namespace isg::slam {
 
-void OdometryBuffer::push(const Odometry& odometry) {
+void OdometryBuffer::push(const sensors::Odometry& odometry) {
   if (!buffer_.empty() && odometry.stamp <= buffer_.back().stamp) return;  // out of order: ignore
   buffer_.push_back(odometry);
   while (buffer_.size() > 2 && buffer_.front().stamp < odometry.stamp - keep_) buffer_.pop_front();
@@ -13,11 +13,12 @@ void OdometryBuffer::push(const Odometry& odometry) {
 
 std::optional<Eigen::Isometry3d> OdometryBuffer::at(double t) const {
   if (buffer_.empty() || t < buffer_.front().stamp || t > buffer_.back().stamp) return std::nullopt;
-  const auto it = std::lower_bound(buffer_.begin(), buffer_.end(), t,
-                                   [](const Odometry& o, double s) { return o.stamp < s; });
+  const auto it =
+      std::lower_bound(buffer_.begin(), buffer_.end(), t,
+                       [](const sensors::Odometry& o, double s) { return o.stamp < s; });
   if (it->stamp == t || it == buffer_.begin()) return it->M_T_R;
-  const Odometry& a = *(it - 1);
-  const Odometry& b = *it;
+  const sensors::Odometry& a = *(it - 1);
+  const sensors::Odometry& b = *it;
   const double w = (t - a.stamp) / (b.stamp - a.stamp);
   Eigen::Isometry3d out = Eigen::Isometry3d::Identity();
   out.translation() = (1 - w) * a.M_T_R.translation() + w * b.M_T_R.translation();
@@ -27,7 +28,7 @@ std::optional<Eigen::Isometry3d> OdometryBuffer::at(double t) const {
   return out;
 }
 
-int deskew(Scan& scan, const OdometryBuffer& odometry, const Eigen::Isometry3d& R_T_L) {
+int deskew(sensors::Scan& scan, const OdometryBuffer& odometry, const Eigen::Isometry3d& R_T_L) {
   const auto at_stamp = odometry.at(scan.stamp);
   if (!at_stamp) return int(scan.points.size());
   const Eigen::Isometry3d L0_T_M = (*at_stamp * R_T_L).inverse();

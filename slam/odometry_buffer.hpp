@@ -3,7 +3,7 @@
 #include <deque>
 #include <optional>
 
-#include "slam/messages.hpp"
+#include "sensors/messages.hpp"
 
 namespace isg::slam {
 
@@ -13,7 +13,7 @@ class OdometryBuffer {
  public:
   explicit OdometryBuffer(double keep_seconds = 5.0) : keep_(keep_seconds) {}
 
-  void push(const Odometry& odometry);
+  void push(const sensors::Odometry& odometry);
   // M_T_R at time t; nullopt outside the buffered span.
   std::optional<Eigen::Isometry3d> at(double t) const;
   bool empty() const { return buffer_.empty(); }
@@ -21,12 +21,12 @@ class OdometryBuffer {
 
  private:
   double keep_;
-  std::deque<Odometry> buffer_;
+  std::deque<sensors::Odometry> buffer_;
 };
 
 // Moves every point of a scan into the LiDAR frame at the scan's stamp, using the base's motion
 // from odometry: p' = (M_T_L(stamp))⁻¹ · M_T_L(stamp + time) · p. Points whose instant the buffer
 // does not cover are kept as they are. Returns how many points could not be deskewed.
-int deskew(Scan& scan, const OdometryBuffer& odometry, const Eigen::Isometry3d& R_T_L);
+int deskew(sensors::Scan& scan, const OdometryBuffer& odometry, const Eigen::Isometry3d& R_T_L);
 
 }  // namespace isg::slam

@@ -18,10 +18,10 @@
 #include <thread>
 
 #include "bim/input_error.hpp"
-#include "run/atomic_folder.hpp"
 #include "run/builtin_methods.hpp"
 #include "run/interrupt.hpp"
 #include "run/run_metrics.hpp"
+#include "sensors/atomic_folder.hpp"
 
 namespace isg::sweep {
 
@@ -259,7 +259,7 @@ PoolOutcome runCells(const std::string& sweep_dir, const std::vector<SweepCell>&
                                  {"error", lines}};
         if (WIFEXITED(status)) record["exit_code"] = WEXITSTATUS(status);
         if (WIFSIGNALED(status)) record["signal"] = WTERMSIG(status);
-        run::writeFileAtomically(failureRecordPath(sweep_dir, cell), record.dump(1) + "\n");
+        sensors::writeFileAtomically(failureRecordPath(sweep_dir, cell), record.dump(1) + "\n");
         std::string reason = WIFEXITED(status) ? "exit " + std::to_string(WEXITSTATUS(status))
                                                : "signal " + std::to_string(WTERMSIG(status));
         what = "FAILED (" + reason + ")" + (lines.empty() ? "" : ": " + lines.back());

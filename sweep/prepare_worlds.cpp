@@ -6,7 +6,7 @@
 #include "bim/input_error.hpp"
 #include "bim/json_reader.hpp"
 #include "bim/limits.hpp"
-#include "run/atomic_folder.hpp"
+#include "sensors/atomic_folder.hpp"
 #include "sim/simulation.hpp"
 #include "worlds/reference_plans.hpp"
 #include "worlds/world_hash.hpp"
@@ -26,7 +26,7 @@ void writeIfChanged(const fs::path& path, const std::string& text) {
       // Unreadable: written anew below.
     }
   }
-  run::writeFileAtomically(path.string(), text);
+  sensors::writeFileAtomically(path.string(), text);
 }
 
 // A file's bytes as far as they can be read ("" when not at all).

@@ -8,7 +8,7 @@
 #include <filesystem>
 
 #include "bim/input_error.hpp"
-#include "run/atomic_folder.hpp"
+#include "sensors/atomic_folder.hpp"
 
 namespace isg::sweep {
 
@@ -81,10 +81,10 @@ std::string writeSlurmScript(const std::string& sweep_dir, const Suite& suite,
   std::string list;
   for (std::size_t i : pending) list += std::to_string(i) + "\n";
   fs::create_directories(fs::path(sweep_dir) / "logs");
-  run::writeFileAtomically((fs::path(sweep_dir) / kSlurmCellsFile).string(), list);
+  sensors::writeFileAtomically((fs::path(sweep_dir) / kSlurmCellsFile).string(), list);
   const std::string script = (fs::path(sweep_dir) / kSlurmScriptFile).string();
-  run::writeFileAtomically(script,
-                           slurmScript(sweep_dir, suite, pending.size(), isg, max_array_size));
+  sensors::writeFileAtomically(script,
+                               slurmScript(sweep_dir, suite, pending.size(), isg, max_array_size));
   fs::permissions(script, fs::perms::owner_exec | fs::perms::group_exec, fs::perm_options::add);
   return script;
 }

@@ -24,25 +24,23 @@ inline const std::map<std::string, std::set<std::string>>& allowedModules() {
       {"bim", {}},
       {"worlds", {"bim"}},
       {"eval", {}},
-      {"slam", {"bim"}},
-      {"slam/sgraph", {"bim", "slam"}},
-      {"slam/isgraph", {"bim", "slam", "slam/sgraph"}},
-      {"slam/baselines", {"bim", "slam"}},
-      {"run", {"bim", "eval", "slam", "slam/sgraph", "slam/isgraph", "slam/baselines"}},
-      {"sim", {"bim", "worlds", "run", "slam"}},
-      {"sweep", {"bim", "worlds", "eval", "run", "sim"}},
+      {"sensors", {"bim", "eval"}},
+      {"slam", {"bim", "sensors"}},
+      {"slam/sgraph", {"bim", "sensors", "slam"}},
+      {"slam/isgraph", {"bim", "sensors", "slam", "slam/sgraph"}},
+      {"slam/baselines", {"bim", "sensors", "slam"}},
+      {"run", {"bim", "eval", "sensors", "slam", "slam/sgraph", "slam/isgraph", "slam/baselines"}},
+      {"sim", {"bim", "worlds", "sensors"}},
+      {"sweep", {"bim", "worlds", "eval", "sensors", "run", "sim"}},
       {"cli",
-       {"bim", "worlds", "eval", "slam", "slam/sgraph", "slam/isgraph", "slam/baselines", "run",
-        "sim", "sweep"}},
+       {"bim", "worlds", "eval", "sensors", "slam", "slam/sgraph", "slam/isgraph", "slam/baselines",
+        "run", "sim", "sweep"}},
   };
   return allowed;
 }
 
 // Where a module may reach into another only for some headers.
 inline bool headerAllowed(const std::string& from, const std::string& header) {
-  // sim produces the sensor messages the localizer consumes; everything else of slam it sees
-  // through run/ (the registry, the driver).
-  if (from == "sim" && header.rfind("slam/", 0) == 0) return header == "slam/messages.hpp";
   // slam's PCL header is slam's own: no user of slam compiles PCL.
   if (header == "slam/sgraph/pcl_planes.hpp") return from == "slam/sgraph";
   return true;

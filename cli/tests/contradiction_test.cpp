@@ -34,8 +34,8 @@ TEST(ISGraphContradiction, AWrongFirstMatchIsContradictedAndEveryKeyframeReoptim
   options.suspect_share = 0.0;
   options.plan_share_collapse = 0.0;
   slam::ISGraphLocalizer localizer(simulation.R_T_L(), plan, options);
-  run::SensorStreams streams = sensorStreams(simulation, -1.0);
-  const Eigen::Isometry3d B_T_M = run::trueStartB_T_M(streams);
+  sensors::SensorStreams streams = sensorStreams(simulation, -1.0);
+  const Eigen::Isometry3d B_T_M = sensors::trueStartB_T_M(streams);
   const Eigen::Vector3d truth(B_T_M.translation().x(), B_T_M.translation().y(),
                               bim::yawOf(B_T_M.linear()));
   LookaheadScans scans(simulation, int(streams.scan_stamps.size()), 1);
@@ -43,7 +43,7 @@ TEST(ISGraphContradiction, AWrongFirstMatchIsContradictedAndEveryKeyframeReoptim
   bool injected = false;
   Eigen::Vector3d wrong;
   for (int k = 0; k < int(streams.scan_stamps.size()); ++k) {
-    slam::Scan scan = scans.scan(k);
+    sensors::Scan scan = scans.scan(k);
     scan.stamp = streams.scan_stamps[k];
     driver.feed(scan);
     const auto& graph = localizer.sgraph();

@@ -54,7 +54,7 @@ TEST(PlaneExtraction, OnSimulatedScansTheRangeImageFindsTheWallsRansacFindsAsWel
     const Eigen::Isometry3d B_T_L = sim.B_T_L(t);
     const LidarScan made = lidar->scan(
         0.0, [&](double) { return B_T_L; }, 5);
-    const slam::Scan scan{0.0, made.points};
+    const sensors::Scan scan{0.0, made.points};
     slam::PlaneExtractionOptions options;
     const auto image = slam::extractPlanes(scan, options);
     options.method = slam::PlaneExtractionOptions::Method::kRansac;

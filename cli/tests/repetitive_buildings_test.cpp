@@ -46,7 +46,7 @@ Outcome runBuilding(const Building& building, std::uint64_t seed) {
   scenario.seed = seed;
   const Simulation simulation(scenario);
   const bim::AGraph plan = bim::buildAGraph(scenario.plan);
-  const run::SensorStreams streams = sensorStreams(simulation, -1.0);
+  const sensors::SensorStreams streams = sensorStreams(simulation, -1.0);
   // The extrinsics as the streams carry them (quantised), as isg run feeds them.
   slam::ISGraphLocalizer localizer(streams.R_T_L, plan);
   const double width_tolerance = slam::MatchingOptions{}.width_tolerance;
@@ -76,7 +76,7 @@ Outcome runBuilding(const Building& building, std::uint64_t seed) {
   std::size_t keyframes = 0;
   std::string status = "not yet";
   for (int k = 0; k < int(streams.scan_stamps.size()); ++k) {
-    slam::Scan scan = scans.scan(k);
+    sensors::Scan scan = scans.scan(k);
     scan.stamp = streams.scan_stamps[k];
     driver.feed(scan);
     const auto& sgraph = localizer.sgraph();

@@ -23,7 +23,7 @@ Estimates runOnce(const std::string& method, bool feed_every_scan) {
   const bim::Scenario scenario = worlds::loadScenarioOrBuiltin("builtin:d2.asbuilt", nullptr);
   const Simulation sim(scenario);
   const bim::AGraph agraph = bim::buildAGraph(scenario.plan);
-  const run::SensorStreams streams = sensorStreams(sim, 25.0);
+  const sensors::SensorStreams streams = sensorStreams(sim, 25.0);
   run::LocalizerContext context;
   context.plan = &scenario.plan;
   context.agraph = &agraph;
@@ -37,7 +37,7 @@ Estimates runOnce(const std::string& method, bool feed_every_scan) {
   for (int k = 0; k < int(streams.scan_stamps.size()); ++k) {
     const double stamp = streams.scan_stamps[k];
     if (driver.wants(stamp) || feed_every_scan) {
-      slam::Scan scan = scans.scan(k);
+      sensors::Scan scan = scans.scan(k);
       scan.stamp = stamp;
       driver.feed(scan);
       ++out.read;

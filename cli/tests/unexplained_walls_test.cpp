@@ -37,8 +37,8 @@ Outcome runD3WithoutW6(const slam::MatchingOptions& matching) {
   slam::ISGraphOptions options;
   options.matching = matching;
   slam::ISGraphLocalizer localizer(simulation.R_T_L(), plan, options);
-  const run::SensorStreams streams = sensorStreams(simulation, 30.0);
-  const Eigen::Isometry3d B_T_M = run::trueStartB_T_M(streams);
+  const sensors::SensorStreams streams = sensorStreams(simulation, 30.0);
+  const Eigen::Isometry3d B_T_M = sensors::trueStartB_T_M(streams);
   const double true_yaw = std::atan2(B_T_M.linear()(1, 0), B_T_M.linear()(0, 0));
   LookaheadScans scans(simulation, int(streams.scan_stamps.size()), 1);
   run::LocalizerDriver driver(localizer, streams.odometry, streams.scan_period);
@@ -47,7 +47,7 @@ Outcome runD3WithoutW6(const slam::MatchingOptions& matching) {
     return std::abs(std::remainder(yaw - true_yaw, 2.0 * std::numbers::pi));
   };
   for (int k = 0; k < int(streams.scan_stamps.size()); ++k) {
-    slam::Scan scan = scans.scan(k);
+    sensors::Scan scan = scans.scan(k);
     scan.stamp = streams.scan_stamps[k];
     driver.feed(scan);
     const auto B_T_M_now = localizer.mapInPlan();

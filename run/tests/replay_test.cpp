@@ -1,4 +1,4 @@
-// The replay path on its own: a dataset written through run/dataset_format (a box room, scans
+// The replay path on its own: a dataset written through sensors/dataset_format (a box room, scans
 // ray-cast by hand, exact odometry), read back by DatasetReader and fed through runLocalizer.
 // This executable links isg_run and nothing of MuJoCo, sim or worlds (the test
 // ReplayLinksNoMuJoCo checks its link line and ldd).
@@ -10,12 +10,12 @@
 #include <numbers>
 
 #include "bim/input_error.hpp"
-#include "run/atomic_folder.hpp"
 #include "run/builtin_methods.hpp"
-#include "run/dataset_format.hpp"
-#include "run/dataset_reader.hpp"
 #include "run/driver.hpp"
 #include "run/evaluate_run.hpp"
+#include "sensors/atomic_folder.hpp"
+#include "sensors/dataset_format.hpp"
+#include "sensors/dataset_reader.hpp"
 
 namespace isg::run {
 namespace {
@@ -50,52 +50,59 @@ class SyntheticDataset : public ::testing::Test {
     Eigen::Isometry3d R_T_L = Eigen::Isometry3d::Identity();
     R_T_L.translation().z() = 0.5;
     const Eigen::Vector3d room(8, 5, 3);
-    writeFolderAtomically(dir_.string(), OutputKind::kDataset, false, [&](const fs::path& tmp) {
-      Trajectory truth, odometry, scan_poses;
-      for (int i = 0; i <= int(duration * 100); ++i) truth.push_back({i / 100.0, B_T_R(i / 100.0)});
-      for (int i = 0; i <= int(duration * 50); ++i) {
-        odometry.push_back({i / 50.0, B_T_R(0).inverse() * B_T_R(i / 50.0)});
-      }
-      fs::create_directories(tmp / dataset::kScans);
-      for (int k = 0; k * period + period <= duration; ++k) {
-        const double stamp = k * period;
-        const Eigen::Isometry3d B_T_L = B_T_R(stamp) * R_T_L;  // no motion within a turn
-        scan_poses.push_back({stamp, B_T_L});
-        std::vector<slam::ScanPoint> points;
-        for (int ring = 0; ring < 16; ++ring) {
-          const double elevation = (-15.0 + 2.0 * ring) * std::numbers::pi / 180.0;
-          for (int step = 0; step < 900; ++step) {
-            const double azimuth = 2.0 * std::numbers::pi * step / 900;
-            const Eigen::Vector3d d_L(std::cos(elevation) * std::cos(azimuth),
-                                      std::cos(elevation) * std::sin(azimuth), std::sin(elevation));
-            const double range = insideBox(B_T_L.translation(), B_T_L.linear() * d_L, room);
-            const Eigen::Vector3d p = range * d_L;
-            points.push_back({float(p.x()), float(p.y()), float(p.z()), 100.0f, std::uint16_t(ring),
-                              float(period * step / 900)});
+    sensors::writeFolderAtomically(
+        dir_.string(), sensors::OutputKind::kDataset, false, [&](const fs::path& tmp) {
+          Trajectory truth, odometry, scan_poses;
+          for (int i = 0; i <= int(duration * 100); ++i)
+            truth.push_back({i / 100.0, B_T_R(i / 100.0)});
+          for (int i = 0; i <= int(duration * 50); ++i) {
+            odometry.push_back({i / 50.0, B_T_R(0).inverse() * B_T_R(i / 50.0)});
           }
-        }
-        writeFile(tmp / dataset::kScans / dataset::scanFileName(k), dataset::pcdBinary(points));
-      }
-      writeFile(tmp / dataset::kGroundTruth, dataset::trajectoryText(truth));
-      writeFile(tmp / dataset::kOdometry, dataset::trajectoryText(odometry));
-      writeFile(tmp / dataset::kScanPoses, dataset::trajectoryText(scan_poses));
-      nlohmann::ordered_json metadata = {{"format", dataset::kFormat},
-                                         {"version", dataset::kVersion},
-                                         {"seed", 5},
-                                         {"duration_s", duration},
-                                         {"lidar", {{"rate_hz", 1.0 / period}}}};
-      metadata["extrinsics"] = dataset::extrinsicsJson({0, 0, 0.5, 0, 0, 0}, R_T_L);
-      writeFile(tmp / dataset::kMetadata, metadata.dump(2));
-    });
+          fs::create_directories(tmp / sensors::dataset::kScans);
+          for (int k = 0; k * period + period <= duration; ++k) {
+            const double stamp = k * period;
+            const Eigen::Isometry3d B_T_L = B_T_R(stamp) * R_T_L;  // no motion within a turn
+            scan_poses.push_back({stamp, B_T_L});
+            std::vector<sensors::ScanPoint> points;
+            for (int ring = 0; ring < 16; ++ring) {
+              const double elevation = (-15.0 + 2.0 * ring) * std::numbers::pi / 180.0;
+              for (int step = 0; step < 900; ++step) {
+                const double azimuth = 2.0 * std::numbers::pi * step / 900;
+                const Eigen::Vector3d d_L(std::cos(elevation) * std::cos(azimuth),
+                                          std::cos(elevation) * std::sin(azimuth),
+                                          std::sin(elevation));
+                const double range = insideBox(B_T_L.translation(), B_T_L.linear() * d_L, room);
+                const Eigen::Vector3d p = range * d_L;
+                points.push_back({float(p.x()), float(p.y()), float(p.z()), 100.0f,
+                                  std::uint16_t(ring), float(period * step / 900)});
+              }
+            }
+            sensors::writeFile(tmp / sensors::dataset::kScans / sensors::dataset::scanFileName(k),
+                               sensors::dataset::pcdBinary(points));
+          }
+          sensors::writeFile(tmp / sensors::dataset::kGroundTruth,
+                             sensors::dataset::trajectoryText(truth));
+          sensors::writeFile(tmp / sensors::dataset::kOdometry,
+                             sensors::dataset::trajectoryText(odometry));
+          sensors::writeFile(tmp / sensors::dataset::kScanPoses,
+                             sensors::dataset::trajectoryText(scan_poses));
+          nlohmann::ordered_json metadata = {{"format", sensors::dataset::kFormat},
+                                             {"version", sensors::dataset::kVersion},
+                                             {"seed", 5},
+                                             {"duration_s", duration},
+                                             {"lidar", {{"rate_hz", 1.0 / period}}}};
+          metadata["extrinsics"] = sensors::dataset::extrinsicsJson({0, 0, 0.5, 0, 0, 0}, R_T_L);
+          sensors::writeFile(tmp / sensors::dataset::kMetadata, metadata.dump(2));
+        });
   }
   void TearDown() override { fs::remove_all(dir_); }
 
   RunRecord replay(const std::string& method) {
-    DatasetReader dataset(dir_.string());
-    SensorStreams streams = dataset.streams();
+    sensors::DatasetReader dataset(dir_.string());
+    sensors::SensorStreams streams = dataset.streams();
     LocalizerContext context;
     context.R_T_L = streams.R_T_L;
-    context.start_B_T_M = trueStartB_T_M(streams);
+    context.start_B_T_M = sensors::trueStartB_T_M(streams);
     const auto localizer = builtinMethods().make(method, context);
     RunSetup setup;
     setup.world = dir_.string();
@@ -107,24 +114,24 @@ class SyntheticDataset : public ::testing::Test {
 };
 
 TEST_F(SyntheticDataset, ReaderGivesTheStreamsAsWritten) {
-  DatasetReader dataset(dir_.string());
+  sensors::DatasetReader dataset(dir_.string());
   EXPECT_EQ(dataset.scanCount(), 60);
   EXPECT_DOUBLE_EQ(dataset.scanPeriod(), 0.1);
-  const SensorStreams streams = dataset.streams();
+  const sensors::SensorStreams streams = dataset.streams();
   EXPECT_EQ(streams.ground_truth.size(), 601u);
   EXPECT_EQ(streams.odometry.size(), 301u);
   EXPECT_DOUBLE_EQ(streams.duration, 6.0);
   EXPECT_NEAR(streams.R_T_L.translation().z(), 0.5, 1e-12);
   // The TUM files hold the quantised numbers: quantising again changes nothing.
-  SensorStreams again = streams;
-  quantiseStreams(again);
+  sensors::SensorStreams again = streams;
+  sensors::quantiseStreams(again);
   EXPECT_EQ(eval::toTumText(again.ground_truth), eval::toTumText(streams.ground_truth));
-  const slam::Scan scan = dataset.scan(3);
+  const sensors::Scan scan = dataset.scan(3);
   EXPECT_EQ(scan.points.size(), 16u * 900u);
   EXPECT_EQ(scan.points[901].ring, 1);
   EXPECT_NEAR(scan.points[450].time, 0.05, 1e-6);
   // Start: M is the first odometry pose, placed at the first ground-truth pose.
-  EXPECT_TRUE(trueStartB_T_M(streams).isApprox(B_T_R(0), 1e-6));
+  EXPECT_TRUE(sensors::trueStartB_T_M(streams).isApprox(B_T_R(0), 1e-6));
 }
 
 TEST_F(SyntheticDataset, DeadReckoningOnExactOdometryIsTheGroundTruth) {
@@ -156,7 +163,7 @@ TEST_F(SyntheticDataset, SGraphReplayIsDeterministicAndMapsTheRoom) {
 
 TEST(DatasetReader, MissingFolderAndBadRateAreNamed) {
   try {
-    DatasetReader reader("/nonexistent/dataset");
+    sensors::DatasetReader reader("/nonexistent/dataset");
     FAIL();
   } catch (const bim::InputError& e) {
     EXPECT_STREQ(e.what(), "/nonexistent/dataset: not a dataset folder (no such directory)");

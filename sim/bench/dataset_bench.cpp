@@ -7,7 +7,7 @@
 
 #include <filesystem>
 
-#include "run/rosbag_export.hpp"
+#include "sensors/rosbag_export.hpp"
 #include "sim/dataset_writer.hpp"
 #include "sim/simulation.hpp"
 #include "worlds/reference_plans.hpp"
@@ -44,11 +44,12 @@ void BM_ExportRosbag_D1(benchmark::State& state) {
     Simulation sim(worlds::loadScenarioOrBuiltin("builtin:d1.asbuilt", nullptr));
     writeDataset(sim, (dir / "ds").string(), DatasetOptions{}, nullptr);
   }
-  run::RosbagExportOptions options;
+  sensors::RosbagExportOptions options;
   options.overwrite = true;
-  run::RosbagSummary summary;
+  sensors::RosbagSummary summary;
   for (auto _ : state) {
-    summary = run::exportRosbag((dir / "ds").string(), (dir / "d1.bag").string(), options, nullptr);
+    summary =
+        sensors::exportRosbag((dir / "ds").string(), (dir / "d1.bag").string(), options, nullptr);
   }
   state.SetBytesProcessed(std::int64_t(summary.bytes) * std::int64_t(state.iterations()));
   state.counters["bag_MB"] = double(summary.bytes) / 1e6;

@@ -3,32 +3,33 @@
 // points (22 bytes each) and the file's size against the binary one (docs/performance.md).
 #include <benchmark/benchmark.h>
 
-#include "run/dataset_format.hpp"
+#include "sensors/dataset_format.hpp"
 #include "sim/simulation.hpp"
 #include "worlds/reference_plans.hpp"
 
 namespace isg::sim {
 namespace {
 
-void BM_PcdEncode_D6(benchmark::State& state, run::dataset::PcdData data) {
-  static const std::vector<slam::ScanPoint> points = [] {
+void BM_PcdEncode_D6(benchmark::State& state, sensors::dataset::PcdData data) {
+  static const std::vector<sensors::ScanPoint> points = [] {
     Simulation sim(worlds::loadScenarioOrBuiltin("builtin:d6.asbuilt", nullptr));
     return sim.scan(1000).points;
   }();
   std::size_t bytes = 0;
   for (auto _ : state) {
-    bytes = run::dataset::pcdBytes(points, data).size();
+    bytes = sensors::dataset::pcdBytes(points, data).size();
     benchmark::DoNotOptimize(bytes);
   }
   const double raw = 22.0 * double(points.size());
   state.SetBytesProcessed(std::int64_t(raw * double(state.iterations())));
   state.counters["points"] = double(points.size());
   state.counters["size_vs_binary"] =
-      double(bytes) / double(run::dataset::pcdBytes(points, run::dataset::PcdData::kBinary).size());
+      double(bytes) /
+      double(sensors::dataset::pcdBytes(points, sensors::dataset::PcdData::kBinary).size());
 }
-BENCHMARK_CAPTURE(BM_PcdEncode_D6, binary, run::dataset::PcdData::kBinary)
+BENCHMARK_CAPTURE(BM_PcdEncode_D6, binary, sensors::dataset::PcdData::kBinary)
     ->Unit(benchmark::kMillisecond);
-BENCHMARK_CAPTURE(BM_PcdEncode_D6, binary_compressed, run::dataset::PcdData::kBinaryCompressed)
+BENCHMARK_CAPTURE(BM_PcdEncode_D6, binary_compressed, sensors::dataset::PcdData::kBinaryCompressed)
     ->Unit(benchmark::kMillisecond);
 
 }  // namespace

@@ -7,7 +7,7 @@
 #include <string>
 #include <vector>
 
-#include "run/dataset_format.hpp"
+#include "sensors/dataset_format.hpp"
 #include "sim/simulation.hpp"
 #include "worlds/reference_plans.hpp"
 
@@ -200,9 +200,9 @@ TEST(Imu, SameSeedSameBytes) {
   GaitConfig gait;
   const BaseMotion t({{0, 0}, {2, 0}, {2, 2}}, 0.0, 0.5, 0.0, gait);
   bim::ImuConfig config;
-  const std::string a = run::dataset::imuText(simulateImu(t, config, t.duration(), 5));
-  const std::string b = run::dataset::imuText(simulateImu(t, config, t.duration(), 5));
-  const std::string c = run::dataset::imuText(simulateImu(t, config, t.duration(), 6));
+  const std::string a = sensors::dataset::imuText(simulateImu(t, config, t.duration(), 5));
+  const std::string b = sensors::dataset::imuText(simulateImu(t, config, t.duration(), 5));
+  const std::string c = sensors::dataset::imuText(simulateImu(t, config, t.duration(), 6));
   EXPECT_EQ(a, b);
   EXPECT_NE(a, c);
   EXPECT_EQ(a.substr(0, a.find('\n')), "t,ax,ay,az,gx,gy,gz");

@@ -8,8 +8,8 @@
 #include <filesystem>
 #include <fstream>
 
-#include "run/dataset_format.hpp"
-#include "run/pcd_reader.hpp"
+#include "sensors/dataset_format.hpp"
+#include "sensors/pcd_reader.hpp"
 #include "sim/simulation.hpp"
 #include "worlds/reference_plans.hpp"
 
@@ -17,15 +17,15 @@ namespace isg::sim {
 namespace {
 
 namespace fs = std::filesystem;
-using run::dataset::PcdData;
+using sensors::dataset::PcdData;
 
 void write(const fs::path& path, const std::string& bytes) {
   std::ofstream(path, std::ios::binary) << bytes;
 }
 
 // The points of a PCLPointCloud2 with our layout (point step 22: x y z intensity ring time).
-std::vector<slam::ScanPoint> pointsOf(const pcl::PCLPointCloud2& cloud) {
-  std::vector<slam::ScanPoint> out(cloud.width * cloud.height);
+std::vector<sensors::ScanPoint> pointsOf(const pcl::PCLPointCloud2& cloud) {
+  std::vector<sensors::ScanPoint> out(cloud.width * cloud.height);
   for (std::size_t i = 0; i < out.size(); ++i) {
     const auto* at = cloud.data.data() + i * cloud.point_step;
     std::memcpy(&out[i].x, at, 4);
@@ -38,7 +38,8 @@ std::vector<slam::ScanPoint> pointsOf(const pcl::PCLPointCloud2& cloud) {
   return out;
 }
 
-void expectSame(const std::vector<slam::ScanPoint>& a, const std::vector<slam::ScanPoint>& b) {
+void expectSame(const std::vector<sensors::ScanPoint>& a,
+                const std::vector<sensors::ScanPoint>& b) {
   ASSERT_EQ(a.size(), b.size());
   for (std::size_t i = 0; i < a.size(); ++i) {
     ASSERT_EQ(std::memcmp(&a[i].x, &b[i].x, 16), 0) << i;  // x y z intensity, bit for bit
@@ -55,8 +56,8 @@ TEST(PcdWithPcl, PclReadsOurScansAndWeReadPcls) {
   const LidarScan scan = sim.scan(5);
   ASSERT_GT(scan.points.size(), 20000u);
   for (PcdData data : {PcdData::kBinary, PcdData::kBinaryCompressed}) {
-    const fs::path ours = dir / (std::string(run::dataset::pcdDataName(data)) + ".pcd");
-    write(ours, run::dataset::pcdBytes(scan.points, data));
+    const fs::path ours = dir / (std::string(sensors::dataset::pcdDataName(data)) + ".pcd");
+    write(ours, sensors::dataset::pcdBytes(scan.points, data));
     pcl::PCLPointCloud2 cloud;
     ASSERT_EQ(pcl::io::loadPCDFile(ours.string(), cloud), 0) << ours;
     ASSERT_EQ(cloud.point_step, 22u);
@@ -64,12 +65,12 @@ TEST(PcdWithPcl, PclReadsOurScansAndWeReadPcls) {
     for (const auto& f : cloud.fields) fields += f.name + " ";
     EXPECT_EQ(fields, "x y z intensity ring time ");
     expectSame(pointsOf(cloud), scan.points);
-    expectSame(run::readPcd(ours.string()), scan.points);
+    expectSame(sensors::readPcd(ours.string()), scan.points);
 
     // PCL's own binary_compressed writer, read back by ours.
     const fs::path theirs = dir / "pcl.pcd";
     ASSERT_EQ(pcl::PCDWriter().writeBinaryCompressed(theirs.string(), cloud), 0);
-    expectSame(run::readPcd(theirs.string()), scan.points);
+    expectSame(sensors::readPcd(theirs.string()), scan.points);
   }
   fs::remove_all(dir);
 }

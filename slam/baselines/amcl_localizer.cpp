@@ -36,7 +36,7 @@ bool AmclLocalizer::wantsScan(double) const {
   return moved.trans >= options_.update_min_d || turned >= options_.update_min_a;
 }
 
-void AmclLocalizer::pushScan(const Scan& scan) {
+void AmclLocalizer::pushScan(const sensors::Scan& scan) {
   if (!wantsScan(scan.stamp)) return;
   const Pose2 odometry = planarPose(latest_->M_T_R);
   if (!last_update_odometry_) {

@@ -34,10 +34,10 @@ class AmclLocalizer : public Localizer {
                 const AmclOptions& options, std::uint64_t seed);
 
   std::string name() const override { return "amcl"; }
-  void pushOdometry(const Odometry& odometry) override { latest_ = odometry; }
-  void pushScan(const Scan& scan) override;
+  void pushOdometry(const sensors::Odometry& odometry) override { latest_ = odometry; }
+  void pushScan(const sensors::Scan& scan) override;
   bool wantsScan(double stamp) const override;
-  std::optional<Odometry> poseInMap() const override { return latest_; }
+  std::optional<sensors::Odometry> poseInMap() const override { return latest_; }
   std::optional<Eigen::Isometry3d> mapInPlan() const override { return B_T_M_; }
   nlohmann::json graph() const override;
   std::optional<std::string> searchStatus() const override;
@@ -51,7 +51,7 @@ class AmclLocalizer : public Localizer {
   double elevation_ = 0.0;
   std::unique_ptr<LikelihoodField> map_;
   ParticleFilter filter_;
-  std::optional<Odometry> latest_;
+  std::optional<sensors::Odometry> latest_;
   std::optional<Pose2> last_update_odometry_;
   int updates_ = 0;
   std::optional<Eigen::Isometry3d> B_T_M_;

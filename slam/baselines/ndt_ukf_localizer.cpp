@@ -121,7 +121,7 @@ NdtUkfLocalizer::~NdtUkfLocalizer() = default;
 
 std::size_t NdtUkfLocalizer::mapPoints() const { return registration_->map->size(); }
 
-void NdtUkfLocalizer::pushOdometry(const Odometry& odometry) {
+void NdtUkfLocalizer::pushOdometry(const sensors::Odometry& odometry) {
   odometry_.push(odometry);
   latest_ = odometry;
   if (filter_) return;
@@ -136,13 +136,13 @@ void NdtUkfLocalizer::pushOdometry(const Odometry& odometry) {
       std::vector<int>{kYaw});
 }
 
-void NdtUkfLocalizer::pushScan(const Scan& scan) {
+void NdtUkfLocalizer::pushScan(const sensors::Scan& scan) {
   if (!latest_) return;
   // The scan stands at the middle of its turn (hdl_localization does not deskew either).
   double span = 0.0;
   for (const auto& p : scan.points) span = std::max(span, double(p.time));
   const double t = scan.stamp + 0.5 * span;
-  Odometry odometry{t, odometry_.at(t).value_or(latest_->M_T_R)};
+  sensors::Odometry odometry{t, odometry_.at(t).value_or(latest_->M_T_R)};
   if (last_scan_odometry_) {
     // Predict: the pose moves as the odometry moved since the last scan (in the base's frame),
     // the velocity is that move's rate.

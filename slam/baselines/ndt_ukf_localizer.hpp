@@ -51,9 +51,9 @@ class NdtUkfLocalizer : public Localizer {
   ~NdtUkfLocalizer() override;
 
   std::string name() const override { return "ndt-ukf"; }
-  void pushOdometry(const Odometry& odometry) override;
-  void pushScan(const Scan& scan) override;
-  std::optional<Odometry> poseInMap() const override { return latest_; }
+  void pushOdometry(const sensors::Odometry& odometry) override;
+  void pushScan(const sensors::Scan& scan) override;
+  std::optional<sensors::Odometry> poseInMap() const override { return latest_; }
   std::optional<Eigen::Isometry3d> mapInPlan() const override { return B_T_M_; }
   nlohmann::json graph() const override;
 
@@ -68,8 +68,8 @@ class NdtUkfLocalizer : public Localizer {
   std::unique_ptr<Registration> registration_;
   std::unique_ptr<UnscentedKalmanFilter> filter_;  // from the first odometry on
   OdometryBuffer odometry_;
-  std::optional<Odometry> latest_;
-  std::optional<Odometry> last_scan_odometry_;  // M_T_R at the last scan
+  std::optional<sensors::Odometry> latest_;
+  std::optional<sensors::Odometry> last_scan_odometry_;  // M_T_R at the last scan
   std::optional<Eigen::Isometry3d> B_T_M_;
   double floor_ = 0.0, ceiling_ = 0.0;  // the level's, in B
   int scans_ = 0;

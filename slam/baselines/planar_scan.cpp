@@ -5,7 +5,7 @@
 
 namespace isg::slam {
 
-PlanarScan planarScan(const Scan& scan, const Eigen::Isometry3d& R_T_L,
+PlanarScan planarScan(const sensors::Scan& scan, const Eigen::Isometry3d& R_T_L,
                       const PlanarScanOptions& options) {
   PlanarScan out;
   const Eigen::Vector3d sensor = R_T_L.translation();

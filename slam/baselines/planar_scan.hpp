@@ -3,7 +3,7 @@
 #include <Eigen/Geometry>
 #include <vector>
 
-#include "slam/messages.hpp"
+#include "sensors/messages.hpp"
 
 namespace isg::slam {
 
@@ -23,7 +23,7 @@ struct PlanarScan {
   std::vector<double> ranges;  // from origin, one per end point
 };
 
-PlanarScan planarScan(const Scan& scan, const Eigen::Isometry3d& R_T_L,
+PlanarScan planarScan(const sensors::Scan& scan, const Eigen::Isometry3d& R_T_L,
                       const PlanarScanOptions& options = {});
 
 }  // namespace isg::slam

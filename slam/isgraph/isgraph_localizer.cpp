@@ -36,15 +36,15 @@ ISGraphLocalizer::ISGraphLocalizer(const Eigen::Isometry3d& R_T_L, const bim::AG
       });
 }
 
-void ISGraphLocalizer::pushScan(const Scan& scan) {
+void ISGraphLocalizer::pushScan(const sensors::Scan& scan) {
   if (!graph_.addScan(scan)) return;
   const auto start = std::chrono::steady_clock::now();
   onKeyframe(scan.stamp);
   matching_s_ += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
 
-StageTimes ISGraphLocalizer::stageTimes() const {
-  StageTimes times = graph_.stageTimes();
+sensors::StageTimes ISGraphLocalizer::stageTimes() const {
+  sensors::StageTimes times = graph_.stageTimes();
   times.add("matching", matching_s_);
   return times;
 }

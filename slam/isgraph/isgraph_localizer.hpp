@@ -80,16 +80,16 @@ class ISGraphLocalizer : public Localizer {
                    const ISGraphOptions& options = {});
 
   std::string name() const override { return "is-graphs"; }
-  void pushOdometry(const Odometry& odometry) override { graph_.addOdometry(odometry); }
-  void pushScan(const Scan& scan) override;
+  void pushOdometry(const sensors::Odometry& odometry) override { graph_.addOdometry(odometry); }
+  void pushScan(const sensors::Scan& scan) override;
   bool wantsScan(double stamp) const override;
-  std::optional<Odometry> poseInMap() const override { return graph_.latestPose(); }
+  std::optional<sensors::Odometry> poseInMap() const override { return graph_.latestPose(); }
   std::optional<Eigen::Isometry3d> mapInPlan() const override;
   nlohmann::json graph() const override;
   std::optional<std::string> searchStatus() const override { return toString(status_); }
   std::vector<StatusChange> statusChanges() const override;
   std::optional<MapDiagnostics> mapDiagnostics() const override { return graph_.diagnostics(); }
-  StageTimes stageTimes() const override;
+  sensors::StageTimes stageTimes() const override;
 
   // Takes `x_y_yaw` as B_T_M, as if matched, with the correspondences it implies now: a hint from
   // outside (an operator's initial pose), or a test's wrong first match. It is checked like any

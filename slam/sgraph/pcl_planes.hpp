@@ -12,7 +12,7 @@
 namespace isg::slam {
 
 // Range crop and voxel grid of a scan, as a PCL cloud in the scan's frame.
-pcl::PointCloud<pcl::PointXYZ>::Ptr preprocess(const Scan& scan,
+pcl::PointCloud<pcl::PointXYZ>::Ptr preprocess(const sensors::Scan& scan,
                                                const PlaneExtractionOptions& options);
 
 // Sequential RANSAC on a preprocessed cloud (see extractPlanes(Scan)).

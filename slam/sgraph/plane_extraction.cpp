@@ -72,7 +72,7 @@ std::vector<Eigen::Vector3d> pointsOf(const pcl::PointCloud<pcl::PointXYZ>& clou
 
 }  // namespace
 
-pcl::PointCloud<pcl::PointXYZ>::Ptr preprocess(const Scan& scan,
+pcl::PointCloud<pcl::PointXYZ>::Ptr preprocess(const sensors::Scan& scan,
                                                const PlaneExtractionOptions& options) {
   auto cropped = pcl::make_shared<pcl::PointCloud<pcl::PointXYZ>>();
   cropped->reserve(scan.points.size());
@@ -91,7 +91,7 @@ pcl::PointCloud<pcl::PointXYZ>::Ptr preprocess(const Scan& scan,
   return filtered;
 }
 
-std::vector<PlaneObservation> extractPlanes(const Scan& scan,
+std::vector<PlaneObservation> extractPlanes(const sensors::Scan& scan,
                                             const PlaneExtractionOptions& options) {
   if (options.method == PlaneExtractionOptions::Method::kRangeImage) {
     if (auto planes = extractPlanesOnRangeImage(scan, options)) return std::move(*planes);

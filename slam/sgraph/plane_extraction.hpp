@@ -5,7 +5,7 @@
 #include <vector>
 
 #include "bim/plane.hpp"
-#include "slam/messages.hpp"
+#include "sensors/messages.hpp"
 
 namespace isg::slam {
 
@@ -55,7 +55,7 @@ struct PlaneObservation {
 // inliers, each plane's inliers split by Euclidean clustering, planes fitted again by least
 // squares to each cluster. PCL stays behind this call (slam/sgraph/pcl_planes.hpp is slam's own):
 // no user of slam compiles PCL.
-std::vector<PlaneObservation> extractPlanes(const Scan& scan,
+std::vector<PlaneObservation> extractPlanes(const sensors::Scan& scan,
                                             const PlaneExtractionOptions& options);
 
 // The building's dominant yaw in [0, π/2), from the vertical planes' normals (a histogram of

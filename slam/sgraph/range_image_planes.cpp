@@ -31,7 +31,8 @@ struct RangeImage {
   bool valid(int k) const { return first[k + 1] > first[k]; }
 };
 
-std::optional<RangeImage> buildImage(const Scan& scan, const PlaneExtractionOptions& options) {
+std::optional<RangeImage> buildImage(const sensors::Scan& scan,
+                                     const PlaneExtractionOptions& options) {
   RangeImage image;
   const double lo2 = options.min_range * options.min_range;
   const double hi2 = options.max_range * options.max_range;
@@ -134,7 +135,7 @@ int voxelSupport(const std::vector<Eigen::Vector3d>& points, double voxel) {
 }  // namespace
 
 std::optional<std::vector<PlaneObservation>> extractPlanesOnRangeImage(
-    const Scan& scan, const PlaneExtractionOptions& options) {
+    const sensors::Scan& scan, const PlaneExtractionOptions& options) {
   const auto built = buildImage(scan, options);
   if (!built) return std::nullopt;
   const RangeImage& image = *built;

@@ -14,6 +14,6 @@ namespace isg::slam {
 // squares to its points. Linear in the points, where RANSAC on an unorganised cloud is not.
 // nullopt when the scan is not organised (its points name fewer than 4 rings): then RANSAC.
 std::optional<std::vector<PlaneObservation>> extractPlanesOnRangeImage(
-    const Scan& scan, const PlaneExtractionOptions& options);
+    const sensors::Scan& scan, const PlaneExtractionOptions& options);
 
 }  // namespace isg::slam

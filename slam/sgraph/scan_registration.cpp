@@ -41,7 +41,7 @@ Eigen::Matrix2d rotation(double yaw) { return Eigen::Rotation2Dd(yaw).toRotation
 
 }  // namespace
 
-std::vector<Eigen::Vector3f> downsampleScan(const Scan& scan,
+std::vector<Eigen::Vector3f> downsampleScan(const sensors::Scan& scan,
                                             const ScanRegistrationOptions& options) {
   VoxelCentroids voxels(options.voxel);
   voxels.keyed.reserve(scan.points.size());

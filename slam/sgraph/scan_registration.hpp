@@ -4,7 +4,7 @@
 #include <memory>
 #include <vector>
 
-#include "slam/messages.hpp"
+#include "sensors/messages.hpp"
 #include "slam/thread_pool.hpp"
 
 namespace isg::slam {
@@ -43,7 +43,7 @@ struct ScanRegistrationOptions {
 
 // Voxel-grid centroids of a scan's points within the range limits, in the scan's frame; the same
 // points give the same cloud (sorted by voxel).
-std::vector<Eigen::Vector3f> downsampleScan(const Scan& scan,
+std::vector<Eigen::Vector3f> downsampleScan(const sensors::Scan& scan,
                                             const ScanRegistrationOptions& options);
 
 // The recent map: points in M with normals, searchable (a nanoflann k-d tree). Built from

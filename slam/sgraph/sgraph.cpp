@@ -50,20 +50,20 @@ SGraph::SGraph(const Eigen::Isometry3d& R_T_L, const SGraphOptions& options)
   if (options.threads > 1) pool_ = std::make_shared<ThreadPool>(options.threads);
 }
 
-void SGraph::addOdometry(const Odometry& odometry) {
+void SGraph::addOdometry(const sensors::Odometry& odometry) {
   odometry_.push(odometry);
   latest_odometry_ = odometry;
 }
 
-std::optional<Odometry> SGraph::latestPose() const {
+std::optional<sensors::Odometry> SGraph::latestPose() const {
   if (!latest_odometry_) return std::nullopt;
   if (keyframes_.empty()) {
-    Odometry out = *latest_odometry_;
+    sensors::Odometry out = *latest_odometry_;
     out.M_T_R = start_correction_ * out.M_T_R;
     return out;
   }
   const Keyframe& k = keyframes_.back();
-  Odometry out = *latest_odometry_;
+  sensors::Odometry out = *latest_odometry_;
   out.M_T_R = k.pose() * k.odometry.inverse() * latest_odometry_->M_T_R;
   return out;
 }
@@ -89,11 +89,11 @@ bool SGraph::wouldKeyframe(double stamp) const {
   return moved >= options_.keyframe_distance || turned >= options_.keyframe_angle;
 }
 
-bool SGraph::addScan(Scan scan) {
+bool SGraph::addScan(sensors::Scan scan) {
   const auto start = std::chrono::steady_clock::now();
   if (!wouldKeyframe(scan.stamp)) return false;
   const Eigen::Isometry3d odometry_at_scan = *odometry_.at(scan.stamp);
-  StageClock deskew_clock(stage_times_, "deskew");
+  sensors::StageClock deskew_clock(stage_times_, "deskew");
   deskew(scan, odometry_, R_T_L_);
   deskew_clock.stop();
 
@@ -105,7 +105,7 @@ bool SGraph::addScan(Scan scan) {
           ? start_correction_ * odometry_at_scan
           : keyframes_.back().pose() * keyframes_.back().odometry.inverse() * odometry_at_scan;
   if (options_.registration.enabled) {
-    StageClock clock(stage_times_, "registration");
+    sensors::StageClock clock(stage_times_, "registration");
     keyframe.cloud = downsampleScan(scan, options_.registration);
     clock.stop();
     if (!keyframes_.empty()) initial = registerKeyframe(keyframe, initial);
@@ -117,10 +117,10 @@ bool SGraph::addScan(Scan scan) {
   const Eigen::Isometry3d M_T_L = initial * R_T_L_;
   // The map as association sees it, kept in step as this keyframe's observations change it.
   std::vector<MapPlane> walls = activeWalls();
-  StageClock extraction_clock(stage_times_, "extraction");
+  sensors::StageClock extraction_clock(stage_times_, "extraction");
   const std::vector<PlaneObservation> observations = extractPlanes(scan, options_.extraction);
   const double planes_s = extraction_clock.stop();
-  StageClock association_clock(stage_times_, "association");
+  sensors::StageClock association_clock(stage_times_, "association");
   for (const auto& observation : observations) {
     if (observation.orientation == PlaneOrientation::kHorizontal) {
       // The floor: a horizontal plane well below the sensor, facing up.
@@ -161,14 +161,14 @@ bool SGraph::addScan(Scan scan) {
   Timing timing;
   timing.extraction_s = seconds(start);
   timing.planes_s = planes_s;
-  StageClock optimisation_clock(stage_times_, "optimisation");
+  sensors::StageClock optimisation_clock(stage_times_, "optimisation");
   const WindowSize window = optimise(std::max(1, int(keyframes_.size()) - options_.window), true,
                                      options_.max_iterations);
   mergeDuplicatePlanes(std::max(0, index - options_.window + 1));
   timing.solve_s = optimisation_clock.stop();
   timing.window_residuals = window.residual_blocks;
   timing.window_parameters = window.parameter_blocks;
-  StageClock rooms_clock(stage_times_, "rooms");
+  sensors::StageClock rooms_clock(stage_times_, "rooms");
   // Walls seen now may complete rooms the robot stood in a little earlier: look again from every
   // keyframe of the window.
   {
@@ -208,10 +208,10 @@ Eigen::Isometry3d SGraph::registerKeyframe(Keyframe& keyframe, const Eigen::Isom
       parts.push_back({&keyframes_[k].cloud, keyframes_[k].pose() * R_T_L_});
   }
   if (parts.empty() || keyframe.cloud.empty()) return predicted;
-  StageClock map_clock(stage_times_, "local map");
+  sensors::StageClock map_clock(stage_times_, "local map");
   const LocalMap map(parts, options, pool_.get());
   map_clock.stop();
-  StageClock clock(stage_times_, "registration");
+  sensors::StageClock clock(stage_times_, "registration");
   const Keyframe& previous = keyframes_.back();
   const double distance = (previous.odometry.inverse() * keyframe.odometry).translation().norm();
   const auto [sigma_t, sigma_r] = odometrySigmas(distance);

@@ -11,14 +11,14 @@
 #include <utility>
 #include <vector>
 
+#include "sensors/messages.hpp"
+#include "sensors/stage_times.hpp"
 #include "slam/map_diagnostics.hpp"
-#include "slam/messages.hpp"
 #include "slam/odometry_buffer.hpp"
 #include "slam/sgraph/plane_extraction.hpp"
 #include "slam/sgraph/plane_map.hpp"
 #include "slam/sgraph/room_detection.hpp"
 #include "slam/sgraph/scan_registration.hpp"
-#include "slam/stage_times.hpp"
 #include "slam/thread_pool.hpp"
 
 namespace ceres {
@@ -72,10 +72,10 @@ class SGraph {
  public:
   SGraph(const Eigen::Isometry3d& R_T_L, const SGraphOptions& options = {});
 
-  void addOdometry(const Odometry& odometry);
+  void addOdometry(const sensors::Odometry& odometry);
   // Deskews the scan with odometry and, when the robot has moved enough since the last keyframe,
   // makes a keyframe of it. Returns whether it did.
-  bool addScan(Scan scan);
+  bool addScan(sensors::Scan scan);
   // Whether addScan(scan at `stamp`) would make a keyframe of it (and so read it): odometry covers
   // the instant and the robot moved or turned enough since the last keyframe.
   bool wouldKeyframe(double stamp) const;
@@ -113,7 +113,7 @@ class SGraph {
   std::vector<int> confirmedRooms() const;
   const std::deque<Plane>& planes() const { return planes_; }
   // M_T_R at the latest odometry: the last keyframe's estimate and the odometry since it.
-  std::optional<Odometry> latestPose() const;
+  std::optional<sensors::Odometry> latestPose() const;
   // M_T_R at time t (within the buffered odometry), corrected by the last keyframe before it.
   std::optional<Eigen::Isometry3d> poseAt(double t) const;
   nlohmann::json toJson() const;
@@ -145,7 +145,7 @@ class SGraph {
   using Timing = KeyframeTiming;
   const std::vector<Timing>& timings() const { return timings_; }
   // Seconds in each stage of addScan over the whole run.
-  const StageTimes& stageTimes() const { return stage_times_; }
+  const sensors::StageTimes& stageTimes() const { return stage_times_; }
   // The map as plain data (slam/map_diagnostics.hpp).
   MapDiagnostics diagnostics() const;
 
@@ -171,12 +171,12 @@ class SGraph {
   Eigen::Isometry3d R_T_L_;
   SGraphOptions options_;
   OdometryBuffer odometry_;
-  std::optional<Odometry> latest_odometry_;
+  std::optional<sensors::Odometry> latest_odometry_;
   std::deque<Keyframe> keyframes_;
   std::deque<Plane> planes_;
   std::deque<Room> rooms_;
   std::vector<Timing> timings_;
-  StageTimes stage_times_;
+  sensors::StageTimes stage_times_;
   // When options.threads > 1; a copy of the graph (checkForContradiction) shares it.
   std::shared_ptr<ThreadPool> pool_;
   WindowHook window_hook_;

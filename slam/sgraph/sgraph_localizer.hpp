@@ -13,14 +13,14 @@ class SGraphLocalizer : public Localizer {
       : graph_(R_T_L, options) {}
 
   std::string name() const override { return "s-graph"; }
-  void pushOdometry(const Odometry& odometry) override { graph_.addOdometry(odometry); }
-  void pushScan(const Scan& scan) override { graph_.addScan(scan); }
+  void pushOdometry(const sensors::Odometry& odometry) override { graph_.addOdometry(odometry); }
+  void pushScan(const sensors::Scan& scan) override { graph_.addScan(scan); }
   bool wantsScan(double stamp) const override { return graph_.wouldKeyframe(stamp); }
-  std::optional<Odometry> poseInMap() const override { return graph_.latestPose(); }
+  std::optional<sensors::Odometry> poseInMap() const override { return graph_.latestPose(); }
   std::optional<Eigen::Isometry3d> mapInPlan() const override { return std::nullopt; }
   nlohmann::json graph() const override { return graph_.toJson(); }
   std::optional<MapDiagnostics> mapDiagnostics() const override { return graph_.diagnostics(); }
-  StageTimes stageTimes() const override { return graph_.stageTimes(); }
+  sensors::StageTimes stageTimes() const override { return graph_.stageTimes(); }
 
   const SGraph& sgraph() const { return graph_; }
 

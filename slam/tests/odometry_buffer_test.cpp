@@ -5,8 +5,8 @@
 namespace isg::slam {
 namespace {
 
-Odometry at(double t, double x, double yaw) {
-  Odometry o;
+sensors::Odometry at(double t, double x, double yaw) {
+  sensors::Odometry o;
   o.stamp = t;
   o.M_T_R.translation() = Eigen::Vector3d(x, 0, 0);
   o.M_T_R.linear() = Eigen::AngleAxisd(yaw, Eigen::Vector3d::UnitZ()).toRotationMatrix();
@@ -33,7 +33,7 @@ TEST(Deskew, PointsOfAMovingSensorReturnToTheStampsFrame) {
   Eigen::Isometry3d R_T_L = Eigen::Isometry3d::Identity();
   R_T_L.translation() = Eigen::Vector3d(0.1, 0, 0.25);
   const Eigen::Vector3d world(5, 2, 1);
-  Scan scan;
+  sensors::Scan scan;
   scan.stamp = 0.02;
   for (double dt : {0.0, 0.05, 0.09}) {
     const Eigen::Isometry3d M_T_L = *buffer.at(scan.stamp + dt) * R_T_L;

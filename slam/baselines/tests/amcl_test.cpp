@@ -164,8 +164,8 @@ TEST(AmclFilter, KldBoundByHand) {
 }
 
 // A 2D LiDAR in the plan's occupancy grid: rays marched in 1 cm steps to the first occupied cell.
-Scan castScan(const LikelihoodField& field, const Pose2& pose) {
-  Scan scan;
+sensors::Scan castScan(const LikelihoodField& field, const Pose2& pose) {
+  sensors::Scan scan;
   for (int b = 0; b < 360; ++b) {
     const double bearing = (b + 0.5) * M_PI / 180.0;
     const Eigen::Vector2d direction(std::cos(pose.yaw + bearing), std::sin(pose.yaw + bearing));
@@ -201,7 +201,7 @@ TEST(AmclLocalizer, ConvergesFromAUniformStartInThreeUnequalRooms) {
       // Odometry: the true motion, in the frame of the start pose.
       const Eigen::Isometry3d M_T_R = toIsometry(start).inverse() * toIsometry(truth);
       amcl.pushOdometry({0.1 * step, M_T_R});
-      Scan scan = castScan(field, truth);
+      sensors::Scan scan = castScan(field, truth);
       scan.stamp = 0.1 * step;
       amcl.pushScan(scan);
       if (amcl.mapInPlan()) localized_after = amcl.updates();
@@ -219,7 +219,7 @@ TEST(AmclLocalizer, ConvergesFromAUniformStartInThreeUnequalRooms) {
 TEST(PlanarScan, KeepsTheBandAroundTheSensorAndTheNearestPointPerBearing) {
   Eigen::Isometry3d R_T_L = Eigen::Isometry3d::Identity();
   R_T_L.translation() = Eigen::Vector3d(0.2, 0.0, 0.5);
-  Scan scan;
+  sensors::Scan scan;
   scan.points.push_back({3.0f, 0.0f, 0.1f, 0, 0, 0});    // in the band, ahead
   scan.points.push_back({2.0f, 0.01f, -0.2f, 0, 0, 0});  // same bearing bin, nearer
   scan.points.push_back({0.0f, 2.0f, 0.4f, 0, 0, 0});    // above the band

@@ -15,13 +15,13 @@ struct Patch {
   Eigen::Vector3d corner, u, v;  // points corner + a·u + b·v, a, b in [0, 1]
 };
 
-Scan sampleScan(const std::vector<Patch>& patches, const Eigen::Vector3d& sensor, double yaw,
-                double noise = 0.01, int per_square_metre = 400) {
+sensors::Scan sampleScan(const std::vector<Patch>& patches, const Eigen::Vector3d& sensor,
+                         double yaw, double noise = 0.01, int per_square_metre = 400) {
   std::mt19937 rng(7);
   std::uniform_real_distribution<double> u01(0.0, 1.0);
   std::normal_distribution<double> n(0.0, noise);
   const Eigen::Matrix3d R = Eigen::AngleAxisd(yaw, Eigen::Vector3d::UnitZ()).toRotationMatrix();
-  Scan scan;
+  sensors::Scan scan;
   for (const auto& patch : patches) {
     const Eigen::Vector3d normal = patch.u.cross(patch.v).normalized();
     const int count = int(patch.u.cross(patch.v).norm() * per_square_metre);
@@ -49,7 +49,7 @@ TEST(PlaneExtraction, RecoversTheRoomsSixPlanesWhateverTheHeading) {
   const Eigen::Vector3d sensor(2.0, 1.5, 0.7);
   for (double yaw : {0.0, 0.5, 2.3}) {
     SCOPED_TRACE(yaw);
-    const Scan scan = sampleScan(room(), sensor, yaw);
+    const sensors::Scan scan = sampleScan(room(), sensor, yaw);
     PlaneExtractionOptions options;
     const auto cloud = preprocess(scan, options);
     const auto planes = extractPlanes(*cloud, options);
@@ -122,7 +122,7 @@ TEST(PlaneExtraction, ParallelWallsThirtyCentimetresApartStayDistinct) {
 }
 
 TEST(Preprocess, CropsRangeAndThinsTheCloud) {
-  Scan scan;
+  sensors::Scan scan;
   scan.points.push_back({0.2f, 0, 0, 0, 0, 0});  // too close
   scan.points.push_back({40.f, 0, 0, 0, 0, 0});  // too far
   for (int i = 0; i < 100; ++i) scan.points.push_back({2.0f + 0.001f * i, 0, 0, 0, 0, 0});

@@ -20,12 +20,12 @@ struct Rectangle {
 // A VLP-16-like organised scan of rectangles, cast exactly: 16 rings from −15° to +15° in 2°
 // steps, `columns` azimuths per turn, the sensor at `sensor` turned by `yaw`; Gaussian range
 // noise. Points in the sensor's frame, with their ring.
-Scan castScan(const std::vector<Rectangle>& scene, const Eigen::Vector3d& sensor, double yaw,
-              double noise = 0.01, int columns = 1800) {
+sensors::Scan castScan(const std::vector<Rectangle>& scene, const Eigen::Vector3d& sensor,
+                       double yaw, double noise = 0.01, int columns = 1800) {
   std::mt19937 rng(11);
   std::normal_distribution<double> n(0.0, noise);
   const Eigen::Matrix3d R = Eigen::AngleAxisd(yaw, Eigen::Vector3d::UnitZ()).toRotationMatrix();
-  Scan scan;
+  sensors::Scan scan;
   for (int c = 0; c < columns; ++c) {
     const double azimuth = 2 * std::numbers::pi * c / columns;
     for (int ring = 0; ring < 16; ++ring) {
@@ -96,7 +96,7 @@ TEST(RangeImagePlanes, RecoversTheRoomsWallsAndFloorToHalfADegreeAndACentimetre)
   const Eigen::Vector3d sensor(2.0, 1.5, 0.7);
   for (double yaw : {0.0, 0.5, 2.3}) {
     SCOPED_TRACE(yaw);
-    const Scan scan = castScan(room(), sensor, yaw);
+    const sensors::Scan scan = castScan(room(), sensor, yaw);
     const auto planes = extractPlanesOnRangeImage(scan, PlaneExtractionOptions());
     ASSERT_TRUE(planes.has_value());
     int vertical = 0, horizontal = 0;
@@ -132,7 +132,7 @@ TEST(RangeImagePlanes, AGapSplitsAWallAndAWallThirtyCentimetresBehindIsItsOwn) {
       {{6, 2.5, 0}, {0, 1.5, 0}, {0, 0, 3}}, {{6.3, 1.5, 0}, {0, 1, 0}, {0, 0, 3}},
       {{-2, -3, 0}, {10, 0, 0}, {0, 7, 0}},  {{-2, -3, 3}, {10, 0, 0}, {0, 7, 0}}};
   const Eigen::Vector3d sensor(3.0, 2.0, 0.7);
-  const Scan scan = castScan(scene, sensor, 0.0);
+  const sensors::Scan scan = castScan(scene, sensor, 0.0);
   PlaneExtractionOptions options;
   options.min_inliers = 30;
   const auto planes = extractPlanesOnRangeImage(scan, options);
@@ -161,7 +161,7 @@ TEST(RangeImagePlanes, AGapSplitsAWallAndAWallThirtyCentimetresBehindIsItsOwn) {
 }
 
 TEST(RangeImagePlanes, AScanWithoutRingsIsLeftToRansac) {
-  Scan scan = castScan(room(), Eigen::Vector3d(2.0, 1.5, 0.7), 0.3);
+  sensors::Scan scan = castScan(room(), Eigen::Vector3d(2.0, 1.5, 0.7), 0.3);
   for (auto& p : scan.points) p.ring = 0;
   EXPECT_FALSE(extractPlanesOnRangeImage(scan, PlaneExtractionOptions()).has_value());
   // extractPlanes falls back to RANSAC and still finds the four walls.
@@ -173,7 +173,7 @@ TEST(RangeImagePlanes, AScanWithoutRingsIsLeftToRansac) {
 
 TEST(RangeImagePlanes, AgreesWithRansacOnEveryPlaneBothFind) {
   const Eigen::Vector3d sensor(1.2, 2.9, 0.7);
-  const Scan scan = castScan(room(), sensor, 1.1);
+  const sensors::Scan scan = castScan(room(), sensor, 1.1);
   PlaneExtractionOptions options;
   const auto image = extractPlanesOnRangeImage(scan, options);
   ASSERT_TRUE(image.has_value());

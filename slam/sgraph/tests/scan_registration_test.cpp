@@ -43,8 +43,8 @@ std::vector<Eigen::Vector3f> roomCloud(const Eigen::Vector3d& L_in_M, std::mt199
   return out;
 }
 
-Scan asScan(const std::vector<Eigen::Vector3f>& cloud) {
-  Scan scan;
+sensors::Scan asScan(const std::vector<Eigen::Vector3f>& cloud) {
+  sensors::Scan scan;
   for (const auto& p : cloud) scan.points.push_back({p.x(), p.y(), p.z(), 0.0f, 0, 0.0f});
   return scan;
 }
@@ -57,7 +57,7 @@ Eigen::Isometry3d planarPose(double x, double y, double yaw) {
 }
 
 TEST(ScanRegistration, DownsamplingKeepsOneCentroidPerVoxel) {
-  Scan scan;
+  sensors::Scan scan;
   // Two points in one 0.2 m voxel, one in another, one too close, one too far.
   scan.points = {{1.01f, 1.01f, 0.01f, 0, 0, 0},
                  {1.09f, 1.05f, 0.03f, 0, 0, 0},
@@ -145,7 +145,7 @@ TEST(ScanRegistration, ACorridorLeavesItsAxisToTheOdometry) {
     return out;
   };
   ScanRegistrationOptions options;
-  Scan scan_map, scan_now;
+  sensors::Scan scan_map, scan_now;
   for (const auto& p : make(0.0)) scan_map.points.push_back({p.x(), p.y(), p.z(), 0, 0, 0});
   for (const auto& p : make(1.0)) scan_now.points.push_back({p.x(), p.y(), p.z(), 0, 0, 0});
   const auto map_cloud = downsampleScan(scan_map, options);

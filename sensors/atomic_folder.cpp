@@ -1,0 +1,206 @@
+#include "sensors/atomic_folder.hpp"
+
+#include <fcntl.h>
+#include <signal.h>
+#include <unistd.h>
+
+#include <cerrno>
+#include <cstdio>
+#include <cstring>
+#include <fstream>
+
+#include "bim/input_error.hpp"
+
+namespace isg::sensors {
+
+namespace fs = std::filesystem;
+
+void writeFile(const fs::path& path, const std::string& content) {
+  // C stdio rather than a stream: errno then says why a write failed (a full disk, a quota).
+  std::FILE* file = std::fopen(path.c_str(), "wb");
+  if (file == nullptr) {
+    throw bim::InputError(path.string(), "", std::string("cannot write: ") + std::strerror(errno));
+  }
+  const bool written = std::fwrite(content.data(), 1, content.size(), file) == content.size();
+  const int write_errno = errno;
+  const bool closed = std::fclose(file) == 0;
+  if (!written || !closed) {
+    throw bim::InputError(
+        path.string(), "",
+        std::string("cannot write: ") + std::strerror(!written ? write_errno : errno));
+  }
+}
+
+namespace {
+
+// ".NAME.partial" + pid: the temporary folder a run writes NAME in.
+std::string partialPrefix(const fs::path& target) {
+  return "." + target.filename().string() + ".partial";
+}
+
+// Removes the temporary folders of earlier runs that were killed (SIGKILL, a power cut) while
+// writing `target`: their process is gone. A folder of a process still running is left alone.
+void removeStalePartials(const fs::path& parent, const fs::path& target) {
+  const std::string prefix = partialPrefix(target);
+  std::error_code error;
+  for (const auto& entry : fs::directory_iterator(parent, error)) {
+    const std::string name = entry.path().filename().string();
+    if (name.rfind(prefix, 0) != 0) continue;
+    const std::string digits = name.substr(prefix.size());
+    if (digits.empty() || digits.find_first_not_of("0123456789") != std::string::npos ||
+        digits.size() > 9) {
+      continue;
+    }
+    const pid_t pid = static_cast<pid_t>(std::stol(digits));
+    if (pid == ::getpid() || (::kill(pid, 0) != 0 && errno == ESRCH)) {
+      std::error_code ignored;
+      fs::remove_all(entry.path(), ignored);
+    }
+  }
+}
+
+// Exchanges the two paths in one step (Linux renameat2 RENAME_EXCHANGE), so that `target` always
+// holds a whole folder, the old one or the new one. Replacing it by removing it first left a
+// half-removed folder at the output path when the process was killed meanwhile (the kill test
+// caught it). False where the file system cannot exchange; the caller then removes and renames.
+bool swapFolders(const fs::path& a, const fs::path& b) {
+  return ::renameat2(AT_FDCWD, a.c_str(), AT_FDCWD, b.c_str(), RENAME_EXCHANGE) == 0;
+}
+
+}  // namespace
+
+fs::path requireParentFolder(const std::string& path) {
+  const fs::path target(path);
+  const fs::path parent = target.has_parent_path() ? target.parent_path() : fs::path(".");
+  if (!fs::is_directory(parent)) {
+    throw bim::InputError(path, "",
+                          fs::exists(parent)
+                              ? "cannot write: " + parent.string() + " is not a directory"
+                              : "cannot write: directory " + parent.string() + " does not exist");
+  }
+  return parent;
+}
+
+namespace {
+
+// Checks `path` against the output rule and names its temporary twin beside it (stale twins of
+// killed processes removed).
+fs::path temporaryPathFor(const std::string& path, const OutputRule& rule) {
+  const fs::path target = checkOutputPath(path, rule);
+  requireParentFolder(path);
+  const fs::path parent = target.parent_path();
+  removeStalePartials(parent, target);
+  return parent / (partialPrefix(target) + std::to_string(::getpid()));
+}
+
+fs::path createTemporaryFolder(const std::string& dir, const OutputRule& rule) {
+  const fs::path temporary = temporaryPathFor(dir, rule);
+  std::error_code error;
+  fs::create_directories(temporary, error);
+  if (error) throw bim::InputError(dir, "", "cannot write: " + error.message());
+  return temporary;
+}
+
+}  // namespace
+
+void checkCanCreateFolder(const std::string& dir, OutputKind kind, bool overwrite,
+                          const std::vector<std::string>& inputs) {
+  std::error_code ignored;
+  fs::remove(createTemporaryFolder(dir, {kind, inputs, overwrite}), ignored);
+}
+
+void writeFolderAtomically(const std::string& dir, OutputKind kind, bool overwrite,
+                           const std::function<void(const fs::path&)>& fill) {
+  const OutputRule rule{kind, {}, overwrite};
+  const fs::path temporary = createTemporaryFolder(dir, rule);
+  const fs::path target = checkOutputPath(dir, rule);
+  std::error_code error;
+  try {
+    try {
+      fill(temporary);
+      writeOutputMarker(temporary, kind);
+    } catch (const bim::InputError& e) {
+      // A file inside the temporary folder is named as it would have been in the real one.
+      const std::string file = e.file();
+      const std::string inside = temporary.string() + "/";
+      if (file.rfind(inside, 0) != 0) throw;
+      throw bim::InputError((fs::path(dir) / file.substr(inside.size())).string(), e.pointer(),
+                            e.reason());
+    }
+    // Checked again at the last moment: what the path holds now is what gets replaced.
+    checkOutputPath(dir, rule);
+    if (fs::exists(target) && swapFolders(temporary, target)) {
+      // The old folder now has the temporary name: if this process dies while removing it, the
+      // next run to the same path removes it (removeStalePartials).
+      fs::remove_all(temporary, error);
+      return;
+    }
+    if (fs::exists(target)) {
+      // No exchange on this file system: the old folder is moved aside, never removed before the
+      // new one is in place.
+      const fs::path aside = temporary.string() + ".replaced";
+      fs::rename(target, aside, error);
+      if (error) throw bim::InputError(dir, "", "cannot replace: " + error.message());
+      fs::rename(temporary, target, error);
+      if (error) {
+        std::error_code ignored;
+        fs::rename(aside, target, ignored);
+        throw bim::InputError(dir, "", "cannot write: " + error.message());
+      }
+      fs::remove_all(aside, error);
+      return;
+    }
+    fs::rename(temporary, target, error);
+    if (error) throw bim::InputError(dir, "", "cannot write: " + error.message());
+  } catch (...) {
+    std::error_code ignored;
+    fs::remove_all(temporary, ignored);
+    throw;
+  }
+}
+
+AtomicFile::AtomicFile(const std::string& path, OutputKind kind, bool overwrite)
+    : path_(checkOutputPath(path, {kind, {}, overwrite})),
+      temporary_(temporaryPathFor(path, {kind, {}, overwrite})) {}
+
+AtomicFile::~AtomicFile() {
+  if (committed_) return;
+  std::error_code ignored;
+  fs::remove(temporary_, ignored);
+}
+
+void AtomicFile::commit() {
+  std::error_code error;
+  fs::rename(temporary_, path_, error);  // replaces an existing file in one step
+  if (error) throw bim::InputError(path_.string(), "", "cannot write: " + error.message());
+  committed_ = true;
+}
+
+void writeFileAtomically(const std::string& path, const std::string& content) {
+  const fs::path target(path);
+  const fs::path dir = requireParentFolder(path);
+  const fs::path temporary =
+      dir / ("." + target.filename().string() + ".tmp" + std::to_string(::getpid()));
+  {
+    std::ofstream out(temporary, std::ios::binary | std::ios::trunc);
+    if (!out) {
+      throw bim::InputError(path, "", std::string("cannot write: ") + std::strerror(errno));
+    }
+    out << content;
+    out.flush();
+    if (!out) {
+      std::error_code ignored;
+      fs::remove(temporary, ignored);
+      throw bim::InputError(path, "", "cannot write: write failed");
+    }
+  }
+  std::error_code error;
+  fs::rename(temporary, target, error);
+  if (error) {
+    std::error_code ignored;
+    fs::remove(temporary, ignored);
+    throw bim::InputError(path, "", "cannot write: " + error.message());
+  }
+}
+
+}  // namespace isg::sensors

@@ -1,0 +1,61 @@
+#pragma once
+
+#include <filesystem>
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "sensors/output_path.hpp"
+
+namespace isg::sensors {
+
+// Creates the folder `dir` all at once: `fill` writes into a temporary folder beside it, which is
+// renamed into place when `fill` returns (an existing folder is exchanged with it in one step,
+// then removed); if it throws, the temporary folder is removed and nothing is left half-written.
+// `dir` follows the output rule (checkOutputPath: an existing folder is replaced only with
+// `overwrite` and only if it is an output of ours of `kind`); a parent directory that does not
+// exist is an InputError. The folder gets the marker of `kind` (kOutputMarkerFile). Used for
+// dataset, run and generated-building folders.
+void writeFolderAtomically(const std::string& dir, OutputKind kind, bool overwrite,
+                           const std::function<void(const std::filesystem::path&)>& fill);
+
+// The checks writeFolderAtomically starts with, for a command to run before hours of work: the
+// output rule with the command's `inputs`, and that the folder may be created (its parent exists
+// and is writable). Probes by creating and removing the temporary folder; earlier runs' stale ones
+// are removed.
+void checkCanCreateFolder(const std::string& dir, OutputKind kind, bool overwrite,
+                          const std::vector<std::string>& inputs = {});
+
+// A file too large to build in memory, made all at once: the caller writes temporary() (beside
+// `path`, named like writeFolderAtomically's folders so that a killed process's leftover is
+// removed by the next write to the same path), then commit() renames it into place. Destroyed
+// uncommitted (an error, an interrupt), it removes the temporary file. `path` follows the output
+// rule for `kind` (an existing file is replaced only with `overwrite` and only if it is ours); a
+// missing parent directory is an InputError.
+class AtomicFile {
+ public:
+  AtomicFile(const std::string& path, OutputKind kind, bool overwrite);
+  ~AtomicFile();
+  AtomicFile(const AtomicFile&) = delete;
+  AtomicFile& operator=(const AtomicFile&) = delete;
+  const std::filesystem::path& temporary() const { return temporary_; }
+  const std::filesystem::path& path() const { return path_; }
+  void commit();
+
+ private:
+  std::filesystem::path path_, temporary_;
+  bool committed_ = false;
+};
+
+// One file of such a folder; a failure is an InputError naming it.
+void writeFile(const std::filesystem::path& path, const std::string& content);
+
+// The folder `path` would be written into (its parent, "." for a bare name) exists: an InputError
+// naming `path` says the folder does not exist, or is a file, otherwise. Returns that folder.
+std::filesystem::path requireParentFolder(const std::string& path);
+
+// Writes `content` to `path` so that a reader never sees a half-written file: to a temporary
+// file beside it, then renamed over it. A failure is an InputError naming the path.
+void writeFileAtomically(const std::string& path, const std::string& content);
+
+}  // namespace isg::sensors

@@ -1,0 +1,229 @@
+#include "sensors/output_path.hpp"
+
+#include <cstring>
+#include <fstream>
+#include <nlohmann/json.hpp>
+
+#include "bim/input_error.hpp"
+
+namespace isg::sensors {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+struct KindInfo {
+  OutputKind kind;
+  const char* name;  // in the marker file
+  const char* description;
+  bool folder;
+};
+
+constexpr KindInfo kKinds[] = {
+    {OutputKind::kRunFolder, "run", "a run folder", true},
+    {OutputKind::kDataset, "dataset", "a dataset folder", true},
+    {OutputKind::kBuildings, "buildings", "a folder of generated buildings", true},
+    {OutputKind::kSweep, "sweep", "a sweep folder", true},
+    {OutputKind::kPictures, "pictures", "a folder of pictures", true},
+    {OutputKind::kBag, "bag", "a ROS bag", false},
+    {OutputKind::kSvg, "svg", "an SVG picture", false},
+    {OutputKind::kPng, "png", "a PNG picture", false},
+    {OutputKind::kMjcf, "mjcf", "an MJCF world", false},
+    {OutputKind::kAgraphJson, "agraph", "an A-Graph file", false},
+    {OutputKind::kTableMarkdown, "table", "a Markdown table", false},
+    {OutputKind::kTableCsv, "table", "a CSV table", false},
+    {OutputKind::kTableLatex, "table", "a LaTeX table", false},
+};
+
+const KindInfo& infoOf(OutputKind kind) {
+  for (const auto& k : kKinds) {
+    if (k.kind == kind) return k;
+  }
+  return kKinds[0];
+}
+
+// The first `bytes` of a file (fewer if it is shorter); empty when it cannot be read.
+std::string head(const fs::path& path, std::size_t bytes) {
+  std::ifstream in(path, std::ios::binary);
+  std::string text(bytes, '\0');
+  in.read(text.data(), std::streamsize(bytes));
+  text.resize(std::size_t(in.gcount()));
+  return text;
+}
+
+std::string currentDirectory() {
+  std::error_code error;
+  const fs::path cwd = fs::current_path(error);
+  return error ? std::string() : fs::weakly_canonical(cwd, error).string();
+}
+
+// A sweep folder made before the marker existed holds sweep.json; an empty folder is free.
+bool mayHoldSweep(const fs::path& folder) {
+  if (folderOutputKind(folder) == OutputKind::kSweep) return true;
+  if (fs::is_regular_file(folder / "sweep.json")) return true;
+  std::error_code error;
+  return fs::is_empty(folder, error) && !error;
+}
+
+}  // namespace
+
+std::string describeOutput(OutputKind kind) { return infoOf(kind).description; }
+bool isFolderOutput(OutputKind kind) { return infoOf(kind).folder; }
+
+bool isWithin(const fs::path& inner, const fs::path& outer) {
+  auto i = inner.begin();
+  for (auto o = outer.begin(); o != outer.end(); ++o, ++i) {
+    if (o->empty()) continue;  // a trailing separator
+    if (i == inner.end() || *i != *o) return false;
+  }
+  return true;
+}
+
+fs::path resolvePath(const std::string& path) {
+  std::error_code error;
+  fs::path absolute = fs::absolute(path, error);
+  if (error) absolute = fs::path(path);
+  fs::path resolved = fs::weakly_canonical(absolute, error);
+  if (error) resolved = absolute.lexically_normal();
+  // "a/b/" names the folder a/b.
+  while (resolved.has_relative_path() && resolved.filename().empty()) {
+    resolved = resolved.parent_path();
+  }
+  return resolved;
+}
+
+fs::path checkOutputPath(const std::string& path, const OutputRule& rule) {
+  const auto refuse = [&](const std::string& why) { throw bim::InputError(path, "", why); };
+  if (path.empty()) refuse("an empty output path");
+  const fs::path resolved = resolvePath(path);
+  const std::string what = describeOutput(rule.kind);
+  if (resolved == resolved.root_path())
+    refuse("refused as an output: it is the file system's root");
+  const std::string cwd = currentDirectory();
+  if (!cwd.empty() && resolved == fs::path(cwd)) {
+    refuse("refused as an output: it is the working directory; give the name of " + what);
+  }
+  if (!cwd.empty() && isWithin(fs::path(cwd), resolved)) {
+    refuse("refused as an output: it is " + resolved.string() +
+           ", which holds the working directory");
+  }
+  for (const auto& input : rule.inputs) {
+    if (input.empty()) continue;
+    const fs::path in = resolvePath(input);
+    if (in == resolved) refuse("refused as an output: it is the input " + input);
+    if (isWithin(in, resolved)) refuse("refused as an output: it holds the input " + input);
+    if (fs::is_directory(in) && isWithin(resolved, in)) {
+      refuse("refused as an output: it lies inside the input folder " + input);
+    }
+  }
+  std::error_code error;
+  const fs::file_status status = fs::status(resolved, error);
+  if (!fs::exists(status)) return resolved;
+  if (isFolderOutput(rule.kind)) {
+    if (!fs::is_directory(status)) refuse("exists and is not a folder; give " + what);
+    if (rule.kind == OutputKind::kPictures) return resolved;
+    if (rule.kind == OutputKind::kSweep) {
+      if (mayHoldSweep(resolved)) return resolved;
+      refuse(
+          "holds files that are not an isg sweep's; give a new or empty folder, or a sweep "
+          "folder");
+    }
+    if (!rule.replace) refuse("already exists (use --force to replace it)");
+    const std::optional<OutputKind> found = folderOutputKind(resolved);
+    if (!found) {
+      refuse("not replaced: --force replaces only " + what +
+             " that isg wrote, and this folder has no " + kOutputMarkerFile +
+             " marker; remove it yourself or give another path");
+    }
+    if (*found != rule.kind) {
+      refuse("not replaced: it is " + describeOutput(*found) + " of isg, not " + what);
+    }
+    return resolved;
+  }
+  if (fs::is_directory(status)) refuse("is a folder; give the name of " + what);
+  if (!rule.replace) refuse("already exists (use --force to replace it)");
+  if (!fs::is_regular_file(status) || !isOurFile(resolved, rule.kind)) {
+    refuse(std::string("not replaced: it is not ") + what + " that isg wrote" +
+           (rule.replace_needs_force ? " (--force replaces only those)" : "") +
+           "; remove it yourself or give another path");
+  }
+  return resolved;
+}
+
+void writeOutputMarker(const fs::path& folder, OutputKind kind) {
+  const nlohmann::json marker = {{"written_by", "isg"}, {"kind", infoOf(kind).name}};
+  const fs::path file = folder / kOutputMarkerFile;
+  // Written beside and renamed over: a marker path that is a symlink is replaced, never followed.
+  const fs::path temporary = folder / (std::string(kOutputMarkerFile) + ".tmp");
+  {
+    std::ofstream out(temporary, std::ios::binary | std::ios::trunc);
+    out << marker.dump() << "\n";
+    out.flush();
+    if (!out) {
+      throw bim::InputError(file.string(), "",
+                            std::string("cannot write: ") + std::strerror(errno));
+    }
+  }
+  std::error_code error;
+  fs::rename(temporary, file, error);
+  if (error) throw bim::InputError(file.string(), "", "cannot write: " + error.message());
+}
+
+std::optional<OutputKind> folderOutputKind(const fs::path& folder) {
+  const fs::path file = folder / kOutputMarkerFile;
+  if (!fs::is_regular_file(file)) return std::nullopt;
+  const nlohmann::json marker = nlohmann::json::parse(head(file, 4096), nullptr, false);
+  if (!marker.is_object() || marker.value("written_by", "") != "isg") return std::nullopt;
+  const std::string name = marker.value("kind", "");
+  for (const auto& k : kKinds) {
+    if (k.folder && name == k.name) return k.kind;
+  }
+  return std::nullopt;
+}
+
+bool isOurFile(const fs::path& path, OutputKind kind) {
+  const std::string text = head(path, 8192);
+  const std::string mark = kWrittenByIsg;
+  switch (kind) {
+    case OutputKind::kBag:
+      return text.rfind("#ROSBAG V2.0\n", 0) == 0 && text.find(mark) != std::string::npos;
+    case OutputKind::kPng:
+      return text.rfind("\x89PNG", 0) == 0 &&
+             text.find(std::string("tEXtSoftware\0", 13) + mark) != std::string::npos;
+    case OutputKind::kSvg:
+    case OutputKind::kMjcf:
+    case OutputKind::kTableMarkdown:
+      return text.find("<!-- " + mark) != std::string::npos;
+    case OutputKind::kTableLatex:
+      return text.rfind("% " + mark, 0) == 0;
+    case OutputKind::kTableCsv:
+      return text.rfind("world,", 0) == 0;
+    case OutputKind::kAgraphJson:
+      return text.find("\"format\": \"isg.agraph\"") != std::string::npos;
+    default:
+      return false;
+  }
+}
+
+std::string outputMark(OutputKind kind, const std::string& text) {
+  const std::string mark = kWrittenByIsg;
+  switch (kind) {
+    case OutputKind::kSvg:
+    case OutputKind::kMjcf: {
+      // Inside the root element, after its start tag: the file still starts as its kind does
+      // (tools that sniff "<svg" or "<mujoco" see it), and an XML declaration stays first.
+      const std::size_t root = text.find_first_of('<', text.rfind("<?xml", 0) == 0 ? 2 : 0);
+      const std::size_t end = root == std::string::npos ? root : text.find('>', root);
+      if (end == std::string::npos) return text;
+      return text.substr(0, end + 1) + "\n<!-- " + mark + " -->" + text.substr(end + 1);
+    }
+    case OutputKind::kTableMarkdown:
+      return "<!-- " + mark + " -->\n" + text;
+    case OutputKind::kTableLatex:
+      return "% " + mark + "\n" + text;
+    default:
+      return text;
+  }
+}
+
+}  // namespace isg::sensors

@@ -1,0 +1,39 @@
+#pragma once
+
+#include <Eigen/Geometry>
+#include <vector>
+
+#include "eval/tum.hpp"
+#include "sensors/messages.hpp"
+
+namespace isg::sensors {
+
+// The trajectory type of every stream: TUM rows (t, pose). Producers of sensor streams (sim/)
+// name it through here.
+using eval::StampedPose;
+using eval::Trajectory;
+
+// Everything a run feeds a localizer besides the scans themselves, and what it is judged
+// against: the same whether it comes from the live simulation or from a recorded dataset. The
+// trajectories hold exactly the numbers a dataset's TUM files carry (quantiseStreams), so that a
+// replay sees what the live loop saw.
+struct SensorStreams {
+  Trajectory ground_truth;                                  // B_T_R
+  Trajectory odometry;                                      // M_T_R, as the localizer gets it
+  std::vector<double> scan_stamps;                          // each scan's first firing
+  double scan_period = 0.1;                                 // seconds per LiDAR turn
+  double duration = 0.0;                                    // seconds of robot time the run covers
+  Eigen::Isometry3d R_T_L = Eigen::Isometry3d::Identity();  // the LiDAR on the base
+};
+
+// Rounds ground truth, odometry and scan stamps to what their TUM files keep (eval::quantised):
+// the one place where a run's numbers are quantised. The live producer (sim::sensorStreams) calls
+// it; a dataset's streams come from the files and are quantised already.
+void quantiseStreams(SensorStreams& streams);
+
+// Where the odometry frame M lies in the plan B at the start: the first ground-truth pose times
+// the inverse of the first odometry pose. What dead reckoning is given and what the evaluation
+// places odometry with. Identity when either stream is empty.
+Eigen::Isometry3d trueStartB_T_M(const SensorStreams& streams);
+
+}  // namespace isg::sensors
