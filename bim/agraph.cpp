@@ -95,6 +95,36 @@ Eigen::AlignedBox2d AGraph::surfaceBounds() const {
   return box;
 }
 
+AGraph AGraph::translated(const Eigen::Vector2d& shift) const {
+  AGraph moved = *this;
+  const Eigen::Vector3d shift3(shift.x(), shift.y(), 0.0);
+  Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
+  T.translation() = shift3;
+  for (auto& surface : moved.surfaces) {
+    surface.plane = surface.plane.transformed(T);
+    for (auto& [a, b] : surface.segments) a += shift, b += shift;
+  }
+  for (auto& wall : moved.walls) {
+    wall.anchor += shift3;
+    wall.centre += shift3;
+  }
+  for (auto& room : moved.rooms) {
+    room.centre += shift;
+    room.axis_point += shift;
+    for (auto& vertex : room.outline) vertex += shift;
+  }
+  for (auto& doorway : moved.doorways) doorway.position += shift3;
+  for (auto& floor : moved.floors) floor.centre += shift;
+  return moved;
+}
+
+Eigen::Vector2d AGraph::localOrigin() const {
+  const Eigen::AlignedBox2d box = surfaceBounds();
+  if (box.isEmpty()) return Eigen::Vector2d::Zero();
+  const Eigen::Vector2d middle = box.center();
+  return {std::round(middle.x()), std::round(middle.y())};
+}
+
 int AGraph::findSurface(const std::string& id) const {
   for (std::size_t i = 0; i < surfaces.size(); ++i) {
     if (surfaces[i].id == id) return int(i);

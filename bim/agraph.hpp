@@ -96,6 +96,13 @@ struct AGraph {
   // The box of every wall surface segment in B (empty when there are none). Shared by whoever
   // needs "the building's extent", so that they all agree on it.
   Eigen::AlignedBox2d surfaceBounds() const;
+  // The same graph moved by `shift` in the plane: every node, plane and outline; what a node is
+  // and which it joins stay. Planes keep their normals and change their d (Plane::transformed).
+  AGraph translated(const Eigen::Vector2d& shift) const;
+  // The middle of surfaceBounds() to the metre (zero without surfaces): where an optimisation
+  // over the graph puts its origin, so that no plane's d is measured from kilometres away
+  // (docs/conventions.md, "Where B's origin is").
+  Eigen::Vector2d localOrigin() const;
 };
 
 struct AGraphOptions {

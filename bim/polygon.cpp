@@ -29,10 +29,15 @@ bool onSegment(const Eigen::Vector2d& a, const Eigen::Vector2d& b, const Eigen::
 
 }  // namespace
 
+// Both sum cross products of vertices taken relative to the first: from B's origin they would be
+// products of coordinates in the kilometres that cancel to an area of square metres, and lose
+// six digits at 8 km (docs/conventions.md, "Where B's origin is").
 double signedArea(const Polygon2& polygon) {
+  if (polygon.empty()) return 0.0;
+  const Eigen::Vector2d& origin = polygon[0];
   double twice = 0.0;
-  for (std::size_t i = 0; i < polygon.size(); ++i) {
-    twice += cross(polygon[i], polygon[(i + 1) % polygon.size()]);
+  for (std::size_t i = 1; i + 1 < polygon.size(); ++i) {
+    twice += cross(polygon[i] - origin, polygon[i + 1] - origin);
   }
   return 0.5 * twice;
 }
@@ -44,13 +49,13 @@ Eigen::Vector2d centroid(const Polygon2& polygon) {
     for (const auto& p : polygon) mean += p;
     return polygon.empty() ? mean : Eigen::Vector2d(mean / double(polygon.size()));
   }
+  const Eigen::Vector2d& origin = polygon[0];
   Eigen::Vector2d sum = Eigen::Vector2d::Zero();
-  for (std::size_t i = 0; i < polygon.size(); ++i) {
-    const auto& p = polygon[i];
-    const auto& q = polygon[(i + 1) % polygon.size()];
+  for (std::size_t i = 1; i + 1 < polygon.size(); ++i) {
+    const Eigen::Vector2d p = polygon[i] - origin, q = polygon[i + 1] - origin;
     sum += (p + q) * cross(p, q);
   }
-  return sum / (6.0 * area);
+  return origin + sum / (6.0 * area);
 }
 
 double distanceToSegment(const Eigen::Vector2d& point, const Eigen::Vector2d& a,

@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include "bim/plan_parser.hpp"
+#include "bim/plan_transform.hpp"
 #include "bim/synthetic_plan.hpp"
 #include "bim/tests/test_plans.hpp"
 
@@ -35,6 +36,57 @@ TEST_F(TwoRoomAGraph, SurfaceBoundsAreTheOuterFacesOfTheOuterWalls) {
   EXPECT_NEAR((bounds.min() - Eigen::Vector2d(-0.1, -0.1)).norm(), 0.0, 1e-9);
   EXPECT_NEAR((bounds.max() - Eigen::Vector2d(6.1, 4.1)).norm(), 0.0, 1e-9);
   EXPECT_TRUE(AGraph{}.surfaceBounds().isEmpty());
+}
+
+TEST_F(TwoRoomAGraph, TheLocalOriginIsTheMiddleOfTheWallsToTheMetre) {
+  // Bounds (−0.1, −0.1) … (6.1, 4.1): the middle (3, 2).
+  EXPECT_NEAR((graph.localOrigin() - Eigen::Vector2d(3.0, 2.0)).norm(), 0.0, 1e-12);
+  EXPECT_NEAR(AGraph{}.localOrigin().norm(), 0.0, 0.0);
+  // Moved by (7999.6, −8000.2), the middle (8002.6, −7998.2) rounds to (8003, −7998).
+  const Eigen::Vector2d shift(7999.6, -8000.2);
+  EXPECT_NEAR((graph.translated(shift).localOrigin() - Eigen::Vector2d(8003.0, -7998.0)).norm(),
+              0.0, 1e-12);
+}
+
+TEST_F(TwoRoomAGraph, TranslatedIsTheGraphOfTheMovedPlan) {
+  // Moving the graph is building the graph of the moved plan, node for node.
+  const Eigen::Vector2d shift(-8000.0, 7999.5);
+  const AGraph moved = graph.translated(shift);
+  const AGraph rebuilt = buildAGraph(transformedPlan(plan, planarMotion(shift, 0.0)));
+  ASSERT_EQ(moved.surfaces.size(), rebuilt.surfaces.size());
+  for (std::size_t i = 0; i < moved.surfaces.size(); ++i) {
+    EXPECT_EQ(moved.surfaces[i].id, rebuilt.surfaces[i].id);
+    EXPECT_NEAR((moved.surfaces[i].plane.normal - rebuilt.surfaces[i].plane.normal).norm(), 0,
+                1e-12);
+    EXPECT_NEAR(moved.surfaces[i].plane.d, rebuilt.surfaces[i].plane.d, 1e-9);
+    ASSERT_EQ(moved.surfaces[i].segments.size(), rebuilt.surfaces[i].segments.size());
+    for (std::size_t k = 0; k < moved.surfaces[i].segments.size(); ++k) {
+      EXPECT_NEAR(
+          (moved.surfaces[i].segments[k].first - rebuilt.surfaces[i].segments[k].first).norm(), 0,
+          1e-9);
+    }
+  }
+  ASSERT_EQ(moved.walls.size(), rebuilt.walls.size());
+  for (std::size_t i = 0; i < moved.walls.size(); ++i) {
+    EXPECT_NEAR((moved.walls[i].centre - rebuilt.walls[i].centre).norm(), 0, 1e-9);
+    EXPECT_NEAR((moved.walls[i].anchor - rebuilt.walls[i].anchor).norm(), 0, 1e-9);
+  }
+  ASSERT_EQ(moved.rooms.size(), rebuilt.rooms.size());
+  for (std::size_t i = 0; i < moved.rooms.size(); ++i) {
+    EXPECT_NEAR((moved.rooms[i].centre - rebuilt.rooms[i].centre).norm(), 0, 1e-9);
+    EXPECT_NEAR((moved.rooms[i].axis_point - rebuilt.rooms[i].axis_point).norm(), 0, 1e-9);
+  }
+  ASSERT_EQ(moved.doorways.size(), rebuilt.doorways.size());
+  for (std::size_t i = 0; i < moved.doorways.size(); ++i) {
+    EXPECT_NEAR((moved.doorways[i].position - rebuilt.doorways[i].position).norm(), 0, 1e-9);
+  }
+  EXPECT_NEAR((moved.floors[0].centre - rebuilt.floors[0].centre).norm(), 0, 1e-9);
+  // And the wall centres still satisfy Eq. (1) on the moved planes.
+  for (const auto& wall : moved.walls) {
+    const Eigen::Vector3d f = wallCentre(moved.surfaces[wall.left_surface].plane,
+                                         moved.surfaces[wall.right_surface].plane, wall.anchor);
+    EXPECT_NEAR((f - wall.centre).norm(), 0.0, 1e-9) << wall.id;
+  }
 }
 
 TEST_F(TwoRoomAGraph, SurfacesArePlanesOfTheFacesWithTheirExposedParts) {

@@ -5,6 +5,7 @@
 #include <pcl/point_types.h>
 #include <pcl/registration/ndt.h>
 
+#include <cmath>
 #include <stdexcept>
 
 #include "bim/plan_geometry.hpp"
@@ -31,8 +32,10 @@ Cloud::Ptr voxelise(const Cloud::Ptr& cloud, double leaf) {
 // PCL computes as slightly negative for some cells and then drops the cell ("Invalid eigen
 // value"); ±1 cm, a wall's finish tolerance, keeps every wall cell, and is far below PCL's own
 // floor on that eigenvalue (1 % of the largest, about (3 cm)² for 1 m cells).
+// The points are relative to `origin`: PCL's NDT works in float, whose steps are half a millimetre
+// at 8 km from B's origin (docs/conventions.md, "Where B's origin is").
 Cloud::Ptr planCloud(const bim::Plan& plan, const std::string& level_id, double spacing,
-                     double relief) {
+                     double relief, const Eigen::Vector2d& origin) {
   const bim::Level* level = plan.findLevel(level_id);
   if (level == nullptr) throw std::invalid_argument("the plan has no level \"" + level_id + "\"");
   const bim::LevelGeometry geometry = bim::computeLevelGeometry(*level);
@@ -59,8 +62,8 @@ Cloud::Ptr planCloud(const bim::Plan& plan, const std::string& level_id, double 
               return s > h.lo && s < h.hi && z < h.top;
             });
             if (in_hole) continue;
-            const Eigen::Vector2d xy =
-                wall.facePointAt(side, s) + ((i + j) % 2 == 0 ? relief : -relief) * outward;
+            const Eigen::Vector2d xy = wall.facePointAt(side, s) - origin +
+                                       ((i + j) % 2 == 0 ? relief : -relief) * outward;
             cloud->push_back(pcl::PointXYZ(float(xy.x()), float(xy.y()), float(z)));
           }
         }
@@ -71,6 +74,22 @@ Cloud::Ptr planCloud(const bim::Plan& plan, const std::string& level_id, double 
     throw std::invalid_argument("level \"" + level_id + "\" has no wall to register against");
   }
   return cloud;
+}
+
+// The middle of a level's walls to the metre: the origin of the NDT's map.
+Eigen::Vector2d mapOrigin(const bim::Plan& plan, const std::string& level_id) {
+  const bim::Level* level = plan.findLevel(level_id);
+  if (level == nullptr || level->walls.empty()) return Eigen::Vector2d::Zero();
+  Eigen::AlignedBox2d box;
+  for (const auto& wall : level->walls) box.extend(wall.start).extend(wall.end);
+  return {std::round(box.center().x()), std::round(box.center().y())};
+}
+
+// A translation in the plane as a transform.
+Eigen::Isometry3d shiftBy(const Eigen::Vector2d& shift) {
+  Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
+  T.translation() << shift, 0.0;
+  return T;
 }
 
 // The state: x, y, z, yaw of the base in B, then its velocity vx, vy, vz, ω in B.
@@ -94,6 +113,7 @@ Eigen::Matrix3d tiltOf(const Eigen::Isometry3d& T) {
 }  // namespace
 
 struct NdtUkfLocalizer::Registration {
+  Eigen::Vector2d origin = Eigen::Vector2d::Zero();  // of the map, in B
   Cloud::Ptr map;
   pcl::NormalDistributionsTransform<pcl::PointXYZ, pcl::PointXYZ> ndt;
 };
@@ -105,7 +125,9 @@ NdtUkfLocalizer::NdtUkfLocalizer(const bim::Plan& plan, const std::string& level
       R_T_L_(R_T_L),
       start_B_T_M_(start_B_T_M),
       registration_(std::make_unique<Registration>()) {
-  registration_->map = planCloud(plan, level, options.map_spacing, options.map_relief);
+  registration_->origin = mapOrigin(plan, level);
+  registration_->map =
+      planCloud(plan, level, options.map_spacing, options.map_relief, registration_->origin);
   const bim::Level* plan_level = plan.findLevel(level);
   floor_ = plan_level->elevation;
   ceiling_ = plan_level->elevation + plan_level->height;
@@ -198,13 +220,17 @@ void NdtUkfLocalizer::pushScan(const sensors::Scan& scan) {
     auto& ndt = registration_->ndt;
     ndt.setInputSource(filtered);
     Cloud aligned;
-    const Eigen::Matrix4f guess = guess_B_T_R.matrix().cast<float>();
+    // In the map's frame, and back: B_T_R = shift(origin) · map_T_R.
+    const Eigen::Matrix4f guess =
+        (shiftBy(-registration_->origin) * guess_B_T_R).matrix().cast<float>();
     ndt.align(aligned, guess);
     last_converged_ = ndt.hasConverged();
     last_fitness_ = ndt.getFitnessScore();
     iterations_ += ndt.getFinalNumIteration();
     ++registrations_;
-    Eigen::Isometry3d measured(ndt.getFinalTransformation().cast<double>());
+    const Eigen::Isometry3d measured =
+        shiftBy(registration_->origin) *
+        Eigen::Isometry3d(ndt.getFinalTransformation().cast<double>());
     const Pose2 planar = planarPose(measured);
     Eigen::Vector4d z(planar.x, planar.y, measured.translation().z(), planar.yaw);
     const Eigen::Vector4d r(options_.measurement_position, options_.measurement_position,

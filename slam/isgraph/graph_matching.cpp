@@ -56,6 +56,14 @@ Eigen::Isometry3d MatchResult::B_T_M() const {
   return T;
 }
 
+MatchResult MatchResult::translated(const Eigen::Vector2d& shift) const {
+  MatchResult moved = *this;
+  moved.best.x_y_yaw.head<2>() += shift;
+  moved.second.x_y_yaw.head<2>() += shift;
+  for (auto& candidate : moved.candidates) candidate.answer.x_y_yaw.head<2>() += shift;
+  return moved;
+}
+
 nlohmann::json MatchResult::toJson() const {
   nlohmann::json rooms = nlohmann::json::array(), planes = nlohmann::json::array();
   for (const auto& [s, a] : best.rooms) rooms.push_back({s, a});

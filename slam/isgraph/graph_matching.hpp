@@ -158,6 +158,9 @@ struct MatchResult {
   std::string reason;  // why not matched, or the evidence of the match, in words
   double seconds = 0.0;
   Eigen::Isometry3d B_T_M() const;  // from best.x_y_yaw, z = 0
+  // The same result with every answer's x, y moved by `shift` (into another frame that differs
+  // from the matcher's by a translation).
+  MatchResult translated(const Eigen::Vector2d& shift) const;
   nlohmann::json toJson() const;
   // The best answer and the other candidates, each with its B_T_M, score and what separates it
   // from the best (the evidence on which they disagree, the plan rooms that would tell them apart).

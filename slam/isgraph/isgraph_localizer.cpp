@@ -20,14 +20,16 @@ Eigen::Vector2d applyPlanar(const Eigen::Vector3d& x_y_yaw, const Eigen::Vector2
 ISGraphLocalizer::ISGraphLocalizer(const Eigen::Isometry3d& R_T_L, const bim::AGraph& plan,
                                    const ISGraphOptions& options)
     : options_(options),
-      plan_(&plan),
+      B_t_P_(plan.localOrigin()),
+      plan_in_P_(plan.translated(-B_t_P_)),
+      plan_(&plan_in_P_),
       R_T_L_(R_T_L),
-      plan_field_(plan),
+      plan_field_(plan_in_P_),
       graph_(R_T_L, options.sgraph),
-      matcher_(plan, options.matching),
-      plan_state_(plan) {
-  // The box of the plan's walls and the margin: a pose in B outside it is no pose in the building.
-  const Eigen::AlignedBox2d walls = plan.surfaceBounds();
+      matcher_(plan_in_P_, options.matching),
+      plan_state_(plan_in_P_) {
+  // The box of the plan's walls and the margin: a pose outside it is no pose in the building.
+  const Eigen::AlignedBox2d walls = plan_in_P_.surfaceBounds();
   const Eigen::Vector2d margin = Eigen::Vector2d::Constant(options.outside_margin);
   building_ = Eigen::AlignedBox2d(walls.min() - margin, walls.max() + margin);
   graph_.setWindowHook(
@@ -51,11 +53,20 @@ sensors::StageTimes ISGraphLocalizer::stageTimes() const {
 
 bool ISGraphLocalizer::wantsScan(double stamp) const { return graph_.wouldKeyframe(stamp); }
 
+Eigen::Vector3d ISGraphLocalizer::inB(const Eigen::Vector3d& P_T_M_x_y_yaw) const {
+  return {P_T_M_x_y_yaw.x() + B_t_P_.x(), P_T_M_x_y_yaw.y() + B_t_P_.y(), P_T_M_x_y_yaw.z()};
+}
+
+Eigen::Vector3d ISGraphLocalizer::inP(const Eigen::Vector3d& B_T_M_x_y_yaw) const {
+  return {B_T_M_x_y_yaw.x() - B_t_P_.x(), B_T_M_x_y_yaw.y() - B_t_P_.y(), B_T_M_x_y_yaw.z()};
+}
+
 std::optional<Eigen::Isometry3d> ISGraphLocalizer::mapInPlan() const {
   if (!localized_) return std::nullopt;
+  const Eigen::Vector3d B_T_M = inB(P_T_M_x_y_yaw_);
   Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
-  T.linear() = Eigen::AngleAxisd(B_T_M_x_y_yaw_.z(), Eigen::Vector3d::UnitZ()).toRotationMatrix();
-  T.translation() = Eigen::Vector3d(B_T_M_x_y_yaw_.x(), B_T_M_x_y_yaw_.y(), B_T_M_z_);
+  T.linear() = Eigen::AngleAxisd(B_T_M.z(), Eigen::Vector3d::UnitZ()).toRotationMatrix();
+  T.translation() = Eigen::Vector3d(B_T_M.x(), B_T_M.y(), P_T_M_z_);
   return T;
 }
 
@@ -107,7 +118,7 @@ void ISGraphLocalizer::record(double stamp, MatchStatus status, const std::strin
 }
 
 void ISGraphLocalizer::adopt(const Verification& answer) {
-  B_T_M_x_y_yaw_ = answer.x_y_yaw;
+  P_T_M_x_y_yaw_ = answer.x_y_yaw;
   plane_matches_.clear();
   room_matches_.clear();
   for (const auto& [s, a] : answer.planes) plane_matches_[s] = a;
@@ -118,7 +129,7 @@ void ISGraphLocalizer::adopt(const Verification& answer) {
     const int floor = plan_->rooms[answer.rooms[0].second].floor;
     if (floor >= 0) elevation = plan_->floors[floor].elevation;
   }
-  B_T_M_z_ = elevation - graph_.floorHeight().value_or(0.0);
+  P_T_M_z_ = elevation - graph_.floorHeight().value_or(0.0);
   localized_ = true;
   plan_shares_.clear();  // measured under another answer, or none
   plan_collapsed_ = 0;
@@ -134,8 +145,8 @@ double ISGraphLocalizer::planShare() const {
     const Eigen::Vector3d q = M_T_L * p.cast<double>();
     if (q.z() < sensor_z - 0.4 || q.z() > sensor_z + 1.2) continue;  // floor, ceiling
     ++used;
-    const Eigen::Vector2d in_B = applyPlanar(B_T_M_x_y_yaw_, q.head<2>());
-    if (plan_field_.distance(in_B) <= options_.plan_share_distance) ++near;
+    const Eigen::Vector2d in_P = applyPlanar(P_T_M_x_y_yaw_, q.head<2>());
+    if (plan_field_.distance(in_P) <= options_.plan_share_distance) ++near;
   }
   return used > 0 ? double(near) / used : -1.0;
 }
@@ -182,10 +193,11 @@ std::string ISGraphLocalizer::updateAgreement(const MatchInput& input) {
   }
   // The pose must be in the building.
   if (const auto pose = graph_.latestPose()) {
-    const Eigen::Vector2d p = applyPlanar(B_T_M_x_y_yaw_, pose->M_T_R.translation().head<2>());
+    const Eigen::Vector2d p = applyPlanar(P_T_M_x_y_yaw_, pose->M_T_R.translation().head<2>());
     if (!building_.contains(p)) {
-      std::snprintf(text, sizeof text, "the pose (%.1f, %.1f) is outside the building", p.x(),
-                    p.y());
+      const Eigen::Vector2d in_B = p + B_t_P_;
+      std::snprintf(text, sizeof text, "the pose (%.1f, %.1f) is outside the building", in_B.x(),
+                    in_B.y());
       return text;
     }
   }
@@ -202,7 +214,7 @@ std::string ISGraphLocalizer::updateAgreement(const MatchInput& input) {
       it = plane_matches_.erase(it);
       continue;
     }
-    const bool agrees = matcher_.planeAgrees(*plane->second, it->second, B_T_M_x_y_yaw_,
+    const bool agrees = matcher_.planeAgrees(*plane->second, it->second, P_T_M_x_y_yaw_,
                                              options_.hold_angle_deg, options_.hold_distance);
     if (seen_now.count(it->first)) {
       ++seen_matched;
@@ -227,7 +239,7 @@ void ISGraphLocalizer::assumeMatch(double stamp, const Eigen::Vector3d& x_y_yaw,
                                    const std::string& reason) {
   const MatchInput input = matchInput();
   record(stamp, MatchStatus::kMatched, reason);
-  adopt(matcher_.verify(input, x_y_yaw));
+  adopt(matcher_.verify(input, inP(x_y_yaw)));
   rooms_at_last_attempt_ = input.rooms.size();
   keyframes_at_last_attempt_ = int(graph_.keyframes().size());
 }
@@ -253,21 +265,21 @@ void ISGraphLocalizer::checkForContradiction(double stamp) {
   const MatchInput input = matchInputOf(unmerged, options_.sgraph.rooms.min_wall_height);
   MatchResult result = matcher_.match(input);
   matching_times_.push_back(result.seconds);
-  last_match_ = result;
+  last_match_ = result.translated(B_t_P_);
   if (result.status != MatchStatus::kMatched) return;  // the merge stands on its own evidence
-  // Twice the clustering tolerances: the merge has moved B_T_M a little since it was adopted.
+  // Twice the clustering tolerances: the merge has moved P_T_M a little since it was adopted.
   const Eigen::Vector2d middle = GraphMatcher::middleOf(input);
-  if (matcher_.sameAnswer(result.best.x_y_yaw, B_T_M_x_y_yaw_, middle, 2.0)) return;
+  if (matcher_.sameAnswer(result.best.x_y_yaw, P_T_M_x_y_yaw_, middle, 2.0)) return;
   // The new answer must also lead the one held now decisively, on the same map.
   if (!matcher_.decisive(
-          matcher_.distinguish(input, result.best, matcher_.verify(input, B_T_M_x_y_yaw_)))) {
+          matcher_.distinguish(input, result.best, matcher_.verify(input, P_T_M_x_y_yaw_)))) {
     return;
   }
   // A unique answer elsewhere: the first match was wrong. Adopt the new one on the unmerged
   // graph, and re-optimise every keyframe under it, so that nothing stays where the wrong
   // B_T_M pulled it.
   const double apart =
-      (applyPlanar(result.best.x_y_yaw, middle) - applyPlanar(B_T_M_x_y_yaw_, middle)).norm();
+      (applyPlanar(result.best.x_y_yaw, middle) - applyPlanar(P_T_M_x_y_yaw_, middle)).norm();
   record(stamp, MatchStatus::kContradicted,
          "a new unique answer " + std::to_string(apart) + " m away: " + result.reason);
   ++contradictions_;
@@ -286,8 +298,8 @@ void ISGraphLocalizer::onKeyframe(double stamp) {
       lose(stamp, why);
       return;
     }
-    // New S-planes gain correspondences at the current B_T_M; held ones stay as they are.
-    const Verification now = matcher_.verify(input, B_T_M_x_y_yaw_);
+    // New S-planes gain correspondences at the current P_T_M; held ones stay as they are.
+    const Verification now = matcher_.verify(input, P_T_M_x_y_yaw_);
     for (const auto& [s, a] : now.planes) plane_matches_.emplace(s, a);
     for (const auto& [s, a] : now.rooms) room_matches_.emplace(s, a);
   } else if (keyframes > 1 && graph_.keyframes().back().registration.attempted &&
@@ -311,7 +323,7 @@ void ISGraphLocalizer::onKeyframe(double stamp) {
   }
   MatchResult result = matcher_.match(input);
   matching_times_.push_back(result.seconds);
-  last_match_ = result;
+  last_match_ = result.translated(B_t_P_);
   record(stamp, result.status, result.reason);
   if (result.status == MatchStatus::kMatched) adopt(result.best);
 }
@@ -330,7 +342,7 @@ void ISGraphLocalizer::addPlanFactors(ceres::Problem& problem, const std::set<in
                                       const std::vector<int>& rooms) {
   if (!localized_) return;
   surfaces_in_problem_.clear();
-  // Whether the window's correspondences fix B_T_M: x and y need surface normals in two
+  // Whether the window's correspondences fix P_T_M: x and y need surface normals in two
   // directions (or a matched four-wall room); yaw any one surface.
   std::vector<Eigen::Vector2d> normals;
   bool room_fixes = false;
@@ -343,7 +355,7 @@ void ISGraphLocalizer::addPlanFactors(ceres::Problem& problem, const std::set<in
     addSurface(problem, it->second);
     problem.AddResidualBlock(
         PlanePlaneFactor::create(options_.sigma_plane_angle, options_.sigma_plane_distance),
-        &huber_, graph_.planeParameters(p), B_T_M_x_y_yaw_.data(),
+        &huber_, graph_.planeParameters(p), P_T_M_x_y_yaw_.data(),
         plan_state_.planes[it->second].data());
   }
   if (!any) return;
@@ -361,7 +373,7 @@ void ISGraphLocalizer::addPlanFactors(ceres::Problem& problem, const std::set<in
         plan_state_.planes[node.pairs[0][0]].data(), plan_state_.planes[node.pairs[0][1]].data(),
         plan_state_.planes[node.pairs[1][0]].data(), plan_state_.planes[node.pairs[1][1]].data());
     problem.AddResidualBlock(RoomRoomFactor::create(options_.sigma_room), nullptr,
-                             graph_.roomCentre(r), B_T_M_x_y_yaw_.data(), centre);
+                             graph_.roomCentre(r), P_T_M_x_y_yaw_.data(), centre);
     room_fixes = true;
   }
   const double spread = std::sin(options_.min_normal_spread_deg * std::numbers::pi / 180.0);
@@ -372,11 +384,11 @@ void ISGraphLocalizer::addPlanFactors(ceres::Problem& problem, const std::set<in
     }
   }
   problem.AddResidualBlock(
-      PlanarPriorFactor::create(B_T_M_x_y_yaw_, options_.sigma_B_T_M_translation,
+      PlanarPriorFactor::create(P_T_M_x_y_yaw_, options_.sigma_B_T_M_translation,
                                 options_.sigma_B_T_M_yaw),
-      nullptr, B_T_M_x_y_yaw_.data());
+      nullptr, P_T_M_x_y_yaw_.data());
   if (!spans) {
-    problem.SetParameterBlockConstant(B_T_M_x_y_yaw_.data());
+    problem.SetParameterBlockConstant(P_T_M_x_y_yaw_.data());
     ++held_constant_;
   }
   // The plan's walls between surfaces in the problem.
@@ -416,10 +428,8 @@ nlohmann::json ISGraphLocalizer::graph() const {
                              {"room_matches", rooms},
                              {"events", events}};
   if (localized_) {
-    is_graph["B_T_M"] = {{"x", B_T_M_x_y_yaw_.x()},
-                         {"y", B_T_M_x_y_yaw_.y()},
-                         {"z", B_T_M_z_},
-                         {"yaw", B_T_M_x_y_yaw_.z()}};
+    const Eigen::Vector3d B_T_M = inB(P_T_M_x_y_yaw_);
+    is_graph["B_T_M"] = {{"x", B_T_M.x()}, {"y", B_T_M.y()}, {"z", P_T_M_z_}, {"yaw", B_T_M.z()}};
   }
   if (last_match_) is_graph["last_match"] = last_match_->toJson();
   out["method"] = name();

@@ -74,10 +74,19 @@ MatchInput matchInputOf(const SGraph& graph, double min_wall_height);
 // it. Until the match is unique it localizes in M only; from then on B_T_M is part of every
 // window optimisation, with plane-to-plane and room-to-room factors and the A-Graph's own wall
 // and room factors and plane priors, and its pose in B is B_T_M · M_T_R.
+//
+// Inside, the plan is held in its local frame P: B moved so that its origin is the middle of the
+// plan's walls (AGraph::localOrigin). A plane's d and the factors' closest points are measured
+// from the frame's origin, so in B a model kilometres from its origin would couple every wall's
+// angle to its position by that lever arm (docs/conventions.md, "Where B's origin is"). Matching
+// and merging estimate P_T_M; everything that leaves the localizer is in B.
 class ISGraphLocalizer : public Localizer {
  public:
   ISGraphLocalizer(const Eigen::Isometry3d& R_T_L, const bim::AGraph& plan,
                    const ISGraphOptions& options = {});
+  // It points into its own copy of the plan.
+  ISGraphLocalizer(const ISGraphLocalizer&) = delete;
+  ISGraphLocalizer& operator=(const ISGraphLocalizer&) = delete;
 
   std::string name() const override { return "is-graphs"; }
   void pushOdometry(const sensors::Odometry& odometry) override { graph_.addOdometry(odometry); }
@@ -91,14 +100,15 @@ class ISGraphLocalizer : public Localizer {
   std::optional<MapDiagnostics> mapDiagnostics() const override { return graph_.diagnostics(); }
   sensors::StageTimes stageTimes() const override;
 
-  // Takes `x_y_yaw` as B_T_M, as if matched, with the correspondences it implies now: a hint from
-  // outside (an operator's initial pose), or a test's wrong first match. It is checked like any
-  // match: contradicted by a unique answer elsewhere, or lost.
+  // Takes `x_y_yaw` as B_T_M (in B), as if matched, with the correspondences it implies now: a hint
+  // from outside (an operator's initial pose), or a test's wrong first match. It is checked like
+  // any match: contradicted by a unique answer elsewhere, or lost.
   void assumeMatch(double stamp, const Eigen::Vector3d& x_y_yaw, const std::string& reason);
 
   const SGraph& sgraph() const { return graph_; }
   MatchStatus status() const { return status_; }
   const std::vector<StatusChange>& events() const { return events_; }
+  // The latest full match, its answers in B.
   const std::optional<MatchResult>& lastMatch() const { return last_match_; }
   // The S-Graph as the matcher sees it now.
   MatchInput matchInput() const {
@@ -124,8 +134,14 @@ class ISGraphLocalizer : public Localizer {
                       const std::vector<int>& rooms);
   void addSurface(ceres::Problem& problem, int surface);
 
+  // B_T_M in the plane from P_T_M, and back.
+  Eigen::Vector3d inB(const Eigen::Vector3d& P_T_M_x_y_yaw) const;
+  Eigen::Vector3d inP(const Eigen::Vector3d& B_T_M_x_y_yaw) const;
+
   ISGraphOptions options_;
-  const bim::AGraph* plan_;
+  Eigen::Vector2d B_t_P_;    // P's origin in B: B_T_P is this translation
+  bim::AGraph plan_in_P_;    // the plan's A-Graph moved into P
+  const bim::AGraph* plan_;  // = &plan_in_P_
   Eigen::Isometry3d R_T_L_;
   PlanDistanceField plan_field_;
   std::deque<double> plan_shares_;  // of the latest localized keyframes
@@ -138,20 +154,20 @@ class ISGraphLocalizer : public Localizer {
 
   MatchStatus status_ = MatchStatus::kNotYet;
   bool localized_ = false;
-  // B_T_M in the plane (x, y, yaw; the merging optimises these three) and its height, which the
-  // floors give: mapInPlan() makes the Isometry3d of the two.
-  Eigen::Vector3d B_T_M_x_y_yaw_ = Eigen::Vector3d::Zero();
-  double B_T_M_z_ = 0.0;
-  std::map<int, int> plane_matches_;  // S-plane → A-surface
-  std::map<int, int> room_matches_;   // S-room → A-room
-  std::optional<MatchResult> last_match_;
+  // P_T_M in the plane (x, y, yaw; the merging optimises these three) and its height, which the
+  // floors give (P and B share z): mapInPlan() makes B_T_P · P_T_M of the two.
+  Eigen::Vector3d P_T_M_x_y_yaw_ = Eigen::Vector3d::Zero();
+  double P_T_M_z_ = 0.0;
+  std::map<int, int> plane_matches_;       // S-plane → A-surface
+  std::map<int, int> room_matches_;        // S-room → A-room
+  std::optional<MatchResult> last_match_;  // in B
   std::vector<StatusChange> events_;
   std::vector<double> matching_times_;
   double matching_s_ = 0.0;  // onKeyframe in all: matching, verification, contradictions
   std::size_t rooms_at_last_attempt_ = 0;
   int keyframes_at_last_attempt_ = 0;
   std::set<int> surfaces_in_problem_;  // per optimisation
-  Eigen::AlignedBox2d building_;       // the plan's walls' box grown by outside_margin
+  Eigen::AlignedBox2d building_;       // the plan's walls' box grown by outside_margin, in P
   int contradictions_ = 0;
   int losses_ = 0;
   int held_constant_ = 0;  // optimisations in which B_T_M was held (under-constrained)

@@ -10,6 +10,7 @@
 #include <set>
 
 #include "bim/angles.hpp"
+#include "bim/polygon.hpp"
 #include "slam/isgraph/graph_matching.hpp"
 
 namespace isg::slam {
@@ -28,11 +29,7 @@ Eigen::Vector3d relative(const Eigen::Vector3d& a, const Eigen::Vector3d& b) {
 }
 
 double polygonArea(const std::vector<Eigen::Vector2d>& outline) {
-  double twice = 0.0;
-  for (std::size_t i = 0, j = outline.size() - 1; i < outline.size(); j = i++) {
-    twice += outline[j].x() * outline[i].y() - outline[i].x() * outline[j].y();
-  }
-  return 0.5 * std::abs(twice);
+  return std::abs(bim::signedArea(outline));
 }
 
 }  // namespace
