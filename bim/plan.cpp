@@ -24,6 +24,9 @@ const Level* findLevelWith(const std::vector<Level>& levels, Finder finder) {
 
 const Wall* Level::findWall(const std::string& wall_id) const { return findById(walls, wall_id); }
 const Door* Level::findDoor(const std::string& door_id) const { return findById(doors, door_id); }
+const Window* Level::findWindow(const std::string& window_id) const {
+  return findById(windows, window_id);
+}
 const Room* Level::findRoom(const std::string& room_id) const { return findById(rooms, room_id); }
 
 const Level* Plan::findLevel(const std::string& level_id) const {

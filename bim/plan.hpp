@@ -33,6 +33,17 @@ struct Door {
   bool rooms_inferred = false;       // true when `rooms` came from the outlines, not the file
 };
 
+// A window: an opening in a wall from `sill` to `sill + height` above the wall's base, which the
+// sensor sees through and nobody walks through (an optional extension of v1).
+struct Window {
+  std::string id;
+  std::string wall;     // id of the wall the opening is in
+  double offset = 0.0;  // centre of the opening, metres from the wall's start along its axis
+  double width = 0.0;
+  double sill = 0.0;    // bottom of the opening above the wall's base
+  double height = 0.0;  // of the opening, sill to head
+};
+
 struct Room {
   std::string id;
   std::string name;
@@ -45,10 +56,12 @@ struct Level {
   double height = 0.0;     // default wall height, floor to ceiling
   std::vector<Wall> walls;
   std::vector<Door> doors;
+  std::vector<Window> windows;
   std::vector<Room> rooms;
 
   const Wall* findWall(const std::string& wall_id) const;
   const Door* findDoor(const std::string& door_id) const;
+  const Window* findWindow(const std::string& window_id) const;
   const Room* findRoom(const std::string& room_id) const;
 };
 

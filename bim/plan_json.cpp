@@ -36,12 +36,26 @@ json planToJson(const Plan& plan) {
       for (const auto& p : r.outline) outline.push_back(point(p));
       rooms.push_back({{"id", r.id}, {"name", r.name}, {"outline", outline}});
     }
-    levels.push_back({{"id", level.id},
-                      {"elevation", level.elevation},
-                      {"height", level.height},
-                      {"walls", walls},
-                      {"doors", doors},
-                      {"rooms", rooms}});
+    json out = {{"id", level.id},
+                {"elevation", level.elevation},
+                {"height", level.height},
+                {"walls", walls},
+                {"doors", doors}};
+    // Windows are an optional extension of v1: a plan without them is written as before.
+    if (!level.windows.empty()) {
+      json windows = json::array();
+      for (const auto& w : level.windows) {
+        windows.push_back({{"id", w.id},
+                           {"wall", w.wall},
+                           {"offset", w.offset},
+                           {"width", w.width},
+                           {"sill", w.sill},
+                           {"height", w.height}});
+      }
+      out["windows"] = windows;
+    }
+    out["rooms"] = rooms;
+    levels.push_back(out);
   }
   return {{"format", "isg.plan"}, {"version", 1}, {"name", plan.name}, {"levels", levels}};
 }

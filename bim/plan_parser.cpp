@@ -112,6 +112,56 @@ struct LevelIndex {
   }
 };
 
+// The wall an opening names, or an error at `wall_node`.
+const Wall& openingWall(const JsonNode& wall_node, const std::string& wall_id, const Level& level,
+                        const LevelIndex& index) {
+  const auto found = index.walls.find(wall_id);
+  if (found == index.walls.end()) {
+    wall_node.fail("no wall " + inQuotes(wall_id) + " on level " + inQuotes(level.id));
+  }
+  return *found->second;
+}
+
+// An opening [offset − width/2, offset + width/2] must lie within its wall's axis.
+void checkOpeningFits(const JsonNode& offset_node, double offset, double width, const Wall& wall) {
+  const double length = (wall.end - wall.start).norm();
+  const double lo = offset - 0.5 * width;
+  const double hi = offset + 0.5 * width;
+  constexpr double kEps = 1e-9;
+  if (lo < -kEps || hi > length + kEps) {
+    offset_node.fail("opening from " + formatNumber(lo) + " to " + formatNumber(hi) +
+                     " m along the wall does not fit inside wall " + inQuotes(wall.id) +
+                     " (length " + formatNumber(length) + " m)");
+  }
+}
+
+Window parseWindow(const JsonNode& node, const Level& level, const LevelIndex& index,
+                   IdRegistry& ids) {
+  node.expectObject({"id", "wall", "offset", "width", "sill", "height", "name"});
+  Window window;
+  const JsonNode id = node.field("id");
+  window.id = id.identifier();
+  ids.add(id, window.id);
+  if (auto name = node.optionalField("name")) name->text();
+  const JsonNode wall_node = node.field("wall");
+  window.wall = wall_node.nonEmptyString();
+  const Wall& wall = openingWall(wall_node, window.wall, level, index);
+  const JsonNode offset = node.field("offset");
+  window.offset = offset.number();
+  window.width = node.field("width").numberInRange(limits::kMinSize, limits::kMaxLevelExtent);
+  window.sill = node.field("sill").numberInRange(0.0, limits::kMaxHeight);
+  const JsonNode height = node.field("height");
+  window.height = height.numberInRange(limits::kMinSize, limits::kMaxHeight);
+  checkOpeningFits(offset, window.offset, window.width, wall);
+  const double room_above_base = wall.height - wall.base;
+  if (window.sill + window.height > room_above_base + 1e-9) {
+    height.fail("window reaches " + formatNumber(window.sill + window.height) +
+                " m above the wall's base, above the top of wall " + inQuotes(wall.id) + " (" +
+                formatNumber(room_above_base) + " m above its base)");
+  }
+  return window;
+}
+
 Door parseDoor(const JsonNode& node, const Level& level, const LevelIndex& index, IdRegistry& ids) {
   node.expectObject({"id", "wall", "offset", "width", "height", "rooms", "name"});
   Door door;
@@ -120,26 +170,15 @@ Door parseDoor(const JsonNode& node, const Level& level, const LevelIndex& index
   ids.add(id, door.id);
   const JsonNode wall_node = node.field("wall");
   door.wall = wall_node.nonEmptyString();
-  const auto found_wall = index.walls.find(door.wall);
-  const Wall* wall = found_wall == index.walls.end() ? nullptr : found_wall->second;
-  if (wall == nullptr) {
-    wall_node.fail("no wall " + inQuotes(door.wall) + " on level " + inQuotes(level.id));
-  }
+  const Wall* wall = &openingWall(wall_node, door.wall, level, index);
   const JsonNode offset = node.field("offset");
   door.offset = offset.number();
   door.width = node.field("width").numberInRange(limits::kMinSize, limits::kMaxLevelExtent);
   const JsonNode height = node.field("height");
   door.height = height.numberInRange(limits::kMinSize, limits::kMaxHeight);
 
-  const double length = (wall->end - wall->start).norm();
-  const double lo = door.offset - 0.5 * door.width;
-  const double hi = door.offset + 0.5 * door.width;
+  checkOpeningFits(offset, door.offset, door.width, *wall);
   constexpr double kEps = 1e-9;
-  if (lo < -kEps || hi > length + kEps) {
-    offset.fail("opening from " + formatNumber(lo) + " to " + formatNumber(hi) +
-                " m along the wall does not fit inside wall " + inQuotes(wall->id) + " (length " +
-                formatNumber(length) + " m)");
-  }
   const double room_above_base = wall->height - wall->base;
   if (door.height > room_above_base + kEps) {
     height.fail("door is " + formatNumber(door.height) + " m high, taller than wall " +
@@ -165,23 +204,31 @@ Door parseDoor(const JsonNode& node, const Level& level, const LevelIndex& index
   return door;
 }
 
-// Doors are compared with the earlier doors of their own wall only; a wall's doors sorted by
-// where they start make the check O(n log n) however many doors a level has.
-void checkDoorOverlaps(const std::vector<JsonNode>& door_nodes, const Level& level) {
-  std::map<std::string, std::vector<std::size_t>> doors_by_wall;
-  for (std::size_t i = 0; i < level.doors.size(); ++i) {
-    doors_by_wall[level.doors[i].wall].push_back(i);
-  }
-  std::optional<std::pair<std::size_t, std::size_t>> first;  // (later door, earlier door)
-  for (auto& [wall, indices] : doors_by_wall) {
-    auto lo = [&](std::size_t i) { return level.doors[i].offset - 0.5 * level.doors[i].width; };
-    auto hi = [&](std::size_t i) { return level.doors[i].offset + 0.5 * level.doors[i].width; };
+// Openings (doors, then windows) are compared with the earlier openings of their own wall only;
+// a wall's openings sorted by where they start make the check O(n log n) however many a level
+// has. Two openings of one wall may not overlap along it, whatever their heights: a transom over a
+// door is part of the door's opening.
+struct Opening {
+  const JsonNode* node;
+  std::string kind;  // "door" or "window"
+  std::string id;
+  std::string wall;
+  double lo = 0.0, hi = 0.0;
+};
+
+void checkOpeningOverlaps(const std::vector<Opening>& openings) {
+  std::map<std::string, std::vector<std::size_t>> by_wall;
+  for (std::size_t i = 0; i < openings.size(); ++i) by_wall[openings[i].wall].push_back(i);
+  std::optional<std::pair<std::size_t, std::size_t>> first;  // (later opening, earlier opening)
+  for (auto& [wall, indices] : by_wall) {
+    auto lo = [&](std::size_t i) { return openings[i].lo; };
+    auto hi = [&](std::size_t i) { return openings[i].hi; };
     std::sort(indices.begin(), indices.end(), [&](std::size_t a, std::size_t b) {
       return lo(a) < lo(b) || (lo(a) == lo(b) && a < b);
     });
-    // Sweep: every earlier-starting door still open when this one starts overlaps it.
+    // Sweep: every earlier-starting opening still open when this one starts overlaps it.
     std::vector<std::size_t> open;
-    // The sweep stops at a wall's first overlap, so it stays linear even when every door of a
+    // The sweep stops at a wall's first overlap, so it stays linear even when every opening of a
     // wall overlaps every other; the message names the earliest such pair in file order.
     bool found = false;
     for (std::size_t i : indices) {
@@ -196,10 +243,10 @@ void checkDoorOverlaps(const std::vector<JsonNode>& door_nodes, const Level& lev
     }
   }
   if (first) {
-    const Door& a = level.doors[first->first];
-    const Door& b = level.doors[first->second];
-    door_nodes[first->first].field("offset").fail("opening overlaps door " + inQuotes(b.id) +
-                                                  " on wall " + inQuotes(a.wall));
+    const Opening& a = openings[first->first];
+    const Opening& b = openings[first->second];
+    a.node->field("offset").fail("opening overlaps " + b.kind + " " + inQuotes(b.id) + " on wall " +
+                                 inQuotes(a.wall));
   }
 }
 
@@ -222,7 +269,7 @@ void checkLevelExtent(const JsonNode& node, const Level& level) {
 }
 
 Level parseLevel(const JsonNode& node, IdRegistry& ids) {
-  node.expectObject({"id", "name", "elevation", "height", "walls", "doors", "rooms"});
+  node.expectObject({"id", "name", "elevation", "height", "walls", "doors", "windows", "rooms"});
   Level level;
   const JsonNode id = node.field("id");
   level.id = id.identifier();
@@ -256,7 +303,23 @@ Level parseLevel(const JsonNode& node, IdRegistry& ids) {
   }
   const LevelIndex index(level);
   for (const auto& d : door_nodes) level.doors.push_back(parseDoor(d, level, index, ids));
-  checkDoorOverlaps(door_nodes, level);
+  std::vector<JsonNode> window_nodes;
+  if (auto windows = node.optionalField("windows")) {
+    window_nodes = windows->elements(0, limits::kMaxDoorsPerLevel, "windows");
+  }
+  for (const auto& w : window_nodes) level.windows.push_back(parseWindow(w, level, index, ids));
+  std::vector<Opening> openings;
+  for (std::size_t i = 0; i < level.doors.size(); ++i) {
+    const Door& d = level.doors[i];
+    openings.push_back(
+        {&door_nodes[i], "door", d.id, d.wall, d.offset - 0.5 * d.width, d.offset + 0.5 * d.width});
+  }
+  for (std::size_t i = 0; i < level.windows.size(); ++i) {
+    const Window& w = level.windows[i];
+    openings.push_back({&window_nodes[i], "window", w.id, w.wall, w.offset - 0.5 * w.width,
+                        w.offset + 0.5 * w.width});
+  }
+  checkOpeningOverlaps(openings);
 
   const RoomLocator rooms(level);
   for (std::size_t i = 0; i < level.doors.size(); ++i) {

@@ -2,6 +2,7 @@
 
 #include <cstdio>
 #include <iostream>
+#include <string>
 
 #include "bim/plan_geometry.hpp"
 #include "bim/polygon.hpp"
@@ -26,15 +27,19 @@ CheckCommand::CheckCommand(CLI::App& parent) {
 int CheckCommand::run() {
   const bim::Scenario scenario = loadInput(input_, "check");
   const bim::Plan& plan = scenario.plan;
-  std::size_t walls = 0, doors = 0, rooms = 0;
+  std::size_t walls = 0, doors = 0, windows = 0, rooms = 0;
   for (const auto& level : plan.levels) {
     walls += level.walls.size();
     doors += level.doors.size();
+    windows += level.windows.size();
     rooms += level.rooms.size();
   }
-  std::printf("%s: ok: plan \"%s\" (%s): %zu level%s, %zu walls, %zu doors, %zu rooms\n",
+  // Windows are an optional extension: a plan without them is summarised as before.
+  const std::string window_count =
+      windows > 0 ? ", " + std::to_string(windows) + " window" + (windows == 1 ? "" : "s") : "";
+  std::printf("%s: ok: plan \"%s\" (%s): %zu level%s, %zu walls, %zu doors%s, %zu rooms\n",
               input_.c_str(), plan.name.c_str(), scenario.plan_file.c_str(), plan.levels.size(),
-              plan.levels.size() == 1 ? "" : "s", walls, doors, rooms);
+              plan.levels.size() == 1 ? "" : "s", walls, doors, window_count.c_str(), rooms);
   const auto& ab = scenario.as_built;
   if (!ab.empty()) {
     std::printf(

@@ -12,6 +12,7 @@ bim::Level asBuiltLevel(const bim::Level& level, const bim::AsBuilt& as_built) {
   };
   std::erase_if(built.walls, [&](const bim::Wall& w) { return is_missing(w.id); });
   std::erase_if(built.doors, [&](const bim::Door& d) { return is_missing(d.wall); });
+  std::erase_if(built.windows, [&](const bim::Window& w) { return is_missing(w.wall); });
   for (const auto& shift : as_built.wall_shifts) {
     for (auto& wall : built.walls) {
       if (wall.id != shift.wall) continue;

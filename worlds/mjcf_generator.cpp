@@ -172,27 +172,44 @@ void writeLevel(std::ostringstream& out, const bim::Plan& plan, const bim::Level
     const std::string material = extra ? "extra_wall" : "wall";
     const double z0 = level.elevation + wall.base;
     const double z1 = level.elevation + wall.height;
-    std::vector<const bim::Door*> doors;
+    // The wall's openings along its axis: doors from its base, windows from their sill. Each
+    // leaves wall below it (windows) and above it (a lintel, when lower than the wall).
+    struct Opening {
+      double lo, hi, bottom, top;  // along the axis; z above the wall's base
+      const bim::Door* door;       // null for a window
+      std::string id;
+    };
+    std::vector<Opening> openings;
     for (const auto& door : level.doors) {
-      if (door.wall == wall.id) doors.push_back(&door);
+      if (door.wall != wall.id) continue;
+      openings.push_back({door.offset - 0.5 * door.width, door.offset + 0.5 * door.width, 0.0,
+                          door.height, &door, door.id});
     }
-    std::sort(doors.begin(), doors.end(),
-              [](const bim::Door* a, const bim::Door* b) { return a->offset < b->offset; });
+    for (const auto& window : level.windows) {
+      if (window.wall != wall.id) continue;
+      openings.push_back({window.offset - 0.5 * window.width, window.offset + 0.5 * window.width,
+                          window.sill, window.sill + window.height, nullptr, window.id});
+    }
+    std::sort(openings.begin(), openings.end(),
+              [](const Opening& a, const Opening& b) { return a.lo < b.lo; });
     double s = -g.extend_start;
     int piece = 0;
-    for (const bim::Door* door : doors) {
-      const double lo = door->offset - 0.5 * door->width;
-      const double hi = door->offset + 0.5 * door->width;
+    for (const Opening& opening : openings) {
+      const double lo = opening.lo, hi = opening.hi;
       if (lo - s >= 1e-6) {
         writer.wallPiece("wall/" + wall.id + "/" + std::to_string(piece++), material, g, s, lo,
                          wall.thickness, z0, z1);
       }
-      writer.wallPiece("wall/" + wall.id + "/lintel/" + door->id, material, g, lo, hi,
-                       wall.thickness, z0 + door->height, z1);
-      if (contains(as_built.closed_doors, door->id)) {
-        writer.wallPiece("door/" + door->id, "door", g, lo, hi,
+      if (opening.bottom > 0.0) {
+        writer.wallPiece("wall/" + wall.id + "/sill/" + opening.id, material, g, lo, hi,
+                         wall.thickness, z0, z0 + opening.bottom);
+      }
+      writer.wallPiece("wall/" + wall.id + "/lintel/" + opening.id, material, g, lo, hi,
+                       wall.thickness, z0 + opening.top, z1);
+      if (opening.door != nullptr && contains(as_built.closed_doors, opening.id)) {
+        writer.wallPiece("door/" + opening.id, "door", g, lo, hi,
                          std::min(options.door_leaf_thickness, wall.thickness), z0,
-                         z0 + door->height);
+                         z0 + opening.top);
       }
       s = hi;
     }

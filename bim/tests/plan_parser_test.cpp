@@ -3,6 +3,7 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
+#include "bim/plan_json.hpp"
 #include "bim/tests/test_plans.hpp"
 
 namespace isg::bim {
@@ -28,6 +29,28 @@ TEST(PlanParser, ReadsEveryFieldAndFillsDefaults) {
   EXPECT_DOUBLE_EQ(level.doors[0].offset, 2.0);
   EXPECT_EQ(level.rooms[1].name, "East");
   EXPECT_EQ(level.rooms[1].outline.size(), 4u);
+}
+
+TEST(PlanParser, ReadsWindowsAndWritesThemBack) {
+  auto doc = twoRoomPlanJson();
+  doc["levels"][0]["windows"] = nlohmann::json::parse(
+      R"([{"id": "V1", "wall": "W2", "offset": 2.0, "width": 1.2, "sill": 0.9, "height": 1.2}])");
+  const Plan plan = parsePlanJson(doc);
+  const Window* window = plan.levels[0].findWindow("V1");
+  ASSERT_NE(window, nullptr);
+  EXPECT_EQ(window->wall, "W2");
+  EXPECT_DOUBLE_EQ(window->offset, 2.0);
+  EXPECT_DOUBLE_EQ(window->width, 1.2);
+  EXPECT_DOUBLE_EQ(window->sill, 0.9);
+  EXPECT_DOUBLE_EQ(window->height, 1.2);
+  const Plan again = parsePlanJson(nlohmann::json::parse(planToJson(plan).dump()));
+  ASSERT_EQ(again.levels[0].windows.size(), 1u);
+  EXPECT_DOUBLE_EQ(again.levels[0].windows[0].sill, 0.9);
+  // A plan without windows is written without the key, as before the extension.
+  EXPECT_FALSE(planToJson(parsePlanJson(twoRoomPlanJson()))["levels"][0].contains("windows"));
+  // Window ids share the file's one namespace.
+  doc["levels"][0]["windows"][0]["id"] = "D1";
+  EXPECT_THROW(parsePlanJson(doc), InputError);
 }
 
 TEST(PlanParser, NameDefaultsToTheFileStem) {
@@ -86,7 +109,8 @@ TEST(PlanParser, ErrorCarriesFilePointerAndReason) {
     EXPECT_EQ(e.file(), "plans/bad.json");
     EXPECT_EQ(e.pointer(), "/levels/0/walls/3/thickness");
     EXPECT_EQ(e.reason(), "must be in [0.001, 10], got -0.2");
-    EXPECT_STREQ(e.what(), "plans/bad.json: /levels/0/walls/3/thickness: must be in [0.001, 10], got -0.2");
+    EXPECT_STREQ(e.what(),
+                 "plans/bad.json: /levels/0/walls/3/thickness: must be in [0.001, 10], got -0.2");
   }
 }
 

@@ -4,6 +4,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "bim/tests/test_plans.hpp"
 #include "cli/tests/cli_runner.hpp"
 #include "worlds/reference_plans.hpp"
 
@@ -72,6 +73,21 @@ TEST(Check, DescribesAValidScenario) {
   EXPECT_THAT(result.out, HasSubstr("as built: 0 missing walls, 1 extra walls, 1 shifted walls, "
                                     "1 closed doors, 3 clutter boxes\n"));
   EXPECT_THAT(result.out, HasSubstr("door D8     in W4     joins R8 and outside (inferred)"));
+}
+
+TEST(Check, CountsWindowsAndTheWorldHasTheirSills) {
+  testing::Sandbox sandbox("check_windows");
+  nlohmann::json plan = bim::testing::twoRoomPlanJson();
+  plan["levels"][0]["windows"] = nlohmann::json::parse(
+      R"([{"id": "V1", "wall": "W2", "offset": 2.0, "width": 1.2, "sill": 0.9, "height": 1.2}])");
+  sandbox.write("plan.json", plan.dump());
+  auto result = sandbox.run("check plan.json");
+  EXPECT_EQ(result.exit_code, 0) << result.err;
+  EXPECT_THAT(result.out, HasSubstr("1 level, 5 walls, 2 doors, 1 window, 2 rooms\n"));
+  result = sandbox.run("world plan.json");
+  EXPECT_EQ(result.exit_code, 0) << result.err;
+  EXPECT_THAT(result.out, HasSubstr("name=\"wall/W2/sill/V1\""));
+  EXPECT_THAT(result.out, HasSubstr("name=\"wall/W2/lintel/V1\""));
 }
 
 TEST(Inspect, DefaultWorldLoadsStepsAndProbes) {

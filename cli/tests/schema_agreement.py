@@ -75,6 +75,10 @@ PLAN_MUTATIONS = {
     "two-vertex outline": setter(["levels", 0, "rooms", 0, "outline"], [[0, 0], [1, 0]]),
     "room called outside": setter(["levels", 0, "rooms", 0, "id"], "outside"),
     "empty id": setter(["levels", 0, "walls", 0, "id"], ""),
+    "window without sill": deleter(["levels", 0, "windows", 0, "sill"]),
+    "window below its wall's base": setter(["levels", 0, "windows", 0, "sill"], -0.1),
+    "window height zero": setter(["levels", 0, "windows", 0, "height"], 0),
+    "window height as a string": setter(["levels", 0, "windows", 0, "height"], "1.2"),
 }
 
 SCENARIO_MUTATIONS = {
@@ -140,6 +144,8 @@ def main():
     base_scenario["imu"] = {"rate_hz": 400, "mount": [0.1, 0, 0.05, 0, 0, 0], "gravity": 9.80665}
     base_scenario["as_built"]["extra_walls"] = [{"start": [1, 1], "end": [1, 2], "thickness": 0.1}]
     base_plan["levels"][0]["walls"][0]["colour"] = "grey"  # unknown fields: fine for both
+    base_plan["levels"][0]["windows"] = [
+        {"id": "WIN1", "wall": "W1", "offset": 3.0, "width": 1.2, "sill": 0.9, "height": 1.2}]
 
     for label, validator, base, name, mutations in (
         ("plan", plan_v, base_plan, "plan.json", PLAN_MUTATIONS),

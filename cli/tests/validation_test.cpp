@@ -46,6 +46,7 @@ std::ostream& operator<<(std::ostream& out, const Case& c) { return out << c.nam
 std::vector<Case> cases() {
   auto walls = [](json& p) -> json& { return p["levels"][0]["walls"]; };
   auto doors = [](json& p) -> json& { return p["levels"][0]["doors"]; };
+  auto level = [](json& p) -> json& { return p["levels"][0]; };
   auto rooms = [](json& p) -> json& { return p["levels"][0]["rooms"]; };
   return {
       // --- plan: format and version
@@ -112,6 +113,49 @@ std::vector<Case> cases() {
              {{"id", "D3"}, {"wall", "W5"}, {"offset", 2.5}, {"width", 0.9}, {"height", 2.0}});
        },
        "plan.json: /levels/0/doors/2/offset: opening overlaps door \"D1\" on wall \"W5\""},
+      // Windows: W2 is 4 m long and 3 m high; D2 opens W1 from 4.0 to 5.0 m.
+      {"WindowOnUnknownWall", "plan.json",
+       [=](json& p, json&) {
+         level(p)["windows"] = {{{"id", "V1"},
+                                 {"wall", "W9"},
+                                 {"offset", 2.0},
+                                 {"width", 1.0},
+                                 {"sill", 0.9},
+                                 {"height", 1.2}}};
+       },
+       "plan.json: /levels/0/windows/0/wall: no wall \"W9\" on level \"L0\""},
+      {"WindowOutsideItsWall", "plan.json",
+       [=](json& p, json&) {
+         level(p)["windows"] = {{{"id", "V1"},
+                                 {"wall", "W2"},
+                                 {"offset", 3.8},
+                                 {"width", 1.0},
+                                 {"sill", 0.9},
+                                 {"height", 1.2}}};
+       },
+       "plan.json: /levels/0/windows/0/offset: opening from 3.3 to 4.3 m along the wall does not "
+       "fit inside wall \"W2\" (length 4 m)"},
+      {"WindowAboveItsWall", "plan.json",
+       [=](json& p, json&) {
+         level(p)["windows"] = {{{"id", "V1"},
+                                 {"wall", "W2"},
+                                 {"offset", 2.0},
+                                 {"width", 1.0},
+                                 {"sill", 1.9},
+                                 {"height", 1.2}}};
+       },
+       "plan.json: /levels/0/windows/0/height: window reaches 3.1 m above the wall's base, above "
+       "the top of wall \"W2\" (3 m above its base)"},
+      {"WindowOverlappingADoor", "plan.json",
+       [=](json& p, json&) {
+         level(p)["windows"] = {{{"id", "V1"},
+                                 {"wall", "W1"},
+                                 {"offset", 5.2},
+                                 {"width", 0.8},
+                                 {"sill", 0.9},
+                                 {"height", 1.2}}};
+       },
+       "plan.json: /levels/0/windows/0/offset: opening overlaps door \"D2\" on wall \"W1\""},
       {"DoorOnUnknownWall", "plan.json", [=](json& p, json&) { doors(p)[0]["wall"] = "W9"; },
        "plan.json: /levels/0/doors/0/wall: no wall \"W9\" on level \"L0\""},
       {"DoorToUnknownRoom", "plan.json",

@@ -133,6 +133,27 @@ TEST(AsBuiltWorld, ClosedDoorStopsTheRayAtItsLeaf) {
   EXPECT_FALSE(plan_world.ray({1.0, 1.1, 1.0}, {-1, 0, 0}, kBuilding));
 }
 
+TEST(PlanWorld, AWindowLetsTheRayOutBetweenItsSillAndItsHead) {
+  bim::Scenario scenario = builtin("d1");
+  // W1 runs (0, 0) → (12, 0), 0.3 m thick (faces at y = ±0.15); the window spans x in [8.4, 9.6]
+  // and z in [0.9, 2.1].
+  bim::Level& level = scenario.plan.levels[0];
+  level.windows.push_back({"V1", "W1", 9.0, 1.2, 0.9, 1.2});
+  const sim::MujocoWorld world = sim::MujocoWorld::fromXml(generateMjcf(scenario.plan));
+  EXPECT_FALSE(world.ray({9.0, 1.0, 1.5}, {0, -1, 0}, kBuilding));  // through the glass
+  auto hit = world.ray({9.0, 1.0, 0.5}, {0, -1, 0}, kBuilding);     // below the sill
+  ASSERT_TRUE(hit);
+  EXPECT_EQ(world.geomName(hit->geom), "wall/W1/sill/V1");
+  EXPECT_NEAR(hit->distance, 0.85, kMillimetre);
+  hit = world.ray({9.0, 1.0, 2.5}, {0, -1, 0}, kBuilding);  // above the head
+  ASSERT_TRUE(hit);
+  EXPECT_EQ(world.geomName(hit->geom), "wall/W1/lintel/V1");
+  hit = world.ray({8.3, 1.0, 1.5}, {0, -1, 0}, kBuilding);  // beside it
+  ASSERT_TRUE(hit);
+  EXPECT_EQ(world.geomName(hit->geom), "wall/W1/0");
+  EXPECT_NEAR(hit->distance, 0.85, kMillimetre);
+}
+
 TEST(AsBuiltWorld, ShiftedWallMovesAlongItsLeftNormal) {
   const bim::Scenario scenario = builtin("d1.asbuilt");
   // W6 runs (4, 2.2) → (4, 8): its left is -x, so +0.05 moves it to x = 3.95 and its west face

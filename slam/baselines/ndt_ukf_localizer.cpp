@@ -27,7 +27,7 @@ Cloud::Ptr voxelise(const Cloud::Ptr& cloud, double leaf) {
 }
 
 // The plan's exposed wall faces of one level as points on a `spacing` grid, floor to wall top,
-// with the door openings left out up to the door's top. Each point stands ±relief off its face,
+// with the door and window openings left out. Each point stands ±relief off its face,
 // in a checkerboard: a perfectly flat NDT cell has a smallest covariance eigenvalue of zero, which
 // PCL computes as slightly negative for some cells and then drops the cell ("Invalid eigen
 // value"); ±1 cm, a wall's finish tolerance, keeps every wall cell, and is far below PCL's own
@@ -42,13 +42,19 @@ Cloud::Ptr planCloud(const bim::Plan& plan, const std::string& level_id, double 
   Cloud::Ptr cloud(new Cloud);
   for (const auto& wall : geometry.walls) {
     struct Hole {
-      double lo, hi, top;
+      double lo, hi, bottom, top;
     };
     std::vector<Hole> holes;
+    const double base = level->elevation + wall.wall->base;
     for (const auto& door : level->doors) {
       if (door.wall != wall.wall->id) continue;
-      holes.push_back({door.offset - 0.5 * door.width, door.offset + 0.5 * door.width,
-                       level->elevation + wall.wall->base + door.height});
+      holes.push_back({door.offset - 0.5 * door.width, door.offset + 0.5 * door.width, base,
+                       base + door.height});
+    }
+    for (const auto& window : level->windows) {
+      if (window.wall != wall.wall->id) continue;
+      holes.push_back({window.offset - 0.5 * window.width, window.offset + 0.5 * window.width,
+                       base + window.sill, base + window.sill + window.height});
     }
     for (int side : {+1, -1}) {
       const bim::WallFace& face = wall.face(side);
@@ -59,7 +65,7 @@ Cloud::Ptr planCloud(const bim::Plan& plan, const std::string& level_id, double 
           int j = 0;
           for (double z = face.z_min; z <= face.z_max + 1e-9; z += spacing, ++j) {
             const bool in_hole = std::any_of(holes.begin(), holes.end(), [&](const Hole& h) {
-              return s > h.lo && s < h.hi && z < h.top;
+              return s > h.lo && s < h.hi && z >= h.bottom && z < h.top;
             });
             if (in_hole) continue;
             const Eigen::Vector2d xy = wall.facePointAt(side, s) - origin +

@@ -12,13 +12,9 @@
 #include <string>
 #include <vector>
 
-#include "bim/agraph.hpp"
 #include "bim/plan_transform.hpp"
-#include "run/builtin_methods.hpp"
-#include "run/driver.hpp"
+#include "cli/tests/loop/isgraph_run.hpp"
 #include "run/evaluate_run.hpp"
-#include "sim/scan_pipeline.hpp"
-#include "sim/simulation.hpp"
 #include "worlds/reference_plans.hpp"
 
 namespace isg::sim {
@@ -59,18 +55,7 @@ std::vector<Placement> placements() {
 }
 
 run::RunMetrics runIsGraph(const bim::Scenario& scenario) {
-  const Simulation simulation(scenario);
-  const bim::AGraph plan = bim::buildAGraph(scenario.plan);
-  run::LocalizerContext context;
-  context.plan = &scenario.plan;
-  context.agraph = &plan;
-  context.level = scenario.robot.level;
-  context.R_T_L = simulation.R_T_L();
-  const auto localizer = run::builtinMethods().make("is-graphs", context);
-  sensors::SensorStreams streams = sensorStreams(simulation, -1.0);
-  LookaheadScans scans(simulation, int(streams.scan_stamps.size()), 1);
-  const run::RunRecord record = run::runLocalizer({}, *localizer, std::move(streams), scans);
-  return run::evaluateRun(record).metrics;
+  return run::evaluateRun(testing::runIsGraphInTheLoop(scenario)).metrics;
 }
 
 class FarFromTheOrigin : public ::testing::TestWithParam<Placement> {};

@@ -4,12 +4,8 @@
 // contradicted later (a wrong first match would be). The numbers are the ones metrics.json gets.
 #include <gtest/gtest.h>
 
-#include "bim/agraph.hpp"
-#include "run/builtin_methods.hpp"
-#include "run/driver.hpp"
+#include "cli/tests/loop/isgraph_run.hpp"
 #include "run/evaluate_run.hpp"
-#include "sim/scan_pipeline.hpp"
-#include "sim/simulation.hpp"
 #include "worlds/reference_plans.hpp"
 
 namespace isg::sim {
@@ -21,17 +17,7 @@ TEST_P(ISGraphInTheLoop, LocalizedInThePlanWithinTheBound) {
   const std::string world = GetParam();
   const bool as_built = world.find(".asbuilt") != std::string::npos;
   const bim::Scenario scenario = worlds::loadScenarioOrBuiltin("builtin:" + world, nullptr);
-  const Simulation simulation(scenario);
-  const bim::AGraph plan = bim::buildAGraph(scenario.plan);
-  run::LocalizerContext context;
-  context.plan = &scenario.plan;
-  context.agraph = &plan;
-  context.level = scenario.robot.level;
-  context.R_T_L = simulation.R_T_L();
-  const auto localizer = run::builtinMethods().make("is-graphs", context);
-  sensors::SensorStreams streams = sensorStreams(simulation, -1.0);
-  LookaheadScans scans(simulation, int(streams.scan_stamps.size()), 1);
-  const run::RunRecord record = run::runLocalizer({}, *localizer, std::move(streams), scans);
+  const run::RunRecord record = testing::runIsGraphInTheLoop(scenario);
 
   ASSERT_TRUE(record.localized_at.has_value()) << world;
   EXPECT_EQ(record.search_status, "matched");
