@@ -118,12 +118,7 @@ AGraph AGraph::translated(const Eigen::Vector2d& shift) const {
   return moved;
 }
 
-Eigen::Vector2d AGraph::localOrigin() const {
-  const Eigen::AlignedBox2d box = surfaceBounds();
-  if (box.isEmpty()) return Eigen::Vector2d::Zero();
-  const Eigen::Vector2d middle = box.center();
-  return {std::round(middle.x()), std::round(middle.y())};
-}
+Eigen::Vector2d AGraph::localOrigin() const { return localOriginOf(surfaceBounds()); }
 
 int AGraph::findSurface(const std::string& id) const {
   for (std::size_t i = 0; i < surfaces.size(); ++i) {

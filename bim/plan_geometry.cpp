@@ -294,4 +294,29 @@ std::array<std::string, 2> inferDoorRooms(const Wall& wall, const Door& door,
   return rooms;
 }
 
+std::vector<WallOpening> wallOpenings(const Level& level, const std::string& wall_id) {
+  std::vector<WallOpening> openings;
+  for (const auto& door : level.doors) {
+    if (door.wall != wall_id) continue;
+    openings.push_back({door.id, &door, door.offset - 0.5 * door.width,
+                        door.offset + 0.5 * door.width, 0.0, door.height});
+  }
+  for (const auto& window : level.windows) {
+    if (window.wall != wall_id) continue;
+    openings.push_back({window.id, nullptr, window.offset - 0.5 * window.width,
+                        window.offset + 0.5 * window.width, window.sill,
+                        window.sill + window.height});
+  }
+  // The parser keeps openings of one wall apart, so their starts order them.
+  std::sort(openings.begin(), openings.end(),
+            [](const WallOpening& a, const WallOpening& b) { return a.lo < b.lo; });
+  return openings;
+}
+
+Eigen::Vector2d localOriginOf(const Eigen::AlignedBox2d& box) {
+  if (box.isEmpty()) return Eigen::Vector2d::Zero();
+  const Eigen::Vector2d middle = box.center();
+  return {std::round(middle.x()), std::round(middle.y())};
+}
+
 }  // namespace isg::bim

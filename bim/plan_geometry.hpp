@@ -1,6 +1,7 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <Eigen/Geometry>
 #include <optional>
 #include <string>
 #include <vector>
@@ -112,5 +113,21 @@ std::array<std::string, 2> inferDoorRooms(const Wall& wall, const Door& door,
 
 // The centre of a door's opening on its wall's axis, in B (2D).
 Eigen::Vector2d doorCentre(const Level& level, const Door& door);
+
+// One opening of a wall: a door (from the wall's base) or a window (from its sill), along the
+// wall's axis [lo, hi] and in z [bottom, top] above the wall's base.
+struct WallOpening {
+  std::string id;
+  const Door* door = nullptr;  // null for a window
+  double lo = 0.0, hi = 0.0;
+  double bottom = 0.0, top = 0.0;
+};
+// The doors and windows of `wall_id` on the level, by where they start along the wall.
+std::vector<WallOpening> wallOpenings(const Level& level, const std::string& wall_id);
+
+// The middle of a box to the metre (zero for an empty box): the origin of a frame local to a
+// building, so that nothing is measured from kilometres away (docs/conventions.md, "Where B's
+// origin is").
+Eigen::Vector2d localOriginOf(const Eigen::AlignedBox2d& box);
 
 }  // namespace isg::bim

@@ -170,19 +170,19 @@ Door parseDoor(const JsonNode& node, const Level& level, const LevelIndex& index
   ids.add(id, door.id);
   const JsonNode wall_node = node.field("wall");
   door.wall = wall_node.nonEmptyString();
-  const Wall* wall = &openingWall(wall_node, door.wall, level, index);
+  const Wall& wall = openingWall(wall_node, door.wall, level, index);
   const JsonNode offset = node.field("offset");
   door.offset = offset.number();
   door.width = node.field("width").numberInRange(limits::kMinSize, limits::kMaxLevelExtent);
   const JsonNode height = node.field("height");
   door.height = height.numberInRange(limits::kMinSize, limits::kMaxHeight);
 
-  checkOpeningFits(offset, door.offset, door.width, *wall);
+  checkOpeningFits(offset, door.offset, door.width, wall);
   constexpr double kEps = 1e-9;
-  const double room_above_base = wall->height - wall->base;
+  const double room_above_base = wall.height - wall.base;
   if (door.height > room_above_base + kEps) {
     height.fail("door is " + formatNumber(door.height) + " m high, taller than wall " +
-                inQuotes(wall->id) + " (" + formatNumber(room_above_base) + " m above its base)");
+                inQuotes(wall.id) + " (" + formatNumber(room_above_base) + " m above its base)");
   }
 
   if (auto rooms = node.optionalField("rooms")) {

@@ -172,29 +172,11 @@ void writeLevel(std::ostringstream& out, const bim::Plan& plan, const bim::Level
     const std::string material = extra ? "extra_wall" : "wall";
     const double z0 = level.elevation + wall.base;
     const double z1 = level.elevation + wall.height;
-    // The wall's openings along its axis: doors from its base, windows from their sill. Each
-    // leaves wall below it (windows) and above it (a lintel, when lower than the wall).
-    struct Opening {
-      double lo, hi, bottom, top;  // along the axis; z above the wall's base
-      const bim::Door* door;       // null for a window
-      std::string id;
-    };
-    std::vector<Opening> openings;
-    for (const auto& door : level.doors) {
-      if (door.wall != wall.id) continue;
-      openings.push_back({door.offset - 0.5 * door.width, door.offset + 0.5 * door.width, 0.0,
-                          door.height, &door, door.id});
-    }
-    for (const auto& window : level.windows) {
-      if (window.wall != wall.id) continue;
-      openings.push_back({window.offset - 0.5 * window.width, window.offset + 0.5 * window.width,
-                          window.sill, window.sill + window.height, nullptr, window.id});
-    }
-    std::sort(openings.begin(), openings.end(),
-              [](const Opening& a, const Opening& b) { return a.lo < b.lo; });
+    // Each opening leaves wall below it (windows) and above it (a lintel, when lower than the
+    // wall).
     double s = -g.extend_start;
     int piece = 0;
-    for (const Opening& opening : openings) {
+    for (const bim::WallOpening& opening : bim::wallOpenings(level, wall.id)) {
       const double lo = opening.lo, hi = opening.hi;
       if (lo - s >= 1e-6) {
         writer.wallPiece("wall/" + wall.id + "/" + std::to_string(piece++), material, g, s, lo,

@@ -5,7 +5,6 @@
 #include <pcl/point_types.h>
 #include <pcl/registration/ndt.h>
 
-#include <cmath>
 #include <stdexcept>
 
 #include "bim/plan_geometry.hpp"
@@ -41,21 +40,8 @@ Cloud::Ptr planCloud(const bim::Plan& plan, const std::string& level_id, double 
   const bim::LevelGeometry geometry = bim::computeLevelGeometry(*level);
   Cloud::Ptr cloud(new Cloud);
   for (const auto& wall : geometry.walls) {
-    struct Hole {
-      double lo, hi, bottom, top;
-    };
-    std::vector<Hole> holes;
+    const std::vector<bim::WallOpening> holes = bim::wallOpenings(*level, wall.wall->id);
     const double base = level->elevation + wall.wall->base;
-    for (const auto& door : level->doors) {
-      if (door.wall != wall.wall->id) continue;
-      holes.push_back({door.offset - 0.5 * door.width, door.offset + 0.5 * door.width, base,
-                       base + door.height});
-    }
-    for (const auto& window : level->windows) {
-      if (window.wall != wall.wall->id) continue;
-      holes.push_back({window.offset - 0.5 * window.width, window.offset + 0.5 * window.width,
-                       base + window.sill, base + window.sill + window.height});
-    }
     for (int side : {+1, -1}) {
       const bim::WallFace& face = wall.face(side);
       const Eigen::Vector2d outward = side * wall.left_normal;
@@ -64,9 +50,10 @@ Cloud::Ptr planCloud(const bim::Plan& plan, const std::string& level_id, double 
         for (double s = piece.lo; s <= piece.hi + 1e-9; s += spacing, ++i) {
           int j = 0;
           for (double z = face.z_min; z <= face.z_max + 1e-9; z += spacing, ++j) {
-            const bool in_hole = std::any_of(holes.begin(), holes.end(), [&](const Hole& h) {
-              return s > h.lo && s < h.hi && z >= h.bottom && z < h.top;
-            });
+            const bool in_hole =
+                std::any_of(holes.begin(), holes.end(), [&](const bim::WallOpening& h) {
+                  return s > h.lo && s < h.hi && z >= base + h.bottom && z < base + h.top;
+                });
             if (in_hole) continue;
             const Eigen::Vector2d xy = wall.facePointAt(side, s) - origin +
                                        ((i + j) % 2 == 0 ? relief : -relief) * outward;
@@ -85,10 +72,11 @@ Cloud::Ptr planCloud(const bim::Plan& plan, const std::string& level_id, double 
 // The middle of a level's walls to the metre: the origin of the NDT's map.
 Eigen::Vector2d mapOrigin(const bim::Plan& plan, const std::string& level_id) {
   const bim::Level* level = plan.findLevel(level_id);
-  if (level == nullptr || level->walls.empty()) return Eigen::Vector2d::Zero();
-  Eigen::AlignedBox2d box;
-  for (const auto& wall : level->walls) box.extend(wall.start).extend(wall.end);
-  return {std::round(box.center().x()), std::round(box.center().y())};
+  Eigen::AlignedBox2d box;  // empty
+  if (level != nullptr) {
+    for (const auto& wall : level->walls) box.extend(wall.start).extend(wall.end);
+  }
+  return bim::localOriginOf(box);
 }
 
 // A translation in the plane as a transform.
