@@ -338,12 +338,19 @@ Level parseLevel(const JsonNode& node, IdRegistry& ids) {
 }  // namespace
 
 Plan parsePlan(const JsonNode& root) {
-  root.expectObject({"$schema", "format", "version", "name", "levels"});
+  root.expectObject({"$schema", "format", "version", "name", "imported_from", "levels"});
   checkFormatAndVersion(root, kPlanFormat, kPlanVersion);
   Plan plan;
   plan.source = root.source().file;
   plan.name = std::filesystem::path(plan.source).stem().string();
   if (auto name = root.optionalField("name")) plan.name = name->text();
+  // Where an imported plan came from (isg import): text only, for the reader.
+  if (auto imported = root.optionalField("imported_from")) {
+    imported->expectObject({"file", "schema", "application"});
+    for (const char* key : {"file", "schema", "application"}) {
+      if (auto field = imported->optionalField(key)) field->text();
+    }
+  }
   IdRegistry ids;
   for (const auto& level : root.field("levels").elements(1, limits::kMaxLevels, "levels")) {
     plan.levels.push_back(parseLevel(level, ids));

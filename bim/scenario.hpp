@@ -41,12 +41,17 @@ struct Kidnap {
   std::optional<Eigen::Vector3d> pose;
 };
 
+// How far the robot's centre keeps from walls, clutter, closed doors and the outside when its route
+// is planned, unless the scenario says (robot.clearance).
+inline constexpr double kDefaultRobotClearance = 0.35;
+
 struct RobotConfig {
   std::string level;                          // id of the level the robot walks on
   std::optional<std::string> start_room;      // start at the centre of this room ...
   std::optional<Eigen::Vector3d> start_pose;  // ... or at [x, y, yaw]; exactly one is set
   Route route;
-  double speed = 0.5;  // m/s
+  double speed = 0.5;                         // m/s
+  double clearance = kDefaultRobotClearance;  // m, kept by the route planner
   GaitSettings gait;
   std::vector<Kidnap> kidnap;  // in time order
 };

@@ -82,7 +82,7 @@ RobotConfig parseRobot(const std::optional<JsonNode>& node, const Plan& plan) {
                            : std::optional(plan.levels.front().rooms.front().id);
     return robot;
   }
-  node->expectObject({"level", "start", "route", "speed", "gait", "kidnap"});
+  node->expectObject({"level", "start", "route", "speed", "clearance", "gait", "kidnap"});
   const Level* level = &plan.levels.front();
   if (auto l = node->optionalField("level")) {
     level = &levelNamed(plan, *l);
@@ -127,6 +127,9 @@ RobotConfig parseRobot(const std::optional<JsonNode>& node, const Plan& plan) {
     }
   }
   if (auto speed = node->optionalField("speed")) robot.speed = speed->numberInRange(0.01, 3.0);
+  if (auto clearance = node->optionalField("clearance")) {
+    robot.clearance = clearance->numberInRange(0.2, 2.0);
+  }
   if (auto gait = node->optionalField("gait")) {
     gait->expectObject({"frequency_hz", "bob_m", "roll_deg", "pitch_deg"});
     auto& g = robot.gait;

@@ -12,6 +12,7 @@
 #include "cli/cmd_eval.hpp"
 #include "cli/cmd_export.hpp"
 #include "cli/cmd_generate.hpp"
+#include "cli/cmd_import.hpp"
 #include "cli/cmd_inspect.hpp"
 #include "cli/cmd_render.hpp"
 #include "cli/cmd_run.hpp"
@@ -36,6 +37,7 @@ int main(int argc, char** argv) {
   std::vector<std::unique_ptr<Command>> commands;
   commands.push_back(std::make_unique<WorldCommand>(app));
   commands.push_back(std::make_unique<CheckCommand>(app));
+  commands.push_back(std::make_unique<ImportCommand>(app));
   commands.push_back(std::make_unique<GenerateCommand>(app));
   commands.push_back(std::make_unique<InspectCommand>(app));
   commands.push_back(std::make_unique<AGraphCommand>(app));

@@ -33,6 +33,7 @@ constexpr KindInfo kKinds[] = {
     {OutputKind::kTableMarkdown, "table", "a Markdown table", false},
     {OutputKind::kTableCsv, "table", "a CSV table", false},
     {OutputKind::kTableLatex, "table", "a LaTeX table", false},
+    {OutputKind::kImportedPlan, "plan", "an imported plan", false},
 };
 
 const KindInfo& infoOf(OutputKind kind) {
@@ -200,6 +201,10 @@ bool isOurFile(const fs::path& path, OutputKind kind) {
       return text.rfind("world,", 0) == 0;
     case OutputKind::kAgraphJson:
       return text.find("\"format\": \"isg.agraph\"") != std::string::npos;
+    case OutputKind::kImportedPlan:
+      // A plan isg import wrote says where it came from; a plan a person wrote is never replaced.
+      return text.find("\"format\": \"isg.plan\"") != std::string::npos &&
+             text.find("\"imported_from\"") != std::string::npos;
     default:
       return false;
   }

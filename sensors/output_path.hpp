@@ -24,7 +24,8 @@ enum class OutputKind {
   kAgraphJson,  // isg agraph -o
   kTableMarkdown,
   kTableCsv,
-  kTableLatex,  // isg table -o
+  kTableLatex,    // isg table -o
+  kImportedPlan,  // isg import MODEL.ifc -o
 };
 
 // "a run folder", "a ROS bag", ...: what the messages call it.

@@ -32,21 +32,23 @@ void planKidnaps(const bim::Scenario& scenario, const OccupancyGrid& grid, Plann
     next.time = kidnap.time;
     Eigen::Vector2d at;
     if (kidnap.room) {
-      at = roomGoal(grid, *level.findRoom(*kidnap.room));
+      at = roomGoal(grid, *level.findRoom(*kidnap.room), scenario.robot.clearance);
       next.start_yaw =
           std::uniform_real_distribution<double>(-std::numbers::pi, std::numbers::pi)(rng);
     } else {
       at = kidnap.pose->head<2>();
       next.start_yaw = kidnap.pose->z();
     }
-    if (grid.clearanceAt(at) < kMinClearance) {
-      throw bim::InputError(file, pointer + "/to", tooCloseReason(at, "be put down"));
+    if (grid.clearanceAt(at) < scenario.robot.clearance) {
+      throw bim::InputError(file, pointer + "/to",
+                            tooCloseReason(at, "be put down", scenario.robot.clearance));
     }
     next.waypoints.push_back(at);
     if (kidnap.room) next.targets.push_back({*kidnap.room, *kidnap.room, 0, at});
     for (const auto& target : remaining) {
       if (kidnap.room && target.room == *kidnap.room) continue;  // put down in it
-      const auto path = straightPath(grid, next.waypoints.back(), target.goal);
+      const auto path =
+          straightPath(grid, next.waypoints.back(), target.goal, scenario.robot.clearance);
       if (path.empty()) {
         route.skipped_rooms.push_back(target.label);
         continue;

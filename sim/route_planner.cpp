@@ -20,18 +20,28 @@ std::string formatPoint(const Eigen::Vector2d& p) {
   return out.str();
 }
 
-std::string tooCloseReason(const Eigen::Vector2d& p, const std::string& what) {
-  return "the robot cannot " + what + " at " + formatPoint(p) +
-         ": it is less than 0.35 m from a wall, clutter or the outside of the building";
+std::string tooCloseReason(const Eigen::Vector2d& p, const std::string& what, double clearance) {
+  char metres[32];
+  std::snprintf(metres, sizeof metres, "%.2f", clearance);
+  return "the robot cannot " + what + " at " + formatPoint(p) + ": it is less than " + metres +
+         " m from a wall, clutter or the outside of the building";
 }
 
 namespace {
 
-bool segmentIsClear(const OccupancyGrid& grid, const Eigen::Vector2d& a, const Eigen::Vector2d& b) {
+// "0.35 m", as messages give the clearance.
+std::string formatMetres(double metres) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%.2f m", metres);
+  return text;
+}
+
+bool segmentIsClear(const OccupancyGrid& grid, const Eigen::Vector2d& a, const Eigen::Vector2d& b,
+                    double clearance) {
   const double length = (b - a).norm();
   const int steps = std::max(1, int(std::ceil(length / (0.5 * grid.resolution()))));
   for (int i = 0; i <= steps; ++i) {
-    if (grid.clearanceAt(a + (b - a) * (double(i) / steps)) < kMinClearance) return false;
+    if (grid.clearanceAt(a + (b - a) * (double(i) / steps)) < clearance) return false;
   }
   return true;
 }
@@ -39,13 +49,14 @@ bool segmentIsClear(const OccupancyGrid& grid, const Eigen::Vector2d& a, const E
 // Keeps only the points where the path must turn: from each kept point, the farthest later point
 // that a straight, clear segment reaches.
 std::vector<Eigen::Vector2d> straighten(const OccupancyGrid& grid,
-                                        const std::vector<Eigen::Vector2d>& path) {
+                                        const std::vector<Eigen::Vector2d>& path,
+                                        double clearance) {
   if (path.size() <= 2) return path;
   std::vector<Eigen::Vector2d> out{path.front()};
   std::size_t i = 0;
   while (i + 1 < path.size()) {
     std::size_t j = path.size() - 1;
-    while (j > i + 1 && !segmentIsClear(grid, path[i], path[j])) --j;
+    while (j > i + 1 && !segmentIsClear(grid, path[i], path[j], clearance)) --j;
     out.push_back(path[j]);
     i = j;
   }
@@ -53,10 +64,11 @@ std::vector<Eigen::Vector2d> straighten(const OccupancyGrid& grid,
 }
 
 // The most open point of a room (ties: nearest its centroid); its centroid when that is open.
-Eigen::Vector2d roomCentre(const OccupancyGrid& grid, const bim::Room& room, bool prefer_centroid) {
+Eigen::Vector2d roomCentre(const OccupancyGrid& grid, const bim::Room& room, bool prefer_centroid,
+                           double clearance) {
   const Eigen::Vector2d centroid = bim::centroid(room.outline);
   if (prefer_centroid && bim::containsPoint(room.outline, centroid) &&
-      grid.clearanceAt(centroid) >= kMinClearance) {
+      grid.clearanceAt(centroid) >= clearance) {
     return centroid;
   }
   Eigen::Vector2d lo = room.outline[0], hi = room.outline[0];
@@ -87,21 +99,21 @@ Eigen::Vector2d roomCentre(const OccupancyGrid& grid, const bim::Room& room, boo
 
 }  // namespace
 
-Eigen::Vector2d roomGoal(const OccupancyGrid& grid, const bim::Room& room) {
-  return roomCentre(grid, room, true);
+Eigen::Vector2d roomGoal(const OccupancyGrid& grid, const bim::Room& room, double clearance) {
+  return roomCentre(grid, room, true, clearance);
 }
 
 std::vector<Eigen::Vector2d> straightPath(const OccupancyGrid& grid, const Eigen::Vector2d& from,
-                                          const Eigen::Vector2d& to) {
-  const auto path = findPath(grid, from, to);
+                                          const Eigen::Vector2d& to, double clearance) {
+  const auto path = findPath(grid, from, to, clearance);
   if (path.empty()) return path;
-  return straighten(grid, path);
+  return straighten(grid, path, clearance);
 }
 
 std::vector<Eigen::Vector2d> findPath(const OccupancyGrid& grid, const Eigen::Vector2d& from,
-                                      const Eigen::Vector2d& to) {
+                                      const Eigen::Vector2d& to, double min_clearance) {
   const Eigen::Vector2i start = grid.cellOf(from), goal = grid.cellOf(to);
-  if (grid.clearance(start) < kMinClearance || grid.clearance(goal) < kMinClearance) return {};
+  if (grid.clearance(start) < min_clearance || grid.clearance(goal) < min_clearance) return {};
   const int w = grid.width();
   const auto id = [w](const Eigen::Vector2i& c) { return c.y() * w + c.x(); };
   std::vector<double> cost(std::size_t(w) * grid.height(), std::numeric_limits<double>::infinity());
@@ -123,7 +135,7 @@ std::vector<Eigen::Vector2d> findPath(const OccupancyGrid& grid, const Eigen::Ve
     for (int k = 0; k < 8; ++k) {
       const Eigen::Vector2i n(c.x() + kDx[k], c.y() + kDy[k]);
       const double clearance = grid.clearance(n);
-      if (clearance < kMinClearance) continue;
+      if (clearance < min_clearance) continue;
       // Costlier near walls: paths keep to the middle of rooms and doorways.
       const double step =
           r * (k < 4 ? 1.0 : std::numbers::sqrt2) * (1.0 + 3.0 * std::max(0.0, 1.0 - clearance));
@@ -151,6 +163,7 @@ PlannedRoute planRoute(const bim::Scenario& scenario, const OccupancyGrid& grid,
   const bim::Level& level = *scenario.plan.findLevel(scenario.robot.level);
   const std::string& file = scenario.source;
   PlannedRoute route;
+  const double clearance = scenario.robot.clearance;
 
   // Start.
   Eigen::Vector2d start;
@@ -161,13 +174,13 @@ PlannedRoute planRoute(const bim::Scenario& scenario, const OccupancyGrid& grid,
     start_room = bim::roomAt(level, start).value_or("");
   } else {
     start_room = *scenario.robot.start_room;
-    start = roomCentre(grid, *level.findRoom(start_room), true);
+    start = roomCentre(grid, *level.findRoom(start_room), true, clearance);
     route.start_yaw =
         std::uniform_real_distribution<double>(-std::numbers::pi, std::numbers::pi)(rng);
   }
   const double start_clearance = grid.clearanceAt(start);
-  if (start_clearance < kMinClearance) {
-    throw bim::InputError(file, "/robot/start", tooCloseReason(start, "stand"));
+  if (start_clearance < clearance) {
+    throw bim::InputError(file, "/robot/start", tooCloseReason(start, "stand", clearance));
   }
   route.waypoints.push_back(start);
   if (!start_room.empty()) {
@@ -176,7 +189,7 @@ PlannedRoute planRoute(const bim::Scenario& scenario, const OccupancyGrid& grid,
   }
 
   auto go_to = [&](const Eigen::Vector2d& target) {
-    const auto straight = straightPath(grid, route.waypoints.back(), target);
+    const auto straight = straightPath(grid, route.waypoints.back(), target, clearance);
     if (straight.empty()) return false;
     route.waypoints.insert(route.waypoints.end(), straight.begin() + 1, straight.end());
     return true;
@@ -189,7 +202,7 @@ PlannedRoute planRoute(const bim::Scenario& scenario, const OccupancyGrid& grid,
         throw bim::InputError(file, "/robot/route/waypoints/" + std::to_string(i),
                               "no path from " + formatPoint(route.waypoints.back()) + " to " +
                                   formatPoint(plan.waypoints[i]) + " keeps " +
-                                  "0.35 m from walls and clutter");
+                                  formatMetres(clearance) + " from walls and clutter");
       }
       route.targets.push_back({"", "waypoint " + std::to_string(i), int(route.waypoints.size()) - 1,
                                plan.waypoints[i]});
@@ -198,11 +211,12 @@ PlannedRoute planRoute(const bim::Scenario& scenario, const OccupancyGrid& grid,
   }
   if (plan.kind == bim::Route::Kind::kRooms) {
     for (std::size_t i = 0; i < plan.rooms.size(); ++i) {
-      if (!go_to(roomCentre(grid, *level.findRoom(plan.rooms[i]), true))) {
+      if (!go_to(roomCentre(grid, *level.findRoom(plan.rooms[i]), true, clearance))) {
         throw bim::InputError(file, "/robot/route/rooms/" + std::to_string(i),
                               "room \"" + plan.rooms[i] + "\" cannot be reached from " +
                                   formatPoint(route.waypoints.back()) +
-                                  " through open doors, keeping 0.35 m from walls and clutter");
+                                  " through open doors, keeping " + formatMetres(clearance) +
+                                  " from walls and clutter");
       }
       route.visited_rooms.push_back(plan.rooms[i]);
       route.targets.push_back(
@@ -223,23 +237,46 @@ PlannedRoute planRoute(const bim::Scenario& scenario, const OccupancyGrid& grid,
     neighbours[door.rooms[1]].insert(door.rooms[0]);
   }
   std::set<std::string> seen{start_room};
+  std::set<std::string> failed;  // not reached through their doors (yet)
   std::vector<std::string> stack;
-  for (auto it = neighbours[start_room].rbegin(); it != neighbours[start_room].rend(); ++it) {
-    stack.push_back(*it);
-  }
-  while (!stack.empty()) {
-    const std::string room = stack.back();
-    stack.pop_back();
-    if (seen.count(room)) continue;
-    seen.insert(room);
-    if (!go_to(roomCentre(grid, *level.findRoom(room), true))) {
-      route.skipped_rooms.push_back(room);
-      continue;
-    }
-    route.visited_rooms.push_back(room);
-    route.targets.push_back({room, room, int(route.waypoints.size()) - 1, route.waypoints.back()});
-    for (auto it = neighbours[room].rbegin(); it != neighbours[room].rend(); ++it) {
+  auto visitFrom = [&](const std::string& from) {
+    for (auto it = neighbours[from].rbegin(); it != neighbours[from].rend(); ++it) {
       if (!seen.count(*it)) stack.push_back(*it);
+    }
+    while (!stack.empty()) {
+      const std::string room = stack.back();
+      stack.pop_back();
+      if (seen.count(room)) continue;
+      if (!go_to(roomCentre(grid, *level.findRoom(room), true, clearance))) {
+        failed.insert(room);
+        continue;
+      }
+      seen.insert(room);
+      failed.erase(room);
+      route.visited_rooms.push_back(room);
+      route.targets.push_back(
+          {room, room, int(route.waypoints.size()) - 1, route.waypoints.back()});
+      for (auto it = neighbours[room].rbegin(); it != neighbours[room].rend(); ++it) {
+        if (!seen.count(*it)) stack.push_back(*it);
+      }
+    }
+  };
+  visitFrom(start_room);
+  // Rooms joined without a door (open-plan spaces, where no wall stands between two rooms) are
+  // reached through the free space itself: each room left, in id order, that a path reaches from
+  // where the robot is is visited, and the tour goes on through its doors.
+  for (bool progress = true; progress;) {
+    progress = false;
+    for (const auto& room : level.rooms) {
+      if (seen.count(room.id)) continue;
+      if (!go_to(roomCentre(grid, room, true, clearance))) continue;
+      seen.insert(room.id);
+      failed.erase(room.id);
+      route.visited_rooms.push_back(room.id);
+      route.targets.push_back(
+          {room.id, room.id, int(route.waypoints.size()) - 1, route.waypoints.back()});
+      visitFrom(room.id);
+      progress = true;
     }
   }
   for (const auto& room : level.rooms) {

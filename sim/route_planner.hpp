@@ -11,8 +11,9 @@
 
 namespace isg::sim {
 
-// The robot's centre keeps at least this far from walls, clutter and closed doors.
-inline constexpr double kMinClearance = 0.35;
+// The robot's centre keeps at least this far from walls, clutter and closed doors, unless the
+// scenario says otherwise (robot.clearance).
+inline constexpr double kMinClearance = bim::kDefaultRobotClearance;
 
 // A place the route goes to: a room (tour, rooms) or a waypoint of the scenario's list.
 struct RouteTarget {
@@ -48,6 +49,7 @@ struct PlannedRoute {
 // Paths are A* on the occupancy grid, costed to stay away from walls, then straightened where the
 // straight line keeps kMinClearance. The start heading (when the scenario gives a room) is drawn
 // from `rng`. Errors are InputErrors naming the scenario file and the JSON pointer.
+// The clearance kept is the scenario's robot.clearance.
 PlannedRoute planRoute(const bim::Scenario& scenario, const OccupancyGrid& grid,
                        std::mt19937_64& rng);
 
@@ -56,18 +58,21 @@ std::string formatPoint(const Eigen::Vector2d& p);
 
 // The error's reason when the robot cannot `what` ("stand", "be put down") at p: closer than
 // kMinClearance to something.
-std::string tooCloseReason(const Eigen::Vector2d& p, const std::string& what);
+std::string tooCloseReason(const Eigen::Vector2d& p, const std::string& what,
+                           double clearance = kMinClearance);
 
 // Where the route goes in a room: its centroid when open enough, else its most open point.
-Eigen::Vector2d roomGoal(const OccupancyGrid& grid, const bim::Room& room);
+Eigen::Vector2d roomGoal(const OccupancyGrid& grid, const bim::Room& room,
+                         double clearance = kMinClearance);
 
 // The A* path from `from` to `to`, straightened where a straight line keeps kMinClearance; empty
 // when there is none.
 std::vector<Eigen::Vector2d> straightPath(const OccupancyGrid& grid, const Eigen::Vector2d& from,
-                                          const Eigen::Vector2d& to);
+                                          const Eigen::Vector2d& to,
+                                          double clearance = kMinClearance);
 
 // The A* path between two points (cell centres, endpoints included), or empty when there is none.
 std::vector<Eigen::Vector2d> findPath(const OccupancyGrid& grid, const Eigen::Vector2d& from,
-                                      const Eigen::Vector2d& to);
+                                      const Eigen::Vector2d& to, double clearance = kMinClearance);
 
 }  // namespace isg::sim

@@ -23,6 +23,7 @@ inline const std::map<std::string, std::set<std::string>>& allowedModules() {
   static const std::map<std::string, std::set<std::string>> allowed{
       {"bim", {}},
       {"worlds", {"bim"}},
+      {"ifc", {"bim"}},
       {"eval", {}},
       {"sensors", {"bim", "eval"}},
       {"slam", {"bim", "sensors"}},
@@ -33,8 +34,8 @@ inline const std::map<std::string, std::set<std::string>>& allowedModules() {
       {"sim", {"bim", "worlds", "sensors"}},
       {"sweep", {"bim", "worlds", "eval", "sensors", "run", "sim"}},
       {"cli",
-       {"bim", "worlds", "eval", "sensors", "slam", "slam/sgraph", "slam/isgraph", "slam/baselines",
-        "run", "sim", "sweep"}},
+       {"bim", "worlds", "ifc", "eval", "sensors", "slam", "slam/sgraph", "slam/isgraph",
+        "slam/baselines", "run", "sim", "sweep"}},
   };
   return allowed;
 }

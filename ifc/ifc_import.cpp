@@ -1,0 +1,703 @@
+#include "ifc/ifc_import.hpp"
+
+#include <ifcpp/IFC4/include/IfcBuildingStorey.h>
+#include <ifcpp/IFC4/include/IfcCurtainWall.h>
+#include <ifcpp/IFC4/include/IfcDoor.h>
+#include <ifcpp/IFC4/include/IfcLengthMeasure.h>
+#include <ifcpp/IFC4/include/IfcMaterialLayer.h>
+#include <ifcpp/IFC4/include/IfcMaterialLayerSet.h>
+#include <ifcpp/IFC4/include/IfcMaterialLayerSetUsage.h>
+#include <ifcpp/IFC4/include/IfcNonNegativeLengthMeasure.h>
+#include <ifcpp/IFC4/include/IfcOpeningElement.h>
+#include <ifcpp/IFC4/include/IfcOpeningElementTypeEnum.h>
+#include <ifcpp/IFC4/include/IfcRelAggregates.h>
+#include <ifcpp/IFC4/include/IfcRelAssociatesMaterial.h>
+#include <ifcpp/IFC4/include/IfcRelContainedInSpatialStructure.h>
+#include <ifcpp/IFC4/include/IfcRelFillsElement.h>
+#include <ifcpp/IFC4/include/IfcRelVoidsElement.h>
+#include <ifcpp/IFC4/include/IfcSpace.h>
+#include <ifcpp/IFC4/include/IfcWall.h>
+#include <ifcpp/IFC4/include/IfcWindow.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <map>
+#include <set>
+
+#include "bim/json_reader.hpp"
+#include "bim/limits.hpp"
+#include "bim/plan_parser.hpp"
+#include "bim/polygon.hpp"
+#include "ifc/ifcpp_model.hpp"
+
+namespace isg::ifc {
+namespace {
+
+using json = nlohmann::ordered_json;
+
+// A wall stands on a level when its body crosses this height above the level's floor: where the
+// sensor and a walking robot are (a slab edge or a kerb below it does not count).
+constexpr double kStandingHeight = 0.3;
+// A storey is a level a robot walks only if some wall on it rises this high above its floor: a
+// roof with parapets or a foundation storey whose walls end at the ground floor is not.
+constexpr double kFullHeightWall = 1.5;
+// Below this an opening's bottom is on the floor (a threshold), above it an opening is a window.
+constexpr double kFloorTolerance = 0.15;
+// A doorway without a door must be at least this tall to be one a robot walks through.
+constexpr double kMinDoorwayHeight = 1.8;
+// Narrower openings are left out: no robot passes, and the sensor barely sees through.
+constexpr double kMinOpeningWidth = 0.1;
+// Less straight than this (WallFit::straightness: narrower than 90 % of its rectangle's width
+// somewhere between its ends) is not a straight wall: L-shaped, curved, or several walls.
+constexpr double kMinStraightness = 0.9;
+// A straight wall filling less of its rectangle has angled ends: said in the log.
+constexpr double kSquareEndsFill = 0.98;
+// Thicker bodies are not walls the plan can hold as one straight wall.
+constexpr double kMaxWallThickness = 2.0;
+// Layer set and geometry disagree on the thickness by more than this: said in the log.
+constexpr double kThicknessTolerance = 0.005;
+
+std::string fmt(double v) {
+  char buffer[32];
+  std::snprintf(buffer, sizeof buffer, "%.3f", std::abs(v) < 5e-4 ? 0.0 : v);
+  return buffer;
+}
+
+// Ids and names of the plan: free of control characters (the plan forbids them) and within the
+// plan's limits.
+std::string cleanText(std::string text, std::size_t max_bytes) {
+  for (char& c : text) {
+    if ((static_cast<unsigned char>(c) < 0x20) || c == 0x7F) c = ' ';
+  }
+  if (text.size() > max_bytes) {
+    text.resize(max_bytes);
+    // Not in the middle of a UTF-8 sequence.
+    while (!text.empty() && (static_cast<unsigned char>(text.back()) & 0xC0) == 0x80) {
+      text.pop_back();
+    }
+    if (!text.empty() && (static_cast<unsigned char>(text.back()) & 0x80)) text.pop_back();
+  }
+  return text;
+}
+
+std::string describe(const std::string& kind, const shared_ptr<IfcRoot>& object) {
+  const std::string name = object ? labelText(object->m_Name) : "";
+  return kind + " " + globalIdOf(object) + (name.empty() ? "" : " \"" + name + "\"");
+}
+
+struct WallRecord {
+  shared_ptr<IfcElement> element;
+  std::string kind;  // "wall", "curtain wall"
+  std::string global_id, name;
+  int storey = -1;  // index into the storeys, -1 outside any
+  WallFit fit;
+};
+
+struct OpeningRecord {
+  std::string kind;               // "door", "window", "doorway", "opening"
+  shared_ptr<IfcRoot> described;  // the door / window, or the opening itself
+  std::string global_id, name;
+  int wall = -1;
+  AxisExtent extent;
+};
+
+struct SpaceRecord {
+  shared_ptr<IfcSpace> space;
+  std::optional<Footprint> footprint;
+};
+
+struct StoreyRecord {
+  shared_ptr<IfcBuildingStorey> storey;
+  std::string name, global_id;
+  double elevation = 0.0;
+  std::vector<shared_ptr<IfcProduct>> elements;
+  std::vector<SpaceRecord> spaces;
+};
+
+template <typename Relation, typename Visit>
+void forEachRelation(const std::vector<weak_ptr<Relation>>& relations, Visit visit) {
+  for (const auto& weak : relations) {
+    if (auto relation = weak.lock()) visit(relation);
+  }
+}
+
+void collectSpaces(const shared_ptr<IfcObjectDefinition>& parent,
+                   std::vector<shared_ptr<IfcSpace>>& spaces, int depth = 0) {
+  if (depth > 8) return;
+  forEachRelation(parent->m_IsDecomposedBy_inverse, [&](const shared_ptr<IfcRelAggregates>& rel) {
+    for (const auto& child : rel->m_RelatedObjects) {
+      if (auto space = dynamic_pointer_cast<IfcSpace>(child)) {
+        spaces.push_back(space);
+        collectSpaces(space, spaces, depth + 1);
+      }
+    }
+  });
+}
+
+// The total thickness of the wall's material layer set, when it has one.
+std::optional<double> layerSetThickness(const shared_ptr<IfcElement>& element, double unit) {
+  std::optional<double> total;
+  forEachRelation(element->m_HasAssociations_inverse, [&](const shared_ptr<IfcRelAssociates>& r) {
+    auto material = dynamic_pointer_cast<IfcRelAssociatesMaterial>(r);
+    if (!material) return;
+    auto usage = dynamic_pointer_cast<IfcMaterialLayerSetUsage>(material->m_RelatingMaterial);
+    if (!usage || !usage->m_ForLayerSet) return;
+    double sum = 0.0;
+    for (const auto& layer : usage->m_ForLayerSet->m_MaterialLayers) {
+      if (layer && layer->m_LayerThickness) sum += layer->m_LayerThickness->m_value * unit;
+    }
+    total = sum;
+  });
+  return total;
+}
+
+// The body of an element, or of its parts (a curtain wall is often only its plates and members).
+Mesh bodyWithParts(BodyReader& reader, const shared_ptr<IfcProduct>& product,
+                   Eigen::Matrix4d* placement) {
+  Body body = reader.read(product);
+  if (placement) *placement = body.placement;
+  if (!body.faces.empty()) return body.faces;
+  Mesh parts;
+  forEachRelation(product->m_IsDecomposedBy_inverse, [&](const shared_ptr<IfcRelAggregates>& rel) {
+    for (const auto& child : rel->m_RelatedObjects) {
+      if (auto part = dynamic_pointer_cast<IfcProduct>(child)) {
+        Body part_body = reader.read(part);
+        parts.insert(parts.end(), part_body.faces.begin(), part_body.faces.end());
+      }
+    }
+  });
+  return parts;
+}
+
+class Importer {
+ public:
+  Importer(const std::string& file, LoadedModel& loaded, const ImportOptions& options)
+      : file_(file), loaded_(loaded), options_(options), bodies_(loaded) {}
+
+  ImportResult run();
+
+ private:
+  void readStoreys();
+  void readWalls();
+  void readOpenings();
+  std::vector<int> chooseLevels();
+  json levelJson(int storey_index, StoreySummary& summary);
+  std::string uniqueId(const std::string& wanted, const std::string& suffix);
+  void dropped(const std::string& what, const std::string& why) {
+    result_.log.push_back("dropped " + what + ": " + why);
+  }
+  void simplified(const std::string& what, const std::string& how) {
+    result_.log.push_back("simplified " + what + ": " + how);
+  }
+  bool standsOn(const WallFit& fit, double elevation) const {
+    return fit.bottom < elevation + kStandingHeight && fit.top > elevation + kStandingHeight;
+  }
+
+  std::string file_;
+  LoadedModel& loaded_;
+  const ImportOptions& options_;
+  BodyReader bodies_;
+  double unit_ = 1.0;
+  std::vector<StoreyRecord> storeys_;
+  std::vector<WallRecord> walls_;
+  std::vector<OpeningRecord> openings_;
+  std::set<std::string> used_ids_;
+  // Each wall's id on each level it stands on.
+  std::map<std::pair<int, int>, std::string> wall_ids_;
+  ImportResult result_;
+};
+
+std::string Importer::uniqueId(const std::string& wanted, const std::string& suffix) {
+  std::string id = cleanText(wanted.empty() ? "unnamed" : wanted, bim::limits::kMaxIdBytes - 24);
+  if (id == bim::kOutside) id += "-";
+  std::string candidate = id;
+  if (used_ids_.count(candidate) && !suffix.empty()) candidate = id + "@" + cleanText(suffix, 20);
+  for (int n = 2; used_ids_.count(candidate); ++n) candidate = id + "#" + std::to_string(n);
+  used_ids_.insert(candidate);
+  return candidate;
+}
+
+void Importer::readStoreys() {
+  for (const auto& [id, entity] : loaded_.model->getMapIfcEntities()) {
+    auto storey = dynamic_pointer_cast<IfcBuildingStorey>(entity);
+    if (!storey) continue;
+    StoreyRecord record;
+    record.storey = storey;
+    record.global_id = globalIdOf(storey);
+    record.name = labelText(storey->m_Name);
+    if (storey->m_ObjectPlacement) {
+      record.elevation = bodies_.placementOf(storey)(2, 3);
+    } else if (storey->m_Elevation) {
+      record.elevation = storey->m_Elevation->m_value * unit_;
+    }
+    forEachRelation(storey->m_ContainsElements_inverse,
+                    [&](const shared_ptr<IfcRelContainedInSpatialStructure>& rel) {
+                      for (const auto& e : rel->m_RelatedElements) {
+                        if (e) record.elements.push_back(e);
+                      }
+                    });
+    std::vector<shared_ptr<IfcSpace>> spaces;
+    collectSpaces(storey, spaces);
+    // Elements placed in a space belong to the space's storey.
+    for (const auto& space : spaces) {
+      record.spaces.push_back({space, footprintOf(bodies_.read(space).faces)});
+      forEachRelation(space->m_ContainsElements_inverse,
+                      [&](const shared_ptr<IfcRelContainedInSpatialStructure>& rel) {
+                        for (const auto& e : rel->m_RelatedElements) {
+                          if (e) record.elements.push_back(e);
+                        }
+                      });
+    }
+    // The floor people stand on is where the storey's rooms begin: IFC storey elevations are
+    // sometimes the structural slab's, or a tool's reference level below it.
+    std::vector<double> floors;
+    for (const auto& space : record.spaces) {
+      if (space.footprint) floors.push_back(space.footprint->z);
+    }
+    if (!floors.empty()) {
+      std::nth_element(floors.begin(), floors.begin() + floors.size() / 2, floors.end());
+      const double floor = floors[floors.size() / 2];
+      if (std::abs(floor - record.elevation) > 0.01) {
+        simplified("storey \"" + record.name + "\" " + record.global_id,
+                   "its elevation is " + fmt(record.elevation) + " m, its spaces' floor " +
+                       fmt(floor) + " m: the level's floor is taken where its rooms are");
+        record.elevation = floor;
+      }
+    }
+    storeys_.push_back(std::move(record));
+  }
+  if (storeys_.empty()) {
+    throw bim::InputError(file_, "", "no IfcBuildingStorey: the model has no storey to import");
+  }
+  std::stable_sort(
+      storeys_.begin(), storeys_.end(),
+      [](const StoreyRecord& a, const StoreyRecord& b) { return a.elevation < b.elevation; });
+}
+
+void Importer::readWalls() {
+  std::map<BuildingEntity*, int> storey_of;
+  for (int s = 0; s < int(storeys_.size()); ++s) {
+    for (const auto& e : storeys_[s].elements) storey_of.emplace(e.get(), s);
+  }
+  for (const auto& [id, entity] : loaded_.model->getMapIfcEntities()) {
+    auto element = dynamic_pointer_cast<IfcElement>(entity);
+    if (!element) continue;
+    std::string kind;
+    if (dynamic_pointer_cast<IfcWall>(entity)) {
+      kind = "wall";
+    } else if (dynamic_pointer_cast<IfcCurtainWall>(entity)) {
+      kind = "curtain wall";
+    } else {
+      continue;
+    }
+    // A wall that is itself a part of a curtain wall (or another wall) is read with its whole.
+    bool is_part = false;
+    forEachRelation(element->m_Decomposes_inverse, [&](const shared_ptr<IfcRelAggregates>& rel) {
+      if (dynamic_pointer_cast<IfcWall>(rel->m_RelatingObject) ||
+          dynamic_pointer_cast<IfcCurtainWall>(rel->m_RelatingObject)) {
+        is_part = true;
+      }
+    });
+    if (is_part) continue;
+    const std::string what = describe(kind, element);
+    auto s = storey_of.find(entity.get());
+    if (s == storey_of.end()) {
+      dropped(what, "not contained in a building storey");
+      continue;
+    }
+    Eigen::Matrix4d placement;
+    const Mesh body = bodyWithParts(bodies_, element, &placement);
+    if (body.empty()) {
+      dropped(what, "no body geometry IFC++ could build");
+      continue;
+    }
+    const Eigen::Vector2d own_x = placement.block<2, 1>(0, 0);
+    const auto fit = fitWall(body, own_x);
+    if (!fit || fit->thickness < bim::limits::kMinSize ||
+        (fit->end - fit->start).norm() < bim::limits::kMinSize) {
+      dropped(what, "its body has no extent seen from above");
+      continue;
+    }
+    if (fit->thickness > kMaxWallThickness) {
+      dropped(what, "thicker than " + fmt(kMaxWallThickness) + " m seen from above (" +
+                        fmt(fit->thickness) + " m): not one straight wall");
+      continue;
+    }
+    if (fit->straightness < kMinStraightness) {
+      dropped(what, "not straight: seen from above it fills its " + fmt(fit->thickness) +
+                        " m wide rectangle too little (straightness " +
+                        std::to_string(int(std::round(fit->straightness * 100))) +
+                        " %; an L-shaped or curved wall); the plan holds straight walls only");
+      continue;
+    }
+    if (fit->rectangle_fill < kSquareEndsFill) {
+      simplified(what, "its ends are not square (mitred or angled joints; it fills " +
+                           std::to_string(int(std::round(fit->rectangle_fill * 100))) +
+                           " % of its rectangle): taken as its rectangle, " +
+                           fmt((fit->end - fit->start).norm()) + " m long");
+    }
+    if (fit->top - fit->bottom < bim::limits::kMinSize) {
+      dropped(what, "no height left between its highest bottom and lowest top");
+      continue;
+    }
+    if (fit->highest_top - fit->top > 0.05) {
+      simplified(what, "its top varies from " + fmt(fit->top) + " to " + fmt(fit->highest_top) +
+                           " m (a gable or a sloped top): taken at its lowest, " + fmt(fit->top) +
+                           " m, so that no wall stands where there is none");
+    }
+    if (fit->bottom - fit->lowest_bottom > 0.05) {
+      simplified(what, "its bottom varies from " + fmt(fit->lowest_bottom) + " to " +
+                           fmt(fit->bottom) + " m or more: taken at its median, " +
+                           fmt(fit->bottom) + " m");
+    }
+    if (kind == "curtain wall") {
+      simplified(what, "a curtain wall: imported as an opaque wall " + fmt(fit->thickness) +
+                           " m thick (the simulated sensor does not see through glass)");
+    }
+    if (const auto layers = layerSetThickness(element, unit_)) {
+      if (std::abs(*layers - fit->thickness) > kThicknessTolerance) {
+        simplified(what, "its layer set is " + fmt(*layers) + " m thick, its body " +
+                             fmt(fit->thickness) + " m: the body's thickness is kept");
+      }
+    }
+    WallRecord wall;
+    wall.element = element;
+    wall.kind = kind;
+    wall.global_id = globalIdOf(element);
+    wall.name = labelText(element->m_Name);
+    wall.storey = s->second;
+    wall.fit = *fit;
+    walls_.push_back(std::move(wall));
+  }
+}
+
+void Importer::readOpenings() {
+  std::set<BuildingEntity*> filled;  // doors and windows found in an opening
+  for (int w = 0; w < int(walls_.size()); ++w) {
+    const WallRecord& wall = walls_[w];
+    forEachRelation(
+        wall.element->m_HasOpenings_inverse, [&](const shared_ptr<IfcRelVoidsElement>& rel) {
+          auto opening = dynamic_pointer_cast<IfcOpeningElement>(rel->m_RelatedOpeningElement);
+          if (!opening) return;
+          OpeningRecord record;
+          record.wall = w;
+          record.described = opening;
+          forEachRelation(
+              opening->m_HasFillings_inverse, [&](const shared_ptr<IfcRelFillsElement>& fill) {
+                const auto& element = fill->m_RelatedBuildingElement;
+                if (dynamic_pointer_cast<IfcDoor>(element)) {
+                  record.kind = "door", record.described = element;
+                } else if (dynamic_pointer_cast<IfcWindow>(element) && record.kind.empty()) {
+                  record.kind = "window", record.described = element;
+                }
+                if (element) filled.insert(element.get());
+              });
+          const std::string what =
+              describe(record.kind.empty() ? "opening" : record.kind, record.described) +
+              " (in wall " + wall.global_id + ")";
+          if (opening->m_PredefinedType &&
+              opening->m_PredefinedType->m_enum == IfcOpeningElementTypeEnum::ENUM_RECESS) {
+            dropped(what, "a recess, not an opening through the wall");
+            return;
+          }
+          const Mesh body = bodies_.read(opening).faces;
+          const auto extent = extentAlong(body, wall.fit.start, wall.fit.end);
+          if (!extent) {
+            dropped(what, "its opening has no body geometry");
+            return;
+          }
+          record.extent = *extent;
+          record.global_id = globalIdOf(record.described);
+          record.name = labelText(record.described->m_Name);
+          if (record.kind.empty()) record.kind = "opening";
+          openings_.push_back(std::move(record));
+        });
+  }
+  for (const auto& [id, entity] : loaded_.model->getMapIfcEntities()) {
+    const bool door = dynamic_pointer_cast<IfcDoor>(entity) != nullptr;
+    const bool window = dynamic_pointer_cast<IfcWindow>(entity) != nullptr;
+    if ((!door && !window) || filled.count(entity.get())) continue;
+    dropped(describe(door ? "door" : "window", dynamic_pointer_cast<IfcRoot>(entity)),
+            "it fills no opening of an imported wall (a partition or free-standing door, or its "
+            "wall was left out)");
+  }
+}
+
+std::vector<int> Importer::chooseLevels() {
+  std::vector<int> chosen;
+  std::vector<int> walls_on(storeys_.size(), 0), rooms_in(storeys_.size(), 0);
+  for (int s = 0; s < int(storeys_.size()); ++s) {
+    for (const auto& wall : walls_) {
+      walls_on[s] += standsOn(wall.fit, storeys_[s].elevation) &&
+                     wall.fit.top >= storeys_[s].elevation + kFullHeightWall;
+    }
+    for (const auto& space : storeys_[s].spaces) rooms_in[s] += space.footprint.has_value();
+  }
+  if (!options_.storeys.empty()) {
+    for (const auto& name : options_.storeys) {
+      int found = -1;
+      for (int s = 0; s < int(storeys_.size()); ++s) {
+        if (storeys_[s].name == name) found = s;
+      }
+      if (found < 0) {
+        std::string names;
+        for (const auto& s : storeys_)
+          names += (names.empty() ? "" : ", ") + ("\"" + s.name + "\"");
+        throw bim::InputError(file_, "",
+                              "no storey named \"" + name + "\" (--storey); its storeys: " + names);
+      }
+      if (walls_on[found] == 0) {
+        throw bim::InputError(file_, "",
+                              "storey \"" + name + "\" has no wall rising " + fmt(kFullHeightWall) +
+                                  " m above its floor: nothing to import");
+      }
+      if (std::find(chosen.begin(), chosen.end(), found) == chosen.end()) chosen.push_back(found);
+    }
+    std::sort(chosen.begin(), chosen.end());
+    return chosen;
+  }
+  const bool any_rooms = std::any_of(rooms_in.begin(), rooms_in.end(), [](int n) { return n > 0; });
+  for (int s = 0; s < int(storeys_.size()); ++s) {
+    if (walls_on[s] > 0 && (!any_rooms || rooms_in[s] > 0)) chosen.push_back(s);
+  }
+  if (chosen.empty()) {
+    throw bim::InputError(file_, "",
+                          walls_.empty() ? "no wall the import could read: nothing to import"
+                                         : "no storey has walls standing on it: nothing to import");
+  }
+  return chosen;
+}
+
+json Importer::levelJson(int s, StoreySummary& summary) {
+  const StoreyRecord& storey = storeys_[s];
+  const double e = storey.elevation;
+  json walls = json::array(), doors = json::array(), windows = json::array(), rooms = json::array();
+  std::vector<double> tops;
+  std::map<int, std::pair<double, double>> base_top;  // wall → (base, top) above the level
+  for (int w = 0; w < int(walls_.size()); ++w) {
+    const WallRecord& wall = walls_[w];
+    if (!standsOn(wall.fit, e)) continue;
+    const std::string id = uniqueId(wall.global_id, summary.level_id);
+    wall_ids_[{w, s}] = id;
+    const double base = std::max(0.0, wall.fit.bottom - e);
+    const double top = std::min(wall.fit.top - e, bim::limits::kMaxHeight);
+    base_top[w] = {base, top};
+    tops.push_back(top);
+    json out = {{"id", id},
+                {"start", {wall.fit.start.x(), wall.fit.start.y()}},
+                {"end", {wall.fit.end.x(), wall.fit.end.y()}},
+                {"thickness", wall.fit.thickness},
+                {"height", top},
+                {"base", base}};
+    if (!wall.name.empty()) out["name"] = cleanText(wall.name, bim::limits::kMaxTextBytes);
+    walls.push_back(out);
+    ++summary.walls;
+    if (wall.storey != s) ++summary.walls_from_other_storeys;
+  }
+  // Openings on this level: the highest floor at or below the opening's bottom among the levels
+  // its wall stands on is this one.
+  struct Placed {
+    double lo, hi;
+    std::string id, kind;
+  };
+  std::map<int, std::vector<Placed>> along_wall;
+  for (const auto& opening : openings_) {
+    if (!base_top.count(opening.wall)) continue;
+    const WallRecord& wall = walls_[opening.wall];
+    int home = -1;
+    for (int t = 0; t < int(storeys_.size()); ++t) {
+      if (standsOn(wall.fit, storeys_[t].elevation) &&
+          storeys_[t].elevation <= opening.extent.z_min + kStandingHeight &&
+          (home < 0 || storeys_[t].elevation > storeys_[home].elevation)) {
+        home = t;
+      }
+    }
+    if (home < 0) home = s;
+    if (home != s && storeys_[home].elevation != e) continue;
+    const std::string what =
+        describe(opening.kind, opening.described) + " (in wall " + wall.global_id + ")";
+    const double length = (wall.fit.end - wall.fit.start).norm();
+    const double lo = std::max(0.0, opening.extent.along_min);
+    const double hi = std::min(length, opening.extent.along_max);
+    if (hi - lo < kMinOpeningWidth) {
+      dropped(what, "narrower than " + fmt(kMinOpeningWidth) + " m within its wall");
+      continue;
+    }
+    if (hi - lo < opening.extent.along_max - opening.extent.along_min - 0.01) {
+      simplified(what,
+                 "it reaches beyond its wall's end: cut to the wall, " + fmt(hi - lo) + " m wide");
+    }
+    const auto [base, top] = base_top[opening.wall];
+    const double above_base = opening.extent.z_min - (e + base);
+    bool is_door = opening.kind == "door";
+    if (opening.kind == "opening") {
+      is_door = above_base < kFloorTolerance &&
+                opening.extent.z_max - opening.extent.z_min >= kMinDoorwayHeight;
+    }
+    bool overlaps = false;
+    for (const auto& other : along_wall[opening.wall]) {
+      if (lo < other.hi - 1e-6 && other.lo < hi - 1e-6) {
+        dropped(what, "overlaps " + other.kind + " " + other.id + " along the wall");
+        overlaps = true;
+        break;
+      }
+    }
+    if (overlaps) continue;
+    const std::string id = uniqueId(opening.global_id, summary.level_id);
+    json out = {{"id", id},
+                {"wall", wall_ids_[{opening.wall, s}]},
+                {"offset", 0.5 * (lo + hi)},
+                {"width", hi - lo}};
+    if (is_door) {
+      const double height = std::min(opening.extent.z_max - (e + base), top - base);
+      if (height < 0.5) {
+        dropped(what, "its head is " + fmt(height) + " m above the floor: not a door");
+        continue;
+      }
+      if (above_base > kFloorTolerance) {
+        simplified(what, "its opening starts " + fmt(above_base) +
+                             " m above the floor: the door is taken from the floor");
+      }
+      if (opening.kind == "opening")
+        simplified(what, "an opening without a door or window: a doorway");
+      out["height"] = height;
+      ++summary.doors;
+    } else {
+      const double sill = std::max(0.0, above_base);
+      const double head = std::min(opening.extent.z_max - (e + base), top - base);
+      if (head - sill < 0.05) {
+        dropped(what, "no height left inside its wall");
+        continue;
+      }
+      if (opening.extent.z_max - (e + base) > top - base + 0.01) {
+        simplified(what, "its head is above its wall's top: cut at the top");
+      }
+      if (opening.kind == "opening")
+        simplified(what, "an opening without a door or window, above the floor: a window");
+      out["sill"] = sill;
+      out["height"] = head - sill;
+      ++summary.windows;
+    }
+    if (!opening.name.empty()) out["name"] = cleanText(opening.name, bim::limits::kMaxTextBytes);
+    (is_door ? doors : windows).push_back(out);
+    along_wall[opening.wall].push_back({lo, hi, id, is_door ? "door" : "window"});
+  }
+  for (const auto& [space, footprint] : storey.spaces) {
+    const std::string what = describe("space", space);
+    if (!footprint || footprint->outline.size() < 3 ||
+        std::abs(bim::signedArea(footprint->outline)) < 0.01) {
+      dropped(what, "no closed outline at the bottom of its body");
+      continue;
+    }
+    if (footprint->outline.size() > 10000) {
+      dropped(what, "its outline has more than 10 000 vertices");
+      continue;
+    }
+    if (bim::findSelfIntersection(footprint->outline)) {
+      dropped(what, "its outline crosses itself");
+      continue;
+    }
+    if (footprint->loops > 1) {
+      simplified(
+          what,
+          std::to_string(footprint->loops - 1) +
+              " hole(s) in its outline (columns, shafts) left out: the room is its outer outline");
+    }
+    const std::string long_name = labelText(space->m_LongName);
+    const std::string short_name = labelText(space->m_Name);
+    std::string name = short_name;
+    if (!long_name.empty() && long_name != short_name)
+      name += (name.empty() ? "" : " ") + long_name;
+    json outline = json::array();
+    for (const auto& p : footprint->outline) outline.push_back({p.x(), p.y()});
+    json out = {{"id", uniqueId(globalIdOf(space), summary.level_id)}};
+    if (!name.empty()) out["name"] = cleanText(name, bim::limits::kMaxTextBytes);
+    out["outline"] = outline;
+    rooms.push_back(out);
+    ++summary.rooms;
+  }
+  std::sort(tops.begin(), tops.end());
+  const double height = tops.empty() ? 3.0 : tops[tops.size() / 2];
+  json level = {{"id", summary.level_id}};
+  if (!storey.name.empty()) level["name"] = cleanText(storey.name, bim::limits::kMaxTextBytes);
+  level["elevation"] = e;
+  level["height"] = std::clamp(height, bim::limits::kMinSize, bim::limits::kMaxHeight);
+  level["walls"] = walls;
+  level["doors"] = doors;
+  if (!windows.empty()) level["windows"] = windows;
+  level["rooms"] = rooms;
+  return level;
+}
+
+ImportResult Importer::run() {
+  unit_ = bodies_.metresPerUnit();
+  result_.schema = loaded_.header.schema;
+  result_.application = loaded_.header.application;
+  result_.metres_per_unit = unit_;
+  readStoreys();
+  readWalls();
+  readOpenings();
+  const std::vector<int> chosen = chooseLevels();
+  json levels = json::array();
+  for (int s = 0; s < int(storeys_.size()); ++s) {
+    StoreySummary summary;
+    summary.name = storeys_[s].name;
+    summary.global_id = storeys_[s].global_id;
+    summary.elevation = storeys_[s].elevation;
+    summary.spaces = int(storeys_[s].spaces.size());
+    if (std::find(chosen.begin(), chosen.end(), s) != chosen.end()) {
+      summary.level_id = uniqueId(
+          storeys_[s].name.empty() ? "storey-" + storeys_[s].global_id : storeys_[s].name, "");
+      levels.push_back(levelJson(s, summary));
+    } else {
+      int walls_on = 0;
+      for (const auto& wall : walls_) {
+        walls_on += standsOn(wall.fit, storeys_[s].elevation) &&
+                    wall.fit.top >= storeys_[s].elevation + kFullHeightWall;
+      }
+      summary.why_not = walls_on == 0
+                            ? "no wall rises " + fmt(kFullHeightWall) + " m above its floor"
+                            : "no rooms (IfcSpace) in it, while other storeys have rooms";
+    }
+    result_.storeys.push_back(summary);
+  }
+  result_.plan_json = {{"format", "isg.plan"}, {"version", 1}};
+  result_.plan_json["name"] =
+      cleanText(std::filesystem::path(file_).stem().string(), bim::limits::kMaxTextBytes);
+  json source = {{"file", cleanText(std::filesystem::path(file_).filename().string(),
+                                    bim::limits::kMaxTextBytes)},
+                 {"schema", result_.schema}};
+  if (!result_.application.empty())
+    source["application"] = cleanText(result_.application, bim::limits::kMaxTextBytes);
+  result_.plan_json["imported_from"] = source;
+  result_.plan_json["levels"] = levels;
+  return std::move(result_);
+}
+
+}  // namespace
+
+ImportResult importIfcText(const std::string& file, std::string text,
+                           const ImportOptions& options) {
+  LoadedModel loaded = loadModel(file, std::move(text));
+  Importer importer(file, loaded, options);
+  ImportResult result = importer.run();
+  result.reader_errors = loaded.messages.errors;
+  // The plan is read back by the plan's own parser: what is written is a plan isg accepts.
+  const nlohmann::json document = nlohmann::json::parse(result.plan_json.dump());
+  const bim::JsonSource source{file, &result.warnings};
+  try {
+    result.plan = bim::parsePlan(bim::JsonNode(document, "", source));
+  } catch (const bim::InputError& e) {
+    throw bim::InputError(file, "",
+                          "the plan imported from it breaks a rule of the plan format at " +
+                              e.pointer() + ": " + e.reason());
+  }
+  return result;
+}
+
+ImportResult importIfc(const std::string& path, const ImportOptions& options) {
+  return importIfcText(path, bim::readCheckedFile(path, kMaxIfcBytes), options);
+}
+
+}  // namespace isg::ifc

@@ -1,0 +1,58 @@
+#pragma once
+
+#include <cstdint>
+#include <nlohmann/json.hpp>
+#include <string>
+#include <vector>
+
+#include "bim/input_error.hpp"
+#include "bim/plan.hpp"
+
+namespace isg::ifc {
+
+// isg import MODEL.ifc: an IFC2X3 or IFC4 building model read as a plan v1 (docs/formats.md,
+// "Importing IFC", states every rule below and why).
+
+// The largest model read (the whole file is held in memory, as IFC++ needs).
+inline constexpr std::uintmax_t kMaxIfcBytes = 512ull << 20;
+
+struct ImportOptions {
+  // Storeys to import by name; empty: every storey with walls standing on it and rooms (or with
+  // walls, when no storey has rooms).
+  std::vector<std::string> storeys;
+};
+
+// What became of one building storey.
+struct StoreySummary {
+  std::string name;
+  std::string global_id;
+  double elevation = 0.0;
+  std::string level_id;  // "" when not imported
+  std::string why_not;   // why it is not a level
+  int walls = 0, walls_from_other_storeys = 0, doors = 0, windows = 0, rooms = 0;
+  int spaces = 0;  // IfcSpace in the storey
+};
+
+struct ImportResult {
+  nlohmann::ordered_json plan_json;  // the plan file: parsed by bim's parser before it is returned
+  bim::Plan plan;
+  bim::Warnings warnings;   // the parser's, on the plan written
+  std::string schema;       // IFC2X3 or IFC4
+  std::string application;  // the authoring tool, from the header
+  double metres_per_unit = 1.0;
+  // One line per element dropped or simplified, naming it by GlobalId and name and saying why.
+  std::vector<std::string> log;
+  std::vector<StoreySummary> storeys;
+  // IFC++'s own error messages while reading (geometry it could not build, for instance).
+  std::vector<std::string> reader_errors;
+};
+
+// Reads `path` (a regular file of at most kMaxIfcBytes). Throws bim::InputError naming the file
+// for a file that is missing, not IFC, truncated, of another schema, has no IfcProject, no
+// storey, no wall in the storeys imported, or names a storey it does not have.
+ImportResult importIfc(const std::string& path, const ImportOptions& options);
+
+// The same from the file's text; `file` names it in messages (the fuzz harness's entry point).
+ImportResult importIfcText(const std::string& file, std::string text, const ImportOptions& options);
+
+}  // namespace isg::ifc

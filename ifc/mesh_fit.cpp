@@ -1,0 +1,344 @@
+#include "ifc/mesh_fit.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <map>
+#include <utility>
+
+#include "bim/polygon.hpp"
+
+namespace isg::ifc {
+namespace {
+
+using Vec2 = Eigen::Vector2d;
+
+double cross(const Vec2& o, const Vec2& a, const Vec2& b) {
+  return (a.x() - o.x()) * (b.y() - o.y()) - (a.y() - o.y()) * (b.x() - o.x());
+}
+
+// Andrew's monotone chain; counter-clockwise, without collinear points.
+std::vector<Vec2> convexHull(std::vector<Vec2> points) {
+  std::sort(points.begin(), points.end(), [](const Vec2& a, const Vec2& b) {
+    return a.x() < b.x() || (a.x() == b.x() && a.y() < b.y());
+  });
+  points.erase(std::unique(points.begin(), points.end()), points.end());
+  if (points.size() < 3) return points;
+  std::vector<Vec2> hull(2 * points.size());
+  std::size_t k = 0;
+  for (const auto& p : points) {
+    while (k >= 2 && cross(hull[k - 2], hull[k - 1], p) <= 0) --k;
+    hull[k++] = p;
+  }
+  for (std::size_t i = points.size() - 1, lower = k + 1; i-- > 0;) {
+    while (k >= lower && cross(hull[k - 2], hull[k - 1], points[i]) <= 0) --k;
+    hull[k++] = points[i];
+  }
+  hull.resize(k - 1);
+  return hull;
+}
+
+struct Rectangle {
+  Vec2 u = Vec2::UnitX();  // unit direction of the first side
+  double u_min = 0, u_max = 0, v_min = 0, v_max = 0;
+  double area() const { return (u_max - u_min) * (v_max - v_min); }
+};
+
+Rectangle rectangleAlong(const std::vector<Vec2>& points, const Vec2& u) {
+  const Vec2 v(-u.y(), u.x());
+  Rectangle r;
+  r.u = u;
+  r.u_min = r.v_min = std::numeric_limits<double>::infinity();
+  r.u_max = r.v_max = -std::numeric_limits<double>::infinity();
+  for (const auto& p : points) {
+    r.u_min = std::min(r.u_min, p.dot(u));
+    r.u_max = std::max(r.u_max, p.dot(u));
+    r.v_min = std::min(r.v_min, p.dot(v));
+    r.v_max = std::max(r.v_max, p.dot(v));
+  }
+  return r;
+}
+
+Eigen::Vector3d faceNormal(const Face& face) {
+  // Newell's method: right for any planar polygon, convex or not.
+  Eigen::Vector3d n = Eigen::Vector3d::Zero();
+  for (std::size_t i = 0; i < face.size(); ++i) {
+    const auto& a = face[i];
+    const auto& b = face[(i + 1) % face.size()];
+    n += Eigen::Vector3d((a.y() - b.y()) * (a.z() + b.z()), (a.z() - b.z()) * (a.x() + b.x()),
+                         (a.x() - b.x()) * (a.y() + b.y()));
+  }
+  return n * 0.5;  // its length is the face's area
+}
+
+}  // namespace
+
+std::optional<Bounds> boundsOf(const Mesh& body) {
+  Bounds b;
+  b.min.setConstant(std::numeric_limits<double>::infinity());
+  b.max.setConstant(-std::numeric_limits<double>::infinity());
+  bool any = false;
+  for (const auto& face : body) {
+    for (const auto& p : face) {
+      b.min = b.min.cwiseMin(p);
+      b.max = b.max.cwiseMax(p);
+      any = true;
+    }
+  }
+  if (!any) return std::nullopt;
+  return b;
+}
+
+std::optional<WallFit> fitWall(const Mesh& body, const Eigen::Vector2d& preferred_axis) {
+  std::vector<Vec2> points;
+  for (const auto& face : body) {
+    for (const auto& p : face) points.push_back(p.head<2>());
+  }
+  const std::vector<Vec2> hull = convexHull(points);
+  if (hull.size() < 3) return std::nullopt;
+
+  // The smallest rectangle has a side along an edge of the hull.
+  Rectangle best;
+  double best_area = std::numeric_limits<double>::infinity();
+  for (std::size_t i = 0; i < hull.size(); ++i) {
+    const Vec2 edge = hull[(i + 1) % hull.size()] - hull[i];
+    if (edge.norm() < 1e-12) continue;
+    const Rectangle r = rectangleAlong(hull, edge.normalized());
+    if (r.area() < best_area) best_area = r.area(), best = r;
+  }
+  if (preferred_axis.norm() > 1e-9) {
+    const Rectangle r = rectangleAlong(hull, preferred_axis.normalized());
+    if (r.area() <= best_area * 1.02 + 1e-9) best = r;
+  }
+  // The axis runs along the long side unless the preferred direction was kept.
+  const bool kept_preferred = preferred_axis.norm() > 1e-9 &&
+                              best.u.dot(preferred_axis) / preferred_axis.norm() > 1.0 - 1e-12;
+  if (!kept_preferred && best.v_max - best.v_min > best.u_max - best.u_min) {
+    const Vec2 u(-best.u.y(), best.u.x());  // the long side's direction
+    best = rectangleAlong(hull, u);
+  }
+  const Vec2 u = best.u;
+  const Vec2 v(-u.y(), u.x());
+  const double mid_v = 0.5 * (best.v_min + best.v_max);
+
+  WallFit fit;
+  fit.start = u * best.u_min + v * mid_v;
+  fit.end = u * best.u_max + v * mid_v;
+  fit.thickness = best.v_max - best.v_min;
+
+  // Footprint over rectangle: a closed body's faces seen from above cover its footprint twice
+  // (once from the top, once from the bottom), whichever way a tool turned their normals.
+  double projected_area = 0.0;
+  for (const auto& face : body) projected_area += std::abs(faceNormal(face).z());
+  fit.rectangle_fill = best.area() > 0 ? std::min(1.0, 0.5 * projected_area / best.area()) : 0.0;
+
+  // Top and bottom along the axis: where a vertical plane across the wall at station t cuts
+  // the faces' edges.
+  const double length = best.u_max - best.u_min;
+  const double inset = std::min(0.02, length / 4);
+  const int stations = std::clamp(static_cast<int>(std::ceil(length / 0.05)), 8, 400);
+  const double inf = std::numeric_limits<double>::infinity();
+  std::vector<double> top(stations, -inf), bottom(stations, inf);
+  std::vector<double> across_min(stations, inf), across_max(stations, -inf);
+  auto stationAt = [&](int k) {
+    return best.u_min + inset + (length - 2 * inset) * k / double(stations - 1);
+  };
+  for (const auto& face : body) {
+    double f_min = inf, f_max = -inf;
+    for (const auto& p : face) {
+      const double t = p.head<2>().dot(u);
+      f_min = std::min(f_min, t), f_max = std::max(f_max, t);
+    }
+    for (int k = 0; k < stations; ++k) {
+      const double t = stationAt(k);
+      if (t < f_min || t > f_max) continue;
+      for (std::size_t i = 0; i < face.size(); ++i) {
+        const auto& a = face[i];
+        const auto& b = face[(i + 1) % face.size()];
+        const double ta = a.head<2>().dot(u), tb = b.head<2>().dot(u);
+        if ((ta - t) * (tb - t) > 0) continue;
+        double z_lo, z_hi, v_lo, v_hi;
+        const double va = a.head<2>().dot(v), vb = b.head<2>().dot(v);
+        if (std::abs(tb - ta) < 1e-12) {
+          z_lo = std::min(a.z(), b.z()), z_hi = std::max(a.z(), b.z());
+          v_lo = std::min(va, vb), v_hi = std::max(va, vb);
+        } else {
+          const double f = (t - ta) / (tb - ta);
+          z_lo = z_hi = a.z() + (b.z() - a.z()) * f;
+          v_lo = v_hi = va + (vb - va) * f;
+        }
+        across_min[k] = std::min(across_min[k], v_lo);
+        across_max[k] = std::max(across_max[k], v_hi);
+        top[k] = std::max(top[k], z_hi);
+        bottom[k] = std::min(bottom[k], z_lo);
+      }
+    }
+  }
+  if (length > 3 * fit.thickness) {
+    double narrowest = inf;
+    for (int k = 0; k < stations; ++k) {
+      const double t = stationAt(k);
+      if (t < best.u_min + fit.thickness || t > best.u_max - fit.thickness) continue;
+      narrowest = std::min(narrowest, std::max(0.0, across_max[k] - across_min[k]));
+    }
+    if (narrowest < inf) fit.straightness = narrowest / fit.thickness;
+  } else if (length > 0) {
+    const double least_fill = 1.0 - std::min(fit.thickness, length) / length;
+    fit.straightness =
+        least_fill > 0 ? std::min(1.0, fit.rectangle_fill / least_fill) : fit.rectangle_fill;
+  }
+  std::vector<double> tops, bottoms;
+  for (int k = 0; k < stations; ++k) {
+    if (top[k] > bottom[k]) tops.push_back(top[k]), bottoms.push_back(bottom[k]);
+  }
+  if (tops.empty()) return std::nullopt;
+  fit.top = *std::min_element(tops.begin(), tops.end());
+  fit.highest_top = *std::max_element(tops.begin(), tops.end());
+  fit.lowest_bottom = *std::min_element(bottoms.begin(), bottoms.end());
+  std::nth_element(bottoms.begin(), bottoms.begin() + bottoms.size() / 2, bottoms.end());
+  fit.bottom = bottoms[bottoms.size() / 2];
+  return fit;
+}
+
+std::optional<AxisExtent> extentAlong(const Mesh& body, const Eigen::Vector2d& start,
+                                      const Eigen::Vector2d& end) {
+  const Vec2 axis = end - start;
+  if (axis.norm() < 1e-9) return std::nullopt;
+  const Vec2 u = axis.normalized();
+  const auto bounds = boundsOf(body);
+  if (!bounds) return std::nullopt;
+  AxisExtent e;
+  e.along_min = std::numeric_limits<double>::infinity();
+  e.along_max = -e.along_min;
+  for (const auto& face : body) {
+    for (const auto& p : face) {
+      const double t = (p.head<2>() - start).dot(u);
+      e.along_min = std::min(e.along_min, t);
+      e.along_max = std::max(e.along_max, t);
+    }
+  }
+  e.z_min = bounds->min.z();
+  e.z_max = bounds->max.z();
+  return e;
+}
+
+std::optional<Footprint> footprintOf(const Mesh& body) {
+  const auto bounds = boundsOf(body);
+  if (!bounds) return std::nullopt;
+  const double z0 = bounds->min.z();
+  // Vertices welded to the millimetre: a key per vertex.
+  using Key = std::pair<long long, long long>;
+  auto keyOf = [](const Eigen::Vector3d& p) {
+    return Key{std::llround(p.x() * 1000.0), std::llround(p.y() * 1000.0)};
+  };
+  std::map<Key, Vec2> position;
+  std::vector<std::pair<Key, Key>> directed;  // the downward faces' edges, seen from above CCW
+  for (const auto& face : body) {
+    if (face.size() < 3) continue;
+    const Eigen::Vector3d n = faceNormal(face);
+    if (n.norm() < 1e-12 || n.z() > -0.99 * n.norm()) continue;  // not facing down
+    bool low = true;
+    for (const auto& p : face) low = low && p.z() < z0 + 0.02;
+    if (!low) continue;
+    // Seen from above a downward face runs clockwise: reversed, every loop comes out CCW.
+    for (std::size_t i = 0; i < face.size(); ++i) {
+      const auto& from = face[(i + 1) % face.size()];
+      const auto& to = face[i];
+      const Key a = keyOf(from), b = keyOf(to);
+      if (a == b) continue;
+      position.emplace(a, from.head<2>());
+      position.emplace(b, to.head<2>());
+      directed.emplace_back(a, b);
+    }
+  }
+  // An edge with another face's vertex on it (a T-junction: one long side against two short
+  // ones) is split there, so that shared sides cancel whatever way the faces were cut. Bounded:
+  // beyond 4 million edge-vertex pairs the faces are taken as they are.
+  std::vector<std::pair<Key, Key>> split;
+  if (directed.size() * position.size() <= 4'000'000) {
+    for (const auto& [a, b] : directed) {
+      const Vec2 pa = position[a], pb = position[b];
+      const Vec2 d = pb - pa;
+      const double length = d.norm();
+      std::vector<std::pair<double, Key>> inner;
+      for (const auto& [key, p] : position) {
+        if (key == a || key == b) continue;
+        const double t = (p - pa).dot(d) / (length * length);
+        if (t <= 0 || t >= 1) continue;
+        if (bim::distanceToSegment(p, pa, pb) < 1e-3) inner.emplace_back(t, key);
+      }
+      std::sort(inner.begin(), inner.end());
+      Key from = a;
+      for (const auto& [t, key] : inner) {
+        split.emplace_back(from, key);
+        from = key;
+      }
+      split.emplace_back(from, b);
+    }
+  } else {
+    split = directed;
+  }
+  std::map<std::pair<Key, Key>, int> edges;  // directed edge → count (a reversed twin cancels)
+  for (const auto& [a, b] : split) {
+    auto twin = edges.find({b, a});
+    if (twin != edges.end()) {
+      if (--twin->second == 0) edges.erase(twin);
+    } else {
+      ++edges[{a, b}];
+    }
+  }
+  // Chain the boundary edges into loops.
+  std::multimap<Key, Key> next;
+  for (const auto& [edge, count] : edges) {
+    for (int i = 0; i < count; ++i) next.emplace(edge.first, edge.second);
+  }
+  std::vector<std::vector<Vec2>> loops;
+  while (!next.empty()) {
+    auto it = next.begin();
+    const Key first = it->first;
+    Key at = it->second;
+    next.erase(it);
+    std::vector<Vec2> loop{position[first]};
+    bool closed = false;
+    for (std::size_t guard = 0; guard <= edges.size() + 1; ++guard) {
+      if (at == first) {
+        closed = true;
+        break;
+      }
+      loop.push_back(position[at]);
+      auto step = next.find(at);
+      if (step == next.end()) break;
+      at = step->second;
+      next.erase(step);
+    }
+    if (closed && loop.size() >= 3) loops.push_back(std::move(loop));
+  }
+  if (loops.empty()) return std::nullopt;
+  std::size_t largest = 0;
+  for (std::size_t i = 1; i < loops.size(); ++i) {
+    if (std::abs(bim::signedArea(loops[i])) > std::abs(bim::signedArea(loops[largest]))) {
+      largest = i;
+    }
+  }
+  std::vector<Vec2> outline = loops[largest];
+  // Collinear vertices (within 1 mm of the line through their neighbours) removed.
+  for (bool removed = true; removed && outline.size() > 3;) {
+    removed = false;
+    for (std::size_t i = 0; i < outline.size() && outline.size() > 3; ++i) {
+      const Vec2& prev = outline[(i + outline.size() - 1) % outline.size()];
+      const Vec2& next_vertex = outline[(i + 1) % outline.size()];
+      if (bim::distanceToSegment(outline[i], prev, next_vertex) < 1e-3) {
+        outline.erase(outline.begin() + static_cast<long>(i));
+        removed = true;
+      }
+    }
+  }
+  if (bim::signedArea(outline) < 0) std::reverse(outline.begin(), outline.end());
+  Footprint footprint;
+  footprint.outline = std::move(outline);
+  footprint.z = z0;
+  footprint.loops = static_cast<int>(loops.size());
+  return footprint;
+}
+
+}  // namespace isg::ifc

@@ -1,0 +1,21 @@
+#pragma once
+
+#include <string>
+
+namespace isg::ifc {
+
+// What the import needs from an IFC-SPF (ISO 10303-21) file's text before any entity is read:
+// the schema it claims and the authoring tool. Checking the text first gives the exact message a
+// user needs — "not an IFC file", "truncated", "IFC4X3 is not supported" — where IFC++ would read
+// a partial model silently.
+struct StepHeader {
+  std::string schema;       // "IFC2X3" or "IFC4"
+  std::string application;  // FILE_NAME's originating system, "" when absent
+};
+
+// Throws bim::InputError naming `file` when the text is not an ISO 10303-21 exchange file, has
+// no FILE_SCHEMA, names a schema other than IFC2X3 and IFC4 (IFC4X1-IFC4X3, IFC2X2 …), or does
+// not end with END-ISO-10303-21; (a truncated file).
+StepHeader readStepHeader(const std::string& file, const std::string& text);
+
+}  // namespace isg::ifc

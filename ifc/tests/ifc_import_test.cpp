@@ -1,0 +1,161 @@
+// The import on the five public models (ifc/tests/models, README.md there says where each comes
+// from and under which licence) and on small hand-written files for the errors.
+#include "ifc/ifc_import.hpp"
+
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+
+#include <string>
+
+#include "bim/input_error.hpp"
+#include "bim/json_reader.hpp"
+
+namespace isg::ifc {
+namespace {
+
+std::string modelPath(const std::string& name) {
+  return std::string(ISG_SOURCE_DIR) + "/ifc/tests/models/" + name;
+}
+
+const StoreySummary* storeyNamed(const ImportResult& r, const std::string& name) {
+  for (const auto& s : r.storeys) {
+    if (s.name == name) return &s;
+  }
+  return nullptr;
+}
+
+const bim::Wall* wallWithId(const bim::Plan& plan, const std::string& id) {
+  for (const auto& level : plan.levels) {
+    if (const bim::Wall* w = level.findWall(id)) return w;
+  }
+  return nullptr;
+}
+
+std::string errorOf(const std::string& text, const ImportOptions& options = {}) {
+  try {
+    importIfcText("t.ifc", text, options);
+  } catch (const bim::InputError& e) {
+    return e.what();
+  }
+  return "";
+}
+
+std::string stepFile(const std::string& data) {
+  return "ISO-10303-21;\nHEADER;\nFILE_DESCRIPTION((''),'2;1');\n"
+         "FILE_NAME('t.ifc','2020-01-01T00:00:00',(''),(''),'','','');\n"
+         "FILE_SCHEMA(('IFC4'));\nENDSEC;\nDATA;\n" +
+         data + "ENDSEC;\nEND-ISO-10303-21;\n";
+}
+
+TEST(ImportIfc, DuplexTwoStoreysOfRevit) {
+  const ImportResult r = importIfc(modelPath("duplex.ifc"), {});
+  EXPECT_EQ(r.schema, "IFC2X3");
+  EXPECT_EQ(r.metres_per_unit, 1.0);
+  ASSERT_EQ(r.plan.levels.size(), 2u);
+  EXPECT_EQ(r.plan.levels[0].id, "Level 1");
+  EXPECT_EQ(r.plan.levels[1].id, "Level 2");
+  // The foundation and the roof are storeys, not levels, and the summary says why.
+  ASSERT_NE(storeyNamed(r, "T/FDN"), nullptr);
+  EXPECT_EQ(storeyNamed(r, "T/FDN")->level_id, "");
+  EXPECT_EQ(storeyNamed(r, "Roof")->why_not, "no wall rises 1.500 m above its floor");
+  const StoreySummary& l1 = *storeyNamed(r, "Level 1");
+  EXPECT_EQ(l1.rooms, 10);
+  EXPECT_EQ(l1.doors, 6);
+  // Level 1's floor is its rooms' floor (19 mm above the storey's elevation).
+  EXPECT_NEAR(r.plan.levels[0].elevation, 0.019, 1e-3);
+  // The north exterior wall: Revit centres its axis, 417 mm thick, 8.8 m long, up to 3.1 m.
+  const bim::Wall* wall = wallWithId(r.plan, "2O2Fr$t4X7Zf8NOew3FNtn");
+  ASSERT_NE(wall, nullptr);
+  EXPECT_NEAR(wall->thickness, 0.417, 1e-3);
+  EXPECT_NEAR((wall->end - wall->start).norm(), 8.8, 1e-3);
+  EXPECT_NEAR(wall->start.y(), -0.2085, 1e-3);
+  EXPECT_NEAR(wall->height + r.plan.levels[0].elevation, 3.1, 1e-3);
+  EXPECT_NEAR(wall->base, 0.0, 1e-9);
+  // Doors take their opening's clear width (the door's mesh includes its frame).
+  const bim::Door* door = r.plan.levels[1].findDoor("1hOSvn6df7F8_7GcBWlSFK");
+  ASSERT_NE(door, nullptr);
+  EXPECT_NEAR(door->width, 0.864, 1e-3);
+  // Each element left out or simplified is in the log, by GlobalId.
+  EXPECT_THAT(r.log, testing::Contains(
+                         testing::HasSubstr("dropped window 1Eo2$BaHX42AEkDvQQDocD \"M_Skylight")));
+  EXPECT_THAT(r.log, testing::Contains(testing::HasSubstr("dropped wall 2O2Fr$t4X7Zf8NOew3FKRH")));
+}
+
+TEST(ImportIfc, StoreysChosenByName) {
+  ImportOptions options;
+  options.storeys = {"Level 2"};
+  const ImportResult r = importIfc(modelPath("duplex.ifc"), options);
+  ASSERT_EQ(r.plan.levels.size(), 1u);
+  EXPECT_EQ(r.plan.levels[0].id, "Level 2");
+  options.storeys = {"Level 3"};
+  EXPECT_EQ(errorOf(bim::readCheckedFile(modelPath("duplex.ifc"), kMaxIfcBytes), options),
+            "t.ifc: no storey named \"Level 3\" (--storey); its storeys: \"T/FDN\", \"Level 1\", "
+            "\"Level 2\", \"Roof\"");
+  options.storeys = {"Roof"};
+  EXPECT_EQ(errorOf(bim::readCheckedFile(modelPath("duplex.ifc"), kMaxIfcBytes), options),
+            "t.ifc: storey \"Roof\" has no wall rising 1.500 m above its floor: nothing to import");
+}
+
+TEST(ImportIfc, RengaInMillimetres) {
+  const ImportResult r = importIfc(modelPath("xbim-House.ifc"), {});
+  EXPECT_EQ(r.metres_per_unit, 0.001);
+  ASSERT_EQ(r.plan.levels.size(), 2u);
+  // Renga's 400 mm walls come out 0.4 m thick.
+  const bim::Wall* wall = wallWithId(r.plan, "2ScB0b_Z1FQRFCzNdZeouf");
+  ASSERT_NE(wall, nullptr);
+  EXPECT_NEAR(wall->thickness, 0.4, 1e-6);
+  // Gable walls are taken at their eaves, and the log says so.
+  EXPECT_THAT(r.log, testing::Contains(testing::HasSubstr("(a gable or a sloped top)")));
+}
+
+TEST(ImportIfc, EveryModelGivesAPlanTheParserAccepts) {
+  struct Expected {
+    const char* file;
+    std::size_t levels, walls, doors, rooms;
+  };
+  // What the import makes of each model today (docs/formats.md, "Importing IFC", explains the
+  // differences from the models' own counts).
+  for (const Expected& e :
+       {Expected{"duplex.ifc", 2, 35, 14, 20}, Expected{"Office_A_20110811.ifc", 2, 445, 97, 99},
+        Expected{"IfcOpenHouse_IFC4.ifc", 1, 4, 1, 0},
+        Expected{"xbim-SampleHouse4.ifc", 1, 6, 3, 3}, Expected{"xbim-House.ifc", 2, 26, 15, 13}}) {
+    SCOPED_TRACE(e.file);
+    const ImportResult r = importIfc(modelPath(e.file), {});
+    std::size_t walls = 0, doors = 0, rooms = 0;
+    for (const auto& level : r.plan.levels) {
+      walls += level.walls.size(), doors += level.doors.size(), rooms += level.rooms.size();
+    }
+    EXPECT_EQ(r.plan.levels.size(), e.levels);
+    EXPECT_EQ(walls, e.walls);
+    EXPECT_EQ(doors, e.doors);
+    EXPECT_EQ(rooms, e.rooms);
+    EXPECT_EQ(r.plan_json["imported_from"]["file"], e.file);
+  }
+}
+
+TEST(ImportIfc, BadModels) {
+  EXPECT_EQ(errorOf(stepFile("#1=IFCBUILDINGSTOREY('1YvctVUKr0kugbFTf53O9L',$,'G',$,$,$,$,$,"
+                             ".ELEMENT.,0.);\n")),
+            "t.ifc: no IfcProject: not a readable IFC model");
+  EXPECT_EQ(errorOf(stepFile("#1=IFCPROJECT('0YvctVUKr0kugbFTf53O9L',$,'P',$,$,$,$,$,$);\n")),
+            "t.ifc: no IfcBuildingStorey: the model has no storey to import");
+  EXPECT_EQ(errorOf(stepFile("#1=IFCPROJECT('0YvctVUKr0kugbFTf53O9L',$,'P',$,$,$,$,$,$);\n"
+                             "#2=IFCBUILDINGSTOREY('1YvctVUKr0kugbFTf53O9L',$,'G',$,$,$,$,$,"
+                             ".ELEMENT.,0.);\n")),
+            "t.ifc: no wall the import could read: nothing to import");
+  const std::string house = bim::readCheckedFile(modelPath("IfcOpenHouse_IFC4.ifc"), kMaxIfcBytes);
+  EXPECT_EQ(errorOf(house.substr(0, house.size() / 2)),
+            "t.ifc: truncated: the file does not end with \"END-ISO-10303-21;\"");
+}
+
+TEST(ImportIfc, AMissingFileIsNamed) {
+  try {
+    importIfc("/nonexistent/model.ifc", {});
+    FAIL();
+  } catch (const bim::InputError& e) {
+    EXPECT_THAT(e.what(), testing::StartsWith("/nonexistent/model.ifc: "));
+  }
+}
+
+}  // namespace
+}  // namespace isg::ifc

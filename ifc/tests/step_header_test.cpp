@@ -1,0 +1,68 @@
+// The file checks before IFC++ reads anything: each bad file gets its exact message.
+#include "ifc/step_header.hpp"
+
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+
+#include "bim/input_error.hpp"
+
+namespace isg::ifc {
+namespace {
+
+const std::string kHeader =
+    "ISO-10303-21;\nHEADER;\nFILE_DESCRIPTION(('ViewDefinition [CoordinationView]'),'2;1');\n"
+    "FILE_NAME('a.ifc','2020-01-01T00:00:00',('Ann'),('Org'),'Pre 1.0','Tool''s 2',$);\n";
+
+std::string fileWithSchema(const std::string& schema) {
+  return kHeader + "FILE_SCHEMA(('" + schema + "'));\nENDSEC;\nDATA;\nENDSEC;\nEND-ISO-10303-21;\n";
+}
+
+std::string errorOf(const std::string& text) {
+  try {
+    readStepHeader("m.ifc", text);
+  } catch (const bim::InputError& e) {
+    return e.what();
+  }
+  return "";
+}
+
+TEST(StepHeader, ReadsTheSchemaAndTheTool) {
+  const StepHeader h = readStepHeader("m.ifc", fileWithSchema("IFC2X3"));
+  EXPECT_EQ(h.schema, "IFC2X3");
+  EXPECT_EQ(h.application, "Pre 1.0 / Tool's 2");
+  EXPECT_EQ(readStepHeader("m.ifc", fileWithSchema("Ifc4")).schema, "IFC4");
+}
+
+TEST(StepHeader, NotIfc) {
+  EXPECT_EQ(errorOf("{\"format\": \"isg.plan\"}"),
+            "m.ifc: not an IFC file: an IFC (STEP, ISO 10303-21) file starts with "
+            "\"ISO-10303-21;\"");
+  EXPECT_EQ(errorOf(""), errorOf("PK\x03\x04 a zip"));
+}
+
+TEST(StepHeader, OtherSchemas) {
+  EXPECT_EQ(errorOf(fileWithSchema("IFC4X3_ADD2")),
+            "m.ifc: schema IFC4X3_ADD2 is not supported: the import reads IFC2X3 and IFC4 "
+            "(export the model as one of them)");
+  EXPECT_THAT(errorOf(fileWithSchema("IFC2X2_FINAL")), testing::HasSubstr("IFC2X2_FINAL"));
+  EXPECT_THAT(errorOf(fileWithSchema("IFC4X1")), testing::HasSubstr("not supported"));
+}
+
+TEST(StepHeader, NoSchema) {
+  EXPECT_EQ(errorOf(kHeader + "ENDSEC;\nDATA;\nENDSEC;\nEND-ISO-10303-21;\n"),
+            "m.ifc: no FILE_SCHEMA in the file's header: which IFC schema it follows is unknown");
+}
+
+TEST(StepHeader, Truncated) {
+  const std::string whole = fileWithSchema("IFC4");
+  EXPECT_EQ(errorOf(whole.substr(0, whole.size() - 12)),
+            "m.ifc: truncated: the file does not end with \"END-ISO-10303-21;\"");
+}
+
+TEST(StepHeader, AByteOrderMarkAndBlankLinesAreFine) {
+  EXPECT_EQ(readStepHeader("m.ifc", "\xEF\xBB\xBF\n " + fileWithSchema("IFC4") + "\n\n").schema,
+            "IFC4");
+}
+
+}  // namespace
+}  // namespace isg::ifc
