@@ -51,7 +51,13 @@ int ImportCommand::run() {
   sensors::checkOutputPath(output_, {sensors::OutputKind::kImportedPlan, {input_}, force_, true});
   ifc::ImportOptions options;
   options.storeys = storeys_;
-  ifc::ImportResult result = ifc::importIfc(input_, options);
+  ifc::ImportResult result;
+  try {
+    result = ifc::importIfc(input_, options);
+  } catch (const ifc::ImportInterrupted& e) {
+    std::fprintf(stderr, "isg import: %s; nothing was written\n", e.what());
+    return 128 + e.signalNumber();
+  }
   roundNumbers(result.plan_json);
   writeFileAtomically(output_, result.plan_json.dump(2) + "\n");
 

@@ -2,6 +2,7 @@
 
 #include <cstdint>
 #include <nlohmann/json.hpp>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -47,7 +48,18 @@ struct ImportResult {
   std::vector<std::string> reader_errors;
 };
 
-// Reads `path` (a regular file of at most kMaxIfcBytes). Throws bim::InputError naming the file
+// The import was stopped by a signal (Ctrl-C) while IFC++ read the model; nothing was written.
+class ImportInterrupted : public std::runtime_error {
+ public:
+  explicit ImportInterrupted(int signal);
+  int signalNumber() const { return signal_; }
+
+ private:
+  int signal_;
+};
+
+// Reads `path` (a regular file of at most kMaxIfcBytes). IFC++ runs in a child process: a model
+// that makes it crash is reported like any bad model. Throws bim::InputError naming the file
 // for a file that is missing, not IFC, truncated, of another schema, has no IfcProject, no
 // storey, no wall in the storeys imported, or names a storey it does not have.
 ImportResult importIfc(const std::string& path, const ImportOptions& options);

@@ -9,6 +9,7 @@
 #include <unordered_set>
 
 #include "bim/input_error.hpp"
+#include "bim/untracked_allocations.hpp"
 #include "ifc/ifcpp_model.hpp"
 
 namespace isg::ifc {
@@ -110,6 +111,8 @@ LoadedModel loadModel(const std::string& file, std::string text) {
   reader.setMessageCallBack(&loaded.messages, &gatherMessage);
   loaded.model->setMessageCallBack(&loaded.messages, &gatherMessage);
   try {
+    // IFC++'s reader leaks on malformed files (bim/untracked_allocations.hpp).
+    const bim::UntrackedAllocations untracked;
     reader.loadModelFromString(text, loaded.model);
   } catch (const std::exception& e) {
     throw bim::InputError(file, "", std::string("IFC++ could not read the model: ") + e.what());
@@ -152,6 +155,9 @@ Body BodyReader::read(const shared_ptr<IfcProduct>& product) {
       if (!isBody(representation)) continue;
       auto data = std::make_shared<RepresentationData>();
       try {
+        // IFC++ leaks carve's CSG collector of each boolean operation (a bug of the library:
+        // bim/untracked_allocations.hpp).
+        const bim::UntrackedAllocations untracked;
         converter_->getRepresentationConverter()->convertIfcRepresentation(representation, data);
       } catch (const std::exception& e) {
         model_.messages.errors.push_back(e.what());

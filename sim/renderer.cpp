@@ -14,37 +14,19 @@
 
 #include "bim/angles.hpp"
 #include "bim/input_error.hpp"
+#include "bim/untracked_allocations.hpp"
 #include "sensors/atomic_folder.hpp"
 #include "sim/odometry_model.hpp"
 #include "worlds/mjcf_generator.hpp"
-
-// Under AddressSanitizer (ci/sanitize): Mesa's EGL and GL drivers keep 240 bytes of their set-up
-// until exit, which LeakSanitizer reports. Mesa is built without frame pointers, so the report's
-// stack stops at the allocator and no suppression file can name it; instead the allocations made
-// while EGL and the GL context are set up and torn down are not tracked (MuJoCo's own context
-// with them), and nothing else is exempted.
-#if defined(__has_feature)
-#if __has_feature(address_sanitizer)
-#define ISG_WITH_LSAN 1
-#endif
-#endif
-#if defined(__SANITIZE_ADDRESS__)
-#define ISG_WITH_LSAN 1
-#endif
-#ifdef ISG_WITH_LSAN
-#include <sanitizer/lsan_interface.h>
-#endif
 
 namespace isg::sim {
 
 namespace {
 
-struct UntrackedMesaAllocations {
-#ifdef ISG_WITH_LSAN
-  UntrackedMesaAllocations() { __lsan_disable(); }
-  ~UntrackedMesaAllocations() { __lsan_enable(); }
-#endif
-};
+// Mesa's EGL and GL drivers keep their set-up until exit (bim/untracked_allocations.hpp): what
+// is allocated while EGL and the GL context are set up and torn down (MuJoCo's own context with
+// them) is not tracked under LeakSanitizer, and nothing else is exempted.
+using UntrackedMesaAllocations = bim::UntrackedAllocations;
 
 }  // namespace
 

@@ -17,7 +17,7 @@ using ::testing::StartsWith;
 TEST(Usage, HelpOnEveryCommandExitsZero) {
   testing::Sandbox sandbox("usage_help");
   for (const char* command :
-       {"", "world ", "check ", "inspect ", "agraph ", "simulate ", "render "}) {
+       {"", "world ", "check ", "import ", "inspect ", "agraph ", "simulate ", "render "}) {
     const auto result = sandbox.run(std::string(command) + "--help");
     EXPECT_EQ(result.exit_code, 0) << command;
     EXPECT_THAT(result.out, HasSubstr("Usage:")) << command;
@@ -493,6 +493,83 @@ TEST(Eval, ReportsWhenTheEstimateStarts) {
   const auto doc = nlohmann::json::parse(result.out);
   EXPECT_EQ(doc["localized"], true);
   EXPECT_DOUBLE_EQ(doc["share_localized"].get<double>(), 0.75);
+}
+
+}  // namespace
+}  // namespace isg::cli
+
+namespace isg::cli {
+namespace {
+
+std::string ifcModel(const std::string& name) {
+  return "'" + std::string(ISG_SOURCE_DIR) + "/ifc/tests/models/" + name + "'";
+}
+
+TEST(Import, WritesAPlanCheckAcceptsAndSummarises) {
+  testing::Sandbox sandbox("import_small");
+  auto result = sandbox.run("import " + ifcModel("small.ifc") + " -o small.json");
+  EXPECT_EQ(result.exit_code, 0) << result.err;
+  EXPECT_THAT(result.err, HasSubstr("storey \"Ground\" (0.000 m) -> level Ground: 1 walls (0 of "
+                                    "another storey standing on it), 1 doors, 0 windows, 1 rooms "
+                                    "of 1 spaces\n"));
+  EXPECT_THAT(result.err, HasSubstr("isg import: wrote small.json: 1 level, 1 walls, 1 doors, 0 "
+                                    "windows, 1 rooms; 0 elements left out or simplified\n"));
+  const auto plan = nlohmann::json::parse(sandbox.read("small.json"));
+  EXPECT_EQ(plan["imported_from"]["schema"], "IFC4");
+  EXPECT_EQ(plan["levels"][0]["walls"][0]["id"], "7YvctVUKr0kugbFTf53O9L");
+  EXPECT_EQ(plan["levels"][0]["walls"][0]["name"], "Wall A");
+  EXPECT_EQ(plan["levels"][0]["doors"][0]["offset"], 2.45);
+  result = sandbox.run("check small.json");
+  EXPECT_EQ(result.exit_code, 0) << result.err;
+  EXPECT_EQ(result.out,
+            "small.json: ok: plan \"small\" (small.json): 1 level, 1 walls, 1 doors, "
+            "1 rooms\n");
+}
+
+TEST(Import, ReplacesOnlyAPlanItWroteAndOnlyWithForce) {
+  testing::Sandbox sandbox("import_force");
+  sandbox.write("mine.json", "{\"format\": \"isg.plan\", \"version\": 1, \"levels\": []}\n");
+  auto result = sandbox.run("import " + ifcModel("small.ifc") + " -o mine.json --force");
+  EXPECT_EQ(result.exit_code, 1);
+  EXPECT_THAT(result.err, HasSubstr("mine.json"));
+  EXPECT_EQ(sandbox.read("mine.json"),
+            "{\"format\": \"isg.plan\", \"version\": 1, \"levels\": []}\n");
+  EXPECT_EQ(sandbox.run("import " + ifcModel("small.ifc") + " -o p.json -q").exit_code, 0);
+  result = sandbox.run("import " + ifcModel("small.ifc") + " -o p.json -q");
+  EXPECT_EQ(result.exit_code, 1);
+  EXPECT_THAT(result.err, HasSubstr("--force"));
+  EXPECT_EQ(sandbox.run("import " + ifcModel("small.ifc") + " -o p.json -q --force").exit_code, 0);
+}
+
+TEST(Import, BadModelsExitOneAndWriteNothing) {
+  testing::Sandbox sandbox("import_bad");
+  sandbox.write("plan.ifc", "{\"format\": \"isg.plan\"}");
+  auto result = sandbox.run("import plan.ifc -o out.json");
+  EXPECT_EQ(result.exit_code, 1);
+  EXPECT_EQ(result.err,
+            "isg import: error: plan.ifc: not an IFC file: an IFC (STEP, ISO "
+            "10303-21) file starts with \"ISO-10303-21;\"\n");
+  sandbox.write("new.ifc",
+                "ISO-10303-21;\nHEADER;\nFILE_SCHEMA(('IFC4X3_ADD2'));\nENDSEC;\nDATA;\nENDSEC;\n"
+                "END-ISO-10303-21;\n");
+  result = sandbox.run("import new.ifc -o out.json");
+  EXPECT_EQ(result.exit_code, 1);
+  EXPECT_EQ(result.err,
+            "isg import: error: new.ifc: schema IFC4X3_ADD2 is not supported: the "
+            "import reads IFC2X3 and IFC4 (export the model as one of them)\n");
+  result = sandbox.run("import missing.ifc -o out.json");
+  EXPECT_EQ(result.exit_code, 1);
+  EXPECT_THAT(result.err, StartsWith("isg import: error: missing.ifc: "));
+  // A model that makes IFC++ crash (found by ci/fuzz) is a bad model like any other.
+  result = sandbox.run("import " + ifcModel("bad/ifcpp_null_polyline_point.ifc") + " -o out.json");
+  EXPECT_EQ(result.exit_code, 1);
+  EXPECT_THAT(result.err, HasSubstr(": IFC++ stopped with signal "));
+  EXPECT_FALSE(sandbox.exists("out.json"));
+  result = sandbox.run("import " + ifcModel("small.ifc") + " -o out.json --storey Attic");
+  EXPECT_EQ(result.exit_code, 1);
+  EXPECT_THAT(result.err, HasSubstr("no storey named \"Attic\" (--storey); its storeys: "
+                                    "\"Ground\"\n"));
+  EXPECT_FALSE(sandbox.exists("out.json"));
 }
 
 }  // namespace
