@@ -31,9 +31,12 @@ ImportCommand::ImportCommand(CLI::App& parent) {
       "GlobalIds, names the IFC names. Every element left out or simplified gets one line saying "
       "which and why; a summary per storey ends the output. The plan is checked with the plan "
       "format's rules before it is written; nothing is written when the model cannot be read. "
-      "The rules and their thresholds: docs/formats.md, \"Importing IFC\".\n\n"
-      "Example:\n  isg import duplex.ifc -o duplex.json\n  isg check duplex.json\n"
-      "  isg run duplex.json -o runs/duplex");
+      "IFC++ reads the model in a child process: a model that makes it crash is reported like any "
+      "bad model (exit code 1). The rules and their thresholds: docs/formats.md, \"Importing "
+      "IFC\".\n\n"
+      "Example (ifc/tests/models holds five public models):\n"
+      "  isg import Office_A_20110811.ifc -o office.json\n  isg check office.json -v\n"
+      "  isg run office.json -o runs/office");
   app_->add_option("model", input_, "IFC file (STEP, .ifc) to read")
       ->option_text("MODEL.ifc")
       ->required();

@@ -688,6 +688,21 @@ ImportResult Importer::run() {
   readWalls();
   readOpenings();
   const std::vector<int> chosen = chooseLevels();
+  // The plan holds coordinates within ±10 km (docs/formats.md, "Limits"); a model placed in
+  // geographic or survey coordinates lies beyond, and says so here rather than as a broken rule.
+  for (const auto& wall : walls_) {
+    const double far =
+        std::max(wall.fit.start.cwiseAbs().maxCoeff(), wall.fit.end.cwiseAbs().maxCoeff());
+    if (far > bim::limits::kMaxCoordinate) {
+      throw bim::InputError(
+          file_, "",
+          describe(wall.kind, wall.element) + " lies " + fmt(far / 1000.0) +
+              " km from the model's origin, beyond the plan's ±" +
+              fmt(bim::limits::kMaxCoordinate / 1000.0) +
+              " km: the model is placed in site or survey coordinates (its IfcSite's "
+              "placement); move its site's placement near the origin in the authoring tool");
+    }
+  }
   is_level_.assign(storeys_.size(), false);
   for (int s : chosen) is_level_[s] = true;
   json levels = json::array();

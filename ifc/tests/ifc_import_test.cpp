@@ -156,6 +156,21 @@ TEST(ImportIfc, AModelThatCrashesIfcppIsABadModel) {
   EXPECT_THAT(errorOf(text), testing::StartsWith("t.ifc: IFC++ stopped with signal "));
 }
 
+TEST(ImportIfc, AModelInSurveyCoordinatesIsNamed) {
+  // small.ifc with its site placed 20 km east: beyond the plan's ±10 km.
+  std::string text = bim::readCheckedFile(modelPath("small.ifc"), kMaxIfcBytes);
+  const std::string site = "#31=IFCLOCALPLACEMENT($,#21);";
+  ASSERT_NE(text.find(site), std::string::npos);
+  text.replace(text.find(site), site.size(),
+               "#31=IFCLOCALPLACEMENT($,#24);\n#24=IFCAXIS2PLACEMENT3D(#23,$,$);\n"
+               "#23=IFCCARTESIANPOINT((20000.,500.,0.));");
+  EXPECT_EQ(errorOf(text),
+            "t.ifc: wall 7YvctVUKr0kugbFTf53O9L \"Wall A\" lies 20.005 km from the model's origin, "
+            "beyond the plan's ±10.000 km: the model is placed in site or survey coordinates (its "
+            "IfcSite's placement); move its site's placement near the origin in the authoring "
+            "tool");
+}
+
 TEST(ImportIfc, AMissingFileIsNamed) {
   try {
     importIfc("/nonexistent/model.ifc", {});
