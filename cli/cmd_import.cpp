@@ -5,6 +5,7 @@
 #include <filesystem>
 
 #include "ifc/ifc_import.hpp"
+#include "run/interrupt.hpp"
 #include "sensors/output_path.hpp"
 
 namespace isg::cli {
@@ -62,6 +63,7 @@ int ImportCommand::run() {
     return 128 + e.signalNumber();
   }
   roundNumbers(result.plan_json);
+  run::throwIfInterrupted();  // a Ctrl-C that reached isg after the model was read
   writeFileAtomically(output_, result.plan_json.dump(2) + "\n");
 
   if (!quiet_) {

@@ -854,6 +854,12 @@ ImportResult importInChildProcess(const std::string& file, std::string text,
   }
   if (pid == 0) {
     ::close(fds[0]);
+    // The child dies of what kills it, whatever handlers the parent installed (isg's interrupt
+    // flag, a sanitizer's or libFuzzer's crash reports): the parent reads its signal, a Ctrl-C
+    // stops it at once, and a crash inside IFC++ is the parent's to report.
+    for (const int signal : {SIGSEGV, SIGBUS, SIGFPE, SIGILL, SIGABRT, SIGINT, SIGTERM, SIGHUP}) {
+      std::signal(signal, SIG_DFL);
+    }
     nlohmann::json message;
     try {
       message = resultToMessage(importWithIfcpp(file, std::move(text), options));
