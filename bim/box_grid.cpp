@@ -36,6 +36,10 @@ bool Box2::overlaps(const Box2& other) const {
          other.lo.y() <= hi.y();
 }
 
+bool Box2::contains(const Eigen::Vector2d& point) const {
+  return (point.array() >= lo.array()).all() && (point.array() <= hi.array()).all();
+}
+
 BoxGrid::BoxGrid(std::vector<Box2> boxes) : boxes_(std::move(boxes)), seen_(boxes_.size(), 0) {
   if (boxes_.empty()) return;
   Box2 all = boxes_.front();

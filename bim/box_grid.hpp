@@ -15,6 +15,7 @@ struct Box2 {
   static Box2 around(const std::vector<Eigen::Vector2d>& points);
   Box2 grown(double margin) const;
   bool overlaps(const Box2& other) const;
+  bool contains(const Eigen::Vector2d& point) const;
 };
 
 // A uniform grid over item boxes that answers "which items may overlap this box" in time

@@ -28,6 +28,7 @@ inline constexpr std::size_t kMaxLevels = 100;
 inline constexpr std::size_t kMaxWallsPerLevel = 20'000;
 inline constexpr std::size_t kMaxRoomsPerLevel = 5'000;
 inline constexpr std::size_t kMaxDoorsPerLevel = 20'000;
+inline constexpr std::size_t kMaxStairsPerLevel = 1'000;
 inline constexpr std::size_t kMaxOutlineVertices = 100'000;
 inline constexpr std::size_t kMaxVerticesPerLevel = 200'000;
 // Waypoints of a route, extra walls and clutter boxes of a scenario.

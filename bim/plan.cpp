@@ -28,6 +28,9 @@ const Window* Level::findWindow(const std::string& window_id) const {
   return findById(windows, window_id);
 }
 const Room* Level::findRoom(const std::string& room_id) const { return findById(rooms, room_id); }
+const Stair* Level::findStair(const std::string& stair_id) const {
+  return findById(stairs, stair_id);
+}
 
 const Level* Plan::findLevel(const std::string& level_id) const {
   return findById(levels, level_id);

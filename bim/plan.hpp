@@ -44,6 +44,18 @@ struct Window {
   double height = 0.0;  // of the opening, sill to head
 };
 
+// A straight flight of stairs (an optional extension of v1): its bottom edge is centred at
+// `start` on the level that holds it, its top edge at `end` on level `to`, which may lie above or
+// below. The steps are derived (bim/stairs.hpp); the floor of the upper level is open over the
+// flight's upper part (StairGeometry::openingFootprint).
+struct Stair {
+  std::string id;
+  Eigen::Vector2d start = Eigen::Vector2d::Zero();
+  Eigen::Vector2d end = Eigen::Vector2d::Zero();
+  double width = 0.0;
+  std::string to;  // id of the level the flight leads to
+};
+
 struct Room {
   std::string id;
   std::string name;
@@ -58,11 +70,13 @@ struct Level {
   std::vector<Door> doors;
   std::vector<Window> windows;
   std::vector<Room> rooms;
+  std::vector<Stair> stairs;
 
   const Wall* findWall(const std::string& wall_id) const;
   const Door* findDoor(const std::string& door_id) const;
   const Window* findWindow(const std::string& window_id) const;
   const Room* findRoom(const std::string& room_id) const;
+  const Stair* findStair(const std::string& stair_id) const;
 };
 
 struct Plan {

@@ -55,6 +55,18 @@ json planToJson(const Plan& plan) {
       out["windows"] = windows;
     }
     out["rooms"] = rooms;
+    // Stairs too are an optional extension of v1.
+    if (!level.stairs.empty()) {
+      json stairs = json::array();
+      for (const auto& st : level.stairs) {
+        stairs.push_back({{"id", st.id},
+                          {"start", point(st.start)},
+                          {"end", point(st.end)},
+                          {"width", st.width},
+                          {"to", st.to}});
+      }
+      out["stairs"] = stairs;
+    }
     levels.push_back(out);
   }
   return {{"format", "isg.plan"}, {"version", 1}, {"name", plan.name}, {"levels", levels}};

@@ -1,8 +1,10 @@
 #include "bim/plan_parser.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <filesystem>
 #include <map>
+#include <numbers>
 #include <optional>
 #include <sstream>
 #include <unordered_map>
@@ -11,6 +13,7 @@
 #include "bim/limits.hpp"
 #include "bim/plan_geometry.hpp"
 #include "bim/polygon.hpp"
+#include "bim/stairs.hpp"
 
 namespace isg::bim {
 
@@ -204,6 +207,31 @@ Door parseDoor(const JsonNode& node, const Level& level, const LevelIndex& index
   return door;
 }
 
+// A flight's own fields; what it means across levels is checked once every level is read
+// (checkStairs).
+Stair parseStair(const JsonNode& node, IdRegistry& ids) {
+  node.expectObject({"id", "start", "end", "width", "to", "name"});
+  Stair stair;
+  const JsonNode id = node.field("id");
+  stair.id = id.identifier();
+  ids.add(id, stair.id);
+  if (auto name = node.optionalField("name")) name->text();
+  stair.start = node.field("start").position2();
+  stair.end = node.field("end").position2();
+  if ((stair.end - stair.start).norm() < limits::kMinSize) {
+    node.field("end").fail("zero-length flight: end equals start " + formatPoint(stair.start));
+  }
+  const JsonNode width = node.field("width");
+  stair.width = width.numberInRange(limits::kMinSize, limits::kMaxLevelExtent);
+  if (stair.width < kMinStairWidth) {
+    width.fail("a flight " + formatNumber(stair.width) +
+               " m wide is too narrow for a legged robot (at least " +
+               formatNumber(kMinStairWidth) + " m; docs/formats.md, Stairs)");
+  }
+  stair.to = node.field("to").identifier();
+  return stair;
+}
+
 // Openings (doors, then windows) are compared with the earlier openings of their own wall only;
 // a wall's openings sorted by where they start make the check O(n log n) however many a level
 // has. Two openings of one wall may not overlap along it, whatever their heights: a transom over a
@@ -269,7 +297,8 @@ void checkLevelExtent(const JsonNode& node, const Level& level) {
 }
 
 Level parseLevel(const JsonNode& node, IdRegistry& ids) {
-  node.expectObject({"id", "name", "elevation", "height", "walls", "doors", "windows", "rooms"});
+  node.expectObject(
+      {"id", "name", "elevation", "height", "walls", "doors", "windows", "rooms", "stairs"});
   Level level;
   const JsonNode id = node.field("id");
   level.id = id.identifier();
@@ -320,6 +349,11 @@ Level parseLevel(const JsonNode& node, IdRegistry& ids) {
                         w.offset + 0.5 * w.width});
   }
   checkOpeningOverlaps(openings);
+  if (auto stairs = node.optionalField("stairs")) {
+    for (const auto& st : stairs->elements(0, limits::kMaxStairsPerLevel, "stairs")) {
+      level.stairs.push_back(parseStair(st, ids));
+    }
+  }
 
   const RoomLocator rooms(level);
   for (std::size_t i = 0; i < level.doors.size(); ++i) {
@@ -333,6 +367,124 @@ Level parseLevel(const JsonNode& node, IdRegistry& ids) {
     }
   }
   return level;
+}
+
+// Whether `point` lies on a level: in (or within 5 cm of) one of its rooms, or, on a level without
+// rooms, within the box of its walls.
+bool onLevel(const Level& level, const Eigen::Vector2d& point) {
+  constexpr double kTolerance = 0.05;
+  if (level.rooms.empty()) {
+    std::vector<Eigen::Vector2d> corners;
+    for (const auto& w : level.walls) {
+      corners.push_back(w.start);
+      corners.push_back(w.end);
+    }
+    return Box2::around(corners).grown(kTolerance).contains(point);
+  }
+  for (const auto& room : level.rooms) {
+    if (containsPoint(room.outline, point)) return true;
+    for (std::size_t i = 0; i < room.outline.size(); ++i) {
+      const auto& a = room.outline[i];
+      const auto& b = room.outline[(i + 1) % room.outline.size()];
+      if (distanceToSegment(point, a, b) <= kTolerance) return true;
+    }
+  }
+  return false;
+}
+
+std::string slopeText(double slope) {
+  return formatNumber(std::round(std::atan(slope) * 1800.0 / std::numbers::pi) / 10.0) + "°";
+}
+
+// A flight joins two neighbouring levels at different elevations, within the slope and clear of
+// the walls and the other flights of both.
+void checkStair(const JsonNode& node, const Plan& plan, const Level& from, const Stair& stair) {
+  const JsonNode to_node = node.field("to");
+  const Level* to = plan.findLevel(stair.to);
+  if (to == nullptr) to_node.fail("no level " + inQuotes(stair.to));
+  if (to == &from) to_node.fail("a flight leads to another level, not to its own");
+  const double lo = std::min(from.elevation, to->elevation);
+  const double hi = std::max(from.elevation, to->elevation);
+  if (hi - lo < limits::kMinSize) {
+    to_node.fail("level " + inQuotes(to->id) + " is at the same elevation as level " +
+                 inQuotes(from.id) + " (" + formatNumber(from.elevation) +
+                 " m): a flight joins levels at different heights");
+  }
+  for (const auto& other : plan.levels) {
+    if (other.elevation > lo + 1e-9 && other.elevation < hi - 1e-9) {
+      to_node.fail("level " + inQuotes(other.id) + " lies between " + inQuotes(from.id) + " and " +
+                   inQuotes(to->id) + ": a flight joins neighbouring levels");
+    }
+  }
+  const StairGeometry g = computeStairGeometry(stair, from, *to);
+  if (g.slope() > kMaxStairSlope + 1e-9) {
+    const double needed = g.rise() / kMaxStairSlope;
+    node.field("end").fail("the flight rises " + formatNumber(g.rise()) + " m over " +
+                           formatNumber(g.run) + " m (" + slopeText(g.slope()) +
+                           "), steeper than a legged robot climbs (at most " +
+                           slopeText(kMaxStairSlope) + ": a rise of " + formatNumber(kMaxStepRise) +
+                           " m per " + formatNumber(kMaxStepRise / kMaxStairSlope) +
+                           " m going); it needs a run of at least " + formatNumber(needed) + " m");
+  }
+  const Level& bottom = from.elevation < to->elevation ? from : *to;
+  const Level& top = from.elevation < to->elevation ? *to : from;
+  const Eigen::Vector2d bottom_edge = &bottom == &from ? stair.start : stair.end;
+  const Eigen::Vector2d top_edge = &top == &from ? stair.start : stair.end;
+  if (!onLevel(bottom, bottom_edge)) {
+    node.field(&bottom == &from ? "start" : "end")
+        .fail("the flight's bottom edge " + formatPoint(bottom_edge) + " is in no room of level " +
+              inQuotes(bottom.id));
+  }
+  if (!onLevel(top, top_edge)) {
+    node.field(&top == &from ? "start" : "end")
+        .fail("the flight's top edge " + formatPoint(top_edge) + " is in no room of level " +
+              inQuotes(top.id));
+  }
+  // On the lower level the steps stand on the whole footprint; on the upper one the stairwell
+  // is open over its upper part. Walls and other flights must keep clear of both.
+  constexpr double kTouch = 1e-3;  // flights may touch walls and each other, not overlap them
+  for (const Level* level : {&from, to}) {
+    const auto footprint = level == &bottom ? g.footprint() : g.openingFootprint();
+    const Box2 box = Box2::around(footprint);
+    for (const auto& wall : level->walls) {
+      const auto rectangle = wallRectangle(wall);
+      if (!box.overlaps(Box2::around(rectangle))) continue;
+      if (convexPolygonsOverlap(footprint, rectangle, kTouch)) {
+        node.fail("the flight runs into wall " + inQuotes(wall.id) + " of level " +
+                  inQuotes(level->id) + (level == &bottom ? "" : ", over its stairwell") +
+                  ": it must be clear of the walls of both its levels");
+      }
+    }
+    for (const auto& other_from : plan.levels) {
+      for (const auto& other : other_from.stairs) {
+        if (&other == &stair) continue;
+        const Level& other_to = *plan.findLevel(other.to);
+        if (&other_from != level && &other_to != level) continue;
+        const StairGeometry other_g = computeStairGeometry(other, other_from, other_to);
+        const bool other_lower =
+            std::min(other_from.elevation, other_to.elevation) == level->elevation;
+        const auto other_footprint = other_lower ? other_g.footprint() : other_g.openingFootprint();
+        if (convexPolygonsOverlap(footprint, other_footprint, kTouch)) {
+          node.fail("the flight overlaps flight " + inQuotes(other.id) + " on level " +
+                    inQuotes(level->id) +
+                    " (one flight is declared once, on either of its levels)");
+        }
+      }
+    }
+  }
+}
+
+// Stairs name other levels, so they are checked once all levels are read.
+void checkStairs(const JsonNode& root, const Plan& plan) {
+  const auto level_nodes = root.field("levels").elements();
+  for (std::size_t i = 0; i < plan.levels.size(); ++i) {
+    const Level& level = plan.levels[i];
+    if (level.stairs.empty()) continue;
+    const auto stair_nodes = level_nodes[i].field("stairs").elements();
+    for (std::size_t k = 0; k < level.stairs.size(); ++k) {
+      checkStair(stair_nodes[k], plan, level, level.stairs[k]);
+    }
+  }
 }
 
 }  // namespace
@@ -355,6 +507,7 @@ Plan parsePlan(const JsonNode& root) {
   for (const auto& level : root.field("levels").elements(1, limits::kMaxLevels, "levels")) {
     plan.levels.push_back(parseLevel(level, ids));
   }
+  checkStairs(root, plan);
   return plan;
 }
 

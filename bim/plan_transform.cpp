@@ -34,6 +34,10 @@ Plan transformedPlan(const Plan& plan, const Eigen::Isometry2d& T) {
     for (Room& room : level.rooms) {
       for (Eigen::Vector2d& vertex : room.outline) vertex = T * vertex;
     }
+    for (Stair& stair : level.stairs) {
+      stair.start = T * stair.start;
+      stair.end = T * stair.end;
+    }
   }
   return moved;
 }

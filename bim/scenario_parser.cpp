@@ -116,7 +116,10 @@ RobotConfig parseRobot(const std::optional<JsonNode>& node, const Plan& plan) {
       if (auto rooms = route->optionalField("rooms")) {
         robot.route.kind = Route::Kind::kRooms;
         for (const auto& r : rooms->elements(1, limits::kMaxScenarioItems, "rooms"))
-          robot.route.rooms.push_back(roomOnLevel(*level, r));
+          // A route may go to rooms on other levels, by stairs (sim/route_planner.hpp).
+          robot.route.rooms.push_back(plan.levelOfRoom(r.identifier()) != nullptr
+                                          ? r.identifier()
+                                          : roomOnLevel(*level, r));
       } else {
         robot.route.kind = Route::Kind::kWaypoints;
         const JsonNode waypoints = route->field("waypoints");

@@ -27,19 +27,26 @@ CheckCommand::CheckCommand(CLI::App& parent) {
 int CheckCommand::run() {
   const bim::Scenario scenario = loadInput(input_, "check");
   const bim::Plan& plan = scenario.plan;
-  std::size_t walls = 0, doors = 0, windows = 0, rooms = 0;
+  std::size_t walls = 0, doors = 0, windows = 0, rooms = 0, stairs = 0;
   for (const auto& level : plan.levels) {
     walls += level.walls.size();
     doors += level.doors.size();
     windows += level.windows.size();
     rooms += level.rooms.size();
+    stairs += level.stairs.size();
   }
   // Windows are an optional extension: a plan without them is summarised as before.
   const std::string window_count =
       windows > 0 ? ", " + std::to_string(windows) + " window" + (windows == 1 ? "" : "s") : "";
-  std::printf("%s: ok: plan \"%s\" (%s): %zu level%s, %zu walls, %zu doors%s, %zu rooms\n",
+  // So are stairs.
+  const std::string stair_count =
+      stairs > 0
+          ? ", " + std::to_string(stairs) + (stairs == 1 ? " flight" : " flights") + " of stairs"
+          : "";
+  std::printf("%s: ok: plan \"%s\" (%s): %zu level%s, %zu walls, %zu doors%s, %zu rooms%s\n",
               input_.c_str(), plan.name.c_str(), scenario.plan_file.c_str(), plan.levels.size(),
-              plan.levels.size() == 1 ? "" : "s", walls, doors, window_count.c_str(), rooms);
+              plan.levels.size() == 1 ? "" : "s", walls, doors, window_count.c_str(), rooms,
+              stair_count.c_str());
   const auto& ab = scenario.as_built;
   if (!ab.empty()) {
     std::printf(

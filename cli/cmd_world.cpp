@@ -13,7 +13,8 @@ WorldCommand::WorldCommand(CLI::App& parent) {
   app_->footer(
       "The building is the plan with the scenario's as-built deviations (missing, extra and "
       "shifted walls, closed doors, clutter). Geoms are named after the plan's ids "
-      "(wall/W3/0, wall/W3/lintel/D1, door/D2, floor/L0, clutter/0); rooms carry a site "
+      "(wall/W3/0, wall/W3/lintel/D1, door/D2, floor/L0, clutter/0, stair/S1/3: step 3 of flight "
+      "S1); rooms carry a site "
       "room/R1. The world is compiled with MuJoCo before it is written, and nothing is written "
       "when the input is invalid. Look at it with: mujoco-simulate world.xml\n\n" +
       builtinWorldsHelp());

@@ -16,6 +16,8 @@
 #include <ifcpp/IFC4/include/IfcRelFillsElement.h>
 #include <ifcpp/IFC4/include/IfcRelVoidsElement.h>
 #include <ifcpp/IFC4/include/IfcSpace.h>
+#include <ifcpp/IFC4/include/IfcStair.h>
+#include <ifcpp/IFC4/include/IfcStairFlight.h>
 #include <ifcpp/IFC4/include/IfcWall.h>
 #include <ifcpp/IFC4/include/IfcWindow.h>
 
@@ -35,6 +37,7 @@
 #include "bim/limits.hpp"
 #include "bim/plan_parser.hpp"
 #include "bim/polygon.hpp"
+#include "bim/stairs.hpp"
 #include "ifc/ifcpp_model.hpp"
 
 namespace isg::ifc {
@@ -65,6 +68,12 @@ constexpr double kReportedChange = 0.01;
 constexpr double kMaxWallThickness = 2.0;
 // Layer set and geometry disagree on the thickness by more than this: said in the log.
 constexpr double kThicknessTolerance = 0.005;
+// A flight's body starts on a level's floor and ends on another's within this (a little more
+// than the 0.2 m riser a flight's last step may leave to the upper slab's edge).
+constexpr double kFlightLevelTolerance = 0.25;
+// A flight running into a wall by at most this at an end or a side is trimmed clear of it (its
+// last tread or a stringer built into the wall); farther, the plan's rules refuse it.
+constexpr double kFlightTrim = 0.1;
 
 std::string fmt(double v) {
   char buffer[32];
@@ -147,6 +156,13 @@ struct OpeningRecord {
   AxisExtent extent;
 };
 
+struct FlightRecord {
+  shared_ptr<IfcProduct> element;  // an IfcStairFlight, or an IfcStair without flights
+  std::string kind;                // "stair flight" or "stair"
+  std::string global_id, name;
+  FlightFit fit;
+};
+
 struct SpaceRecord {
   shared_ptr<IfcSpace> space;
   std::optional<Footprint> footprint;
@@ -226,6 +242,11 @@ class Importer {
   void readStoreys();
   void readWalls();
   void readOpenings();
+  void readFlights();
+  void placeFlights(json& levels);
+  // The flight trimmed by at most kFlightTrim at an end or a side for each wall of its two levels
+  // it runs into, and the trims logged.
+  FlightFit clearOfWalls(const FlightRecord& flight, const json& lower, const json& upper);
   std::vector<int> chooseLevels();
   json levelJson(int storey_index, StoreySummary& summary);
   std::string uniqueId(const std::string& wanted, const std::string& suffix);
@@ -247,6 +268,7 @@ class Importer {
   std::vector<StoreyRecord> storeys_;
   std::vector<WallRecord> walls_;
   std::vector<OpeningRecord> openings_;
+  std::vector<FlightRecord> flights_;
   std::set<std::string> used_ids_;
   // Each wall's id on each level it stands on.
   std::map<std::pair<int, int>, std::string> wall_ids_;
@@ -473,6 +495,133 @@ void Importer::readOpenings() {
   }
 }
 
+void Importer::readFlights() {
+  for (const auto& [id, entity] : loaded_.model->getMapIfcEntities()) {
+    std::string kind;
+    if (dynamic_pointer_cast<IfcStairFlight>(entity)) {
+      kind = "stair flight";
+    } else if (auto stair = dynamic_pointer_cast<IfcStair>(entity)) {
+      // A stair is read through its flights when it has them (its landings are floor).
+      bool has_flights = false;
+      forEachRelation(stair->m_IsDecomposedBy_inverse, [&](const shared_ptr<IfcRelAggregates>& r) {
+        for (const auto& part : r->m_RelatedObjects) {
+          has_flights = has_flights || dynamic_pointer_cast<IfcStairFlight>(part) != nullptr;
+        }
+      });
+      if (has_flights) continue;
+      kind = "stair";
+    } else {
+      continue;
+    }
+    auto element = dynamic_pointer_cast<IfcProduct>(entity);
+    const std::string what = describe(kind, element);
+    const Mesh body = bodyWithParts(bodies_, element, nullptr);
+    const auto fit = body.empty() ? std::nullopt : fitFlight(body);
+    if (!fit) {
+      dropped(what, "no body geometry IFC++ could build");
+      continue;
+    }
+    flights_.push_back({element, kind, globalIdOf(element), labelText(element->m_Name), *fit});
+  }
+}
+
+// Each flight joins the imported level whose floor is at its bottom to the one whose floor is at
+// its top (within kFlightLevelTolerance: a flight's last tread may be the upper slab's edge, one
+// riser higher). Flights that do not (to or from a landing between storeys) are dropped; the
+// plan's parser checks the rest (slope, width, clear of walls) when the plan is read back.
+FlightFit Importer::clearOfWalls(const FlightRecord& flight, const json& lower, const json& upper) {
+  FlightFit fit = flight.fit;
+  const Eigen::Vector2d origin = fit.low_edge;
+  const Eigen::Vector2d u = (fit.high_edge - fit.low_edge).normalized();
+  const Eigen::Vector2d n(-u.y(), u.x());
+  // The flight in its own frame: s along it from the low edge, t across it.
+  double s0 = 0.0, s1 = (fit.high_edge - fit.low_edge).norm();
+  double t0 = -0.5 * fit.width, t1 = 0.5 * fit.width;
+  for (const json* level : {&lower, &upper}) {
+    for (const auto& w : (*level)["walls"]) {
+      bim::Wall wall;
+      wall.start = {w["start"][0].get<double>(), w["start"][1].get<double>()};
+      wall.end = {w["end"][0].get<double>(), w["end"][1].get<double>()};
+      wall.thickness = w["thickness"].get<double>();
+      const auto corners = bim::wallRectangle(wall);
+      double ws0 = 1e300, ws1 = -1e300, wt0 = 1e300, wt1 = -1e300;
+      for (const auto& c : corners) {
+        ws0 = std::min(ws0, (c - origin).dot(u)), ws1 = std::max(ws1, (c - origin).dot(u));
+        wt0 = std::min(wt0, (c - origin).dot(n)), wt1 = std::max(wt1, (c - origin).dot(n));
+      }
+      const std::vector<Eigen::Vector2d> rectangle{
+          origin + s0 * u + t0 * n, origin + s1 * u + t0 * n, origin + s1 * u + t1 * n,
+          origin + s0 * u + t1 * n};
+      if (!bim::convexPolygonsOverlap(rectangle, corners, 1e-3)) continue;
+      // The smallest trim of one end or one side that clears the wall, if small enough.
+      struct Trim {
+        double amount;
+        double* edge;
+        double to;
+        const char* where;
+      };
+      const Trim trims[] = {{ws1 - s0, &s0, ws1, "its bottom end"},
+                            {s1 - ws0, &s1, ws0, "its top end"},
+                            {wt1 - t0, &t0, wt1, "its right side"},
+                            {t1 - wt0, &t1, wt0, "its left side"}};
+      const Trim* best = nullptr;
+      for (const Trim& trim : trims) {
+        if (trim.amount > 0 && (!best || trim.amount < best->amount)) best = &trim;
+      }
+      if (best == nullptr || best->amount > kFlightTrim) continue;  // the parser will say why
+      *best->edge = best->to;
+      simplified(describe(flight.kind, flight.element),
+                 std::string(best->where) + " trimmed by " + fmt(best->amount) +
+                     " m to clear wall " + w["id"].get<std::string>() +
+                     " (a flight's stringer or last tread built into a wall)");
+    }
+  }
+  fit.low_edge = origin + s0 * u + 0.5 * (t0 + t1) * n;
+  fit.high_edge = origin + s1 * u + 0.5 * (t0 + t1) * n;
+  fit.width = t1 - t0;
+  return fit;
+}
+
+void Importer::placeFlights(json& levels) {
+  for (const auto& flight : flights_) {
+    const std::string what = describe(flight.kind, flight.element);
+    json* lower = nullptr;
+    json* upper = nullptr;
+    for (auto& level : levels) {
+      const double elevation = level["elevation"].get<double>();
+      if (std::abs(elevation - flight.fit.bottom) <= kFlightLevelTolerance) lower = &level;
+      if (std::abs(elevation - flight.fit.top) <= kFlightLevelTolerance) upper = &level;
+    }
+    if (lower == nullptr || upper == nullptr || lower == upper) {
+      dropped(what, "it rises from z " + fmt(flight.fit.bottom) + " to " + fmt(flight.fit.top) +
+                        " m, not from one imported level's floor to another's (within " +
+                        fmt(kFlightLevelTolerance) +
+                        " m): entrance steps, or a flight to or from a half landing; the plan "
+                        "holds straight flights between two levels only");
+      continue;
+    }
+    const FlightFit fit = clearOfWalls(flight, *lower, *upper);
+    const double run = (fit.high_edge - fit.low_edge).norm();
+    json stair = {
+        {"id", uniqueId(flight.global_id, "")},
+        {"name", cleanText(flight.name, bim::limits::kMaxTextBytes)},
+        {"start", {fit.low_edge.x(), fit.low_edge.y()}},
+        {"end", {fit.high_edge.x(), fit.high_edge.y()}},
+        {"width", fit.width},
+        {"to", (*upper)["id"]},
+    };
+    const double rise = (*upper)["elevation"].get<double>() - (*lower)["elevation"].get<double>();
+    if (std::abs(flight.fit.top - flight.fit.bottom - rise) > kReportedChange) {
+      simplified(what, "its body rises " + fmt(flight.fit.top - flight.fit.bottom) +
+                           " m; taken as a flight of " + fmt(run) + " m from level " +
+                           (*lower)["id"].get<std::string>() + " to level " +
+                           (*upper)["id"].get<std::string>() + ", " + fmt(rise) + " m up");
+    }
+    if (!lower->contains("stairs")) (*lower)["stairs"] = json::array();
+    (*lower)["stairs"].push_back(stair);
+  }
+}
+
 std::vector<int> Importer::chooseLevels() {
   std::vector<int> chosen;
   std::vector<int> walls_on(storeys_.size(), 0), rooms_in(storeys_.size(), 0);
@@ -687,6 +836,7 @@ ImportResult Importer::run() {
   readStoreys();
   readWalls();
   readOpenings();
+  readFlights();
   const std::vector<int> chosen = chooseLevels();
   // The plan holds coordinates within ±10 km (docs/formats.md, "Limits"); a model placed in
   // geographic or survey coordinates lies beyond, and says so here rather than as a broken rule.
@@ -747,6 +897,7 @@ ImportResult Importer::run() {
                 fmt(opening.extent.z_max) +
                 " m) is on no imported level's floor in a part of its wall that stands there");
   }
+  placeFlights(levels);
   result_.plan_json = {{"format", "isg.plan"}, {"version", 1}};
   result_.plan_json["name"] =
       cleanText(std::filesystem::path(file_).stem().string(), bim::limits::kMaxTextBytes);
@@ -904,6 +1055,27 @@ ImportResult importInChildProcess(const std::string& file, std::string text,
   return resultFromMessage(message);
 }
 
+// When `error` is at a flight of stairs (/levels/L/stairs/K...), removes that flight from the
+// plan, logs why and returns true.
+bool dropRefusedFlight(ImportResult& result, const bim::InputError& error) {
+  const std::string& pointer = error.pointer();
+  std::size_t level = 0, stair = 0;
+  char rest = 0;
+  if (std::sscanf(pointer.c_str(), "/levels/%zu/stairs/%zu%c", &level, &stair, &rest) < 2) {
+    return false;
+  }
+  auto& levels = result.plan_json["levels"];
+  if (level >= levels.size() || !levels[level].contains("stairs")) return false;
+  auto& stairs = levels[level]["stairs"];
+  if (stair >= stairs.size()) return false;
+  result.log.push_back("dropped stair flight " + stairs[stair]["id"].get<std::string>() + " (" +
+                       stairs[stair]["name"].get<std::string>() +
+                       "): the plan's rules for stairs refuse it: " + error.reason());
+  stairs.erase(stair);
+  if (stairs.empty()) levels[level].erase("stairs");
+  return true;
+}
+
 }  // namespace
 
 ImportInterrupted::ImportInterrupted(int signal)
@@ -915,16 +1087,23 @@ ImportResult importIfcText(const std::string& file, std::string text,
   readStepHeader(file, text);
   ImportResult result = importInChildProcess(file, std::move(text), options);
   // The plan is read back by the plan's own parser: what is written is a plan isg accepts.
-  const nlohmann::json document = nlohmann::json::parse(result.plan_json.dump());
-  const bim::JsonSource source{file, &result.warnings};
-  try {
-    result.plan = bim::parsePlan(bim::JsonNode(document, "", source));
-  } catch (const bim::InputError& e) {
-    throw bim::InputError(file, "",
-                          "the plan imported from it breaks a rule of the plan format at " +
-                              e.pointer() + ": " + e.reason());
+  // A flight the plan's rules refuse (too steep or narrow for a legged robot, into a wall) is
+  // dropped with the parser's reason, and the plan read again.
+  for (;;) {
+    const nlohmann::json document = nlohmann::json::parse(result.plan_json.dump());
+    result.warnings.clear();
+    const bim::JsonSource source{file, &result.warnings};
+    try {
+      result.plan = bim::parsePlan(bim::JsonNode(document, "", source));
+      return result;
+    } catch (const bim::InputError& e) {
+      if (!dropRefusedFlight(result, e)) {
+        throw bim::InputError(file, "",
+                              "the plan imported from it breaks a rule of the plan format at " +
+                                  e.pointer() + ": " + e.reason());
+      }
+    }
   }
-  return result;
 }
 
 ImportResult importIfc(const std::string& path, const ImportOptions& options) {

@@ -200,6 +200,49 @@ std::optional<WallFit> fitWall(const Mesh& body, const Eigen::Vector2d& preferre
   return fit;
 }
 
+std::optional<FlightFit> fitFlight(const Mesh& body) {
+  const auto rectangle = fitWall(body, Eigen::Vector2d::Zero());
+  if (!rectangle) return std::nullopt;
+  const Vec2 long_side = (rectangle->end - rectangle->start).normalized();
+  const Vec2 centre = 0.5 * (rectangle->start + rectangle->end);
+  const double half_length = 0.5 * (rectangle->end - rectangle->start).norm();
+  const double half_width = 0.5 * rectangle->thickness;
+  // How much higher the body's top is at the +direction end than at the −direction end: the
+  // highest vertex within the outer quarter of each end.
+  auto rise = [&](const Vec2& direction, double half_extent) {
+    const double inf = std::numeric_limits<double>::infinity();
+    double top_minus = -inf, top_plus = -inf;
+    for (const auto& face : body) {
+      for (const auto& p : face) {
+        const double t = (p.head<2>() - centre).dot(direction);
+        if (t <= -0.5 * half_extent) top_minus = std::max(top_minus, p.z());
+        if (t >= 0.5 * half_extent) top_plus = std::max(top_plus, p.z());
+      }
+    }
+    return top_plus - top_minus;
+  };
+  const Vec2 across(-long_side.y(), long_side.x());
+  const double rise_long = rise(long_side, half_length);
+  const double rise_across = rise(across, half_width);
+  const bool along_long = std::abs(rise_long) >= std::abs(rise_across);
+  Vec2 up = along_long ? long_side : across;
+  if ((along_long ? rise_long : rise_across) < 0) up = -up;
+  const double half_run = along_long ? half_length : half_width;
+  FlightFit fit;
+  fit.low_edge = centre - half_run * up;
+  fit.high_edge = centre + half_run * up;
+  fit.width = 2.0 * (along_long ? half_width : half_length);
+  fit.bottom = std::numeric_limits<double>::infinity();
+  fit.top = -fit.bottom;
+  for (const auto& face : body) {
+    for (const auto& p : face) {
+      fit.bottom = std::min(fit.bottom, p.z());
+      fit.top = std::max(fit.top, p.z());
+    }
+  }
+  return fit;
+}
+
 std::optional<AxisExtent> extentAlong(const Mesh& body, const Eigen::Vector2d& start,
                                       const Eigen::Vector2d& end) {
   const Vec2 axis = end - start;

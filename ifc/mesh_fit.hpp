@@ -41,6 +41,18 @@ struct WallFit {
 // nullopt for a body without faces.
 std::optional<WallFit> fitWall(const Mesh& body, const Eigen::Vector2d& preferred_axis);
 
+// A stair flight's body read as the plan's straight flight: the smallest rectangle around it seen
+// from above, walked along the side over which its top rises most (the steps'), from the end
+// where its top is low to the end where it is high.
+struct FlightFit {
+  Eigen::Vector2d low_edge = Eigen::Vector2d::Zero();   // centre of the rectangle's low side
+  Eigen::Vector2d high_edge = Eigen::Vector2d::Zero();  // ... and of its high side
+  double width = 0.0;                                   // across the walking direction
+  double bottom = 0.0;                                  // lowest point of the body (z in B)
+  double top = 0.0;                                     // highest
+};
+std::optional<FlightFit> fitFlight(const Mesh& body);
+
 // Where a body lies along a wall's axis: [along_min, along_max] in metres from the wall's start,
 // [z_min, z_max] in B.
 struct AxisExtent {

@@ -25,26 +25,54 @@ Smoothstep smootherstep(double u) {
           60.0 * u * (1.0 - u) * (1.0 - 2.0 * u)};
 }
 
+std::vector<Eigen::Vector3d> onFloor(const std::vector<Eigen::Vector2d>& waypoints, double z) {
+  std::vector<Eigen::Vector3d> out;
+  out.reserve(waypoints.size());
+  for (const auto& p : waypoints) out.emplace_back(p.x(), p.y(), z);
+  return out;
+}
+
+// How much of a flight's slope the body takes at distance s along a flight of length L: eased in
+// over the first `ramp` metres and out over the last, with its first and second derivatives in s.
+Smoothstep inclineWeight(double s, double length, double ramp) {
+  const Smoothstep in = smootherstep(s / ramp);
+  const Smoothstep out = smootherstep((length - s) / ramp);
+  const double in_d = in.rate / ramp, in_dd = in.acceleration / (ramp * ramp);
+  const double out_d = -out.rate / ramp, out_dd = out.acceleration / (ramp * ramp);
+  return {in.value * out.value, in_d * out.value + in.value * out_d,
+          in_dd * out.value + 2.0 * in_d * out_d + in.value * out_dd};
+}
+
 }  // namespace
 
 BaseMotion::BaseMotion(const std::vector<Eigen::Vector2d>& waypoints, double start_yaw,
                        double speed, double floor_z, const GaitConfig& gait)
-    : gait_(gait), floor_z_(floor_z), speed_(speed) {
+    : gait_(gait), speed_(speed), floor_z_(floor_z) {
+  legs_.push_back(makeLeg(0.0, onFloor(waypoints, floor_z), start_yaw));
+}
+
+BaseMotion::BaseMotion(const std::vector<Eigen::Vector3d>& waypoints, double start_yaw,
+                       double speed, const GaitConfig& gait)
+    : gait_(gait), speed_(speed), floor_z_(waypoints.front().z()) {
   legs_.push_back(makeLeg(0.0, waypoints, start_yaw));
 }
 
-BaseMotion::Leg BaseMotion::makeLeg(double start, const std::vector<Eigen::Vector2d>& waypoints,
+BaseMotion::Leg BaseMotion::makeLeg(double start, const std::vector<Eigen::Vector3d>& waypoints,
                                     double start_yaw) const {
   Leg leg;
   leg.start = start;
-  leg.from = waypoints.front();
+  leg.from = waypoints.front().head<2>();
+  leg.from_z = waypoints.front().z();
   leg.yaw = start_yaw;
   double t = start;
   double yaw = start_yaw;
-  Eigen::Vector2d at = waypoints.front();
+  Eigen::Vector2d at = leg.from;
+  double at_z = leg.from_z;
   leg.arrivals.push_back(t);
   for (std::size_t i = 1; i < waypoints.size(); ++i) {
-    const Eigen::Vector2d step = waypoints[i] - at;
+    const Eigen::Vector2d to = waypoints[i].head<2>();
+    const double to_z = waypoints[i].z();
+    const Eigen::Vector2d step = to - at;
     const double length = step.norm();
     if (length < 1e-6) {
       leg.arrivals.push_back(t);
@@ -54,14 +82,18 @@ BaseMotion::Leg BaseMotion::makeLeg(double start, const std::vector<Eigen::Vecto
     const double turn = bim::wrapAngle(heading - yaw);
     if (std::abs(turn) > 1e-9) {
       const RestToRestProfile profile(std::abs(turn), gait_.turn_rate, gait_.turn_acceleration);
-      leg.segments.push_back({t, t + profile.duration(), at, at, yaw, yaw + turn, profile});
+      leg.segments.push_back(
+          {t, t + profile.duration(), at, at, at_z, at_z, yaw, yaw + turn, profile});
       t += profile.duration();
     }
     yaw += turn;
-    const RestToRestProfile profile(length, speed_, gait_.acceleration);
-    leg.segments.push_back({t, t + profile.duration(), at, waypoints[i], yaw, yaw, profile});
+    const bool stairs = std::abs(to_z - at_z) > 1e-9;
+    const RestToRestProfile profile(length, stairs ? std::min(speed_, kStairSpeed) : speed_,
+                                    gait_.acceleration);
+    leg.segments.push_back({t, t + profile.duration(), at, to, at_z, to_z, yaw, yaw, profile});
     t += profile.duration();
-    at = waypoints[i];
+    at = to;
+    at_z = to_z;
     leg.arrivals.push_back(t);
   }
   return leg;
@@ -69,7 +101,7 @@ BaseMotion::Leg BaseMotion::makeLeg(double start, const std::vector<Eigen::Vecto
 
 void BaseMotion::appendLeg(double time, const std::vector<Eigen::Vector2d>& waypoints,
                            double start_yaw) {
-  legs_.push_back(makeLeg(time, waypoints, start_yaw));
+  legs_.push_back(makeLeg(time, onFloor(waypoints, floor_z_), start_yaw));
 }
 
 std::vector<double> BaseMotion::jumps() const {
@@ -85,10 +117,16 @@ int BaseMotion::legAt(double t) const {
 }
 
 BaseMotion::PlanarState BaseMotion::planarInLeg(const Leg& leg, double t) const {
-  if (leg.segments.empty() || t <= leg.start) return {leg.from, leg.yaw, false};
+  if (leg.segments.empty() || t <= leg.start) {
+    PlanarState rest{leg.from, leg.yaw, false};
+    rest.floor_z = leg.from_z;
+    return rest;
+  }
   if (t >= leg.end()) {
     const Segment& last = leg.segments.back();
-    return {last.to, last.yaw1, false};
+    PlanarState rest{last.to, last.yaw1, false};
+    rest.floor_z = last.z1;
+    return rest;
   }
   const auto it = std::upper_bound(leg.segments.begin(), leg.segments.end(), t,
                                    [](double value, const Segment& s) { return value < s.t1; });
@@ -98,6 +136,7 @@ BaseMotion::PlanarState BaseMotion::planarInLeg(const Leg& leg, double t) const 
   state.moving = true;
   state.xy = s.from;
   state.yaw = s.yaw0;
+  state.floor_z = s.z0;
   if (s.yaw1 != s.yaw0) {  // a turn on the spot
     const double sign = s.yaw1 > s.yaw0 ? 1.0 : -1.0;
     state.yaw += sign * m.distance;
@@ -108,6 +147,19 @@ BaseMotion::PlanarState BaseMotion::planarInLeg(const Leg& leg, double t) const 
     state.xy += m.distance * along;
     state.velocity = m.rate * along;
     state.acceleration = m.acceleration * along;
+    if (s.z1 != s.z0) {  // a flight: the floor rises along it, the body tilts to its slope
+      const double length = (s.to - s.from).norm();
+      const double slope = (s.z1 - s.z0) / length;
+      state.floor_z += slope * m.distance;
+      state.floor_rate = slope * m.rate;
+      state.floor_acceleration = slope * m.acceleration;
+      const double angle = std::atan(slope);
+      const Smoothstep w = inclineWeight(m.distance, length, std::min(kInclineEase, 0.5 * length));
+      state.incline = angle * w.value;
+      state.incline_rate = angle * w.rate * m.rate;
+      state.incline_acceleration =
+          angle * (w.acceleration * m.rate * m.rate + w.rate * m.acceleration);
+    }
   }
   return state;
 }
@@ -153,17 +205,21 @@ BaseKinematics BaseMotion::kinematicsOf(const PlanarState& p, double t) const {
   constexpr double kDeg = std::numbers::pi / 180.0;
   const Eased bob = swayed(gait_.bob_m, 0.0);
   const Eased roll = swayed(gait_.roll_deg * kDeg, std::numbers::pi / 2);
-  const Eased pitch = swayed(gait_.pitch_deg * kDeg, std::numbers::pi / 3);
+  // The trot's pitch, and the body tilted nose up (a negative pitch about y) on a flight.
+  const Eased trot_pitch = swayed(gait_.pitch_deg * kDeg, std::numbers::pi / 3);
+  const Eased pitch{trot_pitch.value - p.incline, trot_pitch.rate - p.incline_rate,
+                    trot_pitch.acceleration - p.incline_acceleration};
 
   BaseKinematics k;
   k.B_T_R.translation() =
-      Eigen::Vector3d(p.xy.x(), p.xy.y(), floor_z_ + gait_.standing_height + bob.value);
+      Eigen::Vector3d(p.xy.x(), p.xy.y(), p.floor_z + gait_.standing_height + bob.value);
   k.B_T_R.linear() = (Eigen::AngleAxisd(p.yaw, Eigen::Vector3d::UnitZ()) *
                       Eigen::AngleAxisd(pitch.value, Eigen::Vector3d::UnitY()) *
                       Eigen::AngleAxisd(roll.value, Eigen::Vector3d::UnitX()))
                          .toRotationMatrix();
-  k.velocity = Eigen::Vector3d(p.velocity.x(), p.velocity.y(), bob.rate);
-  k.acceleration = Eigen::Vector3d(p.acceleration.x(), p.acceleration.y(), bob.acceleration);
+  k.velocity = Eigen::Vector3d(p.velocity.x(), p.velocity.y(), p.floor_rate + bob.rate);
+  k.acceleration = Eigen::Vector3d(p.acceleration.x(), p.acceleration.y(),
+                                   p.floor_acceleration + bob.acceleration);
   // Body rates of R = Rz(yaw) Ry(pitch) Rx(roll), and their derivatives in t.
   const double sr = std::sin(roll.value), cr = std::cos(roll.value);
   const double sp = std::sin(pitch.value), cp = std::cos(pitch.value);

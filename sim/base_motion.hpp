@@ -34,12 +34,25 @@ struct BaseKinematics {
   Eigen::Vector3d angular_acceleration = Eigen::Vector3d::Zero();
 };
 
+// On a flight of stairs the base walks no faster than this (horizontally), as legged robots
+// slow down to place their feet on steps.
+inline constexpr double kStairSpeed = 0.4;  // m/s
+// Over this distance at either end of a flight the body tilts from level to the slope and back.
+inline constexpr double kInclineEase = 0.6;  // m
+
 // A kidnap makes a new leg: at its time the robot is lifted from wherever the current leg has it
 // and put down at the new leg's first waypoint, facing its start yaw.
 class BaseMotion {
  public:
+  // A route on one floor at height floor_z.
   BaseMotion(const std::vector<Eigen::Vector2d>& waypoints, double start_yaw, double speed,
              double floor_z, const GaitConfig& gait);
+  // A route over floors: each waypoint is (x, y, height of the floor under it). Between two
+  // waypoints at different heights the base walks a flight of stairs: its height follows the
+  // straight line between them, its body pitches to the slope (eased in and out over
+  // kInclineEase), and it walks at most kStairSpeed.
+  BaseMotion(const std::vector<Eigen::Vector3d>& waypoints, double start_yaw, double speed,
+             const GaitConfig& gait);
 
   // Continues with a new leg from `time` on (after the current leg's start, before its end).
   void appendLeg(double time, const std::vector<Eigen::Vector2d>& waypoints, double start_yaw);
@@ -62,6 +75,10 @@ class BaseMotion {
     Eigen::Vector2d acceleration = Eigen::Vector2d::Zero();
     double yaw_rate = 0.0;
     double yaw_acceleration = 0.0;
+    // The floor under the base (the line of a flight's steps on stairs) and its derivatives.
+    double floor_z = 0.0, floor_rate = 0.0, floor_acceleration = 0.0;
+    // How far the body is tilted nose up to a flight's slope, and its derivatives.
+    double incline = 0.0, incline_rate = 0.0, incline_acceleration = 0.0;
   };
   PlanarState planar(double t) const;
 
@@ -82,6 +99,7 @@ class BaseMotion {
   struct Segment {
     double t0, t1;
     Eigen::Vector2d from, to;
+    double z0, z1;  // floor heights at from and to
     double yaw0, yaw1;
     RestToRestProfile profile;  // along from→to, or from yaw0 to yaw1
   };
@@ -92,20 +110,21 @@ class BaseMotion {
   struct Leg {
     double start = 0.0;
     Eigen::Vector2d from = Eigen::Vector2d::Zero();
+    double from_z = 0.0;
     double yaw = 0.0;
     std::vector<Segment> segments;
     std::vector<double> arrivals;  // per waypoint
     double end() const { return segments.empty() ? start : segments.back().t1; }
   };
-  Leg makeLeg(double start, const std::vector<Eigen::Vector2d>& waypoints, double start_yaw) const;
+  Leg makeLeg(double start, const std::vector<Eigen::Vector3d>& waypoints, double start_yaw) const;
   int legAt(double t) const;
   PlanarState planarInLeg(const Leg& leg, double t) const;
   BaseKinematics kinematicsOf(const PlanarState& p, double t) const;
 
   std::vector<Leg> legs_;
   GaitConfig gait_;
-  double floor_z_;
   double speed_;
+  double floor_z_ = 0.0;  // of the 2D routes' floor
 };
 
 }  // namespace isg::sim

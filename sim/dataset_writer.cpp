@@ -2,6 +2,7 @@
 
 #include <unistd.h>
 
+#include <algorithm>
 #include <atomic>
 #include <chrono>
 #include <cstdio>
@@ -41,11 +42,17 @@ nlohmann::ordered_json metadata(const Simulation& sim, double duration,
   }
   json route = json::array();
   for (const auto& p : sim.route().waypoints) route.push_back({p.x(), p.y()});
+  // Which level each waypoint is on, written only when the route changes level (a route on one
+  // level writes the metadata it always did).
+  const auto& levels = sim.route().waypoint_levels;
+  const bool several_levels =
+      std::any_of(levels.begin(), levels.end(),
+                  [&](const std::string& level) { return level != levels.front(); });
   const auto& gait = sim.baseMotion().gait();
   json extrinsics = sensors::dataset::extrinsicsJson(l.mount, sim.R_T_L());
   extrinsics["R_T_I"] = sensors::dataset::mountJson(s.imu.mount, sim.R_T_I());
   const auto& imu = s.imu;
-  return {
+  json out = {
       {"format", sensors::dataset::kFormat},
       {"version", sensors::dataset::kVersion},
       {"generator", "isg simulate 0.1.0"},
@@ -121,6 +128,11 @@ nlohmann::ordered_json metadata(const Simulation& sim, double duration,
         {"kidnaps", kidnaps}}},
       {"plan", bim::planToJson(s.plan)},
       {"as_built", bim::asBuiltToJson(s.as_built)}};
+  if (several_levels) {
+    out["robot"]["route_levels"] = levels;
+    out["robot"]["skipped_levels"] = sim.route().skipped_levels;
+  }
+  return out;
 }
 
 }  // namespace

@@ -44,9 +44,15 @@ void planKidnaps(const bim::Scenario& scenario, const OccupancyGrid& grid, Plann
                             tooCloseReason(at, "be put down", scenario.robot.clearance));
     }
     next.waypoints.push_back(at);
-    if (kidnap.room) next.targets.push_back({*kidnap.room, *kidnap.room, 0, at});
+    if (kidnap.room) next.targets.push_back({*kidnap.room, *kidnap.room, 0, at, level.id});
     for (const auto& target : remaining) {
       if (kidnap.room && target.room == *kidnap.room) continue;  // put down in it
+      // A kidnap puts the robot down on its scenario's level: what the tour had left on other
+      // levels is not walked to after it.
+      if (target.level != level.id) {
+        route.skipped_rooms.push_back(target.label);
+        continue;
+      }
       const auto path =
           straightPath(grid, next.waypoints.back(), target.goal, scenario.robot.clearance);
       if (path.empty()) {
@@ -55,7 +61,7 @@ void planKidnaps(const bim::Scenario& scenario, const OccupancyGrid& grid, Plann
       }
       next.waypoints.insert(next.waypoints.end(), path.begin() + 1, path.end());
       next.targets.push_back(
-          {target.room, target.label, int(next.waypoints.size()) - 1, target.goal});
+          {target.room, target.label, int(next.waypoints.size()) - 1, target.goal, level.id});
     }
     trajectory.appendLeg(next.time, next.waypoints, next.start_yaw);
     route.kidnaps.push_back(std::move(next));

@@ -7,6 +7,7 @@
 #include "bim/distance_transform.hpp"
 #include "bim/plan_geometry.hpp"
 #include "bim/polygon.hpp"
+#include "bim/stairs.hpp"
 #include "worlds/as_built.hpp"
 
 namespace isg::sim {
@@ -155,6 +156,24 @@ OccupancyGrid::OccupancyGrid(const bim::Plan& plan, const bim::AsBuilt& as_built
     const auto opening = rectangle(g.pointAt(door.offset), g.axis, 0.5 * door.width,
                                    0.5 * g.wall->thickness + resolution_);
     paint(opening, false);
+  }
+  // Flights of stairs are no floor to walk on for a route on one level: below, the steps stand
+  // there; above, the stairwell is open over the box of the flight's upper part (as the world
+  // opens it). A route
+  // that changes level walks the flight itself (sim/route_planner.cpp).
+  for (const auto& from : plan.levels) {
+    for (const auto& stair : from.stairs) {
+      const bim::Level* to = plan.findLevel(stair.to);
+      if (to == nullptr || (&from != &plan_level && to != &plan_level)) continue;
+      const bim::StairGeometry g = bim::computeStairGeometry(stair, from, *to);
+      const bool upper = plan_level.elevation > std::min(from.elevation, to->elevation);
+      if (!upper) {
+        paint(g.footprint(), true);
+        continue;
+      }
+      const bim::Box2 box = bim::Box2::around(g.openingFootprint());
+      paint({box.lo, {box.hi.x(), box.lo.y()}, box.hi, {box.lo.x(), box.hi.y()}}, true);
+    }
   }
   for (const auto& c : as_built.clutter) {
     if (c.level != level_id) continue;

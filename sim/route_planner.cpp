@@ -3,13 +3,16 @@
 #include <algorithm>
 #include <cmath>
 #include <map>
+#include <memory>
 #include <numbers>
+#include <optional>
 #include <queue>
 #include <set>
 #include <sstream>
 
 #include "bim/plan_geometry.hpp"
 #include "bim/polygon.hpp"
+#include "bim/stairs.hpp"
 
 namespace isg::sim {
 
@@ -158,11 +161,231 @@ std::vector<Eigen::Vector2d> findPath(const OccupancyGrid& grid, const Eigen::Ve
   return path;
 }
 
+namespace {
+
+// A flight of stairs with the two levels it joins.
+struct Flight {
+  const bim::Stair* stair;
+  const bim::Level* from;  // the level that declares it (its `start` edge)
+  const bim::Level* to;
+  bim::StairGeometry geometry;
+
+  const bim::Level& otherThan(const bim::Level& level) const {
+    return &level == from ? *to : *from;
+  }
+};
+
+// Builds a route over the levels of a building: per level, paths on that level's occupancy grid;
+// between levels, the flights of stairs walked straight from an approach point before one edge
+// to one beyond the other.
+class RouteBuilder {
+ public:
+  RouteBuilder(const bim::Scenario& scenario, const OccupancyGrid& robot_grid, PlannedRoute& route)
+      : scenario_(scenario), route_(route), clearance_(scenario.robot.clearance) {
+    level_ = scenario.plan.findLevel(scenario.robot.level);
+    grids_.emplace(level_->id, &robot_grid);
+  }
+
+  const bim::Level& level() const { return *level_; }
+  const OccupancyGrid& grid() { return gridOf(*level_); }
+  double clearance() const { return clearance_; }
+
+  void start(const Eigen::Vector2d& at) { push(at); }
+  const Eigen::Vector2d& lastWaypoint() const { return route_.waypoints.back(); }
+
+  // A clear path on the current level to `target`; false when there is none.
+  bool goTo(const Eigen::Vector2d& target) {
+    const auto straight = straightPath(grid(), route_.waypoints.back(), target, clearance_);
+    if (straight.empty()) return false;
+    for (auto it = straight.begin() + 1; it != straight.end(); ++it) push(*it);
+    return true;
+  }
+
+  void reached(const std::string& room) {
+    route_.visited_rooms.push_back(room);
+    route_.targets.push_back(
+        {room, room, int(route_.waypoints.size()) - 1, route_.waypoints.back(), level_->id});
+  }
+
+  // The flights that start or end on `level`, in plan order.
+  std::vector<Flight> flightsOf(const bim::Level& level) const {
+    std::vector<Flight> out;
+    for (const auto& from : scenario_.plan.levels) {
+      for (const auto& stair : from.stairs) {
+        const bim::Level* to = scenario_.plan.findLevel(stair.to);
+        if (&from != &level && to != &level) continue;
+        out.push_back({&stair, &from, to, bim::computeStairGeometry(stair, from, *to)});
+      }
+    }
+    return out;
+  }
+
+  // Walks `flight` from the current level to its other one: to the approach point on this level,
+  // onto the edge, up or down the steps to the other edge, and on to the approach point there.
+  // False (and nothing added) when the approach on this level cannot be reached or there is no
+  // clear place to step off on the other.
+  bool climb(const Flight& flight) {
+    const bim::Level& other = flight.otherThan(*level_);
+    const auto here = flightEnd(flight, *level_);
+    const auto there = flightEnd(flight, other);
+    if (!here || !there) return false;
+    const auto path = straightPath(grid(), route_.waypoints.back(), here->approach, clearance_);
+    if (path.empty()) return false;
+    for (auto it = path.begin() + 1; it != path.end(); ++it) push(*it);
+    push(here->edge);
+    level_ = &other;
+    push(there->edge);
+    push(there->approach);
+    return true;
+  }
+
+  // The levels reachable from the current one, each with the flights that lead there first
+  // (breadth first, flights in plan order).
+  std::vector<Flight> flightsTo(const bim::Level& target) const {
+    std::map<const bim::Level*, std::vector<Flight>> path{{level_, {}}};
+    std::queue<const bim::Level*> queue;
+    queue.push(level_);
+    while (!queue.empty()) {
+      const bim::Level* at = queue.front();
+      queue.pop();
+      if (at == &target) return path[at];
+      for (const Flight& f : flightsOf(*at)) {
+        const bim::Level* next = &f.otherThan(*at);
+        if (path.count(next)) continue;
+        path[next] = path[at];
+        path[next].push_back(f);
+        queue.push(next);
+      }
+    }
+    return {};
+  }
+
+  const OccupancyGrid& gridOf(const bim::Level& level) {
+    auto found = grids_.find(level.id);
+    if (found != grids_.end()) return *found->second;
+    owned_.push_back(std::make_unique<OccupancyGrid>(scenario_.plan, scenario_.as_built, level.id));
+    return *grids_.emplace(level.id, owned_.back().get()).first->second;
+  }
+
+ private:
+  struct FlightEnd {
+    Eigen::Vector2d edge, approach;
+  };
+  // Where a flight meets `level`: its edge there and the nearest point straight out from it where
+  // the robot stands clear of everything (the stairwell included), within 2 m; nullopt if none.
+  std::optional<FlightEnd> flightEnd(const Flight& flight, const bim::Level& level) {
+    const bool at_start = &level == flight.from;
+    const Eigen::Vector2d edge = at_start ? flight.stair->start : flight.stair->end;
+    const Eigen::Vector2d outward = at_start ? -flight.geometry.axis : flight.geometry.axis;
+    const OccupancyGrid& grid = gridOf(level);
+    for (double d = clearance_ + 0.05; d <= clearance_ + 2.0; d += 0.05) {
+      const Eigen::Vector2d approach = edge + d * outward;
+      if (grid.clearanceAt(approach) >= clearance_) return FlightEnd{edge, approach};
+    }
+    return std::nullopt;
+  }
+
+  void push(const Eigen::Vector2d& p) {
+    route_.waypoints.push_back(p);
+    route_.waypoint_levels.push_back(level_->id);
+  }
+
+  const bim::Scenario& scenario_;
+  PlannedRoute& route_;
+  double clearance_;
+  const bim::Level* level_;
+  std::map<std::string, const OccupancyGrid*> grids_;
+  std::vector<std::unique_ptr<OccupancyGrid>> owned_;
+};
+
+// Tour of one level from where the route is: depth-first over the rooms joined by open doors,
+// neighbours in id order, then the rooms joined without a door.
+void tourLevel(RouteBuilder& builder, const bim::Scenario& scenario, std::set<std::string>& seen,
+               const std::string& entry_room) {
+  const bim::Level& level = builder.level();
+  std::map<std::string, std::set<std::string>> neighbours;
+  for (const auto& door : level.doors) {
+    if (door.rooms[0] == bim::kOutside || door.rooms[1] == bim::kOutside) continue;
+    if (std::find(scenario.as_built.closed_doors.begin(), scenario.as_built.closed_doors.end(),
+                  door.id) != scenario.as_built.closed_doors.end()) {
+      continue;
+    }
+    neighbours[door.rooms[0]].insert(door.rooms[1]);
+    neighbours[door.rooms[1]].insert(door.rooms[0]);
+  }
+  const double clearance = builder.clearance();
+  std::vector<std::string> stack;
+  auto visitFrom = [&](const std::string& from) {
+    for (auto it = neighbours[from].rbegin(); it != neighbours[from].rend(); ++it) {
+      if (!seen.count(*it)) stack.push_back(*it);
+    }
+    while (!stack.empty()) {
+      const std::string room = stack.back();
+      stack.pop_back();
+      if (seen.count(room)) continue;
+      if (!builder.goTo(roomCentre(builder.grid(), *level.findRoom(room), true, clearance))) {
+        continue;
+      }
+      seen.insert(room);
+      builder.reached(room);
+      for (auto it = neighbours[room].rbegin(); it != neighbours[room].rend(); ++it) {
+        if (!seen.count(*it)) stack.push_back(*it);
+      }
+    }
+  };
+  visitFrom(entry_room);
+  // Rooms joined without a door (open-plan spaces, where no wall stands between two rooms) are
+  // reached through the free space itself: each room left, in id order, that a path reaches from
+  // where the robot is is visited, and the tour goes on through its doors.
+  for (bool progress = true; progress;) {
+    progress = false;
+    for (const auto& room : level.rooms) {
+      if (seen.count(room.id)) continue;
+      if (!builder.goTo(roomCentre(builder.grid(), room, true, clearance))) continue;
+      seen.insert(room.id);
+      builder.reached(room.id);
+      visitFrom(room.id);
+      progress = true;
+    }
+  }
+}
+
+// The tour goes on to every level a flight of stairs leads to, depth first in plan order: it
+// climbs to the next level not toured yet, tours it (and what it leads to), and comes back down
+// the same flight when the level it left still has flights to levels not toured.
+void tourLevelsFrom(RouteBuilder& builder, const bim::Scenario& scenario,
+                    std::set<std::string>& seen_rooms, std::set<std::string>& toured_levels) {
+  const bim::Level& here = builder.level();
+  for (const Flight& flight : builder.flightsOf(here)) {
+    const bim::Level& next = flight.otherThan(here);
+    if (toured_levels.count(next.id)) continue;
+    if (&builder.level() != &here) continue;  // could not come back: stay where the tour is
+    if (!builder.climb(flight)) continue;
+    toured_levels.insert(next.id);
+    const std::string arrival = bim::roomAt(next, builder.lastWaypoint()).value_or("");
+    if (!arrival.empty() && !seen_rooms.count(arrival)) {
+      seen_rooms.insert(arrival);
+      builder.reached(arrival);
+    }
+    tourLevel(builder, scenario, seen_rooms, arrival);
+    tourLevelsFrom(builder, scenario, seen_rooms, toured_levels);
+    // Back down (or up) only if this level has more to tour beyond other flights.
+    const std::vector<Flight> flights = builder.flightsOf(here);
+    const bool more = std::any_of(flights.begin(), flights.end(), [&](const Flight& f) {
+      return !toured_levels.count(f.otherThan(here).id);
+    });
+    if (more && &builder.level() == &next) builder.climb(flight);
+  }
+}
+
+}  // namespace
+
 PlannedRoute planRoute(const bim::Scenario& scenario, const OccupancyGrid& grid,
                        std::mt19937_64& rng) {
   const bim::Level& level = *scenario.plan.findLevel(scenario.robot.level);
   const std::string& file = scenario.source;
   PlannedRoute route;
+  RouteBuilder builder(scenario, grid, route);
   const double clearance = scenario.robot.clearance;
 
   // Start.
@@ -182,105 +405,75 @@ PlannedRoute planRoute(const bim::Scenario& scenario, const OccupancyGrid& grid,
   if (start_clearance < clearance) {
     throw bim::InputError(file, "/robot/start", tooCloseReason(start, "stand", clearance));
   }
-  route.waypoints.push_back(start);
+  builder.start(start);
   if (!start_room.empty()) {
     route.visited_rooms.push_back(start_room);
-    route.targets.push_back({start_room, start_room, 0, start});
+    route.targets.push_back({start_room, start_room, 0, start, level.id});
   }
-
-  auto go_to = [&](const Eigen::Vector2d& target) {
-    const auto straight = straightPath(grid, route.waypoints.back(), target, clearance);
-    if (straight.empty()) return false;
-    route.waypoints.insert(route.waypoints.end(), straight.begin() + 1, straight.end());
-    return true;
-  };
 
   const bim::Route& plan = scenario.robot.route;
   if (plan.kind == bim::Route::Kind::kWaypoints) {
     for (std::size_t i = 0; i < plan.waypoints.size(); ++i) {
-      if (!go_to(plan.waypoints[i])) {
+      if (!builder.goTo(plan.waypoints[i])) {
         throw bim::InputError(file, "/robot/route/waypoints/" + std::to_string(i),
                               "no path from " + formatPoint(route.waypoints.back()) + " to " +
                                   formatPoint(plan.waypoints[i]) + " keeps " +
                                   formatMetres(clearance) + " from walls and clutter");
       }
       route.targets.push_back({"", "waypoint " + std::to_string(i), int(route.waypoints.size()) - 1,
-                               plan.waypoints[i]});
+                               plan.waypoints[i], level.id});
     }
     return route;
   }
   if (plan.kind == bim::Route::Kind::kRooms) {
     for (std::size_t i = 0; i < plan.rooms.size(); ++i) {
-      if (!go_to(roomCentre(grid, *level.findRoom(plan.rooms[i]), true, clearance))) {
-        throw bim::InputError(file, "/robot/route/rooms/" + std::to_string(i),
+      const bim::Level& room_level = *scenario.plan.levelOfRoom(plan.rooms[i]);
+      const std::string pointer = "/robot/route/rooms/" + std::to_string(i);
+      if (&room_level != &builder.level()) {
+        const auto flights = builder.flightsTo(room_level);
+        if (flights.empty()) {
+          throw bim::InputError(file, pointer,
+                                "room \"" + plan.rooms[i] + "\" is on level \"" + room_level.id +
+                                    "\", which no flight of stairs leads to from level \"" +
+                                    builder.level().id + "\"");
+        }
+        for (const Flight& flight : flights) {
+          if (!builder.climb(flight)) {
+            throw bim::InputError(file, pointer,
+                                  "room \"" + plan.rooms[i] + "\" on level \"" + room_level.id +
+                                      "\" cannot be reached: flight \"" + flight.stair->id +
+                                      "\" cannot be reached from " +
+                                      formatPoint(route.waypoints.back()) +
+                                      " or stepped off, keeping " + formatMetres(clearance) +
+                                      " from walls and clutter");
+          }
+        }
+      }
+      if (!builder.goTo(
+              roomCentre(builder.grid(), *room_level.findRoom(plan.rooms[i]), true, clearance))) {
+        throw bim::InputError(file, pointer,
                               "room \"" + plan.rooms[i] + "\" cannot be reached from " +
                                   formatPoint(route.waypoints.back()) +
                                   " through open doors, keeping " + formatMetres(clearance) +
                                   " from walls and clutter");
       }
-      route.visited_rooms.push_back(plan.rooms[i]);
-      route.targets.push_back(
-          {plan.rooms[i], plan.rooms[i], int(route.waypoints.size()) - 1, route.waypoints.back()});
+      builder.reached(plan.rooms[i]);
     }
     return route;
   }
 
-  // Tour: depth-first over the rooms joined by open doors, neighbours in id order.
-  std::map<std::string, std::set<std::string>> neighbours;
-  for (const auto& door : level.doors) {
-    if (door.rooms[0] == bim::kOutside || door.rooms[1] == bim::kOutside) continue;
-    if (std::find(scenario.as_built.closed_doors.begin(), scenario.as_built.closed_doors.end(),
-                  door.id) != scenario.as_built.closed_doors.end()) {
+  std::set<std::string> seen{start_room};
+  tourLevel(builder, scenario, seen, start_room);
+  std::set<std::string> toured_levels{level.id};
+  tourLevelsFrom(builder, scenario, seen, toured_levels);
+  for (const auto& l : scenario.plan.levels) {
+    if (!toured_levels.count(l.id)) {
+      if (&l != &level) route.skipped_levels.push_back(l.id);
       continue;
     }
-    neighbours[door.rooms[0]].insert(door.rooms[1]);
-    neighbours[door.rooms[1]].insert(door.rooms[0]);
-  }
-  std::set<std::string> seen{start_room};
-  std::set<std::string> failed;  // not reached through their doors (yet)
-  std::vector<std::string> stack;
-  auto visitFrom = [&](const std::string& from) {
-    for (auto it = neighbours[from].rbegin(); it != neighbours[from].rend(); ++it) {
-      if (!seen.count(*it)) stack.push_back(*it);
+    for (const auto& room : l.rooms) {
+      if (!seen.count(room.id)) route.skipped_rooms.push_back(room.id);
     }
-    while (!stack.empty()) {
-      const std::string room = stack.back();
-      stack.pop_back();
-      if (seen.count(room)) continue;
-      if (!go_to(roomCentre(grid, *level.findRoom(room), true, clearance))) {
-        failed.insert(room);
-        continue;
-      }
-      seen.insert(room);
-      failed.erase(room);
-      route.visited_rooms.push_back(room);
-      route.targets.push_back(
-          {room, room, int(route.waypoints.size()) - 1, route.waypoints.back()});
-      for (auto it = neighbours[room].rbegin(); it != neighbours[room].rend(); ++it) {
-        if (!seen.count(*it)) stack.push_back(*it);
-      }
-    }
-  };
-  visitFrom(start_room);
-  // Rooms joined without a door (open-plan spaces, where no wall stands between two rooms) are
-  // reached through the free space itself: each room left, in id order, that a path reaches from
-  // where the robot is is visited, and the tour goes on through its doors.
-  for (bool progress = true; progress;) {
-    progress = false;
-    for (const auto& room : level.rooms) {
-      if (seen.count(room.id)) continue;
-      if (!go_to(roomCentre(grid, room, true, clearance))) continue;
-      seen.insert(room.id);
-      failed.erase(room.id);
-      route.visited_rooms.push_back(room.id);
-      route.targets.push_back(
-          {room.id, room.id, int(route.waypoints.size()) - 1, route.waypoints.back()});
-      visitFrom(room.id);
-      progress = true;
-    }
-  }
-  for (const auto& room : level.rooms) {
-    if (!seen.count(room.id)) route.skipped_rooms.push_back(room.id);
   }
   return route;
 }

@@ -21,6 +21,7 @@ struct RouteTarget {
   std::string label;  // the room's id, or "waypoint N"
   int waypoint = 0;   // index of the leg's waypoint at which it is reached
   Eigen::Vector2d goal = Eigen::Vector2d::Zero();  // where the robot goes for it
+  std::string level;                               // the level `goal` is on
 };
 
 // After a kidnap (scenario robot.kidnap): put down at waypoints[0] at `time`, the robot goes on
@@ -34,17 +35,23 @@ struct KidnapLeg {
 
 struct PlannedRoute {
   std::vector<Eigen::Vector2d> waypoints;  // polyline of the robot's centre; [0] is the start
+  // The level each waypoint is on. Two consecutive waypoints on different levels are the two
+  // edges of a flight of stairs, walked straight (bim/stairs.hpp).
+  std::vector<std::string> waypoint_levels;
   double start_yaw = 0.0;
   std::vector<RouteTarget> targets;  // of `waypoints`, in order
   std::vector<KidnapLeg> kidnaps;
-  std::vector<std::string> visited_rooms;  // in the order the route reaches them
-  std::vector<std::string> skipped_rooms;  // rooms (and waypoints after a kidnap) not reachable
+  std::vector<std::string> visited_rooms;   // in the order the route reaches them
+  std::vector<std::string> skipped_rooms;   // rooms (and waypoints after a kidnap) not reachable
+  std::vector<std::string> skipped_levels;  // levels no flight of stairs the tour took leads to
 };
 
-// Plans the scenario's route on its robot level as built (docs/simulation.md):
+// Plans the scenario's route from its robot level as built (docs/simulation.md):
 // - "tour": a depth-first walk over the rooms joined by open doors, from the start room, reaching
-//   each room's most open point; rooms that cannot be reached are skipped (and listed);
-// - {"rooms": [...]}: those rooms in order; one that cannot be reached is an error;
+//   each room's most open point; rooms that cannot be reached are skipped (and listed); then on
+//   to every level the level's flights of stairs lead to, toured the same way, depth first;
+// - {"rooms": [...]}: those rooms in order, on any level a chain of flights reaches; one that
+//   cannot be reached is an error;
 // - {"waypoints": [...]}: through those points; one that cannot be reached is an error.
 // Paths are A* on the occupancy grid, costed to stay away from walls, then straightened where the
 // straight line keeps kMinClearance. The start heading (when the scenario gives a room) is drawn

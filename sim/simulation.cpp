@@ -47,9 +47,14 @@ Simulation::Simulation(const bim::Scenario& scenario)
       std::make_unique<OccupancyGrid>(scenario_.plan, scenario_.as_built, scenario_.robot.level);
   auto rng = generator(kRouteStream);
   route_ = planRoute(scenario_, *grid_, rng);
-  const double floor_z = scenario_.plan.findLevel(scenario_.robot.level)->elevation;
-  base_motion_ = std::make_unique<BaseMotion>(
-      route_.waypoints, route_.start_yaw, scenario_.robot.speed, floor_z, gaitOf(scenario_.robot));
+  // Each waypoint stands on its level's floor; between two levels the base walks a flight.
+  std::vector<Eigen::Vector3d> waypoints;
+  for (std::size_t i = 0; i < route_.waypoints.size(); ++i) {
+    const double floor_z = scenario_.plan.findLevel(route_.waypoint_levels[i])->elevation;
+    waypoints.emplace_back(route_.waypoints[i].x(), route_.waypoints[i].y(), floor_z);
+  }
+  base_motion_ = std::make_unique<BaseMotion>(waypoints, route_.start_yaw, scenario_.robot.speed,
+                                              gaitOf(scenario_.robot));
   planKidnaps(scenario_, *grid_, route_, *base_motion_, rng);
   poseRobot(world_.model(), world_.data(), base_motion_->pose(0.0), 0.0, 0.0);
   lidar_ = makeLidar();

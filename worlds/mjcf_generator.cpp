@@ -9,6 +9,7 @@
 
 #include "bim/plan_geometry.hpp"
 #include "bim/polygon.hpp"
+#include "bim/stairs.hpp"
 #include "worlds/as_built.hpp"
 
 namespace isg::worlds {
@@ -109,6 +110,104 @@ class BoxWriter {
   std::ostringstream& out_;
 };
 
+// A horizontal slab [lo, hi] × [z0, z1] with rectangular holes: one box when it has none (so a
+// plan without stairs writes the world it always did), else the solid cells of the grid the
+// holes' edges cut it into, merged along x into as few boxes as that gives.
+void writeSlab(BoxWriter& writer, const std::string& name, const std::string& cls,
+               const std::string& material, const Eigen::Vector2d& centre,
+               const Eigen::Vector2d& half, double z0, double z1, const std::vector<Box2>& holes) {
+  const double zc = 0.5 * (z0 + z1);
+  const double zh = 0.5 * (z1 - z0);
+  if (holes.empty()) {
+    writer.box(name, cls, material, {centre.x(), centre.y(), zc}, {half.x(), half.y(), zh}, 0.0);
+    return;
+  }
+  Box2 slab;
+  slab.add(centre - half);
+  slab.add(centre + half);
+  std::vector<double> xs{slab.lo.x(), slab.hi.x()}, ys{slab.lo.y(), slab.hi.y()};
+  for (const auto& hole : holes) {
+    for (double x : {hole.lo.x(), hole.hi.x()})
+      xs.push_back(std::clamp(x, slab.lo.x(), slab.hi.x()));
+    for (double y : {hole.lo.y(), hole.hi.y()})
+      ys.push_back(std::clamp(y, slab.lo.y(), slab.hi.y()));
+  }
+  for (auto* cuts : {&xs, &ys}) {
+    std::sort(cuts->begin(), cuts->end());
+    cuts->erase(std::unique(cuts->begin(), cuts->end(),
+                            [](double a, double b) { return std::abs(a - b) < 1e-6; }),
+                cuts->end());
+  }
+  auto open = [&](double x, double y) {
+    for (const auto& hole : holes) {
+      if (x > hole.lo.x() && x < hole.hi.x() && y > hole.lo.y() && y < hole.hi.y()) return true;
+    }
+    return false;
+  };
+  int piece = 0;
+  for (std::size_t j = 0; j + 1 < ys.size(); ++j) {
+    const double y0 = ys[j], y1 = ys[j + 1];
+    std::size_t i = 0;
+    while (i + 1 < xs.size()) {
+      if (open(0.5 * (xs[i] + xs[i + 1]), 0.5 * (y0 + y1))) {
+        ++i;
+        continue;
+      }
+      std::size_t k = i + 1;
+      while (k + 1 < xs.size() && !open(0.5 * (xs[k] + xs[k + 1]), 0.5 * (y0 + y1))) ++k;
+      writer.box(name + "/" + std::to_string(piece++), cls, material,
+                 {0.5 * (xs[i] + xs[k]), 0.5 * (y0 + y1), zc},
+                 {0.5 * (xs[k] - xs[i]), 0.5 * (y1 - y0), zh}, 0.0);
+      i = k;
+    }
+  }
+}
+
+// The stairwells that open a level's floor (flights up to it) and its ceiling (flights up from
+// it): the axis-aligned box of each flight's opening (bim::StairGeometry::openingFootprint),
+// which opens a diagonal flight's slab a little wider than the flight.
+struct Stairwells {
+  std::vector<Box2> floor;
+  std::vector<Box2> ceiling;
+};
+
+Stairwells stairwellsOf(const bim::Plan& plan, const bim::Level& level) {
+  Stairwells wells;
+  for (const auto& from : plan.levels) {
+    for (const auto& stair : from.stairs) {
+      const bim::Level* to = plan.findLevel(stair.to);
+      if (to == nullptr) continue;
+      const bim::Level& lower = from.elevation < to->elevation ? from : *to;
+      const bim::Level& upper = from.elevation < to->elevation ? *to : from;
+      if (&lower != &level && &upper != &level) continue;
+      Box2 box;
+      for (const auto& p : bim::computeStairGeometry(stair, from, *to).openingFootprint()) {
+        box.add(p);
+      }
+      (&upper == &level ? wells.floor : wells.ceiling).push_back(box);
+    }
+  }
+  return wells;
+}
+
+// A flight's steps: solid blocks from the lower floor up to each tread.
+void writeStairs(BoxWriter& writer, const bim::Plan& plan, const bim::Level& level) {
+  for (const auto& stair : level.stairs) {
+    const bim::Level* to = plan.findLevel(stair.to);
+    if (to == nullptr) continue;
+    const bim::StairGeometry g = bim::computeStairGeometry(stair, level, *to);
+    const double floor = std::min(g.z_start, g.z_end);
+    const double yaw = std::atan2(g.axis.y(), g.axis.x());
+    for (int k = 0; k < g.steps; ++k) {
+      const auto step = g.step(k);
+      const Eigen::Vector2d c = stair.start + 0.5 * (step.s0 + step.s1) * g.axis;
+      writer.box("stair/" + stair.id + "/" + std::to_string(k), "building", "stair",
+                 {c.x(), c.y(), 0.5 * (floor + step.top)},
+                 {0.5 * (step.s1 - step.s0), 0.5 * stair.width, 0.5 * (step.top - floor)}, yaw);
+    }
+  }
+}
+
 bool contains(const std::vector<std::string>& ids, const std::string& id) {
   return std::find(ids.begin(), ids.end(), id) != ids.end();
 }
@@ -153,18 +252,18 @@ void writeLevel(std::ostringstream& out, const bim::Plan& plan, const bim::Level
   world_box.add(box.hi);
 
   const SlabHeights slabs = slabHeights(plan, level, options.slab_thickness);
+  const Stairwells wells = stairwellsOf(plan, plan_level);
   const Eigen::Vector2d centre = 0.5 * (box.lo + box.hi);
   const Eigen::Vector2d half = 0.5 * (box.hi - box.lo);
   const Eigen::Vector2d floor_half = half.array() + options.floor_margin;
-  writer.box("floor/" + level.id, "building", "floor",
-             {centre.x(), centre.y(), 0.5 * (slabs.floor_bottom + level.elevation)},
-             {floor_half.x(), floor_half.y(), 0.5 * (level.elevation - slabs.floor_bottom)}, 0.0);
+  writeSlab(writer, "floor/" + level.id, "building", "floor", centre, floor_half,
+            slabs.floor_bottom, level.elevation, wells.floor);
   if (options.ceilings) {
     const double ceiling = level.elevation + level.height;
-    writer.box("ceiling/" + level.id, "ceiling", "ceiling",
-               {centre.x(), centre.y(), 0.5 * (ceiling + slabs.ceiling_top)},
-               {half.x(), half.y(), 0.5 * (slabs.ceiling_top - ceiling)}, 0.0);
+    writeSlab(writer, "ceiling/" + level.id, "ceiling", "ceiling", centre, half, ceiling,
+              slabs.ceiling_top, wells.ceiling);
   }
+  writeStairs(writer, plan, plan_level);
 
   for (const auto& g : geometry.walls) {
     const bim::Wall& wall = *g.wall;
@@ -228,6 +327,8 @@ std::string generateMjcf(const bim::Plan& plan, const bim::AsBuilt& as_built,
     z_lo = std::min(z_lo, level.elevation);
     z_hi = std::max(z_hi, level.elevation + level.height);
   }
+  const bool has_stairs = std::any_of(plan.levels.begin(), plan.levels.end(),
+                                      [](const bim::Level& l) { return !l.stairs.empty(); });
   const Eigen::Vector2d centre = 0.5 * (box.lo + box.hi);
   const Eigen::Vector2d size = box.hi - box.lo;
   const double extent = std::max({size.x(), size.y(), z_hi - z_lo, 1.0});
@@ -260,6 +361,7 @@ std::string generateMjcf(const bim::Plan& plan, const bim::AsBuilt& as_built,
       << "    <material name=\"ceiling\" rgba=\".96 .96 .96 .2\"/>\n"
       << "    <material name=\"door\" rgba=\".55 .36 .22 1\"/>\n"
       << "    <material name=\"clutter\" rgba=\".36 .47 .62 1\"/>\n"
+      << (has_stairs ? "    <material name=\"stair\" rgba=\".80 .78 .74 1\"/>\n" : "")
       << "  </asset>\n"
       << "  <default>\n"
       << "    <default class=\"building\">\n"

@@ -61,7 +61,8 @@ TEST(World, UnknownBuiltinListsTheBuiltins) {
             "isg world: error: builtin:d9: no such built-in world (built-ins: d1, d1.asbuilt, d2, "
             "d2.asbuilt, d3, d3.asbuilt, d4, d4.asbuilt, d5, d5.asbuilt, d6, d6.asbuilt, "
             "twin-wings, twin-wings.asbuilt, twin-wings-symmetric, twin-wings-symmetric.asbuilt, "
-            "hotel, hotel.asbuilt, halls, halls.asbuilt)\n");
+            "hotel, hotel.asbuilt, halls, halls.asbuilt, storeys, storeys.asbuilt, twin-storeys, "
+            "twin-storeys.asbuilt)\n");
 }
 
 TEST(Check, DescribesAValidScenario) {

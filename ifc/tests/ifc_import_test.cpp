@@ -79,6 +79,28 @@ TEST(ImportIfc, DuplexTwoStoreysOfRevit) {
   EXPECT_THAT(r.log, testing::Contains(
                          testing::HasSubstr("dropped window 1Eo2$BaHX42AEkDvQQDocD \"M_Skylight")));
   EXPECT_THAT(r.log, testing::Contains(testing::HasSubstr("dropped wall 2O2Fr$t4X7Zf8NOew3FKRH")));
+  // Each dwelling's straight flight joins the two levels: 3.1 m up over 3.75 m, 0.914 m wide,
+  // its top end trimmed 23 mm clear of the party wall it is built into.
+  ASSERT_EQ(r.plan.levels[0].stairs.size(), 2u);
+  const bim::Stair* stair = r.plan.levels[0].findStair("1oKjKg9PD3fP1iIwXLh3lK");
+  ASSERT_NE(stair, nullptr);
+  EXPECT_EQ(stair->to, "Level 2");
+  EXPECT_NEAR(stair->width, 0.914, 1e-3);
+  EXPECT_NEAR((stair->end - stair->start).norm(), 3.750, 1e-3);
+  EXPECT_GT(stair->end.y(), stair->start.y());  // it climbs north
+  EXPECT_THAT(r.log, testing::Contains(testing::HasSubstr(
+                         "its top end trimmed by 0.023 m to clear wall 2O2Fr$t4X7Zf8NOew3FNbT")));
+}
+
+TEST(ImportIfc, FlightsToLandingsAreDroppedAndSaidSo) {
+  // Office_A's stairs are dog-legs (two flights to a half landing at 2.084 m); the Renga house's
+  // is an L (19 risers to 2.85 m, 4 more to 3.45 m) and its entrance steps rise from the ground.
+  for (const char* file : {"Office_A_20110811.ifc", "xbim-House.ifc"}) {
+    SCOPED_TRACE(file);
+    const ImportResult r = importIfc(modelPath(file), {});
+    for (const auto& level : r.plan.levels) EXPECT_TRUE(level.stairs.empty());
+    EXPECT_THAT(r.log, testing::Contains(testing::HasSubstr("a flight to or from a half landing")));
+  }
 }
 
 TEST(ImportIfc, StoreysChosenByName) {

@@ -192,5 +192,46 @@ TEST(Footprint, OpenFacesHaveNoOutline) {
   EXPECT_FALSE(footprintOf(mesh).has_value());
 }
 
+// A flight of `steps` solid steps, each `going` deep and `rise` high, `width` wide, climbing
+// from `start` in direction `up` (unit), the first step standing on z0.
+Mesh flight(const Vector2d& start, const Vector2d& up, int steps, double going, double rise,
+            double width, double z0) {
+  const Vector2d across(-up.y(), up.x());
+  Mesh mesh;
+  for (int k = 0; k < steps; ++k) {
+    const Vector2d a = start + k * going * up, b = start + (k + 1) * going * up;
+    const Vector2d h = 0.5 * width * across;
+    const Mesh step = prism({a - h, b - h, b + h, a + h}, z0, (k + 1) * rise);
+    mesh.insert(mesh.end(), step.begin(), step.end());
+  }
+  return mesh;
+}
+
+TEST(FitFlight, WalksFromTheLowEndToTheHighEndByHand) {
+  // Four steps of 0.25 m × 0.2 m, 1 m wide, up along +x from (2, 0.5) on a floor at z = 3.
+  const auto fit = fitFlight(flight({2, 0.5}, {1, 0}, 4, 0.25, 0.2, 1.0, 3.0));
+  ASSERT_TRUE(fit);
+  EXPECT_TRUE(fit->low_edge.isApprox(Vector2d(2, 0.5), 1e-9));
+  EXPECT_TRUE(fit->high_edge.isApprox(Vector2d(3, 0.5), 1e-9));
+  EXPECT_NEAR(fit->width, 1.0, 1e-9);
+  EXPECT_NEAR(fit->bottom, 3.0, 1e-12);
+  EXPECT_NEAR(fit->top, 3.8, 1e-12);
+  // Down along −y: the low end is the far one.
+  const auto down = fitFlight(flight({0, 0}, {0, -1}, 5, 0.3, 0.18, 0.9, 0.0));
+  ASSERT_TRUE(down);
+  EXPECT_TRUE(down->low_edge.isApprox(Vector2d(0, 0), 1e-9));
+  EXPECT_TRUE(down->high_edge.isApprox(Vector2d(0, -1.5), 1e-9));
+}
+
+TEST(FitFlight, AWideShortFlightIsWalkedAcrossItsLongSide) {
+  // Three steps 0.3 m deep (0.9 m of run) and 2.5 m wide, climbing along +y at 30° to the axes.
+  const Vector2d up(std::cos(2.0944), std::sin(2.0944));
+  const auto fit = fitFlight(flight({1, 1}, up, 3, 0.3, 0.2, 2.5, 0.0));
+  ASSERT_TRUE(fit);
+  EXPECT_NEAR(fit->width, 2.5, 1e-9);
+  EXPECT_TRUE(fit->low_edge.isApprox(Vector2d(1, 1), 1e-9));
+  EXPECT_TRUE(fit->high_edge.isApprox(Vector2d(1, 1) + 0.9 * up, 1e-9));
+}
+
 }  // namespace
 }  // namespace isg::ifc

@@ -9,6 +9,7 @@
 #include "bim/plan_geometry.hpp"
 #include "bim/plan_parser.hpp"
 #include "bim/polygon.hpp"
+#include "bim/stairs.hpp"
 #include "bim/synthetic_plan.hpp"
 #include "sim/mujoco_world.hpp"
 #include "worlds/mjcf_generator.hpp"
@@ -29,6 +30,18 @@ bool startsWith(const std::string& s, const std::string& prefix) { return s.rfin
 bool inOpening(const bim::WallFace& face, double s, double margin) {
   for (const auto& o : face.openings) {
     if (s > o.lo - margin && s < o.hi + margin) return true;
+  }
+  return false;
+}
+
+// Whether a point of `level` lies on a flight of stairs that starts or ends there.
+bool onAFlight(const bim::Plan& plan, const bim::Level& level, const Eigen::Vector2d& point) {
+  for (const auto& from : plan.levels) {
+    for (const auto& stair : from.stairs) {
+      const bim::Level& to = *plan.findLevel(stair.to);
+      if (&from != &level && &to != &level) continue;
+      if (bim::computeStairGeometry(stair, from, to).contains(point, 0.05)) return true;
+    }
   }
   return false;
 }
@@ -55,6 +68,7 @@ int checkRoomFaces(const bim::Plan& plan, const sim::MujocoWorld& world) {
         if (!exposed) continue;
         const Eigen::Vector2d inside = on_edge + 0.5 * n2;
         if (!bim::containsPoint(room.outline, inside)) continue;
+        if (onAFlight(plan, level, inside)) continue;  // inside the steps: no ray to cast
         const Eigen::Vector3d origin(inside.x(), inside.y(), level.elevation + 1.0);
         const double expected = face.plane.signedDistance(origin);
         const auto hit = world.ray(origin, -face.plane.normal, kBuilding);
@@ -224,6 +238,53 @@ TEST(GeneratedWorld, CeilingAndFloorAreAtTheLevelsHeights) {
   EXPECT_NEAR(down->distance, 1.0, kMillimetre);
   // The ceiling is in its own group: the building group alone does not see it.
   EXPECT_FALSE(world.ray({3, 3, 1}, {0, 0, 1}, kBuilding));
+}
+
+TEST(StairsWorld, StepsStandBelowAndTheUpperFloorIsOpenOverTheFlight) {
+  // builtin:storeys: S1 runs from (9, 0.85) on L0 (z = 0) to (13.5, 0.85) on L1 (z = 3.2), 1 m
+  // wide: 16 steps of 0.2 m, each 4.5 / 16 = 0.28125 m deep.
+  const bim::Scenario scenario = builtin("storeys");
+  const sim::MujocoWorld world = sim::MujocoWorld::fromXml(generateMjcf(scenario));
+  const unsigned everything = kBuilding | (1u << kCeilingGroup);
+  // Straight down from 1 m above L1's floor over the flight at x = 11 (s = 2.0: step 7, whose
+  // tread is 8 × 0.2 = 1.6 m high): through both slabs onto the step.
+  auto hit = world.ray({11.0, 0.85, 4.2}, {0, 0, -1}, everything);
+  ASSERT_TRUE(hit);
+  EXPECT_EQ(world.geomName(hit->geom), "stair/S1/7");
+  EXPECT_NEAR(hit->distance, 2.6, kMillimetre);
+  // Beside the opening the first floor is there, in pieces around the stairwell.
+  hit = world.ray({11.0, 2.0, 4.2}, {0, 0, -1}, everything);
+  ASSERT_TRUE(hit);
+  EXPECT_TRUE(startsWith(world.geomName(hit->geom), "floor/L1/")) << world.geomName(hit->geom);
+  EXPECT_NEAR(hit->distance, 1.0, kMillimetre);
+  // The ground floor's ceiling is open over the flight only.
+  hit = world.ray({8.5, 0.85, 1.0}, {0, 0, 1}, everything);
+  ASSERT_TRUE(hit);
+  EXPECT_TRUE(startsWith(world.geomName(hit->geom), "ceiling/L0/")) << world.geomName(hit->geom);
+  EXPECT_NEAR(hit->distance, 2.0, kMillimetre);
+  // Walking up to the flight along its axis, the first riser is 1 m ahead.
+  hit = world.ray({8.0, 0.85, 0.1}, {1, 0, 0}, everything);
+  ASSERT_TRUE(hit);
+  EXPECT_EQ(world.geomName(hit->geom), "stair/S1/0");
+  EXPECT_NEAR(hit->distance, 1.0, kMillimetre);
+  // Looking down the stairwell from L1's landing at 1 m, a ray at -45° reaches the steps.
+  hit = world.ray({14.5, 0.85, 4.2}, Eigen::Vector3d(-1, 0, -1).normalized(), everything);
+  ASSERT_TRUE(hit);
+  EXPECT_TRUE(startsWith(world.geomName(hit->geom), "stair/S1/")) << world.geomName(hit->geom);
+  // The rooms' faces are where the plan says, on both storeys.
+  EXPECT_GT(checkRoomFaces(scenario.plan, world), 40);
+}
+
+TEST(StairsWorld, APlanWithoutStairsKeepsItsSlabsWhole) {
+  bim::Scenario scenario = builtin("storeys");
+  scenario.plan.levels[0].stairs.clear();
+  const sim::MujocoWorld world = sim::MujocoWorld::fromXml(generateMjcf(scenario));
+  EXPECT_GE(world.geomId("floor/L1"), 0);
+  EXPECT_GE(world.geomId("ceiling/L0"), 0);
+  EXPECT_EQ(world.geomId("floor/L1/0"), -1);
+  const std::string mjcf = generateMjcf(scenario);
+  EXPECT_THAT(mjcf, ::testing::Not(::testing::HasSubstr("\"stair/")));
+  EXPECT_THAT(mjcf, ::testing::Not(::testing::HasSubstr("name=\"stair\"")));
 }
 
 TEST(GeneratedWorld, NamesFollowThePlanIds) {

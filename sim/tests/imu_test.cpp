@@ -35,9 +35,7 @@ bim::ImuConfig noiseless(const std::array<double, 6>& mount) {
 // An IMU off the base's origin and tilted, so that the lever arm and the mount's rotation count.
 constexpr std::array<double, 6> kOffsetMount = {0.2, -0.1, 0.3, 0.1, -0.05, 0.4};
 
-TEST(BaseKinematics, AreTheDerivativesOfThePose) {
-  GaitConfig gait;
-  const BaseMotion t({{0, 0}, {3, 0}, {3, 2}, {1, 3}}, 0.4, 0.5, 1.0, gait);
+void expectDerivativesOfThePose(const BaseMotion& t) {
   const double h = 1e-4;
   for (double s = h; s < t.duration() - h; s += 0.037) {
     const BaseKinematics k = t.kinematics(s);
@@ -54,6 +52,33 @@ TEST(BaseKinematics, AreTheDerivativesOfThePose) {
     EXPECT_LT((k.angular_velocity - angular_velocity).norm(), 1e-5) << s;
     EXPECT_LT((k.angular_acceleration - angular_acceleration).norm(), 1e-5) << s;
   }
+}
+
+TEST(BaseKinematics, AreTheDerivativesOfThePose) {
+  expectDerivativesOfThePose(BaseMotion({{0, 0}, {3, 0}, {3, 2}, {1, 3}}, 0.4, 0.5, 1.0, {}));
+}
+
+TEST(BaseKinematics, OnAFlightOfStairsTooWithTheBodyTiltedToTheSlope) {
+  // Up a 3.2 m flight over 4.5 m, along the landing, and down a steeper one over 3.6 m.
+  const BaseMotion t({{0, 0, 0}, {1, 0, 0}, {5.5, 0, 3.2}, {6.5, 0, 3.2}, {6.5, 3.6, 0}}, 0.0, 0.5,
+                     {});
+  expectDerivativesOfThePose(t);
+  // Mid-flight the body stands 0.46 m above the line of the steps and pitches nose up by its
+  // slope (atan(3.2 / 4.5) = 35.4°), give or take the trot's 2°; it walks at kStairSpeed.
+  const double mid = 0.5 * (t.arrival(0, 1) + t.arrival(0, 2));
+  const Eigen::Isometry3d pose = t.pose(mid);
+  EXPECT_NEAR(pose.translation().x(), 3.25, 1e-9);
+  EXPECT_NEAR(pose.translation().z(), 1.6 + 0.46, 0.02);
+  const Eigen::Vector3d forward = pose.linear().col(0);
+  EXPECT_NEAR(std::atan2(forward.z(), forward.head<2>().norm()) * 180 / std::numbers::pi, 35.42,
+              2.1);
+  EXPECT_NEAR(t.kinematics(mid).velocity.head<2>().norm(), kStairSpeed, 1e-9);
+  EXPECT_NEAR(t.planar(mid).floor_rate, kStairSpeed * 3.2 / 4.5, 1e-9);
+  // On the landing it is level again and 3.2 m higher.
+  const double landing = 0.5 * (t.arrival(0, 2) + t.arrival(0, 3));
+  EXPECT_NEAR(t.planar(landing).incline, 0.0, 1e-12);
+  EXPECT_NEAR(t.planar(landing).floor_z, 3.2, 1e-12);
+  EXPECT_NEAR(t.planar(t.duration()).floor_z, 0.0, 1e-12);
 }
 
 TEST(Imu, AtRestItReadsGravityUpwardsAndNoRotation) {
