@@ -396,9 +396,70 @@ std::string slopeText(double slope) {
   return formatNumber(std::round(std::atan(slope) * 1800.0 / std::numbers::pi) / 10.0) + "°";
 }
 
+// The flights of a plan whose `to` names another level at another elevation, each with its
+// levels and geometry, and per level the flights that start or end there (in file order): each
+// flight is compared with the walls (through a grid of their boxes) and the flights of its own
+// two levels only, so that checking stays near-linear however many flights and walls a plan has.
+// A flight whose `to` is wrong is left out here and reported at its own pointer.
+class FlightIndex {
+ public:
+  struct Flight {
+    const Stair* stair;
+    const Level* from;
+    const Level* to;
+    StairGeometry geometry;
+    // Its footprint on `level`: the steps on its lower level, the stairwell on its upper one.
+    std::vector<Eigen::Vector2d> footprintOn(const Level& level) const {
+      return std::min(from->elevation, to->elevation) == level.elevation
+                 ? geometry.footprint()
+                 : geometry.openingFootprint();
+    }
+  };
+
+  explicit FlightIndex(const Plan& plan) {
+    for (std::size_t i = 0; i < plan.levels.size(); ++i) level_index_[&plan.levels[i]] = i;
+    by_level_.resize(plan.levels.size());
+    for (const auto& from : plan.levels) {
+      for (const auto& stair : from.stairs) {
+        const Level* to = plan.findLevel(stair.to);
+        if (to == nullptr || to == &from ||
+            std::abs(to->elevation - from.elevation) < limits::kMinSize) {
+          continue;
+        }
+        flights_.push_back({&stair, &from, to, computeStairGeometry(stair, from, *to)});
+      }
+    }
+    for (const auto& flight : flights_) {
+      by_level_[level_index_.at(flight.from)].push_back(&flight);
+      by_level_[level_index_.at(flight.to)].push_back(&flight);
+    }
+  }
+
+  const std::vector<const Flight*>& on(const Level& level) const {
+    return by_level_[level_index_.at(&level)];
+  }
+
+  // A grid over the boxes of the level's walls, built the first time it is asked for.
+  const BoxGrid& wallsOf(const Level& level) {
+    const std::size_t i = level_index_.at(&level);
+    auto found = wall_grids_.find(i);
+    if (found != wall_grids_.end()) return found->second;
+    std::vector<Box2> boxes;
+    for (const auto& wall : level.walls) boxes.push_back(Box2::around(wallRectangle(wall)));
+    return wall_grids_.emplace(i, BoxGrid(std::move(boxes))).first->second;
+  }
+
+ private:
+  std::vector<Flight> flights_;  // never resized after construction: by_level_ points into it
+  std::map<const Level*, std::size_t> level_index_;
+  std::vector<std::vector<const Flight*>> by_level_;
+  std::map<std::size_t, BoxGrid> wall_grids_;
+};
+
 // A flight joins two neighbouring levels at different elevations, within the slope and clear of
 // the walls and the other flights of both.
-void checkStair(const JsonNode& node, const Plan& plan, const Level& from, const Stair& stair) {
+void checkStair(const JsonNode& node, const Plan& plan, const Level& from, const Stair& stair,
+                FlightIndex& flights) {
   const JsonNode to_node = node.field("to");
   const Level* to = plan.findLevel(stair.to);
   if (to == nullptr) to_node.fail("no level " + inQuotes(stair.to));
@@ -446,29 +507,20 @@ void checkStair(const JsonNode& node, const Plan& plan, const Level& from, const
   for (const Level* level : {&from, to}) {
     const auto footprint = level == &bottom ? g.footprint() : g.openingFootprint();
     const Box2 box = Box2::around(footprint);
-    for (const auto& wall : level->walls) {
-      const auto rectangle = wallRectangle(wall);
-      if (!box.overlaps(Box2::around(rectangle))) continue;
-      if (convexPolygonsOverlap(footprint, rectangle, kTouch)) {
+    const BoxGrid& walls = flights.wallsOf(*level);
+    for (const int w : walls.candidates(box)) {
+      const Wall& wall = level->walls[std::size_t(w)];
+      if (convexPolygonsOverlap(footprint, wallRectangle(wall), kTouch)) {
         node.fail("the flight runs into wall " + inQuotes(wall.id) + " of level " +
                   inQuotes(level->id) + (level == &bottom ? "" : ", over its stairwell") +
                   ": it must be clear of the walls of both its levels");
       }
     }
-    for (const auto& other_from : plan.levels) {
-      for (const auto& other : other_from.stairs) {
-        if (&other == &stair) continue;
-        const Level& other_to = *plan.findLevel(other.to);
-        if (&other_from != level && &other_to != level) continue;
-        const StairGeometry other_g = computeStairGeometry(other, other_from, other_to);
-        const bool other_lower =
-            std::min(other_from.elevation, other_to.elevation) == level->elevation;
-        const auto other_footprint = other_lower ? other_g.footprint() : other_g.openingFootprint();
-        if (convexPolygonsOverlap(footprint, other_footprint, kTouch)) {
-          node.fail("the flight overlaps flight " + inQuotes(other.id) + " on level " +
-                    inQuotes(level->id) +
-                    " (one flight is declared once, on either of its levels)");
-        }
+    for (const auto* other : flights.on(*level)) {
+      if (other->stair == &stair) continue;
+      if (convexPolygonsOverlap(footprint, other->footprintOn(*level), kTouch)) {
+        node.fail("the flight overlaps flight " + inQuotes(other->stair->id) + " on level " +
+                  inQuotes(level->id) + " (one flight is declared once, on either of its levels)");
       }
     }
   }
@@ -476,13 +528,14 @@ void checkStair(const JsonNode& node, const Plan& plan, const Level& from, const
 
 // Stairs name other levels, so they are checked once all levels are read.
 void checkStairs(const JsonNode& root, const Plan& plan) {
+  FlightIndex flights(plan);
   const auto level_nodes = root.field("levels").elements();
   for (std::size_t i = 0; i < plan.levels.size(); ++i) {
     const Level& level = plan.levels[i];
     if (level.stairs.empty()) continue;
     const auto stair_nodes = level_nodes[i].field("stairs").elements();
     for (std::size_t k = 0; k < level.stairs.size(); ++k) {
-      checkStair(stair_nodes[k], plan, level, level.stairs[k]);
+      checkStair(stair_nodes[k], plan, level, level.stairs[k], flights);
     }
   }
 }

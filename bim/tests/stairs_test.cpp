@@ -174,6 +174,14 @@ TEST(Stairs, EachRuleHasItsExactError) {
             at +
                 ": the flight overlaps flight \"S2\" on level \"L0\" (one flight is declared once, "
                 "on either of its levels)");
+  // A later flight whose `to` is wrong is reported at its own pointer; the earlier flight's checks
+  // (which compare it with the flights of its levels) do not trip over it.
+  {
+    auto doc = twoStoreyPlanJson();
+    doc["levels"][0]["stairs"].push_back(nlohmann::json::parse(
+        R"({"id": "S9", "start": [1.5, 0.5], "end": [1.5, 3.5], "width": 0.8, "to": "L9"})"));
+    EXPECT_EQ(errorOf(doc), "test.json: /levels/0/stairs/1/to: no level \"L9\"");
+  }
   // A third level between the two: flights join neighbours.
   EXPECT_EQ(
       with([](auto&, auto& doc) {
