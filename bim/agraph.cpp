@@ -5,6 +5,7 @@
 #include <numbers>
 
 #include "bim/polygon.hpp"
+#include "bim/stairs.hpp"
 
 namespace isg::bim {
 
@@ -151,6 +152,42 @@ Eigen::Vector2d twoWallRoomCentre(const Plane& a, const Plane& b,
   return wallCentre(a, b, {axis_point.x(), axis_point.y(), 0.0}).head<2>();
 }
 
+// The faces of each flight that starts or ends on `level` and rises from it: its sides, from
+// the bottom edge to the top, and its high end, across the flight (docs/agraph.md).
+void addFlightFaces(const Plan& plan, const Level& level, AGraph& graph) {
+  for (const auto& from : plan.levels) {
+    for (const auto& stair : from.stairs) {
+      const Level* to = plan.findLevel(stair.to);
+      if (to == nullptr || (&from != &level && to != &level)) continue;
+      const StairGeometry g = computeStairGeometry(stair, from, *to);
+      const double floor = std::min(g.z_start, g.z_end);
+      if (std::abs(floor - level.elevation) > 1e-9) continue;  // it rises from the other level
+      const Eigen::Vector2d start = stair.start, end = stair.start + g.run * g.axis;
+      const Eigen::Vector2d high = g.z_end > g.z_start ? end : start;
+      const Eigen::Vector2d outwards = g.z_end > g.z_start ? g.axis : Eigen::Vector2d(-g.axis);
+      const Eigen::Vector2d half = 0.5 * stair.width * g.left_normal;
+      auto add = [&](const std::string& name, const Eigen::Vector2d& normal,
+                     const Eigen::Vector2d& a, const Eigen::Vector2d& b) {
+        WallSurfaceNode surface;
+        surface.id = stair.id + ":" + name;
+        surface.stair = stair.id;
+        surface.level = level.id;
+        surface.side = name == "stair-right" ? -1 : +1;
+        surface.plane = Plane::throughPoint({normal.x(), normal.y(), 0.0}, {a.x(), a.y(), floor});
+        surface.axis =
+            std::abs(normal.x()) >= std::abs(normal.y()) ? SurfaceAxis::kX : SurfaceAxis::kY;
+        surface.segments.emplace_back(a, b);
+        surface.z_min = floor;
+        surface.z_max = floor + g.rise();
+        graph.surfaces.push_back(std::move(surface));
+      };
+      add("stair-left", g.left_normal, start + half, end + half);
+      add("stair-right", -g.left_normal, start - half, end - half);
+      add("stair-end", outwards, high - half, high + half);
+    }
+  }
+}
+
 AGraph buildAGraph(const Plan& plan, const AGraphOptions& options) {
   AGraph graph;
   graph.plan_name = plan.name;
@@ -227,6 +264,7 @@ AGraph buildAGraph(const Plan& plan, const AGraphOptions& options) {
       }
       graph.doorways.push_back(std::move(node));
     }
+    addFlightFaces(plan, level, graph);
     graph.floors.push_back(std::move(floor));
   }
   return graph;

@@ -18,8 +18,9 @@ namespace isg::bim {
 enum class SurfaceAxis { kX, kY };
 
 struct WallSurfaceNode {
-  std::string id;  // "<wall>:left" / "<wall>:right"
-  std::string wall;
+  std::string id;     // "<wall>:left" / "<wall>:right"; a flight's: "<stair>:stair-left" ...
+  std::string wall;   // empty for a flight's face
+  std::string stair;  // a face of this flight of stairs (its sides and its high end), not a wall's
   std::string level;
   int side = +1;  // +1 left face of the wall, -1 right face
   SurfaceAxis axis = SurfaceAxis::kX;
@@ -114,7 +115,10 @@ struct AGraphOptions {
   double corridor_width = 3.0;
 };
 
-// Builds the A-Graph of every level of the plan.
+// Builds the A-Graph of every level of the plan. A flight of stairs, solid from the lower floor
+// up to its steps, stands on its lower level like a wall the robot sees: its two sides and its
+// high end become surfaces of that level (no wall node, no room edge), so that a map of the
+// floor explains them.
 AGraph buildAGraph(const Plan& plan, const AGraphOptions& options = {});
 
 // The factor functions evaluated on the nodes' own values (the plan's): the wall centre of Eq.

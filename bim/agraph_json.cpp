@@ -31,7 +31,7 @@ nlohmann::ordered_json agraphToJson(const AGraph& g) {
     json segments = json::array();
     for (const auto& [a, b] : s.segments) segments.push_back({vec(a), vec(b)});
     surfaces.push_back({{"id", s.id},
-                        {"wall", s.wall},
+                        {s.stair.empty() ? "wall" : "stair", s.stair.empty() ? s.wall : s.stair},
                         {"level", s.level},
                         {"side", s.side > 0 ? "left" : "right"},
                         {"axis", toString(s.axis)},

@@ -38,6 +38,10 @@ TableCommand::TableCommand(CLI::App& parent) {
       "every seed localized, ✗ when any was wrong: that is what --baseline compares) and four "
       "columns \"METHOD: std\", \": localized\", \": runs\", \": wrong\" follow it. A last row "
       "counts the worlds each method localized correctly on every seed.\n\n"
+      "Runs in a plan of several levels add a row per level under their world's (\"WORLD / "
+      "LEVEL\", docs/evaluation.md): with --measure ape the APE in B taken while on that level, "
+      "with --measure time-to-localize the seconds from first arriving there to the first pose in "
+      "B there (0 when it arrived localized).\n\n"
       "Example: for m in is-graphs amcl odometry; do for s in 1 2 3; do isg run builtin:d1 "
       "--method $m --seed $s -o runs/d1-$m-$s; done; done; isg table runs/* --format csv > "
       "baseline.csv");

@@ -54,6 +54,11 @@ struct Layout {
     for (const auto& overlay : input.overlays) {
       for (const auto& p : overlay.polygon) grow(p);
     }
+    for (const auto& storey : input.storeys) {
+      for (const auto& polygon : storey.walls) {
+        for (const auto& p : polygon) grow(p);
+      }
+    }
     for (const auto* trajectory : {&input.ground_truth, &input.estimate}) {
       for (const auto& pose : *trajectory) grow(pose.pose.translation().head<2>());
     }
@@ -61,21 +66,26 @@ struct Layout {
     const Eigen::Vector2d size = (hi - lo).cwiseMax(Eigen::Vector2d::Constant(1.0));
     scale = (width - 2 * margin) / size.x();
     header = 30.0 + 18.0 * double(input.summary.size());
-    legend_top = header + size.y() * scale + 2 * margin;
-    map_height = size.y() * scale + 2 * margin + 60.0;  // three legend rows and the scale bar
+    // Storeys: one panel each, under a title line.
+    const double panels = input.storeys.empty() ? 1.0 : double(input.storeys.size());
+    panel_height = size.y() * scale + 2 * margin + (input.storeys.empty() ? 0.0 : kTitle);
+    legend_top = header + panels * panel_height;
+    map_height = panels * panel_height + 60.0;  // three legend rows and the scale bar
     chart_top = header + map_height + 30.0;
     heading_top = chart_top + chart_height + 55.0;
     height = heading_top + chart_height + 40.0;
   }
   double px(double x) const { return margin + (x - lo.x()) * scale; }
-  double py(double y) const { return header + margin + (hi.y() - y) * scale; }
+  double py(double y) const { return header + panel_offset + margin + (hi.y() - y) * scale; }
   std::string X(double x) const { return svgNumber(px(x)); }
   std::string Y(double y) const { return svgNumber(py(y)); }
 
-  static constexpr double width = 1000.0, margin = 30.0, chart_height = 150.0;
+  static constexpr double width = 1000.0, margin = 30.0, chart_height = 150.0, kTitle = 22.0;
   Eigen::Vector2d lo, hi;
   double scale = 1.0, header = 0.0, legend_top = 0.0, map_height = 0.0, chart_top = 0.0,
          heading_top = 0.0, height = 0.0;
+  double panel_height = 0.0;
+  double panel_offset = 0.0;  // of the storey panel being drawn, from the map's top
 };
 
 void drawHeader(std::ostringstream& svg, const ReportInput& input, const Layout& l) {
@@ -160,7 +170,8 @@ void path(std::ostringstream& svg, const Layout& l, const Trajectory& trajectory
 
 // The plan's walls, the as-built changes, the trajectories, the start, the first localized pose
 // and the room names.
-void drawMap(std::ostringstream& svg, const ReportInput& input, const Layout& l) {
+void drawMap(std::ostringstream& svg, const ReportInput& input, const Layout& l,
+             bool mark_start = true, bool mark_localized = true) {
   svg << "<g>\n";
   for (const auto& wall : input.walls) {
     polygon(svg, l, wall, "fill=\"#9a9a9a\" stroke=\"#555\" stroke-width=\"0.5\"");
@@ -175,7 +186,7 @@ void drawMap(std::ostringstream& svg, const ReportInput& input, const Layout& l)
       input.estimate_is_localization ? kEstimateColour : kAlignedColour;
   path(svg, l, input.estimate,
        "stroke=\"" + estimate_colour + "\" stroke-width=\"1.5\" stroke-opacity=\"0.85\"");
-  if (!input.estimate.empty() && input.estimate_is_localization) {
+  if (!input.estimate.empty() && input.estimate_is_localization && mark_localized) {
     const auto p = input.estimate.front().pose.translation();
     svg << "<circle cx=\"" << l.X(p.x()) << "\" cy=\"" << l.Y(p.y()) << "\" r=\"7\" fill=\"none\" "
         << "stroke=\"" << kLocalizedColour << "\" stroke-width=\"2.5\"/>\n";
@@ -183,7 +194,7 @@ void drawMap(std::ostringstream& svg, const ReportInput& input, const Layout& l)
         << "\" font-size=\"12\" fill=\"" << kLocalizedColour
         << "\" text-anchor=\"middle\">localized</text>\n";
   }
-  if (!input.ground_truth.empty()) {
+  if (!input.ground_truth.empty() && mark_start) {
     const auto p = input.ground_truth.front().pose.translation();
     svg << "<rect x=\"" << svgNumber(l.px(p.x()) - 5) << "\" y=\"" << svgNumber(l.py(p.y()) - 5)
         << "\" width=\"10\" height=\"10\" fill=\"black\"/>\n";
@@ -256,8 +267,12 @@ void drawLegend(std::ostringstream& svg, const ReportInput& input, const Layout&
   for (auto kind : {MapOverlay::Kind::kExtraWall, MapOverlay::Kind::kShiftedWall,
                     MapOverlay::Kind::kMissingWall, MapOverlay::Kind::kClosedDoor,
                     MapOverlay::Kind::kClutter}) {
-    const bool present = std::any_of(input.overlays.begin(), input.overlays.end(),
-                                     [&](const MapOverlay& o) { return o.kind == kind; });
+    auto of_kind = [&](const std::vector<MapOverlay>& overlays) {
+      return std::any_of(overlays.begin(), overlays.end(),
+                         [&](const MapOverlay& o) { return o.kind == kind; });
+    };
+    bool present = of_kind(input.overlays);
+    for (const auto& storey : input.storeys) present = present || of_kind(storey.overlays);
     if (!present) continue;
     const OverlayStyle style = styleOf(kind);
     entry(
@@ -271,11 +286,56 @@ void drawLegend(std::ostringstream& svg, const ReportInput& input, const Layout&
 
 }  // namespace
 
+namespace {
+
+// The poses of a trajectory at heights in [z_min, z_max).
+Trajectory between(const Trajectory& trajectory, double z_min, double z_max) {
+  Trajectory out;
+  for (const auto& pose : trajectory) {
+    const double z = pose.pose.translation().z();
+    if (z >= z_min && z < z_max) out.push_back(pose);
+  }
+  return out;
+}
+
+// One panel per storey, each under its title, with the trajectories' parts on it; the start
+// and the first localized pose are marked on the storey where they are.
+void drawStoreys(std::ostringstream& svg, const ReportInput& input, const Layout& layout) {
+  for (std::size_t k = 0; k < input.storeys.size(); ++k) {
+    const StoreyPanel& storey = input.storeys[k];
+    Layout panel = layout;
+    panel.panel_offset = double(k) * layout.panel_height + Layout::kTitle;
+    svg << "<text x=\"" << layout.margin << "\" y=\""
+        << svgNumber(layout.header + double(k) * layout.panel_height + 16)
+        << "\" font-size=\"14\" font-weight=\"bold\">" << svgEscape(storey.title) << "</text>\n";
+    ReportInput on_storey;
+    on_storey.walls = storey.walls;
+    on_storey.overlays = storey.overlays;
+    on_storey.labels = storey.labels;
+    on_storey.ground_truth = between(input.ground_truth, storey.z_min, storey.z_max);
+    on_storey.estimate = between(input.estimate, storey.z_min, storey.z_max);
+    on_storey.odometry = between(input.odometry, storey.z_min, storey.z_max);
+    on_storey.estimate_is_localization = input.estimate_is_localization;
+    auto starts_here = [&](const Trajectory& t) {
+      if (t.empty()) return false;
+      const double z = t.front().pose.translation().z();
+      return z >= storey.z_min && z < storey.z_max;
+    };
+    drawMap(svg, on_storey, panel, starts_here(input.ground_truth), starts_here(input.estimate));
+  }
+}
+
+}  // namespace
+
 std::string reportSvg(const ReportInput& input) {
   const Layout layout(input);
   std::ostringstream svg;
   drawHeader(svg, input, layout);
-  drawMap(svg, input, layout);
+  if (input.storeys.empty()) {
+    drawMap(svg, input, layout);
+  } else {
+    drawStoreys(svg, input, layout);
+  }
   drawLegend(svg, input, layout);
   drawScaleBar(svg, layout);
   const double t0 = input.ground_truth.empty() ? 0.0 : input.ground_truth.front().t;

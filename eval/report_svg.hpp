@@ -24,6 +24,17 @@ struct RoomLabel {
   std::vector<Eigen::Vector2d> outline;
 };
 
+// One storey of a building of several: its own map panel in the report, drawn with the parts of
+// the trajectories whose height lies in [z_min, z_max) (each trajectory by its own z: an
+// estimate on the wrong floor is drawn on that floor's panel).
+struct StoreyPanel {
+  std::string title;
+  std::vector<std::vector<Eigen::Vector2d>> walls;
+  std::vector<MapOverlay> overlays;
+  std::vector<RoomLabel> labels;
+  double z_min = 0.0, z_max = 0.0;
+};
+
 // A run's report as one SVG picture (plain data in, so that eval stays free of the plan model):
 // the plan from above (walls with their door openings, the as-built changes, room names), the
 // trajectories, where localization happened, a metre scale bar; below it the position error and
@@ -44,6 +55,9 @@ struct ReportInput {
   std::vector<std::pair<double, double>> heading_error_over_time;  // (t, degrees)
   std::optional<double> localized_at;                              // seconds
   std::string empty_chart_text = "never localized";
+  // A building of several storeys: one map panel per storey, stacked, instead of the single map
+  // of walls, overlays and labels above.
+  std::vector<StoreyPanel> storeys;
 };
 
 std::string reportSvg(const ReportInput& input);

@@ -4,6 +4,7 @@
 #include "eval/ape.hpp"
 #include "eval/coverage.hpp"
 #include "eval/wrong_localization.hpp"
+#include "run/level_metrics.hpp"
 
 #include <set>
 #include <stdexcept>
@@ -32,9 +33,14 @@ std::pair<double, int> walkedUntil(const Trajectory& truth, double until, const 
     const Eigen::Vector2d p = truth[i].pose.translation().head<2>();
     if (i > 0) distance += (p - truth[i - 1].pose.translation().head<2>()).norm();
     if (plan == nullptr) continue;
+    // The level stood on: the start level in a plan of one, the ground truth's in one of several.
+    const int floor =
+        plan->floors.size() > 1 ? floorAt(*plan, truth[i].pose.translation().z()) : -1;
     for (int r = 0; r < int(plan->rooms.size()); ++r) {
       const auto& room = plan->rooms[r];
-      const bool on_level = level.empty() || room.floor < 0 || plan->floors[room.floor].id == level;
+      const bool on_level =
+          floor >= 0 ? room.floor == floor
+                     : level.empty() || room.floor < 0 || plan->floors[room.floor].id == level;
       if (on_level && !rooms.count(r) && bim::containsPoint(room.outline, p)) rooms.insert(r);
     }
   }
@@ -119,6 +125,9 @@ RunEvaluation evaluateRun(const RunRecord& run) {
       }
     });
   }
+  if (has_truth && run.setup.agraph != nullptr) {
+    m.levels = levelMetrics(*run.setup.agraph, streams.ground_truth, evaluation.error_over_time);
+  }
   evaluation.dead_reckoning = odometryInPlan(streams);
   if (!evaluation.dead_reckoning.empty()) {
     attempt("APE of the odometry", [&] {
@@ -133,6 +142,7 @@ RunEvaluation evaluateRun(const RunRecord& run) {
     m.wrongly_localized = wrong.wrong;
     m.time_wrongly_localized = wrong.seconds;
     m.max_error_B = wrong.max_error;
+    m.max_height_error_B = wrong.max_height_error;
   }
   m.matching_status = run.search_status;
   m.matching_events = run.status_changes;

@@ -87,6 +87,18 @@ nlohmann::json metricsToJson(const RunMetrics& m) {
   if (m.wrongly_localized) j["wrongly_localized"] = *m.wrongly_localized;
   if (m.time_wrongly_localized) j["time_wrongly_localized"] = *m.time_wrongly_localized;
   if (m.max_error_B) j["max_error_B"] = *m.max_error_B;
+  if (m.max_height_error_B) j["max_height_error_B"] = *m.max_height_error_B;
+  if (!m.levels.empty()) {
+    nlohmann::json levels = nlohmann::json::array();
+    for (const LevelMetrics& level : m.levels) {
+      nlohmann::json l = {
+          {"level", level.level}, {"seconds", level.seconds}, {"arrived_at", level.arrived_at}};
+      if (level.first_estimate_at) l["first_estimate_at"] = *level.first_estimate_at;
+      if (level.ape_B) l["ape_B"] = statisticsJson(*level.ape_B);
+      levels.push_back(l);
+    }
+    j["levels"] = levels;
+  }
   if (m.matching_status) {
     j["matching_status"] = *m.matching_status;
     j["lost_at"] = m.lost_at;
@@ -152,11 +164,23 @@ RunMetrics metricsFromJson(const nlohmann::json& document, const std::string& fi
   }
   m.time_wrongly_localized = optionalMeasure(root, "time_wrongly_localized");
   m.max_error_B = optionalMeasure(root, "max_error_B");
+  m.max_height_error_B = optionalMeasure(root, "max_height_error_B");
   if (const auto status = root.optionalField("matching_status")) {
     m.matching_status = status->string();
   }
   m.lost_at = optionalNumbers(root, "lost_at");
   m.relocalized_at = optionalNumbers(root, "relocalized_at");
+  if (const auto levels = root.optionalField("levels")) {
+    for (const auto& l : levels->elements()) {
+      LevelMetrics level;
+      level.level = l.field("level").string();
+      level.seconds = l.field("seconds").nonNegativeNumber();
+      level.arrived_at = l.field("arrived_at").nonNegativeNumber();
+      level.first_estimate_at = optionalMeasure(l, "first_estimate_at");
+      level.ape_B = optionalStatistics(l, "ape_B");
+      m.levels.push_back(std::move(level));
+    }
+  }
   if (const auto t = root.optionalField("timing")) {
     RunTiming timing;
     timing.scans_read = countOf(t->field("scans_read"));

@@ -26,6 +26,17 @@ struct RunTiming {
   std::optional<double> peak_memory_mb;  // the process's peak resident set
 };
 
+// One storey of a run in a plan of several (metrics.json `levels`): where the ground truth stood
+// on that level (the level with the highest elevation at or below the robot's base; on a flight
+// the level it climbs from until its base passes the next one's floor).
+struct LevelMetrics {
+  std::string level;                        // the plan's level id
+  double seconds = 0.0;                     // of ground truth on it
+  double arrived_at = 0.0;                  // s from the first ground-truth stamp: first there
+  std::optional<double> first_estimate_at;  // s from the first ground-truth stamp
+  std::optional<Statistics> ape_B;          // the APE in B rows whose ground truth is on it
+};
+
 // A run's measures: what metrics.json holds (docs/evaluation.md names every field). Typed here;
 // JSON only where the file is written or read (metricsToJson, readMetrics), so `isg run`,
 // `isg slam`, `isg table` and the report share one spelling of each name.
@@ -50,16 +61,19 @@ struct RunMetrics {
   std::optional<Statistics> ape_B_rotation_deg;
   std::optional<Statistics> ape_M_se3;                     // the map-frame estimate, SE(3)-aligned
   std::optional<Statistics> ape_odometry_from_true_start;  // dead reckoning, for comparison
-  // Wrong localization (eval/wrong_localization.hpp): rows more than 1 m off; the run is wrong
-  // when they last longer than 5 s on end. With ground truth and a localized run only.
+  // Wrong localization (eval/wrong_localization.hpp): rows more than 1 m off in the plane or in
+  // height (another floor); the run is wrong when they last longer than 5 s on end. With ground
+  // truth and a localized run only.
   std::optional<bool> wrongly_localized;
   std::optional<double> time_wrongly_localized;  // s
   std::optional<double> max_error_B;             // m, the largest 2D error of any row in B
+  std::optional<double> max_height_error_B;      // m, the largest height error of any row in B
   std::optional<std::string> matching_status;    // methods that search for a match
   std::vector<slam::StatusChange> matching_events;
   // Stamps where the search status became "lost", and where it became "matched" again after.
   std::vector<double> lost_at;
   std::vector<double> relocalized_at;
+  std::vector<LevelMetrics> levels;  // plans of several levels, with ground truth
   std::optional<RunTiming> timing;
   // Why a measure is missing ("no ground truth: no APE", "APE in M … not computed: …").
   std::vector<std::string> notes;

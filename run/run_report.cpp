@@ -1,6 +1,8 @@
 #include "run/run_report.hpp"
 
+#include <algorithm>
 #include <cstdio>
+#include <limits>
 
 #include "bim/plan_geometry.hpp"
 #include "eval/report_svg.hpp"
@@ -91,6 +93,46 @@ std::vector<eval::MapOverlay> asBuiltOverlays(const bim::Level& level,
   return out;
 }
 
+// A level's map for the report: its walls with their door openings, what was built differently,
+// and its room names (at the A-Graph's room centres when there is one).
+eval::StoreyPanel storeyPanel(const bim::Level& level, const RunSetup& setup) {
+  eval::StoreyPanel panel;
+  const bim::LevelGeometry geometry = bim::computeLevelGeometry(level);
+  for (const auto& wall : geometry.walls) {
+    for (auto& piece : wall.footprintPieces()) panel.walls.push_back(std::move(piece));
+  }
+  if (setup.as_built != nullptr) panel.overlays = asBuiltOverlays(level, geometry, *setup.as_built);
+  for (const auto& room : level.rooms) {
+    Eigen::Vector2d centre = Eigen::Vector2d::Zero();
+    for (const auto& p : room.outline) centre += p / double(room.outline.size());
+    if (setup.agraph != nullptr) {
+      for (const auto& node : setup.agraph->rooms) {
+        if (node.id == room.id && node.level == level.id) centre = node.centre;
+      }
+    }
+    panel.labels.push_back({room.id, centre, room.outline});
+  }
+  return panel;
+}
+
+// "Level L1 (elevation 3.2 m): 120.4 s there, APE in B rmse 0.021 m" from metrics.json's levels.
+std::string storeyTitle(const bim::Level& level, const RunMetrics& m) {
+  std::string title = "Level " + level.id;
+  title += format(" (elevation %.2f m)", level.elevation);
+  for (const LevelMetrics& measured : m.levels) {
+    if (measured.level != level.id) continue;
+    title += format(": %.1f s there", measured.seconds);
+    if (measured.ape_B) {
+      title +=
+          format(", APE in B rmse %.3f m, max %.3f m", measured.ape_B->rmse, measured.ape_B->max);
+    } else {
+      title += ", no pose in B";
+    }
+    return title;
+  }
+  return title + ": not visited";
+}
+
 }  // namespace
 
 std::string reportSvg(const RunRecord& run, const RunEvaluation& evaluation) {
@@ -120,28 +162,29 @@ std::string reportSvg(const RunRecord& run, const RunEvaluation& evaluation) {
                m.ape_odometry_from_true_start->rmse, m.sim_seconds, m.wall_seconds,
                m.real_time_factor, static_cast<unsigned long long>(m.seed)));
   }
-  if (const bim::Plan* plan = run.setup.plan) {
+  if (const bim::Plan* plan = run.setup.plan; plan != nullptr && plan->levels.size() > 1) {
+    // A panel per storey, lowest first; each holds the poses from its floor up to the next.
+    std::vector<const bim::Level*> levels;
+    for (const auto& level : plan->levels) levels.push_back(&level);
+    std::stable_sort(levels.begin(), levels.end(), [](const bim::Level* a, const bim::Level* b) {
+      return a->elevation < b->elevation;
+    });
+    for (std::size_t k = 0; k < levels.size(); ++k) {
+      eval::StoreyPanel panel = storeyPanel(*levels[k], run.setup);
+      panel.z_min = k == 0 ? -std::numeric_limits<double>::infinity() : levels[k]->elevation;
+      panel.z_max = k + 1 == levels.size() ? std::numeric_limits<double>::infinity()
+                                           : levels[k + 1]->elevation;
+      panel.title = storeyTitle(*levels[k], m);
+      input.storeys.push_back(std::move(panel));
+    }
+  } else if (plan != nullptr) {
     const bim::Level* level = plan->findLevel(run.setup.level);
     if (level == nullptr && !plan->levels.empty()) level = &plan->levels[0];
     if (level != nullptr) {
-      const bim::LevelGeometry geometry = bim::computeLevelGeometry(*level);
-      for (const auto& wall : geometry.walls) {
-        for (auto& piece : wall.footprintPieces()) input.walls.push_back(std::move(piece));
-      }
-      if (run.setup.as_built != nullptr) {
-        input.overlays = asBuiltOverlays(*level, geometry, *run.setup.as_built);
-      }
-      for (const auto& room : level->rooms) {
-        const bim::AGraph* agraph = run.setup.agraph;
-        Eigen::Vector2d centre = Eigen::Vector2d::Zero();
-        for (const auto& p : room.outline) centre += p / double(room.outline.size());
-        if (agraph != nullptr) {
-          for (const auto& node : agraph->rooms) {
-            if (node.id == room.id) centre = node.centre;
-          }
-        }
-        input.labels.push_back({room.id, centre, room.outline});
-      }
+      eval::StoreyPanel panel = storeyPanel(*level, run.setup);
+      input.walls = std::move(panel.walls);
+      input.overlays = std::move(panel.overlays);
+      input.labels = std::move(panel.labels);
     }
   }
   input.ground_truth = run.streams.ground_truth;

@@ -88,19 +88,33 @@ RunTable tabulateRuns(std::vector<std::pair<std::string, run::RunMetrics>> runs,
     } else if (metrics.localized) {
       value = metrics.time_to_localize;
     }
-    const auto key = std::make_pair(world, column);
-    if (!cells.count(key)) order.push_back(key);
-    CellRuns& cell = cells[key];
-    if (std::find(cell.seeds.begin(), cell.seeds.end(), metrics.seed) != cell.seeds.end()) {
-      throw bim::InputError(dir, "",
-                            "a second run of " + world + " with " + metrics.method + " and seed " +
-                                std::to_string(metrics.seed));
-    }
-    cell.seeds.push_back(metrics.seed);
-    cell.values.push_back(value);
     const bool wrong = measure == "ape" && metrics.wrongly_localized.value_or(false);
-    cell.wrong_runs.push_back(wrong);
-    cell.wrong = cell.wrong || wrong;
+    auto add = [&](const std::string& row, std::optional<double> number) {
+      const auto key = std::make_pair(row, column);
+      if (!cells.count(key)) order.push_back(key);
+      CellRuns& cell = cells[key];
+      if (std::find(cell.seeds.begin(), cell.seeds.end(), metrics.seed) != cell.seeds.end()) {
+        throw bim::InputError(dir, "",
+                              "a second run of " + world + " with " + metrics.method +
+                                  " and seed " + std::to_string(metrics.seed));
+      }
+      cell.seeds.push_back(metrics.seed);
+      cell.values.push_back(number);
+      cell.wrong_runs.push_back(wrong);
+      cell.wrong = cell.wrong || wrong;
+    };
+    add(world, value);
+    // Several storeys: a row per level under the world's (a wrong run is wrong on each): the APE
+    // taken there, or the seconds from arriving there to the first pose in B there.
+    if (slam_only || (measure != "ape" && measure != "time-to-localize")) continue;
+    for (const run::LevelMetrics& level : metrics.levels) {
+      std::optional<double> number;
+      if (measure == "ape" && metrics.localized && level.ape_B) number = level.ape_B->rmse;
+      if (measure == "time-to-localize" && level.first_estimate_at) {
+        number = *level.first_estimate_at - level.arrived_at;
+      }
+      add(world + " / " + level.level, number);
+    }
   }
   // The seeds without a result count in their cell: as runs, never as localized.
   bool any_absent = false;

@@ -211,3 +211,56 @@ TEST(AGraph, TwoHundredRoomGrid) {
 
 }  // namespace
 }  // namespace isg::bim
+
+namespace isg::bim {
+namespace {
+
+// A flight rising from L0 (storeys: S1 from (9, 0.85) to (13.5, 0.85), 1 m wide, to L1 at
+// 3.2 m) stands on L0 like a wall: its two sides and its high end are L0 surfaces, facing away
+// from it, as high as it rises; L1, which it opens into, has none.
+TEST(FlightFaces, AFlightIsSeenOnTheLevelItRisesFrom) {
+  const AGraph graph = buildAGraph(loadPlan(kPlans + "storeys.json"));
+  const int left = graph.findSurface("S1:stair-left");
+  const int right = graph.findSurface("S1:stair-right");
+  const int end = graph.findSurface("S1:stair-end");
+  ASSERT_GE(left, 0);
+  ASSERT_GE(right, 0);
+  ASSERT_GE(end, 0);
+  const Eigen::Vector3d on_left(11.0, 1.35, 1.0), on_right(11.0, 0.35, 1.0),
+      on_end(13.5, 0.85, 1.0);
+  EXPECT_NEAR(graph.surfaces[left].plane.signedDistance(on_left), 0.0, 1e-12);
+  EXPECT_NEAR(graph.surfaces[left].plane.signedDistance({11.0, 2.0, 1.0}), 0.65, 1e-12);
+  EXPECT_NEAR(graph.surfaces[right].plane.signedDistance(on_right), 0.0, 1e-12);
+  EXPECT_NEAR(graph.surfaces[right].plane.signedDistance({11.0, 0.0, 1.0}), 0.35, 1e-12);
+  EXPECT_NEAR(graph.surfaces[end].plane.signedDistance(on_end), 0.0, 1e-12);
+  EXPECT_NEAR(graph.surfaces[end].plane.signedDistance({14.0, 0.85, 1.0}), 0.5, 1e-12);
+  for (int s : {left, right, end}) {
+    const WallSurfaceNode& face = graph.surfaces[s];
+    EXPECT_EQ(face.level, "L0");
+    EXPECT_EQ(face.stair, "S1");
+    EXPECT_TRUE(face.wall.empty());
+    EXPECT_DOUBLE_EQ(face.z_min, 0.0);
+    EXPECT_DOUBLE_EQ(face.z_max, 3.2);
+    ASSERT_EQ(face.segments.size(), 1u);
+  }
+  EXPECT_NEAR(
+      (graph.surfaces[left].segments[0].second - graph.surfaces[left].segments[0].first).norm(),
+      4.5, 1e-12);
+  EXPECT_NEAR(
+      (graph.surfaces[end].segments[0].second - graph.surfaces[end].segments[0].first).norm(), 1.0,
+      1e-12);
+  EXPECT_EQ(graph.surfaces[end].axis, SurfaceAxis::kX);
+  for (const auto& surface : graph.surfaces) {
+    if (surface.level == "L1") {
+      EXPECT_TRUE(surface.stair.empty()) << surface.id;
+    }
+  }
+  // No room or wall refers to them.
+  for (const auto& wall : graph.walls) {
+    EXPECT_NE(wall.left_surface, left);
+    EXPECT_NE(wall.right_surface, end);
+  }
+}
+
+}  // namespace
+}  // namespace isg::bim

@@ -17,14 +17,14 @@ Trajectory truth() {
   return t;
 }
 
-// The estimate from `from` to `to` seconds, off by `offset(t)` metres in y.
+// The estimate from `from` to `to` seconds, off by `offset(t)` metres in y and `z` in height.
 template <typename Offset>
-Trajectory estimate(double from, double to, Offset offset) {
+Trajectory estimate(double from, double to, Offset offset, double z = 0.6) {
   Trajectory t;
   for (int i = int(from * 10 + 0.5); i <= int(to * 10 + 0.5); ++i) {
     StampedPose p;
     p.t = 0.1 * i;
-    p.pose.translation() = Eigen::Vector3d(p.t, offset(p.t), 5.0);  // z is not judged
+    p.pose.translation() = Eigen::Vector3d(p.t, offset(p.t), z);  // within 1 m: the same floor
     t.push_back(p);
   }
   return t;
@@ -35,6 +35,22 @@ TEST(WrongLocalization, RightAllAlong) {
   EXPECT_FALSE(w.wrong);
   EXPECT_DOUBLE_EQ(w.seconds, 0.0);
   EXPECT_NEAR(w.max_error, 0.3, 1e-9);
+}
+
+TEST(WrongLocalization, RightInThePlaneOnAnotherFloorIsWrong) {
+  // 3.2 m up: a storey above, however right x and y are.
+  const auto w = wrongLocalization(truth(), estimate(
+                                                10, 60, [](double) { return 0.0; }, 3.2));
+  EXPECT_TRUE(w.wrong);
+  EXPECT_NEAR(w.seconds, 50.0, 1e-6);
+  EXPECT_NEAR(w.max_height_error, 3.2, 1e-9);
+  EXPECT_NEAR(w.max_error, 0.0, 1e-9);
+  ASSERT_TRUE(w.first_wrong_at.has_value());
+  EXPECT_NEAR(*w.first_wrong_at, 10.0, 1e-9);
+  // 0.9 m off in height is still this floor.
+  EXPECT_FALSE(wrongLocalization(truth(), estimate(
+                                              10, 60, [](double) { return 0.0; }, 0.9))
+                   .wrong);
 }
 
 TEST(WrongLocalization, ABriefExcursionIsNotWrong) {

@@ -66,6 +66,9 @@ TEST(RunMetrics, JsonRoundTripOfARunWithEveryFieldSet) {
   m.wrongly_localized = true;
   m.time_wrongly_localized = 6.5;
   m.max_error_B = 3.25;
+  m.max_height_error_B = 0.125;
+  m.levels.push_back({"L1", 42.5, 3.25, 7.5, m.ape_B});
+  m.levels.push_back({"L0", 10.0, 0.0, std::nullopt, std::nullopt});
   m.matching_events.push_back(
       {20.0, 12, slam::MatchStatus::kLost, "the scans no longer agree with the plan"});
   m.matching_events.push_back({31.5, 17, slam::MatchStatus::kMatched, "best"});
@@ -92,6 +95,16 @@ TEST(RunMetrics, JsonRoundTripOfARunWithEveryFieldSet) {
   EXPECT_EQ(back.wrongly_localized, true);
   EXPECT_EQ(back.time_wrongly_localized, 6.5);
   EXPECT_EQ(back.max_error_B, 3.25);
+  EXPECT_EQ(back.max_height_error_B, 0.125);
+  ASSERT_EQ(back.levels.size(), 2u);
+  EXPECT_EQ(back.levels[0].level, "L1");
+  EXPECT_EQ(back.levels[0].seconds, 42.5);
+  EXPECT_EQ(back.levels[0].arrived_at, 3.25);
+  EXPECT_EQ(back.levels[0].first_estimate_at, 7.5);
+  ASSERT_TRUE(back.levels[0].ape_B.has_value());
+  EXPECT_EQ(back.levels[0].ape_B->rmse, m.ape_B->rmse);
+  EXPECT_FALSE(back.levels[1].first_estimate_at.has_value());
+  EXPECT_FALSE(back.levels[1].ape_B.has_value());
   ASSERT_EQ(back.matching_events.size(), 4u);
   EXPECT_EQ(back.matching_events[2].status, slam::MatchStatus::kLost);
   EXPECT_EQ(j["matching_events"][2]["status"], "lost");

@@ -180,9 +180,12 @@ class GraphMatcher {
   bool sameAnswer(const Eigen::Vector3d& a, const Eigen::Vector3d& b, const Eigen::Vector2d& middle,
                   double scale = 1.0) const;
   static Eigen::Vector2d middleOf(const MatchInput& input);
-  // What separates `best` from `other`, both verified on `input` (see MatchingOptions).
+  // What separates `best` from `other`, both verified on `input` (see MatchingOptions); `other`
+  // scored by `other_matcher` when given (an answer on another level of the building,
+  // slam/isgraph/level_matching.hpp), by this matcher otherwise.
   Distinction distinguish(const MatchInput& input, const Verification& best,
-                          const Verification& other) const;
+                          const Verification& other,
+                          const GraphMatcher* other_matcher = nullptr) const;
   // Whether a distinction is decisive (see MatchingOptions); `needed` gets the lead it needs.
   bool decisive(const Distinction& d, double* needed = nullptr) const;
   // Refines B_T_M by least squares over a verification's correspondences.

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <cstdio>
 
 #include "bim/agraph_factors.hpp"
 #include "slam/isgraph/merging_factors.hpp"
@@ -32,6 +33,9 @@ ISGraphLocalizer::ISGraphLocalizer(const Eigen::Isometry3d& R_T_L, const bim::AG
   const Eigen::AlignedBox2d walls = plan_in_P_.surfaceBounds();
   const Eigen::Vector2d margin = Eigen::Vector2d::Constant(options.outside_margin);
   building_ = Eigen::AlignedBox2d(walls.min() - margin, walls.max() + margin);
+  if (plan_in_P_.floors.size() > 1) {
+    level_matcher_ = std::make_unique<LevelMatcher>(plan_in_P_, options.matching);
+  }
   graph_.setWindowHook(
       [this](ceres::Problem& problem, const std::set<int>& planes, const std::vector<int>& rooms) {
         addPlanFactors(problem, planes, rooms);
@@ -74,9 +78,11 @@ MatchInput matchInputOf(const SGraph& graph, double min_wall_height) {
   MatchInput input;
   const auto& planes = graph.planes();
   const auto& candidates = graph.roomCandidates();
+  const int floor = graph.currentFloor();
   std::map<int, int> room_of_keyframe;
   for (int r : graph.confirmedRooms()) {
     const auto& room = candidates[r];
+    if (room.floor != floor) continue;
     MatchRoom m;
     m.id = r;
     m.four_wall = room.candidate.four_wall;
@@ -94,7 +100,7 @@ MatchInput matchInputOf(const SGraph& graph, double min_wall_height) {
   for (int i = 0; i < int(planes.size()); ++i) {
     const auto& p = planes[i];
     // Walls only: clutter seen over a short height is not in the plan.
-    if (p.merged_into >= 0 || p.map.z_max - p.map.z_min < min_wall_height) {
+    if (p.merged_into >= 0 || p.floor != floor || p.map.z_max - p.map.z_min < min_wall_height) {
       continue;
     }
     input.planes.push_back({i, p.map.plane, p.map.start, p.map.end});
@@ -117,19 +123,23 @@ void ISGraphLocalizer::record(double stamp, MatchStatus status, const std::strin
   events_.push_back({stamp, int(graph_.keyframes().size()) - 1, status, reason});
 }
 
-void ISGraphLocalizer::adopt(const Verification& answer) {
+void ISGraphLocalizer::adopt(const Verification& answer, int level) {
   P_T_M_x_y_yaw_ = answer.x_y_yaw;
   plane_matches_.clear();
   room_matches_.clear();
   for (const auto& [s, a] : answer.planes) plane_matches_[s] = a;
   for (const auto& [s, a] : answer.rooms) room_matches_[s] = a;
-  // z: walls do not observe it; the floor does. The floor of the first matched room's level.
-  double elevation = plan_->floors.empty() ? 0.0 : plan_->floors[0].elevation;
-  if (!answer.rooms.empty()) {
-    const int floor = plan_->rooms[answer.rooms[0].second].floor;
-    if (floor >= 0) elevation = plan_->floors[floor].elevation;
-  }
+  // z: walls do not observe it; the floor does. The floor of the answer's level, or of the first
+  // matched room's.
+  if (level < 0 && !answer.rooms.empty()) level = plan_->rooms[answer.rooms[0].second].floor;
+  const double elevation = level >= 0              ? plan_->floors[level].elevation
+                           : plan_->floors.empty() ? 0.0
+                                                   : plan_->floors[0].elevation;
   P_T_M_z_ = elevation - graph_.floorHeight().value_or(0.0);
+  z_from_floor_ = graph_.floorHeight().has_value();
+  level_ = level >= 0 ? level : 0;
+  floor_levels_.clear();
+  if (graph_.currentFloor() >= 0) floor_levels_[graph_.currentFloor()] = level_;
   localized_ = true;
   plan_shares_.clear();  // measured under another answer, or none
   plan_collapsed_ = 0;
@@ -164,7 +174,10 @@ std::string ISGraphLocalizer::updateAgreement(const MatchInput& input) {
       std::nth_element(recent.begin(), recent.begin() + recent.size() / 2, recent.end());
       median = recent[recent.size() / 2];
     }
-    const bool map_disagrees = keyframe.registration.attempted &&
+    // On the stairs the view turns from one floor to the next through the stairwell: a scan
+    // unlike the recent map is expected there.
+    const bool map_disagrees = keyframe.floor >= 0 && !keyframe.climbing &&
+                               keyframe.registration.attempted &&
                                keyframe.registration.inlier_share < options_.suspect_share;
     // Without a history of plan shares yet (just localized), a scan that does not agree with
     // the recent map at all is enough.
@@ -208,7 +221,13 @@ std::string ISGraphLocalizer::updateAgreement(const MatchInput& input) {
   std::set<int> seen_now;
   for (const auto& [plane, observation] : keyframe.observations) seen_now.insert(plane);
   int seen_matched = 0, seen_disagreeing = 0;
+  const int floor = graph_.currentFloor();
   for (auto it = plane_matches_.begin(); it != plane_matches_.end();) {
+    // Another floor's walls are held as they are: the robot does not see them now.
+    if (graph_.planes()[it->first].floor != floor) {
+      ++it;
+      continue;
+    }
     const auto plane = by_id.find(it->first);
     if (plane == by_id.end()) {  // merged into another plane, or no longer a wall
       it = plane_matches_.erase(it);
@@ -239,7 +258,16 @@ void ISGraphLocalizer::assumeMatch(double stamp, const Eigen::Vector3d& x_y_yaw,
                                    const std::string& reason) {
   const MatchInput input = matchInput();
   record(stamp, MatchStatus::kMatched, reason);
-  adopt(matcher_.verify(input, inP(x_y_yaw)));
+  // With several levels, the level under which the hint explains most.
+  int level = -1;
+  Verification answer = matcher_.verify(input, inP(x_y_yaw));
+  if (level_matcher_) {
+    for (int l = 0; l < level_matcher_->levels(); ++l) {
+      Verification on_level = level_matcher_->verify(input, inP(x_y_yaw), l);
+      if (level < 0 || on_level.score > answer.score) answer = std::move(on_level), level = l;
+    }
+  }
+  adopt(answer, level);
   rooms_at_last_attempt_ = input.rooms.size();
   keyframes_at_last_attempt_ = int(graph_.keyframes().size());
 }
@@ -250,6 +278,7 @@ void ISGraphLocalizer::lose(double stamp, const std::string& reason) {
   localized_ = false;
   plane_matches_.clear();
   room_matches_.clear();
+  floor_levels_.clear();
   plan_shares_.clear();
   plan_collapsed_ = 0;
   graph_.startNewSegment(stamp, reason);
@@ -263,16 +292,20 @@ void ISGraphLocalizer::checkForContradiction(double stamp) {
   SGraph unmerged = graph_;
   unmerged.optimiseAll(false);
   const MatchInput input = matchInputOf(unmerged, options_.sgraph.rooms.min_wall_height);
-  MatchResult result = matcher_.match(input);
+  int level = -1;
+  MatchResult result = matchNow(input, &level);
   matching_times_.push_back(result.seconds);
   last_match_ = result.translated(B_t_P_);
   if (result.status != MatchStatus::kMatched) return;  // the merge stands on its own evidence
   // Twice the clustering tolerances: the merge has moved P_T_M a little since it was adopted.
   const Eigen::Vector2d middle = GraphMatcher::middleOf(input);
-  if (matcher_.sameAnswer(result.best.x_y_yaw, P_T_M_x_y_yaw_, middle, 2.0)) return;
+  const bool same_level = !level_matcher_ || level == level_;
+  if (same_level && matcher_.sameAnswer(result.best.x_y_yaw, P_T_M_x_y_yaw_, middle, 2.0)) return;
   // The new answer must also lead the one held now decisively, on the same map.
-  if (!matcher_.decisive(
-          matcher_.distinguish(input, result.best, matcher_.verify(input, P_T_M_x_y_yaw_)))) {
+  const GraphMatcher& new_matcher = level_matcher_ ? level_matcher_->matcher(level) : matcher_;
+  const GraphMatcher& held_matcher = level_matcher_ ? level_matcher_->matcher(level_) : matcher_;
+  if (!new_matcher.decisive(new_matcher.distinguish(
+          input, result.best, held_matcher.verify(input, P_T_M_x_y_yaw_), &held_matcher))) {
     return;
   }
   // A unique answer elsewhere: the first match was wrong. Adopt the new one on the unmerged
@@ -284,25 +317,99 @@ void ISGraphLocalizer::checkForContradiction(double stamp) {
          "a new unique answer " + std::to_string(apart) + " m away: " + result.reason);
   ++contradictions_;
   graph_ = std::move(unmerged);
-  adopt(result.best);
+  adopt(result.best, level);
   graph_.optimiseAll(true);
   record(stamp, MatchStatus::kMatched, result.reason);
+}
+
+MatchResult ISGraphLocalizer::matchNow(const MatchInput& input, int* level) const {
+  if (!level_matcher_) {
+    *level = -1;
+    return matcher_.match(input);
+  }
+  LevelMatch match = level_matcher_->match(input);
+  *level = match.level;
+  return std::move(match.result);
+}
+
+Verification ISGraphLocalizer::verifyNow(const MatchInput& input,
+                                         const Eigen::Vector3d& P_T_M_x_y_yaw) const {
+  if (!level_matcher_) return matcher_.verify(input, P_T_M_x_y_yaw);
+  return level_matcher_->verify(input, P_T_M_x_y_yaw, level_);
+}
+
+int ISGraphLocalizer::levelAtHeightOf(int floor) const {
+  const auto& floors = graph_.floors();
+  if (floor_levels_.empty() || floor < 0 || floor >= int(floors.size())) return -1;
+  // From the floor whose level was found most recently... any known floor will do: M is one
+  // frame, and the heights of its floors differ by the storeys climbed.
+  const auto& [known_floor, known_level] = *floor_levels_.begin();
+  const double elevation =
+      plan_->floors[known_level].elevation + floors[floor].robot_z - floors[known_floor].robot_z;
+  int best = -1;
+  for (int l = 0; l < int(plan_->floors.size()); ++l) {
+    const double off = std::abs(plan_->floors[l].elevation - elevation);
+    if (off <= options_.level_tolerance &&
+        (best < 0 || off < std::abs(plan_->floors[best].elevation - elevation))) {
+      best = l;
+    }
+  }
+  return best;
+}
+
+std::string ISGraphLocalizer::followFloor(double stamp) {
+  const int floor = graph_.currentFloor();
+  if (!level_matcher_) {
+    // Matched before the floor was seen: its height, once it is.
+    if (!z_from_floor_ && graph_.floorHeight()) {
+      P_T_M_z_ = plan_->floors[level_].elevation - *graph_.floorHeight();
+      z_from_floor_ = true;
+    }
+    return "";
+  }
+  if (floor < 0) return "";
+  const auto known = floor_levels_.find(floor);
+  if (known != floor_levels_.end()) {
+    level_ = known->second;
+  } else {
+    const int level = levelAtHeightOf(floor);
+    if (level < 0) {
+      char text[160];
+      std::snprintf(
+          text, sizeof text,
+          "the robot reached a floor %.1f m from where it was matched, and no level of "
+          "the plan is there",
+          graph_.floors()[floor].robot_z - graph_.floors()[floor_levels_.begin()->first].robot_z);
+      return text;
+    }
+    floor_levels_[floor] = level;
+    level_ = level;
+    level_changes_.push_back({stamp, floor, level});
+  }
+  if (const auto height = graph_.floorHeight(floor)) {
+    P_T_M_z_ = plan_->floors[level_].elevation - *height;
+    z_from_floor_ = true;
+  }
+  return "";
 }
 
 void ISGraphLocalizer::onKeyframe(double stamp) {
   const int keyframes = int(graph_.keyframes().size());
   MatchInput input = matchInput();
   if (localized_) {
-    const std::string why = updateAgreement(input);
+    std::string why = followFloor(stamp);
+    if (why.empty()) why = updateAgreement(input);
     if (!why.empty()) {
       lose(stamp, why);
       return;
     }
     // New S-planes gain correspondences at the current P_T_M; held ones stay as they are.
-    const Verification now = matcher_.verify(input, P_T_M_x_y_yaw_);
+    const Verification now = verifyNow(input, P_T_M_x_y_yaw_);
     for (const auto& [s, a] : now.planes) plane_matches_.emplace(s, a);
     for (const auto& [s, a] : now.rooms) room_matches_.emplace(s, a);
-  } else if (keyframes > 1 && graph_.keyframes().back().registration.attempted &&
+  } else if (keyframes > 1 && graph_.keyframes().back().floor >= 0 &&
+             !graph_.keyframes().back().climbing &&
+             graph_.keyframes().back().registration.attempted &&
              !graph_.keyframes().back().registration.agrees) {
     // Not localized, and the world stopped agreeing with the map: the map so far would mislead
     // the matcher. Start again from here.
@@ -321,11 +428,12 @@ void ISGraphLocalizer::onKeyframe(double stamp) {
     checkForContradiction(stamp);
     return;
   }
-  MatchResult result = matcher_.match(input);
+  int level = -1;
+  MatchResult result = matchNow(input, &level);
   matching_times_.push_back(result.seconds);
   last_match_ = result.translated(B_t_P_);
   record(stamp, result.status, result.reason);
-  if (result.status == MatchStatus::kMatched) adopt(result.best);
+  if (result.status == MatchStatus::kMatched) adopt(result.best, level);
 }
 
 void ISGraphLocalizer::addSurface(ceres::Problem& problem, int surface) {
@@ -430,7 +538,22 @@ nlohmann::json ISGraphLocalizer::graph() const {
   if (localized_) {
     const Eigen::Vector3d B_T_M = inB(P_T_M_x_y_yaw_);
     is_graph["B_T_M"] = {{"x", B_T_M.x()}, {"y", B_T_M.y()}, {"z", P_T_M_z_}, {"yaw", B_T_M.z()}};
+    if (level_ >= 0 && level_ < int(plan_->floors.size())) {
+      is_graph["level"] = plan_->floors[level_].id;
+    }
+    nlohmann::json floor_levels = nlohmann::json::object();
+    for (const auto& [floor, level] : floor_levels_) {
+      floor_levels[std::to_string(floor)] = plan_->floors[level].id;
+    }
+    is_graph["floor_levels"] = floor_levels;
   }
+  nlohmann::json level_changes = nlohmann::json::array();
+  for (const auto& change : level_changes_) {
+    level_changes.push_back({{"stamp", change.stamp},
+                             {"floor", change.floor},
+                             {"level", plan_->floors[change.level].id}});
+  }
+  if (!level_changes.empty()) is_graph["level_changes"] = level_changes;
   if (last_match_) is_graph["last_match"] = last_match_->toJson();
   out["method"] = name();
   out["matching"] = is_graph;

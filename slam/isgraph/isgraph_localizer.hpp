@@ -15,6 +15,7 @@
 #include "bim/agraph_optimizer.hpp"
 #include "bim/plane_manifold.hpp"
 #include "slam/isgraph/graph_matching.hpp"
+#include "slam/isgraph/level_matching.hpp"
 #include "slam/isgraph/plan_distance_field.hpp"
 #include "slam/localizer.hpp"
 #include "slam/sgraph/sgraph.hpp"
@@ -65,9 +66,14 @@ struct ISGraphOptions {
   double plan_share_drop = 0.5;
   double plan_share_collapse = 0.3;
   int plan_share_history = 10;
+  // Several storeys (docs/matching.md): once localized, a floor the robot reaches is the level
+  // at the elevation its height above the matched floor leads to, within this; none there → lost.
+  // Half the least storey height (2 m of headroom, docs/formats.md).
+  double level_tolerance = 1.0;  // m
 };
 
-// The S-Graph as the matcher sees it (walls of a minimum height, confirmed rooms, transitions).
+// The S-Graph as the matcher sees it (walls of a minimum height, confirmed rooms, transitions),
+// of the floor the robot stands on (the latest one it stood on, while on the stairs).
 MatchInput matchInputOf(const SGraph& graph, double min_wall_height);
 
 // The iS-Graph (paper §IV–V): the S-Graph, matched against the plan's A-Graph, then merged with
@@ -110,6 +116,16 @@ class ISGraphLocalizer : public Localizer {
   const std::vector<StatusChange>& events() const { return events_; }
   // The latest full match, its answers in B.
   const std::optional<MatchResult>& lastMatch() const { return last_match_; }
+  // The plan level (index into the A-Graph's floors) of the floor the robot stands on, while
+  // localized; -1 otherwise.
+  int level() const { return localized_ ? level_ : -1; }
+  // Where the robot arrived on a floor while localized: the stamp and the level it is.
+  struct LevelChange {
+    double stamp = 0.0;
+    int floor = -1;  // the S-Graph's
+    int level = -1;  // the A-Graph's
+  };
+  const std::vector<LevelChange>& levelChanges() const { return level_changes_; }
   // The S-Graph as the matcher sees it now.
   MatchInput matchInput() const {
     return matchInputOf(graph_, options_.sgraph.rooms.min_wall_height);
@@ -120,7 +136,19 @@ class ISGraphLocalizer : public Localizer {
  private:
   void onKeyframe(double stamp);
   void record(double stamp, MatchStatus status, const std::string& reason);
-  void adopt(const Verification& answer);
+  // Takes an answer on plan level `level` (-1: the level of its first matched room) for the
+  // floor the robot stands on.
+  void adopt(const Verification& answer, int level = -1);
+  // One full match of the current floor: against every level when the plan has several.
+  MatchResult matchNow(const MatchInput& input, int* level) const;
+  // verify() on the current floor's level.
+  Verification verifyNow(const MatchInput& input, const Eigen::Vector3d& P_T_M_x_y_yaw) const;
+  // While localized, the level of the floor the robot stands on: known, or found from its height
+  // above a floor whose level is known. Returns why not, empty when it is known.
+  std::string followFloor(double stamp);
+  // The plan level at the height of S-floor `floor`, from a floor whose level is known; -1 when
+  // no level is within level_tolerance.
+  int levelAtHeightOf(int floor) const;
   // Takes the latest keyframe into the localized graph's agreement with the world and the plan
   // (the plan-share history, the collapse count; held correspondences that left the hold gate are
   // dropped) and says why the graph no longer agrees; empty while it does.
@@ -148,6 +176,11 @@ class ISGraphLocalizer : public Localizer {
   int plan_collapsed_ = 0;          // keyframes in a row with a collapsed plan share
   SGraph graph_;
   GraphMatcher matcher_;
+  // With several levels: each level's A-Graph matched on its own, the answers compared.
+  std::unique_ptr<LevelMatcher> level_matcher_;
+  std::map<int, int> floor_levels_;  // S-Graph floor → A-Graph floor, while localized
+  int level_ = -1;                   // of the current floor, while localized
+  std::vector<LevelChange> level_changes_;
   bim::AGraphState plan_state_;
   bim::PlaneManifold plane_manifold_;
   ceres::HuberLoss huber_{1.0};
@@ -158,6 +191,7 @@ class ISGraphLocalizer : public Localizer {
   // floors give (P and B share z): mapInPlan() makes B_T_P · P_T_M of the two.
   Eigen::Vector3d P_T_M_x_y_yaw_ = Eigen::Vector3d::Zero();
   double P_T_M_z_ = 0.0;
+  bool z_from_floor_ = false;  // P_T_M_z_ from a floor plane seen (not yet: as if at height 0)
   std::map<int, int> plane_matches_;       // S-plane → A-surface
   std::map<int, int> room_matches_;        // S-room → A-room
   std::optional<MatchResult> last_match_;  // in B

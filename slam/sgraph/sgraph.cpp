@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <map>
 #include <set>
 
 #include "bim/agraph_factors.hpp"
@@ -113,12 +114,29 @@ bool SGraph::addScan(sensors::Scan scan) {
   keyframe.position = initial.translation();
   keyframe.orientation = Eigen::Quaterniond(initial.rotation());
   const int index = int(keyframes_.size());
+  // Level: little height since the keyframe before, or (a segment's first keyframe) in the
+  // odometry's last two seconds.
+  bool level = true;
+  if (!keyframes_.empty()) {
+    level = std::abs(initial.translation().z() - keyframes_.back().position.z()) <
+            options_.floors.level_step;
+  } else if (const auto before = odometry_.at(scan.stamp - 2.0)) {
+    level = std::abs(odometry_at_scan.translation().z() - before->translation().z()) <
+            options_.floors.level_step;
+  }
+  const int floor = floorOf(initial.translation().z(), level);
+  keyframe.floor = floor;
+  keyframe.climbing = !level;
+  if (floor >= 0) current_floor_ = floor;
 
   const Eigen::Isometry3d M_T_L = initial * R_T_L_;
-  // The map as association sees it, kept in step as this keyframe's observations change it.
-  std::vector<MapPlane> walls = activeWalls();
+  // The map as association sees it, kept in step as this keyframe's observations change it: the
+  // walls of its own floor only.
+  std::vector<MapPlane> walls = activeWalls(floor);
   sensors::StageClock extraction_clock(stage_times_, "extraction");
-  const std::vector<PlaneObservation> observations = extractPlanes(scan, options_.extraction);
+  // On the stairs the scan mixes two floors: no planes are taken from it.
+  const std::vector<PlaneObservation> observations =
+      floor >= 0 ? extractPlanes(scan, options_.extraction) : std::vector<PlaneObservation>{};
   const double planes_s = extraction_clock.stop();
   sensors::StageClock association_clock(stage_times_, "association");
   for (const auto& observation : observations) {
@@ -127,8 +145,10 @@ bool SGraph::addScan(sensors::Scan scan) {
       const bim::Plane in_M = observation.plane.transformed(M_T_L);
       const double z = -in_M.d / in_M.normal.z();
       if (in_M.normal.z() > 0.9 && z < M_T_L.translation().z() - 0.3) {
-        floor_sum_ += z;
-        ++floor_count_;
+        floors_[floor].plane_sum += z;
+        ++floors_[floor].plane_count;
+        robot_above_floor_sum_ += initial.translation().z() - z;
+        ++robot_above_floor_count_;
       }
       continue;
     }
@@ -140,6 +160,7 @@ bool SGraph::addScan(sensors::Scan scan) {
       created.map = {in_map.plane, in_map.start.head<2>(), in_map.end.head<2>(), 0, in_map.z_min,
                      in_map.z_max};
       created.parameters = bim::toVector(in_map.plane);
+      created.floor = floor;
       planes_.push_back(created);
       walls.push_back(created.map);
       plane = int(planes_.size()) - 1;
@@ -182,9 +203,13 @@ bool SGraph::addScan(sensors::Scan scan) {
       weighted.push_back(o);
     }
     const double dominant = dominantYaw(weighted);
-    const std::vector<MapPlane> walls_now = activeWalls();
+    std::map<int, std::vector<MapPlane>> walls_now;  // per floor
     for (int k = std::max(0, index - options_.window + 1); k <= index; ++k) {
-      detectRooms(k, dominant, walls_now);
+      const int on = keyframes_[k].floor;
+      if (on < 0) continue;
+      auto it = walls_now.find(on);
+      if (it == walls_now.end()) it = walls_now.emplace(on, activeWalls(on)).first;
+      detectRooms(k, dominant, it->second);
     }
   }
   timing.optimisation_s = timing.solve_s + rooms_clock.stop();
@@ -272,8 +297,8 @@ void SGraph::startNewSegment(double stamp, const std::string& reason) {
   keyframes_.clear();
   planes_.clear();
   rooms_.clear();
-  floor_sum_ = 0.0;
-  floor_count_ = 0;
+  floors_.clear();
+  current_floor_ = -1;
   segment_start_ = stamp;
 }
 
@@ -394,11 +419,47 @@ MapPlane SGraph::wallOf(const Plane& p) {
   return wall;
 }
 
-std::vector<MapPlane> SGraph::activeWalls() const {
+std::vector<MapPlane> SGraph::activeWalls(int floor) const {
   std::vector<MapPlane> walls;
   walls.reserve(planes_.size());
-  for (const auto& p : planes_) walls.push_back(wallOf(p));
+  for (const auto& p : planes_) {
+    walls.push_back(wallOf(p));
+    if (floor >= 0 && p.floor != floor) {
+      walls.back().plane = {Eigen::Vector3d::UnitZ(), 1e9};
+      walls.back().start = walls.back().end = Eigen::Vector2d::Constant(1e9);
+    }
+  }
   return walls;
+}
+
+int SGraph::floorOf(double z, bool level) {
+  const FloorOptions& options = options_.floors;
+  if (floors_.empty()) {
+    // The first floor, once the robot is off the stairs.
+    if (!level) return -1;
+    floors_.push_back({z});
+    floors_.back().keyframes = 1;
+    return 0;
+  }
+  // The nearest floor, the current one on a tie.
+  int nearest = current_floor_ >= 0 ? current_floor_ : 0;
+  for (int f = 0; f < int(floors_.size()); ++f) {
+    if (std::abs(z - floors_[f].robot_z) < std::abs(z - floors_[nearest].robot_z)) nearest = f;
+  }
+  const double apart = std::abs(z - floors_[nearest].robot_z);
+  if (apart <= options.tolerance) {
+    // Only level keyframes follow the odometry's drift: one on the first steps must not lift
+    // the floor towards the next one.
+    if (level) floors_[nearest].robot_z = z;
+    ++floors_[nearest].keyframes;
+    return nearest;
+  }
+  if (level && apart >= options.min_separation) {
+    floors_.push_back({z});
+    floors_.back().keyframes = 1;
+    return int(floors_.size()) - 1;
+  }
+  return -1;
 }
 
 void SGraph::mergeDuplicatePlanes(int first_keyframe) {
@@ -406,15 +467,22 @@ void SGraph::mergeDuplicatePlanes(int first_keyframe) {
   for (int k = first_keyframe; k < int(keyframes_.size()); ++k) {
     for (const auto& [plane, observation] : keyframes_[k].observations) recent.insert(plane);
   }
+  // Floor by floor: planes of two floors are never one surface.
+  std::set<int> floors;
+  for (int j : recent) floors.insert(planes_[j].floor);
+  for (int floor : floors) mergeDuplicatePlanes(recent, floor);
+}
+
+void SGraph::mergeDuplicatePlanes(const std::set<int>& recent, int floor) {
   // The map as association sees it, made once (a copy per recent plane made this stage grow
-  // with the map) and kept equal to activeWalls() as merges change it.
-  std::vector<MapPlane> walls = activeWalls();
+  // with the map) and kept equal to activeWalls(floor) as merges change it.
+  std::vector<MapPlane> walls = activeWalls(floor);
   AssociationOptions strict = options_.association;
   strict.max_angle_deg = 5.0;
   strict.max_distance = 0.06;
   for (int j : recent) {
     Plane& pj = planes_[j];
-    if (pj.merged_into >= 0) continue;
+    if (pj.merged_into >= 0 || pj.floor != floor) continue;
     // Compare j, as one more observation, with every other active plane.
     PlaneObservation as_observation;
     as_observation.plane = pj.map.plane;
@@ -489,7 +557,9 @@ void SGraph::detectRooms(int keyframe, double dominant, const std::vector<MapPla
     return std::abs(n.dot(room.centre - c.centre)) < 0.2 &&
            std::abs(room.candidate.widths[0] - c.widths[0]) < 0.2;
   };
+  const int floor = keyframes_[keyframe].floor;
   for (auto& room : rooms_) {
+    if (room.floor != floor) continue;
     // The same room: the same walls, or (walls re-associated since) the same place and shape.
     const bool close = room.candidate.four_wall && candidate->four_wall &&
                        (room.centre - candidate->centre).norm() < 0.5 &&
@@ -507,6 +577,7 @@ void SGraph::detectRooms(int keyframe, double dominant, const std::vector<MapPla
   room.candidate = *candidate;
   room.centre = candidate->centre;
   room.keyframes = {keyframe};
+  room.floor = floor;
   rooms_.push_back(room);
 }
 
@@ -531,25 +602,36 @@ std::vector<int> SGraph::confirmedRooms() const {
     bool encloses_smaller = false;
     for (int j = 0; j < int(rooms_.size()) && !encloses_smaller; ++j) {
       const Room& other = rooms_[j];
-      encloses_smaller = j != i && other.candidate.four_wall && room.candidate.four_wall &&
-                         area(other) < area(room) - 0.5 && contains(room, other.centre);
+      encloses_smaller = j != i && other.floor == room.floor && other.candidate.four_wall &&
+                         room.candidate.four_wall && area(other) < area(room) - 0.5 &&
+                         contains(room, other.centre);
     }
     if (!encloses_smaller) out.push_back(i);
   }
   return out;
 }
 
-std::optional<double> SGraph::floorHeight() const {
-  if (floor_count_ == 0) return std::nullopt;
-  return floor_sum_ / floor_count_;
+std::optional<double> SGraph::floorHeight(int floor) const {
+  if (floor < 0) floor = current_floor_;
+  if (floor < 0 || floor >= int(floors_.size())) return std::nullopt;
+  if (floors_[floor].plane_count > 0) return floors_[floor].plane_sum / floors_[floor].plane_count;
+  // Not seen from this floor yet: the robot stands as high above every floor it walks on, and
+  // the floors seen before (of any segment) tell how high.
+  if (robot_above_floor_count_ == 0) return std::nullopt;
+  return floors_[floor].robot_z - robot_above_floor_sum_ / robot_above_floor_count_;
 }
 
-std::optional<Eigen::Vector2d> SGraph::floorCentre() const {
-  const auto confirmed = confirmedRooms();
-  if (confirmed.empty()) return std::nullopt;
+std::optional<Eigen::Vector2d> SGraph::floorCentre(int floor) const {
+  if (floor < 0) floor = current_floor_;
   Eigen::Vector2d sum = Eigen::Vector2d::Zero();
-  for (int r : confirmed) sum += rooms_[r].centre;
-  return sum / double(confirmed.size());
+  int count = 0;
+  for (int r : confirmedRooms()) {
+    if (rooms_[r].floor != floor) continue;
+    sum += rooms_[r].centre;
+    ++count;
+  }
+  if (count == 0) return std::nullopt;
+  return sum / double(count);
 }
 
 MapDiagnostics SGraph::diagnostics() const {
@@ -572,6 +654,7 @@ nlohmann::json SGraph::toJson() const {
     keyframes.push_back({{"stamp", k.stamp},
                          {"position", {k.position.x(), k.position.y(), k.position.z()}},
                          {"orientation_xyzw", {q.x(), q.y(), q.z(), q.w()}},
+                         {"floor", k.floor},
                          {"planes", k.observations.size()},
                          {"registration",
                           {{"attempted", k.registration.attempted},
@@ -587,6 +670,7 @@ nlohmann::json SGraph::toJson() const {
          {"d", p.map.plane.d},
          {"start", {p.map.start.x(), p.map.start.y()}},
          {"end", {p.map.end.x(), p.map.end.y()}},
+         {"floor", p.floor},
          {"observations", p.map.observations}});
   }
   nlohmann::json rooms = nlohmann::json::array();
@@ -604,6 +688,7 @@ nlohmann::json SGraph::toJson() const {
                      {"centre", {r.centre.x(), r.centre.y()}},
                      {"plane_pairs", pairs},
                      {"widths", widths},
+                     {"floor", r.floor},
                      {"keyframes", r.keyframes.size()}});
   }
   nlohmann::json segments = nlohmann::json::array();
@@ -619,6 +704,16 @@ nlohmann::json SGraph::toJson() const {
                         {"planes", planes},     {"rooms", rooms},
                         {"segments", segments}, {"segment_start", segment_start_}};
   if (const auto floor = floorCentre()) out["floor"] = {{"centre", {floor->x(), floor->y()}}};
+  nlohmann::json floors = nlohmann::json::array();
+  for (int f = 0; f < int(floors_.size()); ++f) {
+    nlohmann::json floor = {
+        {"id", f}, {"robot_z", floors_[f].robot_z}, {"keyframes", floors_[f].keyframes}};
+    if (const auto height = floorHeight(f)) floor["height"] = *height;
+    if (const auto centre = floorCentre(f)) floor["centre"] = {centre->x(), centre->y()};
+    floors.push_back(floor);
+  }
+  out["floors"] = floors;
+  out["current_floor"] = current_floor_;
   return out;
 }
 

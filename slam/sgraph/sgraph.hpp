@@ -27,6 +27,18 @@ class Problem;
 
 namespace isg::slam {
 
+// The floors layer (docs/slam.md, "Floors"): which floor a keyframe stands on, from the height of
+// the robot in M. Storeys are at least 2 m apart (a flight of stairs leaves 2 m of headroom,
+// docs/formats.md), ramps and thresholds within a floor a few centimetres.
+struct FloorOptions {
+  // A keyframe within this of a floor's height stands on it (the first steps of a flight too).
+  double tolerance = 0.5;  // m
+  // A keyframe this far from every floor, level with the keyframe before it, starts a new floor;
+  // one farther than `tolerance` but not yet that far (or still climbing) is on the stairs.
+  double min_separation = 1.5;  // m
+  double level_step = 0.1;      // m of height between consecutive keyframes that are level
+};
+
 // Tuning of the S-Graph (docs/slam.md); the defaults are documented starting values.
 struct SGraphOptions {
   double keyframe_distance = 1.0;  // m of odometry since the last keyframe
@@ -50,6 +62,7 @@ struct SGraphOptions {
   RoomDetectionOptions rooms;
   double sigma_room = 0.05;              // m, room-centre factors
   ScanRegistrationOptions registration;  // LiDAR odometry between keyframes
+  FloorOptions floors;                   // the floors layer
 };
 
 // What LiDAR odometry made of one keyframe (slam/sgraph/scan_registration.hpp).
@@ -82,6 +95,12 @@ class SGraph {
 
   struct Keyframe {
     double stamp = 0.0;
+    // The floor it stands on (index into floors()), or -1 on the stairs: a view that mixes two
+    // floors, kept for odometry and registration but not for planes or rooms.
+    int floor = -1;
+    // Its height differs from the keyframe before's by the floors' level_step or more: on a
+    // flight (on its first or last steps when it still has a floor).
+    bool climbing = false;
     Eigen::Isometry3d odometry = Eigen::Isometry3d::Identity();  // M_T_R by odometry alone
     Eigen::Vector3d position = Eigen::Vector3d::Zero();          // estimate
     Eigen::Quaterniond orientation = Eigen::Quaterniond::Identity();
@@ -95,15 +114,28 @@ class SGraph {
     Eigen::Vector4d parameters;    // [n, d] in M, optimised
     std::vector<int> observed_by;  // keyframe indices
     int merged_into = -1;          // >= 0: found to be the same surface as that plane
+    int floor = 0;                 // the floor it was seen from; never merged across floors
   };
 
   struct Room {
     RoomCandidate candidate;
     Eigen::Vector2d centre = Eigen::Vector2d::Zero();  // ρ, optimised with the room factor
     std::vector<int> keyframes;                        // keyframes that stood in it
+    int floor = 0;
   };
-  // The floor node: the centre of the rooms (one level).
-  std::optional<Eigen::Vector2d> floorCentre() const;
+  // The floor node of the paper's fourth layer: one per floor the robot stood on, at the height
+  // of the robot there, its centre the centre of its confirmed rooms.
+  struct Floor {
+    double robot_z = 0.0;    // M, of its latest level keyframe (follows the odometry's drift)
+    double plane_sum = 0.0;  // floor planes seen below the sensor from it
+    int plane_count = 0;
+    int keyframes = 0;
+  };
+  const std::vector<Floor>& floors() const { return floors_; }
+  // The floor of the latest keyframe that stood on one (-1 before any).
+  int currentFloor() const { return current_floor_; }
+  // The centre of a floor's confirmed rooms (the current floor by default).
+  std::optional<Eigen::Vector2d> floorCentre(int floor = -1) const;
 
   const std::deque<Keyframe>& keyframes() const { return keyframes_; }
   // Every room candidate seen so far, and the confirmed ones: not enclosing a smaller four-wall
@@ -130,8 +162,10 @@ class SGraph {
   // the answer it contradicts (docs/matching.md).
   void optimiseAll(bool with_hook, int max_iterations = 20);
 
-  // The floor's height in M (from the floor planes seen below the sensor), once seen.
-  std::optional<double> floorHeight() const;
+  // A floor's height in M (from the floor planes seen below the sensor from it, or until one is,
+  // from the robot's height above another floor that was seen), once one was seen; the current
+  // floor by default.
+  std::optional<double> floorHeight(int floor = -1) const;
 
   // More factors for every window optimisation: the iS-Graph's link to the plan. Called with the
   // problem, the plane indices in the window and the rooms whose planes all are; it may add
@@ -158,10 +192,15 @@ class SGraph {
   // returns the size of the problem solved.
   WindowSize optimise(int first, bool with_hook, int max_iterations);
   void detectRooms(int keyframe, double dominant_yaw, const std::vector<MapPlane>& walls);
+  // The floor a keyframe at height z (in M), level or not (climbing), stands on, made when it is
+  // a new one; -1 on the stairs.
+  int floorOf(double z, bool level);
   // Planes of the window that turned out to be the same surface (created before the optimisation
   // brought them together) are merged into the one observed most.
   void mergeDuplicatePlanes(int first_keyframe);
-  std::vector<MapPlane> activeWalls() const;   // merged planes get an empty, far-away extent
+  void mergeDuplicatePlanes(const std::set<int>& recent, int floor);
+  // Merged planes, and with floor >= 0 planes of other floors, get an empty, far-away extent.
+  std::vector<MapPlane> activeWalls(int floor = -1) const;
   static MapPlane wallOf(const Plane& plane);  // one entry of activeWalls()
   // LiDAR odometry for a new keyframe predicted at `predicted`: registers its cloud to the
   // latest keyframes' and returns the corrected pose (the prediction when it cannot).
@@ -189,8 +228,12 @@ class SGraph {
   std::vector<Segment> segments_;            // ended ones
   std::vector<MapKeyframe> past_keyframes_;  // of the ended segments, for diagnostics
   double segment_start_ = 0.0;
-  double floor_sum_ = 0.0;
-  int floor_count_ = 0;
+  std::vector<Floor> floors_;  // of this segment
+  // The robot's height above the floor planes it saw, over every segment: the robot's, not the
+  // map's.
+  double robot_above_floor_sum_ = 0.0;
+  int robot_above_floor_count_ = 0;
+  int current_floor_ = -1;
 };
 
 }  // namespace isg::slam

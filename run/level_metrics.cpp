@@ -1,0 +1,58 @@
+#include "run/level_metrics.hpp"
+
+#include <algorithm>
+#include <map>
+
+namespace isg::run {
+
+int floorAt(const bim::AGraph& graph, double z) {
+  int best = -1, lowest = -1;
+  for (int f = 0; f < int(graph.floors.size()); ++f) {
+    const double elevation = graph.floors[f].elevation;
+    if (lowest < 0 || elevation < graph.floors[lowest].elevation) lowest = f;
+    if (elevation <= z && (best < 0 || elevation > graph.floors[best].elevation)) best = f;
+  }
+  return best >= 0 ? best : lowest;
+}
+
+std::vector<LevelMetrics> levelMetrics(const bim::AGraph& graph, const Trajectory& ground_truth,
+                                       const std::vector<std::pair<double, double>>& ape_rows) {
+  std::vector<LevelMetrics> out;
+  if (graph.floors.size() < 2 || ground_truth.empty()) return out;
+  const double t0 = ground_truth.front().t;
+  std::map<int, int> row_of_floor;  // floor → index into out
+  std::vector<int> floor_of_row;    // the ground truth's floor at each row
+  auto entry = [&](int floor, double t) -> LevelMetrics& {
+    auto it = row_of_floor.find(floor);
+    if (it == row_of_floor.end()) {
+      it = row_of_floor.emplace(floor, int(out.size())).first;
+      LevelMetrics level;
+      level.level = graph.floors[floor].id;
+      level.arrived_at = t - t0;
+      out.push_back(level);
+    }
+    return out[it->second];
+  };
+  for (std::size_t i = 0; i < ground_truth.size(); ++i) {
+    const int floor = floorAt(graph, ground_truth[i].pose.translation().z());
+    floor_of_row.push_back(floor);
+    LevelMetrics& level = entry(floor, ground_truth[i].t);
+    if (i + 1 < ground_truth.size()) level.seconds += ground_truth[i + 1].t - ground_truth[i].t;
+  }
+  std::map<int, std::vector<double>> errors;
+  for (const auto& [t, error] : ape_rows) {
+    // The ground-truth row at or just before t.
+    const auto it = std::upper_bound(ground_truth.begin(), ground_truth.end(), t,
+                                     [](double s, const StampedPose& p) { return s < p.t; });
+    const std::size_t i =
+        it == ground_truth.begin() ? 0 : std::size_t(it - ground_truth.begin()) - 1;
+    const int floor = floor_of_row[i];
+    LevelMetrics& level = entry(floor, ground_truth[i].t);
+    if (!level.first_estimate_at) level.first_estimate_at = t - t0;
+    errors[floor].push_back(error);
+  }
+  for (auto& [floor, values] : errors) out[row_of_floor[floor]].ape_B = eval::statistics(values);
+  return out;
+}
+
+}  // namespace isg::run
