@@ -62,7 +62,10 @@ RunTable tabulateRuns(std::vector<std::pair<std::string, run::RunMetrics>> runs,
   std::vector<std::string> uncounted;
   const std::map<std::string, std::string> row_names = rowNames(runs);
   bool split_rows = false;
-  for (const auto& [dir, metrics] : runs) {
+  for (const auto& entry : runs) {
+    // Named references, not a structured binding: the lambda below captures them (clang 14).
+    const std::string& dir = entry.first;
+    const run::RunMetrics& metrics = entry.second;
     const std::string world =
         row_names.at(shortWorld(metrics.world) + "\n" + metrics.world_hash.value_or(""));
     split_rows = split_rows || world != shortWorld(metrics.world);
