@@ -176,8 +176,7 @@ std::string ISGraphLocalizer::updateAgreement(const MatchInput& input) {
     }
     // On the stairs the view turns from one floor to the next through the stairwell: a scan
     // unlike the recent map is expected there.
-    const bool map_disagrees = keyframe.floor >= 0 && !keyframe.climbing &&
-                               keyframe.registration.attempted &&
+    const bool map_disagrees = keyframe.onFloor() && keyframe.registration.attempted &&
                                keyframe.registration.inlier_share < options_.suspect_share;
     // Without a history of plan shares yet (just localized), a scan that does not agree with
     // the recent map at all is enough.
@@ -341,8 +340,8 @@ Verification ISGraphLocalizer::verifyNow(const MatchInput& input,
 int ISGraphLocalizer::levelAtHeightOf(int floor) const {
   const auto& floors = graph_.floors();
   if (floor_levels_.empty() || floor < 0 || floor >= int(floors.size())) return -1;
-  // From the floor whose level was found most recently... any known floor will do: M is one
-  // frame, and the heights of its floors differ by the storeys climbed.
+  // From the lowest-numbered floor whose level is known; any would do: M is one frame, and the
+  // heights of its floors differ by the storeys climbed.
   const auto& [known_floor, known_level] = *floor_levels_.begin();
   const double elevation =
       plan_->floors[known_level].elevation + floors[floor].robot_z - floors[known_floor].robot_z;
@@ -407,8 +406,7 @@ void ISGraphLocalizer::onKeyframe(double stamp) {
     const Verification now = verifyNow(input, P_T_M_x_y_yaw_);
     for (const auto& [s, a] : now.planes) plane_matches_.emplace(s, a);
     for (const auto& [s, a] : now.rooms) room_matches_.emplace(s, a);
-  } else if (keyframes > 1 && graph_.keyframes().back().floor >= 0 &&
-             !graph_.keyframes().back().climbing &&
+  } else if (keyframes > 1 && graph_.keyframes().back().onFloor() &&
              graph_.keyframes().back().registration.attempted &&
              !graph_.keyframes().back().registration.agrees) {
     // Not localized, and the world stopped agreeing with the map: the map so far would mislead

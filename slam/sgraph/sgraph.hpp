@@ -101,6 +101,8 @@ class SGraph {
     // Its height differs from the keyframe before's by the floors' level_step or more: on a
     // flight (on its first or last steps when it still has a floor).
     bool climbing = false;
+    // Standing on a floor, not on a flight: its scan sees one floor, as the recent map does.
+    bool onFloor() const { return floor >= 0 && !climbing; }
     Eigen::Isometry3d odometry = Eigen::Isometry3d::Identity();  // M_T_R by odometry alone
     Eigen::Vector3d position = Eigen::Vector3d::Zero();          // estimate
     Eigen::Quaterniond orientation = Eigen::Quaterniond::Identity();
