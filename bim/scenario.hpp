@@ -39,6 +39,7 @@ struct Kidnap {
   double time = 0.0;  // seconds of robot time
   std::optional<std::string> room;
   std::optional<Eigen::Vector3d> pose;
+  std::string level;  // the level the robot is put down on: the room's, or the pose's
 };
 
 // How far the robot's centre keeps from walls, clutter, closed doors and the outside when its route

@@ -48,7 +48,9 @@ Eigen::Vector3d poseOnLevel(const Level& level, const JsonNode& pose_node, const
   return Eigen::Vector3d(pose[0], pose[1], pose[2]);
 }
 
-std::vector<Kidnap> parseKidnaps(const JsonNode& node, const Level& level) {
+// Kidnaps may put the robot down on any level: a room names its own, a pose is on the robot's
+// level unless "level" says another.
+std::vector<Kidnap> parseKidnaps(const JsonNode& node, const Plan& plan, const Level& robot_level) {
   std::vector<Kidnap> out;
   for (const auto& item : node.elements(0, limits::kMaxKidnaps, "kidnaps")) {
     item.expectObject({"time", "to"});
@@ -61,12 +63,21 @@ std::vector<Kidnap> parseKidnaps(const JsonNode& node, const Level& level) {
                 formatNumber(out.back().time) + " s");
     }
     const JsonNode to = item.field("to");
-    to.expectObject({"room", "pose"});
+    to.expectObject({"room", "pose", "level"});
     if (to.has("room") == to.has("pose")) to.fail("give exactly one of \"room\" and \"pose\"");
     if (to.has("room")) {
-      kidnap.room = roomOnLevel(level, to.field("room"));
+      if (to.has("level")) {
+        to.field("level").fail("a room names its level: give \"level\" only with \"pose\"");
+      }
+      const JsonNode room = to.field("room");
+      const Level* level = plan.levelOfRoom(room.identifier());
+      if (level == nullptr) room.fail("no room " + inQuotes(room.identifier()) + " in the plan");
+      kidnap.room = room.identifier();
+      kidnap.level = level->id;
     } else {
+      const Level& level = to.has("level") ? levelNamed(plan, to.field("level")) : robot_level;
       kidnap.pose = poseOnLevel(level, to.field("pose"), "kidnap position");
+      kidnap.level = level.id;
     }
     out.push_back(kidnap);
   }
@@ -141,7 +152,8 @@ RobotConfig parseRobot(const std::optional<JsonNode>& node, const Plan& plan) {
     if (auto v = gait->optionalField("roll_deg")) g.roll_deg = v->numberInRange(0.0, 20.0);
     if (auto v = gait->optionalField("pitch_deg")) g.pitch_deg = v->numberInRange(0.0, 20.0);
   }
-  if (auto kidnap = node->optionalField("kidnap")) robot.kidnap = parseKidnaps(*kidnap, *level);
+  if (auto kidnap = node->optionalField("kidnap"))
+    robot.kidnap = parseKidnaps(*kidnap, plan, *level);
   return robot;
 }
 

@@ -126,7 +126,8 @@ RunEvaluation evaluateRun(const RunRecord& run) {
     });
   }
   if (has_truth && run.setup.agraph != nullptr) {
-    m.levels = levelMetrics(*run.setup.agraph, streams.ground_truth, evaluation.error_over_time);
+    m.levels = levelMetrics(*run.setup.agraph, streams.ground_truth, run.estimate,
+                            evaluation.error_over_time);
   }
   evaluation.dead_reckoning = odometryInPlan(streams);
   if (!evaluation.dead_reckoning.empty()) {

@@ -16,6 +16,7 @@ int floorAt(const bim::AGraph& graph, double z) {
 }
 
 std::vector<LevelMetrics> levelMetrics(const bim::AGraph& graph, const Trajectory& ground_truth,
+                                       const Trajectory& estimate,
                                        const std::vector<std::pair<double, double>>& ape_rows) {
   std::vector<LevelMetrics> out;
   if (graph.floors.size() < 2 || ground_truth.empty()) return out;
@@ -48,7 +49,13 @@ std::vector<LevelMetrics> levelMetrics(const bim::AGraph& graph, const Trajector
         it == ground_truth.begin() ? 0 : std::size_t(it - ground_truth.begin()) - 1;
     const int floor = floor_of_row[i];
     LevelMetrics& level = entry(floor, ground_truth[i].t);
-    if (!level.first_estimate_at) level.first_estimate_at = t - t0;
+    // The first pose there is the first that puts the robot on that level: right after a kidnap
+    // to another floor the estimate still stands where the robot was.
+    const auto at = std::lower_bound(estimate.begin(), estimate.end(), t - 1e-9,
+                                     [](const StampedPose& p, double s) { return p.t < s; });
+    const bool on_level =
+        at == estimate.end() || floorAt(graph, at->pose.translation().z()) == floor;
+    if (!level.first_estimate_at && on_level) level.first_estimate_at = t - t0;
     errors[floor].push_back(error);
   }
   for (auto& [floor, values] : errors) out[row_of_floor[floor]].ape_B = eval::statistics(values);

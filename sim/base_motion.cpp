@@ -47,13 +47,13 @@ Smoothstep inclineWeight(double s, double length, double ramp) {
 
 BaseMotion::BaseMotion(const std::vector<Eigen::Vector2d>& waypoints, double start_yaw,
                        double speed, double floor_z, const GaitConfig& gait)
-    : gait_(gait), speed_(speed), floor_z_(floor_z) {
+    : gait_(gait), speed_(speed) {
   legs_.push_back(makeLeg(0.0, onFloor(waypoints, floor_z), start_yaw));
 }
 
 BaseMotion::BaseMotion(const std::vector<Eigen::Vector3d>& waypoints, double start_yaw,
                        double speed, const GaitConfig& gait)
-    : gait_(gait), speed_(speed), floor_z_(waypoints.front().z()) {
+    : gait_(gait), speed_(speed) {
   legs_.push_back(makeLeg(0.0, waypoints, start_yaw));
 }
 
@@ -99,9 +99,9 @@ BaseMotion::Leg BaseMotion::makeLeg(double start, const std::vector<Eigen::Vecto
   return leg;
 }
 
-void BaseMotion::appendLeg(double time, const std::vector<Eigen::Vector2d>& waypoints,
+void BaseMotion::appendLeg(double time, const std::vector<Eigen::Vector3d>& waypoints,
                            double start_yaw) {
-  legs_.push_back(makeLeg(time, onFloor(waypoints, floor_z_), start_yaw));
+  legs_.push_back(makeLeg(time, waypoints, start_yaw));
 }
 
 std::vector<double> BaseMotion::jumps() const {

@@ -55,7 +55,9 @@ class BaseMotion {
              const GaitConfig& gait);
 
   // Continues with a new leg from `time` on (after the current leg's start, before its end).
-  void appendLeg(double time, const std::vector<Eigen::Vector2d>& waypoints, double start_yaw);
+  // Its waypoints are as the constructor over floors takes them: a kidnap may put the robot down
+  // on another floor.
+  void appendLeg(double time, const std::vector<Eigen::Vector3d>& waypoints, double start_yaw);
 
   // When the last leg ends: the robot stops there.
   double duration() const { return legs_.back().end(); }
@@ -124,7 +126,6 @@ class BaseMotion {
   std::vector<Leg> legs_;
   GaitConfig gait_;
   double speed_;
-  double floor_z_ = 0.0;  // of the 2D routes' floor
 };
 
 }  // namespace isg::sim

@@ -33,12 +33,14 @@ nlohmann::ordered_json metadata(const Simulation& sim, double duration,
   using json = nlohmann::ordered_json;
   const bim::Scenario& s = sim.scenario();
   const auto& l = s.lidar;
-  // Where each kidnap put the robot down (the planned pose, in B).
+  // Where each kidnap put the robot down (the planned pose, in B), and on which level when the
+  // plan has several.
   json kidnaps = json::array();
   for (const auto& leg : sim.route().kidnaps) {
-    kidnaps.push_back(
-        {{"time", leg.time},
-         {"to", {leg.waypoints.front().x(), leg.waypoints.front().y(), leg.start_yaw}}});
+    json kidnap = {{"time", leg.time},
+                   {"to", {leg.waypoints.front().x(), leg.waypoints.front().y(), leg.start_yaw}}};
+    if (s.plan.levels.size() > 1) kidnap["level"] = leg.waypoint_levels.front();
+    kidnaps.push_back(std::move(kidnap));
   }
   json route = json::array();
   for (const auto& p : sim.route().waypoints) route.push_back({p.x(), p.y()});

@@ -35,12 +35,12 @@ Eigen::Isometry3d OdometryModel::update(const Eigen::Isometry3d& B_T_R, std::mt1
   planar_.y() += moved.y();
   planar_.z() = bim::wrapAngle(planar_.z() + dyaw);
 
-  // Height, roll and pitch relative to the start, from the truth.
+  // Height, roll and pitch relative to the start, from the truth (less what kidnaps carried).
   const Eigen::Matrix3d tilt =
       Eigen::AngleAxisd(-yaw1, Eigen::Vector3d::UnitZ()).toRotationMatrix() * B_T_R.linear();
   Eigen::Isometry3d M_T_R = Eigen::Isometry3d::Identity();
-  M_T_R.translation() =
-      Eigen::Vector3d(planar_.x(), planar_.y(), B_T_R.translation().z() - start_.translation().z());
+  M_T_R.translation() = Eigen::Vector3d(
+      planar_.x(), planar_.y(), B_T_R.translation().z() - start_.translation().z() + lifted_);
   M_T_R.linear() =
       Eigen::AngleAxisd(planar_.z(), Eigen::Vector3d::UnitZ()).toRotationMatrix() * tilt;
   return M_T_R;

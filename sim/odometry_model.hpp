@@ -23,7 +23,11 @@ class OdometryModel {
   // The estimate M_T_R after moving to the true pose B_T_R.
   Eigen::Isometry3d update(const Eigen::Isometry3d& B_T_R, std::mt19937_64& rng);
   // The robot was carried to B_T_R (a kidnap): the legs did not move, so odometry does not see it.
-  void teleport(const Eigen::Isometry3d& B_T_R) { previous_ = B_T_R; }
+  // Nor its height: carried to another floor, the odometry's height stays where it was.
+  void teleport(const Eigen::Isometry3d& B_T_R) {
+    lifted_ += previous_.translation().z() - B_T_R.translation().z();
+    previous_ = B_T_R;
+  }
 
   static constexpr double kRotationNoise = 0.01;  // rad per √rad
 
@@ -32,6 +36,7 @@ class OdometryModel {
   Eigen::Isometry3d previous_;
   Eigen::Isometry3d start_;
   Eigen::Vector3d planar_ = Eigen::Vector3d::Zero();  // x, y, yaw in M
+  double lifted_ = 0.0;  // the height the kidnaps carried the robot, which M does not see
 };
 
 }  // namespace isg::sim

@@ -13,6 +13,7 @@
 #include "bim/plan_geometry.hpp"
 #include "bim/polygon.hpp"
 #include "bim/stairs.hpp"
+#include "sim/route_builder.hpp"
 
 namespace isg::sim {
 
@@ -162,141 +163,6 @@ std::vector<Eigen::Vector2d> findPath(const OccupancyGrid& grid, const Eigen::Ve
 }
 
 namespace {
-
-// A flight of stairs with the two levels it joins.
-struct Flight {
-  const bim::Stair* stair;
-  const bim::Level* from;  // the level that declares it (its `start` edge)
-  const bim::Level* to;
-  bim::StairGeometry geometry;
-
-  const bim::Level& otherThan(const bim::Level& level) const {
-    return &level == from ? *to : *from;
-  }
-};
-
-// Builds a route over the levels of a building: per level, paths on that level's occupancy grid;
-// between levels, the flights of stairs walked straight from an approach point before one edge
-// to one beyond the other.
-class RouteBuilder {
- public:
-  RouteBuilder(const bim::Scenario& scenario, const OccupancyGrid& robot_grid, PlannedRoute& route)
-      : scenario_(scenario), route_(route), clearance_(scenario.robot.clearance) {
-    level_ = scenario.plan.findLevel(scenario.robot.level);
-    grids_.emplace(level_->id, &robot_grid);
-  }
-
-  const bim::Level& level() const { return *level_; }
-  const OccupancyGrid& grid() { return gridOf(*level_); }
-  double clearance() const { return clearance_; }
-
-  void start(const Eigen::Vector2d& at) { push(at); }
-  const Eigen::Vector2d& lastWaypoint() const { return route_.waypoints.back(); }
-
-  // A clear path on the current level to `target`; false when there is none.
-  bool goTo(const Eigen::Vector2d& target) {
-    const auto straight = straightPath(grid(), route_.waypoints.back(), target, clearance_);
-    if (straight.empty()) return false;
-    for (auto it = straight.begin() + 1; it != straight.end(); ++it) push(*it);
-    return true;
-  }
-
-  void reached(const std::string& room) {
-    route_.visited_rooms.push_back(room);
-    route_.targets.push_back(
-        {room, room, int(route_.waypoints.size()) - 1, route_.waypoints.back(), level_->id});
-  }
-
-  // The flights that start or end on `level`, in plan order.
-  std::vector<Flight> flightsOf(const bim::Level& level) const {
-    std::vector<Flight> out;
-    for (const auto& from : scenario_.plan.levels) {
-      for (const auto& stair : from.stairs) {
-        const bim::Level* to = scenario_.plan.findLevel(stair.to);
-        if (&from != &level && to != &level) continue;
-        out.push_back({&stair, &from, to, bim::computeStairGeometry(stair, from, *to)});
-      }
-    }
-    return out;
-  }
-
-  // Walks `flight` from the current level to its other one: to the approach point on this level,
-  // onto the edge, up or down the steps to the other edge, and on to the approach point there.
-  // False (and nothing added) when the approach on this level cannot be reached or there is no
-  // clear place to step off on the other.
-  bool climb(const Flight& flight) {
-    const bim::Level& other = flight.otherThan(*level_);
-    const auto here = flightEnd(flight, *level_);
-    const auto there = flightEnd(flight, other);
-    if (!here || !there) return false;
-    const auto path = straightPath(grid(), route_.waypoints.back(), here->approach, clearance_);
-    if (path.empty()) return false;
-    for (auto it = path.begin() + 1; it != path.end(); ++it) push(*it);
-    push(here->edge);
-    level_ = &other;
-    push(there->edge);
-    push(there->approach);
-    return true;
-  }
-
-  // The levels reachable from the current one, each with the flights that lead there first
-  // (breadth first, flights in plan order).
-  std::vector<Flight> flightsTo(const bim::Level& target) const {
-    std::map<const bim::Level*, std::vector<Flight>> path{{level_, {}}};
-    std::queue<const bim::Level*> queue;
-    queue.push(level_);
-    while (!queue.empty()) {
-      const bim::Level* at = queue.front();
-      queue.pop();
-      if (at == &target) return path[at];
-      for (const Flight& f : flightsOf(*at)) {
-        const bim::Level* next = &f.otherThan(*at);
-        if (path.count(next)) continue;
-        path[next] = path[at];
-        path[next].push_back(f);
-        queue.push(next);
-      }
-    }
-    return {};
-  }
-
-  const OccupancyGrid& gridOf(const bim::Level& level) {
-    auto found = grids_.find(level.id);
-    if (found != grids_.end()) return *found->second;
-    owned_.push_back(std::make_unique<OccupancyGrid>(scenario_.plan, scenario_.as_built, level.id));
-    return *grids_.emplace(level.id, owned_.back().get()).first->second;
-  }
-
- private:
-  struct FlightEnd {
-    Eigen::Vector2d edge, approach;
-  };
-  // Where a flight meets `level`: its edge there and the nearest point straight out from it where
-  // the robot stands clear of everything (the stairwell included), within 2 m; nullopt if none.
-  std::optional<FlightEnd> flightEnd(const Flight& flight, const bim::Level& level) {
-    const bool at_start = &level == flight.from;
-    const Eigen::Vector2d edge = at_start ? flight.stair->start : flight.stair->end;
-    const Eigen::Vector2d outward = at_start ? -flight.geometry.axis : flight.geometry.axis;
-    const OccupancyGrid& grid = gridOf(level);
-    for (double d = clearance_ + 0.05; d <= clearance_ + 2.0; d += 0.05) {
-      const Eigen::Vector2d approach = edge + d * outward;
-      if (grid.clearanceAt(approach) >= clearance_) return FlightEnd{edge, approach};
-    }
-    return std::nullopt;
-  }
-
-  void push(const Eigen::Vector2d& p) {
-    route_.waypoints.push_back(p);
-    route_.waypoint_levels.push_back(level_->id);
-  }
-
-  const bim::Scenario& scenario_;
-  PlannedRoute& route_;
-  double clearance_;
-  const bim::Level* level_;
-  std::map<std::string, const OccupancyGrid*> grids_;
-  std::vector<std::unique_ptr<OccupancyGrid>> owned_;
-};
 
 // Tour of one level from where the route is: depth-first over the rooms joined by open doors,
 // neighbours in id order, then the rooms joined without a door.

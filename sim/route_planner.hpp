@@ -25,10 +25,11 @@ struct RouteTarget {
 };
 
 // After a kidnap (scenario robot.kidnap): put down at waypoints[0] at `time`, the robot goes on
-// to the targets it had not reached yet.
+// to the targets it had not reached yet, by stairs when they are on other levels.
 struct KidnapLeg {
   double time = 0.0;
   std::vector<Eigen::Vector2d> waypoints;
+  std::vector<std::string> waypoint_levels;  // as PlannedRoute's
   double start_yaw = 0.0;
   std::vector<RouteTarget> targets;
 };

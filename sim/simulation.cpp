@@ -1,6 +1,7 @@
 #include "sim/simulation.hpp"
 
 #include "sim/kidnap_planner.hpp"
+#include "sim/route_builder.hpp"
 
 #include <cmath>
 
@@ -48,11 +49,7 @@ Simulation::Simulation(const bim::Scenario& scenario)
   auto rng = generator(kRouteStream);
   route_ = planRoute(scenario_, *grid_, rng);
   // Each waypoint stands on its level's floor; between two levels the base walks a flight.
-  std::vector<Eigen::Vector3d> waypoints;
-  for (std::size_t i = 0; i < route_.waypoints.size(); ++i) {
-    const double floor_z = scenario_.plan.findLevel(route_.waypoint_levels[i])->elevation;
-    waypoints.emplace_back(route_.waypoints[i].x(), route_.waypoints[i].y(), floor_z);
-  }
+  const auto waypoints = onTheirFloors(scenario_.plan, route_.waypoints, route_.waypoint_levels);
   base_motion_ = std::make_unique<BaseMotion>(waypoints, route_.start_yaw, scenario_.robot.speed,
                                               gaitOf(scenario_.robot));
   planKidnaps(scenario_, *grid_, route_, *base_motion_, rng);

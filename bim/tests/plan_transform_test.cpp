@@ -36,7 +36,7 @@ TEST(PlanTransform, PosesTurnWithTheBuildingAndWhatIsAlongAWallStays) {
   scenario.plan = testing::parsePlanJson(testing::twoRoomPlanJson());
   scenario.robot.start_pose = Eigen::Vector3d(1.0, 2.0, 0.5);
   scenario.robot.route.waypoints = {{4.0, 1.0}};
-  scenario.robot.kidnap.push_back({10.0, std::nullopt, Eigen::Vector3d(5.0, 3.0, -3.0)});
+  scenario.robot.kidnap.push_back({10.0, std::nullopt, Eigen::Vector3d(5.0, 3.0, -3.0), "L0"});
   ExtraWall extra;
   extra.start = {1.0, 1.0};
   extra.end = {2.0, 1.0};

@@ -255,7 +255,19 @@ std::vector<Case> cases() {
        [](json&, json& s) {
          s["robot"]["kidnap"] = {{{"time", 10}, {"to", {{"room", "R9"}}}}};
        },
-       "scenario.json: /robot/kidnap/0/to/room: no room \"R9\" on level \"L0\""},
+       "scenario.json: /robot/kidnap/0/to/room: no room \"R9\" in the plan"},
+      {"KidnapToRoomWithLevel", "scenario.json",
+       [](json&, json& s) {
+         s["robot"]["kidnap"] = {{{"time", 10}, {"to", {{"room", "R2"}, {"level", "L0"}}}}};
+       },
+       "scenario.json: /robot/kidnap/0/to/level: a room names its level: give \"level\" only "
+       "with \"pose\""},
+      {"KidnapToUnknownLevel", "scenario.json",
+       [](json&, json& s) {
+         s["robot"]["kidnap"] = {
+             {{"time", 10}, {"to", {{"pose", {1.0, 1.0, 0.0}}, {"level", "L4"}}}}};
+       },
+       "scenario.json: /robot/kidnap/0/to/level: no level \"L4\" in the plan"},
       {"KidnapToRoomAndPose", "scenario.json",
        [](json&, json& s) {
          s["robot"]["kidnap"] = {

@@ -2,6 +2,7 @@
 // from (9, 0.85) on L0 up to (13.5, 0.85) on L1).
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <random>
 
 #include "bim/input_error.hpp"
@@ -114,6 +115,43 @@ TEST(StairsRoute, TheRobotClimbsInTheSimulation) {
   // Ends on the first floor, 3.2 m up, standing 0.46 m above it.
   EXPECT_NEAR(motion.pose(motion.duration()).translation().z(), 3.2 + 0.46, 1e-9);
   EXPECT_NEAR(motion.pose(0.0).translation().z(), 0.46, 1e-9);
+}
+
+// A kidnap may put the robot down on another level: the ground truth jumps up a storey, the
+// odometry does not, and the tour goes on with the rooms it had not reached, down the flight to
+// those left below and back up for those above.
+TEST(StairsRoute, AKidnapToARoomAboveGoesOnByTheFlight) {
+  bim::Scenario scenario = storeys();
+  const Simulation plain(scenario);
+  const auto& targets = plain.route().targets;
+  ASSERT_GE(targets.size(), 2u);
+  ASSERT_EQ(targets[1].room, "R1");
+  const double when = plain.baseMotion().arrival(0, targets[1].waypoint) + 1.0;
+  scenario.robot.kidnap.push_back({when, "R12", std::nullopt, "L1"});
+  const Simulation sim(scenario);
+  const PlannedRoute& route = sim.route();
+  EXPECT_EQ(route.visited_rooms,
+            (std::vector<std::string>{"R4", "R1", "R12", "R2", "R3", "R14", "R11", "R13"}));
+  EXPECT_TRUE(route.skipped_rooms.empty());
+  ASSERT_EQ(route.kidnaps.size(), 1u);
+  const KidnapLeg& leg = route.kidnaps[0];
+  ASSERT_EQ(leg.waypoint_levels.size(), leg.waypoints.size());
+  std::vector<std::string> levels{leg.waypoint_levels.front()};
+  for (const auto& l : leg.waypoint_levels) {
+    if (l != levels.back()) levels.push_back(l);
+  }
+  EXPECT_EQ(levels, (std::vector<std::string>{"L1", "L0", "L1"}));
+  // Standing 0.46 m above the floor it is on: L0 before the lift, L1 (3.2 m) right after it.
+  const BaseMotion& motion = sim.baseMotion();
+  EXPECT_NEAR(motion.poseBefore(when).translation().z(), 0.46, 0.02);
+  EXPECT_NEAR(motion.pose(when).translation().z(), 3.2 + 0.46, 0.02);
+  EXPECT_NEAR(motion.pose(motion.duration()).translation().z(), 3.2 + 0.46, 1e-9);
+  // The odometry does not see the lift: its height stays as it was through it.
+  const auto odometry = sim.odometry(when + 1.0);
+  ASSERT_GE(odometry.size(), 2u);
+  EXPECT_LT(
+      std::abs(odometry.back().pose.translation().z() - odometry.front().pose.translation().z()),
+      0.3);
 }
 
 }  // namespace

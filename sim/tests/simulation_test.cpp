@@ -87,7 +87,7 @@ TEST(BaseMotion, AKidnapStartsANewLegAtItsTime) {
   GaitConfig gait;
   const double walk_ramp = std::numbers::pi * 0.5 / 3.0, turn_ramp = std::numbers::pi * 0.8 / 6.0;
   BaseMotion t({{0, 0}, {4, 0}}, 0.0, 0.5, 0.0, gait);  // 8 s (and a ramp) along x
-  t.appendLeg(3.0, {{10, 5}, {10, 7}}, 0.3);            // lifted at 3 s to (10, 5)
+  t.appendLeg(3.0, std::vector<Eigen::Vector3d>{{10, 5, 0}, {10, 7, 0}}, 0.3);  // to (10, 5)
   EXPECT_EQ(t.jumps(), std::vector<double>{3.0});
   // Past its first ramp it has covered half a ramp's time less than at full speed throughout.
   const double x_at_3 = 0.5 * (3.0 - walk_ramp / 2);
@@ -117,7 +117,7 @@ TEST(Simulation, KidnappedRobotJumpsUnseenByOdometry) {
       farthest = &room;
     }
   }
-  scenario.robot.kidnap.push_back({when, farthest->id, std::nullopt});
+  scenario.robot.kidnap.push_back({when, farthest->id, std::nullopt, "L0"});
   const Simulation sim(scenario);
   const auto truth = sim.groundTruth(sim.duration(), 50.0);
   const auto odometry = sim.odometry(sim.duration());

@@ -4,6 +4,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <limits>
 
 #include "bim/agraph_factors.hpp"
 #include "slam/isgraph/merging_factors.hpp"
@@ -35,6 +36,7 @@ ISGraphLocalizer::ISGraphLocalizer(const Eigen::Isometry3d& R_T_L, const bim::AG
   building_ = Eigen::AlignedBox2d(walls.min() - margin, walls.max() + margin);
   if (plan_in_P_.floors.size() > 1) {
     level_matcher_ = std::make_unique<LevelMatcher>(plan_in_P_, options.matching);
+    flights_ = flightFootprints(plan_in_P_);
   }
   graph_.setWindowHook(
       [this](ceres::Problem& problem, const std::set<int>& planes, const std::vector<int>& rooms) {
@@ -356,6 +358,33 @@ int ISGraphLocalizer::levelAtHeightOf(int floor) const {
   return best;
 }
 
+std::string ISGraphLocalizer::offFlight() const {
+  const double elevation = plan_->floors[level_].elevation;
+  const Eigen::Vector2d p =
+      applyPlanar(P_T_M_x_y_yaw_, graph_.keyframes().back().pose().translation().head<2>());
+  double nearest = std::numeric_limits<double>::infinity();
+  for (const auto& flight : flights_) {
+    if (flight.joins(elevation, options_.level_tolerance)) {
+      nearest = std::min(nearest, flight.distance(p));
+    }
+  }
+  if (nearest <= options_.flight_margin) return "";
+  const Eigen::Vector2d in_B = p + B_t_P_;
+  char text[200];
+  if (std::isinf(nearest)) {
+    std::snprintf(text, sizeof text,
+                  "the robot is on stairs at (%.1f, %.1f), and no flight of the plan joins level "
+                  "%s",
+                  in_B.x(), in_B.y(), plan_->floors[level_].id.c_str());
+  } else {
+    std::snprintf(text, sizeof text,
+                  "the robot is on stairs at (%.1f, %.1f), %.1f m from every flight that joins "
+                  "level %s",
+                  in_B.x(), in_B.y(), nearest, plan_->floors[level_].id.c_str());
+  }
+  return text;
+}
+
 std::string ISGraphLocalizer::followFloor(double stamp) {
   const int floor = graph_.currentFloor();
   if (!level_matcher_) {
@@ -367,6 +396,8 @@ std::string ISGraphLocalizer::followFloor(double stamp) {
     return "";
   }
   if (floor < 0) return "";
+  // Between floors (the current floor is the last one stood on).
+  if (graph_.keyframes().back().floor < 0) return offFlight();
   const auto known = floor_levels_.find(floor);
   if (known != floor_levels_.end()) {
     level_ = known->second;

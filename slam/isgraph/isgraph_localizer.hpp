@@ -14,6 +14,7 @@
 #include "bim/agraph.hpp"
 #include "bim/agraph_optimizer.hpp"
 #include "bim/plane_manifold.hpp"
+#include "slam/isgraph/flight_footprints.hpp"
 #include "slam/isgraph/graph_matching.hpp"
 #include "slam/isgraph/level_matching.hpp"
 #include "slam/isgraph/plan_distance_field.hpp"
@@ -70,6 +71,11 @@ struct ISGraphOptions {
   // at the elevation its height above the matched floor leads to, within this; none there → lost.
   // Half the least storey height (2 m of headroom, docs/formats.md).
   double level_tolerance = 1.0;  // m
+  // The robot changes floor only on a flight of stairs: once localized, a keyframe on the stairs
+  // (between floors) farther than this from every flight of the plan that joins the current
+  // level means the match is wrong (lost). It covers the pose error and a flight's ends, where
+  // the robot starts rising: a pose on a flight is inside its rectangle.
+  double flight_margin = 1.0;  // m
 };
 
 // The S-Graph as the matcher sees it (walls of a minimum height, confirmed rooms, transitions),
@@ -149,6 +155,9 @@ class ISGraphLocalizer : public Localizer {
   // The plan level at the height of S-floor `floor`, from a floor whose level is known; -1 when
   // no level is within level_tolerance.
   int levelAtHeightOf(int floor) const;
+  // Why the latest keyframe, on the stairs, is on none of the current level's flights; empty
+  // when it is on one.
+  std::string offFlight() const;
   // Takes the latest keyframe into the localized graph's agreement with the world and the plan
   // (the plan-share history, the collapse count; held correspondences that left the hold gate are
   // dropped) and says why the graph no longer agrees; empty while it does.
@@ -178,8 +187,9 @@ class ISGraphLocalizer : public Localizer {
   GraphMatcher matcher_;
   // With several levels: each level's A-Graph matched on its own, the answers compared.
   std::unique_ptr<LevelMatcher> level_matcher_;
-  std::map<int, int> floor_levels_;  // S-Graph floor → A-Graph floor, while localized
-  int level_ = -1;                   // of the current floor, while localized
+  std::vector<FlightFootprint> flights_;  // in P
+  std::map<int, int> floor_levels_;       // S-Graph floor → A-Graph floor, while localized
+  int level_ = -1;                        // of the current floor, while localized
   std::vector<LevelChange> level_changes_;
   bim::AGraphState plan_state_;
   bim::PlaneManifold plane_manifold_;

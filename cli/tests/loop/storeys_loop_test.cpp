@@ -99,5 +99,77 @@ INSTANTIATE_TEST_SUITE_P(MultiStoreyWorlds, StoreysInTheLoop,
                            return name;
                          });
 
+// A kidnap to a room on another storey (docs/matching.md, "Several storeys"): the odometry does
+// not see the lift, so the robot stands on a floor the S-Graph had not; it is lost within a few
+// keyframes, relocalizes on the level it was put down on, and is right from then on.
+struct KidnapCase {
+  std::string world;
+  std::uint64_t seed;
+  double time;
+  std::string room;
+  std::string level;  // the room's
+};
+
+void PrintTo(const KidnapCase& c, std::ostream* out) {
+  *out << c.world << " seed " << c.seed << " to " << c.room;
+}
+
+class KidnapAcrossStoreys : public ::testing::TestWithParam<KidnapCase> {};
+
+TEST_P(KidnapAcrossStoreys, LostThenRelocalizedOnTheLevelPutDownOn) {
+  const KidnapCase c = GetParam();
+  bim::Scenario scenario = worlds::loadScenarioOrBuiltin("builtin:" + c.world, nullptr);
+  scenario.seed = c.seed;
+  scenario.robot.kidnap.push_back({c.time, c.room, std::nullopt, c.level});
+  const run::RunRecord record = testing::runIsGraphInTheLoop(scenario);
+  const auto& truth = record.streams.ground_truth;
+
+  // Localized before the kidnap, lost within 3 s after it (the estimate's rows until then are
+  // the only wrong ones), matched again on the room's level, never contradicted.
+  ASSERT_TRUE(record.localized_at.has_value());
+  EXPECT_LT(*record.localized_at, c.time);
+  const auto lost = std::find_if(
+      record.status_changes.begin(), record.status_changes.end(), [&](const auto& change) {
+        return change.stamp >= c.time && change.status == slam::MatchStatus::kLost;
+      });
+  ASSERT_NE(lost, record.status_changes.end());
+  EXPECT_LT(lost->stamp - c.time, 3.0) << lost->reason;
+  const auto again = std::find_if(lost, record.status_changes.end(), [](const auto& change) {
+    return change.status == slam::MatchStatus::kMatched;
+  });
+  ASSERT_NE(again, record.status_changes.end());
+  EXPECT_NE(again->reason.find("on level " + c.level), std::string::npos) << again->reason;
+  EXPECT_LT(again->stamp - c.time, 20.0);
+  for (const auto& change : record.status_changes) {
+    EXPECT_NE(change.status, slam::MatchStatus::kContradicted) << change.reason;
+  }
+  const eval::WrongLocalization wrong = eval::wrongLocalization(truth, record.estimate);
+  EXPECT_FALSE(wrong.wrong);
+  EXPECT_LT(wrong.seconds, 3.0);
+
+  // From the relocalization on: right in the plane and in height, to the end of the tour.
+  sensors::Trajectory after;
+  for (const auto& pose : record.estimate) {
+    if (pose.t >= again->stamp) after.push_back(pose);
+  }
+  ASSERT_FALSE(after.empty());
+  const eval::WrongLocalization since = eval::wrongLocalization(truth, after);
+  EXPECT_LT(since.max_error, 0.3);
+  EXPECT_LT(since.max_height_error, 0.5);
+}
+
+INSTANTIATE_TEST_SUITE_P(MultiStoreyWorlds, KidnapAcrossStoreys,
+                         ::testing::Values(KidnapCase{"storeys.asbuilt", 1, 45.0, "R12", "L1"},
+                                           KidnapCase{"twin-storeys.asbuilt", 2, 40.0, "R02",
+                                                      "L0"}),
+                         [](const auto& param_info) {
+                           std::string name = param_info.param.world + "_seed" +
+                                              std::to_string(param_info.param.seed);
+                           for (char& ch : name) {
+                             if (ch == '.' || ch == '-') ch = '_';
+                           }
+                           return name;
+                         });
+
 }  // namespace
 }  // namespace isg::sim
