@@ -8,6 +8,7 @@
 
 #include "bim/agraph.hpp"
 #include "bim/angles.hpp"
+#include "cli/tests/injected_match.hpp"
 #include "run/driver.hpp"
 #include "sim/scan_pipeline.hpp"
 #include "sim/simulation.hpp"
@@ -26,18 +27,9 @@ TEST(ISGraphContradiction, AWrongFirstMatchIsContradictedAndEveryKeyframeReoptim
   const bim::Scenario scenario = worlds::loadScenarioOrBuiltin("builtin:d3.asbuilt", nullptr);
   const Simulation simulation(scenario);
   const bim::AGraph plan = bim::buildAGraph(scenario.plan);
-  slam::ISGraphOptions options;
-  options.hold_angle_deg = 180.0;
-  options.hold_distance = 1e9;
-  options.lost_min_held = 0;
-  options.outside_margin = 1e9;
-  options.suspect_share = 0.0;
-  options.plan_share_collapse = 0.0;
-  slam::ISGraphLocalizer localizer(simulation.R_T_L(), plan, options);
+  slam::ISGraphLocalizer localizer(simulation.R_T_L(), plan, testing::withTheLostChecksOff());
   sensors::SensorStreams streams = sensorStreams(simulation, -1.0);
-  const Eigen::Isometry3d B_T_M = sensors::trueStartB_T_M(streams);
-  const Eigen::Vector3d truth(B_T_M.translation().x(), B_T_M.translation().y(),
-                              bim::yawOf(B_T_M.linear()));
+  const Eigen::Vector3d truth = testing::trueStartXYYaw(streams);
   LookaheadScans scans(simulation, int(streams.scan_stamps.size()), 1);
   run::LocalizerDriver driver(localizer, streams.odometry, streams.scan_period);
   bool injected = false;

@@ -395,6 +395,7 @@ SGraph::WindowSize SGraph::optimise(int first, bool with_hook, int max_iteration
                                planes_[pairs[0][1]].parameters.data());
     }
   }
+  addFloorFactors(problem, active_rooms);
   if (with_hook && window_hook_) window_hook_(problem, planes, active_rooms);
   ceres::Solver::Options solver;
   solver.linear_solver_type = ceres::SPARSE_NORMAL_CHOLESKY;
@@ -407,6 +408,47 @@ SGraph::WindowSize SGraph::optimise(int first, bool with_hook, int max_iteration
     p.map.plane = bim::toPlane(p.parameters);
   }
   return {problem.NumResidualBlocks(), problem.NumParameterBlocks()};
+}
+
+void SGraph::tieToFloor(int room) {
+  Room& tied = rooms_[room];
+  Floor& floor = floors_[tied.floor];
+  if (floor.rooms_tied == 0) floor.centre = tied.centre;
+  tied.floor_offset = tied.centre - floor.centre;
+  ++floor.rooms_tied;
+  Eigen::Vector2d sum = Eigen::Vector2d::Zero();
+  for (const Room& r : rooms_) {
+    if (r.floor == tied.floor && r.floor_offset) sum += *r.floor_offset;
+  }
+  const Eigen::Vector2d shift = sum / double(floor.rooms_tied);
+  floor.centre += shift;
+  for (Room& r : rooms_) {
+    if (r.floor == tied.floor && r.floor_offset) *r.floor_offset -= shift;
+  }
+}
+
+void SGraph::addFloorFactors(ceres::Problem& problem, const std::vector<int>& active_rooms) {
+  if (options_.floors.room_sigma <= 0.0 || active_rooms.empty()) return;
+  const std::vector<int> confirmed = confirmedRooms();
+  std::map<int, std::vector<int>> by_floor;
+  for (int r : active_rooms) {
+    const int floor = rooms_[r].floor;
+    if (floor < 0 || floor >= int(floors_.size())) continue;
+    if (!std::binary_search(confirmed.begin(), confirmed.end(), r)) continue;
+    if (!rooms_[r].floor_offset) tieToFloor(r);
+    by_floor[floor].push_back(r);
+  }
+  for (const auto& [floor, rooms] : by_floor) {
+    // One room alone with its floor's node is not constrained by it.
+    if (rooms.size() < 2) continue;
+    double* centre = floors_[floor].centre.data();
+    problem.AddParameterBlock(centre, 2);
+    for (int r : rooms) {
+      problem.AddResidualBlock(
+          FloorRoomFactor::create(*rooms_[r].floor_offset, options_.floors.room_sigma), nullptr,
+          centre, rooms_[r].centre.data());
+    }
+  }
 }
 
 MapPlane SGraph::wallOf(const Plane& p) {
@@ -623,15 +665,10 @@ std::optional<double> SGraph::floorHeight(int floor) const {
 
 std::optional<Eigen::Vector2d> SGraph::floorCentre(int floor) const {
   if (floor < 0) floor = current_floor_;
-  Eigen::Vector2d sum = Eigen::Vector2d::Zero();
-  int count = 0;
-  for (int r : confirmedRooms()) {
-    if (rooms_[r].floor != floor) continue;
-    sum += rooms_[r].centre;
-    ++count;
+  if (floor < 0 || floor >= int(floors_.size()) || floors_[floor].rooms_tied == 0) {
+    return std::nullopt;
   }
-  if (count == 0) return std::nullopt;
-  return sum / double(count);
+  return floors_[floor].centre;
 }
 
 MapDiagnostics SGraph::diagnostics() const {

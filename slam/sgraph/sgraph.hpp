@@ -37,6 +37,10 @@ struct FloorOptions {
   // one farther than `tolerance` but not yet that far (or still climbing) is on the stairs.
   double min_separation = 1.5;  // m
   double level_step = 0.1;      // m of height between consecutive keyframes that are level
+  // Each confirmed room is tied to its floor's node by the offset it had from it when first tied
+  // (the paper's floor node constraining its floor's rooms), within this: loose beside the walls
+  // (a few cm), about the odometry's drift between two rooms of a floor. 0 leaves it out.
+  double room_sigma = 0.5;  // m
 };
 
 // Tuning of the S-Graph (docs/slam.md); the defaults are documented starting values.
@@ -124,19 +128,24 @@ class SGraph {
     Eigen::Vector2d centre = Eigen::Vector2d::Zero();  // ρ, optimised with the room factor
     std::vector<int> keyframes;                        // keyframes that stood in it
     int floor = 0;
+    // ρ − ξ of its floor when first tied to it (confirmed, in a window); none before.
+    std::optional<Eigen::Vector2d> floor_offset;
   };
   // The floor node of the paper's fourth layer: one per floor the robot stood on, at the height
-  // of the robot there, its centre the centre of its confirmed rooms.
+  // of the robot there; its centre ξ, optimised with the rooms tied to it, stays the centre of
+  // their offsets (FloorOptions::room_sigma).
   struct Floor {
     double robot_z = 0.0;    // M, of its latest level keyframe (follows the odometry's drift)
     double plane_sum = 0.0;  // floor planes seen below the sensor from it
     int plane_count = 0;
     int keyframes = 0;
+    Eigen::Vector2d centre = Eigen::Vector2d::Zero();  // ξ, once a room is tied to it
+    int rooms_tied = 0;
   };
   const std::vector<Floor>& floors() const { return floors_; }
   // The floor of the latest keyframe that stood on one (-1 before any).
   int currentFloor() const { return current_floor_; }
-  // The centre of a floor's confirmed rooms (the current floor by default).
+  // A floor's node ξ (the current floor by default), once a room is tied to it.
   std::optional<Eigen::Vector2d> floorCentre(int floor = -1) const;
 
   const std::deque<Keyframe>& keyframes() const { return keyframes_; }
@@ -186,6 +195,11 @@ class SGraph {
   MapDiagnostics diagnostics() const;
 
  private:
+  // Ties a confirmed room to its floor's node: its offset from ξ now, ξ moved to the centre of
+  // every tied room's offset (the others' offsets moved with it: the same constraints).
+  void tieToFloor(int room);
+  // The floors layer's factors for the window's active rooms (FloorRoomFactor).
+  void addFloorFactors(ceres::Problem& problem, const std::vector<int>& active_rooms);
   struct WindowSize {
     int residual_blocks = 0;
     int parameter_blocks = 0;

@@ -137,4 +137,26 @@ struct ScanMatchFactor {
   Eigen::Matrix3d sqrt_information_;
 };
 
+// The floors layer (the paper's: a floor node constraining every room of its floor): a room's
+// centre ρ stays where it was, relative to its floor's node ξ, when it was first tied to it —
+// e = (ρ − ξ − d) / σ. The rooms of one floor keep the layout they were seen in, within σ.
+struct FloorRoomFactor {
+  FloorRoomFactor(const Eigen::Vector2d& offset, double sigma) : offset_(offset), sigma_(sigma) {}
+
+  template <typename T>
+  bool operator()(const T* floor, const T* room, T* residual) const {
+    for (int k = 0; k < 2; ++k) residual[k] = (room[k] - floor[k] - T(offset_[k])) / T(sigma_);
+    return true;
+  }
+
+  static ceres::CostFunction* create(const Eigen::Vector2d& offset, double sigma) {
+    return new ceres::AutoDiffCostFunction<FloorRoomFactor, 2, 2, 2>(
+        new FloorRoomFactor(offset, sigma));
+  }
+
+ private:
+  Eigen::Vector2d offset_;
+  double sigma_;
+};
+
 }  // namespace isg::slam

@@ -25,6 +25,16 @@ struct Case {
 
 void PrintTo(const Case& c, std::ostream* out) { *out << c.world << " seed " << c.seed; }
 
+// "twin_storeys_asbuilt_seed2": a test name of a world and a seed.
+template <class Param>
+std::string testName(const Param& param) {
+  std::string name = param.world + "_seed" + std::to_string(param.seed);
+  for (char& ch : name) {
+    if (ch == '.' || ch == '-') ch = '_';
+  }
+  return name;
+}
+
 class StoreysInTheLoop : public ::testing::TestWithParam<Case> {};
 
 TEST_P(StoreysInTheLoop, EveryFloorToursNeverWrongAlikeFloorsAmbiguous) {
@@ -90,14 +100,7 @@ INSTANTIATE_TEST_SUITE_P(MultiStoreyWorlds, StoreysInTheLoop,
                          ::testing::Values(Case{"storeys.asbuilt", 1}, Case{"storeys.asbuilt", 2},
                                            Case{"twin-storeys.asbuilt", 1},
                                            Case{"twin-storeys.asbuilt", 2}),
-                         [](const auto& param_info) {
-                           std::string name = param_info.param.world + "_seed" +
-                                              std::to_string(param_info.param.seed);
-                           for (char& ch : name) {
-                             if (ch == '.' || ch == '-') ch = '_';
-                           }
-                           return name;
-                         });
+                         [](const auto& param_info) { return testName(param_info.param); });
 
 // A kidnap to a room on another storey (docs/matching.md, "Several storeys"): the odometry does
 // not see the lift, so the robot stands on a floor the S-Graph had not; it is lost within a few
@@ -162,14 +165,7 @@ INSTANTIATE_TEST_SUITE_P(MultiStoreyWorlds, KidnapAcrossStoreys,
                          ::testing::Values(KidnapCase{"storeys.asbuilt", 1, 45.0, "R12", "L1"},
                                            KidnapCase{"twin-storeys.asbuilt", 2, 40.0, "R02",
                                                       "L0"}),
-                         [](const auto& param_info) {
-                           std::string name = param_info.param.world + "_seed" +
-                                              std::to_string(param_info.param.seed);
-                           for (char& ch : name) {
-                             if (ch == '.' || ch == '-') ch = '_';
-                           }
-                           return name;
-                         });
+                         [](const auto& param_info) { return testName(param_info.param); });
 
 }  // namespace
 }  // namespace isg::sim

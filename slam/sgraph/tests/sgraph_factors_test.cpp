@@ -67,5 +67,23 @@ TEST(OdometryFactor, ZeroAtTheMeasurementAndJacobians) {
       {pa.data(), qa.coeffs().data(), pb.data(), qb.coeffs().data()});
 }
 
+TEST(FloorRoomFactor, ResidualByHandAndJacobians) {
+  // A room tied 2 m east and 2 m north of its floor's node (d), now at (3, 4) with the node at
+  // (1, 1): 0 m east, 1 m north off, over σ 0.5 m.
+  std::unique_ptr<ceres::CostFunction> cost(FloorRoomFactor::create({2.0, 2.0}, 0.5));
+  Eigen::Vector2d floor(1.0, 1.0), room(3.0, 4.0);
+  double* params[] = {floor.data(), room.data()};
+  Eigen::Vector2d residual;
+  cost->Evaluate(params, residual.data(), nullptr);
+  EXPECT_NEAR(residual.x(), 0.0, 1e-12);
+  EXPECT_NEAR(residual.y(), 2.0, 1e-12);
+  // Both moved together: no residual (only the layout is constrained).
+  floor += Eigen::Vector2d(5.0, -7.0);
+  room += Eigen::Vector2d(5.0, -7.0);
+  cost->Evaluate(params, residual.data(), nullptr);
+  EXPECT_NEAR(residual.y(), 2.0, 1e-12);
+  isg::testing::expectJacobiansMatchNumeric(*cost, {nullptr, nullptr}, {floor.data(), room.data()});
+}
+
 }  // namespace
 }  // namespace isg::slam
