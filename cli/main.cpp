@@ -20,6 +20,7 @@
 #include "cli/cmd_slam.hpp"
 #include "cli/cmd_sweep.hpp"
 #include "cli/cmd_table.hpp"
+#include "cli/cmd_vlp16.hpp"
 #include "cli/cmd_world.hpp"
 #include "run/interrupt.hpp"
 
@@ -49,6 +50,7 @@ int main(int argc, char** argv) {
   commands.push_back(std::make_unique<EvalCommand>(app));
   commands.push_back(std::make_unique<TableCommand>(app));
   commands.push_back(std::make_unique<SweepCommand>(app));
+  commands.push_back(std::make_unique<Vlp16Command>(app));
 
   try {
     app.parse(argc, argv);

@@ -8,6 +8,7 @@
 #include <fstream>
 #include <optional>
 #include <sstream>
+#include <stdexcept>
 
 #include <lzf.h>
 
@@ -53,7 +54,6 @@ class PcdParser {
 
   std::vector<sensors::ScanPoint> parse() {
     const PcdHeader header = readHeader();
-    const std::size_t n = header.width * header.height;
     const PcdField* x = find(header, "x");
     const PcdField* y = find(header, "y");
     const PcdField* z = find(header, "z");
@@ -62,15 +62,48 @@ class PcdParser {
     const PcdField* intensity = find(header, "intensity");
     const PcdField* ring = find(header, "ring");
     std::vector<sensors::ScanPoint> points;
-    points.reserve(std::min<std::size_t>(n, 1u << 20));
-    auto keep = [&](double vx, double vy, double vz, double vi, double vr, double vt) {
+    points.reserve(std::min<std::size_t>(header.width * header.height, 1u << 20));
+    forEachPoint(header, [&](auto value) {
+      const double vx = value(*x), vy = value(*y), vz = value(*z), vt = value(*time);
       if (!std::isfinite(vx) || !std::isfinite(vy) || !std::isfinite(vz) || !std::isfinite(vt)) {
         return;
       }
+      const double vi = intensity ? value(*intensity) : 0.0;
+      const double vr = ring ? value(*ring) : 0.0;
       const double ring_index = std::isfinite(vr) ? std::clamp(vr, 0.0, 65535.0) : 0.0;
       points.push_back({float(vx), float(vy), float(vz), std::isfinite(vi) ? float(vi) : 0.0f,
                         std::uint16_t(ring_index), float(vt)});
-    };
+    });
+    return points;
+  }
+
+  PcdColumns columns() {
+    const PcdHeader header = readHeader();
+    PcdColumns table;
+    for (const auto& f : header.fields) {
+      if (f.count != 1)
+        failHeader("field " + f.name + " has COUNT " + std::to_string(f.count) +
+                   ": only COUNT 1 fields are read as columns");
+      table.names.push_back(f.name);
+    }
+    table.values.resize(header.fields.size());
+    for (auto& column : table.values) {
+      column.reserve(std::min<std::size_t>(header.width * header.height, 1u << 20));
+    }
+    forEachPoint(header, [&](auto value) {
+      for (std::size_t k = 0; k < header.fields.size(); ++k) {
+        table.values[k].push_back(value(header.fields[k]));
+      }
+    });
+    return table;
+  }
+
+ private:
+  // Calls visit(value) for each point, where value(field) is that field's number in the point,
+  // whatever the DATA kind.
+  template <class Visit>
+  void forEachPoint(const PcdHeader& header, Visit&& visit) {
+    const std::size_t n = header.width * header.height;
     if (header.data == "binary") {
       const std::string_view data = bytes_.substr(position_);
       if (data.size() / header.point_bytes < n) {
@@ -80,19 +113,15 @@ class PcdParser {
       }
       for (std::size_t i = 0; i < n; ++i) {
         const char* point = data.data() + i * header.point_bytes;
-        auto value = [point](const PcdField& f) { return binaryValue(point + f.offset, f); };
-        keep(value(*x), value(*y), value(*z), intensity ? value(*intensity) : 0.0,
-             ring ? value(*ring) : 0.0, value(*time));
+        visit([point](const PcdField& f) { return binaryValue(point + f.offset, f); });
       }
     } else if (header.data == "binary_compressed") {
       // Field after field: field f of point i sits at n · offset(f) + i · bytes(f).
       const std::string columns = decompress(header, n);
-      auto value = [&](const PcdField& f, std::size_t i) {
-        return binaryValue(columns.data() + n * f.offset + i * f.size * f.count, f);
-      };
       for (std::size_t i = 0; i < n; ++i) {
-        keep(value(*x, i), value(*y, i), value(*z, i), intensity ? value(*intensity, i) : 0.0,
-             ring ? value(*ring, i) : 0.0, value(*time, i));
+        visit([&columns, n, i](const PcdField& f) {
+          return binaryValue(columns.data() + n * f.offset + i * f.size * f.count, f);
+        });
       }
     } else {
       std::vector<double> values(header.tokens_per_point);
@@ -108,15 +137,11 @@ class PcdParser {
                    " values, expected " + std::to_string(header.tokens_per_point));
         }
         for (std::size_t k = 0; k < tokens.size(); ++k) values[k] = asciiNumber(tokens[k]);
-        keep(values[x->column], values[y->column], values[z->column],
-             intensity ? values[intensity->column] : 0.0, ring ? values[ring->column] : 0.0,
-             values[time->column]);
+        visit([&values](const PcdField& f) { return values[f.column]; });
       }
     }
-    return points;
   }
 
- private:
   [[noreturn]] void fail(const std::string& reason) const {
     throw bim::InputError(file_, "", reason);
   }
@@ -343,6 +368,21 @@ std::vector<sensors::ScanPoint> parsePcd(std::string_view bytes, const std::stri
 
 std::vector<sensors::ScanPoint> readPcd(const std::string& path) {
   return parsePcd(bim::readCheckedFile(path, kMaxPcdBytes), path);
+}
+
+PcdColumns parsePcdColumns(std::string_view bytes, const std::string& file) {
+  return PcdParser(bytes, file).columns();
+}
+
+PcdColumns readPcdColumns(const std::string& path) {
+  return parsePcdColumns(bim::readCheckedFile(path, kMaxPcdBytes), path);
+}
+
+const std::vector<double>& PcdColumns::operator[](std::string_view name) const {
+  for (std::size_t k = 0; k < names.size(); ++k) {
+    if (names[k] == name) return values[k];
+  }
+  throw std::out_of_range("no PCD field " + std::string(name));
 }
 
 }  // namespace isg::sensors

@@ -24,4 +24,16 @@ inline constexpr std::size_t kMaxCompressedBytes = 1u << 30;
 std::vector<sensors::ScanPoint> readPcd(const std::string& path);
 std::vector<sensors::ScanPoint> parsePcd(std::string_view bytes, const std::string& file);
 
+// Every field of a PCD file (each of COUNT 1) as a column of numbers, for clouds whose fields are
+// not ours (a driver's decoded cloud in the tests, say); the same checks and errors as readPcd.
+struct PcdColumns {
+  std::vector<std::string> names;
+  std::vector<std::vector<double>> values;  // values[field][point]
+
+  // The column of a field; std::out_of_range when the file has no such field.
+  const std::vector<double>& operator[](std::string_view name) const;
+};
+PcdColumns readPcdColumns(const std::string& path);
+PcdColumns parsePcdColumns(std::string_view bytes, const std::string& file);
+
 }  // namespace isg::sensors

@@ -5,24 +5,17 @@
 #include <cmath>
 #include <numbers>
 
+#include "sensors/vlp16_layout.hpp"
+
 namespace isg::sim {
 
-// The Velodyne VLP-16's geometry and timing (docs/simulation.md, from the sensor's manual).
-// Lasers are numbered in firing order; `ring` numbers them by elevation (ring 0 = −15°), as the
-// common Velodyne drivers do. The head spins clockwise seen from above, as the real one does.
-struct Vlp16 {
-  static constexpr int kLasers = 16;
-  static constexpr double kFiringInterval = 2.304e-6;     // s between two lasers of a sequence
-  static constexpr double kSequenceDuration = 55.296e-6;  // s per firing sequence
-  static constexpr std::array<double, kLasers> kElevationDeg = {-15, 1, -13, 3,  -11, 5,  -9, 7,
-                                                                -7,  9, -5,  11, -3,  13, -1, 15};
+// The Velodyne VLP-16's geometry and timing (docs/simulation.md, from the sensor's manual): the
+// lasers, elevations and firing times of sensors::Vlp16Layout, which the packet decoder shares, and
+// what only the simulator needs. The head spins clockwise seen from above, as the real one does.
+struct Vlp16 : sensors::Vlp16Layout {
   // Each laser's origin sits this far above (+) or below the optical centre.
   static constexpr std::array<double, kLasers> kVerticalOffsetMm = {
       11.2, -0.7, 9.7, -2.2, 8.1, -3.7, 6.6, -5.1, 5.1, -6.6, 3.7, -8.1, 2.2, -9.7, 0.7, -11.2};
-
-  static constexpr int ring(int laser) {
-    return laser % 2 == 0 ? laser / 2 : 8 + laser / 2;  // -15,-13,...,-1 then 1,3,...,15
-  }
 
   // Firing sequences in one turn at `rate_hz` (1808 at 10 Hz: a 0.199° azimuth step).
   static int sequencesPerTurn(double rate_hz) {

@@ -16,8 +16,8 @@ using ::testing::StartsWith;
 
 TEST(Usage, HelpOnEveryCommandExitsZero) {
   testing::Sandbox sandbox("usage_help");
-  for (const char* command :
-       {"", "world ", "check ", "import ", "inspect ", "agraph ", "simulate ", "render "}) {
+  for (const char* command : {"", "world ", "check ", "import ", "inspect ", "agraph ", "simulate ",
+                              "render ", "vlp16 "}) {
     const auto result = sandbox.run(std::string(command) + "--help");
     EXPECT_EQ(result.exit_code, 0) << command;
     EXPECT_THAT(result.out, HasSubstr("Usage:")) << command;
@@ -571,6 +571,35 @@ TEST(Import, BadModelsExitOneAndWriteNothing) {
   EXPECT_THAT(result.err, HasSubstr("no storey named \"Attic\" (--storey); its storeys: "
                                     "\"Ground\"\n"));
   EXPECT_FALSE(sandbox.exists("out.json"));
+}
+
+TEST(Vlp16, ReportsARealRecordingsReturnsAndWritesNothing) {
+  testing::Sandbox sandbox("vlp16");
+  const std::string data = std::string(ISG_SOURCE_DIR) + "/sensors/tests/data/vlp16-real/";
+  auto result = sandbox.run("vlp16 '" + data + "nebula-vlp16-indoor.db3'");
+  EXPECT_EQ(result.exit_code, 0) << result.err;
+  EXPECT_THAT(result.out, HasSubstr(": 603 data packets (dual return), 0 position packets"));
+  EXPECT_THAT(result.out, HasSubstr("shots without an echo: 49.3 %; by ring (-15 ... +15 deg): "
+                                    "100 99 85 78 77 58 53 48 34 32 23 26 22 18 19 17 %"));
+  EXPECT_THAT(result.out, HasSubstr("reflectivity: median 33, 99th percentile 100, max 121"));
+  EXPECT_THAT(result.out, HasSubstr("per complete turn (3 of them): 14848 returns over 0.1000 s"));
+  result = sandbox.run("vlp16 --json '" + data + "rust-lidar-utils-vlp16-outdoor.pcap'");
+  EXPECT_EQ(result.exit_code, 0) << result.err;
+  EXPECT_THAT(result.out, HasSubstr("\"data_packets\": 84,"));
+  EXPECT_THAT(result.out, HasSubstr("\"position_packets\": 16,"));
+  EXPECT_THAT(result.out, HasSubstr("\"return_mode\": \"strongest\","));
+  EXPECT_TRUE(std::filesystem::is_empty(sandbox.dir()));
+
+  result = sandbox.run("vlp16 '" + data + "nebula-vlp16-indoor.db3' --topic /points");
+  EXPECT_EQ(result.exit_code, 1);
+  EXPECT_EQ(result.err, "isg vlp16: error: " + data +
+                            "nebula-vlp16-indoor.db3: no topic /points (the bag has: "
+                            "/velodyne_packets)\n");
+  result = sandbox.run("vlp16 missing.pcap");
+  EXPECT_EQ(result.exit_code, 1);
+  EXPECT_THAT(result.err, StartsWith("isg vlp16: error: missing.pcap: "));
+  result = sandbox.run("vlp16 '" + data + "nebula-vlp16-indoor.db3' --min-range 5 --max-range 2");
+  EXPECT_EQ(result.exit_code, 2);
 }
 
 }  // namespace
