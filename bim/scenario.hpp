@@ -57,13 +57,34 @@ struct RobotConfig {
   std::vector<Kidnap> kidnap;  // in time order
 };
 
+// Diffuse reflectivity at the VLP-16's 905 nm, in [0, 1], per kind of surface: what sets each
+// return's calibrated intensity and how far it can be seen (docs/simulation.md).
+struct SurfaceReflectivity {
+  double wall = 0.5;  // walls the plan has and walls it lacks
+  double floor = 0.3;
+  double ceiling = 0.8;
+  double door = 0.35;
+  double clutter = 0.3;
+  double stair = 0.3;
+};
+
 struct LidarConfig {
   double rate_hz = 10.0;
-  double range_noise_m = 0.01;
-  double min_range_m = 0.9;
+  double range_noise_m = 0.007;
+  double min_range_m = 0.4;
   double max_range_m = 100.0;
   double dropout = 0.0;
-  std::array<double, 6> mount = {0.0, 0.0, 0.25, 0.0, 0.0, 0.0};  // x y z roll pitch yaw on R
+  // Returns fade beyond this angle of incidence: kept with probability cos(incidence) /
+  // cos(grazing_cutoff_deg); 90 turns the fading off.
+  double grazing_cutoff_deg = 80.0;
+  // The range out to which a 10 % reflective surface met head-on still returns; weaker returns
+  // (reflectivity × cos(incidence) / range², the LiDAR equation) are lost.
+  double detection_range_m = 100.0;
+  bool body_occlusion = true;  // rays that meet the robot's own body return nothing
+  SurfaceReflectivity reflectivity;
+  // x y z roll pitch yaw on R: the puck on a mast, its optical centre 16 cm above the body's top
+  // (0.14 puts the puck on the body itself: docs/simulation.md says what that costs).
+  std::array<double, 6> mount = {0.0, 0.0, 0.25, 0.0, 0.0, 0.0};
 };
 
 struct OdometryConfig {

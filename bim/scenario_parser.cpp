@@ -168,8 +168,23 @@ std::array<double, 6> parseMount(const JsonNode& node, const std::string& sensor
   return mount;
 }
 
+SurfaceReflectivity parseReflectivity(const JsonNode& node) {
+  node.expectObject({"wall", "floor", "ceiling", "door", "clutter", "stair"});
+  SurfaceReflectivity reflectivity;
+  const std::pair<const char*, double*> kinds[] = {
+      {"wall", &reflectivity.wall},       {"floor", &reflectivity.floor},
+      {"ceiling", &reflectivity.ceiling}, {"door", &reflectivity.door},
+      {"clutter", &reflectivity.clutter}, {"stair", &reflectivity.stair}};
+  for (const auto& [name, value] : kinds) {
+    if (auto v = node.optionalField(name)) *value = v->numberInRange(0.0, 1.0);
+  }
+  return reflectivity;
+}
+
 LidarConfig parseLidar(const JsonNode& node) {
-  node.expectObject({"rate_hz", "range_noise_m", "min_range_m", "max_range_m", "dropout", "mount"});
+  node.expectObject({"rate_hz", "range_noise_m", "min_range_m", "max_range_m", "dropout",
+                     "grazing_cutoff_deg", "detection_range_m", "body_occlusion", "reflectivity",
+                     "mount"});
   LidarConfig lidar;
   if (auto v = node.optionalField("rate_hz")) lidar.rate_hz = v->numberInRange(5.0, 20.0);
   if (auto v = node.optionalField("range_noise_m"))
@@ -186,6 +201,14 @@ LidarConfig parseLidar(const JsonNode& node) {
         .fail("min_range_m must be below max_range_m (" + formatNumber(lidar.max_range_m) + ")");
   }
   if (auto v = node.optionalField("dropout")) lidar.dropout = v->numberInRange(0.0, 1.0, true);
+  if (auto v = node.optionalField("grazing_cutoff_deg")) {
+    lidar.grazing_cutoff_deg = v->numberInRange(1.0, 90.0);
+  }
+  if (auto v = node.optionalField("detection_range_m")) {
+    lidar.detection_range_m = v->numberInRange(limits::kMinSize, 1000.0);
+  }
+  if (auto v = node.optionalField("body_occlusion")) lidar.body_occlusion = v->boolean();
+  if (auto v = node.optionalField("reflectivity")) lidar.reflectivity = parseReflectivity(*v);
   if (auto v = node.optionalField("mount")) lidar.mount = parseMount(*v, "LiDAR");
   return lidar;
 }

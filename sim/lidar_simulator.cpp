@@ -5,8 +5,13 @@
 #include <boost/random/normal_distribution.hpp>
 #include <chrono>
 #include <cmath>
+#include <numbers>
+#include <string_view>
 
+#include "sim/body_shadow.hpp"
 #include "sim/fast_random.hpp"
+#include "sim/mount_transform.hpp"
+#include "sim/robot_model.hpp"
 #include "sim/vlp16.hpp"
 
 namespace isg::sim {
@@ -27,6 +32,16 @@ inline double quantise(double range) {
 
 }  // namespace
 
+double surfaceReflectivity(const bim::SurfaceReflectivity& reflectivity,
+                           std::string_view material) {
+  if (material == "wall" || material == "extra_wall") return reflectivity.wall;
+  if (material == "floor") return reflectivity.floor;
+  if (material == "ceiling") return reflectivity.ceiling;
+  if (material == "door") return reflectivity.door;
+  if (material == "stair") return reflectivity.stair;
+  return reflectivity.clutter;  // clutter, and anything else a world holds
+}
+
 LidarSimulator::LidarSimulator(const MujocoWorld& world, const bim::LidarConfig& config,
                                unsigned groups)
     : world_(world),
@@ -37,11 +52,15 @@ LidarSimulator::LidarSimulator(const MujocoWorld& world, const bim::LidarConfig&
   const mjModel& m = world.model();
   reflectivity_.resize(m.ngeom);
   for (int g = 0; g < m.ngeom; ++g) {
-    const float* rgba =
-        m.geom_matid[g] >= 0 ? m.mat_rgba + 4 * m.geom_matid[g] : m.geom_rgba + 4 * g;
-    // Light surfaces return more light: the mean of the colour's channels.
-    reflectivity_[g] = (rgba[0] + rgba[1] + rgba[2]) / 3.0f;
+    const int material = m.geom_matid[g];
+    const char* name = material >= 0 ? mj_id2name(&m, mjOBJ_MATERIAL, material) : nullptr;
+    reflectivity_[g] = float(surfaceReflectivity(config.reflectivity, name ? name : ""));
   }
+  // The LiDAR equation for a surface filling the beam: the returned power goes as
+  // reflectivity × cos(incidence) / range². The weakest the sensor detects is a 10 % surface met
+  // head-on at detection_range_m.
+  min_signal_ = 0.1 / (config.detection_range_m * config.detection_range_m);
+  full_return_cos_ = std::cos(config.grazing_cutoff_deg * std::numbers::pi / 180.0);
   // Geoms' poses as the sensor sees them (the building does not move during a run).
   const mjData& d = world.data();
   shapes_.resize(m.ngeom);
@@ -52,11 +71,14 @@ LidarSimulator::LidarSimulator(const MujocoWorld& world, const bim::LidarConfig&
     shape.R = Eigen::Map<const Eigen::Matrix<double, 3, 3, Eigen::RowMajor>>(d.geom_xmat + 9 * g);
     shape.inverse_half = Eigen::Map<const Eigen::Vector3d>(m.geom_size + 3 * g).cwiseInverse();
   }
+  const BodyShadow body(robotBodyBox(), mountTransform(config.mount));
   firings_.reserve(std::size_t(sequences_) * Vlp16::kLasers);
   for (int s = 0; s < sequences_; ++s) {
     for (int l = 0; l < Vlp16::kLasers; ++l) {
       const double t = Vlp16::firingTime(s, l);
-      firings_.push_back({Vlp16::direction(l, Vlp16::azimuth(t, config.rate_hz)), t});
+      const Eigen::Vector3d direction = Vlp16::direction(l, Vlp16::azimuth(t, config.rate_hz));
+      const bool blocked = config.body_occlusion && body.distance(Vlp16::origin(l), direction) >= 0;
+      firings_.push_back({direction, t, blocked});
     }
   }
 }
@@ -159,6 +181,11 @@ LidarScan LidarSimulator::scanBlocks(double stamp, const PoseAt& B_T_L, std::uin
     out.timing.poses_s += seconds(mark, now);
     mark = now;
     for (int i = 0; i < rays; ++i) {
+      // A ray the body stops never reaches the building.
+      if (firings_[first * Vlp16::kLasers + i].blocked) {
+        hits_[i] = RayCaster::Hit{};
+        continue;
+      }
       const auto hit = scan_caster_.cast(origins_[i], directions_[i]);
       hits_[i] = hit ? *hit : RayCaster::Hit{};
     }
@@ -166,9 +193,10 @@ LidarScan LidarSimulator::scanBlocks(double stamp, const PoseAt& B_T_L, std::uin
     now = Clock::now();
     out.timing.casting_s += seconds(mark, now);
     mark = now;
-    // Every ray draws its noise and its dropout whether or not it hit.
+    // Every ray draws its noise and whether its return is lost, whether or not it hit.
     Xoshiro256 rng(deriveSeed(seed, kNoiseStream, std::uint64_t(block)));
     boost::random::normal_distribution<double> noise(0.0, 1.0);
+    const double kept_share = 1.0 - config_.dropout;
     for (int i = 0; i < rays; ++i) {
       const double n = noise(rng);
       const double u = rng.uniform01();
@@ -176,15 +204,25 @@ LidarScan LidarSimulator::scanBlocks(double stamp, const PoseAt& B_T_L, std::uin
       if (hit.distance < 0) continue;
       const double range = quantise(hit.distance + config_.range_noise_m * n);
       if (range < config_.min_range_m || range > config_.max_range_m) continue;
-      if (u < config_.dropout) continue;
-      const int s = first + i / Vlp16::kLasers, l = i % Vlp16::kLasers;
-      const Firing& firing = firings_[s * Vlp16::kLasers + l];
       const Eigen::Vector3d& dir = directions_[i];
       const Eigen::Vector3d normal = surfaceNormal(hit.geom, origins_[i] + hit.distance * dir, dir);
-      const double incidence = std::abs(normal.dot(dir));
+      const double cos_incidence = std::abs(normal.dot(dir));
+      const double reflectivity = reflectivity_[hit.geom];
+      // Too weak to detect: the LiDAR equation's power below the sensor's threshold.
+      if (reflectivity * cos_incidence < min_signal_ * hit.distance * hit.distance) continue;
+      // Grazing returns fade: beyond the cutoff the beam's spot smears along the surface and the
+      // echo's peak drops under the detector's threshold more and more often.
+      const double kept = cos_incidence < full_return_cos_
+                              ? kept_share * cos_incidence / full_return_cos_
+                              : kept_share;
+      if (u >= kept) continue;
+      const int s = first + i / Vlp16::kLasers, l = i % Vlp16::kLasers;
+      const Firing& firing = firings_[s * Vlp16::kLasers + l];
       const Eigen::Vector3d p = Vlp16::origin(l) + range * firing.direction;
+      // The VLP-16's calibrated reflectivity: 0–100 for diffuse surfaces (100: a perfect white
+      // one met head-on).
       out.points.push_back({float(p.x()), float(p.y()), float(p.z()),
-                            float(roundHalfUp(255.0 * reflectivity_[hit.geom] * incidence)),
+                            float(roundHalfUp(100.0 * reflectivity * cos_incidence)),
                             std::uint16_t(Vlp16::ring(l)), float(firing.time)});
     }
     now = Clock::now();

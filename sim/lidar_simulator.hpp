@@ -3,6 +3,7 @@
 #include <Eigen/Geometry>
 #include <cstdint>
 #include <functional>
+#include <string_view>
 #include <vector>
 
 #include "bim/scenario.hpp"
@@ -21,7 +22,7 @@ using LidarPoint = sensors::ScanPoint;
 struct ScanTiming {
   double poses_s = 0.0;    // the sensor's poses and every ray's origin and direction
   double casting_s = 0.0;  // the rays against the building
-  double noise_s = 0.0;    // noise, quantisation, dropout, intensity: the points
+  double noise_s = 0.0;    // noise, quantisation, lost returns, intensity: the points
   ScanTiming& operator+=(const ScanTiming& other) {
     poses_s += other.poses_s;
     casting_s += other.casting_s;
@@ -37,17 +38,23 @@ struct LidarScan {
   ScanTiming timing;
 };
 
+// The reflectivity of a world's surface from its material's name (worlds/mjcf_generator.cpp
+// names them by kind: wall, extra_wall, floor, ceiling, door, clutter, stair); other materials,
+// and geoms without one, count as clutter.
+double surfaceReflectivity(const bim::SurfaceReflectivity& reflectivity, std::string_view material);
+
 // The VLP-16 of docs/simulation.md in a MuJoCo world. Each laser fires from the sensor's pose at
 // its own instant, so a scan taken while moving carries real motion distortion.
 class LidarSimulator {
  public:
-  // `groups`: the geom groups the sensor sees (the building's; never the robot's).
+  // `groups`: the geom groups the sensor sees (the building's; never the robot's: its body
+  // stops the rays it meets through `config.body_occlusion`, computed from the mount).
   LidarSimulator(const MujocoWorld& world, const bim::LidarConfig& config, unsigned groups);
 
   // B_T_L(t) for t in [stamp, stamp + 1/rate]: the sensor pose in the plan frame.
   using PoseAt = std::function<Eigen::Isometry3d(double t)>;
 
-  // One full turn starting at `stamp`. Noise and dropout draw from generators seeded by `seed`
+  // One full turn starting at `stamp`. Noise and lost returns draw from generators seeded by `seed`
   // and the block of firing sequences (kBlockSequences), so that a turn is the same whichever
   // thread makes it, and every ray draws whether or not it hits: one ray's outcome never shifts
   // another's noise.
@@ -74,13 +81,16 @@ class LidarSimulator {
   struct Firing {
     Eigen::Vector3d direction;  // unit, in L
     double time;                // from the turn's start
+    bool blocked;               // by the robot's own body
   };
   const MujocoWorld& world_;
   bim::LidarConfig config_;
   RayCaster caster_;
   ScanCaster scan_caster_;
   int sequences_;
-  std::vector<float> reflectivity_;  // per geom, from its colour
+  std::vector<float> reflectivity_;  // per geom, from its kind of surface
+  double min_signal_;       // reflectivity × cos(incidence) / range² of the weakest return
+  double full_return_cos_;  // cos(grazing cutoff): returns at least this square all come
   struct GeomShape {
     int type = 0;
     Eigen::Vector3d pos = Eigen::Vector3d::Zero();

@@ -4,6 +4,7 @@
 #include "sim/route_builder.hpp"
 
 #include <cmath>
+#include <cstdio>
 
 #include "sim/fast_random.hpp"
 #include "sim/imu_simulator.hpp"
@@ -44,6 +45,21 @@ Simulation::Simulation(const bim::Scenario& scenario)
       R_T_L_(mountTransform(scenario.lidar.mount)),
       R_T_I_(mountTransform(scenario.imu.mount)),
       world_(buildWorld(scenario, R_T_L_)) {
+  if (scenario_.lidar.body_occlusion) {
+    // A sensor inside the body would see nothing at all.
+    const RobotBox body = robotBodyBox();
+    const Eigen::Vector3d at = R_T_L_.translation() - body.centre;
+    if ((at.cwiseAbs().array() <= body.half.array()).all()) {
+      char size[64];
+      std::snprintf(size, sizeof size, "%.2f × %.2f × %.2f m", 2 * body.half.x(), 2 * body.half.y(),
+                    2 * body.half.z());
+      throw bim::InputError(scenario_.source, "/lidar/mount",
+                            "the LiDAR sits inside the robot's body (" + std::string(size) +
+                                " about the base's origin): mount it above z = " +
+                                std::to_string(body.centre.z() + body.half.z()).substr(0, 4) +
+                                " m or set body_occlusion to false");
+    }
+  }
   grid_ =
       std::make_unique<OccupancyGrid>(scenario_.plan, scenario_.as_built, scenario_.robot.level);
   auto rng = generator(kRouteStream);

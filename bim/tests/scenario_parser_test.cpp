@@ -19,8 +19,13 @@ TEST(ScenarioParser, BarePlanGetsEveryDefault) {
   EXPECT_EQ(s.robot.route.kind, Route::Kind::kTour);
   EXPECT_DOUBLE_EQ(s.robot.speed, 0.5);
   EXPECT_DOUBLE_EQ(s.lidar.rate_hz, 10.0);
-  EXPECT_DOUBLE_EQ(s.lidar.range_noise_m, 0.01);
-  EXPECT_DOUBLE_EQ(s.lidar.min_range_m, 0.9);
+  EXPECT_DOUBLE_EQ(s.lidar.range_noise_m, 0.007);
+  EXPECT_DOUBLE_EQ(s.lidar.min_range_m, 0.4);
+  EXPECT_DOUBLE_EQ(s.lidar.grazing_cutoff_deg, 80.0);
+  EXPECT_DOUBLE_EQ(s.lidar.detection_range_m, 100.0);
+  EXPECT_TRUE(s.lidar.body_occlusion);
+  EXPECT_DOUBLE_EQ(s.lidar.reflectivity.wall, 0.5);
+  EXPECT_DOUBLE_EQ(s.lidar.reflectivity.ceiling, 0.8);
   EXPECT_DOUBLE_EQ(s.lidar.max_range_m, 100.0);
   EXPECT_DOUBLE_EQ(s.lidar.mount[2], 0.25);
   EXPECT_DOUBLE_EQ(s.odometry.rate_hz, 50.0);

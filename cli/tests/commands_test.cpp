@@ -204,22 +204,47 @@ TEST(Export, WritesABagAndRefusesBadInput) {
   EXPECT_EQ(sandbox.run("export --help").exit_code, 0);
 }
 
-TEST(Simulate, StartInsideClearanceIsAClearError) {
-  testing::Sandbox sandbox("simulate_start");
-  sandbox.write("scenario.json", R"({"format": "isg.scenario", "version": 1,
+// A scenario in a 4 × 4 m room, with `robot_or_sensor` (a JSON member) added.
+std::string squareRoomScenario(const std::string& robot_or_sensor) {
+  return R"({"format": "isg.scenario", "version": 1,
     "plan": {"format": "isg.plan", "version": 1, "levels": [{"id": "L0", "height": 3,
       "walls": [{"id": "A", "start": [0, 0], "end": [4, 0], "thickness": 0.2},
                 {"id": "B", "start": [4, 0], "end": [4, 4], "thickness": 0.2},
                 {"id": "C", "start": [4, 4], "end": [0, 4], "thickness": 0.2},
                 {"id": "D", "start": [0, 4], "end": [0, 0], "thickness": 0.2}],
       "rooms": [{"id": "R", "outline": [[0.1, 0.1], [3.9, 0.1], [3.9, 3.9], [0.1, 3.9]]}]}]},
-    "robot": {"start": {"pose": [0.3, 2.0, 0.0]}}})");
+    )" + robot_or_sensor +
+         "}";
+}
+
+TEST(Simulate, StartInsideClearanceIsAClearError) {
+  testing::Sandbox sandbox("simulate_start");
+  sandbox.write("scenario.json",
+                squareRoomScenario(R"("robot": {"start": {"pose": [0.3, 2.0, 0.0]}})"));
   const auto result = sandbox.run("simulate scenario.json -o ds");
   EXPECT_EQ(result.exit_code, 1);
   EXPECT_EQ(result.err,
             "isg simulate: error: scenario.json: /robot/start: the robot cannot stand at (0.3, 2): "
             "it is less than 0.35 m from a wall, clutter or the outside of the building\n");
   EXPECT_FALSE(sandbox.exists("ds"));
+}
+
+TEST(Simulate, ALidarInsideTheBodyIsAClearError) {
+  testing::Sandbox sandbox("simulate_mount");
+  sandbox.write("scenario.json",
+                squareRoomScenario(R"("lidar": {"mount": [0.2, 0.0, 0.05, 0.0, 0.0, 0.0]})"));
+  const auto result = sandbox.run("simulate scenario.json -o ds");
+  EXPECT_EQ(result.exit_code, 1);
+  EXPECT_EQ(result.err,
+            "isg simulate: error: scenario.json: /lidar/mount: the LiDAR sits inside the robot's "
+            "body (1.10 × 0.50 × 0.18 m about the base's origin): mount it above z = 0.09 m or "
+            "set body_occlusion to false\n");
+  EXPECT_FALSE(sandbox.exists("ds"));
+  // The same mount with the body out of the rays' way is accepted.
+  sandbox.write("scenario.json", squareRoomScenario(R"("robot": {"route": {"waypoints": [[3, 2]]}},
+    "lidar": {"mount": [0.2, 0.0, 0.05, 0.0, 0.0, 0.0], "body_occlusion": false})"));
+  const auto accepted = sandbox.run("simulate scenario.json -o ds -q");
+  EXPECT_EQ(accepted.exit_code, 0) << accepted.err;
 }
 
 // Kidnaps the parser cannot judge: the simulator knows when the route ends and where the robot

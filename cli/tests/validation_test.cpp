@@ -287,6 +287,14 @@ std::vector<Case> cases() {
        "scenario.json: /lidar/max_range_m: max_range_m 0.5 is not above min_range_m 0.9"},
       {"LidarDropout", "scenario.json", [](json&, json& s) { s["lidar"]["dropout"] = 1.0; },
        "scenario.json: /lidar/dropout: must be in [0, 1), got 1"},
+      {"LidarGrazingCutoff", "scenario.json",
+       [](json&, json& s) { s["lidar"]["grazing_cutoff_deg"] = 0.5; },
+       "scenario.json: /lidar/grazing_cutoff_deg: must be in [1, 90], got 0.5"},
+      {"LidarReflectivity", "scenario.json",
+       [](json&, json& s) {
+         s["lidar"]["reflectivity"] = {{"wall", 1.5}};
+       },
+       "scenario.json: /lidar/reflectivity/wall: must be in [0, 1], got 1.5"},
       {"LidarMount", "scenario.json",
        [](json&, json& s) {
          s["lidar"]["mount"] = {0, 0, 0.25};

@@ -1,0 +1,186 @@
+// The simulated VLP-16 against the real one: an indoor scan's lost returns, the body's shadow as
+// its geometry says, the calibrated intensities, against the indoor fixture's numbers
+// (docs/simulation.md, "Simulated vs real"; docs/sensors.md for how they were measured).
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <numbers>
+#include <vector>
+
+#include "sim/lidar_simulator.hpp"
+#include "sim/robot_model.hpp"
+#include "sim/simulation.hpp"
+#include "sim/vlp16.hpp"
+#include "worlds/mjcf_generator.hpp"
+#include "worlds/reference_plans.hpp"
+
+namespace isg::sim {
+namespace {
+
+// The indoor fixture (a dual-return ROS 2 bag, sensors/tests/data/vlp16-real/): the share of
+// shots without an echo and the reflectivity quantiles of its returns.
+constexpr double kRealLostShare = 0.493;
+constexpr double kRealIntensityMedian = 33.0;
+constexpr double kRealIntensityP99 = 100.0;
+
+int sequenceOf(const LidarPoint& p, int laser) {
+  return int(std::lround((p.time - laser * Vlp16::kFiringInterval) / Vlp16::kSequenceDuration));
+}
+
+int laserOfRing(int ring) { return ring < 8 ? 2 * ring : 2 * (ring - 8) + 1; }
+
+double quantile(std::vector<float> values, double q) {
+  std::sort(values.begin(), values.end());
+  return values[std::size_t(q * double(values.size() - 1) + 0.5)];
+}
+
+// Whether the body stops a laser's firing, worked out apart from the simulator: from a sensor
+// above the body's footprint, a ray going down meets the body iff it crosses the plane of the
+// body's top inside the top's rectangle (outside it, it only goes further out).
+bool blockedByTheTop(const Eigen::Isometry3d& R_T_L, int laser, double azimuth) {
+  const RobotBox body = robotBodyBox();
+  const double elevation = Vlp16::kElevationDeg[laser] * std::numbers::pi / 180.0;
+  if (elevation >= 0) return false;
+  const Eigen::Vector3d origin = R_T_L * Vlp16::origin(laser);
+  const double drop = origin.z() - (body.centre.z() + body.half.z());
+  const double reach = drop / std::tan(-elevation);
+  const double x = origin.x() + reach * std::cos(azimuth);
+  const double y = origin.y() + reach * std::sin(azimuth);
+  return std::abs(x - body.centre.x()) <= body.half.x() &&
+         std::abs(y - body.centre.y()) <= body.half.y();
+}
+
+// D1 as built with the puck on the body's back (mount z 0.14: 5 cm above the top).
+bim::Scenario puckOnTheBody() {
+  bim::Scenario scenario = worlds::loadScenarioOrBuiltin("builtin:d1.asbuilt", nullptr);
+  scenario.lidar.mount[2] = 0.14;
+  return scenario;
+}
+
+TEST(LidarRealism, AnIndoorScanLosesWhatTheRealSensorLoses) {
+  // The robot standing at the centre of its first room.
+  Simulation sim(puckOnTheBody());
+  const Eigen::Isometry3d B_T_L = sim.B_T_L(0.0);
+  auto lidar = sim.makeLidar();
+  const LidarScan scan = lidar->scan(
+      0.0, [&](double) { return B_T_L; }, 7);
+  const int sequences = Vlp16::sequencesPerTurn(10.0);
+  ASSERT_EQ(scan.rays, sequences * Vlp16::kLasers);
+
+  // Every firing the body's top stops, by the hand calculation above.
+  std::array<int, Vlp16::kLasers> blocked{}, returned{};
+  std::vector<bool> shadow(std::size_t(sequences) * Vlp16::kLasers);
+  for (int s = 0; s < sequences; ++s) {
+    for (int l = 0; l < Vlp16::kLasers; ++l) {
+      const double azimuth = Vlp16::azimuth(Vlp16::firingTime(s, l), 10.0);
+      shadow[s * Vlp16::kLasers + l] = blockedByTheTop(sim.R_T_L(), l, azimuth);
+      blocked[l] += shadow[s * Vlp16::kLasers + l];
+    }
+  }
+  std::vector<float> intensities;
+  for (const auto& p : scan.points) {
+    const int laser = laserOfRing(p.ring);
+    ASSERT_FALSE(shadow[sequenceOf(p, laser) * Vlp16::kLasers + laser])
+        << "a return through the body, laser " << laser;
+    ++returned[laser];
+    intensities.push_back(p.intensity);
+  }
+  // The lowest laser (−15°) sees nothing but the body; the body shadows the lower lasers less
+  // and less; no laser looking up is shadowed.
+  EXPECT_EQ(blocked[0], sequences);
+  EXPECT_EQ(returned[0], 0);
+  for (int ring = 1; ring < 8; ++ring) {
+    EXPECT_LE(blocked[laserOfRing(ring)], blocked[laserOfRing(ring - 1)]) << ring;
+  }
+  for (int ring = 8; ring < 16; ++ring) {
+    const int laser = laserOfRing(ring);
+    EXPECT_EQ(blocked[laser], 0) << ring;
+    // The lasers that see walls (and the ceiling) lose under 15 % of their returns.
+    EXPECT_LT(1.0 - double(returned[laser]) / sequences, 0.15) << "ring " << ring;
+  }
+  // The whole scan loses the body's shadow and hardly more in a closed room: 20.9 % here, well
+  // short of the real recording's 49 %, whose upward lasers lose 17–34 % to what its scene has and
+  // our worlds lack (open space, glass, far dark surfaces; docs/simulation.md).
+  const double lost = 1.0 - double(scan.points.size()) / scan.rays;
+  int shadowed = 0;
+  for (int count : blocked) shadowed += count;
+  const double shadow_share = double(shadowed) / scan.rays;
+  EXPECT_GT(shadow_share, 0.20);
+  EXPECT_GE(lost, shadow_share);
+  EXPECT_LE(lost, shadow_share + 0.02);
+  EXPECT_LT(lost, kRealLostShare);
+  // Calibrated intensities within a factor 2 of the real ones.
+  const double median = quantile(intensities, 0.5), p99 = quantile(intensities, 0.99);
+  EXPECT_GE(median, 0.5 * kRealIntensityMedian);
+  EXPECT_LE(median, 2.0 * kRealIntensityMedian);
+  EXPECT_GE(p99, 0.5 * kRealIntensityP99);
+  EXPECT_LE(p99, 2.0 * kRealIntensityP99);
+  std::printf("lost %.1f %% (real %.1f %%), intensity median %.0f p99 %.0f\n", 100 * lost,
+              100 * kRealLostShare, median, p99);
+  for (int ring = 0; ring < 16; ++ring) {
+    const int laser = laserOfRing(ring);
+    std::printf("ring %2d: body %5.1f %%, lost %5.1f %%\n", ring,
+                100.0 * blocked[laser] / sequences, 100.0 - 100.0 * returned[laser] / sequences);
+  }
+}
+
+TEST(LidarRealism, OnItsMastThePuckSeesOverTheBody) {
+  // The default mount: the optical centre 16 cm above the body's top. The −15° laser (its origin
+  // 11 mm higher still) reaches the top's plane 0.64 m out, beyond even the top's corners
+  // (0.60 m out): the body stops nothing.
+  Simulation sim(worlds::loadScenarioOrBuiltin("builtin:d1.asbuilt", nullptr));
+  const Eigen::Isometry3d B_T_L = sim.B_T_L(0.0);
+  auto lidar = sim.makeLidar();
+  const LidarScan scan = lidar->scan(
+      0.0, [&](double) { return B_T_L; }, 7);
+  const int sequences = Vlp16::sequencesPerTurn(10.0);
+  std::array<int, Vlp16::kLasers> blocked{}, returned{};
+  for (int s = 0; s < sequences; ++s) {
+    for (int l = 0; l < Vlp16::kLasers; ++l) {
+      blocked[l] += blockedByTheTop(sim.R_T_L(), l, Vlp16::azimuth(Vlp16::firingTime(s, l), 10.0));
+    }
+  }
+  for (const auto& p : scan.points) ++returned[laserOfRing(p.ring)];
+  for (int l = 0; l < Vlp16::kLasers; ++l) {
+    EXPECT_EQ(blocked[l], 0) << l;
+    EXPECT_GT(returned[l], 0.99 * sequences) << l;
+  }
+}
+
+TEST(LidarRealism, TheBodyOnlyStopsRaysWhenAsked) {
+  Simulation sim(puckOnTheBody());
+  const Eigen::Isometry3d B_T_L = sim.B_T_L(0.0);
+  bim::LidarConfig config = sim.scenario().lidar;
+  config.body_occlusion = false;
+  config.grazing_cutoff_deg = 90.0;
+  LidarSimulator bare(sim.world(), config,
+                      (1u << worlds::kBuildingGroup) | (1u << worlds::kCeilingGroup));
+  const LidarScan scan = bare.scan(
+      0.0, [&](double) { return B_T_L; }, 7);
+  // Without the body and the grazing loss, a closed room returns nearly every ray.
+  EXPECT_GT(double(scan.points.size()) / scan.rays, 0.97);
+}
+
+TEST(LidarRealism, ReflectivityByKindOfSurface) {
+  bim::SurfaceReflectivity r;
+  r.wall = 0.1;
+  r.floor = 0.2;
+  r.ceiling = 0.3;
+  r.door = 0.4;
+  r.clutter = 0.5;
+  r.stair = 0.6;
+  EXPECT_EQ(surfaceReflectivity(r, "wall"), 0.1);
+  EXPECT_EQ(surfaceReflectivity(r, "extra_wall"), 0.1);
+  EXPECT_EQ(surfaceReflectivity(r, "floor"), 0.2);
+  EXPECT_EQ(surfaceReflectivity(r, "ceiling"), 0.3);
+  EXPECT_EQ(surfaceReflectivity(r, "door"), 0.4);
+  EXPECT_EQ(surfaceReflectivity(r, "clutter"), 0.5);
+  EXPECT_EQ(surfaceReflectivity(r, "stair"), 0.6);
+  EXPECT_EQ(surfaceReflectivity(r, "anything else"), 0.5);
+}
+
+}  // namespace
+}  // namespace isg::sim
