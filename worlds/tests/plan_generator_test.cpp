@@ -17,8 +17,12 @@ namespace {
 namespace fs = std::filesystem;
 
 // Writes the building's two files to a fresh folder and reads its scenario as isg check does.
+// The folder is the test's own: several tests generate the same building, and CTest runs them
+// in parallel.
 bim::Scenario load(const GeneratedBuilding& b, bim::Warnings* warnings) {
-  const fs::path dir = fs::path(testing::TempDir()) / ("generator_" + b.name);
+  const testing::TestInfo* test = testing::UnitTest::GetInstance()->current_test_info();
+  const fs::path dir =
+      fs::path(testing::TempDir()) / ("generator_" + std::string(test->name()) + "_" + b.name);
   fs::create_directories(dir);
   std::ofstream(dir / (b.name + ".json")) << b.plan.dump(2);
   std::ofstream(dir / (b.name + ".asbuilt.json")) << b.scenario.dump(2);
