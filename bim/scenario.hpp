@@ -68,6 +68,26 @@ struct SurfaceReflectivity {
   double stair = 0.3;
 };
 
+// The sensor's and its driver's conventions (docs/simulation.md, "Driver conventions").
+// When a cloud is stamped: at its first firing (points' time from 0 to the turn's length) or, as
+// the ROS 1 velodyne driver does, at the start of its last packet (times about −0.0995…+0.0013 s).
+enum class LidarStamp { kFirstFiring, kLastPacket };
+// Where one cloud ends: each turn from a fixed azimuth (cut_angle_deg), or every N packets as the
+// ROS 1 driver does by default (N = ceil(packet rate / rotation rate): 76 packets, 1824 firing
+// sequences, about 363° at 10 Hz, so each cloud starts about 3° after the last one did).
+enum class LidarCut { kAngle, kPackets };
+// Which echo of a firing is reported: the strongest, the last, or both (dual: the last and the
+// strongest, or the second strongest when the last is the strongest).
+enum class LidarReturns { kStrongest, kLast, kDual };
+
+inline const char* lidarStampName(LidarStamp s) {
+  return s == LidarStamp::kFirstFiring ? "first_firing" : "last_packet";
+}
+inline const char* lidarCutName(LidarCut c) { return c == LidarCut::kAngle ? "angle" : "packets"; }
+inline const char* lidarReturnsName(LidarReturns r) {
+  return r == LidarReturns::kStrongest ? "strongest" : r == LidarReturns::kLast ? "last" : "dual";
+}
+
 struct LidarConfig {
   double rate_hz = 10.0;
   double range_noise_m = 0.007;
@@ -85,6 +105,13 @@ struct LidarConfig {
   // x y z roll pitch yaw on R: the puck on a mast, its optical centre 16 cm above the body's top
   // (0.14 puts the puck on the body itself: docs/simulation.md says what that costs).
   std::array<double, 6> mount = {0.0, 0.0, 0.25, 0.0, 0.0, 0.0};
+  LidarStamp stamp = LidarStamp::kFirstFiring;
+  LidarCut cut = LidarCut::kAngle;
+  double cut_angle_deg = 0.0;  // the azimuth each turn starts at (angle cut), clockwise from x
+  // Standard deviation of the error of the azimuth each data block (two firing sequences)
+  // reports; the points are placed along the reported azimuth. 0.006 on a real VLP-16.
+  double azimuth_jitter_deg = 0.0;
+  LidarReturns returns = LidarReturns::kStrongest;
 };
 
 struct OdometryConfig {

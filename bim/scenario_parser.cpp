@@ -1,6 +1,7 @@
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
+#include <initializer_list>
 #include <set>
 #include <sstream>
 
@@ -168,6 +169,18 @@ std::array<double, 6> parseMount(const JsonNode& node, const std::string& sensor
   return mount;
 }
 
+// One of a few named values; anything else fails naming them all.
+template <typename Enum>
+Enum oneOf(const JsonNode& node, std::initializer_list<Enum> values, const char* (*name)(Enum)) {
+  const std::string text = node.string();
+  std::string expected;
+  for (Enum value : values) {
+    if (text == name(value)) return value;
+    expected += (expected.empty() ? "" : ", ") + inQuotes(name(value));
+  }
+  node.fail("unknown value " + inQuotes(text) + " (expected one of " + expected + ")");
+}
+
 SurfaceReflectivity parseReflectivity(const JsonNode& node) {
   node.expectObject({"wall", "floor", "ceiling", "door", "clutter", "stair"});
   SurfaceReflectivity reflectivity;
@@ -184,7 +197,7 @@ SurfaceReflectivity parseReflectivity(const JsonNode& node) {
 LidarConfig parseLidar(const JsonNode& node) {
   node.expectObject({"rate_hz", "range_noise_m", "min_range_m", "max_range_m", "dropout",
                      "grazing_cutoff_deg", "detection_range_m", "body_occlusion", "reflectivity",
-                     "mount"});
+                     "mount", "stamp", "cut", "cut_angle_deg", "azimuth_jitter_deg", "returns"});
   LidarConfig lidar;
   if (auto v = node.optionalField("rate_hz")) lidar.rate_hz = v->numberInRange(5.0, 20.0);
   if (auto v = node.optionalField("range_noise_m"))
@@ -210,6 +223,23 @@ LidarConfig parseLidar(const JsonNode& node) {
   if (auto v = node.optionalField("body_occlusion")) lidar.body_occlusion = v->boolean();
   if (auto v = node.optionalField("reflectivity")) lidar.reflectivity = parseReflectivity(*v);
   if (auto v = node.optionalField("mount")) lidar.mount = parseMount(*v, "LiDAR");
+  if (auto v = node.optionalField("stamp")) {
+    lidar.stamp = oneOf(*v, {LidarStamp::kFirstFiring, LidarStamp::kLastPacket}, lidarStampName);
+  }
+  if (auto v = node.optionalField("cut")) {
+    lidar.cut = oneOf(*v, {LidarCut::kAngle, LidarCut::kPackets}, lidarCutName);
+  }
+  if (auto v = node.optionalField("cut_angle_deg")) {
+    lidar.cut_angle_deg = v->numberInRange(0.0, 360.0, true);
+    if (lidar.cut != LidarCut::kAngle) v->fail("cut_angle_deg needs \"cut\": \"angle\"");
+  }
+  if (auto v = node.optionalField("azimuth_jitter_deg")) {
+    lidar.azimuth_jitter_deg = v->numberInRange(0.0, 1.0);
+  }
+  if (auto v = node.optionalField("returns")) {
+    lidar.returns = oneOf(*v, {LidarReturns::kStrongest, LidarReturns::kLast, LidarReturns::kDual},
+                          lidarReturnsName);
+  }
   return lidar;
 }
 

@@ -50,7 +50,8 @@ Vlp16Command::Vlp16Command(CLI::App& parent) {
       ->check(positiveNumber())
       ->capture_default_str();
   app_->add_option("--interpolation", interpolation_,
-                   "azimuth interpolation: per-sequence, or nebula (tier4/nebula's decoder)")
+                   "the decoder's conventions (azimuth interpolation, dual-mode firing times): "
+                   "per-sequence, or nebula (tier4/nebula's decoder)")
       ->check(CLI::IsMember({"per-sequence", "nebula"}))
       ->capture_default_str();
   app_->add_flag("--json", json_, "print the statistics as JSON");
@@ -65,8 +66,8 @@ int Vlp16Command::run() {
   sensors::Vlp16DecodeOptions options;
   options.min_range = min_range_;
   options.max_range = max_range_;
-  options.interpolation = interpolation_ == "nebula" ? sensors::Vlp16Interpolation::kNebula
-                                                     : sensors::Vlp16Interpolation::kPerSequence;
+  options.convention = interpolation_ == "nebula" ? sensors::Vlp16Convention::kNebula
+                                                  : sensors::Vlp16Convention::kPerSequence;
   const auto recording = sensors::readVlp16Recording(input_, options, topic_);
   const auto turns = sensors::cutIntoTurns(recording.points, cut_deg_);
   const auto stats = sensors::vlp16Statistics(recording.tally, turns);

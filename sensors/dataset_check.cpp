@@ -69,7 +69,17 @@ void checkDatasetAgainstMetadata(const DatasetReader& dataset) {
   }
   std::vector<double> stamps;
   for (int i = 0; i < scans; ++i) stamps.push_back(dataset.scanStamp(i));
-  if (const auto rate = numberAt(m, {"lidar", "rate_hz"})) {
+  if (const auto declared = numberAt(m, {"lidar", "scan_period_s"})) {
+    if (const auto period = meanPeriod(stamps);
+        period && std::abs(*period / *declared - 1.0) > 0.01) {
+      disagree("/lidar/scan_period_s", "says " + number(*declared) + " s, scans.tum's stamps are " +
+                                           number(*period) + " s apart on average");
+    }
+  }
+  // A cloud a turn (the default angle cut): the stamps come at the rotation rate.
+  const bool cut_by_angle = !(m.is_object() && m.contains("lidar") && m["lidar"].is_object() &&
+                              m["lidar"].contains("cut") && m["lidar"]["cut"] != "angle");
+  if (const auto rate = numberAt(m, {"lidar", "rate_hz"}); rate && cut_by_angle) {
     if (const auto period = meanPeriod(stamps); period && std::abs(*period * *rate - 1.0) > 0.01) {
       disagree("/lidar/rate_hz", "says " + number(*rate) + " Hz, scans.tum's stamps are " +
                                      number(1.0 / *period) + " Hz apart on average");
@@ -105,7 +115,7 @@ void checkDatasetAgainstMetadata(const DatasetReader& dataset) {
   if (const auto duration = numberAt(m, {"duration_s"}); duration && !stamps.empty()) {
     // Every scan's turn ends within the duration, and one more turn would not have.
     const double period = dataset.scanPeriod();
-    const double last_end = stamps.back() + period;
+    const double last_end = stamps.back() + dataset.turnEndFromStamp();
     if (last_end > *duration + 1e-6 || last_end + period <= *duration - 1e-6) {
       disagree("/duration_s", "says " + number(*duration) + " s, the last scan's turn ends at " +
                                   number(last_end) + " s");

@@ -68,6 +68,18 @@ void DatasetReader::readMetadata(const std::string& file) {
   if (auto lidar = root.optionalField("lidar")) {
     if (auto rate = lidar->optionalField("rate_hz"))
       scan_period_ = 1.0 / rate->numberInRange(0.1, 1000.0);
+    if (auto period = lidar->optionalField("scan_period_s"))
+      scan_period_ = period->numberInRange(0.001, 10.0);
+    point_time_ = {0.0, scan_period_};
+    if (auto span = lidar->optionalField("point_time_s")) {
+      const std::vector<double> range = span->numbers(2);
+      if (!(range[0] < range[1]) || range[1] - range[0] > 10.0 || std::abs(range[0]) > 10.0) {
+        span->fail(
+            "expected [first, last] seconds about the stamp, first below last, "
+            "within 10 s");
+      }
+      point_time_ = {range[0], range[1]};
+    }
   }
   if (auto seed = root.optionalField("seed")) seed_ = seed->unsignedInteger();
   if (auto duration = root.optionalField("duration_s")) {

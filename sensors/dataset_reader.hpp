@@ -1,6 +1,7 @@
 #pragma once
 
 #include <Eigen/Geometry>
+#include <array>
 #include <cstdint>
 #include <nlohmann/json.hpp>
 #include <optional>
@@ -44,8 +45,13 @@ class DatasetReader : public ScanSource {
   double scanStamp(int index) const { return scan_stamps_[index]; }
   // scans.tum: B_T_L at each scan's stamp.
   const Trajectory& scanPoses() const { return scan_poses_; }
-  // Seconds per LiDAR turn (metadata lidar.rate_hz; 10 Hz when it is not given).
+  // Seconds between two scans (metadata lidar.scan_period_s, else 1 / lidar.rate_hz; 0.1 s when
+  // neither is given).
   double scanPeriod() const { return scan_period_; }
+  // The span of the points' `time` about their scan's stamp (metadata lidar.point_time_s; from 0
+  // to the scan period when not given): where a turn starts and ends about its stamp.
+  double turnStartFromStamp() const { return point_time_[0]; }
+  double turnEndFromStamp() const { return point_time_[1]; }
   // What the run's driver is fed: the dataset's streams, with the duration the metadata records
   // (duration_s) or, without it, the scans' span.
   SensorStreams streams() const;
@@ -72,6 +78,7 @@ class DatasetReader : public ScanSource {
   std::optional<ImuNoise> imu_noise_;
   Trajectory odometry_, ground_truth_;
   double scan_period_ = 0.1;
+  std::array<double, 2> point_time_ = {0.0, 0.1};
   std::vector<std::string> scan_files_;
   std::vector<double> scan_stamps_;
   sensors::StageTimes times_;  // "reading scans"

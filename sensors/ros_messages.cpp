@@ -4,6 +4,7 @@
 #include <ros/serialization.h>
 #include <sensor_msgs/Imu.h>
 #include <sensor_msgs/PointCloud2.h>
+#include <std_msgs/String.h>
 #include <tf2_msgs/TFMessage.h>
 
 #include <cstring>
@@ -73,6 +74,13 @@ RosMessageType pointCloud2Type() { return typeOf<sensor_msgs::PointCloud2>(); }
 RosMessageType imuType() { return typeOf<sensor_msgs::Imu>(); }
 RosMessageType odometryType() { return typeOf<nav_msgs::Odometry>(); }
 RosMessageType tfMessageType() { return typeOf<tf2_msgs::TFMessage>(); }
+RosMessageType stringType() { return typeOf<std_msgs::String>(); }
+
+std::string stringMessage(const std::string& text) {
+  std_msgs::String message;
+  message.data = text;
+  return serialise(message);
+}
 
 std::string pointCloud2(const std::vector<sensors::ScanPoint>& points, RosTime stamp,
                         std::uint32_t seq, const std::string& frame) {

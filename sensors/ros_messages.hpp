@@ -18,6 +18,7 @@ RosMessageType pointCloud2Type();
 RosMessageType imuType();
 RosMessageType odometryType();
 RosMessageType tfMessageType();
+RosMessageType stringType();
 
 // sensor_msgs/PointCloud2 with the Velodyne driver's point layout: x y z intensity (float32 at 0,
 // 4, 8, 12), ring (uint16 at 16), time (float32 at 18, seconds from the stamp); point_step 22,
@@ -42,5 +43,8 @@ struct StampedTransform {
 };
 // tf2_msgs/TFMessage.
 std::string tfMessage(const std::vector<StampedTransform>& transforms);
+
+// std_msgs/String.
+std::string stringMessage(const std::string& text);
 
 }  // namespace isg::sensors::ros1

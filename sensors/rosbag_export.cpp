@@ -85,6 +85,7 @@ RosbagSummary exportRosbag(const std::string& dataset_dir, const std::string& ba
 
   RosbagWriter bag(bag_path, options.overwrite);
   const int tf_static = bag.connect(kTfStaticTopic, ros1::tfMessageType(), true);
+  const int metadata = bag.connect(kMetadataTopic, ros1::stringType(), true);
   const int odometry = bag.connect(kOdometryTopic, ros1::odometryType());
   const int tf = bag.connect(kTfTopic, ros1::tfMessageType());
   const int imu = dataset.imu().empty() ? -1 : bag.connect(kImuTopic, ros1::imuType());
@@ -115,6 +116,12 @@ RosbagSummary exportRosbag(const std::string& dataset_dir, const std::string& ba
             {t, kBaseFrame, kLidarFrame, dataset.R_T_L()}};
         if (imu >= 0) mounts.push_back({t, kBaseFrame, kImuFrame, dataset.R_T_I()});
         bag.write(tf_static, t, ros1::tfMessage(mounts));
+        // The same bag whichever PCD encoding the dataset has.
+        nlohmann::json made = dataset.metadata();
+        if (made.is_object() && made.contains("lidar") && made["lidar"].is_object()) {
+          made["lidar"].erase("pcd_data");
+        }
+        bag.write(metadata, t, ros1::stringMessage(made.dump()));
         break;
       }
       case Kind::kOdometry: {
@@ -147,10 +154,10 @@ RosbagSummary exportRosbag(const std::string& dataset_dir, const std::string& ba
   bag.close();
 
   RosbagSummary summary;
-  const char* topics[] = {kTfStaticTopic, kOdometryTopic, kTfTopic,
-                          kImuTopic,      kCloudTopic,    kGroundTruthTopic};
-  const int connections[] = {tf_static, odometry, tf, imu, cloud, ground_truth};
-  for (int i = 0; i < 6; ++i) {
+  const char* topics[] = {kTfStaticTopic, kOdometryTopic,    kTfTopic,      kImuTopic,
+                          kCloudTopic,    kGroundTruthTopic, kMetadataTopic};
+  const int connections[] = {tf_static, odometry, tf, imu, cloud, ground_truth, metadata};
+  for (int i = 0; i < 7; ++i) {
     if (connections[i] >= 0) summary.messages[topics[i]] = bag.counts()[connections[i]];
   }
   summary.bytes = bag.bytesWritten();

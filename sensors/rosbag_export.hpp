@@ -15,6 +15,10 @@ inline constexpr const char* kOdometryTopic = "/odom";
 inline constexpr const char* kTfTopic = "/tf";
 inline constexpr const char* kTfStaticTopic = "/tf_static";
 inline constexpr const char* kGroundTruthTopic = "/ground_truth";
+// The dataset's metadata.json (sensor model, driver conventions, noise, mounts) as one latched
+// std_msgs/String, without its PCD encoding: what a reader of the bag needs to know how it was
+// made.
+inline constexpr const char* kMetadataTopic = "/isg/metadata";
 inline constexpr const char* kPlanFrame = "plan";       // B
 inline constexpr const char* kOdometryFrame = "odom";   // M
 inline constexpr const char* kBaseFrame = "base_link";  // R

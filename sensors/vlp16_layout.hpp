@@ -17,6 +17,8 @@ struct Vlp16Layout {
   static constexpr int ring(int laser) {
     return laser % 2 == 0 ? laser / 2 : 8 + laser / 2;  // -15,-13,...,-1 then 1,3,...,15
   }
+  // The laser (firing order) of a ring: the inverse of ring().
+  static constexpr int laser(int ring) { return ring < 8 ? 2 * ring : 2 * (ring - 8) + 1; }
 };
 
 }  // namespace isg::sensors

@@ -44,12 +44,12 @@ struct BlockTurn {
 };
 
 std::array<BlockTurn, kVlp16Blocks> blockTurns(const Vlp16PacketHeader& header, bool dual,
-                                               Vlp16Interpolation interpolation) {
+                                               Vlp16Convention interpolation) {
   const auto& az = header.azimuths;
   const int stride = dual ? 2 : 1;  // blocks per firing sequence pair
   auto forward = [](int from, int to) { return double((kFullTurn + to - from) % kFullTurn); };
   std::array<BlockTurn, kVlp16Blocks> turns{};
-  if (interpolation == Vlp16Interpolation::kPerSequence) {
+  if (interpolation == Vlp16Convention::kPerSequence) {
     for (int b = 0; b < kVlp16Blocks; ++b) {
       const int first = b - b % stride;  // the pair's first block
       const int next = first + stride;
@@ -135,19 +135,19 @@ Vlp16PacketHeader readVlp16Header(std::span<const std::uint8_t> packet, const st
   return header;
 }
 
-void decodeVlp16Packet(std::span<const std::uint8_t> packet, double stamp,
-                       const Vlp16DecodeOptions& options, const std::string& file,
-                       const std::string& where, std::vector<Vlp16Point>& points,
-                       Vlp16ShotTally* tally) {
+Vlp16PacketHeader decodeVlp16Packet(std::span<const std::uint8_t> packet, double stamp,
+                                    const Vlp16DecodeOptions& options, const std::string& file,
+                                    const std::string& where, std::vector<Vlp16Point>& points,
+                                    Vlp16ShotTally* tally) {
   const Vlp16PacketHeader header = readVlp16Header(packet, file, where);
   const bool dual = header.mode == Vlp16ReturnMode::kDual;
-  const auto turns = blockTurns(header, dual, options.interpolation);
+  const auto turns = blockTurns(header, dual, options.convention);
   constexpr int kLasers = Vlp16Layout::kLasers;
   const double pair_duration = 2.0 * Vlp16Layout::kSequenceDuration;
   for (int b = 0; b < kVlp16Blocks; ++b) {
     const int other_block = dual ? (b % 2 == 0 ? b + 1 : b - 1) : b;
     for (int sequence = 0; sequence < 2; ++sequence) {
-      const int sequence_index = dual && options.interpolation == Vlp16Interpolation::kPerSequence
+      const int sequence_index = dual && options.convention == Vlp16Convention::kPerSequence
                                      ? (b - b % 2) + sequence
                                      : 2 * b + sequence;
       for (int laser = 0; laser < kLasers; ++laser) {
@@ -185,6 +185,7 @@ void decodeVlp16Packet(std::span<const std::uint8_t> packet, double stamp,
       }
     }
   }
+  return header;
 }
 
 }  // namespace isg::sensors

@@ -32,8 +32,9 @@ enum class Vlp16Echo : std::uint8_t {
   kFarWeak,
 };
 
-// How a firing's azimuth is interpolated between the packet's block azimuths.
-enum class Vlp16Interpolation : std::uint8_t {
+// Which decoder's conventions a packet is decoded with: how a firing's azimuth is interpolated
+// between the packet's block azimuths, and which table of firing times dual mode uses.
+enum class Vlp16Convention : std::uint8_t {
   // Each firing sequence turns at the rate of its own block to the next one of another sequence
   // (in dual mode the next pair); the packet's last sequences continue the previous step. Both
   // blocks of a dual pair get the same azimuths, as they are one laser shot.
@@ -49,7 +50,7 @@ struct Vlp16DecodeOptions {
   // driver's default minimum is 0.4 m; nebula's tests use 0.3 m and 300 m).
   double min_range = 0.4;
   double max_range = 130.0;
-  Vlp16Interpolation interpolation = Vlp16Interpolation::kPerSequence;
+  Vlp16Convention convention = Vlp16Convention::kPerSequence;
 };
 
 // One decoded return, in the sensor's frame as the ROS drivers give it (x forward, y left, z up).
@@ -84,10 +85,11 @@ Vlp16PacketHeader readVlp16Header(std::span<const std::uint8_t> packet, const st
                                   const std::string& where);
 
 // Appends the packet's returns within range to `points`, in the packet's order (block, sequence,
-// laser), stamped `stamp` + firing offset; counts its shots in `tally` when given.
-void decodeVlp16Packet(std::span<const std::uint8_t> packet, double stamp,
-                       const Vlp16DecodeOptions& options, const std::string& file,
-                       const std::string& where, std::vector<Vlp16Point>& points,
-                       Vlp16ShotTally* tally = nullptr);
+// laser), stamped `stamp` + firing offset; counts its shots in `tally` when given. Returns the
+// packet's header (checked as readVlp16Header does).
+Vlp16PacketHeader decodeVlp16Packet(std::span<const std::uint8_t> packet, double stamp,
+                                    const Vlp16DecodeOptions& options, const std::string& file,
+                                    const std::string& where, std::vector<Vlp16Point>& points,
+                                    Vlp16ShotTally* tally = nullptr);
 
 }  // namespace isg::sensors

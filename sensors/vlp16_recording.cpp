@@ -22,12 +22,13 @@ std::span<const std::uint8_t> bytesOf(const std::string& data) {
 void decodeInto(Vlp16Recording& recording, const std::string& data, double stamp,
                 const Vlp16DecodeOptions& options, const std::string& file,
                 const std::string& where) {
-  const Vlp16PacketHeader header = readVlp16Header(bytesOf(data), file, where);
+  // A packet of another mode throws with the recording half-decoded: the caller never sees it.
+  const Vlp16PacketHeader header = decodeVlp16Packet(bytesOf(data), stamp, options, file, where,
+                                                     recording.points, &recording.tally);
   if (recording.data_packets > 0 && header.mode != recording.mode) {
     throw bim::InputError(file, "", where + ": the return mode changes within the recording");
   }
   recording.mode = header.mode;
-  decodeVlp16Packet(bytesOf(data), stamp, options, file, where, recording.points, &recording.tally);
   ++recording.data_packets;
 }
 

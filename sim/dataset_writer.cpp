@@ -33,6 +33,7 @@ nlohmann::ordered_json metadata(const Simulation& sim, double duration,
   using json = nlohmann::ordered_json;
   const bim::Scenario& s = sim.scenario();
   const auto& l = s.lidar;
+  const LidarSimulator& lidar = sim.lidar();
   // Where each kidnap put the robot down (the planned pose, in B), and on which level when the
   // plan has several.
   json kidnaps = json::array();
@@ -74,6 +75,14 @@ nlohmann::ordered_json metadata(const Simulation& sim, double duration,
         {"rate_hz", l.rate_hz},
         {"scans", scans},
         {"sequences_per_turn", Vlp16::sequencesPerTurn(l.rate_hz)},
+        {"sequences_per_cloud", lidar.sequencesPerCloud()},
+        {"stamp", bim::lidarStampName(l.stamp)},
+        {"cut", bim::lidarCutName(l.cut)},
+        {"cut_angle_deg", l.cut_angle_deg},
+        {"azimuth_jitter_deg", l.azimuth_jitter_deg},
+        {"returns", bim::lidarReturnsName(l.returns)},
+        {"scan_period_s", lidar.scanPeriod()},
+        {"point_time_s", {-lidar.stampOffset(), lidar.turnDuration() - lidar.stampOffset()}},
         {"firing_interval_s", Vlp16::kFiringInterval},
         {"sequence_duration_s", Vlp16::kSequenceDuration},
         {"elevation_deg_by_laser", Vlp16::kElevationDeg},
@@ -104,7 +113,8 @@ nlohmann::ordered_json metadata(const Simulation& sim, double duration,
          "grazing_cutoff_deg kept with probability cos(incidence) / cos(cutoff); dropout"},
         {"pcd_data", sensors::dataset::pcdDataName(options.pcd)},
         {"pcd_fields",
-         "x y z intensity ring time (float32 ×4, uint16, float32), time from the scan stamp"}}},
+         "x y z intensity ring time (float32 ×4, uint16, float32), time from the scan stamp "
+         "(within point_time_s)"}}},
       {"odometry",
        {{"rate_hz", s.odometry.rate_hz},
         {"translation_noise", s.odometry.translation_noise},

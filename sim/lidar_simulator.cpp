@@ -20,6 +20,16 @@ namespace {
 
 constexpr double kQuantum = 0.002;  // the VLP-16 reports ranges in 2 mm steps
 constexpr std::uint64_t kNoiseStream = 1;
+constexpr std::uint64_t kJitterStream = 2;
+// The VLP-16's beam diverges by 3.0 mrad horizontally (its manual): last and dual returns cast
+// the beam's centre and its two horizontal edges, 1.5 mrad either side, weighted 1/4, 1/2, 1/4
+// (a beam brighter at its centre). Vertical divergence (1.5 mrad) is left out: edges across the
+// beam's height (lintels, tops of clutter) are rarer indoors than wall ends and door jambs.
+constexpr double kHalfDivergence = 1.5e-3;
+constexpr double kEdgeWeight = 0.25, kCentreWeight = 0.5;
+// Two parts of a beam closer than this in range make one echo: the detector cannot separate
+// pulses that overlap (an assumption of about the pulse's length; the manual gives no figure).
+constexpr double kEchoSeparation = 1.0;
 
 // std::round for x ≥ 0 without a library call (ties go up; they have probability zero here).
 inline double roundHalfUp(double x) { return double(std::int64_t(x + 0.5)); }
@@ -48,7 +58,20 @@ LidarSimulator::LidarSimulator(const MujocoWorld& world, const bim::LidarConfig&
       config_(config),
       caster_(world.model(), world.data(), groups),
       scan_caster_(caster_),
-      sequences_(Vlp16::sequencesPerTurn(config.rate_hz)) {
+      sequences_(Vlp16::sequencesPerTurn(config.rate_hz)),
+      period_(1.0 / config.rate_hz),
+      stamp_offset_(0.0),
+      body_(robotBodyBox(), mountTransform(config.mount)) {
+  const int per_packet = sequencesPerPacket();
+  if (config.cut == bim::LidarCut::kPackets) {
+    // The ROS 1 driver publishes ceil(packet rate / rotation rate) packets per cloud.
+    const double packet_rate = 1.0 / (per_packet * kSequence);
+    sequences_ = int(std::ceil(packet_rate / config.rate_hz)) * per_packet;
+    period_ = sequences_ * kSequence;
+  }
+  if (config.stamp == bim::LidarStamp::kLastPacket) {
+    stamp_offset_ = ((sequences_ - 1) / per_packet) * per_packet * kSequence;
+  }
   const mjModel& m = world.model();
   reflectivity_.resize(m.ngeom);
   for (int g = 0; g < m.ngeom; ++g) {
@@ -71,13 +94,13 @@ LidarSimulator::LidarSimulator(const MujocoWorld& world, const bim::LidarConfig&
     shape.R = Eigen::Map<const Eigen::Matrix<double, 3, 3, Eigen::RowMajor>>(d.geom_xmat + 9 * g);
     shape.inverse_half = Eigen::Map<const Eigen::Vector3d>(m.geom_size + 3 * g).cwiseInverse();
   }
-  const BodyShadow body(robotBodyBox(), mountTransform(config.mount));
   firings_.reserve(std::size_t(sequences_) * Vlp16::kLasers);
   for (int s = 0; s < sequences_; ++s) {
     for (int l = 0; l < Vlp16::kLasers; ++l) {
       const double t = Vlp16::firingTime(s, l);
       const Eigen::Vector3d direction = Vlp16::direction(l, Vlp16::azimuth(t, config.rate_hz));
-      const bool blocked = config.body_occlusion && body.distance(Vlp16::origin(l), direction) >= 0;
+      const bool blocked =
+          config.body_occlusion && body_.distance(Vlp16::origin(l), direction) >= 0;
       firings_.push_back({direction, t, blocked});
     }
   }
@@ -106,23 +129,83 @@ int LidarSimulator::blockCount() const {
   return (sequences_ + kBlockSequences - 1) / kBlockSequences;
 }
 
-LidarScan LidarSimulator::scan(double stamp, const PoseAt& B_T_L, std::uint64_t seed) {
-  return scanBlocks(stamp, B_T_L, seed, 0, blockCount());
+int LidarSimulator::sequencesPerPacket() const {
+  return config_.returns == bim::LidarReturns::kDual ? 12 : 24;
 }
 
-LidarScan LidarSimulator::scanBlocks(double stamp, const PoseAt& B_T_L, std::uint64_t seed,
+double LidarSimulator::startAzimuth(double start) const {
+  if (config_.cut == bim::LidarCut::kAngle) return -config_.cut_angle_deg * std::numbers::pi / 180;
+  // The head turns at the rate on and on; at time 0 it was at azimuth 0.
+  return -2.0 * std::numbers::pi * std::fmod(config_.rate_hz * start, 1.0);
+}
+
+LidarSimulator::SubHit LidarSimulator::subHit(const RayCaster::Hit& hit,
+                                              const Eigen::Vector3d& origin,
+                                              const Eigen::Vector3d& direction,
+                                              double weight) const {
+  SubHit out;
+  if (hit.distance < 0) return out;
+  const Eigen::Vector3d normal =
+      surfaceNormal(hit.geom, origin + hit.distance * direction, direction);
+  out.distance = hit.distance;
+  out.cos_incidence = std::abs(normal.dot(direction));
+  out.lit = weight * reflectivity_[hit.geom] * out.cos_incidence;
+  out.power = out.lit / (hit.distance * hit.distance);
+  return out;
+}
+
+int LidarSimulator::echoes(const SubHit* sub, int count, Echo* out) const {
+  std::array<SubHit, 3> sorted;
+  int n = 0;
+  for (int k = 0; k < count; ++k) {
+    if (sub[k].distance >= 0) sorted[n++] = sub[k];
+  }
+  std::sort(sorted.begin(), sorted.begin() + n,
+            [](const SubHit& a, const SubHit& b) { return a.distance < b.distance; });
+  int echoes = 0;
+  double strongest_part = 0.0;
+  for (int k = 0; k < n; ++k) {
+    const SubHit& h = sorted[k];
+    if (echoes == 0 || h.distance - sorted[k - 1].distance >= kEchoSeparation) {
+      out[echoes++] = Echo{};
+      strongest_part = 0.0;
+    }
+    Echo& e = out[echoes - 1];
+    e.power += h.power;
+    e.lit += h.lit;
+    if (h.power > strongest_part) {
+      strongest_part = h.power;
+      e.distance = h.distance;
+      e.cos_incidence = h.cos_incidence;
+    }
+  }
+  return echoes;
+}
+
+LidarScan LidarSimulator::scan(double start, const PoseAt& B_T_L, std::uint64_t seed) {
+  return scanBlocks(start, B_T_L, seed, 0, blockCount());
+}
+
+LidarScan LidarSimulator::scanBlocks(double start, const PoseAt& B_T_L, std::uint64_t seed,
                                      int first_block, int last_block) {
   using Clock = std::chrono::steady_clock;
   auto seconds = [](Clock::time_point a, Clock::time_point b) {
     return std::chrono::duration<double>(b - a).count();
   };
   LidarScan out;
-  out.stamp = stamp;
+  out.stamp = start + stamp_offset_;
   const int first_sequence = first_block * kBlockSequences;
   const int last_sequence = std::min(sequences_, last_block * kBlockSequences);
   if (first_sequence >= last_sequence) return out;
-  out.points.reserve(std::size_t(last_sequence - first_sequence) * Vlp16::kLasers);
+  const bool beam = config_.returns != bim::LidarReturns::kStrongest;
+  out.points.reserve(std::size_t(last_sequence - first_sequence) * Vlp16::kLasers * (beam ? 2 : 1));
   auto mark = Clock::now();
+  // The firing table starts at azimuth 0: a turn starting elsewhere turns it about L's z axis
+  // (folded into the sensor's rotation, so it costs nothing per ray).
+  const double start_azimuth = startAzimuth(start);
+  const bool turned = start_azimuth != 0.0;
+  const Eigen::Matrix3d L_R_table =
+      Eigen::AngleAxisd(start_azimuth, Eigen::Vector3d::UnitZ()).toRotationMatrix();
   // Sensor poses every kPoseStride sequences (0.44 ms) and at the turn's end; each laser's pose
   // is interpolated linearly between them. The gait sways the sensor at about 2 Hz: over 0.44 ms
   // its path departs from a straight line by under 0.1 µm and its rotation from slerp by under
@@ -136,9 +219,9 @@ LidarScan LidarSimulator::scanBlocks(double stamp, const PoseAt& B_T_L, std::uin
   Eigen::Vector2d lo = Eigen::Vector2d::Constant(1e300), hi = -lo;
   for (int j = first_sample; j <= last_sample; ++j) {
     const int s = std::min(sequences_, j * kPoseStride);
-    const Eigen::Isometry3d T = B_T_L(stamp + s * kSequence);
+    const Eigen::Isometry3d T = B_T_L(start + s * kSequence);
     positions_[j] = T.translation();
-    rotations_[j] = T.linear();
+    rotations_[j] = turned ? Eigen::Matrix3d(T.linear() * L_R_table) : T.linear();
     lo = lo.cwiseMin(positions_[j].head<2>());
     hi = hi.cwiseMax(positions_[j].head<2>());
   }
@@ -154,6 +237,17 @@ LidarScan LidarSimulator::scanBlocks(double stamp, const PoseAt& B_T_L, std::uin
   origins_.resize(per_block);
   directions_.resize(per_block);
   hits_.resize(per_block);
+  blocked_.resize(per_block);
+  for (int side = 0; side < 2 && beam; ++side) {
+    edge_directions_[side].resize(per_block);
+    edge_hits_[side].resize(per_block);
+  }
+  // The azimuth each data block (two sequences) reports, as cos and sin of its turn from the
+  // firing table's: the turn's start, and the block's jitter.
+  constexpr int kDataBlocks = kBlockSequences / 2;
+  std::array<double, kDataBlocks> report_cos, report_sin;
+  const bool jitter = config_.azimuth_jitter_deg > 0.0;
+  const bool reported_turn = turned || jitter;
   for (int block = first_block; block < last_block; ++block) {
     const int first = block * kBlockSequences;
     const int last = std::min(sequences_, first + kBlockSequences);
@@ -173,7 +267,17 @@ LidarScan LidarSimulator::scanBlocks(double stamp, const PoseAt& B_T_L, std::uin
         // |v| departs from 1 by ~1e-8 (the rotations differ by < 1e-3 rad): one Newton step
         // for 1/|v| makes it unit to ~1e-16 without a square root or a division.
         directions_[i] = (1.5 - 0.5 * v.squaredNorm()) * v;
-        origins_[i] = positions_[j] + a * dP + offset[l] * (R.col(2) + a * dR.col(2));
+        const Eigen::Vector3d axis = R.col(2) + a * dR.col(2);
+        origins_[i] = positions_[j] + a * dP + offset[l] * axis;
+        // The body is rigid with the mount: only a turn off the table's azimuths asks anew.
+        blocked_[i] = turned && config_.body_occlusion
+                          ? body_.distance(Vlp16::origin(l), L_R_table * firing.direction) >= 0
+                          : firing.blocked;
+        if (beam) {
+          const Eigen::Vector3d side = kHalfDivergence * axis.cross(directions_[i]).normalized();
+          edge_directions_[0][i] = (directions_[i] + side).normalized();
+          edge_directions_[1][i] = (directions_[i] - side).normalized();
+        }
       }
     }
     const int rays = (last - first) * Vlp16::kLasers;
@@ -182,22 +286,108 @@ LidarScan LidarSimulator::scanBlocks(double stamp, const PoseAt& B_T_L, std::uin
     mark = now;
     for (int i = 0; i < rays; ++i) {
       // A ray the body stops never reaches the building.
-      if (firings_[first * Vlp16::kLasers + i].blocked) {
+      if (blocked_[i]) {
         hits_[i] = RayCaster::Hit{};
+        for (int side = 0; side < 2 && beam; ++side) edge_hits_[side][i] = RayCaster::Hit{};
         continue;
       }
       const auto hit = scan_caster_.cast(origins_[i], directions_[i]);
       hits_[i] = hit ? *hit : RayCaster::Hit{};
+      for (int side = 0; side < 2 && beam; ++side) {
+        const auto edge = scan_caster_.cast(origins_[i], edge_directions_[side][i]);
+        edge_hits_[side][i] = edge ? *edge : RayCaster::Hit{};
+      }
     }
     out.rays += rays;
     now = Clock::now();
     out.timing.casting_s += seconds(mark, now);
     mark = now;
+    if (reported_turn) {
+      Xoshiro256 jitter_rng(deriveSeed(seed, kJitterStream, std::uint64_t(block)));
+      boost::random::normal_distribution<double> jitter_noise(0.0, 1.0);
+      const double sigma = config_.azimuth_jitter_deg * std::numbers::pi / 180.0;
+      for (int b = 0; b < kDataBlocks; ++b) {
+        const double angle = start_azimuth + (jitter ? sigma * jitter_noise(jitter_rng) : 0.0);
+        report_cos[b] = std::cos(angle);
+        report_sin[b] = std::sin(angle);
+      }
+    }
+    // A return at `range` of ray i (sequence s, laser l) as the sensor reports it.
+    auto report = [&](int s, int l, double range, double lit) {
+      const Firing& firing = firings_[s * Vlp16::kLasers + l];
+      Eigen::Vector3d direction = firing.direction;
+      if (reported_turn) {
+        const int b = (s - first) / 2;
+        direction.head<2>() = Eigen::Vector2d(
+            report_cos[b] * firing.direction.x() - report_sin[b] * firing.direction.y(),
+            report_sin[b] * firing.direction.x() + report_cos[b] * firing.direction.y());
+      }
+      const Eigen::Vector3d p = Vlp16::origin(l) + range * direction;
+      // The VLP-16's calibrated reflectivity: 0–100 for diffuse surfaces (100: a perfect white
+      // one met head-on).
+      out.points.push_back({float(p.x()), float(p.y()), float(p.z()),
+                            float(roundHalfUp(100.0 * lit)), std::uint16_t(Vlp16::ring(l)),
+                            float(firing.time - stamp_offset_)});
+    };
     // Every ray draws its noise and whether its return is lost, whether or not it hit.
     Xoshiro256 rng(deriveSeed(seed, kNoiseStream, std::uint64_t(block)));
     boost::random::normal_distribution<double> noise(0.0, 1.0);
     const double kept_share = 1.0 - config_.dropout;
+    // Grazing returns fade: beyond the cutoff the beam's spot smears along the surface and the
+    // echo's peak drops under the detector's threshold more and more often.
+    auto keptProbability = [&](double cos_incidence) {
+      return cos_incidence < full_return_cos_ ? kept_share * cos_incidence / full_return_cos_
+                                              : kept_share;
+    };
     for (int i = 0; i < rays; ++i) {
+      const int s = first + i / Vlp16::kLasers, l = i % Vlp16::kLasers;
+      if (beam) {
+        // Last and dual returns: the beam's echoes, then the ones the mode reports.
+        const double n[2] = {noise(rng), noise(rng)};
+        const double u[2] = {rng.uniform01(), rng.uniform01()};
+        if (hits_[i].distance < 0 && edge_hits_[0][i].distance < 0 &&
+            edge_hits_[1][i].distance < 0) {
+          continue;
+        }
+        const SubHit sub[3] = {
+            subHit(edge_hits_[0][i], origins_[i], edge_directions_[0][i], kEdgeWeight),
+            subHit(hits_[i], origins_[i], directions_[i], kCentreWeight),
+            subHit(edge_hits_[1][i], origins_[i], edge_directions_[1][i], kEdgeWeight)};
+        std::array<Echo, 3> found;
+        const int count = echoes(sub, 3, found.data());
+        // Too weak to detect: the LiDAR equation's power below the sensor's threshold.
+        std::array<Echo, 3> detected;
+        int kept = 0;
+        for (int e = 0; e < count; ++e) {
+          if (found[e].power >= min_signal_) detected[kept++] = found[e];
+        }
+        if (kept == 0) continue;
+        // Nearest first: the last echo is the last one; the strongest of the others comes next.
+        int strongest = kept - 1;
+        for (int e = 0; e < kept; ++e) {
+          if (detected[e].power > detected[strongest].power) strongest = e;
+        }
+        int reported[2] = {kept - 1, -1};
+        if (config_.returns == bim::LidarReturns::kDual) {
+          if (strongest != kept - 1) {
+            reported[1] = strongest;
+          } else if (kept > 1) {
+            int second = 0;
+            for (int e = 0; e < kept - 1; ++e) {
+              if (detected[e].power > detected[second].power) second = e;
+            }
+            reported[1] = second;
+          }
+        }
+        for (int r = 0; r < 2 && reported[r] >= 0; ++r) {
+          const Echo& e = detected[reported[r]];
+          const double range = quantise(e.distance + config_.range_noise_m * n[r]);
+          if (range < config_.min_range_m || range > config_.max_range_m) continue;
+          if (u[r] >= keptProbability(e.cos_incidence)) continue;
+          report(s, l, range, e.lit);
+        }
+        continue;
+      }
       const double n = noise(rng);
       const double u = rng.uniform01();
       const RayCaster::Hit& hit = hits_[i];
@@ -210,20 +400,8 @@ LidarScan LidarSimulator::scanBlocks(double stamp, const PoseAt& B_T_L, std::uin
       const double reflectivity = reflectivity_[hit.geom];
       // Too weak to detect: the LiDAR equation's power below the sensor's threshold.
       if (reflectivity * cos_incidence < min_signal_ * hit.distance * hit.distance) continue;
-      // Grazing returns fade: beyond the cutoff the beam's spot smears along the surface and the
-      // echo's peak drops under the detector's threshold more and more often.
-      const double kept = cos_incidence < full_return_cos_
-                              ? kept_share * cos_incidence / full_return_cos_
-                              : kept_share;
-      if (u >= kept) continue;
-      const int s = first + i / Vlp16::kLasers, l = i % Vlp16::kLasers;
-      const Firing& firing = firings_[s * Vlp16::kLasers + l];
-      const Eigen::Vector3d p = Vlp16::origin(l) + range * firing.direction;
-      // The VLP-16's calibrated reflectivity: 0–100 for diffuse surfaces (100: a perfect white
-      // one met head-on).
-      out.points.push_back({float(p.x()), float(p.y()), float(p.z()),
-                            float(roundHalfUp(100.0 * reflectivity * cos_incidence)),
-                            std::uint16_t(Vlp16::ring(l)), float(firing.time)});
+      if (u >= keptProbability(cos_incidence)) continue;
+      report(s, l, range, reflectivity * cos_incidence);
     }
     now = Clock::now();
     out.timing.noise_s += seconds(mark, now);

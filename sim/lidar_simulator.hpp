@@ -8,6 +8,7 @@
 
 #include "bim/scenario.hpp"
 #include "sensors/messages.hpp"
+#include "sim/body_shadow.hpp"
 #include "sim/mujoco_world.hpp"
 #include "sim/ray_caster.hpp"
 #include "sim/scan_caster.hpp"
@@ -32,7 +33,9 @@ struct ScanTiming {
 };
 
 struct LidarScan {
-  double stamp = 0.0;  // time of the turn's first firing
+  // By the sensor's stamp convention: the turn's first firing, or the start of its last packet
+  // (each point's `time` is from this stamp, so negative before it).
+  double stamp = 0.0;
   std::vector<LidarPoint> points;
   int rays = 0;
   ScanTiming timing;
@@ -54,16 +57,29 @@ class LidarSimulator {
   // B_T_L(t) for t in [stamp, stamp + 1/rate]: the sensor pose in the plan frame.
   using PoseAt = std::function<Eigen::Isometry3d(double t)>;
 
-  // One full turn starting at `stamp`. Noise and lost returns draw from generators seeded by `seed`
-  // and the block of firing sequences (kBlockSequences), so that a turn is the same whichever
-  // thread makes it, and every ray draws whether or not it hits: one ray's outcome never shifts
-  // another's noise.
-  LidarScan scan(double stamp, const PoseAt& B_T_L, std::uint64_t seed);
+  // One full turn whose first firing is at `start` (the cloud's stamp follows the config's
+  // convention). Noise and lost returns draw from generators seeded by `seed` and the block of
+  // firing sequences (kBlockSequences), so that a turn is the same whichever thread makes it, and
+  // every ray draws whether or not it hits: one ray's outcome never shifts another's noise.
+  LidarScan scan(double start, const PoseAt& B_T_L, std::uint64_t seed);
   // Blocks [first_block, last_block) of that turn only: its points are exactly those blocks'
   // points of the whole turn, so parts made apart and joined in order are the whole turn.
-  LidarScan scanBlocks(double stamp, const PoseAt& B_T_L, std::uint64_t seed, int first_block,
+  LidarScan scanBlocks(double start, const PoseAt& B_T_L, std::uint64_t seed, int first_block,
                        int last_block);
   int blockCount() const;
+
+  // Seconds between two clouds' first firings: 1/rate for an angle cut, the cloud's packets for a
+  // cut by packet count (the head turns on: each cloud starts where the last one ended).
+  double scanPeriod() const { return period_; }
+  // A cloud's stamp minus its first firing: 0, or the start of its last packet.
+  double stampOffset() const { return stamp_offset_; }
+  // The head's azimuth (counter-clockwise from L's x axis, as Vlp16::azimuth) at a turn's first
+  // firing: −cut_angle for an angle cut; where the spinning head is at `start` otherwise.
+  double startAzimuth(double start) const;
+  // Firing sequences in one cloud, and in one packet (24; 12 in dual-return mode, where each
+  // firing fills two data blocks).
+  int sequencesPerCloud() const { return sequences_; }
+  int sequencesPerPacket() const;
 
   static constexpr int kBlockSequences = 64;
   static constexpr int kPoseStride = 8;  // sequences between two exact poses of the sensor
@@ -78,6 +94,23 @@ class LidarSimulator {
 
  private:
   static constexpr double kSequence = 55.296e-6;
+  // One sub-ray of a beam (last and dual returns cast the beam's centre and its two edges).
+  struct SubHit {
+    double distance = -1.0;  // < 0: no hit
+    double power = 0.0;      // weight × reflectivity × cos(incidence) / distance²
+    double cos_incidence = 0.0;
+    double lit = 0.0;  // weight × reflectivity × cos(incidence): the echo's share of intensity
+  };
+  struct Echo {
+    double distance = -1.0;  // of the echo's strongest sub-ray
+    double power = 0.0;
+    double cos_incidence = 0.0;  // of its strongest sub-ray
+    double lit = 0.0;
+  };
+  SubHit subHit(const RayCaster::Hit& hit, const Eigen::Vector3d& origin,
+                const Eigen::Vector3d& direction, double weight) const;
+  // The echoes a beam's sub-rays make, nearest first (at most three).
+  int echoes(const SubHit* sub, int count, Echo* out) const;
   struct Firing {
     Eigen::Vector3d direction;  // unit, in L
     double time;                // from the turn's start
@@ -88,6 +121,9 @@ class LidarSimulator {
   RayCaster caster_;
   ScanCaster scan_caster_;
   int sequences_;
+  double period_;
+  double stamp_offset_;
+  BodyShadow body_;
   std::vector<float> reflectivity_;  // per geom, from its kind of surface
   double min_signal_;       // reflectivity × cos(incidence) / range² of the weakest return
   double full_return_cos_;  // cos(grazing cutoff): returns at least this square all come
@@ -106,6 +142,10 @@ class LidarSimulator {
   std::vector<Eigen::Matrix3d> rotations_;
   std::vector<Eigen::Vector3d> origins_, directions_;
   std::vector<RayCaster::Hit> hits_;
+  // Last and dual returns: the beam's edge rays (left and right of the centre).
+  std::vector<Eigen::Vector3d> edge_directions_[2];
+  std::vector<RayCaster::Hit> edge_hits_[2];
+  std::vector<char> blocked_;  // per ray of a block, when the turn starts off azimuth 0
 };
 
 }  // namespace isg::sim

@@ -50,14 +50,13 @@ Simulation::Simulation(const bim::Scenario& scenario)
     const RobotBox body = robotBodyBox();
     const Eigen::Vector3d at = R_T_L_.translation() - body.centre;
     if ((at.cwiseAbs().array() <= body.half.array()).all()) {
-      char size[64];
-      std::snprintf(size, sizeof size, "%.2f × %.2f × %.2f m", 2 * body.half.x(), 2 * body.half.y(),
-                    2 * body.half.z());
-      throw bim::InputError(scenario_.source, "/lidar/mount",
-                            "the LiDAR sits inside the robot's body (" + std::string(size) +
-                                " about the base's origin): mount it above z = " +
-                                std::to_string(body.centre.z() + body.half.z()).substr(0, 4) +
-                                " m or set body_occlusion to false");
+      char what[192];
+      std::snprintf(what, sizeof what,
+                    "the LiDAR sits inside the robot's body (%.2f × %.2f × %.2f m about the "
+                    "base's origin): mount it above z = %.2f m or set body_occlusion to false",
+                    2 * body.half.x(), 2 * body.half.y(), 2 * body.half.z(),
+                    body.centre.z() + body.half.z());
+      throw bim::InputError(scenario_.source, "/lidar/mount", what);
     }
   }
   grid_ =
@@ -143,7 +142,7 @@ std::vector<ImuSample> Simulation::imu(double duration) const {
 sensors::Trajectory Simulation::scanPoses(double duration) const {
   sensors::Trajectory out;
   for (int k = 0; k < scanCount(duration); ++k) {
-    const double t = k * scanPeriod();
+    const double t = k * scanPeriod() + scanStampOffset();
     out.push_back({t, B_T_L(t)});
   }
   return out;

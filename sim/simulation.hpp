@@ -36,7 +36,11 @@ class Simulation {
   double duration() const { return base_motion_->duration(); }
   // The LiDAR on the base (scenario lidar.mount).
   const Eigen::Isometry3d& R_T_L() const { return R_T_L_; }
-  double scanPeriod() const { return 1.0 / scenario_.lidar.rate_hz; }
+  // Seconds between two clouds (1/rate, or the cloud's packets when cut by packet count).
+  double scanPeriod() const { return lidar_->scanPeriod(); }
+  // Scan k's first firing is at k × scanPeriod(); its stamp is this much later (the stamp
+  // convention: 0, or the start of its last packet).
+  double scanStampOffset() const { return lidar_->stampOffset(); }
   // Scans whose whole turn fits in [0, duration].
   int scanCount(double duration) const;
   LidarScan scan(int index);
@@ -45,11 +49,13 @@ class Simulation {
   // Blocks [first_block, last_block) of scan `index` (LidarSimulator::scanBlocks).
   LidarScan scanBlocks(int index, LidarSimulator& lidar, int first_block, int last_block) const;
   std::unique_ptr<LidarSimulator> makeLidar() const;
+  // The sensor the simulation's own scans use (its timing and conventions).
+  const LidarSimulator& lidar() const { return *lidar_; }
   Eigen::Isometry3d B_T_L(double t) const { return base_motion_->pose(t) * R_T_L_; }
 
   sensors::Trajectory groundTruth(double duration, double rate_hz) const;
   sensors::Trajectory odometry(double duration) const;   // M_T_R at odometry.rate_hz
-  sensors::Trajectory scanPoses(double duration) const;  // B_T_L at each scan stamp
+  sensors::Trajectory scanPoses(double duration) const;  // B_T_L at each scan's stamp
   std::vector<ImuSample> imu(double duration) const;     // the IMU stream (scenario imu)
   // The IMU on the base (scenario imu.mount).
   const Eigen::Isometry3d& R_T_I() const { return R_T_I_; }

@@ -36,14 +36,17 @@ int deskew(sensors::Scan& scan, const OdometryBuffer& odometry, const Eigen::Iso
   // 1e-3 rad, so the interpolated rotation departs from the exact one by under 1e-7 (a micrometre
   // at 10 m); a point whose neighbouring samples are not both covered is deskewed exactly.
   constexpr double kStep = 0.5e-3;
-  double span = 0.0;
-  for (const auto& p : scan.points) span = std::max(span, double(p.time));
+  // Points' times about the stamp: from 0 when the stamp is the first firing, negative before a
+  // stamp taken later in the turn (the ROS 1 driver's: its last packet).
+  double first = 0.0, span = 0.0;
+  for (const auto& p : scan.points) first = std::min(first, double(p.time));
+  for (const auto& p : scan.points) span = std::max(span, double(p.time) - first);
   const int samples = int(std::ceil(span / kStep)) + 2;
   std::vector<Eigen::Matrix3d> rotations(samples);
   std::vector<Eigen::Vector3d> translations(samples);
   std::vector<char> covered(samples, 0);
   for (int j = 0; j < samples; ++j) {
-    if (const auto at = odometry.at(scan.stamp + j * kStep)) {
+    if (const auto at = odometry.at(scan.stamp + first + j * kStep)) {
       const Eigen::Isometry3d L0_T_L = L0_T_M * (*at * R_T_L);
       rotations[j] = L0_T_L.linear();
       translations[j] = L0_T_L.translation();
@@ -52,7 +55,7 @@ int deskew(sensors::Scan& scan, const OdometryBuffer& odometry, const Eigen::Iso
   }
   int missed = 0;
   for (auto& p : scan.points) {
-    const double t = std::max(0.0, double(p.time));
+    const double t = std::max(0.0, double(p.time) - first);
     const int j = std::min(samples - 2, int(t / kStep));
     const Eigen::Vector3d v(p.x, p.y, p.z);
     Eigen::Vector3d q;

@@ -28,6 +28,11 @@ TEST(ScenarioParser, BarePlanGetsEveryDefault) {
   EXPECT_DOUBLE_EQ(s.lidar.reflectivity.ceiling, 0.8);
   EXPECT_DOUBLE_EQ(s.lidar.max_range_m, 100.0);
   EXPECT_DOUBLE_EQ(s.lidar.mount[2], 0.25);
+  EXPECT_EQ(s.lidar.stamp, LidarStamp::kFirstFiring);
+  EXPECT_EQ(s.lidar.cut, LidarCut::kAngle);
+  EXPECT_EQ(s.lidar.cut_angle_deg, 0.0);
+  EXPECT_EQ(s.lidar.azimuth_jitter_deg, 0.0);
+  EXPECT_EQ(s.lidar.returns, LidarReturns::kStrongest);
   EXPECT_DOUBLE_EQ(s.odometry.rate_hz, 50.0);
   EXPECT_DOUBLE_EQ(s.odometry.translation_noise, 0.02);
   EXPECT_DOUBLE_EQ(s.odometry.heading_noise_deg_per_m, 0.5);

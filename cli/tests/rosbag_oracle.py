@@ -5,7 +5,8 @@ Simulates D1 as built (uncompressed PCD, so that this script can read the scans 
 it, and checks with rosbag.Bag: every topic with its type and a message count equal to the
 dataset's; the PointCloud2 layout of the Velodyne driver (x y z intensity float32, ring uint16,
 time float32 seconds, point_step 22); sampled clouds, IMU samples, odometry and ground-truth poses
-equal to the dataset's values; the static transforms equal to metadata.json's mounts. Then checks
+equal to the dataset's values; the static transforms equal to metadata.json's mounts; the
+metadata carried on /isg/metadata equal to metadata.json (but its PCD encoding). Then checks
 that a compressed dataset of the same seed gives the very same bag, byte for byte.
 Run by CTest with /usr/bin/python3 (python3-rosbag); exits 0 when every check passes.
 """
@@ -88,6 +89,7 @@ def main():
             "/tf": ("tf2_msgs/TFMessage", len(odom)),
             "/tf_static": ("tf2_msgs/TFMessage", 1),
             "/ground_truth": ("nav_msgs/Odometry", len(gt)),
+            "/isg/metadata": ("std_msgs/String", 1),
         }
         check(set(info.topics) == set(expected), f"topics {sorted(info.topics)}")
         for topic, (kind, count) in expected.items():
@@ -112,6 +114,15 @@ def main():
                 gts.append(msg)
             elif topic == "/tf_static":
                 static = msg
+            elif topic == "/isg/metadata":
+                carried = json.loads(msg.data)
+
+        # The metadata the bag carries is the dataset's, but for its PCD encoding.
+        made = json.loads((ds / "metadata.json").read_text())
+        del made["lidar"]["pcd_data"]
+        check(carried == made, "/isg/metadata differs from metadata.json")
+        check(carried["lidar"]["stamp"] == "first_firing" and carried["lidar"]["cut"] == "angle",
+              f"conventions carried: {carried['lidar'].get('stamp')} {carried['lidar'].get('cut')}")
 
         # The Velodyne driver's PointCloud2 layout.
         cloud = clouds[7]

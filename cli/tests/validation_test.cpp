@@ -295,6 +295,20 @@ std::vector<Case> cases() {
          s["lidar"]["reflectivity"] = {{"wall", 1.5}};
        },
        "scenario.json: /lidar/reflectivity/wall: must be in [0, 1], got 1.5"},
+      {"LidarStamp", "scenario.json", [](json&, json& s) { s["lidar"]["stamp"] = "last"; },
+       "scenario.json: /lidar/stamp: unknown value \"last\" (expected one of \"first_firing\", "
+       "\"last_packet\")"},
+      {"LidarReturns", "scenario.json", [](json&, json& s) { s["lidar"]["returns"] = "both"; },
+       "scenario.json: /lidar/returns: unknown value \"both\" (expected one of \"strongest\", "
+       "\"last\", \"dual\")"},
+      {"LidarCutAngleWithPackets", "scenario.json",
+       [](json&, json& s) {
+         s["lidar"]["cut"] = "packets";
+         s["lidar"]["cut_angle_deg"] = 90;
+       },
+       "scenario.json: /lidar/cut_angle_deg: cut_angle_deg needs \"cut\": \"angle\""},
+      {"LidarCutAngle", "scenario.json", [](json&, json& s) { s["lidar"]["cut_angle_deg"] = 360; },
+       "scenario.json: /lidar/cut_angle_deg: must be in [0, 360), got 360"},
       {"LidarMount", "scenario.json",
        [](json&, json& s) {
          s["lidar"]["mount"] = {0, 0, 0.25};

@@ -83,7 +83,7 @@ TEST(Vlp16Fixture, NebulasDecodedCloudIsReproduced) {
   Vlp16DecodeOptions options;
   options.min_range = 0.3;
   options.max_range = 300.0;
-  options.interpolation = Vlp16Interpolation::kNebula;
+  options.convention = Vlp16Convention::kNebula;
   const Ros2Bag bag(kIndoorBag);
   std::vector<Vlp16Point> points;
   for (const auto& message : bag.messages("/velodyne_packets")) {
@@ -137,7 +137,7 @@ TEST(Vlp16Fixture, NebulasDecodedCloudIsReproduced) {
 
 TEST(Vlp16Fixture, ThePerSequenceInterpolationKeepsEveryEchoAndMovesItsAzimuthAtMostOnePair) {
   Vlp16DecodeOptions nebula;
-  nebula.interpolation = Vlp16Interpolation::kNebula;
+  nebula.convention = Vlp16Convention::kNebula;
   const auto a = readVlp16Recording(kIndoorBag, {});
   const auto b = readVlp16Recording(kIndoorBag, nebula);
   ASSERT_EQ(a.points.size(), b.points.size());

@@ -42,10 +42,10 @@ class HandMadePacket {
   std::vector<std::uint8_t> bytes_;
 };
 
-std::vector<Vlp16Point> decode(const HandMadePacket& packet, Vlp16Interpolation interpolation,
+std::vector<Vlp16Point> decode(const HandMadePacket& packet, Vlp16Convention interpolation,
                                Vlp16ShotTally* tally = nullptr) {
   Vlp16DecodeOptions options;
-  options.interpolation = interpolation;
+  options.convention = interpolation;
   std::vector<Vlp16Point> points;
   decodeVlp16Packet(packet.bytes(), 100.0, options, "hand.pcap", "packet 0", points, tally);
   return points;
@@ -63,7 +63,7 @@ TEST(Vlp16Packet, ADualPacketDecodesAsTheManualSays) {
   // Pair 2, sequence 0, laser 15 (+15°): an echo only in the pair's first block (0.3 m: dropped).
   packet.setEcho(4, 0, 15, 150, 90);
   Vlp16ShotTally tally;
-  const auto points = decode(packet, Vlp16Interpolation::kPerSequence, &tally);
+  const auto points = decode(packet, Vlp16Convention::kPerSequence, &tally);
   ASSERT_EQ(points.size(), 3u);  // in the packet's order: block, sequence, laser
 
   const Vlp16Point& far = points[0];
@@ -106,7 +106,7 @@ TEST(Vlp16Packet, NebulasInterpolationGivesTheSecondBlockTheNextPairsAzimuth) {
   packet.setEcho(0, 0, 0, 1000, 10);
   packet.setEcho(1, 0, 0, 500, 50);
   packet.setEcho(10, 1, 1, 700, 20);  // the last pair's first block, sequence 1
-  const auto points = decode(packet, Vlp16Interpolation::kNebula);
+  const auto points = decode(packet, Vlp16Convention::kNebula);
   ASSERT_EQ(points.size(), 3u);
   EXPECT_EQ(points[0].azimuth, 100);
   EXPECT_EQ(points[1].azimuth, 140);                        // block 1 takes block 2's azimuth
@@ -114,7 +114,7 @@ TEST(Vlp16Packet, NebulasInterpolationGivesTheSecondBlockTheNextPairsAzimuth) {
   EXPECT_EQ(points[2].azimuth, 300);                        // no interpolation in block 10
   EXPECT_NEAR(points[2].time, 100.0 + 21 * 55.296e-6 + 2.304e-6, 1e-12);
 
-  const auto per_sequence = decode(packet, Vlp16Interpolation::kPerSequence);
+  const auto per_sequence = decode(packet, Vlp16Convention::kPerSequence);
   ASSERT_EQ(per_sequence.size(), 3u);
   EXPECT_EQ(per_sequence[1].azimuth, 100);
   // Block 10 continues the previous pairs' 0.40° step: 3.00° + 0.40° · 57.6 / 110.592 → 3.21°.
@@ -126,7 +126,7 @@ TEST(Vlp16Packet, ASingleReturnPacketStepsEveryBlock) {
   HandMadePacket packet(0x37);
   packet.setEcho(11, 1, 14, 5000, 120);  // 10.000 m, in the packet's last sequence
   Vlp16ShotTally tally;
-  const auto points = decode(packet, Vlp16Interpolation::kPerSequence, &tally);
+  const auto points = decode(packet, Vlp16Convention::kPerSequence, &tally);
   ASSERT_EQ(points.size(), 1u);
   EXPECT_EQ(points[0].echo, Vlp16Echo::kStrongest);
   // Block 11 at 5.40°, the step of block 10 to 11 (0.40°) continued: 5.40 + 0.40 · 87.552 /
@@ -140,7 +140,7 @@ TEST(Vlp16Packet, AzimuthsWrapThroughZero) {
   HandMadePacket packet(0x37);
   for (int b = 0; b < kVlp16Blocks; ++b) packet.setAzimuth(b, (35900 + 40 * b) % 36000);
   for (int b = 0; b < kVlp16Blocks; ++b) packet.setEcho(b, 0, 1, 1000, 5);
-  const auto points = decode(packet, Vlp16Interpolation::kPerSequence);
+  const auto points = decode(packet, Vlp16Convention::kPerSequence);
   ASSERT_EQ(points.size(), 12u);
   EXPECT_EQ(points[2].azimuth, 35981);  // 359.80° + 0.40° · 2.304 / 110.592
   EXPECT_EQ(points[3].azimuth, 21);

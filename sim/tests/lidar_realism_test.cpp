@@ -15,13 +15,17 @@
 #include "sensors/vlp16_turns.hpp"
 #include "sim/lidar_simulator.hpp"
 #include "sim/robot_model.hpp"
+#include "sim/scan_statistics.hpp"
 #include "sim/simulation.hpp"
+#include "sim/tests/body_shadow_by_hand.hpp"
 #include "sim/vlp16.hpp"
 #include "worlds/mjcf_generator.hpp"
 #include "worlds/reference_plans.hpp"
 
 namespace isg::sim {
 namespace {
+
+using by_hand::blockedByTheTop;
 
 // The indoor fixture (a dual-return ROS 2 bag of raw packets, sensors/tests/data/vlp16-real/),
 // decoded by the project's decoder with the driver's defaults: the share of shots without an
@@ -34,33 +38,6 @@ const sensors::Vlp16Statistics& realIndoor() {
     return sensors::vlp16Statistics(recording.tally, sensors::cutIntoTurns(recording.points));
   }();
   return statistics;
-}
-
-int sequenceOf(const LidarPoint& p, int laser) {
-  return int(std::lround((p.time - laser * Vlp16::kFiringInterval) / Vlp16::kSequenceDuration));
-}
-
-int laserOfRing(int ring) { return ring < 8 ? 2 * ring : 2 * (ring - 8) + 1; }
-
-double quantile(std::vector<float> values, double q) {
-  std::sort(values.begin(), values.end());
-  return values[std::size_t(q * double(values.size() - 1) + 0.5)];
-}
-
-// Whether the body stops a laser's firing, worked out apart from the simulator: from a sensor
-// above the body's footprint, a ray going down meets the body iff it crosses the plane of the
-// body's top inside the top's rectangle (outside it, it only goes further out).
-bool blockedByTheTop(const Eigen::Isometry3d& R_T_L, int laser, double azimuth) {
-  const RobotBox body = robotBodyBox();
-  const double elevation = Vlp16::kElevationDeg[laser] * std::numbers::pi / 180.0;
-  if (elevation >= 0) return false;
-  const Eigen::Vector3d origin = R_T_L * Vlp16::origin(laser);
-  const double drop = origin.z() - (body.centre.z() + body.half.z());
-  const double reach = drop / std::tan(-elevation);
-  const double x = origin.x() + reach * std::cos(azimuth);
-  const double y = origin.y() + reach * std::sin(azimuth);
-  return std::abs(x - body.centre.x()) <= body.half.x() &&
-         std::abs(y - body.centre.y()) <= body.half.y();
 }
 
 // D1 as built with the puck on the body's back (mount z 0.14: 5 cm above the top).
@@ -90,31 +67,33 @@ TEST(LidarRealism, AnIndoorScanLosesWhatTheRealSensorLoses) {
       blocked[l] += shadow[s * Vlp16::kLasers + l];
     }
   }
-  std::vector<float> intensities;
   for (const auto& p : scan.points) {
-    const int laser = laserOfRing(p.ring);
-    ASSERT_FALSE(shadow[sequenceOf(p, laser) * Vlp16::kLasers + laser])
+    const int laser = Vlp16::laser(p.ring);
+    ASSERT_FALSE(shadow[by_hand::sequenceOf(p.time, laser) * Vlp16::kLasers + laser])
         << "a return through the body, laser " << laser;
     ++returned[laser];
-    intensities.push_back(p.intensity);
   }
+  // The scan's statistics by the code that measures the real recording.
+  const sensors::Vlp16Statistics simulated = scanStatistics({scan}, sequences);
   // The lowest laser (−15°) sees nothing but the body; the body shadows the lower lasers less
   // and less; no laser looking up is shadowed.
   EXPECT_EQ(blocked[0], sequences);
   EXPECT_EQ(returned[0], 0);
   for (int ring = 1; ring < 8; ++ring) {
-    EXPECT_LE(blocked[laserOfRing(ring)], blocked[laserOfRing(ring - 1)]) << ring;
+    EXPECT_LE(blocked[Vlp16::laser(ring)], blocked[Vlp16::laser(ring - 1)]) << ring;
   }
   for (int ring = 8; ring < 16; ++ring) {
-    const int laser = laserOfRing(ring);
+    const int laser = Vlp16::laser(ring);
     EXPECT_EQ(blocked[laser], 0) << ring;
     // The lasers that see walls (and the ceiling) lose under 15 % of their returns.
-    EXPECT_LT(1.0 - double(returned[laser]) / sequences, 0.15) << "ring " << ring;
+    EXPECT_LT(simulated.lost_by_ring[ring], 0.15) << "ring " << ring;
+    EXPECT_NEAR(simulated.lost_by_ring[ring], 1.0 - double(returned[laser]) / sequences, 1e-12);
   }
   // The whole scan loses the body's shadow and hardly more in a closed room: 20.9 % here, well
   // short of the real recording's 49 %, whose upward lasers lose 17–34 % to what its scene has and
   // our worlds lack (open space, glass, far dark surfaces; docs/simulation.md).
-  const double lost = 1.0 - double(scan.points.size()) / scan.rays;
+  const double lost = simulated.lost;
+  EXPECT_NEAR(lost, 1.0 - double(scan.points.size()) / scan.rays, 1e-12);
   int shadowed = 0;
   for (int count : blocked) shadowed += count;
   const double shadow_share = double(shadowed) / scan.rays;
@@ -125,17 +104,20 @@ TEST(LidarRealism, AnIndoorScanLosesWhatTheRealSensorLoses) {
   EXPECT_NEAR(real.lost, 0.493, 0.001);
   EXPECT_LT(lost, real.lost);
   // Calibrated intensities within a factor 2 of the real ones.
-  const double median = quantile(intensities, 0.5), p99 = quantile(intensities, 0.99);
+  const double median = simulated.intensity_median, p99 = simulated.intensity_p99;
   EXPECT_GE(median, 0.5 * real.intensity_median);
   EXPECT_LE(median, 2.0 * real.intensity_median);
   EXPECT_GE(p99, 0.5 * real.intensity_p99);
   EXPECT_LE(p99, 2.0 * real.intensity_p99);
-  std::printf("lost %.1f %% (real %.1f %%), intensity median %.0f p99 %.0f (real %.0f, %.0f)\n",
-              100 * lost, 100 * real.lost, median, p99, real.intensity_median, real.intensity_p99);
+  std::printf(
+      "lost %.1f %% (real %.1f %%), intensity median %.0f p99 %.0f (real %.0f, %.0f), "
+      "%.0f returns in %.4f s a turn (real %.0f in %.4f s)\n",
+      100 * lost, 100 * real.lost, median, p99, real.intensity_median, real.intensity_p99,
+      simulated.points_per_turn, simulated.turn_duration, real.points_per_turn, real.turn_duration);
   for (int ring = 0; ring < 16; ++ring) {
-    const int laser = laserOfRing(ring);
+    const int laser = Vlp16::laser(ring);
     std::printf("ring %2d: body %5.1f %%, lost %5.1f %% (real %5.1f %%)\n", ring,
-                100.0 * blocked[laser] / sequences, 100.0 - 100.0 * returned[laser] / sequences,
+                100.0 * blocked[laser] / sequences, 100.0 * simulated.lost_by_ring[ring],
                 100.0 * real.lost_by_ring[ring]);
   }
 }
@@ -156,7 +138,7 @@ TEST(LidarRealism, OnItsMastThePuckSeesOverTheBody) {
       blocked[l] += blockedByTheTop(sim.R_T_L(), l, Vlp16::azimuth(Vlp16::firingTime(s, l), 10.0));
     }
   }
-  for (const auto& p : scan.points) ++returned[laserOfRing(p.ring)];
+  for (const auto& p : scan.points) ++returned[Vlp16::laser(p.ring)];
   for (int l = 0; l < Vlp16::kLasers; ++l) {
     EXPECT_EQ(blocked[l], 0) << l;
     EXPECT_GT(returned[l], 0.99 * sequences) << l;

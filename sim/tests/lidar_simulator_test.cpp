@@ -52,7 +52,7 @@ TEST(LidarSimulator, PointsCarryTheirRingElevationAndFiringTime) {
   EXPECT_EQ(scan.rays, 1808 * 16);
   ASSERT_GT(scan.points.size(), 25000u);  // a closed room: nearly every ray returns
   for (const auto& p : scan.points) {
-    const int laser = p.ring < 8 ? 2 * p.ring : 2 * (p.ring - 8) + 1;
+    const int laser = Vlp16::laser(p.ring);
     const Eigen::Vector3d v = Eigen::Vector3d(p.x, p.y, p.z) - Vlp16::origin(laser);
     const double elevation = std::asin(v.z() / v.norm()) * 180.0 / std::numbers::pi;
     ASSERT_NEAR(elevation, -15.0 + 2.0 * p.ring, 1e-3);
@@ -195,7 +195,7 @@ TEST(LidarSimulator, RangeLimitsAndDropout) {
   const LidarScan scan = banded.scan(0.0, pose, seed);
   ASSERT_FALSE(scan.points.empty());
   for (const auto& p : scan.points) {
-    const int laser = p.ring < 8 ? 2 * p.ring : 2 * (p.ring - 8) + 1;
+    const int laser = Vlp16::laser(p.ring);
     const double range = (Eigen::Vector3d(p.x, p.y, p.z) - Vlp16::origin(laser)).norm();
     ASSERT_GE(range, 2.0 - 1e-4);
     ASSERT_LE(range, 3.0 + 1e-4);

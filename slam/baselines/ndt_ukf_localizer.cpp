@@ -155,9 +155,12 @@ void NdtUkfLocalizer::pushOdometry(const sensors::Odometry& odometry) {
 void NdtUkfLocalizer::pushScan(const sensors::Scan& scan) {
   if (!latest_) return;
   // The scan stands at the middle of its turn (hdl_localization does not deskew either).
-  double span = 0.0;
-  for (const auto& p : scan.points) span = std::max(span, double(p.time));
-  const double t = scan.stamp + 0.5 * span;
+  double first = 0.0, last = 0.0;
+  for (const auto& p : scan.points) {
+    first = std::min(first, double(p.time));
+    last = std::max(last, double(p.time));
+  }
+  const double t = scan.stamp + 0.5 * (first + last);
   sensors::Odometry odometry{t, odometry_.at(t).value_or(latest_->M_T_R)};
   if (last_scan_odometry_) {
     // Predict: the pose moves as the odometry moved since the last scan (in the base's frame),
