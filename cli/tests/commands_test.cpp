@@ -1,6 +1,7 @@
 // The isg command line as a user meets it: help, usage errors, and each command's output.
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
+#include <sstream>
 
 #include <nlohmann/json.hpp>
 
@@ -245,6 +246,35 @@ TEST(Simulate, ALidarInsideTheBodyIsAClearError) {
     "lidar": {"mount": [0.2, 0.0, 0.05, 0.0, 0.0, 0.0], "body_occlusion": false})"));
   const auto accepted = sandbox.run("simulate scenario.json -o ds -q");
   EXPECT_EQ(accepted.exit_code, 0) << accepted.err;
+}
+
+TEST(Simulate, TheRos1DriversConventionsReachTheDatasetAndTheBag) {
+  testing::Sandbox sandbox("simulate_conventions");
+  sandbox.write("scenario.json", squareRoomScenario(R"("robot": {"route": {"waypoints": [[3, 2]]}},
+    "lidar": {"stamp": "last_packet", "cut": "packets", "azimuth_jitter_deg": 0.006})"));
+  const auto result = sandbox.run("simulate scenario.json -o ds --rosbag ds.bag -q");
+  ASSERT_EQ(result.exit_code, 0) << result.err;
+  const auto lidar = nlohmann::json::parse(sandbox.read("ds/metadata.json"))["lidar"];
+  EXPECT_EQ(lidar["stamp"], "last_packet");
+  EXPECT_EQ(lidar["cut"], "packets");
+  EXPECT_EQ(lidar["returns"], "strongest");
+  EXPECT_EQ(lidar["sequences_per_cloud"], 1824);
+  EXPECT_DOUBLE_EQ(lidar["scan_period_s"].get<double>(), 1824 * 55.296e-6);
+  EXPECT_DOUBLE_EQ(lidar["point_time_s"][0].get<double>(), -1800 * 55.296e-6);
+  EXPECT_NEAR(lidar["point_time_s"][1].get<double>(), 24 * 55.296e-6, 1e-12);
+  // scans.tum: the stamps at each cloud's last packet, a cloud every 76 packets.
+  std::istringstream tum(sandbox.read("ds/scans.tum"));
+  std::vector<double> stamps;
+  for (std::string line; std::getline(tum, line);) {
+    if (!line.empty() && line[0] != '#') stamps.push_back(std::stod(line));
+  }
+  ASSERT_GE(stamps.size(), 3u);
+  EXPECT_NEAR(stamps[0], 1800 * 55.296e-6, 1e-9);
+  EXPECT_NEAR(stamps[2] - stamps[1], 1824 * 55.296e-6, 1e-9);
+  // The dataset passes the check against its metadata that an export makes.
+  const auto exported = sandbox.run("export ds --rosbag again.bag -q");
+  EXPECT_EQ(exported.exit_code, 0) << exported.err;
+  EXPECT_TRUE(sandbox.exists("ds.bag"));
 }
 
 // Kidnaps the parser cannot judge: the simulator knows when the route ends and where the robot

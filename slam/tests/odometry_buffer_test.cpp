@@ -47,5 +47,27 @@ TEST(Deskew, PointsOfAMovingSensorReturnToTheStampsFrame) {
   }
 }
 
+TEST(Deskew, PointsBeforeALastPacketStampReturnToItsFrameToo) {
+  // The ROS 1 driver stamps a cloud at its last packet: most points come before the stamp
+  // (time −0.0995 … +0.0013 s). Every one returns to the frame at the stamp.
+  OdometryBuffer buffer;
+  for (int i = 0; i <= 20; ++i) buffer.push(at(i * 0.01, i * 0.01, i * 0.01));
+  Eigen::Isometry3d R_T_L = Eigen::Isometry3d::Identity();
+  R_T_L.translation() = Eigen::Vector3d(0.1, 0, 0.25);
+  const Eigen::Vector3d world(5, 2, 1);
+  sensors::Scan scan;
+  scan.stamp = 0.1195;
+  for (double dt : {-0.0995, -0.06, -0.0321, 0.0, 0.0013}) {
+    const Eigen::Isometry3d M_T_L = *buffer.at(scan.stamp + dt) * R_T_L;
+    const Eigen::Vector3d p = M_T_L.inverse() * world;
+    scan.points.push_back({float(p.x()), float(p.y()), float(p.z()), 0, 0, float(dt)});
+  }
+  EXPECT_EQ(deskew(scan, buffer, R_T_L), 0);
+  const Eigen::Vector3d expected = (*buffer.at(scan.stamp) * R_T_L).inverse() * world;
+  for (const auto& p : scan.points) {
+    EXPECT_NEAR((Eigen::Vector3d(p.x, p.y, p.z) - expected).norm(), 0.0, 1e-5) << p.time;
+  }
+}
+
 }  // namespace
 }  // namespace isg::slam
