@@ -2,6 +2,8 @@
 
 #include <gtest/gtest.h>
 
+#include <vector>
+
 namespace isg::slam {
 namespace {
 
@@ -25,39 +27,17 @@ TEST(OdometryBuffer, InterpolatesBetweenMessages) {
   EXPECT_FALSE(buffer.at(-0.1));
 }
 
-TEST(Deskew, PointsOfAMovingSensorReturnToTheStampsFrame) {
-  // The base moves at 1 m/s along x and turns at 1 rad/s; a fixed world point is seen at three
-  // instants. Deskewed, the three observations coincide in the frame at the stamp.
+// The base moves at 1 m/s along x and turns at 1 rad/s; a fixed world point is seen at instants
+// `dt` about the scan's stamp. Deskewed, the observations coincide in the frame at the stamp.
+void expectDeskewedToTheStamp(double stamp, const std::vector<double>& dts) {
   OdometryBuffer buffer;
   for (int i = 0; i <= 20; ++i) buffer.push(at(i * 0.01, i * 0.01, i * 0.01));
   Eigen::Isometry3d R_T_L = Eigen::Isometry3d::Identity();
   R_T_L.translation() = Eigen::Vector3d(0.1, 0, 0.25);
   const Eigen::Vector3d world(5, 2, 1);
   sensors::Scan scan;
-  scan.stamp = 0.02;
-  for (double dt : {0.0, 0.05, 0.09}) {
-    const Eigen::Isometry3d M_T_L = *buffer.at(scan.stamp + dt) * R_T_L;
-    const Eigen::Vector3d p = M_T_L.inverse() * world;
-    scan.points.push_back({float(p.x()), float(p.y()), float(p.z()), 0, 0, float(dt)});
-  }
-  EXPECT_EQ(deskew(scan, buffer, R_T_L), 0);
-  const Eigen::Vector3d expected = (*buffer.at(scan.stamp) * R_T_L).inverse() * world;
-  for (const auto& p : scan.points) {
-    EXPECT_NEAR((Eigen::Vector3d(p.x, p.y, p.z) - expected).norm(), 0.0, 1e-5);
-  }
-}
-
-TEST(Deskew, PointsBeforeALastPacketStampReturnToItsFrameToo) {
-  // The ROS 1 driver stamps a cloud at its last packet: most points come before the stamp
-  // (time −0.0995 … +0.0013 s). Every one returns to the frame at the stamp.
-  OdometryBuffer buffer;
-  for (int i = 0; i <= 20; ++i) buffer.push(at(i * 0.01, i * 0.01, i * 0.01));
-  Eigen::Isometry3d R_T_L = Eigen::Isometry3d::Identity();
-  R_T_L.translation() = Eigen::Vector3d(0.1, 0, 0.25);
-  const Eigen::Vector3d world(5, 2, 1);
-  sensors::Scan scan;
-  scan.stamp = 0.1195;
-  for (double dt : {-0.0995, -0.06, -0.0321, 0.0, 0.0013}) {
+  scan.stamp = stamp;
+  for (double dt : dts) {
     const Eigen::Isometry3d M_T_L = *buffer.at(scan.stamp + dt) * R_T_L;
     const Eigen::Vector3d p = M_T_L.inverse() * world;
     scan.points.push_back({float(p.x()), float(p.y()), float(p.z()), 0, 0, float(dt)});
@@ -67,6 +47,16 @@ TEST(Deskew, PointsBeforeALastPacketStampReturnToItsFrameToo) {
   for (const auto& p : scan.points) {
     EXPECT_NEAR((Eigen::Vector3d(p.x, p.y, p.z) - expected).norm(), 0.0, 1e-5) << p.time;
   }
+}
+
+TEST(Deskew, PointsOfAMovingSensorReturnToTheStampsFrame) {
+  expectDeskewedToTheStamp(0.02, {0.0, 0.05, 0.09});
+}
+
+TEST(Deskew, PointsBeforeALastPacketStampReturnToItsFrameToo) {
+  // The ROS 1 driver stamps a cloud at its last packet: most points come before the stamp
+  // (time −0.0995 … +0.0013 s).
+  expectDeskewedToTheStamp(0.1195, {-0.0995, -0.06, -0.0321, 0.0, 0.0013});
 }
 
 }  // namespace
