@@ -362,21 +362,13 @@ LidarScan LidarSimulator::scanBlocks(double start, const PoseAt& B_T_L, std::uin
           if (found[e].power >= min_signal_) detected[kept++] = found[e];
         }
         if (kept == 0) continue;
-        // Nearest first: the last echo is the last one; the strongest of the others comes next.
-        int strongest = kept - 1;
-        for (int e = 0; e < kept; ++e) {
-          if (detected[e].power > detected[strongest].power) strongest = e;
-        }
+        // Nearest first: the last echo is reported; in dual mode also the strongest of the
+        // others, which is the strongest echo when the last is not, else the second strongest.
         int reported[2] = {kept - 1, -1};
-        if (config_.returns == bim::LidarReturns::kDual) {
-          if (strongest != kept - 1) {
-            reported[1] = strongest;
-          } else if (kept > 1) {
-            int second = 0;
-            for (int e = 0; e < kept - 1; ++e) {
-              if (detected[e].power > detected[second].power) second = e;
-            }
-            reported[1] = second;
+        if (config_.returns == bim::LidarReturns::kDual && kept > 1) {
+          reported[1] = 0;
+          for (int e = 1; e < kept - 1; ++e) {
+            if (detected[e].power > detected[reported[1]].power) reported[1] = e;
           }
         }
         for (int r = 0; r < 2 && reported[r] >= 0; ++r) {
@@ -394,14 +386,11 @@ LidarScan LidarSimulator::scanBlocks(double start, const PoseAt& B_T_L, std::uin
       if (hit.distance < 0) continue;
       const double range = quantise(hit.distance + config_.range_noise_m * n);
       if (range < config_.min_range_m || range > config_.max_range_m) continue;
-      const Eigen::Vector3d& dir = directions_[i];
-      const Eigen::Vector3d normal = surfaceNormal(hit.geom, origins_[i] + hit.distance * dir, dir);
-      const double cos_incidence = std::abs(normal.dot(dir));
-      const double reflectivity = reflectivity_[hit.geom];
+      const SubHit whole = subHit(hit, origins_[i], directions_[i], 1.0);
       // Too weak to detect: the LiDAR equation's power below the sensor's threshold.
-      if (reflectivity * cos_incidence < min_signal_ * hit.distance * hit.distance) continue;
-      if (u >= keptProbability(cos_incidence)) continue;
-      report(s, l, range, reflectivity * cos_incidence);
+      if (whole.power < min_signal_) continue;
+      if (u >= keptProbability(whole.cos_incidence)) continue;
+      report(s, l, range, whole.lit);
     }
     now = Clock::now();
     out.timing.noise_s += seconds(mark, now);
