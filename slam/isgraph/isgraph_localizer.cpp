@@ -102,7 +102,7 @@ MatchInput matchInputOf(const SGraph& graph, double min_wall_height) {
   for (int i = 0; i < int(planes.size()); ++i) {
     const auto& p = planes[i];
     // Walls only: clutter seen over a short height is not in the plan.
-    if (p.merged_into >= 0 || p.floor != floor || p.map.z_max - p.map.z_min < min_wall_height) {
+    if (p.merged_into >= 0 || p.floor != floor || !seenAsWall(p.map, min_wall_height)) {
       continue;
     }
     input.planes.push_back({i, p.map.plane, p.map.start, p.map.end});

@@ -38,6 +38,12 @@ struct PlaneExtractionOptions {
 
 enum class PlaneOrientation { kVertical, kHorizontal, kOblique };
 
+// What the scan says about a wall's top: whether the rays just above its highest points went
+// past it (kSeen: z_max is where the surface ends), or its top was beyond what the sensor could
+// see of it (kBeyondView: the rings above it ran out, or met something nearer such as the
+// ceiling). Unorganised scans cannot tell (kUnknown).
+enum class TopEdge { kUnknown, kBeyondView, kSeen };
+
 struct PlaneObservation {
   bim::Plane plane;  // in the scan's frame, normal towards the frame's origin (the sensor)
   Eigen::Vector3d centroid = Eigen::Vector3d::Zero();
@@ -47,6 +53,7 @@ struct PlaneObservation {
   Eigen::Vector3d start = Eigen::Vector3d::Zero(), end = Eigen::Vector3d::Zero();
   double z_min = 0.0, z_max = 0.0;
   double rms = 0.0;  // inliers' RMS distance from the plane
+  TopEdge top = TopEdge::kUnknown;
 };
 
 // The planes of a scan, in the scan's frame, largest support first. Organised scans (Method

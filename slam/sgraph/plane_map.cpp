@@ -34,6 +34,25 @@ PlaneObservation toMap(const PlaneObservation& o, const Eigen::Isometry3d& M_T_L
   return out;
 }
 
+void addHeights(MapPlane& plane, const PlaneObservation& o) {
+  plane.z_min = std::min(plane.z_min, o.z_min);
+  plane.z_max = std::max(plane.z_max, o.z_max);
+  if (o.top == TopEdge::kSeen) plane.top_seen_z = std::min(plane.top_seen_z, o.z_max);
+  if (o.top == TopEdge::kBeyondView) ++plane.tops_beyond_view;
+}
+
+void mergeHeights(MapPlane& kept, const MapPlane& dropped) {
+  kept.z_min = std::min(kept.z_min, dropped.z_min);
+  kept.z_max = std::max(kept.z_max, dropped.z_max);
+  kept.top_seen_z = std::min(kept.top_seen_z, dropped.top_seen_z);
+  kept.tops_beyond_view += dropped.tops_beyond_view;
+}
+
+bool seenAsWall(const MapPlane& plane, double min_height) {
+  if (plane.z_max - plane.z_min >= min_height) return true;
+  return plane.tops_beyond_view > 0 && plane.top_seen_z - plane.z_min >= min_height;
+}
+
 int associate(const PlaneObservation& o, const std::vector<MapPlane>& map,
               const AssociationOptions& options) {
   const double min_cos = std::cos(options.max_angle_deg * std::numbers::pi / 180.0);

@@ -1,6 +1,7 @@
 #pragma once
 
 #include <Eigen/Geometry>
+#include <limits>
 #include <vector>
 
 #include "bim/plane.hpp"
@@ -16,7 +17,22 @@ struct MapPlane {
   Eigen::Vector2d end = Eigen::Vector2d::Zero();
   int observations = 0;
   double z_min = 0.0, z_max = 0.0;  // heights at which it has been seen, in M
+  // The lowest height in M at which rays were seen passing over its top (+∞: never), and how
+  // many observations found its top beyond the sensor's view of it.
+  double top_seen_z = std::numeric_limits<double>::infinity();
+  int tops_beyond_view = 0;
 };
+
+// The plane's heights and top edge after one more observation (already in M).
+void addHeights(MapPlane& plane, const PlaneObservation& observation_in_M);
+// Two map planes found to be one: the kept one takes the dropped one's heights and top edges.
+void mergeHeights(MapPlane& kept, const MapPlane& dropped);
+
+// Whether a map plane can be a wall rather than a box of clutter: seen over at least
+// `min_height`, or never seen to end below that height while at least once its top lay beyond
+// the sensor's view (a sensor low on the robot sees a near wall over less than a metre; a box is
+// overshot by the rings above it as soon as the robot stands back from it).
+bool seenAsWall(const MapPlane& plane, double min_height);
 
 struct AssociationOptions {
   double max_angle_deg = 10.0;  // between normals (planes facing away are different surfaces)

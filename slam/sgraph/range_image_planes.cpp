@@ -132,6 +132,41 @@ int voxelSupport(const std::vector<Eigen::Vector3d>& points, double voxel) {
   return int(std::unique(keys.begin(), keys.end()) - keys.begin());
 }
 
+// A wall's top edge from the cells above its highest cell in each column: the first return above
+// it farther than the wall by more than `margin` went over the wall (its top is seen there); one
+// nearer by more than `margin` met something in front of the wall's continuation (the ceiling);
+// none above because the rings ran out means the top is beyond the sensor's view. The majority
+// of the columns that tell decides, with at least kMinTellingColumns of them. A vertical wall's
+// points in one azimuth column all lie at one horizontal distance, which is what is compared.
+TopEdge topEdgeOf(const RangeImage& image, const std::vector<int>& cells, double margin) {
+  constexpr int kMinTellingColumns = 3;
+  constexpr int kRowsToLookUp = 2;              // a lost return just above the wall is skipped
+  std::vector<std::pair<int, int>> column_row;  // (column, row) of every cell
+  column_row.reserve(cells.size());
+  for (int k : cells) column_row.emplace_back(k % image.cols, k / image.cols);
+  std::sort(column_row.begin(), column_row.end());
+  int over = 0, beyond = 0;
+  for (std::size_t i = 0; i < column_row.size(); ++i) {
+    if (i + 1 < column_row.size() && column_row[i + 1].first == column_row[i].first) continue;
+    const auto [c, r] = column_row[i];  // the column's highest cell on the wall
+    if (r + 1 >= image.rows) {
+      ++beyond;
+      continue;
+    }
+    const double wall = image.mean[image.cell(r, c)].head<2>().norm();
+    for (int up = r + 1; up < std::min(image.rows, r + 1 + kRowsToLookUp); ++up) {
+      const int k = image.cell(up, c);
+      if (!image.valid(k)) continue;
+      const double above = image.mean[k].head<2>().norm();
+      if (above > wall + margin) ++over;
+      if (above < wall - margin) ++beyond;
+      break;
+    }
+  }
+  if (std::max(over, beyond) < kMinTellingColumns) return TopEdge::kUnknown;
+  return over > beyond ? TopEdge::kSeen : TopEdge::kBeyondView;
+}
+
 }  // namespace
 
 std::optional<std::vector<PlaneObservation>> extractPlanesOnRangeImage(
@@ -277,6 +312,8 @@ std::optional<std::vector<PlaneObservation>> extractPlanesOnRangeImage(
     const int support = voxelSupport(inliers, options.voxel);
     if (support < options.min_inliers) continue;
     planes.push_back(observePlane(inliers, support, options));
+    if (planes.back().orientation == PlaneOrientation::kVertical)
+      planes.back().top = topEdgeOf(image, members[g], options.cluster_tolerance);
   }
   std::stable_sort(
       planes.begin(), planes.end(),

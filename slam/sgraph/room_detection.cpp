@@ -26,7 +26,7 @@ std::array<std::vector<Side>, 2> wallsAround(const Eigen::Vector2d& point,
                                              double min_height, std::size_t keep = 3) {
   std::array<std::vector<Side>, 2> sides;
   for (int i = 0; i < int(planes.size()); ++i) {
-    if (planes[i].z_max - planes[i].z_min < min_height) continue;
+    if (!seenAsWall(planes[i], min_height)) continue;
     const Eigen::Vector2d n = planes[i].plane.normal.head<2>();
     const double c = n.dot(u);
     const int side = c >= min_cos ? 0 : (c <= -min_cos ? 1 : -1);

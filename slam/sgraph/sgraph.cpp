@@ -157,8 +157,11 @@ bool SGraph::addScan(sensors::Scan scan) {
     int plane = associate(in_map, walls, options_.association);
     if (plane < 0) {
       Plane created;
-      created.map = {in_map.plane, in_map.start.head<2>(), in_map.end.head<2>(), 0, in_map.z_min,
-                     in_map.z_max};
+      created.map.plane = in_map.plane;
+      created.map.start = in_map.start.head<2>();
+      created.map.end = in_map.end.head<2>();
+      created.map.z_min = in_map.z_min;
+      created.map.z_max = in_map.z_max;
       created.parameters = bim::toVector(in_map.plane);
       created.floor = floor;
       planes_.push_back(created);
@@ -167,8 +170,7 @@ bool SGraph::addScan(sensors::Scan scan) {
     }
     Plane& p = planes_[plane];
     extend(p.map, in_map);
-    p.map.z_min = std::min(p.map.z_min, in_map.z_min);
-    p.map.z_max = std::max(p.map.z_max, in_map.z_max);
+    addHeights(p.map, in_map);
     ++p.map.observations;
     p.observed_by.push_back(index);
     walls[plane] = p.map;
@@ -555,8 +557,7 @@ void SGraph::mergeDuplicatePlanes(const std::set<int>& recent, int floor) {
     extent.end = Eigen::Vector3d(dropped.map.end.x(), dropped.map.end.y(), 0.0);
     extend(kept.map, extent);
     kept.map.observations += dropped.map.observations;
-    kept.map.z_min = std::min(kept.map.z_min, dropped.map.z_min);
-    kept.map.z_max = std::max(kept.map.z_max, dropped.map.z_max);
+    mergeHeights(kept.map, dropped.map);
     dropped.merged_into = keep;
     dropped.observed_by.clear();
     walls[keep] = wallOf(kept);

@@ -18,7 +18,7 @@ import shutil
 import subprocess
 import sys
 
-ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
+ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__)))))
 PLANS = os.path.join(ROOT, "worlds", "plans")
 
 # The stress levels: heading bias °/m, heading noise °/m, translation noise (share of distance),
@@ -79,7 +79,7 @@ def clutter_boxes(plan, rng, count):
     return boxes
 
 
-def make_scenario(world, level, seed, out_dir, attempt=0):
+def make_scenario(world, level, seed, out_dir, attempt=0, mount=None):
     stress = LEVELS[level]
     bias, dropout, clutter, close_door = stress["bias"], stress["dropout"], stress["clutter"], stress["door"]
     rng = random.Random(f"{world}/{level}/{seed}/{attempt}")
@@ -95,6 +95,8 @@ def make_scenario(world, level, seed, out_dir, attempt=0):
     if stress["translation"] is not None:
         scenario["odometry"]["translation_noise"] = stress["translation"]
     scenario["lidar"] = {"dropout": dropout}
+    if mount is not None:
+        scenario["lidar"]["mount"] = mount
     as_built = dict(base.get("as_built", {}))
     as_built["clutter"] = list(as_built.get("clutter", [])) + clutter_boxes(plan, rng, clutter)
     if close_door:
@@ -204,9 +206,18 @@ def main():
     parser.add_argument("--seeds", default="1,2")
     parser.add_argument("--levels", default=",".join(str(i) for i in range(len(LEVELS))))
     parser.add_argument("--threads", default="2")
+    parser.add_argument("--lidar-mount", default=None, metavar="X,Y,Z,ROLL,PITCH,YAW",
+                        help="the LiDAR's mount on the robot for every scenario (lidar.mount, "
+                        "docs/formats.md), e.g. 0,0,0.14,0,0,0 for the puck on the body; "
+                        "default: each world's")
     parser.add_argument("--kidnap", action="store_true",
                         help="the kidnap suite instead: each world as built, kidnapped midway")
     args = parser.parse_args()
+    mount = None
+    if args.lidar_mount is not None:
+        mount = [float(x) for x in args.lidar_mount.split(",")]
+        if len(mount) != 6:
+            parser.error("--lidar-mount takes six numbers: x,y,z,roll,pitch,yaw")
     if args.kidnap:
         return kidnap_suite(args)
     scenarios = os.path.join(args.out, "scenarios")
@@ -229,7 +240,7 @@ def main():
                 # building where every door is the only way into some room, the first draw that
                 # runs at all (skipping rooms) is taken.
                 def run(attempt):
-                    name, path, bias = make_scenario(world, level, seed, scenarios, attempt)
+                    name, path, bias = make_scenario(world, level, seed, scenarios, attempt, mount)
                     run_dir = os.path.join(args.out, "runs", name)
                     result = subprocess.run([args.isg, "run", path, "-o", run_dir, "--force",
                                              "-q", "--threads", args.threads],

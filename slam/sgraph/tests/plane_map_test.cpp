@@ -85,5 +85,48 @@ TEST(PlaneAssociation, ObservationsMoveIntoTheMapFrame) {
   EXPECT_NEAR(m.centroid.y(), -2.0, 1e-12);
 }
 
+TEST(PlaneHeights, AWallIsTallOrItsTopWasBeyondViewAndNeverSeenLow) {
+  MapPlane plane;
+  plane.z_min = plane.z_max = 0.0;
+  PlaneObservation low;
+  low.z_min = -0.5;
+  low.z_max = 0.5;
+  low.top = TopEdge::kUnknown;
+  addHeights(plane, low);
+  EXPECT_DOUBLE_EQ(plane.z_min, -0.5);
+  EXPECT_DOUBLE_EQ(plane.z_max, 0.5);
+  EXPECT_FALSE(seenAsWall(plane, 1.2));  // 1 m seen, nothing known of its top
+  low.top = TopEdge::kBeyondView;
+  addHeights(plane, low);
+  EXPECT_EQ(plane.tops_beyond_view, 1);
+  EXPECT_TRUE(seenAsWall(plane, 1.2));  // its top lay beyond what the sensor saw of it
+  // Seen from farther, the rings went over it at 0.3 m: a box 0.8 m tall, not a wall.
+  PlaneObservation overtopped = low;
+  overtopped.z_max = 0.3;
+  overtopped.top = TopEdge::kSeen;
+  addHeights(plane, overtopped);
+  EXPECT_DOUBLE_EQ(plane.top_seen_z, 0.3);
+  EXPECT_DOUBLE_EQ(plane.z_max, 0.5);
+  EXPECT_FALSE(seenAsWall(plane, 1.2));
+  // A top seen 1.2 m or more above the lowest point is a wall's (a partition short of the
+  // ceiling); so is anything seen over 1.2 m whatever its top.
+  MapPlane partition;
+  partition.z_min = -0.5;
+  partition.z_max = 0.5;
+  partition.tops_beyond_view = 1;
+  partition.top_seen_z = 0.8;
+  EXPECT_TRUE(seenAsWall(partition, 1.2));
+  MapPlane tall;
+  tall.z_min = -0.5;
+  tall.z_max = 0.7;
+  tall.top_seen_z = 0.7;
+  EXPECT_TRUE(seenAsWall(tall, 1.2));
+  // Merged, the kept plane has both planes' evidence: the lowest top seen wins.
+  mergeHeights(partition, plane);
+  EXPECT_DOUBLE_EQ(partition.top_seen_z, 0.3);
+  EXPECT_EQ(partition.tops_beyond_view, 2);
+  EXPECT_FALSE(seenAsWall(partition, 1.2));
+}
+
 }  // namespace
 }  // namespace isg::slam

@@ -160,14 +160,78 @@ TEST(RangeImagePlanes, AGapSplitsAWallAndAWallThirtyCentimetresBehindIsItsOwn) {
   }
 }
 
+// The vertical observation facing the sensor along `normal` (in the scan's frame) at distance d.
+const PlaneObservation* wallAt(const std::vector<PlaneObservation>& planes,
+                               const Eigen::Vector3d& normal, double d) {
+  for (const auto& p : planes) {
+    if (p.orientation == PlaneOrientation::kVertical && p.plane.normal.dot(normal) > 0.99 &&
+        std::abs(p.plane.d - d) < 0.02)
+      return &p;
+  }
+  return nullptr;
+}
+
+TEST(RangeImagePlanes, AWallsTopIsBeyondViewWhereABoxIsOverTopped) {
+  // The sensor low on a robot, 0.6 m up in the room [0, 3.2] × [0, 2.4] × [0, 2.5], looking at a
+  // box 0.7 m tall whose face stands at x = 2.4 (0.8 m away, y ∈ [0.4, 2.0]). By hand: the rings
+  // meet the face up to 0.6 + 0.8 tan θ ≤ 0.7, θ ≤ 7.1°, so the +9° ring and those above go over
+  // the box to the wall x = 3.2 behind it, 0.8 m farther: the box's top is seen. The other walls
+  // are 1.2–2.0 m away: the top ring (+15°) meets them at 0.92–1.14 m, below the ceiling, so
+  // above a wall's highest point the field of view ends: their tops are beyond view.
+  const std::vector<Rectangle> scene = {
+      {{0, 0, 0}, {3.2, 0, 0}, {0, 0, 2.5}},      {{0, 2.4, 0}, {3.2, 0, 0}, {0, 0, 2.5}},
+      {{0, 0, 0}, {0, 2.4, 0}, {0, 0, 2.5}},      {{3.2, 0, 0}, {0, 2.4, 0}, {0, 0, 2.5}},
+      {{0, 0, 0}, {3.2, 0, 0}, {0, 2.4, 0}},      {{0, 0, 2.5}, {3.2, 0, 0}, {0, 2.4, 0}},
+      {{2.4, 0.4, 0}, {0, 1.6, 0}, {0, 0, 0.7}},     // the box's face
+      {{2.4, 0.4, 0.7}, {0.5, 0, 0}, {0, 1.6, 0}}};  // and its top
+  const Eigen::Vector3d sensor(1.6, 1.2, 0.6);
+  const sensors::Scan scan = castScan(scene, sensor, 0.0, 0.005);
+  PlaneExtractionOptions options;
+  options.min_inliers = 30;
+  const auto planes = extractPlanesOnRangeImage(scan, options);
+  ASSERT_TRUE(planes.has_value());
+  const PlaneObservation* box = wallAt(*planes, -Eigen::Vector3d::UnitX(), 0.8);
+  ASSERT_NE(box, nullptr);
+  EXPECT_EQ(box->top, TopEdge::kSeen);
+  EXPECT_NEAR(box->z_max, 0.7 - 0.6, 0.03);
+  const PlaneObservation* west = wallAt(*planes, Eigen::Vector3d::UnitX(), 1.6);
+  const PlaneObservation* south = wallAt(*planes, Eigen::Vector3d::UnitY(), 1.2);
+  const PlaneObservation* north = wallAt(*planes, -Eigen::Vector3d::UnitY(), 1.2);
+  for (const PlaneObservation* wall : {west, south, north}) {
+    ASSERT_NE(wall, nullptr);
+    EXPECT_EQ(wall->top, TopEdge::kBeyondView);
+    // Seen over less than 1.2 m: by its height alone this wall is not told from the box.
+    EXPECT_LT(wall->z_max - wall->z_min, 1.2);
+  }
+}
+
+TEST(RangeImagePlanes, AWallUnderALowCeilingHasItsTopBeyondView) {
+  // The ceiling at 1.2 m, the sensor 0.6 m up, the wall x = 0 3 m away: the rings above
+  // atan(0.6 / 3) = 11.3° meet the ceiling before the wall, nearer than the wall: what is above
+  // the wall's highest point is not the wall's end.
+  std::vector<Rectangle> scene = room();
+  scene.back() = {{0, 0, 1.2}, {6, 0, 0}, {0, 4, 0}};
+  const sensors::Scan scan = castScan(scene, Eigen::Vector3d(3.0, 2.0, 0.6), 0.0, 0.005);
+  PlaneExtractionOptions options;
+  options.min_inliers = 30;
+  const auto planes = extractPlanesOnRangeImage(scan, options);
+  ASSERT_TRUE(planes.has_value());
+  const PlaneObservation* west = wallAt(*planes, Eigen::Vector3d::UnitX(), 3.0);
+  ASSERT_NE(west, nullptr);
+  EXPECT_EQ(west->top, TopEdge::kBeyondView);
+  EXPECT_NEAR(west->z_max, 3.0 * std::tan(11.0 * std::numbers::pi / 180.0), 0.05);
+}
+
 TEST(RangeImagePlanes, AScanWithoutRingsIsLeftToRansac) {
   sensors::Scan scan = castScan(room(), Eigen::Vector3d(2.0, 1.5, 0.7), 0.3);
   for (auto& p : scan.points) p.ring = 0;
   EXPECT_FALSE(extractPlanesOnRangeImage(scan, PlaneExtractionOptions()).has_value());
   // extractPlanes falls back to RANSAC and still finds the four walls.
   int walls = 0;
-  for (const auto& p : extractPlanes(scan, PlaneExtractionOptions()))
+  for (const auto& p : extractPlanes(scan, PlaneExtractionOptions())) {
     walls += p.orientation == PlaneOrientation::kVertical;
+    EXPECT_EQ(p.top, TopEdge::kUnknown);  // without rings nothing is above or below a point
+  }
   EXPECT_EQ(walls, 4);
 }
 

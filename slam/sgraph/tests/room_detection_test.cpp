@@ -2,6 +2,8 @@
 
 #include <gtest/gtest.h>
 
+#include <limits>
+
 namespace isg::slam {
 namespace {
 
@@ -78,6 +80,37 @@ TEST(RoomDetection, LowBoxesOfClutterAreNotWalls) {
   const auto room = detectRoom({1.0, 1.0}, walls, 0.0);
   ASSERT_TRUE(room);
   EXPECT_NEAR(room->widths[0], 4.0, 1e-9);
+}
+
+TEST(RoomDetection, WallsSeenLowButWhoseTopsWereBeyondViewAreWalls) {
+  // A sensor low on the robot sees the walls over 1.0 m only, never their tops.
+  auto walls = box();
+  for (auto& w : walls) {
+    w.z_min = -0.5;
+    w.z_max = 0.5;
+  }
+  EXPECT_FALSE(detectRoom({1.0, 1.0}, walls, 0.0));
+  for (auto& w : walls) w.tops_beyond_view = 2;
+  auto room = detectRoom({1.0, 1.0}, walls, 0.0);
+  ASSERT_TRUE(room);
+  EXPECT_TRUE(room->four_wall);
+  EXPECT_NEAR(room->widths[0], 4.0, 1e-9);
+  // A box seen as low, once also from where the rings above it went over it, is clutter: the
+  // room is the walls', not the box's.
+  MapPlane clutter = wall({-1, 0}, {2.5, 0.5}, {2.5, 2.0});
+  clutter.z_min = -0.5;
+  clutter.z_max = 0.5;
+  clutter.tops_beyond_view = 1;
+  clutter.top_seen_z = 0.5;
+  walls.push_back(clutter);
+  room = detectRoom({1.0, 1.0}, walls, 0.0);
+  ASSERT_TRUE(room);
+  EXPECT_NEAR(room->widths[0], 4.0, 1e-9);
+  // Before it was overtopped, it was as good as a wall: the room ended at it.
+  walls.back().top_seen_z = std::numeric_limits<double>::infinity();
+  room = detectRoom({1.0, 1.0}, walls, 0.0);
+  ASSERT_TRUE(room);
+  EXPECT_NEAR(room->widths[0], 2.5, 1e-9);
 }
 
 TEST(RoomDetection, NearestWallsWinAndNarrowGapsAreNoRoom) {
