@@ -6,24 +6,23 @@
 #include <stdexcept>
 
 #include "bim/input_error.hpp"
+#include "sensors/rosbag_format.hpp"
 
 namespace isg::sensors {
 
 namespace {
 
-constexpr const char* kVersionLine = "#ROSBAG V2.0\n";
+using rosbag::kVersionLine;
 constexpr std::size_t kBagHeaderRecordSize = 4096;  // the header record is padded to this
 // A chunk is closed once it holds this many bytes (rosbag's own default threshold).
 constexpr std::size_t kChunkThreshold = 768 * 1024;
 
-enum Op : std::uint8_t {
-  kMessageData = 0x02,
-  kBagHeader = 0x03,
-  kIndexData = 0x04,
-  kChunk = 0x05,
-  kChunkInfo = 0x06,
-  kConnection = 0x07
-};
+using rosbag::kBagHeader;
+using rosbag::kChunk;
+using rosbag::kChunkInfo;
+using rosbag::kConnection;
+using rosbag::kIndexData;
+using rosbag::kMessageData;
 
 // Little-endian integers, as the format has them (and as this machine stores them).
 template <typename T>
