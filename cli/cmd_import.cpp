@@ -1,11 +1,16 @@
 #include "cli/cmd_import.hpp"
 
+#include <array>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
+#include <optional>
 
+#include "cli/progress_bar.hpp"
 #include "ifc/ifc_import.hpp"
 #include "run/interrupt.hpp"
+#include "sensors/atomic_folder.hpp"
+#include "sensors/bag_import.hpp"
 #include "sensors/output_path.hpp"
 
 namespace isg::cli {
@@ -21,10 +26,23 @@ void roundNumbers(nlohmann::ordered_json& value) {
   }
 }
 
+bool isBag(const std::string& path) {
+  const std::string extension = std::filesystem::path(path).extension().string();
+  return extension == ".bag" || extension == ".BAG";
+}
+
+std::optional<std::array<double, 6>> mountOption(const std::vector<double>& values) {
+  if (values.empty()) return std::nullopt;
+  return std::array<double, 6>{values[0], values[1], values[2], values[3], values[4], values[5]};
+}
+
 }  // namespace
 
 ImportCommand::ImportCommand(CLI::App& parent) {
-  app_ = parent.add_subcommand("import", "Import an IFC building model (IFC2X3, IFC4) as a plan");
+  app_ = parent.add_subcommand(
+      "import",
+      "Import an IFC building model (IFC2X3, IFC4) as a plan, or a ROS 1 recording (.bag) as a "
+      "dataset");
   app_->footer(
       "Storeys become levels (by default every storey with walls standing on it and rooms), "
       "walls straight prismatic walls fitted to their bodies, doors and windows their openings "
@@ -37,21 +55,131 @@ ImportCommand::ImportCommand(CLI::App& parent) {
       "IFC\".\n\n"
       "Example (ifc/tests/models holds five public models):\n"
       "  isg import Office_A_20110811.ifc -o office.json\n  isg check office.json -v\n"
-      "  isg run office.json -o runs/office");
-  app_->add_option("model", input_, "IFC file (STEP, .ifc) to read")
-      ->option_text("MODEL.ifc")
+      "  isg run office.json -o runs/office\n\n"
+      "A ROS 1 bag (format 2.0; chunks plain, bz2 or lz4) becomes a dataset folder that isg slam "
+      "replays: the point clouds (sensor_msgs/PointCloud2: the Velodyne driver's layout, Ouster's, "
+      "or any cloud with x y z) as scans, sensor_msgs/Imu as imu.csv, nav_msgs/Odometry as "
+      "odometry.tum, a ground-truth nav_msgs/Odometry or geometry_msgs/PoseStamped as "
+      "groundtruth.tum; the sensors' mounts from /tf_static (or --lidar-extrinsic, "
+      "--imu-extrinsic). Each topic is found by its type when only one could be it (ground truth "
+      "by a name with ground_truth, groundtruth, gt, vicon or mocap); otherwise the candidates are "
+      "listed. A bag written by isg export imports back to the dataset it came from. The rules: "
+      "docs/formats.md, \"Importing recordings\".\n\n"
+      "Example:\n  isg import walk.bag -o datasets/walk\n"
+      "  isg import walk.bag -o datasets/walk --lidar-topic /os_cloud_node/points --start 20 "
+      "--duration 60\n  isg slam datasets/walk --plan lab.json -o runs/walk");
+  app_->add_option("model", input_, "IFC file (STEP, .ifc) or ROS 1 bag (.bag) to read")
+      ->option_text("MODEL.ifc|RECORDING.bag")
       ->required();
-  app_->add_option("-o,--output", output_, "plan file to write")
-      ->option_text("PLAN.json")
+  app_->add_option("-o,--output", output_, "plan file (from IFC) or dataset folder (from a bag)")
+      ->option_text("PLAN.json|DATASET_DIR")
       ->required();
+  auto* bag = "Recordings (.bag)";
+  app_->add_option("--lidar-topic", lidar_topic_, "the point clouds' topic")
+      ->option_text("TOPIC")
+      ->group(bag);
+  app_->add_option("--imu-topic", imu_topic_, "the IMU's topic (none: leave the IMU out)")
+      ->option_text("TOPIC")
+      ->group(bag);
+  app_->add_option("--odom-topic", odometry_topic_,
+                   "the odometry's topic, nav_msgs/Odometry (none: leave it out)")
+      ->option_text("TOPIC")
+      ->group(bag);
+  app_->add_option("--ground-truth-topic", ground_truth_topic_,
+                   "the ground truth's topic, nav_msgs/Odometry or geometry_msgs/PoseStamped "
+                   "(none: leave it out)")
+      ->option_text("TOPIC")
+      ->group(bag);
+  app_->add_option("--start", start_, "import from this many seconds after the bag's first message")
+      ->check(CLI::Range(0.0, 1e7))
+      ->option_text("S")
+      ->group(bag);
+  app_->add_option("--duration", duration_, "import this many seconds (default: to the end)")
+      ->check(CLI::Range(0.001, 1e7))
+      ->option_text("S")
+      ->group(bag);
+  app_->add_option("--base-frame", base_frame_,
+                   "the robot's base frame (default: the odometry's child frame; without "
+                   "odometry, the LiDAR's frame)")
+      ->option_text("FRAME")
+      ->group(bag);
+  app_->add_option("--lidar-extrinsic", lidar_extrinsic_,
+                   "the LiDAR's pose on the base when /tf_static lacks it: x,y,z (m), roll, "
+                   "pitch, yaw (rad)")
+      ->delimiter(',')
+      ->expected(6)
+      ->option_text("X,Y,Z,R,P,Y")
+      ->group(bag);
+  app_->add_option("--imu-extrinsic", imu_extrinsic_,
+                   "the IMU's pose on the base when /tf_static lacks it: x,y,z (m), roll, pitch, "
+                   "yaw (rad)")
+      ->delimiter(',')
+      ->expected(6)
+      ->option_text("X,Y,Z,R,P,Y")
+      ->group(bag);
   app_->add_option("--storey", storeys_,
                    "import this storey (its IFC name; repeat for several) instead of choosing")
       ->option_text("NAME");
-  app_->add_flag("--force", force_, "replace PLAN.json if isg import wrote it before");
-  app_->add_flag("-q,--quiet", quiet_, "print only the summary, not each element left out");
+  app_->add_flag("--force", force_, "replace the output if isg wrote it before");
+  app_->add_flag("-q,--quiet", quiet_,
+                 "print only the summary (no element left out of an IFC model, no progress bar)");
 }
 
-int ImportCommand::run() {
+int ImportCommand::run() { return isBag(input_) ? importBag() : importIfc(); }
+
+int ImportCommand::importBag() {
+  sensors::checkCanCreateFolder(output_, sensors::OutputKind::kDataset, force_, {input_});
+  sensors::BagImportOptions options;
+  options.lidar_topic = lidar_topic_;
+  options.imu_topic = imu_topic_;
+  options.odometry_topic = odometry_topic_;
+  options.ground_truth_topic = ground_truth_topic_;
+  options.start = start_;
+  if (duration_ > 0) options.duration = duration_;
+  options.base_frame = base_frame_;
+  options.lidar_extrinsic = mountOption(lidar_extrinsic_);
+  options.imu_extrinsic = mountOption(imu_extrinsic_);
+  options.overwrite = force_;
+  ProgressBar bar("isg import", quiet_);
+  const auto summary =
+      sensors::importRosbag(input_, output_, options, [&](std::uint64_t done, std::uint64_t total) {
+        run::throwIfInterrupted();
+        char detail[64];
+        std::snprintf(detail, sizeof detail, "%llu/%llu clouds", (unsigned long long)done,
+                      (unsigned long long)total);
+        bar.update(total > 0 ? double(done) / double(total) : 1.0, detail);
+      });
+  bar.finish();
+  const auto stream = [](const char* what, const sensors::BagImportSummary::Stream& s) {
+    if (s.topic.empty()) {
+      std::printf("  %-13s none\n", what);
+    } else {
+      std::printf("  %-13s %s (%s): %llu messages\n", what, s.topic.c_str(), s.type.c_str(),
+                  (unsigned long long)s.messages);
+    }
+  };
+  std::printf("isg import: %s -> %s%s\n", input_.c_str(), output_.c_str(),
+              summary.from_isg ? " (a bag of an isg dataset: its metadata restored)" : "");
+  stream("LiDAR", summary.lidar);
+  stream("IMU", summary.imu);
+  stream("odometry", summary.odometry);
+  stream("ground truth", summary.ground_truth);
+  std::printf(
+      "  clouds: %s; stamped at the %s (point times %.4f to %.4f s about the stamp); %.4f s "
+      "apart; %.1f points each on average\n",
+      summary.cloud_layout.c_str(), summary.stamp == "last_packet" ? "end of the turn" : "start",
+      summary.point_time[0], summary.point_time[1], summary.scan_period,
+      summary.lidar.messages > 0 ? double(summary.points) / double(summary.lidar.messages) : 0.0);
+  for (const auto& note : summary.notes) std::printf("  note: %s\n", note.c_str());
+  std::printf("isg import: wrote %s: %llu scans, %.1f s of robot time%s\n", output_.c_str(),
+              (unsigned long long)summary.lidar.messages, summary.seconds,
+              summary.odometry.topic.empty()
+                  ? "; no odometry: isg slam needs a motion prior from odometry"
+                  : "");
+  return kExitOk;
+}
+
+int ImportCommand::importIfc() {
   sensors::checkOutputPath(output_, {sensors::OutputKind::kImportedPlan, {input_}, force_, true});
   ifc::ImportOptions options;
   options.storeys = storeys_;

@@ -5,6 +5,7 @@
 #include <optional>
 
 #include "bim/agraph.hpp"
+#include "bim/input_error.hpp"
 #include "bim/json_reader.hpp"
 #include "bim/plan_json.hpp"
 #include "bim/plan_parser.hpp"
@@ -12,6 +13,7 @@
 #include "cli/run_session.hpp"
 #include "run/map_diagnosis.hpp"
 #include "sensors/atomic_folder.hpp"
+#include "sensors/dataset_format.hpp"
 #include "sensors/dataset_reader.hpp"
 
 namespace isg::cli {
@@ -84,6 +86,13 @@ SlamCommand::SlamCommand(CLI::App& parent) {
 int SlamCommand::run() {
   namespace fs = std::filesystem;
   sensors::DatasetReader dataset(dataset_);
+  if (dataset.odometry().empty()) {
+    // A recording imported without odometry (a handheld sensor): the localizers predict each
+    // keyframe from odometry and have no other motion prior yet.
+    throw bim::InputError((fs::path(dataset_) / sensors::dataset::kOdometry).string(), "",
+                          "the dataset has no odometry: isg slam's localizers need odometry "
+                          "(nav_msgs/Odometry when importing a recording, --odom-topic)");
+  }
   // Before the replay, not after it: a folder that cannot be written fails at once.
   sensors::checkCanCreateFolder(output_, sensors::OutputKind::kRunFolder, force_,
                                 {dataset_, plan_});

@@ -19,6 +19,16 @@ std::string scanFileName(int index) {
 
 std::string trajectoryText(const Trajectory& trajectory) { return eval::toTumText(trajectory); }
 
+std::string stampsText(const std::vector<double>& stamps) {
+  std::string out;
+  char line[64];
+  for (double t : stamps) {
+    std::snprintf(line, sizeof line, "%.9f\n", t);
+    out += line;
+  }
+  return out;
+}
+
 std::string imuText(const std::vector<sensors::ImuSample>& samples) {
   std::string out = "t,ax,ay,az,gx,gy,gz\n";
   out.reserve(out.size() + samples.size() * 120);

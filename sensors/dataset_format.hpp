@@ -19,8 +19,10 @@ inline constexpr const char* kMetadata = "metadata.json";
 inline constexpr const char* kGroundTruth = "groundtruth.tum";  // B_T_R
 inline constexpr const char* kOdometry = "odometry.tum";        // M_T_R
 inline constexpr const char* kScanPoses = "scans.tum";          // B_T_L at each scan stamp
-inline constexpr const char* kScans = "scans";                  // scans/NNNNNN.pcd
-inline constexpr const char* kImu = "imu.csv";                  // the IMU stream, in I
+// Without ground truth (an imported recording) the scans' stamps alone, one a line.
+inline constexpr const char* kScanStamps = "scans.txt";
+inline constexpr const char* kScans = "scans";  // scans/NNNNNN.pcd
+inline constexpr const char* kImu = "imu.csv";  // the IMU stream, in I
 inline constexpr const char* kFormat = "isg.dataset";
 inline constexpr int kVersion = 1;
 
@@ -29,6 +31,9 @@ std::string scanFileName(int index);
 
 // A trajectory file's text (TUM, eval::toTumText).
 std::string trajectoryText(const Trajectory& trajectory);
+
+// scans.txt's text: one time a line, in seconds with nine decimals (TUM's time column).
+std::string stampsText(const std::vector<double>& stamps);
 
 // imu.csv's text: the header line "t,ax,ay,az,gx,gy,gz", then one line per sample (seconds,
 // m/s², rad/s; nine significant digits).

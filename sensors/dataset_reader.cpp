@@ -57,7 +57,8 @@ void DatasetReader::readMetadata(const std::string& file) {
   if (auto imu = root.field("extrinsics").optionalField("R_T_I")) {
     R_T_I_ = mountOf(imu->field("matrix"), "IMU");
   }
-  if (auto imu = root.optionalField("imu")) {
+  // The IMU's noise, when the dataset knows it (a recording's driver may not say).
+  if (auto imu = root.optionalField("imu"); imu && imu->optionalField("gyroscope_noise_density")) {
     ImuNoise noise;
     noise.rate_hz = imu->field("rate_hz").numberInRange(1.0, 100000.0);
     noise.gyroscope_noise_density = imu->field("gyroscope_noise_density").numberInRange(0.0, 1e3);
@@ -101,10 +102,23 @@ DatasetReader::DatasetReader(const std::string& dir) : dir_(dir) {
   const fs::path metadata_path = root / dataset::kMetadata;
   metadata_ = bim::readJsonFile(metadata_path.string());
   readMetadata(metadata_path.string());
-  odometry_ = readTrajectoryFile((root / dataset::kOdometry).string());
+  // A recording imported without odometry (a handheld sensor) has none.
+  if (fs::exists(root / dataset::kOdometry))
+    odometry_ = readTrajectoryFile((root / dataset::kOdometry).string());
   if (fs::exists(root / dataset::kGroundTruth))
     ground_truth_ = readTrajectoryFile((root / dataset::kGroundTruth).string());
-  const Trajectory stamps = readTrajectoryFile((root / dataset::kScanPoses).string());
+  // The scans' stamps: with the LiDAR's pose (scans.tum), or alone when there is no ground truth
+  // (scans.txt).
+  Trajectory stamps;
+  std::string stamps_file = (root / dataset::kScanPoses).string();
+  if (!fs::exists(stamps_file) && fs::exists(root / dataset::kScanStamps)) {
+    stamps_file = (root / dataset::kScanStamps).string();
+    for (double t : readStampsFile(stamps_file))
+      stamps.push_back({t, Eigen::Isometry3d::Identity()});
+  } else {
+    stamps = readTrajectoryFile(stamps_file);
+    scan_poses_ = stamps;
+  }
   if (!fs::is_directory(root / dataset::kScans)) {
     throw bim::InputError((root / dataset::kScans).string(), "",
                           "not a folder: a dataset keeps its LiDAR scans in scans/");
@@ -114,12 +128,11 @@ DatasetReader::DatasetReader(const std::string& dir) : dir_(dir) {
   }
   std::sort(scan_files_.begin(), scan_files_.end());
   if (stamps.size() != scan_files_.size()) {
-    throw bim::InputError((root / dataset::kScanPoses).string(), "",
+    throw bim::InputError(stamps_file, "",
                           std::to_string(stamps.size()) + " stamps for " +
                               std::to_string(scan_files_.size()) + " scans in scans/");
   }
   for (const auto& s : stamps) scan_stamps_.push_back(s.t);
-  scan_poses_ = stamps;
   if (fs::exists(root / dataset::kImu)) imu_ = readImuFile((root / dataset::kImu).string());
 }
 

@@ -39,11 +39,12 @@ class DatasetReader : public ScanSource {
     double accelerometer_noise_density = 0.0;  // m/s²/√Hz
   };
   const std::optional<ImuNoise>& imuNoise() const { return imu_noise_; }
+  // odometry.tum (empty when the dataset has none: an imported handheld recording).
   const Trajectory& odometry() const { return odometry_; }
   const Trajectory& groundTruth() const { return ground_truth_; }
   int scanCount() const { return int(scan_files_.size()); }
   double scanStamp(int index) const { return scan_stamps_[index]; }
-  // scans.tum: B_T_L at each scan's stamp.
+  // scans.tum: B_T_L at each scan's stamp (empty when the dataset has scans.txt, stamps alone).
   const Trajectory& scanPoses() const { return scan_poses_; }
   // Seconds between two scans (metadata lidar.scan_period_s, else 1 / lidar.rate_hz; 0.1 s when
   // neither is given).

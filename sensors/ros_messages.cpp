@@ -1,5 +1,6 @@
 #include "sensors/ros_messages.hpp"
 
+#include <geometry_msgs/PoseStamped.h>
 #include <nav_msgs/Odometry.h>
 #include <ros/serialization.h>
 #include <sensor_msgs/Imu.h>
@@ -75,6 +76,7 @@ RosMessageType imuType() { return typeOf<sensor_msgs::Imu>(); }
 RosMessageType odometryType() { return typeOf<nav_msgs::Odometry>(); }
 RosMessageType tfMessageType() { return typeOf<tf2_msgs::TFMessage>(); }
 RosMessageType stringType() { return typeOf<std_msgs::String>(); }
+RosMessageType poseStampedType() { return typeOf<geometry_msgs::PoseStamped>(); }
 
 std::string stringMessage(const std::string& text) {
   std_msgs::String message;

@@ -19,6 +19,7 @@ RosMessageType imuType();
 RosMessageType odometryType();
 RosMessageType tfMessageType();
 RosMessageType stringType();
+RosMessageType poseStampedType();  // read from recordings, never written
 
 // sensor_msgs/PointCloud2 with the Velodyne driver's point layout: x y z intensity (float32 at 0,
 // 4, 8, 12), ring (uint16 at 16), time (float32 at 18, seconds from the stamp); point_step 22,

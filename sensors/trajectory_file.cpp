@@ -1,5 +1,10 @@
 #include "sensors/trajectory_file.hpp"
 
+#include <cerrno>
+#include <cmath>
+#include <cstdlib>
+#include <fstream>
+
 #include "bim/input_error.hpp"
 
 namespace isg::sensors {
@@ -15,6 +20,31 @@ eval::Trajectory readTrajectoryFile(const std::string& path, bool require_poses)
     throw bim::InputError(path, "", "no poses (a TUM file holds one pose per line)");
   }
   return trajectory;
+}
+
+std::vector<double> readStampsFile(const std::string& path) {
+  std::ifstream in(path);
+  if (!in) throw bim::InputError(path, "", "cannot be read (no such file, or no permission)");
+  std::vector<double> stamps;
+  std::string line;
+  for (int number = 1; std::getline(in, line); ++number) {
+    const auto first = line.find_first_not_of(" \t\r");
+    if (first == std::string::npos || line[first] == '#') continue;
+    const auto last = line.find_last_not_of(" \t\r");
+    const std::string text = line.substr(first, last - first + 1);
+    char* end = nullptr;
+    errno = 0;
+    const double t = std::strtod(text.c_str(), &end);
+    const auto where = "line " + std::to_string(number) + ": ";
+    if (end != text.c_str() + text.size() || errno != 0 || !std::isfinite(t)) {
+      throw bim::InputError(path, "", where + "expected one time in seconds, got \"" + text + "\"");
+    }
+    if (!stamps.empty() && !(t > stamps.back())) {
+      throw bim::InputError(path, "", where + "the time does not increase");
+    }
+    stamps.push_back(t);
+  }
+  return stamps;
 }
 
 }  // namespace isg::sensors

@@ -1,6 +1,7 @@
 #pragma once
 
 #include <string>
+#include <vector>
 
 #include "eval/tum.hpp"
 
@@ -10,5 +11,9 @@ namespace isg::sensors {
 // order, no pose at all when `require_poses`) is a bim::InputError naming the file and the line,
 // so the command exits 1 with it.
 eval::Trajectory readTrajectoryFile(const std::string& path, bool require_poses = true);
+
+// scans.txt: one time a line (seconds), increasing; blank and '#' lines skipped. Problems are
+// InputErrors naming the file and the line.
+std::vector<double> readStampsFile(const std::string& path);
 
 }  // namespace isg::sensors

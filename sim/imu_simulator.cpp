@@ -3,8 +3,8 @@
 #include <cmath>
 #include <random>
 
+#include "sensors/mount_transform.hpp"
 #include "sim/fast_random.hpp"
-#include "sim/mount_transform.hpp"
 
 namespace isg::sim {
 
@@ -27,7 +27,7 @@ ImuSample idealImuSample(const BaseMotion& trajectory, const Eigen::Isometry3d& 
 
 std::vector<ImuSample> simulateImu(const BaseMotion& trajectory, const bim::ImuConfig& config,
                                    double duration, std::uint64_t seed) {
-  const Eigen::Isometry3d R_T_I = mountTransform(config.mount);
+  const Eigen::Isometry3d R_T_I = sensors::mountTransform(config.mount);
   const double dt = 1.0 / config.rate_hz;
   const int n = int(std::floor(duration * config.rate_hz + 1e-9));
   const double gyro_white = config.gyroscope_noise_density / std::sqrt(dt);

@@ -8,9 +8,9 @@
 #include <numbers>
 #include <string_view>
 
+#include "sensors/mount_transform.hpp"
 #include "sim/body_shadow.hpp"
 #include "sim/fast_random.hpp"
-#include "sim/mount_transform.hpp"
 #include "sim/robot_model.hpp"
 #include "sim/vlp16.hpp"
 
@@ -61,7 +61,7 @@ LidarSimulator::LidarSimulator(const MujocoWorld& world, const bim::LidarConfig&
       sequences_(Vlp16::sequencesPerTurn(config.rate_hz)),
       period_(1.0 / config.rate_hz),
       stamp_offset_(0.0),
-      body_(robotBodyBox(), mountTransform(config.mount)) {
+      body_(robotBodyBox(), sensors::mountTransform(config.mount)) {
   const int per_packet = sequencesPerPacket();
   if (config.cut == bim::LidarCut::kPackets) {
     // The ROS 1 driver publishes ceil(packet rate / rotation rate) packets per cloud.

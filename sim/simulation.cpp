@@ -42,8 +42,8 @@ MujocoWorld buildWorld(const bim::Scenario& scenario, const Eigen::Isometry3d& R
 
 Simulation::Simulation(const bim::Scenario& scenario)
     : scenario_(scenario),
-      R_T_L_(mountTransform(scenario.lidar.mount)),
-      R_T_I_(mountTransform(scenario.imu.mount)),
+      R_T_L_(sensors::mountTransform(scenario.lidar.mount)),
+      R_T_I_(sensors::mountTransform(scenario.imu.mount)),
       world_(buildWorld(scenario, R_T_L_)) {
   if (scenario_.lidar.body_occlusion) {
     // A sensor inside the body would see nothing at all.

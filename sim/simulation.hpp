@@ -10,7 +10,7 @@
 #include "sim/base_motion.hpp"
 #include "sim/imu_simulator.hpp"
 #include "sim/lidar_simulator.hpp"
-#include "sim/mount_transform.hpp"
+#include "sensors/mount_transform.hpp"
 #include "sim/mujoco_world.hpp"
 #include "sim/occupancy_grid.hpp"
 #include "sim/route_planner.hpp"

@@ -84,13 +84,13 @@ TEST(BaseKinematics, OnAFlightOfStairsTooWithTheBodyTiltedToTheSlope) {
 TEST(Imu, AtRestItReadsGravityUpwardsAndNoRotation) {
   GaitConfig gait;
   const BaseMotion t({{1, 1}}, 0.7, 0.5, 0.0, gait);  // one waypoint: it stands
-  const Eigen::Isometry3d R_T_I = mountTransform({0, 0, 0, 0, 0, std::numbers::pi / 2});
+  const Eigen::Isometry3d R_T_I = sensors::mountTransform({0, 0, 0, 0, 0, std::numbers::pi / 2});
   const ImuSample s = idealImuSample(t, R_T_I, 9.81, 3.0);
   EXPECT_LT((s.accelerometer - Eigen::Vector3d(0, 0, 9.81)).norm(), 1e-12);
   EXPECT_LT(s.gyroscope.norm(), 1e-12);
   // Rolled 90° about x, its y axis points down: it reads -g along y.
   const ImuSample rolled =
-      idealImuSample(t, mountTransform({0, 0, 0, std::numbers::pi / 2, 0, 0}), 9.81, 3.0);
+      idealImuSample(t, sensors::mountTransform({0, 0, 0, std::numbers::pi / 2, 0, 0}), 9.81, 3.0);
   EXPECT_LT((rolled.accelerometer - Eigen::Vector3d(0, 9.81, 0)).norm(), 1e-12);
 }
 
@@ -109,7 +109,7 @@ Simulation* D1Imu::sim_ = nullptr;
 TEST_F(D1Imu, IntegratedGyroscopeFollowsTheTrueOrientation) {
   const BaseMotion& t = sim_->baseMotion();
   const auto samples = simulateImu(t, noiseless(kOffsetMount), t.duration(), 1);
-  const Eigen::Matrix3d R_R_I = mountTransform(kOffsetMount).linear();
+  const Eigen::Matrix3d R_R_I = sensors::mountTransform(kOffsetMount).linear();
   Eigen::Matrix3d B_R_I = t.pose(0.0).linear() * R_R_I;
   double worst = 0.0;
   for (std::size_t k = 1; k < samples.size(); ++k) {
@@ -129,7 +129,7 @@ TEST_F(D1Imu, DoubleIntegratedAccelerometerMatchesTheDisplacement) {
   const BaseMotion& t = sim_->baseMotion();
   const double g = 9.81;
   const auto samples = simulateImu(t, noiseless(kOffsetMount), t.duration(), 1);
-  const Eigen::Isometry3d R_T_I = mountTransform(kOffsetMount);
+  const Eigen::Isometry3d R_T_I = sensors::mountTransform(kOffsetMount);
   auto imuPosition = [&](double s) -> Eigen::Vector3d { return (t.pose(s) * R_T_I).translation(); };
   auto worldAcceleration = [&](const ImuSample& s) -> Eigen::Vector3d {
     return t.pose(s.t).linear() * R_T_I.linear() * s.accelerometer - Eigen::Vector3d(0, 0, g);

@@ -1,0 +1,253 @@
+// isg import RECORDING.bag: recordings in. Our own bags import back to the dataset they came
+// from and replay to the same estimate; bags written by another writer (python3-rosbag, in
+// cli/tests/python_recording.py) in the Velodyne driver's and Ouster's conventions import and
+// localize; bad recordings get exact errors and leave nothing behind.
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <nlohmann/json.hpp>
+#include <sstream>
+#include <vector>
+
+#include "cli/tests/cli_runner.hpp"
+
+namespace isg::cli {
+namespace {
+
+using ::testing::HasSubstr;
+using ::testing::StartsWith;
+
+std::vector<std::vector<double>> numberRows(const std::string& text) {
+  std::vector<std::vector<double>> rows;
+  std::istringstream lines(text);
+  for (std::string line; std::getline(lines, line);) {
+    if (line.empty() || line[0] == '#' || line[0] == 't') continue;
+    for (char& c : line) c = c == ',' ? ' ' : c;
+    std::istringstream numbers(line);
+    std::vector<double> row;
+    for (double v; numbers >> v;) row.push_back(v);
+    rows.push_back(row);
+  }
+  return rows;
+}
+
+// The largest difference between two tables of numbers of one shape, over columns [first, last).
+double largestDifference(const std::string& a, const std::string& b, std::size_t first,
+                         std::size_t last) {
+  const auto ra = numberRows(a), rb = numberRows(b);
+  EXPECT_EQ(ra.size(), rb.size());
+  double out = 0.0;
+  for (std::size_t i = 0; i < std::min(ra.size(), rb.size()); ++i) {
+    for (std::size_t c = first; c < last && c < ra[i].size(); ++c) {
+      out = std::max(out, std::abs(ra[i][c] - rb[i][c]));
+    }
+  }
+  return out;
+}
+
+std::string python(const std::string& arguments) {
+  return "/usr/bin/python3 '" + std::string(ISG_SOURCE_DIR) + "/cli/tests/python_recording.py' " +
+         arguments;
+}
+
+int shell(const testing::Sandbox& sandbox, const std::string& command) {
+  return std::system(("cd '" + sandbox.dir().string() + "' && " + command).c_str());
+}
+
+double apeRmse(const testing::Sandbox& sandbox, const std::string& run) {
+  const auto metrics = nlohmann::json::parse(sandbox.read(run + "/metrics.json"));
+  return metrics["ape_B"]["rmse"].get<double>();
+}
+
+// simulate → --rosbag → import → slam: the same estimate as replaying the original dataset.
+TEST(ImportRecording, OurOwnBagReplaysToTheSameEstimate) {
+  testing::Sandbox sandbox("import_round_trip");
+  ASSERT_EQ(sandbox.run("simulate builtin:d1 -o ds --duration 20 -q --rosbag ds.bag").exit_code, 0);
+  auto result = sandbox.run("import ds.bag -o imported -q");
+  ASSERT_EQ(result.exit_code, 0) << result.err;
+  EXPECT_THAT(result.out,
+              StartsWith("isg import: ds.bag -> imported (a bag of an isg dataset: its metadata "
+                         "restored)\n  LiDAR         /velodyne_points (sensor_msgs/PointCloud2): "
+                         "200 messages\n  IMU           /imu/data (sensor_msgs/Imu): 4001 "
+                         "messages\n  odometry      /odom (nav_msgs/Odometry): 1001 messages\n"
+                         "  ground truth  /ground_truth (nav_msgs/Odometry): 2001 messages\n"));
+  EXPECT_THAT(result.out, HasSubstr("stamped at the start (point times 0.0000 to 0.1000 s"));
+  // The streams come back as they were written: scans and IMU byte for byte, poses to the
+  // last printed digit of a quaternion that went through a rotation matrix and back.
+  EXPECT_EQ(sandbox.read("imported/imu.csv"), sandbox.read("ds/imu.csv"));
+  EXPECT_EQ(sandbox.read("imported/scans/000123.pcd"), sandbox.read("ds/scans/000123.pcd"));
+  EXPECT_FALSE(sandbox.exists("imported/scans/000200.pcd"));
+  EXPECT_EQ(largestDifference(sandbox.read("imported/odometry.tum"),
+                              sandbox.read("ds/odometry.tum"), 0, 4),
+            0.0);
+  EXPECT_LE(largestDifference(sandbox.read("imported/odometry.tum"),
+                              sandbox.read("ds/odometry.tum"), 4, 8),
+            2e-9);
+  EXPECT_EQ(
+      largestDifference(sandbox.read("imported/scans.tum"), sandbox.read("ds/scans.tum"), 0, 1),
+      0.0);
+  auto original = nlohmann::json::parse(sandbox.read("ds/metadata.json"));
+  auto imported = nlohmann::json::parse(sandbox.read("imported/metadata.json"));
+  EXPECT_EQ(imported["imported_from"]["time_origin_s"], 1000000000);
+  imported.erase("imported_from");
+  EXPECT_EQ(imported, original);
+
+  ASSERT_EQ(sandbox.run("slam ds --plan builtin:d1 -o a -q").exit_code, 0);
+  result = sandbox.run("slam imported --plan builtin:d1 -o b -q");
+  ASSERT_EQ(result.exit_code, 0) << result.err;
+  // Positions to the printed micrometre, orientations to the last digit.
+  EXPECT_EQ(largestDifference(sandbox.read("a/estimate.tum"), sandbox.read("b/estimate.tum"), 0, 4),
+            0.0);
+  EXPECT_LE(largestDifference(sandbox.read("a/estimate.tum"), sandbox.read("b/estimate.tum"), 4, 8),
+            2e-9);
+  EXPECT_NEAR(apeRmse(sandbox, "b"), apeRmse(sandbox, "a"), 1e-6);
+}
+
+// The ROS 1 Velodyne driver's conventions (stamped at the end of the turn, PointXYZIRT with its
+// padding, NaN points), its mounts on /tf_static, PoseStamped ground truth, bz2 chunks.
+TEST(ImportRecording, AVelodyneDriverBagFromAnotherWriterLocalizes) {
+  testing::Sandbox sandbox("import_velodyne");
+  ASSERT_EQ(sandbox.run("simulate builtin:d1 -o ds --duration 20 -q --pcd binary").exit_code, 0);
+  ASSERT_EQ(shell(sandbox, python("ds velodyne.bag velodyne")), 0);
+  auto result = sandbox.run("import velodyne.bag -o imported -q");
+  ASSERT_EQ(result.exit_code, 0) << result.err;
+  EXPECT_THAT(result.out, HasSubstr("  LiDAR         /velodyne_points (sensor_msgs/PointCloud2): "
+                                    "200 messages\n"));
+  EXPECT_THAT(result.out, HasSubstr("  odometry      /odometry/filtered (nav_msgs/Odometry)"));
+  EXPECT_THAT(result.out,
+              HasSubstr("  ground truth  /vicon/base_link (geometry_msgs/PoseStamped): 2001"));
+  EXPECT_THAT(result.out,
+              HasSubstr("clouds: x y z intensity ring time (the Velodyne driver's layout); "
+                        "stamped at the end of the turn (point times -0.1000 to -0.0000 s"));
+  const auto metadata = nlohmann::json::parse(sandbox.read("imported/metadata.json"));
+  const auto original = nlohmann::json::parse(sandbox.read("ds/metadata.json"));
+  EXPECT_EQ(metadata["lidar"]["stamp"], "last_packet");
+  EXPECT_NEAR(metadata["lidar"]["point_time_s"][0].get<double>(), -0.1, 1e-3);
+  EXPECT_EQ(metadata["frames"]["L"], "velodyne");
+  EXPECT_EQ(metadata["frames"]["R"], "base_link");
+  // The mounts from /tf_static, as simulated.
+  for (int r = 0; r < 3; ++r) {
+    for (int c = 0; c < 4; ++c) {
+      EXPECT_NEAR(metadata["extrinsics"]["R_T_L"]["matrix"][r][c].get<double>(),
+                  original["extrinsics"]["R_T_L"]["matrix"][r][c].get<double>(), 1e-6);
+      EXPECT_NEAR(metadata["extrinsics"]["R_T_I"]["matrix"][r][c].get<double>(),
+                  original["extrinsics"]["R_T_I"]["matrix"][r][c].get<double>(), 1e-6);
+    }
+  }
+  // Every return kept, the NaN points left out: the scan as simulated, 0.1 s later in its stamp.
+  EXPECT_EQ(largestDifference(sandbox.read("imported/imu.csv"), sandbox.read("ds/imu.csv"), 1, 7),
+            0.0);
+  ASSERT_EQ(sandbox.run("slam ds --plan builtin:d1 -o a -q").exit_code, 0);
+  result = sandbox.run("slam imported --plan builtin:d1 -o b");
+  ASSERT_EQ(result.exit_code, 0) << result.err;
+  EXPECT_THAT(result.out, HasSubstr("localized at t = "));
+  EXPECT_LE(apeRmse(sandbox, "b"), 0.05);
+  EXPECT_NEAR(apeRmse(sandbox, "b"), apeRmse(sandbox, "a"), 0.01);
+}
+
+// ouster_ros's layout (t in nanoseconds, uint8 ring, empty pixels as zeros), lz4 chunks, no
+// /tf_static: the mounts must be given.
+TEST(ImportRecording, AnOusterBagLocalizesWithTheMountsGiven) {
+  testing::Sandbox sandbox("import_ouster");
+  ASSERT_EQ(sandbox.run("simulate builtin:d1 -o ds --duration 20 -q --pcd binary").exit_code, 0);
+  ASSERT_EQ(shell(sandbox, python("ds ouster.bag ouster")), 0);
+  auto result = sandbox.run("import ouster.bag -o imported -q");
+  EXPECT_EQ(result.exit_code, 1);
+  EXPECT_EQ(
+      result.err,
+      "isg import: error: ouster.bag: no transform from the base frame \"base_link\" to the "
+      "LiDAR's frame \"os_sensor\" in /tf_static: give --lidar-extrinsic X,Y,Z,ROLL,PITCH,YAW "
+      "(the LiDAR's pose on the base, metres and radians)\n");
+  EXPECT_FALSE(sandbox.exists("imported"));
+  const auto original = nlohmann::json::parse(sandbox.read("ds/metadata.json"));
+  const auto mount = [&](const char* name) {
+    std::string out;
+    for (const auto& v : original["extrinsics"][name]["xyz_rpy"]) {
+      std::ostringstream text;
+      text.precision(17);
+      text << v.get<double>();
+      out += (out.empty() ? "" : ",") + text.str();
+    }
+    return out;
+  };
+  result = sandbox.run("import ouster.bag -o imported -q --lidar-extrinsic " + mount("R_T_L") +
+                       " --imu-extrinsic " + mount("R_T_I"));
+  ASSERT_EQ(result.exit_code, 0) << result.err;
+  EXPECT_THAT(result.out, HasSubstr("clouds: x y z intensity ring t (Ouster's layout); stamped at "
+                                    "the start (point times 0.0000 to 0.1000 s"));
+  EXPECT_THAT(result.out, HasSubstr("  ground truth  /ground_truth (nav_msgs/Odometry): 2001"));
+  // Ouster's empty pixels (zeros) left out: the simulated returns, no more.
+  const auto ds = nlohmann::json::parse(sandbox.read("imported/metadata.json"));
+  EXPECT_EQ(ds["lidar"]["scans"], 200);
+  ASSERT_EQ(sandbox.run("slam ds --plan builtin:d1 -o a -q").exit_code, 0);
+  result = sandbox.run("slam imported --plan builtin:d1 -o b");
+  ASSERT_EQ(result.exit_code, 0) << result.err;
+  EXPECT_THAT(result.out, HasSubstr("localized at t = "));
+  EXPECT_LE(apeRmse(sandbox, "b"), 0.05);
+  EXPECT_NEAR(apeRmse(sandbox, "b"), apeRmse(sandbox, "a"), 0.01);
+}
+
+TEST(ImportRecording, BadRecordingsAreExactErrorsAndLeaveNothing) {
+  testing::Sandbox sandbox("import_errors");
+  ASSERT_EQ(sandbox.run("simulate builtin:d2 -o ds --duration 1 -q --pcd binary").exit_code, 0);
+  ASSERT_EQ(shell(sandbox, python("ds two.bag velodyne --extra-cloud-topic --short-cloud 3 "
+                                  "--imu-in-g")),
+            0);
+  // Two clouds: which is the LiDAR is asked, with the candidates.
+  auto result = sandbox.run("import two.bag -o imported -q");
+  EXPECT_EQ(result.exit_code, 1);
+  EXPECT_EQ(result.err,
+            "isg import: error: two.bag: several topics could be the LiDAR: /points_filtered "
+            "(sensor_msgs/PointCloud2, 1 messages), /velodyne_points (sensor_msgs/PointCloud2, 10 "
+            "messages); choose one with --lidar-topic\n");
+  result = sandbox.run("import two.bag -o imported -q --lidar-topic /imu/data");
+  EXPECT_EQ(result.exit_code, 1);
+  EXPECT_EQ(result.err,
+            "isg import: error: two.bag: --lidar-topic /imu/data: the topic carries "
+            "sensor_msgs/Imu, the LiDAR must be sensor_msgs/PointCloud2\n");
+  // A cloud shorter than it says: the topic, its index, the reason.
+  result = sandbox.run("import two.bag -o imported -q --lidar-topic /velodyne_points");
+  EXPECT_EQ(result.exit_code, 1);
+  EXPECT_THAT(result.err, StartsWith("isg import: error: two.bag: topic /velodyne_points, message "
+                                     "3: 1 × "));
+  EXPECT_THAT(result.err, HasSubstr(" points need "));
+  EXPECT_FALSE(sandbox.exists("imported"));
+  // Up to the short cloud, it imports; the IMU said g, and is converted.
+  result = sandbox.run(
+      "import two.bag -o imported -q --lidar-topic /velodyne_points --duration "
+      "0.3");
+  ASSERT_EQ(result.exit_code, 0) << result.err;
+  EXPECT_THAT(result.out, HasSubstr("note: the IMU's specific force is in g (median norm 1.0"));
+  const std::string imu = sandbox.read("imported/imu.csv");
+  const std::size_t lines = std::size_t(std::count(imu.begin(), imu.end(), '\n'));
+  std::string original = sandbox.read("ds/imu.csv");
+  std::size_t end = 0;
+  for (std::size_t i = 0; i < lines; ++i) end = original.find('\n', end) + 1;
+  original.resize(end);
+  EXPECT_GT(lines, 50u);
+  EXPECT_LE(largestDifference(imu, original, 0, 7), 1e-6);
+  // Not a bag; no such file; an existing folder.
+  sandbox.write("fake.bag", "#ROSBAG V1.2\nsomething");
+  result = sandbox.run("import fake.bag -o other -q");
+  EXPECT_EQ(result.exit_code, 1);
+  EXPECT_THAT(result.err, StartsWith("isg import: error: fake.bag: "));
+  EXPECT_FALSE(sandbox.exists("other"));
+  result = sandbox.run("import two.bag -o imported -q --lidar-topic /velodyne_points");
+  EXPECT_EQ(result.exit_code, 1);
+  EXPECT_EQ(result.err,
+            "isg import: error: imported: already exists (use --force to replace it)\n");
+  // A dataset without odometry cannot be replayed yet: said, not attempted.
+  result = sandbox.run(
+      "import two.bag -o handheld -q --lidar-topic /velodyne_points --duration "
+      "0.3 --odom-topic none");
+  ASSERT_EQ(result.exit_code, 0) << result.err;
+  EXPECT_FALSE(sandbox.exists("handheld/odometry.tum"));
+  result = sandbox.run("slam handheld -o run -q");
+  EXPECT_EQ(result.exit_code, 1);
+  EXPECT_THAT(result.err, HasSubstr("handheld/odometry.tum: the dataset has no odometry"));
+}
+
+}  // namespace
+}  // namespace isg::cli

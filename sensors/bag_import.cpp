@@ -1,0 +1,697 @@
+#include "sensors/bag_import.hpp"
+
+#include <algorithm>
+#include <cctype>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <nlohmann/json.hpp>
+
+#include "bim/input_error.hpp"
+#include "sensors/atomic_folder.hpp"
+#include "sensors/cloud_layout.hpp"
+#include "sensors/dataset_format.hpp"
+#include "sensors/mount_transform.hpp"
+#include "sensors/ros_message_decode.hpp"
+#include "sensors/ros_messages.hpp"
+#include "sensors/rosbag_export.hpp"
+#include "sensors/rosbag_reader.hpp"
+#include "sensors/static_frames.hpp"
+
+namespace isg::sensors {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+constexpr const char* kNone = "none";
+constexpr const char* kCloudType = "sensor_msgs/PointCloud2";
+constexpr const char* kImuType = "sensor_msgs/Imu";
+constexpr const char* kOdometryType = "nav_msgs/Odometry";
+constexpr const char* kPoseType = "geometry_msgs/PoseStamped";
+constexpr const char* kStringType = "std_msgs/String";
+// An IMU whose specific force at rest has a norm within this of 1 reports it in g (Livox's, some
+// MEMS drivers), not m/s²: 0.2 g is far from both 1 m/s² and 9.81 m/s².
+constexpr double kGravityInG = 0.2;
+constexpr double kStandardGravity = 9.80665;
+
+// A topic of the bag: its connections merged (one topic may have several publishers).
+struct Topic {
+  std::string name, datatype, md5sum;
+  std::uint64_t messages = 0;
+};
+
+std::string lower(std::string text) {
+  for (char& c : text) c = char(std::tolower(static_cast<unsigned char>(c)));
+  return text;
+}
+
+// A ground-truth topic by its name: a name part (between '/' and '_') "gt", or the words
+// ground_truth, groundtruth, vicon, mocap.
+bool namedLikeGroundTruth(const std::string& topic) {
+  const std::string name = lower(topic);
+  for (const char* word : {"ground_truth", "groundtruth", "vicon", "mocap"}) {
+    if (name.find(word) != std::string::npos) return true;
+  }
+  std::string part;
+  for (char c : name + "/") {
+    if (c == '/' || c == '_') {
+      if (part == "gt") return true;
+      part.clear();
+    } else {
+      part += c;
+    }
+  }
+  return false;
+}
+
+class Import {
+ public:
+  Import(const std::string& bag_path, const BagImportOptions& options)
+      : bag_path_(bag_path), options_(options), bag_(bag_path) {}
+
+  BagImportSummary run(const fs::path& folder,
+                       const std::function<void(std::uint64_t, std::uint64_t)>& progress);
+
+ private:
+  [[noreturn]] void fail(const std::string& what) const {
+    throw bim::InputError(bag_path_, "", what);
+  }
+  [[noreturn]] void failMessage(const std::string& topic, std::uint64_t index,
+                                const std::string& what) const {
+    fail("topic " + topic + ", message " + std::to_string(index) + ": " + what);
+  }
+  void collectTopics();
+  std::string listing(const std::vector<const Topic*>& topics) const;
+  const Topic* findTopic(const std::string& name) const;
+  std::string chooseTopic(const char* role, const char* flag, const std::string& option,
+                          const std::vector<std::string>& types,
+                          const std::function<bool(const Topic&)>& preferred, bool required);
+  void chooseTopics();
+  void readStatic();
+  // The first message on `topic` (any time), for its frames before the long read.
+  std::string firstMessage(const std::string& topic);
+  void resolveFrames();
+  Eigen::Isometry3d mount(const char* sensor, const char* flag, const std::string& frame,
+                          const std::optional<std::array<double, 6>>& option);
+  // child_T_R for a pose stream whose child frame is `child`.
+  Eigen::Isometry3d childToBase(const std::string& topic, const std::string& child);
+  void readStreams(const fs::path& folder,
+                   const std::function<void(std::uint64_t, std::uint64_t)>& progress);
+  double seconds(RosTime t) const {
+    return double(std::int64_t(t.sec) - std::int64_t(origin_)) + 1e-9 * t.nsec;
+  }
+  void writeFiles(const fs::path& folder);
+  nlohmann::ordered_json metadata() const;
+
+  std::string bag_path_;
+  BagImportOptions options_;
+  RosbagReader bag_;
+  std::vector<Topic> topics_;
+  BagImportSummary summary_;
+  StaticFrames frames_;
+  std::optional<nlohmann::json> isg_metadata_;
+
+  // What was read, stamps as the bag has them.
+  std::vector<RosTime> scan_stamps_;
+  std::string lidar_frame_, imu_frame_, base_frame_, odometry_frame_, truth_frame_;
+  CloudLayout layout_;
+  struct TimedSample {
+    RosTime stamp;
+    ImuSample sample;
+  };
+  std::vector<TimedSample> imu_;
+  std::array<double, 2> imu_variance_{0.0, 0.0};  // gyroscope, accelerometer; 0: not given
+  struct TimedPose {
+    RosTime stamp;
+    Eigen::Isometry3d pose;
+  };
+  std::vector<TimedPose> odometry_, truth_;
+  std::string odometry_child_, truth_child_;
+  double time_min_ = 0.0, time_max_ = 0.0;
+  std::uint64_t clouds_with_time_ = 0, clouds_stamped_at_end_ = 0;
+  std::uint32_t origin_ = 0;
+  Eigen::Isometry3d R_T_L_ = Eigen::Isometry3d::Identity(), R_T_I_ = Eigen::Isometry3d::Identity();
+  Eigen::Isometry3d odometry_C_T_R_ = Eigen::Isometry3d::Identity(),
+                    truth_C_T_R_ = Eigen::Isometry3d::Identity();
+};
+
+void Import::collectTopics() {
+  for (const auto& connection : bag_.connections()) {
+    auto it = std::find_if(topics_.begin(), topics_.end(),
+                           [&](const Topic& t) { return t.name == connection.topic; });
+    if (it == topics_.end()) {
+      topics_.push_back({connection.topic, connection.type.datatype, connection.type.md5sum, 0});
+      it = topics_.end() - 1;
+    } else if (it->datatype != connection.type.datatype) {
+      fail("topic " + connection.topic + " carries both " + it->datatype + " and " +
+           connection.type.datatype + " (two publishers disagree)");
+    }
+    it->messages += connection.messages;
+  }
+  std::sort(topics_.begin(), topics_.end(),
+            [](const Topic& a, const Topic& b) { return a.name < b.name; });
+}
+
+std::string Import::listing(const std::vector<const Topic*>& topics) const {
+  std::string out;
+  for (const Topic* t : topics) {
+    out += std::string(out.empty() ? "" : ", ") + t->name + " (" + t->datatype + ", " +
+           std::to_string(t->messages) + " messages)";
+  }
+  return out.empty() ? "none" : out;
+}
+
+const Topic* Import::findTopic(const std::string& name) const {
+  for (const auto& t : topics_) {
+    if (t.name == name) return &t;
+  }
+  return nullptr;
+}
+
+std::string Import::chooseTopic(const char* role, const char* flag, const std::string& option,
+                                const std::vector<std::string>& types,
+                                const std::function<bool(const Topic&)>& preferred, bool required) {
+  std::vector<const Topic*> all;
+  for (const auto& t : topics_) all.push_back(&t);
+  std::string type_list;
+  for (const auto& type : types) type_list += (type_list.empty() ? "" : " or ") + type;
+  if (option == kNone) {
+    if (required) fail(std::string("the ") + role + " cannot be left out (" + flag + " none)");
+    return "";
+  }
+  if (!option.empty()) {
+    const Topic* topic = findTopic(option);
+    if (!topic) {
+      fail(std::string(flag) + " " + option +
+           ": the bag has no such topic (its topics: " + listing(all) + ")");
+    }
+    if (std::find(types.begin(), types.end(), topic->datatype) == types.end()) {
+      fail(std::string(flag) + " " + option + ": the topic carries " + topic->datatype + ", the " +
+           role + " must be " + type_list);
+    }
+    return option;
+  }
+  std::vector<const Topic*> candidates;
+  for (const auto& t : topics_) {
+    if (std::find(types.begin(), types.end(), t.datatype) != types.end() && preferred(t) &&
+        t.messages > 0) {
+      candidates.push_back(&t);
+    }
+  }
+  if (candidates.size() > 1) {
+    fail(std::string("several topics could be the ") + role + ": " + listing(candidates) +
+         "; choose one with " + flag);
+  }
+  if (candidates.empty()) {
+    if (required) {
+      fail(std::string("no ") + type_list + " topic for the " + role +
+           " (the bag's topics: " + listing(all) + "); name one with " + flag);
+    }
+    return "";
+  }
+  return candidates[0]->name;
+}
+
+void Import::chooseTopics() {
+  const auto anything = [](const Topic&) { return true; };
+  summary_.lidar.topic =
+      chooseTopic("LiDAR", "--lidar-topic", options_.lidar_topic, {kCloudType}, anything, true);
+  summary_.imu.topic =
+      chooseTopic("IMU", "--imu-topic", options_.imu_topic, {kImuType}, anything, false);
+  // Odometry and ground truth may both be nav_msgs/Odometry: told apart by name, and a topic
+  // named for one part is not a candidate for the other.
+  summary_.ground_truth.topic = chooseTopic(
+      "ground truth", "--ground-truth-topic", options_.ground_truth_topic,
+      {kOdometryType, kPoseType},
+      [&](const Topic& t) {
+        return namedLikeGroundTruth(t.name) && t.name != options_.odometry_topic;
+      },
+      false);
+  summary_.odometry.topic = chooseTopic(
+      "odometry", "--odom-topic", options_.odometry_topic, {kOdometryType},
+      [&](const Topic& t) {
+        return !namedLikeGroundTruth(t.name) && t.name != summary_.ground_truth.topic;
+      },
+      false);
+  if (!summary_.odometry.topic.empty() && summary_.odometry.topic == summary_.ground_truth.topic) {
+    fail("topic " + summary_.odometry.topic + " cannot be both the odometry and the ground truth");
+  }
+  // A type of another definition than the standard one would be misread: refused by its MD5.
+  const std::pair<const char*, RosMessageType> standard[] = {{kCloudType, ros1::pointCloud2Type()},
+                                                             {kImuType, ros1::imuType()},
+                                                             {kOdometryType, ros1::odometryType()},
+                                                             {kPoseType, ros1::poseStampedType()}};
+  for (auto* stream :
+       {&summary_.lidar, &summary_.imu, &summary_.odometry, &summary_.ground_truth}) {
+    if (stream->topic.empty()) continue;
+    const Topic* topic = findTopic(stream->topic);
+    stream->type = topic->datatype;
+    for (const auto& [name, type] : standard) {
+      if (topic->datatype == name && topic->md5sum != type.md5sum && topic->md5sum != "*") {
+        fail("topic " + topic->name + ": its " + name + " has the MD5 sum " + topic->md5sum +
+             ", not the standard definition's " + type.md5sum);
+      }
+    }
+  }
+}
+
+// The fixed frames from every tf_static topic, and an isg dataset's metadata, whatever the
+// window: both are latched once at the start.
+void Import::readStatic() {
+  std::vector<std::string> static_topics;
+  for (const auto& t : topics_) {
+    const bool tf_type = t.datatype == "tf2_msgs/TFMessage" || t.datatype == "tf/tfMessage";
+    if (tf_type && t.name.size() >= 9 && t.name.ends_with("tf_static")) {
+      static_topics.push_back(t.name);
+    }
+  }
+  std::map<std::string, std::uint64_t> counts;
+  if (!static_topics.empty()) {
+    bag_.read(static_topics, [&](const BagMessageView& m) {
+      const std::uint64_t index = counts[m.connection->topic]++;
+      try {
+        for (const auto& t : ros1::decodeTfMessage(m.data)) {
+          frames_.add(t.header.frame_id, t.child_frame_id, t.parent_T_child);
+        }
+      } catch (const ros1::MessageError& e) {
+        failMessage(m.connection->topic, index, e.what());
+      }
+      return true;
+    });
+  }
+  const Topic* made = findTopic(rosbag_names::kMetadataTopic);
+  if (made && made->datatype == kStringType) {
+    bag_.read({made->name}, [&](const BagMessageView& m) {
+      try {
+        isg_metadata_ = nlohmann::json::parse(ros1::decodeString(m.data));
+      } catch (const ros1::MessageError& e) {
+        failMessage(made->name, 0, e.what());
+      } catch (const nlohmann::json::exception& e) {
+        failMessage(made->name, 0, std::string("not a dataset's metadata (JSON): ") + e.what());
+      }
+      if (!isg_metadata_->is_object() || isg_metadata_->value("format", "") != dataset::kFormat) {
+        failMessage(made->name, 0, "not an isg dataset's metadata");
+      }
+      return false;
+    });
+  }
+}
+
+Eigen::Isometry3d Import::mount(const char* sensor, const char* flag, const std::string& frame,
+                                const std::optional<std::array<double, 6>>& option) {
+  if (option) return mountTransform(*option);
+  if (auto T = frames_.transform(base_frame_, frame)) return *T;
+  fail(std::string("no transform from the base frame \"") + base_frame_ + "\" to the " + sensor +
+       "'s frame \"" + frame + "\" in /tf_static: give " + flag + " X,Y,Z,ROLL,PITCH,YAW (the " +
+       sensor + "'s pose on the base, metres and radians)");
+}
+
+Eigen::Isometry3d Import::childToBase(const std::string& topic, const std::string& child) {
+  if (child.empty() || child == base_frame_) return Eigen::Isometry3d::Identity();
+  if (auto T = frames_.transform(child, base_frame_)) return *T;
+  fail("topic " + topic + " gives the pose of \"" + child + "\", and /tf_static has no transform " +
+       "from it to the base frame \"" + base_frame_ + "\"");
+}
+
+std::string Import::firstMessage(const std::string& topic) {
+  std::string data;
+  bag_.read({topic}, [&](const BagMessageView& m) {
+    data = std::string(m.data);
+    return false;
+  });
+  return data;
+}
+
+// The frames, from each stream's first message, and the mounts between them: a recording that
+// lacks a mount fails here, before its clouds are read.
+void Import::resolveFrames() {
+  try {
+    lidar_frame_ = ros1::decodePointCloud2(firstMessage(summary_.lidar.topic)).header.frame_id;
+  } catch (const ros1::MessageError& e) {
+    failMessage(summary_.lidar.topic, 0, e.what());
+  }
+  const auto poseOf = [&](const BagImportSummary::Stream& stream) {
+    const std::string data = firstMessage(stream.topic);
+    try {
+      return stream.type == kPoseType ? ros1::decodePoseStamped(data) : ros1::decodeOdometry(data);
+    } catch (const ros1::MessageError& e) {
+      failMessage(stream.topic, 0, e.what());
+    }
+  };
+  if (!summary_.odometry.topic.empty()) {
+    const ros1::StampedPose first = poseOf(summary_.odometry);
+    odometry_frame_ = first.header.frame_id;
+    odometry_child_ = first.child_frame_id;
+  }
+  if (!summary_.ground_truth.topic.empty()) {
+    const ros1::StampedPose first = poseOf(summary_.ground_truth);
+    truth_frame_ = first.header.frame_id;
+    truth_child_ = first.child_frame_id;
+    if (summary_.ground_truth.type == kPoseType) {
+      summary_.notes.push_back("the ground truth (" + summary_.ground_truth.topic +
+                               ", geometry_msgs/PoseStamped) is taken as the base frame's pose");
+    }
+  }
+  if (!summary_.imu.topic.empty()) {
+    try {
+      imu_frame_ = ros1::decodeImu(firstMessage(summary_.imu.topic)).header.frame_id;
+    } catch (const ros1::MessageError& e) {
+      failMessage(summary_.imu.topic, 0, e.what());
+    }
+  }
+  // The base is the odometry's child (or as told); a handheld sensor without odometry is its
+  // own base.
+  base_frame_ = !options_.base_frame.empty()       ? options_.base_frame
+                : !summary_.odometry.topic.empty() ? odometry_child_
+                                                   : lidar_frame_;
+  if (base_frame_.empty()) {
+    fail("the odometry on " + summary_.odometry.topic +
+         " names no child frame: give the base frame with --base-frame");
+  }
+  R_T_L_ = mount("LiDAR", "--lidar-extrinsic", lidar_frame_, options_.lidar_extrinsic);
+  if (!summary_.imu.topic.empty()) {
+    R_T_I_ = mount("IMU", "--imu-extrinsic", imu_frame_, options_.imu_extrinsic);
+  }
+  odometry_C_T_R_ = childToBase(summary_.odometry.topic, odometry_child_);
+  truth_C_T_R_ = childToBase(summary_.ground_truth.topic, truth_child_);
+}
+
+void Import::readStreams(const fs::path& folder,
+                         const std::function<void(std::uint64_t, std::uint64_t)>& progress) {
+  std::vector<std::string> topics;
+  for (auto* stream :
+       {&summary_.lidar, &summary_.imu, &summary_.odometry, &summary_.ground_truth}) {
+    if (!stream->topic.empty()) topics.push_back(stream->topic);
+  }
+  // The window, in the bag's record times.
+  const RosTime first = bag_.startTime();
+  const double begin = double(first.sec) + 1e-9 * first.nsec + options_.start;
+  const double end = options_.duration ? begin + *options_.duration : INFINITY;
+  const std::uint64_t total = findTopic(summary_.lidar.topic)->messages;
+  std::map<std::string, std::uint64_t> index;  // per topic: the message's place on it
+  fs::create_directories(folder / dataset::kScans);
+  bag_.read(topics, [&](const BagMessageView& m) {
+    const std::string& topic = m.connection->topic;
+    const std::uint64_t k = index[topic]++;
+    const double time = double(m.time.sec) + 1e-9 * m.time.nsec;
+    if (time < begin) return true;
+    if (time > end) return false;
+    try {
+      if (topic == summary_.lidar.topic) {
+        const ros1::PointCloud2 cloud = ros1::decodePointCloud2(m.data);
+        const CloudLayout layout = cloudLayout(cloud);
+        if (scan_stamps_.empty()) {
+          layout_ = layout;
+        } else if (layout.describe() != layout_.describe()) {
+          throw ros1::MessageError("its fields (" + layout.describe() +
+                                   ") are not the first cloud's (" + layout_.describe() + ")");
+        }
+        if (cloud.header.frame_id != lidar_frame_) {
+          throw ros1::MessageError("its frame \"" + cloud.header.frame_id +
+                                   "\" is not the first cloud's \"" + lidar_frame_ + "\"");
+        }
+        if (!scan_stamps_.empty() && !(scan_stamps_.back() < cloud.header.stamp)) {
+          throw ros1::MessageError("its stamp is not after the previous cloud's");
+        }
+        const std::vector<ScanPoint> points = cloudPoints(cloud, layout);
+        if (layout.time && !points.empty()) {
+          const auto [lo, hi] = std::minmax_element(
+              points.begin(), points.end(),
+              [](const ScanPoint& a, const ScanPoint& b) { return a.time < b.time; });
+          time_min_ = clouds_with_time_ == 0 ? lo->time : std::min<double>(time_min_, lo->time);
+          time_max_ = clouds_with_time_ == 0 ? hi->time : std::max<double>(time_max_, hi->time);
+          ++clouds_with_time_;
+          // Stamped at the end of the turn when most of its points came before the stamp.
+          const auto before = std::count_if(points.begin(), points.end(),
+                                            [](const ScanPoint& p) { return p.time < 0.0f; });
+          if (2 * std::size_t(before) > points.size()) ++clouds_stamped_at_end_;
+        }
+        summary_.points += points.size();
+        writeFile(folder / dataset::kScans / dataset::scanFileName(int(scan_stamps_.size())),
+                  dataset::pcdBytes(points, dataset::kDefaultPcdData));
+        scan_stamps_.push_back(cloud.header.stamp);
+        if (progress) progress(k + 1, total);
+      } else if (topic == summary_.imu.topic) {
+        const ros1::Imu imu = ros1::decodeImu(m.data);
+        if (imu.header.frame_id != imu_frame_) {
+          throw ros1::MessageError("its frame \"" + imu.header.frame_id +
+                                   "\" is not the first sample's \"" + imu_frame_ + "\"");
+        }
+        if (imu_.empty()) {
+          imu_variance_ = {imu.angular_velocity_covariance[0],
+                           imu.linear_acceleration_covariance[0]};
+        }
+        if (!imu_.empty() && !(imu_.back().stamp < imu.header.stamp)) {
+          throw ros1::MessageError("its stamp is not after the previous sample's");
+        }
+        ImuSample sample;
+        sample.accelerometer = imu.linear_acceleration;
+        sample.gyroscope = imu.angular_velocity;
+        imu_.push_back({imu.header.stamp, sample});
+      } else {
+        const bool odometry = topic == summary_.odometry.topic;
+        const ros1::StampedPose pose = findTopic(topic)->datatype == kPoseType
+                                           ? ros1::decodePoseStamped(m.data)
+                                           : ros1::decodeOdometry(m.data);
+        auto& poses = odometry ? odometry_ : truth_;
+        if (pose.child_frame_id != (odometry ? odometry_child_ : truth_child_)) {
+          throw ros1::MessageError("its child frame \"" + pose.child_frame_id +
+                                   "\" is not the first message's");
+        }
+        if (!poses.empty() && !(poses.back().stamp < pose.header.stamp)) {
+          throw ros1::MessageError("its stamp is not after the previous message's");
+        }
+        poses.push_back({pose.header.stamp, pose.pose});
+      }
+    } catch (const ros1::MessageError& e) {
+      failMessage(topic, k, e.what());
+    }
+    return true;
+  });
+  if (scan_stamps_.empty()) {
+    fail("topic " + summary_.lidar.topic + " has no cloud" +
+         (options_.start > 0 || options_.duration ? " in the window given (--start, --duration)"
+                                                  : ""));
+  }
+}
+
+// Pose at t between the rows of `poses` (slerp), nullopt outside their span.
+std::optional<Eigen::Isometry3d> poseAt(const Trajectory& poses, double t) {
+  if (poses.empty() || t < poses.front().t - 1e-9 || t > poses.back().t + 1e-9) return std::nullopt;
+  auto hi = std::lower_bound(poses.begin(), poses.end(), t,
+                             [](const StampedPose& p, double time) { return p.t < time; });
+  if (hi == poses.begin()) return poses.front().pose;
+  if (hi == poses.end()) return poses.back().pose;
+  const auto lo = hi - 1;
+  const double s = hi->t > lo->t ? std::clamp((t - lo->t) / (hi->t - lo->t), 0.0, 1.0) : 0.0;
+  Eigen::Isometry3d out = Eigen::Isometry3d::Identity();
+  out.linear() = Eigen::Quaterniond(lo->pose.linear())
+                     .slerp(s, Eigen::Quaterniond(hi->pose.linear()))
+                     .toRotationMatrix();
+  out.translation() = (1 - s) * lo->pose.translation() + s * hi->pose.translation();
+  return out;
+}
+
+double meanPeriod(const std::vector<double>& times) {
+  return times.size() < 2 ? 0.0 : (times.back() - times.front()) / double(times.size() - 1);
+}
+
+void Import::writeFiles(const fs::path& folder) {
+  // Dataset time 0: the whole second at or before the first imported stamp.
+  origin_ = scan_stamps_.front().sec;
+  for (const auto& s : imu_) origin_ = std::min(origin_, s.stamp.sec);
+  for (const auto* poses : {&odometry_, &truth_}) {
+    if (!poses->empty()) origin_ = std::min(origin_, poses->front().stamp.sec);
+  }
+
+  Trajectory odometry, truth;
+  for (const auto& p : odometry_) odometry.push_back({seconds(p.stamp), p.pose * odometry_C_T_R_});
+  for (const auto& p : truth_) truth.push_back({seconds(p.stamp), p.pose * truth_C_T_R_});
+
+  // The IMU's units: m/s² unless the specific force's median norm over the first second says g.
+  std::vector<ImuSample> imu;
+  for (const auto& s : imu_) {
+    ImuSample sample = s.sample;
+    sample.t = seconds(s.stamp);
+    imu.push_back(sample);
+  }
+  if (!imu.empty()) {
+    std::vector<double> norms;
+    for (const auto& s : imu) {
+      if (s.t > imu.front().t + 1.0) break;
+      norms.push_back(s.accelerometer.norm());
+    }
+    std::nth_element(norms.begin(), norms.begin() + norms.size() / 2, norms.end());
+    const double median = norms[norms.size() / 2];
+    if (std::abs(median - 1.0) < kGravityInG) {
+      for (auto& s : imu) s.accelerometer *= kStandardGravity;
+      imu_variance_[1] *= kStandardGravity * kStandardGravity;
+      char line[160];
+      std::snprintf(line, sizeof line,
+                    "the IMU's specific force is in g (median norm %.3f over its first second): "
+                    "converted to m/s²",
+                    median);
+      summary_.notes.push_back(line);
+    }
+  }
+
+  // Scans outside the odometry's span would have no motion prior: left out.
+  std::vector<double> stamps;
+  for (const auto& s : scan_stamps_) stamps.push_back(seconds(s));
+  std::size_t first = 0, last = stamps.size();
+  if (!odometry.empty()) {
+    while (first < last && stamps[first] < odometry.front().t) ++first;
+    while (last > first && stamps[last - 1] > odometry.back().t) --last;
+    if (first == last) {
+      fail("no cloud on " + summary_.lidar.topic + " lies within the odometry's time span (" +
+           summary_.odometry.topic + ")");
+    }
+    if (first > 0 || last < stamps.size()) {
+      summary_.notes.push_back(std::to_string(first + stamps.size() - last) +
+                               " clouds outside the odometry's time span left out");
+    }
+  }
+  const fs::path scans = folder / dataset::kScans;
+  for (std::size_t i = 0; i < stamps.size(); ++i) {
+    const fs::path file = scans / dataset::scanFileName(int(i));
+    if (i < first || i >= last) {
+      fs::remove(file);
+    } else if (first > 0) {
+      fs::rename(file, scans / dataset::scanFileName(int(i - first)));
+    }
+  }
+  stamps = std::vector<double>(stamps.begin() + std::ptrdiff_t(first),
+                               stamps.begin() + std::ptrdiff_t(last));
+  summary_.lidar.messages = stamps.size();
+  summary_.imu.messages = imu.size();
+  summary_.odometry.messages = odometry.size();
+  summary_.ground_truth.messages = truth.size();
+
+  // The turn about its stamp.
+  summary_.scan_period = stamps.size() >= 2 ? meanPeriod(stamps) : 0.1;
+  summary_.point_time = clouds_with_time_ > 0 && time_max_ > time_min_
+                            ? std::array<double, 2>{time_min_, time_max_}
+                            : std::array<double, 2>{0.0, summary_.scan_period};
+  summary_.stamp = 2 * clouds_stamped_at_end_ > clouds_with_time_ ? "last_packet" : "first_firing";
+  summary_.cloud_layout = layout_.describe();
+  summary_.seconds = stamps.back() + summary_.point_time[1];
+
+  // scans.tum when the ground truth covers every scan, else the stamps alone.
+  Trajectory scan_poses;
+  for (double t : stamps) {
+    const auto B_T_R = poseAt(truth, t);
+    if (!B_T_R) break;
+    scan_poses.push_back({t, *B_T_R * R_T_L_});
+  }
+  if (!truth.empty() && scan_poses.size() == stamps.size()) {
+    writeFile(folder / dataset::kScanPoses, dataset::trajectoryText(scan_poses));
+  } else {
+    if (!truth.empty()) {
+      summary_.notes.push_back(
+          "the ground truth does not cover every scan: scans.txt holds "
+          "their stamps, without poses");
+    }
+    writeFile(folder / dataset::kScanStamps, dataset::stampsText(stamps));
+  }
+  if (!odometry.empty()) writeFile(folder / dataset::kOdometry, dataset::trajectoryText(odometry));
+  if (!truth.empty()) writeFile(folder / dataset::kGroundTruth, dataset::trajectoryText(truth));
+  if (!imu.empty()) writeFile(folder / dataset::kImu, dataset::imuText(imu));
+
+  std::vector<double> imu_times;
+  for (const auto& s : imu) imu_times.push_back(s.t);
+  nlohmann::ordered_json m;
+  if (isg_metadata_) {
+    // An isg dataset exported to a bag: its own metadata back, counts and span as imported.
+    summary_.from_isg = true;
+    m = nlohmann::ordered_json::parse(isg_metadata_->dump());
+    if (options_.start > 0 || options_.duration) {
+      m["duration_s"] = summary_.seconds;
+      m["lidar"]["scans"] = stamps.size();
+      if (m.contains("imu") && m["imu"].is_object()) m["imu"]["samples"] = imu.size();
+    }
+    m["lidar"]["pcd_data"] = dataset::pcdDataName(dataset::kDefaultPcdData);
+  } else {
+    m = metadata();
+    m["duration_s"] = summary_.seconds;
+    m["extrinsics"] = {{"R_T_L", dataset::mountJson(mountXyzRpy(R_T_L_), R_T_L_)}};
+    if (!imu.empty()) m["extrinsics"]["R_T_I"] = dataset::mountJson(mountXyzRpy(R_T_I_), R_T_I_);
+    auto& lidar = m["lidar"];
+    lidar["rate_hz"] = 1.0 / summary_.scan_period;
+    lidar["scans"] = stamps.size();
+    lidar["stamp"] = summary_.stamp;
+    lidar["scan_period_s"] = summary_.scan_period;
+    lidar["point_time_s"] = summary_.point_time;
+    lidar["fields"] = summary_.cloud_layout;
+    lidar["pcd_data"] = dataset::pcdDataName(dataset::kDefaultPcdData);
+    if (!imu.empty()) {
+      const double rate = imu.size() >= 2 ? 1.0 / meanPeriod(imu_times) : 0.0;
+      nlohmann::ordered_json block = {
+          {"file", dataset::kImu}, {"rate_hz", rate}, {"samples", imu.size()}, {"frame", "I"}};
+      // The message's per-sample variances are density² × rate; given only when the driver
+      // filled them.
+      if (imu_variance_[0] > 0 && imu_variance_[1] > 0 && rate > 0) {
+        block["gyroscope_noise_density"] = std::sqrt(imu_variance_[0] / rate);
+        block["accelerometer_noise_density"] = std::sqrt(imu_variance_[1] / rate);
+      }
+      m["imu"] = block;
+    }
+    if (!odometry.empty()) {
+      std::vector<double> times;
+      for (const auto& p : odometry) times.push_back(p.t);
+      m["odometry"] = {{"rate_hz", times.size() >= 2 ? 1.0 / meanPeriod(times) : 0.0},
+                       {"topic", summary_.odometry.topic}};
+    }
+  }
+  m["imported_from"] = {{"file", fs::path(bag_path_).filename().string()},
+                        {"start_s", options_.start},
+                        {"time_origin_s", origin_},
+                        {"topics",
+                         {{"lidar", summary_.lidar.topic},
+                          {"imu", summary_.imu.topic},
+                          {"odometry", summary_.odometry.topic},
+                          {"ground_truth", summary_.ground_truth.topic}}},
+                        {"notes", summary_.notes}};
+  if (options_.duration) m["imported_from"]["duration_s"] = *options_.duration;
+  writeFile(folder / dataset::kMetadata, m.dump(2) + "\n");
+}
+
+nlohmann::ordered_json Import::metadata() const {
+  return {{"format", dataset::kFormat},
+          {"version", dataset::kVersion},
+          {"generator", "isg import 0.1.0"},
+          {"duration_s", 0.0},
+          {"frames",
+           {{"M", odometry_frame_.empty() ? "odometry frame (none recorded)" : odometry_frame_},
+            {"R", base_frame_},
+            {"L", lidar_frame_},
+            {"I", imu_frame_.empty() ? "(no IMU recorded)" : imu_frame_},
+            {"B", truth_frame_.empty() ? "plan frame (no ground truth recorded)" : truth_frame_}}},
+          {"extrinsics", nlohmann::ordered_json::object()},
+          {"lidar", {{"model", "recorded"}}}};
+}
+
+BagImportSummary Import::run(const fs::path& folder,
+                             const std::function<void(std::uint64_t, std::uint64_t)>& progress) {
+  collectTopics();
+  chooseTopics();
+  readStatic();
+  resolveFrames();
+  readStreams(folder, progress);
+  writeFiles(folder);
+  return summary_;
+}
+
+}  // namespace
+
+BagImportSummary importRosbag(const std::string& bag_path, const std::string& dataset_dir,
+                              const BagImportOptions& options,
+                              const std::function<void(std::uint64_t, std::uint64_t)>& progress) {
+  Import import(bag_path, options);
+  BagImportSummary summary;
+  writeFolderAtomically(dataset_dir, OutputKind::kDataset, options.overwrite,
+                        [&](const fs::path& folder) { summary = import.run(folder, progress); });
+  return summary;
+}
+
+}  // namespace isg::sensors
