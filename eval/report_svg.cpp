@@ -13,6 +13,7 @@ namespace {
 
 constexpr const char* kEstimateColour = "#1f6fd0";
 constexpr const char* kAlignedColour = "#8e44ad";
+constexpr const char* kMapPointColour = "#2a9d8f";
 constexpr const char* kLocalizedColour = "#d02020";
 
 struct OverlayStyle {
@@ -180,6 +181,16 @@ void drawMap(std::ostringstream& svg, const ReportInput& input, const Layout& l,
     polygon(svg, l, overlay.polygon, styleOf(overlay.kind).svg);
   }
   svg << "</g>\n";
+  if (!input.map_points.empty()) {
+    // At most ~20000 dots, each a round-capped stroke of no length: one element for all.
+    const std::size_t step = std::max<std::size_t>(1, input.map_points.size() / 20000);
+    svg << "<path fill=\"none\" stroke=\"" << kMapPointColour
+        << "\" stroke-width=\"1.6\" stroke-linecap=\"round\" stroke-opacity=\"0.55\" d=\"";
+    for (std::size_t i = 0; i < input.map_points.size(); i += step) {
+      svg << "M" << l.X(input.map_points[i].x()) << " " << l.Y(input.map_points[i].y()) << "h0";
+    }
+    svg << "\"/>\n";
+  }
   path(svg, l, input.odometry, "stroke=\"#e8a0a0\" stroke-width=\"1.2\" stroke-dasharray=\"4 3\"");
   path(svg, l, input.ground_truth, "stroke=\"black\" stroke-width=\"1.5\"");
   const std::string estimate_colour =
@@ -257,7 +268,8 @@ void drawLegend(std::ostringstream& svg, const ReportInput& input, const Layout&
              "\" stroke-width=\"3\"/>";
     };
   };
-  entry(line("black"), "ground truth");
+  if (!input.ground_truth.empty()) entry(line("black"), "ground truth");
+  if (!input.map_points.empty()) entry(line(kMapPointColour), "the map, placed in B");
   if (!input.estimate.empty() || input.estimate_is_localization) {
     entry(line(input.estimate_is_localization ? kEstimateColour : kAlignedColour),
           input.estimate_label);
@@ -315,6 +327,9 @@ void drawStoreys(std::ostringstream& svg, const ReportInput& input, const Layout
     on_storey.ground_truth = between(input.ground_truth, storey.z_min, storey.z_max);
     on_storey.estimate = between(input.estimate, storey.z_min, storey.z_max);
     on_storey.odometry = between(input.odometry, storey.z_min, storey.z_max);
+    for (const auto& p : input.map_points) {
+      if (p.z() >= storey.z_min && p.z() < storey.z_max) on_storey.map_points.push_back(p);
+    }
     on_storey.estimate_is_localization = input.estimate_is_localization;
     auto starts_here = [&](const Trajectory& t) {
       if (t.empty()) return false;

@@ -54,6 +54,9 @@ struct ReportInput {
   std::vector<std::pair<double, double>> error_over_time;          // (t, metres)
   std::vector<std::pair<double, double>> heading_error_over_time;  // (t, degrees)
   std::optional<double> localized_at;                              // seconds
+  // The run's map placed in B (a thinned cloud), drawn as dots under the trajectories: how its
+  // walls fall on the plan's.
+  std::vector<Eigen::Vector3d> map_points;
   std::string empty_chart_text = "never localized";
   // A building of several storeys: one map panel per storey, stacked, instead of the single map
   // of walls, overlays and labels above.

@@ -35,6 +35,7 @@ void LocalizerDriver::record() {
   estimate_map_.push_back({pose->stamp, pose->M_T_R});
   if (const auto B_T_M = localizer_.mapInPlan()) {
     if (!localized_at_) localized_at_ = pose->stamp;
+    B_T_M_ = *B_T_M;
     estimate_.push_back({pose->stamp, *B_T_M * pose->M_T_R});
   }
 }
@@ -66,6 +67,16 @@ RunRecord runLocalizer(RunSetup setup, slam::Localizer& localizer, sensors::Sens
       mark = now;
       driver.feed(scan);
       ++read;
+      if (record.map_samples.empty() ||
+          stamp >= record.map_samples.back().stamp + kMapSampleSeconds - 1e-9) {
+        MapScanSample sample{stamp, {}};
+        sample.points.reserve(scan.points.size() / kMapSampleStride + 1);
+        for (std::size_t i = 0; i < scan.points.size(); i += kMapSampleStride) {
+          const auto& p = scan.points[i];
+          sample.points.push_back({p.x, p.y, p.z, p.time});
+        }
+        record.map_samples.push_back(std::move(sample));
+      }
     } else {
       scans.skip(k);
       now = Clock::now();
@@ -92,6 +103,7 @@ RunRecord runLocalizer(RunSetup setup, slam::Localizer& localizer, sensors::Sens
   record.search_status = localizer.searchStatus();
   record.status_changes = localizer.statusChanges();
   record.map = localizer.mapDiagnostics();
+  record.final_B_T_M = driver.mapInPlan();
   record.wall_seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return record;

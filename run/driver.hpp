@@ -29,6 +29,8 @@ class LocalizerDriver {
   const Trajectory& estimateMap() const { return estimate_map_; }
   const Trajectory& estimate() const { return estimate_; }
   std::optional<double> localizedAt() const { return localized_at_; }
+  // The localizer's last word on where its map lies in the plan.
+  const std::optional<Eigen::Isometry3d>& mapInPlan() const { return B_T_M_; }
 
  private:
   void pushOdometryUntil(double t);
@@ -40,6 +42,7 @@ class LocalizerDriver {
   std::size_t next_odometry_ = 0;
   Trajectory estimate_map_, estimate_;
   std::optional<double> localized_at_;
+  std::optional<Eigen::Isometry3d> B_T_M_;
 };
 
 // Called after each scan: (scans fed, scans in all, the localizer).

@@ -5,6 +5,7 @@
 #include "eval/coverage.hpp"
 #include "eval/wrong_localization.hpp"
 #include "run/level_metrics.hpp"
+#include "run/map_plan_error.hpp"
 
 #include <set>
 #include <stdexcept>
@@ -144,6 +145,16 @@ RunEvaluation evaluateRun(const RunRecord& run) {
     m.time_wrongly_localized = wrong.seconds;
     m.max_error_B = wrong.max_error;
     m.max_height_error_B = wrong.max_height_error;
+  }
+  // The map against the plan's walls: with or without ground truth, once the map was placed.
+  const MapPlanErrorOptions map_options;
+  if (const auto map = mapPlanError(run, map_options)) {
+    m.map_to_plan = RunMetrics::MapToPlan{map->distance, std::int64_t(map->points), map->near_share,
+                                          map_options.cutoff};
+  } else if (run.setup.agraph) {
+    m.notes.push_back(run.final_B_T_M
+                          ? "no map-to-plan error: no scan point in a wall's height band"
+                          : "no map-to-plan error: the map was never placed in the plan");
   }
   m.matching_status = run.search_status;
   m.matching_events = run.status_changes;

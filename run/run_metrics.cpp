@@ -88,6 +88,13 @@ nlohmann::json metricsToJson(const RunMetrics& m) {
   if (m.time_wrongly_localized) j["time_wrongly_localized"] = *m.time_wrongly_localized;
   if (m.max_error_B) j["max_error_B"] = *m.max_error_B;
   if (m.max_height_error_B) j["max_height_error_B"] = *m.max_height_error_B;
+  if (m.map_to_plan) {
+    nlohmann::json map = statisticsJson(m.map_to_plan->distance);
+    map["points"] = m.map_to_plan->points;
+    map["near_share"] = m.map_to_plan->near_share;
+    map["cutoff_m"] = m.map_to_plan->cutoff;
+    j["map_to_plan"] = map;
+  }
   if (!m.levels.empty()) {
     nlohmann::json levels = nlohmann::json::array();
     for (const LevelMetrics& level : m.levels) {
@@ -165,6 +172,16 @@ RunMetrics metricsFromJson(const nlohmann::json& document, const std::string& fi
   m.time_wrongly_localized = optionalMeasure(root, "time_wrongly_localized");
   m.max_error_B = optionalMeasure(root, "max_error_B");
   m.max_height_error_B = optionalMeasure(root, "max_height_error_B");
+  if (const auto distance = optionalStatistics(root, "map_to_plan")) {
+    const auto map = root.field("map_to_plan");
+    RunMetrics::MapToPlan out;
+    out.distance = *distance;
+    out.points = map.field("points").integer();
+    if (out.points < 0) map.field("points").fail("must be >= 0");
+    out.near_share = map.field("near_share").numberInRange(0.0, 1.0);
+    out.cutoff = map.field("cutoff_m").nonNegativeNumber();
+    m.map_to_plan = out;
+  }
   if (const auto status = root.optionalField("matching_status")) {
     m.matching_status = status->string();
   }

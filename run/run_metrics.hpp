@@ -68,7 +68,17 @@ struct RunMetrics {
   std::optional<double> time_wrongly_localized;  // s
   std::optional<double> max_error_B;             // m, the largest 2D error of any row in B
   std::optional<double> max_height_error_B;      // m, the largest height error of any row in B
-  std::optional<std::string> matching_status;    // methods that search for a match
+  // The map against the plan's walls (run/map_plan_error.hpp), with or without ground truth: the
+  // distances of the points near the plan, how many points lay in a wall's height band, the share
+  // of them near the plan, and the cutoff that "near" means.
+  struct MapToPlan {
+    Statistics distance;
+    std::int64_t points = 0;
+    double near_share = 0.0;
+    double cutoff = 0.0;
+  };
+  std::optional<MapToPlan> map_to_plan;
+  std::optional<std::string> matching_status;  // methods that search for a match
   std::vector<slam::StatusChange> matching_events;
   // Stamps where the search status became "lost", and where it became "matched" again after.
   std::vector<double> lost_at;

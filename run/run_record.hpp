@@ -1,5 +1,7 @@
 #pragma once
 
+#include <Eigen/Geometry>
+#include <array>
 #include <cstdint>
 #include <nlohmann/json.hpp>
 #include <optional>
@@ -31,6 +33,16 @@ struct RunSetup {
   const bim::AsBuilt* as_built = nullptr;  // what the simulated building changed; may be null
 };
 
+// A thinned copy of a scan the localizer read, kept for the map-to-plan error
+// (docs/evaluation.md): its stamp and every kMapSampleStride-th point in L, with its time from
+// the stamp. One scan per kMapSampleSeconds of robot time: a few megabytes a minute.
+struct MapScanSample {
+  double stamp = 0.0;
+  std::vector<std::array<float, 4>> points;  // x y z time
+};
+inline constexpr int kMapSampleStride = 8;
+inline constexpr double kMapSampleSeconds = 1.0;
+
 // What one run produced, from the live loop (`isg run`) or a replay (`isg slam`): the streams it
 // was fed, what the localizer said after each scan, and what it can tell about itself.
 struct RunRecord {
@@ -53,6 +65,8 @@ struct RunRecord {
   std::optional<std::string> search_status;
   std::vector<slam::StatusChange> status_changes;
   std::optional<slam::MapDiagnostics> map;
+  std::vector<MapScanSample> map_samples;
+  std::optional<Eigen::Isometry3d> final_B_T_M;  // where the map lies in the plan at the end
 };
 
 }  // namespace isg::run

@@ -7,6 +7,7 @@
 #include "bim/plan_geometry.hpp"
 #include "eval/report_svg.hpp"
 #include "run/builtin_methods.hpp"
+#include "run/map_plan_error.hpp"
 
 namespace isg::run {
 
@@ -133,6 +134,13 @@ std::string storeyTitle(const bim::Level& level, const RunMetrics& m) {
   return title + ": not visited";
 }
 
+std::string mapToPlanLine(const RunMetrics::MapToPlan& map) {
+  return format(
+      "map against the plan's walls: rmse %.3f m over the %.0f %% of its %lld points in their "
+      "height band that lie within %.2f m of one",
+      map.distance.rmse, 100.0 * map.near_share, static_cast<long long>(map.points), map.cutoff);
+}
+
 }  // namespace
 
 std::string reportSvg(const RunRecord& run, const RunEvaluation& evaluation) {
@@ -155,6 +163,9 @@ std::string reportSvg(const RunRecord& run, const RunEvaluation& evaluation) {
     input.summary.push_back(format("WRONGLY LOCALIZED: %.1f s more than 1 m off (max %.2f m)",
                                    *m.time_wrongly_localized, *m.max_error_B));
   }
+  if (m.map_to_plan) input.summary.push_back(mapToPlanLine(*m.map_to_plan));
+  input.map_points = wallBandMapPoints(run);
+  if (run.streams.ground_truth.empty()) input.empty_chart_text = "no ground truth: no APE";
   if (m.ape_odometry_from_true_start) {
     input.summary.push_back(
         format("odometry from the true start: APE rmse %.3f m; %.1f s of robot time in %.1f s "
@@ -276,6 +287,7 @@ std::string runSummary(const std::string& command, const std::string& dir, const
     }
     out += "  lost at " + times + "\n";
   }
+  if (m.map_to_plan) out += "  " + mapToPlanLine(*m.map_to_plan) + "\n";
   if (m.ape_M_se3) {
     out += format("  APE in M after SE(3) alignment: rmse %.3f m\n", m.ape_M_se3->rmse);
   }

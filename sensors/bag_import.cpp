@@ -8,6 +8,7 @@
 #include <nlohmann/json.hpp>
 
 #include "bim/input_error.hpp"
+#include "eval/pose_interpolation.hpp"
 #include "sensors/atomic_folder.hpp"
 #include "sensors/cloud_layout.hpp"
 #include "sensors/dataset_format.hpp"
@@ -476,23 +477,6 @@ void Import::readStreams(const fs::path& folder,
   }
 }
 
-// Pose at t between the rows of `poses` (slerp), nullopt outside their span.
-std::optional<Eigen::Isometry3d> poseAt(const Trajectory& poses, double t) {
-  if (poses.empty() || t < poses.front().t - 1e-9 || t > poses.back().t + 1e-9) return std::nullopt;
-  auto hi = std::lower_bound(poses.begin(), poses.end(), t,
-                             [](const StampedPose& p, double time) { return p.t < time; });
-  if (hi == poses.begin()) return poses.front().pose;
-  if (hi == poses.end()) return poses.back().pose;
-  const auto lo = hi - 1;
-  const double s = hi->t > lo->t ? std::clamp((t - lo->t) / (hi->t - lo->t), 0.0, 1.0) : 0.0;
-  Eigen::Isometry3d out = Eigen::Isometry3d::Identity();
-  out.linear() = Eigen::Quaterniond(lo->pose.linear())
-                     .slerp(s, Eigen::Quaterniond(hi->pose.linear()))
-                     .toRotationMatrix();
-  out.translation() = (1 - s) * lo->pose.translation() + s * hi->pose.translation();
-  return out;
-}
-
 double meanPeriod(const std::vector<double>& times) {
   return times.size() < 2 ? 0.0 : (times.back() - times.front()) / double(times.size() - 1);
 }
@@ -580,7 +564,7 @@ void Import::writeFiles(const fs::path& folder) {
   // scans.tum when the ground truth covers every scan, else the stamps alone.
   Trajectory scan_poses;
   for (double t : stamps) {
-    const auto B_T_R = poseAt(truth, t);
+    const auto B_T_R = eval::interpolatePose(truth, t);
     if (!B_T_R) break;
     scan_poses.push_back({t, *B_T_R * R_T_L_});
   }

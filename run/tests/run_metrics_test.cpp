@@ -67,6 +67,7 @@ TEST(RunMetrics, JsonRoundTripOfARunWithEveryFieldSet) {
   m.time_wrongly_localized = 6.5;
   m.max_error_B = 3.25;
   m.max_height_error_B = 0.125;
+  m.map_to_plan = RunMetrics::MapToPlan{*m.ape_B, 56176, 0.875, 0.3};
   m.levels.push_back({"L1", 42.5, 3.25, 7.5, m.ape_B});
   m.levels.push_back({"L0", 10.0, 0.0, std::nullopt, std::nullopt});
   m.matching_events.push_back(
@@ -96,6 +97,11 @@ TEST(RunMetrics, JsonRoundTripOfARunWithEveryFieldSet) {
   EXPECT_EQ(back.time_wrongly_localized, 6.5);
   EXPECT_EQ(back.max_error_B, 3.25);
   EXPECT_EQ(back.max_height_error_B, 0.125);
+  ASSERT_TRUE(back.map_to_plan);
+  EXPECT_EQ(back.map_to_plan->distance.rmse, m.ape_B->rmse);
+  EXPECT_EQ(back.map_to_plan->points, 56176);
+  EXPECT_EQ(back.map_to_plan->near_share, 0.875);
+  EXPECT_EQ(back.map_to_plan->cutoff, 0.3);
   ASSERT_EQ(back.levels.size(), 2u);
   EXPECT_EQ(back.levels[0].level, "L1");
   EXPECT_EQ(back.levels[0].seconds, 42.5);

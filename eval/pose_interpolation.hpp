@@ -1,0 +1,14 @@
+#pragma once
+
+#include <Eigen/Geometry>
+#include <optional>
+
+#include "eval/tum.hpp"
+
+namespace isg::eval {
+
+// The pose at `t` between the rows of a time-ordered trajectory: positions linear, rotations
+// slerped; nullopt outside its span (a nanosecond of slack at either end).
+std::optional<Eigen::Isometry3d> interpolatePose(const Trajectory& trajectory, double t);
+
+}  // namespace isg::eval

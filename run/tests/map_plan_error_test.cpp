@@ -1,0 +1,85 @@
+// The map against the plan's walls, by hand on the two-room plan: the East room's faces are
+// x = 5.9 (W2), y = 3.9 (W3) and x = 3.05 (W5); walls 3 m high (W5 2.8 m), so with the 0.2 m
+// margin a point counts between z = 0.2 and 2.8.
+#include "run/map_plan_error.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "bim/agraph.hpp"
+#include "bim/tests/test_plans.hpp"
+
+namespace isg::run {
+namespace {
+
+Eigen::Isometry3d shifted(double x, double y) {
+  Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
+  T.translation() = Eigen::Vector3d(x, y, 0.0);
+  return T;
+}
+
+class MapPlanErrorTest : public ::testing::Test {
+ protected:
+  MapPlanErrorTest()
+      : plan_(bim::testing::parsePlanJson(bim::testing::twoRoomPlanJson())),
+        agraph_(bim::buildAGraph(plan_)) {
+    run_.setup.agraph = &agraph_;
+    run_.streams.odometry = {{0.0, Eigen::Isometry3d::Identity()},
+                             {1.0, Eigen::Isometry3d::Identity()}};
+    run_.estimate_map = run_.streams.odometry;
+    run_.final_B_T_M = Eigen::Isometry3d::Identity();
+    MapScanSample scan;
+    scan.stamp = 0.5;
+    scan.points = {{5.85f, 2.0f, 1.0f, 0.0f},   // 0.05 from W2
+                   {4.5f, 3.8f, 1.0f, 0.0f},    // 0.1 from W3
+                   {4.5f, 2.0f, 1.0f, 0.0f},    // 1.4 from the nearest face: counted, not near
+                   {4.5f, 2.0f, 0.05f, 0.0f},   // the floor: not counted
+                   {4.5f, 2.0f, 2.9f, 0.05f}};  // the ceiling: not counted
+    run_.map_samples = {scan};
+  }
+
+  bim::Plan plan_;
+  bim::AGraph agraph_;
+  RunRecord run_;
+};
+
+TEST_F(MapPlanErrorTest, DistancesToTheWallsInTheirBand) {
+  const auto error = mapPlanError(run_);
+  ASSERT_TRUE(error);
+  EXPECT_EQ(error->points, 3u);
+  EXPECT_NEAR(error->near_share, 2.0 / 3.0, 1e-12);
+  EXPECT_EQ(error->distance.count, 2);
+  EXPECT_NEAR(error->distance.rmse, std::sqrt((0.05 * 0.05 + 0.1 * 0.1) / 2), 1e-6);
+  EXPECT_EQ(wallBandMapPoints(run_).size(), 3u);
+}
+
+TEST_F(MapPlanErrorTest, PlacedByTheMapsPlaceInThePlan) {
+  run_.final_B_T_M = shifted(0.02, 0.0);
+  const auto error = mapPlanError(run_);
+  ASSERT_TRUE(error);
+  EXPECT_NEAR(error->distance.rmse, std::sqrt((0.03 * 0.03 + 0.1 * 0.1) / 2), 1e-6);
+}
+
+TEST_F(MapPlanErrorTest, PlacedByTheOptimisedKeyframesCarriedByOdometry) {
+  // The keyframe at 0.2 s was optimised 5 cm to -y of its odometry: every later point follows it,
+  // whatever the online estimate said.
+  slam::MapDiagnostics map;
+  map.keyframes.push_back({0.2, shifted(0.0, -0.05), Eigen::Isometry3d::Identity()});
+  run_.map = map;
+  const auto error = mapPlanError(run_);
+  ASSERT_TRUE(error);
+  EXPECT_NEAR(error->distance.rmse, std::sqrt((0.05 * 0.05 + 0.15 * 0.15) / 2), 1e-6);
+}
+
+TEST_F(MapPlanErrorTest, NothingWithoutAPlaceInThePlanOrAPlan) {
+  run_.final_B_T_M.reset();
+  EXPECT_FALSE(mapPlanError(run_));
+  EXPECT_TRUE(placedMapPoints(run_).empty());
+  run_.final_B_T_M = Eigen::Isometry3d::Identity();
+  run_.setup.agraph = nullptr;
+  EXPECT_FALSE(mapPlanError(run_));
+}
+
+}  // namespace
+}  // namespace isg::run
