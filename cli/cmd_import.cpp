@@ -174,7 +174,7 @@ int ImportCommand::importBag() {
   std::printf("isg import: wrote %s: %llu scans, %.1f s of robot time%s\n", output_.c_str(),
               (unsigned long long)summary.lidar.messages, summary.seconds,
               summary.odometry.topic.empty()
-                  ? "; no odometry: isg slam needs a motion prior from odometry"
+                  ? "; no odometry: isg slam makes it from the LiDAR (and the IMU)"
                   : "");
   return kExitOk;
 }

@@ -12,6 +12,7 @@
 #include "cli/progress_bar.hpp"
 #include "cli/run_session.hpp"
 #include "run/map_diagnosis.hpp"
+#include "run/odometry_source.hpp"
 #include "sensors/atomic_folder.hpp"
 #include "sensors/dataset_format.hpp"
 #include "sensors/dataset_reader.hpp"
@@ -86,13 +87,6 @@ SlamCommand::SlamCommand(CLI::App& parent) {
 int SlamCommand::run() {
   namespace fs = std::filesystem;
   sensors::DatasetReader dataset(dataset_);
-  if (dataset.odometry().empty()) {
-    // A recording imported without odometry (a handheld sensor): the localizers predict each
-    // keyframe from odometry and have no other motion prior yet.
-    throw bim::InputError((fs::path(dataset_) / sensors::dataset::kOdometry).string(), "",
-                          "the dataset has no odometry: isg slam's localizers need odometry "
-                          "(nav_msgs/Odometry when importing a recording, --odom-topic)");
-  }
   // Before the replay, not after it: a folder that cannot be written fails at once.
   sensors::checkCanCreateFolder(output_, sensors::OutputKind::kRunFolder, force_,
                                 {dataset_, plan_});
@@ -118,7 +112,13 @@ int SlamCommand::run() {
   context.seed = dataset.seed();
   context.options = options;
   context.threads = threads_;
-  const auto localizer = makeMethod(methods_, method, context);
+  const auto localizer = run::withOdometrySource(makeMethod(methods_, method, context), streams);
+  if (streams.odometry.empty() && !quiet_) {
+    std::fprintf(stderr,
+                 "isg slam: the dataset has no odometry: the LiDAR%s make%s it (docs/slam.md, "
+                 "\"Without odometry\")\n",
+                 streams.imu.empty() ? "" : " and the IMU", streams.imu.empty() ? "s" : "");
+  }
 
   // What was built differently, for the report: recorded with the dataset's own plan.
   std::optional<bim::AsBuilt> as_built;

@@ -6,9 +6,18 @@
 namespace isg::run {
 
 void LocalizerDriver::pushOdometryUntil(double t) {
-  while (next_odometry_ < odometry_.size() && odometry_[next_odometry_].t <= t) {
-    localizer_.pushOdometry({odometry_[next_odometry_].t, odometry_[next_odometry_].pose});
-    ++next_odometry_;
+  for (;;) {
+    const bool odometry = next_odometry_ < odometry_.size() && odometry_[next_odometry_].t <= t;
+    const bool imu = imu_ && next_imu_ < imu_->size() && (*imu_)[next_imu_].t <= t;
+    if (!odometry && !imu) return;
+    // The earlier first; odometry before an IMU sample of the same instant.
+    if (odometry && (!imu || odometry_[next_odometry_].t <= (*imu_)[next_imu_].t)) {
+      localizer_.pushOdometry({odometry_[next_odometry_].t, odometry_[next_odometry_].pose});
+      ++next_odometry_;
+    } else {
+      localizer_.pushImu((*imu_)[next_imu_]);
+      ++next_imu_;
+    }
   }
 }
 
@@ -47,7 +56,7 @@ RunRecord runLocalizer(RunSetup setup, slam::Localizer& localizer, sensors::Sens
   record.setup = std::move(setup);
   record.streams = std::move(streams);
   const sensors::SensorStreams& s = record.streams;
-  LocalizerDriver driver(localizer, s.odometry, s.scan_period);
+  LocalizerDriver driver(localizer, s.odometry, s.scan_period, &s.imu);
   const int total = int(s.scan_stamps.size());
   int read = 0;
   using Clock = std::chrono::steady_clock;

@@ -10,12 +10,14 @@
 
 namespace isg::run {
 
-// Feeds a localizer as the robot would: for each scan, the odometry up to the end of its turn
-// (when the scan is complete), then the scan; and records what the localizer says.
+// Feeds a localizer as the robot would: for each scan, the odometry and the IMU up to the end of
+// its turn (when the scan is complete), in time order, then the scan; and records what the
+// localizer says.
 class LocalizerDriver {
  public:
-  LocalizerDriver(slam::Localizer& localizer, const Trajectory& odometry, double scan_period)
-      : localizer_(localizer), odometry_(odometry), scan_period_(scan_period) {}
+  LocalizerDriver(slam::Localizer& localizer, const Trajectory& odometry, double scan_period,
+                  const std::vector<sensors::ImuSample>* imu = nullptr)
+      : localizer_(localizer), odometry_(odometry), imu_(imu), scan_period_(scan_period) {}
 
   // Pushes the odometry up to the end of the turn starting at `stamp` and says whether the
   // localizer will read that scan (Localizer::wantsScan). Either feed or skip follows.
@@ -38,8 +40,9 @@ class LocalizerDriver {
 
   slam::Localizer& localizer_;
   const Trajectory& odometry_;
+  const std::vector<sensors::ImuSample>* imu_;  // none: no IMU
   double scan_period_;
-  std::size_t next_odometry_ = 0;
+  std::size_t next_odometry_ = 0, next_imu_ = 0;
   Trajectory estimate_map_, estimate_;
   std::optional<double> localized_at_;
   std::optional<Eigen::Isometry3d> B_T_M_;

@@ -75,13 +75,14 @@ class SegmentGrid {
 };
 
 // The run's final M_T_R at any time: from the keyframe at or before it (the first for earlier
-// times), carried by odometry; without keyframes, the online estimate.
+// times), carried by odometry; without keyframes or without an odometry stream (the method made
+// its own from the scans), the online estimate.
 class FinalTrajectory {
  public:
   explicit FinalTrajectory(const RunRecord& run) : run_(run) {}
 
   std::optional<Eigen::Isometry3d> at(double t) const {
-    if (!run_.map || run_.map->keyframes.empty()) {
+    if (!run_.map || run_.map->keyframes.empty() || run_.streams.odometry.empty()) {
       return eval::interpolatePose(run_.estimate_map, t);
     }
     const auto& keyframes = run_.map->keyframes;

@@ -143,6 +143,8 @@ SensorStreams DatasetReader::streams() const {
   out.scan_stamps = scan_stamps_;
   out.scan_period = scan_period_;
   out.R_T_L = R_T_L_;
+  out.imu = imu_;
+  out.R_T_I = R_T_I_;
   out.duration = duration();
   return out;
 }

@@ -24,6 +24,10 @@ struct SensorStreams {
   double scan_period = 0.1;                                 // seconds per LiDAR turn
   double duration = 0.0;                                    // seconds of robot time the run covers
   Eigen::Isometry3d R_T_L = Eigen::Isometry3d::Identity();  // the LiDAR on the base
+  // The IMU, in its frame I, and its mount: a replayed dataset's imu.csv (the live loop gives
+  // none: its legged base always has odometry, and no method there reads the IMU).
+  std::vector<sensors::ImuSample> imu;
+  Eigen::Isometry3d R_T_I = Eigen::Isometry3d::Identity();
 };
 
 // Rounds ground truth, odometry and scan stamps to what their TUM files keep (eval::quantised):

@@ -22,6 +22,9 @@ class Localizer {
   virtual std::string name() const = 0;
   virtual void pushOdometry(const sensors::Odometry& odometry) = 0;
   virtual void pushScan(const sensors::Scan& scan) = 0;
+  // The IMU, up to the end of the next scan's turn before that scan. Methods that do not read
+  // it keep the default.
+  virtual void pushImu(const sensors::ImuSample& /*sample*/) {}
   // Whether pushScan would read the scan stamped `stamp`, given the odometry pushed so far (up to
   // the end of that scan's turn). When it says no, a loop may leave the scan unmade and not push
   // it at all: the method must then end up exactly as if it had been pushed. Methods that read

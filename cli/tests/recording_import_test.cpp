@@ -103,6 +103,19 @@ TEST(ImportRecording, OurOwnBagReplaysToTheSameEstimate) {
   EXPECT_LE(largestDifference(sandbox.read("a/estimate.tum"), sandbox.read("b/estimate.tum"), 4, 8),
             2e-9);
   EXPECT_NEAR(apeRmse(sandbox, "b"), apeRmse(sandbox, "a"), 1e-6);
+
+  // The same recording without its odometry: the LiDAR and the IMU make it, and the robot is
+  // localized as well (docs/slam.md, "Without odometry").
+  result = sandbox.run("import ds.bag -o handheld -q --odom-topic none");
+  ASSERT_EQ(result.exit_code, 0) << result.err;
+  EXPECT_THAT(result.out, HasSubstr("  odometry      none\n"));
+  result = sandbox.run("slam handheld --plan builtin:d1 -o c");
+  ASSERT_EQ(result.exit_code, 0) << result.err;
+  EXPECT_THAT(result.out, HasSubstr("localized at t = "));
+  EXPECT_LE(apeRmse(sandbox, "c"), 0.05);
+  const auto metrics = nlohmann::json::parse(sandbox.read("c/metrics.json"));
+  EXPECT_LE(metrics["map_to_plan"]["rmse"].get<double>(), 0.03);
+  EXPECT_GE(metrics["map_to_plan"]["near_share"].get<double>(), 0.95);
 }
 
 // The ROS 1 Velodyne driver's conventions (stamped at the end of the turn, PointXYZIRT with its
@@ -238,15 +251,16 @@ TEST(ImportRecording, BadRecordingsAreExactErrorsAndLeaveNothing) {
   EXPECT_EQ(result.exit_code, 1);
   EXPECT_EQ(result.err,
             "isg import: error: imported: already exists (use --force to replace it)\n");
-  // A dataset without odometry cannot be replayed yet: said, not attempted.
+  // Without odometry the replay makes it from the LiDAR and the IMU, and says so.
   result = sandbox.run(
       "import two.bag -o handheld -q --lidar-topic /velodyne_points --duration "
       "0.3 --odom-topic none");
   ASSERT_EQ(result.exit_code, 0) << result.err;
   EXPECT_FALSE(sandbox.exists("handheld/odometry.tum"));
-  result = sandbox.run("slam handheld -o run -q");
-  EXPECT_EQ(result.exit_code, 1);
-  EXPECT_THAT(result.err, HasSubstr("handheld/odometry.tum: the dataset has no odometry"));
+  result = sandbox.run("slam handheld -o run");
+  EXPECT_EQ(result.exit_code, 0) << result.err;
+  EXPECT_THAT(result.err, HasSubstr("isg slam: the dataset has no odometry: the LiDAR and the IMU "
+                                    "make it (docs/slam.md, \"Without odometry\")\n"));
 }
 
 }  // namespace

@@ -1,0 +1,180 @@
+#include "slam/sgraph/scan_odometry.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include "bim/angles.hpp"
+
+namespace isg::slam {
+
+namespace {
+
+Eigen::Matrix3d yawRotation(double yaw) {
+  return Eigen::AngleAxisd(yaw, Eigen::Vector3d::UnitZ()).toRotationMatrix();
+}
+
+}  // namespace
+
+ScanOdometry::ScanOdometry(const Eigen::Isometry3d& R_T_L, const Eigen::Isometry3d& R_T_I,
+                           const ScanOdometryOptions& options)
+    : R_T_L_(R_T_L), R_T_I_(R_T_I), options_(options) {}
+
+void ScanOdometry::addImu(const sensors::ImuSample& sample) {
+  const Eigen::Vector3d& a = sample.accelerometer;
+  const double g = a.norm();
+  // The accelerometer tells gravity only while it reads about 1 g.
+  const bool tells_gravity = g > 0.5 * options_.gravity && g < 1.5 * options_.gravity;
+  if (imu_samples_ == 0) {
+    // Level at the first sample: I's up as measured becomes M's z.
+    if (tells_gravity) M_q_I_ = Eigen::Quaterniond::FromTwoVectors(a / g, Eigen::Vector3d::UnitZ());
+  } else {
+    const double dt = sample.t - imu_time_;
+    if (!(dt > 0.0) || dt > 1.0) {
+      imu_time_ = sample.t;
+      return;
+    }
+    // Mahony's complementary filter: the rate, plus a pull of the estimated up (in I) towards the
+    // measured one.
+    Eigen::Vector3d rate = sample.gyroscope;
+    if (tells_gravity) {
+      const Eigen::Vector3d up_estimated = M_q_I_.conjugate() * Eigen::Vector3d::UnitZ();
+      rate += (a / g).cross(up_estimated) / options_.attitude_time_constant;
+    }
+    const Eigen::Vector3d turn = rate * dt;
+    if (turn.norm() > 0.0) {
+      M_q_I_ = M_q_I_ * Eigen::Quaterniond(Eigen::AngleAxisd(turn.norm(), turn.normalized()));
+      M_q_I_.normalize();
+    }
+  }
+  last_rate_ = sample.gyroscope;
+  imu_time_ = sample.t;
+  ++imu_samples_;
+  history_.push_back({sample.t, M_q_I_});
+  while (history_.size() > 2 && history_.front().first < sample.t - 2.0) history_.pop_front();
+}
+
+Eigen::Matrix3d ScanOdometry::M_R_I_at(double t) const {
+  if (history_.empty()) return Eigen::Matrix3d::Identity();
+  if (t >= history_.back().first) {
+    const Eigen::Vector3d turn = last_rate_ * (t - history_.back().first);
+    Eigen::Quaterniond q = history_.back().second;
+    if (turn.norm() > 0.0)
+      q = q * Eigen::Quaterniond(Eigen::AngleAxisd(turn.norm(), turn.normalized()));
+    return q.toRotationMatrix();
+  }
+  if (t <= history_.front().first) return history_.front().second.toRotationMatrix();
+  const auto hi = std::lower_bound(
+      history_.begin(), history_.end(), t,
+      [](const std::pair<double, Eigen::Quaterniond>& h, double time) { return h.first < time; });
+  const auto lo = hi - 1;
+  const double s = (t - lo->first) / (hi->first - lo->first);
+  return lo->second.slerp(s, hi->second).toRotationMatrix();
+}
+
+Eigen::Isometry3d ScanOdometry::predict(double t) const {
+  Eigen::Isometry3d out = Eigen::Isometry3d::Identity();
+  const double dt = last_stamp_ ? t - *last_stamp_ : 0.0;
+  if (hasImu()) {
+    out.linear() = M_R_I_at(t) * R_T_I_.linear().transpose();
+  } else {
+    out.linear() = yawRotation(yaw_rate_ * dt) * last_pose_.linear();
+  }
+  out.translation() = last_pose_.translation() + velocity_ * dt;
+  out.translation().z() = height_;
+  return out;
+}
+
+Eigen::Isometry3d ScanOdometry::extrapolate(double t) const { return predict(t); }
+
+void ScanOdometry::turnYaw(double angle) {
+  const Eigen::Quaterniond turn(Eigen::AngleAxisd(angle, Eigen::Vector3d::UnitZ()));
+  M_q_I_ = turn * M_q_I_;
+  for (auto& [time, q] : history_) q = turn * q;
+}
+
+Eigen::Isometry3d ScanOdometry::addScan(const sensors::Scan& scan) {
+  const double s = scan.stamp;
+  Eigen::Isometry3d predicted = predict(s);
+  if (!last_stamp_) {
+    // M is the base's start pose: its heading is M's x axis, its tilt what gravity says.
+    const double yaw = bim::yawOf(predicted.linear());
+    turnYaw(-yaw);
+    predicted.linear() = yawRotation(-yaw) * predicted.linear();
+    predicted.translation().setZero();
+  }
+  // The scan deskewed by the predicted motion: each point into L at the stamp.
+  sensors::Scan deskewed = scan;
+  const Eigen::Isometry3d L0_T_M = (predicted * R_T_L_).inverse();
+  float first = 0.0f, last = 0.0f;
+  for (const auto& p : scan.points) first = std::min(first, p.time), last = std::max(last, p.time);
+  constexpr double kStep = 0.005;  // s: the predicted motion is smooth within a turn
+  std::vector<Eigen::Isometry3d> L0_T_L;
+  for (int i = 0; i <= int(std::ceil((last - first) / kStep)); ++i) {
+    L0_T_L.push_back(L0_T_M * predict(s + first + i * kStep) * R_T_L_);
+  }
+  if (last_stamp_) {
+    for (auto& p : deskewed.points) {
+      const Eigen::Isometry3d& T = L0_T_L[std::size_t(std::lround((p.time - first) / kStep))];
+      const Eigen::Vector3d q = T * Eigen::Vector3d(p.x, p.y, p.z);
+      p.x = float(q.x()), p.y = float(q.y()), p.z = float(q.z());
+    }
+  }
+  std::vector<Eigen::Vector3f> cloud = downsampleScan(deskewed, options_.registration);
+
+  Eigen::Isometry3d pose = predicted;
+  if (map_ && !map_->empty() && !cloud.empty()) {
+    const double sigma_yaw = hasImu() ? options_.prior_sigma_yaw_imu : options_.prior_sigma_yaw;
+    const double st = options_.prior_sigma_translation;
+    const Eigen::Matrix3d prior =
+        Eigen::Vector3d(1.0 / (st * st), 1.0 / (st * st), 1.0 / (sigma_yaw * sigma_yaw))
+            .asDiagonal();
+    const RegistrationResult result =
+        registerScan(cloud, predicted, R_T_L_, *map_, prior, options_.registration);
+    ++registered_;
+    if (result.agrees) {
+      ++agreed_;
+      pose = result.apply(predicted);
+      pose.translation().z() = height_;
+      if (hasImu()) turnYaw(bim::yawOf(pose.linear()) - bim::yawOf(predicted.linear()));
+    }
+  }
+
+  // The velocity over the recent scans (`velocity_window`), not from the last two: a scan's
+  // registration is good to millimetres, and their differences over 0.1 s would feed back into the
+  // next prediction and deskew as noise of several cm/s.
+  recent_.push_back({s, pose});
+  while (recent_.size() > 2 && recent_.front().first < s - options_.velocity_window) {
+    recent_.pop_front();
+  }
+  if (recent_.size() >= 2) {
+    const auto& [t0, pose0] = recent_.front();
+    const double dt = s - t0;
+    if (dt > 0.0) {
+      velocity_ = (pose.translation() - pose0.translation()) / dt;
+      velocity_.z() = 0.0;
+      yaw_rate_ = bim::wrapAngle(bim::yawOf(pose.linear()) - bim::yawOf(pose0.linear())) / dt;
+    }
+  }
+  last_stamp_ = s;
+  last_pose_ = pose;
+
+  // A keyframe of the local map when the base moved or turned enough since the last one.
+  bool keyframe = keyframes_.empty();
+  if (!keyframe) {
+    const Eigen::Isometry3d moved = keyframes_.back().M_T_R.inverse() * pose;
+    keyframe = moved.translation().head<2>().norm() >= options_.keyframe_distance ||
+               std::abs(bim::yawOf(moved.linear())) >= options_.keyframe_angle;
+  }
+  if (keyframe && !cloud.empty()) {
+    keyframes_.push_back({std::move(cloud), pose});
+    while (int(keyframes_.size()) > options_.registration.local_map_keyframes) {
+      keyframes_.pop_front();
+    }
+    std::vector<LocalMap::Part> parts;
+    for (const auto& k : keyframes_) parts.push_back({&k.cloud, k.M_T_R * R_T_L_});
+    map_ = std::make_unique<LocalMap>(parts, options_.registration);
+  }
+  return pose;
+}
+
+}  // namespace isg::slam

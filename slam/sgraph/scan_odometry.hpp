@@ -1,0 +1,94 @@
+#pragma once
+
+#include <Eigen/Geometry>
+#include <deque>
+#include <memory>
+#include <optional>
+#include <utility>
+#include <vector>
+
+#include "sensors/messages.hpp"
+#include "slam/sgraph/scan_registration.hpp"
+
+namespace isg::slam {
+
+// Odometry for a robot that has none (a handheld sensor, a recording without wheel or leg
+// odometry), made from the LiDAR and, when there is one, the IMU (docs/slam.md, "Without
+// odometry"). The pose at each scan is predicted, then corrected by registering the scan to a
+// local map of recent scans:
+//   - roll and pitch: an attitude filter on the IMU (gyroscope integrated, pulled towards the
+//     accelerometer's gravity with a time constant of `attitude_time_constant`: walking's
+//     accelerations average out, gravity does not); level without an IMU;
+//   - yaw: predicted by the gyroscope (without an IMU, by the last turn rate), corrected by the
+//     registration;
+//   - x, y: predicted at constant velocity, corrected by the registration;
+//   - z: held at the start's (a single floor: without odometry the height has no source here).
+// The registration is the S-Graph's planar point-to-plane ICP (slam/sgraph/scan_registration.hpp)
+// against the scans of the latest `local_map_keyframes` odometry keyframes (one each
+// `keyframe_distance` or `keyframe_angle`), each scan first deskewed by the predicted motion.
+struct ScanOdometryOptions {
+  ScanRegistrationOptions registration;
+  double keyframe_distance = 0.3;  // m
+  double keyframe_angle = 0.2;     // rad
+  // How far the prediction is trusted, per scan: the registration's prior.
+  double prior_sigma_translation = 0.3;  // m
+  double prior_sigma_yaw_imu = 0.01;     // rad, gyroscope-predicted
+  double prior_sigma_yaw = 0.1;          // rad, predicted by the last turn rate
+  double attitude_time_constant = 2.0;   // s
+  // The velocity of the prediction: the mean over this much of the latest poses.
+  double velocity_window = 0.5;  // s
+  double gravity = 9.81;
+};
+
+class ScanOdometry {
+ public:
+  ScanOdometry(const Eigen::Isometry3d& R_T_L, const Eigen::Isometry3d& R_T_I,
+               const ScanOdometryOptions& options = {});
+
+  // IMU samples in time order, up to the end of the next scan's turn before that scan.
+  void addImu(const sensors::ImuSample& sample);
+  // The base's pose in M at the scan's stamp (the first scan: M's origin, levelled by gravity when
+  // the IMU has spoken); the scan is deskewed by the predicted motion and registered.
+  Eigen::Isometry3d addScan(const sensors::Scan& scan);
+  // The pose at `t` after the latest scan, extrapolated at the latest velocity (for the turn the
+  // latest scan spans).
+  Eigen::Isometry3d extrapolate(double t) const;
+  bool hasImu() const { return imu_samples_ > 0; }
+  // Scans whose registration agreed with the local map, of those registered.
+  int registered() const { return registered_; }
+  int agreed() const { return agreed_; }
+
+ private:
+  struct Keyframe {
+    std::vector<Eigen::Vector3f> cloud;  // in L
+    Eigen::Isometry3d M_T_R;
+  };
+  // The attitude filter's orientation of I in M at `t`: from its recent history, or moved on
+  // from the latest sample at the latest rate.
+  Eigen::Matrix3d M_R_I_at(double t) const;
+  // The base's pose at `t` as predicted from the latest scan's.
+  Eigen::Isometry3d predict(double t) const;
+  // Turns the attitude filter (and its history) about M's z: the registration's yaw correction.
+  void turnYaw(double angle);
+
+  Eigen::Isometry3d R_T_L_, R_T_I_;
+  ScanOdometryOptions options_;
+  // Attitude filter state.
+  Eigen::Quaterniond M_q_I_ = Eigen::Quaterniond::Identity();
+  double imu_time_ = 0.0;
+  Eigen::Vector3d last_rate_ = Eigen::Vector3d::Zero();
+  int imu_samples_ = 0;
+  std::deque<std::pair<double, Eigen::Quaterniond>> history_;  // the last 2 s
+  // Poses at the latest two scans, and their velocity.
+  std::optional<double> last_stamp_;
+  Eigen::Isometry3d last_pose_ = Eigen::Isometry3d::Identity();
+  Eigen::Vector3d velocity_ = Eigen::Vector3d::Zero();  // M, m/s
+  double yaw_rate_ = 0.0;                               // rad/s, without an IMU
+  std::deque<std::pair<double, Eigen::Isometry3d>> recent_;  // poses over velocity_window
+  double height_ = 0.0;
+  std::deque<Keyframe> keyframes_;
+  std::unique_ptr<LocalMap> map_;  // of keyframes_, rebuilt when one is added
+  int registered_ = 0, agreed_ = 0;
+};
+
+}  // namespace isg::slam

@@ -1,0 +1,129 @@
+// Odometry without odometry: the attitude filter against hand-made IMU readings, and the whole of
+// ScanOdometry on scans of a box room whose motion is known.
+#include "slam/sgraph/scan_odometry.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <numbers>
+
+#include "bim/angles.hpp"
+
+namespace isg::slam {
+namespace {
+
+constexpr double kDeg = std::numbers::pi / 180.0;
+
+Eigen::Matrix3d rollPitchYaw(double roll, double pitch, double yaw) {
+  return (Eigen::AngleAxisd(yaw, Eigen::Vector3d::UnitZ()) *
+          Eigen::AngleAxisd(pitch, Eigen::Vector3d::UnitY()) *
+          Eigen::AngleAxisd(roll, Eigen::Vector3d::UnitX()))
+      .toRotationMatrix();
+}
+
+double rollOf(const Eigen::Matrix3d& R) { return std::atan2(R(2, 1), R(2, 2)); }
+double pitchOf(const Eigen::Matrix3d& R) { return std::asin(-R(2, 0)); }
+
+// A unit at rest, tilted by `M_R_I`: it reads +g along M's up, in I.
+sensors::ImuSample atRest(double t, const Eigen::Matrix3d& M_R_I) {
+  sensors::ImuSample s;
+  s.t = t;
+  s.accelerometer = M_R_I.transpose() * Eigen::Vector3d(0, 0, 9.81);
+  return s;
+}
+
+sensors::Scan emptyScan(double t) {
+  sensors::Scan scan;
+  scan.stamp = t;
+  return scan;
+}
+
+TEST(ScanOdometry, GravityLevelsTheStartAndTheGyroscopeTurnsIt) {
+  // The IMU mounted turned 90° about z on the base; the base tilted 4° in roll, -3° in pitch.
+  Eigen::Isometry3d R_T_I = Eigen::Isometry3d::Identity();
+  R_T_I.linear() = rollPitchYaw(0, 0, std::numbers::pi / 2);
+  const Eigen::Matrix3d M_R_R = rollPitchYaw(4 * kDeg, -3 * kDeg, 0.7);
+  ScanOdometry odometry(Eigen::Isometry3d::Identity(), R_T_I);
+  for (int i = 0; i <= 100; ++i) odometry.addImu(atRest(0.01 * i, M_R_R * R_T_I.linear()));
+  const Eigen::Isometry3d start = odometry.addScan(emptyScan(1.0));
+  // M is the start pose: heading along x, tilt as gravity says, at the origin.
+  EXPECT_NEAR(rollOf(start.linear()), 4 * kDeg, 1e-6);
+  EXPECT_NEAR(pitchOf(start.linear()), -3 * kDeg, 1e-6);
+  EXPECT_NEAR(bim::yawOf(start.linear()), 0.0, 1e-9);
+  EXPECT_LT(start.translation().norm(), 1e-12);
+  // Turning at 0.5 rad/s about the base's up for one second, still level to gravity.
+  const Eigen::Vector3d up_in_I = (M_R_R * R_T_I.linear()).transpose() * Eigen::Vector3d::UnitZ();
+  for (int i = 1; i <= 100; ++i) {
+    sensors::ImuSample s = atRest(1.0 + 0.01 * i, M_R_R * R_T_I.linear());
+    s.gyroscope = 0.5 * up_in_I;
+    odometry.addImu(s);
+  }
+  const Eigen::Isometry3d turned = odometry.addScan(emptyScan(2.0));
+  EXPECT_NEAR(bim::yawOf(turned.linear()), 0.5, 0.01);
+  EXPECT_TRUE(odometry.hasImu());
+}
+
+TEST(ScanOdometry, TheAccelerometerPullsADriftingGyroscopeBackToLevel) {
+  // A gyroscope that believes the unit rolls at 1°/s while the accelerometer says level: the
+  // filter settles where the pull (tilt / τ) balances the rate: 1°/s × 2 s = 2°, not a drift of
+  // 30° over the 30 s.
+  ScanOdometry odometry(Eigen::Isometry3d::Identity(), Eigen::Isometry3d::Identity());
+  for (int i = 0; i <= 3000; ++i) {
+    sensors::ImuSample s = atRest(0.01 * i, Eigen::Matrix3d::Identity());
+    s.gyroscope = Eigen::Vector3d(1 * kDeg, 0, 0);
+    odometry.addImu(s);
+  }
+  const Eigen::Isometry3d pose = odometry.addScan(emptyScan(30.0));
+  EXPECT_NEAR(rollOf(pose.linear()), 2 * kDeg, 0.05 * kDeg);
+}
+
+// A 10 m × 6 m box room 3 m high, seen by a ring scanner at the origin of L: points where rays
+// in 16 elevations and 360 azimuths meet the walls, floor and ceiling, for a sensor at `M_T_L`.
+sensors::Scan boxScan(const Eigen::Isometry3d& M_T_L, double stamp) {
+  sensors::Scan scan;
+  scan.stamp = stamp;
+  const Eigen::Vector3d lo(-2, -3, -1), hi(8, 3, 2);
+  for (int ring = 0; ring < 16; ++ring) {
+    const double elevation = (-15.0 + 2.0 * ring) * kDeg;
+    for (int a = 0; a < 360; ++a) {
+      const double azimuth = a * kDeg;
+      const Eigen::Vector3d d_L(std::cos(elevation) * std::cos(azimuth),
+                                std::cos(elevation) * std::sin(azimuth), std::sin(elevation));
+      const Eigen::Vector3d o = M_T_L.translation(), d = M_T_L.linear() * d_L;
+      double best = 1e9;
+      for (int k = 0; k < 3; ++k) {
+        if (std::abs(d[k]) < 1e-9) continue;
+        for (double wall : {lo[k], hi[k]}) {
+          const double s = (wall - o[k]) / d[k];
+          if (s > 0 && s < best) best = s;
+        }
+      }
+      const Eigen::Vector3d p = d_L * best;
+      scan.points.push_back(
+          {float(p.x()), float(p.y()), float(p.z()), 50.0f, std::uint16_t(ring), 0.0f});
+    }
+  }
+  return scan;
+}
+
+TEST(ScanOdometry, FollowsAWalkAcrossARoomFromTheScansAlone) {
+  // No IMU: the base walks 3 m along x at 0.5 m/s while turning 0.3 rad, level; the scans alone
+  // must follow it.
+  ScanOdometry odometry(Eigen::Isometry3d::Identity(), Eigen::Isometry3d::Identity());
+  Eigen::Isometry3d truth = Eigen::Isometry3d::Identity();
+  Eigen::Isometry3d estimate = Eigen::Isometry3d::Identity();
+  for (int k = 0; k <= 60; ++k) {
+    const double t = 0.1 * k;
+    truth = Eigen::Isometry3d::Identity();
+    truth.translation() = Eigen::Vector3d(0.05 * k, 0.01 * k, 0.0);
+    truth.linear() = rollPitchYaw(0, 0, 0.005 * k);
+    estimate = odometry.addScan(boxScan(truth, t));
+  }
+  EXPECT_NEAR(estimate.translation().x(), truth.translation().x(), 0.03);
+  EXPECT_NEAR(estimate.translation().y(), truth.translation().y(), 0.03);
+  EXPECT_NEAR(bim::yawOf(estimate.linear()), 0.3, 0.01);
+  EXPECT_GT(odometry.agreed(), 55);
+}
+
+}  // namespace
+}  // namespace isg::slam
