@@ -100,6 +100,27 @@ struct RecordAt {
   std::uint64_t end = 0;  // just past the record
 };
 
+// What a record's two readers share, once its header block and data length are read: the
+// header's fields, the data's place (`data_available` bytes follow the length; `beyond` ends
+// the message when the data does not fit) and the op.
+bool completeRecord(std::string_view header, std::uint32_t data_size, std::uint64_t data_offset,
+                    std::uint64_t data_available, const std::string& beyond, RecordAt& record,
+                    std::string& error) {
+  if (!parseFields(header, record.fields, error)) return false;
+  record.data_size = data_size;
+  if (data_size > data_available) {
+    error = "the record's data runs past the end" + beyond;
+    return false;
+  }
+  record.data_offset = data_offset;
+  record.end = data_offset + data_size;
+  if (!fieldValue(record.fields, "op", record.op)) {
+    error = "the record has no one-byte op field";
+    return false;
+  }
+  return true;
+}
+
 // Reads the record at `offset` of `bytes` (a chunk), or fails with `error`.
 bool recordIn(std::string_view bytes, std::uint64_t offset, RecordAt& record, std::string& error) {
   if (offset > bytes.size() || bytes.size() - offset < 4) {
@@ -108,26 +129,17 @@ bool recordIn(std::string_view bytes, std::uint64_t offset, RecordAt& record, st
   }
   std::uint32_t header_size;
   std::memcpy(&header_size, bytes.data() + offset, 4);
-  std::uint64_t at = offset + 4;
+  const std::uint64_t at = offset + 4;
   if (header_size > bytes.size() - at || bytes.size() - at - header_size < 4) {
     error = "the record's header runs past the end (" + std::to_string(header_size) + " bytes)";
     return false;
   }
-  if (!parseFields(bytes.substr(at, header_size), record.fields, error)) return false;
-  at += header_size;
-  std::memcpy(&record.data_size, bytes.data() + at, 4);
-  at += 4;
-  if (record.data_size > bytes.size() - at) {
-    error = "the record's data runs past the end (" + std::to_string(record.data_size) + " bytes)";
-    return false;
-  }
-  record.data_offset = at;
-  record.end = at + record.data_size;
-  if (!fieldValue(record.fields, "op", record.op)) {
-    error = "the record has no one-byte op field";
-    return false;
-  }
-  return true;
+  std::uint32_t data_size;
+  std::memcpy(&data_size, bytes.data() + at + header_size, 4);
+  const std::uint64_t data_offset = at + header_size + 4;
+  return completeRecord(bytes.substr(at, header_size), data_size, data_offset,
+                        bytes.size() - data_offset, " (" + std::to_string(data_size) + " bytes)",
+                        record, error);
 }
 
 // Reads `size` bytes at `offset` of the stream, or returns false.
@@ -156,20 +168,11 @@ bool fileRecord(std::istream& in, std::uint64_t file_size, std::uint64_t offset,
   }
   std::string header;
   readAt(in, offset + 4, header_size + 4, header);
-  if (!parseFields(std::string_view(header).substr(0, header_size), record.fields, error))
-    return false;
-  std::memcpy(&record.data_size, header.data() + header_size, 4);
-  record.data_offset = offset + 8 + header_size;
-  if (record.data_size > file_size - record.data_offset) {
-    error = "the record's data runs past the end of the file (truncated?)";
-    return false;
-  }
-  record.end = record.data_offset + record.data_size;
-  if (!fieldValue(record.fields, "op", record.op)) {
-    error = "the record has no one-byte op field";
-    return false;
-  }
-  return true;
+  std::uint32_t data_size;
+  std::memcpy(&data_size, header.data() + header_size, 4);
+  const std::uint64_t data_offset = offset + 8 + header_size;
+  return completeRecord(std::string_view(header).substr(0, header_size), data_size, data_offset,
+                        file_size - data_offset, " of the file (truncated?)", record, error);
 }
 
 }  // namespace

@@ -73,7 +73,8 @@ class RosbagReader {
     RosTime time;
     std::uint32_t chunk = 0;
     std::uint32_t offset = 0;      // of the message record in the uncompressed chunk
-    std::uint32_t connection = 0;  // index into connections_
+    // Index into connections_ (its connection number as read, until readIndex maps it).
+    std::uint32_t connection = 0;
   };
   void open();
   void readIndex(std::uint64_t index_position, std::uint32_t connection_count,

@@ -4,7 +4,6 @@
 #include "sensors/rosbag_reader.hpp"
 
 #include <gtest/gtest.h>
-#include <unistd.h>
 
 #include <cstdlib>
 #include <cstring>
@@ -16,25 +15,16 @@
 
 #include "bim/input_error.hpp"
 #include "sensors/rosbag_writer.hpp"
+#include "sensors/tests/scratch_files.hpp"
 
 namespace isg::sensors {
 namespace {
 
 namespace fs = std::filesystem;
+using test_files::slurp;
 
 fs::path scratch(const std::string& name) {
-  const fs::path dir =
-      fs::temp_directory_path() / ("isg_rosbag_reader_" + name + "_" + std::to_string(::getpid()));
-  fs::remove_all(dir);
-  fs::create_directories(dir);
-  return dir;
-}
-
-std::string slurp(const fs::path& p) {
-  std::ifstream in(p, std::ios::binary);
-  std::ostringstream s;
-  s << in.rdbuf();
-  return s.str();
+  return test_files::scratchFolder("rosbag_reader_" + name);
 }
 
 std::string hex(std::string_view bytes) {

@@ -1,7 +1,6 @@
 // The bag container and the export on their own; cli/tests/rosbag_oracle.py reads a whole
 // exported dataset with Debian's python3-rosbag.
 #include <gtest/gtest.h>
-#include <unistd.h>
 
 #include <cstring>
 #include <filesystem>
@@ -15,26 +14,15 @@
 #include "sensors/imu_file.hpp"
 #include "sensors/rosbag_export.hpp"
 #include "sensors/rosbag_writer.hpp"
+#include "sensors/tests/scratch_files.hpp"
 
 namespace isg::sensors {
 namespace {
 
 namespace fs = std::filesystem;
+using test_files::slurp;
 
-std::string slurp(const fs::path& p) {
-  std::ifstream in(p, std::ios::binary);
-  std::ostringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
-
-fs::path scratch(const std::string& name) {
-  const fs::path dir =
-      fs::temp_directory_path() / ("isg_rosbag_" + name + "_" + std::to_string(::getpid()));
-  fs::remove_all(dir);
-  fs::create_directories(dir);
-  return dir;
-}
+fs::path scratch(const std::string& name) { return test_files::scratchFolder("rosbag_" + name); }
 
 // One record of a bag: its header fields and its data.
 struct Record {
