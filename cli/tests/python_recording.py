@@ -89,6 +89,21 @@ def column(points, offset, size, n):
     return out
 
 
+def cloud_message(seq, when, frame, fields, point_step, data):
+    """An unorganised little-endian cloud of `data`, with no-return points (not dense)."""
+    cloud = PointCloud2()
+    cloud.header.seq = seq
+    cloud.header.stamp = when
+    cloud.header.frame_id = frame
+    cloud.height, cloud.width = 1, len(data) // point_step
+    cloud.fields = fields
+    cloud.is_bigendian = False
+    cloud.point_step, cloud.row_step = point_step, len(data)
+    cloud.data = bytes(data)
+    cloud.is_dense = False
+    return cloud
+
+
 def velodyne_cloud(points, t, seq, period):
     n = len(points) // 22
     nan_points = n // 1000
@@ -105,22 +120,13 @@ def velodyne_cloud(points, t, seq, period):
     nan = struct.pack("<fff", float("nan"), float("nan"), float("nan"))
     for i in range(nan_points):
         out[32 * (n + i):32 * (n + i) + 12] = nan
-    cloud = PointCloud2()
-    cloud.header.seq = seq
-    cloud.header.stamp = stamp(t + period)
-    cloud.header.frame_id = "velodyne"
-    cloud.height, cloud.width = 1, n + nan_points
-    cloud.fields = [PointField("x", 0, PointField.FLOAT32, 1),
-                    PointField("y", 4, PointField.FLOAT32, 1),
-                    PointField("z", 8, PointField.FLOAT32, 1),
-                    PointField("intensity", 16, PointField.FLOAT32, 1),
-                    PointField("ring", 20, PointField.UINT16, 1),
-                    PointField("time", 24, PointField.FLOAT32, 1)]
-    cloud.is_bigendian = False
-    cloud.point_step, cloud.row_step = 32, 32 * cloud.width
-    cloud.data = bytes(out)
-    cloud.is_dense = False
-    return cloud
+    return cloud_message(seq, stamp(t + period), "velodyne", [
+        PointField("x", 0, PointField.FLOAT32, 1),
+        PointField("y", 4, PointField.FLOAT32, 1),
+        PointField("z", 8, PointField.FLOAT32, 1),
+        PointField("intensity", 16, PointField.FLOAT32, 1),
+        PointField("ring", 20, PointField.UINT16, 1),
+        PointField("time", 24, PointField.FLOAT32, 1)], 32, out)
 
 
 def ouster_cloud(points, t, seq):
@@ -136,25 +142,16 @@ def ouster_cloud(points, t, seq):
     for b in range(4):
         out[20 + b:48 * n:48] = ns[b::4]
     out[26:48 * n:48] = ring8
-    cloud = PointCloud2()
-    cloud.header.seq = seq
-    cloud.header.stamp = stamp(t)
-    cloud.header.frame_id = "os_sensor"
-    cloud.height, cloud.width = 1, n + empty
-    cloud.fields = [PointField("x", 0, PointField.FLOAT32, 1),
-                    PointField("y", 4, PointField.FLOAT32, 1),
-                    PointField("z", 8, PointField.FLOAT32, 1),
-                    PointField("intensity", 16, PointField.FLOAT32, 1),
-                    PointField("t", 20, PointField.UINT32, 1),
-                    PointField("reflectivity", 24, PointField.UINT16, 1),
-                    PointField("ring", 26, PointField.UINT8, 1),
-                    PointField("ambient", 28, PointField.UINT16, 1),
-                    PointField("range", 32, PointField.UINT32, 1)]
-    cloud.is_bigendian = False
-    cloud.point_step, cloud.row_step = 48, 48 * cloud.width
-    cloud.data = bytes(out)
-    cloud.is_dense = False
-    return cloud
+    return cloud_message(seq, stamp(t), "os_sensor", [
+        PointField("x", 0, PointField.FLOAT32, 1),
+        PointField("y", 4, PointField.FLOAT32, 1),
+        PointField("z", 8, PointField.FLOAT32, 1),
+        PointField("intensity", 16, PointField.FLOAT32, 1),
+        PointField("t", 20, PointField.UINT32, 1),
+        PointField("reflectivity", 24, PointField.UINT16, 1),
+        PointField("ring", 26, PointField.UINT8, 1),
+        PointField("ambient", 28, PointField.UINT16, 1),
+        PointField("range", 32, PointField.UINT32, 1)], 48, out)
 
 
 def pose_fields(row, target):
