@@ -52,12 +52,15 @@ std::optional<bim::Plan> replayPlan(const std::string& plan_argument, bool other
 SlamCommand::SlamCommand(CLI::App& parent) {
   app_ = parent.add_subcommand("slam", "Replay a recorded dataset through a localizer");
   app_->footer(
-      "Feeds the dataset's odometry and scans, in time order, to the localizer through the same "
-      "driver as isg run (the same seed gives the same result, byte for byte). With --plan, the "
+      "Feeds the dataset's odometry, IMU and scans, in time order, to the localizer through the "
+      "same driver as isg run (the same seed gives the same result, byte for byte); a dataset "
+      "without odometry (an imported handheld recording) gets odometry made from its LiDAR and "
+      "IMU (docs/slam.md, \"Without odometry\"). With --plan, the "
       "iS-Graph localizes in that plan; without it, the S-Graph maps in M only. Writes the run "
       "folder of isg run (estimate.tum in B once localized, estimate_map.tum in M, "
       "keyframes.tum, metrics.json, sgraph.json, report.svg, ...; docs/evaluation.md) and "
-      "reports APE, the map's rooms and per-keyframe timings.\n\n" +
+      "reports APE (with ground truth), the map against the plan's walls (with a plan), the "
+      "map's rooms and per-keyframe timings.\n\n" +
       methodHelp(methods_));
   app_->add_option("dataset", dataset_, "dataset folder made by isg simulate (or in its format)")
       ->option_text("DATASET_DIR")
