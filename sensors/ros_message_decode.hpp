@@ -43,7 +43,7 @@ struct PointCloud2 {
   std::vector<PointField> fields;
   bool is_bigendian = false;
   std::uint32_t point_step = 0, row_step = 0;
-  std::string_view data;  // into the message's bytes
+  std::string_view data;  // a view of the decoded bytes: they must outlive it
   bool is_dense = false;
 };
 

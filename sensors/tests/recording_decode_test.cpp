@@ -27,7 +27,9 @@ TEST(RecordingDecode, MessagesReadBackWhatOurEncodersWrote) {
   const RosTime t{1600000000, 250000000};
   const std::vector<ScanPoint> points = {{1.0f, 2.0f, 3.0f, 40.0f, 7, 0.05f},
                                          {-4.0f, 0.5f, -1.0f, 3.0f, 15, 0.099f}};
-  const ros1::PointCloud2 cloud = ros1::decodePointCloud2(ros1::pointCloud2(points, t, 9, "lidar"));
+  // The decoded cloud's data is a view of the message's bytes: they must outlive it.
+  const std::string message = ros1::pointCloud2(points, t, 9, "lidar");
+  const ros1::PointCloud2 cloud = ros1::decodePointCloud2(message);
   EXPECT_EQ(cloud.header.seq, 9u);
   EXPECT_EQ(cloud.header.stamp.sec, t.sec);
   EXPECT_EQ(cloud.header.stamp.nsec, t.nsec);
