@@ -24,13 +24,29 @@ struct Route {
   std::vector<Eigen::Vector2d> waypoints;
 };
 
-// The trot's sway of the body: height bob, roll and pitch at the gait frequency.
+// What carries the sensors (docs/simulation.md, "Carriers"): a legged base with leg odometry, or a
+// person walking with the sensors in hand (no odometry stream: the localizer has the LiDAR and the
+// IMU only).
+enum class Carrier { kLegged, kHandheld };
+inline const char* carrierName(Carrier c) { return c == Carrier::kLegged ? "legged" : "handheld"; }
+
+// How the carrier sways the sensors while it walks. Legged: the trot's height bob, roll and pitch
+// at the gait frequency. Handheld: the walker's steps bob the sensors and pitch them at the step
+// frequency, each stride (two steps) sways them sideways and rolls them, and the walker turns
+// their head and hands about the way ahead.
 struct GaitSettings {
-  double frequency_hz = 1.8;
+  double frequency_hz = 1.8;  // trot cycles, or steps, per second
   double bob_m = 0.015;
   double roll_deg = 2.0;
   double pitch_deg = 2.0;
+  double sway_m = 0.0;         // sideways, at half the step frequency (handheld)
+  double head_turn_deg = 0.0;  // yaw about the way ahead, slow and irregular (handheld)
 };
+// The handheld carrier's defaults: a person's walk (vertical bob of the body's centre about
+// ±2–3 cm, lateral sway about ±2–3 cm at 1.8 steps per second), with the sensors held on a short
+// pole that the walker turns about the way ahead.
+inline GaitSettings handheldGait() { return {1.8, 0.025, 2.0, 1.5, 0.025, 15.0}; }
+inline constexpr double kHandheldSpeed = 0.8;  // m/s: a slow surveying walk
 
 // The robot lifted at `time` and put down elsewhere (the kidnapped-robot problem): at a room's
 // most open point with a heading drawn from the seed, or at a pose [x, y, yaw]. Exactly one of
@@ -47,11 +63,12 @@ struct Kidnap {
 inline constexpr double kDefaultRobotClearance = 0.35;
 
 struct RobotConfig {
+  Carrier carrier = Carrier::kLegged;
   std::string level;                          // id of the level the robot walks on
   std::optional<std::string> start_room;      // start at the centre of this room ...
   std::optional<Eigen::Vector3d> start_pose;  // ... or at [x, y, yaw]; exactly one is set
   Route route;
-  double speed = 0.5;                         // m/s
+  double speed = 0.5;                         // m/s (kHandheldSpeed for a person)
   double clearance = kDefaultRobotClearance;  // m, kept by the route planner
   GaitSettings gait;
   std::vector<Kidnap> kidnap;  // in time order

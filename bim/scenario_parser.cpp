@@ -94,7 +94,18 @@ RobotConfig parseRobot(const std::optional<JsonNode>& node, const Plan& plan) {
                            : std::optional(plan.levels.front().rooms.front().id);
     return robot;
   }
-  node->expectObject({"level", "start", "route", "speed", "clearance", "gait", "kidnap"});
+  node->expectObject(
+      {"carrier", "level", "start", "route", "speed", "clearance", "gait", "kidnap"});
+  if (auto carrier = node->optionalField("carrier")) {
+    const std::string name = carrier->string();
+    if (name == "handheld") {
+      robot.carrier = Carrier::kHandheld;
+      robot.gait = handheldGait();
+      robot.speed = kHandheldSpeed;
+    } else if (name != "legged") {
+      carrier->fail("unknown carrier " + inQuotes(name) + " (expected \"legged\" or \"handheld\")");
+    }
+  }
   const Level* level = &plan.levels.front();
   if (auto l = node->optionalField("level")) {
     level = &levelNamed(plan, *l);
@@ -146,12 +157,16 @@ RobotConfig parseRobot(const std::optional<JsonNode>& node, const Plan& plan) {
     robot.clearance = clearance->numberInRange(0.2, 2.0);
   }
   if (auto gait = node->optionalField("gait")) {
-    gait->expectObject({"frequency_hz", "bob_m", "roll_deg", "pitch_deg"});
+    gait->expectObject(
+        {"frequency_hz", "bob_m", "roll_deg", "pitch_deg", "sway_m", "head_turn_deg"});
     auto& g = robot.gait;
     if (auto v = gait->optionalField("frequency_hz")) g.frequency_hz = v->numberInRange(0.1, 10.0);
     if (auto v = gait->optionalField("bob_m")) g.bob_m = v->numberInRange(0.0, 0.2);
     if (auto v = gait->optionalField("roll_deg")) g.roll_deg = v->numberInRange(0.0, 20.0);
     if (auto v = gait->optionalField("pitch_deg")) g.pitch_deg = v->numberInRange(0.0, 20.0);
+    if (auto v = gait->optionalField("sway_m")) g.sway_m = v->numberInRange(0.0, 0.2);
+    if (auto v = gait->optionalField("head_turn_deg"))
+      g.head_turn_deg = v->numberInRange(0.0, 60.0);
   }
   if (auto kidnap = node->optionalField("kidnap"))
     robot.kidnap = parseKidnaps(*kidnap, plan, *level);
@@ -466,6 +481,20 @@ Scenario parseScenario(const JsonNode& root, const PlanLoader& load_plan) {
   scenario.robot = parseRobot(root.optionalField("robot"), scenario.plan);
   if (auto lidar = root.optionalField("lidar")) scenario.lidar = parseLidar(*lidar);
   if (auto odometry = root.optionalField("odometry")) scenario.odometry = parseOdometry(*odometry);
+  if (scenario.robot.carrier == Carrier::kHandheld) {
+    // A person carries no odometer and has no robot body in the LiDAR's view.
+    if (auto odometry = root.optionalField("odometry")) {
+      odometry->fail("a handheld carrier has no odometry (robot.carrier is \"handheld\")");
+    }
+    const auto lidar = root.optionalField("lidar");
+    if (lidar && lidar->has("body_occlusion") && lidar->field("body_occlusion").boolean()) {
+      lidar->field("body_occlusion")
+          .fail(
+              "a handheld carrier has no robot body to occlude the LiDAR (robot.carrier is "
+              "\"handheld\")");
+    }
+    scenario.lidar.body_occlusion = false;
+  }
   if (auto imu = root.optionalField("imu")) scenario.imu = parseImu(*imu);
   if (auto as_built = root.optionalField("as_built")) {
     scenario.as_built = parseAsBuilt(*as_built, scenario.plan, scenario.robot.level);

@@ -88,11 +88,13 @@ int RunCommand::run() {
   context.agraph = &agraph;
   context.level = scenario.robot.level;
   context.R_T_L = streams.R_T_L;
+  context.R_T_I = streams.R_T_I;
   context.start_B_T_M = sensors::trueStartB_T_M(streams);
   context.seed = scenario.seed;
   context.options = options;
   context.threads = threads_;
-  const auto localizer = makeMethod(methods_, method_, context);
+  const auto localizer =
+      withOdometry("isg run", makeMethod(methods_, method_, context), streams, quiet_);
 
   run::RunSetup setup{
       input,          localizer->name(), scenario.seed,        worlds::worldHash(scenario),

@@ -12,7 +12,6 @@
 #include "cli/progress_bar.hpp"
 #include "cli/run_session.hpp"
 #include "run/map_diagnosis.hpp"
-#include "run/odometry_source.hpp"
 #include "sensors/atomic_folder.hpp"
 #include "sensors/dataset_format.hpp"
 #include "sensors/dataset_reader.hpp"
@@ -111,17 +110,13 @@ int SlamCommand::run() {
   context.agraph = plan ? &agraph : nullptr;
   context.level = level;
   context.R_T_L = streams.R_T_L;
+  context.R_T_I = streams.R_T_I;
   context.start_B_T_M = sensors::trueStartB_T_M(streams);
   context.seed = dataset.seed();
   context.options = options;
   context.threads = threads_;
-  const auto localizer = run::withOdometrySource(makeMethod(methods_, method, context), streams);
-  if (streams.odometry.empty() && !quiet_) {
-    std::fprintf(stderr,
-                 "isg slam: the dataset has no odometry: the LiDAR%s make%s it (docs/slam.md, "
-                 "\"Without odometry\")\n",
-                 streams.imu.empty() ? "" : " and the IMU", streams.imu.empty() ? "s" : "");
-  }
+  const auto localizer =
+      withOdometry("isg slam", makeMethod(methods_, method, context), streams, quiet_);
 
   // What was built differently, for the report: recorded with the dataset's own plan.
   std::optional<bim::AsBuilt> as_built;

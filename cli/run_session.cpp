@@ -6,6 +6,7 @@
 #include <cstdio>
 
 #include "bim/input_error.hpp"
+#include "run/odometry_source.hpp"
 #include "run/run_folder.hpp"
 #include "run/run_report.hpp"
 
@@ -47,6 +48,19 @@ std::unique_ptr<slam::Localizer> makeMethod(const run::LocalizerRegistry& regist
   } catch (const std::invalid_argument& e) {
     throw bim::InputError("--method " + method, "", e.what());
   }
+}
+
+std::unique_ptr<slam::Localizer> withOdometry(const char* command,
+                                              std::unique_ptr<slam::Localizer> method,
+                                              const sensors::SensorStreams& streams, bool quiet) {
+  if (streams.odometry.empty() && !quiet) {
+    std::fprintf(stderr,
+                 "%s: there is no odometry: the LiDAR%s make%s it (docs/slam.md, \"Without "
+                 "odometry\")\n",
+                 command, streams.imu.empty() ? "" : " and the IMU",
+                 streams.imu.empty() ? "s" : "");
+  }
+  return run::withOdometrySource(std::move(method), streams);
 }
 
 run::RunProgress progressOn(ProgressBar& bar, double scan_period) {

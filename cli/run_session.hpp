@@ -33,6 +33,13 @@ std::unique_ptr<slam::Localizer> makeMethod(const run::LocalizerRegistry& regist
                                             const std::string& method,
                                             const run::LocalizerContext& context);
 
+// The method behind the odometry it is given: the streams' own, or, when they have none (a
+// handheld carrier, a recording without it), the one the LiDAR and the IMU make
+// (run::withOdometrySource); says so on stderr unless `quiet`.
+std::unique_ptr<slam::Localizer> withOdometry(const char* command,
+                                              std::unique_ptr<slam::Localizer> method,
+                                              const sensors::SensorStreams& streams, bool quiet);
+
 // A progress callback drawing `bar`: robot time so far and the localizer's state.
 run::RunProgress progressOn(ProgressBar& bar, double scan_period);
 

@@ -21,6 +21,7 @@ struct LocalizerContext {
   const bim::AGraph* agraph = nullptr;  // its A-Graph
   std::string level;                    // the level the robot walks
   Eigen::Isometry3d R_T_L = Eigen::Isometry3d::Identity();  // the LiDAR on the base
+  Eigen::Isometry3d R_T_I = Eigen::Isometry3d::Identity();  // the IMU on the base
   // The start hint: where M lies in B at the start (the true start pose). Only methods that are
   // given their start (dead reckoning, trackers) read it; global localizers never do.
   std::optional<Eigen::Isometry3d> start_B_T_M;

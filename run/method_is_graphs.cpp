@@ -11,7 +11,10 @@ void addISGraphs(LocalizerRegistry& registry) {
                 .make = [](const LocalizerContext& c) {
                   slam::ISGraphOptions options;
                   options.sgraph.threads = c.threads;
-                  return std::make_unique<slam::ISGraphLocalizer>(c.R_T_L, *c.agraph, options);
+                  auto localizer =
+                      std::make_unique<slam::ISGraphLocalizer>(c.R_T_L, *c.agraph, options);
+                  localizer->setImuMount(c.R_T_I);
+                  return localizer;
                 }});
 }
 

@@ -11,7 +11,9 @@ void addSGraph(LocalizerRegistry& registry) {
                 .make = [](const LocalizerContext& c) {
                   slam::SGraphOptions options;
                   options.threads = c.threads;
-                  return std::make_unique<slam::SGraphLocalizer>(c.R_T_L, options);
+                  auto localizer = std::make_unique<slam::SGraphLocalizer>(c.R_T_L, options);
+                  localizer->setImuMount(c.R_T_I);
+                  return localizer;
                 }});
 }
 

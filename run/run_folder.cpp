@@ -16,7 +16,10 @@ void writeRunFolder(const std::string& dir, const RunRecord& run, const RunEvalu
       dir, sensors::OutputKind::kRunFolder, force, [&](const fs::path& temporary) {
         sensors::writeFile(temporary / "groundtruth.tum",
                            eval::toTumText(run.streams.ground_truth));
-        sensors::writeFile(temporary / "odometry.tum", eval::toTumText(run.streams.odometry));
+        // No odometry stream (a handheld carrier, a recording without it): no odometry.tum.
+        if (!run.streams.odometry.empty()) {
+          sensors::writeFile(temporary / "odometry.tum", eval::toTumText(run.streams.odometry));
+        }
         sensors::writeFile(temporary / "estimate.tum", eval::toTumText(run.estimate));
         sensors::writeFile(temporary / "estimate_map.tum", eval::toTumText(run.estimate_map));
         sensors::writeFile(temporary / kMetricsFile,

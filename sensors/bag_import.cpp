@@ -477,10 +477,6 @@ void Import::readStreams(const fs::path& folder,
   }
 }
 
-double meanPeriod(const std::vector<double>& times) {
-  return times.size() < 2 ? 0.0 : (times.back() - times.front()) / double(times.size() - 1);
-}
-
 void Import::writeFiles(const fs::path& folder) {
   // Dataset time 0: the whole second at or before the first imported stamp.
   origin_ = scan_stamps_.front().sec;
@@ -553,7 +549,7 @@ void Import::writeFiles(const fs::path& folder) {
   summary_.ground_truth.messages = truth.size();
 
   // The turn about its stamp.
-  summary_.scan_period = stamps.size() >= 2 ? meanPeriod(stamps) : 0.1;
+  summary_.scan_period = dataset::meanPeriod(stamps).value_or(0.1);
   summary_.point_time = clouds_with_time_ > 0 && time_max_ > time_min_
                             ? std::array<double, 2>{time_min_, time_max_}
                             : std::array<double, 2>{0.0, summary_.scan_period};
@@ -609,7 +605,7 @@ void Import::writeFiles(const fs::path& folder) {
     lidar["fields"] = summary_.cloud_layout;
     lidar["pcd_data"] = dataset::pcdDataName(dataset::kDefaultPcdData);
     if (!imu.empty()) {
-      const double rate = imu.size() >= 2 ? 1.0 / meanPeriod(imu_times) : 0.0;
+      const double rate = imu.size() >= 2 ? 1.0 / *dataset::meanPeriod(imu_times) : 0.0;
       nlohmann::ordered_json block = {
           {"file", dataset::kImu}, {"rate_hz", rate}, {"samples", imu.size()}, {"frame", "I"}};
       // The message's per-sample variances are density² × rate; given only when the driver
@@ -623,7 +619,7 @@ void Import::writeFiles(const fs::path& folder) {
     if (!odometry.empty()) {
       std::vector<double> times;
       for (const auto& p : odometry) times.push_back(p.t);
-      m["odometry"] = {{"rate_hz", times.size() >= 2 ? 1.0 / meanPeriod(times) : 0.0},
+      m["odometry"] = {{"rate_hz", times.size() >= 2 ? 1.0 / *dataset::meanPeriod(times) : 0.0},
                        {"topic", summary_.odometry.topic}};
     }
   }

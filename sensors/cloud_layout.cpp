@@ -60,7 +60,7 @@ double valueAt(const char* point, const ros1::PointField& field) {
 }
 
 std::optional<ros1::PointField> find(const ros1::PointCloud2& cloud,
-                               std::initializer_list<const char*> names) {
+                                     std::initializer_list<const char*> names) {
   for (const char* name : names) {
     for (const auto& field : cloud.fields) {
       if (field.name != name) continue;

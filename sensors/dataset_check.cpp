@@ -32,12 +32,6 @@ std::optional<double> numberAt(const nlohmann::json& root,
 }
 
 // The mean spacing of increasing stamps; nullopt for fewer than two.
-template <typename Stamps>
-std::optional<double> meanPeriod(const Stamps& stamps) {
-  if (stamps.size() < 2) return std::nullopt;
-  return (stamps.back() - stamps.front()) / double(stamps.size() - 1);
-}
-
 // B_T_R at `t` from the ground truth, interpolated between its rows; nullopt outside its span.
 std::optional<Eigen::Vector3d> groundTruthAt(const Trajectory& truth, double t) {
   if (truth.empty() || t < truth.front().t - 1e-9 || t > truth.back().t + 1e-9) return std::nullopt;
@@ -70,7 +64,7 @@ void checkDatasetAgainstMetadata(const DatasetReader& dataset) {
   std::vector<double> stamps;
   for (int i = 0; i < scans; ++i) stamps.push_back(dataset.scanStamp(i));
   if (const auto declared = numberAt(m, {"lidar", "scan_period_s"})) {
-    if (const auto period = meanPeriod(stamps);
+    if (const auto period = dataset::meanPeriod(stamps);
         period && std::abs(*period / *declared - 1.0) > 0.01) {
       disagree("/lidar/scan_period_s", "says " + number(*declared) + " s, scans.tum's stamps are " +
                                            number(*period) + " s apart on average");
@@ -80,7 +74,8 @@ void checkDatasetAgainstMetadata(const DatasetReader& dataset) {
   const bool cut_by_angle = !(m.is_object() && m.contains("lidar") && m["lidar"].is_object() &&
                               m["lidar"].contains("cut") && m["lidar"]["cut"] != "angle");
   if (const auto rate = numberAt(m, {"lidar", "rate_hz"}); rate && cut_by_angle) {
-    if (const auto period = meanPeriod(stamps); period && std::abs(*period * *rate - 1.0) > 0.01) {
+    if (const auto period = dataset::meanPeriod(stamps);
+        period && std::abs(*period * *rate - 1.0) > 0.01) {
       disagree("/lidar/rate_hz", "says " + number(*rate) + " Hz, scans.tum's stamps are " +
                                      number(1.0 / *period) + " Hz apart on average");
     }
@@ -139,7 +134,7 @@ void checkDatasetAgainstMetadata(const DatasetReader& dataset) {
     if (const auto rate = numberAt(m, {"imu", "rate_hz"})) {
       std::vector<double> imu_stamps;
       for (const auto& s : imu) imu_stamps.push_back(s.t);
-      if (const auto period = meanPeriod(imu_stamps);
+      if (const auto period = dataset::meanPeriod(imu_stamps);
           period && std::abs(*period * *rate - 1.0) > 0.01) {
         disagree("/imu/rate_hz", "says " + number(*rate) + " Hz, " + imu_file + "'s samples are " +
                                      number(1.0 / *period) + " Hz apart on average");

@@ -17,6 +17,11 @@ std::string scanFileName(int index) {
   return name;
 }
 
+std::optional<double> meanPeriod(const std::vector<double>& stamps) {
+  if (stamps.size() < 2) return std::nullopt;
+  return (stamps.back() - stamps.front()) / double(stamps.size() - 1);
+}
+
 std::string trajectoryText(const Trajectory& trajectory) { return eval::toTumText(trajectory); }
 
 std::string stampsText(const std::vector<double>& stamps) {

@@ -2,6 +2,7 @@
 
 #include <Eigen/Geometry>
 #include <nlohmann/json.hpp>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -28,6 +29,9 @@ inline constexpr int kVersion = 1;
 
 // "000042.pcd": scans sort by name in time order.
 std::string scanFileName(int index);
+
+// The mean time between consecutive stamps (in order); none for fewer than two.
+std::optional<double> meanPeriod(const std::vector<double>& stamps);
 
 // A trajectory file's text (TUM, eval::toTumText).
 std::string trajectoryText(const Trajectory& trajectory);

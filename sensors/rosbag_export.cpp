@@ -86,8 +86,10 @@ RosbagSummary exportRosbag(const std::string& dataset_dir, const std::string& ba
   RosbagWriter bag(bag_path, options.overwrite);
   const int tf_static = bag.connect(kTfStaticTopic, ros1::tfMessageType(), true);
   const int metadata = bag.connect(kMetadataTopic, ros1::stringType(), true);
-  const int odometry = bag.connect(kOdometryTopic, ros1::odometryType());
-  const int tf = bag.connect(kTfTopic, ros1::tfMessageType());
+  // A dataset without odometry (a handheld carrier) has no odom → base_link transforms either.
+  const bool has_odometry = !dataset.odometry().empty();
+  const int odometry = has_odometry ? bag.connect(kOdometryTopic, ros1::odometryType()) : -1;
+  const int tf = has_odometry ? bag.connect(kTfTopic, ros1::tfMessageType()) : -1;
   const int imu = dataset.imu().empty() ? -1 : bag.connect(kImuTopic, ros1::imuType());
   const int cloud = bag.connect(kCloudTopic, ros1::pointCloud2Type());
   const int ground_truth =

@@ -72,7 +72,7 @@ class RosbagReader {
   struct Entry {
     RosTime time;
     std::uint32_t chunk = 0;
-    std::uint32_t offset = 0;      // of the message record in the uncompressed chunk
+    std::uint32_t offset = 0;  // of the message record in the uncompressed chunk
     // Index into connections_ (its connection number as read, until readIndex maps it).
     std::uint32_t connection = 0;
   };

@@ -1,5 +1,7 @@
 #include "sensors/sensor_streams.hpp"
 
+#include <cmath>
+
 namespace isg::sensors {
 
 void quantiseStreams(SensorStreams& streams) {
@@ -9,8 +11,18 @@ void quantiseStreams(SensorStreams& streams) {
 }
 
 Eigen::Isometry3d trueStartB_T_M(const SensorStreams& streams) {
-  if (streams.ground_truth.empty() || streams.odometry.empty()) {
-    return Eigen::Isometry3d::Identity();
+  if (streams.ground_truth.empty()) return Eigen::Isometry3d::Identity();
+  if (streams.odometry.empty()) {
+    // The odometry the LiDAR and the IMU make (slam::ScanOdometry) starts at the base's first
+    // pose, levelled: M is that pose's position and heading, its z up.
+    const Eigen::Isometry3d& B_T_R = streams.ground_truth.front().pose;
+    const Eigen::Vector3d forward = B_T_R.linear().col(0);
+    Eigen::Isometry3d B_T_M = Eigen::Isometry3d::Identity();
+    B_T_M.linear() =
+        Eigen::AngleAxisd(std::atan2(forward.y(), forward.x()), Eigen::Vector3d::UnitZ())
+            .toRotationMatrix();
+    B_T_M.translation() = B_T_R.translation();
+    return B_T_M;
   }
   return streams.ground_truth.front().pose * streams.odometry.front().pose.inverse();
 }

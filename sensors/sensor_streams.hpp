@@ -18,14 +18,14 @@ using eval::Trajectory;
 // trajectories hold exactly the numbers a dataset's TUM files carry (quantiseStreams), so that a
 // replay sees what the live loop saw.
 struct SensorStreams {
-  Trajectory ground_truth;                                  // B_T_R
-  Trajectory odometry;                                      // M_T_R, as the localizer gets it
+  Trajectory ground_truth;  // B_T_R
+  Trajectory odometry;  // M_T_R, as the localizer gets it; empty: none (handheld, or a recording)
   std::vector<double> scan_stamps;                          // each scan's first firing
   double scan_period = 0.1;                                 // seconds per LiDAR turn
   double duration = 0.0;                                    // seconds of robot time the run covers
   Eigen::Isometry3d R_T_L = Eigen::Isometry3d::Identity();  // the LiDAR on the base
-  // The IMU, in its frame I, and its mount: a replayed dataset's imu.csv (the live loop gives
-  // none: its legged base always has odometry, and no method there reads the IMU).
+  // The IMU, in its frame I, and its mount: a replayed dataset's imu.csv, or the live
+  // simulation's stream with the same digits.
   std::vector<sensors::ImuSample> imu;
   Eigen::Isometry3d R_T_I = Eigen::Isometry3d::Identity();
 };
@@ -37,7 +37,8 @@ void quantiseStreams(SensorStreams& streams);
 
 // Where the odometry frame M lies in the plan B at the start: the first ground-truth pose times
 // the inverse of the first odometry pose. What dead reckoning is given and what the evaluation
-// places odometry with. Identity when either stream is empty.
+// places odometry with. Without odometry, the first ground-truth pose levelled (where the odometry
+// the LiDAR and the IMU make starts: slam::ScanOdometry). Identity without ground truth.
 Eigen::Isometry3d trueStartB_T_M(const SensorStreams& streams);
 
 }  // namespace isg::sensors

@@ -204,12 +204,58 @@ BaseKinematics BaseMotion::kinematicsOf(const PlanarState& p, double t) const {
   };
   constexpr double kDeg = std::numbers::pi / 180.0;
   const Eased bob = swayed(gait_.bob_m, 0.0);
-  const Eased roll = swayed(gait_.roll_deg * kDeg, std::numbers::pi / 2);
+  // A trot rolls the body at the gait frequency; a walker's strides at half the step frequency.
+  const Eased roll = gait_.handheld ? swayedAt(w, gait_.roll_deg * kDeg, 0.5 * omega, 0.0, t)
+                                    : swayed(gait_.roll_deg * kDeg, std::numbers::pi / 2);
   // The trot's pitch, and the body tilted nose up (a negative pitch about y) on a flight.
   const Eased trot_pitch = swayed(gait_.pitch_deg * kDeg, std::numbers::pi / 3);
   const Eased pitch{trot_pitch.value - p.incline, trot_pitch.rate - p.incline_rate,
                     trot_pitch.acceleration - p.incline_acceleration};
 
+  if (gait_.handheld) return withWalkersSway(p, t, w, bob, roll, pitch);
+  return bodyKinematics(p, bob, roll, pitch);
+}
+
+BaseMotion::Eased BaseMotion::swayedAt(const Eased& w, double amplitude, double rate, double offset,
+                                       double t) {
+  const double s = std::sin(rate * t + offset), c = std::cos(rate * t + offset);
+  return Eased{
+      amplitude * w.value * s, amplitude * (w.rate * s + w.value * rate * c),
+      amplitude * (w.acceleration * s + 2.0 * w.rate * rate * c - w.value * rate * rate * s)};
+}
+
+BaseKinematics BaseMotion::withWalkersSway(PlanarState p, double t, const Eased& w,
+                                           const Eased& bob, const Eased& roll,
+                                           const Eased& pitch) const {
+  // Sideways along the way's left normal n(yaw) at half the step frequency: the position moves by
+  // s·n, so its velocity by s'·n + s·yaw'·n' and its acceleration by s''·n + 2·s'·yaw'·n' +
+  // s·(yaw''·n' − yaw'²·n), with n' = dn/dyaw = −(cos yaw, sin yaw).
+  const double omega = 2.0 * std::numbers::pi * gait_.frequency_hz;
+  const Eased side = swayedAt(w, gait_.sway_m, 0.5 * omega, std::numbers::pi / 2, t);
+  const Eigen::Vector2d n(-std::sin(p.yaw), std::cos(p.yaw));
+  const Eigen::Vector2d dn(-std::cos(p.yaw), -std::sin(p.yaw));
+  const double dy = p.yaw_rate, ddy = p.yaw_acceleration;
+  p.xy += side.value * n;
+  p.velocity += side.rate * n + side.value * dy * dn;
+  p.acceleration +=
+      side.acceleration * n + 2.0 * side.rate * dy * dn + side.value * (ddy * dn - dy * dy * n);
+  // The head turns: the walker glances about the way ahead.
+  constexpr double kDeg = std::numbers::pi / 180.0;
+  const double amplitude = gait_.head_turn_deg * kDeg;
+  const std::array<double, 2> shares = {0.7, 0.3};
+  for (int i = 0; i < 2; ++i) {
+    const Eased turn =
+        swayedAt(w, shares[i] * amplitude, 2.0 * std::numbers::pi / kHeadTurnPeriods[i],
+                 gait_.head_phases[i], t);
+    p.yaw += turn.value;
+    p.yaw_rate += turn.rate;
+    p.yaw_acceleration += turn.acceleration;
+  }
+  return bodyKinematics(p, bob, roll, pitch);
+}
+
+BaseKinematics BaseMotion::bodyKinematics(const PlanarState& p, const Eased& bob, const Eased& roll,
+                                          const Eased& pitch) const {
   BaseKinematics k;
   k.B_T_R.translation() =
       Eigen::Vector3d(p.xy.x(), p.xy.y(), p.floor_z + gait_.standing_height + bob.value);

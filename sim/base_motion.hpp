@@ -2,6 +2,7 @@
 
 #include <Eigen/Core>
 #include <Eigen/Geometry>
+#include <array>
 #include <numbers>
 #include <vector>
 
@@ -9,10 +10,11 @@
 
 namespace isg::sim {
 
-// How the legged base moves (docs/simulation.md): it turns on the spot at each corner of its
-// route, as a legged robot does, then walks straight at its speed, starting and stopping each
-// with bounded acceleration; while it moves, a trot makes its body bob, roll and pitch at the
-// gait frequency.
+// How the carrier moves (docs/simulation.md): it turns on the spot at each corner of its route,
+// then walks straight at its speed, starting and stopping each with bounded acceleration. While it
+// moves, a legged base's trot makes its body bob, roll and pitch at the gait frequency; a person's
+// steps bob and pitch the sensors at the step frequency, each stride sways them sideways and rolls
+// them at half of it, and the walker turns them about the way ahead (head turns).
 struct GaitConfig {
   double frequency_hz = 1.8;
   double bob_m = 0.015;
@@ -22,7 +24,21 @@ struct GaitConfig {
   double turn_rate = 0.8;          // rad/s when turning on the spot
   double acceleration = 1.5;       // m/s², largest when starting or stopping a straight
   double turn_acceleration = 3.0;  // rad/s², largest when starting or stopping a turn
+  // A person's walk (handheld): sideways sway and roll at half the step frequency, and head
+  // turns: two incommensurate slow sines (periods kHeadTurnPeriods, 0.7 and 0.3 of the
+  // amplitude) at phases drawn from the run's seed.
+  bool handheld = false;
+  double sway_m = 0.0;
+  double head_turn_deg = 0.0;
+  std::array<double, 2> head_phases = {0.0, 0.0};
 };
+
+// The periods of the head turns' two sines, seconds: slow glances about the way ahead.
+inline constexpr std::array<double, 2> kHeadTurnPeriods = {6.3, 2.7};
+// A handheld carrier's sensors are held this high (R above the floor), and a person turns faster
+// on the spot than a legged base.
+inline constexpr double kHandheldHeight = 1.2;    // m
+inline constexpr double kHandheldTurnRate = 1.2;  // rad/s
 
 // The base's motion at one instant, as an inertial sensor on it would feel it: B_T_R, the
 // velocity and acceleration of R's origin in B, and R's angular velocity and acceleration in R.
@@ -122,6 +138,14 @@ class BaseMotion {
   int legAt(double t) const;
   PlanarState planarInLeg(const Leg& leg, double t) const;
   BaseKinematics kinematicsOf(const PlanarState& p, double t) const;
+  // amplitude · w(t) · sin(rate · t + offset), with its first and second derivatives in t.
+  static Eased swayedAt(const Eased& w, double amplitude, double rate, double offset, double t);
+  // A walker's sideways sway and head turns added to the way's planar state (handheld).
+  BaseKinematics withWalkersSway(PlanarState p, double t, const Eased& w, const Eased& bob,
+                                 const Eased& roll, const Eased& pitch) const;
+  // The pose and its derivatives from the planar state and the body's bob, roll and pitch.
+  BaseKinematics bodyKinematics(const PlanarState& p, const Eased& bob, const Eased& roll,
+                                const Eased& pitch) const;
 
   std::vector<Leg> legs_;
   GaitConfig gait_;

@@ -140,7 +140,8 @@ nlohmann::ordered_json metadata(const Simulation& sim, double duration,
         {"kidnaps", "not felt: the lift has no modelled motion"}}},
       {"groundtruth_rate_hz", options.groundtruth_rate},
       {"robot",
-       {{"level", s.robot.level},
+       {{"carrier", bim::carrierName(s.robot.carrier)},
+        {"level", s.robot.level},
         {"speed", s.robot.speed},
         {"turn_rate_rad_s", gait.turn_rate},
         {"standing_height_m", gait.standing_height},
@@ -155,6 +156,13 @@ nlohmann::ordered_json metadata(const Simulation& sim, double duration,
         {"kidnaps", kidnaps}}},
       {"plan", bim::planToJson(s.plan)},
       {"as_built", bim::asBuiltToJson(s.as_built)}};
+  if (s.robot.carrier == bim::Carrier::kHandheld) {
+    // A person's walk: no odometry stream (odometry.tum is not written), and the walker's sway.
+    out.erase("odometry");
+    out["robot"]["gait"]["sway_m"] = gait.sway_m;
+    out["robot"]["gait"]["head_turn_deg"] = gait.head_turn_deg;
+    out["robot"]["gait"]["head_turn_periods_s"] = kHeadTurnPeriods;
+  }
   if (several_levels) {
     out["robot"]["route_levels"] = levels;
     out["robot"]["skipped_levels"] = sim.route().skipped_levels;
@@ -215,7 +223,9 @@ DatasetSummary writeDataset(Simulation& sim, const std::string& dir, const Datas
         using namespace sensors::dataset;
         writeFile(temporary / kGroundTruth,
                   trajectoryText(sim.groundTruth(duration, options.groundtruth_rate)));
-        writeFile(temporary / kOdometry, trajectoryText(sim.odometry(duration)));
+        if (const auto odometry = sim.odometry(duration); !odometry.empty()) {
+          writeFile(temporary / kOdometry, trajectoryText(odometry));
+        }
         writeFile(temporary / kScanPoses, trajectoryText(sim.scanPoses(duration)));
         const std::vector<ImuSample> imu = sim.imu(duration);
         writeFile(temporary / kImu, imuText(imu));

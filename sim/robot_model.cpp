@@ -65,6 +65,10 @@ std::string robotMjcf(const Eigen::Isometry3d& R_T_L) {
 void poseRobot(const mjModel& m, mjData& d, const Eigen::Isometry3d& B_T_R, double gait_phase,
                double sway_weight) {
   const int body = mj_name2id(&m, mjOBJ_BODY, "robot");
+  if (body < 0) {  // a world without the robot (a handheld carrier): the building's kinematics
+    mj_kinematics(&m, &d);
+    return;
+  }
   const int mocap = m.body_mocapid[body];
   const Eigen::Vector3d p = B_T_R.translation();
   const Eigen::Quaterniond q(B_T_R.linear());

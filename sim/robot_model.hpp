@@ -15,7 +15,8 @@ namespace isg::sim {
 // worlds::kRobotGroup, which the simulated LiDAR never sees, and collide with nothing.
 std::string robotMjcf(const Eigen::Isometry3d& R_T_L);
 
-// Puts the robot at B_T_R with its legs at the gait's phase, and updates the kinematics.
+// Puts the robot at B_T_R with its legs at the gait's phase, and updates the kinematics (only the
+// latter in a world without the robot).
 void poseRobot(const mjModel& model, mjData& data, const Eigen::Isometry3d& B_T_R,
                double gait_phase, double sway_weight);
 

@@ -2,6 +2,9 @@
 
 #include <algorithm>
 
+#include "sensors/dataset_format.hpp"
+#include "sensors/imu_file.hpp"
+
 namespace isg::sim {
 
 sensors::SensorStreams sensorStreams(const Simulation& simulation, double duration,
@@ -15,6 +18,9 @@ sensors::SensorStreams sensorStreams(const Simulation& simulation, double durati
   streams.scan_period = simulation.scanPeriod();
   streams.R_T_L = simulation.R_T_L();
   sensors::quantiseStreams(streams);  // as the dataset's TUM files will hold them
+  // The IMU as imu.csv holds it: through its text, the one definition of its digits.
+  streams.imu = sensors::parseImuText(sensors::dataset::imuText(simulation.imu(d)), "imu.csv");
+  streams.R_T_I = simulation.R_T_I();
   return streams;
 }
 

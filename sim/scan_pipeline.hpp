@@ -17,9 +17,9 @@
 namespace isg::sim {
 
 // The simulation's sensor streams for a run of `duration` seconds of robot time (< 0: the whole
-// route, and never more): ground truth at `groundtruth_rate`, odometry, scan stamps, the LiDAR
-// mount; quantised as a dataset stores them (sensors::quantiseStreams), so that a recorded dataset
-// replays to the very same result.
+// route, and never more): ground truth at `groundtruth_rate`, odometry (none for a handheld
+// carrier), scan stamps, the LiDAR mount, the IMU and its mount; quantised as a dataset stores them
+// (sensors::quantiseStreams), so that a recorded dataset replays to the very same result.
 sensors::SensorStreams sensorStreams(const Simulation& simulation, double duration,
                                      double groundtruth_rate = 100.0);
 

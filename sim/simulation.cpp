@@ -5,6 +5,7 @@
 
 #include <cmath>
 #include <cstdio>
+#include <numbers>
 
 #include "sim/fast_random.hpp"
 #include "sim/imu_simulator.hpp"
@@ -20,21 +21,32 @@ enum Stream : std::uint64_t {
   kRouteStream = 1,
   kOdometryStream = 2,
   kScanStream = 3,
-  kImuStream = 4
+  kImuStream = 4,
+  kGaitStream = 5
 };
 
-GaitConfig gaitOf(const bim::RobotConfig& robot) {
+GaitConfig gaitOf(const bim::RobotConfig& robot, std::mt19937_64 rng) {
   GaitConfig gait;
   gait.frequency_hz = robot.gait.frequency_hz;
   gait.bob_m = robot.gait.bob_m;
   gait.roll_deg = robot.gait.roll_deg;
   gait.pitch_deg = robot.gait.pitch_deg;
+  gait.sway_m = robot.gait.sway_m;
+  gait.head_turn_deg = robot.gait.head_turn_deg;
+  if (robot.carrier == bim::Carrier::kHandheld) {
+    gait.handheld = true;
+    gait.standing_height = kHandheldHeight;
+    gait.turn_rate = kHandheldTurnRate;
+    std::uniform_real_distribution<double> phase(0.0, 2.0 * std::numbers::pi);
+    for (double& p : gait.head_phases) p = phase(rng);
+  }
   return gait;
 }
 
 MujocoWorld buildWorld(const bim::Scenario& scenario, const Eigen::Isometry3d& R_T_L) {
   worlds::WorldOptions options;
-  options.extra_worldbody = robotMjcf(R_T_L);
+  // A person carries the handheld sensors: no robot in the world (the walker is not modelled).
+  if (scenario.robot.carrier == bim::Carrier::kLegged) options.extra_worldbody = robotMjcf(R_T_L);
   return MujocoWorld::fromXml(worlds::generateMjcf(scenario, options));
 }
 
@@ -66,7 +78,7 @@ Simulation::Simulation(const bim::Scenario& scenario)
   // Each waypoint stands on its level's floor; between two levels the base walks a flight.
   const auto waypoints = onTheirFloors(scenario_.plan, route_.waypoints, route_.waypoint_levels);
   base_motion_ = std::make_unique<BaseMotion>(waypoints, route_.start_yaw, scenario_.robot.speed,
-                                              gaitOf(scenario_.robot));
+                                              gaitOf(scenario_.robot, generator(kGaitStream)));
   planKidnaps(scenario_, *grid_, route_, *base_motion_, rng);
   poseRobot(world_.model(), world_.data(), base_motion_->pose(0.0), 0.0, 0.0);
   lidar_ = makeLidar();
@@ -116,6 +128,7 @@ sensors::Trajectory Simulation::groundTruth(double duration, double rate_hz) con
 
 sensors::Trajectory Simulation::odometry(double duration) const {
   sensors::Trajectory out;
+  if (scenario_.robot.carrier == bim::Carrier::kHandheld) return out;  // a person has none
   auto rng = generator(kOdometryStream);
   OdometryModel model(scenario_.odometry, base_motion_->pose(0.0));
   const double rate = scenario_.odometry.rate_hz;

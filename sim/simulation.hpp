@@ -6,11 +6,11 @@
 #include <vector>
 
 #include "bim/scenario.hpp"
+#include "sensors/mount_transform.hpp"
 #include "sensors/sensor_streams.hpp"
 #include "sim/base_motion.hpp"
 #include "sim/imu_simulator.hpp"
 #include "sim/lidar_simulator.hpp"
-#include "sensors/mount_transform.hpp"
 #include "sim/mujoco_world.hpp"
 #include "sim/occupancy_grid.hpp"
 #include "sim/route_planner.hpp"
@@ -54,7 +54,8 @@ class Simulation {
   Eigen::Isometry3d B_T_L(double t) const { return base_motion_->pose(t) * R_T_L_; }
 
   sensors::Trajectory groundTruth(double duration, double rate_hz) const;
-  sensors::Trajectory odometry(double duration) const;   // M_T_R at odometry.rate_hz
+  // M_T_R at odometry.rate_hz; none for a handheld carrier.
+  sensors::Trajectory odometry(double duration) const;
   sensors::Trajectory scanPoses(double duration) const;  // B_T_L at each scan's stamp
   std::vector<ImuSample> imu(double duration) const;     // the IMU stream (scenario imu)
   // The IMU on the base (scenario imu.mount).

@@ -44,6 +44,24 @@ TEST(ScenarioParser, BarePlanGetsEveryDefault) {
   EXPECT_TRUE(s.as_built.empty());
 }
 
+TEST(ScenarioParser, HandheldCarrierGetsAWalkersDefaults) {
+  const Scenario s = loadScenario(kPlans + "d2.handheld.json");
+  EXPECT_EQ(s.robot.carrier, Carrier::kHandheld);
+  EXPECT_DOUBLE_EQ(s.robot.speed, kHandheldSpeed);
+  EXPECT_DOUBLE_EQ(s.robot.gait.bob_m, 0.025);
+  EXPECT_DOUBLE_EQ(s.robot.gait.sway_m, 0.025);
+  EXPECT_DOUBLE_EQ(s.robot.gait.head_turn_deg, 15.0);
+  EXPECT_FALSE(s.lidar.body_occlusion);  // no robot body to shadow the sensor
+  // The legged base keeps its trot: no sideways sway, no head turns.
+  const Scenario legged = loadScenario(kPlans + "d2.asbuilt.json");
+  EXPECT_EQ(legged.robot.carrier, Carrier::kLegged);
+  EXPECT_DOUBLE_EQ(legged.robot.gait.sway_m, 0.0);
+  EXPECT_DOUBLE_EQ(legged.robot.gait.head_turn_deg, 0.0);
+  EXPECT_TRUE(legged.lidar.body_occlusion);
+  // The same as-built world otherwise.
+  EXPECT_EQ(s.as_built.clutter.size(), legged.as_built.clutter.size());
+}
+
 TEST(ScenarioParser, ReferenceScenarioResolvesItsPlanRelativeToItself) {
   const Scenario s = loadScenario(kPlans + "d1.asbuilt.json");
   EXPECT_EQ(s.plan.name, "D1 three offices and a corridor");

@@ -63,7 +63,8 @@ TEST(World, UnknownBuiltinListsTheBuiltins) {
             "d2.asbuilt, d3, d3.asbuilt, d4, d4.asbuilt, d5, d5.asbuilt, d6, d6.asbuilt, "
             "twin-wings, twin-wings.asbuilt, twin-wings-symmetric, twin-wings-symmetric.asbuilt, "
             "hotel, hotel.asbuilt, halls, halls.asbuilt, storeys, storeys.asbuilt, twin-storeys, "
-            "twin-storeys.asbuilt)\n");
+            "twin-storeys.asbuilt, d1.handheld, d2.handheld, d3.handheld, d4.handheld, "
+            "d5.handheld, d6.handheld)\n");
 }
 
 TEST(Check, DescribesAValidScenario) {

@@ -260,7 +260,7 @@ TEST(ImportRecording, BadRecordingsAreExactErrorsAndLeaveNothing) {
   EXPECT_FALSE(sandbox.exists("handheld/odometry.tum"));
   result = sandbox.run("slam handheld -o run");
   EXPECT_EQ(result.exit_code, 0) << result.err;
-  EXPECT_THAT(result.err, HasSubstr("isg slam: the dataset has no odometry: the LiDAR and the IMU "
+  EXPECT_THAT(result.err, HasSubstr("isg slam: there is no odometry: the LiDAR and the IMU "
                                     "make it (docs/slam.md, \"Without odometry\")\n"));
 }
 

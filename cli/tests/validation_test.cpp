@@ -279,6 +279,24 @@ std::vector<Case> cases() {
          s["robot"]["kidnap"] = {{{"time", 10}, {"to", {{"pose", {3.02, 1.0, 0.0}}}}}};
        },
        "scenario.json: /robot/kidnap/0/to/pose: kidnap position is inside wall \"W5\""},
+      {"UnknownCarrier", "scenario.json", [](json&, json& s) { s["robot"]["carrier"] = "wheeled"; },
+       "scenario.json: /robot/carrier: unknown carrier \"wheeled\" (expected \"legged\" or "
+       "\"handheld\")"},
+      {"HandheldWithOdometry", "scenario.json",
+       [](json&, json& s) {
+         s["robot"]["carrier"] = "handheld";
+         s["odometry"] = {{"rate_hz", 50}};
+       },
+       "scenario.json: /odometry: a handheld carrier has no odometry (robot.carrier is "
+       "\"handheld\")"},
+      {"HandheldWithBodyOcclusion", "scenario.json",
+       [](json&, json& s) {
+         s["robot"]["carrier"] = "handheld";
+         s.erase("odometry");
+         s["lidar"] = {{"body_occlusion", true}};
+       },
+       "scenario.json: /lidar/body_occlusion: a handheld carrier has no robot body to occlude the "
+       "LiDAR (robot.carrier is \"handheld\")"},
       {"ZeroSpeed", "scenario.json", [](json&, json& s) { s["robot"]["speed"] = 0; },
        "scenario.json: /robot/speed: must be in [0.01, 3], got 0"},
       {"LidarRate", "scenario.json", [](json&, json& s) { s["lidar"]["rate_hz"] = 40; },

@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "bim/angles.hpp"
 #include "sensors/dataset_format.hpp"
 #include "sim/simulation.hpp"
 #include "worlds/reference_plans.hpp"
@@ -56,6 +57,33 @@ void expectDerivativesOfThePose(const BaseMotion& t) {
 
 TEST(BaseKinematics, AreTheDerivativesOfThePose) {
   expectDerivativesOfThePose(BaseMotion({{0, 0}, {3, 0}, {3, 2}, {1, 3}}, 0.4, 0.5, 1.0, {}));
+}
+
+TEST(BaseKinematics, AWalkersSwayAndHeadTurnsToo) {
+  GaitConfig walker;
+  walker.handheld = true;
+  walker.bob_m = 0.025;
+  walker.sway_m = 0.025;
+  walker.head_turn_deg = 15.0;
+  walker.head_phases = {0.3, 2.1};
+  walker.standing_height = kHandheldHeight;
+  walker.turn_rate = kHandheldTurnRate;
+  const BaseMotion t({{0, 0}, {3, 0}, {3, 2}, {1, 3}}, 0.4, 0.8, 0.0, walker);
+  expectDerivativesOfThePose(t);
+  // Mid-way along the first straight: held 1.2 m up (± the bob), within the sway of the way and
+  // turned about it by the head turns (at most 15°).
+  const double mid = 0.5 * (t.arrival(0, 0) + t.arrival(0, 1));
+  const Eigen::Isometry3d pose = t.pose(mid);
+  EXPECT_NEAR(pose.translation().z(), kHandheldHeight, 0.025 + 1e-9);
+  EXPECT_NEAR(pose.translation().y(), 0.0, 0.025 + 1e-9);
+  EXPECT_LE(std::abs(bim::yawOf(pose.linear())), 15.0 * std::numbers::pi / 180 + 1e-9);
+  // The head does turn: over the straight the yaw spans several degrees.
+  double lo = 1e9, hi = -1e9;
+  for (double s = t.arrival(0, 0) + 1.0; s < t.arrival(0, 1) - 1.0; s += 0.05) {
+    const double yaw = bim::yawOf(t.pose(s).linear());
+    lo = std::min(lo, yaw), hi = std::max(hi, yaw);
+  }
+  EXPECT_GT((hi - lo) * 180 / std::numbers::pi, 5.0);
 }
 
 TEST(BaseKinematics, OnAFlightOfStairsTooWithTheBodyTiltedToTheSlope) {

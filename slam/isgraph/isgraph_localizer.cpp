@@ -137,7 +137,8 @@ void ISGraphLocalizer::adopt(const Verification& answer, int level) {
   const double elevation = level >= 0              ? plan_->floors[level].elevation
                            : plan_->floors.empty() ? 0.0
                                                    : plan_->floors[0].elevation;
-  P_T_M_z_ = elevation - graph_.floorHeight().value_or(0.0);
+  // Before the floor is seen, the most it can be (SGraph::floorBound).
+  P_T_M_z_ = elevation - graph_.floorHeight().value_or(graph_.floorBound().value_or(0.0));
   z_from_floor_ = graph_.floorHeight().has_value();
   level_ = level >= 0 ? level : 0;
   floor_levels_.clear();
@@ -388,10 +389,13 @@ std::string ISGraphLocalizer::offFlight() const {
 std::string ISGraphLocalizer::followFloor(double stamp) {
   const int floor = graph_.currentFloor();
   if (!level_matcher_) {
-    // Matched before the floor was seen: its height, once it is.
-    if (!z_from_floor_ && graph_.floorHeight()) {
+    // The floor's height as it is known now (its observations accumulate), or before it was
+    // seen, the most it can be.
+    if (graph_.floorHeight()) {
       P_T_M_z_ = plan_->floors[level_].elevation - *graph_.floorHeight();
       z_from_floor_ = true;
+    } else if (!z_from_floor_ && graph_.floorBound()) {
+      P_T_M_z_ = plan_->floors[level_].elevation - *graph_.floorBound();
     }
     return "";
   }

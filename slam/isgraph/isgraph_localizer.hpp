@@ -102,6 +102,8 @@ class ISGraphLocalizer : public Localizer {
 
   std::string name() const override { return "is-graphs"; }
   void pushOdometry(const sensors::Odometry& odometry) override { graph_.addOdometry(odometry); }
+  void pushImu(const sensors::ImuSample& sample) override { graph_.addImu(sample); }
+  void setImuMount(const Eigen::Isometry3d& R_T_I) { graph_.setImuMount(R_T_I); }
   void pushScan(const sensors::Scan& scan) override;
   bool wantsScan(double stamp) const override;
   std::optional<sensors::Odometry> poseInMap() const override { return graph_.latestPose(); }

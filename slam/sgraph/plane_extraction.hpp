@@ -21,6 +21,10 @@ struct PlaneExtractionOptions {
   double voxel = 0.1;  // voxel leaf: RANSAC's grid; the range image counts support in voxels
   double ransac_distance = 0.04;  // a point's distance from its plane, both methods
   int min_inliers = 100;          // support: points after the voxel grid, voxels on the range image
+  // Horizontal surfaces on the range image need less: a sensor held high (a handheld rig at 1.5 m)
+  // sees the floor only where the lowest rings meet it, 5 m off or more, in an arc or two; only
+  // the floor's height is taken from them (SGraph), robustly. Other planes keep min_inliers.
+  int horizontal_min_inliers = 30;
   int max_planes = 30;
   // A plane's points are split where they are this far apart, so that two coplanar walls (a
   // corridor's two sides of a doorway, the same wall in two rooms) are separate.

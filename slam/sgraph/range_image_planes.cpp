@@ -300,7 +300,9 @@ std::optional<std::vector<PlaneObservation>> extractPlanesOnRangeImage(
       for (int i = image.first[k]; i < image.first[k + 1]; ++i)
         points.push_back(image.points[image.order[i]]);
     }
-    if (int(points.size()) < options.min_inliers) continue;  // fewer points than voxels needed
+    // Fewer points than voxels needed (horizontal surfaces need fewer: PlaneExtractionOptions).
+    const int least = std::min(options.min_inliers, options.horizontal_min_inliers);
+    if (int(points.size()) < least) continue;
     PlaneSums all;
     for (const auto& p : points) all.add(p, 1.0);
     const Eigen::Vector3d n = all.normal(), c = all.centroid();
@@ -308,10 +310,15 @@ std::optional<std::vector<PlaneObservation>> extractPlanesOnRangeImage(
     for (const auto& p : points) {
       if (std::abs(n.dot(p - c)) <= options.ransac_distance) inliers.push_back(p);
     }
-    if (int(inliers.size()) < options.min_inliers) continue;
+    if (int(inliers.size()) < least) continue;
     const int support = voxelSupport(inliers, options.voxel);
-    if (support < options.min_inliers) continue;
+    if (support < least) continue;
     planes.push_back(observePlane(inliers, support, options));
+    if (support < options.min_inliers &&
+        planes.back().orientation != PlaneOrientation::kHorizontal) {
+      planes.pop_back();
+      continue;
+    }
     if (planes.back().orientation == PlaneOrientation::kVertical)
       planes.back().top = topEdgeOf(image, members[g], options.cluster_tolerance);
   }

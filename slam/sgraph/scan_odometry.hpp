@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "sensors/messages.hpp"
+#include "slam/sgraph/attitude_filter.hpp"
 #include "slam/sgraph/scan_registration.hpp"
 
 namespace isg::slam {
@@ -16,9 +17,8 @@ namespace isg::slam {
 // odometry), made from the LiDAR and, when there is one, the IMU (docs/slam.md, "Without
 // odometry"). The pose at each scan is predicted, then corrected by registering the scan to a
 // local map of recent scans:
-//   - roll and pitch: an attitude filter on the IMU (gyroscope integrated, pulled towards the
-//     accelerometer's gravity with a time constant of `attitude_time_constant`: walking's
-//     accelerations average out, gravity does not); level without an IMU;
+//   - roll and pitch: an attitude filter on the IMU (AttitudeFilter, time constant
+//     `attitude_time_constant`); level without an IMU;
 //   - yaw: predicted by the gyroscope (without an IMU, by the last turn rate), corrected by the
 //     registration;
 //   - x, y: predicted at constant velocity, corrected by the registration;
@@ -53,7 +53,7 @@ class ScanOdometry {
   // The pose at `t` after the latest scan, extrapolated at the latest velocity (for the turn the
   // latest scan spans).
   Eigen::Isometry3d extrapolate(double t) const;
-  bool hasImu() const { return imu_samples_ > 0; }
+  bool hasImu() const { return !attitude_.empty(); }
   // Scans whose registration agreed with the local map, of those registered.
   int registered() const { return registered_; }
   int agreed() const { return agreed_; }
@@ -63,9 +63,6 @@ class ScanOdometry {
     std::vector<Eigen::Vector3f> cloud;  // in L
     Eigen::Isometry3d M_T_R;
   };
-  // The attitude filter's orientation of I in M at `t`: from its recent history, or moved on
-  // from the latest sample at the latest rate.
-  Eigen::Matrix3d M_R_I_at(double t) const;
   // The base's pose at `t` as predicted from the latest scan's.
   Eigen::Isometry3d predict(double t) const;
   // Turns the attitude filter (and its history) about M's z: the registration's yaw correction.
@@ -73,17 +70,12 @@ class ScanOdometry {
 
   Eigen::Isometry3d R_T_L_, R_T_I_;
   ScanOdometryOptions options_;
-  // Attitude filter state.
-  Eigen::Quaterniond M_q_I_ = Eigen::Quaterniond::Identity();
-  double imu_time_ = 0.0;
-  Eigen::Vector3d last_rate_ = Eigen::Vector3d::Zero();
-  int imu_samples_ = 0;
-  std::deque<std::pair<double, Eigen::Quaterniond>> history_;  // the last 2 s
+  AttitudeFilter attitude_;
   // Poses at the latest two scans, and their velocity.
   std::optional<double> last_stamp_;
   Eigen::Isometry3d last_pose_ = Eigen::Isometry3d::Identity();
-  Eigen::Vector3d velocity_ = Eigen::Vector3d::Zero();  // M, m/s
-  double yaw_rate_ = 0.0;                               // rad/s, without an IMU
+  Eigen::Vector3d velocity_ = Eigen::Vector3d::Zero();       // M, m/s
+  double yaw_rate_ = 0.0;                                    // rad/s, without an IMU
   std::deque<std::pair<double, Eigen::Isometry3d>> recent_;  // poses over velocity_window
   double height_ = 0.0;
   std::deque<Keyframe> keyframes_;

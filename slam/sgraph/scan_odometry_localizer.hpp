@@ -20,7 +20,10 @@ class ScanOdometryLocalizer : public Localizer {
 
   std::string name() const override { return inner_->name(); }
   void pushOdometry(const sensors::Odometry& odometry) override { inner_->pushOdometry(odometry); }
-  void pushImu(const sensors::ImuSample& sample) override { odometry_.addImu(sample); }
+  void pushImu(const sensors::ImuSample& sample) override {
+    odometry_.addImu(sample);
+    inner_->pushImu(sample);  // for its own use of gravity (the S-Graph's)
+  }
   void pushScan(const sensors::Scan& scan) override;
   // Every scan makes the odometry.
   bool wantsScan(double) const override { return true; }

@@ -101,6 +101,10 @@ bool SGraph::addScan(sensors::Scan scan) {
   Keyframe keyframe;
   keyframe.stamp = scan.stamp;
   keyframe.odometry = odometry_at_scan;
+  if (!attitude_.empty() && options_.sigma_gravity > 0.0) {
+    // R's up = R_R_M · z = R_R_I · (M_R_I)ᵀ · z: the filter's yaw does not enter.
+    keyframe.up = R_R_I_ * attitude_.M_R_I_at(scan.stamp).transpose() * Eigen::Vector3d::UnitZ();
+  }
   Eigen::Isometry3d initial =
       keyframes_.empty()
           ? start_correction_ * odometry_at_scan
@@ -130,6 +134,20 @@ bool SGraph::addScan(sensors::Scan scan) {
   if (floor >= 0) current_floor_ = floor;
 
   const Eigen::Isometry3d M_T_L = initial * R_T_L_;
+  if (floor >= 0 && level && !scan.points.empty()) {
+    // The scan's low points: its 0.5 % quantile of height in M (a few stray points lower still,
+    // noise or a reflection, do not count).
+    const Eigen::RowVector3d z_row = M_T_L.linear().row(2);
+    std::vector<double> heights;
+    heights.reserve(scan.points.size());
+    for (const auto& p : scan.points) {
+      heights.push_back(z_row.dot(Eigen::Vector3d(p.x, p.y, p.z)) + M_T_L.translation().z());
+    }
+    const auto low = heights.begin() + std::ptrdiff_t(heights.size() / 200);
+    std::nth_element(heights.begin(), low, heights.end());
+    Floor& f = floors_[floor];
+    f.lowest_seen = f.lowest_seen ? std::min(*f.lowest_seen, *low) : *low;
+  }
   // The map as association sees it, kept in step as this keyframe's observations change it: the
   // walls of its own floor only.
   std::vector<MapPlane> walls = activeWalls(floor);
@@ -143,8 +161,14 @@ bool SGraph::addScan(sensors::Scan scan) {
     if (observation.orientation == PlaneOrientation::kHorizontal) {
       // The floor: a horizontal plane well below the sensor, facing up.
       const bim::Plane in_M = observation.plane.transformed(M_T_L);
-      const double z = -in_M.d / in_M.normal.z();
-      if (in_M.normal.z() > 0.9 && z < M_T_L.translation().z() - 0.3) {
+      // Its height where it was seen (its centroid), not where the plane meets M's z axis: a
+      // floor seen far off in a ring's arc has a normal a few degrees off, which tilts the plane
+      // by decimetres at M's origin.
+      const double z = (M_T_L * observation.centroid).z();
+      if (in_M.normal.z() > 0.9 && z < M_T_L.translation().z() - 0.3 &&
+          observation.points < options_.extraction.min_inliers) {
+        floors_[floor].sparse_planes.emplace_back(z, observation.points);
+      } else if (in_M.normal.z() > 0.9 && z < M_T_L.translation().z() - 0.3) {
         floors_[floor].plane_sum += z;
         ++floors_[floor].plane_count;
         robot_above_floor_sum_ += initial.translation().z() - z;
@@ -339,6 +363,15 @@ SGraph::WindowSize SGraph::optimise(int first, bool with_hook, int max_iteration
         OdometryFactor::create(delta, sigma_t, sigma_r), nullptr, keyframes_[k - 1].position.data(),
         keyframes_[k - 1].orientation.coeffs().data(), keyframes_[k].position.data(),
         keyframes_[k].orientation.coeffs().data());
+    if (b.onFloor() && options_.sigma_floor_height > 0.0) {
+      problem.AddResidualBlock(
+          HeightFactor::create(floors_[b.floor].first_z, options_.sigma_floor_height), nullptr,
+          keyframes_[k].position.data());
+    }
+    if (b.up) {
+      problem.AddResidualBlock(GravityFactor::create(*b.up, options_.sigma_gravity), nullptr,
+                               keyframes_[k].orientation.coeffs().data());
+    }
     const KeyframeRegistration& registration = b.registration;
     if (registration.attempted && registration.agrees) {
       problem.AddResidualBlock(
@@ -481,7 +514,7 @@ int SGraph::floorOf(double z, bool level) {
   if (floors_.empty()) {
     // The first floor, once the robot is off the stairs.
     if (!level) return -1;
-    floors_.push_back({z});
+    floors_.push_back({z, z});
     floors_.back().keyframes = 1;
     return 0;
   }
@@ -499,7 +532,7 @@ int SGraph::floorOf(double z, bool level) {
     return nearest;
   }
   if (level && apart >= options.min_separation) {
-    floors_.push_back({z});
+    floors_.push_back({z, z});
     floors_.back().keyframes = 1;
     return int(floors_.size()) - 1;
   }
@@ -657,11 +690,29 @@ std::vector<int> SGraph::confirmedRooms() const {
 std::optional<double> SGraph::floorHeight(int floor) const {
   if (floor < 0) floor = current_floor_;
   if (floor < 0 || floor >= int(floors_.size())) return std::nullopt;
-  if (floors_[floor].plane_count > 0) return floors_[floor].plane_sum / floors_[floor].plane_count;
+  const Floor& f = floors_[floor];
+  if (f.plane_count > 0) return f.plane_sum / f.plane_count;
+  if (!f.sparse_planes.empty()) {
+    std::vector<std::pair<double, int>> sorted = f.sparse_planes;
+    std::sort(sorted.begin(), sorted.end());
+    long total = 0;
+    for (const auto& [z, support] : sorted) total += support;
+    long below = 0;
+    for (const auto& [z, support] : sorted) {
+      below += support;
+      if (2 * below >= total) return z;
+    }
+  }
   // Not seen from this floor yet: the robot stands as high above every floor it walks on, and
   // the floors seen before (of any segment) tell how high.
   if (robot_above_floor_count_ == 0) return std::nullopt;
   return floors_[floor].robot_z - robot_above_floor_sum_ / robot_above_floor_count_;
+}
+
+std::optional<double> SGraph::floorBound(int floor) const {
+  if (floor < 0) floor = current_floor_;
+  if (floor < 0 || floor >= int(floors_.size())) return std::nullopt;
+  return floors_[floor].lowest_seen;
 }
 
 std::optional<Eigen::Vector2d> SGraph::floorCentre(int floor) const {

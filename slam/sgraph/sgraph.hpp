@@ -15,6 +15,7 @@
 #include "sensors/stage_times.hpp"
 #include "slam/map_diagnostics.hpp"
 #include "slam/odometry_buffer.hpp"
+#include "slam/sgraph/attitude_filter.hpp"
 #include "slam/sgraph/plane_extraction.hpp"
 #include "slam/sgraph/plane_map.hpp"
 #include "slam/sgraph/room_detection.hpp"
@@ -56,9 +57,19 @@ struct SGraphOptions {
   double sigma_odometry_translation_per_metre = 0.03;
   double sigma_odometry_rotation_floor = 0.002;
   double sigma_odometry_rotation_per_metre = 0.012;
-  double huber = 1.0;         // on whitened plane residuals
-  int window = 25;            // keyframes optimised after each new one; older ones are held
-  int anchors_per_plane = 8;  // held older observations kept for each plane in the window
+  // Gravity: each keyframe's up (its orientation's z in R) against the IMU's (AttitudeFilter),
+  // when there is an IMU: what fixes roll and pitch, which walls alone let walk (and with them,
+  // through the odometry's translation, the height). 0 leaves it out. M's z is taken to be up, as
+  // an odometry frame's is (and ScanOdometry's, levelled by gravity at the start).
+  double sigma_gravity = 1.0 * std::numbers::pi / 180.0;  // rad
+  // Height on a floor: each keyframe standing on one stays at the height its floor's first
+  // keyframe had (a base walks at its own height above a flat floor; the bob of a trot or a walk
+  // is a few cm). Without it, a small tilt in the correction of a keyframe's predicted pose, far
+  // from M's origin, lifts the map by decimetres. 0 leaves it out.
+  double sigma_floor_height = 0.05;  // m
+  double huber = 1.0;                // on whitened plane residuals
+  int window = 25;                   // keyframes optimised after each new one; older ones are held
+  int anchors_per_plane = 8;         // held older observations kept for each plane in the window
   int max_iterations = 10;
   // Threads for the graph's own loops (the registration's local map and correspondences), the
   // caller's included. Results are the same whatever the number (slam/thread_pool.hpp).
@@ -90,6 +101,10 @@ class SGraph {
   SGraph(const Eigen::Isometry3d& R_T_L, const SGraphOptions& options = {});
 
   void addOdometry(const sensors::Odometry& odometry);
+  // The IMU: its mount on the base, then its samples in time order, up to each scan's turn end
+  // before that scan (options.sigma_gravity).
+  void setImuMount(const Eigen::Isometry3d& R_T_I) { R_R_I_ = R_T_I.linear(); }
+  void addImu(const sensors::ImuSample& sample) { attitude_.add(sample); }
   // Deskews the scan with odometry and, when the robot has moved enough since the last keyframe,
   // makes a keyframe of it. Returns whether it did.
   bool addScan(sensors::Scan scan);
@@ -112,6 +127,7 @@ class SGraph {
     Eigen::Quaterniond orientation = Eigen::Quaterniond::Identity();
     std::vector<std::pair<int, PlaneObservation>> observations;  // (map plane, observation in L)
     KeyframeRegistration registration;
+    std::optional<Eigen::Vector3d> up;   // gravity's up in R by the IMU, when there is one
     std::vector<Eigen::Vector3f> cloud;  // downsampled scan in L; kept for the local map only
     Eigen::Isometry3d pose() const;
   };
@@ -135,9 +151,17 @@ class SGraph {
   // of the robot there; its centre ξ, optimised with the rooms tied to it, stays the centre of
   // their offsets (FloorOptions::room_sigma).
   struct Floor {
-    double robot_z = 0.0;    // M, of its latest level keyframe (follows the odometry's drift)
+    double robot_z = 0.0;  // M, of its latest level keyframe (follows the odometry's drift)
+    double first_z = 0.0;  // M, of its first keyframe: the height its keyframes are held at
+    // M: the lowest of its keyframes' scans' low points (each scan's 0.5 % quantile of height):
+    // nothing is seen below a floor, so the floor is no higher than this.
+    std::optional<double> lowest_seen;
     double plane_sum = 0.0;  // floor planes seen below the sensor from it
     int plane_count = 0;
+    // Floor surfaces seen with less support than a wall needs (far off, from a sensor held
+    // high), as (height in M, support): their support-weighted median is the floor's height when
+    // no well-supported floor plane was seen — robust to the tops of boxes and tables among them.
+    std::vector<std::pair<double, int>> sparse_planes;
     int keyframes = 0;
     Eigen::Vector2d centre = Eigen::Vector2d::Zero();  // ξ, once a room is tied to it
     int rooms_tied = 0;
@@ -177,6 +201,10 @@ class SGraph {
   // from the robot's height above another floor that was seen), once one was seen; the current
   // floor by default.
   std::optional<double> floorHeight(int floor = -1) const;
+  // The most a floor's height in M can be (the current floor by default): the lowest its scans saw
+  // (Floor::lowest_seen). A sensor held high sees the floor itself only far off, if at all; this
+  // bound is near it once any wall has been seen down to its foot.
+  std::optional<double> floorBound(int floor = -1) const;
 
   // More factors for every window optimisation: the iS-Graph's link to the plan. Called with the
   // problem, the plane indices in the window and the rooms whose planes all are; it may add
@@ -224,6 +252,8 @@ class SGraph {
   std::pair<double, double> odometrySigmas(double distance) const;  // translation, rotation
 
   Eigen::Isometry3d R_T_L_;
+  Eigen::Matrix3d R_R_I_ = Eigen::Matrix3d::Identity();
+  AttitudeFilter attitude_;
   SGraphOptions options_;
   OdometryBuffer odometry_;
   std::optional<sensors::Odometry> latest_odometry_;

@@ -92,6 +92,49 @@ struct OdometryFactor {
   double weight_t_, weight_r_;
 };
 
+// Gravity on one keyframe: its up (q⁻¹ · z, M's z in R) against the up the IMU measured, in R;
+// three residuals of rank two (a turn about up changes neither), whitened by σ in radians.
+struct GravityFactor {
+  GravityFactor(const Eigen::Vector3d& measured_up, double sigma)
+      : up_(measured_up.normalized()), weight_(1.0 / sigma) {}
+
+  template <typename T>
+  bool operator()(const T* q, T* residual) const {
+    const Eigen::Map<const Eigen::Quaternion<T>> M_q_R(q);
+    const Eigen::Matrix<T, 3, 1> estimated = M_q_R.conjugate() * Eigen::Matrix<T, 3, 1>::UnitZ();
+    for (int k = 0; k < 3; ++k) residual[k] = T(weight_) * (estimated(k) - T(up_(k)));
+    return true;
+  }
+
+  static ceres::CostFunction* create(const Eigen::Vector3d& measured_up, double sigma) {
+    return new ceres::AutoDiffCostFunction<GravityFactor, 3, 4>(
+        new GravityFactor(measured_up, sigma));
+  }
+
+ private:
+  Eigen::Vector3d up_;
+  double weight_;
+};
+
+// A keyframe's height in M against the height it should have (its floor's): one residual,
+// whitened by σ in metres.
+struct HeightFactor {
+  HeightFactor(double height, double sigma) : height_(height), weight_(1.0 / sigma) {}
+
+  template <typename T>
+  bool operator()(const T* position, T* residual) const {
+    residual[0] = T(weight_) * (position[2] - T(height_));
+    return true;
+  }
+
+  static ceres::CostFunction* create(double height, double sigma) {
+    return new ceres::AutoDiffCostFunction<HeightFactor, 1, 3>(new HeightFactor(height, sigma));
+  }
+
+ private:
+  double height_, weight_;
+};
+
 // LiDAR odometry between two keyframes (slam/sgraph/scan_registration.hpp): the registered planar
 // motion of keyframe j relative to keyframe i — (x, y) in i's heading frame and the change of yaw —
 // against the estimated one, whitened by the registration's information (an upper-triangular

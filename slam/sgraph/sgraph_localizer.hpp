@@ -15,6 +15,8 @@ class SGraphLocalizer : public Localizer {
   std::string name() const override { return "s-graph"; }
   void pushOdometry(const sensors::Odometry& odometry) override { graph_.addOdometry(odometry); }
   void pushScan(const sensors::Scan& scan) override { graph_.addScan(scan); }
+  void pushImu(const sensors::ImuSample& sample) override { graph_.addImu(sample); }
+  void setImuMount(const Eigen::Isometry3d& R_T_I) { graph_.setImuMount(R_T_I); }
   bool wantsScan(double stamp) const override { return graph_.wouldKeyframe(stamp); }
   std::optional<sensors::Odometry> poseInMap() const override { return graph_.latestPose(); }
   std::optional<Eigen::Isometry3d> mapInPlan() const override { return std::nullopt; }

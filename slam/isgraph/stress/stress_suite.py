@@ -8,6 +8,11 @@ S-Graph's APE in M against the odometry's per heading-bias level. Every scenario
 suite seed, so the suite is the same every time it is run.
 
   slam/isgraph/stress/stress_suite.py --isg build/cli/isg --out /tmp/stress [--worlds d1,d2] [--seeds 1,2]
+
+With --carrier handheld a person walks each scenario with the sensors in hand (robot.carrier,
+docs/simulation.md "Carriers"): there is no odometry, so a level's heading bias and odometry noise
+do not apply (its dropout, clutter, closed door and removed wall do), and the LiDAR and the IMU
+make the odometry.
 """
 import argparse
 import csv
@@ -79,7 +84,7 @@ def clutter_boxes(plan, rng, count):
     return boxes
 
 
-def make_scenario(world, level, seed, out_dir, attempt=0, mount=None):
+def make_scenario(world, level, seed, out_dir, attempt=0, mount=None, carrier="legged"):
     stress = LEVELS[level]
     bias, dropout, clutter, close_door = stress["bias"], stress["dropout"], stress["clutter"], stress["door"]
     rng = random.Random(f"{world}/{level}/{seed}/{attempt}")
@@ -89,11 +94,15 @@ def make_scenario(world, level, seed, out_dir, attempt=0, mount=None):
     scenario = dict(base)
     scenario.pop("$schema", None)
     scenario["seed"] = seed
-    scenario["odometry"] = {"heading_bias_deg_per_m": bias}
-    if stress["noise"] is not None:
-        scenario["odometry"]["heading_noise_deg_per_m"] = stress["noise"]
-    if stress["translation"] is not None:
-        scenario["odometry"]["translation_noise"] = stress["translation"]
+    if carrier == "handheld":
+        scenario["robot"] = {"carrier": "handheld"}
+        bias = 0.0  # no odometry to bias
+    else:
+        scenario["odometry"] = {"heading_bias_deg_per_m": bias}
+        if stress["noise"] is not None:
+            scenario["odometry"]["heading_noise_deg_per_m"] = stress["noise"]
+        if stress["translation"] is not None:
+            scenario["odometry"]["translation_noise"] = stress["translation"]
     scenario["lidar"] = {"dropout": dropout}
     if mount is not None:
         scenario["lidar"]["mount"] = mount
@@ -115,7 +124,7 @@ def make_scenario(world, level, seed, out_dir, attempt=0, mount=None):
         if "closed_doors" in as_built:
             as_built["closed_doors"] = [d for d in as_built["closed_doors"] if d not in doors_gone]
     scenario["as_built"] = as_built
-    name = f"{world}-L{level}-s{seed}"
+    name = f"{world}-L{level}-s{seed}" + ("-handheld" if carrier == "handheld" else "")
     path = os.path.join(out_dir, name + ".json")
     json.dump(scenario, open(path, "w"), indent=1)
     return name, path, bias
@@ -210,6 +219,8 @@ def main():
                         help="the LiDAR's mount on the robot for every scenario (lidar.mount, "
                         "docs/formats.md), e.g. 0,0,0.14,0,0,0 for the puck on the body; "
                         "default: each world's")
+    parser.add_argument("--carrier", choices=["legged", "handheld"], default="legged",
+                        help="what carries the sensors (robot.carrier); handheld: no odometry")
     parser.add_argument("--kidnap", action="store_true",
                         help="the kidnap suite instead: each world as built, kidnapped midway")
     args = parser.parse_args()
@@ -240,7 +251,8 @@ def main():
                 # building where every door is the only way into some room, the first draw that
                 # runs at all (skipping rooms) is taken.
                 def run(attempt):
-                    name, path, bias = make_scenario(world, level, seed, scenarios, attempt, mount)
+                    name, path, bias = make_scenario(world, level, seed, scenarios, attempt, mount,
+                                                     args.carrier)
                     run_dir = os.path.join(args.out, "runs", name)
                     result = subprocess.run([args.isg, "run", path, "-o", run_dir, "--force",
                                              "-q", "--threads", args.threads],
@@ -269,7 +281,8 @@ def main():
                     "max_error": m.get("max_error_B", ""),
                     "ape_B": m["ape_B"]["rmse"] if "ape_B" in m else "",
                     "ape_M": m["ape_M_se3"]["rmse"] if "ape_M_se3" in m else "",
-                    "ape_odometry": m["ape_odometry_from_true_start"]["rmse"],
+                    "ape_odometry": (m["ape_odometry_from_true_start"]["rmse"]
+                                     if "ape_odometry_from_true_start" in m else float("nan")),
                     "lost": len(m.get("lost_at", [])), "status": m.get("matching_status", ""),
                     "rtf": m["real_time_factor"],
                 }

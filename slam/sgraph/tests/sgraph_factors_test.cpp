@@ -8,6 +8,7 @@
 #include "bim/tests/jacobian_check.hpp"
 #include "slam/sgraph/tests/test_poses.hpp"
 
+#include <cmath>
 #include <memory>
 
 namespace isg::slam {
@@ -65,6 +66,30 @@ TEST(OdometryFactor, ZeroAtTheMeasurementAndJacobians) {
   isg::testing::expectJacobiansMatchNumeric(
       *cost, {nullptr, &quaternion, nullptr, &quaternion},
       {pa.data(), qa.coeffs().data(), pb.data(), qb.coeffs().data()});
+}
+
+TEST(GravityFactor, ResidualByHandIgnoresYaw) {
+  // The IMU says R stands level: up in R is z. A keyframe turned by any yaw is level too.
+  std::unique_ptr<ceres::CostFunction> cost(GravityFactor::create(Eigen::Vector3d::UnitZ(), 0.01));
+  Eigen::Quaterniond q(Eigen::AngleAxisd(2.3, Eigen::Vector3d::UnitZ()));
+  double* params[] = {q.coeffs().data()};
+  Eigen::Vector3d residual;
+  cost->Evaluate(params, residual.data(), nullptr);
+  EXPECT_NEAR(residual.norm(), 0.0, 1e-12);
+  // Rolled by 10°: up in R is off by a chord of 2·sin(5°), over σ.
+  q = q * Eigen::Quaterniond(
+              Eigen::AngleAxisd(10.0 * std::numbers::pi / 180, Eigen::Vector3d::UnitX()));
+  cost->Evaluate(params, residual.data(), nullptr);
+  EXPECT_NEAR(residual.norm(), 2.0 * std::sin(5.0 * std::numbers::pi / 180) / 0.01, 1e-9);
+}
+
+TEST(HeightFactor, ResidualByHand) {
+  std::unique_ptr<ceres::CostFunction> cost(HeightFactor::create(0.46, 0.05));
+  Eigen::Vector3d position(3.0, -2.0, 0.56);
+  double* params[] = {position.data()};
+  double residual = 0.0;
+  cost->Evaluate(params, &residual, nullptr);
+  EXPECT_NEAR(residual, 0.1 / 0.05, 1e-12);
 }
 
 TEST(FloorRoomFactor, ResidualByHandAndJacobians) {

@@ -1,0 +1,41 @@
+#pragma once
+
+#include <Eigen/Geometry>
+#include <deque>
+#include <utility>
+
+#include "sensors/messages.hpp"
+
+namespace isg::slam {
+
+// Where "up" is, from an IMU: Mahony's complementary attitude filter (Mahony, Hamel, Pflimlin,
+// "Nonlinear complementary filters on the special orthogonal group", IEEE TAC 2008, the explicit
+// filter without bias estimation). The gyroscope is integrated; the estimated up is pulled towards
+// the accelerometer's, with a time constant of `time_constant` seconds, only while the
+// accelerometer reads about 1 g: the accelerations of walking average out over that time, gravity
+// does not. Roll and pitch are therefore absolute; yaw is the gyroscope's integral (M's yaw is the
+// caller's: turnYaw).
+class AttitudeFilter {
+ public:
+  explicit AttitudeFilter(double time_constant = 2.0, double gravity = 9.81)
+      : time_constant_(time_constant), gravity_(gravity) {}
+
+  // Samples in time order. The first that reads about 1 g levels the filter at once.
+  void add(const sensors::ImuSample& sample);
+  bool empty() const { return samples_ == 0; }
+  // The orientation of I in M at `t`: interpolated in the last 2 s of history, or moved on from
+  // the latest sample at the latest rate.
+  Eigen::Matrix3d M_R_I_at(double t) const;
+  // Turns the estimate and its history about M's z (a correction of yaw from elsewhere).
+  void turnYaw(double angle);
+
+ private:
+  double time_constant_, gravity_;
+  Eigen::Quaterniond M_q_I_ = Eigen::Quaterniond::Identity();
+  double time_ = 0.0;
+  Eigen::Vector3d last_rate_ = Eigen::Vector3d::Zero();
+  int samples_ = 0;
+  std::deque<std::pair<double, Eigen::Quaterniond>> history_;  // the last 2 s
+};
+
+}  // namespace isg::slam
