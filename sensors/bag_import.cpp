@@ -361,10 +361,14 @@ void Import::resolveFrames() {
       failMessage(summary_.imu.topic, 0, e.what());
     }
   }
-  // The base is the odometry's child (or as told); a handheld sensor without odometry is its
-  // own base.
+  // The base is the odometry's child (or as told). Without odometry, the ground truth's child
+  // when the fixed frames join it to the LiDAR (a rig whose truth is of its base, as our own bags
+  // of a handheld carrier); else the sensor is its own base.
+  const bool truth_is_of_the_rig = !summary_.ground_truth.topic.empty() && !truth_child_.empty() &&
+                                   frames_.transform(truth_child_, lidar_frame_).has_value();
   base_frame_ = !options_.base_frame.empty()       ? options_.base_frame
                 : !summary_.odometry.topic.empty() ? odometry_child_
+                : truth_is_of_the_rig              ? truth_child_
                                                    : lidar_frame_;
   if (base_frame_.empty()) {
     fail("the odometry on " + summary_.odometry.topic +

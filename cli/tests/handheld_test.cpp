@@ -6,6 +6,7 @@
 #include <cmath>
 #include <nlohmann/json.hpp>
 #include <sstream>
+#include <string>
 
 #include "cli/tests/cli_runner.hpp"
 
@@ -33,6 +34,27 @@ TEST(Handheld, DatasetHasNoOdometryAndTheWalkersSway) {
   EXPECT_GE(lowest, 1.2 - 0.025 - 1e-6);
   EXPECT_LE(highest, 1.2 + 0.025 + 1e-6);
   EXPECT_GT(highest - lowest, 0.03);  // it does bob
+}
+
+TEST(Handheld, ItsBagImportsBackWithTheTruthOfTheRigsBase) {
+  // Without odometry the base frame is the ground truth's child, which /tf_static joins to the
+  // LiDAR: the imported truth is the base's (1.2 m up), not the LiDAR's (1.45 m).
+  const testing::Sandbox sandbox("handheld_bag");
+  auto r = sandbox.run("simulate builtin:d1.handheld --duration 4 -o ds --rosbag ds.bag -q");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  r = sandbox.run("import ds.bag -o imported -q");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_FALSE(sandbox.exists("imported/odometry.tum"));
+  std::istringstream original(sandbox.read("ds/groundtruth.tum"));
+  std::istringstream imported(sandbox.read("imported/groundtruth.tum"));
+  int rows = 0;
+  double largest = 0.0;
+  for (std::string a, b; std::getline(original, a) && std::getline(imported, b); ++rows) {
+    std::istringstream va(a), vb(b);
+    for (double x, y; va >> x && vb >> y;) largest = std::max(largest, std::abs(x - y));
+  }
+  EXPECT_EQ(rows, 401);
+  EXPECT_LE(largest, 2e-9);  // the last printed digit
 }
 
 TEST(Handheld, RunLocalizesFromTheLidarAndTheImuAlone) {
