@@ -58,8 +58,9 @@ ImportCommand::ImportCommand(CLI::App& parent) {
       "  isg run office.json -o runs/office\n\n"
       "A ROS 1 bag (format 2.0; chunks plain, bz2 or lz4) becomes a dataset folder that isg slam "
       "replays: the point clouds (sensor_msgs/PointCloud2: the Velodyne driver's layout, Ouster's, "
-      "or any cloud with x y z) as scans, sensor_msgs/Imu as imu.csv, nav_msgs/Odometry as "
-      "odometry.tum, a ground-truth nav_msgs/Odometry or geometry_msgs/PoseStamped as "
+      "or any cloud with x y z) as scans, sensor_msgs/Imu as imu.csv, nav_msgs/Odometry (or the "
+      "transforms on /tf from a frame named odom down to the base) as odometry.tum, a ground-truth "
+      "nav_msgs/Odometry or geometry_msgs/PoseStamped as "
       "groundtruth.tum; the sensors' mounts from /tf_static (or --lidar-extrinsic, "
       "--imu-extrinsic). Each topic is found by its type when only one could be it (ground truth "
       "by a name with ground_truth, groundtruth, gt, vicon or mocap); otherwise the candidates are "
@@ -83,8 +84,14 @@ ImportCommand::ImportCommand(CLI::App& parent) {
       ->option_text("TOPIC")
       ->group(bag);
   app_->add_option("--odom-topic", odometry_topic_,
-                   "the odometry's topic, nav_msgs/Odometry (none: leave it out)")
+                   "the odometry's topic: nav_msgs/Odometry, or a tf topic (/tf) whose transforms "
+                   "join the odometry's frame to the base (none: leave it out)")
       ->option_text("TOPIC")
+      ->group(bag);
+  app_->add_option("--odom-frame", odometry_frame_,
+                   "odometry from /tf: its fixed frame (default: the frame above the LiDAR named "
+                   "odom…)")
+      ->option_text("FRAME")
       ->group(bag);
   app_->add_option("--ground-truth-topic", ground_truth_topic_,
                    "the ground truth's topic, nav_msgs/Odometry or geometry_msgs/PoseStamped "
@@ -134,6 +141,7 @@ int ImportCommand::importBag() {
   options.lidar_topic = lidar_topic_;
   options.imu_topic = imu_topic_;
   options.odometry_topic = odometry_topic_;
+  options.odometry_frame = odometry_frame_;
   options.ground_truth_topic = ground_truth_topic_;
   options.start = start_;
   if (duration_ > 0) options.duration = duration_;

@@ -25,7 +25,8 @@ class ImportCommand : public Command {
   bool force_ = false;
   bool quiet_ = false;
   // Recordings.
-  std::string lidar_topic_, imu_topic_, odometry_topic_, ground_truth_topic_, base_frame_;
+  std::string lidar_topic_, imu_topic_, odometry_topic_, ground_truth_topic_, base_frame_,
+      odometry_frame_;
   double start_ = 0.0, duration_ = 0.0;
   std::vector<double> lidar_extrinsic_, imu_extrinsic_;
 };

@@ -18,6 +18,7 @@
 #include "sensors/rosbag_export.hpp"
 #include "sensors/rosbag_reader.hpp"
 #include "sensors/static_frames.hpp"
+#include "sensors/tf_odometry.hpp"
 
 namespace isg::sensors {
 
@@ -31,6 +32,8 @@ constexpr const char* kImuType = "sensor_msgs/Imu";
 constexpr const char* kOdometryType = "nav_msgs/Odometry";
 constexpr const char* kPoseType = "geometry_msgs/PoseStamped";
 constexpr const char* kStringType = "std_msgs/String";
+constexpr const char* kTfType = "tf2_msgs/TFMessage";
+constexpr const char* kOldTfType = "tf/tfMessage";  // ROS 1's first tf: the same definition
 // An IMU whose specific force at rest has a norm within this of 1 reports it in g (Livox's, some
 // MEMS drivers), not m/s²: 0.2 g is far from both 1 m/s² and 9.81 m/s².
 constexpr double kGravityInG = 0.2;
@@ -66,6 +69,12 @@ bool namedLikeGroundTruth(const std::string& topic) {
   return false;
 }
 
+bool isTfType(const std::string& datatype) { return datatype == kTfType || datatype == kOldTfType; }
+
+bool isStaticTfTopic(const std::string& name) {
+  return name.size() >= 9 && name.ends_with("tf_static");
+}
+
 class Import {
  public:
   Import(const std::string& bag_path, const BagImportOptions& options)
@@ -93,6 +102,9 @@ class Import {
   // The first message on `topic` (any time), for its frames before the long read.
   std::string firstMessage(const std::string& topic);
   void resolveFrames();
+  // The odometry as a chain of /tf: its frames from the whole topic; false (and the odometry left
+  // out) when the topic was not asked for and no frame above the LiDAR is named as odometry.
+  bool resolveTfOdometry();
   Eigen::Isometry3d mount(const char* sensor, const char* flag, const std::string& frame,
                           const std::optional<std::array<double, 6>>& option);
   // child_T_R for a pose stream whose child frame is `child`.
@@ -112,6 +124,11 @@ class Import {
   BagImportSummary summary_;
   StaticFrames frames_;
   std::optional<nlohmann::json> isg_metadata_;
+  // Odometry from /tf: the topic (asked for with --odom-topic, or the one looked into when the
+  // bag has no nav_msgs/Odometry), then the chain once its frames are known.
+  std::string tf_topic_;
+  bool tf_asked_ = false;
+  std::optional<TfOdometry> tf_odometry_;
 
   // What was read, stamps as the bag has them.
   std::vector<RosTime> scan_stamps_;
@@ -229,22 +246,60 @@ void Import::chooseTopics() {
         return namedLikeGroundTruth(t.name) && t.name != options_.odometry_topic;
       },
       false);
-  summary_.odometry.topic = chooseTopic(
-      "odometry", "--odom-topic", options_.odometry_topic, {kOdometryType},
-      [&](const Topic& t) {
-        return !namedLikeGroundTruth(t.name) && t.name != summary_.ground_truth.topic;
-      },
-      false);
+  // The odometry: a nav_msgs/Odometry topic, or the transforms of a tf topic (named with
+  // --odom-topic, or /tf looked into when no odometry topic is there).
+  const Topic* named = options_.odometry_topic.empty() || options_.odometry_topic == kNone
+                           ? nullptr
+                           : findTopic(options_.odometry_topic);
+  if (named && isTfType(named->datatype)) {
+    if (isStaticTfTopic(named->name)) {
+      fail("--odom-topic " + named->name +
+           ": fixed frames do not move; name the tf topic whose "
+           "transforms move the base (/tf)");
+    }
+    tf_topic_ = named->name;
+    tf_asked_ = true;
+  } else {
+    summary_.odometry.topic = chooseTopic(
+        "odometry", "--odom-topic", options_.odometry_topic, {kOdometryType},
+        [&](const Topic& t) {
+          return !namedLikeGroundTruth(t.name) && t.name != summary_.ground_truth.topic;
+        },
+        false);
+    if (summary_.odometry.topic.empty() && options_.odometry_topic.empty()) {
+      std::vector<const Topic*> moving;
+      for (const auto& t : topics_) {
+        if (isTfType(t.datatype) && !isStaticTfTopic(t.name) && t.messages > 0) {
+          moving.push_back(&t);
+        }
+      }
+      const auto tf = std::find_if(moving.begin(), moving.end(),
+                                   [](const Topic* t) { return t->name == "/tf"; });
+      if (tf != moving.end()) {
+        tf_topic_ = (*tf)->name;
+      } else if (moving.size() == 1) {
+        tf_topic_ = moving[0]->name;
+      }
+    }
+  }
+  if (!options_.odometry_frame.empty() && tf_topic_.empty()) {
+    fail("--odom-frame " + options_.odometry_frame +
+         (summary_.odometry.topic.empty()
+              ? std::string(": the bag has no tf topic to take the odometry from")
+              : ": the odometry is " + summary_.odometry.topic +
+                    " (nav_msgs/Odometry); --odom-frame names the odometry's frame on /tf"));
+  }
   if (!summary_.odometry.topic.empty() && summary_.odometry.topic == summary_.ground_truth.topic) {
     fail("topic " + summary_.odometry.topic + " cannot be both the odometry and the ground truth");
   }
   // A type of another definition than the standard one would be misread: refused by its MD5.
-  const std::pair<const char*, RosMessageType> standard[] = {{kCloudType, ros1::pointCloud2Type()},
-                                                             {kImuType, ros1::imuType()},
-                                                             {kOdometryType, ros1::odometryType()},
-                                                             {kPoseType, ros1::poseStampedType()}};
+  const std::pair<const char*, RosMessageType> standard[] = {
+      {kCloudType, ros1::pointCloud2Type()}, {kImuType, ros1::imuType()},
+      {kOdometryType, ros1::odometryType()}, {kPoseType, ros1::poseStampedType()},
+      {kTfType, ros1::tfMessageType()},      {kOldTfType, ros1::tfMessageType()}};
+  BagImportSummary::Stream tf{tf_topic_, "", 0};
   for (auto* stream :
-       {&summary_.lidar, &summary_.imu, &summary_.odometry, &summary_.ground_truth}) {
+       {&summary_.lidar, &summary_.imu, &summary_.odometry, &summary_.ground_truth, &tf}) {
     if (stream->topic.empty()) continue;
     const Topic* topic = findTopic(stream->topic);
     stream->type = topic->datatype;
@@ -262,8 +317,7 @@ void Import::chooseTopics() {
 void Import::readStatic() {
   std::vector<std::string> static_topics;
   for (const auto& t : topics_) {
-    const bool tf_type = t.datatype == "tf2_msgs/TFMessage" || t.datatype == "tf/tfMessage";
-    if (tf_type && t.name.size() >= 9 && t.name.ends_with("tf_static")) {
+    if (isTfType(t.datatype) && isStaticTfTopic(t.name)) {
       static_topics.push_back(t.name);
     }
   }
@@ -324,6 +378,90 @@ std::string Import::firstMessage(const std::string& topic) {
   return data;
 }
 
+bool Import::resolveTfOdometry() {
+  MovingFrameTree tree;
+  std::uint64_t index = 0;
+  bag_.read({tf_topic_}, [&](const BagMessageView& m) {
+    try {
+      for (const auto& t : ros1::decodeTfMessage(m.data)) {
+        if (const auto other = tree.add(t.header.frame_id, t.child_frame_id)) {
+          throw ros1::MessageError("the frame \"" + t.child_frame_id + "\" hangs from \"" +
+                                   t.header.frame_id + "\" here and from \"" + *other +
+                                   "\" before (a frame has one parent)" +
+                                   (tf_asked_ ? "" : "; --odom-topic none leaves /tf out"));
+        }
+      }
+    } catch (const ros1::MessageError& e) {
+      failMessage(tf_topic_, index, e.what());
+    }
+    ++index;
+    return true;
+  });
+  const auto above = tree.above(lidar_frame_, frames_);
+  std::string frames = lidar_frame_;
+  for (const auto& a : above) frames += (a.moving ? " ← " : " ⇠ ") + a.frame;
+  const std::string chain =
+      "the frames above the LiDAR's (← on " + tf_topic_ + ", ⇠ fixed): " + frames;
+  const auto position = [&](const std::string& frame) {
+    return std::find_if(above.begin(), above.end(),
+                        [&](const MovingFrameTree::Above& a) { return a.frame == frame; }) -
+           above.begin();
+  };
+  std::string top = options_.odometry_frame;
+  if (top.empty()) {
+    const auto named = std::find_if(above.begin(), above.end(),
+                                    [](const auto& a) { return namedLikeOdometry(a.frame); });
+    if (named != above.end()) top = named->frame;
+  }
+  const bool moves =
+      std::any_of(above.begin(), above.end(), [](const auto& a) { return a.moving; });
+  if (top.empty() || position(top) == std::ptrdiff_t(above.size())) {
+    if (tf_asked_ || !options_.odometry_frame.empty()) {
+      fail(std::string(top.empty() ? "no frame named odom" : "the frame \"" + top + "\" is not") +
+           " above the LiDAR's frame on " + tf_topic_ + " and /tf_static (" + chain +
+           "): name the odometry's frame with --odom-frame");
+    }
+    if (moves) {
+      summary_.notes.push_back(tf_topic_ + " moves frames above the LiDAR's, none named odom (" +
+                               chain + "): not taken as odometry; --odom-frame names its frame");
+    }
+    return false;
+  }
+  // The base: as told; else the frame REP 105 names base_link when it is fixed below the moving
+  // link nearest the LiDAR (odom → base_footprint → base_link → velodyne); else the frame that
+  // link moves.
+  std::string base = options_.base_frame;
+  for (std::ptrdiff_t i = 0; base.empty() && i <= position(top); ++i) {
+    if (!above[std::size_t(i)].moving) continue;
+    base = i == 0 ? lidar_frame_ : above[std::size_t(i) - 1].frame;
+    for (std::ptrdiff_t k = i - 1; k >= -1; --k) {
+      const std::string& frame = k < 0 ? lidar_frame_ : above[std::size_t(k)].frame;
+      const std::size_t slash = frame.rfind('/');
+      if ((slash == std::string::npos ? frame : frame.substr(slash + 1)) == "base_link") {
+        base = frame;
+        break;
+      }
+    }
+  }
+  if (base.empty()) {
+    fail("topic " + tf_topic_ + " moves nothing between \"" + top + "\" and the LiDAR's frame (" +
+         chain + ")");
+  }
+  try {
+    tf_odometry_.emplace(top, base, tree.above(base, frames_));
+  } catch (const std::invalid_argument& e) {
+    fail("odometry from " + tf_topic_ + ": " + e.what() + " (" + chain + ")");
+  }
+  summary_.odometry.topic = tf_topic_;
+  summary_.odometry.type = findTopic(tf_topic_)->datatype;
+  summary_.odometry_chain = tf_odometry_->describe();
+  odometry_frame_ = top;
+  odometry_child_ = base;
+  summary_.notes.push_back("the odometry is the chain " + summary_.odometry_chain + " on " +
+                           tf_topic_);
+  return true;
+}
+
 // The frames, from each stream's first message, and the mounts between them: a recording that
 // lacks a mount fails here, before its clouds are read.
 void Import::resolveFrames() {
@@ -340,7 +478,8 @@ void Import::resolveFrames() {
       failMessage(stream.topic, 0, e.what());
     }
   };
-  if (!summary_.odometry.topic.empty()) {
+  if (!tf_topic_.empty() && !resolveTfOdometry()) tf_topic_.clear();
+  if (!summary_.odometry.topic.empty() && !tf_odometry_) {
     const ros1::StampedPose first = poseOf(summary_.odometry);
     odometry_frame_ = first.header.frame_id;
     odometry_child_ = first.child_frame_id;
@@ -454,6 +593,15 @@ void Import::readStreams(const fs::path& folder,
         sample.accelerometer = imu.linear_acceleration;
         sample.gyroscope = imu.angular_velocity;
         imu_.push_back({imu.header.stamp, sample});
+      } else if (tf_odometry_ && topic == summary_.odometry.topic) {
+        for (const auto& t : ros1::decodeTfMessage(m.data)) {
+          try {
+            tf_odometry_->offer(t.header.frame_id, t.child_frame_id, t.header.stamp,
+                                t.parent_T_child);
+          } catch (const std::invalid_argument& e) {
+            throw ros1::MessageError(e.what());
+          }
+        }
       } else {
         const bool odometry = topic == summary_.odometry.topic;
         const ros1::StampedPose pose = findTopic(topic)->datatype == kPoseType
@@ -482,6 +630,19 @@ void Import::readStreams(const fs::path& folder,
 }
 
 void Import::writeFiles(const fs::path& folder) {
+  if (tf_odometry_) {
+    for (const auto& pose : tf_odometry_->poses())
+      odometry_.push_back({pose.stamp, pose.top_T_base});
+    if (odometry_.empty()) {
+      fail("topic " + summary_.odometry.topic + ": no transform of the chain " +
+           summary_.odometry_chain + " in the part imported");
+    }
+    if (tf_odometry_->repeated() > 0) {
+      summary_.notes.push_back(std::to_string(tf_odometry_->repeated()) +
+                               " transforms of the odometry's chain repeat their link's previous "
+                               "stamp: left out");
+    }
+  }
   // Dataset time 0: the whole second at or before the first imported stamp.
   origin_ = scan_stamps_.front().sec;
   for (const auto& s : imu_) origin_ = std::min(origin_, s.stamp.sec);
@@ -625,6 +786,7 @@ void Import::writeFiles(const fs::path& folder) {
       for (const auto& p : odometry) times.push_back(p.t);
       m["odometry"] = {{"rate_hz", times.size() >= 2 ? 1.0 / *dataset::meanPeriod(times) : 0.0},
                        {"topic", summary_.odometry.topic}};
+      if (tf_odometry_) m["odometry"]["chain"] = summary_.odometry_chain;
     }
   }
   m["imported_from"] = {{"file", fs::path(bag_path_).filename().string()},

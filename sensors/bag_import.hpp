@@ -15,12 +15,17 @@ namespace isg::sensors {
 struct BagImportOptions {
   // Empty: found by type (and, for odometry against ground truth, by name) when unambiguous.
   // "none" (IMU, odometry, ground truth): leave that stream out.
+  // The odometry topic may also be a tf topic (/tf): the odometry is then the chain of its
+  // transforms from the odometry's frame down to the base.
   std::string lidar_topic, imu_topic, odometry_topic, ground_truth_topic;
+  // The odometry's fixed frame on /tf (default: the frame above the LiDAR named odom…).
+  std::string odometry_frame;
   // The part of the recording to import: seconds after its first message, and how long.
   double start = 0.0;
   std::optional<double> duration;
-  // The robot's base frame R (default: the odometry's child frame; without odometry, the LiDAR's
-  // own frame: a handheld sensor).
+  // The robot's base frame R (default: the odometry's child frame — on /tf, the frame the link
+  // nearest the LiDAR moves; without odometry, the ground truth's child frame when the fixed
+  // frames join it to the LiDAR, else the LiDAR's own frame: a handheld sensor).
   std::string base_frame;
   // R_T_L and R_T_I as x y z (m) roll pitch yaw (rad), when /tf_static does not join the frames.
   std::optional<std::array<double, 6>> lidar_extrinsic, imu_extrinsic;
@@ -35,6 +40,7 @@ struct BagImportSummary {
   Stream lidar, imu, odometry, ground_truth;  // topic empty: not imported
   std::string cloud_layout;                   // CloudLayout::describe()
   std::string stamp;                          // "first_firing" or "last_packet"
+  std::string odometry_chain;                 // odometry from /tf: its frames (TfOdometry)
   std::array<double, 2> point_time{0.0, 0.0};
   double scan_period = 0.0;
   double seconds = 0.0;            // robot time the dataset covers

@@ -13,6 +13,14 @@ void StaticFrames::add(const std::string& parent, const std::string& child,
   edges_.push_back({parent, child, parent_T_child});
 }
 
+std::optional<std::pair<std::string, Eigen::Isometry3d>> StaticFrames::parent(
+    const std::string& child) const {
+  for (const auto& edge : edges_) {
+    if (edge.child == child) return std::make_pair(edge.parent, edge.parent_T_child);
+  }
+  return std::nullopt;
+}
+
 std::vector<std::pair<std::string, Eigen::Isometry3d>> StaticFrames::chainToRoot(
     const std::string& frame) const {
   // Each element: a frame on the way up and that frame's T of `frame` (ancestor_T_frame).

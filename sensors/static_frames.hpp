@@ -17,6 +17,8 @@ class StaticFrames {
   // a_T_b: frame b's pose in frame a; identity when a == b; nullopt when no path joins them.
   std::optional<Eigen::Isometry3d> transform(const std::string& a, const std::string& b) const;
   bool empty() const { return edges_.empty(); }
+  // The edge above `child`: its parent frame and parent_T_child; nullopt at a root.
+  std::optional<std::pair<std::string, Eigen::Isometry3d>> parent(const std::string& child) const;
 
  private:
   struct Edge {

@@ -3,7 +3,7 @@
 (another writer than ours): the import test's recordings from elsewhere.
 
 usage: python_recording.py DATASET_DIR OUT.bag velodyne|ouster [--extra-cloud-topic]
-                           [--short-cloud K] [--imu-in-g]
+                           [--short-cloud K] [--imu-in-g] [--odometry-on-tf]
 
 DATASET_DIR must hold binary PCD scans (isg simulate --pcd binary). The layouts:
 
@@ -24,6 +24,10 @@ ouster    ouster_ros's conventions: /os_cloud_node/points in "os_sensor", x y z 
 --extra-cloud-topic  a second PointCloud2 topic (/points_filtered): the LiDAR topic is ambiguous.
 --short-cloud K      cloud K's data is one point shorter than its width says.
 --imu-in-g           the IMU's specific force in g, as some drivers give it.
+--odometry-on-tf     (velodyne) the odometry as a navigation stack's /tf instead of a topic:
+                     odom -> base_footprint moving, base_footprint -> base_link fixed (0.35 m
+                     up, on /tf_static), a localizer's map -> odom at 2 Hz, and an arm joint
+                     base_link -> arm_link at 10 Hz; several transforms share a message.
 """
 import argparse
 import array
@@ -170,6 +174,29 @@ def odometry(row, frame, child, seq):
     return message
 
 
+def compose(a, b):
+    """Product of two 4x4 rigid transforms given as row lists."""
+    return [[sum(a[r][k] * b[k][c] for k in range(4)) for c in range(4)] for r in range(4)]
+
+
+def matrix_of(row):
+    """The 4x4 pose of a TUM row (t x y z qx qy qz qw)."""
+    x, y, z, w = row[4:8]
+    return [[1 - 2 * (y * y + z * z), 2 * (x * y - z * w), 2 * (x * z + y * w), row[1]],
+            [2 * (x * y + z * w), 1 - 2 * (x * x + z * z), 2 * (y * z - x * w), row[2]],
+            [2 * (x * z - y * w), 2 * (y * z + x * w), 1 - 2 * (x * x + y * y), row[3]],
+            [0.0, 0.0, 0.0, 1.0]]
+
+
+def yaw_about_z(angle, x=0.0, y=0.0, z=0.0):
+    c, s = math.cos(angle), math.sin(angle)
+    return [[c, -s, 0.0, x], [s, c, 0.0, y], [0.0, 0.0, 1.0, z], [0.0, 0.0, 0.0, 1.0]]
+
+
+FOOTPRINT_T_BASE = yaw_about_z(0.0, z=0.35)
+BASE_T_FOOTPRINT = yaw_about_z(0.0, z=-0.35)
+
+
 def mount(parent, child, matrix, t):
     transform = TransformStamped()
     transform.header.stamp = stamp(t)
@@ -191,6 +218,7 @@ def main():
     parser.add_argument("--extra-cloud-topic", action="store_true")
     parser.add_argument("--short-cloud", type=int, default=-1)
     parser.add_argument("--imu-in-g", action="store_true")
+    parser.add_argument("--odometry-on-tf", action="store_true")
     args = parser.parse_args()
     with open(os.path.join(args.dataset, "metadata.json")) as f:
         metadata = json.load(f)
@@ -210,6 +238,8 @@ def main():
             mounts.transforms = [
                 mount("base_link", "velodyne", metadata["extrinsics"]["R_T_L"]["matrix"], 0.0),
                 mount("base_link", "imu_link", metadata["extrinsics"]["R_T_I"]["matrix"], 0.0)]
+            if args.odometry_on_tf:
+                mounts.transforms.append(mount("base_footprint", "base_link", FOOTPRINT_T_BASE, 0.0))
             bag.write("/tf_static", mounts, stamp(0.0))
         with open(os.path.join(args.dataset, "imu.csv")) as f:
             next(f)
@@ -227,8 +257,27 @@ def main():
                 message.linear_acceleration.y = ay * scale
                 message.linear_acceleration.z = az * scale
                 bag.write(names["imu"], message, stamp(t) + delay)
-        for seq, row in enumerate(read_tum(os.path.join(args.dataset, "odometry.tum"))):
-            bag.write(names["odom"], odometry(row, "odom", "base_link", seq), stamp(row[0]) + delay)
+        odometry_rows = read_tum(os.path.join(args.dataset, "odometry.tum"))
+        if velodyne and args.odometry_on_tf:
+            arm_next, map_next = 0.0, 0.0
+            for row in odometry_rows:
+                transforms = [mount("odom", "base_footprint",
+                                    compose(matrix_of(row), BASE_T_FOOTPRINT), row[0])]
+                if row[0] >= arm_next:  # a joint that moves, beside the chain
+                    transforms.append(mount("base_link", "arm_link",
+                                            yaw_about_z(math.sin(row[0]), x=0.2), row[0]))
+                    arm_next += 0.1
+                if row[0] >= map_next:  # a localizer's correction, above the odometry's frame
+                    transforms.append(mount("map", "odom",
+                                            yaw_about_z(0.01 * row[0], x=0.05 * row[0]), row[0]))
+                    map_next += 0.5
+                message = TFMessage()
+                message.transforms = transforms
+                bag.write("/tf", message, stamp(row[0]) + delay)
+        else:
+            for seq, row in enumerate(odometry_rows):
+                bag.write(names["odom"], odometry(row, "odom", "base_link", seq),
+                          stamp(row[0]) + delay)
         for seq, row in enumerate(read_tum(os.path.join(args.dataset, "groundtruth.tum"))):
             if velodyne:
                 message = PoseStamped()

@@ -115,6 +115,14 @@ TEST(ImportRecording, OurOwnBagReplaysToTheSameEstimate) {
             2e-9);
   EXPECT_NEAR(apeRmse(sandbox, "b"), apeRmse(sandbox, "a"), 1e-6);
 
+  // The odometry from the bag's /tf instead (odom → base_link, the same poses): the same file.
+  result = sandbox.run("import ds.bag -o fromtf -q --odom-topic /tf");
+  ASSERT_EQ(result.exit_code, 0) << result.err;
+  EXPECT_THAT(result.out, HasSubstr("  odometry      /tf (tf2_msgs/TFMessage): 1001 messages\n"));
+  EXPECT_THAT(result.out,
+              HasSubstr("  note: the odometry is the chain odom → base_link (moving) on /tf\n"));
+  EXPECT_EQ(sandbox.read("fromtf/odometry.tum"), sandbox.read("imported/odometry.tum"));
+
   // The same recording without its odometry: the LiDAR and the IMU make it, and the robot is
   // localized as well (docs/slam.md, "Without odometry").
   result = sandbox.run("import ds.bag -o handheld -q --odom-topic none");
@@ -130,16 +138,36 @@ TEST(ImportRecording, OurOwnBagReplaysToTheSameEstimate) {
 }
 
 // The ROS 1 Velodyne driver's conventions (stamped at the end of the turn, PointXYZIRT with its
-// padding, NaN points), its mounts on /tf_static, PoseStamped ground truth, bz2 chunks.
+// padding, NaN points), its mounts on /tf_static, PoseStamped ground truth, bz2 chunks; the
+// odometry only as a navigation stack's /tf (odom → base_footprint → base_link, with a
+// localizer's map → odom above it and an arm joint beside it).
 TEST(ImportRecording, AVelodyneDriverBagFromAnotherWriterLocalizes) {
   testing::Sandbox sandbox("import_velodyne");
   ASSERT_EQ(sandbox.run("simulate builtin:d1 -o ds --duration 20 -q --pcd binary").exit_code, 0);
-  ASSERT_EQ(shell(sandbox, python("ds velodyne.bag velodyne")), 0);
-  auto result = sandbox.run("import velodyne.bag -o imported -q");
+  ASSERT_EQ(shell(sandbox, python("ds velodyne.bag velodyne --odometry-on-tf")), 0);
+  // A frame that is not above the LiDAR cannot be the odometry's: the frames are listed.
+  auto result = sandbox.run("import velodyne.bag -o imported -q --odom-frame world");
+  EXPECT_EQ(result.exit_code, 1);
+  EXPECT_EQ(result.err,
+            "isg import: error: velodyne.bag: the frame \"world\" is not above the LiDAR's frame "
+            "on /tf and /tf_static (the frames above the LiDAR's (← on /tf, ⇠ fixed): velodyne ⇠ "
+            "base_link ⇠ base_footprint ← odom ← map): name the odometry's frame with "
+            "--odom-frame\n");
+  EXPECT_FALSE(sandbox.exists("imported"));
+  result = sandbox.run("import velodyne.bag -o imported -q");
   ASSERT_EQ(result.exit_code, 0) << result.err;
   EXPECT_THAT(result.out, HasSubstr("  LiDAR         /velodyne_points (sensor_msgs/PointCloud2): "
                                     "200 messages\n"));
-  EXPECT_THAT(result.out, HasSubstr("  odometry      /odometry/filtered (nav_msgs/Odometry)"));
+  EXPECT_THAT(result.out, HasSubstr("  odometry      /tf (tf2_msgs/TFMessage): 1001 messages\n"));
+  EXPECT_THAT(result.out, HasSubstr("  note: the odometry is the chain odom → base_footprint "
+                                    "(moving) → base_link (fixed) on /tf\n"));
+  // The odometry as simulated, the chain's fixed link composed back in: stamps to the nanosecond
+  // (python's stamps are rounded from seconds), positions to the printed micrometre's rounding,
+  // orientations to the last digits.
+  const std::string odometry = sandbox.read("imported/odometry.tum");
+  EXPECT_LE(largestDifference(odometry, sandbox.read("ds/odometry.tum"), 0, 1), 1.5e-9);
+  EXPECT_LE(largestDifference(odometry, sandbox.read("ds/odometry.tum"), 1, 4), 1e-6);
+  EXPECT_LE(largestDifference(odometry, sandbox.read("ds/odometry.tum"), 4, 8), 5e-9);
   EXPECT_THAT(result.out,
               HasSubstr("  ground truth  /vicon/base_link (geometry_msgs/PoseStamped): 2001"));
   EXPECT_THAT(result.out,
@@ -216,6 +244,19 @@ TEST(ImportRecording, BadRecordingsAreExactErrorsAndLeaveNothing) {
             "isg import: error: two.bag: several topics could be the LiDAR: /points_filtered "
             "(sensor_msgs/PointCloud2, 1 messages), /velodyne_points (sensor_msgs/PointCloud2, 10 "
             "messages); choose one with --lidar-topic\n");
+  // Fixed frames are no odometry; --odom-frame is for odometry on /tf.
+  result = sandbox.run(
+      "import two.bag -o imported -q --lidar-topic /velodyne_points --odom-topic /tf_static");
+  EXPECT_EQ(result.exit_code, 1);
+  EXPECT_EQ(result.err,
+            "isg import: error: two.bag: --odom-topic /tf_static: fixed frames do not move; name "
+            "the tf topic whose transforms move the base (/tf)\n");
+  result =
+      sandbox.run("import two.bag -o imported -q --lidar-topic /velodyne_points --odom-frame odom");
+  EXPECT_EQ(result.exit_code, 1);
+  EXPECT_EQ(result.err,
+            "isg import: error: two.bag: --odom-frame odom: the odometry is /odometry/filtered "
+            "(nav_msgs/Odometry); --odom-frame names the odometry's frame on /tf\n");
   result = sandbox.run("import two.bag -o imported -q --lidar-topic /imu/data");
   EXPECT_EQ(result.exit_code, 1);
   EXPECT_EQ(result.err,
