@@ -115,7 +115,8 @@ class Import {
     return double(std::int64_t(t.sec) - std::int64_t(origin_)) + 1e-9 * t.nsec;
   }
   void writeFiles(const fs::path& folder);
-  nlohmann::ordered_json metadata() const;
+  // The metadata of a recording isg did not write, as far as its frames go.
+  nlohmann::ordered_json metadata(double seconds) const;
 
   std::string bag_path_;
   BagImportOptions options_;
@@ -757,8 +758,7 @@ void Import::writeFiles(const fs::path& folder) {
     }
     m["lidar"]["pcd_data"] = dataset::pcdDataName(dataset::kDefaultPcdData);
   } else {
-    m = metadata();
-    m["duration_s"] = summary_.seconds;
+    m = metadata(summary_.seconds);
     m["extrinsics"] = {{"R_T_L", dataset::mountJson(mountXyzRpy(R_T_L_), R_T_L_)}};
     if (!imu.empty()) m["extrinsics"]["R_T_I"] = dataset::mountJson(mountXyzRpy(R_T_I_), R_T_I_);
     auto& lidar = m["lidar"];
@@ -802,11 +802,11 @@ void Import::writeFiles(const fs::path& folder) {
   writeFile(folder / dataset::kMetadata, m.dump(2) + "\n");
 }
 
-nlohmann::ordered_json Import::metadata() const {
+nlohmann::ordered_json Import::metadata(double seconds) const {
   return {{"format", dataset::kFormat},
           {"version", dataset::kVersion},
           {"generator", "isg import 0.1.0"},
-          {"duration_s", 0.0},
+          {"duration_s", seconds},
           {"frames",
            {{"M", odometry_frame_.empty() ? "odometry frame (none recorded)" : odometry_frame_},
             {"R", base_frame_},

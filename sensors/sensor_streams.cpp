@@ -2,6 +2,8 @@
 
 #include <cmath>
 
+#include "bim/angles.hpp"
+
 namespace isg::sensors {
 
 void quantiseStreams(SensorStreams& streams) {
@@ -16,11 +18,9 @@ Eigen::Isometry3d trueStartB_T_M(const SensorStreams& streams) {
     // The odometry the LiDAR and the IMU make (slam::ScanOdometry) starts at the base's first
     // pose, levelled: M is that pose's position and heading, its z up.
     const Eigen::Isometry3d& B_T_R = streams.ground_truth.front().pose;
-    const Eigen::Vector3d forward = B_T_R.linear().col(0);
     Eigen::Isometry3d B_T_M = Eigen::Isometry3d::Identity();
     B_T_M.linear() =
-        Eigen::AngleAxisd(std::atan2(forward.y(), forward.x()), Eigen::Vector3d::UnitZ())
-            .toRotationMatrix();
+        Eigen::AngleAxisd(bim::yawOf(B_T_R.linear()), Eigen::Vector3d::UnitZ()).toRotationMatrix();
     B_T_M.translation() = B_T_R.translation();
     return B_T_M;
   }

@@ -71,5 +71,18 @@ TEST(Handheld, RunLocalizesFromTheLidarAndTheImuAlone) {
   EXPECT_LT(m["max_height_error_B"].get<double>(), 1.0);
 }
 
+// The acceptance of the handheld carrier, at CI's size: a larger building (D3, a double-loaded
+// corridor, eight rooms), another seed, the floor in view — height from the floor, not bounded.
+TEST(Handheld, ALargerBuildingLocalizesWithItsHeightFromTheFloor) {
+  const testing::Sandbox sandbox("handheld_d3");
+  const auto r = sandbox.run("run builtin:d3.handheld --seed 2 -o run -q");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const auto m = nlohmann::json::parse(sandbox.read("run/metrics.json"));
+  ASSERT_TRUE(m["localized"].get<bool>());
+  EXPECT_FALSE(m["wrongly_localized"].get<bool>());
+  EXPECT_LE(m["ape_B"]["rmse"].get<double>(), 0.05);
+  EXPECT_LT(m["max_height_error_B"].get<double>(), 0.2);
+}
+
 }  // namespace
 }  // namespace isg::cli

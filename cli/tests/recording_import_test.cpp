@@ -7,6 +7,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <nlohmann/json.hpp>
 #include <sstream>
 #include <vector>
@@ -45,6 +46,20 @@ double largestDifference(const std::string& a, const std::string& b, std::size_t
     }
   }
   return out;
+}
+
+// Each scan's number of points (its PCD's POINTS line), scans 0 … count − 1.
+std::vector<long> scanSizes(const testing::Sandbox& sandbox, const std::string& dataset,
+                            int count) {
+  std::vector<long> sizes;
+  for (int i = 0; i < count; ++i) {
+    char name[32];
+    std::snprintf(name, sizeof name, "/scans/%06d.pcd", i);
+    const std::string pcd = sandbox.read(dataset + name);
+    const std::size_t at = pcd.find("\nPOINTS ");
+    sizes.push_back(at == std::string::npos ? -1 : std::stol(pcd.substr(at + 8)));
+  }
+  return sizes;
 }
 
 std::string python(const std::string& arguments) {
@@ -188,7 +203,8 @@ TEST(ImportRecording, AVelodyneDriverBagFromAnotherWriterLocalizes) {
                   original["extrinsics"]["R_T_I"]["matrix"][r][c].get<double>(), 1e-6);
     }
   }
-  // Every return kept, the NaN points left out: the scan as simulated, 0.1 s later in its stamp.
+  // Every return kept, the NaN points left out: each scan as simulated.
+  EXPECT_EQ(scanSizes(sandbox, "imported", 200), scanSizes(sandbox, "ds", 200));
   EXPECT_EQ(largestDifference(sandbox.read("imported/imu.csv"), sandbox.read("ds/imu.csv"), 1, 7),
             0.0);
   expectLocalizedAsTheOriginal(sandbox);
@@ -228,6 +244,7 @@ TEST(ImportRecording, AnOusterBagLocalizesWithTheMountsGiven) {
   // Ouster's empty pixels (zeros) left out: the simulated returns, no more.
   const auto ds = nlohmann::json::parse(sandbox.read("imported/metadata.json"));
   EXPECT_EQ(ds["lidar"]["scans"], 200);
+  EXPECT_EQ(scanSizes(sandbox, "imported", 200), scanSizes(sandbox, "ds", 200));
   expectLocalizedAsTheOriginal(sandbox);
 }
 

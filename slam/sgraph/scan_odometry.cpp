@@ -37,8 +37,6 @@ Eigen::Isometry3d ScanOdometry::predict(double t) const {
   return out;
 }
 
-Eigen::Isometry3d ScanOdometry::extrapolate(double t) const { return predict(t); }
-
 void ScanOdometry::turnYaw(double angle) { attitude_.turnYaw(angle); }
 
 Eigen::Isometry3d ScanOdometry::addScan(const sensors::Scan& scan) {

@@ -50,9 +50,9 @@ class ScanOdometry {
   // The base's pose in M at the scan's stamp (the first scan: M's origin, levelled by gravity when
   // the IMU has spoken); the scan is deskewed by the predicted motion and registered.
   Eigen::Isometry3d addScan(const sensors::Scan& scan);
-  // The pose at `t` after the latest scan, extrapolated at the latest velocity (for the turn the
-  // latest scan spans).
-  Eigen::Isometry3d extrapolate(double t) const;
+  // The base's pose at `t` as predicted from the latest scan's: at the latest velocity, turned by
+  // the gyroscope (or the last turn rate). Also the pose across the turn the latest scan spans.
+  Eigen::Isometry3d predict(double t) const;
   bool hasImu() const { return !attitude_.empty(); }
   // Scans whose registration agreed with the local map, of those registered.
   int registered() const { return registered_; }
@@ -63,8 +63,6 @@ class ScanOdometry {
     std::vector<Eigen::Vector3f> cloud;  // in L
     Eigen::Isometry3d M_T_R;
   };
-  // The base's pose at `t` as predicted from the latest scan's.
-  Eigen::Isometry3d predict(double t) const;
   // Turns the attitude filter (and its history) about M's z: the registration's yaw correction.
   void turnYaw(double angle);
 

@@ -26,7 +26,7 @@ void ScanOdometryLocalizer::pushScan(const sensors::Scan& scan) {
   // next scan's own pose (at that instant, the next stamp) still follows it.
   if (last > 1e-5f) {
     const double end = scan.stamp + double(last) - 1e-6;
-    push(end, odometry_.extrapolate(end));
+    push(end, odometry_.predict(end));
   }
   inner_->pushScan(scan);
 }

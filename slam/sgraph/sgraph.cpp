@@ -167,7 +167,10 @@ bool SGraph::addScan(sensors::Scan scan) {
       const double z = (M_T_L * observation.centroid).z();
       if (in_M.normal.z() > 0.9 && z < M_T_L.translation().z() - 0.3 &&
           observation.points < options_.extraction.min_inliers) {
-        floors_[floor].sparse_planes.emplace_back(z, observation.points);
+        auto& sparse = floors_[floor].sparse_planes;  // kept sorted: floorHeight's median
+        const std::pair<double, int> plane(z, observation.points);
+        sparse.insert(std::upper_bound(sparse.begin(), sparse.end(), plane), plane);
+        floors_[floor].sparse_support += observation.points;
       } else if (in_M.normal.z() > 0.9 && z < M_T_L.translation().z() - 0.3) {
         floors_[floor].plane_sum += z;
         ++floors_[floor].plane_count;
@@ -693,14 +696,10 @@ std::optional<double> SGraph::floorHeight(int floor) const {
   const Floor& f = floors_[floor];
   if (f.plane_count > 0) return f.plane_sum / f.plane_count;
   if (!f.sparse_planes.empty()) {
-    std::vector<std::pair<double, int>> sorted = f.sparse_planes;
-    std::sort(sorted.begin(), sorted.end());
-    long total = 0;
-    for (const auto& [z, support] : sorted) total += support;
     long below = 0;
-    for (const auto& [z, support] : sorted) {
+    for (const auto& [z, support] : f.sparse_planes) {
       below += support;
-      if (2 * below >= total) return z;
+      if (2 * below >= f.sparse_support) return z;
     }
   }
   // Not seen from this floor yet: the robot stands as high above every floor it walks on, and
