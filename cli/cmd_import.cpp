@@ -107,8 +107,10 @@ ImportCommand::ImportCommand(CLI::App& parent) {
       ->option_text("S")
       ->group(bag);
   app_->add_option("--base-frame", base_frame_,
-                   "the robot's base frame (default: the odometry's child frame; without "
-                   "odometry, the LiDAR's frame)")
+                   "the robot's base frame (default: the odometry's child frame, or on /tf "
+                   "base_link or the frame the odometry moves; without odometry, the ground "
+                   "truth's child frame when /tf_static joins it to the LiDAR, else the LiDAR's "
+                   "frame)")
       ->option_text("FRAME")
       ->group(bag);
   app_->add_option("--lidar-extrinsic", lidar_extrinsic_,
