@@ -385,7 +385,7 @@ bool Import::resolveTfOdometry() {
   bag_.read({tf_topic_}, [&](const BagMessageView& m) {
     try {
       for (const auto& t : ros1::decodeTfMessage(m.data)) {
-        if (const auto other = tree.add(t.header.frame_id, t.child_frame_id)) {
+        if (const auto other = tree.add(t.header.frame_id, t.child_frame_id, t.parent_T_child)) {
           throw ros1::MessageError("the frame \"" + t.child_frame_id + "\" hangs from \"" +
                                    t.header.frame_id + "\" here and from \"" + *other +
                                    "\" before (a frame has one parent)" +
@@ -398,6 +398,21 @@ bool Import::resolveTfOdometry() {
     ++index;
     return true;
   });
+  // Links that never change on /tf are mounts (ROS 1's first tf repeated them there): fixed
+  // frames for the sensors' mounts too, unless /tf_static has them.
+  std::vector<std::string> repeated_mounts;
+  for (const auto& link : tree.unchanging()) {
+    if (!frames_.parent(link.child)) {
+      frames_.add(link.parent, link.child, link.parent_T_child);
+      repeated_mounts.push_back(link.parent + " → " + link.child);
+    }
+  }
+  if (!repeated_mounts.empty()) {
+    std::string list;
+    for (const auto& m : repeated_mounts) list += (list.empty() ? "" : ", ") + m;
+    summary_.notes.push_back(tf_topic_ +
+                             " repeats transforms that never change, taken as fixed: " + list);
+  }
   const auto above = tree.above(lidar_frame_, frames_);
   std::string frames = lidar_frame_;
   for (const auto& a : above) frames += (a.moving ? " ← " : " ⇠ ") + a.frame;

@@ -22,11 +22,24 @@ bool sameStamp(RosTime a, RosTime b) { return a.sec == b.sec && a.nsec == b.nsec
 
 }  // namespace
 
-std::optional<std::string> MovingFrameTree::add(const std::string& parent,
-                                                const std::string& child) {
-  const auto [it, inserted] = parent_of_.emplace(child, parent);
-  if (!inserted && it->second != parent) return it->second;
+std::optional<std::string> MovingFrameTree::add(const std::string& parent, const std::string& child,
+                                                const Eigen::Isometry3d& parent_T_child) {
+  const auto [it, inserted] = link_of_.emplace(child, Link{parent, parent_T_child});
+  if (inserted) return std::nullopt;
+  if (it->second.parent != parent) return it->second.parent;
+  constexpr double kSame = 1e-9;
+  if ((it->second.first.matrix() - parent_T_child.matrix()).cwiseAbs().maxCoeff() > kSame) {
+    it->second.changes = true;
+  }
   return std::nullopt;
+}
+
+std::vector<MovingFrameTree::FixedLink> MovingFrameTree::unchanging() const {
+  std::vector<FixedLink> out;
+  for (const auto& [child, link] : link_of_) {
+    if (!link.changes) out.push_back({link.parent, child, link.first});
+  }
+  return out;
 }
 
 std::vector<MovingFrameTree::Above> MovingFrameTree::above(const std::string& frame,
@@ -36,8 +49,8 @@ std::vector<MovingFrameTree::Above> MovingFrameTree::above(const std::string& fr
   std::string current = frame;
   for (;;) {
     Above next;
-    if (const auto moving = parent_of_.find(current); moving != parent_of_.end()) {
-      next = {moving->second, true};
+    if (const auto on_tf = link_of_.find(current); on_tf != link_of_.end()) {
+      next = {on_tf->second.parent, on_tf->second.changes, on_tf->second.first};
     } else if (const auto link = fixed.parent(current)) {
       next = {link->first, false, link->second};
     } else {

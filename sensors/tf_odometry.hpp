@@ -18,24 +18,38 @@ namespace isg::sensors {
 // /tf) or fixed (/tf_static). docs/formats.md, "Importing recordings".
 
 // Which frame hangs from which on /tf. Learnt from the whole topic first, so that only the
-// chain's transforms are kept afterwards (a robot's /tf also moves every joint it has).
+// chain's transforms are kept afterwards (a robot's /tf also moves every joint it has). A link
+// whose transform never changes over the topic is fixed: ROS 1's first tf had no /tf_static, and
+// its static_transform_publisher repeats a mount on /tf.
 class MovingFrameTree {
  public:
   // The parent `child` already has when that is not `parent` (a frame has one parent in tf),
   // else nullopt (recorded).
-  std::optional<std::string> add(const std::string& parent, const std::string& child);
+  std::optional<std::string> add(const std::string& parent, const std::string& child,
+                                 const Eigen::Isometry3d& parent_T_child);
+  struct FixedLink {
+    std::string parent, child;
+    Eigen::Isometry3d parent_T_child;
+  };
+  // The links whose every transform was the first one (to 1e-9).
+  std::vector<FixedLink> unchanging() const;
 
   struct Above {
     std::string frame;  // a frame above the one asked about
-    bool moving;        // the link up to it from the frame below is on /tf (else /tf_static)
+    bool moving;        // the link up to it from the frame below changes on /tf
     Eigen::Isometry3d fixed_parent_T_child = Eigen::Isometry3d::Identity();  // when not moving
   };
-  // The frames above `frame` through moving and fixed links, nearest first. A frame with a
-  // parent on both hangs from its moving one (where /tf says it is now).
+  // The frames above `frame` through /tf's links and /tf_static's, nearest first. A frame with a
+  // parent on both hangs from its /tf one (where /tf says it is now).
   std::vector<Above> above(const std::string& frame, const StaticFrames& fixed) const;
 
  private:
-  std::map<std::string, std::string> parent_of_;
+  struct Link {
+    std::string parent;
+    Eigen::Isometry3d first;
+    bool changes = false;
+  };
+  std::map<std::string, Link> link_of_;  // by child
 };
 
 // A frame named as an odometry frame: its last '/'-part is "odom" or begins with it

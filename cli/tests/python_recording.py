@@ -26,8 +26,10 @@ ouster    ouster_ros's conventions: /os_cloud_node/points in "os_sensor", x y z 
 --imu-in-g           the IMU's specific force in g, as some drivers give it.
 --odometry-on-tf     (velodyne) the odometry as a navigation stack's /tf instead of a topic:
                      odom -> base_footprint moving, base_footprint -> base_link fixed (0.35 m
-                     up, on /tf_static), a localizer's map -> odom at 2 Hz, and an arm joint
-                     base_link -> arm_link at 10 Hz; several transforms share a message.
+                     up, on /tf_static), a localizer's map -> odom at 2 Hz, an arm joint
+                     base_link -> arm_link at 10 Hz, and the IMU's mount repeated on /tf at
+                     10 Hz (as ROS 1's first tf did) instead of /tf_static; several transforms
+                     share a message.
 """
 import argparse
 import array
@@ -236,10 +238,12 @@ def main():
         if velodyne:
             mounts = TFMessage()
             mounts.transforms = [
-                mount("base_link", "velodyne", metadata["extrinsics"]["R_T_L"]["matrix"], 0.0),
-                mount("base_link", "imu_link", metadata["extrinsics"]["R_T_I"]["matrix"], 0.0)]
+                mount("base_link", "velodyne", metadata["extrinsics"]["R_T_L"]["matrix"], 0.0)]
             if args.odometry_on_tf:
                 mounts.transforms.append(mount("base_footprint", "base_link", FOOTPRINT_T_BASE, 0.0))
+            else:
+                mounts.transforms.append(
+                    mount("base_link", "imu_link", metadata["extrinsics"]["R_T_I"]["matrix"], 0.0))
             bag.write("/tf_static", mounts, stamp(0.0))
         with open(os.path.join(args.dataset, "imu.csv")) as f:
             next(f)
@@ -266,6 +270,8 @@ def main():
                 if row[0] >= arm_next:  # a joint that moves, beside the chain
                     transforms.append(mount("base_link", "arm_link",
                                             yaw_about_z(math.sin(row[0]), x=0.2), row[0]))
+                    transforms.append(mount("base_link", "imu_link",
+                                            metadata["extrinsics"]["R_T_I"]["matrix"], row[0]))
                     arm_next += 0.1
                 if row[0] >= map_next:  # a localizer's correction, above the odometry's frame
                     transforms.append(mount("map", "odom",

@@ -155,7 +155,7 @@ TEST(ImportRecording, OurOwnBagReplaysToTheSameEstimate) {
 // The ROS 1 Velodyne driver's conventions (stamped at the end of the turn, PointXYZIRT with its
 // padding, NaN points), its mounts on /tf_static, PoseStamped ground truth, bz2 chunks; the
 // odometry only as a navigation stack's /tf (odom → base_footprint → base_link, with a
-// localizer's map → odom above it and an arm joint beside it).
+// localizer's map → odom above it and an arm joint beside it), the IMU's mount repeated on /tf.
 TEST(ImportRecording, AVelodyneDriverBagFromAnotherWriterLocalizes) {
   testing::Sandbox sandbox("import_velodyne");
   ASSERT_EQ(sandbox.run("simulate builtin:d1 -o ds --duration 20 -q --pcd binary").exit_code, 0);
@@ -176,6 +176,8 @@ TEST(ImportRecording, AVelodyneDriverBagFromAnotherWriterLocalizes) {
   EXPECT_THAT(result.out, HasSubstr("  odometry      /tf (tf2_msgs/TFMessage): 1001 messages\n"));
   EXPECT_THAT(result.out, HasSubstr("  note: the odometry is the chain odom → base_footprint "
                                     "(moving) → base_link (fixed) on /tf\n"));
+  EXPECT_THAT(result.out, HasSubstr("  note: /tf repeats transforms that never change, taken as "
+                                    "fixed: base_link → imu_link\n"));
   // The odometry as simulated, the chain's fixed link composed back in: stamps to the nanosecond
   // (python's stamps are rounded from seconds), positions to the printed micrometre's rounding,
   // orientations to the last digits.

@@ -16,16 +16,19 @@ double difference(const Eigen::Isometry3d& a, const Eigen::Isometry3d& b) {
   return (a.matrix() - b.matrix()).cwiseAbs().maxCoeff();
 }
 
-// map → odom (moving, slow) → base_footprint (moving) → base_link (fixed) → velodyne (fixed),
-// and an arm joint beside the chain.
+// map → odom (moving, slow) → base_footprint (moving) → base_link (fixed) → velodyne (repeated
+// unchanged on /tf), and an arm joint beside the chain.
 struct Navigation : ::testing::Test {
   void SetUp() override {
     fixed.add("base_footprint", "base_link", mountTransform({0, 0, 0.35, 0, 0, 0}));
-    fixed.add("base_link", "velodyne", mountTransform({0.1, 0, 0.5, 0, 0, 0}));
-    EXPECT_FALSE(tree.add("map", "odom"));
-    EXPECT_FALSE(tree.add("odom", "base_footprint"));
-    EXPECT_FALSE(tree.add("base_link", "arm_link"));
-    EXPECT_FALSE(tree.add("odom", "base_footprint"));  // again: the same parent
+    // Links that change on /tf move; one that repeats its transform (ROS 1's
+    // static_transform_publisher on /tf) is fixed.
+    for (double x : {0.0, 1.0}) {
+      EXPECT_FALSE(tree.add("map", "odom", along(x)));
+      EXPECT_FALSE(tree.add("odom", "base_footprint", along(x)));
+      EXPECT_FALSE(tree.add("base_link", "arm_link", along(0.0, x)));
+      EXPECT_FALSE(tree.add("base_link", "velodyne", mountTransform({0.1, 0, 0.5, 0, 0, 0})));
+    }
   }
   StaticFrames fixed;
   MovingFrameTree tree;
@@ -42,8 +45,12 @@ TEST_F(Navigation, FramesAboveTheLidarNearestFirst) {
   }
   EXPECT_LT(difference(above[1].fixed_parent_T_child, mountTransform({0, 0, 0.35, 0, 0, 0})),
             1e-15);
+  EXPECT_LT(difference(above[0].fixed_parent_T_child, mountTransform({0.1, 0, 0.5, 0, 0, 0})),
+            1e-15);
+  ASSERT_EQ(tree.unchanging().size(), 1u);
+  EXPECT_EQ(tree.unchanging()[0].child, "velodyne");
   // A second parent is refused, naming the first.
-  EXPECT_EQ(tree.add("world", "odom"), std::optional<std::string>("map"));
+  EXPECT_EQ(tree.add("world", "odom", along(0.0)), std::optional<std::string>("map"));
 }
 
 TEST_F(Navigation, PosesComposeTheChainAtTheStampsOfTheLinkNearestTheBase) {
