@@ -429,19 +429,22 @@ bool Import::resolveTfOdometry() {
                                     [](const auto& a) { return namedLikeOdometry(a.frame); });
     if (named != above.end()) top = named->frame;
   }
+  // Asked for (--odom-topic, --odom-frame), a chain that cannot be the odometry is an error; found
+  // by looking, it is left out with a note, and the recording imported without odometry.
+  const bool asked = tf_asked_ || !options_.odometry_frame.empty();
+  const auto give_up = [&](const std::string& why) {
+    if (asked) fail(why);
+    summary_.notes.push_back("no odometry taken from " + tf_topic_ + ": " + why);
+    return false;
+  };
   const bool moves =
       std::any_of(above.begin(), above.end(), [](const auto& a) { return a.moving; });
   if (top.empty() || position(top) == std::ptrdiff_t(above.size())) {
-    if (tf_asked_ || !options_.odometry_frame.empty()) {
-      fail(std::string(top.empty() ? "no frame named odom" : "the frame \"" + top + "\" is not") +
-           " above the LiDAR's frame on " + tf_topic_ + " and /tf_static (" + chain +
-           "): name the odometry's frame with --odom-frame");
-    }
-    if (moves) {
-      summary_.notes.push_back(tf_topic_ + " moves frames above the LiDAR's, none named odom (" +
-                               chain + "): not taken as odometry; --odom-frame names its frame");
-    }
-    return false;
+    if (!asked && !moves) return false;  // nothing on /tf moves the LiDAR: no odometry there
+    return give_up(
+        std::string(top.empty() ? "no frame named odom" : "the frame \"" + top + "\" is not") +
+        " above the LiDAR's frame on " + tf_topic_ + " and /tf_static (" + chain +
+        "): name the odometry's frame with --odom-frame");
   }
   // The base: as told; else the frame REP 105 names base_link when it is fixed below the moving
   // link nearest the LiDAR (odom → base_footprint → base_link → velodyne); else the frame that
@@ -460,13 +463,13 @@ bool Import::resolveTfOdometry() {
     }
   }
   if (base.empty()) {
-    fail("topic " + tf_topic_ + " moves nothing between \"" + top + "\" and the LiDAR's frame (" +
-         chain + ")");
+    return give_up("topic " + tf_topic_ + " moves nothing between \"" + top +
+                   "\" and the LiDAR's frame (" + chain + ")");
   }
   try {
     tf_odometry_.emplace(top, base, tree.above(base, frames_));
   } catch (const std::invalid_argument& e) {
-    fail("odometry from " + tf_topic_ + ": " + e.what() + " (" + chain + ")");
+    return give_up("odometry from " + tf_topic_ + ": " + e.what() + " (" + chain + ")");
   }
   summary_.odometry.topic = tf_topic_;
   summary_.odometry.type = findTopic(tf_topic_)->datatype;
