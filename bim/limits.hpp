@@ -23,6 +23,8 @@ inline constexpr double kMaxThickness = 10.0;
 inline constexpr double kMaxHeight = 100.0;
 // How far an as-built wall shift may move a wall.
 inline constexpr double kMaxWallShift = 10.0;
+// Degrees an as-built wall may be turned from its planned direction.
+inline constexpr double kMaxWallRotationDeg = 45.0;
 
 inline constexpr std::size_t kMaxLevels = 100;
 inline constexpr std::size_t kMaxWallsPerLevel = 20'000;

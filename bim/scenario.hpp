@@ -166,6 +166,20 @@ struct WallShift {
   double offset = 0.0;  // metres along the wall's left normal
 };
 
+// A wall built turned by `angle_deg` (counter-clockwise seen from above) about a point of its
+// axis: its start, its centre or its end. Its doors and windows turn with it.
+struct WallRotation {
+  enum class About { kStart, kCentre, kEnd };
+  std::string wall;
+  double angle_deg = 0.0;
+  About about = About::kCentre;
+};
+inline const char* aboutName(WallRotation::About a) {
+  return a == WallRotation::About::kStart ? "start"
+         : a == WallRotation::About::kEnd ? "end"
+                                          : "centre";
+}
+
 struct Clutter {
   std::string level;                                 // defaults to the robot's level
   Eigen::Vector3d center = Eigen::Vector3d::Zero();  // z above the level's elevation
@@ -177,12 +191,13 @@ struct AsBuilt {
   std::vector<std::string> missing_walls;
   std::vector<ExtraWall> extra_walls;
   std::vector<WallShift> wall_shifts;
+  std::vector<WallRotation> wall_rotations;
   std::vector<std::string> closed_doors;
   std::vector<Clutter> clutter;
 
   bool empty() const {
     return missing_walls.empty() && extra_walls.empty() && wall_shifts.empty() &&
-           closed_doors.empty() && clutter.empty();
+           wall_rotations.empty() && closed_doors.empty() && clutter.empty();
   }
 };
 

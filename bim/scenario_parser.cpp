@@ -5,6 +5,7 @@
 #include <set>
 #include <sstream>
 
+#include "bim/as_built_wall.hpp"
 #include "bim/box_grid.hpp"
 #include "bim/json_reader.hpp"
 #include "bim/limits.hpp"
@@ -313,7 +314,8 @@ std::string optionalLevel(const JsonNode& node, const Plan& plan, const std::str
 }
 
 AsBuilt parseAsBuilt(const JsonNode& node, const Plan& plan, const std::string& robot_level) {
-  node.expectObject({"missing_walls", "extra_walls", "wall_shifts", "closed_doors", "clutter"});
+  node.expectObject(
+      {"missing_walls", "extra_walls", "wall_shifts", "wall_rotations", "closed_doors", "clutter"});
   AsBuilt as_built;
   auto is_wall = [&](const std::string& id) { return plan.levelOfWall(id) != nullptr; };
   auto is_door = [&](const std::string& id) { return plan.levelOfDoor(id) != nullptr; };
@@ -361,6 +363,39 @@ AsBuilt parseAsBuilt(const JsonNode& node, const Plan& plan, const std::string& 
       shift.offset =
           item.field("offset").numberInRange(-limits::kMaxWallShift, limits::kMaxWallShift);
       as_built.wall_shifts.push_back(shift);
+    }
+  }
+  if (auto v = node.optionalField("wall_rotations")) {
+    std::set<std::string> seen;
+    for (const auto& item : v->elements()) {
+      item.expectObject({"wall", "angle_deg", "about"});
+      WallRotation rotation;
+      const JsonNode wall = item.field("wall");
+      rotation.wall = wall.identifier();
+      if (!is_wall(rotation.wall)) wall.fail("no wall " + inQuotes(rotation.wall) + " in the plan");
+      if (!seen.insert(rotation.wall).second) {
+        wall.fail(inQuotes(rotation.wall) + " is rotated twice");
+      }
+      for (const auto& missing : as_built.missing_walls) {
+        if (missing == rotation.wall) {
+          wall.fail(inQuotes(rotation.wall) + " is also in missing_walls");
+        }
+      }
+      rotation.angle_deg =
+          item.field("angle_deg")
+              .numberInRange(-limits::kMaxWallRotationDeg, limits::kMaxWallRotationDeg);
+      if (auto about = item.optionalField("about")) {
+        const std::string name = about->string();
+        if (name == "start") {
+          rotation.about = WallRotation::About::kStart;
+        } else if (name == "end") {
+          rotation.about = WallRotation::About::kEnd;
+        } else if (name != "centre") {
+          about->fail("unknown point " + inQuotes(name) +
+                      " (expected \"start\", \"centre\" or \"end\")");
+        }
+      }
+      as_built.wall_rotations.push_back(rotation);
     }
   }
   if (auto v = node.optionalField("clutter")) {
@@ -413,6 +448,11 @@ void checkAsBuiltExtent(const JsonNode& node, const Plan& plan, const AsBuilt& a
       const double reach = 0.5 * c.size.head<2>().norm();
       points.push_back(c.center.head<2>() - Eigen::Vector2d::Constant(reach));
       points.push_back(c.center.head<2>() + Eigen::Vector2d::Constant(reach));
+    }
+    for (const auto& w : level.walls) {
+      const Wall built = builtWall(w, as_built);
+      points.push_back(built.start);
+      points.push_back(built.end);
     }
     double shift = 0.0;
     for (const auto& s : as_built.wall_shifts) {

@@ -49,10 +49,14 @@ int CheckCommand::run() {
               stair_count.c_str());
   const auto& ab = scenario.as_built;
   if (!ab.empty()) {
+    // Turned walls are named only when there are some: the line stays as it was for the rest.
+    const std::string turned = ab.wall_rotations.empty()
+                                   ? ""
+                                   : std::to_string(ab.wall_rotations.size()) + " turned walls, ";
     std::printf(
-        "  as built: %zu missing walls, %zu extra walls, %zu shifted walls, "
+        "  as built: %zu missing walls, %zu extra walls, %zu shifted walls, %s"
         "%zu closed doors, %zu clutter boxes\n",
-        ab.missing_walls.size(), ab.extra_walls.size(), ab.wall_shifts.size(),
+        ab.missing_walls.size(), ab.extra_walls.size(), ab.wall_shifts.size(), turned.c_str(),
         ab.closed_doors.size(), ab.clutter.size());
   }
   if (!verbose_) return kExitOk;

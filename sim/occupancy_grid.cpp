@@ -127,9 +127,9 @@ OccupancyGrid::OccupancyGrid(const bim::Plan& plan, const bim::AsBuilt& as_built
     paint(room.outline, false);
   }
   // Where a wall of the plan is missing in the building, its footprint is floor: the rooms on
-  // either side join, as in the world. Where it is shifted, the part of its planned footprint
-  // it left is floor too: left blocked, that strip (up to the shift, 8 cm) would lie across each
-  // of its doorways and shut them. (Walls as they stand are painted over it below.)
+  // either side join, as in the world. Where it is shifted or turned, the part of its planned
+  // footprint it left is floor too: left blocked, that strip would lie across each of its doorways
+  // and shut them. (Walls as they stand are painted over it below.)
   const bim::LevelGeometry plan_geometry = bim::computeLevelGeometry(plan_level);
   for (const auto& g : plan_geometry.walls) {
     const std::string& id = g.wall->id;
@@ -138,7 +138,10 @@ OccupancyGrid::OccupancyGrid(const bim::Plan& plan, const bim::AsBuilt& as_built
     const bool shifted =
         std::any_of(as_built.wall_shifts.begin(), as_built.wall_shifts.end(),
                     [&](const bim::WallShift& s) { return s.wall == id && s.offset != 0; });
-    if (missing || shifted) paint(g.footprint(), false);
+    const bool turned =
+        std::any_of(as_built.wall_rotations.begin(), as_built.wall_rotations.end(),
+                    [&](const bim::WallRotation& r) { return r.wall == id && r.angle_deg != 0; });
+    if (missing || shifted || turned) paint(g.footprint(), false);
   }
   // A wall blocks where it stands lower than the robot can pass under.
   constexpr double kRobotHeight = 0.9;

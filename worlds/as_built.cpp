@@ -2,6 +2,8 @@
 
 #include <algorithm>
 
+#include "bim/as_built_wall.hpp"
+
 namespace isg::worlds {
 
 bim::Level asBuiltLevel(const bim::Level& level, const bim::AsBuilt& as_built) {
@@ -13,15 +15,7 @@ bim::Level asBuiltLevel(const bim::Level& level, const bim::AsBuilt& as_built) {
   std::erase_if(built.walls, [&](const bim::Wall& w) { return is_missing(w.id); });
   std::erase_if(built.doors, [&](const bim::Door& d) { return is_missing(d.wall); });
   std::erase_if(built.windows, [&](const bim::Window& w) { return is_missing(w.wall); });
-  for (const auto& shift : as_built.wall_shifts) {
-    for (auto& wall : built.walls) {
-      if (wall.id != shift.wall) continue;
-      const Eigen::Vector2d axis = (wall.end - wall.start).normalized();
-      const Eigen::Vector2d left(-axis.y(), axis.x());
-      wall.start += shift.offset * left;
-      wall.end += shift.offset * left;
-    }
-  }
+  for (auto& wall : built.walls) wall = bim::builtWall(wall, as_built);
   for (const auto& extra : as_built.extra_walls) {
     if (extra.level != level.id) continue;
     bim::Wall wall;

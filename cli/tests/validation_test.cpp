@@ -353,6 +353,35 @@ std::vector<Case> cases() {
       {"ShiftOfMissingWall", "scenario.json",
        [](json&, json& s) { s["as_built"]["missing_walls"] = {"W5"}; },
        "scenario.json: /as_built/wall_shifts/0/wall: \"W5\" is also in missing_walls"},
+      {"RotationOfUnknownWall", "scenario.json",
+       [](json&, json& s) {
+         s["as_built"]["wall_rotations"] = {{{"wall", "W9"}, {"angle_deg", 5}}};
+       },
+       "scenario.json: /as_built/wall_rotations/0/wall: no wall \"W9\" in the plan"},
+      {"RotationTooLarge", "scenario.json",
+       [](json&, json& s) {
+         s["as_built"]["wall_rotations"] = {{{"wall", "W3"}, {"angle_deg", 50}}};
+       },
+       "scenario.json: /as_built/wall_rotations/0/angle_deg: must be in [-45, 45], got 50"},
+      {"RotationAboutUnknownPoint", "scenario.json",
+       [](json&, json& s) {
+         s["as_built"]["wall_rotations"] = {
+             {{"wall", "W3"}, {"angle_deg", 5}, {"about", "middle"}}};
+       },
+       "scenario.json: /as_built/wall_rotations/0/about: unknown point \"middle\" (expected "
+       "\"start\", \"centre\" or \"end\")"},
+      {"RotationTwice", "scenario.json",
+       [](json&, json& s) {
+         s["as_built"]["wall_rotations"] = {{{"wall", "W3"}, {"angle_deg", 5}},
+                                            {{"wall", "W3"}, {"angle_deg", -5}}};
+       },
+       "scenario.json: /as_built/wall_rotations/1/wall: \"W3\" is rotated twice"},
+      {"RotationOfMissingWall", "scenario.json",
+       [](json&, json& s) {
+         s["as_built"]["missing_walls"] = {"W3"};
+         s["as_built"]["wall_rotations"] = {{{"wall", "W3"}, {"angle_deg", 5}}};
+       },
+       "scenario.json: /as_built/wall_rotations/0/wall: \"W3\" is also in missing_walls"},
       {"ClosedUnknownDoor", "scenario.json",
        [](json&, json& s) {
          s["as_built"]["closed_doors"] = {"D1", "D9"};

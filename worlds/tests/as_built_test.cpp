@@ -2,6 +2,10 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
+
+#include "bim/as_built_wall.hpp"
+
 #include "worlds/reference_plans.hpp"
 
 namespace isg::worlds {
@@ -30,6 +34,57 @@ TEST(AsBuiltLevel, AppliesEveryDeviation) {
 
   as_built.missing_walls = {"W6"};  // the corridor's north wall, with four doors
   EXPECT_EQ(asBuiltLevel(plan_level, as_built).doors.size(), plan_level.doors.size() - 4);
+}
+
+// Turned by hand: W5 runs (0, 4) → (20, 4) with door(s) placed along it from its start.
+TEST(AsBuiltLevel, TurnsAWallAboutItsStartCentreOrEnd) {
+  const bim::Scenario s = loadScenarioOrBuiltin("builtin:d3", nullptr);
+  const bim::Level& plan_level = s.plan.levels[0];
+  auto turned = [&](double angle_deg, bim::WallRotation::About about) {
+    bim::AsBuilt as_built;
+    as_built.wall_rotations = {{"W5", angle_deg, about}};
+    return *asBuiltLevel(plan_level, as_built).findWall("W5");
+  };
+  const bim::Wall at_start = turned(90.0, bim::WallRotation::About::kStart);
+  EXPECT_TRUE(at_start.start.isApprox(Eigen::Vector2d(0, 4)));
+  EXPECT_TRUE(at_start.end.isApprox(Eigen::Vector2d(0, 24)));
+  const bim::Wall at_centre = turned(90.0, bim::WallRotation::About::kCentre);
+  EXPECT_TRUE(at_centre.start.isApprox(Eigen::Vector2d(10, -6)));
+  EXPECT_TRUE(at_centre.end.isApprox(Eigen::Vector2d(10, 14)));
+  const bim::Wall at_end = turned(-90.0, bim::WallRotation::About::kEnd);
+  EXPECT_TRUE(at_end.start.isApprox(Eigen::Vector2d(20, 24)));
+  EXPECT_TRUE(at_end.end.isApprox(Eigen::Vector2d(20, 4)));
+  // Turned and shifted: turned first, then moved along the planned left normal (+y).
+  bim::AsBuilt both;
+  both.wall_rotations = {{"W5", 90.0, bim::WallRotation::About::kStart}};
+  both.wall_shifts = {{"W5", 0.5}};
+  EXPECT_TRUE(
+      asBuiltLevel(plan_level, both).findWall("W5")->start.isApprox(Eigen::Vector2d(0, 4.5)));
+}
+
+// The deviation of a built axis, as the deviation report measures it, by hand.
+TEST(AsBuiltLevel, AxisDeviationAtThePlannedCentre) {
+  bim::Wall planned;
+  planned.start = {0, 0};
+  planned.end = {4, 0};
+  // Parallel, 0.3 m to the left: the same offset anywhere, whichever way it points.
+  bim::AxisDeviation d = bim::axisDeviation(planned, {7, 0.3}, {-1, 0});
+  EXPECT_NEAR(d.offset_m, 0.3, 1e-12);
+  EXPECT_NEAR(d.angle_deg, 0.0, 1e-12);
+  // Turned 5° about the planned start: at the centre (x = 2) it stands 2·tan 5° to the left.
+  const double a = 5.0 * M_PI / 180.0;
+  d = bim::axisDeviation(planned, {0, 0}, {std::cos(a), std::sin(a)});
+  EXPECT_NEAR(d.offset_m, 2.0 * std::tan(a), 1e-12);
+  EXPECT_NEAR(d.angle_deg, 5.0, 1e-12);
+  // The built wall from a scenario agrees: turned −3° about its end, then shifted −0.1 m.
+  bim::AsBuilt as_built;
+  planned.id = "W";
+  as_built.wall_rotations = {{"W", -3.0, bim::WallRotation::About::kEnd}};
+  as_built.wall_shifts = {{"W", -0.1}};
+  const bim::Wall built = bim::builtWall(planned, as_built);
+  d = bim::axisDeviation(planned, built.start, built.end - built.start);
+  EXPECT_NEAR(d.angle_deg, -3.0, 1e-12);
+  EXPECT_NEAR(d.offset_m, -0.1 + 2.0 * std::tan(3.0 * M_PI / 180.0), 1e-12);
 }
 
 }  // namespace
