@@ -80,7 +80,21 @@ GenerateCommand::GenerateCommand(CLI::App& parent) {
           "as built: mean clutter boxes per office, 0 … 4 (in its corners, clear of doors)")
       ->capture_default_str();
   app_->add_option("--shifted-walls", spec_.shifted_walls,
-                   "as built: share of inner walls moved 3–8 cm")
+                   "as built: share of inner walls moved --shift-min to --shift-max metres")
+      ->capture_default_str();
+  app_->add_option("--shift-min", spec_.shift_min, "as built: smallest shift of a wall [m]")
+      ->capture_default_str();
+  app_->add_option("--shift-max", spec_.shift_max, "as built: largest shift of a wall [m]")
+      ->capture_default_str();
+  app_->add_option("--rotated-walls", spec_.rotated_walls,
+                   "as built: share of door-less inner walls turned about their start, centre or "
+                   "end (no point swung more than 1.2 m)")
+      ->capture_default_str();
+  app_->add_option("--rotation-min", spec_.rotation_min_deg,
+                   "as built: smallest turn of a rotated wall [degrees]")
+      ->capture_default_str();
+  app_->add_option("--rotation-max", spec_.rotation_max_deg,
+                   "as built: largest turn of a rotated wall [degrees]")
       ->capture_default_str();
   app_->add_option("--missing-walls", spec_.missing_walls,
                    "as built: share of door-less walls between offices left unbuilt")

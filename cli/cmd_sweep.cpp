@@ -11,6 +11,7 @@
 #include "sweep/lock.hpp"
 #include "sweep/pool.hpp"
 #include "sweep/prepare_worlds.hpp"
+#include "sweep/run_table.hpp"
 #include "sweep/slurm_backend.hpp"
 #include "sweep/suite.hpp"
 #include "worlds/reference_plans.hpp"
@@ -87,8 +88,7 @@ SweepCommand::SweepCommand(CLI::App& parent) {
       ->option_text("K")
       ->check(CLI::Range(0L, long(sweep::kMaxSweepCells) - 1));
   app_->add_option("--measure", measure_, "the table's measure, as isg table's --measure")
-      ->check(CLI::IsMember(
-          {"ape", "time-wrong", "time-to-localize", "distance-to-localize", "rooms-to-localize"}))
+      ->check(CLI::IsMember(sweep::kRunTableMeasures))
       ->capture_default_str();
   app_->add_flag("--rerun-changed", rerun_changed_,
                  "when a world's content changed since the sweep folder's cells ran (its file "

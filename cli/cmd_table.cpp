@@ -28,10 +28,14 @@ TableCommand::TableCommand(CLI::App& parent) {
       "docs/evaluation.md). --measure time-wrong tabulates the seconds spent more than 1 m off "
       "instead, --measure time-to-localize the seconds to the first localization, "
       "--measure distance-to-localize the metres walked by then and --measure rooms-to-localize "
-      "the plan rooms the robot had stood in by then. "
+      "the plan rooms the robot had stood in by then, --measure deviation-recall the share of "
+      "the walls built shifted or turned that deviations.json found (among those seen over half "
+      "their length) and --measure deviation-offset-error the mean error of their measured "
+      "offsets (docs/deviations.md; simulated runs, whose scenario knows the truth). "
       "With --baseline, compares each cell of the baseline table (CSV, as --format csv writes "
       "it) with the runs and exits with code 4, naming every cell that is worse by more than "
-      "--tolerance (in the measure's unit), failed, was wrongly localized, or has no run.\n\n"
+      "--tolerance (in the measure's unit; for deviation-recall, lower by more), failed, was "
+      "wrongly localized, or has no run.\n\n"
       "Runs of one world and method with different seeds make one cell: mean ± sample standard "
       "deviation over the seeds that localized correctly, k/n seeds localized correctly, w✗ "
       "seeds wrongly localized. In CSV the method's column holds the mean (a number only when "
@@ -54,9 +58,10 @@ TableCommand::TableCommand(CLI::App& parent) {
   app_->add_option("--measure", measure_,
                    "ape: APE RMSE in B [m]; time-wrong: seconds more than 1 m off; "
                    "time-to-localize: seconds to the first localization; distance-to-localize: "
-                   "metres walked by then; rooms-to-localize: plan rooms stood in by then")
-      ->check(CLI::IsMember(
-          {"ape", "time-wrong", "time-to-localize", "distance-to-localize", "rooms-to-localize"}))
+                   "metres walked by then; rooms-to-localize: plan rooms stood in by then; "
+                   "deviation-recall: share of the walls built shifted or turned that the "
+                   "deviation report found; deviation-offset-error: their offsets' mean error [m]")
+      ->check(CLI::IsMember(sweep::kRunTableMeasures))
       ->capture_default_str();
   app_->add_option("--baseline", baseline_, "baseline table (CSV) to check the runs against");
   app_->add_option("--tolerance", tolerance_,
@@ -124,7 +129,8 @@ int TableCommand::run() {
     throw bim::InputError(baseline_, "", e.what());
   }
   for (auto& column : baseline.columns) column = methods.canonical(column);  // renamed methods
-  const auto regressions = eval::findRegressions(baseline, table, tolerance_);
+  const auto regressions =
+      eval::findRegressions(baseline, table, tolerance_, measure_ == "deviation-recall");
   for (const auto& r : regressions) {
     std::fprintf(stderr, "isg table: regression: %s (tolerance %.3f m)\n", r.describe().c_str(),
                  tolerance_);

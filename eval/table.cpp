@@ -441,7 +441,7 @@ std::string Regression::describe() const {
 }
 
 std::vector<Regression> findRegressions(const ResultTable& baseline, const ResultTable& table,
-                                        double tolerance) {
+                                        double tolerance, bool higher_is_better) {
   std::vector<Regression> out;
   for (std::size_t r = 0; r < baseline.rows.size(); ++r) {
     for (std::size_t c = 0; c < baseline.columns.size(); ++c) {
@@ -459,7 +459,9 @@ std::vector<Regression> findRegressions(const ResultTable& baseline, const Resul
         }
         continue;
       }
-      const bool worse = !baseline_wrong && expected && (!*got || **got > *expected + tolerance);
+      const bool worse = !baseline_wrong && expected &&
+                         (!*got || (higher_is_better ? **got < *expected - tolerance
+                                                     : **got > *expected + tolerance));
       if (worse) out.push_back({baseline.rows[r], baseline.columns[c], expected, *got, false});
     }
   }

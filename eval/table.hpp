@@ -79,7 +79,9 @@ struct Regression {
 // Cells worse than the baseline by more than `tolerance` metres, cells that failed where the
 // baseline has a number, cells wrongly localized where the baseline was not, and cells of the
 // baseline with no run at all.
+// `higher_is_better`: a measure where less is worse (a recall): a cell regresses when it falls
+// below its baseline by more than the tolerance.
 std::vector<Regression> findRegressions(const ResultTable& baseline, const ResultTable& table,
-                                        double tolerance);
+                                        double tolerance, bool higher_is_better = false);
 
 }  // namespace isg::eval

@@ -3,6 +3,7 @@
 #include "bim/polygon.hpp"
 #include "eval/ape.hpp"
 #include "eval/coverage.hpp"
+#include "eval/pose_interpolation.hpp"
 #include "eval/wrong_localization.hpp"
 #include "run/level_metrics.hpp"
 #include "run/map_plan_error.hpp"
@@ -155,6 +156,19 @@ RunEvaluation evaluateRun(const RunRecord& run) {
     m.notes.push_back(run.final_B_T_M
                           ? "no map-to-plan error: no scan point in a wall's height band"
                           : "no map-to-plan error: the map was never placed in the plan");
+  }
+  if (run.map && run.final_B_T_M && run.setup.agraph != nullptr) {
+    // Where the map lay in the plan at each keyframe: the pose in B the localizer reported then,
+    // over the keyframe's final pose in M.
+    std::vector<std::optional<Eigen::Isometry3d>> keyframe_B_T_M;
+    for (const auto& kf : run.map->keyframes) {
+      const auto B_T_R = eval::interpolatePose(run.estimate, kf.stamp);
+      keyframe_B_T_M.push_back(B_T_R ? std::optional(*B_T_R * kf.estimate.inverse())
+                                     : std::nullopt);
+    }
+    evaluation.deviations =
+        slam::measureDeviations(*run.setup.agraph, *run.map, *run.final_B_T_M, {}, keyframe_B_T_M);
+    m.deviations = deviationMetrics(*evaluation.deviations, run.setup.plan, run.setup.as_built);
   }
   m.matching_status = run.search_status;
   m.matching_events = run.status_changes;

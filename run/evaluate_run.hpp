@@ -5,6 +5,7 @@
 
 #include "run/run_metrics.hpp"
 #include "run/run_record.hpp"
+#include "slam/plan_deviations.hpp"
 
 namespace isg::run {
 
@@ -22,6 +23,8 @@ struct RunEvaluation {
   Trajectory aligned_map_estimate;
   std::vector<std::pair<double, double>> map_error_over_time;
   std::vector<std::pair<double, double>> map_heading_error_over_time;
+  // As built against as planned, for a map placed in a plan (deviations.json and .svg).
+  std::optional<slam::DeviationReport> deviations;
 };
 
 RunEvaluation evaluateRun(const RunRecord& run);

@@ -3,6 +3,7 @@
 #include <filesystem>
 
 #include "bim/agraph_json.hpp"
+#include "run/deviation_report.hpp"
 #include "run/run_report.hpp"
 #include "sensors/atomic_folder.hpp"
 
@@ -35,6 +36,11 @@ void writeRunFolder(const std::string& dir, const RunRecord& run, const RunEvalu
           sensors::writeFile(temporary / "keyframes.tum", eval::toTumText(keyframes));
         }
         sensors::writeFile(temporary / "report.svg", reportSvg(run, evaluation));
+        if (evaluation.deviations) {
+          sensors::writeFile(temporary / "deviations.json",
+                             deviationReportJson(*evaluation.deviations).dump(1) + "\n");
+          sensors::writeFile(temporary / "deviations.svg", deviationSvg(*evaluation.deviations));
+        }
       });
 }
 

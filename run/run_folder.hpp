@@ -10,7 +10,8 @@ namespace isg::run {
 // Writes the run folder (docs/evaluation.md) all at once — into a temporary folder beside it,
 // renamed into place at the end: groundtruth.tum, odometry.tum, estimate.tum (B, rows only once
 // localized), estimate_map.tum (M), metrics.json, sgraph.json, report.svg; agraph.json when the
-// run has a plan; keyframes.tum when the method builds a map. An existing folder is an
+// run has a plan; keyframes.tum when the method builds a map; deviations.json and deviations.svg
+// when the map was placed in a plan. An existing folder is an
 // InputError unless `force`.
 void writeRunFolder(const std::string& dir, const RunRecord& run, const RunEvaluation& evaluation,
                     bool force);

@@ -95,6 +95,7 @@ nlohmann::json metricsToJson(const RunMetrics& m) {
     map["cutoff_m"] = m.map_to_plan->cutoff;
     j["map_to_plan"] = map;
   }
+  if (m.deviations) j["deviations"] = deviationMetricsJson(*m.deviations);
   if (!m.levels.empty()) {
     nlohmann::json levels = nlohmann::json::array();
     for (const LevelMetrics& level : m.levels) {
@@ -181,6 +182,9 @@ RunMetrics metricsFromJson(const nlohmann::json& document, const std::string& fi
     out.near_share = map.field("near_share").numberInRange(0.0, 1.0);
     out.cutoff = map.field("cutoff_m").nonNegativeNumber();
     m.map_to_plan = out;
+  }
+  if (const auto deviations = root.optionalField("deviations")) {
+    m.deviations = deviationMetricsFromJson(*deviations);
   }
   if (const auto status = root.optionalField("matching_status")) {
     m.matching_status = status->string();

@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "eval/ape.hpp"
+#include "run/deviation_grading.hpp"
 #include "slam/map_diagnostics.hpp"
 
 namespace isg::run {
@@ -78,6 +79,8 @@ struct RunMetrics {
     double cutoff = 0.0;
   };
   std::optional<MapToPlan> map_to_plan;
+  // As built against as planned (deviations.json), graded when the building's truth is known.
+  std::optional<DeviationMetrics> deviations;
   std::optional<std::string> matching_status;  // methods that search for a match
   std::vector<slam::StatusChange> matching_events;
   // Stamps where the search status became "lost", and where it became "matched" again after.

@@ -1,5 +1,7 @@
 #include "run/run_report.hpp"
 
+#include "run/deviation_report.hpp"
+
 #include <algorithm>
 #include <cstdio>
 #include <limits>
@@ -288,6 +290,7 @@ std::string runSummary(const std::string& command, const std::string& dir, const
     out += "  lost at " + times + "\n";
   }
   if (m.map_to_plan) out += "  " + mapToPlanLine(*m.map_to_plan) + "\n";
+  if (m.deviations) out += "  " + deviationSummaryLine(*m.deviations) + "\n";
   if (m.ape_M_se3) {
     out += format("  APE in M after SE(3) alignment: rmse %.3f m\n", m.ape_M_se3->rmse);
   }

@@ -36,9 +36,23 @@ struct MapRoom {
   std::array<double, 2> widths{0.0, 0.0};            // metres
 };
 
+// A wall plane of the map, as the map holds it at the end: oriented toward where it was seen
+// from, with its extent along the wall and the heights it was seen at. Only planes seen as walls
+// (not clutter) and not merged into another.
+struct MapWall {
+  int id = -1;
+  Eigen::Vector3d normal = Eigen::Vector3d::UnitX();  // in M
+  double d = 0.0;                                     // n·x + d = 0 on the plane
+  Eigen::Vector2d start = Eigen::Vector2d::Zero(), end = Eigen::Vector2d::Zero();  // in M
+  double z_min = 0.0, z_max = 0.0;                                                 // in M
+  int observations = 0;
+  std::vector<int> keyframes;  // that observed it: indices into MapDiagnostics::keyframes
+};
+
 struct MapDiagnostics {
   std::vector<MapKeyframe> keyframes;
   std::size_t planes = 0;
+  std::vector<MapWall> walls;
   std::vector<MapRoom> rooms;  // confirmed rooms
   std::vector<KeyframeTiming> timings;
 };

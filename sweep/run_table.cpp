@@ -88,6 +88,12 @@ RunTable tabulateRuns(std::vector<std::pair<std::string, run::RunMetrics>> runs,
       if (metrics.localized && metrics.rooms_visited_to_localize) {
         value = double(*metrics.rooms_visited_to_localize);
       }
+    } else if (measure == "deviation-recall" || measure == "deviation-offset-error") {
+      // Graded deviation reports only (a simulated building with its truth).
+      if (metrics.deviations && metrics.deviations->grade) {
+        const run::DeviationGrade& grade = *metrics.deviations->grade;
+        value = measure == "deviation-recall" ? grade.recall : grade.offset_error_m;
+      }
     } else if (metrics.localized) {
       value = metrics.time_to_localize;
     }
@@ -172,6 +178,12 @@ RunTable tabulateRuns(std::vector<std::pair<std::string, run::RunMetrics>> runs,
           ? "Metres walked (2D) to the first localization; - never localized"
       : measure == "rooms-to-localize"
           ? "Plan rooms stood in by the first localization; - never localized"
+      : measure == "deviation-recall"
+          ? "Recall of the walls built shifted or turned, among those seen over half their "
+            "length (deviations.json against the scenario's as_built); - no graded report"
+      : measure == "deviation-offset-error"
+          ? "Mean error [m] of the offsets measured for the walls built shifted or turned "
+            "(deviations.json against the scenario's as_built); - no graded report"
           : "APE RMSE in B [m] (2D, no alignment, from the first localized pose on); - never "
             "localized, ✗ wrongly localized (more than 1 m off for more than 5 s)";
   if (with_stats) {

@@ -13,10 +13,20 @@ namespace isg::sweep {
 // "builtin:d1" → "d1"; anything else as it is.
 std::string shortWorld(const std::string& world);
 
+// Every measure a run table can show, as --measure spells them.
+inline const std::vector<std::string> kRunTableMeasures = {"ape",
+                                                           "time-wrong",
+                                                           "time-to-localize",
+                                                           "distance-to-localize",
+                                                           "rooms-to-localize",
+                                                           "deviation-recall",
+                                                           "deviation-offset-error"};
+
 // The table of `isg table` and `isg sweep --collect`: rows worlds, columns methods in the
 // registry's order, cells aggregated over seeds (docs/evaluation.md), with a caption that says
 // what the cells are. `runs` are (run folder, its metrics) pairs; `measure` is one of ape,
-// time-wrong, time-to-localize, distance-to-localize, rooms-to-localize. Two runs of one world,
+// time-wrong, time-to-localize, distance-to-localize, rooms-to-localize, deviation-recall,
+// deviation-offset-error (kRunTableMeasures). Two runs of one world,
 // method and seed are bad input naming the second folder. Runs of one world name whose world
 // hashes differ are different buildings: their rows are told apart by the hash ("w [1a2b3c4d]").
 // `absent` are the seeds a sweep asked for that have no run (failed, or not run): their cells

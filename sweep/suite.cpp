@@ -15,10 +15,30 @@ namespace fs = std::filesystem;
 
 // A generator parameter of the suite: the JSON name is the command line's without the dashes.
 worlds::GeneratorSpec generatorSpec(const bim::JsonNode& node) {
-  node.expectObject({"family", "seed", "count", "rooms", "room_width", "room_depth", "size_spread",
-                     "corridor_width", "doors", "symmetric", "partitions", "wall_thickness",
-                     "height", "clutter_per_room", "shifted_walls", "missing_walls", "extra_walls",
-                     "closed_doors", "connecting_doors"});
+  node.expectObject({"family",
+                     "seed",
+                     "count",
+                     "rooms",
+                     "room_width",
+                     "room_depth",
+                     "size_spread",
+                     "corridor_width",
+                     "doors",
+                     "symmetric",
+                     "partitions",
+                     "wall_thickness",
+                     "height",
+                     "clutter_per_room",
+                     "shifted_walls",
+                     "shift_min",
+                     "shift_max",
+                     "rotated_walls",
+                     "rotation_min_deg",
+                     "rotation_max_deg",
+                     "missing_walls",
+                     "extra_walls",
+                     "closed_doors",
+                     "connecting_doors"});
   worlds::GeneratorSpec spec;
   spec.family = node.field("family").identifier();
   const auto& families = worlds::generatorFamilies();
@@ -51,6 +71,11 @@ worlds::GeneratorSpec generatorSpec(const bim::JsonNode& node) {
   number("height", spec.height);
   number("clutter_per_room", spec.clutter_per_room);
   number("shifted_walls", spec.shifted_walls);
+  number("shift_min", spec.shift_min);
+  number("shift_max", spec.shift_max);
+  number("rotated_walls", spec.rotated_walls);
+  number("rotation_min_deg", spec.rotation_min_deg);
+  number("rotation_max_deg", spec.rotation_max_deg);
   number("missing_walls", spec.missing_walls);
   number("extra_walls", spec.extra_walls);
   number("closed_doors", spec.closed_doors);
@@ -295,6 +320,11 @@ nlohmann::json generatorSpecJson(const worlds::GeneratorSpec& s) {
           {"height", s.height},
           {"clutter_per_room", s.clutter_per_room},
           {"shifted_walls", s.shifted_walls},
+          {"shift_min", s.shift_min},
+          {"shift_max", s.shift_max},
+          {"rotated_walls", s.rotated_walls},
+          {"rotation_min_deg", s.rotation_min_deg},
+          {"rotation_max_deg", s.rotation_max_deg},
           {"missing_walls", s.missing_walls},
           {"extra_walls", s.extra_walls},
           {"closed_doors", s.closed_doors}};

@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cmath>
 #include <map>
+#include <numbers>
 #include <optional>
 #include <queue>
 #include <random>
@@ -458,10 +459,16 @@ void checkSpec(const GeneratorSpec& spec) {
   for (const auto& [value, name] :
        {std::pair{spec.connecting_doors, "connecting doors"},
         std::pair{spec.shifted_walls, "shifted walls"},
+        std::pair{spec.rotated_walls, "rotated walls"},
         std::pair{spec.missing_walls, "missing walls"}, std::pair{spec.extra_walls, "extra walls"},
         std::pair{spec.closed_doors, "closed doors"}}) {
     require(value >= 0.0 && value <= 1.0, std::string(name) + ": must be a share in [0, 1]");
   }
+  require(spec.shift_min >= 0.0 && spec.shift_min <= spec.shift_max && spec.shift_max <= 1.0,
+          "shift range: must satisfy 0 <= shift min <= shift max <= 1 m");
+  require(spec.rotation_min_deg >= 0.0 && spec.rotation_min_deg <= spec.rotation_max_deg &&
+              spec.rotation_max_deg <= 45.0,
+          "rotation range: must satisfy 0 <= rotation min <= rotation max <= 45 degrees");
   require(spec.clutter_per_room >= 0.0 && spec.clutter_per_room <= 4.0,
           "clutter per room: must be in [0, 4]");
 }
@@ -727,7 +734,8 @@ void drawWallChanges(const GeneratorSpec& s, const Layout& layout, std::mt19937_
                                    return layout.spaces[k].kind == Kind::kOffice;
                                  });
     const double draw_missing = unit(built_rng), draw_shift = unit(built_rng);
-    const double offset = (0.03 + 0.05 * unit(built_rng)) * (unit(built_rng) < 0.5 ? -1 : 1);
+    const double offset = (s.shift_min + (s.shift_max - s.shift_min) * unit(built_rng)) *
+                          (unit(built_rng) < 0.5 ? -1 : 1);
     if (between_offices && draw_missing < s.missing_walls) {
       missing.push_back("W" + std::to_string(w + 1));
     } else if (!walls[w].outer && draw_shift < s.shifted_walls) {
@@ -736,6 +744,39 @@ void drawWallChanges(const GeneratorSpec& s, const Layout& layout, std::mt19937_
   }
   if (!missing.empty()) as_built["missing_walls"] = missing;
   if (!shifts.empty()) as_built["wall_shifts"] = shifts;
+}
+
+// As built, turned walls: door-less inner walls not missing, each with probability
+// rotated_walls, turned about its start, centre or end. The angle is capped so that no point of
+// the wall swings more than 1.2 m (a third of an office): a long wall turns less.
+void drawWallRotations(const GeneratorSpec& s, const Layout& layout, std::mt19937_64& turn_rng,
+                       json& as_built) {
+  if (s.rotated_walls <= 0.0) return;
+  std::uniform_real_distribution<double> unit(0.0, 1.0);
+  std::vector<bool> has_door(layout.walls.size(), false);
+  for (const Door& d : layout.doors) has_door[d.wall] = true;
+  std::set<std::string> missing;
+  if (as_built.contains("missing_walls")) {
+    for (const auto& id : as_built["missing_walls"]) missing.insert(id.get<std::string>());
+  }
+  const char* abouts[] = {"start", "centre", "end"};
+  json turns = json::array();
+  for (std::size_t w = 0; w < layout.walls.size(); ++w) {
+    const Wall& wall = layout.walls[w];
+    const std::string id = "W" + std::to_string(w + 1);
+    const double draw = unit(turn_rng), size = unit(turn_rng), sign = unit(turn_rng);
+    const int about = std::min(2, int(3.0 * unit(turn_rng)));
+    if (wall.outer || has_door[w] || missing.count(id) || draw >= s.rotated_walls) continue;
+    const double length = std::abs(wall.end() - wall.start());
+    const double reach = about == 1 ? 0.5 * length : length;
+    const double cap_deg = std::asin(std::min(1.0, 1.2 / reach)) * 180.0 / std::numbers::pi;
+    const double angle =
+        std::min(s.rotation_min_deg + (s.rotation_max_deg - s.rotation_min_deg) * size, cap_deg);
+    turns.push_back({{"wall", id},
+                     {"angle_deg", std::round(angle * 10.0) / 10.0 * (sign < 0.5 ? -1 : 1)},
+                     {"about", abouts[about]}});
+  }
+  if (!turns.empty()) as_built["wall_rotations"] = turns;
 }
 
 // As built, doors: closed where closing keeps every space reached. Every space is reached through
@@ -854,6 +895,8 @@ GeneratedBuilding generateUnchecked(const GeneratorSpec& spec) {
 
   json as_built = json::object();
   drawWallChanges(s, layout, built_rng, as_built);
+  std::mt19937_64 turn_rng(spec.seed * 0xA0761D6478BD642FULL + 11);
+  drawWallRotations(s, layout, turn_rng, as_built);
   drawClosedDoors(s, layout, built_rng, as_built);
   drawOfficeContents(s, layout, built_rng, as_built);
   // The robot starts in an office drawn from the seed and tours every room.

@@ -37,11 +37,19 @@ struct GeneratorSpec {
   double height = 3.0;
   // As-built deviations, by density.
   double clutter_per_room = 1.0;  // mean clutter boxes per office
-  double shifted_walls = 0.1;     // share of inner walls moved 3–8 cm
-  double missing_walls = 0.0;     // share of office–office walls without doors left unbuilt
-  double extra_walls = 0.0;       // share of offices with an unplanned partition
-  double closed_doors = 0.0;      // share of doors closed among those that can be (the rooms
-                                  // stay connected)
+  double shifted_walls = 0.1;     // share of inner walls moved shift_min–shift_max metres
+  double shift_min = 0.03;        // m, either way
+  double shift_max = 0.08;
+  // Share of door-less inner walls turned rotation_min_deg–rotation_max_deg (either way) about
+  // their start, centre or end; drawn from a stream of their own, so that turning walls changes
+  // no other draw.
+  double rotated_walls = 0.0;
+  double rotation_min_deg = 3.0;
+  double rotation_max_deg = 15.0;
+  double missing_walls = 0.0;  // share of office–office walls without doors left unbuilt
+  double extra_walls = 0.0;    // share of offices with an unplanned partition
+  double closed_doors = 0.0;   // share of doors closed among those that can be (the rooms
+                               // stay connected)
 };
 
 struct GeneratedBuilding {

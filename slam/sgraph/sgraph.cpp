@@ -727,6 +727,14 @@ MapDiagnostics SGraph::diagnostics() const {
   out.keyframes = past_keyframes_;
   for (const auto& kf : keyframes_) out.keyframes.push_back({kf.stamp, kf.pose(), kf.odometry});
   out.planes = planes_.size();
+  for (std::size_t i = 0; i < planes_.size(); ++i) {
+    const MapPlane& p = planes_[i].map;
+    if (planes_[i].merged_into >= 0 || !seenAsWall(p, options_.rooms.min_wall_height)) continue;
+    MapWall wall{int(i),  p.plane.normal, p.plane.d,      p.start, p.end,
+                 p.z_min, p.z_max,        p.observations, {}};
+    for (int k : planes_[i].observed_by) wall.keyframes.push_back(int(past_keyframes_.size()) + k);
+    out.walls.push_back(std::move(wall));
+  }
   for (int r : confirmedRooms()) {
     const Room& room = rooms_[r];
     out.rooms.push_back({room.centre, room.candidate.four_wall, room.candidate.widths});

@@ -1,0 +1,87 @@
+// The deviation report end to end (docs/deviations.md): `isg run` on D1 built with a wall shifted
+// 25 cm, a wall turned 4° about its start and a partition the plan lacks writes deviations.json
+// and .svg, finds all three, grades itself against the scenario, and `isg table` tabulates it.
+// D1 as planned reports no wall deviating.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <nlohmann/json.hpp>
+#include <numbers>
+
+#include "cli/tests/cli_runner.hpp"
+
+namespace isg::cli {
+namespace {
+
+using nlohmann::json;
+
+json wallOf(const json& report, const std::string& id) {
+  for (const auto& w : report["walls"]) {
+    if (w["wall"] == id) return w;
+  }
+  return json();
+}
+
+TEST(Deviations, ARunFindsTheShiftedTurnedAndExtraWallsOfD1) {
+  const testing::Sandbox sandbox("deviations");
+  sandbox.write(
+      "d1.deviations.json",
+      json{
+          {"format", "isg.scenario"},
+          {"version", 1},
+          {"plan", std::string(ISG_SOURCE_DIR) + "/worlds/plans/d1.json"},
+          {"seed", 1},
+          {"as_built",
+           {{"wall_shifts", {{{"wall", "W7"}, {"offset", 0.25}}}},
+            {"wall_rotations", {{{"wall", "W6"}, {"angle_deg", 4.0}, {"about", "start"}}}},
+            {"extra_walls", {{{"start", {10.0, 5.0}}, {"end", {10.0, 7.0}}, {"thickness", 0.1}}}}}}}
+          .dump());
+  const auto run = sandbox.run("run d1.deviations.json -o r -q");
+  ASSERT_EQ(run.exit_code, 0) << run.err;
+  EXPECT_NE(run.out.find("as built against the plan: 5 walls as planned, 1 shifted, 1 rotated"),
+            std::string::npos)
+      << run.out;
+  ASSERT_TRUE(sandbox.exists("r/deviations.svg"));
+  const json report = json::parse(sandbox.read("r/deviations.json"));
+  EXPECT_EQ(report["format"], "isg.deviations");
+  const json shifted = wallOf(report, "W7");
+  EXPECT_EQ(shifted["status"], "shifted");
+  EXPECT_NEAR(shifted["offset_m"].get<double>(), 0.25, 0.02);
+  EXPECT_NEAR(shifted["angle_deg"].get<double>(), 0.0, 1.0);
+  // W6 runs (4, 2.2) → (4, 8): turned 4° about its start, its centre moved 2.9·tan 4°.
+  const json turned = wallOf(report, "W6");
+  EXPECT_EQ(turned["status"], "rotated");
+  EXPECT_NEAR(turned["angle_deg"].get<double>(), 4.0, 1.0);
+  EXPECT_NEAR(turned["offset_m"].get<double>(), 2.9 * std::tan(4.0 * std::numbers::pi / 180.0),
+              0.02);
+  ASSERT_EQ(report["extra_walls"].size(), 1u);
+  EXPECT_NEAR(report["extra_walls"][0]["start"][0].get<double>(), 10.0, 0.1);
+
+  const json metrics = json::parse(sandbox.read("r/metrics.json"));
+  const json& graded = metrics["deviations"]["graded"];
+  EXPECT_EQ(graded["found"], 2);
+  EXPECT_EQ(graded["false_reports"], 0);
+  EXPECT_EQ(graded["missed"], 0);
+  EXPECT_LT(graded["offset_error_m"].get<double>(), 0.02);
+  EXPECT_LT(graded["angle_error_deg"].get<double>(), 1.0);
+  EXPECT_EQ(graded["extra"]["found"], 1);
+  EXPECT_EQ(graded["extra"]["false_reports"], 0);
+
+  const auto table = sandbox.run("table r --measure deviation-offset-error --format csv");
+  ASSERT_EQ(table.exit_code, 0) << table.err;
+  EXPECT_NE(table.out.find("d1.deviations.json"), std::string::npos) << table.out;
+}
+
+TEST(Deviations, D1AsPlannedHasNoWallDeviating) {
+  const testing::Sandbox sandbox("deviations_as_planned");
+  const auto run = sandbox.run("run builtin:d1 --seed 2 -o r -q");
+  ASSERT_EQ(run.exit_code, 0) << run.err;
+  const json walls = json::parse(sandbox.read("r/metrics.json"))["deviations"]["walls"];
+  EXPECT_EQ(walls["shifted"], 0);
+  EXPECT_EQ(walls["rotated"], 0);
+  EXPECT_EQ(walls["missing"], 0);
+  EXPECT_EQ(walls["as_planned"], 7);
+}
+
+}  // namespace
+}  // namespace isg::cli

@@ -1,0 +1,52 @@
+#pragma once
+
+#include <nlohmann/json.hpp>
+#include <optional>
+
+#include "bim/json_reader.hpp"
+#include "bim/plan.hpp"
+#include "bim/scenario.hpp"
+#include "slam/plan_deviations.hpp"
+
+namespace isg::run {
+
+// The deviation report against the building as it was simulated (docs/deviations.md,
+// "Grading"). A plan wall truly deviates when it is missing, or when its built axis
+// (bim::builtWall) lies at least the report's own thresholds off the planned one, measured as
+// the report measures (bim::axisDeviation).
+struct DeviationGrade {
+  // Shifted and turned walls, among the plan walls the report saw over at least `min_share` of
+  // their length: found (reported shifted or rotated and truly deviating), falsely reported, and
+  // missed (reported as planned).
+  double min_share = 0.5;
+  int judged = 0;
+  int found = 0, false_reports = 0, missed = 0;
+  std::optional<double> precision, recall;  // none when there is nothing to divide by
+  // Over the truly deviating walls among those: mean |measured − true|.
+  std::optional<double> offset_error_m, angle_error_deg;
+  // Missing walls: reported missing and truly missing, reported but built, missing and not said.
+  int missing_found = 0, missing_false_reports = 0, missing_missed = 0;
+  // Extra walls: a reported one matches a true one within 10° and 0.3 m of its axis; one that lies
+  // on a clutter box (its footprint grown by 0.3 m) is furniture the plan also lacks, counted
+  // apart. Precision over reports, recall over the true extra walls of the levels walked.
+  int extra_found = 0, extra_false_reports = 0, extra_missed = 0, extra_on_clutter = 0;
+  std::optional<double> extra_precision, extra_recall;
+};
+
+DeviationGrade gradeDeviations(const slam::DeviationReport& report, const bim::Plan& plan,
+                               const bim::AsBuilt& truth);
+
+// What metrics.json keeps of the report: how many plan walls got each status, the extra walls,
+// and the grade when the building's truth is known.
+struct DeviationMetrics {
+  int as_planned = 0, shifted = 0, rotated = 0, missing = 0, not_seen = 0, extra_walls = 0;
+  std::optional<DeviationGrade> grade;
+};
+
+// `truth` and `plan` may be null (a recording): no grade then.
+DeviationMetrics deviationMetrics(const slam::DeviationReport& report, const bim::Plan* plan,
+                                  const bim::AsBuilt* truth);
+nlohmann::json deviationMetricsJson(const DeviationMetrics& metrics);
+DeviationMetrics deviationMetricsFromJson(const bim::JsonNode& node);
+
+}  // namespace isg::run

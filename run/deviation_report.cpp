@@ -1,0 +1,254 @@
+#include "run/deviation_report.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <limits>
+#include <numbers>
+
+namespace isg::run {
+
+namespace {
+
+template <typename... Args>
+std::string format(const char* pattern, Args... args) {
+  char buffer[512];
+  std::snprintf(buffer, sizeof buffer, pattern, args...);
+  return buffer;
+}
+
+nlohmann::json point(const Eigen::Vector2d& p) { return {p.x(), p.y()}; }
+
+const char* colourOf(slam::WallStatus status) {
+  switch (status) {
+    case slam::WallStatus::kAsPlanned:
+      return "#2e8b57";
+    case slam::WallStatus::kShifted:
+      return "#e67e00";
+    case slam::WallStatus::kRotated:
+      return "#9b30c8";
+    case slam::WallStatus::kMissing:
+      return "#d0021b";
+    case slam::WallStatus::kNotSeen:
+      break;
+  }
+  return "#b0b0b0";
+}
+
+std::string escape(const std::string& text) {
+  std::string out;
+  for (char c : text) {
+    if (c == '&') {
+      out += "&amp;";
+    } else if (c == '<') {
+      out += "&lt;";
+    } else if (c == '>') {
+      out += "&gt;";
+    } else {
+      out += c;
+    }
+  }
+  return out;
+}
+
+}  // namespace
+
+nlohmann::json deviationReportJson(const slam::DeviationReport& report) {
+  const slam::DeviationOptions& o = report.options;
+  nlohmann::json thresholds = {{"shift_m", o.shift_m},
+                               {"angle_deg", o.angle_deg},
+                               {"min_angle_length_m", o.min_angle_length},
+                               {"consistent_tolerance_m", o.consistent_tolerance},
+                               {"judged_share", o.judged_share},
+                               {"missing_seen_share", o.missing_seen_share},
+                               {"missing_view_share", o.missing_view_share},
+                               {"min_missing_length_m", o.min_missing_length},
+                               {"search_distance_m", o.search_distance},
+                               {"search_angle_deg", o.search_angle_deg},
+                               {"min_wall_length_m", o.min_wall_length},
+                               {"local_radius_m", o.local_radius},
+                               {"view_range_m", o.view_range},
+                               {"max_incidence_deg", o.max_incidence_deg},
+                               {"min_views", o.min_views},
+                               {"extra_pair_distance_m", o.extra_pair_distance}};
+  nlohmann::json walls = nlohmann::json::array();
+  for (const auto& w : report.walls) {
+    nlohmann::json evidence = nlohmann::json::array();
+    for (const auto& e : w.evidence) {
+      evidence.push_back({{"plane", e.plane},
+                          {"face", e.side > 0 ? "left" : "right"},
+                          {"length_m", e.length_m},
+                          {"observations", e.observations},
+                          {"offset_m", e.offset_m},
+                          {"angle_deg", e.angle_deg},
+                          {"consistent", e.consistent},
+                          {"start", point(e.start_B)},
+                          {"end", point(e.end_B)}});
+    }
+    nlohmann::json wall = {
+        {"wall", w.wall},
+        {"level", w.level},
+        {"status", slam::toString(w.status)},
+        {"offset_m", w.offset_m ? nlohmann::json(*w.offset_m) : nullptr},
+        {"angle_deg", w.angle_deg ? nlohmann::json(*w.angle_deg) : nullptr},
+        {"observed_share", w.observed_share},
+        {"planned", {{"start", point(w.planned_start)}, {"end", point(w.planned_end)}}},
+        {"evidence", evidence}};
+    if (w.in_view_share) wall["in_view_share"] = *w.in_view_share;
+    walls.push_back(wall);
+  }
+  nlohmann::json extra = nlohmann::json::array();
+  for (const auto& e : report.extra_walls) {
+    extra.push_back({{"level", e.level},
+                     {"start", point(e.start)},
+                     {"end", point(e.end)},
+                     {"length_m", e.length()},
+                     {"planes", e.planes}});
+  }
+  nlohmann::json placements = nlohmann::json::array();
+  for (const auto& p : report.placements) {
+    placements.push_back({{"level", p.level},
+                          {"x", p.correction.x()},
+                          {"y", p.correction.y()},
+                          {"yaw_deg", p.correction.z() * 180.0 / std::numbers::pi},
+                          {"walls_used", p.walls_used}});
+  }
+  return {{"format", "isg.deviations"},
+          {"version", 1},
+          {"frame", "B"},
+          {"levels", report.levels},
+          {"thresholds", thresholds},
+          {"placement_correction", placements},
+          {"walls", walls},
+          {"extra_walls", extra}};
+}
+
+std::string deviationSvg(const slam::DeviationReport& report) {
+  constexpr double kScale = 40.0;  // px per metre
+  constexpr double kMargin = 30.0, kTitle = 24.0, kLegend = 70.0;
+  struct Panel {
+    std::string level;
+    Eigen::AlignedBox2d box;
+  };
+  std::vector<Panel> panels;
+  for (const auto& level : report.levels) {
+    Panel panel{level, {}};
+    for (const auto& w : report.walls) {
+      if (w.level != level) continue;
+      panel.box.extend(w.planned_start);
+      panel.box.extend(w.planned_end);
+      for (const auto& e : w.evidence) panel.box.extend(e.start_B), panel.box.extend(e.end_B);
+    }
+    for (const auto& e : report.extra_walls) {
+      if (e.level == level) panel.box.extend(e.start), panel.box.extend(e.end);
+    }
+    if (!panel.box.isEmpty()) panels.push_back(panel);
+  }
+  double width = 400.0, height = kLegend;
+  for (const auto& p : panels) {
+    width = std::max(width, p.box.sizes().x() * kScale + 2 * kMargin);
+    height += p.box.sizes().y() * kScale + 2 * kMargin + kTitle;
+  }
+  std::string svg = format(
+      "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"%.0f\" height=\"%.0f\" "
+      "viewBox=\"0 0 %.0f %.0f\" font-family=\"sans-serif\" font-size=\"11\">\n"
+      "<rect width=\"100%%\" height=\"100%%\" fill=\"white\"/>\n",
+      width, height, width, height);
+  const slam::DeviationOptions& o = report.options;
+  svg += format(
+      "<text x=\"10\" y=\"18\" font-size=\"13\">As built against the plan (frame B): shifted "
+      "at |offset| &#8805; %.2f m, rotated at |angle| &#8805; %.1f&#176;</text>\n",
+      o.shift_m, o.angle_deg);
+  const std::pair<slam::WallStatus, const char*> legend[] = {
+      {slam::WallStatus::kAsPlanned, "as planned"},
+      {slam::WallStatus::kShifted, "shifted"},
+      {slam::WallStatus::kRotated, "rotated"},
+      {slam::WallStatus::kMissing, "missing"},
+      {slam::WallStatus::kNotSeen, "not seen"}};
+  double x = 10.0;
+  for (const auto& [status, name] : legend) {
+    svg += format(
+        "<line x1=\"%.0f\" y1=\"38\" x2=\"%.0f\" y2=\"38\" stroke=\"%s\" stroke-width=\"4\"/>"
+        "<text x=\"%.0f\" y=\"42\">%s</text>\n",
+        x, x + 20, colourOf(status), x + 25, name);
+    x += 95.0;
+  }
+  svg += format(
+      "<line x1=\"%.0f\" y1=\"38\" x2=\"%.0f\" y2=\"38\" stroke=\"#1f5fd0\" stroke-width=\"4\"/>"
+      "<text x=\"%.0f\" y=\"42\">extra wall</text>\n",
+      x, x + 20, x + 25);
+  svg +=
+      "<text x=\"10\" y=\"60\" fill=\"#555\">grey: the plan's walls; coloured: the map's walls "
+      "seen as each plan wall, by its status</text>\n";
+  double top = kLegend;
+  for (const auto& panel : panels) {
+    const double panel_height = panel.box.sizes().y() * kScale + 2 * kMargin;
+    auto X = [&](const Eigen::Vector2d& p) {
+      return kMargin + (p.x() - panel.box.min().x()) * kScale;
+    };
+    auto Y = [&](const Eigen::Vector2d& p) {
+      return top + kTitle + kMargin + (panel.box.max().y() - p.y()) * kScale;
+    };
+    svg += format("<text x=\"10\" y=\"%.0f\" font-size=\"12\">Level %s</text>\n", top + 16,
+                  escape(panel.level).c_str());
+    for (const auto& w : report.walls) {
+      if (w.level != panel.level) continue;
+      const bool missing = w.status == slam::WallStatus::kMissing;
+      svg += format(
+          "<line x1=\"%.1f\" y1=\"%.1f\" x2=\"%.1f\" y2=\"%.1f\" stroke=\"%s\" "
+          "stroke-width=\"%.1f\"%s/>\n",
+          X(w.planned_start), Y(w.planned_start), X(w.planned_end), Y(w.planned_end),
+          missing ? colourOf(w.status) : "#c8c8c8", std::max(2.0, w.thickness * kScale),
+          missing ? " stroke-dasharray=\"6 4\" stroke-opacity=\"0.6\"" : "");
+      for (const auto& e : w.evidence) {
+        svg += format(
+            "<line x1=\"%.1f\" y1=\"%.1f\" x2=\"%.1f\" y2=\"%.1f\" stroke=\"%s\" "
+            "stroke-width=\"2.5\"/>\n",
+            X(e.start_B), Y(e.start_B), X(e.end_B), Y(e.end_B), colourOf(w.status));
+      }
+      const Eigen::Vector2d middle = 0.5 * (w.planned_start + w.planned_end);
+      std::string label = w.wall;
+      if ((w.status == slam::WallStatus::kShifted || w.status == slam::WallStatus::kRotated) &&
+          w.offset_m && w.angle_deg) {
+        label += format(" %+.2f m %+.1f&#176;", *w.offset_m, *w.angle_deg);
+      } else if (w.status == slam::WallStatus::kMissing) {
+        label += " missing";
+      }
+      svg += format(
+          "<text x=\"%.1f\" y=\"%.1f\" fill=\"%s\">%s</text>\n", X(middle) + 4, Y(middle) - 4,
+          w.status == slam::WallStatus::kAsPlanned ? "#777" : colourOf(w.status), label.c_str());
+    }
+    for (const auto& e : report.extra_walls) {
+      if (e.level != panel.level) continue;
+      svg += format(
+          "<line x1=\"%.1f\" y1=\"%.1f\" x2=\"%.1f\" y2=\"%.1f\" stroke=\"#1f5fd0\" "
+          "stroke-width=\"3\"/>\n",
+          X(e.start), Y(e.start), X(e.end), Y(e.end));
+      const Eigen::Vector2d middle = 0.5 * (e.start + e.end);
+      svg += format("<text x=\"%.1f\" y=\"%.1f\" fill=\"#1f5fd0\">extra %.1f m</text>\n",
+                    X(middle) + 4, Y(middle) + 12, e.length());
+    }
+    top += panel_height + kTitle;
+  }
+  return svg + "</svg>\n";
+}
+
+std::string deviationSummaryLine(const DeviationMetrics& m) {
+  std::string line = format(
+      "as built against the plan: %d walls as planned, %d shifted, %d rotated, %d missing, %d "
+      "not seen; %d extra wall%s",
+      m.as_planned, m.shifted, m.rotated, m.missing, m.not_seen, m.extra_walls,
+      m.extra_walls == 1 ? "" : "s");
+  if (m.grade) {
+    const DeviationGrade& g = *m.grade;
+    line += format("; against the truth: %d of %d deviating walls found, %d falsely", g.found,
+                   g.found + g.missed, g.false_reports);
+    if (g.offset_error_m && g.angle_error_deg) {
+      line += format(" (offsets off by %.3f m, angles by %.2f°)", *g.offset_error_m,
+                     *g.angle_error_deg);
+    }
+  }
+  return line;
+}
+
+}  // namespace isg::run

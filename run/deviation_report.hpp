@@ -1,0 +1,24 @@
+#pragma once
+
+#include <nlohmann/json.hpp>
+#include <string>
+
+#include "run/deviation_grading.hpp"
+#include "slam/plan_deviations.hpp"
+
+namespace isg::run {
+
+// deviations.json (docs/deviations.md): the thresholds, then per plan wall of the levels walked
+// its status, measured offset and angle, observed share and evidence, and the extra walls.
+nlohmann::json deviationReportJson(const slam::DeviationReport& report);
+
+// deviations.svg: each level walked, the plan's walls in grey, the map's walls that were evidence
+// coloured by their wall's status, missing walls red and dashed, extra walls blue, labels with
+// the measured offset and angle of each deviating wall.
+std::string deviationSvg(const slam::DeviationReport& report);
+
+// The run summary's line: "as built: 5 walls as planned, 1 shifted, ..." and, graded, how many
+// deviating walls were found.
+std::string deviationSummaryLine(const DeviationMetrics& metrics);
+
+}  // namespace isg::run

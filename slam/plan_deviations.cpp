@@ -1,0 +1,558 @@
+#include "slam/plan_deviations.hpp"
+
+#include <Eigen/Dense>
+#include <algorithm>
+#include <cmath>
+#include <map>
+#include <numbers>
+#include <tuple>
+
+namespace isg::slam {
+
+namespace {
+
+constexpr double kDegree = std::numbers::pi / 180.0;
+
+double cross(const Eigen::Vector2d& a, const Eigen::Vector2d& b) {
+  return a.x() * b.y() - a.y() * b.x();
+}
+
+// A plan wall's axis, from its node: the anchor is the axis's middle, the left face's normal its
+// left normal.
+struct PlannedWall {
+  int index = -1;
+  Eigen::Vector2d start, end, axis, left;
+  double length = 0.0, thickness = 0.0;
+  // The face on `side` as a line: a point of it and the planned centre's foot on it.
+  Eigen::Vector2d faceCentre(int side) const {
+    return 0.5 * (start + end) + side * 0.5 * thickness * left;
+  }
+};
+
+PlannedWall plannedWall(const bim::AGraph& plan, int w) {
+  const bim::WallNode& node = plan.walls[w];
+  PlannedWall p;
+  p.index = w;
+  p.left = plan.surfaces[node.left_surface].plane.normal.head<2>().normalized();
+  p.axis = Eigen::Vector2d(p.left.y(), -p.left.x());
+  p.length = node.length;
+  p.thickness = node.thickness;
+  p.start = node.anchor.head<2>() - 0.5 * node.length * p.axis;
+  p.end = node.anchor.head<2>() + 0.5 * node.length * p.axis;
+  return p;
+}
+
+// A map wall carried into B.
+struct WallInB {
+  int plane = -1;
+  Eigen::Vector2d normal, start, end;
+  double z_min = 0.0, z_max = 0.0;
+  int observations = 0;
+  double length() const { return (end - start).norm(); }
+  Eigen::Vector2d middle() const { return 0.5 * (start + end); }
+};
+
+WallInB toB(const MapWall& wall, const Eigen::Isometry3d& B_T_M) {
+  WallInB out;
+  out.plane = wall.id;
+  out.normal = (B_T_M.linear() * wall.normal).head<2>().normalized();
+  auto point = [&](const Eigen::Vector2d& p) {
+    return (B_T_M * Eigen::Vector3d(p.x(), p.y(), 0.0)).head<2>().eval();
+  };
+  out.start = point(wall.start);
+  out.end = point(wall.end);
+  out.z_min = wall.z_min + B_T_M.translation().z();
+  out.z_max = wall.z_max + B_T_M.translation().z();
+  out.observations = wall.observations;
+  return out;
+}
+
+// The level a height in B stands on: the highest floor at or below it (the lowest, below all).
+int levelAt(const bim::AGraph& plan, double z) {
+  int best = -1;
+  for (int f = 0; f < int(plan.floors.size()); ++f) {
+    const double e = plan.floors[f].elevation;
+    if (e <= z + 1e-6 && (best < 0 || e > plan.floors[best].elevation)) best = f;
+  }
+  if (best >= 0 || plan.floors.empty()) return best;
+  for (int f = 0; f < int(plan.floors.size()); ++f) {
+    if (best < 0 || plan.floors[f].elevation < plan.floors[best].elevation) best = f;
+  }
+  return best;
+}
+
+// How far along a planned wall (metres from its start, clipped to it) a segment reaches.
+std::pair<double, double> spanAlong(const PlannedWall& w, const Eigen::Vector2d& a,
+                                    const Eigen::Vector2d& b) {
+  double s0 = (a - w.start).dot(w.axis), s1 = (b - w.start).dot(w.axis);
+  if (s0 > s1) std::swap(s0, s1);
+  return {std::clamp(s0, 0.0, w.length), std::clamp(s1, 0.0, w.length)};
+}
+
+double unionLength(std::vector<std::pair<double, double>> spans) {
+  std::sort(spans.begin(), spans.end());
+  double total = 0.0, lo = 0.0, hi = -1.0;
+  for (const auto& [a, b] : spans) {
+    if (a > hi) {
+      if (hi > lo) total += hi - lo;
+      lo = a, hi = b;
+    } else {
+      hi = std::max(hi, b);
+    }
+  }
+  if (hi > lo) total += hi - lo;
+  return total;
+}
+
+bool segmentsCross(const Eigen::Vector2d& p, const Eigen::Vector2d& q, const Eigen::Vector2d& a,
+                   const Eigen::Vector2d& b) {
+  const double d1 = cross(q - p, a - p), d2 = cross(q - p, b - p);
+  const double d3 = cross(b - a, p - a), d4 = cross(b - a, q - a);
+  return ((d1 > 0) != (d2 > 0)) && ((d3 > 0) != (d4 > 0));
+}
+
+// The share of a plan wall's exposed faces in the sensor's view from the keyframes
+// (DeviationOptions, "In view"): sampled every 0.25 m, 0.1 m clear of each segment's ends.
+double inViewShare(const bim::AGraph& plan, const bim::WallNode& wall,
+                   const std::vector<Eigen::Vector2d>& keyframes, const DeviationOptions& options) {
+  struct Occluder {
+    Eigen::Vector2d a, b;
+  };
+  std::vector<Occluder> occluders;
+  for (const auto& s : plan.surfaces) {
+    if (s.level != wall.level || s.wall == wall.id) continue;
+    for (const auto& [a, b] : s.segments) occluders.push_back({a, b});
+  }
+  const double min_cos = std::cos(options.max_incidence_deg * kDegree);
+  double exposed = 0.0, in_view = 0.0;
+  for (int surface : {wall.left_surface, wall.right_surface}) {
+    const bim::WallSurfaceNode& face = plan.surfaces[surface];
+    const Eigen::Vector2d n = face.plane.normal.head<2>().normalized();
+    for (const auto& [a, b] : face.segments) {
+      const double length = (b - a).norm();
+      if (length < 0.2) continue;
+      const int samples = std::max(1, int((length - 0.2) / 0.25));
+      const double step = (length - 0.2) / samples;
+      for (int i = 0; i < samples; ++i) {
+        // Just in front of the face, so that the face itself is not met.
+        const Eigen::Vector2d p = a + (0.1 + (i + 0.5) * step) / length * (b - a) + 0.01 * n;
+        int views = 0;
+        for (const auto& k : keyframes) {
+          const Eigen::Vector2d ray = k - p;
+          const double range = ray.norm();
+          if (range > options.view_range || range < 1e-6 || n.dot(ray) < min_cos * range) {
+            continue;
+          }
+          const bool blocked = std::any_of(occluders.begin(), occluders.end(), [&](const auto& o) {
+            return segmentsCross(p, k, o.a, o.b);
+          });
+          if (!blocked && ++views >= options.min_views) break;
+        }
+        exposed += step;
+        if (views >= options.min_views) in_view += step;
+      }
+    }
+  }
+  return exposed > 0.0 ? in_view / exposed : 0.0;
+}
+
+// A piece of evidence measured from its ends: its line's offset at the planned centre along the
+// planned left normal, and its direction against the planned one.
+void measurePiece(WallEvidence& e, const PlannedWall& planned) {
+  Eigen::Vector2d direction = (e.end_B - e.start_B).normalized();
+  if (direction.dot(planned.axis) < 0.0) direction = -direction;
+  const Eigen::Vector2d centre = planned.faceCentre(e.side);
+  e.offset_m = cross(direction, e.start_B - centre) / cross(direction, planned.left);
+  e.angle_deg = std::atan2(cross(planned.axis, direction), planned.axis.dot(direction)) / kDegree;
+}
+
+// A wall's line as its consistent evidence lays it: o(s) = offset + tan(angle)·s, s along the
+// planned axis from its centre, o along the left normal from each piece's planned face. Starting
+// from the longest piece's line, the pieces whose both ends lie within `tolerance` of it are
+// consistent, the line is fitted to their ends (weighted by length), three times over. The others
+// (a plane fitted across a corner or a door leaf) are kept as evidence but not believed.
+struct WallFit {
+  double offset_m = 0.0, angle_deg = 0.0;
+  double length = 0.0;   // of the consistent pieces
+  double longest = 0.0;  // the longest consistent piece
+};
+
+WallFit fitWall(WallDeviation& wall, const PlannedWall& planned, double tolerance) {
+  WallFit fit;
+  if (wall.evidence.empty()) return fit;
+  auto along = [&](const WallEvidence& e, const Eigen::Vector2d& p) {
+    const Eigen::Vector2d q = p - planned.faceCentre(e.side);
+    return Eigen::Vector2d(q.dot(planned.axis), q.dot(planned.left));
+  };
+  const auto longest =
+      std::max_element(wall.evidence.begin(), wall.evidence.end(),
+                       [](const auto& a, const auto& b) { return a.length_m < b.length_m; });
+  const Eigen::Vector2d a0 = along(*longest, longest->start_B);
+  const Eigen::Vector2d a1 = along(*longest, longest->end_B);
+  double slope = (a1.y() - a0.y()) / (a1.x() - a0.x());
+  double offset = a0.y() - slope * a0.x();
+  for (int round = 0; round < 3; ++round) {
+    Eigen::Matrix2d H = Eigen::Matrix2d::Zero();
+    Eigen::Vector2d g = Eigen::Vector2d::Zero();
+    for (auto& e : wall.evidence) {
+      const Eigen::Vector2d ends[2] = {along(e, e.start_B), along(e, e.end_B)};
+      e.consistent = std::all_of(std::begin(ends), std::end(ends), [&](const auto& q) {
+        return std::abs(q.y() - (offset + slope * q.x())) <= tolerance;
+      });
+      if (!e.consistent) continue;
+      for (const auto& q : ends) {
+        const Eigen::Vector2d J(1.0, q.x());
+        H += 0.5 * e.length_m * J * J.transpose();
+        g += 0.5 * e.length_m * J * q.y();
+      }
+    }
+    if (H(0, 0) <= 0.0) break;
+    const Eigen::Vector2d x = H.ldlt().solve(g);
+    offset = x(0), slope = x(1);
+  }
+  fit.offset_m = offset;
+  fit.angle_deg = std::atan(slope) / kDegree;
+  for (const auto& e : wall.evidence) {
+    if (!e.consistent) continue;
+    fit.length += e.length_m;
+    fit.longest = std::max(fit.longest, e.length_m);
+  }
+  return fit;
+}
+
+// A small correction of the map's place in the plan: p ↦ p + t + θ·perp(p − origin), to first
+// order. Applied exactly (a rotation about the origin, then t) to what the report draws.
+struct Placement {
+  Eigen::Vector3d correction = Eigen::Vector3d::Zero();  // t.x, t.y, θ (rad)
+  Eigen::Vector2d origin = Eigen::Vector2d::Zero();
+  int walls_used = 0;
+  Eigen::Vector2d move(const Eigen::Vector2d& p) const {
+    return origin + Eigen::Rotation2Dd(correction.z()) * (p - origin) + correction.head<2>();
+  }
+  void apply(WallEvidence& e, const PlannedWall& planned) const {
+    e.start_B = move(e.start_B);
+    e.end_B = move(e.end_B);
+    measurePiece(e, planned);
+  }
+};
+
+// The placement that best lays the map's walls judged as planned onto their faces: weighted least
+// squares of their fitted offsets (weight: consistent length) and directions (weight: length³, a
+// fitted direction's variance falling as 1/length³), under a prior of 5 cm and 1° that keeps an
+// unconstrained direction where the localizer put it. Walls found deviating leave the fit, and it
+// is solved again, until the set holds still (at most 5 times).
+Placement refinePlacement(const std::vector<std::pair<WallDeviation, PlannedWall>>& walls,
+                          const DeviationOptions& options) {
+  Placement placement;
+  double total = 0.0;
+  for (const auto& [wall, planned] : walls) {
+    for (const auto& e : wall.evidence) {
+      placement.origin += e.length_m * 0.5 * (planned.start + planned.end);
+      total += e.length_m;
+    }
+  }
+  if (total <= 0.0) return placement;
+  placement.origin /= total;
+  constexpr double kSigmaOffset = 0.02, kPriorT = 0.05, kPriorYaw = 1.0 * kDegree;
+  std::vector<bool> used(walls.size(), false);
+  for (int round = 0; round < 5; ++round) {
+    std::vector<bool> now(walls.size(), false);
+    std::vector<WallFit> fits(walls.size());
+    for (std::size_t i = 0; i < walls.size(); ++i) {
+      const WallDeviation& wall = walls[i].first;
+      if (wall.evidence.empty() || wall.observed_share < options.judged_share) continue;
+      WallDeviation moved = wall;
+      for (auto& e : moved.evidence) placement.apply(e, walls[i].second);
+      fits[i] = fitWall(moved, walls[i].second, options.consistent_tolerance);
+      now[i] = std::abs(fits[i].offset_m) < options.shift_m &&
+               std::abs(fits[i].angle_deg) < options.angle_deg;
+    }
+    if (round > 0 && now == used) break;
+    used = now;
+    // Solved for the change δ from the current correction: fitted offset + J·δ = 0,
+    // J = [l.x, l.y, l·perp(c)] at the wall's centre c; fitted angle (rad) + θ = 0.
+    Eigen::Matrix3d H = Eigen::Matrix3d::Zero();
+    Eigen::Vector3d g = Eigen::Vector3d::Zero();
+    H.diagonal() << 1.0 / (kPriorT * kPriorT), 1.0 / (kPriorT * kPriorT),
+        1.0 / (kPriorYaw * kPriorYaw);
+    g = H * placement.correction;  // the prior holds the total correction, not the change
+    placement.walls_used = 0;
+    for (std::size_t i = 0; i < walls.size(); ++i) {
+      if (!used[i]) continue;
+      ++placement.walls_used;
+      const PlannedWall& planned = walls[i].second;
+      const Eigen::Vector2d c = 0.5 * (planned.start + planned.end) - placement.origin;
+      const Eigen::Vector3d J(planned.left.x(), planned.left.y(),
+                              planned.left.dot(Eigen::Vector2d(-c.y(), c.x())));
+      const double length = fits[i].length;
+      const double w = length / (kSigmaOffset * kSigmaOffset);
+      H += w * J * J.transpose();
+      g += w * J * fits[i].offset_m;
+      const double w_angle = length * length * length / (kSigmaOffset * kSigmaOffset);
+      H(2, 2) += w_angle;
+      g(2) += w_angle * fits[i].angle_deg * kDegree;
+    }
+    placement.correction -= H.ldlt().solve(g);
+  }
+  return placement;
+}
+
+void judge(WallDeviation& wall, const PlannedWall& planned, const DeviationOptions& options) {
+  if (wall.evidence.empty()) return;
+  const WallFit fit = fitWall(wall, planned, options.consistent_tolerance);
+  wall.offset_m = fit.offset_m;
+  wall.angle_deg = fit.angle_deg;
+  if (wall.observed_share < options.judged_share) return;
+  if (std::abs(fit.angle_deg) >= options.angle_deg && fit.longest >= options.min_angle_length) {
+    wall.status = WallStatus::kRotated;
+  } else if (std::abs(fit.offset_m) >= options.shift_m) {
+    wall.status = WallStatus::kShifted;
+  } else {
+    wall.status = WallStatus::kAsPlanned;
+  }
+}
+
+double distanceToSegment(const Eigen::Vector2d& p, const Eigen::Vector2d& a,
+                         const Eigen::Vector2d& b) {
+  const Eigen::Vector2d ab = b - a;
+  const double t = std::clamp((p - a).dot(ab) / std::max(ab.squaredNorm(), 1e-12), 0.0, 1.0);
+  return (a + t * ab - p).norm();
+}
+
+// Between two planned axes (that do not cross: walls meet at their ends or along a side).
+double wallDistance(const PlannedWall& a, const PlannedWall& b) {
+  return std::min(
+      {distanceToSegment(a.start, b.start, b.end), distanceToSegment(a.end, b.start, b.end),
+       distanceToSegment(b.start, a.start, a.end), distanceToSegment(b.end, a.start, a.end)});
+}
+
+// Unexplained map walls of one level, opposite faces paired into one wall.
+std::vector<ExtraWall> extraWalls(const std::vector<WallInB>& unexplained, const std::string& level,
+                                  const DeviationOptions& options) {
+  std::vector<ExtraWall> out;
+  std::vector<bool> used(unexplained.size(), false);
+  std::vector<std::size_t> order(unexplained.size());
+  for (std::size_t i = 0; i < order.size(); ++i) order[i] = i;
+  std::sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) {
+    return unexplained[a].length() > unexplained[b].length();
+  });
+  const double parallel = std::cos(10.0 * kDegree);
+  for (std::size_t i : order) {
+    if (used[i]) continue;
+    used[i] = true;
+    const WallInB& a = unexplained[i];
+    const Eigen::Vector2d axis = (a.end - a.start).normalized();
+    ExtraWall wall;
+    wall.level = level;
+    wall.planes = {a.plane};
+    double s0 = 0.0, s1 = a.length();
+    Eigen::Vector2d base = a.start;
+    for (std::size_t j : order) {
+      if (used[j]) continue;
+      const WallInB& b = unexplained[j];
+      if (a.normal.dot(b.normal) > -parallel) continue;
+      const double gap = std::abs(a.normal.dot(b.middle() - a.middle()));
+      // By value: std::minmax of temporaries returns references to them.
+      const double u0 = (b.start - a.start).dot(axis), u1 = (b.end - a.start).dot(axis);
+      const double t0 = std::min(u0, u1), t1 = std::max(u0, u1);
+      if (gap > options.extra_pair_distance || t1 < s0 || t0 > s1) continue;
+      used[j] = true;
+      wall.planes.push_back(b.plane);
+      s0 = std::min(s0, t0), s1 = std::max(s1, t1);
+      // The wall's axis lies between its faces.
+      base = a.start - 0.5 * gap * a.normal;
+    }
+    wall.start = base + s0 * axis;
+    wall.end = base + s1 * axis;
+    out.push_back(wall);
+  }
+  return out;
+}
+
+// The planar mean of the placements of the last (up to 20) keyframes that saw a wall, with the
+// height of B_T_M; none when none of them has one.
+std::optional<Eigen::Isometry3d> placementOf(
+    const MapWall& wall, const Eigen::Isometry3d& B_T_M,
+    const std::vector<std::optional<Eigen::Isometry3d>>& keyframe_B_T_M) {
+  Eigen::Vector2d t = Eigen::Vector2d::Zero(), heading = Eigen::Vector2d::Zero();
+  int n = 0;
+  for (auto it = wall.keyframes.rbegin(); it != wall.keyframes.rend() && n < 20; ++it) {
+    if (*it < 0 || *it >= int(keyframe_B_T_M.size()) || !keyframe_B_T_M[*it]) continue;
+    const Eigen::Isometry3d& T = *keyframe_B_T_M[*it];
+    t += T.translation().head<2>();
+    heading += T.linear().col(0).head<2>().normalized();
+    ++n;
+  }
+  if (n == 0) return std::nullopt;
+  Eigen::Isometry3d out = Eigen::Isometry3d::Identity();
+  out.linear() = Eigen::AngleAxisd(std::atan2(heading.y(), heading.x()), Eigen::Vector3d::UnitZ())
+                     .toRotationMatrix();
+  out.translation() << t / n, B_T_M.translation().z();
+  return out;
+}
+
+}  // namespace
+
+const char* toString(WallStatus status) {
+  switch (status) {
+    case WallStatus::kAsPlanned:
+      return "as_planned";
+    case WallStatus::kShifted:
+      return "shifted";
+    case WallStatus::kRotated:
+      return "rotated";
+    case WallStatus::kMissing:
+      return "missing";
+    case WallStatus::kNotSeen:
+      break;
+  }
+  return "not_seen";
+}
+
+int DeviationReport::count(WallStatus status) const {
+  return int(std::count_if(walls.begin(), walls.end(),
+                           [&](const WallDeviation& w) { return w.status == status; }));
+}
+
+DeviationReport measureDeviations(
+    const bim::AGraph& plan, const MapDiagnostics& map, const Eigen::Isometry3d& B_T_M,
+    const DeviationOptions& options,
+    const std::vector<std::optional<Eigen::Isometry3d>>& keyframe_B_T_M) {
+  DeviationReport report;
+  report.options = options;
+  // The levels walked, and the keyframes' places on each.
+  std::map<int, std::vector<Eigen::Vector2d>> keyframes_on;
+  Eigen::Vector2d last(std::nan(""), std::nan(""));
+  for (const auto& kf : map.keyframes) {
+    const Eigen::Vector3d p = B_T_M * kf.estimate.translation();
+    // Views from places 0.5 m apart: nearer ones add little to what is in view.
+    if ((p.head<2>() - last).norm() < 0.5) continue;
+    last = p.head<2>();
+    const int level = levelAt(plan, p.z());
+    if (level >= 0) keyframes_on[level].push_back(p.head<2>());
+  }
+  std::vector<WallInB> walls_in_B;
+  for (const auto& w : map.walls) {
+    WallInB in_B = toB(w, placementOf(w, B_T_M, keyframe_B_T_M).value_or(B_T_M));
+    if (in_B.length() >= options.min_wall_length) walls_in_B.push_back(in_B);
+  }
+  const double min_cos = std::cos(options.search_angle_deg * kDegree);
+  for (int f = 0; f < int(plan.floors.size()); ++f) {
+    if (!keyframes_on.count(f)) continue;
+    const std::string& level = plan.floors[f].id;
+    report.levels.push_back(level);
+    // Each map wall standing on this level to the plan surface it is evidence for, if any.
+    std::vector<WallInB> unexplained;
+    std::map<int, std::vector<const WallInB*>> evidence_of_surface;
+    for (const auto& m : walls_in_B) {
+      if (levelAt(plan, 0.5 * (m.z_min + m.z_max)) != f) continue;
+      int best = -1;
+      double best_distance = 0.0;
+      for (int s = 0; s < int(plan.surfaces.size()); ++s) {
+        const bim::WallSurfaceNode& surface = plan.surfaces[s];
+        if (surface.level != level) continue;
+        const Eigen::Vector2d n = surface.plane.normal.head<2>().normalized();
+        if (n.dot(m.normal) < min_cos) continue;
+        const double d = surface.plane.d;
+        auto distance = [&](const Eigen::Vector2d& p) { return std::abs(n.dot(p) + d); };
+        const double nearest = std::min({distance(m.start), distance(m.middle()), distance(m.end)});
+        if (nearest > options.search_distance) continue;
+        // A third of it along the surface's extent (its segments' span).
+        const Eigen::Vector2d along(n.y(), -n.x());
+        double lo = INFINITY, hi = -INFINITY;
+        for (const auto& [a, b] : surface.segments) {
+          lo = std::min({lo, a.dot(along), b.dot(along)});
+          hi = std::max({hi, a.dot(along), b.dot(along)});
+        }
+        const double t0 = std::min(m.start.dot(along), m.end.dot(along));
+        const double t1 = std::max(m.start.dot(along), m.end.dot(along));
+        if (std::min(hi, t1) - std::max(lo, t0) < m.length() / 3.0) continue;
+        const double mean = (distance(m.start) + distance(m.middle()) + distance(m.end)) / 3.0;
+        if (best < 0 || mean < best_distance) best = s, best_distance = mean;
+      }
+      if (best < 0) {
+        unexplained.push_back(m);
+      } else {
+        evidence_of_surface[best].push_back(&m);
+      }
+    }
+    std::vector<std::pair<WallDeviation, PlannedWall>> level_walls;
+    for (int w = 0; w < int(plan.walls.size()); ++w) {
+      const bim::WallNode& node = plan.walls[w];
+      if (node.level != level) continue;
+      const PlannedWall planned = plannedWall(plan, w);
+      WallDeviation wall;
+      wall.wall = node.id;
+      wall.level = level;
+      wall.planned_start = planned.start;
+      wall.planned_end = planned.end;
+      wall.thickness = planned.thickness;
+      std::vector<std::pair<double, double>> spans;
+      for (const auto& [surface, side] :
+           {std::pair{node.left_surface, +1}, std::pair{node.right_surface, -1}}) {
+        const auto it = evidence_of_surface.find(surface);
+        if (it == evidence_of_surface.end()) continue;
+        for (const WallInB* m : it->second) {
+          WallEvidence e;
+          e.plane = m->plane;
+          e.side = side;
+          e.length_m = m->length();
+          e.observations = m->observations;
+          e.start_B = m->start;
+          e.end_B = m->end;
+          measurePiece(e, planned);
+          wall.evidence.push_back(e);
+          spans.push_back(spanAlong(planned, m->start, m->end));
+        }
+      }
+      wall.observed_share = planned.length > 0.0 ? unionLength(spans) / planned.length : 0.0;
+      level_walls.push_back({wall, planned});
+    }
+    // The map's place in the plan, refined on the walls as planned (DeviationOptions,
+    // "Placement"), then every wall judged after it.
+    const Placement placement = refinePlacement(level_walls, options);
+    report.placements.push_back({level, placement.correction, placement.walls_used});
+    for (auto& [wall, planned] : level_walls) {
+      for (auto& e : wall.evidence) placement.apply(e, planned);
+    }
+    // Then each wall against its neighbours alone (DeviationOptions::local_radius): a long map
+    // bends a little, and a wall is measured against the walls around it, not against the far
+    // end of the building. Its own evidence stays out of its placement.
+    std::vector<std::pair<WallDeviation, PlannedWall>> judged = level_walls;
+    for (std::size_t i = 0; i < level_walls.size(); ++i) {
+      if (level_walls[i].first.evidence.empty()) continue;
+      std::vector<std::pair<WallDeviation, PlannedWall>> around;
+      for (std::size_t j = 0; j < level_walls.size(); ++j) {
+        if (j != i && !level_walls[j].first.evidence.empty() &&
+            wallDistance(level_walls[i].second, level_walls[j].second) <= options.local_radius) {
+          around.push_back(level_walls[j]);
+        }
+      }
+      const Placement local = refinePlacement(around, options);
+      for (auto& e : judged[i].first.evidence) local.apply(e, judged[i].second);
+    }
+    for (auto& [wall, planned] : judged) {
+      judge(wall, planned, options);
+      if (wall.observed_share < options.judged_share) {
+        wall.in_view_share = inViewShare(plan, plan.walls[planned.index], keyframes_on[f], options);
+        wall.status = wall.observed_share < options.missing_seen_share &&
+                              *wall.in_view_share >= options.missing_view_share &&
+                              planned.length >= options.min_missing_length
+                          ? WallStatus::kMissing
+                          : WallStatus::kNotSeen;
+      }
+      report.walls.push_back(wall);
+    }
+    for (auto& m : unexplained) {
+      m.start = placement.move(m.start);
+      m.end = placement.move(m.end);
+      m.normal = Eigen::Rotation2Dd(placement.correction.z()) * m.normal;
+    }
+    for (auto& extra : extraWalls(unexplained, level, options)) {
+      report.extra_walls.push_back(std::move(extra));
+    }
+  }
+  return report;
+}
+
+}  // namespace isg::slam

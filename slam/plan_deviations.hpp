@@ -1,0 +1,126 @@
+#pragma once
+
+#include <Eigen/Geometry>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "bim/agraph.hpp"
+#include "slam/map_diagnostics.hpp"
+
+namespace isg::slam {
+
+// As built against as planned (docs/deviations.md): once a map is placed in the plan, each plan
+// wall of the levels the robot walked is compared with the map's walls in front of it. Every
+// threshold is stated here and written to deviations.json with the report.
+struct DeviationOptions {
+  // A map wall is evidence for a plan surface facing the same way (normals within this angle)
+  // when some point of it (an end or its middle) lies within `search_distance` of the surface's
+  // plane and a third of it lies along the planned wall. Farther, it is an extra wall.
+  double search_distance = 0.5;  // m
+  double search_angle_deg = 20.0;
+  double min_wall_length = 0.5;  // m: shorter map walls are not evidence
+  // Judged deviating at or beyond these. Below them lies what the map's own noise explains: a
+  // plane's offset to about 1 cm, its direction to a few tenths of a degree, the map's place in
+  // the plan to 1–3 cm (docs/deviations.md, "Thresholds").
+  double shift_m = 0.06;
+  double angle_deg = 1.5;
+  // A wall's evidence is consistent when both ends of a piece lie within this of the line its
+  // pieces fit (the longest first); the others (a plane fitted across a corner, a door leaf)
+  // are kept as evidence and not believed.
+  double consistent_tolerance = 0.04;  // m
+  // A direction is judged only from a map wall at least this long: a short plane's direction is
+  // too loose to call a wall turned.
+  double min_angle_length = 1.0;  // m
+  // A wall is judged when its evidence covers this share of its length; less is `not_seen`, or
+  // `missing` when next to nothing of it was seen (below `missing_seen_share`) though it lay in
+  // the sensor's view over `missing_view_share` of its length.
+  double judged_share = 0.2;
+  double missing_seen_share = 0.05;
+  double missing_view_share = 0.6;
+  double min_missing_length = 1.0;  // m: a shorter wall is never called missing
+  // In view: a point of a face within `view_range` of at least `min_views` keyframes standing in
+  // front of it, at most `max_incidence_deg` off its normal, with no other plan wall between.
+  double view_range = 8.0;  // m
+  double max_incidence_deg = 60.0;
+  int min_views = 3;
+  // Each wall is measured after a placement fitted on the walls within this distance of it (and
+  // not itself): the map bends a little over a long building.
+  double local_radius = 6.0;  // m
+  // Two opposite faces of extra walls at most this far apart are one wall.
+  double extra_pair_distance = 0.4;  // m
+};
+
+enum class WallStatus { kAsPlanned, kShifted, kRotated, kMissing, kNotSeen };
+const char* toString(WallStatus status);
+inline bool deviates(WallStatus s) {
+  return s == WallStatus::kShifted || s == WallStatus::kRotated || s == WallStatus::kMissing;
+}
+
+// One map wall taken as evidence for a plan wall, measured against the face it was seen as.
+struct WallEvidence {
+  int plane = -1;  // the map's plane id
+  int side = +1;   // +1 the wall's left face, −1 its right face
+  double length_m = 0.0;
+  int observations = 0;
+  double offset_m = 0.0;  // its line's, along the planned left normal, at the planned centre
+  double angle_deg = 0.0;
+  bool consistent = true;  // with the line the wall's pieces fit
+  Eigen::Vector2d start_B = Eigen::Vector2d::Zero(), end_B = Eigen::Vector2d::Zero();
+};
+
+struct WallDeviation {
+  std::string wall;
+  std::string level;
+  WallStatus status = WallStatus::kNotSeen;
+  // Of the line the consistent evidence fits (DeviationOptions::consistent_tolerance); none
+  // without evidence.
+  std::optional<double> offset_m, angle_deg;
+  double observed_share = 0.0;          // of the planned length, covered by the evidence
+  std::optional<double> in_view_share;  // measured only for walls seen too little to judge
+  Eigen::Vector2d planned_start = Eigen::Vector2d::Zero(), planned_end = Eigen::Vector2d::Zero();
+  double thickness = 0.0;
+  std::vector<WallEvidence> evidence;
+};
+
+// A wall the map has and the plan lacks: one face, or two opposite faces paired, in B.
+struct ExtraWall {
+  std::string level;
+  Eigen::Vector2d start = Eigen::Vector2d::Zero(), end = Eigen::Vector2d::Zero();
+  std::vector<int> planes;
+  double length() const { return (end - start).norm(); }
+};
+
+// How the report moved the map on a level before judging its walls: B_T_M puts the map within the
+// localizer's accuracy (1–3 cm), as much as the offsets to be measured; a best fit on the walls
+// found as planned takes that error out (docs/deviations.md, "Placement").
+struct PlacementCorrection {
+  std::string level;
+  Eigen::Vector3d correction =
+      Eigen::Vector3d::Zero();  // x, y (m), yaw (rad) about the walls' centre
+  int walls_used = 0;
+};
+
+struct DeviationReport {
+  DeviationOptions options;
+  std::vector<std::string> levels;              // the levels the robot walked, in the plan's order
+  std::vector<PlacementCorrection> placements;  // one per level walked
+  std::vector<WallDeviation> walls;
+  std::vector<ExtraWall> extra_walls;
+  int count(WallStatus status) const;
+};
+
+// The report of a map placed in the plan by B_T_M. Levels: those where a keyframe of the map
+// stood. Walls of the plan only (a flight of stairs' faces explain map walls but are not judged).
+// `keyframe_B_T_M`, when given (one per map keyframe, none where the robot was not yet localized):
+// where the map lay in the plan as each keyframe was taken, i.e. the localizer's pose in B then
+// composed with the keyframe's final pose in M. A wall is then placed by the mean of those of the
+// keyframes that saw it (up to the last 20): a long map bends, and a wall stands right relative
+// to the robot that saw it, where the final B_T_M may put a wall seen long ago 10–30 cm off.
+// Without them, or for a wall none of whose keyframes has one, B_T_M places it.
+DeviationReport measureDeviations(
+    const bim::AGraph& plan, const MapDiagnostics& map, const Eigen::Isometry3d& B_T_M,
+    const DeviationOptions& options = {},
+    const std::vector<std::optional<Eigen::Isometry3d>>& keyframe_B_T_M = {});
+
+}  // namespace isg::slam

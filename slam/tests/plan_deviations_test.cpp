@@ -1,0 +1,163 @@
+// The deviation report on a map made by hand: the map's walls are the faces of the building as
+// built (one wall shifted, one turned, one missing, one extra), placed in the plan 3 cm and 0.3°
+// off, as a localizer would place them. Every number below is a hand calculation.
+#include "slam/plan_deviations.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <numbers>
+
+#include "bim/as_built_wall.hpp"
+#include "bim/json_reader.hpp"
+#include "bim/plan_parser.hpp"
+
+namespace isg::slam {
+namespace {
+
+bim::Plan threeRooms() {
+  const nlohmann::json document = nlohmann::json::parse(R"({
+    "format": "isg.plan", "version": 1, "name": "three rooms",
+    "levels": [{
+      "id": "L0", "elevation": 0.0, "height": 3.0,
+      "walls": [
+        {"id": "W1", "start": [0, 0], "end": [9, 0], "thickness": 0.2},
+        {"id": "W2", "start": [9, 0], "end": [9, 4], "thickness": 0.2},
+        {"id": "W3", "start": [9, 4], "end": [0, 4], "thickness": 0.2},
+        {"id": "W4", "start": [0, 4], "end": [0, 0], "thickness": 0.2},
+        {"id": "W5", "start": [3, 0], "end": [3, 4], "thickness": 0.1},
+        {"id": "W6", "start": [6, 0], "end": [6, 4], "thickness": 0.1}
+      ],
+      "doors": [
+        {"id": "D1", "wall": "W5", "offset": 2.0, "width": 0.9, "height": 2.1},
+        {"id": "D2", "wall": "W6", "offset": 2.0, "width": 0.9, "height": 2.1}
+      ],
+      "rooms": [
+        {"id": "R1", "outline": [[0.1, 0.1], [2.95, 0.1], [2.95, 3.9], [0.1, 3.9]]},
+        {"id": "R2", "outline": [[3.05, 0.1], [5.95, 0.1], [5.95, 3.9], [3.05, 3.9]]},
+        {"id": "R3", "outline": [[6.05, 0.1], [8.9, 0.1], [8.9, 3.9], [6.05, 3.9]]}
+      ]
+    }]
+  })");
+  const bim::JsonSource source{"three-rooms.json", nullptr};
+  return bim::parsePlan(bim::JsonNode(document, "", source));
+}
+
+// W3 shifted 0.15 m along its left normal (to y = 3.85), W5 turned 4° about its start, W6 not
+// built (with its door), a 1 m partition standing free in R1.
+bim::AsBuilt deviations() {
+  bim::AsBuilt as_built;
+  as_built.wall_shifts = {{"W3", 0.15}};
+  as_built.wall_rotations = {{"W5", 4.0, bim::WallRotation::About::kStart}};
+  as_built.missing_walls = {"W6"};
+  return as_built;
+}
+
+bim::Plan builtPlan(const bim::Plan& plan, const bim::AsBuilt& as_built) {
+  bim::Plan built = plan;
+  bim::Level& level = built.levels[0];
+  std::erase_if(level.walls, [](const bim::Wall& w) { return w.id == "W6"; });
+  std::erase_if(level.doors, [](const bim::Door& d) { return d.wall == "W6"; });
+  for (auto& wall : level.walls) wall = bim::builtWall(wall, as_built);
+  bim::Wall partition;
+  partition.id = "X1";
+  partition.start = {1.0, 2.0};
+  partition.end = {2.0, 2.0};
+  partition.thickness = 0.1;
+  partition.height = 3.0;
+  level.walls.push_back(partition);
+  return built;
+}
+
+// Every face of the built walls as a map wall, in a map frame M = B; and keyframes along the
+// rooms' middle.
+MapDiagnostics mapOf(const bim::AGraph& built) {
+  MapDiagnostics map;
+  int id = 0;
+  for (const auto& surface : built.surfaces) {
+    for (const auto& [a, b] : surface.segments) {
+      map.walls.push_back({id++, surface.plane.normal, surface.plane.d, a, b, 0.2, 2.6, 20});
+    }
+  }
+  for (double x = 0.5; x <= 8.5; x += 0.25) {
+    MapKeyframe keyframe;
+    keyframe.estimate.translation() = Eigen::Vector3d(x, 1.0, 0.5);
+    map.keyframes.push_back(keyframe);
+  }
+  return map;
+}
+
+const WallDeviation& wallOf(const DeviationReport& report, const std::string& id) {
+  for (const auto& w : report.walls) {
+    if (w.wall == id) return w;
+  }
+  throw std::runtime_error("no wall " + id);
+}
+
+TEST(PlanDeviations, FindsTheShiftedTurnedMissingAndExtraWallsByHand) {
+  const bim::Plan plan = threeRooms();
+  const bim::AGraph planned = bim::buildAGraph(plan);
+  const bim::AGraph built = bim::buildAGraph(builtPlan(plan, deviations()));
+  // The localizer's placement, off by 3 cm in x and 0.3° in yaw.
+  Eigen::Isometry3d B_T_M = Eigen::Isometry3d::Identity();
+  B_T_M.linear() = Eigen::AngleAxisd(0.3 * std::numbers::pi / 180.0, Eigen::Vector3d::UnitZ())
+                       .toRotationMatrix();
+  B_T_M.translation() = Eigen::Vector3d(0.03, 0.0, 0.0);
+  const DeviationReport report = measureDeviations(planned, mapOf(built), B_T_M);
+
+  ASSERT_EQ(report.levels, std::vector<std::string>{"L0"});
+  ASSERT_EQ(report.walls.size(), 6u);
+  for (const char* id : {"W1", "W2", "W4"}) {
+    const WallDeviation& w = wallOf(report, id);
+    EXPECT_EQ(w.status, WallStatus::kAsPlanned) << id;
+    EXPECT_NEAR(*w.offset_m, 0.0, 0.002) << id;
+    EXPECT_NEAR(*w.angle_deg, 0.0, 0.02) << id;
+  }
+  const WallDeviation& shifted = wallOf(report, "W3");
+  EXPECT_EQ(shifted.status, WallStatus::kShifted);
+  EXPECT_NEAR(*shifted.offset_m, 0.15, 0.002);
+  EXPECT_NEAR(*shifted.angle_deg, 0.0, 0.02);
+  EXPECT_GT(shifted.observed_share, 0.9);
+  // Turned 4° about (3, 0): at the planned centre, 2·tan 4° along the left normal (−x).
+  const WallDeviation& turned = wallOf(report, "W5");
+  EXPECT_EQ(turned.status, WallStatus::kRotated);
+  EXPECT_NEAR(*turned.angle_deg, 4.0, 0.02);
+  EXPECT_NEAR(*turned.offset_m, 2.0 * std::tan(4.0 * std::numbers::pi / 180.0), 0.002);
+  // Nothing of W6 in the map, though the keyframes east of W5 saw all of it.
+  const WallDeviation& missing = wallOf(report, "W6");
+  EXPECT_EQ(missing.status, WallStatus::kMissing);
+  EXPECT_TRUE(missing.evidence.empty());
+  ASSERT_TRUE(missing.in_view_share);
+  EXPECT_GE(*missing.in_view_share, 0.6);
+  // The partition: its two faces paired into one wall on its axis, y = 2.
+  ASSERT_EQ(report.extra_walls.size(), 1u);
+  const ExtraWall& extra = report.extra_walls[0];
+  EXPECT_EQ(extra.planes.size(), 2u);
+  EXPECT_NEAR(0.5 * (extra.start + extra.end).y(), 2.0, 0.005);
+  EXPECT_NEAR(0.5 * (extra.start + extra.end).x(), 1.5, 0.005);
+  EXPECT_NEAR(extra.length(), 1.0, 0.11);  // the faces' ends, within the wall's thickness
+  // The placement fitted on the walls as planned takes the localizer's error out.
+  ASSERT_EQ(report.placements.size(), 1u);
+  EXPECT_NEAR(report.placements[0].correction.z() * 180.0 / std::numbers::pi, -0.3, 0.005);
+  EXPECT_EQ(report.placements[0].walls_used, 3);
+}
+
+// The same map, seen only from R1: walls beyond R1 were never in view and are not seen, not
+// missing; W5 (R1's east wall, turned) is still judged.
+TEST(PlanDeviations, WallsOutOfViewAreNotSeenRatherThanMissing) {
+  const bim::Plan plan = threeRooms();
+  const bim::AGraph planned = bim::buildAGraph(plan);
+  const bim::AGraph built = bim::buildAGraph(builtPlan(plan, deviations()));
+  MapDiagnostics map = mapOf(built);
+  std::erase_if(map.keyframes,
+                [](const MapKeyframe& k) { return k.estimate.translation().x() > 2.5; });
+  // What R1 sees: the faces facing into it (x < 3).
+  std::erase_if(map.walls, [](const MapWall& w) { return std::min(w.start.x(), w.end.x()) > 3.1; });
+  const DeviationReport report = measureDeviations(planned, map, Eigen::Isometry3d::Identity());
+  EXPECT_EQ(wallOf(report, "W6").status, WallStatus::kNotSeen);
+  EXPECT_EQ(wallOf(report, "W2").status, WallStatus::kNotSeen);
+  EXPECT_EQ(wallOf(report, "W5").status, WallStatus::kRotated);
+}
+
+}  // namespace
+}  // namespace isg::slam
