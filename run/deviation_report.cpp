@@ -66,6 +66,8 @@ nlohmann::json deviationReportJson(const slam::DeviationReport& report) {
                                {"search_distance_m", o.search_distance},
                                {"search_angle_deg", o.search_angle_deg},
                                {"min_wall_length_m", o.min_wall_length},
+                               {"bend_distance_m", o.bend_distance},
+                               {"bend_angle_deg", o.bend_angle_deg},
                                {"local_radius_m", o.local_radius},
                                {"view_range_m", o.view_range},
                                {"max_incidence_deg", o.max_incidence_deg},

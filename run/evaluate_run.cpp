@@ -3,11 +3,12 @@
 #include "bim/polygon.hpp"
 #include "eval/ape.hpp"
 #include "eval/coverage.hpp"
-#include "eval/pose_interpolation.hpp"
 #include "eval/wrong_localization.hpp"
 #include "run/level_metrics.hpp"
 #include "run/map_plan_error.hpp"
 
+#include <algorithm>
+#include <cmath>
 #include <set>
 #include <stdexcept>
 #include <string>
@@ -158,13 +159,17 @@ RunEvaluation evaluateRun(const RunRecord& run) {
                           : "no map-to-plan error: the map was never placed in the plan");
   }
   if (run.map && run.final_B_T_M && run.setup.agraph != nullptr) {
-    // Where the map lay in the plan at each keyframe: the pose in B the localizer reported then,
-    // over the keyframe's final pose in M.
+    // Where the map lay in the plan at each keyframe: the pose in B the localizer reported for
+    // that very scan (none while it was not localized: never interpolated across a gap), over
+    // the keyframe's final pose in M.
     std::vector<std::optional<Eigen::Isometry3d>> keyframe_B_T_M;
     for (const auto& kf : run.map->keyframes) {
-      const auto B_T_R = eval::interpolatePose(run.estimate, kf.stamp);
-      keyframe_B_T_M.push_back(B_T_R ? std::optional(*B_T_R * kf.estimate.inverse())
-                                     : std::nullopt);
+      const auto row =
+          std::lower_bound(run.estimate.begin(), run.estimate.end(), kf.stamp - 1e-3,
+                           [](const StampedPose& pose, double t) { return pose.t < t; });
+      const bool same_scan = row != run.estimate.end() && std::abs(row->t - kf.stamp) <= 1e-3;
+      keyframe_B_T_M.push_back(same_scan ? std::optional(row->pose * kf.estimate.inverse())
+                                         : std::nullopt);
     }
     evaluation.deviations =
         slam::measureDeviations(*run.setup.agraph, *run.map, *run.final_B_T_M, {}, keyframe_B_T_M);

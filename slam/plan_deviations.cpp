@@ -297,19 +297,49 @@ Placement refinePlacement(const std::vector<std::pair<WallDeviation, PlannedWall
   return placement;
 }
 
+// A wall's evidence can contradict itself: its two faces, seen from two rooms, laid by the map a
+// few centimetres apart. A piece left out of the fit that is at least half as long as the longest
+// one it kept is such a contradiction, not an artefact; the wall is then measured by the
+// length-weighted mean of all such long pieces, and called shifted (rotated) only when every one
+// of them is beyond the threshold on the same side — the noise the contradiction shows must not
+// make a deviation.
 void judge(WallDeviation& wall, const PlannedWall& planned, const DeviationOptions& options) {
   if (wall.evidence.empty()) return;
   const WallFit fit = fitWall(wall, planned, options.consistent_tolerance);
   wall.offset_m = fit.offset_m;
   wall.angle_deg = fit.angle_deg;
-  if (wall.observed_share < options.judged_share) return;
-  if (std::abs(fit.angle_deg) >= options.angle_deg && fit.longest >= options.min_angle_length) {
-    wall.status = WallStatus::kRotated;
-  } else if (std::abs(fit.offset_m) >= options.shift_m) {
-    wall.status = WallStatus::kShifted;
-  } else {
-    wall.status = WallStatus::kAsPlanned;
+  std::vector<const WallEvidence*> long_pieces;
+  bool contradicted = false;
+  for (const auto& e : wall.evidence) {
+    if (e.length_m < 0.5 * fit.longest) continue;
+    long_pieces.push_back(&e);
+    contradicted = contradicted || !e.consistent;
   }
+  auto beyond = [&](auto value_of, double threshold) {
+    const double first = value_of(*long_pieces.front());
+    return std::all_of(long_pieces.begin(), long_pieces.end(), [&](const WallEvidence* e) {
+      return std::abs(value_of(*e)) >= threshold && (value_of(*e) > 0) == (first > 0);
+    });
+  };
+  bool turned =
+      std::abs(fit.angle_deg) >= options.angle_deg && fit.longest >= options.min_angle_length;
+  bool shifted = std::abs(fit.offset_m) >= options.shift_m;
+  if (contradicted) {
+    double length = 0.0, offset = 0.0, angle = 0.0;
+    for (const WallEvidence* e : long_pieces) {
+      length += e->length_m;
+      offset += e->length_m * e->offset_m;
+      angle += e->length_m * e->angle_deg;
+    }
+    wall.offset_m = offset / length;
+    wall.angle_deg = angle / length;
+    turned = turned && beyond([](const WallEvidence& e) { return e.angle_deg; }, options.angle_deg);
+    shifted = shifted && beyond([](const WallEvidence& e) { return e.offset_m; }, options.shift_m);
+  }
+  if (wall.observed_share < options.judged_share) return;
+  wall.status = turned    ? WallStatus::kRotated
+                : shifted ? WallStatus::kShifted
+                          : WallStatus::kAsPlanned;
 }
 
 double distanceToSegment(const Eigen::Vector2d& p, const Eigen::Vector2d& a,
@@ -433,7 +463,20 @@ DeviationReport measureDeviations(
   }
   std::vector<WallInB> walls_in_B;
   for (const auto& w : map.walls) {
-    WallInB in_B = toB(w, placementOf(w, B_T_M, keyframe_B_T_M).value_or(B_T_M));
+    // The final B_T_M, unless the robot's poses of the time put the wall farther from it than
+    // their own noise: there the map has bent since, and those poses place it.
+    Eigen::Isometry3d placement = B_T_M;
+    if (const auto of_its_keyframes = placementOf(w, B_T_M, keyframe_B_T_M)) {
+      const Eigen::Vector3d middle(0.5 * (w.start.x() + w.end.x()), 0.5 * (w.start.y() + w.end.y()),
+                                   0.0);
+      const double moved = ((*of_its_keyframes * middle) - (B_T_M * middle)).head<2>().norm();
+      const double turned =
+          Eigen::AngleAxisd(of_its_keyframes->linear() * B_T_M.linear().transpose()).angle();
+      if (moved > options.bend_distance || turned > options.bend_angle_deg * kDegree) {
+        placement = *of_its_keyframes;
+      }
+    }
+    WallInB in_B = toB(w, placement);
     if (in_B.length() >= options.min_wall_length) walls_in_B.push_back(in_B);
   }
   const double min_cos = std::cos(options.search_angle_deg * kDegree);

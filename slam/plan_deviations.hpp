@@ -44,6 +44,10 @@ struct DeviationOptions {
   double view_range = 8.0;  // m
   double max_incidence_deg = 60.0;
   int min_views = 3;
+  // A wall is placed by the final B_T_M unless the robot's poses in B when it saw the wall put
+  // it farther than this from there (the map has bent since): then by those poses.
+  double bend_distance = 0.05;  // m
+  double bend_angle_deg = 0.5;
   // Each wall is measured after a placement fitted on the walls within this distance of it (and
   // not itself): the map bends a little over a long building.
   double local_radius = 6.0;  // m
@@ -112,12 +116,13 @@ struct DeviationReport {
 
 // The report of a map placed in the plan by B_T_M. Levels: those where a keyframe of the map
 // stood. Walls of the plan only (a flight of stairs' faces explain map walls but are not judged).
-// `keyframe_B_T_M`, when given (one per map keyframe, none where the robot was not yet localized):
+// `keyframe_B_T_M`, when given (one per map keyframe, none where the robot was not localized):
 // where the map lay in the plan as each keyframe was taken, i.e. the localizer's pose in B then
-// composed with the keyframe's final pose in M. A wall is then placed by the mean of those of the
-// keyframes that saw it (up to the last 20): a long map bends, and a wall stands right relative
-// to the robot that saw it, where the final B_T_M may put a wall seen long ago 10–30 cm off.
-// Without them, or for a wall none of whose keyframes has one, B_T_M places it.
+// composed with the keyframe's final pose in M. A long map bends, and the final B_T_M may put a
+// wall seen long ago 10–30 cm off where the robot, localized then, had it right: a wall whose
+// keyframes (up to the last 20 that saw it, their planar mean) place it more than bend_distance
+// or bend_angle_deg from where B_T_M does is placed by them. Otherwise, and without them, B_T_M
+// places it (it is the less noisy of the two where the map has not bent).
 DeviationReport measureDeviations(
     const bim::AGraph& plan, const MapDiagnostics& map, const Eigen::Isometry3d& B_T_M,
     const DeviationOptions& options = {},
