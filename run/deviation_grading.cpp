@@ -5,6 +5,7 @@
 #include <numbers>
 
 #include "bim/as_built_wall.hpp"
+#include "bim/polygon.hpp"
 
 namespace isg::run {
 
@@ -12,13 +13,6 @@ namespace {
 
 std::optional<double> share(int part, int whole) {
   return whole > 0 ? std::optional<double>(double(part) / whole) : std::nullopt;
-}
-
-double distanceToSegment(const Eigen::Vector2d& p, const Eigen::Vector2d& a,
-                         const Eigen::Vector2d& b) {
-  const Eigen::Vector2d ab = b - a;
-  const double t = std::clamp((p - a).dot(ab) / std::max(ab.squaredNorm(), 1e-12), 0.0, 1.0);
-  return (a + t * ab - p).norm();
 }
 
 bool onClutter(const Eigen::Vector2d& p, const bim::Clutter& box) {
@@ -81,7 +75,7 @@ DeviationGrade gradeDeviations(const slam::DeviationReport& report, const bim::P
       if (wall.level != extra.level) continue;
       const Eigen::Vector2d axis = (wall.end - wall.start).normalized();
       if (std::abs(axis.dot(direction)) < parallel) continue;
-      if (distanceToSegment(middle, wall.start, wall.end) > 0.3) continue;
+      if (bim::distanceToSegment(middle, wall.start, wall.end) > 0.3) continue;
       matched[t] = true;
       any = true;
     }

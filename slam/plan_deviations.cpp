@@ -7,6 +7,8 @@
 #include <numbers>
 #include <tuple>
 
+#include "bim/polygon.hpp"
+
 namespace isg::slam {
 
 namespace {
@@ -104,6 +106,8 @@ double unionLength(std::vector<std::pair<double, double>> spans) {
   return total;
 }
 
+// Whether the open segments cross (bim::segmentsIntersect takes closed ones): a sight line that
+// only grazes the end of a face, where faces meet at a corner, is not blocked by it.
 bool segmentsCross(const Eigen::Vector2d& p, const Eigen::Vector2d& q, const Eigen::Vector2d& a,
                    const Eigen::Vector2d& b) {
   const double d1 = cross(q - p, a - p), d2 = cross(q - p, b - p);
@@ -342,18 +346,12 @@ void judge(WallDeviation& wall, const PlannedWall& planned, const DeviationOptio
                           : WallStatus::kAsPlanned;
 }
 
-double distanceToSegment(const Eigen::Vector2d& p, const Eigen::Vector2d& a,
-                         const Eigen::Vector2d& b) {
-  const Eigen::Vector2d ab = b - a;
-  const double t = std::clamp((p - a).dot(ab) / std::max(ab.squaredNorm(), 1e-12), 0.0, 1.0);
-  return (a + t * ab - p).norm();
-}
-
 // Between two planned axes (that do not cross: walls meet at their ends or along a side).
 double wallDistance(const PlannedWall& a, const PlannedWall& b) {
-  return std::min(
-      {distanceToSegment(a.start, b.start, b.end), distanceToSegment(a.end, b.start, b.end),
-       distanceToSegment(b.start, a.start, a.end), distanceToSegment(b.end, a.start, a.end)});
+  return std::min({bim::distanceToSegment(a.start, b.start, b.end),
+                   bim::distanceToSegment(a.end, b.start, b.end),
+                   bim::distanceToSegment(b.start, a.start, a.end),
+                   bim::distanceToSegment(b.end, a.start, a.end)});
 }
 
 // Unexplained map walls of one level, opposite faces paired into one wall.
