@@ -18,6 +18,10 @@ inline double angleDifference(double a, double b) {
   return d;
 }
 
+// Degrees for people (files, logs, options), radians for the maths.
+inline constexpr double degrees(double radians) { return radians * 180.0 / std::numbers::pi; }
+inline constexpr double radians(double degrees) { return degrees * std::numbers::pi / 180.0; }
+
 // The heading of a direction in the plane.
 inline double headingOf(const Eigen::Vector2d& direction) {
   return std::atan2(direction.y(), direction.x());

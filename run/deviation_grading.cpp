@@ -4,6 +4,7 @@
 #include <cmath>
 #include <numbers>
 
+#include "bim/angles.hpp"
 #include "bim/as_built_wall.hpp"
 #include "bim/polygon.hpp"
 
@@ -64,7 +65,7 @@ DeviationGrade gradeDeviations(const slam::DeviationReport& report, const bim::P
     grade.angle_error_deg = angle_error / measured;
   }
   // Extra walls of the levels walked.
-  const double parallel = std::cos(10.0 * std::numbers::pi / 180.0);
+  const double parallel = std::cos(bim::radians(10.0));
   std::vector<bool> matched(truth.extra_walls.size(), false);
   for (const slam::ExtraWall& extra : report.extra_walls) {
     const Eigen::Vector2d middle = 0.5 * (extra.start + extra.end);
@@ -142,34 +143,82 @@ int readCount(const bim::JsonNode& node, std::string_view key) {
 
 }  // namespace
 
+namespace {
+
+// The file's fields, each written and read once from these tables. A block's counts are required
+// when the block is there; its shares and measures are absent when there is nothing to divide by.
+template <typename T>
+struct Count {
+  const char* key;
+  int T::*member;
+};
+struct Optional {
+  const char* key;
+  std::optional<double> DeviationGrade::*member;
+  bool share;  // in [0, 1]; otherwise a non-negative measure
+};
+constexpr Count<DeviationMetrics> kWallCounts[] = {{"as_planned", &DeviationMetrics::as_planned},
+                                                   {"shifted", &DeviationMetrics::shifted},
+                                                   {"rotated", &DeviationMetrics::rotated},
+                                                   {"missing", &DeviationMetrics::missing},
+                                                   {"not_seen", &DeviationMetrics::not_seen}};
+constexpr Count<DeviationGrade> kGradedCounts[] = {
+    {"judged", &DeviationGrade::judged},
+    {"found", &DeviationGrade::found},
+    {"false_reports", &DeviationGrade::false_reports},
+    {"missed", &DeviationGrade::missed}};
+constexpr Optional kGradedOptionals[] = {
+    {"precision", &DeviationGrade::precision, true},
+    {"recall", &DeviationGrade::recall, true},
+    {"offset_error_m", &DeviationGrade::offset_error_m, false},
+    {"angle_error_deg", &DeviationGrade::angle_error_deg, false}};
+constexpr Count<DeviationGrade> kMissingCounts[] = {
+    {"found", &DeviationGrade::missing_found},
+    {"false_reports", &DeviationGrade::missing_false_reports},
+    {"missed", &DeviationGrade::missing_missed}};
+constexpr Count<DeviationGrade> kExtraCounts[] = {
+    {"found", &DeviationGrade::extra_found},
+    {"false_reports", &DeviationGrade::extra_false_reports},
+    {"missed", &DeviationGrade::extra_missed},
+    {"on_clutter", &DeviationGrade::extra_on_clutter}};
+constexpr Optional kExtraOptionals[] = {{"precision", &DeviationGrade::extra_precision, true},
+                                        {"recall", &DeviationGrade::extra_recall, true}};
+
+template <typename T, std::size_t N>
+void putCounts(nlohmann::json& j, const T& from, const Count<T> (&fields)[N]) {
+  for (const auto& f : fields) j[f.key] = from.*f.member;
+}
+template <std::size_t N>
+void putOptionals(nlohmann::json& j, const DeviationGrade& from, const Optional (&fields)[N]) {
+  for (const auto& f : fields) putOptional(j, f.key, from.*f.member);
+}
+template <typename T, std::size_t N>
+void readCounts(const bim::JsonNode& node, T& to, const Count<T> (&fields)[N]) {
+  for (const auto& f : fields) to.*f.member = readCount(node, f.key);
+}
+template <std::size_t N>
+void readOptionals(const bim::JsonNode& node, DeviationGrade& to, const Optional (&fields)[N]) {
+  for (const auto& f : fields) {
+    to.*f.member = f.share ? readShare(node, f.key) : readMeasure(node, f.key);
+  }
+}
+
+}  // namespace
+
 nlohmann::json deviationMetricsJson(const DeviationMetrics& m) {
-  nlohmann::json j = {{"walls",
-                       {{"as_planned", m.as_planned},
-                        {"shifted", m.shifted},
-                        {"rotated", m.rotated},
-                        {"missing", m.missing},
-                        {"not_seen", m.not_seen}}},
-                      {"extra_walls", m.extra_walls}};
+  nlohmann::json walls = nlohmann::json::object();
+  putCounts(walls, m, kWallCounts);
+  nlohmann::json j = {{"walls", walls}, {"extra_walls", m.extra_walls}};
   if (m.grade) {
     const DeviationGrade& g = *m.grade;
-    nlohmann::json graded = {{"min_share", g.min_share},
-                             {"judged", g.judged},
-                             {"found", g.found},
-                             {"false_reports", g.false_reports},
-                             {"missed", g.missed}};
-    putOptional(graded, "precision", g.precision);
-    putOptional(graded, "recall", g.recall);
-    putOptional(graded, "offset_error_m", g.offset_error_m);
-    putOptional(graded, "angle_error_deg", g.angle_error_deg);
-    graded["missing"] = {{"found", g.missing_found},
-                         {"false_reports", g.missing_false_reports},
-                         {"missed", g.missing_missed}};
-    nlohmann::json extra = {{"found", g.extra_found},
-                            {"false_reports", g.extra_false_reports},
-                            {"missed", g.extra_missed},
-                            {"on_clutter", g.extra_on_clutter}};
-    putOptional(extra, "precision", g.extra_precision);
-    putOptional(extra, "recall", g.extra_recall);
+    nlohmann::json graded = {{"min_share", g.min_share}};
+    putCounts(graded, g, kGradedCounts);
+    putOptionals(graded, g, kGradedOptionals);
+    nlohmann::json missing = nlohmann::json::object(), extra = nlohmann::json::object();
+    putCounts(missing, g, kMissingCounts);
+    putCounts(extra, g, kExtraCounts);
+    putOptionals(extra, g, kExtraOptionals);
+    graded["missing"] = missing;
     graded["extra"] = extra;
     j["graded"] = graded;
   }
@@ -178,35 +227,16 @@ nlohmann::json deviationMetricsJson(const DeviationMetrics& m) {
 
 DeviationMetrics deviationMetricsFromJson(const bim::JsonNode& node) {
   DeviationMetrics m;
-  const bim::JsonNode walls = node.field("walls");
-  m.as_planned = readCount(walls, "as_planned");
-  m.shifted = readCount(walls, "shifted");
-  m.rotated = readCount(walls, "rotated");
-  m.missing = readCount(walls, "missing");
-  m.not_seen = readCount(walls, "not_seen");
+  readCounts(node.field("walls"), m, kWallCounts);
   m.extra_walls = readCount(node, "extra_walls");
   if (const auto graded = node.optionalField("graded")) {
     DeviationGrade g;
     g.min_share = graded->field("min_share").numberInRange(0.0, 1.0);
-    g.judged = readCount(*graded, "judged");
-    g.found = readCount(*graded, "found");
-    g.false_reports = readCount(*graded, "false_reports");
-    g.missed = readCount(*graded, "missed");
-    g.precision = readShare(*graded, "precision");
-    g.recall = readShare(*graded, "recall");
-    g.offset_error_m = readMeasure(*graded, "offset_error_m");
-    g.angle_error_deg = readMeasure(*graded, "angle_error_deg");
-    const bim::JsonNode missing = graded->field("missing");
-    g.missing_found = readCount(missing, "found");
-    g.missing_false_reports = readCount(missing, "false_reports");
-    g.missing_missed = readCount(missing, "missed");
-    const bim::JsonNode extra = graded->field("extra");
-    g.extra_found = readCount(extra, "found");
-    g.extra_false_reports = readCount(extra, "false_reports");
-    g.extra_missed = readCount(extra, "missed");
-    g.extra_on_clutter = readCount(extra, "on_clutter");
-    g.extra_precision = readShare(extra, "precision");
-    g.extra_recall = readShare(extra, "recall");
+    readCounts(*graded, g, kGradedCounts);
+    readOptionals(*graded, g, kGradedOptionals);
+    readCounts(graded->field("missing"), g, kMissingCounts);
+    readCounts(graded->field("extra"), g, kExtraCounts);
+    readOptionals(graded->field("extra"), g, kExtraOptionals);
     m.grade = g;
   }
   return m;

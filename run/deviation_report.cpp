@@ -6,16 +6,12 @@
 #include <limits>
 #include <numbers>
 
+#include "bim/angles.hpp"
+#include "run/text_format.hpp"
+
 namespace isg::run {
 
 namespace {
-
-template <typename... Args>
-std::string format(const char* pattern, Args... args) {
-  char buffer[512];
-  std::snprintf(buffer, sizeof buffer, pattern, args...);
-  return buffer;
-}
 
 nlohmann::json point(const Eigen::Vector2d& p) { return {p.x(), p.y()}; }
 
@@ -112,7 +108,7 @@ nlohmann::json deviationReportJson(const slam::DeviationReport& report) {
     placements.push_back({{"level", p.level},
                           {"x", p.correction.x()},
                           {"y", p.correction.y()},
-                          {"yaw_deg", p.correction.z() * 180.0 / std::numbers::pi},
+                          {"yaw_deg", bim::degrees(p.correction.z())},
                           {"walls_used", p.walls_used}});
   }
   return {{"format", "isg.deviations"},

@@ -10,18 +10,9 @@
 #include "eval/report_svg.hpp"
 #include "run/builtin_methods.hpp"
 #include "run/map_plan_error.hpp"
+#include "run/text_format.hpp"
 
 namespace isg::run {
-
-namespace {
-
-std::string format(const char* pattern, auto... values) {
-  char text[512];
-  std::snprintf(text, sizeof text, pattern, values...);
-  return text;
-}
-
-}  // namespace
 
 namespace {
 

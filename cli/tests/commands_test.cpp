@@ -445,8 +445,9 @@ TEST(Run, LoopAndReplayAgreeAndTheRunFolderIsComplete) {
   EXPECT_THAT(loop.out, StartsWith("isg run: wrote loop (is-graphs on builtin:d1.asbuilt, seed 1)\n"
                                    "  localized at t = "));
   EXPECT_THAT(loop.out, HasSubstr("x real time\n"));
-  for (const char* f : {"groundtruth.tum", "odometry.tum", "estimate.tum", "estimate_map.tum",
-                        "metrics.json", "agraph.json", "sgraph.json", "report.svg"}) {
+  for (const char* f :
+       {"groundtruth.tum", "odometry.tum", "estimate.tum", "estimate_map.tum", "metrics.json",
+        "agraph.json", "sgraph.json", "report.svg", "deviations.json", "deviations.svg"}) {
     EXPECT_TRUE(sandbox.exists(std::string("loop/") + f)) << f;
   }
   const auto metrics = nlohmann::json::parse(sandbox.read("loop/metrics.json"));
@@ -464,6 +465,11 @@ TEST(Run, LoopAndReplayAgreeAndTheRunFolderIsComplete) {
   EXPECT_EQ(sandbox.read("replay/estimate.tum"), sandbox.read("loop/estimate.tum"));
   EXPECT_EQ(sandbox.read("replay/estimate_map.tum"), sandbox.read("loop/estimate_map.tum"));
   EXPECT_FALSE(sandbox.read("loop/estimate.tum").empty());
+  // The replay places the same map in the plan: the same deviation report, wall by wall.
+  EXPECT_TRUE(sandbox.exists("replay/deviations.svg"));
+  const auto loop_walls = nlohmann::json::parse(sandbox.read("loop/deviations.json"))["walls"];
+  EXPECT_EQ(loop_walls.size(), 7u);  // D1's walls on its level
+  EXPECT_EQ(nlohmann::json::parse(sandbox.read("replay/deviations.json"))["walls"], loop_walls);
 }
 
 // The short regression suite against the committed baseline (eval/baselines/short_suite.csv),
