@@ -1,7 +1,8 @@
 // The deviation report end to end (docs/deviations.md): `isg run` on D1 built with a wall shifted
 // 25 cm, a wall turned 4° about its start and a partition the plan lacks writes deviations.json
 // and .svg, finds all three, grades itself against the scenario, and `isg table` tabulates it.
-// D1 as planned reports no wall deviating.
+// D1 as planned reports no wall deviating and releases none from the merge; one built 12 cm off
+// is released.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -81,6 +82,37 @@ TEST(Deviations, D1AsPlannedHasNoWallDeviating) {
   EXPECT_EQ(walls["rotated"], 0);
   EXPECT_EQ(walls["missing"], 0);
   EXPECT_EQ(walls["as_planned"], 7);
+  // Nor is any released from the merge.
+  const json graph = json::parse(sandbox.read("r/sgraph.json"));
+  EXPECT_TRUE(graph["matching"]["released_walls"].empty()) << graph["matching"]["released_walls"];
+}
+
+// A wall built 12 cm off lies within the matcher's gate (0.15 m): it is matched, judged against
+// the other walls and released from the merge (docs/matching.md, "An imprecise plan"), and the
+// log says by how much it stood off.
+TEST(Deviations, AWallBuiltWithinTheMatchersGateIsReleasedFromTheMerge) {
+  const testing::Sandbox sandbox("deviations_released");
+  sandbox.write("d1.w7.json",
+                json{{"format", "isg.scenario"},
+                     {"version", 1},
+                     {"plan", std::string(ISG_SOURCE_DIR) + "/worlds/plans/d1.json"},
+                     {"seed", 1},
+                     {"as_built", {{"wall_shifts", {{{"wall", "W7"}, {"offset", 0.12}}}}}}}
+                    .dump());
+  const auto run = sandbox.run("run d1.w7.json -o r -q");
+  ASSERT_EQ(run.exit_code, 0) << run.err;
+  const json released = json::parse(sandbox.read("r/sgraph.json"))["matching"]["released_walls"];
+  ASSERT_FALSE(released.empty());
+  for (const json& wall : released) {
+    EXPECT_EQ(wall["surface"].get<std::string>().substr(0, 3), "W7:") << wall;
+    // Released on its residual after the others' correction: beyond 0.06 m, up to its shift
+    // (the merge pulls it toward the plan for the keyframes before it is released).
+    EXPECT_GT(std::abs(wall["offset_m"].get<double>()), 0.06) << wall;
+    EXPECT_LT(std::abs(wall["offset_m"].get<double>()), 0.13) << wall;
+  }
+  const json metrics = json::parse(sandbox.read("r/metrics.json"));
+  EXPECT_FALSE(metrics["wrongly_localized"].get<bool>());
+  EXPECT_LT(metrics["ape_B"]["rmse"].get<double>(), 0.03);
 }
 
 }  // namespace

@@ -7,6 +7,7 @@
 #include <limits>
 
 #include "bim/agraph_factors.hpp"
+#include "bim/angles.hpp"
 #include "slam/isgraph/merging_factors.hpp"
 
 namespace isg::slam {
@@ -131,6 +132,8 @@ void ISGraphLocalizer::adopt(const Verification& answer, int level) {
   room_matches_.clear();
   for (const auto& [s, a] : answer.planes) plane_matches_[s] = a;
   for (const auto& [s, a] : answer.rooms) room_matches_[s] = a;
+  released_.clear();
+  release_strikes_.clear();
   // z: walls do not observe it; the floor does. The floor of the answer's level, or of the first
   // matched room's.
   if (level < 0 && !answer.rooms.empty()) level = plan_->rooms[answer.rooms[0].second].floor;
@@ -256,6 +259,55 @@ std::string ISGraphLocalizer::updateAgreement(const MatchInput& input) {
   return "";
 }
 
+void ISGraphLocalizer::releaseDeviatingWalls(const MatchInput& input, double stamp) {
+  std::map<int, const MatchPlane*> by_id;
+  for (const auto& plane : input.planes) by_id[plane.id] = &plane;
+  const int floor = graph_.currentFloor();
+  const Eigen::Rotation2Dd P_R_M(P_T_M_x_y_yaw_.z());
+  std::vector<HeldWall> walls;
+  std::vector<std::pair<int, int>> held;  // (S-plane, A-surface) of each of `walls`
+  std::map<std::string, int> walls_by_name;
+  for (const auto& [s, a] : plane_matches_) {
+    const auto plane = by_id.find(s);
+    if (graph_.planes()[s].floor != floor || plane == by_id.end()) continue;
+    const bim::Plane& surface = plan_->surfaces[a].plane;
+    HeldWall wall;
+    wall.middle = applyPlanar(P_T_M_x_y_yaw_, 0.5 * (plane->second->start + plane->second->end));
+    wall.length = plane->second->length();
+    wall.normal = surface.normal.head<2>().normalized();
+    wall.offset = surface.signedDistance({wall.middle.x(), wall.middle.y(), 0.0});
+    wall.angle = bim::angleDifference(bim::headingOf(P_R_M * plane->second->plane.normal.head<2>()),
+                                      bim::headingOf(wall.normal));
+    // Plan walls by name; a flight's faces each stand alone.
+    const std::string& name = plan_->surfaces[a].wall;
+    wall.wall = name.empty() ? -1 - a
+                             : walls_by_name.emplace(name, int(walls_by_name.size())).first->second;
+    walls.push_back(wall);
+    held.emplace_back(s, a);
+  }
+  const std::vector<WallResidual> residuals = residualsAgainstOthers(walls, options_.release);
+  int judged = 0;
+  std::vector<std::size_t> due;
+  for (std::size_t k = 0; k < residuals.size(); ++k) {
+    judged += residuals[k].judged ? 1 : 0;
+    const int s = held[k].first;
+    if (!residuals[k].beyond(options_.release)) {
+      release_strikes_.erase(s);
+    } else if (++release_strikes_[s] >= options_.release.strikes) {
+      due.push_back(k);
+    }
+  }
+  // Most of the judged walls disagreeing is not a building built off its plan but an answer off
+  // the building: that is for the hold gate and the contradiction check to settle.
+  if (2 * int(due.size()) > judged) return;
+  for (std::size_t k : due) {
+    const auto [s, a] = held[k];
+    released_.push_back({stamp, s, a, residuals[k].offset, residuals[k].angle});
+    plane_matches_.erase(s);
+    release_strikes_.erase(s);
+  }
+}
+
 void ISGraphLocalizer::assumeMatch(double stamp, const Eigen::Vector3d& x_y_yaw,
                                    const std::string& reason) {
   const MatchInput input = matchInput();
@@ -280,6 +332,8 @@ void ISGraphLocalizer::lose(double stamp, const std::string& reason) {
   localized_ = false;
   plane_matches_.clear();
   room_matches_.clear();
+  released_.clear();
+  release_strikes_.clear();
   floor_levels_.clear();
   plan_shares_.clear();
   plan_collapsed_ = 0;
@@ -437,9 +491,16 @@ void ISGraphLocalizer::onKeyframe(double stamp) {
       lose(stamp, why);
       return;
     }
-    // New S-planes gain correspondences at the current P_T_M; held ones stay as they are.
+    releaseDeviatingWalls(input, stamp);
+    // New S-planes gain correspondences at the current P_T_M; held ones stay as they are, and
+    // released ones stay released.
     const Verification now = verifyNow(input, P_T_M_x_y_yaw_);
-    for (const auto& [s, a] : now.planes) plane_matches_.emplace(s, a);
+    for (const auto& [s, a] : now.planes) {
+      const bool released =
+          std::any_of(released_.begin(), released_.end(),
+                      [s, a](const ReleasedWall& r) { return r.plane == s || r.surface == a; });
+      if (!released) plane_matches_.emplace(s, a);
+    }
     for (const auto& [s, a] : now.rooms) room_matches_.emplace(s, a);
   } else if (keyframes > 1 && graph_.keyframes().back().onFloor() &&
              graph_.keyframes().back().registration.attempted &&
@@ -554,6 +615,14 @@ nlohmann::json ISGraphLocalizer::graph() const {
                  events = nlohmann::json::array();
   for (const auto& [s, a] : plane_matches_) planes.push_back({s, plan_->surfaces[a].id});
   for (const auto& [s, a] : room_matches_) rooms.push_back({s, plan_->rooms[a].id});
+  nlohmann::json released = nlohmann::json::array();
+  for (const auto& r : released_) {
+    released.push_back({{"stamp", r.stamp},
+                        {"plane", r.plane},
+                        {"surface", plan_->surfaces[r.surface].id},
+                        {"offset_m", r.offset},
+                        {"angle_deg", bim::degrees(r.angle)}});
+  }
   for (const auto& e : events_) {
     events.push_back({{"stamp", e.stamp},
                       {"keyframe", e.keyframe},
@@ -566,6 +635,7 @@ nlohmann::json ISGraphLocalizer::graph() const {
                              {"times_lost", losses_},
                              {"windows_with_B_T_M_held", held_constant_},
                              {"plane_matches", planes},
+                             {"released_walls", released},
                              {"room_matches", rooms},
                              {"events", events}};
   if (localized_) {

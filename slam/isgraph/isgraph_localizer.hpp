@@ -18,6 +18,7 @@
 #include "slam/isgraph/graph_matching.hpp"
 #include "slam/isgraph/level_matching.hpp"
 #include "slam/isgraph/plan_distance_field.hpp"
+#include "slam/isgraph/wall_release.hpp"
 #include "slam/localizer.hpp"
 #include "slam/sgraph/sgraph.hpp"
 
@@ -44,6 +45,10 @@ struct ISGraphOptions {
   // tolerances, so that drift the merge has not yet corrected does not drop it.
   double hold_angle_deg = 20.0;
   double hold_distance = 0.5;  // m
+  // An imprecise plan (docs/matching.md): a held wall that disagrees with its planned surface by
+  // more than the others explain is released from the merge and not matched again under this
+  // answer.
+  WallReleaseOptions release;
   // Lost: of the held correspondences the latest keyframe observes (at least lost_min_planes),
   // more than this share disagree; or fewer than lost_min_held remain in the segment.
   int lost_min_planes = 3;
@@ -164,6 +169,9 @@ class ISGraphLocalizer : public Localizer {
   // (the plan-share history, the collapse count; held correspondences that left the hold gate are
   // dropped) and says why the graph no longer agrees; empty while it does.
   std::string updateAgreement(const MatchInput& input);
+  // Judges the held walls of the current floor against each other and releases those that keep
+  // disagreeing with their planned surfaces (WallReleaseOptions).
+  void releaseDeviatingWalls(const MatchInput& input, double stamp);
   // The latest keyframe's plan agreement (see ISGraphOptions), or -1 without a cloud.
   double planShare() const;
   void lose(double stamp, const std::string& reason);
@@ -204,8 +212,17 @@ class ISGraphLocalizer : public Localizer {
   Eigen::Vector3d P_T_M_x_y_yaw_ = Eigen::Vector3d::Zero();
   double P_T_M_z_ = 0.0;
   bool z_from_floor_ = false;  // P_T_M_z_ from a floor plane seen (not yet: as if at height 0)
-  std::map<int, int> plane_matches_;       // S-plane → A-surface
-  std::map<int, int> room_matches_;        // S-room → A-room
+  std::map<int, int> plane_matches_;  // S-plane → A-surface
+  std::map<int, int> room_matches_;   // S-room → A-room
+  // Walls released under the answer held now: never matched again under it.
+  struct ReleasedWall {
+    double stamp = 0.0;
+    int plane = -1;                    // S-plane
+    int surface = -1;                  // A-surface
+    double offset = 0.0, angle = 0.0;  // the residual that released it (m, rad)
+  };
+  std::vector<ReleasedWall> released_;
+  std::map<int, int> release_strikes_;     // S-plane → keyframes in a row beyond a threshold
   std::optional<MatchResult> last_match_;  // in B
   std::vector<StatusChange> events_;
   std::vector<double> matching_times_;

@@ -1,0 +1,159 @@
+// Releasing plan walls that were not built as drawn (slam/isgraph/wall_release.hpp): a wall's
+// residual after the correction the other walls agree on, by hand on a room of eight walls.
+#include "slam/isgraph/wall_release.hpp"
+
+#include <gtest/gtest.h>
+
+#include <Eigen/Geometry>
+#include <numbers>
+#include <vector>
+
+namespace isg::slam {
+namespace {
+
+constexpr double kDegree = std::numbers::pi / 180.0;
+
+// Eight planned wall surfaces around an 8 × 6 m room centred on the origin: two along each
+// side, each seen over 3 m, normals facing inwards.
+std::vector<HeldWall> room() {
+  std::vector<HeldWall> walls;
+  for (double x : {-2.0, 2.0}) {
+    walls.push_back({{x, -3.0}, 3.0, {0.0, 1.0}});
+    walls.push_back({{x, 3.0}, 3.0, {0.0, -1.0}});
+  }
+  for (double y : {-1.5, 1.5}) {
+    walls.push_back({{-4.0, y}, 3.0, {1.0, 0.0}});
+    walls.push_back({{4.0, y}, 3.0, {-1.0, 0.0}});
+  }
+  for (std::size_t i = 0; i < walls.size(); ++i) walls[i].wall = int(i);
+  return walls;
+}
+
+// The walls as seen when P_T_M is off by (t, yaw about the origin): each seen middle is carried
+// by the error, its offset from its surface and its angle follow.
+std::vector<HeldWall> seenUnder(std::vector<HeldWall> walls, const Eigen::Vector2d& t, double yaw) {
+  const Eigen::Rotation2Dd R(yaw);
+  for (auto& wall : walls) {
+    const Eigen::Vector2d planned = wall.middle;
+    wall.middle = R * planned + t;
+    wall.offset = wall.normal.dot(wall.middle - planned);
+    wall.angle = yaw;
+  }
+  return walls;
+}
+
+TEST(WallRelease, AnErrorOfP_T_MSharedByAllWallsIsNobodysDeviation) {
+  const auto walls = seenUnder(room(), {0.07, -0.05}, 2.0 * kDegree);
+  const auto residuals = residualsAgainstOthers(walls, {});
+  ASSERT_EQ(residuals.size(), walls.size());
+  for (const auto& r : residuals) {
+    ASSERT_TRUE(r.judged);
+    // Linearised about the room's centre, the 2° turn leaves a second-order 4 m · (1 − cos 2°)
+    // ≈ 2.4 mm; the fit's weak prior keeps 1/200 of the turn (0.01°).
+    EXPECT_NEAR(r.offset, 0.0, 0.005);
+    EXPECT_NEAR(r.angle, 0.0, 0.02 * kDegree);
+    EXPECT_FALSE(r.beyond({}));
+  }
+}
+
+TEST(WallRelease, AShiftedWallKeepsItsOwnOffsetWhateverTheErrorOfP_T_M) {
+  auto walls = seenUnder(room(), {0.03, 0.02}, 0.0);
+  walls[5].offset += 0.12;  // the wall at x = 4, y = -1.5 stands 12 cm into the room
+  const auto residuals = residualsAgainstOthers(walls, {});
+  EXPECT_NEAR(residuals[5].offset, 0.12, 0.005);
+  EXPECT_TRUE(residuals[5].beyond({}));
+  for (std::size_t i = 0; i < walls.size(); ++i) {
+    if (i == 5) continue;
+    // The robust fit gives the shifted wall little weight: the others keep under 1 cm.
+    EXPECT_NEAR(residuals[i].offset, 0.0, 0.01) << i;
+    EXPECT_FALSE(residuals[i].beyond({})) << i;
+  }
+}
+
+TEST(WallRelease, PiecesOfOneWallDoNotVouchForEachOther) {
+  // The wall at x = 4, y = −1.5 stands 12 cm into the room and was mapped as three S-planes.
+  auto walls = room();
+  walls[5].offset = 0.12;
+  walls.push_back(walls[5]);
+  walls.push_back(walls[5]);
+  const auto residuals = residualsAgainstOthers(walls, {});
+  for (std::size_t i : {5u, 8u, 9u}) EXPECT_NEAR(residuals[i].offset, 0.12, 0.005) << i;
+  // Counted once among the others, it does not move the correction that judges them.
+  for (int i = 0; i < 5; ++i) EXPECT_FALSE(residuals[i].beyond({})) << i;
+  // Its pieces count as one plan wall: three others are still needed.
+  std::vector<HeldWall> few = {walls[5], walls[8], walls[9], walls[0], walls[4]};
+  for (const auto& r : residualsAgainstOthers(few, {})) EXPECT_FALSE(r.judged);
+}
+
+TEST(WallRelease, ATurnedWallKeepsItsOwnAngle) {
+  auto walls = room();
+  walls[0].angle = 3.0 * kDegree;
+  const auto residuals = residualsAgainstOthers(walls, {});
+  EXPECT_NEAR(residuals[0].angle, 3.0 * kDegree, 0.05 * kDegree);
+  EXPECT_TRUE(residuals[0].beyond({}));
+  for (std::size_t i = 1; i < walls.size(); ++i) EXPECT_FALSE(residuals[i].beyond({})) << i;
+}
+
+TEST(WallRelease, ThresholdsAreStrictAndBothWays) {
+  WallResidual r{true, -0.061, 0.0};
+  EXPECT_TRUE(r.beyond({}));
+  r.offset = 0.059;
+  EXPECT_FALSE(r.beyond({}));
+  r.angle = -1.6 * kDegree;
+  EXPECT_TRUE(r.beyond({}));
+  r.judged = false;
+  EXPECT_FALSE(r.beyond({}));
+}
+
+TEST(WallRelease, ShortWallsAndTooFewOthersAreNotJudged) {
+  auto walls = room();
+  walls[2].length = 0.8;  // under 1 m seen
+  auto residuals = residualsAgainstOthers(walls, {});
+  EXPECT_FALSE(residuals[2].judged);
+  EXPECT_TRUE(residuals[3].judged);
+  // Four walls: each has three others, the least that judges it.
+  walls = room();
+  walls.resize(4);
+  walls[1] = room()[4], walls[3] = room()[5];
+  walls[1].wall = 1, walls[3].wall = 3;
+  residuals = residualsAgainstOthers(walls, {});
+  for (const auto& r : residuals) EXPECT_TRUE(r.judged);
+  walls.resize(3);
+  residuals = residualsAgainstOthers(walls, {});
+  for (const auto& r : residuals) EXPECT_FALSE(r.judged);
+}
+
+TEST(WallRelease, OthersThatFixOnlyOneDirectionDoNotJudge) {
+  // Only the walls facing ±y, and one facing x: the x-facing one has no other across it.
+  auto all = room();
+  std::vector<HeldWall> walls(all.begin(), all.begin() + 4);
+  walls.push_back(all[4]);
+  const auto residuals = residualsAgainstOthers(walls, {});
+  EXPECT_FALSE(residuals[4].judged);
+  for (int i = 0; i < 4; ++i) EXPECT_TRUE(residuals[i].judged) << i;
+}
+
+TEST(WallRelease, ANeighbourhoodLimitsTheJudges) {
+  // Within 6 m of the wall at (−4, −1.5): the walls at x = −2 (2.5 and 4.8 m away) and the one at
+  // (−4, 1.5) (3 m); those at x = 2 are 6.2 and 7.5 m away, the ones at x = 4 8 m and more.
+  const WallReleaseOptions within_6m{.neighbourhood = 6.0};
+  auto walls = room();
+  EXPECT_TRUE(residualsAgainstOthers(walls, within_6m)[4].judged);
+  // Carry the far half of the room 20 cm along x, as a map bent by drift would: within 6 m the
+  // near wall does not see it, and the far walls judge each other alike.
+  for (int i : {2, 3, 5, 7}) {
+    walls[i].middle.x() += 0.2;
+    walls[i].offset = walls[i].normal.x() * 0.2;
+  }
+  const auto bent = residualsAgainstOthers(walls, within_6m);
+  EXPECT_NEAR(bent[4].offset, 0.0, 1e-6);
+  EXPECT_NEAR(bent[5].offset, 0.0, 0.005);  // its neighbours: 2, 3 and 7, all carried alike
+  EXPECT_FALSE(bent[5].beyond({}));
+  // With the whole floor as neighbours (the default), the far and near halves disagree.
+  int beyond = 0;
+  for (const auto& r : residualsAgainstOthers(walls, {})) beyond += r.beyond({}) ? 1 : 0;
+  EXPECT_GT(beyond, 0);
+}
+
+}  // namespace
+}  // namespace isg::slam
