@@ -495,11 +495,12 @@ void ISGraphLocalizer::onKeyframe(double stamp) {
     // New S-planes gain correspondences at the current P_T_M; held ones stay as they are, and
     // released ones stay released.
     const Verification now = verifyNow(input, P_T_M_x_y_yaw_);
-    for (const auto& [s, a] : now.planes) {
-      const bool released =
-          std::any_of(released_.begin(), released_.end(),
-                      [s, a](const ReleasedWall& r) { return r.plane == s || r.surface == a; });
-      if (!released) plane_matches_.emplace(s, a);
+    for (const auto& [plane, surface] : now.planes) {
+      const bool released = std::any_of(released_.begin(), released_.end(),
+                                        [p = plane, a = surface](const ReleasedWall& r) {
+                                          return r.plane == p || r.surface == a;
+                                        });
+      if (!released) plane_matches_.emplace(plane, surface);
     }
     for (const auto& [s, a] : now.rooms) room_matches_.emplace(s, a);
   } else if (keyframes > 1 && graph_.keyframes().back().onFloor() &&
