@@ -133,6 +133,8 @@ void ISGraphLocalizer::adopt(const Verification& answer, int level) {
   for (const auto& [s, a] : answer.planes) plane_matches_[s] = a;
   for (const auto& [s, a] : answer.rooms) room_matches_[s] = a;
   released_.clear();
+  released_planes_.clear();
+  released_surfaces_.clear();
   release_strikes_.clear();
   // z: walls do not observe it; the floor does. The floor of the answer's level, or of the first
   // matched room's.
@@ -288,21 +290,26 @@ void ISGraphLocalizer::releaseDeviatingWalls(const MatchInput& input, double sta
   const std::vector<WallResidual> residuals = residualsAgainstOthers(walls, options_.release);
   int judged = 0;
   std::vector<std::size_t> due;
+  // Strikes count keyframes in a row: a plane not judged beyond now (within, or not judged at all,
+  // as when it is on another floor) starts again from none.
+  std::map<int, int> strikes;
   for (std::size_t k = 0; k < residuals.size(); ++k) {
     judged += residuals[k].judged ? 1 : 0;
+    if (!residuals[k].beyond(options_.release)) continue;
     const int s = held[k].first;
-    if (!residuals[k].beyond(options_.release)) {
-      release_strikes_.erase(s);
-    } else if (++release_strikes_[s] >= options_.release.strikes) {
-      due.push_back(k);
-    }
+    const auto before = release_strikes_.find(s);
+    strikes[s] = 1 + (before == release_strikes_.end() ? 0 : before->second);
+    if (strikes[s] >= options_.release.strikes) due.push_back(k);
   }
+  release_strikes_ = std::move(strikes);
   // Most of the judged walls disagreeing is not a building built off its plan but an answer off
   // the building: that is for the hold gate and the contradiction check to settle.
   if (2 * int(due.size()) > judged) return;
   for (std::size_t k : due) {
     const auto [s, a] = held[k];
     released_.push_back({stamp, s, a, residuals[k].offset, residuals[k].angle});
+    released_planes_.insert(s);
+    released_surfaces_.insert(a);
     plane_matches_.erase(s);
     release_strikes_.erase(s);
   }
@@ -333,6 +340,8 @@ void ISGraphLocalizer::lose(double stamp, const std::string& reason) {
   plane_matches_.clear();
   room_matches_.clear();
   released_.clear();
+  released_planes_.clear();
+  released_surfaces_.clear();
   release_strikes_.clear();
   floor_levels_.clear();
   plan_shares_.clear();
@@ -496,11 +505,9 @@ void ISGraphLocalizer::onKeyframe(double stamp) {
     // released ones stay released.
     const Verification now = verifyNow(input, P_T_M_x_y_yaw_);
     for (const auto& [plane, surface] : now.planes) {
-      const bool released = std::any_of(released_.begin(), released_.end(),
-                                        [p = plane, a = surface](const ReleasedWall& r) {
-                                          return r.plane == p || r.surface == a;
-                                        });
-      if (!released) plane_matches_.emplace(plane, surface);
+      if (!released_planes_.count(plane) && !released_surfaces_.count(surface)) {
+        plane_matches_.emplace(plane, surface);
+      }
     }
     for (const auto& [s, a] : now.rooms) room_matches_.emplace(s, a);
   } else if (keyframes > 1 && graph_.keyframes().back().onFloor() &&

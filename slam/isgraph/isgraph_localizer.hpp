@@ -221,7 +221,8 @@ class ISGraphLocalizer : public Localizer {
     int surface = -1;                  // A-surface
     double offset = 0.0, angle = 0.0;  // the residual that released it (m, rad)
   };
-  std::vector<ReleasedWall> released_;
+  std::vector<ReleasedWall> released_;                 // in the order released, for the log
+  std::set<int> released_planes_, released_surfaces_;  // the same, to look up
   std::map<int, int> release_strikes_;     // S-plane → keyframes in a row beyond a threshold
   std::optional<MatchResult> last_match_;  // in B
   std::vector<StatusChange> events_;

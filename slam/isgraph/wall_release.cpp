@@ -64,67 +64,81 @@ std::vector<WallResidual> residualsAgainstOthers(const std::vector<HeldWall>& wa
                                                  const WallReleaseOptions& options) {
   const int n = int(walls.size());
   std::vector<WallResidual> out(n);
+  // The walls that count, as judges and as judged: seen over min_length. Each plan wall counts
+  // once, however many S-planes it was seen as.
+  std::vector<int> counted;
+  std::map<int, int> pieces;  // plan wall → its pieces among the counted
+  Eigen::Vector2d centre = Eigen::Vector2d::Zero();
+  for (int j = 0; j < n; ++j) {
+    if (walls[j].length < options.min_length) continue;
+    counted.push_back(j);
+    ++pieces[walls[j].wall];
+    centre += walls[j].middle;
+  }
+  if (counted.empty()) return out;
+  // Yaw about the walls' centroid: there it is least tied to the translation.
+  centre /= double(counted.size());
   const double sigma_angle = bim::radians(options.sigma_angle_deg);
+  std::vector<Rows> rows;
+  std::vector<double> share;
+  for (int j : counted) {
+    rows.push_back(rowsOf(walls[j], centre, options.sigma_distance, sigma_angle));
+    share.push_back(1.0 / pieces[walls[j].wall]);
+  }
+  // One robust fit over every counted wall gives the weights (reweighted rounds, Huber then
+  // Cauchy); a wall built off gets little weight in it, so leaving it out afterwards changes the
+  // others' weights little. Each wall is then judged by the fit without its own plan wall: its
+  // rows subtracted from the normal equations, which costs O(walls) for the floor instead of a
+  // robust fit per wall.
+  std::vector<std::array<double, 2>> weights(rows.size(), {1.0, 1.0});
   const Eigen::Matrix3d prior =
       Eigen::Vector3d(1.0 / (kPriorTranslation * kPriorTranslation),
                       1.0 / (kPriorTranslation * kPriorTranslation), 1.0 / (kPriorYaw * kPriorYaw))
           .asDiagonal();
-  for (int i = 0; i < n; ++i) {
-    const HeldWall& wall = walls[i];
-    if (wall.length < options.min_length) continue;
-    // Its neighbours: a map that has bent since it was merged is bent alike around the wall.
-    // Not the other pieces or the other face of the same plan wall: they moved with it.
-    std::vector<int> others;
-    std::map<int, int> pieces;  // plan wall → its pieces among the others
-    for (int j = 0; j < n; ++j) {
-      const HeldWall& other = walls[j];
-      if (other.wall == wall.wall || other.length < options.min_length ||
-          (other.middle - wall.middle).norm() > options.neighbourhood) {
-        continue;
-      }
-      others.push_back(j);
-      ++pieces[other.wall];
-    }
-    // Each plan wall counts once, however many S-planes it was seen as.
-    std::vector<Rows> rows;
-    std::vector<double> share;
+  struct Normal {  // normal equations, and the evidence across directions, of some rows
+    Eigen::Matrix3d H = Eigen::Matrix3d::Zero();
+    Eigen::Vector3d g = Eigen::Vector3d::Zero();
     Eigen::Matrix2d cross = Eigen::Matrix2d::Zero();
-    for (int j : others) {
-      // About the judged wall's middle: there the correction's yaw moves nothing along its
-      // normal, and its offset is the translation's alone.
-      rows.push_back(rowsOf(walls[j], wall.middle, options.sigma_distance, sigma_angle));
-      share.push_back(1.0 / pieces[walls[j].wall]);
-      cross += share.back() * walls[j].normal * walls[j].normal.transpose();
+  };
+  const auto add = [&](Normal& to, std::size_t k) {
+    for (int r = 0; r < 2; ++r) {
+      const double w = share[k] * weights[k][r];
+      to.H += w * rows[k].jacobian[r] * rows[k].jacobian[r].transpose();
+      to.g += w * rows[k].jacobian[r] * rows[k].residual[r];
     }
-    if (int(pieces.size()) < options.min_others || smallerEigenvalue(cross) < kMinCrossEvidence) {
+    const Eigen::Vector2d& normal = walls[counted[k]].normal;
+    to.cross += share[k] * normal * normal.transpose();
+  };
+  constexpr int kHuberRounds = 3, kRounds = 6;
+  for (int round = 0; round < kRounds; ++round) {
+    Normal all;
+    for (std::size_t k = 0; k < rows.size(); ++k) add(all, k);
+    const Eigen::Vector3d delta = -(prior + all.H).ldlt().solve(all.g);
+    for (std::size_t k = 0; k < rows.size(); ++k) {
+      for (int r = 0; r < 2; ++r) {
+        const double scaled = rows[k].residual[r] + rows[k].jacobian[r].dot(delta);
+        weights[k][r] = round < kHuberRounds ? huberWeight(scaled) : cauchyWeight(scaled);
+      }
+    }
+  }
+  Normal all;
+  std::map<int, Normal> own_rows;  // plan wall → its rows' share of `all`
+  for (std::size_t k = 0; k < rows.size(); ++k) {
+    add(all, k);
+    add(own_rows[walls[counted[k]].wall], k);
+  }
+  for (std::size_t k = 0; k < rows.size(); ++k) {
+    const Normal& own = own_rows[walls[counted[k]].wall];
+    if (int(pieces.size()) - 1 < options.min_others ||
+        smallerEigenvalue(all.cross - own.cross) < kMinCrossEvidence) {
       continue;
     }
-    // Robust fit of the correction over the neighbours: reweighted rounds, Huber then Cauchy.
-    std::vector<std::array<double, 2>> weights(rows.size(), {1.0, 1.0});
-    Eigen::Vector3d delta = Eigen::Vector3d::Zero();
-    constexpr int kHuberRounds = 3, kRounds = 6;
-    for (int round = 0; round < kRounds; ++round) {
-      Eigen::Matrix3d H = prior;
-      Eigen::Vector3d g = Eigen::Vector3d::Zero();
-      for (std::size_t k = 0; k < rows.size(); ++k) {
-        for (int r = 0; r < 2; ++r) {
-          const double w = share[k] * weights[k][r];
-          H += w * rows[k].jacobian[r] * rows[k].jacobian[r].transpose();
-          g += w * rows[k].jacobian[r] * rows[k].residual[r];
-        }
-      }
-      delta = -H.ldlt().solve(g);
-      for (std::size_t k = 0; k < rows.size(); ++k) {
-        for (int r = 0; r < 2; ++r) {
-          const double scaled = rows[k].residual[r] + rows[k].jacobian[r].dot(delta);
-          weights[k][r] = round + 1 < kHuberRounds ? huberWeight(scaled) : cauchyWeight(scaled);
-        }
-      }
-    }
-    const Rows own = rowsOf(wall, wall.middle, options.sigma_distance, sigma_angle);
-    out[i].judged = true;
-    out[i].offset = options.sigma_distance * (own.residual[0] + own.jacobian[0].dot(delta));
-    out[i].angle = sigma_angle * (own.residual[1] + own.jacobian[1].dot(delta));
+    const Eigen::Vector3d delta = -(prior + all.H - own.H).ldlt().solve(all.g - own.g);
+    WallResidual& residual = out[counted[k]];
+    residual.judged = true;
+    residual.offset =
+        options.sigma_distance * (rows[k].residual[0] + rows[k].jacobian[0].dot(delta));
+    residual.angle = sigma_angle * (rows[k].residual[1] + rows[k].jacobian[1].dot(delta));
   }
   return out;
 }

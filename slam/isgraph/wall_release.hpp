@@ -1,7 +1,6 @@
 #pragma once
 
 #include <Eigen/Core>
-#include <limits>
 #include <vector>
 
 namespace isg::slam {
@@ -18,12 +17,11 @@ struct WallReleaseOptions {
   double distance = 0.06;   // m, along the planned normal at the middle of the seen segment
   double angle_deg = 1.5;   // between the S-plane's and the planned surface's normals
   double min_length = 1.0;  // m of the wall seen before it is judged, or counts for others
-  // The others it is judged against: walls seen over min_length within this distance of it
-  // (middle to middle), on at least min_others other plan walls, with normals in two
-  // directions. Every held wall of the floor by default: judged within 6 m (the deviation
-  // report's neighbourhood), the generated buildings of docs/deviations.md did worse, since the
-  // merge's window bends the map with the plan around a wall built off.
-  double neighbourhood = std::numeric_limits<double>::infinity();  // m
+  // The others it is judged against: every other plan wall of the floor seen over min_length, at
+  // least min_others of them, with normals in two directions. Judged only against its
+  // neighbours within 6 m (the deviation report's neighbourhood), the generated buildings of
+  // docs/deviations.md did worse, since the merge's window bends the map with the plan around a
+  // wall built off.
   int min_others = 3;
   int strikes = 3;  // keyframes in a row beyond a threshold before it is released
   // Residual scales of the correction's robust fit (Huber, then Cauchy, at 1 in these units).
@@ -48,8 +46,9 @@ struct WallResidual {
   bool beyond(const WallReleaseOptions& options) const;
 };
 
-// Each wall's residual after the planar correction (x, y, yaw) that best fits its neighbours (a
-// robust fit; each other plan wall counts once, and the judged wall's own plan wall not at all).
+// Each wall's residual after the planar correction (x, y, yaw) that best fits the others: the
+// weights of one robust fit over all walls, each plan wall counted once, and the judged wall's own
+// plan wall then left out.
 std::vector<WallResidual> residualsAgainstOthers(const std::vector<HeldWall>& walls,
                                                  const WallReleaseOptions& options);
 
