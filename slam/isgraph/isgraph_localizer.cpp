@@ -261,13 +261,13 @@ std::string ISGraphLocalizer::updateAgreement(const MatchInput& input) {
   return "";
 }
 
-void ISGraphLocalizer::releaseDeviatingWalls(const MatchInput& input, double stamp) {
+std::vector<HeldWall> ISGraphLocalizer::heldWalls(const MatchInput& input,
+                                                  std::vector<std::pair<int, int>>* held) const {
   std::map<int, const MatchPlane*> by_id;
   for (const auto& plane : input.planes) by_id[plane.id] = &plane;
   const int floor = graph_.currentFloor();
   const Eigen::Rotation2Dd P_R_M(P_T_M_x_y_yaw_.z());
   std::vector<HeldWall> walls;
-  std::vector<std::pair<int, int>> held;  // (S-plane, A-surface) of each of `walls`
   std::map<std::string, int> walls_by_name;
   for (const auto& [s, a] : plane_matches_) {
     const auto plane = by_id.find(s);
@@ -285,8 +285,15 @@ void ISGraphLocalizer::releaseDeviatingWalls(const MatchInput& input, double sta
     wall.wall = name.empty() ? -1 - a
                              : walls_by_name.emplace(name, int(walls_by_name.size())).first->second;
     walls.push_back(wall);
-    held.emplace_back(s, a);
+    if (held) held->emplace_back(s, a);
   }
+  return walls;
+}
+
+void ISGraphLocalizer::releaseDeviatingWalls(const MatchInput& input, double stamp,
+                                             int strikes_needed) {
+  std::vector<std::pair<int, int>> held;  // (S-plane, A-surface) of each of `walls`
+  const std::vector<HeldWall> walls = heldWalls(input, &held);
   const std::vector<WallResidual> residuals = residualsAgainstOthers(walls, options_.release);
   int judged = 0;
   std::vector<std::size_t> due;
@@ -299,7 +306,7 @@ void ISGraphLocalizer::releaseDeviatingWalls(const MatchInput& input, double sta
     const int s = held[k].first;
     const auto before = release_strikes_.find(s);
     strikes[s] = 1 + (before == release_strikes_.end() ? 0 : before->second);
-    if (strikes[s] >= options_.release.strikes) due.push_back(k);
+    if (strikes[s] >= strikes_needed) due.push_back(k);
   }
   release_strikes_ = std::move(strikes);
   // Most of the judged walls disagreeing is not a building built off its plan but an answer off
@@ -383,6 +390,7 @@ void ISGraphLocalizer::checkForContradiction(double stamp) {
   ++contradictions_;
   graph_ = std::move(unmerged);
   adopt(result.best, level);
+  refineAnswer(input, stamp);  // as a first answer is (onKeyframe)
   graph_.optimiseAll(true);
   record(stamp, MatchStatus::kMatched, result.reason);
 }
@@ -500,7 +508,7 @@ void ISGraphLocalizer::onKeyframe(double stamp) {
       lose(stamp, why);
       return;
     }
-    releaseDeviatingWalls(input, stamp);
+    releaseDeviatingWalls(input, stamp, options_.release.strikes);
     // New S-planes gain correspondences at the current P_T_M; held ones stay as they are, and
     // released ones stay released.
     const Verification now = verifyNow(input, P_T_M_x_y_yaw_);
@@ -535,7 +543,22 @@ void ISGraphLocalizer::onKeyframe(double stamp) {
   matching_times_.push_back(result.seconds);
   last_match_ = result.translated(B_t_P_);
   record(stamp, result.status, result.reason);
-  if (result.status == MatchStatus::kMatched) adopt(result.best, level);
+  if (result.status != MatchStatus::kMatched) return;
+  adopt(result.best, level);
+  refineAnswer(input, stamp);
+}
+
+void ISGraphLocalizer::refineAnswer(const MatchInput& input, double stamp) {
+  // The walls of a new answer were each seen over many keyframes already: judged now, before the
+  // first merge, those built off their plan do not pull it for the keyframes a streak would take.
+  releaseDeviatingWalls(input, stamp, 1);
+  // The answer was fitted to all of its walls, those built off too: refitted to the walls held,
+  // robustly, the merge starts from where they agree.
+  const auto correction = correctionOfAll(heldWalls(input, nullptr), options_.release);
+  if (!correction) return;
+  const Eigen::Rotation2Dd turn(correction->z());
+  P_T_M_x_y_yaw_.head<2>() = turn * P_T_M_x_y_yaw_.head<2>() + correction->head<2>();
+  P_T_M_x_y_yaw_.z() += correction->z();
 }
 
 void ISGraphLocalizer::addSurface(ceres::Problem& problem, int surface) {

@@ -169,9 +169,15 @@ class ISGraphLocalizer : public Localizer {
   // (the plan-share history, the collapse count; held correspondences that left the hold gate are
   // dropped) and says why the graph no longer agrees; empty while it does.
   std::string updateAgreement(const MatchInput& input);
-  // Judges the held walls of the current floor against each other and releases those that keep
-  // disagreeing with their planned surfaces (WallReleaseOptions).
-  void releaseDeviatingWalls(const MatchInput& input, double stamp);
+  // Judges the held walls of the current floor against each other and releases those that
+  // disagree with their planned surfaces (WallReleaseOptions) on `strikes` judgements in a row.
+  void releaseDeviatingWalls(const MatchInput& input, double stamp, int strikes);
+  // The held correspondences of the current floor as the release judges them, in P under the
+  // current P_T_M; with their (S-plane, A-surface) in `held` if given.
+  std::vector<HeldWall> heldWalls(const MatchInput& input,
+                                  std::vector<std::pair<int, int>>* held) const;
+  // A new answer: its walls built off the plan released at once, and P_T_M refitted to the rest.
+  void refineAnswer(const MatchInput& input, double stamp);
   // The latest keyframe's plan agreement (see ISGraphOptions), or -1 without a cloud.
   double planShare() const;
   void lose(double stamp, const std::string& reason);

@@ -1,9 +1,11 @@
 #include "slam/isgraph/wall_release.hpp"
 
 #include <Eigen/Dense>
+#include <Eigen/Geometry>
 #include <array>
 #include <cmath>
 #include <map>
+#include <optional>
 
 #include "bim/angles.hpp"
 
@@ -60,87 +62,125 @@ bool WallResidual::beyond(const WallReleaseOptions& options) const {
          (std::abs(offset) > options.distance || std::abs(angle) > bim::radians(options.angle_deg));
 }
 
-std::vector<WallResidual> residualsAgainstOthers(const std::vector<HeldWall>& walls,
-                                                 const WallReleaseOptions& options) {
-  const int n = int(walls.size());
-  std::vector<WallResidual> out(n);
-  // The walls that count, as judges and as judged: seen over min_length. Each plan wall counts
-  // once, however many S-planes it was seen as.
-  std::vector<int> counted;
-  std::map<int, int> pieces;  // plan wall → its pieces among the counted
+namespace {
+
+// Normal equations of some walls' rows, and their evidence across directions.
+struct NormalEquations {
+  Eigen::Matrix3d H = Eigen::Matrix3d::Zero();
+  Eigen::Vector3d g = Eigen::Vector3d::Zero();
+  Eigen::Matrix2d cross = Eigen::Matrix2d::Zero();
+};
+
+// One robust fit of the correction over every wall seen over min_length (reweighted rounds, Huber
+// then Cauchy), each plan wall counted once however many S-planes it was seen as: its normal
+// equations at the final weights, in all and per plan wall.
+struct FloorFit {
+  std::vector<int> counted;  // walls that count, as judges and as judged
   Eigen::Vector2d centre = Eigen::Vector2d::Zero();
-  for (int j = 0; j < n; ++j) {
+  std::vector<Rows> rows;  // of each counted wall, about `centre`
+  NormalEquations all;
+  std::map<int, NormalEquations> of_wall;  // plan wall → its rows' share of `all`
+  Eigen::Matrix3d prior = Eigen::Matrix3d::Zero();
+};
+
+FloorFit fitFloor(const std::vector<HeldWall>& walls, const WallReleaseOptions& options) {
+  FloorFit fit;
+  std::map<int, int> pieces;  // plan wall → its pieces among the counted
+  for (int j = 0; j < int(walls.size()); ++j) {
     if (walls[j].length < options.min_length) continue;
-    counted.push_back(j);
+    fit.counted.push_back(j);
     ++pieces[walls[j].wall];
-    centre += walls[j].middle;
+    fit.centre += walls[j].middle;
   }
-  if (counted.empty()) return out;
+  if (fit.counted.empty()) return fit;
   // Yaw about the walls' centroid: there it is least tied to the translation.
-  centre /= double(counted.size());
+  fit.centre /= double(fit.counted.size());
   const double sigma_angle = bim::radians(options.sigma_angle_deg);
-  std::vector<Rows> rows;
   std::vector<double> share;
-  for (int j : counted) {
-    rows.push_back(rowsOf(walls[j], centre, options.sigma_distance, sigma_angle));
+  for (int j : fit.counted) {
+    fit.rows.push_back(rowsOf(walls[j], fit.centre, options.sigma_distance, sigma_angle));
     share.push_back(1.0 / pieces[walls[j].wall]);
   }
-  // One robust fit over every counted wall gives the weights (reweighted rounds, Huber then
-  // Cauchy); a wall built off gets little weight in it, so leaving it out afterwards changes the
-  // others' weights little. Each wall is then judged by the fit without its own plan wall: its
-  // rows subtracted from the normal equations, which costs O(walls) for the floor instead of a
-  // robust fit per wall.
-  std::vector<std::array<double, 2>> weights(rows.size(), {1.0, 1.0});
-  const Eigen::Matrix3d prior =
+  fit.prior =
       Eigen::Vector3d(1.0 / (kPriorTranslation * kPriorTranslation),
                       1.0 / (kPriorTranslation * kPriorTranslation), 1.0 / (kPriorYaw * kPriorYaw))
           .asDiagonal();
-  struct Normal {  // normal equations, and the evidence across directions, of some rows
-    Eigen::Matrix3d H = Eigen::Matrix3d::Zero();
-    Eigen::Vector3d g = Eigen::Vector3d::Zero();
-    Eigen::Matrix2d cross = Eigen::Matrix2d::Zero();
-  };
-  const auto add = [&](Normal& to, std::size_t k) {
+  std::vector<std::array<double, 2>> weights(fit.rows.size(), {1.0, 1.0});
+  const auto add = [&](NormalEquations& to, std::size_t k) {
     for (int r = 0; r < 2; ++r) {
       const double w = share[k] * weights[k][r];
-      to.H += w * rows[k].jacobian[r] * rows[k].jacobian[r].transpose();
-      to.g += w * rows[k].jacobian[r] * rows[k].residual[r];
+      to.H += w * fit.rows[k].jacobian[r] * fit.rows[k].jacobian[r].transpose();
+      to.g += w * fit.rows[k].jacobian[r] * fit.rows[k].residual[r];
     }
-    const Eigen::Vector2d& normal = walls[counted[k]].normal;
+    const Eigen::Vector2d& normal = walls[fit.counted[k]].normal;
     to.cross += share[k] * normal * normal.transpose();
   };
   constexpr int kHuberRounds = 3, kRounds = 6;
   for (int round = 0; round < kRounds; ++round) {
-    Normal all;
-    for (std::size_t k = 0; k < rows.size(); ++k) add(all, k);
-    const Eigen::Vector3d delta = -(prior + all.H).ldlt().solve(all.g);
-    for (std::size_t k = 0; k < rows.size(); ++k) {
+    NormalEquations all;
+    for (std::size_t k = 0; k < fit.rows.size(); ++k) add(all, k);
+    const Eigen::Vector3d delta = -(fit.prior + all.H).ldlt().solve(all.g);
+    for (std::size_t k = 0; k < fit.rows.size(); ++k) {
       for (int r = 0; r < 2; ++r) {
-        const double scaled = rows[k].residual[r] + rows[k].jacobian[r].dot(delta);
+        const double scaled = fit.rows[k].residual[r] + fit.rows[k].jacobian[r].dot(delta);
         weights[k][r] = round < kHuberRounds ? huberWeight(scaled) : cauchyWeight(scaled);
       }
     }
   }
-  Normal all;
-  std::map<int, Normal> own_rows;  // plan wall → its rows' share of `all`
-  for (std::size_t k = 0; k < rows.size(); ++k) {
-    add(all, k);
-    add(own_rows[walls[counted[k]].wall], k);
+  for (std::size_t k = 0; k < fit.rows.size(); ++k) {
+    add(fit.all, k);
+    add(fit.of_wall[walls[fit.counted[k]].wall], k);
   }
-  for (std::size_t k = 0; k < rows.size(); ++k) {
-    const Normal& own = own_rows[walls[counted[k]].wall];
-    if (int(pieces.size()) - 1 < options.min_others ||
-        smallerEigenvalue(all.cross - own.cross) < kMinCrossEvidence) {
-      continue;
-    }
-    const Eigen::Vector3d delta = -(prior + all.H - own.H).ldlt().solve(all.g - own.g);
-    WallResidual& residual = out[counted[k]];
+  return fit;
+}
+
+// The correction these normal equations give, if they fix it.
+std::optional<Eigen::Vector3d> solve(const FloorFit& fit, const NormalEquations& equations,
+                                     int plan_walls, const WallReleaseOptions& options) {
+  if (plan_walls < options.min_others || smallerEigenvalue(equations.cross) < kMinCrossEvidence) {
+    return std::nullopt;
+  }
+  return Eigen::Vector3d(-(fit.prior + equations.H).ldlt().solve(equations.g));
+}
+
+}  // namespace
+
+std::vector<WallResidual> residualsAgainstOthers(const std::vector<HeldWall>& walls,
+                                                 const WallReleaseOptions& options) {
+  std::vector<WallResidual> out(walls.size());
+  // A wall built off gets little weight in the robust fit over all, so leaving it out afterwards
+  // changes the others' weights little. Each wall is judged by the fit without its own plan wall
+  // (its pieces and its other face, which moved with it): their rows taken out of the normal
+  // equations, O(walls) for the floor instead of a robust fit per wall.
+  const FloorFit fit = fitFloor(walls, options);
+  const double sigma_angle = bim::radians(options.sigma_angle_deg);
+  for (std::size_t k = 0; k < fit.rows.size(); ++k) {
+    const NormalEquations& own = fit.of_wall.at(walls[fit.counted[k]].wall);
+    NormalEquations others = fit.all;
+    others.H -= own.H;
+    others.g -= own.g;
+    others.cross -= own.cross;
+    const auto delta = solve(fit, others, int(fit.of_wall.size()) - 1, options);
+    if (!delta) continue;
+    const Rows& rows = fit.rows[k];
+    WallResidual& residual = out[fit.counted[k]];
     residual.judged = true;
-    residual.offset =
-        options.sigma_distance * (rows[k].residual[0] + rows[k].jacobian[0].dot(delta));
-    residual.angle = sigma_angle * (rows[k].residual[1] + rows[k].jacobian[1].dot(delta));
+    residual.offset = options.sigma_distance * (rows.residual[0] + rows.jacobian[0].dot(*delta));
+    residual.angle = sigma_angle * (rows.residual[1] + rows.jacobian[1].dot(*delta));
   }
   return out;
+}
+
+std::optional<Eigen::Vector3d> correctionOfAll(const std::vector<HeldWall>& walls,
+                                               const WallReleaseOptions& options) {
+  const FloorFit fit = fitFloor(walls, options);
+  const auto delta = solve(fit, fit.all, int(fit.of_wall.size()), options);
+  if (!delta) return std::nullopt;
+  // About the centroid, the correction is R(yaw) (p − c) + c + t: about the origin, the same
+  // turn and R(yaw) (−c) + c + t.
+  const Eigen::Vector2d moved =
+      Eigen::Rotation2Dd(delta->z()) * (-fit.centre) + fit.centre + delta->head<2>();
+  return Eigen::Vector3d(moved.x(), moved.y(), delta->z());
 }
 
 }  // namespace isg::slam

@@ -1,6 +1,7 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <optional>
 #include <vector>
 
 namespace isg::slam {
@@ -51,5 +52,11 @@ struct WallResidual {
 // plan wall then left out.
 std::vector<WallResidual> residualsAgainstOthers(const std::vector<HeldWall>& walls,
                                                  const WallReleaseOptions& options);
+
+// The planar correction (x, y, yaw about the origin of P) that the walls agree on, by the same
+// robust fit: applied to P_T_M, what it leaves of each wall's residual is the fit's; none where
+// the walls do not fix it (fewer than min_others plan walls, or normals one way only).
+std::optional<Eigen::Vector3d> correctionOfAll(const std::vector<HeldWall>& walls,
+                                               const WallReleaseOptions& options);
 
 }  // namespace isg::slam

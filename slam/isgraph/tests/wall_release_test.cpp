@@ -88,6 +88,25 @@ TEST(WallRelease, TwoWallsBuiltOffEachKeepTheirOwn) {
   }
 }
 
+TEST(WallRelease, TheCorrectionOfAllUndoesTheErrorOfP_T_MNotAWallBuiltOff) {
+  // P_T_M off by 7 cm, −5 cm and 2° about the origin; one wall also built 20 cm off. The
+  // correction takes the seen walls back onto the plan: the turn by −2°, and the translation
+  // −R(−2°) t, whatever the wall built off says.
+  const Eigen::Vector2d t(0.07, -0.05);
+  auto walls = seenUnder(room(), t, 2.0 * kDegree);
+  walls[5].offset += 0.20;
+  const auto correction = correctionOfAll(walls, {});
+  ASSERT_TRUE(correction.has_value());
+  const Eigen::Vector2d expected = -(Eigen::Rotation2Dd(-2.0 * kDegree) * t);
+  EXPECT_NEAR(correction->z(), -2.0 * kDegree, 0.03 * kDegree);
+  // The linearised turn about the walls' centroid leaves a few mm (see the first test).
+  EXPECT_NEAR(correction->x(), expected.x(), 0.005);
+  EXPECT_NEAR(correction->y(), expected.y(), 0.005);
+  // Walls facing only ±y do not fix the translation along x.
+  std::vector<HeldWall> one_way(walls.begin(), walls.begin() + 4);
+  EXPECT_FALSE(correctionOfAll(one_way, {}).has_value());
+}
+
 TEST(WallRelease, PiecesOfOneWallDoNotVouchForEachOther) {
   // The wall at x = 4, y = −1.5 stands 12 cm into the room and was mapped as three S-planes.
   auto walls = room();
