@@ -51,24 +51,26 @@ std::string escape(const std::string& text) {
 
 nlohmann::json deviationReportJson(const slam::DeviationReport& report) {
   const slam::DeviationOptions& o = report.options;
-  nlohmann::json thresholds = {{"shift_m", o.shift_m},
-                               {"angle_deg", o.angle_deg},
-                               {"min_angle_length_m", o.min_angle_length},
-                               {"consistent_tolerance_m", o.consistent_tolerance},
-                               {"judged_share", o.judged_share},
-                               {"missing_seen_share", o.missing_seen_share},
-                               {"missing_view_share", o.missing_view_share},
-                               {"min_missing_length_m", o.min_missing_length},
-                               {"search_distance_m", o.search_distance},
-                               {"search_angle_deg", o.search_angle_deg},
-                               {"min_wall_length_m", o.min_wall_length},
-                               {"bend_distance_m", o.bend_distance},
-                               {"bend_angle_deg", o.bend_angle_deg},
-                               {"local_radius_m", o.local_radius},
-                               {"view_range_m", o.view_range},
-                               {"max_incidence_deg", o.max_incidence_deg},
-                               {"min_views", o.min_views},
-                               {"extra_pair_distance_m", o.extra_pair_distance}};
+  nlohmann::json thresholds = {
+      {"shift_m", o.shift_m},
+      {"angle_deg", o.angle_deg},
+      {"min_angle_length_m", o.min_angle_length},
+      {"consistent_tolerance_m", o.consistent_tolerance},
+      {"contradiction_observation_share", o.contradiction_observation_share},
+      {"judged_share", o.judged_share},
+      {"missing_seen_share", o.missing_seen_share},
+      {"missing_view_share", o.missing_view_share},
+      {"min_missing_length_m", o.min_missing_length},
+      {"search_distance_m", o.search_distance},
+      {"search_angle_deg", o.search_angle_deg},
+      {"min_wall_length_m", o.min_wall_length},
+      {"bend_distance_m", o.bend_distance},
+      {"bend_angle_deg", o.bend_angle_deg},
+      {"local_radius_m", o.local_radius},
+      {"view_range_m", o.view_range},
+      {"max_incidence_deg", o.max_incidence_deg},
+      {"min_views", o.min_views},
+      {"extra_pair_distance_m", o.extra_pair_distance}};
   nlohmann::json walls = nlohmann::json::array();
   for (const auto& w : report.walls) {
     nlohmann::json evidence = nlohmann::json::array();

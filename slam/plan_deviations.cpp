@@ -303,7 +303,8 @@ Placement refinePlacement(const std::vector<std::pair<WallDeviation, PlannedWall
 
 // A wall's evidence can contradict itself: its two faces, seen from two rooms, laid by the map a
 // few centimetres apart. A piece left out of the fit that is at least half as long as the longest
-// one it kept is such a contradiction, not an artefact; the wall is then measured by the
+// one it kept, and observed at least contradiction_observation_share as often as the most
+// observed one kept, is such a contradiction, not an artefact; the wall is then measured by the
 // length-weighted mean of all such long pieces, and called shifted (rotated) only when every one
 // of them is beyond the threshold on the same side — the noise the contradiction shows must not
 // make a deviation.
@@ -312,10 +313,17 @@ void judge(WallDeviation& wall, const PlannedWall& planned, const DeviationOptio
   const WallFit fit = fitWall(wall, planned, options.consistent_tolerance);
   wall.offset_m = fit.offset_m;
   wall.angle_deg = fit.angle_deg;
+  int most_observed = 0;  // of the pieces kept
+  for (const auto& e : wall.evidence) {
+    if (e.consistent) most_observed = std::max(most_observed, e.observations);
+  }
   std::vector<const WallEvidence*> long_pieces;
   bool contradicted = false;
   for (const auto& e : wall.evidence) {
     if (e.length_m < 0.5 * fit.longest) continue;
+    if (!e.consistent && e.observations < options.contradiction_observation_share * most_observed) {
+      continue;  // a stray fit, not a face
+    }
     long_pieces.push_back(&e);
     contradicted = contradicted || !e.consistent;
   }

@@ -29,6 +29,11 @@ struct DeviationOptions {
   // pieces fit (the longest first); the others (a plane fitted across a corner, a door leaf)
   // are kept as evidence and not believed.
   double consistent_tolerance = 0.04;  // m
+  // A long piece left out of that fit (at least half as long as the longest piece kept) makes
+  // the wall's evidence contradict itself (two faces laid by the map a few cm apart) only when it
+  // was observed at least this share as often as the most observed piece kept: a plane seen on
+  // a keyframe or two, across a wall turned off the building's axes, is a stray fit, not a face.
+  double contradiction_observation_share = 0.25;
   // A direction is judged only from a map wall at least this long: a short plane's direction is
   // too loose to call a wall turned.
   double min_angle_length = 1.0;  // m
