@@ -1,6 +1,7 @@
 #include "eval/table.hpp"
 
 #include <algorithm>
+#include <cctype>
 #include <cmath>
 #include <cstdio>
 #include <sstream>
@@ -108,6 +109,11 @@ std::string markdownCell(std::string text) {
     }
   }
   return out;
+}
+
+std::string capitalised(std::string text) {
+  if (!text.empty()) text[0] = char(std::toupper(static_cast<unsigned char>(text[0])));
+  return text;
 }
 
 std::string latexEscape(const std::string& text) {
@@ -322,7 +328,7 @@ std::string formatTable(const ResultTable& table, TableFormat format, const std:
             "", ",", "");
       }
       line(
-          kCountRowLabel,
+          table.count_label,
           [&](std::size_t c) { return withStats(c, count, [](std::size_t, int) { return ""; }); },
           "", ",", "");
       break;
@@ -338,7 +344,7 @@ std::string formatTable(const ResultTable& table, TableFormat format, const std:
             markdownCell(table.rows[r]), [&](std::size_t c) { return text(r, c); }, "| ", " | ",
             " |");
       }
-      line("*" + std::string(kCountRowLabel) + "*", count, "| ", " | ", " |");
+      line("*" + table.count_label + "*", count, "| ", " | ", " |");
       break;
     case TableFormat::kLatex:
       out << "% needs \\usepackage{booktabs}\n\\begin{table}\n\\centering\n";
@@ -353,7 +359,7 @@ std::string formatTable(const ResultTable& table, TableFormat format, const std:
             " \\\\");
       }
       out << "\\midrule\n";
-      line("Localized correctly", count, "", " & ", " \\\\");
+      line(latexEscape(capitalised(table.count_label)), count, "", " & ", " \\\\");
       out << "\\bottomrule\n\\end{tabular}\n\\end{table}\n";
       break;
   }
@@ -390,7 +396,8 @@ ResultTable parseTableCsv(const std::string& text) {
       header = fields;
       continue;
     }
-    if (fields[0] == kCountRowLabel) continue;  // derived from the cells above it
+    // Derived from the cells above it.
+    if (fields[0] == kCountRowLabel || fields[0] == kGradedCountRowLabel) continue;
     if (fields.size() != header.size()) {
       throw std::invalid_argument("line " + std::to_string(number) + ": " +
                                   std::to_string(fields.size()) + " fields, the header has " +

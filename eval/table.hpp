@@ -25,6 +25,12 @@ struct CellStats {
 CellStats cellStats(const std::vector<std::optional<double>>& values,
                     const std::vector<bool>& wrong);
 
+// The label of the last row: how many rows each column localized correctly (a number, not ✗).
+inline constexpr const char* kCountRowLabel = "localized correctly";
+// Its label for a measure that a run localized correctly may lack (a deviation grade: a building
+// built as planned has none).
+inline constexpr const char* kGradedCountRowLabel = "with a number";
+
 // A results table like the paper's Table I: one row per world, one column per method, each cell
 // the APE RMSE in metres, nothing ("-") where the method failed (never localized), or "✗" where it
 // was wrongly localized (eval/wrong_localization.hpp): a number would hide that.
@@ -42,6 +48,8 @@ struct ResultTable {
   // six columns per method ("<method>: std", ": localized", ": runs", ": wrong", ": failed",
   // ": not run") that parseTableCsv skips.
   std::vector<std::vector<CellStats>> stats;
+  // The last row's label: what it counts.
+  std::string count_label = kCountRowLabel;
 
   // Sets a cell, adding its row and column when new.
   void set(const std::string& row, const std::string& column, std::optional<double> value,
@@ -53,9 +61,6 @@ struct ResultTable {
 };
 
 enum class TableFormat { kMarkdown, kCsv, kLatex };
-
-// The label of the last row: how many rows each column localized correctly (a number, not ✗).
-inline constexpr const char* kCountRowLabel = "localized correctly";
 
 // The table with a last row counting, per column, the rows with a number that is not wrong
 // ("n/a" for uncounted columns). LaTeX uses booktabs (\toprule, \midrule, \bottomrule), like

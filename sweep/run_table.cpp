@@ -180,16 +180,25 @@ RunTable tabulateRuns(std::vector<std::pair<std::string, run::RunMetrics>> runs,
           ? "Plan rooms stood in by the first localization; - never localized"
       : measure == "deviation-recall"
           ? "Recall of the walls built shifted or turned, among those seen over half their "
-            "length (deviations.json against the scenario's as_built); - no graded report"
+            "length (deviations.json against the scenario's as_built); - no graded report, or no "
+            "such wall to find"
       : measure == "deviation-offset-error"
           ? "Mean error [m] of the offsets measured for the walls built shifted or turned "
-            "(deviations.json against the scenario's as_built); - no graded report"
+            "(deviations.json against the scenario's as_built); - no graded report, or no such "
+            "wall found"
           : "APE RMSE in B [m] (2D, no alignment, from the first localized pose on); - never "
             "localized, ✗ wrongly localized (more than 1 m off for more than 5 s)";
+  // A deviation measure is missing from a run localized correctly on a building built as planned:
+  // the count is of the runs with a number.
+  const bool graded = measure == "deviation-recall" || measure == "deviation-offset-error";
+  if (graded) table.count_label = eval::kGradedCountRowLabel;
   if (with_stats) {
     caption += ". Each cell aggregates its seeds (up to " + std::to_string(most_seeds) +
-               "): mean ± sample standard deviation over the seeds localized correctly, then "
-               "k/n seeds localized correctly and w✗ seeds wrongly localized";
+               (graded ? "): mean ± sample standard deviation over the seeds with a number, then "
+                         "k/n seeds with one"
+                       : "): mean ± sample standard deviation over the seeds localized "
+                         "correctly, then k/n seeds localized correctly and w✗ seeds wrongly "
+                         "localized");
     if (any_absent) {
       caption +=
           " (n counts the suite's seeds: those that failed or have not run are said, and "
