@@ -56,6 +56,9 @@ RunTable tabulateRuns(std::vector<std::pair<std::string, run::RunMetrics>> runs,
   };
   std::stable_sort(runs.begin(), runs.end(),
                    [&](const auto& a, const auto& b) { return rank(a.second) < rank(b.second); });
+  // A deviation measure is missing from a run localized correctly on a building built as planned:
+  // its table counts the runs with a number.
+  const bool graded = measure == "deviation-recall" || measure == "deviation-offset-error";
   // Cells in first-seen order; several seeds of a world and method make one cell.
   std::vector<std::pair<std::string, std::string>> order;
   std::map<std::pair<std::string, std::string>, CellRuns> cells;
@@ -88,7 +91,7 @@ RunTable tabulateRuns(std::vector<std::pair<std::string, run::RunMetrics>> runs,
       if (metrics.localized && metrics.rooms_visited_to_localize) {
         value = double(*metrics.rooms_visited_to_localize);
       }
-    } else if (measure == "deviation-recall" || measure == "deviation-offset-error") {
+    } else if (graded) {
       // Graded deviation reports only (a simulated building with its truth).
       if (metrics.deviations && metrics.deviations->grade) {
         const run::DeviationGrade& grade = *metrics.deviations->grade;
@@ -188,9 +191,6 @@ RunTable tabulateRuns(std::vector<std::pair<std::string, run::RunMetrics>> runs,
             "wall found"
           : "APE RMSE in B [m] (2D, no alignment, from the first localized pose on); - never "
             "localized, ✗ wrongly localized (more than 1 m off for more than 5 s)";
-  // A deviation measure is missing from a run localized correctly on a building built as planned:
-  // the count is of the runs with a number.
-  const bool graded = measure == "deviation-recall" || measure == "deviation-offset-error";
   if (graded) table.count_label = eval::kGradedCountRowLabel;
   if (with_stats) {
     caption += ". Each cell aggregates its seeds (up to " + std::to_string(most_seeds) +
