@@ -46,7 +46,7 @@ bool pointInPolygon(const std::vector<Eigen::Vector2d>& polygon, const Eigen::Ve
 
 double Verification::unexplainedShare() const {
   const double total = explained_length + unexplained_length;
-  return total > 0.0 ? unexplained_length / total : 0.0;
+  return total > 0.0 ? (unexplained_length - built_off_length) / total : 0.0;
 }
 
 Eigen::Isometry3d MatchResult::B_T_M() const {
@@ -83,6 +83,7 @@ nlohmann::json MatchResult::toJson() const {
           {"plane_rms", best.plane_rms},
           {"explained_length", best.explained_length},
           {"unexplained_length", best.unexplained_length},
+          {"built_off_length", best.built_off_length},
           {"candidates", candidatesJson()},
           {"seconds", seconds}};
 }
@@ -96,7 +97,8 @@ nlohmann::json MatchResult::candidatesJson() const {
         {"rooms", v.rooms.size()},
         {"planes", v.planes.size()},
         {"explained_length", v.explained_length},
-        {"unexplained_length", v.unexplained_length}};
+        {"unexplained_length", v.unexplained_length},
+        {"built_off_length", v.built_off_length}};
   };
   nlohmann::json out = nlohmann::json::array();
   if (hypotheses == 0) return out;
@@ -150,6 +152,14 @@ GraphMatcher::GraphMatcher(const bim::AGraph& graph, const MatchingOptions& opti
   for (int i = 0; i < int(graph.surfaces.size()); ++i) {
     const auto& s = graph.surfaces[i];
     surface_yaw_.push_back(yawOfNormal(s.plane));
+    int first_face = i;
+    for (int j = 0; j < i && !s.wall.empty(); ++j) {
+      if (graph.surfaces[j].wall == s.wall) {
+        first_face = j;
+        break;
+      }
+    }
+    wall_of_surface_.push_back(first_face);
     for (const auto& [a, b] : s.segments) {
       insert_box(a, b, surface_pad, [&](Cell& cell) {
         if (cell.surfaces.empty() || cell.surfaces.back() != i) cell.surfaces.push_back(i);
@@ -310,6 +320,37 @@ int GraphMatcher::matchPlane(const MatchPlane& plane, const Eigen::Vector3d& x_y
   return best;
 }
 
+bool GraphMatcher::nearAsBuiltOff(const MatchPlane& plane, const Eigen::Vector3d& x_y_yaw) const {
+  const Eigen::Vector2d a = apply(x_y_yaw, plane.start);
+  const Eigen::Vector2d b = apply(x_y_yaw, plane.end);
+  // Surfaces are listed in the cells around them out to the tolerances' reach plus half a metre:
+  // a wall turned about one end has its middle furthest off, and may leave its cell's list when
+  // long; then it counts as unexplained, as before.
+  const Cell* cell = cellAt(0.5 * (a + b));
+  if (!cell) return false;
+  const double yaw = yawOfNormal(plane.plane) + x_y_yaw.z();
+  const double angle_tolerance = options_.deviation_angle_deg * std::numbers::pi / 180.0;
+  for (int i : cell->surfaces) {
+    const auto& s = graph_->surfaces[i];
+    if (std::abs(bim::wrapAngle(yaw - surface_yaw_[i])) > angle_tolerance) continue;
+    // The segment's closest approach to the surface's line: 0 when it crosses it (a wall turned
+    // about a point on its planned line).
+    const double da = s.plane.signedDistance({a.x(), a.y(), 0.0});
+    const double db = s.plane.signedDistance({b.x(), b.y(), 0.0});
+    const double closest = da * db <= 0.0 ? 0.0 : std::min(std::abs(da), std::abs(db));
+    if (closest > options_.deviation_distance) continue;
+    const Eigen::Vector2d along(-s.plane.normal.y(), s.plane.normal.x());
+    const double lo = std::min(along.dot(a), along.dot(b));
+    const double hi = std::max(along.dot(a), along.dot(b));
+    for (const auto& [p, q] : s.segments) {
+      const double o = std::min(hi, std::max(along.dot(p), along.dot(q))) -
+                       std::max(lo, std::min(along.dot(p), along.dot(q)));
+      if (o > 0.0 || -o <= options_.plane_gap) return true;
+    }
+  }
+  return false;
+}
+
 bool GraphMatcher::planeAgrees(const MatchPlane& plane, int surface, const Eigen::Vector3d& x_y_yaw,
                                double angle_deg, double distance) const {
   const auto& s = graph_->surfaces[surface];
@@ -337,6 +378,7 @@ Verification GraphMatcher::verify(const MatchInput& input, const Eigen::Vector3d
     const int s = matchPlane(plane, x_y_yaw, &overlap, &distance);
     if (s < 0) {
       v.unexplained_length += plane.length();
+      if (nearAsBuiltOff(plane, x_y_yaw)) v.built_off_length += plane.length();
       continue;
     }
     v.planes.emplace_back(plane.id, s);
@@ -523,7 +565,8 @@ MatchResult GraphMatcher::evaluate(const MatchInput& input,
   std::vector<Verification> finalists;
   for (std::size_t i = 0; i < representatives.size() && int(i) < options_.finalists; ++i) {
     Verification refined = verify(input, refine(input, *representatives[i]));
-    finalists.push_back(refined.score >= representatives[i]->score ? refined : *representatives[i]);
+    finalists.push_back(consensus(
+        input, refined.score >= representatives[i]->score ? refined : *representatives[i]));
   }
   std::sort(finalists.begin(), finalists.end(),
             [](const Verification& a, const Verification& b) { return a.score > b.score; });

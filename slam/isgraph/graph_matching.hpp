@@ -82,6 +82,22 @@ struct MatchingOptions {
   // plan lacks (extra walls, tall clutter, a missing wall joining two rooms); an answer that fits
   // one room but not the walls around it leaves whole walls. Failing it is "not yet".
   double max_unexplained_share = 0.25;
+  // An S-plane no surface explains within the tolerances above, but that lies within these of a
+  // plan surface facing the same way (its segment coming that close to the surface's line, the
+  // extent reaching it as above), is read as that wall built off the plan: the localizer is
+  // meant to hold walls shifted up to 35 cm and turned up to 15° (docs/matching.md). It earns
+  // nothing and costs the unexplained penalty in the score, as before, but adequacy does not
+  // count it as unexplained.
+  double deviation_distance = 0.4;  // m
+  double deviation_angle_deg = 15.0;
+  // Each finalist is also tried moved to where the most walls facing each way agree
+  // (slam/isgraph/match_consensus.cpp): up to this many of the strongest shifts per direction,
+  // the two most walled directions combined. Walls, not metres, vote: a wall is built off the
+  // plan or not whatever its length, so one long wall built off must not outvote several short
+  // ones built as planned. A move is taken when it puts at least consensus_min_walls more plan
+  // walls on their surfaces (each counted by its best fit, exp(−½(e/plane_sigma)²)).
+  int consensus_modes = 3;
+  double consensus_min_walls = 2.0;
   double min_room_share = 0.5;
   // Then against every other answer among the finalists, on what distinguishes them: the score
   // is a sum over the S-Graph's walls, rooms and walked doorways, so what both answers explain
@@ -122,7 +138,10 @@ struct Verification {
   double plane_rms = 0.0;           // m, matched planes' distance residual
   double explained_length = 0.0;    // m of S-plane with a surface (evidence planes)
   double unexplained_length = 0.0;  // m of S-plane no surface explains
-  // unexplained / (explained + unexplained); 0 with no evidence plane.
+  // Of unexplained_length, the m of S-plane near a surface as a wall built off it would be.
+  double built_off_length = 0.0;
+  // What adequacy counts: (unexplained − built off) / (explained + unexplained); 0 with no
+  // evidence plane.
   double unexplainedShare() const;
 };
 
@@ -190,6 +209,13 @@ class GraphMatcher {
   bool decisive(const Distinction& d, double* needed = nullptr) const;
   // Refines B_T_M by least squares over a verification's correspondences.
   Eigen::Vector3d refine(const MatchInput& input, const Verification& verification) const;
+  // The answer moved to where the most plan walls agree (each direction's walls vote, within
+  // deviation_distance, how far it should move along their normal), if that is at least
+  // consensus_min_walls more than at the answer; else the answer. Its yaw is kept.
+  Verification consensus(const MatchInput& input, const Verification& answer) const;
+  // How many plan walls the S-planes put on their surfaces at x_y_yaw, each counted once by the
+  // best fit of its S-planes (exp(−½(e/plane_sigma)²)).
+  double wallsAgreeing(const MatchInput& input, const Eigen::Vector3d& x_y_yaw) const;
 
   const bim::AGraph& graph() const { return *graph_; }
   const MatchingOptions& options() const { return options_; }
@@ -215,6 +241,9 @@ class GraphMatcher {
   int matchRoom(const MatchRoom& room, const Eigen::Vector3d& x_y_yaw, double* distance) const;
   int matchPlane(const MatchPlane& plane, const Eigen::Vector3d& x_y_yaw, double* overlap,
                  double* distance) const;
+  // Whether the S-plane, placed by x_y_yaw, lies as a wall built off a plan surface would
+  // (deviation_distance, deviation_angle_deg).
+  bool nearAsBuiltOff(const MatchPlane& plane, const Eigen::Vector3d& x_y_yaw) const;
   // Seeds (slam/isgraph/match_seeds.cpp): the B_T_M each kind of local structure proposes.
   void seedFromFourWallRooms(const MatchInput& input, std::vector<Eigen::Vector3d>& out) const;
   void seedFromCorridors(const MatchInput& input, std::vector<Eigen::Vector3d>& out) const;
@@ -244,7 +273,10 @@ class GraphMatcher {
   int columns_ = 0, rows_ = 0;
   std::vector<Cell> cells_;
   std::vector<double> surface_yaw_;  // yaw of each surface's normal
-  std::vector<double> room_yaw_;     // yaw of each room's first pair normal
+  // Each surface's plan wall, as the index of that wall's first surface (a flight's face: its
+  // own index): both faces of a wall are one wall.
+  std::vector<int> wall_of_surface_;
+  std::vector<double> room_yaw_;  // yaw of each room's first pair normal
   std::vector<std::vector<int>> doors_of_room_;
   std::vector<Corner> corners_;
 };

@@ -368,26 +368,26 @@ void ISGraphLocalizer::checkForContradiction(double stamp) {
   MatchResult result = matchNow(input, &level);
   matching_times_.push_back(result.seconds);
   last_match_ = result.translated(B_t_P_);
-  if (result.status != MatchStatus::kMatched) return;  // the merge stands on its own evidence
   // Twice the clustering tolerances: the merge has moved P_T_M a little since it was adopted.
   const Eigen::Vector2d middle = GraphMatcher::middleOf(input);
   const bool same_level = !level_matcher_ || level == level_;
+  const GraphMatcher& held_matcher = level_matcher_ ? level_matcher_->matcher(level_) : matcher_;
+  if (result.status != MatchStatus::kMatched) return;  // the merge stands on its own evidence
   if (same_level && matcher_.sameAnswer(result.best.x_y_yaw, P_T_M_x_y_yaw_, middle, 2.0)) return;
   // The new answer must also lead the one held now decisively, on the same map.
   const GraphMatcher& new_matcher = level_matcher_ ? level_matcher_->matcher(level) : matcher_;
-  const GraphMatcher& held_matcher = level_matcher_ ? level_matcher_->matcher(level_) : matcher_;
   if (!new_matcher.decisive(new_matcher.distinguish(
           input, result.best, held_matcher.verify(input, P_T_M_x_y_yaw_), &held_matcher))) {
     return;
   }
-  // A unique answer elsewhere: the first match was wrong. Adopt the new one on the unmerged
-  // graph, and re-optimise every keyframe under it, so that nothing stays where the wrong
-  // B_T_M pulled it.
+  // A unique answer elsewhere: the first match was wrong.
   const double apart =
       (applyPlanar(result.best.x_y_yaw, middle) - applyPlanar(P_T_M_x_y_yaw_, middle)).norm();
   record(stamp, MatchStatus::kContradicted,
          "a new unique answer " + std::to_string(apart) + " m away: " + result.reason);
   ++contradictions_;
+  // Adopt the new one on the unmerged graph, and re-optimise every keyframe under it, so that
+  // nothing stays where the old B_T_M pulled it.
   graph_ = std::move(unmerged);
   adopt(result.best, level);
   refineAnswer(input, stamp);  // as a first answer is (onKeyframe)
@@ -509,6 +509,7 @@ void ISGraphLocalizer::onKeyframe(double stamp) {
       return;
     }
     releaseDeviatingWalls(input, stamp, options_.release.strikes);
+    if (moveToConsensus(input, stamp)) return;
     // New S-planes gain correspondences at the current P_T_M; held ones stay as they are, and
     // released ones stay released.
     const Verification now = verifyNow(input, P_T_M_x_y_yaw_);
@@ -546,6 +547,72 @@ void ISGraphLocalizer::onKeyframe(double stamp) {
   if (result.status != MatchStatus::kMatched) return;
   adopt(result.best, level);
   refineAnswer(input, stamp);
+}
+
+bool ISGraphLocalizer::moveToConsensus(const MatchInput& input, double stamp) {
+  // Only new walls can change the vote; and only on a floor (between floors, the planes mapped
+  // from the flight are not yet of any level).
+  if (input.planes.size() == planes_at_last_vote_ || graph_.keyframes().back().floor < 0) {
+    return false;
+  }
+  planes_at_last_vote_ = input.planes.size();
+  // The vote on the level's own matcher; the answers verified again with their indices into the
+  // whole A-Graph (verifyNow), which the correspondences hold.
+  const GraphMatcher& matcher = level_matcher_ ? level_matcher_->matcher(level_) : matcher_;
+  const Eigen::Vector3d voted =
+      matcher.consensus(input, matcher.verify(input, P_T_M_x_y_yaw_)).x_y_yaw;
+  const Verification held = verifyNow(input, P_T_M_x_y_yaw_);
+  const Verification moved = verifyNow(input, voted);
+  const Eigen::Vector2d middle = GraphMatcher::middleOf(input);
+  const double apart =
+      (applyPlanar(moved.x_y_yaw, middle) - applyPlanar(P_T_M_x_y_yaw_, middle)).norm();
+  if (apart < options_.min_answer_move) return false;
+  answer_moves_.push_back({stamp, apart, matcher.wallsAgreeing(input, held.x_y_yaw),
+                           matcher.wallsAgreeing(input, moved.x_y_yaw)});
+  // The vote was taken on the S-Graph as merged, so the move is made on it; every keyframe is
+  // re-optimised under the new correspondences below. Only where in the plane, and only this
+  // floor's correspondences: the level, the height and the other floors' walls stay.
+  // What this floor's walls were judged under the old answer no longer holds: its releases are
+  // undone (the log keeps them) and judged again under the new one in refineAnswer.
+  for (const ReleasedWall& r : released_) {
+    if (std::any_of(input.planes.begin(), input.planes.end(),
+                    [&](const MatchPlane& p) { return p.id == r.plane; })) {
+      released_planes_.erase(r.plane);
+      released_surfaces_.erase(r.surface);
+    }
+  }
+  for (const MatchPlane& plane : input.planes) release_strikes_.erase(plane.id);
+  P_T_M_x_y_yaw_ = moved.x_y_yaw;
+  for (const MatchPlane& plane : input.planes) plane_matches_.erase(plane.id);
+  for (const MatchRoom& room : input.rooms) room_matches_.erase(room.id);
+  for (const auto& [plane, surface] : moved.planes) {
+    if (!released_planes_.count(plane) && !released_surfaces_.count(surface)) {
+      plane_matches_[plane] = surface;
+    }
+  }
+  for (const auto& [s, a] : moved.rooms) room_matches_[s] = a;
+  // The surfaces the old answer sat on and the new one puts no S-plane on were built off the
+  // plan: released, so that drift of the merge back towards them does not match them again.
+  std::set<int> on_surface;
+  for (const auto& [plane, surface] : moved.planes) on_surface.insert(surface);
+  for (const auto& match : held.planes) {
+    const int plane = match.first, surface = match.second;
+    if (on_surface.count(surface) || released_surfaces_.count(surface)) continue;
+    const auto it = std::find_if(input.planes.begin(), input.planes.end(),
+                                 [&](const MatchPlane& p) { return p.id == plane; });
+    const bim::Plane& planned = plan_->surfaces[surface].plane;
+    const Eigen::Vector2d middle_in_P = applyPlanar(moved.x_y_yaw, 0.5 * (it->start + it->end));
+    const double angle =
+        bim::wrapAngle(std::atan2(it->plane.normal.y(), it->plane.normal.x()) + moved.x_y_yaw.z() -
+                       std::atan2(planned.normal.y(), planned.normal.x()));
+    released_.push_back({stamp, plane, surface,
+                         planned.signedDistance({middle_in_P.x(), middle_in_P.y(), 0.0}), angle});
+    released_planes_.insert(plane);
+    released_surfaces_.insert(surface);
+  }
+  refineAnswer(input, stamp);
+  graph_.optimiseAll(true);
+  return true;
 }
 
 void ISGraphLocalizer::refineAnswer(const MatchInput& input, double stamp) {
@@ -660,9 +727,17 @@ nlohmann::json ISGraphLocalizer::graph() const {
                       {"status", toString(e.status)},
                       {"reason", e.reason}});
   }
+  nlohmann::json moves = nlohmann::json::array();
+  for (const auto& m : answer_moves_) {
+    moves.push_back({{"stamp", m.stamp},
+                     {"moved_m", m.distance},
+                     {"walls_agreeing_before", m.walls_before},
+                     {"walls_agreeing_after", m.walls_after}});
+  }
   nlohmann::json is_graph = {{"status", toString(status_)},
                              {"localized", localized_},
                              {"contradictions", contradictions_},
+                             {"answer_moves", moves},
                              {"times_lost", losses_},
                              {"windows_with_B_T_M_held", held_constant_},
                              {"plane_matches", planes},

@@ -40,6 +40,10 @@ struct ISGraphOptions {
   // a full match runs again with every new room, on the S-Graph optimised without the plan, to
   // catch a contradiction.
   int retry_keyframes = 1;
+  // Once localized, whenever new S-planes are mapped the plan walls are asked whether the answer
+  // should move (GraphMatcher::consensus): a move of at least this much is taken; smaller ones
+  // are the merge's to make.
+  double min_answer_move = 0.05;  // m
   // Holding the plan (docs/matching.md). A correspondence, once made, is kept while its S-plane
   // stays within these of its surface at the current B_T_M: far looser than the matcher's
   // tolerances, so that drift the merge has not yet corrected does not drop it.
@@ -178,6 +182,9 @@ class ISGraphLocalizer : public Localizer {
                                   std::vector<std::pair<int, int>>* held) const;
   // A new answer: its walls built off the plan released at once, and P_T_M refitted to the rest.
   void refineAnswer(const MatchInput& input, double stamp);
+  // When new S-planes were mapped since the last vote: the answer moved to where more plan walls
+  // agree (GraphMatcher::consensus), if by min_answer_move or more. True when it moved.
+  bool moveToConsensus(const MatchInput& input, double stamp);
   // The latest keyframe's plan agreement (see ISGraphOptions), or -1 without a cloud.
   double planShare() const;
   void lose(double stamp, const std::string& reason);
@@ -239,6 +246,13 @@ class ISGraphLocalizer : public Localizer {
   std::set<int> surfaces_in_problem_;  // per optimisation
   Eigen::AlignedBox2d building_;       // the plan's walls' box grown by outside_margin, in P
   int contradictions_ = 0;
+  struct AnswerMove {  // moved to where more plan walls agree (moveToConsensus)
+    double stamp = 0.0;
+    double distance = 0.0;                         // m, at the middle of the map
+    double walls_before = 0.0, walls_after = 0.0;  // GraphMatcher::wallsAgreeing
+  };
+  std::vector<AnswerMove> answer_moves_;
+  std::size_t planes_at_last_vote_ = 0;
   int losses_ = 0;
   int held_constant_ = 0;  // optimisations in which B_T_M was held (under-constrained)
 };

@@ -208,15 +208,17 @@ void GraphMatcher::decide(const MatchInput& input, MatchResult& result) const {
   const double room_share =
       input.rooms.empty() ? 1.0 : double(rooms_explained) / double(input.rooms.size());
   auto plural = [](std::size_t n) { return n == 1 ? "" : "s"; };
-  char text[320];
+  char text[384];
   std::snprintf(text, sizeof text,
                 "best: %zu room%s (%d of %zu explained), %zu plane%s (%d outside its rooms), %d "
                 "door%s, %.1f of "
-                "%.1f m of wall explained, score %.1f; second answer %.1f",
+                "%.1f m of wall explained (%.1f m more as if built off), score %.1f; second "
+                "answer %.1f",
                 a_rooms.size(), plural(a_rooms.size()), rooms_explained, input.rooms.size(),
                 best.planes.size(), plural(best.planes.size()), planes_outside, best.doors_passed,
                 plural(std::size_t(best.doors_passed)), best.explained_length,
-                best.explained_length + best.unexplained_length, best.score, result.second_score);
+                best.explained_length + best.unexplained_length, best.built_off_length, best.score,
+                result.second_score);
   std::string evidence;
   if (!result.candidates.empty()) {
     double needed = 0.0;
