@@ -299,22 +299,11 @@ int GraphMatcher::matchPlane(const MatchPlane& plane, const Eigen::Vector3d& x_y
     if (std::abs(bim::wrapAngle(yaw - surface_yaw_[i])) > angle_tolerance) continue;
     const double offset = std::abs(s.plane.signedDistance({middle.x(), middle.y(), 0.0}));
     if (offset > options_.plane_distance || offset >= best_distance) continue;
-    // The S-plane's extent must reach the surface's exposed parts.
-    const Eigen::Vector2d along(-s.plane.normal.y(), s.plane.normal.x());
-    const double lo = std::min(along.dot(a), along.dot(b));
-    const double hi = std::max(along.dot(a), along.dot(b));
-    double shared = 0.0, gap = 1e300;
-    for (const auto& [p, q] : s.segments) {
-      const double slo = std::min(along.dot(p), along.dot(q));
-      const double shi = std::max(along.dot(p), along.dot(q));
-      const double o = std::min(hi, shi) - std::max(lo, slo);
-      shared += std::max(0.0, o);
-      gap = std::min(gap, std::max(0.0, -o));
-    }
-    if (shared <= 0.0 && gap > options_.plane_gap) continue;
+    const Reach reach = reachOf(i, a, b);
+    if (!reach.reaches) continue;
     best = i;
     best_distance = offset;
-    *overlap = shared;
+    *overlap = reach.shared;
   }
   *distance = best_distance;
   return best;
@@ -339,16 +328,25 @@ bool GraphMatcher::nearAsBuiltOff(const MatchPlane& plane, const Eigen::Vector3d
     const double db = s.plane.signedDistance({b.x(), b.y(), 0.0});
     const double closest = da * db <= 0.0 ? 0.0 : std::min(std::abs(da), std::abs(db));
     if (closest > options_.deviation_distance) continue;
-    const Eigen::Vector2d along(-s.plane.normal.y(), s.plane.normal.x());
-    const double lo = std::min(along.dot(a), along.dot(b));
-    const double hi = std::max(along.dot(a), along.dot(b));
-    for (const auto& [p, q] : s.segments) {
-      const double o = std::min(hi, std::max(along.dot(p), along.dot(q))) -
-                       std::max(lo, std::min(along.dot(p), along.dot(q)));
-      if (o > 0.0 || -o <= options_.plane_gap) return true;
-    }
+    if (reachOf(i, a, b).reaches) return true;
   }
   return false;
+}
+
+GraphMatcher::Reach GraphMatcher::reachOf(int surface, const Eigen::Vector2d& a,
+                                          const Eigen::Vector2d& b) const {
+  const auto& s = graph_->surfaces[surface];
+  const Eigen::Vector2d along(-s.plane.normal.y(), s.plane.normal.x());
+  const double lo = std::min(along.dot(a), along.dot(b));
+  const double hi = std::max(along.dot(a), along.dot(b));
+  Reach reach;
+  for (const auto& [p, q] : s.segments) {
+    const double o = std::min(hi, std::max(along.dot(p), along.dot(q))) -
+                     std::max(lo, std::min(along.dot(p), along.dot(q)));
+    reach.shared += std::max(0.0, o);
+    reach.reaches = reach.reaches || o > 0.0 || -o <= options_.plane_gap;
+  }
+  return reach;
 }
 
 bool GraphMatcher::planeAgrees(const MatchPlane& plane, int surface, const Eigen::Vector3d& x_y_yaw,

@@ -241,6 +241,14 @@ class GraphMatcher {
   int matchRoom(const MatchRoom& room, const Eigen::Vector3d& x_y_yaw, double* distance) const;
   int matchPlane(const MatchPlane& plane, const Eigen::Vector3d& x_y_yaw, double* overlap,
                  double* distance) const;
+  // How far the segment a–b (in P) runs along the surface's exposed parts, and whether it reaches
+  // them: it overlaps one, or falls short of one by at most plane_gap. A plane that does not reach
+  // a surface is not that surface, however close to its line (a wall further along).
+  struct Reach {
+    double shared = 0.0;  // m of overlap, summed over the exposed parts
+    bool reaches = false;
+  };
+  Reach reachOf(int surface, const Eigen::Vector2d& a, const Eigen::Vector2d& b) const;
   // Whether the S-plane, placed by x_y_yaw, lies as a wall built off a plan surface would
   // (deviation_distance, deviation_angle_deg).
   bool nearAsBuiltOff(const MatchPlane& plane, const Eigen::Vector3d& x_y_yaw) const;

@@ -1,7 +1,8 @@
 // The consensus of the walls (docs/matching.md): an answer refined over the walls within the
 // matching tolerances may sit on the walls that were built off the plan by about the same amount,
 // leaving the ones built as planned just outside. Each direction's walls vote for how far the
-// answer should move along it; the few strongest votes are tried and the best-scoring answer kept.
+// answer should move along it (one vote per plan wall); the few strongest votes are tried, and the
+// move that puts the most plan walls on their surfaces is taken if it adds enough of them.
 #include <algorithm>
 #include <cmath>
 #include <map>
@@ -28,7 +29,7 @@ struct DirectionVotes {
   std::vector<Vote> shifts;
 };
 
-// Up to `count` shifts, each the centre of the most wall length within `sigma` of it
+// Up to `count` shifts, each the centre of the most plan walls' votes within `sigma` of it
 // (Gaussian-weighted), at least `separation` apart: the modes of the vote.
 std::vector<double> strongestShifts(const DirectionVotes& votes, double sigma, double separation,
                                     int count) {
@@ -82,16 +83,7 @@ Verification GraphMatcher::consensus(const MatchInput& input, const Verification
       }
       const double offset = s.plane.signedDistance({middle.x(), middle.y(), 0.0});
       if (std::abs(offset) > nearest) continue;
-      const Eigen::Vector2d along(-s.plane.normal.y(), s.plane.normal.x());
-      const double lo = std::min(along.dot(a), along.dot(b));
-      const double hi = std::max(along.dot(a), along.dot(b));
-      bool reaches = false;
-      for (const auto& [p, q] : s.segments) {
-        const double o = std::min(hi, std::max(along.dot(p), along.dot(q))) -
-                         std::max(lo, std::min(along.dot(p), along.dot(q)));
-        reaches = reaches || o > 0.0 || -o <= options_.plane_gap;
-      }
-      if (!reaches) continue;
+      if (!reachOf(i, a, b).reaches) continue;
       nearest = std::abs(offset);
       // Moving the answer by t moves the plane's offset by n·t: n·t = −offset puts it on.
       vote = -offset;
