@@ -573,7 +573,7 @@ bool ISGraphLocalizer::moveToConsensus(const MatchInput& input, double stamp) {
   // re-optimised under the new correspondences below. Only where in the plane, and only this
   // floor's correspondences: the level, the height and the other floors' walls stay.
   // What this floor's walls were judged under the old answer no longer holds: its releases are
-  // undone (the log keeps them) and judged again under the new one in refineAnswer.
+  // undone (the log keeps them).
   for (const ReleasedWall& r : released_) {
     if (std::any_of(input.planes.begin(), input.planes.end(),
                     [&](const MatchPlane& p) { return p.id == r.plane; })) {
@@ -591,26 +591,12 @@ bool ISGraphLocalizer::moveToConsensus(const MatchInput& input, double stamp) {
     }
   }
   for (const auto& [s, a] : moved.rooms) room_matches_[s] = a;
-  // The surfaces the old answer sat on and the new one puts no S-plane on were built off the
-  // plan: released, so that drift of the merge back towards them does not match them again.
-  std::set<int> on_surface;
-  for (const auto& [plane, surface] : moved.planes) on_surface.insert(surface);
-  for (const auto& match : held.planes) {
-    const int plane = match.first, surface = match.second;
-    if (on_surface.count(surface) || released_surfaces_.count(surface)) continue;
-    const auto it = std::find_if(input.planes.begin(), input.planes.end(),
-                                 [&](const MatchPlane& p) { return p.id == plane; });
-    const bim::Plane& planned = plan_->surfaces[surface].plane;
-    const Eigen::Vector2d middle_in_P = applyPlanar(moved.x_y_yaw, 0.5 * (it->start + it->end));
-    const double angle =
-        bim::wrapAngle(std::atan2(it->plane.normal.y(), it->plane.normal.x()) + moved.x_y_yaw.z() -
-                       std::atan2(planned.normal.y(), planned.normal.x()));
-    released_.push_back({stamp, plane, surface,
-                         planned.signedDistance({middle_in_P.x(), middle_in_P.y(), 0.0}), angle});
-    released_planes_.insert(plane);
-    released_surfaces_.insert(surface);
-  }
-  refineAnswer(input, stamp);
+  // Not judged again at once, as a new answer's walls are (refineAnswer): the map was merged under
+  // the old answer, and in a long building it bent with it; the walls it left off their surfaces
+  // are judged on the usual streak of keyframes once the merge has worked under the new answer.
+  // Nor are the surfaces the old answer sat on and the new one leaves released: far from the
+  // robot, drift rather than the building may put them off (measured, docs/matching.md).
+  refitAnswer(input);
   graph_.optimiseAll(true);
   return true;
 }
@@ -619,6 +605,10 @@ void ISGraphLocalizer::refineAnswer(const MatchInput& input, double stamp) {
   // The walls of a new answer were each seen over many keyframes already: judged now, before the
   // first merge, those built off their plan do not pull it for the keyframes a streak would take.
   releaseDeviatingWalls(input, stamp, 1);
+  refitAnswer(input);
+}
+
+void ISGraphLocalizer::refitAnswer(const MatchInput& input) {
   // The answer was fitted to all of its walls, those built off too: refitted to the walls held,
   // robustly, the merge starts from where they agree.
   const auto correction = correctionOfAll(heldWalls(input, nullptr), options_.release);

@@ -182,6 +182,8 @@ class ISGraphLocalizer : public Localizer {
                                   std::vector<std::pair<int, int>>* held) const;
   // A new answer: its walls built off the plan released at once, and P_T_M refitted to the rest.
   void refineAnswer(const MatchInput& input, double stamp);
+  // P_T_M refitted to the held walls, robustly (correctionOfAll).
+  void refitAnswer(const MatchInput& input);
   // When new S-planes were mapped since the last vote: the answer moved to where more plan walls
   // agree (GraphMatcher::consensus), if by min_answer_move or more. True when it moved.
   bool moveToConsensus(const MatchInput& input, double stamp);
