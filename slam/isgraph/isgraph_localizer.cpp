@@ -316,7 +316,7 @@ void ISGraphLocalizer::releaseDeviatingWalls(const MatchInput& input, double sta
     const auto [s, a] = held[k];
     released_.push_back({stamp, s, a, residuals[k].offset, residuals[k].angle});
     released_planes_.insert(s);
-    released_surfaces_.insert(a);
+    released_surfaces_[a] = residuals[k].offset;
     plane_matches_.erase(s);
     release_strikes_.erase(s);
   }
@@ -656,15 +656,38 @@ void ISGraphLocalizer::addPlanFactors(ceres::Problem& problem, const std::set<in
     // A corridor's S-centre lies wherever along it the robot first saw it, not at the plan's
     // centre: only four-wall rooms give a room-to-room factor.
     if (node.kind != bim::RoomKind::kFourWall) continue;
+    // A wall released as built off the plan by d moves the S-room's centre by d/2 along its
+    // normal. Beyond sigma_room (a bias beyond half the factor's sigma), the centre is held only
+    // along the other pair's normal, or not at all when both pairs have one. Within it the bias
+    // is tolerated: most such releases are of walls as planned in a map that drifted, and there
+    // the room is what holds the robot (measured, docs/matching.md).
+    std::vector<int> held_pairs;
+    for (int k = 0; k < 2; ++k) {
+      const bool built_off = std::any_of(node.pairs[k].begin(), node.pairs[k].end(), [&](int a) {
+        const auto released = released_surfaces_.find(a);
+        return released != released_surfaces_.end() &&
+               std::abs(released->second) > options_.sigma_room;
+      });
+      if (!built_off) held_pairs.push_back(k);
+    }
+    if (held_pairs.empty()) continue;
     for (const auto& pair : node.pairs) addSurface(problem, pair[0]), addSurface(problem, pair[1]);
     double* centre = plan_state_.rooms[it->second].data();
     problem.AddResidualBlock(
         bim::FourWallRoomFactor::create(options_.plan.room), nullptr, centre,
         plan_state_.planes[node.pairs[0][0]].data(), plan_state_.planes[node.pairs[0][1]].data(),
         plan_state_.planes[node.pairs[1][0]].data(), plan_state_.planes[node.pairs[1][1]].data());
-    problem.AddResidualBlock(RoomRoomFactor::create(options_.sigma_room), nullptr,
+    if (held_pairs.size() == 2) {
+      problem.AddResidualBlock(RoomRoomFactor::create(options_.sigma_room), nullptr,
+                               graph_.roomCentre(r), P_T_M_x_y_yaw_.data(), centre);
+      room_fixes = true;
+      continue;
+    }
+    const Eigen::Vector2d normal =
+        plan_->surfaces[node.pairs[held_pairs[0]][0]].plane.normal.head<2>().normalized();
+    problem.AddResidualBlock(RoomRoomAlongFactor::create(normal, options_.sigma_room), nullptr,
                              graph_.roomCentre(r), P_T_M_x_y_yaw_.data(), centre);
-    room_fixes = true;
+    normals.push_back(normal);
   }
   const double spread = std::sin(options_.min_normal_spread_deg * std::numbers::pi / 180.0);
   bool spans = room_fixes;

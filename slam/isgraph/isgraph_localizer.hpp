@@ -236,8 +236,11 @@ class ISGraphLocalizer : public Localizer {
     int surface = -1;                  // A-surface
     double offset = 0.0, angle = 0.0;  // the residual that released it (m, rad)
   };
-  std::vector<ReleasedWall> released_;                 // in the order released, for the log
-  std::set<int> released_planes_, released_surfaces_;  // the same, to look up
+  std::vector<ReleasedWall> released_;  // in the order released, for the log
+  std::set<int> released_planes_;       // the same, to look up
+  // Released A-surface → the offset along its normal that released it (the latest): how far the
+  // wall stands off the plan, which moves its rooms' centres by half as much.
+  std::map<int, double> released_surfaces_;
   std::map<int, int> release_strikes_;     // S-plane → keyframes in a row beyond a threshold
   std::optional<MatchResult> last_match_;  // in B
   std::vector<StatusChange> events_;

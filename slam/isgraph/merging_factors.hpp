@@ -52,19 +52,25 @@ struct PlanePlaneFactor {
   Eigen::Vector3d weights_;
 };
 
+// ρ_B − B_T_M · ρ_M: how far the plan's room centre lies from the map's, in B.
+template <typename T>
+Eigen::Matrix<T, 2, 1> roomDifference(const T* room_M, const T* B_T_M, const T* room_B) {
+  using std::cos;
+  using std::sin;
+  const T c = cos(B_T_M[2]), s = sin(B_T_M[2]);
+  return {room_B[0] - (c * room_M[0] - s * room_M[1] + B_T_M[0]),
+          room_B[1] - (s * room_M[0] + c * room_M[1] + B_T_M[1])};
+}
+
 // Room-to-room: ρ_B − B_T_M · ρ_M, whitened. Parameters: ρ_M (2), B_T_M (3), ρ_B (2).
 struct RoomRoomFactor {
   explicit RoomRoomFactor(double sigma) : weight_(1.0 / sigma) {}
 
   template <typename T>
   bool operator()(const T* room_M, const T* B_T_M, const T* room_B, T* residual) const {
-    using std::cos;
-    using std::sin;
-    const T c = cos(B_T_M[2]), s = sin(B_T_M[2]);
-    const T x = c * room_M[0] - s * room_M[1] + B_T_M[0];
-    const T y = s * room_M[0] + c * room_M[1] + B_T_M[1];
-    residual[0] = T(weight_) * (room_B[0] - x);
-    residual[1] = T(weight_) * (room_B[1] - y);
+    const Eigen::Matrix<T, 2, 1> difference = roomDifference(room_M, B_T_M, room_B);
+    residual[0] = T(weight_) * difference.x();
+    residual[1] = T(weight_) * difference.y();
     return true;
   }
 
@@ -73,6 +79,30 @@ struct RoomRoomFactor {
   }
 
  private:
+  double weight_;
+};
+
+// Room-to-room along one direction only: n · (ρ_B − B_T_M · ρ_M) / σ, n a unit vector in B. A room
+// one of whose walls was built off the plan has its S-centre moved along that wall's normal by half
+// the wall's offset; its centre still says where the room is along its other pair of walls.
+struct RoomRoomAlongFactor {
+  RoomRoomAlongFactor(const Eigen::Vector2d& normal, double sigma)
+      : normal_(normal.normalized()), weight_(1.0 / sigma) {}
+
+  template <typename T>
+  bool operator()(const T* room_M, const T* B_T_M, const T* room_B, T* residual) const {
+    const Eigen::Matrix<T, 2, 1> difference = roomDifference(room_M, B_T_M, room_B);
+    residual[0] = T(weight_) * (T(normal_.x()) * difference.x() + T(normal_.y()) * difference.y());
+    return true;
+  }
+
+  static ceres::CostFunction* create(const Eigen::Vector2d& normal, double sigma) {
+    return new ceres::AutoDiffCostFunction<RoomRoomAlongFactor, 1, 2, 3, 2>(
+        new RoomRoomAlongFactor(normal, sigma));
+  }
+
+ private:
+  Eigen::Vector2d normal_;
   double weight_;
 };
 

@@ -64,6 +64,29 @@ TEST(RoomRoomFactor, ZeroWhenB_T_MCarriesTheMapRoomOntoThePlanRoom) {
                                             {room_M.data(), B_T_M.data(), room_B.data()});
 }
 
+TEST(RoomRoomAlongFactor, SeesOnlyTheOffsetAlongItsNormal) {
+  // The same rooms as above: B_T_M carries ρ_M onto (1, 0).
+  Eigen::Vector2d room_M(1, 1), room_B(1, 0);
+  Eigen::Vector3d B_T_M(2.0, -1.0, kPi / 2);
+  // Along (3, 4)/5, σ 0.05 m.
+  std::unique_ptr<ceres::CostFunction> cost(
+      RoomRoomAlongFactor::create(Eigen::Vector2d(3.0, 4.0), 0.05));
+  double* params[] = {room_M.data(), B_T_M.data(), room_B.data()};
+  double residual = 1.0;
+  cost->Evaluate(params, &residual, nullptr);
+  EXPECT_NEAR(residual, 0.0, 1e-12);
+  // 0.25 m across the normal: nothing.
+  room_B += 0.25 * Eigen::Vector2d(0.8, -0.6);
+  cost->Evaluate(params, &residual, nullptr);
+  EXPECT_NEAR(residual, 0.0, 1e-12);
+  // 0.1 m more along it: two sigmas.
+  room_B += 0.1 * Eigen::Vector2d(0.6, 0.8);
+  cost->Evaluate(params, &residual, nullptr);
+  EXPECT_NEAR(residual, 2.0, 1e-9);
+  isg::testing::expectJacobiansMatchNumeric(*cost, {nullptr, nullptr, nullptr},
+                                            {room_M.data(), B_T_M.data(), room_B.data()});
+}
+
 TEST(PlanarPriorFactor, ZeroAtItsValueAndTheYawWrapped) {
   const Eigen::Vector3d value(1.0, 2.0, kPi - 0.01);
   std::unique_ptr<ceres::CostFunction> cost(PlanarPriorFactor::create(value, 0.5, 0.02));
