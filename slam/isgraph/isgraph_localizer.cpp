@@ -561,14 +561,12 @@ bool ISGraphLocalizer::moveToConsensus(const MatchInput& input, double stamp) {
   const GraphMatcher& matcher = level_matcher_ ? level_matcher_->matcher(level_) : matcher_;
   const Eigen::Vector3d voted =
       matcher.consensus(input, matcher.verify(input, P_T_M_x_y_yaw_)).x_y_yaw;
-  const Verification held = verifyNow(input, P_T_M_x_y_yaw_);
-  const Verification moved = verifyNow(input, voted);
   const Eigen::Vector2d middle = GraphMatcher::middleOf(input);
-  const double apart =
-      (applyPlanar(moved.x_y_yaw, middle) - applyPlanar(P_T_M_x_y_yaw_, middle)).norm();
+  const double apart = (applyPlanar(voted, middle) - applyPlanar(P_T_M_x_y_yaw_, middle)).norm();
   if (apart < options_.min_answer_move) return false;
-  answer_moves_.push_back({stamp, apart, matcher.wallsAgreeing(input, held.x_y_yaw),
-                           matcher.wallsAgreeing(input, moved.x_y_yaw)});
+  const Verification moved = verifyNow(input, voted);
+  answer_moves_.push_back({stamp, apart, matcher.wallsAgreeing(input, P_T_M_x_y_yaw_),
+                           matcher.wallsAgreeing(input, voted)});
   // The vote was taken on the S-Graph as merged, so the move is made on it; every keyframe is
   // re-optimised under the new correspondences below. Only where in the plane, and only this
   // floor's correspondences: the level, the height and the other floors' walls stay.
