@@ -9,6 +9,7 @@
 #include "bim/agraph_factors.hpp"
 #include "bim/angles.hpp"
 #include "slam/isgraph/merging_factors.hpp"
+#include "slam/isgraph/room_hold.hpp"
 
 namespace isg::slam {
 
@@ -626,6 +627,30 @@ void ISGraphLocalizer::addSurface(ceres::Problem& problem, int surface) {
       nullptr, block);
 }
 
+std::optional<std::array<double, 2>> ISGraphLocalizer::widthsAlongPlanPairs(
+    int room, const bim::RoomNode& node) const {
+  const auto& s_room = graph_.roomCandidates()[room];
+  if (!s_room.candidate.four_wall || node.pairs.size() != 2) return std::nullopt;
+  const auto& planes = graph_.planes();
+  const Eigen::Rotation2Dd P_R_M(P_T_M_x_y_yaw_.z());
+  std::array<double, 2> widths{0.0, 0.0};
+  for (int k = 0; k < 2; ++k) {
+    const Eigen::Vector2d plan_normal =
+        plan_->surfaces[node.pairs[k][0]].plane.normal.head<2>().normalized();
+    // The S-room's pair whose normal, turned into P, runs along this plan pair's.
+    int along = 0;
+    double most = -1.0;
+    for (int j = 0; j < 2; ++j) {
+      const Eigen::Vector2d n =
+          P_R_M * planes[s_room.candidate.pairs[j][0]].parameters.head<2>().normalized();
+      if (std::abs(n.dot(plan_normal)) > most) most = std::abs(n.dot(plan_normal)), along = j;
+    }
+    const auto& pair = s_room.candidate.pairs[along];
+    widths[k] = widthThrough(s_room.centre, planes[pair[0]].parameters, planes[pair[1]].parameters);
+  }
+  return widths;
+}
+
 void ISGraphLocalizer::addPlanFactors(ceres::Problem& problem, const std::set<int>& planes,
                                       const std::vector<int>& rooms) {
   if (!localized_) return;
@@ -654,19 +679,22 @@ void ISGraphLocalizer::addPlanFactors(ceres::Problem& problem, const std::set<in
     // A corridor's S-centre lies wherever along it the robot first saw it, not at the plan's
     // centre: only four-wall rooms give a room-to-room factor.
     if (node.kind != bim::RoomKind::kFourWall) continue;
-    // A wall released as built off the plan by d moves the S-room's centre by d/2 along its
-    // normal. Beyond sigma_room (a bias beyond half the factor's sigma), the centre is held only
-    // along the other pair's normal, or not at all when both pairs have one. Within it the bias
-    // is tolerated: most such releases are of walls as planned in a map that drifted, and there
-    // the room is what holds the robot (measured, docs/matching.md).
+    // Held along a pair only while that pair's walls stand where the plan has them, as far as
+    // the map can tell (holdsAlongPair: room_hold.hpp); along the other pair's normal alone, or
+    // not at all, otherwise. Measured in docs/matching.md, "Rooms with a wall built off".
+    const auto widths = widthsAlongPlanPairs(r, node);
     std::vector<int> held_pairs;
     for (int k = 0; k < 2; ++k) {
-      const bool built_off = std::any_of(node.pairs[k].begin(), node.pairs[k].end(), [&](int a) {
+      RoomPairEvidence pair;
+      pair.plan_width = node.widths[k];
+      pair.map_width = widths ? (*widths)[k] : node.widths[k];
+      for (int a : node.pairs[k]) {
         const auto released = released_surfaces_.find(a);
-        return released != released_surfaces_.end() &&
-               std::abs(released->second) > options_.sigma_room;
-      });
-      if (!built_off) held_pairs.push_back(k);
+        if (released != released_surfaces_.end()) {
+          pair.released_offset = std::max(pair.released_offset, std::abs(released->second));
+        }
+      }
+      if (holdsAlongPair(pair, options_.sigma_room)) held_pairs.push_back(k);
     }
     if (held_pairs.empty()) continue;
     for (const auto& pair : node.pairs) addSurface(problem, pair[0]), addSurface(problem, pair[1]);

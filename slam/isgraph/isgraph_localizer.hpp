@@ -4,6 +4,7 @@
 #include <numbers>
 
 #include <Eigen/Geometry>
+#include <array>
 #include <deque>
 #include <map>
 #include <memory>
@@ -195,6 +196,10 @@ class ISGraphLocalizer : public Localizer {
   void addPlanFactors(ceres::Problem& problem, const std::set<int>& planes,
                       const std::vector<int>& rooms);
   void addSurface(ceres::Problem& problem, int surface);
+  // The S-room's widths, measured through its centre from the map's planes, along the matched
+  // plan room's two pairs (in node.pairs order); none unless both are four-wall rooms.
+  std::optional<std::array<double, 2>> widthsAlongPlanPairs(int room,
+                                                            const bim::RoomNode& node) const;
 
   // B_T_M in the plane from P_T_M, and back.
   Eigen::Vector3d inB(const Eigen::Vector3d& P_T_M_x_y_yaw) const;
