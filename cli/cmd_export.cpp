@@ -1,39 +1,105 @@
 #include "cli/cmd_export.hpp"
 
 #include <cstdio>
+#include <functional>
+#include <vector>
 
+#include "bim/input_error.hpp"
 #include "cli/progress_bar.hpp"
+#include "sensors/mcap_export.hpp"
 #include "sensors/output_path.hpp"
 #include "sensors/rosbag_export.hpp"
 
 namespace isg::cli {
 
+namespace {
+
+// The progress bar's update after each scan.
+std::function<void(int, int)> scansTo(ProgressBar& bar) {
+  return [&bar](int done, int total) {
+    char detail[64];
+    std::snprintf(detail, sizeof detail, "%d/%d scans", done, total);
+    bar.update(total > 0 ? double(done) / total : 1.0, detail);
+  };
+}
+
+void printExportSummary(const std::string& command, const std::string& path,
+                        const sensors::ExportSummary& summary) {
+  std::string counts;
+  for (const auto& [topic, n] : summary.messages) {
+    counts += (counts.empty() ? "" : ", ") + topic + " " + std::to_string(n);
+  }
+  std::printf("%s: wrote %s: %.0f MB, %.1f s of robot time in %.1f s (%.0f MB/s); messages: %s\n",
+              command.c_str(), path.c_str(), summary.bytes / 1e6, summary.dataset_seconds,
+              summary.wall_seconds,
+              summary.wall_seconds > 0 ? summary.bytes / 1e6 / summary.wall_seconds : 0.0,
+              counts.c_str());
+}
+
+}  // namespace
+
 ExportCommand::ExportCommand(CLI::App& parent) {
-  app_ = parent.add_subcommand("export", "Write a dataset for other tools: a ROS 1 bag");
+  app_ = parent.add_subcommand(
+      "export", "Write a dataset for other tools: a ROS 1 bag, an MCAP file of ROS 2 messages");
   app_->footer(
-      "The bag (format 2.0, uncompressed; rosbag, rqt_bag and every ROS 1 tool read it) holds "
+      "The bag (format 2.0, uncompressed; rosbag, rqt_bag and every ROS 1 tool read it) and the "
+      "MCAP file (ROS 2 messages in CDR with their ros2msg schemas, chunked and indexed; ros2 bag, "
+      "Foxglove and the mcap tools read it) hold "
       "/velodyne_points (sensor_msgs/PointCloud2: x y z intensity ring time, as the Velodyne "
       "driver publishes them, frame velodyne, stamp = the scan's first firing), /imu/data "
       "(sensor_msgs/Imu, frame imu), /odom (nav_msgs/Odometry, odom → base_link), /tf "
       "(odom → base_link), /tf_static (base_link → velodyne, base_link → imu) and /ground_truth "
       "(nav_msgs/Odometry of base_link in the plan frame). Stamps are the dataset's times plus "
-      "--stamp-offset. docs/formats.md (\"ROS bags\").");
+      "--stamp-offset. docs/formats.md (\"ROS bags\", \"MCAP\").");
   app_->add_option("dataset", input_, "dataset folder (isg simulate's output)")
       ->option_text("DATASET_DIR")
       ->required();
-  app_->add_option("--rosbag", rosbag_, "the bag to write")->option_text("OUT.bag")->required();
+  app_->add_option("--rosbag", rosbag_, "the ROS 1 bag to write")->option_text("OUT.bag");
+  app_->add_option("--mcap", mcap_, "the MCAP file of ROS 2 messages to write")
+      ->option_text("OUT.mcap");
+  addMcapCompressionOption(*app_, compression_);
   app_->add_option("--stamp-offset", stamp_offset_,
                    "whole seconds added to every dataset time (ROS reads a zero stamp as no time)")
       ->check(CLI::Range(0u, 4000000000u))
       ->capture_default_str();
-  app_->add_flag("--force", force_, "replace OUT.bag if it exists");
+  app_->add_flag("--force", force_, "replace OUT.bag / OUT.mcap if it exists");
   app_->add_flag("-q,--quiet", quiet_, "no progress bar");
 }
 
 int ExportCommand::run() {
-  sensors::checkOutputPath(rosbag_, {sensors::OutputKind::kBag, {input_}, force_});
-  exportRosbagWithProgress("isg export", input_, rosbag_, stamp_offset_, force_, quiet_);
+  if (rosbag_.empty() && mcap_.empty()) {
+    throw bim::InputError("--rosbag, --mcap", "",
+                          "nothing to write: give --rosbag OUT.bag, --mcap OUT.mcap or both");
+  }
+  if (!rosbag_.empty()) {
+    sensors::checkOutputPath(rosbag_, {sensors::OutputKind::kBag, {input_}, force_});
+  }
+  if (!mcap_.empty()) {
+    std::vector<std::string> inputs = {input_};
+    if (!rosbag_.empty()) inputs.push_back(rosbag_);  // the two may not be one file
+    sensors::checkOutputPath(mcap_, {sensors::OutputKind::kMcap, inputs, force_});
+  }
+  if (!rosbag_.empty()) {
+    exportRosbagWithProgress("isg export", input_, rosbag_, stamp_offset_, force_, quiet_);
+  }
+  if (!mcap_.empty()) {
+    exportMcapWithProgress("isg export", input_, mcap_, stamp_offset_,
+                           mcapCompression(compression_), force_, quiet_);
+  }
   return kExitOk;
+}
+
+sensors::McapCompression mcapCompression(const std::string& name) {
+  if (name == "none") return sensors::McapCompression::kNone;
+  if (name == "lz4") return sensors::McapCompression::kLz4;
+  return sensors::McapCompression::kZstd;
+}
+
+void addMcapCompressionOption(CLI::App& app, std::string& compression) {
+  app.add_option("--compression", compression,
+                 "how the MCAP file's chunks are compressed (zstd: smallest; lz4: fastest to read)")
+      ->check(CLI::IsMember({"none", "zstd", "lz4"}))
+      ->capture_default_str();
 }
 
 void exportRosbagWithProgress(const std::string& command, const std::string& dataset_dir,
@@ -43,22 +109,22 @@ void exportRosbagWithProgress(const std::string& command, const std::string& dat
   options.stamp_offset = stamp_offset;
   options.overwrite = overwrite;
   ProgressBar bar(command, quiet);
-  const auto summary =
-      sensors::exportRosbag(dataset_dir, bag_path, options, [&](int done, int total) {
-        char detail[64];
-        std::snprintf(detail, sizeof detail, "%d/%d scans", done, total);
-        bar.update(total > 0 ? double(done) / total : 1.0, detail);
-      });
+  const auto summary = sensors::exportRosbag(dataset_dir, bag_path, options, scansTo(bar));
   bar.finish();
-  std::string counts;
-  for (const auto& [topic, n] : summary.messages) {
-    counts += (counts.empty() ? "" : ", ") + topic + " " + std::to_string(n);
-  }
-  std::printf("%s: wrote %s: %.0f MB, %.1f s of robot time in %.1f s (%.0f MB/s); messages: %s\n",
-              command.c_str(), bag_path.c_str(), summary.bytes / 1e6, summary.dataset_seconds,
-              summary.wall_seconds,
-              summary.wall_seconds > 0 ? summary.bytes / 1e6 / summary.wall_seconds : 0.0,
-              counts.c_str());
+  printExportSummary(command, bag_path, summary);
+}
+
+void exportMcapWithProgress(const std::string& command, const std::string& dataset_dir,
+                            const std::string& mcap_path, std::uint32_t stamp_offset,
+                            sensors::McapCompression compression, bool overwrite, bool quiet) {
+  sensors::McapExportOptions options;
+  options.stamp_offset = stamp_offset;
+  options.compression = compression;
+  options.overwrite = overwrite;
+  ProgressBar bar(command, quiet);
+  const auto summary = sensors::exportMcap(dataset_dir, mcap_path, options, scansTo(bar));
+  bar.finish();
+  printExportSummary(command, mcap_path, summary);
 }
 
 }  // namespace isg::cli

@@ -4,10 +4,12 @@
 #include <string>
 
 #include "cli/common.hpp"
+#include "sensors/mcap_writer.hpp"
 
 namespace isg::cli {
 
-// isg export DATASET_DIR --rosbag OUT.bag: a dataset as a ROS 1 bag.
+// isg export DATASET_DIR --rosbag OUT.bag | --mcap OUT.mcap: a dataset as a ROS 1 bag, an MCAP
+// file of ROS 2 messages, or both.
 class ExportCommand : public Command {
  public:
   explicit ExportCommand(CLI::App& parent);
@@ -16,6 +18,8 @@ class ExportCommand : public Command {
  private:
   std::string input_;
   std::string rosbag_;
+  std::string mcap_;
+  std::string compression_ = "zstd";
   std::uint32_t stamp_offset_ = 1000000000;
   bool force_ = false;
   bool quiet_ = false;
@@ -26,5 +30,13 @@ class ExportCommand : public Command {
 void exportRosbagWithProgress(const std::string& command, const std::string& dataset_dir,
                               const std::string& bag_path, std::uint32_t stamp_offset,
                               bool overwrite, bool quiet);
+// The same as an MCAP file (shared by `isg export --mcap` and `isg simulate --mcap`).
+void exportMcapWithProgress(const std::string& command, const std::string& dataset_dir,
+                            const std::string& mcap_path, std::uint32_t stamp_offset,
+                            sensors::McapCompression compression, bool overwrite, bool quiet);
+// "none", "zstd" or "lz4" as the command line spells it.
+sensors::McapCompression mcapCompression(const std::string& name);
+// The --compression option of a command that writes MCAP.
+void addMcapCompressionOption(CLI::App& app, std::string& compression);
 
 }  // namespace isg::cli

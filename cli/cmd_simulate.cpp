@@ -3,6 +3,7 @@
 #include <chrono>
 #include <cstdio>
 #include <iostream>
+#include <vector>
 
 #include "cli/cmd_export.hpp"
 #include "cli/progress_bar.hpp"
@@ -47,11 +48,16 @@ SimulateCommand::SimulateCommand(CLI::App& parent) {
           "--rosbag", rosbag_,
           "also write the dataset as a ROS 1 bag (as isg export DATASET_DIR --rosbag does)")
       ->option_text("OUT.bag");
+  app_->add_option("--mcap", mcap_,
+                   "also write the dataset as an MCAP file of ROS 2 messages (as isg export "
+                   "DATASET_DIR --mcap does)")
+      ->option_text("OUT.mcap");
+  addMcapCompressionOption(*app_, compression_);
   app_->add_option("--stamp-offset", stamp_offset_,
-                   "with --rosbag: whole seconds added to every dataset time in the bag")
+                   "with --rosbag / --mcap: whole seconds added to every dataset time there")
       ->check(CLI::Range(0u, 4000000000u))
       ->capture_default_str();
-  app_->add_flag("--force", force_, "replace DATASET_DIR (and OUT.bag) if it exists");
+  app_->add_flag("--force", force_, "replace DATASET_DIR (and OUT.bag, OUT.mcap) if it exists");
   app_->add_flag("-q,--quiet", quiet_, "no progress bar");
 }
 
@@ -68,6 +74,12 @@ int SimulateCommand::run() {
     sensors::checkOutputPath(rosbag_,
                              {sensors::OutputKind::kBag, {inputFile(input_), output_}, force_});
     sensors::AtomicFile probe(rosbag_, sensors::OutputKind::kBag, force_);
+  }
+  if (!mcap_.empty()) {
+    std::vector<std::string> inputs = {inputFile(input_), output_};
+    if (!rosbag_.empty()) inputs.push_back(rosbag_);
+    sensors::checkOutputPath(mcap_, {sensors::OutputKind::kMcap, inputs, force_});
+    sensors::AtomicFile probe(mcap_, sensors::OutputKind::kMcap, force_);
   }
   sim::DatasetOptions options;
   options.duration = duration_;
@@ -97,6 +109,10 @@ int SimulateCommand::run() {
       simulation.route().visited_rooms.size());
   if (!rosbag_.empty()) {
     exportRosbagWithProgress("isg simulate", output_, rosbag_, stamp_offset_, force_, quiet_);
+  }
+  if (!mcap_.empty()) {
+    exportMcapWithProgress("isg simulate", output_, mcap_, stamp_offset_,
+                           mcapCompression(compression_), force_, quiet_);
   }
   return kExitOk;
 }

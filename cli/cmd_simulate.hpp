@@ -9,7 +9,7 @@
 namespace isg::cli {
 
 // isg simulate PLAN|SCENARIO -o DATASET_DIR [--seed N] [--duration S] [--pcd DATA]
-// [--rosbag OUT.bag]: synthesise a dataset (and a bag of it).
+// [--rosbag OUT.bag] [--mcap OUT.mcap]: synthesise a dataset (and a bag, an MCAP file of it).
 class SimulateCommand : public Command {
  public:
   explicit SimulateCommand(CLI::App& parent);
@@ -23,6 +23,8 @@ class SimulateCommand : public Command {
   int threads_ = 2;
   std::string pcd_ = "binary_compressed";
   std::string rosbag_;  // also write the dataset as this bag
+  std::string mcap_;    // and as this MCAP file
+  std::string compression_ = "zstd";
   std::uint32_t stamp_offset_ = 1000000000;
   bool force_ = false;
   bool quiet_ = false;

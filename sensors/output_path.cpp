@@ -26,6 +26,7 @@ constexpr KindInfo kKinds[] = {
     {OutputKind::kSweep, "sweep", "a sweep folder", true},
     {OutputKind::kPictures, "pictures", "a folder of pictures", true},
     {OutputKind::kBag, "bag", "a ROS bag", false},
+    {OutputKind::kMcap, "mcap", "an MCAP file", false},
     {OutputKind::kSvg, "svg", "an SVG picture", false},
     {OutputKind::kPng, "png", "a PNG picture", false},
     {OutputKind::kMjcf, "mjcf", "an MJCF world", false},
@@ -188,6 +189,8 @@ bool isOurFile(const fs::path& path, OutputKind kind) {
   switch (kind) {
     case OutputKind::kBag:
       return text.rfind("#ROSBAG V2.0\n", 0) == 0 && text.find(mark) != std::string::npos;
+    case OutputKind::kMcap:  // the mark is in the Header's library field
+      return text.rfind("\x89MCAP0\r\n", 0) == 0 && text.find(mark) != std::string::npos;
     case OutputKind::kPng:
       return text.rfind("\x89PNG", 0) == 0 &&
              text.find(std::string("tEXtSoftware\0", 13) + mark) != std::string::npos;

@@ -18,6 +18,7 @@ enum class OutputKind {
   kSweep,       // isg sweep (a folder the sweep adds to)
   kPictures,    // isg render (a folder its pictures are added to)
   kBag,         // isg export, isg simulate --rosbag
+  kMcap,        // isg export --mcap, isg simulate --mcap
   kSvg,         // isg eval --plot, isg agraph --svg
   kPng,         // isg render's pictures
   kMjcf,        // isg world -o

@@ -10,6 +10,8 @@
 
 #include <cstring>
 
+#include "sensors/velodyne_point_layout.hpp"
+
 namespace isg::sensors::ros1 {
 
 namespace {
@@ -87,7 +89,7 @@ std::string stringMessage(const std::string& text) {
 std::string pointCloud2(const std::vector<sensors::ScanPoint>& points, RosTime stamp,
                         std::uint32_t seq, const std::string& frame) {
   using sensor_msgs::PointField;
-  constexpr std::uint32_t kPointStep = 22;
+  constexpr std::uint32_t kPointStep = kVelodynePointStep;
   sensor_msgs::PointCloud2 cloud;
   cloud.header = header(stamp, seq, frame);
   cloud.height = 1;
@@ -100,16 +102,7 @@ std::string pointCloud2(const std::vector<sensors::ScanPoint>& points, RosTime s
   cloud.point_step = kPointStep;
   cloud.row_step = kPointStep * cloud.width;
   cloud.data.resize(std::size_t(cloud.row_step));
-  std::uint8_t* at = cloud.data.data();
-  for (const sensors::ScanPoint& p : points) {
-    std::memcpy(at + 0, &p.x, 4);
-    std::memcpy(at + 4, &p.y, 4);
-    std::memcpy(at + 8, &p.z, 4);
-    std::memcpy(at + 12, &p.intensity, 4);
-    std::memcpy(at + 16, &p.ring, 2);
-    std::memcpy(at + 18, &p.time, 4);
-    at += kPointStep;
-  }
+  packVelodynePoints(points, cloud.data.data());
   cloud.is_dense = true;  // every point is a return: misses are left out, never NaN
   return serialise(cloud);
 }

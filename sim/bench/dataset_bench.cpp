@@ -46,7 +46,7 @@ void BM_ExportRosbag_D1(benchmark::State& state) {
   }
   sensors::RosbagExportOptions options;
   options.overwrite = true;
-  sensors::RosbagSummary summary;
+  sensors::ExportSummary summary;
   for (auto _ : state) {
     summary =
         sensors::exportRosbag((dir / "ds").string(), (dir / "d1.bag").string(), options, nullptr);
