@@ -28,23 +28,11 @@ import subprocess
 import sys
 import tempfile
 
+from oracle_checks import check, run, verdict
+
 OFFSET = 1000000000  # isg export's default --stamp-offset, whole seconds
 MODULES = ["@mcap/core", "@mcap/nodejs", "@foxglove/rosmsg", "@foxglove/rosmsg2-serialization",
            "@foxglove/crc", "@foxglove/wasm-zstd", "@foxglove/wasm-lz4"]
-failures = []
-
-
-def check(condition, what):
-    if not condition:
-        failures.append(what)
-        print("FAIL:", what)
-
-
-def run(cmd):
-    result = subprocess.run(cmd, capture_output=True, text=True)
-    if result.returncode != 0:
-        sys.exit(f"{' '.join(cmd)} failed ({result.returncode}): {result.stderr}")
-    return result.stdout
 
 
 def rows(path, separator=None, skip_first=False):
@@ -199,11 +187,7 @@ def main():
         run([args.isg, "export", str(tmp / "dsc"), "--mcap", str(tmp / "dsc.mcap"), "-q"])
         check((tmp / "d1-zstd.mcap").read_bytes() == (tmp / "dsc.mcap").read_bytes(),
               "MCAP files of a binary and a compressed dataset of one seed differ")
-    if failures:
-        print(f"{len(failures)} check(s) failed")
-        return 1
-    print("every check passed")
-    return 0
+    return verdict()
 
 
 if __name__ == "__main__":

@@ -14,27 +14,14 @@ import argparse
 import json
 import pathlib
 import struct
-import subprocess
 import sys
 import tempfile
 
 import rosbag
 
+from oracle_checks import check, run, verdict
+
 OFFSET = 1000000000  # isg export's default --stamp-offset, whole seconds
-failures = []
-
-
-def check(condition, what):
-    if not condition:
-        failures.append(what)
-        print("FAIL:", what)
-
-
-def run(cmd):
-    result = subprocess.run(cmd, capture_output=True, text=True)
-    if result.returncode != 0:
-        sys.exit(f"{' '.join(cmd)} failed ({result.returncode}): {result.stderr}")
-    return result.stdout
 
 
 def tum(path):
@@ -182,11 +169,7 @@ def main():
              str(tmp / "d1c.bag")] + duration)
         check((tmp / "d1.bag").read_bytes() == (tmp / "d1c.bag").read_bytes(),
               "bags of a binary and a compressed dataset of one seed differ")
-    if failures:
-        print(f"{len(failures)} check(s) failed")
-        return 1
-    print("every check passed")
-    return 0
+    return verdict()
 
 
 if __name__ == "__main__":
