@@ -1,6 +1,7 @@
 #include "sensors/dataset_messages.hpp"
 
 #include <algorithm>
+#include <cmath>
 
 namespace isg::sensors {
 
@@ -28,7 +29,8 @@ struct Entry {
 
 }  // namespace
 
-void visitDatasetMessages(DatasetReader& dataset, DatasetMessageVisitor& visitor) {
+void visitDatasetMessages(DatasetReader& dataset, DatasetMessageVisitor& visitor,
+                          const std::function<void(int, int)>& progress) {
   std::vector<Entry> entries;
   for (int i = 0; i < int(dataset.odometry().size()); ++i)
     entries.push_back({dataset.odometry()[i].t, Kind::kOdometry, i});
@@ -48,6 +50,12 @@ void visitDatasetMessages(DatasetReader& dataset, DatasetMessageVisitor& visitor
     return a.t != b.t ? a.t < b.t : a.kind < b.kind;
   });
 
+  ImuVariances variances;
+  if (const auto& noise = dataset.imuNoise()) {
+    variances.gyroscope = std::pow(noise->gyroscope_noise_density, 2) * noise->rate_hz;
+    variances.accelerometer = std::pow(noise->accelerometer_noise_density, 2) * noise->rate_hz;
+  }
+  int scans_done = 0;
   auto twistOf = [](const Trajectory& poses, int i) {
     return i > 0 ? twistBetween(poses[i - 1], poses[i]) : BodyTwist{};
   };
@@ -69,10 +77,11 @@ void visitDatasetMessages(DatasetReader& dataset, DatasetMessageVisitor& visitor
                          twistOf(dataset.odometry(), e.index));
         break;
       case Kind::kImu:
-        visitor.imu(e.index, e.t, dataset.imu()[e.index]);
+        visitor.imu(e.index, e.t, dataset.imu()[e.index], variances);
         break;
       case Kind::kCloud:
         visitor.cloud(e.index, e.t, dataset.scan(e.index));
+        if (progress) progress(++scans_done, dataset.scanCount());
         break;
       case Kind::kGroundTruth:
         visitor.groundTruth(e.index, e.t, dataset.groundTruth()[e.index].pose,

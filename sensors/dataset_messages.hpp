@@ -2,6 +2,7 @@
 
 #include <Eigen/Geometry>
 #include <cstdint>
+#include <functional>
 #include <map>
 #include <string>
 #include <vector>
@@ -37,6 +38,13 @@ struct BodyTwist {
   Eigen::Vector3d angular = Eigen::Vector3d::Zero();
 };
 
+// Per-sample variances of an IMU's discretised white noise (density² × rate, from metadata.json's
+// imu noise model; 0 without one): the diagonal covariances an Imu message carries.
+struct ImuVariances {
+  double gyroscope = 0.0;      // (rad/s)²
+  double accelerometer = 0.0;  // (m/s²)²
+};
+
 // What an exporter writes of a dataset, called in time order (ties: mounts and metadata, then
 // odometry, IMU, scans, ground truth).
 class DatasetMessageVisitor {
@@ -49,7 +57,7 @@ class DatasetMessageVisitor {
       const std::string& metadata) = 0;
   // Odometry pose i of base_link in odom, with its twist.
   virtual void odometry(int i, double t, const Eigen::Isometry3d& pose, const BodyTwist& twist) = 0;
-  virtual void imu(int i, double t, const ImuSample& sample) = 0;
+  virtual void imu(int i, double t, const ImuSample& sample, const ImuVariances& variances) = 0;
   virtual void cloud(int i, double t, const Scan& scan) = 0;
   // Ground-truth pose i of base_link in the plan frame, with its twist.
   virtual void groundTruth(int i, double t, const Eigen::Isometry3d& pose,
@@ -64,7 +72,9 @@ struct ExportSummary {
   double wall_seconds = 0.0;
 };
 
-// Walks the dataset's messages in time order through `visitor`.
-void visitDatasetMessages(DatasetReader& dataset, DatasetMessageVisitor& visitor);
+// Walks the dataset's messages in time order through `visitor`; `progress(done, total)` (if set)
+// after each scan.
+void visitDatasetMessages(DatasetReader& dataset, DatasetMessageVisitor& visitor,
+                          const std::function<void(int, int)>& progress);
 
 }  // namespace isg::sensors

@@ -28,10 +28,9 @@ const char* kLatchedQos =
 // The dataset's messages as ROS 2 messages in the MCAP file.
 class McapVisitor : public DatasetMessageVisitor {
  public:
-  McapVisitor(DatasetReader& dataset, const std::string& path, const McapWriterOptions& options,
-              const std::function<ros2::Time(double)>& stamp,
-              const std::function<void(int, int)>& progress)
-      : mcap(path, options), stamp_(stamp), progress_(progress), scans_(dataset.scanCount()) {
+  McapVisitor(const DatasetReader& dataset, const std::string& path, const McapWriterOptions& options,
+              const std::function<ros2::Time(double)>& stamp)
+      : mcap(path, options), stamp_(stamp) {
     auto schemaOf = [&](const ros2::MessageType& type) {
       return mcap.addSchema(type.name, "ros2msg", type.definition);
     };
@@ -53,11 +52,6 @@ class McapVisitor : public DatasetMessageVisitor {
     if (!dataset.groundTruth().empty()) {
       topics[kGroundTruthTopic] = mcap.addChannel(odometry_schema, kGroundTruthTopic, "cdr");
     }
-    // Per-sample variances of the discretised white noise: density² × rate.
-    if (const auto& noise = dataset.imuNoise()) {
-      gyroscope_variance_ = std::pow(noise->gyroscope_noise_density, 2) * noise->rate_hz;
-      accelerometer_variance_ = std::pow(noise->accelerometer_noise_density, 2) * noise->rate_hz;
-    }
   }
 
   void mounts(double t, const std::vector<std::pair<std::string, Eigen::Isometry3d>>& mounts,
@@ -74,15 +68,14 @@ class McapVisitor : public DatasetMessageVisitor {
           ros2::odometry(pose, twist.linear, twist.angular, time, kOdometryFrame, kBaseFrame));
     write(kTfTopic, time, ros2::tfMessage({{time, kOdometryFrame, kBaseFrame, pose}}));
   }
-  void imu(int, double t, const ImuSample& sample) override {
+  void imu(int, double t, const ImuSample& sample, const ImuVariances& variances) override {
     const ros2::Time time = stamp_(t);
     write(kImuTopic, time,
-          ros2::imu(sample, time, kImuFrame, gyroscope_variance_, accelerometer_variance_));
+          ros2::imu(sample, time, kImuFrame, variances.gyroscope, variances.accelerometer));
   }
   void cloud(int, double t, const Scan& scan) override {
     const ros2::Time time = stamp_(t);
     write(kCloudTopic, time, ros2::pointCloud2(scan.points, time, kLidarFrame));
-    if (progress_) progress_(++scans_done_, scans_);
   }
   void groundTruth(int, double t, const Eigen::Isometry3d& pose, const BodyTwist& twist) override {
     const ros2::Time time = stamp_(t);
@@ -98,9 +91,6 @@ class McapVisitor : public DatasetMessageVisitor {
     mcap.write(topics.at(topic), time.nanoseconds(), data);
   }
   std::function<ros2::Time(double)> stamp_;
-  std::function<void(int, int)> progress_;
-  int scans_ = 0, scans_done_ = 0;
-  double gyroscope_variance_ = 0.0, accelerometer_variance_ = 0.0;
 };
 
 }  // namespace
@@ -130,8 +120,8 @@ ExportSummary exportMcap(const std::string& dataset_dir, const std::string& mcap
   McapWriterOptions writer;
   writer.compression = options.compression;
   writer.overwrite = options.overwrite;
-  McapVisitor visitor(dataset, mcap_path, writer, stamp, progress);
-  visitDatasetMessages(dataset, visitor);
+  McapVisitor visitor(dataset, mcap_path, writer, stamp);
+  visitDatasetMessages(dataset, visitor, progress);
   visitor.mcap.close();
 
   ExportSummary summary;

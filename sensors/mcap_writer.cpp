@@ -8,6 +8,7 @@
 #include <bit>
 #include <cerrno>
 #include <cstring>
+#include <stdexcept>
 
 #include "bim/input_error.hpp"
 #include "sensors/output_path.hpp"
@@ -154,6 +155,7 @@ std::string channelRecord(std::uint16_t id, std::uint16_t schema, const std::str
 }  // namespace
 
 void McapWriter::write(std::uint16_t channel, std::uint64_t log_time_ns, const std::string& data) {
+  if (closed_) throw std::logic_error("McapWriter::write after close");
   const Channel& c = channels_.at(channel);
   // A chunk declares what its messages need, so that it reads on its own.
   if (c.schema > 0 && !schema_in_chunk_[c.schema - 1]) {
@@ -186,6 +188,11 @@ void McapWriter::write(std::uint16_t channel, std::uint64_t log_time_ns, const s
   if (chunk_.size() >= options_.chunk_size) flushChunk();
 }
 
+std::string McapWriter::chunkCompression() const {
+  return options_.compression == McapCompression::kNone ? ""
+                                                        : compressionName(options_.compression);
+}
+
 void McapWriter::flushChunk() {
   if (chunk_messages_.empty()) return;
   ChunkIndex index;
@@ -199,14 +206,12 @@ void McapWriter::flushChunk() {
           : compress(options_.compression, chunk_, file_.path().string());
   const std::string& records = options_.compression == McapCompression::kNone ? chunk_ : compressed;
   index.compressed_size = records.size();
-  const std::string compression =
-      options_.compression == McapCompression::kNone ? "" : compressionName(options_.compression);
   Fields head;
   head.number(chunk_start_)
       .number(chunk_end_)
       .number(std::uint64_t(chunk_.size()))
       .number(crc32(chunk_))
-      .string(compression)
+      .string(chunkCompression())
       .number(std::uint64_t(records.size()));
   Fields opcode;
   opcode.number(std::uint8_t(kChunk)).number(std::uint64_t(head.bytes().size() + records.size()));
@@ -231,6 +236,7 @@ void McapWriter::flushChunk() {
 }
 
 void McapWriter::close() {
+  if (closed_) return;
   flushChunk();
   Fields data_end;
   data_end.number(data_crc_);
@@ -296,9 +302,7 @@ void McapWriter::close() {
         .number(c.length)
         .string(offsets.bytes())
         .number(c.message_index_length)
-        .string(options_.compression == McapCompression::kNone
-                    ? ""
-                    : compressionName(options_.compression))
+        .string(chunkCompression())
         .number(c.compressed_size)
         .number(c.uncompressed_size);
     records.push_back(record(kChunkIndex, f.bytes()));

@@ -48,7 +48,7 @@ class McapWriter {
   void close();
 
   std::uint64_t bytesWritten() const { return position_; }
-  // Messages written per channel (index = channel id − 1).
+  // Messages written per channel (index = channel id).
   const std::vector<std::uint64_t>& counts() const { return counts_; }
 
  private:
@@ -68,6 +68,8 @@ class McapWriter {
     std::uint64_t compressed_size = 0, uncompressed_size = 0;
   };
   void flushChunk();
+  // The compression a Chunk and its Chunk Index name: "" for none.
+  std::string chunkCompression() const;
   void put(const std::string& bytes);
 
   McapWriterOptions options_;

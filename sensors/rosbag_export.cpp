@@ -20,10 +20,9 @@ using namespace rosbag_names;
 // The dataset's messages as ROS 1 messages in the bag.
 class RosbagVisitor : public DatasetMessageVisitor {
  public:
-  RosbagVisitor(DatasetReader& dataset, const std::string& bag_path, bool overwrite,
-                const std::function<RosTime(double)>& stamp,
-                const std::function<void(int, int)>& progress)
-      : bag(bag_path, overwrite), stamp_(stamp), progress_(progress), scans_(dataset.scanCount()) {
+  RosbagVisitor(const DatasetReader& dataset, const std::string& bag_path, bool overwrite,
+                const std::function<RosTime(double)>& stamp)
+      : bag(bag_path, overwrite), stamp_(stamp) {
     tf_static_topic = bag.connect(kTfStaticTopic, ros1::tfMessageType(), true);
     metadata_topic = bag.connect(kMetadataTopic, ros1::stringType(), true);
     // A dataset without odometry (a handheld carrier) has no odom → base_link transforms either.
@@ -34,11 +33,6 @@ class RosbagVisitor : public DatasetMessageVisitor {
     cloud_topic = bag.connect(kCloudTopic, ros1::pointCloud2Type());
     ground_truth_topic =
         dataset.groundTruth().empty() ? -1 : bag.connect(kGroundTruthTopic, ros1::odometryType());
-    // Per-sample variances of the discretised white noise: density² × rate.
-    if (const auto& noise = dataset.imuNoise()) {
-      gyroscope_variance = std::pow(noise->gyroscope_noise_density, 2) * noise->rate_hz;
-      accelerometer_variance = std::pow(noise->accelerometer_noise_density, 2) * noise->rate_hz;
-    }
   }
 
   void mounts(double t, const std::vector<std::pair<std::string, Eigen::Isometry3d>>& mounts,
@@ -56,17 +50,16 @@ class RosbagVisitor : public DatasetMessageVisitor {
                              kOdometryFrame, kBaseFrame));
     bag.write(tf_topic, time, ros1::tfMessage({{time, kOdometryFrame, kBaseFrame, pose}}));
   }
-  void imu(int i, double t, const ImuSample& sample) override {
+  void imu(int i, double t, const ImuSample& sample, const ImuVariances& variances) override {
     const RosTime time = stamp_(t);
     bag.write(imu_topic, time,
-              ros1::imu(sample, time, std::uint32_t(i), kImuFrame, gyroscope_variance,
-                        accelerometer_variance));
+              ros1::imu(sample, time, std::uint32_t(i), kImuFrame, variances.gyroscope,
+                        variances.accelerometer));
   }
   void cloud(int i, double t, const Scan& scan) override {
     const RosTime time = stamp_(t);
     bag.write(cloud_topic, time,
               ros1::pointCloud2(scan.points, time, std::uint32_t(i), kLidarFrame));
-    if (progress_) progress_(++scans_done_, scans_);
   }
   void groundTruth(int i, double t, const Eigen::Isometry3d& pose,
                    const BodyTwist& twist) override {
@@ -82,9 +75,6 @@ class RosbagVisitor : public DatasetMessageVisitor {
 
  private:
   std::function<RosTime(double)> stamp_;
-  std::function<void(int, int)> progress_;
-  int scans_ = 0, scans_done_ = 0;
-  double gyroscope_variance = 0.0, accelerometer_variance = 0.0;
 };
 
 }  // namespace
@@ -107,8 +97,8 @@ ExportSummary exportRosbag(const std::string& dataset_dir, const std::string& ba
                                 " s is not a ROS time (0 to 2^32 s)");
     }
   };
-  RosbagVisitor visitor(dataset, bag_path, options.overwrite, stamp, progress);
-  visitDatasetMessages(dataset, visitor);
+  RosbagVisitor visitor(dataset, bag_path, options.overwrite, stamp);
+  visitDatasetMessages(dataset, visitor, progress);
   RosbagWriter& bag = visitor.bag;
   bag.close();
 

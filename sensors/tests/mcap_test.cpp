@@ -4,6 +4,7 @@
 
 #include <cstring>
 #include <filesystem>
+#include <stdexcept>
 
 #include "bim/input_error.hpp"
 #include "sensors/cdr_writer.hpp"
@@ -105,6 +106,10 @@ TEST(McapWriter, LaysOutAnIndexedFileWithItsCrcs) {
     EXPECT_FALSE(fs::exists(path));  // nothing at the path before close()
     mcap.close();
     EXPECT_EQ(mcap.counts(), (std::vector<std::uint64_t>{2, 1}));
+    const std::string closed = slurp(path);
+    mcap.close();  // a second close writes nothing
+    EXPECT_EQ(slurp(path), closed);
+    EXPECT_THROW(mcap.write(a, 40, ros2::stringMessage("late")), std::logic_error);
   }
   const std::string file = slurp(path);
   const std::string magic("\x89MCAP0\r\n", 8);
