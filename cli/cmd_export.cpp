@@ -1,11 +1,13 @@
 #include "cli/cmd_export.hpp"
 
 #include <cstdio>
+#include <filesystem>
 #include <functional>
 #include <vector>
 
 #include "bim/input_error.hpp"
 #include "cli/progress_bar.hpp"
+#include "run/run_mcap.hpp"
 #include "sensors/mcap_export.hpp"
 #include "sensors/output_path.hpp"
 #include "sensors/rosbag_export.hpp"
@@ -40,7 +42,9 @@ void printExportSummary(const std::string& command, const std::string& path,
 
 ExportCommand::ExportCommand(CLI::App& parent) {
   app_ = parent.add_subcommand(
-      "export", "Write a dataset for other tools: a ROS 1 bag, an MCAP file of ROS 2 messages");
+      "export",
+      "Write a dataset for other tools (a ROS 1 bag, an MCAP file of ROS 2 messages), or a run "
+      "as an MCAP file to watch in Foxglove");
   app_->footer(
       "The bag (format 2.0, uncompressed; rosbag, rqt_bag and every ROS 1 tool read it) and the "
       "MCAP file (ROS 2 messages in CDR with their ros2msg schemas, chunked and indexed; ros2 bag, "
@@ -50,9 +54,14 @@ ExportCommand::ExportCommand(CLI::App& parent) {
       "(sensor_msgs/Imu, frame imu), /odom (nav_msgs/Odometry, odom → base_link), /tf "
       "(odom → base_link), /tf_static (base_link → velodyne, base_link → imu) and /ground_truth "
       "(nav_msgs/Odometry of base_link in the plan frame). Stamps are the dataset's times plus "
-      "--stamp-offset. docs/formats.md (\"ROS bags\", \"MCAP\").");
-  app_->add_option("dataset", input_, "dataset folder (isg simulate's output)")
-      ->option_text("DATASET_DIR")
+      "--stamp-offset. docs/formats.md (\"ROS bags\", \"MCAP\").\n\n"
+      "Given a run folder (isg run's or isg slam's output), --mcap writes the run as isg run "
+      "--mcap does, from what the folder keeps: the plan, the A-Graph, the keyframes as they were "
+      "made and the final S-Graph, matching, paths, transforms and deviations, but no scans "
+      "(docs/foxglove.md).");
+  app_->add_option("input", input_,
+                   "dataset folder (isg simulate's output) or run folder (isg run's, isg slam's)")
+      ->option_text("DATASET_DIR|RUN_DIR")
       ->required();
   app_->add_option("--rosbag", rosbag_, "the ROS 1 bag to write")->option_text("OUT.bag");
   app_->add_option("--mcap", mcap_, "the MCAP file of ROS 2 messages to write")
@@ -67,6 +76,7 @@ ExportCommand::ExportCommand(CLI::App& parent) {
 }
 
 int ExportCommand::run() {
+  if (run::isRunFolder(input_)) return exportRun();
   if (rosbag_.empty() && mcap_.empty()) {
     throw bim::InputError("--rosbag, --mcap", "",
                           "nothing to write: give --rosbag OUT.bag, --mcap OUT.mcap or both");
@@ -86,6 +96,34 @@ int ExportCommand::run() {
     exportMcapWithProgress("isg export", input_, mcap_, stamp_offset_,
                            mcapCompression(compression_), force_, quiet_);
   }
+  return kExitOk;
+}
+
+void printRunMcapSummary(const std::string& command, const std::string& path,
+                         const std::vector<std::pair<std::string, std::uint64_t>>& counts) {
+  std::string listed;
+  for (const auto& [topic, n] : counts) {
+    listed += (listed.empty() ? "" : ", ") + topic + " " + std::to_string(n);
+  }
+  std::error_code error;
+  const auto bytes = std::filesystem::file_size(path, error);
+  std::printf("%s: wrote %s: %.1f MB; messages: %s\n", command.c_str(), path.c_str(),
+              error ? 0.0 : bytes / 1e6, listed.c_str());
+}
+
+int ExportCommand::exportRun() {
+  if (!rosbag_.empty() || mcap_.empty()) {
+    throw bim::InputError(input_, "",
+                          "a run folder (it has metrics.json and estimate_map.tum) is written as "
+                          "--mcap OUT.mcap only; --rosbag takes a dataset folder");
+  }
+  sensors::checkOutputPath(mcap_, {sensors::OutputKind::kMcap, {input_}, force_});
+  run::RunMcapOptions options;
+  options.compression = mcapCompression(compression_);
+  options.overwrite = force_;
+  options.stamp_offset = stamp_offset_;
+  const run::RunExportSummary summary = run::exportRunMcap(input_, mcap_, options);
+  printRunMcapSummary("isg export", mcap_, summary.counts);
   return kExitOk;
 }
 

@@ -2,6 +2,8 @@
 
 #include <cstdint>
 #include <string>
+#include <utility>
+#include <vector>
 
 #include "cli/common.hpp"
 #include "sensors/mcap_writer.hpp"
@@ -9,13 +11,16 @@
 namespace isg::cli {
 
 // isg export DATASET_DIR --rosbag OUT.bag | --mcap OUT.mcap: a dataset as a ROS 1 bag, an MCAP
-// file of ROS 2 messages, or both.
+// file of ROS 2 messages, or both; isg export RUN_DIR --mcap OUT.mcap: a finished run as the MCAP
+// file `isg run --mcap` writes (docs/foxglove.md).
 class ExportCommand : public Command {
  public:
   explicit ExportCommand(CLI::App& parent);
   int run() override;
 
  private:
+  int exportRun();
+
   std::string input_;
   std::string rosbag_;
   std::string mcap_;
@@ -34,6 +39,9 @@ void exportRosbagWithProgress(const std::string& command, const std::string& dat
 void exportMcapWithProgress(const std::string& command, const std::string& dataset_dir,
                             const std::string& mcap_path, std::uint32_t stamp_offset,
                             sensors::McapCompression compression, bool overwrite, bool quiet);
+// Prints what a run's MCAP file holds: its size and the messages per topic.
+void printRunMcapSummary(const std::string& command, const std::string& path,
+                         const std::vector<std::pair<std::string, std::uint64_t>>& counts);
 // "none", "zstd" or "lz4" as the command line spells it.
 sensors::McapCompression mcapCompression(const std::string& name);
 // The --compression option of a command that writes MCAP.

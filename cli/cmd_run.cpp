@@ -50,7 +50,8 @@ RunCommand::RunCommand(CLI::App& parent) {
   app_->add_option("--method-option", method_options_,
                    "a setting of the method, KEY=VALUE (repeatable; the methods below say which)")
       ->option_text("KEY=VALUE");
-  app_->add_flag("--force", force_, "replace RUN_DIR if it exists");
+  addRunMcapOptions(*app_, mcap_);
+  app_->add_flag("--force", force_, "replace RUN_DIR (and RUN.mcap) if it exists");
   app_->add_flag("-q,--quiet", quiet_, "no progress bar");
   app_->add_flag("--timing", timing_,
                  "print where the time went, by stage (also in metrics.json; docs/performance.md)");
@@ -99,14 +100,17 @@ int RunCommand::run() {
   run::RunSetup setup{
       input,          localizer->name(), scenario.seed,        worlds::worldHash(scenario),
       &scenario.plan, &agraph,           scenario.robot.level, &scenario.as_built};
+  const auto mcap = openRunMcap(mcap_, force_, {inputFile(input)}, output_, setup, streams);
   ProgressBar bar("isg run", quiet_);
   const double period = streams.scan_period;
   const int scans = int(streams.scan_stamps.size());
   sim::LookaheadScans source(simulation, scans, threads_ - 1);
-  const run::RunRecord record = run::runLocalizer(std::move(setup), *localizer, std::move(streams),
-                                                  source, progressOn(bar, period));
+  const run::RunRecord record =
+      run::runLocalizer(std::move(setup), *localizer, std::move(streams), source,
+                        progressOn(bar, period), observerOf(mcap));
   bar.finish();
-  finishRun("isg run", output_, force_, record, timing_);
+  const run::RunEvaluation evaluation = finishRun("isg run", output_, force_, record, timing_);
+  finishRunMcap("isg run", mcap_, mcap.get(), record, evaluation);
   return kExitOk;
 }
 

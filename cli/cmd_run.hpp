@@ -4,6 +4,7 @@
 #include <optional>
 
 #include "cli/common.hpp"
+#include "cli/run_session.hpp"
 #include "run/builtin_methods.hpp"
 
 namespace isg::cli {
@@ -23,6 +24,7 @@ class RunCommand : public Command {
   std::optional<std::uint64_t> seed_;
   double duration_ = -1.0;
   int threads_ = 2;
+  RunMcapArguments mcap_;
   bool force_ = false;
   bool quiet_ = false;
   bool timing_ = false;

@@ -80,7 +80,8 @@ SlamCommand::SlamCommand(CLI::App& parent) {
                    "threads for the localizer's own work; the results never depend on it")
       ->check(CLI::Range(1, 64))
       ->capture_default_str();
-  app_->add_flag("--force", force_, "replace RUN_DIR if it exists");
+  addRunMcapOptions(*app_, mcap_);
+  app_->add_flag("--force", force_, "replace RUN_DIR (and RUN.mcap) if it exists");
   app_->add_flag("-q,--quiet", quiet_, "no progress bar");
   app_->add_flag("--timing", timing_,
                  "print where the time went, by stage (also in metrics.json; docs/performance.md)");
@@ -133,12 +134,15 @@ int SlamCommand::run() {
   run::RunSetup setup{
       dataset_,     localizer->name(), dataset.seed(), "",
       context.plan, context.agraph,    level,          as_built ? &*as_built : nullptr};
+  const auto mcap = openRunMcap(mcap_, force_, {dataset_, plan_}, output_, setup, streams);
   ProgressBar bar("isg slam", quiet_);
   const double period = streams.scan_period;
-  const run::RunRecord record = run::runLocalizer(std::move(setup), *localizer, std::move(streams),
-                                                  dataset, progressOn(bar, period));
+  const run::RunRecord record =
+      run::runLocalizer(std::move(setup), *localizer, std::move(streams), dataset,
+                        progressOn(bar, period), observerOf(mcap));
   bar.finish();
-  finishRun("isg slam", output_, force_, record, timing_);
+  const run::RunEvaluation evaluation = finishRun("isg slam", output_, force_, record, timing_);
+  finishRunMcap("isg slam", mcap_, mcap.get(), record, evaluation);
   if (record.map) {
     const run::MapDiagnosis diagnosis =
         run::diagnoseMap(*record.map, record.streams.ground_truth, context.plan, level);

@@ -1,6 +1,7 @@
 #pragma once
 
 #include "cli/common.hpp"
+#include "cli/run_session.hpp"
 #include "run/builtin_methods.hpp"
 
 namespace isg::cli {
@@ -18,6 +19,7 @@ class SlamCommand : public Command {
   std::vector<std::string> method_options_;
   std::string method_;
   std::string output_;
+  RunMcapArguments mcap_;
   bool force_ = false;
   bool other_plan_ = false;
   bool quiet_ = false;

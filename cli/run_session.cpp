@@ -4,11 +4,14 @@
 
 #include <chrono>
 #include <cstdio>
+#include <filesystem>
 
 #include "bim/input_error.hpp"
+#include "cli/cmd_export.hpp"
 #include "run/odometry_source.hpp"
 #include "run/run_folder.hpp"
 #include "run/run_report.hpp"
+#include "sensors/output_path.hpp"
 
 namespace isg::cli {
 
@@ -93,6 +96,49 @@ run::RunEvaluation finishRun(const std::string& command, const std::string& dir,
   std::printf("%s", run::runSummary(command, dir, evaluation.metrics).c_str());
   if (print_timing) std::printf("%s", run::timingTable(evaluation.metrics, writing).c_str());
   return evaluation;
+}
+
+void addRunMcapOptions(CLI::App& app, RunMcapArguments& arguments) {
+  app.add_option("--mcap", arguments.path,
+                 "also write the run as an MCAP file to watch in Foxglove: the plan, the A-Graph, "
+                 "the S-Graph over time, matching, paths, scans, transforms, deviations "
+                 "(docs/foxglove.md)")
+      ->option_text("RUN.mcap");
+  addMcapCompressionOption(app, arguments.compression);
+}
+
+std::unique_ptr<run::LiveRunMcap> openRunMcap(const RunMcapArguments& arguments, bool force,
+                                              std::vector<std::string> inputs,
+                                              const std::string& run_dir,
+                                              const run::RunSetup& setup,
+                                              const sensors::SensorStreams& streams) {
+  if (arguments.path.empty()) return nullptr;
+  namespace fs = std::filesystem;
+  // RUN_DIR is written whole into a temporary folder and renamed into place: a file in it would
+  // be lost.
+  const fs::path within =
+      fs::weakly_canonical(arguments.path).lexically_relative(fs::weakly_canonical(run_dir));
+  if (!within.empty() && *within.begin() != "..") {
+    throw bim::InputError(arguments.path, "",
+                          "--mcap names RUN_DIR or a file in it: write the MCAP file beside it");
+  }
+  sensors::checkOutputPath(arguments.path, {sensors::OutputKind::kMcap, std::move(inputs), force});
+  run::RunMcapOptions options;
+  options.compression = mcapCompression(arguments.compression);
+  options.overwrite = force;
+  return std::make_unique<run::LiveRunMcap>(arguments.path, options, setup, streams);
+}
+
+run::RunObserver observerOf(const std::unique_ptr<run::LiveRunMcap>& mcap) {
+  return mcap ? mcap->observer() : run::RunObserver{};
+}
+
+void finishRunMcap(const std::string& command, const RunMcapArguments& arguments,
+                   run::LiveRunMcap* mcap, const run::RunRecord& record,
+                   const run::RunEvaluation& evaluation) {
+  if (!mcap) return;
+  mcap->finish(record, evaluation);
+  printRunMcapSummary(command, arguments.path, mcap->writer().counts());
 }
 
 }  // namespace isg::cli

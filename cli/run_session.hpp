@@ -5,9 +5,11 @@
 #include <string>
 #include <vector>
 
+#include "cli/common.hpp"
 #include "cli/progress_bar.hpp"
 #include "run/driver.hpp"
 #include "run/evaluate_run.hpp"
+#include "run/live_run_mcap.hpp"
 #include "run/localizer_registry.hpp"
 #include "run/run_record.hpp"
 
@@ -47,5 +49,26 @@ run::RunProgress progressOn(ProgressBar& bar, double scan_period);
 // `print_timing`, the stage timing); returns the evaluation.
 run::RunEvaluation finishRun(const std::string& command, const std::string& dir, bool force,
                              const run::RunRecord& record, bool print_timing = false);
+
+// --mcap RUN.mcap and --compression of `isg run` and `isg slam`: the run as an MCAP file to watch
+// in Foxglove (docs/foxglove.md).
+struct RunMcapArguments {
+  std::string path;  // empty: none
+  std::string compression = "zstd";
+};
+void addRunMcapOptions(CLI::App& app, RunMcapArguments& arguments);
+// Checks the path (the output rule against `inputs`; not RUN_DIR `run_dir`) and opens the file
+// before the run; null when --mcap was not given.
+std::unique_ptr<run::LiveRunMcap> openRunMcap(const RunMcapArguments& arguments, bool force,
+                                              std::vector<std::string> inputs,
+                                              const std::string& run_dir,
+                                              const run::RunSetup& setup,
+                                              const sensors::SensorStreams& streams);
+// The observer runLocalizer is given: the file's, or none.
+run::RunObserver observerOf(const std::unique_ptr<run::LiveRunMcap>& mcap);
+// Adds the end of the run, closes the file and prints what it holds.
+void finishRunMcap(const std::string& command, const RunMcapArguments& arguments,
+                   run::LiveRunMcap* mcap, const run::RunRecord& record,
+                   const run::RunEvaluation& evaluation);
 
 }  // namespace isg::cli

@@ -50,7 +50,8 @@ void LocalizerDriver::record() {
 }
 
 RunRecord runLocalizer(RunSetup setup, slam::Localizer& localizer, sensors::SensorStreams streams,
-                       sensors::ScanSource& scans, const RunProgress& progress) {
+                       sensors::ScanSource& scans, const RunProgress& progress,
+                       const RunObserver& observer) {
   const auto start = std::chrono::steady_clock::now();
   RunRecord record;
   record.setup = std::move(setup);
@@ -68,8 +69,9 @@ RunRecord runLocalizer(RunSetup setup, slam::Localizer& localizer, sensors::Sens
     auto now = Clock::now();
     in_localizer += now - mark;
     mark = now;
+    sensors::Scan scan;
     if (wanted) {
-      sensors::Scan scan = scans.scan(k);
+      scan = scans.scan(k);
       scan.stamp = stamp;
       now = Clock::now();
       waiting += now - mark;
@@ -94,6 +96,7 @@ RunRecord runLocalizer(RunSetup setup, slam::Localizer& localizer, sensors::Sens
       driver.skip(stamp);
     }
     in_localizer += Clock::now() - mark;
+    if (observer) observer(wanted ? &scan : nullptr, localizer, driver);
     if (progress) progress(k + 1, total, localizer);
   }
   record.estimate_map = driver.estimateMap();

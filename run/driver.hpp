@@ -51,11 +51,17 @@ class LocalizerDriver {
 // Called after each scan: (scans fed, scans in all, the localizer).
 using RunProgress = std::function<void(int done, int total, const slam::Localizer& localizer)>;
 
+// Called after each scan, read or skipped, with the scan when it was read (else null): what a
+// run's MCAP file records as the run goes (run/live_run_mcap.hpp).
+using RunObserver = std::function<void(const sensors::Scan* scan, const slam::Localizer& localizer,
+                                       const LocalizerDriver& driver)>;
+
 // The one feed loop of every run, live or replayed: feeds every scan in order through a
 // LocalizerDriver (each scan stamped with the stream's stamp) and collects the record. Streams
 // hold what a dataset stores (quantiseStreams), so the same streams and scans give the same
 // record, bit for bit, whoever produced them.
 RunRecord runLocalizer(RunSetup setup, slam::Localizer& localizer, sensors::SensorStreams streams,
-                       sensors::ScanSource& scans, const RunProgress& progress = {});
+                       sensors::ScanSource& scans, const RunProgress& progress = {},
+                       const RunObserver& observer = {});
 
 }  // namespace isg::run

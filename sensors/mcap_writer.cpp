@@ -219,7 +219,11 @@ void McapWriter::flushChunk() {
   put(records);
   index.length = position_ - index.offset;
   const std::uint64_t indexes_start = position_;
-  for (const auto& [channel, entries] : chunk_messages_) {
+  for (auto& [channel, entries] : chunk_messages_) {
+    // By log time, as readers expect of an index; messages written out of order keep their order
+    // among equal times.
+    std::stable_sort(entries.begin(), entries.end(),
+                     [](const auto& a, const auto& b) { return a.first < b.first; });
     Fields entries_bytes;
     for (const auto& [time, offset] : entries) entries_bytes.number(time).number(offset);
     Fields m;

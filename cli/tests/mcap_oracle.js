@@ -12,18 +12,11 @@ const crypto = require("crypto");
 
 const [file, modules] = process.argv.slice(2);
 const need = (name) => require(path.join(modules, name));
-const { McapIndexedReader, McapStreamReader } = need("@mcap/core");
-const { FileHandleReadable } = need("@mcap/nodejs");
+const { McapStreamReader } = need("@mcap/core");
+const { openIndexedMcap } = require("./mcap_open.js");
 const { parse } = need("@foxglove/rosmsg");
 const { MessageReader } = need("@foxglove/rosmsg2-serialization");
 const { crc32 } = need("@foxglove/crc");
-const zstd = need("@foxglove/wasm-zstd");
-const lz4 = need("@foxglove/wasm-lz4");
-
-const decompressHandlers = {
-  zstd: (buffer, size) => zstd.decompress(buffer, Number(size)),
-  lz4: (buffer, size) => lz4(buffer, Number(size)),
-};
 
 function stampOf(header) {
   return [header.stamp.sec, header.stamp.nanosec];
@@ -85,13 +78,7 @@ function summarise(type, m) {
 }
 
 async function main() {
-  await zstd.isLoaded;
-  await lz4.isLoaded;
-  const handle = await fs.open(file, "r");
-  const reader = await McapIndexedReader.Initialize({
-    readable: new FileHandleReadable(handle),
-    decompressHandlers,
-  });
+  const { reader, handle, decompressHandlers } = await openIndexedMcap(file, modules);
   const out = {
     header: reader.header,
     statistics: {

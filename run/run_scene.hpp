@@ -1,0 +1,43 @@
+#pragma once
+
+#include <nlohmann/json.hpp>
+#include <vector>
+
+#include "sensors/rosbag_writer.hpp"
+
+namespace isg::run {
+
+// A run drawn in 3D as Foxglove scene entities (sensors/foxglove_json.hpp; docs/foxglove.md),
+// from the run folder's JSON documents, so that a live run and a finished run folder draw the
+// same. The graphs are drawn as in the S-Graphs papers: each layer above the storey it belongs
+// to — walls (A-Graph) at kWallLayerHeight, rooms and doorways at kRoomLayerHeight, floors at
+// kFloorLayerHeight — with the S-Graph's rooms and floors at the A-Graph's heights, so that a
+// matched room sits on its plan room once the map is placed in the plan.
+inline constexpr double kWallLayerHeight = 4.0;   // m above the storey's floor
+inline constexpr double kRoomLayerHeight = 5.5;   // m
+inline constexpr double kFloorLayerHeight = 7.0;  // m
+inline constexpr double kPlaneDrawHeight = 2.5;   // m: an S-Graph wall plane's drawn height
+
+// The plan from agraph.json, in frame "plan": entities "plan/walls" (every wall surface's
+// segments as vertical faces over the surface's z range), "plan/doorways" (flat marks on the
+// floor, the doorway's width along its wall), "plan/rooms" (outlines and names).
+std::vector<nlohmann::json> planEntities(const nlohmann::json& agraph, sensors::RosTime stamp);
+
+// The A-Graph from agraph.json, in frame "plan": "agraph/nodes" (walls, rooms, doorways, floors
+// at their layers; each wall surface at the top of its longest segment's middle) and
+// "agraph/edges" (wall–surface, room–surface, doorway–room, floor–room).
+std::vector<nlohmann::json> agraphEntities(const nlohmann::json& agraph, sensors::RosTime stamp);
+
+// The S-Graph from an sgraph.json document (the is-graphs and s-graph methods' graph()), in frame
+// "map": "sgraph/keyframes", "sgraph/planes" (each plane's observed extent from its floor up
+// kPlaneDrawHeight), "sgraph/rooms", "sgraph/floors", "sgraph/edges" (plane–room, room–floor).
+// A graph without those lists (another method's) draws empty entities.
+std::vector<nlohmann::json> sgraphEntities(const nlohmann::json& sgraph, sensors::RosTime stamp);
+
+// The deviations of deviations.json, in frame "plan": "deviations/walls" — each judged wall's
+// planned line coloured by its status, the as-built segments that judged it, and a label for each
+// deviating wall — and the extra walls; each level at its elevation in `agraph`.
+std::vector<nlohmann::json> deviationEntities(const nlohmann::json& deviations,
+                                              const nlohmann::json& agraph, sensors::RosTime stamp);
+
+}  // namespace isg::run

@@ -1,0 +1,130 @@
+#include "run/run_scene.hpp"
+
+#include <gtest/gtest.h>
+
+#include <Eigen/Core>
+#include <cmath>
+
+namespace isg::run {
+namespace {
+
+using Json = nlohmann::json;
+
+// One wall W1 along x on a storey at 3 m, a doorway in it, a room beside it.
+Json handAGraph() {
+  return Json::parse(R"({
+    "nodes": {
+      "wall_surfaces": [{"id": "W1:left", "wall": "W1", "level": "L1",
+                         "plane": {"n": [0.0, 1.0, 0.0], "d": -0.1},
+                         "segments": [[[0.0, 0.1], [4.0, 0.1]]], "z": [3.0, 6.0]}],
+      "walls": [{"id": "W1", "level": "L1", "centre": [2.0, 0.0, 4.5], "thickness": 0.2}],
+      "rooms": [{"id": "R1", "name": "Office", "level": "L1", "centre": [2.0, 2.0],
+                 "outline": [[0, 0.1], [4, 0.1], [4, 4], [0, 4]]}],
+      "doorways": [{"id": "D1", "wall": "W1", "level": "L1", "position": [2.0, 0.0, 3.0],
+                    "width": 0.9}],
+      "floors": [{"id": "L1", "elevation": 3.0, "centre": [2.0, 2.0]}]
+    },
+    "edges": [{"type": "wall_surface", "from": "W1", "to": "W1:left"},
+              {"type": "floor_room", "from": "L1", "to": "R1"},
+              {"type": "doorway_room", "from": "D1", "to": "R9"}]
+  })");
+}
+
+const Json* entity(const std::vector<Json>& entities, const std::string& id) {
+  for (const Json& e : entities) {
+    if (e["id"] == id) return &e;
+  }
+  return nullptr;
+}
+
+Eigen::Vector3d point(const Json& p) {
+  return {p["x"].get<double>(), p["y"].get<double>(), p["z"].get<double>()};
+}
+
+TEST(RunScene, ThePlanDrawsWallFacesDoorwaysAndRoomsOnTheirStorey) {
+  const auto plan = planEntities(handAGraph(), sensors::RosTime{5, 0});
+  ASSERT_EQ(plan.size(), 3u);
+  const Json& faces = (*entity(plan, "plan/walls"))["triangles"][0]["points"];
+  ASSERT_EQ(faces.size(), 6u);  // one segment: two triangles
+  EXPECT_EQ(point(faces[0]), Eigen::Vector3d(0, 0.1, 3));
+  EXPECT_EQ(point(faces[1]), Eigen::Vector3d(4, 0.1, 3));
+  EXPECT_EQ(point(faces[2]), Eigen::Vector3d(4, 0.1, 6));
+  EXPECT_EQ(point(faces[5]), Eigen::Vector3d(0, 0.1, 6));
+
+  const Json& door = (*entity(plan, "plan/doorways"))["cubes"][0];
+  EXPECT_NEAR(door["pose"]["position"]["z"].get<double>(), 3.01, 1e-12);
+  // Turned to the wall's normal (+y): 90° about z; across the wall 0.2 + 0.2 m, along it 0.9 m.
+  EXPECT_NEAR(door["pose"]["orientation"]["z"].get<double>(), std::sqrt(0.5), 1e-12);
+  EXPECT_NEAR(door["size"]["x"].get<double>(), 0.4, 1e-12);
+  EXPECT_NEAR(door["size"]["y"].get<double>(), 0.9, 1e-12);
+
+  const Json& rooms = *entity(plan, "plan/rooms");
+  EXPECT_EQ(rooms["lines"][0]["points"].size(), 4u);
+  EXPECT_EQ(rooms["texts"][0]["text"], "R1 Office");
+  EXPECT_NEAR(rooms["texts"][0]["pose"]["position"]["z"].get<double>(), 3.32, 1e-12);
+  EXPECT_EQ(rooms["timestamp"]["sec"], 5u);
+}
+
+TEST(RunScene, TheAGraphStandsInLayersAboveItsStorey) {
+  const auto agraph = agraphEntities(handAGraph(), sensors::RosTime{});
+  const Json& spheres = (*entity(agraph, "agraph/nodes"))["spheres"];
+  ASSERT_EQ(spheres.size(), 5u);  // surface, wall, room, doorway, floor
+  // The surface at the middle of its segment, at its top; the wall at 3 + kWallLayerHeight.
+  EXPECT_EQ(point(spheres[0]["pose"]["position"]), Eigen::Vector3d(2, 0.1, 6));
+  EXPECT_EQ(point(spheres[1]["pose"]["position"]), Eigen::Vector3d(2, 0, 3 + kWallLayerHeight));
+  EXPECT_EQ(point(spheres[2]["pose"]["position"]), Eigen::Vector3d(2, 2, 3 + kRoomLayerHeight));
+  EXPECT_EQ(point(spheres[4]["pose"]["position"]), Eigen::Vector3d(2, 2, 3 + kFloorLayerHeight));
+  // Two edges drawn; the one to a room that is not there is left out.
+  EXPECT_EQ((*entity(agraph, "agraph/edges"))["lines"][0]["points"].size(), 4u);
+}
+
+TEST(RunScene, TheSGraphDrawsPlanesRoomsAndTheirEdgesInTheMap) {
+  const Json sgraph = Json::parse(R"({
+    "keyframes": [{"position": [0.5, 0.5, 0.0]}, {"position": [1.5, 0.5, 0.0]}],
+    "planes": [{"id": 0, "floor": 0, "start": [0.0, 0.0], "end": [2.0, 0.0]}],
+    "rooms": [{"id": 0, "floor": 0, "centre": [1.0, 1.0], "plane_pairs": [[0, 1]]}],
+    "floors": [{"id": 0, "height": -0.5, "centre": [1.0, 1.0]}]
+  })");
+  const auto drawn = sgraphEntities(sgraph, sensors::RosTime{});
+  ASSERT_EQ(drawn.size(), 5u);
+  for (const Json& e : drawn) EXPECT_EQ(e["frame_id"], "map");
+  EXPECT_EQ((*entity(drawn, "sgraph/keyframes"))["spheres"].size(), 2u);
+  const Json& quad = (*entity(drawn, "sgraph/planes"))["triangles"][0]["points"];
+  EXPECT_EQ(point(quad[0]), Eigen::Vector3d(0, 0, -0.5));
+  EXPECT_EQ(point(quad[2]), Eigen::Vector3d(2, 0, -0.5 + kPlaneDrawHeight));
+  // Plane 0's top middle to the room, the room to the floor; plane 1 is not in the graph.
+  const Json& edges = (*entity(drawn, "sgraph/edges"))["lines"][0]["points"];
+  ASSERT_EQ(edges.size(), 4u);
+  EXPECT_EQ(point(edges[0]), Eigen::Vector3d(1, 0, -0.5 + kPlaneDrawHeight));
+  EXPECT_EQ(point(edges[1]), Eigen::Vector3d(1, 1, -0.5 + kRoomLayerHeight));
+  EXPECT_EQ(point(edges[3]), Eigen::Vector3d(1, 1, -0.5 + kFloorLayerHeight));
+  // Another method's graph: the same entities, empty.
+  const auto none = sgraphEntities(Json::object(), sensors::RosTime{});
+  ASSERT_EQ(none.size(), 5u);
+  EXPECT_TRUE((*entity(none, "sgraph/edges"))["lines"].empty());
+}
+
+TEST(RunScene, DeviationsAreColouredAndTheDeviatingOnesLabelled) {
+  const Json deviations = Json::parse(R"({
+    "walls": [
+      {"wall": "W1", "level": "L1", "status": "shifted", "offset_m": 0.312, "angle_deg": 0.44,
+       "planned": {"start": [0, 0], "end": [4, 0]},
+       "evidence": [{"start": [0, 0.3], "end": [4, 0.3]}]},
+      {"wall": "W2", "level": "L1", "status": "as_planned", "offset_m": 0.01, "angle_deg": 0.1,
+       "planned": {"start": [4, 0], "end": [4, 4]}, "evidence": []}],
+    "extra_walls": [{"level": "L1", "start": [1, 1], "end": [1, 3]}]
+  })");
+  const auto drawn = deviationEntities(deviations, handAGraph(), sensors::RosTime{});
+  ASSERT_EQ(drawn.size(), 1u);
+  const Json& walls = drawn[0];
+  // W1 planned + its evidence, W2 planned, the extra wall.
+  ASSERT_EQ(walls["lines"].size(), 4u);
+  EXPECT_NEAR(walls["lines"][0]["points"][0]["z"].get<double>(), 3.05, 1e-12);
+  EXPECT_GT(walls["lines"][0]["color"]["r"].get<double>(), 0.8);  // shifted: orange
+  ASSERT_EQ(walls["texts"].size(), 1u);
+  EXPECT_EQ(walls["texts"][0]["text"], "W1 shifted 0.31 m 0.4 deg");
+  EXPECT_EQ(point(walls["lines"][3]["points"][1]), Eigen::Vector3d(1, 3, 3.05));
+}
+
+}  // namespace
+}  // namespace isg::run
