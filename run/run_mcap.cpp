@@ -96,6 +96,7 @@ RunMcapWriter::RunMcapWriter(const std::string& path, const RunMcapOptions& opti
     add(kRunPlanTopic, scene, "json");
     add(kRunAGraphTopic, scene, "json");
     add(kRunDeviationsTopic, scene, "json");
+    add(kRunCandidatesTopic, scene, "json");
   }
   add(kRunSGraphTopic, scene, "json");
   add(kRunMatchingTopic, matching, "json");
@@ -198,6 +199,9 @@ void RunMcapWriter::writeSnapshot(double stamp, const Json& graph) {
       last->erase("seconds");
     }
     writeJson(kRunMatchingTopic, stamp, message);
+    if (agraph_) {
+      writeJson(kRunCandidatesTopic, stamp, fx::sceneUpdate(candidateEntities(graph, *agraph_, t)));
+    }
   }
 }
 

@@ -24,6 +24,7 @@ inline constexpr char kRunPlanTopic[] = "/plan";
 inline constexpr char kRunAGraphTopic[] = "/agraph";
 inline constexpr char kRunSGraphTopic[] = "/sgraph";
 inline constexpr char kRunMatchingTopic[] = "/isg/matching";
+inline constexpr char kRunCandidatesTopic[] = "/isg/candidates";
 inline constexpr char kRunLogTopic[] = "/isg/log";
 inline constexpr char kRunGroundTruthPathTopic[] = "/groundtruth/path";
 inline constexpr char kRunEstimatePathTopic[] = "/estimate/path";

@@ -255,6 +255,52 @@ std::vector<Json> sgraphEntities(const Json& sgraph, sensors::RosTime stamp) {
   return {keyframes, planes, rooms, floors, edges};
 }
 
+std::vector<Json> candidateEntities(const Json& sgraph, const Json& agraph,
+                                    sensors::RosTime stamp) {
+  Json entity = fx::sceneEntity(stamp, "plan", "matching/candidates");
+  const auto matching = sgraph.find("matching");
+  if (matching == sgraph.end() || !matching->is_object()) return {entity};
+  const Json* last = matching->contains("last_match") ? &matching->at("last_match") : nullptr;
+  if (!last || !last->is_object() || !last->contains("candidates")) return {entity};
+  const std::string level = matching->value("level", std::string());
+  const auto by_level = elevations(agraph);
+  const auto elevation = by_level.find(level);
+  const double z = (elevation == by_level.end() ? 0.0 : elevation->second) + 0.1;
+  // The S-Graph's floors on the matched level (all of them when the graph does not say).
+  const Json floor_levels = matching->value("floor_levels", Json::object());
+  auto onLevel = [&](const Json& plane) {
+    const auto it = floor_levels.find(std::to_string(plane.value("floor", 0)));
+    return floor_levels.empty() || (it != floor_levels.end() && *it == level);
+  };
+  constexpr fx::Rgba kBest{0.20, 0.85, 0.35, 1.0}, kOther{0.95, 0.55, 0.10, 0.7};
+  for (const Json& candidate : last->at("candidates")) {
+    const Json& pose = candidate.at("B_T_M");
+    const Eigen::Rotation2Dd rotation(pose.at("yaw").get<double>());
+    const Eigen::Vector2d shift(pose.at("x").get<double>(), pose.at("y").get<double>());
+    auto placed = [&](const Json& xy) {
+      const Eigen::Vector2d p =
+          rotation * Eigen::Vector2d(xy.at(0).get<double>(), xy.at(1).get<double>()) + shift;
+      return Vector3d(p.x(), p.y(), z);
+    };
+    std::vector<Vector3d> segments;
+    Vector3d sum = Vector3d::Zero();
+    for (const Json& plane : sgraph.value("planes", Json::array())) {
+      if (!onLevel(plane)) continue;
+      segments.push_back(placed(plane.at("start")));
+      segments.push_back(placed(plane.at("end")));
+      sum += segments[segments.size() - 2] + segments.back();
+    }
+    if (segments.empty()) continue;
+    const bool best = candidate.value("best", false);
+    entity["lines"].push_back(fx::lineList(segments, best ? 0.08 : 0.04, best ? kBest : kOther));
+    entity["texts"].push_back(
+        fx::text(sum / double(segments.size()) + Vector3d(0, 0, 0.5),
+                 (best ? "best, score " : "score ") + fixed(candidate.value("score", 0.0), 1),
+                 kFontSize, best ? kBest : kOther));
+  }
+  return {entity};
+}
+
 std::vector<Json> deviationEntities(const Json& deviations, const Json& agraph,
                                     sensors::RosTime stamp) {
   const auto by_level = elevations(agraph);

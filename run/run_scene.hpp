@@ -34,6 +34,14 @@ std::vector<nlohmann::json> agraphEntities(const nlohmann::json& agraph, sensors
 // A graph without those lists (another method's) draws empty entities.
 std::vector<nlohmann::json> sgraphEntities(const nlohmann::json& sgraph, sensors::RosTime stamp);
 
+// The matcher's last attempt (sgraph.json's matching.last_match), in frame "plan":
+// "matching/candidates" — the S-Graph's wall planes on the matched level as each candidate
+// B_T_M would place them, on that level's floor, the best in green and the others in orange, each
+// labelled with its score. Where several candidates fit, they show where the map could be. Empty
+// when the graph has no attempt.
+std::vector<nlohmann::json> candidateEntities(const nlohmann::json& sgraph,
+                                              const nlohmann::json& agraph, sensors::RosTime stamp);
+
 // The deviations of deviations.json, in frame "plan": "deviations/walls" — each judged wall's
 // planned line coloured by its status, the as-built segments that judged it, and a label for each
 // deviating wall — and the extra walls; each level at its elevation in `agraph`.

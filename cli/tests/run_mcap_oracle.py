@@ -8,7 +8,8 @@ encodings; every JSON message valid against the schema the file carries and agai
 own (and both schemas rejecting a message without a required field); log time = the message's
 timestamp, in order; the transforms against the run folder (map -> base_link = estimate_map.tum
 row for row, plan -> map composed with it = estimate.tum, base_link -> velodyne once); the paths'
-ends against the TUM files; the last S-Graph against sgraph.json; the log against metrics.json's
+ends against the TUM files; the last S-Graph against sgraph.json; the matcher's last candidates
+drawn one by one with one best; the log against metrics.json's
 matching events; the plan against agraph.json (the first wall face by hand); the deviation labels
 against deviations.json; the scans' frame and layout. The same seed run again gives the same
 bytes. `isg export RUN_DIR --mcap` gives the same plan, A-Graph, deviations and final S-Graph, the
@@ -39,6 +40,7 @@ TOPICS = {
     "/sgraph": "foxglove.SceneUpdate",
     "/deviations": "foxglove.SceneUpdate",
     "/isg/matching": "isg.Matching",
+    "/isg/candidates": "foxglove.SceneUpdate",
     "/isg/log": "foxglove.Log",
     "/groundtruth/path": "foxglove.PosesInFrame",
     "/estimate/path": "foxglove.PosesInFrame",
@@ -203,6 +205,13 @@ def check_live(out, run_dir):
     check(matching["status"] == graph["matching"]["status"] and
           matching["localized"] == graph["matching"]["localized"],
           f"{name}: last matching state {matching['status']} != sgraph.json")
+    candidates = graph["matching"]["last_match"]["candidates"]
+    drawn = entity(values(out, "/isg/candidates")[-1], "matching/candidates")
+    check(len(drawn["texts"]) == len(candidates) and
+          sum(t["text"].startswith("best") for t in drawn["texts"]) == 1,
+          f"{name}: {len(drawn['texts'])} candidates drawn, sgraph.json has {len(candidates)}")
+    check(len(values(out, "/isg/candidates")) == len(values(out, "/isg/matching")),
+          f"{name}: candidates not drawn with every matching state")
     events = metrics["matching_events"]
     logs = out["messages"]["/isg/log"]
     check(len(logs) == len(events), f"{name}: {len(logs)} log lines, {len(events)} events")
@@ -242,8 +251,9 @@ def check_export(out, live):
     check_file(out, name, [t for t in TOPICS if t != "/velodyne_points"])
     for topic in ("/plan", "/agraph", "/deviations"):
         check(values(out, topic) == values(live, topic), f"{name}: {topic} differs from the run's")
-    check(values(out, "/sgraph")[-1] == values(live, "/sgraph")[-1],
-          f"{name}: the final S-Graph differs from the run's")
+    for topic in ("/sgraph", "/isg/candidates"):
+        check(values(out, topic)[-1] == values(live, topic)[-1],
+              f"{name}: the last {topic} differs from the run's")
     exported = transforms(out, "map", "base_link")
     lived = transforms(live, "map", "base_link")
     check(len(exported) == len(lived) and

@@ -104,6 +104,33 @@ TEST(RunScene, TheSGraphDrawsPlanesRoomsAndTheirEdgesInTheMap) {
   EXPECT_TRUE((*entity(none, "sgraph/edges"))["lines"].empty());
 }
 
+TEST(RunScene, EachCandidatePlacesTheMapsWallsOnTheMatchedLevel) {
+  const Json sgraph = Json::parse(R"({
+    "planes": [{"id": 0, "floor": 0, "start": [0.0, 0.0], "end": [1.0, 0.0]},
+               {"id": 1, "floor": 1, "start": [5.0, 5.0], "end": [6.0, 5.0]}],
+    "matching": {"status": "matched", "level": "L1", "floor_levels": {"0": "L1", "1": "L2"},
+                 "last_match": {"candidates": [
+                   {"B_T_M": {"x": 1.0, "y": 2.0, "yaw": 1.5707963267948966}, "best": true,
+                    "score": 10.04},
+                   {"B_T_M": {"x": 0.0, "y": 0.0, "yaw": 0.0}, "score": 3.25}]}}
+  })");
+  const auto drawn = candidateEntities(sgraph, handAGraph(), sensors::RosTime{});
+  ASSERT_EQ(drawn.size(), 1u);
+  const Json& e = drawn[0];
+  EXPECT_EQ(e["frame_id"], "plan");
+  ASSERT_EQ(e["lines"].size(), 2u);  // plane 1 is on another level
+  // Turned 90° and moved by (1, 2), on L1's floor (3 m) lifted 0.1 m.
+  const Json& best = e["lines"][0]["points"];
+  ASSERT_EQ(best.size(), 2u);
+  EXPECT_TRUE(point(best[0]).isApprox(Eigen::Vector3d(1, 2, 3.1), 1e-12));
+  EXPECT_TRUE(point(best[1]).isApprox(Eigen::Vector3d(1, 3, 3.1), 1e-12));
+  EXPECT_EQ(e["texts"][0]["text"], "best, score 10.0");
+  EXPECT_EQ(e["texts"][1]["text"], "score 3.2");
+  // No attempt yet: an empty entity, which clears the last one drawn.
+  EXPECT_TRUE(
+      candidateEntities(Json::object(), handAGraph(), sensors::RosTime{})[0]["lines"].empty());
+}
+
 TEST(RunScene, DeviationsAreColouredAndTheDeviatingOnesLabelled) {
   const Json deviations = Json::parse(R"({
     "walls": [
