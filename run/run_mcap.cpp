@@ -1,6 +1,7 @@
 #include "run/run_mcap.hpp"
 
 #include <filesystem>
+#include <set>
 
 #include "bim/json_reader.hpp"
 #include "run/run_scene.hpp"
@@ -63,6 +64,22 @@ std::string matchingSchema() {
 fx::LogLevel levelOf(const std::string& status) {
   return status == "lost" || status == "contradicted" ? fx::LogLevel::kWarning
                                                       : fx::LogLevel::kInfo;
+}
+
+// What of the final graph `graph` a run folder can place in time at `t`: the keyframes made by
+// then, and the planes they had observed (at their final places); rooms and floors only at the end.
+Json graphSoFar(const Json& graph, double t) {
+  Json keyframes = Json::array(), planes = Json::array();
+  std::set<int> seen;
+  for (const Json& keyframe : graph.value("keyframes", Json::array())) {
+    if (keyframe.value("stamp", 0.0) > t + 1e-9) continue;
+    keyframes.push_back(keyframe);
+    for (const Json& id : keyframe.value("plane_ids", Json::array())) seen.insert(id.get<int>());
+  }
+  for (const Json& plane : graph.value("planes", Json::array())) {
+    if (seen.count(plane.value("id", -1))) planes.push_back(plane);
+  }
+  return {{"keyframes", keyframes}, {"planes", planes}};
 }
 
 }  // namespace
@@ -263,9 +280,6 @@ RunExportSummary exportRunMcap(const std::string& run_dir, const std::string& mc
                         e.value("status", std::string()), e.value("reason", std::string())});
     }
   }
-  // The keyframes of the final graph, made at their stamps.
-  const Json keyframes = graph.value("keyframes", Json::array());
-
   RunMcapOptions without_scans = options;
   without_scans.scans = false;
   RunMcapWriter writer(mcap_path, without_scans, agraph ? &*agraph : nullptr, std::nullopt,
@@ -288,11 +302,7 @@ RunExportSummary exportRunMcap(const std::string& run_dir, const std::string& mc
     }
     Json snapshot;
     if (writer.snapshotDue(row.t)) {
-      Json made = Json::array();
-      for (const Json& keyframe : keyframes) {
-        if (keyframe.value("stamp", 0.0) <= row.t + 1e-9) made.push_back(keyframe);
-      }
-      snapshot = {{"keyframes", made}};
+      snapshot = graphSoFar(graph, row.t);
       moment.graph = &snapshot;
     }
     writer.add(moment);

@@ -113,8 +113,8 @@ class RunMcapWriter {
 // Writes a finished run folder (docs/evaluation.md) as the MCAP file of RunMcapWriter: the
 // moments from estimate_map.tum and estimate.tum, the status changes from metrics.json. A run
 // folder keeps no scans and only the final graph: the file has no /velodyne_points, and /sgraph
-// carries the keyframes as they were made and the whole graph at the end (docs/foxglove.md). Bad
-// input is an InputError naming the file.
+// carries the keyframes as they were made with the planes they had observed, and the whole graph
+// at the end (docs/foxglove.md). Bad input is an InputError naming the file.
 struct RunExportSummary {
   std::vector<std::pair<std::string, std::uint64_t>> counts;
   double seconds = 0.0;  // robot time covered

@@ -234,6 +234,17 @@ std::vector<Json> sgraphEntities(const Json& sgraph, sensors::RosTime stamp) {
   }
   if (!plane_faces.empty()) planes["triangles"].push_back(fx::triangles(plane_faces, kPlane));
   std::vector<Vector3d> segments;
+  // Keyframe–plane: each plane a keyframe observed (sgraph.json's plane_ids), to its middle.
+  for (const Json& keyframe : list("keyframes")) {
+    const Json& p = keyframe.at("position");
+    const Vector3d from(p.at(0).get<double>(), p.at(1).get<double>(), p.at(2).get<double>());
+    for (const Json& id : keyframe.value("plane_ids", empty)) {
+      const auto it = plane_top.find(id.get<int>());
+      if (it == plane_top.end()) continue;
+      segments.push_back(from);
+      segments.push_back(it->second - Vector3d(0, 0, kPlaneDrawHeight / 2));
+    }
+  }
   for (const Json& room : list("rooms")) {
     const Vector3d centre = at(room.at("centre"), floorOf(room) + kRoomLayerHeight);
     rooms["spheres"].push_back(fx::sphere(centre, kNodeSize, kSRoom));

@@ -30,7 +30,8 @@ std::vector<nlohmann::json> agraphEntities(const nlohmann::json& agraph, sensors
 
 // The S-Graph from an sgraph.json document (the is-graphs and s-graph methods' graph()), in frame
 // "map": "sgraph/keyframes", "sgraph/planes" (each plane's observed extent from its floor up
-// kPlaneDrawHeight), "sgraph/rooms", "sgraph/floors", "sgraph/edges" (plane–room, room–floor).
+// kPlaneDrawHeight), "sgraph/rooms", "sgraph/floors", "sgraph/edges" (keyframe–plane, plane–room,
+// room–floor).
 // A graph without those lists (another method's) draws empty entities.
 std::vector<nlohmann::json> sgraphEntities(const nlohmann::json& sgraph, sensors::RosTime stamp);
 

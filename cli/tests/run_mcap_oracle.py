@@ -198,6 +198,10 @@ def check_live(out, run_dir):
           f"{name}: final S-Graph planes drawn != sgraph.json's {len(graph['planes'])}")
     check(len(entity(final, "sgraph/rooms")["spheres"]) == len(graph["rooms"]),
           f"{name}: final S-Graph rooms != sgraph.json")
+    edges = entity(final, "sgraph/edges")["lines"][0]["points"]
+    observed = sum(len(k["plane_ids"]) for k in graph["keyframes"])
+    check(observed > 0 and len(edges) >= 2 * observed,
+          f"{name}: {len(edges) // 2} S-Graph edges for {observed} keyframe-plane observations")
     grown = [len(entity(u, "sgraph/keyframes")["spheres"]) for u in sgraph]
     check(grown == sorted(grown) and grown[0] < grown[-1], f"{name}: keyframes do not grow")
 
@@ -254,6 +258,10 @@ def check_export(out, live):
     for topic in ("/sgraph", "/isg/candidates"):
         check(values(out, topic)[-1] == values(live, topic)[-1],
               f"{name}: the last {topic} differs from the run's")
+    planes = [len(entity(u, "sgraph/planes")["triangles"][0]["points"]) // 6
+              if entity(u, "sgraph/planes")["triangles"] else 0 for u in values(out, "/sgraph")]
+    check(planes == sorted(planes) and planes[0] < planes[-1],
+          f"{name}: the wall planes do not appear as the keyframes observe them")
     exported = transforms(out, "map", "base_link")
     lived = transforms(live, "map", "base_link")
     check(len(exported) == len(lived) and

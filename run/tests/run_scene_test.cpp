@@ -80,7 +80,8 @@ TEST(RunScene, TheAGraphStandsInLayersAboveItsStorey) {
 
 TEST(RunScene, TheSGraphDrawsPlanesRoomsAndTheirEdgesInTheMap) {
   const Json sgraph = Json::parse(R"({
-    "keyframes": [{"position": [0.5, 0.5, 0.0]}, {"position": [1.5, 0.5, 0.0]}],
+    "keyframes": [{"position": [0.5, 0.5, 0.0], "plane_ids": [0, 7]},
+                  {"position": [1.5, 0.5, 0.0]}],
     "planes": [{"id": 0, "floor": 0, "start": [0.0, 0.0], "end": [2.0, 0.0]}],
     "rooms": [{"id": 0, "floor": 0, "centre": [1.0, 1.0], "plane_pairs": [[0, 1]]}],
     "floors": [{"id": 0, "height": -0.5, "centre": [1.0, 1.0]}]
@@ -92,12 +93,15 @@ TEST(RunScene, TheSGraphDrawsPlanesRoomsAndTheirEdgesInTheMap) {
   const Json& quad = (*entity(drawn, "sgraph/planes"))["triangles"][0]["points"];
   EXPECT_EQ(point(quad[0]), Eigen::Vector3d(0, 0, -0.5));
   EXPECT_EQ(point(quad[2]), Eigen::Vector3d(2, 0, -0.5 + kPlaneDrawHeight));
-  // Plane 0's top middle to the room, the room to the floor; plane 1 is not in the graph.
+  // The first keyframe to plane 0's middle (plane 7 is not in the graph); plane 0's top middle
+  // to the room, the room to the floor (plane 1 is not in the graph either).
   const Json& edges = (*entity(drawn, "sgraph/edges"))["lines"][0]["points"];
-  ASSERT_EQ(edges.size(), 4u);
-  EXPECT_EQ(point(edges[0]), Eigen::Vector3d(1, 0, -0.5 + kPlaneDrawHeight));
-  EXPECT_EQ(point(edges[1]), Eigen::Vector3d(1, 1, -0.5 + kRoomLayerHeight));
-  EXPECT_EQ(point(edges[3]), Eigen::Vector3d(1, 1, -0.5 + kFloorLayerHeight));
+  ASSERT_EQ(edges.size(), 6u);
+  EXPECT_EQ(point(edges[0]), Eigen::Vector3d(0.5, 0.5, 0));
+  EXPECT_EQ(point(edges[1]), Eigen::Vector3d(1, 0, -0.5 + kPlaneDrawHeight / 2));
+  EXPECT_EQ(point(edges[2]), Eigen::Vector3d(1, 0, -0.5 + kPlaneDrawHeight));
+  EXPECT_EQ(point(edges[3]), Eigen::Vector3d(1, 1, -0.5 + kRoomLayerHeight));
+  EXPECT_EQ(point(edges[5]), Eigen::Vector3d(1, 1, -0.5 + kFloorLayerHeight));
   // Another method's graph: the same entities, empty.
   const auto none = sgraphEntities(Json::object(), sensors::RosTime{});
   ASSERT_EQ(none.size(), 5u);

@@ -747,11 +747,14 @@ nlohmann::json SGraph::toJson() const {
   nlohmann::json keyframes = nlohmann::json::array(), planes = nlohmann::json::array();
   for (const auto& k : keyframes_) {
     const Eigen::Quaterniond q = k.orientation.normalized();
+    nlohmann::json observed = nlohmann::json::array();
+    for (const auto& [plane, observation] : k.observations) observed.push_back(plane);
     keyframes.push_back({{"stamp", k.stamp},
                          {"position", {k.position.x(), k.position.y(), k.position.z()}},
                          {"orientation_xyzw", {q.x(), q.y(), q.z(), q.w()}},
                          {"floor", k.floor},
                          {"planes", k.observations.size()},
+                         {"plane_ids", observed},
                          {"registration",
                           {{"attempted", k.registration.attempted},
                            {"agrees", k.registration.agrees},
