@@ -3,6 +3,7 @@
 #include <filesystem>
 #include <set>
 
+#include "bim/input_error.hpp"
 #include "bim/json_reader.hpp"
 #include "run/run_scene.hpp"
 #include "sensors/foxglove_json.hpp"
@@ -253,8 +254,10 @@ bool isRunFolder(const std::string& dir) {
          fs::is_regular_file(fs::path(dir) / "estimate_map.tum");
 }
 
-RunExportSummary exportRunMcap(const std::string& run_dir, const std::string& mcap_path,
-                               const RunMcapOptions& options) {
+namespace {
+
+RunExportSummary exportRunFolder(const std::string& run_dir, const std::string& mcap_path,
+                                 const RunMcapOptions& options) {
   namespace fs = std::filesystem;
   const fs::path dir(run_dir);
   const auto file = [&](const char* name) { return (dir / name).string(); };
@@ -307,8 +310,28 @@ RunExportSummary exportRunMcap(const std::string& run_dir, const std::string& mc
     }
     writer.add(moment);
   }
+  if (next_event < events.size()) {  // changes after the last estimate: at its stamp
+    RunMoment last;
+    last.stamp = estimate_map.empty() ? 0.0 : estimate_map.back().t;
+    last.events.assign(events.begin() + long(next_event), events.end());
+    writer.add(last);
+  }
   writer.finish(graph, deviations ? &*deviations : nullptr);
   return {writer.counts(), estimate_map.empty() ? 0.0 : estimate_map.back().t};
+}
+
+}  // namespace
+
+RunExportSummary exportRunMcap(const std::string& run_dir, const std::string& mcap_path,
+                               const RunMcapOptions& options) {
+  try {
+    return exportRunFolder(run_dir, mcap_path, options);
+  } catch (const nlohmann::json::exception& e) {
+    // A document of the folder without what isg writes in it (edited, or another tool's).
+    throw bim::InputError(
+        run_dir, "",
+        std::string("a JSON file of the run folder is not as isg writes it: ") + e.what());
+  }
 }
 
 }  // namespace isg::run

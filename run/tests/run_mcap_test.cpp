@@ -4,6 +4,7 @@
 #include <unistd.h>
 
 #include <filesystem>
+#include <fstream>
 #include <map>
 
 #include "bim/input_error.hpp"
@@ -100,6 +101,25 @@ TEST_F(RunMcapWriterTest, ALiveFileLeftWithoutFinishLeavesNothing) {
 
 TEST_F(RunMcapWriterTest, ARunFolderThatIsNotOneIsSaidSo) {
   EXPECT_FALSE(isRunFolder(dir_.string()));
+  // Its files there, but a metrics.json that isg did not write: said so, and nothing written.
+  const auto write = [&](const char* name, const std::string& text) {
+    std::ofstream(dir_ / name) << text;
+  };
+  write("metrics.json", R"({"matching_events": [{"stamp": "soon"}]})");
+  write("sgraph.json", "{}");
+  write("estimate_map.tum", "0.1 0 0 0 0 0 0 1\n");
+  write("estimate.tum", "");
+  ASSERT_TRUE(isRunFolder(dir_.string()));
+  try {
+    exportRunMcap(dir_.string(), (dir_ / "x.mcap").string(), {});
+    ADD_FAILURE() << "no error";
+  } catch (const bim::InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("not as isg writes it"), std::string::npos) << e.what();
+  }
+  EXPECT_FALSE(fs::exists(dir_ / "x.mcap"));
+  for (const char* name : {"metrics.json", "sgraph.json", "estimate_map.tum", "estimate.tum"}) {
+    fs::remove(dir_ / name);
+  }
   EXPECT_THROW(exportRunMcap(dir_.string(), (dir_ / "x.mcap").string(), {}), bim::InputError);
   EXPECT_FALSE(fs::exists(dir_ / "x.mcap"));
 }
