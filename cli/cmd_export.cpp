@@ -25,12 +25,19 @@ std::function<void(int, int)> scansTo(ProgressBar& bar) {
   };
 }
 
+// "topic n, topic n, ...": messages per topic, as the summaries print them.
+template <typename Counts>
+std::string countsText(const Counts& counts) {
+  std::string text;
+  for (const auto& [topic, n] : counts) {
+    text += (text.empty() ? "" : ", ") + topic + " " + std::to_string(n);
+  }
+  return text;
+}
+
 void printExportSummary(const std::string& command, const std::string& path,
                         const sensors::ExportSummary& summary) {
-  std::string counts;
-  for (const auto& [topic, n] : summary.messages) {
-    counts += (counts.empty() ? "" : ", ") + topic + " " + std::to_string(n);
-  }
+  const std::string counts = countsText(summary.messages);
   std::printf("%s: wrote %s: %.0f MB, %.1f s of robot time in %.1f s (%.0f MB/s); messages: %s\n",
               command.c_str(), path.c_str(), summary.bytes / 1e6, summary.dataset_seconds,
               summary.wall_seconds,
@@ -101,14 +108,10 @@ int ExportCommand::run() {
 
 void printRunMcapSummary(const std::string& command, const std::string& path,
                          const std::vector<std::pair<std::string, std::uint64_t>>& counts) {
-  std::string listed;
-  for (const auto& [topic, n] : counts) {
-    listed += (listed.empty() ? "" : ", ") + topic + " " + std::to_string(n);
-  }
   std::error_code error;
   const auto bytes = std::filesystem::file_size(path, error);
   std::printf("%s: wrote %s: %.1f MB; messages: %s\n", command.c_str(), path.c_str(),
-              error ? 0.0 : bytes / 1e6, listed.c_str());
+              error ? 0.0 : bytes / 1e6, countsText(counts).c_str());
 }
 
 int ExportCommand::exportRun() {

@@ -43,6 +43,10 @@ Vector3d at(const Json& xy, double z) {
   return {xy.at(0).get<double>(), xy.at(1).get<double>(), z};
 }
 
+Vector3d xyz(const Json& p) {
+  return {p.at(0).get<double>(), p.at(1).get<double>(), p.at(2).get<double>()};
+}
+
 // Each level's floor elevation, from agraph.json's floors.
 std::map<std::string, double> elevations(const Json& agraph) {
   std::map<std::string, double> by_level;
@@ -220,9 +224,7 @@ std::vector<Json> sgraphEntities(const Json& sgraph, sensors::RosTime stamp) {
   };
   for (const Json& keyframe : list("keyframes")) {
     const Json& p = keyframe.at("position");
-    keyframes["spheres"].push_back(
-        fx::sphere({p.at(0).get<double>(), p.at(1).get<double>(), p.at(2).get<double>()},
-                   kKeyframeSize, kKeyframe));
+    keyframes["spheres"].push_back(fx::sphere(xyz(p), kKeyframeSize, kKeyframe));
   }
   std::map<int, Vector3d> plane_top;
   std::vector<Vector3d> plane_faces;
@@ -237,7 +239,7 @@ std::vector<Json> sgraphEntities(const Json& sgraph, sensors::RosTime stamp) {
   // Keyframe–plane: each plane a keyframe observed (sgraph.json's plane_ids), to its middle.
   for (const Json& keyframe : list("keyframes")) {
     const Json& p = keyframe.at("position");
-    const Vector3d from(p.at(0).get<double>(), p.at(1).get<double>(), p.at(2).get<double>());
+    const Vector3d from = xyz(p);
     for (const Json& id : keyframe.value("plane_ids", empty)) {
       const auto it = plane_top.find(id.get<int>());
       if (it == plane_top.end()) continue;

@@ -94,13 +94,6 @@ Json frameTransform(RosTime stamp, const std::string& parent, const std::string&
           {"rotation", p["orientation"]}};
 }
 
-Json posesInFrame(RosTime stamp, const std::string& frame,
-                  const std::vector<Eigen::Isometry3d>& poses) {
-  Json list = Json::array();
-  for (const auto& T : poses) list.push_back(pose(T));
-  return {{"timestamp", time(stamp)}, {"frame_id", frame}, {"poses", std::move(list)}};
-}
-
 Json log(RosTime stamp, LogLevel level, const std::string& message, const std::string& name) {
   return {{"timestamp", time(stamp)},
           {"level", int(level)},

@@ -30,9 +30,6 @@ Json color(const Rgba& c);
 // foxglove.FrameTransform: `child` placed in `parent` by parent_T_child.
 Json frameTransform(RosTime stamp, const std::string& parent, const std::string& child,
                     const Eigen::Isometry3d& parent_T_child);
-// foxglove.PosesInFrame: a path.
-Json posesInFrame(RosTime stamp, const std::string& frame,
-                  const std::vector<Eigen::Isometry3d>& poses);
 
 // foxglove.Log levels.
 enum class LogLevel { kDebug = 1, kInfo = 2, kWarning = 3, kError = 4 };

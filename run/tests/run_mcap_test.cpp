@@ -71,6 +71,17 @@ TEST_F(RunMcapWriterTest, SnapshotsComeOncePerPeriodAndTheFileOnlyAtTheEnd) {
   EXPECT_EQ(counts.at("/velodyne_points"), 0u);
 }
 
+// A foxglove.PosesInFrame built whole, as nlohmann::json writes it: what GrowingPath's text must
+// be.
+std::string posesInFrame(sensors::RosTime stamp, const std::string& frame,
+                         const std::vector<Eigen::Isometry3d>& poses) {
+  nlohmann::json list = nlohmann::json::array();
+  for (const auto& T : poses) list.push_back(sensors::foxglove::pose(T));
+  return nlohmann::json{
+      {"timestamp", sensors::foxglove::time(stamp)}, {"frame_id", frame}, {"poses", list}}
+      .dump();
+}
+
 TEST(GrowingPath, KeepsAPoseEverySpacingAndTheLatestAsPosesInFrameWritesThem) {
   GrowingPath path(0.1);
   EXPECT_TRUE(path.empty());
@@ -79,12 +90,10 @@ TEST(GrowingPath, KeepsAPoseEverySpacingAndTheLatestAsPosesInFrameWritesThem) {
   for (double x : {0.0, 0.05, 0.12, 0.2}) path.add(at(x));
   EXPECT_EQ(path.size(), 3);
   const sensors::RosTime stamp{1000000002, 5};
-  EXPECT_EQ(path.message(stamp, "plan"),
-            sensors::foxglove::posesInFrame(stamp, "plan", {at(0.0), at(0.12), at(0.2)}).dump());
+  EXPECT_EQ(path.message(stamp, "plan"), posesInFrame(stamp, "plan", {at(0.0), at(0.12), at(0.2)}));
   path.add(at(0.25));  // 13 cm from 0.12: kept, and the latest
   EXPECT_EQ(path.size(), 3);
-  EXPECT_EQ(path.message(stamp, "map"),
-            sensors::foxglove::posesInFrame(stamp, "map", {at(0.0), at(0.12), at(0.25)}).dump());
+  EXPECT_EQ(path.message(stamp, "map"), posesInFrame(stamp, "map", {at(0.0), at(0.12), at(0.25)}));
 }
 
 TEST_F(RunMcapWriterTest, ALiveFileLeftWithoutFinishLeavesNothing) {
