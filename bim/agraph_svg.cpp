@@ -1,3 +1,7 @@
+
+#include "bim/plan_geometry.hpp"
+#include "common/xml_escape.hpp"
+
 #include "bim/agraph_svg.hpp"
 
 #include <algorithm>
@@ -5,28 +9,9 @@
 #include <limits>
 #include <sstream>
 
-#include "bim/plan_geometry.hpp"
-
 namespace isg::bim {
 
 namespace {
-
-std::string escape(const std::string& text) {
-  std::string out;
-  for (char c : text) {
-    if (c == '&')
-      out += "&amp;";
-    else if (c == '<')
-      out += "&lt;";
-    else if (c == '>')
-      out += "&gt;";
-    else if (c == '"')
-      out += "&quot;";
-    else
-      out += c;
-  }
-  return out;
-}
 
 // Plan coordinates → SVG pixels: y flipped so that the picture looks like the plan.
 struct View {
@@ -67,8 +52,8 @@ std::string agraphToSvg(const Plan& plan, const AGraph& graph, const std::string
       << "\" font-family=\"sans-serif\">\n"
       << "<rect width=\"100%\" height=\"100%\" fill=\"white\"/>\n"
       << "<text x=\"" << view.margin << "\" y=\"" << View::fmt(height - 34)
-      << "\" font-size=\"15\">" << escape(plan.name) << " — level " << escape(level_id)
-      << " — A-Graph</text>\n"
+      << "\" font-size=\"15\">" << common::xmlEscape(plan.name) << " — level "
+      << common::xmlEscape(level_id) << " — A-Graph</text>\n"
       << "<text x=\"" << view.margin << "\" y=\"" << View::fmt(height - 14)
       << "\" font-size=\"12\">x-surfaces red, y-surfaces blue, wall centres black; rooms: "
          "four-wall ■, two-wall ◆, other ●; doorways green; floor ★</text>\n";
@@ -83,7 +68,7 @@ std::string agraphToSvg(const Plan& plan, const AGraph& graph, const std::string
   for (const auto& g : geometry.walls) {
     svg << "<polygon points=\"";
     for (const auto& p : g.footprint()) svg << view.x(p.x()) << ',' << view.y(p.y()) << ' ';
-    svg << "\" fill=\"#b9b4aa\" stroke=\"none\"><title>wall " << escape(g.wall->id)
+    svg << "\" fill=\"#b9b4aa\" stroke=\"none\"><title>wall " << common::xmlEscape(g.wall->id)
         << "</title></polygon>\n";
   }
   for (const auto& s : graph.surfaces) {
@@ -92,13 +77,14 @@ std::string agraphToSvg(const Plan& plan, const AGraph& graph, const std::string
     for (const auto& [a, b] : s.segments) {
       svg << "<line x1=\"" << view.x(a.x()) << "\" y1=\"" << view.y(a.y()) << "\" x2=\""
           << view.x(b.x()) << "\" y2=\"" << view.y(b.y()) << "\" stroke=\"" << colour
-          << "\" stroke-width=\"2\"><title>" << escape(s.id) << "</title></line>\n";
+          << "\" stroke-width=\"2\"><title>" << common::xmlEscape(s.id) << "</title></line>\n";
     }
   }
   for (const auto& w : graph.walls) {
     if (w.level != level_id) continue;
     svg << "<circle cx=\"" << view.x(w.centre.x()) << "\" cy=\"" << view.y(w.centre.y())
-        << "\" r=\"3\" fill=\"black\"><title>wall " << escape(w.id) << "</title></circle>\n";
+        << "\" r=\"3\" fill=\"black\"><title>wall " << common::xmlEscape(w.id)
+        << "</title></circle>\n";
   }
   for (const auto& d : graph.doorways) {
     if (d.level != level_id) continue;
@@ -109,7 +95,8 @@ std::string agraphToSvg(const Plan& plan, const AGraph& graph, const std::string
           << "\" stroke=\"#2ca02c\" stroke-width=\"1.5\" stroke-dasharray=\"5,3\"/>\n";
     }
     svg << "<circle cx=\"" << view.x(d.position.x()) << "\" cy=\"" << view.y(d.position.y())
-        << "\" r=\"5\" fill=\"#2ca02c\"><title>doorway " << escape(d.id) << "</title></circle>\n";
+        << "\" r=\"5\" fill=\"#2ca02c\"><title>doorway " << common::xmlEscape(d.id)
+        << "</title></circle>\n";
   }
   for (const auto& r : graph.rooms) {
     if (r.level != level_id) continue;
@@ -126,14 +113,15 @@ std::string agraphToSvg(const Plan& plan, const AGraph& graph, const std::string
       svg << "<circle cx=\"" << cx << "\" cy=\"" << cy << "\" r=\"6\" fill=\"#9467bd\"/>\n";
     }
     svg << "<text x=\"" << View::fmt(std::stod(cx) + 9) << "\" y=\"" << View::fmt(std::stod(cy) - 8)
-        << "\" font-size=\"13\">" << escape(r.id) << " " << escape(r.name) << "</text>\n";
+        << "\" font-size=\"13\">" << common::xmlEscape(r.id) << " " << common::xmlEscape(r.name)
+        << "</text>\n";
   }
   for (const auto& f : graph.floors) {
     if (f.id != level_id) continue;
     svg << "<text x=\"" << view.x(f.centre.x()) << "\" y=\"" << view.y(f.centre.y())
         << "\" font-size=\"22\" text-anchor=\"middle\" dominant-baseline=\"central\" "
            "fill=\"#ff7f0e\">★<title>floor "
-        << escape(f.id) << "</title></text>\n";
+        << common::xmlEscape(f.id) << "</title></text>\n";
   }
   svg << "</svg>\n";
   return svg.str();

@@ -3,14 +3,12 @@
 #include <cstddef>
 #include <cstdint>
 
-// The limits every input file is held to (docs/formats.md, "Limits"). They are far beyond any
+// The limits every plan and scenario is held to (docs/formats.md, "Limits"; the file size, ids and
+// free text: common/limits.hpp). They are far beyond any
 // real building, and they keep every command fast and finite on hostile input: parsing and the
 // geometry checks stay near-linear, the simulated world and the route grid stay within memory,
 // and every number reaching MuJoCo is one it can represent.
 namespace isg::bim::limits {
-
-// Plan, scenario and metadata JSON files: regular files of at most this many bytes.
-inline constexpr std::uintmax_t kMaxJsonFileBytes = 32u << 20;
 
 // Every plan coordinate, elevation and start pose, in metres from the origin.
 inline constexpr double kMaxCoordinate = 10'000.0;
@@ -38,9 +36,5 @@ inline constexpr std::size_t kMaxScenarioItems = 10'000;
 // Kidnaps of one run, and the latest robot time one may happen at (a week).
 inline constexpr std::size_t kMaxKidnaps = 1'000;
 inline constexpr double kMaxRobotSeconds = 604'800.0;
-
-// Ids ("W1") and free text (names, file names inside a document): bytes, no control characters.
-inline constexpr std::size_t kMaxIdBytes = 128;
-inline constexpr std::size_t kMaxTextBytes = 1024;
 
 }  // namespace isg::bim::limits

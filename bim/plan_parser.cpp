@@ -12,6 +12,7 @@
 #include "bim/box_grid.hpp"
 #include "bim/limits.hpp"
 #include "bim/plan_geometry.hpp"
+#include "bim/plan_point.hpp"
 #include "bim/polygon.hpp"
 #include "bim/stairs.hpp"
 
@@ -20,30 +21,30 @@ namespace isg::bim {
 namespace {
 
 std::string formatPoint(const Eigen::Vector2d& p) {
-  return "[" + formatNumber(p.x()) + ", " + formatNumber(p.y()) + "]";
+  return "[" + common::formatNumber(p.x()) + ", " + common::formatNumber(p.y()) + "]";
 }
 
 // Ids are unique within the whole file, whatever they name.
 class IdRegistry {
  public:
-  void add(const JsonNode& id_node, const std::string& id) {
+  void add(const common::JsonNode& id_node, const std::string& id) {
     auto [it, inserted] = first_use_.emplace(id, id_node.pointer());
     if (!inserted)
-      id_node.fail("duplicate id " + inQuotes(id) + " (first used at " + it->second + ")");
+      id_node.fail("duplicate id " + common::inQuotes(id) + " (first used at " + it->second + ")");
   }
 
  private:
   std::map<std::string, std::string> first_use_;
 };
 
-Wall parseWall(const JsonNode& node, const Level& level, IdRegistry& ids) {
+Wall parseWall(const common::JsonNode& node, const Level& level, IdRegistry& ids) {
   node.expectObject({"id", "start", "end", "thickness", "height", "base", "name"});
   Wall wall;
-  const JsonNode id = node.field("id");
+  const common::JsonNode id = node.field("id");
   wall.id = id.identifier();
   ids.add(id, wall.id);
-  wall.start = node.field("start").position2();
-  wall.end = node.field("end").position2();
+  wall.start = planPoint(node.field("start"));
+  wall.end = planPoint(node.field("end"));
   if ((wall.end - wall.start).norm() < limits::kMinSize) {
     node.field("end").fail("zero-length wall: end equals start " + formatPoint(wall.start));
   }
@@ -55,29 +56,29 @@ Wall parseWall(const JsonNode& node, const Level& level, IdRegistry& ids) {
   if (auto b = node.optionalField("base")) {
     wall.base = b->numberInRange(0.0, limits::kMaxHeight);
     if (wall.base >= wall.height) {
-      b->fail("base " + formatNumber(wall.base) + " is not below the wall's top at " +
-              formatNumber(wall.height));
+      b->fail("base " + common::formatNumber(wall.base) + " is not below the wall's top at " +
+              common::formatNumber(wall.height));
     }
   }
   return wall;
 }
 
-Room parseRoom(const JsonNode& node, IdRegistry& ids) {
+Room parseRoom(const common::JsonNode& node, IdRegistry& ids) {
   node.expectObject({"id", "name", "outline"});
   Room room;
-  const JsonNode id = node.field("id");
+  const common::JsonNode id = node.field("id");
   room.id = id.identifier();
   if (room.id == kOutside)
-    id.fail(inQuotes(kOutside) + " is reserved for the outside of the building");
+    id.fail(common::inQuotes(kOutside) + " is reserved for the outside of the building");
   ids.add(id, room.id);
   room.name = room.id;
   if (auto name = node.optionalField("name")) room.name = name->text();
-  const JsonNode outline = node.field("outline");
+  const common::JsonNode outline = node.field("outline");
   const auto vertices = outline.elements(0, limits::kMaxOutlineVertices, "vertices");
   if (vertices.size() < 3) {
     outline.fail("an outline needs at least 3 vertices, got " + std::to_string(vertices.size()));
   }
-  for (const auto& v : vertices) room.outline.push_back(v.position2());
+  for (const auto& v : vertices) room.outline.push_back(planPoint(v));
   for (std::size_t i = 0; i < room.outline.size(); ++i) {
     const auto& a = room.outline[i];
     const auto& b = room.outline[(i + 1) % room.outline.size()];
@@ -116,76 +117,81 @@ struct LevelIndex {
 };
 
 // The wall an opening names, or an error at `wall_node`.
-const Wall& openingWall(const JsonNode& wall_node, const std::string& wall_id, const Level& level,
-                        const LevelIndex& index) {
+const Wall& openingWall(const common::JsonNode& wall_node, const std::string& wall_id,
+                        const Level& level, const LevelIndex& index) {
   const auto found = index.walls.find(wall_id);
   if (found == index.walls.end()) {
-    wall_node.fail("no wall " + inQuotes(wall_id) + " on level " + inQuotes(level.id));
+    wall_node.fail("no wall " + common::inQuotes(wall_id) + " on level " +
+                   common::inQuotes(level.id));
   }
   return *found->second;
 }
 
 // An opening [offset − width/2, offset + width/2] must lie within its wall's axis.
-void checkOpeningFits(const JsonNode& offset_node, double offset, double width, const Wall& wall) {
+void checkOpeningFits(const common::JsonNode& offset_node, double offset, double width,
+                      const Wall& wall) {
   const double length = (wall.end - wall.start).norm();
   const double lo = offset - 0.5 * width;
   const double hi = offset + 0.5 * width;
   constexpr double kEps = 1e-9;
   if (lo < -kEps || hi > length + kEps) {
-    offset_node.fail("opening from " + formatNumber(lo) + " to " + formatNumber(hi) +
-                     " m along the wall does not fit inside wall " + inQuotes(wall.id) +
-                     " (length " + formatNumber(length) + " m)");
+    offset_node.fail("opening from " + common::formatNumber(lo) + " to " +
+                     common::formatNumber(hi) + " m along the wall does not fit inside wall " +
+                     common::inQuotes(wall.id) + " (length " + common::formatNumber(length) +
+                     " m)");
   }
 }
 
-Window parseWindow(const JsonNode& node, const Level& level, const LevelIndex& index,
+Window parseWindow(const common::JsonNode& node, const Level& level, const LevelIndex& index,
                    IdRegistry& ids) {
   node.expectObject({"id", "wall", "offset", "width", "sill", "height", "name"});
   Window window;
-  const JsonNode id = node.field("id");
+  const common::JsonNode id = node.field("id");
   window.id = id.identifier();
   ids.add(id, window.id);
   if (auto name = node.optionalField("name")) name->text();
-  const JsonNode wall_node = node.field("wall");
+  const common::JsonNode wall_node = node.field("wall");
   window.wall = wall_node.nonEmptyString();
   const Wall& wall = openingWall(wall_node, window.wall, level, index);
-  const JsonNode offset = node.field("offset");
+  const common::JsonNode offset = node.field("offset");
   window.offset = offset.number();
   window.width = node.field("width").numberInRange(limits::kMinSize, limits::kMaxLevelExtent);
   window.sill = node.field("sill").numberInRange(0.0, limits::kMaxHeight);
-  const JsonNode height = node.field("height");
+  const common::JsonNode height = node.field("height");
   window.height = height.numberInRange(limits::kMinSize, limits::kMaxHeight);
   checkOpeningFits(offset, window.offset, window.width, wall);
   const double room_above_base = wall.height - wall.base;
   if (window.sill + window.height > room_above_base + 1e-9) {
-    height.fail("window reaches " + formatNumber(window.sill + window.height) +
-                " m above the wall's base, above the top of wall " + inQuotes(wall.id) + " (" +
-                formatNumber(room_above_base) + " m above its base)");
+    height.fail("window reaches " + common::formatNumber(window.sill + window.height) +
+                " m above the wall's base, above the top of wall " + common::inQuotes(wall.id) +
+                " (" + common::formatNumber(room_above_base) + " m above its base)");
   }
   return window;
 }
 
-Door parseDoor(const JsonNode& node, const Level& level, const LevelIndex& index, IdRegistry& ids) {
+Door parseDoor(const common::JsonNode& node, const Level& level, const LevelIndex& index,
+               IdRegistry& ids) {
   node.expectObject({"id", "wall", "offset", "width", "height", "rooms", "name"});
   Door door;
-  const JsonNode id = node.field("id");
+  const common::JsonNode id = node.field("id");
   door.id = id.identifier();
   ids.add(id, door.id);
-  const JsonNode wall_node = node.field("wall");
+  const common::JsonNode wall_node = node.field("wall");
   door.wall = wall_node.nonEmptyString();
   const Wall& wall = openingWall(wall_node, door.wall, level, index);
-  const JsonNode offset = node.field("offset");
+  const common::JsonNode offset = node.field("offset");
   door.offset = offset.number();
   door.width = node.field("width").numberInRange(limits::kMinSize, limits::kMaxLevelExtent);
-  const JsonNode height = node.field("height");
+  const common::JsonNode height = node.field("height");
   door.height = height.numberInRange(limits::kMinSize, limits::kMaxHeight);
 
   checkOpeningFits(offset, door.offset, door.width, wall);
   constexpr double kEps = 1e-9;
   const double room_above_base = wall.height - wall.base;
   if (door.height > room_above_base + kEps) {
-    height.fail("door is " + formatNumber(door.height) + " m high, taller than wall " +
-                inQuotes(wall.id) + " (" + formatNumber(room_above_base) + " m above its base)");
+    height.fail("door is " + common::formatNumber(door.height) + " m high, taller than wall " +
+                common::inQuotes(wall.id) + " (" + common::formatNumber(room_above_base) +
+                " m above its base)");
   }
 
   if (auto rooms = node.optionalField("rooms")) {
@@ -196,12 +202,14 @@ Door parseDoor(const JsonNode& node, const Level& level, const LevelIndex& index
     for (std::size_t k = 0; k < 2; ++k) {
       door.rooms[k] = items[k].identifier();
       if (door.rooms[k] != kOutside && !index.rooms.contains(door.rooms[k])) {
-        items[k].fail("no room " + inQuotes(door.rooms[k]) + " on level " + inQuotes(level.id) +
-                      " (use " + inQuotes(kOutside) + " for the outside)");
+        items[k].fail("no room " + common::inQuotes(door.rooms[k]) + " on level " +
+                      common::inQuotes(level.id) + " (use " + common::inQuotes(kOutside) +
+                      " for the outside)");
       }
     }
     if (door.rooms[0] == door.rooms[1]) {
-      rooms->fail("a door joins two different rooms, got " + inQuotes(door.rooms[0]) + " twice");
+      rooms->fail("a door joins two different rooms, got " + common::inQuotes(door.rooms[0]) +
+                  " twice");
     }
   }
   return door;
@@ -209,24 +217,24 @@ Door parseDoor(const JsonNode& node, const Level& level, const LevelIndex& index
 
 // A flight's own fields; what it means across levels is checked once every level is read
 // (checkStairs).
-Stair parseStair(const JsonNode& node, IdRegistry& ids) {
+Stair parseStair(const common::JsonNode& node, IdRegistry& ids) {
   node.expectObject({"id", "start", "end", "width", "to", "name"});
   Stair stair;
-  const JsonNode id = node.field("id");
+  const common::JsonNode id = node.field("id");
   stair.id = id.identifier();
   ids.add(id, stair.id);
   if (auto name = node.optionalField("name")) name->text();
-  stair.start = node.field("start").position2();
-  stair.end = node.field("end").position2();
+  stair.start = planPoint(node.field("start"));
+  stair.end = planPoint(node.field("end"));
   if ((stair.end - stair.start).norm() < limits::kMinSize) {
     node.field("end").fail("zero-length flight: end equals start " + formatPoint(stair.start));
   }
-  const JsonNode width = node.field("width");
+  const common::JsonNode width = node.field("width");
   stair.width = width.numberInRange(limits::kMinSize, limits::kMaxLevelExtent);
   if (stair.width < kMinStairWidth) {
-    width.fail("a flight " + formatNumber(stair.width) +
+    width.fail("a flight " + common::formatNumber(stair.width) +
                " m wide is too narrow for a legged robot (at least " +
-               formatNumber(kMinStairWidth) + " m; docs/formats.md, Stairs)");
+               common::formatNumber(kMinStairWidth) + " m; docs/formats.md, Stairs)");
   }
   stair.to = node.field("to").identifier();
   return stair;
@@ -237,7 +245,7 @@ Stair parseStair(const JsonNode& node, IdRegistry& ids) {
 // has. Two openings of one wall may not overlap along it, whatever their heights: a transom over a
 // door is part of the door's opening.
 struct Opening {
-  const JsonNode* node;
+  const common::JsonNode* node;
   std::string kind;  // "door" or "window"
   std::string id;
   std::string wall;
@@ -273,14 +281,14 @@ void checkOpeningOverlaps(const std::vector<Opening>& openings) {
   if (first) {
     const Opening& a = openings[first->first];
     const Opening& b = openings[first->second];
-    a.node->field("offset").fail("opening overlaps " + b.kind + " " + inQuotes(b.id) + " on wall " +
-                                 inQuotes(a.wall));
+    a.node->field("offset").fail("opening overlaps " + b.kind + " " + common::inQuotes(b.id) +
+                                 " on wall " + common::inQuotes(a.wall));
   }
 }
 
 // The walls and outlines of a level must fit in a square of limits::kMaxLevelExtent: the route
 // grid and the world are built over that square.
-void checkLevelExtent(const JsonNode& node, const Level& level) {
+void checkLevelExtent(const common::JsonNode& node, const Level& level) {
   std::vector<Eigen::Vector2d> points;
   for (const auto& w : level.walls) {
     points.push_back(w.start);
@@ -290,17 +298,18 @@ void checkLevelExtent(const JsonNode& node, const Level& level) {
   const Box2 box = Box2::around(points);
   const Eigen::Vector2d size = box.hi - box.lo;
   if (size.maxCoeff() > limits::kMaxLevelExtent) {
-    node.fail("level " + inQuotes(level.id) + " spans " + formatNumber(size.x()) + " m × " +
-              formatNumber(size.y()) + " m; at most " + formatNumber(limits::kMaxLevelExtent) +
+    node.fail("level " + common::inQuotes(level.id) + " spans " + common::formatNumber(size.x()) +
+              " m × " + common::formatNumber(size.y()) + " m; at most " +
+              common::formatNumber(limits::kMaxLevelExtent) +
               " m on a side is supported (docs/formats.md, Limits)");
   }
 }
 
-Level parseLevel(const JsonNode& node, IdRegistry& ids) {
+Level parseLevel(const common::JsonNode& node, IdRegistry& ids) {
   node.expectObject(
       {"id", "name", "elevation", "height", "walls", "doors", "windows", "rooms", "stairs"});
   Level level;
-  const JsonNode id = node.field("id");
+  const common::JsonNode id = node.field("id");
   level.id = id.identifier();
   ids.add(id, level.id);
   if (auto name = node.optionalField("name")) name->text();
@@ -326,13 +335,13 @@ Level parseLevel(const JsonNode& node, IdRegistry& ids) {
   }
   checkLevelExtent(node, level);
 
-  std::vector<JsonNode> door_nodes;
+  std::vector<common::JsonNode> door_nodes;
   if (auto doors = node.optionalField("doors")) {
     door_nodes = doors->elements(0, limits::kMaxDoorsPerLevel, "doors");
   }
   const LevelIndex index(level);
   for (const auto& d : door_nodes) level.doors.push_back(parseDoor(d, level, index, ids));
-  std::vector<JsonNode> window_nodes;
+  std::vector<common::JsonNode> window_nodes;
   if (auto windows = node.optionalField("windows")) {
     window_nodes = windows->elements(0, limits::kMaxDoorsPerLevel, "windows");
   }
@@ -362,8 +371,8 @@ Level parseLevel(const JsonNode& node, IdRegistry& ids) {
     door.rooms = inferDoorRooms(*index.walls.at(door.wall), door, rooms);
     door.rooms_inferred = true;
     if (door.rooms[0] == door.rooms[1]) {
-      door_nodes[i].warn("cannot infer the rooms this door joins: " + inQuotes(door.rooms[0]) +
-                         " on both sides (give \"rooms\")");
+      door_nodes[i].warn("cannot infer the rooms this door joins: " +
+                         common::inQuotes(door.rooms[0]) + " on both sides (give \"rooms\")");
     }
   }
   return level;
@@ -393,7 +402,8 @@ bool onLevel(const Level& level, const Eigen::Vector2d& point) {
 }
 
 std::string slopeText(double slope) {
-  return formatNumber(std::round(std::atan(slope) * 1800.0 / std::numbers::pi) / 10.0) + "°";
+  return common::formatNumber(std::round(std::atan(slope) * 1800.0 / std::numbers::pi) / 10.0) +
+         "°";
 }
 
 // The flights of a plan whose `to` names another level at another elevation, each with its
@@ -458,34 +468,36 @@ class FlightIndex {
 
 // A flight joins two neighbouring levels at different elevations, within the slope and clear of
 // the walls and the other flights of both.
-void checkStair(const JsonNode& node, const Plan& plan, const Level& from, const Stair& stair,
-                FlightIndex& flights) {
-  const JsonNode to_node = node.field("to");
+void checkStair(const common::JsonNode& node, const Plan& plan, const Level& from,
+                const Stair& stair, FlightIndex& flights) {
+  const common::JsonNode to_node = node.field("to");
   const Level* to = plan.findLevel(stair.to);
-  if (to == nullptr) to_node.fail("no level " + inQuotes(stair.to));
+  if (to == nullptr) to_node.fail("no level " + common::inQuotes(stair.to));
   if (to == &from) to_node.fail("a flight leads to another level, not to its own");
   const double lo = std::min(from.elevation, to->elevation);
   const double hi = std::max(from.elevation, to->elevation);
   if (hi - lo < limits::kMinSize) {
-    to_node.fail("level " + inQuotes(to->id) + " is at the same elevation as level " +
-                 inQuotes(from.id) + " (" + formatNumber(from.elevation) +
+    to_node.fail("level " + common::inQuotes(to->id) + " is at the same elevation as level " +
+                 common::inQuotes(from.id) + " (" + common::formatNumber(from.elevation) +
                  " m): a flight joins levels at different heights");
   }
   for (const auto& other : plan.levels) {
     if (other.elevation > lo + 1e-9 && other.elevation < hi - 1e-9) {
-      to_node.fail("level " + inQuotes(other.id) + " lies between " + inQuotes(from.id) + " and " +
-                   inQuotes(to->id) + ": a flight joins neighbouring levels");
+      to_node.fail("level " + common::inQuotes(other.id) + " lies between " +
+                   common::inQuotes(from.id) + " and " + common::inQuotes(to->id) +
+                   ": a flight joins neighbouring levels");
     }
   }
   const StairGeometry g = computeStairGeometry(stair, from, *to);
   if (g.slope() > kMaxStairSlope + 1e-9) {
     const double needed = g.rise() / kMaxStairSlope;
-    node.field("end").fail("the flight rises " + formatNumber(g.rise()) + " m over " +
-                           formatNumber(g.run) + " m (" + slopeText(g.slope()) +
-                           "), steeper than a legged robot climbs (at most " +
-                           slopeText(kMaxStairSlope) + ": a rise of " + formatNumber(kMaxStepRise) +
-                           " m per " + formatNumber(kMaxStepRise / kMaxStairSlope) +
-                           " m going); it needs a run of at least " + formatNumber(needed) + " m");
+    node.field("end").fail(
+        "the flight rises " + common::formatNumber(g.rise()) + " m over " +
+        common::formatNumber(g.run) + " m (" + slopeText(g.slope()) +
+        "), steeper than a legged robot climbs (at most " + slopeText(kMaxStairSlope) +
+        ": a rise of " + common::formatNumber(kMaxStepRise) + " m per " +
+        common::formatNumber(kMaxStepRise / kMaxStairSlope) +
+        " m going); it needs a run of at least " + common::formatNumber(needed) + " m");
   }
   const Level& bottom = from.elevation < to->elevation ? from : *to;
   const Level& top = from.elevation < to->elevation ? *to : from;
@@ -494,12 +506,12 @@ void checkStair(const JsonNode& node, const Plan& plan, const Level& from, const
   if (!onLevel(bottom, bottom_edge)) {
     node.field(&bottom == &from ? "start" : "end")
         .fail("the flight's bottom edge " + formatPoint(bottom_edge) + " is in no room of level " +
-              inQuotes(bottom.id));
+              common::inQuotes(bottom.id));
   }
   if (!onLevel(top, top_edge)) {
     node.field(&top == &from ? "start" : "end")
         .fail("the flight's top edge " + formatPoint(top_edge) + " is in no room of level " +
-              inQuotes(top.id));
+              common::inQuotes(top.id));
   }
   // On the lower level the steps stand on the whole footprint; on the upper one the stairwell
   // is open over its upper part. Walls and other flights must keep clear of both.
@@ -511,23 +523,24 @@ void checkStair(const JsonNode& node, const Plan& plan, const Level& from, const
     for (const int w : walls.candidates(box)) {
       const Wall& wall = level->walls[std::size_t(w)];
       if (convexPolygonsOverlap(footprint, wallRectangle(wall), kTouch)) {
-        node.fail("the flight runs into wall " + inQuotes(wall.id) + " of level " +
-                  inQuotes(level->id) + (level == &bottom ? "" : ", over its stairwell") +
+        node.fail("the flight runs into wall " + common::inQuotes(wall.id) + " of level " +
+                  common::inQuotes(level->id) + (level == &bottom ? "" : ", over its stairwell") +
                   ": it must be clear of the walls of both its levels");
       }
     }
     for (const auto* other : flights.on(*level)) {
       if (other->stair == &stair) continue;
       if (convexPolygonsOverlap(footprint, other->footprintOn(*level), kTouch)) {
-        node.fail("the flight overlaps flight " + inQuotes(other->stair->id) + " on level " +
-                  inQuotes(level->id) + " (one flight is declared once, on either of its levels)");
+        node.fail("the flight overlaps flight " + common::inQuotes(other->stair->id) +
+                  " on level " + common::inQuotes(level->id) +
+                  " (one flight is declared once, on either of its levels)");
       }
     }
   }
 }
 
 // Stairs name other levels, so they are checked once all levels are read.
-void checkStairs(const JsonNode& root, const Plan& plan) {
+void checkStairs(const common::JsonNode& root, const Plan& plan) {
   FlightIndex flights(plan);
   const auto level_nodes = root.field("levels").elements();
   for (std::size_t i = 0; i < plan.levels.size(); ++i) {
@@ -542,9 +555,9 @@ void checkStairs(const JsonNode& root, const Plan& plan) {
 
 }  // namespace
 
-Plan parsePlan(const JsonNode& root) {
+Plan parsePlan(const common::JsonNode& root) {
   root.expectObject({"$schema", "format", "version", "name", "imported_from", "levels"});
-  checkFormatAndVersion(root, kPlanFormat, kPlanVersion);
+  common::checkFormatAndVersion(root, kPlanFormat, kPlanVersion);
   Plan plan;
   plan.source = root.source().file;
   plan.name = std::filesystem::path(plan.source).stem().string();
@@ -564,10 +577,10 @@ Plan parsePlan(const JsonNode& root) {
   return plan;
 }
 
-Plan loadPlan(const std::string& path, Warnings* warnings) {
-  const nlohmann::json document = readJsonFile(path);
-  const JsonSource source{path, warnings};
-  return parsePlan(JsonNode(document, "", source));
+Plan loadPlan(const std::string& path, common::Warnings* warnings) {
+  const nlohmann::json document = common::readJsonFile(path);
+  const common::JsonSource source{path, warnings};
+  return parsePlan(common::JsonNode(document, "", source));
 }
 
 }  // namespace isg::bim

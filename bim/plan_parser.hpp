@@ -3,9 +3,9 @@
 #include <nlohmann/json.hpp>
 #include <string>
 
-#include "bim/input_error.hpp"
-#include "bim/json_reader.hpp"
 #include "bim/plan.hpp"
+#include "common/input_error.hpp"
+#include "common/json_reader.hpp"
 
 namespace isg::bim {
 
@@ -16,9 +16,9 @@ inline constexpr int kPlanVersion = 1;
 // checked; the first violation throws an InputError naming the file, the JSON pointer and the
 // reason. Defaults are filled, clockwise outlines are turned counter-clockwise (with a warning),
 // and doors without "rooms" get them inferred from the outlines.
-Plan parsePlan(const JsonNode& root);
+Plan parsePlan(const common::JsonNode& root);
 
 // Reads a plan file. Warnings (unknown fields, ...) are appended to `warnings` when given.
-Plan loadPlan(const std::string& path, Warnings* warnings = nullptr);
+Plan loadPlan(const std::string& path, common::Warnings* warnings = nullptr);
 
 }  // namespace isg::bim

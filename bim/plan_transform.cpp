@@ -1,17 +1,19 @@
 #include "bim/plan_transform.hpp"
 
-#include "bim/angles.hpp"
+#include "common/angles.hpp"
 
 namespace isg::bim {
 
 namespace {
 
-double yawOf(const Eigen::Isometry2d& T) { return std::atan2(T.linear()(1, 0), T.linear()(0, 0)); }
+double yawOf(const Eigen::Isometry2d& T) {
+  return std::atan2(T.linear()(1, 0), T.linear()(0, 0));
+}
 
 // A pose [x, y, yaw] moved by T.
 Eigen::Vector3d movedPose(const Eigen::Isometry2d& T, const Eigen::Vector3d& pose) {
   const Eigen::Vector2d xy = T * Eigen::Vector2d(pose.head<2>());
-  return {xy.x(), xy.y(), wrapAngle(pose.z() + yawOf(T))};
+  return {xy.x(), xy.y(), common::wrapAngle(pose.z() + yawOf(T))};
 }
 
 }  // namespace
@@ -58,7 +60,7 @@ Scenario transformedScenario(const Scenario& scenario, const Eigen::Isometry2d& 
   for (Clutter& box : moved.as_built.clutter) {
     const Eigen::Vector2d xy = T * Eigen::Vector2d(box.center.head<2>());
     box.center.head<2>() = xy;
-    box.yaw = wrapAngle(box.yaw + yawOf(T));
+    box.yaw = common::wrapAngle(box.yaw + yawOf(T));
   }
   return moved;
 }

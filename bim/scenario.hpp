@@ -8,9 +8,9 @@
 #include <string>
 #include <vector>
 
-#include "bim/input_error.hpp"
-#include "bim/json_reader.hpp"
 #include "bim/plan.hpp"
+#include "common/input_error.hpp"
+#include "common/json_reader.hpp"
 
 namespace isg::bim {
 
@@ -219,11 +219,12 @@ inline constexpr int kScenarioVersion = 1;
 // Reads a scenario, or a bare plan (which becomes a scenario with every default). Validation
 // errors throw InputError naming the file (the plan's own file for errors inside it), the JSON
 // pointer and the reason. Warnings are appended to `warnings` when given.
-Scenario loadScenario(const std::string& path, Warnings* warnings = nullptr);
+Scenario loadScenario(const std::string& path, common::Warnings* warnings = nullptr);
 
 // A scenario's "as_built" object on its own (as a dataset's metadata.json records it), checked
 // against `plan` as loadScenario checks it; errors name the node's file and JSON pointer.
-AsBuilt parseAsBuiltJson(const JsonNode& node, const Plan& plan, const std::string& robot_level);
+AsBuilt parseAsBuiltJson(const common::JsonNode& node, const Plan& plan,
+                         const std::string& robot_level);
 
 // Loads the plan a scenario names by file ("plan": "d1.json"): gets the string node, returns the
 // plan and where it came from. loadScenario resolves the name relative to the scenario's file;
@@ -232,9 +233,9 @@ struct LoadedPlan {
   Plan plan;
   std::string file;
 };
-using PlanLoader = std::function<LoadedPlan(const JsonNode& plan_name)>;
+using PlanLoader = std::function<LoadedPlan(const common::JsonNode& plan_name)>;
 
 // Parses a scenario document, or a bare plan document (with every default).
-Scenario parseScenario(const JsonNode& root, const PlanLoader& load_plan);
+Scenario parseScenario(const common::JsonNode& root, const PlanLoader& load_plan);
 
 }  // namespace isg::bim

@@ -7,44 +7,46 @@
 
 #include "bim/as_built_wall.hpp"
 #include "bim/box_grid.hpp"
-#include "bim/json_reader.hpp"
 #include "bim/limits.hpp"
 #include "bim/plan_geometry.hpp"
 #include "bim/plan_parser.hpp"
+#include "bim/plan_point.hpp"
 #include "bim/polygon.hpp"
 #include "bim/scenario.hpp"
+#include "common/json_reader.hpp"
 
 namespace isg::bim {
 
 namespace {
 
-const Level& levelNamed(const Plan& plan, const JsonNode& node) {
+const Level& levelNamed(const Plan& plan, const common::JsonNode& node) {
   const std::string id = node.identifier();
   const Level* level = plan.findLevel(id);
-  if (level == nullptr) node.fail("no level " + inQuotes(id) + " in the plan");
+  if (level == nullptr) node.fail("no level " + common::inQuotes(id) + " in the plan");
   return *level;
 }
 
-std::string roomOnLevel(const Level& level, const JsonNode& node) {
+std::string roomOnLevel(const Level& level, const common::JsonNode& node) {
   const std::string id = node.identifier();
   if (level.findRoom(id) == nullptr) {
-    node.fail("no room " + inQuotes(id) + " on level " + inQuotes(level.id));
+    node.fail("no room " + common::inQuotes(id) + " on level " + common::inQuotes(level.id));
   }
   return id;
 }
 
 // A pose [x, y, yaw] on a level: in range and not inside a wall.
-Eigen::Vector3d poseOnLevel(const Level& level, const JsonNode& pose_node, const char* what) {
+Eigen::Vector3d poseOnLevel(const Level& level, const common::JsonNode& pose_node,
+                            const char* what) {
   const auto pose = pose_node.numbers(3);
   if (std::max(std::abs(pose[0]), std::abs(pose[1])) > limits::kMaxCoordinate) {
     pose_node.fail(std::string(what) + " is out of range: points must lie within ±" +
-                   formatNumber(limits::kMaxCoordinate) + " m of the origin");
+                   common::formatNumber(limits::kMaxCoordinate) + " m of the origin");
   }
   if (std::abs(pose[2]) > 100.0) pose_node.fail("the yaw must be within ±100 rad");
   const Eigen::Vector2d xy(pose[0], pose[1]);
   for (const auto& g : computeLevelGeometry(level).walls) {
     if (containsPoint(g.footprint(), xy)) {
-      pose_node.fail(std::string(what) + " is inside wall " + inQuotes(g.wall->id));
+      pose_node.fail(std::string(what) + " is inside wall " + common::inQuotes(g.wall->id));
     }
   }
   return Eigen::Vector3d(pose[0], pose[1], pose[2]);
@@ -52,28 +54,30 @@ Eigen::Vector3d poseOnLevel(const Level& level, const JsonNode& pose_node, const
 
 // Kidnaps may put the robot down on any level: a room names its own, a pose is on the robot's
 // level unless "level" says another.
-std::vector<Kidnap> parseKidnaps(const JsonNode& node, const Plan& plan, const Level& robot_level) {
+std::vector<Kidnap> parseKidnaps(const common::JsonNode& node, const Plan& plan,
+                                 const Level& robot_level) {
   std::vector<Kidnap> out;
   for (const auto& item : node.elements(0, limits::kMaxKidnaps, "kidnaps")) {
     item.expectObject({"time", "to"});
     Kidnap kidnap;
-    const JsonNode time = item.field("time");
+    const common::JsonNode time = item.field("time");
     kidnap.time = time.numberInRange(0.0, limits::kMaxRobotSeconds, true);
     if (kidnap.time <= 0.0) time.fail("a kidnap must come after the start (time > 0)");
     if (!out.empty() && kidnap.time <= out.back().time) {
-      time.fail("kidnaps must be in time order: " + formatNumber(kidnap.time) + " s is not after " +
-                formatNumber(out.back().time) + " s");
+      time.fail("kidnaps must be in time order: " + common::formatNumber(kidnap.time) +
+                " s is not after " + common::formatNumber(out.back().time) + " s");
     }
-    const JsonNode to = item.field("to");
+    const common::JsonNode to = item.field("to");
     to.expectObject({"room", "pose", "level"});
     if (to.has("room") == to.has("pose")) to.fail("give exactly one of \"room\" and \"pose\"");
     if (to.has("room")) {
       if (to.has("level")) {
         to.field("level").fail("a room names its level: give \"level\" only with \"pose\"");
       }
-      const JsonNode room = to.field("room");
+      const common::JsonNode room = to.field("room");
       const Level* level = plan.levelOfRoom(room.identifier());
-      if (level == nullptr) room.fail("no room " + inQuotes(room.identifier()) + " in the plan");
+      if (level == nullptr)
+        room.fail("no room " + common::inQuotes(room.identifier()) + " in the plan");
       kidnap.room = room.identifier();
       kidnap.level = level->id;
     } else {
@@ -86,7 +90,7 @@ std::vector<Kidnap> parseKidnaps(const JsonNode& node, const Plan& plan, const L
   return out;
 }
 
-RobotConfig parseRobot(const std::optional<JsonNode>& node, const Plan& plan) {
+RobotConfig parseRobot(const std::optional<common::JsonNode>& node, const Plan& plan) {
   RobotConfig robot;
   robot.level = plan.levels.front().id;
   if (!node) {
@@ -104,7 +108,8 @@ RobotConfig parseRobot(const std::optional<JsonNode>& node, const Plan& plan) {
       robot.gait = handheldGait();
       robot.speed = kHandheldSpeed;
     } else if (name != "legged") {
-      carrier->fail("unknown carrier " + inQuotes(name) + " (expected \"legged\" or \"handheld\")");
+      carrier->fail("unknown carrier " + common::inQuotes(name) +
+                    " (expected \"legged\" or \"handheld\")");
     }
   }
   const Level* level = &plan.levels.front();
@@ -126,12 +131,13 @@ RobotConfig parseRobot(const std::optional<JsonNode>& node, const Plan& plan) {
     robot.start_room = level->rooms.front().id;
   }
   if (!robot.start_room && !robot.start_pose) {
-    node->fail("level " + inQuotes(level->id) + " has no rooms: give robot.start.pose");
+    node->fail("level " + common::inQuotes(level->id) + " has no rooms: give robot.start.pose");
   }
   if (auto route = node->optionalField("route")) {
     if (route->isString()) {
       const std::string kind = route->string();
-      if (kind != "tour") route->fail("unknown route " + inQuotes(kind) + " (expected \"tour\")");
+      if (kind != "tour")
+        route->fail("unknown route " + common::inQuotes(kind) + " (expected \"tour\")");
     } else {
       route->expectObject({"rooms", "waypoints"});
       if (route->has("rooms") == route->has("waypoints")) {
@@ -146,9 +152,9 @@ RobotConfig parseRobot(const std::optional<JsonNode>& node, const Plan& plan) {
                                           : roomOnLevel(*level, r));
       } else {
         robot.route.kind = Route::Kind::kWaypoints;
-        const JsonNode waypoints = route->field("waypoints");
+        const common::JsonNode waypoints = route->field("waypoints");
         for (const auto& w : waypoints.elements(1, limits::kMaxScenarioItems, "waypoints")) {
-          robot.route.waypoints.push_back(w.position2());
+          robot.route.waypoints.push_back(planPoint(w));
         }
       }
     }
@@ -175,7 +181,7 @@ RobotConfig parseRobot(const std::optional<JsonNode>& node, const Plan& plan) {
 }
 
 // [x, y, z, roll, pitch, yaw] of a sensor on the robot base.
-std::array<double, 6> parseMount(const JsonNode& node, const std::string& sensor) {
+std::array<double, 6> parseMount(const common::JsonNode& node, const std::string& sensor) {
   const auto values = node.numbers(6);
   if (std::max({std::abs(values[0]), std::abs(values[1]), std::abs(values[2])}) > 10.0) {
     node.fail("the " + sensor + " must be mounted within 10 m of the robot's reference point");
@@ -187,17 +193,18 @@ std::array<double, 6> parseMount(const JsonNode& node, const std::string& sensor
 
 // One of a few named values; anything else fails naming them all.
 template <typename Enum>
-Enum oneOf(const JsonNode& node, std::initializer_list<Enum> values, const char* (*name)(Enum)) {
+Enum oneOf(const common::JsonNode& node, std::initializer_list<Enum> values,
+           const char* (*name)(Enum)) {
   const std::string text = node.string();
   std::string expected;
   for (Enum value : values) {
     if (text == name(value)) return value;
-    expected += (expected.empty() ? "" : ", ") + inQuotes(name(value));
+    expected += (expected.empty() ? "" : ", ") + common::inQuotes(name(value));
   }
-  node.fail("unknown value " + inQuotes(text) + " (expected one of " + expected + ")");
+  node.fail("unknown value " + common::inQuotes(text) + " (expected one of " + expected + ")");
 }
 
-SurfaceReflectivity parseReflectivity(const JsonNode& node) {
+SurfaceReflectivity parseReflectivity(const common::JsonNode& node) {
   node.expectObject({"wall", "floor", "ceiling", "door", "clutter", "stair"});
   SurfaceReflectivity reflectivity;
   const std::pair<const char*, double*> kinds[] = {
@@ -210,7 +217,7 @@ SurfaceReflectivity parseReflectivity(const JsonNode& node) {
   return reflectivity;
 }
 
-LidarConfig parseLidar(const JsonNode& node) {
+LidarConfig parseLidar(const common::JsonNode& node) {
   node.expectObject({"rate_hz", "range_noise_m", "min_range_m", "max_range_m", "dropout",
                      "grazing_cutoff_deg", "detection_range_m", "body_occlusion", "reflectivity",
                      "mount", "stamp", "cut", "cut_angle_deg", "azimuth_jitter_deg", "returns"});
@@ -222,12 +229,13 @@ LidarConfig parseLidar(const JsonNode& node) {
   if (auto v = node.optionalField("max_range_m")) {
     lidar.max_range_m = v->numberInRange(limits::kMinSize, 1000.0);
     if (lidar.max_range_m <= lidar.min_range_m) {
-      v->fail("max_range_m " + formatNumber(lidar.max_range_m) + " is not above min_range_m " +
-              formatNumber(lidar.min_range_m));
+      v->fail("max_range_m " + common::formatNumber(lidar.max_range_m) +
+              " is not above min_range_m " + common::formatNumber(lidar.min_range_m));
     }
   } else if (lidar.max_range_m <= lidar.min_range_m) {
     node.field("min_range_m")
-        .fail("min_range_m must be below max_range_m (" + formatNumber(lidar.max_range_m) + ")");
+        .fail("min_range_m must be below max_range_m (" + common::formatNumber(lidar.max_range_m) +
+              ")");
   }
   if (auto v = node.optionalField("dropout")) lidar.dropout = v->numberInRange(0.0, 1.0, true);
   if (auto v = node.optionalField("grazing_cutoff_deg")) {
@@ -259,7 +267,7 @@ LidarConfig parseLidar(const JsonNode& node) {
   return lidar;
 }
 
-OdometryConfig parseOdometry(const JsonNode& node) {
+OdometryConfig parseOdometry(const common::JsonNode& node) {
   node.expectObject(
       {"rate_hz", "translation_noise", "heading_noise_deg_per_m", "heading_bias_deg_per_m"});
   OdometryConfig odometry;
@@ -276,7 +284,7 @@ OdometryConfig parseOdometry(const JsonNode& node) {
   return odometry;
 }
 
-ImuConfig parseImu(const JsonNode& node) {
+ImuConfig parseImu(const common::JsonNode& node) {
   node.expectObject({"rate_hz", "mount", "gyroscope_noise_density", "gyroscope_random_walk",
                      "accelerometer_noise_density", "accelerometer_random_walk", "gravity"});
   ImuConfig imu;
@@ -296,24 +304,28 @@ ImuConfig parseImu(const JsonNode& node) {
 
 // A list of ids that must all name walls (or doors) of the plan, each at most once.
 template <typename Finder>
-std::vector<std::string> parseIdList(const JsonNode& node, const char* what, Finder exists) {
+std::vector<std::string> parseIdList(const common::JsonNode& node, const char* what,
+                                     Finder exists) {
   std::vector<std::string> ids;
   std::set<std::string> seen;
   for (const auto& item : node.elements()) {
     const std::string id = item.identifier();
-    if (!exists(id)) item.fail(std::string("no ") + what + " " + inQuotes(id) + " in the plan");
-    if (!seen.insert(id).second) item.fail(inQuotes(id) + " is listed twice");
+    if (!exists(id))
+      item.fail(std::string("no ") + what + " " + common::inQuotes(id) + " in the plan");
+    if (!seen.insert(id).second) item.fail(common::inQuotes(id) + " is listed twice");
     ids.push_back(id);
   }
   return ids;
 }
 
-std::string optionalLevel(const JsonNode& node, const Plan& plan, const std::string& fallback) {
+std::string optionalLevel(const common::JsonNode& node, const Plan& plan,
+                          const std::string& fallback) {
   if (auto l = node.optionalField("level")) return levelNamed(plan, *l).id;
   return fallback;
 }
 
-AsBuilt parseAsBuilt(const JsonNode& node, const Plan& plan, const std::string& robot_level) {
+AsBuilt parseAsBuilt(const common::JsonNode& node, const Plan& plan,
+                     const std::string& robot_level) {
   node.expectObject(
       {"missing_walls", "extra_walls", "wall_shifts", "wall_rotations", "closed_doors", "clutter"});
   AsBuilt as_built;
@@ -331,8 +343,8 @@ AsBuilt parseAsBuilt(const JsonNode& node, const Plan& plan, const std::string& 
       ExtraWall wall;
       wall.id = "extra" + std::to_string(as_built.extra_walls.size());
       wall.level = optionalLevel(item, plan, robot_level);
-      wall.start = item.field("start").position2();
-      wall.end = item.field("end").position2();
+      wall.start = planPoint(item.field("start"));
+      wall.end = planPoint(item.field("end"));
       if ((wall.end - wall.start).norm() < limits::kMinSize) {
         item.field("end").fail("zero-length wall: end equals start");
       }
@@ -353,12 +365,15 @@ AsBuilt parseAsBuilt(const JsonNode& node, const Plan& plan, const std::string& 
     for (const auto& item : v->elements()) {
       item.expectObject({"wall", "offset"});
       WallShift shift;
-      const JsonNode wall = item.field("wall");
+      const common::JsonNode wall = item.field("wall");
       shift.wall = wall.identifier();
-      if (!is_wall(shift.wall)) wall.fail("no wall " + inQuotes(shift.wall) + " in the plan");
-      if (!seen.insert(shift.wall).second) wall.fail(inQuotes(shift.wall) + " is shifted twice");
+      if (!is_wall(shift.wall))
+        wall.fail("no wall " + common::inQuotes(shift.wall) + " in the plan");
+      if (!seen.insert(shift.wall).second)
+        wall.fail(common::inQuotes(shift.wall) + " is shifted twice");
       for (const auto& missing : as_built.missing_walls) {
-        if (missing == shift.wall) wall.fail(inQuotes(shift.wall) + " is also in missing_walls");
+        if (missing == shift.wall)
+          wall.fail(common::inQuotes(shift.wall) + " is also in missing_walls");
       }
       shift.offset =
           item.field("offset").numberInRange(-limits::kMaxWallShift, limits::kMaxWallShift);
@@ -370,15 +385,16 @@ AsBuilt parseAsBuilt(const JsonNode& node, const Plan& plan, const std::string& 
     for (const auto& item : v->elements()) {
       item.expectObject({"wall", "angle_deg", "about"});
       WallRotation rotation;
-      const JsonNode wall = item.field("wall");
+      const common::JsonNode wall = item.field("wall");
       rotation.wall = wall.identifier();
-      if (!is_wall(rotation.wall)) wall.fail("no wall " + inQuotes(rotation.wall) + " in the plan");
+      if (!is_wall(rotation.wall))
+        wall.fail("no wall " + common::inQuotes(rotation.wall) + " in the plan");
       if (!seen.insert(rotation.wall).second) {
-        wall.fail(inQuotes(rotation.wall) + " is rotated twice");
+        wall.fail(common::inQuotes(rotation.wall) + " is rotated twice");
       }
       for (const auto& missing : as_built.missing_walls) {
         if (missing == rotation.wall) {
-          wall.fail(inQuotes(rotation.wall) + " is also in missing_walls");
+          wall.fail(common::inQuotes(rotation.wall) + " is also in missing_walls");
         }
       }
       rotation.angle_deg =
@@ -391,7 +407,7 @@ AsBuilt parseAsBuilt(const JsonNode& node, const Plan& plan, const std::string& 
         } else if (name == "end") {
           rotation.about = WallRotation::About::kEnd;
         } else if (name != "centre") {
-          about->fail("unknown point " + inQuotes(name) +
+          about->fail("unknown point " + common::inQuotes(name) +
                       " (expected \"start\", \"centre\" or \"end\")");
         }
       }
@@ -402,23 +418,23 @@ AsBuilt parseAsBuilt(const JsonNode& node, const Plan& plan, const std::string& 
     for (const auto& item : v->elements(0, limits::kMaxScenarioItems, "clutter boxes")) {
       item.expectObject({"shape", "center", "size", "yaw", "level"});
       Clutter clutter;
-      const JsonNode shape = item.field("shape");
+      const common::JsonNode shape = item.field("shape");
       if (shape.string() != "box") {
-        shape.fail("unknown shape " + inQuotes(shape.string()) + " (expected \"box\")");
+        shape.fail("unknown shape " + common::inQuotes(shape.string()) + " (expected \"box\")");
       }
       clutter.level = optionalLevel(item, plan, robot_level);
-      const JsonNode center = item.field("center");
+      const common::JsonNode center = item.field("center");
       clutter.center = center.point3();
       if (clutter.center.cwiseAbs().maxCoeff() > limits::kMaxCoordinate) {
         center.fail("out of range: points must lie within ±" +
-                    formatNumber(limits::kMaxCoordinate) + " m of the origin");
+                    common::formatNumber(limits::kMaxCoordinate) + " m of the origin");
       }
-      const JsonNode size = item.field("size");
+      const common::JsonNode size = item.field("size");
       clutter.size = size.point3();
       if (clutter.size.minCoeff() < limits::kMinSize ||
           clutter.size.maxCoeff() > limits::kMaxLevelExtent) {
-        size.fail("every extent must be in [" + formatNumber(limits::kMinSize) + ", " +
-                  formatNumber(limits::kMaxLevelExtent) + "] m");
+        size.fail("every extent must be in [" + common::formatNumber(limits::kMinSize) + ", " +
+                  common::formatNumber(limits::kMaxLevelExtent) + "] m");
       }
       if (auto yaw = item.optionalField("yaw")) clutter.yaw = yaw->numberInRange(-100.0, 100.0);
       as_built.clutter.push_back(clutter);
@@ -429,7 +445,7 @@ AsBuilt parseAsBuilt(const JsonNode& node, const Plan& plan, const std::string& 
 
 // With its extra walls, clutter and shifted walls, each level must still fit in a square of
 // limits::kMaxLevelExtent: the world and the route grid are built over it.
-void checkAsBuiltExtent(const JsonNode& node, const Plan& plan, const AsBuilt& as_built) {
+void checkAsBuiltExtent(const common::JsonNode& node, const Plan& plan, const AsBuilt& as_built) {
   for (const auto& level : plan.levels) {
     std::vector<Eigen::Vector2d> points;
     for (const auto& w : level.walls) {
@@ -461,9 +477,9 @@ void checkAsBuiltExtent(const JsonNode& node, const Plan& plan, const AsBuilt& a
     const Box2 box = Box2::around(points).grown(shift);
     const Eigen::Vector2d size = box.hi - box.lo;
     if (size.maxCoeff() > limits::kMaxLevelExtent) {
-      node.fail("with its as-built changes level " + inQuotes(level.id) + " spans " +
-                formatNumber(size.x()) + " m × " + formatNumber(size.y()) + " m; at most " +
-                formatNumber(limits::kMaxLevelExtent) +
+      node.fail("with its as-built changes level " + common::inQuotes(level.id) + " spans " +
+                common::formatNumber(size.x()) + " m × " + common::formatNumber(size.y()) +
+                " m; at most " + common::formatNumber(limits::kMaxLevelExtent) +
                 " m on a side is supported (docs/formats.md, Limits)");
     }
   }
@@ -480,11 +496,12 @@ Scenario scenarioFromPlan(Plan plan, const std::string& path) {
 
 }  // namespace
 
-AsBuilt parseAsBuiltJson(const JsonNode& node, const Plan& plan, const std::string& robot_level) {
+AsBuilt parseAsBuiltJson(const common::JsonNode& node, const Plan& plan,
+                         const std::string& robot_level) {
   return parseAsBuilt(node, plan, robot_level);
 }
 
-Scenario parseScenario(const JsonNode& root, const PlanLoader& load_plan) {
+Scenario parseScenario(const common::JsonNode& root, const PlanLoader& load_plan) {
   const std::string& path = root.source().file;
   if (root.isObject() && root.has("format") && root.field("format").isString() &&
       root.field("format").string() == kPlanFormat) {
@@ -494,15 +511,15 @@ Scenario parseScenario(const JsonNode& root, const PlanLoader& load_plan) {
                      "odometry", "imu", "as_built"});
   if (root.has("format") && root.field("format").isString() &&
       root.field("format").string() != kScenarioFormat) {
-    root.field("format").fail("unknown format " + inQuotes(root.field("format").string()) +
+    root.field("format").fail("unknown format " + common::inQuotes(root.field("format").string()) +
                               " (expected \"isg.plan\" or \"isg.scenario\")");
   }
-  checkFormatAndVersion(root, kScenarioFormat, kScenarioVersion);
+  common::checkFormatAndVersion(root, kScenarioFormat, kScenarioVersion);
   if (auto name = root.optionalField("name")) name->text();
 
   Scenario scenario;
   scenario.source = path;
-  const JsonNode plan_node = root.field("plan");
+  const common::JsonNode plan_node = root.field("plan");
   if (plan_node.isString()) {
     plan_node.text();
     plan_node.nonEmptyString();
@@ -514,7 +531,7 @@ Scenario parseScenario(const JsonNode& root, const PlanLoader& load_plan) {
     scenario.plan = parsePlan(plan_node);
   } else {
     plan_node.fail("expected a plan file name or an inline plan object, got " +
-                   describeJsonType(plan_node.raw()));
+                   common::describeJsonType(plan_node.raw()));
   }
 
   if (auto seed = root.optionalField("seed")) scenario.seed = seed->unsignedInteger();
@@ -543,17 +560,18 @@ Scenario parseScenario(const JsonNode& root, const PlanLoader& load_plan) {
   return scenario;
 }
 
-Scenario loadScenario(const std::string& path, Warnings* warnings) {
-  const nlohmann::json document = readJsonFile(path);
-  const JsonSource source{path, warnings};
-  return parseScenario(JsonNode(document, "", source), [&](const JsonNode& plan_name) {
-    const std::filesystem::path plan_path =
-        (std::filesystem::path(path).parent_path() / plan_name.string()).lexically_normal();
-    if (!std::filesystem::exists(plan_path)) {
-      plan_name.fail("plan file " + inQuotes(plan_path.string()) + " does not exist");
-    }
-    return LoadedPlan{loadPlan(plan_path.string(), warnings), plan_path.string()};
-  });
+Scenario loadScenario(const std::string& path, common::Warnings* warnings) {
+  const nlohmann::json document = common::readJsonFile(path);
+  const common::JsonSource source{path, warnings};
+  return parseScenario(
+      common::JsonNode(document, "", source), [&](const common::JsonNode& plan_name) {
+        const std::filesystem::path plan_path =
+            (std::filesystem::path(path).parent_path() / plan_name.string()).lexically_normal();
+        if (!std::filesystem::exists(plan_path)) {
+          plan_name.fail("plan file " + common::inQuotes(plan_path.string()) + " does not exist");
+        }
+        return LoadedPlan{loadPlan(plan_path.string(), warnings), plan_path.string()};
+      });
 }
 
 }  // namespace isg::bim

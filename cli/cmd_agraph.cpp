@@ -6,7 +6,7 @@
 #include "bim/agraph.hpp"
 #include "bim/agraph_json.hpp"
 #include "bim/agraph_svg.hpp"
-#include "sensors/output_path.hpp"
+#include "common/output_path.hpp"
 
 namespace isg::cli {
 
@@ -31,21 +31,21 @@ int AGraphCommand::run() {
   const bim::Plan& plan = scenario.plan;
   const std::string level = level_.empty() ? plan.levels.front().id : level_;
   if (plan.findLevel(level) == nullptr) {
-    throw bim::InputError(input_, "", "no level \"" + level + "\" in the plan (--level)");
+    throw common::InputError(input_, "", "no level \"" + level + "\" in the plan (--level)");
   }
   // Replaced only if isg wrote them; never the plan itself.
   if (!svg_.empty()) {
-    sensors::checkOutputPath(svg_, {sensors::OutputKind::kSvg, {inputFile(input_)}, true, false});
+    common::checkOutputPath(svg_, {common::OutputKind::kSvg, {inputFile(input_)}, true, false});
   }
   if (!output_.empty()) {
-    sensors::checkOutputPath(
-        output_, {sensors::OutputKind::kAgraphJson, {inputFile(input_), svg_}, true, false});
+    common::checkOutputPath(
+        output_, {common::OutputKind::kAgraphJson, {inputFile(input_), svg_}, true, false});
   }
   const bim::AGraph graph = bim::buildAGraph(plan);
   const std::string json = bim::agraphJsonText(bim::agraphToJson(graph));
   // Everything is computed before anything is written.
   const std::string svg = svg_.empty() ? "" : bim::agraphToSvg(plan, graph, level);
-  if (!svg_.empty()) writeFileAtomically(svg_, sensors::outputMark(sensors::OutputKind::kSvg, svg));
+  if (!svg_.empty()) writeFileAtomically(svg_, common::outputMark(common::OutputKind::kSvg, svg));
   if (output_.empty()) {
     std::cout << json;
   } else {

@@ -4,11 +4,11 @@
 #include <iostream>
 #include <nlohmann/json.hpp>
 
+#include "common/atomic_folder.hpp"
+#include "common/output_path.hpp"
 #include "eval/ape.hpp"
 #include "eval/coverage.hpp"
 #include "eval/report_svg.hpp"
-#include "sensors/atomic_folder.hpp"
-#include "sensors/output_path.hpp"
 #include "sensors/trajectory_file.hpp"
 
 namespace isg::cli {
@@ -66,7 +66,7 @@ std::string EvalCommand::rpeNotComputable(std::size_t associated) const {
          " frames apart (" + std::to_string(associated) + " poses associated)";
 }
 
-void EvalCommand::writePlot(const eval::Trajectory& reference, const eval::Trajectory& estimate,
+void EvalCommand::writePlot(const common::Trajectory& reference, const common::Trajectory& estimate,
                             const eval::ErrorResult& ape, const std::string& how,
                             const eval::Coverage& coverage) const {
   eval::ReportInput input;
@@ -97,17 +97,17 @@ void EvalCommand::writePlot(const eval::Trajectory& reference, const eval::Traje
   if (input.estimate_is_localization) {
     input.localized_at = reference.front().t + coverage.time_to_first;
   }
-  sensors::writeFileAtomically(
-      plot_, sensors::outputMark(sensors::OutputKind::kSvg, eval::reportSvg(input)));
+  common::writeFileAtomically(plot_,
+                              common::outputMark(common::OutputKind::kSvg, eval::reportSvg(input)));
 }
 
 int EvalCommand::run() {
   if (!plot_.empty()) {
-    sensors::checkOutputPath(plot_,
-                             {sensors::OutputKind::kSvg, {reference_, estimate_}, true, false});
+    common::checkOutputPath(plot_,
+                            {common::OutputKind::kSvg, {reference_, estimate_}, true, false});
   }
-  const eval::Trajectory reference = sensors::readTrajectoryFile(reference_);
-  const eval::Trajectory estimate = sensors::readTrajectoryFile(estimate_);
+  const common::Trajectory reference = sensors::readTrajectoryFile(reference_);
+  const common::Trajectory estimate = sensors::readTrajectoryFile(estimate_);
   eval::ErrorOptions options;
   options.align = align_ == "se3"
                       ? eval::Alignment::kSE3
@@ -118,7 +118,7 @@ int EvalCommand::run() {
   try {
     ape = eval::absolutePoseError(reference, estimate, options);
   } catch (const std::invalid_argument& e) {
-    throw bim::InputError(estimate_, "", e.what());
+    throw common::InputError(estimate_, "", e.what());
   }
   std::optional<eval::ErrorResult> rpe;
   if (rpe_delta_ > 0) {

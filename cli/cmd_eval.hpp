@@ -24,7 +24,7 @@ class EvalCommand : public Command {
   std::string plot_;
 
   std::string rpeNotComputable(std::size_t associated) const;
-  void writePlot(const eval::Trajectory& reference, const eval::Trajectory& estimate,
+  void writePlot(const common::Trajectory& reference, const common::Trajectory& estimate,
                  const eval::ErrorResult& ape, const std::string& how,
                  const eval::Coverage& coverage) const;
 };

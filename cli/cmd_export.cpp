@@ -5,11 +5,11 @@
 #include <functional>
 #include <vector>
 
-#include "bim/input_error.hpp"
 #include "cli/progress_bar.hpp"
+#include "common/input_error.hpp"
+#include "common/output_path.hpp"
 #include "run/run_mcap.hpp"
 #include "sensors/mcap_export.hpp"
-#include "sensors/output_path.hpp"
 #include "sensors/rosbag_export.hpp"
 
 namespace isg::cli {
@@ -85,16 +85,16 @@ ExportCommand::ExportCommand(CLI::App& parent) {
 int ExportCommand::run() {
   if (run::isRunFolder(input_)) return exportRun();
   if (rosbag_.empty() && mcap_.empty()) {
-    throw bim::InputError("--rosbag, --mcap", "",
-                          "nothing to write: give --rosbag OUT.bag, --mcap OUT.mcap or both");
+    throw common::InputError("--rosbag, --mcap", "",
+                             "nothing to write: give --rosbag OUT.bag, --mcap OUT.mcap or both");
   }
   if (!rosbag_.empty()) {
-    sensors::checkOutputPath(rosbag_, {sensors::OutputKind::kBag, {input_}, force_});
+    common::checkOutputPath(rosbag_, {common::OutputKind::kBag, {input_}, force_});
   }
   if (!mcap_.empty()) {
     std::vector<std::string> inputs = {input_};
     if (!rosbag_.empty()) inputs.push_back(rosbag_);  // the two may not be one file
-    sensors::checkOutputPath(mcap_, {sensors::OutputKind::kMcap, inputs, force_});
+    common::checkOutputPath(mcap_, {common::OutputKind::kMcap, inputs, force_});
   }
   if (!rosbag_.empty()) {
     exportRosbagWithProgress("isg export", input_, rosbag_, stamp_offset_, force_, quiet_);
@@ -116,11 +116,12 @@ void printRunMcapSummary(const std::string& command, const std::string& path,
 
 int ExportCommand::exportRun() {
   if (!rosbag_.empty() || mcap_.empty()) {
-    throw bim::InputError(input_, "",
-                          "a run folder (it has metrics.json and estimate_map.tum) is written as "
-                          "--mcap OUT.mcap only; --rosbag takes a dataset folder");
+    throw common::InputError(
+        input_, "",
+        "a run folder (it has metrics.json and estimate_map.tum) is written as "
+        "--mcap OUT.mcap only; --rosbag takes a dataset folder");
   }
-  sensors::checkOutputPath(mcap_, {sensors::OutputKind::kMcap, {input_}, force_});
+  common::checkOutputPath(mcap_, {common::OutputKind::kMcap, {input_}, force_});
   run::RunMcapOptions options;
   options.compression = mcapCompression(compression_);
   options.overwrite = force_;

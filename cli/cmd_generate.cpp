@@ -7,8 +7,8 @@
 #include <stdexcept>
 
 #include "cli/progress_bar.hpp"
+#include "common/atomic_folder.hpp"
 #include "run/interrupt.hpp"
-#include "sensors/atomic_folder.hpp"
 #include "sim/simulation.hpp"
 
 namespace isg::cli {
@@ -128,13 +128,13 @@ int GenerateCommand::run() {
     }
   }
   if (seed_ > std::numeric_limits<std::uint64_t>::max() - std::uint64_t(count_ - 1)) {
-    throw bim::InputError("--seed", "",
-                          "seeds " + std::to_string(seed_) + " and the " +
-                              std::to_string(count_ - 1) + " after it pass 2^64 - 1");
+    throw common::InputError("--seed", "",
+                             "seeds " + std::to_string(seed_) + " and the " +
+                                 std::to_string(count_ - 1) + " after it pass 2^64 - 1");
   }
   // The output rule before any work: not the working directory, nor an earlier folder of
   // anything but generated buildings.
-  sensors::checkOutputPath(output_, {sensors::OutputKind::kBuildings, {}, force_});
+  common::checkOutputPath(output_, {common::OutputKind::kBuildings, {}, force_});
   spec_.asymmetry = !symmetric_;
   // Bad parameters fail before anything is written, naming the option.
   std::vector<worlds::GeneratedBuilding> buildings;
@@ -151,7 +151,7 @@ int GenerateCommand::run() {
         const auto colon = what.find(':');
         std::string option = "--" + what.substr(0, colon);
         for (char& c : option) c = c == ' ' ? '-' : c;
-        throw bim::InputError(
+        throw common::InputError(
             option, "",
             what.substr(colon + 2) + " (" + family + ", seed " + std::to_string(spec.seed) + ")");
       }
@@ -163,19 +163,19 @@ int GenerateCommand::run() {
   }
   ProgressBar bar("isg generate", quiet_);
   std::size_t offices = 0, largest = 0;
-  sensors::writeFolderAtomically(
-      output_, sensors::OutputKind::kBuildings, force_, [&](const std::filesystem::path& dir) {
+  common::writeFolderAtomically(
+      output_, common::OutputKind::kBuildings, force_, [&](const std::filesystem::path& dir) {
         for (std::size_t k = 0; k < buildings.size(); ++k) {
           const auto& b = buildings[k];
-          sensors::writeFile(dir / (b.name + ".json"), b.plan.dump(2) + "\n");
+          common::writeFile(dir / (b.name + ".json"), b.plan.dump(2) + "\n");
           const std::string scenario_path = (dir / (b.name + ".asbuilt.json")).string();
-          sensors::writeFile(scenario_path, b.scenario.dump(2) + "\n");
+          common::writeFile(scenario_path, b.scenario.dump(2) + "\n");
           offices += std::size_t(b.offices);
           largest = std::max(largest, std::size_t(b.offices));
           bar.update(double(k + 1) / double(buildings.size()), b.name);
           if (no_verify_) continue;
           // As isg check and isg run would read it: a warning is a generator bug too.
-          bim::Warnings warnings;
+          common::Warnings warnings;
           const bim::Scenario scenario = bim::loadScenario(scenario_path, &warnings);
           if (!warnings.empty()) {
             throw std::logic_error("generated " + b.name +
@@ -185,11 +185,11 @@ int GenerateCommand::run() {
           if (!simulation.route().skipped_rooms.empty()) {
             // Never written: a building the robot cannot tour would give a table number for part
             // of it. Bad input for the parameters that made it, naming the room.
-            throw bim::InputError(b.name, "",
-                                  "the tour cannot reach room " +
-                                      simulation.route().skipped_rooms.front() +
-                                      " of the generated building; nothing was written: change the "
-                                      "generator's parameters");
+            throw common::InputError(
+                b.name, "",
+                "the tour cannot reach room " + simulation.route().skipped_rooms.front() +
+                    " of the generated building; nothing was written: change the "
+                    "generator's parameters");
           }
         }
         // The last building's checks may have taken a while: an interrupt then still means nothing

@@ -7,11 +7,11 @@
 #include <optional>
 
 #include "cli/progress_bar.hpp"
+#include "common/atomic_folder.hpp"
+#include "common/output_path.hpp"
 #include "ifc/ifc_import.hpp"
 #include "run/interrupt.hpp"
-#include "sensors/atomic_folder.hpp"
 #include "sensors/bag_import.hpp"
-#include "sensors/output_path.hpp"
 
 namespace isg::cli {
 namespace {
@@ -138,7 +138,7 @@ ImportCommand::ImportCommand(CLI::App& parent) {
 int ImportCommand::run() { return isBag(input_) ? importBag() : importIfc(); }
 
 int ImportCommand::importBag() {
-  sensors::checkCanCreateFolder(output_, sensors::OutputKind::kDataset, force_, {input_});
+  common::checkCanCreateFolder(output_, common::OutputKind::kDataset, force_, {input_});
   sensors::BagImportOptions options;
   options.lidar_topic = lidar_topic_;
   options.imu_topic = imu_topic_;
@@ -191,7 +191,7 @@ int ImportCommand::importBag() {
 }
 
 int ImportCommand::importIfc() {
-  sensors::checkOutputPath(output_, {sensors::OutputKind::kImportedPlan, {input_}, force_, true});
+  common::checkOutputPath(output_, {common::OutputKind::kImportedPlan, {input_}, force_, true});
   ifc::ImportOptions options;
   options.storeys = storeys_;
   ifc::ImportResult result;

@@ -5,7 +5,7 @@
 #include <filesystem>
 
 #include "bim/plan_geometry.hpp"
-#include "sensors/atomic_folder.hpp"
+#include "common/atomic_folder.hpp"
 #include "sim/renderer.hpp"
 #include "sim/robot_model.hpp"
 #include "sim/simulation.hpp"
@@ -40,17 +40,17 @@ int RenderCommand::run() {
   namespace fs = std::filesystem;
   const fs::path dir(output_);
   // The folder may hold other files; of the pictures, only earlier ones of ours are replaced.
-  sensors::checkOutputPath(output_, {sensors::OutputKind::kPictures, {inputFile(input_)}});
+  common::checkOutputPath(output_, {common::OutputKind::kPictures, {inputFile(input_)}});
   for (const char* name : {"top.png", "plan.png", "chase.png"}) {
-    sensors::checkOutputPath((dir / name).string(),
-                             {sensors::OutputKind::kPng, {inputFile(input_)}, true, false});
+    common::checkOutputPath((dir / name).string(),
+                            {common::OutputKind::kPng, {inputFile(input_)}, true, false});
   }
   const bim::Scenario scenario = loadInput(input_, "render");
   sim::Simulation simulation(scenario);
-  sensors::requireParentFolder(output_);
+  common::requireParentFolder(output_);
   std::error_code error;
   fs::create_directories(dir, error);
-  if (error) throw bim::InputError(output_, "", "cannot write: " + error.message());
+  if (error) throw common::InputError(output_, "", "cannot write: " + error.message());
   const double t =
       time_ < 0 ? 0.25 * simulation.duration() : std::min(time_, simulation.duration());
   const auto& trajectory = simulation.baseMotion();

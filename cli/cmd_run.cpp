@@ -7,7 +7,7 @@
 #include "cli/progress_bar.hpp"
 #include "cli/route_check.hpp"
 #include "cli/run_session.hpp"
-#include "sensors/atomic_folder.hpp"
+#include "common/atomic_folder.hpp"
 #include "sim/scan_pipeline.hpp"
 #include "sim/simulation.hpp"
 #include "worlds/reference_plans.hpp"
@@ -72,13 +72,12 @@ int RunCommand::run() {
   }
   // Before the run, not after it: a folder that cannot be written fails at once; the output rule
   // before its parent folders are made.
-  sensors::checkOutputPath(output_, {sensors::OutputKind::kRunFolder, {inputFile(input)}, force_});
+  common::checkOutputPath(output_, {common::OutputKind::kRunFolder, {inputFile(input)}, force_});
   if (const auto parent = fs::path(output_).parent_path(); !parent.empty()) {
     std::error_code ignored;
     fs::create_directories(parent, ignored);
   }
-  sensors::checkCanCreateFolder(output_, sensors::OutputKind::kRunFolder, force_,
-                                {inputFile(input)});
+  common::checkCanCreateFolder(output_, common::OutputKind::kRunFolder, force_, {inputFile(input)});
   const sim::Simulation simulation(scenario);
   checkRoute("isg run", scenario, simulation, duration_);
   const bim::AGraph agraph = bim::buildAGraph(scenario.plan);

@@ -8,7 +8,7 @@
 #include "cli/cmd_export.hpp"
 #include "cli/progress_bar.hpp"
 #include "cli/route_check.hpp"
-#include "sensors/atomic_folder.hpp"
+#include "common/atomic_folder.hpp"
 #include "sim/dataset_writer.hpp"
 #include "sim/simulation.hpp"
 
@@ -66,20 +66,19 @@ int SimulateCommand::run() {
   if (seed_) scenario.seed = *seed_;
   sim::Simulation simulation(scenario);
   checkRoute("isg simulate", scenario, simulation, duration_);
-  sensors::checkCanCreateFolder(output_, sensors::OutputKind::kDataset, force_,
-                                {inputFile(input_)});
+  common::checkCanCreateFolder(output_, common::OutputKind::kDataset, force_, {inputFile(input_)});
   if (!rosbag_.empty()) {
     // Checked before hours of simulation, as the folder is: the bag may not be the scenario, nor
     // lie in the dataset it is made from.
-    sensors::checkOutputPath(rosbag_,
-                             {sensors::OutputKind::kBag, {inputFile(input_), output_}, force_});
-    sensors::AtomicFile probe(rosbag_, sensors::OutputKind::kBag, force_);
+    common::checkOutputPath(rosbag_,
+                            {common::OutputKind::kBag, {inputFile(input_), output_}, force_});
+    common::AtomicFile probe(rosbag_, common::OutputKind::kBag, force_);
   }
   if (!mcap_.empty()) {
     std::vector<std::string> inputs = {inputFile(input_), output_};
     if (!rosbag_.empty()) inputs.push_back(rosbag_);
-    sensors::checkOutputPath(mcap_, {sensors::OutputKind::kMcap, inputs, force_});
-    sensors::AtomicFile probe(mcap_, sensors::OutputKind::kMcap, force_);
+    common::checkOutputPath(mcap_, {common::OutputKind::kMcap, inputs, force_});
+    common::AtomicFile probe(mcap_, common::OutputKind::kMcap, force_);
   }
   sim::DatasetOptions options;
   options.duration = duration_;

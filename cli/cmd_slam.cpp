@@ -5,14 +5,14 @@
 #include <optional>
 
 #include "bim/agraph.hpp"
-#include "bim/input_error.hpp"
-#include "bim/json_reader.hpp"
 #include "bim/plan_json.hpp"
 #include "bim/plan_parser.hpp"
 #include "cli/progress_bar.hpp"
 #include "cli/run_session.hpp"
+#include "common/atomic_folder.hpp"
+#include "common/input_error.hpp"
+#include "common/json_reader.hpp"
 #include "run/map_diagnosis.hpp"
-#include "sensors/atomic_folder.hpp"
 #include "sensors/dataset_format.hpp"
 #include "sensors/dataset_reader.hpp"
 
@@ -26,10 +26,10 @@ namespace {
 std::optional<bim::Plan> replayPlan(const std::string& plan_argument, bool other_plan,
                                     const sensors::DatasetReader& dataset, const std::string& dir) {
   const std::string metadata_file = (std::filesystem::path(dir) / "metadata.json").string();
-  const bim::JsonSource source{metadata_file, nullptr};
+  const common::JsonSource source{metadata_file, nullptr};
   std::optional<bim::Plan> recorded;
   if (dataset.metadata().contains("plan")) {
-    recorded = bim::parsePlan(bim::JsonNode(dataset.metadata()["plan"], "/plan", source));
+    recorded = bim::parsePlan(common::JsonNode(dataset.metadata()["plan"], "/plan", source));
   }
   if (plan_argument.empty()) return recorded;
   bim::Plan given = loadInput(plan_argument, "slam").plan;
@@ -37,10 +37,10 @@ std::optional<bim::Plan> replayPlan(const std::string& plan_argument, bool other
     // Compared as the dataset records plans: every default filled in, the name left out.
     auto levels = [](const bim::Plan& plan) { return bim::planToJson(plan)["levels"]; };
     if (levels(*recorded) != levels(given)) {
-      throw bim::InputError(metadata_file, "/plan",
-                            "the dataset was recorded in plan \"" + recorded->name + "\", not in " +
-                                plan_argument +
-                                " (give --other-plan to localize in a different plan on purpose)");
+      throw common::InputError(
+          metadata_file, "/plan",
+          "the dataset was recorded in plan \"" + recorded->name + "\", not in " + plan_argument +
+              " (give --other-plan to localize in a different plan on purpose)");
     }
   }
   return given;
@@ -91,8 +91,7 @@ int SlamCommand::run() {
   namespace fs = std::filesystem;
   sensors::DatasetReader dataset(dataset_);
   // Before the replay, not after it: a folder that cannot be written fails at once.
-  sensors::checkCanCreateFolder(output_, sensors::OutputKind::kRunFolder, force_,
-                                {dataset_, plan_});
+  common::checkCanCreateFolder(output_, common::OutputKind::kRunFolder, force_, {dataset_, plan_});
   const std::string method = !method_.empty() ? method_ : plan_.empty() ? "s-graph" : "is-graphs";
   if (methods_.find(method)->needs_plan && plan_.empty()) {
     std::fprintf(stderr, "isg slam: --method %s needs --plan PLAN\n", method.c_str());
@@ -122,11 +121,11 @@ int SlamCommand::run() {
   // What was built differently, for the report: recorded with the dataset's own plan.
   std::optional<bim::AsBuilt> as_built;
   if (plan && (plan_.empty() || !other_plan_) && dataset.metadata().contains("as_built")) {
-    const bim::JsonSource source{(fs::path(dataset_) / "metadata.json").string(), nullptr};
+    const common::JsonSource source{(fs::path(dataset_) / "metadata.json").string(), nullptr};
     try {
       as_built = bim::parseAsBuiltJson(
-          bim::JsonNode(dataset.metadata()["as_built"], "/as_built", source), *plan, level);
-    } catch (const bim::InputError& e) {
+          common::JsonNode(dataset.metadata()["as_built"], "/as_built", source), *plan, level);
+    } catch (const common::InputError& e) {
       // Only the report's drawing needs it: say so, and replay without it.
       std::fprintf(stderr, "isg slam: warning: the as-built changes are not drawn: %s\n", e.what());
     }

@@ -3,10 +3,10 @@
 #include <cstdio>
 #include <filesystem>
 
+#include "common/atomic_folder.hpp"
+#include "common/output_path.hpp"
 #include "run/builtin_methods.hpp"
 #include "run/interrupt.hpp"
-#include "sensors/atomic_folder.hpp"
-#include "sensors/output_path.hpp"
 #include "sweep/collect.hpp"
 #include "sweep/lock.hpp"
 #include "sweep/pool.hpp"
@@ -102,8 +102,8 @@ int SweepCommand::collect(const std::string& sweep_dir) const {
   const std::string md =
       eval::formatTable(c.table.table, eval::TableFormat::kMarkdown, c.table.caption);
   const std::string csv = eval::formatTable(c.table.table, eval::TableFormat::kCsv);
-  sensors::writeFileAtomically((fs::path(sweep_dir) / sweep::kSweepTableMarkdownFile).string(), md);
-  sensors::writeFileAtomically((fs::path(sweep_dir) / sweep::kSweepTableCsvFile).string(), csv);
+  common::writeFileAtomically((fs::path(sweep_dir) / sweep::kSweepTableMarkdownFile).string(), md);
+  common::writeFileAtomically((fs::path(sweep_dir) / sweep::kSweepTableCsvFile).string(), csv);
   std::printf("%s\n", md.c_str());
   for (const auto& f : c.failed) std::printf("failed: %s\n", f.c_str());
   for (const auto& m : c.missing) std::printf("not run: %s\n", m.c_str());
@@ -125,9 +125,9 @@ int SweepCommand::run() {
   if (cell_ >= 0) {
     const sweep::SweepPlan plan = sweep::readSweepPlan(input_);
     if (std::size_t(cell_) >= plan.cells.size()) {
-      throw bim::InputError((fs::path(input_) / sweep::kSweepPlanFile).string(), "/cells",
-                            "no cell " + std::to_string(cell_) + " (the sweep has " +
-                                std::to_string(plan.cells.size()) + ")");
+      throw common::InputError((fs::path(input_) / sweep::kSweepPlanFile).string(), "/cells",
+                               "no cell " + std::to_string(cell_) + " (the sweep has " +
+                                   std::to_string(plan.cells.size()) + ")");
     }
     const sweep::PoolOutcome o =
         sweep::runCells(input_, plan.cells, {std::size_t(cell_)}, 1, quiet_);
@@ -141,12 +141,13 @@ int SweepCommand::run() {
   for (const auto& world : suite.worlds) {
     if (!world.generate && !worlds::isBuiltin(world.input)) inputs.push_back(world.input);
   }
-  sensors::checkOutputPath(output_, {sensors::OutputKind::kSweep, inputs});
+  common::checkOutputPath(output_, {common::OutputKind::kSweep, inputs});
   std::error_code made;
   fs::create_directories(output_, made);
-  if (made) throw bim::InputError(output_, "", "cannot make the sweep folder: " + made.message());
-  if (!sensors::folderOutputKind(output_))
-    sensors::writeOutputMarker(output_, sensors::OutputKind::kSweep);
+  if (made)
+    throw common::InputError(output_, "", "cannot make the sweep folder: " + made.message());
+  if (!common::folderOutputKind(output_))
+    common::writeOutputMarker(output_, common::OutputKind::kSweep);
   // One sweep at a time in a folder, from here to the end (the lock goes with the process).
   const sweep::SweepLock lock(output_);
   // Every world read (generated ones written) and hashed, before any cell runs.
@@ -162,10 +163,10 @@ int SweepCommand::run() {
       same = before.cells[i].dir == cells[i].dir && before.cells[i].arguments == cells[i].arguments;
     }
     if (!same) {
-      throw bim::InputError(plan_path.string(), "",
-                            "this sweep folder holds another suite's cells (" +
-                                std::to_string(before.cells.size()) + " cells of " +
-                                before.suite_file + "); give another -o or remove it");
+      throw common::InputError(plan_path.string(), "",
+                               "this sweep folder holds another suite's cells (" +
+                                   std::to_string(before.cells.size()) + " cells of " +
+                                   before.suite_file + "); give another -o or remove it");
     }
     // The same cells of a changed world would mix two buildings in one row.
     const std::vector<sweep::ChangedWorld> changed = sweep::changedWorlds(suite, before);
@@ -175,16 +176,17 @@ int SweepCommand::run() {
         list += (list.empty() ? "" : "; ") + w.name + " (" + w.before.substr(0, 19) + "… then, " +
                 w.now.substr(0, 19) + "… now)";
       }
-      throw bim::InputError(input_, "",
-                            "world" + std::string(changed.size() > 1 ? "s" : "") +
-                                " changed since this sweep ran in " + output_ + ": " + list +
-                                "; --rerun-changed runs their cells again on the world as it is "
-                                "now (the old runs are moved to " +
-                                output_ + "/" + sweep::kSweepAsideFolder + "), or give another -o");
+      throw common::InputError(input_, "",
+                               "world" + std::string(changed.size() > 1 ? "s" : "") +
+                                   " changed since this sweep ran in " + output_ + ": " + list +
+                                   "; --rerun-changed runs their cells again on the world as it is "
+                                   "now (the old runs are moved to " +
+                                   output_ + "/" + sweep::kSweepAsideFolder +
+                                   "), or give another -o");
     }
     moveWorldCellsAside(output_, before.cells, changed);
   }
-  sensors::writeFileAtomically(plan_path.string(), plan_text);
+  common::writeFileAtomically(plan_path.string(), plan_text);
   std::vector<std::size_t> all(cells.size());
   for (std::size_t i = 0; i < cells.size(); ++i) all[i] = i;
 

@@ -7,12 +7,12 @@
 #include <map>
 #include <sstream>
 
-#include "bim/input_error.hpp"
-#include "bim/json_reader.hpp"
+#include "common/input_error.hpp"
+#include "common/json_reader.hpp"
+#include "common/output_path.hpp"
 #include "eval/table.hpp"
 #include "run/builtin_methods.hpp"
 #include "run/run_metrics.hpp"
-#include "sensors/output_path.hpp"
 #include "sweep/run_table.hpp"
 #include "sweep/suite.hpp"
 
@@ -73,14 +73,14 @@ TableCommand::TableCommand(CLI::App& parent) {
 
 int TableCommand::run() {
   const run::LocalizerRegistry methods = run::builtinMethods();
-  const sensors::OutputKind outputKind = format_ == "csv"     ? sensors::OutputKind::kTableCsv
-                                         : format_ == "latex" ? sensors::OutputKind::kTableLatex
-                                                              : sensors::OutputKind::kTableMarkdown;
+  const common::OutputKind outputKind = format_ == "csv"     ? common::OutputKind::kTableCsv
+                                        : format_ == "latex" ? common::OutputKind::kTableLatex
+                                                             : common::OutputKind::kTableMarkdown;
   if (!output_.empty()) {
     // Replaced only if isg wrote it: never a run folder, the baseline or a file of the user's.
     std::vector<std::string> inputs = runs_;
     inputs.push_back(baseline_);
-    sensors::checkOutputPath(output_, {outputKind, inputs, true, false});
+    common::checkOutputPath(output_, {outputKind, inputs, true, false});
   }
   // The testbed's methods first, in their order (iS-Graphs, then the baselines), like the paper.
   std::vector<std::pair<std::string, run::RunMetrics>> runs;
@@ -92,18 +92,19 @@ int TableCommand::run() {
         dir.size() > suffix.size() &&
         dir.compare(dir.size() - suffix.size(), suffix.size(), suffix) == 0 &&
         std::filesystem::is_regular_file(dir)) {
-      const nlohmann::json record = bim::readJsonFile(dir);
-      const bim::JsonSource source{dir, nullptr};
-      const bim::JsonNode root(record, "", source);
+      const nlohmann::json record = common::readJsonFile(dir);
+      const common::JsonSource source{dir, nullptr};
+      const common::JsonNode root(record, "", source);
       failed.push_back({root.field("world").text(), methods.canonical(root.field("method").text()),
                         root.field("seed").unsignedInteger(), true});
       continue;
     }
     // A sweep folder given for its run folders: say which command reads it.
     if (std::filesystem::is_regular_file(std::filesystem::path(dir) / sweep::kSweepPlanFile)) {
-      throw bim::InputError(dir, "",
-                            "a sweep folder, not a run folder: isg sweep --collect " + dir +
-                                " tabulates it (or give its run folders, " + dir + "/*/*/seed-*)");
+      throw common::InputError(dir, "",
+                               "a sweep folder, not a run folder: isg sweep --collect " + dir +
+                                   " tabulates it (or give its run folders, " + dir +
+                                   "/*/*/seed-*)");
     }
     runs.emplace_back(dir, run::readMetrics(dir));
   }
@@ -115,18 +116,18 @@ int TableCommand::run() {
   if (output_.empty()) {
     std::printf("%s", text.c_str());
   } else {
-    writeFileAtomically(output_, sensors::outputMark(outputKind, text));
+    writeFileAtomically(output_, common::outputMark(outputKind, text));
   }
   if (baseline_.empty()) return kExitOk;
   std::ifstream in(baseline_);
-  if (!in) throw bim::InputError(baseline_, "", "cannot read (no such file?)");
+  if (!in) throw common::InputError(baseline_, "", "cannot read (no such file?)");
   std::stringstream content;
   content << in.rdbuf();
   eval::ResultTable baseline;
   try {
     baseline = eval::parseTableCsv(content.str());
   } catch (const std::invalid_argument& e) {
-    throw bim::InputError(baseline_, "", e.what());
+    throw common::InputError(baseline_, "", e.what());
   }
   for (auto& column : baseline.columns) column = methods.canonical(column);  // renamed methods
   const auto regressions =

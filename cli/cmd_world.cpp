@@ -2,7 +2,7 @@
 
 #include <iostream>
 
-#include "sensors/output_path.hpp"
+#include "common/output_path.hpp"
 #include "sim/mujoco_world.hpp"
 #include "worlds/mjcf_generator.hpp"
 
@@ -30,8 +30,7 @@ int WorldCommand::run() {
   worlds::WorldOptions options;
   options.ceilings = !no_ceilings_;
   if (!output_.empty()) {
-    sensors::checkOutputPath(output_,
-                             {sensors::OutputKind::kMjcf, {inputFile(input_)}, true, false});
+    common::checkOutputPath(output_, {common::OutputKind::kMjcf, {inputFile(input_)}, true, false});
   }
   const std::string mjcf = worlds::generateMjcf(scenario, options);
   // A world that MuJoCo cannot compile is our bug, never the user's: refuse to write it.
@@ -40,7 +39,7 @@ int WorldCommand::run() {
     std::cout << mjcf;
     return kExitOk;
   }
-  writeFileAtomically(output_, sensors::outputMark(sensors::OutputKind::kMjcf, mjcf));
+  writeFileAtomically(output_, common::outputMark(common::OutputKind::kMjcf, mjcf));
   std::cerr << "isg world: wrote " << output_ << " (" << world.model().ngeom << " geoms, "
             << world.model().nsite << " room sites)\n";
   return kExitOk;

@@ -12,7 +12,7 @@
 namespace isg::cli {
 
 bim::Scenario loadInput(const std::string& argument, const std::string& command) {
-  bim::Warnings warnings;
+  common::Warnings warnings;
   bim::Scenario scenario = worlds::loadScenarioOrBuiltin(argument, &warnings);
   for (const auto& w : warnings) std::cerr << "isg " << command << ": warning: " << w.str() << "\n";
   return scenario;

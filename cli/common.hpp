@@ -3,13 +3,13 @@
 #include <CLI/CLI.hpp>
 #include <string>
 
-#include "bim/input_error.hpp"
 #include "bim/scenario.hpp"
-#include "sensors/atomic_folder.hpp"
+#include "common/atomic_folder.hpp"
+#include "common/input_error.hpp"
 
 namespace isg::cli {
 
-using sensors::writeFileAtomically;
+using common::writeFileAtomically;
 
 // Exit codes of every subcommand (docs/architecture.md).
 inline constexpr int kExitOk = 0;

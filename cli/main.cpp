@@ -6,7 +6,6 @@
 #include <memory>
 #include <vector>
 
-#include "bim/input_error.hpp"
 #include "cli/cmd_agraph.hpp"
 #include "cli/cmd_check.hpp"
 #include "cli/cmd_eval.hpp"
@@ -22,6 +21,7 @@
 #include "cli/cmd_table.hpp"
 #include "cli/cmd_vlp16.hpp"
 #include "cli/cmd_world.hpp"
+#include "common/input_error.hpp"
 #include "run/interrupt.hpp"
 
 int main(int argc, char** argv) {
@@ -70,7 +70,7 @@ int main(int argc, char** argv) {
     } catch (const isg::run::Interrupted& e) {
       std::cerr << "isg " << name << ": " << e.what() << "; nothing was written\n";
       return 128 + e.signalNumber();
-    } catch (const isg::bim::InputError& e) {
+    } catch (const isg::common::InputError& e) {
       std::cerr << "isg " << name << ": error: " << e.what() << "\n";
       return kExitBadInput;
     } catch (const std::exception& e) {

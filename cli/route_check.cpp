@@ -3,8 +3,8 @@
 #include <algorithm>
 #include <cstdio>
 
-#include "bim/input_error.hpp"
-#include "bim/json_reader.hpp"
+#include "common/input_error.hpp"
+#include "common/json_reader.hpp"
 
 namespace isg::cli {
 
@@ -22,9 +22,9 @@ double checkRoute(const std::string& command, const bim::Scenario& scenario,
         route_seconds <= 0.0
             ? "the robot has nowhere to go: the route from its start reaches no other room or "
               "point (a one-room plan, or every door closed)"
-            : "the route takes " + bim::formatNumber(route_seconds) +
+            : "the route takes " + common::formatNumber(route_seconds) +
                   " s, shorter than one LiDAR turn";
-    throw bim::InputError(
+    throw common::InputError(
         scenario.source, "/robot/route",
         "no scan would be recorded: " + why + "; give robot.route.waypoints (docs/formats.md)");
   }
@@ -32,8 +32,8 @@ double checkRoute(const std::string& command, const bim::Scenario& scenario,
     std::fprintf(stderr,
                  "%s: warning: --duration %s s is longer than the route (%s s); the run ends "
                  "with the route\n",
-                 command.c_str(), bim::formatNumber(duration).c_str(),
-                 bim::formatNumber(route_seconds).c_str());
+                 command.c_str(), common::formatNumber(duration).c_str(),
+                 common::formatNumber(route_seconds).c_str());
   }
   return seconds;
 }

@@ -6,12 +6,12 @@
 #include <cstdio>
 #include <filesystem>
 
-#include "bim/input_error.hpp"
 #include "cli/cmd_export.hpp"
+#include "common/input_error.hpp"
+#include "common/output_path.hpp"
 #include "run/odometry_source.hpp"
 #include "run/run_folder.hpp"
 #include "run/run_report.hpp"
-#include "sensors/output_path.hpp"
 
 namespace isg::cli {
 
@@ -24,11 +24,11 @@ std::map<std::string, std::string> methodOptions(const std::vector<std::string>&
   for (const auto& argument : arguments) {
     const std::size_t equals = argument.find('=');
     if (equals == std::string::npos || equals == 0) {
-      throw bim::InputError("--method-option " + argument, "", "expected KEY=VALUE");
+      throw common::InputError("--method-option " + argument, "", "expected KEY=VALUE");
     }
     const std::string key = argument.substr(0, equals);
     if (!options.emplace(key, argument.substr(equals + 1)).second) {
-      throw bim::InputError("--method-option " + argument, "", key + " is given twice");
+      throw common::InputError("--method-option " + argument, "", key + " is given twice");
     }
   }
   return options;
@@ -39,7 +39,7 @@ void checkMethodOptions(const run::LocalizerRegistry& registry, const std::strin
   try {
     registry.checkOptions(method, options);
   } catch (const std::invalid_argument& e) {
-    throw bim::InputError("--method " + method, "", e.what());
+    throw common::InputError("--method " + method, "", e.what());
   }
 }
 
@@ -49,7 +49,7 @@ std::unique_ptr<slam::Localizer> makeMethod(const run::LocalizerRegistry& regist
   try {
     return registry.make(method, context);
   } catch (const std::invalid_argument& e) {
-    throw bim::InputError("--method " + method, "", e.what());
+    throw common::InputError("--method " + method, "", e.what());
   }
 }
 
@@ -119,10 +119,10 @@ std::unique_ptr<run::LiveRunMcap> openRunMcap(const RunMcapArguments& arguments,
   const fs::path within =
       fs::weakly_canonical(arguments.path).lexically_relative(fs::weakly_canonical(run_dir));
   if (!within.empty() && *within.begin() != "..") {
-    throw bim::InputError(arguments.path, "",
-                          "--mcap names RUN_DIR or a file in it: write the MCAP file beside it");
+    throw common::InputError(arguments.path, "",
+                             "--mcap names RUN_DIR or a file in it: write the MCAP file beside it");
   }
-  sensors::checkOutputPath(arguments.path, {sensors::OutputKind::kMcap, std::move(inputs), force});
+  common::checkOutputPath(arguments.path, {common::OutputKind::kMcap, std::move(inputs), force});
   run::RunMcapOptions options;
   options.compression = mcapCompression(arguments.compression);
   options.overwrite = force;

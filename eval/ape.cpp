@@ -21,7 +21,8 @@ struct Prepared {
   std::vector<Eigen::Isometry3d> reference, estimate;  // associated, aligned, projected
 };
 
-Prepared prepare(const Trajectory& ref, const Trajectory& est, const ErrorOptions& options) {
+Prepared prepare(const common::Trajectory& ref, const common::Trajectory& est,
+                 const ErrorOptions& options) {
   Prepared p;
   p.association = associate(ref, est, options.max_diff);
   const std::size_t n = p.association.reference.size();
@@ -93,8 +94,8 @@ Eigen::Isometry3d projectXY(const Eigen::Isometry3d& pose) {
   return out;
 }
 
-ErrorResult absolutePoseError(const Trajectory& reference, const Trajectory& estimate,
-                              const ErrorOptions& options) {
+ErrorResult absolutePoseError(const common::Trajectory& reference,
+                              const common::Trajectory& estimate, const ErrorOptions& options) {
   Prepared p = prepare(reference, estimate, options);
   std::vector<double> translation, rotation;
   for (std::size_t i = 0; i < p.reference.size(); ++i) {
@@ -104,8 +105,8 @@ ErrorResult absolutePoseError(const Trajectory& reference, const Trajectory& est
   return finish(std::move(p), std::move(translation), std::move(rotation));
 }
 
-ErrorResult relativePoseError(const Trajectory& reference, const Trajectory& estimate,
-                              const ErrorOptions& options) {
+ErrorResult relativePoseError(const common::Trajectory& reference,
+                              const common::Trajectory& estimate, const ErrorOptions& options) {
   if (options.rpe_delta < 1) throw std::invalid_argument("RPE delta must be at least 1");
   Prepared p = prepare(reference, estimate, options);
   std::vector<double> translation, rotation;

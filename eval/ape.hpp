@@ -3,9 +3,9 @@
 #include <optional>
 #include <string>
 
+#include "common/tum.hpp"
 #include "eval/alignment.hpp"
 #include "eval/association.hpp"
-#include "eval/tum.hpp"
 
 namespace isg::eval {
 
@@ -37,12 +37,12 @@ struct ErrorResult {
 // Absolute pose error, evo's order of steps: associate, align (Umeyama on the associated
 // positions), then project, then compare. Throws std::invalid_argument when nothing associates
 // (or too little to align).
-ErrorResult absolutePoseError(const Trajectory& reference, const Trajectory& estimate,
-                              const ErrorOptions& options);
+ErrorResult absolutePoseError(const common::Trajectory& reference,
+                              const common::Trajectory& estimate, const ErrorOptions& options);
 
 // Relative pose error over `rpe_delta` associated poses: E = (Rᵢ⁻¹Rⱼ)⁻¹(Eᵢ⁻¹Eⱼ).
-ErrorResult relativePoseError(const Trajectory& reference, const Trajectory& estimate,
-                              const ErrorOptions& options);
+ErrorResult relativePoseError(const common::Trajectory& reference,
+                              const common::Trajectory& estimate, const ErrorOptions& options);
 
 // The pose with z = 0 and only the rotation about z kept.
 Eigen::Isometry3d projectXY(const Eigen::Isometry3d& pose);

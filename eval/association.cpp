@@ -8,7 +8,7 @@ namespace isg::eval {
 namespace {
 
 // Index of the nearest stamp (the first among equals), by binary search when sorted.
-int nearest(const Trajectory& t, double stamp, bool sorted) {
+int nearest(const common::Trajectory& t, double stamp, bool sorted) {
   if (!sorted) {
     int best = 0;
     for (int i = 1; i < int(t.size()); ++i) {
@@ -17,7 +17,7 @@ int nearest(const Trajectory& t, double stamp, bool sorted) {
     return best;
   }
   const auto it = std::lower_bound(t.begin(), t.end(), stamp,
-                                   [](const StampedPose& p, double s) { return p.t < s; });
+                                   [](const common::StampedPose& p, double s) { return p.t < s; });
   int i = int(it - t.begin());
   if (i == int(t.size())) return i - 1;
   // On a tie the earlier stamp wins, as numpy's argmin picks the first minimum.
@@ -30,15 +30,16 @@ int nearest(const Trajectory& t, double stamp, bool sorted) {
 
 }  // namespace
 
-Association associate(const Trajectory& reference, const Trajectory& estimate, double max_diff) {
+Association associate(const common::Trajectory& reference, const common::Trajectory& estimate,
+                      double max_diff) {
   Association out;
   if (reference.empty() || estimate.empty()) return out;
   const bool reference_shorter = reference.size() < estimate.size();
-  const Trajectory& shorter = reference_shorter ? reference : estimate;
-  const Trajectory& longer = reference_shorter ? estimate : reference;
-  const bool sorted =
-      std::is_sorted(longer.begin(), longer.end(),
-                     [](const StampedPose& a, const StampedPose& b) { return a.t < b.t; });
+  const common::Trajectory& shorter = reference_shorter ? reference : estimate;
+  const common::Trajectory& longer = reference_shorter ? estimate : reference;
+  const bool sorted = std::is_sorted(
+      longer.begin(), longer.end(),
+      [](const common::StampedPose& a, const common::StampedPose& b) { return a.t < b.t; });
   for (int i = 0; i < int(shorter.size()); ++i) {
     const int j = nearest(longer, shorter[i].t, sorted);
     if (std::abs(longer[j].t - shorter[i].t) > max_diff) continue;

@@ -2,7 +2,7 @@
 
 #include <vector>
 
-#include "eval/tum.hpp"
+#include "common/tum.hpp"
 
 namespace isg::eval {
 
@@ -16,7 +16,7 @@ struct Association {
   std::vector<int> estimate;   // indices into the estimated trajectory, same length
 };
 
-Association associate(const Trajectory& reference, const Trajectory& estimate,
+Association associate(const common::Trajectory& reference, const common::Trajectory& estimate,
                       double max_diff = 0.01);
 
 }  // namespace isg::eval

@@ -4,11 +4,13 @@
 
 namespace isg::eval {
 
-Coverage localizationCoverage(const Trajectory& ground_truth, const Trajectory& estimate,
-                              double max_gap) {
+Coverage localizationCoverage(const common::Trajectory& ground_truth,
+                              const common::Trajectory& estimate, double max_gap) {
   Coverage out;
   if (ground_truth.empty() || estimate.empty()) return out;
-  const auto by_time = [](const StampedPose& a, const StampedPose& b) { return a.t < b.t; };
+  const auto by_time = [](const common::StampedPose& a, const common::StampedPose& b) {
+    return a.t < b.t;
+  };
   const double start = std::min_element(ground_truth.begin(), ground_truth.end(), by_time)->t;
   const double end = std::max_element(ground_truth.begin(), ground_truth.end(), by_time)->t;
   // Only the estimate's rows within the ground truth's span say anything; rows before it mean

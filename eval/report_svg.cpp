@@ -1,11 +1,13 @@
+
+#include "common/xml_escape.hpp"
+#include "eval/svg_chart.hpp"
+
 #include "eval/report_svg.hpp"
 
 #include <algorithm>
 #include <cmath>
 #include <limits>
 #include <sstream>
-
-#include "eval/svg_chart.hpp"
 
 namespace isg::eval {
 
@@ -95,10 +97,10 @@ void drawHeader(std::ostringstream& svg, const ReportInput& input, const Layout&
       << svgNumber(l.height) << "\" font-family=\"sans-serif\">\n";
   svg << "<rect width=\"100%\" height=\"100%\" fill=\"white\"/>\n";
   svg << "<text x=\"" << l.margin << "\" y=\"22\" font-size=\"18\" font-weight=\"bold\">"
-      << svgEscape(input.title) << "</text>\n";
+      << common::xmlEscape(input.title) << "</text>\n";
   for (std::size_t i = 0; i < input.summary.size(); ++i) {
     svg << "<text x=\"" << l.margin << "\" y=\"" << svgNumber(42 + 18.0 * double(i))
-        << "\" font-size=\"13\">" << svgEscape(input.summary[i]) << "</text>\n";
+        << "\" font-size=\"13\">" << common::xmlEscape(input.summary[i]) << "</text>\n";
   }
 }
 
@@ -156,7 +158,7 @@ Eigen::Vector2d placeLabel(const RoomLabel& label, const std::vector<Eigen::Vect
   return best_point;
 }
 
-void path(std::ostringstream& svg, const Layout& l, const Trajectory& trajectory,
+void path(std::ostringstream& svg, const Layout& l, const common::Trajectory& trajectory,
           const std::string& style) {
   if (trajectory.empty()) return;
   svg << "<polyline fill=\"none\" " << style << " points=\"";
@@ -220,8 +222,8 @@ void drawMap(std::ostringstream& svg, const ReportInput& input, const Layout& l,
   svg << "<g font-size=\"11\" fill=\"#555\" text-anchor=\"middle\">\n";
   for (const auto& label : input.labels) {
     const Eigen::Vector2d at = placeLabel(label, paths, l);
-    svg << "<text x=\"" << l.X(at.x()) << "\" y=\"" << l.Y(at.y()) << "\">" << svgEscape(label.text)
-        << "</text>\n";
+    svg << "<text x=\"" << l.X(at.x()) << "\" y=\"" << l.Y(at.y()) << "\">"
+        << common::xmlEscape(label.text) << "</text>\n";
   }
   svg << "</g>\n";
 }
@@ -258,7 +260,7 @@ void drawLegend(std::ostringstream& svg, const ReportInput& input, const Layout&
       y += 16;
     }
     svg << swatch() << "<text x=\"" << svgNumber(x + 25) << "\" y=\"" << svgNumber(y + 4)
-        << "\" font-size=\"12\">" << svgEscape(text) << "</text>\n";
+        << "\" font-size=\"12\">" << common::xmlEscape(text) << "</text>\n";
     x += width + 12;
   };
   auto line = [&](const std::string& colour) {
@@ -301,8 +303,8 @@ void drawLegend(std::ostringstream& svg, const ReportInput& input, const Layout&
 namespace {
 
 // The poses of a trajectory at heights in [z_min, z_max).
-Trajectory between(const Trajectory& trajectory, double z_min, double z_max) {
-  Trajectory out;
+common::Trajectory between(const common::Trajectory& trajectory, double z_min, double z_max) {
+  common::Trajectory out;
   for (const auto& pose : trajectory) {
     const double z = pose.pose.translation().z();
     if (z >= z_min && z < z_max) out.push_back(pose);
@@ -319,7 +321,8 @@ void drawStoreys(std::ostringstream& svg, const ReportInput& input, const Layout
     panel.panel_offset = double(k) * layout.panel_height + Layout::kTitle;
     svg << "<text x=\"" << layout.margin << "\" y=\""
         << svgNumber(layout.header + double(k) * layout.panel_height + 16)
-        << "\" font-size=\"14\" font-weight=\"bold\">" << svgEscape(storey.title) << "</text>\n";
+        << "\" font-size=\"14\" font-weight=\"bold\">" << common::xmlEscape(storey.title)
+        << "</text>\n";
     ReportInput on_storey;
     on_storey.walls = storey.walls;
     on_storey.overlays = storey.overlays;
@@ -331,7 +334,7 @@ void drawStoreys(std::ostringstream& svg, const ReportInput& input, const Layout
       if (p.z() >= storey.z_min && p.z() < storey.z_max) on_storey.map_points.push_back(p);
     }
     on_storey.estimate_is_localization = input.estimate_is_localization;
-    auto starts_here = [&](const Trajectory& t) {
+    auto starts_here = [&](const common::Trajectory& t) {
       if (t.empty()) return false;
       const double z = t.front().pose.translation().z();
       return z >= storey.z_min && z < storey.z_max;

@@ -6,7 +6,7 @@
 #include <utility>
 #include <vector>
 
-#include "eval/tum.hpp"
+#include "common/tum.hpp"
 
 namespace isg::eval {
 
@@ -45,11 +45,11 @@ struct ReportInput {
   std::vector<std::vector<Eigen::Vector2d>> walls;
   std::vector<MapOverlay> overlays;
   std::vector<RoomLabel> labels;
-  Trajectory ground_truth;
-  Trajectory estimate;  // in B (from the first localized pose on), or aligned: see below
+  common::Trajectory ground_truth;
+  common::Trajectory estimate;  // in B (from the first localized pose on), or aligned: see below
   std::string estimate_label = "estimate in B (once localized)";
   bool estimate_is_localization = true;  // false: an aligned SLAM estimate, drawn in another hue
-  Trajectory odometry;  // odometry placed at the true start (dead reckoning), drawn faintly
+  common::Trajectory odometry;  // odometry placed at the true start (dead reckoning), drawn faintly
   std::string error_title = "APE in B (2D, no alignment)";
   std::vector<std::pair<double, double>> error_over_time;          // (t, metres)
   std::vector<std::pair<double, double>> heading_error_over_time;  // (t, degrees)

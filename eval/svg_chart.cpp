@@ -1,3 +1,6 @@
+
+#include "common/xml_escape.hpp"
+
 #include "eval/svg_chart.hpp"
 
 #include <algorithm>
@@ -5,23 +8,6 @@
 #include <cstdio>
 
 namespace isg::eval {
-
-std::string svgEscape(const std::string& text) {
-  std::string out;
-  for (char c : text) {
-    if (c == '&')
-      out += "&amp;";
-    else if (c == '<')
-      out += "&lt;";
-    else if (c == '>')
-      out += "&gt;";
-    else if (c == '"')
-      out += "&quot;";
-    else
-      out += c;
-  }
-  return out;
-}
 
 std::string svgNumber(double v) {
   char b[32];
@@ -74,7 +60,7 @@ void drawChartPanel(std::ostringstream& svg, const ChartPanel& panel, double lef
   auto CX = [&](double x) { return svgNumber(cx0 + (x - x0) / (x1 - x0) * (cx1 - cx0)); };
   auto CY = [&](double y) { return svgNumber(top + height * (y_hi - y) / (y_hi - y_lo)); };
   svg << "<text x=\"" << svgNumber(left) << "\" y=\"" << svgNumber(top - 6)
-      << "\" font-size=\"13\">" << svgEscape(panel.title) << "</text>\n";
+      << "\" font-size=\"13\">" << common::xmlEscape(panel.title) << "</text>\n";
   svg << "<rect x=\"" << svgNumber(cx0) << "\" y=\"" << svgNumber(top) << "\" width=\""
       << svgNumber(cx1 - cx0) << "\" height=\"" << svgNumber(height)
       << "\" fill=\"none\" stroke=\"#444\"/>\n";
@@ -89,7 +75,7 @@ void drawChartPanel(std::ostringstream& svg, const ChartPanel& panel, double lef
   for (double x : niceTicks(x0, x1, 8)) {
     svg << "<text x=\"" << CX(x) << "\" y=\"" << svgNumber(top + height + 14)
         << "\" font-size=\"10\" text-anchor=\"middle\">" << tickLabel(x, x_step) << " "
-        << svgEscape(panel.x_unit) << "</text>\n";
+        << common::xmlEscape(panel.x_unit) << "</text>\n";
     svg << "<line x1=\"" << CX(x) << "\" y1=\"" << svgNumber(top + height) << "\" x2=\"" << CX(x)
         << "\" y2=\"" << svgNumber(top + height + 4) << "\" stroke=\"#444\"/>\n";
   }
@@ -113,14 +99,14 @@ void drawChartPanel(std::ostringstream& svg, const ChartPanel& panel, double lef
     if (!s.label.empty()) {
       svg << "<text x=\"" << svgNumber(legend_x) << "\" y=\"" << svgNumber(top + 14)
           << "\" font-size=\"11\" text-anchor=\"end\" fill=\"" << s.colour << "\">"
-          << svgEscape(s.label) << "</text>\n";
+          << common::xmlEscape(s.label) << "</text>\n";
       legend_x -= 12 + 6.5 * double(s.label.size());
     }
   }
   if (!any && !panel.empty_text.empty()) {
     svg << "<text x=\"" << svgNumber(0.5 * (cx0 + cx1)) << "\" y=\"" << svgNumber(top + height / 2)
         << "\" font-size=\"14\" text-anchor=\"middle\" "
-        << "fill=\"#d02020\">" << svgEscape(panel.empty_text) << "</text>\n";
+        << "fill=\"#d02020\">" << common::xmlEscape(panel.empty_text) << "</text>\n";
   }
 }
 

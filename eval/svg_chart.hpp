@@ -8,10 +8,9 @@
 
 namespace isg::eval {
 
-// Pieces of the SVG pictures (report.svg, isg eval --plot): text escaping, numbers with a fixed
-// precision, round-number axis ticks and a time-series panel.
+// Pieces of the SVG pictures (report.svg, isg eval --plot; text is escaped by common::xmlEscape):
+// numbers with a fixed precision, round-number axis ticks and a time-series panel.
 
-std::string svgEscape(const std::string& text);
 std::string svgNumber(double value);  // one decimal: enough for pixels
 
 // A round step for an axis spanning `span` with about `target` intervals: 1, 2 or 5 × 10^k.

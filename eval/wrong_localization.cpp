@@ -7,7 +7,8 @@
 
 namespace isg::eval {
 
-WrongLocalization wrongLocalization(const Trajectory& ground_truth, const Trajectory& estimate,
+WrongLocalization wrongLocalization(const common::Trajectory& ground_truth,
+                                    const common::Trajectory& estimate,
                                     const WrongLocalizationOptions& options) {
   WrongLocalization out;
   if (ground_truth.empty() || estimate.empty()) return out;
@@ -21,8 +22,8 @@ WrongLocalization wrongLocalization(const Trajectory& ground_truth, const Trajec
   std::vector<Row> rows;
   rows.reserve(pairs.estimate.size());
   for (std::size_t i = 0; i < pairs.estimate.size(); ++i) {
-    const StampedPose& e = estimate[pairs.estimate[i]];
-    const StampedPose& g = ground_truth[pairs.reference[i]];
+    const common::StampedPose& e = estimate[pairs.estimate[i]];
+    const common::StampedPose& g = ground_truth[pairs.reference[i]];
     const Eigen::Vector3d d = e.pose.translation() - g.pose.translation();
     rows.push_back({e.t, d.head<2>().norm(), std::abs(d.z())});
   }

@@ -2,7 +2,7 @@
 
 #include <optional>
 
-#include "eval/tum.hpp"
+#include "common/tum.hpp"
 
 namespace isg::eval {
 
@@ -31,7 +31,8 @@ struct WrongLocalization {
   double max_height_error = 0.0;         // m, the largest height error of any associated row
 };
 
-WrongLocalization wrongLocalization(const Trajectory& ground_truth, const Trajectory& estimate,
+WrongLocalization wrongLocalization(const common::Trajectory& ground_truth,
+                                    const common::Trajectory& estimate,
                                     const WrongLocalizationOptions& options = {});
 
 }  // namespace isg::eval

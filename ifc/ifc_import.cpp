@@ -33,11 +33,12 @@
 #include <map>
 #include <set>
 
-#include "bim/json_reader.hpp"
 #include "bim/limits.hpp"
 #include "bim/plan_parser.hpp"
 #include "bim/polygon.hpp"
 #include "bim/stairs.hpp"
+#include "common/json_reader.hpp"
+#include "common/limits.hpp"
 #include "ifc/ifcpp_model.hpp"
 
 namespace isg::ifc {
@@ -278,7 +279,7 @@ class Importer {
 };
 
 std::string Importer::uniqueId(const std::string& wanted, const std::string& suffix) {
-  std::string id = cleanText(wanted.empty() ? "unnamed" : wanted, bim::limits::kMaxIdBytes - 24);
+  std::string id = cleanText(wanted.empty() ? "unnamed" : wanted, common::limits::kMaxIdBytes - 24);
   if (id == bim::kOutside) id += "-";
   std::string candidate = id;
   if (used_ids_.count(candidate) && !suffix.empty()) candidate = id + "@" + cleanText(suffix, 20);
@@ -337,7 +338,7 @@ void Importer::readStoreys() {
     storeys_.push_back(std::move(record));
   }
   if (storeys_.empty()) {
-    throw bim::InputError(file_, "", "no IfcBuildingStorey: the model has no storey to import");
+    throw common::InputError(file_, "", "no IfcBuildingStorey: the model has no storey to import");
   }
   std::stable_sort(
       storeys_.begin(), storeys_.end(),
@@ -604,7 +605,7 @@ void Importer::placeFlights(json& levels) {
     const double run = (fit.high_edge - fit.low_edge).norm();
     json stair = {
         {"id", uniqueId(flight.global_id, "")},
-        {"name", cleanText(flight.name, bim::limits::kMaxTextBytes)},
+        {"name", cleanText(flight.name, common::limits::kMaxTextBytes)},
         {"start", {fit.low_edge.x(), fit.low_edge.y()}},
         {"end", {fit.high_edge.x(), fit.high_edge.y()}},
         {"width", fit.width},
@@ -642,13 +643,14 @@ std::vector<int> Importer::chooseLevels() {
         std::string names;
         for (const auto& s : storeys_)
           names += (names.empty() ? "" : ", ") + ("\"" + s.name + "\"");
-        throw bim::InputError(file_, "",
-                              "no storey named \"" + name + "\" (--storey); its storeys: " + names);
+        throw common::InputError(
+            file_, "", "no storey named \"" + name + "\" (--storey); its storeys: " + names);
       }
       if (walls_on[found] == 0) {
-        throw bim::InputError(file_, "",
-                              "storey \"" + name + "\" has no wall rising " + fmt(kFullHeightWall) +
-                                  " m above its floor: nothing to import");
+        throw common::InputError(file_, "",
+                                 "storey \"" + name + "\" has no wall rising " +
+                                     fmt(kFullHeightWall) +
+                                     " m above its floor: nothing to import");
       }
       if (std::find(chosen.begin(), chosen.end(), found) == chosen.end()) chosen.push_back(found);
     }
@@ -660,9 +662,10 @@ std::vector<int> Importer::chooseLevels() {
     if (walls_on[s] > 0 && (!any_rooms || rooms_in[s] > 0)) chosen.push_back(s);
   }
   if (chosen.empty()) {
-    throw bim::InputError(file_, "",
-                          walls_.empty() ? "no wall the import could read: nothing to import"
-                                         : "no storey has walls standing on it: nothing to import");
+    throw common::InputError(file_, "",
+                             walls_.empty()
+                                 ? "no wall the import could read: nothing to import"
+                                 : "no storey has walls standing on it: nothing to import");
   }
   return chosen;
 }
@@ -688,7 +691,7 @@ json Importer::levelJson(int s, StoreySummary& summary) {
                 {"thickness", wall.fit.thickness},
                 {"height", top},
                 {"base", base}};
-    if (!wall.name.empty()) out["name"] = cleanText(wall.name, bim::limits::kMaxTextBytes);
+    if (!wall.name.empty()) out["name"] = cleanText(wall.name, common::limits::kMaxTextBytes);
     walls.push_back(out);
     ++summary.walls;
     if (wall.storey != s) ++summary.walls_from_other_storeys;
@@ -777,7 +780,7 @@ json Importer::levelJson(int s, StoreySummary& summary) {
       out["height"] = head - sill;
       ++summary.windows;
     }
-    if (!opening.name.empty()) out["name"] = cleanText(opening.name, bim::limits::kMaxTextBytes);
+    if (!opening.name.empty()) out["name"] = cleanText(opening.name, common::limits::kMaxTextBytes);
     (is_door ? doors : windows).push_back(out);
     along_wall[opening.wall].push_back({lo, hi, id, is_door ? "door" : "window"});
   }
@@ -810,7 +813,7 @@ json Importer::levelJson(int s, StoreySummary& summary) {
     json outline = json::array();
     for (const auto& p : footprint->outline) outline.push_back({p.x(), p.y()});
     json out = {{"id", uniqueId(globalIdOf(space), summary.level_id)}};
-    if (!name.empty()) out["name"] = cleanText(name, bim::limits::kMaxTextBytes);
+    if (!name.empty()) out["name"] = cleanText(name, common::limits::kMaxTextBytes);
     out["outline"] = outline;
     rooms.push_back(out);
     ++summary.rooms;
@@ -818,7 +821,7 @@ json Importer::levelJson(int s, StoreySummary& summary) {
   std::sort(tops.begin(), tops.end());
   const double height = tops.empty() ? 3.0 : tops[tops.size() / 2];
   json level = {{"id", summary.level_id}};
-  if (!storey.name.empty()) level["name"] = cleanText(storey.name, bim::limits::kMaxTextBytes);
+  if (!storey.name.empty()) level["name"] = cleanText(storey.name, common::limits::kMaxTextBytes);
   level["elevation"] = e;
   level["height"] = std::clamp(height, bim::limits::kMinSize, bim::limits::kMaxHeight);
   level["walls"] = walls;
@@ -844,7 +847,7 @@ ImportResult Importer::run() {
     const double far =
         std::max(wall.fit.start.cwiseAbs().maxCoeff(), wall.fit.end.cwiseAbs().maxCoeff());
     if (far > bim::limits::kMaxCoordinate) {
-      throw bim::InputError(
+      throw common::InputError(
           file_, "",
           describe(wall.kind, wall.element) + " lies " + fmt(far / 1000.0) +
               " km from the model's origin, beyond the plan's ±" +
@@ -900,12 +903,12 @@ ImportResult Importer::run() {
   placeFlights(levels);
   result_.plan_json = {{"format", "isg.plan"}, {"version", 1}};
   result_.plan_json["name"] =
-      cleanText(std::filesystem::path(file_).stem().string(), bim::limits::kMaxTextBytes);
+      cleanText(std::filesystem::path(file_).stem().string(), common::limits::kMaxTextBytes);
   json source = {{"file", cleanText(std::filesystem::path(file_).filename().string(),
-                                    bim::limits::kMaxTextBytes)},
+                                    common::limits::kMaxTextBytes)},
                  {"schema", result_.schema}};
   if (!result_.application.empty())
-    source["application"] = cleanText(result_.application, bim::limits::kMaxTextBytes);
+    source["application"] = cleanText(result_.application, common::limits::kMaxTextBytes);
   result_.plan_json["imported_from"] = source;
   result_.plan_json["levels"] = levels;
   return std::move(result_);
@@ -1014,7 +1017,7 @@ ImportResult importInChildProcess(const std::string& file, std::string text,
     nlohmann::json message;
     try {
       message = resultToMessage(importWithIfcpp(file, std::move(text), options));
-    } catch (const bim::InputError& e) {
+    } catch (const common::InputError& e) {
       message = {{"ok", false}, {"pointer", e.pointer()}, {"reason", e.reason()}};
     } catch (const std::exception& e) {
       message = {{"ok", false}, {"internal", e.what()}};
@@ -1032,32 +1035,32 @@ ImportResult importInChildProcess(const std::string& file, std::string text,
   if (WIFSIGNALED(status)) {
     const int signal = WTERMSIG(status);
     if (signal == SIGINT || signal == SIGTERM || signal == SIGHUP) throw ImportInterrupted(signal);
-    throw bim::InputError(file, "",
-                          "IFC++ stopped with signal " + std::to_string(signal) + " (" +
-                              strsignal(signal) +
-                              ") while reading the model: it is malformed, or uses what IFC++ "
-                              "(Debian's libifcplusplus) cannot read");
+    throw common::InputError(file, "",
+                             "IFC++ stopped with signal " + std::to_string(signal) + " (" +
+                                 strsignal(signal) +
+                                 ") while reading the model: it is malformed, or uses what IFC++ "
+                                 "(Debian's libifcplusplus) cannot read");
   }
   const nlohmann::json message = nlohmann::json::parse(bytes, nullptr, false);
   if (!WIFEXITED(status) || WEXITSTATUS(status) != 0 || message.is_discarded() ||
       !message.is_object()) {
-    throw bim::InputError(file, "",
-                          "IFC++ stopped while reading the model (exit status " +
-                              std::to_string(WIFEXITED(status) ? WEXITSTATUS(status) : -1) +
-                              "): it is malformed, or uses what IFC++ cannot read");
+    throw common::InputError(file, "",
+                             "IFC++ stopped while reading the model (exit status " +
+                                 std::to_string(WIFEXITED(status) ? WEXITSTATUS(status) : -1) +
+                                 "): it is malformed, or uses what IFC++ cannot read");
   }
   if (!message.value("ok", false)) {
     if (message.contains("internal")) {
       throw std::runtime_error("the IFC import: " + message["internal"].get<std::string>());
     }
-    throw bim::InputError(file, message.value("pointer", ""), message.value("reason", ""));
+    throw common::InputError(file, message.value("pointer", ""), message.value("reason", ""));
   }
   return resultFromMessage(message);
 }
 
 // When `error` is at a flight of stairs (/levels/L/stairs/K...), removes that flight from the
 // plan, logs why and returns true.
-bool dropRefusedFlight(ImportResult& result, const bim::InputError& error) {
+bool dropRefusedFlight(ImportResult& result, const common::InputError& error) {
   const std::string& pointer = error.pointer();
   std::size_t level = 0, stair = 0;
   char rest = 0;
@@ -1092,22 +1095,22 @@ ImportResult importIfcText(const std::string& file, std::string text,
   for (;;) {
     const nlohmann::json document = nlohmann::json::parse(result.plan_json.dump());
     result.warnings.clear();
-    const bim::JsonSource source{file, &result.warnings};
+    const common::JsonSource source{file, &result.warnings};
     try {
-      result.plan = bim::parsePlan(bim::JsonNode(document, "", source));
+      result.plan = bim::parsePlan(common::JsonNode(document, "", source));
       return result;
-    } catch (const bim::InputError& e) {
+    } catch (const common::InputError& e) {
       if (!dropRefusedFlight(result, e)) {
-        throw bim::InputError(file, "",
-                              "the plan imported from it breaks a rule of the plan format at " +
-                                  e.pointer() + ": " + e.reason());
+        throw common::InputError(file, "",
+                                 "the plan imported from it breaks a rule of the plan format at " +
+                                     e.pointer() + ": " + e.reason());
       }
     }
   }
 }
 
 ImportResult importIfc(const std::string& path, const ImportOptions& options) {
-  return importIfcText(path, bim::readCheckedFile(path, kMaxIfcBytes), options);
+  return importIfcText(path, common::readCheckedFile(path, kMaxIfcBytes), options);
 }
 
 }  // namespace isg::ifc

@@ -6,8 +6,8 @@
 #include <string>
 #include <vector>
 
-#include "bim/input_error.hpp"
 #include "bim/plan.hpp"
+#include "common/input_error.hpp"
 
 namespace isg::ifc {
 
@@ -37,9 +37,9 @@ struct StoreySummary {
 struct ImportResult {
   nlohmann::ordered_json plan_json;  // the plan file: parsed by bim's parser before it is returned
   bim::Plan plan;
-  bim::Warnings warnings;   // the parser's, on the plan written
-  std::string schema;       // IFC2X3 or IFC4
-  std::string application;  // the authoring tool, from the header
+  common::Warnings warnings;  // the parser's, on the plan written
+  std::string schema;         // IFC2X3 or IFC4
+  std::string application;    // the authoring tool, from the header
   double metres_per_unit = 1.0;
   // One line per element dropped or simplified, naming it by GlobalId and name and saying why.
   std::vector<std::string> log;
@@ -59,7 +59,7 @@ class ImportInterrupted : public std::runtime_error {
 };
 
 // Reads `path` (a regular file of at most kMaxIfcBytes). IFC++ runs in a child process: a model
-// that makes it crash is reported like any bad model. Throws bim::InputError naming the file
+// that makes it crash is reported like any bad model. Throws common::InputError naming the file
 // for a file that is missing, not IFC, truncated, of another schema, has no IfcProject, no
 // storey, no wall in the storeys imported, or names a storey it does not have.
 ImportResult importIfc(const std::string& path, const ImportOptions& options);

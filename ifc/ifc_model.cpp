@@ -8,8 +8,8 @@
 #include <cctype>
 #include <unordered_set>
 
-#include "bim/input_error.hpp"
-#include "bim/untracked_allocations.hpp"
+#include "common/input_error.hpp"
+#include "common/untracked_allocations.hpp"
 #include "ifc/ifcpp_model.hpp"
 
 namespace isg::ifc {
@@ -112,14 +112,14 @@ LoadedModel loadModel(const std::string& file, std::string text) {
   loaded.model->setMessageCallBack(&loaded.messages, &gatherMessage);
   try {
     // IFC++'s reader leaks on malformed files (bim/untracked_allocations.hpp).
-    const bim::UntrackedAllocations untracked;
+    const common::UntrackedAllocations untracked;
     reader.loadModelFromString(text, loaded.model);
   } catch (const std::exception& e) {
-    throw bim::InputError(file, "", std::string("IFC++ could not read the model: ") + e.what());
+    throw common::InputError(file, "", std::string("IFC++ could not read the model: ") + e.what());
   }
   if (!loaded.model->getIfcProject()) {
     std::string why = loaded.messages.errors.empty() ? "" : " (" + loaded.messages.errors[0] + ")";
-    throw bim::InputError(file, "", "no IfcProject: not a readable IFC model" + why);
+    throw common::InputError(file, "", "no IfcProject: not a readable IFC model" + why);
   }
   return loaded;
 }
@@ -157,7 +157,7 @@ Body BodyReader::read(const shared_ptr<IfcProduct>& product) {
       try {
         // IFC++ leaks carve's CSG collector of each boolean operation (a bug of the library:
         // bim/untracked_allocations.hpp).
-        const bim::UntrackedAllocations untracked;
+        const common::UntrackedAllocations untracked;
         converter_->getRepresentationConverter()->convertIfcRepresentation(representation, data);
       } catch (const std::exception& e) {
         model_.messages.errors.push_back(e.what());

@@ -31,7 +31,7 @@ struct LoadedModel {
 };
 
 // Reads an IFC file's text (the caller read the file: IFC++'s own loadModelFromFile calls
-// setlocale for the whole process). Throws bim::InputError naming `file` for what the header
+// setlocale for the whole process). Throws common::InputError naming `file` for what the header
 // check rejects and for a model without an IfcProject.
 LoadedModel loadModel(const std::string& file, std::string text);
 

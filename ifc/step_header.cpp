@@ -4,7 +4,7 @@
 #include <cctype>
 #include <vector>
 
-#include "bim/input_error.hpp"
+#include "common/input_error.hpp"
 
 namespace isg::ifc {
 namespace {
@@ -92,29 +92,30 @@ StepHeader readStepHeader(const std::string& file, const std::string& text) {
   if (text.rfind("\xEF\xBB\xBF", 0) == 0) first = 3;  // a UTF-8 byte order mark
   while (first < text.size() && std::isspace(static_cast<unsigned char>(text[first]))) ++first;
   if (text.compare(first, 13, "ISO-10303-21;") != 0) {
-    throw bim::InputError(file, "",
-                          "not an IFC file: an IFC (STEP, ISO 10303-21) file starts with "
-                          "\"ISO-10303-21;\"");
+    throw common::InputError(file, "",
+                             "not an IFC file: an IFC (STEP, ISO 10303-21) file starts with "
+                             "\"ISO-10303-21;\"");
   }
   const std::string header = headerSection(text);
   const std::string schema_text = firstSchema(header);
   if (schema_text.empty()) {
-    throw bim::InputError(file, "",
-                          "no FILE_SCHEMA in the file's header: which IFC schema it "
-                          "follows is unknown");
+    throw common::InputError(file, "",
+                             "no FILE_SCHEMA in the file's header: which IFC schema it "
+                             "follows is unknown");
   }
   const std::string schema = upper(schema_text);
   StepHeader result;
   if (schema == "IFC2X3" || schema == "IFC4") {
     result.schema = schema;
   } else {
-    throw bim::InputError(file, "",
-                          "schema " + schema_text +
-                              " is not supported: the import reads IFC2X3 and IFC4 (export the "
-                              "model as one of them)");
+    throw common::InputError(file, "",
+                             "schema " + schema_text +
+                                 " is not supported: the import reads IFC2X3 and IFC4 (export the "
+                                 "model as one of them)");
   }
   if (trimmedTail(text).find("END-ISO-10303-21;") == std::string::npos) {
-    throw bim::InputError(file, "", "truncated: the file does not end with \"END-ISO-10303-21;\"");
+    throw common::InputError(file, "",
+                             "truncated: the file does not end with \"END-ISO-10303-21;\"");
   }
   // FILE_NAME(name, time_stamp, author, organization, preprocessor_version, originating_system,
   // authorization): the sixth is the tool that made the model.

@@ -13,7 +13,7 @@ struct StepHeader {
   std::string application;  // FILE_NAME's originating system, "" when absent
 };
 
-// Throws bim::InputError naming `file` when the text is not an ISO 10303-21 exchange file, has
+// Throws common::InputError naming `file` when the text is not an ISO 10303-21 exchange file, has
 // no FILE_SCHEMA, names a schema other than IFC2X3 and IFC4 (IFC4X1-IFC4X3, IFC2X2 …), or does
 // not end with END-ISO-10303-21; (a truncated file).
 StepHeader readStepHeader(const std::string& file, const std::string& text);

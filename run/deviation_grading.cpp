@@ -4,9 +4,9 @@
 #include <cmath>
 #include <numbers>
 
-#include "bim/angles.hpp"
 #include "bim/as_built_wall.hpp"
 #include "bim/polygon.hpp"
+#include "common/angles.hpp"
 
 namespace isg::run {
 
@@ -65,7 +65,7 @@ DeviationGrade gradeDeviations(const slam::DeviationReport& report, const bim::P
     grade.angle_error_deg = angle_error / measured;
   }
   // Extra walls of the levels walked.
-  const double parallel = std::cos(bim::radians(10.0));
+  const double parallel = std::cos(common::radians(10.0));
   std::vector<bool> matched(truth.extra_walls.size(), false);
   for (const slam::ExtraWall& extra : report.extra_walls) {
     const Eigen::Vector2d middle = 0.5 * (extra.start + extra.end);
@@ -124,18 +124,18 @@ void putOptional(nlohmann::json& j, const char* key, const std::optional<double>
   if (value) j[key] = *value;
 }
 
-std::optional<double> readShare(const bim::JsonNode& node, std::string_view key) {
+std::optional<double> readShare(const common::JsonNode& node, std::string_view key) {
   if (const auto field = node.optionalField(key)) return field->numberInRange(0.0, 1.0);
   return std::nullopt;
 }
 
-std::optional<double> readMeasure(const bim::JsonNode& node, std::string_view key) {
+std::optional<double> readMeasure(const common::JsonNode& node, std::string_view key) {
   if (const auto field = node.optionalField(key)) return field->nonNegativeNumber();
   return std::nullopt;
 }
 
-int readCount(const bim::JsonNode& node, std::string_view key) {
-  const bim::JsonNode field = node.field(key);
+int readCount(const common::JsonNode& node, std::string_view key) {
+  const common::JsonNode field = node.field(key);
   const std::int64_t value = field.integer();
   if (value < 0 || value > 1000000000) field.fail("must be a count, got " + std::to_string(value));
   return int(value);
@@ -193,11 +193,11 @@ void putOptionals(nlohmann::json& j, const DeviationGrade& from, const Optional 
   for (const auto& f : fields) putOptional(j, f.key, from.*f.member);
 }
 template <typename T, std::size_t N>
-void readCounts(const bim::JsonNode& node, T& to, const Count<T> (&fields)[N]) {
+void readCounts(const common::JsonNode& node, T& to, const Count<T> (&fields)[N]) {
   for (const auto& f : fields) to.*f.member = readCount(node, f.key);
 }
 template <std::size_t N>
-void readOptionals(const bim::JsonNode& node, DeviationGrade& to, const Optional (&fields)[N]) {
+void readOptionals(const common::JsonNode& node, DeviationGrade& to, const Optional (&fields)[N]) {
   for (const auto& f : fields) {
     to.*f.member = f.share ? readShare(node, f.key) : readMeasure(node, f.key);
   }
@@ -225,7 +225,7 @@ nlohmann::json deviationMetricsJson(const DeviationMetrics& m) {
   return j;
 }
 
-DeviationMetrics deviationMetricsFromJson(const bim::JsonNode& node) {
+DeviationMetrics deviationMetricsFromJson(const common::JsonNode& node) {
   DeviationMetrics m;
   readCounts(node.field("walls"), m, kWallCounts);
   m.extra_walls = readCount(node, "extra_walls");

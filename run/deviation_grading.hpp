@@ -3,9 +3,9 @@
 #include <nlohmann/json.hpp>
 #include <optional>
 
-#include "bim/json_reader.hpp"
 #include "bim/plan.hpp"
 #include "bim/scenario.hpp"
+#include "common/json_reader.hpp"
 #include "slam/plan_deviations.hpp"
 
 namespace isg::run {
@@ -47,6 +47,6 @@ struct DeviationMetrics {
 DeviationMetrics deviationMetrics(const slam::DeviationReport& report, const bim::Plan* plan,
                                   const bim::AsBuilt* truth);
 nlohmann::json deviationMetricsJson(const DeviationMetrics& metrics);
-DeviationMetrics deviationMetricsFromJson(const bim::JsonNode& node);
+DeviationMetrics deviationMetricsFromJson(const common::JsonNode& node);
 
 }  // namespace isg::run

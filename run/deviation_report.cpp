@@ -1,3 +1,8 @@
+
+#include "common/angles.hpp"
+#include "common/xml_escape.hpp"
+#include "run/text_format.hpp"
+
 #include "run/deviation_report.hpp"
 
 #include <algorithm>
@@ -5,9 +10,6 @@
 #include <cstdio>
 #include <limits>
 #include <numbers>
-
-#include "bim/angles.hpp"
-#include "run/text_format.hpp"
 
 namespace isg::run {
 
@@ -29,22 +31,6 @@ const char* colourOf(slam::WallStatus status) {
       break;
   }
   return "#b0b0b0";
-}
-
-std::string escape(const std::string& text) {
-  std::string out;
-  for (char c : text) {
-    if (c == '&') {
-      out += "&amp;";
-    } else if (c == '<') {
-      out += "&lt;";
-    } else if (c == '>') {
-      out += "&gt;";
-    } else {
-      out += c;
-    }
-  }
-  return out;
 }
 
 }  // namespace
@@ -110,7 +96,7 @@ nlohmann::json deviationReportJson(const slam::DeviationReport& report) {
     placements.push_back({{"level", p.level},
                           {"x", p.correction.x()},
                           {"y", p.correction.y()},
-                          {"yaw_deg", bim::degrees(p.correction.z())},
+                          {"yaw_deg", common::degrees(p.correction.z())},
                           {"walls_used", p.walls_used}});
   }
   return {{"format", "isg.deviations"},
@@ -190,7 +176,7 @@ std::string deviationSvg(const slam::DeviationReport& report) {
       return top + kTitle + kMargin + (panel.box.max().y() - p.y()) * kScale;
     };
     svg += format("<text x=\"10\" y=\"%.0f\" font-size=\"12\">Level %s</text>\n", top + 16,
-                  escape(panel.level).c_str());
+                  common::xmlEscape(panel.level).c_str());
     for (const auto& w : report.walls) {
       if (w.level != panel.level) continue;
       const bool missing = w.status == slam::WallStatus::kMissing;

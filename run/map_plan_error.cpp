@@ -4,7 +4,7 @@
 #include <cmath>
 
 #include "bim/polygon.hpp"
-#include "eval/pose_interpolation.hpp"
+#include "common/pose_interpolation.hpp"
 
 namespace isg::run {
 
@@ -83,14 +83,14 @@ class FinalTrajectory {
 
   std::optional<Eigen::Isometry3d> at(double t) const {
     if (!run_.map || run_.map->keyframes.empty() || run_.streams.odometry.empty()) {
-      return eval::interpolatePose(run_.estimate_map, t);
+      return common::interpolatePose(run_.estimate_map, t);
     }
     const auto& keyframes = run_.map->keyframes;
     auto after =
         std::upper_bound(keyframes.begin(), keyframes.end(), t,
                          [](double time, const slam::MapKeyframe& k) { return time < k.stamp; });
     const slam::MapKeyframe& k = after == keyframes.begin() ? *after : *(after - 1);
-    const auto odometry = eval::interpolatePose(run_.streams.odometry, t);
+    const auto odometry = common::interpolatePose(run_.streams.odometry, t);
     if (!odometry) return std::nullopt;
     return k.estimate * k.odometry.inverse() * *odometry;
   }

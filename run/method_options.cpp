@@ -3,7 +3,7 @@
 #include <cmath>
 #include <stdexcept>
 
-#include "bim/json_reader.hpp"
+#include "common/json_reader.hpp"
 
 namespace isg::run {
 
@@ -20,8 +20,8 @@ double MethodOptions::number(const std::string& key, double fallback, double lo,
   }
   if (used == 0 || used != it->second.size() || !(value >= lo && value <= hi)) {
     throw std::invalid_argument(key + "=" + it->second + ": " + method_ + "'s " + key +
-                                " must be a number in [" + bim::formatNumber(lo) + ", " +
-                                bim::formatNumber(hi) + "]");
+                                " must be a number in [" + common::formatNumber(lo) + ", " +
+                                common::formatNumber(hi) + "]");
   }
   return value;
 }

@@ -3,8 +3,8 @@
 #include <filesystem>
 #include <set>
 
-#include "bim/input_error.hpp"
-#include "bim/json_reader.hpp"
+#include "common/input_error.hpp"
+#include "common/json_reader.hpp"
 #include "run/run_scene.hpp"
 #include "sensors/foxglove_json.hpp"
 #include "sensors/ros2_messages.hpp"
@@ -87,7 +87,7 @@ Json graphSoFar(const Json& graph, double t) {
 
 RunMcapWriter::RunMcapWriter(const std::string& path, const RunMcapOptions& options,
                              const Json* agraph, std::optional<Eigen::Isometry3d> R_T_L,
-                             const eval::Trajectory& ground_truth)
+                             const common::Trajectory& ground_truth)
     : options_(options),
       mcap_(path, {options.compression, 4 << 20, "", options.overwrite}),
       agraph_(agraph),
@@ -263,19 +263,19 @@ RunExportSummary exportRunFolder(const std::string& run_dir, const std::string& 
   const auto file = [&](const char* name) { return (dir / name).string(); };
   const auto optionalJson = [&](const char* name) -> std::optional<Json> {
     if (!fs::exists(file(name))) return std::nullopt;
-    return bim::readJsonFile(file(name));
+    return common::readJsonFile(file(name));
   };
-  const Json metrics = bim::readJsonFile(file("metrics.json"));
-  const Json graph = bim::readJsonFile(file("sgraph.json"));
+  const Json metrics = common::readJsonFile(file("metrics.json"));
+  const Json graph = common::readJsonFile(file("sgraph.json"));
   const std::optional<Json> agraph = optionalJson("agraph.json");
   const std::optional<Json> deviations = optionalJson("deviations.json");
-  const eval::Trajectory estimate_map = sensors::readTrajectoryFile(file("estimate_map.tum"));
-  const eval::Trajectory estimate =
+  const common::Trajectory estimate_map = sensors::readTrajectoryFile(file("estimate_map.tum"));
+  const common::Trajectory estimate =
       sensors::readTrajectoryFile(file("estimate.tum"), /*require_poses=*/false);
-  const eval::Trajectory ground_truth =
+  const common::Trajectory ground_truth =
       fs::exists(file("groundtruth.tum"))
           ? sensors::readTrajectoryFile(file("groundtruth.tum"), /*require_poses=*/false)
-          : eval::Trajectory{};
+          : common::Trajectory{};
   std::vector<MatchingEvent> events;
   if (const auto it = metrics.find("matching_events"); it != metrics.end() && it->is_array()) {
     for (const Json& e : *it) {
@@ -328,7 +328,7 @@ RunExportSummary exportRunMcap(const std::string& run_dir, const std::string& mc
     return exportRunFolder(run_dir, mcap_path, options);
   } catch (const nlohmann::json::exception& e) {
     // A document of the folder without what isg writes in it (edited, or another tool's).
-    throw bim::InputError(
+    throw common::InputError(
         run_dir, "",
         std::string("a JSON file of the run folder is not as isg writes it: ") + e.what());
   }

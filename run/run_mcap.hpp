@@ -7,7 +7,7 @@
 #include <string>
 #include <vector>
 
-#include "eval/tum.hpp"
+#include "common/tum.hpp"
 #include "run/growing_path.hpp"
 #include "sensors/mcap_writer.hpp"
 #include "sensors/messages.hpp"
@@ -76,7 +76,7 @@ class RunMcapWriter {
   // base, when known. `ground_truth`: B_T_R, possibly empty.
   RunMcapWriter(const std::string& path, const RunMcapOptions& options,
                 const nlohmann::json* agraph, std::optional<Eigen::Isometry3d> R_T_L,
-                const eval::Trajectory& ground_truth);
+                const common::Trajectory& ground_truth);
 
   // Whether the moment at `stamp` should carry a graph snapshot and a scan.
   bool snapshotDue(double stamp) const;

@@ -5,8 +5,8 @@
 #include <limits>
 #include <string_view>
 
-#include "bim/input_error.hpp"
-#include "bim/json_reader.hpp"
+#include "common/input_error.hpp"
+#include "common/json_reader.hpp"
 
 namespace isg::run {
 
@@ -17,21 +17,21 @@ nlohmann::json statisticsJson(const Statistics& s) {
           {"std", s.std},     {"min", s.min},   {"max", s.max},   {"sse", s.sse}};
 }
 
-// metrics.json's fields read through bim::JsonNode, which names the file and the field's pointer
+// metrics.json's fields read through common::JsonNode, which names the file and the field's pointer
 // when one is missing or wrong. Every measure is finite and >= 0 (a time, a distance, an error).
-int countOf(const bim::JsonNode& node) {
+int countOf(const common::JsonNode& node) {
   const std::int64_t value = node.integer();
   if (value < 0) node.fail("must be >= 0, got " + std::to_string(value));
   if (value > std::numeric_limits<int>::max()) node.fail("too large: " + std::to_string(value));
   return int(value);
 }
 
-std::optional<double> optionalMeasure(const bim::JsonNode& object, std::string_view key) {
+std::optional<double> optionalMeasure(const common::JsonNode& object, std::string_view key) {
   if (const auto field = object.optionalField(key)) return field->nonNegativeNumber();
   return std::nullopt;
 }
 
-std::optional<Statistics> optionalStatistics(const bim::JsonNode& object, std::string_view key) {
+std::optional<Statistics> optionalStatistics(const common::JsonNode& object, std::string_view key) {
   const auto field = object.optionalField(key);
   if (!field) return std::nullopt;
   Statistics out;
@@ -47,7 +47,7 @@ std::optional<Statistics> optionalStatistics(const bim::JsonNode& object, std::s
 }
 
 // An optional array of finite numbers (empty when absent).
-std::vector<double> optionalNumbers(const bim::JsonNode& object, std::string_view key) {
+std::vector<double> optionalNumbers(const common::JsonNode& object, std::string_view key) {
   std::vector<double> out;
   if (const auto field = object.optionalField(key)) {
     for (const auto& element : field->elements()) out.push_back(element.number());
@@ -140,8 +140,8 @@ nlohmann::json metricsToJson(const RunMetrics& m) {
 }
 
 RunMetrics metricsFromJson(const nlohmann::json& document, const std::string& file) {
-  const bim::JsonSource source{file, nullptr};
-  const bim::JsonNode root(document, "", source);
+  const common::JsonSource source{file, nullptr};
+  const common::JsonNode root(document, "", source);
   RunMetrics m;
   m.world = root.field("world").string();
   m.method = root.field("method").string();
@@ -218,7 +218,7 @@ RunMetrics metricsFromJson(const nlohmann::json& document, const std::string& fi
     for (const auto& e : events->elements()) {
       const double stamp = e.field("stamp").number();
       const std::int64_t keyframe = e.field("keyframe").integer();
-      const bim::JsonNode status_node = e.field("status");
+      const common::JsonNode status_node = e.field("status");
       const std::string word = status_node.string();
       const auto status = slam::matchStatusFromString(word);
       if (!status) {
@@ -244,9 +244,9 @@ RunMetrics metricsFromJson(const nlohmann::json& document, const std::string& fi
 RunMetrics readMetrics(const std::string& run_dir) {
   const std::string path = (std::filesystem::path(run_dir) / kMetricsFile).string();
   if (!std::filesystem::is_regular_file(path)) {
-    throw bim::InputError(run_dir, "", "not a run folder (no metrics.json)");
+    throw common::InputError(run_dir, "", "not a run folder (no metrics.json)");
   }
-  return metricsFromJson(bim::readJsonFile(path), path);
+  return metricsFromJson(common::readJsonFile(path), path);
 }
 
 }  // namespace isg::run

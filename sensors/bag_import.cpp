@@ -7,9 +7,9 @@
 #include <filesystem>
 #include <nlohmann/json.hpp>
 
-#include "bim/input_error.hpp"
-#include "eval/pose_interpolation.hpp"
-#include "sensors/atomic_folder.hpp"
+#include "common/atomic_folder.hpp"
+#include "common/input_error.hpp"
+#include "common/pose_interpolation.hpp"
 #include "sensors/cloud_layout.hpp"
 #include "sensors/dataset_format.hpp"
 #include "sensors/mount_transform.hpp"
@@ -85,7 +85,7 @@ class Import {
 
  private:
   [[noreturn]] void fail(const std::string& what) const {
-    throw bim::InputError(bag_path_, "", what);
+    throw common::InputError(bag_path_, "", what);
   }
   [[noreturn]] void failMessage(const std::string& topic, std::uint64_t index,
                                 const std::string& what) const {
@@ -591,8 +591,9 @@ void Import::readStreams(const fs::path& folder,
           if (2 * std::size_t(before) > points.size()) ++clouds_stamped_at_end_;
         }
         summary_.points += points.size();
-        writeFile(folder / dataset::kScans / dataset::scanFileName(int(scan_stamps_.size())),
-                  dataset::pcdBytes(points, dataset::kDefaultPcdData));
+        common::writeFile(
+            folder / dataset::kScans / dataset::scanFileName(int(scan_stamps_.size())),
+            dataset::pcdBytes(points, dataset::kDefaultPcdData));
         scan_stamps_.push_back(cloud.header.stamp);
         if (progress) progress(k + 1, total);
       } else if (topic == summary_.imu.topic) {
@@ -744,23 +745,25 @@ void Import::writeFiles(const fs::path& folder) {
   // scans.tum when the ground truth covers every scan, else the stamps alone.
   Trajectory scan_poses;
   for (double t : stamps) {
-    const auto B_T_R = eval::interpolatePose(truth, t);
+    const auto B_T_R = common::interpolatePose(truth, t);
     if (!B_T_R) break;
     scan_poses.push_back({t, *B_T_R * R_T_L_});
   }
   if (!truth.empty() && scan_poses.size() == stamps.size()) {
-    writeFile(folder / dataset::kScanPoses, dataset::trajectoryText(scan_poses));
+    common::writeFile(folder / dataset::kScanPoses, dataset::trajectoryText(scan_poses));
   } else {
     if (!truth.empty()) {
       summary_.notes.push_back(
           "the ground truth does not cover every scan: scans.txt holds "
           "their stamps, without poses");
     }
-    writeFile(folder / dataset::kScanStamps, dataset::stampsText(stamps));
+    common::writeFile(folder / dataset::kScanStamps, dataset::stampsText(stamps));
   }
-  if (!odometry.empty()) writeFile(folder / dataset::kOdometry, dataset::trajectoryText(odometry));
-  if (!truth.empty()) writeFile(folder / dataset::kGroundTruth, dataset::trajectoryText(truth));
-  if (!imu.empty()) writeFile(folder / dataset::kImu, dataset::imuText(imu));
+  if (!odometry.empty())
+    common::writeFile(folder / dataset::kOdometry, dataset::trajectoryText(odometry));
+  if (!truth.empty())
+    common::writeFile(folder / dataset::kGroundTruth, dataset::trajectoryText(truth));
+  if (!imu.empty()) common::writeFile(folder / dataset::kImu, dataset::imuText(imu));
 
   std::vector<double> imu_times;
   for (const auto& s : imu) imu_times.push_back(s.t);
@@ -817,7 +820,7 @@ void Import::writeFiles(const fs::path& folder) {
                           {"ground_truth", summary_.ground_truth.topic}}},
                         {"notes", summary_.notes}};
   if (options_.duration) m["imported_from"]["duration_s"] = *options_.duration;
-  writeFile(folder / dataset::kMetadata, m.dump(2) + "\n");
+  common::writeFile(folder / dataset::kMetadata, m.dump(2) + "\n");
 }
 
 nlohmann::ordered_json Import::metadata(double seconds) const {
@@ -853,8 +856,9 @@ BagImportSummary importRosbag(const std::string& bag_path, const std::string& da
                               const std::function<void(std::uint64_t, std::uint64_t)>& progress) {
   Import import(bag_path, options);
   BagImportSummary summary;
-  writeFolderAtomically(dataset_dir, OutputKind::kDataset, options.overwrite,
-                        [&](const fs::path& folder) { summary = import.run(folder, progress); });
+  common::writeFolderAtomically(
+      dataset_dir, common::OutputKind::kDataset, options.overwrite,
+      [&](const fs::path& folder) { summary = import.run(folder, progress); });
   return summary;
 }
 

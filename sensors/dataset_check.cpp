@@ -4,7 +4,7 @@
 #include <cstdio>
 #include <filesystem>
 
-#include "bim/input_error.hpp"
+#include "common/input_error.hpp"
 #include "sensors/dataset_format.hpp"
 
 namespace isg::sensors {
@@ -52,7 +52,7 @@ void checkDatasetAgainstMetadata(const DatasetReader& dataset) {
   const std::string metadata = (dir / dataset::kMetadata).string();
   const nlohmann::json& m = dataset.metadata();
   const auto disagree = [&](const std::string& pointer, const std::string& what) {
-    throw bim::InputError(metadata, pointer, what);
+    throw common::InputError(metadata, pointer, what);
   };
 
   // The LiDAR: scan count, rate and the duration they cover.
@@ -87,9 +87,9 @@ void checkDatasetAgainstMetadata(const DatasetReader& dataset) {
     const auto B_p_R = groundTruthAt(truth, poses[i].t);
     const std::string file = (dir / dataset::kScanPoses).string();
     if (!B_p_R) {
-      throw bim::InputError(file, "",
-                            "scan " + std::to_string(i) + " at " + number(poses[i].t) +
-                                " s lies outside the ground truth's time span");
+      throw common::InputError(file, "",
+                               "scan " + std::to_string(i) + " at " + number(poses[i].t) +
+                                   " s lies outside the ground truth's time span");
     }
     // The mount's offset turned by the base's orientation at that time: from the nearest row.
     std::size_t k = 0;
@@ -98,12 +98,12 @@ void checkDatasetAgainstMetadata(const DatasetReader& dataset) {
         *B_p_R + truth[k].pose.linear() * dataset.R_T_L().translation();
     const double off = (poses[i].pose.translation() - expected).norm();
     if (off > 0.01) {
-      throw bim::InputError(file, "",
-                            "scan " + std::to_string(i) + " at " + number(poses[i].t) +
-                                " s: the LiDAR pose is " + number(off) +
-                                " m from the ground truth's (" + dataset::kGroundTruth +
-                                " and the mount in metadata.json): the files do not belong "
-                                "together");
+      throw common::InputError(file, "",
+                               "scan " + std::to_string(i) + " at " + number(poses[i].t) +
+                                   " s: the LiDAR pose is " + number(off) +
+                                   " m from the ground truth's (" + dataset::kGroundTruth +
+                                   " and the mount in metadata.json): the files do not belong "
+                                   "together");
     }
   }
 

@@ -22,7 +22,7 @@ std::optional<double> meanPeriod(const std::vector<double>& stamps) {
   return (stamps.back() - stamps.front()) / double(stamps.size() - 1);
 }
 
-std::string trajectoryText(const Trajectory& trajectory) { return eval::toTumText(trajectory); }
+std::string trajectoryText(const Trajectory& trajectory) { return common::toTumText(trajectory); }
 
 std::string stampsText(const std::vector<double>& stamps) {
   std::string out;

@@ -33,7 +33,7 @@ std::string scanFileName(int index);
 // The mean time between consecutive stamps (in order); none for fewer than two.
 std::optional<double> meanPeriod(const std::vector<double>& stamps);
 
-// A trajectory file's text (TUM, eval::toTumText).
+// A trajectory file's text (TUM, common::toTumText).
 std::string trajectoryText(const Trajectory& trajectory);
 
 // scans.txt's text: one time a line, in seconds with nine decimals (TUM's time column).

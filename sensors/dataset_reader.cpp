@@ -6,8 +6,8 @@
 #include <filesystem>
 #include <fstream>
 
-#include "bim/input_error.hpp"
-#include "bim/json_reader.hpp"
+#include "common/input_error.hpp"
+#include "common/json_reader.hpp"
 #include "sensors/dataset_format.hpp"
 #include "sensors/imu_file.hpp"
 #include "sensors/pcd_reader.hpp"
@@ -22,7 +22,7 @@ namespace {
 // A sensor's mount from metadata.json: a rigid transform (a rotation, orthonormal with
 // determinant +1, and a last row of 0 0 0 1) within 10 m. Anything else (an all-zero matrix)
 // would poison every point and the optimiser with it.
-Eigen::Isometry3d mountOf(const bim::JsonNode& matrix, const std::string& sensor) {
+Eigen::Isometry3d mountOf(const common::JsonNode& matrix, const std::string& sensor) {
   const auto rows = matrix.elements();
   if (rows.size() != 4) matrix.fail("expected a 4 × 4 array of numbers");
   Eigen::Matrix4d T;
@@ -50,9 +50,9 @@ Eigen::Isometry3d mountOf(const bim::JsonNode& matrix, const std::string& sensor
 }  // namespace
 
 void DatasetReader::readMetadata(const std::string& file) {
-  const bim::JsonSource source{file, nullptr};
-  const bim::JsonNode root(metadata_, "", source);
-  if (!root.isObject()) root.fail("expected an object, got " + bim::describeJsonType(metadata_));
+  const common::JsonSource source{file, nullptr};
+  const common::JsonNode root(metadata_, "", source);
+  if (!root.isObject()) root.fail("expected an object, got " + common::describeJsonType(metadata_));
   R_T_L_ = mountOf(root.field("extrinsics").field("R_T_L").field("matrix"), "LiDAR");
   if (auto imu = root.field("extrinsics").optionalField("R_T_I")) {
     R_T_I_ = mountOf(imu->field("matrix"), "IMU");
@@ -91,16 +91,16 @@ void DatasetReader::readMetadata(const std::string& file) {
   }
   if (auto plan = root.optionalField("plan")) {
     if (!plan->isObject())
-      plan->fail("expected the plan object, got " + bim::describeJsonType(plan->raw()));
+      plan->fail("expected the plan object, got " + common::describeJsonType(plan->raw()));
   }
 }
 
 DatasetReader::DatasetReader(const std::string& dir) : dir_(dir) {
   const fs::path root(dir);
   if (!fs::is_directory(root))
-    throw bim::InputError(dir, "", "not a dataset folder (no such directory)");
+    throw common::InputError(dir, "", "not a dataset folder (no such directory)");
   const fs::path metadata_path = root / dataset::kMetadata;
-  metadata_ = bim::readJsonFile(metadata_path.string());
+  metadata_ = common::readJsonFile(metadata_path.string());
   readMetadata(metadata_path.string());
   // A recording imported without odometry (a handheld sensor) has none.
   if (fs::exists(root / dataset::kOdometry))
@@ -120,17 +120,17 @@ DatasetReader::DatasetReader(const std::string& dir) : dir_(dir) {
     scan_poses_ = stamps;
   }
   if (!fs::is_directory(root / dataset::kScans)) {
-    throw bim::InputError((root / dataset::kScans).string(), "",
-                          "not a folder: a dataset keeps its LiDAR scans in scans/");
+    throw common::InputError((root / dataset::kScans).string(), "",
+                             "not a folder: a dataset keeps its LiDAR scans in scans/");
   }
   for (const auto& entry : fs::directory_iterator(root / dataset::kScans)) {
     if (entry.path().extension() == ".pcd") scan_files_.push_back(entry.path().string());
   }
   std::sort(scan_files_.begin(), scan_files_.end());
   if (stamps.size() != scan_files_.size()) {
-    throw bim::InputError(stamps_file, "",
-                          std::to_string(stamps.size()) + " stamps for " +
-                              std::to_string(scan_files_.size()) + " scans in scans/");
+    throw common::InputError(stamps_file, "",
+                             std::to_string(stamps.size()) + " stamps for " +
+                                 std::to_string(scan_files_.size()) + " scans in scans/");
   }
   for (const auto& s : stamps) scan_stamps_.push_back(s.t);
   if (fs::exists(root / dataset::kImu)) imu_ = readImuFile((root / dataset::kImu).string());

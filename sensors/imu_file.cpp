@@ -8,8 +8,8 @@
 #include <fstream>
 #include <sstream>
 
-#include "bim/input_error.hpp"
-#include "bim/json_reader.hpp"
+#include "common/input_error.hpp"
+#include "common/json_reader.hpp"
 
 namespace isg::sensors {
 
@@ -40,27 +40,28 @@ bool parseLine(const std::string& line, double (&values)[7]) {
 }  // namespace
 
 std::vector<sensors::ImuSample> readImuFile(const std::string& path) {
-  return parseImuText(bim::readCheckedFile(path, kMaxImuBytes), path);
+  return parseImuText(common::readCheckedFile(path, kMaxImuBytes), path);
 }
 
 std::vector<sensors::ImuSample> parseImuText(std::string_view text, const std::string& path) {
   std::istringstream in{std::string(text)};
   std::string line;
   if (!std::getline(in, line) || (line != kHeader && line != std::string(kHeader) + "\r")) {
-    throw bim::InputError(path, "", std::string("line 1: expected the header \"") + kHeader + "\"");
+    throw common::InputError(path, "",
+                             std::string("line 1: expected the header \"") + kHeader + "\"");
   }
   std::vector<sensors::ImuSample> samples;
   for (int number = 2; std::getline(in, line); ++number) {
     if (line.empty()) continue;
     double v[7];
     if (!parseLine(line, v)) {
-      throw bim::InputError(
+      throw common::InputError(
           path, "",
           "line " + std::to_string(number) + ": expected 7 comma-separated numbers: " + kHeader);
     }
     if (!samples.empty() && !(v[0] > samples.back().t)) {
-      throw bim::InputError(path, "",
-                            "line " + std::to_string(number) + ": time does not increase");
+      throw common::InputError(path, "",
+                               "line " + std::to_string(number) + ": time does not increase");
     }
     sensors::ImuSample s;
     s.t = v[0];

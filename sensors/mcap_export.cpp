@@ -4,7 +4,7 @@
 #include <cmath>
 #include <limits>
 
-#include "bim/input_error.hpp"
+#include "common/input_error.hpp"
 #include "sensors/dataset_check.hpp"
 #include "sensors/dataset_reader.hpp"
 #include "sensors/ros2_messages.hpp"
@@ -28,8 +28,8 @@ const char* kLatchedQos =
 // The dataset's messages as ROS 2 messages in the MCAP file.
 class McapVisitor : public DatasetMessageVisitor {
  public:
-  McapVisitor(const DatasetReader& dataset, const std::string& path, const McapWriterOptions& options,
-              const std::function<ros2::Time(double)>& stamp)
+  McapVisitor(const DatasetReader& dataset, const std::string& path,
+              const McapWriterOptions& options, const std::function<ros2::Time(double)>& stamp)
       : mcap(path, options), stamp_(stamp) {
     auto schemaOf = [&](const ros2::MessageType& type) {
       return mcap.addSchema(type.name, "ros2msg", type.definition);
@@ -110,10 +110,10 @@ ExportSummary exportMcap(const std::string& dataset_dir, const std::string& mcap
       time.sec = std::numeric_limits<std::uint32_t>::max();
     }
     if (time.sec > std::uint32_t(std::numeric_limits<std::int32_t>::max())) {
-      throw bim::InputError(dataset_dir, "",
-                            "time " + std::to_string(t) + " s plus the stamp offset of " +
-                                std::to_string(options.stamp_offset) +
-                                " s is not a ROS 2 time (0 to 2^31 s)");
+      throw common::InputError(dataset_dir, "",
+                               "time " + std::to_string(t) + " s plus the stamp offset of " +
+                                   std::to_string(options.stamp_offset) +
+                                   " s is not a ROS 2 time (0 to 2^31 s)");
     }
     return ros2::Time{std::int32_t(time.sec), time.nsec};
   };

@@ -10,8 +10,8 @@
 #include <cstring>
 #include <stdexcept>
 
-#include "bim/input_error.hpp"
-#include "sensors/output_path.hpp"
+#include "common/input_error.hpp"
+#include "common/output_path.hpp"
 
 namespace isg::sensors {
 
@@ -79,7 +79,7 @@ std::string compress(McapCompression compression, const std::string& data,
     out.resize(ZSTD_compressBound(data.size()));
     const std::size_t size = ZSTD_compress(out.data(), out.size(), data.data(), data.size(), 3);
     if (ZSTD_isError(size)) {
-      throw bim::InputError(path, "", std::string("zstd: ") + ZSTD_getErrorName(size));
+      throw common::InputError(path, "", std::string("zstd: ") + ZSTD_getErrorName(size));
     }
     out.resize(size);
   } else {
@@ -90,7 +90,7 @@ std::string compress(McapCompression compression, const std::string& data,
     const std::size_t size =
         LZ4F_compressFrame(out.data(), out.size(), data.data(), data.size(), &preferences);
     if (LZ4F_isError(size)) {
-      throw bim::InputError(path, "", std::string("lz4: ") + LZ4F_getErrorName(size));
+      throw common::InputError(path, "", std::string("lz4: ") + LZ4F_getErrorName(size));
     }
     out.resize(size);
   }
@@ -115,11 +115,12 @@ const char* compressionName(McapCompression compression) {
 }
 
 McapWriter::McapWriter(const std::string& path, const McapWriterOptions& options)
-    : options_(options), file_(path, OutputKind::kMcap, options.overwrite), data_crc_(0) {
+    : options_(options), file_(path, common::OutputKind::kMcap, options.overwrite), data_crc_(0) {
   out_.open(file_.temporary(), std::ios::binary | std::ios::trunc);
-  if (!out_) throw bim::InputError(path, "", std::string("cannot write: ") + std::strerror(errno));
+  if (!out_)
+    throw common::InputError(path, "", std::string("cannot write: ") + std::strerror(errno));
   Fields header;
-  header.string(options_.profile).string(std::string("isg (") + kWrittenByIsg + ")");
+  header.string(options_.profile).string(std::string("isg (") + common::kWrittenByIsg + ")");
   put(kMagic);
   put(record(kHeader, header.bytes()));
 }
@@ -332,7 +333,7 @@ void McapWriter::close() {
   put(footer_prefix.bytes() + footer_crc.bytes());
   put(kMagic);
   out_.close();
-  if (!out_) throw bim::InputError(file_.path().string(), "", "cannot write: write failed");
+  if (!out_) throw common::InputError(file_.path().string(), "", "cannot write: write failed");
   file_.commit();
   closed_ = true;
 }
@@ -340,8 +341,8 @@ void McapWriter::close() {
 void McapWriter::put(const std::string& bytes) {
   out_.write(bytes.data(), std::streamsize(bytes.size()));
   if (!out_) {
-    throw bim::InputError(file_.path().string(), "",
-                          std::string("cannot write: ") + std::strerror(errno));
+    throw common::InputError(file_.path().string(), "",
+                             std::string("cannot write: ") + std::strerror(errno));
   }
   // Everything before Data End is the data section its CRC covers (the magic and Header too).
   if (!data_ended_) data_crc_ = crc32(bytes, data_crc_);

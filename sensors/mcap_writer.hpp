@@ -6,7 +6,7 @@
 #include <string>
 #include <vector>
 
-#include "sensors/atomic_folder.hpp"
+#include "common/atomic_folder.hpp"
 
 namespace isg::sensors {
 
@@ -73,7 +73,7 @@ class McapWriter {
   void put(const std::string& bytes);
 
   McapWriterOptions options_;
-  AtomicFile file_;
+  common::AtomicFile file_;
   std::ofstream out_;
   std::uint64_t position_ = 0;
   std::uint32_t data_crc_;  // running CRC-32 of the data section so far

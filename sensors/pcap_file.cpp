@@ -3,8 +3,8 @@
 #include <cstdio>
 #include <cstring>
 
-#include "bim/input_error.hpp"
-#include "bim/json_reader.hpp"
+#include "common/input_error.hpp"
+#include "common/json_reader.hpp"
 
 namespace isg::sensors {
 
@@ -75,7 +75,7 @@ class PcapParser {
 
  private:
   [[noreturn]] void fail(const std::string& where, const std::string& reason) const {
-    throw bim::InputError(file_, "", where.empty() ? reason : where + ": " + reason);
+    throw common::InputError(file_, "", where.empty() ? reason : where + ": " + reason);
   }
 
   std::uint32_t read32(std::size_t at) const {
@@ -132,7 +132,7 @@ std::vector<UdpDatagram> parsePcapUdp(std::string_view bytes, const std::string&
 }
 
 std::vector<UdpDatagram> readPcapUdp(const std::string& path, std::size_t* skipped) {
-  return parsePcapUdp(bim::readCheckedFile(path, kMaxPcapBytes), path, skipped);
+  return parsePcapUdp(common::readCheckedFile(path, kMaxPcapBytes), path, skipped);
 }
 
 }  // namespace isg::sensors

@@ -22,7 +22,7 @@ struct UdpDatagram {
 // types Ethernet with or without 802.1Q tags, Linux cooked capture, raw IPv4), in file order.
 // Frames of other protocols are skipped and counted in `skipped` when given; IP fragments are
 // skipped too (a VLP-16 datagram fits one frame). A damaged file — bad magic, a truncated record,
-// a UDP length beyond its frame — is a bim::InputError naming the file and the record.
+// a UDP length beyond its frame — is a common::InputError naming the file and the record.
 std::vector<UdpDatagram> readPcapUdp(const std::string& path, std::size_t* skipped = nullptr);
 std::vector<UdpDatagram> parsePcapUdp(std::string_view bytes, const std::string& file,
                                       std::size_t* skipped = nullptr);

@@ -12,8 +12,8 @@
 
 #include <lzf.h>
 
-#include "bim/input_error.hpp"
-#include "bim/json_reader.hpp"
+#include "common/input_error.hpp"
+#include "common/json_reader.hpp"
 
 namespace isg::sensors {
 
@@ -143,7 +143,7 @@ class PcdParser {
   }
 
   [[noreturn]] void fail(const std::string& reason) const {
-    throw bim::InputError(file_, "", reason);
+    throw common::InputError(file_, "", reason);
   }
   [[noreturn]] void failLine(const std::string& reason) const {
     fail("line " + std::to_string(line_) + ": " + reason);
@@ -367,7 +367,7 @@ std::vector<sensors::ScanPoint> parsePcd(std::string_view bytes, const std::stri
 }
 
 std::vector<sensors::ScanPoint> readPcd(const std::string& path) {
-  return parsePcd(bim::readCheckedFile(path, kMaxPcdBytes), path);
+  return parsePcd(common::readCheckedFile(path, kMaxPcdBytes), path);
 }
 
 PcdColumns parsePcdColumns(std::string_view bytes, const std::string& file) {
@@ -375,7 +375,7 @@ PcdColumns parsePcdColumns(std::string_view bytes, const std::string& file) {
 }
 
 PcdColumns readPcdColumns(const std::string& path) {
-  return parsePcdColumns(bim::readCheckedFile(path, kMaxPcdBytes), path);
+  return parsePcdColumns(common::readCheckedFile(path, kMaxPcdBytes), path);
 }
 
 const std::vector<double>& PcdColumns::operator[](std::string_view name) const {

@@ -6,7 +6,7 @@
 #include <filesystem>
 #include <memory>
 
-#include "bim/input_error.hpp"
+#include "common/input_error.hpp"
 
 namespace isg::sensors {
 
@@ -26,9 +26,9 @@ Database open(const std::string& file) {
   const int status = sqlite3_open_v2(file.c_str(), &raw, SQLITE_OPEN_READONLY, nullptr);
   Database db(raw);
   if (status != SQLITE_OK) {
-    throw bim::InputError(file, "",
-                          std::string("cannot open as SQLite: ") +
-                              (raw ? sqlite3_errmsg(raw) : sqlite3_errstr(status)));
+    throw common::InputError(file, "",
+                             std::string("cannot open as SQLite: ") +
+                                 (raw ? sqlite3_errmsg(raw) : sqlite3_errstr(status)));
   }
   return db;
 }
@@ -36,8 +36,8 @@ Database open(const std::string& file) {
 Statement prepare(sqlite3* db, const std::string& file, const char* sql) {
   sqlite3_stmt* raw = nullptr;
   if (sqlite3_prepare_v2(db, sql, -1, &raw, nullptr) != SQLITE_OK) {
-    throw bim::InputError(file, "",
-                          std::string("not a ROS 2 bag database (") + sqlite3_errmsg(db) + ")");
+    throw common::InputError(file, "",
+                             std::string("not a ROS 2 bag database (") + sqlite3_errmsg(db) + ")");
   }
   return Statement(raw);
 }
@@ -52,7 +52,7 @@ void query(const std::string& file, const char* sql, const std::string* paramete
   int status;
   while ((status = sqlite3_step(statement.get())) == SQLITE_ROW) row(statement.get());
   if (status != SQLITE_DONE) {
-    throw bim::InputError(file, "", std::string("reading the bag: ") + sqlite3_errmsg(db.get()));
+    throw common::InputError(file, "", std::string("reading the bag: ") + sqlite3_errmsg(db.get()));
   }
 }
 
@@ -72,12 +72,12 @@ Ros2Bag::Ros2Bag(const std::string& path) : path_(path) {
     }
     std::sort(files_.begin(), files_.end());
     if (files_.empty()) {
-      throw bim::InputError(path, "", "a folder without .db3 files, not a ROS 2 bag");
+      throw common::InputError(path, "", "a folder without .db3 files, not a ROS 2 bag");
     }
   } else if (fs::is_regular_file(path, error)) {
     files_.push_back(path);
   } else {
-    throw bim::InputError(path, "", "no such file or folder");
+    throw common::InputError(path, "", "no such file or folder");
   }
   for (const auto& file : files_) {
     query(file,
@@ -103,7 +103,7 @@ std::vector<Ros2Message> Ros2Bag::messages(const std::string& topic) const {
   if (!known) {
     std::string names;
     for (const auto& t : topics_) names += (names.empty() ? "" : ", ") + t.name;
-    throw bim::InputError(
+    throw common::InputError(
         path_, "",
         "no topic " + topic + " (the bag has: " + (names.empty() ? "no topics" : names) + ")");
   }

@@ -5,7 +5,7 @@
 #include <cmath>
 #include <vector>
 
-#include "bim/input_error.hpp"
+#include "common/input_error.hpp"
 #include "sensors/dataset_check.hpp"
 #include "sensors/dataset_reader.hpp"
 #include "sensors/ros_messages.hpp"
@@ -91,10 +91,10 @@ ExportSummary exportRosbag(const std::string& dataset_dir, const std::string& ba
     try {
       return RosTime::fromSeconds(t, options.stamp_offset);
     } catch (const std::invalid_argument&) {
-      throw bim::InputError(dataset_dir, "",
-                            "time " + std::to_string(t) + " s plus the stamp offset of " +
-                                std::to_string(options.stamp_offset) +
-                                " s is not a ROS time (0 to 2^32 s)");
+      throw common::InputError(dataset_dir, "",
+                               "time " + std::to_string(t) + " s plus the stamp offset of " +
+                                   std::to_string(options.stamp_offset) +
+                                   " s is not a ROS time (0 to 2^32 s)");
     }
   };
   RosbagVisitor visitor(dataset, bag_path, options.overwrite, stamp);

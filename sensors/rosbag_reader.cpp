@@ -11,7 +11,7 @@
 #include <map>
 #include <sstream>
 
-#include "bim/input_error.hpp"
+#include "common/input_error.hpp"
 #include "sensors/rosbag_format.hpp"
 
 namespace isg::sensors {
@@ -179,7 +179,8 @@ bool fileRecord(std::istream& in, std::uint64_t file_size, std::uint64_t offset,
 
 RosbagReader::RosbagReader(const std::string& path) : name_(path) {
   auto file = std::make_unique<std::ifstream>(path, std::ios::binary);
-  if (!*file) throw bim::InputError(path, "", std::string("cannot open: ") + std::strerror(errno));
+  if (!*file)
+    throw common::InputError(path, "", std::string("cannot open: ") + std::strerror(errno));
   in_ = std::move(file);
   open();
 }
@@ -192,7 +193,7 @@ RosbagReader::RosbagReader(std::string bytes, const std::string& name)
 RosbagReader::~RosbagReader() = default;
 
 void RosbagReader::fail(std::uint64_t offset, const std::string& what) const {
-  throw bim::InputError(name_, "", "byte " + std::to_string(offset) + ": " + what);
+  throw common::InputError(name_, "", "byte " + std::to_string(offset) + ": " + what);
 }
 
 void RosbagReader::open() {
@@ -203,11 +204,11 @@ void RosbagReader::open() {
   if (!readAt(*in_, 0, version_size, version) || version != rosbag::kVersionLine) {
     if (version.rfind("#ROSBAG V", 0) == 0) {
       const std::string line = version.substr(0, version.find('\n'));
-      throw bim::InputError(name_, "",
-                            "a ROS bag of version " + line.substr(9) +
-                                ": only version 2.0 is read (rosbag fix converts older bags)");
+      throw common::InputError(name_, "",
+                               "a ROS bag of version " + line.substr(9) +
+                                   ": only version 2.0 is read (rosbag fix converts older bags)");
     }
-    throw bim::InputError(name_, "", "not a ROS 1 bag: it does not start with \"#ROSBAG V2.0\"");
+    throw common::InputError(name_, "", "not a ROS 1 bag: it does not start with \"#ROSBAG V2.0\"");
   }
   RecordAt header;
   std::string error;
@@ -222,9 +223,10 @@ void RosbagReader::open() {
       !fieldValue(header.fields, "chunk_count", chunk_count))
     fail(version_size, "the bag header lacks index_pos, conn_count or chunk_count");
   if (index_position == 0)
-    throw bim::InputError(name_, "",
-                          "the bag is not indexed (its recording was cut short): `rosbag reindex` "
-                          "mends it");
+    throw common::InputError(
+        name_, "",
+        "the bag is not indexed (its recording was cut short): `rosbag reindex` "
+        "mends it");
   if (index_position < header.end || index_position > size_)
     fail(version_size, "the bag header's index position " + std::to_string(index_position) +
                            " lies outside the file (truncated?)");

@@ -35,9 +35,10 @@ struct BagMessageView {
 // chunk's index records, which give every message's time and place. Chunks may be stored plain or
 // compressed with bz2 or lz4 (the LZ4 frame format that roslz4 writes). Messages are delivered in
 // time order whatever the chunks' order, ties by connection number and then in the bag's order,
-// as rosbag's read_messages gives them. Errors throw bim::InputError naming the file, the record's
-// byte offset and what is wrong: not a bag, another version, not indexed (a recording cut short:
-// `rosbag reindex` mends it), truncated, a record or field out of bounds, an unknown compression.
+// as rosbag's read_messages gives them. Errors throw common::InputError naming the file, the
+// record's byte offset and what is wrong: not a bag, another version, not indexed (a recording cut
+// short: `rosbag reindex` mends it), truncated, a record or field out of bounds, an unknown
+// compression.
 class RosbagReader {
  public:
   explicit RosbagReader(const std::string& path);

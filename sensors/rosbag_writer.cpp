@@ -5,7 +5,7 @@
 #include <cstring>
 #include <stdexcept>
 
-#include "bim/input_error.hpp"
+#include "common/input_error.hpp"
 #include "sensors/rosbag_format.hpp"
 
 namespace isg::sensors {
@@ -54,7 +54,7 @@ std::string bagHeaderRecord(std::uint64_t index_position, std::uint32_t connecti
   // padding starts with our mark, which readers skip and --force looks for
   // (sensors/output_path.hpp).
   std::string padding(kBagHeaderRecordSize - header.size() - 8, ' ');
-  padding.replace(0, std::strlen(kWrittenByIsg), kWrittenByIsg);
+  padding.replace(0, std::strlen(common::kWrittenByIsg), common::kWrittenByIsg);
   return record(header, padding);
 }
 
@@ -73,9 +73,10 @@ RosTime RosTime::fromSeconds(double seconds, std::uint32_t offset) {
 }
 
 RosbagWriter::RosbagWriter(const std::string& path, bool overwrite)
-    : file_(path, OutputKind::kBag, overwrite) {
+    : file_(path, common::OutputKind::kBag, overwrite) {
   out_.open(file_.temporary(), std::ios::binary | std::ios::trunc);
-  if (!out_) throw bim::InputError(path, "", std::string("cannot write: ") + std::strerror(errno));
+  if (!out_)
+    throw common::InputError(path, "", std::string("cannot write: ") + std::strerror(errno));
   put(kVersionLine);
   put(bagHeaderRecord(0, 0, 0));  // rewritten by close()
 }
@@ -161,7 +162,7 @@ void RosbagWriter::close() {
   out_ << bagHeaderRecord(index_position, std::uint32_t(connections_.size()),
                           std::uint32_t(chunks_.size()));
   out_.close();
-  if (!out_) throw bim::InputError(file_.path().string(), "", "cannot write: write failed");
+  if (!out_) throw common::InputError(file_.path().string(), "", "cannot write: write failed");
   file_.commit();
   closed_ = true;
 }
@@ -169,8 +170,8 @@ void RosbagWriter::close() {
 void RosbagWriter::put(const std::string& bytes) {
   out_.write(bytes.data(), std::streamsize(bytes.size()));
   if (!out_)
-    throw bim::InputError(file_.path().string(), "",
-                          std::string("cannot write: ") + std::strerror(errno));
+    throw common::InputError(file_.path().string(), "",
+                             std::string("cannot write: ") + std::strerror(errno));
   position_ += bytes.size();
 }
 

@@ -6,7 +6,7 @@
 #include <string>
 #include <vector>
 
-#include "sensors/atomic_folder.hpp"
+#include "common/atomic_folder.hpp"
 
 namespace isg::sensors {
 
@@ -66,7 +66,7 @@ class RosbagWriter {
   void flushChunk();
   void put(const std::string& bytes);
 
-  AtomicFile file_;
+  common::AtomicFile file_;
   std::ofstream out_;
   std::uint64_t position_ = 0;
   std::vector<Connection> connections_;

@@ -2,14 +2,14 @@
 
 #include <cmath>
 
-#include "bim/angles.hpp"
+#include "common/angles.hpp"
 
 namespace isg::sensors {
 
 void quantiseStreams(SensorStreams& streams) {
-  streams.ground_truth = eval::quantised(streams.ground_truth);
-  streams.odometry = eval::quantised(streams.odometry);
-  for (double& t : streams.scan_stamps) t = eval::quantisedTime(t);
+  streams.ground_truth = common::quantised(streams.ground_truth);
+  streams.odometry = common::quantised(streams.odometry);
+  for (double& t : streams.scan_stamps) t = common::quantisedTime(t);
 }
 
 Eigen::Isometry3d trueStartB_T_M(const SensorStreams& streams) {
@@ -19,8 +19,8 @@ Eigen::Isometry3d trueStartB_T_M(const SensorStreams& streams) {
     // pose, levelled: M is that pose's position and heading, its z up.
     const Eigen::Isometry3d& B_T_R = streams.ground_truth.front().pose;
     Eigen::Isometry3d B_T_M = Eigen::Isometry3d::Identity();
-    B_T_M.linear() =
-        Eigen::AngleAxisd(bim::yawOf(B_T_R.linear()), Eigen::Vector3d::UnitZ()).toRotationMatrix();
+    B_T_M.linear() = Eigen::AngleAxisd(common::yawOf(B_T_R.linear()), Eigen::Vector3d::UnitZ())
+                         .toRotationMatrix();
     B_T_M.translation() = B_T_R.translation();
     return B_T_M;
   }

@@ -3,15 +3,15 @@
 #include <Eigen/Geometry>
 #include <vector>
 
-#include "eval/tum.hpp"
+#include "common/tum.hpp"
 #include "sensors/messages.hpp"
 
 namespace isg::sensors {
 
 // The trajectory type of every stream: TUM rows (t, pose). Producers of sensor streams (sim/)
 // name it through here.
-using eval::StampedPose;
-using eval::Trajectory;
+using common::StampedPose;
+using common::Trajectory;
 
 // Everything a run feeds a localizer besides the scans themselves, and what it is judged
 // against: the same whether it comes from the live simulation or from a recorded dataset. The
@@ -30,7 +30,7 @@ struct SensorStreams {
   Eigen::Isometry3d R_T_I = Eigen::Isometry3d::Identity();
 };
 
-// Rounds ground truth, odometry and scan stamps to what their TUM files keep (eval::quantised):
+// Rounds ground truth, odometry and scan stamps to what their TUM files keep (common::quantised):
 // the one place where a run's numbers are quantised. The live producer (sim::sensorStreams) calls
 // it; a dataset's streams come from the files and are quantised already.
 void quantiseStreams(SensorStreams& streams);

@@ -5,7 +5,7 @@
 #include <set>
 #include <stdexcept>
 
-#include "eval/pose_interpolation.hpp"
+#include "common/pose_interpolation.hpp"
 
 namespace isg::sensors {
 
@@ -118,7 +118,7 @@ std::vector<TfOdometry::Pose> TfOdometry::poses() const {
       std::find_if(links_.rbegin(), links_.rend(), [](const Link& l) { return l.moving; });
   if (driving->samples.empty()) return {};
   const RosTime reference = driving->samples.front().first;
-  std::vector<eval::Trajectory> series(links_.size());
+  std::vector<common::Trajectory> series(links_.size());
   for (std::size_t i = 0; i < links_.size(); ++i) {
     if (!links_[i].moving || &links_[i] == &*driving) continue;
     for (const auto& [stamp, T] : links_[i].samples) {
@@ -136,7 +136,7 @@ std::vector<TfOdometry::Pose> TfOdometry::poses() const {
         top_T_base = top_T_base * link.fixed_parent_T_child;
       } else if (&link == &*driving) {
         top_T_base = top_T_base * driving_T;
-      } else if (const auto T = eval::interpolatePose(series[i], t)) {
+      } else if (const auto T = common::interpolatePose(series[i], t)) {
         top_T_base = top_T_base * *T;
       } else {
         covered = false;

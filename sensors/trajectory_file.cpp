@@ -5,26 +5,26 @@
 #include <cstdlib>
 #include <fstream>
 
-#include "bim/input_error.hpp"
+#include "common/input_error.hpp"
 
 namespace isg::sensors {
 
-eval::Trajectory readTrajectoryFile(const std::string& path, bool require_poses) {
-  eval::Trajectory trajectory;
+common::Trajectory readTrajectoryFile(const std::string& path, bool require_poses) {
+  common::Trajectory trajectory;
   try {
-    trajectory = eval::readTum(path);
-  } catch (const eval::TumError& e) {
-    throw bim::InputError(path, "", e.located());
+    trajectory = common::readTum(path);
+  } catch (const common::TumError& e) {
+    throw common::InputError(path, "", e.located());
   }
   if (require_poses && trajectory.empty()) {
-    throw bim::InputError(path, "", "no poses (a TUM file holds one pose per line)");
+    throw common::InputError(path, "", "no poses (a TUM file holds one pose per line)");
   }
   return trajectory;
 }
 
 std::vector<double> readStampsFile(const std::string& path) {
   std::ifstream in(path);
-  if (!in) throw bim::InputError(path, "", "cannot be read (no such file, or no permission)");
+  if (!in) throw common::InputError(path, "", "cannot be read (no such file, or no permission)");
   std::vector<double> stamps;
   std::string line;
   for (int number = 1; std::getline(in, line); ++number) {
@@ -37,10 +37,11 @@ std::vector<double> readStampsFile(const std::string& path) {
     const double t = std::strtod(text.c_str(), &end);
     const auto where = "line " + std::to_string(number) + ": ";
     if (end != text.c_str() + text.size() || errno != 0 || !std::isfinite(t)) {
-      throw bim::InputError(path, "", where + "expected one time in seconds, got \"" + text + "\"");
+      throw common::InputError(path, "",
+                               where + "expected one time in seconds, got \"" + text + "\"");
     }
     if (!stamps.empty() && !(t > stamps.back())) {
-      throw bim::InputError(path, "", where + "the time does not increase");
+      throw common::InputError(path, "", where + "the time does not increase");
     }
     stamps.push_back(t);
   }

@@ -3,14 +3,14 @@
 #include <string>
 #include <vector>
 
-#include "eval/tum.hpp"
+#include "common/tum.hpp"
 
 namespace isg::sensors {
 
 // A TUM trajectory file read for a command: any problem (no file, a bad line, poses out of time
-// order, no pose at all when `require_poses`) is a bim::InputError naming the file and the line,
+// order, no pose at all when `require_poses`) is a common::InputError naming the file and the line,
 // so the command exits 1 with it.
-eval::Trajectory readTrajectoryFile(const std::string& path, bool require_poses = true);
+common::Trajectory readTrajectoryFile(const std::string& path, bool require_poses = true);
 
 // scans.txt: one time a line (seconds), increasing; blank and '#' lines skipped. Problems are
 // InputErrors naming the file and the line.

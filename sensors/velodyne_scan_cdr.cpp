@@ -3,7 +3,7 @@
 #include <cstdint>
 #include <cstring>
 
-#include "bim/input_error.hpp"
+#include "common/input_error.hpp"
 #include "sensors/vlp16_packet.hpp"
 
 namespace isg::sensors {
@@ -61,7 +61,7 @@ class CdrReader {
   std::size_t position() const { return at_; }
 
   [[noreturn]] void fail(const std::string& reason) const {
-    throw bim::InputError(file_, "", where_ + ": " + reason);
+    throw common::InputError(file_, "", where_ + ": " + reason);
   }
 
  private:

@@ -20,7 +20,7 @@ struct VelodyneScanMessage {
 
 // Decodes a CDR-serialised velodyne_msgs/msg/VelodyneScan (ROS 2: std_msgs/Header, then a
 // sequence of VelodynePacket {builtin_interfaces/Time stamp, uint8[1206] data}), either byte
-// order. A message that ends early or runs long is a bim::InputError naming `file` and `where`.
+// order. A message that ends early or runs long is a common::InputError naming `file` and `where`.
 VelodyneScanMessage decodeVelodyneScanCdr(std::string_view bytes, const std::string& file,
                                           const std::string& where);
 

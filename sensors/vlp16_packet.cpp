@@ -4,7 +4,7 @@
 #include <cstdio>
 #include <numbers>
 
-#include "bim/input_error.hpp"
+#include "common/input_error.hpp"
 #include "sensors/vlp16_layout.hpp"
 
 namespace isg::sensors {
@@ -95,7 +95,7 @@ Vlp16Echo classify(RawEcho own, RawEcho other, Vlp16ReturnMode mode) {
 Vlp16PacketHeader readVlp16Header(std::span<const std::uint8_t> packet, const std::string& file,
                                   const std::string& where) {
   auto fail = [&](const std::string& reason) {
-    throw bim::InputError(file, "", where + ": " + reason);
+    throw common::InputError(file, "", where + ": " + reason);
   };
   if (packet.size() != kVlp16PacketBytes) {
     fail("has " + std::to_string(packet.size()) + " bytes, a VLP-16 data packet has " +

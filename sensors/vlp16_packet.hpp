@@ -79,7 +79,7 @@ struct Vlp16ShotTally {
   std::array<std::uint64_t, 16> echoed{};
 };
 
-// Checks a packet's size, block flags, azimuths and return mode; throws bim::InputError naming
+// Checks a packet's size, block flags, azimuths and return mode; throws common::InputError naming
 // `file` and `where` (such as "packet 12") on a malformed one.
 Vlp16PacketHeader readVlp16Header(std::span<const std::uint8_t> packet, const std::string& file,
                                   const std::string& where);

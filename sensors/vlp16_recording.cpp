@@ -3,7 +3,7 @@
 #include <filesystem>
 #include <span>
 
-#include "bim/input_error.hpp"
+#include "common/input_error.hpp"
 #include "sensors/pcap_file.hpp"
 #include "sensors/ros2_bag.hpp"
 #include "sensors/velodyne_scan_cdr.hpp"
@@ -26,7 +26,7 @@ void decodeInto(Vlp16Recording& recording, const std::string& data, double stamp
   const Vlp16PacketHeader header = decodeVlp16Packet(bytesOf(data), stamp, options, file, where,
                                                      recording.points, &recording.tally);
   if (recording.data_packets > 0 && header.mode != recording.mode) {
-    throw bim::InputError(file, "", where + ": the return mode changes within the recording");
+    throw common::InputError(file, "", where + ": the return mode changes within the recording");
   }
   recording.mode = header.mode;
   ++recording.data_packets;
@@ -45,7 +45,7 @@ Vlp16Recording fromPcap(const std::string& path, const Vlp16DecodeOptions& optio
     }
   }
   if (recording.data_packets == 0) {
-    throw bim::InputError(path, "", "no VLP-16 data packets (UDP payloads of 1206 bytes)");
+    throw common::InputError(path, "", "no VLP-16 data packets (UDP payloads of 1206 bytes)");
   }
   return recording;
 }
@@ -60,7 +60,7 @@ std::string scanTopic(const Ros2Bag& bag, const std::string& path, const std::st
   std::string names;
   for (const auto& t : bag.topics())
     names += (names.empty() ? "" : ", ") + t.name + " (" + t.type + ")";
-  throw bim::InputError(
+  throw common::InputError(
       path, "",
       found.empty() ? std::string("no topic of type ") + kScanType + " (the bag has: " + names + ")"
                     : "several topics of type " + std::string(kScanType) +
@@ -81,7 +81,7 @@ Vlp16Recording fromBag(const std::string& path, const Vlp16DecodeOptions& option
                  where + " packet " + std::to_string(p));
     }
   }
-  if (recording.data_packets == 0) throw bim::InputError(path, "", name + " holds no packets");
+  if (recording.data_packets == 0) throw common::InputError(path, "", name + " holds no packets");
   return recording;
 }
 

@@ -20,7 +20,7 @@ struct Vlp16Recording {
 // Reads a pcap capture (.pcap: UDP datagrams of 1206 bytes are data packets, 512-byte ones
 // position packets) or a ROS 2 bag (a folder or a .db3 file) of velodyne_msgs/msg/VelodyneScan on
 // `topic` (found by its type when empty and only one topic has it). Each packet is stamped with
-// its capture or driver receive time. Bad input is a bim::InputError naming the file and the
+// its capture or driver receive time. Bad input is a common::InputError naming the file and the
 // packet (pcap record or bag message and packet).
 Vlp16Recording readVlp16Recording(const std::string& path, const Vlp16DecodeOptions& options,
                                   const std::string& topic = "");

@@ -4,7 +4,7 @@
 #include <cmath>
 #include <numbers>
 
-#include "bim/angles.hpp"
+#include "common/angles.hpp"
 
 namespace isg::sim {
 
@@ -79,7 +79,7 @@ BaseMotion::Leg BaseMotion::makeLeg(double start, const std::vector<Eigen::Vecto
       continue;
     }
     const double heading = std::atan2(step.y(), step.x());
-    const double turn = bim::wrapAngle(heading - yaw);
+    const double turn = common::wrapAngle(heading - yaw);
     if (std::abs(turn) > 1e-9) {
       const RestToRestProfile profile(std::abs(turn), gait_.turn_rate, gait_.turn_acceleration);
       leg.segments.push_back(

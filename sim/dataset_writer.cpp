@@ -14,17 +14,17 @@
 #include <nlohmann/json.hpp>
 #include <thread>
 
-#include "bim/input_error.hpp"
 #include "bim/plan_json.hpp"
-#include "sensors/atomic_folder.hpp"
+#include "common/atomic_folder.hpp"
+#include "common/input_error.hpp"
 #include "sensors/dataset_format.hpp"
 #include "sim/vlp16.hpp"
 
 namespace isg::sim {
 
 namespace fs = std::filesystem;
-using sensors::writeFile;
-using sensors::writeFolderAtomically;
+using common::writeFile;
+using common::writeFolderAtomically;
 
 namespace {
 
@@ -177,7 +177,7 @@ DatasetSummary writeDataset(Simulation& sim, const std::string& dir, const Datas
   const auto start = std::chrono::steady_clock::now();
   DatasetSummary summary;
   writeFolderAtomically(
-      dir, sensors::OutputKind::kDataset, options.overwrite, [&](const fs::path& temporary) {
+      dir, common::OutputKind::kDataset, options.overwrite, [&](const fs::path& temporary) {
         fs::create_directories(temporary / sensors::dataset::kScans);
         const double duration =
             options.duration < 0 ? sim.duration() : std::min(options.duration, sim.duration());

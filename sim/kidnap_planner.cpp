@@ -22,7 +22,7 @@ void planKidnaps(const bim::Scenario& scenario, const OccupancyGrid& grid, Plann
       std::snprintf(reason, sizeof reason,
                     "the robot's route ends at %.2f s, before the kidnap at %.2f s",
                     trajectory.duration(), kidnap.time);
-      throw bim::InputError(file, pointer + "/time", reason);
+      throw common::InputError(file, pointer + "/time", reason);
     }
     // What the current leg had not reached by then.
     const int leg = trajectory.legs() - 1;
@@ -47,8 +47,8 @@ void planKidnaps(const bim::Scenario& scenario, const OccupancyGrid& grid, Plann
       next.start_yaw = kidnap.pose->z();
     }
     if (level_grid.clearanceAt(at) < scenario.robot.clearance) {
-      throw bim::InputError(file, pointer + "/to",
-                            tooCloseReason(at, "be put down", scenario.robot.clearance));
+      throw common::InputError(file, pointer + "/to",
+                               tooCloseReason(at, "be put down", scenario.robot.clearance));
     }
     PlannedRoute walked;
     builder.restart(walked, level);

@@ -3,7 +3,7 @@
 #include <cmath>
 #include <numbers>
 
-#include "bim/angles.hpp"
+#include "common/angles.hpp"
 
 namespace isg::sim {
 
@@ -13,11 +13,11 @@ OdometryModel::OdometryModel(const bim::OdometryConfig& config,
 
 Eigen::Isometry3d OdometryModel::update(const Eigen::Isometry3d& B_T_R, std::mt19937_64& rng) {
   // The true planar increment, in the previous base frame.
-  const double yaw0 = bim::yawOf(previous_.linear());
-  const double yaw1 = bim::yawOf(B_T_R.linear());
+  const double yaw0 = common::yawOf(previous_.linear());
+  const double yaw1 = common::yawOf(B_T_R.linear());
   const Eigen::Vector2d world_step = (B_T_R.translation() - previous_.translation()).head<2>();
   const Eigen::Vector2d step = Eigen::Rotation2Dd(-yaw0) * world_step;
-  const double turn = bim::wrapAngle(yaw1 - yaw0);
+  const double turn = common::wrapAngle(yaw1 - yaw0);
   const double distance = step.norm();
   previous_ = B_T_R;
 
@@ -33,7 +33,7 @@ Eigen::Isometry3d OdometryModel::update(const Eigen::Isometry3d& B_T_R, std::mt1
   const Eigen::Vector2d moved = Eigen::Rotation2Dd(planar_.z()) * Eigen::Vector2d(dx, dy);
   planar_.x() += moved.x();
   planar_.y() += moved.y();
-  planar_.z() = bim::wrapAngle(planar_.z() + dyaw);
+  planar_.z() = common::wrapAngle(planar_.z() + dyaw);
 
   // Height, roll and pitch relative to the start, from the truth (less what kidnaps carried).
   const Eigen::Matrix3d tilt =

@@ -12,10 +12,10 @@
 #include <cstring>
 #include <stdexcept>
 
-#include "bim/angles.hpp"
-#include "bim/input_error.hpp"
-#include "bim/untracked_allocations.hpp"
-#include "sensors/atomic_folder.hpp"
+#include "common/angles.hpp"
+#include "common/atomic_folder.hpp"
+#include "common/input_error.hpp"
+#include "common/untracked_allocations.hpp"
 #include "sim/odometry_model.hpp"
 #include "worlds/mjcf_generator.hpp"
 
@@ -26,7 +26,7 @@ namespace {
 // Mesa's EGL and GL drivers keep their set-up until exit (bim/untracked_allocations.hpp): what
 // is allocated while EGL and the GL context are set up and torn down (MuJoCo's own context with
 // them) is not tracked under LeakSanitizer, and nothing else is exempted.
-using UntrackedMesaAllocations = bim::UntrackedAllocations;
+using UntrackedMesaAllocations = common::UntrackedAllocations;
 
 }  // namespace
 
@@ -149,7 +149,7 @@ Image Renderer::chase(mjData& data, const Eigen::Isometry3d& B_T_R) {
   camera.distance = 3.2;
   camera.elevation = -32.0;
   // MuJoCo's free camera looks along its azimuth: from behind the robot is its own heading.
-  camera.azimuth = bim::yawOf(B_T_R.linear()) * 180.0 / std::numbers::pi;
+  camera.azimuth = common::yawOf(B_T_R.linear()) * 180.0 / std::numbers::pi;
   return render(data, camera, false);
 }
 
@@ -213,17 +213,17 @@ Image Renderer::planView(mjData& data, const Eigen::Vector2d& lo, const Eigen::V
 
 void writePng(const std::string& path, const Image& image) {
   // Written beside its place and renamed into it: a reader never sees half a picture.
-  sensors::AtomicFile atomic(path, sensors::OutputKind::kPng, true);
+  common::AtomicFile atomic(path, common::OutputKind::kPng, true);
   FILE* file = std::fopen(atomic.temporary().c_str(), "wb");
   if (file == nullptr) {
-    throw bim::InputError(path, "", std::string("cannot write: ") + std::strerror(errno));
+    throw common::InputError(path, "", std::string("cannot write: ") + std::strerror(errno));
   }
   png_structp png = png_create_write_struct(PNG_LIBPNG_VER_STRING, nullptr, nullptr, nullptr);
   png_infop info = png ? png_create_info_struct(png) : nullptr;
   if (png == nullptr || info == nullptr || setjmp(png_jmpbuf(png))) {
     png_destroy_write_struct(&png, &info);
     std::fclose(file);
-    throw bim::InputError(path, "", "cannot write PNG");
+    throw common::InputError(path, "", "cannot write PNG");
   }
   png_init_io(png, file);
   png_set_IHDR(png, info, image.width, image.height, 8, PNG_COLOR_TYPE_RGB, PNG_INTERLACE_NONE,
@@ -232,7 +232,7 @@ void writePng(const std::string& path, const Image& image) {
   png_text software{};
   software.compression = PNG_TEXT_COMPRESSION_NONE;
   software.key = const_cast<char*>("Software");
-  software.text = const_cast<char*>(sensors::kWrittenByIsg);
+  software.text = const_cast<char*>(common::kWrittenByIsg);
   png_set_text(png, info, &software, 1);
   png_write_info(png, info);
   for (int y = 0; y < image.height; ++y) {
@@ -241,7 +241,7 @@ void writePng(const std::string& path, const Image& image) {
   png_write_end(png, nullptr);
   png_destroy_write_struct(&png, &info);
   if (std::fclose(file) != 0) {
-    throw bim::InputError(path, "", std::string("cannot write: ") + std::strerror(errno));
+    throw common::InputError(path, "", std::string("cannot write: ") + std::strerror(errno));
   }
   atomic.commit();
 }

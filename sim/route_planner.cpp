@@ -269,7 +269,7 @@ PlannedRoute planRoute(const bim::Scenario& scenario, const OccupancyGrid& grid,
   }
   const double start_clearance = grid.clearanceAt(start);
   if (start_clearance < clearance) {
-    throw bim::InputError(file, "/robot/start", tooCloseReason(start, "stand", clearance));
+    throw common::InputError(file, "/robot/start", tooCloseReason(start, "stand", clearance));
   }
   builder.start(start);
   if (!start_room.empty()) {
@@ -281,10 +281,10 @@ PlannedRoute planRoute(const bim::Scenario& scenario, const OccupancyGrid& grid,
   if (plan.kind == bim::Route::Kind::kWaypoints) {
     for (std::size_t i = 0; i < plan.waypoints.size(); ++i) {
       if (!builder.goTo(plan.waypoints[i])) {
-        throw bim::InputError(file, "/robot/route/waypoints/" + std::to_string(i),
-                              "no path from " + formatPoint(route.waypoints.back()) + " to " +
-                                  formatPoint(plan.waypoints[i]) + " keeps " +
-                                  formatMetres(clearance) + " from walls and clutter");
+        throw common::InputError(file, "/robot/route/waypoints/" + std::to_string(i),
+                                 "no path from " + formatPoint(route.waypoints.back()) + " to " +
+                                     formatPoint(plan.waypoints[i]) + " keeps " +
+                                     formatMetres(clearance) + " from walls and clutter");
       }
       route.targets.push_back({"", "waypoint " + std::to_string(i), int(route.waypoints.size()) - 1,
                                plan.waypoints[i], level.id});
@@ -298,30 +298,30 @@ PlannedRoute planRoute(const bim::Scenario& scenario, const OccupancyGrid& grid,
       if (&room_level != &builder.level()) {
         const auto flights = builder.flightsTo(room_level);
         if (flights.empty()) {
-          throw bim::InputError(file, pointer,
-                                "room \"" + plan.rooms[i] + "\" is on level \"" + room_level.id +
-                                    "\", which no flight of stairs leads to from level \"" +
-                                    builder.level().id + "\"");
+          throw common::InputError(file, pointer,
+                                   "room \"" + plan.rooms[i] + "\" is on level \"" + room_level.id +
+                                       "\", which no flight of stairs leads to from level \"" +
+                                       builder.level().id + "\"");
         }
         for (const Flight& flight : flights) {
           if (!builder.climb(flight)) {
-            throw bim::InputError(file, pointer,
-                                  "room \"" + plan.rooms[i] + "\" on level \"" + room_level.id +
-                                      "\" cannot be reached: flight \"" + flight.stair->id +
-                                      "\" cannot be reached from " +
-                                      formatPoint(route.waypoints.back()) +
-                                      " or stepped off, keeping " + formatMetres(clearance) +
-                                      " from walls and clutter");
+            throw common::InputError(file, pointer,
+                                     "room \"" + plan.rooms[i] + "\" on level \"" + room_level.id +
+                                         "\" cannot be reached: flight \"" + flight.stair->id +
+                                         "\" cannot be reached from " +
+                                         formatPoint(route.waypoints.back()) +
+                                         " or stepped off, keeping " + formatMetres(clearance) +
+                                         " from walls and clutter");
           }
         }
       }
       if (!builder.goTo(
               roomCentre(builder.grid(), *room_level.findRoom(plan.rooms[i]), true, clearance))) {
-        throw bim::InputError(file, pointer,
-                              "room \"" + plan.rooms[i] + "\" cannot be reached from " +
-                                  formatPoint(route.waypoints.back()) +
-                                  " through open doors, keeping " + formatMetres(clearance) +
-                                  " from walls and clutter");
+        throw common::InputError(file, pointer,
+                                 "room \"" + plan.rooms[i] + "\" cannot be reached from " +
+                                     formatPoint(route.waypoints.back()) +
+                                     " through open doors, keeping " + formatMetres(clearance) +
+                                     " from walls and clutter");
       }
       builder.reached(plan.rooms[i]);
     }

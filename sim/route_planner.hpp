@@ -5,8 +5,8 @@
 #include <string>
 #include <vector>
 
-#include "bim/input_error.hpp"
 #include "bim/scenario.hpp"
+#include "common/input_error.hpp"
 #include "sim/occupancy_grid.hpp"
 
 namespace isg::sim {

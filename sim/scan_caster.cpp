@@ -6,8 +6,8 @@
 #include <limits>
 #include <numbers>
 
-#include "bim/angles.hpp"
 #include "bim/polygon.hpp"
+#include "common/angles.hpp"
 
 namespace isg::sim {
 
@@ -71,7 +71,7 @@ void ScanCaster::prepare(const Eigen::Vector2d& centre, double radius) {
     double lo = std::numeric_limits<double>::infinity(), hi = -lo;
     for (const auto& q : corners) {
       const Eigen::Vector2d d = q - centre;
-      const double a = bim::wrapAngle(std::atan2(d.y(), d.x()) - base);
+      const double a = common::wrapAngle(std::atan2(d.y(), d.x()) - base);
       const double widen =
           std::asin(std::min(1.0, (radius + pad) / std::max(d.norm(), 1e-9))) + 1e-9;
       lo = std::min(lo, a - widen);

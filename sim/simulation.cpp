@@ -1,17 +1,16 @@
 #include "sim/simulation.hpp"
 
+#include "sim/fast_random.hpp"
+#include "sim/imu_simulator.hpp"
 #include "sim/kidnap_planner.hpp"
+#include "sim/odometry_model.hpp"
+#include "sim/robot_model.hpp"
 #include "sim/route_builder.hpp"
+#include "worlds/mjcf_generator.hpp"
 
 #include <cmath>
 #include <cstdio>
 #include <numbers>
-
-#include "sim/fast_random.hpp"
-#include "sim/imu_simulator.hpp"
-#include "sim/odometry_model.hpp"
-#include "sim/robot_model.hpp"
-#include "worlds/mjcf_generator.hpp"
 
 namespace isg::sim {
 
@@ -68,7 +67,7 @@ Simulation::Simulation(const bim::Scenario& scenario)
                     "base's origin): mount it above z = %.2f m or set body_occlusion to false",
                     2 * body.half.x(), 2 * body.half.y(), 2 * body.half.z(),
                     body.centre.z() + body.half.z());
-      throw bim::InputError(scenario_.source, "/lidar/mount", what);
+      throw common::InputError(scenario_.source, "/lidar/mount", what);
     }
   }
   grid_ =

@@ -7,8 +7,8 @@
 #include <numbers>
 #include <tuple>
 
-#include "bim/angles.hpp"
 #include "bim/polygon.hpp"
+#include "common/angles.hpp"
 
 namespace isg::slam {
 
@@ -126,7 +126,7 @@ double inViewShare(const bim::AGraph& plan, const bim::WallNode& wall,
     if (s.level != wall.level || s.wall == wall.id) continue;
     for (const auto& [a, b] : s.segments) occluders.push_back({a, b});
   }
-  const double min_cos = std::cos(bim::radians(options.max_incidence_deg));
+  const double min_cos = std::cos(common::radians(options.max_incidence_deg));
   double exposed = 0.0, in_view = 0.0;
   for (int surface : {wall.left_surface, wall.right_surface}) {
     const bim::WallSurfaceNode& face = plan.surfaces[surface];
@@ -166,8 +166,8 @@ void measurePiece(WallEvidence& e, const PlannedWall& planned) {
   if (direction.dot(planned.axis) < 0.0) direction = -direction;
   const Eigen::Vector2d centre = planned.faceCentre(e.side);
   e.offset_m = cross(direction, e.start_B - centre) / cross(direction, planned.left);
-  e.angle_deg =
-      bim::degrees(bim::angleDifference(bim::headingOf(direction), bim::headingOf(planned.axis)));
+  e.angle_deg = common::degrees(
+      common::angleDifference(common::headingOf(direction), common::headingOf(planned.axis)));
 }
 
 // A wall's line as its consistent evidence lays it: o(s) = offset + tan(angle)·s, s along the
@@ -215,7 +215,7 @@ WallFit fitWall(WallDeviation& wall, const PlannedWall& planned, double toleranc
     offset = x(0), slope = x(1);
   }
   fit.offset_m = offset;
-  fit.angle_deg = bim::degrees(std::atan(slope));
+  fit.angle_deg = common::degrees(std::atan(slope));
   for (const auto& e : wall.evidence) {
     if (!e.consistent) continue;
     fit.length += e.length_m;
@@ -257,7 +257,7 @@ Placement refinePlacement(const std::vector<std::pair<WallDeviation, PlannedWall
   }
   if (total <= 0.0) return placement;
   placement.origin /= total;
-  constexpr double kSigmaOffset = 0.02, kPriorT = 0.05, kPriorYaw = bim::radians(1.0);
+  constexpr double kSigmaOffset = 0.02, kPriorT = 0.05, kPriorYaw = common::radians(1.0);
   std::vector<bool> used(walls.size(), false);
   for (int round = 0; round < 5; ++round) {
     std::vector<bool> now(walls.size(), false);
@@ -294,7 +294,7 @@ Placement refinePlacement(const std::vector<std::pair<WallDeviation, PlannedWall
       g += w * J * fits[i].offset_m;
       const double w_angle = length * length * length / (kSigmaOffset * kSigmaOffset);
       H(2, 2) += w_angle;
-      g(2) += w_angle * bim::radians(fits[i].angle_deg);
+      g(2) += w_angle * common::radians(fits[i].angle_deg);
     }
     placement.correction -= H.ldlt().solve(g);
   }
@@ -372,7 +372,7 @@ std::vector<ExtraWall> extraWalls(const std::vector<WallInB>& unexplained, const
   std::sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) {
     return unexplained[a].length() > unexplained[b].length();
   });
-  const double parallel = std::cos(bim::radians(10.0));
+  const double parallel = std::cos(common::radians(10.0));
   for (std::size_t i : order) {
     if (used[i]) continue;
     used[i] = true;
@@ -422,7 +422,7 @@ std::optional<Eigen::Isometry3d> placementOf(
   if (n == 0) return std::nullopt;
   Eigen::Isometry3d out = Eigen::Isometry3d::Identity();
   out.linear() =
-      Eigen::AngleAxisd(bim::headingOf(heading), Eigen::Vector3d::UnitZ()).toRotationMatrix();
+      Eigen::AngleAxisd(common::headingOf(heading), Eigen::Vector3d::UnitZ()).toRotationMatrix();
   out.translation() << t / n, B_T_M.translation().z();
   return out;
 }
@@ -478,14 +478,14 @@ DeviationReport measureDeviations(
       const double moved = ((*of_its_keyframes * middle) - (B_T_M * middle)).head<2>().norm();
       const double turned =
           Eigen::AngleAxisd(of_its_keyframes->linear() * B_T_M.linear().transpose()).angle();
-      if (moved > options.bend_distance || turned > bim::radians(options.bend_angle_deg)) {
+      if (moved > options.bend_distance || turned > common::radians(options.bend_angle_deg)) {
         placement = *of_its_keyframes;
       }
     }
     WallInB in_B = toB(w, placement);
     if (in_B.length() >= options.min_wall_length) walls_in_B.push_back(in_B);
   }
-  const double min_cos = std::cos(bim::radians(options.search_angle_deg));
+  const double min_cos = std::cos(common::radians(options.search_angle_deg));
   for (int f = 0; f < int(plan.floors.size()); ++f) {
     if (!keyframes_on.count(f)) continue;
     const std::string& level = plan.floors[f].id;

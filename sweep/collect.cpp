@@ -2,7 +2,7 @@
 
 #include <filesystem>
 
-#include "bim/json_reader.hpp"
+#include "common/json_reader.hpp"
 #include "run/builtin_methods.hpp"
 #include "run/run_metrics.hpp"
 #include "sweep/pool.hpp"
@@ -42,7 +42,7 @@ SweepCollection collectSweep(const std::string& sweep_dir, const std::vector<Swe
     }
     std::string error = "no error line";
     try {
-      const nlohmann::json failure = bim::readJsonFile(record);
+      const nlohmann::json failure = common::readJsonFile(record);
       if (failure.contains("error") && failure["error"].is_array() && !failure["error"].empty() &&
           failure["error"].back().is_string()) {
         error = failure["error"].back().get<std::string>();

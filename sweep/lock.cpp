@@ -8,7 +8,7 @@
 #include <cstring>
 #include <filesystem>
 
-#include "bim/input_error.hpp"
+#include "common/input_error.hpp"
 #include "sweep/suite.hpp"
 
 namespace isg::sweep {
@@ -18,8 +18,8 @@ SweepLock::SweepLock(const std::string& sweep_dir) {
   // Never through a symlink: the pid written below would truncate whatever it points to.
   fd_ = ::open(path.c_str(), O_RDWR | O_CREAT | O_CLOEXEC | O_NOFOLLOW, 0644);
   if (fd_ < 0) {
-    throw bim::InputError(path, "",
-                          std::string("cannot open the sweep's lock: ") + std::strerror(errno));
+    throw common::InputError(path, "",
+                             std::string("cannot open the sweep's lock: ") + std::strerror(errno));
   }
   if (::flock(fd_, LOCK_EX | LOCK_NB) != 0) {
     const int error = errno;
@@ -28,14 +28,14 @@ SweepLock::SweepLock(const std::string& sweep_dir) {
     ::close(fd_);
     fd_ = -1;
     if (error != EWOULDBLOCK) {
-      throw bim::InputError(path, "", std::string("cannot lock: ") + std::strerror(error));
+      throw common::InputError(path, "", std::string("cannot lock: ") + std::strerror(error));
     }
     std::string pid = n > 0 ? std::string(holder, std::size_t(n)) : "";
     while (!pid.empty() && (pid.back() == '\n' || pid.back() == ' ')) pid.pop_back();
-    throw bim::InputError(sweep_dir, "",
-                          "another isg sweep is running in this folder (pid " +
-                              (pid.empty() ? std::string("unknown") : pid) +
-                              "); wait for it to end, or stop it, then run this again");
+    throw common::InputError(sweep_dir, "",
+                             "another isg sweep is running in this folder (pid " +
+                                 (pid.empty() ? std::string("unknown") : pid) +
+                                 "); wait for it to end, or stop it, then run this again");
   }
   // The holder's pid, for the message above; the file itself stays (removing it would let two
   // processes lock two different files of one name).

@@ -17,11 +17,11 @@
 #include <nlohmann/json.hpp>
 #include <thread>
 
-#include "bim/input_error.hpp"
+#include "common/atomic_folder.hpp"
+#include "common/input_error.hpp"
 #include "run/builtin_methods.hpp"
 #include "run/interrupt.hpp"
 #include "run/run_metrics.hpp"
-#include "sensors/atomic_folder.hpp"
 
 namespace isg::sweep {
 
@@ -151,8 +151,8 @@ std::string moveCellAside(const std::string& sweep_dir, const SweepCell& cell) {
   fs::create_directories(to.parent_path(), error);
   if (!error) fs::rename(fs::path(sweep_dir) / cell.dir, to, error);
   if (error) {
-    throw bim::InputError((fs::path(sweep_dir) / cell.dir).string(), "",
-                          "cannot move it aside to " + to.string() + ": " + error.message());
+    throw common::InputError((fs::path(sweep_dir) / cell.dir).string(), "",
+                             "cannot move it aside to " + to.string() + ": " + error.message());
   }
   return relative.string();
 }
@@ -259,7 +259,7 @@ PoolOutcome runCells(const std::string& sweep_dir, const std::vector<SweepCell>&
                                  {"error", lines}};
         if (WIFEXITED(status)) record["exit_code"] = WEXITSTATUS(status);
         if (WIFSIGNALED(status)) record["signal"] = WTERMSIG(status);
-        sensors::writeFileAtomically(failureRecordPath(sweep_dir, cell), record.dump(1) + "\n");
+        common::writeFileAtomically(failureRecordPath(sweep_dir, cell), record.dump(1) + "\n");
         std::string reason = WIFEXITED(status) ? "exit " + std::to_string(WEXITSTATUS(status))
                                                : "signal " + std::to_string(WTERMSIG(status));
         what = "FAILED (" + reason + ")" + (lines.empty() ? "" : ": " + lines.back());

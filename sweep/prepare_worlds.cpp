@@ -2,11 +2,11 @@
 
 #include <filesystem>
 
-#include "bim/content_hash.hpp"
-#include "bim/input_error.hpp"
-#include "bim/json_reader.hpp"
-#include "bim/limits.hpp"
-#include "sensors/atomic_folder.hpp"
+#include "common/atomic_folder.hpp"
+#include "common/content_hash.hpp"
+#include "common/input_error.hpp"
+#include "common/json_reader.hpp"
+#include "common/limits.hpp"
 #include "sim/simulation.hpp"
 #include "worlds/reference_plans.hpp"
 #include "worlds/world_hash.hpp"
@@ -21,19 +21,19 @@ namespace fs = std::filesystem;
 void writeIfChanged(const fs::path& path, const std::string& text) {
   if (fs::is_regular_file(path)) {
     try {
-      if (bim::readCheckedFile(path.string(), bim::limits::kMaxJsonFileBytes) == text) return;
-    } catch (const bim::InputError&) {
+      if (common::readCheckedFile(path.string(), common::limits::kMaxJsonFileBytes) == text) return;
+    } catch (const common::InputError&) {
       // Unreadable: written anew below.
     }
   }
-  sensors::writeFileAtomically(path.string(), text);
+  common::writeFileAtomically(path.string(), text);
 }
 
 // A file's bytes as far as they can be read ("" when not at all).
 std::string rawBytes(const std::string& path) {
   try {
-    return bim::readCheckedFile(path, bim::limits::kMaxJsonFileBytes);
-  } catch (const bim::InputError&) {
+    return common::readCheckedFile(path, common::limits::kMaxJsonFileBytes);
+  } catch (const common::InputError&) {
     return "";
   }
 }
@@ -45,12 +45,12 @@ void prepareSweepWorlds(Suite& suite, const std::string& sweep_dir) {
   for (auto& world : suite.worlds) {
     if (!world.generate) {
       try {
-        bim::Warnings warnings;
+        common::Warnings warnings;
         world.hash = worlds::worldHash(worlds::loadScenarioOrBuiltin(world.input, &warnings));
-      } catch (const bim::InputError&) {
+      } catch (const common::InputError&) {
         // A world that does not read fails its own cells (recorded, the others go on); its
         // file's bytes still tell when it has changed.
-        world.hash = bim::contentHash("unreadable world\n" + rawBytes(world.input));
+        world.hash = common::contentHash("unreadable world\n" + rawBytes(world.input));
       }
       continue;
     }
@@ -61,17 +61,17 @@ void prepareSweepWorlds(Suite& suite, const std::string& sweep_dir) {
     fs::create_directories(scenario_path.parent_path(), error);
     writeIfChanged(dir / kSweepWorldsFolder / (b.name + ".json"), b.plan.dump(2) + "\n");
     writeIfChanged(scenario_path, b.scenario.dump(2) + "\n");
-    bim::Warnings warnings;
+    common::Warnings warnings;
     const bim::Scenario scenario = bim::loadScenario(scenario_path.string(), &warnings);
     const sim::Simulation simulation(scenario);
     if (!simulation.route().skipped_rooms.empty()) {
       std::string rooms;
       for (const auto& r : simulation.route().skipped_rooms)
         rooms += (rooms.empty() ? "" : ", ") + r;
-      throw bim::InputError(suite.file, "/worlds",
-                            "generated world " + world.name + ": its tour cannot reach room" +
-                                (simulation.route().skipped_rooms.size() > 1 ? "s " : " ") + rooms +
-                                "; change the generator's parameters");
+      throw common::InputError(suite.file, "/worlds",
+                               "generated world " + world.name + ": its tour cannot reach room" +
+                                   (simulation.route().skipped_rooms.size() > 1 ? "s " : " ") +
+                                   rooms + "; change the generator's parameters");
     }
     world.hash = worlds::worldHash(scenario);
   }

@@ -4,7 +4,7 @@
 #include <map>
 #include <set>
 
-#include "bim/input_error.hpp"
+#include "common/input_error.hpp"
 
 namespace isg::sweep {
 
@@ -106,9 +106,9 @@ RunTable tabulateRuns(std::vector<std::pair<std::string, run::RunMetrics>> runs,
       if (!cells.count(key)) order.push_back(key);
       CellRuns& cell = cells[key];
       if (std::find(cell.seeds.begin(), cell.seeds.end(), metrics.seed) != cell.seeds.end()) {
-        throw bim::InputError(dir, "",
-                              "a second run of " + world + " with " + metrics.method +
-                                  " and seed " + std::to_string(metrics.seed));
+        throw common::InputError(dir, "",
+                                 "a second run of " + world + " with " + metrics.method +
+                                     " and seed " + std::to_string(metrics.seed));
       }
       cell.seeds.push_back(metrics.seed);
       cell.values.push_back(number);

@@ -7,8 +7,8 @@
 #include <cstdio>
 #include <filesystem>
 
-#include "bim/input_error.hpp"
-#include "sensors/atomic_folder.hpp"
+#include "common/atomic_folder.hpp"
+#include "common/input_error.hpp"
 
 namespace isg::sweep {
 
@@ -81,10 +81,10 @@ std::string writeSlurmScript(const std::string& sweep_dir, const Suite& suite,
   std::string list;
   for (std::size_t i : pending) list += std::to_string(i) + "\n";
   fs::create_directories(fs::path(sweep_dir) / "logs");
-  sensors::writeFileAtomically((fs::path(sweep_dir) / kSlurmCellsFile).string(), list);
+  common::writeFileAtomically((fs::path(sweep_dir) / kSlurmCellsFile).string(), list);
   const std::string script = (fs::path(sweep_dir) / kSlurmScriptFile).string();
-  sensors::writeFileAtomically(script,
-                               slurmScript(sweep_dir, suite, pending.size(), isg, max_array_size));
+  common::writeFileAtomically(script,
+                              slurmScript(sweep_dir, suite, pending.size(), isg, max_array_size));
   fs::permissions(script, fs::perms::owner_exec | fs::perms::group_exec, fs::perm_options::add);
   return script;
 }
@@ -133,7 +133,7 @@ std::vector<std::string> submitSlurm(const std::string& script,
     FILE* pipe = popen(command.c_str(), "r");
     if (pipe == nullptr) {
       for (FILE* p : pipes) pclose(p);
-      throw bim::InputError(script, "", "cannot start sbatch");
+      throw common::InputError(script, "", "cannot start sbatch");
     }
     pipes.push_back(pipe);
   }
@@ -163,7 +163,7 @@ std::vector<std::string> submitSlurm(const std::string& script,
   if (!refused.empty()) {
     std::string submitted;
     for (const auto& id : ids) submitted += (submitted.empty() ? "" : ", ") + id;
-    throw bim::InputError(
+    throw common::InputError(
         script, "",
         refused + (ids.empty() ? ""
                                : " (the other arrays were submitted as job " + submitted +

@@ -4,7 +4,7 @@
 #include <filesystem>
 #include <set>
 
-#include "bim/json_reader.hpp"
+#include "common/json_reader.hpp"
 #include "worlds/reference_plans.hpp"
 
 namespace isg::sweep {
@@ -14,7 +14,7 @@ namespace {
 namespace fs = std::filesystem;
 
 // A generator parameter of the suite: the JSON name is the command line's without the dashes.
-worlds::GeneratorSpec generatorSpec(const bim::JsonNode& node) {
+worlds::GeneratorSpec generatorSpec(const common::JsonNode& node) {
   node.expectObject({"family",
                      "seed",
                      "count",
@@ -45,8 +45,8 @@ worlds::GeneratorSpec generatorSpec(const bim::JsonNode& node) {
   if (std::find(families.begin(), families.end(), spec.family) == families.end()) {
     std::string list;
     for (const auto& f : families) list += (list.empty() ? "" : ", ") + f;
-    node.field("family").fail("unknown family " + bim::inQuotes(spec.family) + " (one of " + list +
-                              ")");
+    node.field("family").fail("unknown family " + common::inQuotes(spec.family) + " (one of " +
+                              list + ")");
   }
   const auto number = [&](const char* key, double& into) {
     if (auto v = node.optionalField(key)) into = v->number();
@@ -92,34 +92,34 @@ worlds::GeneratorSpec generatorSpec(const bim::JsonNode& node) {
 }  // namespace
 
 Suite loadSuite(const std::string& path, const run::LocalizerRegistry& methods) {
-  const nlohmann::json document = bim::readJsonFile(path);
-  const bim::JsonSource source{path, nullptr};
-  return parseSuite(bim::JsonNode(document, "", source), path, methods);
+  const nlohmann::json document = common::readJsonFile(path);
+  const common::JsonSource source{path, nullptr};
+  return parseSuite(common::JsonNode(document, "", source), path, methods);
 }
 
-Suite parseSuite(const bim::JsonNode& root, const std::string& path,
+Suite parseSuite(const common::JsonNode& root, const std::string& path,
                  const run::LocalizerRegistry& methods) {
   root.expectObject(
       {"$schema", "format", "version", "name", "worlds", "seeds", "methods", "run", "slurm"});
-  bim::checkFormatAndVersion(root, kSuiteFormat, kSuiteVersion);
+  common::checkFormatAndVersion(root, kSuiteFormat, kSuiteVersion);
   Suite suite;
   suite.file = path;
   suite.name = root.has("name") ? root.field("name").text() : fs::path(path).stem().string();
   const fs::path base = fs::absolute(fs::path(path)).parent_path();
   std::set<std::string> names;
-  const auto addWorld = [&](const bim::JsonNode& at, SuiteWorld world) {
+  const auto addWorld = [&](const common::JsonNode& at, SuiteWorld world) {
     // A world's name is the first folder of its run folders in SWEEP_DIR: "." and ".." would put
     // them beside or outside the sweep, the names of the sweep's own files would collide.
     const bool reserved = world.name == "." || world.name == ".." ||
                           std::find(kSweepFolderFiles.begin(), kSweepFolderFiles.end(),
                                     world.name) != kSweepFolderFiles.end();
     if (reserved) {
-      at.fail("a world named " + bim::inQuotes(world.name) +
+      at.fail("a world named " + common::inQuotes(world.name) +
               " (its file's name without .json) cannot name a folder of the sweep: rename "
               "the file");
     }
     if (!names.insert(world.name).second) {
-      at.fail("a second world named " + bim::inQuotes(world.name) +
+      at.fail("a second world named " + common::inQuotes(world.name) +
               " (world names are the table's rows and folder names)");
     }
     if (suite.worlds.size() >= kMaxSweepCells) {
@@ -141,7 +141,8 @@ Suite parseSuite(const bim::JsonNode& root, const std::string& path,
         if (!worlds::builtinText(world.name)) {
           std::string list;
           for (const auto& n : worlds::builtinNames()) list += (list.empty() ? "" : ", ") + n;
-          entry.fail("no built-in world " + bim::inQuotes(world.name) + " (one of " + list + ")");
+          entry.fail("no built-in world " + common::inQuotes(world.name) + " (one of " + list +
+                     ")");
         }
         world.input = input;
       } else {
@@ -155,7 +156,7 @@ Suite parseSuite(const bim::JsonNode& root, const std::string& path,
       continue;
     }
     entry.expectObject({"generate"});
-    const bim::JsonNode spec_node = entry.field("generate");
+    const common::JsonNode spec_node = entry.field("generate");
     const worlds::GeneratorSpec first = generatorSpec(spec_node);
     const std::uint64_t count =
         spec_node.has("count") ? spec_node.field("count").unsignedInteger() : 1;
@@ -181,11 +182,11 @@ Suite parseSuite(const bim::JsonNode& root, const std::string& path,
     if (methods.find(name) == nullptr) {
       std::string list;
       for (const auto& n : methods.names()) list += (list.empty() ? "" : ", ") + n;
-      m.fail("unknown method " + bim::inQuotes(name) + " (one of " + list + ")");
+      m.fail("unknown method " + common::inQuotes(name) + " (one of " + list + ")");
     }
     const std::string canonical = methods.canonical(name);
     if (std::find(suite.methods.begin(), suite.methods.end(), canonical) != suite.methods.end()) {
-      m.fail("method " + bim::inQuotes(canonical) + " twice");
+      m.fail("method " + common::inQuotes(canonical) + " twice");
     }
     suite.methods.push_back(canonical);
   }
@@ -204,12 +205,13 @@ Suite parseSuite(const bim::JsonNode& root, const std::string& path,
     if (auto options = run->optionalField("method_options")) {
       if (!options->isObject()) options->fail("expected an object: method → {KEY: VALUE}");
       for (const auto& [method, settings] : options->raw().items()) {
-        const bim::JsonNode node = options->field(method);
-        if (methods.find(method) == nullptr) node.fail("unknown method " + bim::inQuotes(method));
+        const common::JsonNode node = options->field(method);
+        if (methods.find(method) == nullptr)
+          node.fail("unknown method " + common::inQuotes(method));
         if (!settings.is_object()) node.fail("expected an object {KEY: VALUE}");
         auto& given = suite.method_options[methods.canonical(method)];
         for (const auto& [key, value] : settings.items()) {
-          const bim::JsonNode v = node.field(key);
+          const common::JsonNode v = node.field(key);
           std::string text;
           if (value.is_string()) {
             text = v.string();
@@ -267,7 +269,7 @@ std::vector<SweepCell> sweepCells(const Suite& suite) {
                           "-q"};
         if (suite.duration) {
           cell.arguments.push_back("--duration");
-          cell.arguments.push_back(bim::formatNumber(*suite.duration));
+          cell.arguments.push_back(common::formatNumber(*suite.duration));
         }
         if (const auto it = suite.method_options.find(method); it != suite.method_options.end()) {
           for (const auto& [key, value] : it->second) {
@@ -333,17 +335,17 @@ nlohmann::json generatorSpecJson(const worlds::GeneratorSpec& s) {
 SweepPlan readSweepPlan(const std::string& sweep_dir) {
   const std::string path = (fs::path(sweep_dir) / kSweepPlanFile).string();
   if (!fs::exists(path)) {
-    throw bim::InputError(path, "",
-                          "no such file: " + sweep_dir +
-                              " is not a sweep folder (isg sweep SUITE.json -o DIR makes one)");
+    throw common::InputError(path, "",
+                             "no such file: " + sweep_dir +
+                                 " is not a sweep folder (isg sweep SUITE.json -o DIR makes one)");
   }
-  const nlohmann::json document = bim::readJsonFile(path);
-  const bim::JsonSource source{path, nullptr};
-  return parseSweepPlan(bim::JsonNode(document, "", source));
+  const nlohmann::json document = common::readJsonFile(path);
+  const common::JsonSource source{path, nullptr};
+  return parseSweepPlan(common::JsonNode(document, "", source));
 }
 
-SweepPlan parseSweepPlan(const bim::JsonNode& root) {
-  bim::checkFormatAndVersion(root, "isg.sweep", 1);
+SweepPlan parseSweepPlan(const common::JsonNode& root) {
+  common::checkFormatAndVersion(root, "isg.sweep", 1);
   SweepPlan plan;
   plan.name = root.field("name").text();
   plan.suite_file = root.field("suite").text();

@@ -7,7 +7,7 @@
 #include <string>
 #include <vector>
 
-#include "bim/json_reader.hpp"
+#include "common/json_reader.hpp"
 #include "run/localizer_registry.hpp"
 #include "worlds/plan_generator.hpp"
 
@@ -52,7 +52,7 @@ inline constexpr int kSuiteVersion = 1;
 // wrong (an unknown method, a world file that does not exist, a repeated world name ...).
 Suite loadSuite(const std::string& path, const run::LocalizerRegistry& methods);
 // The same from a document already read; `path` names it and anchors its relative world files.
-Suite parseSuite(const bim::JsonNode& root, const std::string& path,
+Suite parseSuite(const common::JsonNode& root, const std::string& path,
                  const run::LocalizerRegistry& methods);
 
 // At most this many cells (worlds × methods × seeds) in one sweep: more is an error naming the
@@ -106,6 +106,6 @@ struct SweepPlan {
 // Reads SWEEP_DIR/sweep.json; a missing or foreign file is an InputError naming it.
 SweepPlan readSweepPlan(const std::string& sweep_dir);
 // The same from a document already read.
-SweepPlan parseSweepPlan(const bim::JsonNode& root);
+SweepPlan parseSweepPlan(const common::JsonNode& root);
 
 }  // namespace isg::sweep

@@ -11,10 +11,10 @@
 #include <set>
 #include <stdexcept>
 
-#include "bim/input_error.hpp"
-#include "bim/json_reader.hpp"
 #include "bim/plan_parser.hpp"
 #include "bim/scenario.hpp"
+#include "common/input_error.hpp"
+#include "common/json_reader.hpp"
 
 namespace isg::worlds {
 
@@ -921,15 +921,16 @@ GeneratedBuilding generateUnchecked(const GeneratorSpec& spec) {
 // rooms, extent, clutter items ...); nullopt when both read without error or warning.
 std::optional<std::string> refusal(const GeneratedBuilding& b) {
   try {
-    bim::Warnings warnings;
-    const bim::JsonSource plan_source{b.name + ".json", &warnings};
-    bim::Plan plan = bim::parsePlan(bim::JsonNode(b.plan, "", plan_source));
-    const bim::JsonSource scenario_source{b.name + ".asbuilt.json", &warnings};
-    bim::parseScenario(bim::JsonNode(b.scenario, "", scenario_source), [&](const bim::JsonNode&) {
-      return bim::LoadedPlan{plan, plan_source.file};
-    });
+    common::Warnings warnings;
+    const common::JsonSource plan_source{b.name + ".json", &warnings};
+    bim::Plan plan = bim::parsePlan(common::JsonNode(b.plan, "", plan_source));
+    const common::JsonSource scenario_source{b.name + ".asbuilt.json", &warnings};
+    bim::parseScenario(common::JsonNode(b.scenario, "", scenario_source),
+                       [&](const common::JsonNode&) {
+                         return bim::LoadedPlan{plan, plan_source.file};
+                       });
     if (!warnings.empty()) return warnings.front().str();
-  } catch (const bim::InputError& e) {
+  } catch (const common::InputError& e) {
     return std::string(e.what());
   }
   return std::nullopt;

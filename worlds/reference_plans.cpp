@@ -2,8 +2,8 @@
 
 #include <filesystem>
 
-#include "bim/json_reader.hpp"
 #include "bim/plan_parser.hpp"
+#include "common/json_reader.hpp"
 
 namespace isg::worlds {
 
@@ -37,26 +37,28 @@ std::optional<std::string_view> builtinText(std::string_view name) {
 
 bool isBuiltin(std::string_view argument) { return argument.starts_with(kBuiltinPrefix); }
 
-bim::Scenario loadScenarioOrBuiltin(const std::string& argument, bim::Warnings* warnings) {
+bim::Scenario loadScenarioOrBuiltin(const std::string& argument, common::Warnings* warnings) {
   if (!isBuiltin(argument)) return bim::loadScenario(argument, warnings);
   const std::string name = argument.substr(kBuiltinPrefix.size());
   const auto text = builtinText(name);
   if (!text) {
     std::string known;
     for (const auto& n : builtinNames()) known += (known.empty() ? "" : ", ") + n;
-    throw bim::InputError(argument, "", "no such built-in world (built-ins: " + known + ")");
+    throw common::InputError(argument, "", "no such built-in world (built-ins: " + known + ")");
   }
-  const nlohmann::json document = bim::parseJsonText(std::string(*text), argument);
-  const bim::JsonSource source{argument, warnings};
-  return bim::parseScenario(bim::JsonNode(document, "", source), [&](const bim::JsonNode& ref) {
-    const std::string plan_name = std::string(kBuiltinPrefix) + withoutJson(ref.string());
-    const auto plan_text = builtinText(ref.string());
-    if (!plan_text) ref.fail("no built-in plan \"" + ref.string() + "\"");
-    const nlohmann::json plan_document = bim::parseJsonText(std::string(*plan_text), plan_name);
-    const bim::JsonSource plan_source{plan_name, warnings};
-    return bim::LoadedPlan{bim::parsePlan(bim::JsonNode(plan_document, "", plan_source)),
-                           plan_name};
-  });
+  const nlohmann::json document = common::parseJsonText(std::string(*text), argument);
+  const common::JsonSource source{argument, warnings};
+  return bim::parseScenario(
+      common::JsonNode(document, "", source), [&](const common::JsonNode& ref) {
+        const std::string plan_name = std::string(kBuiltinPrefix) + withoutJson(ref.string());
+        const auto plan_text = builtinText(ref.string());
+        if (!plan_text) ref.fail("no built-in plan \"" + ref.string() + "\"");
+        const nlohmann::json plan_document =
+            common::parseJsonText(std::string(*plan_text), plan_name);
+        const common::JsonSource plan_source{plan_name, warnings};
+        return bim::LoadedPlan{bim::parsePlan(common::JsonNode(plan_document, "", plan_source)),
+                               plan_name};
+      });
 }
 
 std::string worldName(const std::string& argument) {

@@ -5,8 +5,8 @@
 #include <string_view>
 #include <vector>
 
-#include "bim/input_error.hpp"
 #include "bim/scenario.hpp"
+#include "common/input_error.hpp"
 
 namespace isg::worlds {
 
@@ -31,6 +31,6 @@ std::string worldName(const std::string& argument);
 
 // Loads a scenario (or bare plan) from a file path, or from a built-in ("builtin:NAME"), whose
 // plan reference resolves among the built-ins. Errors are InputErrors as for files.
-bim::Scenario loadScenarioOrBuiltin(const std::string& argument, bim::Warnings* warnings);
+bim::Scenario loadScenarioOrBuiltin(const std::string& argument, common::Warnings* warnings);
 
 }  // namespace isg::worlds

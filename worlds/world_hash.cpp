@@ -1,8 +1,8 @@
 #include "worlds/world_hash.hpp"
 
-#include "bim/content_hash.hpp"
-#include "bim/json_reader.hpp"
-#include "bim/limits.hpp"
+#include "common/content_hash.hpp"
+#include "common/json_reader.hpp"
+#include "common/limits.hpp"
 #include "worlds/reference_plans.hpp"
 
 namespace isg::worlds {
@@ -15,7 +15,7 @@ std::string bytesOf(const std::string& name) {
     const auto text = builtinText(name.substr(kBuiltinPrefix.size()));
     return text ? std::string(*text) : std::string();
   }
-  return bim::readCheckedFile(name, bim::limits::kMaxJsonFileBytes);
+  return common::readCheckedFile(name, common::limits::kMaxJsonFileBytes);
 }
 
 }  // namespace
@@ -28,7 +28,7 @@ std::string worldHash(const bim::Scenario& scenario) {
     const std::string plan_bytes = bytesOf(scenario.plan_file);
     text += "\n" + std::to_string(plan_bytes.size()) + "\n" + plan_bytes;
   }
-  return bim::contentHash(text);
+  return common::contentHash(text);
 }
 
 }  // namespace isg::worlds

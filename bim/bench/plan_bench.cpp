@@ -3,10 +3,10 @@
 
 #include "bim/agraph.hpp"
 #include "bim/agraph_optimizer.hpp"
-#include "bim/json_reader.hpp"
 #include "bim/plan_geometry.hpp"
 #include "bim/plan_parser.hpp"
 #include "bim/synthetic_plan.hpp"
+#include "common/json_reader.hpp"
 
 namespace isg::bim {
 namespace {
@@ -20,9 +20,9 @@ GridPlanSpec gridOf(int rooms) {
 
 void BM_ParseAndValidatePlan(benchmark::State& state) {
   const nlohmann::json document = makeGridPlan(gridOf(int(state.range(0))));
-  const JsonSource source{"grid.json", nullptr};
+  const common::JsonSource source{"grid.json", nullptr};
   for (auto _ : state) {
-    Plan plan = parsePlan(JsonNode(document, "", source));
+    Plan plan = parsePlan(common::JsonNode(document, "", source));
     benchmark::DoNotOptimize(plan);
   }
   state.counters["rooms"] = double(state.range(0));
@@ -30,9 +30,9 @@ void BM_ParseAndValidatePlan(benchmark::State& state) {
 BENCHMARK(BM_ParseAndValidatePlan)->Arg(50)->Arg(200)->Unit(benchmark::kMillisecond);
 
 void BM_LevelGeometry(benchmark::State& state) {
-  const JsonSource source{"grid.json", nullptr};
+  const common::JsonSource source{"grid.json", nullptr};
   const nlohmann::json document = makeGridPlan(gridOf(int(state.range(0))));
-  const Plan plan = parsePlan(JsonNode(document, "", source));
+  const Plan plan = parsePlan(common::JsonNode(document, "", source));
   for (auto _ : state) {
     LevelGeometry g = computeLevelGeometry(plan.levels[0]);
     benchmark::DoNotOptimize(g);
@@ -49,9 +49,9 @@ namespace {
 
 // The A-Graph of a plan: the "benchmark the build time" on 200 rooms (and 1000).
 void BM_BuildAGraph(benchmark::State& state) {
-  const JsonSource source{"grid.json", nullptr};
+  const common::JsonSource source{"grid.json", nullptr};
   const nlohmann::json document = makeGridPlan(gridOf(int(state.range(0))));
-  const Plan plan = parsePlan(JsonNode(document, "", source));
+  const Plan plan = parsePlan(common::JsonNode(document, "", source));
   for (auto _ : state) {
     AGraph graph = buildAGraph(plan);
     benchmark::DoNotOptimize(graph);
@@ -62,9 +62,9 @@ BENCHMARK(BM_BuildAGraph)->Arg(50)->Arg(200)->Arg(1000)->Unit(benchmark::kMillis
 
 // One optimisation of the whole A-Graph from perturbed values, for scale.
 void BM_OptimizeAGraph(benchmark::State& state) {
-  const JsonSource source{"grid.json", nullptr};
+  const common::JsonSource source{"grid.json", nullptr};
   const nlohmann::json document = makeGridPlan(gridOf(int(state.range(0))));
-  const Plan plan = parsePlan(JsonNode(document, "", source));
+  const Plan plan = parsePlan(common::JsonNode(document, "", source));
   const AGraph graph = buildAGraph(plan);
   for (auto _ : state) {
     AGraphState graph_state(graph);

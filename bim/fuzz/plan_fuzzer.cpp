@@ -5,21 +5,21 @@
 #include <string>
 
 #include "bim/agraph.hpp"
-#include "bim/input_error.hpp"
-#include "bim/json_reader.hpp"
 #include "bim/plan_geometry.hpp"
 #include "bim/plan_parser.hpp"
+#include "common/input_error.hpp"
+#include "common/json_reader.hpp"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   const std::string text(reinterpret_cast<const char*>(data), size);
   try {
-    const nlohmann::json document = isg::bim::parseJsonText(text, "fuzz.json");
-    isg::bim::Warnings warnings;
-    const isg::bim::JsonSource source{"fuzz.json", &warnings};
-    const isg::bim::Plan plan = isg::bim::parsePlan(isg::bim::JsonNode(document, "", source));
+    const nlohmann::json document = isg::common::parseJsonText(text, "fuzz.json");
+    isg::common::Warnings warnings;
+    const isg::common::JsonSource source{"fuzz.json", &warnings};
+    const isg::bim::Plan plan = isg::bim::parsePlan(isg::common::JsonNode(document, "", source));
     for (const auto& level : plan.levels) isg::bim::computeLevelGeometry(level);
     isg::bim::buildAGraph(plan);
-  } catch (const isg::bim::InputError&) {
+  } catch (const isg::common::InputError&) {
   }
   return 0;
 }

@@ -1,10 +1,10 @@
+
 #include "bim/plan_parser.hpp"
+#include "bim/plan_json.hpp"
+#include "bim/tests/test_plans.hpp"
 
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
-
-#include "bim/plan_json.hpp"
-#include "bim/tests/test_plans.hpp"
 
 namespace isg::bim {
 namespace {
@@ -50,7 +50,7 @@ TEST(PlanParser, ReadsWindowsAndWritesThemBack) {
   EXPECT_FALSE(planToJson(parsePlanJson(twoRoomPlanJson()))["levels"][0].contains("windows"));
   // Window ids share the file's one namespace.
   doc["levels"][0]["windows"][0]["id"] = "D1";
-  EXPECT_THROW(parsePlanJson(doc), InputError);
+  EXPECT_THROW(parsePlanJson(doc), common::InputError);
 }
 
 TEST(PlanParser, NameDefaultsToTheFileStem) {
@@ -62,7 +62,7 @@ TEST(PlanParser, NameDefaultsToTheFileStem) {
 TEST(PlanParser, ClockwiseOutlineIsReversedWithAWarning) {
   auto doc = twoRoomPlanJson();
   doc["levels"][0]["rooms"][0]["outline"] = {{0.1, 0.1}, {0.1, 3.9}, {2.95, 3.9}, {2.95, 0.1}};
-  Warnings warnings;
+  common::Warnings warnings;
   const Plan plan = parsePlanJson(doc, &warnings);
   ASSERT_EQ(warnings.size(), 1u);
   EXPECT_EQ(warnings[0].str(),
@@ -76,7 +76,7 @@ TEST(PlanParser, UnknownFieldsAreWarningsNotErrors) {
   auto doc = twoRoomPlanJson();
   doc["levels"][0]["walls"][2]["colour"] = "red";
   doc["levels"][0]["rooms"][1]["a/b"] = 1;
-  Warnings warnings;
+  common::Warnings warnings;
   EXPECT_NO_THROW(parsePlanJson(doc, &warnings));
   ASSERT_EQ(warnings.size(), 2u);
   EXPECT_EQ(warnings[0].str(),
@@ -89,7 +89,7 @@ TEST(PlanParser, DoorWithRoomsThatCannotBeInferredWarns) {
   auto doc = twoRoomPlanJson();
   doc["levels"][0]["doors"].erase(1);
   doc["levels"][0]["rooms"].erase(1);  // no room east of the partition: D1 leads "outside"
-  Warnings warnings;
+  common::Warnings warnings;
   const Plan plan = parsePlanJson(doc, &warnings);
   EXPECT_EQ(plan.levels[0].doors[0].rooms[1], "outside");
   EXPECT_TRUE(warnings.empty());
@@ -105,7 +105,7 @@ TEST(PlanParser, ErrorCarriesFilePointerAndReason) {
   try {
     parsePlanJson(doc, nullptr, "plans/bad.json");
     FAIL() << "expected an InputError";
-  } catch (const InputError& e) {
+  } catch (const common::InputError& e) {
     EXPECT_EQ(e.file(), "plans/bad.json");
     EXPECT_EQ(e.pointer(), "/levels/0/walls/3/thickness");
     EXPECT_EQ(e.reason(), "must be in [0.001, 10], got -0.2");
@@ -116,9 +116,9 @@ TEST(PlanParser, ErrorCarriesFilePointerAndReason) {
 
 TEST(PlanParser, SyntaxErrorNamesLineAndColumn) {
   try {
-    parseJsonText("{\n  \"format\": \"isg.plan\",\n  \"version\": 1,,\n}", "bad.json");
+    common::parseJsonText("{\n  \"format\": \"isg.plan\",\n  \"version\": 1,,\n}", "bad.json");
     FAIL() << "expected an InputError";
-  } catch (const InputError& e) {
+  } catch (const common::InputError& e) {
     EXPECT_EQ(e.file(), "bad.json");
     EXPECT_THAT(e.reason(), ::testing::StartsWith("invalid JSON at line 3, column 16: "));
   }
@@ -128,7 +128,7 @@ TEST(PlanParser, MissingFileIsAnInputError) {
   try {
     loadPlan("/nonexistent/plan.json");
     FAIL() << "expected an InputError";
-  } catch (const InputError& e) {
+  } catch (const common::InputError& e) {
     EXPECT_STREQ(e.what(), "/nonexistent/plan.json: cannot open file: No such file or directory");
   }
 }
@@ -136,15 +136,13 @@ TEST(PlanParser, MissingFileIsAnInputError) {
 }  // namespace
 }  // namespace isg::bim
 
-#include "bim/plan_json.hpp"
-
 namespace isg::bim {
 namespace {
 
 TEST(PlanJson, WrittenPlanParsesToTheSamePlan) {
   const Plan plan = testing::parsePlanJson(testing::twoRoomPlanJson());
   const nlohmann::json written = nlohmann::json::parse(planToJson(plan).dump());
-  Warnings warnings;
+  common::Warnings warnings;
   const Plan again = testing::parsePlanJson(written, &warnings, "again.json");
   EXPECT_TRUE(warnings.empty());
   ASSERT_EQ(again.levels.size(), 1u);

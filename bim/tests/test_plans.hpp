@@ -3,9 +3,9 @@
 #include <nlohmann/json.hpp>
 #include <string>
 
-#include "bim/json_reader.hpp"
 #include "bim/plan.hpp"
 #include "bim/plan_parser.hpp"
+#include "common/json_reader.hpp"
 
 namespace isg::bim::testing {
 
@@ -36,10 +36,10 @@ inline nlohmann::json twoRoomPlanJson() {
   })");
 }
 
-inline Plan parsePlanJson(const nlohmann::json& document, Warnings* warnings = nullptr,
+inline Plan parsePlanJson(const nlohmann::json& document, common::Warnings* warnings = nullptr,
                           const std::string& file = "test.json") {
-  const JsonSource source{file, warnings};
-  return parsePlan(JsonNode(document, "", source));
+  const common::JsonSource source{file, warnings};
+  return parsePlan(common::JsonNode(document, "", source));
 }
 
 }  // namespace isg::bim::testing

@@ -4,10 +4,10 @@
 // in R1 on the ground floor, seed 1, the default tour.
 #include <string>
 
-#include "bim/json_reader.hpp"
 #include "bim/plan_parser.hpp"
 #include "bim/scenario.hpp"
 #include "bim/synthetic_plan.hpp"
+#include "common/json_reader.hpp"
 
 namespace isg::sim {
 
@@ -16,10 +16,10 @@ inline bim::Scenario gridScenario(int rows, int cols) {
   spec.rows = rows;
   spec.cols = cols;
   const nlohmann::json document = bim::makeGridPlan(spec);
-  const bim::JsonSource source{
+  const common::JsonSource source{
       "grid-" + std::to_string(rows) + "x" + std::to_string(cols) + ".json", nullptr};
   bim::Scenario scenario;
-  scenario.plan = bim::parsePlan(bim::JsonNode(document, "", source));
+  scenario.plan = bim::parsePlan(common::JsonNode(document, "", source));
   scenario.robot.level = "L0";
   scenario.robot.start_room = "R1";
   scenario.seed = 1;

@@ -21,21 +21,24 @@ namespace fs = std::filesystem;
 // The allowed direct dependencies between modules (the arrows of docs/architecture.md).
 inline const std::map<std::string, std::set<std::string>>& allowedModules() {
   static const std::map<std::string, std::set<std::string>> allowed{
-      {"bim", {}},
-      {"worlds", {"bim"}},
-      {"ifc", {"bim"}},
-      {"eval", {}},
-      {"sensors", {"bim", "eval"}},
-      {"slam", {"bim", "sensors"}},
-      {"slam/sgraph", {"bim", "sensors", "slam"}},
-      {"slam/isgraph", {"bim", "sensors", "slam", "slam/sgraph"}},
-      {"slam/baselines", {"bim", "sensors", "slam"}},
-      {"run", {"bim", "eval", "sensors", "slam", "slam/sgraph", "slam/isgraph", "slam/baselines"}},
-      {"sim", {"bim", "worlds", "sensors"}},
-      {"sweep", {"bim", "worlds", "eval", "sensors", "run", "sim"}},
+      {"common", {}},
+      {"bim", {"common"}},
+      {"worlds", {"common", "bim"}},
+      {"ifc", {"common", "bim"}},
+      {"eval", {"common"}},
+      {"sensors", {"common"}},
+      {"slam", {"common", "bim", "sensors"}},
+      {"slam/sgraph", {"common", "bim", "sensors", "slam"}},
+      {"slam/isgraph", {"common", "bim", "sensors", "slam", "slam/sgraph"}},
+      {"slam/baselines", {"common", "bim", "sensors", "slam"}},
+      {"run",
+       {"common", "bim", "eval", "sensors", "slam", "slam/sgraph", "slam/isgraph",
+        "slam/baselines"}},
+      {"sim", {"common", "bim", "worlds", "sensors"}},
+      {"sweep", {"common", "bim", "worlds", "eval", "sensors", "run", "sim"}},
       {"cli",
-       {"bim", "worlds", "ifc", "eval", "sensors", "slam", "slam/sgraph", "slam/isgraph",
-        "slam/baselines", "run", "sim", "sweep"}},
+       {"common", "bim", "worlds", "ifc", "eval", "sensors", "slam", "slam/sgraph",
+        "slam/isgraph", "slam/baselines", "run", "sim", "sweep"}},
   };
   return allowed;
 }

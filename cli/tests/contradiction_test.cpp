@@ -7,8 +7,8 @@
 #include <numbers>
 
 #include "bim/agraph.hpp"
-#include "bim/angles.hpp"
 #include "cli/tests/injected_match.hpp"
+#include "common/angles.hpp"
 #include "run/driver.hpp"
 #include "sim/scan_pipeline.hpp"
 #include "sim/simulation.hpp"
@@ -59,12 +59,12 @@ TEST(ISGraphContradiction, AWrongFirstMatchIsContradictedAndEveryKeyframeReoptim
   const auto final_B_T_M = localizer.mapInPlan();
   ASSERT_TRUE(final_B_T_M.has_value());
   EXPECT_LT((final_B_T_M->translation().head<2>() - truth.head<2>()).norm(), 0.15);
-  EXPECT_LT(std::abs(bim::wrapAngle(bim::yawOf(final_B_T_M->linear()) - truth.z())), 0.02);
+  EXPECT_LT(std::abs(common::wrapAngle(common::yawOf(final_B_T_M->linear()) - truth.z())), 0.02);
   // Every wall of the map, the early ones included, is where the plan has a wall: at most a
   // tenth of the S-planes' length is left unexplained (clutter and the extra wall as built).
   const slam::MatchInput input = localizer.matchInput();
   const Eigen::Vector3d now(final_B_T_M->translation().x(), final_B_T_M->translation().y(),
-                            bim::yawOf(final_B_T_M->linear()));
+                            common::yawOf(final_B_T_M->linear()));
   const slam::GraphMatcher matcher(plan);
   const slam::Verification check = matcher.verify(input, now);
   double length = 0.0;

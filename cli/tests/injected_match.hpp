@@ -5,7 +5,7 @@
 // under test can correct it, and the true B_T_M at the start as (x, y, yaw).
 #include <Eigen/Core>
 
-#include "bim/angles.hpp"
+#include "common/angles.hpp"
 #include "sensors/sensor_streams.hpp"
 #include "slam/isgraph/isgraph_localizer.hpp"
 
@@ -27,7 +27,7 @@ inline slam::ISGraphOptions withTheLostChecksOff() {
 
 inline Eigen::Vector3d trueStartXYYaw(const sensors::SensorStreams& streams) {
   const Eigen::Isometry3d B_T_M = sensors::trueStartB_T_M(streams);
-  return {B_T_M.translation().x(), B_T_M.translation().y(), bim::yawOf(B_T_M.linear())};
+  return {B_T_M.translation().x(), B_T_M.translation().y(), common::yawOf(B_T_M.linear())};
 }
 
 }  // namespace isg::sim::testing

@@ -4,7 +4,7 @@
 #include <gtest/gtest.h>
 
 #include "bim/agraph.hpp"
-#include "eval/tum.hpp"
+#include "common/tum.hpp"
 #include "run/builtin_methods.hpp"
 #include "run/driver.hpp"
 #include "sim/scan_pipeline.hpp"
@@ -46,8 +46,8 @@ Estimates runOnce(const std::string& method, bool feed_every_scan) {
       driver.skip(stamp);
     }
   }
-  out.map = eval::toTumText(driver.estimateMap());
-  out.plan = eval::toTumText(driver.estimate());
+  out.map = common::toTumText(driver.estimateMap());
+  out.plan = common::toTumText(driver.estimate());
   return out;
 }
 

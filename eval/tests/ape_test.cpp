@@ -1,3 +1,4 @@
+
 #include "eval/ape.hpp"
 
 #include <gtest/gtest.h>
@@ -8,8 +9,8 @@
 namespace isg::eval {
 namespace {
 
-StampedPose pose(double t, double x, double y, double z, double yaw = 0.0) {
-  StampedPose p;
+common::StampedPose pose(double t, double x, double y, double z, double yaw = 0.0) {
+  common::StampedPose p;
   p.t = t;
   p.pose.translation() = Eigen::Vector3d(x, y, z);
   p.pose.linear() = Eigen::AngleAxisd(yaw, Eigen::Vector3d::UnitZ()).toRotationMatrix();
@@ -31,7 +32,7 @@ TEST(Statistics, HandComputed) {
 }
 
 TEST(Association, NearestWithinTheWindowNoInterpolation) {
-  Trajectory ref, est;
+  common::Trajectory ref, est;
   for (int i = 0; i < 10; ++i) ref.push_back(pose(i * 0.1, i, 0, 0));  // 10 Hz
   est.push_back(pose(0.004, 0, 0, 0));                                 // 4 ms from 0.0: kept
   est.push_back(pose(0.15, 0, 0, 0));    // 50 ms from both neighbours: dropped
@@ -43,7 +44,7 @@ TEST(Association, NearestWithinTheWindowNoInterpolation) {
 }
 
 TEST(Association, GapsDuplicatesAndUnequalRates) {
-  Trajectory ref, est;
+  common::Trajectory ref, est;
   // Reference at 100 Hz with a gap between 0.5 and 1.0 s; a duplicated stamp at 0.2 s.
   for (int i = 0; i <= 50; ++i) ref.push_back(pose(i * 0.01, 0, 0, 0));
   ref.insert(ref.begin() + 21, pose(0.2, 9, 9, 9));
@@ -87,7 +88,7 @@ TEST(Alignment, RecoversAKnownSimilarity) {
 }
 
 TEST(Ape, HandComputedWithoutAlignment) {
-  Trajectory ref, est;
+  common::Trajectory ref, est;
   for (int i = 0; i < 4; ++i) ref.push_back(pose(i, i, 0, 0));
   // Estimate off by 0.1, 0.2 (in y), 0.3 (in z), and turned by 90° at the last pose.
   est.push_back(pose(0, 0, 0.1, 0));
@@ -109,13 +110,13 @@ TEST(Ape, HandComputedWithoutAlignment) {
 TEST(Ape, AlignmentRemovesAnUnknownFrame) {
   // The estimate is the reference seen from another frame (yaw 1 rad, moved): APE without
   // alignment is large, with SE(3) alignment zero.
-  Trajectory ref, est;
+  common::Trajectory ref, est;
   Eigen::Isometry3d M_T_B = Eigen::Isometry3d::Identity();
   M_T_B.linear() = Eigen::AngleAxisd(1.0, Eigen::Vector3d::UnitZ()).toRotationMatrix();
   M_T_B.translation() = Eigen::Vector3d(3, 1, 0);
   for (int i = 0; i < 30; ++i) {
     ref.push_back(pose(i * 0.1, std::cos(i * 0.2) * 3, std::sin(i * 0.2) * 2, 0.1 * i, i * 0.2));
-    StampedPose e = ref.back();
+    common::StampedPose e = ref.back();
     e.pose = M_T_B * e.pose;
     est.push_back(e);
   }
@@ -128,7 +129,7 @@ TEST(Ape, AlignmentRemovesAnUnknownFrame) {
 }
 
 TEST(Rpe, ConstantOffsetHasNoRelativeError) {
-  Trajectory ref, est;
+  common::Trajectory ref, est;
   for (int i = 0; i < 10; ++i) {
     ref.push_back(pose(i, i, 0, 0));
     est.push_back(pose(i, i + 5, 2, 0));  // shifted, not drifting

@@ -1,3 +1,4 @@
+
 #include "eval/coverage.hpp"
 
 #include <gtest/gtest.h>
@@ -5,10 +6,10 @@
 namespace isg::eval {
 namespace {
 
-Trajectory stamps(double from, double to, double step) {
-  Trajectory t;
+common::Trajectory stamps(double from, double to, double step) {
+  common::Trajectory t;
   for (double s = from; s <= to + 1e-9; s += step) {
-    StampedPose p;
+    common::StampedPose p;
     p.t = s;
     t.push_back(p);
   }
@@ -25,8 +26,8 @@ TEST(Coverage, LocalizedAfterAQuarterOfTheRun) {
 
 TEST(Coverage, TimeLostIsNotLocalized) {
   // Ground truth 0 … 40 s; rows 10 … 20 s, lost 20 … 25 s, rows 25 … 35 s, lost to the end.
-  Trajectory estimate = stamps(10, 20, 0.1);
-  const Trajectory later = stamps(25, 35, 0.1);
+  common::Trajectory estimate = stamps(10, 20, 0.1);
+  const common::Trajectory later = stamps(25, 35, 0.1);
   estimate.insert(estimate.end(), later.begin(), later.end());
   const Coverage c = localizationCoverage(stamps(0, 40, 0.01), estimate);
   EXPECT_NEAR(c.time_to_first, 10.0, 1e-9);

@@ -1,9 +1,9 @@
+
 #include "eval/report_svg.hpp"
+#include "eval/svg_chart.hpp"
 
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
-
-#include "eval/svg_chart.hpp"
 
 namespace isg::eval {
 namespace {
@@ -24,8 +24,8 @@ TEST(NiceTicks, StepsAreOneTwoOrFiveTimesAPowerOfTen) {
   EXPECT_EQ(tickLabel(2.5, 0.5), "2.5");
 }
 
-Trajectory straight(double t0, double t1, double y) {
-  Trajectory out;
+common::Trajectory straight(double t0, double t1, double y) {
+  common::Trajectory out;
   for (double t = t0; t <= t1 + 1e-9; t += 0.5) {
     Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();
     pose.translation() = Eigen::Vector3d(t, y, 0);

@@ -1,3 +1,4 @@
+
 #include "eval/wrong_localization.hpp"
 
 #include <gtest/gtest.h>
@@ -6,10 +7,10 @@ namespace isg::eval {
 namespace {
 
 // Ground truth along x at 1 m/s, every 0.1 s from 0 to 60 s.
-Trajectory truth() {
-  Trajectory t;
+common::Trajectory truth() {
+  common::Trajectory t;
   for (int i = 0; i <= 600; ++i) {
-    StampedPose p;
+    common::StampedPose p;
     p.t = 0.1 * i;
     p.pose.translation() = Eigen::Vector3d(p.t, 0.0, 0.0);
     t.push_back(p);
@@ -19,10 +20,10 @@ Trajectory truth() {
 
 // The estimate from `from` to `to` seconds, off by `offset(t)` metres in y and `z` in height.
 template <typename Offset>
-Trajectory estimate(double from, double to, Offset offset, double z = 0.6) {
-  Trajectory t;
+common::Trajectory estimate(double from, double to, Offset offset, double z = 0.6) {
+  common::Trajectory t;
   for (int i = int(from * 10 + 0.5); i <= int(to * 10 + 0.5); ++i) {
-    StampedPose p;
+    common::StampedPose p;
     p.t = 0.1 * i;
     p.pose.translation() = Eigen::Vector3d(p.t, offset(p.t), z);  // within 1 m: the same floor
     t.push_back(p);
@@ -75,8 +76,8 @@ TEST(WrongLocalization, SecondsOnEndOffIsWrong) {
 
 TEST(WrongLocalization, TimeWithoutRowsIsNotCounted) {
   // Off 3 s, then no rows for 10 s (lost), then off 3 s more: two stretches of 3 s, not wrong.
-  Trajectory e = estimate(10, 13, [](double) { return 3.0; });
-  const Trajectory later = estimate(23, 26, [](double) { return 3.0; });
+  common::Trajectory e = estimate(10, 13, [](double) { return 3.0; });
+  const common::Trajectory later = estimate(23, 26, [](double) { return 3.0; });
   e.insert(e.end(), later.begin(), later.end());
   const auto w = wrongLocalization(truth(), e);
   EXPECT_FALSE(w.wrong);

@@ -4,14 +4,14 @@
 #include <cstdint>
 #include <string>
 
-#include "bim/input_error.hpp"
+#include "common/input_error.hpp"
 #include "ifc/ifc_import.hpp"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   std::string text(reinterpret_cast<const char*>(data), size);
   try {
     isg::ifc::importIfcText("fuzz.ifc", std::move(text), {});
-  } catch (const isg::bim::InputError&) {
+  } catch (const isg::common::InputError&) {
   }
   return 0;
 }

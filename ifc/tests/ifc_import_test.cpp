@@ -1,14 +1,14 @@
 // The import on the five public models (ifc/tests/models, README.md there says where each comes
 // from and under which licence) and on small hand-written files for the errors.
+
 #include "ifc/ifc_import.hpp"
+#include "common/input_error.hpp"
+#include "common/json_reader.hpp"
 
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
 #include <string>
-
-#include "bim/input_error.hpp"
-#include "bim/json_reader.hpp"
 
 namespace isg::ifc {
 namespace {
@@ -34,7 +34,7 @@ const bim::Wall* wallWithId(const bim::Plan& plan, const std::string& id) {
 std::string errorOf(const std::string& text, const ImportOptions& options = {}) {
   try {
     importIfcText("t.ifc", text, options);
-  } catch (const bim::InputError& e) {
+  } catch (const common::InputError& e) {
     return e.what();
   }
   return "";
@@ -110,11 +110,11 @@ TEST(ImportIfc, StoreysChosenByName) {
   ASSERT_EQ(r.plan.levels.size(), 1u);
   EXPECT_EQ(r.plan.levels[0].id, "Level 2");
   options.storeys = {"Level 3"};
-  EXPECT_EQ(errorOf(bim::readCheckedFile(modelPath("duplex.ifc"), kMaxIfcBytes), options),
+  EXPECT_EQ(errorOf(common::readCheckedFile(modelPath("duplex.ifc"), kMaxIfcBytes), options),
             "t.ifc: no storey named \"Level 3\" (--storey); its storeys: \"T/FDN\", \"Level 1\", "
             "\"Level 2\", \"Roof\"");
   options.storeys = {"Roof"};
-  EXPECT_EQ(errorOf(bim::readCheckedFile(modelPath("duplex.ifc"), kMaxIfcBytes), options),
+  EXPECT_EQ(errorOf(common::readCheckedFile(modelPath("duplex.ifc"), kMaxIfcBytes), options),
             "t.ifc: storey \"Roof\" has no wall rising 1.500 m above its floor: nothing to import");
 }
 
@@ -165,7 +165,8 @@ TEST(ImportIfc, BadModels) {
                              "#2=IFCBUILDINGSTOREY('1YvctVUKr0kugbFTf53O9L',$,'G',$,$,$,$,$,"
                              ".ELEMENT.,0.);\n")),
             "t.ifc: no wall the import could read: nothing to import");
-  const std::string house = bim::readCheckedFile(modelPath("IfcOpenHouse_IFC4.ifc"), kMaxIfcBytes);
+  const std::string house =
+      common::readCheckedFile(modelPath("IfcOpenHouse_IFC4.ifc"), kMaxIfcBytes);
   EXPECT_EQ(errorOf(house.substr(0, house.size() / 2)),
             "t.ifc: truncated: the file does not end with \"END-ISO-10303-21;\"");
 }
@@ -174,13 +175,13 @@ TEST(ImportIfc, AModelThatCrashesIfcppIsABadModel) {
   // IFC++ dereferences a polyline's missing first point (found by ci/fuzz): it runs in a child
   // process, and the crash is reported as what is wrong with the file.
   const std::string text =
-      bim::readCheckedFile(modelPath("bad/ifcpp_null_polyline_point.ifc"), kMaxIfcBytes);
+      common::readCheckedFile(modelPath("bad/ifcpp_null_polyline_point.ifc"), kMaxIfcBytes);
   EXPECT_THAT(errorOf(text), testing::StartsWith("t.ifc: IFC++ stopped with signal "));
 }
 
 TEST(ImportIfc, AModelInSurveyCoordinatesIsNamed) {
   // small.ifc with its site placed 20 km east: beyond the plan's ±10 km.
-  std::string text = bim::readCheckedFile(modelPath("small.ifc"), kMaxIfcBytes);
+  std::string text = common::readCheckedFile(modelPath("small.ifc"), kMaxIfcBytes);
   const std::string site = "#31=IFCLOCALPLACEMENT($,#21);";
   ASSERT_NE(text.find(site), std::string::npos);
   text.replace(text.find(site), site.size(),
@@ -197,7 +198,7 @@ TEST(ImportIfc, AMissingFileIsNamed) {
   try {
     importIfc("/nonexistent/model.ifc", {});
     FAIL();
-  } catch (const bim::InputError& e) {
+  } catch (const common::InputError& e) {
     EXPECT_THAT(e.what(), testing::StartsWith("/nonexistent/model.ifc: "));
   }
 }

@@ -1,10 +1,10 @@
 // The file checks before IFC++ reads anything: each bad file gets its exact message.
+
 #include "ifc/step_header.hpp"
+#include "common/input_error.hpp"
 
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
-
-#include "bim/input_error.hpp"
 
 namespace isg::ifc {
 namespace {
@@ -20,7 +20,7 @@ std::string fileWithSchema(const std::string& schema) {
 std::string errorOf(const std::string& text) {
   try {
     readStepHeader("m.ifc", text);
-  } catch (const bim::InputError& e) {
+  } catch (const common::InputError& e) {
     return e.what();
   }
   return "";

@@ -7,7 +7,7 @@
 #include <nlohmann/json.hpp>
 #include <string>
 
-#include "bim/input_error.hpp"
+#include "common/input_error.hpp"
 #include "run/run_metrics.hpp"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
@@ -17,7 +17,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   isg::run::RunMetrics metrics;
   try {
     metrics = isg::run::metricsFromJson(document, "fuzz/metrics.json");
-  } catch (const isg::bim::InputError&) {
+  } catch (const isg::common::InputError&) {
     return 0;
   }
   if (metrics.ape_B && (!std::isfinite(metrics.ape_B->rmse) || metrics.ape_B->rmse < 0)) {

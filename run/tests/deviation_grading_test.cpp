@@ -1,9 +1,9 @@
 // The deviation report graded against the truth, by hand on the two-room plan (W1–W5).
+
 #include "run/deviation_grading.hpp"
+#include "bim/tests/test_plans.hpp"
 
 #include <gtest/gtest.h>
-
-#include "bim/tests/test_plans.hpp"
 
 namespace isg::run {
 namespace {
@@ -82,9 +82,9 @@ TEST(DeviationGrading, CountsFoundFalseAndMissedWallsAndTheirErrors) {
   EXPECT_EQ(metrics.rotated, 1);
   EXPECT_EQ(metrics.extra_walls, 3);
   const nlohmann::json json = deviationMetricsJson(metrics);
-  const bim::JsonSource source{"metrics.json", nullptr};
+  const common::JsonSource source{"metrics.json", nullptr};
   const DeviationMetrics back =
-      deviationMetricsFromJson(bim::JsonNode(json, "/deviations", source));
+      deviationMetricsFromJson(common::JsonNode(json, "/deviations", source));
   EXPECT_EQ(deviationMetricsJson(back), json);
 }
 

@@ -9,11 +9,11 @@
 #include <fstream>
 #include <numbers>
 
-#include "bim/input_error.hpp"
+#include "common/atomic_folder.hpp"
+#include "common/input_error.hpp"
 #include "run/builtin_methods.hpp"
 #include "run/driver.hpp"
 #include "run/evaluate_run.hpp"
-#include "sensors/atomic_folder.hpp"
 #include "sensors/dataset_format.hpp"
 #include "sensors/dataset_reader.hpp"
 
@@ -50,8 +50,8 @@ class SyntheticDataset : public ::testing::Test {
     Eigen::Isometry3d R_T_L = Eigen::Isometry3d::Identity();
     R_T_L.translation().z() = 0.5;
     const Eigen::Vector3d room(8, 5, 3);
-    sensors::writeFolderAtomically(
-        dir_.string(), sensors::OutputKind::kDataset, false, [&](const fs::path& tmp) {
+    common::writeFolderAtomically(
+        dir_.string(), common::OutputKind::kDataset, false, [&](const fs::path& tmp) {
           Trajectory truth, odometry, scan_poses;
           for (int i = 0; i <= int(duration * 100); ++i)
             truth.push_back({i / 100.0, B_T_R(i / 100.0)});
@@ -77,22 +77,22 @@ class SyntheticDataset : public ::testing::Test {
                                   std::uint16_t(ring), float(period * step / 900)});
               }
             }
-            sensors::writeFile(tmp / sensors::dataset::kScans / sensors::dataset::scanFileName(k),
-                               sensors::dataset::pcdBinary(points));
+            common::writeFile(tmp / sensors::dataset::kScans / sensors::dataset::scanFileName(k),
+                              sensors::dataset::pcdBinary(points));
           }
-          sensors::writeFile(tmp / sensors::dataset::kGroundTruth,
-                             sensors::dataset::trajectoryText(truth));
-          sensors::writeFile(tmp / sensors::dataset::kOdometry,
-                             sensors::dataset::trajectoryText(odometry));
-          sensors::writeFile(tmp / sensors::dataset::kScanPoses,
-                             sensors::dataset::trajectoryText(scan_poses));
+          common::writeFile(tmp / sensors::dataset::kGroundTruth,
+                            sensors::dataset::trajectoryText(truth));
+          common::writeFile(tmp / sensors::dataset::kOdometry,
+                            sensors::dataset::trajectoryText(odometry));
+          common::writeFile(tmp / sensors::dataset::kScanPoses,
+                            sensors::dataset::trajectoryText(scan_poses));
           nlohmann::ordered_json metadata = {{"format", sensors::dataset::kFormat},
                                              {"version", sensors::dataset::kVersion},
                                              {"seed", 5},
                                              {"duration_s", duration},
                                              {"lidar", {{"rate_hz", 1.0 / period}}}};
           metadata["extrinsics"] = sensors::dataset::extrinsicsJson({0, 0, 0.5, 0, 0, 0}, R_T_L);
-          sensors::writeFile(tmp / sensors::dataset::kMetadata, metadata.dump(2));
+          common::writeFile(tmp / sensors::dataset::kMetadata, metadata.dump(2));
         });
   }
   void TearDown() override { fs::remove_all(dir_); }
@@ -125,7 +125,7 @@ TEST_F(SyntheticDataset, ReaderGivesTheStreamsAsWritten) {
   // The TUM files hold the quantised numbers: quantising again changes nothing.
   sensors::SensorStreams again = streams;
   sensors::quantiseStreams(again);
-  EXPECT_EQ(eval::toTumText(again.ground_truth), eval::toTumText(streams.ground_truth));
+  EXPECT_EQ(common::toTumText(again.ground_truth), common::toTumText(streams.ground_truth));
   const sensors::Scan scan = dataset.scan(3);
   EXPECT_EQ(scan.points.size(), 16u * 900u);
   EXPECT_EQ(scan.points[901].ring, 1);
@@ -149,7 +149,7 @@ TEST_F(SyntheticDataset, DeadReckoningOnExactOdometryIsTheGroundTruth) {
 TEST_F(SyntheticDataset, SGraphReplayIsDeterministicAndMapsTheRoom) {
   const RunRecord first = replay("s-graph");
   const RunRecord second = replay("s-graph");
-  EXPECT_EQ(eval::toTumText(first.estimate_map), eval::toTumText(second.estimate_map));
+  EXPECT_EQ(common::toTumText(first.estimate_map), common::toTumText(second.estimate_map));
   EXPECT_EQ(first.graph.dump(), second.graph.dump());
   EXPECT_TRUE(first.estimate.empty());
   ASSERT_TRUE(first.map.has_value());
@@ -165,7 +165,7 @@ TEST(DatasetReader, MissingFolderAndBadRateAreNamed) {
   try {
     sensors::DatasetReader reader("/nonexistent/dataset");
     FAIL();
-  } catch (const bim::InputError& e) {
+  } catch (const common::InputError& e) {
     EXPECT_STREQ(e.what(), "/nonexistent/dataset: not a dataset folder (no such directory)");
   }
 }

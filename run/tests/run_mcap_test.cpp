@@ -1,4 +1,9 @@
+
 #include "run/run_mcap.hpp"
+#include "common/input_error.hpp"
+#include "run/growing_path.hpp"
+#include "run/live_run_mcap.hpp"
+#include "sensors/foxglove_json.hpp"
 
 #include <gtest/gtest.h>
 #include <unistd.h>
@@ -6,11 +11,6 @@
 #include <filesystem>
 #include <fstream>
 #include <map>
-
-#include "bim/input_error.hpp"
-#include "run/growing_path.hpp"
-#include "run/live_run_mcap.hpp"
-#include "sensors/foxglove_json.hpp"
 
 namespace isg::run {
 namespace {
@@ -38,8 +38,8 @@ TEST_F(RunMcapWriterTest, SnapshotsComeOncePerPeriodAndTheFileOnlyAtTheEnd) {
   const fs::path path = dir_ / "run.mcap";
   RunMcapOptions options;
   options.snapshot_period = 1.0;
-  eval::Trajectory truth = {{0.0, Eigen::Isometry3d::Identity()},
-                            {1.0, Eigen::Isometry3d(Eigen::Translation3d(1, 0, 0))}};
+  common::Trajectory truth = {{0.0, Eigen::Isometry3d::Identity()},
+                              {1.0, Eigen::Isometry3d(Eigen::Translation3d(1, 0, 0))}};
   RunMcapWriter writer(path.string(), options, nullptr, Eigen::Isometry3d::Identity(), truth);
   const nlohmann::json graph = {{"keyframes", nlohmann::json::array()}};
   // Moments every 0.4 s; a map placed in the plan from 0.8 s on.
@@ -122,14 +122,14 @@ TEST_F(RunMcapWriterTest, ARunFolderThatIsNotOneIsSaidSo) {
   try {
     exportRunMcap(dir_.string(), (dir_ / "x.mcap").string(), {});
     ADD_FAILURE() << "no error";
-  } catch (const bim::InputError& e) {
+  } catch (const common::InputError& e) {
     EXPECT_NE(std::string(e.what()).find("not as isg writes it"), std::string::npos) << e.what();
   }
   EXPECT_FALSE(fs::exists(dir_ / "x.mcap"));
   for (const char* name : {"metrics.json", "sgraph.json", "estimate_map.tum", "estimate.tum"}) {
     fs::remove(dir_ / name);
   }
-  EXPECT_THROW(exportRunMcap(dir_.string(), (dir_ / "x.mcap").string(), {}), bim::InputError);
+  EXPECT_THROW(exportRunMcap(dir_.string(), (dir_ / "x.mcap").string(), {}), common::InputError);
   EXPECT_FALSE(fs::exists(dir_ / "x.mcap"));
 }
 

@@ -1,8 +1,8 @@
+
 #include "run/run_metrics.hpp"
+#include "common/input_error.hpp"
 
 #include <gtest/gtest.h>
-
-#include "bim/input_error.hpp"
 
 namespace isg::run {
 namespace {
@@ -144,7 +144,7 @@ TEST(RunMetrics, BadFieldsAreNamedByPointer) {
   auto message = [](nlohmann::json j) {
     try {
       metricsFromJson(j, "runs/x/metrics.json");
-    } catch (const bim::InputError& e) {
+    } catch (const common::InputError& e) {
       return std::string(e.what());
     }
     return std::string("no error");

@@ -2,14 +2,14 @@
 #include <cstdint>
 #include <string_view>
 
-#include "bim/input_error.hpp"
+#include "common/input_error.hpp"
 #include "sensors/imu_file.hpp"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   try {
     isg::sensors::parseImuText(std::string_view(reinterpret_cast<const char*>(data), size),
                                "fuzz.csv");
-  } catch (const isg::bim::InputError&) {
+  } catch (const isg::common::InputError&) {
   }
   return 0;
 }

@@ -3,7 +3,7 @@
 #include <cstdint>
 #include <string>
 
-#include "bim/input_error.hpp"
+#include "common/input_error.hpp"
 #include "sensors/cloud_layout.hpp"
 #include "sensors/ros_message_decode.hpp"
 #include "sensors/rosbag_reader.hpp"
@@ -42,7 +42,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
       decode(m);
       return true;
     });
-  } catch (const isg::bim::InputError&) {
+  } catch (const isg::common::InputError&) {
   }
   return 0;
 }

@@ -6,7 +6,7 @@
 #include <string_view>
 #include <vector>
 
-#include "bim/input_error.hpp"
+#include "common/input_error.hpp"
 #include "sensors/pcap_file.hpp"
 #include "sensors/velodyne_scan_cdr.hpp"
 #include "sensors/vlp16_packet.hpp"
@@ -20,7 +20,7 @@ void decode(const std::string& payload, std::vector<isg::sensors::Vlp16Point>& p
     isg::sensors::decodeVlp16Packet(
         std::span(reinterpret_cast<const std::uint8_t*>(payload.data()), payload.size()), 0.0, {},
         "fuzz", "packet", points);
-  } catch (const isg::bim::InputError&) {
+  } catch (const isg::common::InputError&) {
   }
 }
 
@@ -33,12 +33,12 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     for (const auto& datagram : isg::sensors::parsePcapUdp(bytes, "fuzz.pcap")) {
       decode(datagram.payload, points);
     }
-  } catch (const isg::bim::InputError&) {
+  } catch (const isg::common::InputError&) {
   }
   try {
     const auto scan = isg::sensors::decodeVelodyneScanCdr(bytes, "fuzz.db3", "message");
     for (const auto& packet : scan.packets) decode(packet.data, points);
-  } catch (const isg::bim::InputError&) {
+  } catch (const isg::common::InputError&) {
   }
   isg::sensors::cutIntoTurns(points, 0.0);
   return 0;

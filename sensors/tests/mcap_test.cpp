@@ -6,7 +6,7 @@
 #include <filesystem>
 #include <stdexcept>
 
-#include "bim/input_error.hpp"
+#include "common/input_error.hpp"
 #include "sensors/cdr_writer.hpp"
 #include "sensors/mcap_writer.hpp"
 #include "sensors/ros2_messages.hpp"
@@ -160,7 +160,7 @@ TEST(McapWriter, RefusesToReplaceAFileItDidNotWrite) {
   { std::ofstream(dir / "notes.mcap") << "mine"; }
   McapWriterOptions options;
   options.overwrite = true;
-  EXPECT_THROW(McapWriter((dir / "notes.mcap").string(), options), bim::InputError);
+  EXPECT_THROW(McapWriter((dir / "notes.mcap").string(), options), common::InputError);
   EXPECT_EQ(slurp(dir / "notes.mcap"), "mine");
   fs::remove_all(dir);
 }

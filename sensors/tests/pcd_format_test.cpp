@@ -7,7 +7,7 @@
 #include <cstring>
 #include <random>
 
-#include "bim/input_error.hpp"
+#include "common/input_error.hpp"
 #include "sensors/dataset_format.hpp"
 #include "sensors/pcd_reader.hpp"
 
@@ -46,7 +46,7 @@ void expectSamePoints(const std::vector<sensors::ScanPoint>& a,
 std::string errorOf(const std::string& bytes) {
   try {
     parsePcd(bytes, "s.pcd");
-  } catch (const bim::InputError& e) {
+  } catch (const common::InputError& e) {
     return e.what();
   }
   return "no error";

@@ -10,7 +10,7 @@
 #include <fstream>
 #include <numbers>
 
-#include "bim/input_error.hpp"
+#include "common/input_error.hpp"
 #include "sensors/cloud_layout.hpp"
 #include "sensors/mount_transform.hpp"
 #include "sensors/ros_message_decode.hpp"
@@ -227,14 +227,14 @@ TEST(RecordingDecode, ScanStampsFile) {
   try {
     readStampsFile(file.string());
     ADD_FAILURE();
-  } catch (const bim::InputError& e) {
+  } catch (const common::InputError& e) {
     EXPECT_EQ(e.reason(), "line 2: the time does not increase");
   }
   std::ofstream(file) << "0.1 2\n";
   try {
     readStampsFile(file.string());
     ADD_FAILURE();
-  } catch (const bim::InputError& e) {
+  } catch (const common::InputError& e) {
     EXPECT_EQ(e.reason(), "line 1: expected one time in seconds, got \"0.1 2\"");
   }
   std::filesystem::remove(file);

@@ -1,7 +1,11 @@
 // The ROS 1 bag reader: our own writer's bags read back, bags written by Debian's python3-rosbag
 // (plain, bz2 and lz4 chunks; sensors/tests/python_rosbag.py) read in the order rosbag's own
 // reader gives, and damaged bags refused with the exact reason.
+
 #include "sensors/rosbag_reader.hpp"
+#include "common/input_error.hpp"
+#include "sensors/rosbag_writer.hpp"
+#include "sensors/tests/scratch_files.hpp"
 
 #include <gtest/gtest.h>
 
@@ -12,10 +16,6 @@
 #include <sstream>
 #include <tuple>
 #include <vector>
-
-#include "bim/input_error.hpp"
-#include "sensors/rosbag_writer.hpp"
-#include "sensors/tests/scratch_files.hpp"
 
 namespace isg::sensors {
 namespace {
@@ -162,7 +162,7 @@ std::string errorOf(std::string bytes) {
   try {
     RosbagReader reader(std::move(bytes), "x.bag");
     reader.read({}, [](const BagMessageView&) { return true; });
-  } catch (const bim::InputError& e) {
+  } catch (const common::InputError& e) {
     return e.what();
   }
   return "no error";
@@ -198,7 +198,7 @@ TEST(RosbagReader, RefusesDamagedBagsWithTheReason) {
   EXPECT_NE(errorOf(moved).find("the index points at a record that is not a message"),
             std::string::npos)
       << errorOf(moved);
-  EXPECT_THROW(RosbagReader((dir / "missing.bag").string()), bim::InputError);
+  EXPECT_THROW(RosbagReader((dir / "missing.bag").string()), common::InputError);
   // A compressed chunk that claims one byte more, or one less, than its data holds.
   for (const std::string compression : {"bz2", "lz4"}) {
     const std::string python =

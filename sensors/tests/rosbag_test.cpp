@@ -8,8 +8,8 @@
 #include <map>
 #include <sstream>
 
-#include "bim/input_error.hpp"
-#include "sensors/atomic_folder.hpp"
+#include "common/atomic_folder.hpp"
+#include "common/input_error.hpp"
 #include "sensors/dataset_format.hpp"
 #include "sensors/imu_file.hpp"
 #include "sensors/rosbag_export.hpp"
@@ -132,14 +132,14 @@ TEST(RosbagWriter, LeavesNothingUnlessClosedAndKeepsAnExistingBag) {
   try {
     RosbagWriter bag(path, false);
     FAIL() << "an existing bag was not refused";
-  } catch (const bim::InputError& e) {
+  } catch (const common::InputError& e) {
     EXPECT_EQ(std::string(e.what()), path + ": already exists (use --force to replace it)");
   }
   // --force replaces only a bag of ours: a file of the user's is never replaced.
   try {
     RosbagWriter bag(path, true);
     FAIL() << "a file isg did not write was replaced";
-  } catch (const bim::InputError& e) {
+  } catch (const common::InputError& e) {
     EXPECT_EQ(std::string(e.what()),
               path +
                   ": not replaced: it is not a ROS bag that isg wrote (--force replaces only "
@@ -149,7 +149,8 @@ TEST(RosbagWriter, LeavesNothingUnlessClosedAndKeepsAnExistingBag) {
   fs::remove(path);
   RosbagWriter(path, false).close();
   const std::string first = slurp(path);
-  EXPECT_NE(first.find(kWrittenByIsg), std::string::npos);  // the mark, in the header's padding
+  EXPECT_NE(first.find(common::kWrittenByIsg),
+            std::string::npos);  // the mark, in the header's padding
   RosbagWriter replaced(path, true);
   replaced.connect("/a", {"std_msgs/String", "992ce8a1687cec8c8bd883ec73ca41d1", "string data\n"});
   EXPECT_EQ(slurp(path), first);  // until it is closed
@@ -175,7 +176,7 @@ TEST(ImuFile, ReadsSamplesAndNamesTheBadLine) {
   auto error = [&](const std::string& text) {
     try {
       readImuFile(write(text));
-    } catch (const bim::InputError& e) {
+    } catch (const common::InputError& e) {
       return std::string(e.what());
     }
     return std::string("no error");
@@ -204,7 +205,7 @@ TEST(RosbagExport, AMissingDatasetIsAnInputErrorAndWritesNothing) {
   try {
     exportRosbag((dir / "nothing").string(), (dir / "x.bag").string(), {}, nullptr);
     FAIL() << "no error";
-  } catch (const bim::InputError& e) {
+  } catch (const common::InputError& e) {
     EXPECT_EQ(std::string(e.what()),
               (dir / "nothing").string() + ": not a dataset folder (no such directory)");
   }

@@ -7,8 +7,8 @@
 #include <numbers>
 #include <span>
 
-#include "bim/input_error.hpp"
-#include "bim/json_reader.hpp"
+#include "common/input_error.hpp"
+#include "common/json_reader.hpp"
 #include "sensors/pcap_file.hpp"
 #include "sensors/pcd_reader.hpp"
 #include "sensors/ros2_bag.hpp"
@@ -210,13 +210,13 @@ TEST(Vlp16Fixture, TheOutdoorPcapHoldsDataAndPositionPackets) {
 std::string pcapError(const std::string& bytes) {
   try {
     parsePcapUdp(bytes, "lab.pcap");
-  } catch (const bim::InputError& e) {
+  } catch (const common::InputError& e) {
     return e.what();
   }
   return "no error";
 }
 
-std::string fileBytes(const std::string& path) { return bim::readCheckedFile(path, 1u << 24); }
+std::string fileBytes(const std::string& path) { return common::readCheckedFile(path, 1u << 24); }
 
 TEST(Vlp16Fixture, DamagedCapturesAndBagsAreNamedErrors) {
   const std::string pcap = fileBytes(kOutdoorPcap);
@@ -232,20 +232,20 @@ TEST(Vlp16Fixture, DamagedCapturesAndBagsAreNamedErrors) {
   try {
     decodeVelodyneScanCdr(std::string_view(message.data).substr(0, 5000), "b.db3", "message 0");
     ADD_FAILURE() << "no error";
-  } catch (const bim::InputError& e) {
+  } catch (const common::InputError& e) {
     EXPECT_STREQ(e.what(), "b.db3: message 0: 151 packets announced, the message holds at most 4");
   }
   try {
     Ros2Bag(kIndoorBag).messages("/points");
     ADD_FAILURE() << "no error";
-  } catch (const bim::InputError& e) {
+  } catch (const common::InputError& e) {
     EXPECT_EQ(std::string(e.what()),
               kIndoorBag + ": no topic /points (the bag has: /velodyne_packets)");
   }
   try {
     Ros2Bag bag(kOutdoorPcap);
     ADD_FAILURE() << "no error";
-  } catch (const bim::InputError& e) {
+  } catch (const common::InputError& e) {
     EXPECT_EQ(std::string(e.what()),
               kOutdoorPcap + ": not a ROS 2 bag database (file is not a database)");
   }

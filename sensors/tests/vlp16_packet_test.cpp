@@ -6,7 +6,7 @@
 #include <cmath>
 #include <numbers>
 
-#include "bim/input_error.hpp"
+#include "common/input_error.hpp"
 #include "sensors/vlp16_packet.hpp"
 #include "sensors/vlp16_turns.hpp"
 
@@ -158,7 +158,7 @@ std::string errorOf(const std::vector<std::uint8_t>& bytes) {
   try {
     std::vector<Vlp16Point> points;
     decodeVlp16Packet(bytes, 0.0, {}, "lab.pcap", "UDP datagram 7", points);
-  } catch (const bim::InputError& e) {
+  } catch (const common::InputError& e) {
     return e.what();
   }
   return "no error";

@@ -3,13 +3,14 @@
 // (1808 × 16 rays) from each of a few sensor positions inside rooms; items/s = rays/s.
 #include <benchmark/benchmark.h>
 
-#include "bim/json_reader.hpp"
 #include "bim/plan_parser.hpp"
 #include "bim/polygon.hpp"
 #include "bim/synthetic_plan.hpp"
+#include "common/json_reader.hpp"
 #include "sim/mujoco_world.hpp"
 #include "sim/ray_caster.hpp"
 #include "sim/scan_caster.hpp"
+#include "sim/simulation.hpp"
 #include "sim/vlp16.hpp"
 #include "worlds/mjcf_generator.hpp"
 #include "worlds/reference_plans.hpp"
@@ -53,10 +54,10 @@ const Scene& largestReference() {
 
 const Scene& grid200() {
   static const Scene scene = [] {
-    const bim::JsonSource source{"grid.json", nullptr};
+    const common::JsonSource source{"grid.json", nullptr};
     const nlohmann::json doc = bim::makeGridPlan({});
     bim::Scenario s;
-    s.plan = bim::parsePlan(bim::JsonNode(doc, "", source));
+    s.plan = bim::parsePlan(common::JsonNode(doc, "", source));
     return makeScene(s);
   }();
   return scene;
@@ -123,8 +124,6 @@ BENCHMARK(BM_FastCaster_Grid200)->Unit(benchmark::kMillisecond);
 
 }  // namespace
 }  // namespace isg::sim
-
-#include "sim/simulation.hpp"
 
 namespace isg::sim {
 namespace {

@@ -2,9 +2,9 @@
 // MuJoCo's own compile of the same MJCF is measured beside it as the reference.
 #include <benchmark/benchmark.h>
 
-#include "bim/json_reader.hpp"
 #include "bim/plan_parser.hpp"
 #include "bim/synthetic_plan.hpp"
+#include "common/json_reader.hpp"
 #include "sim/mujoco_world.hpp"
 #include "worlds/mjcf_generator.hpp"
 
@@ -21,10 +21,10 @@ nlohmann::json gridDocument(int rooms) {
 // Plan JSON → validated plan → MJCF text: what `isg world` does before MuJoCo sees it.
 void BM_GenerateWorldFromJson(benchmark::State& state) {
   const nlohmann::json document = gridDocument(int(state.range(0)));
-  const bim::JsonSource source{"grid.json", nullptr};
+  const common::JsonSource source{"grid.json", nullptr};
   std::size_t bytes = 0;
   for (auto _ : state) {
-    const bim::Plan plan = bim::parsePlan(bim::JsonNode(document, "", source));
+    const bim::Plan plan = bim::parsePlan(common::JsonNode(document, "", source));
     const std::string mjcf = generateMjcf(plan);
     bytes = mjcf.size();
     benchmark::DoNotOptimize(mjcf.data());
@@ -37,8 +37,8 @@ BENCHMARK(BM_GenerateWorldFromJson)->Arg(200)->Arg(1000)->Unit(benchmark::kMilli
 // MuJoCo compiling the generated MJCF (mj_loadXML from memory): the reference.
 void BM_MujocoCompileGeneratedWorld(benchmark::State& state) {
   const nlohmann::json document = gridDocument(int(state.range(0)));
-  const bim::JsonSource source{"grid.json", nullptr};
-  const std::string mjcf = generateMjcf(bim::parsePlan(bim::JsonNode(document, "", source)));
+  const common::JsonSource source{"grid.json", nullptr};
+  const std::string mjcf = generateMjcf(bim::parsePlan(common::JsonNode(document, "", source)));
   int geoms = 0;
   for (auto _ : state) {
     const sim::MujocoWorld world = sim::MujocoWorld::fromXml(mjcf);

@@ -5,12 +5,12 @@
 
 #include <cmath>
 
-#include "bim/json_reader.hpp"
 #include "bim/plan_geometry.hpp"
 #include "bim/plan_parser.hpp"
 #include "bim/polygon.hpp"
 #include "bim/stairs.hpp"
 #include "bim/synthetic_plan.hpp"
+#include "common/json_reader.hpp"
 #include "sim/mujoco_world.hpp"
 #include "worlds/mjcf_generator.hpp"
 #include "worlds/reference_plans.hpp"
@@ -309,8 +309,8 @@ TEST(GeneratedWorld, MjcfSetsAutolimits) {
 }
 
 bim::Plan parse(const nlohmann::json& document) {
-  const bim::JsonSource source{"test.json", nullptr};
-  return bim::parsePlan(bim::JsonNode(document, "", source));
+  const common::JsonSource source{"test.json", nullptr};
+  return bim::parsePlan(common::JsonNode(document, "", source));
 }
 
 TEST(AnyPlan, TwoHundredRoomGridWithLongWallsAndTJunctions) {

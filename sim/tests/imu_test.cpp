@@ -1,4 +1,9 @@
+
+#include "common/angles.hpp"
+#include "sensors/dataset_format.hpp"
 #include "sim/imu_simulator.hpp"
+#include "sim/simulation.hpp"
+#include "worlds/reference_plans.hpp"
 
 #include <gtest/gtest.h>
 
@@ -6,11 +11,6 @@
 #include <numbers>
 #include <string>
 #include <vector>
-
-#include "bim/angles.hpp"
-#include "sensors/dataset_format.hpp"
-#include "sim/simulation.hpp"
-#include "worlds/reference_plans.hpp"
 
 namespace isg::sim {
 namespace {
@@ -76,11 +76,11 @@ TEST(BaseKinematics, AWalkersSwayAndHeadTurnsToo) {
   const Eigen::Isometry3d pose = t.pose(mid);
   EXPECT_NEAR(pose.translation().z(), kHandheldHeight, 0.025 + 1e-9);
   EXPECT_NEAR(pose.translation().y(), 0.0, 0.025 + 1e-9);
-  EXPECT_LE(std::abs(bim::yawOf(pose.linear())), 15.0 * std::numbers::pi / 180 + 1e-9);
+  EXPECT_LE(std::abs(common::yawOf(pose.linear())), 15.0 * std::numbers::pi / 180 + 1e-9);
   // The head does turn: over the straight the yaw spans several degrees.
   double lo = 1e9, hi = -1e9;
   for (double s = t.arrival(0, 0) + 1.0; s < t.arrival(0, 1) - 1.0; s += 0.05) {
-    const double yaw = bim::yawOf(t.pose(s).linear());
+    const double yaw = common::yawOf(t.pose(s).linear());
     lo = std::min(lo, yaw), hi = std::max(hi, yaw);
   }
   EXPECT_GT((hi - lo) * 180 / std::numbers::pi, 5.0);

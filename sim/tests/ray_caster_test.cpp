@@ -1,15 +1,15 @@
+
 #include "sim/ray_caster.hpp"
+#include "bim/plan_parser.hpp"
+#include "bim/synthetic_plan.hpp"
+#include "common/json_reader.hpp"
+#include "sim/mujoco_world.hpp"
+#include "worlds/mjcf_generator.hpp"
+#include "worlds/reference_plans.hpp"
 
 #include <gtest/gtest.h>
 
 #include <random>
-
-#include "bim/json_reader.hpp"
-#include "bim/plan_parser.hpp"
-#include "bim/synthetic_plan.hpp"
-#include "sim/mujoco_world.hpp"
-#include "worlds/mjcf_generator.hpp"
-#include "worlds/reference_plans.hpp"
 
 namespace isg::sim {
 namespace {
@@ -65,10 +65,10 @@ INSTANTIATE_TEST_SUITE_P(AsBuilt, CasterOnReferenceWorld,
                          ::testing::Values("d1.asbuilt", "d3.asbuilt", "d5.asbuilt", "d6.asbuilt"));
 
 TEST(RayCaster, TwoHundredRoomGrid) {
-  const bim::JsonSource source{"grid.json", nullptr};
+  const common::JsonSource source{"grid.json", nullptr};
   const nlohmann::json doc = bim::makeGridPlan({});
   const MujocoWorld world =
-      MujocoWorld::fromXml(worlds::generateMjcf(bim::parsePlan(bim::JsonNode(doc, "", source))));
+      MujocoWorld::fromXml(worlds::generateMjcf(bim::parsePlan(common::JsonNode(doc, "", source))));
   expectSameAsMjRay(world, kBuilding, 3000, 3);
 }
 

@@ -5,7 +5,7 @@
 #include <cmath>
 #include <random>
 
-#include "bim/input_error.hpp"
+#include "common/input_error.hpp"
 #include "sim/occupancy_grid.hpp"
 #include "sim/route_planner.hpp"
 #include "sim/simulation.hpp"
@@ -101,7 +101,7 @@ TEST(StairsRoute, RoomsOnOtherLevelsAreReachedByTheFlight) {
   try {
     plan(scenario);
     FAIL() << "expected an InputError";
-  } catch (const bim::InputError& e) {
+  } catch (const common::InputError& e) {
     EXPECT_EQ(e.pointer(), "/robot/route/rooms/0");
     EXPECT_EQ(e.reason(),
               "room \"R13\" is on level \"L1\", which no flight of stairs leads to from level "

@@ -5,8 +5,8 @@
 #include <algorithm>
 #include <random>
 
-#include "bim/json_reader.hpp"
 #include "bim/scenario.hpp"
+#include "common/json_reader.hpp"
 #include "sim/occupancy_grid.hpp"
 #include "sim/route_planner.hpp"
 
@@ -49,10 +49,10 @@ nlohmann::json scenarioJson(double door_width, std::optional<double> clearance) 
 
 PlannedRoute tour(double door_width, std::optional<double> clearance) {
   const nlohmann::json document = scenarioJson(door_width, clearance);
-  const bim::JsonSource source{"scenario.json", nullptr};
+  const common::JsonSource source{"scenario.json", nullptr};
   const bim::Scenario scenario = bim::parseScenario(
-      bim::JsonNode(document, "", source),
-      [](const bim::JsonNode&) -> bim::LoadedPlan { throw std::logic_error("inline plan"); });
+      common::JsonNode(document, "", source),
+      [](const common::JsonNode&) -> bim::LoadedPlan { throw std::logic_error("inline plan"); });
   const OccupancyGrid grid(scenario.plan, scenario.as_built, scenario.robot.level);
   std::mt19937_64 rng(1);
   return planRoute(scenario, grid, rng);

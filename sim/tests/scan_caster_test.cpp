@@ -1,17 +1,17 @@
+
 #include "sim/scan_caster.hpp"
-
-#include <gtest/gtest.h>
-
-#include <random>
-
-#include "bim/json_reader.hpp"
 #include "bim/plan_parser.hpp"
 #include "bim/polygon.hpp"
 #include "bim/synthetic_plan.hpp"
+#include "common/json_reader.hpp"
 #include "sim/mujoco_world.hpp"
 #include "sim/vlp16.hpp"
 #include "worlds/mjcf_generator.hpp"
 #include "worlds/reference_plans.hpp"
+
+#include <gtest/gtest.h>
+
+#include <random>
 
 namespace isg::sim {
 namespace {
@@ -68,10 +68,10 @@ TEST(ScanCaster, MatchesMjRayOnEveryReferenceWorld) {
 }
 
 TEST(ScanCaster, MatchesMjRayOnTheTwoHundredRoomGrid) {
-  const bim::JsonSource source{"grid.json", nullptr};
+  const common::JsonSource source{"grid.json", nullptr};
   const nlohmann::json doc = bim::makeGridPlan({});
   bim::Scenario s;
-  s.plan = bim::parsePlan(bim::JsonNode(doc, "", source));
+  s.plan = bim::parsePlan(common::JsonNode(doc, "", source));
   s.plan.levels[0].rooms.resize(12);  // a dozen rooms are enough, and quick
   expectScansMatchMjRay(s, 7);
 }

@@ -1,4 +1,9 @@
+
 #include "sim/simulation.hpp"
+#include "bim/polygon.hpp"
+#include "sim/dataset_writer.hpp"
+#include "sim/odometry_model.hpp"
+#include "worlds/reference_plans.hpp"
 
 #include <gtest/gtest.h>
 #include <pcl/io/pcd_io.h>
@@ -11,11 +16,6 @@
 #include <fstream>
 #include <set>
 #include <sstream>
-
-#include "bim/polygon.hpp"
-#include "sim/dataset_writer.hpp"
-#include "sim/odometry_model.hpp"
-#include "worlds/reference_plans.hpp"
 
 namespace isg::sim {
 namespace {
@@ -174,9 +174,9 @@ TEST(Dataset, WritesEveryFileAndPclReadsTheScans) {
        {"groundtruth.tum", "odometry.tum", "scans.tum", "imu.csv", "metadata.json"}) {
     EXPECT_TRUE(fs::exists(dir / f)) << f;
   }
-  EXPECT_EQ(eval::readTum((dir / "groundtruth.tum").string()).size(), 201u);  // 100 Hz
-  EXPECT_EQ(eval::readTum((dir / "odometry.tum").string()).size(), 101u);     // 50 Hz
-  EXPECT_EQ(eval::readTum((dir / "scans.tum").string()).size(), 20u);
+  EXPECT_EQ(common::readTum((dir / "groundtruth.tum").string()).size(), 201u);  // 100 Hz
+  EXPECT_EQ(common::readTum((dir / "odometry.tum").string()).size(), 101u);     // 50 Hz
+  EXPECT_EQ(common::readTum((dir / "scans.tum").string()).size(), 20u);
   // imu.csv: a header line and 401 samples at 200 Hz; at rest at t = 0 it reads +g upwards.
   std::istringstream imu(slurp(dir / "imu.csv"));
   std::string line;
@@ -208,7 +208,7 @@ TEST(Dataset, WritesEveryFileAndPclReadsTheScans) {
   EXPECT_EQ(xyzi[100].x, again.points[100].x);
   EXPECT_EQ(xyzi[100].intensity, again.points[100].intensity);
   // An existing folder is not replaced without --force.
-  EXPECT_THROW(writeDataset(sim, dir.string(), options, nullptr), bim::InputError);
+  EXPECT_THROW(writeDataset(sim, dir.string(), options, nullptr), common::InputError);
   fs::remove_all(dir);
 }
 

@@ -32,7 +32,7 @@ bool AmclLocalizer::wantsScan(double) const {
   if (!last_update_odometry_) return true;  // global localization: the first scan always updates
   const Pose2 odometry = planarPose(latest_->M_T_R);
   const OdometryMotion moved = decomposeOdometry(*last_update_odometry_, odometry);
-  const double turned = std::abs(bim::angleDifference(odometry.yaw, last_update_odometry_->yaw));
+  const double turned = std::abs(common::angleDifference(odometry.yaw, last_update_odometry_->yaw));
   return moved.trans >= options_.update_min_d || turned >= options_.update_min_a;
 }
 

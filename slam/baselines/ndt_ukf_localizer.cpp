@@ -171,14 +171,14 @@ void NdtUkfLocalizer::pushScan(const sensors::Scan& scan) {
     const Eigen::Vector2d step = Eigen::Rotation2Dd(-from.yaw) * (to.position() - from.position());
     const double dz =
         odometry.M_T_R.translation().z() - last_scan_odometry_->M_T_R.translation().z();
-    const double turn = bim::angleDifference(to.yaw, from.yaw);
+    const double turn = common::angleDifference(to.yaw, from.yaw);
     const auto f = [&](const Eigen::VectorXd& s) {
       Eigen::VectorXd next = s;
       const Eigen::Vector2d move = Eigen::Rotation2Dd(s[kYaw]) * step;
       next[0] += move.x();
       next[1] += move.y();
       next[2] += dz;
-      next[kYaw] = bim::angleDifference(s[kYaw] + turn, 0.0);
+      next[kYaw] = common::angleDifference(s[kYaw] + turn, 0.0);
       next.segment<3>(4) = Eigen::Vector3d(move.x(), move.y(), dz) / dt;
       next[7] = turn / dt;
       return next;

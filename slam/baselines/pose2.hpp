@@ -3,7 +3,7 @@
 #include <Eigen/Geometry>
 #include <cmath>
 
-#include "bim/angles.hpp"
+#include "common/angles.hpp"
 
 namespace isg::slam {
 
@@ -23,7 +23,7 @@ struct Pose2 {
 
 // The planar part of a 3D pose: x, y and the heading of its x axis.
 inline Pose2 planarPose(const Eigen::Isometry3d& T) {
-  return {T.translation().x(), T.translation().y(), bim::yawOf(T.linear())};
+  return {T.translation().x(), T.translation().y(), common::yawOf(T.linear())};
 }
 
 // A planar pose as a 3D transform (a turn about z, then x, y and the given z).

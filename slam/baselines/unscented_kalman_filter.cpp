@@ -14,7 +14,7 @@ namespace {
 Eigen::VectorXd difference(const Eigen::VectorXd& a, const Eigen::VectorXd& b,
                            const std::vector<int>& angles) {
   Eigen::VectorXd d = a - b;
-  for (int i : angles) d[i] = bim::angleDifference(a[i], b[i]);
+  for (int i : angles) d[i] = common::angleDifference(a[i], b[i]);
   return d;
 }
 
@@ -91,7 +91,7 @@ UnscentedKalmanFilter::Vector UnscentedKalmanFilter::update(const Vector& z, con
   const Matrix K = cross * S.inverse();
   const Vector innovation = difference(z, z_mean, angles);
   mean_ += K * innovation;
-  for (int i : angles_) mean_[i] = bim::angleDifference(mean_[i], 0.0);
+  for (int i : angles_) mean_[i] = common::angleDifference(mean_[i], 0.0);
   covariance_ -= K * S * K.transpose();
   return innovation;
 }

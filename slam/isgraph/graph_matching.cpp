@@ -8,7 +8,7 @@
 #include <optional>
 #include <set>
 
-#include "bim/angles.hpp"
+#include "common/angles.hpp"
 
 namespace isg::slam {
 
@@ -296,7 +296,7 @@ int GraphMatcher::matchPlane(const MatchPlane& plane, const Eigen::Vector3d& x_y
   double best_distance = 1e300;
   for (int i : cell->surfaces) {
     const auto& s = graph_->surfaces[i];
-    if (std::abs(bim::wrapAngle(yaw - surface_yaw_[i])) > angle_tolerance) continue;
+    if (std::abs(common::wrapAngle(yaw - surface_yaw_[i])) > angle_tolerance) continue;
     const double offset = std::abs(s.plane.signedDistance({middle.x(), middle.y(), 0.0}));
     if (offset > options_.plane_distance || offset >= best_distance) continue;
     const Reach reach = reachOf(i, a, b);
@@ -321,7 +321,7 @@ bool GraphMatcher::nearAsBuiltOff(const MatchPlane& plane, const Eigen::Vector3d
   const double angle_tolerance = options_.deviation_angle_deg * std::numbers::pi / 180.0;
   for (int i : cell->surfaces) {
     const auto& s = graph_->surfaces[i];
-    if (std::abs(bim::wrapAngle(yaw - surface_yaw_[i])) > angle_tolerance) continue;
+    if (std::abs(common::wrapAngle(yaw - surface_yaw_[i])) > angle_tolerance) continue;
     // The segment's closest approach to the surface's line: 0 when it crosses it (a wall turned
     // about a point on its planned line).
     const double da = s.plane.signedDistance({a.x(), a.y(), 0.0});
@@ -353,7 +353,7 @@ bool GraphMatcher::planeAgrees(const MatchPlane& plane, int surface, const Eigen
                                double angle_deg, double distance) const {
   const auto& s = graph_->surfaces[surface];
   const double yaw = yawOfNormal(plane.plane) + x_y_yaw.z();
-  if (std::abs(bim::wrapAngle(yaw - surface_yaw_[surface])) >
+  if (std::abs(common::wrapAngle(yaw - surface_yaw_[surface])) >
       angle_deg * std::numbers::pi / 180.0) {
     return false;
   }
@@ -488,7 +488,7 @@ Eigen::Vector3d GraphMatcher::refine(const MatchInput& input,
     x += step;
     if (step.norm() < 1e-6) break;
   }
-  x.z() = bim::wrapAngle(x.z());
+  x.z() = common::wrapAngle(x.z());
   return x;
 }
 
@@ -505,7 +505,7 @@ Eigen::Vector2d GraphMatcher::middleOf(const MatchInput& input) {
 bool GraphMatcher::sameAnswer(const Eigen::Vector3d& a, const Eigen::Vector3d& b,
                               const Eigen::Vector2d& middle, double scale) const {
   return (apply(a, middle) - apply(b, middle)).norm() < scale * options_.cluster_distance &&
-         std::abs(bim::wrapAngle(a.z() - b.z())) <
+         std::abs(common::wrapAngle(a.z() - b.z())) <
              scale * options_.cluster_yaw_deg * std::numbers::pi / 180.0;
 }
 
@@ -549,9 +549,9 @@ MatchResult GraphMatcher::evaluate(const MatchInput& input,
     const Eigen::Vector2d image = apply(v.x_y_yaw, middle);
     bool joined = false;
     for (std::size_t r = 0; r < representatives.size() && !joined; ++r) {
-      joined =
-          (image - placed[r]).norm() < options_.cluster_distance &&
-          std::abs(bim::wrapAngle(v.x_y_yaw.z() - representatives[r]->x_y_yaw.z())) < yaw_tolerance;
+      joined = (image - placed[r]).norm() < options_.cluster_distance &&
+               std::abs(common::wrapAngle(v.x_y_yaw.z() - representatives[r]->x_y_yaw.z())) <
+                   yaw_tolerance;
     }
     if (joined) continue;
     representatives.push_back(&v);

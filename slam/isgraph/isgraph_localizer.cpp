@@ -7,7 +7,7 @@
 #include <limits>
 
 #include "bim/agraph_factors.hpp"
-#include "bim/angles.hpp"
+#include "common/angles.hpp"
 #include "slam/isgraph/merging_factors.hpp"
 #include "slam/isgraph/room_hold.hpp"
 
@@ -279,8 +279,9 @@ std::vector<HeldWall> ISGraphLocalizer::heldWalls(const MatchInput& input,
     wall.length = plane->second->length();
     wall.normal = surface.normal.head<2>().normalized();
     wall.offset = surface.signedDistance({wall.middle.x(), wall.middle.y(), 0.0});
-    wall.angle = bim::angleDifference(bim::headingOf(P_R_M * plane->second->plane.normal.head<2>()),
-                                      bim::headingOf(wall.normal));
+    wall.angle =
+        common::angleDifference(common::headingOf(P_R_M * plane->second->plane.normal.head<2>()),
+                                common::headingOf(wall.normal));
     // Plan walls by name; a flight's faces each stand alone.
     const std::string& name = plan_->surfaces[a].wall;
     wall.wall = name.empty() ? -1 - a
@@ -758,7 +759,7 @@ nlohmann::json ISGraphLocalizer::graph() const {
                         {"plane", r.plane},
                         {"surface", plan_->surfaces[r.surface].id},
                         {"offset_m", r.offset},
-                        {"angle_deg", bim::degrees(r.angle)}});
+                        {"angle_deg", common::degrees(r.angle)}});
   }
   for (const auto& e : events_) {
     events.push_back({{"stamp", e.stamp},

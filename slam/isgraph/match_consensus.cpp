@@ -8,7 +8,7 @@
 #include <map>
 #include <numbers>
 
-#include "bim/angles.hpp"
+#include "common/angles.hpp"
 #include "slam/isgraph/graph_matching.hpp"
 
 namespace isg::slam {
@@ -77,7 +77,7 @@ Verification GraphMatcher::consensus(const MatchInput& input, const Verification
     Eigen::Vector2d normal = Eigen::Vector2d::Zero();
     for (int i : cell->surfaces) {
       const auto& s = graph_->surfaces[i];
-      if (std::abs(bim::wrapAngle(yaw - surface_yaw_[i])) >
+      if (std::abs(common::wrapAngle(yaw - surface_yaw_[i])) >
           options_.plane_angle_deg * std::numbers::pi / 180.0) {
         continue;
       }

@@ -9,8 +9,8 @@
 #include <numbers>
 #include <set>
 
-#include "bim/angles.hpp"
 #include "bim/polygon.hpp"
+#include "common/angles.hpp"
 #include "slam/isgraph/graph_matching.hpp"
 
 namespace isg::slam {
@@ -23,7 +23,7 @@ Eigen::Vector2d apply(const Eigen::Vector3d& x_y_yaw, const Eigen::Vector2d& p) 
 
 // a ∘ b⁻¹ for planar transforms (x, y, yaw).
 Eigen::Vector3d relative(const Eigen::Vector3d& a, const Eigen::Vector3d& b) {
-  const double yaw = bim::wrapAngle(a.z() - b.z());
+  const double yaw = common::wrapAngle(a.z() - b.z());
   const Eigen::Vector2d t = a.head<2>() - Eigen::Rotation2Dd(yaw) * b.head<2>();
   return {t.x(), t.y(), yaw};
 }

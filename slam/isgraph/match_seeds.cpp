@@ -7,7 +7,7 @@
 #include <numbers>
 #include <set>
 
-#include "bim/angles.hpp"
+#include "common/angles.hpp"
 #include "slam/isgraph/graph_matching.hpp"
 
 namespace isg::slam {
@@ -26,7 +26,7 @@ class UniqueTransforms {
   void add(const Eigen::Vector3d& h) {
     const std::array<long, 3> key{
         std::lround(h.x() / 0.02), std::lround(h.y() / 0.02),
-        std::lround(bim::wrapAngle(h.z()) / (0.2 * std::numbers::pi / 180))};
+        std::lround(common::wrapAngle(h.z()) / (0.2 * std::numbers::pi / 180))};
     if (seen_.insert(key).second) out_.push_back(h);
   }
 
@@ -61,7 +61,7 @@ std::optional<GraphMatcher::Corner> GraphMatcher::cornerOf(
     if (along.norm() < 1e-6) return std::nullopt;
     corner.arm_direction[k] = along.normalized();
     corner.arm[k] = along.norm();
-    corner.normal_yaw[k] = bim::headingOf(normals[k]);
+    corner.normal_yaw[k] = common::headingOf(normals[k]);
   }
   return corner;
 }
@@ -83,7 +83,7 @@ void GraphMatcher::seedFromFourWallRooms(const MatchInput& input,
             std::abs(w1 - s.widths[1]) > options_.width_tolerance) {
           continue;
         }
-        const double yaw = bim::wrapAngle(room_yaw_[i] + k * std::numbers::pi / 2 - s.axis_yaw);
+        const double yaw = common::wrapAngle(room_yaw_[i] + k * std::numbers::pi / 2 - s.axis_yaw);
         const Eigen::Vector2d t = a.centre - rotation(yaw) * s.centre;
         out.emplace_back(t.x(), t.y(), yaw);
       }
@@ -107,7 +107,7 @@ void GraphMatcher::seedFromCorridors(const MatchInput& input,
       const Eigen::Vector2d a_along(-a_normal.y(), a_normal.x());
       UniqueTransforms unique(out);
       for (int turn = 0; turn < 2; ++turn) {
-        const double yaw = bim::wrapAngle(room_yaw_[i] + turn * std::numbers::pi - s.axis_yaw);
+        const double yaw = common::wrapAngle(room_yaw_[i] + turn * std::numbers::pi - s.axis_yaw);
         const Eigen::Matrix2d R = rotation(yaw);
         // Across the axis: the S-centre on the A-centre's line.
         const Eigen::Vector2d centre = R * s.centre;
@@ -122,9 +122,9 @@ void GraphMatcher::seedFromCorridors(const MatchInput& input,
           const double lo = std::min(a_normal.dot(p0 - a.centre), a_normal.dot(p1 - a.centre));
           const double hi = std::max(a_normal.dot(p0 - a.centre), a_normal.dot(p1 - a.centre));
           const double s_along = a_along.dot(0.5 * (p0 + p1));
-          const double yaw_n = bim::headingOf(n);
+          const double yaw_n = common::headingOf(n);
           for (int k = 0; k < int(graph_->surfaces.size()); ++k) {
-            if (std::abs(bim::wrapAngle(yaw_n - surface_yaw_[k])) > angle) continue;
+            if (std::abs(common::wrapAngle(yaw_n - surface_yaw_[k])) > angle) continue;
             const auto& surface = graph_->surfaces[k];
             bool spans = false;
             for (const auto& [u, v] : surface.segments) {
@@ -190,8 +190,8 @@ void GraphMatcher::seedFromCorners(const MatchInput& input,
       for (int order = 0; order < 2; ++order) {
         // S's first wall on A's wall `order`, the second on the other.
         const int k0 = order, k1 = 1 - order;
-        const double yaw = bim::wrapAngle(a.normal_yaw[k0] - s.normal_yaw[0]);
-        if (std::abs(bim::wrapAngle(s.normal_yaw[1] + yaw - a.normal_yaw[k1])) > angle) continue;
+        const double yaw = common::wrapAngle(a.normal_yaw[k0] - s.normal_yaw[0]);
+        if (std::abs(common::wrapAngle(s.normal_yaw[1] + yaw - a.normal_yaw[k1])) > angle) continue;
         const Eigen::Matrix2d R = rotation(yaw);
         if ((R * s.arm_direction[0]).dot(a.arm_direction[k0]) < 0.9 ||
             (R * s.arm_direction[1]).dot(a.arm_direction[k1]) < 0.9) {

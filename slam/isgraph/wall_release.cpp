@@ -7,15 +7,15 @@
 #include <map>
 #include <optional>
 
-#include "bim/angles.hpp"
+#include "common/angles.hpp"
 
 namespace isg::slam {
 namespace {
 
 // A weak prior on the correction, so that the fit stays defined where the others do not fix a
 // direction (those walls are then not judged: see below).
-constexpr double kPriorTranslation = 0.5;        // m
-constexpr double kPriorYaw = bim::radians(5.0);  // rad
+constexpr double kPriorTranslation = 0.5;           // m
+constexpr double kPriorYaw = common::radians(5.0);  // rad
 // The others fix both directions of the translation: the smaller eigenvalue of the sum of their
 // normals' outer products is at least half a wall's worth.
 constexpr double kMinCrossEvidence = 0.5;
@@ -58,8 +58,8 @@ double smallerEigenvalue(const Eigen::Matrix2d& m) {
 }  // namespace
 
 bool WallResidual::beyond(const WallReleaseOptions& options) const {
-  return judged &&
-         (std::abs(offset) > options.distance || std::abs(angle) > bim::radians(options.angle_deg));
+  return judged && (std::abs(offset) > options.distance ||
+                    std::abs(angle) > common::radians(options.angle_deg));
 }
 
 namespace {
@@ -95,7 +95,7 @@ FloorFit fitFloor(const std::vector<HeldWall>& walls, const WallReleaseOptions& 
   if (fit.counted.empty()) return fit;
   // Yaw about the walls' centroid: there it is least tied to the translation.
   fit.centre /= double(fit.counted.size());
-  const double sigma_angle = bim::radians(options.sigma_angle_deg);
+  const double sigma_angle = common::radians(options.sigma_angle_deg);
   std::vector<double> share;
   for (int j : fit.counted) {
     fit.rows.push_back(rowsOf(walls[j], fit.centre, options.sigma_distance, sigma_angle));
@@ -153,7 +153,7 @@ std::vector<WallResidual> residualsAgainstOthers(const std::vector<HeldWall>& wa
   // (its pieces and its other face, which moved with it): their rows taken out of the normal
   // equations, O(walls) for the floor instead of a robust fit per wall.
   const FloorFit fit = fitFloor(walls, options);
-  const double sigma_angle = bim::radians(options.sigma_angle_deg);
+  const double sigma_angle = common::radians(options.sigma_angle_deg);
   for (std::size_t k = 0; k < fit.rows.size(); ++k) {
     const NormalEquations& own = fit.of_wall.at(walls[fit.counted[k]].wall);
     NormalEquations others = fit.all;

@@ -3,7 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
-#include "bim/angles.hpp"
+#include "common/angles.hpp"
 
 namespace isg::slam {
 
@@ -44,7 +44,7 @@ Eigen::Isometry3d ScanOdometry::addScan(const sensors::Scan& scan) {
   Eigen::Isometry3d predicted = predict(s);
   if (!last_stamp_) {
     // M is the base's start pose: its heading is M's x axis, its tilt what gravity says.
-    const double yaw = bim::yawOf(predicted.linear());
+    const double yaw = common::yawOf(predicted.linear());
     turnYaw(-yaw);
     predicted.linear() = yawRotation(-yaw) * predicted.linear();
     predicted.translation().setZero();
@@ -82,7 +82,7 @@ Eigen::Isometry3d ScanOdometry::addScan(const sensors::Scan& scan) {
       ++agreed_;
       pose = result.apply(predicted);
       pose.translation().z() = height_;
-      if (hasImu()) turnYaw(bim::yawOf(pose.linear()) - bim::yawOf(predicted.linear()));
+      if (hasImu()) turnYaw(common::yawOf(pose.linear()) - common::yawOf(predicted.linear()));
     }
   }
 
@@ -99,7 +99,8 @@ Eigen::Isometry3d ScanOdometry::addScan(const sensors::Scan& scan) {
     if (dt > 0.0) {
       velocity_ = (pose.translation() - pose0.translation()) / dt;
       velocity_.z() = 0.0;
-      yaw_rate_ = bim::wrapAngle(bim::yawOf(pose.linear()) - bim::yawOf(pose0.linear())) / dt;
+      yaw_rate_ =
+          common::wrapAngle(common::yawOf(pose.linear()) - common::yawOf(pose0.linear())) / dt;
     }
   }
   last_stamp_ = s;
@@ -110,7 +111,7 @@ Eigen::Isometry3d ScanOdometry::addScan(const sensors::Scan& scan) {
   if (!keyframe) {
     const Eigen::Isometry3d moved = keyframes_.back().M_T_R.inverse() * pose;
     keyframe = moved.translation().head<2>().norm() >= options_.keyframe_distance ||
-               std::abs(bim::yawOf(moved.linear())) >= options_.keyframe_angle;
+               std::abs(common::yawOf(moved.linear())) >= options_.keyframe_angle;
   }
   if (keyframe && !cloud.empty()) {
     keyframes_.push_back({std::move(cloud), pose});

@@ -10,8 +10,8 @@
 #include <set>
 
 #include "bim/agraph_factors.hpp"
-#include "bim/angles.hpp"
 #include "bim/plane_manifold.hpp"
+#include "common/angles.hpp"
 #include "slam/sgraph/sgraph_factors.hpp"
 
 namespace isg::slam {
@@ -86,7 +86,7 @@ bool SGraph::wouldKeyframe(double stamp) const {
   if (keyframes_.empty()) return true;
   const Eigen::Isometry3d delta = keyframes_.back().odometry.inverse() * *odometry_at_scan;
   const double moved = delta.translation().head<2>().norm();
-  const double turned = std::abs(bim::yawOf(delta.linear()));
+  const double turned = std::abs(common::yawOf(delta.linear()));
   return moved >= options_.keyframe_distance || turned >= options_.keyframe_angle;
 }
 
@@ -285,11 +285,11 @@ Eigen::Isometry3d SGraph::registerKeyframe(Keyframe& keyframe, const Eigen::Isom
   const Eigen::Isometry3d corrected = result.apply(predicted);
   // The motion from the previous keyframe in its heading frame, and the registration's
   // information turned into that frame: e_M = R(yaw_i) · e_i.
-  const double yaw_i = bim::yawOf(previous.pose().linear());
+  const double yaw_i = common::yawOf(previous.pose().linear());
   const Eigen::Matrix2d R_i = Eigen::Rotation2Dd(yaw_i).toRotationMatrix();
   const Eigen::Vector2d moved = corrected.translation().head<2>() - previous.position.head<2>();
   r.measured.head<2>() = R_i.transpose() * moved;
-  r.measured.z() = bim::wrapAngle(bim::yawOf(corrected.linear()) - yaw_i);
+  r.measured.z() = common::wrapAngle(common::yawOf(corrected.linear()) - yaw_i);
   Eigen::Matrix3d R3 = Eigen::Matrix3d::Identity();
   R3.topLeftCorner<2, 2>() = R_i;
   const Eigen::Matrix3d information =

@@ -1,17 +1,17 @@
 // The deviation report on a map made by hand: the map's walls are the faces of the building as
 // built (one wall shifted, one turned, one missing, one extra), placed in the plan 3 cm and 0.3°
 // off, as a localizer would place them. Every number below is a hand calculation.
+
 #include "slam/plan_deviations.hpp"
+#include "bim/as_built_wall.hpp"
+#include "bim/plan_parser.hpp"
+#include "common/json_reader.hpp"
 
 #include <gtest/gtest.h>
 
 #include <algorithm>
 #include <cmath>
 #include <numbers>
-
-#include "bim/as_built_wall.hpp"
-#include "bim/json_reader.hpp"
-#include "bim/plan_parser.hpp"
 
 namespace isg::slam {
 namespace {
@@ -40,8 +40,8 @@ bim::Plan threeRooms() {
       ]
     }]
   })");
-  const bim::JsonSource source{"three-rooms.json", nullptr};
-  return bim::parsePlan(bim::JsonNode(document, "", source));
+  const common::JsonSource source{"three-rooms.json", nullptr};
+  return bim::parsePlan(common::JsonNode(document, "", source));
 }
 
 // W3 shifted 0.15 m along its left normal (to y = 3.85), W5 turned 4° about its start, W6 not

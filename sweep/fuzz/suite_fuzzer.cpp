@@ -11,8 +11,8 @@
 #include <optional>
 #include <string>
 
-#include "bim/input_error.hpp"
-#include "bim/json_reader.hpp"
+#include "common/input_error.hpp"
+#include "common/json_reader.hpp"
 #include "run/builtin_methods.hpp"
 #include "sweep/suite.hpp"
 
@@ -49,11 +49,11 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   const std::string text(reinterpret_cast<const char*>(data), size);
   std::optional<sweep::Suite> suite;
   try {
-    const nlohmann::json document = bim::parseJsonText(text, "fuzz.json");
+    const nlohmann::json document = common::parseJsonText(text, "fuzz.json");
     if (roomsAskedFor(document) > kMostRooms) return 0;
-    const bim::JsonSource source{"fuzz.json", nullptr};
-    suite = sweep::parseSuite(bim::JsonNode(document, "", source), "fuzz.json", methods);
-  } catch (const bim::InputError&) {
+    const common::JsonSource source{"fuzz.json", nullptr};
+    suite = sweep::parseSuite(common::JsonNode(document, "", source), "fuzz.json", methods);
+  } catch (const common::InputError&) {
     return 0;
   }
   if (suite->worlds.size() * suite->methods.size() * suite->seeds.size() > kMostCells) return 0;
@@ -61,9 +61,9 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   // restarted sweep reads it, to the same cells.
   const std::vector<sweep::SweepCell> cells = sweep::sweepCells(*suite);
   const nlohmann::json written =
-      bim::parseJsonText(sweep::sweepPlanJson(*suite, cells), "sweep.json");
-  const bim::JsonSource plan_source{"sweep.json", nullptr};
-  const sweep::SweepPlan plan = sweep::parseSweepPlan(bim::JsonNode(written, "", plan_source));
+      common::parseJsonText(sweep::sweepPlanJson(*suite, cells), "sweep.json");
+  const common::JsonSource plan_source{"sweep.json", nullptr};
+  const sweep::SweepPlan plan = sweep::parseSweepPlan(common::JsonNode(written, "", plan_source));
   if (plan.cells.size() != cells.size()) __builtin_trap();
   for (std::size_t i = 0; i < cells.size(); ++i) {
     if (plan.cells[i].dir != cells[i].dir || plan.cells[i].arguments != cells[i].arguments) {

@@ -4,8 +4,8 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
-#include "bim/input_error.hpp"
-#include "bim/json_reader.hpp"
+#include "common/input_error.hpp"
+#include "common/json_reader.hpp"
 #include "run/builtin_methods.hpp"
 #include "sweep/run_table.hpp"
 #include "sweep/slurm_backend.hpp"
@@ -19,8 +19,8 @@ using ::testing::HasSubstr;
 
 Suite suiteOf(const std::string& text) {
   const nlohmann::json document = nlohmann::json::parse(text);
-  const bim::JsonSource source{"suite.json", nullptr};
-  return parseSuite(bim::JsonNode(document, "", source), "suite.json", run::builtinMethods());
+  const common::JsonSource source{"suite.json", nullptr};
+  return parseSuite(common::JsonNode(document, "", source), "suite.json", run::builtinMethods());
 }
 
 TEST(SweepLibrary, ASuiteIsItsCellsInWorldMethodSeedOrder) {
@@ -43,8 +43,8 @@ TEST(SweepLibrary, SweepJsonReadsBackItsCells) {
       "worlds": ["builtin:d1"], "methods": ["odometry"], "seeds": [1, 2]})");
   const std::vector<SweepCell> cells = sweepCells(suite);
   const nlohmann::json written = nlohmann::json::parse(sweepPlanJson(suite, cells));
-  const bim::JsonSource source{"sweep.json", nullptr};
-  const SweepPlan plan = parseSweepPlan(bim::JsonNode(written, "", source));
+  const common::JsonSource source{"sweep.json", nullptr};
+  const SweepPlan plan = parseSweepPlan(common::JsonNode(written, "", source));
   ASSERT_EQ(plan.cells.size(), 2u);
   EXPECT_EQ(plan.cells[1].dir, cells[1].dir);
   EXPECT_EQ(plan.cells[1].arguments, cells[1].arguments);
@@ -55,7 +55,7 @@ TEST(SweepLibrary, AWorldNamedAfterAFileOfTheSweepIsRefused) {
     suiteOf(R"({"format": "isg.suite", "version": 1, "worlds": ["builtin:d1", "builtin:d1"],
         "methods": ["odometry"], "seeds": [1]})");
     FAIL();
-  } catch (const bim::InputError& e) {
+  } catch (const common::InputError& e) {
     EXPECT_THAT(e.what(), HasSubstr("/worlds/1: a second world named \"d1\""));
   }
 }

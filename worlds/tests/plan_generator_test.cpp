@@ -1,4 +1,7 @@
+
 #include "worlds/plan_generator.hpp"
+#include "bim/polygon.hpp"
+#include "bim/scenario.hpp"
 
 #include <gtest/gtest.h>
 
@@ -8,9 +11,6 @@
 #include <queue>
 #include <set>
 
-#include "bim/polygon.hpp"
-#include "bim/scenario.hpp"
-
 namespace isg::worlds {
 namespace {
 
@@ -19,7 +19,7 @@ namespace fs = std::filesystem;
 // Writes the building's two files to a fresh folder and reads its scenario as isg check does.
 // The folder is the test's own: several tests generate the same building, and CTest runs them
 // in parallel.
-bim::Scenario load(const GeneratedBuilding& b, bim::Warnings* warnings) {
+bim::Scenario load(const GeneratedBuilding& b, common::Warnings* warnings) {
   const testing::TestInfo* test = testing::UnitTest::GetInstance()->current_test_info();
   const fs::path dir =
       fs::path(testing::TempDir()) / ("generator_" + std::string(test->name()) + "_" + b.name);
@@ -60,7 +60,7 @@ TEST(PlanGenerator, EveryFamilyReadsWithoutWarningAndEveryRoomIsReachable) {
       spec.missing_walls = 0.3;
       spec.extra_walls = 0.3;
       const GeneratedBuilding b = generateBuilding(spec);
-      bim::Warnings warnings;
+      common::Warnings warnings;
       const bim::Scenario s = load(b, &warnings);
       EXPECT_TRUE(warnings.empty()) << b.name << ": " << warnings.front().str();
       const bim::Level& level = s.plan.levels.at(0);
@@ -124,7 +124,7 @@ TEST(PlanGenerator, RoomCountFollowsTheRequestUpToFiveHundred) {
     const GeneratedBuilding b = generateBuilding(spec);
     EXPECT_GE(b.offices, 450) << family;
     EXPECT_LE(b.offices, 560) << family;
-    bim::Warnings warnings;
+    common::Warnings warnings;
     EXPECT_EQ(load(b, &warnings).plan.levels[0].rooms.size(), std::size_t(b.offices + b.corridors));
   }
 }
@@ -138,7 +138,7 @@ TEST(PlanGenerator, AHallTakesThePartitionsThatFit) {
   const GeneratedBuilding fewer = generateBuilding(spec);
   spec.partitions = 10000;
   const GeneratedBuilding b = generateBuilding(spec);
-  bim::Warnings warnings;
+  common::Warnings warnings;
   const bim::Scenario s = load(b, &warnings);
   EXPECT_TRUE(warnings.empty());
   const bim::Level& level = s.plan.levels.at(0);

@@ -2,9 +2,9 @@
 
 #include <cmath>
 
-#include "bim/json_reader.hpp"
 #include "bim/plan_parser.hpp"
 #include "bim/synthetic_plan.hpp"
+#include "common/json_reader.hpp"
 #include "slam/baselines/amcl_filter.hpp"
 #include "slam/baselines/amcl_localizer.hpp"
 #include "slam/baselines/amcl_motion_model.hpp"
@@ -43,8 +43,8 @@ bim::Plan threeRooms() {
   spec.cell_depth = 3.0;
   spec.size_seed = 7;  // the three rooms differ in width
   const nlohmann::json document = bim::makeGridPlan(spec);
-  const bim::JsonSource source{"three-rooms.json", nullptr};
-  return bim::parsePlan(bim::JsonNode(document, "", source));
+  const common::JsonSource source{"three-rooms.json", nullptr};
+  return bim::parsePlan(common::JsonNode(document, "", source));
 }
 
 TEST(LikelihoodField, ThePlansWallsAreOccupiedAndItsRoomsFree) {
@@ -208,7 +208,8 @@ TEST(AmclLocalizer, ConvergesFromAUniformStartInThreeUnequalRooms) {
       if (amcl.mapInPlan()) {
         const Pose2 estimate = planarPose(*amcl.mapInPlan() * M_T_R);
         EXPECT_LT((estimate.position() - truth.position()).norm(), 0.3) << "seed " << seed;
-        EXPECT_LT(std::abs(bim::angleDifference(estimate.yaw, truth.yaw)), 0.2) << "seed " << seed;
+        EXPECT_LT(std::abs(common::angleDifference(estimate.yaw, truth.yaw)), 0.2)
+            << "seed " << seed;
       }
     }
     EXPECT_GE(localized_after, 1) << "seed " << seed;

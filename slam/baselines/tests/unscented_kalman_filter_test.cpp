@@ -1,10 +1,10 @@
+
 #include "slam/baselines/unscented_kalman_filter.hpp"
+#include "slam/baselines/pose2.hpp"
 
 #include <gtest/gtest.h>
 
 #include <Eigen/Dense>
-
-#include "slam/baselines/pose2.hpp"
 
 namespace isg::slam {
 namespace {
@@ -50,14 +50,14 @@ TEST(UnscentedKalmanFilter, HeadingsAcrossPiStayThere) {
   UnscentedKalmanFilter ukf(x, Eigen::MatrixXd::Identity(1, 1) * 0.01, {0});
   ukf.predict([](const Eigen::VectorXd& s) { return Eigen::VectorXd(s.array() + 0.02); },
               Eigen::MatrixXd::Identity(1, 1) * 1e-4);
-  EXPECT_NEAR(bim::angleDifference(ukf.mean()[0], -M_PI + 0.01), 0.0, 1e-9);
+  EXPECT_NEAR(common::angleDifference(ukf.mean()[0], -M_PI + 0.01), 0.0, 1e-9);
   EXPECT_NEAR(ukf.covariance()(0, 0), 0.01 + 1e-4, 1e-9);
   Eigen::VectorXd z(1);
   z << -M_PI + 0.03;  // 0.02 past the prediction, across the seam
   const Eigen::VectorXd innovation = ukf.update(z, [](const Eigen::VectorXd& s) { return s; },
                                                 Eigen::MatrixXd::Identity(1, 1) * 0.0101, {0});
   EXPECT_NEAR(innovation[0], 0.02, 1e-9);
-  EXPECT_NEAR(bim::angleDifference(ukf.mean()[0], -M_PI + 0.02), 0.0,
+  EXPECT_NEAR(common::angleDifference(ukf.mean()[0], -M_PI + 0.02), 0.0,
               1e-9);  // halfway: equal noise
 }
 

@@ -7,9 +7,9 @@
 #include <random>
 
 #include "bim/agraph.hpp"
-#include "bim/json_reader.hpp"
 #include "bim/plan_parser.hpp"
 #include "bim/synthetic_plan.hpp"
+#include "common/json_reader.hpp"
 #include "slam/isgraph/graph_matching.hpp"
 #include "slam/isgraph/tests/synthetic_sgraph.hpp"
 
@@ -21,9 +21,9 @@ const isg::bim::AGraph& grid200() {
     spec.rows = 10;
     spec.cols = 20;
     spec.size_seed = 17;
-    const isg::bim::JsonSource source{"grid.json", nullptr};
+    const isg::common::JsonSource source{"grid.json", nullptr};
     return isg::bim::buildAGraph(
-        isg::bim::parsePlan(isg::bim::JsonNode(isg::bim::makeGridPlan(spec), "", source)));
+        isg::bim::parsePlan(isg::common::JsonNode(isg::bim::makeGridPlan(spec), "", source)));
   }();
   return graph;
 }

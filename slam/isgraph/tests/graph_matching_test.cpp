@@ -1,4 +1,10 @@
+
 #include "slam/isgraph/graph_matching.hpp"
+#include "bim/agraph.hpp"
+#include "bim/plan_parser.hpp"
+#include "bim/synthetic_plan.hpp"
+#include "common/json_reader.hpp"
+#include "slam/isgraph/tests/synthetic_sgraph.hpp"
 
 #include <gtest/gtest.h>
 #include <numbers>
@@ -6,12 +12,6 @@
 #include <cmath>
 #include <cstdio>
 #include <random>
-
-#include "bim/agraph.hpp"
-#include "bim/json_reader.hpp"
-#include "bim/plan_parser.hpp"
-#include "bim/synthetic_plan.hpp"
-#include "slam/isgraph/tests/synthetic_sgraph.hpp"
 
 namespace isg::slam {
 namespace {
@@ -21,8 +21,8 @@ bim::AGraph gridAGraph(int rows, int cols, std::uint64_t size_seed) {
   spec.rows = rows;
   spec.cols = cols;
   spec.size_seed = size_seed;
-  const bim::JsonSource source{"grid.json", nullptr};
-  return bim::buildAGraph(bim::parsePlan(bim::JsonNode(bim::makeGridPlan(spec), "", source)));
+  const common::JsonSource source{"grid.json", nullptr};
+  return bim::buildAGraph(bim::parsePlan(common::JsonNode(bim::makeGridPlan(spec), "", source)));
 }
 
 bim::AGraph referenceAGraph(const std::string& name) {

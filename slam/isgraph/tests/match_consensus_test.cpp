@@ -9,9 +9,9 @@
 #include <string>
 
 #include "bim/agraph.hpp"
-#include "bim/json_reader.hpp"
 #include "bim/plan_parser.hpp"
 #include "bim/synthetic_plan.hpp"
+#include "common/json_reader.hpp"
 #include "slam/isgraph/graph_matching.hpp"
 #include "slam/isgraph/tests/synthetic_sgraph.hpp"
 
@@ -28,8 +28,8 @@ bim::AGraph gridAGraph() {
   spec.rows = 3;
   spec.cols = 6;
   spec.size_seed = 1;
-  const bim::JsonSource source{"grid.json", nullptr};
-  return bim::buildAGraph(bim::parsePlan(bim::JsonNode(bim::makeGridPlan(spec), "", source)));
+  const common::JsonSource source{"grid.json", nullptr};
+  return bim::buildAGraph(bim::parsePlan(common::JsonNode(bim::makeGridPlan(spec), "", source)));
 }
 
 std::vector<int> allRooms(const bim::AGraph& graph) {

@@ -1,13 +1,13 @@
 // Odometry without odometry: the attitude filter against hand-made IMU readings, and the whole of
 // ScanOdometry on scans of a box room whose motion is known.
+
 #include "slam/sgraph/scan_odometry.hpp"
+#include "common/angles.hpp"
 
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <numbers>
-
-#include "bim/angles.hpp"
 
 namespace isg::slam {
 namespace {
@@ -49,7 +49,7 @@ TEST(ScanOdometry, GravityLevelsTheStartAndTheGyroscopeTurnsIt) {
   // M is the start pose: heading along x, tilt as gravity says, at the origin.
   EXPECT_NEAR(rollOf(start.linear()), 4 * kDeg, 1e-6);
   EXPECT_NEAR(pitchOf(start.linear()), -3 * kDeg, 1e-6);
-  EXPECT_NEAR(bim::yawOf(start.linear()), 0.0, 1e-9);
+  EXPECT_NEAR(common::yawOf(start.linear()), 0.0, 1e-9);
   EXPECT_LT(start.translation().norm(), 1e-12);
   // Turning at 0.5 rad/s about the base's up for one second, still level to gravity.
   const Eigen::Vector3d up_in_I = (M_R_R * R_T_I.linear()).transpose() * Eigen::Vector3d::UnitZ();
@@ -59,7 +59,7 @@ TEST(ScanOdometry, GravityLevelsTheStartAndTheGyroscopeTurnsIt) {
     odometry.addImu(s);
   }
   const Eigen::Isometry3d turned = odometry.addScan(emptyScan(2.0));
-  EXPECT_NEAR(bim::yawOf(turned.linear()), 0.5, 0.01);
+  EXPECT_NEAR(common::yawOf(turned.linear()), 0.5, 0.01);
   EXPECT_TRUE(odometry.hasImu());
 }
 
@@ -121,7 +121,7 @@ TEST(ScanOdometry, FollowsAWalkAcrossARoomFromTheScansAlone) {
   }
   EXPECT_NEAR(estimate.translation().x(), truth.translation().x(), 0.03);
   EXPECT_NEAR(estimate.translation().y(), truth.translation().y(), 0.03);
-  EXPECT_NEAR(bim::yawOf(estimate.linear()), 0.3, 0.01);
+  EXPECT_NEAR(common::yawOf(estimate.linear()), 0.3, 0.01);
   EXPECT_GT(odometry.agreed(), 55);
 }
 

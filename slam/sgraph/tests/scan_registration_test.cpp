@@ -1,6 +1,6 @@
-#include "slam/sgraph/scan_registration.hpp"
 
-#include "bim/angles.hpp"
+#include "slam/sgraph/scan_registration.hpp"
+#include "common/angles.hpp"
 
 #include <gtest/gtest.h>
 
@@ -91,7 +91,7 @@ TEST(ScanRegistration, RecoversThePoseFromAWrongPrediction) {
   const Eigen::Isometry3d corrected = r.apply(predicted);
   EXPECT_NEAR(corrected.translation().x(), 4.0, 0.02);
   EXPECT_NEAR(corrected.translation().y(), 3.2, 0.02);
-  EXPECT_NEAR(bim::yawOf(corrected.linear()), 0.05, 0.3 * std::numbers::pi / 180);
+  EXPECT_NEAR(common::yawOf(corrected.linear()), 0.05, 0.3 * std::numbers::pi / 180);
   EXPECT_TRUE(r.agrees);
   EXPECT_GT(r.inlier_share, 0.9);
   EXPECT_LT(r.inlier_share_predicted, r.inlier_share);

@@ -1,10 +1,10 @@
-#include "bim/content_hash.hpp"
+#include "common/content_hash.hpp"
 
 #include <nettle/sha2.h>
 
 #include <array>
 
-namespace isg::bim {
+namespace isg::common {
 
 std::string contentHash(std::string_view bytes) {
   sha256_ctx context;
@@ -21,4 +21,4 @@ std::string contentHash(std::string_view bytes) {
   return out;
 }
 
-}  // namespace isg::bim
+}  // namespace isg::common

@@ -1,11 +1,12 @@
-#include "bim/angles.hpp"
+
+#include "common/angles.hpp"
 
 #include <gtest/gtest.h>
 
 #include <Eigen/Geometry>
 #include <numbers>
 
-namespace isg::bim {
+namespace isg::common {
 namespace {
 
 constexpr double kPi = std::numbers::pi;
@@ -48,4 +49,4 @@ TEST(Angles, HeadingAndYaw) {
 }
 
 }  // namespace
-}  // namespace isg::bim
+}  // namespace isg::common

@@ -1,4 +1,4 @@
-#include "eval/tum.hpp"
+#include "common/tum.hpp"
 
 #include <cmath>
 #include <cstdio>
@@ -7,7 +7,7 @@
 #include <sstream>
 #include <stdexcept>
 
-namespace isg::eval {
+namespace isg::common {
 
 std::string toTumText(const Trajectory& trajectory) {
   std::string out;
@@ -142,4 +142,4 @@ Trajectory readTum(const std::string& path) {
   return parseTum(s.str(), path);
 }
 
-}  // namespace isg::eval
+}  // namespace isg::common

@@ -1,8 +1,8 @@
-#include "eval/pose_interpolation.hpp"
+#include "common/pose_interpolation.hpp"
 
 #include <algorithm>
 
-namespace isg::eval {
+namespace isg::common {
 
 std::optional<Eigen::Isometry3d> interpolatePose(const Trajectory& trajectory, double t) {
   if (trajectory.empty() || t < trajectory.front().t - 1e-9 || t > trajectory.back().t + 1e-9) {
@@ -22,4 +22,4 @@ std::optional<Eigen::Isometry3d> interpolatePose(const Trajectory& trajectory, d
   return out;
 }
 
-}  // namespace isg::eval
+}  // namespace isg::common

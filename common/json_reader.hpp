@@ -9,9 +9,9 @@
 #include <string_view>
 #include <vector>
 
-#include "bim/input_error.hpp"
+#include "common/input_error.hpp"
 
-namespace isg::bim {
+namespace isg::common {
 
 // Where a JSON document came from, and where its warnings go.
 struct JsonSource {
@@ -64,8 +64,6 @@ class JsonNode {
   // [x, y] and [x, y, z] arrays of finite numbers.
   Eigen::Vector2d point2() const;
   Eigen::Vector3d point3() const;
-  // A point of the plan: [x, y] with |x|, |y| <= limits::kMaxCoordinate.
-  Eigen::Vector2d position2() const;
   std::vector<double> numbers(std::size_t exact_size) const;
 
   bool isString() const { return value_->is_string(); }
@@ -110,4 +108,4 @@ void checkReadableFile(const std::string& path, std::uintmax_t max_bytes);
 std::string readCheckedFile(const std::string& path, std::uintmax_t max_bytes);
 nlohmann::json parseJsonText(const std::string& text, const std::string& file);
 
-}  // namespace isg::bim
+}  // namespace isg::common

@@ -5,9 +5,9 @@
 #include <string>
 #include <vector>
 
-#include "sensors/output_path.hpp"
+#include "common/output_path.hpp"
 
-namespace isg::sensors {
+namespace isg::common {
 
 // Creates the folder `dir` all at once: `fill` writes into a temporary folder beside it, which is
 // renamed into place when `fill` returns (an existing folder is exchanged with it in one step,
@@ -58,4 +58,4 @@ std::filesystem::path requireParentFolder(const std::string& path);
 // file beside it, then renamed over it. A failure is an InputError naming the path.
 void writeFileAtomically(const std::string& path, const std::string& content);
 
-}  // namespace isg::sensors
+}  // namespace isg::common

@@ -1,4 +1,4 @@
-#include "sensors/atomic_folder.hpp"
+#include "common/atomic_folder.hpp"
 
 #include <fcntl.h>
 #include <signal.h>
@@ -9,9 +9,9 @@
 #include <cstring>
 #include <fstream>
 
-#include "bim/input_error.hpp"
+#include "common/input_error.hpp"
 
-namespace isg::sensors {
+namespace isg::common {
 
 namespace fs = std::filesystem;
 
@@ -19,13 +19,14 @@ void writeFile(const fs::path& path, const std::string& content) {
   // C stdio rather than a stream: errno then says why a write failed (a full disk, a quota).
   std::FILE* file = std::fopen(path.c_str(), "wb");
   if (file == nullptr) {
-    throw bim::InputError(path.string(), "", std::string("cannot write: ") + std::strerror(errno));
+    throw common::InputError(path.string(), "",
+                             std::string("cannot write: ") + std::strerror(errno));
   }
   const bool written = std::fwrite(content.data(), 1, content.size(), file) == content.size();
   const int write_errno = errno;
   const bool closed = std::fclose(file) == 0;
   if (!written || !closed) {
-    throw bim::InputError(
+    throw common::InputError(
         path.string(), "",
         std::string("cannot write: ") + std::strerror(!written ? write_errno : errno));
   }
@@ -73,10 +74,10 @@ fs::path requireParentFolder(const std::string& path) {
   const fs::path target(path);
   const fs::path parent = target.has_parent_path() ? target.parent_path() : fs::path(".");
   if (!fs::is_directory(parent)) {
-    throw bim::InputError(path, "",
-                          fs::exists(parent)
-                              ? "cannot write: " + parent.string() + " is not a directory"
-                              : "cannot write: directory " + parent.string() + " does not exist");
+    throw common::InputError(
+        path, "",
+        fs::exists(parent) ? "cannot write: " + parent.string() + " is not a directory"
+                           : "cannot write: directory " + parent.string() + " does not exist");
   }
   return parent;
 }
@@ -97,7 +98,7 @@ fs::path createTemporaryFolder(const std::string& dir, const OutputRule& rule) {
   const fs::path temporary = temporaryPathFor(dir, rule);
   std::error_code error;
   fs::create_directories(temporary, error);
-  if (error) throw bim::InputError(dir, "", "cannot write: " + error.message());
+  if (error) throw common::InputError(dir, "", "cannot write: " + error.message());
   return temporary;
 }
 
@@ -119,13 +120,13 @@ void writeFolderAtomically(const std::string& dir, OutputKind kind, bool overwri
     try {
       fill(temporary);
       writeOutputMarker(temporary, kind);
-    } catch (const bim::InputError& e) {
+    } catch (const common::InputError& e) {
       // A file inside the temporary folder is named as it would have been in the real one.
       const std::string file = e.file();
       const std::string inside = temporary.string() + "/";
       if (file.rfind(inside, 0) != 0) throw;
-      throw bim::InputError((fs::path(dir) / file.substr(inside.size())).string(), e.pointer(),
-                            e.reason());
+      throw common::InputError((fs::path(dir) / file.substr(inside.size())).string(), e.pointer(),
+                               e.reason());
     }
     // Checked again at the last moment: what the path holds now is what gets replaced.
     checkOutputPath(dir, rule);
@@ -140,18 +141,18 @@ void writeFolderAtomically(const std::string& dir, OutputKind kind, bool overwri
       // new one is in place.
       const fs::path aside = temporary.string() + ".replaced";
       fs::rename(target, aside, error);
-      if (error) throw bim::InputError(dir, "", "cannot replace: " + error.message());
+      if (error) throw common::InputError(dir, "", "cannot replace: " + error.message());
       fs::rename(temporary, target, error);
       if (error) {
         std::error_code ignored;
         fs::rename(aside, target, ignored);
-        throw bim::InputError(dir, "", "cannot write: " + error.message());
+        throw common::InputError(dir, "", "cannot write: " + error.message());
       }
       fs::remove_all(aside, error);
       return;
     }
     fs::rename(temporary, target, error);
-    if (error) throw bim::InputError(dir, "", "cannot write: " + error.message());
+    if (error) throw common::InputError(dir, "", "cannot write: " + error.message());
   } catch (...) {
     std::error_code ignored;
     fs::remove_all(temporary, ignored);
@@ -172,7 +173,7 @@ AtomicFile::~AtomicFile() {
 void AtomicFile::commit() {
   std::error_code error;
   fs::rename(temporary_, path_, error);  // replaces an existing file in one step
-  if (error) throw bim::InputError(path_.string(), "", "cannot write: " + error.message());
+  if (error) throw common::InputError(path_.string(), "", "cannot write: " + error.message());
   committed_ = true;
 }
 
@@ -184,14 +185,14 @@ void writeFileAtomically(const std::string& path, const std::string& content) {
   {
     std::ofstream out(temporary, std::ios::binary | std::ios::trunc);
     if (!out) {
-      throw bim::InputError(path, "", std::string("cannot write: ") + std::strerror(errno));
+      throw common::InputError(path, "", std::string("cannot write: ") + std::strerror(errno));
     }
     out << content;
     out.flush();
     if (!out) {
       std::error_code ignored;
       fs::remove(temporary, ignored);
-      throw bim::InputError(path, "", "cannot write: write failed");
+      throw common::InputError(path, "", "cannot write: write failed");
     }
   }
   std::error_code error;
@@ -199,8 +200,8 @@ void writeFileAtomically(const std::string& path, const std::string& content) {
   if (error) {
     std::error_code ignored;
     fs::remove(temporary, ignored);
-    throw bim::InputError(path, "", "cannot write: " + error.message());
+    throw common::InputError(path, "", "cannot write: " + error.message());
   }
 }
 
-}  // namespace isg::sensors
+}  // namespace isg::common

@@ -3,12 +3,12 @@
 #include <Eigen/Geometry>
 #include <optional>
 
-#include "eval/tum.hpp"
+#include "common/trajectory.hpp"
 
-namespace isg::eval {
+namespace isg::common {
 
 // The pose at `t` between the rows of a time-ordered trajectory: positions linear, rotations
 // slerped; nullopt outside its span (a nanosecond of slack at either end).
 std::optional<Eigen::Isometry3d> interpolatePose(const Trajectory& trajectory, double t);
 
-}  // namespace isg::eval
+}  // namespace isg::common

@@ -6,14 +6,11 @@
 #include <string>
 #include <vector>
 
-namespace isg::eval {
+#include "common/trajectory.hpp"
 
-// A trajectory in the TUM format: one pose per line, "t tx ty tz qx qy qz qw".
-struct StampedPose {
-  double t = 0.0;
-  Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();
-};
-using Trajectory = std::vector<StampedPose>;
+namespace isg::common {
+
+// Trajectories as TUM text: one pose per line, "t tx ty tz qx qy qz qw".
 
 // The text of a TUM file: time with nanoseconds, positions with micrometres, quaternions with 9
 // decimals (qw ≥ 0, so that equal rotations print equally).
@@ -57,4 +54,4 @@ Trajectory parseTum(const std::string& text, const std::string& file);
 // Reads a regular file of at most kMaxTumBytes (a device or a FIFO is never read).
 Trajectory readTum(const std::string& path);
 
-}  // namespace isg::eval
+}  // namespace isg::common

@@ -1,4 +1,4 @@
-#include "bim/json_reader.hpp"
+#include "common/json_reader.hpp"
 
 #include <cerrno>
 #include <cmath>
@@ -9,9 +9,9 @@
 #include <limits>
 #include <sstream>
 
-#include "bim/limits.hpp"
+#include "common/limits.hpp"
 
-namespace isg::bim {
+namespace isg::common {
 
 std::string inQuotes(const std::string& text) { return "\"" + text + "\""; }
 
@@ -257,15 +257,6 @@ Eigen::Vector2d JsonNode::point2() const {
   return {v[0], v[1]};
 }
 
-Eigen::Vector2d JsonNode::position2() const {
-  const Eigen::Vector2d p = point2();
-  if (p.cwiseAbs().maxCoeff() > limits::kMaxCoordinate) {
-    fail("coordinate " + formatNumber(p.cwiseAbs().maxCoeff()) + " is out of range: points must " +
-         "lie within ±" + formatNumber(limits::kMaxCoordinate) + " m of the origin");
-  }
-  return p;
-}
-
 Eigen::Vector3d JsonNode::point3() const {
   auto v = numbers(3);
   return {v[0], v[1], v[2]};
@@ -434,4 +425,4 @@ nlohmann::json readJsonFile(const std::string& path) {
   return parseJsonText(readCheckedFile(path, limits::kMaxJsonFileBytes), path);
 }
 
-}  // namespace isg::bim
+}  // namespace isg::common

@@ -5,7 +5,7 @@
 #include <string>
 #include <vector>
 
-namespace isg::sensors {
+namespace isg::common {
 
 // What a command writes. Folders of ours carry a marker file naming their kind; single files
 // carry a mark in their own format (outputMark), so that --force, and the commands that replace
@@ -75,4 +75,4 @@ bool isWithin(const std::filesystem::path& inner, const std::filesystem::path& o
 // `path` made absolute and normal, symlinks of its existing part followed.
 std::filesystem::path resolvePath(const std::string& path);
 
-}  // namespace isg::sensors
+}  // namespace isg::common

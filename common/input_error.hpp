@@ -4,7 +4,7 @@
 #include <string>
 #include <vector>
 
-namespace isg::bim {
+namespace isg::common {
 
 // A problem with a file a user wrote: which file, where in it (a JSON pointer such as
 // "/levels/0/walls/3/thickness", empty for the whole file) and what is wrong. Every
@@ -38,4 +38,4 @@ using Warnings = std::vector<InputWarning>;
 std::string formatLocated(const std::string& file, const std::string& pointer,
                           const std::string& text);
 
-}  // namespace isg::bim
+}  // namespace isg::common

@@ -1,12 +1,12 @@
-#include "sensors/output_path.hpp"
+#include "common/output_path.hpp"
 
 #include <cstring>
 #include <fstream>
 #include <nlohmann/json.hpp>
 
-#include "bim/input_error.hpp"
+#include "common/input_error.hpp"
 
-namespace isg::sensors {
+namespace isg::common {
 
 namespace fs = std::filesystem;
 
@@ -95,7 +95,7 @@ fs::path resolvePath(const std::string& path) {
 }
 
 fs::path checkOutputPath(const std::string& path, const OutputRule& rule) {
-  const auto refuse = [&](const std::string& why) { throw bim::InputError(path, "", why); };
+  const auto refuse = [&](const std::string& why) { throw common::InputError(path, "", why); };
   if (path.empty()) refuse("an empty output path");
   const fs::path resolved = resolvePath(path);
   const std::string what = describeOutput(rule.kind);
@@ -162,13 +162,13 @@ void writeOutputMarker(const fs::path& folder, OutputKind kind) {
     out << marker.dump() << "\n";
     out.flush();
     if (!out) {
-      throw bim::InputError(file.string(), "",
-                            std::string("cannot write: ") + std::strerror(errno));
+      throw common::InputError(file.string(), "",
+                               std::string("cannot write: ") + std::strerror(errno));
     }
   }
   std::error_code error;
   fs::rename(temporary, file, error);
-  if (error) throw bim::InputError(file.string(), "", "cannot write: " + error.message());
+  if (error) throw common::InputError(file.string(), "", "cannot write: " + error.message());
 }
 
 std::optional<OutputKind> folderOutputKind(const fs::path& folder) {
@@ -234,4 +234,4 @@ std::string outputMark(OutputKind kind, const std::string& text) {
   }
 }
 
-}  // namespace isg::sensors
+}  // namespace isg::common

@@ -1,4 +1,5 @@
-#include "eval/tum.hpp"
+
+#include "common/tum.hpp"
 
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
@@ -8,7 +9,7 @@
 #include <cstring>
 #include <random>
 
-namespace isg::eval {
+namespace isg::common {
 namespace {
 
 TEST(Tum, WritesAndReadsBack) {
@@ -76,4 +77,4 @@ TEST(Tum, QuantisedIsTheTextRoundTripBitForBit) {
 }
 
 }  // namespace
-}  // namespace isg::eval
+}  // namespace isg::common

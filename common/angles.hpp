@@ -5,7 +5,7 @@
 #include <cmath>
 #include <numbers>
 
-namespace isg::bim {
+namespace isg::common {
 
 // a wrapped to [−π, π] (std::remainder: a half turn keeps its sign).
 inline double wrapAngle(double a) { return std::remainder(a, 2.0 * std::numbers::pi); }
@@ -31,4 +31,4 @@ inline double headingOf(const Eigen::Vector2d& direction) {
 // small).
 inline double yawOf(const Eigen::Matrix3d& R) { return std::atan2(R(1, 0), R(0, 0)); }
 
-}  // namespace isg::bim
+}  // namespace isg::common

@@ -20,7 +20,7 @@
 #include <sanitizer/lsan_interface.h>
 #endif
 
-namespace isg::bim {
+namespace isg::common {
 
 struct UntrackedAllocations {
   UntrackedAllocations() {
@@ -37,4 +37,4 @@ struct UntrackedAllocations {
   UntrackedAllocations& operator=(const UntrackedAllocations&) = delete;
 };
 
-}  // namespace isg::bim
+}  // namespace isg::common

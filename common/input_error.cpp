@@ -1,6 +1,6 @@
-#include "bim/input_error.hpp"
+#include "common/input_error.hpp"
 
-namespace isg::bim {
+namespace isg::common {
 
 std::string formatLocated(const std::string& file, const std::string& pointer,
                           const std::string& text) {
@@ -22,4 +22,4 @@ InputError::InputError(std::string file, std::string pointer, std::string reason
 
 std::string InputWarning::str() const { return formatLocated(file, pointer, message); }
 
-}  // namespace isg::bim
+}  // namespace isg::common
