@@ -9,7 +9,7 @@
 #include "eval/ape.hpp"
 #include "eval/coverage.hpp"
 #include "eval/report_svg.hpp"
-#include "sensors/trajectory_file.hpp"
+#include "formats/trajectory_file.hpp"
 
 namespace isg::cli {
 
@@ -106,8 +106,8 @@ int EvalCommand::run() {
     common::checkOutputPath(plot_,
                             {common::OutputKind::kSvg, {reference_, estimate_}, true, false});
   }
-  const common::Trajectory reference = sensors::readTrajectoryFile(reference_);
-  const common::Trajectory estimate = sensors::readTrajectoryFile(estimate_);
+  const common::Trajectory reference = formats::readTrajectoryFile(reference_);
+  const common::Trajectory estimate = formats::readTrajectoryFile(estimate_);
   eval::ErrorOptions options;
   options.align = align_ == "se3"
                       ? eval::Alignment::kSE3

@@ -8,9 +8,9 @@
 #include "cli/progress_bar.hpp"
 #include "common/input_error.hpp"
 #include "common/output_path.hpp"
+#include "recordings/mcap_export.hpp"
+#include "recordings/rosbag_export.hpp"
 #include "run/run_mcap.hpp"
-#include "sensors/mcap_export.hpp"
-#include "sensors/rosbag_export.hpp"
 
 namespace isg::cli {
 
@@ -36,7 +36,7 @@ std::string countsText(const Counts& counts) {
 }
 
 void printExportSummary(const std::string& command, const std::string& path,
-                        const sensors::ExportSummary& summary) {
+                        const recordings::ExportSummary& summary) {
   const std::string counts = countsText(summary.messages);
   std::printf("%s: wrote %s: %.0f MB, %.1f s of robot time in %.1f s (%.0f MB/s); messages: %s\n",
               command.c_str(), path.c_str(), summary.bytes / 1e6, summary.dataset_seconds,
@@ -131,10 +131,10 @@ int ExportCommand::exportRun() {
   return kExitOk;
 }
 
-sensors::McapCompression mcapCompression(const std::string& name) {
-  if (name == "none") return sensors::McapCompression::kNone;
-  if (name == "lz4") return sensors::McapCompression::kLz4;
-  return sensors::McapCompression::kZstd;
+formats::McapCompression mcapCompression(const std::string& name) {
+  if (name == "none") return formats::McapCompression::kNone;
+  if (name == "lz4") return formats::McapCompression::kLz4;
+  return formats::McapCompression::kZstd;
 }
 
 void addMcapCompressionOption(CLI::App& app, std::string& compression) {
@@ -147,24 +147,24 @@ void addMcapCompressionOption(CLI::App& app, std::string& compression) {
 void exportRosbagWithProgress(const std::string& command, const std::string& dataset_dir,
                               const std::string& bag_path, std::uint32_t stamp_offset,
                               bool overwrite, bool quiet) {
-  sensors::RosbagExportOptions options;
+  recordings::RosbagExportOptions options;
   options.stamp_offset = stamp_offset;
   options.overwrite = overwrite;
   ProgressBar bar(command, quiet);
-  const auto summary = sensors::exportRosbag(dataset_dir, bag_path, options, scansTo(bar));
+  const auto summary = recordings::exportRosbag(dataset_dir, bag_path, options, scansTo(bar));
   bar.finish();
   printExportSummary(command, bag_path, summary);
 }
 
 void exportMcapWithProgress(const std::string& command, const std::string& dataset_dir,
                             const std::string& mcap_path, std::uint32_t stamp_offset,
-                            sensors::McapCompression compression, bool overwrite, bool quiet) {
-  sensors::McapExportOptions options;
+                            formats::McapCompression compression, bool overwrite, bool quiet) {
+  recordings::McapExportOptions options;
   options.stamp_offset = stamp_offset;
   options.compression = compression;
   options.overwrite = overwrite;
   ProgressBar bar(command, quiet);
-  const auto summary = sensors::exportMcap(dataset_dir, mcap_path, options, scansTo(bar));
+  const auto summary = recordings::exportMcap(dataset_dir, mcap_path, options, scansTo(bar));
   bar.finish();
   printExportSummary(command, mcap_path, summary);
 }

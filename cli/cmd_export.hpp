@@ -6,7 +6,7 @@
 #include <vector>
 
 #include "cli/common.hpp"
-#include "sensors/mcap_writer.hpp"
+#include "formats/mcap_writer.hpp"
 
 namespace isg::cli {
 
@@ -38,12 +38,12 @@ void exportRosbagWithProgress(const std::string& command, const std::string& dat
 // The same as an MCAP file (shared by `isg export --mcap` and `isg simulate --mcap`).
 void exportMcapWithProgress(const std::string& command, const std::string& dataset_dir,
                             const std::string& mcap_path, std::uint32_t stamp_offset,
-                            sensors::McapCompression compression, bool overwrite, bool quiet);
+                            formats::McapCompression compression, bool overwrite, bool quiet);
 // Prints what a run's MCAP file holds: its size and the messages per topic.
 void printRunMcapSummary(const std::string& command, const std::string& path,
                          const std::vector<std::pair<std::string, std::uint64_t>>& counts);
 // "none", "zstd" or "lz4" as the command line spells it.
-sensors::McapCompression mcapCompression(const std::string& name);
+formats::McapCompression mcapCompression(const std::string& name);
 // The --compression option of a command that writes MCAP.
 void addMcapCompressionOption(CLI::App& app, std::string& compression);
 

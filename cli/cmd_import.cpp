@@ -10,8 +10,8 @@
 #include "common/atomic_folder.hpp"
 #include "common/output_path.hpp"
 #include "ifc/ifc_import.hpp"
+#include "recordings/bag_import.hpp"
 #include "run/interrupt.hpp"
-#include "sensors/bag_import.hpp"
 
 namespace isg::cli {
 namespace {
@@ -139,7 +139,7 @@ int ImportCommand::run() { return isBag(input_) ? importBag() : importIfc(); }
 
 int ImportCommand::importBag() {
   common::checkCanCreateFolder(output_, common::OutputKind::kDataset, force_, {input_});
-  sensors::BagImportOptions options;
+  recordings::BagImportOptions options;
   options.lidar_topic = lidar_topic_;
   options.imu_topic = imu_topic_;
   options.odometry_topic = odometry_topic_;
@@ -152,8 +152,8 @@ int ImportCommand::importBag() {
   options.imu_extrinsic = mountOption(imu_extrinsic_);
   options.overwrite = force_;
   ProgressBar bar("isg import", quiet_);
-  const auto summary =
-      sensors::importRosbag(input_, output_, options, [&](std::uint64_t done, std::uint64_t total) {
+  const auto summary = recordings::importRosbag(
+      input_, output_, options, [&](std::uint64_t done, std::uint64_t total) {
         run::throwIfInterrupted();
         char detail[64];
         std::snprintf(detail, sizeof detail, "%llu/%llu clouds", (unsigned long long)done,
@@ -161,7 +161,7 @@ int ImportCommand::importBag() {
         bar.update(total > 0 ? double(done) / double(total) : 1.0, detail);
       });
   bar.finish();
-  const auto stream = [](const char* what, const sensors::BagImportSummary::Stream& s) {
+  const auto stream = [](const char* what, const recordings::BagImportSummary::Stream& s) {
     if (s.topic.empty()) {
       std::printf("  %-13s none\n", what);
     } else {

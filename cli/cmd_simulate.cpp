@@ -84,8 +84,8 @@ int SimulateCommand::run() {
   options.duration = duration_;
   options.overwrite = force_;
   options.threads = threads_;
-  options.pcd = pcd_ == "binary" ? sensors::dataset::PcdData::kBinary
-                                 : sensors::dataset::PcdData::kBinaryCompressed;
+  options.pcd = pcd_ == "binary" ? formats::dataset::PcdData::kBinary
+                                 : formats::dataset::PcdData::kBinaryCompressed;
   ProgressBar bar("isg simulate", quiet_);
   const auto start = std::chrono::steady_clock::now();
   const double period = simulation.scanPeriod();

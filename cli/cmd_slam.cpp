@@ -12,9 +12,9 @@
 #include "common/atomic_folder.hpp"
 #include "common/input_error.hpp"
 #include "common/json_reader.hpp"
+#include "formats/dataset_format.hpp"
+#include "formats/dataset_reader.hpp"
 #include "run/map_diagnosis.hpp"
-#include "sensors/dataset_format.hpp"
-#include "sensors/dataset_reader.hpp"
 
 namespace isg::cli {
 
@@ -24,7 +24,7 @@ namespace {
 // --plan that is not the recorded one is an error unless --other-plan says it is meant: the
 // result of localizing in another building is meaningless, and should never pass unnoticed.
 std::optional<bim::Plan> replayPlan(const std::string& plan_argument, bool other_plan,
-                                    const sensors::DatasetReader& dataset, const std::string& dir) {
+                                    const formats::DatasetReader& dataset, const std::string& dir) {
   const std::string metadata_file = (std::filesystem::path(dir) / "metadata.json").string();
   const common::JsonSource source{metadata_file, nullptr};
   std::optional<bim::Plan> recorded;
@@ -89,7 +89,7 @@ SlamCommand::SlamCommand(CLI::App& parent) {
 
 int SlamCommand::run() {
   namespace fs = std::filesystem;
-  sensors::DatasetReader dataset(dataset_);
+  formats::DatasetReader dataset(dataset_);
   // Before the replay, not after it: a folder that cannot be written fails at once.
   common::checkCanCreateFolder(output_, common::OutputKind::kRunFolder, force_, {dataset_, plan_});
   const std::string method = !method_.empty() ? method_ : plan_.empty() ? "s-graph" : "is-graphs";

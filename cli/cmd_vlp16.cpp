@@ -4,20 +4,20 @@
 #include <iostream>
 #include <nlohmann/json.hpp>
 
-#include "sensors/vlp16_recording.hpp"
-#include "sensors/vlp16_statistics.hpp"
+#include "formats/vlp16_recording.hpp"
+#include "formats/vlp16_statistics.hpp"
 
 namespace isg::cli {
 
 namespace {
 
-const char* modeName(sensors::Vlp16ReturnMode mode) {
+const char* modeName(formats::Vlp16ReturnMode mode) {
   switch (mode) {
-    case sensors::Vlp16ReturnMode::kStrongest:
+    case formats::Vlp16ReturnMode::kStrongest:
       return "strongest";
-    case sensors::Vlp16ReturnMode::kLast:
+    case formats::Vlp16ReturnMode::kLast:
       return "last";
-    case sensors::Vlp16ReturnMode::kDual:
+    case formats::Vlp16ReturnMode::kDual:
       return "dual";
   }
   return "?";
@@ -63,14 +63,14 @@ int Vlp16Command::run() {
               << max_range_ << ")\n";
     return kExitUsage;
   }
-  sensors::Vlp16DecodeOptions options;
+  formats::Vlp16DecodeOptions options;
   options.min_range = min_range_;
   options.max_range = max_range_;
-  options.convention = interpolation_ == "nebula" ? sensors::Vlp16Convention::kNebula
-                                                  : sensors::Vlp16Convention::kPerSequence;
-  const auto recording = sensors::readVlp16Recording(input_, options, topic_);
-  const auto turns = sensors::cutIntoTurns(recording.points, cut_deg_);
-  const auto stats = sensors::vlp16Statistics(recording.tally, turns);
+  options.convention = interpolation_ == "nebula" ? formats::Vlp16Convention::kNebula
+                                                  : formats::Vlp16Convention::kPerSequence;
+  const auto recording = formats::readVlp16Recording(input_, options, topic_);
+  const auto turns = formats::cutIntoTurns(recording.points, cut_deg_);
+  const auto stats = formats::vlp16Statistics(recording.tally, turns);
   if (json_) {
     nlohmann::ordered_json out;
     out["recording"] = input_;

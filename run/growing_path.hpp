@@ -4,7 +4,7 @@
 #include <optional>
 #include <string>
 
-#include "sensors/rosbag_writer.hpp"
+#include "formats/rosbag_writer.hpp"
 
 namespace isg::run {
 
@@ -21,7 +21,7 @@ class GrowingPath {
   // Poses in the message: those kept, and the latest when it was not kept.
   int size() const { return kept_ + (latest_ && !latest_kept_ ? 1 : 0); }
   // The foxglove.PosesInFrame message's JSON text.
-  std::string message(sensors::RosTime stamp, const std::string& frame) const;
+  std::string message(formats::RosTime stamp, const std::string& frame) const;
 
  private:
   double spacing_;

@@ -8,7 +8,7 @@
 
 namespace isg::run {
 
-MapDiagnosis diagnoseMap(const slam::MapDiagnostics& map, const sensors::Trajectory& ground_truth,
+MapDiagnosis diagnoseMap(const slam::MapDiagnostics& map, const common::Trajectory& ground_truth,
                          const bim::Plan* plan, const std::string& level) {
   MapDiagnosis out;
   out.keyframes = map.keyframes.size();
@@ -16,7 +16,7 @@ MapDiagnosis diagnoseMap(const slam::MapDiagnostics& map, const sensors::Traject
   out.rooms = map.rooms.size();
   out.timing = slam::timingAt(map.timings, {50, 200, 500});
   if (ground_truth.empty() || map.keyframes.size() < 3) return out;
-  sensors::Trajectory keyframes, odometry;
+  common::Trajectory keyframes, odometry;
   for (const auto& kf : map.keyframes) {
     keyframes.push_back({kf.stamp, kf.estimate});
     odometry.push_back({kf.stamp, kf.odometry});

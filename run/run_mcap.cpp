@@ -5,16 +5,16 @@
 
 #include "common/input_error.hpp"
 #include "common/json_reader.hpp"
+#include "formats/foxglove_json.hpp"
+#include "formats/ros2_messages.hpp"
+#include "formats/trajectory_file.hpp"
 #include "run/run_scene.hpp"
-#include "sensors/foxglove_json.hpp"
-#include "sensors/ros2_messages.hpp"
-#include "sensors/trajectory_file.hpp"
 
 namespace isg::run {
 
 namespace {
 
-namespace fx = sensors::foxglove;
+namespace fx = formats::foxglove;
 using Json = nlohmann::json;
 
 // A path keeps a pose once the robot has moved this far from the last one kept (and always the
@@ -108,7 +108,7 @@ RunMcapWriter::RunMcapWriter(const std::string& path, const RunMcapOptions& opti
   const std::uint16_t poses = foxglove(fx::posesInFrameSchema());
   const std::uint16_t log = foxglove(fx::logSchema());
   const std::uint16_t matching = mcap_.addSchema("isg.Matching", "jsonschema", matchingSchema());
-  const sensors::ros2::MessageType cloud = sensors::ros2::pointCloud2Type();
+  const formats::ros2::MessageType cloud = formats::ros2::pointCloud2Type();
   add(kRunTfTopic, tf, "json");
   if (agraph_) {
     add(kRunPlanTopic, scene, "json");
@@ -127,8 +127,8 @@ RunMcapWriter::RunMcapWriter(const std::string& path, const RunMcapOptions& opti
   }
 }
 
-sensors::RosTime RunMcapWriter::time(double stamp) const {
-  return sensors::RosTime::fromSeconds(std::max(0.0, stamp), options_.stamp_offset);
+formats::RosTime RunMcapWriter::time(double stamp) const {
+  return formats::RosTime::fromSeconds(std::max(0.0, stamp), options_.stamp_offset);
 }
 
 void RunMcapWriter::writeJson(const std::string& topic, double stamp, const Json& message) {
@@ -138,7 +138,7 @@ void RunMcapWriter::writeJson(const std::string& topic, double stamp, const Json
 void RunMcapWriter::writeText(const std::string& topic, double stamp, const std::string& text) {
   for (const auto& [name, channel] : channels_) {
     if (name == topic) {
-      const sensors::RosTime t = time(stamp);
+      const formats::RosTime t = time(stamp);
       mcap_.write(channel, std::uint64_t(t.sec) * 1000000000ull + t.nsec, text);
       return;
     }
@@ -155,7 +155,7 @@ bool RunMcapWriter::snapshotDue(double stamp) const {
 
 void RunMcapWriter::start(double stamp) {
   started_ = true;
-  const sensors::RosTime t = time(stamp);
+  const formats::RosTime t = time(stamp);
   if (R_T_L_) {
     writeJson(kRunTfTopic, stamp, fx::frameTransform(t, kBaseFrame, kLidarFrame, *R_T_L_));
   }
@@ -172,7 +172,7 @@ void RunMcapWriter::add(const RunMoment& moment) {
   if (!started_) start(moment.stamp);
   const double stamp = moment.stamp;
   last_stamp_ = stamp;
-  const sensors::RosTime t = time(stamp);
+  const formats::RosTime t = time(stamp);
   for (const MatchingEvent& event : moment.events) {
     writeJson(kRunLogTopic, stamp,
               fx::log(t, levelOf(event.status),
@@ -196,16 +196,16 @@ void RunMcapWriter::add(const RunMoment& moment) {
 }
 
 void RunMcapWriter::addScan(const sensors::Scan& scan) {
-  const sensors::RosTime s = time(scan.stamp);
-  const sensors::ros2::Time cloud_time{std::int32_t(s.sec), s.nsec};
-  const std::string cloud = sensors::ros2::pointCloud2(scan.points, cloud_time, kLidarFrame);
+  const formats::RosTime s = time(scan.stamp);
+  const formats::ros2::Time cloud_time{std::int32_t(s.sec), s.nsec};
+  const std::string cloud = formats::ros2::pointCloud2(scan.points, cloud_time, kLidarFrame);
   for (const auto& [name, channel] : channels_) {
     if (name == kRunScanTopic) mcap_.write(channel, cloud_time.nanoseconds(), cloud);
   }
 }
 
 void RunMcapWriter::writeSnapshot(double stamp, const Json& graph) {
-  const sensors::RosTime t = time(stamp);
+  const formats::RosTime t = time(stamp);
   writeJson(kRunSGraphTopic, stamp, fx::sceneUpdate(sgraphEntities(graph, t)));
   const auto matching = graph.find("matching");
   if (matching != graph.end() && matching->is_object() && matching->contains("status")) {
@@ -224,7 +224,7 @@ void RunMcapWriter::writeSnapshot(double stamp, const Json& graph) {
 }
 
 void RunMcapWriter::writePaths(double stamp) {
-  const sensors::RosTime t = time(stamp);
+  const formats::RosTime t = time(stamp);
   writeText(kRunEstimatePathTopic, stamp, estimate_path_.message(t, kPlanFrame));
   writeText(kRunEstimateMapPathTopic, stamp, estimate_map_path_.message(t, kMapFrame));
 }
@@ -269,12 +269,12 @@ RunExportSummary exportRunFolder(const std::string& run_dir, const std::string& 
   const Json graph = common::readJsonFile(file("sgraph.json"));
   const std::optional<Json> agraph = optionalJson("agraph.json");
   const std::optional<Json> deviations = optionalJson("deviations.json");
-  const common::Trajectory estimate_map = sensors::readTrajectoryFile(file("estimate_map.tum"));
+  const common::Trajectory estimate_map = formats::readTrajectoryFile(file("estimate_map.tum"));
   const common::Trajectory estimate =
-      sensors::readTrajectoryFile(file("estimate.tum"), /*require_poses=*/false);
+      formats::readTrajectoryFile(file("estimate.tum"), /*require_poses=*/false);
   const common::Trajectory ground_truth =
       fs::exists(file("groundtruth.tum"))
-          ? sensors::readTrajectoryFile(file("groundtruth.tum"), /*require_poses=*/false)
+          ? formats::readTrajectoryFile(file("groundtruth.tum"), /*require_poses=*/false)
           : common::Trajectory{};
   std::vector<MatchingEvent> events;
   if (const auto it = metrics.find("matching_events"); it != metrics.end() && it->is_array()) {

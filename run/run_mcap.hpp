@@ -8,10 +8,10 @@
 #include <vector>
 
 #include "common/tum.hpp"
+#include "formats/mcap_writer.hpp"
+#include "formats/rosbag_writer.hpp"
 #include "run/growing_path.hpp"
-#include "sensors/mcap_writer.hpp"
 #include "sensors/messages.hpp"
-#include "sensors/rosbag_writer.hpp"
 
 namespace isg::run {
 
@@ -33,7 +33,7 @@ inline constexpr char kRunScanTopic[] = "/velodyne_points";
 inline constexpr char kRunDeviationsTopic[] = "/deviations";
 
 struct RunMcapOptions {
-  sensors::McapCompression compression = sensors::McapCompression::kZstd;
+  formats::McapCompression compression = formats::McapCompression::kZstd;
   bool overwrite = false;
   // Whole seconds added to every run time, as in the dataset's MCAP file (McapExportOptions), so
   // that a run and its dataset open side by side in Foxglove.
@@ -69,7 +69,7 @@ struct RunMoment {
 // estimate after each scan; the S-Graph, matching and paths every snapshot_period, and the scans
 // the caller keeps (one per snapshot: LiveRunMcap); the
 // final graph and the deviations at finish(). The file appears at `path` only when finish()
-// returns (sensors::McapWriter).
+// returns (formats::McapWriter).
 class RunMcapWriter {
  public:
   // `agraph`: agraph.json's document, or null for a run without a plan. `R_T_L`: the LiDAR on the
@@ -92,7 +92,7 @@ class RunMcapWriter {
   std::vector<std::pair<std::string, std::uint64_t>> counts() const;
 
  private:
-  sensors::RosTime time(double stamp) const;
+  formats::RosTime time(double stamp) const;
   void writeJson(const std::string& topic, double stamp, const nlohmann::json& message);
   void writeText(const std::string& topic, double stamp, const std::string& text);
   void start(double stamp);
@@ -100,7 +100,7 @@ class RunMcapWriter {
   void writePaths(double stamp);
 
   RunMcapOptions options_;
-  sensors::McapWriter mcap_;
+  formats::McapWriter mcap_;
   std::vector<std::pair<std::string, std::uint16_t>> channels_;
   const nlohmann::json* agraph_;
   std::optional<Eigen::Isometry3d> R_T_L_;

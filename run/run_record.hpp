@@ -18,8 +18,8 @@
 namespace isg::run {
 
 // A run's trajectories are the sensor streams' type (TUM rows).
-using sensors::StampedPose;
-using sensors::Trajectory;
+using common::StampedPose;
+using common::Trajectory;
 
 // What a run is: the world, the method and the seed, and the plan it is measured in.
 struct RunSetup {

@@ -5,13 +5,13 @@
 #include <map>
 #include <string>
 
-#include "sensors/foxglove_json.hpp"
+#include "formats/foxglove_json.hpp"
 
 namespace isg::run {
 
 namespace {
 
-namespace fx = sensors::foxglove;
+namespace fx = formats::foxglove;
 using Json = nlohmann::json;
 using Eigen::Vector3d;
 
@@ -101,7 +101,7 @@ fx::Rgba statusColour(const std::string& status) {
 
 }  // namespace
 
-std::vector<Json> planEntities(const Json& agraph, sensors::RosTime stamp) {
+std::vector<Json> planEntities(const Json& agraph, formats::RosTime stamp) {
   const auto by_level = elevations(agraph);
   const Json& nodes = agraph.at("nodes");
   std::map<std::string, double> wall_thickness;
@@ -153,7 +153,7 @@ std::vector<Json> planEntities(const Json& agraph, sensors::RosTime stamp) {
   return {walls, doorways, rooms};
 }
 
-std::vector<Json> agraphEntities(const Json& agraph, sensors::RosTime stamp) {
+std::vector<Json> agraphEntities(const Json& agraph, formats::RosTime stamp) {
   const auto by_level = elevations(agraph);
   const Json& nodes = agraph.at("nodes");
   std::map<std::string, Vector3d> where;
@@ -195,7 +195,7 @@ std::vector<Json> agraphEntities(const Json& agraph, sensors::RosTime stamp) {
   return {entity, edges};
 }
 
-std::vector<Json> sgraphEntities(const Json& sgraph, sensors::RosTime stamp) {
+std::vector<Json> sgraphEntities(const Json& sgraph, formats::RosTime stamp) {
   Json keyframes = fx::sceneEntity(stamp, "map", "sgraph/keyframes");
   Json planes = fx::sceneEntity(stamp, "map", "sgraph/planes");
   Json rooms = fx::sceneEntity(stamp, "map", "sgraph/rooms");
@@ -269,7 +269,7 @@ std::vector<Json> sgraphEntities(const Json& sgraph, sensors::RosTime stamp) {
 }
 
 std::vector<Json> candidateEntities(const Json& sgraph, const Json& agraph,
-                                    sensors::RosTime stamp) {
+                                    formats::RosTime stamp) {
   Json entity = fx::sceneEntity(stamp, "plan", "matching/candidates");
   const auto matching = sgraph.find("matching");
   if (matching == sgraph.end() || !matching->is_object()) return {entity};
@@ -315,7 +315,7 @@ std::vector<Json> candidateEntities(const Json& sgraph, const Json& agraph,
 }
 
 std::vector<Json> deviationEntities(const Json& deviations, const Json& agraph,
-                                    sensors::RosTime stamp) {
+                                    formats::RosTime stamp) {
   const auto by_level = elevations(agraph);
   Json entity = fx::sceneEntity(stamp, "plan", "deviations/walls");
   constexpr double kLift = 0.05;  // m above the floor, over the room outlines

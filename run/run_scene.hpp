@@ -3,7 +3,7 @@
 #include <nlohmann/json.hpp>
 #include <vector>
 
-#include "sensors/rosbag_writer.hpp"
+#include "formats/rosbag_writer.hpp"
 
 namespace isg::run {
 
@@ -21,19 +21,19 @@ inline constexpr double kPlaneDrawHeight = 2.5;   // m: an S-Graph wall plane's 
 // The plan from agraph.json, in frame "plan": entities "plan/walls" (every wall surface's
 // segments as vertical faces over the surface's z range), "plan/doorways" (flat marks on the
 // floor, the doorway's width along its wall), "plan/rooms" (outlines and names).
-std::vector<nlohmann::json> planEntities(const nlohmann::json& agraph, sensors::RosTime stamp);
+std::vector<nlohmann::json> planEntities(const nlohmann::json& agraph, formats::RosTime stamp);
 
 // The A-Graph from agraph.json, in frame "plan": "agraph/nodes" (walls, rooms, doorways, floors
 // at their layers; each wall surface at the top of its longest segment's middle) and
 // "agraph/edges" (wall–surface, room–surface, doorway–room, floor–room).
-std::vector<nlohmann::json> agraphEntities(const nlohmann::json& agraph, sensors::RosTime stamp);
+std::vector<nlohmann::json> agraphEntities(const nlohmann::json& agraph, formats::RosTime stamp);
 
 // The S-Graph from an sgraph.json document (the is-graphs and s-graph methods' graph()), in frame
 // "map": "sgraph/keyframes", "sgraph/planes" (each plane's observed extent from its floor up
 // kPlaneDrawHeight), "sgraph/rooms", "sgraph/floors", "sgraph/edges" (keyframe–plane, plane–room,
 // room–floor).
 // A graph without those lists (another method's) draws empty entities.
-std::vector<nlohmann::json> sgraphEntities(const nlohmann::json& sgraph, sensors::RosTime stamp);
+std::vector<nlohmann::json> sgraphEntities(const nlohmann::json& sgraph, formats::RosTime stamp);
 
 // The matcher's last attempt (sgraph.json's matching.last_match), in frame "plan":
 // "matching/candidates" — the S-Graph's wall planes on the matched level as each candidate
@@ -41,12 +41,12 @@ std::vector<nlohmann::json> sgraphEntities(const nlohmann::json& sgraph, sensors
 // labelled with its score. Where several candidates fit, they show where the map could be. Empty
 // when the graph has no attempt.
 std::vector<nlohmann::json> candidateEntities(const nlohmann::json& sgraph,
-                                              const nlohmann::json& agraph, sensors::RosTime stamp);
+                                              const nlohmann::json& agraph, formats::RosTime stamp);
 
 // The deviations of deviations.json, in frame "plan": "deviations/walls" — each judged wall's
 // planned line coloured by its status, the as-built segments that judged it, and a label for each
 // deviating wall — and the extra walls; each level at its elevation in `agraph`.
 std::vector<nlohmann::json> deviationEntities(const nlohmann::json& deviations,
-                                              const nlohmann::json& agraph, sensors::RosTime stamp);
+                                              const nlohmann::json& agraph, formats::RosTime stamp);
 
 }  // namespace isg::run

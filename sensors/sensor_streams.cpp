@@ -3,6 +3,7 @@
 #include <cmath>
 
 #include "common/angles.hpp"
+#include "common/tum.hpp"
 
 namespace isg::sensors {
 

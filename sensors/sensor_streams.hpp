@@ -3,23 +3,19 @@
 #include <Eigen/Geometry>
 #include <vector>
 
-#include "common/tum.hpp"
+#include "common/trajectory.hpp"
 #include "sensors/messages.hpp"
 
 namespace isg::sensors {
-
-// The trajectory type of every stream: TUM rows (t, pose). Producers of sensor streams (sim/)
-// name it through here.
-using common::StampedPose;
-using common::Trajectory;
 
 // Everything a run feeds a localizer besides the scans themselves, and what it is judged
 // against: the same whether it comes from the live simulation or from a recorded dataset. The
 // trajectories hold exactly the numbers a dataset's TUM files carry (quantiseStreams), so that a
 // replay sees what the live loop saw.
 struct SensorStreams {
-  Trajectory ground_truth;  // B_T_R
-  Trajectory odometry;  // M_T_R, as the localizer gets it; empty: none (handheld, or a recording)
+  common::Trajectory ground_truth;  // B_T_R
+  common::Trajectory
+      odometry;  // M_T_R, as the localizer gets it; empty: none (handheld, or a recording)
   std::vector<double> scan_stamps;                          // each scan's first firing
   double scan_period = 0.1;                                 // seconds per LiDAR turn
   double duration = 0.0;                                    // seconds of robot time the run covers

@@ -17,7 +17,7 @@
 #include "bim/plan_json.hpp"
 #include "common/atomic_folder.hpp"
 #include "common/input_error.hpp"
-#include "sensors/dataset_format.hpp"
+#include "formats/dataset_format.hpp"
 #include "sim/vlp16.hpp"
 
 namespace isg::sim {
@@ -52,12 +52,12 @@ nlohmann::ordered_json metadata(const Simulation& sim, double duration,
       std::any_of(levels.begin(), levels.end(),
                   [&](const std::string& level) { return level != levels.front(); });
   const auto& gait = sim.baseMotion().gait();
-  json extrinsics = sensors::dataset::extrinsicsJson(l.mount, sim.R_T_L());
-  extrinsics["R_T_I"] = sensors::dataset::mountJson(s.imu.mount, sim.R_T_I());
+  json extrinsics = formats::dataset::extrinsicsJson(l.mount, sim.R_T_L());
+  extrinsics["R_T_I"] = formats::dataset::mountJson(s.imu.mount, sim.R_T_I());
   const auto& imu = s.imu;
   json out = {
-      {"format", sensors::dataset::kFormat},
-      {"version", sensors::dataset::kVersion},
+      {"format", formats::dataset::kFormat},
+      {"version", formats::dataset::kVersion},
       {"generator", "isg simulate 0.1.0"},
       {"scenario", s.source},
       {"plan_file", s.plan_file},
@@ -111,7 +111,7 @@ nlohmann::ordered_json metadata(const Simulation& sim, double duration,
          "rays that meet the robot's body (body_occlusion); returns weaker than a 10 % surface "
          "head-on at detection_range_m (reflectivity * cos(incidence) / range^2); beyond "
          "grazing_cutoff_deg kept with probability cos(incidence) / cos(cutoff); dropout"},
-        {"pcd_data", sensors::dataset::pcdDataName(options.pcd)},
+        {"pcd_data", formats::dataset::pcdDataName(options.pcd)},
         {"pcd_fields",
          "x y z intensity ring time (float32 ×4, uint16, float32), time from the scan stamp "
          "(within point_time_s)"}}},
@@ -122,7 +122,7 @@ nlohmann::ordered_json metadata(const Simulation& sim, double duration,
         {"heading_bias_deg_per_m", s.odometry.heading_bias_deg_per_m},
         {"model", "random walk: std over 1 m = translation_noise m and heading_noise deg"}}},
       {"imu",
-       {{"file", sensors::dataset::kImu},
+       {{"file", formats::dataset::kImu},
         {"rate_hz", imu.rate_hz},
         {"samples", imu_samples},
         {"frame", "I"},
@@ -178,7 +178,7 @@ DatasetSummary writeDataset(Simulation& sim, const std::string& dir, const Datas
   DatasetSummary summary;
   writeFolderAtomically(
       dir, common::OutputKind::kDataset, options.overwrite, [&](const fs::path& temporary) {
-        fs::create_directories(temporary / sensors::dataset::kScans);
+        fs::create_directories(temporary / formats::dataset::kScans);
         const double duration =
             options.duration < 0 ? sim.duration() : std::min(options.duration, sim.duration());
         summary.sim_seconds = duration;
@@ -193,8 +193,8 @@ DatasetSummary writeDataset(Simulation& sim, const std::string& dir, const Datas
             const auto lidar = sim.makeLidar();
             for (int k = next++; k < scans; k = next++) {
               const LidarScan scan = sim.scan(k, *lidar);
-              const std::string bytes = sensors::dataset::pcdBytes(scan.points, options.pcd);
-              writeFile(temporary / sensors::dataset::kScans / sensors::dataset::scanFileName(k),
+              const std::string bytes = formats::dataset::pcdBytes(scan.points, options.pcd);
+              writeFile(temporary / formats::dataset::kScans / formats::dataset::scanFileName(k),
                         bytes);
               scan_bytes += bytes.size();
               points += scan.points.size();
@@ -220,7 +220,7 @@ DatasetSummary writeDataset(Simulation& sim, const std::string& dir, const Datas
         summary.rays = rays;
         summary.scan_bytes = scan_bytes;
 
-        using namespace sensors::dataset;
+        using namespace formats::dataset;
         writeFile(temporary / kGroundTruth,
                   trajectoryText(sim.groundTruth(duration, options.groundtruth_rate)));
         if (const auto odometry = sim.odometry(duration); !odometry.empty()) {

@@ -3,7 +3,7 @@
 #include <functional>
 #include <string>
 
-#include "sensors/dataset_format.hpp"
+#include "formats/dataset_format.hpp"
 #include "sim/lidar_simulator.hpp"
 #include "sim/simulation.hpp"
 
@@ -14,7 +14,7 @@ struct DatasetOptions {
   double groundtruth_rate = 100.0;
   bool overwrite = false;  // replace an existing dataset folder
   int threads = 2;
-  sensors::dataset::PcdData pcd = sensors::dataset::kDefaultPcdData;
+  formats::dataset::PcdData pcd = formats::dataset::kDefaultPcdData;
 };
 
 struct DatasetSummary {

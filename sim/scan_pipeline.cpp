@@ -2,8 +2,8 @@
 
 #include <algorithm>
 
-#include "sensors/dataset_format.hpp"
-#include "sensors/imu_file.hpp"
+#include "formats/dataset_format.hpp"
+#include "formats/imu_file.hpp"
 
 namespace isg::sim {
 
@@ -19,7 +19,7 @@ sensors::SensorStreams sensorStreams(const Simulation& simulation, double durati
   streams.R_T_L = simulation.R_T_L();
   sensors::quantiseStreams(streams);  // as the dataset's TUM files will hold them
   // The IMU as imu.csv holds it: through its text, the one definition of its digits.
-  streams.imu = sensors::parseImuText(sensors::dataset::imuText(simulation.imu(d)), "imu.csv");
+  streams.imu = formats::parseImuText(formats::dataset::imuText(simulation.imu(d)), "imu.csv");
   streams.R_T_I = simulation.R_T_I();
   return streams;
 }

@@ -10,20 +10,20 @@
 
 namespace isg::sim {
 
-sensors::Vlp16Statistics scanStatistics(const std::vector<LidarScan>& clouds,
+formats::Vlp16Statistics scanStatistics(const std::vector<LidarScan>& clouds,
                                         int sequences_per_cloud) {
-  sensors::Vlp16ShotTally tally;
-  std::vector<sensors::Vlp16Turn> turns;
+  formats::Vlp16ShotTally tally;
+  std::vector<formats::Vlp16Turn> turns;
   for (const LidarScan& cloud : clouds) {
     for (int ring = 0; ring < Vlp16::kLasers; ++ring) tally.shots[ring] += sequences_per_cloud;
     // A shot is its ring and instant: dual returns give one shot two points.
     std::set<std::pair<int, float>> echoed;
-    sensors::Vlp16Turn turn;
+    formats::Vlp16Turn turn;
     turn.complete = true;
     turn.points.reserve(cloud.points.size());
     for (const LidarPoint& p : cloud.points) {
       if (echoed.emplace(p.ring, p.time).second) ++tally.echoed[p.ring];
-      sensors::Vlp16Point point;
+      formats::Vlp16Point point;
       point.x = p.x;
       point.y = p.y;
       point.z = p.z;
@@ -39,7 +39,7 @@ sensors::Vlp16Statistics scanStatistics(const std::vector<LidarScan>& clouds,
     }
     turns.push_back(std::move(turn));
   }
-  return sensors::vlp16Statistics(tally, turns);
+  return formats::vlp16Statistics(tally, turns);
 }
 
 }  // namespace isg::sim

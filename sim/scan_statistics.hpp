@@ -2,7 +2,7 @@
 
 #include <vector>
 
-#include "sensors/vlp16_statistics.hpp"
+#include "formats/vlp16_statistics.hpp"
 #include "sim/lidar_simulator.hpp"
 
 namespace isg::sim {
@@ -11,7 +11,7 @@ namespace isg::sim {
 // measures a real recording: each cloud is one complete turn of `sequences_per_cloud` firing
 // sequences, every (sequence, laser) a shot; a shot with any point has an echo. Points become
 // decoded returns (distance from the laser's origin, azimuth clockwise from x in 0.01°).
-sensors::Vlp16Statistics scanStatistics(const std::vector<LidarScan>& clouds,
+formats::Vlp16Statistics scanStatistics(const std::vector<LidarScan>& clouds,
                                         int sequences_per_cloud);
 
 }  // namespace isg::sim

@@ -115,8 +115,8 @@ LidarScan Simulation::scanBlocks(int index, LidarSimulator& lidar, int first_blo
       deriveSeed(scenario_.seed, kScanStream, std::uint64_t(index)), first_block, last_block);
 }
 
-sensors::Trajectory Simulation::groundTruth(double duration, double rate_hz) const {
-  sensors::Trajectory out;
+common::Trajectory Simulation::groundTruth(double duration, double rate_hz) const {
+  common::Trajectory out;
   const int n = int(std::floor(duration * rate_hz + 1e-9));
   for (int i = 0; i <= n; ++i) {
     const double t = i / rate_hz;
@@ -125,8 +125,8 @@ sensors::Trajectory Simulation::groundTruth(double duration, double rate_hz) con
   return out;
 }
 
-sensors::Trajectory Simulation::odometry(double duration) const {
-  sensors::Trajectory out;
+common::Trajectory Simulation::odometry(double duration) const {
+  common::Trajectory out;
   if (scenario_.robot.carrier == bim::Carrier::kHandheld) return out;  // a person has none
   auto rng = generator(kOdometryStream);
   OdometryModel model(scenario_.odometry, base_motion_->pose(0.0));
@@ -151,8 +151,8 @@ std::vector<ImuSample> Simulation::imu(double duration) const {
                      deriveSeed(scenario_.seed, kImuStream, 0));
 }
 
-sensors::Trajectory Simulation::scanPoses(double duration) const {
-  sensors::Trajectory out;
+common::Trajectory Simulation::scanPoses(double duration) const {
+  common::Trajectory out;
   for (int k = 0; k < scanCount(duration); ++k) {
     const double t = k * scanPeriod() + scanStampOffset();
     out.push_back({t, B_T_L(t)});

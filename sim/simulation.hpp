@@ -53,11 +53,11 @@ class Simulation {
   const LidarSimulator& lidar() const { return *lidar_; }
   Eigen::Isometry3d B_T_L(double t) const { return base_motion_->pose(t) * R_T_L_; }
 
-  sensors::Trajectory groundTruth(double duration, double rate_hz) const;
+  common::Trajectory groundTruth(double duration, double rate_hz) const;
   // M_T_R at odometry.rate_hz; none for a handheld carrier.
-  sensors::Trajectory odometry(double duration) const;
-  sensors::Trajectory scanPoses(double duration) const;  // B_T_L at each scan's stamp
-  std::vector<ImuSample> imu(double duration) const;     // the IMU stream (scenario imu)
+  common::Trajectory odometry(double duration) const;
+  common::Trajectory scanPoses(double duration) const;  // B_T_L at each scan's stamp
+  std::vector<ImuSample> imu(double duration) const;    // the IMU stream (scenario imu)
   // The IMU on the base (scenario imu.mount).
   const Eigen::Isometry3d& R_T_I() const { return R_T_I_; }
 

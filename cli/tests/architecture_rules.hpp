@@ -27,18 +27,20 @@ inline const std::map<std::string, std::set<std::string>>& allowedModules() {
       {"ifc", {"common", "bim"}},
       {"eval", {"common"}},
       {"sensors", {"common"}},
+      {"formats", {"common", "sensors"}},
+      {"recordings", {"common", "sensors", "formats"}},
       {"slam", {"common", "bim", "sensors"}},
       {"slam/sgraph", {"common", "bim", "sensors", "slam"}},
       {"slam/isgraph", {"common", "bim", "sensors", "slam", "slam/sgraph"}},
       {"slam/baselines", {"common", "bim", "sensors", "slam"}},
       {"run",
-       {"common", "bim", "eval", "sensors", "slam", "slam/sgraph", "slam/isgraph",
+       {"common", "bim", "eval", "sensors", "formats", "slam", "slam/sgraph", "slam/isgraph",
         "slam/baselines"}},
-      {"sim", {"common", "bim", "worlds", "sensors"}},
-      {"sweep", {"common", "bim", "worlds", "eval", "sensors", "run", "sim"}},
+      {"sim", {"common", "bim", "worlds", "sensors", "formats"}},
+      {"sweep", {"common", "bim", "worlds", "eval", "run", "sim"}},
       {"cli",
-       {"common", "bim", "worlds", "ifc", "eval", "sensors", "slam", "slam/sgraph",
-        "slam/isgraph", "slam/baselines", "run", "sim", "sweep"}},
+       {"common", "bim", "worlds", "ifc", "eval", "sensors", "formats", "recordings", "slam",
+        "slam/sgraph", "slam/isgraph", "slam/baselines", "run", "sim", "sweep"}},
   };
   return allowed;
 }
@@ -48,6 +50,19 @@ inline bool headerAllowed(const std::string& from, const std::string& header) {
   // slam's PCL header is slam's own: no user of slam compiles PCL.
   if (header == "slam/sgraph/pcl_planes.hpp") return from == "slam/sgraph";
   return true;
+}
+
+// The headers of the codecs and message libraries that only formats/ uses (compression, SQLite,
+// Debian's ROS 1 message headers): the localizers must not carry them.
+inline bool isCodecHeader(const std::string& header) {
+  static const std::set<std::string> codecs{"lzf.h",  "bzlib.h", "lz4.h",    "lz4frame.h",
+                                            "zstd.h", "zlib.h",  "sqlite3.h"};
+  if (codecs.count(header)) return true;
+  for (const char* ros :
+       {"ros/", "sensor_msgs/", "nav_msgs/", "geometry_msgs/", "tf2_msgs/", "std_msgs/"}) {
+    if (header.rfind(ros, 0) == 0) return true;
+  }
+  return false;
 }
 
 struct Violation {
@@ -118,6 +133,11 @@ inline void checkIncludes(const fs::path& root, const fs::path& relative,
       if (target.rfind("mujoco/", 0) == 0 && module != "sim") {
         out.push_back({relative.string(), number,
                        module + " may not include MuJoCo (<" + target + ">): only sim runs it"});
+      }
+      if (isCodecHeader(target) && module != "formats") {
+        out.push_back({relative.string(), number,
+                       module + " may not include <" + target +
+                           ">: file formats and their codecs stay inside formats"});
       }
       if (target.rfind("pcl/", 0) == 0) {
         const bool private_pcl = relative == fs::path("slam/sgraph/pcl_planes.hpp") ||

@@ -60,6 +60,8 @@ TEST_F(ArchitectureChecker, ABadIncludeIsNamedWithFileAndLine) {
   write("slam/sgraph/tests/t.cpp",
         "#include \"slam/sgraph/sgraph.hpp\"\n#include \"run/driver.hpp\"\n");
   write("run/x.hpp", "#include <mujoco/mujoco.h>\n#include <pcl/point_types.h>\n");
+  write("slam/sgraph/y.cpp", "#include <zstd.h>\n#include <sensor_msgs/PointCloud2.h>\n");
+  write("formats/z.cpp", "#include <zstd.h>\n#include <sensor_msgs/PointCloud2.h>\n");
   write("worlds/tests/t.cpp", "#include \"sim/mujoco_world.hpp\"\n");
   EXPECT_EQ(found(),
             (std::vector<std::string>{
@@ -75,6 +77,10 @@ TEST_F(ArchitectureChecker, ABadIncludeIsNamedWithFileAndLine) {
                     allowed("slam/baselines"),
                 "slam/sgraph/tests/t.cpp:2: slam/sgraph may not include \"run/driver.hpp\" " +
                     allowed("slam/sgraph"),
+                "slam/sgraph/y.cpp:1: slam/sgraph may not include <zstd.h>: file formats and "
+                "their codecs stay inside formats",
+                "slam/sgraph/y.cpp:2: slam/sgraph may not include <sensor_msgs/PointCloud2.h>: "
+                "file formats and their codecs stay inside formats",
                 "worlds/tests/t.cpp:1: worlds may not include \"sim/mujoco_world.hpp\" " +
                     allowed("worlds")}));
 }

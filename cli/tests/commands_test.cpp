@@ -637,7 +637,7 @@ TEST(Import, BadModelsExitOneAndWriteNothing) {
 
 TEST(Vlp16, ReportsARealRecordingsReturnsAndWritesNothing) {
   testing::Sandbox sandbox("vlp16");
-  const std::string data = std::string(ISG_SOURCE_DIR) + "/sensors/tests/data/vlp16-real/";
+  const std::string data = std::string(ISG_SOURCE_DIR) + "/formats/tests/data/vlp16-real/";
   auto result = sandbox.run("vlp16 '" + data + "nebula-vlp16-indoor.db3'");
   EXPECT_EQ(result.exit_code, 0) << result.err;
   EXPECT_THAT(result.out, HasSubstr(": 603 data packets (dual return), 0 position packets"));

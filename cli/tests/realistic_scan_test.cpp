@@ -11,8 +11,8 @@
 
 #include "bim/scenario.hpp"
 #include "cli/tests/cli_runner.hpp"
+#include "formats/vlp16_statistics.hpp"
 #include "ifc/ifc_import.hpp"
-#include "sensors/vlp16_statistics.hpp"
 #include "sim/scan_statistics.hpp"
 #include "sim/simulation.hpp"
 #include "sim/vlp16.hpp"
@@ -22,7 +22,7 @@ namespace {
 
 // The robot's first scan, standing at its route's start in the duplex's first storey, with the
 // puck on its body (mount z 0.14), in the plan as imported or with its windows walled up.
-sensors::Vlp16Statistics firstScan(const testing::Sandbox& sandbox, bool windows) {
+formats::Vlp16Statistics firstScan(const testing::Sandbox& sandbox, bool windows) {
   nlohmann::ordered_json plan =
       ifc::importIfc(std::string(ISG_SOURCE_DIR) + "/ifc/tests/models/duplex.ifc", {}).plan_json;
   if (!windows) {
@@ -41,8 +41,8 @@ sensors::Vlp16Statistics firstScan(const testing::Sandbox& sandbox, bool windows
 
 TEST(RealisticScan, ARoomWithWindowsLosesWhatARealIndoorScanLoses) {
   const testing::Sandbox sandbox("realistic_scan");
-  const sensors::Vlp16Statistics with = firstScan(sandbox, true);
-  const sensors::Vlp16Statistics walled_up = firstScan(sandbox, false);
+  const formats::Vlp16Statistics with = firstScan(sandbox, true);
+  const formats::Vlp16Statistics walled_up = firstScan(sandbox, false);
   for (int ring = 0; ring < 16; ++ring) {
     std::printf("ring %2d: lost %5.1f %% (windows walled up: %5.1f %%)\n", ring,
                 100 * with.lost_by_ring[ring], 100 * walled_up.lost_by_ring[ring]);

@@ -11,11 +11,12 @@
 
 #include "common/atomic_folder.hpp"
 #include "common/input_error.hpp"
+#include "common/tum.hpp"
+#include "formats/dataset_format.hpp"
+#include "formats/dataset_reader.hpp"
 #include "run/builtin_methods.hpp"
 #include "run/driver.hpp"
 #include "run/evaluate_run.hpp"
-#include "sensors/dataset_format.hpp"
-#include "sensors/dataset_reader.hpp"
 
 namespace isg::run {
 namespace {
@@ -58,7 +59,7 @@ class SyntheticDataset : public ::testing::Test {
           for (int i = 0; i <= int(duration * 50); ++i) {
             odometry.push_back({i / 50.0, B_T_R(0).inverse() * B_T_R(i / 50.0)});
           }
-          fs::create_directories(tmp / sensors::dataset::kScans);
+          fs::create_directories(tmp / formats::dataset::kScans);
           for (int k = 0; k * period + period <= duration; ++k) {
             const double stamp = k * period;
             const Eigen::Isometry3d B_T_L = B_T_R(stamp) * R_T_L;  // no motion within a turn
@@ -77,28 +78,28 @@ class SyntheticDataset : public ::testing::Test {
                                   std::uint16_t(ring), float(period * step / 900)});
               }
             }
-            common::writeFile(tmp / sensors::dataset::kScans / sensors::dataset::scanFileName(k),
-                              sensors::dataset::pcdBinary(points));
+            common::writeFile(tmp / formats::dataset::kScans / formats::dataset::scanFileName(k),
+                              formats::dataset::pcdBinary(points));
           }
-          common::writeFile(tmp / sensors::dataset::kGroundTruth,
-                            sensors::dataset::trajectoryText(truth));
-          common::writeFile(tmp / sensors::dataset::kOdometry,
-                            sensors::dataset::trajectoryText(odometry));
-          common::writeFile(tmp / sensors::dataset::kScanPoses,
-                            sensors::dataset::trajectoryText(scan_poses));
-          nlohmann::ordered_json metadata = {{"format", sensors::dataset::kFormat},
-                                             {"version", sensors::dataset::kVersion},
+          common::writeFile(tmp / formats::dataset::kGroundTruth,
+                            formats::dataset::trajectoryText(truth));
+          common::writeFile(tmp / formats::dataset::kOdometry,
+                            formats::dataset::trajectoryText(odometry));
+          common::writeFile(tmp / formats::dataset::kScanPoses,
+                            formats::dataset::trajectoryText(scan_poses));
+          nlohmann::ordered_json metadata = {{"format", formats::dataset::kFormat},
+                                             {"version", formats::dataset::kVersion},
                                              {"seed", 5},
                                              {"duration_s", duration},
                                              {"lidar", {{"rate_hz", 1.0 / period}}}};
-          metadata["extrinsics"] = sensors::dataset::extrinsicsJson({0, 0, 0.5, 0, 0, 0}, R_T_L);
-          common::writeFile(tmp / sensors::dataset::kMetadata, metadata.dump(2));
+          metadata["extrinsics"] = formats::dataset::extrinsicsJson({0, 0, 0.5, 0, 0, 0}, R_T_L);
+          common::writeFile(tmp / formats::dataset::kMetadata, metadata.dump(2));
         });
   }
   void TearDown() override { fs::remove_all(dir_); }
 
   RunRecord replay(const std::string& method) {
-    sensors::DatasetReader dataset(dir_.string());
+    formats::DatasetReader dataset(dir_.string());
     sensors::SensorStreams streams = dataset.streams();
     LocalizerContext context;
     context.R_T_L = streams.R_T_L;
@@ -114,7 +115,7 @@ class SyntheticDataset : public ::testing::Test {
 };
 
 TEST_F(SyntheticDataset, ReaderGivesTheStreamsAsWritten) {
-  sensors::DatasetReader dataset(dir_.string());
+  formats::DatasetReader dataset(dir_.string());
   EXPECT_EQ(dataset.scanCount(), 60);
   EXPECT_DOUBLE_EQ(dataset.scanPeriod(), 0.1);
   const sensors::SensorStreams streams = dataset.streams();
@@ -163,7 +164,7 @@ TEST_F(SyntheticDataset, SGraphReplayIsDeterministicAndMapsTheRoom) {
 
 TEST(DatasetReader, MissingFolderAndBadRateAreNamed) {
   try {
-    sensors::DatasetReader reader("/nonexistent/dataset");
+    formats::DatasetReader reader("/nonexistent/dataset");
     FAIL();
   } catch (const common::InputError& e) {
     EXPECT_STREQ(e.what(), "/nonexistent/dataset: not a dataset folder (no such directory)");

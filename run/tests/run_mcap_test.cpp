@@ -1,9 +1,9 @@
 
 #include "run/run_mcap.hpp"
 #include "common/input_error.hpp"
+#include "formats/foxglove_json.hpp"
 #include "run/growing_path.hpp"
 #include "run/live_run_mcap.hpp"
-#include "sensors/foxglove_json.hpp"
 
 #include <gtest/gtest.h>
 #include <unistd.h>
@@ -73,12 +73,12 @@ TEST_F(RunMcapWriterTest, SnapshotsComeOncePerPeriodAndTheFileOnlyAtTheEnd) {
 
 // A foxglove.PosesInFrame built whole, as nlohmann::json writes it: what GrowingPath's text must
 // be.
-std::string posesInFrame(sensors::RosTime stamp, const std::string& frame,
+std::string posesInFrame(formats::RosTime stamp, const std::string& frame,
                          const std::vector<Eigen::Isometry3d>& poses) {
   nlohmann::json list = nlohmann::json::array();
-  for (const auto& T : poses) list.push_back(sensors::foxglove::pose(T));
+  for (const auto& T : poses) list.push_back(formats::foxglove::pose(T));
   return nlohmann::json{
-      {"timestamp", sensors::foxglove::time(stamp)}, {"frame_id", frame}, {"poses", list}}
+      {"timestamp", formats::foxglove::time(stamp)}, {"frame_id", frame}, {"poses", list}}
       .dump();
 }
 
@@ -89,7 +89,7 @@ TEST(GrowingPath, KeepsAPoseEverySpacingAndTheLatestAsPosesInFrameWritesThem) {
   // 0 kept; 0.05 not (5 cm from 0); 0.12 kept; 0.2 not (8 cm from 0.12), but the latest.
   for (double x : {0.0, 0.05, 0.12, 0.2}) path.add(at(x));
   EXPECT_EQ(path.size(), 3);
-  const sensors::RosTime stamp{1000000002, 5};
+  const formats::RosTime stamp{1000000002, 5};
   EXPECT_EQ(path.message(stamp, "plan"), posesInFrame(stamp, "plan", {at(0.0), at(0.12), at(0.2)}));
   path.add(at(0.25));  // 13 cm from 0.12: kept, and the latest
   EXPECT_EQ(path.size(), 3);

@@ -1,3 +1,4 @@
+
 #include "run/run_scene.hpp"
 
 #include <gtest/gtest.h>
@@ -42,7 +43,7 @@ Eigen::Vector3d point(const Json& p) {
 }
 
 TEST(RunScene, ThePlanDrawsWallFacesDoorwaysAndRoomsOnTheirStorey) {
-  const auto plan = planEntities(handAGraph(), sensors::RosTime{5, 0});
+  const auto plan = planEntities(handAGraph(), formats::RosTime{5, 0});
   ASSERT_EQ(plan.size(), 3u);
   const Json& faces = (*entity(plan, "plan/walls"))["triangles"][0]["points"];
   ASSERT_EQ(faces.size(), 6u);  // one segment: two triangles
@@ -66,7 +67,7 @@ TEST(RunScene, ThePlanDrawsWallFacesDoorwaysAndRoomsOnTheirStorey) {
 }
 
 TEST(RunScene, TheAGraphStandsInLayersAboveItsStorey) {
-  const auto agraph = agraphEntities(handAGraph(), sensors::RosTime{});
+  const auto agraph = agraphEntities(handAGraph(), formats::RosTime{});
   const Json& spheres = (*entity(agraph, "agraph/nodes"))["spheres"];
   ASSERT_EQ(spheres.size(), 5u);  // surface, wall, room, doorway, floor
   // The surface at the middle of its segment, at its top; the wall at 3 + kWallLayerHeight.
@@ -86,7 +87,7 @@ TEST(RunScene, TheSGraphDrawsPlanesRoomsAndTheirEdgesInTheMap) {
     "rooms": [{"id": 0, "floor": 0, "centre": [1.0, 1.0], "plane_pairs": [[0, 1]]}],
     "floors": [{"id": 0, "height": -0.5, "centre": [1.0, 1.0]}]
   })");
-  const auto drawn = sgraphEntities(sgraph, sensors::RosTime{});
+  const auto drawn = sgraphEntities(sgraph, formats::RosTime{});
   ASSERT_EQ(drawn.size(), 5u);
   for (const Json& e : drawn) EXPECT_EQ(e["frame_id"], "map");
   EXPECT_EQ((*entity(drawn, "sgraph/keyframes"))["spheres"].size(), 2u);
@@ -103,7 +104,7 @@ TEST(RunScene, TheSGraphDrawsPlanesRoomsAndTheirEdgesInTheMap) {
   EXPECT_EQ(point(edges[3]), Eigen::Vector3d(1, 1, -0.5 + kRoomLayerHeight));
   EXPECT_EQ(point(edges[5]), Eigen::Vector3d(1, 1, -0.5 + kFloorLayerHeight));
   // Another method's graph: the same entities, empty.
-  const auto none = sgraphEntities(Json::object(), sensors::RosTime{});
+  const auto none = sgraphEntities(Json::object(), formats::RosTime{});
   ASSERT_EQ(none.size(), 5u);
   EXPECT_TRUE((*entity(none, "sgraph/edges"))["lines"].empty());
 }
@@ -118,7 +119,7 @@ TEST(RunScene, EachCandidatePlacesTheMapsWallsOnTheMatchedLevel) {
                     "score": 10.04},
                    {"B_T_M": {"x": 0.0, "y": 0.0, "yaw": 0.0}, "score": 3.25}]}}
   })");
-  const auto drawn = candidateEntities(sgraph, handAGraph(), sensors::RosTime{});
+  const auto drawn = candidateEntities(sgraph, handAGraph(), formats::RosTime{});
   ASSERT_EQ(drawn.size(), 1u);
   const Json& e = drawn[0];
   EXPECT_EQ(e["frame_id"], "plan");
@@ -132,7 +133,7 @@ TEST(RunScene, EachCandidatePlacesTheMapsWallsOnTheMatchedLevel) {
   EXPECT_EQ(e["texts"][1]["text"], "score 3.2");
   // No attempt yet: an empty entity, which clears the last one drawn.
   EXPECT_TRUE(
-      candidateEntities(Json::object(), handAGraph(), sensors::RosTime{})[0]["lines"].empty());
+      candidateEntities(Json::object(), handAGraph(), formats::RosTime{})[0]["lines"].empty());
 }
 
 TEST(RunScene, DeviationsAreColouredAndTheDeviatingOnesLabelled) {
@@ -145,7 +146,7 @@ TEST(RunScene, DeviationsAreColouredAndTheDeviatingOnesLabelled) {
        "planned": {"start": [4, 0], "end": [4, 4]}, "evidence": []}],
     "extra_walls": [{"level": "L1", "start": [1, 1], "end": [1, 3]}]
   })");
-  const auto drawn = deviationEntities(deviations, handAGraph(), sensors::RosTime{});
+  const auto drawn = deviationEntities(deviations, handAGraph(), formats::RosTime{});
   ASSERT_EQ(drawn.size(), 1u);
   const Json& walls = drawn[0];
   // W1 planned + its evidence, W2 planned, the extra wall.

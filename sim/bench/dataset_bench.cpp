@@ -1,13 +1,11 @@
-// Dataset synthesis end to end, as `isg simulate` and `isg export` do it: D1 as built to a
-// compressed dataset on two threads (robot seconds per wall second: the real-time factor), and
-// that dataset exported as a ROS 1 bag (MB/s of bag written). Both include the file system's
-// cost (docs/performance.md, "Datasets").
+// Dataset synthesis end to end, as `isg simulate` does it: D1 as built to a compressed dataset on
+// two threads (robot seconds per wall second: the real-time factor), the file system's cost
+// included (docs/performance.md, "Datasets"; the export to a bag: cli/bench/export_bench.cpp).
 #include <benchmark/benchmark.h>
 #include <unistd.h>
 
 #include <filesystem>
 
-#include "sensors/rosbag_export.hpp"
 #include "sim/dataset_writer.hpp"
 #include "sim/simulation.hpp"
 #include "worlds/reference_plans.hpp"
@@ -36,26 +34,6 @@ void BM_SimulateToCompressedDataset_D1(benchmark::State& state) {
   fs::remove_all(dir);
 }
 BENCHMARK(BM_SimulateToCompressedDataset_D1)->Unit(benchmark::kSecond)->UseRealTime();
-
-void BM_ExportRosbag_D1(benchmark::State& state) {
-  const fs::path dir = scratch();
-  fs::create_directories(dir);
-  {
-    Simulation sim(worlds::loadScenarioOrBuiltin("builtin:d1.asbuilt", nullptr));
-    writeDataset(sim, (dir / "ds").string(), DatasetOptions{}, nullptr);
-  }
-  sensors::RosbagExportOptions options;
-  options.overwrite = true;
-  sensors::ExportSummary summary;
-  for (auto _ : state) {
-    summary =
-        sensors::exportRosbag((dir / "ds").string(), (dir / "d1.bag").string(), options, nullptr);
-  }
-  state.SetBytesProcessed(std::int64_t(summary.bytes) * std::int64_t(state.iterations()));
-  state.counters["bag_MB"] = double(summary.bytes) / 1e6;
-  fs::remove_all(dir);
-}
-BENCHMARK(BM_ExportRosbag_D1)->Unit(benchmark::kSecond)->UseRealTime();
 
 }  // namespace
 }  // namespace isg::sim

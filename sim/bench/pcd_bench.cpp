@@ -3,21 +3,21 @@
 // points (22 bytes each) and the file's size against the binary one (docs/performance.md).
 #include <benchmark/benchmark.h>
 
-#include "sensors/dataset_format.hpp"
+#include "formats/dataset_format.hpp"
 #include "sim/simulation.hpp"
 #include "worlds/reference_plans.hpp"
 
 namespace isg::sim {
 namespace {
 
-void BM_PcdEncode_D6(benchmark::State& state, sensors::dataset::PcdData data) {
+void BM_PcdEncode_D6(benchmark::State& state, formats::dataset::PcdData data) {
   static const std::vector<sensors::ScanPoint> points = [] {
     Simulation sim(worlds::loadScenarioOrBuiltin("builtin:d6.asbuilt", nullptr));
     return sim.scan(1000).points;
   }();
   std::size_t bytes = 0;
   for (auto _ : state) {
-    bytes = sensors::dataset::pcdBytes(points, data).size();
+    bytes = formats::dataset::pcdBytes(points, data).size();
     benchmark::DoNotOptimize(bytes);
   }
   const double raw = 22.0 * double(points.size());
@@ -25,11 +25,11 @@ void BM_PcdEncode_D6(benchmark::State& state, sensors::dataset::PcdData data) {
   state.counters["points"] = double(points.size());
   state.counters["size_vs_binary"] =
       double(bytes) /
-      double(sensors::dataset::pcdBytes(points, sensors::dataset::PcdData::kBinary).size());
+      double(formats::dataset::pcdBytes(points, formats::dataset::PcdData::kBinary).size());
 }
-BENCHMARK_CAPTURE(BM_PcdEncode_D6, binary, sensors::dataset::PcdData::kBinary)
+BENCHMARK_CAPTURE(BM_PcdEncode_D6, binary, formats::dataset::PcdData::kBinary)
     ->Unit(benchmark::kMillisecond);
-BENCHMARK_CAPTURE(BM_PcdEncode_D6, binary_compressed, sensors::dataset::PcdData::kBinaryCompressed)
+BENCHMARK_CAPTURE(BM_PcdEncode_D6, binary_compressed, formats::dataset::PcdData::kBinaryCompressed)
     ->Unit(benchmark::kMillisecond);
 
 }  // namespace

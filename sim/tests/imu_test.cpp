@@ -1,6 +1,6 @@
 
 #include "common/angles.hpp"
-#include "sensors/dataset_format.hpp"
+#include "formats/dataset_format.hpp"
 #include "sim/imu_simulator.hpp"
 #include "sim/simulation.hpp"
 #include "worlds/reference_plans.hpp"
@@ -253,9 +253,9 @@ TEST(Imu, SameSeedSameBytes) {
   GaitConfig gait;
   const BaseMotion t({{0, 0}, {2, 0}, {2, 2}}, 0.0, 0.5, 0.0, gait);
   bim::ImuConfig config;
-  const std::string a = sensors::dataset::imuText(simulateImu(t, config, t.duration(), 5));
-  const std::string b = sensors::dataset::imuText(simulateImu(t, config, t.duration(), 5));
-  const std::string c = sensors::dataset::imuText(simulateImu(t, config, t.duration(), 6));
+  const std::string a = formats::dataset::imuText(simulateImu(t, config, t.duration(), 5));
+  const std::string b = formats::dataset::imuText(simulateImu(t, config, t.duration(), 5));
+  const std::string c = formats::dataset::imuText(simulateImu(t, config, t.duration(), 6));
   EXPECT_EQ(a, b);
   EXPECT_NE(a, c);
   EXPECT_EQ(a.substr(0, a.find('\n')), "t,ax,ay,az,gx,gy,gz");

@@ -10,9 +10,9 @@
 #include <numbers>
 #include <vector>
 
-#include "sensors/vlp16_recording.hpp"
-#include "sensors/vlp16_statistics.hpp"
-#include "sensors/vlp16_turns.hpp"
+#include "formats/vlp16_recording.hpp"
+#include "formats/vlp16_statistics.hpp"
+#include "formats/vlp16_turns.hpp"
 #include "sim/lidar_simulator.hpp"
 #include "sim/robot_model.hpp"
 #include "sim/scan_statistics.hpp"
@@ -27,15 +27,15 @@ namespace {
 
 using by_hand::blockedByTheTop;
 
-// The indoor fixture (a dual-return ROS 2 bag of raw packets, sensors/tests/data/vlp16-real/),
+// The indoor fixture (a dual-return ROS 2 bag of raw packets, formats/tests/data/vlp16-real/),
 // decoded by the project's decoder with the driver's defaults: the share of shots without an
 // echo and the reflectivity quantiles of its returns (49.3 %, 33 and 100).
-const sensors::Vlp16Statistics& realIndoor() {
-  static const sensors::Vlp16Statistics statistics = [] {
-    const auto recording = sensors::readVlp16Recording(
-        std::string(ISG_SOURCE_DIR) + "/sensors/tests/data/vlp16-real/nebula-vlp16-indoor.db3",
-        sensors::Vlp16DecodeOptions{});
-    return sensors::vlp16Statistics(recording.tally, sensors::cutIntoTurns(recording.points));
+const formats::Vlp16Statistics& realIndoor() {
+  static const formats::Vlp16Statistics statistics = [] {
+    const auto recording = formats::readVlp16Recording(
+        std::string(ISG_SOURCE_DIR) + "/formats/tests/data/vlp16-real/nebula-vlp16-indoor.db3",
+        formats::Vlp16DecodeOptions{});
+    return formats::vlp16Statistics(recording.tally, formats::cutIntoTurns(recording.points));
   }();
   return statistics;
 }
@@ -74,7 +74,7 @@ TEST(LidarRealism, AnIndoorScanLosesWhatTheRealSensorLoses) {
     ++returned[laser];
   }
   // The scan's statistics by the code that measures the real recording.
-  const sensors::Vlp16Statistics simulated = scanStatistics({scan}, sequences);
+  const formats::Vlp16Statistics simulated = scanStatistics({scan}, sequences);
   // The lowest laser (−15°) sees nothing but the body; the body shadows the lower lasers less
   // and less; no laser looking up is shadowed.
   EXPECT_EQ(blocked[0], sequences);
@@ -101,7 +101,7 @@ TEST(LidarRealism, AnIndoorScanLosesWhatTheRealSensorLoses) {
   EXPECT_GT(shadow_share, 0.20);
   EXPECT_GE(lost, shadow_share);
   EXPECT_LE(lost, shadow_share + 0.02);
-  const sensors::Vlp16Statistics& real = realIndoor();
+  const formats::Vlp16Statistics& real = realIndoor();
   EXPECT_NEAR(real.lost, 0.493, 0.001);
   EXPECT_LT(lost, real.lost);
   // Calibrated intensities within a factor 2 of the real ones.

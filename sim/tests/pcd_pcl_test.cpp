@@ -8,8 +8,8 @@
 #include <filesystem>
 #include <fstream>
 
-#include "sensors/dataset_format.hpp"
-#include "sensors/pcd_reader.hpp"
+#include "formats/dataset_format.hpp"
+#include "formats/pcd_reader.hpp"
 #include "sim/simulation.hpp"
 #include "worlds/reference_plans.hpp"
 
@@ -17,7 +17,7 @@ namespace isg::sim {
 namespace {
 
 namespace fs = std::filesystem;
-using sensors::dataset::PcdData;
+using formats::dataset::PcdData;
 
 void write(const fs::path& path, const std::string& bytes) {
   std::ofstream(path, std::ios::binary) << bytes;
@@ -56,8 +56,8 @@ TEST(PcdWithPcl, PclReadsOurScansAndWeReadPcls) {
   const LidarScan scan = sim.scan(5);
   ASSERT_GT(scan.points.size(), 20000u);
   for (PcdData data : {PcdData::kBinary, PcdData::kBinaryCompressed}) {
-    const fs::path ours = dir / (std::string(sensors::dataset::pcdDataName(data)) + ".pcd");
-    write(ours, sensors::dataset::pcdBytes(scan.points, data));
+    const fs::path ours = dir / (std::string(formats::dataset::pcdDataName(data)) + ".pcd");
+    write(ours, formats::dataset::pcdBytes(scan.points, data));
     pcl::PCLPointCloud2 cloud;
     ASSERT_EQ(pcl::io::loadPCDFile(ours.string(), cloud), 0) << ours;
     ASSERT_EQ(cloud.point_step, 22u);
@@ -65,12 +65,12 @@ TEST(PcdWithPcl, PclReadsOurScansAndWeReadPcls) {
     for (const auto& f : cloud.fields) fields += f.name + " ";
     EXPECT_EQ(fields, "x y z intensity ring time ");
     expectSame(pointsOf(cloud), scan.points);
-    expectSame(sensors::readPcd(ours.string()), scan.points);
+    expectSame(formats::readPcd(ours.string()), scan.points);
 
     // PCL's own binary_compressed writer, read back by ours.
     const fs::path theirs = dir / "pcl.pcd";
     ASSERT_EQ(pcl::PCDWriter().writeBinaryCompressed(theirs.string(), cloud), 0);
-    expectSame(sensors::readPcd(theirs.string()), scan.points);
+    expectSame(formats::readPcd(theirs.string()), scan.points);
   }
   fs::remove_all(dir);
 }

@@ -1,6 +1,7 @@
 
 #include "sim/simulation.hpp"
 #include "bim/polygon.hpp"
+#include "common/tum.hpp"
 #include "sim/dataset_writer.hpp"
 #include "sim/odometry_model.hpp"
 #include "worlds/reference_plans.hpp"
@@ -122,7 +123,7 @@ TEST(Simulation, KidnappedRobotJumpsUnseenByOdometry) {
   const auto truth = sim.groundTruth(sim.duration(), 50.0);
   const auto odometry = sim.odometry(sim.duration());
   // Largest step between consecutive rows: the truth's at the kidnap; the odometry's a walk's.
-  auto largest_step = [](const sensors::Trajectory& t, double* at) {
+  auto largest_step = [](const common::Trajectory& t, double* at) {
     double largest = 0.0;
     for (std::size_t i = 1; i < t.size(); ++i) {
       const double step = (t[i].pose.translation() - t[i - 1].pose.translation()).norm();

@@ -151,7 +151,7 @@ TEST_P(KidnapAcrossStoreys, LostThenRelocalizedOnTheLevelPutDownOn) {
   EXPECT_LT(wrong.seconds, 3.0);
 
   // From the relocalization on: right in the plane and in height, to the end of the tour.
-  sensors::Trajectory after;
+  common::Trajectory after;
   for (const auto& pose : record.estimate) {
     if (pose.t >= again->stamp) after.push_back(pose);
   }

@@ -1,0 +1,197 @@
+#include "formats/ros2_messages.hpp"
+
+#include <array>
+#include <cstring>
+#include <utility>
+
+#include "formats/cdr_writer.hpp"
+#include "formats/velodyne_point_layout.hpp"
+
+namespace isg::formats::ros2 {
+
+namespace {
+
+// The .msg texts (fields only), by the name a definition's "MSG:" line gives them.
+const std::pair<const char*, const char*> kDefinitions[] = {
+    {"builtin_interfaces/Time", "int32 sec\nuint32 nanosec\n"},
+    {"std_msgs/Header", "builtin_interfaces/Time stamp\nstring frame_id\n"},
+    {"sensor_msgs/PointField",
+     "uint8 INT8=1\nuint8 UINT8=2\nuint8 INT16=3\nuint8 UINT16=4\nuint8 INT32=5\nuint8 UINT32=6\n"
+     "uint8 FLOAT32=7\nuint8 FLOAT64=8\nstring name\nuint32 offset\nuint8 datatype\n"
+     "uint32 count\n"},
+    {"sensor_msgs/PointCloud2",
+     "std_msgs/Header header\nuint32 height\nuint32 width\nsensor_msgs/PointField[] fields\n"
+     "bool is_bigendian\nuint32 point_step\nuint32 row_step\nuint8[] data\nbool is_dense\n"},
+    {"geometry_msgs/Quaternion", "float64 x\nfloat64 y\nfloat64 z\nfloat64 w\n"},
+    {"geometry_msgs/Vector3", "float64 x\nfloat64 y\nfloat64 z\n"},
+    {"geometry_msgs/Point", "float64 x\nfloat64 y\nfloat64 z\n"},
+    {"sensor_msgs/Imu",
+     "std_msgs/Header header\ngeometry_msgs/Quaternion orientation\n"
+     "float64[9] orientation_covariance\ngeometry_msgs/Vector3 angular_velocity\n"
+     "float64[9] angular_velocity_covariance\ngeometry_msgs/Vector3 linear_acceleration\n"
+     "float64[9] linear_acceleration_covariance\n"},
+    {"geometry_msgs/Pose", "geometry_msgs/Point position\ngeometry_msgs/Quaternion orientation\n"},
+    {"geometry_msgs/PoseWithCovariance", "geometry_msgs/Pose pose\nfloat64[36] covariance\n"},
+    {"geometry_msgs/Twist", "geometry_msgs/Vector3 linear\ngeometry_msgs/Vector3 angular\n"},
+    {"geometry_msgs/TwistWithCovariance", "geometry_msgs/Twist twist\nfloat64[36] covariance\n"},
+    {"nav_msgs/Odometry",
+     "std_msgs/Header header\nstring child_frame_id\ngeometry_msgs/PoseWithCovariance pose\n"
+     "geometry_msgs/TwistWithCovariance twist\n"},
+    {"geometry_msgs/Transform",
+     "geometry_msgs/Vector3 translation\ngeometry_msgs/Quaternion rotation\n"},
+    {"geometry_msgs/TransformStamped",
+     "std_msgs/Header header\nstring child_frame_id\ngeometry_msgs/Transform transform\n"},
+    {"tf2_msgs/TFMessage", "geometry_msgs/TransformStamped[] transforms\n"},
+    {"std_msgs/String", "string data\n"},
+};
+
+const char* definitionOf(const std::string& name) {
+  for (const auto& [type, text] : kDefinitions) {
+    if (name == type) return text;
+  }
+  return "";
+}
+
+// The type "package/msg/Type" whose .msg is `top`'s, followed by those of `uses` in order.
+MessageType messageType(const std::string& top, std::initializer_list<const char*> uses) {
+  MessageType type;
+  const std::size_t slash = top.find('/');
+  type.name = top.substr(0, slash) + "/msg" + top.substr(slash);
+  type.definition = definitionOf(top);
+  for (const char* used : uses) {
+    type.definition += std::string(80, '=') + "\nMSG: " + used + "\n" + definitionOf(used);
+  }
+  return type;
+}
+
+void header(CdrWriter& out, Time stamp, const std::string& frame) {
+  out.i32(stamp.sec);
+  out.u32(stamp.nanosec);
+  out.string(frame);
+}
+
+void vector(CdrWriter& out, const Eigen::Vector3d& v) {
+  out.f64(v.x());
+  out.f64(v.y());
+  out.f64(v.z());
+}
+
+void quaternion(CdrWriter& out, const Eigen::Matrix3d& R) {
+  Eigen::Quaterniond q(R);
+  q.normalize();
+  if (q.w() < 0) q.coeffs() = -q.coeffs();  // one of the two, always the same (as the ROS 1 bag)
+  out.f64(q.x());
+  out.f64(q.y());
+  out.f64(q.z());
+  out.f64(q.w());
+}
+
+template <std::size_t N>
+void doubles(CdrWriter& out, const std::array<double, N>& values) {
+  for (double v : values) out.f64(v);
+}
+
+}  // namespace
+
+MessageType pointCloud2Type() {
+  return messageType("sensor_msgs/PointCloud2",
+                     {"std_msgs/Header", "builtin_interfaces/Time", "sensor_msgs/PointField"});
+}
+MessageType imuType() {
+  return messageType("sensor_msgs/Imu", {"std_msgs/Header", "builtin_interfaces/Time",
+                                         "geometry_msgs/Quaternion", "geometry_msgs/Vector3"});
+}
+MessageType odometryType() {
+  return messageType(
+      "nav_msgs/Odometry",
+      {"std_msgs/Header", "builtin_interfaces/Time", "geometry_msgs/PoseWithCovariance",
+       "geometry_msgs/Pose", "geometry_msgs/Point", "geometry_msgs/Quaternion",
+       "geometry_msgs/TwistWithCovariance", "geometry_msgs/Twist", "geometry_msgs/Vector3"});
+}
+MessageType tfMessageType() {
+  return messageType("tf2_msgs/TFMessage", {"geometry_msgs/TransformStamped", "std_msgs/Header",
+                                            "builtin_interfaces/Time", "geometry_msgs/Transform",
+                                            "geometry_msgs/Vector3", "geometry_msgs/Quaternion"});
+}
+MessageType stringType() { return messageType("std_msgs/String", {}); }
+
+std::string pointCloud2(const std::vector<sensors::ScanPoint>& points, Time stamp,
+                        const std::string& frame) {
+  constexpr std::uint32_t kPointStep = kVelodynePointStep;
+  constexpr std::uint8_t kUint16 = 4, kFloat32 = 7;
+  CdrWriter out;
+  header(out, stamp, frame);
+  out.u32(1);                             // height
+  out.u32(std::uint32_t(points.size()));  // width
+  const std::tuple<const char*, std::uint32_t, std::uint8_t> fields[] = {
+      {"x", 0, kFloat32},          {"y", 4, kFloat32},    {"z", 8, kFloat32},
+      {"intensity", 12, kFloat32}, {"ring", 16, kUint16}, {"time", 18, kFloat32}};
+  out.u32(6);
+  for (const auto& [name, offset, type] : fields) {
+    out.string(name);
+    out.u32(offset);
+    out.u8(type);
+    out.u32(1);
+  }
+  out.boolean(false);  // is_bigendian
+  out.u32(kPointStep);
+  out.u32(kPointStep * std::uint32_t(points.size()));
+  std::string data(std::size_t(kPointStep) * points.size(), '\0');
+  packVelodynePoints(points, data.data());
+  out.bytes(data);
+  out.boolean(true);  // is_dense: misses are left out, never NaN
+  return out.data();
+}
+
+std::string imu(const sensors::ImuSample& sample, Time stamp, const std::string& frame,
+                double gyroscope_variance, double accelerometer_variance) {
+  CdrWriter out;
+  header(out, stamp, frame);
+  quaternion(out, Eigen::Matrix3d::Identity());
+  std::array<double, 9> covariance{};
+  covariance[0] = -1.0;  // no orientation estimate
+  doubles(out, covariance);
+  vector(out, sample.gyroscope);
+  covariance = {gyroscope_variance, 0, 0, 0, gyroscope_variance, 0, 0, 0, gyroscope_variance};
+  doubles(out, covariance);
+  vector(out, sample.accelerometer);
+  covariance = {accelerometer_variance, 0, 0, 0, accelerometer_variance, 0, 0, 0,
+                accelerometer_variance};
+  doubles(out, covariance);
+  return out.data();
+}
+
+std::string odometry(const Eigen::Isometry3d& pose, const Eigen::Vector3d& linear_velocity,
+                     const Eigen::Vector3d& angular_velocity, Time stamp, const std::string& frame,
+                     const std::string& child) {
+  CdrWriter out;
+  header(out, stamp, frame);
+  out.string(child);
+  vector(out, pose.translation());
+  quaternion(out, pose.linear());
+  doubles(out, std::array<double, 36>{});
+  vector(out, linear_velocity);
+  vector(out, angular_velocity);
+  doubles(out, std::array<double, 36>{});
+  return out.data();
+}
+
+std::string tfMessage(const std::vector<StampedTransform>& transforms) {
+  CdrWriter out;
+  out.u32(std::uint32_t(transforms.size()));
+  for (const StampedTransform& t : transforms) {
+    header(out, t.stamp, t.parent);
+    out.string(t.child);
+    vector(out, t.parent_T_child.translation());
+    quaternion(out, t.parent_T_child.linear());
+  }
+  return out.data();
+}
+
+std::string stringMessage(const std::string& text) {
+  CdrWriter out;
+  out.string(text);
+  return out.data();
+}
+
+}  // namespace isg::formats::ros2

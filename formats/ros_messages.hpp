@@ -1,0 +1,51 @@
+#pragma once
+
+#include <Eigen/Geometry>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "formats/rosbag_writer.hpp"
+#include "sensors/messages.hpp"
+
+namespace isg::formats::ros1 {
+
+// ROS 1 messages serialised with Debian's message headers (sensor_msgs, nav_msgs, tf2_msgs over
+// roscpp_serialization). Those headers predate C++20 (std::allocator<void>::rebind), so they are
+// included only by ros_messages.cpp, compiled as C++17; this interface has none of their types.
+
+RosMessageType pointCloud2Type();
+RosMessageType imuType();
+RosMessageType odometryType();
+RosMessageType tfMessageType();
+RosMessageType stringType();
+RosMessageType poseStampedType();  // read from recordings, never written
+
+// sensor_msgs/PointCloud2 with the Velodyne driver's point layout: x y z intensity (float32 at 0,
+// 4, 8, 12), ring (uint16 at 16), time (float32 at 18, seconds from the stamp); point_step 22,
+// height 1, dense.
+std::string pointCloud2(const std::vector<sensors::ScanPoint>& points, RosTime stamp,
+                        std::uint32_t seq, const std::string& frame);
+
+// sensor_msgs/Imu: no orientation (orientation_covariance[0] = -1, as the message documents for
+// a unit without one), rates and specific force with diagonal covariances (per-axis variances).
+std::string imu(const sensors::ImuSample& sample, RosTime stamp, std::uint32_t seq,
+                const std::string& frame, double gyroscope_variance, double accelerometer_variance);
+
+// nav_msgs/Odometry: `pose` of `child` in `frame`; the twist in `child` (as the message defines).
+std::string odometry(const Eigen::Isometry3d& pose, const Eigen::Vector3d& linear_velocity,
+                     const Eigen::Vector3d& angular_velocity, RosTime stamp, std::uint32_t seq,
+                     const std::string& frame, const std::string& child);
+
+struct StampedTransform {
+  RosTime stamp;
+  std::string parent, child;
+  Eigen::Isometry3d parent_T_child = Eigen::Isometry3d::Identity();
+};
+// tf2_msgs/TFMessage.
+std::string tfMessage(const std::vector<StampedTransform>& transforms);
+
+// std_msgs/String.
+std::string stringMessage(const std::string& text);
+
+}  // namespace isg::formats::ros1

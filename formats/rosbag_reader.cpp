@@ -1,0 +1,561 @@
+#include "formats/rosbag_reader.hpp"
+
+#include <bzlib.h>
+#include <lz4frame.h>
+
+#include <algorithm>
+#include <bit>
+#include <cerrno>
+#include <cstring>
+#include <fstream>
+#include <map>
+#include <sstream>
+
+#include "common/input_error.hpp"
+#include "formats/rosbag_format.hpp"
+
+namespace isg::formats {
+
+namespace {
+
+static_assert(std::endian::native == std::endian::little, "the format is little-endian");
+
+// A record's header: its fields by name (values are bytes).
+using Fields = std::map<std::string, std::string, std::less<>>;
+
+// The fields of a header block; nullopt-like empty name on a malformed block is reported by the
+// caller through `error`.
+bool parseFields(std::string_view block, Fields& fields, std::string& error) {
+  std::size_t at = 0;
+  while (at < block.size()) {
+    if (block.size() - at < 4) {
+      error = "a header field's length is cut off";
+      return false;
+    }
+    std::uint32_t length;
+    std::memcpy(&length, block.data() + at, 4);
+    at += 4;
+    if (length > block.size() - at) {
+      error = "a header field runs past its header (" + std::to_string(length) + " bytes)";
+      return false;
+    }
+    const std::string_view field = block.substr(at, length);
+    at += length;
+    const std::size_t equals = field.find('=');
+    if (equals == std::string_view::npos) {
+      error = "a header field has no '='";
+      return false;
+    }
+    fields.emplace(std::string(field.substr(0, equals)), std::string(field.substr(equals + 1)));
+  }
+  return true;
+}
+
+template <typename T>
+bool fieldValue(const Fields& fields, std::string_view name, T& value) {
+  const auto it = fields.find(name);
+  if (it == fields.end() || it->second.size() != sizeof(T)) return false;
+  std::memcpy(&value, it->second.data(), sizeof(T));
+  return true;
+}
+
+bool timeValue(const Fields& fields, std::string_view name, RosTime& time) {
+  std::uint64_t both;
+  if (!fieldValue(fields, name, both)) return false;
+  time.sec = std::uint32_t(both & 0xffffffffu);
+  time.nsec = std::uint32_t(both >> 32);
+  return true;
+}
+
+const char* opName(std::uint8_t op) {
+  switch (op) {
+    case rosbag::kMessageData:
+      return "message data";
+    case rosbag::kBagHeader:
+      return "bag header";
+    case rosbag::kIndexData:
+      return "index data";
+    case rosbag::kChunk:
+      return "chunk";
+    case rosbag::kChunkInfo:
+      return "chunk info";
+    case rosbag::kConnection:
+      return "connection";
+  }
+  return "unknown";
+}
+
+std::string hexOp(std::uint8_t op) {
+  char text[8];
+  std::snprintf(text, sizeof text, "0x%02x", unsigned(op));
+  return text;
+}
+
+// A record read from the file or from a chunk: its header's fields and where its data lies.
+struct RecordAt {
+  Fields fields;
+  std::uint8_t op = 0;
+  std::uint64_t data_offset = 0;
+  std::uint32_t data_size = 0;
+  std::uint64_t end = 0;  // just past the record
+};
+
+// What a record's two readers share, once its header block and data length are read: the
+// header's fields, the data's place (`data_available` bytes follow the length; `beyond` ends
+// the message when the data does not fit) and the op.
+bool completeRecord(std::string_view header, std::uint32_t data_size, std::uint64_t data_offset,
+                    std::uint64_t data_available, const std::string& beyond, RecordAt& record,
+                    std::string& error) {
+  if (!parseFields(header, record.fields, error)) return false;
+  record.data_size = data_size;
+  if (data_size > data_available) {
+    error = "the record's data runs past the end" + beyond;
+    return false;
+  }
+  record.data_offset = data_offset;
+  record.end = data_offset + data_size;
+  if (!fieldValue(record.fields, "op", record.op)) {
+    error = "the record has no one-byte op field";
+    return false;
+  }
+  return true;
+}
+
+// Reads the record at `offset` of `bytes` (a chunk), or fails with `error`.
+bool recordIn(std::string_view bytes, std::uint64_t offset, RecordAt& record, std::string& error) {
+  if (offset > bytes.size() || bytes.size() - offset < 4) {
+    error = "the record is cut off";
+    return false;
+  }
+  std::uint32_t header_size;
+  std::memcpy(&header_size, bytes.data() + offset, 4);
+  const std::uint64_t at = offset + 4;
+  if (header_size > bytes.size() - at || bytes.size() - at - header_size < 4) {
+    error = "the record's header runs past the end (" + std::to_string(header_size) + " bytes)";
+    return false;
+  }
+  std::uint32_t data_size;
+  std::memcpy(&data_size, bytes.data() + at + header_size, 4);
+  const std::uint64_t data_offset = at + header_size + 4;
+  return completeRecord(bytes.substr(at, header_size), data_size, data_offset,
+                        bytes.size() - data_offset, " (" + std::to_string(data_size) + " bytes)",
+                        record, error);
+}
+
+// Reads `size` bytes at `offset` of the stream, or returns false.
+bool readAt(std::istream& in, std::uint64_t offset, std::size_t size, std::string& out) {
+  out.resize(size);
+  in.clear();
+  in.seekg(std::streamoff(offset));
+  in.read(out.data(), std::streamsize(size));
+  return in.gcount() == std::streamsize(size);
+}
+
+// Reads the header of the record at `offset` of a file of `file_size` bytes (not its data), or
+// fails with `error`.
+bool fileRecord(std::istream& in, std::uint64_t file_size, std::uint64_t offset, RecordAt& record,
+                std::string& error) {
+  std::string head;
+  std::uint32_t header_size = 0;
+  if (offset > file_size || !readAt(in, offset, 4, head)) {
+    error = "the file ends inside a record (truncated?)";
+    return false;
+  }
+  std::memcpy(&header_size, head.data(), 4);
+  if (header_size > file_size - offset - 4 || file_size - offset - 4 - header_size < 4) {
+    error = "the record's header runs past the end of the file (truncated?)";
+    return false;
+  }
+  std::string header;
+  readAt(in, offset + 4, header_size + 4, header);
+  std::uint32_t data_size;
+  std::memcpy(&data_size, header.data() + header_size, 4);
+  const std::uint64_t data_offset = offset + 8 + header_size;
+  return completeRecord(std::string_view(header).substr(0, header_size), data_size, data_offset,
+                        file_size - data_offset, " of the file (truncated?)", record, error);
+}
+
+}  // namespace
+
+RosbagReader::RosbagReader(const std::string& path) : name_(path) {
+  auto file = std::make_unique<std::ifstream>(path, std::ios::binary);
+  if (!*file)
+    throw common::InputError(path, "", std::string("cannot open: ") + std::strerror(errno));
+  in_ = std::move(file);
+  open();
+}
+
+RosbagReader::RosbagReader(std::string bytes, const std::string& name)
+    : name_(name), in_(std::make_unique<std::istringstream>(std::move(bytes))) {
+  open();
+}
+
+RosbagReader::~RosbagReader() = default;
+
+void RosbagReader::fail(std::uint64_t offset, const std::string& what) const {
+  throw common::InputError(name_, "", "byte " + std::to_string(offset) + ": " + what);
+}
+
+void RosbagReader::open() {
+  in_->seekg(0, std::ios::end);
+  size_ = std::uint64_t(in_->tellg());
+  std::string version;
+  const std::size_t version_size = std::strlen(rosbag::kVersionLine);
+  if (!readAt(*in_, 0, version_size, version) || version != rosbag::kVersionLine) {
+    if (version.rfind("#ROSBAG V", 0) == 0) {
+      const std::string line = version.substr(0, version.find('\n'));
+      throw common::InputError(name_, "",
+                               "a ROS bag of version " + line.substr(9) +
+                                   ": only version 2.0 is read (rosbag fix converts older bags)");
+    }
+    throw common::InputError(name_, "", "not a ROS 1 bag: it does not start with \"#ROSBAG V2.0\"");
+  }
+  RecordAt header;
+  std::string error;
+  if (!fileRecord(*in_, size_, version_size, header, error)) fail(version_size, error);
+  if (header.op != rosbag::kBagHeader)
+    fail(version_size, std::string("expected the bag header record, found a ") + opName(header.op) +
+                           " record (op " + hexOp(header.op) + ")");
+  std::uint64_t index_position = 0;
+  std::uint32_t connection_count = 0, chunk_count = 0;
+  if (!fieldValue(header.fields, "index_pos", index_position) ||
+      !fieldValue(header.fields, "conn_count", connection_count) ||
+      !fieldValue(header.fields, "chunk_count", chunk_count))
+    fail(version_size, "the bag header lacks index_pos, conn_count or chunk_count");
+  if (index_position == 0)
+    throw common::InputError(
+        name_, "",
+        "the bag is not indexed (its recording was cut short): `rosbag reindex` "
+        "mends it");
+  if (index_position < header.end || index_position > size_)
+    fail(version_size, "the bag header's index position " + std::to_string(index_position) +
+                           " lies outside the file (truncated?)");
+  readIndex(index_position, connection_count, chunk_count);
+}
+
+void RosbagReader::readIndex(std::uint64_t index_position, std::uint32_t connection_count,
+                             std::uint32_t chunk_count) {
+  std::string bytes;
+  if (!readAt(*in_, index_position, std::size_t(size_ - index_position), bytes))
+    fail(index_position, "cannot read the bag's index");
+  std::map<std::uint32_t, std::size_t> connection_by_id;
+  std::vector<std::map<std::uint32_t, std::uint32_t>> chunk_counts;
+  std::uint64_t at = 0;
+  auto next = [&](std::uint8_t expected) {
+    RecordAt record;
+    std::string error;
+    if (!recordIn(bytes, at, record, error)) fail(index_position + at, error);
+    if (record.op != expected)
+      fail(index_position + at, std::string("expected a ") + opName(expected) +
+                                    " record in the bag's index, found a " + opName(record.op) +
+                                    " record (op " + hexOp(record.op) + ")");
+    return record;
+  };
+  for (std::uint32_t i = 0; i < connection_count; ++i) {
+    const std::uint64_t offset = index_position + at;
+    const RecordAt record = next(rosbag::kConnection);
+    BagConnection c;
+    if (!fieldValue(record.fields, "conn", c.id)) fail(offset, "a connection without conn");
+    Fields data;
+    std::string error;
+    if (!parseFields(std::string_view(bytes).substr(record.data_offset, record.data_size), data,
+                     error))
+      fail(offset, "connection " + std::to_string(c.id) + ": " + error);
+    auto text = [&](const char* name, bool required) {
+      const auto it = data.find(std::string_view(name));
+      if (it == data.end()) {
+        if (required)
+          fail(offset, "connection " + std::to_string(c.id) + " has no " + name + " field");
+        return std::string();
+      }
+      return it->second;
+    };
+    const auto topic = record.fields.find(std::string_view("topic"));
+    c.topic = topic != record.fields.end() ? topic->second : text("topic", true);
+    c.type.datatype = text("type", true);
+    c.type.md5sum = text("md5sum", true);
+    c.type.definition = text("message_definition", false);
+    c.callerid = text("callerid", false);
+    c.latching = text("latching", false) == "1";
+    if (!connection_by_id.emplace(c.id, connections_.size()).second)
+      fail(offset, "connection " + std::to_string(c.id) + " is defined twice");
+    connections_.push_back(std::move(c));
+    at = record.end;
+  }
+  for (std::uint32_t i = 0; i < chunk_count; ++i) {
+    const std::uint64_t offset = index_position + at;
+    const RecordAt record = next(rosbag::kChunkInfo);
+    Chunk chunk;
+    std::uint32_t version = 0, count = 0;
+    if (!fieldValue(record.fields, "ver", version) || version != 1)
+      fail(offset, "a chunk info record of a version other than 1");
+    if (!fieldValue(record.fields, "chunk_pos", chunk.position) ||
+        !fieldValue(record.fields, "count", count))
+      fail(offset, "a chunk info without chunk_pos or count");
+    if (record.data_size != std::uint64_t(count) * 8)
+      fail(offset, "a chunk info's data is not its " + std::to_string(count) + " counts");
+    std::map<std::uint32_t, std::uint32_t> counts;
+    for (std::uint32_t k = 0; k < count; ++k) {
+      std::uint32_t pair[2];
+      std::memcpy(pair, bytes.data() + record.data_offset + 8 * k, 8);
+      if (!connection_by_id.count(pair[0]))
+        fail(offset, "a chunk info names connection " + std::to_string(pair[0]) +
+                         ", which the bag does not define");
+      counts[pair[0]] = pair[1];
+      connections_[connection_by_id[pair[0]]].messages += pair[1];
+    }
+    chunks_.push_back(chunk);
+    chunk_counts.push_back(std::move(counts));
+    at = record.end;
+  }
+  // Each chunk's record and the index records that follow it: every message's time and place.
+  for (std::uint32_t k = 0; k < chunks_.size(); ++k) {
+    Chunk& chunk = chunks_[k];
+    const std::uint64_t position = chunk.position;
+    if (position < std::strlen(rosbag::kVersionLine) || position >= size_)
+      fail(index_position,
+           "a chunk info points outside the file (byte " + std::to_string(position) + ")");
+    RecordAt record;
+    std::string error;
+    if (!fileRecord(*in_, size_, position, record, error)) fail(position, error);
+    if (record.op != rosbag::kChunk)
+      fail(position, "a chunk info points at a record that is not a chunk");
+    const auto compression = record.fields.find(std::string_view("compression"));
+    if (compression == record.fields.end() || !fieldValue(record.fields, "size", chunk.size))
+      fail(position, "a chunk without compression or size");
+    chunk.compression = compression->second;
+    if (chunk.compression != "none" && chunk.compression != "bz2" && chunk.compression != "lz4")
+      fail(position, "chunk compression \"" + chunk.compression +
+                         "\" is not supported (none, bz2 and lz4 are)");
+    if (std::find(compressions_.begin(), compressions_.end(), chunk.compression) ==
+        compressions_.end())
+      compressions_.push_back(chunk.compression);
+    chunk.data_offset = record.data_offset;
+    chunk.data_size = record.data_size;
+    readChunkIndex(k, std::uint32_t(chunk_counts[k].size()));
+  }
+  // Which connection each entry is, as an index into connections_.
+  for (Entry& e : entries_) {
+    const auto it = connection_by_id.find(e.connection);
+    if (it == connection_by_id.end())
+      fail(chunks_[e.chunk].position, "an index record names connection " +
+                                          std::to_string(e.connection) +
+                                          ", which the bag does not define");
+    e.connection = std::uint32_t(it->second);
+  }
+  // Time order; ties by connection number, then in the bag's order, as rosbag's reader merges its
+  // connections' indexes.
+  std::stable_sort(entries_.begin(), entries_.end(), [this](const Entry& a, const Entry& b) {
+    if (a.time < b.time || b.time < a.time) return a.time < b.time;
+    return connections_[a.connection].id < connections_[b.connection].id;
+  });
+}
+
+void RosbagReader::readChunkIndex(std::uint32_t k, std::uint32_t index_records) {
+  const Chunk& chunk = chunks_[k];
+  std::uint64_t offset = chunk.data_offset + chunk.data_size;
+  for (std::uint32_t i = 0; i < index_records; ++i) {
+    RecordAt record;
+    std::string error;
+    if (!fileRecord(*in_, size_, offset, record, error)) fail(offset, error);
+    std::uint32_t version = 0, connection = 0, count = 0;
+    if (record.op != rosbag::kIndexData)
+      fail(offset, "expected an index data record after the chunk");
+    if (!fieldValue(record.fields, "ver", version) || version != 1 ||
+        !fieldValue(record.fields, "conn", connection) ||
+        !fieldValue(record.fields, "count", count))
+      fail(offset, "an index data record without ver 1, conn or count");
+    if (record.data_size != std::uint64_t(count) * 12)
+      fail(offset, "an index data record's data is not its " + std::to_string(count) + " entries");
+    std::string data;
+    if (!readAt(*in_, record.data_offset, record.data_size, data))
+      fail(offset, "the file ends inside an index data record");
+    for (std::uint32_t j = 0; j < count; ++j) {
+      Entry e;
+      std::memcpy(&e.time.sec, data.data() + 12 * j, 4);
+      std::memcpy(&e.time.nsec, data.data() + 12 * j + 4, 4);
+      std::memcpy(&e.offset, data.data() + 12 * j + 8, 4);
+      if (e.offset >= chunk.size)
+        fail(offset,
+             "an index entry points past its chunk's " + std::to_string(chunk.size) + " bytes");
+      e.chunk = k;
+      e.connection = connection;
+      entries_.push_back(e);
+    }
+    offset = record.end;
+  }
+}
+
+namespace {
+
+// Decompresses `stored` (bz2 or lz4) into at most `size` bytes, growing the output as the data
+// really yields it (a chunk's claimed size is not trusted with an allocation); false with `error`
+// when the data is damaged or does not come to exactly `size` bytes.
+bool decompress(const std::string& compression, const std::string& stored, std::uint32_t size,
+                std::string& out, std::string& error) {
+  out.clear();
+  std::size_t written = 0;
+  bool too_long = false;  // the output is full and the data goes on
+  auto grow = [&] {
+    const std::size_t next =
+        std::min<std::size_t>(size, std::max<std::size_t>(4096, 2 * out.size()));
+    out.resize(next);
+  };
+  if (compression == "bz2") {
+    bz_stream stream{};
+    if (BZ2_bzDecompressInit(&stream, 0, 0) != BZ_OK) {
+      error = "cannot start bzip2";
+      return false;
+    }
+    stream.next_in = const_cast<char*>(stored.data());
+    stream.avail_in = unsigned(stored.size());
+    int status = BZ_OK;
+    while (status == BZ_OK) {
+      if (written == out.size()) {
+        if (out.size() == size) {
+          too_long = true;
+          break;
+        }
+        grow();
+      }
+      stream.next_out = out.data() + written;
+      stream.avail_out = unsigned(out.size() - written);
+      status = BZ2_bzDecompress(&stream);
+      written = out.size() - stream.avail_out;
+      if (status == BZ_OK && stream.avail_in == 0 && stream.avail_out > 0) break;  // cut short
+    }
+    BZ2_bzDecompressEnd(&stream);
+    if (too_long) {
+      error = "it holds more";
+      return false;
+    }
+    if (status != BZ_STREAM_END) {
+      error = "bzip2 status " + std::to_string(status);
+      return false;
+    }
+  } else {
+    LZ4F_dctx* context = nullptr;
+    if (LZ4F_isError(LZ4F_createDecompressionContext(&context, LZ4F_VERSION))) {
+      error = "cannot start LZ4";
+      return false;
+    }
+    std::size_t read = 0, status = 1;
+    while (status != 0 && read < stored.size()) {
+      if (written == out.size()) {
+        if (out.size() == size) {
+          too_long = true;
+          break;
+        }
+        grow();
+      }
+      std::size_t out_size = out.size() - written, in_size = stored.size() - read;
+      status = LZ4F_decompress(context, out.data() + written, &out_size, stored.data() + read,
+                               &in_size, nullptr);
+      if (LZ4F_isError(status)) break;
+      written += out_size;
+      read += in_size;
+      if (out_size == 0 && in_size == 0 && written < out.size()) break;  // no progress
+    }
+    LZ4F_freeDecompressionContext(context);
+    if (too_long) {
+      error = "it holds more";
+      return false;
+    }
+    if (LZ4F_isError(status)) {
+      error = LZ4F_getErrorName(status);
+      return false;
+    }
+    if (status != 0) {
+      error = "the LZ4 frame does not end";
+      return false;
+    }
+  }
+  if (written != size) {
+    error = "it holds " + std::to_string(written);
+    return false;
+  }
+  out.resize(written);
+  return true;
+}
+
+}  // namespace
+
+const std::string& RosbagReader::loadChunk(std::uint32_t k) {
+  ++uses_;
+  for (CachedChunk& cached : cache_) {
+    if (cached.chunk == k) {
+      cached.used = uses_;
+      return cached.bytes;
+    }
+  }
+  const Chunk& chunk = chunks_[k];
+  std::string stored;
+  if (!readAt(*in_, chunk.data_offset, chunk.data_size, stored))
+    fail(chunk.position, "cannot read the chunk's data");
+  std::string bytes;
+  if (chunk.compression == "none") {
+    if (stored.size() != chunk.size)
+      fail(chunk.position, "an uncompressed chunk of " + std::to_string(stored.size()) +
+                               " bytes says it holds " + std::to_string(chunk.size));
+    bytes = std::move(stored);
+  } else {
+    std::string error;
+    if (!decompress(chunk.compression, stored, chunk.size, bytes, error))
+      fail(chunk.position, "the " + chunk.compression + " chunk does not decompress to its " +
+                               std::to_string(chunk.size) + " bytes (" + error + ")");
+  }
+  if (cache_.size() < kCachedChunks) {
+    cache_.push_back({k, uses_, std::move(bytes)});
+    return cache_.back().bytes;
+  }
+  CachedChunk& oldest =
+      *std::min_element(cache_.begin(), cache_.end(),
+                        [](const CachedChunk& a, const CachedChunk& b) { return a.used < b.used; });
+  oldest = {k, uses_, std::move(bytes)};
+  return oldest.bytes;
+}
+
+RosTime RosbagReader::startTime() const {
+  return entries_.empty() ? RosTime{} : entries_.front().time;
+}
+
+RosTime RosbagReader::endTime() const {
+  return entries_.empty() ? RosTime{} : entries_.back().time;
+}
+
+void RosbagReader::read(const std::vector<std::string>& topics,
+                        const std::function<bool(const BagMessageView&)>& visit) {
+  std::vector<char> wanted(connections_.size(), topics.empty());
+  for (std::size_t i = 0; i < connections_.size(); ++i) {
+    if (std::find(topics.begin(), topics.end(), connections_[i].topic) != topics.end())
+      wanted[i] = 1;
+  }
+  std::uint64_t index = 0;
+  for (const Entry& e : entries_) {
+    if (!wanted[e.connection]) continue;
+    const std::string& chunk = loadChunk(e.chunk);
+    RecordAt record;
+    std::string error;
+    const std::uint64_t where = chunks_[e.chunk].position;
+    if (!recordIn(chunk, e.offset, record, error))
+      fail(where, "chunk byte " + std::to_string(e.offset) + ": " + error);
+    std::uint32_t connection = 0;
+    RosTime time;
+    if (record.op != rosbag::kMessageData || !fieldValue(record.fields, "conn", connection) ||
+        !timeValue(record.fields, "time", time))
+      fail(where, "chunk byte " + std::to_string(e.offset) +
+                      ": the index points at a record that is not a message");
+    if (connection != connections_[e.connection].id)
+      fail(where, "chunk byte " + std::to_string(e.offset) + ": a message of connection " +
+                      std::to_string(connection) + " indexed under connection " +
+                      std::to_string(connections_[e.connection].id));
+    BagMessageView view;
+    view.connection = &connections_[e.connection];
+    view.time = e.time;
+    view.data = std::string_view(chunk).substr(record.data_offset, record.data_size);
+    view.index = index++;
+    if (!visit(view)) return;
+  }
+}
+
+}  // namespace isg::formats

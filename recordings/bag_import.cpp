@@ -1,0 +1,881 @@
+#include "recordings/bag_import.hpp"
+
+#include <algorithm>
+#include <cctype>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <nlohmann/json.hpp>
+
+#include "common/atomic_folder.hpp"
+#include "common/input_error.hpp"
+#include "common/pose_interpolation.hpp"
+#include "formats/cloud_layout.hpp"
+#include "formats/dataset_format.hpp"
+#include "formats/ros_message_decode.hpp"
+#include "formats/ros_messages.hpp"
+#include "formats/rosbag_reader.hpp"
+#include "recordings/rosbag_export.hpp"
+#include "recordings/static_frames.hpp"
+#include "recordings/tf_odometry.hpp"
+#include "sensors/mount_transform.hpp"
+
+namespace isg::recordings {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+constexpr const char* kNone = "none";
+constexpr const char* kCloudType = "sensor_msgs/PointCloud2";
+constexpr const char* kImuType = "sensor_msgs/Imu";
+constexpr const char* kOdometryType = "nav_msgs/Odometry";
+constexpr const char* kPoseType = "geometry_msgs/PoseStamped";
+constexpr const char* kStringType = "std_msgs/String";
+constexpr const char* kTfType = "tf2_msgs/TFMessage";
+constexpr const char* kOldTfType = "tf/tfMessage";  // ROS 1's first tf: the same definition
+// An IMU whose specific force at rest has a norm within this of 1 reports it in g (Livox's, some
+// MEMS drivers), not m/s²: 0.2 g is far from both 1 m/s² and 9.81 m/s².
+constexpr double kGravityInG = 0.2;
+constexpr double kStandardGravity = 9.80665;
+
+// A topic of the bag: its connections merged (one topic may have several publishers).
+struct Topic {
+  std::string name, datatype, md5sum;
+  std::uint64_t messages = 0;
+};
+
+std::string lower(std::string text) {
+  for (char& c : text) c = char(std::tolower(static_cast<unsigned char>(c)));
+  return text;
+}
+
+// A ground-truth topic by its name: a name part (between '/' and '_') "gt", or the words
+// ground_truth, groundtruth, vicon, mocap.
+bool namedLikeGroundTruth(const std::string& topic) {
+  const std::string name = lower(topic);
+  for (const char* word : {"ground_truth", "groundtruth", "vicon", "mocap"}) {
+    if (name.find(word) != std::string::npos) return true;
+  }
+  std::string part;
+  for (char c : name + "/") {
+    if (c == '/' || c == '_') {
+      if (part == "gt") return true;
+      part.clear();
+    } else {
+      part += c;
+    }
+  }
+  return false;
+}
+
+bool isTfType(const std::string& datatype) { return datatype == kTfType || datatype == kOldTfType; }
+
+bool isStaticTfTopic(const std::string& name) {
+  return name.size() >= 9 && name.ends_with("tf_static");
+}
+
+class Import {
+ public:
+  Import(const std::string& bag_path, const BagImportOptions& options)
+      : bag_path_(bag_path), options_(options), bag_(bag_path) {}
+
+  BagImportSummary run(const fs::path& folder,
+                       const std::function<void(std::uint64_t, std::uint64_t)>& progress);
+
+ private:
+  [[noreturn]] void fail(const std::string& what) const {
+    throw common::InputError(bag_path_, "", what);
+  }
+  [[noreturn]] void failMessage(const std::string& topic, std::uint64_t index,
+                                const std::string& what) const {
+    fail("topic " + topic + ", message " + std::to_string(index) + ": " + what);
+  }
+  void collectTopics();
+  std::string listing(const std::vector<const Topic*>& topics) const;
+  const Topic* findTopic(const std::string& name) const;
+  std::string chooseTopic(const char* role, const char* flag, const std::string& option,
+                          const std::vector<std::string>& types,
+                          const std::function<bool(const Topic&)>& preferred, bool required);
+  void chooseTopics();
+  void readStatic();
+  // The first message on `topic` (any time), for its frames before the long read.
+  std::string firstMessage(const std::string& topic);
+  void resolveFrames();
+  // The odometry as a chain of /tf: its frames from the whole topic; false (and the odometry left
+  // out) when the topic was not asked for and no frame above the LiDAR is named as odometry.
+  bool resolveTfOdometry();
+  Eigen::Isometry3d mount(const char* sensor, const char* flag, const std::string& frame,
+                          const std::optional<std::array<double, 6>>& option);
+  // child_T_R for a pose stream whose child frame is `child`.
+  Eigen::Isometry3d childToBase(const std::string& topic, const std::string& child);
+  void readStreams(const fs::path& folder,
+                   const std::function<void(std::uint64_t, std::uint64_t)>& progress);
+  double seconds(formats::RosTime t) const {
+    return double(std::int64_t(t.sec) - std::int64_t(origin_)) + 1e-9 * t.nsec;
+  }
+  void writeFiles(const fs::path& folder);
+  // The metadata of a recording isg did not write, as far as its frames go.
+  nlohmann::ordered_json metadata(double seconds) const;
+
+  std::string bag_path_;
+  BagImportOptions options_;
+  formats::RosbagReader bag_;
+  std::vector<Topic> topics_;
+  BagImportSummary summary_;
+  StaticFrames frames_;
+  std::optional<nlohmann::json> isg_metadata_;
+  // Odometry from /tf: the topic (asked for with --odom-topic, or the one looked into when the
+  // bag has no nav_msgs/Odometry), then the chain once its frames are known.
+  std::string tf_topic_;
+  bool tf_asked_ = false;
+  std::optional<TfOdometry> tf_odometry_;
+
+  // What was read, stamps as the bag has them.
+  std::vector<formats::RosTime> scan_stamps_;
+  std::string lidar_frame_, imu_frame_, base_frame_, odometry_frame_, truth_frame_;
+  formats::CloudLayout layout_;
+  struct TimedSample {
+    formats::RosTime stamp;
+    sensors::ImuSample sample;
+  };
+  std::vector<TimedSample> imu_;
+  std::array<double, 2> imu_variance_{0.0, 0.0};  // gyroscope, accelerometer; 0: not given
+  struct TimedPose {
+    formats::RosTime stamp;
+    Eigen::Isometry3d pose;
+  };
+  std::vector<TimedPose> odometry_, truth_;
+  std::string odometry_child_, truth_child_;
+  double time_min_ = 0.0, time_max_ = 0.0;
+  std::uint64_t clouds_with_time_ = 0, clouds_stamped_at_end_ = 0;
+  std::uint32_t origin_ = 0;
+  Eigen::Isometry3d R_T_L_ = Eigen::Isometry3d::Identity(), R_T_I_ = Eigen::Isometry3d::Identity();
+  Eigen::Isometry3d odometry_C_T_R_ = Eigen::Isometry3d::Identity(),
+                    truth_C_T_R_ = Eigen::Isometry3d::Identity();
+};
+
+void Import::collectTopics() {
+  for (const auto& connection : bag_.connections()) {
+    auto it = std::find_if(topics_.begin(), topics_.end(),
+                           [&](const Topic& t) { return t.name == connection.topic; });
+    if (it == topics_.end()) {
+      topics_.push_back({connection.topic, connection.type.datatype, connection.type.md5sum, 0});
+      it = topics_.end() - 1;
+    } else if (it->datatype != connection.type.datatype) {
+      fail("topic " + connection.topic + " carries both " + it->datatype + " and " +
+           connection.type.datatype + " (two publishers disagree)");
+    }
+    it->messages += connection.messages;
+  }
+  std::sort(topics_.begin(), topics_.end(),
+            [](const Topic& a, const Topic& b) { return a.name < b.name; });
+}
+
+std::string Import::listing(const std::vector<const Topic*>& topics) const {
+  std::string out;
+  for (const Topic* t : topics) {
+    out += std::string(out.empty() ? "" : ", ") + t->name + " (" + t->datatype + ", " +
+           std::to_string(t->messages) + " messages)";
+  }
+  return out.empty() ? "none" : out;
+}
+
+const Topic* Import::findTopic(const std::string& name) const {
+  for (const auto& t : topics_) {
+    if (t.name == name) return &t;
+  }
+  return nullptr;
+}
+
+std::string Import::chooseTopic(const char* role, const char* flag, const std::string& option,
+                                const std::vector<std::string>& types,
+                                const std::function<bool(const Topic&)>& preferred, bool required) {
+  std::vector<const Topic*> all;
+  for (const auto& t : topics_) all.push_back(&t);
+  std::string type_list;
+  for (const auto& type : types) type_list += (type_list.empty() ? "" : " or ") + type;
+  if (option == kNone) {
+    if (required) fail(std::string("the ") + role + " cannot be left out (" + flag + " none)");
+    return "";
+  }
+  if (!option.empty()) {
+    const Topic* topic = findTopic(option);
+    if (!topic) {
+      fail(std::string(flag) + " " + option +
+           ": the bag has no such topic (its topics: " + listing(all) + ")");
+    }
+    if (std::find(types.begin(), types.end(), topic->datatype) == types.end()) {
+      fail(std::string(flag) + " " + option + ": the topic carries " + topic->datatype + ", the " +
+           role + " must be " + type_list);
+    }
+    return option;
+  }
+  std::vector<const Topic*> candidates;
+  for (const auto& t : topics_) {
+    if (std::find(types.begin(), types.end(), t.datatype) != types.end() && preferred(t) &&
+        t.messages > 0) {
+      candidates.push_back(&t);
+    }
+  }
+  if (candidates.size() > 1) {
+    fail(std::string("several topics could be the ") + role + ": " + listing(candidates) +
+         "; choose one with " + flag);
+  }
+  if (candidates.empty()) {
+    if (required) {
+      fail(std::string("no ") + type_list + " topic for the " + role +
+           " (the bag's topics: " + listing(all) + "); name one with " + flag);
+    }
+    return "";
+  }
+  return candidates[0]->name;
+}
+
+void Import::chooseTopics() {
+  const auto anything = [](const Topic&) { return true; };
+  summary_.lidar.topic =
+      chooseTopic("LiDAR", "--lidar-topic", options_.lidar_topic, {kCloudType}, anything, true);
+  summary_.imu.topic =
+      chooseTopic("IMU", "--imu-topic", options_.imu_topic, {kImuType}, anything, false);
+  // Odometry and ground truth may both be nav_msgs/Odometry: told apart by name, and a topic
+  // named for one part is not a candidate for the other.
+  summary_.ground_truth.topic = chooseTopic(
+      "ground truth", "--ground-truth-topic", options_.ground_truth_topic,
+      {kOdometryType, kPoseType},
+      [&](const Topic& t) {
+        return namedLikeGroundTruth(t.name) && t.name != options_.odometry_topic;
+      },
+      false);
+  // The odometry: a nav_msgs/Odometry topic, or the transforms of a tf topic (named with
+  // --odom-topic, or /tf looked into when no odometry topic is there).
+  const Topic* named = options_.odometry_topic.empty() || options_.odometry_topic == kNone
+                           ? nullptr
+                           : findTopic(options_.odometry_topic);
+  if (named && isTfType(named->datatype)) {
+    if (isStaticTfTopic(named->name)) {
+      fail("--odom-topic " + named->name +
+           ": fixed frames do not move; name the tf topic whose "
+           "transforms move the base (/tf)");
+    }
+    tf_topic_ = named->name;
+    tf_asked_ = true;
+  } else {
+    summary_.odometry.topic = chooseTopic(
+        "odometry", "--odom-topic", options_.odometry_topic, {kOdometryType},
+        [&](const Topic& t) {
+          return !namedLikeGroundTruth(t.name) && t.name != summary_.ground_truth.topic;
+        },
+        false);
+    if (summary_.odometry.topic.empty() && options_.odometry_topic.empty()) {
+      std::vector<const Topic*> moving;
+      for (const auto& t : topics_) {
+        if (isTfType(t.datatype) && !isStaticTfTopic(t.name) && t.messages > 0) {
+          moving.push_back(&t);
+        }
+      }
+      const auto tf = std::find_if(moving.begin(), moving.end(),
+                                   [](const Topic* t) { return t->name == "/tf"; });
+      if (tf != moving.end()) {
+        tf_topic_ = (*tf)->name;
+      } else if (moving.size() == 1) {
+        tf_topic_ = moving[0]->name;
+      }
+    }
+  }
+  if (!options_.odometry_frame.empty() && tf_topic_.empty()) {
+    fail("--odom-frame " + options_.odometry_frame +
+         (summary_.odometry.topic.empty()
+              ? std::string(": the bag has no tf topic to take the odometry from")
+              : ": the odometry is " + summary_.odometry.topic +
+                    " (nav_msgs/Odometry); --odom-frame names the odometry's frame on /tf"));
+  }
+  if (!summary_.odometry.topic.empty() && summary_.odometry.topic == summary_.ground_truth.topic) {
+    fail("topic " + summary_.odometry.topic + " cannot be both the odometry and the ground truth");
+  }
+  // A type of another definition than the standard one would be misread: refused by its MD5.
+  const std::pair<const char*, formats::RosMessageType> standard[] = {
+      {kCloudType, formats::ros1::pointCloud2Type()}, {kImuType, formats::ros1::imuType()},
+      {kOdometryType, formats::ros1::odometryType()}, {kPoseType, formats::ros1::poseStampedType()},
+      {kTfType, formats::ros1::tfMessageType()},      {kOldTfType, formats::ros1::tfMessageType()}};
+  BagImportSummary::Stream tf{tf_topic_, "", 0};
+  for (auto* stream :
+       {&summary_.lidar, &summary_.imu, &summary_.odometry, &summary_.ground_truth, &tf}) {
+    if (stream->topic.empty()) continue;
+    const Topic* topic = findTopic(stream->topic);
+    stream->type = topic->datatype;
+    for (const auto& [name, type] : standard) {
+      if (topic->datatype == name && topic->md5sum != type.md5sum && topic->md5sum != "*") {
+        fail("topic " + topic->name + ": its " + name + " has the MD5 sum " + topic->md5sum +
+             ", not the standard definition's " + type.md5sum);
+      }
+    }
+  }
+}
+
+// The fixed frames from every tf_static topic, and an isg dataset's metadata, whatever the
+// window: both are latched once at the start.
+void Import::readStatic() {
+  std::vector<std::string> static_topics;
+  for (const auto& t : topics_) {
+    if (isTfType(t.datatype) && isStaticTfTopic(t.name)) {
+      static_topics.push_back(t.name);
+    }
+  }
+  std::map<std::string, std::uint64_t> counts;
+  if (!static_topics.empty()) {
+    bag_.read(static_topics, [&](const formats::BagMessageView& m) {
+      const std::uint64_t index = counts[m.connection->topic]++;
+      try {
+        for (const auto& t : formats::ros1::decodeTfMessage(m.data)) {
+          frames_.add(t.header.frame_id, t.child_frame_id, t.parent_T_child);
+        }
+      } catch (const formats::ros1::MessageError& e) {
+        failMessage(m.connection->topic, index, e.what());
+      }
+      return true;
+    });
+  }
+  const Topic* made = findTopic(rosbag_names::kMetadataTopic);
+  if (made && made->datatype == kStringType) {
+    bag_.read({made->name}, [&](const formats::BagMessageView& m) {
+      try {
+        isg_metadata_ = nlohmann::json::parse(formats::ros1::decodeString(m.data));
+      } catch (const formats::ros1::MessageError& e) {
+        failMessage(made->name, 0, e.what());
+      } catch (const nlohmann::json::exception& e) {
+        failMessage(made->name, 0, std::string("not a dataset's metadata (JSON): ") + e.what());
+      }
+      if (!isg_metadata_->is_object() ||
+          isg_metadata_->value("format", "") != formats::dataset::kFormat) {
+        failMessage(made->name, 0, "not an isg dataset's metadata");
+      }
+      return false;
+    });
+  }
+}
+
+Eigen::Isometry3d Import::mount(const char* sensor, const char* flag, const std::string& frame,
+                                const std::optional<std::array<double, 6>>& option) {
+  if (option) return sensors::mountTransform(*option);
+  if (auto T = frames_.transform(base_frame_, frame)) return *T;
+  fail(std::string("no transform from the base frame \"") + base_frame_ + "\" to the " + sensor +
+       "'s frame \"" + frame + "\" in /tf_static: give " + flag + " X,Y,Z,ROLL,PITCH,YAW (the " +
+       sensor + "'s pose on the base, metres and radians)");
+}
+
+Eigen::Isometry3d Import::childToBase(const std::string& topic, const std::string& child) {
+  if (child.empty() || child == base_frame_) return Eigen::Isometry3d::Identity();
+  if (auto T = frames_.transform(child, base_frame_)) return *T;
+  fail("topic " + topic + " gives the pose of \"" + child + "\", and /tf_static has no transform " +
+       "from it to the base frame \"" + base_frame_ + "\"");
+}
+
+std::string Import::firstMessage(const std::string& topic) {
+  std::string data;
+  bag_.read({topic}, [&](const formats::BagMessageView& m) {
+    data = std::string(m.data);
+    return false;
+  });
+  return data;
+}
+
+bool Import::resolveTfOdometry() {
+  MovingFrameTree tree;
+  std::uint64_t index = 0;
+  bag_.read({tf_topic_}, [&](const formats::BagMessageView& m) {
+    try {
+      for (const auto& t : formats::ros1::decodeTfMessage(m.data)) {
+        if (const auto other = tree.add(t.header.frame_id, t.child_frame_id, t.parent_T_child)) {
+          throw formats::ros1::MessageError(
+              "the frame \"" + t.child_frame_id + "\" hangs from \"" + t.header.frame_id +
+              "\" here and from \"" + *other + "\" before (a frame has one parent)" +
+              (tf_asked_ ? "" : "; --odom-topic none leaves /tf out"));
+        }
+      }
+    } catch (const formats::ros1::MessageError& e) {
+      failMessage(tf_topic_, index, e.what());
+    }
+    ++index;
+    return true;
+  });
+  // Links that never change on /tf are mounts (ROS 1's first tf repeated them there): fixed
+  // frames for the sensors' mounts too, unless /tf_static has them.
+  std::vector<std::string> repeated_mounts;
+  for (const auto& link : tree.unchanging()) {
+    if (!frames_.parent(link.child)) {
+      frames_.add(link.parent, link.child, link.parent_T_child);
+      repeated_mounts.push_back(link.parent + " → " + link.child);
+    }
+  }
+  if (!repeated_mounts.empty()) {
+    std::string list;
+    for (const auto& m : repeated_mounts) list += (list.empty() ? "" : ", ") + m;
+    summary_.notes.push_back(tf_topic_ +
+                             " repeats transforms that never change, taken as fixed: " + list);
+  }
+  const auto above = tree.above(lidar_frame_, frames_);
+  std::string frames = lidar_frame_;
+  for (const auto& a : above) frames += (a.moving ? " ← " : " ⇠ ") + a.frame;
+  const std::string chain =
+      "the frames above the LiDAR's (← on " + tf_topic_ + ", ⇠ fixed): " + frames;
+  const auto position = [&](const std::string& frame) {
+    return std::find_if(above.begin(), above.end(),
+                        [&](const MovingFrameTree::Above& a) { return a.frame == frame; }) -
+           above.begin();
+  };
+  std::string top = options_.odometry_frame;
+  if (top.empty()) {
+    const auto named = std::find_if(above.begin(), above.end(),
+                                    [](const auto& a) { return namedLikeOdometry(a.frame); });
+    if (named != above.end()) top = named->frame;
+  }
+  // Asked for (--odom-topic, --odom-frame), a chain that cannot be the odometry is an error; found
+  // by looking, it is left out with a note, and the recording imported without odometry.
+  const bool asked = tf_asked_ || !options_.odometry_frame.empty();
+  const auto give_up = [&](const std::string& why) {
+    if (asked) fail(why);
+    summary_.notes.push_back("no odometry taken from " + tf_topic_ + ": " + why);
+    return false;
+  };
+  const bool moves =
+      std::any_of(above.begin(), above.end(), [](const auto& a) { return a.moving; });
+  if (top.empty() || position(top) == std::ptrdiff_t(above.size())) {
+    if (!asked && !moves) return false;  // nothing on /tf moves the LiDAR: no odometry there
+    return give_up(
+        std::string(top.empty() ? "no frame named odom" : "the frame \"" + top + "\" is not") +
+        " above the LiDAR's frame on " + tf_topic_ + " and /tf_static (" + chain +
+        "): name the odometry's frame with --odom-frame");
+  }
+  // The base: as told; else the frame REP 105 names base_link when it is fixed below the moving
+  // link nearest the LiDAR (odom → base_footprint → base_link → velodyne); else the frame that
+  // link moves.
+  std::string base = options_.base_frame;
+  for (std::ptrdiff_t i = 0; base.empty() && i <= position(top); ++i) {
+    if (!above[std::size_t(i)].moving) continue;
+    base = i == 0 ? lidar_frame_ : above[std::size_t(i) - 1].frame;
+    for (std::ptrdiff_t k = i - 1; k >= -1; --k) {
+      const std::string& frame = k < 0 ? lidar_frame_ : above[std::size_t(k)].frame;
+      const std::size_t slash = frame.rfind('/');
+      if ((slash == std::string::npos ? frame : frame.substr(slash + 1)) == "base_link") {
+        base = frame;
+        break;
+      }
+    }
+  }
+  if (base.empty()) {
+    return give_up("topic " + tf_topic_ + " moves nothing between \"" + top +
+                   "\" and the LiDAR's frame (" + chain + ")");
+  }
+  try {
+    tf_odometry_.emplace(top, base, tree.above(base, frames_));
+  } catch (const std::invalid_argument& e) {
+    return give_up("odometry from " + tf_topic_ + ": " + e.what() + " (" + chain + ")");
+  }
+  summary_.odometry.topic = tf_topic_;
+  summary_.odometry.type = findTopic(tf_topic_)->datatype;
+  summary_.odometry_chain = tf_odometry_->describe();
+  odometry_frame_ = top;
+  odometry_child_ = base;
+  summary_.notes.push_back("the odometry is the chain " + summary_.odometry_chain + " on " +
+                           tf_topic_);
+  return true;
+}
+
+// The frames, from each stream's first message, and the mounts between them: a recording that
+// lacks a mount fails here, before its clouds are read.
+void Import::resolveFrames() {
+  try {
+    lidar_frame_ =
+        formats::ros1::decodePointCloud2(firstMessage(summary_.lidar.topic)).header.frame_id;
+  } catch (const formats::ros1::MessageError& e) {
+    failMessage(summary_.lidar.topic, 0, e.what());
+  }
+  const auto poseOf = [&](const BagImportSummary::Stream& stream) {
+    const std::string data = firstMessage(stream.topic);
+    try {
+      return stream.type == kPoseType ? formats::ros1::decodePoseStamped(data)
+                                      : formats::ros1::decodeOdometry(data);
+    } catch (const formats::ros1::MessageError& e) {
+      failMessage(stream.topic, 0, e.what());
+    }
+  };
+  if (!tf_topic_.empty() && !resolveTfOdometry()) tf_topic_.clear();
+  if (!summary_.odometry.topic.empty() && !tf_odometry_) {
+    const formats::ros1::StampedPose first = poseOf(summary_.odometry);
+    odometry_frame_ = first.header.frame_id;
+    odometry_child_ = first.child_frame_id;
+  }
+  if (!summary_.ground_truth.topic.empty()) {
+    const formats::ros1::StampedPose first = poseOf(summary_.ground_truth);
+    truth_frame_ = first.header.frame_id;
+    truth_child_ = first.child_frame_id;
+    if (summary_.ground_truth.type == kPoseType) {
+      summary_.notes.push_back("the ground truth (" + summary_.ground_truth.topic +
+                               ", geometry_msgs/PoseStamped) is taken as the base frame's pose");
+    }
+  }
+  if (!summary_.imu.topic.empty()) {
+    try {
+      imu_frame_ = formats::ros1::decodeImu(firstMessage(summary_.imu.topic)).header.frame_id;
+    } catch (const formats::ros1::MessageError& e) {
+      failMessage(summary_.imu.topic, 0, e.what());
+    }
+  }
+  // The base is the odometry's child (or as told). Without odometry, the ground truth's child
+  // when the fixed frames join it to the LiDAR (a rig whose truth is of its base, as our own bags
+  // of a handheld carrier); else the sensor is its own base.
+  const bool truth_is_of_the_rig = !summary_.ground_truth.topic.empty() && !truth_child_.empty() &&
+                                   frames_.transform(truth_child_, lidar_frame_).has_value();
+  base_frame_ = !options_.base_frame.empty()       ? options_.base_frame
+                : !summary_.odometry.topic.empty() ? odometry_child_
+                : truth_is_of_the_rig              ? truth_child_
+                                                   : lidar_frame_;
+  if (base_frame_.empty()) {
+    fail("the odometry on " + summary_.odometry.topic +
+         " names no child frame: give the base frame with --base-frame");
+  }
+  R_T_L_ = mount("LiDAR", "--lidar-extrinsic", lidar_frame_, options_.lidar_extrinsic);
+  if (!summary_.imu.topic.empty()) {
+    R_T_I_ = mount("IMU", "--imu-extrinsic", imu_frame_, options_.imu_extrinsic);
+  }
+  odometry_C_T_R_ = childToBase(summary_.odometry.topic, odometry_child_);
+  truth_C_T_R_ = childToBase(summary_.ground_truth.topic, truth_child_);
+}
+
+void Import::readStreams(const fs::path& folder,
+                         const std::function<void(std::uint64_t, std::uint64_t)>& progress) {
+  std::vector<std::string> topics;
+  for (auto* stream :
+       {&summary_.lidar, &summary_.imu, &summary_.odometry, &summary_.ground_truth}) {
+    if (!stream->topic.empty()) topics.push_back(stream->topic);
+  }
+  // The window, in the bag's record times.
+  const formats::RosTime first = bag_.startTime();
+  const double begin = double(first.sec) + 1e-9 * first.nsec + options_.start;
+  const double end = options_.duration ? begin + *options_.duration : INFINITY;
+  const std::uint64_t total = findTopic(summary_.lidar.topic)->messages;
+  std::map<std::string, std::uint64_t> index;  // per topic: the message's place on it
+  fs::create_directories(folder / formats::dataset::kScans);
+  bag_.read(topics, [&](const formats::BagMessageView& m) {
+    const std::string& topic = m.connection->topic;
+    const std::uint64_t k = index[topic]++;
+    const double time = double(m.time.sec) + 1e-9 * m.time.nsec;
+    if (time < begin) return true;
+    if (time > end) return false;
+    try {
+      if (topic == summary_.lidar.topic) {
+        const formats::ros1::PointCloud2 cloud = formats::ros1::decodePointCloud2(m.data);
+        const formats::CloudLayout layout = formats::cloudLayout(cloud);
+        if (scan_stamps_.empty()) {
+          layout_ = layout;
+        } else if (layout.describe() != layout_.describe()) {
+          throw formats::ros1::MessageError("its fields (" + layout.describe() +
+                                            ") are not the first cloud's (" + layout_.describe() +
+                                            ")");
+        }
+        if (cloud.header.frame_id != lidar_frame_) {
+          throw formats::ros1::MessageError("its frame \"" + cloud.header.frame_id +
+                                            "\" is not the first cloud's \"" + lidar_frame_ + "\"");
+        }
+        if (!scan_stamps_.empty() && !(scan_stamps_.back() < cloud.header.stamp)) {
+          throw formats::ros1::MessageError("its stamp is not after the previous cloud's");
+        }
+        const std::vector<sensors::ScanPoint> points = formats::cloudPoints(cloud, layout);
+        if (layout.time && !points.empty()) {
+          const auto [lo, hi] =
+              std::minmax_element(points.begin(), points.end(),
+                                  [](const sensors::ScanPoint& a, const sensors::ScanPoint& b) {
+                                    return a.time < b.time;
+                                  });
+          time_min_ = clouds_with_time_ == 0 ? lo->time : std::min<double>(time_min_, lo->time);
+          time_max_ = clouds_with_time_ == 0 ? hi->time : std::max<double>(time_max_, hi->time);
+          ++clouds_with_time_;
+          // Stamped at the end of the turn when most of its points came before the stamp.
+          const auto before =
+              std::count_if(points.begin(), points.end(),
+                            [](const sensors::ScanPoint& p) { return p.time < 0.0f; });
+          if (2 * std::size_t(before) > points.size()) ++clouds_stamped_at_end_;
+        }
+        summary_.points += points.size();
+        common::writeFile(folder / formats::dataset::kScans /
+                              formats::dataset::scanFileName(int(scan_stamps_.size())),
+                          formats::dataset::pcdBytes(points, formats::dataset::kDefaultPcdData));
+        scan_stamps_.push_back(cloud.header.stamp);
+        if (progress) progress(k + 1, total);
+      } else if (topic == summary_.imu.topic) {
+        const formats::ros1::Imu imu = formats::ros1::decodeImu(m.data);
+        if (imu.header.frame_id != imu_frame_) {
+          throw formats::ros1::MessageError("its frame \"" + imu.header.frame_id +
+                                            "\" is not the first sample's \"" + imu_frame_ + "\"");
+        }
+        if (imu_.empty()) {
+          imu_variance_ = {imu.angular_velocity_covariance[0],
+                           imu.linear_acceleration_covariance[0]};
+        }
+        if (!imu_.empty() && !(imu_.back().stamp < imu.header.stamp)) {
+          throw formats::ros1::MessageError("its stamp is not after the previous sample's");
+        }
+        sensors::ImuSample sample;
+        sample.accelerometer = imu.linear_acceleration;
+        sample.gyroscope = imu.angular_velocity;
+        imu_.push_back({imu.header.stamp, sample});
+      } else if (tf_odometry_ && topic == summary_.odometry.topic) {
+        for (const auto& t : formats::ros1::decodeTfMessage(m.data)) {
+          try {
+            tf_odometry_->offer(t.header.frame_id, t.child_frame_id, t.header.stamp,
+                                t.parent_T_child);
+          } catch (const std::invalid_argument& e) {
+            throw formats::ros1::MessageError(e.what());
+          }
+        }
+      } else {
+        const bool odometry = topic == summary_.odometry.topic;
+        const formats::ros1::StampedPose pose = findTopic(topic)->datatype == kPoseType
+                                                    ? formats::ros1::decodePoseStamped(m.data)
+                                                    : formats::ros1::decodeOdometry(m.data);
+        auto& poses = odometry ? odometry_ : truth_;
+        if (pose.child_frame_id != (odometry ? odometry_child_ : truth_child_)) {
+          throw formats::ros1::MessageError("its child frame \"" + pose.child_frame_id +
+                                            "\" is not the first message's");
+        }
+        if (!poses.empty() && !(poses.back().stamp < pose.header.stamp)) {
+          throw formats::ros1::MessageError("its stamp is not after the previous message's");
+        }
+        poses.push_back({pose.header.stamp, pose.pose});
+      }
+    } catch (const formats::ros1::MessageError& e) {
+      failMessage(topic, k, e.what());
+    }
+    return true;
+  });
+  if (scan_stamps_.empty()) {
+    fail("topic " + summary_.lidar.topic + " has no cloud" +
+         (options_.start > 0 || options_.duration ? " in the window given (--start, --duration)"
+                                                  : ""));
+  }
+}
+
+void Import::writeFiles(const fs::path& folder) {
+  if (tf_odometry_) {
+    for (const auto& pose : tf_odometry_->poses())
+      odometry_.push_back({pose.stamp, pose.top_T_base});
+    if (odometry_.empty()) {
+      fail("topic " + summary_.odometry.topic + ": no transform of the chain " +
+           summary_.odometry_chain + " in the part imported");
+    }
+    if (tf_odometry_->repeated() > 0) {
+      summary_.notes.push_back(std::to_string(tf_odometry_->repeated()) +
+                               " transforms of the odometry's chain repeat their link's previous "
+                               "stamp: left out");
+    }
+  }
+  // Dataset time 0: the whole second at or before the first imported stamp.
+  origin_ = scan_stamps_.front().sec;
+  for (const auto& s : imu_) origin_ = std::min(origin_, s.stamp.sec);
+  for (const auto* poses : {&odometry_, &truth_}) {
+    if (!poses->empty()) origin_ = std::min(origin_, poses->front().stamp.sec);
+  }
+
+  common::Trajectory odometry, truth;
+  for (const auto& p : odometry_) odometry.push_back({seconds(p.stamp), p.pose * odometry_C_T_R_});
+  for (const auto& p : truth_) truth.push_back({seconds(p.stamp), p.pose * truth_C_T_R_});
+
+  // The IMU's units: m/s² unless the specific force's median norm over the first second says g.
+  std::vector<sensors::ImuSample> imu;
+  for (const auto& s : imu_) {
+    sensors::ImuSample sample = s.sample;
+    sample.t = seconds(s.stamp);
+    imu.push_back(sample);
+  }
+  if (!imu.empty()) {
+    std::vector<double> norms;
+    for (const auto& s : imu) {
+      if (s.t > imu.front().t + 1.0) break;
+      norms.push_back(s.accelerometer.norm());
+    }
+    std::nth_element(norms.begin(), norms.begin() + norms.size() / 2, norms.end());
+    const double median = norms[norms.size() / 2];
+    if (std::abs(median - 1.0) < kGravityInG) {
+      for (auto& s : imu) s.accelerometer *= kStandardGravity;
+      imu_variance_[1] *= kStandardGravity * kStandardGravity;
+      char line[160];
+      std::snprintf(line, sizeof line,
+                    "the IMU's specific force is in g (median norm %.3f over its first second): "
+                    "converted to m/s²",
+                    median);
+      summary_.notes.push_back(line);
+    }
+  }
+
+  // Scans outside the odometry's span would have no motion prior: left out.
+  std::vector<double> stamps;
+  for (const auto& s : scan_stamps_) stamps.push_back(seconds(s));
+  std::size_t first = 0, last = stamps.size();
+  if (!odometry.empty()) {
+    while (first < last && stamps[first] < odometry.front().t) ++first;
+    while (last > first && stamps[last - 1] > odometry.back().t) --last;
+    if (first == last) {
+      fail("no cloud on " + summary_.lidar.topic + " lies within the odometry's time span (" +
+           summary_.odometry.topic + ")");
+    }
+    if (first > 0 || last < stamps.size()) {
+      summary_.notes.push_back(std::to_string(first + stamps.size() - last) +
+                               " clouds outside the odometry's time span left out");
+    }
+  }
+  const fs::path scans = folder / formats::dataset::kScans;
+  for (std::size_t i = 0; i < stamps.size(); ++i) {
+    const fs::path file = scans / formats::dataset::scanFileName(int(i));
+    if (i < first || i >= last) {
+      fs::remove(file);
+    } else if (first > 0) {
+      fs::rename(file, scans / formats::dataset::scanFileName(int(i - first)));
+    }
+  }
+  stamps = std::vector<double>(stamps.begin() + std::ptrdiff_t(first),
+                               stamps.begin() + std::ptrdiff_t(last));
+  summary_.lidar.messages = stamps.size();
+  summary_.imu.messages = imu.size();
+  summary_.odometry.messages = odometry.size();
+  summary_.ground_truth.messages = truth.size();
+
+  // The turn about its stamp.
+  summary_.scan_period = formats::dataset::meanPeriod(stamps).value_or(0.1);
+  summary_.point_time = clouds_with_time_ > 0 && time_max_ > time_min_
+                            ? std::array<double, 2>{time_min_, time_max_}
+                            : std::array<double, 2>{0.0, summary_.scan_period};
+  summary_.stamp = 2 * clouds_stamped_at_end_ > clouds_with_time_ ? "last_packet" : "first_firing";
+  summary_.cloud_layout = layout_.describe();
+  summary_.seconds = stamps.back() + summary_.point_time[1];
+
+  // scans.tum when the ground truth covers every scan, else the stamps alone.
+  common::Trajectory scan_poses;
+  for (double t : stamps) {
+    const auto B_T_R = common::interpolatePose(truth, t);
+    if (!B_T_R) break;
+    scan_poses.push_back({t, *B_T_R * R_T_L_});
+  }
+  if (!truth.empty() && scan_poses.size() == stamps.size()) {
+    common::writeFile(folder / formats::dataset::kScanPoses,
+                      formats::dataset::trajectoryText(scan_poses));
+  } else {
+    if (!truth.empty()) {
+      summary_.notes.push_back(
+          "the ground truth does not cover every scan: scans.txt holds "
+          "their stamps, without poses");
+    }
+    common::writeFile(folder / formats::dataset::kScanStamps, formats::dataset::stampsText(stamps));
+  }
+  if (!odometry.empty())
+    common::writeFile(folder / formats::dataset::kOdometry,
+                      formats::dataset::trajectoryText(odometry));
+  if (!truth.empty())
+    common::writeFile(folder / formats::dataset::kGroundTruth,
+                      formats::dataset::trajectoryText(truth));
+  if (!imu.empty())
+    common::writeFile(folder / formats::dataset::kImu, formats::dataset::imuText(imu));
+
+  std::vector<double> imu_times;
+  for (const auto& s : imu) imu_times.push_back(s.t);
+  nlohmann::ordered_json m;
+  if (isg_metadata_) {
+    // An isg dataset exported to a bag: its own metadata back, counts and span as imported.
+    summary_.from_isg = true;
+    m = nlohmann::ordered_json::parse(isg_metadata_->dump());
+    if (options_.start > 0 || options_.duration) {
+      m["duration_s"] = summary_.seconds;
+      m["lidar"]["scans"] = stamps.size();
+      if (m.contains("imu") && m["imu"].is_object()) m["imu"]["samples"] = imu.size();
+    }
+    m["lidar"]["pcd_data"] = formats::dataset::pcdDataName(formats::dataset::kDefaultPcdData);
+  } else {
+    m = metadata(summary_.seconds);
+    m["extrinsics"] = {
+        {"R_T_L", formats::dataset::mountJson(sensors::mountXyzRpy(R_T_L_), R_T_L_)}};
+    if (!imu.empty())
+      m["extrinsics"]["R_T_I"] = formats::dataset::mountJson(sensors::mountXyzRpy(R_T_I_), R_T_I_);
+    auto& lidar = m["lidar"];
+    lidar["rate_hz"] = 1.0 / summary_.scan_period;
+    lidar["scans"] = stamps.size();
+    lidar["stamp"] = summary_.stamp;
+    lidar["scan_period_s"] = summary_.scan_period;
+    lidar["point_time_s"] = summary_.point_time;
+    lidar["fields"] = summary_.cloud_layout;
+    lidar["pcd_data"] = formats::dataset::pcdDataName(formats::dataset::kDefaultPcdData);
+    if (!imu.empty()) {
+      const double rate = imu.size() >= 2 ? 1.0 / *formats::dataset::meanPeriod(imu_times) : 0.0;
+      nlohmann::ordered_json block = {{"file", formats::dataset::kImu},
+                                      {"rate_hz", rate},
+                                      {"samples", imu.size()},
+                                      {"frame", "I"}};
+      // The message's per-sample variances are density² × rate; given only when the driver
+      // filled them.
+      if (imu_variance_[0] > 0 && imu_variance_[1] > 0 && rate > 0) {
+        block["gyroscope_noise_density"] = std::sqrt(imu_variance_[0] / rate);
+        block["accelerometer_noise_density"] = std::sqrt(imu_variance_[1] / rate);
+      }
+      m["imu"] = block;
+    }
+    if (!odometry.empty()) {
+      std::vector<double> times;
+      for (const auto& p : odometry) times.push_back(p.t);
+      m["odometry"] = {
+          {"rate_hz", times.size() >= 2 ? 1.0 / *formats::dataset::meanPeriod(times) : 0.0},
+          {"topic", summary_.odometry.topic}};
+      if (tf_odometry_) m["odometry"]["chain"] = summary_.odometry_chain;
+    }
+  }
+  m["imported_from"] = {{"file", fs::path(bag_path_).filename().string()},
+                        {"start_s", options_.start},
+                        {"time_origin_s", origin_},
+                        {"topics",
+                         {{"lidar", summary_.lidar.topic},
+                          {"imu", summary_.imu.topic},
+                          {"odometry", summary_.odometry.topic},
+                          {"ground_truth", summary_.ground_truth.topic}}},
+                        {"notes", summary_.notes}};
+  if (options_.duration) m["imported_from"]["duration_s"] = *options_.duration;
+  common::writeFile(folder / formats::dataset::kMetadata, m.dump(2) + "\n");
+}
+
+nlohmann::ordered_json Import::metadata(double seconds) const {
+  return {{"format", formats::dataset::kFormat},
+          {"version", formats::dataset::kVersion},
+          {"generator", "isg import 0.1.0"},
+          {"duration_s", seconds},
+          {"frames",
+           {{"M", odometry_frame_.empty() ? "odometry frame (none recorded)" : odometry_frame_},
+            {"R", base_frame_},
+            {"L", lidar_frame_},
+            {"I", imu_frame_.empty() ? "(no IMU recorded)" : imu_frame_},
+            {"B", truth_frame_.empty() ? "plan frame (no ground truth recorded)" : truth_frame_}}},
+          {"extrinsics", nlohmann::ordered_json::object()},
+          {"lidar", {{"model", "recorded"}}}};
+}
+
+BagImportSummary Import::run(const fs::path& folder,
+                             const std::function<void(std::uint64_t, std::uint64_t)>& progress) {
+  collectTopics();
+  chooseTopics();
+  readStatic();
+  resolveFrames();
+  readStreams(folder, progress);
+  writeFiles(folder);
+  return summary_;
+}
+
+}  // namespace
+
+BagImportSummary importRosbag(const std::string& bag_path, const std::string& dataset_dir,
+                              const BagImportOptions& options,
+                              const std::function<void(std::uint64_t, std::uint64_t)>& progress) {
+  Import import(bag_path, options);
+  BagImportSummary summary;
+  common::writeFolderAtomically(
+      dataset_dir, common::OutputKind::kDataset, options.overwrite,
+      [&](const fs::path& folder) { summary = import.run(folder, progress); });
+  return summary;
+}
+
+}  // namespace isg::recordings

@@ -1,0 +1,94 @@
+#include "recordings/dataset_messages.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+namespace isg::recordings {
+
+namespace {
+
+BodyTwist twistBetween(const common::StampedPose& before, const common::StampedPose& after) {
+  const double dt = after.t - before.t;
+  if (!(dt > 0.0)) return {};
+  const Eigen::Isometry3d step = before.pose.inverse() * after.pose;
+  const Eigen::AngleAxisd turn(step.linear());
+  BodyTwist out;
+  out.linear =
+      after.pose.linear().transpose() * (after.pose.translation() - before.pose.translation()) / dt;
+  out.angular = turn.angle() * turn.axis() / dt;
+  return out;
+}
+
+// One entry per message, in the order ties are broken.
+enum class Kind { kMounts, kOdometry, kImu, kCloud, kGroundTruth };
+struct Entry {
+  double t;
+  Kind kind;
+  int index;
+};
+
+}  // namespace
+
+void visitDatasetMessages(formats::DatasetReader& dataset, DatasetMessageVisitor& visitor,
+                          const std::function<void(int, int)>& progress) {
+  std::vector<Entry> entries;
+  for (int i = 0; i < int(dataset.odometry().size()); ++i)
+    entries.push_back({dataset.odometry()[i].t, Kind::kOdometry, i});
+  for (int i = 0; i < int(dataset.imu().size()); ++i)
+    entries.push_back({dataset.imu()[i].t, Kind::kImu, i});
+  for (int i = 0; i < dataset.scanCount(); ++i)
+    entries.push_back({dataset.scanStamp(i), Kind::kCloud, i});
+  for (int i = 0; i < int(dataset.groundTruth().size()); ++i)
+    entries.push_back({dataset.groundTruth()[i].t, Kind::kGroundTruth, i});
+  // The mounts come first, at the first message's time.
+  double earliest = 0.0;
+  for (std::size_t i = 0; i < entries.size(); ++i) {
+    earliest = i == 0 ? entries[i].t : std::min(earliest, entries[i].t);
+  }
+  entries.push_back({earliest, Kind::kMounts, 0});
+  std::stable_sort(entries.begin(), entries.end(), [](const Entry& a, const Entry& b) {
+    return a.t != b.t ? a.t < b.t : a.kind < b.kind;
+  });
+
+  ImuVariances variances;
+  if (const auto& noise = dataset.imuNoise()) {
+    variances.gyroscope = std::pow(noise->gyroscope_noise_density, 2) * noise->rate_hz;
+    variances.accelerometer = std::pow(noise->accelerometer_noise_density, 2) * noise->rate_hz;
+  }
+  int scans_done = 0;
+  auto twistOf = [](const common::Trajectory& poses, int i) {
+    return i > 0 ? twistBetween(poses[i - 1], poses[i]) : BodyTwist{};
+  };
+  for (const Entry& e : entries) {
+    switch (e.kind) {
+      case Kind::kMounts: {
+        std::vector<std::pair<std::string, Eigen::Isometry3d>> mounts = {
+            {rosbag_names::kLidarFrame, dataset.R_T_L()}};
+        if (!dataset.imu().empty()) mounts.emplace_back(rosbag_names::kImuFrame, dataset.R_T_I());
+        nlohmann::json made = dataset.metadata();
+        if (made.is_object() && made.contains("lidar") && made["lidar"].is_object()) {
+          made["lidar"].erase("pcd_data");
+        }
+        visitor.mounts(e.t, mounts, made.dump());
+        break;
+      }
+      case Kind::kOdometry:
+        visitor.odometry(e.index, e.t, dataset.odometry()[e.index].pose,
+                         twistOf(dataset.odometry(), e.index));
+        break;
+      case Kind::kImu:
+        visitor.imu(e.index, e.t, dataset.imu()[e.index], variances);
+        break;
+      case Kind::kCloud:
+        visitor.cloud(e.index, e.t, dataset.scan(e.index));
+        if (progress) progress(++scans_done, dataset.scanCount());
+        break;
+      case Kind::kGroundTruth:
+        visitor.groundTruth(e.index, e.t, dataset.groundTruth()[e.index].pose,
+                            twistOf(dataset.groundTruth(), e.index));
+        break;
+    }
+  }
+}
+
+}  // namespace isg::recordings
