@@ -1,13 +1,12 @@
-
-#include "bim/plan_geometry.hpp"
-#include "common/xml_escape.hpp"
-
 #include "bim/agraph_svg.hpp"
 
 #include <algorithm>
 #include <cstdio>
 #include <limits>
 #include <sstream>
+
+#include "bim/plan_geometry.hpp"
+#include "common/xml_escape.hpp"
 
 namespace isg::bim {
 

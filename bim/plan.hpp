@@ -2,6 +2,7 @@
 
 #include <Eigen/Core>
 #include <array>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -21,6 +22,7 @@ struct Wall {
   double thickness = 0.0;  // centred on the axis start → end
   double height = 0.0;     // top of the wall above the level's elevation
   double base = 0.0;       // bottom of the wall above the level's elevation
+  std::string name;        // free text from the file (an imported element's name); "" when none
 };
 
 struct Door {
@@ -31,6 +33,7 @@ struct Door {
   double height = 0.0;               // from the wall's base
   std::array<std::string, 2> rooms;  // the two rooms it joins (or kOutside)
   bool rooms_inferred = false;       // true when `rooms` came from the outlines, not the file
+  std::string name;                  // free text from the file; "" when none
 };
 
 // A window: an opening in a wall from `sill` to `sill + height` above the wall's base, which the
@@ -42,6 +45,7 @@ struct Window {
   double width = 0.0;
   double sill = 0.0;    // bottom of the opening above the wall's base
   double height = 0.0;  // of the opening, sill to head
+  std::string name;     // free text from the file; "" when none
 };
 
 // A straight flight of stairs (an optional extension of v1): its bottom edge is centred at
@@ -53,7 +57,8 @@ struct Stair {
   Eigen::Vector2d start = Eigen::Vector2d::Zero();
   Eigen::Vector2d end = Eigen::Vector2d::Zero();
   double width = 0.0;
-  std::string to;  // id of the level the flight leads to
+  std::string to;    // id of the level the flight leads to
+  std::string name;  // free text from the file; "" when none
 };
 
 struct Room {
@@ -64,6 +69,7 @@ struct Room {
 
 struct Level {
   std::string id;
+  std::string name;        // free text from the file (an imported storey's name); "" when none
   double elevation = 0.0;  // top of the floor
   double height = 0.0;     // default wall height, floor to ceiling
   std::vector<Wall> walls;
@@ -79,9 +85,17 @@ struct Level {
   const Stair* findStair(const std::string& stair_id) const;
 };
 
+// Where an imported plan came from (isg import): free text for the reader, "" where not given.
+struct ImportedFrom {
+  std::string file;         // the model's file name
+  std::string schema;       // IFC2X3, IFC4, ...
+  std::string application;  // the authoring tool, as the model's header names it
+};
+
 struct Plan {
   std::string name;
   std::string source;  // file it was read from, for messages
+  std::optional<ImportedFrom> imported_from;
   std::vector<Level> levels;
 
   const Level* findLevel(const std::string& level_id) const;

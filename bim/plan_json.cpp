@@ -1,5 +1,7 @@
 #include "bim/plan_json.hpp"
 
+#include "bim/plan_parser.hpp"
+
 namespace isg::bim {
 
 namespace {
@@ -9,67 +11,95 @@ using json = nlohmann::ordered_json;
 json point(const Eigen::Vector2d& p) { return json::array({p.x(), p.y()}); }
 json point(const Eigen::Vector3d& p) { return json::array({p.x(), p.y(), p.z()}); }
 
+json wallJson(const Wall& w, const Level& level, const PlanJsonStyle& style) {
+  json out = {
+      {"id", w.id}, {"start", point(w.start)}, {"end", point(w.end)}, {"thickness", w.thickness}};
+  if (style.every_wall_height || w.height != level.height) out["height"] = w.height;
+  if (style.every_wall_height || w.base != 0.0) out["base"] = w.base;
+  if (style.names && !w.name.empty()) out["name"] = w.name;
+  return out;
+}
+
+json doorJson(const Door& d, const PlanJsonStyle& style) {
+  json out = {{"id", d.id},
+              {"wall", d.wall},
+              {"offset", d.offset},
+              {"width", d.width},
+              {"height", d.height}};
+  if (style.inferred_door_rooms || !d.rooms_inferred) out["rooms"] = {d.rooms[0], d.rooms[1]};
+  if (style.names && !d.name.empty()) out["name"] = d.name;
+  return out;
+}
+
+json windowJson(const Window& w, const PlanJsonStyle& style) {
+  json out = {{"id", w.id},       {"wall", w.wall}, {"offset", w.offset},
+              {"width", w.width}, {"sill", w.sill}, {"height", w.height}};
+  if (style.names && !w.name.empty()) out["name"] = w.name;
+  return out;
+}
+
+json roomJson(const Room& r) {
+  json out = {{"id", r.id}};
+  if (!r.name.empty()) out["name"] = r.name;
+  json outline = json::array();
+  for (const auto& p : r.outline) outline.push_back(point(p));
+  out["outline"] = outline;
+  return out;
+}
+
+json stairJson(const Stair& s, const PlanJsonStyle& style) {
+  json out = {{"id", s.id}};
+  if (style.names && !s.name.empty()) out["name"] = s.name;
+  out["start"] = point(s.start);
+  out["end"] = point(s.end);
+  out["width"] = s.width;
+  out["to"] = s.to;
+  return out;
+}
+
+json levelJson(const Level& level, const PlanJsonStyle& style) {
+  json out = {{"id", level.id}};
+  if (style.names && !level.name.empty()) out["name"] = level.name;
+  out["elevation"] = level.elevation;
+  out["height"] = level.height;
+  json walls = json::array(), doors = json::array();
+  for (const auto& w : level.walls) walls.push_back(wallJson(w, level, style));
+  for (const auto& d : level.doors) doors.push_back(doorJson(d, style));
+  out["walls"] = walls;
+  out["doors"] = doors;
+  // Windows and stairs are optional extensions of v1: a level without them is written as before.
+  if (!level.windows.empty()) {
+    json windows = json::array();
+    for (const auto& w : level.windows) windows.push_back(windowJson(w, style));
+    out["windows"] = windows;
+  }
+  json rooms = json::array();
+  for (const auto& r : level.rooms) rooms.push_back(roomJson(r));
+  out["rooms"] = rooms;
+  if (!level.stairs.empty()) {
+    json stairs = json::array();
+    for (const auto& s : level.stairs) stairs.push_back(stairJson(s, style));
+    out["stairs"] = stairs;
+  }
+  return out;
+}
+
 }  // namespace
 
-json planToJson(const Plan& plan) {
-  json levels = json::array();
-  for (const auto& level : plan.levels) {
-    json walls = json::array(), doors = json::array(), rooms = json::array();
-    for (const auto& w : level.walls) {
-      walls.push_back({{"id", w.id},
-                       {"start", point(w.start)},
-                       {"end", point(w.end)},
-                       {"thickness", w.thickness},
-                       {"height", w.height},
-                       {"base", w.base}});
-    }
-    for (const auto& d : level.doors) {
-      doors.push_back({{"id", d.id},
-                       {"wall", d.wall},
-                       {"offset", d.offset},
-                       {"width", d.width},
-                       {"height", d.height},
-                       {"rooms", {d.rooms[0], d.rooms[1]}}});
-    }
-    for (const auto& r : level.rooms) {
-      json outline = json::array();
-      for (const auto& p : r.outline) outline.push_back(point(p));
-      rooms.push_back({{"id", r.id}, {"name", r.name}, {"outline", outline}});
-    }
-    json out = {{"id", level.id},
-                {"elevation", level.elevation},
-                {"height", level.height},
-                {"walls", walls},
-                {"doors", doors}};
-    // Windows are an optional extension of v1: a plan without them is written as before.
-    if (!level.windows.empty()) {
-      json windows = json::array();
-      for (const auto& w : level.windows) {
-        windows.push_back({{"id", w.id},
-                           {"wall", w.wall},
-                           {"offset", w.offset},
-                           {"width", w.width},
-                           {"sill", w.sill},
-                           {"height", w.height}});
-      }
-      out["windows"] = windows;
-    }
-    out["rooms"] = rooms;
-    // Stairs too are an optional extension of v1.
-    if (!level.stairs.empty()) {
-      json stairs = json::array();
-      for (const auto& st : level.stairs) {
-        stairs.push_back({{"id", st.id},
-                          {"start", point(st.start)},
-                          {"end", point(st.end)},
-                          {"width", st.width},
-                          {"to", st.to}});
-      }
-      out["stairs"] = stairs;
-    }
-    levels.push_back(out);
+json planToJson(const Plan& plan, const PlanJsonStyle& style) {
+  json out = {{"format", kPlanFormat}, {"version", kPlanVersion}, {"name", plan.name}};
+  if (style.names && plan.imported_from) {
+    json from = json::object();
+    if (!plan.imported_from->file.empty()) from["file"] = plan.imported_from->file;
+    if (!plan.imported_from->schema.empty()) from["schema"] = plan.imported_from->schema;
+    if (!plan.imported_from->application.empty())
+      from["application"] = plan.imported_from->application;
+    out["imported_from"] = from;
   }
-  return {{"format", "isg.plan"}, {"version", 1}, {"name", plan.name}, {"levels", levels}};
+  json levels = json::array();
+  for (const auto& level : plan.levels) levels.push_back(levelJson(level, style));
+  out["levels"] = levels;
+  return out;
 }
 
 json asBuiltToJson(const AsBuilt& a) {
@@ -84,6 +114,11 @@ json asBuiltToJson(const AsBuilt& a) {
     extra.push_back(wall);
   }
   for (const auto& s : a.wall_shifts) shifts.push_back({{"wall", s.wall}, {"offset", s.offset}});
+  json rotations = json::array();
+  for (const auto& r : a.wall_rotations) {
+    rotations.push_back(
+        {{"wall", r.wall}, {"angle_deg", r.angle_deg}, {"about", aboutName(r.about)}});
+  }
   for (const auto& c : a.clutter) {
     clutter.push_back({{"shape", "box"},
                        {"center", point(c.center)},
@@ -91,11 +126,13 @@ json asBuiltToJson(const AsBuilt& a) {
                        {"yaw", c.yaw},
                        {"level", c.level}});
   }
-  return {{"missing_walls", a.missing_walls},
-          {"extra_walls", extra},
-          {"wall_shifts", shifts},
-          {"closed_doors", a.closed_doors},
-          {"clutter", clutter}};
+  json out = {{"missing_walls", a.missing_walls}, {"extra_walls", extra}, {"wall_shifts", shifts}};
+  // Turned walls came after the other deviations: written where there are some, so that a
+  // dataset without them records what it always did.
+  if (!rotations.empty()) out["wall_rotations"] = rotations;
+  out["closed_doors"] = a.closed_doors;
+  out["clutter"] = clutter;
+  return out;
 }
 
 }  // namespace isg::bim

@@ -7,10 +7,26 @@
 
 namespace isg::bim {
 
-// A parsed plan written back as an "isg.plan" v1 document, with every default filled in (door
-// rooms included): what a dataset records as the plan it was made from. Parsing the result gives
-// the same plan.
-nlohmann::ordered_json planToJson(const Plan& plan);
+// What planToJson writes beyond what an author must: a dataset records its plan with every
+// default the parser fills in (the defaults), so that a replay compares plans field by field; a
+// plan written for people (isg generate, isg import) leaves out what the parser fills in the
+// same way.
+struct PlanJsonStyle {
+  // Each wall's height and base, even where they are its level's height and 0. Without: only
+  // where they differ.
+  bool every_wall_height = true;
+  // Each door's two rooms, even where the parser inferred them from the outlines. Without: only
+  // the rooms the file gave.
+  bool inferred_door_rooms = true;
+  // The names of levels, walls, openings and flights (where given) and where an imported plan
+  // came from. Without: the geometry alone (how isg slam tells whether two plans are one).
+  bool names = true;
+};
+
+// A plan as an "isg.plan" v1 document: the one writer of the plan format (datasets, isg import,
+// isg generate, the test plans). Keys in the order docs/formats.md gives them; a room's name, a
+// level's windows and stairs only where there are some. Parsing the result gives the same plan.
+nlohmann::ordered_json planToJson(const Plan& plan, const PlanJsonStyle& style = {});
 
 // The as-built deviations as in a scenario's "as_built" object.
 nlohmann::ordered_json asBuiltToJson(const AsBuilt& as_built);

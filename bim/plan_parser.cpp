@@ -49,6 +49,7 @@ Wall parseWall(const common::JsonNode& node, const Level& level, IdRegistry& ids
     node.field("end").fail("zero-length wall: end equals start " + formatPoint(wall.start));
   }
   wall.thickness = node.field("thickness").numberInRange(limits::kMinSize, limits::kMaxThickness);
+  if (auto name = node.optionalField("name")) wall.name = name->text();
   wall.height = level.height;
   if (auto h = node.optionalField("height")) {
     wall.height = h->numberInRange(limits::kMinSize, limits::kMaxHeight);
@@ -149,7 +150,7 @@ Window parseWindow(const common::JsonNode& node, const Level& level, const Level
   const common::JsonNode id = node.field("id");
   window.id = id.identifier();
   ids.add(id, window.id);
-  if (auto name = node.optionalField("name")) name->text();
+  if (auto name = node.optionalField("name")) window.name = name->text();
   const common::JsonNode wall_node = node.field("wall");
   window.wall = wall_node.nonEmptyString();
   const Wall& wall = openingWall(wall_node, window.wall, level, index);
@@ -176,6 +177,7 @@ Door parseDoor(const common::JsonNode& node, const Level& level, const LevelInde
   const common::JsonNode id = node.field("id");
   door.id = id.identifier();
   ids.add(id, door.id);
+  if (auto name = node.optionalField("name")) door.name = name->text();
   const common::JsonNode wall_node = node.field("wall");
   door.wall = wall_node.nonEmptyString();
   const Wall& wall = openingWall(wall_node, door.wall, level, index);
@@ -223,7 +225,7 @@ Stair parseStair(const common::JsonNode& node, IdRegistry& ids) {
   const common::JsonNode id = node.field("id");
   stair.id = id.identifier();
   ids.add(id, stair.id);
-  if (auto name = node.optionalField("name")) name->text();
+  if (auto name = node.optionalField("name")) stair.name = name->text();
   stair.start = planPoint(node.field("start"));
   stair.end = planPoint(node.field("end"));
   if ((stair.end - stair.start).norm() < limits::kMinSize) {
@@ -312,7 +314,7 @@ Level parseLevel(const common::JsonNode& node, IdRegistry& ids) {
   const common::JsonNode id = node.field("id");
   level.id = id.identifier();
   ids.add(id, level.id);
-  if (auto name = node.optionalField("name")) name->text();
+  if (auto name = node.optionalField("name")) level.name = name->text();
   if (auto e = node.optionalField("elevation")) {
     level.elevation = e->numberInRange(-limits::kMaxCoordinate, limits::kMaxCoordinate);
   }
@@ -565,9 +567,11 @@ Plan parsePlan(const common::JsonNode& root) {
   // Where an imported plan came from (isg import): text only, for the reader.
   if (auto imported = root.optionalField("imported_from")) {
     imported->expectObject({"file", "schema", "application"});
-    for (const char* key : {"file", "schema", "application"}) {
-      if (auto field = imported->optionalField(key)) field->text();
-    }
+    ImportedFrom& from = plan.imported_from.emplace();
+    if (auto file = imported->optionalField("file")) from.file = file->text();
+    if (auto schema = imported->optionalField("schema")) from.schema = schema->text();
+    if (auto application = imported->optionalField("application"))
+      from.application = application->text();
   }
   IdRegistry ids;
   for (const auto& level : root.field("levels").elements(1, limits::kMaxLevels, "levels")) {

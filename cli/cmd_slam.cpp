@@ -34,8 +34,11 @@ std::optional<bim::Plan> replayPlan(const std::string& plan_argument, bool other
   if (plan_argument.empty()) return recorded;
   bim::Plan given = loadInput(plan_argument, "slam").plan;
   if (recorded && !other_plan) {
-    // Compared as the dataset records plans: every default filled in, the name left out.
-    auto levels = [](const bim::Plan& plan) { return bim::planToJson(plan)["levels"]; };
+    // Compared as the dataset records plans, every default filled in, but without names: the
+    // geometry is what makes two plans one (a dataset recorded before plans kept names has none).
+    auto levels = [](const bim::Plan& plan) {
+      return bim::planToJson(plan, {.names = false})["levels"];
+    };
     if (levels(*recorded) != levels(given)) {
       throw common::InputError(
           metadata_file, "/plan",

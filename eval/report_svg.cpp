@@ -1,13 +1,12 @@
-
-#include "common/xml_escape.hpp"
-#include "eval/svg_chart.hpp"
-
 #include "eval/report_svg.hpp"
 
 #include <algorithm>
 #include <cmath>
 #include <limits>
 #include <sstream>
+
+#include "common/xml_escape.hpp"
+#include "eval/svg_chart.hpp"
 
 namespace isg::eval {
 

@@ -1,11 +1,10 @@
-
-#include "common/xml_escape.hpp"
-
 #include "eval/svg_chart.hpp"
 
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+
+#include "common/xml_escape.hpp"
 
 namespace isg::eval {
 

@@ -1,7 +1,5 @@
 #include "formats/dataset_format.hpp"
 
-#include "common/tum.hpp"
-
 #include <lzf.h>
 
 #include <algorithm>
@@ -10,6 +8,8 @@
 #include <cstdio>
 #include <cstring>
 #include <stdexcept>
+
+#include "common/tum.hpp"
 
 namespace isg::formats::dataset {
 

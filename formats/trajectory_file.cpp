@@ -1,12 +1,12 @@
 #include "formats/trajectory_file.hpp"
 
-#include "common/input_error.hpp"
-#include "common/tum.hpp"
-
 #include <cerrno>
 #include <cmath>
 #include <cstdlib>
 #include <fstream>
+
+#include "common/input_error.hpp"
+#include "common/tum.hpp"
 
 namespace isg::formats {
 

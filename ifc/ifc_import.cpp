@@ -34,6 +34,8 @@
 #include <set>
 
 #include "bim/limits.hpp"
+#include "bim/plan.hpp"
+#include "bim/plan_json.hpp"
 #include "bim/plan_parser.hpp"
 #include "bim/polygon.hpp"
 #include "bim/stairs.hpp"
@@ -244,12 +246,13 @@ class Importer {
   void readWalls();
   void readOpenings();
   void readFlights();
-  void placeFlights(json& levels);
+  void placeFlights(std::vector<bim::Level>& levels);
   // The flight trimmed by at most kFlightTrim at an end or a side for each wall of its two levels
   // it runs into, and the trims logged.
-  FlightFit clearOfWalls(const FlightRecord& flight, const json& lower, const json& upper);
+  FlightFit clearOfWalls(const FlightRecord& flight, const bim::Level& lower,
+                         const bim::Level& upper);
   std::vector<int> chooseLevels();
-  json levelJson(int storey_index, StoreySummary& summary);
+  bim::Level level(int storey_index, StoreySummary& summary);
   std::string uniqueId(const std::string& wanted, const std::string& suffix);
   void dropped(const std::string& what, const std::string& why) {
     result_.log.push_back("dropped " + what + ": " + why);
@@ -530,7 +533,8 @@ void Importer::readFlights() {
 // its top (within kFlightLevelTolerance: a flight's last tread may be the upper slab's edge, one
 // riser higher). Flights that do not (to or from a landing between storeys) are dropped; the
 // plan's parser checks the rest (slope, width, clear of walls) when the plan is read back.
-FlightFit Importer::clearOfWalls(const FlightRecord& flight, const json& lower, const json& upper) {
+FlightFit Importer::clearOfWalls(const FlightRecord& flight, const bim::Level& lower,
+                                 const bim::Level& upper) {
   FlightFit fit = flight.fit;
   const Eigen::Vector2d origin = fit.low_edge;
   const Eigen::Vector2d u = (fit.high_edge - fit.low_edge).normalized();
@@ -538,12 +542,8 @@ FlightFit Importer::clearOfWalls(const FlightRecord& flight, const json& lower, 
   // The flight in its own frame: s along it from the low edge, t across it.
   double s0 = 0.0, s1 = (fit.high_edge - fit.low_edge).norm();
   double t0 = -0.5 * fit.width, t1 = 0.5 * fit.width;
-  for (const json* level : {&lower, &upper}) {
-    for (const auto& w : (*level)["walls"]) {
-      bim::Wall wall;
-      wall.start = {w["start"][0].get<double>(), w["start"][1].get<double>()};
-      wall.end = {w["end"][0].get<double>(), w["end"][1].get<double>()};
-      wall.thickness = w["thickness"].get<double>();
+  for (const bim::Level* level : {&lower, &upper}) {
+    for (const bim::Wall& wall : level->walls) {
       const auto corners = bim::wallRectangle(wall);
       double ws0 = 1e300, ws1 = -1e300, wt0 = 1e300, wt1 = -1e300;
       for (const auto& c : corners) {
@@ -573,7 +573,7 @@ FlightFit Importer::clearOfWalls(const FlightRecord& flight, const json& lower, 
       *best->edge = best->to;
       simplified(describe(flight.kind, flight.element),
                  std::string(best->where) + " trimmed by " + fmt(best->amount) +
-                     " m to clear wall " + w["id"].get<std::string>() +
+                     " m to clear wall " + wall.id +
                      " (a flight's stringer or last tread built into a wall)");
     }
   }
@@ -583,15 +583,14 @@ FlightFit Importer::clearOfWalls(const FlightRecord& flight, const json& lower, 
   return fit;
 }
 
-void Importer::placeFlights(json& levels) {
+void Importer::placeFlights(std::vector<bim::Level>& levels) {
   for (const auto& flight : flights_) {
     const std::string what = describe(flight.kind, flight.element);
-    json* lower = nullptr;
-    json* upper = nullptr;
+    bim::Level* lower = nullptr;
+    bim::Level* upper = nullptr;
     for (auto& level : levels) {
-      const double elevation = level["elevation"].get<double>();
-      if (std::abs(elevation - flight.fit.bottom) <= kFlightLevelTolerance) lower = &level;
-      if (std::abs(elevation - flight.fit.top) <= kFlightLevelTolerance) upper = &level;
+      if (std::abs(level.elevation - flight.fit.bottom) <= kFlightLevelTolerance) lower = &level;
+      if (std::abs(level.elevation - flight.fit.top) <= kFlightLevelTolerance) upper = &level;
     }
     if (lower == nullptr || upper == nullptr || lower == upper) {
       dropped(what, "it rises from z " + fmt(flight.fit.bottom) + " to " + fmt(flight.fit.top) +
@@ -603,23 +602,20 @@ void Importer::placeFlights(json& levels) {
     }
     const FlightFit fit = clearOfWalls(flight, *lower, *upper);
     const double run = (fit.high_edge - fit.low_edge).norm();
-    json stair = {
-        {"id", uniqueId(flight.global_id, "")},
-        {"name", cleanText(flight.name, common::limits::kMaxTextBytes)},
-        {"start", {fit.low_edge.x(), fit.low_edge.y()}},
-        {"end", {fit.high_edge.x(), fit.high_edge.y()}},
-        {"width", fit.width},
-        {"to", (*upper)["id"]},
-    };
-    const double rise = (*upper)["elevation"].get<double>() - (*lower)["elevation"].get<double>();
+    bim::Stair stair;
+    stair.id = uniqueId(flight.global_id, "");
+    stair.name = cleanText(flight.name, common::limits::kMaxTextBytes);
+    stair.start = fit.low_edge;
+    stair.end = fit.high_edge;
+    stair.width = fit.width;
+    stair.to = upper->id;
+    const double rise = upper->elevation - lower->elevation;
     if (std::abs(flight.fit.top - flight.fit.bottom - rise) > kReportedChange) {
       simplified(what, "its body rises " + fmt(flight.fit.top - flight.fit.bottom) +
-                           " m; taken as a flight of " + fmt(run) + " m from level " +
-                           (*lower)["id"].get<std::string>() + " to level " +
-                           (*upper)["id"].get<std::string>() + ", " + fmt(rise) + " m up");
+                           " m; taken as a flight of " + fmt(run) + " m from level " + lower->id +
+                           " to level " + upper->id + ", " + fmt(rise) + " m up");
     }
-    if (!lower->contains("stairs")) (*lower)["stairs"] = json::array();
-    (*lower)["stairs"].push_back(stair);
+    lower->stairs.push_back(std::move(stair));
   }
 }
 
@@ -670,10 +666,13 @@ std::vector<int> Importer::chooseLevels() {
   return chosen;
 }
 
-json Importer::levelJson(int s, StoreySummary& summary) {
+bim::Level Importer::level(int s, StoreySummary& summary) {
   const StoreyRecord& storey = storeys_[s];
   const double e = storey.elevation;
-  json walls = json::array(), doors = json::array(), windows = json::array(), rooms = json::array();
+  bim::Level level;
+  level.id = summary.level_id;
+  if (!storey.name.empty()) level.name = cleanText(storey.name, common::limits::kMaxTextBytes);
+  level.elevation = e;
   std::vector<double> tops;
   std::map<int, std::pair<double, double>> base_top;  // wall → (base, top) above the level
   for (int w = 0; w < int(walls_.size()); ++w) {
@@ -685,14 +684,15 @@ json Importer::levelJson(int s, StoreySummary& summary) {
     const double top = std::min(wall.fit.top - e, bim::limits::kMaxHeight);
     base_top[w] = {base, top};
     tops.push_back(top);
-    json out = {{"id", id},
-                {"start", {wall.fit.start.x(), wall.fit.start.y()}},
-                {"end", {wall.fit.end.x(), wall.fit.end.y()}},
-                {"thickness", wall.fit.thickness},
-                {"height", top},
-                {"base", base}};
-    if (!wall.name.empty()) out["name"] = cleanText(wall.name, common::limits::kMaxTextBytes);
-    walls.push_back(out);
+    bim::Wall out;
+    out.id = id;
+    out.start = wall.fit.start;
+    out.end = wall.fit.end;
+    out.thickness = wall.fit.thickness;
+    out.height = top;
+    out.base = base;
+    if (!wall.name.empty()) out.name = cleanText(wall.name, common::limits::kMaxTextBytes);
+    level.walls.push_back(std::move(out));
     ++summary.walls;
     if (wall.storey != s) ++summary.walls_from_other_storeys;
   }
@@ -746,10 +746,13 @@ json Importer::levelJson(int s, StoreySummary& summary) {
     }
     if (overlaps) continue;
     const std::string id = uniqueId(opening.global_id, summary.level_id);
-    json out = {{"id", id},
-                {"wall", wall_ids_[{opening.wall, s}]},
-                {"offset", 0.5 * (lo + hi)},
-                {"width", hi - lo}};
+    bim::Door door;
+    bim::Window window;
+    door.id = window.id = id;
+    door.wall = window.wall = wall_ids_[{opening.wall, s}];
+    door.offset = window.offset = 0.5 * (lo + hi);
+    door.width = window.width = hi - lo;
+    door.rooms_inferred = true;  // the model says none: the parser finds them from the outlines
     if (is_door) {
       const double height = std::min(opening.extent.z_max - (e + base), top - base);
       if (height < 0.5) {
@@ -762,7 +765,7 @@ json Importer::levelJson(int s, StoreySummary& summary) {
       }
       if (opening.kind == "opening")
         simplified(what, "an opening without a door or window: a doorway");
-      out["height"] = height;
+      door.height = height;
       ++summary.doors;
     } else {
       const double sill = std::max(0.0, above_base);
@@ -776,12 +779,18 @@ json Importer::levelJson(int s, StoreySummary& summary) {
       }
       if (opening.kind == "opening")
         simplified(what, "an opening without a door or window, above the floor: a window");
-      out["sill"] = sill;
-      out["height"] = head - sill;
+      window.sill = sill;
+      window.height = head - sill;
       ++summary.windows;
     }
-    if (!opening.name.empty()) out["name"] = cleanText(opening.name, common::limits::kMaxTextBytes);
-    (is_door ? doors : windows).push_back(out);
+    if (!opening.name.empty()) {
+      door.name = window.name = cleanText(opening.name, common::limits::kMaxTextBytes);
+    }
+    if (is_door) {
+      level.doors.push_back(std::move(door));
+    } else {
+      level.windows.push_back(std::move(window));
+    }
     along_wall[opening.wall].push_back({lo, hi, id, is_door ? "door" : "window"});
   }
   for (const auto& [space, footprint] : storey.spaces) {
@@ -810,24 +819,16 @@ json Importer::levelJson(int s, StoreySummary& summary) {
     std::string name = short_name;
     if (!long_name.empty() && long_name != short_name)
       name += (name.empty() ? "" : " ") + long_name;
-    json outline = json::array();
-    for (const auto& p : footprint->outline) outline.push_back({p.x(), p.y()});
-    json out = {{"id", uniqueId(globalIdOf(space), summary.level_id)}};
-    if (!name.empty()) out["name"] = cleanText(name, common::limits::kMaxTextBytes);
-    out["outline"] = outline;
-    rooms.push_back(out);
+    bim::Room room;
+    room.id = uniqueId(globalIdOf(space), summary.level_id);
+    if (!name.empty()) room.name = cleanText(name, common::limits::kMaxTextBytes);
+    room.outline = footprint->outline;
+    level.rooms.push_back(std::move(room));
     ++summary.rooms;
   }
   std::sort(tops.begin(), tops.end());
   const double height = tops.empty() ? 3.0 : tops[tops.size() / 2];
-  json level = {{"id", summary.level_id}};
-  if (!storey.name.empty()) level["name"] = cleanText(storey.name, common::limits::kMaxTextBytes);
-  level["elevation"] = e;
-  level["height"] = std::clamp(height, bim::limits::kMinSize, bim::limits::kMaxHeight);
-  level["walls"] = walls;
-  level["doors"] = doors;
-  if (!windows.empty()) level["windows"] = windows;
-  level["rooms"] = rooms;
+  level.height = std::clamp(height, bim::limits::kMinSize, bim::limits::kMaxHeight);
   return level;
 }
 
@@ -858,7 +859,7 @@ ImportResult Importer::run() {
   }
   is_level_.assign(storeys_.size(), false);
   for (int s : chosen) is_level_[s] = true;
-  json levels = json::array();
+  bim::Plan plan;
   for (int s = 0; s < int(storeys_.size()); ++s) {
     StoreySummary summary;
     summary.name = storeys_[s].name;
@@ -868,7 +869,7 @@ ImportResult Importer::run() {
     if (std::find(chosen.begin(), chosen.end(), s) != chosen.end()) {
       summary.level_id = uniqueId(
           storeys_[s].name.empty() ? "storey-" + storeys_[s].global_id : storeys_[s].name, "");
-      levels.push_back(levelJson(s, summary));
+      plan.levels.push_back(level(s, summary));
     } else {
       int walls_on = 0;
       for (const auto& wall : walls_) {
@@ -900,17 +901,17 @@ ImportResult Importer::run() {
                 fmt(opening.extent.z_max) +
                 " m) is on no imported level's floor in a part of its wall that stands there");
   }
-  placeFlights(levels);
-  result_.plan_json = {{"format", "isg.plan"}, {"version", 1}};
-  result_.plan_json["name"] =
+  placeFlights(plan.levels);
+  plan.name =
       cleanText(std::filesystem::path(file_).stem().string(), common::limits::kMaxTextBytes);
-  json source = {{"file", cleanText(std::filesystem::path(file_).filename().string(),
-                                    common::limits::kMaxTextBytes)},
-                 {"schema", result_.schema}};
-  if (!result_.application.empty())
-    source["application"] = cleanText(result_.application, common::limits::kMaxTextBytes);
-  result_.plan_json["imported_from"] = source;
-  result_.plan_json["levels"] = levels;
+  bim::ImportedFrom& from = plan.imported_from.emplace();
+  from.file =
+      cleanText(std::filesystem::path(file_).filename().string(), common::limits::kMaxTextBytes);
+  from.schema = result_.schema;
+  from.application = cleanText(result_.application, common::limits::kMaxTextBytes);
+  // As people write plans: each wall's height and base, no door rooms (the model gives none).
+  result_.plan_json = bim::planToJson(
+      plan, {.every_wall_height = true, .inferred_door_rooms = false, .names = true});
   return std::move(result_);
 }
 
@@ -1072,7 +1073,7 @@ bool dropRefusedFlight(ImportResult& result, const common::InputError& error) {
   auto& stairs = levels[level]["stairs"];
   if (stair >= stairs.size()) return false;
   result.log.push_back("dropped stair flight " + stairs[stair]["id"].get<std::string>() + " (" +
-                       stairs[stair]["name"].get<std::string>() +
+                       stairs[stair].value("name", std::string()) +
                        "): the plan's rules for stairs refuse it: " + error.reason());
   stairs.erase(stair);
   if (stairs.empty()) levels[level].erase("stairs");

@@ -1,8 +1,3 @@
-
-#include "common/angles.hpp"
-#include "common/xml_escape.hpp"
-#include "run/text_format.hpp"
-
 #include "run/deviation_report.hpp"
 
 #include <algorithm>
@@ -10,6 +5,10 @@
 #include <cstdio>
 #include <limits>
 #include <numbers>
+
+#include "common/angles.hpp"
+#include "common/xml_escape.hpp"
+#include "run/text_format.hpp"
 
 namespace isg::run {
 

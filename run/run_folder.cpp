@@ -1,12 +1,12 @@
 #include "run/run_folder.hpp"
 
+#include <filesystem>
+
 #include "bim/agraph_json.hpp"
 #include "common/atomic_folder.hpp"
 #include "common/tum.hpp"
 #include "run/deviation_report.hpp"
 #include "run/run_report.hpp"
-
-#include <filesystem>
 
 namespace isg::run {
 

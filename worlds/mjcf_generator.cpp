@@ -1,10 +1,3 @@
-
-#include "bim/plan_geometry.hpp"
-#include "bim/polygon.hpp"
-#include "bim/stairs.hpp"
-#include "common/xml_escape.hpp"
-#include "worlds/as_built.hpp"
-
 #include "worlds/mjcf_generator.hpp"
 
 #include <algorithm>
@@ -13,6 +6,12 @@
 #include <limits>
 #include <numbers>
 #include <sstream>
+
+#include "bim/plan_geometry.hpp"
+#include "bim/polygon.hpp"
+#include "bim/stairs.hpp"
+#include "common/xml_escape.hpp"
+#include "worlds/as_built.hpp"
 
 namespace isg::worlds {
 

@@ -11,6 +11,8 @@
 #include <set>
 #include <stdexcept>
 
+#include "bim/plan.hpp"
+#include "bim/plan_json.hpp"
 #include "bim/plan_parser.hpp"
 #include "bim/scenario.hpp"
 #include "common/input_error.hpp"
@@ -654,63 +656,70 @@ std::vector<std::string> writePlan(const GeneratorSpec& spec, const GeneratorSpe
   const auto& partitions = layout.partitions;
   const auto& doors = layout.doors;
   const int n = layout.size();
-  json wall_list = json::array(), door_list = json::array(), room_list = json::array();
+  bim::Level level;
+  level.id = "L0";
+  level.height = s.height;
+  auto addWall = [&](std::string id, double x0, double y0, double x1, double y1, double thickness) {
+    bim::Wall wall;
+    wall.id = std::move(id);
+    wall.start = {mm(x0), mm(y0)};
+    wall.end = {mm(x1), mm(y1)};
+    wall.thickness = thickness;
+    wall.height = level.height;
+    level.walls.push_back(std::move(wall));
+  };
   for (std::size_t w = 0; w < walls.size(); ++w) {
-    wall_list.push_back({{"id", "W" + std::to_string(w + 1)},
-                         {"start", point(walls[w].x0, walls[w].y0)},
-                         {"end", point(walls[w].x1, walls[w].y1)},
-                         {"thickness", t}});
+    addWall("W" + std::to_string(w + 1), walls[w].x0, walls[w].y0, walls[w].x1, walls[w].y1, t);
   }
   for (std::size_t p = 0; p < partitions.size(); ++p) {
-    wall_list.push_back({{"id", "P" + std::to_string(p + 1)},
-                         {"start", point(partitions[p].first.x(), partitions[p].first.y())},
-                         {"end", point(partitions[p].second.x(), partitions[p].second.y())},
-                         {"thickness", 0.1}});
+    addWall("P" + std::to_string(p + 1), partitions[p].first.x(), partitions[p].first.y(),
+            partitions[p].second.x(), partitions[p].second.y(), 0.1);
   }
   for (std::size_t d = 0; d < doors.size(); ++d) {
-    door_list.push_back({{"id", "D" + std::to_string(d + 1)},
-                         {"wall", "W" + std::to_string(doors[d].wall + 1)},
-                         {"offset", mm(doors[d].offset)},
-                         {"width", mm(doors[d].width)},
-                         {"height", 2.1}});
+    bim::Door door;
+    door.id = "D" + std::to_string(d + 1);
+    door.wall = "W" + std::to_string(doors[d].wall + 1);
+    door.offset = mm(doors[d].offset);
+    door.width = mm(doors[d].width);
+    door.height = 2.1;
+    door.rooms_inferred = true;  // the parser finds them from the outlines
+    level.doors.push_back(std::move(door));
   }
   std::vector<std::string> ids(n);
   int offices = 0, corridors = 0, halls = 0;
   for (int k = 0; k < n; ++k) {
     const Space& sp = layout.spaces[k];
-    std::string name;
+    bim::Room room;
     if (sp.kind == Kind::kOffice) {
       ids[k] = "R" + std::to_string(++offices);
-      name = "Office " + std::to_string(offices);
+      room.name = "Office " + std::to_string(offices);
     } else if (sp.kind == Kind::kCorridor) {
       ids[k] = "C" + std::to_string(++corridors);
-      name = "Corridor " + std::to_string(corridors);
+      room.name = "Corridor " + std::to_string(corridors);
     } else {
       ids[k] = "H" + std::to_string(++halls);
-      name = "Hall " + std::to_string(halls);
+      room.name = "Hall " + std::to_string(halls);
     }
+    room.id = ids[k];
     const double h = 0.5 * t;
-    room_list.push_back({{"id", ids[k]},
-                         {"name", name},
-                         {"outline",
-                          {point(sp.x0 + h, sp.y0 + h), point(sp.x1 - h, sp.y0 + h),
-                           point(sp.x1 - h, sp.y1 - h), point(sp.x0 + h, sp.y1 - h)}}});
+    room.outline = {{mm(sp.x0 + h), mm(sp.y0 + h)},
+                    {mm(sp.x1 - h), mm(sp.y0 + h)},
+                    {mm(sp.x1 - h), mm(sp.y1 - h)},
+                    {mm(sp.x0 + h), mm(sp.y1 - h)}};
+    level.rooms.push_back(std::move(room));
   }
   out.offices = offices;
   out.corridors = corridors + halls;
   char title[160];
   std::snprintf(title, sizeof title, "generated %s: %d offices, %d corridors or halls, seed %llu",
                 spec.family.c_str(), offices, corridors + halls, (unsigned long long)spec.seed);
-  out.plan = {{"format", "isg.plan"},
-              {"version", 1},
-              {"name", title},
-              {"levels",
-               {{{"id", "L0"},
-                 {"elevation", 0.0},
-                 {"height", s.height},
-                 {"walls", wall_list},
-                 {"doors", door_list},
-                 {"rooms", room_list}}}}};
+  bim::Plan plan;
+  plan.name = title;
+  plan.levels.push_back(std::move(level));
+  // Written as people write plans: wall heights and door rooms left to the parser. The file's
+  // keys come sorted (nlohmann::json), as generated plans always were.
+  out.plan = json::parse(
+      bim::planToJson(plan, {.every_wall_height = false, .inferred_door_rooms = false}).dump());
   return ids;
 }
 

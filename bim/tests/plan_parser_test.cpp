@@ -1,10 +1,10 @@
-
 #include "bim/plan_parser.hpp"
-#include "bim/plan_json.hpp"
-#include "bim/tests/test_plans.hpp"
 
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
+
+#include "bim/plan_json.hpp"
+#include "bim/tests/test_plans.hpp"
 
 namespace isg::bim {
 namespace {

@@ -1,13 +1,13 @@
-
 #include "bim/stairs.hpp"
-#include "bim/plan_json.hpp"
-#include "bim/plan_transform.hpp"
-#include "bim/tests/test_plans.hpp"
 
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <numbers>
+
+#include "bim/plan_json.hpp"
+#include "bim/plan_transform.hpp"
+#include "bim/tests/test_plans.hpp"
 
 namespace isg::bim {
 namespace {

@@ -73,6 +73,16 @@ TEST(Deviations, ARunFindsTheShiftedTurnedAndExtraWallsOfD1) {
   EXPECT_NE(table.out.find("d1.deviations.json"), std::string::npos) << table.out;
   // The last row counts the graded runs (a run localized on a building as planned has no grade).
   EXPECT_NE(table.out.find("\nwith a number,1/1\n"), std::string::npos) << table.out;
+
+  // Replayed from a dataset, the run is graded against the same truth: the dataset records the
+  // turned wall (it once left wall_rotations out, and the replay counted W6 as a false report).
+  ASSERT_EQ(sandbox.run("simulate d1.deviations.json -o ds -q").exit_code, 0);
+  EXPECT_EQ(json::parse(sandbox.read("ds/metadata.json"))["as_built"]["wall_rotations"],
+            json::parse(R"([{"wall": "W6", "angle_deg": 4.0, "about": "start"}])"));
+  const auto replay = sandbox.run("slam ds --plan '" + std::string(ISG_SOURCE_DIR) +
+                                  "/worlds/plans/d1.json' -o replay -q");
+  ASSERT_EQ(replay.exit_code, 0) << replay.err;
+  EXPECT_EQ(json::parse(sandbox.read("replay/metrics.json"))["deviations"]["graded"], graded);
 }
 
 TEST(Deviations, D1AsPlannedHasNoWallDeviating) {

@@ -1,4 +1,3 @@
-
 #include "common/angles.hpp"
 
 #include <gtest/gtest.h>

@@ -1,4 +1,3 @@
-
 #include "common/tum.hpp"
 
 #include <gmock/gmock.h>

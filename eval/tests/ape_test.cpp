@@ -1,4 +1,3 @@
-
 #include "eval/ape.hpp"
 
 #include <gtest/gtest.h>

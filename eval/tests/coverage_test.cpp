@@ -1,4 +1,3 @@
-
 #include "eval/coverage.hpp"
 
 #include <gtest/gtest.h>

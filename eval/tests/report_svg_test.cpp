@@ -1,9 +1,9 @@
-
 #include "eval/report_svg.hpp"
-#include "eval/svg_chart.hpp"
 
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
+
+#include "eval/svg_chart.hpp"
 
 namespace isg::eval {
 namespace {

@@ -1,4 +1,3 @@
-
 #include "eval/wrong_localization.hpp"
 
 #include <gtest/gtest.h>

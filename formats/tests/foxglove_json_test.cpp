@@ -1,4 +1,3 @@
-
 #include "formats/foxglove_json.hpp"
 
 #include <gtest/gtest.h>

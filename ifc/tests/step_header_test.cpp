@@ -1,10 +1,10 @@
 // The file checks before IFC++ reads anything: each bad file gets its exact message.
-
 #include "ifc/step_header.hpp"
-#include "common/input_error.hpp"
 
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
+
+#include "common/input_error.hpp"
 
 namespace isg::ifc {
 namespace {

@@ -1,9 +1,9 @@
 // The deviation report graded against the truth, by hand on the two-room plan (W1–W5).
-
 #include "run/deviation_grading.hpp"
-#include "bim/tests/test_plans.hpp"
 
 #include <gtest/gtest.h>
+
+#include "bim/tests/test_plans.hpp"
 
 namespace isg::run {
 namespace {

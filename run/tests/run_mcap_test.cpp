@@ -1,9 +1,4 @@
-
 #include "run/run_mcap.hpp"
-#include "common/input_error.hpp"
-#include "formats/foxglove_json.hpp"
-#include "run/growing_path.hpp"
-#include "run/live_run_mcap.hpp"
 
 #include <gtest/gtest.h>
 #include <unistd.h>
@@ -11,6 +6,11 @@
 #include <filesystem>
 #include <fstream>
 #include <map>
+
+#include "common/input_error.hpp"
+#include "formats/foxglove_json.hpp"
+#include "run/growing_path.hpp"
+#include "run/live_run_mcap.hpp"
 
 namespace isg::run {
 namespace {

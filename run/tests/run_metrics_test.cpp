@@ -1,8 +1,8 @@
-
 #include "run/run_metrics.hpp"
-#include "common/input_error.hpp"
 
 #include <gtest/gtest.h>
+
+#include "common/input_error.hpp"
 
 namespace isg::run {
 namespace {

@@ -1,4 +1,3 @@
-
 #include "run/run_scene.hpp"
 
 #include <gtest/gtest.h>

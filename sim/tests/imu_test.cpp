@@ -1,9 +1,4 @@
-
-#include "common/angles.hpp"
-#include "formats/dataset_format.hpp"
 #include "sim/imu_simulator.hpp"
-#include "sim/simulation.hpp"
-#include "worlds/reference_plans.hpp"
 
 #include <gtest/gtest.h>
 
@@ -11,6 +6,11 @@
 #include <numbers>
 #include <string>
 #include <vector>
+
+#include "common/angles.hpp"
+#include "formats/dataset_format.hpp"
+#include "sim/simulation.hpp"
+#include "worlds/reference_plans.hpp"
 
 namespace isg::sim {
 namespace {

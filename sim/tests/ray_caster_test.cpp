@@ -1,15 +1,15 @@
-
 #include "sim/ray_caster.hpp"
+
+#include <gtest/gtest.h>
+
+#include <random>
+
 #include "bim/plan_parser.hpp"
 #include "bim/synthetic_plan.hpp"
 #include "common/json_reader.hpp"
 #include "sim/mujoco_world.hpp"
 #include "worlds/mjcf_generator.hpp"
 #include "worlds/reference_plans.hpp"
-
-#include <gtest/gtest.h>
-
-#include <random>
 
 namespace isg::sim {
 namespace {

@@ -1,5 +1,9 @@
-
 #include "sim/scan_caster.hpp"
+
+#include <gtest/gtest.h>
+
+#include <random>
+
 #include "bim/plan_parser.hpp"
 #include "bim/polygon.hpp"
 #include "bim/synthetic_plan.hpp"
@@ -8,10 +12,6 @@
 #include "sim/vlp16.hpp"
 #include "worlds/mjcf_generator.hpp"
 #include "worlds/reference_plans.hpp"
-
-#include <gtest/gtest.h>
-
-#include <random>
 
 namespace isg::sim {
 namespace {

@@ -1,10 +1,4 @@
-
 #include "sim/simulation.hpp"
-#include "bim/polygon.hpp"
-#include "common/tum.hpp"
-#include "sim/dataset_writer.hpp"
-#include "sim/odometry_model.hpp"
-#include "worlds/reference_plans.hpp"
 
 #include <gtest/gtest.h>
 #include <pcl/io/pcd_io.h>
@@ -17,6 +11,12 @@
 #include <fstream>
 #include <set>
 #include <sstream>
+
+#include "bim/polygon.hpp"
+#include "common/tum.hpp"
+#include "sim/dataset_writer.hpp"
+#include "sim/odometry_model.hpp"
+#include "worlds/reference_plans.hpp"
 
 namespace isg::sim {
 namespace {

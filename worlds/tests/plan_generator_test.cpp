@@ -1,7 +1,4 @@
-
 #include "worlds/plan_generator.hpp"
-#include "bim/polygon.hpp"
-#include "bim/scenario.hpp"
 
 #include <gtest/gtest.h>
 
@@ -10,6 +7,9 @@
 #include <map>
 #include <queue>
 #include <set>
+
+#include "bim/polygon.hpp"
+#include "bim/scenario.hpp"
 
 namespace isg::worlds {
 namespace {

@@ -1,10 +1,10 @@
-
 #include "slam/baselines/unscented_kalman_filter.hpp"
-#include "slam/baselines/pose2.hpp"
 
 #include <gtest/gtest.h>
 
 #include <Eigen/Dense>
+
+#include "slam/baselines/pose2.hpp"
 
 namespace isg::slam {
 namespace {

@@ -1,10 +1,4 @@
-
 #include "slam/isgraph/graph_matching.hpp"
-#include "bim/agraph.hpp"
-#include "bim/plan_parser.hpp"
-#include "bim/synthetic_plan.hpp"
-#include "common/json_reader.hpp"
-#include "slam/isgraph/tests/synthetic_sgraph.hpp"
 
 #include <gtest/gtest.h>
 #include <numbers>
@@ -12,6 +6,12 @@
 #include <cmath>
 #include <cstdio>
 #include <random>
+
+#include "bim/agraph.hpp"
+#include "bim/plan_parser.hpp"
+#include "bim/synthetic_plan.hpp"
+#include "common/json_reader.hpp"
+#include "slam/isgraph/tests/synthetic_sgraph.hpp"
 
 namespace isg::slam {
 namespace {

@@ -1,4 +1,3 @@
-
 #include "slam/sgraph/scan_registration.hpp"
 #include "common/angles.hpp"
 

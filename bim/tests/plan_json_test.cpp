@@ -1,0 +1,125 @@
+// The one writer of the plan format (bim::planToJson): a dataset's complete record, a plan as
+// people write it (isg generate, isg import), and names kept or left out; the as-built writer.
+#include "bim/plan_json.hpp"
+
+#include <gtest/gtest.h>
+
+#include "bim/scenario.hpp"
+#include "bim/tests/test_plans.hpp"
+
+namespace isg::bim {
+namespace {
+
+using testing::parsePlanJson;
+using testing::twoRoomPlanJson;
+
+// The two-room plan with a name on its level, a wall, a door, a window and where it came from.
+nlohmann::json namedPlanJson() {
+  nlohmann::json doc = twoRoomPlanJson();
+  doc["imported_from"] = {{"file", "house.ifc"}, {"schema", "IFC4"}};
+  doc["levels"][0]["name"] = "Ground floor";
+  doc["levels"][0]["walls"][4]["name"] = "Partition";
+  doc["levels"][0]["doors"][0]["name"] = "Oak door";
+  doc["levels"][0]["windows"] = {{{"id", "G1"},
+                                  {"wall", "W2"},
+                                  {"offset", 2.0},
+                                  {"width", 1.2},
+                                  {"sill", 0.9},
+                                  {"height", 1.2},
+                                  {"name", "Window 1"}}};
+  return doc;
+}
+
+TEST(PlanJson, EveryDefaultWrittenByDefault) {
+  const nlohmann::ordered_json written = planToJson(parsePlanJson(twoRoomPlanJson()));
+  const auto& level = written["levels"][0];
+  // W1 gave no height: the level's 3 m written; W5 its own 2.8 m; every base 0.
+  EXPECT_EQ(level["walls"][0]["height"], 3.0);
+  EXPECT_EQ(level["walls"][4]["height"], 2.8);
+  EXPECT_EQ(level["walls"][0]["base"], 0.0);
+  // D1's rooms were inferred from the outlines, the one on the wall's left first (W5 runs +y:
+  // its left is the west, R1); D2's given.
+  EXPECT_EQ(level["doors"][0]["rooms"], nlohmann::json({"R1", "R2"}));
+  EXPECT_EQ(level["doors"][1]["rooms"], nlohmann::json({"R2", "outside"}));
+  // Keys in the format's order.
+  std::vector<std::string> keys;
+  for (const auto& item : written.items()) keys.push_back(item.key());
+  EXPECT_EQ(keys, (std::vector<std::string>{"format", "version", "name", "levels"}));
+}
+
+TEST(PlanJson, AsPeopleWriteItLeavesOutWhatTheParserFillsIn) {
+  const nlohmann::ordered_json written = planToJson(
+      parsePlanJson(twoRoomPlanJson()), {.every_wall_height = false, .inferred_door_rooms = false});
+  const auto& level = written["levels"][0];
+  EXPECT_FALSE(level["walls"][0].contains("height"));
+  EXPECT_FALSE(level["walls"][0].contains("base"));
+  EXPECT_EQ(level["walls"][4]["height"], 2.8);  // not the level's: kept
+  EXPECT_FALSE(level["doors"][0].contains("rooms"));
+  EXPECT_EQ(level["doors"][1]["rooms"], nlohmann::json({"R2", "outside"}));
+  // It reads back to the same plan, door rooms inferred again.
+  const Plan again = parsePlanJson(nlohmann::json::parse(written.dump()));
+  EXPECT_EQ(again.levels[0].walls[0].height, 3.0);
+  EXPECT_EQ(again.levels[0].doors[0].rooms[0], "R1");
+  EXPECT_TRUE(again.levels[0].doors[0].rooms_inferred);
+}
+
+TEST(PlanJson, NamesAndOriginRoundTripAndCanBeLeftOut) {
+  const Plan plan = parsePlanJson(namedPlanJson());
+  ASSERT_TRUE(plan.imported_from.has_value());
+  EXPECT_EQ(plan.imported_from->schema, "IFC4");
+  EXPECT_EQ(plan.levels[0].name, "Ground floor");
+  const nlohmann::ordered_json written = planToJson(plan);
+  EXPECT_EQ(written["imported_from"],
+            nlohmann::ordered_json({{"file", "house.ifc"}, {"schema", "IFC4"}}));
+  EXPECT_EQ(written["levels"][0]["name"], "Ground floor");
+  EXPECT_EQ(written["levels"][0]["walls"][4]["name"], "Partition");
+  EXPECT_FALSE(written["levels"][0]["walls"][0].contains("name"));
+  EXPECT_EQ(written["levels"][0]["doors"][0]["name"], "Oak door");
+  EXPECT_EQ(written["levels"][0]["windows"][0]["name"], "Window 1");
+  const Plan again = parsePlanJson(nlohmann::json::parse(written.dump()));
+  EXPECT_EQ(again.levels[0].walls[4].name, "Partition");
+  EXPECT_EQ(again.levels[0].windows[0].name, "Window 1");
+  // Without names: the geometry alone, equal to the unnamed plan's.
+  const nlohmann::ordered_json bare = planToJson(plan, {.names = false});
+  EXPECT_FALSE(bare.contains("imported_from"));
+  EXPECT_FALSE(bare["levels"][0].contains("name"));
+  nlohmann::json unnamed = twoRoomPlanJson();
+  unnamed["levels"][0]["windows"] = namedPlanJson()["levels"][0]["windows"];
+  unnamed["levels"][0]["windows"][0].erase("name");
+  EXPECT_EQ(bare["levels"], planToJson(parsePlanJson(unnamed))["levels"]);
+}
+
+TEST(PlanJson, AControlCharacterInAWallNameIsRefused) {
+  nlohmann::json doc = twoRoomPlanJson();
+  doc["levels"][0]["walls"][1]["name"] = "bad\nname";
+  try {
+    parsePlanJson(doc);
+    FAIL() << "accepted";
+  } catch (const common::InputError& e) {
+    EXPECT_EQ(e.pointer(), "/levels/0/walls/1/name");
+  }
+}
+
+TEST(AsBuiltJson, TurnedWallsAreRecordedOnlyWhereThereAreSome) {
+  AsBuilt as_built;
+  as_built.wall_shifts.push_back({"W5", 0.1});
+  EXPECT_FALSE(asBuiltToJson(as_built).contains("wall_rotations"));
+  as_built.wall_rotations.push_back({"W2", 3.5, WallRotation::About::kStart});
+  const nlohmann::ordered_json written = asBuiltToJson(as_built);
+  EXPECT_EQ(
+      written["wall_rotations"],
+      nlohmann::ordered_json::array({{{"wall", "W2"}, {"angle_deg", 3.5}, {"about", "start"}}}));
+  // And the scenario reader takes it back.
+  const Plan plan = parsePlanJson(twoRoomPlanJson());
+  const nlohmann::json document = nlohmann::json::parse(written.dump());
+  const common::JsonSource source{"metadata.json", nullptr};
+  const AsBuilt again =
+      parseAsBuiltJson(common::JsonNode(document, "/as_built", source), plan, "L0");
+  ASSERT_EQ(again.wall_rotations.size(), 1u);
+  EXPECT_EQ(again.wall_rotations[0].wall, "W2");
+  EXPECT_EQ(again.wall_rotations[0].angle_deg, 3.5);
+  EXPECT_EQ(again.wall_rotations[0].about, WallRotation::About::kStart);
+}
+
+}  // namespace
+}  // namespace isg::bim
