@@ -10,8 +10,10 @@
 #include "common/atomic_folder.hpp"
 #include "common/input_error.hpp"
 #include "common/pose_interpolation.hpp"
+#include "common/version.hpp"
 #include "formats/cloud_layout.hpp"
 #include "formats/dataset_format.hpp"
+#include "formats/dataset_metadata.hpp"
 #include "formats/ros_message_decode.hpp"
 #include "formats/ros_messages.hpp"
 #include "formats/rosbag_reader.hpp"
@@ -116,7 +118,11 @@ class Import {
   }
   void writeFiles(const fs::path& folder);
   // The metadata of a recording isg did not write, as far as its frames go.
-  nlohmann::ordered_json metadata(double seconds) const;
+  // metadata.json of a recording (not an isg dataset's): what was imported, as every dataset
+  // says it, and which topics and frames it came from.
+  nlohmann::ordered_json metadata(const std::vector<double>& stamps,
+                                  const std::vector<sensors::ImuSample>& imu,
+                                  const common::Trajectory& odometry) const;
 
   std::string bag_path_;
   BagImportOptions options_;
@@ -776,13 +782,11 @@ void Import::writeFiles(const fs::path& folder) {
   if (!imu.empty())
     common::writeFile(folder / formats::dataset::kImu, formats::dataset::imuText(imu));
 
-  std::vector<double> imu_times;
-  for (const auto& s : imu) imu_times.push_back(s.t);
   nlohmann::ordered_json m;
   if (isg_metadata_) {
     // An isg dataset exported to a bag: its own metadata back, counts and span as imported.
     summary_.from_isg = true;
-    m = nlohmann::ordered_json::parse(isg_metadata_->dump());
+    m = formats::dataset::inMetadataOrder(nlohmann::ordered_json::parse(isg_metadata_->dump()));
     if (options_.start > 0 || options_.duration) {
       m["duration_s"] = summary_.seconds;
       m["lidar"]["scans"] = stamps.size();
@@ -790,41 +794,7 @@ void Import::writeFiles(const fs::path& folder) {
     }
     m["lidar"]["pcd_data"] = formats::dataset::pcdDataName(formats::dataset::kDefaultPcdData);
   } else {
-    m = metadata(summary_.seconds);
-    m["extrinsics"] = {
-        {"R_T_L", formats::dataset::mountJson(sensors::mountXyzRpy(R_T_L_), R_T_L_)}};
-    if (!imu.empty())
-      m["extrinsics"]["R_T_I"] = formats::dataset::mountJson(sensors::mountXyzRpy(R_T_I_), R_T_I_);
-    auto& lidar = m["lidar"];
-    lidar["rate_hz"] = 1.0 / summary_.scan_period;
-    lidar["scans"] = stamps.size();
-    lidar["stamp"] = summary_.stamp;
-    lidar["scan_period_s"] = summary_.scan_period;
-    lidar["point_time_s"] = summary_.point_time;
-    lidar["fields"] = summary_.cloud_layout;
-    lidar["pcd_data"] = formats::dataset::pcdDataName(formats::dataset::kDefaultPcdData);
-    if (!imu.empty()) {
-      const double rate = imu.size() >= 2 ? 1.0 / *formats::dataset::meanPeriod(imu_times) : 0.0;
-      nlohmann::ordered_json block = {{"file", formats::dataset::kImu},
-                                      {"rate_hz", rate},
-                                      {"samples", imu.size()},
-                                      {"frame", "I"}};
-      // The message's per-sample variances are density² × rate; given only when the driver
-      // filled them.
-      if (imu_variance_[0] > 0 && imu_variance_[1] > 0 && rate > 0) {
-        block["gyroscope_noise_density"] = std::sqrt(imu_variance_[0] / rate);
-        block["accelerometer_noise_density"] = std::sqrt(imu_variance_[1] / rate);
-      }
-      m["imu"] = block;
-    }
-    if (!odometry.empty()) {
-      std::vector<double> times;
-      for (const auto& p : odometry) times.push_back(p.t);
-      m["odometry"] = {
-          {"rate_hz", times.size() >= 2 ? 1.0 / *formats::dataset::meanPeriod(times) : 0.0},
-          {"topic", summary_.odometry.topic}};
-      if (tf_odometry_) m["odometry"]["chain"] = summary_.odometry_chain;
-    }
+    m = metadata(stamps, imu, odometry);
   }
   m["imported_from"] = {{"file", fs::path(bag_path_).filename().string()},
                         {"start_s", options_.start},
@@ -839,19 +809,48 @@ void Import::writeFiles(const fs::path& folder) {
   common::writeFile(folder / formats::dataset::kMetadata, m.dump(2) + "\n");
 }
 
-nlohmann::ordered_json Import::metadata(double seconds) const {
-  return {{"format", formats::dataset::kFormat},
-          {"version", formats::dataset::kVersion},
-          {"generator", "isg import 0.1.0"},
-          {"duration_s", seconds},
-          {"frames",
-           {{"M", odometry_frame_.empty() ? "odometry frame (none recorded)" : odometry_frame_},
-            {"R", base_frame_},
-            {"L", lidar_frame_},
-            {"I", imu_frame_.empty() ? "(no IMU recorded)" : imu_frame_},
-            {"B", truth_frame_.empty() ? "plan frame (no ground truth recorded)" : truth_frame_}}},
-          {"extrinsics", nlohmann::ordered_json::object()},
-          {"lidar", {{"model", "recorded"}}}};
+nlohmann::ordered_json Import::metadata(const std::vector<double>& stamps,
+                                        const std::vector<sensors::ImuSample>& imu,
+                                        const common::Trajectory& odometry) const {
+  formats::dataset::Metadata m;
+  m.generator = std::string("isg import ") + common::kProjectVersion;
+  m.duration_s = summary_.seconds;
+  m.frames = {{"B", truth_frame_.empty() ? "plan frame (no ground truth recorded)" : truth_frame_},
+              {"M", odometry_frame_.empty() ? "odometry frame (none recorded)" : odometry_frame_},
+              {"R", base_frame_},
+              {"L", lidar_frame_},
+              {"I", imu_frame_.empty() ? "(no IMU recorded)" : imu_frame_}};
+  m.lidar_mount = sensors::mountXyzRpy(R_T_L_);
+  m.R_T_L = R_T_L_;
+  m.lidar = {"recorded",
+             1.0 / summary_.scan_period,
+             stamps.size(),
+             summary_.stamp,
+             summary_.scan_period,
+             summary_.point_time,
+             formats::dataset::kDefaultPcdData};
+  nlohmann::ordered_json description = {{"lidar", {{"fields", summary_.cloud_layout}}}};
+  if (!imu.empty()) {
+    m.imu_mount = {sensors::mountXyzRpy(R_T_I_), R_T_I_};
+    std::vector<double> times;
+    for (const auto& s : imu) times.push_back(s.t);
+    const double rate = imu.size() >= 2 ? 1.0 / *formats::dataset::meanPeriod(times) : 0.0;
+    m.imu = formats::dataset::Metadata::Imu{rate, imu.size(), std::nullopt, std::nullopt};
+    // The message's per-sample variances are density² × rate; given only when the driver
+    // filled them.
+    if (imu_variance_[0] > 0 && imu_variance_[1] > 0 && rate > 0) {
+      m.imu->gyroscope_noise_density = std::sqrt(imu_variance_[0] / rate);
+      m.imu->accelerometer_noise_density = std::sqrt(imu_variance_[1] / rate);
+    }
+  }
+  if (!odometry.empty()) {
+    std::vector<double> times;
+    for (const auto& p : odometry) times.push_back(p.t);
+    m.odometry = {times.size() >= 2 ? 1.0 / *formats::dataset::meanPeriod(times) : 0.0};
+    description["odometry"] = {{"topic", summary_.odometry.topic}};
+    if (tf_odometry_) description["odometry"]["chain"] = summary_.odometry_chain;
+  }
+  return formats::dataset::metadataJson(m, description);
 }
 
 BagImportSummary Import::run(const fs::path& folder,

@@ -17,7 +17,9 @@
 #include "bim/plan_json.hpp"
 #include "common/atomic_folder.hpp"
 #include "common/input_error.hpp"
+#include "common/version.hpp"
 #include "formats/dataset_format.hpp"
+#include "formats/dataset_metadata.hpp"
 #include "sim/vlp16.hpp"
 
 namespace isg::sim {
@@ -28,14 +30,55 @@ using common::writeFolderAtomically;
 
 namespace {
 
-nlohmann::ordered_json metadata(const Simulation& sim, double duration,
-                                const DatasetOptions& options, int scans, int imu_samples) {
+// The simulated sensors' models and conventions, beyond what every dataset's LiDAR section says
+// (formats::dataset::Metadata): what a user needs to reproduce or compare the scans.
+nlohmann::ordered_json lidarModel(const Simulation& sim) {
+  const auto& l = sim.scenario().lidar;
+  const LidarSimulator& lidar = sim.lidar();
+  return {{"sequences_per_turn", Vlp16::sequencesPerTurn(l.rate_hz)},
+          {"sequences_per_cloud", lidar.sequencesPerCloud()},
+          {"cut", bim::lidarCutName(l.cut)},
+          {"cut_angle_deg", l.cut_angle_deg},
+          {"azimuth_jitter_deg", l.azimuth_jitter_deg},
+          {"returns", bim::lidarReturnsName(l.returns)},
+          {"firing_interval_s", Vlp16::kFiringInterval},
+          {"sequence_duration_s", Vlp16::kSequenceDuration},
+          {"elevation_deg_by_laser", Vlp16::kElevationDeg},
+          {"vertical_offset_mm_by_laser", Vlp16::kVerticalOffsetMm},
+          {"ring", "laser index by elevation: ring 0 = -15 deg"},
+          {"rotation", "clockwise seen from above"},
+          {"range_noise_m", l.range_noise_m},
+          {"range_quantum_m", 0.002},
+          {"min_range_m", l.min_range_m},
+          {"max_range_m", l.max_range_m},
+          {"dropout", l.dropout},
+          {"grazing_cutoff_deg", l.grazing_cutoff_deg},
+          {"detection_range_m", l.detection_range_m},
+          {"body_occlusion", l.body_occlusion},
+          {"reflectivity",
+           {{"wall", l.reflectivity.wall},
+            {"floor", l.reflectivity.floor},
+            {"ceiling", l.reflectivity.ceiling},
+            {"door", l.reflectivity.door},
+            {"clutter", l.reflectivity.clutter},
+            {"stair", l.reflectivity.stair}}},
+          {"intensity",
+           "calibrated reflectivity: round(100 * reflectivity * |cos(incidence)|), the surface's "
+           "reflectivity by kind"},
+          {"lost_returns",
+           "rays that meet the robot's body (body_occlusion); returns weaker than a 10 % surface "
+           "head-on at detection_range_m (reflectivity * cos(incidence) / range^2); beyond "
+           "grazing_cutoff_deg kept with probability cos(incidence) / cos(cutoff); dropout"},
+          {"pcd_fields",
+           "x y z intensity ring time (float32 ×4, uint16, float32), time from the scan stamp "
+           "(within point_time_s)"}};
+}
+
+// The robot: carrier, gait, route, rooms and kidnaps (where each put the robot down, the planned
+// pose in B, and on which level when the plan has several).
+nlohmann::ordered_json robotDescription(const Simulation& sim) {
   using json = nlohmann::ordered_json;
   const bim::Scenario& s = sim.scenario();
-  const auto& l = s.lidar;
-  const LidarSimulator& lidar = sim.lidar();
-  // Where each kidnap put the robot down (the planned pose, in B), and on which level when the
-  // plan has several.
   json kidnaps = json::array();
   for (const auto& leg : sim.route().kidnaps) {
     json kidnap = {{"time", leg.time},
@@ -45,129 +88,93 @@ nlohmann::ordered_json metadata(const Simulation& sim, double duration,
   }
   json route = json::array();
   for (const auto& p : sim.route().waypoints) route.push_back({p.x(), p.y()});
+  const auto& gait = sim.baseMotion().gait();
+  json robot = {{"carrier", bim::carrierName(s.robot.carrier)},
+                {"level", s.robot.level},
+                {"speed", s.robot.speed},
+                {"turn_rate_rad_s", gait.turn_rate},
+                {"standing_height_m", gait.standing_height},
+                {"gait",
+                 {{"frequency_hz", gait.frequency_hz},
+                  {"bob_m", gait.bob_m},
+                  {"roll_deg", gait.roll_deg},
+                  {"pitch_deg", gait.pitch_deg}}},
+                {"route", route},
+                {"visited_rooms", sim.route().visited_rooms},
+                {"skipped_rooms", sim.route().skipped_rooms},
+                {"kidnaps", kidnaps}};
+  if (s.robot.carrier == bim::Carrier::kHandheld) {
+    // A person's walk: the walker's sway and head turns.
+    robot["gait"]["sway_m"] = gait.sway_m;
+    robot["gait"]["head_turn_deg"] = gait.head_turn_deg;
+    robot["gait"]["head_turn_periods_s"] = kHeadTurnPeriods;
+  }
   // Which level each waypoint is on, written only when the route changes level (a route on one
   // level writes the metadata it always did).
   const auto& levels = sim.route().waypoint_levels;
-  const bool several_levels =
-      std::any_of(levels.begin(), levels.end(),
-                  [&](const std::string& level) { return level != levels.front(); });
-  const auto& gait = sim.baseMotion().gait();
-  json extrinsics = formats::dataset::extrinsicsJson(l.mount, sim.R_T_L());
-  extrinsics["R_T_I"] = formats::dataset::mountJson(s.imu.mount, sim.R_T_I());
+  if (std::any_of(levels.begin(), levels.end(),
+                  [&](const std::string& level) { return level != levels.front(); })) {
+    robot["route_levels"] = levels;
+    robot["skipped_levels"] = sim.route().skipped_levels;
+  }
+  return robot;
+}
+
+nlohmann::ordered_json metadata(const Simulation& sim, double duration,
+                                const DatasetOptions& options, int scans, int imu_samples) {
+  const bim::Scenario& s = sim.scenario();
+  const auto& l = s.lidar;
+  const LidarSimulator& lidar = sim.lidar();
   const auto& imu = s.imu;
-  json out = {
-      {"format", formats::dataset::kFormat},
-      {"version", formats::dataset::kVersion},
-      {"generator", "isg simulate 0.1.0"},
+  formats::dataset::Metadata m;
+  m.generator = std::string("isg simulate ") + common::kProjectVersion;
+  m.duration_s = duration;
+  m.frames = {
+      {"B", "plan frame (ground truth, scans.tum)"},
+      {"M", "odometry frame: the start pose of the base (odometry.tum)"},
+      {"R", "robot base, x forward, y left, z up (groundtruth.tum is B_T_R)"},
+      {"L", "LiDAR: the frame of every point of scans/*.pcd, at the point's own firing time"},
+      {"I", "IMU: the frame of imu.csv's readings"}};
+  m.lidar_mount = l.mount;
+  m.R_T_L = sim.R_T_L();
+  m.imu_mount = {imu.mount, sim.R_T_I()};
+  m.lidar = {"Velodyne VLP-16",  l.rate_hz,
+             std::size_t(scans), bim::lidarStampName(l.stamp),
+             lidar.scanPeriod(), {-lidar.stampOffset(), lidar.turnDuration() - lidar.stampOffset()},
+             options.pcd};
+  m.imu =
+      formats::dataset::Metadata::Imu{imu.rate_hz, std::size_t(imu_samples),
+                                      imu.gyroscope_noise_density, imu.accelerometer_noise_density};
+  // A handheld carrier has no odometry stream (odometry.tum is not written).
+  if (s.robot.carrier != bim::Carrier::kHandheld) m.odometry = {s.odometry.rate_hz};
+  nlohmann::ordered_json description = {
       {"scenario", s.source},
       {"plan_file", s.plan_file},
       {"seed", s.seed},
-      {"duration_s", duration},
-      {"frames",
-       {{"B", "plan frame (ground truth, scans.tum)"},
-        {"M", "odometry frame: the start pose of the base (odometry.tum)"},
-        {"R", "robot base, x forward, y left, z up (groundtruth.tum is B_T_R)"},
-        {"L", "LiDAR: the frame of every point of scans/*.pcd, at the point's own firing time"},
-        {"I", "IMU: the frame of imu.csv's readings"}}},
-      {"extrinsics", extrinsics},
-      {"lidar",
-       {{"model", "Velodyne VLP-16"},
-        {"rate_hz", l.rate_hz},
-        {"scans", scans},
-        {"sequences_per_turn", Vlp16::sequencesPerTurn(l.rate_hz)},
-        {"sequences_per_cloud", lidar.sequencesPerCloud()},
-        {"stamp", bim::lidarStampName(l.stamp)},
-        {"cut", bim::lidarCutName(l.cut)},
-        {"cut_angle_deg", l.cut_angle_deg},
-        {"azimuth_jitter_deg", l.azimuth_jitter_deg},
-        {"returns", bim::lidarReturnsName(l.returns)},
-        {"scan_period_s", lidar.scanPeriod()},
-        {"point_time_s", {-lidar.stampOffset(), lidar.turnDuration() - lidar.stampOffset()}},
-        {"firing_interval_s", Vlp16::kFiringInterval},
-        {"sequence_duration_s", Vlp16::kSequenceDuration},
-        {"elevation_deg_by_laser", Vlp16::kElevationDeg},
-        {"vertical_offset_mm_by_laser", Vlp16::kVerticalOffsetMm},
-        {"ring", "laser index by elevation: ring 0 = -15 deg"},
-        {"rotation", "clockwise seen from above"},
-        {"range_noise_m", l.range_noise_m},
-        {"range_quantum_m", 0.002},
-        {"min_range_m", l.min_range_m},
-        {"max_range_m", l.max_range_m},
-        {"dropout", l.dropout},
-        {"grazing_cutoff_deg", l.grazing_cutoff_deg},
-        {"detection_range_m", l.detection_range_m},
-        {"body_occlusion", l.body_occlusion},
-        {"reflectivity",
-         {{"wall", l.reflectivity.wall},
-          {"floor", l.reflectivity.floor},
-          {"ceiling", l.reflectivity.ceiling},
-          {"door", l.reflectivity.door},
-          {"clutter", l.reflectivity.clutter},
-          {"stair", l.reflectivity.stair}}},
-        {"intensity",
-         "calibrated reflectivity: round(100 * reflectivity * |cos(incidence)|), the surface's "
-         "reflectivity by kind"},
-        {"lost_returns",
-         "rays that meet the robot's body (body_occlusion); returns weaker than a 10 % surface "
-         "head-on at detection_range_m (reflectivity * cos(incidence) / range^2); beyond "
-         "grazing_cutoff_deg kept with probability cos(incidence) / cos(cutoff); dropout"},
-        {"pcd_data", formats::dataset::pcdDataName(options.pcd)},
-        {"pcd_fields",
-         "x y z intensity ring time (float32 ×4, uint16, float32), time from the scan stamp "
-         "(within point_time_s)"}}},
-      {"odometry",
-       {{"rate_hz", s.odometry.rate_hz},
-        {"translation_noise", s.odometry.translation_noise},
-        {"heading_noise_deg_per_m", s.odometry.heading_noise_deg_per_m},
-        {"heading_bias_deg_per_m", s.odometry.heading_bias_deg_per_m},
-        {"model", "random walk: std over 1 m = translation_noise m and heading_noise deg"}}},
+      {"lidar", lidarModel(sim)},
       {"imu",
-       {{"file", formats::dataset::kImu},
-        {"rate_hz", imu.rate_hz},
-        {"samples", imu_samples},
-        {"frame", "I"},
-        {"columns",
+       {{"columns",
          "t,ax,ay,az,gx,gy,gz: seconds, specific force in m/s² (gravity included: "
          "+g upwards at rest), angular velocity in rad/s, all in I"},
         {"gravity_m_s2", imu.gravity},
-        {"gyroscope_noise_density", imu.gyroscope_noise_density},
         {"gyroscope_random_walk", imu.gyroscope_random_walk},
-        {"accelerometer_noise_density", imu.accelerometer_noise_density},
         {"accelerometer_random_walk", imu.accelerometer_random_walk},
         {"noise_units",
          "densities in rad/s/√Hz and m/s²/√Hz, random walks in rad/s²/√Hz and "
          "m/s³/√Hz (Kalibr's imu.yaml); biases start at zero"},
         {"kidnaps", "not felt: the lift has no modelled motion"}}},
       {"groundtruth_rate_hz", options.groundtruth_rate},
-      {"robot",
-       {{"carrier", bim::carrierName(s.robot.carrier)},
-        {"level", s.robot.level},
-        {"speed", s.robot.speed},
-        {"turn_rate_rad_s", gait.turn_rate},
-        {"standing_height_m", gait.standing_height},
-        {"gait",
-         {{"frequency_hz", gait.frequency_hz},
-          {"bob_m", gait.bob_m},
-          {"roll_deg", gait.roll_deg},
-          {"pitch_deg", gait.pitch_deg}}},
-        {"route", route},
-        {"visited_rooms", sim.route().visited_rooms},
-        {"skipped_rooms", sim.route().skipped_rooms},
-        {"kidnaps", kidnaps}}},
+      {"robot", robotDescription(sim)},
       {"plan", bim::planToJson(s.plan)},
       {"as_built", bim::asBuiltToJson(s.as_built)}};
-  if (s.robot.carrier == bim::Carrier::kHandheld) {
-    // A person's walk: no odometry stream (odometry.tum is not written), and the walker's sway.
-    out.erase("odometry");
-    out["robot"]["gait"]["sway_m"] = gait.sway_m;
-    out["robot"]["gait"]["head_turn_deg"] = gait.head_turn_deg;
-    out["robot"]["gait"]["head_turn_periods_s"] = kHeadTurnPeriods;
+  if (m.odometry) {
+    description["odometry"] = {
+        {"translation_noise", s.odometry.translation_noise},
+        {"heading_noise_deg_per_m", s.odometry.heading_noise_deg_per_m},
+        {"heading_bias_deg_per_m", s.odometry.heading_bias_deg_per_m},
+        {"model", "random walk: std over 1 m = translation_noise m and heading_noise deg"}};
   }
-  if (several_levels) {
-    out["robot"]["route_levels"] = levels;
-    out["robot"]["skipped_levels"] = sim.route().skipped_levels;
-  }
-  return out;
+  return formats::dataset::metadataJson(m, description);
 }
 
 }  // namespace

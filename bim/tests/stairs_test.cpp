@@ -75,7 +75,7 @@ TEST(Stairs, StepsAreDerivedFromTheRiseByHand) {
   EXPECT_FALSE(g.contains({4.0, 1.0}));
   EXPECT_TRUE(g.contains({4.0, 1.0}, 0.11));
   // Declared on the upper level leading down, the same flight descends from start to end.
-  const Stair down{"S2", {4.5, 3.8}, {4.5, 0.2}, 0.8, "L0"};
+  const Stair down{"S2", {4.5, 3.8}, {4.5, 0.2}, 0.8, "L0", ""};
   const StairGeometry d = computeStairGeometry(down, plan.levels[1], plan.levels[0]);
   EXPECT_NEAR(d.walkLineZ(0.0), 3.2, 1e-12);
   EXPECT_NEAR(d.step(0).top, 3.2, 1e-12);   // at the top edge
@@ -85,7 +85,7 @@ TEST(Stairs, StepsAreDerivedFromTheRiseByHand) {
 TEST(Stairs, ARiseThatIsNotAMultipleOfTheMaximumGetsOneMoreStep) {
   Level from, to;
   to.elevation = 3.05;
-  const Stair stair{"S", {0, 0}, {4, 0}, 1.0, "L1"};
+  const Stair stair{"S", {0, 0}, {4, 0}, 1.0, "L1", ""};
   const StairGeometry g = computeStairGeometry(stair, from, to);
   EXPECT_EQ(g.steps, 16);  // 15 steps would rise 0.2033 m each
   EXPECT_NEAR(g.step_rise, 3.05 / 16, 1e-12);

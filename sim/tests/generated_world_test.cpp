@@ -152,7 +152,7 @@ TEST(PlanWorld, AWindowLetsTheRayOutBetweenItsSillAndItsHead) {
   // W1 runs (0, 0) → (12, 0), 0.3 m thick (faces at y = ±0.15); the window spans x in [8.4, 9.6]
   // and z in [0.9, 2.1].
   bim::Level& level = scenario.plan.levels[0];
-  level.windows.push_back({"V1", "W1", 9.0, 1.2, 0.9, 1.2});
+  level.windows.push_back({"V1", "W1", 9.0, 1.2, 0.9, 1.2, ""});
   const sim::MujocoWorld world = sim::MujocoWorld::fromXml(generateMjcf(scenario.plan));
   EXPECT_FALSE(world.ray({9.0, 1.0, 1.5}, {0, -1, 0}, kBuilding));  // through the glass
   auto hit = world.ray({9.0, 1.0, 0.5}, {0, -1, 0}, kBuilding);     // below the sill
