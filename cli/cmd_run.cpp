@@ -62,7 +62,7 @@ int RunCommand::run() {
   const std::string input = input_.empty() ? std::string(worlds::kDefaultWorld) : input_;
   method_ = methods_.canonical(method_);
   const std::map<std::string, std::string> options = methodOptions(method_options_);
-  checkMethodOptions(methods_, method_, options);
+  const std::map<std::string, double> effective = checkMethodOptions(methods_, method_, options);
   bim::Scenario scenario = loadInput(input, "run");
   if (seed_) scenario.seed = *seed_;
   // The seed is in the default name, so that the seeds of one world and method do not collide.
@@ -98,7 +98,8 @@ int RunCommand::run() {
 
   run::RunSetup setup{
       input,          localizer->name(), scenario.seed,        worlds::worldHash(scenario),
-      &scenario.plan, &agraph,           scenario.robot.level, &scenario.as_built};
+      &scenario.plan, &agraph,           scenario.robot.level, &scenario.as_built,
+      effective};
   const auto mcap = openRunMcap(mcap_, force_, {inputFile(input)}, output_, setup, streams);
   ProgressBar bar("isg run", quiet_);
   const double period = streams.scan_period;

@@ -101,7 +101,7 @@ int SlamCommand::run() {
     return kExitUsage;
   }
   const std::map<std::string, std::string> options = methodOptions(method_options_);
-  checkMethodOptions(methods_, method, options);
+  const std::map<std::string, double> effective = checkMethodOptions(methods_, method, options);
   const std::optional<bim::Plan> plan = replayPlan(plan_, other_plan_, dataset, dataset_);
   const bim::AGraph agraph = plan ? bim::buildAGraph(*plan) : bim::AGraph{};
   sensors::SensorStreams streams = dataset.streams();
@@ -135,7 +135,8 @@ int SlamCommand::run() {
   }
   run::RunSetup setup{
       dataset_,     localizer->name(), dataset.seed(), "",
-      context.plan, context.agraph,    level,          as_built ? &*as_built : nullptr};
+      context.plan, context.agraph,    level,          as_built ? &*as_built : nullptr,
+      effective};
   const auto mcap = openRunMcap(mcap_, force_, {dataset_, plan_}, output_, setup, streams);
   ProgressBar bar("isg slam", quiet_);
   const double period = streams.scan_period;

@@ -34,10 +34,11 @@ std::map<std::string, std::string> methodOptions(const std::vector<std::string>&
   return options;
 }
 
-void checkMethodOptions(const run::LocalizerRegistry& registry, const std::string& method,
-                        const std::map<std::string, std::string>& options) {
+std::map<std::string, double> checkMethodOptions(
+    const run::LocalizerRegistry& registry, const std::string& method,
+    const std::map<std::string, std::string>& options) {
   try {
-    registry.checkOptions(method, options);
+    return registry.checkOptions(method, options);
   } catch (const std::invalid_argument& e) {
     throw common::InputError("--method " + method, "", e.what());
   }

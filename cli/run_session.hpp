@@ -25,9 +25,11 @@ std::string methodHelp(const run::LocalizerRegistry& registry);
 std::map<std::string, std::string> methodOptions(const std::vector<std::string>& arguments);
 
 // Checks the method's options before anything is built, so a misspelt key fails at once and not
-// after the world is made; bad input naming the method.
-void checkMethodOptions(const run::LocalizerRegistry& registry, const std::string& method,
-                        const std::map<std::string, std::string>& options);
+// after the world is made; bad input naming the method. Returns the options the method will use
+// (run::LocalizerRegistry::checkOptions).
+std::map<std::string, double> checkMethodOptions(const run::LocalizerRegistry& registry,
+                                                 const std::string& method,
+                                                 const std::map<std::string, std::string>& options);
 
 // Builds the method; what the method refuses (an unknown option, a bad value, a plan it cannot
 // use) is bad input naming the method.

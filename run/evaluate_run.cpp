@@ -1,17 +1,18 @@
 #include "run/evaluate_run.hpp"
 
-#include "bim/polygon.hpp"
-#include "eval/ape.hpp"
-#include "eval/coverage.hpp"
-#include "eval/wrong_localization.hpp"
-#include "run/level_metrics.hpp"
-#include "run/map_plan_error.hpp"
-
 #include <algorithm>
 #include <cmath>
 #include <set>
 #include <stdexcept>
 #include <string>
+
+#include "bim/polygon.hpp"
+#include "common/version.hpp"
+#include "eval/ape.hpp"
+#include "eval/coverage.hpp"
+#include "eval/wrong_localization.hpp"
+#include "run/level_metrics.hpp"
+#include "run/map_plan_error.hpp"
 
 namespace isg::run {
 
@@ -60,6 +61,8 @@ RunEvaluation evaluateRun(const RunRecord& run) {
   m.method = run.setup.method;
   m.seed = run.setup.seed;
   if (!run.setup.world_hash.empty()) m.world_hash = run.setup.world_hash;
+  m.method_options = run.setup.method_options;
+  m.build_version = common::buildVersion();
   m.scans = run.scans;
   m.sim_seconds = streams.duration;
   m.wall_seconds = run.wall_seconds;

@@ -59,15 +59,13 @@ std::string LocalizerRegistry::help() const {
   return out;
 }
 
-void LocalizerRegistry::checkOptions(const std::string& name,
-                                     const std::map<std::string, std::string>& options) const {
+std::map<std::string, double> LocalizerRegistry::checkOptions(
+    const std::string& name, const std::map<std::string, std::string>& options) const {
   const MethodInfo* method = find(name);
   if (method == nullptr) throw std::invalid_argument("unknown method " + name);
-  if (method->check_options) {
-    method->check_options(options);
-  } else {
-    MethodOptions(options, method->name).finish();  // none known: any key is refused
-  }
+  if (method->check_options) return method->check_options(options);
+  MethodOptions(options, method->name).finish();  // none known: any key is refused
+  return {};
 }
 
 std::unique_ptr<slam::Localizer> LocalizerRegistry::make(const std::string& name,

@@ -45,8 +45,10 @@ struct MethodInfo {
   bool slam_only = false;
   std::function<std::unique_ptr<slam::Localizer>(const LocalizerContext&)> make = {};
   // Reads the options as make() does, without a world: throws std::invalid_argument for a bad
-  // value or a key the method does not know. Empty: the method takes no options.
-  std::function<void(const std::map<std::string, std::string>&)> check_options = {};
+  // value or a key the method does not know; returns every option the method has with the value
+  // it will use (MethodOptions::effective). Empty: the method takes no options.
+  std::function<std::map<std::string, double>(const std::map<std::string, std::string>&)>
+      check_options = {};
   // Older names --method still takes for it (a renamed method keeps its command line working).
   std::vector<std::string> aliases = {};
 };
@@ -65,9 +67,11 @@ class LocalizerRegistry {
   // The method's name for a name or alias; an unknown name unchanged (old run folders).
   std::string canonical(const std::string& name) const;
   // Throws std::invalid_argument (naming the key) when the method does not take these options:
-  // a sweep checks a suite's options before any run, make() checks them too.
-  void checkOptions(const std::string& name,
-                    const std::map<std::string, std::string>& options) const;
+  // a sweep checks a suite's options before any run, make() checks them too. Returns each of
+  // the method's options with the value it will use (given, else its default): what metrics.json
+  // and sweep.json record.
+  std::map<std::string, double> checkOptions(
+      const std::string& name, const std::map<std::string, std::string>& options) const;
   // "  is-graphs: …\n  s-graph: …" for --help (aliases in parentheses).
   std::string help() const;
   // Builds the method. Throws std::invalid_argument for an unknown name, options the method does

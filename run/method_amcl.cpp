@@ -7,9 +7,8 @@ namespace isg::run {
 namespace {
 
 // The filter's settings from --method-option: nav2's defaults where a key is not given.
-slam::AmclOptions amclOptions(const std::map<std::string, std::string>& settings) {
+slam::AmclOptions amclOptions(MethodOptions& given) {
   slam::AmclOptions options;
-  MethodOptions given(settings, "amcl");
   auto& f = options.filter;
   f.max_particles = given.integer("particles", f.max_particles, 1, 10000000);
   f.min_particles = given.integer("min_particles", std::min(f.min_particles, f.max_particles), 1,
@@ -35,10 +34,16 @@ void addAmcl(LocalizerRegistry& registry) {
        .needs_plan = true,
        .make =
            [](const LocalizerContext& c) {
+             MethodOptions given(c.options, "amcl");
              return std::make_unique<slam::AmclLocalizer>(*c.plan, c.level, c.R_T_L,
-                                                          amclOptions(c.options), c.seed);
+                                                          amclOptions(given), c.seed);
            },
-       .check_options = [](const auto& options) { (void)amclOptions(options); }});
+       .check_options =
+           [](const auto& options) {
+             MethodOptions given(options, "amcl");
+             (void)amclOptions(given);
+             return given.effective();
+           }});
 }
 
 }  // namespace isg::run

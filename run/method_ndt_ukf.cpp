@@ -15,9 +15,8 @@ struct NdtUkfSettings {
   slam::NdtUkfOptions tracker;
 };
 
-NdtUkfSettings ndtUkfSettings(const std::map<std::string, std::string>& options) {
+NdtUkfSettings ndtUkfSettings(MethodOptions& given) {
   NdtUkfSettings s;
-  MethodOptions given(options, "ndt-ukf");
   s.start_error = given.number("start_error", s.start_error, 0.0, 100.0);
   s.start_yaw_error_deg = given.number("start_yaw_error_deg", s.start_yaw_error_deg, 0.0, 180.0);
   auto& t = s.tracker;
@@ -44,7 +43,8 @@ void addNdtUkf(LocalizerRegistry& registry) {
        .given_start = true,
        .make =
            [](const LocalizerContext& c) {
-             const NdtUkfSettings settings = ndtUkfSettings(c.options);
+             MethodOptions given(c.options, "ndt-ukf");
+             const NdtUkfSettings settings = ndtUkfSettings(given);
              // The perturbation: its size is stated, its direction and the turn's sign come from
              // the seed (its own stream, so other draws of the run do not shift it).
              std::mt19937_64 rng(c.seed ^ 0x6e64742d756b66ULL);
@@ -62,7 +62,12 @@ void addNdtUkf(LocalizerRegistry& registry) {
              return std::make_unique<slam::NdtUkfLocalizer>(*c.plan, c.level, c.R_T_L, start,
                                                             settings.tracker);
            },
-       .check_options = [](const auto& options) { (void)ndtUkfSettings(options); }});
+       .check_options =
+           [](const auto& options) {
+             MethodOptions given(options, "ndt-ukf");
+             (void)ndtUkfSettings(given);
+             return given.effective();
+           }});
 }
 
 }  // namespace isg::run

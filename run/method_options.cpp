@@ -10,7 +10,7 @@ namespace isg::run {
 double MethodOptions::number(const std::string& key, double fallback, double lo, double hi) {
   known_.insert(key);
   const auto it = options_.find(key);
-  if (it == options_.end()) return fallback;
+  if (it == options_.end()) return effective_[key] = fallback;
   std::size_t used = 0;
   double value = NAN;
   try {
@@ -23,7 +23,7 @@ double MethodOptions::number(const std::string& key, double fallback, double lo,
                                 " must be a number in [" + common::formatNumber(lo) + ", " +
                                 common::formatNumber(hi) + "]");
   }
-  return value;
+  return effective_[key] = value;
 }
 
 int MethodOptions::integer(const std::string& key, int fallback, int lo, int hi) {

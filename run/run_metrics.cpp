@@ -69,6 +69,11 @@ nlohmann::json metricsToJson(const RunMetrics& m) {
   j["method"] = m.method;
   j["seed"] = m.seed;
   if (m.world_hash) j["world_hash"] = *m.world_hash;
+  if (m.method_options) {
+    j["method_options"] = nlohmann::json::object();
+    for (const auto& [key, value] : *m.method_options) j["method_options"][key] = value;
+  }
+  if (m.build_version) j["build_version"] = *m.build_version;
   j["scans"] = m.scans;
   j["sim_seconds"] = m.sim_seconds;
   j["wall_seconds"] = m.wall_seconds;
@@ -150,6 +155,14 @@ RunMetrics metricsFromJson(const nlohmann::json& document, const std::string& fi
     m.world_hash = hash->string();
     if (!isContentHash(*m.world_hash)) hash->fail("expected \"sha256:\" and 64 hex digits");
   }
+  if (const auto options = root.optionalField("method_options")) {
+    if (!options->isObject()) options->fail("expected an object: option → value");
+    m.method_options.emplace();
+    for (const auto& [key, value] : options->raw().items()) {
+      (*m.method_options)[key] = options->field(key).number();
+    }
+  }
+  if (const auto build = root.optionalField("build_version")) m.build_version = build->text();
   m.scans = countOf(root.field("scans"));
   m.sim_seconds = root.field("sim_seconds").nonNegativeNumber();
   m.wall_seconds = root.field("wall_seconds").nonNegativeNumber();

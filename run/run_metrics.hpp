@@ -1,6 +1,7 @@
 #pragma once
 
 #include <cstdint>
+#include <map>
 #include <nlohmann/json.hpp>
 #include <optional>
 #include <string>
@@ -48,6 +49,11 @@ struct RunMetrics {
   // The content hash of the world (worlds::worldHash), when the run had one: isg table and
   // isg sweep never mix runs of different worlds that share a name.
   std::optional<std::string> world_hash;
+  // What made the run: the method's options with the values it used (given or default; empty
+  // for a method without options), and the build of isg (common::buildVersion). Absent from
+  // metrics written before they were recorded.
+  std::optional<std::map<std::string, double>> method_options;
+  std::optional<std::string> build_version;
   int scans = 0;
   double sim_seconds = 0.0;   // robot time
   double wall_seconds = 0.0;  // wall-clock time of the loop

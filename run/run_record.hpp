@@ -3,6 +3,7 @@
 #include <Eigen/Geometry>
 #include <array>
 #include <cstdint>
+#include <map>
 #include <nlohmann/json.hpp>
 #include <optional>
 #include <string>
@@ -31,6 +32,9 @@ struct RunSetup {
   const bim::AGraph* agraph = nullptr;
   std::string level;
   const bim::AsBuilt* as_built = nullptr;  // what the simulated building changed; may be null
+  // The method's options with the values it ran with, given or default
+  // (LocalizerRegistry::checkOptions); empty for a method without options.
+  std::map<std::string, double> method_options;
 };
 
 // A thinned copy of a scan the localizer read, kept for the map-to-plan error

@@ -5,6 +5,7 @@
 #include <set>
 
 #include "common/json_reader.hpp"
+#include "common/version.hpp"
 #include "worlds/reference_plans.hpp"
 
 namespace isg::sweep {
@@ -231,6 +232,13 @@ Suite parseSuite(const common::JsonNode& root, const std::string& path,
       }
     }
   }
+  // Each method's options as its runs will use them (checked above where given).
+  for (const auto& method : suite.methods) {
+    const auto given = suite.method_options.find(method);
+    suite.effective_options[method] = methods.checkOptions(
+        method,
+        given == suite.method_options.end() ? std::map<std::string, std::string>{} : given->second);
+  }
   if (auto slurm = root.optionalField("slurm")) {
     slurm->expectObject({"cpus_per_task", "time", "mem", "partition", "max_array_size", "options"});
     if (auto c = slurm->optionalField("cpus_per_task")) {
@@ -299,10 +307,21 @@ std::string sweepPlanJson(const Suite& suite, const std::vector<SweepCell>& cell
     if (w.generate) entry["generate"] = generatorSpecJson(*w.generate);
     worlds.push_back(entry);
   }
-  const nlohmann::json plan = {
-      {"format", "isg.sweep"}, {"version", 1},
-      {"name", suite.name},    {"suite", fs::absolute(suite.file).string()},
-      {"worlds", worlds},      {"cells", list}};
+  // What made the sweep's runs besides the worlds: each method's options as its runs use them,
+  // and the build of isg that started the sweep (its cells run the same program).
+  nlohmann::json options = nlohmann::json::object();
+  for (const auto& [method, values] : suite.effective_options) {
+    options[method] = nlohmann::json::object();
+    for (const auto& [key, value] : values) options[method][key] = value;
+  }
+  const nlohmann::json plan = {{"format", "isg.sweep"},
+                               {"version", 1},
+                               {"name", suite.name},
+                               {"suite", fs::absolute(suite.file).string()},
+                               {"build_version", common::buildVersion()},
+                               {"method_options", options},
+                               {"worlds", worlds},
+                               {"cells", list}};
   return plan.dump(1) + "\n";
 }
 

@@ -42,6 +42,9 @@ struct Suite {
   std::optional<double> duration;                                            // isg run --duration
   int threads = 1;                                                           // isg run --threads
   std::map<std::string, std::map<std::string, std::string>> method_options;  // method → KEY → VALUE
+  // Every method's options with the values its runs use, given or default (what sweep.json
+  // records): method → KEY → value.
+  std::map<std::string, std::map<std::string, double>> effective_options;
   SlurmSettings slurm;
 };
 

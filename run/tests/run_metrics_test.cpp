@@ -50,6 +50,8 @@ TEST(RunMetrics, JsonRoundTripKeepsEveryField) {
 TEST(RunMetrics, JsonRoundTripOfARunWithEveryFieldSet) {
   RunMetrics m = localizedRun();
   m.world_hash = "sha256:" + std::string(64, 'a');
+  m.method_options = std::map<std::string, double>{{"particles", 3000.0}, {"alpha_slow", 0.001}};
+  m.build_version = "v0.1.0-12-gabcdef0-dirty";
   Statistics rotation;
   rotation.count = 258;
   rotation.rmse = 0.9;
@@ -88,6 +90,9 @@ TEST(RunMetrics, JsonRoundTripOfARunWithEveryFieldSet) {
   const RunMetrics back = metricsFromJson(j, "metrics.json");
   EXPECT_EQ(metricsToJson(back), j);
   EXPECT_EQ(back.world_hash, m.world_hash);
+  EXPECT_EQ(back.method_options, m.method_options);
+  EXPECT_EQ(back.build_version, m.build_version);
+  EXPECT_EQ(j["method_options"]["particles"], 3000.0);
   ASSERT_TRUE(back.ape_B_rotation_deg);
   EXPECT_EQ(back.ape_B_rotation_deg->median, 0.6);
   EXPECT_EQ(back.ape_B_rotation_deg->min, 0.01);
@@ -173,6 +178,28 @@ TEST(RunMetrics, BadFieldsAreNamedByPointer) {
   EXPECT_EQ(message(j), "runs/x/metrics.json: /notes/1: expected a string, got a number");
   EXPECT_EQ(message(nlohmann::json::array()),
             "runs/x/metrics.json: expected an object, got an array");
+}
+
+// What made a run: metrics of a run before they were recorded read without them; a method
+// without options records an empty set (not "unrecorded").
+TEST(RunMetrics, MethodOptionsAndBuildAreRecordedWhenKnown) {
+  RunMetrics m;
+  m.world = "builtin:d1";
+  m.method = "is-graphs";
+  nlohmann::json j = metricsToJson(m);
+  EXPECT_FALSE(j.contains("method_options"));
+  EXPECT_FALSE(metricsFromJson(j, "metrics.json").method_options.has_value());
+  m.method_options.emplace();
+  j = metricsToJson(m);
+  EXPECT_EQ(j["method_options"], nlohmann::json::object());
+  EXPECT_EQ(metricsFromJson(j, "metrics.json").method_options, (std::map<std::string, double>{}));
+  j["method_options"] = {{"particles", "many"}};
+  try {
+    metricsFromJson(j, "metrics.json");
+    FAIL() << "accepted";
+  } catch (const common::InputError& e) {
+    EXPECT_EQ(e.pointer(), "/method_options/particles");
+  }
 }
 
 }  // namespace

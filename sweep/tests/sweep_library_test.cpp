@@ -6,6 +6,7 @@
 
 #include "common/input_error.hpp"
 #include "common/json_reader.hpp"
+#include "common/version.hpp"
 #include "run/builtin_methods.hpp"
 #include "sweep/run_table.hpp"
 #include "sweep/slurm_backend.hpp"
@@ -48,6 +49,20 @@ TEST(SweepLibrary, SweepJsonReadsBackItsCells) {
   ASSERT_EQ(plan.cells.size(), 2u);
   EXPECT_EQ(plan.cells[1].dir, cells[1].dir);
   EXPECT_EQ(plan.cells[1].arguments, cells[1].arguments);
+  // What made its runs: the build, and each method's options as its runs use them.
+  EXPECT_EQ(written["build_version"], common::buildVersion());
+  EXPECT_EQ(written["method_options"], nlohmann::json({{"odometry", nlohmann::json::object()}}));
+}
+
+TEST(SweepLibrary, SweepJsonRecordsEachMethodsOptionsWithTheirDefaults) {
+  const Suite suite = suiteOf(R"({"format": "isg.suite", "version": 1, "name": "s",
+      "worlds": ["builtin:d1"], "methods": ["amcl", "is-graphs"], "seeds": [1],
+      "run": {"method_options": {"amcl": {"particles": 3000}}}})");
+  const nlohmann::json written =
+      nlohmann::json::parse(sweepPlanJson(suite, sweepCells(suite)))["method_options"];
+  EXPECT_EQ(written["amcl"]["particles"], 3000.0);
+  EXPECT_EQ(written["amcl"]["min_particles"], 500.0);  // nav2's default, not given
+  EXPECT_EQ(written["is-graphs"], nlohmann::json::object());
 }
 
 TEST(SweepLibrary, AWorldNamedAfterAFileOfTheSweepIsRefused) {

@@ -49,5 +49,37 @@ TEST(RunTableLevels, ARowPerLevelUnderTheWorld) {
   EXPECT_TRUE(wrong.table.isWrong("storeys", "is-graphs"));
 }
 
+// Runs of one method with different options (metrics.json's method_options) are not one cell:
+// their columns say the options that differ. Runs that recorded none (older runs) join any.
+TEST(RunTableOptions, AMethodRunWithOtherOptionsIsAColumnOfItsOwn) {
+  auto amcl = [](std::uint64_t seed, std::optional<std::map<std::string, double>> options) {
+    run::RunMetrics m = twoStoreyRun(seed, 0.02, 0.04);
+    m.world = "builtin:d1";
+    m.levels.clear();
+    m.method = "amcl";
+    m.method_options = std::move(options);
+    return m;
+  };
+  const std::map<std::string, double> defaults{{"particles", 2000}, {"alpha_slow", 0.001}};
+  std::map<std::string, double> more = defaults;
+  more["particles"] = 5000;
+  const RunTable table = tabulateRuns({{"a", amcl(1, defaults)},
+                                       {"b", amcl(1, more)},
+                                       {"c", amcl(2, more)},
+                                       {"d", amcl(3, std::nullopt)}},
+                                      "ape", run::builtinMethods());
+  EXPECT_EQ(table.table.columns,
+            (std::vector<std::string>{"amcl [particles=2000]", "amcl [particles=5000]", "amcl"}));
+  EXPECT_NE(table.caption.find("Columns marked [KEY=VALUE]"), std::string::npos);
+  // Seed 1 twice, with other options: two cells, not "a second run".
+  ASSERT_EQ(table.table.stats.size(), 1u);
+  EXPECT_EQ(table.table.stats[0][1].runs, 2);
+  // One option set: one column, as before options were recorded.
+  const RunTable same =
+      tabulateRuns({{"a", amcl(1, more)}, {"b", amcl(2, more)}, {"c", amcl(3, std::nullopt)}},
+                   "ape", run::builtinMethods());
+  EXPECT_EQ(same.table.columns, (std::vector<std::string>{"amcl"}));
+}
+
 }  // namespace
 }  // namespace isg::sweep
