@@ -6,7 +6,7 @@
 #include "bim/plan.hpp"
 #include "bim/scenario.hpp"
 #include "common/json_reader.hpp"
-#include "slam/plan_deviations.hpp"
+#include "slam/deviations/plan_deviations.hpp"
 
 namespace isg::run {
 

@@ -4,7 +4,7 @@
 #include <string>
 
 #include "run/deviation_grading.hpp"
-#include "slam/plan_deviations.hpp"
+#include "slam/deviations/plan_deviations.hpp"
 
 namespace isg::run {
 

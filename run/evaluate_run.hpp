@@ -5,7 +5,7 @@
 
 #include "run/run_metrics.hpp"
 #include "run/run_record.hpp"
-#include "slam/plan_deviations.hpp"
+#include "slam/deviations/plan_deviations.hpp"
 
 namespace isg::run {
 

@@ -33,14 +33,16 @@ inline const std::map<std::string, std::set<std::string>>& allowedModules() {
       {"slam/sgraph", {"common", "bim", "sensors", "slam"}},
       {"slam/isgraph", {"common", "bim", "sensors", "slam", "slam/sgraph"}},
       {"slam/baselines", {"common", "bim", "sensors", "slam"}},
+      {"slam/deviations", {"common", "bim", "slam"}},
       {"run",
        {"common", "bim", "eval", "sensors", "formats", "slam", "slam/sgraph", "slam/isgraph",
-        "slam/baselines"}},
+        "slam/baselines", "slam/deviations"}},
       {"sim", {"common", "bim", "worlds", "sensors", "formats"}},
       {"sweep", {"common", "bim", "worlds", "eval", "run", "sim"}},
       {"cli",
        {"common", "bim", "worlds", "ifc", "eval", "sensors", "formats", "recordings", "slam",
-        "slam/sgraph", "slam/isgraph", "slam/baselines", "run", "sim", "sweep"}},
+        "slam/sgraph", "slam/isgraph", "slam/baselines", "slam/deviations", "run", "sim",
+        "sweep"}},
   };
   return allowed;
 }

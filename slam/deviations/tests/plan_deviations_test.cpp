@@ -2,7 +2,7 @@
 // built (one wall shifted, one turned, one missing, one extra), placed in the plan 3 cm and 0.3°
 // off, as a localizer would place them. Every number below is a hand calculation.
 
-#include "slam/plan_deviations.hpp"
+#include "slam/deviations/plan_deviations.hpp"
 #include "bim/as_built_wall.hpp"
 #include "bim/plan_parser.hpp"
 #include "common/json_reader.hpp"

@@ -1,4 +1,4 @@
-#include "slam/plan_deviations.hpp"
+#include "slam/deviations/plan_deviations.hpp"
 
 #include <Eigen/Dense>
 #include <algorithm>
