@@ -1,24 +1,22 @@
 #pragma once
 
-#include <ceres/ceres.h>
-#include <numbers>
-
 #include <Eigen/Geometry>
-#include <array>
-#include <deque>
-#include <map>
-#include <memory>
+#include <numbers>
 #include <optional>
 #include <string>
 #include <vector>
 
 #include "bim/agraph.hpp"
 #include "bim/agraph_optimizer.hpp"
-#include "bim/plane_manifold.hpp"
-#include "slam/isgraph/flight_footprints.hpp"
+#include "slam/isgraph/compiled_plan.hpp"
+#include "slam/isgraph/floor_following.hpp"
 #include "slam/isgraph/graph_matching.hpp"
-#include "slam/isgraph/level_matching.hpp"
-#include "slam/isgraph/plan_distance_field.hpp"
+#include "slam/isgraph/held_answer.hpp"
+#include "slam/isgraph/match_input.hpp"
+#include "slam/isgraph/match_log.hpp"
+#include "slam/isgraph/plan_agreement.hpp"
+#include "slam/isgraph/plan_merging.hpp"
+#include "slam/isgraph/released_walls.hpp"
 #include "slam/isgraph/wall_release.hpp"
 #include "slam/localizer.hpp"
 #include "slam/sgraph/sgraph.hpp"
@@ -88,10 +86,6 @@ struct ISGraphOptions {
   double flight_margin = 1.0;  // m
 };
 
-// The S-Graph as the matcher sees it (walls of a minimum height, confirmed rooms, transitions),
-// of the floor the robot stands on (the latest one it stood on, while on the stairs).
-MatchInput matchInputOf(const SGraph& graph, double min_wall_height);
-
 // The iS-Graph (paper §IV–V): the S-Graph, matched against the plan's A-Graph, then merged with
 // it. Until the match is unique it localizes in M only; from then on B_T_M is part of every
 // window optimisation, with plane-to-plane and room-to-room factors and the A-Graph's own wall
@@ -102,11 +96,17 @@ MatchInput matchInputOf(const SGraph& graph, double min_wall_height);
 // from the frame's origin, so in B a model kilometres from its origin would couple every wall's
 // angle to its position by that lever arm (docs/conventions.md, "Where B's origin is"). Matching
 // and merging estimate P_T_M; everything that leaves the localizer is in B.
+//
+// It is made of parts, each with its own tests: what the plan gives once (CompiledPlan), the
+// answer held (HeldAnswer), the log of the matching (MatchLog), the walls released from the merge
+// (ReleasedWalls), the floors followed (FloorFollower), the checks that the answer still holds
+// (PlanAgreement) and the merge's factors (PlanMerger); its sgraph.json part is isgraph_json's.
+// This class decides, keyframe by keyframe, when each acts.
 class ISGraphLocalizer : public Localizer {
  public:
   ISGraphLocalizer(const Eigen::Isometry3d& R_T_L, const bim::AGraph& plan,
                    const ISGraphOptions& options = {});
-  // It points into its own copy of the plan.
+  // Its parts point into its own compiled plan and answer.
   ISGraphLocalizer(const ISGraphLocalizer&) = delete;
   ISGraphLocalizer& operator=(const ISGraphLocalizer&) = delete;
 
@@ -119,8 +119,8 @@ class ISGraphLocalizer : public Localizer {
   std::optional<sensors::Odometry> poseInMap() const override { return graph_.latestPose(); }
   std::optional<Eigen::Isometry3d> mapInPlan() const override;
   nlohmann::json graph() const override;
-  std::optional<std::string> searchStatus() const override { return toString(status_); }
-  std::vector<StatusChange> statusChanges() const override;
+  std::optional<std::string> searchStatus() const override { return toString(log_.status()); }
+  std::vector<StatusChange> statusChanges() const override { return log_.events(); }
   std::optional<MapDiagnostics> mapDiagnostics() const override { return graph_.diagnostics(); }
   sensors::StageTimes stageTimes() const override;
 
@@ -130,141 +130,60 @@ class ISGraphLocalizer : public Localizer {
   void assumeMatch(double stamp, const Eigen::Vector3d& x_y_yaw, const std::string& reason);
 
   const SGraph& sgraph() const { return graph_; }
-  MatchStatus status() const { return status_; }
-  const std::vector<StatusChange>& events() const { return events_; }
+  MatchStatus status() const { return log_.status(); }
+  const std::vector<StatusChange>& events() const { return log_.events(); }
   // The latest full match, its answers in B.
-  const std::optional<MatchResult>& lastMatch() const { return last_match_; }
+  const std::optional<MatchResult>& lastMatch() const { return log_.lastMatch(); }
   // The plan level (index into the A-Graph's floors) of the floor the robot stands on, while
   // localized; -1 otherwise.
-  int level() const { return localized_ ? level_ : -1; }
+  int level() const { return answer_.localized ? floors_.level() : -1; }
   // Where the robot arrived on a floor while localized: the stamp and the level it is.
-  struct LevelChange {
-    double stamp = 0.0;
-    int floor = -1;  // the S-Graph's
-    int level = -1;  // the A-Graph's
-  };
-  const std::vector<LevelChange>& levelChanges() const { return level_changes_; }
+  using LevelChange = FloorFollower::LevelChange;
+  const std::vector<LevelChange>& levelChanges() const { return floors_.changes(); }
   // The S-Graph as the matcher sees it now.
   MatchInput matchInput() const {
     return matchInputOf(graph_, options_.sgraph.rooms.min_wall_height);
   }
   // Seconds spent in full matching attempts, one entry per attempt.
-  const std::vector<double>& matchingTimes() const { return matching_times_; }
+  const std::vector<double>& matchingTimes() const { return log_.matchingTimes(); }
 
  private:
   void onKeyframe(double stamp);
+  // While localized: the floor followed, the agreement checked (lost otherwise), walls judged,
+  // the answer moved by the walls' vote, new correspondences made. False when it lost the answer
+  // or moved it (nothing more this keyframe).
+  bool keepAnswer(const MatchInput& input, double stamp);
   void record(double stamp, MatchStatus status, const std::string& reason);
   // Takes an answer on plan level `level` (-1: the level of its first matched room) for the
   // floor the robot stands on.
   void adopt(const Verification& answer, int level = -1);
-  // One full match of the current floor: against every level when the plan has several.
-  MatchResult matchNow(const MatchInput& input, int* level) const;
-  // verify() on the current floor's level.
-  Verification verifyNow(const MatchInput& input, const Eigen::Vector3d& P_T_M_x_y_yaw) const;
-  // While localized, the level of the floor the robot stands on: known, or found from its height
-  // above a floor whose level is known. Returns why not, empty when it is known.
-  std::string followFloor(double stamp);
-  // The plan level at the height of S-floor `floor`, from a floor whose level is known; -1 when
-  // no level is within level_tolerance.
-  int levelAtHeightOf(int floor) const;
-  // Why the latest keyframe, on the stairs, is on none of the current level's flights; empty
-  // when it is on one.
-  std::string offFlight() const;
-  // Takes the latest keyframe into the localized graph's agreement with the world and the plan
-  // (the plan-share history, the collapse count; held correspondences that left the hold gate are
-  // dropped) and says why the graph no longer agrees; empty while it does.
-  std::string updateAgreement(const MatchInput& input);
-  // Judges the held walls of the current floor against each other and releases those that
-  // disagree with their planned surfaces (WallReleaseOptions) on `strikes` judgements in a row.
-  void releaseDeviatingWalls(const MatchInput& input, double stamp, int strikes);
-  // The held correspondences of the current floor as the release judges them, in P under the
-  // current P_T_M; with their (S-plane, A-surface) in `held` if given.
-  std::vector<HeldWall> heldWalls(const MatchInput& input,
-                                  std::vector<std::pair<int, int>>* held) const;
   // A new answer: its walls built off the plan released at once, and P_T_M refitted to the rest.
   void refineAnswer(const MatchInput& input, double stamp);
   // P_T_M refitted to the held walls, robustly (correctionOfAll).
   void refitAnswer(const MatchInput& input);
+  // The held walls of the current floor judged against each other (ReleasedWalls).
+  void releaseDeviatingWalls(const MatchInput& input, double stamp, int strikes);
   // When new S-planes were mapped since the last vote: the answer moved to where more plan walls
   // agree (GraphMatcher::consensus), if by min_answer_move or more. True when it moved.
   bool moveToConsensus(const MatchInput& input, double stamp);
-  // The latest keyframe's plan agreement (see ISGraphOptions), or -1 without a cloud.
-  double planShare() const;
   void lose(double stamp, const std::string& reason);
   // A full match while localized, judged on the S-Graph optimised without the plan.
   void checkForContradiction(double stamp);
-  void addPlanFactors(ceres::Problem& problem, const std::set<int>& planes,
-                      const std::vector<int>& rooms);
-  void addSurface(ceres::Problem& problem, int surface);
-  // The S-room's widths, measured through its centre from the map's planes, along the matched
-  // plan room's two pairs (in node.pairs order); none unless both are four-wall rooms.
-  std::optional<std::array<double, 2>> widthsAlongPlanPairs(int room,
-                                                            const bim::RoomNode& node) const;
-
-  // B_T_M in the plane from P_T_M, and back.
-  Eigen::Vector3d inB(const Eigen::Vector3d& P_T_M_x_y_yaw) const;
-  Eigen::Vector3d inP(const Eigen::Vector3d& B_T_M_x_y_yaw) const;
 
   ISGraphOptions options_;
-  Eigen::Vector2d B_t_P_;    // P's origin in B: B_T_P is this translation
-  bim::AGraph plan_in_P_;    // the plan's A-Graph moved into P
-  const bim::AGraph* plan_;  // = &plan_in_P_
-  Eigen::Isometry3d R_T_L_;
-  PlanDistanceField plan_field_;
-  std::deque<double> plan_shares_;  // of the latest localized keyframes
-  int plan_collapsed_ = 0;          // keyframes in a row with a collapsed plan share
+  CompiledPlan plan_;  // in P
   SGraph graph_;
-  GraphMatcher matcher_;
-  // With several levels: each level's A-Graph matched on its own, the answers compared.
-  std::unique_ptr<LevelMatcher> level_matcher_;
-  std::vector<FlightFootprint> flights_;  // in P
-  std::map<int, int> floor_levels_;       // S-Graph floor → A-Graph floor, while localized
-  int level_ = -1;                        // of the current floor, while localized
-  std::vector<LevelChange> level_changes_;
-  bim::AGraphState plan_state_;
-  bim::PlaneManifold plane_manifold_;
-  ceres::HuberLoss huber_{1.0};
-
-  MatchStatus status_ = MatchStatus::kNotYet;
-  bool localized_ = false;
-  // P_T_M in the plane (x, y, yaw; the merging optimises these three) and its height, which the
-  // floors give (P and B share z): mapInPlan() makes B_T_P · P_T_M of the two.
-  Eigen::Vector3d P_T_M_x_y_yaw_ = Eigen::Vector3d::Zero();
-  double P_T_M_z_ = 0.0;
-  bool z_from_floor_ = false;  // P_T_M_z_ from a floor plane seen (not yet: as if at height 0)
-  std::map<int, int> plane_matches_;  // S-plane → A-surface
-  std::map<int, int> room_matches_;   // S-room → A-room
-  // Walls released under the answer held now: never matched again under it.
-  struct ReleasedWall {
-    double stamp = 0.0;
-    int plane = -1;                    // S-plane
-    int surface = -1;                  // A-surface
-    double offset = 0.0, angle = 0.0;  // the residual that released it (m, rad)
-  };
-  std::vector<ReleasedWall> released_;  // in the order released, for the log
-  std::set<int> released_planes_;       // the same, to look up
-  // Released A-surface → the offset along its normal that released it (the latest): how far the
-  // wall stands off the plan, which moves its rooms' centres by half as much.
-  std::map<int, double> released_surfaces_;
-  std::map<int, int> release_strikes_;     // S-plane → keyframes in a row beyond a threshold
-  std::optional<MatchResult> last_match_;  // in B
-  std::vector<StatusChange> events_;
-  std::vector<double> matching_times_;
-  double matching_s_ = 0.0;  // onKeyframe in all: matching, verification, contradictions
+  HeldAnswer answer_;
+  MatchLog log_;
+  ReleasedWalls released_;
+  FloorFollower floors_;
+  PlanAgreement agreement_;
+  PlanMerger merger_;
+  // When matching is tried again (retry_keyframes, new rooms) and the walls vote (new planes).
   std::size_t rooms_at_last_attempt_ = 0;
   int keyframes_at_last_attempt_ = 0;
-  std::set<int> surfaces_in_problem_;  // per optimisation
-  Eigen::AlignedBox2d building_;       // the plan's walls' box grown by outside_margin, in P
-  int contradictions_ = 0;
-  struct AnswerMove {  // moved to where more plan walls agree (moveToConsensus)
-    double stamp = 0.0;
-    double distance = 0.0;                         // m, at the middle of the map
-    double walls_before = 0.0, walls_after = 0.0;  // GraphMatcher::wallsAgreeing
-  };
-  std::vector<AnswerMove> answer_moves_;
   std::size_t planes_at_last_vote_ = 0;
-  int losses_ = 0;
-  int held_constant_ = 0;  // optimisations in which B_T_M was held (under-constrained)
+  double matching_s_ = 0.0;  // onKeyframe in all: matching, verification, contradictions
 };
 
 }  // namespace isg::slam
