@@ -253,6 +253,31 @@ class Importer {
                          const bim::Level& upper);
   std::vector<int> chooseLevels();
   bim::Level level(int storey_index, StoreySummary& summary);
+  // A level's walls (standing on its floor), into `level`; each wall's (base, top) above it.
+  std::map<int, std::pair<double, double>> levelWalls(int s, StoreySummary& summary,
+                                                      bim::Level& level);
+  // The storey an opening belongs to: the highest level at or below its bottom that its wall
+  // stands on; -1 for none.
+  int homeOf(const OpeningRecord& opening) const;
+  // An opening already placed along a wall: where, and which.
+  struct PlacedOpening {
+    double lo, hi;
+    std::string id, kind;
+  };
+  // One opening of the level's wall (its (base, top) `base_top`) as a door or a window, cut to
+  // the wall; dropped (and logged) where it does not fit or overlaps one `along_wall` holds.
+  void placeOpening(const OpeningRecord& opening, int s, const std::pair<double, double>& base_top,
+                    std::vector<PlacedOpening>& along_wall, StoreySummary& summary,
+                    bim::Level& level);
+  // The door's height (`head_room` above the wall's base) unless it is no door; logged.
+  bool doorOf(const OpeningRecord& opening, const std::string& what, double above_base,
+              double head_room, bim::Door& door);
+  // The window's sill and height within its wall (`head` and `wall_height` above its base)
+  // unless nothing is left; logged.
+  bool windowOf(const OpeningRecord& opening, const std::string& what, double above_base,
+                double head, double wall_height, bim::Window& window);
+  // The storey's spaces with a closed outline as the level's rooms; the others logged.
+  void levelRooms(const StoreyRecord& storey, StoreySummary& summary, bim::Level& level);
   std::string uniqueId(const std::string& wanted, const std::string& suffix);
   void dropped(const std::string& what, const std::string& why) {
     result_.log.push_back("dropped " + what + ": " + why);
@@ -666,14 +691,9 @@ std::vector<int> Importer::chooseLevels() {
   return chosen;
 }
 
-bim::Level Importer::level(int s, StoreySummary& summary) {
-  const StoreyRecord& storey = storeys_[s];
-  const double e = storey.elevation;
-  bim::Level level;
-  level.id = summary.level_id;
-  if (!storey.name.empty()) level.name = cleanText(storey.name, common::limits::kMaxTextBytes);
-  level.elevation = e;
-  std::vector<double> tops;
+std::map<int, std::pair<double, double>> Importer::levelWalls(int s, StoreySummary& summary,
+                                                              bim::Level& level) {
+  const double e = storeys_[s].elevation;
   std::map<int, std::pair<double, double>> base_top;  // wall → (base, top) above the level
   for (int w = 0; w < int(walls_.size()); ++w) {
     const WallRecord& wall = walls_[w];
@@ -683,7 +703,6 @@ bim::Level Importer::level(int s, StoreySummary& summary) {
     const double base = std::max(0.0, wall.fit.bottom - e);
     const double top = std::min(wall.fit.top - e, bim::limits::kMaxHeight);
     base_top[w] = {base, top};
-    tops.push_back(top);
     bim::Wall out;
     out.id = id;
     out.start = wall.fit.start;
@@ -696,103 +715,113 @@ bim::Level Importer::level(int s, StoreySummary& summary) {
     ++summary.walls;
     if (wall.storey != s) ++summary.walls_from_other_storeys;
   }
-  // Openings on this level: the highest floor at or below the opening's bottom among the levels
-  // its wall stands on is this one.
-  struct Placed {
-    double lo, hi;
-    std::string id, kind;
-  };
-  std::map<int, std::vector<Placed>> along_wall;
-  for (const auto& opening : openings_) {
-    if (!base_top.count(opening.wall)) continue;
-    const WallRecord& wall = walls_[opening.wall];
-    int home = -1;
-    for (int t = 0; t < int(storeys_.size()); ++t) {
-      if (is_level_[t] && standsOn(wall.fit, storeys_[t].elevation) &&
-          storeys_[t].elevation <= opening.extent.z_min + kStandingHeight &&
-          (home < 0 || storeys_[t].elevation > storeys_[home].elevation)) {
-        home = t;
-      }
+  return base_top;
+}
+
+int Importer::homeOf(const OpeningRecord& opening) const {
+  // The highest floor at or below the opening's bottom among the levels its wall stands on.
+  const WallRecord& wall = walls_[opening.wall];
+  int home = -1;
+  for (int t = 0; t < int(storeys_.size()); ++t) {
+    if (is_level_[t] && standsOn(wall.fit, storeys_[t].elevation) &&
+        storeys_[t].elevation <= opening.extent.z_min + kStandingHeight &&
+        (home < 0 || storeys_[t].elevation > storeys_[home].elevation)) {
+      home = t;
     }
-    if (home != s) continue;
-    placed_.insert(&opening);
-    const std::string what =
-        describe(opening.kind, opening.described) + " (in wall " + wall.global_id + ")";
-    const double length = (wall.fit.end - wall.fit.start).norm();
-    const double lo = std::max(0.0, opening.extent.along_min);
-    const double hi = std::min(length, opening.extent.along_max);
-    if (hi - lo < kMinOpeningWidth) {
-      dropped(what, "narrower than " + fmt(kMinOpeningWidth) + " m within its wall");
-      continue;
-    }
-    if (hi - lo < opening.extent.along_max - opening.extent.along_min - 0.01) {
-      simplified(what,
-                 "it reaches beyond its wall's end: cut to the wall, " + fmt(hi - lo) + " m wide");
-    }
-    const auto [base, top] = base_top[opening.wall];
-    const double above_base = opening.extent.z_min - (e + base);
-    bool is_door = opening.kind == "door";
-    if (opening.kind == "opening") {
-      is_door = above_base < kFloorTolerance &&
-                opening.extent.z_max - opening.extent.z_min >= kMinDoorwayHeight;
-    }
-    bool overlaps = false;
-    for (const auto& other : along_wall[opening.wall]) {
-      if (lo < other.hi - 1e-6 && other.lo < hi - 1e-6) {
-        dropped(what, "overlaps " + other.kind + " " + other.id + " along the wall");
-        overlaps = true;
-        break;
-      }
-    }
-    if (overlaps) continue;
-    const std::string id = uniqueId(opening.global_id, summary.level_id);
-    bim::Door door;
-    bim::Window window;
-    door.id = window.id = id;
-    door.wall = window.wall = wall_ids_[{opening.wall, s}];
-    door.offset = window.offset = 0.5 * (lo + hi);
-    door.width = window.width = hi - lo;
-    door.rooms_inferred = true;  // the model says none: the parser finds them from the outlines
-    if (is_door) {
-      const double height = std::min(opening.extent.z_max - (e + base), top - base);
-      if (height < 0.5) {
-        dropped(what, "its head is " + fmt(height) + " m above the floor: not a door");
-        continue;
-      }
-      if (above_base > kFloorTolerance) {
-        simplified(what, "its opening starts " + fmt(above_base) +
-                             " m above the floor: the door is taken from the floor");
-      }
-      if (opening.kind == "opening")
-        simplified(what, "an opening without a door or window: a doorway");
-      door.height = height;
-      ++summary.doors;
-    } else {
-      const double sill = std::max(0.0, above_base);
-      const double head = std::min(opening.extent.z_max - (e + base), top - base);
-      if (head - sill < 0.05) {
-        dropped(what, "no height left inside its wall");
-        continue;
-      }
-      if (opening.extent.z_max - (e + base) > top - base + 0.01) {
-        simplified(what, "its head is above its wall's top: cut at the top");
-      }
-      if (opening.kind == "opening")
-        simplified(what, "an opening without a door or window, above the floor: a window");
-      window.sill = sill;
-      window.height = head - sill;
-      ++summary.windows;
-    }
-    if (!opening.name.empty()) {
-      door.name = window.name = cleanText(opening.name, common::limits::kMaxTextBytes);
-    }
-    if (is_door) {
-      level.doors.push_back(std::move(door));
-    } else {
-      level.windows.push_back(std::move(window));
-    }
-    along_wall[opening.wall].push_back({lo, hi, id, is_door ? "door" : "window"});
   }
+  return home;
+}
+
+bool Importer::doorOf(const OpeningRecord& opening, const std::string& what, double above_base,
+                      double head_room, bim::Door& door) {
+  if (head_room < 0.5) {
+    dropped(what, "its head is " + fmt(head_room) + " m above the floor: not a door");
+    return false;
+  }
+  if (above_base > kFloorTolerance) {
+    simplified(what, "its opening starts " + fmt(above_base) +
+                         " m above the floor: the door is taken from the floor");
+  }
+  if (opening.kind == "opening") simplified(what, "an opening without a door or window: a doorway");
+  door.height = head_room;
+  return true;
+}
+
+bool Importer::windowOf(const OpeningRecord& opening, const std::string& what, double above_base,
+                        double head, double wall_height, bim::Window& window) {
+  const double sill = std::max(0.0, above_base);
+  const double cut_head = std::min(head, wall_height);
+  if (cut_head - sill < 0.05) {
+    dropped(what, "no height left inside its wall");
+    return false;
+  }
+  if (head > wall_height + 0.01)
+    simplified(what, "its head is above its wall's top: cut at the top");
+  if (opening.kind == "opening")
+    simplified(what, "an opening without a door or window, above the floor: a window");
+  window.sill = sill;
+  window.height = cut_head - sill;
+  return true;
+}
+
+void Importer::placeOpening(const OpeningRecord& opening, int s,
+                            const std::pair<double, double>& base_top,
+                            std::vector<PlacedOpening>& along_wall, StoreySummary& summary,
+                            bim::Level& level) {
+  const WallRecord& wall = walls_[opening.wall];
+  const double e = storeys_[s].elevation;
+  const std::string what =
+      describe(opening.kind, opening.described) + " (in wall " + wall.global_id + ")";
+  const double length = (wall.fit.end - wall.fit.start).norm();
+  const double lo = std::max(0.0, opening.extent.along_min);
+  const double hi = std::min(length, opening.extent.along_max);
+  if (hi - lo < kMinOpeningWidth) {
+    dropped(what, "narrower than " + fmt(kMinOpeningWidth) + " m within its wall");
+    return;
+  }
+  if (hi - lo < opening.extent.along_max - opening.extent.along_min - 0.01) {
+    simplified(what,
+               "it reaches beyond its wall's end: cut to the wall, " + fmt(hi - lo) + " m wide");
+  }
+  const auto [base, top] = base_top;
+  const double above_base = opening.extent.z_min - (e + base);
+  bool is_door = opening.kind == "door";
+  if (opening.kind == "opening") {
+    is_door = above_base < kFloorTolerance &&
+              opening.extent.z_max - opening.extent.z_min >= kMinDoorwayHeight;
+  }
+  for (const auto& other : along_wall) {
+    if (lo < other.hi - 1e-6 && other.lo < hi - 1e-6) {
+      dropped(what, "overlaps " + other.kind + " " + other.id + " along the wall");
+      return;
+    }
+  }
+  const std::string id = uniqueId(opening.global_id, summary.level_id);
+  bim::Door door;
+  bim::Window window;
+  door.id = window.id = id;
+  door.wall = window.wall = wall_ids_[{opening.wall, s}];
+  door.offset = window.offset = 0.5 * (lo + hi);
+  door.width = window.width = hi - lo;
+  door.rooms_inferred = true;  // the model says none: the parser finds them from the outlines
+  const double head = opening.extent.z_max - (e + base);  // above the wall's base
+  if (is_door ? !doorOf(opening, what, above_base, std::min(head, top - base), door)
+              : !windowOf(opening, what, above_base, head, top - base, window)) {
+    return;
+  }
+  ++(is_door ? summary.doors : summary.windows);
+  if (!opening.name.empty()) {
+    door.name = window.name = cleanText(opening.name, common::limits::kMaxTextBytes);
+  }
+  if (is_door) {
+    level.doors.push_back(std::move(door));
+  } else {
+    level.windows.push_back(std::move(window));
+  }
+  along_wall.push_back({lo, hi, id, is_door ? "door" : "window"});
+}
+
+void Importer::levelRooms(const StoreyRecord& storey, StoreySummary& summary, bim::Level& level) {
   for (const auto& [space, footprint] : storey.spaces) {
     const std::string what = describe("space", space);
     if (!footprint || footprint->outline.size() < 3 ||
@@ -826,6 +855,27 @@ bim::Level Importer::level(int s, StoreySummary& summary) {
     level.rooms.push_back(std::move(room));
     ++summary.rooms;
   }
+}
+
+bim::Level Importer::level(int s, StoreySummary& summary) {
+  const StoreyRecord& storey = storeys_[s];
+  bim::Level level;
+  level.id = summary.level_id;
+  if (!storey.name.empty()) level.name = cleanText(storey.name, common::limits::kMaxTextBytes);
+  level.elevation = storey.elevation;
+  const std::map<int, std::pair<double, double>> base_top = levelWalls(s, summary, level);
+  // Openings on this level: in walls standing on it, whose home level (homeOf) is this one.
+  std::map<int, std::vector<PlacedOpening>> along_wall;
+  for (const auto& opening : openings_) {
+    const auto wall = base_top.find(opening.wall);
+    if (wall == base_top.end() || homeOf(opening) != s) continue;
+    placed_.insert(&opening);
+    placeOpening(opening, s, wall->second, along_wall[opening.wall], summary, level);
+  }
+  levelRooms(storey, summary, level);
+  // The level's height: its walls' median top.
+  std::vector<double> tops;
+  for (const auto& wall : level.walls) tops.push_back(wall.height);
   std::sort(tops.begin(), tops.end());
   const double height = tops.empty() ? 3.0 : tops[tops.size() / 2];
   level.height = std::clamp(height, bim::limits::kMinSize, bim::limits::kMaxHeight);

@@ -107,6 +107,10 @@ class Import {
   // The odometry as a chain of /tf: its frames from the whole topic; false (and the odometry left
   // out) when the topic was not asked for and no frame above the LiDAR is named as odometry.
   bool resolveTfOdometry();
+  // The transforms on /tf as a tree; links that never change taken as fixed frames (noted).
+  MovingFrameTree readTfTree();
+  // The base frame among the frames above the LiDAR's, up to the odometry's (at `top`).
+  std::string baseBelow(const std::vector<MovingFrameTree::Above>& above, std::ptrdiff_t top) const;
   Eigen::Isometry3d mount(const char* sensor, const char* flag, const std::string& frame,
                           const std::optional<std::array<double, 6>>& option);
   // child_T_R for a pose stream whose child frame is `child`.
@@ -117,6 +121,26 @@ class Import {
     return double(std::int64_t(t.sec) - std::int64_t(origin_)) + 1e-9 * t.nsec;
   }
   void writeFiles(const fs::path& folder);
+  // One message of each stream, checked against the stream's first (frame, layout, stamps in
+  // order); a bad one throws formats::ros1::MessageError. A cloud is written as its scan file.
+  void readCloud(const fs::path& folder, const formats::BagMessageView& m);
+  void readImu(const formats::BagMessageView& m);
+  void readPose(const formats::BagMessageView& m);
+  // The odometry the transforms on /tf make, when the bag's odometry is that.
+  void takeTfOdometry();
+  // The IMU's samples in dataset time, in m/s² (a driver's g converted, and said).
+  std::vector<sensors::ImuSample> imuInDatasetTime();
+  // The scans' stamps in dataset time within the odometry's span; the scan files outside it
+  // removed, the others renumbered from 0.
+  std::vector<double> scansWithinOdometry(const fs::path& folder,
+                                          const common::Trajectory& odometry);
+  // scans.tum (the ground truth covers every scan), else scans.txt.
+  void writeScanTimes(const fs::path& folder, const std::vector<double>& stamps,
+                      const common::Trajectory& truth);
+  // metadata.json: an isg dataset's own back, or metadata(); and where it was imported from.
+  nlohmann::ordered_json datasetMetadata(const std::vector<double>& stamps,
+                                         const std::vector<sensors::ImuSample>& imu,
+                                         const common::Trajectory& odometry);
   // The metadata of a recording isg did not write, as far as its frames go.
   // metadata.json of a recording (not an isg dataset's): what was imported, as every dataset
   // says it, and which topics and frames it came from.
@@ -386,7 +410,7 @@ std::string Import::firstMessage(const std::string& topic) {
   return data;
 }
 
-bool Import::resolveTfOdometry() {
+MovingFrameTree Import::readTfTree() {
   MovingFrameTree tree;
   std::uint64_t index = 0;
   bag_.read({tf_topic_}, [&](const formats::BagMessageView& m) {
@@ -420,6 +444,32 @@ bool Import::resolveTfOdometry() {
     summary_.notes.push_back(tf_topic_ +
                              " repeats transforms that never change, taken as fixed: " + list);
   }
+  return tree;
+}
+
+std::string Import::baseBelow(const std::vector<MovingFrameTree::Above>& above,
+                              std::ptrdiff_t top) const {
+  // As told; else the frame REP 105 names base_link when it is fixed below the moving link
+  // nearest the LiDAR (odom → base_footprint → base_link → velodyne); else the frame that link
+  // moves.
+  std::string base = options_.base_frame;
+  for (std::ptrdiff_t i = 0; base.empty() && i <= top; ++i) {
+    if (!above[std::size_t(i)].moving) continue;
+    base = i == 0 ? lidar_frame_ : above[std::size_t(i) - 1].frame;
+    for (std::ptrdiff_t k = i - 1; k >= -1; --k) {
+      const std::string& frame = k < 0 ? lidar_frame_ : above[std::size_t(k)].frame;
+      const std::size_t slash = frame.rfind('/');
+      if ((slash == std::string::npos ? frame : frame.substr(slash + 1)) == "base_link") {
+        base = frame;
+        break;
+      }
+    }
+  }
+  return base;
+}
+
+bool Import::resolveTfOdometry() {
+  const MovingFrameTree tree = readTfTree();
   const auto above = tree.above(lidar_frame_, frames_);
   std::string frames = lidar_frame_;
   for (const auto& a : above) frames += (a.moving ? " ← " : " ⇠ ") + a.frame;
@@ -453,22 +503,8 @@ bool Import::resolveTfOdometry() {
         " above the LiDAR's frame on " + tf_topic_ + " and /tf_static (" + chain +
         "): name the odometry's frame with --odom-frame");
   }
-  // The base: as told; else the frame REP 105 names base_link when it is fixed below the moving
-  // link nearest the LiDAR (odom → base_footprint → base_link → velodyne); else the frame that
-  // link moves.
-  std::string base = options_.base_frame;
-  for (std::ptrdiff_t i = 0; base.empty() && i <= position(top); ++i) {
-    if (!above[std::size_t(i)].moving) continue;
-    base = i == 0 ? lidar_frame_ : above[std::size_t(i) - 1].frame;
-    for (std::ptrdiff_t k = i - 1; k >= -1; --k) {
-      const std::string& frame = k < 0 ? lidar_frame_ : above[std::size_t(k)].frame;
-      const std::size_t slash = frame.rfind('/');
-      if ((slash == std::string::npos ? frame : frame.substr(slash + 1)) == "base_link") {
-        base = frame;
-        break;
-      }
-    }
-  }
+  // The base (baseBelow): the frame the moving link nearest the LiDAR carries.
+  const std::string base = baseBelow(above, position(top));
   if (base.empty()) {
     return give_up("topic " + tf_topic_ + " moves nothing between \"" + top +
                    "\" and the LiDAR's frame (" + chain + ")");
@@ -549,6 +585,77 @@ void Import::resolveFrames() {
   truth_C_T_R_ = childToBase(summary_.ground_truth.topic, truth_child_);
 }
 
+void Import::readCloud(const fs::path& folder, const formats::BagMessageView& m) {
+  const formats::ros1::PointCloud2 cloud = formats::ros1::decodePointCloud2(m.data);
+  const formats::CloudLayout layout = formats::cloudLayout(cloud);
+  if (scan_stamps_.empty()) {
+    layout_ = layout;
+  } else if (layout.describe() != layout_.describe()) {
+    throw formats::ros1::MessageError("its fields (" + layout.describe() +
+                                      ") are not the first cloud's (" + layout_.describe() + ")");
+  }
+  if (cloud.header.frame_id != lidar_frame_) {
+    throw formats::ros1::MessageError("its frame \"" + cloud.header.frame_id +
+                                      "\" is not the first cloud's \"" + lidar_frame_ + "\"");
+  }
+  if (!scan_stamps_.empty() && !(scan_stamps_.back() < cloud.header.stamp)) {
+    throw formats::ros1::MessageError("its stamp is not after the previous cloud's");
+  }
+  const std::vector<sensors::ScanPoint> points = formats::cloudPoints(cloud, layout);
+  if (layout.time && !points.empty()) {
+    const auto [lo, hi] = std::minmax_element(
+        points.begin(), points.end(),
+        [](const sensors::ScanPoint& a, const sensors::ScanPoint& b) { return a.time < b.time; });
+    time_min_ = clouds_with_time_ == 0 ? lo->time : std::min<double>(time_min_, lo->time);
+    time_max_ = clouds_with_time_ == 0 ? hi->time : std::max<double>(time_max_, hi->time);
+    ++clouds_with_time_;
+    // Stamped at the end of the turn when most of its points came before the stamp.
+    const auto before = std::count_if(points.begin(), points.end(),
+                                      [](const sensors::ScanPoint& p) { return p.time < 0.0f; });
+    if (2 * std::size_t(before) > points.size()) ++clouds_stamped_at_end_;
+  }
+  summary_.points += points.size();
+  common::writeFile(
+      folder / formats::dataset::kScans / formats::dataset::scanFileName(int(scan_stamps_.size())),
+      formats::dataset::pcdBytes(points, formats::dataset::kDefaultPcdData));
+  scan_stamps_.push_back(cloud.header.stamp);
+}
+
+void Import::readImu(const formats::BagMessageView& m) {
+  const formats::ros1::Imu imu = formats::ros1::decodeImu(m.data);
+  if (imu.header.frame_id != imu_frame_) {
+    throw formats::ros1::MessageError("its frame \"" + imu.header.frame_id +
+                                      "\" is not the first sample's \"" + imu_frame_ + "\"");
+  }
+  if (imu_.empty()) {
+    imu_variance_ = {imu.angular_velocity_covariance[0], imu.linear_acceleration_covariance[0]};
+  }
+  if (!imu_.empty() && !(imu_.back().stamp < imu.header.stamp)) {
+    throw formats::ros1::MessageError("its stamp is not after the previous sample's");
+  }
+  sensors::ImuSample sample;
+  sample.accelerometer = imu.linear_acceleration;
+  sample.gyroscope = imu.angular_velocity;
+  imu_.push_back({imu.header.stamp, sample});
+}
+
+void Import::readPose(const formats::BagMessageView& m) {
+  const std::string& topic = m.connection->topic;
+  const bool odometry = topic == summary_.odometry.topic;
+  const formats::ros1::StampedPose pose = findTopic(topic)->datatype == kPoseType
+                                              ? formats::ros1::decodePoseStamped(m.data)
+                                              : formats::ros1::decodeOdometry(m.data);
+  auto& poses = odometry ? odometry_ : truth_;
+  if (pose.child_frame_id != (odometry ? odometry_child_ : truth_child_)) {
+    throw formats::ros1::MessageError("its child frame \"" + pose.child_frame_id +
+                                      "\" is not the first message's");
+  }
+  if (!poses.empty() && !(poses.back().stamp < pose.header.stamp)) {
+    throw formats::ros1::MessageError("its stamp is not after the previous message's");
+  }
+  poses.push_back({pose.header.stamp, pose.pose});
+}
+
 void Import::readStreams(const fs::path& folder,
                          const std::function<void(std::uint64_t, std::uint64_t)>& progress) {
   std::vector<std::string> topics;
@@ -571,61 +678,10 @@ void Import::readStreams(const fs::path& folder,
     if (time > end) return false;
     try {
       if (topic == summary_.lidar.topic) {
-        const formats::ros1::PointCloud2 cloud = formats::ros1::decodePointCloud2(m.data);
-        const formats::CloudLayout layout = formats::cloudLayout(cloud);
-        if (scan_stamps_.empty()) {
-          layout_ = layout;
-        } else if (layout.describe() != layout_.describe()) {
-          throw formats::ros1::MessageError("its fields (" + layout.describe() +
-                                            ") are not the first cloud's (" + layout_.describe() +
-                                            ")");
-        }
-        if (cloud.header.frame_id != lidar_frame_) {
-          throw formats::ros1::MessageError("its frame \"" + cloud.header.frame_id +
-                                            "\" is not the first cloud's \"" + lidar_frame_ + "\"");
-        }
-        if (!scan_stamps_.empty() && !(scan_stamps_.back() < cloud.header.stamp)) {
-          throw formats::ros1::MessageError("its stamp is not after the previous cloud's");
-        }
-        const std::vector<sensors::ScanPoint> points = formats::cloudPoints(cloud, layout);
-        if (layout.time && !points.empty()) {
-          const auto [lo, hi] =
-              std::minmax_element(points.begin(), points.end(),
-                                  [](const sensors::ScanPoint& a, const sensors::ScanPoint& b) {
-                                    return a.time < b.time;
-                                  });
-          time_min_ = clouds_with_time_ == 0 ? lo->time : std::min<double>(time_min_, lo->time);
-          time_max_ = clouds_with_time_ == 0 ? hi->time : std::max<double>(time_max_, hi->time);
-          ++clouds_with_time_;
-          // Stamped at the end of the turn when most of its points came before the stamp.
-          const auto before =
-              std::count_if(points.begin(), points.end(),
-                            [](const sensors::ScanPoint& p) { return p.time < 0.0f; });
-          if (2 * std::size_t(before) > points.size()) ++clouds_stamped_at_end_;
-        }
-        summary_.points += points.size();
-        common::writeFile(folder / formats::dataset::kScans /
-                              formats::dataset::scanFileName(int(scan_stamps_.size())),
-                          formats::dataset::pcdBytes(points, formats::dataset::kDefaultPcdData));
-        scan_stamps_.push_back(cloud.header.stamp);
+        readCloud(folder, m);
         if (progress) progress(k + 1, total);
       } else if (topic == summary_.imu.topic) {
-        const formats::ros1::Imu imu = formats::ros1::decodeImu(m.data);
-        if (imu.header.frame_id != imu_frame_) {
-          throw formats::ros1::MessageError("its frame \"" + imu.header.frame_id +
-                                            "\" is not the first sample's \"" + imu_frame_ + "\"");
-        }
-        if (imu_.empty()) {
-          imu_variance_ = {imu.angular_velocity_covariance[0],
-                           imu.linear_acceleration_covariance[0]};
-        }
-        if (!imu_.empty() && !(imu_.back().stamp < imu.header.stamp)) {
-          throw formats::ros1::MessageError("its stamp is not after the previous sample's");
-        }
-        sensors::ImuSample sample;
-        sample.accelerometer = imu.linear_acceleration;
-        sample.gyroscope = imu.angular_velocity;
-        imu_.push_back({imu.header.stamp, sample});
+        readImu(m);
       } else if (tf_odometry_ && topic == summary_.odometry.topic) {
         for (const auto& t : formats::ros1::decodeTfMessage(m.data)) {
           try {
@@ -636,19 +692,7 @@ void Import::readStreams(const fs::path& folder,
           }
         }
       } else {
-        const bool odometry = topic == summary_.odometry.topic;
-        const formats::ros1::StampedPose pose = findTopic(topic)->datatype == kPoseType
-                                                    ? formats::ros1::decodePoseStamped(m.data)
-                                                    : formats::ros1::decodeOdometry(m.data);
-        auto& poses = odometry ? odometry_ : truth_;
-        if (pose.child_frame_id != (odometry ? odometry_child_ : truth_child_)) {
-          throw formats::ros1::MessageError("its child frame \"" + pose.child_frame_id +
-                                            "\" is not the first message's");
-        }
-        if (!poses.empty() && !(poses.back().stamp < pose.header.stamp)) {
-          throw formats::ros1::MessageError("its stamp is not after the previous message's");
-        }
-        poses.push_back({pose.header.stamp, pose.pose});
+        readPose(m);
       }
     } catch (const formats::ros1::MessageError& e) {
       failMessage(topic, k, e.what());
@@ -662,59 +706,51 @@ void Import::readStreams(const fs::path& folder,
   }
 }
 
-void Import::writeFiles(const fs::path& folder) {
-  if (tf_odometry_) {
-    for (const auto& pose : tf_odometry_->poses())
-      odometry_.push_back({pose.stamp, pose.top_T_base});
-    if (odometry_.empty()) {
-      fail("topic " + summary_.odometry.topic + ": no transform of the chain " +
-           summary_.odometry_chain + " in the part imported");
-    }
-    if (tf_odometry_->repeated() > 0) {
-      summary_.notes.push_back(std::to_string(tf_odometry_->repeated()) +
-                               " transforms of the odometry's chain repeat their link's previous "
-                               "stamp: left out");
-    }
+void Import::takeTfOdometry() {
+  if (!tf_odometry_) return;
+  for (const auto& pose : tf_odometry_->poses()) odometry_.push_back({pose.stamp, pose.top_T_base});
+  if (odometry_.empty()) {
+    fail("topic " + summary_.odometry.topic + ": no transform of the chain " +
+         summary_.odometry_chain + " in the part imported");
   }
-  // Dataset time 0: the whole second at or before the first imported stamp.
-  origin_ = scan_stamps_.front().sec;
-  for (const auto& s : imu_) origin_ = std::min(origin_, s.stamp.sec);
-  for (const auto* poses : {&odometry_, &truth_}) {
-    if (!poses->empty()) origin_ = std::min(origin_, poses->front().stamp.sec);
+  if (tf_odometry_->repeated() > 0) {
+    summary_.notes.push_back(std::to_string(tf_odometry_->repeated()) +
+                             " transforms of the odometry's chain repeat their link's previous "
+                             "stamp: left out");
   }
+}
 
-  common::Trajectory odometry, truth;
-  for (const auto& p : odometry_) odometry.push_back({seconds(p.stamp), p.pose * odometry_C_T_R_});
-  for (const auto& p : truth_) truth.push_back({seconds(p.stamp), p.pose * truth_C_T_R_});
-
-  // The IMU's units: m/s² unless the specific force's median norm over the first second says g.
+std::vector<sensors::ImuSample> Import::imuInDatasetTime() {
   std::vector<sensors::ImuSample> imu;
   for (const auto& s : imu_) {
     sensors::ImuSample sample = s.sample;
     sample.t = seconds(s.stamp);
     imu.push_back(sample);
   }
-  if (!imu.empty()) {
-    std::vector<double> norms;
-    for (const auto& s : imu) {
-      if (s.t > imu.front().t + 1.0) break;
-      norms.push_back(s.accelerometer.norm());
-    }
-    std::nth_element(norms.begin(), norms.begin() + norms.size() / 2, norms.end());
-    const double median = norms[norms.size() / 2];
-    if (std::abs(median - 1.0) < kGravityInG) {
-      for (auto& s : imu) s.accelerometer *= kStandardGravity;
-      imu_variance_[1] *= kStandardGravity * kStandardGravity;
-      char line[160];
-      std::snprintf(line, sizeof line,
-                    "the IMU's specific force is in g (median norm %.3f over its first second): "
-                    "converted to m/s²",
-                    median);
-      summary_.notes.push_back(line);
-    }
+  if (imu.empty()) return imu;
+  // The IMU's units: m/s² unless the specific force's median norm over the first second says g.
+  std::vector<double> norms;
+  for (const auto& s : imu) {
+    if (s.t > imu.front().t + 1.0) break;
+    norms.push_back(s.accelerometer.norm());
   }
+  std::nth_element(norms.begin(), norms.begin() + norms.size() / 2, norms.end());
+  const double median = norms[norms.size() / 2];
+  if (std::abs(median - 1.0) < kGravityInG) {
+    for (auto& s : imu) s.accelerometer *= kStandardGravity;
+    imu_variance_[1] *= kStandardGravity * kStandardGravity;
+    char line[160];
+    std::snprintf(line, sizeof line,
+                  "the IMU's specific force is in g (median norm %.3f over its first second): "
+                  "converted to m/s²",
+                  median);
+    summary_.notes.push_back(line);
+  }
+  return imu;
+}
 
-  // Scans outside the odometry's span would have no motion prior: left out.
+std::vector<double> Import::scansWithinOdometry(const fs::path& folder,
+                                                const common::Trajectory& odometry) {
   std::vector<double> stamps;
   for (const auto& s : scan_stamps_) stamps.push_back(seconds(s));
   std::size_t first = 0, last = stamps.size();
@@ -739,22 +775,12 @@ void Import::writeFiles(const fs::path& folder) {
       fs::rename(file, scans / formats::dataset::scanFileName(int(i - first)));
     }
   }
-  stamps = std::vector<double>(stamps.begin() + std::ptrdiff_t(first),
-                               stamps.begin() + std::ptrdiff_t(last));
-  summary_.lidar.messages = stamps.size();
-  summary_.imu.messages = imu.size();
-  summary_.odometry.messages = odometry.size();
-  summary_.ground_truth.messages = truth.size();
+  return std::vector<double>(stamps.begin() + std::ptrdiff_t(first),
+                             stamps.begin() + std::ptrdiff_t(last));
+}
 
-  // The turn about its stamp.
-  summary_.scan_period = formats::dataset::meanPeriod(stamps).value_or(0.1);
-  summary_.point_time = clouds_with_time_ > 0 && time_max_ > time_min_
-                            ? std::array<double, 2>{time_min_, time_max_}
-                            : std::array<double, 2>{0.0, summary_.scan_period};
-  summary_.stamp = 2 * clouds_stamped_at_end_ > clouds_with_time_ ? "last_packet" : "first_firing";
-  summary_.cloud_layout = layout_.describe();
-  summary_.seconds = stamps.back() + summary_.point_time[1];
-
+void Import::writeScanTimes(const fs::path& folder, const std::vector<double>& stamps,
+                            const common::Trajectory& truth) {
   // scans.tum when the ground truth covers every scan, else the stamps alone.
   common::Trajectory scan_poses;
   for (double t : stamps) {
@@ -765,14 +791,44 @@ void Import::writeFiles(const fs::path& folder) {
   if (!truth.empty() && scan_poses.size() == stamps.size()) {
     common::writeFile(folder / formats::dataset::kScanPoses,
                       formats::dataset::trajectoryText(scan_poses));
-  } else {
-    if (!truth.empty()) {
-      summary_.notes.push_back(
-          "the ground truth does not cover every scan: scans.txt holds "
-          "their stamps, without poses");
-    }
-    common::writeFile(folder / formats::dataset::kScanStamps, formats::dataset::stampsText(stamps));
+    return;
   }
+  if (!truth.empty()) {
+    summary_.notes.push_back(
+        "the ground truth does not cover every scan: scans.txt holds "
+        "their stamps, without poses");
+  }
+  common::writeFile(folder / formats::dataset::kScanStamps, formats::dataset::stampsText(stamps));
+}
+
+void Import::writeFiles(const fs::path& folder) {
+  takeTfOdometry();
+  // Dataset time 0: the whole second at or before the first imported stamp.
+  origin_ = scan_stamps_.front().sec;
+  for (const auto& s : imu_) origin_ = std::min(origin_, s.stamp.sec);
+  for (const auto* poses : {&odometry_, &truth_}) {
+    if (!poses->empty()) origin_ = std::min(origin_, poses->front().stamp.sec);
+  }
+  common::Trajectory odometry, truth;
+  for (const auto& p : odometry_) odometry.push_back({seconds(p.stamp), p.pose * odometry_C_T_R_});
+  for (const auto& p : truth_) truth.push_back({seconds(p.stamp), p.pose * truth_C_T_R_});
+  const std::vector<sensors::ImuSample> imu = imuInDatasetTime();
+  // Scans outside the odometry's span would have no motion prior: left out.
+  const std::vector<double> stamps = scansWithinOdometry(folder, odometry);
+  summary_.lidar.messages = stamps.size();
+  summary_.imu.messages = imu.size();
+  summary_.odometry.messages = odometry.size();
+  summary_.ground_truth.messages = truth.size();
+  // The turn about its stamp.
+  summary_.scan_period = formats::dataset::meanPeriod(stamps).value_or(0.1);
+  summary_.point_time = clouds_with_time_ > 0 && time_max_ > time_min_
+                            ? std::array<double, 2>{time_min_, time_max_}
+                            : std::array<double, 2>{0.0, summary_.scan_period};
+  summary_.stamp = 2 * clouds_stamped_at_end_ > clouds_with_time_ ? "last_packet" : "first_firing";
+  summary_.cloud_layout = layout_.describe();
+  summary_.seconds = stamps.back() + summary_.point_time[1];
+
+  writeScanTimes(folder, stamps, truth);
   if (!odometry.empty())
     common::writeFile(folder / formats::dataset::kOdometry,
                       formats::dataset::trajectoryText(odometry));
@@ -781,7 +837,13 @@ void Import::writeFiles(const fs::path& folder) {
                       formats::dataset::trajectoryText(truth));
   if (!imu.empty())
     common::writeFile(folder / formats::dataset::kImu, formats::dataset::imuText(imu));
+  common::writeFile(folder / formats::dataset::kMetadata,
+                    datasetMetadata(stamps, imu, odometry).dump(2) + "\n");
+}
 
+nlohmann::ordered_json Import::datasetMetadata(const std::vector<double>& stamps,
+                                               const std::vector<sensors::ImuSample>& imu,
+                                               const common::Trajectory& odometry) {
   nlohmann::ordered_json m;
   if (isg_metadata_) {
     // An isg dataset exported to a bag: its own metadata back, counts and span as imported.
@@ -806,7 +868,7 @@ void Import::writeFiles(const fs::path& folder) {
                           {"ground_truth", summary_.ground_truth.topic}}},
                         {"notes", summary_.notes}};
   if (options_.duration) m["imported_from"]["duration_s"] = *options_.duration;
-  common::writeFile(folder / formats::dataset::kMetadata, m.dump(2) + "\n");
+  return m;
 }
 
 nlohmann::ordered_json Import::metadata(const std::vector<double>& stamps,

@@ -98,62 +98,63 @@ Suite loadSuite(const std::string& path, const run::LocalizerRegistry& methods) 
   return parseSuite(common::JsonNode(document, "", source), path, methods);
 }
 
-Suite parseSuite(const common::JsonNode& root, const std::string& path,
-                 const run::LocalizerRegistry& methods) {
-  root.expectObject(
-      {"$schema", "format", "version", "name", "worlds", "seeds", "methods", "run", "slurm"});
-  common::checkFormatAndVersion(root, kSuiteFormat, kSuiteVersion);
-  Suite suite;
-  suite.file = path;
-  suite.name = root.has("name") ? root.field("name").text() : fs::path(path).stem().string();
+namespace {
+
+// A world added to the suite: its name must be free, not a file of the sweep's, and the worlds
+// within the most cells of a sweep.
+void addWorld(Suite& suite, std::set<std::string>& names, const common::JsonNode& at,
+              SuiteWorld world) {
+  // A world's name is the first folder of its run folders in SWEEP_DIR: "." and ".." would put
+  // them beside or outside the sweep, the names of the sweep's own files would collide.
+  const bool reserved = world.name == "." || world.name == ".." ||
+                        std::find(kSweepFolderFiles.begin(), kSweepFolderFiles.end(), world.name) !=
+                            kSweepFolderFiles.end();
+  if (reserved) {
+    at.fail("a world named " + common::inQuotes(world.name) +
+            " (its file's name without .json) cannot name a folder of the sweep: rename "
+            "the file");
+  }
+  if (!names.insert(world.name).second) {
+    at.fail("a second world named " + common::inQuotes(world.name) +
+            " (world names are the table's rows and folder names)");
+  }
+  if (suite.worlds.size() >= kMaxSweepCells) {
+    at.fail("more than " + std::to_string(kMaxSweepCells) + " worlds (the most cells of a sweep)");
+  }
+  suite.worlds.push_back(std::move(world));
+}
+
+// A world named by a string: a built-in world, or a plan or scenario file relative to the
+// suite's folder `base`.
+SuiteWorld namedWorld(const common::JsonNode& entry, const fs::path& base) {
+  // text(): a world's name becomes a folder name and a table row, and sweep.json must read
+  // back what it was written with, so control characters are refused here.
+  const std::string input = entry.text();
+  if (input.empty()) entry.fail("must not be empty");
+  SuiteWorld world;
+  world.name = worlds::worldName(input);
+  if (worlds::isBuiltin(input)) {
+    // Checked now, not when its cells run: a misspelt built-in would fail every one of them.
+    if (!worlds::builtinText(world.name)) {
+      std::string list;
+      for (const auto& n : worlds::builtinNames()) list += (list.empty() ? "" : ", ") + n;
+      entry.fail("no built-in world " + common::inQuotes(world.name) + " (one of " + list + ")");
+    }
+    world.input = input;
+    return world;
+  }
+  const fs::path file = fs::path(input).is_absolute() ? fs::path(input) : base / input;
+  if (!fs::is_regular_file(file)) entry.fail("no such plan or scenario file: " + file.string());
+  world.input = fs::weakly_canonical(file).string();
+  return world;
+}
+
+void parseWorlds(const common::JsonNode& root, const std::string& path, Suite& suite) {
   const fs::path base = fs::absolute(fs::path(path)).parent_path();
   std::set<std::string> names;
-  const auto addWorld = [&](const common::JsonNode& at, SuiteWorld world) {
-    // A world's name is the first folder of its run folders in SWEEP_DIR: "." and ".." would put
-    // them beside or outside the sweep, the names of the sweep's own files would collide.
-    const bool reserved = world.name == "." || world.name == ".." ||
-                          std::find(kSweepFolderFiles.begin(), kSweepFolderFiles.end(),
-                                    world.name) != kSweepFolderFiles.end();
-    if (reserved) {
-      at.fail("a world named " + common::inQuotes(world.name) +
-              " (its file's name without .json) cannot name a folder of the sweep: rename "
-              "the file");
-    }
-    if (!names.insert(world.name).second) {
-      at.fail("a second world named " + common::inQuotes(world.name) +
-              " (world names are the table's rows and folder names)");
-    }
-    if (suite.worlds.size() >= kMaxSweepCells) {
-      at.fail("more than " + std::to_string(kMaxSweepCells) +
-              " worlds (the most cells of a sweep)");
-    }
-    suite.worlds.push_back(std::move(world));
-  };
   for (const auto& entry : root.field("worlds").elements(1, 100000, "worlds")) {
     if (entry.isString()) {
-      // text(): a world's name becomes a folder name and a table row, and sweep.json must read
-      // back what it was written with, so control characters are refused here.
-      const std::string input = entry.text();
-      if (input.empty()) entry.fail("must not be empty");
-      SuiteWorld world;
-      world.name = worlds::worldName(input);
-      if (worlds::isBuiltin(input)) {
-        // Checked now, not when its cells run: a misspelt built-in would fail every one of them.
-        if (!worlds::builtinText(world.name)) {
-          std::string list;
-          for (const auto& n : worlds::builtinNames()) list += (list.empty() ? "" : ", ") + n;
-          entry.fail("no built-in world " + common::inQuotes(world.name) + " (one of " + list +
-                     ")");
-        }
-        world.input = input;
-      } else {
-        const fs::path file = fs::path(input).is_absolute() ? fs::path(input) : base / input;
-        if (!fs::is_regular_file(file)) {
-          entry.fail("no such plan or scenario file: " + file.string());
-        }
-        world.input = fs::weakly_canonical(file).string();
-      }
-      addWorld(entry, world);
+      addWorld(suite, names, entry, namedWorld(entry, base));
       continue;
     }
     entry.expectObject({"generate"});
@@ -169,9 +170,13 @@ Suite parseSuite(const common::JsonNode& root, const std::string& path,
       world.name = spec.family + "-" + std::to_string(spec.seed);
       world.input = "worlds/" + world.name + ".asbuilt.json";
       world.generate = spec;
-      addWorld(spec_node, world);
+      addWorld(suite, names, spec_node, world);
     }
   }
+}
+
+void parseSeedsAndMethods(const common::JsonNode& root, const run::LocalizerRegistry& methods,
+                          Suite& suite) {
   std::set<std::uint64_t> seen_seeds;
   for (const auto& s : root.field("seeds").elements(1, 100000, "seeds")) {
     const std::uint64_t seed = s.unsignedInteger();
@@ -199,37 +204,76 @@ Suite parseSuite(const common::JsonNode& root, const std::string& path,
               std::to_string(suite.seeds.size()) + " seeds); a sweep holds at most " +
               std::to_string(kMaxSweepCells) + ": split the suite");
   }
+}
+
+// run.method_options: method → {KEY: VALUE}, each method's own check made here rather than in
+// each cell's run.
+void parseMethodOptions(const common::JsonNode& options, const run::LocalizerRegistry& methods,
+                        Suite& suite) {
+  if (!options.isObject()) options.fail("expected an object: method → {KEY: VALUE}");
+  for (const auto& [method, settings] : options.raw().items()) {
+    const common::JsonNode node = options.field(method);
+    if (methods.find(method) == nullptr) node.fail("unknown method " + common::inQuotes(method));
+    if (!settings.is_object()) node.fail("expected an object {KEY: VALUE}");
+    auto& given = suite.method_options[methods.canonical(method)];
+    for (const auto& [key, value] : settings.items()) {
+      const common::JsonNode v = node.field(key);
+      std::string text;
+      if (value.is_string()) {
+        text = v.string();
+      } else if (value.is_number()) {
+        text = value.dump();
+      } else {
+        v.fail("expected a number or a string");
+      }
+      given[key] = text;
+    }
+    try {
+      methods.checkOptions(method, given);
+    } catch (const std::invalid_argument& e) {
+      node.fail(e.what());
+    }
+  }
+}
+
+void parseSlurm(const common::JsonNode& slurm, Suite& suite) {
+  slurm.expectObject({"cpus_per_task", "time", "mem", "partition", "max_array_size", "options"});
+  if (auto c = slurm.optionalField("cpus_per_task")) {
+    suite.slurm.cpus_per_task = int(c->numberInRange(1, 1024));
+  }
+  if (auto t = slurm.optionalField("time")) suite.slurm.time = t->identifier();
+  if (auto m = slurm.optionalField("mem")) suite.slurm.mem = m->identifier();
+  if (auto p = slurm.optionalField("partition")) suite.slurm.partition = p->identifier();
+  if (auto m = slurm.optionalField("max_array_size")) {
+    const std::uint64_t most = m->unsignedInteger();
+    if (most < 1 || most > 100000000) m->fail("must be in [1, 100000000]");
+    suite.slurm.max_array_size = std::size_t(most);
+  }
+  if (auto o = slurm.optionalField("options")) {
+    for (const auto& option : o->elements(0, 100, "options")) {
+      suite.slurm.options.push_back(option.identifier());
+    }
+  }
+}
+
+}  // namespace
+
+Suite parseSuite(const common::JsonNode& root, const std::string& path,
+                 const run::LocalizerRegistry& methods) {
+  root.expectObject(
+      {"$schema", "format", "version", "name", "worlds", "seeds", "methods", "run", "slurm"});
+  common::checkFormatAndVersion(root, kSuiteFormat, kSuiteVersion);
+  Suite suite;
+  suite.file = path;
+  suite.name = root.has("name") ? root.field("name").text() : fs::path(path).stem().string();
+  parseWorlds(root, path, suite);
+  parseSeedsAndMethods(root, methods, suite);
   if (auto run = root.optionalField("run")) {
     run->expectObject({"duration", "threads", "method_options"});
     if (auto d = run->optionalField("duration")) suite.duration = d->positiveNumber();
     if (auto t = run->optionalField("threads")) suite.threads = int(t->numberInRange(1, 64));
     if (auto options = run->optionalField("method_options")) {
-      if (!options->isObject()) options->fail("expected an object: method → {KEY: VALUE}");
-      for (const auto& [method, settings] : options->raw().items()) {
-        const common::JsonNode node = options->field(method);
-        if (methods.find(method) == nullptr)
-          node.fail("unknown method " + common::inQuotes(method));
-        if (!settings.is_object()) node.fail("expected an object {KEY: VALUE}");
-        auto& given = suite.method_options[methods.canonical(method)];
-        for (const auto& [key, value] : settings.items()) {
-          const common::JsonNode v = node.field(key);
-          std::string text;
-          if (value.is_string()) {
-            text = v.string();
-          } else if (value.is_number()) {
-            text = value.dump();
-          } else {
-            v.fail("expected a number or a string");
-          }
-          given[key] = text;
-        }
-        // The method's own check, here rather than in each cell's run.
-        try {
-          methods.checkOptions(method, given);
-        } catch (const std::invalid_argument& e) {
-          node.fail(e.what());
-        }
-      }
+      parseMethodOptions(*options, methods, suite);
     }
   }
   // Each method's options as its runs will use them (checked above where given).
@@ -239,25 +283,7 @@ Suite parseSuite(const common::JsonNode& root, const std::string& path,
         method,
         given == suite.method_options.end() ? std::map<std::string, std::string>{} : given->second);
   }
-  if (auto slurm = root.optionalField("slurm")) {
-    slurm->expectObject({"cpus_per_task", "time", "mem", "partition", "max_array_size", "options"});
-    if (auto c = slurm->optionalField("cpus_per_task")) {
-      suite.slurm.cpus_per_task = int(c->numberInRange(1, 1024));
-    }
-    if (auto t = slurm->optionalField("time")) suite.slurm.time = t->identifier();
-    if (auto m = slurm->optionalField("mem")) suite.slurm.mem = m->identifier();
-    if (auto p = slurm->optionalField("partition")) suite.slurm.partition = p->identifier();
-    if (auto m = slurm->optionalField("max_array_size")) {
-      const std::uint64_t most = m->unsignedInteger();
-      if (most < 1 || most > 100000000) m->fail("must be in [1, 100000000]");
-      suite.slurm.max_array_size = std::size_t(most);
-    }
-    if (auto o = slurm->optionalField("options")) {
-      for (const auto& option : o->elements(0, 100, "options")) {
-        suite.slurm.options.push_back(option.identifier());
-      }
-    }
-  }
+  if (auto slurm = root.optionalField("slurm")) parseSlurm(*slurm, suite);
   return suite;
 }
 

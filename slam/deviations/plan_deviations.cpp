@@ -450,27 +450,35 @@ int DeviationReport::count(WallStatus status) const {
                            [&](const WallDeviation& w) { return w.status == status; }));
 }
 
-DeviationReport measureDeviations(
-    const bim::AGraph& plan, const MapDiagnostics& map, const Eigen::Isometry3d& B_T_M,
-    const DeviationOptions& options,
-    const std::vector<std::optional<Eigen::Isometry3d>>& keyframe_B_T_M) {
-  DeviationReport report;
-  report.options = options;
-  // The levels walked, and the keyframes' places on each.
+namespace {
+
+using LevelWalls = std::vector<std::pair<WallDeviation, PlannedWall>>;
+
+// The levels walked, and the keyframes' places on each: views from places 0.5 m apart (nearer
+// ones add little to what is in view).
+std::map<int, std::vector<Eigen::Vector2d>> keyframesOnLevels(const bim::AGraph& plan,
+                                                              const MapDiagnostics& map,
+                                                              const Eigen::Isometry3d& B_T_M) {
   std::map<int, std::vector<Eigen::Vector2d>> keyframes_on;
   Eigen::Vector2d last(std::nan(""), std::nan(""));
   for (const auto& kf : map.keyframes) {
     const Eigen::Vector3d p = B_T_M * kf.estimate.translation();
-    // Views from places 0.5 m apart: nearer ones add little to what is in view.
     if ((p.head<2>() - last).norm() < 0.5) continue;
     last = p.head<2>();
     const int level = levelAt(plan, p.z());
     if (level >= 0) keyframes_on[level].push_back(p.head<2>());
   }
+  return keyframes_on;
+}
+
+// The map's walls in B, long enough to judge: placed by the final B_T_M, unless the robot's
+// poses of the time put the wall farther from it than their own noise: there the map has bent
+// since, and those poses place it.
+std::vector<WallInB> wallsInB(const MapDiagnostics& map, const Eigen::Isometry3d& B_T_M,
+                              const DeviationOptions& options,
+                              const std::vector<std::optional<Eigen::Isometry3d>>& keyframe_B_T_M) {
   std::vector<WallInB> walls_in_B;
   for (const auto& w : map.walls) {
-    // The final B_T_M, unless the robot's poses of the time put the wall farther from it than
-    // their own noise: there the map has bent since, and those poses place it.
     Eigen::Isometry3d placement = B_T_M;
     if (const auto of_its_keyframes = placementOf(w, B_T_M, keyframe_B_T_M)) {
       const Eigen::Vector3d middle(0.5 * (w.start.x() + w.end.x()), 0.5 * (w.start.y() + w.end.y()),
@@ -485,121 +493,162 @@ DeviationReport measureDeviations(
     WallInB in_B = toB(w, placement);
     if (in_B.length() >= options.min_wall_length) walls_in_B.push_back(in_B);
   }
+  return walls_in_B;
+}
+
+// The plan surface of `level` a map wall is evidence for: turned within the search angle, within
+// the search distance, over a third of its length along the surface's extent; the nearest on
+// average. -1 for none.
+int surfaceOf(const bim::AGraph& plan, const std::string& level, const WallInB& m,
+              const DeviationOptions& options) {
   const double min_cos = std::cos(common::radians(options.search_angle_deg));
+  int best = -1;
+  double best_distance = 0.0;
+  for (int s = 0; s < int(plan.surfaces.size()); ++s) {
+    const bim::WallSurfaceNode& surface = plan.surfaces[s];
+    if (surface.level != level) continue;
+    const Eigen::Vector2d n = surface.plane.normal.head<2>().normalized();
+    if (n.dot(m.normal) < min_cos) continue;
+    const double d = surface.plane.d;
+    auto distance = [&](const Eigen::Vector2d& p) { return std::abs(n.dot(p) + d); };
+    const double nearest = std::min({distance(m.start), distance(m.middle()), distance(m.end)});
+    if (nearest > options.search_distance) continue;
+    // A third of it along the surface's extent (its segments' span).
+    const Eigen::Vector2d along(n.y(), -n.x());
+    double lo = INFINITY, hi = -INFINITY;
+    for (const auto& [a, b] : surface.segments) {
+      lo = std::min({lo, a.dot(along), b.dot(along)});
+      hi = std::max({hi, a.dot(along), b.dot(along)});
+    }
+    const double t0 = std::min(m.start.dot(along), m.end.dot(along));
+    const double t1 = std::max(m.start.dot(along), m.end.dot(along));
+    if (std::min(hi, t1) - std::max(lo, t0) < m.length() / 3.0) continue;
+    const double mean = (distance(m.start) + distance(m.middle()) + distance(m.end)) / 3.0;
+    if (best < 0 || mean < best_distance) best = s, best_distance = mean;
+  }
+  return best;
+}
+
+// Each planned wall of `level` with the map's evidence for its two faces, measured piece by
+// piece, and the share of it observed.
+LevelWalls levelWalls(const bim::AGraph& plan, const std::string& level,
+                      const std::map<int, std::vector<const WallInB*>>& evidence_of_surface) {
+  LevelWalls level_walls;
+  for (int w = 0; w < int(plan.walls.size()); ++w) {
+    const bim::WallNode& node = plan.walls[w];
+    if (node.level != level) continue;
+    const PlannedWall planned = plannedWall(plan, w);
+    WallDeviation wall;
+    wall.wall = node.id;
+    wall.level = level;
+    wall.planned_start = planned.start;
+    wall.planned_end = planned.end;
+    wall.thickness = planned.thickness;
+    std::vector<std::pair<double, double>> spans;
+    for (const auto& [surface, side] :
+         {std::pair{node.left_surface, +1}, std::pair{node.right_surface, -1}}) {
+      const auto it = evidence_of_surface.find(surface);
+      if (it == evidence_of_surface.end()) continue;
+      for (const WallInB* m : it->second) {
+        WallEvidence e;
+        e.plane = m->plane;
+        e.side = side;
+        e.length_m = m->length();
+        e.observations = m->observations;
+        e.start_B = m->start;
+        e.end_B = m->end;
+        measurePiece(e, planned);
+        wall.evidence.push_back(e);
+        spans.push_back(spanAlong(planned, m->start, m->end));
+      }
+    }
+    wall.observed_share = planned.length > 0.0 ? unionLength(spans) / planned.length : 0.0;
+    level_walls.push_back({wall, planned});
+  }
+  return level_walls;
+}
+
+// Each wall against its neighbours alone (DeviationOptions::local_radius): a long map bends a
+// little, and a wall is measured against the walls around it, not against the far end of the
+// building. Its own evidence stays out of its placement.
+LevelWalls placedLocally(const LevelWalls& level_walls, const DeviationOptions& options) {
+  LevelWalls judged = level_walls;
+  for (std::size_t i = 0; i < level_walls.size(); ++i) {
+    if (level_walls[i].first.evidence.empty()) continue;
+    LevelWalls around;
+    for (std::size_t j = 0; j < level_walls.size(); ++j) {
+      if (j != i && !level_walls[j].first.evidence.empty() &&
+          wallDistance(level_walls[i].second, level_walls[j].second) <= options.local_radius) {
+        around.push_back(level_walls[j]);
+      }
+    }
+    const Placement local = refinePlacement(around, options);
+    for (auto& e : judged[i].first.evidence) local.apply(e, judged[i].second);
+  }
+  return judged;
+}
+
+// One level of the report: its walls judged, its placement, the walls the plan lacks.
+void measureLevel(const bim::AGraph& plan, int f, const std::vector<WallInB>& walls_in_B,
+                  const std::vector<Eigen::Vector2d>& keyframes, const DeviationOptions& options,
+                  DeviationReport& report) {
+  const std::string& level = plan.floors[f].id;
+  report.levels.push_back(level);
+  // Each map wall standing on this level to the plan surface it is evidence for, if any.
+  std::vector<WallInB> unexplained;
+  std::map<int, std::vector<const WallInB*>> evidence_of_surface;
+  for (const auto& m : walls_in_B) {
+    if (levelAt(plan, 0.5 * (m.z_min + m.z_max)) != f) continue;
+    const int best = surfaceOf(plan, level, m, options);
+    if (best < 0) {
+      unexplained.push_back(m);
+    } else {
+      evidence_of_surface[best].push_back(&m);
+    }
+  }
+  LevelWalls level_walls = levelWalls(plan, level, evidence_of_surface);
+  // The map's place in the plan, refined on the walls as planned (DeviationOptions,
+  // "Placement"), then every wall judged after it.
+  const Placement placement = refinePlacement(level_walls, options);
+  report.placements.push_back({level, placement.correction, placement.walls_used});
+  for (auto& [wall, planned] : level_walls) {
+    for (auto& e : wall.evidence) placement.apply(e, planned);
+  }
+  for (auto& [wall, planned] : placedLocally(level_walls, options)) {
+    judge(wall, planned, options);
+    if (wall.observed_share < options.judged_share) {
+      wall.in_view_share = inViewShare(plan, plan.walls[planned.index], keyframes, options);
+      wall.status = wall.observed_share < options.missing_seen_share &&
+                            *wall.in_view_share >= options.missing_view_share &&
+                            planned.length >= options.min_missing_length
+                        ? WallStatus::kMissing
+                        : WallStatus::kNotSeen;
+    }
+    report.walls.push_back(wall);
+  }
+  for (auto& m : unexplained) {
+    m.start = placement.move(m.start);
+    m.end = placement.move(m.end);
+    m.normal = Eigen::Rotation2Dd(placement.correction.z()) * m.normal;
+  }
+  for (auto& extra : extraWalls(unexplained, level, options)) {
+    report.extra_walls.push_back(std::move(extra));
+  }
+}
+
+}  // namespace
+
+DeviationReport measureDeviations(
+    const bim::AGraph& plan, const MapDiagnostics& map, const Eigen::Isometry3d& B_T_M,
+    const DeviationOptions& options,
+    const std::vector<std::optional<Eigen::Isometry3d>>& keyframe_B_T_M) {
+  DeviationReport report;
+  report.options = options;
+  std::map<int, std::vector<Eigen::Vector2d>> keyframes_on = keyframesOnLevels(plan, map, B_T_M);
+  const std::vector<WallInB> walls_in_B = wallsInB(map, B_T_M, options, keyframe_B_T_M);
   for (int f = 0; f < int(plan.floors.size()); ++f) {
     if (!keyframes_on.count(f)) continue;
-    const std::string& level = plan.floors[f].id;
-    report.levels.push_back(level);
-    // Each map wall standing on this level to the plan surface it is evidence for, if any.
-    std::vector<WallInB> unexplained;
-    std::map<int, std::vector<const WallInB*>> evidence_of_surface;
-    for (const auto& m : walls_in_B) {
-      if (levelAt(plan, 0.5 * (m.z_min + m.z_max)) != f) continue;
-      int best = -1;
-      double best_distance = 0.0;
-      for (int s = 0; s < int(plan.surfaces.size()); ++s) {
-        const bim::WallSurfaceNode& surface = plan.surfaces[s];
-        if (surface.level != level) continue;
-        const Eigen::Vector2d n = surface.plane.normal.head<2>().normalized();
-        if (n.dot(m.normal) < min_cos) continue;
-        const double d = surface.plane.d;
-        auto distance = [&](const Eigen::Vector2d& p) { return std::abs(n.dot(p) + d); };
-        const double nearest = std::min({distance(m.start), distance(m.middle()), distance(m.end)});
-        if (nearest > options.search_distance) continue;
-        // A third of it along the surface's extent (its segments' span).
-        const Eigen::Vector2d along(n.y(), -n.x());
-        double lo = INFINITY, hi = -INFINITY;
-        for (const auto& [a, b] : surface.segments) {
-          lo = std::min({lo, a.dot(along), b.dot(along)});
-          hi = std::max({hi, a.dot(along), b.dot(along)});
-        }
-        const double t0 = std::min(m.start.dot(along), m.end.dot(along));
-        const double t1 = std::max(m.start.dot(along), m.end.dot(along));
-        if (std::min(hi, t1) - std::max(lo, t0) < m.length() / 3.0) continue;
-        const double mean = (distance(m.start) + distance(m.middle()) + distance(m.end)) / 3.0;
-        if (best < 0 || mean < best_distance) best = s, best_distance = mean;
-      }
-      if (best < 0) {
-        unexplained.push_back(m);
-      } else {
-        evidence_of_surface[best].push_back(&m);
-      }
-    }
-    std::vector<std::pair<WallDeviation, PlannedWall>> level_walls;
-    for (int w = 0; w < int(plan.walls.size()); ++w) {
-      const bim::WallNode& node = plan.walls[w];
-      if (node.level != level) continue;
-      const PlannedWall planned = plannedWall(plan, w);
-      WallDeviation wall;
-      wall.wall = node.id;
-      wall.level = level;
-      wall.planned_start = planned.start;
-      wall.planned_end = planned.end;
-      wall.thickness = planned.thickness;
-      std::vector<std::pair<double, double>> spans;
-      for (const auto& [surface, side] :
-           {std::pair{node.left_surface, +1}, std::pair{node.right_surface, -1}}) {
-        const auto it = evidence_of_surface.find(surface);
-        if (it == evidence_of_surface.end()) continue;
-        for (const WallInB* m : it->second) {
-          WallEvidence e;
-          e.plane = m->plane;
-          e.side = side;
-          e.length_m = m->length();
-          e.observations = m->observations;
-          e.start_B = m->start;
-          e.end_B = m->end;
-          measurePiece(e, planned);
-          wall.evidence.push_back(e);
-          spans.push_back(spanAlong(planned, m->start, m->end));
-        }
-      }
-      wall.observed_share = planned.length > 0.0 ? unionLength(spans) / planned.length : 0.0;
-      level_walls.push_back({wall, planned});
-    }
-    // The map's place in the plan, refined on the walls as planned (DeviationOptions,
-    // "Placement"), then every wall judged after it.
-    const Placement placement = refinePlacement(level_walls, options);
-    report.placements.push_back({level, placement.correction, placement.walls_used});
-    for (auto& [wall, planned] : level_walls) {
-      for (auto& e : wall.evidence) placement.apply(e, planned);
-    }
-    // Then each wall against its neighbours alone (DeviationOptions::local_radius): a long map
-    // bends a little, and a wall is measured against the walls around it, not against the far
-    // end of the building. Its own evidence stays out of its placement.
-    std::vector<std::pair<WallDeviation, PlannedWall>> judged = level_walls;
-    for (std::size_t i = 0; i < level_walls.size(); ++i) {
-      if (level_walls[i].first.evidence.empty()) continue;
-      std::vector<std::pair<WallDeviation, PlannedWall>> around;
-      for (std::size_t j = 0; j < level_walls.size(); ++j) {
-        if (j != i && !level_walls[j].first.evidence.empty() &&
-            wallDistance(level_walls[i].second, level_walls[j].second) <= options.local_radius) {
-          around.push_back(level_walls[j]);
-        }
-      }
-      const Placement local = refinePlacement(around, options);
-      for (auto& e : judged[i].first.evidence) local.apply(e, judged[i].second);
-    }
-    for (auto& [wall, planned] : judged) {
-      judge(wall, planned, options);
-      if (wall.observed_share < options.judged_share) {
-        wall.in_view_share = inViewShare(plan, plan.walls[planned.index], keyframes_on[f], options);
-        wall.status = wall.observed_share < options.missing_seen_share &&
-                              *wall.in_view_share >= options.missing_view_share &&
-                              planned.length >= options.min_missing_length
-                          ? WallStatus::kMissing
-                          : WallStatus::kNotSeen;
-      }
-      report.walls.push_back(wall);
-    }
-    for (auto& m : unexplained) {
-      m.start = placement.move(m.start);
-      m.end = placement.move(m.end);
-      m.normal = Eigen::Rotation2Dd(placement.correction.z()) * m.normal;
-    }
-    for (auto& extra : extraWalls(unexplained, level, options)) {
-      report.extra_walls.push_back(std::move(extra));
-    }
+    measureLevel(plan, f, walls_in_B, keyframes_on[f], options, report);
   }
   return report;
 }
