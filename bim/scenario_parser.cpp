@@ -324,6 +324,89 @@ std::string optionalLevel(const common::JsonNode& node, const Plan& plan,
   return fallback;
 }
 
+ExtraWall parseExtraWall(const common::JsonNode& item, const Plan& plan,
+                         const std::string& robot_level, std::size_t index) {
+  item.expectObject({"start", "end", "thickness", "height", "base", "level"});
+  ExtraWall wall;
+  wall.id = "extra" + std::to_string(index);
+  wall.level = optionalLevel(item, plan, robot_level);
+  wall.start = planPoint(item.field("start"));
+  wall.end = planPoint(item.field("end"));
+  if ((wall.end - wall.start).norm() < limits::kMinSize) {
+    item.field("end").fail("zero-length wall: end equals start");
+  }
+  wall.thickness = item.field("thickness").numberInRange(limits::kMinSize, limits::kMaxThickness);
+  if (auto h = item.optionalField("height")) {
+    wall.height = h->numberInRange(limits::kMinSize, limits::kMaxHeight);
+  }
+  if (auto b = item.optionalField("base")) wall.base = b->numberInRange(0.0, limits::kMaxHeight);
+  const double top = wall.height.value_or(plan.findLevel(wall.level)->height);
+  if (wall.base >= top) item.field("base").fail("base is not below the wall's top");
+  return wall;
+}
+
+// The wall a shift or a turn names: a wall of the plan, named once in its list (`verb`: "shifted",
+// "rotated"), not also missing.
+std::string changedWall(const common::JsonNode& wall, const Plan& plan, const AsBuilt& as_built,
+                        std::set<std::string>& seen, const char* verb) {
+  const std::string id = wall.identifier();
+  if (plan.levelOfWall(id) == nullptr)
+    wall.fail("no wall " + common::inQuotes(id) + " in the plan");
+  if (!seen.insert(id).second) wall.fail(common::inQuotes(id) + " is " + verb + " twice");
+  for (const auto& missing : as_built.missing_walls) {
+    if (missing == id) wall.fail(common::inQuotes(id) + " is also in missing_walls");
+  }
+  return id;
+}
+
+WallRotation parseWallRotation(const common::JsonNode& item, const Plan& plan,
+                               const AsBuilt& as_built, std::set<std::string>& seen) {
+  item.expectObject({"wall", "angle_deg", "about"});
+  WallRotation rotation;
+  rotation.wall = changedWall(item.field("wall"), plan, as_built, seen, "rotated");
+  rotation.angle_deg =
+      item.field("angle_deg")
+          .numberInRange(-limits::kMaxWallRotationDeg, limits::kMaxWallRotationDeg);
+  if (auto about = item.optionalField("about")) {
+    const std::string name = about->string();
+    if (name == "start") {
+      rotation.about = WallRotation::About::kStart;
+    } else if (name == "end") {
+      rotation.about = WallRotation::About::kEnd;
+    } else if (name != "centre") {
+      about->fail("unknown point " + common::inQuotes(name) +
+                  " (expected \"start\", \"centre\" or \"end\")");
+    }
+  }
+  return rotation;
+}
+
+Clutter parseClutter(const common::JsonNode& item, const Plan& plan,
+                     const std::string& robot_level) {
+  item.expectObject({"shape", "center", "size", "yaw", "level"});
+  Clutter clutter;
+  const common::JsonNode shape = item.field("shape");
+  if (shape.string() != "box") {
+    shape.fail("unknown shape " + common::inQuotes(shape.string()) + " (expected \"box\")");
+  }
+  clutter.level = optionalLevel(item, plan, robot_level);
+  const common::JsonNode center = item.field("center");
+  clutter.center = center.point3();
+  if (clutter.center.cwiseAbs().maxCoeff() > limits::kMaxCoordinate) {
+    center.fail("out of range: points must lie within ±" +
+                common::formatNumber(limits::kMaxCoordinate) + " m of the origin");
+  }
+  const common::JsonNode size = item.field("size");
+  clutter.size = size.point3();
+  if (clutter.size.minCoeff() < limits::kMinSize ||
+      clutter.size.maxCoeff() > limits::kMaxLevelExtent) {
+    size.fail("every extent must be in [" + common::formatNumber(limits::kMinSize) + ", " +
+              common::formatNumber(limits::kMaxLevelExtent) + "] m");
+  }
+  if (auto yaw = item.optionalField("yaw")) clutter.yaw = yaw->numberInRange(-100.0, 100.0);
+  return clutter;
+}
+
 AsBuilt parseAsBuilt(const common::JsonNode& node, const Plan& plan,
                      const std::string& robot_level) {
   node.expectObject(
@@ -339,25 +422,8 @@ AsBuilt parseAsBuilt(const common::JsonNode& node, const Plan& plan,
   }
   if (auto v = node.optionalField("extra_walls")) {
     for (const auto& item : v->elements(0, limits::kMaxScenarioItems, "extra walls")) {
-      item.expectObject({"start", "end", "thickness", "height", "base", "level"});
-      ExtraWall wall;
-      wall.id = "extra" + std::to_string(as_built.extra_walls.size());
-      wall.level = optionalLevel(item, plan, robot_level);
-      wall.start = planPoint(item.field("start"));
-      wall.end = planPoint(item.field("end"));
-      if ((wall.end - wall.start).norm() < limits::kMinSize) {
-        item.field("end").fail("zero-length wall: end equals start");
-      }
-      wall.thickness =
-          item.field("thickness").numberInRange(limits::kMinSize, limits::kMaxThickness);
-      if (auto h = item.optionalField("height")) {
-        wall.height = h->numberInRange(limits::kMinSize, limits::kMaxHeight);
-      }
-      if (auto b = item.optionalField("base"))
-        wall.base = b->numberInRange(0.0, limits::kMaxHeight);
-      const double top = wall.height.value_or(plan.findLevel(wall.level)->height);
-      if (wall.base >= top) item.field("base").fail("base is not below the wall's top");
-      as_built.extra_walls.push_back(wall);
+      as_built.extra_walls.push_back(
+          parseExtraWall(item, plan, robot_level, as_built.extra_walls.size()));
     }
   }
   if (auto v = node.optionalField("wall_shifts")) {
@@ -365,16 +431,7 @@ AsBuilt parseAsBuilt(const common::JsonNode& node, const Plan& plan,
     for (const auto& item : v->elements()) {
       item.expectObject({"wall", "offset"});
       WallShift shift;
-      const common::JsonNode wall = item.field("wall");
-      shift.wall = wall.identifier();
-      if (!is_wall(shift.wall))
-        wall.fail("no wall " + common::inQuotes(shift.wall) + " in the plan");
-      if (!seen.insert(shift.wall).second)
-        wall.fail(common::inQuotes(shift.wall) + " is shifted twice");
-      for (const auto& missing : as_built.missing_walls) {
-        if (missing == shift.wall)
-          wall.fail(common::inQuotes(shift.wall) + " is also in missing_walls");
-      }
+      shift.wall = changedWall(item.field("wall"), plan, as_built, seen, "shifted");
       shift.offset =
           item.field("offset").numberInRange(-limits::kMaxWallShift, limits::kMaxWallShift);
       as_built.wall_shifts.push_back(shift);
@@ -383,61 +440,12 @@ AsBuilt parseAsBuilt(const common::JsonNode& node, const Plan& plan,
   if (auto v = node.optionalField("wall_rotations")) {
     std::set<std::string> seen;
     for (const auto& item : v->elements()) {
-      item.expectObject({"wall", "angle_deg", "about"});
-      WallRotation rotation;
-      const common::JsonNode wall = item.field("wall");
-      rotation.wall = wall.identifier();
-      if (!is_wall(rotation.wall))
-        wall.fail("no wall " + common::inQuotes(rotation.wall) + " in the plan");
-      if (!seen.insert(rotation.wall).second) {
-        wall.fail(common::inQuotes(rotation.wall) + " is rotated twice");
-      }
-      for (const auto& missing : as_built.missing_walls) {
-        if (missing == rotation.wall) {
-          wall.fail(common::inQuotes(rotation.wall) + " is also in missing_walls");
-        }
-      }
-      rotation.angle_deg =
-          item.field("angle_deg")
-              .numberInRange(-limits::kMaxWallRotationDeg, limits::kMaxWallRotationDeg);
-      if (auto about = item.optionalField("about")) {
-        const std::string name = about->string();
-        if (name == "start") {
-          rotation.about = WallRotation::About::kStart;
-        } else if (name == "end") {
-          rotation.about = WallRotation::About::kEnd;
-        } else if (name != "centre") {
-          about->fail("unknown point " + common::inQuotes(name) +
-                      " (expected \"start\", \"centre\" or \"end\")");
-        }
-      }
-      as_built.wall_rotations.push_back(rotation);
+      as_built.wall_rotations.push_back(parseWallRotation(item, plan, as_built, seen));
     }
   }
   if (auto v = node.optionalField("clutter")) {
     for (const auto& item : v->elements(0, limits::kMaxScenarioItems, "clutter boxes")) {
-      item.expectObject({"shape", "center", "size", "yaw", "level"});
-      Clutter clutter;
-      const common::JsonNode shape = item.field("shape");
-      if (shape.string() != "box") {
-        shape.fail("unknown shape " + common::inQuotes(shape.string()) + " (expected \"box\")");
-      }
-      clutter.level = optionalLevel(item, plan, robot_level);
-      const common::JsonNode center = item.field("center");
-      clutter.center = center.point3();
-      if (clutter.center.cwiseAbs().maxCoeff() > limits::kMaxCoordinate) {
-        center.fail("out of range: points must lie within ±" +
-                    common::formatNumber(limits::kMaxCoordinate) + " m of the origin");
-      }
-      const common::JsonNode size = item.field("size");
-      clutter.size = size.point3();
-      if (clutter.size.minCoeff() < limits::kMinSize ||
-          clutter.size.maxCoeff() > limits::kMaxLevelExtent) {
-        size.fail("every extent must be in [" + common::formatNumber(limits::kMinSize) + ", " +
-                  common::formatNumber(limits::kMaxLevelExtent) + "] m");
-      }
-      if (auto yaw = item.optionalField("yaw")) clutter.yaw = yaw->numberInRange(-100.0, 100.0);
-      as_built.clutter.push_back(clutter);
+      as_built.clutter.push_back(parseClutter(item, plan, robot_level));
     }
   }
   return as_built;

@@ -115,6 +115,116 @@ int SweepCommand::collect(const std::string& sweep_dir) const {
   return c.failed.empty() && c.missing.empty() ? kExitOk : kExitIncomplete;
 }
 
+void SweepCommand::startFolder(const sweep::Suite& suite) const {
+  // The output rule: not the working directory or what holds it, not the suite or its world
+  // files, and an existing folder only if it is a sweep's (or empty).
+  std::vector<std::string> inputs = {input_};
+  for (const auto& world : suite.worlds) {
+    if (!world.generate && !worlds::isBuiltin(world.input)) inputs.push_back(world.input);
+  }
+  common::checkOutputPath(output_, {common::OutputKind::kSweep, inputs});
+  std::error_code made;
+  fs::create_directories(output_, made);
+  if (made)
+    throw common::InputError(output_, "", "cannot make the sweep folder: " + made.message());
+  if (!common::folderOutputKind(output_))
+    common::writeOutputMarker(output_, common::OutputKind::kSweep);
+}
+
+void SweepCommand::checkAgainstEarlierStart(const sweep::Suite& suite,
+                                            const std::vector<sweep::SweepCell>& cells) const {
+  const fs::path plan_path = fs::path(output_) / sweep::kSweepPlanFile;
+  if (!fs::exists(plan_path)) return;
+  // A sweep folder holds one suite's cells: starting it again with other cells would mix them.
+  const sweep::SweepPlan before = sweep::readSweepPlan(output_);
+  bool same = before.cells.size() == cells.size();
+  for (std::size_t i = 0; same && i < cells.size(); ++i) {
+    same = before.cells[i].dir == cells[i].dir && before.cells[i].arguments == cells[i].arguments;
+  }
+  if (!same) {
+    throw common::InputError(plan_path.string(), "",
+                             "this sweep folder holds another suite's cells (" +
+                                 std::to_string(before.cells.size()) + " cells of " +
+                                 before.suite_file + "); give another -o or remove it");
+  }
+  // The same cells of a changed world would mix two buildings in one row.
+  const std::vector<sweep::ChangedWorld> changed = sweep::changedWorlds(suite, before);
+  if (!changed.empty() && !rerun_changed_) {
+    std::string list;
+    for (const auto& w : changed) {
+      list += (list.empty() ? "" : "; ") + w.name + " (" + w.before.substr(0, 19) + "… then, " +
+              w.now.substr(0, 19) + "… now)";
+    }
+    throw common::InputError(input_, "",
+                             "world" + std::string(changed.size() > 1 ? "s" : "") +
+                                 " changed since this sweep ran in " + output_ + ": " + list +
+                                 "; --rerun-changed runs their cells again on the world as it is "
+                                 "now (the old runs are moved to " +
+                                 output_ + "/" + sweep::kSweepAsideFolder +
+                                 "), or give another -o");
+  }
+  moveWorldCellsAside(output_, before.cells, changed);
+}
+
+int SweepCommand::runOnSlurm(const sweep::Suite& suite,
+                             const std::vector<sweep::SweepCell>& cells) const {
+  std::vector<std::size_t> pending;
+  for (std::size_t i = 0; i < cells.size(); ++i) {
+    if (!sweep::cellFinished(output_, cells[i])) pending.push_back(i);
+  }
+  if (pending.empty()) {
+    std::printf("isg sweep: every cell of %s has finished; nothing to submit\n", output_.c_str());
+    return collect(output_);
+  }
+  const std::string isg = fs::read_symlink("/proc/self/exe").string();
+  const std::size_t max_array_size =
+      suite.slurm.max_array_size.value_or(sweep::slurmMaxArraySize());
+  const std::string script = sweep::writeSlurmScript(output_, suite, pending, isg, max_array_size);
+  const std::vector<sweep::SlurmArray> arrays = sweep::slurmArrays(pending.size(), max_array_size);
+  const std::string split = arrays.size() == 1
+                                ? ""
+                                : " in " + std::to_string(arrays.size()) + " arrays of at most " +
+                                      std::to_string(max_array_size) + " tasks";
+  if (dry_run_) {
+    std::printf("isg sweep: wrote %s (%zu array tasks%s); submit it with:\n", script.c_str(),
+                pending.size(), split.c_str());
+    for (const auto& array : arrays)
+      std::printf("  %s\n", sweep::sbatchCommand(script, array).c_str());
+    return kExitOk;
+  }
+  const std::vector<std::string> jobs = sweep::submitSlurm(script, arrays, wait_);
+  std::string ids;
+  for (const auto& id : jobs) ids += (ids.empty() ? "" : ", ") + id;
+  std::printf("isg sweep: submitted %s as Slurm job%s %s (%zu array tasks%s)\n", script.c_str(),
+              jobs.size() == 1 ? "" : "s", ids.c_str(), pending.size(), split.c_str());
+  if (!wait_) {
+    std::printf("isg sweep: when it has ended: isg sweep --collect %s\n", output_.c_str());
+    return kExitOk;
+  }
+  return collect(output_);
+}
+
+int SweepCommand::runLocally(const std::vector<sweep::SweepCell>& cells) const {
+  std::vector<std::size_t> all(cells.size());
+  for (std::size_t i = 0; i < cells.size(); ++i) all[i] = i;
+  sweep::PoolOutcome o;
+  try {
+    o = sweep::runCells(output_, cells, all, jobs_, quiet_);
+  } catch (const run::Interrupted& e) {
+    // Not "nothing was written": the cells that finished stay, and are what a restart skips.
+    std::fprintf(stderr,
+                 "isg sweep: %s; the running cells were stopped and left nothing, the finished "
+                 "ones are kept: run the same command again to finish the sweep\n",
+                 e.what());
+    return 128 + e.signalNumber();
+  }
+  if (!quiet_) {
+    std::fprintf(stderr, "isg sweep: %d cells ran, %d had finished before, %d failed\n", o.finished,
+                 o.skipped, o.failed);
+  }
+  return collect(output_);
+}
+
 int SweepCommand::run() {
   const auto usage = [](const char* message) {
     std::fprintf(stderr, "isg sweep: %s\nRun 'isg sweep --help' for usage.\n", message);
@@ -135,115 +245,16 @@ int SweepCommand::run() {
   }
   if (output_.empty()) return usage("isg sweep SUITE.json needs -o SWEEP_DIR");
   sweep::Suite suite = sweep::loadSuite(input_, run::builtinMethods());
-  // The output rule: not the working directory or what holds it, not the suite or its world
-  // files, and an existing folder only if it is a sweep's (or empty).
-  std::vector<std::string> inputs = {input_};
-  for (const auto& world : suite.worlds) {
-    if (!world.generate && !worlds::isBuiltin(world.input)) inputs.push_back(world.input);
-  }
-  common::checkOutputPath(output_, {common::OutputKind::kSweep, inputs});
-  std::error_code made;
-  fs::create_directories(output_, made);
-  if (made)
-    throw common::InputError(output_, "", "cannot make the sweep folder: " + made.message());
-  if (!common::folderOutputKind(output_))
-    common::writeOutputMarker(output_, common::OutputKind::kSweep);
+  startFolder(suite);
   // One sweep at a time in a folder, from here to the end (the lock goes with the process).
   const sweep::SweepLock lock(output_);
   // Every world read (generated ones written) and hashed, before any cell runs.
   sweep::prepareSweepWorlds(suite, output_);
   const std::vector<sweep::SweepCell> cells = sweep::sweepCells(suite);
-  // A sweep folder holds one suite's cells: starting it again with other cells would mix them.
-  const fs::path plan_path = fs::path(output_) / sweep::kSweepPlanFile;
   const std::string plan_text = sweep::sweepPlanJson(suite, cells);
-  if (fs::exists(plan_path)) {
-    const sweep::SweepPlan before = sweep::readSweepPlan(output_);
-    bool same = before.cells.size() == cells.size();
-    for (std::size_t i = 0; same && i < cells.size(); ++i) {
-      same = before.cells[i].dir == cells[i].dir && before.cells[i].arguments == cells[i].arguments;
-    }
-    if (!same) {
-      throw common::InputError(plan_path.string(), "",
-                               "this sweep folder holds another suite's cells (" +
-                                   std::to_string(before.cells.size()) + " cells of " +
-                                   before.suite_file + "); give another -o or remove it");
-    }
-    // The same cells of a changed world would mix two buildings in one row.
-    const std::vector<sweep::ChangedWorld> changed = sweep::changedWorlds(suite, before);
-    if (!changed.empty() && !rerun_changed_) {
-      std::string list;
-      for (const auto& w : changed) {
-        list += (list.empty() ? "" : "; ") + w.name + " (" + w.before.substr(0, 19) + "… then, " +
-                w.now.substr(0, 19) + "… now)";
-      }
-      throw common::InputError(input_, "",
-                               "world" + std::string(changed.size() > 1 ? "s" : "") +
-                                   " changed since this sweep ran in " + output_ + ": " + list +
-                                   "; --rerun-changed runs their cells again on the world as it is "
-                                   "now (the old runs are moved to " +
-                                   output_ + "/" + sweep::kSweepAsideFolder +
-                                   "), or give another -o");
-    }
-    moveWorldCellsAside(output_, before.cells, changed);
-  }
-  common::writeFileAtomically(plan_path.string(), plan_text);
-  std::vector<std::size_t> all(cells.size());
-  for (std::size_t i = 0; i < cells.size(); ++i) all[i] = i;
-
-  if (backend_ == "slurm") {
-    std::vector<std::size_t> pending;
-    for (std::size_t i : all) {
-      if (!sweep::cellFinished(output_, cells[i])) pending.push_back(i);
-    }
-    if (pending.empty()) {
-      std::printf("isg sweep: every cell of %s has finished; nothing to submit\n", output_.c_str());
-      return collect(output_);
-    }
-    const std::string isg = fs::read_symlink("/proc/self/exe").string();
-    const std::size_t max_array_size =
-        suite.slurm.max_array_size.value_or(sweep::slurmMaxArraySize());
-    const std::string script =
-        sweep::writeSlurmScript(output_, suite, pending, isg, max_array_size);
-    const std::vector<sweep::SlurmArray> arrays =
-        sweep::slurmArrays(pending.size(), max_array_size);
-    const std::string split = arrays.size() == 1
-                                  ? ""
-                                  : " in " + std::to_string(arrays.size()) + " arrays of at most " +
-                                        std::to_string(max_array_size) + " tasks";
-    if (dry_run_) {
-      std::printf("isg sweep: wrote %s (%zu array tasks%s); submit it with:\n", script.c_str(),
-                  pending.size(), split.c_str());
-      for (const auto& array : arrays)
-        std::printf("  %s\n", sweep::sbatchCommand(script, array).c_str());
-      return kExitOk;
-    }
-    const std::vector<std::string> jobs = sweep::submitSlurm(script, arrays, wait_);
-    std::string ids;
-    for (const auto& id : jobs) ids += (ids.empty() ? "" : ", ") + id;
-    std::printf("isg sweep: submitted %s as Slurm job%s %s (%zu array tasks%s)\n", script.c_str(),
-                jobs.size() == 1 ? "" : "s", ids.c_str(), pending.size(), split.c_str());
-    if (!wait_) {
-      std::printf("isg sweep: when it has ended: isg sweep --collect %s\n", output_.c_str());
-      return kExitOk;
-    }
-    return collect(output_);
-  }
-  sweep::PoolOutcome o;
-  try {
-    o = sweep::runCells(output_, cells, all, jobs_, quiet_);
-  } catch (const run::Interrupted& e) {
-    // Not "nothing was written": the cells that finished stay, and are what a restart skips.
-    std::fprintf(stderr,
-                 "isg sweep: %s; the running cells were stopped and left nothing, the finished "
-                 "ones are kept: run the same command again to finish the sweep\n",
-                 e.what());
-    return 128 + e.signalNumber();
-  }
-  if (!quiet_) {
-    std::fprintf(stderr, "isg sweep: %d cells ran, %d had finished before, %d failed\n", o.finished,
-                 o.skipped, o.failed);
-  }
-  return collect(output_);
+  checkAgainstEarlierStart(suite, cells);
+  common::writeFileAtomically((fs::path(output_) / sweep::kSweepPlanFile).string(), plan_text);
+  return backend_ == "slurm" ? runOnSlurm(suite, cells) : runLocally(cells);
 }
 
 }  // namespace isg::cli

@@ -262,108 +262,147 @@ const std::optional<double>* ResultTable::find(const std::string& row,
   return &cells[r][c];
 }
 
-std::string formatTable(const ResultTable& table, TableFormat format, const std::string& caption) {
-  std::ostringstream out;
-  const bool latex = format == TableFormat::kLatex;
-  const bool with_stats = !table.stats.empty();
-  const auto statsOf = [&](std::size_t r, std::size_t c) {
-    return r < table.stats.size() && c < table.stats[r].size() ? table.stats[r][c] : CellStats{};
-  };
-  const auto text = [&](std::size_t r, std::size_t c) -> std::string {
-    if (!table.present[r][c]) return "";
-    if (with_stats && format != TableFormat::kCsv) return statsCell(statsOf(r, c), latex);
-    if (table.wrong[r][c]) return latex ? "$\\times$" : kWrongMark;
-    if (latex && !table.cells[r][c]) return "$-$";
-    return cell(table.cells[r][c]);
-  };
-  const auto count = [&](std::size_t c) -> std::string {
-    if (indexOf(table.uncounted, table.columns[c]) >= 0) return "n/a";
-    int n = 0;
-    for (std::size_t r = 0; r < table.rows.size(); ++r) {
-      n += table.present[r][c] && !table.wrong[r][c] && table.cells[r][c].has_value();
-    }
-    return std::to_string(n) + "/" + std::to_string(table.rows.size());
-  };
-  // One line of any format: the row's label, then its cells.
-  const auto line = [&](const std::string& label, const auto& field, const char* open,
-                        const char* separator, const char* close) {
-    out << open << label;
-    for (std::size_t c = 0; c < table.columns.size(); ++c) out << separator << field(c);
-    out << close << "\n";
-  };
-  const auto header = [&](std::size_t c) { return table.columns[c]; };
-  switch (format) {
-    case TableFormat::kCsv: {
-      // With statistics, each method's column is followed by its four statistics columns.
-      const auto withStats = [&](std::size_t c, const auto& main, const auto& extra) {
-        std::string fields = main(c);
-        if (!with_stats) return fields;
-        for (int k = 0; k < kStatsColumns; ++k) fields += "," + std::string(extra(c, k));
-        return fields;
-      };
+namespace {
+
+// The text of a table's cells and lines in one format (formatTable).
+class TableText {
+ public:
+  TableText(const ResultTable& table, TableFormat format)
+      : table_(table), format_(format), with_stats_(!table.stats.empty()) {}
+
+  std::string csv() {
+    // With statistics, each method's column is followed by its statistics columns.
+    line(
+        "world",
+        [&](std::size_t c) {
+          return withStats(
+              c, [&](std::size_t i) { return csvField(header(i)); },
+              [&](std::size_t i, int k) {
+                return csvField(header(i) + std::string(kStatsSuffixes[k]));
+              });
+        },
+        "", ",", "");
+    for (std::size_t r = 0; r < table_.rows.size(); ++r) {
       line(
-          "world",
+          csvField(table_.rows[r]),
           [&](std::size_t c) {
             return withStats(
-                c, [&](std::size_t i) { return csvField(header(i)); },
-                [&](std::size_t i, int k) {
-                  return csvField(header(i) + std::string(kStatsSuffixes[k]));
-                });
+                c, [&](std::size_t i) { return text(r, i); },
+                [&](std::size_t i, int k) { return statsField(r, i, k); });
           },
           "", ",", "");
-      for (std::size_t r = 0; r < table.rows.size(); ++r) {
-        line(
-            csvField(table.rows[r]),
-            [&](std::size_t c) {
-              return withStats(
-                  c, [&](std::size_t i) { return text(r, i); },
-                  [&](std::size_t i, int k) -> std::string {
-                    if (!table.present[r][i]) return "";
-                    const CellStats s = statsOf(r, i);
-                    if (k == 0) return s.std ? cell(s.std) : "";
-                    const int counts[] = {0, s.localized, s.runs, s.wrong, s.failed, s.not_run};
-                    return std::to_string(counts[k]);
-                  });
-            },
-            "", ",", "");
-      }
-      line(
-          table.count_label,
-          [&](std::size_t c) { return withStats(c, count, [](std::size_t, int) { return ""; }); },
-          "", ",", "");
-      break;
     }
-    case TableFormat::kMarkdown:
-      if (!caption.empty()) out << caption << "\n\n";
-      line(
-          "world", [&](std::size_t c) { return markdownCell(header(c)); }, "| ", " | ", " |");
-      line(
-          "---", [](std::size_t) { return std::string("---:"); }, "|", "|", "|");
-      for (std::size_t r = 0; r < table.rows.size(); ++r) {
-        line(
-            markdownCell(table.rows[r]), [&](std::size_t c) { return text(r, c); }, "| ", " | ",
-            " |");
-      }
-      line("*" + table.count_label + "*", count, "| ", " | ", " |");
-      break;
-    case TableFormat::kLatex:
-      out << "% needs \\usepackage{booktabs}\n\\begin{table}\n\\centering\n";
-      if (!caption.empty()) out << "\\caption{" << latexCaption(caption) << "}\n";
-      out << "\\begin{tabular}{l" << std::string(table.columns.size(), 'c') << "}\n\\toprule\n";
-      line(
-          "World", [&](std::size_t c) { return latexEscape(header(c)); }, "", " & ", " \\\\");
-      out << "\\midrule\n";
-      for (std::size_t r = 0; r < table.rows.size(); ++r) {
-        line(
-            latexEscape(table.rows[r]), [&](std::size_t c) { return text(r, c); }, "", " & ",
-            " \\\\");
-      }
-      out << "\\midrule\n";
-      line(latexEscape(capitalised(table.count_label)), count, "", " & ", " \\\\");
-      out << "\\bottomrule\n\\end{tabular}\n\\end{table}\n";
-      break;
+    line(
+        table_.count_label,
+        [&](std::size_t c) {
+          return withStats(
+              c, [&](std::size_t i) { return count(i); }, [](std::size_t, int) { return ""; });
+        },
+        "", ",", "");
+    return out_.str();
   }
-  return out.str();
+
+  std::string markdown(const std::string& caption) {
+    if (!caption.empty()) out_ << caption << "\n\n";
+    line(
+        "world", [&](std::size_t c) { return markdownCell(header(c)); }, "| ", " | ", " |");
+    line(
+        "---", [](std::size_t) { return std::string("---:"); }, "|", "|", "|");
+    for (std::size_t r = 0; r < table_.rows.size(); ++r) {
+      line(
+          markdownCell(table_.rows[r]), [&](std::size_t c) { return text(r, c); }, "| ", " | ",
+          " |");
+    }
+    line(
+        "*" + table_.count_label + "*", [&](std::size_t c) { return count(c); }, "| ", " | ", " |");
+    return out_.str();
+  }
+
+  std::string latex(const std::string& caption) {
+    out_ << "% needs \\usepackage{booktabs}\n\\begin{table}\n\\centering\n";
+    if (!caption.empty()) out_ << "\\caption{" << latexCaption(caption) << "}\n";
+    out_ << "\\begin{tabular}{l" << std::string(table_.columns.size(), 'c') << "}\n\\toprule\n";
+    line(
+        "World", [&](std::size_t c) { return latexEscape(header(c)); }, "", " & ", " \\\\");
+    out_ << "\\midrule\n";
+    for (std::size_t r = 0; r < table_.rows.size(); ++r) {
+      line(
+          latexEscape(table_.rows[r]), [&](std::size_t c) { return text(r, c); }, "", " & ",
+          " \\\\");
+    }
+    out_ << "\\midrule\n";
+    line(
+        latexEscape(capitalised(table_.count_label)), [&](std::size_t c) { return count(c); }, "",
+        " & ", " \\\\");
+    out_ << "\\bottomrule\n\\end{tabular}\n\\end{table}\n";
+    return out_.str();
+  }
+
+ private:
+  CellStats statsOf(std::size_t r, std::size_t c) const {
+    return r < table_.stats.size() && c < table_.stats[r].size() ? table_.stats[r][c] : CellStats{};
+  }
+  const std::string& header(std::size_t c) const { return table_.columns[c]; }
+  std::string text(std::size_t r, std::size_t c) const {
+    const bool latex = format_ == TableFormat::kLatex;
+    if (!table_.present[r][c]) return "";
+    if (with_stats_ && format_ != TableFormat::kCsv) return statsCell(statsOf(r, c), latex);
+    if (table_.wrong[r][c]) return latex ? "$\\times$" : kWrongMark;
+    if (latex && !table_.cells[r][c]) return "$-$";
+    return cell(table_.cells[r][c]);
+  }
+  // The last row: per column, the rows localized correctly ("n/a" for uncounted columns).
+  std::string count(std::size_t c) const {
+    if (indexOf(table_.uncounted, table_.columns[c]) >= 0) return "n/a";
+    int n = 0;
+    for (std::size_t r = 0; r < table_.rows.size(); ++r) {
+      n += table_.present[r][c] && !table_.wrong[r][c] && table_.cells[r][c].has_value();
+    }
+    return std::to_string(n) + "/" + std::to_string(table_.rows.size());
+  }
+  // CSV's statistics column k of a cell: the std, then localized, runs, wrong, failed, not run.
+  std::string statsField(std::size_t r, std::size_t c, int k) const {
+    if (!table_.present[r][c]) return "";
+    const CellStats s = statsOf(r, c);
+    if (k == 0) return s.std ? cell(s.std) : "";
+    const int counts[] = {0, s.localized, s.runs, s.wrong, s.failed, s.not_run};
+    return std::to_string(counts[k]);
+  }
+  template <typename Main, typename Extra>
+  std::string withStats(std::size_t c, const Main& main, const Extra& extra) const {
+    std::string fields = main(c);
+    if (!with_stats_) return fields;
+    for (int k = 0; k < kStatsColumns; ++k) fields += "," + std::string(extra(c, k));
+    return fields;
+  }
+  // One line of any format: the row's label, then its cells.
+  template <typename Field>
+  void line(const std::string& label, const Field& field, const char* open, const char* separator,
+            const char* close) {
+    out_ << open << label;
+    for (std::size_t c = 0; c < table_.columns.size(); ++c) out_ << separator << field(c);
+    out_ << close << "\n";
+  }
+
+  const ResultTable& table_;
+  TableFormat format_;
+  bool with_stats_;
+  std::ostringstream out_;
+};
+
+}  // namespace
+
+std::string formatTable(const ResultTable& table, TableFormat format, const std::string& caption) {
+  TableText text(table, format);
+  switch (format) {
+    case TableFormat::kCsv:
+      return text.csv();
+    case TableFormat::kMarkdown:
+      return text.markdown(caption);
+    case TableFormat::kLatex:
+      return text.latex(caption);
+  }
+  return "";
 }
 
 ResultTable parseTableCsv(const std::string& text) {

@@ -108,16 +108,21 @@ nlohmann::json deviationReportJson(const slam::DeviationReport& report) {
           {"extra_walls", extra}};
 }
 
-std::string deviationSvg(const slam::DeviationReport& report) {
-  constexpr double kScale = 40.0;  // px per metre
-  constexpr double kMargin = 30.0, kTitle = 24.0, kLegend = 70.0;
-  struct Panel {
-    std::string level;
-    Eigen::AlignedBox2d box;
-  };
-  std::vector<Panel> panels;
+namespace {
+
+constexpr double kSvgScale = 40.0;  // px per metre
+constexpr double kSvgMargin = 30.0, kSvgTitle = 24.0, kSvgLegend = 70.0;
+
+// One level's drawing: its name and the box of what it shows.
+struct DeviationPanel {
+  std::string level;
+  Eigen::AlignedBox2d box;
+};
+
+std::vector<DeviationPanel> deviationPanels(const slam::DeviationReport& report) {
+  std::vector<DeviationPanel> panels;
   for (const auto& level : report.levels) {
-    Panel panel{level, {}};
+    DeviationPanel panel{level, {}};
     for (const auto& w : report.walls) {
       if (w.level != level) continue;
       panel.box.extend(w.planned_start);
@@ -129,18 +134,12 @@ std::string deviationSvg(const slam::DeviationReport& report) {
     }
     if (!panel.box.isEmpty()) panels.push_back(panel);
   }
-  double width = 400.0, height = kLegend;
-  for (const auto& p : panels) {
-    width = std::max(width, p.box.sizes().x() * kScale + 2 * kMargin);
-    height += p.box.sizes().y() * kScale + 2 * kMargin + kTitle;
-  }
+  return panels;
+}
+
+// The title, the thresholds and the colours' legend.
+std::string deviationLegend(const slam::DeviationOptions& o) {
   std::string svg = format(
-      "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"%.0f\" height=\"%.0f\" "
-      "viewBox=\"0 0 %.0f %.0f\" font-family=\"sans-serif\" font-size=\"11\">\n"
-      "<rect width=\"100%%\" height=\"100%%\" fill=\"white\"/>\n",
-      width, height, width, height);
-  const slam::DeviationOptions& o = report.options;
-  svg += format(
       "<text x=\"10\" y=\"18\" font-size=\"13\">As built against the plan (frame B): shifted "
       "at |offset| &#8805; %.2f m, rotated at |angle| &#8805; %.1f&#176;</text>\n",
       o.shift_m, o.angle_deg);
@@ -162,58 +161,88 @@ std::string deviationSvg(const slam::DeviationReport& report) {
       "<line x1=\"%.0f\" y1=\"38\" x2=\"%.0f\" y2=\"38\" stroke=\"#1f5fd0\" stroke-width=\"4\"/>"
       "<text x=\"%.0f\" y=\"42\">extra wall</text>\n",
       x, x + 20, x + 25);
-  svg +=
-      "<text x=\"10\" y=\"60\" fill=\"#555\">grey: the plan's walls; coloured: the map's walls "
-      "seen as each plan wall, by its status</text>\n";
-  double top = kLegend;
-  for (const auto& panel : panels) {
-    const double panel_height = panel.box.sizes().y() * kScale + 2 * kMargin;
-    auto X = [&](const Eigen::Vector2d& p) {
-      return kMargin + (p.x() - panel.box.min().x()) * kScale;
-    };
-    auto Y = [&](const Eigen::Vector2d& p) {
-      return top + kTitle + kMargin + (panel.box.max().y() - p.y()) * kScale;
-    };
-    svg += format("<text x=\"10\" y=\"%.0f\" font-size=\"12\">Level %s</text>\n", top + 16,
-                  common::xmlEscape(panel.level).c_str());
-    for (const auto& w : report.walls) {
-      if (w.level != panel.level) continue;
-      const bool missing = w.status == slam::WallStatus::kMissing;
+  return svg +
+         "<text x=\"10\" y=\"60\" fill=\"#555\">grey: the plan's walls; coloured: the map's "
+         "walls seen as each plan wall, by its status</text>\n";
+}
+
+// A wall's label: its id, and its offset and angle when it deviates.
+std::string wallLabel(const slam::WallDeviation& w) {
+  std::string label = common::xmlEscape(w.wall);
+  if ((w.status == slam::WallStatus::kShifted || w.status == slam::WallStatus::kRotated) &&
+      w.offset_m && w.angle_deg) {
+    label += format(" %+.2f m %+.1f&#176;", *w.offset_m, *w.angle_deg);
+  } else if (w.status == slam::WallStatus::kMissing) {
+    label += " missing";
+  }
+  return label;
+}
+
+// One level's panel, its top at `top`: the planned walls in grey (a missing one dashed in its
+// colour), the map's walls over them coloured by status, the extra walls.
+std::string deviationPanel(const slam::DeviationReport& report, const DeviationPanel& panel,
+                           double top) {
+  auto X = [&](const Eigen::Vector2d& p) {
+    return kSvgMargin + (p.x() - panel.box.min().x()) * kSvgScale;
+  };
+  auto Y = [&](const Eigen::Vector2d& p) {
+    return top + kSvgTitle + kSvgMargin + (panel.box.max().y() - p.y()) * kSvgScale;
+  };
+  std::string svg = format("<text x=\"10\" y=\"%.0f\" font-size=\"12\">Level %s</text>\n", top + 16,
+                           common::xmlEscape(panel.level).c_str());
+  for (const auto& w : report.walls) {
+    if (w.level != panel.level) continue;
+    const bool missing = w.status == slam::WallStatus::kMissing;
+    svg += format(
+        "<line x1=\"%.1f\" y1=\"%.1f\" x2=\"%.1f\" y2=\"%.1f\" stroke=\"%s\" "
+        "stroke-width=\"%.1f\"%s/>\n",
+        X(w.planned_start), Y(w.planned_start), X(w.planned_end), Y(w.planned_end),
+        missing ? colourOf(w.status) : "#c8c8c8", std::max(2.0, w.thickness * kSvgScale),
+        missing ? " stroke-dasharray=\"6 4\" stroke-opacity=\"0.6\"" : "");
+    for (const auto& e : w.evidence) {
       svg += format(
           "<line x1=\"%.1f\" y1=\"%.1f\" x2=\"%.1f\" y2=\"%.1f\" stroke=\"%s\" "
-          "stroke-width=\"%.1f\"%s/>\n",
-          X(w.planned_start), Y(w.planned_start), X(w.planned_end), Y(w.planned_end),
-          missing ? colourOf(w.status) : "#c8c8c8", std::max(2.0, w.thickness * kScale),
-          missing ? " stroke-dasharray=\"6 4\" stroke-opacity=\"0.6\"" : "");
-      for (const auto& e : w.evidence) {
-        svg += format(
-            "<line x1=\"%.1f\" y1=\"%.1f\" x2=\"%.1f\" y2=\"%.1f\" stroke=\"%s\" "
-            "stroke-width=\"2.5\"/>\n",
-            X(e.start_B), Y(e.start_B), X(e.end_B), Y(e.end_B), colourOf(w.status));
-      }
-      const Eigen::Vector2d middle = 0.5 * (w.planned_start + w.planned_end);
-      std::string label = w.wall;
-      if ((w.status == slam::WallStatus::kShifted || w.status == slam::WallStatus::kRotated) &&
-          w.offset_m && w.angle_deg) {
-        label += format(" %+.2f m %+.1f&#176;", *w.offset_m, *w.angle_deg);
-      } else if (w.status == slam::WallStatus::kMissing) {
-        label += " missing";
-      }
-      svg += format(
-          "<text x=\"%.1f\" y=\"%.1f\" fill=\"%s\">%s</text>\n", X(middle) + 4, Y(middle) - 4,
-          w.status == slam::WallStatus::kAsPlanned ? "#777" : colourOf(w.status), label.c_str());
+          "stroke-width=\"2.5\"/>\n",
+          X(e.start_B), Y(e.start_B), X(e.end_B), Y(e.end_B), colourOf(w.status));
     }
-    for (const auto& e : report.extra_walls) {
-      if (e.level != panel.level) continue;
-      svg += format(
-          "<line x1=\"%.1f\" y1=\"%.1f\" x2=\"%.1f\" y2=\"%.1f\" stroke=\"#1f5fd0\" "
-          "stroke-width=\"3\"/>\n",
-          X(e.start), Y(e.start), X(e.end), Y(e.end));
-      const Eigen::Vector2d middle = 0.5 * (e.start + e.end);
-      svg += format("<text x=\"%.1f\" y=\"%.1f\" fill=\"#1f5fd0\">extra %.1f m</text>\n",
-                    X(middle) + 4, Y(middle) + 12, e.length());
-    }
-    top += panel_height + kTitle;
+    const Eigen::Vector2d middle = 0.5 * (w.planned_start + w.planned_end);
+    svg +=
+        format("<text x=\"%.1f\" y=\"%.1f\" fill=\"%s\">%s</text>\n", X(middle) + 4, Y(middle) - 4,
+               w.status == slam::WallStatus::kAsPlanned ? "#777" : colourOf(w.status),
+               wallLabel(w).c_str());
+  }
+  for (const auto& e : report.extra_walls) {
+    if (e.level != panel.level) continue;
+    svg += format(
+        "<line x1=\"%.1f\" y1=\"%.1f\" x2=\"%.1f\" y2=\"%.1f\" stroke=\"#1f5fd0\" "
+        "stroke-width=\"3\"/>\n",
+        X(e.start), Y(e.start), X(e.end), Y(e.end));
+    const Eigen::Vector2d middle = 0.5 * (e.start + e.end);
+    svg += format("<text x=\"%.1f\" y=\"%.1f\" fill=\"#1f5fd0\">extra %.1f m</text>\n",
+                  X(middle) + 4, Y(middle) + 12, e.length());
+  }
+  return svg;
+}
+
+}  // namespace
+
+std::string deviationSvg(const slam::DeviationReport& report) {
+  const std::vector<DeviationPanel> panels = deviationPanels(report);
+  double width = 400.0, height = kSvgLegend;
+  for (const auto& p : panels) {
+    width = std::max(width, p.box.sizes().x() * kSvgScale + 2 * kSvgMargin);
+    height += p.box.sizes().y() * kSvgScale + 2 * kSvgMargin + kSvgTitle;
+  }
+  std::string svg = format(
+      "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"%.0f\" height=\"%.0f\" "
+      "viewBox=\"0 0 %.0f %.0f\" font-family=\"sans-serif\" font-size=\"11\">\n"
+      "<rect width=\"100%%\" height=\"100%%\" fill=\"white\"/>\n",
+      width, height, width, height);
+  svg += deviationLegend(report.options);
+  double top = kSvgLegend;
+  for (const auto& panel : panels) {
+    svg += deviationPanel(report, panel, top);
+    top += panel.box.sizes().y() * kSvgScale + 2 * kSvgMargin + kSvgTitle;
   }
   return svg + "</svg>\n";
 }

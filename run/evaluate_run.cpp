@@ -51,11 +51,8 @@ std::pair<double, int> walkedUntil(const Trajectory& truth, double until, const 
   return {distance, int(rooms.size())};
 }
 
-}  // namespace
-
-RunEvaluation evaluateRun(const RunRecord& run) {
-  RunEvaluation evaluation;
-  RunMetrics& m = evaluation.metrics;
+// Who made the run, and how long it took.
+void identify(const RunRecord& run, RunMetrics& m) {
   const sensors::SensorStreams& streams = run.streams;
   m.world = run.setup.world;
   m.method = run.setup.method;
@@ -74,6 +71,97 @@ RunEvaluation evaluateRun(const RunRecord& run) {
   timing.localizer_seconds = run.localizer_seconds;
   timing.scan_wait_seconds = run.scan_wait_seconds;
   m.timing = timing;
+}
+
+// The measure, or a note saying why it could not be computed (no pose of the estimate near the
+// ground truth's stamps, a map trajectory too short or straight to align).
+template <typename Compute>
+void attempt(RunMetrics& m, const char* what, const Compute& compute) {
+  try {
+    compute();
+  } catch (const std::invalid_argument& e) {
+    m.notes.push_back(std::string(what) + " not computed: " + e.what());
+  }
+}
+
+// APE in B (2D, no alignment) and in M (SE(3)-aligned), with their errors over time.
+void poseErrors(const RunRecord& run, RunEvaluation& evaluation) {
+  RunMetrics& m = evaluation.metrics;
+  const sensors::SensorStreams& streams = run.streams;
+  eval::ErrorOptions planar;
+  planar.align = eval::Alignment::kNone;
+  planar.project_xy = true;
+  if (!run.estimate.empty()) {
+    attempt(m, "APE in B", [&] {
+      const auto ape = eval::absolutePoseError(streams.ground_truth, run.estimate, planar);
+      m.ape_B = ape.translation_stats;
+      m.ape_B_rotation_deg = ape.rotation_stats;
+      for (std::size_t i = 0; i < ape.translation.size(); ++i) {
+        const double t = run.estimate[ape.association.estimate[i]].t;
+        evaluation.error_over_time.emplace_back(t, ape.translation[i]);
+        evaluation.heading_error_over_time.emplace_back(t, ape.rotation_deg[i]);
+      }
+    });
+  }
+  if (run.estimate_map.size() >= 3) {
+    eval::ErrorOptions se3 = planar;
+    se3.align = eval::Alignment::kSE3;
+    attempt(m, "APE in M (SE(3)-aligned)", [&] {
+      const auto ape = eval::absolutePoseError(streams.ground_truth, run.estimate_map, se3);
+      m.ape_M_se3 = ape.translation_stats;
+      for (const auto& pose : run.estimate_map) {
+        evaluation.aligned_map_estimate.push_back({pose.t, ape.alignment->apply(pose.pose)});
+      }
+      for (std::size_t i = 0; i < ape.translation.size(); ++i) {
+        const double t = run.estimate_map[ape.association.estimate[i]].t;
+        evaluation.map_error_over_time.emplace_back(t, ape.translation[i]);
+        evaluation.map_heading_error_over_time.emplace_back(t, ape.rotation_deg[i]);
+      }
+    });
+  }
+}
+
+// The walls as built against the plan, from the map placed in it: where the map lay in the plan
+// at each keyframe is the pose in B the localizer reported for that very scan (none while it was
+// not localized: never interpolated across a gap), over the keyframe's final pose in M.
+void deviations(const RunRecord& run, RunEvaluation& evaluation) {
+  std::vector<std::optional<Eigen::Isometry3d>> keyframe_B_T_M;
+  for (const auto& kf : run.map->keyframes) {
+    const auto row = std::lower_bound(run.estimate.begin(), run.estimate.end(), kf.stamp - 1e-3,
+                                      [](const StampedPose& pose, double t) { return pose.t < t; });
+    const bool same_scan = row != run.estimate.end() && std::abs(row->t - kf.stamp) <= 1e-3;
+    keyframe_B_T_M.push_back(same_scan ? std::optional(row->pose * kf.estimate.inverse())
+                                       : std::nullopt);
+  }
+  evaluation.deviations =
+      slam::measureDeviations(*run.setup.agraph, *run.map, *run.final_B_T_M, {}, keyframe_B_T_M);
+  evaluation.metrics.deviations =
+      deviationMetrics(*evaluation.deviations, run.setup.plan, run.setup.as_built);
+}
+
+// The matching's log: its status changes, and when it was lost and found again.
+void matchingHistory(const RunRecord& run, RunMetrics& m) {
+  m.matching_status = run.search_status;
+  m.matching_events = run.status_changes;
+  bool lost = false;
+  for (const auto& change : run.status_changes) {
+    if (change.status == slam::MatchStatus::kLost) {
+      lost = true;
+      m.lost_at.push_back(change.stamp);
+    } else if (change.status == slam::MatchStatus::kMatched && lost) {
+      lost = false;
+      m.relocalized_at.push_back(change.stamp);
+    }
+  }
+}
+
+}  // namespace
+
+RunEvaluation evaluateRun(const RunRecord& run) {
+  RunEvaluation evaluation;
+  RunMetrics& m = evaluation.metrics;
+  const sensors::SensorStreams& streams = run.streams;
+  identify(run, m);
   const bool has_truth = !streams.ground_truth.empty();
   if (!has_truth) m.notes.push_back("no ground truth: no APE (a dataset without groundtruth.tum)");
   // Without ground truth, when the localizer first answered is still known from the odometry.
@@ -91,53 +179,17 @@ RunEvaluation evaluateRun(const RunRecord& run) {
       if (run.setup.agraph != nullptr) m.rooms_visited_to_localize = rooms;
     }
   }
-  // An error measure that cannot be computed (no pose of the estimate near the ground truth's
-  // stamps, a map trajectory too short or straight to align) is left out with a note saying why.
-  auto attempt = [&](const char* what, const auto& compute) {
-    try {
-      compute();
-    } catch (const std::invalid_argument& e) {
-      m.notes.push_back(std::string(what) + " not computed: " + e.what());
-    }
-  };
-  eval::ErrorOptions planar;
-  planar.align = eval::Alignment::kNone;
-  planar.project_xy = true;
-  if (has_truth && !run.estimate.empty()) {
-    attempt("APE in B", [&] {
-      const auto ape = eval::absolutePoseError(streams.ground_truth, run.estimate, planar);
-      m.ape_B = ape.translation_stats;
-      m.ape_B_rotation_deg = ape.rotation_stats;
-      for (std::size_t i = 0; i < ape.translation.size(); ++i) {
-        const double t = run.estimate[ape.association.estimate[i]].t;
-        evaluation.error_over_time.emplace_back(t, ape.translation[i]);
-        evaluation.heading_error_over_time.emplace_back(t, ape.rotation_deg[i]);
-      }
-    });
-  }
-  if (has_truth && run.estimate_map.size() >= 3) {
-    eval::ErrorOptions se3 = planar;
-    se3.align = eval::Alignment::kSE3;
-    attempt("APE in M (SE(3)-aligned)", [&] {
-      const auto ape = eval::absolutePoseError(streams.ground_truth, run.estimate_map, se3);
-      m.ape_M_se3 = ape.translation_stats;
-      for (const auto& pose : run.estimate_map) {
-        evaluation.aligned_map_estimate.push_back({pose.t, ape.alignment->apply(pose.pose)});
-      }
-      for (std::size_t i = 0; i < ape.translation.size(); ++i) {
-        const double t = run.estimate_map[ape.association.estimate[i]].t;
-        evaluation.map_error_over_time.emplace_back(t, ape.translation[i]);
-        evaluation.map_heading_error_over_time.emplace_back(t, ape.rotation_deg[i]);
-      }
-    });
-  }
+  if (has_truth) poseErrors(run, evaluation);
   if (has_truth && run.setup.agraph != nullptr) {
     m.levels = levelMetrics(*run.setup.agraph, streams.ground_truth, run.estimate,
                             evaluation.error_over_time);
   }
   evaluation.dead_reckoning = odometryInPlan(streams);
   if (!evaluation.dead_reckoning.empty()) {
-    attempt("APE of the odometry", [&] {
+    eval::ErrorOptions planar;
+    planar.align = eval::Alignment::kNone;
+    planar.project_xy = true;
+    attempt(m, "APE of the odometry", [&] {
       m.ape_odometry_from_true_start =
           eval::absolutePoseError(streams.ground_truth, evaluation.dead_reckoning, planar)
               .translation_stats;
@@ -161,35 +213,8 @@ RunEvaluation evaluateRun(const RunRecord& run) {
                           ? "no map-to-plan error: no scan point in a wall's height band"
                           : "no map-to-plan error: the map was never placed in the plan");
   }
-  if (run.map && run.final_B_T_M && run.setup.agraph != nullptr) {
-    // Where the map lay in the plan at each keyframe: the pose in B the localizer reported for
-    // that very scan (none while it was not localized: never interpolated across a gap), over
-    // the keyframe's final pose in M.
-    std::vector<std::optional<Eigen::Isometry3d>> keyframe_B_T_M;
-    for (const auto& kf : run.map->keyframes) {
-      const auto row =
-          std::lower_bound(run.estimate.begin(), run.estimate.end(), kf.stamp - 1e-3,
-                           [](const StampedPose& pose, double t) { return pose.t < t; });
-      const bool same_scan = row != run.estimate.end() && std::abs(row->t - kf.stamp) <= 1e-3;
-      keyframe_B_T_M.push_back(same_scan ? std::optional(row->pose * kf.estimate.inverse())
-                                         : std::nullopt);
-    }
-    evaluation.deviations =
-        slam::measureDeviations(*run.setup.agraph, *run.map, *run.final_B_T_M, {}, keyframe_B_T_M);
-    m.deviations = deviationMetrics(*evaluation.deviations, run.setup.plan, run.setup.as_built);
-  }
-  m.matching_status = run.search_status;
-  m.matching_events = run.status_changes;
-  bool lost = false;
-  for (const auto& change : run.status_changes) {
-    if (change.status == slam::MatchStatus::kLost) {
-      lost = true;
-      m.lost_at.push_back(change.stamp);
-    } else if (change.status == slam::MatchStatus::kMatched && lost) {
-      lost = false;
-      m.relocalized_at.push_back(change.stamp);
-    }
-  }
+  if (run.map && run.final_B_T_M && run.setup.agraph != nullptr) deviations(run, evaluation);
+  matchingHistory(run, m);
   return evaluation;
 }
 

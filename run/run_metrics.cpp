@@ -144,10 +144,66 @@ nlohmann::json metricsToJson(const RunMetrics& m) {
   return j;
 }
 
-RunMetrics metricsFromJson(const nlohmann::json& document, const std::string& file) {
-  const common::JsonSource source{file, nullptr};
-  const common::JsonNode root(document, "", source);
-  RunMetrics m;
+namespace {
+
+std::map<std::string, double> methodOptionsFrom(const common::JsonNode& options) {
+  if (!options.isObject()) options.fail("expected an object: option → value");
+  std::map<std::string, double> out;
+  for (const auto& [key, value] : options.raw().items()) out[key] = options.field(key).number();
+  return out;
+}
+
+RunMetrics::MapToPlan mapToPlanFrom(const common::JsonNode& map, const eval::Statistics& distance) {
+  RunMetrics::MapToPlan out;
+  out.distance = distance;
+  out.points = map.field("points").integer();
+  if (out.points < 0) map.field("points").fail("must be >= 0");
+  out.near_share = map.field("near_share").numberInRange(0.0, 1.0);
+  out.cutoff = map.field("cutoff_m").nonNegativeNumber();
+  return out;
+}
+
+LevelMetrics levelFrom(const common::JsonNode& l) {
+  LevelMetrics level;
+  level.level = l.field("level").string();
+  level.seconds = l.field("seconds").nonNegativeNumber();
+  level.arrived_at = l.field("arrived_at").nonNegativeNumber();
+  level.first_estimate_at = optionalMeasure(l, "first_estimate_at");
+  level.ape_B = optionalStatistics(l, "ape_B");
+  return level;
+}
+
+RunTiming timingFrom(const common::JsonNode& t) {
+  RunTiming timing;
+  timing.scans_read = countOf(t.field("scans_read"));
+  timing.localizer_seconds = t.field("localizer_seconds").number();
+  timing.scan_wait_seconds = t.field("scan_wait_seconds").number();
+  if (const auto peak = t.optionalField("peak_memory_mb")) timing.peak_memory_mb = peak->number();
+  for (const auto& stage : t.field("stages").elements()) {
+    timing.stages.push_back({stage.field("stage").string(), stage.field("seconds").number()});
+  }
+  return timing;
+}
+
+slam::StatusChange statusChangeFrom(const common::JsonNode& e) {
+  const double stamp = e.field("stamp").number();
+  const std::int64_t keyframe = e.field("keyframe").integer();
+  const common::JsonNode status_node = e.field("status");
+  const std::string word = status_node.string();
+  const auto status = slam::matchStatusFromString(word);
+  if (!status) {
+    status_node.fail("unknown status \"" + word +
+                     "\" (one of \"not yet\", \"ambiguous\", \"matched\", \"contradicted\", "
+                     "\"lost\")");
+  }
+  if (keyframe < -1 || keyframe > std::numeric_limits<int>::max()) {
+    e.field("keyframe").fail("out of range: " + std::to_string(keyframe));
+  }
+  return {stamp, int(keyframe), *status, e.field("reason").string()};
+}
+
+// The run's identity, its length and when it localized.
+void identityFrom(const common::JsonNode& root, RunMetrics& m) {
   m.world = root.field("world").string();
   m.method = root.field("method").string();
   m.seed = root.field("seed").unsignedInteger();
@@ -156,11 +212,7 @@ RunMetrics metricsFromJson(const nlohmann::json& document, const std::string& fi
     if (!isContentHash(*m.world_hash)) hash->fail("expected \"sha256:\" and 64 hex digits");
   }
   if (const auto options = root.optionalField("method_options")) {
-    if (!options->isObject()) options->fail("expected an object: option → value");
-    m.method_options.emplace();
-    for (const auto& [key, value] : options->raw().items()) {
-      (*m.method_options)[key] = options->field(key).number();
-    }
+    m.method_options = methodOptionsFrom(*options);
   }
   if (const auto build = root.optionalField("build_version")) m.build_version = build->text();
   m.scans = countOf(root.field("scans"));
@@ -176,6 +228,15 @@ RunMetrics metricsFromJson(const nlohmann::json& document, const std::string& fi
   if (const auto share = root.optionalField("share_localized")) {
     m.share_localized = share->numberInRange(0.0, 1.0);
   }
+}
+
+}  // namespace
+
+RunMetrics metricsFromJson(const nlohmann::json& document, const std::string& file) {
+  const common::JsonSource source{file, nullptr};
+  const common::JsonNode root(document, "", source);
+  RunMetrics m;
+  identityFrom(root, m);
   m.ape_B = optionalStatistics(root, "ape_B");
   m.ape_B_rotation_deg = optionalStatistics(root, "ape_B_rotation_deg");
   m.ape_M_se3 = optionalStatistics(root, "ape_M_se3");
@@ -187,14 +248,7 @@ RunMetrics metricsFromJson(const nlohmann::json& document, const std::string& fi
   m.max_error_B = optionalMeasure(root, "max_error_B");
   m.max_height_error_B = optionalMeasure(root, "max_height_error_B");
   if (const auto distance = optionalStatistics(root, "map_to_plan")) {
-    const auto map = root.field("map_to_plan");
-    RunMetrics::MapToPlan out;
-    out.distance = *distance;
-    out.points = map.field("points").integer();
-    if (out.points < 0) map.field("points").fail("must be >= 0");
-    out.near_share = map.field("near_share").numberInRange(0.0, 1.0);
-    out.cutoff = map.field("cutoff_m").nonNegativeNumber();
-    m.map_to_plan = out;
+    m.map_to_plan = mapToPlanFrom(root.field("map_to_plan"), *distance);
   }
   if (const auto deviations = root.optionalField("deviations")) {
     m.deviations = deviationMetricsFromJson(*deviations);
@@ -205,45 +259,11 @@ RunMetrics metricsFromJson(const nlohmann::json& document, const std::string& fi
   m.lost_at = optionalNumbers(root, "lost_at");
   m.relocalized_at = optionalNumbers(root, "relocalized_at");
   if (const auto levels = root.optionalField("levels")) {
-    for (const auto& l : levels->elements()) {
-      LevelMetrics level;
-      level.level = l.field("level").string();
-      level.seconds = l.field("seconds").nonNegativeNumber();
-      level.arrived_at = l.field("arrived_at").nonNegativeNumber();
-      level.first_estimate_at = optionalMeasure(l, "first_estimate_at");
-      level.ape_B = optionalStatistics(l, "ape_B");
-      m.levels.push_back(std::move(level));
-    }
+    for (const auto& l : levels->elements()) m.levels.push_back(levelFrom(l));
   }
-  if (const auto t = root.optionalField("timing")) {
-    RunTiming timing;
-    timing.scans_read = countOf(t->field("scans_read"));
-    timing.localizer_seconds = t->field("localizer_seconds").number();
-    timing.scan_wait_seconds = t->field("scan_wait_seconds").number();
-    if (const auto peak = t->optionalField("peak_memory_mb"))
-      timing.peak_memory_mb = peak->number();
-    for (const auto& stage : t->field("stages").elements()) {
-      timing.stages.push_back({stage.field("stage").string(), stage.field("seconds").number()});
-    }
-    m.timing = timing;
-  }
+  if (const auto t = root.optionalField("timing")) m.timing = timingFrom(*t);
   if (const auto events = root.optionalField("matching_events")) {
-    for (const auto& e : events->elements()) {
-      const double stamp = e.field("stamp").number();
-      const std::int64_t keyframe = e.field("keyframe").integer();
-      const common::JsonNode status_node = e.field("status");
-      const std::string word = status_node.string();
-      const auto status = slam::matchStatusFromString(word);
-      if (!status) {
-        status_node.fail("unknown status \"" + word +
-                         "\" (one of \"not yet\", \"ambiguous\", \"matched\", \"contradicted\", "
-                         "\"lost\")");
-      }
-      if (keyframe < -1 || keyframe > std::numeric_limits<int>::max()) {
-        e.field("keyframe").fail("out of range: " + std::to_string(keyframe));
-      }
-      m.matching_events.push_back({stamp, int(keyframe), *status, e.field("reason").string()});
-    }
+    for (const auto& e : events->elements()) m.matching_events.push_back(statusChangeFrom(e));
   }
   if (const auto notes = root.optionalField("notes")) {
     for (const auto& note : notes->elements()) m.notes.push_back(note.string());
