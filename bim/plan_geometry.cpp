@@ -129,6 +129,98 @@ std::vector<RoomBoundary> LevelGeometry::boundariesOf(const std::string& room_id
   return out;
 }
 
+namespace {
+
+// Close the joints: an end that meets another wall continues to that wall's far side. Pairs of
+// walls come from grids over their boxes, so that plans with thousands of walls stay
+// near-linear; an end meets a wall only within half its thickness (plus the tolerance) of it.
+void closeJoints(std::vector<WallGeometry>& walls) {
+  std::vector<Box2> reach_boxes;
+  reach_boxes.reserve(walls.size());
+  for (const auto& g : walls) {
+    reach_boxes.push_back(Box2::around(g.wall->start, g.wall->end)
+                              .grown(0.5 * g.wall->thickness + 2 * kJunctionTolerance));
+  }
+  const BoxGrid reach_grid(std::move(reach_boxes));
+  for (auto& g : walls) {
+    const Box2 ends = Box2::around(g.wall->start, g.wall->end);
+    for (int j : reach_grid.candidates(ends)) {
+      const WallGeometry& other = walls[std::size_t(j)];
+      if (&other == &g) continue;
+      if (auto e = extensionInto(g.wall->start, -g.axis, other)) {
+        g.extend_start = std::max(g.extend_start, *e);
+      }
+      if (auto e = extensionInto(g.wall->end, g.axis, other)) {
+        g.extend_end = std::max(g.extend_end, *e);
+      }
+    }
+  }
+}
+
+// A wall's face on `side`: its plane, its heights, the parts of it other walls' footprints do
+// not cover, its doors' openings.
+void buildFace(const Level& level, WallGeometry& g, int side, std::size_t i,
+               const std::vector<std::vector<Eigen::Vector2d>>& cutters,
+               const std::vector<Box2>& cutter_boxes, const BoxGrid& cutter_grid,
+               const std::vector<const Door*>& doors) {
+  WallFace& face = side > 0 ? g.left : g.right;
+  face.side = side;
+  const Eigen::Vector2d n2 = side * g.left_normal;
+  const Eigen::Vector2d on_face = g.facePointAt(side, 0.0);
+  face.plane = Plane::throughPoint({n2.x(), n2.y(), 0.0}, {on_face.x(), on_face.y(), 0.0});
+  face.z_min = level.elevation + g.wall->base;
+  face.z_max = level.elevation + g.wall->height;
+  face.exposed = {{-g.extend_start, g.length + g.extend_end}};
+  for (int j : cutter_grid.candidates(cutter_boxes[i])) {
+    if (std::size_t(j) == i) continue;
+    if (auto cut = clipLineToConvex(on_face, g.axis, -g.extend_start, g.length + g.extend_end,
+                                    cutters[std::size_t(j)])) {
+      subtractInterval(face.exposed, *cut);
+    }
+  }
+  for (const Door* door : doors) {
+    face.openings.push_back({door->offset - 0.5 * door->width, door->offset + 0.5 * door->width});
+  }
+  std::sort(face.openings.begin(), face.openings.end(),
+            [](const AxisInterval& a, const AxisInterval& b) { return a.lo < b.lo; });
+}
+
+// The wall faces a room's outline runs along: facing into the room, near both ends of an edge,
+// over enough of their exposed parts.
+void roomBoundaries(const Room& room, const BoxGrid& cutter_grid, const GeometryOptions& options,
+                    LevelGeometry& geometry) {
+  const double min_cosine = std::cos(options.boundary_angle_deg * std::numbers::pi / 180.0);
+  const auto& outline = room.outline;
+  for (std::size_t e = 0; e < outline.size(); ++e) {
+    const Eigen::Vector2d& a = outline[e];
+    const Eigen::Vector2d& b = outline[(e + 1) % outline.size()];
+    const Eigen::Vector2d inward = perpendicular((b - a).normalized());
+    for (int j : cutter_grid.candidates(Box2::around(a, b).grown(options.boundary_distance))) {
+      const WallGeometry& g = geometry.walls[std::size_t(j)];
+      for (const WallFace* face : {&g.left, &g.right}) {
+        const Eigen::Vector2d n2 = face->plane.normal.head<2>();
+        if (n2.dot(inward) < min_cosine) continue;
+        const double da = std::abs(face->plane.signedDistance({a.x(), a.y(), 0.0}));
+        const double db = std::abs(face->plane.signedDistance({b.x(), b.y(), 0.0}));
+        if (da > options.boundary_distance || db > options.boundary_distance) continue;
+        const double sa = (a - g.wall->start).dot(g.axis);
+        const double sb = (b - g.wall->start).dot(g.axis);
+        const double lo = std::min(sa, sb);
+        const double hi = std::max(sa, sb);
+        double overlap = 0.0;
+        for (const auto& piece : face->exposed) {
+          overlap += std::max(0.0, std::min(hi, piece.hi) - std::max(lo, piece.lo));
+        }
+        if (overlap < options.boundary_min_overlap) continue;
+        geometry.boundaries.push_back(
+            {room.id, int(e), g.wall->id, face->side, overlap, 0.5 * (da + db)});
+      }
+    }
+  }
+}
+
+}  // namespace
+
 LevelGeometry computeLevelGeometry(const Level& level, const GeometryOptions& options) {
   LevelGeometry geometry;
   geometry.walls.reserve(level.walls.size());
@@ -141,32 +233,7 @@ LevelGeometry computeLevelGeometry(const Level& level, const GeometryOptions& op
     g.left_normal = perpendicular(g.axis);
     geometry.walls.push_back(g);
   }
-
-  // Pairs of walls come from grids over their boxes: plans with thousands of walls stay
-  // near-linear. An end meets a wall only within half its thickness (plus the tolerance) of it.
-  std::vector<Box2> reach_boxes;
-  reach_boxes.reserve(geometry.walls.size());
-  for (const auto& g : geometry.walls) {
-    reach_boxes.push_back(Box2::around(g.wall->start, g.wall->end)
-                              .grown(0.5 * g.wall->thickness + 2 * kJunctionTolerance));
-  }
-  const BoxGrid reach_grid(std::move(reach_boxes));
-
-  // Close the joints: an end that meets another wall continues to that wall's far side.
-  for (auto& g : geometry.walls) {
-    const Box2 ends = Box2::around(g.wall->start, g.wall->end);
-    for (int j : reach_grid.candidates(ends)) {
-      const WallGeometry& other = geometry.walls[std::size_t(j)];
-      if (&other == &g) continue;
-      if (auto e = extensionInto(g.wall->start, -g.axis, other)) {
-        g.extend_start = std::max(g.extend_start, *e);
-      }
-      if (auto e = extensionInto(g.wall->end, g.axis, other)) {
-        g.extend_end = std::max(g.extend_end, *e);
-      }
-    }
-  }
-
+  closeJoints(geometry.walls);
   std::vector<std::vector<Eigen::Vector2d>> cutters;
   std::vector<Box2> cutter_boxes;
   cutters.reserve(geometry.walls.size());
@@ -177,64 +244,13 @@ LevelGeometry computeLevelGeometry(const Level& level, const GeometryOptions& op
   const BoxGrid cutter_grid(cutter_boxes);
   std::unordered_map<std::string, std::vector<const Door*>> doors_by_wall;
   for (const auto& door : level.doors) doors_by_wall[door.wall].push_back(&door);
-
   for (std::size_t i = 0; i < geometry.walls.size(); ++i) {
     auto& g = geometry.walls[i];
     for (int side : {+1, -1}) {
-      WallFace& face = side > 0 ? g.left : g.right;
-      face.side = side;
-      const Eigen::Vector2d n2 = side * g.left_normal;
-      const Eigen::Vector2d on_face = g.facePointAt(side, 0.0);
-      face.plane = Plane::throughPoint({n2.x(), n2.y(), 0.0}, {on_face.x(), on_face.y(), 0.0});
-      face.z_min = level.elevation + g.wall->base;
-      face.z_max = level.elevation + g.wall->height;
-      face.exposed = {{-g.extend_start, g.length + g.extend_end}};
-      for (int j : cutter_grid.candidates(cutter_boxes[i])) {
-        if (std::size_t(j) == i) continue;
-        if (auto cut = clipLineToConvex(on_face, g.axis, -g.extend_start, g.length + g.extend_end,
-                                        cutters[std::size_t(j)])) {
-          subtractInterval(face.exposed, *cut);
-        }
-      }
-      for (const Door* door : doors_by_wall[g.wall->id]) {
-        face.openings.push_back(
-            {door->offset - 0.5 * door->width, door->offset + 0.5 * door->width});
-      }
-      std::sort(face.openings.begin(), face.openings.end(),
-                [](const AxisInterval& a, const AxisInterval& b) { return a.lo < b.lo; });
+      buildFace(level, g, side, i, cutters, cutter_boxes, cutter_grid, doors_by_wall[g.wall->id]);
     }
   }
-
-  const double min_cosine = std::cos(options.boundary_angle_deg * std::numbers::pi / 180.0);
-  for (const auto& room : level.rooms) {
-    const auto& outline = room.outline;
-    for (std::size_t e = 0; e < outline.size(); ++e) {
-      const Eigen::Vector2d& a = outline[e];
-      const Eigen::Vector2d& b = outline[(e + 1) % outline.size()];
-      const Eigen::Vector2d inward = perpendicular((b - a).normalized());
-      for (int j : cutter_grid.candidates(Box2::around(a, b).grown(options.boundary_distance))) {
-        const WallGeometry& g = geometry.walls[std::size_t(j)];
-        for (const WallFace* face : {&g.left, &g.right}) {
-          const Eigen::Vector2d n2 = face->plane.normal.head<2>();
-          if (n2.dot(inward) < min_cosine) continue;
-          const double da = std::abs(face->plane.signedDistance({a.x(), a.y(), 0.0}));
-          const double db = std::abs(face->plane.signedDistance({b.x(), b.y(), 0.0}));
-          if (da > options.boundary_distance || db > options.boundary_distance) continue;
-          const double sa = (a - g.wall->start).dot(g.axis);
-          const double sb = (b - g.wall->start).dot(g.axis);
-          const double lo = std::min(sa, sb);
-          const double hi = std::max(sa, sb);
-          double overlap = 0.0;
-          for (const auto& piece : face->exposed) {
-            overlap += std::max(0.0, std::min(hi, piece.hi) - std::max(lo, piece.lo));
-          }
-          if (overlap < options.boundary_min_overlap) continue;
-          geometry.boundaries.push_back(
-              {room.id, int(e), g.wall->id, face->side, overlap, 0.5 * (da + db)});
-        }
-      }
-    }
-  }
+  for (const auto& room : level.rooms) roomBoundaries(room, cutter_grid, options, geometry);
   return geometry;
 }
 

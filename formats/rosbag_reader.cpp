@@ -233,50 +233,100 @@ void RosbagReader::open() {
   readIndex(index_position, connection_count, chunk_count);
 }
 
+namespace {
+
+// The next record of the bag's index, at `at` in its bytes, which must be of kind `expected`.
+template <typename Fail>
+RecordAt indexRecord(const std::string& bytes, std::uint64_t index_position, std::uint64_t at,
+                     std::uint8_t expected, const Fail& fail) {
+  RecordAt record;
+  std::string error;
+  if (!recordIn(bytes, at, record, error)) fail(index_position + at, error);
+  if (record.op != expected)
+    fail(index_position + at, std::string("expected a ") + opName(expected) +
+                                  " record in the bag's index, found a " + opName(record.op) +
+                                  " record (op " + hexOp(record.op) + ")");
+  return record;
+}
+
+// A connection record of the index (at byte `offset` of the file): its number, topic and type.
+template <typename Fail>
+BagConnection connectionOf(const RecordAt& record, const std::string& bytes, std::uint64_t offset,
+                           const Fail& fail) {
+  BagConnection c;
+  if (!fieldValue(record.fields, "conn", c.id)) fail(offset, "a connection without conn");
+  Fields data;
+  std::string error;
+  if (!parseFields(std::string_view(bytes).substr(record.data_offset, record.data_size), data,
+                   error))
+    fail(offset, "connection " + std::to_string(c.id) + ": " + error);
+  auto text = [&](const char* name, bool required) {
+    const auto it = data.find(std::string_view(name));
+    if (it == data.end()) {
+      if (required)
+        fail(offset, "connection " + std::to_string(c.id) + " has no " + name + " field");
+      return std::string();
+    }
+    return it->second;
+  };
+  const auto topic = record.fields.find(std::string_view("topic"));
+  c.topic = topic != record.fields.end() ? topic->second : text("topic", true);
+  c.type.datatype = text("type", true);
+  c.type.md5sum = text("md5sum", true);
+  c.type.definition = text("message_definition", false);
+  c.callerid = text("callerid", false);
+  c.latching = text("latching", false) == "1";
+  return c;
+}
+
+// A chunk info record of the index: where its chunk is, its count per connection number (the
+// last given for a number), and the messages it adds to each (every count given).
+struct ChunkInfo {
+  std::uint64_t position = 0;
+  std::map<std::uint32_t, std::uint32_t> counts;
+  std::map<std::uint32_t, std::uint64_t> messages;
+};
+
+template <typename Fail>
+ChunkInfo chunkInfoOf(const RecordAt& record, const std::string& bytes, std::uint64_t offset,
+                      const std::map<std::uint32_t, std::size_t>& connection_by_id,
+                      const Fail& fail) {
+  ChunkInfo info;
+  std::uint32_t version = 0, count = 0;
+  if (!fieldValue(record.fields, "ver", version) || version != 1)
+    fail(offset, "a chunk info record of a version other than 1");
+  if (!fieldValue(record.fields, "chunk_pos", info.position) ||
+      !fieldValue(record.fields, "count", count))
+    fail(offset, "a chunk info without chunk_pos or count");
+  if (record.data_size != std::uint64_t(count) * 8)
+    fail(offset, "a chunk info's data is not its " + std::to_string(count) + " counts");
+  for (std::uint32_t k = 0; k < count; ++k) {
+    std::uint32_t pair[2];
+    std::memcpy(pair, bytes.data() + record.data_offset + 8 * k, 8);
+    if (!connection_by_id.count(pair[0]))
+      fail(offset, "a chunk info names connection " + std::to_string(pair[0]) +
+                       ", which the bag does not define");
+    info.counts[pair[0]] = pair[1];
+    info.messages[pair[0]] += pair[1];
+  }
+  return info;
+}
+
+}  // namespace
+
 void RosbagReader::readIndex(std::uint64_t index_position, std::uint32_t connection_count,
                              std::uint32_t chunk_count) {
   std::string bytes;
   if (!readAt(*in_, index_position, std::size_t(size_ - index_position), bytes))
     fail(index_position, "cannot read the bag's index");
+  const auto failAt = [this](std::uint64_t offset, const std::string& what) { fail(offset, what); };
   std::map<std::uint32_t, std::size_t> connection_by_id;
-  std::vector<std::map<std::uint32_t, std::uint32_t>> chunk_counts;
+  std::vector<std::size_t> chunk_connections;  // per chunk: how many connections it holds
   std::uint64_t at = 0;
-  auto next = [&](std::uint8_t expected) {
-    RecordAt record;
-    std::string error;
-    if (!recordIn(bytes, at, record, error)) fail(index_position + at, error);
-    if (record.op != expected)
-      fail(index_position + at, std::string("expected a ") + opName(expected) +
-                                    " record in the bag's index, found a " + opName(record.op) +
-                                    " record (op " + hexOp(record.op) + ")");
-    return record;
-  };
   for (std::uint32_t i = 0; i < connection_count; ++i) {
     const std::uint64_t offset = index_position + at;
-    const RecordAt record = next(rosbag::kConnection);
-    BagConnection c;
-    if (!fieldValue(record.fields, "conn", c.id)) fail(offset, "a connection without conn");
-    Fields data;
-    std::string error;
-    if (!parseFields(std::string_view(bytes).substr(record.data_offset, record.data_size), data,
-                     error))
-      fail(offset, "connection " + std::to_string(c.id) + ": " + error);
-    auto text = [&](const char* name, bool required) {
-      const auto it = data.find(std::string_view(name));
-      if (it == data.end()) {
-        if (required)
-          fail(offset, "connection " + std::to_string(c.id) + " has no " + name + " field");
-        return std::string();
-      }
-      return it->second;
-    };
-    const auto topic = record.fields.find(std::string_view("topic"));
-    c.topic = topic != record.fields.end() ? topic->second : text("topic", true);
-    c.type.datatype = text("type", true);
-    c.type.md5sum = text("md5sum", true);
-    c.type.definition = text("message_definition", false);
-    c.callerid = text("callerid", false);
-    c.latching = text("latching", false) == "1";
+    const RecordAt record = indexRecord(bytes, index_position, at, rosbag::kConnection, failAt);
+    BagConnection c = connectionOf(record, bytes, offset, failAt);
     if (!connection_by_id.emplace(c.id, connections_.size()).second)
       fail(offset, "connection " + std::to_string(c.id) + " is defined twice");
     connections_.push_back(std::move(c));
@@ -284,55 +334,21 @@ void RosbagReader::readIndex(std::uint64_t index_position, std::uint32_t connect
   }
   for (std::uint32_t i = 0; i < chunk_count; ++i) {
     const std::uint64_t offset = index_position + at;
-    const RecordAt record = next(rosbag::kChunkInfo);
-    Chunk chunk;
-    std::uint32_t version = 0, count = 0;
-    if (!fieldValue(record.fields, "ver", version) || version != 1)
-      fail(offset, "a chunk info record of a version other than 1");
-    if (!fieldValue(record.fields, "chunk_pos", chunk.position) ||
-        !fieldValue(record.fields, "count", count))
-      fail(offset, "a chunk info without chunk_pos or count");
-    if (record.data_size != std::uint64_t(count) * 8)
-      fail(offset, "a chunk info's data is not its " + std::to_string(count) + " counts");
-    std::map<std::uint32_t, std::uint32_t> counts;
-    for (std::uint32_t k = 0; k < count; ++k) {
-      std::uint32_t pair[2];
-      std::memcpy(pair, bytes.data() + record.data_offset + 8 * k, 8);
-      if (!connection_by_id.count(pair[0]))
-        fail(offset, "a chunk info names connection " + std::to_string(pair[0]) +
-                         ", which the bag does not define");
-      counts[pair[0]] = pair[1];
-      connections_[connection_by_id[pair[0]]].messages += pair[1];
+    const RecordAt record = indexRecord(bytes, index_position, at, rosbag::kChunkInfo, failAt);
+    const ChunkInfo info = chunkInfoOf(record, bytes, offset, connection_by_id, failAt);
+    for (const auto& [connection, messages] : info.messages) {
+      connections_[connection_by_id[connection]].messages += messages;
     }
+    Chunk chunk;
+    chunk.position = info.position;
     chunks_.push_back(chunk);
-    chunk_counts.push_back(std::move(counts));
+    chunk_connections.push_back(info.counts.size());
     at = record.end;
   }
   // Each chunk's record and the index records that follow it: every message's time and place.
   for (std::uint32_t k = 0; k < chunks_.size(); ++k) {
-    Chunk& chunk = chunks_[k];
-    const std::uint64_t position = chunk.position;
-    if (position < std::strlen(rosbag::kVersionLine) || position >= size_)
-      fail(index_position,
-           "a chunk info points outside the file (byte " + std::to_string(position) + ")");
-    RecordAt record;
-    std::string error;
-    if (!fileRecord(*in_, size_, position, record, error)) fail(position, error);
-    if (record.op != rosbag::kChunk)
-      fail(position, "a chunk info points at a record that is not a chunk");
-    const auto compression = record.fields.find(std::string_view("compression"));
-    if (compression == record.fields.end() || !fieldValue(record.fields, "size", chunk.size))
-      fail(position, "a chunk without compression or size");
-    chunk.compression = compression->second;
-    if (chunk.compression != "none" && chunk.compression != "bz2" && chunk.compression != "lz4")
-      fail(position, "chunk compression \"" + chunk.compression +
-                         "\" is not supported (none, bz2 and lz4 are)");
-    if (std::find(compressions_.begin(), compressions_.end(), chunk.compression) ==
-        compressions_.end())
-      compressions_.push_back(chunk.compression);
-    chunk.data_offset = record.data_offset;
-    chunk.data_size = record.data_size;
-    readChunkIndex(k, std::uint32_t(chunk_counts[k].size()));
+    readChunkRecord(k, index_position);
+    readChunkIndex(k, std::uint32_t(chunk_connections[k]));
   }
   // Which connection each entry is, as an index into connections_.
   for (Entry& e : entries_) {
@@ -349,6 +365,31 @@ void RosbagReader::readIndex(std::uint64_t index_position, std::uint32_t connect
     if (a.time < b.time || b.time < a.time) return a.time < b.time;
     return connections_[a.connection].id < connections_[b.connection].id;
   });
+}
+
+void RosbagReader::readChunkRecord(std::uint32_t k, std::uint64_t index_position) {
+  Chunk& chunk = chunks_[k];
+  const std::uint64_t position = chunk.position;
+  if (position < std::strlen(rosbag::kVersionLine) || position >= size_)
+    fail(index_position,
+         "a chunk info points outside the file (byte " + std::to_string(position) + ")");
+  RecordAt record;
+  std::string error;
+  if (!fileRecord(*in_, size_, position, record, error)) fail(position, error);
+  if (record.op != rosbag::kChunk)
+    fail(position, "a chunk info points at a record that is not a chunk");
+  const auto compression = record.fields.find(std::string_view("compression"));
+  if (compression == record.fields.end() || !fieldValue(record.fields, "size", chunk.size))
+    fail(position, "a chunk without compression or size");
+  chunk.compression = compression->second;
+  if (chunk.compression != "none" && chunk.compression != "bz2" && chunk.compression != "lz4")
+    fail(position, "chunk compression \"" + chunk.compression +
+                       "\" is not supported (none, bz2 and lz4 are)");
+  if (std::find(compressions_.begin(), compressions_.end(), chunk.compression) ==
+      compressions_.end())
+    compressions_.push_back(chunk.compression);
+  chunk.data_offset = record.data_offset;
+  chunk.data_size = record.data_size;
 }
 
 void RosbagReader::readChunkIndex(std::uint32_t k, std::uint32_t index_records) {

@@ -80,6 +80,8 @@ class RosbagReader {
   void open();
   void readIndex(std::uint64_t index_position, std::uint32_t connection_count,
                  std::uint32_t chunk_count);
+  // A chunk's record: its compression, sizes and where its data is (its info gave its position).
+  void readChunkRecord(std::uint32_t chunk, std::uint64_t index_position);
   void readChunkIndex(std::uint32_t chunk, std::uint32_t index_records);
   const std::string& loadChunk(std::uint32_t chunk);
   [[noreturn]] void fail(std::uint64_t offset, const std::string& what) const;

@@ -89,15 +89,12 @@ std::optional<Bounds> boundsOf(const Mesh& body) {
   return b;
 }
 
-std::optional<WallFit> fitWall(const Mesh& body, const Eigen::Vector2d& preferred_axis) {
-  std::vector<Vec2> points;
-  for (const auto& face : body) {
-    for (const auto& p : face) points.push_back(p.head<2>());
-  }
-  const std::vector<Vec2> hull = convexHull(points);
-  if (hull.size() < 3) return std::nullopt;
+namespace {
 
-  // The smallest rectangle has a side along an edge of the hull.
+// The smallest rectangle about the hull (it has a side along an edge of the hull), or the one
+// along `preferred_axis` when that is within 2 % of it; its u along the long side unless the
+// preferred direction was kept.
+Rectangle wallRectangle(const std::vector<Vec2>& hull, const Eigen::Vector2d& preferred_axis) {
   Rectangle best;
   double best_area = std::numeric_limits<double>::infinity();
   for (std::size_t i = 0; i < hull.size(); ++i) {
@@ -110,39 +107,37 @@ std::optional<WallFit> fitWall(const Mesh& body, const Eigen::Vector2d& preferre
     const Rectangle r = rectangleAlong(hull, preferred_axis.normalized());
     if (r.area() <= best_area * 1.02 + 1e-9) best = r;
   }
-  // The axis runs along the long side unless the preferred direction was kept.
   const bool kept_preferred = preferred_axis.norm() > 1e-9 &&
                               best.u.dot(preferred_axis) / preferred_axis.norm() > 1.0 - 1e-12;
   if (!kept_preferred && best.v_max - best.v_min > best.u_max - best.u_min) {
     const Vec2 u(-best.u.y(), best.u.x());  // the long side's direction
     best = rectangleAlong(hull, u);
   }
+  return best;
+}
+
+// Where vertical planes across the wall at stations along it cut the faces' edges: per
+// station, the highest and lowest z and the span across the wall.
+struct Sections {
+  std::vector<double> stations;
+  std::vector<double> top, bottom, across_min, across_max;
+};
+
+Sections sectionsOf(const Mesh& body, const Rectangle& best) {
   const Vec2 u = best.u;
   const Vec2 v(-u.y(), u.x());
-  const double mid_v = 0.5 * (best.v_min + best.v_max);
-
-  WallFit fit;
-  fit.start = u * best.u_min + v * mid_v;
-  fit.end = u * best.u_max + v * mid_v;
-  fit.thickness = best.v_max - best.v_min;
-
-  // Footprint over rectangle: a closed body's faces seen from above cover its footprint twice
-  // (once from the top, once from the bottom), whichever way a tool turned their normals.
-  double projected_area = 0.0;
-  for (const auto& face : body) projected_area += std::abs(faceNormal(face).z());
-  fit.rectangle_fill = best.area() > 0 ? std::min(1.0, 0.5 * projected_area / best.area()) : 0.0;
-
-  // Top and bottom along the axis: where a vertical plane across the wall at station t cuts
-  // the faces' edges.
   const double length = best.u_max - best.u_min;
   const double inset = std::min(0.02, length / 4);
   const int stations = std::clamp(static_cast<int>(std::ceil(length / 0.05)), 8, 400);
   const double inf = std::numeric_limits<double>::infinity();
-  std::vector<double> top(stations, -inf), bottom(stations, inf);
-  std::vector<double> across_min(stations, inf), across_max(stations, -inf);
-  auto stationAt = [&](int k) {
-    return best.u_min + inset + (length - 2 * inset) * k / double(stations - 1);
-  };
+  Sections s{{},
+             std::vector<double>(stations, -inf),
+             std::vector<double>(stations, inf),
+             std::vector<double>(stations, inf),
+             std::vector<double>(stations, -inf)};
+  for (int k = 0; k < stations; ++k) {
+    s.stations.push_back(best.u_min + inset + (length - 2 * inset) * k / double(stations - 1));
+  }
   for (const auto& face : body) {
     double f_min = inf, f_max = -inf;
     for (const auto& p : face) {
@@ -150,7 +145,7 @@ std::optional<WallFit> fitWall(const Mesh& body, const Eigen::Vector2d& preferre
       f_min = std::min(f_min, t), f_max = std::max(f_max, t);
     }
     for (int k = 0; k < stations; ++k) {
-      const double t = stationAt(k);
+      const double t = s.stations[k];
       if (t < f_min || t > f_max) continue;
       for (std::size_t i = 0; i < face.size(); ++i) {
         const auto& a = face[i];
@@ -167,29 +162,68 @@ std::optional<WallFit> fitWall(const Mesh& body, const Eigen::Vector2d& preferre
           z_lo = z_hi = a.z() + (b.z() - a.z()) * f;
           v_lo = v_hi = va + (vb - va) * f;
         }
-        across_min[k] = std::min(across_min[k], v_lo);
-        across_max[k] = std::max(across_max[k], v_hi);
-        top[k] = std::max(top[k], z_hi);
-        bottom[k] = std::min(bottom[k], z_lo);
+        s.across_min[k] = std::min(s.across_min[k], v_lo);
+        s.across_max[k] = std::max(s.across_max[k], v_hi);
+        s.top[k] = std::max(s.top[k], z_hi);
+        s.bottom[k] = std::min(s.bottom[k], z_lo);
       }
     }
   }
+  return s;
+}
+
+// How straight the wall is: its narrowest section over its thickness (away from its ends) for a
+// long wall, from how much of its rectangle it fills for a short one.
+double straightnessOf(const WallFit& fit, const Rectangle& best, const Sections& s) {
+  const double length = best.u_max - best.u_min;
+  const double inf = std::numeric_limits<double>::infinity();
   if (length > 3 * fit.thickness) {
     double narrowest = inf;
-    for (int k = 0; k < stations; ++k) {
-      const double t = stationAt(k);
+    for (std::size_t k = 0; k < s.stations.size(); ++k) {
+      const double t = s.stations[k];
       if (t < best.u_min + fit.thickness || t > best.u_max - fit.thickness) continue;
-      narrowest = std::min(narrowest, std::max(0.0, across_max[k] - across_min[k]));
+      narrowest = std::min(narrowest, std::max(0.0, s.across_max[k] - s.across_min[k]));
     }
-    if (narrowest < inf) fit.straightness = narrowest / fit.thickness;
-  } else if (length > 0) {
-    const double least_fill = 1.0 - std::min(fit.thickness, length) / length;
-    fit.straightness =
-        least_fill > 0 ? std::min(1.0, fit.rectangle_fill / least_fill) : fit.rectangle_fill;
+    return narrowest < inf ? narrowest / fit.thickness : fit.straightness;
   }
+  if (length > 0) {
+    const double least_fill = 1.0 - std::min(fit.thickness, length) / length;
+    return least_fill > 0 ? std::min(1.0, fit.rectangle_fill / least_fill) : fit.rectangle_fill;
+  }
+  return fit.straightness;
+}
+
+}  // namespace
+
+std::optional<WallFit> fitWall(const Mesh& body, const Eigen::Vector2d& preferred_axis) {
+  std::vector<Vec2> points;
+  for (const auto& face : body) {
+    for (const auto& p : face) points.push_back(p.head<2>());
+  }
+  const std::vector<Vec2> hull = convexHull(points);
+  if (hull.size() < 3) return std::nullopt;
+  const Rectangle best = wallRectangle(hull, preferred_axis);
+  const Vec2 u = best.u;
+  const Vec2 v(-u.y(), u.x());
+  const double mid_v = 0.5 * (best.v_min + best.v_max);
+  WallFit fit;
+  fit.start = u * best.u_min + v * mid_v;
+  fit.end = u * best.u_max + v * mid_v;
+  fit.thickness = best.v_max - best.v_min;
+  // Footprint over rectangle: a closed body's faces seen from above cover its footprint twice
+  // (once from the top, once from the bottom), whichever way a tool turned their normals.
+  double projected_area = 0.0;
+  for (const auto& face : body) projected_area += std::abs(faceNormal(face).z());
+  fit.rectangle_fill = best.area() > 0 ? std::min(1.0, 0.5 * projected_area / best.area()) : 0.0;
+  // Top and bottom along the axis: where a vertical plane across the wall at each station cuts
+  // the faces' edges.
+  const Sections sections = sectionsOf(body, best);
+  fit.straightness = straightnessOf(fit, best, sections);
   std::vector<double> tops, bottoms;
-  for (int k = 0; k < stations; ++k) {
-    if (top[k] > bottom[k]) tops.push_back(top[k]), bottoms.push_back(bottom[k]);
+  for (std::size_t k = 0; k < sections.stations.size(); ++k) {
+    if (sections.top[k] > sections.bottom[k]) {
+      tops.push_back(sections.top[k]), bottoms.push_back(sections.bottom[k]);
+    }
   }
   if (tops.empty()) return std::nullopt;
   fit.top = *std::min_element(tops.begin(), tops.end());
@@ -265,17 +299,20 @@ std::optional<AxisExtent> extentAlong(const Mesh& body, const Eigen::Vector2d& s
   return e;
 }
 
-std::optional<Footprint> footprintOf(const Mesh& body) {
-  const auto bounds = boundsOf(body);
-  if (!bounds) return std::nullopt;
-  const double z0 = bounds->min.z();
-  // Vertices welded to the millimetre: a key per vertex.
-  using Key = std::pair<long long, long long>;
-  auto keyOf = [](const Eigen::Vector3d& p) {
-    return Key{std::llround(p.x() * 1000.0), std::llround(p.y() * 1000.0)};
-  };
-  std::map<Key, Vec2> position;
-  std::vector<std::pair<Key, Key>> directed;  // the downward faces' edges, seen from above CCW
+namespace {
+
+// Vertices welded to the millimetre: a key per vertex.
+using Key = std::pair<long long, long long>;
+using Edge = std::pair<Key, Key>;
+
+Key keyOf(const Eigen::Vector3d& p) {
+  return Key{std::llround(p.x() * 1000.0), std::llround(p.y() * 1000.0)};
+}
+
+// The edges of the body's downward faces at its bottom (within 2 cm of z0), seen from above
+// counter-clockwise, and each welded vertex's position.
+std::vector<Edge> bottomEdges(const Mesh& body, double z0, std::map<Key, Vec2>& position) {
+  std::vector<Edge> directed;
   for (const auto& face : body) {
     if (face.size() < 3) continue;
     const Eigen::Vector3d n = faceNormal(face);
@@ -294,34 +331,42 @@ std::optional<Footprint> footprintOf(const Mesh& body) {
       directed.emplace_back(a, b);
     }
   }
-  // An edge with another face's vertex on it (a T-junction: one long side against two short
-  // ones) is split there, so that shared sides cancel whatever way the faces were cut. Bounded:
-  // beyond 4 million edge-vertex pairs the faces are taken as they are.
-  std::vector<std::pair<Key, Key>> split;
-  if (directed.size() * position.size() <= 4'000'000) {
-    for (const auto& [a, b] : directed) {
-      const Vec2 pa = position[a], pb = position[b];
-      const Vec2 d = pb - pa;
-      const double length = d.norm();
-      std::vector<std::pair<double, Key>> inner;
-      for (const auto& [key, p] : position) {
-        if (key == a || key == b) continue;
-        const double t = (p - pa).dot(d) / (length * length);
-        if (t <= 0 || t >= 1) continue;
-        if (bim::distanceToSegment(p, pa, pb) < 1e-3) inner.emplace_back(t, key);
-      }
-      std::sort(inner.begin(), inner.end());
-      Key from = a;
-      for (const auto& [t, key] : inner) {
-        split.emplace_back(from, key);
-        from = key;
-      }
-      split.emplace_back(from, b);
+  return directed;
+}
+
+// An edge with another face's vertex on it (a T-junction: one long side against two short ones)
+// split there, so that shared sides cancel whatever way the faces were cut. Bounded: beyond
+// 4 million edge-vertex pairs the faces are taken as they are.
+std::vector<Edge> splitAtJunctions(const std::vector<Edge>& directed,
+                                   std::map<Key, Vec2>& position) {
+  if (directed.size() * position.size() > 4'000'000) return directed;
+  std::vector<Edge> split;
+  for (const auto& [a, b] : directed) {
+    const Vec2 pa = position[a], pb = position[b];
+    const Vec2 d = pb - pa;
+    const double length = d.norm();
+    std::vector<std::pair<double, Key>> inner;
+    for (const auto& [key, p] : position) {
+      if (key == a || key == b) continue;
+      const double t = (p - pa).dot(d) / (length * length);
+      if (t <= 0 || t >= 1) continue;
+      if (bim::distanceToSegment(p, pa, pb) < 1e-3) inner.emplace_back(t, key);
     }
-  } else {
-    split = directed;
+    std::sort(inner.begin(), inner.end());
+    Key from = a;
+    for (const auto& [t, key] : inner) {
+      split.emplace_back(from, key);
+      from = key;
+    }
+    split.emplace_back(from, b);
   }
-  std::map<std::pair<Key, Key>, int> edges;  // directed edge → count (a reversed twin cancels)
+  return split;
+}
+
+// The boundary edges chained into closed loops (an edge and its reversed twin cancel).
+std::vector<std::vector<Vec2>> loopsOf(const std::vector<Edge>& split,
+                                       std::map<Key, Vec2>& position) {
+  std::map<Edge, int> edges;  // directed edge → count
   for (const auto& [a, b] : split) {
     auto twin = edges.find({b, a});
     if (twin != edges.end()) {
@@ -330,7 +375,6 @@ std::optional<Footprint> footprintOf(const Mesh& body) {
       ++edges[{a, b}];
     }
   }
-  // Chain the boundary edges into loops.
   std::multimap<Key, Key> next;
   for (const auto& [edge, count] : edges) {
     for (int i = 0; i < count; ++i) next.emplace(edge.first, edge.second);
@@ -356,15 +400,11 @@ std::optional<Footprint> footprintOf(const Mesh& body) {
     }
     if (closed && loop.size() >= 3) loops.push_back(std::move(loop));
   }
-  if (loops.empty()) return std::nullopt;
-  std::size_t largest = 0;
-  for (std::size_t i = 1; i < loops.size(); ++i) {
-    if (std::abs(bim::signedArea(loops[i])) > std::abs(bim::signedArea(loops[largest]))) {
-      largest = i;
-    }
-  }
-  std::vector<Vec2> outline = loops[largest];
-  // Collinear vertices (within 1 mm of the line through their neighbours) removed.
+  return loops;
+}
+
+// Collinear vertices (within 1 mm of the line through their neighbours) removed; counter-clockwise.
+std::vector<Vec2> simplifiedOutline(std::vector<Vec2> outline) {
   for (bool removed = true; removed && outline.size() > 3;) {
     removed = false;
     for (std::size_t i = 0; i < outline.size() && outline.size() > 3; ++i) {
@@ -377,8 +417,28 @@ std::optional<Footprint> footprintOf(const Mesh& body) {
     }
   }
   if (bim::signedArea(outline) < 0) std::reverse(outline.begin(), outline.end());
+  return outline;
+}
+
+}  // namespace
+
+std::optional<Footprint> footprintOf(const Mesh& body) {
+  const auto bounds = boundsOf(body);
+  if (!bounds) return std::nullopt;
+  const double z0 = bounds->min.z();
+  std::map<Key, Vec2> position;
+  const std::vector<Edge> directed = bottomEdges(body, z0, position);
+  const std::vector<std::vector<Vec2>> loops =
+      loopsOf(splitAtJunctions(directed, position), position);
+  if (loops.empty()) return std::nullopt;
+  std::size_t largest = 0;
+  for (std::size_t i = 1; i < loops.size(); ++i) {
+    if (std::abs(bim::signedArea(loops[i])) > std::abs(bim::signedArea(loops[largest]))) {
+      largest = i;
+    }
+  }
   Footprint footprint;
-  footprint.outline = std::move(outline);
+  footprint.outline = simplifiedOutline(loops[largest]);
   footprint.z = z0;
   footprint.loops = static_cast<int>(loops.size());
   return footprint;

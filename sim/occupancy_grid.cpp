@@ -101,6 +101,49 @@ OccupancyGrid::OccupancyGrid(const bim::Plan& plan, const bim::AsBuilt& as_built
   const bim::Level& plan_level = *plan.findLevel(level_id);
   const bim::Level level = worlds::asBuiltLevel(plan_level, as_built);
   const bim::LevelGeometry geometry = bim::computeLevelGeometry(level);
+  frame(level, geometry, resolution);
+  for (const auto& room : level.rooms) {
+    paint(room.outline, false);
+  }
+  clearPlannedWalls(plan_level, as_built);
+  // A wall blocks where it stands lower than the robot can pass under.
+  constexpr double kRobotHeight = 0.9;
+  for (const auto& g : geometry.walls) {
+    if (g.wall->base > kRobotHeight) continue;
+    const auto footprint = g.footprint();
+    paint(footprint, true);
+  }
+  for (const auto& door : level.doors) {
+    const bool closed = std::find(as_built.closed_doors.begin(), as_built.closed_doors.end(),
+                                  door.id) != as_built.closed_doors.end();
+    const bool to_outside = door.rooms[0] == bim::kOutside || door.rooms[1] == bim::kOutside;
+    if (closed || to_outside) continue;
+    const bim::WallGeometry& g = *geometry.findWall(door.wall);
+    const auto opening = rectangle(g.pointAt(door.offset), g.axis, 0.5 * door.width,
+                                   0.5 * g.wall->thickness + resolution_);
+    paint(opening, false);
+  }
+  paintFlights(plan, plan_level);
+  for (const auto& c : as_built.clutter) {
+    if (c.level != level_id) continue;
+    const auto box = rectangle(c.center.head<2>(), {std::cos(c.yaw), std::sin(c.yaw)},
+                               0.5 * c.size.x(), 0.5 * c.size.y());
+    paint(box, true);
+  }
+  // Clearance: exact Euclidean distance to the nearest blocked cell.
+  const std::vector<double> field = bim::squaredDistanceTransform(blocked_, width_, height_);
+  clearance_.resize(field.size());
+  for (std::size_t i = 0; i < field.size(); ++i) {
+    // Centre-to-centre distances can overstate the distance from a point of this cell to the
+    // obstacle's true surface by up to one cell diagonal: subtract it, so the clearance is a
+    // lower bound everywhere in the cell.
+    const double d = std::sqrt(field[i]) * resolution_ - std::sqrt(2.0) * resolution_;
+    clearance_[i] = float(std::max(0.0, d));
+  }
+}
+
+void OccupancyGrid::frame(const bim::Level& level, const bim::LevelGeometry& geometry,
+                          double resolution) {
   Eigen::Vector2d lo = Eigen::Vector2d::Constant(std::numeric_limits<double>::infinity()), hi = -lo;
   for (const auto& g : geometry.walls) {
     for (const auto& p : g.footprint()) {
@@ -122,14 +165,13 @@ OccupancyGrid::OccupancyGrid(const bim::Plan& plan, const bim::AsBuilt& as_built
   width_ = int(std::ceil((hi.x() - origin_.x()) / resolution_)) + 2;
   height_ = int(std::ceil((hi.y() - origin_.y()) / resolution_)) + 2;
   blocked_.assign(std::size_t(width_) * height_, 1);
+}
 
-  for (const auto& room : level.rooms) {
-    paint(room.outline, false);
-  }
+void OccupancyGrid::clearPlannedWalls(const bim::Level& plan_level, const bim::AsBuilt& as_built) {
   // Where a wall of the plan is missing in the building, its footprint is floor: the rooms on
   // either side join, as in the world. Where it is shifted or turned, the part of its planned
   // footprint it left is floor too: left blocked, that strip would lie across each of its doorways
-  // and shut them. (Walls as they stand are painted over it below.)
+  // and shut them. (Walls as they stand are painted over it.)
   const bim::LevelGeometry plan_geometry = bim::computeLevelGeometry(plan_level);
   for (const auto& g : plan_geometry.walls) {
     const std::string& id = g.wall->id;
@@ -143,27 +185,12 @@ OccupancyGrid::OccupancyGrid(const bim::Plan& plan, const bim::AsBuilt& as_built
                     [&](const bim::WallRotation& r) { return r.wall == id && r.angle_deg != 0; });
     if (missing || shifted || turned) paint(g.footprint(), false);
   }
-  // A wall blocks where it stands lower than the robot can pass under.
-  constexpr double kRobotHeight = 0.9;
-  for (const auto& g : geometry.walls) {
-    if (g.wall->base > kRobotHeight) continue;
-    const auto footprint = g.footprint();
-    paint(footprint, true);
-  }
-  for (const auto& door : level.doors) {
-    const bool closed = std::find(as_built.closed_doors.begin(), as_built.closed_doors.end(),
-                                  door.id) != as_built.closed_doors.end();
-    const bool to_outside = door.rooms[0] == bim::kOutside || door.rooms[1] == bim::kOutside;
-    if (closed || to_outside) continue;
-    const bim::WallGeometry& g = *geometry.findWall(door.wall);
-    const auto opening = rectangle(g.pointAt(door.offset), g.axis, 0.5 * door.width,
-                                   0.5 * g.wall->thickness + resolution_);
-    paint(opening, false);
-  }
+}
+
+void OccupancyGrid::paintFlights(const bim::Plan& plan, const bim::Level& plan_level) {
   // Flights of stairs are no floor to walk on for a route on one level: below, the steps stand
   // there; above, the stairwell is open over the box of the flight's upper part (as the world
-  // opens it). A route
-  // that changes level walks the flight itself (sim/route_planner.cpp).
+  // opens it). A route that changes level walks the flight itself (sim/route_planner.cpp).
   for (const auto& from : plan.levels) {
     for (const auto& stair : from.stairs) {
       const bim::Level* to = plan.findLevel(stair.to);
@@ -177,23 +204,6 @@ OccupancyGrid::OccupancyGrid(const bim::Plan& plan, const bim::AsBuilt& as_built
       const bim::Box2 box = bim::Box2::around(g.openingFootprint());
       paint({box.lo, {box.hi.x(), box.lo.y()}, box.hi, {box.lo.x(), box.hi.y()}}, true);
     }
-  }
-  for (const auto& c : as_built.clutter) {
-    if (c.level != level_id) continue;
-    const auto box = rectangle(c.center.head<2>(), {std::cos(c.yaw), std::sin(c.yaw)},
-                               0.5 * c.size.x(), 0.5 * c.size.y());
-    paint(box, true);
-  }
-
-  // Clearance: exact Euclidean distance to the nearest blocked cell.
-  const std::vector<double> field = bim::squaredDistanceTransform(blocked_, width_, height_);
-  clearance_.resize(field.size());
-  for (std::size_t i = 0; i < field.size(); ++i) {
-    // Centre-to-centre distances can overstate the distance from a point of this cell to the
-    // obstacle's true surface by up to one cell diagonal: subtract it, so the clearance is a
-    // lower bound everywhere in the cell.
-    const double d = std::sqrt(field[i]) * resolution_ - std::sqrt(2.0) * resolution_;
-    clearance_[i] = float(std::max(0.0, d));
   }
 }
 

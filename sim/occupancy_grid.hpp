@@ -4,6 +4,7 @@
 #include <vector>
 
 #include "bim/plan.hpp"
+#include "bim/plan_geometry.hpp"
 #include "bim/scenario.hpp"
 
 namespace isg::sim {
@@ -41,6 +42,12 @@ class OccupancyGrid {
   int index(const Eigen::Vector2i& c) const { return c.y() * width_ + c.x(); }
   // Sets every cell whose centre bim::containsPoint puts inside `polygon`.
   void paint(const std::vector<Eigen::Vector2d>& polygon, bool blocked);
+  // The grid's origin, size and resolution over the level's walls and rooms, every cell blocked.
+  void frame(const bim::Level& level, const bim::LevelGeometry& geometry, double resolution);
+  // The planned footprints of walls missing, shifted or turned as built painted as floor.
+  void clearPlannedWalls(const bim::Level& plan_level, const bim::AsBuilt& as_built);
+  // The flights of stairs that start or end on the level blocked (their steps, or the stairwell).
+  void paintFlights(const bim::Plan& plan, const bim::Level& plan_level);
 
   double resolution_;
   Eigen::Vector2d origin_;  // xy of cell (0, 0)'s corner

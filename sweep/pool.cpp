@@ -157,12 +157,14 @@ std::string moveCellAside(const std::string& sweep_dir, const SweepCell& cell) {
   return relative.string();
 }
 
-PoolOutcome runCells(const std::string& sweep_dir, const std::vector<SweepCell>& cells,
-                     const std::vector<std::size_t>& indices, int jobs, bool quiet) {
-  // This very executable, even if a rebuild has replaced its file since the sweep started.
-  const std::string isg = "/proc/self/exe";
-  const fs::path dir = fs::absolute(sweep_dir);
-  PoolOutcome outcome;
+namespace {
+
+// The cells still to run: finished ones skipped (their stale failure records removed), damaged
+// ones moved aside and run again.
+std::vector<std::size_t> pendingCells(const std::string& sweep_dir,
+                                      const std::vector<SweepCell>& cells,
+                                      const std::vector<std::size_t>& indices,
+                                      PoolOutcome& outcome) {
   std::vector<std::size_t> pending;
   for (std::size_t i : indices) {
     const CellCheck check = checkCell(sweep_dir, cells[i]);
@@ -180,6 +182,55 @@ PoolOutcome runCells(const std::string& sweep_dir, const std::vector<SweepCell>&
     }
     pending.push_back(i);
   }
+  return pending;
+}
+
+// A cell whose child ended with `status` after `seconds`: finished (its folder is this cell's),
+// or failed with its record beside it. Returns the line that says which.
+std::string cellEnded(const std::string& sweep_dir, const fs::path& dir, const SweepCell& cell,
+                      int status, double seconds, PoolOutcome& outcome, double& seconds_run) {
+  const fs::path log = dir / "logs" / (cell.dir + ".log");
+  const CellCheck check = checkCell(sweep_dir, cell);
+  const bool ok =
+      WIFEXITED(status) && WEXITSTATUS(status) == 0 && check.state == CellCheck::State::kFinished;
+  if (ok) {
+    ++outcome.finished;
+    seconds_run += seconds;
+    std::error_code ignored;
+    fs::remove(failureRecordPath(sweep_dir, cell), ignored);
+    return "done in " + duration(seconds);
+  }
+  ++outcome.failed;
+  auto lines = lastLines(log, 20);
+  if (WIFEXITED(status) && WEXITSTATUS(status) == 0) {
+    // The run ended well but its folder is not this cell's (its world changed meanwhile).
+    lines.push_back("isg sweep: the run folder is not this cell's: " +
+                    (check.why.empty() ? std::string("missing") : check.why));
+  }
+  nlohmann::json record = {{"world", cell.world},
+                           {"method", cell.method},
+                           {"seed", cell.seed},
+                           {"command", quoted(cell.arguments)},
+                           {"log", "logs/" + cell.dir + ".log"},
+                           {"seconds", std::round(seconds * 10) / 10},
+                           {"error", lines}};
+  if (WIFEXITED(status)) record["exit_code"] = WEXITSTATUS(status);
+  if (WIFSIGNALED(status)) record["signal"] = WTERMSIG(status);
+  common::writeFileAtomically(failureRecordPath(sweep_dir, cell), record.dump(1) + "\n");
+  std::string reason = WIFEXITED(status) ? "exit " + std::to_string(WEXITSTATUS(status))
+                                         : "signal " + std::to_string(WTERMSIG(status));
+  return "FAILED (" + reason + ")" + (lines.empty() ? "" : ": " + lines.back());
+}
+
+}  // namespace
+
+PoolOutcome runCells(const std::string& sweep_dir, const std::vector<SweepCell>& cells,
+                     const std::vector<std::size_t>& indices, int jobs, bool quiet) {
+  // This very executable, even if a rebuild has replaced its file since the sweep started.
+  const std::string isg = "/proc/self/exe";
+  const fs::path dir = fs::absolute(sweep_dir);
+  PoolOutcome outcome;
+  const std::vector<std::size_t> pending = pendingCells(sweep_dir, cells, indices, outcome);
   const std::size_t total = indices.size();
   if (!quiet && outcome.skipped > 0) {
     std::fprintf(stderr, "isg sweep: %d of %zu cells finished before; running the other %zu\n",
@@ -231,40 +282,8 @@ PoolOutcome runCells(const std::string& sweep_dir, const std::vector<SweepCell>&
       running.erase(pid);
       const SweepCell& cell = cells[r.index];
       const double seconds = std::chrono::duration<double>(Clock::now() - r.start).count();
-      const fs::path log = dir / "logs" / (cell.dir + ".log");
-      const CellCheck check = checkCell(sweep_dir, cell);
-      const bool ok = WIFEXITED(status) && WEXITSTATUS(status) == 0 &&
-                      check.state == CellCheck::State::kFinished;
-      std::string what;
-      if (ok) {
-        ++outcome.finished;
-        seconds_run += seconds;
-        std::error_code ignored;
-        fs::remove(failureRecordPath(sweep_dir, cell), ignored);
-        what = "done in " + duration(seconds);
-      } else {
-        ++outcome.failed;
-        auto lines = lastLines(log, 20);
-        if (WIFEXITED(status) && WEXITSTATUS(status) == 0) {
-          // The run ended well but its folder is not this cell's (its world changed meanwhile).
-          lines.push_back("isg sweep: the run folder is not this cell's: " +
-                          (check.why.empty() ? std::string("missing") : check.why));
-        }
-        nlohmann::json record = {{"world", cell.world},
-                                 {"method", cell.method},
-                                 {"seed", cell.seed},
-                                 {"command", quoted(cell.arguments)},
-                                 {"log", "logs/" + cell.dir + ".log"},
-                                 {"seconds", std::round(seconds * 10) / 10},
-                                 {"error", lines}};
-        if (WIFEXITED(status)) record["exit_code"] = WEXITSTATUS(status);
-        if (WIFSIGNALED(status)) record["signal"] = WTERMSIG(status);
-        common::writeFileAtomically(failureRecordPath(sweep_dir, cell), record.dump(1) + "\n");
-        std::string reason = WIFEXITED(status) ? "exit " + std::to_string(WEXITSTATUS(status))
-                                               : "signal " + std::to_string(WTERMSIG(status));
-        what = "FAILED (" + reason + ")" + (lines.empty() ? "" : ": " + lines.back());
-      }
-      report = cell.dir + " " + what;
+      report =
+          cell.dir + " " + cellEnded(sweep_dir, dir, cell, status, seconds, outcome, seconds_run);
     }
     printReport();
   } catch (...) {

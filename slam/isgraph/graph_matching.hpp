@@ -4,6 +4,7 @@
 #include <array>
 #include <nlohmann/json.hpp>
 #include <optional>
+#include <set>
 #include <string>
 #include <unordered_map>
 #include <utility>
@@ -261,6 +262,10 @@ class GraphMatcher {
                        const std::vector<Eigen::Vector3d>& hypotheses) const;
   // Decision (slam/isgraph/match_decision.cpp): support, adequacy, then decisive evidence.
   void decide(const MatchInput& input, MatchResult& result) const;
+  // The decision's account of the best answer's evidence (MatchResult::reason's first part).
+  std::string evidenceText(const MatchInput& input, const MatchResult& result,
+                           const std::set<int>& a_rooms, int planes_outside,
+                           int rooms_explained) const;
   std::vector<std::string> separatingRooms(const Eigen::Vector3d& best,
                                            const Eigen::Vector3d& other) const;
   bool joinedByDoor(int a, int b) const;

@@ -149,6 +149,82 @@ std::vector<std::string> GraphMatcher::separatingRooms(const Eigen::Vector3d& be
   return out;
 }
 
+namespace {
+
+// How much of the best answer's own evidence there is: the plan rooms it matches, its planes
+// outside them, whether its surfaces' normals span two directions.
+struct Support {
+  std::set<int> a_rooms;
+  int planes_outside = 0;
+  bool supported = false;
+};
+
+Support supportOf(const MatchInput& input, const Verification& best, const bim::AGraph& graph,
+                  const MatchingOptions& options) {
+  Support s;
+  for (const auto& [sr, a] : best.rooms) s.a_rooms.insert(a);
+  std::set<int> own_planes;
+  for (const auto& r : input.rooms) {
+    for (const auto& [sr, a] : best.rooms) {
+      if (sr == r.id) own_planes.insert(r.planes.begin(), r.planes.end());
+    }
+  }
+  std::vector<Eigen::Vector2d> normals;
+  for (const auto& [sp, a] : best.planes) {
+    s.planes_outside += own_planes.count(sp) ? 0 : 1;
+    normals.push_back(graph.surfaces[a].plane.normal.head<2>().normalized());
+  }
+  bool two_directions = false;
+  const double spread = std::sin(30.0 * std::numbers::pi / 180.0);
+  for (std::size_t i = 0; i < normals.size() && !two_directions; ++i) {
+    for (std::size_t j = i + 1; j < normals.size() && !two_directions; ++j) {
+      two_directions =
+          std::abs(normals[i].x() * normals[j].y() - normals[i].y() * normals[j].x()) >= spread;
+    }
+  }
+  s.supported = int(s.a_rooms.size()) >= options.min_rooms ||
+                (s.a_rooms.size() == 1 && s.planes_outside >= options.min_planes_outside) ||
+                (int(best.planes.size()) >= options.min_planes_without_rooms && two_directions);
+  return s;
+}
+
+// The S-rooms explained: matched to an A-room, or each of their walls on an A-surface (a room the
+// plan draws as two, as built a wall missing, is still explained).
+int roomsExplained(const MatchInput& input, const Verification& best) {
+  std::set<int> explained_planes, matched_rooms;
+  for (const auto& [s, a] : best.planes) explained_planes.insert(s);
+  for (const auto& [s, a] : best.rooms) matched_rooms.insert(s);
+  int rooms_explained = 0;
+  for (const MatchRoom& room : input.rooms) {
+    const bool walls =
+        !room.planes.empty() && std::all_of(room.planes.begin(), room.planes.end(),
+                                            [&](int p) { return explained_planes.count(p) > 0; });
+    rooms_explained += matched_rooms.count(room.id) || walls ? 1 : 0;
+  }
+  return rooms_explained;
+}
+
+}  // namespace
+
+std::string GraphMatcher::evidenceText(const MatchInput& input, const MatchResult& result,
+                                       const std::set<int>& a_rooms, int planes_outside,
+                                       int rooms_explained) const {
+  const Verification& best = result.best;
+  auto plural = [](std::size_t n) { return n == 1 ? "" : "s"; };
+  char text[384];
+  std::snprintf(text, sizeof text,
+                "best: %zu room%s (%d of %zu explained), %zu plane%s (%d outside its rooms), %d "
+                "door%s, %.1f of "
+                "%.1f m of wall explained (%.1f m more as if built off), score %.1f; second "
+                "answer %.1f",
+                a_rooms.size(), plural(a_rooms.size()), rooms_explained, input.rooms.size(),
+                best.planes.size(), plural(best.planes.size()), planes_outside, best.doors_passed,
+                plural(std::size_t(best.doors_passed)), best.explained_length,
+                best.explained_length + best.unexplained_length, best.built_off_length, best.score,
+                result.second_score);
+  return text;
+}
+
 void GraphMatcher::decide(const MatchInput& input, MatchResult& result) const {
   const Verification& best = result.best;
   // What separates each other answer from the best; the least decisively separated first.
@@ -166,59 +242,12 @@ void GraphMatcher::decide(const MatchInput& input, MatchResult& result) const {
     result.second = result.candidates.front().answer;
     result.second_score = result.second.score;
   }
-  // Support: enough of the best answer's own evidence.
-  std::set<int> a_rooms;
-  for (const auto& [s, a] : best.rooms) a_rooms.insert(a);
-  std::set<int> own_planes;
-  for (const auto& r : input.rooms) {
-    for (const auto& [s, a] : best.rooms) {
-      if (s == r.id) own_planes.insert(r.planes.begin(), r.planes.end());
-    }
-  }
-  int planes_outside = 0;
-  std::vector<Eigen::Vector2d> normals;
-  for (const auto& [s, a] : best.planes) {
-    planes_outside += own_planes.count(s) ? 0 : 1;
-    normals.push_back(graph_->surfaces[a].plane.normal.head<2>().normalized());
-  }
-  bool two_directions = false;
-  const double spread = std::sin(30.0 * std::numbers::pi / 180.0);
-  for (std::size_t i = 0; i < normals.size() && !two_directions; ++i) {
-    for (std::size_t j = i + 1; j < normals.size() && !two_directions; ++j) {
-      two_directions =
-          std::abs(normals[i].x() * normals[j].y() - normals[i].y() * normals[j].x()) >= spread;
-    }
-  }
-  const bool supported =
-      int(a_rooms.size()) >= options_.min_rooms ||
-      (a_rooms.size() == 1 && planes_outside >= options_.min_planes_outside) ||
-      (int(best.planes.size()) >= options_.min_planes_without_rooms && two_directions);
-  // An S-room is explained when it matches an A-room, or when each of its walls lies on an
-  // A-surface: a room the plan draws as two (as built, a wall is missing) is still explained.
-  std::set<int> explained_planes, matched_rooms;
-  for (const auto& [s, a] : best.planes) explained_planes.insert(s);
-  for (const auto& [s, a] : best.rooms) matched_rooms.insert(s);
-  int rooms_explained = 0;
-  for (const MatchRoom& room : input.rooms) {
-    const bool walls =
-        !room.planes.empty() && std::all_of(room.planes.begin(), room.planes.end(),
-                                            [&](int p) { return explained_planes.count(p) > 0; });
-    rooms_explained += matched_rooms.count(room.id) || walls ? 1 : 0;
-  }
+  const Support support = supportOf(input, best, *graph_, options_);
+  const int rooms_explained = roomsExplained(input, best);
   const double room_share =
       input.rooms.empty() ? 1.0 : double(rooms_explained) / double(input.rooms.size());
-  auto plural = [](std::size_t n) { return n == 1 ? "" : "s"; };
-  char text[384];
-  std::snprintf(text, sizeof text,
-                "best: %zu room%s (%d of %zu explained), %zu plane%s (%d outside its rooms), %d "
-                "door%s, %.1f of "
-                "%.1f m of wall explained (%.1f m more as if built off), score %.1f; second "
-                "answer %.1f",
-                a_rooms.size(), plural(a_rooms.size()), rooms_explained, input.rooms.size(),
-                best.planes.size(), plural(best.planes.size()), planes_outside, best.doors_passed,
-                plural(std::size_t(best.doors_passed)), best.explained_length,
-                best.explained_length + best.unexplained_length, best.built_off_length, best.score,
-                result.second_score);
+  const std::string text =
+      evidenceText(input, result, support.a_rooms, support.planes_outside, rooms_explained);
   std::string evidence;
   if (!result.candidates.empty()) {
     double needed = 0.0;
@@ -228,16 +257,15 @@ void GraphMatcher::decide(const MatchInput& input, MatchResult& result) const {
     std::snprintf(need, sizeof need, ", %.1f m needed", needed);
     evidence = ", leads it by " + closest.describe() + need;
   }
-  if (!supported || best.score <= 0.0) {
+  if (!support.supported || best.score <= 0.0) {
     result.status = MatchStatus::kNotYet;
-    result.reason = std::string("too little evidence: ") + text;
+    result.reason = "too little evidence: " + text;
   } else if (best.unexplainedShare() > options_.max_unexplained_share) {
     result.status = MatchStatus::kNotYet;
-    result.reason = std::string("the plan leaves too much of the mapped wall unexplained: ") + text;
+    result.reason = "the plan leaves too much of the mapped wall unexplained: " + text;
   } else if (room_share < options_.min_room_share) {
     result.status = MatchStatus::kNotYet;
-    result.reason =
-        std::string("the plan leaves too many of the mapped rooms unexplained: ") + text;
+    result.reason = "the plan leaves too many of the mapped rooms unexplained: " + text;
   } else if (!result.candidates.empty() && !decisive(result.candidates.front().from_best)) {
     result.status = MatchStatus::kAmbiguous;
     // Where to look: the plan rooms that would separate the answers not yet separated.
@@ -249,7 +277,7 @@ void GraphMatcher::decide(const MatchInput& input, MatchResult& result) const {
     }
     std::string look;
     for (const auto& id : where) look += (look.empty() ? "" : ", ") + id;
-    result.reason = std::string("two answers explain the map alike: ") + text + evidence +
+    result.reason = "two answers explain the map alike: " + text + evidence +
                     (look.empty() ? "; nothing in the plan separates them"
                                   : "; seeing " + look + " would separate them");
   } else {
