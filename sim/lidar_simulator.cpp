@@ -186,26 +186,8 @@ LidarScan LidarSimulator::scan(double start, const PoseAt& B_T_L, std::uint64_t 
   return scanBlocks(start, B_T_L, seed, 0, blockCount());
 }
 
-LidarScan LidarSimulator::scanBlocks(double start, const PoseAt& B_T_L, std::uint64_t seed,
-                                     int first_block, int last_block) {
-  using Clock = std::chrono::steady_clock;
-  auto seconds = [](Clock::time_point a, Clock::time_point b) {
-    return std::chrono::duration<double>(b - a).count();
-  };
-  LidarScan out;
-  out.stamp = start + stamp_offset_;
-  const int first_sequence = first_block * kBlockSequences;
-  const int last_sequence = std::min(sequences_, last_block * kBlockSequences);
-  if (first_sequence >= last_sequence) return out;
-  const bool beam = config_.returns != bim::LidarReturns::kStrongest;
-  out.points.reserve(std::size_t(last_sequence - first_sequence) * Vlp16::kLasers * (beam ? 2 : 1));
-  auto mark = Clock::now();
-  // The firing table starts at azimuth 0: a turn starting elsewhere turns it about L's z axis
-  // (folded into the sensor's rotation, so it costs nothing per ray).
-  const double start_azimuth = startAzimuth(start);
-  const bool turned = start_azimuth != 0.0;
-  const Eigen::Matrix3d L_R_table =
-      Eigen::AngleAxisd(start_azimuth, Eigen::Vector3d::UnitZ()).toRotationMatrix();
+void LidarSimulator::samplePoses(double start, const PoseAt& B_T_L, int first_sequence,
+                                 int last_sequence, const Eigen::Matrix3d& L_R_table, bool turned) {
   // Sensor poses every kPoseStride sequences (0.44 ms) and at the turn's end; each laser's pose
   // is interpolated linearly between them. The gait sways the sensor at about 2 Hz: over 0.44 ms
   // its path departs from a straight line by under 0.1 µm and its rotation from slerp by under
@@ -227,8 +209,170 @@ LidarScan LidarSimulator::scanBlocks(double start, const PoseAt& B_T_L, std::uin
   }
   // Laser origins sit within millimetres of the sensor's axis.
   scan_caster_.prepare(0.5 * (lo + hi), 0.5 * (hi - lo).norm() + 0.02);
+}
+
+void LidarSimulator::blockRays(int first, int last, const Eigen::Matrix3d& L_R_table, bool turned,
+                               bool beam) {
   std::array<double, Vlp16::kLasers> offset{};
   for (int l = 0; l < Vlp16::kLasers; ++l) offset[l] = Vlp16::origin(l).z();
+  for (int s = first; s < last; ++s) {
+    const int j = s / kPoseStride;
+    const int from = j * kPoseStride, to = std::min(sequences_, from + kPoseStride);
+    const Eigen::Matrix3d& R = rotations_[j];
+    const Eigen::Matrix3d dR = rotations_[j + 1] - R;
+    const Eigen::Vector3d dP = positions_[j + 1] - positions_[j];
+    const double span = (to - from) * kSequence;
+    for (int l = 0; l < Vlp16::kLasers; ++l) {
+      const int i = (s - first) * Vlp16::kLasers + l;
+      const Firing& firing = firings_[s * Vlp16::kLasers + l];
+      const double a = (firing.time - from * kSequence) / span;
+      const Eigen::Vector3d v = R * firing.direction + a * (dR * firing.direction);
+      // |v| departs from 1 by ~1e-8 (the rotations differ by < 1e-3 rad): one Newton step
+      // for 1/|v| makes it unit to ~1e-16 without a square root or a division.
+      directions_[i] = (1.5 - 0.5 * v.squaredNorm()) * v;
+      const Eigen::Vector3d axis = R.col(2) + a * dR.col(2);
+      origins_[i] = positions_[j] + a * dP + offset[l] * axis;
+      // The body is rigid with the mount: only a turn off the table's azimuths asks anew.
+      blocked_[i] = turned && config_.body_occlusion
+                        ? body_.distance(Vlp16::origin(l), L_R_table * firing.direction) >= 0
+                        : firing.blocked;
+      if (beam) {
+        const Eigen::Vector3d side = kHalfDivergence * axis.cross(directions_[i]).normalized();
+        edge_directions_[0][i] = (directions_[i] + side).normalized();
+        edge_directions_[1][i] = (directions_[i] - side).normalized();
+      }
+    }
+  }
+}
+
+void LidarSimulator::castRays(int rays, bool beam) {
+  for (int i = 0; i < rays; ++i) {
+    // A ray the body stops never reaches the building.
+    if (blocked_[i]) {
+      hits_[i] = RayCaster::Hit{};
+      for (int side = 0; side < 2 && beam; ++side) edge_hits_[side][i] = RayCaster::Hit{};
+      continue;
+    }
+    const auto hit = scan_caster_.cast(origins_[i], directions_[i]);
+    hits_[i] = hit ? *hit : RayCaster::Hit{};
+    for (int side = 0; side < 2 && beam; ++side) {
+      const auto edge = scan_caster_.cast(origins_[i], edge_directions_[side][i]);
+      edge_hits_[side][i] = edge ? *edge : RayCaster::Hit{};
+    }
+  }
+}
+
+void LidarSimulator::BlockReport::point(const LidarSimulator& lidar, int s, int l, double range,
+                                        double lit, std::vector<LidarPoint>& points) const {
+  const Firing& firing = lidar.firings_[s * Vlp16::kLasers + l];
+  Eigen::Vector3d direction = firing.direction;
+  if (reported_turn) {
+    const int b = (s - first) / 2;
+    direction.head<2>() = Eigen::Vector2d(
+        report_cos[b] * firing.direction.x() - report_sin[b] * firing.direction.y(),
+        report_sin[b] * firing.direction.x() + report_cos[b] * firing.direction.y());
+  }
+  const Eigen::Vector3d p = Vlp16::origin(l) + range * direction;
+  // The VLP-16's calibrated reflectivity: 0–100 for diffuse surfaces (100: a perfect white one
+  // met head-on).
+  points.push_back({float(p.x()), float(p.y()), float(p.z()), float(roundHalfUp(100.0 * lit)),
+                    std::uint16_t(Vlp16::ring(l)), float(firing.time - lidar.stamp_offset_)});
+}
+
+double LidarSimulator::keptProbability(double cos_incidence) const {
+  // Grazing returns fade: beyond the cutoff the beam's spot smears along the surface and the
+  // echo's peak drops under the detector's threshold more and more often.
+  const double kept_share = 1.0 - config_.dropout;
+  return cos_incidence < full_return_cos_ ? kept_share * cos_incidence / full_return_cos_
+                                          : kept_share;
+}
+
+void LidarSimulator::beamReturns(const BlockReport& block, int i, const double n[2],
+                                 const double u[2], std::vector<LidarPoint>& points) const {
+  const int s = block.first + i / Vlp16::kLasers, l = i % Vlp16::kLasers;
+  if (hits_[i].distance < 0 && edge_hits_[0][i].distance < 0 && edge_hits_[1][i].distance < 0) {
+    return;
+  }
+  const SubHit sub[3] = {
+      subHit(edge_hits_[0][i], origins_[i], edge_directions_[0][i], kEdgeWeight),
+      subHit(hits_[i], origins_[i], directions_[i], kCentreWeight),
+      subHit(edge_hits_[1][i], origins_[i], edge_directions_[1][i], kEdgeWeight)};
+  std::array<Echo, 3> found;
+  const int count = echoes(sub, 3, found.data());
+  // Too weak to detect: the LiDAR equation's power below the sensor's threshold.
+  std::array<Echo, 3> detected;
+  int kept = 0;
+  for (int e = 0; e < count; ++e) {
+    if (found[e].power >= min_signal_) detected[kept++] = found[e];
+  }
+  if (kept == 0) return;
+  // Nearest first: the last echo is reported; in dual mode also the strongest of the others,
+  // which is the strongest echo when the last is not, else the second strongest.
+  int reported[2] = {kept - 1, -1};
+  if (config_.returns == bim::LidarReturns::kDual && kept > 1) {
+    reported[1] = 0;
+    for (int e = 1; e < kept - 1; ++e) {
+      if (detected[e].power > detected[reported[1]].power) reported[1] = e;
+    }
+  }
+  for (int r = 0; r < 2 && reported[r] >= 0; ++r) {
+    const Echo& e = detected[reported[r]];
+    const double range = quantise(e.distance + config_.range_noise_m * n[r]);
+    if (range < config_.min_range_m || range > config_.max_range_m) continue;
+    if (u[r] >= keptProbability(e.cos_incidence)) continue;
+    block.point(*this, s, l, range, e.lit, points);
+  }
+}
+
+void LidarSimulator::blockReturns(const BlockReport& block, int rays, std::uint64_t seed, int index,
+                                  bool beam, std::vector<LidarPoint>& points) const {
+  // Every ray draws its noise and whether its return is lost, whether or not it hit.
+  Xoshiro256 rng(deriveSeed(seed, kNoiseStream, std::uint64_t(index)));
+  boost::random::normal_distribution<double> noise(0.0, 1.0);
+  for (int i = 0; i < rays; ++i) {
+    if (beam) {
+      // Last and dual returns: the beam's echoes, then the ones the mode reports.
+      const double n[2] = {noise(rng), noise(rng)};
+      const double u[2] = {rng.uniform01(), rng.uniform01()};
+      beamReturns(block, i, n, u, points);
+      continue;
+    }
+    const int s = block.first + i / Vlp16::kLasers, l = i % Vlp16::kLasers;
+    const double n = noise(rng);
+    const double u = rng.uniform01();
+    const RayCaster::Hit& hit = hits_[i];
+    if (hit.distance < 0) continue;
+    const double range = quantise(hit.distance + config_.range_noise_m * n);
+    if (range < config_.min_range_m || range > config_.max_range_m) continue;
+    const SubHit whole = subHit(hit, origins_[i], directions_[i], 1.0);
+    // Too weak to detect: the LiDAR equation's power below the sensor's threshold.
+    if (whole.power < min_signal_) continue;
+    if (u >= keptProbability(whole.cos_incidence)) continue;
+    block.point(*this, s, l, range, whole.lit, points);
+  }
+}
+
+LidarScan LidarSimulator::scanBlocks(double start, const PoseAt& B_T_L, std::uint64_t seed,
+                                     int first_block, int last_block) {
+  using Clock = std::chrono::steady_clock;
+  auto seconds = [](Clock::time_point a, Clock::time_point b) {
+    return std::chrono::duration<double>(b - a).count();
+  };
+  LidarScan out;
+  out.stamp = start + stamp_offset_;
+  const int first_sequence = first_block * kBlockSequences;
+  const int last_sequence = std::min(sequences_, last_block * kBlockSequences);
+  if (first_sequence >= last_sequence) return out;
+  const bool beam = config_.returns != bim::LidarReturns::kStrongest;
+  out.points.reserve(std::size_t(last_sequence - first_sequence) * Vlp16::kLasers * (beam ? 2 : 1));
+  auto mark = Clock::now();
+  // The firing table starts at azimuth 0: a turn starting elsewhere turns it about L's z axis
+  // (folded into the sensor's rotation, so it costs nothing per ray).
+  const double start_azimuth = startAzimuth(start);
+  const bool turned = start_azimuth != 0.0;
+  const Eigen::Matrix3d L_R_table =
+      Eigen::AngleAxisd(start_azimuth, Eigen::Vector3d::UnitZ()).toRotationMatrix();
+  samplePoses(start, B_T_L, first_sequence, last_sequence, L_R_table, turned);
   auto now = Clock::now();
   out.timing.poses_s += seconds(mark, now);
   mark = now;
@@ -244,154 +388,34 @@ LidarScan LidarSimulator::scanBlocks(double start, const PoseAt& B_T_L, std::uin
   }
   // The azimuth each data block (two sequences) reports, as cos and sin of its turn from the
   // firing table's: the turn's start, and the block's jitter.
-  constexpr int kDataBlocks = kBlockSequences / 2;
-  std::array<double, kDataBlocks> report_cos, report_sin;
   const bool jitter = config_.azimuth_jitter_deg > 0.0;
-  const bool reported_turn = turned || jitter;
+  BlockReport report;
+  report.reported_turn = turned || jitter;
   for (int block = first_block; block < last_block; ++block) {
     const int first = block * kBlockSequences;
     const int last = std::min(sequences_, first + kBlockSequences);
-    // The block's rays in B.
-    for (int s = first; s < last; ++s) {
-      const int j = s / kPoseStride;
-      const int from = j * kPoseStride, to = std::min(sequences_, from + kPoseStride);
-      const Eigen::Matrix3d& R = rotations_[j];
-      const Eigen::Matrix3d dR = rotations_[j + 1] - R;
-      const Eigen::Vector3d dP = positions_[j + 1] - positions_[j];
-      const double span = (to - from) * kSequence;
-      for (int l = 0; l < Vlp16::kLasers; ++l) {
-        const int i = (s - first) * Vlp16::kLasers + l;
-        const Firing& firing = firings_[s * Vlp16::kLasers + l];
-        const double a = (firing.time - from * kSequence) / span;
-        const Eigen::Vector3d v = R * firing.direction + a * (dR * firing.direction);
-        // |v| departs from 1 by ~1e-8 (the rotations differ by < 1e-3 rad): one Newton step
-        // for 1/|v| makes it unit to ~1e-16 without a square root or a division.
-        directions_[i] = (1.5 - 0.5 * v.squaredNorm()) * v;
-        const Eigen::Vector3d axis = R.col(2) + a * dR.col(2);
-        origins_[i] = positions_[j] + a * dP + offset[l] * axis;
-        // The body is rigid with the mount: only a turn off the table's azimuths asks anew.
-        blocked_[i] = turned && config_.body_occlusion
-                          ? body_.distance(Vlp16::origin(l), L_R_table * firing.direction) >= 0
-                          : firing.blocked;
-        if (beam) {
-          const Eigen::Vector3d side = kHalfDivergence * axis.cross(directions_[i]).normalized();
-          edge_directions_[0][i] = (directions_[i] + side).normalized();
-          edge_directions_[1][i] = (directions_[i] - side).normalized();
-        }
-      }
-    }
+    blockRays(first, last, L_R_table, turned, beam);  // the block's rays in B
     const int rays = (last - first) * Vlp16::kLasers;
     now = Clock::now();
     out.timing.poses_s += seconds(mark, now);
     mark = now;
-    for (int i = 0; i < rays; ++i) {
-      // A ray the body stops never reaches the building.
-      if (blocked_[i]) {
-        hits_[i] = RayCaster::Hit{};
-        for (int side = 0; side < 2 && beam; ++side) edge_hits_[side][i] = RayCaster::Hit{};
-        continue;
-      }
-      const auto hit = scan_caster_.cast(origins_[i], directions_[i]);
-      hits_[i] = hit ? *hit : RayCaster::Hit{};
-      for (int side = 0; side < 2 && beam; ++side) {
-        const auto edge = scan_caster_.cast(origins_[i], edge_directions_[side][i]);
-        edge_hits_[side][i] = edge ? *edge : RayCaster::Hit{};
-      }
-    }
+    castRays(rays, beam);
     out.rays += rays;
     now = Clock::now();
     out.timing.casting_s += seconds(mark, now);
     mark = now;
-    if (reported_turn) {
+    report.first = first;
+    if (report.reported_turn) {
       Xoshiro256 jitter_rng(deriveSeed(seed, kJitterStream, std::uint64_t(block)));
       boost::random::normal_distribution<double> jitter_noise(0.0, 1.0);
       const double sigma = config_.azimuth_jitter_deg * std::numbers::pi / 180.0;
-      for (int b = 0; b < kDataBlocks; ++b) {
+      for (int b = 0; b < BlockReport::kDataBlocks; ++b) {
         const double angle = start_azimuth + (jitter ? sigma * jitter_noise(jitter_rng) : 0.0);
-        report_cos[b] = std::cos(angle);
-        report_sin[b] = std::sin(angle);
+        report.report_cos[b] = std::cos(angle);
+        report.report_sin[b] = std::sin(angle);
       }
     }
-    // A return at `range` of ray i (sequence s, laser l) as the sensor reports it.
-    auto report = [&](int s, int l, double range, double lit) {
-      const Firing& firing = firings_[s * Vlp16::kLasers + l];
-      Eigen::Vector3d direction = firing.direction;
-      if (reported_turn) {
-        const int b = (s - first) / 2;
-        direction.head<2>() = Eigen::Vector2d(
-            report_cos[b] * firing.direction.x() - report_sin[b] * firing.direction.y(),
-            report_sin[b] * firing.direction.x() + report_cos[b] * firing.direction.y());
-      }
-      const Eigen::Vector3d p = Vlp16::origin(l) + range * direction;
-      // The VLP-16's calibrated reflectivity: 0–100 for diffuse surfaces (100: a perfect white
-      // one met head-on).
-      out.points.push_back({float(p.x()), float(p.y()), float(p.z()),
-                            float(roundHalfUp(100.0 * lit)), std::uint16_t(Vlp16::ring(l)),
-                            float(firing.time - stamp_offset_)});
-    };
-    // Every ray draws its noise and whether its return is lost, whether or not it hit.
-    Xoshiro256 rng(deriveSeed(seed, kNoiseStream, std::uint64_t(block)));
-    boost::random::normal_distribution<double> noise(0.0, 1.0);
-    const double kept_share = 1.0 - config_.dropout;
-    // Grazing returns fade: beyond the cutoff the beam's spot smears along the surface and the
-    // echo's peak drops under the detector's threshold more and more often.
-    auto keptProbability = [&](double cos_incidence) {
-      return cos_incidence < full_return_cos_ ? kept_share * cos_incidence / full_return_cos_
-                                              : kept_share;
-    };
-    for (int i = 0; i < rays; ++i) {
-      const int s = first + i / Vlp16::kLasers, l = i % Vlp16::kLasers;
-      if (beam) {
-        // Last and dual returns: the beam's echoes, then the ones the mode reports.
-        const double n[2] = {noise(rng), noise(rng)};
-        const double u[2] = {rng.uniform01(), rng.uniform01()};
-        if (hits_[i].distance < 0 && edge_hits_[0][i].distance < 0 &&
-            edge_hits_[1][i].distance < 0) {
-          continue;
-        }
-        const SubHit sub[3] = {
-            subHit(edge_hits_[0][i], origins_[i], edge_directions_[0][i], kEdgeWeight),
-            subHit(hits_[i], origins_[i], directions_[i], kCentreWeight),
-            subHit(edge_hits_[1][i], origins_[i], edge_directions_[1][i], kEdgeWeight)};
-        std::array<Echo, 3> found;
-        const int count = echoes(sub, 3, found.data());
-        // Too weak to detect: the LiDAR equation's power below the sensor's threshold.
-        std::array<Echo, 3> detected;
-        int kept = 0;
-        for (int e = 0; e < count; ++e) {
-          if (found[e].power >= min_signal_) detected[kept++] = found[e];
-        }
-        if (kept == 0) continue;
-        // Nearest first: the last echo is reported; in dual mode also the strongest of the
-        // others, which is the strongest echo when the last is not, else the second strongest.
-        int reported[2] = {kept - 1, -1};
-        if (config_.returns == bim::LidarReturns::kDual && kept > 1) {
-          reported[1] = 0;
-          for (int e = 1; e < kept - 1; ++e) {
-            if (detected[e].power > detected[reported[1]].power) reported[1] = e;
-          }
-        }
-        for (int r = 0; r < 2 && reported[r] >= 0; ++r) {
-          const Echo& e = detected[reported[r]];
-          const double range = quantise(e.distance + config_.range_noise_m * n[r]);
-          if (range < config_.min_range_m || range > config_.max_range_m) continue;
-          if (u[r] >= keptProbability(e.cos_incidence)) continue;
-          report(s, l, range, e.lit);
-        }
-        continue;
-      }
-      const double n = noise(rng);
-      const double u = rng.uniform01();
-      const RayCaster::Hit& hit = hits_[i];
-      if (hit.distance < 0) continue;
-      const double range = quantise(hit.distance + config_.range_noise_m * n);
-      if (range < config_.min_range_m || range > config_.max_range_m) continue;
-      const SubHit whole = subHit(hit, origins_[i], directions_[i], 1.0);
-      // Too weak to detect: the LiDAR equation's power below the sensor's threshold.
-      if (whole.power < min_signal_) continue;
-      if (u >= keptProbability(whole.cos_incidence)) continue;
-      report(s, l, range, whole.lit);
-    }
+    blockReturns(report, rays, seed, block, beam, out.points);
     now = Clock::now();
     out.timing.noise_s += seconds(mark, now);
     mark = now;

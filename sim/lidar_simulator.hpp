@@ -1,6 +1,7 @@
 #pragma once
 
 #include <Eigen/Geometry>
+#include <array>
 #include <cstdint>
 #include <functional>
 #include <string_view>
@@ -116,6 +117,34 @@ class LidarSimulator {
     double time;                // from the turn's start
     bool blocked;               // by the robot's own body
   };
+  // The stages of scanBlocks. The sensor's pose sampled along the turn (positions_, rotations_)
+  // and the caster prepared around it.
+  void samplePoses(double start, const PoseAt& B_T_L, int first_sequence, int last_sequence,
+                   const Eigen::Matrix3d& L_R_table, bool turned);
+  // The rays of sequences [first, last) in B (origins_, directions_, blocked_, the beam's edges).
+  void blockRays(int first, int last, const Eigen::Matrix3d& L_R_table, bool turned, bool beam);
+  // Their hits (hits_, edge_hits_).
+  void castRays(int rays, bool beam);
+  // How a block's returns are reported: the azimuth each data block (two sequences) reports, as
+  // cos and sin of its turn from the firing table's (the turn's start and the block's jitter).
+  struct BlockReport {
+    static constexpr int kDataBlocks = kBlockSequences / 2;
+    int first = 0;  // the block's first sequence
+    bool reported_turn = false;
+    std::array<double, kDataBlocks> report_cos{}, report_sin{};
+    // A return at `range` of sequence s, laser l as the sensor reports it.
+    void point(const LidarSimulator& lidar, int s, int l, double range, double lit,
+               std::vector<LidarPoint>& points) const;
+  };
+  // The share of returns at this incidence that are detected: dropout, and grazing returns
+  // fading beyond the cutoff.
+  double keptProbability(double cos_incidence) const;
+  // The block's returns: noise and losses drawn from the block's own stream.
+  void blockReturns(const BlockReport& block, int rays, std::uint64_t seed, int index, bool beam,
+                    std::vector<LidarPoint>& points) const;
+  // Ray i's beam echoes, then the ones the mode reports (last; dual: and the strongest other).
+  void beamReturns(const BlockReport& block, int i, const double n[2], const double u[2],
+                   std::vector<LidarPoint>& points) const;
   const MujocoWorld& world_;
   bim::LidarConfig config_;
   RayCaster caster_;

@@ -167,41 +167,44 @@ TopEdge topEdgeOf(const RangeImage& image, const std::vector<int>& cells, double
   return over > beyond ? TopEdge::kSeen : TopEdge::kBeyondView;
 }
 
-}  // namespace
+// Which cells of the image neighbour each other on one surface.
+struct Neighbours {
+  const RangeImage& image;
+  const PlaneExtractionOptions& options;
 
-std::optional<std::vector<PlaneObservation>> extractPlanesOnRangeImage(
-    const sensors::Scan& scan, const PlaneExtractionOptions& options) {
-  const auto built = buildImage(scan, options);
-  if (!built) return std::nullopt;
-  const RangeImage& image = *built;
-  const int rows = image.rows, cols = image.cols, cells = rows * cols;
   // Two cells are neighbours on one surface only when close: along a ring within the cluster
   // tolerance; across rings within that or a few times the rings' spacing at that range (so that
   // a floor, seen at a grazing angle, stays one surface).
-  auto close = [&](int a, int b, bool across_rings) {
+  bool close(int a, int b, bool across_rings) const {
     if (!image.valid(a) || !image.valid(b)) return false;
     double limit = options.cluster_tolerance;
     if (across_rings) {
-      const int r = std::min(a / cols, b / cols);
+      const int r = std::min(a / image.cols, b / image.cols);
       limit = std::max(limit, options.ring_gap_factor * std::min(image.range[a], image.range[b]) *
                                   image.ring_step[r]);
     }
     return (image.mean[a] - image.mean[b]).squaredNorm() <= limit * limit;
-  };
-  auto left = [&](int k) { return k % cols == 0 ? k + cols - 1 : k - 1; };
-  auto right = [&](int k) { return k % cols == cols - 1 ? k - cols + 1 : k + 1; };
+  }
+  int left(int k) const { return k % image.cols == 0 ? k + image.cols - 1 : k - 1; }
+  int right(int k) const { return k % image.cols == image.cols - 1 ? k - image.cols + 1 : k + 1; }
+};
 
-  // Each cell's normal from its neighbours' means: the cross product of the differences along
-  // the ring and across the rings (one-sided where a neighbour is missing or far).
-  std::vector<Eigen::Vector3d> normal(cells, Eigen::Vector3d::Zero());
-  std::vector<char> has_normal(cells, 0);
+// Each cell's normal from its neighbours' means: the cross product of the differences along the
+// ring and across the rings (one-sided where a neighbour is missing or far), towards the sensor.
+void cellNormals(const Neighbours& near, std::vector<Eigen::Vector3d>& normal,
+                 std::vector<char>& has_normal) {
+  const RangeImage& image = near.image;
+  const int rows = image.rows, cols = image.cols, cells = rows * cols;
+  normal.assign(cells, Eigen::Vector3d::Zero());
+  has_normal.assign(cells, 0);
   for (int k = 0; k < cells; ++k) {
     if (!image.valid(k)) continue;
     const int r = k / cols;
-    const int l = left(k), rr = right(k);
+    const int l = near.left(k), rr = near.right(k);
     const int down = r > 0 ? k - cols : -1, up = r + 1 < rows ? k + cols : -1;
-    const bool has_l = close(k, l, false), has_r = close(k, rr, false);
-    const bool has_d = down >= 0 && close(k, down, true), has_u = up >= 0 && close(k, up, true);
+    const bool has_l = near.close(k, l, false), has_r = near.close(k, rr, false);
+    const bool has_d = down >= 0 && near.close(k, down, true);
+    const bool has_u = up >= 0 && near.close(k, up, true);
     if ((!has_l && !has_r) || (!has_d && !has_u)) continue;
     const Eigen::Vector3d along = image.mean[has_r ? rr : k] - image.mean[has_l ? l : k];
     const Eigen::Vector3d across = image.mean[has_u ? up : k] - image.mean[has_d ? down : k];
@@ -213,11 +216,19 @@ std::optional<std::vector<PlaneObservation>> extractPlanesOnRangeImage(
     normal[k] = n;
     has_normal[k] = 1;
   }
+}
 
-  // Region growing: from each unlabelled cell with a normal, to neighbours that are close, lie
-  // within the plane distance of the region's plane and (when they have a normal) turn alike.
+// Region growing: from each unlabelled cell with a normal, to neighbours that are close, lie
+// within the plane distance of the region's plane and (when they have a normal) turn alike.
+// Returns each region's sums; `label` the region of each cell (-1: none).
+std::vector<PlaneSums> growRegions(const Neighbours& near,
+                                   const std::vector<Eigen::Vector3d>& normal,
+                                   const std::vector<char>& has_normal, std::vector<int>& label) {
+  const RangeImage& image = near.image;
+  const PlaneExtractionOptions& options = near.options;
+  const int rows = image.rows, cols = image.cols, cells = rows * cols;
   const double cos_angle = std::cos(options.normal_angle_deg * std::numbers::pi / 180.0);
-  std::vector<int> label(cells, -1);
+  label.assign(cells, -1);
   std::vector<PlaneSums> sums;
   std::vector<int> queue;
   queue.reserve(cells);
@@ -239,11 +250,11 @@ std::optional<std::vector<PlaneObservation>> extractPlanesOnRangeImage(
     for (std::size_t head = 0; head < queue.size(); ++head) {
       const int k = queue[head];
       const int r = k / cols;
-      const int neighbours[4] = {left(k), right(k), r > 0 ? k - cols : -1,
+      const int neighbours[4] = {near.left(k), near.right(k), r > 0 ? k - cols : -1,
                                  r + 1 < rows ? k + cols : -1};
       for (int i = 0; i < 4; ++i) {
         const int q = neighbours[i];
-        if (q < 0 || label[q] >= 0 || !close(k, q, i >= 2)) continue;
+        if (q < 0 || label[q] >= 0 || !near.close(k, q, i >= 2)) continue;
         if (std::abs(n.dot(image.mean[q]) + d) > options.ransac_distance) continue;
         if (has_normal[q] && std::abs(normal[q].dot(n)) < cos_angle) continue;
         take(q);
@@ -255,8 +266,16 @@ std::optional<std::vector<PlaneObservation>> extractPlanesOnRangeImage(
       }
     }
   }
+  return sums;
+}
 
-  // Regions that touch and lie on one plane are one surface (growth can stop at a noisy cell).
+// Regions that touch and lie on one plane are one surface (growth can stop at a noisy cell): the
+// root of each region's surface, in `parent`.
+std::vector<int> mergeCoplanar(const Neighbours& near, const std::vector<PlaneSums>& sums,
+                               const std::vector<int>& label) {
+  const RangeImage& image = near.image;
+  const PlaneExtractionOptions& options = near.options;
+  const int rows = image.rows, cols = image.cols, cells = rows * cols;
   const int regions = int(sums.size());
   std::vector<int> parent(regions);
   std::iota(parent.begin(), parent.end(), 0);
@@ -276,31 +295,32 @@ std::optional<std::vector<PlaneObservation>> extractPlanesOnRangeImage(
   for (int k = 0; k < cells; ++k) {
     if (label[k] < 0) continue;
     const int r = k / cols;
-    const int neighbours[2] = {right(k), r + 1 < rows ? k + cols : -1};
+    const int neighbours[2] = {near.right(k), r + 1 < rows ? k + cols : -1};
     for (int i = 0; i < 2; ++i) {
       const int q = neighbours[i];
       if (q < 0 || label[q] < 0 || label[q] == label[k]) continue;
       const int a = findRoot(parent, label[k]), b = findRoot(parent, label[q]);
-      if (a == b || !close(k, q, i == 1) || !coplanar(label[k], label[q])) continue;
+      if (a == b || !near.close(k, q, i == 1) || !coplanar(label[k], label[q])) continue;
       parent[std::max(a, b)] = std::min(a, b);
     }
   }
+  return parent;
+}
 
-  // Each surface: least squares on its points, then again on those within the plane distance.
-  std::vector<std::vector<int>> members(regions);
-  for (int k = 0; k < cells; ++k) {
-    if (label[k] >= 0) members[findRoot(parent, label[k])].push_back(k);
-  }
+// Each surface: least squares on its points, then again on those within the plane distance;
+// kept with enough support (horizontal surfaces need less: PlaneExtractionOptions).
+std::vector<PlaneObservation> fitSurfaces(const RangeImage& image,
+                                          const std::vector<std::vector<int>>& members,
+                                          const PlaneExtractionOptions& options) {
   std::vector<PlaneObservation> planes;
   std::vector<Eigen::Vector3d> points, inliers;
-  for (int g = 0; g < regions; ++g) {
-    if (members[g].empty()) continue;
+  for (const auto& cells : members) {
+    if (cells.empty()) continue;
     points.clear();
-    for (int k : members[g]) {
+    for (int k : cells) {
       for (int i = image.first[k]; i < image.first[k + 1]; ++i)
         points.push_back(image.points[image.order[i]]);
     }
-    // Fewer points than voxels needed (horizontal surfaces need fewer: PlaneExtractionOptions).
     const int least = std::min(options.min_inliers, options.horizontal_min_inliers);
     if (int(points.size()) < least) continue;
     PlaneSums all;
@@ -320,8 +340,30 @@ std::optional<std::vector<PlaneObservation>> extractPlanesOnRangeImage(
       continue;
     }
     if (planes.back().orientation == PlaneOrientation::kVertical)
-      planes.back().top = topEdgeOf(image, members[g], options.cluster_tolerance);
+      planes.back().top = topEdgeOf(image, cells, options.cluster_tolerance);
   }
+  return planes;
+}
+
+}  // namespace
+
+std::optional<std::vector<PlaneObservation>> extractPlanesOnRangeImage(
+    const sensors::Scan& scan, const PlaneExtractionOptions& options) {
+  const auto built = buildImage(scan, options);
+  if (!built) return std::nullopt;
+  const RangeImage& image = *built;
+  const Neighbours near{image, options};
+  std::vector<Eigen::Vector3d> normal;
+  std::vector<char> has_normal;
+  cellNormals(near, normal, has_normal);
+  std::vector<int> label;
+  const std::vector<PlaneSums> sums = growRegions(near, normal, has_normal, label);
+  std::vector<int> parent = mergeCoplanar(near, sums, label);
+  std::vector<std::vector<int>> members(sums.size());
+  for (int k = 0; k < image.rows * image.cols; ++k) {
+    if (label[k] >= 0) members[findRoot(parent, label[k])].push_back(k);
+  }
+  std::vector<PlaneObservation> planes = fitSurfaces(image, members, options);
   std::stable_sort(
       planes.begin(), planes.end(),
       [](const PlaneObservation& a, const PlaneObservation& b) { return a.points > b.points; });
