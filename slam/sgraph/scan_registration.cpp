@@ -172,6 +172,113 @@ Eigen::Isometry3d RegistrationResult::apply(const Eigen::Isometry3d& M_T_R_predi
   return planarCorrection(correction, M_T_R_predicted.translation().head<2>()) * M_T_R_predicted;
 }
 
+namespace {
+
+// The scan's points in M at the prediction, relative to the pivot in x and y, against the local
+// map: the point-to-plane passes of the alignment and the share of points near the map. The
+// points go in items of kItem, on the pool's threads when there is one; each item's sums are
+// added in item order, so the result does not depend on the number of threads.
+class ScanAlignment {
+ public:
+  static constexpr int kItem = 256;
+  // A pass's sums: the Gauss-Newton system and the correspondences made.
+  struct Sums {
+    Eigen::Matrix3d H = Eigen::Matrix3d::Zero();
+    Eigen::Vector3d g = Eigen::Vector3d::Zero();
+    int used = 0, near = 0;
+  };
+
+  ScanAlignment(const std::vector<Eigen::Vector3f>& scan_in_L, const Eigen::Isometry3d& M_T_L,
+                const Eigen::Vector2d& pivot, const LocalMap& map,
+                const ScanRegistrationOptions& options, ThreadPool* pool)
+      : pivot_(pivot), map_(map), options_(options), pool_(pool) {
+    points_.reserve(scan_in_L.size());
+    for (const auto& p : scan_in_L) {
+      Eigen::Vector3d q = M_T_L * p.cast<double>();
+      q.head<2>() -= pivot;
+      points_.push_back(q);
+    }
+    items_ = itemCount(int(points_.size()), kItem);
+    sums_.resize(items_);
+  }
+
+  int points() const { return int(points_.size()); }
+
+  // The share of points within the final tolerance of a map point at correction x.
+  double shareWithin(const Eigen::Vector3d& x) {
+    std::vector<int> near(items_, 0);
+    forItems([&](int item) {
+      const int end = std::min(int(points_.size()), (item + 1) * kItem);
+      for (int i = item * kItem; i < end; ++i) {
+        double d = 0.0;
+        if (map_.nearest(transformed(x, points_[i]), options_.max_correspondence_end, &d) >= 0)
+          ++near[item];
+      }
+    });
+    return double(std::accumulate(near.begin(), near.end(), 0)) / double(points_.size());
+  }
+
+  // One pass at correction x: each point's nearest map point within max_distance, a robust
+  // point-to-plane row where the map point has a wall's normal; `near` counts those within
+  // near_distance.
+  Sums pass(const Eigen::Vector3d& x, double max_distance, double near_distance) {
+    forItems([&](int item) {
+      Sums& s = sums_[item];
+      s = Sums();
+      const int end = std::min(int(points_.size()), (item + 1) * kItem);
+      for (int i = item * kItem; i < end; ++i) {
+        const Eigen::Vector3d p = transformed(x, points_[i]);
+        double d = 0.0;
+        const int m = map_.nearest(p, max_distance, &d);
+        if (m < 0) continue;
+        if (d <= near_distance) ++s.near;
+        const Eigen::Vector3d& n = map_.normal(m);
+        if (n.isZero() || std::abs(n.z()) > options_.max_normal_z) continue;
+        const double r = n.dot(p - map_.point(m));
+        // d(p)/d(yaw) about the pivot: the rotated point's lever arm turned by 90°.
+        const Eigen::Vector2d arm = p.head<2>() - pivot_ - x.head<2>();
+        const Eigen::Vector3d J(n.x(), n.y(), n.x() * -arm.y() + n.y() * arm.x());
+        const double w = std::abs(r) <= options_.huber ? 1.0 : options_.huber / std::abs(r);
+        s.H += w * J * J.transpose();
+        s.g += w * J * r;
+        ++s.used;
+      }
+    });
+    Sums total;
+    for (const Sums& s : sums_) {
+      total.H += s.H;
+      total.g += s.g;
+      total.used += s.used;
+      total.near += s.near;
+    }
+    return total;
+  }
+
+ private:
+  Eigen::Vector3d transformed(const Eigen::Vector3d& x, const Eigen::Vector3d& q) const {
+    Eigen::Vector3d out = q;
+    out.head<2>() = rotation(x.z()) * q.head<2>() + pivot_ + x.head<2>();
+    return out;
+  }
+  void forItems(const std::function<void(int)>& task) {
+    if (pool_ != nullptr) {
+      pool_->run(items_, task);
+    } else {
+      for (int i = 0; i < items_; ++i) task(i);
+    }
+  }
+
+  std::vector<Eigen::Vector3d> points_;
+  Eigen::Vector2d pivot_;
+  const LocalMap& map_;
+  const ScanRegistrationOptions& options_;
+  ThreadPool* pool_;
+  int items_ = 0;
+  std::vector<Sums> sums_;
+};
+
+}  // namespace
+
 RegistrationResult registerScan(const std::vector<Eigen::Vector3f>& scan_in_L,
                                 const Eigen::Isometry3d& M_T_R_predicted,
                                 const Eigen::Isometry3d& R_T_L, const LocalMap& map,
@@ -179,58 +286,15 @@ RegistrationResult registerScan(const std::vector<Eigen::Vector3f>& scan_in_L,
                                 const ScanRegistrationOptions& options, ThreadPool* pool) {
   RegistrationResult result;
   if (map.empty() || scan_in_L.empty()) return result;
-  const Eigen::Isometry3d M_T_L = M_T_R_predicted * R_T_L;
-  const Eigen::Vector2d pivot = M_T_R_predicted.translation().head<2>();
-  // The scan in M at the prediction, relative to the pivot in x and y.
-  std::vector<Eigen::Vector3d> points;
-  points.reserve(scan_in_L.size());
-  for (const auto& p : scan_in_L) {
-    Eigen::Vector3d q = M_T_L * p.cast<double>();
-    q.head<2>() -= pivot;
-    points.push_back(q);
-  }
-  result.points = int(points.size());
+  ScanAlignment alignment(scan_in_L, M_T_R_predicted * R_T_L,
+                          M_T_R_predicted.translation().head<2>(), map, options, pool);
+  result.points = alignment.points();
   const double sigma2 = options.point_sigma * options.point_sigma;
-  auto transformed = [&](const Eigen::Vector3d& x, const Eigen::Vector3d& q) {
-    Eigen::Vector3d out = q;
-    out.head<2>() = rotation(x.z()) * q.head<2>() + pivot + x.head<2>();
-    return out;
-  };
-  // The points go in items of kItem, on the pool's threads when there is one; each item's sums
-  // are added in item order, so the result does not depend on the number of threads.
-  constexpr int kItem = 256;
-  const int items = itemCount(int(points.size()), kItem);
-  auto for_items = [&](const std::function<void(int)>& task) {
-    if (pool != nullptr) {
-      pool->run(items, task);
-    } else {
-      for (int i = 0; i < items; ++i) task(i);
-    }
-  };
-  auto share_within = [&](const Eigen::Vector3d& x) {
-    std::vector<int> near(items, 0);
-    for_items([&](int item) {
-      const int end = std::min(int(points.size()), (item + 1) * kItem);
-      for (int i = item * kItem; i < end; ++i) {
-        double d = 0.0;
-        if (map.nearest(transformed(x, points[i]), options.max_correspondence_end, &d) >= 0)
-          ++near[item];
-      }
-    });
-    return double(std::accumulate(near.begin(), near.end(), 0)) / double(points.size());
-  };
-  struct Sums {
-    Eigen::Matrix3d H = Eigen::Matrix3d::Zero();
-    Eigen::Vector3d g = Eigen::Vector3d::Zero();
-    int used = 0, near = 0;
-  };
-  std::vector<Sums> sums(items);
-
   // Each pass finds every point's nearest map point anyway: the shares come from those passes
   // (the first, at the prediction; the last at the final tolerance) rather than from passes of
   // their own.
   if (options.max_correspondence_start < options.max_correspondence_end) {
-    result.inlier_share_predicted = share_within(Eigen::Vector3d::Zero());
+    result.inlier_share_predicted = alignment.shareWithin(Eigen::Vector3d::Zero());
   }
   Eigen::Vector3d x = Eigen::Vector3d::Zero();
   Eigen::Matrix3d scan_information = Eigen::Matrix3d::Zero();
@@ -245,48 +309,18 @@ RegistrationResult registerScan(const std::vector<Eigen::Vector3f>& scan_in_L,
         options.max_correspondence_start +
         fraction * (options.max_correspondence_end - options.max_correspondence_start);
     const double near_distance = std::min(max_distance, options.max_correspondence_end);
-    for_items([&](int item) {
-      Sums& s = sums[item];
-      s = Sums();
-      const int end = std::min(int(points.size()), (item + 1) * kItem);
-      for (int i = item * kItem; i < end; ++i) {
-        const Eigen::Vector3d p = transformed(x, points[i]);
-        double d = 0.0;
-        const int m = map.nearest(p, max_distance, &d);
-        if (m < 0) continue;
-        if (d <= near_distance) ++s.near;
-        const Eigen::Vector3d& n = map.normal(m);
-        if (n.isZero() || std::abs(n.z()) > options.max_normal_z) continue;
-        const double r = n.dot(p - map.point(m));
-        // d(p)/d(yaw) about the pivot: the rotated point's lever arm turned by 90°.
-        const Eigen::Vector2d arm = p.head<2>() - pivot - x.head<2>();
-        const Eigen::Vector3d J(n.x(), n.y(), n.x() * -arm.y() + n.y() * arm.x());
-        const double w = std::abs(r) <= options.huber ? 1.0 : options.huber / std::abs(r);
-        s.H += w * J * J.transpose();
-        s.g += w * J * r;
-        ++s.used;
-      }
-    });
-    Eigen::Matrix3d H = Eigen::Matrix3d::Zero();
-    Eigen::Vector3d g = Eigen::Vector3d::Zero();
-    int used = 0, near = 0;
-    for (const Sums& s : sums) {
-      H += s.H;
-      g += s.g;
-      used += s.used;
-      near += s.near;
-    }
-    const double share = double(near) / double(points.size());
+    const ScanAlignment::Sums sums = alignment.pass(x, max_distance, near_distance);
+    const double share = double(sums.near) / double(alignment.points());
     if (pass == 0 && max_distance >= options.max_correspondence_end) {
       result.inlier_share_predicted = share;
     }
-    result.correspondences = used;
-    if (used < 10) break;
+    result.correspondences = sums.used;
+    if (sums.used < 10) break;
     const double scale =
-        options.effective_points / std::max(double(used), options.effective_points);
-    scan_information = H * (scale / sigma2);
+        options.effective_points / std::max(double(sums.used), options.effective_points);
+    scan_information = sums.H * (scale / sigma2);
     const Eigen::Matrix3d total = scan_information + prior_information;
-    const Eigen::Vector3d gradient = g * (scale / sigma2) + prior_information * x;
+    const Eigen::Vector3d gradient = sums.g * (scale / sigma2) + prior_information * x;
     const Eigen::Vector3d step = -total.ldlt().solve(gradient);
     if (!step.allFinite()) break;
     x += step;
@@ -303,7 +337,7 @@ RegistrationResult registerScan(const std::vector<Eigen::Vector3f>& scan_in_L,
   }
   result.correction = x;
   result.information = scan_information;
-  if (!final_share_known) result.inlier_share = share_within(x);
+  if (!final_share_known) result.inlier_share = alignment.shareWithin(x);
   result.agrees = result.inlier_share >= options.min_inlier_share;
   return result;
 }

@@ -90,6 +90,112 @@ bool SGraph::wouldKeyframe(double stamp) const {
   return moved >= options_.keyframe_distance || turned >= options_.keyframe_angle;
 }
 
+int SGraph::floorOfKeyframe(double stamp, const Eigen::Isometry3d& odometry_at_scan,
+                            const Eigen::Isometry3d& initial, Keyframe& keyframe) {
+  // Level: little height since the keyframe before, or (a segment's first keyframe) in the
+  // odometry's last two seconds.
+  bool level = true;
+  if (!keyframes_.empty()) {
+    level = std::abs(initial.translation().z() - keyframes_.back().position.z()) <
+            options_.floors.level_step;
+  } else if (const auto before = odometry_.at(stamp - 2.0)) {
+    level = std::abs(odometry_at_scan.translation().z() - before->translation().z()) <
+            options_.floors.level_step;
+  }
+  const int floor = floorOf(initial.translation().z(), level);
+  keyframe.floor = floor;
+  keyframe.climbing = !level;
+  if (floor >= 0) current_floor_ = floor;
+  return floor;
+}
+
+void SGraph::noteLowestSeen(const sensors::Scan& scan, int floor, const Eigen::Isometry3d& M_T_L) {
+  // The scan's low points: its 0.5 % quantile of height in M (a few stray points lower still,
+  // noise or a reflection, do not count).
+  const Eigen::RowVector3d z_row = M_T_L.linear().row(2);
+  std::vector<double> heights;
+  heights.reserve(scan.points.size());
+  for (const auto& p : scan.points) {
+    heights.push_back(z_row.dot(Eigen::Vector3d(p.x, p.y, p.z)) + M_T_L.translation().z());
+  }
+  const auto low = heights.begin() + std::ptrdiff_t(heights.size() / 200);
+  std::nth_element(heights.begin(), low, heights.end());
+  Floor& f = floors_[floor];
+  f.lowest_seen = f.lowest_seen ? std::min(*f.lowest_seen, *low) : *low;
+}
+
+void SGraph::observeFloorPlane(const PlaneObservation& observation, int floor,
+                               const Eigen::Isometry3d& M_T_L, const Eigen::Isometry3d& initial) {
+  // The floor: a horizontal plane well below the sensor, facing up.
+  const bim::Plane in_M = observation.plane.transformed(M_T_L);
+  // Its height where it was seen (its centroid), not where the plane meets M's z axis: a floor
+  // seen far off in a ring's arc has a normal a few degrees off, which tilts the plane by
+  // decimetres at M's origin.
+  const double z = (M_T_L * observation.centroid).z();
+  if (in_M.normal.z() > 0.9 && z < M_T_L.translation().z() - 0.3 &&
+      observation.points < options_.extraction.min_inliers) {
+    auto& sparse = floors_[floor].sparse_planes;  // kept sorted: floorHeight's median
+    const std::pair<double, int> plane(z, observation.points);
+    sparse.insert(std::upper_bound(sparse.begin(), sparse.end(), plane), plane);
+    floors_[floor].sparse_support += observation.points;
+  } else if (in_M.normal.z() > 0.9 && z < M_T_L.translation().z() - 0.3) {
+    floors_[floor].plane_sum += z;
+    ++floors_[floor].plane_count;
+    robot_above_floor_sum_ += initial.translation().z() - z;
+    ++robot_above_floor_count_;
+  }
+}
+
+void SGraph::observeWall(const PlaneObservation& observation, int floor, int index,
+                         const Eigen::Isometry3d& M_T_L, std::vector<MapPlane>& walls,
+                         Keyframe& keyframe) {
+  const PlaneObservation in_map = toMap(observation, M_T_L);
+  int plane = associate(in_map, walls, options_.association);
+  if (plane < 0) {
+    Plane created;
+    created.map.plane = in_map.plane;
+    created.map.start = in_map.start.head<2>();
+    created.map.end = in_map.end.head<2>();
+    created.map.z_min = in_map.z_min;
+    created.map.z_max = in_map.z_max;
+    created.parameters = bim::toVector(in_map.plane);
+    created.floor = floor;
+    planes_.push_back(created);
+    walls.push_back(created.map);
+    plane = int(planes_.size()) - 1;
+  }
+  Plane& p = planes_[plane];
+  extend(p.map, in_map);
+  addHeights(p.map, in_map);
+  ++p.map.observations;
+  p.observed_by.push_back(index);
+  walls[plane] = p.map;
+  keyframe.observations.emplace_back(plane, observation);
+}
+
+void SGraph::detectRoomsInWindow(int index) {
+  // Walls seen now may complete rooms the robot stood in a little earlier: look again from every
+  // keyframe of the window.
+  std::vector<PlaneObservation> weighted;
+  for (const auto& p : planes_) {
+    if (p.merged_into >= 0) continue;
+    PlaneObservation o;
+    o.plane = p.map.plane;
+    o.orientation = PlaneOrientation::kVertical;
+    o.points = int(10 * p.map.observations * std::max(0.5, (p.map.end - p.map.start).norm()));
+    weighted.push_back(o);
+  }
+  const double dominant = dominantYaw(weighted);
+  std::map<int, std::vector<MapPlane>> walls_now;  // per floor
+  for (int k = std::max(0, index - options_.window + 1); k <= index; ++k) {
+    const int on = keyframes_[k].floor;
+    if (on < 0) continue;
+    auto it = walls_now.find(on);
+    if (it == walls_now.end()) it = walls_now.emplace(on, activeWalls(on)).first;
+    detectRooms(k, dominant, it->second);
+  }
+}
+
 bool SGraph::addScan(sensors::Scan scan) {
   const auto start = std::chrono::steady_clock::now();
   if (!wouldKeyframe(scan.stamp)) return false;
@@ -118,36 +224,9 @@ bool SGraph::addScan(sensors::Scan scan) {
   keyframe.position = initial.translation();
   keyframe.orientation = Eigen::Quaterniond(initial.rotation());
   const int index = int(keyframes_.size());
-  // Level: little height since the keyframe before, or (a segment's first keyframe) in the
-  // odometry's last two seconds.
-  bool level = true;
-  if (!keyframes_.empty()) {
-    level = std::abs(initial.translation().z() - keyframes_.back().position.z()) <
-            options_.floors.level_step;
-  } else if (const auto before = odometry_.at(scan.stamp - 2.0)) {
-    level = std::abs(odometry_at_scan.translation().z() - before->translation().z()) <
-            options_.floors.level_step;
-  }
-  const int floor = floorOf(initial.translation().z(), level);
-  keyframe.floor = floor;
-  keyframe.climbing = !level;
-  if (floor >= 0) current_floor_ = floor;
-
+  const int floor = floorOfKeyframe(scan.stamp, odometry_at_scan, initial, keyframe);
   const Eigen::Isometry3d M_T_L = initial * R_T_L_;
-  if (floor >= 0 && level && !scan.points.empty()) {
-    // The scan's low points: its 0.5 % quantile of height in M (a few stray points lower still,
-    // noise or a reflection, do not count).
-    const Eigen::RowVector3d z_row = M_T_L.linear().row(2);
-    std::vector<double> heights;
-    heights.reserve(scan.points.size());
-    for (const auto& p : scan.points) {
-      heights.push_back(z_row.dot(Eigen::Vector3d(p.x, p.y, p.z)) + M_T_L.translation().z());
-    }
-    const auto low = heights.begin() + std::ptrdiff_t(heights.size() / 200);
-    std::nth_element(heights.begin(), low, heights.end());
-    Floor& f = floors_[floor];
-    f.lowest_seen = f.lowest_seen ? std::min(*f.lowest_seen, *low) : *low;
-  }
+  if (floor >= 0 && !keyframe.climbing && !scan.points.empty()) noteLowestSeen(scan, floor, M_T_L);
   // The map as association sees it, kept in step as this keyframe's observations change it: the
   // walls of its own floor only.
   std::vector<MapPlane> walls = activeWalls(floor);
@@ -159,49 +238,10 @@ bool SGraph::addScan(sensors::Scan scan) {
   sensors::StageClock association_clock(stage_times_, "association");
   for (const auto& observation : observations) {
     if (observation.orientation == PlaneOrientation::kHorizontal) {
-      // The floor: a horizontal plane well below the sensor, facing up.
-      const bim::Plane in_M = observation.plane.transformed(M_T_L);
-      // Its height where it was seen (its centroid), not where the plane meets M's z axis: a
-      // floor seen far off in a ring's arc has a normal a few degrees off, which tilts the plane
-      // by decimetres at M's origin.
-      const double z = (M_T_L * observation.centroid).z();
-      if (in_M.normal.z() > 0.9 && z < M_T_L.translation().z() - 0.3 &&
-          observation.points < options_.extraction.min_inliers) {
-        auto& sparse = floors_[floor].sparse_planes;  // kept sorted: floorHeight's median
-        const std::pair<double, int> plane(z, observation.points);
-        sparse.insert(std::upper_bound(sparse.begin(), sparse.end(), plane), plane);
-        floors_[floor].sparse_support += observation.points;
-      } else if (in_M.normal.z() > 0.9 && z < M_T_L.translation().z() - 0.3) {
-        floors_[floor].plane_sum += z;
-        ++floors_[floor].plane_count;
-        robot_above_floor_sum_ += initial.translation().z() - z;
-        ++robot_above_floor_count_;
-      }
-      continue;
+      observeFloorPlane(observation, floor, M_T_L, initial);
+    } else if (observation.orientation == PlaneOrientation::kVertical) {
+      observeWall(observation, floor, index, M_T_L, walls, keyframe);
     }
-    if (observation.orientation != PlaneOrientation::kVertical) continue;
-    const PlaneObservation in_map = toMap(observation, M_T_L);
-    int plane = associate(in_map, walls, options_.association);
-    if (plane < 0) {
-      Plane created;
-      created.map.plane = in_map.plane;
-      created.map.start = in_map.start.head<2>();
-      created.map.end = in_map.end.head<2>();
-      created.map.z_min = in_map.z_min;
-      created.map.z_max = in_map.z_max;
-      created.parameters = bim::toVector(in_map.plane);
-      created.floor = floor;
-      planes_.push_back(created);
-      walls.push_back(created.map);
-      plane = int(planes_.size()) - 1;
-    }
-    Plane& p = planes_[plane];
-    extend(p.map, in_map);
-    addHeights(p.map, in_map);
-    ++p.map.observations;
-    p.observed_by.push_back(index);
-    walls[plane] = p.map;
-    keyframe.observations.emplace_back(plane, observation);
   }
   association_clock.stop();
   keyframes_.push_back(std::move(keyframe));
@@ -219,28 +259,7 @@ bool SGraph::addScan(sensors::Scan scan) {
   timing.window_residuals = window.residual_blocks;
   timing.window_parameters = window.parameter_blocks;
   sensors::StageClock rooms_clock(stage_times_, "rooms");
-  // Walls seen now may complete rooms the robot stood in a little earlier: look again from every
-  // keyframe of the window.
-  {
-    std::vector<PlaneObservation> weighted;
-    for (const auto& p : planes_) {
-      if (p.merged_into >= 0) continue;
-      PlaneObservation o;
-      o.plane = p.map.plane;
-      o.orientation = PlaneOrientation::kVertical;
-      o.points = int(10 * p.map.observations * std::max(0.5, (p.map.end - p.map.start).norm()));
-      weighted.push_back(o);
-    }
-    const double dominant = dominantYaw(weighted);
-    std::map<int, std::vector<MapPlane>> walls_now;  // per floor
-    for (int k = std::max(0, index - options_.window + 1); k <= index; ++k) {
-      const int on = keyframes_[k].floor;
-      if (on < 0) continue;
-      auto it = walls_now.find(on);
-      if (it == walls_now.end()) it = walls_now.emplace(on, activeWalls(on)).first;
-      detectRooms(k, dominant, it->second);
-    }
-  }
+  detectRoomsInWindow(index);
   timing.optimisation_s = timing.solve_s + rooms_clock.stop();
   timings_.push_back(timing);
   return true;
@@ -331,22 +350,29 @@ void SGraph::startNewSegment(double stamp, const std::string& reason) {
   segment_start_ = stamp;
 }
 
-SGraph::WindowSize SGraph::optimise(int first, bool with_hook, int max_iterations) {
-  const int n = int(keyframes_.size());
-  if (n < 2) return {};
-  first = std::clamp(first, 1, n - 1);  // keyframe 0 fixes the gauge (M)
-  ceres::Problem::Options problem_options;
-  // The manifolds and the loss live on this stack frame, not in the problem.
-  problem_options.manifold_ownership = ceres::DO_NOT_TAKE_OWNERSHIP;
-  problem_options.loss_function_ownership = ceres::DO_NOT_TAKE_OWNERSHIP;
-  ceres::Problem problem(problem_options);
+namespace {
+
+ceres::Problem::Options windowProblemOptions() {
+  ceres::Problem::Options options;
+  // The manifolds and the loss live in the window, not in the problem.
+  options.manifold_ownership = ceres::DO_NOT_TAKE_OWNERSHIP;
+  options.loss_function_ownership = ceres::DO_NOT_TAKE_OWNERSHIP;
+  return options;
+}
+
+}  // namespace
+
+// The problem of one window optimisation, with the manifolds and the loss it uses and the
+// keyframes whose poses it holds.
+struct SGraph::Window {
+  explicit Window(double huber_scale) : problem(windowProblemOptions()), huber(huber_scale) {}
+  ceres::Problem problem;
   ceres::EigenQuaternionManifold quaternion;
   bim::PlaneManifold plane_manifold;
-  ceres::HuberLoss huber(options_.huber);
-
+  ceres::HuberLoss huber;
   std::set<int> held;  // keyframes in the problem whose poses do not move
-  auto add_pose = [&](int k, bool fixed) {
-    Keyframe& kf = keyframes_[k];
+
+  void addPose(Keyframe& kf, int k, bool fixed) {
     problem.AddParameterBlock(kf.position.data(), 3);
     problem.AddParameterBlock(kf.orientation.coeffs().data(), 4, &quaternion);
     if (fixed) {
@@ -354,43 +380,51 @@ SGraph::WindowSize SGraph::optimise(int first, bool with_hook, int max_iteration
       problem.SetParameterBlockConstant(kf.orientation.coeffs().data());
       held.insert(k);
     }
-  };
-  add_pose(first - 1, true);
+  }
+};
+
+void SGraph::addKeyframeFactors(Window& w, int first) {
+  const int n = int(keyframes_.size());
+  w.addPose(keyframes_[first - 1], first - 1, true);
   for (int k = first; k < n; ++k) {
-    add_pose(k, false);
+    w.addPose(keyframes_[k], k, false);
     const Keyframe& a = keyframes_[k - 1];
     const Keyframe& b = keyframes_[k];
     const Eigen::Isometry3d delta = a.odometry.inverse() * b.odometry;
     const auto [sigma_t, sigma_r] = odometrySigmas(delta.translation().norm());
-    problem.AddResidualBlock(
+    w.problem.AddResidualBlock(
         OdometryFactor::create(delta, sigma_t, sigma_r), nullptr, keyframes_[k - 1].position.data(),
         keyframes_[k - 1].orientation.coeffs().data(), keyframes_[k].position.data(),
         keyframes_[k].orientation.coeffs().data());
     if (b.onFloor() && options_.sigma_floor_height > 0.0) {
-      problem.AddResidualBlock(
+      w.problem.AddResidualBlock(
           HeightFactor::create(floors_[b.floor].first_z, options_.sigma_floor_height), nullptr,
           keyframes_[k].position.data());
     }
     if (b.up) {
-      problem.AddResidualBlock(GravityFactor::create(*b.up, options_.sigma_gravity), nullptr,
-                               keyframes_[k].orientation.coeffs().data());
+      w.problem.AddResidualBlock(GravityFactor::create(*b.up, options_.sigma_gravity), nullptr,
+                                 keyframes_[k].orientation.coeffs().data());
     }
     const KeyframeRegistration& registration = b.registration;
     if (registration.attempted && registration.agrees) {
-      problem.AddResidualBlock(
-          ScanMatchFactor::create(registration.measured, registration.sqrt_information), &huber,
+      w.problem.AddResidualBlock(
+          ScanMatchFactor::create(registration.measured, registration.sqrt_information), &w.huber,
           keyframes_[k - 1].position.data(), keyframes_[k - 1].orientation.coeffs().data(),
           keyframes_[k].position.data(), keyframes_[k].orientation.coeffs().data());
     }
   }
+}
+
+std::set<int> SGraph::addPlaneFactors(Window& w, int first) {
   // Planes seen in the window, their observations from the window, and a few older, held ones.
+  const int n = int(keyframes_.size());
   std::set<int> planes;
   for (int k = first; k < n; ++k) {
     for (const auto& [plane, observation] : keyframes_[k].observations) planes.insert(plane);
   }
   for (int plane : planes) {
     Plane& p = planes_[plane];
-    problem.AddParameterBlock(p.parameters.data(), 4, &plane_manifold);
+    w.problem.AddParameterBlock(p.parameters.data(), 4, &w.plane_manifold);
     int anchors = 0;
     for (auto it = p.observed_by.rbegin(); it != p.observed_by.rend(); ++it) {
       const int k = *it;
@@ -398,18 +432,22 @@ SGraph::WindowSize SGraph::optimise(int first, bool with_hook, int max_iteration
         // Newest first: once the anchors are taken, every observation left is older still.
         if (anchors >= options_.anchors_per_plane) break;
         ++anchors;
-        if (!held.count(k)) add_pose(k, true);
+        if (!w.held.count(k)) w.addPose(keyframes_[k], k, true);
       }
       for (const auto& [observed, observation] : keyframes_[k].observations) {
         if (observed != plane) continue;
-        problem.AddResidualBlock(
+        w.problem.AddResidualBlock(
             PosePlaneFactor::create(bim::toVector(observation.plane), R_T_L_,
                                     options_.sigma_plane_angle, options_.sigma_plane_distance),
-            &huber, keyframes_[k].position.data(), keyframes_[k].orientation.coeffs().data(),
+            &w.huber, keyframes_[k].position.data(), keyframes_[k].orientation.coeffs().data(),
             p.parameters.data());
       }
     }
   }
+  return planes;
+}
+
+std::vector<int> SGraph::addRoomFactors(ceres::Problem& problem, const std::set<int>& planes) {
   // Rooms whose planes are all in the problem: their centres follow the room factors.
   std::vector<int> active_rooms;
   for (int r = 0; r < int(rooms_.size()); ++r) {
@@ -433,19 +471,30 @@ SGraph::WindowSize SGraph::optimise(int first, bool with_hook, int max_iteration
                                planes_[pairs[0][1]].parameters.data());
     }
   }
-  addFloorFactors(problem, active_rooms);
-  if (with_hook && window_hook_) window_hook_(problem, planes, active_rooms);
+  return active_rooms;
+}
+
+SGraph::WindowSize SGraph::optimise(int first, bool with_hook, int max_iterations) {
+  const int n = int(keyframes_.size());
+  if (n < 2) return {};
+  first = std::clamp(first, 1, n - 1);  // keyframe 0 fixes the gauge (M)
+  Window w(options_.huber);
+  addKeyframeFactors(w, first);
+  const std::set<int> planes = addPlaneFactors(w, first);
+  const std::vector<int> active_rooms = addRoomFactors(w.problem, planes);
+  addFloorFactors(w.problem, active_rooms);
+  if (with_hook && window_hook_) window_hook_(w.problem, planes, active_rooms);
   ceres::Solver::Options solver;
   solver.linear_solver_type = ceres::SPARSE_NORMAL_CHOLESKY;
   solver.max_num_iterations = max_iterations;
   solver.num_threads = 1;
   ceres::Solver::Summary summary;
-  ceres::Solve(solver, &problem, &summary);
+  ceres::Solve(solver, &w.problem, &summary);
   for (int plane : planes) {
     Plane& p = planes_[plane];
     p.map.plane = bim::toPlane(p.parameters);
   }
-  return {problem.NumResidualBlocks(), problem.NumParameterBlocks()};
+  return {w.problem.NumResidualBlocks(), w.problem.NumParameterBlocks()};
 }
 
 void SGraph::tieToFloor(int room) {

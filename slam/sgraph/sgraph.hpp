@@ -237,7 +237,29 @@ class SGraph {
   // Optimises the keyframes from `first` on (the one before held) and what they observe;
   // returns the size of the problem solved.
   WindowSize optimise(int first, bool with_hook, int max_iterations);
+  // The parts of a window's problem (optimise): keyframes first-1 … with their odometry, height,
+  // gravity and registration factors; the planes they observe with their observations and a few
+  // older anchors; the rooms whose planes are all in it.
+  struct Window;
+  void addKeyframeFactors(Window& window, int first);
+  std::set<int> addPlaneFactors(Window& window, int first);
+  std::vector<int> addRoomFactors(ceres::Problem& problem, const std::set<int>& planes);
   void detectRooms(int keyframe, double dominant_yaw, const std::vector<MapPlane>& walls);
+  // The parts of addScan. The keyframe's floor (-1 on the stairs) and whether it is level
+  // (Keyframe::climbing), from its height and the one before's.
+  int floorOfKeyframe(double stamp, const Eigen::Isometry3d& odometry_at_scan,
+                      const Eigen::Isometry3d& initial, Keyframe& keyframe);
+  // The scan's low points bound its floor's height (Floor::lowest_seen).
+  void noteLowestSeen(const sensors::Scan& scan, int floor, const Eigen::Isometry3d& M_T_L);
+  // A horizontal plane below the sensor: the floor's height, well supported or sparse.
+  void observeFloorPlane(const PlaneObservation& observation, int floor,
+                         const Eigen::Isometry3d& M_T_L, const Eigen::Isometry3d& initial);
+  // A wall: associated with a map plane of the floor (`walls`, kept in step) or a new one.
+  void observeWall(const PlaneObservation& observation, int floor, int index,
+                   const Eigen::Isometry3d& M_T_L, std::vector<MapPlane>& walls,
+                   Keyframe& keyframe);
+  // Rooms looked for again from every keyframe of the window ending at `index`.
+  void detectRoomsInWindow(int index);
   // The floor a keyframe at height z (in M), level or not (climbing), stands on, made when it is
   // a new one; -1 on the stairs.
   int floorOf(double z, bool level);
