@@ -7,7 +7,7 @@
 #include <numbers>
 
 #include "bim/agraph.hpp"
-#include "cli/tests/injected_match.hpp"
+#include "cli/tests/loop/injected_match.hpp"
 #include "common/angles.hpp"
 #include "run/driver.hpp"
 #include "sim/scan_pipeline.hpp"

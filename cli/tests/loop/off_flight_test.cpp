@@ -7,7 +7,7 @@
 #include <string>
 
 #include "bim/agraph.hpp"
-#include "cli/tests/injected_match.hpp"
+#include "cli/tests/loop/injected_match.hpp"
 #include "run/driver.hpp"
 #include "sim/scan_pipeline.hpp"
 #include "sim/simulation.hpp"

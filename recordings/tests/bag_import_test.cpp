@@ -1,0 +1,186 @@
+// The import of a ROS 1 recording on its own (recordings/bag_import): a bag written here with the
+// project's writer and Debian's message serialisers — a LiDAR on a base that drives along x, its
+// odometry, an IMU at rest, the mounts on /tf_static — becomes a dataset whose every number is
+// known by hand. The whole command (topics chosen, Python-written bags, Ouster layouts) is
+// cli/tests/recording_import_test.cpp's.
+#include "recordings/bag_import.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+
+#include "common/input_error.hpp"
+#include "common/tum.hpp"
+#include "formats/imu_file.hpp"
+#include "formats/pcd_reader.hpp"
+#include "formats/ros_messages.hpp"
+#include "formats/rosbag_writer.hpp"
+#include "formats/tests/scratch_files.hpp"
+#include "sensors/mount_transform.hpp"
+
+namespace isg::recordings {
+namespace {
+
+namespace fs = std::filesystem;
+
+// What the recording holds; each field changes one thing from a clean bag.
+struct Recording {
+  int clouds = 10;  // at 10 Hz from t = 100 s
+  std::string cloud_frame = "velodyne";
+  int odd_frame_cloud = -1;  // this cloud in another frame
+  double gravity = 9.81;     // the IMU's reading at rest (1.0: a driver in g)
+};
+
+Eigen::Isometry3d baseAt(double t) {
+  Eigen::Isometry3d M_T_R = Eigen::Isometry3d::Identity();
+  M_T_R.translation().x() = 0.5 * (t - 100.0);  // 0.5 m/s along x
+  return M_T_R;
+}
+
+std::string writeBag(const fs::path& dir, const Recording& r) {
+  const std::string path = (dir / "walk.bag").string();
+  formats::RosbagWriter bag(path, true);
+  const int tf_static = bag.connect("/tf_static", formats::ros1::tfMessageType(), true);
+  const int cloud = bag.connect("/velodyne_points", formats::ros1::pointCloud2Type());
+  const int odom = bag.connect("/odom", formats::ros1::odometryType());
+  const int imu = bag.connect("/imu/data", formats::ros1::imuType());
+  auto at = [](double t) { return formats::RosTime::fromSeconds(t); };
+  bag.write(tf_static, at(100.0),
+            formats::ros1::tfMessage({{at(100.0), "base_link", "velodyne",
+                                       sensors::mountTransform({0, 0, 0.5, 0, 0, 0})},
+                                      {at(100.0), "base_link", "imu_link",
+                                       sensors::mountTransform({-0.1, 0, 0.2, 0, 0, 0})}}));
+  // Odometry at 50 Hz and the IMU at 100 Hz over the clouds' span and a little beyond.
+  const double end = 100.0 + 0.1 * r.clouds + 0.1;
+  for (int k = 0; 100.0 + 0.02 * k <= end; ++k) {
+    const double t = 100.0 + 0.02 * k;
+    bag.write(
+        odom, at(t),
+        formats::ros1::odometry(baseAt(t), {0.5, 0, 0}, {0, 0, 0}, at(t), k, "odom", "base_link"));
+  }
+  for (int k = 0; 100.0 + 0.01 * k <= end; ++k) {
+    const double t = 100.0 + 0.01 * k;
+    sensors::ImuSample sample;
+    sample.accelerometer = Eigen::Vector3d(0, 0, r.gravity);
+    bag.write(imu, at(t), formats::ros1::imu(sample, at(t), k, "imu_link", 1e-6, 1e-4));
+  }
+  // Clouds stamped at the end of their turn: the points' times run from −0.1 to 0 s.
+  for (int c = 0; c < r.clouds; ++c) {
+    const double stamp = 100.1 + 0.1 * c;
+    std::vector<sensors::ScanPoint> points;
+    for (int i = 0; i < 100; ++i) {
+      points.push_back({float(5.0 + 0.01 * i), 0.0f, 0.0f, 10.0f, std::uint16_t(i % 16),
+                        float(-0.1 + 0.001 * i)});
+    }
+    const std::string frame = c == r.odd_frame_cloud ? "laser" : r.cloud_frame;
+    bag.write(cloud, at(stamp), formats::ros1::pointCloud2(points, at(stamp), c, frame));
+  }
+  bag.close();
+  return path;
+}
+
+class BagImport : public ::testing::Test {
+ protected:
+  void SetUp() override { dir_ = formats::test_files::scratchFolder("bag_import"); }
+  void TearDown() override { fs::remove_all(dir_); }
+  BagImportSummary import(const Recording& r, const BagImportOptions& options = {}) {
+    return importRosbag(writeBag(dir_, r), (dir_ / "ds").string(), options, nullptr);
+  }
+  nlohmann::json metadata() const {
+    return nlohmann::json::parse(std::ifstream(dir_ / "ds" / "metadata.json"));
+  }
+  fs::path dir_;
+};
+
+TEST_F(BagImport, ARecordingBecomesADatasetInItsOwnTime) {
+  const BagImportSummary summary = import(Recording{});
+  EXPECT_EQ(summary.lidar.topic, "/velodyne_points");
+  EXPECT_EQ(summary.lidar.messages, 10u);
+  EXPECT_EQ(summary.odometry.topic, "/odom");
+  EXPECT_EQ(summary.imu.topic, "/imu/data");
+  EXPECT_EQ(summary.stamp, "last_packet");  // most points come before the stamp
+  EXPECT_NEAR(summary.scan_period, 0.1, 1e-9);
+  // Dataset time 0 is the whole second at or before the first stamp (100 s): the first cloud
+  // at 0.1 s, the odometry's first pose at 0 at the origin, 0.5 m further each second.
+  const common::Trajectory odometry = common::readTum((dir_ / "ds" / "odometry.tum").string());
+  ASSERT_FALSE(odometry.empty());
+  EXPECT_NEAR(odometry.front().t, 0.0, 1e-9);
+  EXPECT_NEAR(odometry.back().t, 1.1, 1e-9);
+  EXPECT_NEAR(odometry.back().pose.translation().x(), 0.55, 1e-6);
+  for (int k = 0; k < 10; ++k) {
+    char name[32];
+    std::snprintf(name, sizeof name, "%06d.pcd", k);
+    EXPECT_EQ(formats::readPcd((dir_ / "ds" / "scans" / name).string()).size(), 100u) << name;
+  }
+  EXPECT_FALSE(fs::exists(dir_ / "ds" / "scans" / "000010.pcd"));
+  // The mounts from /tf_static, the IMU at rest in m/s².
+  const nlohmann::json m = metadata();
+  EXPECT_EQ(m["format"], "isg.dataset");
+  EXPECT_EQ(m["extrinsics"]["R_T_L"]["xyz_rpy"][2], 0.5);
+  EXPECT_EQ(m["extrinsics"]["R_T_I"]["xyz_rpy"][0], -0.1);
+  EXPECT_EQ(m["frames"]["L"], "velodyne");
+  EXPECT_EQ(m["lidar"]["scans"], 10);
+  EXPECT_NEAR(m["imu"]["rate_hz"].get<double>(), 100.0, 1e-6);
+  // The driver's variances are density² × rate: 1e-6 rad²/s² at 100 Hz is 1e-4 rad/s/√Hz.
+  EXPECT_NEAR(m["imu"]["gyroscope_noise_density"].get<double>(), 1e-4, 1e-12);
+  EXPECT_EQ(m["imported_from"]["file"], "walk.bag");
+  EXPECT_EQ(m["imported_from"]["time_origin_s"], 100);
+  const auto imu = formats::readImuFile((dir_ / "ds" / "imu.csv").string());
+  EXPECT_NEAR(imu.front().accelerometer.z(), 9.81, 1e-9);
+}
+
+TEST_F(BagImport, AnImuInGIsConvertedAndSaidSo) {
+  Recording r;
+  r.gravity = 1.0;
+  const BagImportSummary summary = import(r);
+  const auto imu = formats::readImuFile((dir_ / "ds" / "imu.csv").string());
+  EXPECT_NEAR(imu.front().accelerometer.z(), 9.80665, 1e-9);
+  bool said = false;
+  for (const auto& note : summary.notes) said = said || note.find("in g") != std::string::npos;
+  EXPECT_TRUE(said);
+}
+
+TEST_F(BagImport, AWindowOfTheRecording) {
+  BagImportOptions options;
+  options.start = 0.45;  // the bag's first message is at 100 s
+  options.duration = 0.4;
+  const BagImportSummary summary = import(Recording{}, options);
+  // Clouds stamped 100.5 … 100.8 s lie in [100.45, 100.85].
+  EXPECT_EQ(summary.lidar.messages, 4u);
+  EXPECT_EQ(metadata()["imported_from"]["start_s"], 0.45);
+}
+
+TEST_F(BagImport, ACloudInAnotherFrameIsNamedAndNothingIsWritten) {
+  Recording r;
+  r.odd_frame_cloud = 3;
+  try {
+    import(r);
+    FAIL() << "imported";
+  } catch (const common::InputError& e) {
+    EXPECT_EQ(e.reason(),
+              "topic /velodyne_points, message 3: its frame \"laser\" is not the first cloud's "
+              "\"velodyne\"");
+  }
+  EXPECT_FALSE(fs::exists(dir_ / "ds"));
+}
+
+TEST_F(BagImport, AMountMissingFromTheRecordingIsAskedFor) {
+  Recording r;
+  r.cloud_frame = "lidar";  // /tf_static joins velodyne, not lidar, to the base
+  try {
+    import(r);
+    FAIL() << "imported";
+  } catch (const common::InputError& e) {
+    EXPECT_NE(e.reason().find("--lidar-extrinsic"), std::string::npos) << e.reason();
+  }
+  BagImportOptions options;
+  options.lidar_extrinsic = std::array<double, 6>{0.2, 0, 0.4, 0, 0, 0};
+  import(r, options);
+  EXPECT_EQ(metadata()["extrinsics"]["R_T_L"]["xyz_rpy"][0], 0.2);
+}
+
+}  // namespace
+}  // namespace isg::recordings
