@@ -39,8 +39,8 @@ TEST(PlanJson, EveryDefaultWrittenByDefault) {
   EXPECT_EQ(level["walls"][0]["base"], 0.0);
   // D1's rooms were inferred from the outlines, the one on the wall's left first (W5 runs +y:
   // its left is the west, R1); D2's given.
-  EXPECT_EQ(level["doors"][0]["rooms"], nlohmann::json({"R1", "R2"}));
-  EXPECT_EQ(level["doors"][1]["rooms"], nlohmann::json({"R2", "outside"}));
+  EXPECT_EQ(level["doors"][0]["rooms"], nlohmann::ordered_json({"R1", "R2"}));
+  EXPECT_EQ(level["doors"][1]["rooms"], nlohmann::ordered_json({"R2", "outside"}));
   // Keys in the format's order.
   std::vector<std::string> keys;
   for (const auto& item : written.items()) keys.push_back(item.key());
@@ -55,7 +55,7 @@ TEST(PlanJson, AsPeopleWriteItLeavesOutWhatTheParserFillsIn) {
   EXPECT_FALSE(level["walls"][0].contains("base"));
   EXPECT_EQ(level["walls"][4]["height"], 2.8);  // not the level's: kept
   EXPECT_FALSE(level["doors"][0].contains("rooms"));
-  EXPECT_EQ(level["doors"][1]["rooms"], nlohmann::json({"R2", "outside"}));
+  EXPECT_EQ(level["doors"][1]["rooms"], nlohmann::ordered_json({"R2", "outside"}));
   // It reads back to the same plan, door rooms inferred again.
   const Plan again = parsePlanJson(nlohmann::json::parse(written.dump()));
   EXPECT_EQ(again.levels[0].walls[0].height, 3.0);

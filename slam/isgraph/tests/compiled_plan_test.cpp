@@ -7,8 +7,8 @@
 #include <random>
 
 #include "bim/plan_parser.hpp"
-#include "slam/isgraph/tests/box_world.hpp"
 #include "slam/isgraph/tests/synthetic_sgraph.hpp"
+#include "slam/sgraph/tests/box_world.hpp"
 
 namespace isg::slam {
 namespace {

@@ -7,7 +7,7 @@
 #include <gtest/gtest.h>
 
 #include "bim/plan_parser.hpp"
-#include "slam/isgraph/tests/box_world.hpp"
+#include "slam/sgraph/tests/box_world.hpp"
 
 namespace isg::slam {
 namespace {

@@ -8,7 +8,7 @@
 
 #include "slam/isgraph/compiled_plan.hpp"
 #include "slam/isgraph/match_input.hpp"
-#include "slam/isgraph/tests/box_world.hpp"
+#include "slam/sgraph/tests/box_world.hpp"
 
 namespace isg::slam {
 namespace {

@@ -4,7 +4,7 @@
 
 #include <gtest/gtest.h>
 
-#include "slam/isgraph/tests/box_world.hpp"
+#include "slam/sgraph/tests/box_world.hpp"
 
 namespace isg::slam {
 namespace {

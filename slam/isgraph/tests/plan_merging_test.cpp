@@ -6,7 +6,7 @@
 #include <gtest/gtest.h>
 
 #include "slam/isgraph/match_input.hpp"
-#include "slam/isgraph/tests/box_world.hpp"
+#include "slam/sgraph/tests/box_world.hpp"
 
 namespace isg::slam {
 namespace {

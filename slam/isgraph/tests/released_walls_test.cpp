@@ -4,22 +4,15 @@
 
 #include <gtest/gtest.h>
 
+#include "slam/isgraph/tests/eight_walls.hpp"
+
 namespace isg::slam {
 namespace {
 
-// Eight planned faces around an 8 × 6 m room centred on the origin, each seen over 3 m, the
-// first (x = −2 on the south side) standing `off` metres inside the room.
+// The eight walls of testing::eightWallRoom, the first (x = −2 on the south side) standing `off`
+// metres inside the room.
 std::vector<HeldWall> roomWith(double off) {
-  std::vector<HeldWall> walls;
-  for (double x : {-2.0, 2.0}) {
-    walls.push_back({{x, -3.0}, 3.0, {0.0, 1.0}});
-    walls.push_back({{x, 3.0}, 3.0, {0.0, -1.0}});
-  }
-  for (double y : {-1.5, 1.5}) {
-    walls.push_back({{-4.0, y}, 3.0, {1.0, 0.0}});
-    walls.push_back({{4.0, y}, 3.0, {-1.0, 0.0}});
-  }
-  for (std::size_t i = 0; i < walls.size(); ++i) walls[i].wall = int(i);
+  std::vector<HeldWall> walls = testing::eightWallRoom();
   walls[0].middle.y() += off;
   walls[0].offset = off;
   return walls;

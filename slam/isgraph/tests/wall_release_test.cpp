@@ -8,26 +8,14 @@
 #include <numbers>
 #include <vector>
 
+#include "slam/isgraph/tests/eight_walls.hpp"
+
 namespace isg::slam {
 namespace {
 
 constexpr double kDegree = std::numbers::pi / 180.0;
 
-// Eight planned wall surfaces around an 8 × 6 m room centred on the origin: two along each
-// side, each seen over 3 m, normals facing inwards.
-std::vector<HeldWall> room() {
-  std::vector<HeldWall> walls;
-  for (double x : {-2.0, 2.0}) {
-    walls.push_back({{x, -3.0}, 3.0, {0.0, 1.0}});
-    walls.push_back({{x, 3.0}, 3.0, {0.0, -1.0}});
-  }
-  for (double y : {-1.5, 1.5}) {
-    walls.push_back({{-4.0, y}, 3.0, {1.0, 0.0}});
-    walls.push_back({{4.0, y}, 3.0, {-1.0, 0.0}});
-  }
-  for (std::size_t i = 0; i < walls.size(); ++i) walls[i].wall = int(i);
-  return walls;
-}
+std::vector<HeldWall> room() { return testing::eightWallRoom(); }
 
 // The walls as seen when P_T_M is off by (t, yaw about the origin): each seen middle is carried
 // by the error, its offset from its surface and its angle follow.

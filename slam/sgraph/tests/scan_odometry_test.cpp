@@ -9,6 +9,8 @@
 #include <cmath>
 #include <numbers>
 
+#include "slam/sgraph/tests/box_world.hpp"
+
 namespace isg::slam {
 namespace {
 
@@ -77,35 +79,6 @@ TEST(ScanOdometry, TheAccelerometerPullsADriftingGyroscopeBackToLevel) {
   EXPECT_NEAR(rollOf(pose.linear()), 2 * kDeg, 0.05 * kDeg);
 }
 
-// A 10 m × 6 m box room 3 m high, seen by a ring scanner at the origin of L: points where rays
-// in 16 elevations and 360 azimuths meet the walls, floor and ceiling, for a sensor at `M_T_L`.
-sensors::Scan boxScan(const Eigen::Isometry3d& M_T_L, double stamp) {
-  sensors::Scan scan;
-  scan.stamp = stamp;
-  const Eigen::Vector3d lo(-2, -3, -1), hi(8, 3, 2);
-  for (int ring = 0; ring < 16; ++ring) {
-    const double elevation = (-15.0 + 2.0 * ring) * kDeg;
-    for (int a = 0; a < 360; ++a) {
-      const double azimuth = a * kDeg;
-      const Eigen::Vector3d d_L(std::cos(elevation) * std::cos(azimuth),
-                                std::cos(elevation) * std::sin(azimuth), std::sin(elevation));
-      const Eigen::Vector3d o = M_T_L.translation(), d = M_T_L.linear() * d_L;
-      double best = 1e9;
-      for (int k = 0; k < 3; ++k) {
-        if (std::abs(d[k]) < 1e-9) continue;
-        for (double wall : {lo[k], hi[k]}) {
-          const double s = (wall - o[k]) / d[k];
-          if (s > 0 && s < best) best = s;
-        }
-      }
-      const Eigen::Vector3d p = d_L * best;
-      scan.points.push_back(
-          {float(p.x()), float(p.y()), float(p.z()), 50.0f, std::uint16_t(ring), 0.0f});
-    }
-  }
-  return scan;
-}
-
 TEST(ScanOdometry, FollowsAWalkAcrossARoomFromTheScansAlone) {
   // No IMU: the base walks 3 m along x at 0.5 m/s while turning 0.3 rad, level; the scans alone
   // must follow it.
@@ -117,7 +90,7 @@ TEST(ScanOdometry, FollowsAWalkAcrossARoomFromTheScansAlone) {
     truth = Eigen::Isometry3d::Identity();
     truth.translation() = Eigen::Vector3d(0.05 * k, 0.01 * k, 0.0);
     truth.linear() = rollPitchYaw(0, 0, 0.005 * k);
-    estimate = odometry.addScan(boxScan(truth, t));
+    estimate = odometry.addScan(testing::boxScan(truth, t, 360));  // 1° apart
   }
   EXPECT_NEAR(estimate.translation().x(), truth.translation().x(), 0.03);
   EXPECT_NEAR(estimate.translation().y(), truth.translation().y(), 0.03);

@@ -35,17 +35,17 @@ inline bim::AGraph boxPlan() {
   return bim::buildAGraph(bim::parsePlan(common::JsonNode(plan, "", source)));
 }
 
-// A ring scan of the room's faces (16 rings from −15° to 15°, 0.2° in azimuth) from a sensor at
-// `M_T_L`, its points in L: 1800 azimuths a ring, as a VLP-16 at 10 Hz.
-inline sensors::Scan boxScan(const Eigen::Isometry3d& M_T_L, double stamp) {
+// A ring scan of the room's faces (16 rings from −15° to 15°) from a sensor at `M_T_L`, its points
+// in L: `azimuths` a ring (1800: 0.2° apart, as a VLP-16 at 10 Hz).
+inline sensors::Scan boxScan(const Eigen::Isometry3d& M_T_L, double stamp, int azimuths = 1800) {
   constexpr double kDeg = std::numbers::pi / 180.0;
   sensors::Scan scan;
   scan.stamp = stamp;
   const Eigen::Vector3d lo(-2, -3, -1), hi(8, 3, 2);
   for (int ring = 0; ring < 16; ++ring) {
     const double elevation = (-15.0 + 2.0 * ring) * kDeg;
-    for (int a = 0; a < 1800; ++a) {
-      const double azimuth = 0.2 * a * kDeg;
+    for (int a = 0; a < azimuths; ++a) {
+      const double azimuth = 360.0 / azimuths * a * kDeg;
       const Eigen::Vector3d d_L(std::cos(elevation) * std::cos(azimuth),
                                 std::cos(elevation) * std::sin(azimuth), std::sin(elevation));
       const Eigen::Vector3d o = M_T_L.translation(), d = M_T_L.linear() * d_L;
