@@ -2,9 +2,11 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <set>
 
 #include "common/input_error.hpp"
 #include "common/json_reader.hpp"
@@ -45,6 +47,60 @@ Eigen::Isometry3d mountOf(const common::JsonNode& matrix, const std::string& sen
   Eigen::Isometry3d out;
   out.matrix() = T;
   return out;
+}
+
+// The scan file of each stamp: stamp k's scan is scans/NNNNNN.pcd with NNNNNN = k (six digits or
+// more, dataset::scanFileName). Scans are matched by name, never by position in a sorted listing:
+// a renamed or missing file would otherwise shift every later scan onto the previous stamp. The
+// first stamp without its file, else the first .pcd file no stamp names, is an InputError.
+std::vector<std::string> scanFilesOf(const fs::path& scans, const std::string& stamps_file,
+                                     const common::Trajectory& stamps) {
+  std::error_code error;
+  if (!fs::is_directory(scans, error)) {
+    throw common::InputError(scans.string(), "",
+                             "not a folder: a dataset keeps its LiDAR scans in scans/");
+  }
+  std::vector<std::string> files;
+  std::set<std::string> expected;
+  for (std::size_t k = 0; k < stamps.size(); ++k) {
+    files.push_back((scans / dataset::scanFileName(int(k))).string());
+    expected.insert(dataset::scanFileName(int(k)));
+  }
+  std::vector<std::string> extra;
+  std::size_t found = 0;
+  for (const auto& entry : fs::directory_iterator(scans)) {
+    if (entry.path().extension() != ".pcd") continue;
+    if (expected.count(entry.path().filename().string()) != 0) {
+      ++found;
+    } else {
+      extra.push_back(entry.path().filename().string());
+    }
+  }
+  std::sort(extra.begin(), extra.end());
+  const std::string rule = "scan k is scans/NNNNNN.pcd, k from 000000 in " +
+                           fs::path(stamps_file).filename().string() + "'s order";
+  const std::string counts = std::to_string(stamps.size()) + " stamps, " +
+                             std::to_string(found + extra.size()) + " .pcd files in scans/";
+  for (std::size_t k = 0; k < stamps.size(); ++k) {
+    if (fs::is_regular_file(files[k], error)) continue;
+    char stamp[64];
+    std::snprintf(stamp, sizeof stamp, "%.9f", stamps[k].t);
+    throw common::InputError(
+        files[k], "",
+        "missing: no scan for stamp " + std::to_string(k) + " (t = " + stamp + " s in " +
+            stamps_file + "; " + rule + "; " + counts +
+            (extra.empty() ? "" : "; scans/" + extra.front() + " is no stamp's scan") + ")");
+  }
+  if (!extra.empty()) {
+    throw common::InputError(
+        (scans / extra.front()).string(), "",
+        "no stamp's scan: " + rule + ", and " + stamps_file + " has " +
+            (stamps.empty()
+                 ? "no stamps"
+                 : std::to_string(stamps.size()) + " stamps (" + dataset::scanFileName(0) + " to " +
+                       dataset::scanFileName(int(stamps.size()) - 1) + ")"));
+  }
+  return files;
 }
 
 }  // namespace
@@ -119,19 +175,7 @@ DatasetReader::DatasetReader(const std::string& dir) : dir_(dir) {
     stamps = readTrajectoryFile(stamps_file);
     scan_poses_ = stamps;
   }
-  if (!fs::is_directory(root / dataset::kScans)) {
-    throw common::InputError((root / dataset::kScans).string(), "",
-                             "not a folder: a dataset keeps its LiDAR scans in scans/");
-  }
-  for (const auto& entry : fs::directory_iterator(root / dataset::kScans)) {
-    if (entry.path().extension() == ".pcd") scan_files_.push_back(entry.path().string());
-  }
-  std::sort(scan_files_.begin(), scan_files_.end());
-  if (stamps.size() != scan_files_.size()) {
-    throw common::InputError(stamps_file, "",
-                             std::to_string(stamps.size()) + " stamps for " +
-                                 std::to_string(scan_files_.size()) + " scans in scans/");
-  }
+  scan_files_ = scanFilesOf(root / dataset::kScans, stamps_file, stamps);
   for (const auto& s : stamps) scan_stamps_.push_back(s.t);
   if (fs::exists(root / dataset::kImu)) imu_ = readImuFile((root / dataset::kImu).string());
 }

@@ -182,5 +182,52 @@ TEST(HonestExport, TheDatasetIsCheckedAgainstItsMetadata) {
   EXPECT_EQ(sandbox.run("export ds --rosbag b.bag -q").exit_code, 0);
 }
 
+// Scans are matched to their stamps by name: a dataset whose scans/ skips a number (a renamed or
+// missing file, a name of another form) is refused naming the first missing or extra scan, never
+// exported with every later cloud on the previous cloud's stamp.
+TEST(HonestExport, ScansMatchTheirStampsOneToOne) {
+  testing::Sandbox sandbox("export_gap");
+  ASSERT_EQ(sandbox.run("simulate builtin:d1 --duration 2 -o ds -q").exit_code, 0);
+  const fs::path scans = sandbox.dir() / "ds/scans";
+  const auto refused = [&](const std::string& from, const std::string& to) {
+    fs::rename(scans / from, scans / to);
+    const auto r = sandbox.run("export ds --rosbag b.bag -q");
+    fs::rename(scans / to, scans / from);
+    EXPECT_EQ(r.exit_code, 1) << r.err;
+    EXPECT_FALSE(sandbox.exists("b.bag")) << to;
+    return r.err;
+  };
+  const std::string rule =
+      " s in ds/scans.tum; scan k is scans/NNNNNN.pcd, k from 000000 in scans.tum's order; 20 "
+      "stamps, 20 .pcd files in scans/; scans/";
+  const std::string renamed = refused("000010.pcd", "000030.pcd");
+  EXPECT_THAT(
+      renamed,
+      HasSubstr("isg export: error: ds/scans/000010.pcd: missing: no scan for stamp 10 (t = "));
+  EXPECT_THAT(renamed, HasSubstr(rule + "000030.pcd is no stamp's scan)"));
+  const std::string short_name = refused("000010.pcd", "10.pcd");
+  EXPECT_THAT(short_name, HasSubstr("ds/scans/000010.pcd: missing: no scan for stamp 10"));
+  EXPECT_THAT(short_name, HasSubstr(rule + "10.pcd is no stamp's scan)"));
+  // The last scan missing: one fewer file than stamps.
+  fs::rename(scans / "000019.pcd", sandbox.dir() / "aside.pcd");
+  const auto last = sandbox.run("export ds --rosbag b.bag -q");
+  EXPECT_THAT(last.err, HasSubstr("ds/scans/000019.pcd: missing: no scan for stamp 19"));
+  EXPECT_THAT(last.err, HasSubstr("; 20 stamps, 19 .pcd files in scans/)"));
+  fs::rename(sandbox.dir() / "aside.pcd", scans / "000019.pcd");
+  // A scan no stamp names.
+  fs::copy_file(scans / "000019.pcd", scans / "000020.pcd");
+  const auto extra = sandbox.run("export ds --rosbag b.bag -q");
+  EXPECT_EQ(extra.exit_code, 1);
+  EXPECT_EQ(extra.err,
+            "isg export: error: ds/scans/000020.pcd: no stamp's scan: scan k is "
+            "scans/NNNNNN.pcd, k from 000000 in scans.tum's order, and ds/scans.tum has 20 "
+            "stamps (000000.pcd to 000019.pcd)\n");
+  // Replays read scans the same way.
+  EXPECT_THAT(sandbox.run("slam ds --method odometry -o r -q").err,
+              HasSubstr("ds/scans/000020.pcd: no stamp's scan"));
+  fs::remove(scans / "000020.pcd");
+  EXPECT_EQ(sandbox.run("export ds --rosbag b.bag -q").exit_code, 0);
+}
+
 }  // namespace
 }  // namespace isg::cli
