@@ -67,6 +67,25 @@ bool mayHoldSweep(const fs::path& folder) {
   return fs::is_empty(folder, error) && !error;
 }
 
+// isg writes no symbolic links, so one where the output goes is the user's: replacing it (a
+// rename over it) or writing through it (to wherever it points, a loop or nowhere) would both do
+// what the user did not ask. Links among the folders that hold the path are followed as usual.
+template <typename Refuse>
+void refuseLinkAtTheEnd(const std::string& path, const Refuse& refuse) {
+  fs::path last = fs::path(path);
+  // "a/link/" names what the link points to for the system, and the link for the user: checked.
+  while (last.has_relative_path() && last.filename().empty()) last = last.parent_path();
+  const std::string name = last.filename().string();
+  if (name.empty() || name == "." || name == "..") return;
+  std::error_code error;
+  if (!fs::is_symlink(fs::symlink_status(last, error))) return;
+  const fs::path target = fs::read_symlink(last, error);
+  refuse("refused as an output: it is a symbolic link" +
+         (error ? std::string() : " (to " + target.string() + ")") +
+         ", which isg neither replaces nor writes through; remove it yourself or give another "
+         "path");
+}
+
 }  // namespace
 
 std::string describeOutput(OutputKind kind) { return infoOf(kind).description; }
@@ -97,6 +116,7 @@ fs::path resolvePath(const std::string& path) {
 fs::path checkOutputPath(const std::string& path, const OutputRule& rule) {
   const auto refuse = [&](const std::string& why) { throw common::InputError(path, "", why); };
   if (path.empty()) refuse("an empty output path");
+  refuseLinkAtTheEnd(path, refuse);
   const fs::path resolved = resolvePath(path);
   const std::string what = describeOutput(rule.kind);
   if (resolved == resolved.root_path())

@@ -19,7 +19,8 @@ using ::testing::HasSubstr;
 std::map<std::string, std::string> snapshot(const fs::path& dir) {
   std::map<std::string, std::string> files;
   for (const auto& e : fs::recursive_directory_iterator(dir)) {
-    if (!e.is_regular_file()) continue;
+    std::error_code error;  // a symlink loop is no regular file, and no reason to throw
+    if (!e.is_regular_file(error)) continue;
     std::ifstream in(e.path(), std::ios::binary);
     std::ostringstream text;
     text << in.rdbuf();
@@ -127,6 +128,60 @@ TEST(OutputPaths, AnExportNeverReplacesTheDatasetsOwnFilesOrAUsersFile) {
   ASSERT_EQ(sandbox.run("export ds --rosbag b.bag -q").exit_code, 0);
   EXPECT_EQ(sandbox.run("export ds --rosbag b.bag -q").exit_code, 1);
   EXPECT_EQ(sandbox.run("export ds --rosbag b.bag --force -q").exit_code, 0);
+}
+
+// isg writes no symbolic links: one at the output path is the user's, never replaced (a dangling
+// link became a regular file before) and never written through, with or without --force.
+TEST(OutputPaths, ASymbolicLinkAtTheOutputIsNeverReplacedNorFollowed) {
+  testing::Sandbox sandbox("out_links");
+  userTree(sandbox);
+  ASSERT_EQ(sandbox.run("simulate builtin:d1 --duration 1 -o ds -q").exit_code, 0);
+  fs::create_symlink("nowhere.bag", sandbox.dir() / "dangling.bag");
+  fs::create_symlink("loop.mcap", sandbox.dir() / "loop.mcap");
+  fs::create_symlink("s/keep", sandbox.dir() / "kept");
+  fs::create_symlink("notes.txt", sandbox.dir() / "s/p/plan.png");
+  const auto before = snapshot(sandbox.dir());
+  const std::string link =
+      ", which isg neither replaces nor writes through; remove it yourself or give another path\n";
+  struct Case {
+    std::string arguments, expected;
+  };
+  const std::vector<Case> cases = {
+      {"export ds --rosbag dangling.bag -q",
+       "isg export: error: dangling.bag: refused as an output: it is a symbolic link (to "
+       "nowhere.bag)" +
+           link},
+      {"export ds --rosbag dangling.bag --force -q",
+       "isg export: error: dangling.bag: refused as an output: it is a symbolic link (to "
+       "nowhere.bag)" +
+           link},
+      {"export ds --mcap loop.mcap -q",
+       "isg export: error: loop.mcap: refused as an output: it is a symbolic link (to "
+       "loop.mcap)" +
+           link},
+      {"run builtin:d1 --method odometry --duration 1 -o kept --force -q",
+       "isg run: error: kept: refused as an output: it is a symbolic link (to s/keep)" + link},
+      {"simulate builtin:d1 --duration 1 -o kept/ --force -q",
+       "isg simulate: error: kept/: refused as an output: it is a symbolic link (to s/keep)" +
+           link},
+      {"world builtin:d1 -o dangling.bag",
+       "isg world: error: dangling.bag: refused as an output: it is a symbolic link (to "
+       "nowhere.bag)" +
+           link},
+      {"render builtin:d1 -o s/p --width 64 --height 48",
+       "isg render: error: s/p/plan.png: refused as an output: it is a symbolic link (to "
+       "notes.txt)" +
+           link},
+  };
+  for (const auto& c : cases) {
+    const auto r = sandbox.run(c.arguments);
+    EXPECT_EQ(r.exit_code, 1) << c.arguments;
+    EXPECT_EQ(r.err, c.expected) << c.arguments;
+  }
+  EXPECT_EQ(snapshot(sandbox.dir()), before);
+  EXPECT_TRUE(fs::is_symlink(fs::symlink_status(sandbox.dir() / "dangling.bag")));
+  EXPECT_TRUE(fs::is_symlink(fs::symlink_status(sandbox.dir() / "loop.mcap")));
+  EXPECT_FALSE(fs::exists(sandbox.dir() / "nowhere.bag"));
 }
 
 TEST(OutputPaths, SingleFileOutputsReplaceOnlyTheirOwnFiles) {

@@ -100,6 +100,37 @@ TEST_F(OutputPath, AnExistingFileIsReplacedOnlyWhenItCarriesOurMark) {
   EXPECT_EQ(refusal("folder.svg", svg), "is a folder; give the name of an SVG picture");
 }
 
+TEST_F(OutputPath, ASymbolicLinkIsNeverReplacedNorWrittenThrough) {
+  const std::string link =
+      ", which isg neither replaces nor writes through; remove it yourself or give another path";
+  const OutputRule bag{OutputKind::kBag, {}, true};
+  fs::create_symlink("nowhere.bag", "dangling.bag");
+  EXPECT_EQ(refusal("dangling.bag", bag),
+            "refused as an output: it is a symbolic link (to nowhere.bag)" + link);
+  fs::create_symlink("loop.bag", "loop.bag");
+  EXPECT_EQ(refusal("loop.bag", bag),
+            "refused as an output: it is a symbolic link (to loop.bag)" + link);
+  // To a bag of ours: still the user's link.
+  std::ofstream("ours.bag") << "#ROSBAG V2.0\n" << kWrittenByIsg;
+  ASSERT_TRUE(isOurFile("ours.bag", OutputKind::kBag));
+  fs::create_symlink("ours.bag", "latest.bag");
+  EXPECT_EQ(refusal("latest.bag", bag),
+            "refused as an output: it is a symbolic link (to ours.bag)" + link);
+  EXPECT_EQ(refusal("ours.bag", bag), "");
+  // A link to a folder, with or without a trailing separator; links above the last part are
+  // followed as always.
+  const OutputRule run{OutputKind::kRunFolder, {}, true};
+  fs::create_directories("real/runs");
+  fs::create_symlink("real/runs", "runs");
+  EXPECT_EQ(refusal("runs", run),
+            "refused as an output: it is a symbolic link (to real/runs)" + link);
+  EXPECT_EQ(refusal("runs/", run), refusal("runs", run));
+  EXPECT_EQ(refusal("runs/new", run), "");
+  EXPECT_EQ(checkOutputPath("runs/new", run), root_ / "work/real/runs/new");
+  EXPECT_TRUE(fs::is_symlink(fs::symlink_status("dangling.bag")));
+  EXPECT_FALSE(fs::exists("nowhere.bag"));
+}
+
 TEST_F(OutputPath, AFolderWrittenAtomicallyIsOursAndComplete) {
   writeFolderAtomically("made", OutputKind::kDataset, false, [](const fs::path& temporary) {
     std::ofstream(temporary / "a.txt") << "a";
