@@ -221,7 +221,7 @@ TEST(Table, ATableWithoutMethodsReadsBack) {
 // A control character in a name would be written back as something else (a quoted line break as
 // a space): refused, naming the line.
 TEST(Table, NamesWithControlCharactersAreRefused) {
-  for (const std::string csv :
+  for (const std::string& csv :
        {std::string("world,\"a\rb\"\nd1,0.1\n"), std::string("world,a\nd\x01,0.1\n"),
         std::string("\nworld,a\0\n", 10)}) {
     try {

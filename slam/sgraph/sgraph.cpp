@@ -566,8 +566,7 @@ int SGraph::floorOf(double z, bool level) {
   if (floors_.empty()) {
     // The first floor, once the robot is off the stairs.
     if (!level) return -1;
-    floors_.push_back({z, z});
-    floors_.back().keyframes = 1;
+    floors_.push_back(Floor::firstStoodOn(z));
     return 0;
   }
   // The nearest floor, the current one on a tie.
@@ -584,8 +583,7 @@ int SGraph::floorOf(double z, bool level) {
     return nearest;
   }
   if (level && apart >= options.min_separation) {
-    floors_.push_back({z, z});
-    floors_.back().keyframes = 1;
+    floors_.push_back(Floor::firstStoodOn(z));
     return int(floors_.size()) - 1;
   }
   return -1;

@@ -167,6 +167,13 @@ class SGraph {
     int keyframes = 0;
     Eigen::Vector2d centre = Eigen::Vector2d::Zero();  // ξ, once a room is tied to it
     int rooms_tied = 0;
+    // A floor first stood on at height z (M), by one keyframe.
+    static Floor firstStoodOn(double z) {
+      Floor floor;
+      floor.robot_z = floor.first_z = z;
+      floor.keyframes = 1;
+      return floor;
+    }
   };
   const std::vector<Floor>& floors() const { return floors_; }
   // The floor of the latest keyframe that stood on one (-1 before any).
