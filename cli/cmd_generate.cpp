@@ -134,7 +134,7 @@ int GenerateCommand::run() {
   }
   // The output rule before any work: not the working directory, nor an earlier folder of
   // anything but generated buildings.
-  common::checkOutputPath(output_, {common::OutputKind::kBuildings, {}, force_});
+  common::checkCanCreateFolder(output_, common::OutputKind::kBuildings, force_);
   spec_.asymmetry = !symmetric_;
   // Bad parameters fail before anything is written, naming the option.
   std::vector<worlds::GeneratedBuilding> buildings;
@@ -156,10 +156,6 @@ int GenerateCommand::run() {
             what.substr(colon + 2) + " (" + family + ", seed " + std::to_string(spec.seed) + ")");
       }
     }
-  }
-  if (const auto parent = std::filesystem::path(output_).parent_path(); !parent.empty()) {
-    std::error_code ignored;
-    std::filesystem::create_directories(parent, ignored);
   }
   ProgressBar bar("isg generate", quiet_);
   std::size_t offices = 0, largest = 0;

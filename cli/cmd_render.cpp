@@ -45,12 +45,10 @@ int RenderCommand::run() {
     common::checkOutputPath((dir / name).string(),
                             {common::OutputKind::kPng, {inputFile(input_)}, true, false});
   }
+  // The folder is made with the first picture (and removed again if that fails).
+  common::requireParentFolder((dir / "top.png").string());
   const bim::Scenario scenario = loadInput(input_, "render");
   sim::Simulation simulation(scenario);
-  common::requireParentFolder(output_);
-  std::error_code error;
-  fs::create_directories(dir, error);
-  if (error) throw common::InputError(output_, "", "cannot write: " + error.message());
   const double t =
       time_ < 0 ? 0.25 * simulation.duration() : std::min(time_, simulation.duration());
   const auto& trajectory = simulation.baseMotion();

@@ -58,7 +58,6 @@ RunCommand::RunCommand(CLI::App& parent) {
 }
 
 int RunCommand::run() {
-  namespace fs = std::filesystem;
   const std::string input = input_.empty() ? std::string(worlds::kDefaultWorld) : input_;
   method_ = methods_.canonical(method_);
   const std::map<std::string, std::string> options = methodOptions(method_options_);
@@ -70,13 +69,8 @@ int RunCommand::run() {
     output_ = "runs/" + worlds::worldName(input) + "-" + method_ + "-seed-" +
               std::to_string(scenario.seed);
   }
-  // Before the run, not after it: a folder that cannot be written fails at once; the output rule
-  // before its parent folders are made.
-  common::checkOutputPath(output_, {common::OutputKind::kRunFolder, {inputFile(input)}, force_});
-  if (const auto parent = fs::path(output_).parent_path(); !parent.empty()) {
-    std::error_code ignored;
-    fs::create_directories(parent, ignored);
-  }
+  // Before the run, not after it: a folder that cannot be written fails at once. Nothing is made
+  // yet (missing parent folders are made when the run folder is written).
   common::checkCanCreateFolder(output_, common::OutputKind::kRunFolder, force_, {inputFile(input)});
   const sim::Simulation simulation(scenario);
   checkRoute("isg run", scenario, simulation, duration_);

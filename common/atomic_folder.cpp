@@ -73,13 +73,53 @@ bool swapFolders(const fs::path& a, const fs::path& b) {
 fs::path requireParentFolder(const std::string& path) {
   const fs::path target(path);
   const fs::path parent = target.has_parent_path() ? target.parent_path() : fs::path(".");
-  if (!fs::is_directory(parent)) {
-    throw common::InputError(
-        path, "",
-        fs::exists(parent) ? "cannot write: " + parent.string() + " is not a directory"
-                           : "cannot write: directory " + parent.string() + " does not exist");
+  // The nearest part of the parent that exists must be a folder this process may write in: what
+  // is missing below it is made when the output is written (MadeFolders), after every check.
+  fs::path existing = parent;
+  std::error_code error;
+  while (!fs::exists(fs::symlink_status(existing, error)) && existing.has_relative_path() &&
+         existing.has_parent_path() && existing.parent_path() != existing) {
+    existing = existing.parent_path();
+  }
+  if (!fs::exists(fs::symlink_status(existing, error))) existing = ".";
+  if (!fs::is_directory(existing, error)) {
+    throw common::InputError(path, "",
+                             "cannot write: " + existing.string() + " is not a directory");
+  }
+  if (::access(existing.c_str(), W_OK | X_OK) != 0) {
+    throw common::InputError(path, "",
+                             "cannot write in " + existing.string() + ": " + std::strerror(errno));
   }
   return parent;
+}
+
+MadeFolders::MadeFolders(const fs::path& folder) {
+  std::vector<fs::path> missing;
+  std::error_code error;
+  for (fs::path p = folder; !p.empty() && !fs::exists(fs::symlink_status(p, error));
+       p = p.parent_path()) {
+    missing.push_back(p);
+    if (!p.has_parent_path() || p.parent_path() == p) break;
+  }
+  for (auto p = missing.rbegin(); p != missing.rend(); ++p) {
+    if (!fs::create_directory(*p, error) && error) {
+      const std::string why = error.message();
+      removeMade();
+      throw common::InputError(p->string(), "", "cannot make the folder: " + why);
+    }
+    made_.push_back(*p);
+  }
+}
+
+MadeFolders::~MadeFolders() { removeMade(); }
+
+void MadeFolders::removeMade() {
+  // Deepest first; a folder something else has written into since is not empty and stays.
+  std::error_code ignored;
+  while (!made_.empty()) {
+    fs::remove(made_.back(), ignored);
+    made_.pop_back();
+  }
 }
 
 namespace {
@@ -94,10 +134,9 @@ fs::path temporaryPathFor(const std::string& path, const OutputRule& rule) {
   return parent / (partialPrefix(target) + std::to_string(::getpid()));
 }
 
-fs::path createTemporaryFolder(const std::string& dir, const OutputRule& rule) {
-  const fs::path temporary = temporaryPathFor(dir, rule);
+fs::path createTemporaryFolder(const std::string& dir, const fs::path& temporary) {
   std::error_code error;
-  fs::create_directories(temporary, error);
+  fs::create_directory(temporary, error);
   if (error) throw common::InputError(dir, "", "cannot write: " + error.message());
   return temporary;
 }
@@ -106,14 +145,20 @@ fs::path createTemporaryFolder(const std::string& dir, const OutputRule& rule) {
 
 void checkCanCreateFolder(const std::string& dir, OutputKind kind, bool overwrite,
                           const std::vector<std::string>& inputs) {
+  const fs::path temporary = temporaryPathFor(dir, {kind, inputs, overwrite});
+  // A probe: the folder (and any missing folder above it) made and removed again, so that a path
+  // that cannot be written fails now rather than after hours of work.
+  const MadeFolders parents(temporary.parent_path());
   std::error_code ignored;
-  fs::remove(createTemporaryFolder(dir, {kind, inputs, overwrite}), ignored);
+  fs::remove(createTemporaryFolder(dir, temporary), ignored);
 }
 
 void writeFolderAtomically(const std::string& dir, OutputKind kind, bool overwrite,
                            const std::function<void(const fs::path&)>& fill) {
   const OutputRule rule{kind, {}, overwrite};
-  const fs::path temporary = createTemporaryFolder(dir, rule);
+  const fs::path temporary_path = temporaryPathFor(dir, rule);
+  MadeFolders parents(temporary_path.parent_path());
+  const fs::path temporary = createTemporaryFolder(dir, temporary_path);
   const fs::path target = checkOutputPath(dir, rule);
   std::error_code error;
   try {
@@ -134,6 +179,7 @@ void writeFolderAtomically(const std::string& dir, OutputKind kind, bool overwri
       // The old folder now has the temporary name: if this process dies while removing it, the
       // next run to the same path removes it (removeStalePartials).
       fs::remove_all(temporary, error);
+      parents.keep();
       return;
     }
     if (fs::exists(target)) {
@@ -149,10 +195,12 @@ void writeFolderAtomically(const std::string& dir, OutputKind kind, bool overwri
         throw common::InputError(dir, "", "cannot write: " + error.message());
       }
       fs::remove_all(aside, error);
+      parents.keep();
       return;
     }
     fs::rename(temporary, target, error);
     if (error) throw common::InputError(dir, "", "cannot write: " + error.message());
+    parents.keep();
   } catch (...) {
     std::error_code ignored;
     fs::remove_all(temporary, ignored);
@@ -162,7 +210,8 @@ void writeFolderAtomically(const std::string& dir, OutputKind kind, bool overwri
 
 AtomicFile::AtomicFile(const std::string& path, OutputKind kind, bool overwrite)
     : path_(checkOutputPath(path, {kind, {}, overwrite})),
-      temporary_(temporaryPathFor(path, {kind, {}, overwrite})) {}
+      temporary_(temporaryPathFor(path, {kind, {}, overwrite})),
+      parents_(temporary_.parent_path()) {}
 
 AtomicFile::~AtomicFile() {
   if (committed_) return;
@@ -175,11 +224,13 @@ void AtomicFile::commit() {
   fs::rename(temporary_, path_, error);  // replaces an existing file in one step
   if (error) throw common::InputError(path_.string(), "", "cannot write: " + error.message());
   committed_ = true;
+  parents_.keep();
 }
 
 void writeFileAtomically(const std::string& path, const std::string& content) {
   const fs::path target(path);
   const fs::path dir = requireParentFolder(path);
+  MadeFolders parents(dir);
   const fs::path temporary =
       dir / ("." + target.filename().string() + ".tmp" + std::to_string(::getpid()));
   {
@@ -202,6 +253,7 @@ void writeFileAtomically(const std::string& path, const std::string& content) {
     fs::remove(temporary, ignored);
     throw common::InputError(path, "", "cannot write: " + error.message());
   }
+  parents.keep();
 }
 
 }  // namespace isg::common

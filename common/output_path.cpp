@@ -4,6 +4,7 @@
 #include <fstream>
 #include <nlohmann/json.hpp>
 
+#include "common/atomic_folder.hpp"
 #include "common/input_error.hpp"
 
 namespace isg::common {
@@ -113,7 +114,9 @@ fs::path resolvePath(const std::string& path) {
   return resolved;
 }
 
-fs::path checkOutputPath(const std::string& path, const OutputRule& rule) {
+namespace {
+
+fs::path checkOutputRule(const std::string& path, const OutputRule& rule) {
   const auto refuse = [&](const std::string& why) { throw common::InputError(path, "", why); };
   if (path.empty()) refuse("an empty output path");
   refuseLinkAtTheEnd(path, refuse);
@@ -169,6 +172,18 @@ fs::path checkOutputPath(const std::string& path, const OutputRule& rule) {
            (rule.replace_needs_force ? " (--force replaces only those)" : "") +
            "; remove it yourself or give another path");
   }
+  return resolved;
+}
+
+}  // namespace
+
+fs::path checkOutputPath(const std::string& path, const OutputRule& rule) {
+  const fs::path resolved = checkOutputRule(path, rule);
+  // A folder the command adds to, when it exists, is written in rather than made or replaced.
+  const bool adds_to_existing =
+      (rule.kind == OutputKind::kSweep || rule.kind == OutputKind::kPictures) &&
+      fs::is_directory(resolved);
+  if (!adds_to_existing) requireParentFolder(path);
   return resolved;
 }
 

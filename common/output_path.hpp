@@ -49,8 +49,9 @@ struct OutputRule {
 // existing part followed, no "." or ".." left) and refuses the working directory and its
 // ancestors, the file system's root, the rule's inputs (and what holds them or lies in an input
 // folder), a folder where a file is written and the reverse, and an existing path unless
-// `rule.replace` and it is an output of ours of the same kind. An InputError names `path` and
-// says why. Returns the resolved path; nothing is touched.
+// `rule.replace` and it is an output of ours of the same kind; and checks that it can be written
+// (requireParentFolder: the nearest existing folder on its way may be written in). An InputError
+// names `path` and says why. Returns the resolved path; nothing is touched.
 std::filesystem::path checkOutputPath(const std::string& path, const OutputRule& rule);
 
 // The marker file a folder output holds, and writing / reading it.

@@ -373,15 +373,18 @@ TEST(Eval, PrintsApeLikeEvoAndJson) {
   EXPECT_THAT(svg, HasSubstr("position error, metres"));
   EXPECT_THAT(svg, HasSubstr("heading error, degrees"));
   EXPECT_THAT(svg, HasSubstr(">0.4</text>"));  // the error axis ends on a round tick
-  result = sandbox.run("eval gt.tum est.tum --plot nowhere/plot.svg");
-  EXPECT_EQ(result.exit_code, 1);
-  EXPECT_EQ(result.err,
-            "isg eval: error: nowhere/plot.svg: cannot write: directory nowhere does not exist\n");
-  // Its parent a file, not a folder.
+  // Missing folders on the way are made.
+  result = sandbox.run("eval gt.tum est.tum --plot new/folder/plot.svg");
+  EXPECT_EQ(result.exit_code, 0) << result.err;
+  EXPECT_THAT(sandbox.read("new/folder/plot.svg"), HasSubstr("position error, metres"));
+  // A parent, or an ancestor, that is a file, not a folder: nothing made.
   result = sandbox.run("eval gt.tum est.tum --plot gt.tum/plot.svg");
   EXPECT_EQ(result.exit_code, 1);
   EXPECT_EQ(result.err,
             "isg eval: error: gt.tum/plot.svg: cannot write: gt.tum is not a directory\n");
+  result = sandbox.run("eval gt.tum est.tum --plot gt.tum/a/b/plot.svg");
+  EXPECT_EQ(result.err,
+            "isg eval: error: gt.tum/a/b/plot.svg: cannot write: gt.tum is not a directory\n");
 }
 
 TEST(Eval, BadInputNamesTheFile) {

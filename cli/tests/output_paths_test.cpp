@@ -184,6 +184,46 @@ TEST(OutputPaths, ASymbolicLinkAtTheOutputIsNeverReplacedNorFollowed) {
   EXPECT_FALSE(fs::exists(sandbox.dir() / "nowhere.bag"));
 }
 
+// Every output is checked before anything is made: a command that fails leaves none of the
+// folders its output paths would have needed.
+TEST(OutputPaths, AFailedCommandLeavesNoFoldersBehind) {
+  testing::Sandbox sandbox("out_no_folders");
+  userTree(sandbox);
+  ASSERT_EQ(sandbox.run("simulate builtin:d1 --duration 1 -o ds -q").exit_code, 0);
+  const auto before = snapshot(sandbox.dir());
+  struct Case {
+    std::string arguments, expected;
+  };
+  const std::vector<Case> cases = {
+      {"run builtin:d1 --duration 1 -o np3/a/b/c/run --mcap s/notes.txt/x.mcap -q",
+       "isg run: error: s/notes.txt/x.mcap: cannot write: s/notes.txt is not a directory\n"},
+      {"run builtin:d1 --duration 1 -o np3/a/run --mcap s/notes.txt -q",
+       "isg run: error: s/notes.txt: already exists (use --force to replace it)\n"},
+      {"run builtin:d1 --duration 1 -o s/notes.txt/run -q",
+       "isg run: error: s/notes.txt/run: cannot write: s/notes.txt is not a directory\n"},
+      {"simulate builtin:d1 --duration 1 -o np4/a/ds --rosbag s/notes.txt --force -q",
+       "isg simulate: error: s/notes.txt: not replaced: it is not a ROS bag that isg wrote "
+       "(--force replaces only those); remove it yourself or give another path\n"},
+      {"slam ds --method odometry -o np5/a/run --mcap s/notes.txt/x.mcap -q",
+       "isg slam: error: s/notes.txt/x.mcap: cannot write: s/notes.txt is not a directory\n"},
+      {"export ds --rosbag np6/a/b.bag --mcap s/notes.txt/x.mcap -q",
+       "isg export: error: s/notes.txt/x.mcap: cannot write: s/notes.txt is not a directory\n"},
+  };
+  for (const auto& c : cases) {
+    const auto r = sandbox.run(c.arguments);
+    EXPECT_EQ(r.exit_code, 1) << c.arguments;
+    EXPECT_EQ(r.err, c.expected) << c.arguments;
+  }
+  EXPECT_EQ(snapshot(sandbox.dir()), before);
+  for (const char* folder : {"np3", "np4", "np5", "np6"}) EXPECT_FALSE(sandbox.exists(folder));
+  // Made when the outputs are written.
+  const auto deep =
+      sandbox.run("run builtin:d1 --duration 1 -o deep/a/run --mcap deep/b/r.mcap -q");
+  EXPECT_EQ(deep.exit_code, 0) << deep.err;
+  EXPECT_TRUE(sandbox.exists("deep/a/run/metrics.json"));
+  EXPECT_TRUE(sandbox.exists("deep/b/r.mcap"));
+}
+
 TEST(OutputPaths, SingleFileOutputsReplaceOnlyTheirOwnFiles) {
   testing::Sandbox sandbox("out_files");
   userTree(sandbox);

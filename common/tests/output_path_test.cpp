@@ -147,5 +147,43 @@ TEST_F(OutputPath, AFolderWrittenAtomicallyIsOursAndComplete) {
   }
 }
 
+TEST_F(OutputPath, MissingFoldersAreMadeOnlyForAWriteThatSucceeds) {
+  // A failed write leaves none of the folders it made; a folder written into meanwhile stays.
+  EXPECT_THROW(writeFolderAtomically("a/b/c/run", OutputKind::kRunFolder, false,
+                                     [](const fs::path&) { throw InputError("x", "", "boom"); }),
+               InputError);
+  EXPECT_FALSE(fs::exists("a"));
+  EXPECT_THROW(writeFolderAtomically("a/b/run", OutputKind::kRunFolder, false,
+                                     [](const fs::path&) {
+                                       std::ofstream("a/mine.txt") << "mine";
+                                       throw InputError("x", "", "boom");
+                                     }),
+               InputError);
+  EXPECT_TRUE(fs::is_regular_file("a/mine.txt"));
+  EXPECT_FALSE(fs::exists("a/b"));
+  {
+    AtomicFile uncommitted("d/e/x.bag", OutputKind::kBag, false);
+    EXPECT_TRUE(fs::is_directory("d/e"));
+  }
+  EXPECT_FALSE(fs::exists("d"));
+  // The probe before the work makes and removes them again.
+  checkCanCreateFolder("p/q/run", OutputKind::kRunFolder, false);
+  EXPECT_FALSE(fs::exists("p"));
+  // A write that succeeds keeps them.
+  writeFolderAtomically("a/b/run", OutputKind::kRunFolder, false,
+                        [](const fs::path& temporary) { std::ofstream(temporary / "x") << "x"; });
+  writeFileAtomically("f/g/plot.svg", "<svg/>");
+  EXPECT_TRUE(fs::is_regular_file("a/b/run/x"));
+  EXPECT_TRUE(fs::is_regular_file("f/g/plot.svg"));
+  // What cannot be made is said at once, naming the part that is not a folder.
+  std::ofstream("file") << "x";
+  try {
+    checkCanCreateFolder("file/a/run", OutputKind::kRunFolder, false);
+    ADD_FAILURE() << "accepted";
+  } catch (const InputError& e) {
+    EXPECT_EQ(e.reason(), "cannot write: file is not a directory");
+  }
+}
+
 }  // namespace
 }  // namespace isg::common
