@@ -127,8 +127,6 @@ void SweepCommand::startFolder(const sweep::Suite& suite) const {
   fs::create_directories(output_, made);
   if (made)
     throw common::InputError(output_, "", "cannot make the sweep folder: " + made.message());
-  if (!common::folderOutputKind(output_))
-    common::writeOutputMarker(output_, common::OutputKind::kSweep);
 }
 
 void SweepCommand::checkAgainstEarlierStart(const sweep::Suite& suite,
@@ -246,8 +244,12 @@ int SweepCommand::run() {
   if (output_.empty()) return usage("isg sweep SUITE.json needs -o SWEEP_DIR");
   sweep::Suite suite = sweep::loadSuite(input_, run::builtinMethods());
   startFolder(suite);
-  // One sweep at a time in a folder, from here to the end (the lock goes with the process).
+  // One sweep at a time in a folder, from here to the end (the lock goes with the process). Taken
+  // before anything is written in the folder, its marker included: of two sweeps started at the
+  // same instant into a new folder, the second is told that the first runs.
   const sweep::SweepLock lock(output_);
+  if (!common::folderOutputKind(output_))
+    common::writeOutputMarker(output_, common::OutputKind::kSweep);
   // Every world read (generated ones written) and hashed, before any cell runs.
   sweep::prepareSweepWorlds(suite, output_);
   const std::vector<sweep::SweepCell> cells = sweep::sweepCells(suite);

@@ -1,5 +1,7 @@
 #include "common/output_path.hpp"
 
+#include <unistd.h>
+
 #include <cstring>
 #include <fstream>
 #include <nlohmann/json.hpp>
@@ -60,12 +62,18 @@ std::string currentDirectory() {
   return error ? std::string() : fs::weakly_canonical(cwd, error).string();
 }
 
-// A sweep folder made before the marker existed holds sweep.json; an empty folder is free.
+// A sweep folder made before the marker existed holds sweep.json; an empty folder is free, and so
+// is one that a sweep starting this instant has locked but not yet marked (only its ".lock", or
+// the marker being written).
 bool mayHoldSweep(const fs::path& folder) {
   if (folderOutputKind(folder) == OutputKind::kSweep) return true;
   if (fs::is_regular_file(folder / "sweep.json")) return true;
   std::error_code error;
-  return fs::is_empty(folder, error) && !error;
+  for (const auto& entry : fs::directory_iterator(folder, error)) {
+    const std::string name = entry.path().filename().string();
+    if (name != ".lock" && name.rfind(kOutputMarkerFile, 0) != 0) return false;
+  }
+  return !error;
 }
 
 // isg writes no symbolic links, so one where the output goes is the user's: replacing it (a
@@ -191,7 +199,9 @@ void writeOutputMarker(const fs::path& folder, OutputKind kind) {
   const nlohmann::json marker = {{"written_by", "isg"}, {"kind", infoOf(kind).name}};
   const fs::path file = folder / kOutputMarkerFile;
   // Written beside and renamed over: a marker path that is a symlink is replaced, never followed.
-  const fs::path temporary = folder / (std::string(kOutputMarkerFile) + ".tmp");
+  // The process's own temporary name: two writers at once never rename each other's file away.
+  const fs::path temporary =
+      folder / (std::string(kOutputMarkerFile) + ".tmp" + std::to_string(::getpid()));
   {
     std::ofstream out(temporary, std::ios::binary | std::ios::trunc);
     out << marker.dump() << "\n";

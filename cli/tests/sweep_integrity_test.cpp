@@ -10,6 +10,7 @@
 
 #include <filesystem>
 #include <nlohmann/json.hpp>
+#include <vector>
 
 #include "cli/tests/cli_runner.hpp"
 
@@ -82,6 +83,58 @@ TEST(SweepIntegrity, TwoSweepsAtOnceOneIsRefused) {
   EXPECT_FALSE(fs::exists(sandbox.dir() / "out/d1/odometry/seed-1.failed.json"));
   const auto again = sandbox.run("sweep suite.json -o out");
   EXPECT_THAT(again.err, HasSubstr("6 of 6 cells finished before; running the other 0"));
+}
+
+// Sweeps started at the same instant into a new folder: one runs, every other is told so (never
+// "cannot write" of a marker another one renamed away), in every round.
+TEST(SweepIntegrity, SweepsStartedAtTheSameInstantOneRunsTheOthersAreToldSo) {
+  testing::Sandbox sandbox("sweep_instant");
+  sandbox.write("suite.json", suiteOf(R"(["builtin:d1"])", "[1]"));
+  constexpr int kRounds = 4, kSweeps = 3;
+  for (int round = 0; round < kRounds; ++round) {
+    const std::string out = "out" + std::to_string(round);
+    int gate[2];
+    ASSERT_EQ(::pipe(gate), 0);
+    std::vector<pid_t> children;
+    for (int k = 0; k < kSweeps; ++k) {
+      const std::string err = out + "-" + std::to_string(k) + ".err";
+      const pid_t child = ::fork();
+      ASSERT_GE(child, 0);
+      if (child == 0) {
+        ::close(gate[1]);
+        char byte;
+        while (::read(gate[0], &byte, 1) > 0) {
+        }  // released when the parent closes its end: all at once
+        if (::chdir(sandbox.dir().c_str()) != 0) ::_exit(126);
+        const int null = ::open("/dev/null", O_WRONLY);
+        const int errors = ::open(err.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+        ::dup2(null, 1);
+        ::dup2(errors, 2);
+        ::execl(ISG_EXECUTABLE, "isg", "sweep", "suite.json", "-o", out.c_str(), "-q", nullptr);
+        ::_exit(127);
+      }
+      children.push_back(child);
+    }
+    ::close(gate[0]);
+    ::close(gate[1]);
+    int ran = 0;
+    for (int k = 0; k < kSweeps; ++k) {
+      int status = 0;
+      ::waitpid(children[std::size_t(k)], &status, 0);
+      ASSERT_TRUE(WIFEXITED(status));
+      const std::string err = sandbox.read(out + "-" + std::to_string(k) + ".err");
+      if (WEXITSTATUS(status) == 0) {
+        ++ran;
+        continue;
+      }
+      EXPECT_EQ(WEXITSTATUS(status), 1) << err;
+      EXPECT_THAT(err, HasSubstr("isg sweep: error: " + out +
+                                 ": another isg sweep is running in this folder (pid "))
+          << "round " << round;
+    }
+    EXPECT_EQ(ran, 1) << "round " << round;
+    EXPECT_TRUE(sandbox.exists(out + "/d1/odometry/seed-1/metrics.json"));
+  }
 }
 
 TEST(SweepIntegrity, AWorldEditedBetweenTwoStartsIsRefusedOrRunAgainNeverMixed) {
