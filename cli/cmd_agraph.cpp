@@ -7,6 +7,7 @@
 #include "bim/agraph_json.hpp"
 #include "bim/agraph_svg.hpp"
 #include "common/output_path.hpp"
+#include "common/plural.hpp"
 
 namespace isg::cli {
 
@@ -53,12 +54,13 @@ int AGraphCommand::run() {
   }
   int kinds[3] = {0, 0, 0};
   for (const auto& r : graph.rooms) ++kinds[int(r.kind)];
-  std::fprintf(stderr,
-               "isg agraph: %zu wall surfaces, %zu walls, %zu rooms (%d four-wall, %d two-wall, %d "
-               "other), %zu doorways, %zu floor%s\n",
-               graph.surfaces.size(), graph.walls.size(), graph.rooms.size(), kinds[0], kinds[1],
-               kinds[2], graph.doorways.size(), graph.floors.size(),
-               graph.floors.size() == 1 ? "" : "s");
+  using common::counted;
+  std::fprintf(stderr, "isg agraph: %s, %s, %s (%d four-wall, %d two-wall, %d other), %s, %s\n",
+               counted(graph.surfaces.size(), "wall surface").c_str(),
+               counted(graph.walls.size(), "wall").c_str(),
+               counted(graph.rooms.size(), "room").c_str(), kinds[0], kinds[1], kinds[2],
+               counted(graph.doorways.size(), "doorway").c_str(),
+               counted(graph.floors.size(), "floor").c_str());
   return kExitOk;
 }
 

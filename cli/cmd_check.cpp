@@ -6,6 +6,7 @@
 
 #include "bim/plan_geometry.hpp"
 #include "bim/polygon.hpp"
+#include "common/plural.hpp"
 
 namespace isg::cli {
 
@@ -43,10 +44,10 @@ int CheckCommand::run() {
       stairs > 0
           ? ", " + std::to_string(stairs) + (stairs == 1 ? " flight" : " flights") + " of stairs"
           : "";
-  std::printf("%s: ok: plan \"%s\" (%s): %zu level%s, %zu walls, %zu doors%s, %zu rooms%s\n",
-              input_.c_str(), plan.name.c_str(), scenario.plan_file.c_str(), plan.levels.size(),
-              plan.levels.size() == 1 ? "" : "s", walls, doors, window_count.c_str(), rooms,
-              stair_count.c_str());
+  std::printf("%s: ok: plan \"%s\" (%s): %s, %s, %s%s, %s%s\n", input_.c_str(), plan.name.c_str(),
+              scenario.plan_file.c_str(), common::counted(plan.levels.size(), "level").c_str(),
+              common::counted(walls, "wall").c_str(), common::counted(doors, "door").c_str(),
+              window_count.c_str(), common::counted(rooms, "room").c_str(), stair_count.c_str());
   const auto& ab = scenario.as_built;
   if (!ab.empty()) {
     // Turned walls are named only when there are some: the line stays as it was for the rest.

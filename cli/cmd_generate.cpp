@@ -8,6 +8,7 @@
 
 #include "cli/progress_bar.hpp"
 #include "common/atomic_folder.hpp"
+#include "common/plural.hpp"
 #include "run/interrupt.hpp"
 #include "sim/simulation.hpp"
 
@@ -193,11 +194,12 @@ int GenerateCommand::run() {
         run::throwIfInterrupted();
       });
   bar.finish();
-  std::printf(
-      "isg generate: wrote %s: %zu buildings (%zu plans and %zu as-built scenarios), %zu offices "
-      "in all, up to %zu in one%s\n",
-      output_.c_str(), buildings.size(), buildings.size(), buildings.size(), offices, largest,
-      no_verify_ ? "" : "; each parsed, built and toured");
+  std::printf("isg generate: wrote %s: %s (%s and %s), %s in all, up to %zu in one%s\n",
+              output_.c_str(), common::counted(buildings.size(), "building").c_str(),
+              common::counted(buildings.size(), "plan").c_str(),
+              common::counted(buildings.size(), "as-built scenario").c_str(),
+              common::counted(offices, "office").c_str(), largest,
+              no_verify_ ? "" : "; each parsed, built and toured");
   return kExitOk;
 }
 

@@ -9,6 +9,7 @@
 #include "cli/progress_bar.hpp"
 #include "common/atomic_folder.hpp"
 #include "common/output_path.hpp"
+#include "common/plural.hpp"
 #include "ifc/ifc_import.hpp"
 #include "recordings/bag_import.hpp"
 #include "run/interrupt.hpp"
@@ -165,8 +166,8 @@ int ImportCommand::importBag() {
     if (s.topic.empty()) {
       std::printf("  %-13s none\n", what);
     } else {
-      std::printf("  %-13s %s (%s): %llu messages\n", what, s.topic.c_str(), s.type.c_str(),
-                  (unsigned long long)s.messages);
+      std::printf("  %-13s %s (%s): %s\n", what, s.topic.c_str(), s.type.c_str(),
+                  common::counted(s.messages, "message").c_str());
     }
   };
   std::printf("isg import: %s -> %s%s\n", input_.c_str(), output_.c_str(),
@@ -182,8 +183,8 @@ int ImportCommand::importBag() {
       summary.point_time[0], summary.point_time[1], summary.scan_period,
       summary.lidar.messages > 0 ? double(summary.points) / double(summary.lidar.messages) : 0.0);
   for (const auto& note : summary.notes) std::printf("  note: %s\n", note.c_str());
-  std::printf("isg import: wrote %s: %llu scans, %.1f s of robot time%s\n", output_.c_str(),
-              (unsigned long long)summary.lidar.messages, summary.seconds,
+  std::printf("isg import: wrote %s: %s, %.1f s of robot time%s\n", output_.c_str(),
+              common::counted(summary.lidar.messages, "scan").c_str(), summary.seconds,
               summary.odometry.topic.empty()
                   ? "; no odometry: isg slam makes it from the LiDAR (and the IMU)"
                   : "");
@@ -224,17 +225,20 @@ int ImportCommand::importIfc() {
     }
     ++levels;
     walls += s.walls, doors += s.doors, windows += s.windows, rooms += s.rooms;
-    std::fprintf(stderr,
-                 "  storey \"%s\" (%.3f m) -> level %s: %d walls (%d of another storey standing "
-                 "on it), %d doors, %d windows, %d rooms of %d spaces\n",
-                 s.name.c_str(), s.elevation, s.level_id.c_str(), s.walls,
-                 s.walls_from_other_storeys, s.doors, s.windows, s.rooms, s.spaces);
+    std::fprintf(
+        stderr,
+        "  storey \"%s\" (%.3f m) -> level %s: %s (%d of another storey standing on "
+        "it), %s, %s, %s of %s\n",
+        s.name.c_str(), s.elevation, s.level_id.c_str(), common::counted(s.walls, "wall").c_str(),
+        s.walls_from_other_storeys, common::counted(s.doors, "door").c_str(),
+        common::counted(s.windows, "window").c_str(), common::counted(s.rooms, "room").c_str(),
+        common::counted(s.spaces, "space").c_str());
   }
-  std::fprintf(stderr,
-               "isg import: wrote %s: %d level%s, %d walls, %d doors, %d windows, %d rooms; %zu "
-               "element%s left out or simplified%s\n",
-               output_.c_str(), levels, levels == 1 ? "" : "s", walls, doors, windows, rooms,
-               result.log.size(), result.log.size() == 1 ? "" : "s",
+  std::fprintf(stderr, "isg import: wrote %s: %s, %s, %s, %s, %s; %s left out or simplified%s\n",
+               output_.c_str(), common::counted(levels, "level").c_str(),
+               common::counted(walls, "wall").c_str(), common::counted(doors, "door").c_str(),
+               common::counted(windows, "window").c_str(), common::counted(rooms, "room").c_str(),
+               common::counted(result.log.size(), "element").c_str(),
                quiet_ && !result.log.empty() ? " (run without -q to list them)" : "");
   if (!result.reader_errors.empty()) {
     std::fprintf(stderr, "isg import: IFC++ reported %zu error%s while reading (first: %s)\n",

@@ -9,6 +9,7 @@
 #include "cli/progress_bar.hpp"
 #include "cli/route_check.hpp"
 #include "common/atomic_folder.hpp"
+#include "common/plural.hpp"
 #include "sim/dataset_writer.hpp"
 #include "sim/simulation.hpp"
 
@@ -99,13 +100,13 @@ int SimulateCommand::run() {
   });
   bar.finish();
   std::printf(
-      "isg simulate: wrote %s: %d scans, %.2f M points (%.1f %% of %.2f M rays, %.0f MB of %s "
-      "PCD), %.1f s of robot time in %.1f s (%.1fx real time), %zu rooms visited\n",
-      output_.c_str(), summary.scans, summary.points / 1e6,
+      "isg simulate: wrote %s: %s, %.2f M points (%.1f %% of %.2f M rays, %.0f MB of %s "
+      "PCD), %.1f s of robot time in %.1f s (%.1fx real time), %s visited\n",
+      output_.c_str(), common::counted(summary.scans, "scan").c_str(), summary.points / 1e6,
       summary.rays ? 100.0 * summary.points / summary.rays : 0.0, summary.rays / 1e6,
       summary.scan_bytes / 1e6, pcd_.c_str(), summary.sim_seconds, summary.wall_seconds,
       summary.wall_seconds > 0 ? summary.sim_seconds / summary.wall_seconds : 0.0,
-      simulation.route().visited_rooms.size());
+      common::counted(simulation.route().visited_rooms.size(), "room").c_str());
   if (!rosbag_.empty()) {
     exportRosbagWithProgress("isg simulate", output_, rosbag_, stamp_offset_, force_, quiet_);
   }

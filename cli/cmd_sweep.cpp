@@ -5,6 +5,7 @@
 
 #include "common/atomic_folder.hpp"
 #include "common/output_path.hpp"
+#include "common/plural.hpp"
 #include "run/builtin_methods.hpp"
 #include "run/interrupt.hpp"
 #include "sweep/collect.hpp"
@@ -108,10 +109,10 @@ int SweepCommand::collect(const std::string& sweep_dir) const {
   for (const auto& f : c.failed) std::printf("failed: %s\n", f.c_str());
   for (const auto& m : c.missing) std::printf("not run: %s\n", m.c_str());
   std::printf(
-      "isg sweep: %s: %d of %zu cells finished, %zu failed, %zu not run; wrote %s/table.md "
+      "isg sweep: %s: %d of %s finished, %zu failed, %zu not run; wrote %s/table.md "
       "and table.csv\n",
-      sweep_dir.c_str(), c.finished, plan.cells.size(), c.failed.size(), c.missing.size(),
-      sweep_dir.c_str());
+      sweep_dir.c_str(), c.finished, common::counted(plan.cells.size(), "cell").c_str(),
+      c.failed.size(), c.missing.size(), sweep_dir.c_str());
   return c.failed.empty() && c.missing.empty() ? kExitOk : kExitIncomplete;
 }
 
@@ -217,8 +218,8 @@ int SweepCommand::runLocally(const std::vector<sweep::SweepCell>& cells) const {
     return 128 + e.signalNumber();
   }
   if (!quiet_) {
-    std::fprintf(stderr, "isg sweep: %d cells ran, %d had finished before, %d failed\n", o.finished,
-                 o.skipped, o.failed);
+    std::fprintf(stderr, "isg sweep: %s ran, %d had finished before, %d failed\n",
+                 common::counted(o.finished, "cell").c_str(), o.skipped, o.failed);
   }
   return collect(output_);
 }

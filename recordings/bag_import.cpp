@@ -9,6 +9,7 @@
 
 #include "common/atomic_folder.hpp"
 #include "common/input_error.hpp"
+#include "common/plural.hpp"
 #include "common/pose_interpolation.hpp"
 #include "common/version.hpp"
 #include "formats/cloud_layout.hpp"
@@ -206,7 +207,7 @@ std::string Import::listing(const std::vector<const Topic*>& topics) const {
   std::string out;
   for (const Topic* t : topics) {
     out += std::string(out.empty() ? "" : ", ") + t->name + " (" + t->datatype + ", " +
-           std::to_string(t->messages) + " messages)";
+           common::counted(t->messages, "message") + ")";
   }
   return out.empty() ? "none" : out;
 }

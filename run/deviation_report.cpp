@@ -7,6 +7,7 @@
 #include <numbers>
 
 #include "common/angles.hpp"
+#include "common/plural.hpp"
 #include "common/xml_escape.hpp"
 #include "run/text_format.hpp"
 
@@ -249,10 +250,10 @@ std::string deviationSvg(const slam::DeviationReport& report) {
 
 std::string deviationSummaryLine(const DeviationMetrics& m) {
   std::string line = format(
-      "as built against the plan: %d walls as planned, %d shifted, %d rotated, %d missing, %d "
-      "not seen; %d extra wall%s",
-      m.as_planned, m.shifted, m.rotated, m.missing, m.not_seen, m.extra_walls,
-      m.extra_walls == 1 ? "" : "s");
+      "as built against the plan: %s as planned, %d shifted, %d rotated, %d missing, %d "
+      "not seen; %s",
+      common::counted(m.as_planned, "wall").c_str(), m.shifted, m.rotated, m.missing, m.not_seen,
+      common::counted(m.extra_walls, "extra wall").c_str());
   if (m.grade) {
     const DeviationGrade& g = *m.grade;
     line += format("; against the truth: %d of %d deviating walls found, %d falsely", g.found,

@@ -1,5 +1,6 @@
 #include "run/run_report.hpp"
 
+#include "common/plural.hpp"
 #include "run/deviation_report.hpp"
 
 #include <algorithm>
@@ -224,9 +225,10 @@ std::string timingTable(const RunMetrics& m, double writing_seconds) {
   const RunTiming& t = *m.timing;
   const double robot = m.sim_seconds > 0 ? m.sim_seconds : 1.0;
   std::string out = format(
-      "  where the time went (%.1f s of robot time; %d of %d scans read, the others never made):\n"
+      "  where the time went (%.1f s of robot time; %d of %s read, the others never made):\n"
       "    %-22s %9s %14s\n",
-      m.sim_seconds, t.scans_read, m.scans, "stage", "seconds", "ms per robot-s");
+      m.sim_seconds, t.scans_read, common::counted(m.scans, "scan").c_str(), "stage", "seconds",
+      "ms per robot-s");
   double total = 0.0;
   auto row = [&](const std::string& stage, double seconds) {
     out += format("    %-22s %9.2f %14.2f\n", stage.c_str(), seconds, 1e3 * seconds / robot);

@@ -6,6 +6,7 @@
 #include <numbers>
 
 #include "bim/polygon.hpp"
+#include "common/plural.hpp"
 #include "worlds/mjcf_generator.hpp"
 
 namespace isg::sim {
@@ -65,8 +66,9 @@ WorldSummary summarizeWorld(const bim::Scenario& scenario, MujocoWorld& world, i
 std::string formatSummary(const WorldSummary& s) {
   std::string out;
   char line[512];
-  std::snprintf(line, sizeof line, "world \"%s\": %d bodies, %d geoms, %d sites\n",
-                s.model_name.c_str(), s.bodies, s.geoms, s.sites);
+  std::snprintf(line, sizeof line, "world \"%s\": %s, %s, %s\n", s.model_name.c_str(),
+                common::counted(s.bodies, "body", "bodies").c_str(),
+                common::counted(s.geoms, "geom").c_str(), common::counted(s.sites, "site").c_str());
   out += line;
   out += "  geoms by kind:";
   for (const auto& [kind, count] : s.geoms_by_kind) {

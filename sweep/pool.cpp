@@ -19,6 +19,7 @@
 
 #include "common/atomic_folder.hpp"
 #include "common/input_error.hpp"
+#include "common/plural.hpp"
 #include "run/builtin_methods.hpp"
 #include "run/interrupt.hpp"
 #include "run/run_metrics.hpp"
@@ -233,8 +234,8 @@ PoolOutcome runCells(const std::string& sweep_dir, const std::vector<SweepCell>&
   const std::vector<std::size_t> pending = pendingCells(sweep_dir, cells, indices, outcome);
   const std::size_t total = indices.size();
   if (!quiet && outcome.skipped > 0) {
-    std::fprintf(stderr, "isg sweep: %d of %zu cells finished before; running the other %zu\n",
-                 outcome.skipped, total, pending.size());
+    std::fprintf(stderr, "isg sweep: %d of %s finished before; running the other %zu\n",
+                 outcome.skipped, common::counted(total, "cell").c_str(), pending.size());
   }
   std::map<pid_t, Running> running;
   double seconds_run = 0.0;
