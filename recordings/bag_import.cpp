@@ -78,6 +78,15 @@ bool isStaticTfTopic(const std::string& name) {
   return name.size() >= 9 && name.ends_with("tf_static");
 }
 
+// A transform that closes a cycle of frames: tf's frames form a tree, and tf itself refuses the
+// lookup through one, so the import refuses it too rather than drop a link unsaid.
+std::string cycleMessage(const std::string& parent, const std::string& child,
+                         const std::string& cycle) {
+  if (parent == child) return "the frame \"" + child + "\" hangs from itself";
+  return "the transform \"" + parent + "\" → \"" + child + "\" closes a cycle of frames (" + cycle +
+         "); tf's frames form a tree";
+}
+
 class Import {
  public:
   Import(const std::string& bag_path, const BagImportOptions& options)
@@ -359,6 +368,10 @@ void Import::readStatic() {
       const std::uint64_t index = counts[m.connection->topic]++;
       try {
         for (const auto& t : formats::ros1::decodeTfMessage(m.data)) {
+          if (const auto cycle = frames_.cycleIfAdded(t.header.frame_id, t.child_frame_id)) {
+            throw formats::ros1::MessageError(
+                cycleMessage(t.header.frame_id, t.child_frame_id, *cycle));
+          }
           frames_.add(t.header.frame_id, t.child_frame_id, t.parent_T_child);
         }
       } catch (const formats::ros1::MessageError& e) {
@@ -417,6 +430,11 @@ MovingFrameTree Import::readTfTree() {
   bag_.read({tf_topic_}, [&](const formats::BagMessageView& m) {
     try {
       for (const auto& t : formats::ros1::decodeTfMessage(m.data)) {
+        if (const auto cycle = tree.cycleIfAdded(t.header.frame_id, t.child_frame_id, frames_)) {
+          throw formats::ros1::MessageError(
+              cycleMessage(t.header.frame_id, t.child_frame_id, *cycle) +
+              (tf_asked_ ? "" : "; --odom-topic none leaves /tf out"));
+        }
         if (const auto other = tree.add(t.header.frame_id, t.child_frame_id, t.parent_T_child)) {
           throw formats::ros1::MessageError(
               "the frame \"" + t.child_frame_id + "\" hangs from \"" + t.header.frame_id +

@@ -21,6 +21,14 @@ std::optional<std::pair<std::string, Eigen::Isometry3d>> StaticFrames::parent(
   return std::nullopt;
 }
 
+std::optional<std::string> StaticFrames::cycleIfAdded(const std::string& parent,
+                                                      const std::string& child) const {
+  return cycleThrough(parent, child, [&](const std::string& frame) -> std::optional<std::string> {
+    if (const auto up = this->parent(frame)) return up->first;
+    return std::nullopt;
+  });
+}
+
 std::vector<std::pair<std::string, Eigen::Isometry3d>> StaticFrames::chainToRoot(
     const std::string& frame) const {
   // Each element: a frame on the way up and that frame's T of `frame` (ancestor_T_frame).

@@ -36,6 +36,19 @@ std::optional<std::string> MovingFrameTree::add(const std::string& parent, const
   return std::nullopt;
 }
 
+std::optional<std::string> MovingFrameTree::cycleIfAdded(const std::string& parent,
+                                                         const std::string& child,
+                                                         const StaticFrames& fixed) const {
+  // A frame with a parent on both hangs from its /tf one, as above() reads the tree.
+  return cycleThrough(parent, child, [&](const std::string& frame) -> std::optional<std::string> {
+    if (const auto on_tf = link_of_.find(frame); on_tf != link_of_.end()) {
+      return on_tf->second.parent;
+    }
+    if (const auto link = fixed.parent(frame)) return link->first;
+    return std::nullopt;
+  });
+}
+
 std::vector<MovingFrameTree::FixedLink> MovingFrameTree::unchanging() const {
   std::vector<FixedLink> out;
   for (const auto& [child, link] : link_of_) {

@@ -27,6 +27,10 @@ class MovingFrameTree {
   // else nullopt (recorded).
   std::optional<std::string> add(const std::string& parent, const std::string& child,
                                  const Eigen::Isometry3d& parent_T_child);
+  // When parent → child would close a cycle through /tf's links and `fixed`'s: the cycle, top
+  // down (StaticFrames::cycleIfAdded).
+  std::optional<std::string> cycleIfAdded(const std::string& parent, const std::string& child,
+                                          const StaticFrames& fixed) const;
   struct FixedLink {
     std::string parent, child;
     Eigen::Isometry3d parent_T_child;

@@ -32,6 +32,10 @@ struct Recording {
   std::string cloud_frame = "velodyne";
   int odd_frame_cloud = -1;  // this cloud in another frame
   double gravity = 9.81;     // the IMU's reading at rest (1.0: a driver in g)
+  // More /tf_static links (parent, child), after the mounts.
+  std::vector<std::pair<std::string, std::string>> more_static;
+  bool odometry_on_tf = false;  // odom → base_link on /tf instead of /odom
+  bool tf_back_link = false;    // and base_link → odom moving on /tf too: a cycle
 };
 
 Eigen::Isometry3d baseAt(double t) {
@@ -45,7 +49,8 @@ std::string writeBag(const fs::path& dir, const Recording& r) {
   formats::RosbagWriter bag(path, true);
   const int tf_static = bag.connect("/tf_static", formats::ros1::tfMessageType(), true);
   const int cloud = bag.connect("/velodyne_points", formats::ros1::pointCloud2Type());
-  const int odom = bag.connect("/odom", formats::ros1::odometryType());
+  const int odom = r.odometry_on_tf ? bag.connect("/tf", formats::ros1::tfMessageType())
+                                    : bag.connect("/odom", formats::ros1::odometryType());
   const int imu = bag.connect("/imu/data", formats::ros1::imuType());
   auto at = [](double t) { return formats::RosTime::fromSeconds(t); };
   bag.write(tf_static, at(100.0),
@@ -53,10 +58,22 @@ std::string writeBag(const fs::path& dir, const Recording& r) {
                                        sensors::mountTransform({0, 0, 0.5, 0, 0, 0})},
                                       {at(100.0), "base_link", "imu_link",
                                        sensors::mountTransform({-0.1, 0, 0.2, 0, 0, 0})}}));
+  for (const auto& [parent, child] : r.more_static) {
+    bag.write(tf_static, at(100.0),
+              formats::ros1::tfMessage(
+                  {{at(100.0), parent, child, sensors::mountTransform({0, 0, -0.5, 0, 0, 0})}}));
+  }
   // Odometry at 50 Hz and the IMU at 100 Hz over the clouds' span and a little beyond.
   const double end = 100.0 + 0.1 * r.clouds + 0.1;
   for (int k = 0; 100.0 + 0.02 * k <= end; ++k) {
     const double t = 100.0 + 0.02 * k;
+    if (r.odometry_on_tf) {
+      std::vector<formats::ros1::StampedTransform> moving = {
+          {at(t), "odom", "base_link", baseAt(t)}};
+      if (r.tf_back_link) moving.push_back({at(t), "base_link", "odom", baseAt(t).inverse()});
+      bag.write(odom, at(t), formats::ros1::tfMessage(moving));
+      continue;
+    }
     bag.write(
         odom, at(t),
         formats::ros1::odometry(baseAt(t), {0.5, 0, 0}, {0, 0, 0}, at(t), k, "odom", "base_link"));
@@ -180,6 +197,45 @@ TEST_F(BagImport, AMountMissingFromTheRecordingIsAskedFor) {
   options.lidar_extrinsic = std::array<double, 6>{0.2, 0, 0.4, 0, 0, 0};
   import(r, options);
   EXPECT_EQ(metadata()["extrinsics"]["R_T_L"]["xyz_rpy"][0], 0.2);
+}
+
+// tf's frames form a tree: a cycle, on /tf or /tf_static, is refused naming its frames, never
+// imported with one of its links dropped unsaid.
+TEST_F(BagImport, ACycleOfFramesIsRefusedNamingItsFrames) {
+  Recording on_tf;
+  on_tf.odometry_on_tf = true;
+  import(on_tf);  // odom → base_link on /tf alone is odometry
+  EXPECT_EQ(metadata()["imported_from"]["topics"]["odometry"], "/tf");
+  fs::remove_all(dir_ / "ds");
+  on_tf.tf_back_link = true;
+  try {
+    import(on_tf);
+    FAIL() << "imported";
+  } catch (const common::InputError& e) {
+    EXPECT_EQ(e.reason(),
+              "topic /tf, message 0: the transform \"base_link\" → \"odom\" closes a cycle of "
+              "frames (odom → base_link → odom); tf's frames form a tree; --odom-topic none "
+              "leaves /tf out");
+  }
+  EXPECT_FALSE(fs::exists(dir_ / "ds"));
+  Recording on_static;
+  on_static.more_static = {{"velodyne", "base_link"}};
+  try {
+    import(on_static);
+    FAIL() << "imported";
+  } catch (const common::InputError& e) {
+    EXPECT_EQ(e.reason(),
+              "topic /tf_static, message 1: the transform \"velodyne\" → \"base_link\" closes "
+              "a cycle of frames (base_link → velodyne → base_link); tf's frames form a tree");
+  }
+  on_static.more_static = {{"imu_link", "imu_link"}};
+  try {
+    import(on_static);
+    FAIL() << "imported";
+  } catch (const common::InputError& e) {
+    EXPECT_EQ(e.reason(), "topic /tf_static, message 1: the frame \"imu_link\" hangs from itself");
+  }
+  EXPECT_FALSE(fs::exists(dir_ / "ds"));
 }
 
 }  // namespace
