@@ -72,6 +72,23 @@ bool namedLikeGroundTruth(const std::string& topic) {
   return false;
 }
 
+// A LiDAR driver's raw packets (or its own point format) rather than sensor_msgs/PointCloud2:
+// the packet and scan messages of the Velodyne, Ouster, Hesai, Robosense and Livox drivers, and
+// any type whose name says packet.
+bool isRawLidarType(const std::string& datatype) {
+  static constexpr const char* kKnown[] = {
+      "velodyne_msgs/VelodyneScan", "hesai_ros_driver/UdpFrame",  "pandar_msgs/PandarScan",
+      "rslidar_msgs/rslidarScan",   "livox_ros_driver/CustomMsg", "livox_ros_driver2/CustomMsg",
+  };
+  for (const char* known : kKnown) {
+    if (datatype == known) return true;
+  }
+  const std::size_t slash = datatype.find('/');
+  const std::string name =
+      lower(slash == std::string::npos ? datatype : datatype.substr(slash + 1));
+  return name.find("packet") != std::string::npos;
+}
+
 bool isTfType(const std::string& datatype) { return datatype == kTfType || datatype == kOldTfType; }
 
 bool isStaticTfTopic(const std::string& name) {
@@ -247,7 +264,11 @@ std::string Import::chooseTopic(const char* role, const char* flag, const std::s
     }
     if (std::find(types.begin(), types.end(), topic->datatype) == types.end()) {
       fail(std::string(flag) + " " + option + ": the topic carries " + topic->datatype + ", the " +
-           role + " must be " + type_list);
+           role + " must be " + type_list +
+           (isRawLidarType(topic->datatype)
+                ? " (a LiDAR's raw packets, which the import does not decode: record the "
+                  "driver's point-cloud topic)"
+                : ""));
     }
     return option;
   }
@@ -263,11 +284,25 @@ std::string Import::chooseTopic(const char* role, const char* flag, const std::s
          "; choose one with " + flag);
   }
   if (candidates.empty()) {
-    if (required) {
-      fail(std::string("no ") + type_list + " topic for the " + role +
-           " (the bag's topics: " + listing(all) + "); name one with " + flag);
+    if (!required) return "";
+    std::vector<const Topic*> typed, packets;
+    for (const auto& t : topics_) {
+      if (std::find(types.begin(), types.end(), t.datatype) != types.end()) typed.push_back(&t);
+      if (isRawLidarType(t.datatype)) packets.push_back(&t);
     }
-    return "";
+    // Topics of the type, but empty: naming another one may help. Of another type: it cannot.
+    if (!typed.empty()) {
+      fail(std::string("no message on the ") + type_list + " topics for the " + role + " (" +
+           listing(typed) + "); name another with " + flag);
+    }
+    if (std::string(role) == "LiDAR" && !packets.empty()) {
+      fail("the bag has no point clouds (" + type_list + "), only a LiDAR's raw packets: " +
+           listing(packets) + "; the import reads point clouds and decodes no packet type: " +
+           "record the driver's point-cloud topic, or play the bag through the driver and " +
+           "record its clouds");
+    }
+    fail(std::string("the bag has no ") + type_list + " topic for the " + role +
+         " (its topics: " + listing(all) + ")");
   }
   return candidates[0]->name;
 }

@@ -238,5 +238,51 @@ TEST_F(BagImport, ACycleOfFramesIsRefusedNamingItsFrames) {
   EXPECT_FALSE(fs::exists(dir_ / "ds"));
 }
 
+// A bag of a driver's raw packets and no point clouds (a real Ouster driver's): refused saying so,
+// listing the packet topics and what the import decodes, never suggesting --lidar-topic.
+TEST_F(BagImport, PacketsWithoutCloudsAreNamedForWhatTheyAre) {
+  const std::string path = (dir_ / "packets.bag").string();
+  {
+    formats::RosbagWriter bag(path, true);
+    const formats::RosMessageType packet{"ouster_ros/PacketMsg", "4f7b5949e76f86d01e96b0e33ba9b5e3",
+                                         "uint8[] buf\n"};
+    const int lidar = bag.connect("/os_node/lidar_packets", packet);
+    const int imu = bag.connect("/os_node/imu_packets", packet);
+    const std::string buf(4 + 16, '\0');  // a uint8[] of 16 bytes: its length, then the bytes
+    std::string message = buf;
+    message[0] = 16;
+    for (int k = 0; k < 3; ++k) {
+      bag.write(lidar, formats::RosTime::fromSeconds(100.0 + 0.01 * k), message);
+    }
+    bag.write(imu, formats::RosTime::fromSeconds(100.0), message);
+    bag.close();
+  }
+  try {
+    importRosbag(path, (dir_ / "ds").string(), {}, nullptr);
+    FAIL() << "imported";
+  } catch (const common::InputError& e) {
+    EXPECT_EQ(e.file(), path);
+    EXPECT_EQ(e.reason(),
+              "the bag has no point clouds (sensor_msgs/PointCloud2), only a LiDAR's raw packets: "
+              "/os_node/imu_packets (ouster_ros/PacketMsg, 1 message), /os_node/lidar_packets "
+              "(ouster_ros/PacketMsg, 3 messages); the import reads point clouds and decodes no "
+              "packet type: record the driver's point-cloud topic, or play the bag through the "
+              "driver and record its clouds");
+    EXPECT_EQ(e.reason().find("--lidar-topic"), std::string::npos);
+  }
+  BagImportOptions named;
+  named.lidar_topic = "/os_node/lidar_packets";
+  try {
+    importRosbag(path, (dir_ / "ds").string(), named, nullptr);
+    FAIL() << "imported";
+  } catch (const common::InputError& e) {
+    EXPECT_EQ(e.reason(),
+              "--lidar-topic /os_node/lidar_packets: the topic carries ouster_ros/PacketMsg, the "
+              "LiDAR must be sensor_msgs/PointCloud2 (a LiDAR's raw packets, which the import does "
+              "not decode: record the driver's point-cloud topic)");
+  }
+  EXPECT_FALSE(fs::exists(dir_ / "ds"));
+}
+
 }  // namespace
 }  // namespace isg::recordings
