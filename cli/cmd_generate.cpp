@@ -188,6 +188,13 @@ int GenerateCommand::run() {
                     " of the generated building; nothing was written: change the "
                     "generator's parameters");
           }
+          if (!simulation.route().skipped_levels.empty()) {
+            throw common::InputError(
+                b.name, "",
+                "the tour cannot reach level " + simulation.route().skipped_levels.front() +
+                    " of the generated building; nothing was written: change the "
+                    "generator's parameters");
+          }
         }
         // The last building's checks may have taken a while: an interrupt then still means nothing
         // is written.

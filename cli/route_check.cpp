@@ -15,6 +15,13 @@ double checkRoute(const std::string& command, const bim::Scenario& scenario,
     std::fprintf(stderr, "%s: warning: room %s cannot be reached; the tour skips it\n",
                  command.c_str(), room.c_str());
   }
+  for (const auto& level : route.skipped_levels) {
+    const auto why = route.why_levels_skipped.find(level);
+    std::fprintf(
+        stderr, "%s: warning: level %s cannot be reached (%s); the tour skips it\n",
+        command.c_str(), level.c_str(),
+        why == route.why_levels_skipped.end() ? "no flight leads there" : why->second.c_str());
+  }
   const double route_seconds = simulation.duration();
   const double seconds = duration < 0 ? route_seconds : std::min(duration, route_seconds);
   if (simulation.scanCount(seconds) == 0) {

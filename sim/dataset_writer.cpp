@@ -110,11 +110,13 @@ nlohmann::ordered_json robotDescription(const Simulation& sim) {
     robot["gait"]["head_turn_periods_s"] = kHeadTurnPeriods;
   }
   // Which level each waypoint is on, written only when the route changes level (a route on one
-  // level writes the metadata it always did).
+  // level writes the metadata it always did); the levels the tour skipped whenever there are any.
   const auto& levels = sim.route().waypoint_levels;
   if (std::any_of(levels.begin(), levels.end(),
                   [&](const std::string& level) { return level != levels.front(); })) {
     robot["route_levels"] = levels;
+    robot["skipped_levels"] = sim.route().skipped_levels;
+  } else if (!sim.route().skipped_levels.empty()) {
     robot["skipped_levels"] = sim.route().skipped_levels;
   }
   return robot;

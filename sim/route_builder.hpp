@@ -43,6 +43,7 @@ class RouteBuilder {
   const OccupancyGrid& grid() { return gridOf(*level_); }
   const OccupancyGrid& gridOf(const bim::Level& level);
   double clearance() const { return clearance_; }
+  PlannedRoute& route() { return *route_; }
 
   void start(const Eigen::Vector2d& at) { push(at); }
   const Eigen::Vector2d& lastWaypoint() const { return route_->waypoints.back(); }

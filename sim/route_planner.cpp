@@ -164,6 +164,12 @@ std::vector<Eigen::Vector2d> findPath(const OccupancyGrid& grid, const Eigen::Ve
 
 namespace {
 
+// Why a flight could not be climbed from where the route is.
+std::string flightBlocked(const Flight& flight, const Eigen::Vector2d& from, double clearance) {
+  return "flight \"" + flight.stair->id + "\" cannot be reached from " + formatPoint(from) +
+         " or stepped off, keeping " + formatMetres(clearance) + " from walls and clutter";
+}
+
 // Tour of one level from where the route is: depth-first over the rooms joined by open doors,
 // neighbours in id order, then the rooms joined without a door.
 void tourLevel(RouteBuilder& builder, const bim::Scenario& scenario, std::set<std::string>& seen,
@@ -225,8 +231,16 @@ void tourLevelsFrom(RouteBuilder& builder, const bim::Scenario& scenario,
   for (const Flight& flight : builder.flightsOf(here)) {
     const bim::Level& next = flight.otherThan(here);
     if (toured_levels.count(next.id)) continue;
-    if (&builder.level() != &here) continue;  // could not come back: stay where the tour is
-    if (!builder.climb(flight)) continue;
+    auto& why = builder.route().why_levels_skipped;
+    if (&builder.level() != &here) {  // could not come back: stay where the tour is
+      why.emplace(next.id, "flight \"" + flight.stair->id + "\" leads there from level \"" +
+                               here.id + "\", to which the tour could not come back");
+      continue;
+    }
+    if (!builder.climb(flight)) {
+      why.emplace(next.id, flightBlocked(flight, builder.lastWaypoint(), builder.clearance()));
+      continue;
+    }
     toured_levels.insert(next.id);
     const std::string arrival = bim::roomAt(next, builder.lastWaypoint()).value_or("");
     if (!arrival.empty() && !seen_rooms.count(arrival)) {
@@ -307,11 +321,8 @@ PlannedRoute planRoute(const bim::Scenario& scenario, const OccupancyGrid& grid,
           if (!builder.climb(flight)) {
             throw common::InputError(file, pointer,
                                      "room \"" + plan.rooms[i] + "\" on level \"" + room_level.id +
-                                         "\" cannot be reached: flight \"" + flight.stair->id +
-                                         "\" cannot be reached from " +
-                                         formatPoint(route.waypoints.back()) +
-                                         " or stepped off, keeping " + formatMetres(clearance) +
-                                         " from walls and clutter");
+                                         "\" cannot be reached: " +
+                                         flightBlocked(flight, route.waypoints.back(), clearance));
           }
         }
       }
@@ -334,7 +345,10 @@ PlannedRoute planRoute(const bim::Scenario& scenario, const OccupancyGrid& grid,
   tourLevelsFrom(builder, scenario, seen, toured_levels);
   for (const auto& l : scenario.plan.levels) {
     if (!toured_levels.count(l.id)) {
-      if (&l != &level) route.skipped_levels.push_back(l.id);
+      if (&l == &level) continue;
+      route.skipped_levels.push_back(l.id);
+      route.why_levels_skipped.emplace(l.id,
+                                       "no flight of stairs leads to it from the levels toured");
       continue;
     }
     for (const auto& room : l.rooms) {

@@ -1,6 +1,7 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <map>
 #include <random>
 #include <string>
 #include <vector>
@@ -45,6 +46,9 @@ struct PlannedRoute {
   std::vector<std::string> visited_rooms;   // in the order the route reaches them
   std::vector<std::string> skipped_rooms;   // rooms (and waypoints after a kidnap) not reachable
   std::vector<std::string> skipped_levels;  // levels no flight of stairs the tour took leads to
+  // Why each of skipped_levels was (a flight that cannot be reached or stepped off, or none
+  // leading there), by level id: what the warning says.
+  std::map<std::string, std::string> why_levels_skipped;
 };
 
 // Plans the scenario's route from its robot level as built (docs/simulation.md):

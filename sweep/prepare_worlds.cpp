@@ -73,6 +73,12 @@ void prepareSweepWorlds(Suite& suite, const std::string& sweep_dir) {
                                    (simulation.route().skipped_rooms.size() > 1 ? "s " : " ") +
                                    rooms + "; change the generator's parameters");
     }
+    if (!simulation.route().skipped_levels.empty()) {
+      throw common::InputError(suite.file, "/worlds",
+                               "generated world " + world.name + ": its tour cannot reach level " +
+                                   simulation.route().skipped_levels.front() +
+                                   "; change the generator's parameters");
+    }
     world.hash = worlds::worldHash(scenario);
   }
 }

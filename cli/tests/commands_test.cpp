@@ -667,5 +667,25 @@ TEST(Vlp16, ReportsARealRecordingsReturnsAndWritesNothing) {
   EXPECT_EQ(result.exit_code, 2);
 }
 
+// A level the tour cannot reach (its flight blocked) is a warning naming the flight and why, and
+// is listed in the dataset's skipped_levels.
+TEST(Simulate, ALevelTheTourCannotReachIsWarnedAndListed) {
+  testing::Sandbox sandbox("tour_skipped_level");
+  auto scenario = nlohmann::json::parse(
+      std::ifstream(std::string(ISG_SOURCE_DIR) + "/worlds/plans/storeys.asbuilt.json"));
+  scenario["plan"] = std::string(ISG_SOURCE_DIR) + "/worlds/plans/storeys.json";
+  scenario["as_built"]["clutter"] = nlohmann::json::parse(
+      R"([{"shape": "box", "center": [7.6, 0.85, 0.4], "size": [2.6, 1.0, 0.8], "yaw": 0}])");
+  sandbox.write("blocked.json", scenario.dump(2));
+  const auto r = sandbox.run("simulate blocked.json --duration 2 -o ds -q");
+  EXPECT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_THAT(r.err, HasSubstr("isg simulate: warning: level L1 cannot be reached (flight \"S1\" "
+                               "cannot be reached from ("));
+  EXPECT_THAT(r.err, HasSubstr(") or stepped off, keeping 0.35 m from walls and clutter); the tour "
+                               "skips it\n"));
+  const auto metadata = nlohmann::json::parse(sandbox.read("ds/metadata.json"));
+  EXPECT_EQ(metadata["robot"]["skipped_levels"], nlohmann::json::parse(R"(["L1"])"));
+}
+
 }  // namespace
 }  // namespace isg::cli

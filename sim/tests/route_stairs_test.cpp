@@ -83,6 +83,33 @@ TEST(StairsRoute, NoPathOnOneLevelCrossesAFlightOrItsStairwell) {
   }
 }
 
+// A flight the tour cannot take (a crate across the corridor before its foot) leaves its level
+// out: listed in skipped_levels with the reason, never toured-around in silence.
+TEST(StairsRoute, ALevelTheTourCannotReachIsSkippedAndSaysWhy) {
+  bim::Scenario scenario = storeys();
+  bim::Clutter crate;
+  crate.level = "L0";
+  crate.center = Eigen::Vector3d(7.6, 0.85, 0.4);
+  crate.size = Eigen::Vector3d(2.6, 1.0, 0.8);
+  scenario.as_built.clutter.push_back(crate);
+  const PlannedRoute route = plan(scenario);
+  EXPECT_EQ(route.visited_rooms, (std::vector<std::string>{"R4", "R1", "R2", "R3"}));
+  EXPECT_EQ(route.skipped_levels, (std::vector<std::string>{"L1"}));
+  ASSERT_EQ(route.why_levels_skipped.count("L1"), 1u);
+  EXPECT_EQ(route.why_levels_skipped.at("L1").rfind("flight \"S1\" cannot be reached from (", 0),
+            0u)
+      << route.why_levels_skipped.at("L1");
+  EXPECT_NE(route.why_levels_skipped.at("L1").find(
+                ") or stepped off, keeping 0.35 m from walls and clutter"),
+            std::string::npos);
+  // Without the flight: no flight leads there.
+  scenario.plan.levels[0].stairs.clear();
+  const PlannedRoute without = plan(scenario);
+  EXPECT_EQ(without.skipped_levels, (std::vector<std::string>{"L1"}));
+  EXPECT_EQ(without.why_levels_skipped.at("L1"),
+            "no flight of stairs leads to it from the levels toured");
+}
+
 TEST(StairsRoute, RoomsOnOtherLevelsAreReachedByTheFlight) {
   bim::Scenario scenario = storeys();
   scenario.robot.route.kind = bim::Route::Kind::kRooms;
