@@ -2,6 +2,7 @@
 // modules. Exit codes: 0 success, 1 bad input (the message names the file, the JSON pointer and
 // what is wrong), 2 bad usage, 3 internal error, 128 + N stopped by signal N (Ctrl-C: 130).
 #include <CLI/CLI.hpp>
+#include <filesystem>
 #include <iostream>
 #include <memory>
 #include <vector>
@@ -72,6 +73,12 @@ int main(int argc, char** argv) {
       return 128 + e.signalNumber();
     } catch (const isg::common::InputError& e) {
       std::cerr << "isg " << name << ": error: " << e.what() << "\n";
+      return kExitBadInput;
+    } catch (const std::filesystem::filesystem_error& e) {
+      // A path the user gave that the system cannot follow (a symlink loop, no permission, a
+      // full disk) where a check did not catch it first: their input, named, not our bug.
+      const std::string path = e.path1().empty() ? std::string() : e.path1().string() + ": ";
+      std::cerr << "isg " << name << ": error: " << path << e.code().message() << "\n";
       return kExitBadInput;
     } catch (const std::exception& e) {
       std::cerr << "isg " << name << ": internal error: " << e.what() << "\n";

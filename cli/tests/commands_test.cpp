@@ -13,6 +13,7 @@ namespace isg::cli {
 namespace {
 
 using ::testing::HasSubstr;
+using ::testing::Not;
 using ::testing::StartsWith;
 
 TEST(Usage, HelpOnEveryCommandExitsZero) {
@@ -685,6 +686,23 @@ TEST(Simulate, ALevelTheTourCannotReachIsWarnedAndListed) {
                                "skips it\n"));
   const auto metadata = nlohmann::json::parse(sandbox.read("ds/metadata.json"));
   EXPECT_EQ(metadata["robot"]["skipped_levels"], nlohmann::json::parse(R"(["L1"])"));
+}
+
+// An input path the system cannot follow (a symlink loop) is bad input, exit 1, named: never an
+// internal error.
+TEST(Inputs, ASymbolicLinkLoopIsBadInputNamed) {
+  testing::Sandbox sandbox("input_loop");
+  std::filesystem::create_symlink("loop", sandbox.dir() / "loop");
+  for (const std::string& arguments :
+       {std::string("check loop"), std::string("slam loop -o r"),
+        std::string("export loop --rosbag x.bag"), std::string("import loop -o p.json"),
+        std::string("table loop"), std::string("run loop -o r"), std::string("world loop")}) {
+    const auto r = sandbox.run(arguments);
+    EXPECT_EQ(r.exit_code, 1) << arguments << ": " << r.err;
+    EXPECT_THAT(r.err, HasSubstr("loop")) << arguments;
+    EXPECT_THAT(r.err, HasSubstr("Too many levels of symbolic links")) << arguments;
+    EXPECT_THAT(r.err, Not(HasSubstr("internal error"))) << arguments;
+  }
 }
 
 }  // namespace
