@@ -71,9 +71,9 @@ ExportCommand::ExportCommand(CLI::App& parent) {
       ->option_text("DATASET_DIR|RUN_DIR")
       ->required();
   app_->add_option("--rosbag", rosbag_, "the ROS 1 bag to write")->option_text("OUT.bag");
-  app_->add_option("--mcap", mcap_, "the MCAP file of ROS 2 messages to write")
-      ->option_text("OUT.mcap");
-  addMcapCompressionOption(*app_, compression_);
+  CLI::Option* mcap = app_->add_option("--mcap", mcap_, "the MCAP file of ROS 2 messages to write")
+                          ->option_text("OUT.mcap");
+  addMcapCompressionOption(*app_, compression_, mcap);
   app_->add_option("--stamp-offset", stamp_offset_,
                    "whole seconds added to every dataset time (ROS reads a zero stamp as no time)")
       ->check(CLI::Range(0u, 4000000000u))
@@ -137,10 +137,13 @@ formats::McapCompression mcapCompression(const std::string& name) {
   return formats::McapCompression::kZstd;
 }
 
-void addMcapCompressionOption(CLI::App& app, std::string& compression) {
+void addMcapCompressionOption(CLI::App& app, std::string& compression, CLI::Option* mcap) {
+  // Only with --mcap: alone it would be ignored, and the user would think it was applied.
   app.add_option("--compression", compression,
-                 "how the MCAP file's chunks are compressed (zstd: smallest; lz4: fastest to read)")
+                 "with --mcap: how the MCAP file's chunks are compressed (zstd: smallest; lz4: "
+                 "fastest to read)")
       ->check(CLI::IsMember({"none", "zstd", "lz4"}))
+      ->needs(mcap)
       ->capture_default_str();
 }
 

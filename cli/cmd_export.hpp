@@ -45,6 +45,6 @@ void printRunMcapSummary(const std::string& command, const std::string& path,
 // "none", "zstd" or "lz4" as the command line spells it.
 formats::McapCompression mcapCompression(const std::string& name);
 // The --compression option of a command that writes MCAP.
-void addMcapCompressionOption(CLI::App& app, std::string& compression);
+void addMcapCompressionOption(CLI::App& app, std::string& compression, CLI::Option* mcap);
 
 }  // namespace isg::cli

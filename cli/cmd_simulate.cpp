@@ -49,11 +49,11 @@ SimulateCommand::SimulateCommand(CLI::App& parent) {
           "--rosbag", rosbag_,
           "also write the dataset as a ROS 1 bag (as isg export DATASET_DIR --rosbag does)")
       ->option_text("OUT.bag");
-  app_->add_option("--mcap", mcap_,
-                   "also write the dataset as an MCAP file of ROS 2 messages (as isg export "
-                   "DATASET_DIR --mcap does)")
-      ->option_text("OUT.mcap");
-  addMcapCompressionOption(*app_, compression_);
+  CLI::Option* mcap = app_->add_option("--mcap", mcap_,
+                                       "also write the dataset as an MCAP file of ROS 2 messages "
+                                       "(as isg export DATASET_DIR --mcap does)")
+                          ->option_text("OUT.mcap");
+  addMcapCompressionOption(*app_, compression_, mcap);
   app_->add_option("--stamp-offset", stamp_offset_,
                    "with --rosbag / --mcap: whole seconds added to every dataset time there")
       ->check(CLI::Range(0u, 4000000000u))

@@ -100,12 +100,13 @@ run::RunEvaluation finishRun(const std::string& command, const std::string& dir,
 }
 
 void addRunMcapOptions(CLI::App& app, RunMcapArguments& arguments) {
-  app.add_option("--mcap", arguments.path,
-                 "also write the run as an MCAP file to watch in Foxglove: the plan, the A-Graph, "
-                 "the S-Graph over time, matching, paths, scans, transforms, deviations "
-                 "(docs/foxglove.md)")
-      ->option_text("RUN.mcap");
-  addMcapCompressionOption(app, arguments.compression);
+  CLI::Option* mcap =
+      app.add_option("--mcap", arguments.path,
+                     "also write the run as an MCAP file to watch in Foxglove: the plan, the "
+                     "A-Graph, the S-Graph over time, matching, paths, scans, transforms, "
+                     "deviations (docs/foxglove.md)")
+          ->option_text("RUN.mcap");
+  addMcapCompressionOption(app, arguments.compression, mcap);
 }
 
 std::unique_ptr<run::LiveRunMcap> openRunMcap(const RunMcapArguments& arguments, bool force,

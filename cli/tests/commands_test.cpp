@@ -705,5 +705,20 @@ TEST(Inputs, ASymbolicLinkLoopIsBadInputNamed) {
   }
 }
 
+// --compression says how the MCAP file is compressed: without --mcap it would be ignored unsaid.
+TEST(Usage, CompressionWithoutMcapIsAUsageError) {
+  testing::Sandbox sandbox("compression_alone");
+  for (const std::string& arguments :
+       {std::string("run builtin:d1 --duration 1 --compression lz4 -o r -q"),
+        std::string("simulate builtin:d1 --duration 1 --compression none -o ds -q"),
+        std::string("export ds --rosbag b.bag --compression zstd")}) {
+    const auto r = sandbox.run(arguments);
+    EXPECT_EQ(r.exit_code, 2) << arguments;
+    EXPECT_THAT(r.err, HasSubstr("--compression requires --mcap")) << arguments;
+  }
+  EXPECT_FALSE(sandbox.exists("r"));
+  EXPECT_FALSE(sandbox.exists("ds"));
+}
+
 }  // namespace
 }  // namespace isg::cli
