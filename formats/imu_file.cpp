@@ -6,6 +6,7 @@
 #include <cstdlib>
 #include <cstring>
 #include <fstream>
+#include <optional>
 #include <sstream>
 
 #include "common/input_error.hpp"
@@ -19,22 +20,41 @@ constexpr const char* kHeader = "t,ax,ay,az,gx,gy,gz";
 // As for TUM files: 1 GiB is ~8 M samples (11 hours at 200 Hz), read whole into memory.
 constexpr std::uintmax_t kMaxImuBytes = std::uintmax_t(1) << 30;
 
-// The seven numbers of one line, or false.
-bool parseLine(const std::string& line, double (&values)[7]) {
+// The seven numbers of one line; what is wrong with it otherwise, naming the column.
+std::optional<std::string> parseLine(const std::string& line, double (&values)[7]) {
+  static constexpr const char* kColumns[] = {"t", "ax", "ay", "az", "gx", "gy", "gz"};
   const char* at = line.c_str();
   for (int i = 0; i < 7; ++i) {
+    const std::string column = "column " + std::to_string(i + 1) + " (" + kColumns[i] + "): ";
     char* end = nullptr;
     errno = 0;
     values[i] = std::strtod(at, &end);
-    if (end == at || errno == ERANGE || !std::isfinite(values[i])) return false;
+    const std::string text(at, std::size_t(end - at));
+    if (end == at) {
+      if (*at == '\0') {
+        return "expected 7 comma-separated numbers (" + std::string(kHeader) + "), got " +
+               std::to_string(i);
+      }
+      return column + "not a number";
+    }
+    if (std::isnan(values[i])) return column + "\"" + text + "\" is not a number";
+    if (errno == ERANGE || !std::isfinite(values[i])) {
+      return column + "\"" + text + "\" is out of range (not a finite double)";
+    }
     at = end;
     if (i < 6) {
-      if (*at != ',') return false;
+      if (*at != ',') {
+        return *at == '\0' ? "expected 7 comma-separated numbers (" + std::string(kHeader) +
+                                 "), got " + std::to_string(i + 1)
+                           : column + "expected a comma after the number";
+      }
       ++at;
     }
   }
   while (*at == ' ' || *at == '\r') ++at;
-  return at == line.c_str() + line.size();  // the whole line: no byte after a NUL either
+  // The whole line: no byte after a NUL either.
+  if (at != line.c_str() + line.size()) return std::string("text after the 7th number");
+  return std::nullopt;
 }
 
 }  // namespace
@@ -54,10 +74,8 @@ std::vector<sensors::ImuSample> parseImuText(std::string_view text, const std::s
   for (int number = 2; std::getline(in, line); ++number) {
     if (line.empty()) continue;
     double v[7];
-    if (!parseLine(line, v)) {
-      throw common::InputError(
-          path, "",
-          "line " + std::to_string(number) + ": expected 7 comma-separated numbers: " + kHeader);
+    if (const auto wrong = parseLine(line, v)) {
+      throw common::InputError(path, "", "line " + std::to_string(number) + ": " + *wrong);
     }
     if (!samples.empty() && !(v[0] > samples.back().t)) {
       throw common::InputError(path, "",

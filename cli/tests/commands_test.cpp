@@ -195,8 +195,8 @@ TEST(Export, WritesABagAndRefusesBadInput) {
   result = sandbox.run("export ds --rosbag x.bag -q");
   EXPECT_EQ(result.exit_code, 1);
   EXPECT_EQ(result.err,
-            "isg export: error: ds/imu.csv: line 2: expected 7 comma-separated numbers: "
-            "t,ax,ay,az,gx,gy,gz\n");
+            "isg export: error: ds/imu.csv: line 2: expected 7 comma-separated numbers "
+            "(t,ax,ay,az,gx,gy,gz), got 6\n");
   EXPECT_FALSE(sandbox.exists("x.bag"));
   // Refused before simulating: an existing bag without --force.
   result = sandbox.run("simulate builtin:d2 -o ds2 --duration 1 -q --rosbag ds.bag");

@@ -38,9 +38,21 @@ TEST(ImuFile, ReadsSamplesAndNamesTheBadLine) {
   EXPECT_EQ(error("t ax ay az gx gy gz\n"),
             path + ": line 1: expected the header \"t,ax,ay,az,gx,gy,gz\"");
   EXPECT_EQ(error("t,ax,ay,az,gx,gy,gz\n0,0,0,9.81,0,0,0\n0.005,1,2,3,4,5\n"),
-            path + ": line 3: expected 7 comma-separated numbers: t,ax,ay,az,gx,gy,gz");
-  EXPECT_EQ(error("t,ax,ay,az,gx,gy,gz\n0,0,0,9.81,0,0,nan\n"),
-            path + ": line 2: expected 7 comma-separated numbers: t,ax,ay,az,gx,gy,gz");
+            path + ": line 3: expected 7 comma-separated numbers (t,ax,ay,az,gx,gy,gz), got 6");
+  // Each bad number named by its column, and for what it is.
+  const std::string head = "t,ax,ay,az,gx,gy,gz\n";
+  EXPECT_EQ(error(head + "0,0,0,9.81,0,0,nan\n"),
+            path + ": line 2: column 7 (gz): \"nan\" is not a number");
+  EXPECT_EQ(error(head + "0,NaN,0,9.81,0,0,0\n"),
+            path + ": line 2: column 2 (ax): \"NaN\" is not a number");
+  EXPECT_EQ(error(head + "0,0,0,1e999,0,0,0\n"),
+            path + ": line 2: column 4 (az): \"1e999\" is out of range (not a finite double)");
+  EXPECT_EQ(error(head + "0,0,-inf,9.81,0,0,0\n"),
+            path + ": line 2: column 3 (ay): \"-inf\" is out of range (not a finite double)");
+  EXPECT_EQ(error(head + "0,0,0,9.81,x,0,0\n"), path + ": line 2: column 5 (gx): not a number");
+  EXPECT_EQ(error(head + "0,0,0,9.81;0,0,0\n"),
+            path + ": line 2: column 4 (az): expected a comma after the number");
+  EXPECT_EQ(error(head + "0,0,0,9.81,0,0,0,7\n"), path + ": line 2: text after the 7th number");
   EXPECT_EQ(error("t,ax,ay,az,gx,gy,gz\n0.1,0,0,9.81,0,0,0\n0.1,0,0,9.81,0,0,0\n"),
             path + ": line 3: time does not increase");
   // The writer's text reads back to the same numbers (nine significant digits).
