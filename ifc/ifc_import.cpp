@@ -41,6 +41,7 @@
 #include "bim/stairs.hpp"
 #include "common/json_reader.hpp"
 #include "common/limits.hpp"
+#include "common/plural.hpp"
 #include "ifc/ifcpp_model.hpp"
 
 namespace isg::ifc {
@@ -406,9 +407,19 @@ void Importer::readWalls() {
     }
     Eigen::Matrix4d placement;
     const Mesh body = bodyWithParts(bodies_, element, &placement);
+    const std::vector<std::string> non_positive = nonPositiveLengths(element);
+    std::string lengths;
+    for (const auto& n : non_positive) lengths += (lengths.empty() ? "" : ", ") + n;
     if (body.empty()) {
-      dropped(what, "no body geometry IFC++ could build");
+      dropped(what,
+              "no body geometry IFC++ could build" +
+                  (lengths.empty() ? std::string()
+                                   : " (IFC requires these lengths positive: " + lengths + ")"));
       continue;
+    }
+    if (!lengths.empty()) {
+      simplified(what, "IFC requires these lengths of its body positive: " + lengths +
+                           "; IFC++ builds a negative one mirrored, and that body is used");
     }
     const Eigen::Vector2d own_x = placement.block<2, 1>(0, 0);
     const auto fit = fitWall(body, own_x);
@@ -683,10 +694,26 @@ std::vector<int> Importer::chooseLevels() {
     if (walls_on[s] > 0 && (!any_rooms || rooms_in[s] > 0)) chosen.push_back(s);
   }
   if (chosen.empty()) {
-    throw common::InputError(file_, "",
-                             walls_.empty()
-                                 ? "no wall the import could read: nothing to import"
-                                 : "no storey has walls standing on it: nothing to import");
+    // Nothing is written, so the summary that lists what was left out never prints: the reasons
+    // go into the error itself, with what IFC++ said while reading.
+    std::string why = walls_.empty() ? "no wall the import could read: nothing to import"
+                                     : "no storey has walls standing on it: nothing to import";
+    constexpr std::size_t kListed = 5;
+    const auto& log = result_.log;
+    if (!log.empty()) {
+      why += " (" + common::counted(log.size(), "element") + " left out or simplified: ";
+      for (std::size_t i = 0; i < std::min(log.size(), kListed); ++i) {
+        why += (i > 0 ? "; " : "") + log[i];
+      }
+      why +=
+          log.size() > kListed ? "; and " + std::to_string(log.size() - kListed) + " more)" : ")";
+    }
+    const auto& errors = loaded_.messages.errors;
+    if (!errors.empty()) {
+      why += "; IFC++ reported " + common::counted(errors.size(), "error") +
+             " while reading (first: " + errors.front() + ")";
+    }
+    throw common::InputError(file_, "", why);
   }
   return chosen;
 }

@@ -1,11 +1,15 @@
+#include <ifcpp/IFC4/include/IfcExtrudedAreaSolid.h>
 #include <ifcpp/IFC4/include/IfcGloballyUniqueId.h>
+#include <ifcpp/IFC4/include/IfcPositiveLengthMeasure.h>
 #include <ifcpp/IFC4/include/IfcProductRepresentation.h>
 #include <ifcpp/IFC4/include/IfcProject.h>
+#include <ifcpp/IFC4/include/IfcRectangleProfileDef.h>
 #include <ifcpp/IFC4/include/IfcRepresentation.h>
 #include <ifcpp/geometry/Carve/GeometryConverter.h>
 #include <ifcpp/reader/ReaderSTEP.h>
 
 #include <cctype>
+#include <cstdio>
 #include <unordered_set>
 
 #include "common/input_error.hpp"
@@ -144,6 +148,32 @@ Eigen::Matrix4d BodyReader::placementOf(const shared_ptr<IfcProduct>& product) {
         product->m_ObjectPlacement, shape, applied, false);
   }
   return toEigen(shape->getTransform());
+}
+
+std::vector<std::string> nonPositiveLengths(const shared_ptr<IfcProduct>& product) {
+  std::vector<std::string> found;
+  const auto check = [&](const BuildingEntity& owner, const char* type, const char* attribute,
+                         const shared_ptr<IfcPositiveLengthMeasure>& length) {
+    if (!length || length->m_value > 0) return;
+    char value[32];
+    std::snprintf(value, sizeof value, "%g", length->m_value);
+    found.push_back("#" + std::to_string(owner.m_entity_id) + " " + type + " " + attribute + " " +
+                    value);
+  };
+  if (!product || !product->m_Representation) return found;
+  for (const auto& representation : product->m_Representation->m_Representations) {
+    if (!isBody(representation)) continue;
+    for (const auto& item : representation->m_Items) {
+      const auto solid = dynamic_pointer_cast<IfcExtrudedAreaSolid>(item);
+      if (!solid) continue;
+      check(*solid, "IfcExtrudedAreaSolid", "Depth", solid->m_Depth);
+      if (const auto rectangle = dynamic_pointer_cast<IfcRectangleProfileDef>(solid->m_SweptArea)) {
+        check(*rectangle, "IfcRectangleProfileDef", "XDim", rectangle->m_XDim);
+        check(*rectangle, "IfcRectangleProfileDef", "YDim", rectangle->m_YDim);
+      }
+    }
+  }
+  return found;
 }
 
 Body BodyReader::read(const shared_ptr<IfcProduct>& product) {

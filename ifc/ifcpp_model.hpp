@@ -47,6 +47,12 @@ struct Body {
   Eigen::Matrix4d placement = Eigen::Matrix4d::Identity();  // object placement, metres
 };
 
+// Lengths of the product's body that IFC requires positive (IfcPositiveLengthMeasure) but the file
+// gives as zero or negative — an extrusion's Depth, a rectangle profile's XDim and YDim — each as
+// "#77 IfcExtrudedAreaSolid Depth -3": IFC++ builds a negative one mirrored, so the body looks
+// sound while the file is not; the import says so.
+std::vector<std::string> nonPositiveLengths(const shared_ptr<IfcProduct>& product);
+
 class BodyReader {
  public:
   explicit BodyReader(LoadedModel& model);

@@ -593,6 +593,60 @@ TEST(Import, WritesAPlanCheckAcceptsAndSummarises) {
             "small.json: ok: plan \"small\" (small.json): 1 level, 1 wall, 1 door, 1 room\n");
 }
 
+// When the only wall cannot be read, nothing is written and the error itself says why, element by
+// element (the summary that lists them never prints), with what IFC++ said while reading; a
+// length IFC requires positive but the file gives negative is said even where IFC++ builds it.
+TEST(Import, EveryElementLeftOutIsNamedEvenWhenNothingIsWritten) {
+  testing::Sandbox sandbox("import_bad_wall");
+  std::string small;
+  {
+    std::ifstream in(std::string(ISG_SOURCE_DIR) + "/ifc/tests/models/small.ifc");
+    std::ostringstream text;
+    text << in.rdbuf();
+    small = text.str();
+  }
+  const auto variant = [&](const std::string& name, const std::string& from,
+                           const std::string& to) {
+    std::string text = small;
+    const std::size_t at = text.find(from);
+    EXPECT_NE(at, std::string::npos) << from;
+    text.replace(at, from.size(), to);
+    sandbox.write(name, text);
+  };
+  const std::string profile = "#78=IFCRECTANGLEPROFILEDEF(.AREA.,$,#79,5.,0.2);";
+  variant("zero.ifc", profile, "#78=IFCRECTANGLEPROFILEDEF(.AREA.,$,#79,5.,0.);");
+  variant("missing.ifc", "#77=IFCEXTRUDEDAREASOLID(#78,#80,#81,3.);",
+          "#77=IFCEXTRUDEDAREASOLID(#999999,#80,#81,3.);");
+  variant("negative.ifc", profile, "#78=IFCRECTANGLEPROFILEDEF(.AREA.,$,#79,5.,-0.3);");
+  const std::string door_line =
+      "dropped door 9YvctVUKr0kugbFTf53O9L \"Door 1\": it fills no opening of an imported wall "
+      "(a partition or free-standing door, or its wall was left out))";
+  auto r = sandbox.run("import zero.ifc -o zero.json");
+  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_EQ(r.err,
+            "isg import: error: zero.ifc: no wall the import could read: nothing to import (2 "
+            "elements left out or simplified: dropped wall 7YvctVUKr0kugbFTf53O9L \"Wall A\": no "
+            "body geometry IFC++ could build (IFC requires these lengths positive: #78 "
+            "IfcRectangleProfileDef YDim 0); " +
+                door_line + "\n");
+  r = sandbox.run("import missing.ifc -o missing.json");
+  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_THAT(r.err, HasSubstr("dropped wall 7YvctVUKr0kugbFTf53O9L \"Wall A\": no body geometry "
+                               "IFC++ could build; " +
+                               door_line));
+  EXPECT_THAT(r.err, HasSubstr("; IFC++ reported 2 errors while reading (first: "
+                               "#77=IfcExtrudedAreaSolid: readEntityReference: object with id "
+                               "999999 not found)\n"));
+  r = sandbox.run("import negative.ifc -o negative.json");
+  EXPECT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_THAT(r.err, HasSubstr("simplified wall 7YvctVUKr0kugbFTf53O9L \"Wall A\": IFC requires "
+                               "these lengths of its body positive: #78 IfcRectangleProfileDef "
+                               "YDim -0.3; IFC++ builds a negative one mirrored, and that body is "
+                               "used\n"));
+  EXPECT_FALSE(sandbox.exists("zero.json"));
+  EXPECT_FALSE(sandbox.exists("missing.json"));
+}
+
 TEST(Import, ReplacesOnlyAPlanItWroteAndOnlyWithForce) {
   testing::Sandbox sandbox("import_force");
   sandbox.write("mine.json", "{\"format\": \"isg.plan\", \"version\": 1, \"levels\": []}\n");
