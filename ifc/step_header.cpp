@@ -128,4 +128,40 @@ StepHeader readStepHeader(const std::string& file, const std::string& text) {
   return result;
 }
 
+std::size_t countInstances(const std::string& text, std::initializer_list<std::string_view> types) {
+  std::size_t count = 0;
+  bool in_string = false;
+  const std::size_t n = text.size();
+  for (std::size_t i = 0; i < n; ++i) {
+    const char c = text[i];
+    if (c == '\'') {
+      in_string = !in_string;  // '' inside a string closes and reopens it: the same state after
+      continue;
+    }
+    if (in_string || c != '=') continue;
+    std::size_t at = i + 1;
+    while (at < n && std::isspace(static_cast<unsigned char>(text[at]))) ++at;
+    std::size_t end = at;
+    while (end < n && (std::isalnum(static_cast<unsigned char>(text[end])) || text[end] == '_')) {
+      ++end;
+    }
+    std::size_t open = end;
+    while (open < n && std::isspace(static_cast<unsigned char>(text[open]))) ++open;
+    if (end == at || open >= n || text[open] != '(') continue;
+    for (const std::string_view type : types) {
+      if (type.size() != end - at) continue;
+      bool same = true;
+      for (std::size_t k = 0; k < type.size() && same; ++k) {
+        same = std::toupper(static_cast<unsigned char>(text[at + k])) == type[k];
+      }
+      if (same) {
+        ++count;
+        break;
+      }
+    }
+    i = open;
+  }
+  return count;
+}
+
 }  // namespace isg::ifc

@@ -1,6 +1,9 @@
 #pragma once
 
+#include <cstddef>
+#include <initializer_list>
 #include <string>
+#include <string_view>
 
 namespace isg::ifc {
 
@@ -17,5 +20,10 @@ struct StepHeader {
 // no FILE_SCHEMA, names a schema other than IFC2X3 and IFC4 (IFC4X1-IFC4X3, IFC2X2 …), or does
 // not end with END-ISO-10303-21; (a truncated file).
 StepHeader readStepHeader(const std::string& file, const std::string& text);
+
+// How many entity instances of the given types ("IFCWALL", upper case) the text holds: each
+// "= TYPE (" outside strings, the type's name in any case. One pass over the text, before IFC++
+// reads a byte of it: limits are checked here rather than after the model is built.
+std::size_t countInstances(const std::string& text, std::initializer_list<std::string_view> types);
 
 }  // namespace isg::ifc

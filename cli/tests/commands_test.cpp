@@ -647,6 +647,50 @@ TEST(Import, EveryElementLeftOutIsNamedEvenWhenNothingIsWritten) {
   EXPECT_FALSE(sandbox.exists("missing.json"));
 }
 
+// The plan's limit of walls a level holds is checked while the model is read: at once from the
+// text when no spread over its storeys could keep to it, else as a storey's walls are counted.
+TEST(Import, TooManyWallsAreRefusedWhileReading) {
+  testing::Sandbox sandbox("import_many_walls");
+  std::string small;
+  {
+    std::ifstream in(std::string(ISG_SOURCE_DIR) + "/ifc/tests/models/small.ifc");
+    std::ostringstream text;
+    text << in.rdbuf();
+    small = text.str();
+  }
+  // 25 000 copies of the wall, all in storey Ground.
+  std::string walls, members;
+  for (int k = 0; k < 25000; ++k) {
+    const std::string id = "#" + std::to_string(1000000 + k);
+    walls += id + "=IFCWALL('W" + std::to_string(100000 + k) + "',$,'Wall " + std::to_string(k) +
+             "',$,$,#71,#75,$,.STANDARD.);\n";
+    members += (k == 0 ? "" : ",") + id;
+  }
+  walls += "#999990=IFCRELCONTAINEDINSPATIALSTRUCTURE('ZZvctVUKr0kugbFTf53O9L',$,$,$,(" + members +
+           "),#50);\n";
+  std::string one = small;
+  one.insert(one.rfind("ENDSEC;"), walls);
+  sandbox.write("one.ifc", one);
+  auto r = sandbox.run("import one.ifc -o one.json");
+  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_EQ(r.err,
+            "isg import: error: one.ifc: 25001 walls in 1 storey; at most 20000 a level are "
+            "supported (docs/formats.md, Limits), however they are spread\n");
+  // With a second storey they could be spread; they are not.
+  std::string two = one;
+  two.insert(two.find("#50=IFCBUILDINGSTOREY"),
+             "#49=IFCBUILDINGSTOREY('1ZvctVUKr0kugbFTf53O9L',$,'Upper',$,$,#51,$,$,.ELEMENT.,3.);"
+             "\n");
+  sandbox.write("two.ifc", two);
+  r = sandbox.run("import two.ifc -o two.json");
+  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_EQ(r.err,
+            "isg import: error: two.ifc: storey \"Ground\": more than 20000 walls; at most 20000 a "
+            "level are supported (docs/formats.md, Limits)\n");
+  EXPECT_FALSE(sandbox.exists("one.json"));
+  EXPECT_FALSE(sandbox.exists("two.json"));
+}
+
 TEST(Import, ReplacesOnlyAPlanItWroteAndOnlyWithForce) {
   testing::Sandbox sandbox("import_force");
   sandbox.write("mine.json", "{\"format\": \"isg.plan\", \"version\": 1, \"levels\": []}\n");

@@ -64,5 +64,16 @@ TEST(StepHeader, AByteOrderMarkAndBlankLinesAreFine) {
             "IFC4");
 }
 
+TEST(CountInstances, CountsEntitiesOfTheTypesNotTextInStrings) {
+  const std::string text =
+      "DATA;\n#1=IFCWALL('a',$,'x=IFCWALL(',$);\n#2 = ifcwall ('b');\n"
+      "#3=IFCWALLSTANDARDCASE('c');\n#4=IFCWALLTYPE('d');\n#5=IFCSPACE('it''s =IFCWALL(');\n"
+      "#6=IFCBUILDINGSTOREY('e');\nENDSEC;\n";
+  EXPECT_EQ(countInstances(text, {"IFCWALL"}), 2u);
+  EXPECT_EQ(countInstances(text, {"IFCWALL", "IFCWALLSTANDARDCASE"}), 3u);
+  EXPECT_EQ(countInstances(text, {"IFCBUILDINGSTOREY"}), 1u);
+  EXPECT_EQ(countInstances(text, {"IFCDOOR"}), 0u);
+}
+
 }  // namespace
 }  // namespace isg::ifc
