@@ -280,6 +280,9 @@ class Importer {
   // The storey's spaces with a closed outline as the level's rooms; the others logged.
   void levelRooms(const StoreyRecord& storey, StoreySummary& summary, bim::Level& level);
   std::string uniqueId(const std::string& wanted, const std::string& suffix);
+  // A door or window that no IfcRelFillsElement links to its opening, given to the empty opening
+  // its body lies in (said); false when there is none.
+  bool fillsByPlace(const shared_ptr<IfcProduct>& element, const std::string& kind);
   void dropped(const std::string& what, const std::string& why) {
     result_.log.push_back("dropped " + what + ": " + why);
   }
@@ -330,14 +333,30 @@ void Importer::readStoreys() {
     } else if (storey->m_Elevation) {
       record.elevation = storey->m_Elevation->m_value * unit_;
     }
+    std::vector<shared_ptr<IfcSpace>> spaces;
+    collectSpaces(storey, spaces);
+    // IFC aggregates a storey's spaces (IfcRelAggregates); some exporters (FreeCAD's through
+    // IfcOpenShell) list them among its contained elements instead. Taken as its spaces all the
+    // same, and said.
     forEachRelation(storey->m_ContainsElements_inverse,
                     [&](const shared_ptr<IfcRelContainedInSpatialStructure>& rel) {
                       for (const auto& e : rel->m_RelatedElements) {
-                        if (e) record.elements.push_back(e);
+                        if (!e) continue;
+                        if (auto space = dynamic_pointer_cast<IfcSpace>(e)) {
+                          if (std::find(spaces.begin(), spaces.end(), space) != spaces.end()) {
+                            continue;
+                          }
+                          simplified(describe("space", space),
+                                     "contained in its storey (IfcRelContainedInSpatialStructure) "
+                                     "rather than aggregated (IfcRelAggregates): taken as a space "
+                                     "of the storey");
+                          spaces.push_back(space);
+                          collectSpaces(space, spaces, 1);
+                          continue;
+                        }
+                        record.elements.push_back(e);
                       }
                     });
-    std::vector<shared_ptr<IfcSpace>> spaces;
-    collectSpaces(storey, spaces);
     // Elements placed in a space belong to the space's storey.
     for (const auto& space : spaces) {
       record.spaces.push_back({space, footprintOf(bodies_.read(space).faces)});
@@ -494,6 +513,44 @@ void Importer::readWalls() {
   }
 }
 
+bool Importer::fillsByPlace(const shared_ptr<IfcProduct>& element, const std::string& kind) {
+  if (!element) return false;
+  const Mesh body = bodies_.read(element).faces;
+  if (body.empty()) return false;
+  // The empty opening of an imported wall that the element's body lies in: its centre within the
+  // wall's thickness of the wall's axis, and within the opening's extent along the wall.
+  Eigen::Vector3d lo = Eigen::Vector3d::Constant(1e300), hi = -lo;
+  for (const auto& face : body) {
+    for (const auto& p : face) lo = lo.cwiseMin(p), hi = hi.cwiseMax(p);
+  }
+  const Eigen::Vector3d centre = 0.5 * (lo + hi);
+  for (auto& opening : openings_) {
+    if (opening.kind != "opening") continue;
+    const WallFit& fit = walls_[std::size_t(opening.wall)].fit;
+    const Eigen::Vector2d axis = fit.end - fit.start;
+    if (axis.norm() < 1e-9) continue;
+    const Eigen::Vector2d u = axis.normalized();
+    const Eigen::Vector2d d = centre.head<2>() - fit.start;
+    const double along = d.dot(u), across = std::abs(d.x() * u.y() - d.y() * u.x());
+    if (across > 0.5 * fit.thickness + 0.05 || along < opening.extent.along_min ||
+        along > opening.extent.along_max || centre.z() < opening.extent.z_min ||
+        centre.z() > opening.extent.z_max) {
+      continue;
+    }
+    const auto root = dynamic_pointer_cast<IfcRoot>(element);
+    simplified(describe(kind, root), "no IfcRelFillsElement names its opening: it fills opening " +
+                                         opening.global_id + " of wall " +
+                                         walls_[std::size_t(opening.wall)].global_id +
+                                         ", in which it lies");
+    opening.kind = kind;
+    opening.described = root;
+    opening.global_id = globalIdOf(root);
+    opening.name = labelText(root->m_Name);
+    return true;
+  }
+  return false;
+}
+
 void Importer::readOpenings() {
   std::set<BuildingEntity*> filled;  // doors and windows found in an opening
   for (int w = 0; w < int(walls_.size()); ++w) {
@@ -540,6 +597,7 @@ void Importer::readOpenings() {
     const bool door = dynamic_pointer_cast<IfcDoor>(entity) != nullptr;
     const bool window = dynamic_pointer_cast<IfcWindow>(entity) != nullptr;
     if ((!door && !window) || filled.count(entity.get())) continue;
+    if (fillsByPlace(dynamic_pointer_cast<IfcProduct>(entity), door ? "door" : "window")) continue;
     dropped(describe(door ? "door" : "window", dynamic_pointer_cast<IfcRoot>(entity)),
             "it fills no opening of an imported wall (a partition or free-standing door, or its "
             "wall was left out)");

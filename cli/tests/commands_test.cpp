@@ -691,6 +691,57 @@ TEST(Import, TooManyWallsAreRefusedWhileReading) {
   EXPECT_FALSE(sandbox.exists("two.json"));
 }
 
+// IfcOpenShell's conventions (FreeCAD's exports): spaces contained in their storey rather than
+// aggregated, and doors that no IfcRelFillsElement links to their opening. Both imported as the
+// linked model is, and said.
+TEST(Import, SpacesContainedAndDoorsUnlinkedAreReadAndSaid) {
+  testing::Sandbox sandbox("import_conventions");
+  std::string small;
+  {
+    std::ifstream in(std::string(ISG_SOURCE_DIR) + "/ifc/tests/models/small.ifc");
+    std::ostringstream text;
+    text << in.rdbuf();
+    small = text.str();
+  }
+  const auto replaced = [](std::string text, const std::string& from, const std::string& to) {
+    const std::size_t at = text.find(from);
+    EXPECT_NE(at, std::string::npos) << from;
+    return text.replace(at, from.size(), to);
+  };
+  std::string contained = replaced(small, "(#70,#100),#50);", "(#70,#100,#140),#50);");
+  contained = replaced(contained,
+                       "#160=IFCRELAGGREGATES('EYvctVUKr0kugbFTf53O9L',$,$,$,#50,(#140));\n", "");
+  sandbox.write("contained.ifc", contained);
+  auto r = sandbox.run("import contained.ifc -o contained.json");
+  EXPECT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_THAT(r.err, HasSubstr("simplified space DYvctVUKr0kugbFTf53O9L \"101\": contained in its "
+                               "storey (IfcRelContainedInSpatialStructure) rather than aggregated "
+                               "(IfcRelAggregates): taken as a space of the storey\n"));
+  EXPECT_THAT(r.err, HasSubstr("1 door, 0 windows, 1 room of 1 space\n"));
+  // The door placed in its opening with a body, and the link removed.
+  std::string unlinked =
+      replaced(small, "#131=IFCRELFILLSELEMENT('CYvctVUKr0kugbFTf53O9L',$,$,$,#110,#100);\n", "");
+  unlinked = replaced(unlinked, "'Door 1',$,$,#51,$,$,2.1", "'Door 1',$,$,#111,#175,$,2.1");
+  unlinked.insert(unlinked.rfind("ENDSEC;"),
+                  "#175=IFCPRODUCTDEFINITIONSHAPE($,$,(#176));\n"
+                  "#176=IFCSHAPEREPRESENTATION(#20,'Body','SweptSolid',(#177));\n"
+                  "#177=IFCEXTRUDEDAREASOLID(#178,#80,#81,2.1);\n"
+                  "#178=IFCRECTANGLEPROFILEDEF(.AREA.,$,#119,0.9,0.05);\n");
+  sandbox.write("unlinked.ifc", unlinked);
+  r = sandbox.run("import unlinked.ifc -o unlinked.json");
+  EXPECT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_THAT(r.err, HasSubstr("simplified door 9YvctVUKr0kugbFTf53O9L \"Door 1\": no "
+                               "IfcRelFillsElement names its opening: it fills opening "
+                               "AYvctVUKr0kugbFTf53O9L of wall 7YvctVUKr0kugbFTf53O9L, in which it "
+                               "lies\n"));
+  ASSERT_EQ(sandbox.run("import " + ifcModel("small.ifc") + " -o linked.json").exit_code, 0);
+  const auto doors = [&](const std::string& file) {
+    return nlohmann::json::parse(sandbox.read(file))["levels"][0]["doors"];
+  };
+  EXPECT_EQ(doors("unlinked.json"), doors("linked.json"));
+  EXPECT_EQ(sandbox.run("check unlinked.json").err, "");
+}
+
 TEST(Import, ReplacesOnlyAPlanItWroteAndOnlyWithForce) {
   testing::Sandbox sandbox("import_force");
   sandbox.write("mine.json", "{\"format\": \"isg.plan\", \"version\": 1, \"levels\": []}\n");
