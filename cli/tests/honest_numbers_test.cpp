@@ -92,7 +92,7 @@ TEST(HonestGenerator, CountsAndRangesAreWhatItSays) {
   testing::Sandbox sandbox("generator_ranges");
   const auto twice = sandbox.run("generate hall hall -o g -q");
   ASSERT_EQ(twice.exit_code, 0) << twice.err;
-  EXPECT_THAT(twice.out, HasSubstr("wrote g: 1 buildings (1 plans and 1 as-built scenarios)"));
+  EXPECT_THAT(twice.out, HasSubstr("wrote g: 1 building (1 plan and 1 as-built scenario)"));
   // The documented narrowest corridor tours every room in every family with arms.
   for (const char* family : {"l-shape", "t-shape", "u-shape"}) {
     const auto r = sandbox.run(std::string("generate ") + family +

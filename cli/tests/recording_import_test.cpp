@@ -261,7 +261,7 @@ TEST(ImportRecording, BadRecordingsAreExactErrorsAndLeaveNothing) {
   EXPECT_EQ(result.exit_code, 1);
   EXPECT_EQ(result.err,
             "isg import: error: two.bag: several topics could be the LiDAR: /points_filtered "
-            "(sensor_msgs/PointCloud2, 1 messages), /velodyne_points (sensor_msgs/PointCloud2, 10 "
+            "(sensor_msgs/PointCloud2, 1 message), /velodyne_points (sensor_msgs/PointCloud2, 10 "
             "messages); choose one with --lidar-topic\n");
   // Fixed frames are no odometry; --odom-frame is for odometry on /tf.
   result = sandbox.run(
