@@ -87,8 +87,11 @@ fs::path requireParentFolder(const std::string& path) {
                              "cannot write: " + existing.string() + " is not a directory");
   }
   if (::access(existing.c_str(), W_OK | X_OK) != 0) {
+    const std::string reason = std::strerror(errno);
     throw common::InputError(path, "",
-                             "cannot write in " + existing.string() + ": " + std::strerror(errno));
+                             existing == parent
+                                 ? "cannot write: " + reason
+                                 : "cannot write in " + existing.string() + ": " + reason);
   }
   return parent;
 }

@@ -33,6 +33,7 @@
 #include <map>
 #include <set>
 
+#include "bim/free_space_rooms.hpp"
 #include "bim/limits.hpp"
 #include "bim/plan.hpp"
 #include "bim/plan_json.hpp"
@@ -279,6 +280,8 @@ class Importer {
                 double head, double wall_height, bim::Window& window);
   // The storey's spaces with a closed outline as the level's rooms; the others logged.
   void levelRooms(const StoreyRecord& storey, StoreySummary& summary, bim::Level& level);
+  // A storey without spaces: its rooms are the free spaces its walls enclose; logged.
+  void freeSpaceRooms(const StoreyRecord& storey, StoreySummary& summary, bim::Level& level);
   std::string uniqueId(const std::string& wanted, const std::string& suffix);
   // A door or window that no IfcRelFillsElement links to its opening, given to the empty opening
   // its body lies in (said); false when there is none.
@@ -726,13 +729,14 @@ void Importer::placeFlights(std::vector<bim::Level>& levels) {
 
 std::vector<int> Importer::chooseLevels() {
   std::vector<int> chosen;
-  std::vector<int> walls_on(storeys_.size(), 0), rooms_in(storeys_.size(), 0);
+  std::vector<int> walls_on(storeys_.size(), 0), own_walls_on(storeys_.size(), 0);
   for (int s = 0; s < int(storeys_.size()); ++s) {
     for (const auto& wall : walls_) {
-      walls_on[s] += standsOn(wall.fit, storeys_[s].elevation) &&
-                     wall.fit.top >= storeys_[s].elevation + kFullHeightWall;
+      const bool on = standsOn(wall.fit, storeys_[s].elevation) &&
+                      wall.fit.top >= storeys_[s].elevation + kFullHeightWall;
+      walls_on[s] += on;
+      own_walls_on[s] += on && wall.storey == s;
     }
-    for (const auto& space : storeys_[s].spaces) rooms_in[s] += space.footprint.has_value();
   }
   if (!options_.storeys.empty()) {
     for (const auto& name : options_.storeys) {
@@ -758,9 +762,15 @@ std::vector<int> Importer::chooseLevels() {
     std::sort(chosen.begin(), chosen.end());
     return chosen;
   }
-  const bool any_rooms = std::any_of(rooms_in.begin(), rooms_in.end(), [](int n) { return n > 0; });
+  // Every storey with walls standing on it, spaces or not: a storey without IfcSpace (a building
+  // under construction, an upper storey modelled without them) gets its rooms from the free
+  // space its walls enclose (levelRooms).
+  // A storey without spaces whose standing walls are all another storey's (a roof or
+  // reference storey a few centimetres off a floor) would repeat that floor: left out, said.
   for (int s = 0; s < int(storeys_.size()); ++s) {
-    if (walls_on[s] > 0 && (!any_rooms || rooms_in[s] > 0)) chosen.push_back(s);
+    if (walls_on[s] > 0 && (!storeys_[s].spaces.empty() || own_walls_on[s] > 0)) {
+      chosen.push_back(s);
+    }
   }
   if (chosen.empty()) {
     // Nothing is written, so the summary that lists what was left out never prints: the reasons
@@ -918,6 +928,10 @@ void Importer::placeOpening(const OpeningRecord& opening, int s,
 }
 
 void Importer::levelRooms(const StoreyRecord& storey, StoreySummary& summary, bim::Level& level) {
+  if (storey.spaces.empty()) {
+    freeSpaceRooms(storey, summary, level);
+    return;
+  }
   for (const auto& [space, footprint] : storey.spaces) {
     const std::string what = describe("space", space);
     if (!footprint || footprint->outline.size() < 3 ||
@@ -951,6 +965,24 @@ void Importer::levelRooms(const StoreyRecord& storey, StoreySummary& summary, bi
     level.rooms.push_back(std::move(room));
     ++summary.rooms;
   }
+}
+
+void Importer::freeSpaceRooms(const StoreyRecord& storey, StoreySummary& summary,
+                              bim::Level& level) {
+  const bim::FreeSpaceRooms found = bim::enclosedFreeSpaces(level);
+  for (std::size_t k = 0; k < found.outlines.size(); ++k) {
+    bim::Room room;
+    room.id = uniqueId(level.id + "-room-" + std::to_string(k + 1), "");
+    room.outline = found.outlines[k];
+    level.rooms.push_back(std::move(room));
+    ++summary.rooms;
+  }
+  simplified(describe("storey", storey.storey),
+             "no space (IfcSpace) in it: its rooms are the free spaces its walls enclose, doors "
+             "closed (" +
+                 common::counted(found.outlines.size(), "room") + "; " +
+                 common::counted(found.pockets, "pocket") + " under " +
+                 fmt(bim::FreeSpaceOptions{}.min_area) + " m² left out)");
 }
 
 bim::Level Importer::level(int s, StoreySummary& summary) {
@@ -1022,9 +1054,14 @@ ImportResult Importer::run() {
         walls_on += standsOn(wall.fit, storeys_[s].elevation) &&
                     wall.fit.top >= storeys_[s].elevation + kFullHeightWall;
       }
+      int own = 0;
+      for (const auto& wall : walls_) own += wall.storey == s;
       summary.why_not = walls_on == 0
                             ? "no wall rises " + fmt(kFullHeightWall) + " m above its floor"
-                            : "no rooms (IfcSpace) in it, while other storeys have rooms";
+                            : "no space (IfcSpace) in it, and the walls standing on it "
+                              "are all other storeys' (" +
+                                  common::counted(std::size_t(walls_on), "wall") + "; it has " +
+                                  common::counted(std::size_t(own), "wall") + " of its own)";
     }
     result_.storeys.push_back(summary);
   }

@@ -742,6 +742,27 @@ TEST(Import, SpacesContainedAndDoorsUnlinkedAreReadAndSaid) {
   EXPECT_EQ(sandbox.run("check unlinked.json").err, "");
 }
 
+// A storey with walls but no IfcSpace (a building under construction) is imported by default, its
+// rooms the free space its walls enclose, and said; a storey whose walls are all another's is not.
+TEST(Import, AStoreyWithoutSpacesGetsTheRoomsItsWallsEnclose) {
+  testing::Sandbox sandbox("import_no_spaces");
+  const auto r = sandbox.run("import " + ifcModel("storey_without_spaces.ifc") + " -o plan.json");
+  EXPECT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_THAT(r.err, HasSubstr("simplified storey FYvctVUKr0kugbFTf53O9L \"Upper\": no space "
+                               "(IfcSpace) in it: its rooms are the free spaces its walls enclose, "
+                               "doors closed (1 room; 0 pockets under 1.000 m² left out)\n"));
+  EXPECT_THAT(r.err, HasSubstr("storey \"Upper\" (3.000 m) -> level Upper: 4 walls (0 of another "
+                               "storey standing on it), 0 doors, 0 windows, 1 room of 0 spaces\n"));
+  const auto plan = nlohmann::json::parse(sandbox.read("plan.json"));
+  ASSERT_EQ(plan["levels"].size(), 2u);
+  EXPECT_EQ(plan["levels"][1]["rooms"][0]["id"], "Upper-room-1");
+  EXPECT_EQ(plan["levels"][1]["rooms"][0]["outline"],
+            nlohmann::json::parse("[[0.1, 0.1], [3.9, 0.1], [3.9, 2.9], [0.1, 2.9]]"));
+  const auto check = sandbox.run("check plan.json");
+  EXPECT_EQ(check.exit_code, 0);
+  EXPECT_EQ(check.err, "");
+}
+
 TEST(Import, ReplacesOnlyAPlanItWroteAndOnlyWithForce) {
   testing::Sandbox sandbox("import_force");
   sandbox.write("mine.json", "{\"format\": \"isg.plan\", \"version\": 1, \"levels\": []}\n");

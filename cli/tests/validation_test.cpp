@@ -562,11 +562,14 @@ TEST(ValidInput, AHugeOutlineIsCheckedQuickly) {
 TEST(ValidInput, UnwritableOutputIsABadInputError) {
   testing::Sandbox sandbox("validation_unwritable");
   sandbox.write("plan.json", validPlan().dump());
-  const auto result = sandbox.run("world plan.json -o no/such/dir/world.xml");
+  // Missing folders are made; a file where a folder must be is not.
+  const auto result = sandbox.run("world plan.json -o plan.json/dir/world.xml");
   EXPECT_EQ(result.exit_code, 1);
   EXPECT_EQ(result.err,
-            "isg world: error: no/such/dir/world.xml: cannot write: directory no/such/dir does "
-            "not exist\n");
+            "isg world: error: plan.json/dir/world.xml: cannot write: plan.json is not a "
+            "directory\n");
+  EXPECT_EQ(sandbox.run("world plan.json -o no/such/dir/world.xml").exit_code, 0);
+  EXPECT_TRUE(sandbox.exists("no/such/dir/world.xml"));
 }
 
 }  // namespace
