@@ -1272,6 +1272,7 @@ ImportResult importIfcText(const std::string& file, std::string text,
                            const ImportOptions& options) {
   // The quick checks of the file's text here, with their exact messages; IFC++ in the child.
   readStepHeader(file, text);
+  checkStepStrings(file, text);
   // More walls than every storey may hold between them is refused before IFC++ builds them
   // (10⁵ walls took 9 s and 350 MB to reach the plan's own limit).
   const std::size_t walls = countInstances(

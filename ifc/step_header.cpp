@@ -128,6 +128,43 @@ StepHeader readStepHeader(const std::string& file, const std::string& text) {
   return result;
 }
 
+void checkStepStrings(const std::string& file, const std::string& text) {
+  const std::size_t data = text.find("DATA;");
+  if (data == std::string::npos) return;
+  const auto line_of = [&](std::size_t at) {
+    return std::size_t(std::count(text.begin(), text.begin() + std::ptrdiff_t(at), '\n')) + 1;
+  };
+  const auto fail = [&](std::size_t opened, const std::string& why) {
+    std::size_t end = opened + 1;
+    while (end < text.size() && end < opened + 41 && text[end] != '\n' && text[end] != '\r') ++end;
+    throw common::InputError(file, "",
+                             "line " + std::to_string(line_of(opened)) + ": the string " +
+                                 text.substr(opened, end - opened) + "… is never closed: " + why +
+                                 " (a quote is missing)");
+  };
+  bool in_string = false;
+  std::size_t opened = 0;
+  for (std::size_t i = data; i < text.size(); ++i) {
+    const char c = text[i];
+    if (c == '\'') {
+      if (!in_string) opened = i;
+      in_string = !in_string;  // '' inside a string closes and reopens it
+      continue;
+    }
+    if (!in_string || c != '\n') continue;
+    std::size_t k = i + 1;
+    while (k < text.size() && (text[k] == ' ' || text[k] == '\t' || text[k] == '\r')) ++k;
+    if (k >= text.size() || text[k] != '#') continue;
+    std::size_t digits = k + 1;
+    while (digits < text.size() && std::isdigit(static_cast<unsigned char>(text[digits]))) ++digits;
+    while (digits < text.size() && text[digits] == ' ') ++digits;
+    if (digits > k + 1 && digits < text.size() && text[digits] == '=') {
+      fail(opened, "it runs into the entity instance on line " + std::to_string(line_of(k)));
+    }
+  }
+  if (in_string) fail(opened, "the file ends inside it");
+}
+
 std::size_t countInstances(const std::string& text, std::initializer_list<std::string_view> types) {
   std::size_t count = 0;
   bool in_string = false;

@@ -21,6 +21,12 @@ struct StepHeader {
 // not end with END-ISO-10303-21; (a truncated file).
 StepHeader readStepHeader(const std::string& file, const std::string& text);
 
+// A string left open (a quote missing) swallows the entity instances after it, which IFC++ then
+// reads as nothing, unsaid. Throws common::InputError naming `file` and the line where such a
+// string starts when a string runs past the end of its line into a line that starts a new entity
+// instance ("#123="), or to the end of the file.
+void checkStepStrings(const std::string& file, const std::string& text);
+
 // How many entity instances of the given types ("IFCWALL", upper case) the text holds: each
 // "= TYPE (" outside strings, the type's name in any case. One pass over the text, before IFC++
 // reads a byte of it: limits are checked here rather than after the model is built.

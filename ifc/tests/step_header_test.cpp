@@ -75,5 +75,32 @@ TEST(CountInstances, CountsEntitiesOfTheTypesNotTextInStrings) {
   EXPECT_EQ(countInstances(text, {"IFCDOOR"}), 0u);
 }
 
+TEST(CheckStepStrings, AStringLeftOpenIsNamedByItsLine) {
+  const std::string good =
+      "ISO-10303-21;\nHEADER;\nENDSEC;\nDATA;\n#1=IFCWALL('it''s',$,'a',$);\n"
+      "#2=IFCSPACE('b');\nENDSEC;\nEND-ISO-10303-21;\n";
+  EXPECT_NO_THROW(checkStepStrings("m.ifc", good));
+  std::string open = good;
+  open.replace(open.find("'a',"), 4, "'a,");  // the last string of its line left open
+  try {
+    checkStepStrings("m.ifc", open);
+    FAIL() << "accepted";
+  } catch (const common::InputError& e) {
+    EXPECT_EQ(e.reason(),
+              "line 5: the string 'a,$);… is never closed: it runs into the entity "
+              "instance on line 6 (a quote is missing)");
+  }
+  std::string at_end = good;
+  at_end.replace(at_end.find("'b'"), 3, "'b");
+  try {
+    checkStepStrings("m.ifc", at_end);
+    FAIL() << "accepted";
+  } catch (const common::InputError& e) {
+    EXPECT_EQ(e.reason(),
+              "line 6: the string 'b);… is never closed: the file ends inside it (a quote is "
+              "missing)");
+  }
+}
+
 }  // namespace
 }  // namespace isg::ifc
