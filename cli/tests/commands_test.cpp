@@ -568,6 +568,14 @@ TEST(Eval, ReportsWhenTheEstimateStarts) {
 namespace isg::cli {
 namespace {
 
+// small.ifc's text, for variants of it written in a test's sandbox.
+std::string smallIfcText() {
+  std::ifstream in(std::string(ISG_SOURCE_DIR) + "/ifc/tests/models/small.ifc");
+  std::ostringstream text;
+  text << in.rdbuf();
+  return text.str();
+}
+
 std::string ifcModel(const std::string& name) {
   return "'" + std::string(ISG_SOURCE_DIR) + "/ifc/tests/models/" + name + "'";
 }
@@ -598,13 +606,7 @@ TEST(Import, WritesAPlanCheckAcceptsAndSummarises) {
 // length IFC requires positive but the file gives negative is said even where IFC++ builds it.
 TEST(Import, EveryElementLeftOutIsNamedEvenWhenNothingIsWritten) {
   testing::Sandbox sandbox("import_bad_wall");
-  std::string small;
-  {
-    std::ifstream in(std::string(ISG_SOURCE_DIR) + "/ifc/tests/models/small.ifc");
-    std::ostringstream text;
-    text << in.rdbuf();
-    small = text.str();
-  }
+  const std::string small = smallIfcText();
   const auto variant = [&](const std::string& name, const std::string& from,
                            const std::string& to) {
     std::string text = small;
@@ -651,13 +653,7 @@ TEST(Import, EveryElementLeftOutIsNamedEvenWhenNothingIsWritten) {
 // text when no spread over its storeys could keep to it, else as a storey's walls are counted.
 TEST(Import, TooManyWallsAreRefusedWhileReading) {
   testing::Sandbox sandbox("import_many_walls");
-  std::string small;
-  {
-    std::ifstream in(std::string(ISG_SOURCE_DIR) + "/ifc/tests/models/small.ifc");
-    std::ostringstream text;
-    text << in.rdbuf();
-    small = text.str();
-  }
+  const std::string small = smallIfcText();
   // 25 000 copies of the wall, all in storey Ground.
   std::string walls, members;
   for (int k = 0; k < 25000; ++k) {
@@ -696,13 +692,7 @@ TEST(Import, TooManyWallsAreRefusedWhileReading) {
 // linked model is, and said.
 TEST(Import, SpacesContainedAndDoorsUnlinkedAreReadAndSaid) {
   testing::Sandbox sandbox("import_conventions");
-  std::string small;
-  {
-    std::ifstream in(std::string(ISG_SOURCE_DIR) + "/ifc/tests/models/small.ifc");
-    std::ostringstream text;
-    text << in.rdbuf();
-    small = text.str();
-  }
+  const std::string small = smallIfcText();
   const auto replaced = [](std::string text, const std::string& from, const std::string& to) {
     const std::size_t at = text.find(from);
     EXPECT_NE(at, std::string::npos) << from;
