@@ -283,6 +283,10 @@ class Importer {
   // A storey without spaces: its rooms are the free spaces its walls enclose; logged.
   void freeSpaceRooms(const StoreyRecord& storey, StoreySummary& summary, bim::Level& level);
   std::string uniqueId(const std::string& wanted, const std::string& suffix);
+  // The wall's body read as a straight prismatic wall, each way it falls short of one logged;
+  // nullopt (logged as dropped) when it cannot be one.
+  std::optional<WallFit> wallFit(const shared_ptr<IfcElement>& element, const std::string& kind,
+                                 const std::string& what);
   // A door or window that no IfcRelFillsElement links to its opening, given to the empty opening
   // its body lies in (said); false when there is none.
   bool fillsByPlace(const shared_ptr<IfcProduct>& element, const std::string& kind);
@@ -396,6 +400,78 @@ void Importer::readStoreys() {
       [](const StoreyRecord& a, const StoreyRecord& b) { return a.elevation < b.elevation; });
 }
 
+std::optional<WallFit> Importer::wallFit(const shared_ptr<IfcElement>& element,
+                                         const std::string& kind, const std::string& what) {
+  Eigen::Matrix4d placement;
+  const Mesh body = bodyWithParts(bodies_, element, &placement);
+  const std::vector<std::string> non_positive = nonPositiveLengths(element);
+  std::string lengths;
+  for (const auto& n : non_positive) lengths += (lengths.empty() ? "" : ", ") + n;
+  if (body.empty()) {
+    dropped(what,
+            "no body geometry IFC++ could build" +
+                (lengths.empty() ? std::string()
+                                 : " (IFC requires these lengths positive: " + lengths + ")"));
+    return std::nullopt;
+  }
+  if (!lengths.empty()) {
+    simplified(what, "IFC requires these lengths of its body positive: " + lengths +
+                         "; IFC++ builds a negative one mirrored, and that body is used");
+  }
+  const Eigen::Vector2d own_x = placement.block<2, 1>(0, 0);
+  const auto fit = fitWall(body, own_x);
+  if (!fit || fit->thickness < bim::limits::kMinSize ||
+      (fit->end - fit->start).norm() < bim::limits::kMinSize) {
+    dropped(what, "its body has no extent seen from above");
+    return std::nullopt;
+  }
+  if (fit->thickness > kMaxWallThickness) {
+    dropped(what, "thicker than " + fmt(kMaxWallThickness) + " m seen from above (" +
+                      fmt(fit->thickness) + " m): not one straight wall");
+    return std::nullopt;
+  }
+  if (fit->straightness < kMinStraightness) {
+    dropped(what, "not straight: seen from above it fills its " + fmt(fit->thickness) +
+                      " m wide rectangle too little (straightness " +
+                      std::to_string(int(std::round(fit->straightness * 100))) +
+                      " %; an L-shaped or curved wall); the plan holds straight walls only");
+    return std::nullopt;
+  }
+  // The rectangle covers more than the body: by a strip over kReportedChange wide, averaged
+  // along the wall, when the ends are cut at an angle.
+  if ((1.0 - fit->rectangle_fill) * (fit->end - fit->start).norm() > kReportedChange) {
+    simplified(what, "its ends are not square (mitred or angled joints; it fills " +
+                         std::to_string(int(std::round(fit->rectangle_fill * 100))) +
+                         " % of its rectangle): taken as its rectangle, " +
+                         fmt((fit->end - fit->start).norm()) + " m long");
+  }
+  if (fit->top - fit->bottom < bim::limits::kMinSize) {
+    dropped(what, "no height left between its highest bottom and lowest top");
+    return std::nullopt;
+  }
+  if (fit->highest_top - fit->top > kReportedChange) {
+    simplified(what, "its top varies from " + fmt(fit->top) + " to " + fmt(fit->highest_top) +
+                         " m (a gable or a sloped top): taken at its lowest, " + fmt(fit->top) +
+                         " m, so that no wall stands where there is none");
+  }
+  if (fit->bottom - fit->lowest_bottom > kReportedChange) {
+    simplified(what, "its bottom varies from " + fmt(fit->lowest_bottom) + " to " +
+                         fmt(fit->bottom) + " m or more: taken at its median, " + fmt(fit->bottom) +
+                         " m");
+  }
+  if (kind == "curtain wall") {
+    simplified(what, "a curtain wall: imported as an opaque wall " + fmt(fit->thickness) +
+                         " m thick (the simulated sensor does not see through glass)");
+  }
+  if (const auto layers = layerSetThickness(element, unit_)) {
+    if (std::abs(*layers - fit->thickness) > kThicknessTolerance) {
+      simplified(what, "its layer set is " + fmt(*layers) + " m thick, its body " +
+                           fmt(fit->thickness) + " m: the body's thickness is kept");
+    }
+  }
+  return fit;
+}
+
 void Importer::readWalls() {
   std::map<int, std::size_t> walls_in_storey;
   std::map<BuildingEntity*, int> storey_of;
@@ -428,73 +504,8 @@ void Importer::readWalls() {
       dropped(what, "not contained in a building storey");
       continue;
     }
-    Eigen::Matrix4d placement;
-    const Mesh body = bodyWithParts(bodies_, element, &placement);
-    const std::vector<std::string> non_positive = nonPositiveLengths(element);
-    std::string lengths;
-    for (const auto& n : non_positive) lengths += (lengths.empty() ? "" : ", ") + n;
-    if (body.empty()) {
-      dropped(what,
-              "no body geometry IFC++ could build" +
-                  (lengths.empty() ? std::string()
-                                   : " (IFC requires these lengths positive: " + lengths + ")"));
-      continue;
-    }
-    if (!lengths.empty()) {
-      simplified(what, "IFC requires these lengths of its body positive: " + lengths +
-                           "; IFC++ builds a negative one mirrored, and that body is used");
-    }
-    const Eigen::Vector2d own_x = placement.block<2, 1>(0, 0);
-    const auto fit = fitWall(body, own_x);
-    if (!fit || fit->thickness < bim::limits::kMinSize ||
-        (fit->end - fit->start).norm() < bim::limits::kMinSize) {
-      dropped(what, "its body has no extent seen from above");
-      continue;
-    }
-    if (fit->thickness > kMaxWallThickness) {
-      dropped(what, "thicker than " + fmt(kMaxWallThickness) + " m seen from above (" +
-                        fmt(fit->thickness) + " m): not one straight wall");
-      continue;
-    }
-    if (fit->straightness < kMinStraightness) {
-      dropped(what, "not straight: seen from above it fills its " + fmt(fit->thickness) +
-                        " m wide rectangle too little (straightness " +
-                        std::to_string(int(std::round(fit->straightness * 100))) +
-                        " %; an L-shaped or curved wall); the plan holds straight walls only");
-      continue;
-    }
-    // The rectangle covers more than the body: by a strip over kReportedChange wide, averaged
-    // along the wall, when the ends are cut at an angle.
-    if ((1.0 - fit->rectangle_fill) * (fit->end - fit->start).norm() > kReportedChange) {
-      simplified(what, "its ends are not square (mitred or angled joints; it fills " +
-                           std::to_string(int(std::round(fit->rectangle_fill * 100))) +
-                           " % of its rectangle): taken as its rectangle, " +
-                           fmt((fit->end - fit->start).norm()) + " m long");
-    }
-    if (fit->top - fit->bottom < bim::limits::kMinSize) {
-      dropped(what, "no height left between its highest bottom and lowest top");
-      continue;
-    }
-    if (fit->highest_top - fit->top > kReportedChange) {
-      simplified(what, "its top varies from " + fmt(fit->top) + " to " + fmt(fit->highest_top) +
-                           " m (a gable or a sloped top): taken at its lowest, " + fmt(fit->top) +
-                           " m, so that no wall stands where there is none");
-    }
-    if (fit->bottom - fit->lowest_bottom > kReportedChange) {
-      simplified(what, "its bottom varies from " + fmt(fit->lowest_bottom) + " to " +
-                           fmt(fit->bottom) + " m or more: taken at its median, " +
-                           fmt(fit->bottom) + " m");
-    }
-    if (kind == "curtain wall") {
-      simplified(what, "a curtain wall: imported as an opaque wall " + fmt(fit->thickness) +
-                           " m thick (the simulated sensor does not see through glass)");
-    }
-    if (const auto layers = layerSetThickness(element, unit_)) {
-      if (std::abs(*layers - fit->thickness) > kThicknessTolerance) {
-        simplified(what, "its layer set is " + fmt(*layers) + " m thick, its body " +
-                             fmt(fit->thickness) + " m: the body's thickness is kept");
-      }
-    }
+    const auto fit = wallFit(element, kind, what);
+    if (!fit) continue;
     WallRecord wall;
     wall.element = element;
     wall.kind = kind;
