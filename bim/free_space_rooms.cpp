@@ -93,15 +93,23 @@ int labelRegions(Grid& grid) {
 
 using Vertex = std::pair<int, int>;  // a cell corner, in cells
 
+// An enclosed region's cells: how many, and the box of cells that holds them.
+struct RegionExtent {
+  long cells = 0;
+  int i0 = 1 << 30, j0 = 1 << 30, i1 = -1, j1 = -1;
+};
+
 // The region's boundary loops along cell edges, each counter-clockwise about the region (the
-// region on the left): its outer boundary has positive area, its holes negative.
-std::vector<std::vector<Vertex>> boundaryLoops(const Grid& grid, int label) {
+// region on the left): its outer boundary has positive area, its holes negative. Only the
+// region's box is read: every region costs its own size, not the grid's.
+std::vector<std::vector<Vertex>> boundaryLoops(const Grid& grid, int label,
+                                               const RegionExtent& box) {
   const auto in = [&](int i, int j) {
     return grid.inside(i, j) && grid.region[std::size_t(grid.index(i, j))] == label;
   };
   std::multimap<Vertex, Vertex> edges;  // from → to
-  for (int j = 0; j < grid.height; ++j) {
-    for (int i = 0; i < grid.width; ++i) {
+  for (int j = box.j0; j <= box.j1; ++j) {
+    for (int i = box.i0; i <= box.i1; ++i) {
       if (!in(i, j)) continue;
       if (!in(i, j - 1)) edges.insert({{i, j}, {i + 1, j}});
       if (!in(i + 1, j)) edges.insert({{i + 1, j}, {i + 1, j + 1}});
@@ -138,8 +146,6 @@ std::vector<std::vector<Vertex>> boundaryLoops(const Grid& grid, int label) {
   return loops;
 }
 
-double loopArea(const std::vector<Eigen::Vector2d>& loop) { return signedArea(loop); }
-
 // Douglas–Peucker on the open chain points[first..last]: the indices kept.
 void simplifyChain(const std::vector<Eigen::Vector2d>& points, std::size_t first, std::size_t last,
                    double tolerance, std::vector<bool>& keep) {
@@ -174,7 +180,7 @@ Polygon2 straightened(const Polygon2& loop, double tolerance) {
   for (std::size_t k = 0; k < n; ++k) {
     if (keep[k]) out.push_back(loop[k]);
   }
-  if (out.size() < 3 || findSelfIntersection(out) || loopArea(out) <= 0) return loop;
+  if (out.size() < 3 || findSelfIntersection(out) || signedArea(out) <= 0) return loop;
   return out;
 }
 
@@ -202,19 +208,28 @@ FreeSpaceRooms enclosedFreeSpaces(const Level& level, const FreeSpaceOptions& op
   rooms.cell = grid.cell;
   if (grid.width == 0) return rooms;
   const int regions = labelRegions(grid);
-  std::vector<long> cells(std::size_t(regions) + 1, 0);
-  for (int label : grid.region) {
-    if (label > 0) ++cells[std::size_t(label)];
+  std::vector<RegionExtent> extents(std::size_t(regions) + 1);
+  for (int j = 0; j < grid.height; ++j) {
+    for (int i = 0; i < grid.width; ++i) {
+      const int label = grid.region[std::size_t(grid.index(i, j))];
+      if (label <= 0) continue;
+      RegionExtent& e = extents[std::size_t(label)];
+      ++e.cells;
+      e.i0 = std::min(e.i0, i), e.j0 = std::min(e.j0, j);
+      e.i1 = std::max(e.i1, i), e.j1 = std::max(e.j1, j);
+    }
   }
   for (int label = 1; label <= regions; ++label) {
-    if (double(cells[std::size_t(label)]) * grid.cell * grid.cell < options.min_area) {
+    const RegionExtent& extent = extents[std::size_t(label)];
+    if (double(extent.cells) * grid.cell * grid.cell < options.min_area) {
       ++rooms.pockets;
       continue;
     }
     Polygon2 outer;
-    for (const auto& loop : boundaryLoops(grid, label)) {
+    for (const auto& loop : boundaryLoops(grid, label, extent)) {
       Polygon2 corners = cornersInMetres(grid, loop);
-      if (corners.size() >= 3 && loopArea(corners) > loopArea(outer)) outer = std::move(corners);
+      if (corners.size() >= 3 && signedArea(corners) > signedArea(outer))
+        outer = std::move(corners);
     }
     if (outer.size() < 3) continue;
     rooms.outlines.push_back(straightened(outer, grid.cell));

@@ -179,21 +179,13 @@ int GenerateCommand::run() {
                                    " reads with a warning: " + warnings.front().str());
           }
           const sim::Simulation simulation(scenario);
-          if (!simulation.route().skipped_rooms.empty()) {
-            // Never written: a building the robot cannot tour would give a table number for part
-            // of it. Bad input for the parameters that made it, naming the room.
-            throw common::InputError(
-                b.name, "",
-                "the tour cannot reach room " + simulation.route().skipped_rooms.front() +
-                    " of the generated building; nothing was written: change the "
-                    "generator's parameters");
-          }
-          if (!simulation.route().skipped_levels.empty()) {
-            throw common::InputError(
-                b.name, "",
-                "the tour cannot reach level " + simulation.route().skipped_levels.front() +
-                    " of the generated building; nothing was written: change the "
-                    "generator's parameters");
+          // Never written: a building the robot cannot tour would give a table number for part
+          // of it. Bad input for the parameters that made it, naming the rooms (or levels).
+          if (const std::string part = sim::unreachedPart(simulation.route()); !part.empty()) {
+            throw common::InputError(b.name, "",
+                                     "the tour cannot reach " + part +
+                                         " of the generated building; nothing was written: "
+                                         "change the generator's parameters");
           }
         }
         // The last building's checks may have taken a while: an interrupt then still means nothing

@@ -45,8 +45,8 @@ int RenderCommand::run() {
     common::checkOutputPath((dir / name).string(),
                             {common::OutputKind::kPng, {inputFile(input_)}, true, false});
   }
-  // The folder is made with the first picture (and removed again if that fails).
-  common::requireParentFolder((dir / "top.png").string());
+  // The folder is made with the first picture (and removed again if that fails); whether it can
+  // be is checked above with each picture's path.
   const bim::Scenario scenario = loadInput(input_, "render");
   sim::Simulation simulation(scenario);
   const double t =

@@ -130,8 +130,7 @@ namespace {
 // Checks `path` against the output rule and names its temporary twin beside it (stale twins of
 // killed processes removed).
 fs::path temporaryPathFor(const std::string& path, const OutputRule& rule) {
-  const fs::path target = checkOutputPath(path, rule);
-  requireParentFolder(path);
+  const fs::path target = checkOutputPath(path, rule);  // the parent checked there too
   const fs::path parent = target.parent_path();
   removeStalePartials(parent, target);
   return parent / (partialPrefix(target) + std::to_string(::getpid()));

@@ -260,6 +260,15 @@ void tourLevelsFrom(RouteBuilder& builder, const bim::Scenario& scenario,
 
 }  // namespace
 
+std::string unreachedPart(const PlannedRoute& route) {
+  const bool rooms = !route.skipped_rooms.empty();
+  const auto& ids = rooms ? route.skipped_rooms : route.skipped_levels;
+  if (ids.empty()) return "";
+  std::string text = std::string(rooms ? "room" : "level") + (ids.size() > 1 ? "s " : " ");
+  for (std::size_t i = 0; i < ids.size(); ++i) text += (i > 0 ? ", " : "") + ids[i];
+  return text;
+}
+
 PlannedRoute planRoute(const bim::Scenario& scenario, const OccupancyGrid& grid,
                        std::mt19937_64& rng) {
   const bim::Level& level = *scenario.plan.findLevel(scenario.robot.level);

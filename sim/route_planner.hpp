@@ -65,6 +65,10 @@ struct PlannedRoute {
 PlannedRoute planRoute(const bim::Scenario& scenario, const OccupancyGrid& grid,
                        std::mt19937_64& rng);
 
+// What a tour could not reach, for the messages that refuse a generated building: "room R3",
+// "rooms R3, R4", else "level L1", "levels L1, L2"; empty when it reached everything.
+std::string unreachedPart(const PlannedRoute& route);
+
 // "(x, y)" with 3 significant digits, as error messages name points.
 std::string formatPoint(const Eigen::Vector2d& p);
 

@@ -64,19 +64,9 @@ void prepareSweepWorlds(Suite& suite, const std::string& sweep_dir) {
     common::Warnings warnings;
     const bim::Scenario scenario = bim::loadScenario(scenario_path.string(), &warnings);
     const sim::Simulation simulation(scenario);
-    if (!simulation.route().skipped_rooms.empty()) {
-      std::string rooms;
-      for (const auto& r : simulation.route().skipped_rooms)
-        rooms += (rooms.empty() ? "" : ", ") + r;
+    if (const std::string part = sim::unreachedPart(simulation.route()); !part.empty()) {
       throw common::InputError(suite.file, "/worlds",
-                               "generated world " + world.name + ": its tour cannot reach room" +
-                                   (simulation.route().skipped_rooms.size() > 1 ? "s " : " ") +
-                                   rooms + "; change the generator's parameters");
-    }
-    if (!simulation.route().skipped_levels.empty()) {
-      throw common::InputError(suite.file, "/worlds",
-                               "generated world " + world.name + ": its tour cannot reach level " +
-                                   simulation.route().skipped_levels.front() +
+                               "generated world " + world.name + ": its tour cannot reach " + part +
                                    "; change the generator's parameters");
     }
     world.hash = worlds::worldHash(scenario);

@@ -568,6 +568,13 @@ TEST(Eval, ReportsWhenTheEstimateStarts) {
 namespace isg::cli {
 namespace {
 
+// `text` with the first `from` replaced by `to` (a failure when there is none).
+std::string replaced(std::string text, const std::string& from, const std::string& to) {
+  const std::size_t at = text.find(from);
+  EXPECT_NE(at, std::string::npos) << from;
+  return at == std::string::npos ? text : text.replace(at, from.size(), to);
+}
+
 // small.ifc's text, for variants of it written in a test's sandbox.
 std::string smallIfcText() {
   std::ifstream in(std::string(ISG_SOURCE_DIR) + "/ifc/tests/models/small.ifc");
@@ -609,11 +616,7 @@ TEST(Import, EveryElementLeftOutIsNamedEvenWhenNothingIsWritten) {
   const std::string small = smallIfcText();
   const auto variant = [&](const std::string& name, const std::string& from,
                            const std::string& to) {
-    std::string text = small;
-    const std::size_t at = text.find(from);
-    EXPECT_NE(at, std::string::npos) << from;
-    text.replace(at, from.size(), to);
-    sandbox.write(name, text);
+    sandbox.write(name, replaced(small, from, to));
   };
   const std::string profile = "#78=IFCRECTANGLEPROFILEDEF(.AREA.,$,#79,5.,0.2);";
   variant("zero.ifc", profile, "#78=IFCRECTANGLEPROFILEDEF(.AREA.,$,#79,5.,0.);");
@@ -693,11 +696,6 @@ TEST(Import, TooManyWallsAreRefusedWhileReading) {
 TEST(Import, SpacesContainedAndDoorsUnlinkedAreReadAndSaid) {
   testing::Sandbox sandbox("import_conventions");
   const std::string small = smallIfcText();
-  const auto replaced = [](std::string text, const std::string& from, const std::string& to) {
-    const std::size_t at = text.find(from);
-    EXPECT_NE(at, std::string::npos) << from;
-    return text.replace(at, from.size(), to);
-  };
   std::string contained = replaced(small, "(#70,#100),#50);", "(#70,#100,#140),#50);");
   contained = replaced(contained,
                        "#160=IFCRELAGGREGATES('EYvctVUKr0kugbFTf53O9L',$,$,$,#50,(#140));\n", "");

@@ -95,6 +95,8 @@ TEST(StairsRoute, ALevelTheTourCannotReachIsSkippedAndSaysWhy) {
   const PlannedRoute route = plan(scenario);
   EXPECT_EQ(route.visited_rooms, (std::vector<std::string>{"R4", "R1", "R2", "R3"}));
   EXPECT_EQ(route.skipped_levels, (std::vector<std::string>{"L1"}));
+  EXPECT_EQ(unreachedPart(route), "level L1");
+  EXPECT_EQ(unreachedPart(plan(storeys())), "");
   ASSERT_EQ(route.why_levels_skipped.count("L1"), 1u);
   EXPECT_EQ(route.why_levels_skipped.at("L1").rfind("flight \"S1\" cannot be reached from (", 0),
             0u)
