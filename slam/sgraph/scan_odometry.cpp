@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "common/angles.hpp"
+#include "slam/sgraph/voxel_key.hpp"
 
 namespace isg::slam {
 
@@ -13,6 +14,50 @@ Eigen::Matrix3d yawRotation(double yaw) {
   return Eigen::AngleAxisd(yaw, Eigen::Vector3d::UnitZ()).toRotationMatrix();
 }
 
+// The scan's points moved into L at the stamp by `L0_T_L` (one transform each `step` seconds of
+// the turn from `first`), within the range limits, as voxel centroids (options.voxel) in the
+// order each voxel was first met. One pass over the points, no sort: the scan of every 0.1 s goes
+// through here. `index`: the caller's, reused from scan to scan.
+std::vector<Eigen::Vector3f> deskewedCloud(const sensors::Scan& scan,
+                                           const std::vector<Eigen::Isometry3d>& L0_T_L,
+                                           float first, double step,
+                                           const ScanRegistrationOptions& options,
+                                           VoxelIndex& index) {
+  index.clear(scan.points.size() / 8 + 16);
+  std::vector<std::pair<Eigen::Vector3d, int>> sums;  // per voxel: sum, count
+  const double min2 = options.min_range * options.min_range;
+  const double max2 = options.max_range * options.max_range;
+  for (const auto& point : scan.points) {
+    const Eigen::Isometry3d& T = L0_T_L[std::size_t(std::lround((point.time - first) / step))];
+    const Eigen::Vector3d q = T * Eigen::Vector3d(point.x, point.y, point.z);
+    const double range2 = q.squaredNorm();
+    if (!std::isfinite(range2) || range2 < min2 || range2 > max2) continue;
+    const int at = index.insert(voxelKey(q, options.voxel), int(sums.size()));
+    if (at == int(sums.size())) sums.push_back({Eigen::Vector3d::Zero(), 0});
+    sums[at].first += q;
+    ++sums[at].second;
+  }
+  std::vector<Eigen::Vector3f> out;
+  out.reserve(sums.size());
+  for (const auto& [sum, count] : sums) out.push_back((sum / double(count)).cast<float>());
+  return out;
+}
+
+// The cloud's points thinned to one per `voxel` (the first met in each): the points registered.
+// The map keeps the finer cloud; the registration's information is capped at effective_points
+// anyway, and fewer points make fewer lookups.
+std::vector<Eigen::Vector3f> coarser(const std::vector<Eigen::Vector3f>& cloud, double voxel,
+                                     VoxelIndex& index) {
+  index.clear(cloud.size() / 2 + 16);
+  std::vector<Eigen::Vector3f> out;
+  for (const auto& p : cloud) {
+    if (index.insert(voxelKey(p.cast<double>(), voxel), int(out.size())) == int(out.size())) {
+      out.push_back(p);
+    }
+  }
+  return out;
+}
+
 }  // namespace
 
 ScanOdometry::ScanOdometry(const Eigen::Isometry3d& R_T_L, const Eigen::Isometry3d& R_T_I,
@@ -20,7 +65,8 @@ ScanOdometry::ScanOdometry(const Eigen::Isometry3d& R_T_L, const Eigen::Isometry
     : R_T_L_(R_T_L),
       R_T_I_(R_T_I),
       options_(options),
-      attitude_(options.attitude_time_constant, options.gravity) {}
+      attitude_(options.attitude_time_constant, options.gravity),
+      map_(options.map) {}
 
 void ScanOdometry::addImu(const sensors::ImuSample& sample) { attitude_.add(sample); }
 
@@ -49,34 +95,29 @@ Eigen::Isometry3d ScanOdometry::addScan(const sensors::Scan& scan) {
     predicted.linear() = yawRotation(-yaw) * predicted.linear();
     predicted.translation().setZero();
   }
-  // The scan deskewed by the predicted motion: each point into L at the stamp.
-  sensors::Scan deskewed = scan;
+  // The scan deskewed by the predicted motion (each point into L at the stamp) and downsampled.
   const Eigen::Isometry3d L0_T_M = (predicted * R_T_L_).inverse();
   float first = 0.0f, last = 0.0f;
   for (const auto& p : scan.points) first = std::min(first, p.time), last = std::max(last, p.time);
   constexpr double kStep = 0.005;  // s: the predicted motion is smooth within a turn
   std::vector<Eigen::Isometry3d> L0_T_L;
   for (int i = 0; i <= int(std::ceil((last - first) / kStep)); ++i) {
-    L0_T_L.push_back(L0_T_M * predict(s + first + i * kStep) * R_T_L_);
+    L0_T_L.push_back(last_stamp_ ? L0_T_M * predict(s + first + i * kStep) * R_T_L_
+                                 : Eigen::Isometry3d::Identity());
   }
-  if (last_stamp_) {
-    for (auto& p : deskewed.points) {
-      const Eigen::Isometry3d& T = L0_T_L[std::size_t(std::lround((p.time - first) / kStep))];
-      const Eigen::Vector3d q = T * Eigen::Vector3d(p.x, p.y, p.z);
-      p.x = float(q.x()), p.y = float(q.y()), p.z = float(q.z());
-    }
-  }
-  std::vector<Eigen::Vector3f> cloud = downsampleScan(deskewed, options_.registration);
+  std::vector<Eigen::Vector3f> cloud =
+      deskewedCloud(scan, L0_T_L, first, kStep, options_.registration, index_);
 
   Eigen::Isometry3d pose = predicted;
-  if (map_ && !map_->empty() && !cloud.empty()) {
+  if (!map_.empty() && !cloud.empty()) {
     const double sigma_yaw = hasImu() ? options_.prior_sigma_yaw_imu : options_.prior_sigma_yaw;
     const double st = options_.prior_sigma_translation;
     const Eigen::Matrix3d prior =
         Eigen::Vector3d(1.0 / (st * st), 1.0 / (st * st), 1.0 / (sigma_yaw * sigma_yaw))
             .asDiagonal();
-    const RegistrationResult result =
-        registerScan(cloud, predicted, R_T_L_, *map_, prior, options_.registration);
+    const OdometryRegistration result =
+        registerToPlanes(coarser(cloud, options_.registration_voxel, index_), predicted, R_T_L_,
+                         map_, prior, options_.registration);
     ++registered_;
     if (result.agrees) {
       ++agreed_;
@@ -114,13 +155,12 @@ Eigen::Isometry3d ScanOdometry::addScan(const sensors::Scan& scan) {
                std::abs(common::yawOf(moved.linear())) >= options_.keyframe_angle;
   }
   if (keyframe && !cloud.empty()) {
-    keyframes_.push_back({std::move(cloud), pose});
+    keyframes_.push_back({map_.contributionOf(cloud, pose * R_T_L_), pose});
+    map_.add(keyframes_.back().contribution);
     while (int(keyframes_.size()) > options_.registration.local_map_keyframes) {
+      map_.remove(keyframes_.front().contribution);
       keyframes_.pop_front();
     }
-    std::vector<LocalMap::Part> parts;
-    for (const auto& k : keyframes_) parts.push_back({&k.cloud, k.M_T_R * R_T_L_});
-    map_ = std::make_unique<LocalMap>(parts, options_.registration);
   }
   return pose;
 }

@@ -2,13 +2,14 @@
 
 #include <Eigen/Geometry>
 #include <deque>
-#include <memory>
 #include <optional>
 #include <utility>
 #include <vector>
 
 #include "sensors/messages.hpp"
 #include "slam/sgraph/attitude_filter.hpp"
+#include "slam/sgraph/odometry_registration.hpp"
+#include "slam/sgraph/plane_voxel_map.hpp"
 #include "slam/sgraph/scan_registration.hpp"
 
 namespace isg::slam {
@@ -23,13 +24,20 @@ namespace isg::slam {
 //     registration;
 //   - x, y: predicted at constant velocity, corrected by the registration;
 //   - z: held at the start's (a single floor: without odometry the height has no source here).
-// The registration is the S-Graph's planar point-to-plane ICP (slam/sgraph/scan_registration.hpp)
-// against the scans of the latest `local_map_keyframes` odometry keyframes (one each
-// `keyframe_distance` or `keyframe_angle`), each scan first deskewed by the predicted motion.
+// The registration is point-to-plane ICP in x, y and yaw (slam/sgraph/odometry_registration.hpp)
+// against the planes of a voxel map of the latest `local_map_keyframes` odometry keyframes' scans
+// (one each `keyframe_distance` or `keyframe_angle`; slam/sgraph/plane_voxel_map.hpp), each scan
+// first deskewed by the predicted motion. The map is updated as keyframes come and go, not
+// rebuilt.
 struct ScanOdometryOptions {
+  // Its voxel, range limits, tolerances, passes, max_normal_z and agreement share; its normals'
+  // options are the S-Graph registration's alone (the map's planes have `map`).
   ScanRegistrationOptions registration;
-  double keyframe_distance = 0.3;  // m
-  double keyframe_angle = 0.2;     // rad
+  PlaneVoxelMapOptions map;
+  // The scan's points registered: one per this voxel (the map takes all at registration.voxel).
+  double registration_voxel = 0.4;  // m
+  double keyframe_distance = 0.3;   // m
+  double keyframe_angle = 0.2;      // rad
   // How far the prediction is trusted, per scan: the registration's prior.
   double prior_sigma_translation = 0.3;  // m
   double prior_sigma_yaw_imu = 0.01;     // rad, gyroscope-predicted
@@ -60,7 +68,7 @@ class ScanOdometry {
 
  private:
   struct Keyframe {
-    std::vector<Eigen::Vector3f> cloud;  // in L
+    PlaneVoxelMap::Contribution contribution;  // its scan's, in the map
     Eigen::Isometry3d M_T_R;
   };
   // Turns the attitude filter (and its history) about M's z: the registration's yaw correction.
@@ -75,9 +83,10 @@ class ScanOdometry {
   Eigen::Vector3d velocity_ = Eigen::Vector3d::Zero();       // M, m/s
   double yaw_rate_ = 0.0;                                    // rad/s, without an IMU
   std::deque<std::pair<double, Eigen::Isometry3d>> recent_;  // poses over velocity_window
-  double height_ = 0.0;
   std::deque<Keyframe> keyframes_;
-  std::unique_ptr<LocalMap> map_;  // of keyframes_, rebuilt when one is added
+  double height_ = 0.0;
+  PlaneVoxelMap map_;  // of keyframes_
+  VoxelIndex index_;   // the scan's voxels, reused from scan to scan
   int registered_ = 0, agreed_ = 0;
 };
 

@@ -1,0 +1,130 @@
+#include "slam/sgraph/odometry_registration.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+namespace isg::slam {
+
+namespace {
+
+// The Gauss-Newton sums of one pass, and the points near the map.
+struct PassSums {
+  Eigen::Matrix3d H = Eigen::Matrix3d::Zero();
+  Eigen::Vector3d g = Eigen::Vector3d::Zero();
+  int used = 0, near = 0;
+};
+
+// The scan's points at the prediction, x and y relative to the pivot (the base's predicted
+// position), so that a correction's yaw turns about the base.
+class PlaneAlignment {
+ public:
+  PlaneAlignment(const std::vector<Eigen::Vector3f>& scan_in_L, const Eigen::Isometry3d& M_T_L,
+                 const Eigen::Vector2d& pivot, const PlaneVoxelMap& map,
+                 const ScanRegistrationOptions& options)
+      : pivot_(pivot), map_(map), options_(options) {
+    points_.reserve(scan_in_L.size());
+    for (const auto& p : scan_in_L) {
+      Eigen::Vector3d q = M_T_L * p.cast<double>();
+      q.head<2>() -= pivot;
+      points_.push_back(q);
+    }
+  }
+  int points() const { return int(points_.size()); }
+
+  // One pass at correction x: each point's plane within max_distance, a robust point-to-plane row
+  // where it is a wall's; `near` counts the points within near_distance of a plane or in a voxel
+  // that holds points.
+  PassSums pass(const Eigen::Vector3d& x, double max_distance, double near_distance) const {
+    PassSums s;
+    const Eigen::Matrix2d turn = Eigen::Rotation2Dd(x(2)).toRotationMatrix();
+    for (const auto& q : points_) {
+      Eigen::Vector3d p = q;
+      p.head<2>() = turn * q.head<2>() + pivot_ + x.head<2>();
+      const PlaneVoxelMap::Match match = map_.match(p, max_distance);
+      if (match.occupied || (match.voxel != nullptr && std::abs(match.residual) <= near_distance)) {
+        ++s.near;
+      }
+      if (match.voxel == nullptr) continue;
+      const Eigen::Vector3d& n = match.voxel->normal;
+      if (std::abs(n.z()) > options_.max_normal_z) continue;  // a floor or ceiling: the height's
+      const double r = match.residual;
+      // d(p)/d(yaw) about the pivot: the turned point's lever arm turned by 90°.
+      const Eigen::Vector2d arm = p.head<2>() - pivot_ - x.head<2>();
+      const Eigen::Vector3d J(n.x(), n.y(), n.x() * -arm.y() + n.y() * arm.x());
+      const double w = std::abs(r) <= options_.huber ? 1.0 : options_.huber / std::abs(r);
+      s.H += w * J * J.transpose();
+      s.g += w * J * r;
+      ++s.used;
+    }
+    return s;
+  }
+
+ private:
+  std::vector<Eigen::Vector3d> points_;
+  Eigen::Vector2d pivot_;
+  const PlaneVoxelMap& map_;
+  const ScanRegistrationOptions& options_;
+};
+
+bool below(const Eigen::Vector3d& step, double translation, double yaw) {
+  return step.head<2>().norm() < translation && std::abs(step.z()) < yaw;
+}
+
+}  // namespace
+
+Eigen::Isometry3d OdometryRegistration::apply(const Eigen::Isometry3d& M_T_R_predicted) const {
+  return planarCorrection(correction, M_T_R_predicted.translation().head<2>()) * M_T_R_predicted;
+}
+
+OdometryRegistration registerToPlanes(const std::vector<Eigen::Vector3f>& scan_in_L,
+                                      const Eigen::Isometry3d& M_T_R_predicted,
+                                      const Eigen::Isometry3d& R_T_L, const PlaneVoxelMap& map,
+                                      const Eigen::Matrix3d& prior_information,
+                                      const ScanRegistrationOptions& options) {
+  OdometryRegistration result;
+  if (map.empty() || scan_in_L.empty()) return result;
+  const PlaneAlignment alignment(scan_in_L, M_T_R_predicted * R_T_L,
+                                 M_T_R_predicted.translation().head<2>(), map, options);
+  result.points = alignment.points();
+  const double sigma2 = options.point_sigma * options.point_sigma;
+  Eigen::Vector3d x = Eigen::Vector3d::Zero();
+  // The tolerance shrinks stage by stage, as in the S-Graph's registration; once a step is below
+  // a millimetre the estimate has settled at that tolerance and the passes left go to the final
+  // one. The share near the map is the final tolerance's pass's before its last step.
+  const int iterations = std::max(1, options.iterations);
+  const int last_stage = iterations - 1;
+  bool share_known = false;
+  for (int pass = 0, stage = 0; pass < iterations; ++pass) {
+    const double fraction = iterations == 1 ? 1.0 : double(stage) / double(last_stage);
+    const double max_distance =
+        options.max_correspondence_start +
+        fraction * (options.max_correspondence_end - options.max_correspondence_start);
+    const double near_distance = std::min(max_distance, options.max_correspondence_end);
+    const PassSums sums = alignment.pass(x, max_distance, near_distance);
+    result.correspondences = sums.used;
+    if (sums.used < 10) break;
+    const double scale =
+        options.effective_points / std::max(double(sums.used), options.effective_points);
+    const Eigen::Matrix3d total = sums.H * (scale / sigma2) + prior_information;
+    const Eigen::Vector3d gradient = sums.g * (scale / sigma2) + prior_information * x;
+    const Eigen::Vector3d step = -total.ldlt().solve(gradient);
+    if (!step.allFinite()) break;
+    x += step;
+    if (stage == last_stage) {
+      result.inlier_share = double(sums.near) / double(alignment.points());
+      share_known = below(step, 1e-3, 1e-4);
+      if (below(step, 1e-4, 1e-5)) break;
+    } else {
+      stage = below(step, 1e-3, 1e-4) ? last_stage : stage + 1;
+    }
+  }
+  if (!share_known) {
+    const double end = options.max_correspondence_end;
+    result.inlier_share = double(alignment.pass(x, end, end).near) / double(alignment.points());
+  }
+  result.correction = x;
+  result.agrees = result.inlier_share >= options.min_inlier_share;
+  return result;
+}
+
+}  // namespace isg::slam

@@ -1,0 +1,145 @@
+#include "slam/sgraph/plane_voxel_map.hpp"
+
+#include <Eigen/Eigenvalues>
+#include <cmath>
+
+namespace isg::slam {
+
+PlaneVoxelMap::PlaneVoxelMap(const PlaneVoxelMapOptions& options) : options_(options) {}
+
+Eigen::Vector3i PlaneVoxelMap::cellOf(const Eigen::Vector3d& p) const {
+  return Eigen::Vector3i(int(std::floor(p.x() / options_.voxel)),
+                         int(std::floor(p.y() / options_.voxel)),
+                         int(std::floor(p.z() / options_.voxel)));
+}
+
+// The layout of voxelKey (slam/sgraph/voxel_key.hpp): 21 bits per axis around the origin.
+std::uint64_t PlaneVoxelMap::keyOf(const Eigen::Vector3i& cell) const {
+  auto axis = [](int v) { return std::uint64_t(std::int64_t(v) + (1 << 20)) & 0x1FFFFF; };
+  return (axis(cell.x()) << 42) | (axis(cell.y()) << 21) | axis(cell.z());
+}
+
+PlaneVoxelMap::Contribution PlaneVoxelMap::contributionOf(const std::vector<Eigen::Vector3f>& cloud,
+                                                          const Eigen::Isometry3d& M_T_L) const {
+  Contribution out;
+  VoxelIndex index(cloud.size() / 4 + 16);
+  for (const auto& point : cloud) {
+    const Eigen::Vector3d p = M_T_L * point.cast<double>();
+    const Eigen::Vector3i cell = cellOf(p);
+    const int at = index.insert(keyOf(cell), int(out.voxels.size()));
+    if (at == int(out.voxels.size())) out.voxels.push_back({keyOf(cell), Moments()});
+    Moments& m = out.voxels[at].second;
+    const Eigen::Vector3d local = p - cell.cast<double>() * options_.voxel;
+    ++m.count;
+    m.sum += local;
+    m.outer += local * local.transpose();
+  }
+  return out;
+}
+
+void PlaneVoxelMap::update(Voxel& voxel) const {
+  const Moments& m = voxel.moments;
+  voxel.normal.setZero();
+  if (m.count <= 0) return;
+  const Eigen::Vector3d local_mean = m.sum / double(m.count);
+  voxel.mean = voxel.corner + local_mean;
+  if (m.count < options_.min_points) return;
+  const Eigen::Matrix3d covariance =
+      m.outer / double(m.count) - local_mean * local_mean.transpose();
+  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> solver(covariance);
+  const Eigen::Vector3d values = solver.eigenvalues();
+  const double total = values.sum();
+  // A plane: thin across (λ0 small) and spread both ways within it (λ1 not small).
+  if (total <= 0.0 || values(0) / total > options_.max_planarity ||
+      values(1) / total < options_.min_spread) {
+    return;
+  }
+  voxel.normal = solver.eigenvectors().col(0).normalized();
+}
+
+void PlaneVoxelMap::add(const Contribution& contribution) {
+  for (const auto& [key, moments] : contribution.voxels) {
+    const int at = index_.insert(key, int(voxels_.size()));
+    if (at == int(voxels_.size())) {
+      Voxel voxel;
+      voxel.key = key;
+      // The corner back from the key: each axis's 21 bits less the offset.
+      auto axis = [&](int shift) { return int((key >> shift) & 0x1FFFFF) - (1 << 20); };
+      voxel.corner = Eigen::Vector3d(axis(42), axis(21), axis(0)) * options_.voxel;
+      voxels_.push_back(voxel);
+    }
+    Voxel& voxel = voxels_[at];
+    if (voxel.moments.count == 0) ++live_;
+    voxel.moments.count += moments.count;
+    voxel.moments.sum += moments.sum;
+    voxel.moments.outer += moments.outer;
+    update(voxel);
+  }
+}
+
+void PlaneVoxelMap::remove(const Contribution& contribution) {
+  for (const auto& [key, moments] : contribution.voxels) {
+    const int at = index_.find(key);
+    if (at < 0) continue;
+    Voxel& voxel = voxels_[at];
+    voxel.moments.count -= moments.count;
+    if (voxel.moments.count <= 0) {
+      // Emptied: exactly zero again, whatever rounding the sums left.
+      voxel.moments = Moments();
+      voxel.normal.setZero();
+      --live_;
+      continue;
+    }
+    voxel.moments.sum -= moments.sum;
+    voxel.moments.outer -= moments.outer;
+    update(voxel);
+  }
+  compactIfSparse();
+}
+
+void PlaneVoxelMap::compactIfSparse() {
+  if (voxels_.size() <= 2 * live_ + 1024) return;
+  std::vector<Voxel> kept;
+  kept.reserve(live_);
+  for (auto& voxel : voxels_) {
+    if (voxel.moments.count > 0) kept.push_back(std::move(voxel));
+  }
+  voxels_ = std::move(kept);
+  index_.clear(voxels_.size());
+  for (std::size_t i = 0; i < voxels_.size(); ++i) index_.insert(voxels_[i].key, int(i));
+}
+
+PlaneVoxelMap::Match PlaneVoxelMap::match(const Eigen::Vector3d& p, double max_distance) const {
+  Match out;
+  const Eigen::Vector3i cell = cellOf(p);
+  const int own = index_.find(keyOf(cell));
+  if (own >= 0 && voxels_[own].moments.count > 0) {
+    out.occupied = true;
+    const Voxel& voxel = voxels_[own];
+    if (!voxel.normal.isZero()) {
+      const double r = voxel.normal.dot(p - voxel.mean);
+      if (std::abs(r) <= max_distance) return {&voxel, r, true};
+    }
+  }
+  double best = max_distance;
+  for (int dx = -1; dx <= 1; ++dx) {
+    for (int dy = -1; dy <= 1; ++dy) {
+      for (int dz = -1; dz <= 1; ++dz) {
+        if (dx == 0 && dy == 0 && dz == 0) continue;
+        const int at = index_.find(keyOf(cell + Eigen::Vector3i(dx, dy, dz)));
+        if (at < 0) continue;
+        const Voxel& voxel = voxels_[at];
+        if (voxel.normal.isZero()) continue;
+        const Eigen::Vector3d d = p - voxel.mean;
+        const double r = voxel.normal.dot(d);
+        if (std::abs(r) > best || (d - r * voxel.normal).norm() > options_.voxel) continue;
+        best = std::abs(r);
+        out.voxel = &voxel;
+        out.residual = r;
+      }
+    }
+  }
+  return out;
+}
+
+}  // namespace isg::slam
