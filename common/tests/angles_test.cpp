@@ -3,7 +3,12 @@
 #include <gtest/gtest.h>
 
 #include <Eigen/Geometry>
+#include <cmath>
+#include <cstring>
+#include <limits>
 #include <numbers>
+#include <random>
+#include <vector>
 
 namespace isg::common {
 namespace {
@@ -32,6 +37,29 @@ TEST(Angles, DifferenceIsInTheHalfOpenTurn) {
   EXPECT_DOUBLE_EQ(angleDifference(kPi, 0.0), kPi);
   EXPECT_DOUBLE_EQ(angleDifference(-kPi, 0.0), kPi);
   EXPECT_DOUBLE_EQ(angleDifference(0.0, kPi), kPi);
+}
+
+TEST(Angles, RemainderIsStdRemainderBitForBit) {
+  // Random angles over many turns, every multiple of the period's fractions (exact ties and their
+  // neighbours one ulp away), zeros of both signs, and what falls back to std::remainder.
+  std::mt19937_64 rng(7);
+  std::uniform_real_distribution<double> angle(-40.0, 40.0);
+  std::vector<double> xs = {0.0, -0.0, 1e12, -1e300, std::numeric_limits<double>::infinity()};
+  for (int i = 0; i < 200000; ++i) xs.push_back(angle(rng));
+  for (int k = -12; k <= 12; ++k) {
+    for (double period : {2 * kPi, kPi, kPi / 2}) {
+      const double x = 0.5 * k * period;
+      xs.insert(xs.end(), {x, std::nextafter(x, 1e9), std::nextafter(x, -1e9)});
+    }
+  }
+  for (double period : {2 * kPi, kPi, kPi / 2}) {
+    for (double x : xs) {
+      const double expected = std::remainder(x, period), got = remainderOf(x, period);
+      ASSERT_EQ(std::memcmp(&expected, &got, sizeof(double)), 0)
+          << "x " << x << " period " << period << ": " << got << " for " << expected;
+    }
+  }
+  EXPECT_TRUE(std::isnan(remainderOf(std::nan(""), kPi)));
 }
 
 TEST(Angles, HeadingAndYaw) {

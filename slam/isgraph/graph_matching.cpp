@@ -16,7 +16,7 @@ namespace {
 
 // Difference of two axes (directions modulo π).
 double axisDifference(double a, double b) {
-  return std::abs(std::remainder(a - b, std::numbers::pi));
+  return std::abs(common::remainderOf(a - b, std::numbers::pi));
 }
 
 Eigen::Matrix2d rotation(double yaw) { return Eigen::Rotation2Dd(yaw).toRotationMatrix(); }

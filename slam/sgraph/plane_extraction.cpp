@@ -1,4 +1,5 @@
 #include "slam/sgraph/plane_extraction.hpp"
+#include "common/angles.hpp"
 #include "slam/sgraph/pcl_planes.hpp"
 #include "slam/sgraph/plane_fit.hpp"
 #include "slam/sgraph/range_image_planes.hpp"
@@ -175,7 +176,7 @@ double dominantYaw(const std::vector<PlaneObservation>& planes) {
   for (const auto& p : planes) {
     if (p.orientation != PlaneOrientation::kVertical) continue;
     const double a = modulo90(std::atan2(p.plane.normal.y(), p.plane.normal.x()));
-    const double d = std::remainder(a - peak, std::numbers::pi / 2);
+    const double d = common::remainderOf(a - peak, std::numbers::pi / 2);
     if (std::abs(d) > 5.0 * std::numbers::pi / 180.0) continue;
     s += p.points * std::sin(4 * a);
     c += p.points * std::cos(4 * a);
@@ -187,8 +188,8 @@ double dominantYaw(const std::vector<PlaneObservation>& planes) {
 WallAxis classifyWall(const PlaneObservation& plane, double dominant_yaw, double tolerance) {
   if (plane.orientation != PlaneOrientation::kVertical) return WallAxis::kOther;
   const double yaw = std::atan2(plane.plane.normal.y(), plane.plane.normal.x());
-  const double d =
-      std::abs(std::remainder(yaw - dominant_yaw, std::numbers::pi));  // either sense: [0, π/2]
+  const double d = std::abs(
+      common::remainderOf(yaw - dominant_yaw, std::numbers::pi));  // either sense: [0, π/2]
   if (d < tolerance) return WallAxis::kX;
   if (std::abs(d - std::numbers::pi / 2) < tolerance) return WallAxis::kY;
   return WallAxis::kOther;
