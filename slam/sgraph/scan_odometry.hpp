@@ -35,7 +35,7 @@ struct ScanOdometryOptions {
   ScanRegistrationOptions registration;
   PlaneVoxelMapOptions map;
   // The scan's points registered: one per this voxel (the map takes all at registration.voxel).
-  double registration_voxel = 0.4;  // m
+  double registration_voxel = 0.3;  // m
   double keyframe_distance = 0.3;   // m
   double keyframe_angle = 0.2;      // rad
   // How far the prediction is trusted, per scan: the registration's prior.
