@@ -229,14 +229,14 @@ bool GraphMatcher::joinedByDoor(int a, int b) const {
   return false;
 }
 
-int GraphMatcher::matchRoom(const MatchRoom& room, const Eigen::Vector3d& x_y_yaw,
+int GraphMatcher::matchRoom(const MatchRoom& room, const Placement& placed,
                             double* distance_out) const {
   const double width_tolerance = options_.width_tolerance;
   const double centre_tolerance = options_.centre_tolerance;
-  const Eigen::Vector2d centre = apply(x_y_yaw, room.centre);
+  const Eigen::Vector2d centre = placed(room.centre);
   const Cell* cell = cellAt(centre);
   if (!cell) return -1;
-  const double axis = room.axis_yaw + x_y_yaw.z();
+  const double axis = room.axis_yaw + placed.yaw();
   const double axis_tolerance = 20.0 * std::numbers::pi / 180.0;
   int best = -1;
   double best_distance = 1e300;
@@ -283,14 +283,14 @@ int GraphMatcher::matchRoom(const MatchRoom& room, const Eigen::Vector3d& x_y_ya
   return best;
 }
 
-int GraphMatcher::matchPlane(const MatchPlane& plane, const Eigen::Vector3d& x_y_yaw,
-                             double* overlap, double* distance) const {
-  const Eigen::Vector2d a = apply(x_y_yaw, plane.start);
-  const Eigen::Vector2d b = apply(x_y_yaw, plane.end);
+int GraphMatcher::matchPlane(const MatchPlane& plane, const Placement& placed, double* overlap,
+                             double* distance) const {
+  const Eigen::Vector2d a = placed(plane.start);
+  const Eigen::Vector2d b = placed(plane.end);
   const Eigen::Vector2d middle = 0.5 * (a + b);
   const Cell* cell = cellAt(middle);
   if (!cell) return -1;
-  const double yaw = yawOfNormal(plane.plane) + x_y_yaw.z();
+  const double yaw = yawOfNormal(plane.plane) + placed.yaw();
   const double angle_tolerance = options_.plane_angle_deg * std::numbers::pi / 180.0;
   int best = -1;
   double best_distance = 1e300;
@@ -309,15 +309,15 @@ int GraphMatcher::matchPlane(const MatchPlane& plane, const Eigen::Vector3d& x_y
   return best;
 }
 
-bool GraphMatcher::nearAsBuiltOff(const MatchPlane& plane, const Eigen::Vector3d& x_y_yaw) const {
-  const Eigen::Vector2d a = apply(x_y_yaw, plane.start);
-  const Eigen::Vector2d b = apply(x_y_yaw, plane.end);
+bool GraphMatcher::nearAsBuiltOff(const MatchPlane& plane, const Placement& placed) const {
+  const Eigen::Vector2d a = placed(plane.start);
+  const Eigen::Vector2d b = placed(plane.end);
   // Surfaces are listed in the cells around them out to the tolerances' reach plus half a metre:
   // a wall turned about one end has its middle furthest off, and may leave its cell's list when
   // long; then it counts as unexplained, as before.
   const Cell* cell = cellAt(0.5 * (a + b));
   if (!cell) return false;
-  const double yaw = yawOfNormal(plane.plane) + x_y_yaw.z();
+  const double yaw = yawOfNormal(plane.plane) + placed.yaw();
   const double angle_tolerance = options_.deviation_angle_deg * std::numbers::pi / 180.0;
   for (int i : cell->surfaces) {
     const auto& s = graph_->surfaces[i];
@@ -349,21 +349,22 @@ GraphMatcher::Reach GraphMatcher::reachOf(int surface, const Eigen::Vector2d& a,
   return reach;
 }
 
-bool GraphMatcher::planeAgrees(const MatchPlane& plane, int surface, const Eigen::Vector3d& x_y_yaw,
+bool GraphMatcher::planeAgrees(const MatchPlane& plane, int surface, const Placement& placed,
                                double angle_deg, double distance) const {
   const auto& s = graph_->surfaces[surface];
-  const double yaw = yawOfNormal(plane.plane) + x_y_yaw.z();
+  const double yaw = yawOfNormal(plane.plane) + placed.yaw();
   if (std::abs(common::wrapAngle(yaw - surface_yaw_[surface])) >
       angle_deg * std::numbers::pi / 180.0) {
     return false;
   }
-  const Eigen::Vector2d middle = apply(x_y_yaw, 0.5 * (plane.start + plane.end));
+  const Eigen::Vector2d middle = placed(0.5 * (plane.start + plane.end));
   return std::abs(s.plane.signedDistance({middle.x(), middle.y(), 0.0})) <= distance;
 }
 
 Verification GraphMatcher::verify(const MatchInput& input, const Eigen::Vector3d& x_y_yaw) const {
   Verification v;
   v.x_y_yaw = x_y_yaw;
+  const Placement placed(x_y_yaw);
   std::vector<int> room_match(input.rooms.size(), -1);
   std::map<int, double> a_rooms;  // matched A-rooms and their best fit weight
   auto fit = [](double error, double sigma) {
@@ -373,10 +374,10 @@ Verification GraphMatcher::verify(const MatchInput& input, const Eigen::Vector3d
   for (const MatchPlane& plane : input.planes) {
     if (plane.length() < options_.min_plane_length) continue;
     double overlap = 0.0, distance = 0.0;
-    const int s = matchPlane(plane, x_y_yaw, &overlap, &distance);
+    const int s = matchPlane(plane, placed, &overlap, &distance);
     if (s < 0) {
       v.unexplained_length += plane.length();
-      if (nearAsBuiltOff(plane, x_y_yaw)) v.built_off_length += plane.length();
+      if (nearAsBuiltOff(plane, placed)) v.built_off_length += plane.length();
       continue;
     }
     v.planes.emplace_back(plane.id, s);
@@ -387,7 +388,7 @@ Verification GraphMatcher::verify(const MatchInput& input, const Eigen::Vector3d
   for (std::size_t i = 0; i < input.rooms.size(); ++i) {
     const MatchRoom& room = input.rooms[i];
     double distance = 0.0;
-    room_match[i] = matchRoom(room, x_y_yaw, &distance);
+    room_match[i] = matchRoom(room, placed, &distance);
     if (room_match[i] >= 0) {
       v.rooms.emplace_back(room.id, room_match[i]);
       double& weight = a_rooms[room_match[i]];
@@ -405,7 +406,7 @@ Verification GraphMatcher::verify(const MatchInput& input, const Eigen::Vector3d
                              [&](const auto& m) { return m.first == p; });
         });
     if (walls_explained) continue;
-    const Eigen::Vector2d centre = apply(x_y_yaw, room.centre);
+    const Eigen::Vector2d centre = placed(room.centre);
     if (const Cell* cell = cellAt(centre)) {
       for (int r : cell->rooms) {
         const auto& a = graph_->rooms[r];

@@ -43,6 +43,18 @@ struct MatchPlane {
   double length() const { return (end - start).norm(); }
 };
 
+// A transform (x, y, yaw) in the plane with its rotation computed once: a hypothesis places every
+// S-plane and S-room with it (a sine and cosine per hypothesis, not per plane). Made implicitly
+// from (x, y, yaw).
+struct Placement {
+  Placement(const Eigen::Vector3d& transform)  // NOLINT(google-explicit-constructor)
+      : x_y_yaw(transform), R(Eigen::Rotation2Dd(transform.z()).toRotationMatrix()) {}
+  Eigen::Vector2d operator()(const Eigen::Vector2d& p) const { return R * p + x_y_yaw.head<2>(); }
+  double yaw() const { return x_y_yaw.z(); }
+  Eigen::Vector3d x_y_yaw;
+  Eigen::Matrix2d R;
+};
+
 struct MatchInput {
   std::vector<MatchRoom> rooms;
   std::vector<MatchPlane> planes;
@@ -239,8 +251,8 @@ class GraphMatcher {
                                         Eigen::Vector2d p_end, const bim::Plane& q,
                                         Eigen::Vector2d q_start, Eigen::Vector2d q_end, double gap);
   const Cell* cellAt(const Eigen::Vector2d& p) const;
-  int matchRoom(const MatchRoom& room, const Eigen::Vector3d& x_y_yaw, double* distance) const;
-  int matchPlane(const MatchPlane& plane, const Eigen::Vector3d& x_y_yaw, double* overlap,
+  int matchRoom(const MatchRoom& room, const Placement& placed, double* distance) const;
+  int matchPlane(const MatchPlane& plane, const Placement& placed, double* overlap,
                  double* distance) const;
   // How far the segment a–b (in P) runs along the surface's exposed parts, and whether it reaches
   // them: it overlaps one, or falls short of one by at most plane_gap. A plane that does not reach
@@ -252,7 +264,7 @@ class GraphMatcher {
   Reach reachOf(int surface, const Eigen::Vector2d& a, const Eigen::Vector2d& b) const;
   // Whether the S-plane, placed by x_y_yaw, lies as a wall built off a plan surface would
   // (deviation_distance, deviation_angle_deg).
-  bool nearAsBuiltOff(const MatchPlane& plane, const Eigen::Vector3d& x_y_yaw) const;
+  bool nearAsBuiltOff(const MatchPlane& plane, const Placement& placed) const;
   // Seeds (slam/isgraph/match_seeds.cpp): the B_T_M each kind of local structure proposes.
   void seedFromFourWallRooms(const MatchInput& input, std::vector<Eigen::Vector3d>& out) const;
   void seedFromCorridors(const MatchInput& input, std::vector<Eigen::Vector3d>& out) const;
@@ -273,8 +285,8 @@ class GraphMatcher {
  public:
   // Whether an S-plane, seen from B_T_M, lies within `angle_deg` and `distance` of an A-surface
   // (its normal and the distance of the S-plane's middle to the surface's plane).
-  bool planeAgrees(const MatchPlane& plane, int surface, const Eigen::Vector3d& x_y_yaw,
-                   double angle_deg, double distance) const;
+  bool planeAgrees(const MatchPlane& plane, int surface, const Placement& placed, double angle_deg,
+                   double distance) const;
 
  private:
   const bim::AGraph* graph_;

@@ -160,10 +160,11 @@ Verification GraphMatcher::consensus(const MatchInput& input, const Verification
 
 double GraphMatcher::wallsAgreeing(const MatchInput& input, const Eigen::Vector3d& x_y_yaw) const {
   std::map<int, double> fit_of_wall;
+  const Placement placed(x_y_yaw);
   for (const MatchPlane& plane : input.planes) {
     if (plane.length() < options_.min_plane_length) continue;
     double overlap = 0.0, distance = 0.0;
-    const int s = matchPlane(plane, x_y_yaw, &overlap, &distance);
+    const int s = matchPlane(plane, placed, &overlap, &distance);
     if (s < 0) continue;
     const double z = distance / options_.plane_sigma;
     double& fit = fit_of_wall[wall_of_surface_[s]];

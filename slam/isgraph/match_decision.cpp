@@ -56,10 +56,11 @@ Distinction GraphMatcher::distinguish(const MatchInput& input, const Verificatio
   auto fit = [](double error, double sigma) {
     return std::exp(-0.5 * (error / sigma) * (error / sigma));
   };
-  auto wall_score = [&](const MatchPlane& plane, const Eigen::Vector3d& x_y_yaw,
+  const Placement best_placed(best.x_y_yaw), other_placed(other.x_y_yaw);
+  auto wall_score = [&](const MatchPlane& plane, const Placement& placed,
                         const GraphMatcher& matcher) {
     double overlap = 0.0, distance = 0.0;
-    if (matcher.matchPlane(plane, x_y_yaw, &overlap, &distance) < 0) {
+    if (matcher.matchPlane(plane, placed, &overlap, &distance) < 0) {
       return -options_.unexplained_penalty * plane.length();
     }
     return std::min(overlap, plane.length()) * fit(distance, options_.plane_sigma);
@@ -68,7 +69,7 @@ Distinction GraphMatcher::distinguish(const MatchInput& input, const Verificatio
   for (const MatchPlane& plane : input.planes) {
     if (plane.length() < options_.min_plane_length) continue;
     const double delta =
-        wall_score(plane, best.x_y_yaw, *this) - wall_score(plane, other.x_y_yaw, under_other);
+        wall_score(plane, best_placed, *this) - wall_score(plane, other_placed, under_other);
     evidence += delta;
     d.disagreement += std::abs(delta);
     if (delta > 0.05 * plane.length()) d.walls_for += delta;
@@ -76,16 +77,16 @@ Distinction GraphMatcher::distinguish(const MatchInput& input, const Verificatio
   }
   const std::set<int> best_contradicted(best.contradicted.begin(), best.contradicted.end());
   const std::set<int> other_contradicted(other.contradicted.begin(), other.contradicted.end());
-  auto room_score = [&](const MatchRoom& room, const Eigen::Vector3d& x_y_yaw,
+  auto room_score = [&](const MatchRoom& room, const Placement& placed,
                         const std::set<int>& contradicted, const GraphMatcher& matcher) {
     double distance = 0.0;
-    if (matcher.matchRoom(room, x_y_yaw, &distance) >= 0) return fit(distance, options_.room_sigma);
+    if (matcher.matchRoom(room, placed, &distance) >= 0) return fit(distance, options_.room_sigma);
     return contradicted.count(room.id) ? -1.0 : 0.0;
   };
   for (const MatchRoom& room : input.rooms) {
     const double delta =
-        options_.room_score * (room_score(room, best.x_y_yaw, best_contradicted, *this) -
-                               room_score(room, other.x_y_yaw, other_contradicted, under_other));
+        options_.room_score * (room_score(room, best_placed, best_contradicted, *this) -
+                               room_score(room, other_placed, other_contradicted, under_other));
     evidence += delta;
     if (delta > 0.5 * options_.room_score) ++d.rooms_for;
     if (delta < -0.5 * options_.room_score) ++d.rooms_against;

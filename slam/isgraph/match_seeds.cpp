@@ -205,9 +205,10 @@ void GraphMatcher::seedFromCorners(const MatchInput& input,
         const Eigen::Vector2d t = a.point - R * s.point;
         const Eigen::Vector3d h(t.x(), t.y(), yaw);
         double unexplained = 0.0;
+        const Placement placed(h);
         for (const MatchPlane* p : screen) {
           double overlap = 0.0, distance = 0.0;
-          if (matchPlane(*p, h, &overlap, &distance) < 0) unexplained += p->length();
+          if (matchPlane(*p, placed, &overlap, &distance) < 0) unexplained += p->length();
           if (unexplained > 0.5 * screen_length) break;
         }
         if (unexplained > 0.5 * screen_length) continue;
