@@ -3,10 +3,12 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <cstdint>
 #include <map>
 #include <numbers>
 #include <optional>
 #include <set>
+#include <unordered_map>
 
 #include "common/angles.hpp"
 
@@ -546,15 +548,35 @@ MatchResult GraphMatcher::evaluate(const MatchInput& input,
   const double yaw_tolerance = options_.cluster_yaw_deg * std::numbers::pi / 180.0;
   std::vector<const Verification*> representatives;
   std::vector<Eigen::Vector2d> placed;  // where each representative puts the middle
+  // The representatives by the cluster_distance cell their image falls in: a hypothesis can only
+  // join one in its own cell or the eight around it. Without this, clustering was quadratic in the
+  // hypotheses, which grow with the building.
+  std::unordered_map<std::uint64_t, std::vector<int>> by_cell;
+  const auto cell_of = [&](const Eigen::Vector2d& p) {
+    return Eigen::Vector2i(int(std::floor(p.x() / options_.cluster_distance)),
+                           int(std::floor(p.y() / options_.cluster_distance)));
+  };
+  const auto key_of = [](const Eigen::Vector2i& c) {
+    return (std::uint64_t(std::uint32_t(c.x())) << 32) | std::uint32_t(c.y());
+  };
   for (const auto& v : verified) {
     const Eigen::Vector2d image = apply(v.x_y_yaw, middle);
+    const Eigen::Vector2i cell = cell_of(image);
     bool joined = false;
-    for (std::size_t r = 0; r < representatives.size() && !joined; ++r) {
-      joined = (image - placed[r]).norm() < options_.cluster_distance &&
-               std::abs(common::wrapAngle(v.x_y_yaw.z() - representatives[r]->x_y_yaw.z())) <
-                   yaw_tolerance;
+    for (int dx = -1; dx <= 1 && !joined; ++dx) {
+      for (int dy = -1; dy <= 1 && !joined; ++dy) {
+        const auto it = by_cell.find(key_of(cell + Eigen::Vector2i(dx, dy)));
+        if (it == by_cell.end()) continue;
+        for (int r : it->second) {
+          joined = (image - placed[r]).norm() < options_.cluster_distance &&
+                   std::abs(common::wrapAngle(v.x_y_yaw.z() - representatives[r]->x_y_yaw.z())) <
+                       yaw_tolerance;
+          if (joined) break;
+        }
+      }
     }
     if (joined) continue;
+    by_cell[key_of(cell)].push_back(int(representatives.size()));
     representatives.push_back(&v);
     placed.push_back(image);
   }
