@@ -118,6 +118,7 @@ void ISGraphLocalizer::lose(double stamp, const std::string& reason) {
   agreement_.clear();
   graph_.startNewSegment(stamp, reason);
   rooms_at_last_attempt_ = 0;
+  rooms_at_last_check_ = 0;
   keyframes_at_last_attempt_ = 0;
 }
 
@@ -199,7 +200,14 @@ void ISGraphLocalizer::onKeyframe(double stamp) {
   rooms_at_last_attempt_ = input.rooms.size();
   keyframes_at_last_attempt_ = keyframes;
   if (answer_.localized) {
-    checkForContradiction(stamp);
+    const std::size_t rooms = input.rooms.size();
+    const bool check =
+        int(rooms) <= options_.contradiction_every_room || rooms < rooms_at_last_check_ ||
+        double(rooms) >= double(rooms_at_last_check_) * (1.0 + options_.contradiction_growth);
+    if (check) {
+      rooms_at_last_check_ = rooms;
+      checkForContradiction(stamp);
+    }
     return;
   }
   int level = -1;

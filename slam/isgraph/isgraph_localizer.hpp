@@ -36,9 +36,14 @@ struct ISGraphOptions {
   // many keyframes: every keyframe, because what decides between two answers is often not a new
   // room but a wall or a room's size settling, and an attempt costs milliseconds
   // (docs/matching.md). Once localized, new S-planes gain correspondences as they are mapped and
-  // a full match runs again with every new room, on the S-Graph optimised without the plan, to
-  // catch a contradiction.
+  // a full match runs again on the S-Graph optimised without the plan, to catch a contradiction:
+  // with every new room up to `contradiction_every_room` S-rooms, then each time the S-rooms have
+  // grown by `contradiction_growth` since the last check. Each check costs the whole map against
+  // the whole plan; spaced geometrically, their sum stays a few times the last one's instead of
+  // growing with the square of the rooms (a 200-room floor: 0.6 s a check by its 35th room).
   int retry_keyframes = 1;
+  int contradiction_every_room = 20;
+  double contradiction_growth = 0.1;
   // Once localized, whenever new S-planes are mapped the plan walls are asked whether the answer
   // should move (GraphMatcher::consensus): a move of at least this much is taken; smaller ones
   // are the merge's to make.
@@ -181,6 +186,7 @@ class ISGraphLocalizer : public Localizer {
   PlanMerger merger_;
   // When matching is tried again (retry_keyframes, new rooms) and the walls vote (new planes).
   std::size_t rooms_at_last_attempt_ = 0;
+  std::size_t rooms_at_last_check_ = 0;  // S-rooms at the last contradiction check
   int keyframes_at_last_attempt_ = 0;
   std::size_t planes_at_last_vote_ = 0;
   double matching_s_ = 0.0;  // onKeyframe in all: matching, verification, contradictions
