@@ -66,10 +66,6 @@ class PlaneAlignment {
   const ScanRegistrationOptions& options_;
 };
 
-bool below(const Eigen::Vector3d& step, double translation, double yaw) {
-  return step.head<2>().norm() < translation && std::abs(step.z()) < yaw;
-}
-
 }  // namespace
 
 Eigen::Isometry3d OdometryRegistration::apply(const Eigen::Isometry3d& M_T_R_predicted) const {
@@ -88,19 +84,11 @@ OdometryRegistration registerToPlanes(const std::vector<Eigen::Vector3f>& scan_i
   result.points = alignment.points();
   const double sigma2 = options.point_sigma * options.point_sigma;
   Eigen::Vector3d x = Eigen::Vector3d::Zero();
-  // The tolerance shrinks stage by stage, as in the S-Graph's registration; once a step is below
-  // a millimetre the estimate has settled at that tolerance and the passes left go to the final
-  // one. The share near the map is the final tolerance's pass's before its last step.
-  const int iterations = std::max(1, options.iterations);
-  const int last_stage = iterations - 1;
+  // The passes as in the S-Graph's registration. The share near the map is the final tolerance's
+  // pass's before its last step (counted again below when that step was a millimetre or more).
   bool share_known = false;
-  for (int pass = 0, stage = 0; pass < iterations; ++pass) {
-    const double fraction = iterations == 1 ? 1.0 : double(stage) / double(last_stage);
-    const double max_distance =
-        options.max_correspondence_start +
-        fraction * (options.max_correspondence_end - options.max_correspondence_start);
-    const double near_distance = std::min(max_distance, options.max_correspondence_end);
-    const PassSums sums = alignment.pass(x, max_distance, near_distance);
+  for (PassSchedule schedule(options); schedule.more();) {
+    const PassSums sums = alignment.pass(x, schedule.maxDistance(), schedule.nearDistance());
     result.correspondences = sums.used;
     if (sums.used < 10) break;
     const double scale =
@@ -110,13 +98,11 @@ OdometryRegistration registerToPlanes(const std::vector<Eigen::Vector3f>& scan_i
     const Eigen::Vector3d step = -total.ldlt().solve(gradient);
     if (!step.allFinite()) break;
     x += step;
-    if (stage == last_stage) {
+    if (schedule.finalStage()) {
       result.inlier_share = double(sums.near) / double(alignment.points());
-      share_known = below(step, 1e-3, 1e-4);
-      if (below(step, 1e-4, 1e-5)) break;
-    } else {
-      stage = below(step, 1e-3, 1e-4) ? last_stage : stage + 1;
+      share_known = PassSchedule::settled(step.head<2>().norm(), step.z());
     }
+    schedule.stepped(step.head<2>().norm(), step.z());
   }
   if (!share_known) {
     const double end = options.max_correspondence_end;

@@ -298,20 +298,12 @@ RegistrationResult registerScan(const std::vector<Eigen::Vector3f>& scan_in_L,
   }
   Eigen::Vector3d x = Eigen::Vector3d::Zero();
   Eigen::Matrix3d scan_information = Eigen::Matrix3d::Zero();
-  // The tolerance shrinks stage by stage; once a stage's step is below a millimetre the estimate
-  // has settled at that tolerance, and the passes left go to the final tolerance.
-  const int iterations = std::max(1, options.iterations);
-  const int last_stage = iterations - 1;
   bool final_share_known = false;
-  for (int pass = 0, stage = 0; pass < iterations; ++pass) {
-    const double fraction = iterations == 1 ? 1.0 : double(stage) / double(last_stage);
-    const double max_distance =
-        options.max_correspondence_start +
-        fraction * (options.max_correspondence_end - options.max_correspondence_start);
-    const double near_distance = std::min(max_distance, options.max_correspondence_end);
-    const ScanAlignment::Sums sums = alignment.pass(x, max_distance, near_distance);
+  for (PassSchedule schedule(options); schedule.more();) {
+    const double max_distance = schedule.maxDistance();
+    const ScanAlignment::Sums sums = alignment.pass(x, max_distance, schedule.nearDistance());
     const double share = double(sums.near) / double(alignment.points());
-    if (pass == 0 && max_distance >= options.max_correspondence_end) {
+    if (schedule.first() && max_distance >= options.max_correspondence_end) {
       result.inlier_share_predicted = share;
     }
     result.correspondences = sums.used;
@@ -324,16 +316,13 @@ RegistrationResult registerScan(const std::vector<Eigen::Vector3f>& scan_in_L,
     const Eigen::Vector3d step = -total.ldlt().solve(gradient);
     if (!step.allFinite()) break;
     x += step;
-    if (stage == last_stage) {
+    if (schedule.finalStage()) {
       // At the final tolerance, after a step under a millimetre the share before it is the share
       // at x; after a larger one (the pass budget ran out first) it is counted again below.
       result.inlier_share = share;
-      final_share_known = step.head<2>().norm() < 1e-3 && std::abs(step.z()) < 1e-4;
-      if (step.head<2>().norm() < 1e-4 && std::abs(step.z()) < 1e-5) break;
-    } else {
-      const bool settled = step.head<2>().norm() < 1e-3 && std::abs(step.z()) < 1e-4;
-      stage = settled ? last_stage : stage + 1;
+      final_share_known = PassSchedule::settled(step.head<2>().norm(), step.z());
     }
+    schedule.stepped(step.head<2>().norm(), step.z());
   }
   result.correction = x;
   result.information = scan_information;

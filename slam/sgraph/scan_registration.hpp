@@ -1,6 +1,8 @@
 #pragma once
 
 #include <Eigen/Geometry>
+#include <algorithm>
+#include <cmath>
 #include <memory>
 #include <vector>
 
@@ -39,6 +41,46 @@ struct ScanRegistrationOptions {
   // Below this share of scan points within max_correspondence_end of the local map, the scan does
   // not agree with the recent map: no factor, and the localizer is told (a kidnap, a failure).
   double min_inlier_share = 0.25;
+};
+
+// The passes of a point-to-plane registration (registerScan, registerToPlanes): the
+// correspondence tolerance shrinks stage by stage from max_correspondence_start to
+// max_correspondence_end over `iterations` passes; once a step is under a millimetre (and
+// 0.1 mrad) the estimate has settled at that tolerance and the passes left go to the final one,
+// where a step under a tenth of that ends them.
+class PassSchedule {
+ public:
+  explicit PassSchedule(const ScanRegistrationOptions& options)
+      : options_(options), iterations_(std::max(1, options.iterations)) {}
+  bool more() const { return pass_ < iterations_ && !done_; }
+  bool first() const { return pass_ == 0; }
+  bool finalStage() const { return stage_ == iterations_ - 1; }
+  double maxDistance() const {
+    const double fraction = iterations_ == 1 ? 1.0 : double(stage_) / double(iterations_ - 1);
+    return options_.max_correspondence_start +
+           fraction * (options_.max_correspondence_end - options_.max_correspondence_start);
+  }
+  // Correspondences this near count as the scan agreeing with the map.
+  double nearDistance() const { return std::min(maxDistance(), options_.max_correspondence_end); }
+  // A step under a millimetre (translation, m) and 0.1 mrad (yaw, rad).
+  static bool settled(double translation, double yaw) {
+    return translation < 1e-3 && std::abs(yaw) < 1e-4;
+  }
+  // After each pass's step.
+  void stepped(double translation, double yaw) {
+    if (finalStage()) {
+      done_ = translation < 1e-4 && std::abs(yaw) < 1e-5;
+    } else {
+      stage_ = settled(translation, yaw) ? iterations_ - 1 : stage_ + 1;
+    }
+    ++pass_;
+  }
+
+ private:
+  const ScanRegistrationOptions& options_;
+  int iterations_;
+  int pass_ = 0, stage_ = 0;
+  bool done_ = false;
 };
 
 // Voxel-grid centroids of a scan's points within the range limits, in the scan's frame; the same
