@@ -47,13 +47,7 @@ class PlaneAlignment {
       if (match.voxel == nullptr) continue;
       const Eigen::Vector3d& n = match.voxel->normal;
       if (std::abs(n.z()) > options_.max_normal_z) continue;  // a floor or ceiling: the height's
-      const double r = match.residual;
-      // d(p)/d(yaw) about the pivot: the turned point's lever arm turned by 90°.
-      const Eigen::Vector2d arm = p.head<2>() - pivot_ - x.head<2>();
-      const Eigen::Vector3d J(n.x(), n.y(), n.x() * -arm.y() + n.y() * arm.x());
-      const double w = std::abs(r) <= options_.huber ? 1.0 : options_.huber / std::abs(r);
-      s.H += w * J * J.transpose();
-      s.g += w * J * r;
+      addPlanarRow(n, match.residual, p.head<2>() - pivot_ - x.head<2>(), options_.huber, s.H, s.g);
       ++s.used;
     }
     return s;

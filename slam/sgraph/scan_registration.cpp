@@ -235,12 +235,7 @@ class ScanAlignment {
         const Eigen::Vector3d& n = map_.normal(m);
         if (n.isZero() || std::abs(n.z()) > options_.max_normal_z) continue;
         const double r = n.dot(p - map_.point(m));
-        // d(p)/d(yaw) about the pivot: the rotated point's lever arm turned by 90°.
-        const Eigen::Vector2d arm = p.head<2>() - pivot_ - x.head<2>();
-        const Eigen::Vector3d J(n.x(), n.y(), n.x() * -arm.y() + n.y() * arm.x());
-        const double w = std::abs(r) <= options_.huber ? 1.0 : options_.huber / std::abs(r);
-        s.H += w * J * J.transpose();
-        s.g += w * J * r;
+        addPlanarRow(n, r, p.head<2>() - pivot_ - x.head<2>(), options_.huber, s.H, s.g);
         ++s.used;
       }
     });

@@ -83,6 +83,17 @@ class PassSchedule {
   bool done_ = false;
 };
 
+// One robust point-to-plane row of a planar registration on (dx, dy, dyaw) about a pivot: the
+// residual r along the plane's normal n, for a point whose lever arm from the pivot is `arm`
+// (d(point)/d(yaw) is the arm turned by 90°), Huber-weighted, added to the Gauss-Newton sums.
+inline void addPlanarRow(const Eigen::Vector3d& n, double r, const Eigen::Vector2d& arm,
+                         double huber, Eigen::Matrix3d& H, Eigen::Vector3d& g) {
+  const Eigen::Vector3d J(n.x(), n.y(), n.x() * -arm.y() + n.y() * arm.x());
+  const double w = std::abs(r) <= huber ? 1.0 : huber / std::abs(r);
+  H += w * J * J.transpose();
+  g += w * J * r;
+}
+
 // Voxel-grid centroids of a scan's points within the range limits, in the scan's frame; the same
 // points give the same cloud (sorted by voxel).
 std::vector<Eigen::Vector3f> downsampleScan(const sensors::Scan& scan,
