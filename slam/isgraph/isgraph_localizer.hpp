@@ -189,7 +189,8 @@ class ISGraphLocalizer : public Localizer {
   std::size_t rooms_at_last_check_ = 0;  // S-rooms at the last contradiction check
   int keyframes_at_last_attempt_ = 0;
   std::size_t planes_at_last_vote_ = 0;
-  double matching_s_ = 0.0;  // onKeyframe in all: matching, verification, contradictions
+  double matching_s_ = 0.0;       // onKeyframe in all: matching, verification, contradictions
+  double contradiction_s_ = 0.0;  // of which the contradiction checks
 };
 
 }  // namespace isg::slam
