@@ -58,7 +58,10 @@ void PlaneVoxelMap::update(Voxel& voxel) const {
 }
 
 void PlaneVoxelMap::add(const Contribution& contribution) {
-  for (const auto& [key, moments] : contribution.voxels) {
+  for (const auto& entry : contribution.voxels) {
+    // Named, not a structured binding: the corner's lambda captures the key.
+    const std::uint64_t key = entry.first;
+    const Moments& moments = entry.second;
     const int at = index_.insert(key, int(voxels_.size()));
     if (at == int(voxels_.size())) {
       Voxel voxel;
