@@ -62,16 +62,12 @@ class PlaneAlignment {
 
 }  // namespace
 
-Eigen::Isometry3d OdometryRegistration::apply(const Eigen::Isometry3d& M_T_R_predicted) const {
-  return planarCorrection(correction, M_T_R_predicted.translation().head<2>()) * M_T_R_predicted;
-}
-
-OdometryRegistration registerToPlanes(const std::vector<Eigen::Vector3f>& scan_in_L,
-                                      const Eigen::Isometry3d& M_T_R_predicted,
-                                      const Eigen::Isometry3d& R_T_L, const PlaneVoxelMap& map,
-                                      const Eigen::Matrix3d& prior_information,
-                                      const ScanRegistrationOptions& options) {
-  OdometryRegistration result;
+RegistrationResult registerToPlanes(const std::vector<Eigen::Vector3f>& scan_in_L,
+                                    const Eigen::Isometry3d& M_T_R_predicted,
+                                    const Eigen::Isometry3d& R_T_L, const PlaneVoxelMap& map,
+                                    const Eigen::Matrix3d& prior_information,
+                                    const ScanRegistrationOptions& options) {
+  RegistrationResult result;
   if (map.empty() || scan_in_L.empty()) return result;
   const PlaneAlignment alignment(scan_in_L, M_T_R_predicted * R_T_L,
                                  M_T_R_predicted.translation().head<2>(), map, options);
@@ -87,7 +83,8 @@ OdometryRegistration registerToPlanes(const std::vector<Eigen::Vector3f>& scan_i
     if (sums.used < 10) break;
     const double scale =
         options.effective_points / std::max(double(sums.used), options.effective_points);
-    const Eigen::Matrix3d total = sums.H * (scale / sigma2) + prior_information;
+    result.information = sums.H * (scale / sigma2);
+    const Eigen::Matrix3d total = result.information + prior_information;
     const Eigen::Vector3d gradient = sums.g * (scale / sigma2) + prior_information * x;
     const Eigen::Vector3d step = -total.ldlt().solve(gradient);
     if (!step.allFinite()) break;

@@ -1,7 +1,9 @@
 #include "slam/sgraph/plane_voxel_map.hpp"
 
-#include <Eigen/Eigenvalues>
 #include <cmath>
+
+#include "slam/sgraph/plane_normal.hpp"
+#include "slam/sgraph/voxel_key.hpp"
 
 namespace isg::slam {
 
@@ -13,12 +15,6 @@ Eigen::Vector3i PlaneVoxelMap::cellOf(const Eigen::Vector3d& p) const {
                          int(std::floor(p.z() / options_.voxel)));
 }
 
-// The layout of voxelKey (slam/sgraph/voxel_key.hpp): 21 bits per axis around the origin.
-std::uint64_t PlaneVoxelMap::keyOf(const Eigen::Vector3i& cell) const {
-  auto axis = [](int v) { return std::uint64_t(std::int64_t(v) + (1 << 20)) & 0x1FFFFF; };
-  return (axis(cell.x()) << 42) | (axis(cell.y()) << 21) | axis(cell.z());
-}
-
 PlaneVoxelMap::Contribution PlaneVoxelMap::contributionOf(const std::vector<Eigen::Vector3f>& cloud,
                                                           const Eigen::Isometry3d& M_T_L) const {
   Contribution out;
@@ -26,8 +22,9 @@ PlaneVoxelMap::Contribution PlaneVoxelMap::contributionOf(const std::vector<Eige
   for (const auto& point : cloud) {
     const Eigen::Vector3d p = M_T_L * point.cast<double>();
     const Eigen::Vector3i cell = cellOf(p);
-    const int at = index.insert(keyOf(cell), int(out.voxels.size()));
-    if (at == int(out.voxels.size())) out.voxels.push_back({keyOf(cell), Moments()});
+    const std::uint64_t key = voxelKeyOfCell(cell);
+    const int at = index.insert(key, int(out.voxels.size()));
+    if (at == int(out.voxels.size())) out.voxels.push_back({key, Moments()});
     Moments& m = out.voxels[at].second;
     const Eigen::Vector3d local = p - cell.cast<double>() * options_.voxel;
     ++m.count;
@@ -46,29 +43,16 @@ void PlaneVoxelMap::update(Voxel& voxel) const {
   if (m.count < options_.min_points) return;
   const Eigen::Matrix3d covariance =
       m.outer / double(m.count) - local_mean * local_mean.transpose();
-  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> solver(covariance);
-  const Eigen::Vector3d values = solver.eigenvalues();
-  const double total = values.sum();
-  // A plane: thin across (λ0 small) and spread both ways within it (λ1 not small).
-  if (total <= 0.0 || values(0) / total > options_.max_planarity ||
-      values(1) / total < options_.min_spread) {
-    return;
-  }
-  voxel.normal = solver.eigenvectors().col(0).normalized();
+  voxel.normal = planeNormalOf(covariance, options_.max_planarity, options_.min_spread);
 }
 
 void PlaneVoxelMap::add(const Contribution& contribution) {
-  for (const auto& entry : contribution.voxels) {
-    // Named, not a structured binding: the corner's lambda captures the key.
-    const std::uint64_t key = entry.first;
-    const Moments& moments = entry.second;
+  for (const auto& [key, moments] : contribution.voxels) {
     const int at = index_.insert(key, int(voxels_.size()));
     if (at == int(voxels_.size())) {
       Voxel voxel;
       voxel.key = key;
-      // The corner back from the key: each axis's 21 bits less the offset.
-      auto axis = [&](int shift) { return int((key >> shift) & 0x1FFFFF) - (1 << 20); };
-      voxel.corner = Eigen::Vector3d(axis(42), axis(21), axis(0)) * options_.voxel;
+      voxel.corner = voxelCellOfKey(key).cast<double>() * options_.voxel;
       voxels_.push_back(voxel);
     }
     Voxel& voxel = voxels_[at];
@@ -115,7 +99,7 @@ void PlaneVoxelMap::compactIfSparse() {
 PlaneVoxelMap::Match PlaneVoxelMap::match(const Eigen::Vector3d& p, double max_distance) const {
   Match out;
   const Eigen::Vector3i cell = cellOf(p);
-  const int own = index_.find(keyOf(cell));
+  const int own = index_.find(voxelKeyOfCell(cell));
   if (own >= 0 && voxels_[own].moments.count > 0) {
     out.occupied = true;
     const Voxel& voxel = voxels_[own];
@@ -129,7 +113,7 @@ PlaneVoxelMap::Match PlaneVoxelMap::match(const Eigen::Vector3d& p, double max_d
     for (int dy = -1; dy <= 1; ++dy) {
       for (int dz = -1; dz <= 1; ++dz) {
         if (dx == 0 && dy == 0 && dz == 0) continue;
-        const int at = index_.find(keyOf(cell + Eigen::Vector3i(dx, dy, dz)));
+        const int at = index_.find(voxelKeyOfCell(cell + Eigen::Vector3i(dx, dy, dz)));
         if (at < 0) continue;
         const Voxel& voxel = voxels_[at];
         if (voxel.normal.isZero()) continue;

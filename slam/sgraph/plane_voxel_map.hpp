@@ -69,7 +69,6 @@ class PlaneVoxelMap {
   Match match(const Eigen::Vector3d& p, double max_distance) const;
 
  private:
-  std::uint64_t keyOf(const Eigen::Vector3i& cell) const;
   Eigen::Vector3i cellOf(const Eigen::Vector3d& p) const;
   void update(Voxel& voxel) const;
   void compactIfSparse();

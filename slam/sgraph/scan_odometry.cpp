@@ -115,7 +115,7 @@ Eigen::Isometry3d ScanOdometry::addScan(const sensors::Scan& scan) {
     const Eigen::Matrix3d prior =
         Eigen::Vector3d(1.0 / (st * st), 1.0 / (st * st), 1.0 / (sigma_yaw * sigma_yaw))
             .asDiagonal();
-    const OdometryRegistration result =
+    const RegistrationResult result =
         registerToPlanes(coarser(cloud, options_.registration_voxel, index_), predicted, R_T_L_,
                          map_, prior, options_.registration);
     ++registered_;

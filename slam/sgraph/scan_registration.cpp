@@ -1,6 +1,5 @@
 #include "slam/sgraph/scan_registration.hpp"
 
-#include <Eigen/Eigenvalues>
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
@@ -8,6 +7,7 @@
 #include <nanoflann.hpp>
 #include <numeric>
 
+#include "slam/sgraph/plane_normal.hpp"
 #include "slam/sgraph/voxel_key.hpp"
 
 namespace isg::slam {
@@ -121,16 +121,7 @@ LocalMap::LocalMap(const std::vector<Part>& parts, const ScanRegistrationOptions
       const Eigen::Vector3d d = points_[indices[k]] - mean;
       covariance += d * d.transpose();
     }
-    const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> solver(covariance);
-    const Eigen::Vector3d values = solver.eigenvalues();
-    const double total = values.sum();
-    // A plane: thin across (λ0 small) and spread both ways within it (λ1 not small). Points
-    // along one ring of the LiDAR are a line, whose "normal" is any direction across it.
-    if (total <= 0.0 || values(0) / total > options.max_planarity ||
-        values(1) / total < options.min_spread) {
-      return;
-    }
-    normals_[i] = solver.eigenvectors().col(0).normalized();
+    normals_[i] = planeNormalOf(covariance, options.max_planarity, options.min_spread);
   };
   constexpr int kItem = 512;
   const int items = itemCount(int(points_.size()), kItem);

@@ -6,6 +6,7 @@
 #include <gtest/gtest.h>
 
 #include "slam/sgraph/voxel_index.hpp"
+#include "slam/sgraph/voxel_key.hpp"
 
 namespace isg::slam {
 namespace {
@@ -30,6 +31,24 @@ TEST(VoxelIndex, FindsWhatWasInsertedAcrossGrowth) {
   index.clear(1);
   EXPECT_EQ(index.find(7919u), -1);
   EXPECT_EQ(index.size(), 0u);
+}
+
+TEST(VoxelKey, ACellsKeyGivesTheCellBackAndAPointsKeyIsItsCells) {
+  // Cells at both ends of the ±2^20 range, the origin's neighbours and arbitrary ones.
+  const std::vector<Eigen::Vector3i> cells = {{0, 0, 0},
+                                              {-1, -1, -1},
+                                              {1, -1, 0},
+                                              {(1 << 20) - 1, -(1 << 20), 7},
+                                              {-(1 << 20), (1 << 20) - 1, -12345},
+                                              {4021, -77, 3}};
+  for (const auto& cell : cells) {
+    EXPECT_EQ(voxelCellOfKey(voxelKeyOfCell(cell)), cell) << cell.transpose();
+  }
+  // A point 2.25 m, −0.05 m, 0.4 m at 0.5 m voxels is in cell (4, −1, 0).
+  const Eigen::Vector3d p(2.25, -0.05, 0.4);
+  EXPECT_EQ(voxelKey(p, 0.5), voxelKeyOfCell(Eigen::Vector3i(4, -1, 0)));
+  // Keys sort x first: a cell one further in x has a larger key than any with a smaller x.
+  EXPECT_LT(voxelKeyOfCell({3, 900, 900}), voxelKeyOfCell({4, -900, -900}));
 }
 
 TEST(PlaneVoxelMap, AWallsVoxelsHoldItsPlane) {
