@@ -45,23 +45,26 @@ double quantise(double x, double scale) {
 
 double quantisedTime(double t) { return quantise(t, 1e9); }
 
-Trajectory quantised(const Trajectory& trajectory) {
-  Trajectory out;
-  out.reserve(trajectory.size());
-  for (const auto& p : trajectory) {
+void quantise(Trajectory& trajectory) {
+  for (auto& p : trajectory) {
     Eigen::Quaterniond q(p.pose.linear());
     q.normalize();
     if (q.w() < 0) q.coeffs() *= -1.0;
     const Eigen::Vector3d t = p.pose.translation();
-    StampedPose r;
-    r.t = quantisedTime(p.t);
-    r.pose.translation() =
+    p.t = quantisedTime(p.t);
+    p.pose.translation() =
         Eigen::Vector3d(quantise(t.x(), 1e6), quantise(t.y(), 1e6), quantise(t.z(), 1e6));
     const Eigen::Quaterniond read(quantise(q.w(), 1e9), quantise(q.x(), 1e9), quantise(q.y(), 1e9),
                                   quantise(q.z(), 1e9));
-    r.pose.linear() = read.normalized().toRotationMatrix();
-    out.push_back(r);
+    p.pose.linear() = read.normalized().toRotationMatrix();
+    // What the parser makes of a TUM row: the bottom row exactly 0 0 0 1.
+    p.pose.makeAffine();
   }
+}
+
+Trajectory quantised(const Trajectory& trajectory) {
+  Trajectory out = trajectory;
+  quantise(out);
   return out;
 }
 

@@ -21,6 +21,8 @@ std::string toTumText(const Trajectory& trajectory);
 // run quantises its streams with this once, so that the live loop and the replay of a recorded
 // dataset see the very same numbers.
 Trajectory quantised(const Trajectory& trajectory);
+// The same in place.
+void quantise(Trajectory& trajectory);
 // A time as a TUM row keeps it (nanoseconds).
 double quantisedTime(double t);
 

@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <chrono>
 
+#include "run/map_samples.hpp"
+
 namespace isg::run {
 
 void LocalizerDriver::pushOdometryUntil(double t) {
@@ -78,16 +80,7 @@ RunRecord runLocalizer(RunSetup setup, slam::Localizer& localizer, sensors::Sens
       mark = now;
       driver.feed(scan);
       ++read;
-      if (record.map_samples.empty() ||
-          stamp >= record.map_samples.back().stamp + kMapSampleSeconds - 1e-9) {
-        MapScanSample sample{stamp, {}};
-        sample.points.reserve(scan.points.size() / kMapSampleStride + 1);
-        for (std::size_t i = 0; i < scan.points.size(); i += kMapSampleStride) {
-          const auto& p = scan.points[i];
-          sample.points.push_back({p.x, p.y, p.z, p.time});
-        }
-        record.map_samples.push_back(std::move(sample));
-      }
+      offerMapSample(record, scan);
     } else {
       scans.skip(k);
       now = Clock::now();

@@ -39,13 +39,16 @@ struct RunSetup {
 
 // A thinned copy of a scan the localizer read, kept for the map-to-plan error
 // (docs/evaluation.md): its stamp and every kMapSampleStride-th point in L, with its time from
-// the stamp. One scan per kMapSampleSeconds of robot time: a few megabytes a minute.
+// the stamp. One scan per kMapSampleSeconds of robot time (a few megabytes a minute), at most
+// kMaxMapSamples of them: a longer run keeps every other one and doubles the spacing
+// (run/map_samples.hpp), so that hours of robot time keep the map sample's memory bounded.
 struct MapScanSample {
   double stamp = 0.0;
   std::vector<std::array<float, 4>> points;  // x y z time
 };
 inline constexpr int kMapSampleStride = 8;
 inline constexpr double kMapSampleSeconds = 1.0;
+inline constexpr std::size_t kMaxMapSamples = 1024;
 
 // What one run produced, from the live loop (`isg run`) or a replay (`isg slam`): the streams it
 // was fed, what the localizer said after each scan, and what it can tell about itself.
@@ -70,7 +73,8 @@ struct RunRecord {
   std::vector<slam::StatusChange> status_changes;
   std::optional<slam::MapDiagnostics> map;
   std::vector<MapScanSample> map_samples;
-  std::optional<Eigen::Isometry3d> final_B_T_M;  // where the map lies in the plan at the end
+  double map_sample_seconds = kMapSampleSeconds;  // the samples' spacing now (doubles when full)
+  std::optional<Eigen::Isometry3d> final_B_T_M;   // where the map lies in the plan at the end
 };
 
 }  // namespace isg::run

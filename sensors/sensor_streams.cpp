@@ -8,8 +8,8 @@
 namespace isg::sensors {
 
 void quantiseStreams(SensorStreams& streams) {
-  streams.ground_truth = common::quantised(streams.ground_truth);
-  streams.odometry = common::quantised(streams.odometry);
+  common::quantise(streams.ground_truth);  // in place: no second copy of hours of poses
+  common::quantise(streams.odometry);
   for (double& t : streams.scan_stamps) t = common::quantisedTime(t);
 }
 

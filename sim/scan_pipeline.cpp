@@ -18,8 +18,18 @@ sensors::SensorStreams sensorStreams(const Simulation& simulation, double durati
   streams.scan_period = simulation.scanPeriod();
   streams.R_T_L = simulation.R_T_L();
   sensors::quantiseStreams(streams);  // as the dataset's TUM files will hold them
-  // The IMU as imu.csv holds it: through its text, the one definition of its digits.
-  streams.imu = formats::parseImuText(formats::dataset::imuText(simulation.imu(d)), "imu.csv");
+  // The IMU as imu.csv holds it: through its text, the one definition of its digits; a chunk at a
+  // time, read back over the samples, so that hours of them never stand as one text or twice.
+  std::vector<sensors::ImuSample> imu = simulation.imu(d);
+  constexpr std::size_t kChunk = 8192;
+  for (std::size_t begin = 0; begin < imu.size(); begin += kChunk) {
+    const auto first = imu.begin() + std::ptrdiff_t(begin);
+    const auto last = imu.begin() + std::ptrdiff_t(std::min(imu.size(), begin + kChunk));
+    const auto read = formats::parseImuText(
+        formats::dataset::imuText(std::vector<sensors::ImuSample>(first, last)), "imu.csv");
+    std::copy(read.begin(), read.end(), first);
+  }
+  streams.imu = std::move(imu);
   streams.R_T_I = simulation.R_T_I();
   return streams;
 }
