@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <functional>
 
 #include "bim/polygon.hpp"
 #include "common/pose_interpolation.hpp"
@@ -101,9 +102,9 @@ class FinalTrajectory {
 
 }  // namespace
 
-std::vector<Eigen::Vector3d> placedMapPoints(const RunRecord& run) {
-  std::vector<Eigen::Vector3d> out;
-  if (!run.final_B_T_M) return out;
+void forEachPlacedMapPoint(const RunRecord& run,
+                           const std::function<void(const Eigen::Vector3d&)>& visit) {
+  if (!run.final_B_T_M) return;
   const FinalTrajectory trajectory(run);
   const Eigen::Isometry3d& B_T_M = *run.final_B_T_M;
   const Eigen::Isometry3d& R_T_L = run.streams.R_T_L;
@@ -120,9 +121,14 @@ std::vector<Eigen::Vector3d> placedMapPoints(const RunRecord& run) {
     }
     for (const auto& p : scan.points) {
       const auto& pose = B_T_L[std::size_t(std::lround((p[3] - first) / kStep))];
-      if (pose) out.push_back(*pose * Eigen::Vector3d(p[0], p[1], p[2]));
+      if (pose) visit(*pose * Eigen::Vector3d(p[0], p[1], p[2]));
     }
   }
+}
+
+std::vector<Eigen::Vector3d> placedMapPoints(const RunRecord& run) {
+  std::vector<Eigen::Vector3d> out;
+  forEachPlacedMapPoint(run, [&](const Eigen::Vector3d& p) { out.push_back(p); });
   return out;
 }
 
@@ -131,9 +137,9 @@ std::vector<Eigen::Vector3d> wallBandMapPoints(const RunRecord& run,
   std::vector<Eigen::Vector3d> out;
   if (!run.setup.agraph) return out;
   const SegmentGrid grid(*run.setup.agraph, options.cutoff, options.margin);
-  for (const Eigen::Vector3d& p : placedMapPoints(run)) {
+  forEachPlacedMapPoint(run, [&](const Eigen::Vector3d& p) {
     if (grid.inBand(p.z())) out.push_back(p);
-  }
+  });
   return out;
 }
 
@@ -142,12 +148,12 @@ std::optional<MapPlanError> mapPlanError(const RunRecord& run, const MapPlanErro
   const SegmentGrid grid(*run.setup.agraph, options.cutoff, options.margin);
   MapPlanError out;
   std::vector<double> distances;
-  for (const Eigen::Vector3d& in_B : placedMapPoints(run)) {
-    if (!grid.inBand(in_B.z())) continue;
+  forEachPlacedMapPoint(run, [&](const Eigen::Vector3d& in_B) {
+    if (!grid.inBand(in_B.z())) return;
     ++out.points;
     const auto d = grid.nearest(in_B);
     if (d && *d <= options.cutoff) distances.push_back(*d);
-  }
+  });
   if (out.points == 0) return std::nullopt;
   out.near_share = double(distances.size()) / double(out.points);
   if (!distances.empty()) out.distance = eval::statistics(distances);

@@ -1,6 +1,7 @@
 #pragma once
 
 #include <cstddef>
+#include <functional>
 #include <optional>
 #include <vector>
 
@@ -33,6 +34,10 @@ struct MapPlanError {
 // The run's thinned scans placed in the plan frame B as described above (empty when the map was
 // never placed in the plan): what the metric measures and the report draws.
 std::vector<Eigen::Vector3d> placedMapPoints(const RunRecord& run);
+// The same, one point at a time, none kept: what the metric and the report's points use, so that
+// a long run's map is never held placed as a whole.
+void forEachPlacedMapPoint(const RunRecord& run,
+                           const std::function<void(const Eigen::Vector3d&)>& visit);
 
 // Of those, the points in a wall surface's height band (`options.margin` clear of floor and
 // ceiling): the map's walls, as the report draws them.

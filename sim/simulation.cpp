@@ -118,6 +118,7 @@ LidarScan Simulation::scanBlocks(int index, LidarSimulator& lidar, int first_blo
 common::Trajectory Simulation::groundTruth(double duration, double rate_hz) const {
   common::Trajectory out;
   const int n = int(std::floor(duration * rate_hz + 1e-9));
+  out.reserve(std::size_t(std::max(n + 1, 0)));  // exactly: hours of poses, no growth slack
   for (int i = 0; i <= n; ++i) {
     const double t = i / rate_hz;
     out.push_back({t, base_motion_->pose(t)});
@@ -134,6 +135,7 @@ common::Trajectory Simulation::odometry(double duration) const {
   const int n = int(std::floor(duration * rate + 1e-9));
   const std::vector<double> jumps = base_motion_->jumps();
   std::size_t next_jump = 0;
+  out.reserve(std::size_t(std::max(n + 1, 0)));
   for (int i = 0; i <= n; ++i) {
     const double t = i / rate;
     // A kidnap since the last tick: the legs moved until the lift, not with it.
