@@ -80,9 +80,12 @@ void EvalCommand::writePlot(const common::Trajectory& reference, const common::T
   input.summary.push_back(line);
   input.ground_truth = reference;
   // The estimate as it was compared: aligned when an alignment was asked for.
+  common::Trajectory compared;
+  compared.reserve(estimate.size());
   for (const auto& pose : estimate) {
-    input.estimate.push_back({pose.t, ape.alignment ? ape.alignment->apply(pose.pose) : pose.pose});
+    compared.push_back({pose.t, ape.alignment ? ape.alignment->apply(pose.pose) : pose.pose});
   }
+  input.estimate = compared;
   input.estimate_label = ape.alignment ? "estimate, aligned" : "estimate";
   // The first pose is marked as a localization only when the estimate starts after the reference
   // and was not aligned after the fact.

@@ -157,7 +157,7 @@ Eigen::Vector2d placeLabel(const RoomLabel& label, const std::vector<Eigen::Vect
   return best_point;
 }
 
-void path(std::ostringstream& svg, const Layout& l, const common::Trajectory& trajectory,
+void path(std::ostringstream& svg, const Layout& l, TrajectoryView trajectory,
           const std::string& style) {
   if (trajectory.empty()) return;
   svg << "<polyline fill=\"none\" " << style << " points=\"";
@@ -302,7 +302,7 @@ void drawLegend(std::ostringstream& svg, const ReportInput& input, const Layout&
 namespace {
 
 // The poses of a trajectory at heights in [z_min, z_max).
-common::Trajectory between(const common::Trajectory& trajectory, double z_min, double z_max) {
+common::Trajectory between(TrajectoryView trajectory, double z_min, double z_max) {
   common::Trajectory out;
   for (const auto& pose : trajectory) {
     const double z = pose.pose.translation().z();
@@ -326,14 +326,17 @@ void drawStoreys(std::ostringstream& svg, const ReportInput& input, const Layout
     on_storey.walls = storey.walls;
     on_storey.overlays = storey.overlays;
     on_storey.labels = storey.labels;
-    on_storey.ground_truth = between(input.ground_truth, storey.z_min, storey.z_max);
-    on_storey.estimate = between(input.estimate, storey.z_min, storey.z_max);
-    on_storey.odometry = between(input.odometry, storey.z_min, storey.z_max);
+    const common::Trajectory ground_truth = between(input.ground_truth, storey.z_min, storey.z_max);
+    const common::Trajectory estimate = between(input.estimate, storey.z_min, storey.z_max);
+    const common::Trajectory odometry = between(input.odometry, storey.z_min, storey.z_max);
+    on_storey.ground_truth = ground_truth;
+    on_storey.estimate = estimate;
+    on_storey.odometry = odometry;
     for (const auto& p : input.map_points) {
       if (p.z() >= storey.z_min && p.z() < storey.z_max) on_storey.map_points.push_back(p);
     }
     on_storey.estimate_is_localization = input.estimate_is_localization;
-    auto starts_here = [&](const common::Trajectory& t) {
+    auto starts_here = [&](TrajectoryView t) {
       if (t.empty()) return false;
       const double z = t.front().pose.translation().z();
       return z >= storey.z_min && z < storey.z_max;

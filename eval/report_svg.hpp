@@ -2,6 +2,7 @@
 
 #include <Eigen/Core>
 #include <optional>
+#include <span>
 #include <string>
 #include <utility>
 #include <vector>
@@ -22,6 +23,16 @@ struct RoomLabel {
   std::string text;
   Eigen::Vector2d centre = Eigen::Vector2d::Zero();
   std::vector<Eigen::Vector2d> outline;
+};
+
+// A trajectory the report reads where it lies, not a copy (a two-hour run's ground truth is
+// 100 MB): it must outlive the reportSvg call, so a temporary does not compile.
+class TrajectoryView : public std::span<const common::StampedPose> {
+ public:
+  TrajectoryView() = default;
+  TrajectoryView(const common::Trajectory& trajectory)  // NOLINT: implicit, as a reference
+      : std::span<const common::StampedPose>(trajectory) {}
+  TrajectoryView(common::Trajectory&&) = delete;
 };
 
 // One storey of a building of several: its own map panel in the report, drawn with the parts of
@@ -45,11 +56,11 @@ struct ReportInput {
   std::vector<std::vector<Eigen::Vector2d>> walls;
   std::vector<MapOverlay> overlays;
   std::vector<RoomLabel> labels;
-  common::Trajectory ground_truth;
-  common::Trajectory estimate;  // in B (from the first localized pose on), or aligned: see below
+  TrajectoryView ground_truth;
+  TrajectoryView estimate;  // in B (from the first localized pose on), or aligned: see below
   std::string estimate_label = "estimate in B (once localized)";
   bool estimate_is_localization = true;  // false: an aligned SLAM estimate, drawn in another hue
-  common::Trajectory odometry;  // odometry placed at the true start (dead reckoning), drawn faintly
+  TrajectoryView odometry;  // odometry placed at the true start (dead reckoning), drawn faintly
   std::string error_title = "APE in B (2D, no alignment)";
   std::vector<std::pair<double, double>> error_over_time;          // (t, metres)
   std::vector<std::pair<double, double>> heading_error_over_time;  // (t, degrees)

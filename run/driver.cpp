@@ -92,6 +92,7 @@ RunRecord runLocalizer(RunSetup setup, slam::Localizer& localizer, sensors::Sens
     if (observer) observer(wanted ? &scan : nullptr, localizer, driver);
     if (progress) progress(k + 1, total, localizer);
   }
+  record.streams.imu = {};  // fed: nothing after the loop reads it (RunRecord::streams)
   record.estimate_map = driver.estimateMap();
   record.estimate = driver.estimate();
   record.localized_at = driver.localizedAt();

@@ -40,8 +40,9 @@ TEST(ReportSvg, DrawsTheMapTheLegendTheScaleBarAndBothPanels) {
   input.walls = {{{0, -0.1}, {4, -0.1}, {4, 0.1}, {0, 0.1}}, {{5, -0.1}, {10, -0.1}, {10, 0.1}}};
   input.overlays = {{MapOverlay::Kind::kClutter, {{1, 1}, {2, 1}, {2, 2}, {1, 2}}}};
   input.labels = {{"R1", {5, 2}, {{0, 0}, {10, 0}, {10, 4}, {0, 4}}}};
-  input.ground_truth = straight(0, 10, 2);
-  input.estimate = straight(3, 10, 2.02);
+  const common::Trajectory truth = straight(0, 10, 2), estimate = straight(3, 10, 2.02);
+  input.ground_truth = truth;
+  input.estimate = estimate;
   input.localized_at = 3.0;
   for (double t = 3; t <= 10; t += 0.5) {
     input.error_over_time.emplace_back(t, 0.02);
@@ -70,8 +71,9 @@ TEST(ReportSvg, DrawsTheMapTheLegendTheScaleBarAndBothPanels) {
 
 TEST(ReportSvg, AnAlignedSlamEstimateIsNotCalledALocalization) {
   ReportInput input;
-  input.ground_truth = straight(0, 10, 2);
-  input.estimate = straight(0, 10, 2.01);
+  const common::Trajectory truth = straight(0, 10, 2), estimate = straight(0, 10, 2.01);
+  input.ground_truth = truth;
+  input.estimate = estimate;
   input.estimate_is_localization = false;
   input.estimate_label = "estimate in M, SE(3)-aligned to the ground truth";
   const std::string svg = reportSvg(input);
