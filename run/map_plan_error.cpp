@@ -126,12 +126,6 @@ void forEachPlacedMapPoint(const RunRecord& run,
   }
 }
 
-std::vector<Eigen::Vector3d> placedMapPoints(const RunRecord& run) {
-  std::vector<Eigen::Vector3d> out;
-  forEachPlacedMapPoint(run, [&](const Eigen::Vector3d& p) { out.push_back(p); });
-  return out;
-}
-
 std::vector<Eigen::Vector3d> wallBandMapPoints(const RunRecord& run,
                                                const MapPlanErrorOptions& options) {
   std::vector<Eigen::Vector3d> out;

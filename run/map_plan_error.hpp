@@ -31,11 +31,9 @@ struct MapPlanError {
   double near_share = 0.0;    // of those, near the plan
 };
 
-// The run's thinned scans placed in the plan frame B as described above (empty when the map was
-// never placed in the plan): what the metric measures and the report draws.
-std::vector<Eigen::Vector3d> placedMapPoints(const RunRecord& run);
-// The same, one point at a time, none kept: what the metric and the report's points use, so that
-// a long run's map is never held placed as a whole.
+// The run's thinned scans placed in the plan frame B as described above (none when the map was
+// never placed in the plan), one point at a time, none kept: what the metric measures and the
+// report draws, so that a long run's map is never held placed as a whole.
 void forEachPlacedMapPoint(const RunRecord& run,
                            const std::function<void(const Eigen::Vector3d&)>& visit);
 

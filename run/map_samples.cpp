@@ -10,8 +10,9 @@ void offerMapSample(RunRecord& record, const sensors::Scan& scan) {
     return;
   }
   if (samples.size() >= kMaxMapSamples) {
-    std::size_t kept = 0;
-    for (std::size_t i = 0; i < samples.size(); i += 2) samples[kept++] = std::move(samples[i]);
+    // The first stays where it is (moving it onto itself would empty it).
+    std::size_t kept = 1;
+    for (std::size_t i = 2; i < samples.size(); i += 2) samples[kept++] = std::move(samples[i]);
     samples.resize(kept);
     samples.shrink_to_fit();
     record.map_sample_seconds *= 2.0;

@@ -75,7 +75,9 @@ TEST_F(MapPlanErrorTest, PlacedByTheOptimisedKeyframesCarriedByOdometry) {
 TEST_F(MapPlanErrorTest, NothingWithoutAPlaceInThePlanOrAPlan) {
   run_.final_B_T_M.reset();
   EXPECT_FALSE(mapPlanError(run_));
-  EXPECT_TRUE(placedMapPoints(run_).empty());
+  int placed = 0;
+  forEachPlacedMapPoint(run_, [&](const Eigen::Vector3d&) { ++placed; });
+  EXPECT_EQ(placed, 0);
   run_.final_B_T_M = Eigen::Isometry3d::Identity();
   run_.setup.agraph = nullptr;
   EXPECT_FALSE(mapPlanError(run_));

@@ -42,6 +42,9 @@ TEST(MapSamples, ALongRunKeepsEveryOtherScanAndDoublesTheSpacing) {
   // Evenly spread over the whole run: 4 s apart from the start, the last within 4 s of the end.
   for (std::size_t i = 0; i < samples.size(); ++i) {
     EXPECT_NEAR(samples[i].stamp, 4.0 * double(i), 1e-6) << i;
+    // Each kept scan keeps its own points, the first one too.
+    ASSERT_EQ(samples[i].points.size(), 10u) << i;
+    EXPECT_NEAR(samples[i].points[0][0], samples[i].stamp, 1e-3) << i;
   }
   EXPECT_GT(samples.back().stamp, 2999.9 - 4.0);
 }
