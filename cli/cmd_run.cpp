@@ -75,7 +75,8 @@ int RunCommand::run() {
   const sim::Simulation simulation(scenario);
   checkRoute("isg run", scenario, simulation, duration_);
   const bim::AGraph agraph = bim::buildAGraph(scenario.plan);
-  sensors::SensorStreams streams = sim::sensorStreams(simulation, duration_);
+  sensors::SensorStreams streams =
+      sim::sensorStreams(simulation, duration_, 100.0, sim::ImuDelivery::kAsTheRunGoes);
 
   run::LocalizerContext context;
   context.plan = &scenario.plan;

@@ -15,14 +15,25 @@ namespace isg::common {
 
 namespace fs = std::filesystem;
 
-void writeFile(const fs::path& path, const std::string& content) {
-  // C stdio rather than a stream: errno then says why a write failed (a full disk, a quota).
+namespace {
+
+// Opens `path` for writing, writes into it with `write` (false: a write failed, errno says why),
+// closes it; a failure is an InputError naming the path. C stdio rather than a stream: errno then
+// says why a write failed (a full disk, a quota).
+template <typename Write>
+void writeWith(const fs::path& path, const Write& write) {
   std::FILE* file = std::fopen(path.c_str(), "wb");
   if (file == nullptr) {
     throw common::InputError(path.string(), "",
                              std::string("cannot write: ") + std::strerror(errno));
   }
-  const bool written = std::fwrite(content.data(), 1, content.size(), file) == content.size();
+  bool written = false;
+  try {
+    written = write(file);
+  } catch (...) {
+    std::fclose(file);
+    throw;
+  }
   const int write_errno = errno;
   const bool closed = std::fclose(file) == 0;
   if (!written || !closed) {
@@ -30,6 +41,25 @@ void writeFile(const fs::path& path, const std::string& content) {
         path.string(), "",
         std::string("cannot write: ") + std::strerror(!written ? write_errno : errno));
   }
+}
+
+bool writeAll(std::FILE* file, const std::string& text) {
+  return std::fwrite(text.data(), 1, text.size(), file) == text.size();
+}
+
+}  // namespace
+
+void writeFile(const fs::path& path, const std::string& content) {
+  writeWith(path, [&](std::FILE* file) { return writeAll(file, content); });
+}
+
+void writeFileInParts(const fs::path& path, const std::function<std::string()>& next_part) {
+  writeWith(path, [&](std::FILE* file) {
+    for (std::string part = next_part(); !part.empty(); part = next_part()) {
+      if (!writeAll(file, part)) return false;
+    }
+    return true;
+  });
 }
 
 namespace {

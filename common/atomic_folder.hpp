@@ -66,6 +66,10 @@ class AtomicFile {
 
 // One file of such a folder; a failure is an InputError naming it.
 void writeFile(const std::filesystem::path& path, const std::string& content);
+// The same, written part after part as `next_part` gives them (an empty part ends the file): a
+// long text need never stand whole in memory.
+void writeFileInParts(const std::filesystem::path& path,
+                      const std::function<std::string()>& next_part);
 
 // The folder `path` would be written into (its parent, "." for a bare name) exists, or the
 // nearest of its ancestors that exists is a folder this process may write in (the writers make

@@ -9,7 +9,7 @@
 
 namespace isg::common {
 
-std::string toTumText(const Trajectory& trajectory) {
+std::string toTumText(std::span<const StampedPose> trajectory) {
   std::string out;
   out.reserve(trajectory.size() * 100);
   char line[256];

@@ -2,6 +2,7 @@
 
 #include <Eigen/Geometry>
 #include <cstdint>
+#include <span>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -14,7 +15,7 @@ namespace isg::common {
 
 // The text of a TUM file: time with nanoseconds, positions with micrometres, quaternions with 9
 // decimals (qw ≥ 0, so that equal rotations print equally).
-std::string toTumText(const Trajectory& trajectory);
+std::string toTumText(std::span<const StampedPose> trajectory);
 
 // The trajectory as its TUM text carries it: each number rounded as toTumText prints it and read
 // back as parseTum reads it — bit for bit parseTum(toTumText(trajectory)), without the text. A

@@ -15,37 +15,59 @@ double angleDeg(const Eigen::Matrix3d& a, const Eigen::Matrix3d& b) {
   return std::acos(c) * 180.0 / std::numbers::pi;
 }
 
+// The associated pairs and the alignment; each pair's poses, aligned and projected, are made when
+// asked for (`pair`), so that hours of poses are never copied (two copies of a two-hour odometry
+// were ~100 MB).
 struct Prepared {
   Association association;
   std::optional<Similarity> alignment;
-  std::vector<Eigen::Isometry3d> reference, estimate;  // associated, aligned, projected
+  const common::Trajectory* ref = nullptr;
+  const common::Trajectory* est = nullptr;
+  std::optional<Eigen::Isometry3d> placement;  // applied to the estimate's poses first
+  bool project_xy = false;
+
+  Eigen::Isometry3d estimatePose(std::size_t i) const {
+    const Eigen::Isometry3d& pose = (*est)[association.estimate[i]].pose;
+    return placement ? Eigen::Isometry3d(*placement * pose) : pose;
+  }
+
+  std::size_t size() const { return association.reference.size(); }
+  // Pair i as the comparison sees it: reference and estimate, aligned, then projected.
+  std::pair<Eigen::Isometry3d, Eigen::Isometry3d> pair(std::size_t i) const {
+    Eigen::Isometry3d reference = (*ref)[association.reference[i]].pose;
+    Eigen::Isometry3d estimate = estimatePose(i);
+    if (alignment) estimate = alignment->apply(estimate);
+    if (project_xy) {
+      reference = projectXY(reference);
+      estimate = projectXY(estimate);
+    }
+    return {reference, estimate};
+  }
 };
 
 Prepared prepare(const common::Trajectory& ref, const common::Trajectory& est,
-                 const ErrorOptions& options) {
+                 const ErrorOptions& options,
+                 const std::optional<Eigen::Isometry3d>& placement = std::nullopt) {
   Prepared p;
   p.association = associate(ref, est, options.max_diff);
-  const std::size_t n = p.association.reference.size();
+  p.ref = &ref;
+  p.est = &est;
+  p.placement = placement;
+  p.project_xy = options.project_xy;
+  const std::size_t n = p.size();
   if (n == 0) {
     throw std::invalid_argument("no pose of the estimate is within " +
                                 std::to_string(options.max_diff) + " s of a reference pose");
   }
-  for (std::size_t i = 0; i < n; ++i) {
-    p.reference.push_back(ref[p.association.reference[i]].pose);
-    p.estimate.push_back(est[p.association.estimate[i]].pose);
-  }
   if (options.align != Alignment::kNone) {
     std::vector<Eigen::Vector3d> from, to;
+    from.reserve(n);
+    to.reserve(n);
     for (std::size_t i = 0; i < n; ++i) {
-      from.push_back(p.estimate[i].translation());
-      to.push_back(p.reference[i].translation());
+      from.push_back(p.estimatePose(i).translation());
+      to.push_back(ref[p.association.reference[i]].pose.translation());
     }
     p.alignment = umeyama(from, to, options.align == Alignment::kSim3);
-    for (auto& pose : p.estimate) pose = p.alignment->apply(pose);
-  }
-  if (options.project_xy) {
-    for (auto& pose : p.reference) pose = projectXY(pose);
-    for (auto& pose : p.estimate) pose = projectXY(pose);
   }
   return p;
 }
@@ -96,11 +118,20 @@ Eigen::Isometry3d projectXY(const Eigen::Isometry3d& pose) {
 
 ErrorResult absolutePoseError(const common::Trajectory& reference,
                               const common::Trajectory& estimate, const ErrorOptions& options) {
-  Prepared p = prepare(reference, estimate, options);
+  return absolutePoseError(reference, estimate, options, std::nullopt);
+}
+
+ErrorResult absolutePoseError(const common::Trajectory& reference,
+                              const common::Trajectory& estimate, const ErrorOptions& options,
+                              const std::optional<Eigen::Isometry3d>& placement) {
+  Prepared p = prepare(reference, estimate, options, placement);
   std::vector<double> translation, rotation;
-  for (std::size_t i = 0; i < p.reference.size(); ++i) {
-    translation.push_back((p.estimate[i].translation() - p.reference[i].translation()).norm());
-    rotation.push_back(angleDeg(p.reference[i].linear(), p.estimate[i].linear()));
+  translation.reserve(p.size());
+  rotation.reserve(p.size());
+  for (std::size_t i = 0; i < p.size(); ++i) {
+    const auto [ref, est] = p.pair(i);
+    translation.push_back((est.translation() - ref.translation()).norm());
+    rotation.push_back(angleDeg(ref.linear(), est.linear()));
   }
   return finish(std::move(p), std::move(translation), std::move(rotation));
 }
@@ -110,10 +141,12 @@ ErrorResult relativePoseError(const common::Trajectory& reference,
   if (options.rpe_delta < 1) throw std::invalid_argument("RPE delta must be at least 1");
   Prepared p = prepare(reference, estimate, options);
   std::vector<double> translation, rotation;
-  for (std::size_t i = 0; i + options.rpe_delta < p.reference.size(); ++i) {
+  for (std::size_t i = 0; i + options.rpe_delta < p.size(); ++i) {
     const std::size_t j = i + options.rpe_delta;
-    const Eigen::Isometry3d ref = p.reference[i].inverse() * p.reference[j];
-    const Eigen::Isometry3d est = p.estimate[i].inverse() * p.estimate[j];
+    const auto [ref_i, est_i] = p.pair(i);
+    const auto [ref_j, est_j] = p.pair(j);
+    const Eigen::Isometry3d ref = ref_i.inverse() * ref_j;
+    const Eigen::Isometry3d est = est_i.inverse() * est_j;
     const Eigen::Isometry3d error = ref.inverse() * est;
     translation.push_back(error.translation().norm());
     rotation.push_back(angleDeg(Eigen::Matrix3d::Identity(), error.linear()));

@@ -39,6 +39,11 @@ struct ErrorResult {
 // (or too little to align).
 ErrorResult absolutePoseError(const common::Trajectory& reference,
                               const common::Trajectory& estimate, const ErrorOptions& options);
+// The same, with the estimate's poses placed by `placement` first (B_T_M · pose): the odometry
+// judged from the true start without a placed copy of hours of it.
+ErrorResult absolutePoseError(const common::Trajectory& reference,
+                              const common::Trajectory& estimate, const ErrorOptions& options,
+                              const std::optional<Eigen::Isometry3d>& placement);
 
 // Relative pose error over `rpe_delta` associated poses: E = (Rᵢ⁻¹Rⱼ)⁻¹(Eᵢ⁻¹Eⱼ).
 ErrorResult relativePoseError(const common::Trajectory& reference,

@@ -157,14 +157,18 @@ Eigen::Vector2d placeLabel(const RoomLabel& label, const std::vector<Eigen::Vect
   return best_point;
 }
 
+// `placement`, when given, places each pose first (the odometry from the true start).
 void path(std::ostringstream& svg, const Layout& l, TrajectoryView trajectory,
-          const std::string& style) {
+          const std::string& style,
+          const std::optional<Eigen::Isometry3d>& placement = std::nullopt) {
   if (trajectory.empty()) return;
   svg << "<polyline fill=\"none\" " << style << " points=\"";
   // At most ~4000 vertices: enough for the eye, small enough to open quickly.
   const std::size_t step = std::max<std::size_t>(1, trajectory.size() / 4000);
   for (std::size_t i = 0; i < trajectory.size(); i += step) {
-    const auto t = trajectory[i].pose.translation();
+    const Eigen::Vector3d t = placement
+                                  ? Eigen::Vector3d((*placement * trajectory[i].pose).translation())
+                                  : Eigen::Vector3d(trajectory[i].pose.translation());
     svg << l.X(t.x()) << "," << l.Y(t.y()) << " ";
   }
   svg << "\"/>\n";
@@ -184,7 +188,7 @@ void drawMap(std::ostringstream& svg, const ReportInput& input, const Layout& l,
   svg << "</g>\n";
   if (!input.map_points.empty()) {
     // At most ~20000 dots, each a round-capped stroke of no length: one element for all.
-    const std::size_t step = std::max<std::size_t>(1, input.map_points.size() / 20000);
+    const std::size_t step = reportDotStep(input.map_points.size());
     svg << "<path fill=\"none\" stroke=\"" << kMapPointColour
         << "\" stroke-width=\"1.6\" stroke-linecap=\"round\" stroke-opacity=\"0.55\" d=\"";
     for (std::size_t i = 0; i < input.map_points.size(); i += step) {
@@ -192,7 +196,8 @@ void drawMap(std::ostringstream& svg, const ReportInput& input, const Layout& l,
     }
     svg << "\"/>\n";
   }
-  path(svg, l, input.odometry, "stroke=\"#e8a0a0\" stroke-width=\"1.2\" stroke-dasharray=\"4 3\"");
+  path(svg, l, input.odometry, "stroke=\"#e8a0a0\" stroke-width=\"1.2\" stroke-dasharray=\"4 3\"",
+       input.odometry_placement);
   path(svg, l, input.ground_truth, "stroke=\"black\" stroke-width=\"1.5\"");
   const std::string estimate_colour =
       input.estimate_is_localization ? kEstimateColour : kAlignedColour;
@@ -302,9 +307,13 @@ void drawLegend(std::ostringstream& svg, const ReportInput& input, const Layout&
 namespace {
 
 // The poses of a trajectory at heights in [z_min, z_max).
-common::Trajectory between(TrajectoryView trajectory, double z_min, double z_max) {
+// The poses whose height lies in [z_min, z_max), each placed by `placement` first when given.
+common::Trajectory between(TrajectoryView trajectory, double z_min, double z_max,
+                           const std::optional<Eigen::Isometry3d>& placement = std::nullopt) {
   common::Trajectory out;
-  for (const auto& pose : trajectory) {
+  for (const auto& row : trajectory) {
+    const common::StampedPose pose{row.t,
+                                   placement ? Eigen::Isometry3d(*placement * row.pose) : row.pose};
     const double z = pose.pose.translation().z();
     if (z >= z_min && z < z_max) out.push_back(pose);
   }
@@ -328,7 +337,8 @@ void drawStoreys(std::ostringstream& svg, const ReportInput& input, const Layout
     on_storey.labels = storey.labels;
     const common::Trajectory ground_truth = between(input.ground_truth, storey.z_min, storey.z_max);
     const common::Trajectory estimate = between(input.estimate, storey.z_min, storey.z_max);
-    const common::Trajectory odometry = between(input.odometry, storey.z_min, storey.z_max);
+    const common::Trajectory odometry =
+        between(input.odometry, storey.z_min, storey.z_max, input.odometry_placement);
     on_storey.ground_truth = ground_truth;
     on_storey.estimate = estimate;
     on_storey.odometry = odometry;
@@ -346,6 +356,8 @@ void drawStoreys(std::ostringstream& svg, const ReportInput& input, const Layout
 }
 
 }  // namespace
+
+std::size_t reportDotStep(std::size_t points) { return std::max<std::size_t>(1, points / 20000); }
 
 std::string reportSvg(const ReportInput& input) {
   const Layout layout(input);

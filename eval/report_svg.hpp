@@ -60,7 +60,10 @@ struct ReportInput {
   TrajectoryView estimate;  // in B (from the first localized pose on), or aligned: see below
   std::string estimate_label = "estimate in B (once localized)";
   bool estimate_is_localization = true;  // false: an aligned SLAM estimate, drawn in another hue
-  TrajectoryView odometry;  // odometry placed at the true start (dead reckoning), drawn faintly
+  // The odometry, drawn faintly, each pose placed by `odometry_placement` when given (dead
+  // reckoning: its frame M at the true start).
+  TrajectoryView odometry;
+  std::optional<Eigen::Isometry3d> odometry_placement;
   std::string error_title = "APE in B (2D, no alignment)";
   std::vector<std::pair<double, double>> error_over_time;          // (t, metres)
   std::vector<std::pair<double, double>> heading_error_over_time;  // (t, degrees)
@@ -75,5 +78,10 @@ struct ReportInput {
 };
 
 std::string reportSvg(const ReportInput& input);
+
+// The report draws a map of `points` points (a panel's) as every reportDotStep(points)-th of them,
+// at most ~20000 dots. A list already thinned so (fewer than 40000 points) is drawn whole: a long
+// run's millions of map points need not be held to draw them.
+std::size_t reportDotStep(std::size_t points);
 
 }  // namespace isg::eval

@@ -7,17 +7,33 @@
 
 namespace isg::run {
 
+const sensors::ImuSample* LocalizerDriver::nextImu() {
+  if (imu_ == nullptr) return nullptr;
+  while (next_imu_ >= imu_->size()) {
+    if (!imu_more_) return nullptr;
+    imu_chunk_ = imu_more_();
+    if (imu_chunk_.empty()) {
+      imu_more_ = nullptr;
+      return nullptr;
+    }
+    imu_ = &imu_chunk_;
+    next_imu_ = 0;
+  }
+  return &(*imu_)[next_imu_];
+}
+
 void LocalizerDriver::pushOdometryUntil(double t) {
   for (;;) {
     const bool odometry = next_odometry_ < odometry_.size() && odometry_[next_odometry_].t <= t;
-    const bool imu = imu_ && next_imu_ < imu_->size() && (*imu_)[next_imu_].t <= t;
+    const sensors::ImuSample* sample = nextImu();
+    const bool imu = sample != nullptr && sample->t <= t;
     if (!odometry && !imu) return;
     // The earlier first; odometry before an IMU sample of the same instant.
-    if (odometry && (!imu || odometry_[next_odometry_].t <= (*imu_)[next_imu_].t)) {
+    if (odometry && (!imu || odometry_[next_odometry_].t <= sample->t)) {
       localizer_.pushOdometry({odometry_[next_odometry_].t, odometry_[next_odometry_].pose});
       ++next_odometry_;
     } else {
-      localizer_.pushImu((*imu_)[next_imu_]);
+      localizer_.pushImu(*sample);
       ++next_imu_;
     }
   }
@@ -59,8 +75,9 @@ RunRecord runLocalizer(RunSetup setup, slam::Localizer& localizer, sensors::Sens
   record.setup = std::move(setup);
   record.streams = std::move(streams);
   const sensors::SensorStreams& s = record.streams;
-  LocalizerDriver driver(localizer, s.odometry, s.scan_period, &s.imu);
+  LocalizerDriver driver(localizer, s.odometry, s.scan_period, &s.imu, s.imu_more);
   const int total = int(s.scan_stamps.size());
+  driver.reserve(std::size_t(total));
   int read = 0;
   using Clock = std::chrono::steady_clock;
   Clock::duration in_localizer{}, waiting{};
@@ -92,9 +109,11 @@ RunRecord runLocalizer(RunSetup setup, slam::Localizer& localizer, sensors::Sens
     if (observer) observer(wanted ? &scan : nullptr, localizer, driver);
     if (progress) progress(k + 1, total, localizer);
   }
-  record.streams.imu = {};  // fed: nothing after the loop reads it (RunRecord::streams)
-  record.estimate_map = driver.estimateMap();
-  record.estimate = driver.estimate();
+  // Fed: nothing after the loop reads it (RunRecord::streams).
+  record.streams.imu = {};
+  record.streams.imu_more = nullptr;
+  record.estimate_map = driver.takeEstimateMap();
+  record.estimate = driver.takeEstimate();
   record.localized_at = driver.localizedAt();
   record.scans = total;
   record.scans_read = read;

@@ -2,6 +2,7 @@
 
 #include <functional>
 #include <optional>
+#include <utility>
 
 #include "run/run_record.hpp"
 #include "sensors/scan_source.hpp"
@@ -15,9 +16,16 @@ namespace isg::run {
 // localizer says.
 class LocalizerDriver {
  public:
+  // `imu`: the IMU's samples (none: no IMU); `imu_more`, when set, gives the ones after them, a
+  // chunk at a time (sensors::SensorStreams::imu_more).
   LocalizerDriver(slam::Localizer& localizer, const Trajectory& odometry, double scan_period,
-                  const std::vector<sensors::ImuSample>* imu = nullptr)
-      : localizer_(localizer), odometry_(odometry), imu_(imu), scan_period_(scan_period) {}
+                  const std::vector<sensors::ImuSample>* imu = nullptr,
+                  std::function<std::vector<sensors::ImuSample>()> imu_more = {})
+      : localizer_(localizer),
+        odometry_(odometry),
+        imu_(imu),
+        imu_more_(std::move(imu_more)),
+        scan_period_(scan_period) {}
 
   // Pushes the odometry up to the end of the turn starting at `stamp` and says whether the
   // localizer will read that scan (Localizer::wantsScan). Either feed or skip follows.
@@ -27,20 +35,33 @@ class LocalizerDriver {
   // would, without the scan.
   void skip(double stamp);
 
+  // Room for the estimates of `scans` scans (at most one pose each): hours of them, without a
+  // vector's growth slack.
+  void reserve(std::size_t scans) {
+    estimate_map_.reserve(scans);
+    estimate_.reserve(scans);
+  }
+
   // The pose in M after each scan (stamped at the latest odometry), and in B once localized.
   const Trajectory& estimateMap() const { return estimate_map_; }
   const Trajectory& estimate() const { return estimate_; }
   std::optional<double> localizedAt() const { return localized_at_; }
+  // The estimates moved out, once the run is over (a copy would hold them twice).
+  Trajectory takeEstimateMap() { return std::move(estimate_map_); }
+  Trajectory takeEstimate() { return std::move(estimate_); }
   // The localizer's last word on where its map lies in the plan.
   const std::optional<Eigen::Isometry3d>& mapInPlan() const { return B_T_M_; }
 
  private:
   void pushOdometryUntil(double t);
   void record();
+  const sensors::ImuSample* nextImu();  // the next IMU sample not yet pushed; null: none left
 
   slam::Localizer& localizer_;
   const Trajectory& odometry_;
   const std::vector<sensors::ImuSample>* imu_;  // none: no IMU
+  std::function<std::vector<sensors::ImuSample>()> imu_more_;
+  std::vector<sensors::ImuSample> imu_chunk_;  // the latest chunk imu_more_ gave
   double scan_period_;
   std::size_t next_odometry_ = 0, next_imu_ = 0;
   Trajectory estimate_map_, estimate_;

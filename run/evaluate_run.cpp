@@ -18,15 +18,6 @@ namespace isg::run {
 
 namespace {
 
-// Odometry with its frame M placed at the true start pose: dead reckoning.
-Trajectory odometryInPlan(const sensors::SensorStreams& streams) {
-  Trajectory out;
-  if (streams.ground_truth.empty() || streams.odometry.empty()) return out;
-  const Eigen::Isometry3d B_T_M = sensors::trueStartB_T_M(streams);
-  for (const auto& p : streams.odometry) out.push_back({p.t, B_T_M * p.pose});
-  return out;
-}
-
 // How far the robot walked (2D, along the ground truth) until `until`, and how many plan rooms
 // of the level it had stood in by then.
 std::pair<double, int> walkedUntil(const Trajectory& truth, double until, const bim::AGraph* plan,
@@ -184,14 +175,16 @@ RunEvaluation evaluateRun(const RunRecord& run) {
     m.levels = levelMetrics(*run.setup.agraph, streams.ground_truth, run.estimate,
                             evaluation.error_over_time);
   }
-  evaluation.dead_reckoning = odometryInPlan(streams);
-  if (!evaluation.dead_reckoning.empty()) {
+  // Dead reckoning: the odometry with its frame M placed at the true start pose.
+  if (has_truth && !streams.odometry.empty()) {
+    evaluation.dead_reckoning_B_T_M = sensors::trueStartB_T_M(streams);
     eval::ErrorOptions planar;
     planar.align = eval::Alignment::kNone;
     planar.project_xy = true;
     attempt(m, "APE of the odometry", [&] {
       m.ape_odometry_from_true_start =
-          eval::absolutePoseError(streams.ground_truth, evaluation.dead_reckoning, planar)
+          eval::absolutePoseError(streams.ground_truth, streams.odometry, planar,
+                                  evaluation.dead_reckoning_B_T_M)
               .translation_stats;
     });
   }

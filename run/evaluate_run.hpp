@@ -15,8 +15,11 @@ namespace isg::run {
 // comparison, speed, and the method's search log.
 struct RunEvaluation {
   RunMetrics metrics;
-  Trajectory dead_reckoning;                               // odometry from the true start, in B
-  std::vector<std::pair<double, double>> error_over_time;  // (t, APE in B, metres)
+  // Dead reckoning (odometry from the true start): the run's odometry placed in B by this, when
+  // there are odometry and ground truth. A placement, not a placed copy: hours of odometry are
+  // ~50 MB.
+  std::optional<Eigen::Isometry3d> dead_reckoning_B_T_M;
+  std::vector<std::pair<double, double>> error_over_time;          // (t, APE in B, metres)
   std::vector<std::pair<double, double>> heading_error_over_time;  // (t, degrees)
   // The map-frame estimate SE(3)-aligned to the ground truth, and its errors over time: what a
   // method that never localizes in B (s-graph) is judged and drawn by.

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <functional>
+#include <utility>
 
 #include "bim/polygon.hpp"
 #include "common/pose_interpolation.hpp"
@@ -126,14 +127,19 @@ void forEachPlacedMapPoint(const RunRecord& run,
   }
 }
 
+void forEachWallBandMapPoint(const RunRecord& run, const MapPlanErrorOptions& options,
+                             const std::function<void(const Eigen::Vector3d&)>& visit) {
+  if (!run.setup.agraph) return;
+  const SegmentGrid grid(*run.setup.agraph, options.cutoff, options.margin);
+  forEachPlacedMapPoint(run, [&](const Eigen::Vector3d& p) {
+    if (grid.inBand(p.z())) visit(p);
+  });
+}
+
 std::vector<Eigen::Vector3d> wallBandMapPoints(const RunRecord& run,
                                                const MapPlanErrorOptions& options) {
   std::vector<Eigen::Vector3d> out;
-  if (!run.setup.agraph) return out;
-  const SegmentGrid grid(*run.setup.agraph, options.cutoff, options.margin);
-  forEachPlacedMapPoint(run, [&](const Eigen::Vector3d& p) {
-    if (grid.inBand(p.z())) out.push_back(p);
-  });
+  forEachWallBandMapPoint(run, options, [&](const Eigen::Vector3d& p) { out.push_back(p); });
   return out;
 }
 
@@ -150,7 +156,7 @@ std::optional<MapPlanError> mapPlanError(const RunRecord& run, const MapPlanErro
   });
   if (out.points == 0) return std::nullopt;
   out.near_share = double(distances.size()) / double(out.points);
-  if (!distances.empty()) out.distance = eval::statistics(distances);
+  if (!distances.empty()) out.distance = eval::statistics(std::move(distances));
   return out;
 }
 

@@ -41,6 +41,9 @@ void forEachPlacedMapPoint(const RunRecord& run,
 // ceiling): the map's walls, as the report draws them.
 std::vector<Eigen::Vector3d> wallBandMapPoints(const RunRecord& run,
                                                const MapPlanErrorOptions& options = {});
+// The same, one point at a time, none kept.
+void forEachWallBandMapPoint(const RunRecord& run, const MapPlanErrorOptions& options,
+                             const std::function<void(const Eigen::Vector3d&)>& visit);
 
 // nullopt when the run has no plan, never placed its map in it, or kept no scan.
 std::optional<MapPlanError> mapPlanError(const RunRecord& run,

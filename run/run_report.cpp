@@ -135,6 +135,28 @@ std::string mapToPlanLine(const RunMetrics::MapToPlan& map) {
       map.distance.rmse, 100.0 * map.near_share, static_cast<long long>(map.points), map.cutoff);
 }
 
+// The map's wall-band points placed in B, only the ones the report draws: counted first, then
+// every reportDotStep-th of each panel's kept (each storey's, or the one map's). The same dots as
+// drawing from all of them, without holding a long run's millions of points.
+std::vector<Eigen::Vector3d> drawnMapPoints(const RunRecord& run,
+                                            const std::vector<eval::StoreyPanel>& storeys) {
+  auto panelOf = [&](const Eigen::Vector3d& p) {
+    for (std::size_t k = 0; k < storeys.size(); ++k) {
+      if (p.z() >= storeys[k].z_min && p.z() < storeys[k].z_max) return k;
+    }
+    return storeys.empty() ? std::size_t(0) : storeys.size();  // on no panel: never drawn
+  };
+  std::vector<std::size_t> count(std::max<std::size_t>(1, storeys.size()) + 1, 0);
+  forEachWallBandMapPoint(run, {}, [&](const Eigen::Vector3d& p) { ++count[panelOf(p)]; });
+  std::vector<std::size_t> seen(count.size(), 0);
+  std::vector<Eigen::Vector3d> out;
+  forEachWallBandMapPoint(run, {}, [&](const Eigen::Vector3d& p) {
+    const std::size_t k = panelOf(p);
+    if (k + 1 < count.size() && seen[k]++ % eval::reportDotStep(count[k]) == 0) out.push_back(p);
+  });
+  return out;
+}
+
 }  // namespace
 
 std::string reportSvg(const RunRecord& run, const RunEvaluation& evaluation) {
@@ -158,7 +180,6 @@ std::string reportSvg(const RunRecord& run, const RunEvaluation& evaluation) {
                                    *m.time_wrongly_localized, *m.max_error_B));
   }
   if (m.map_to_plan) input.summary.push_back(mapToPlanLine(*m.map_to_plan));
-  input.map_points = wallBandMapPoints(run);
   if (run.streams.ground_truth.empty()) input.empty_chart_text = "no ground truth: no APE";
   if (m.ape_odometry_from_true_start) {
     input.summary.push_back(
@@ -192,8 +213,12 @@ std::string reportSvg(const RunRecord& run, const RunEvaluation& evaluation) {
       input.labels = std::move(panel.labels);
     }
   }
+  input.map_points = drawnMapPoints(run, input.storeys);
   input.ground_truth = run.streams.ground_truth;
-  input.odometry = evaluation.dead_reckoning;
+  if (evaluation.dead_reckoning_B_T_M) {
+    input.odometry = run.streams.odometry;
+    input.odometry_placement = evaluation.dead_reckoning_B_T_M;
+  }
   input.localized_at = run.localized_at;
   const MethodInfo* method = builtinMethods().find(run.setup.method);
   if (method != nullptr && method->slam_only && !evaluation.aligned_map_estimate.empty()) {

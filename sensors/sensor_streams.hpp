@@ -1,6 +1,7 @@
 #pragma once
 
 #include <Eigen/Geometry>
+#include <functional>
 #include <vector>
 
 #include "common/trajectory.hpp"
@@ -23,6 +24,9 @@ struct SensorStreams {
   // The IMU, in its frame I, and its mount: a replayed dataset's imu.csv, or the live
   // simulation's stream with the same digits.
   std::vector<sensors::ImuSample> imu;
+  // When set, the IMU is made as the run reads it (the live simulation: hours of it are ~80 MB):
+  // `imu` holds its first samples, and each call gives the next ones, none once it is over.
+  std::function<std::vector<sensors::ImuSample>()> imu_more;
   Eigen::Isometry3d R_T_I = Eigen::Isometry3d::Identity();
 };
 

@@ -1,10 +1,9 @@
 #include "sim/imu_simulator.hpp"
 
+#include <algorithm>
 #include <cmath>
-#include <random>
 
 #include "sensors/mount_transform.hpp"
-#include "sim/fast_random.hpp"
 
 namespace isg::sim {
 
@@ -27,31 +26,42 @@ ImuSample idealImuSample(const BaseMotion& trajectory, const Eigen::Isometry3d& 
 
 std::vector<ImuSample> simulateImu(const BaseMotion& trajectory, const bim::ImuConfig& config,
                                    double duration, std::uint64_t seed) {
-  const Eigen::Isometry3d R_T_I = sensors::mountTransform(config.mount);
-  const double dt = 1.0 / config.rate_hz;
-  const int n = int(std::floor(duration * config.rate_hz + 1e-9));
-  const double gyro_white = config.gyroscope_noise_density / std::sqrt(dt);
-  const double accel_white = config.accelerometer_noise_density / std::sqrt(dt);
-  const double gyro_step = config.gyroscope_random_walk * std::sqrt(dt);
-  const double accel_step = config.accelerometer_random_walk * std::sqrt(dt);
-  Xoshiro256 rng(seed);
-  std::normal_distribution<double> normal;
-  auto draw = [&] {
-    Eigen::Vector3d v;  // one draw after another: argument order would be unspecified
-    for (int axis = 0; axis < 3; ++axis) v[axis] = normal(rng);
-    return v;
-  };
-  Eigen::Vector3d gyro_bias = Eigen::Vector3d::Zero(), accel_bias = Eigen::Vector3d::Zero();
+  ImuStream stream(trajectory, config, duration, seed);
+  return stream.next(stream.size());
+}
+
+ImuStream::ImuStream(const BaseMotion& trajectory, const bim::ImuConfig& config, double duration,
+                     std::uint64_t seed)
+    : trajectory_(trajectory),
+      R_T_I_(sensors::mountTransform(config.mount)),
+      gravity_(config.gravity),
+      dt_(1.0 / config.rate_hz),
+      gyro_white_(config.gyroscope_noise_density / std::sqrt(dt_)),
+      accel_white_(config.accelerometer_noise_density / std::sqrt(dt_)),
+      gyro_step_(config.gyroscope_random_walk * std::sqrt(dt_)),
+      accel_step_(config.accelerometer_random_walk * std::sqrt(dt_)),
+      last_(int(std::floor(duration * config.rate_hz + 1e-9))),
+      rng_(seed) {}
+
+Eigen::Vector3d ImuStream::draw() {
+  Eigen::Vector3d v;  // one draw after another: argument order would be unspecified
+  for (int axis = 0; axis < 3; ++axis) v[axis] = normal_(rng_);
+  return v;
+}
+
+std::vector<ImuSample> ImuStream::next(std::size_t count) {
   std::vector<ImuSample> samples;
-  samples.reserve(std::size_t(n) + 1);
-  for (int i = 0; i <= n; ++i) {
-    ImuSample s = idealImuSample(trajectory, R_T_I, config.gravity, i * dt);
+  const int end = int(std::min<std::size_t>(std::size_t(last_ + 1), std::size_t(next_) + count));
+  if (end <= next_) return samples;
+  samples.reserve(std::size_t(end - next_));
+  for (; next_ < end; ++next_) {
+    ImuSample s = idealImuSample(trajectory_, R_T_I_, gravity_, next_ * dt_);
     // The draws in a fixed order (gyroscope, accelerometer, then the two bias steps), so the
     // stream depends on the seed alone.
-    s.gyroscope += gyro_bias + gyro_white * draw();
-    s.accelerometer += accel_bias + accel_white * draw();
-    gyro_bias += gyro_step * draw();
-    accel_bias += accel_step * draw();
+    s.gyroscope += gyro_bias_ + gyro_white_ * draw();
+    s.accelerometer += accel_bias_ + accel_white_ * draw();
+    gyro_bias_ += gyro_step_ * draw();
+    accel_bias_ += accel_step_ * draw();
     samples.push_back(s);
   }
   return samples;

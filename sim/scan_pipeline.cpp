@@ -7,8 +7,25 @@
 
 namespace isg::sim {
 
+namespace {
+
+// The IMU as imu.csv holds it: through its text, the one definition of its digits; a chunk at a
+// time, read back over the samples, so that hours of them never stand as one text or twice.
+void throughImuText(std::vector<sensors::ImuSample>& imu) {
+  constexpr std::size_t kChunk = 8192;
+  for (std::size_t begin = 0; begin < imu.size(); begin += kChunk) {
+    const auto first = imu.begin() + std::ptrdiff_t(begin);
+    const auto last = imu.begin() + std::ptrdiff_t(std::min(imu.size(), begin + kChunk));
+    const auto read = formats::parseImuText(
+        formats::dataset::imuText(std::vector<sensors::ImuSample>(first, last)), "imu.csv");
+    std::copy(read.begin(), read.end(), first);
+  }
+}
+
+}  // namespace
+
 sensors::SensorStreams sensorStreams(const Simulation& simulation, double duration,
-                                     double groundtruth_rate) {
+                                     double groundtruth_rate, ImuDelivery imu_delivery) {
   const double d = duration < 0 ? simulation.duration() : std::min(duration, simulation.duration());
   sensors::SensorStreams streams;
   streams.duration = d;
@@ -18,18 +35,20 @@ sensors::SensorStreams sensorStreams(const Simulation& simulation, double durati
   streams.scan_period = simulation.scanPeriod();
   streams.R_T_L = simulation.R_T_L();
   sensors::quantiseStreams(streams);  // as the dataset's TUM files will hold them
-  // The IMU as imu.csv holds it: through its text, the one definition of its digits; a chunk at a
-  // time, read back over the samples, so that hours of them never stand as one text or twice.
-  std::vector<sensors::ImuSample> imu = simulation.imu(d);
-  constexpr std::size_t kChunk = 8192;
-  for (std::size_t begin = 0; begin < imu.size(); begin += kChunk) {
-    const auto first = imu.begin() + std::ptrdiff_t(begin);
-    const auto last = imu.begin() + std::ptrdiff_t(std::min(imu.size(), begin + kChunk));
-    const auto read = formats::parseImuText(
-        formats::dataset::imuText(std::vector<sensors::ImuSample>(first, last)), "imu.csv");
-    std::copy(read.begin(), read.end(), first);
+  if (imu_delivery == ImuDelivery::kWhole) {
+    streams.imu = simulation.imu(d);
+    throughImuText(streams.imu);
+  } else {
+    // A minute at a time (12000 samples at 200 Hz): the same samples, never all at once.
+    constexpr std::size_t kChunk = 12000;
+    auto stream = std::make_shared<ImuStream>(simulation.imuStream(d));
+    streams.imu_more = [stream] {
+      std::vector<sensors::ImuSample> chunk = stream->next(kChunk);
+      throughImuText(chunk);
+      return chunk;
+    };
+    streams.imu = streams.imu_more();
   }
-  streams.imu = std::move(imu);
   streams.R_T_I = simulation.R_T_I();
   return streams;
 }

@@ -20,8 +20,12 @@ namespace isg::sim {
 // route, and never more): ground truth at `groundtruth_rate`, odometry (none for a handheld
 // carrier), scan stamps, the LiDAR mount, the IMU and its mount; quantised as a dataset stores them
 // (sensors::quantiseStreams), so that a recorded dataset replays to the very same result.
+// The IMU whole in `imu`, or made as the run reads it (`imu_more`: the live run, where hours of
+// it need not stand in memory); the samples are the same either way.
+enum class ImuDelivery { kWhole, kAsTheRunGoes };
 sensors::SensorStreams sensorStreams(const Simulation& simulation, double duration,
-                                     double groundtruth_rate = 100.0);
+                                     double groundtruth_rate = 100.0,
+                                     ImuDelivery imu_delivery = ImuDelivery::kWhole);
 
 // The live loop's ScanSource: scans made when they are needed, by the calling thread and
 // `workers` more (0: the caller alone). Two ways, chosen by what the localizer has been doing:

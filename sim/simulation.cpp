@@ -153,6 +153,11 @@ std::vector<ImuSample> Simulation::imu(double duration) const {
                      deriveSeed(scenario_.seed, kImuStream, 0));
 }
 
+ImuStream Simulation::imuStream(double duration) const {
+  return ImuStream(*base_motion_, scenario_.imu, duration,
+                   deriveSeed(scenario_.seed, kImuStream, 0));
+}
+
 common::Trajectory Simulation::scanPoses(double duration) const {
   common::Trajectory out;
   for (int k = 0; k < scanCount(duration); ++k) {

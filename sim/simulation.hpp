@@ -57,7 +57,9 @@ class Simulation {
   // M_T_R at odometry.rate_hz; none for a handheld carrier.
   common::Trajectory odometry(double duration) const;
   common::Trajectory scanPoses(double duration) const;  // B_T_L at each scan's stamp
-  std::vector<ImuSample> imu(double duration) const;    // the IMU stream (scenario imu)
+  std::vector<ImuSample> imu(double duration) const;
+  ImuStream imuStream(
+      double duration) const;  // the same, a chunk at a time    // the IMU stream (scenario imu)
   // The IMU on the base (scenario imu.mount).
   const Eigen::Isometry3d& R_T_I() const { return R_T_I_; }
 

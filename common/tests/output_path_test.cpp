@@ -7,6 +7,8 @@
 
 #include <filesystem>
 #include <fstream>
+#include <iterator>
+#include <string>
 
 #include "common/atomic_folder.hpp"
 #include "common/input_error.hpp"
@@ -182,6 +184,31 @@ TEST_F(OutputPath, MissingFoldersAreMadeOnlyForAWriteThatSucceeds) {
     ADD_FAILURE() << "accepted";
   } catch (const InputError& e) {
     EXPECT_EQ(e.reason(), "cannot write: file is not a directory");
+  }
+}
+
+TEST_F(OutputPath, AFileWrittenInPartsIsThePartsInOrder) {
+  // A run's long TUM files are written 8192 poses at a time: the file is the parts, in order.
+  int given = 0;
+  writeFileInParts("parts.txt", [&] { return given < 3 ? std::to_string(given++) + "\n" : ""; });
+  std::ifstream in("parts.txt");
+  const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  EXPECT_EQ(text, "0\n1\n2\n");
+  writeFileInParts("empty.txt", [] { return std::string(); });
+  EXPECT_TRUE(fs::exists("empty.txt"));
+  EXPECT_EQ(fs::file_size("empty.txt"), 0u);
+  // A write that fails names the file and says why.
+  if (fs::exists("/dev/full")) {
+    try {
+      writeFileInParts("/dev/full", [n = 0]() mutable {
+        return n++ < 1000 ? std::string(1 << 16, 'x') : std::string();
+      });
+      ADD_FAILURE() << "a full device took the file";
+    } catch (const InputError& e) {
+      EXPECT_NE(std::string(e.what()).find("/dev/full"), std::string::npos) << e.what();
+      EXPECT_NE(std::string(e.what()).find("No space left on device"), std::string::npos)
+          << e.what();
+    }
   }
 }
 

@@ -62,7 +62,7 @@ TEST(Tum, QuantisedIsTheTextRoundTripBitForBit) {
   }
   // One file per pose: the stamps are in no order, and a TUM file must be.
   Trajectory text;
-  for (const auto& p : t) text.push_back(parseTum(toTumText({p}), "x.tum").front());
+  for (const auto& p : t) text.push_back(parseTum(toTumText(Trajectory{p}), "x.tum").front());
   const Trajectory numbers = quantised(t);
   ASSERT_EQ(numbers.size(), text.size());
   int differing = 0;

@@ -127,6 +127,29 @@ TEST(Ape, AlignmentRemovesAnUnknownFrame) {
   EXPECT_LT(aligned.rotation_stats.max, 1e-6);
 }
 
+TEST(Ape, APlacementIsTheSameAsAPlacedCopy) {
+  // Dead reckoning judged from the true start: the odometry placed by B_T_M as it is compared,
+  // the same numbers as comparing a placed copy of it.
+  common::Trajectory ref, odometry, placed;
+  Eigen::Isometry3d B_T_M = Eigen::Isometry3d::Identity();
+  B_T_M.linear() = Eigen::AngleAxisd(0.7, Eigen::Vector3d::UnitZ()).toRotationMatrix();
+  B_T_M.translation() = Eigen::Vector3d(4, -2, 0.5);
+  for (int i = 0; i < 20; ++i) {
+    ref.push_back(pose(i * 0.1, 0.3 * i, std::sin(i * 0.3), 0.0, 0.1 * i));
+    odometry.push_back(pose(i * 0.1, 0.31 * i, 0.1 * i, 0.01 * i, 0.12 * i));
+    placed.push_back({odometry.back().t, B_T_M * odometry.back().pose});
+  }
+  ErrorOptions xy;
+  xy.project_xy = true;
+  const ErrorResult copy = absolutePoseError(ref, placed, xy);
+  const ErrorResult in_place = absolutePoseError(ref, odometry, xy, B_T_M);
+  EXPECT_EQ(in_place.translation, copy.translation);
+  EXPECT_EQ(in_place.rotation_deg, copy.rotation_deg);
+  EXPECT_GT(in_place.translation_stats.rmse, 1.0);  // the placement counts: far from the start
+  EXPECT_EQ(absolutePoseError(ref, odometry, xy, std::nullopt).translation,
+            absolutePoseError(ref, odometry, xy).translation);
+}
+
 TEST(Rpe, ConstantOffsetHasNoRelativeError) {
   common::Trajectory ref, est;
   for (int i = 0; i < 10; ++i) {

@@ -82,5 +82,25 @@ TEST(ReportSvg, AnAlignedSlamEstimateIsNotCalledALocalization) {
   EXPECT_THAT(svg, Not(HasSubstr(">localized</text>")));
 }
 
+TEST(ReportSvg, AMapThinnedAsTheReportThinsItIsDrawnTheSame) {
+  // A long run's map is millions of points; the run keeps only every reportDotStep-th of them,
+  // and the picture must be the one drawn from them all, for every count of points.
+  const common::Trajectory path = straight(0.0, 10.0, 5.0);
+  for (const std::size_t n : {std::size_t(15000), std::size_t(39999), std::size_t(40000),
+                              std::size_t(123457), std::size_t(1000003)}) {
+    ReportInput all, thinned;
+    all.walls = thinned.walls = {{{0, 0}, {10, 0}, {10, 10}, {0, 10}}};
+    all.ground_truth = thinned.ground_truth = path;
+    const std::size_t step = reportDotStep(n);
+    for (std::size_t i = 0; i < n; ++i) {
+      const Eigen::Vector3d p(double(i % 997) / 99.7, double(i % 991) / 99.1, 1.0);
+      all.map_points.push_back(p);
+      if (i % step == 0) thinned.map_points.push_back(p);
+    }
+    EXPECT_LT(thinned.map_points.size(), 40000u) << n;
+    EXPECT_EQ(reportSvg(thinned), reportSvg(all)) << n;
+  }
+}
+
 }  // namespace
 }  // namespace isg::eval

@@ -261,5 +261,29 @@ TEST(Imu, SameSeedSameBytes) {
   EXPECT_EQ(a.substr(0, a.find('\n')), "t,ax,ay,az,gx,gy,gz");
 }
 
+TEST(Imu, MadeAChunkAtATimeItIsTheWholeStreamBitForBit) {
+  GaitConfig gait;
+  const BaseMotion t({{0, 0}, {2, 0}, {2, 2}}, 0.0, 0.5, 0.0, gait);
+  bim::ImuConfig config;  // noisy: the normal draws carry over from one chunk to the next
+  const std::vector<ImuSample> whole = simulateImu(t, config, t.duration(), 5);
+  ImuStream stream(t, config, t.duration(), 5);
+  ASSERT_EQ(stream.size(), whole.size());
+  std::vector<ImuSample> chunked;
+  // Odd sizes, one of a single sample: a chunk may end between the two halves of a normal pair.
+  for (const std::size_t count : {std::size_t(1), std::size_t(7), std::size_t(1000)}) {
+    const auto chunk = stream.next(count);
+    EXPECT_EQ(chunk.size(), count);
+    chunked.insert(chunked.end(), chunk.begin(), chunk.end());
+  }
+  for (std::vector<ImuSample> chunk; !(chunk = stream.next(333)).empty();) {
+    chunked.insert(chunked.end(), chunk.begin(), chunk.end());
+  }
+  EXPECT_TRUE(stream.next(10).empty());
+  EXPECT_EQ(formats::dataset::imuText(chunked), formats::dataset::imuText(whole));
+  ASSERT_EQ(chunked.size(), whole.size());
+  EXPECT_EQ(chunked.back().accelerometer, whole.back().accelerometer);  // bit for bit
+  EXPECT_EQ(chunked.back().gyroscope, whole.back().gyroscope);
+}
+
 }  // namespace
 }  // namespace isg::sim
