@@ -264,12 +264,12 @@ TEST(Imu, SameSeedSameBytes) {
 TEST(Imu, MadeAChunkAtATimeItIsTheWholeStreamBitForBit) {
   GaitConfig gait;
   const BaseMotion t({{0, 0}, {2, 0}, {2, 2}}, 0.0, 0.5, 0.0, gait);
-  bim::ImuConfig config;  // noisy: the normal draws carry over from one chunk to the next
+  bim::ImuConfig config;  // noisy: the generator and the biases carry over from chunk to chunk
   const std::vector<ImuSample> whole = simulateImu(t, config, t.duration(), 5);
   ImuStream stream(t, config, t.duration(), 5);
   ASSERT_EQ(stream.size(), whole.size());
   std::vector<ImuSample> chunked;
-  // Odd sizes, one of a single sample: a chunk may end between the two halves of a normal pair.
+  // Odd sizes, one of a single sample, then the rest in chunks that do not divide it.
   for (const std::size_t count : {std::size_t(1), std::size_t(7), std::size_t(1000)}) {
     const auto chunk = stream.next(count);
     EXPECT_EQ(chunk.size(), count);
