@@ -292,7 +292,7 @@ int GraphMatcher::matchPlane(const MatchPlane& plane, const Placement& placed, d
   const Eigen::Vector2d middle = 0.5 * (a + b);
   const Cell* cell = cellAt(middle);
   if (!cell) return -1;
-  const double yaw = yawOfNormal(plane.plane) + placed.yaw();
+  const double yaw = plane.normalYaw() + placed.yaw();
   const double angle_tolerance = options_.plane_angle_deg * std::numbers::pi / 180.0;
   int best = -1;
   double best_distance = 1e300;
@@ -319,7 +319,7 @@ bool GraphMatcher::nearAsBuiltOff(const MatchPlane& plane, const Placement& plac
   // long; then it counts as unexplained, as before.
   const Cell* cell = cellAt(0.5 * (a + b));
   if (!cell) return false;
-  const double yaw = yawOfNormal(plane.plane) + placed.yaw();
+  const double yaw = plane.normalYaw() + placed.yaw();
   const double angle_tolerance = options_.deviation_angle_deg * std::numbers::pi / 180.0;
   for (int i : cell->surfaces) {
     const auto& s = graph_->surfaces[i];
@@ -354,7 +354,7 @@ GraphMatcher::Reach GraphMatcher::reachOf(int surface, const Eigen::Vector2d& a,
 bool GraphMatcher::planeAgrees(const MatchPlane& plane, int surface, const Placement& placed,
                                double angle_deg, double distance) const {
   const auto& s = graph_->surfaces[surface];
-  const double yaw = yawOfNormal(plane.plane) + placed.yaw();
+  const double yaw = plane.normalYaw() + placed.yaw();
   if (std::abs(common::wrapAngle(yaw - surface_yaw_[surface])) >
       angle_deg * std::numbers::pi / 180.0) {
     return false;
@@ -364,6 +364,11 @@ bool GraphMatcher::planeAgrees(const MatchPlane& plane, int surface, const Place
 }
 
 Verification GraphMatcher::verify(const MatchInput& input, const Eigen::Vector3d& x_y_yaw) const {
+  return verify(input, x_y_yaw, true);
+}
+
+Verification GraphMatcher::verify(const MatchInput& input, const Eigen::Vector3d& x_y_yaw,
+                                  bool built_off) const {
   Verification v;
   v.x_y_yaw = x_y_yaw;
   const Placement placed(x_y_yaw);
@@ -379,7 +384,7 @@ Verification GraphMatcher::verify(const MatchInput& input, const Eigen::Vector3d
     const int s = matchPlane(plane, placed, &overlap, &distance);
     if (s < 0) {
       v.unexplained_length += plane.length();
-      if (nearAsBuiltOff(plane, placed)) v.built_off_length += plane.length();
+      if (built_off && nearAsBuiltOff(plane, placed)) v.built_off_length += plane.length();
       continue;
     }
     v.planes.emplace_back(plane.id, s);
@@ -539,7 +544,7 @@ MatchResult GraphMatcher::evaluate(const MatchInput& input,
   // 2. Each checked against the whole S-Graph.
   std::vector<Verification> verified;
   verified.reserve(hypotheses.size());
-  for (const auto& h : hypotheses) verified.push_back(verify(input, h));
+  for (const auto& h : hypotheses) verified.push_back(verify(input, h, false));
   std::sort(verified.begin(), verified.end(),
             [](const Verification& a, const Verification& b) { return a.score > b.score; });
   // 3. Clusters: the same answer proposed by several seeds. Two transforms are the same answer
@@ -586,8 +591,9 @@ MatchResult GraphMatcher::evaluate(const MatchInput& input,
   std::vector<Verification> finalists;
   for (std::size_t i = 0; i < representatives.size() && int(i) < options_.finalists; ++i) {
     Verification refined = verify(input, refine(input, *representatives[i]));
-    finalists.push_back(consensus(
-        input, refined.score >= representatives[i]->score ? refined : *representatives[i]));
+    finalists.push_back(consensus(input, refined.score >= representatives[i]->score
+                                             ? refined
+                                             : verify(input, representatives[i]->x_y_yaw)));
   }
   std::sort(finalists.begin(), finalists.end(),
             [](const Verification& a, const Verification& b) { return a.score > b.score; });
@@ -599,7 +605,7 @@ MatchResult GraphMatcher::evaluate(const MatchInput& input,
     result.candidates.push_back({finalists[i], {}});
   }
   if (result.candidates.empty() && representatives.size() > finalists.size()) {
-    result.candidates.push_back({*representatives[finalists.size()], {}});
+    result.candidates.push_back({verify(input, representatives[finalists.size()]->x_y_yaw), {}});
   }
   decide(input, result);
   return result;

@@ -2,6 +2,8 @@
 
 #include <Eigen/Geometry>
 #include <array>
+#include <cmath>
+#include <limits>
 #include <nlohmann/json.hpp>
 #include <optional>
 #include <set>
@@ -40,7 +42,14 @@ struct MatchPlane {
   int id = -1;       // the S-Graph's plane index
   bim::Plane plane;  // in M; normal towards the space it was seen from
   Eigen::Vector2d start = Eigen::Vector2d::Zero(), end = Eigen::Vector2d::Zero();
+  // The normal's direction in the plane (atan2), when its maker computed it once (matchInputOf):
+  // every hypothesis of a match asks for it, thousands of times a plane on a large building.
+  // NaN: not given; normalYaw() computes it.
+  double normal_yaw = std::numeric_limits<double>::quiet_NaN();
   double length() const { return (end - start).norm(); }
+  double normalYaw() const {
+    return std::isnan(normal_yaw) ? std::atan2(plane.normal.y(), plane.normal.x()) : normal_yaw;
+  }
 };
 
 // A transform (x, y, yaw) in the plane with its rotation computed once: a hypothesis places every
@@ -272,6 +281,11 @@ class GraphMatcher {
   // Verifies, clusters and refines the hypotheses, then decides.
   MatchResult evaluate(const MatchInput& input,
                        const std::vector<Eigen::Vector3d>& hypotheses) const;
+  // verify() without `built_off_length` (left 0) when `built_off` is false: the score, sort and
+  // clusters of a match's many hypotheses do not read it, and it was a sixth of their cost; the
+  // few answers that reach the result are verified whole.
+  Verification verify(const MatchInput& input, const Eigen::Vector3d& x_y_yaw,
+                      bool built_off) const;
   // Decision (slam/isgraph/match_decision.cpp): support, adequacy, then decisive evidence.
   void decide(const MatchInput& input, MatchResult& result) const;
   // The decision's account of the best answer's evidence (MatchResult::reason's first part).

@@ -69,7 +69,7 @@ Verification GraphMatcher::consensus(const MatchInput& input, const Verification
     const Eigen::Vector2d middle = 0.5 * (a + b);
     const Cell* cell = cellAt(middle);
     if (!cell) continue;
-    const double yaw = std::atan2(plane.plane.normal.y(), plane.plane.normal.x()) + x.z();
+    const double yaw = plane.normalYaw() + x.z();
     // The nearest surface facing the same way within the deviation distance whose exposed parts
     // the plane's extent reaches: the wall it would be, built as planned or built off.
     double vote = 0.0, nearest = options_.deviation_distance;

@@ -35,7 +35,8 @@ MatchInput matchInputOf(const SGraph& graph, double min_wall_height) {
     if (p.merged_into >= 0 || p.floor != floor || !seenAsWall(p.map, min_wall_height)) {
       continue;
     }
-    input.planes.push_back({i, p.map.plane, p.map.start, p.map.end});
+    const Eigen::Vector3d& n = p.map.plane.normal;
+    input.planes.push_back({i, p.map.plane, p.map.start, p.map.end, std::atan2(n.y(), n.x())});
   }
   // Consecutive keyframes in two different rooms: the robot walked from one into the other.
   std::set<std::pair<int, int>> transitions;
