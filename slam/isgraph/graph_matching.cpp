@@ -149,11 +149,15 @@ GraphMatcher::GraphMatcher(const bim::AGraph& graph, const MatchingOptions& opti
       for (int c = c0; c <= c1; ++c) add(cells_[std::size_t(r) * columns_ + c]);
     }
   };
+  if (options_.plane_angle_deg < 90.0) {
+    plane_angle_screen_ = std::cos(options_.plane_angle_deg * std::numbers::pi / 180.0) - 1e-9;
+  }
   // A surface is found from any S-plane whose middle could lie within the tolerances of it.
   const double surface_pad = options_.plane_distance + options_.plane_gap + 0.5;
   for (int i = 0; i < int(graph.surfaces.size()); ++i) {
     const auto& s = graph.surfaces[i];
     surface_yaw_.push_back(yawOfNormal(s.plane));
+    surface_direction_.emplace_back(std::cos(surface_yaw_.back()), std::sin(surface_yaw_.back()));
     int first_face = i;
     for (int j = 0; j < i && !s.wall.empty(); ++j) {
       if (graph.surfaces[j].wall == s.wall) {
@@ -294,9 +298,13 @@ int GraphMatcher::matchPlane(const MatchPlane& plane, const Placement& placed, d
   if (!cell) return -1;
   const double yaw = plane.normalYaw() + placed.yaw();
   const double angle_tolerance = options_.plane_angle_deg * std::numbers::pi / 180.0;
+  // The S-plane's normal in B as a unit vector: a dot product screens out the surfaces facing
+  // clearly elsewhere (most of a cell's) before the exact test, which decides.
+  const Eigen::Vector2d direction(std::cos(yaw), std::sin(yaw));
   int best = -1;
   double best_distance = 1e300;
   for (int i : cell->surfaces) {
+    if (direction.dot(surface_direction_[i]) < plane_angle_screen_) continue;
     const auto& s = graph_->surfaces[i];
     if (std::abs(common::wrapAngle(yaw - surface_yaw_[i])) > angle_tolerance) continue;
     const double offset = std::abs(s.plane.signedDistance({middle.x(), middle.y(), 0.0}));

@@ -312,6 +312,11 @@ class GraphMatcher {
   int columns_ = 0, rows_ = 0;
   std::vector<Cell> cells_;
   std::vector<double> surface_yaw_;  // yaw of each surface's normal
+  // Each surface's normal as a unit vector in the plane, and the cosine of the plane angle
+  // tolerance less a margin: matchPlane's screen, which passes every surface the exact angle test
+  // would pass (the margin is ten million times the rounding of a dot product of unit vectors).
+  std::vector<Eigen::Vector2d> surface_direction_;
+  double plane_angle_screen_ = -2.0;  // no screen (a tolerance of 90° or more)
   // Each surface's plan wall, as the index of that wall's first surface (a flight's face: its
   // own index): both faces of a wall are one wall.
   std::vector<int> wall_of_surface_;
