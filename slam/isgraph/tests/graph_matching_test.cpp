@@ -3,8 +3,10 @@
 #include <gtest/gtest.h>
 #include <numbers>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <limits>
 #include <random>
 
 #include "bim/agraph.hpp"
@@ -216,6 +218,40 @@ TEST(Matching, AnAnswerLeavingMuchOfTheWallUnexplainedIsNotYet) {
 }
 
 // Verification by hand: the true transform explains every plane and room of a clean cut.
+TEST(Matching, APlaneTurnedToTheAngleToleranceMatchesAndJustBeyondItDoesNot) {
+  // The angle test's edge, through the dot-product screen in front of it: a plane turned by the
+  // tolerance less a hair still explains its wall, more a hair not (either way, either sign, with
+  // its normal's direction given or not).
+  const bim::AGraph graph = referenceAGraph("d1");
+  const GraphMatcher matcher(graph);
+  std::mt19937_64 rng(1);
+  const Eigen::Vector3d truth(3.0, -2.0, 0.7);
+  std::vector<int> all;
+  for (int r = 0; r < int(graph.rooms.size()); ++r) all.push_back(r);
+  const auto cut = testing::cutSGraph(graph, all, truth, rng, 0.0);
+  std::size_t longest = 0;
+  for (std::size_t i = 0; i < cut.input.planes.size(); ++i) {
+    if (cut.input.planes[i].length() > cut.input.planes[longest].length()) longest = i;
+  }
+  const double tolerance = matcher.options().plane_angle_deg * std::numbers::pi / 180.0;
+  for (const double turn : {tolerance - 1e-7, tolerance + 1e-7}) {
+    for (const double sign : {1.0, -1.0}) {
+      for (const bool given : {true, false}) {
+        MatchInput input = cut.input;
+        MatchPlane& plane = input.planes[longest];
+        plane.plane.normal =
+            Eigen::AngleAxisd(sign * turn, Eigen::Vector3d::UnitZ()) * plane.plane.normal;
+        plane.normal_yaw = given ? std::atan2(plane.plane.normal.y(), plane.plane.normal.x())
+                                 : std::numeric_limits<double>::quiet_NaN();
+        const Verification v = matcher.verify(input, truth);
+        const bool explained = std::any_of(v.planes.begin(), v.planes.end(),
+                                           [&](const auto& m) { return m.first == plane.id; });
+        EXPECT_EQ(explained, turn < tolerance) << "turned " << sign * turn << " rad";
+      }
+    }
+  }
+}
+
 TEST(Matching, VerifyAtTheTruthExplainsEverything) {
   const bim::AGraph graph = referenceAGraph("d1");
   const GraphMatcher matcher(graph);
