@@ -30,12 +30,12 @@ const GraphMatcher& CompiledPlan::matcherOf(int level) const {
   return level_matcher_ ? level_matcher_->matcher(level) : matcher_;
 }
 
-MatchResult CompiledPlan::match(const MatchInput& input, int* level) const {
+MatchResult CompiledPlan::match(const MatchInput& input, int* level, ThreadPool* pool) const {
   if (!level_matcher_) {
     *level = -1;
-    return matcher_.match(input);
+    return matcher_.match(input, pool);
   }
-  LevelMatch match = level_matcher_->match(input);
+  LevelMatch match = level_matcher_->match(input, pool);
   *level = match.level;
   return std::move(match.result);
 }

@@ -47,7 +47,7 @@ class CompiledPlan {
   const GraphMatcher& matcherOf(int level) const;
   // One full match: against every level when the plan has several (`level` gets the best's;
   // -1 with one level).
-  MatchResult match(const MatchInput& input, int* level) const;
+  MatchResult match(const MatchInput& input, int* level, ThreadPool* pool = nullptr) const;
   // GraphMatcher::verify on `level` (ignored with one level), indices into the whole A-Graph.
   Verification verify(const MatchInput& input, const Eigen::Vector3d& P_T_M_x_y_yaw,
                       int level) const;

@@ -525,7 +525,7 @@ bool GraphMatcher::sameAnswer(const Eigen::Vector3d& a, const Eigen::Vector3d& b
              scale * options_.cluster_yaw_deg * std::numbers::pi / 180.0;
 }
 
-MatchResult GraphMatcher::match(const MatchInput& input) const {
+MatchResult GraphMatcher::match(const MatchInput& input, ThreadPool* pool) const {
   const auto start = std::chrono::steady_clock::now();
   // 1. Hypotheses from four-wall rooms, corridors and corners of long walls: corners propose the
   // right answer in a building of halls, and the one that a room missing from the plan (as built,
@@ -534,7 +534,7 @@ MatchResult GraphMatcher::match(const MatchInput& input) const {
   seedFromFourWallRooms(input, hypotheses);
   seedFromCorridors(input, hypotheses);
   seedFromCorners(input, hypotheses);
-  MatchResult result = evaluate(input, hypotheses);
+  MatchResult result = evaluate(input, hypotheses, pool);
   if (result.hypotheses == 0) {
     result.reason = input.rooms.empty() && input.planes.empty()
                         ? "no room in the S-Graph yet"
@@ -545,14 +545,26 @@ MatchResult GraphMatcher::match(const MatchInput& input) const {
 }
 
 MatchResult GraphMatcher::evaluate(const MatchInput& input,
-                                   const std::vector<Eigen::Vector3d>& hypotheses) const {
+                                   const std::vector<Eigen::Vector3d>& hypotheses,
+                                   ThreadPool* pool) const {
   MatchResult result;
   result.hypotheses = int(hypotheses.size());
   if (hypotheses.empty()) return result;
   // 2. Each checked against the whole S-Graph.
-  std::vector<Verification> verified;
-  verified.reserve(hypotheses.size());
-  for (const auto& h : hypotheses) verified.push_back(verify(input, h, false));
+  // Items of 64 hypotheses, on the pool's threads when given: each verification is its own.
+  std::vector<Verification> verified(hypotheses.size());
+  constexpr int kItem = 64;
+  const int n = int(hypotheses.size());
+  const auto verify_item = [&](int item) {
+    for (int i = item * kItem; i < std::min(n, (item + 1) * kItem); ++i) {
+      verified[std::size_t(i)] = verify(input, hypotheses[std::size_t(i)], false);
+    }
+  };
+  if (pool != nullptr && pool->threads() > 1) {
+    pool->run(itemCount(n, kItem), verify_item);
+  } else {
+    for (int item = 0; item < itemCount(n, kItem); ++item) verify_item(item);
+  }
   std::sort(verified.begin(), verified.end(),
             [](const Verification& a, const Verification& b) { return a.score > b.score; });
   // 3. Clusters: the same answer proposed by several seeds. Two transforms are the same answer

@@ -15,6 +15,7 @@
 #include "bim/agraph.hpp"
 #include "bim/plane.hpp"
 #include "slam/match_status.hpp"
+#include "slam/thread_pool.hpp"
 
 namespace isg::slam {
 
@@ -213,7 +214,9 @@ class GraphMatcher {
   explicit GraphMatcher(const bim::AGraph& graph, const MatchingOptions& options = {});
 
   // One matching attempt over the whole S-Graph.
-  MatchResult match(const MatchInput& input) const;
+  // `pool`, when given, verifies the hypotheses on its threads too (each verification stands on
+  // its own: the result is the same with any number of threads).
+  MatchResult match(const MatchInput& input, ThreadPool* pool = nullptr) const;
   // Checks one B_T_M (x, y, yaw) against the S-Graph: the correspondences it implies.
   Verification verify(const MatchInput& input, const Eigen::Vector3d& x_y_yaw) const;
   // Whether two B_T_M are the same answer: they put the S-Graph's rooms (around `middle`, their
@@ -279,8 +282,8 @@ class GraphMatcher {
   void seedFromCorridors(const MatchInput& input, std::vector<Eigen::Vector3d>& out) const;
   void seedFromCorners(const MatchInput& input, std::vector<Eigen::Vector3d>& out) const;
   // Verifies, clusters and refines the hypotheses, then decides.
-  MatchResult evaluate(const MatchInput& input,
-                       const std::vector<Eigen::Vector3d>& hypotheses) const;
+  MatchResult evaluate(const MatchInput& input, const std::vector<Eigen::Vector3d>& hypotheses,
+                       ThreadPool* pool = nullptr) const;
   // verify() without `built_off_length` (left 0) when `built_off` is false: the score, sort and
   // clusters of a match's many hypotheses do not read it, and it was a sixth of their cost; the
   // few answers that reach the result are verified whole.

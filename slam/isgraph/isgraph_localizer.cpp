@@ -130,7 +130,7 @@ void ISGraphLocalizer::checkForContradiction(double stamp) {
   unmerged.optimiseAll(false);
   const MatchInput input = matchInputOf(unmerged, options_.sgraph.rooms.min_wall_height);
   int level = -1;
-  MatchResult result = plan_.match(input, &level);
+  MatchResult result = plan_.match(input, &level, graph_.pool());
   log_.attempted(result.translated(plan_.B_t_P()));
   // Twice the clustering tolerances: the merge has moved P_T_M a little since it was adopted.
   const Eigen::Vector2d middle = GraphMatcher::middleOf(input);
@@ -215,7 +215,7 @@ void ISGraphLocalizer::onKeyframe(double stamp) {
     return;
   }
   int level = -1;
-  MatchResult result = plan_.match(input, &level);
+  MatchResult result = plan_.match(input, &level, graph_.pool());
   log_.attempted(result.translated(plan_.B_t_P()));
   record(stamp, result.status, result.reason);
   if (result.status != MatchStatus::kMatched) return;

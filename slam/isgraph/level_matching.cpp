@@ -80,12 +80,12 @@ Verification LevelMatcher::verify(const MatchInput& input, const Eigen::Vector3d
   return inWhole(levels_[level].matcher->verify(input, x_y_yaw), level);
 }
 
-LevelMatch LevelMatcher::match(const MatchInput& input) const {
+LevelMatch LevelMatcher::match(const MatchInput& input, ThreadPool* pool) const {
   std::vector<MatchResult> results;
   double seconds = 0.0;
   int hypotheses = 0, clusters = 0;
   for (const Level& level : levels_) {
-    results.push_back(level.matcher->match(input));
+    results.push_back(level.matcher->match(input, pool));
     seconds += results.back().seconds;
     hypotheses += results.back().hypotheses;
     clusters += results.back().clusters;

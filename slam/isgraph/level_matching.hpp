@@ -42,7 +42,7 @@ class LevelMatcher {
 
   int levels() const { return int(levels_.size()); }
   // One matching attempt against every level.
-  LevelMatch match(const MatchInput& input) const;
+  LevelMatch match(const MatchInput& input, ThreadPool* pool = nullptr) const;
   // verify() on one level, its indices into the whole A-Graph.
   Verification verify(const MatchInput& input, const Eigen::Vector3d& x_y_yaw, int level) const;
   const GraphMatcher& matcher(int level) const { return *levels_[level].matcher; }

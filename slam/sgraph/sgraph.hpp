@@ -188,6 +188,10 @@ class SGraph {
   const std::deque<Room>& roomCandidates() const { return rooms_; }
   std::vector<int> confirmedRooms() const;
   const std::deque<Plane>& planes() const { return planes_; }
+  // The graph's own threads (options.threads > 1), for work beside it on the same thread that
+  // splits into items the same way with any number of threads (the matcher's verifications);
+  // null: none.
+  ThreadPool* pool() const { return pool_.get(); }
   // M_T_R at the latest odometry: the last keyframe's estimate and the odometry since it.
   std::optional<sensors::Odometry> latestPose() const;
   // M_T_R at time t (within the buffered odometry), corrected by the last keyframe before it.

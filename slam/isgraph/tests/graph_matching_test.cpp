@@ -115,6 +115,37 @@ TEST(Matching, RepeatingGridIsNeverMatchedWrong) {
   EXPECT_GT(ambiguous, 0);
 }
 
+// The hypotheses verified on a pool's threads: the very same result, whatever the threads.
+TEST(Matching, TheSameOnAnyNumberOfThreads) {
+  const bim::AGraph graph = gridAGraph(8, 12, 3);
+  const GraphMatcher matcher(graph);
+  ThreadPool two(2), three(3);
+  std::mt19937_64 rng(11);
+  int hypotheses = 0;
+  for (int trial = 0; trial < 6; ++trial) {
+    const Eigen::Vector3d truth = testing::randomPlanarTransform(rng);
+    const int start = std::uniform_int_distribution<int>(0, int(graph.rooms.size()) - 1)(rng);
+    const auto cut =
+        testing::cutSGraph(graph, testing::walkRooms(graph, start, 1 + trial, rng), truth, rng);
+    const MatchResult alone = matcher.match(cut.input);
+    hypotheses += alone.hypotheses;
+    for (ThreadPool* pool : {&two, &three}) {
+      const MatchResult shared = matcher.match(cut.input, pool);
+      EXPECT_EQ(shared.status, alone.status);
+      EXPECT_EQ(shared.reason, alone.reason);
+      EXPECT_EQ(shared.best.x_y_yaw, alone.best.x_y_yaw);  // bit for bit
+      EXPECT_EQ(shared.best.score, alone.best.score);
+      EXPECT_EQ(shared.hypotheses, alone.hypotheses);
+      EXPECT_EQ(shared.clusters, alone.clusters);
+      ASSERT_EQ(shared.candidates.size(), alone.candidates.size());
+      for (std::size_t i = 0; i < alone.candidates.size(); ++i) {
+        EXPECT_EQ(shared.candidates[i].answer.x_y_yaw, alone.candidates[i].answer.x_y_yaw);
+      }
+    }
+  }
+  EXPECT_GT(hypotheses, 64 * 6);  // more than one item of hypotheses a match, on average
+}
+
 // D4's north row (offices R1, R2, R3 with R1 and R3 alike) is symmetric: seen from R1 and R2
 // alone the robot could as well be in R3 and R2, turned round. The corridor settles it.
 TEST(Matching, MirrorSymmetricPlanIsAmbiguousUntilTheAsymmetricPartIsSeen) {
