@@ -36,6 +36,14 @@ double angleError(double a, double b) {
   return std::abs(std::remainder(a - b, 2 * std::numbers::pi));
 }
 
+// Every room of `graph` in an S-Graph placed by `truth`, without noise.
+testing::CutSGraph everyRoomSeenFrom(const bim::AGraph& graph, const Eigen::Vector3d& truth) {
+  std::mt19937_64 rng(1);
+  std::vector<int> all;
+  for (int r = 0; r < int(graph.rooms.size()); ++r) all.push_back(r);
+  return testing::cutSGraph(graph, all, truth, rng, 0.0);
+}
+
 // The matched answer is the truth: transform within 5 cm / 0.5°, every room the right one.
 void expectRight(const MatchResult& result, const testing::CutSGraph& cut,
                  const Eigen::Vector3d& truth, const std::string& context) {
@@ -255,11 +263,8 @@ TEST(Matching, APlaneTurnedToTheAngleToleranceMatchesAndJustBeyondItDoesNot) {
   // its normal's direction given or not).
   const bim::AGraph graph = referenceAGraph("d1");
   const GraphMatcher matcher(graph);
-  std::mt19937_64 rng(1);
   const Eigen::Vector3d truth(3.0, -2.0, 0.7);
-  std::vector<int> all;
-  for (int r = 0; r < int(graph.rooms.size()); ++r) all.push_back(r);
-  const auto cut = testing::cutSGraph(graph, all, truth, rng, 0.0);
+  const auto cut = everyRoomSeenFrom(graph, truth);
   std::size_t longest = 0;
   for (std::size_t i = 0; i < cut.input.planes.size(); ++i) {
     if (cut.input.planes[i].length() > cut.input.planes[longest].length()) longest = i;
@@ -286,11 +291,8 @@ TEST(Matching, APlaneTurnedToTheAngleToleranceMatchesAndJustBeyondItDoesNot) {
 TEST(Matching, VerifyAtTheTruthExplainsEverything) {
   const bim::AGraph graph = referenceAGraph("d1");
   const GraphMatcher matcher(graph);
-  std::mt19937_64 rng(1);
   const Eigen::Vector3d truth(3.0, -2.0, 0.7);
-  std::vector<int> all;
-  for (int r = 0; r < int(graph.rooms.size()); ++r) all.push_back(r);
-  const auto cut = testing::cutSGraph(graph, all, truth, rng, 0.0);
+  const auto cut = everyRoomSeenFrom(graph, truth);
   const Verification v = matcher.verify(cut.input, truth);
   EXPECT_EQ(v.rooms.size(), cut.input.rooms.size());
   EXPECT_EQ(v.planes.size(), cut.input.planes.size());
