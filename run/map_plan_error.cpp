@@ -136,13 +136,6 @@ void forEachWallBandMapPoint(const RunRecord& run, const MapPlanErrorOptions& op
   });
 }
 
-std::vector<Eigen::Vector3d> wallBandMapPoints(const RunRecord& run,
-                                               const MapPlanErrorOptions& options) {
-  std::vector<Eigen::Vector3d> out;
-  forEachWallBandMapPoint(run, options, [&](const Eigen::Vector3d& p) { out.push_back(p); });
-  return out;
-}
-
 std::optional<MapPlanError> mapPlanError(const RunRecord& run, const MapPlanErrorOptions& options) {
   if (!run.setup.agraph) return std::nullopt;
   const SegmentGrid grid(*run.setup.agraph, options.cutoff, options.margin);

@@ -39,9 +39,6 @@ void forEachPlacedMapPoint(const RunRecord& run,
 
 // Of those, the points in a wall surface's height band (`options.margin` clear of floor and
 // ceiling): the map's walls, as the report draws them.
-std::vector<Eigen::Vector3d> wallBandMapPoints(const RunRecord& run,
-                                               const MapPlanErrorOptions& options = {});
-// The same, one point at a time, none kept.
 void forEachWallBandMapPoint(const RunRecord& run, const MapPlanErrorOptions& options,
                              const std::function<void(const Eigen::Vector3d&)>& visit);
 
