@@ -65,7 +65,7 @@ TEST(World, UnknownBuiltinListsTheBuiltins) {
             "twin-wings, twin-wings.asbuilt, twin-wings-symmetric, twin-wings-symmetric.asbuilt, "
             "hotel, hotel.asbuilt, halls, halls.asbuilt, storeys, storeys.asbuilt, twin-storeys, "
             "twin-storeys.asbuilt, d1.handheld, d2.handheld, d3.handheld, d4.handheld, "
-            "d5.handheld, d6.handheld)\n");
+            "d5.handheld, d6.handheld, storeys.handheld, twin-storeys.handheld)\n");
 }
 
 TEST(Check, DescribesAValidScenario) {

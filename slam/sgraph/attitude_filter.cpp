@@ -19,10 +19,12 @@ void AttitudeFilter::add(const sensors::ImuSample& sample) {
       return;
     }
     // The rate, plus a pull of the estimated up (in I) towards the measured one.
-    Eigen::Vector3d rate = sample.gyroscope;
+    Eigen::Vector3d rate = sample.gyroscope - bias_;
     if (tells_gravity) {
       const Eigen::Vector3d up_estimated = M_q_I_.conjugate() * Eigen::Vector3d::UnitZ();
-      rate += (a / g).cross(up_estimated) / time_constant_;
+      const Eigen::Vector3d error = (a / g).cross(up_estimated);
+      rate += error / time_constant_;
+      if (estimate_bias_) bias_ -= error * (dt / (4.0 * time_constant_ * time_constant_));
     }
     const Eigen::Vector3d turn = rate * dt;
     if (turn.norm() > 0.0) {
@@ -30,7 +32,7 @@ void AttitudeFilter::add(const sensors::ImuSample& sample) {
       M_q_I_.normalize();
     }
   }
-  last_rate_ = sample.gyroscope;
+  last_rate_ = sample.gyroscope - bias_;
   time_ = sample.t;
   ++samples_;
   history_.push_back({sample.t, M_q_I_});

@@ -104,4 +104,37 @@ RegistrationResult registerToPlanes(const std::vector<Eigen::Vector3f>& scan_in_
   return result;
 }
 
+LevelOffset levelOffset(const std::vector<Eigen::Vector3f>& scan_in_L,
+                        const Eigen::Isometry3d& M_T_L, const PlaneVoxelMap& map,
+                        double max_distance, double huber, double min_normal_z) {
+  LevelOffset out;
+  std::vector<double> heights;  // of the points above their planes, at this pass
+  for (int pass = 0; pass < 3; ++pass) {
+    heights.clear();
+    double sum = 0.0, weights = 0.0;
+    for (const auto& point : scan_in_L) {
+      Eigen::Vector3d p = M_T_L * point.cast<double>();
+      p.z() -= out.offset;
+      const PlaneVoxelMap::Match match = map.match(p, max_distance);
+      if (match.voxel == nullptr || std::abs(match.voxel->normal.z()) < min_normal_z) continue;
+      const double above = match.residual / match.voxel->normal.z();  // along z, not n
+      const double w = std::abs(above) <= huber ? 1.0 : huber / std::abs(above);
+      sum += w * above;
+      weights += w;
+      heights.push_back(above);
+    }
+    out.points = int(heights.size());
+    if (heights.empty()) break;
+    const double mean = sum / weights;
+    // The spread as the median absolute deviation (scaled to a normal's σ): a few points on the
+    // wrong plane (a wall's foot, a box's edge) do not widen it.
+    for (double& h : heights) h = std::abs(h - mean);
+    const auto middle = heights.begin() + heights.size() / 2;
+    std::nth_element(heights.begin(), middle, heights.end());
+    out.spread = 1.4826 * *middle;
+    out.offset += mean;
+  }
+  return out;
+}
+
 }  // namespace isg::slam

@@ -65,7 +65,7 @@ ScanOdometry::ScanOdometry(const Eigen::Isometry3d& R_T_L, const Eigen::Isometry
     : R_T_L_(R_T_L),
       R_T_I_(R_T_I),
       options_(options),
-      attitude_(options.attitude_time_constant, options.gravity),
+      attitude_(options.attitude_time_constant, options.gravity, /*estimate_bias=*/true),
       map_(options.map) {}
 
 void ScanOdometry::addImu(const sensors::ImuSample& sample) { attitude_.add(sample); }
@@ -79,11 +79,24 @@ Eigen::Isometry3d ScanOdometry::predict(double t) const {
     out.linear() = yawRotation(yaw_rate_ * dt) * last_pose_.linear();
   }
   out.translation() = last_pose_.translation() + velocity_ * dt;
-  out.translation().z() = height_;
   return out;
 }
 
 void ScanOdometry::turnYaw(double angle) { attitude_.turnYaw(angle); }
+
+double ScanOdometry::heightCorrection(const std::vector<Eigen::Vector3f>& cloud,
+                                      const Eigen::Isometry3d& pose) const {
+  const ScanRegistrationOptions& r = options_.registration;
+  const LevelOffset level = levelOffset(cloud, pose * R_T_L_, map_, r.max_correspondence_end,
+                                        r.huber, options_.level_normal_z);
+  if (level.points < options_.min_level_points) return 0.0;
+  // The offset's information as a registration's (σ per point, at most effective_points), σ no
+  // smaller than the points' own spread about it; against the prediction's prior.
+  const double sigma = std::max(r.point_sigma, level.spread);
+  const double information = std::min(double(level.points), r.effective_points) / (sigma * sigma);
+  const double prior = 1.0 / (options_.prior_sigma_height * options_.prior_sigma_height);
+  return -level.offset * information / (information + prior);
+}
 
 Eigen::Isometry3d ScanOdometry::addScan(const sensors::Scan& scan) {
   const double s = scan.stamp;
@@ -122,7 +135,7 @@ Eigen::Isometry3d ScanOdometry::addScan(const sensors::Scan& scan) {
     if (result.agrees) {
       ++agreed_;
       pose = result.apply(predicted);
-      pose.translation().z() = height_;
+      pose.translation().z() += heightCorrection(cloud, pose);
       if (hasImu()) turnYaw(common::yawOf(pose.linear()) - common::yawOf(predicted.linear()));
     }
   }

@@ -19,11 +19,14 @@ namespace isg::slam {
 // odometry"). The pose at each scan is predicted, then corrected by registering the scan to a
 // local map of recent scans:
 //   - roll and pitch: an attitude filter on the IMU (AttitudeFilter, time constant
-//     `attitude_time_constant`); level without an IMU;
+//     `attitude_time_constant`, the gyroscope's bias estimated); level without an IMU;
 //   - yaw: predicted by the gyroscope (without an IMU, by the last turn rate), corrected by the
 //     registration;
 //   - x, y: predicted at constant velocity, corrected by the registration;
-//   - z: held at the start's (a single floor: without odometry the height has no source here).
+//   - z: held from scan to scan (a height's velocity from the poses fed back as noise and ran
+//     away where nothing level is seen), corrected by the scan's offset above the map's level
+//     planes (levelOffset) when at least `min_level_points` points lie on them: floors,
+//     ceilings and the treads of stairs, so that a sensor carried up or down stairs follows.
 // The registration is point-to-plane ICP in x, y and yaw (slam/sgraph/odometry_registration.hpp)
 // against the planes of a voxel map of the latest `local_map_keyframes` odometry keyframes' scans
 // (one each `keyframe_distance` or `keyframe_angle`; slam/sgraph/plane_voxel_map.hpp), each scan
@@ -42,7 +45,15 @@ struct ScanOdometryOptions {
   double prior_sigma_translation = 0.3;  // m
   double prior_sigma_yaw_imu = 0.01;     // rad, gyroscope-predicted
   double prior_sigma_yaw = 0.1;          // rad, predicted by the last turn rate
-  double attitude_time_constant = 2.0;   // s
+  double prior_sigma_height = 0.02;      // m
+  // The height is corrected from at least this many scan points on level planes, those whose
+  // |n_z| is at least level_normal_z.
+  int min_level_points = 20;
+  double level_normal_z = 0.9;
+  // The attitude filter's: long, so that a walker's sway and turns average out (2 s left roll and
+  // pitch 0.8° off in a hand-held walk, which a floor 5 m away turns into 7 cm of height); the
+  // gyroscope's bias is estimated, else a long time constant multiplies it.
+  double attitude_time_constant = 30.0;  // s
   // The velocity of the prediction: the mean over this much of the latest poses.
   double velocity_window = 0.5;  // s
   double gravity = 9.81;
@@ -73,6 +84,10 @@ class ScanOdometry {
   };
   // Turns the attitude filter (and its history) about M's z: the registration's yaw correction.
   void turnYaw(double angle);
+  // The change of height that the scan's points on the map's level planes ask of `pose` (the
+  // registered pose), weighed against the prior: 0 with too few of them.
+  double heightCorrection(const std::vector<Eigen::Vector3f>& cloud,
+                          const Eigen::Isometry3d& pose) const;
 
   Eigen::Isometry3d R_T_L_, R_T_I_;
   ScanOdometryOptions options_;
@@ -84,7 +99,6 @@ class ScanOdometry {
   double yaw_rate_ = 0.0;                                    // rad/s, without an IMU
   std::deque<std::pair<double, Eigen::Isometry3d>> recent_;  // poses over velocity_window
   std::deque<Keyframe> keyframes_;
-  double height_ = 0.0;
   PlaneVoxelMap map_;  // of keyframes_
   VoxelIndex index_;   // the scan's voxels, reused from scan to scan
   int registered_ = 0, agreed_ = 0;
