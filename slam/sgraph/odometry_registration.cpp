@@ -46,7 +46,7 @@ class PlaneAlignment {
       }
       if (match.voxel == nullptr) continue;
       const Eigen::Vector3d& n = match.voxel->normal;
-      if (std::abs(n.z()) > options_.max_normal_z) continue;  // a floor or ceiling: the height's
+      if (std::abs(n.z()) > options_.max_normal_z) continue;  // not a wall: it holds the height
       addPlanarRow(n, match.residual, p.head<2>() - pivot_ - x.head<2>(), options_.huber, s.H, s.g);
       ++s.used;
     }

@@ -65,8 +65,11 @@ ScanOdometry::ScanOdometry(const Eigen::Isometry3d& R_T_L, const Eigen::Isometry
     : R_T_L_(R_T_L),
       R_T_I_(R_T_I),
       options_(options),
+      wall_registration_(options.registration),
       attitude_(options.attitude_time_constant, options.gravity, /*estimate_bias=*/true),
-      map_(options.map) {}
+      map_(options.map) {
+  wall_registration_.max_normal_z = options.wall_max_normal_z;
+}
 
 void ScanOdometry::addImu(const sensors::ImuSample& sample) { attitude_.add(sample); }
 
@@ -128,14 +131,15 @@ Eigen::Isometry3d ScanOdometry::addScan(const sensors::Scan& scan) {
     const Eigen::Matrix3d prior =
         Eigen::Vector3d(1.0 / (st * st), 1.0 / (st * st), 1.0 / (sigma_yaw * sigma_yaw))
             .asDiagonal();
+    const std::vector<Eigen::Vector3f> registered =
+        coarser(cloud, options_.registration_voxel, index_);
     const RegistrationResult result =
-        registerToPlanes(coarser(cloud, options_.registration_voxel, index_), predicted, R_T_L_,
-                         map_, prior, options_.registration);
+        registerToPlanes(registered, predicted, R_T_L_, map_, prior, wall_registration_);
     ++registered_;
     if (result.agrees) {
       ++agreed_;
       pose = result.apply(predicted);
-      pose.translation().z() += heightCorrection(cloud, pose);
+      pose.translation().z() += heightCorrection(registered, pose);
       if (hasImu()) turnYaw(common::yawOf(pose.linear()) - common::yawOf(predicted.linear()));
     }
   }

@@ -33,9 +33,14 @@ namespace isg::slam {
 // first deskewed by the predicted motion. The map is updated as keyframes come and go, not
 // rebuilt.
 struct ScanOdometryOptions {
-  // Its voxel, range limits, tolerances, passes, max_normal_z and agreement share; its normals'
-  // options are the S-Graph registration's alone (the map's planes have `map`).
+  // Its voxel, range limits, tolerances, passes and agreement share; its normals' options are the
+  // S-Graph registration's alone (the map's planes have `map`).
   ScanRegistrationOptions registration;
+  // The planes that register x, y and yaw: within about 6° of vertical (|n_z| ≤ this), not the
+  // registration's 0.7. The height moves from scan to scan, and a plane's tilt turns its errors
+  // into x and y (a floor voxel thickened by a few cm between keyframes fits tilted): at 0.7 the
+  // odometry alone drifted twice as far on D3 by hand.
+  double wall_max_normal_z = 0.1;
   PlaneVoxelMapOptions map;
   // The scan's points registered: one per this voxel (the map takes all at registration.voxel).
   double registration_voxel = 0.3;  // m
@@ -91,6 +96,7 @@ class ScanOdometry {
 
   Eigen::Isometry3d R_T_L_, R_T_I_;
   ScanOdometryOptions options_;
+  ScanRegistrationOptions wall_registration_;  // registration, wall_max_normal_z its walls'
   AttitudeFilter attitude_;
   // Poses at the latest two scans, and their velocity.
   std::optional<double> last_stamp_;

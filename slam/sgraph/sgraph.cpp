@@ -742,17 +742,27 @@ std::optional<double> SGraph::floorHeight(int floor) const {
   if (floor < 0 || floor >= int(floors_.size())) return std::nullopt;
   const Floor& f = floors_[floor];
   if (f.plane_count > 0) return f.plane_sum / f.plane_count;
-  if (!f.sparse_planes.empty()) {
-    long below = 0;
-    for (const auto& [z, support] : f.sparse_planes) {
-      below += support;
-      if (2 * below >= f.sparse_support) return z;
-    }
+  // The robot stands as high above every floor it walks on, and the floors seen well before (of
+  // any segment, never this one: it has no well-supported plane) tell how high.
+  std::optional<double> carried;
+  if (robot_above_floor_count_ > 0) {
+    carried = f.robot_z - robot_above_floor_sum_ / robot_above_floor_count_;
   }
-  // Not seen from this floor yet: the robot stands as high above every floor it walks on, and
-  // the floors seen before (of any segment) tell how high.
-  if (robot_above_floor_count_ == 0) return std::nullopt;
-  return floors_[floor].robot_z - robot_above_floor_sum_ / robot_above_floor_count_;
+  // The support-weighted median of the sparse floor surfaces (of those near the carried height,
+  // when it is known).
+  auto near = [&](double z) {
+    return !carried || std::abs(z - *carried) <= options_.floors.carried_tolerance;
+  };
+  long support = 0;
+  for (const auto& [z, points] : f.sparse_planes) support += near(z) ? points : 0;
+  long below = 0;
+  for (const auto& [z, points] : f.sparse_planes) {
+    if (!near(z)) continue;
+    below += points;
+    if (2 * below >= support) return z;
+  }
+  // Not seen from this floor yet: the carried height, when known.
+  return carried;
 }
 
 std::optional<double> SGraph::floorBound(int floor) const {

@@ -38,6 +38,11 @@ struct FloorOptions {
   // one farther than `tolerance` but not yet that far (or still climbing) is on the stairs.
   double min_separation = 1.5;  // m
   double level_step = 0.1;      // m of height between consecutive keyframes that are level
+  // A floor seen only sparsely (far off, from a sensor held high), once the robot's height above
+  // its floors is known from another: only level surfaces within this of the height that gives
+  // are taken for it. At the foot of a flight the treads just walked are level surfaces below the
+  // sensor too, and outweighed the floor (a hand-held walk put a floor 1 m high).
+  double carried_tolerance = 0.3;  // m
   // Each confirmed room is tied to its floor's node by the offset it had from it when first tied
   // (the paper's floor node constraining its floor's rooms), within this: loose beside the walls
   // (a few cm), about the odometry's drift between two rooms of a floor. 0 leaves it out.
