@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <set>
 
 #include "slam/isgraph/isgraph_json.hpp"
 
@@ -176,7 +177,35 @@ bool ISGraphLocalizer::keepAnswer(const MatchInput& input, double stamp) {
     if (released_.allows(plane, surface)) answer_.plane_matches.emplace(plane, surface);
   }
   for (const auto& [s, a] : now.rooms) answer_.room_matches.emplace(s, a);
+  recaptureRecentWalls(input);
   return true;
+}
+
+void ISGraphLocalizer::recaptureRecentWalls(const MatchInput& input) {
+  if (options_.recapture_keyframes <= 0 || graph_.keyframes().back().floor < 0) return;
+  const auto& keyframes = graph_.keyframes();
+  std::set<int> recent;
+  for (std::size_t i = keyframes.size() > std::size_t(options_.recapture_keyframes)
+                           ? keyframes.size() - options_.recapture_keyframes
+                           : 0;
+       i < keyframes.size(); ++i) {
+    for (const auto& [plane, observation] : keyframes[i].observations) recent.insert(plane);
+  }
+  MatchInput local;
+  for (const MatchPlane& plane : input.planes) {
+    if (recent.count(plane.id)) local.planes.push_back(plane);
+  }
+  if (local.planes.empty()) return;
+  const GraphMatcher& matcher = plan_.matcherOf(floors_.level());
+  const Eigen::Vector3d voted =
+      matcher.consensus(local, matcher.verify(local, answer_.P_T_M_x_y_yaw)).x_y_yaw;
+  const Eigen::Vector2d middle = GraphMatcher::middleOf(local);
+  const double apart = (HeldAnswer::applyPlanar(voted, middle) - answer_.inP(middle)).norm();
+  if (apart < options_.min_answer_move) return;
+  const Verification there = plan_.verify(local, voted, floors_.level());
+  for (const auto& [plane, surface] : there.planes) {
+    if (released_.allows(plane, surface)) answer_.plane_matches.emplace(plane, surface);
+  }
 }
 
 void ISGraphLocalizer::onKeyframe(double stamp) {

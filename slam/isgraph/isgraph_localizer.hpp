@@ -48,6 +48,13 @@ struct ISGraphOptions {
   // should move (GraphMatcher::consensus): a move of at least this much is taken; smaller ones
   // are the merge's to make.
   double min_answer_move = 0.05;  // m
+  // Along a corridor the window's walls may all face one way, and the merge then cannot hold the
+  // map along it: drift moves the recent map past the matcher's distance from the walls that
+  // would (a partition seen through a door), and they are never matched. So the walls the latest
+  // `recapture_keyframes` keyframes saw vote among themselves too (GraphMatcher::consensus on
+  // them alone), and those the local vote puts on a surface gain that correspondence; the merge
+  // then pulls the map there. 0 leaves it out.
+  int recapture_keyframes = 25;
   // Holding the plan (docs/matching.md). A correspondence, once made, is kept while its S-plane
   // stays within these of its surface at the current B_T_M: far looser than the matcher's
   // tolerances, so that drift the merge has not yet corrected does not drop it.
@@ -171,6 +178,8 @@ class ISGraphLocalizer : public Localizer {
   // When new S-planes were mapped since the last vote: the answer moved to where more plan walls
   // agree (GraphMatcher::consensus), if by min_answer_move or more. True when it moved.
   bool moveToConsensus(const MatchInput& input, double stamp);
+  // The recent walls' own vote (recapture_keyframes): correspondences for those it places.
+  void recaptureRecentWalls(const MatchInput& input);
   void lose(double stamp, const std::string& reason);
   // A full match while localized, judged on the S-Graph optimised without the plan.
   void checkForContradiction(double stamp);

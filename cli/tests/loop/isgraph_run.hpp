@@ -13,7 +13,8 @@
 
 namespace isg::sim::testing {
 
-inline run::RunRecord runIsGraphInTheLoop(const bim::Scenario& scenario) {
+// `duration`: seconds of the route (-1: all of it).
+inline run::RunRecord runIsGraphInTheLoop(const bim::Scenario& scenario, double duration = -1.0) {
   const Simulation simulation(scenario);
   const bim::AGraph plan = bim::buildAGraph(scenario.plan);
   run::LocalizerContext context;
@@ -21,7 +22,7 @@ inline run::RunRecord runIsGraphInTheLoop(const bim::Scenario& scenario) {
   context.agraph = &plan;
   context.level = scenario.robot.level;
   context.R_T_L = simulation.R_T_L();
-  sensors::SensorStreams streams = sensorStreams(simulation, -1.0);
+  sensors::SensorStreams streams = sensorStreams(simulation, duration);
   const auto localizer =
       run::withOdometrySource(run::builtinMethods().make("is-graphs", context), streams);
   LookaheadScans scans(simulation, int(streams.scan_stamps.size()), 1);
