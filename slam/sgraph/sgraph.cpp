@@ -137,7 +137,6 @@ void SGraph::observeFloorPlane(const PlaneObservation& observation, int floor,
     auto& sparse = floors_[floor].sparse_planes;  // kept sorted: floorHeight's median
     const std::pair<double, int> plane(z, observation.points);
     sparse.insert(std::upper_bound(sparse.begin(), sparse.end(), plane), plane);
-    floors_[floor].sparse_support += observation.points;
   } else if (in_M.normal.z() > 0.9 && z < M_T_L.translation().z() - 0.3) {
     floors_[floor].plane_sum += z;
     ++floors_[floor].plane_count;

@@ -166,9 +166,8 @@ class SGraph {
     // Floor surfaces seen with less support than a wall needs (far off, from a sensor held
     // high), as (height in M, support): their support-weighted median is the floor's height when
     // no well-supported floor plane was seen — robust to the tops of boxes and tables among them.
-    // Sorted by height; sparse_support is the sum of their support.
+    // Sorted by height.
     std::vector<std::pair<double, int>> sparse_planes;
-    long sparse_support = 0;
     int keyframes = 0;
     Eigen::Vector2d centre = Eigen::Vector2d::Zero();  // ξ, once a room is tied to it
     int rooms_tied = 0;
