@@ -4,21 +4,31 @@
 
 namespace isg::common {
 
-std::optional<Eigen::Isometry3d> interpolatePose(const Trajectory& trajectory, double t) {
-  if (trajectory.empty() || t < trajectory.front().t - 1e-9 || t > trajectory.back().t + 1e-9) {
+std::optional<Eigen::Isometry3d> interpolatePose(PoseSequence trajectory, double t) {
+  if (trajectory.empty() || t < trajectory.time(0) - 1e-9 ||
+      t > trajectory.time(trajectory.size() - 1) + 1e-9) {
     return std::nullopt;
   }
-  const auto hi = std::lower_bound(trajectory.begin(), trajectory.end(), t,
-                                   [](const StampedPose& p, double time) { return p.t < time; });
-  if (hi == trajectory.begin()) return trajectory.front().pose;
-  if (hi == trajectory.end()) return trajectory.back().pose;
-  const auto lo = hi - 1;
-  const double s = hi->t > lo->t ? std::clamp((t - lo->t) / (hi->t - lo->t), 0.0, 1.0) : 0.0;
+  // The first row not before t.
+  std::size_t first = 0, count = trajectory.size();
+  while (count > 0) {
+    const std::size_t half = count / 2;
+    if (trajectory.time(first + half) < t) {
+      first += half + 1;
+      count -= half + 1;
+    } else {
+      count = half;
+    }
+  }
+  if (first == 0) return trajectory.front().pose;
+  if (first == trajectory.size()) return trajectory.back().pose;
+  const StampedPose lo = trajectory[first - 1], hi = trajectory[first];
+  const double s = hi.t > lo.t ? std::clamp((t - lo.t) / (hi.t - lo.t), 0.0, 1.0) : 0.0;
   Eigen::Isometry3d out = Eigen::Isometry3d::Identity();
-  out.linear() = Eigen::Quaterniond(lo->pose.linear())
-                     .slerp(s, Eigen::Quaterniond(hi->pose.linear()))
+  out.linear() = Eigen::Quaterniond(lo.pose.linear())
+                     .slerp(s, Eigen::Quaterniond(hi.pose.linear()))
                      .toRotationMatrix();
-  out.translation() = (1.0 - s) * lo->pose.translation() + s * hi->pose.translation();
+  out.translation() = (1.0 - s) * lo.pose.translation() + s * hi.pose.translation();
   return out;
 }
 

@@ -1,5 +1,7 @@
 #include "common/tum.hpp"
 
+#include "common/decimal_rounding.hpp"
+
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -27,19 +29,7 @@ std::string toTumText(std::span<const StampedPose> trajectory) {
 
 namespace {
 
-// x rounded to `decimals` places as printf's "%.Nf" does (the exact binary value, ties to even)
-// and read back as strtod does (the double nearest that decimal): the integer N = round(x·10^k)
-// is found from the product and its exact error (fma), and N / 10^k is correctly rounded by IEEE
-// division, which is strtod's nearest double to N·10^-k. Exact while |x|·10^k < 2^53.
-double quantise(double x, double scale) {
-  const double p = x * scale;
-  double n = std::nearbyint(p);                 // ties to even on p; keeps the sign of zero
-  const double error = std::fma(x, scale, -p);  // x·scale = p + error, exactly
-  const double rest = p - n;                    // exact; only a half-way p can round wrongly
-  if (rest == 0.5 && error > 0) n += 1.0;       // x·scale lies just above the half
-  if (rest == -0.5 && error < 0) n -= 1.0;      // just below the negative half
-  return n / scale;
-}
+double quantise(double x, double scale) { return decimalRounded(x, scale); }
 
 }  // namespace
 

@@ -21,13 +21,13 @@ double angleDeg(const Eigen::Matrix3d& a, const Eigen::Matrix3d& b) {
 struct Prepared {
   Association association;
   std::optional<Similarity> alignment;
-  const common::Trajectory* ref = nullptr;
-  const common::Trajectory* est = nullptr;
+  const common::PoseSequence* ref = nullptr;
+  const common::PoseSequence* est = nullptr;
   std::optional<Eigen::Isometry3d> placement;  // applied to the estimate's poses first
   bool project_xy = false;
 
   Eigen::Isometry3d estimatePose(std::size_t i) const {
-    const Eigen::Isometry3d& pose = (*est)[association.estimate[i]].pose;
+    const Eigen::Isometry3d pose = (*est)[association.estimate[i]].pose;
     return placement ? Eigen::Isometry3d(*placement * pose) : pose;
   }
 
@@ -45,7 +45,7 @@ struct Prepared {
   }
 };
 
-Prepared prepare(const common::Trajectory& ref, const common::Trajectory& est,
+Prepared prepare(const common::PoseSequence& ref, const common::PoseSequence& est,
                  const ErrorOptions& options,
                  const std::optional<Eigen::Isometry3d>& placement = std::nullopt) {
   Prepared p;
@@ -116,13 +116,13 @@ Eigen::Isometry3d projectXY(const Eigen::Isometry3d& pose) {
   return out;
 }
 
-ErrorResult absolutePoseError(const common::Trajectory& reference,
-                              const common::Trajectory& estimate, const ErrorOptions& options) {
+ErrorResult absolutePoseError(common::PoseSequence reference, common::PoseSequence estimate,
+                              const ErrorOptions& options) {
   return absolutePoseError(reference, estimate, options, std::nullopt);
 }
 
-ErrorResult absolutePoseError(const common::Trajectory& reference,
-                              const common::Trajectory& estimate, const ErrorOptions& options,
+ErrorResult absolutePoseError(common::PoseSequence reference, common::PoseSequence estimate,
+                              const ErrorOptions& options,
                               const std::optional<Eigen::Isometry3d>& placement) {
   Prepared p = prepare(reference, estimate, options, placement);
   std::vector<double> translation, rotation;
@@ -136,8 +136,8 @@ ErrorResult absolutePoseError(const common::Trajectory& reference,
   return finish(std::move(p), std::move(translation), std::move(rotation));
 }
 
-ErrorResult relativePoseError(const common::Trajectory& reference,
-                              const common::Trajectory& estimate, const ErrorOptions& options) {
+ErrorResult relativePoseError(common::PoseSequence reference, common::PoseSequence estimate,
+                              const ErrorOptions& options) {
   if (options.rpe_delta < 1) throw std::invalid_argument("RPE delta must be at least 1");
   Prepared p = prepare(reference, estimate, options);
   std::vector<double> translation, rotation;

@@ -3,6 +3,7 @@
 #include <optional>
 #include <string>
 
+#include "common/pose_track.hpp"
 #include "common/tum.hpp"
 #include "eval/alignment.hpp"
 #include "eval/association.hpp"
@@ -37,17 +38,17 @@ struct ErrorResult {
 // Absolute pose error, evo's order of steps: associate, align (Umeyama on the associated
 // positions), then project, then compare. Throws std::invalid_argument when nothing associates
 // (or too little to align).
-ErrorResult absolutePoseError(const common::Trajectory& reference,
-                              const common::Trajectory& estimate, const ErrorOptions& options);
+ErrorResult absolutePoseError(common::PoseSequence reference, common::PoseSequence estimate,
+                              const ErrorOptions& options);
 // The same, with the estimate's poses placed by `placement` first (B_T_M · pose): the odometry
 // judged from the true start without a placed copy of hours of it.
-ErrorResult absolutePoseError(const common::Trajectory& reference,
-                              const common::Trajectory& estimate, const ErrorOptions& options,
+ErrorResult absolutePoseError(common::PoseSequence reference, common::PoseSequence estimate,
+                              const ErrorOptions& options,
                               const std::optional<Eigen::Isometry3d>& placement);
 
 // Relative pose error over `rpe_delta` associated poses: E = (Rᵢ⁻¹Rⱼ)⁻¹(Eᵢ⁻¹Eⱼ).
-ErrorResult relativePoseError(const common::Trajectory& reference,
-                              const common::Trajectory& estimate, const ErrorOptions& options);
+ErrorResult relativePoseError(common::PoseSequence reference, common::PoseSequence estimate,
+                              const ErrorOptions& options);
 
 // The pose with z = 0 and only the rotation about z kept.
 Eigen::Isometry3d projectXY(const Eigen::Isometry3d& pose);

@@ -2,6 +2,7 @@
 
 #include <vector>
 
+#include "common/pose_track.hpp"
 #include "common/tum.hpp"
 
 namespace isg::eval {
@@ -16,7 +17,7 @@ struct Association {
   std::vector<int> estimate;   // indices into the estimated trajectory, same length
 };
 
-Association associate(const common::Trajectory& reference, const common::Trajectory& estimate,
+Association associate(common::PoseSequence reference, common::PoseSequence estimate,
                       double max_diff = 0.01);
 
 }  // namespace isg::eval

@@ -4,25 +4,26 @@
 
 namespace isg::eval {
 
-Coverage localizationCoverage(const common::Trajectory& ground_truth,
-                              const common::Trajectory& estimate, double max_gap) {
+Coverage localizationCoverage(common::PoseSequence ground_truth, common::PoseSequence estimate,
+                              double max_gap) {
   Coverage out;
   if (ground_truth.empty() || estimate.empty()) return out;
-  const auto by_time = [](const common::StampedPose& a, const common::StampedPose& b) {
-    return a.t < b.t;
-  };
-  const double start = std::min_element(ground_truth.begin(), ground_truth.end(), by_time)->t;
-  const double end = std::max_element(ground_truth.begin(), ground_truth.end(), by_time)->t;
+  double start = ground_truth.time(0), end = ground_truth.time(0);
+  for (std::size_t i = 1; i < ground_truth.size(); ++i) {
+    start = std::min(start, ground_truth.time(i));
+    end = std::max(end, ground_truth.time(i));
+  }
   // Only the estimate's rows within the ground truth's span say anything; rows before it mean
   // the method was localized when the ground truth began (time 0, never a negative time).
   std::vector<double> stamps;
   stamps.reserve(estimate.size() + 1);
   bool before = false;
-  for (const auto& p : estimate) {
-    if (p.t < start) {
+  for (std::size_t i = 0; i < estimate.size(); ++i) {
+    const double t = estimate.time(i);
+    if (t < start) {
       before = true;
-    } else if (p.t <= end) {
-      stamps.push_back(p.t);
+    } else if (t <= end) {
+      stamps.push_back(t);
     }
   }
   if (before) stamps.push_back(start);

@@ -1,5 +1,6 @@
 #pragma once
 
+#include "common/pose_track.hpp"
 #include "common/tum.hpp"
 
 namespace isg::eval {
@@ -17,7 +18,7 @@ struct Coverage {
   double lost_seconds = 0.0;   // seconds without rows after the first one
 };
 
-Coverage localizationCoverage(const common::Trajectory& ground_truth,
-                              const common::Trajectory& estimate, double max_gap = 1.0);
+Coverage localizationCoverage(common::PoseSequence ground_truth, common::PoseSequence estimate,
+                              double max_gap = 1.0);
 
 }  // namespace isg::eval

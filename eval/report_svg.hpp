@@ -7,6 +7,7 @@
 #include <utility>
 #include <vector>
 
+#include "common/pose_track.hpp"
 #include "common/tum.hpp"
 
 namespace isg::eval {
@@ -26,13 +27,17 @@ struct RoomLabel {
 };
 
 // A trajectory the report reads where it lies, not a copy (a two-hour run's ground truth is
-// 100 MB): it must outlive the reportSvg call, so a temporary does not compile.
-class TrajectoryView : public std::span<const common::StampedPose> {
+// 35 MB even as a common::PoseTrack): it must outlive the reportSvg call, so a temporary does not
+// compile.
+class TrajectoryView : public common::PoseSequence {
  public:
   TrajectoryView() = default;
   TrajectoryView(const common::Trajectory& trajectory)  // NOLINT: implicit, as a reference
-      : std::span<const common::StampedPose>(trajectory) {}
+      : common::PoseSequence(trajectory) {}
+  TrajectoryView(const common::PoseTrack& track)  // NOLINT: implicit, as a reference
+      : common::PoseSequence(track) {}
   TrajectoryView(common::Trajectory&&) = delete;
+  TrajectoryView(common::PoseTrack&&) = delete;
 };
 
 // One storey of a building of several: its own map panel in the report, drawn with the parts of

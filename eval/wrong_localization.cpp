@@ -7,8 +7,8 @@
 
 namespace isg::eval {
 
-WrongLocalization wrongLocalization(const common::Trajectory& ground_truth,
-                                    const common::Trajectory& estimate,
+WrongLocalization wrongLocalization(common::PoseSequence ground_truth,
+                                    common::PoseSequence estimate,
                                     const WrongLocalizationOptions& options) {
   WrongLocalization out;
   if (ground_truth.empty() || estimate.empty()) return out;
@@ -22,8 +22,8 @@ WrongLocalization wrongLocalization(const common::Trajectory& ground_truth,
   std::vector<Row> rows;
   rows.reserve(pairs.estimate.size());
   for (std::size_t i = 0; i < pairs.estimate.size(); ++i) {
-    const common::StampedPose& e = estimate[pairs.estimate[i]];
-    const common::StampedPose& g = ground_truth[pairs.reference[i]];
+    const common::StampedPose e = estimate[pairs.estimate[i]];
+    const common::StampedPose g = ground_truth[pairs.reference[i]];
     const Eigen::Vector3d d = e.pose.translation() - g.pose.translation();
     rows.push_back({e.t, d.head<2>().norm(), std::abs(d.z())});
   }

@@ -2,6 +2,7 @@
 
 #include <optional>
 
+#include "common/pose_track.hpp"
 #include "common/tum.hpp"
 
 namespace isg::eval {
@@ -31,8 +32,8 @@ struct WrongLocalization {
   double max_height_error = 0.0;         // m, the largest height error of any associated row
 };
 
-WrongLocalization wrongLocalization(const common::Trajectory& ground_truth,
-                                    const common::Trajectory& estimate,
+WrongLocalization wrongLocalization(common::PoseSequence ground_truth,
+                                    common::PoseSequence estimate,
                                     const WrongLocalizationOptions& options = {});
 
 }  // namespace isg::eval

@@ -24,13 +24,14 @@ const sensors::ImuSample* LocalizerDriver::nextImu() {
 
 void LocalizerDriver::pushOdometryUntil(double t) {
   for (;;) {
-    const bool odometry = next_odometry_ < odometry_.size() && odometry_[next_odometry_].t <= t;
+    const bool odometry = next_odometry_ < odometry_.size() && odometry_.time(next_odometry_) <= t;
     const sensors::ImuSample* sample = nextImu();
     const bool imu = sample != nullptr && sample->t <= t;
     if (!odometry && !imu) return;
     // The earlier first; odometry before an IMU sample of the same instant.
-    if (odometry && (!imu || odometry_[next_odometry_].t <= sample->t)) {
-      localizer_.pushOdometry({odometry_[next_odometry_].t, odometry_[next_odometry_].pose});
+    if (odometry && (!imu || odometry_.time(next_odometry_) <= sample->t)) {
+      const common::StampedPose pose = odometry_[next_odometry_];
+      localizer_.pushOdometry({pose.t, pose.pose});
       ++next_odometry_;
     } else {
       localizer_.pushImu(*sample);

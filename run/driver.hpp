@@ -18,7 +18,7 @@ class LocalizerDriver {
  public:
   // `imu`: the IMU's samples (none: no IMU); `imu_more`, when set, gives the ones after them, a
   // chunk at a time (sensors::SensorStreams::imu_more).
-  LocalizerDriver(slam::Localizer& localizer, const Trajectory& odometry, double scan_period,
+  LocalizerDriver(slam::Localizer& localizer, common::PoseSequence odometry, double scan_period,
                   const std::vector<sensors::ImuSample>* imu = nullptr,
                   std::function<std::vector<sensors::ImuSample>()> imu_more = {})
       : localizer_(localizer),
@@ -58,7 +58,7 @@ class LocalizerDriver {
   const sensors::ImuSample* nextImu();  // the next IMU sample not yet pushed; null: none left
 
   slam::Localizer& localizer_;
-  const Trajectory& odometry_;
+  common::PoseSequence odometry_;               // a view: what it views outlives the driver
   const std::vector<sensors::ImuSample>* imu_;  // none: no IMU
   std::function<std::vector<sensors::ImuSample>()> imu_more_;
   std::vector<sensors::ImuSample> imu_chunk_;  // the latest chunk imu_more_ gave

@@ -20,17 +20,17 @@ namespace {
 
 // How far the robot walked (2D, along the ground truth) until `until`, and how many plan rooms
 // of the level it had stood in by then.
-std::pair<double, int> walkedUntil(const Trajectory& truth, double until, const bim::AGraph* plan,
-                                   const std::string& level) {
+std::pair<double, int> walkedUntil(const common::PoseTrack& truth, double until,
+                                   const bim::AGraph* plan, const std::string& level) {
   double distance = 0.0;
   std::set<int> rooms;
-  for (std::size_t i = 0; i < truth.size() && truth[i].t <= until; ++i) {
-    const Eigen::Vector2d p = truth[i].pose.translation().head<2>();
-    if (i > 0) distance += (p - truth[i - 1].pose.translation().head<2>()).norm();
+  for (std::size_t i = 0; i < truth.size() && truth.time(i) <= until; ++i) {
+    const Eigen::Vector3d position = truth.position(i);
+    const Eigen::Vector2d p = position.head<2>();
+    if (i > 0) distance += (p - truth.position(i - 1).head<2>()).norm();
     if (plan == nullptr) continue;
     // The level stood on: the start level in a plan of one, the ground truth's in one of several.
-    const int floor =
-        plan->floors.size() > 1 ? floorAt(*plan, truth[i].pose.translation().z()) : -1;
+    const int floor = plan->floors.size() > 1 ? floorAt(*plan, position.z()) : -1;
     for (int r = 0; r < int(plan->rooms.size()); ++r) {
       const auto& room = plan->rooms[r];
       const bool on_level =

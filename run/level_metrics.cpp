@@ -15,12 +15,12 @@ int floorAt(const bim::AGraph& graph, double z) {
   return best >= 0 ? best : lowest;
 }
 
-std::vector<LevelMetrics> levelMetrics(const bim::AGraph& graph, const Trajectory& ground_truth,
+std::vector<LevelMetrics> levelMetrics(const bim::AGraph& graph, common::PoseSequence ground_truth,
                                        const Trajectory& estimate,
                                        const std::vector<std::pair<double, double>>& ape_rows) {
   std::vector<LevelMetrics> out;
   if (graph.floors.size() < 2 || ground_truth.empty()) return out;
-  const double t0 = ground_truth.front().t;
+  const double t0 = ground_truth.time(0);
   std::map<int, int> row_of_floor;  // floor → index into out
   std::vector<int> floor_of_row;    // the ground truth's floor at each row
   auto entry = [&](int floor, double t) -> LevelMetrics& {
@@ -35,10 +35,11 @@ std::vector<LevelMetrics> levelMetrics(const bim::AGraph& graph, const Trajector
     return out[it->second];
   };
   for (std::size_t i = 0; i < ground_truth.size(); ++i) {
-    const int floor = floorAt(graph, ground_truth[i].pose.translation().z());
+    const int floor = floorAt(graph, ground_truth.position(i).z());
     floor_of_row.push_back(floor);
-    LevelMetrics& level = entry(floor, ground_truth[i].t);
-    if (i + 1 < ground_truth.size()) level.seconds += ground_truth[i + 1].t - ground_truth[i].t;
+    LevelMetrics& level = entry(floor, ground_truth.time(i));
+    if (i + 1 < ground_truth.size())
+      level.seconds += ground_truth.time(i + 1) - ground_truth.time(i);
   }
   std::map<int, std::vector<double>> errors;
   for (const auto& [t, error] : ape_rows) {
@@ -48,7 +49,7 @@ std::vector<LevelMetrics> levelMetrics(const bim::AGraph& graph, const Trajector
     const std::size_t i =
         it == ground_truth.begin() ? 0 : std::size_t(it - ground_truth.begin()) - 1;
     const int floor = floor_of_row[i];
-    LevelMetrics& level = entry(floor, ground_truth[i].t);
+    LevelMetrics& level = entry(floor, ground_truth.time(i));
     // The first pose there is the first that puts the robot on that level: right after a kidnap
     // to another floor the estimate still stands where the robot was.
     const auto at = std::lower_bound(estimate.begin(), estimate.end(), t - 1e-9,

@@ -17,7 +17,7 @@ int floorAt(const bim::AGraph& graph, double z);
 // metrics.json `levels` (run/run_metrics.hpp): for each level the ground truth stood on, in the
 // order first reached, its time there, the first estimate (in B) that put the robot on it while
 // it was there, and the APE in B rows (t, error) taken while there. Empty for a plan of one level.
-std::vector<LevelMetrics> levelMetrics(const bim::AGraph& graph, const Trajectory& ground_truth,
+std::vector<LevelMetrics> levelMetrics(const bim::AGraph& graph, common::PoseSequence ground_truth,
                                        const Trajectory& estimate,
                                        const std::vector<std::pair<double, double>>& ape_rows);
 

@@ -8,7 +8,7 @@
 
 namespace isg::run {
 
-MapDiagnosis diagnoseMap(const slam::MapDiagnostics& map, const common::Trajectory& ground_truth,
+MapDiagnosis diagnoseMap(const slam::MapDiagnostics& map, common::PoseSequence ground_truth,
                          const bim::Plan* plan, const std::string& level) {
   MapDiagnosis out;
   out.keyframes = map.keyframes.size();

@@ -23,7 +23,7 @@ struct MapDiagnosis {
   std::optional<std::string> note;                    // why a measure is missing
 };
 
-MapDiagnosis diagnoseMap(const slam::MapDiagnostics& map, const common::Trajectory& ground_truth,
+MapDiagnosis diagnoseMap(const slam::MapDiagnostics& map, common::PoseSequence ground_truth,
                          const bim::Plan* plan, const std::string& level);
 
 // The lines `isg slam` prints.

@@ -10,7 +10,7 @@ namespace isg::run {
 
 RoomDetectionReport evaluateRooms(const bim::Plan& plan, const std::string& level_id,
                                   const std::vector<slam::MapRoom>& rooms,
-                                  const common::Trajectory& ground_truth,
+                                  common::PoseSequence ground_truth,
                                   const eval::Similarity& B_from_M, double tolerance) {
   RoomDetectionReport report;
   const bim::AGraph agraph = bim::buildAGraph(plan);

@@ -24,7 +24,7 @@ struct RoomDetectionReport {
 
 RoomDetectionReport evaluateRooms(const bim::Plan& plan, const std::string& level,
                                   const std::vector<slam::MapRoom>& rooms,
-                                  const common::Trajectory& ground_truth,
+                                  common::PoseSequence ground_truth,
                                   const eval::Similarity& B_from_M, double tolerance = 0.1);
 
 }  // namespace isg::run

@@ -17,14 +17,16 @@ namespace fs = std::filesystem;
 namespace {
 
 // A TUM file written 8192 poses at a time: two hours of ground truth at 100 Hz are ~80 MB of text.
-void writeTumFile(const fs::path& path, const Trajectory& trajectory) {
+void writeTumFile(const fs::path& path, common::PoseSequence trajectory) {
   constexpr std::size_t kPart = 8192;
   std::size_t next = 0;
+  Trajectory part;
   common::writeFileInParts(path, [&] {
     const std::size_t count = std::min(kPart, trajectory.size() - next);
-    const std::string text = common::toTumText(std::span(trajectory).subspan(next, count));
+    part.clear();
+    for (std::size_t i = next; i < next + count; ++i) part.push_back(trajectory[i]);
     next += count;
-    return text;
+    return common::toTumText(part);
   });
 }
 

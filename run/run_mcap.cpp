@@ -87,7 +87,7 @@ Json graphSoFar(const Json& graph, double t) {
 
 RunMcapWriter::RunMcapWriter(const std::string& path, const RunMcapOptions& options,
                              const Json* agraph, std::optional<Eigen::Isometry3d> R_T_L,
-                             const common::Trajectory& ground_truth)
+                             common::PoseSequence ground_truth)
     : options_(options),
       mcap_(path, {options.compression, 4 << 20, "", options.overwrite}),
       agraph_(agraph),

@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "common/pose_track.hpp"
 #include "common/tum.hpp"
 #include "formats/mcap_writer.hpp"
 #include "formats/rosbag_writer.hpp"
@@ -76,7 +77,7 @@ class RunMcapWriter {
   // base, when known. `ground_truth`: B_T_R, possibly empty.
   RunMcapWriter(const std::string& path, const RunMcapOptions& options,
                 const nlohmann::json* agraph, std::optional<Eigen::Isometry3d> R_T_L,
-                const common::Trajectory& ground_truth);
+                common::PoseSequence ground_truth);
 
   // Whether the moment at `stamp` should carry a graph snapshot and a scan.
   bool snapshotDue(double stamp) const;

@@ -8,8 +8,12 @@
 namespace isg::sensors {
 
 void quantiseStreams(SensorStreams& streams) {
-  common::quantise(streams.ground_truth);  // in place: no second copy of hours of poses
-  common::quantise(streams.odometry);
+  for (common::PoseTrack* track : {&streams.ground_truth, &streams.odometry}) {
+    common::PoseTrack rounded;
+    rounded.reserve(track->size());
+    for (const auto& pose : *track) rounded.pushQuantised(pose);
+    *track = std::move(rounded);
+  }
   for (double& t : streams.scan_stamps) t = common::quantisedTime(t);
 }
 
@@ -18,7 +22,7 @@ Eigen::Isometry3d trueStartB_T_M(const SensorStreams& streams) {
   if (streams.odometry.empty()) {
     // The odometry the LiDAR and the IMU make (slam::ScanOdometry) starts at the base's first
     // pose, levelled: M is that pose's position and heading, its z up.
-    const Eigen::Isometry3d& B_T_R = streams.ground_truth.front().pose;
+    const Eigen::Isometry3d B_T_R = streams.ground_truth.front().pose;
     Eigen::Isometry3d B_T_M = Eigen::Isometry3d::Identity();
     B_T_M.linear() = Eigen::AngleAxisd(common::yawOf(B_T_R.linear()), Eigen::Vector3d::UnitZ())
                          .toRotationMatrix();

@@ -4,7 +4,7 @@
 #include <functional>
 #include <vector>
 
-#include "common/trajectory.hpp"
+#include "common/pose_track.hpp"
 #include "sensors/messages.hpp"
 
 namespace isg::sensors {
@@ -12,10 +12,11 @@ namespace isg::sensors {
 // Everything a run feeds a localizer besides the scans themselves, and what it is judged
 // against: the same whether it comes from the live simulation or from a recorded dataset. The
 // trajectories hold exactly the numbers a dataset's TUM files carry (quantiseStreams), so that a
-// replay sees what the live loop saw.
+// replay sees what the live loop saw. They are held for the whole run (the evaluation reads them
+// at its end), in 48 bytes a pose (common::PoseTrack).
 struct SensorStreams {
-  common::Trajectory ground_truth;  // B_T_R
-  common::Trajectory
+  common::PoseTrack ground_truth;  // B_T_R
+  common::PoseTrack
       odometry;  // M_T_R, as the localizer gets it; empty: none (handheld, or a recording)
   std::vector<double> scan_stamps;                          // each scan's first firing
   double scan_period = 0.1;                                 // seconds per LiDAR turn
@@ -30,9 +31,10 @@ struct SensorStreams {
   Eigen::Isometry3d R_T_I = Eigen::Isometry3d::Identity();
 };
 
-// Rounds ground truth, odometry and scan stamps to what their TUM files keep (common::quantised):
-// the one place where a run's numbers are quantised. The live producer (sim::sensorStreams) calls
-// it; a dataset's streams come from the files and are quantised already.
+// Rounds ground truth, odometry and scan stamps to what their TUM files keep (common::quantised).
+// The live producer (sim::sensorStreams) rounds each pose as it stores it
+// (common::PoseTrack::pushQuantised, the same numbers); a dataset's streams come from the files
+// and are quantised already; streams made otherwise are rounded with this.
 void quantiseStreams(SensorStreams& streams);
 
 // Where the odometry frame M lies in the plan B at the start: the first ground-truth pose times

@@ -1,7 +1,9 @@
 #include "sim/scan_pipeline.hpp"
 
 #include <algorithm>
+#include <cmath>
 
+#include "common/tum.hpp"
 #include "formats/dataset_format.hpp"
 #include "formats/imu_file.hpp"
 
@@ -29,12 +31,19 @@ sensors::SensorStreams sensorStreams(const Simulation& simulation, double durati
   const double d = duration < 0 ? simulation.duration() : std::min(duration, simulation.duration());
   sensors::SensorStreams streams;
   streams.duration = d;
-  streams.ground_truth = simulation.groundTruth(d, groundtruth_rate);
-  streams.odometry = simulation.odometry(d);
-  for (const auto& pose : simulation.scanPoses(d)) streams.scan_stamps.push_back(pose.t);
+  // As the dataset's TUM files will hold them (sensors::quantiseStreams), rounded as they come.
+  streams.ground_truth.reserve(std::size_t(std::floor(d * groundtruth_rate + 1e-9)) + 1);
+  simulation.groundTruth(d, groundtruth_rate, [&](const common::StampedPose& pose) {
+    streams.ground_truth.pushQuantised(pose);
+  });
+  streams.odometry.reserve(simulation.odometryCount(d));
+  simulation.odometry(
+      d, [&](const common::StampedPose& pose) { streams.odometry.pushQuantised(pose); });
+  for (const auto& pose : simulation.scanPoses(d)) {
+    streams.scan_stamps.push_back(common::quantisedTime(pose.t));
+  }
   streams.scan_period = simulation.scanPeriod();
   streams.R_T_L = simulation.R_T_L();
-  sensors::quantiseStreams(streams);  // as the dataset's TUM files will hold them
   if (imu_delivery == ImuDelivery::kWhole) {
     streams.imu = simulation.imu(d);
     throughImuText(streams.imu);

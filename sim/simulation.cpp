@@ -117,25 +117,40 @@ LidarScan Simulation::scanBlocks(int index, LidarSimulator& lidar, int first_blo
 
 common::Trajectory Simulation::groundTruth(double duration, double rate_hz) const {
   common::Trajectory out;
+  out.reserve(std::size_t(std::max(int(std::floor(duration * rate_hz + 1e-9)) + 1, 0)));
+  groundTruth(duration, rate_hz, [&](const common::StampedPose& pose) { out.push_back(pose); });
+  return out;
+}
+
+void Simulation::groundTruth(double duration, double rate_hz, const PoseSink& each) const {
   const int n = int(std::floor(duration * rate_hz + 1e-9));
-  out.reserve(std::size_t(std::max(n + 1, 0)));  // exactly: hours of poses, no growth slack
   for (int i = 0; i <= n; ++i) {
     const double t = i / rate_hz;
-    out.push_back({t, base_motion_->pose(t)});
+    each({t, base_motion_->pose(t)});
   }
-  return out;
+}
+
+std::size_t Simulation::odometryCount(double duration) const {
+  if (scenario_.robot.carrier == bim::Carrier::kHandheld) return 0;
+  return std::size_t(
+      std::max(int(std::floor(duration * scenario_.odometry.rate_hz + 1e-9)) + 1, 0));
 }
 
 common::Trajectory Simulation::odometry(double duration) const {
   common::Trajectory out;
-  if (scenario_.robot.carrier == bim::Carrier::kHandheld) return out;  // a person has none
+  out.reserve(odometryCount(duration));
+  odometry(duration, [&](const common::StampedPose& pose) { out.push_back(pose); });
+  return out;
+}
+
+void Simulation::odometry(double duration, const PoseSink& each) const {
+  if (scenario_.robot.carrier == bim::Carrier::kHandheld) return;  // a person has none
   auto rng = generator(kOdometryStream);
   OdometryModel model(scenario_.odometry, base_motion_->pose(0.0));
   const double rate = scenario_.odometry.rate_hz;
   const int n = int(std::floor(duration * rate + 1e-9));
   const std::vector<double> jumps = base_motion_->jumps();
   std::size_t next_jump = 0;
-  out.reserve(std::size_t(std::max(n + 1, 0)));
   for (int i = 0; i <= n; ++i) {
     const double t = i / rate;
     // A kidnap since the last tick: the legs moved until the lift, not with it.
@@ -143,9 +158,8 @@ common::Trajectory Simulation::odometry(double duration) const {
       model.update(base_motion_->poseBefore(jumps[next_jump]), rng);
       model.teleport(base_motion_->pose(jumps[next_jump]));
     }
-    out.push_back({t, model.update(base_motion_->pose(t), rng)});
+    each({t, model.update(base_motion_->pose(t), rng)});
   }
-  return out;
 }
 
 std::vector<ImuSample> Simulation::imu(double duration) const {

@@ -1,6 +1,7 @@
 #pragma once
 
 #include <Eigen/Geometry>
+#include <functional>
 #include <memory>
 #include <random>
 #include <vector>
@@ -56,6 +57,12 @@ class Simulation {
   common::Trajectory groundTruth(double duration, double rate_hz) const;
   // M_T_R at odometry.rate_hz; none for a handheld carrier.
   common::Trajectory odometry(double duration) const;
+  // The same poses handed to `each` in time order, none of them kept (hours of them are held as
+  // the caller chooses: sim::sensorStreams rounds them into a common::PoseTrack).
+  using PoseSink = std::function<void(const common::StampedPose&)>;
+  void groundTruth(double duration, double rate_hz, const PoseSink& each) const;
+  void odometry(double duration, const PoseSink& each) const;
+  std::size_t odometryCount(double duration) const;     // how many poses odometry(duration) makes
   common::Trajectory scanPoses(double duration) const;  // B_T_L at each scan's stamp
   std::vector<ImuSample> imu(double duration) const;
   ImuStream imuStream(

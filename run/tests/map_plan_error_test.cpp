@@ -27,7 +27,7 @@ class MapPlanErrorTest : public ::testing::Test {
     run_.setup.agraph = &agraph_;
     run_.streams.odometry = {{0.0, Eigen::Isometry3d::Identity()},
                              {1.0, Eigen::Isometry3d::Identity()}};
-    run_.estimate_map = run_.streams.odometry;
+    run_.estimate_map = run_.streams.odometry.toTrajectory();
     run_.final_B_T_M = Eigen::Isometry3d::Identity();
     MapScanSample scan;
     scan.stamp = 0.5;

@@ -126,7 +126,8 @@ TEST_F(SyntheticDataset, ReaderGivesTheStreamsAsWritten) {
   // The TUM files hold the quantised numbers: quantising again changes nothing.
   sensors::SensorStreams again = streams;
   sensors::quantiseStreams(again);
-  EXPECT_EQ(common::toTumText(again.ground_truth), common::toTumText(streams.ground_truth));
+  EXPECT_EQ(common::toTumText(again.ground_truth.toTrajectory()),
+            common::toTumText(streams.ground_truth.toTrajectory()));
   const sensors::Scan scan = dataset.scan(3);
   EXPECT_EQ(scan.points.size(), 16u * 900u);
   EXPECT_EQ(scan.points[901].ring, 1);

@@ -1,0 +1,147 @@
+#pragma once
+
+#include <Eigen/Geometry>
+#include <cstddef>
+#include <cstdint>
+#include <initializer_list>
+#include <iterator>
+#include <vector>
+
+#include "common/trajectory.hpp"
+
+namespace isg::common {
+
+// A random-access iterator over anything with `operator[](i)` giving a StampedPose by value
+// (PoseTrack, PoseSequence): its elements are made when read, so `*it` is a value, not a
+// reference.
+template <typename Rows>
+class PoseIterator {
+ public:
+  using iterator_category = std::random_access_iterator_tag;
+  using iterator_concept = std::random_access_iterator_tag;
+  using value_type = StampedPose;
+  using difference_type = std::ptrdiff_t;
+  using reference = StampedPose;
+  struct pointer {  // what `it->t` reads: the pose made for it
+    StampedPose pose;
+    const StampedPose* operator->() const { return &pose; }
+  };
+
+  PoseIterator() = default;
+  PoseIterator(const Rows* rows, difference_type index) : rows_(rows), index_(index) {}
+
+  StampedPose operator*() const { return (*rows_)[std::size_t(index_)]; }
+  pointer operator->() const { return {**this}; }
+  StampedPose operator[](difference_type n) const { return *(*this + n); }
+  PoseIterator& operator++() { return ++index_, *this; }
+  PoseIterator operator++(int) { return {rows_, index_++}; }
+  PoseIterator& operator--() { return --index_, *this; }
+  PoseIterator operator--(int) { return {rows_, index_--}; }
+  PoseIterator& operator+=(difference_type n) { return index_ += n, *this; }
+  PoseIterator& operator-=(difference_type n) { return index_ -= n, *this; }
+  friend PoseIterator operator+(PoseIterator it, difference_type n) { return it += n; }
+  friend PoseIterator operator+(difference_type n, PoseIterator it) { return it += n; }
+  friend PoseIterator operator-(PoseIterator it, difference_type n) { return it -= n; }
+  friend difference_type operator-(const PoseIterator& a, const PoseIterator& b) {
+    return a.index_ - b.index_;
+  }
+  friend bool operator==(const PoseIterator& a, const PoseIterator& b) {
+    return a.index_ == b.index_;
+  }
+  friend auto operator<=>(const PoseIterator& a, const PoseIterator& b) {
+    return a.index_ <=> b.index_;
+  }
+
+ private:
+  const Rows* rows_ = nullptr;
+  difference_type index_ = 0;
+};
+
+// A trajectory stored in 48 bytes a pose instead of a StampedPose's 144 (a 4×4 matrix of
+// doubles): the time and position as given, the rotation as its unit quaternion in steps of
+// 1e-9 — what a TUM file of ours holds (common/tum.hpp) — rebuilt into a pose when read. Every
+// pose reads back bit for bit as it was stored: a rotation that its quaternion's nine decimals
+// do not rebuild exactly (a pose that was never rounded as a TUM row) is kept whole on the side.
+// Why: ground truth at 100 Hz and odometry at 50 Hz are held for the whole run, for the
+// evaluation at its end — 156 MB in two hours as StampedPoses (docs/performance.md, memory).
+class PoseTrack {
+ public:
+  using const_iterator = PoseIterator<PoseTrack>;
+
+  PoseTrack() = default;
+  // The poses, each stored exactly.
+  PoseTrack(const Trajectory& trajectory);  // NOLINT: implicit, a lossless copy
+  PoseTrack(std::initializer_list<StampedPose> poses) : PoseTrack(Trajectory(poses)) {}
+
+  // Stores the pose exactly as given.
+  void push_back(const StampedPose& pose);
+  // Stores the pose as its TUM row reads back: bit for bit what common::quantise makes of it,
+  // and always in 48 bytes.
+  void pushQuantised(const StampedPose& pose);
+  void reserve(std::size_t n) { rows_.reserve(n); }
+  void clear();
+
+  std::size_t size() const { return rows_.size(); }
+  bool empty() const { return rows_.empty(); }
+  double time(std::size_t i) const { return rows_[i].t; }
+  Eigen::Vector3d position(std::size_t i) const { return {rows_[i].x, rows_[i].y, rows_[i].z}; }
+  StampedPose operator[](std::size_t i) const;
+  StampedPose front() const { return (*this)[0]; }
+  StampedPose back() const { return (*this)[size() - 1]; }
+  const_iterator begin() const { return {this, 0}; }
+  const_iterator end() const { return {this, std::ptrdiff_t(size())}; }
+
+  // Poses [first, first + count) as a Trajectory (for a chunk of TUM text).
+  Trajectory slice(std::size_t first, std::size_t count) const;
+  Trajectory toTrajectory() const { return slice(0, size()); }
+  // Bytes held (rows and the rotations kept whole).
+  std::size_t bytes() const;
+
+  // A row's quaternion step codes beside the steps themselves (|steps| ≤ 1e9 < 2^31).
+  static constexpr std::int32_t kWhole = INT32_MIN;  // the rotation is kept whole
+  static constexpr std::int32_t kNegativeZero = INT32_MIN + 1;
+
+ private:
+  struct Row {
+    double t;
+    double x, y, z;
+    // The quaternion w x y z in steps of 1e-9 (w ≥ 0), kNegativeZero for −0 (the sign of a
+    // zero reaches the rotation's bits and the TUM text); q[0] = kWhole: the rotation is
+    // whole_[q[1]].
+    std::int32_t q[4];
+  };
+
+  std::vector<Row> rows_;
+  std::vector<Eigen::Matrix3d> whole_;
+};
+
+// A read-only view of a trajectory held either way — a Trajectory or a PoseTrack — for the
+// evaluation's functions, which read ground truth and odometry (tracks) and estimates or files
+// (Trajectories) alike. Like std::span, it must not outlive what it views (a parameter may view a
+// temporary; a variable must not).
+class PoseSequence {
+ public:
+  using const_iterator = PoseIterator<PoseSequence>;
+
+  PoseSequence() = default;                                             // an empty one
+  PoseSequence(const Trajectory& trajectory) : vector_(&trajectory) {}  // NOLINT: a view
+  PoseSequence(const PoseTrack& track) : track_(&track) {}              // NOLINT: a view
+
+  std::size_t size() const { return vector_ ? vector_->size() : track_ ? track_->size() : 0; }
+  bool empty() const { return size() == 0; }
+  double time(std::size_t i) const { return vector_ ? (*vector_)[i].t : track_->time(i); }
+  Eigen::Vector3d position(std::size_t i) const {
+    return vector_ ? (*vector_)[i].pose.translation() : track_->position(i);
+  }
+  StampedPose operator[](std::size_t i) const { return vector_ ? (*vector_)[i] : (*track_)[i]; }
+  StampedPose front() const { return (*this)[0]; }
+  StampedPose back() const { return (*this)[size() - 1]; }
+  const_iterator begin() const { return {this, 0}; }
+  const_iterator end() const { return {this, std::ptrdiff_t(size())}; }
+
+ private:
+  const Trajectory* vector_ = nullptr;
+  const PoseTrack* track_ = nullptr;
+};
+
+}  // namespace isg::common
