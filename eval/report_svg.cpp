@@ -204,7 +204,7 @@ void drawMap(std::ostringstream& svg, const ReportInput& input, const Layout& l,
   path(svg, l, input.estimate,
        "stroke=\"" + estimate_colour + "\" stroke-width=\"1.5\" stroke-opacity=\"0.85\"");
   if (!input.estimate.empty() && input.estimate_is_localization && mark_localized) {
-    const auto p = input.estimate.front().pose.translation();
+    const Eigen::Vector3d p = input.estimate.front().pose.translation();
     svg << "<circle cx=\"" << l.X(p.x()) << "\" cy=\"" << l.Y(p.y()) << "\" r=\"7\" fill=\"none\" "
         << "stroke=\"" << kLocalizedColour << "\" stroke-width=\"2.5\"/>\n";
     svg << "<text x=\"" << l.X(p.x()) << "\" y=\"" << svgNumber(l.py(p.y()) - 11)
@@ -212,7 +212,7 @@ void drawMap(std::ostringstream& svg, const ReportInput& input, const Layout& l,
         << "\" text-anchor=\"middle\">localized</text>\n";
   }
   if (!input.ground_truth.empty() && mark_start) {
-    const auto p = input.ground_truth.front().pose.translation();
+    const Eigen::Vector3d p = input.ground_truth.front().pose.translation();
     svg << "<rect x=\"" << svgNumber(l.px(p.x()) - 5) << "\" y=\"" << svgNumber(l.py(p.y()) - 5)
         << "\" width=\"10\" height=\"10\" fill=\"black\"/>\n";
   }

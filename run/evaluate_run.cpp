@@ -100,9 +100,7 @@ void poseErrors(const RunRecord& run, RunEvaluation& evaluation) {
     attempt(m, "APE in M (SE(3)-aligned)", [&] {
       const auto ape = eval::absolutePoseError(streams.ground_truth, run.estimate_map, se3);
       m.ape_M_se3 = ape.translation_stats;
-      for (const auto& pose : run.estimate_map) {
-        evaluation.aligned_map_estimate.push_back({pose.t, ape.alignment->apply(pose.pose)});
-      }
+      evaluation.map_alignment = ape.alignment;
       for (std::size_t i = 0; i < ape.translation.size(); ++i) {
         const double t = run.estimate_map[ape.association.estimate[i]].t;
         evaluation.map_error_over_time.emplace_back(t, ape.translation[i]);
@@ -153,6 +151,10 @@ RunEvaluation evaluateRun(const RunRecord& run) {
   RunMetrics& m = evaluation.metrics;
   const sensors::SensorStreams& streams = run.streams;
   identify(run, m);
+  // The map against the plan first, while nothing else the evaluation makes is held (its
+  // distances are the evaluation's largest temporary, ~25 MB at two hours); its note below.
+  const MapPlanErrorOptions map_options;
+  const std::optional<MapPlanError> map = mapPlanError(run, map_options);
   const bool has_truth = !streams.ground_truth.empty();
   if (!has_truth) m.notes.push_back("no ground truth: no APE (a dataset without groundtruth.tum)");
   // Without ground truth, when the localizer first answered is still known from the odometry.
@@ -197,8 +199,7 @@ RunEvaluation evaluateRun(const RunRecord& run) {
     m.max_height_error_B = wrong.max_height_error;
   }
   // The map against the plan's walls: with or without ground truth, once the map was placed.
-  const MapPlanErrorOptions map_options;
-  if (const auto map = mapPlanError(run, map_options)) {
+  if (map) {
     m.map_to_plan = RunMetrics::MapToPlan{map->distance, std::int64_t(map->points), map->near_share,
                                           map_options.cutoff};
   } else if (run.setup.agraph) {

@@ -3,6 +3,7 @@
 #include <utility>
 #include <vector>
 
+#include "eval/alignment.hpp"
 #include "run/run_metrics.hpp"
 #include "run/run_record.hpp"
 #include "slam/deviations/plan_deviations.hpp"
@@ -21,9 +22,11 @@ struct RunEvaluation {
   std::optional<Eigen::Isometry3d> dead_reckoning_B_T_M;
   std::vector<std::pair<double, double>> error_over_time;          // (t, APE in B, metres)
   std::vector<std::pair<double, double>> heading_error_over_time;  // (t, degrees)
-  // The map-frame estimate SE(3)-aligned to the ground truth, and its errors over time: what a
-  // method that never localizes in B (s-graph) is judged and drawn by.
-  Trajectory aligned_map_estimate;
+  // The SE(3) alignment of the map-frame estimate to the ground truth, and the aligned
+  // estimate's errors over time: what a method that never localizes in B (s-graph) is judged and
+  // drawn by. The alignment, not an aligned copy (10 MB at two hours): the report of such a
+  // method aligns its estimate when it draws it.
+  std::optional<eval::Similarity> map_alignment;
   std::vector<std::pair<double, double>> map_error_over_time;
   std::vector<std::pair<double, double>> map_heading_error_over_time;
   // As built against as planned, for a map placed in a plan (deviations.json and .svg).

@@ -221,9 +221,14 @@ std::string reportSvg(const RunRecord& run, const RunEvaluation& evaluation) {
   }
   input.localized_at = run.localized_at;
   const MethodInfo* method = builtinMethods().find(run.setup.method);
-  if (method != nullptr && method->slam_only && !evaluation.aligned_map_estimate.empty()) {
+  Trajectory aligned_map_estimate;  // outlives eval::reportSvg below, which views it
+  if (method != nullptr && method->slam_only && evaluation.map_alignment) {
     // A method that does not localize in the plan (SLAM only): its map, aligned after the fact.
-    input.estimate = evaluation.aligned_map_estimate;
+    aligned_map_estimate.reserve(run.estimate_map.size());
+    for (const auto& pose : run.estimate_map) {
+      aligned_map_estimate.push_back({pose.t, evaluation.map_alignment->apply(pose.pose)});
+    }
+    input.estimate = aligned_map_estimate;
     input.estimate_is_localization = false;
     input.estimate_label = "estimate in M, SE(3)-aligned to the ground truth";
     input.error_title = "APE in M after SE(3) alignment";
