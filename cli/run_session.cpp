@@ -1,5 +1,6 @@
 #include "cli/run_session.hpp"
 
+#include <malloc.h>
 #include <sys/resource.h>
 
 #include <chrono>
@@ -85,6 +86,10 @@ run::RunEvaluation finishRun(const std::string& command, const std::string& dir,
                              const run::RunRecord& record, bool print_timing) {
   using Clock = std::chrono::steady_clock;
   auto start = Clock::now();
+  // The loop's threads leave the memory they freed (scans, the IMU's chunks) in their malloc
+  // arenas; handing it back before the evaluation keeps the process's peak down (two hours of
+  // robot time: 253 → 234 MB; docs/performance.md).
+  malloc_trim(0);
   run::RunEvaluation evaluation = run::evaluateRun(record);
   run::RunTiming& timing = *evaluation.metrics.timing;
   timing.stages.push_back(
