@@ -34,6 +34,36 @@ common::Trajectory straight(double t0, double t1, double y) {
   return out;
 }
 
+// The marks of the start and of the first localized pose stand on the first pose of the ground
+// truth (here a compact track, as a run holds it) and of the estimate: each path begins there.
+TEST(ReportSvg, TheStartAndLocalizedMarksStandWhereTheirPathsBegin) {
+  ReportInput input;
+  input.walls = {{{0, -0.1}, {12, -0.1}, {12, 0.1}, {0, 0.1}}};
+  const common::PoseTrack truth(straight(0, 10, 2));
+  const common::Trajectory estimate = straight(3, 10, 2.5);
+  input.ground_truth = truth;
+  input.estimate = estimate;
+  input.localized_at = 3.0;
+  const std::string svg = reportSvg(input);
+  const auto attribute = [&](std::size_t from, const std::string& name) {
+    const std::size_t at = svg.find(name + "=\"", from) + name.size() + 2;
+    return svg.substr(at, svg.find('"', at) - at);
+  };
+  const std::size_t circle = svg.find("<circle cx=");
+  ASSERT_NE(circle, std::string::npos);
+  const std::string mark = attribute(circle, "cx") + "," + attribute(circle, "cy") + " ";
+  EXPECT_THAT(svg, HasSubstr("points=\"" + mark));  // the estimate's path begins at the mark
+  const std::size_t start = svg.find("width=\"10\" height=\"10\" fill=\"black\"");
+  ASSERT_NE(start, std::string::npos);
+  const std::size_t rect = svg.rfind("<rect", start);
+  const double x = std::stod(attribute(rect, "x")) + 5, y = std::stod(attribute(rect, "y")) + 5;
+  const std::size_t truth_path = svg.find("polyline fill=\"none\" stroke=\"black\"");
+  ASSERT_NE(truth_path, std::string::npos);
+  const std::string first = attribute(truth_path, "points");
+  EXPECT_NEAR(std::stod(first), x, 0.11);
+  EXPECT_NEAR(std::stod(first.substr(first.find(',') + 1)), y, 0.11);
+}
+
 TEST(ReportSvg, DrawsTheMapTheLegendTheScaleBarAndBothPanels) {
   ReportInput input;
   input.title = "isg run: a & b";
