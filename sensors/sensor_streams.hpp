@@ -16,8 +16,8 @@ namespace isg::sensors {
 // at its end), in 48 bytes a pose (common::PoseTrack).
 struct SensorStreams {
   common::PoseTrack ground_truth;  // B_T_R
-  common::PoseTrack
-      odometry;  // M_T_R, as the localizer gets it; empty: none (handheld, or a recording)
+  // M_T_R, as the localizer gets it; empty: none (handheld, or a recording).
+  common::PoseTrack odometry;
   std::vector<double> scan_stamps;                          // each scan's first firing
   double scan_period = 0.1;                                 // seconds per LiDAR turn
   double duration = 0.0;                                    // seconds of robot time the run covers
