@@ -9,17 +9,7 @@ std::optional<Eigen::Isometry3d> interpolatePose(PoseSequence trajectory, double
       t > trajectory.time(trajectory.size() - 1) + 1e-9) {
     return std::nullopt;
   }
-  // The first row not before t.
-  std::size_t first = 0, count = trajectory.size();
-  while (count > 0) {
-    const std::size_t half = count / 2;
-    if (trajectory.time(first + half) < t) {
-      first += half + 1;
-      count -= half + 1;
-    } else {
-      count = half;
-    }
-  }
+  const std::size_t first = trajectory.lowerBound(t);
   if (first == 0) return trajectory.front().pose;
   if (first == trajectory.size()) return trajectory.back().pose;
   const StampedPose lo = trajectory[first - 1], hi = trajectory[first];

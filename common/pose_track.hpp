@@ -79,7 +79,6 @@ class PoseTrack {
   // and always in 48 bytes.
   void pushQuantised(const StampedPose& pose);
   void reserve(std::size_t n) { rows_.reserve(n); }
-  void clear();
 
   std::size_t size() const { return rows_.size(); }
   bool empty() const { return rows_.empty(); }
@@ -134,12 +133,36 @@ class PoseSequence {
     return vector_ ? (*vector_)[i].pose.translation() : track_->position(i);
   }
   StampedPose operator[](std::size_t i) const { return vector_ ? (*vector_)[i] : (*track_)[i]; }
+  // Binary searches on the times (in order): the first index whose time is not before `t`, and
+  // the first whose time is after it; size() when there is none.
+  std::size_t lowerBound(double t) const {
+    return firstIndex([&](std::size_t i) { return !(time(i) < t); });
+  }
+  std::size_t upperBound(double t) const {
+    return firstIndex([&](std::size_t i) { return t < time(i); });
+  }
   StampedPose front() const { return (*this)[0]; }
   StampedPose back() const { return (*this)[size() - 1]; }
   const_iterator begin() const { return {this, 0}; }
   const_iterator end() const { return {this, std::ptrdiff_t(size())}; }
 
  private:
+  // The first index where `past` holds, `past` being false then true along the sequence.
+  template <typename Past>
+  std::size_t firstIndex(const Past& past) const {
+    std::size_t first = 0, count = size();
+    while (count > 0) {
+      const std::size_t half = count / 2;
+      if (past(first + half)) {
+        count = half;
+      } else {
+        first += half + 1;
+        count -= half + 1;
+      }
+    }
+    return first;
+  }
+
   const Trajectory* vector_ = nullptr;
   const PoseTrack* track_ = nullptr;
 };

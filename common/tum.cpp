@@ -1,7 +1,5 @@
 #include "common/tum.hpp"
 
-#include "common/decimal_rounding.hpp"
-
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -29,24 +27,49 @@ std::string toTumText(std::span<const StampedPose> trajectory) {
 
 namespace {
 
-double quantise(double x, double scale) { return decimalRounded(x, scale); }
+// x·scale rounded to an integer as printf's "%.Nf" rounds x to N decimals (scale = 10^N): the
+// exact binary value, ties to even. The integer N = round(x·10^k) is found from the product and
+// its exact error (fma); N / scale is then what strtod reads back from that text (IEEE division
+// is correctly rounded). Exact while |x|·scale < 2^53.
+double decimalSteps(double x, double scale) {
+  const double p = x * scale;
+  double n = std::nearbyint(p);                 // ties to even on p; keeps the sign of zero
+  const double error = std::fma(x, scale, -p);  // x·scale = p + error, exactly
+  const double rest = p - n;                    // exact; only a half-way p can round wrongly
+  if (rest == 0.5 && error > 0) n += 1.0;       // x·scale lies just above the half
+  if (rest == -0.5 && error < 0) n -= 1.0;      // just below the negative half
+  return n;
+}
+
+// x as its text with that many decimals reads back.
+double quantise(double x, double scale) { return decimalSteps(x, scale) / scale; }
 
 }  // namespace
 
 double quantisedTime(double t) { return quantise(t, 1e9); }
 
+Eigen::Vector3d quantisedPosition(const Eigen::Vector3d& p) {
+  return {quantise(p.x(), 1e6), quantise(p.y(), 1e6), quantise(p.z(), 1e6)};
+}
+
+std::array<double, 4> tumQuaternionSteps(const Eigen::Matrix3d& rotation) {
+  Eigen::Quaterniond q(rotation);
+  q.normalize();
+  if (q.w() < 0) q.coeffs() *= -1.0;
+  return {decimalSteps(q.w(), 1e9), decimalSteps(q.x(), 1e9), decimalSteps(q.y(), 1e9),
+          decimalSteps(q.z(), 1e9)};
+}
+
+Eigen::Matrix3d rotationOfTumSteps(const std::array<double, 4>& steps) {
+  const Eigen::Quaterniond read(steps[0] / 1e9, steps[1] / 1e9, steps[2] / 1e9, steps[3] / 1e9);
+  return read.normalized().toRotationMatrix();
+}
+
 void quantise(Trajectory& trajectory) {
   for (auto& p : trajectory) {
-    Eigen::Quaterniond q(p.pose.linear());
-    q.normalize();
-    if (q.w() < 0) q.coeffs() *= -1.0;
-    const Eigen::Vector3d t = p.pose.translation();
     p.t = quantisedTime(p.t);
-    p.pose.translation() =
-        Eigen::Vector3d(quantise(t.x(), 1e6), quantise(t.y(), 1e6), quantise(t.z(), 1e6));
-    const Eigen::Quaterniond read(quantise(q.w(), 1e9), quantise(q.x(), 1e9), quantise(q.y(), 1e9),
-                                  quantise(q.z(), 1e9));
-    p.pose.linear() = read.normalized().toRotationMatrix();
+    p.pose.translation() = quantisedPosition(p.pose.translation());
+    p.pose.linear() = rotationOfTumSteps(tumQuaternionSteps(p.pose.linear()));
     // What the parser makes of a TUM row: the bottom row exactly 0 0 0 1.
     p.pose.makeAffine();
   }

@@ -1,6 +1,7 @@
 #pragma once
 
 #include <Eigen/Geometry>
+#include <array>
 #include <cstdint>
 #include <span>
 #include <stdexcept>
@@ -26,6 +27,13 @@ Trajectory quantised(const Trajectory& trajectory);
 void quantise(Trajectory& trajectory);
 // A time as a TUM row keeps it (nanoseconds).
 double quantisedTime(double t);
+// A position as a TUM row keeps it (micrometres).
+Eigen::Vector3d quantisedPosition(const Eigen::Vector3d& position);
+// A rotation as a TUM row keeps it: its unit quaternion (w ≥ 0) in steps of 1e-9, w x y z
+// (integers, −0 where a coefficient rounds to zero from below) — and the rotation those steps
+// read back as. quantise() is rotationOfTumSteps(tumQuaternionSteps(·)) on each pose's rotation.
+std::array<double, 4> tumQuaternionSteps(const Eigen::Matrix3d& rotation);
+Eigen::Matrix3d rotationOfTumSteps(const std::array<double, 4>& steps);
 
 // A TUM file that cannot be read: which file, which line (0 for the whole file), what is wrong.
 class TumError : public std::runtime_error {

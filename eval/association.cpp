@@ -16,17 +16,7 @@ int nearest(const common::PoseSequence& t, double stamp, bool sorted) {
     }
     return best;
   }
-  // The first index whose stamp is not below `stamp`.
-  std::size_t lo = 0, hi = t.size();
-  while (lo < hi) {
-    const std::size_t mid = lo + (hi - lo) / 2;
-    if (t.time(mid) < stamp) {
-      lo = mid + 1;
-    } else {
-      hi = mid;
-    }
-  }
-  int i = int(lo);
+  int i = int(t.lowerBound(stamp));
   if (i == int(t.size())) return i - 1;
   // On a tie the earlier stamp wins, as numpy's argmin picks the first minimum.
   if (i > 0 && std::abs(t.time(i - 1) - stamp) <= std::abs(t.time(i) - stamp)) {

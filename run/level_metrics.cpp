@@ -44,10 +44,8 @@ std::vector<LevelMetrics> levelMetrics(const bim::AGraph& graph, common::PoseSeq
   std::map<int, std::vector<double>> errors;
   for (const auto& [t, error] : ape_rows) {
     // The ground-truth row at or just before t.
-    const auto it = std::upper_bound(ground_truth.begin(), ground_truth.end(), t,
-                                     [](double s, const StampedPose& p) { return s < p.t; });
-    const std::size_t i =
-        it == ground_truth.begin() ? 0 : std::size_t(it - ground_truth.begin()) - 1;
+    const std::size_t after = ground_truth.upperBound(t);
+    const std::size_t i = after == 0 ? 0 : after - 1;
     const int floor = floor_of_row[i];
     LevelMetrics& level = entry(floor, ground_truth.time(i));
     // The first pose there is the first that puts the robot on that level: right after a kidnap
