@@ -1,10 +1,12 @@
 #pragma once
 
 #include <Eigen/Geometry>
+#include <array>
 #include <cstddef>
 #include <cstdint>
 #include <initializer_list>
 #include <iterator>
+#include <optional>
 #include <vector>
 
 #include "common/trajectory.hpp"
@@ -57,11 +59,12 @@ class PoseIterator {
   difference_type index_ = 0;
 };
 
-// A trajectory stored in 48 bytes a pose instead of a StampedPose's 144 (a 4×4 matrix of
-// doubles): the time and position as given, the rotation as its unit quaternion in steps of
-// 1e-9 — what a TUM file of ours holds (common/tum.hpp) — rebuilt into a pose when read. Every
-// pose reads back bit for bit as it was stored: a rotation that its quaternion's nine decimals
-// do not rebuild exactly (a pose that was never rounded as a TUM row) is kept whole on the side.
+// A trajectory stored in 36 bytes a pose instead of a StampedPose's 144 (a 4×4 matrix of
+// doubles): the time as given, the position in steps of 1e-6 m and the rotation as its unit
+// quaternion in steps of 1e-9 — what a TUM file of ours holds (common/tum.hpp) — rebuilt into a
+// pose when read. Every pose reads back bit for bit as it was stored: a position or rotation that
+// its decimals do not rebuild exactly (a pose that was never rounded as a TUM row, or a position
+// over ±2147 m from the track's first one) is kept whole on the side.
 // Why: ground truth at 100 Hz and odometry at 50 Hz are held for the whole run, for the
 // evaluation at its end — 156 MB in two hours as StampedPoses (docs/performance.md, memory).
 class PoseTrack {
@@ -76,14 +79,14 @@ class PoseTrack {
   // Stores the pose exactly as given.
   void push_back(const StampedPose& pose);
   // Stores the pose as its TUM row reads back: bit for bit what common::quantise makes of it,
-  // and always in 48 bytes.
+  // in 36 bytes (and the position whole beside it when over ±2147 m from the first one).
   void pushQuantised(const StampedPose& pose);
   void reserve(std::size_t n) { rows_.reserve(n); }
 
   std::size_t size() const { return rows_.size(); }
   bool empty() const { return rows_.empty(); }
-  double time(std::size_t i) const { return rows_[i].t; }
-  Eigen::Vector3d position(std::size_t i) const { return {rows_[i].x, rows_[i].y, rows_[i].z}; }
+  double time(std::size_t i) const { return rows_[i].time(); }
+  Eigen::Vector3d position(std::size_t i) const;
   StampedPose operator[](std::size_t i) const;
   StampedPose front() const { return (*this)[0]; }
   StampedPose back() const { return (*this)[size() - 1]; }
@@ -93,25 +96,41 @@ class PoseTrack {
   // Poses [first, first + count) as a Trajectory (for a chunk of TUM text).
   Trajectory slice(std::size_t first, std::size_t count) const;
   Trajectory toTrajectory() const { return slice(0, size()); }
-  // Bytes held (rows and the rotations kept whole).
+  // Bytes held (rows, and the positions and rotations kept whole).
   std::size_t bytes() const;
 
-  // A row's quaternion step codes beside the steps themselves (|steps| ≤ 1e9 < 2^31).
-  static constexpr std::int32_t kWhole = INT32_MIN;  // the rotation is kept whole
+  // A row's step codes beside the steps themselves (a quaternion's |steps| ≤ 1e9 < 2^31).
+  static constexpr std::int32_t kWhole = INT32_MIN;  // the position or rotation is kept whole
   static constexpr std::int32_t kNegativeZero = INT32_MIN + 1;
 
  private:
   struct Row {
-    double t;
-    double x, y, z;
-    // The quaternion w x y z in steps of 1e-9 (w ≥ 0), kNegativeZero for −0 (the sign of a
-    // zero reaches the rotation's bits and the TUM text); q[0] = kWhole: the rotation is
-    // whole_[q[1]].
+    // The time's bits, in two halves: a double would align the row to 40 bytes.
+    std::uint32_t t_low, t_high;
+    // The position x y z in steps of 1e-6 m, counted from origin_steps_ (a track 8 km from the
+    // plan's origin stays compact); p[0] = kWhole: the position is whole_positions_[p[1]].
+    std::int32_t p[3];
+    // The quaternion w x y z in steps of 1e-9 (w ≥ 0); q[0] = kWhole: the rotation is
+    // whole_rotations_[q[1]]. kNegativeZero stands for −0 in either (the sign of a zero reaches
+    // the pose's bits and the TUM text).
     std::int32_t q[4];
-  };
 
+    double time() const;
+    void setTime(double t);
+  };
+  static_assert(sizeof(Row) == 36);
+
+  // Codes the position's steps into the row, or keeps `exact` whole when the steps do not fit
+  // (non-finite, over ±2147 m from the first position) or, for an exact copy, do not read back as
+  // `exact` bit for bit.
+  void setPosition(Row& row, const std::array<double, 3>& steps, const Eigen::Vector3d& exact,
+                   bool must_read_back);
+  Eigen::Vector3d positionOfCodes(const std::int32_t p[3]) const;
+
+  std::optional<std::array<double, 3>> origin_steps_;  // the first finite position's steps
   std::vector<Row> rows_;
-  std::vector<Eigen::Matrix3d> whole_;
+  std::vector<Eigen::Vector3d> whole_positions_;
+  std::vector<Eigen::Matrix3d> whole_rotations_;
 };
 
 // A read-only view of a trajectory held either way — a Trajectory or a PoseTrack — for the

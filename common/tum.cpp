@@ -48,8 +48,16 @@ double quantise(double x, double scale) { return decimalSteps(x, scale) / scale;
 
 double quantisedTime(double t) { return quantise(t, 1e9); }
 
+std::array<double, 3> tumPositionSteps(const Eigen::Vector3d& p) {
+  return {decimalSteps(p.x(), 1e6), decimalSteps(p.y(), 1e6), decimalSteps(p.z(), 1e6)};
+}
+
+Eigen::Vector3d positionOfTumSteps(const std::array<double, 3>& steps) {
+  return {steps[0] / 1e6, steps[1] / 1e6, steps[2] / 1e6};
+}
+
 Eigen::Vector3d quantisedPosition(const Eigen::Vector3d& p) {
-  return {quantise(p.x(), 1e6), quantise(p.y(), 1e6), quantise(p.z(), 1e6)};
+  return positionOfTumSteps(tumPositionSteps(p));
 }
 
 std::array<double, 4> tumQuaternionSteps(const Eigen::Matrix3d& rotation) {

@@ -27,7 +27,11 @@ Trajectory quantised(const Trajectory& trajectory);
 void quantise(Trajectory& trajectory);
 // A time as a TUM row keeps it (nanoseconds).
 double quantisedTime(double t);
-// A position as a TUM row keeps it (micrometres).
+// A position as a TUM row keeps it: in steps of 1e-6 m (integers, −0 where a coordinate rounds
+// to zero from below), and the position those steps read back as (steps / 1e6 each).
+// quantisedPosition(p) is positionOfTumSteps(tumPositionSteps(p)).
+std::array<double, 3> tumPositionSteps(const Eigen::Vector3d& position);
+Eigen::Vector3d positionOfTumSteps(const std::array<double, 3>& steps);
 Eigen::Vector3d quantisedPosition(const Eigen::Vector3d& position);
 // A rotation as a TUM row keeps it: its unit quaternion (w ≥ 0) in steps of 1e-9, w x y z
 // (integers, −0 where a coefficient rounds to zero from below) — and the rotation those steps

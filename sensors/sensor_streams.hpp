@@ -13,7 +13,7 @@ namespace isg::sensors {
 // against: the same whether it comes from the live simulation or from a recorded dataset. The
 // trajectories hold exactly the numbers a dataset's TUM files carry (quantiseStreams), so that a
 // replay sees what the live loop saw. They are held for the whole run (the evaluation reads them
-// at its end), in 48 bytes a pose (common::PoseTrack).
+// at its end), in 36 bytes a pose (common::PoseTrack).
 struct SensorStreams {
   common::PoseTrack ground_truth;  // B_T_R
   // M_T_R, as the localizer gets it; empty: none (handheld, or a recording).

@@ -65,9 +65,53 @@ TEST(PoseTrack, PushedQuantisedItHoldsBitForBitWhatQuantiseMakes) {
   }
   EXPECT_GT(negative_zeros, 100u);
   EXPECT_EQ(toTumText(track.toTrajectory()), text);
-  // 48 bytes a pose, against a StampedPose's 144.
-  EXPECT_EQ(track.bytes(), 48u * raw.size());
+  // 36 bytes a pose, against a StampedPose's 144; a position over 2147 m from the first one
+  // (1 in 11 of those tried is 300 km out, the first among them) is kept whole beside its row.
+  std::size_t far = 0;
+  for (const auto& pose : raw) {
+    far += std::abs(pose.pose.translation().x() - raw[0].pose.translation().x()) > 2147.0;
+  }
+  EXPECT_EQ(far, raw.size() - (raw.size() + 10) / 11);
+  EXPECT_GE(track.bytes(), 36u * raw.size() + 24u * far);
+  EXPECT_LE(track.bytes(), 36u * raw.size() + 2 * 24u * far);  // the side vector's growth
   EXPECT_EQ(sizeof(StampedPose), 144u);
+}
+
+TEST(PoseTrack, AWalkFarFromThePlansOriginStaysCompact) {
+  // A walk within ±60 m, 8 km out in x and y (the far-from-origin reference worlds).
+  Trajectory raw;
+  for (auto pose : walk(3000, 4)) {
+    if (pose.pose.translation().x() > 1e5) pose.pose.translation().x() -= 3.0e5;
+    pose.pose.translation() += Eigen::Vector3d(8000.0, -8000.0, 0.0);
+    raw.push_back(pose);
+  }
+  const Trajectory rounded = quantised(raw);
+  PoseTrack track;
+  track.reserve(raw.size());
+  for (const auto& pose : raw) track.pushQuantised(pose);
+  const PoseTrack copied(rounded);
+  for (std::size_t i = 0; i < raw.size(); ++i) {
+    ASSERT_TRUE(sameBits(track[i], rounded[i])) << i;
+    ASSERT_TRUE(sameBits(copied[i], rounded[i])) << i;
+  }
+  EXPECT_EQ(track.bytes(), 36u * raw.size());
+}
+
+TEST(PoseTrack, PositionsThatDoNotFitAreKeptWholeAndExact) {
+  StampedPose first, far, odd, missing;
+  first.pose.translation() = Eigen::Vector3d(1.0, 2.0, 3.0);
+  far.pose.translation() = Eigen::Vector3d(1.0, 2.0 + 2148.0, -0.0);  // over 2147 m in y
+  odd.pose.translation() = Eigen::Vector3d(1.0 + 1e-7, 2.0, 3.0);     // finer than a step
+  missing.pose.translation() = Eigen::Vector3d(std::nan(""), 2.0, 3.0);
+  const PoseTrack track({first, far, odd, missing, first});
+  for (int i : {0, 1, 2, 4}) {
+    const StampedPose expected = i == 1 ? far : i == 2 ? odd : first;
+    EXPECT_TRUE(sameBits(track[std::size_t(i)], expected)) << i;
+  }
+  EXPECT_TRUE(std::isnan(track[3].pose.translation().x()));
+  EXPECT_TRUE(std::signbit(track[1].pose.translation().z()));
+  EXPECT_GE(track.bytes(), 36u * 5 + 24u * 3);
+  EXPECT_LE(track.bytes(), 36u * 5 + 24u * 4);
 }
 
 TEST(PoseTrack, AnyPoseReadsBackExactlyAndRoundedOnesStayCompact) {
@@ -78,8 +122,11 @@ TEST(PoseTrack, AnyPoseReadsBackExactlyAndRoundedOnesStayCompact) {
   const PoseTrack compact(rounded);
   for (std::size_t i = 0; i < raw.size(); ++i) ASSERT_TRUE(sameBits(compact[i], rounded[i])) << i;
   // Rounded poses rebuild from their nine decimals but where normalising moved one (~1.5 %).
-  EXPECT_LT(compact.bytes(), 48u * raw.size() + 72u * raw.size() / 20);
-  EXPECT_GT(exact.bytes(), 48u * raw.size() + 72u * raw.size() * 9 / 10);
+  // (The positions 300 km from the first are kept whole in both: 24 bytes each, and up to as
+  // much again of the side vector's growth.)
+  const std::size_t positions = 24u * (raw.size() - (raw.size() + 10) / 11);
+  EXPECT_LT(compact.bytes(), 36u * raw.size() + 2 * positions + 72u * raw.size() / 20);
+  EXPECT_GT(exact.bytes(), 36u * raw.size() + positions + 72u * raw.size() * 9 / 10);
 }
 
 TEST(PoseTrack, NonFiniteRotationsAreKeptWhole) {
