@@ -41,12 +41,9 @@ double decimalSteps(double x, double scale) {
   return n;
 }
 
-// x as its text with that many decimals reads back.
-double quantise(double x, double scale) { return decimalSteps(x, scale) / scale; }
-
 }  // namespace
 
-double quantisedTime(double t) { return quantise(t, 1e9); }
+double quantisedTime(double t) { return decimalSteps(t, 1e9) / 1e9; }
 
 std::array<double, 3> tumPositionSteps(const Eigen::Vector3d& p) {
   return {decimalSteps(p.x(), 1e6), decimalSteps(p.y(), 1e6), decimalSteps(p.z(), 1e6)};

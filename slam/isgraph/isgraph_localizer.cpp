@@ -196,13 +196,10 @@ void ISGraphLocalizer::recaptureRecentWalls(const MatchInput& input) {
     if (recent.count(plane.id)) local.planes.push_back(plane);
   }
   if (local.planes.empty()) return;
-  const GraphMatcher& matcher = plan_.matcherOf(floors_.level());
-  const Eigen::Vector3d voted =
-      matcher.consensus(local, matcher.verify(local, answer_.P_T_M_x_y_yaw)).x_y_yaw;
-  const Eigen::Vector2d middle = GraphMatcher::middleOf(local);
-  const double apart = (HeldAnswer::applyPlanar(voted, middle) - answer_.inP(middle)).norm();
-  if (apart < options_.min_answer_move) return;
-  const Verification there = plan_.verify(local, voted, floors_.level());
+  double apart = 0.0;
+  const std::optional<Eigen::Vector3d> voted = votedMove(local, &apart);
+  if (!voted) return;
+  const Verification there = plan_.verify(local, *voted, floors_.level());
   for (const auto& [plane, surface] : there.planes) {
     if (released_.allows(plane, surface)) answer_.plane_matches.emplace(plane, surface);
   }
@@ -267,15 +264,13 @@ bool ISGraphLocalizer::moveToConsensus(const MatchInput& input, double stamp) {
   planes_at_last_vote_ = input.planes.size();
   // The vote on the level's own matcher; the answers verified again with their indices into the
   // whole A-Graph (CompiledPlan::verify), which the correspondences hold.
+  double apart = 0.0;
+  const std::optional<Eigen::Vector3d> voted = votedMove(input, &apart);
+  if (!voted) return false;
+  const Verification moved = plan_.verify(input, *voted, floors_.level());
   const GraphMatcher& matcher = plan_.matcherOf(floors_.level());
-  const Eigen::Vector3d voted =
-      matcher.consensus(input, matcher.verify(input, answer_.P_T_M_x_y_yaw)).x_y_yaw;
-  const Eigen::Vector2d middle = GraphMatcher::middleOf(input);
-  const double apart = (HeldAnswer::applyPlanar(voted, middle) - answer_.inP(middle)).norm();
-  if (apart < options_.min_answer_move) return false;
-  const Verification moved = plan_.verify(input, voted, floors_.level());
   log_.moved({stamp, apart, matcher.wallsAgreeing(input, answer_.P_T_M_x_y_yaw),
-              matcher.wallsAgreeing(input, voted)});
+              matcher.wallsAgreeing(input, *voted)});
   // The vote was taken on the S-Graph as merged, so the move is made on it; every keyframe is
   // re-optimised under the new correspondences below. Only where in the plane, and only this
   // floor's correspondences: the level, the height and the other floors' walls stay.
@@ -297,6 +292,17 @@ bool ISGraphLocalizer::moveToConsensus(const MatchInput& input, double stamp) {
   refitAnswer(input);
   graph_.optimiseAll(true);
   return true;
+}
+
+std::optional<Eigen::Vector3d> ISGraphLocalizer::votedMove(const MatchInput& planes,
+                                                           double* apart) const {
+  const GraphMatcher& matcher = plan_.matcherOf(floors_.level());
+  const Eigen::Vector3d voted =
+      matcher.consensus(planes, matcher.verify(planes, answer_.P_T_M_x_y_yaw)).x_y_yaw;
+  const Eigen::Vector2d middle = GraphMatcher::middleOf(planes);
+  *apart = (HeldAnswer::applyPlanar(voted, middle) - answer_.inP(middle)).norm();
+  if (*apart < options_.min_answer_move) return std::nullopt;
+  return voted;
 }
 
 void ISGraphLocalizer::refineAnswer(const MatchInput& input, double stamp) {

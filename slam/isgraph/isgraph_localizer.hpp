@@ -180,6 +180,9 @@ class ISGraphLocalizer : public Localizer {
   bool moveToConsensus(const MatchInput& input, double stamp);
   // The recent walls' own vote (recapture_keyframes): correspondences for those it places.
   void recaptureRecentWalls(const MatchInput& input);
+  // Where the planes' vote on the level's matcher puts P_T_M (GraphMatcher::consensus), if that
+  // moves the planes' middle by min_answer_move or more; `apart` gets the move.
+  std::optional<Eigen::Vector3d> votedMove(const MatchInput& planes, double* apart) const;
   void lose(double stamp, const std::string& reason);
   // A full match while localized, judged on the S-Graph optimised without the plan.
   void checkForContradiction(double stamp);

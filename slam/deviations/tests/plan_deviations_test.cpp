@@ -77,7 +77,8 @@ MapDiagnostics mapOf(const bim::AGraph& built) {
   int id = 0;
   for (const auto& surface : built.surfaces) {
     for (const auto& [a, b] : surface.segments) {
-      map.walls.push_back({id++, surface.plane.normal, surface.plane.d, a, b, 0.2, 2.6, 20});
+      map.walls.push_back(
+          {id++, surface.plane.normal, surface.plane.d, a, b, 0.2, 2.6, 20, std::vector<int>()});
     }
   }
   for (double x = 0.5; x <= 8.5; x += 0.25) {
@@ -172,13 +173,15 @@ TEST(PlanDeviations, AStrayPlaneSeenOnAKeyframeOrTwoDoesNotContradictAWall) {
     MapDiagnostics map = mapOf(built);
     map.walls.push_back({int(map.walls.size()), Eigen::Vector3d::UnitX(), -3.17,
                          Eigen::Vector2d(3.17, 0.8), Eigen::Vector2d(3.17, 3.2), 0.2, 2.6,
-                         stray_observations});
+                         stray_observations, std::vector<int>()});
     const DeviationReport report = measureDeviations(planned, map, Eigen::Isometry3d::Identity());
     const WallDeviation& w5 = wallOf(report, "W5");
     const auto stray = std::find_if(w5.evidence.begin(), w5.evidence.end(),
                                     [&](const auto& e) { return e.plane == map.walls.back().id; });
     EXPECT_NE(stray, w5.evidence.end());
-    if (stray != w5.evidence.end()) EXPECT_FALSE(stray->consistent);
+    if (stray != w5.evidence.end()) {
+      EXPECT_FALSE(stray->consistent);
+    }
     return w5;
   };
   const WallDeviation stray = measureW5(2);
