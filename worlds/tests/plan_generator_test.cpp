@@ -155,11 +155,11 @@ TEST(PlanGenerator, AHallTakesThePartitionsThatFit) {
   };
   EXPECT_GT(int(partitions.size()), countIn(fewer) + 10);  // the default: one per 40 m²
   EXPECT_LT(partitions.size(), 10000u);
-  const auto distance = [](const auto& a, const auto& b) {
-    return std::min({bim::distanceToSegment(a.first, b.first, b.second),
-                     bim::distanceToSegment(a.second, b.first, b.second),
-                     bim::distanceToSegment(b.first, a.first, a.second),
-                     bim::distanceToSegment(b.second, a.first, a.second)});
+  const auto distance = [](const auto& one, const auto& other) {
+    return std::min({bim::distanceToSegment(one.first, other.first, other.second),
+                     bim::distanceToSegment(one.second, other.first, other.second),
+                     bim::distanceToSegment(other.first, one.first, one.second),
+                     bim::distanceToSegment(other.second, one.first, one.second)});
   };
   for (std::size_t i = 0; i < partitions.size(); ++i) {
     for (std::size_t j = i + 1; j < partitions.size(); ++j) {
