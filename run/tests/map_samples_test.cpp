@@ -32,21 +32,23 @@ TEST(MapSamples, OneScanASecondThinnedToEveryEighthPoint) {
 
 TEST(MapSamples, ALongRunKeepsEveryOtherScanAndDoublesTheSpacing) {
   RunRecord record;
-  // 3000 s of scans at 10 Hz: 1024 kept at 1 s (0 … 1023 s), then at 1024 s every other one
-  // goes (512 left, 2 s apart, the last at 1022 s) and 1024 s is kept; the spacing doubles
-  // again when 1024 are kept at 2 s (at 2046 s).
+  // 3000 s of scans at 10 Hz: 256 kept at 1 s (0 … 255 s), then at 256 s every other one
+  // goes (128 left, 2 s apart, the last at 254 s) and 256 s is kept; the spacing doubles
+  // again each time 256 are kept: at 512 s (to 4 s), 1024 s (8 s) and 2048 s (16 s).
+  ASSERT_EQ(kMaxMapSamples, 256u);
   for (int k = 0; k < 30000; ++k) offerMapSample(record, scanAt(0.1 * k));
   const auto& samples = record.map_samples;
-  EXPECT_EQ(record.map_sample_seconds, 4.0);
+  EXPECT_EQ(record.map_sample_seconds, 16.0);
   ASSERT_LE(samples.size(), kMaxMapSamples);
-  // Evenly spread over the whole run: 4 s apart from the start, the last within 4 s of the end.
+  EXPECT_EQ(samples.size(), 188u);  // 0, 16, …, 2992 s
+  // Evenly spread over the whole run: 16 s apart from the start, the last within 16 s of the end.
   for (std::size_t i = 0; i < samples.size(); ++i) {
-    EXPECT_NEAR(samples[i].stamp, 4.0 * double(i), 1e-6) << i;
+    EXPECT_NEAR(samples[i].stamp, 16.0 * double(i), 1e-6) << i;
     // Each kept scan keeps its own points, the first one too.
     ASSERT_EQ(samples[i].points.size(), 10u) << i;
     EXPECT_NEAR(samples[i].points[0][0], samples[i].stamp, 1e-3) << i;
   }
-  EXPECT_GT(samples.back().stamp, 2999.9 - 4.0);
+  EXPECT_GT(samples.back().stamp, 2999.9 - 16.0);
 }
 
 }  // namespace
