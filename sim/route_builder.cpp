@@ -23,8 +23,14 @@ const OccupancyGrid& RouteBuilder::gridOf(const bim::Level& level) {
   return *grids_.emplace(level.id, owned_.back().get()).first->second;
 }
 
+PathSearch& RouteBuilder::search() {
+  auto& search = searches_[level_->id];
+  if (!search) search = std::make_unique<PathSearch>(grid());
+  return *search;
+}
+
 bool RouteBuilder::goTo(const Eigen::Vector2d& target) {
-  const auto straight = straightPath(grid(), route_->waypoints.back(), target, clearance_);
+  const auto straight = straightPath(search(), route_->waypoints.back(), target, clearance_);
   if (straight.empty()) return false;
   for (auto it = straight.begin() + 1; it != straight.end(); ++it) push(*it);
   return true;
@@ -53,7 +59,7 @@ bool RouteBuilder::climb(const Flight& flight) {
   const auto here = flightEnd(flight, *level_);
   const auto there = flightEnd(flight, other);
   if (!here || !there) return false;
-  const auto path = straightPath(grid(), route_->waypoints.back(), here->approach, clearance_);
+  const auto path = straightPath(search(), route_->waypoints.back(), here->approach, clearance_);
   if (path.empty()) return false;
   for (auto it = path.begin() + 1; it != path.end(); ++it) push(*it);
   push(here->edge);

@@ -42,6 +42,8 @@ class RouteBuilder {
   const bim::Level& level() const { return *level_; }
   const OccupancyGrid& grid() { return gridOf(*level_); }
   const OccupancyGrid& gridOf(const bim::Level& level);
+  // The path search on the current level's grid, kept for the builder's life like the grid.
+  PathSearch& search();
   double clearance() const { return clearance_; }
   PlannedRoute& route() { return *route_; }
 
@@ -83,6 +85,7 @@ class RouteBuilder {
   const bim::Level* level_;
   std::map<std::string, const OccupancyGrid*> grids_;
   std::vector<std::unique_ptr<OccupancyGrid>> owned_;
+  std::map<std::string, std::unique_ptr<PathSearch>> searches_;  // by level id, made when needed
 };
 
 // The route's waypoints in 3D: each at the elevation of its level (waypoint_levels[i]).

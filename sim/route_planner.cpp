@@ -6,7 +6,6 @@
 #include <memory>
 #include <numbers>
 #include <optional>
-#include <queue>
 #include <set>
 #include <sstream>
 
@@ -107,59 +106,22 @@ Eigen::Vector2d roomGoal(const OccupancyGrid& grid, const bim::Room& room, doubl
   return roomCentre(grid, room, true, clearance);
 }
 
+std::vector<Eigen::Vector2d> straightPath(PathSearch& search, const Eigen::Vector2d& from,
+                                          const Eigen::Vector2d& to, double clearance) {
+  const auto path = search.find(from, to, clearance);
+  if (path.empty()) return path;
+  return straighten(search.grid(), path, clearance);
+}
+
 std::vector<Eigen::Vector2d> straightPath(const OccupancyGrid& grid, const Eigen::Vector2d& from,
                                           const Eigen::Vector2d& to, double clearance) {
-  const auto path = findPath(grid, from, to, clearance);
-  if (path.empty()) return path;
-  return straighten(grid, path, clearance);
+  PathSearch search(grid);
+  return straightPath(search, from, to, clearance);
 }
 
 std::vector<Eigen::Vector2d> findPath(const OccupancyGrid& grid, const Eigen::Vector2d& from,
                                       const Eigen::Vector2d& to, double min_clearance) {
-  const Eigen::Vector2i start = grid.cellOf(from), goal = grid.cellOf(to);
-  if (grid.clearance(start) < min_clearance || grid.clearance(goal) < min_clearance) return {};
-  const int w = grid.width();
-  const auto id = [w](const Eigen::Vector2i& c) { return c.y() * w + c.x(); };
-  std::vector<double> cost(std::size_t(w) * grid.height(), std::numeric_limits<double>::infinity());
-  std::vector<int> parent(cost.size(), -1);
-  using Entry = std::pair<double, int>;
-  std::priority_queue<Entry, std::vector<Entry>, std::greater<>> open;
-  const double r = grid.resolution();
-  auto heuristic = [&](const Eigen::Vector2i& c) { return r * (c - goal).cast<double>().norm(); };
-  cost[id(start)] = 0;
-  open.push({heuristic(start), id(start)});
-  static constexpr int kDx[] = {1, -1, 0, 0, 1, 1, -1, -1};
-  static constexpr int kDy[] = {0, 0, 1, -1, 1, -1, 1, -1};
-  while (!open.empty()) {
-    const auto [f, current] = open.top();
-    open.pop();
-    const Eigen::Vector2i c(current % w, current / w);
-    if (c == goal) break;
-    if (f - heuristic(c) > cost[current] + 1e-9) continue;  // stale entry
-    for (int k = 0; k < 8; ++k) {
-      const Eigen::Vector2i n(c.x() + kDx[k], c.y() + kDy[k]);
-      const double clearance = grid.clearance(n);
-      if (clearance < min_clearance) continue;
-      // Costlier near walls: paths keep to the middle of rooms and doorways.
-      const double step =
-          r * (k < 4 ? 1.0 : std::numbers::sqrt2) * (1.0 + 3.0 * std::max(0.0, 1.0 - clearance));
-      const double g = cost[current] + step;
-      if (g < cost[id(n)]) {
-        cost[id(n)] = g;
-        parent[id(n)] = current;
-        open.push({g + heuristic(n), id(n)});
-      }
-    }
-  }
-  if (parent[id(goal)] < 0 && goal != start) return {};
-  std::vector<Eigen::Vector2d> path;
-  for (int cell = id(goal); cell != id(start); cell = parent[cell]) {
-    path.push_back(grid.centreOf({cell % w, cell / w}));
-  }
-  path.push_back(from);
-  std::reverse(path.begin(), path.end());
-  path.back() = to;
-  return path;
+  return PathSearch(grid).find(from, to, min_clearance);
 }
 
 namespace {

@@ -9,6 +9,7 @@
 #include "bim/scenario.hpp"
 #include "common/input_error.hpp"
 #include "sim/occupancy_grid.hpp"
+#include "sim/path_search.hpp"
 
 namespace isg::sim {
 
@@ -82,7 +83,11 @@ Eigen::Vector2d roomGoal(const OccupancyGrid& grid, const bim::Room& room,
                          double clearance = kMinClearance);
 
 // The A* path from `from` to `to`, straightened where a straight line keeps kMinClearance; empty
-// when there is none.
+// when there is none. With a PathSearch, on its grid and reusing its state (many searches on one
+// grid: a tour); with a grid, one search.
+std::vector<Eigen::Vector2d> straightPath(PathSearch& search, const Eigen::Vector2d& from,
+                                          const Eigen::Vector2d& to,
+                                          double clearance = kMinClearance);
 std::vector<Eigen::Vector2d> straightPath(const OccupancyGrid& grid, const Eigen::Vector2d& from,
                                           const Eigen::Vector2d& to,
                                           double clearance = kMinClearance);
