@@ -142,6 +142,12 @@ struct MatchingOptions {
   // corners with the longest arms.
   double min_corner_arm = 1.5;  // m
   int max_corners = 6;
+  // A long corridor proposes thousands of slides (every S-wall across it on every A-surface that
+  // faces its way: 2.5–4.5 k a corridor pair on a 195-office floor), each verified against the
+  // whole map. A pair keeps at most this many: those that the most S-wall length proposes, within
+  // cluster_distance of the slide — the right slide is proposed by every wall across the corridor
+  // that lies on its surface, a coincidence by few.
+  int max_corridor_slides = 512;
   double corner_gap = 0.6;  // m, between two walls' ends to make a corner
 };
 

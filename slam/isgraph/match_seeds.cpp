@@ -9,6 +9,7 @@
 
 #include "common/angles.hpp"
 #include "slam/isgraph/graph_matching.hpp"
+#include "slam/isgraph/slide_support.hpp"
 
 namespace isg::slam {
 
@@ -23,11 +24,14 @@ Eigen::Matrix2d rotation(double yaw) { return Eigen::Rotation2Dd(yaw).toRotation
 class UniqueTransforms {
  public:
   explicit UniqueTransforms(std::vector<Eigen::Vector3d>& out) : out_(out) {}
-  void add(const Eigen::Vector3d& h) {
+  // Whether `h` was new (and so added).
+  bool add(const Eigen::Vector3d& h) {
     const std::array<long, 3> key{
         std::lround(h.x() / 0.02), std::lround(h.y() / 0.02),
         std::lround(common::wrapAngle(h.z()) / (0.2 * std::numbers::pi / 180))};
-    if (seen_.insert(key).second) out_.push_back(h);
+    if (!seen_.insert(key).second) return false;
+    out_.push_back(h);
+    return true;
   }
 
  private:
@@ -105,7 +109,10 @@ void GraphMatcher::seedFromCorridors(const MatchInput& input,
       if (std::abs(a.widths[0] - s.widths[0]) > options_.width_tolerance) continue;
       const Eigen::Vector2d a_normal = normal2(graph_->surfaces[a.pairs[0][0]].plane);
       const Eigen::Vector2d a_along(-a_normal.y(), a_normal.x());
-      UniqueTransforms unique(out);
+      std::vector<Eigen::Vector3d> group;  // this pair's slides, each once, in the order found
+      std::vector<std::pair<int, double>> slides;  // their turn and slide
+      std::vector<SlideProposal> proposals;        // every (S-plane, A-surface) pair's
+      UniqueTransforms unique(group);
       for (int turn = 0; turn < 2; ++turn) {
         const double yaw = common::wrapAngle(room_yaw_[i] + turn * std::numbers::pi - s.axis_yaw);
         const Eigen::Matrix2d R = rotation(yaw);
@@ -136,10 +143,15 @@ void GraphMatcher::seedFromCorridors(const MatchInput& input,
             const double a_along_at = a_along.dot(surface.segments.front().first);
             const double slide = a_along_at - s_along;
             const Eigen::Vector2d t = across * a_normal + slide * a_along;
-            unique.add(Eigen::Vector3d(t.x(), t.y(), yaw));
+            proposals.push_back({turn, slide, plane.length()});
+            if (unique.add(Eigen::Vector3d(t.x(), t.y(), yaw))) slides.emplace_back(turn, slide);
           }
         }
       }
+      keepBestSupported(group, slides, std::move(proposals),
+                        std::size_t(std::max(0, options_.max_corridor_slides)),
+                        options_.cluster_distance);
+      out.insert(out.end(), group.begin(), group.end());
     }
   }
 }
