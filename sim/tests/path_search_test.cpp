@@ -33,7 +33,8 @@ TEST(PathSearch, ReusedOverManySearchesGivesTheFreshSearchsPaths) {
       ASSERT_EQ(reused[k], fresh[k]) << i << " " << k;  // bit for bit
     }
     if (!fresh.empty()) ++found;
-    // A search that finds nothing (no cell of D6 is 5 m from every wall) leaves nothing behind.
+    // A search that cannot start (no cell of D6 is 5 m from every wall) returns nothing, and the
+    // next reused search must still match its fresh one.
     EXPECT_TRUE(search.find(from, to, 5.0).empty());
   }
   EXPECT_EQ(found, 40);  // every room of D6 is reachable from every other

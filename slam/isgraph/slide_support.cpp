@@ -8,31 +8,23 @@ void keepBestSupported(std::vector<Eigen::Vector3d>& hypotheses,
                        const std::vector<std::pair<int, double>>& slides,
                        std::vector<SlideProposal> proposals, std::size_t keep, double tolerance) {
   if (hypotheses.size() <= keep) return;
-  std::sort(proposals.begin(), proposals.end(), [](const SlideProposal& a, const SlideProposal& b) {
+  // Ordered by turn, then by slide: a turn's proposals within the tolerance are then one run.
+  const auto before = [](const SlideProposal& a, const SlideProposal& b) {
     return a.turn != b.turn ? a.turn < b.turn : a.slide < b.slide;
-  });
+  };
+  std::sort(proposals.begin(), proposals.end(), before);
   std::vector<double> prefix(proposals.size() + 1, 0.0);  // lengths summed in that order
   for (std::size_t k = 0; k < proposals.size(); ++k) {
     prefix[k + 1] = prefix[k] + proposals[k].length;
   }
-  const auto first_not_before = [&](int turn, double slide) {
-    return std::size_t(
-        std::lower_bound(proposals.begin(), proposals.end(), SlideProposal{turn, slide, 0.0},
-                         [](const SlideProposal& a, const SlideProposal& b) {
-                           return a.turn != b.turn ? a.turn < b.turn : a.slide < b.slide;
-                         }) -
-        proposals.begin());
-  };
   std::vector<double> support(hypotheses.size());
   for (std::size_t j = 0; j < hypotheses.size(); ++j) {
     const auto [turn, slide] = slides[j];
-    const std::size_t lo = first_not_before(turn, slide - tolerance);
-    std::size_t hi = first_not_before(turn, slide + tolerance);
-    while (hi < proposals.size() && proposals[hi].turn == turn &&
-           proposals[hi].slide <= slide + tolerance) {
-      ++hi;
-    }
-    support[j] = prefix[hi] - prefix[lo];
+    const auto lo = std::lower_bound(proposals.begin(), proposals.end(),
+                                     SlideProposal{turn, slide - tolerance, 0.0}, before);
+    const auto hi =
+        std::upper_bound(lo, proposals.end(), SlideProposal{turn, slide + tolerance, 0.0}, before);
+    support[j] = prefix[hi - proposals.begin()] - prefix[lo - proposals.begin()];
   }
   std::vector<std::size_t> order(hypotheses.size());
   for (std::size_t j = 0; j < order.size(); ++j) order[j] = j;
