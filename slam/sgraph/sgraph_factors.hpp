@@ -2,6 +2,7 @@
 
 #include <ceres/autodiff_cost_function.h>
 #include <ceres/rotation.h>
+#include <ceres/sized_cost_function.h>
 
 #include <Eigen/Geometry>
 
@@ -17,39 +18,28 @@ namespace isg::slam {
 // A plane observed in the LiDAR frame of a keyframe: e = (M_T_L⁻¹ · π_M) ⊖ z in the minimal
 // (azimuth, elevation, distance) form, whitened. M_T_L = M_T_R · R_T_L.
 // For T = (R, t), T⁻¹ · π = (Rᵀn, d + n·t).
-struct PosePlaneFactor {
+// Parameters: position (3), orientation (4, Eigen quaternion), π_M (4). Its Jacobians are written
+// by hand (slam/sgraph/pose_plane_factor.cpp): it is most of the window optimisation's residuals,
+// and with AutoDiff's 11-wide dual numbers it was a sixth of a run's CPU (perf, D6 as built).
+// The residual is computed as AutoDiff computed it, operation for operation.
+class PosePlaneFactor : public ceres::SizedCostFunction<3, 3, 4, 4> {
+ public:
   PosePlaneFactor(const Eigen::Vector4d& measured, const Eigen::Isometry3d& R_T_L,
-                  double sigma_angle, double sigma_distance)
-      : measured_(measured),
-        R_T_L_rotation_(R_T_L.rotation()),
-        R_T_L_translation_(R_T_L.translation()),
-        weights_(1.0 / sigma_angle, 1.0 / sigma_angle, 1.0 / sigma_distance) {}
+                  double sigma_angle, double sigma_distance);
 
-  template <typename T>
-  bool operator()(const T* position, const T* orientation, const T* plane, T* residual) const {
-    const Eigen::Map<const Eigen::Quaternion<T>> q(orientation);
-    const Eigen::Map<const Eigen::Matrix<T, 3, 1>> p(position);
-    // M_T_L = M_T_R · R_T_L.
-    const Eigen::Matrix<T, 3, 3> R = q.toRotationMatrix() * R_T_L_rotation_.cast<T>();
-    const Eigen::Matrix<T, 3, 1> t = q * R_T_L_translation_.cast<T>() + p;
-    const Eigen::Matrix<T, 3, 1> n(plane[0], plane[1], plane[2]);
-    Eigen::Matrix<T, 4, 1> predicted;
-    predicted.template head<3>() = R.transpose() * n;
-    predicted(3) = plane[3] + n.dot(t);
-    const Eigen::Matrix<T, 3, 1> e = bim::planeMinus(predicted, measured_);
-    for (int i = 0; i < 3; ++i) residual[i] = T(weights_(i)) * e(i);
-    return true;
-  }
+  bool Evaluate(double const* const* parameters, double* residuals,
+                double** jacobians) const override;
 
   static ceres::CostFunction* create(const Eigen::Vector4d& measured,
                                      const Eigen::Isometry3d& R_T_L, double sigma_angle,
                                      double sigma_distance) {
-    return new ceres::AutoDiffCostFunction<PosePlaneFactor, 3, 3, 4, 4>(
-        new PosePlaneFactor(measured, R_T_L, sigma_angle, sigma_distance));
+    return new PosePlaneFactor(measured, R_T_L, sigma_angle, sigma_distance);
   }
 
  private:
-  Eigen::Vector4d measured_;
+  double measured_distance_;
+  // The measured plane's unit normal and its tangent frame (bim::planeMinus's x, u, v).
+  Eigen::Vector3d measured_normal_, tangent_u_, tangent_v_;
   Eigen::Matrix3d R_T_L_rotation_;
   Eigen::Vector3d R_T_L_translation_;
   Eigen::Vector3d weights_;

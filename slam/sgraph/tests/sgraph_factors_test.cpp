@@ -1,5 +1,6 @@
 #include "slam/sgraph/sgraph_factors.hpp"
 
+#include <ceres/autodiff_cost_function.h>
 #include <ceres/gradient_checker.h>
 #include <ceres/manifold.h>
 #include <gtest/gtest.h>
@@ -10,6 +11,7 @@
 
 #include <cmath>
 #include <memory>
+#include <vector>
 
 namespace isg::slam {
 namespace {
@@ -44,6 +46,73 @@ TEST(PosePlaneFactor, ResidualByHandAndJacobians) {
   bim::PlaneManifold plane;
   isg::testing::expectJacobiansMatchNumeric(*cost, {nullptr, &quaternion, &plane},
                                             {position.data(), q.coeffs().data(), wall.data()});
+}
+
+// The residual as the S-Graph wrote it before its Jacobians were written by hand, differentiated
+// by Ceres' AutoDiff: the hand-written factor must give the same residual (to rounding) and the
+// same Jacobians through both manifolds, far from the measurement too (where numeric
+// differentiation through the quaternion's ambient space is no longer a reference).
+struct PosePlaneByAutoDiff {
+  Eigen::Vector4d measured;
+  Eigen::Isometry3d R_T_L;
+  Eigen::Vector3d weights;
+  template <typename T>
+  bool operator()(const T* position, const T* orientation, const T* plane, T* residual) const {
+    const Eigen::Map<const Eigen::Quaternion<T>> q(orientation);
+    const Eigen::Map<const Eigen::Matrix<T, 3, 1>> p(position);
+    const Eigen::Matrix<T, 3, 3> R = q.toRotationMatrix() * R_T_L.rotation().cast<T>();
+    const Eigen::Matrix<T, 3, 1> t = q * R_T_L.translation().cast<T>() + p;
+    const Eigen::Matrix<T, 3, 1> n(plane[0], plane[1], plane[2]);
+    Eigen::Matrix<T, 4, 1> predicted;
+    predicted.template head<3>() = R.transpose() * n;
+    predicted(3) = plane[3] + n.dot(t);
+    const Eigen::Matrix<T, 3, 1> e = bim::planeMinus(predicted, measured);
+    for (int i = 0; i < 3; ++i) residual[i] = T(weights(i)) * e(i);
+    return true;
+  }
+};
+
+TEST(PosePlaneFactor, HandWrittenJacobiansAreAutoDiffs) {
+  ceres::EigenQuaternionManifold quaternion;
+  Eigen::Isometry3d R_T_L = pose(0.1, -0.05, 0.3, 0.2, 0.01);
+  // Poses turned and tilted, planes walls and a floor, measured off the prediction.
+  const Eigen::Isometry3d poses[] = {pose(1, 2, 0.4, 0.3, 0.1), pose(-3, 5, 0.5, 2.5, -0.05),
+                                     pose(10, -4, 0.45, -1.2, 0.02)};
+  const Eigen::Vector4d planes[] = {Eigen::Vector4d(-1, 0, 0, 5),
+                                    Eigen::Vector4d(0.6, 0.8, 0.0, -2),
+                                    Eigen::Vector4d(0.01, 0.02, 1.0, 0.1)};
+  const Eigen::Vector4d measured[] = {Eigen::Vector4d(0.1, 0.99, 0.05, 4),
+                                      Eigen::Vector4d(-0.7, 0.7, 0.1, 1.5),
+                                      Eigen::Vector4d(0.0, 0.05, -1.0, 0.6)};
+  for (const Eigen::Isometry3d& M_T_R : poses) {
+    for (const Eigen::Vector4d& wall : planes) {
+      for (const Eigen::Vector4d& z : measured) {
+        std::unique_ptr<ceres::CostFunction> hand(PosePlaneFactor::create(z, R_T_L, 0.01, 0.02));
+        ceres::AutoDiffCostFunction<PosePlaneByAutoDiff, 3, 3, 4, 4> automatic(
+            new PosePlaneByAutoDiff{z, R_T_L, Eigen::Vector3d(100.0, 100.0, 50.0)});
+        Eigen::Vector3d position = M_T_R.translation();
+        Eigen::Quaterniond q(M_T_R.rotation());
+        Eigen::Vector4d pi = wall;
+        double* params[] = {position.data(), q.coeffs().data(), pi.data()};
+        Eigen::Vector3d r_hand, r_auto;
+        Eigen::Matrix<double, 3, 3, Eigen::RowMajor> Jp_hand, Jp_auto;
+        Eigen::Matrix<double, 3, 4, Eigen::RowMajor> Jq_hand, Jq_auto, Jn_hand, Jn_auto;
+        double* j_hand[] = {Jp_hand.data(), Jq_hand.data(), Jn_hand.data()};
+        double* j_auto[] = {Jp_auto.data(), Jq_auto.data(), Jn_auto.data()};
+        ASSERT_TRUE(hand->Evaluate(params, r_hand.data(), j_hand));
+        ASSERT_TRUE(automatic.Evaluate(params, r_auto.data(), j_auto));
+        // Eigen's vectorised double paths and its scalar paths for dual numbers round apart.
+        for (int i = 0; i < 3; ++i)
+          EXPECT_NEAR(r_hand(i), r_auto(i), 1e-12 * std::abs(r_auto(i)) + 1e-12);
+        EXPECT_LT((Jp_hand - Jp_auto).cwiseAbs().maxCoeff(), 1e-9);
+        EXPECT_LT((Jn_hand - Jn_auto).cwiseAbs().maxCoeff(), 1e-9);
+        // The quaternion's through the manifold: only its tangent space is used.
+        Eigen::Matrix<double, 4, 3, Eigen::RowMajor> plus;
+        quaternion.PlusJacobian(q.coeffs().data(), plus.data());
+        EXPECT_LT((Jq_hand * plus - Jq_auto * plus).cwiseAbs().maxCoeff(), 1e-9);
+      }
+    }
+  }
 }
 
 TEST(OdometryFactor, ZeroAtTheMeasurementAndJacobians) {
