@@ -32,7 +32,8 @@ bool PosePlaneFactor::Evaluate(double const* const* parameters, double* residual
   // The residual, as bim::planeMinus computes it.
   const Eigen::Matrix3d R_q = q.toRotationMatrix();
   const Eigen::Matrix3d R = R_q * R_T_L_rotation_;
-  const Eigen::Vector3d t = q * R_T_L_translation_ + p;
+  const Eigen::Vector3d arm = q * R_T_L_translation_;  // the LiDAR from the base, in M
+  const Eigen::Vector3d t = arm + p;
   const Eigen::Vector3d n(plane[0], plane[1], plane[2]);
   const Eigen::Vector3d m = R.transpose() * n;  // the predicted normal, not unit
   const double predicted_distance = plane[3] + n.dot(t);
@@ -41,7 +42,8 @@ bool PosePlaneFactor::Evaluate(double const* const* parameters, double* residual
   const double w0 = ny.dot(measured_normal_);
   const double w1 = ny.dot(tangent_u_);
   double w2 = ny.dot(tangent_v_);
-  const bool clamped = w2 > 1.0 || w2 < -1.0;
+  // At ±1 (a plane seen edge-on to its measurement) asin has no finite slope: none is given.
+  const bool clamped = w2 >= 1.0 || w2 <= -1.0;
   w2 = std::clamp(w2, -1.0, 1.0);
   residuals[0] = weights_(0) * std::atan2(w1, w0);
   residuals[1] = weights_(1) * std::asin(w2);
@@ -70,7 +72,6 @@ bool PosePlaneFactor::Evaluate(double const* const* parameters, double* residual
     Eigen::Matrix3d by_turn;
     by_turn.topRows<2>() =
         angle_by_m * R_T_L_rotation_.transpose() * (2.0 * R_q.transpose() * skew(n));
-    const Eigen::Vector3d arm = q * R_T_L_translation_;
     by_turn.row(2) = weights_(2) * n.transpose() * (-2.0 * skew(arm));
     Eigen::Matrix<double, 4, 3> plus;  // rows x, y, z, w
     plus.topRows<3>() = q.w() * Eigen::Matrix3d::Identity() - skew(q.vec());

@@ -10,9 +10,10 @@
 
 namespace isg::slam {
 
-// The S-Graph's keyframe factors (docs/slam.md), as Ceres AutoDiff cost functions. A keyframe
-// pose M_T_R is two parameter blocks: its position (3) and its orientation as an Eigen quaternion
-// [x, y, z, w] (4, on ceres::EigenQuaternionManifold). Planes are [n, d] on bim::PlaneManifold.
+// The S-Graph's keyframe factors (docs/slam.md), as Ceres AutoDiff cost functions but for the
+// plane observation, whose Jacobians are written by hand. A keyframe pose M_T_R is two parameter
+// blocks: its position (3) and its orientation as an Eigen quaternion [x, y, z, w] (4, on
+// ceres::EigenQuaternionManifold). Planes are [n, d] on bim::PlaneManifold.
 // The room factors are the A-Graph's (bim/agraph_factors.hpp): the same maths, written once.
 
 // A plane observed in the LiDAR frame of a keyframe: e = (M_T_L⁻¹ · π_M) ⊖ z in the minimal
@@ -21,7 +22,8 @@ namespace isg::slam {
 // Parameters: position (3), orientation (4, Eigen quaternion), π_M (4). Its Jacobians are written
 // by hand (slam/sgraph/pose_plane_factor.cpp): it is most of the window optimisation's residuals,
 // and with AutoDiff's 11-wide dual numbers it was a sixth of a run's CPU (perf, D6 as built).
-// The residual is computed as AutoDiff computed it, operation for operation.
+// The residual is computed by the same steps as before (equal to rounding: Eigen vectorises
+// doubles, not dual numbers).
 class PosePlaneFactor : public ceres::SizedCostFunction<3, 3, 4, 4> {
  public:
   PosePlaneFactor(const Eigen::Vector4d& measured, const Eigen::Isometry3d& R_T_L,
