@@ -253,6 +253,7 @@ AGraph buildAGraph(const Plan& plan, const AGraphOptions& options) {
       node.wall = door.wall;
       node.level = level.id;
       node.width = door.width;
+      node.height = door.height;
       const Eigen::Vector2d c = doorCentre(level, door);
       node.position = {c.x(), c.y(), level.elevation + level.findWall(door.wall)->base};
       for (const auto& room_id : door.rooms) {

@@ -74,6 +74,7 @@ struct DoorwayNode {
   std::string level;
   Eigen::Vector3d position = Eigen::Vector3d::Zero();  // door centre on the wall axis, at floor z
   double width = 0.0;
+  double height = 0.0;     // of the opening, from the wall's base (position.z)
   std::vector<int> rooms;  // indices of the rooms it joins (one when it leads outside)
 };
 

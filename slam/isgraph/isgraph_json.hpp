@@ -20,6 +20,7 @@ struct ISGraphView {
   const ReleasedWalls& released;
   const FloorFollower& floors;
   int windows_with_answer_held = 0;
+  long jamb_factors = 0;  // door jambs tied to keyframes, over every window
 };
 
 // sgraph.json's "matching" object of the iS-Graph.

@@ -38,6 +38,7 @@ PlanMerger::Options mergerOptions(const ISGraphOptions& o) {
   m.sigma_B_T_M_translation = o.sigma_B_T_M_translation;
   m.sigma_B_T_M_yaw = o.sigma_B_T_M_yaw;
   m.min_normal_spread_deg = o.min_normal_spread_deg;
+  m.jambs = o.jambs;
   return m;
 }
 
@@ -46,6 +47,7 @@ PlanMerger::Options mergerOptions(const ISGraphOptions& o) {
 ISGraphLocalizer::ISGraphLocalizer(const Eigen::Isometry3d& R_T_L, const bim::AGraph& plan,
                                    const ISGraphOptions& options)
     : options_(options),
+      R_T_L_(R_T_L),
       plan_(plan, options.matching, options.outside_margin),
       graph_(R_T_L, options.sgraph),
       released_(options.release),
@@ -62,14 +64,31 @@ void ISGraphLocalizer::pushScan(const sensors::Scan& scan) {
   if (!graph_.addScan(scan)) return;
   const auto start = std::chrono::steady_clock::now();
   onKeyframe(scan.stamp);
-  matching_s_ += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  const auto jambs_start = std::chrono::steady_clock::now();
+  matching_s_ += std::chrono::duration<double>(jambs_start - start).count();
+  noteJambs();
+  jambs_s_ += std::chrono::duration<double>(std::chrono::steady_clock::now() - jambs_start).count();
 }
 
 sensors::StageTimes ISGraphLocalizer::stageTimes() const {
   sensors::StageTimes times = graph_.stageTimes();
   times.add("matching", matching_s_ - contradiction_s_);
   times.add("contradiction checks", contradiction_s_);
+  times.add("door jambs", jambs_s_);
   return times;
+}
+
+void ISGraphLocalizer::noteJambs() {
+  const auto& keyframes = graph_.keyframes();
+  const int k = int(keyframes.size()) - 1;
+  if (!answer_.localized || k < 0 || !keyframes.back().onFloor() || !graph_.keyframeScan()) return;
+  Eigen::Isometry3d P_T_M = Eigen::Isometry3d::Identity();
+  P_T_M.linear() =
+      Eigen::AngleAxisd(answer_.P_T_M_x_y_yaw.z(), Eigen::Vector3d::UnitZ()).toRotationMatrix();
+  P_T_M.translation() << answer_.P_T_M_x_y_yaw.head<2>(), answer_.P_T_M_z;
+  // Only keyframes a window can still move need their jambs.
+  merger_.noteKeyframe(k, *graph_.keyframeScan(), P_T_M * keyframes.back().pose(), R_T_L_,
+                       k - options_.sgraph.window - 1);
 }
 
 bool ISGraphLocalizer::wantsScan(double stamp) const { return graph_.wouldKeyframe(stamp); }
@@ -90,6 +109,7 @@ void ISGraphLocalizer::record(double stamp, MatchStatus status, const std::strin
 void ISGraphLocalizer::adopt(const Verification& answer, int level) {
   answer_.take(answer);
   released_.clear();
+  merger_.forgetKeyframes();  // gathered under another answer
   // The floor of the answer's level, or of the first matched room's.
   if (level < 0 && !answer.rooms.empty()) {
     level = plan_.agraph().rooms[answer.rooms[0].second].floor;
@@ -116,6 +136,7 @@ void ISGraphLocalizer::lose(double stamp, const std::string& reason) {
   log_.lost();
   answer_.clear();
   released_.clear();
+  merger_.forgetKeyframes();
   floors_.clear();
   agreement_.clear();
   graph_.startNewSegment(stamp, reason);
@@ -327,8 +348,8 @@ void ISGraphLocalizer::refitAnswer(const MatchInput& input) {
 nlohmann::json ISGraphLocalizer::graph() const {
   nlohmann::json out = graph_.toJson();
   out["method"] = name();
-  out["matching"] =
-      matchingJson({plan_, answer_, log_, released_, floors_, merger_.windowsWithAnswerHeld()});
+  out["matching"] = matchingJson({plan_, answer_, log_, released_, floors_,
+                                  merger_.windowsWithAnswerHeld(), merger_.jambFactors()});
   return out;
 }
 

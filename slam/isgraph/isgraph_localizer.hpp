@@ -55,6 +55,8 @@ struct ISGraphOptions {
   // them alone), and those the local vote puts on a surface gain that correspondence; the merge
   // then pulls the map there. 0 leaves it out.
   int recapture_keyframes = 25;
+  // Door jambs seen from keyframes tie them to the plan along the wall (docs/matching.md).
+  JambOptions jambs;
   // Holding the plan (docs/matching.md). A correspondence, once made, is kept while its S-plane
   // stays within these of its surface at the current B_T_M: far looser than the matcher's
   // tolerances, so that drift the merge has not yet corrected does not drop it.
@@ -178,6 +180,8 @@ class ISGraphLocalizer : public Localizer {
   // When new S-planes were mapped since the last vote: the answer moved to where more plan walls
   // agree (GraphMatcher::consensus), if by min_answer_move or more. True when it moved.
   bool moveToConsensus(const MatchInput& input, double stamp);
+  // The latest keyframe's points that may lie on door jambs, kept for the merge's windows.
+  void noteJambs();
   // The recent walls' own vote (recapture_keyframes): correspondences for those it places.
   void recaptureRecentWalls(const MatchInput& input);
   // Where the planes' vote on the level's matcher puts P_T_M (GraphMatcher::consensus), if that
@@ -188,6 +192,7 @@ class ISGraphLocalizer : public Localizer {
   void checkForContradiction(double stamp);
 
   ISGraphOptions options_;
+  Eigen::Isometry3d R_T_L_;
   CompiledPlan plan_;  // in P
   SGraph graph_;
   HeldAnswer answer_;
@@ -203,6 +208,7 @@ class ISGraphLocalizer : public Localizer {
   std::size_t planes_at_last_vote_ = 0;
   double matching_s_ = 0.0;       // onKeyframe in all: matching, verification, contradictions
   double contradiction_s_ = 0.0;  // of which the contradiction checks
+  double jambs_s_ = 0.0;          // gathering the keyframes' door jamb points
 };
 
 }  // namespace isg::slam

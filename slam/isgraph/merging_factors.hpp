@@ -3,6 +3,7 @@
 #include <ceres/autodiff_cost_function.h>
 
 #include <Eigen/Core>
+#include <Eigen/Geometry>
 
 #include "bim/plane_manifold.hpp"
 
@@ -133,6 +134,41 @@ struct PlanarPriorFactor {
  private:
   Eigen::Vector3d value_;
   double weight_t_, weight_r_;
+};
+
+// A door jamb seen from a keyframe: the centroid of its points (in R) lies on the jamb's plane
+// in P. Residual (n · (P_T_M · M_T_R · c)_xy − n · j) / σ, with n the jamb's normal and j a
+// point of it. Parameters: the keyframe's position (3) and orientation (4, Eigen's x y z w),
+// P_T_M [x, y, yaw] (3).
+struct JambFactor {
+  JambFactor(const Eigen::Vector3d& centroid_R, const Eigen::Vector2d& normal,
+             const Eigen::Vector2d& point, double sigma)
+      : centroid_R_(centroid_R), normal_(normal), d_(normal.dot(point)), weight_(1.0 / sigma) {}
+
+  template <typename T>
+  bool operator()(const T* position, const T* orientation, const T* P_T_M, T* residual) const {
+    const Eigen::Quaternion<T> q(orientation[3], orientation[0], orientation[1], orientation[2]);
+    const Eigen::Matrix<T, 3, 1> in_M =
+        q.normalized() * centroid_R_.cast<T>() +
+        Eigen::Matrix<T, 3, 1>(position[0], position[1], position[2]);
+    const Eigen::Matrix<T, 3, 1> in_P = yawRotation(P_T_M[2]) * in_M;
+    const T along = T(normal_.x()) * (in_P.x() + P_T_M[0]) + T(normal_.y()) * (in_P.y() + P_T_M[1]);
+    residual[0] = T(weight_) * (along - T(d_));
+    return true;
+  }
+
+  static ceres::CostFunction* create(const Eigen::Vector3d& centroid_R,
+                                     const Eigen::Vector2d& normal, const Eigen::Vector2d& point,
+                                     double sigma) {
+    return new ceres::AutoDiffCostFunction<JambFactor, 1, 3, 4, 3>(
+        new JambFactor(centroid_R, normal, point, sigma));
+  }
+
+ private:
+  Eigen::Vector3d centroid_R_;
+  Eigen::Vector2d normal_;
+  double d_;
+  double weight_;
 };
 
 }  // namespace isg::slam

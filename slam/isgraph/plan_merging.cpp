@@ -83,6 +83,49 @@ bool PlanMerger::addRoomFactors(ceres::Problem& problem, int room, int plan_room
   return false;
 }
 
+void PlanMerger::noteKeyframe(int keyframe, const sensors::Scan& scan,
+                              const Eigen::Isometry3d& P_T_R, const Eigen::Isometry3d& R_T_L,
+                              int keep_from) {
+  sightings_.erase(sightings_.begin(), sightings_.lower_bound(keep_from));
+  if (!options_.jambs.enabled) return;
+  R_T_L_ = R_T_L;
+  std::vector<JambSighting> seen = jambs_.gather(scan.points, P_T_R * R_T_L);
+  if (seen.empty()) return;
+  sightings_[keyframe] = std::move(seen);
+}
+
+void PlanMerger::addJambFactors(ceres::Problem& problem, SGraph& graph, HeldAnswer& answer,
+                                const ReleasedWalls& released) {
+  const bim::AGraph& plan = plan_->agraph();
+  for (const auto& [k, seen] : sightings_) {
+    if (k >= int(graph.keyframes().size())) continue;
+    double* position = graph.keyframePosition(k);
+    if (!problem.HasParameterBlock(position) || problem.IsParameterBlockConstant(position)) {
+      continue;
+    }
+    const auto& keyframe = graph.keyframes()[k];
+    Eigen::Isometry3d P_T_M = Eigen::Isometry3d::Identity();
+    P_T_M.linear() =
+        Eigen::AngleAxisd(answer.P_T_M_x_y_yaw.z(), Eigen::Vector3d::UnitZ()).toRotationMatrix();
+    P_T_M.translation() << answer.P_T_M_x_y_yaw.head<2>(), answer.P_T_M_z;
+    const Eigen::Isometry3d P_T_L = P_T_M * keyframe.pose() * R_T_L_;
+    for (const JambSighting& sighting : seen) {
+      const DoorJamb& jamb = jambs_.jambs()[sighting.jamb];
+      // A wall released as built off its plan takes its openings with it.
+      const bim::WallNode& wall = plan.walls[jamb.wall];
+      if (released.offsetOf(wall.left_surface) || released.offsetOf(wall.right_surface)) continue;
+      const auto fit = jambs_.fit(sighting, P_T_L);
+      if (!fit) continue;
+      const double sigma = std::max(options_.jambs.min_sigma,
+                                    options_.jambs.sigma_point / std::sqrt(double(fit->points)));
+      problem.AddResidualBlock(
+          JambFactor::create(R_T_L_ * fit->centroid_L, jamb.normal, jamb.point, sigma), &huber_,
+          position, graph.keyframeOrientation(k), answer.P_T_M_x_y_yaw.data());
+      ++jamb_factors_;
+    }
+  }
+}
+
 void PlanMerger::addFactors(ceres::Problem& problem, const std::set<int>& planes,
                             const std::vector<int>& rooms, SGraph& graph, HeldAnswer& answer,
                             const ReleasedWalls& released) {
@@ -130,6 +173,7 @@ void PlanMerger::addFactors(ceres::Problem& problem, const std::set<int>& planes
     problem.SetParameterBlockConstant(answer.P_T_M_x_y_yaw.data());
     ++held_constant_;
   }
+  addJambFactors(problem, graph, answer, released);
   // The plan's walls between surfaces in the problem.
   for (std::size_t w = 0; w < plan.walls.size(); ++w) {
     const auto& wall = plan.walls[w];

@@ -3,6 +3,7 @@
 #include <ceres/ceres.h>
 
 #include <array>
+#include <map>
 #include <numbers>
 #include <optional>
 #include <set>
@@ -11,6 +12,7 @@
 #include "bim/agraph_optimizer.hpp"
 #include "bim/plane_manifold.hpp"
 #include "slam/isgraph/compiled_plan.hpp"
+#include "slam/isgraph/door_jambs.hpp"
 #include "slam/isgraph/held_answer.hpp"
 #include "slam/isgraph/released_walls.hpp"
 #include "slam/sgraph/sgraph.hpp"
@@ -36,10 +38,15 @@ class PlanMerger {
     double sigma_B_T_M_translation = 0.5;                     // m
     double sigma_B_T_M_yaw = 5.0 * std::numbers::pi / 180.0;  // rad
     double min_normal_spread_deg = 30.0;
+    // Door jambs seen from the window's keyframes (door_jambs.hpp).
+    JambOptions jambs;
   };
 
   PlanMerger(const CompiledPlan& plan, const Options& options)
-      : plan_(&plan), options_(options), state_(plan.agraph()) {}
+      : plan_(&plan),
+        options_(options),
+        state_(plan.agraph()),
+        jambs_(plan.agraph(), options.jambs) {}
   // The problem holds pointers into its state.
   PlanMerger(const PlanMerger&) = delete;
   PlanMerger& operator=(const PlanMerger&) = delete;
@@ -51,6 +58,15 @@ class PlanMerger {
   void addFactors(ceres::Problem& problem, const std::set<int>& planes,
                   const std::vector<int>& rooms, SGraph& graph, HeldAnswer& answer,
                   const ReleasedWalls& released);
+  // Keeps the points of keyframe `keyframe`'s scan (in L; the keyframe's pose in P and the
+  // sensor's mount given) that may lie on a door jamb, for the windows it will be in; forgets
+  // those of keyframes before `keep_from`.
+  void noteKeyframe(int keyframe, const sensors::Scan& scan, const Eigen::Isometry3d& P_T_R,
+                    const Eigen::Isometry3d& R_T_L, int keep_from);
+  // Forgets every keyframe's jamb points: a new segment or a new answer.
+  void forgetKeyframes() { sightings_.clear(); }
+  // Jamb factors added over the run.
+  long jambFactors() const { return jamb_factors_; }
   // Windows in which P_T_M was held constant (under-constrained).
   int windowsWithAnswerHeld() const { return held_constant_; }
 
@@ -68,9 +84,17 @@ class PlanMerger {
                                                             const SGraph& graph,
                                                             const HeldAnswer& answer) const;
 
+  // The jambs seen from the window's free keyframes, each tying its keyframe to P_T_M.
+  void addJambFactors(ceres::Problem& problem, SGraph& graph, HeldAnswer& answer,
+                      const ReleasedWalls& released);
+
   const CompiledPlan* plan_;
   Options options_;
   bim::AGraphState state_;
+  DoorJambs jambs_;
+  std::map<int, std::vector<JambSighting>> sightings_;  // by keyframe
+  Eigen::Isometry3d R_T_L_ = Eigen::Isometry3d::Identity();
+  long jamb_factors_ = 0;
   bim::PlaneManifold plane_manifold_;
   ceres::HuberLoss huber_{1.0};
   std::set<int> surfaces_in_problem_;  // per optimisation

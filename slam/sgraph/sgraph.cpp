@@ -261,6 +261,7 @@ bool SGraph::addScan(sensors::Scan scan) {
   detectRoomsInWindow(index);
   timing.optimisation_s = timing.solve_s + rooms_clock.stop();
   timings_.push_back(timing);
+  keyframe_scan_ = std::make_shared<const sensors::Scan>(std::move(scan));
   return true;
 }
 

@@ -231,6 +231,11 @@ class SGraph {
   void setWindowHook(WindowHook hook) { window_hook_ = std::move(hook); }
   double* planeParameters(int plane) { return planes_[plane].parameters.data(); }
   double* roomCentre(int room) { return rooms_[room].centre.data(); }
+  double* keyframePosition(int k) { return keyframes_[k].position.data(); }
+  double* keyframeOrientation(int k) { return keyframes_[k].orientation.coeffs().data(); }
+  // The latest keyframe's scan, deskewed (in L); none before the first. Shared: a copy of the
+  // graph (a contradiction check) does not copy it.
+  const std::shared_ptr<const sensors::Scan>& keyframeScan() const { return keyframe_scan_; }
 
   using Timing = KeyframeTiming;
   const std::vector<Timing>& timings() const { return timings_; }
@@ -304,6 +309,7 @@ class SGraph {
   // When options.threads > 1; a copy of the graph (checkForContradiction) shares it.
   std::shared_ptr<ThreadPool> pool_;
   WindowHook window_hook_;
+  std::shared_ptr<const sensors::Scan> keyframe_scan_;
   Eigen::Isometry3d start_correction_ = Eigen::Isometry3d::Identity();
   struct Segment {
     double start = 0.0, end = 0.0;
