@@ -24,6 +24,13 @@ struct HeldAnswer {
   std::map<int, int> plane_matches;  // S-plane → A-surface
   std::map<int, int> room_matches;   // S-room → A-room
 
+  // P_T_M in 3D: the planar part turned about z, and the held height.
+  Eigen::Isometry3d P_T_M() const {
+    Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
+    T.linear() = Eigen::AngleAxisd(P_T_M_x_y_yaw.z(), Eigen::Vector3d::UnitZ()).toRotationMatrix();
+    T.translation() << P_T_M_x_y_yaw.head<2>(), P_T_M_z;
+    return T;
+  }
   // A point of M's plane in P.
   Eigen::Vector2d inP(const Eigen::Vector2d& in_M) const {
     return applyPlanar(P_T_M_x_y_yaw, in_M);

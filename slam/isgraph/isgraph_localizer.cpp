@@ -82,12 +82,8 @@ void ISGraphLocalizer::noteJambs() {
   const auto& keyframes = graph_.keyframes();
   const int k = int(keyframes.size()) - 1;
   if (!answer_.localized || k < 0 || !keyframes.back().onFloor() || !graph_.keyframeScan()) return;
-  Eigen::Isometry3d P_T_M = Eigen::Isometry3d::Identity();
-  P_T_M.linear() =
-      Eigen::AngleAxisd(answer_.P_T_M_x_y_yaw.z(), Eigen::Vector3d::UnitZ()).toRotationMatrix();
-  P_T_M.translation() << answer_.P_T_M_x_y_yaw.head<2>(), answer_.P_T_M_z;
   // Only keyframes a window can still move need their jambs.
-  merger_.noteKeyframe(k, *graph_.keyframeScan(), P_T_M * keyframes.back().pose(), R_T_L_,
+  merger_.noteKeyframe(k, *graph_.keyframeScan(), answer_.P_T_M() * keyframes.back().pose(), R_T_L_,
                        k - options_.sgraph.window - 1);
 }
 

@@ -104,11 +104,7 @@ void PlanMerger::addJambFactors(ceres::Problem& problem, SGraph& graph, HeldAnsw
       continue;
     }
     const auto& keyframe = graph.keyframes()[k];
-    Eigen::Isometry3d P_T_M = Eigen::Isometry3d::Identity();
-    P_T_M.linear() =
-        Eigen::AngleAxisd(answer.P_T_M_x_y_yaw.z(), Eigen::Vector3d::UnitZ()).toRotationMatrix();
-    P_T_M.translation() << answer.P_T_M_x_y_yaw.head<2>(), answer.P_T_M_z;
-    const Eigen::Isometry3d P_T_L = P_T_M * keyframe.pose() * R_T_L_;
+    const Eigen::Isometry3d P_T_L = answer.P_T_M() * keyframe.pose() * R_T_L_;
     for (const JambSighting& sighting : seen) {
       const DoorJamb& jamb = jambs_.jambs()[sighting.jamb];
       // A wall released as built off its plan takes its openings with it.
