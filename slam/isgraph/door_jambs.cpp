@@ -20,7 +20,6 @@ DoorJambs::DoorJambs(const bim::AGraph& plan, const JambOptions& options) : opti
     const Eigen::Vector2d axis(left.y(), -left.x());  // start → end: left turned back by 90°
     for (int side : {-1, +1}) {
       DoorJamb jamb;
-      jamb.doorway = d;
       jamb.wall = it->second;
       jamb.point = door.position.head<2>() + side * 0.5 * door.width * axis;
       jamb.normal = -side * axis;

@@ -13,7 +13,6 @@ namespace isg::slam {
 // normals run along the wall. The S-Graph's walls are unbounded planes, so along a corridor
 // nothing the map holds says where it is; the jambs do (docs/matching.md, "Door jambs").
 struct DoorJamb {
-  int doorway = -1;                                   // into AGraph::doorways
   int wall = -1;                                      // into AGraph::walls
   Eigen::Vector2d point = Eigen::Vector2d::Zero();    // on the wall's axis, in P
   Eigen::Vector2d normal = Eigen::Vector2d::UnitX();  // into the opening
@@ -66,7 +65,6 @@ class DoorJambs {
   DoorJambs(const bim::AGraph& plan, const JambOptions& options);
 
   const std::vector<DoorJamb>& jambs() const { return jambs_; }
-  const JambOptions& options() const { return options_; }
 
   // The points of a scan (in L) that may lie on a jamb, under P_T_L: those inside an opening's
   // thickness and height band within `gather` of its jamb's plane, for the jambs in front of the
