@@ -27,6 +27,7 @@ DoorJambs::DoorJambs(const bim::AGraph& plan, const JambOptions& options) : opti
       jamb.half_thickness = 0.5 * wall.thickness;
       jamb.z_min = door.position.z();
       jamb.z_max = door.position.z() + door.height;
+      jamb.opening = door.width;
       // Too thin a wall leaves no band between its faces' points.
       if (jamb.half_thickness - options_.face_margin < 0.01) continue;
       jambs_.push_back(jamb);
@@ -61,13 +62,16 @@ DoorJambs::DoorJambs(const bim::AGraph& plan, const JambOptions& options) : opti
   }
 }
 
-bool DoorJambs::inBand(const DoorJamb& jamb, const Eigen::Vector3d& p, double* u) const {
+bool DoorJambs::inWallBand(const DoorJamb& jamb, const Eigen::Vector3d& p, double* u) const {
   const Eigen::Vector2d d = p.head<2>() - jamb.point;
   *u = jamb.normal.dot(d);
-  if (std::abs(*u) > options_.gather) return false;
   if (std::abs(jamb.across.dot(d)) > jamb.half_thickness - options_.face_margin) return false;
   return p.z() >= jamb.z_min + options_.height_margin &&
          p.z() <= jamb.z_max - options_.height_margin;
+}
+
+bool DoorJambs::inBand(const DoorJamb& jamb, const Eigen::Vector3d& p, double* u) const {
+  return inWallBand(jamb, p, u) && std::abs(*u) <= options_.gather;
 }
 
 std::vector<JambSighting> DoorJambs::gather(const std::vector<sensors::ScanPoint>& points_L,
@@ -87,6 +91,7 @@ std::vector<JambSighting> DoorJambs::gather(const std::vector<sensors::ScanPoint
     any = true;
   }
   if (!any) return sightings;
+  std::vector<int> filled(jambs_.size(), 0);
   const Eigen::Matrix3d R = P_T_L.linear();
   const Eigen::Vector3d t = P_T_L.translation();
   for (const auto& point : points_L) {
@@ -98,7 +103,13 @@ std::vector<JambSighting> DoorJambs::gather(const std::vector<sensors::ScanPoint
     for (int i = cell_start_[c]; i < cell_start_[c + 1]; ++i) {
       const int j = cell_jambs_[i];
       double u = 0.0;
-      if (slot[j] == -1 || !inBand(jambs_[j], p, &u)) continue;
+      if (slot[j] == -1 || !inWallBand(jambs_[j], p, &u)) continue;
+      if (std::abs(u) > options_.gather) {
+        // Deeper into the opening, short of its middle (the grid lists a jamb in the cells
+        // within gather + 0.5 m of it: an opening up to 1.6 m wide is counted to its middle).
+        if (u > 0.0 && u <= 0.5 * jambs_[j].opening) ++filled[j];
+        continue;
+      }
       if (slot[j] == -2) {
         slot[j] = int(sightings.size());
         sightings.push_back({j, {}});
@@ -107,8 +118,10 @@ std::vector<JambSighting> DoorJambs::gather(const std::vector<sensors::ScanPoint
     }
   }
   for (JambSighting& sighting : sightings) {
+    sighting.filled = filled[sighting.jamb];
     const std::size_t n = sighting.points_L.size(), keep = std::size_t(options_.max_points);
     if (n <= keep) continue;
+    sighting.filled = int(std::size_t(sighting.filled) * keep / n);
     std::vector<Eigen::Vector3f> even(keep);
     for (std::size_t i = 0; i < keep; ++i) even[i] = sighting.points_L[i * n / keep];
     sighting.points_L = std::move(even);
@@ -145,7 +158,10 @@ std::optional<DoorJambs::Fit> DoorJambs::fit(const JambSighting& sighting,
     ++fit.points;
   }
   if (fit.points < options_.min_points) return std::nullopt;
-  if (open > options_.max_open_share * double(offsets.size())) return std::nullopt;
+  if (double(open + sighting.filled) >
+      options_.max_open_share * double(offsets.size() + sighting.filled)) {
+    return std::nullopt;
+  }
   std::nth_element(deviations.begin(), deviations.begin() + deviations.size() / 2,
                    deviations.end());
   if (deviations[deviations.size() / 2] > options_.max_spread) return std::nullopt;

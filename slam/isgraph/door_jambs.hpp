@@ -19,6 +19,7 @@ struct DoorJamb {
   Eigen::Vector2d across = Eigen::Vector2d::UnitY();  // the wall's left normal
   double half_thickness = 0.0;
   double z_min = 0.0, z_max = 0.0;  // the opening's height range
+  double opening = 0.0;             // the opening's width
 };
 
 // Thresholds of the jamb evidence (ISGraphOptions::jambs).
@@ -33,7 +34,8 @@ struct JambOptions {
   // then takes those within `cluster` of their median, if they form a jamb: at least
   // `min_points`, their spread (median absolute deviation) at most `max_spread`, and no more
   // than `max_open_share` of the gathered ones lying further into the opening (a closed door's
-  // leaf or someone standing in it).
+  // leaf or someone standing in it), counting those beyond `gather` up to the opening's middle
+  // (JambSighting::filled).
   double gather = 0.3;
   double cluster = 0.06;
   int min_points = 8;
@@ -56,6 +58,11 @@ struct JambOptions {
 struct JambSighting {
   int jamb = -1;
   std::vector<Eigen::Vector3f> points_L;
+  // The scan's points in the band further into the opening than `gather`, up to its middle, at
+  // the pose of the gathering (scaled as points_L is thinned to max_points): what fills the
+  // opening. A closed leaf seen beside its jamb lies partly within `gather` too, where it alone
+  // would look like a jamb slid along the wall.
+  int filled = 0;
 };
 
 // Both jambs of every doorway of a plan whose wall is known, with a grid over the plan that
@@ -81,8 +88,10 @@ class DoorJambs {
   std::optional<Fit> fit(const JambSighting& sighting, const Eigen::Isometry3d& P_T_L) const;
 
  private:
-  // Where a point of P lies across the jamb: along its normal (u), across the wall (v), and
-  // whether it is inside the band a jamb's points occupy (thickness and height, within gather).
+  // Where a point of P lies along the jamb's normal (u), and whether it is inside the band a
+  // jamb's points occupy: across the wall's thickness and in height (inWallBand), and within
+  // `gather` of the jamb's plane too (inBand).
+  bool inWallBand(const DoorJamb& jamb, const Eigen::Vector3d& p, double* u) const;
   bool inBand(const DoorJamb& jamb, const Eigen::Vector3d& p, double* u) const;
 
   JambOptions options_;

@@ -94,9 +94,7 @@ void PlanMerger::noteKeyframe(int keyframe, const sensors::Scan& scan,
   sightings_[keyframe] = std::move(seen);
 }
 
-void PlanMerger::addJambFactors(ceres::Problem& problem, SGraph& graph, HeldAnswer& answer,
-                                const ReleasedWalls& released) {
-  const bim::AGraph& plan = plan_->agraph();
+void PlanMerger::addJambFactors(ceres::Problem& problem, SGraph& graph, HeldAnswer& answer) {
   for (const auto& [k, seen] : sightings_) {
     if (k >= int(graph.keyframes().size())) continue;
     double* position = graph.keyframePosition(k);
@@ -107,9 +105,13 @@ void PlanMerger::addJambFactors(ceres::Problem& problem, SGraph& graph, HeldAnsw
     const Eigen::Isometry3d P_T_L = answer.P_T_M() * keyframe.pose() * R_T_L_;
     for (const JambSighting& sighting : seen) {
       const DoorJamb& jamb = jambs_.jambs()[sighting.jamb];
-      // A wall released as built off its plan takes its openings with it.
-      const bim::WallNode& wall = plan.walls[jamb.wall];
-      if (released.offsetOf(wall.left_surface) || released.offsetOf(wall.right_surface)) continue;
+      // A jamb is kept when its wall is released: a release judges the wall across itself (its
+      // offset along its normal, its angle), a jamb holds the map along it. A wall built off
+      // its plan across itself leaves its openings where they were along it; built far enough
+      // off, its jambs leave their band and are not gathered, and a turn moves them across, out
+      // of the band too. On a long floor, the walls most often released are the corridor's own,
+      // on the map's bend rather than on the building (docs/matching.md, "Door jambs"): without
+      // their jambs, the corridor slid again.
       const auto fit = jambs_.fit(sighting, P_T_L);
       if (!fit) continue;
       const double sigma = std::max(options_.jambs.min_sigma,
@@ -169,7 +171,7 @@ void PlanMerger::addFactors(ceres::Problem& problem, const std::set<int>& planes
     problem.SetParameterBlockConstant(answer.P_T_M_x_y_yaw.data());
     ++held_constant_;
   }
-  addJambFactors(problem, graph, answer, released);
+  addJambFactors(problem, graph, answer);
   // The plan's walls between surfaces in the problem.
   for (std::size_t w = 0; w < plan.walls.size(); ++w) {
     const auto& wall = plan.walls[w];

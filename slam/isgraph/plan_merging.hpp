@@ -84,9 +84,9 @@ class PlanMerger {
                                                             const SGraph& graph,
                                                             const HeldAnswer& answer) const;
 
-  // The jambs seen from the window's free keyframes, each tying its keyframe to P_T_M.
-  void addJambFactors(ceres::Problem& problem, SGraph& graph, HeldAnswer& answer,
-                      const ReleasedWalls& released);
+  // The jambs seen from the window's free keyframes, each tying its keyframe to P_T_M (those of
+  // released walls too: a release judges a wall across itself, a jamb holds the map along it).
+  void addJambFactors(ceres::Problem& problem, SGraph& graph, HeldAnswer& answer);
 
   const CompiledPlan* plan_;
   Options options_;

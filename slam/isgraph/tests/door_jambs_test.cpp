@@ -46,12 +46,13 @@ Eigen::Isometry3d sensorPose(double shift_x = 0.0) {
 }
 
 // `count` points on the jamb face at x = 5.5 (offsets ±0.01 m alternately, the last one +0.01 if
-// odd), across y ∈ [−0.06, 0.06] and z ∈ [0.4, 1.7], in L of sensorPose().
-std::vector<sensors::ScanPoint> jambFace(int count) {
+// odd), across y ∈ [−0.06, 0.06] (moved by `across`: the wall built that far off its plan across
+// itself) and z ∈ [0.4, 1.7], in L of sensorPose().
+std::vector<sensors::ScanPoint> jambFace(int count, double across = 0.0) {
   std::vector<sensors::ScanPoint> points;
   for (int i = 0; i < count; ++i) {
     const double x = 5.5 + (i % 2 == 0 ? 0.01 : -0.01);
-    const double y = -0.06 + 0.12 * i / std::max(1, count - 1);
+    const double y = across - 0.06 + 0.12 * i / std::max(1, count - 1);
     const double z = 0.4 + 1.3 * i / std::max(1, count - 1);
     points.push_back(at(Eigen::Vector3d(x, y, z) - sensorPose().translation()));
   }
@@ -129,6 +130,26 @@ TEST(DoorJambs, FitsTheFaceAndMeasuresItsOffsetUnderAnotherPose) {
   EXPECT_EQ(moved->points, 20);
 }
 
+// Why the merge keeps the jambs of a wall released as built off its plan (plan_merging.cpp): a
+// wall built off across itself leaves its opening where it was along it, so what is gathered of
+// its jamb still fits it exactly; built further off than the band, nothing is gathered.
+TEST(DoorJambs, AWallBuiltOffAcrossItselfKeepsItsJambAlongIt) {
+  const DoorJambs jambs(wallWithDoor(), {});
+  // 5 cm off: the face spans y ∈ [−0.01, 0.11], point i at −0.01 + 0.12·i/19; the band
+  // (|y| ≤ 0.1 − 0.03) keeps i = 0 … 12, 13 of 20.
+  const auto seen = jambs.gather(jambFace(20, 0.05), sensorPose());
+  ASSERT_EQ(seen.size(), 1u);
+  EXPECT_EQ(seen[0].points_L.size(), 13u);
+  const auto fit = jambs.fit(seen[0], sensorPose());
+  ASSERT_TRUE(fit);
+  EXPECT_EQ(fit->points, 13);
+  // Seven points at x = 5.51, six at 5.49: the centroid 0.01/13 m beyond the face along +x,
+  // behind it along its normal (−x) — the jamb's place along the wall, as planned.
+  EXPECT_NEAR(fit->offset, -0.01 / 13.0, 1e-6);
+  // 25 cm off: the whole face (y ∈ [0.19, 0.31]) lies beyond the planned wall's faces.
+  EXPECT_TRUE(jambs.gather(jambFace(20, 0.25), sensorPose()).empty());
+}
+
 TEST(DoorJambs, AClosedLeafInTheOpeningIsNoJamb) {
   const DoorJambs jambs(wallWithDoor(), {});
   std::vector<sensors::ScanPoint> points = jambFace(20);
@@ -140,6 +161,31 @@ TEST(DoorJambs, AClosedLeafInTheOpeningIsNoJamb) {
   ASSERT_EQ(seen.size(), 1u);
   EXPECT_EQ(seen[0].points_L.size(), 40u);
   EXPECT_FALSE(jambs.fit(seen[0], sensorPose()));
+}
+
+TEST(DoorJambs, ALeafSeenBesideItsJambBeyondTheGatherIsNoJamb) {
+  const DoorJambs jambs(wallWithDoor(), {});
+  // A closed leaf across the 1 m opening (in the wall's thickness, y = 0), hiding the jamb at
+  // x = 5.5: twelve points 0.18–0.24 m from the jamb's plane, where alone they would look like the
+  // jamb slid 0.21 m, and twelve 0.32–0.49 m from it, up to the opening's middle.
+  std::vector<sensors::ScanPoint> points;
+  const Eigen::Vector3d sensor = sensorPose().translation();
+  for (int i = 0; i < 12; ++i) {
+    points.push_back(at(Eigen::Vector3d(5.5 - 0.18 - 0.005 * i, 0.0, 0.5 + 0.1 * i) - sensor));
+    points.push_back(at(Eigen::Vector3d(5.5 - 0.32 - 0.015 * i, 0.0, 0.5 + 0.1 * i) - sensor));
+  }
+  const auto seen = jambs.gather(points, sensorPose());
+  ASSERT_EQ(seen.size(), 1u);
+  EXPECT_EQ(seen[0].points_L.size(), 12u);
+  EXPECT_EQ(seen[0].filled, 12);
+  // The twelve gathered form a tight cluster; the twelve beyond fill the opening: refused.
+  EXPECT_FALSE(jambs.fit(seen[0], sensorPose()));
+  // Without what lies beyond the gather, the cluster alone would pass as the jamb.
+  JambSighting alone = seen[0];
+  alone.filled = 0;
+  const auto fit = jambs.fit(alone, sensorPose());
+  ASSERT_TRUE(fit);
+  EXPECT_NEAR(fit->offset, 0.18 + 0.005 * 5.5, 1e-6);
 }
 
 TEST(DoorJambs, TooFewOrTooSpreadPointsAreNoJamb) {
