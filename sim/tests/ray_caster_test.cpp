@@ -104,5 +104,36 @@ TEST(RayCaster, TiesGoToTheLowerGeomIdAndOtherTypesAreHandled) {
   expectSameAsMjRay(world, kBuilding, 500, 4, 20);
 }
 
+TEST(RayCaster, ARayLandingBesideASlabStillFindsItsSide) {
+  // A 10 m × 10 m slab 0.2 m thick in a 25 m scene (nine small boxes around it): a slab, tested
+  // apart from the hierarchy. A ray that crosses the slab's top plane beside it can still enter
+  // through a side while within its height; one that is too steep to reach it misses.
+  std::string xml = R"(<mujoco><worldbody>
+      <geom name="slab" type="box" pos="0 0 0" size="5 5 0.1" group="1"/>)";
+  for (int i = 0; i < 9; ++i) {
+    xml += "<geom type=\"box\" size=\"0.5 0.5 1\" group=\"1\" pos=\"" +
+           std::to_string(-12 + 3 * i) + " " + std::to_string(i % 2 == 0 ? 12 : -12) + " 1\"/>";
+  }
+  xml += "</worldbody></mujoco>";
+  const MujocoWorld world = MujocoWorld::fromXml(xml);
+  const RayCaster caster(world.model(), world.data(), kBuilding);
+  ASSERT_EQ(caster.largeCount(), 1);
+  // From (6, 0, 1) down at 45° towards −x: the top plane z = 0.1 is crossed at x = 5.1, beside
+  // the slab; the side x = 5 is met at z = 0, after √2 m.
+  auto hit = caster.cast({6, 0, 1}, Eigen::Vector3d(-1, 0, -1).normalized());
+  ASSERT_TRUE(hit);
+  EXPECT_EQ(world.geomName(hit->geom), "slab");
+  EXPECT_NEAR(hit->distance, std::sqrt(2.0), 1e-12);
+  // Three times steeper: the top plane at x = 5.7, the bottom one at x = 5.633: never within it.
+  EXPECT_FALSE(caster.cast({6, 0, 1}, Eigen::Vector3d(-1, 0, -3).normalized()));
+  // From below: the bottom plane z = −0.1 at x = −5.03, beside the slab; the side x = −5 at
+  // z = −0.07, after 0.08 √2 m.
+  hit = caster.cast({-5.08, 0.3, -0.15}, Eigen::Vector3d(1, 0, 1).normalized());
+  ASSERT_TRUE(hit);
+  EXPECT_EQ(world.geomName(hit->geom), "slab");
+  EXPECT_NEAR(hit->distance, 0.08 * std::sqrt(2.0), 1e-12);
+  expectSameAsMjRay(world, kBuilding, 3000, 8, 100);
+}
+
 }  // namespace
 }  // namespace isg::sim

@@ -21,7 +21,7 @@ class PlaneAlignment {
   PlaneAlignment(const std::vector<Eigen::Vector3f>& scan_in_L, const Eigen::Isometry3d& M_T_L,
                  const Eigen::Vector2d& pivot, const PlaneVoxelMap& map,
                  const ScanRegistrationOptions& options)
-      : pivot_(pivot), map_(map), options_(options) {
+      : pivot_(pivot), lookup_(map), options_(options) {
     points_.reserve(scan_in_L.size());
     for (const auto& p : scan_in_L) {
       Eigen::Vector3d q = M_T_L * p.cast<double>();
@@ -34,13 +34,13 @@ class PlaneAlignment {
   // One pass at correction x: each point's plane within max_distance, a robust point-to-plane row
   // where it is a wall's; `near` counts the points within near_distance of a plane or in a voxel
   // that holds points.
-  PassSums pass(const Eigen::Vector3d& x, double max_distance, double near_distance) const {
+  PassSums pass(const Eigen::Vector3d& x, double max_distance, double near_distance) {
     PassSums s;
     const Eigen::Matrix2d turn = Eigen::Rotation2Dd(x(2)).toRotationMatrix();
     for (const auto& q : points_) {
       Eigen::Vector3d p = q;
       p.head<2>() = turn * q.head<2>() + pivot_ + x.head<2>();
-      const PlaneVoxelMap::Match match = map_.match(p, max_distance);
+      const PlaneVoxelMap::Match match = lookup_.match(p, max_distance);
       if (match.occupied || (match.voxel != nullptr && std::abs(match.residual) <= near_distance)) {
         ++s.near;
       }
@@ -56,7 +56,9 @@ class PlaneAlignment {
  private:
   std::vector<Eigen::Vector3d> points_;
   Eigen::Vector2d pivot_;
-  const PlaneVoxelMap& map_;
+  // The map's planes near each cell the points fall in, kept over the passes: the points move by
+  // centimetres from pass to pass, and mostly stay in their cells.
+  PlaneVoxelMap::Lookup lookup_;
   const ScanRegistrationOptions& options_;
 };
 
@@ -69,8 +71,8 @@ RegistrationResult registerToPlanes(const std::vector<Eigen::Vector3f>& scan_in_
                                     const ScanRegistrationOptions& options) {
   RegistrationResult result;
   if (map.empty() || scan_in_L.empty()) return result;
-  const PlaneAlignment alignment(scan_in_L, M_T_R_predicted * R_T_L,
-                                 M_T_R_predicted.translation().head<2>(), map, options);
+  PlaneAlignment alignment(scan_in_L, M_T_R_predicted * R_T_L,
+                           M_T_R_predicted.translation().head<2>(), map, options);
   result.points = alignment.points();
   const double sigma2 = options.point_sigma * options.point_sigma;
   Eigen::Vector3d x = Eigen::Vector3d::Zero();
@@ -108,6 +110,7 @@ LevelOffset levelOffset(const std::vector<Eigen::Vector3f>& scan_in_L,
                         const Eigen::Isometry3d& M_T_L, const PlaneVoxelMap& map,
                         double max_distance, double huber, double min_normal_z) {
   LevelOffset out;
+  PlaneVoxelMap::Lookup lookup(map);
   std::vector<double> heights;  // of the points above their planes, at this pass
   for (int pass = 0; pass < 3; ++pass) {
     heights.clear();
@@ -115,7 +118,7 @@ LevelOffset levelOffset(const std::vector<Eigen::Vector3f>& scan_in_L,
     for (const auto& point : scan_in_L) {
       Eigen::Vector3d p = M_T_L * point.cast<double>();
       p.z() -= out.offset;
-      const PlaneVoxelMap::Match match = map.match(p, max_distance);
+      const PlaneVoxelMap::Match match = lookup.match(p, max_distance);
       if (match.voxel == nullptr || std::abs(match.voxel->normal.z()) < min_normal_z) continue;
       const double above = match.residual / match.voxel->normal.z();  // along z, not n
       const double w = std::abs(above) <= huber ? 1.0 : huber / std::abs(above);

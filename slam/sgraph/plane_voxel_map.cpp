@@ -129,4 +129,45 @@ PlaneVoxelMap::Match PlaneVoxelMap::match(const Eigen::Vector3d& p, double max_d
   return out;
 }
 
+PlaneVoxelMap::Match PlaneVoxelMap::Lookup::match(const Eigen::Vector3d& p, double max_distance) {
+  const Eigen::Vector3i cell = map_.cellOf(p);
+  const std::uint64_t key = voxelKeyOfCell(cell);
+  int at = index_.insert(key, int(cells_.size()));
+  if (at == int(cells_.size())) {
+    // First met: the cell's voxel, and its 26 neighbours' planes in match()'s order.
+    const Voxel* own = map_.voxel(key);
+    const int first = int(planes_.size());
+    for (int dx = -1; dx <= 1; ++dx) {
+      for (int dy = -1; dy <= 1; ++dy) {
+        for (int dz = -1; dz <= 1; ++dz) {
+          if (dx == 0 && dy == 0 && dz == 0) continue;
+          const int n = map_.index_.find(voxelKeyOfCell(cell + Eigen::Vector3i(dx, dy, dz)));
+          if (n >= 0 && !map_.voxels_[n].normal.isZero()) planes_.push_back(&map_.voxels_[n]);
+        }
+      }
+    }
+    cells_.push_back({own, first, int(planes_.size())});
+  }
+  const Cell& c = cells_[at];
+  Match out;
+  if (c.own != nullptr) {
+    out.occupied = true;
+    if (!c.own->normal.isZero()) {
+      const double r = c.own->normal.dot(p - c.own->mean);
+      if (std::abs(r) <= max_distance) return {c.own, r, true};
+    }
+  }
+  double best = max_distance;
+  for (int i = c.first; i < c.last; ++i) {
+    const Voxel& voxel = *planes_[i];
+    const Eigen::Vector3d d = p - voxel.mean;
+    const double r = voxel.normal.dot(d);
+    if (std::abs(r) > best || (d - r * voxel.normal).norm() > map_.options_.voxel) continue;
+    best = std::abs(r);
+    out.voxel = &voxel;
+    out.residual = r;
+  }
+  return out;
+}
+
 }  // namespace isg::slam

@@ -68,6 +68,27 @@ class PlaneVoxelMap {
   // (within a voxel of the plane's mean along it), the one nearest p. Safe from several threads.
   Match match(const Eigen::Vector3d& p, double max_distance) const;
 
+  // match() for many points against an unchanging map (a registration's passes): each cell's own
+  // voxel and its neighbours' planes are looked up once and kept, so that the points of a cell,
+  // and the same points again at the next pass, skip the 27 lookups. The same Match as match(),
+  // bit for bit (the same voxels, tried in the same order). Valid while the map is not changed;
+  // one per thread.
+  class Lookup {
+   public:
+    explicit Lookup(const PlaneVoxelMap& map) : map_(map) {}
+    Match match(const Eigen::Vector3d& p, double max_distance);
+
+   private:
+    struct Cell {
+      const Voxel* own;  // the cell's voxel when it holds points, else null
+      int first, last;   // its neighbours' planes: planes_[first, last)
+    };
+    const PlaneVoxelMap& map_;
+    VoxelIndex index_;  // cell key → cells_
+    std::vector<Cell> cells_;
+    std::vector<const Voxel*> planes_;
+  };
+
  private:
   Eigen::Vector3i cellOf(const Eigen::Vector3d& p) const;
   void update(Voxel& voxel) const;

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 
 #include "common/angles.hpp"
 #include "slam/sgraph/voxel_key.hpp"
@@ -9,6 +10,13 @@
 namespace isg::slam {
 
 namespace {
+
+// std::lround for x ≥ 0 (ties away from zero), inline: glibc's lround is a library call, and it
+// ran once per scan point. x - trunc(x) is exact below 2^52.
+inline std::size_t roundNonNegative(double x) {
+  const auto whole = std::int64_t(x);
+  return std::size_t(whole + (x - double(whole) >= 0.5 ? 1 : 0));
+}
 
 Eigen::Matrix3d yawRotation(double yaw) {
   return Eigen::AngleAxisd(yaw, Eigen::Vector3d::UnitZ()).toRotationMatrix();
@@ -28,7 +36,7 @@ std::vector<Eigen::Vector3f> deskewedCloud(const sensors::Scan& scan,
   const double min2 = options.min_range * options.min_range;
   const double max2 = options.max_range * options.max_range;
   for (const auto& point : scan.points) {
-    const Eigen::Isometry3d& T = L0_T_L[std::size_t(std::lround((point.time - first) / step))];
+    const Eigen::Isometry3d& T = L0_T_L[roundNonNegative((point.time - first) / step)];
     const Eigen::Vector3d q = T * Eigen::Vector3d(point.x, point.y, point.z);
     const double range2 = q.squaredNorm();
     if (!std::isfinite(range2) || range2 < min2 || range2 > max2) continue;

@@ -8,31 +8,43 @@
 #include <numeric>
 
 #include "slam/sgraph/plane_normal.hpp"
+#include "slam/sgraph/voxel_index.hpp"
 #include "slam/sgraph/voxel_key.hpp"
 
 namespace isg::slam {
 
 namespace {
 
-// Points grouped by voxel: each voxel's key, and its points' sum and count.
+// Points grouped by voxel: each voxel's key, and its points' sum (added in the order the points
+// came) and count. A hash index finds the voxel, and only the voxels are sorted, by key — not
+// every point, as a stable sort of (key, point) pairs did; the sums are the same bits, since each
+// voxel's points are still added in their order.
 struct VoxelCentroids {
+  struct Voxel {
+    std::uint64_t key;
+    Eigen::Vector3d sum;
+    int count;
+  };
   double size;
-  std::vector<std::pair<std::uint64_t, Eigen::Vector3d>> keyed;  // (voxel key, point)
+  VoxelIndex index;
+  std::vector<Voxel> voxels;
 
-  explicit VoxelCentroids(double voxel) : size(voxel) {}
-  void add(const Eigen::Vector3d& p) { keyed.emplace_back(voxelKey(p, size), p); }
+  VoxelCentroids(double voxel, std::size_t expected_points)
+      : size(voxel), index(expected_points / 4 + 16) {}
+  void add(const Eigen::Vector3d& p) {
+    const std::uint64_t key = voxelKey(p, size);
+    const int at = index.insert(key, int(voxels.size()));
+    if (at == int(voxels.size())) voxels.push_back({key, Eigen::Vector3d::Zero(), 0});
+    voxels[at].sum += p;
+    ++voxels[at].count;
+  }
   // One centroid per voxel, in key order.
   std::vector<Eigen::Vector3d> centroids() {
-    std::stable_sort(keyed.begin(), keyed.end(),
-                     [](const auto& a, const auto& b) { return a.first < b.first; });
+    std::sort(voxels.begin(), voxels.end(),
+              [](const Voxel& a, const Voxel& b) { return a.key < b.key; });
     std::vector<Eigen::Vector3d> out;
-    for (std::size_t i = 0; i < keyed.size();) {
-      std::size_t j = i;
-      Eigen::Vector3d sum = Eigen::Vector3d::Zero();
-      while (j < keyed.size() && keyed[j].first == keyed[i].first) sum += keyed[j++].second;
-      out.push_back(sum / double(j - i));
-      i = j;
-    }
+    out.reserve(voxels.size());
+    for (const Voxel& v : voxels) out.push_back(v.sum / double(v.count));
     return out;
   }
 };
@@ -43,8 +55,7 @@ Eigen::Matrix2d rotation(double yaw) { return Eigen::Rotation2Dd(yaw).toRotation
 
 std::vector<Eigen::Vector3f> downsampleScan(const sensors::Scan& scan,
                                             const ScanRegistrationOptions& options) {
-  VoxelCentroids voxels(options.voxel);
-  voxels.keyed.reserve(scan.points.size());
+  VoxelCentroids voxels(options.voxel, scan.points.size());
   for (const auto& p : scan.points) {
     const Eigen::Vector3d v(p.x, p.y, p.z);
     const double range = v.norm();
@@ -91,7 +102,9 @@ LocalMap& LocalMap::operator=(LocalMap&& other) noexcept {
 LocalMap::LocalMap(const std::vector<Part>& parts, const ScanRegistrationOptions& options,
                    ThreadPool* pool)
     : index_(std::make_unique<Index>()) {
-  VoxelCentroids voxels(options.voxel);
+  std::size_t expected = 0;
+  for (const auto& part : parts) expected += part.cloud->size();
+  VoxelCentroids voxels(options.voxel, expected);
   for (const auto& part : parts) {
     for (const auto& p : *part.cloud) voxels.add(part.M_T_L * p.cast<double>());
   }

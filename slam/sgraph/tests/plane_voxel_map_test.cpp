@@ -110,5 +110,48 @@ TEST(PlaneVoxelMap, ALineOfPointsIsNoPlane) {
   EXPECT_EQ(match.voxel, nullptr);
 }
 
+TEST(PlaneVoxelMap, ALookupMatchesAsMatchDoesPointByPoint) {
+  // A room's corner (two walls and a floor) seen from two poses, one keyframe taken back so that
+  // some voxels are emptied; points all around it and beside it, each matched twice (as a
+  // registration's passes do): the lookup gives match()'s voxel, residual and occupancy exactly.
+  PlaneVoxelMap map;
+  std::vector<Eigen::Vector3f> corner = wallAt(2.1f);
+  for (const auto& p : wallAt(0.3f)) corner.emplace_back(p.y() + 1.3f, p.x() + 0.7f, p.z());
+  for (int i = 0; i < 20; ++i) {
+    for (int k = 0; k < 20; ++k) corner.emplace_back(1.1f + 0.05f * i, 0.05f * k, 0.02f);
+  }
+  Eigen::Isometry3d turned = Eigen::Isometry3d::Identity();
+  turned.rotate(Eigen::AngleAxisd(0.05, Eigen::Vector3d::UnitZ()));
+  turned.pretranslate(Eigen::Vector3d(0.04, -0.03, 0.0));
+  const auto first = map.contributionOf(corner, Eigen::Isometry3d::Identity());
+  const auto second = map.contributionOf(corner, turned);
+  const auto third = map.contributionOf(wallAt(3.4f), Eigen::Isometry3d::Identity());
+  map.add(first);
+  map.add(second);
+  map.add(third);
+  map.remove(third);
+  PlaneVoxelMap::Lookup lookup(map);
+  int planes = 0, occupied = 0;
+  for (int pass = 0; pass < 2; ++pass) {
+    for (int i = 0; i < 40; ++i) {
+      for (int j = 0; j < 30; ++j) {
+        const Eigen::Vector3d p(0.5 + 0.09 * i + 0.01 * pass, -0.4 + 0.07 * j,
+                                0.1 + 0.03 * (i % 9));
+        const PlaneVoxelMap::Match expected = map.match(p, 0.25);
+        const PlaneVoxelMap::Match got = lookup.match(p, 0.25);
+        ASSERT_EQ(got.voxel, expected.voxel) << p.transpose();
+        ASSERT_EQ(got.residual, expected.residual) << p.transpose();
+        ASSERT_EQ(got.occupied, expected.occupied) << p.transpose();
+        planes += expected.voxel != nullptr;
+        occupied += expected.occupied;
+      }
+    }
+  }
+  // Both kinds of answer were asked for, and points with no plane within reach too.
+  EXPECT_GT(planes, 200);
+  EXPECT_GT(occupied, 100);
+  EXPECT_LT(planes, 2 * 40 * 30);
+}
+
 }  // namespace
 }  // namespace isg::slam
