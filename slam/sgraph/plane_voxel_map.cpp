@@ -97,44 +97,16 @@ void PlaneVoxelMap::compactIfSparse() {
 }
 
 PlaneVoxelMap::Match PlaneVoxelMap::match(const Eigen::Vector3d& p, double max_distance) const {
-  Match out;
-  const Eigen::Vector3i cell = cellOf(p);
-  const int own = index_.find(voxelKeyOfCell(cell));
-  if (own >= 0 && voxels_[own].moments.count > 0) {
-    out.occupied = true;
-    const Voxel& voxel = voxels_[own];
-    if (!voxel.normal.isZero()) {
-      const double r = voxel.normal.dot(p - voxel.mean);
-      if (std::abs(r) <= max_distance) return {&voxel, r, true};
-    }
-  }
-  double best = max_distance;
-  for (int dx = -1; dx <= 1; ++dx) {
-    for (int dy = -1; dy <= 1; ++dy) {
-      for (int dz = -1; dz <= 1; ++dz) {
-        if (dx == 0 && dy == 0 && dz == 0) continue;
-        const int at = index_.find(voxelKeyOfCell(cell + Eigen::Vector3i(dx, dy, dz)));
-        if (at < 0) continue;
-        const Voxel& voxel = voxels_[at];
-        if (voxel.normal.isZero()) continue;
-        const Eigen::Vector3d d = p - voxel.mean;
-        const double r = voxel.normal.dot(d);
-        if (std::abs(r) > best || (d - r * voxel.normal).norm() > options_.voxel) continue;
-        best = std::abs(r);
-        out.voxel = &voxel;
-        out.residual = r;
-      }
-    }
-  }
-  return out;
+  return Lookup(*this, 1).match(p, max_distance);
 }
 
 PlaneVoxelMap::Match PlaneVoxelMap::Lookup::match(const Eigen::Vector3d& p, double max_distance) {
   const Eigen::Vector3i cell = map_.cellOf(p);
   const std::uint64_t key = voxelKeyOfCell(cell);
-  int at = index_.insert(key, int(cells_.size()));
+  const int at = index_.insert(key, int(cells_.size()));
   if (at == int(cells_.size())) {
-    // First met: the cell's voxel, and its 26 neighbours' planes in match()'s order.
+    // First met: the cell's voxel, and its 26 neighbours' planes, dx then dy then dz from −1 to 1
+    // (of planes equally near, the first in that order is the match).
     const Voxel* own = map_.voxel(key);
     const int first = int(planes_.size());
     for (int dx = -1; dx <= 1; ++dx) {

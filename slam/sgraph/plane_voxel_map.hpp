@@ -70,12 +70,13 @@ class PlaneVoxelMap {
 
   // match() for many points against an unchanging map (a registration's passes): each cell's own
   // voxel and its neighbours' planes are looked up once and kept, so that the points of a cell,
-  // and the same points again at the next pass, skip the 27 lookups. The same Match as match(),
-  // bit for bit (the same voxels, tried in the same order). Valid while the map is not changed;
-  // one per thread.
+  // and the same points again at the next pass, skip the 27 lookups. match() is a Lookup used
+  // once. Valid while the map is not changed; one per thread.
   class Lookup {
    public:
-    explicit Lookup(const PlaneVoxelMap& map) : map_(map) {}
+    // `expected_cells`: how many cells it will likely meet (its index grows past that).
+    explicit Lookup(const PlaneVoxelMap& map, std::size_t expected_cells = 1024)
+        : map_(map), index_(expected_cells) {}
     Match match(const Eigen::Vector3d& p, double max_distance);
 
    private:
