@@ -7,7 +7,6 @@
 #include <numbers>
 
 #include "bim/polygon.hpp"
-#include "common/angles.hpp"
 
 namespace isg::sim {
 
@@ -26,6 +25,12 @@ ScanCaster::ScanCaster(const RayCaster& caster, int sectors) : caster_(caster), 
 int ScanCaster::sectorOf(double x, double y) const {
   const int k = int(diamondAngle(x, y) * (sectors_ / 4.0));
   return std::min(k, sectors_ - 1);
+}
+
+int ScanCaster::sectorOfDiamond(double d) const {
+  if (d < 0) d += 4;
+  if (d >= 4) d -= 4;
+  return std::clamp(int(d * (sectors_ / 4.0)), 0, sectors_ - 1);
 }
 
 void ScanCaster::prepare(const Eigen::Vector2d& centre, double radius) {
@@ -50,10 +55,18 @@ void ScanCaster::prepare(const Eigen::Vector2d& centre, double radius) {
                             hi = box.pos.head<2>() + e.head<2>();
       corners = {lo, Eigen::Vector2d(hi.x(), lo.y()), hi, Eigen::Vector2d(lo.x(), hi.y())};
     }
-    // Least distance from the disc to the footprint (0 when they touch).
-    const std::vector<Eigen::Vector2d> polygon(corners.begin(), corners.end());
-    double distance =
-        bim::containsPoint(polygon, centre) ? 0.0 : std::numeric_limits<double>::infinity();
+    // Least distance from the disc to the footprint (0 when they touch). The footprint is a
+    // convex quadrilateral: the centre is inside when it lies on the same side of every edge (on
+    // an edge the distance below is 0 anyway, and so is the bound).
+    int left = 0, right = 0;
+    for (int i = 0; i < 4; ++i) {
+      const Eigen::Vector2d e = corners[(i + 1) % 4] - corners[i];
+      const Eigen::Vector2d q = centre - corners[i];
+      const double side = e.x() * q.y() - e.y() * q.x();
+      left += side > 0;
+      right += side < 0;
+    }
+    double distance = left == 0 || right == 0 ? 0.0 : std::numeric_limits<double>::infinity();
     for (int i = 0; i < 4; ++i) {
       distance =
           std::min(distance, bim::distanceToSegment(centre, corners[i], corners[(i + 1) % 4]));
@@ -66,19 +79,30 @@ void ScanCaster::prepare(const Eigen::Vector2d& centre, double radius) {
     }
     // Angular interval of (footprint ⊕ disc) seen from the centre, relative to the direction of
     // the footprint's centre; it is less than π wide because the disc does not reach the box.
+    // Measured in diamondAngle's units (monotonic in the angle, a half-turn is 2), without a
+    // trigonometric function: each corner's disc seen from the centre lies between the two
+    // tangents to it, the corner's direction turned by ±asin(r / |d|), whose cosine and sine are
+    // √(1 − s²) and s for s = r / |d|. One sector more at either end covers rounding.
     const Eigen::Vector2d mid = 0.25 * (corners[0] + corners[1] + corners[2] + corners[3]) - centre;
-    const double base = std::atan2(mid.y(), mid.x());
+    const double base = diamondAngle(mid.x(), mid.y());
     double lo = std::numeric_limits<double>::infinity(), hi = -lo;
     for (const auto& q : corners) {
       const Eigen::Vector2d d = q - centre;
-      const double a = common::wrapAngle(std::atan2(d.y(), d.x()) - base);
-      const double widen =
-          std::asin(std::min(1.0, (radius + pad) / std::max(d.norm(), 1e-9))) + 1e-9;
-      lo = std::min(lo, a - widen);
-      hi = std::max(hi, a + widen);
+      const double length = d.norm();  // > radius: the disc does not reach the box
+      const double sine = std::min(1.0, (radius + pad) / length);
+      const double cosine = std::sqrt(1.0 - sine * sine);
+      const Eigen::Vector2d along = d / length, across(-along.y(), along.x());
+      for (const double turn : {-sine, sine}) {
+        const Eigen::Vector2d tangent = cosine * along + turn * across;
+        double relative = diamondAngle(tangent.x(), tangent.y()) - base;
+        if (relative >= 2) relative -= 4;
+        if (relative < -2) relative += 4;
+        lo = std::min(lo, relative);
+        hi = std::max(hi, relative);
+      }
     }
-    spans_.push_back({min_distance, b, sectorOf(std::cos(base + lo), std::sin(base + lo)),
-                      sectorOf(std::cos(base + hi), std::sin(base + hi))});
+    spans_.push_back({min_distance, b, (sectorOfDiamond(base + lo) + sectors_ - 1) % sectors_,
+                      (sectorOfDiamond(base + hi) + 1) % sectors_});
   }
   // Second pass: count, then fill in order of distance, so every sector comes out sorted.
   std::sort(spans_.begin(), spans_.end(),

@@ -33,6 +33,8 @@ class ScanCaster {
     int box;
   };
   int sectorOf(double x, double y) const;
+  // The sector of a diamondAngle value, any in [−4, 8).
+  int sectorOfDiamond(double d) const;
 
   const RayCaster& caster_;
   int sectors_;
