@@ -1,11 +1,14 @@
 #include "cli/cmd_import.hpp"
 
 #include <array>
+#include <cctype>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <optional>
 
+#include "bim/map_yaml.hpp"
+#include "bim/raster_plan.hpp"
 #include "cli/progress_bar.hpp"
 #include "common/atomic_folder.hpp"
 #include "common/output_path.hpp"
@@ -27,9 +30,20 @@ void roundNumbers(nlohmann::ordered_json& value) {
   }
 }
 
-bool isBag(const std::string& path) {
-  const std::string extension = std::filesystem::path(path).extension().string();
-  return extension == ".bag" || extension == ".BAG";
+std::string lowerExtension(const std::string& path) {
+  std::string extension = std::filesystem::path(path).extension().string();
+  for (char& c : extension) c = char(std::tolower(static_cast<unsigned char>(c)));
+  return extension;
+}
+
+bool isBag(const std::string& path) { return lowerExtension(path) == ".bag"; }
+bool isRasterImage(const std::string& path) {
+  const std::string extension = lowerExtension(path);
+  return extension == ".png" || extension == ".pgm";
+}
+bool isMapYaml(const std::string& path) {
+  const std::string extension = lowerExtension(path);
+  return extension == ".yaml" || extension == ".yml";
 }
 
 std::optional<std::array<double, 6>> mountOption(const std::vector<double>& values) {
@@ -42,8 +56,8 @@ std::optional<std::array<double, 6>> mountOption(const std::vector<double>& valu
 ImportCommand::ImportCommand(CLI::App& parent) {
   app_ = parent.add_subcommand(
       "import",
-      "Import an IFC building model (IFC2X3, IFC4) as a plan, or a ROS 1 recording (.bag) as a "
-      "dataset");
+      "Import an IFC building model (IFC2X3, IFC4) or a raster floor plan (PNG, PGM, a ROS map's "
+      "YAML) as a plan, or a ROS 1 recording (.bag) as a dataset");
   app_->footer(
       "Storeys become levels (by default every storey with walls standing on it and rooms), "
       "walls straight prismatic walls fitted to their bodies, doors and windows their openings "
@@ -68,15 +82,46 @@ ImportCommand::ImportCommand(CLI::App& parent) {
       "listed. A bag written by isg export imports back to the dataset it came from; a recording "
       "without odometry is replayed with odometry made from its LiDAR and IMU. The rules: "
       "docs/formats.md, \"Importing recordings\".\n\n"
+      "A raster floor plan (FLOOR.png or .pgm with --resolution; or a ROS map_server / nav2 map's "
+      "YAML, which names its image, resolution, origin and thresholds) becomes a one-level plan: "
+      "dark regions are traced into straight walls (any angle, with their thickness) and columns, "
+      "a gap in a line of wall where a person fits through (0.6-2.5 m) is a doorway, and the free "
+      "regions the walls enclose are rooms; what is not straight walls (curves, hatching, text) is "
+      "said, one line each. The image's bottom-left corner is the plan's origin unless --origin "
+      "(or the YAML) says otherwise. The rules and their thresholds: docs/formats.md, \"Importing "
+      "raster floor plans\".\n\n"
+      "Example:\n  isg import floor2.png --resolution 0.01 -o floor2.json\n"
+      "  isg import map.yaml -o lab.json --height 2.8\n\n"
       "Example:\n  isg import walk.bag -o datasets/walk\n"
       "  isg import walk.bag -o datasets/walk --lidar-topic /os_cloud_node/points --start 20 "
       "--duration 60\n  isg slam datasets/walk --plan lab.json -o runs/walk");
-  app_->add_option("model", input_, "IFC file (STEP, .ifc) or ROS 1 bag (.bag) to read")
-      ->option_text("MODEL.ifc|RECORDING.bag")
+  app_->add_option("model", input_,
+                   "IFC file (STEP, .ifc), floor plan image (.png, .pgm), ROS map (.yaml) or ROS 1 "
+                   "bag (.bag) to read")
+      ->option_text("MODEL.ifc|FLOOR.png|MAP.yaml|RECORDING.bag")
       ->required();
-  app_->add_option("-o,--output", output_, "plan file (from IFC) or dataset folder (from a bag)")
+  app_->add_option("-o,--output", output_,
+                   "plan file (from IFC or a floor plan) or dataset folder (from a bag)")
       ->option_text("PLAN.json|DATASET_DIR")
       ->required();
+  auto* raster = "Raster floor plans (.png, .pgm, .yaml)";
+  app_->add_option("--resolution", resolution_,
+                   "metres a pixel of a floor plan image (a map's YAML gives its own)")
+      ->check(CLI::Range(1e-4, 10.0))
+      ->option_text("M")
+      ->group(raster);
+  app_->add_option("--origin", origin_,
+                   "where the image's bottom-left corner lies in the plan, x,y in metres (default "
+                   "0,0; a map's YAML gives its own)")
+      ->delimiter(',')
+      ->expected(2)
+      ->option_text("X,Y")
+      ->group(raster);
+  app_->add_option("--height", wall_height_, "the walls' height, floor to ceiling, m")
+      ->check(CLI::Range(0.1, 100.0))
+      ->capture_default_str()
+      ->option_text("H")
+      ->group(raster);
   auto* bag = "Recordings (.bag)";
   app_->add_option("--lidar-topic", lidar_topic_, "the point clouds' topic")
       ->option_text("TOPIC")
@@ -136,7 +181,64 @@ ImportCommand::ImportCommand(CLI::App& parent) {
                  "print only the summary (no element left out of an IFC model, no progress bar)");
 }
 
-int ImportCommand::run() { return isBag(input_) ? importBag() : importIfc(); }
+int ImportCommand::run() {
+  if (isBag(input_)) return importBag();
+  if (isRasterImage(input_) || isMapYaml(input_)) return importRaster();
+  return importIfc();
+}
+
+int ImportCommand::importRaster() {
+  const bool yaml = isMapYaml(input_);
+  if (yaml && (resolution_ > 0.0 || !origin_.empty())) {
+    throw common::InputError(input_, "",
+                             "a map's YAML gives its own resolution and origin: leave out "
+                             "--resolution and --origin (or edit the YAML)");
+  }
+  if (!yaml && !(resolution_ > 0.0)) {
+    throw common::InputError(input_, "",
+                             "a floor plan image needs its scale: --resolution M (metres a "
+                             "pixel; 0.01 for a plan drawn at 1 cm a pixel)");
+  }
+  common::checkOutputPath(output_, {common::OutputKind::kImportedPlan, {input_}, force_, true});
+  bim::RasterPlanOptions options;
+  options.height = wall_height_;
+  std::string image = input_;
+  if (yaml) {
+    const bim::MapYaml map = bim::readMapYaml(input_);
+    image = map.image;
+    options.resolution = map.resolution;
+    options.origin = Eigen::Vector2d(map.origin_x, map.origin_y);
+    options.yaw = map.origin_yaw;
+    options.rule = map.rule;
+    options.source_kind = "ROS map";
+    options.from_file = input_;
+  } else {
+    options.resolution = resolution_;
+    if (!origin_.empty()) options.origin = Eigen::Vector2d(origin_[0], origin_[1]);
+    options.source_kind = lowerExtension(input_) == ".png" ? "PNG image" : "PGM image";
+  }
+  const bim::RasterPlanImport result = bim::importRasterPlan(image, options);
+  nlohmann::ordered_json document = result.plan_json;
+  roundNumbers(document);
+  run::throwIfInterrupted();
+  writeFileAtomically(output_, document.dump(2) + "\n");
+  if (!quiet_) {
+    for (const auto& line : result.log) std::fprintf(stderr, "  %s\n", line.c_str());
+  }
+  std::fprintf(stderr, "isg import: %s: %d × %d pixels at %g m a pixel (%.1f m × %.1f m)\n",
+               image.c_str(), result.width, result.height, options.resolution,
+               result.width * options.resolution, result.height * options.resolution);
+  std::fprintf(stderr,
+               "isg import: wrote %s: 1 level, %s, %s, %s, %s; %s left out or "
+               "simplified%s\n",
+               output_.c_str(), common::counted(result.walls, "wall").c_str(),
+               common::counted(result.columns, "column").c_str(),
+               common::counted(result.doors, "doorway").c_str(),
+               common::counted(result.rooms, "room").c_str(),
+               common::counted(result.log.size(), "region").c_str(),
+               quiet_ && !result.log.empty() ? " (run without -q to list them)" : "");
+  return kExitOk;
+}
 
 int ImportCommand::importBag() {
   common::checkCanCreateFolder(output_, common::OutputKind::kDataset, force_, {input_});

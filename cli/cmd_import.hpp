@@ -8,8 +8,9 @@
 namespace isg::cli {
 
 // isg import MODEL.ifc -o PLAN.json: an IFC building model as a plan (docs/formats.md,
-// "Importing IFC"); isg import RECORDING.bag -o DATASET_DIR: a robot's ROS 1 recording as a
-// dataset (docs/formats.md, "Importing recordings").
+// "Importing IFC"); isg import FLOOR.png|.pgm|MAP.yaml -o PLAN.json: a raster floor plan as a
+// plan ("Importing raster floor plans"); isg import RECORDING.bag -o DATASET_DIR: a robot's ROS 1
+// recording as a dataset (docs/formats.md, "Importing recordings").
 class ImportCommand : public Command {
  public:
   explicit ImportCommand(CLI::App& parent);
@@ -18,6 +19,7 @@ class ImportCommand : public Command {
  private:
   int importIfc();
   int importBag();
+  int importRaster();
 
   std::string input_;
   std::string output_;
@@ -29,6 +31,9 @@ class ImportCommand : public Command {
       odometry_frame_;
   double start_ = 0.0, duration_ = 0.0;
   std::vector<double> lidar_extrinsic_, imu_extrinsic_;
+  // Raster floor plans.
+  double resolution_ = 0.0, wall_height_ = 3.0;
+  std::vector<double> origin_;
 };
 
 }  // namespace isg::cli

@@ -1,0 +1,206 @@
+#include "bim/map_yaml.hpp"
+
+#include <cmath>
+#include <filesystem>
+#include <map>
+#include <vector>
+
+#include "common/input_error.hpp"
+#include "common/json_reader.hpp"
+
+namespace isg::bim {
+namespace {
+
+std::string trim(const std::string& text) {
+  const auto first = text.find_first_not_of(" \t\r");
+  if (first == std::string::npos) return "";
+  const auto last = text.find_last_not_of(" \t\r");
+  return text.substr(first, last - first + 1);
+}
+
+// A value with its quotes taken off (YAML's plain, single- and double-quoted scalars, without
+// escapes).
+std::string unquote(const std::string& value) {
+  if (value.size() >= 2 && (value.front() == '"' || value.front() == '\'') &&
+      value.back() == value.front()) {
+    return value.substr(1, value.size() - 2);
+  }
+  return value;
+}
+
+// The value with a trailing comment taken off (a # after a space, outside quotes).
+std::string withoutComment(const std::string& value) {
+  char quote = 0;
+  for (std::size_t k = 0; k < value.size(); ++k) {
+    const char c = value[k];
+    if (quote) {
+      if (c == quote) quote = 0;
+    } else if (c == '"' || c == '\'') {
+      quote = c;
+    } else if (c == '#' && (k == 0 || value[k - 1] == ' ' || value[k - 1] == '\t')) {
+      return trim(value.substr(0, k));
+    }
+  }
+  return value;
+}
+
+struct Entry {
+  std::string value;
+  int line = 0;
+};
+
+}  // namespace
+
+MapYaml parseMapYaml(const std::string& text, const std::string& path) {
+  std::map<std::string, Entry> entries;
+  int line_number = 0;
+  std::size_t at = 0;
+  while (at <= text.size()) {
+    const std::size_t end = std::min(text.find('\n', at), text.size());
+    const std::string line = text.substr(at, end - at);
+    at = end + 1;
+    ++line_number;
+    const std::string content = trim(line);
+    if (content.empty() || content[0] == '#' || content == "---" || content == "...") continue;
+    if (line.find_first_not_of(" \t") != 0) continue;  // nested under another key: not map_server's
+    const auto colon = content.find(':');
+    if (colon == std::string::npos) {
+      throw common::InputError(path, "",
+                               "line " + std::to_string(line_number) +
+                                   ": expected `key: value`, found \"" + content + "\"");
+    }
+    const std::string key = trim(content.substr(0, colon));
+    const std::string value = withoutComment(trim(content.substr(colon + 1)));
+    if (entries.count(key)) {
+      throw common::InputError(path, "/" + key,
+                               "line " + std::to_string(line_number) +
+                                   ": given twice (also on line " +
+                                   std::to_string(entries[key].line) + ")");
+    }
+    entries[key] = {value, line_number};
+  }
+  const auto required = [&](const std::string& key) -> const Entry& {
+    const auto found = entries.find(key);
+    if (found == entries.end() || found->second.value.empty()) {
+      throw common::InputError(path, "/" + key,
+                               "missing: a map's YAML names its image, resolution, origin, "
+                               "negate, occupied_thresh and free_thresh (as map_server requires)");
+    }
+    return found->second;
+  };
+  const auto number = [&](const std::string& key, const std::string& text_value, int line) {
+    std::size_t used = 0;
+    double value = 0.0;
+    try {
+      value = std::stod(text_value, &used);
+    } catch (const std::exception&) {
+      used = 0;
+    }
+    if (used != text_value.size() || !std::isfinite(value)) {
+      throw common::InputError(
+          path, "/" + key,
+          "line " + std::to_string(line) + ": \"" + text_value + "\" is not a finite number");
+    }
+    return value;
+  };
+  MapYaml map;
+  {
+    const Entry& image = required("image");
+    const std::filesystem::path image_path(unquote(image.value));
+    map.image = image_path.is_absolute()
+                    ? image_path.string()
+                    : (std::filesystem::path(path).parent_path() / image_path).string();
+  }
+  {
+    const Entry& resolution = required("resolution");
+    map.resolution = number("resolution", resolution.value, resolution.line);
+    if (!(map.resolution > 0.0) || map.resolution > 10.0) {
+      throw common::InputError(path, "/resolution",
+                               "line " + std::to_string(resolution.line) +
+                                   ": must be above 0 and at most 10 (metres a pixel)");
+    }
+  }
+  {
+    const Entry& origin = required("origin");
+    std::string list = origin.value;
+    if (list.size() < 2 || list.front() != '[' || list.back() != ']') {
+      throw common::InputError(
+          path, "/origin",
+          "line " + std::to_string(origin.line) + ": expected [x, y, yaw], found \"" + list + "\"");
+    }
+    list = list.substr(1, list.size() - 2);
+    std::vector<double> values;
+    std::size_t from = 0;
+    while (from <= list.size()) {
+      const std::size_t comma = std::min(list.find(',', from), list.size());
+      values.push_back(number("origin/" + std::to_string(values.size()),
+                              trim(list.substr(from, comma - from)), origin.line));
+      from = comma + 1;
+    }
+    if (values.size() != 3) {
+      throw common::InputError(path, "/origin",
+                               "line " + std::to_string(origin.line) +
+                                   ": the origin has 3 elements, [x, y, yaw], not " +
+                                   std::to_string(values.size()));
+    }
+    for (int k = 0; k < 2; ++k) {
+      if (std::abs(values[k]) > 10'000.0) {
+        throw common::InputError(
+            path, "/origin/" + std::to_string(k),
+            "line " + std::to_string(origin.line) + ": beyond ±10 000 m of the map frame's origin");
+      }
+    }
+    map.origin_x = values[0], map.origin_y = values[1], map.origin_yaw = values[2];
+  }
+  {
+    const Entry& negate = required("negate");
+    const std::string v = unquote(negate.value);
+    if (v == "0" || v == "false" || v == "False" || v == "FALSE") {
+      map.rule.negate = false;
+    } else if (v == "1" || v == "true" || v == "True" || v == "TRUE") {
+      map.rule.negate = true;
+    } else {
+      throw common::InputError(path, "/negate",
+                               "line " + std::to_string(negate.line) +
+                                   ": expected 0, 1, true or "
+                                   "false, found \"" +
+                                   v + "\"");
+    }
+  }
+  for (const char* key : {"occupied_thresh", "free_thresh"}) {
+    const Entry& entry = required(key);
+    const double value = number(key, entry.value, entry.line);
+    if (value < 0.0 || value > 1.0) {
+      throw common::InputError(path, std::string("/") + key,
+                               "line " + std::to_string(entry.line) + ": must lie in [0, 1]");
+    }
+    (std::string(key) == "occupied_thresh" ? map.rule.occupied_thresh : map.rule.free_thresh) =
+        value;
+  }
+  if (map.rule.free_thresh > map.rule.occupied_thresh) {
+    throw common::InputError(path, "/free_thresh",
+                             "line " + std::to_string(entries["free_thresh"].line) +
+                                 ": above occupied_thresh: no pixel could be both");
+  }
+  if (const auto mode = entries.find("mode"); mode != entries.end()) {
+    const std::string v = unquote(mode->second.value);
+    if (v == "trinary") {
+      map.rule.mode = OccupancyRule::Mode::kTrinary;
+    } else if (v == "scale") {
+      map.rule.mode = OccupancyRule::Mode::kScale;
+    } else if (v == "raw") {
+      map.rule.mode = OccupancyRule::Mode::kRaw;
+    } else {
+      throw common::InputError(path, "/mode",
+                               "line " + std::to_string(mode->second.line) +
+                                   ": expected trinary, scale or raw, found \"" + v + "\"");
+    }
+  }
+  return map;
+}
+
+MapYaml readMapYaml(const std::string& path) {
+  return parseMapYaml(common::readCheckedFile(path, 1 << 20), path);
+}
+
+}  // namespace isg::bim

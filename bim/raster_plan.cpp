@@ -1,0 +1,147 @@
+#include "bim/raster_plan.hpp"
+
+#include <cmath>
+#include <filesystem>
+
+#include "bim/free_space_rooms.hpp"
+#include "bim/limits.hpp"
+#include "bim/plan_json.hpp"
+#include "bim/plan_parser.hpp"
+#include "common/input_error.hpp"
+#include "common/json_reader.hpp"
+
+namespace isg::bim {
+
+RasterPlanImport rasterPlanFromImage(const OccupancyImage& image, const std::string& image_path,
+                                     const RasterPlanOptions& options) {
+  const std::string& file = options.from_file.empty() ? image_path : options.from_file;
+  if (!(options.resolution > 0.0) || options.resolution > 10.0) {
+    throw common::InputError(file, "", "the resolution must be above 0 and at most 10 m a pixel");
+  }
+  const double width_m = image.width * options.resolution,
+               height_m = image.height * options.resolution;
+  if (std::max(width_m, height_m) > 1000.0) {
+    throw common::InputError(
+        file, "",
+        "the image covers " + std::to_string(int(std::round(width_m))) + " m × " +
+            std::to_string(int(std::round(height_m))) +
+            " m at this resolution; a level fits in 1000 m × 1000 m (docs/formats.md, Limits): "
+            "is the resolution in metres a pixel?");
+  }
+  if (!(options.height > 0.0) || options.height > 100.0) {
+    throw common::InputError(file, "", "the wall height must lie in (0, 100] m");
+  }
+  RasterWallOptions trace;
+  trace.resolution = options.resolution;
+  RasterWalls traced = traceRasterWalls(image, trace);
+
+  RasterPlanImport result;
+  result.width = image.width, result.height = image.height;
+  result.specks = traced.specks;
+  const Eigen::Rotation2Dd turn(options.yaw);
+  const auto placed = [&](const Eigen::Vector2d& p) -> Eigen::Vector2d {
+    return options.origin + turn * p;
+  };
+  Level level;
+  level.id = "L0";
+  level.height = options.height;
+  // Walls W1 …, columns C1 …, in the order traced.
+  std::vector<std::string> id_of(traced.walls.size());
+  int walls = 0, columns = 0;
+  for (std::size_t k = 0; k < traced.walls.size(); ++k) {
+    id_of[k] = traced.walls[k].kind != RasterWall::Kind::kWall ? "C" + std::to_string(++columns)
+                                                               : "W" + std::to_string(++walls);
+  }
+  for (std::size_t k = 0; k < traced.walls.size(); ++k) {
+    const RasterWall& traced_wall = traced.walls[k];
+    Wall wall;
+    wall.id = id_of[k];
+    wall.start = placed(traced_wall.start);
+    wall.end = placed(traced_wall.end);
+    wall.thickness = std::clamp(traced_wall.thickness, 0.001, 10.0);
+    wall.height = options.height;
+    if (traced_wall.kind == RasterWall::Kind::kColumn) wall.name = "column";
+    if (traced_wall.kind == RasterWall::Kind::kRoundColumn) {
+      wall.name = "round column";
+      char text[160];
+      std::snprintf(text, sizeof text,
+                    "%s: a round column %.2f m across at (%.2f, %.2f), written as a square of "
+                    "its diameter (the plan format has no columns yet)",
+                    wall.id.c_str(), wall.thickness, 0.5 * (wall.start.x() + wall.end.x()),
+                    0.5 * (wall.start.y() + wall.end.y()));
+      result.log.push_back(text);
+    }
+    if ((wall.end - wall.start).norm() < 0.001) continue;
+    level.walls.push_back(std::move(wall));
+  }
+  if (level.walls.empty()) {
+    throw common::InputError(file, "",
+                             "no wall or column found in the image (" +
+                                 std::to_string(traced.regions) +
+                                 " dark regions): is it a floor plan with dark walls on a light "
+                                 "ground (or is negate needed)?");
+  }
+  if (level.walls.size() > limits::kMaxWallsPerLevel) {
+    throw common::InputError(file, "",
+                             std::to_string(level.walls.size()) + " walls traced; at most " +
+                                 std::to_string(limits::kMaxWallsPerLevel) +
+                                 " a level are supported (docs/formats.md, Limits)");
+  }
+  const double door_height = std::min(options.door_height, 0.9 * options.height);
+  int doors = 0;
+  for (const RasterDoor& traced_door : traced.doors) {
+    Door door;
+    door.id = "D" + std::to_string(++doors);
+    door.wall = id_of[traced_door.wall];
+    door.offset = traced_door.offset;
+    door.width = traced_door.width;
+    door.height = door_height;
+    door.rooms_inferred = true;  // the image says none: the parser finds them from the outlines
+    level.doors.push_back(std::move(door));
+  }
+  const FreeSpaceRooms rooms = enclosedFreeSpaces(level);
+  for (std::size_t k = 0; k < rooms.outlines.size(); ++k) {
+    Room room;
+    room.id = "R" + std::to_string(k + 1);
+    room.outline = rooms.outlines[k];
+    level.rooms.push_back(std::move(room));
+  }
+  for (const auto& line : traced.left_out) result.log.push_back(line);
+  if (traced.specks > 0) {
+    result.log.push_back(std::to_string(traced.specks) +
+                         " specks (dark regions under 0.0025 m²): left out as noise");
+  }
+  if (rooms.pockets > 0) {
+    result.log.push_back(std::to_string(rooms.pockets) +
+                         " enclosed pockets under 1 m² (shafts drawn open, gaps): no rooms");
+  }
+  result.walls = walls, result.columns = columns, result.doors = doors;
+  result.rooms = int(level.rooms.size()), result.pockets = rooms.pockets;
+
+  Plan plan;
+  plan.name = std::filesystem::path(file).stem().string();
+  ImportedFrom& from = plan.imported_from.emplace();
+  from.file = std::filesystem::path(file).filename().string();
+  from.schema = options.source_kind;
+  plan.levels.push_back(std::move(level));
+  result.plan_json =
+      planToJson(plan, {.every_wall_height = false, .inferred_door_rooms = false, .names = true});
+  // Read back by the plan's own parser: what is written is a plan isg accepts.
+  const nlohmann::json document = nlohmann::json::parse(result.plan_json.dump());
+  common::Warnings warnings;
+  const common::JsonSource source{file, &warnings};
+  try {
+    result.plan = parsePlan(common::JsonNode(document, "", source));
+  } catch (const common::InputError& e) {
+    throw common::InputError(file, "",
+                             "the plan traced from it breaks a rule of the plan format at " +
+                                 e.pointer() + ": " + e.reason());
+  }
+  return result;
+}
+
+RasterPlanImport importRasterPlan(const std::string& image_path, const RasterPlanOptions& options) {
+  return rasterPlanFromImage(readOccupancyImage(image_path, options.rule), image_path, options);
+}
+
+}  // namespace isg::bim

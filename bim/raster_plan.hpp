@@ -1,0 +1,47 @@
+#pragma once
+
+#include <Eigen/Core>
+#include <nlohmann/json.hpp>
+#include <string>
+#include <vector>
+
+#include "bim/plan.hpp"
+#include "bim/raster_image.hpp"
+#include "bim/raster_walls.hpp"
+
+namespace isg::bim {
+
+// A floor plan image as a one-level plan (docs/formats.md, "Importing raster floor plans"): the
+// walls and columns traced in it (bim/raster_walls.hpp), its doorways, and as rooms the free
+// regions the walls enclose with the doors closed (bim/free_space_rooms.hpp). Columns are written
+// as walls of their own footprint (named "column", "round column") until the plan format has
+// columns. The image's bottom-left corner lies at `origin`, the image turned by `yaw` about it.
+struct RasterPlanOptions {
+  double resolution = 0.0;  // metres a pixel; required
+  Eigen::Vector2d origin = Eigen::Vector2d::Zero();
+  double yaw = 0.0;
+  double height = 3.0;       // the level's wall height
+  double door_height = 2.1;  // at most 90 % of the wall height
+  // A plain image: a pixel darker than mid-grey is occupied, else free.
+  OccupancyRule rule{OccupancyRule::Mode::kTrinary, false, 0.5, 0.5};
+  std::string source_kind = "image";  // for imported_from: "PNG image", "nav2 map", …
+  std::string from_file;              // the file named in imported_from (the YAML for a map)
+};
+
+struct RasterPlanImport {
+  Plan plan;
+  nlohmann::ordered_json plan_json;
+  std::vector<std::string> log;  // regions left out or simplified, one line each
+  int width = 0, height = 0;     // the image's pixels
+  int walls = 0, columns = 0, doors = 0, rooms = 0, pockets = 0, specks = 0;
+};
+
+// Reads the image and makes the plan; the plan is read back by the plan's own parser before it
+// is returned. Bad input (unreadable image, a floor beyond the plan's limits): InputError.
+RasterPlanImport importRasterPlan(const std::string& image_path, const RasterPlanOptions& options);
+
+// The same from an image already read (the round-trip tests draw one).
+RasterPlanImport rasterPlanFromImage(const OccupancyImage& image, const std::string& image_path,
+                                     const RasterPlanOptions& options);
+
+}  // namespace isg::bim
