@@ -98,20 +98,25 @@ OccupancyImage decodePgm(const std::string& text, const std::string& file,
   const long long maxval = in.number("maximum grey value");
   if (maxval < 1 || maxval > 65535) in.fail("the maximum grey value must be 1–65535");
   checkSize(width, height, file);
-  OccupancyImage image;
-  image.width = int(width);
-  image.height = int(height);
-  image.pixels.resize(std::size_t(width * height));
-  const std::size_t count = image.pixels.size();
+  const std::size_t count = std::size_t(width * height);
+  const std::size_t sample = maxval < 256 ? 1 : 2;
+  // The raster's length is checked before anything is held for it.
   if (binary) {
     // One whitespace character after maxval, then the raster.
     if (in.at >= text.size()) in.fail("the file ends before its raster");
     ++in.at;
-    const std::size_t sample = maxval < 256 ? 1 : 2;
     if (text.size() - in.at < count * sample) {
       in.fail("the raster holds " + std::to_string((text.size() - in.at) / sample) + " of " +
               std::to_string(count) + " pixels: the file is truncated");
     }
+  } else if ((text.size() - in.at + 1) / 2 < count) {
+    in.fail("the file is too short for " + std::to_string(count) + " grey values: it is truncated");
+  }
+  OccupancyImage image;
+  image.width = int(width);
+  image.height = int(height);
+  image.pixels.resize(count);
+  if (binary) {
     const auto* p = reinterpret_cast<const unsigned char*>(text.data() + in.at);
     for (std::size_t i = 0; i < count; ++i) {
       const long long v =
@@ -200,6 +205,11 @@ bool decodePngRows(PngHandles& handles, PngError& error, PngSource& source, cons
   const bool has_alpha = channels == 2 || channels == 4;
   const int colours = has_alpha ? channels - 1 : channels;
   const std::size_t stride = png_get_rowbytes(png, info);
+  // Deflate packs at most about 1032 bytes into one: a file far shorter than its rows could be is
+  // truncated, and is refused before its pixels are held.
+  if ((double(stride) + 1.0) * double(height) > 1032.0 * double(source.bytes->size()) + 4096.0) {
+    png_error(png, "the file is far too short for its image: truncated");
+  }
   image.width = int(width);
   image.height = int(height);
   image.pixels.resize(std::size_t(width * height));

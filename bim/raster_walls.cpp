@@ -240,17 +240,9 @@ struct Box {
   double length = 0, width = 0;
 };
 
-Box orientedBox(const PixelGrid& grid, const Region& region) {
-  Vec2 mean = Vec2::Zero();
-  for (auto index : region.pixels) mean += grid.centre(index);
-  mean /= double(region.pixels.size());
-  double sxx = 0, sxy = 0, syy = 0;
-  for (auto index : region.pixels) {
-    const Vec2 d = grid.centre(index) - mean;
-    sxx += d.x() * d.x(), sxy += d.x() * d.y(), syy += d.y() * d.y();
-  }
-  const double angle = 0.5 * std::atan2(2.0 * sxy, sxx - syy);
-  const Vec2 axis(std::cos(angle), std::sin(angle)), across = perpendicular(axis);
+// The box of the region's pixels with its long side along `axis`.
+Box boxAlong(const PixelGrid& grid, const Region& region, const Vec2& mean, Vec2 axis) {
+  Vec2 across = perpendicular(axis);
   double lo1 = 1e300, hi1 = -1e300, lo2 = 1e300, hi2 = -1e300;
   for (auto index : region.pixels) {
     const Vec2 d = grid.centre(index) - mean;
@@ -261,10 +253,36 @@ Box orientedBox(const PixelGrid& grid, const Region& region) {
   const double pixel = std::abs(axis.x()) + std::abs(axis.y());
   Box box;
   box.centre = mean + 0.5 * (lo1 + hi1) * axis + 0.5 * (lo2 + hi2) * across;
-  box.axis = axis;
   box.length = hi1 - lo1 + pixel;
   box.width = hi2 - lo2 + pixel;
+  box.axis = axis;
+  if (box.width > box.length) {
+    std::swap(box.width, box.length);
+    box.axis = across;
+  }
   return box;
+}
+
+// The region's box: along its principal axis, or — for a region small enough to be a column,
+// whose principal axes say nothing when it is square — the smallest over every whole degree.
+Box orientedBox(const PixelGrid& grid, const Region& region, double search_below) {
+  Vec2 mean = Vec2::Zero();
+  for (auto index : region.pixels) mean += grid.centre(index);
+  mean /= double(region.pixels.size());
+  double sxx = 0, sxy = 0, syy = 0;
+  for (auto index : region.pixels) {
+    const Vec2 d = grid.centre(index) - mean;
+    sxx += d.x() * d.x(), sxy += d.x() * d.y(), syy += d.y() * d.y();
+  }
+  const double angle = 0.5 * std::atan2(2.0 * sxy, sxx - syy);
+  Box best = boxAlong(grid, region, mean, Vec2(std::cos(angle), std::sin(angle)));
+  if (best.length > search_below) return best;
+  for (int degree = 0; degree < 90; ++degree) {
+    const double a = degree * kPi / 180.0;
+    const Box box = boxAlong(grid, region, mean, Vec2(std::cos(a), std::sin(a)));
+    if (box.length * box.width < best.length * best.width) best = box;
+  }
+  return best;
 }
 
 }  // namespace
@@ -288,7 +306,7 @@ RasterWalls traceRasterWalls(const OccupancyImage& image, const RasterWallOption
       ++out.specks;
       continue;
     }
-    const Box box = orientedBox(grid, region);
+    const Box box = orientedBox(grid, region, 1.5 * options.max_column_size / r);
     const double fill = double(region.pixels.size()) / (box.length * box.width);
     const double aspect = box.length / std::max(box.width, 1.0);
     if (box.length * r <= options.max_column_size && aspect <= options.max_column_aspect &&
@@ -460,6 +478,34 @@ RasterWalls traceRasterWalls(const OccupancyImage& image, const RasterWallOption
       std::vector<std::pair<int, int>> group;
       while (e < ends.size() && ends[e].first == ends[k].first) group.push_back(ends[e++].second);
       at_node.push_back(std::move(group));
+      k = e;
+    }
+  }
+  // Bends: two runs meeting at a node turned by a few degrees to a few tens, as a curved wall's
+  // straight pieces do. Each region with such a chain says so.
+  {
+    const double slight = 3.0 * kPi / 180.0, sharp = 30.0 * kPi / 180.0;
+    std::vector<std::pair<int, Vec2>> bends;  // (region, where)
+    for (const auto& group : at_node) {
+      if (group.size() != 2) continue;
+      const Piece& a = pieces[group[0].first];
+      const Piece& b = pieces[group[1].first];
+      const double turn = std::acos(std::min(1.0, std::abs(a.direction.dot(b.direction))));
+      if (turn > slight && turn < sharp) {
+        bends.push_back({a.region, a.at(group[0].second == 0 ? a.lo : a.hi)});
+      }
+    }
+    std::sort(bends.begin(), bends.end(),
+              [](const auto& x, const auto& y) { return x.first < y.first; });
+    for (std::size_t k = 0; k < bends.size();) {
+      std::size_t e = k;
+      Vec2 sum = Vec2::Zero();
+      while (e < bends.size() && bends[e].first == bends[k].first) sum += bends[e++].second;
+      if (e - k >= 2) {
+        out.left_out.push_back("a curved wall around " + where(metres(sum / double(e - k))) +
+                               ": simplified to straight walls (" + std::to_string(e - k) +
+                               " bends of 3–30°)");
+      }
       k = e;
     }
   }

@@ -160,3 +160,103 @@ TEST(RasterPlan, APlanTurnedToAnyAngleImportsBackItsWalls) {
 
 }  // namespace
 }  // namespace isg::bim
+
+namespace isg::bim {
+namespace {
+
+// An image of `width` × `height` pixels at 1 cm, light, with the pixels inside `dark` occupied.
+template <class Inside>
+OccupancyImage imageOf(int width, int height, Inside dark) {
+  OccupancyImage image;
+  image.width = width, image.height = height;
+  image.pixels.assign(std::size_t(width) * height, PixelClass::kFree);
+  for (int row = 0; row < height; ++row) {
+    for (int c = 0; c < width; ++c) {
+      // The pixel's centre in metres, y up from the bottom edge.
+      const Eigen::Vector2d p(0.01 * (c + 0.5), 0.01 * (height - row - 0.5));
+      if (dark(p)) image.pixels[std::size_t(row) * width + c] = PixelClass::kOccupied;
+    }
+  }
+  return image;
+}
+
+TEST(RasterWalls, CompactBlobsAreColumnsSquareOrRound) {
+  // A wall 4 m long, a 0.4 m square pillar turned 20°, a round one 0.5 m across, a speck.
+  const Eigen::Rotation2Dd turn(20.0 * kPi / 180.0);
+  const OccupancyImage image = imageOf(600, 400, [&](const Eigen::Vector2d& p) {
+    const bool wall = p.x() >= 1.0 && p.x() <= 5.0 && std::abs(p.y() - 3.5) <= 0.1;
+    const Eigen::Vector2d q = turn.inverse() * (p - Eigen::Vector2d(2.0, 1.5));
+    const bool square = std::abs(q.x()) <= 0.2 && std::abs(q.y()) <= 0.2;
+    const bool round = (p - Eigen::Vector2d(4.0, 1.5)).norm() <= 0.25;
+    const bool speck = (p - Eigen::Vector2d(5.5, 0.5)).norm() <= 0.02;
+    return wall || square || round || speck;
+  });
+  RasterWallOptions options;
+  const RasterWalls traced = traceRasterWalls(image, options);
+  ASSERT_EQ(traced.walls.size(), 3u);
+  EXPECT_EQ(traced.specks, 1);
+  int columns = 0;
+  for (const auto& wall : traced.walls) {
+    const Eigen::Vector2d middle = 0.5 * (wall.start + wall.end);
+    const double length = (wall.end - wall.start).norm();
+    if (wall.kind == RasterWall::Kind::kWall) {
+      EXPECT_NEAR(middle.x(), 3.0, 0.01);
+      EXPECT_NEAR(middle.y(), 3.5, 0.01);
+      EXPECT_NEAR(length, 4.0, 0.02);
+      EXPECT_NEAR(wall.thickness, 0.2, 0.01);
+    } else if (wall.kind == RasterWall::Kind::kColumn) {
+      ++columns;
+      EXPECT_NEAR(middle.x(), 2.0, 0.01);
+      EXPECT_NEAR(middle.y(), 1.5, 0.01);
+      EXPECT_NEAR(length, 0.4, 0.02);
+      EXPECT_NEAR(wall.thickness, 0.4, 0.02);
+      // Its sides along the pillar's: 20° (or 110°) off the image's axes.
+      const double angle = std::atan2(wall.end.y() - wall.start.y(), wall.end.x() - wall.start.x());
+      const double off = std::remainder(angle - 20.0 * kPi / 180.0, kPi / 2);
+      EXPECT_NEAR(off, 0.0, 2.0 * kPi / 180.0);
+    } else {
+      ++columns;
+      EXPECT_NEAR(middle.x(), 4.0, 0.01);
+      EXPECT_NEAR(middle.y(), 1.5, 0.01);
+      EXPECT_NEAR(wall.thickness, 0.5, 0.02);
+    }
+  }
+  EXPECT_EQ(columns, 2);
+}
+
+TEST(RasterWalls, TextAndCurvesAreSaidNotTurnedIntoWalls) {
+  // A straight wall with the letter "S" (strokes 2 cm) beside it, and a quarter circle of wall
+  // (radius 2 m, 0.2 m thick) joined to nothing.
+  const OccupancyImage image = imageOf(800, 600, [&](const Eigen::Vector2d& p) {
+    const bool wall = p.x() >= 0.5 && p.x() <= 3.5 && std::abs(p.y() - 5.0) <= 0.1;
+    const Eigen::Vector2d letter = p - Eigen::Vector2d(2.0, 4.0);
+    const bool s_shape = std::abs(letter.x()) <= 0.15 && std::abs(letter.y()) <= 0.2 &&
+                         (std::abs(letter.y() - 0.19) <= 0.01 || std::abs(letter.y()) <= 0.01 ||
+                          std::abs(letter.y() + 0.19) <= 0.01 ||
+                          (letter.y() > 0 && std::abs(letter.x() + 0.14) <= 0.01) ||
+                          (letter.y() < 0 && std::abs(letter.x() - 0.14) <= 0.01));
+    const Eigen::Vector2d arc = p - Eigen::Vector2d(5.0, 0.5);
+    const bool curve = arc.x() >= 0 && arc.y() >= 0 && std::abs(arc.norm() - 2.0) <= 0.1;
+    return wall || s_shape || curve;
+  });
+  RasterWallOptions options;
+  const RasterWalls traced = traceRasterWalls(image, options);
+  EXPECT_EQ(traced.symbols, 1);
+  bool letter_said = false, curve_said = false;
+  for (const auto& line : traced.left_out) {
+    if (line.find("neither a wall nor a column") != std::string::npos) letter_said = true;
+    if (line.find("a curved wall around (6.") != std::string::npos) curve_said = true;
+  }
+  EXPECT_TRUE(letter_said);
+  // The arc is cut into straight runs within the skeleton's tolerance, and that is said.
+  EXPECT_TRUE(curve_said);
+  int straight = 0;
+  for (const auto& wall : traced.walls) {
+    if (std::abs(0.5 * (wall.start + wall.end).y() - 5.0) < 0.02) ++straight;
+  }
+  EXPECT_EQ(straight, 1);
+  EXPECT_GE(traced.walls.size(), 4u);
+}
+
+}  // namespace
+}  // namespace isg::bim

@@ -1,0 +1,175 @@
+#include "bim/raster_image.hpp"
+
+#include <gtest/gtest.h>
+#include <png.h>
+
+#include <string>
+#include <vector>
+
+#include "bim/map_yaml.hpp"
+#include "common/input_error.hpp"
+
+namespace isg::bim {
+namespace {
+
+using Class = PixelClass;
+
+std::string errorOf(const std::string& bytes, const OccupancyRule& rule = {}) {
+  try {
+    decodeOccupancyImage(bytes, "floor.pgm", rule);
+  } catch (const common::InputError& e) {
+    return e.what();
+  }
+  return "";
+}
+
+// An 8-bit PNG in memory, from libpng's own writer.
+std::string pngOf(int width, int height, png_uint_32 format, const std::vector<unsigned char>& px) {
+  png_image image{};
+  image.version = PNG_IMAGE_VERSION;
+  image.width = width;
+  image.height = height;
+  image.format = format;
+  png_alloc_size_t size = 0;
+  EXPECT_TRUE(png_image_write_to_memory(&image, nullptr, &size, 0, px.data(), 0, nullptr));
+  std::string out(size, '\0');
+  EXPECT_TRUE(png_image_write_to_memory(&image, out.data(), &size, 0, px.data(), 0, nullptr));
+  out.resize(size);
+  return out;
+}
+
+TEST(RasterImage, AsciiPgmClassifiedByTheThresholds) {
+  // Grey 0 (black), 100, 200 and 255 of 255: occupancy 1, 0.61, 0.22, 0 with the default rule
+  // (occupied above 0.65, free below 0.25).
+  const OccupancyImage image =
+      decodeOccupancyImage("P2\n# a comment\n4 1\n255\n0 100 200 255\n", "floor.pgm", {});
+  ASSERT_EQ(image.width, 4);
+  ASSERT_EQ(image.height, 1);
+  EXPECT_EQ(image.at(0, 0), Class::kOccupied);
+  EXPECT_EQ(image.at(1, 0), Class::kUnknown);
+  EXPECT_EQ(image.at(2, 0), Class::kFree);
+  EXPECT_EQ(image.at(3, 0), Class::kFree);
+  OccupancyRule negate;
+  negate.negate = true;
+  const OccupancyImage negated =
+      decodeOccupancyImage("P2\n4 1\n255\n0 100 200 255\n", "floor.pgm", negate);
+  EXPECT_EQ(negated.at(0, 0), Class::kFree);
+  EXPECT_EQ(negated.at(3, 0), Class::kOccupied);
+}
+
+TEST(RasterImage, BinaryPgmRowsFromTheTop) {
+  const std::string bytes = std::string("P5 2 2 255\n") + char(0) + char(255) + char(255) + char(0);
+  const OccupancyImage image = decodeOccupancyImage(bytes, "floor.pgm", {});
+  EXPECT_EQ(image.at(0, 0), Class::kOccupied);
+  EXPECT_EQ(image.at(1, 0), Class::kFree);
+  EXPECT_EQ(image.at(0, 1), Class::kFree);
+  EXPECT_EQ(image.at(1, 1), Class::kOccupied);
+  // 16-bit samples, big-endian: 0x8000 of 0xffff is a shade of 0.5.
+  OccupancyRule half{OccupancyRule::Mode::kTrinary, false, 0.49, 0.3};
+  const std::string wide = std::string("P5 1 1 65535\n") + char(0x80) + char(0x00);
+  EXPECT_EQ(decodeOccupancyImage(wide, "floor.pgm", half).at(0, 0), Class::kOccupied);
+}
+
+TEST(RasterImage, BadImagesSayWhatIsWrong) {
+  EXPECT_EQ(errorOf("P5 3 2 255\n" + std::string(4, '\0')),
+            "floor.pgm: at byte 11: the raster holds 4 of 6 pixels: the file is truncated");
+  EXPECT_EQ(errorOf("P2 2 1 255\n0 300\n"),
+            "floor.pgm: at byte 16: a grey value (300) above the maximum 255");
+  EXPECT_EQ(errorOf("P2 2 x"),
+            "floor.pgm: at byte 5: expected the height (a decimal number), found 'x'");
+  EXPECT_EQ(errorOf("P5 0 4 255\n"), "floor.pgm: the image has no pixels (0 × 4)");
+  EXPECT_EQ(errorOf("P5 20000 20000 255\n"),
+            "floor.pgm: the image has 400000000 pixels (20000 × 20000); at most 120000000 are "
+            "read (docs/formats.md, \"Importing raster floor plans\")");
+  EXPECT_EQ(errorOf("GIF89a"),
+            "floor.pgm: neither a PNG image nor a PGM image (P2 or P5): a floor plan image must "
+            "be one of them");
+  const std::string png = pngOf(2, 1, PNG_FORMAT_GRAY, {0, 255});
+  EXPECT_EQ(errorOf(png.substr(0, 40)).rfind("floor.pgm: not a readable PNG image: ", 0), 0u)
+      << errorOf(png.substr(0, 40));
+}
+
+TEST(RasterImage, PngChannelsAveragedAsMapServerDoes) {
+  // Grey: 0 and 255.
+  const OccupancyImage grey =
+      decodeOccupancyImage(pngOf(2, 1, PNG_FORMAT_GRAY, {0, 255}), "floor.png", {});
+  EXPECT_EQ(grey.at(0, 0), Class::kOccupied);
+  EXPECT_EQ(grey.at(1, 0), Class::kFree);
+  // Colour: the mean of the channels (red alone, 255/3 of 255: occupancy 0.67: occupied).
+  const OccupancyImage colour =
+      decodeOccupancyImage(pngOf(1, 1, PNG_FORMAT_RGB, {255, 0, 0}), "floor.png", {});
+  EXPECT_EQ(colour.at(0, 0), Class::kOccupied);
+  // Grey with alpha, trinary: alpha is averaged in as a fourth channel. Black opaque: shade
+  // (0 + 0 + 0 + 1) / 4 = 0.25, occupancy 0.75: occupied; white transparent: shade 0.75,
+  // occupancy 0.25: not below free_thresh 0.25, so unknown.
+  const std::string ga = pngOf(2, 1, PNG_FORMAT_GA, {0, 255, 255, 0});
+  const OccupancyImage trinary = decodeOccupancyImage(ga, "floor.png", {});
+  EXPECT_EQ(trinary.at(0, 0), Class::kOccupied);
+  EXPECT_EQ(trinary.at(1, 0), Class::kUnknown);
+  // Scale: a pixel not fully opaque is unknown; the opaque one is read from its colour alone.
+  OccupancyRule scale;
+  scale.mode = OccupancyRule::Mode::kScale;
+  const OccupancyImage scaled = decodeOccupancyImage(ga, "floor.png", scale);
+  EXPECT_EQ(scaled.at(0, 0), Class::kOccupied);
+  EXPECT_EQ(scaled.at(1, 0), Class::kUnknown);
+  // Raw: the grey value is the occupancy in per cent; above 100, unknown.
+  OccupancyRule raw;
+  raw.mode = OccupancyRule::Mode::kRaw;
+  const OccupancyImage raws =
+      decodeOccupancyImage(pngOf(3, 1, PNG_FORMAT_GRAY, {100, 10, 200}), "floor.png", raw);
+  EXPECT_EQ(raws.at(0, 0), Class::kOccupied);
+  EXPECT_EQ(raws.at(1, 0), Class::kFree);
+  EXPECT_EQ(raws.at(2, 0), Class::kUnknown);
+}
+
+std::string yamlError(const std::string& text) {
+  try {
+    parseMapYaml(text, "/maps/lab.yaml");
+  } catch (const common::InputError& e) {
+    return e.what();
+  }
+  return "";
+}
+
+TEST(MapYaml, ReadsMapServersFields) {
+  const MapYaml map = parseMapYaml(
+      "image: lab.pgm   # the occupancy\nresolution: 0.050000\norigin: [-12.5, 3.0, 0.1]\n"
+      "negate: 0\noccupied_thresh: 0.65\nfree_thresh: 0.196\nmode: scale\n",
+      "/maps/lab.yaml");
+  EXPECT_EQ(map.image, "/maps/lab.pgm");
+  EXPECT_DOUBLE_EQ(map.resolution, 0.05);
+  EXPECT_DOUBLE_EQ(map.origin_x, -12.5);
+  EXPECT_DOUBLE_EQ(map.origin_y, 3.0);
+  EXPECT_DOUBLE_EQ(map.origin_yaw, 0.1);
+  EXPECT_FALSE(map.rule.negate);
+  EXPECT_DOUBLE_EQ(map.rule.occupied_thresh, 0.65);
+  EXPECT_DOUBLE_EQ(map.rule.free_thresh, 0.196);
+  EXPECT_EQ(map.rule.mode, OccupancyRule::Mode::kScale);
+  const MapYaml absolute = parseMapYaml(
+      "image: \"/data/floor.png\"\nresolution: 0.01\norigin: [0, 0, 0]\nnegate: true\n"
+      "occupied_thresh: 0.5\nfree_thresh: 0.5\n",
+      "lab.yaml");
+  EXPECT_EQ(absolute.image, "/data/floor.png");
+  EXPECT_TRUE(absolute.rule.negate);
+  EXPECT_EQ(absolute.rule.mode, OccupancyRule::Mode::kTrinary);
+}
+
+TEST(MapYaml, BadFieldsNameTheKeyAndTheLine) {
+  const std::string good_tail = "negate: 0\noccupied_thresh: 0.65\nfree_thresh: 0.25\n";
+  EXPECT_EQ(yamlError("image: a.pgm\nresolution: 0.05\n" + good_tail),
+            "/maps/lab.yaml: /origin: missing: a map's YAML names its image, resolution, origin, "
+            "negate, occupied_thresh and free_thresh (as map_server requires)");
+  EXPECT_EQ(yamlError("image: a.pgm\nresolution: 0.05\norigin: [1, 2]\n" + good_tail),
+            "/maps/lab.yaml: /origin: line 3: the origin has 3 elements, [x, y, yaw], not 2");
+  EXPECT_EQ(yamlError("image: a.pgm\nresolution: fine\norigin: [1, 2, 0]\n" + good_tail),
+            "/maps/lab.yaml: /resolution: line 2: \"fine\" is not a finite number");
+  EXPECT_EQ(yamlError("image: a.pgm\nresolution: 0.05\norigin: [1, 2, 0]\n" + good_tail +
+                      "mode: fuzzy\n"),
+            "/maps/lab.yaml: /mode: line 7: expected trinary, scale or raw, found \"fuzzy\"");
+  EXPECT_EQ(yamlError("image: a.pgm\nresolution: 0.05\norigin: [1, 2, 0]\nnegate: 0\n"
+                      "occupied_thresh: 0.2\nfree_thresh: 0.25\n"),
+            "/maps/lab.yaml: /free_thresh: line 6: above occupied_thresh: no pixel could be both");
+}
+
+}  // namespace
+}  // namespace isg::bim

@@ -1,0 +1,95 @@
+#include <gtest/gtest.h>
+
+#include <string>
+
+#include "bim/plan_parser.hpp"
+#include "cli/tests/cli_runner.hpp"
+
+namespace isg::cli {
+namespace {
+
+// A 4 m × 3 m room drawn at 2 cm a pixel with 0.2 m walls, a 1 m doorway in its south wall and
+// half a metre of light ground around it: a binary PGM.
+std::string roomPgm() {
+  const double resolution = 0.02, margin = 0.5;
+  const int width = int((4.2 + 2 * margin) / resolution),
+            height = int((3.2 + 2 * margin) / resolution);
+  std::string bytes = "P5\n" + std::to_string(width) + " " + std::to_string(height) + "\n255\n";
+  for (int row = 0; row < height; ++row) {
+    for (int c = 0; c < width; ++c) {
+      const double x = (c + 0.5) * resolution - margin - 0.1,
+                   y = (height - row - 0.5) * resolution - margin - 0.1;
+      const bool inside_outer = x >= -0.1 && x <= 4.1 && y >= -0.1 && y <= 3.1;
+      const bool inside_room = x > 0.1 && x < 3.9 && y > 0.1 && y < 2.9;
+      const bool doorway = y < 0.2 && x > 1.5 && x < 2.5;
+      bytes += char(inside_outer && !inside_room && !doorway ? 0 : 255);
+    }
+  }
+  return bytes;
+}
+
+TEST(RasterImport, APgmFloorPlanBecomesAPlanWithItsRoomAndDoorway) {
+  testing::Sandbox sandbox("raster_import");
+  sandbox.write("room.pgm", roomPgm());
+  const auto result =
+      sandbox.run("import room.pgm --resolution 0.02 --origin=-0.6,-0.6 -o room.json");
+  ASSERT_EQ(result.exit_code, 0) << result.err;
+  EXPECT_NE(result.err.find("isg import: wrote room.json: 1 level, 4 walls, 0 columns, 1 doorway, "
+                            "1 room; 0 regions left out or simplified"),
+            std::string::npos)
+      << result.err;
+  const bim::Plan plan = bim::loadPlan((sandbox.dir() / "room.json").string());
+  const auto& level = plan.levels.front();
+  ASSERT_EQ(level.doors.size(), 1u);
+  const bim::Wall* wall = level.findWall(level.doors[0].wall);
+  ASSERT_NE(wall, nullptr);
+  // The doorway's middle at (2, 0) in the plan (the image's corner placed at (-0.6, -0.6)).
+  const Eigen::Vector2d d = (wall->end - wall->start).normalized();
+  const Eigen::Vector2d middle = wall->start + level.doors[0].offset * d;
+  EXPECT_NEAR(middle.x(), 2.0, 0.02);
+  EXPECT_NEAR(middle.y(), 0.0, 0.02);
+  EXPECT_NEAR(level.doors[0].width, 1.0, 0.04);
+  EXPECT_EQ(sandbox.run("check room.json").exit_code, 0);
+  // A second import over it needs --force, as for IFC.
+  EXPECT_EQ(sandbox.run("import room.pgm --resolution 0.02 -o room.json").exit_code, 1);
+  EXPECT_EQ(sandbox.run("import room.pgm --resolution 0.02 -o room.json --force").exit_code, 0);
+}
+
+TEST(RasterImport, AMapYamlBringsItsOwnScaleAndOrigin) {
+  testing::Sandbox sandbox("raster_import_yaml");
+  sandbox.write("room.pgm", roomPgm());
+  sandbox.write("lab.yaml",
+                "image: room.pgm\nresolution: 0.02\norigin: [-0.6, -0.6, 0.0]\nnegate: 0\n"
+                "occupied_thresh: 0.65\nfree_thresh: 0.196\n");
+  const auto result = sandbox.run("import lab.yaml -o lab.json -q");
+  ASSERT_EQ(result.exit_code, 0) << result.err;
+  const bim::Plan plan = bim::loadPlan((sandbox.dir() / "lab.json").string());
+  ASSERT_EQ(plan.levels.front().rooms.size(), 1u);
+  EXPECT_EQ(plan.name, "lab");
+  const auto both = sandbox.run("import lab.yaml --resolution 0.05 -o other.json");
+  EXPECT_EQ(both.exit_code, 1);
+  EXPECT_EQ(both.err,
+            "isg import: error: lab.yaml: a map's YAML gives its own resolution and origin: leave "
+            "out --resolution and --origin (or edit the YAML)\n");
+  EXPECT_FALSE(sandbox.exists("other.json"));
+}
+
+TEST(RasterImport, AnImageWithoutItsScaleIsRefused) {
+  testing::Sandbox sandbox("raster_import_scale");
+  sandbox.write("room.pgm", roomPgm());
+  const auto result = sandbox.run("import room.pgm -o room.json");
+  EXPECT_EQ(result.exit_code, 1);
+  EXPECT_EQ(result.err,
+            "isg import: error: room.pgm: a floor plan image needs its scale: --resolution M "
+            "(metres a pixel; 0.01 for a plan drawn at 1 cm a pixel)\n");
+  EXPECT_FALSE(sandbox.exists("room.json"));
+  sandbox.write("blank.pgm", "P2 2 2 255\n255 255 255 255\n");
+  const auto blank = sandbox.run("import blank.pgm --resolution 0.05 -o blank.json");
+  EXPECT_EQ(blank.exit_code, 1);
+  EXPECT_EQ(blank.err,
+            "isg import: error: blank.pgm: no wall or column found in the image (0 dark regions): "
+            "is it a floor plan with dark walls on a light ground (or is negate needed)?\n");
+}
+
+}  // namespace
+}  // namespace isg::cli
