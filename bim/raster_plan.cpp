@@ -33,6 +33,8 @@ RasterPlanImport rasterPlanFromImage(const OccupancyImage& image, const std::str
   }
   RasterWallOptions trace;
   trace.resolution = options.resolution;
+  trace.origin = options.origin;
+  trace.yaw = options.yaw;
   RasterWalls traced = traceRasterWalls(image, trace);
 
   RasterPlanImport result;

@@ -20,8 +20,8 @@ namespace isg::bim {
 //     it (the middle and width of the occupied run along the normal, sampled along the wall), its
 //     ends closed against the walls it meets or carried to the region's edge at a free end.
 //     Collinear runs are joined; a gap between two collinear walls where a person fits through
-//     (`min_door_width` to `max_door_width`) is a doorway of the joined wall. What the walls
-//     found do not cover of a region (curves, hatching, text touching a wall) is said.
+//     (`min_door_width` to `max_door_width`) is a doorway of the joined wall. Every patch of a
+//     region's pixels that no wall found covers (curves, hatching, text touching a wall) is said.
 // Coordinates here are the image's own, in metres: x along the columns from the image's left
 // edge, y up from its bottom edge (row 0 is the top row).
 struct RasterWallOptions {
@@ -34,8 +34,12 @@ struct RasterWallOptions {
   double min_door_width = 0.6;       // m: a person fits through
   double max_door_width = 2.5;       // m
   double collinear_angle = 1.5;      // degrees: runs this parallel may be one wall
-  double max_uncovered_share = 0.2;  // of a region's pixels: more left uncovered is said
+  double min_uncovered_area = 0.02;  // m²: a patch of dark pixels no wall covers is said
   double min_wall_length = 0.05;     // m
+  // Where the image lies in the plan, for the places messages name: its bottom-left corner, and
+  // the image turned by `yaw` about it. The walls themselves stay in the image's own metres.
+  Eigen::Vector2d origin = Eigen::Vector2d::Zero();
+  double yaw = 0.0;
 };
 
 struct RasterWall {

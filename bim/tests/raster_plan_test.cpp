@@ -8,7 +8,9 @@
 #include "bim/plan_geometry.hpp"
 #include "bim/plan_parser.hpp"
 #include "bim/plan_transform.hpp"
+#include "bim/synthetic_plan.hpp"
 #include "bim/tests/raster_drawing.hpp"
+#include "common/json_reader.hpp"
 
 namespace isg::bim {
 namespace {
@@ -123,6 +125,25 @@ TEST(RasterPlan, APlanDrawnAtACentimetreImportsBackItsWalls) {
   }
 }
 
+TEST(RasterPlan, AFloorOfTwoHundredRoomsImportsBackItsWallsAndDoors) {
+  GridPlanSpec spec;
+  spec.rows = 10;
+  spec.cols = 20;
+  const common::JsonSource source{"grid.json", nullptr};
+  const Plan plan = parsePlan(common::JsonNode(makeGridPlan(spec), "", source));
+  const Level& level = plan.levels.front();
+  const RasterPlanImport result = importDrawn(level, 0.01);
+  const Level& imported = result.plan.levels.front();
+  const RoundTrip trip = compare(level, imported, 0.02, 1.0);
+  EXPECT_EQ(trip.covered, trip.samples);
+  EXPECT_EQ(trip.on_a_drawn_wall, trip.imported);
+  EXPECT_EQ(imported.doors.size(), level.doors.size());
+  EXPECT_EQ(imported.rooms.size(), 200u);
+  std::printf("200 rooms: %zu walls (drawn %zu), %zu doors (drawn %zu), worst %.4f m %.3f°\n",
+              imported.walls.size(), level.walls.size(), imported.doors.size(), level.doors.size(),
+              trip.worst_offset, trip.worst_angle);
+}
+
 // Turned off the image's axes, walls come back as well, but for short pieces where thinning
 // bends around a corner or a jamb (under 0.5 m, counted apart) and now and then a doorway beside
 // a corner (the wall's stub beyond it too short to be a wall by its own line): measured, at least
@@ -138,6 +159,8 @@ TEST(RasterPlan, APlanTurnedToAnyAngleImportsBackItsWalls) {
       const RasterPlanImport result = importDrawn(level, 0.01);
       const Level& imported = result.plan.levels.front();
       const RoundTrip trip = compare(level, imported, 0.02, 1.0);
+      std::printf("%s turned %.1f°: %d of %d samples, worst %.4f m, %.3f°\n", name, degrees,
+                  trip.covered, trip.samples, trip.worst_offset, trip.worst_angle);
       EXPECT_GE(trip.covered, 0.995 * trip.samples);
       int long_walls = 0, long_on_drawn = 0;
       for (const auto& wall : imported.walls) {
@@ -154,6 +177,7 @@ TEST(RasterPlan, APlanTurnedToAnyAngleImportsBackItsWalls) {
       doors_drawn += int(level.doors.size());
     }
   }
+  std::printf("doorways back: %d of %d\n", doors, doors_drawn);
   EXPECT_GE(doors, 0.9 * doors_drawn);
   EXPECT_LE(doors, doors_drawn);
 }
