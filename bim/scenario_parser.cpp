@@ -130,9 +130,8 @@ RobotConfig parseRobot(const std::optional<common::JsonNode>& node, const Plan& 
   } else if (!level->rooms.empty()) {
     robot.start_room = level->rooms.front().id;
   }
-  if (!robot.start_room && !robot.start_pose) {
-    node->fail("level " + common::inQuotes(level->id) + " has no rooms: give robot.start.pose");
-  }
+  // A level without rooms (an open floor) starts at the most open point inside its façade
+  // (sim/route_planner.hpp) unless robot.start gives one.
   if (auto route = node->optionalField("route")) {
     if (route->isString()) {
       const std::string kind = route->string();

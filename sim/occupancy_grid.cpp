@@ -5,6 +5,7 @@
 #include <limits>
 
 #include "bim/distance_transform.hpp"
+#include "bim/facade.hpp"
 #include "bim/plan_geometry.hpp"
 #include "bim/polygon.hpp"
 #include "bim/stairs.hpp"
@@ -105,6 +106,9 @@ OccupancyGrid::OccupancyGrid(const bim::Plan& plan, const bim::AsBuilt& as_built
   for (const auto& room : level.rooms) {
     paint(room.outline, false);
   }
+  // An open floor (no rooms): its inside is its façade's outline.
+  const bool open_floor = level.rooms.empty();
+  if (open_floor) paint(bim::facadeOutline(level), false);
   clearPlannedWalls(plan_level, as_built);
   // A wall blocks where it stands lower than the robot can pass under.
   constexpr double kRobotHeight = 0.9;
@@ -117,7 +121,7 @@ OccupancyGrid::OccupancyGrid(const bim::Plan& plan, const bim::AsBuilt& as_built
     const bool closed = std::find(as_built.closed_doors.begin(), as_built.closed_doors.end(),
                                   door.id) != as_built.closed_doors.end();
     const bool to_outside = door.rooms[0] == bim::kOutside || door.rooms[1] == bim::kOutside;
-    if (closed || to_outside) continue;
+    if (closed || (to_outside && !open_floor)) continue;
     const bim::WallGeometry& g = *geometry.findWall(door.wall);
     const auto opening = rectangle(g.pointAt(door.offset), g.axis, 0.5 * door.width,
                                    0.5 * g.wall->thickness + resolution_);

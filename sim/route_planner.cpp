@@ -1,5 +1,7 @@
 #include "sim/route_planner.hpp"
 
+#include "bim/facade.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <map>
@@ -132,11 +134,75 @@ std::string flightBlocked(const Flight& flight, const Eigen::Vector2d& from, dou
          " or stepped off, keeping " + formatMetres(clearance) + " from walls and clutter";
 }
 
+// An open floor's tour (a level without rooms, docs/simulation.md "Open floors"): the points of a
+// square lattice `kOpenFloorSpacing` apart inside the façade's outline, each moved to the most
+// open cell within half a spacing, visited nearest first from where the robot is; a point no
+// path reaches is left out.
+constexpr double kOpenFloorSpacing = 5.0;  // m: a VLP-16 sees every wall of a 5 m cell around it
+
+void tourOpenFloor(RouteBuilder& builder) {
+  const bim::Level& level = builder.level();
+  const OccupancyGrid& grid = builder.grid();
+  const bim::Polygon2 outline = bim::facadeOutline(level);
+  if (outline.empty()) return;
+  Eigen::Vector2d lo = outline[0], hi = outline[0];
+  for (const auto& p : outline) lo = lo.cwiseMin(p), hi = hi.cwiseMax(p);
+  const double clearance = builder.clearance();
+  const int reach = std::max(1, int(0.5 * kOpenFloorSpacing / grid.resolution()));
+  std::vector<Eigen::Vector2d> points;
+  const Eigen::Vector2d extent = hi - lo;
+  const int nx = std::max(1, int(extent.x() / kOpenFloorSpacing)),
+            ny = std::max(1, int(extent.y() / kOpenFloorSpacing));
+  for (int j = 0; j < ny; ++j) {
+    for (int i = 0; i < nx; ++i) {
+      // Lattice points centred in the outline's box.
+      const Eigen::Vector2d p =
+          lo + Eigen::Vector2d((i + 0.5) * extent.x() / nx, (j + 0.5) * extent.y() / ny);
+      if (!bim::containsPoint(outline, p)) continue;
+      const Eigen::Vector2i c = grid.cellOf(p);
+      double best = -1.0, best_distance = 0.0;
+      Eigen::Vector2d at = p;
+      for (int dy = -reach; dy <= reach; ++dy) {
+        for (int dx = -reach; dx <= reach; ++dx) {
+          const Eigen::Vector2i q(c.x() + dx, c.y() + dy);
+          const double open = std::floor(grid.clearance(q) * 100.0);  // whole centimetres
+          const double distance = double(dx * dx + dy * dy);
+          if (open > best || (open == best && distance < best_distance)) {
+            best = open, best_distance = distance, at = grid.centreOf(q);
+          }
+        }
+      }
+      if (best * 0.01 >= clearance) points.push_back(at);
+    }
+  }
+  std::vector<char> done(points.size(), 0);
+  for (std::size_t visited = 0; visited < points.size(); ++visited) {
+    const Eigen::Vector2d here = builder.lastWaypoint();
+    std::size_t next = points.size();
+    for (std::size_t k = 0; k < points.size(); ++k) {
+      if (!done[k] && (next == points.size() ||
+                       (points[k] - here).squaredNorm() < (points[next] - here).squaredNorm())) {
+        next = k;
+      }
+    }
+    done[next] = 1;
+    if (builder.goTo(points[next])) {
+      builder.route().targets.push_back({"", "open floor " + std::to_string(next),
+                                         int(builder.route().waypoints.size()) - 1, points[next],
+                                         level.id});
+    }
+  }
+}
+
 // Tour of one level from where the route is: depth-first over the rooms joined by open doors,
 // neighbours in id order, then the rooms joined without a door.
 void tourLevel(RouteBuilder& builder, const bim::Scenario& scenario, std::set<std::string>& seen,
                const std::string& entry_room) {
   const bim::Level& level = builder.level();
+  if (level.rooms.empty()) {
+    tourOpenFloor(builder);
+    return;
+  }
   std::map<std::string, std::set<std::string>> neighbours;
   for (const auto& door : level.doors) {
     if (door.rooms[0] == bim::kOutside || door.rooms[1] == bim::kOutside) continue;
@@ -246,6 +312,18 @@ PlannedRoute planRoute(const bim::Scenario& scenario, const OccupancyGrid& grid,
     start = scenario.robot.start_pose->head<2>();
     route.start_yaw = scenario.robot.start_pose->z();
     start_room = bim::roomAt(level, start).value_or("");
+  } else if (!scenario.robot.start_room) {
+    // An open floor: the most open point of its inside, nearest the middle of its façade.
+    bim::Room inside;
+    inside.outline = bim::facadeOutline(level);
+    if (inside.outline.empty()) {
+      throw common::InputError(
+          file, "/robot/start",
+          "level \"" + level.id + "\" has neither rooms nor walls to stand in");
+    }
+    start = roomCentre(grid, inside, true, clearance);
+    route.start_yaw =
+        std::uniform_real_distribution<double>(-std::numbers::pi, std::numbers::pi)(rng);
   } else {
     start_room = *scenario.robot.start_room;
     start = roomCentre(grid, *level.findRoom(start_room), true, clearance);

@@ -1,5 +1,6 @@
 #include <gtest/gtest.h>
 
+#include <nlohmann/json.hpp>
 #include <string>
 
 #include "bim/plan_parser.hpp"
@@ -89,6 +90,50 @@ TEST(RasterImport, AnImageWithoutItsScaleIsRefused) {
   EXPECT_EQ(blank.err,
             "isg import: error: blank.pgm: no wall or column found in the image (0 dark regions): "
             "is it a floor plan with dark walls on a light ground (or is negate needed)?\n");
+}
+
+// An open floor at 2 cm a pixel: a 20 m × 12 m façade with a 3 m gap in its east side, four
+// 0.4 m columns and an L of partition, no room enclosed anywhere.
+std::string openFloorPgm() {
+  const double resolution = 0.02, margin = 0.5;
+  const int width = int((20.3 + 2 * margin) / resolution),
+            height = int((12.3 + 2 * margin) / resolution);
+  std::string bytes = "P5\n" + std::to_string(width) + " " + std::to_string(height) + "\n255\n";
+  const auto box = [](double x, double y, double x0, double y0, double x1, double y1) {
+    return x >= x0 && x <= x1 && y >= y0 && y <= y1;
+  };
+  for (int row = 0; row < height; ++row) {
+    for (int c = 0; c < width; ++c) {
+      const double x = (c + 0.5) * resolution - margin - 0.15,
+                   y = (height - row - 0.5) * resolution - margin - 0.15;
+      bool dark = box(x, y, -0.15, -0.15, 20.15, 0.15) || box(x, y, -0.15, 11.85, 20.15, 12.15) ||
+                  box(x, y, -0.15, -0.15, 0.15, 12.15) || box(x, y, 19.85, -0.15, 20.15, 4.5) ||
+                  box(x, y, 19.85, 7.5, 20.15, 12.15) || box(x, y, 11.0, 8.0, 16.0, 8.2) ||
+                  box(x, y, 15.8, 5.0, 16.0, 8.2);
+      for (double cx : {5.0, 10.0}) {
+        for (double cy : {4.0, 8.0})
+          dark = dark || box(x, y, cx - 0.2, cy - 0.2, cx + 0.2, cy + 0.2);
+      }
+      bytes += char(dark ? 0 : 255);
+    }
+  }
+  return bytes;
+}
+
+TEST(RasterImport, AnOpenFloorIsImportedWalkedAndLocalizedOn) {
+  testing::Sandbox sandbox("raster_open_floor");
+  sandbox.write("site.pgm", openFloorPgm());
+  const auto imported =
+      sandbox.run("import site.pgm --resolution 0.02 --origin=-0.65,-0.65 -o site.json");
+  ASSERT_EQ(imported.exit_code, 0) << imported.err;
+  EXPECT_NE(imported.err.find("4 columns, 0 doorways, 0 rooms"), std::string::npos) << imported.err;
+  const auto run = sandbox.run("run site.json --duration 90 --threads 2 -q -o runs/site");
+  ASSERT_EQ(run.exit_code, 0) << run.err;
+  const auto metrics = nlohmann::json::parse(sandbox.read("runs/site/metrics.json"));
+  EXPECT_TRUE(metrics["localized"].get<bool>());
+  EXPECT_LT(metrics["ape_B"]["rmse"].get<double>(), 0.05);
+  EXPECT_GT(metrics["sim_seconds"].get<double>(), 60.0);
+  EXPECT_EQ(metrics["time_wrongly_localized"].get<double>(), 0.0);
 }
 
 }  // namespace

@@ -78,3 +78,71 @@ TEST(Tour, OpenPlanRoomsAreReachedThroughTheFreeSpace) {
 
 }  // namespace
 }  // namespace isg::sim
+
+namespace isg::sim {
+namespace {
+
+// An open floor: a 20 m × 10 m façade of walls with a 3 m gap in its east side, two columns and
+// no rooms at all (a site plan, a raster plan whose walls enclose nothing).
+PlannedRoute openFloorTour(const nlohmann::json& robot) {
+  nlohmann::json document = {
+      {"format", "isg.scenario"},
+      {"version", 1},
+      {"plan",
+       {{"format", "isg.plan"},
+        {"version", 1},
+        {"levels",
+         {{{"id", "L0"},
+           {"height", 3.0},
+           {"walls",
+            {{{"id", "S"}, {"start", {0, 0}}, {"end", {20, 0}}, {"thickness", 0.3}},
+             {{"id", "E1"}, {"start", {20, 0}}, {"end", {20, 3.5}}, {"thickness", 0.3}},
+             {{"id", "E2"}, {"start", {20, 6.5}}, {"end", {20, 10}}, {"thickness", 0.3}},
+             {{"id", "N"}, {"start", {20, 10}}, {"end", {0, 10}}, {"thickness", 0.3}},
+             {{"id", "W"}, {"start", {0, 10}}, {"end", {0, 0}}, {"thickness", 0.3}},
+             {{"id", "C1"}, {"start", {6.8, 5}}, {"end", {7.2, 5}}, {"thickness", 0.4}},
+             {{"id", "C2"}, {"start", {12.8, 5}}, {"end", {13.2, 5}}, {"thickness", 0.4}}}}}}}}}};
+  if (!robot.is_null()) document["robot"] = robot;
+  const common::JsonSource source{"scenario.json", nullptr};
+  const bim::Scenario scenario = bim::parseScenario(
+      common::JsonNode(document, "", source),
+      [](const common::JsonNode&) -> bim::LoadedPlan { throw std::logic_error("inline plan"); });
+  const OccupancyGrid grid(scenario.plan, scenario.as_built, scenario.robot.level);
+  std::mt19937_64 rng(1);
+  return planRoute(scenario, grid, rng);
+}
+
+TEST(Tour, AnOpenFloorIsWalkedOverAFiveMetreLatticeFromItsMostOpenPoint) {
+  const PlannedRoute route = openFloorTour(nullptr);
+  ASSERT_GE(route.waypoints.size(), 2u);
+  // The start: the façade's middle, (10, 5), lies between the columns, 2.6 m from either's
+  // face and 4.85 m from the long walls' faces: open, so it is the start.
+  EXPECT_NEAR(route.waypoints.front().x(), 10.0, 0.05);
+  EXPECT_NEAR(route.waypoints.front().y(), 5.0, 0.05);
+  // The lattice: 4 × 2 points 5 m apart in the 20.3 m × 10.3 m hull, every one reached.
+  int open_floor_targets = 0;
+  for (const auto& target : route.targets) {
+    if (target.label.rfind("open floor ", 0) == 0) ++open_floor_targets;
+  }
+  EXPECT_EQ(open_floor_targets, 8);
+  EXPECT_TRUE(route.visited_rooms.empty());
+  EXPECT_TRUE(route.skipped_rooms.empty());
+  // Every waypoint inside the façade, never through its gap to the outside.
+  for (const auto& p : route.waypoints) {
+    EXPECT_GT(p.x(), 0.15);
+    EXPECT_LT(p.x(), 19.85);
+    EXPECT_GT(p.y(), 0.15);
+    EXPECT_LT(p.y(), 9.85);
+  }
+}
+
+TEST(Tour, AnOpenFloorStartsWhereTheScenarioSays) {
+  const PlannedRoute route =
+      openFloorTour({{"start", {{"pose", {2.0, 2.0, 0.5}}}}, {"route", "tour"}});
+  EXPECT_DOUBLE_EQ(route.waypoints.front().x(), 2.0);
+  EXPECT_DOUBLE_EQ(route.waypoints.front().y(), 2.0);
+  EXPECT_DOUBLE_EQ(route.start_yaw, 0.5);
+}
+
+}  // namespace
+}  // namespace isg::sim
