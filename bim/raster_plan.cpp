@@ -142,8 +142,4 @@ RasterPlanImport rasterPlanFromImage(const OccupancyImage& image, const std::str
   return result;
 }
 
-RasterPlanImport importRasterPlan(const std::string& image_path, const RasterPlanOptions& options) {
-  return rasterPlanFromImage(readOccupancyImage(image_path, options.rule), image_path, options);
-}
-
 }  // namespace isg::bim

@@ -6,7 +6,6 @@
 #include <vector>
 
 #include "bim/plan.hpp"
-#include "bim/raster_image.hpp"
 #include "bim/raster_walls.hpp"
 
 namespace isg::bim {
@@ -20,10 +19,8 @@ struct RasterPlanOptions {
   double resolution = 0.0;  // metres a pixel; required
   Eigen::Vector2d origin = Eigen::Vector2d::Zero();
   double yaw = 0.0;
-  double height = 3.0;       // the level's wall height
-  double door_height = 2.1;  // at most 90 % of the wall height
-  // A plain image: a pixel darker than mid-grey is occupied, else free.
-  OccupancyRule rule{OccupancyRule::Mode::kTrinary, false, 0.5, 0.5};
+  double height = 3.0;                // the level's wall height
+  double door_height = 2.1;           // at most 90 % of the wall height
   std::string source_kind = "image";  // for imported_from: "PNG image", "nav2 map", …
   std::string from_file;              // the file named in imported_from (the YAML for a map)
 };
@@ -36,11 +33,9 @@ struct RasterPlanImport {
   int walls = 0, columns = 0, doors = 0, rooms = 0, pockets = 0, specks = 0;
 };
 
-// Reads the image and makes the plan; the plan is read back by the plan's own parser before it
-// is returned. Bad input (unreadable image, a floor beyond the plan's limits): InputError.
-RasterPlanImport importRasterPlan(const std::string& image_path, const RasterPlanOptions& options);
-
-// The same from an image already read (the round-trip tests draw one).
+// The plan from an image read by formats/raster_image.hpp (the round-trip tests draw one); the
+// plan is read back by the plan's own parser before it is returned. Bad input (a floor beyond the
+// plan's limits, no wall at all): InputError naming `image_path` (or options.from_file).
 RasterPlanImport rasterPlanFromImage(const OccupancyImage& image, const std::string& image_path,
                                      const RasterPlanOptions& options);
 

@@ -3,9 +3,11 @@
 #include <cstdint>
 #include <vector>
 
-#include "bim/raster_image.hpp"
+#include "common/occupancy_image.hpp"
 
 namespace isg::bim {
+
+using common::OccupancyImage;
 
 // The skeleton of one region of occupied pixels (Zhang–Suen thinning), cut into its branches.
 // A junction is a skeleton pixel where three or more branches meet (three or more neighbours and

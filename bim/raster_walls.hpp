@@ -4,9 +4,12 @@
 #include <string>
 #include <vector>
 
-#include "bim/raster_image.hpp"
+#include "common/occupancy_image.hpp"
 
 namespace isg::bim {
+
+using common::OccupancyImage;
+using common::PixelClass;
 
 // Walls, columns and doorways traced in an occupancy image (docs/formats.md, "Importing raster
 // floor plans"). Every connected region of occupied pixels is one of:

@@ -7,12 +7,13 @@
 #include <filesystem>
 #include <optional>
 
-#include "bim/map_yaml.hpp"
 #include "bim/raster_plan.hpp"
 #include "cli/progress_bar.hpp"
 #include "common/atomic_folder.hpp"
 #include "common/output_path.hpp"
 #include "common/plural.hpp"
+#include "formats/map_yaml.hpp"
+#include "formats/raster_image.hpp"
 #include "ifc/ifc_import.hpp"
 #include "recordings/bag_import.hpp"
 #include "run/interrupt.hpp"
@@ -203,13 +204,15 @@ int ImportCommand::importRaster() {
   bim::RasterPlanOptions options;
   options.height = wall_height_;
   std::string image = input_;
+  // A plain image: a pixel darker than mid-grey is occupied, else free.
+  formats::OccupancyRule rule{formats::OccupancyRule::Mode::kTrinary, false, 0.5, 0.5};
   if (yaml) {
-    const bim::MapYaml map = bim::readMapYaml(input_);
+    const formats::MapYaml map = formats::readMapYaml(input_);
     image = map.image;
     options.resolution = map.resolution;
     options.origin = Eigen::Vector2d(map.origin_x, map.origin_y);
     options.yaw = map.origin_yaw;
-    options.rule = map.rule;
+    rule = map.rule;
     options.source_kind = "ROS map";
     options.from_file = input_;
   } else {
@@ -217,7 +220,8 @@ int ImportCommand::importRaster() {
     if (!origin_.empty()) options.origin = Eigen::Vector2d(origin_[0], origin_[1]);
     options.source_kind = lowerExtension(input_) == ".png" ? "PNG image" : "PGM image";
   }
-  const bim::RasterPlanImport result = bim::importRasterPlan(image, options);
+  const bim::RasterPlanImport result =
+      bim::rasterPlanFromImage(formats::readOccupancyImage(image, rule), image, options);
   nlohmann::ordered_json document = result.plan_json;
   roundNumbers(document);
   run::throwIfInterrupted();

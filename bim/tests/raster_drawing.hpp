@@ -8,7 +8,7 @@
 #include "bim/plan.hpp"
 #include "bim/plan_geometry.hpp"
 #include "bim/polygon.hpp"
-#include "bim/raster_image.hpp"
+#include "common/occupancy_image.hpp"
 
 namespace isg::bim::testing {
 
@@ -16,8 +16,8 @@ namespace isg::bim::testing {
 // end extensions included, its door openings cut out) dark, the rest light; `margin` metres of
 // light ground around the walls. `origin` receives the plan coordinates of the image's
 // bottom-left corner.
-inline OccupancyImage drawLevel(const Level& level, double resolution, double margin,
-                                Eigen::Vector2d* origin) {
+inline common::OccupancyImage drawLevel(const Level& level, double resolution, double margin,
+                                        Eigen::Vector2d* origin) {
   const LevelGeometry geometry = computeLevelGeometry(level);
   std::vector<std::vector<Eigen::Vector2d>> pieces;
   Eigen::Vector2d lo(1e300, 1e300), hi(-1e300, -1e300);
@@ -30,10 +30,10 @@ inline OccupancyImage drawLevel(const Level& level, double resolution, double ma
   lo -= Eigen::Vector2d::Constant(margin);
   hi += Eigen::Vector2d::Constant(margin);
   *origin = lo;
-  OccupancyImage image;
+  common::OccupancyImage image;
   image.width = int(std::ceil((hi.x() - lo.x()) / resolution));
   image.height = int(std::ceil((hi.y() - lo.y()) / resolution));
-  image.pixels.assign(std::size_t(image.width) * image.height, PixelClass::kFree);
+  image.pixels.assign(std::size_t(image.width) * image.height, common::PixelClass::kFree);
   for (const auto& piece : pieces) {
     Eigen::Vector2d a(1e300, 1e300), b(-1e300, -1e300);
     for (const auto& p : piece) a = a.cwiseMin(p), b = b.cwiseMax(p);
@@ -45,7 +45,8 @@ inline OccupancyImage drawLevel(const Level& level, double resolution, double ma
       for (int c = c0; c <= c1; ++c) {
         const Eigen::Vector2d centre = lo + resolution * Eigen::Vector2d(c + 0.5, u + 0.5);
         if (containsPoint(piece, centre)) {
-          image.pixels[std::size_t(image.height - 1 - u) * image.width + c] = PixelClass::kOccupied;
+          image.pixels[std::size_t(image.height - 1 - u) * image.width + c] =
+              common::PixelClass::kOccupied;
         }
       }
     }

@@ -9,24 +9,37 @@
 namespace isg::cli {
 namespace {
 
-// A 4 m × 3 m room drawn at 2 cm a pixel with 0.2 m walls, a 1 m doorway in its south wall and
-// half a metre of light ground around it: a binary PGM.
-std::string roomPgm() {
+// A binary PGM at 2 cm a pixel of a floor `width` × `height` metres with half a metre of light
+// ground around it; `dark(x, y)` says which points (metres, from the floor's lower-left corner)
+// are drawn dark. The image's lower-left corner is at (-0.5, -0.5) in the floor's frame.
+template <class Dark>
+std::string pgmOf(double width_m, double height_m, Dark dark) {
   const double resolution = 0.02, margin = 0.5;
-  const int width = int((4.2 + 2 * margin) / resolution),
-            height = int((3.2 + 2 * margin) / resolution);
+  const int width = int((width_m + 2 * margin) / resolution),
+            height = int((height_m + 2 * margin) / resolution);
   std::string bytes = "P5\n" + std::to_string(width) + " " + std::to_string(height) + "\n255\n";
   for (int row = 0; row < height; ++row) {
     for (int c = 0; c < width; ++c) {
-      const double x = (c + 0.5) * resolution - margin - 0.1,
-                   y = (height - row - 0.5) * resolution - margin - 0.1;
-      const bool inside_outer = x >= -0.1 && x <= 4.1 && y >= -0.1 && y <= 3.1;
-      const bool inside_room = x > 0.1 && x < 3.9 && y > 0.1 && y < 2.9;
-      const bool doorway = y < 0.2 && x > 1.5 && x < 2.5;
-      bytes += char(inside_outer && !inside_room && !doorway ? 0 : 255);
+      const double x = (c + 0.5) * resolution - margin,
+                   y = (height - row - 0.5) * resolution - margin;
+      bytes += char(dark(x, y) ? 0 : 255);
     }
   }
   return bytes;
+}
+
+bool inBox(double x, double y, double x0, double y0, double x1, double y1) {
+  return x >= x0 && x <= x1 && y >= y0 && y <= y1;
+}
+
+// A 4 m × 3 m room (wall axes) with 0.2 m walls and a 1 m doorway in its south wall.
+std::string roomPgm() {
+  return pgmOf(4.2, 3.2, [](double x, double y) {
+    x -= 0.1, y -= 0.1;  // the walls' axes from (0, 0)
+    const bool outer = inBox(x, y, -0.1, -0.1, 4.1, 3.1), room = inBox(x, y, 0.1, 0.1, 3.9, 2.9);
+    const bool doorway = y < 0.2 && x > 1.5 && x < 2.5;
+    return outer && !room && !doorway;
+  });
 }
 
 TEST(RasterImport, APgmFloorPlanBecomesAPlanWithItsRoomAndDoorway) {
@@ -92,32 +105,21 @@ TEST(RasterImport, AnImageWithoutItsScaleIsRefused) {
             "is it a floor plan with dark walls on a light ground (or is negate needed)?\n");
 }
 
-// An open floor at 2 cm a pixel: a 20 m × 12 m façade with a 3 m gap in its east side, four
+// An open floor: a 20 m × 12 m façade (0.3 m walls) with a 3 m gap in its east side, four
 // 0.4 m columns and an L of partition, no room enclosed anywhere.
 std::string openFloorPgm() {
-  const double resolution = 0.02, margin = 0.5;
-  const int width = int((20.3 + 2 * margin) / resolution),
-            height = int((12.3 + 2 * margin) / resolution);
-  std::string bytes = "P5\n" + std::to_string(width) + " " + std::to_string(height) + "\n255\n";
-  const auto box = [](double x, double y, double x0, double y0, double x1, double y1) {
-    return x >= x0 && x <= x1 && y >= y0 && y <= y1;
-  };
-  for (int row = 0; row < height; ++row) {
-    for (int c = 0; c < width; ++c) {
-      const double x = (c + 0.5) * resolution - margin - 0.15,
-                   y = (height - row - 0.5) * resolution - margin - 0.15;
-      bool dark = box(x, y, -0.15, -0.15, 20.15, 0.15) || box(x, y, -0.15, 11.85, 20.15, 12.15) ||
-                  box(x, y, -0.15, -0.15, 0.15, 12.15) || box(x, y, 19.85, -0.15, 20.15, 4.5) ||
-                  box(x, y, 19.85, 7.5, 20.15, 12.15) || box(x, y, 11.0, 8.0, 16.0, 8.2) ||
-                  box(x, y, 15.8, 5.0, 16.0, 8.2);
-      for (double cx : {5.0, 10.0}) {
-        for (double cy : {4.0, 8.0})
-          dark = dark || box(x, y, cx - 0.2, cy - 0.2, cx + 0.2, cy + 0.2);
-      }
-      bytes += char(dark ? 0 : 255);
+  return pgmOf(20.3, 12.3, [](double x, double y) {
+    x -= 0.15, y -= 0.15;  // the façade's axes from (0, 0)
+    bool dark = inBox(x, y, -0.15, -0.15, 20.15, 0.15) || inBox(x, y, -0.15, 11.85, 20.15, 12.15) ||
+                inBox(x, y, -0.15, -0.15, 0.15, 12.15) || inBox(x, y, 19.85, -0.15, 20.15, 4.5) ||
+                inBox(x, y, 19.85, 7.5, 20.15, 12.15) || inBox(x, y, 11.0, 8.0, 16.0, 8.2) ||
+                inBox(x, y, 15.8, 5.0, 16.0, 8.2);
+    for (double cx : {5.0, 10.0}) {
+      for (double cy : {4.0, 8.0})
+        dark = dark || inBox(x, y, cx - 0.2, cy - 0.2, cx + 0.2, cy + 0.2);
     }
-  }
-  return bytes;
+    return dark;
+  });
 }
 
 TEST(RasterImport, AnOpenFloorIsImportedWalkedAndLocalizedOn) {

@@ -4,11 +4,17 @@
 #include <string>
 #include <vector>
 
-namespace isg::bim {
+#include "common/occupancy_image.hpp"
+
+namespace isg::formats {
+
+using common::OccupancyImage;
+using common::PixelClass;
 
 // A floor plan given as an image (docs/formats.md, "Importing raster floor plans"): PNG (any
 // colour type and bit depth) or PGM (P2 and P5, any maxval up to 65535), read into one class per
-// pixel as nav2's map_server reads a map's image. Row 0 is the image's top row.
+// pixel as nav2's map_server reads a map's image (common/occupancy_image.hpp). Row 0 is the
+// image's top row. libpng is linked here, in formats, and nowhere the localizers link.
 
 // How a pixel's shade becomes a class. The shade is the mean of the pixel's colour channels on a
 // scale from 0 (black) to 1 (white); in `kTrinary` mode an alpha channel is averaged in as
@@ -25,14 +31,6 @@ struct OccupancyRule {
   double free_thresh = 0.25;
 };
 
-enum class PixelClass : std::uint8_t { kFree = 0, kOccupied = 1, kUnknown = 2 };
-
-struct OccupancyImage {
-  int width = 0, height = 0;
-  std::vector<PixelClass> pixels;  // row-major, row 0 at the top
-  PixelClass at(int column, int row) const { return pixels[std::size_t(row) * width + column]; }
-};
-
 // At most this many pixels (a 120 m × 100 m floor at 1 cm a pixel): one byte each is held.
 inline constexpr long long kMaxRasterPixels = 120'000'000;
 // The image file itself (compressed): at most this many bytes.
@@ -47,4 +45,4 @@ OccupancyImage readOccupancyImage(const std::string& path, const OccupancyRule& 
 OccupancyImage decodeOccupancyImage(const std::string& bytes, const std::string& file,
                                     const OccupancyRule& rule);
 
-}  // namespace isg::bim
+}  // namespace isg::formats

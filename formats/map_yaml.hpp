@@ -2,9 +2,9 @@
 
 #include <string>
 
-#include "bim/raster_image.hpp"
+#include "formats/raster_image.hpp"
 
-namespace isg::bim {
+namespace isg::formats {
 
 // A ROS occupancy map's YAML file, as nav2's map_server (and ROS 1's map_server) read it
 // (docs/formats.md, "Importing raster floor plans"):
@@ -29,4 +29,4 @@ struct MapYaml {
 MapYaml readMapYaml(const std::string& path);
 MapYaml parseMapYaml(const std::string& text, const std::string& path);
 
-}  // namespace isg::bim
+}  // namespace isg::formats

@@ -1,4 +1,4 @@
-#include "bim/raster_image.hpp"
+#include "formats/raster_image.hpp"
 
 #include <png.h>
 
@@ -10,7 +10,7 @@
 #include "common/input_error.hpp"
 #include "common/json_reader.hpp"
 
-namespace isg::bim {
+namespace isg::formats {
 namespace {
 
 std::string bytes(long long n) { return std::to_string(n); }
@@ -279,4 +279,4 @@ OccupancyImage readOccupancyImage(const std::string& path, const OccupancyRule& 
   return decodeOccupancyImage(common::readCheckedFile(path, kMaxRasterFileBytes), path, rule);
 }
 
-}  // namespace isg::bim
+}  // namespace isg::formats

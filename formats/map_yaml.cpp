@@ -1,4 +1,4 @@
-#include "bim/map_yaml.hpp"
+#include "formats/map_yaml.hpp"
 
 #include <cmath>
 #include <filesystem>
@@ -8,7 +8,7 @@
 #include "common/input_error.hpp"
 #include "common/json_reader.hpp"
 
-namespace isg::bim {
+namespace isg::formats {
 namespace {
 
 std::string trim(const std::string& text) {
@@ -203,4 +203,4 @@ MapYaml readMapYaml(const std::string& path) {
   return parseMapYaml(common::readCheckedFile(path, 1 << 20), path);
 }
 
-}  // namespace isg::bim
+}  // namespace isg::formats

@@ -1,4 +1,4 @@
-#include "bim/raster_image.hpp"
+#include "formats/raster_image.hpp"
 
 #include <gtest/gtest.h>
 #include <png.h>
@@ -6,10 +6,10 @@
 #include <string>
 #include <vector>
 
-#include "bim/map_yaml.hpp"
 #include "common/input_error.hpp"
+#include "formats/map_yaml.hpp"
 
-namespace isg::bim {
+namespace isg::formats {
 namespace {
 
 using Class = PixelClass;
@@ -172,4 +172,4 @@ TEST(MapYaml, BadFieldsNameTheKeyAndTheLine) {
 }
 
 }  // namespace
-}  // namespace isg::bim
+}  // namespace isg::formats
