@@ -1,4 +1,5 @@
 #include <gtest/gtest.h>
+#include <png.h>
 
 #include <nlohmann/json.hpp>
 #include <string>
@@ -30,6 +31,28 @@ std::string pgmOf(double width_m, double height_m, Dark dark) {
 
 bool inBox(double x, double y, double x0, double y0, double x1, double y1) {
   return x >= x0 && x <= x1 && y >= y0 && y <= y1;
+}
+
+// The same floor as an 8-bit grey PNG (libpng's writer), its shades inverted when `negated`.
+template <class Dark>
+std::string pngOf(double width_m, double height_m, bool negated, Dark dark) {
+  const std::string pgm = pgmOf(width_m, height_m, dark);
+  // The PGM's header is "P5\nW H\n255\n": its raster is the last W × H bytes.
+  png_image image{};
+  image.version = PNG_IMAGE_VERSION;
+  image.width = png_uint_32((width_m + 1.0) / 0.02);
+  image.height = png_uint_32((height_m + 1.0) / 0.02);
+  image.format = PNG_FORMAT_GRAY;
+  std::string raster = pgm.substr(pgm.size() - std::size_t(image.width) * image.height);
+  if (negated) {
+    for (char& v : raster) v = char(255 - static_cast<unsigned char>(v));
+  }
+  png_alloc_size_t size = 0;
+  png_image_write_to_memory(&image, nullptr, &size, 0, raster.data(), 0, nullptr);
+  std::string out(size, '\0');
+  png_image_write_to_memory(&image, out.data(), &size, 0, raster.data(), 0, nullptr);
+  out.resize(size);
+  return out;
 }
 
 // A 4 m × 3 m room (wall axes) with 0.2 m walls and a 1 m doorway in its south wall.
@@ -103,6 +126,39 @@ TEST(RasterImport, AnImageWithoutItsScaleIsRefused) {
   EXPECT_EQ(blank.err,
             "isg import: error: blank.pgm: no wall or column found in the image (0 dark regions): "
             "is it a floor plan with dark walls on a light ground (or is negate needed)?\n");
+}
+
+const auto kRoom = [](double x, double y) {
+  x -= 0.1, y -= 0.1;
+  const bool outer = inBox(x, y, -0.1, -0.1, 4.1, 3.1), room = inBox(x, y, 0.1, 0.1, 3.9, 2.9);
+  return outer && !room && !(y < 0.2 && x > 1.5 && x < 2.5);
+};
+
+TEST(RasterImport, ANegatedMapWithAnOriginImportsToThePlanOfItsPng) {
+  testing::Sandbox sandbox("raster_import_negate");
+  sandbox.write("room.png", pngOf(4.2, 3.2, false, kRoom));
+  sandbox.write("room_negated.png", pngOf(4.2, 3.2, true, kRoom));
+  sandbox.write("lab.yaml",
+                "image: room_negated.png\nresolution: 0.02\norigin: [3.5, -2.0, 0.0]\n"
+                "negate: 1\noccupied_thresh: 0.65\nfree_thresh: 0.196\n");
+  ASSERT_EQ(sandbox.run("import room.png --resolution 0.02 --origin=3.5,-2 -o a.json").exit_code,
+            0);
+  ASSERT_EQ(sandbox.run("import lab.yaml -o b.json").exit_code, 0);
+  const auto a = nlohmann::json::parse(sandbox.read("a.json"));
+  const auto b = nlohmann::json::parse(sandbox.read("b.json"));
+  EXPECT_EQ(a["levels"], b["levels"]);
+  ASSERT_EQ(a["levels"][0]["walls"].size(), 4u);
+  // The walls' south-west corner, drawn 0.6 m in from the image's corner both ways, lies 0.6 m
+  // from the origin (3.5, -2).
+  double min_x = 1e9, min_y = 1e9;
+  for (const auto& wall : a["levels"][0]["walls"]) {
+    for (const char* end : {"start", "end"}) {
+      min_x = std::min(min_x, wall[end][0].get<double>());
+      min_y = std::min(min_y, wall[end][1].get<double>());
+    }
+  }
+  EXPECT_NEAR(min_x, 3.5 + 0.6, 0.02);
+  EXPECT_NEAR(min_y, -2.0 + 0.6, 0.02);
 }
 
 // An open floor: a 20 m × 12 m façade (0.3 m walls) with a 3 m gap in its east side, four
