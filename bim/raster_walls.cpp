@@ -200,6 +200,7 @@ std::string where(const Vec2& p_metres, const RasterWallOptions& options) {
 struct Region {
   std::vector<std::uint32_t> pixels;
   int min_c, max_c, min_r, max_r;
+  int image_width;
 };
 
 // Regions of occupied pixels, 8-connected, in scan order of their first pixel.
@@ -210,7 +211,7 @@ std::vector<Region> occupiedRegions(const OccupancyImage& image) {
   const int w = image.width, h = image.height;
   for (std::size_t start = 0; start < image.pixels.size(); ++start) {
     if (seen[start] || image.pixels[start] != PixelClass::kOccupied) continue;
-    Region region{{}, w, -1, h, -1};
+    Region region{{}, w, -1, h, -1, w};
     seen[start] = 1;
     stack.assign(1, std::uint32_t(start));
     while (!stack.empty()) {
@@ -235,6 +236,33 @@ std::vector<Region> occupiedRegions(const OccupancyImage& image) {
     regions.push_back(std::move(region));
   }
   return regions;
+}
+
+// The region's pixels and every pixel it encloses (its holes), counted in its box.
+std::size_t withHolesFilled(const Region& region) {
+  const int w = region.max_c - region.min_c + 3, h = region.max_r - region.min_r + 3;
+  const int image_width = region.image_width;
+  std::vector<std::uint8_t> cells(std::size_t(w) * h, 0);  // 1: the region's, 2: outside it
+  for (auto index : region.pixels) {
+    const int c = int(index % image_width) - region.min_c + 1;
+    const int row = int(index / image_width) - region.min_r + 1;
+    cells[std::size_t(row) * w + c] = 1;
+  }
+  std::vector<int> stack{0};
+  cells[0] = 2;
+  std::size_t outside = 0;
+  while (!stack.empty()) {
+    const int i = stack.back();
+    stack.pop_back();
+    ++outside;
+    const int c = i % w, row = i / w;
+    const int next[4] = {c > 0 ? i - 1 : -1, c + 1 < w ? i + 1 : -1, row > 0 ? i - w : -1,
+                         row + 1 < h ? i + w : -1};
+    for (int j : next) {
+      if (j >= 0 && cells[j] == 0) cells[j] = 2, stack.push_back(j);
+    }
+  }
+  return std::size_t(w) * h - outside;
 }
 
 // The region's principal axes: its pixels' mean, the long axis, and the extents along both.
@@ -310,7 +338,12 @@ RasterWalls traceRasterWalls(const OccupancyImage& image, const RasterWallOption
       continue;
     }
     const Box box = orientedBox(grid, region, 1.5 * options.max_column_size / r);
-    const double fill = double(region.pixels.size()) / (box.length * box.width);
+    // A pillar in a map made by a LiDAR is its outline around an inside never seen: what the
+    // region encloses counts as its own when it is judged a column.
+    const double fill =
+        double(box.length * r <= 1.5 * options.max_column_size ? withHolesFilled(region)
+                                                               : region.pixels.size()) /
+        (box.length * box.width);
     const double aspect = box.length / std::max(box.width, 1.0);
     if (box.length * r <= options.max_column_size && aspect <= options.max_column_aspect &&
         fill >= options.min_column_fill) {

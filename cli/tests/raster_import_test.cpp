@@ -1,6 +1,7 @@
 #include <gtest/gtest.h>
 #include <png.h>
 
+#include <cmath>
 #include <nlohmann/json.hpp>
 #include <string>
 
@@ -159,6 +160,33 @@ TEST(RasterImport, ANegatedMapWithAnOriginImportsToThePlanOfItsPng) {
   }
   EXPECT_NEAR(min_x, 3.5 + 0.6, 0.02);
   EXPECT_NEAR(min_y, -2.0 + 0.6, 0.02);
+}
+
+// A map a robot made (formats/tests/data/nav2-maps: Nav2's TurtleBot3 sandbox, SLAM at 5 cm a
+// pixel): its nine pillars, seen as rings around an unknown inside, are round columns on the
+// world's 1.1 m grid, and the jagged arena around them one closed room.
+TEST(RasterImport, ARealNav2MapImportsWithItsPillars) {
+  testing::Sandbox sandbox("raster_import_nav2");
+  const std::string map =
+      std::string(ISG_SOURCE_DIR) + "/formats/tests/data/nav2-maps/tb3_sandbox.yaml";
+  const auto result = sandbox.run("import '" + map + "' -o sandbox.json");
+  ASSERT_EQ(result.exit_code, 0) << result.err;
+  const bim::Plan plan = bim::loadPlan((sandbox.dir() / "sandbox.json").string());
+  const auto& level = plan.levels.front();
+  int pillars = 0;
+  for (const auto& wall : level.walls) {
+    if (wall.name != "round column") continue;
+    ++pillars;
+    const Eigen::Vector2d centre = 0.5 * (wall.start + wall.end);
+    // The nearest grid point of {-1.1, 0, 1.1}², within the map's own 0.1 m.
+    const Eigen::Vector2d grid(1.1 * std::round(centre.x() / 1.1),
+                               1.1 * std::round(centre.y() / 1.1));
+    EXPECT_LT((centre - grid).norm(), 0.12) << wall.id;
+    EXPECT_NEAR(wall.thickness, 0.36, 0.05) << wall.id;
+  }
+  EXPECT_EQ(pillars, 9);
+  EXPECT_EQ(level.rooms.size(), 1u);
+  EXPECT_EQ(plan.imported_from->schema, "ROS map");
 }
 
 // An open floor: a 20 m × 12 m façade (0.3 m walls) with a 3 m gap in its east side, four
