@@ -51,6 +51,7 @@ RunCommand::RunCommand(CLI::App& parent) {
                    "a setting of the method, KEY=VALUE (repeatable; the methods below say which)")
       ->option_text("KEY=VALUE");
   addRunMcapOptions(*app_, mcap_);
+  addStartPoseOption(*app_, start_pose_);
   app_->add_flag("--force", force_, "replace RUN_DIR (and RUN.mcap) if it exists");
   app_->add_flag("-q,--quiet", quiet_, "no progress bar");
   app_->add_flag("--timing", timing_,
@@ -88,6 +89,10 @@ int RunCommand::run() {
   context.seed = scenario.seed;
   context.options = options;
   context.threads = threads_;
+  const std::string start_words = applyStartPose(start_pose_, streams, methods_, method_, context);
+  if (!start_words.empty() && !quiet_) {
+    std::fprintf(stderr, "isg run: starting localized at %s\n", start_words.c_str());
+  }
   const auto localizer =
       withOdometry("isg run", makeMethod(methods_, method_, context), streams, quiet_);
 

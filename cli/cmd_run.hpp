@@ -26,6 +26,7 @@ class RunCommand : public Command {
   int threads_ = 2;
   RunMcapArguments mcap_;
   bool force_ = false;
+  std::string start_pose_;  // --start-pose: X,Y,YAW or truth; empty: global localization
   bool quiet_ = false;
   bool timing_ = false;
 };

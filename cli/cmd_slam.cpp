@@ -84,6 +84,7 @@ SlamCommand::SlamCommand(CLI::App& parent) {
       ->check(CLI::Range(1, 64))
       ->capture_default_str();
   addRunMcapOptions(*app_, mcap_);
+  addStartPoseOption(*app_, start_pose_);
   app_->add_flag("--force", force_, "replace RUN_DIR (and RUN.mcap) if it exists");
   app_->add_flag("-q,--quiet", quiet_, "no progress bar");
   app_->add_flag("--timing", timing_,
@@ -118,6 +119,10 @@ int SlamCommand::run() {
   context.seed = dataset.seed();
   context.options = options;
   context.threads = threads_;
+  const std::string start_words = applyStartPose(start_pose_, streams, methods_, method, context);
+  if (!start_words.empty() && !quiet_) {
+    std::fprintf(stderr, "isg slam: starting localized at %s\n", start_words.c_str());
+  }
   const auto localizer =
       withOdometry("isg slam", makeMethod(methods_, method, context), streams, quiet_);
 

@@ -22,6 +22,7 @@ class SlamCommand : public Command {
   RunMcapArguments mcap_;
   bool force_ = false;
   bool other_plan_ = false;
+  std::string start_pose_;  // --start-pose: X,Y,YAW or truth; empty: global localization
   bool quiet_ = false;
   bool timing_ = false;
   int threads_ = 2;

@@ -4,8 +4,10 @@
 #include <sys/resource.h>
 
 #include <chrono>
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
+#include <optional>
 
 #include "cli/cmd_export.hpp"
 #include "common/input_error.hpp"
@@ -53,6 +55,78 @@ std::unique_ptr<slam::Localizer> makeMethod(const run::LocalizerRegistry& regist
   } catch (const std::invalid_argument& e) {
     throw common::InputError("--method " + method, "", e.what());
   }
+}
+
+namespace {
+
+// "X,Y,YAW": three finite numbers; "" when the text is not that.
+std::optional<Eigen::Vector3d> startPoseNumbers(const std::string& text) {
+  Eigen::Vector3d out;
+  std::size_t at = 0;
+  for (int k = 0; k < 3; ++k) {
+    const std::size_t comma = k < 2 ? text.find(',', at) : text.size();
+    if (comma == std::string::npos) return std::nullopt;
+    const std::string field = text.substr(at, comma - at);
+    std::size_t used = 0;
+    try {
+      out[k] = std::stod(field, &used);
+    } catch (const std::exception&) {
+      return std::nullopt;
+    }
+    if (used != field.size() || !std::isfinite(out[k])) return std::nullopt;
+    at = comma + 1;
+  }
+  return out;
+}
+
+}  // namespace
+
+void addStartPoseOption(CLI::App& app, std::string& value) {
+  app.add_option("--start-pose", value,
+                 "start localized: the base's first pose in the plan frame, X,Y,YAW (m, m, rad), "
+                 "or 'truth' for the ground truth's; the localizer still checks it (default: "
+                 "global localization)")
+      ->option_text("X,Y,YAW|truth")
+      ->check([](const std::string& text) -> std::string {
+        if (text == "truth" || startPoseNumbers(text)) return "";
+        return "expected X,Y,YAW (three numbers) or 'truth', not '" + text + "'";
+      });
+}
+
+std::string applyStartPose(const std::string& value, const sensors::SensorStreams& streams,
+                           const run::LocalizerRegistry& registry, const std::string& method,
+                           run::LocalizerContext& context) {
+  if (value.empty()) return "";
+  const run::MethodInfo* info = registry.find(method);
+  if (info == nullptr || (!info->takes_start_pose && !info->given_start)) {
+    throw common::InputError("--start-pose", "",
+                             "method " + method +
+                                 " takes no start pose (is-graphs does; the trackers and "
+                                 "odometry are given one anyway)");
+  }
+  Eigen::Isometry3d B_T_R0 = Eigen::Isometry3d::Identity();
+  std::string words;
+  if (value == "truth") {
+    if (streams.ground_truth.empty()) {
+      throw common::InputError("--start-pose", "",
+                               "'truth' needs a ground truth, and there is none here: give "
+                               "X,Y,YAW");
+    }
+    B_T_R0 = streams.ground_truth.front().pose;
+    words = "the true start pose";
+  } else {
+    const Eigen::Vector3d xyyaw = *startPoseNumbers(value);
+    B_T_R0.linear() = Eigen::AngleAxisd(xyyaw.z(), Eigen::Vector3d::UnitZ()).toRotationMatrix();
+    // The height is the level's (walls do not observe it): the truth's when there is one.
+    const double z =
+        streams.ground_truth.empty() ? 0.0 : streams.ground_truth.front().pose.translation().z();
+    B_T_R0.translation() = Eigen::Vector3d(xyyaw.x(), xyyaw.y(), z);
+    words = "the start pose " + value;
+  }
+  const Eigen::Isometry3d B_T_M = sensors::startB_T_M(streams, B_T_R0);
+  if (info->takes_start_pose) context.given_start_B_T_M = B_T_M;
+  if (info->given_start) context.start_B_T_M = B_T_M;
+  return words;
 }
 
 std::unique_ptr<slam::Localizer> withOdometry(const char* command,

@@ -37,6 +37,17 @@ std::unique_ptr<slam::Localizer> makeMethod(const run::LocalizerRegistry& regist
                                             const std::string& method,
                                             const run::LocalizerContext& context);
 
+// --start-pose of isg run and isg slam: "X,Y,YAW" (the base's first pose in the plan frame, on
+// the robot's level) or "truth" (the ground truth's first pose). Empty: none (global
+// localization, the default). Sets the context's start: a method that takes a start pose starts
+// localized there (and checks it as any match); a method that is given its start anyway
+// (trackers, dead reckoning) starts from this one instead of the truth; any other method refuses
+// it (bad input). Returns the start's words for the summary ("" when none).
+void addStartPoseOption(CLI::App& app, std::string& value);
+std::string applyStartPose(const std::string& value, const sensors::SensorStreams& streams,
+                           const run::LocalizerRegistry& registry, const std::string& method,
+                           run::LocalizerContext& context);
+
 // The method behind the odometry it is given: the streams' own, or, when they have none (a
 // handheld carrier, a recording without it), the one the LiDAR and the IMU make
 // (run::withOdometrySource); says so on stderr unless `quiet`.

@@ -25,6 +25,10 @@ struct LocalizerContext {
   // The start hint: where M lies in B at the start (the true start pose). Only methods that are
   // given their start (dead reckoning, trackers) read it; global localizers never do.
   std::optional<Eigen::Isometry3d> start_B_T_M;
+  // A start pose given to a global localizer (--start-pose): where M lies in B at the start, as
+  // an operator (or a benchmark's first pose) gives it. Methods that take one (MethodInfo::
+  // takes_start_pose) start localized there and check it as they check any match.
+  std::optional<Eigen::Isometry3d> given_start_B_T_M;
   // The run's seed: methods that draw at random (particle filters, a perturbed start) draw from
   // a generator seeded with it, so a run is reproducible.
   std::uint64_t seed = 0;
@@ -40,7 +44,8 @@ struct MethodInfo {
   std::string name = {};     // what --method takes
   std::string summary = {};  // one line for --help
   bool needs_plan = false;
-  bool given_start = false;  // reads LocalizerContext::start_B_T_M
+  bool given_start = false;       // reads LocalizerContext::start_B_T_M
+  bool takes_start_pose = false;  // reads LocalizerContext::given_start_B_T_M when there is one
   // SLAM only: never localizes in B; tables show its map-frame APE after SE(3) alignment.
   bool slam_only = false;
   std::function<std::unique_ptr<slam::Localizer>(const LocalizerContext&)> make = {};

@@ -17,19 +17,22 @@ void quantiseStreams(SensorStreams& streams) {
   for (double& t : streams.scan_stamps) t = common::quantisedTime(t);
 }
 
-Eigen::Isometry3d trueStartB_T_M(const SensorStreams& streams) {
-  if (streams.ground_truth.empty()) return Eigen::Isometry3d::Identity();
+Eigen::Isometry3d startB_T_M(const SensorStreams& streams, const Eigen::Isometry3d& B_T_R0) {
   if (streams.odometry.empty()) {
     // The odometry the LiDAR and the IMU make (slam::ScanOdometry) starts at the base's first
     // pose, levelled: M is that pose's position and heading, its z up.
-    const Eigen::Isometry3d B_T_R = streams.ground_truth.front().pose;
     Eigen::Isometry3d B_T_M = Eigen::Isometry3d::Identity();
-    B_T_M.linear() = Eigen::AngleAxisd(common::yawOf(B_T_R.linear()), Eigen::Vector3d::UnitZ())
+    B_T_M.linear() = Eigen::AngleAxisd(common::yawOf(B_T_R0.linear()), Eigen::Vector3d::UnitZ())
                          .toRotationMatrix();
-    B_T_M.translation() = B_T_R.translation();
+    B_T_M.translation() = B_T_R0.translation();
     return B_T_M;
   }
-  return streams.ground_truth.front().pose * streams.odometry.front().pose.inverse();
+  return B_T_R0 * streams.odometry.front().pose.inverse();
+}
+
+Eigen::Isometry3d trueStartB_T_M(const SensorStreams& streams) {
+  if (streams.ground_truth.empty()) return Eigen::Isometry3d::Identity();
+  return startB_T_M(streams, streams.ground_truth.front().pose);
 }
 
 }  // namespace isg::sensors

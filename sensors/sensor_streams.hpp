@@ -41,6 +41,10 @@ void quantiseStreams(SensorStreams& streams);
 // the inverse of the first odometry pose. What dead reckoning is given and what the evaluation
 // places odometry with. Without odometry, the first ground-truth pose levelled (where the odometry
 // the LiDAR and the IMU make starts: slam::ScanOdometry). Identity without ground truth.
+// Where M lies in B when the base's first pose is B_T_R0: B_T_R0 times the inverse of the
+// odometry's first pose, or — without odometry, where M is the first pose levelled — B_T_R0's
+// position and heading.
+Eigen::Isometry3d startB_T_M(const SensorStreams& streams, const Eigen::Isometry3d& B_T_R0);
 Eigen::Isometry3d trueStartB_T_M(const SensorStreams& streams);
 
 }  // namespace isg::sensors

@@ -223,6 +223,12 @@ void ISGraphLocalizer::recaptureRecentWalls(const MatchInput& input) {
 }
 
 void ISGraphLocalizer::onKeyframe(double stamp) {
+  if (given_start_) {
+    const Eigen::Vector3d start = *given_start_;
+    given_start_.reset();
+    assumeMatch(stamp, start, "the start pose given");
+    return;
+  }
   const int keyframes = int(graph_.keyframes().size());
   MatchInput input = matchInput();
   if (answer_.localized) {

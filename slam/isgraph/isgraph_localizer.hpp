@@ -142,6 +142,10 @@ class ISGraphLocalizer : public Localizer {
   // from outside (an operator's initial pose), or a test's wrong first match. It is checked like
   // any match: contradicted by a unique answer elsewhere, or lost.
   void assumeMatch(double stamp, const Eigen::Vector3d& x_y_yaw, const std::string& reason);
+  // The start pose given from outside (isg run --start-pose; the Hilti challenge gives every
+  // run's first pose): `B_T_M` as (x, y, yaw) in B, taken at the first keyframe as assumeMatch
+  // takes a hint, and checked like any match from then on.
+  void giveStart(const Eigen::Vector3d& B_T_M_x_y_yaw) { given_start_ = B_T_M_x_y_yaw; }
 
   const SGraph& sgraph() const { return graph_; }
   MatchStatus status() const { return log_.status(); }
@@ -205,6 +209,7 @@ class ISGraphLocalizer : public Localizer {
   std::size_t rooms_at_last_attempt_ = 0;
   std::size_t rooms_at_last_check_ = 0;  // S-rooms at the last contradiction check
   int keyframes_at_last_attempt_ = 0;
+  std::optional<Eigen::Vector3d> given_start_;  // until the first keyframe takes it
   std::size_t planes_at_last_vote_ = 0;
   double matching_s_ = 0.0;       // onKeyframe in all: matching, verification, contradictions
   double contradiction_s_ = 0.0;  // of which the contradiction checks

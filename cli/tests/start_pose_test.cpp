@@ -1,0 +1,74 @@
+#include <gtest/gtest.h>
+
+#include <nlohmann/json.hpp>
+#include <string>
+
+#include "cli/tests/cli_runner.hpp"
+
+namespace isg::cli {
+namespace {
+
+nlohmann::json metricsOf(const testing::Sandbox& sandbox, const std::string& run) {
+  return nlohmann::json::parse(sandbox.read(run + "/metrics.json"));
+}
+
+TEST(StartPose, GivenTheTruthTheRunIsLocalizedFromItsFirstKeyframe) {
+  testing::Sandbox sandbox("start_pose_truth");
+  const auto run = sandbox.run("run builtin:d1.asbuilt --start-pose truth --duration 30 -o r");
+  ASSERT_EQ(run.exit_code, 0) << run.err;
+  EXPECT_NE(run.err.find("isg run: starting localized at the true start pose"), std::string::npos)
+      << run.err;
+  const auto metrics = metricsOf(sandbox, "r");
+  EXPECT_LE(metrics["time_to_localize"].get<double>(), 0.2);
+  EXPECT_EQ(metrics["matching_events"][0]["reason"], "the start pose given");
+  EXPECT_EQ(metrics["time_wrongly_localized"].get<double>(), 0.0);
+  EXPECT_LT(metrics["ape_B"]["rmse"].get<double>(), 0.05);
+}
+
+TEST(StartPose, AWrongStartIsNoticedAndMended) {
+  // D3 as built starts at (2.025, 7.975), heading 0.8156: given 2 m east of it.
+  testing::Sandbox sandbox("start_pose_wrong");
+  const auto run =
+      sandbox.run("run builtin:d3.asbuilt --start-pose=4.025,7.975,0.8156 --duration 120 -q -o r");
+  ASSERT_EQ(run.exit_code, 0) << run.err;
+  const auto metrics = metricsOf(sandbox, "r");
+  bool contradicted = false;
+  for (const auto& event : metrics["matching_events"]) {
+    contradicted = contradicted || event["status"] == "contradicted";
+  }
+  EXPECT_TRUE(contradicted);
+  // Wrong until the contradiction, right after it.
+  EXPECT_GT(metrics["time_wrongly_localized"].get<double>(), 0.0);
+  EXPECT_LT(metrics["time_wrongly_localized"].get<double>(), 30.0);
+  EXPECT_LT(metrics["ape_B"]["median"].get<double>(), 0.05);
+}
+
+TEST(StartPose, AMethodThatTakesNoneRefusesItAndABadPoseIsBadUsage) {
+  testing::Sandbox sandbox("start_pose_bad");
+  const auto slam_only =
+      sandbox.run("run builtin:d1 --method s-graph --start-pose truth --duration 5 -q -o r");
+  EXPECT_EQ(slam_only.exit_code, 1);
+  EXPECT_EQ(slam_only.err,
+            "isg run: error: --start-pose: method s-graph takes no start pose (is-graphs does; "
+            "the trackers and odometry are given one anyway)\n");
+  EXPECT_FALSE(sandbox.exists("r"));
+  const auto malformed = sandbox.run("run builtin:d1 --start-pose 1,2 -q -o r");
+  EXPECT_EQ(malformed.exit_code, 2);
+  EXPECT_NE(malformed.err.find("--start-pose: expected X,Y,YAW (three numbers) or 'truth', not "
+                               "'1,2'"),
+            std::string::npos)
+      << malformed.err;
+}
+
+TEST(StartPose, ADatasetReplayedStartsWhereItIsTold) {
+  testing::Sandbox sandbox("start_pose_slam");
+  ASSERT_EQ(sandbox.run("simulate builtin:d1.asbuilt --duration 20 -q -o data").exit_code, 0);
+  const auto run = sandbox.run("slam data --plan builtin:d1 --start-pose truth -q -o r");
+  ASSERT_EQ(run.exit_code, 0) << run.err;
+  const auto metrics = metricsOf(sandbox, "r");
+  EXPECT_LE(metrics["time_to_localize"].get<double>(), 0.2);
+  EXPECT_EQ(metrics["time_wrongly_localized"].get<double>(), 0.0);
+}
+
+}  // namespace
+}  // namespace isg::cli
