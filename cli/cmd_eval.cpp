@@ -8,6 +8,7 @@
 #include "common/output_path.hpp"
 #include "eval/ape.hpp"
 #include "eval/coverage.hpp"
+#include "eval/floor_plan_score.hpp"
 #include "eval/report_svg.hpp"
 #include "formats/trajectory_file.hpp"
 
@@ -135,19 +136,23 @@ int EvalCommand::run() {
                                                     : "with Sim(3) Umeyama alignment");
   const std::string how = alignment + (options.project_xy ? ", projected to xy" : "");
   const eval::Coverage coverage = eval::localizationCoverage(reference, estimate);
+  const eval::FloorPlanScore score = eval::floorPlanScore(reference, estimate);
   if (!plot_.empty()) writePlot(reference, estimate, ape, how, coverage);
   if (json_) {
-    nlohmann::ordered_json out = {{"reference", reference_},
-                                  {"estimate", estimate_},
-                                  {"align", eval::toString(options.align)},
-                                  {"project", options.project_xy ? "xy" : "none"},
-                                  {"t_max_diff", options.max_diff},
-                                  {"pairs", ape.association.reference.size()},
-                                  {"localized", coverage.localized},
-                                  {"time_to_localize", coverage.time_to_first},
-                                  {"share_localized", coverage.share},
-                                  {"ape", toJson(ape.translation_stats)},
-                                  {"ape_rotation_deg", toJson(ape.rotation_stats)}};
+    nlohmann::ordered_json out = {
+        {"reference", reference_},
+        {"estimate", estimate_},
+        {"align", eval::toString(options.align)},
+        {"project", options.project_xy ? "xy" : "none"},
+        {"t_max_diff", options.max_diff},
+        {"pairs", ape.association.reference.size()},
+        {"localized", coverage.localized},
+        {"time_to_localize", coverage.time_to_first},
+        {"share_localized", coverage.share},
+        {"floor_plan_score",
+         {{"score", score.score}, {"coverage", score.coverage}, {"poses", score.poses}}},
+        {"ape", toJson(ape.translation_stats)},
+        {"ape_rotation_deg", toJson(ape.rotation_stats)}};
     if (ape.alignment) out["alignment"] = {{"scale", ape.alignment->scale}};
     if (rpe) {
       out["rpe_delta"] = rpe_delta_;
@@ -169,8 +174,10 @@ int EvalCommand::run() {
       "...with max. time diff.: %g (s)\n\n",
       ape.association.reference.size(), std::min(reference.size(), estimate.size()),
       reference_.c_str(), estimate_.c_str(), options.max_diff);
-  std::printf("localized after %.2f s, for %.1f %% of the run\n\n", coverage.time_to_first,
+  std::printf("localized after %.2f s, for %.1f %% of the run\n", coverage.time_to_first,
               100.0 * coverage.share);
+  std::printf("floor-plan score %.1f (%d poses from 5 s on, %.1f %% of them estimated)\n\n",
+              score.score, score.poses, 100.0 * score.coverage);
   printStatistics("APE w.r.t. translation part (m)", how, ape.translation_stats);
   printStatistics("APE w.r.t. rotation angle in degrees (deg)", how, ape.rotation_stats);
   if (rpe) {

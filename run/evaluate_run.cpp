@@ -190,6 +190,9 @@ RunEvaluation evaluateRun(const RunRecord& run) {
               .translation_stats;
     });
   }
+  if (has_truth) {
+    m.floor_plan_score = eval::floorPlanScore(streams.ground_truth, run.estimate);
+  }
   if (has_truth && coverage.localized) {
     const eval::WrongLocalization wrong =
         eval::wrongLocalization(streams.ground_truth, run.estimate);

@@ -93,6 +93,11 @@ nlohmann::json metricsToJson(const RunMetrics& m) {
   if (m.time_wrongly_localized) j["time_wrongly_localized"] = *m.time_wrongly_localized;
   if (m.max_error_B) j["max_error_B"] = *m.max_error_B;
   if (m.max_height_error_B) j["max_height_error_B"] = *m.max_height_error_B;
+  if (m.floor_plan_score) {
+    j["floor_plan_score"] = {{"score", m.floor_plan_score->score},
+                             {"coverage", m.floor_plan_score->coverage},
+                             {"poses", m.floor_plan_score->poses}};
+  }
   if (m.map_to_plan) {
     nlohmann::json map = statisticsJson(m.map_to_plan->distance);
     map["points"] = m.map_to_plan->points;
@@ -247,6 +252,12 @@ RunMetrics metricsFromJson(const nlohmann::json& document, const std::string& fi
   m.time_wrongly_localized = optionalMeasure(root, "time_wrongly_localized");
   m.max_error_B = optionalMeasure(root, "max_error_B");
   m.max_height_error_B = optionalMeasure(root, "max_height_error_B");
+  if (const auto score = root.optionalField("floor_plan_score")) {
+    eval::FloorPlanScore& out = m.floor_plan_score.emplace();
+    out.score = score->field("score").numberInRange(0.0, 100.0);
+    out.coverage = score->field("coverage").numberInRange(0.0, 1.0);
+    out.poses = countOf(score->field("poses"));
+  }
   if (const auto distance = optionalStatistics(root, "map_to_plan")) {
     m.map_to_plan = mapToPlanFrom(root.field("map_to_plan"), *distance);
   }

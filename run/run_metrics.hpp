@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "eval/ape.hpp"
+#include "eval/floor_plan_score.hpp"
 #include "run/deviation_grading.hpp"
 #include "slam/map_diagnostics.hpp"
 
@@ -75,6 +76,9 @@ struct RunMetrics {
   std::optional<double> time_wrongly_localized;  // s
   std::optional<double> max_error_B;             // m, the largest 2D error of any row in B
   std::optional<double> max_height_error_B;      // m, the largest height error of any row in B
+  // The Hilti × Trimble challenge's floor-plan localization score (eval/floor_plan_score.hpp),
+  // with ground truth only: 0 … 100, its coverage and the poses it scored.
+  std::optional<eval::FloorPlanScore> floor_plan_score;
   // The map against the plan's walls (run/map_plan_error.hpp), with or without ground truth: the
   // distances of the points near the plan, how many points lay in a wall's height band, the share
   // of them near the plan, and the cutoff that "near" means.

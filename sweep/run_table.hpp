@@ -20,13 +20,19 @@ inline const std::vector<std::string> kRunTableMeasures = {"ape",
                                                            "distance-to-localize",
                                                            "rooms-to-localize",
                                                            "deviation-recall",
-                                                           "deviation-offset-error"};
+                                                           "deviation-offset-error",
+                                                           "floor-plan-score"};
+
+// Measures whose larger values are better (a regression is a drop).
+inline bool higherIsBetter(const std::string& measure) {
+  return measure == "deviation-recall" || measure == "floor-plan-score";
+}
 
 // The table of `isg table` and `isg sweep --collect`: rows worlds, columns methods in the
 // registry's order, cells aggregated over seeds (docs/evaluation.md), with a caption that says
 // what the cells are. `runs` are (run folder, its metrics) pairs; `measure` is one of ape,
 // time-wrong, time-to-localize, distance-to-localize, rooms-to-localize, deviation-recall,
-// deviation-offset-error (kRunTableMeasures). Two runs of one world,
+// deviation-offset-error, floor-plan-score (kRunTableMeasures). Two runs of one world,
 // method and seed are bad input naming the second folder. Runs of one world name whose world
 // hashes differ are different buildings: their rows are told apart by the hash ("w [1a2b3c4d]").
 // `absent` are the seeds a sweep asked for that have no run (failed, or not run): their cells
