@@ -17,11 +17,26 @@ namespace isg::bim {
 // The scenario model of docs/formats.md ("isg.scenario" v1): one simulated run. Parsing fills every
 // default, so a bare plan becomes a scenario with the documented defaults.
 
+// One pose of a recorded walk (robot.route {"trajectory": FILE}): its time after the file's first
+// pose, its position and yaw in the plan frame of robot.level, and the line of the file it is on
+// (for messages about it).
+struct WalkPose {
+  double t = 0.0;
+  Eigen::Vector2d xy = Eigen::Vector2d::Zero();
+  double yaw = 0.0;
+  int line = 0;
+};
+
 struct Route {
-  enum class Kind { kTour, kRooms, kWaypoints };
+  enum class Kind { kTour, kRooms, kWaypoints, kTrajectory };
   Kind kind = Kind::kTour;
   std::vector<std::string> rooms;
   std::vector<Eigen::Vector2d> waypoints;
+  // A recorded walk replayed (kTrajectory): the file as resolved, its poses, and whether the
+  // carrier faces the file's yaw ("orientation": "file") or its direction of travel (default).
+  std::string trajectory_file;
+  std::vector<WalkPose> walk;
+  bool file_orientation = false;
 };
 
 // What carries the sensors (docs/simulation.md, "Carriers"): a legged base with leg odometry, or a
@@ -235,7 +250,18 @@ struct LoadedPlan {
 };
 using PlanLoader = std::function<LoadedPlan(const common::JsonNode& plan_name)>;
 
-// Parses a scenario document, or a bare plan document (with every default).
-Scenario parseScenario(const common::JsonNode& root, const PlanLoader& load_plan);
+// Reads the recorded walk a route names ({"trajectory": "WALK.tum"}) for the robot's level:
+// returns the file as resolved and its poses (bim/recorded_walk.hpp). loadScenario resolves the
+// name relative to the scenario's file.
+struct LoadedWalk {
+  std::string file;
+  std::vector<WalkPose> walk;
+};
+using WalkLoader = std::function<LoadedWalk(const common::JsonNode& file_name, const Level& level)>;
+
+// Parses a scenario document, or a bare plan document (with every default). Without a walk
+// loader (a built-in scenario, a document that is no file) a trajectory route is an error.
+Scenario parseScenario(const common::JsonNode& root, const PlanLoader& load_plan,
+                       const WalkLoader& load_walk = {});
 
 }  // namespace isg::bim

@@ -12,6 +12,7 @@
 #include "bim/plan_parser.hpp"
 #include "bim/plan_point.hpp"
 #include "bim/polygon.hpp"
+#include "bim/recorded_walk.hpp"
 #include "bim/scenario.hpp"
 #include "common/json_reader.hpp"
 
@@ -90,7 +91,8 @@ std::vector<Kidnap> parseKidnaps(const common::JsonNode& node, const Plan& plan,
   return out;
 }
 
-RobotConfig parseRobot(const std::optional<common::JsonNode>& node, const Plan& plan) {
+RobotConfig parseRobot(const std::optional<common::JsonNode>& node, const Plan& plan,
+                       const WalkLoader& load_walk) {
   RobotConfig robot;
   robot.level = plan.levels.front().id;
   if (!node) {
@@ -138,11 +140,36 @@ RobotConfig parseRobot(const std::optional<common::JsonNode>& node, const Plan& 
       if (kind != "tour")
         route->fail("unknown route " + common::inQuotes(kind) + " (expected \"tour\")");
     } else {
-      route->expectObject({"rooms", "waypoints"});
-      if (route->has("rooms") == route->has("waypoints")) {
-        route->fail("give \"tour\", {\"rooms\": [...]} or {\"waypoints\": [...]}");
+      route->expectObject({"rooms", "waypoints", "trajectory", "orientation"});
+      if (int(route->has("rooms")) + int(route->has("waypoints")) + int(route->has("trajectory")) !=
+          1) {
+        route->fail(
+            "give \"tour\", {\"rooms\": [...]}, {\"waypoints\": [...]} or "
+            "{\"trajectory\": \"WALK.tum\"}");
       }
-      if (auto rooms = route->optionalField("rooms")) {
+      if (route->has("orientation") && !route->has("trajectory")) {
+        route->field("orientation").fail("\"orientation\" goes with \"trajectory\" only");
+      }
+      if (auto trajectory = route->optionalField("trajectory")) {
+        robot.route.kind = Route::Kind::kTrajectory;
+        trajectory->nonEmptyString();
+        if (auto orientation = route->optionalField("orientation")) {
+          const std::string mode = orientation->string();
+          if (mode != "travel" && mode != "file") {
+            orientation->fail("unknown orientation " + common::inQuotes(mode) +
+                              " (expected \"travel\" or \"file\")");
+          }
+          robot.route.file_orientation = mode == "file";
+        }
+        if (!load_walk) {
+          trajectory->fail(
+              "a trajectory route is read from a file beside its scenario's file; "
+              "this scenario is not read from one");
+        }
+        LoadedWalk loaded = load_walk(*trajectory, *level);
+        robot.route.trajectory_file = std::move(loaded.file);
+        robot.route.walk = std::move(loaded.walk);
+      } else if (auto rooms = route->optionalField("rooms")) {
         robot.route.kind = Route::Kind::kRooms;
         for (const auto& r : rooms->elements(1, limits::kMaxScenarioItems, "rooms"))
           // A route may go to rooms on other levels, by stairs (sim/route_planner.hpp).
@@ -176,6 +203,20 @@ RobotConfig parseRobot(const std::optional<common::JsonNode>& node, const Plan& 
   }
   if (auto kidnap = node->optionalField("kidnap"))
     robot.kidnap = parseKidnaps(*kidnap, plan, *level);
+  if (robot.route.kind == Route::Kind::kTrajectory) {
+    // A replayed walk is where and when its file says: nothing else may place, pace or break it.
+    const std::pair<const char*, const char*> others[] = {
+        {"start", "it starts at its file's first pose"},
+        {"speed", "its file's times pace it"},
+        {"kidnap", "it is one unbroken walk"}};
+    for (const auto& [key, why] : others) {
+      if (node->has(key)) {
+        node->field(key).fail(std::string("robot.") + key +
+                              " does not go with a trajectory route: " + why);
+      }
+    }
+    robot.start_room.reset();
+  }
   return robot;
 }
 
@@ -497,7 +538,7 @@ Scenario scenarioFromPlan(Plan plan, const std::string& path) {
   scenario.source = path;
   scenario.plan_file = path;
   scenario.plan = std::move(plan);
-  scenario.robot = parseRobot(std::nullopt, scenario.plan);
+  scenario.robot = parseRobot(std::nullopt, scenario.plan, {});
   return scenario;
 }
 
@@ -508,7 +549,8 @@ AsBuilt parseAsBuiltJson(const common::JsonNode& node, const Plan& plan,
   return parseAsBuilt(node, plan, robot_level);
 }
 
-Scenario parseScenario(const common::JsonNode& root, const PlanLoader& load_plan) {
+Scenario parseScenario(const common::JsonNode& root, const PlanLoader& load_plan,
+                       const WalkLoader& load_walk) {
   const std::string& path = root.source().file;
   if (root.isObject() && root.has("format") && root.field("format").isString() &&
       root.field("format").string() == kPlanFormat) {
@@ -542,7 +584,7 @@ Scenario parseScenario(const common::JsonNode& root, const PlanLoader& load_plan
   }
 
   if (auto seed = root.optionalField("seed")) scenario.seed = seed->unsignedInteger();
-  scenario.robot = parseRobot(root.optionalField("robot"), scenario.plan);
+  scenario.robot = parseRobot(root.optionalField("robot"), scenario.plan, load_walk);
   if (auto lidar = root.optionalField("lidar")) scenario.lidar = parseLidar(*lidar);
   if (auto odometry = root.optionalField("odometry")) scenario.odometry = parseOdometry(*odometry);
   if (scenario.robot.carrier == Carrier::kHandheld) {
@@ -571,13 +613,24 @@ Scenario loadScenario(const std::string& path, common::Warnings* warnings) {
   const nlohmann::json document = common::readJsonFile(path);
   const common::JsonSource source{path, warnings};
   return parseScenario(
-      common::JsonNode(document, "", source), [&](const common::JsonNode& plan_name) {
+      common::JsonNode(document, "", source),
+      [&](const common::JsonNode& plan_name) {
         const std::filesystem::path plan_path =
             (std::filesystem::path(path).parent_path() / plan_name.string()).lexically_normal();
         if (!std::filesystem::exists(plan_path)) {
           plan_name.fail("plan file " + common::inQuotes(plan_path.string()) + " does not exist");
         }
         return LoadedPlan{loadPlan(plan_path.string(), warnings), plan_path.string()};
+      },
+      [&](const common::JsonNode& walk_name, const Level& level) {
+        const std::filesystem::path walk_path =
+            (std::filesystem::path(path).parent_path() / walk_name.string()).lexically_normal();
+        if (!std::filesystem::exists(walk_path)) {
+          walk_name.fail("trajectory file " + common::inQuotes(walk_path.string()) +
+                         " does not exist");
+        }
+        return LoadedWalk{walk_path.string(),
+                          readRecordedWalk(walk_path.string(), level, walk_name)};
       });
 }
 

@@ -8,6 +8,13 @@
 
 namespace isg::cli {
 
+namespace {
+
+// A replayed walk's path further than this from one of its file's poses is said.
+constexpr double kWalkDeviationWarning = 0.05;  // m
+
+}  // namespace
+
 double checkRoute(const std::string& command, const bim::Scenario& scenario,
                   const sim::Simulation& simulation, double duration) {
   const auto& route = simulation.route();
@@ -21,6 +28,15 @@ double checkRoute(const std::string& command, const bim::Scenario& scenario,
         stderr, "%s: warning: level %s cannot be reached (%s); the tour skips it\n",
         command.c_str(), level.c_str(),
         why == route.why_levels_skipped.end() ? "no flight leads there" : why->second.c_str());
+  }
+  if (const sim::WalkPath* walk = simulation.baseMotion().walk();
+      walk != nullptr && walk->maxDeviation() > kWalkDeviationWarning) {
+    std::fprintf(stderr,
+                 "%s: warning: %s: the replayed path passes %.3f m from the file's pose at line "
+                 "%d (median %.3f m): the walk is smoothed over %.1f s (docs/simulation.md)\n",
+                 command.c_str(), scenario.robot.route.trajectory_file.c_str(),
+                 walk->maxDeviation(), walk->maxDeviationLine(), walk->medianDeviation(),
+                 sim::kWalkKnotSpacing);
   }
   const double route_seconds = simulation.duration();
   const double seconds = duration < 0 ? route_seconds : std::min(duration, route_seconds);

@@ -97,7 +97,7 @@ std::string TumError::located() const {
   return line_ > 0 ? "line " + std::to_string(line_) + ": " + reason_ : reason_;
 }
 
-Trajectory parseTum(const std::string& text, const std::string& file) {
+Trajectory parseTum(const std::string& text, const std::string& file, std::vector<int>* lines) {
   Trajectory out;
   std::istringstream in(text);
   std::string line;
@@ -141,11 +141,12 @@ Trajectory parseTum(const std::string& text, const std::string& file) {
     p.pose.translation() = Eigen::Vector3d(v[1], v[2], v[3]);
     p.pose.linear() = q.normalized().toRotationMatrix();
     out.push_back(p);
+    if (lines != nullptr) lines->push_back(number);
   }
   return out;
 }
 
-Trajectory readTum(const std::string& path) {
+Trajectory readTum(const std::string& path, std::vector<int>* lines) {
   std::error_code error;
   const auto status = std::filesystem::status(path, error);
   if (!std::filesystem::exists(status)) throw TumError(path, 0, "cannot open file");
@@ -160,7 +161,7 @@ Trajectory readTum(const std::string& path) {
   if (!in) throw TumError(path, 0, "cannot open file");
   std::ostringstream s;
   s << in.rdbuf();
-  return parseTum(s.str(), path);
+  return parseTum(s.str(), path, lines);
 }
 
 }  // namespace isg::common

@@ -65,8 +65,10 @@ inline constexpr double kMaxTumCoordinate = 1e9;
 // Parses TUM text; '#' lines and blank lines are skipped. A malformed line, or a time that does
 // not increase, throws TumError naming `file` and the line number. An empty trajectory is
 // returned as such: the caller says whether it needs poses.
-Trajectory parseTum(const std::string& text, const std::string& file);
+// With `lines`, the line number of each pose is appended to it (for messages about one pose).
+Trajectory parseTum(const std::string& text, const std::string& file,
+                    std::vector<int>* lines = nullptr);
 // Reads a regular file of at most kMaxTumBytes (a device or a FIFO is never read).
-Trajectory readTum(const std::string& path);
+Trajectory readTum(const std::string& path, std::vector<int>* lines = nullptr);
 
 }  // namespace isg::common

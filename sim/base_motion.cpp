@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <numbers>
+#include <stdexcept>
 
 #include "common/angles.hpp"
 
@@ -57,6 +58,17 @@ BaseMotion::BaseMotion(const std::vector<Eigen::Vector3d>& waypoints, double sta
   legs_.push_back(makeLeg(0.0, waypoints, start_yaw));
 }
 
+BaseMotion::BaseMotion(std::shared_ptr<const WalkPath> walk, double floor_z, const GaitConfig& gait)
+    : gait_(gait), speed_(0.0), walk_(std::move(walk)) {
+  const WalkPath::State start = walk_->at(0.0);
+  Leg leg;
+  leg.from = start.xy;
+  leg.from_z = floor_z;
+  leg.yaw = start.yaw;
+  leg.arrivals.push_back(0.0);
+  legs_.push_back(leg);
+}
+
 BaseMotion::Leg BaseMotion::makeLeg(double start, const std::vector<Eigen::Vector3d>& waypoints,
                                     double start_yaw) const {
   Leg leg;
@@ -101,6 +113,8 @@ BaseMotion::Leg BaseMotion::makeLeg(double start, const std::vector<Eigen::Vecto
 
 void BaseMotion::appendLeg(double time, const std::vector<Eigen::Vector3d>& waypoints,
                            double start_yaw) {
+  // The scenario refuses kidnaps on a replayed walk (bim/scenario_parser.cpp).
+  if (walk_) throw std::logic_error("a replayed walk has one leg");
   legs_.push_back(makeLeg(time, waypoints, start_yaw));
 }
 
@@ -117,6 +131,19 @@ int BaseMotion::legAt(double t) const {
 }
 
 BaseMotion::PlanarState BaseMotion::planarInLeg(const Leg& leg, double t) const {
+  if (walk_) {
+    const WalkPath::State w = walk_->at(t);
+    PlanarState state;
+    state.xy = w.xy;
+    state.yaw = w.yaw;
+    state.velocity = w.velocity;
+    state.acceleration = w.acceleration;
+    state.yaw_rate = w.yaw_rate;
+    state.yaw_acceleration = w.yaw_acceleration;
+    state.moving = w.velocity.norm() > 0.05 || std::abs(w.yaw_rate) > 0.05;
+    state.floor_z = leg.from_z;
+    return state;
+  }
   if (leg.segments.empty() || t <= leg.start) {
     PlanarState rest{leg.from, leg.yaw, false};
     rest.floor_z = leg.from_z;
@@ -177,8 +204,14 @@ BaseMotion::Eased BaseMotion::sway(double t) const {
   const double in_rate = in.rate / kSwayEase, in_acc = in.acceleration / (kSwayEase * kSwayEase);
   const double out_rate = -out.rate / kSwayEase;
   const double out_acc = out.acceleration / (kSwayEase * kSwayEase);
-  return {in.value * out.value, in_rate * out.value + in.value * out_rate,
-          in_acc * out.value + 2.0 * in_rate * out_rate + in.value * out_acc};
+  const Eased ends{in.value * out.value, in_rate * out.value + in.value * out_rate,
+                   in_acc * out.value + 2.0 * in_rate * out_rate + in.value * out_acc};
+  if (!walk_) return ends;
+  // A replayed walk sways as far as its pace has it: the product's derivatives by Leibniz.
+  const WalkPath::State w = walk_->at(t);
+  return {ends.value * w.gait, ends.rate * w.gait + ends.value * w.gait_rate,
+          ends.acceleration * w.gait + 2.0 * ends.rate * w.gait_rate +
+              ends.value * w.gait_acceleration};
 }
 
 Eigen::Isometry3d BaseMotion::pose(double t) const { return kinematics(t).B_T_R; }

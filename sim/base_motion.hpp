@@ -3,10 +3,12 @@
 #include <Eigen/Core>
 #include <Eigen/Geometry>
 #include <array>
+#include <memory>
 #include <numbers>
 #include <vector>
 
 #include "sim/motion_profile.hpp"
+#include "sim/walk_path.hpp"
 
 namespace isg::sim {
 
@@ -69,6 +71,9 @@ class BaseMotion {
   // kInclineEase), and it walks at most kStairSpeed.
   BaseMotion(const std::vector<Eigen::Vector3d>& waypoints, double start_yaw, double speed,
              const GaitConfig& gait);
+  // A recorded walk replayed on one floor at height floor_z: the base follows `walk` (its
+  // position, heading and pace), swaying with the gait as far as the walk's pace has it.
+  BaseMotion(std::shared_ptr<const WalkPath> walk, double floor_z, const GaitConfig& gait);
 
   // Continues with a new leg from `time` on (after the current leg's start, before its end).
   // Its waypoints are as the constructor over floors takes them: a kidnap may put the robot down
@@ -76,7 +81,9 @@ class BaseMotion {
   void appendLeg(double time, const std::vector<Eigen::Vector3d>& waypoints, double start_yaw);
 
   // When the last leg ends: the robot stops there.
-  double duration() const { return legs_.back().end(); }
+  double duration() const { return walk_ ? walk_->duration() : legs_.back().end(); }
+  // The replayed walk, or null for a planned route.
+  const WalkPath* walk() const { return walk_.get(); }
   int legs() const { return int(legs_.size()); }
   // When the robot reaches waypoint `index` of leg `leg` (the leg's start for index 0).
   double arrival(int leg, int index) const { return legs_[leg].arrivals[index]; }
@@ -150,6 +157,7 @@ class BaseMotion {
   std::vector<Leg> legs_;
   GaitConfig gait_;
   double speed_;
+  std::shared_ptr<const WalkPath> walk_;
 };
 
 }  // namespace isg::sim

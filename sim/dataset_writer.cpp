@@ -109,6 +109,22 @@ nlohmann::ordered_json robotDescription(const Simulation& sim) {
     robot["gait"]["head_turn_deg"] = gait.head_turn_deg;
     robot["gait"]["head_turn_periods_s"] = kHeadTurnPeriods;
   }
+  if (const WalkPath* walk = sim.baseMotion().walk()) {
+    // A replayed walk: its file, how it was faced, and how closely the path follows the file; its
+    // speed is the mean pace along its route (the file's positions 0.1 m apart, so that their
+    // jitter does not add length).
+    const auto& points = sim.route().waypoints;
+    double length = 0.0;
+    for (std::size_t i = 1; i < points.size(); ++i) length += (points[i] - points[i - 1]).norm();
+    robot["speed"] = length / std::max(walk->duration(), 1e-9);
+    robot["trajectory"] = {{"file", s.robot.route.trajectory_file},
+                           {"poses", s.robot.route.walk.size()},
+                           {"orientation", s.robot.route.file_orientation ? "file" : "travel"},
+                           {"knot_spacing_s", kWalkKnotSpacing},
+                           {"deviation_median_m", walk->medianDeviation()},
+                           {"deviation_max_m", walk->maxDeviation()},
+                           {"deviation_max_line", walk->maxDeviationLine()}};
+  }
   // Which level each waypoint is on, written only when the route changes level (a route on one
   // level writes the metadata it always did); the levels the tour skipped whenever there are any.
   const auto& levels = sim.route().waypoint_levels;

@@ -1,13 +1,17 @@
 #include "sim/simulation.hpp"
 
+#include "bim/plan_geometry.hpp"
 #include "sim/fast_random.hpp"
 #include "sim/imu_simulator.hpp"
 #include "sim/kidnap_planner.hpp"
 #include "sim/odometry_model.hpp"
 #include "sim/robot_model.hpp"
 #include "sim/route_builder.hpp"
+#include "sim/walk_check.hpp"
+#include "sim/walk_path.hpp"
 #include "worlds/mjcf_generator.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <numbers>
@@ -49,6 +53,30 @@ MujocoWorld buildWorld(const bim::Scenario& scenario, const Eigen::Isometry3d& R
   return MujocoWorld::fromXml(worlds::generateMjcf(scenario, options));
 }
 
+// A replayed walk as a route: its positions, thinned to kWalkRouteStep apart (a walk of hours
+// stays a short list in metadata.json), and the rooms it enters, in the order it first does.
+constexpr double kWalkRouteStep = 0.1;  // m
+PlannedRoute replayedRoute(const bim::Scenario& scenario, const WalkPath& walk) {
+  const bim::Level& level = *scenario.plan.findLevel(scenario.robot.level);
+  PlannedRoute route;
+  const auto& poses = scenario.robot.route.walk;
+  for (std::size_t i = 0; i < poses.size(); ++i) {
+    const Eigen::Vector2d& p = poses[i].xy;
+    if (!route.waypoints.empty() && i + 1 < poses.size() &&
+        (p - route.waypoints.back()).norm() < kWalkRouteStep)
+      continue;
+    route.waypoints.push_back(p);
+    route.waypoint_levels.push_back(level.id);
+    const std::optional<std::string> room = bim::roomAt(level, p);
+    if (room && std::find(route.visited_rooms.begin(), route.visited_rooms.end(), *room) ==
+                    route.visited_rooms.end()) {
+      route.visited_rooms.push_back(*room);
+    }
+  }
+  route.start_yaw = walk.at(0.0).yaw;
+  return route;
+}
+
 }  // namespace
 
 Simulation::Simulation(const bim::Scenario& scenario)
@@ -72,13 +100,23 @@ Simulation::Simulation(const bim::Scenario& scenario)
   }
   grid_ =
       std::make_unique<OccupancyGrid>(scenario_.plan, scenario_.as_built, scenario_.robot.level);
-  auto rng = generator(kRouteStream);
-  route_ = planRoute(scenario_, *grid_, rng);
-  // Each waypoint stands on its level's floor; between two levels the base walks a flight.
-  const auto waypoints = onTheirFloors(scenario_.plan, route_.waypoints, route_.waypoint_levels);
-  base_motion_ = std::make_unique<BaseMotion>(waypoints, route_.start_yaw, scenario_.robot.speed,
-                                              gaitOf(scenario_.robot, generator(kGaitStream)));
-  planKidnaps(scenario_, *grid_, route_, *base_motion_, rng);
+  if (scenario_.robot.route.kind == bim::Route::Kind::kTrajectory) {
+    checkWalkClear(scenario_);
+    const GaitConfig gait = gaitOf(scenario_.robot, generator(kGaitStream));
+    auto walk = std::make_shared<const WalkPath>(
+        scenario_.robot.route.walk, scenario_.robot.route.file_orientation, gait.turn_rate);
+    route_ = replayedRoute(scenario_, *walk);
+    base_motion_ = std::make_unique<BaseMotion>(
+        std::move(walk), scenario_.plan.findLevel(scenario_.robot.level)->elevation, gait);
+  } else {
+    auto rng = generator(kRouteStream);
+    route_ = planRoute(scenario_, *grid_, rng);
+    // Each waypoint stands on its level's floor; between two levels the base walks a flight.
+    const auto waypoints = onTheirFloors(scenario_.plan, route_.waypoints, route_.waypoint_levels);
+    base_motion_ = std::make_unique<BaseMotion>(waypoints, route_.start_yaw, scenario_.robot.speed,
+                                                gaitOf(scenario_.robot, generator(kGaitStream)));
+    planKidnaps(scenario_, *grid_, route_, *base_motion_, rng);
+  }
   poseRobot(world_.model(), world_.data(), base_motion_->pose(0.0), 0.0, 0.0);
   lidar_ = makeLidar();
 }

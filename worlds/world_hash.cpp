@@ -1,5 +1,7 @@
 #include "worlds/world_hash.hpp"
 
+#include <cstdio>
+
 #include "common/content_hash.hpp"
 #include "common/json_reader.hpp"
 #include "common/limits.hpp"
@@ -27,6 +29,18 @@ std::string worldHash(const bim::Scenario& scenario) {
   if (scenario.plan_file != "<inline>" && scenario.plan_file != scenario.source) {
     const std::string plan_bytes = bytesOf(scenario.plan_file);
     text += "\n" + std::to_string(plan_bytes.size()) + "\n" + plan_bytes;
+  }
+  // A replayed walk is part of what was run: its poses as read (the file may exceed the JSON
+  // size limit), after the files, so that scenarios without one hash as they always did.
+  const auto& walk = scenario.robot.route.walk;
+  if (scenario.robot.route.kind == bim::Route::Kind::kTrajectory) {
+    text += "\nwalk " + std::to_string(walk.size()) + "\n";
+    char row[128];
+    for (const auto& pose : walk) {
+      std::snprintf(row, sizeof row, "%.17g %.17g %.17g %.17g\n", pose.t, pose.xy.x(), pose.xy.y(),
+                    pose.yaw);
+      text += row;
+    }
   }
   return common::contentHash(text);
 }

@@ -2,6 +2,7 @@
 
 #include <filesystem>
 #include <fstream>
+#include <numbers>
 
 #include "bim/scenario.hpp"
 
@@ -109,6 +110,47 @@ TEST(ScenarioParser, InlinePlanAndExplicitRobot) {
   ASSERT_EQ(s.as_built.extra_walls.size(), 1u);
   EXPECT_EQ(s.as_built.extra_walls[0].id, "extra0");
   EXPECT_EQ(s.as_built.extra_walls[0].level, "G");
+  std::filesystem::remove_all(dir);
+}
+
+TEST(ScenarioParser, ATrajectoryRouteReadsItsWalkBesideTheScenario) {
+  const auto dir = std::filesystem::temp_directory_path() / "isg_scenario_parser_walk";
+  std::filesystem::create_directories(dir / "walks");
+  // A walk on a Unix epoch clock, with a comment line: stamps from 0, lines as in the file.
+  std::ofstream(dir / "walks" / "w.tum") << "# t x y z qx qy qz qw\n"
+                                            "1700000000.0 1 1 0 0 0 0 1\n"
+                                            "1700000000.5 1.25 1 0 0 0 0.7071068 0.7071068\n";
+  const std::string scenario = R"({
+    "format": "isg.scenario", "version": 1,
+    "plan": {"format": "isg.plan", "version": 1, "levels": [{"id": "G", "height": 2.5,
+      "walls": [{"id": "A", "start": [0, 0], "end": [5, 0], "thickness": 0.2}]}]},
+    "robot": {"carrier": "handheld", "route": {"trajectory": "walks/w.tum",
+              "orientation": "file"}}})";
+  std::ofstream(dir / "s.json") << scenario;
+  const Scenario s = loadScenario((dir / "s.json").string());
+  EXPECT_EQ(s.robot.route.kind, Route::Kind::kTrajectory);
+  EXPECT_EQ(s.robot.route.trajectory_file, (dir / "walks" / "w.tum").string());
+  EXPECT_TRUE(s.robot.route.file_orientation);
+  EXPECT_FALSE(s.robot.start_room.has_value());
+  ASSERT_EQ(s.robot.route.walk.size(), 2u);
+  EXPECT_EQ(s.robot.route.walk[0].t, 0.0);
+  EXPECT_NEAR(s.robot.route.walk[1].t, 0.5, 1e-6);
+  EXPECT_EQ(s.robot.route.walk[1].line, 3);
+  EXPECT_EQ(s.robot.route.walk[1].xy, Eigen::Vector2d(1.25, 1.0));
+  EXPECT_NEAR(s.robot.route.walk[1].yaw, std::numbers::pi / 2, 1e-6);
+  // The same document that is no file (a built-in scenario's way) cannot name a walk.
+  const nlohmann::json document = common::parseJsonText(scenario, "inline.json");
+  const common::JsonSource source{"inline.json", nullptr};
+  try {
+    parseScenario(common::JsonNode(document, "", source),
+                  [](const common::JsonNode& n) -> LoadedPlan { n.fail("no plan files"); });
+    ADD_FAILURE() << "accepted";
+  } catch (const common::InputError& e) {
+    EXPECT_EQ(e.pointer(), "/robot/route/trajectory");
+    EXPECT_EQ(e.reason(),
+              "a trajectory route is read from a file beside its scenario's file; this scenario "
+              "is not read from one");
+  }
   std::filesystem::remove_all(dir);
 }
 

@@ -86,6 +86,31 @@ TEST(BaseKinematics, AWalkersSwayAndHeadTurnsToo) {
   EXPECT_GT((hi - lo) * 180 / std::numbers::pi, 5.0);
 }
 
+TEST(BaseKinematics, AReplayedWalkToo) {
+  // A walk recorded at 10 Hz: a slow S through the plane with a stop from 6 to 9 s, carried by
+  // hand.
+  std::vector<bim::WalkPose> walk;
+  for (int i = 0; i <= 150; ++i) {
+    const double t = 0.1 * i, s = t < 6.0 ? t : t < 9.0 ? 6.0 : t - 3.0;
+    walk.push_back({t, {0.6 * s, 1.5 * std::sin(0.5 * s)}, 0.0, i + 1});
+  }
+  GaitConfig walker;
+  walker.handheld = true;
+  walker.bob_m = 0.025;
+  walker.sway_m = 0.025;
+  walker.head_turn_deg = 15.0;
+  walker.head_phases = {0.3, 2.1};
+  walker.standing_height = kHandheldHeight;
+  walker.turn_rate = kHandheldTurnRate;
+  const BaseMotion t(std::make_shared<const WalkPath>(walk, false, kHandheldTurnRate), 0.5, walker);
+  EXPECT_NEAR(t.duration(), 15.0, 1e-12);
+  expectDerivativesOfThePose(t);
+  // Standing (7.5 s): no gait, the sensors 1.2 m above the floor at 0.5 m, still but for the
+  // spline's ringing after a stop from 0.6 m/s in no time.
+  EXPECT_NEAR(t.pose(7.5).translation().z(), 0.5 + kHandheldHeight, 1e-3);
+  EXPECT_LT(t.kinematics(7.5).velocity.norm(), 0.03);
+}
+
 TEST(BaseKinematics, OnAFlightOfStairsTooWithTheBodyTiltedToTheSlope) {
   // Up a 3.2 m flight over 4.5 m, along the landing, and down a steeper one over 3.6 m.
   const BaseMotion t({{0, 0, 0}, {1, 0, 0}, {5.5, 0, 3.2}, {6.5, 0, 3.2}, {6.5, 3.6, 0}}, 0.0, 0.5,

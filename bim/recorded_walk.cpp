@@ -1,0 +1,111 @@
+#include "bim/recorded_walk.hpp"
+
+#include <cmath>
+#include <cstdio>
+
+#include "bim/box_grid.hpp"
+#include "bim/limits.hpp"
+#include "common/input_error.hpp"
+#include "common/tum.hpp"
+
+namespace isg::bim {
+
+namespace {
+
+// The speed check looks back at least this far, so that a high-rate file's millimetre jitter
+// between consecutive poses is not read as running.
+constexpr double kSpeedWindow = 0.05;  // s
+// At most this many gaps are named one by one; the rest are counted.
+constexpr int kNamedGaps = 5;
+
+std::string fixed(double value, int decimals) {
+  char text[64];
+  std::snprintf(text, sizeof text, "%.*f", decimals, value);
+  return text;
+}
+
+}  // namespace
+
+std::vector<WalkPose> readRecordedWalk(const std::string& path, const Level& level,
+                                       const common::JsonNode& node) {
+  std::vector<int> lines;
+  common::Trajectory poses;
+  try {
+    poses = common::readTum(path, &lines);
+  } catch (const common::TumError& e) {
+    throw common::InputError(path, "", e.located());
+  }
+  if (poses.size() < 2) {
+    throw common::InputError(path, "",
+                             poses.empty() ? "no poses (a TUM file holds one pose per line)"
+                                           : "one pose only: a walk needs two or more");
+  }
+  const auto at = [&](std::size_t i) { return "line " + std::to_string(lines[i]) + ": "; };
+  const double t0 = poses.front().t;
+  const double length = poses.back().t - t0;
+  if (length > limits::kMaxRobotSeconds) {
+    throw common::InputError(path, "",
+                             at(poses.size() - 1) + "the walk lasts " + fixed(length, 0) +
+                                 " s; at most " + fixed(limits::kMaxRobotSeconds, 0) +
+                                 " s of robot time are simulated");
+  }
+  std::vector<WalkPose> walk;
+  walk.reserve(poses.size());
+  for (std::size_t i = 0; i < poses.size(); ++i) {
+    const auto& R = poses[i].pose.linear();
+    walk.push_back({poses[i].t - t0, poses[i].pose.translation().head<2>(),
+                    std::atan2(R(1, 0), R(0, 0)), lines[i]});
+  }
+
+  // Faster than a carrier walks: a jump in the file (a relocalization, a wrong frame), which no
+  // carrier could follow and no IMU could feel sensibly.
+  std::size_t back = 0;
+  for (std::size_t i = 1; i < walk.size(); ++i) {
+    while (back + 1 < i && walk[i].t - walk[back + 1].t >= kSpeedWindow) ++back;
+    const std::size_t from = walk[i].t - walk[back].t >= kSpeedWindow ? back : i - 1;
+    const double speed = (walk[i].xy - walk[from].xy).norm() / (walk[i].t - walk[from].t);
+    if (speed > kMaxWalkSpeed) {
+      throw common::InputError(path, "",
+                               at(i) + "the walk moves " +
+                                   fixed((walk[i].xy - walk[from].xy).norm(), 3) + " m in " +
+                                   fixed(walk[i].t - walk[from].t, 3) + " s since line " +
+                                   std::to_string(walk[from].line) + " (" + fixed(speed, 1) +
+                                   " m/s; at most " + fixed(kMaxWalkSpeed, 0) + " m/s is walked)");
+    }
+  }
+
+  int gaps = 0;
+  for (std::size_t i = 1; i < walk.size(); ++i) {
+    const double gap = walk[i].t - walk[i - 1].t;
+    if (gap <= kWalkGapWarning) continue;
+    if (++gaps <= kNamedGaps) {
+      node.warn(path + ": lines " + std::to_string(walk[i - 1].line) + "–" +
+                std::to_string(walk[i].line) + ": " + fixed(gap, 2) +
+                " s without a pose; the walk is interpolated across the gap");
+    }
+  }
+  if (gaps > kNamedGaps) {
+    node.warn(path + ": " + std::to_string(gaps - kNamedGaps) + " more gaps of over " +
+              fixed(kWalkGapWarning, 0) + " s without a pose");
+  }
+
+  std::vector<Eigen::Vector2d> corners;
+  for (const auto& w : level.walls) {
+    corners.push_back(w.start);
+    corners.push_back(w.end);
+  }
+  if (!corners.empty()) {
+    const Box2 near = Box2::around(corners).grown(kWalkOutsideWarning);
+    for (const auto& pose : walk) {
+      if (near.contains(pose.xy)) continue;
+      node.warn(path + ": line " + std::to_string(pose.line) + ": the walk is at (" +
+                fixed(pose.xy.x(), 2) + ", " + fixed(pose.xy.y(), 2) + "), over " +
+                fixed(kWalkOutsideWarning, 0) + " m beyond level \"" + level.id +
+                "\"'s walls: are its positions in the plan frame?");
+      break;
+    }
+  }
+  return walk;
+}
+
+}  // namespace isg::bim
