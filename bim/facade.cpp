@@ -3,6 +3,7 @@
 #include <algorithm>
 
 #include "bim/plan_geometry.hpp"
+#include "bim/polygon.hpp"
 
 namespace isg::bim {
 
@@ -33,6 +34,26 @@ Polygon2 facadeOutline(const Level& level) {
   }
   hull.resize(k - 1);
   return hull;
+}
+
+bool isOpenFloor(const Level& level) {
+  if (level.rooms.empty()) return true;
+  double rooms = 0.0;
+  for (const auto& room : level.rooms) rooms += std::abs(signedArea(room.outline));
+  // The hull lies within the walls' box: rooms covering a quarter of the box cover a quarter of
+  // the hull, without computing it (a roomed building, the usual case, stops here).
+  Eigen::Vector2d lo = level.walls.empty() ? Eigen::Vector2d::Zero() : level.walls[0].start;
+  Eigen::Vector2d hi = lo;
+  for (const auto& w : level.walls) {
+    const double t = 0.5 * w.thickness;
+    lo = lo.cwiseMin(w.start.cwiseMin(w.end) - Eigen::Vector2d::Constant(t));
+    hi = hi.cwiseMax(w.start.cwiseMax(w.end) + Eigen::Vector2d::Constant(t));
+  }
+  const Eigen::Vector2d box = hi - lo;
+  if (rooms >= kOpenFloorRoomShare * box.x() * box.y()) return false;
+  const Polygon2 outline = facadeOutline(level);
+  if (outline.size() < 3) return false;
+  return rooms < kOpenFloorRoomShare * std::abs(signedArea(outline));
 }
 
 }  // namespace isg::bim

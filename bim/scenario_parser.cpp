@@ -7,6 +7,7 @@
 
 #include "bim/as_built_wall.hpp"
 #include "bim/box_grid.hpp"
+#include "bim/facade.hpp"
 #include "bim/limits.hpp"
 #include "bim/plan_geometry.hpp"
 #include "bim/plan_parser.hpp"
@@ -95,10 +96,14 @@ RobotConfig parseRobot(const std::optional<common::JsonNode>& node, const Plan& 
                        const WalkLoader& load_walk) {
   RobotConfig robot;
   robot.level = plan.levels.front().id;
+  // An open floor (bim/facade.hpp) starts at the most open point of its inside
+  // (sim/route_planner.hpp) unless robot.start gives one; a roomed level in its first room.
+  const auto defaultStart = [](const Level& level) -> std::optional<std::string> {
+    if (isOpenFloor(level)) return std::nullopt;
+    return level.rooms.front().id;
+  };
   if (!node) {
-    robot.start_room = plan.levels.front().rooms.empty()
-                           ? std::nullopt
-                           : std::optional(plan.levels.front().rooms.front().id);
+    robot.start_room = defaultStart(plan.levels.front());
     return robot;
   }
   node->expectObject(
@@ -129,11 +134,9 @@ RobotConfig parseRobot(const std::optional<common::JsonNode>& node, const Plan& 
     } else {
       robot.start_pose = poseOnLevel(*level, start->field("pose"), "start position");
     }
-  } else if (!level->rooms.empty()) {
-    robot.start_room = level->rooms.front().id;
+  } else {
+    robot.start_room = defaultStart(*level);
   }
-  // A level without rooms (an open floor) starts at the most open point inside its façade
-  // (sim/route_planner.hpp) unless robot.start gives one.
   if (auto route = node->optionalField("route")) {
     if (route->isString()) {
       const std::string kind = route->string();

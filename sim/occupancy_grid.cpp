@@ -106,8 +106,8 @@ OccupancyGrid::OccupancyGrid(const bim::Plan& plan, const bim::AsBuilt& as_built
   for (const auto& room : level.rooms) {
     paint(room.outline, false);
   }
-  // An open floor (no rooms): its inside is its façade's outline.
-  const bool open_floor = level.rooms.empty();
+  // An open floor (no rooms, or rooms covering little of it): its inside is its façade's outline.
+  const bool open_floor = bim::isOpenFloor(level);
   if (open_floor) paint(bim::facadeOutline(level), false);
   clearPlannedWalls(plan_level, as_built);
   // A wall blocks where it stands lower than the robot can pass under.

@@ -102,6 +102,70 @@ Eigen::Vector2d roomCentre(const OccupancyGrid& grid, const bim::Room& room, boo
   return best;
 }
 
+// Where the robot starts on an open floor: in the largest stretch of floor it can walk (cells
+// with its clearance joined 8-connected, as paths go), so that a façade whose middle falls in a
+// closed shaft or stairwell does not shut the tour in there; at the façade's centroid when that
+// lies in it, else its most open cell there nearest the centroid. When the centroid's stretch is
+// the largest this is roomCentre's choice.
+Eigen::Vector2d openFloorStart(const OccupancyGrid& grid, const bim::Room& inside,
+                               double clearance) {
+  const int w = grid.width(), h = grid.height();
+  std::vector<int> label(std::size_t(w) * std::size_t(h), -1);
+  const auto walkable = [&](int x, int y) {
+    return grid.clearance({x, y}) >= clearance &&
+           bim::containsPoint(inside.outline, grid.centreOf({x, y}));
+  };
+  std::vector<int> sizes, queue;
+  for (int y0 = 0; y0 < h; ++y0) {
+    for (int x0 = 0; x0 < w; ++x0) {
+      if (label[std::size_t(y0) * w + x0] >= 0 || !walkable(x0, y0)) continue;
+      const int id = int(sizes.size());
+      sizes.push_back(0);
+      queue.assign(1, y0 * w + x0);
+      label[std::size_t(y0) * w + x0] = id;
+      while (!queue.empty()) {
+        const int cell = queue.back();
+        queue.pop_back();
+        ++sizes[std::size_t(id)];
+        const int cx = cell % w, cy = cell / w;
+        for (int dy = -1; dy <= 1; ++dy) {
+          for (int dx = -1; dx <= 1; ++dx) {
+            const int x = cx + dx, y = cy + dy;
+            if (x < 0 || y < 0 || x >= w || y >= h) continue;
+            int& l = label[std::size_t(y) * w + x];
+            if (l >= 0 || !walkable(x, y)) continue;
+            l = id;
+            queue.push_back(y * w + x);
+          }
+        }
+      }
+    }
+  }
+  const Eigen::Vector2d centroid = bim::centroid(inside.outline);
+  if (sizes.empty()) return roomCentre(grid, inside, true, clearance);
+  const int largest = int(std::max_element(sizes.begin(), sizes.end()) - sizes.begin());
+  const Eigen::Vector2i at = grid.cellOf(centroid);
+  if (grid.inside(at) && label[std::size_t(at.y()) * w + at.x()] == largest) {
+    return roomCentre(grid, inside, true, clearance);
+  }
+  double best_clearance = -1.0, best_distance = 0.0;
+  Eigen::Vector2d best = centroid;
+  for (int y = 0; y < h; ++y) {
+    for (int x = 0; x < w; ++x) {
+      if (label[std::size_t(y) * w + x] != largest) continue;
+      const Eigen::Vector2d p = grid.centreOf({x, y});
+      const double rounded = std::floor(grid.clearance({x, y}) * 100.0);
+      const double d = (p - centroid).norm();
+      if (rounded > best_clearance || (rounded == best_clearance && d < best_distance)) {
+        best_clearance = rounded;
+        best_distance = d;
+        best = p;
+      }
+    }
+  }
+  return best;
+}
+
 }  // namespace
 
 Eigen::Vector2d roomGoal(const OccupancyGrid& grid, const bim::Room& room, double clearance) {
@@ -199,9 +263,10 @@ void tourOpenFloor(RouteBuilder& builder) {
 void tourLevel(RouteBuilder& builder, const bim::Scenario& scenario, std::set<std::string>& seen,
                const std::string& entry_room) {
   const bim::Level& level = builder.level();
-  if (level.rooms.empty()) {
+  if (bim::isOpenFloor(level)) {
     tourOpenFloor(builder);
-    return;
+    // Then its few rooms (a core's toilets and stairs), through their doors or the free space.
+    if (level.rooms.empty()) return;
   }
   std::map<std::string, std::set<std::string>> neighbours;
   for (const auto& door : level.doors) {
@@ -313,7 +378,8 @@ PlannedRoute planRoute(const bim::Scenario& scenario, const OccupancyGrid& grid,
     route.start_yaw = scenario.robot.start_pose->z();
     start_room = bim::roomAt(level, start).value_or("");
   } else if (!scenario.robot.start_room) {
-    // An open floor: the most open point of its inside, nearest the middle of its façade.
+    // An open floor: the most open point of the largest stretch of its inside, nearest the middle
+    // of its façade.
     bim::Room inside;
     inside.outline = bim::facadeOutline(level);
     if (inside.outline.empty()) {
@@ -321,7 +387,7 @@ PlannedRoute planRoute(const bim::Scenario& scenario, const OccupancyGrid& grid,
           file, "/robot/start",
           "level \"" + level.id + "\" has neither rooms nor walls to stand in");
     }
-    start = roomCentre(grid, inside, true, clearance);
+    start = openFloorStart(grid, inside, clearance);
     route.start_yaw =
         std::uniform_real_distribution<double>(-std::numbers::pi, std::numbers::pi)(rng);
   } else {

@@ -17,6 +17,7 @@
 #include "bim/scenario.hpp"
 #include "common/input_error.hpp"
 #include "common/json_reader.hpp"
+#include "worlds/site_generator.hpp"
 
 namespace isg::worlds {
 
@@ -426,7 +427,7 @@ json point(double x, double y) { return json::array({mm(x), mm(y)}); }
 
 const std::vector<std::string>& generatorFamilies() {
   static const std::vector<std::string> kFamilies = {"office", "l-shape",    "t-shape", "u-shape",
-                                                     "hotel",  "twin-wings", "hall"};
+                                                     "hotel",  "twin-wings", "hall",    "site"};
   return kFamilies;
 }
 
@@ -885,6 +886,7 @@ void drawOfficeContents(const GeneratorSpec& s, const Layout& layout, std::mt199
 // stream) and where the robot starts. The stages draw in this order, always.
 GeneratedBuilding generateUnchecked(const GeneratorSpec& spec) {
   checkSpec(spec);
+  if (spec.family == "site") return generateSite(spec);
   // Separate streams for the plan and for the as-built changes, so that a denser clutter does
   // not move the walls.
   std::mt19937_64 rng(spec.seed * 0x9E3779B97F4A7C15ULL + 1);

@@ -14,9 +14,9 @@ TEST(Generate, EveryFamilyPassesCheckAndIsReproducible) {
   testing::Sandbox sandbox("generate_all");
   const auto made = sandbox.run("generate all -o a --count 2 --seed 5 -q");
   ASSERT_EQ(made.exit_code, 0) << made.err;
-  EXPECT_THAT(made.out, HasSubstr("wrote a: 14 buildings (14 plans and 14 as-built scenarios)"));
+  EXPECT_THAT(made.out, HasSubstr("wrote a: 16 buildings (16 plans and 16 as-built scenarios)"));
   for (const char* family :
-       {"office", "l-shape", "t-shape", "u-shape", "hotel", "twin-wings", "hall"}) {
+       {"office", "l-shape", "t-shape", "u-shape", "hotel", "twin-wings", "hall", "site"}) {
     for (const char* seed : {"5", "6"}) {
       const std::string name = std::string(family) + "-" + seed;
       for (const std::string& file : {name + ".json", name + ".asbuilt.json"}) {

@@ -59,7 +59,8 @@ TEST(BaseKinematics, AreTheDerivativesOfThePose) {
   expectDerivativesOfThePose(BaseMotion({{0, 0}, {3, 0}, {3, 2}, {1, 3}}, 0.4, 0.5, 1.0, {}));
 }
 
-TEST(BaseKinematics, AWalkersSwayAndHeadTurnsToo) {
+// A person's walk with the sensors in hand, head turns at fixed phases.
+GaitConfig walkersGait() {
   GaitConfig walker;
   walker.handheld = true;
   walker.bob_m = 0.025;
@@ -68,6 +69,11 @@ TEST(BaseKinematics, AWalkersSwayAndHeadTurnsToo) {
   walker.head_phases = {0.3, 2.1};
   walker.standing_height = kHandheldHeight;
   walker.turn_rate = kHandheldTurnRate;
+  return walker;
+}
+
+TEST(BaseKinematics, AWalkersSwayAndHeadTurnsToo) {
+  const GaitConfig walker = walkersGait();
   const BaseMotion t({{0, 0}, {3, 0}, {3, 2}, {1, 3}}, 0.4, 0.8, 0.0, walker);
   expectDerivativesOfThePose(t);
   // Mid-way along the first straight: held 1.2 m up (± the bob), within the sway of the way and
@@ -94,14 +100,7 @@ TEST(BaseKinematics, AReplayedWalkToo) {
     const double t = 0.1 * i, s = t < 6.0 ? t : t < 9.0 ? 6.0 : t - 3.0;
     walk.push_back({t, {0.6 * s, 1.5 * std::sin(0.5 * s)}, 0.0, i + 1});
   }
-  GaitConfig walker;
-  walker.handheld = true;
-  walker.bob_m = 0.025;
-  walker.sway_m = 0.025;
-  walker.head_turn_deg = 15.0;
-  walker.head_phases = {0.3, 2.1};
-  walker.standing_height = kHandheldHeight;
-  walker.turn_rate = kHandheldTurnRate;
+  const GaitConfig walker = walkersGait();
   const BaseMotion t(std::make_shared<const WalkPath>(walk, false, kHandheldTurnRate), 0.5, walker);
   EXPECT_NEAR(t.duration(), 15.0, 1e-12);
   expectDerivativesOfThePose(t);

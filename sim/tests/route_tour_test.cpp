@@ -84,7 +84,8 @@ namespace {
 
 // An open floor: a 20 m × 10 m façade of walls with a 3 m gap in its east side, two columns and
 // no rooms at all (a site plan, a raster plan whose walls enclose nothing).
-PlannedRoute openFloorTour(const nlohmann::json& robot) {
+PlannedRoute openFloorTour(const nlohmann::json& robot, const nlohmann::json& more_walls = {},
+                           const nlohmann::json& rooms = {}) {
   nlohmann::json document = {
       {"format", "isg.scenario"},
       {"version", 1},
@@ -103,6 +104,8 @@ PlannedRoute openFloorTour(const nlohmann::json& robot) {
              {{"id", "C1"}, {"start", {6.8, 5}}, {"end", {7.2, 5}}, {"thickness", 0.4}},
              {{"id", "C2"}, {"start", {12.8, 5}}, {"end", {13.2, 5}}, {"thickness", 0.4}}}}}}}}}};
   if (!robot.is_null()) document["robot"] = robot;
+  for (const auto& wall : more_walls) document["plan"]["levels"][0]["walls"].push_back(wall);
+  if (!rooms.empty()) document["plan"]["levels"][0]["rooms"] = rooms;
   const common::JsonSource source{"scenario.json", nullptr};
   const bim::Scenario scenario = bim::parseScenario(
       common::JsonNode(document, "", source),
@@ -134,6 +137,52 @@ TEST(Tour, AnOpenFloorIsWalkedOverAFiveMetreLatticeFromItsMostOpenPoint) {
     EXPECT_GT(p.y(), 0.15);
     EXPECT_LT(p.y(), 9.85);
   }
+}
+
+TEST(Tour, AnOpenFloorWhoseMiddleIsAClosedShaftStartsOnTheFloorOutsideIt) {
+  // A closed 3 m × 3 m shaft round the façade's middle (10, 5): started there, the robot would
+  // see its four walls and nothing else. It starts in the largest stretch of floor instead and
+  // tours it.
+  const PlannedRoute route = openFloorTour(
+      nullptr, {{{"id", "K1"}, {"start", {8.5, 3.5}}, {"end", {11.5, 3.5}}, {"thickness", 0.2}},
+                {{"id", "K2"}, {"start", {11.5, 3.5}}, {"end", {11.5, 6.5}}, {"thickness", 0.2}},
+                {{"id", "K3"}, {"start", {11.5, 6.5}}, {"end", {8.5, 6.5}}, {"thickness", 0.2}},
+                {{"id", "K4"}, {"start", {8.5, 6.5}}, {"end", {8.5, 3.5}}, {"thickness", 0.2}}});
+  const Eigen::Vector2d start = route.waypoints.front();
+  EXPECT_FALSE(start.x() > 8.5 && start.x() < 11.5 && start.y() > 3.5 && start.y() < 6.5)
+      << start.transpose();
+  int open_floor_targets = 0;
+  for (const auto& target : route.targets) {
+    if (target.label.rfind("open floor ", 0) == 0) ++open_floor_targets;
+  }
+  // The 4 × 2 lattice, less the points inside the shaft that no path reaches.
+  EXPECT_GE(open_floor_targets, 6);
+  for (const auto& p : route.waypoints) {
+    EXPECT_FALSE(p.x() > 8.5 && p.x() < 11.5 && p.y() > 3.5 && p.y() < 6.5) << p.transpose();
+  }
+}
+
+TEST(Tour, AnOpenFloorWithAFewRoomsIsToured) {
+  // A 3 m × 3 m room in the floor's south-west (9 m² of the 209 m² façade: under a quarter), its
+  // doorway a 1.2 m gap in its north wall: the level is still an open floor. The robot starts on
+  // the floor, not in the room, tours the lattice and then the room.
+  const PlannedRoute route =
+      openFloorTour(nullptr,
+                    {{{"id", "K1"}, {"start", {1, 1}}, {"end", {4, 1}}, {"thickness", 0.2}},
+                     {{"id", "K2"}, {"start", {4, 1}}, {"end", {4, 4}}, {"thickness", 0.2}},
+                     {{"id", "K3"}, {"start", {4, 4}}, {"end", {3.2, 4}}, {"thickness", 0.2}},
+                     {{"id", "K4"}, {"start", {2.0, 4}}, {"end", {1, 4}}, {"thickness", 0.2}},
+                     {{"id", "K5"}, {"start", {1, 4}}, {"end", {1, 1}}, {"thickness", 0.2}}},
+                    {{{"id", "K"}, {"outline", {{1.1, 1.1}, {3.9, 1.1}, {3.9, 3.9}, {1.1, 3.9}}}}});
+  const Eigen::Vector2d start = route.waypoints.front();
+  EXPECT_FALSE(start.x() > 1 && start.x() < 4 && start.y() > 1 && start.y() < 4);
+  int open_floor_targets = 0;
+  for (const auto& target : route.targets) {
+    if (target.label.rfind("open floor ", 0) == 0) ++open_floor_targets;
+  }
+  EXPECT_GE(open_floor_targets, 7);
+  EXPECT_EQ(route.visited_rooms, std::vector<std::string>{"K"});
+  EXPECT_TRUE(route.skipped_rooms.empty());
 }
 
 TEST(Tour, AnOpenFloorStartsWhereTheScenarioSays) {

@@ -31,6 +31,44 @@ double yawOfNormal(const bim::Plane& plane) {
   return std::atan2(plane.normal.y(), plane.normal.x());
 }
 
+// Surfaces in line with one another — on one plane, facing the same way, within kInLineAngle and
+// kInLineOffset: a façade's bays between its columns, a wall's pieces either side of an opening
+// the plan draws as a gap. An S-plane may span the gaps between them.
+constexpr double kInLineAngle = 1.0 * std::numbers::pi / 180.0;
+constexpr double kInLineOffset = 0.03;  // m
+template <typename Surfaces>
+std::vector<std::vector<int>> surfacesInLine(const Surfaces& surfaces) {
+  struct Key {
+    double yaw, offset;
+    int index;
+  };
+  std::vector<Key> keys;
+  for (int i = 0; i < int(surfaces.size()); ++i) {
+    const bim::Plane& plane = surfaces[i].plane;
+    const double n = plane.normal.head<2>().norm();
+    if (n < 0.5) continue;  // not a vertical surface
+    keys.push_back({yawOfNormal(plane), -plane.d / n, i});
+  }
+  std::sort(keys.begin(), keys.end(), [](const Key& a, const Key& b) {
+    return a.yaw < b.yaw || (a.yaw == b.yaw && a.index < b.index);
+  });
+  std::vector<std::vector<int>> out(surfaces.size());
+  const std::size_t n = keys.size();
+  for (std::size_t a = 0; a < n; ++a) {
+    // Forward in yaw, wrapping once past π.
+    for (std::size_t step = 1; step < n; ++step) {
+      const Key& k = keys[a];
+      const Key& m = keys[(a + step) % n];
+      const double gap = m.yaw - k.yaw + (a + step >= n ? 2.0 * std::numbers::pi : 0.0);
+      if (gap > kInLineAngle) break;
+      if (std::abs(m.offset - k.offset) > kInLineOffset) continue;
+      out[std::size_t(k.index)].push_back(m.index);
+      out[std::size_t(m.index)].push_back(k.index);
+    }
+  }
+  return out;
+}
+
 bool pointInPolygon(const std::vector<Eigen::Vector2d>& polygon, const Eigen::Vector2d& p) {
   bool inside = false;
   for (std::size_t i = 0, j = polygon.size() - 1; i < polygon.size(); j = i++) {
@@ -187,7 +225,9 @@ GraphMatcher::GraphMatcher(const bim::AGraph& graph, const MatchingOptions& opti
     }
   }
   // The plan's wall corners (seeds, slam/isgraph/match_seeds.cpp): segment ends that meet. Each arm
-  // is as long as its surface reaches from the corner, across doorways: an S-plane spans them.
+  // is as long as its surface, and the surfaces in line with it, reach from the corner, across
+  // doorways and gaps: an S-plane spans them.
+  const std::vector<std::vector<int>> in_line = surfacesInLine(graph.surfaces);
   std::set<std::array<int, 4>> paired;
   for (int i = 0; i < int(graph.surfaces.size()); ++i) {
     const auto& si = graph.surfaces[i];
@@ -205,12 +245,17 @@ GraphMatcher::GraphMatcher(const bim::AGraph& graph, const MatchingOptions& opti
                          sj.segments[b].first, sj.segments[b].second, options_.corner_gap);
             if (!corner) continue;
             for (int k = 0; k < 2; ++k) {
-              for (const auto& [p, q] : (k == 0 ? si : sj).segments) {
-                for (const Eigen::Vector2d& x : {p, q}) {
-                  corner->arm[k] =
-                      std::max(corner->arm[k], corner->arm_direction[k].dot(x - corner->point));
+              const int surface = k == 0 ? i : j;
+              const auto reach = [&](int t) {
+                for (const auto& [p, q] : graph.surfaces[std::size_t(t)].segments) {
+                  for (const Eigen::Vector2d& x : {p, q}) {
+                    corner->arm[k] =
+                        std::max(corner->arm[k], corner->arm_direction[k].dot(x - corner->point));
+                  }
                 }
-              }
+              };
+              reach(surface);
+              for (int t : in_line[std::size_t(surface)]) reach(t);
             }
             corners_.push_back(*corner);
           }

@@ -52,6 +52,8 @@ std::set<std::string> reachable(const bim::Level& level, const std::vector<std::
 TEST(PlanGenerator, EveryFamilyReadsWithoutWarningAndEveryRoomIsReachable) {
   std::size_t closed = 0, missing = 0, extra = 0, clutter = 0;
   for (const auto& family : generatorFamilies()) {
+    // A site has no rooms to reach (worlds/tests/site_generator_test.cpp).
+    if (family == "site") continue;
     for (std::uint64_t seed : {1, 2}) {
       GeneratorSpec spec;
       spec.family = family;

@@ -217,6 +217,56 @@ TEST(Matching, RoomOfUnknownSizeProposesNothing) {
   EXPECT_EQ(result.reason, "no S-Graph room or corner fits the plan in kind and size");
 }
 
+// An open floor's façade is walls in line with gaps between them (bays between columns): an
+// S-plane along it spans the gaps, so a corner's arm reaches as far as the walls in line with its
+// own do. Seen from a transform, the S-Graph's corner of the south façade (across its gap) and
+// the west wall seeds the truth; with the arm cut at the first wall's end it would seed nothing.
+TEST(Matching, ACornerArmReachesAlongTheWallsInLineWithIt) {
+  const nlohmann::json plan = {
+      {"format", "isg.plan"},
+      {"version", 1},
+      {"levels",
+       {{{"id", "L0"},
+         {"height", 3.0},
+         {"walls",
+          {{{"id", "S1"}, {"start", {0, 0}}, {"end", {6, 0}}, {"thickness", 0.25}},
+           {{"id", "S2"}, {"start", {7, 0}}, {"end", {15, 0}}, {"thickness", 0.25}},
+           {{"id", "W"}, {"start", {0, 0}}, {"end", {0, 10}}, {"thickness", 0.25}},
+           {{"id", "N"}, {"start", {0, 10}}, {"end", {4, 10}}, {"thickness", 0.25}},
+           {{"id", "P"}, {"start", {9, 6}}, {"end", {12, 6}}, {"thickness", 0.1}}}}}}}};
+  const common::JsonSource source{"floor.json", nullptr};
+  const bim::AGraph graph = bim::buildAGraph(bim::parsePlan(common::JsonNode(plan, "", source)));
+  const GraphMatcher matcher(graph);
+  // B_T_M = (3, −2, 0.4): the faces in B mapped into M by its inverse.
+  const Eigen::Vector3d truth(3.0, -2.0, 0.4);
+  const Eigen::Rotation2Dd R(truth.z());
+  const auto toM = [&](const Eigen::Vector2d& b) { return R.inverse() * (b - truth.head<2>()); };
+  const auto planeOf = [&](const Eigen::Vector2d& a, const Eigen::Vector2d& b, int id) {
+    MatchPlane p;
+    p.id = id;
+    p.start = toM(a);
+    p.end = toM(b);
+    const Eigen::Vector2d d = (p.end - p.start).normalized();
+    const Eigen::Vector2d n(-d.y(), d.x());  // left of start → end: into the floor here
+    p.plane.normal = Eigen::Vector3d(n.x(), n.y(), 0.0);
+    p.plane.d = -n.dot(p.start);
+    return p;
+  };
+  MatchInput input;
+  // The south façade's inner face from the corner across the 1 m gap to x = 13 (12.9 m: more
+  // than S1's 5.9 m + 0.5), and the west wall's, counter-clockwise so that normals face in.
+  input.planes.push_back(planeOf({0.125, 0.125}, {13.0, 0.125}, 0));
+  input.planes.push_back(planeOf({0.125, 9.0}, {0.125, 0.125}, 1));
+  const MatchResult result = matcher.match(input);
+  EXPECT_NE(result.reason, "no S-Graph room or corner fits the plan in kind and size");
+  ASSERT_GE(result.hypotheses, 1);
+  const Eigen::Vector2d probe(5.0, 5.0);
+  const Eigen::Vector2d at_match =
+      Eigen::Rotation2Dd(result.best.x_y_yaw.z()) * probe + result.best.x_y_yaw.head<2>();
+  EXPECT_LT((at_match - (R * probe + truth.head<2>())).norm(), 0.05);
+  EXPECT_LT(angleError(result.best.x_y_yaw.z(), truth.z()), 0.5 * std::numbers::pi / 180.0);
+}
+
 // The acceptance bound on the unexplained wall (docs/matching.md): the truth of a clean cut is
 // matched; the same S-Graph with walls the plan does not have, a third of its wall length in all,
 // is "not yet", with the reason and the lengths in words.

@@ -1,0 +1,311 @@
+#include "worlds/site_generator.hpp"
+
+#include <Eigen/Core>
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <random>
+#include <string>
+#include <vector>
+
+#include "bim/plan.hpp"
+#include "bim/plan_json.hpp"
+
+namespace isg::worlds {
+
+namespace {
+
+using json = nlohmann::json;
+
+double mm(double v) { return std::round(v * 1000.0) / 1000.0; }
+
+// How far apart things stand on the floor, so that the robot (0.35 m clearance) passes between
+// any two of them and the tour reaches every part of the slab.
+constexpr double kPassage = 1.2;  // m
+constexpr double kFacadeThickness = 0.25;
+constexpr double kCoreThickness = 0.2;
+constexpr double kPartitionThickness = 0.1;
+
+struct Segment {
+  Eigen::Vector2d a, b;
+  double thickness;
+};
+
+double segmentDistance(const Segment& s, const Segment& t) {
+  const auto pointToSegment = [](const Eigen::Vector2d& p, const Segment& q) {
+    const Eigen::Vector2d d = q.b - q.a;
+    const double u = std::clamp((p - q.a).dot(d) / d.squaredNorm(), 0.0, 1.0);
+    return (p - (q.a + u * d)).norm();
+  };
+  const auto cross = [](const Eigen::Vector2d& u, const Eigen::Vector2d& v) {
+    return u.x() * v.y() - u.y() * v.x();
+  };
+  const Eigen::Vector2d r = s.b - s.a, q = t.b - t.a;
+  const double den = cross(r, q);
+  if (std::abs(den) > 1e-12) {
+    const double u = cross(t.a - s.a, q) / den, v = cross(t.a - s.a, r) / den;
+    if (u >= 0 && u <= 1 && v >= 0 && v <= 1) return 0.0;
+  }
+  return std::min({pointToSegment(s.a, t), pointToSegment(s.b, t), pointToSegment(t.a, s),
+                   pointToSegment(t.b, s)});
+}
+
+// The slab's outline, counter-clockwise: a rectangle W × D, or one with its corner `cut` cut from
+// (W − cx, 0) to (W, cy) (the corner turned to where the seed says afterwards, by mirroring).
+struct Slab {
+  double width = 0, depth = 0;
+  double bay_x = 0, bay_y = 0;
+  bool cut = false;
+  double cut_x = 0, cut_y = 0;
+  bool mirror_x = false, mirror_y = false;
+
+  Eigen::Vector2d place(Eigen::Vector2d p) const {
+    if (mirror_x) p.x() = width - p.x();
+    if (mirror_y) p.y() = depth - p.y();
+    return p;
+  }
+  // Inside the unmirrored outline by at least `margin`.
+  bool inside(const Eigen::Vector2d& p, double margin) const {
+    if (p.x() < margin || p.y() < margin || p.x() > width - margin || p.y() > depth - margin)
+      return false;
+    if (!cut) return true;
+    // The cut's line from (W − cx, 0) to (W, cy); inside is to its left.
+    const Eigen::Vector2d a(width - cut_x, 0.0), b(width, cut_y);
+    const Eigen::Vector2d d = (b - a).normalized();
+    return d.x() * (p.y() - a.y()) - d.y() * (p.x() - a.x()) >= margin;
+  }
+  std::vector<Eigen::Vector2d> corners() const {
+    if (!cut) return {{0, 0}, {width, 0}, {width, depth}, {0, depth}};
+    return {{0, 0}, {width - cut_x, 0}, {width, cut_y}, {width, depth}, {0, depth}};
+  }
+};
+
+}  // namespace
+
+GeneratedBuilding generateSite(const GeneratorSpec& spec) {
+  std::mt19937_64 rng(spec.seed * 0x9E3779B97F4A7C15ULL + 3);
+  std::mt19937_64 built_rng(spec.seed * 0xD1B54A32D192ED03ULL + 13);
+  std::uniform_real_distribution<double> unit(0.0, 1.0);
+  const auto uniform = [&](double lo, double hi) { return lo + (hi - lo) * unit(rng); };
+  const auto count = [&](int lo, int hi) {
+    return std::uniform_int_distribution<int>(lo, hi)(rng);
+  };
+
+  Slab slab;
+  slab.bay_x = mm(uniform(6.0, 8.0));
+  slab.bay_y = mm(uniform(6.0, 8.0));
+  const int bays_x = count(4, 6), bays_y = count(3, 4);
+  slab.width = bays_x * slab.bay_x;
+  slab.depth = bays_y * slab.bay_y;
+  slab.cut = unit(rng) < 0.7;
+  if (slab.cut) {
+    slab.cut_x = mm(slab.bay_x * uniform(1.0, 2.0));
+    slab.cut_y = mm(slab.bay_y * uniform(0.8, 1.6));
+  }
+  slab.mirror_x = unit(rng) < 0.5;
+  slab.mirror_y = unit(rng) < 0.5;
+  const double column = mm(uniform(0.4, 0.6));
+
+  bim::Level level;
+  level.id = "L0";
+  level.height = spec.height;
+  std::vector<Segment> solids;  // every wall and column, for the partitions' spacing
+  std::vector<std::string> facade_walls, partitions;
+  const auto addWall = [&](const std::string& id, Eigen::Vector2d a, Eigen::Vector2d b,
+                           double thickness, const std::string& name) {
+    a = slab.place(a);
+    b = slab.place(b);
+    bim::Wall wall;
+    wall.id = id;
+    wall.start = {mm(a.x()), mm(a.y())};
+    wall.end = {mm(b.x()), mm(b.y())};
+    wall.thickness = thickness;
+    wall.height = level.height;
+    wall.name = name;
+    level.walls.push_back(wall);
+    solids.push_back({wall.start, wall.end, thickness});
+  };
+  int columns = 0;
+  const auto addColumn = [&](const Eigen::Vector2d& c) {
+    addWall("C" + std::to_string(++columns), c - Eigen::Vector2d(0.5 * column, 0),
+            c + Eigen::Vector2d(0.5 * column, 0), column, "column");
+  };
+
+  // The core: an off-centre block of small rooms, clear of the cut.
+  const double core_w = mm(uniform(8.0, 12.0)), core_d = mm(uniform(5.0, 7.0));
+  Eigen::Vector2d core_lo;
+  for (int attempt = 0;; ++attempt) {
+    core_lo = {mm(uniform(slab.bay_x, slab.width - slab.bay_x - core_w)),
+               mm(uniform(0.7 * slab.bay_y, slab.depth - 0.7 * slab.bay_y - core_d))};
+    const bool clear = slab.inside(core_lo, 3.0) &&
+                       slab.inside(core_lo + Eigen::Vector2d(core_w, 0), 3.0) &&
+                       slab.inside(core_lo + Eigen::Vector2d(core_w, core_d), 3.0) &&
+                       slab.inside(core_lo + Eigen::Vector2d(0, core_d), 3.0);
+    if (clear || attempt > 100) break;
+  }
+  const Eigen::Vector2d core_hi = core_lo + Eigen::Vector2d(core_w, core_d);
+  const auto nearCore = [&](const Eigen::Vector2d& p, double margin) {
+    return p.x() > core_lo.x() - margin && p.x() < core_hi.x() + margin &&
+           p.y() > core_lo.y() - margin && p.y() < core_hi.y() + margin;
+  };
+
+  // Columns: on the grid, on the façade (its straight edges and its cut) and inside, none in or
+  // by the core.
+  std::vector<Eigen::Vector2d> facade_columns;  // in order round the outline
+  const std::vector<Eigen::Vector2d> outline = slab.corners();
+  for (std::size_t e = 0; e < outline.size(); ++e) {
+    const Eigen::Vector2d a = outline[e], b = outline[(e + 1) % outline.size()];
+    const double length = (b - a).norm();
+    const double bay = std::abs((b - a).x()) > std::abs((b - a).y()) ? slab.bay_x : slab.bay_y;
+    const int steps = std::max(1, int(std::round(length / bay)));
+    for (int k = 0; k < steps; ++k) facade_columns.push_back(a + (b - a) * (double(k) / steps));
+  }
+  for (const auto& c : facade_columns) addColumn(c);
+  for (int i = 1; i < bays_x; ++i) {
+    for (int j = 1; j < bays_y; ++j) {
+      const Eigen::Vector2d c(i * slab.bay_x, j * slab.bay_y);
+      if (!slab.inside(c, 1.5) || nearCore(c, kPassage + 0.5 * column)) continue;
+      addColumn(c);
+    }
+  }
+
+  // The façade's bays: a wall with a window from column to column, or still open; at least half
+  // of them closed, so that the floor has walls to be known by.
+  int facade = 0;
+  for (std::size_t k = 0; k < facade_columns.size(); ++k) {
+    const Eigen::Vector2d a = facade_columns[k],
+                          b = facade_columns[(k + 1) % facade_columns.size()];
+    const Eigen::Vector2d d = (b - a).normalized();
+    const bool closed = unit(rng) < 0.65 || k % 2 == 0;
+    if (!closed) continue;
+    const std::string id = "F" + std::to_string(++facade);
+    addWall(id, a + 0.5 * column * d, b - 0.5 * column * d, kFacadeThickness, "facade");
+    facade_walls.push_back(id);
+    const double length = (b - a).norm() - column;
+    if (length > 3.0 && unit(rng) < 0.8) {
+      bim::Window window;
+      window.id = "WI" + std::to_string(level.windows.size() + 1);
+      window.wall = id;
+      window.width = mm(length - 1.2);
+      window.offset = mm(0.5 * length);
+      window.sill = 0.9;
+      window.height = 1.5;
+      level.windows.push_back(window);
+    }
+  }
+
+  // The core: its outline walls, cross walls into 3–4 rooms, each but a shaft with a doorway onto
+  // the floor (a gap in the core's south or north wall).
+  const int rooms = count(3, 4);
+  std::vector<double> cuts = {core_lo.x()};
+  for (int r = 1; r < rooms; ++r)
+    cuts.push_back(core_lo.x() + core_w * r / rooms + uniform(-0.25, 0.25));
+  cuts.push_back(core_hi.x());
+  const int shaft = count(0, rooms - 1);
+  int core_walls = 0;
+  const auto coreWall = [&](Eigen::Vector2d a, Eigen::Vector2d b) {
+    addWall("K" + std::to_string(++core_walls), a, b, kCoreThickness, "core");
+  };
+  coreWall(core_lo, {core_lo.x(), core_hi.y()});
+  coreWall({core_hi.x(), core_lo.y()}, core_hi);
+  for (int r = 1; r < rooms; ++r) coreWall({cuts[r], core_lo.y()}, {cuts[r], core_hi.y()});
+  for (double y : {core_lo.y(), core_hi.y()}) {
+    double from = core_lo.x();
+    for (int r = 0; r < rooms; ++r) {
+      const bool door = r != shaft && ((y == core_lo.y()) == (r % 2 == 0));
+      if (!door) continue;
+      const double width = mm(uniform(0.9, 1.2));
+      // Within its room, clear of the cross walls.
+      const double mid = std::clamp(0.5 * (cuts[r] + cuts[r + 1]) + uniform(-0.3, 0.3),
+                                    cuts[r] + 0.2 + 0.5 * width, cuts[r + 1] - 0.2 - 0.5 * width);
+      coreWall({from, y}, {mid - 0.5 * width, y});
+      from = mid + 0.5 * width;
+    }
+    coreWall({from, y}, {core_hi.x(), y});
+  }
+
+  // Partitions: two or three, 3–6 m long, one at an angle, each kPassage from everything.
+  const int wanted = count(2, 3);
+  for (int attempt = 0; attempt < 400 && int(partitions.size()) < wanted; ++attempt) {
+    const double length = uniform(3.0, 6.0);
+    const double angle =
+        partitions.empty() ? uniform(0.3, 1.2) : (unit(rng) < 0.5 ? 0.0 : 1.5707963);
+    const Eigen::Vector2d centre(uniform(2.0, slab.width - 2.0), uniform(2.0, slab.depth - 2.0));
+    const Eigen::Vector2d half = 0.5 * length * Eigen::Vector2d(std::cos(angle), std::sin(angle));
+    const Eigen::Vector2d a = centre - half, b = centre + half;
+    if (!slab.inside(a, 2.0) || !slab.inside(b, 2.0)) continue;
+    const Segment candidate{slab.place(a), slab.place(b), kPartitionThickness};
+    bool clear = true;
+    for (const auto& s : solids) {
+      if (segmentDistance(candidate, s) < kPassage + 0.5 * (s.thickness + kPartitionThickness)) {
+        clear = false;
+        break;
+      }
+    }
+    if (!clear) continue;
+    const std::string id = "P" + std::to_string(partitions.size() + 1);
+    addWall(id, {mm(a.x()), mm(a.y())}, {mm(b.x()), mm(b.y())}, kPartitionThickness, "partition");
+    partitions.push_back(id);
+  }
+
+  GeneratedBuilding out;
+  out.name = spec.family + "-" + std::to_string(spec.seed);
+  // The plan lists no rooms: the core's are walls only, the floor is open.
+  out.offices = 0;
+  out.corridors = 0;
+  char title[200];
+  std::snprintf(title, sizeof title,
+                "generated site: %.0f × %.0f m open floor, %d columns, %d façade walls, a core of "
+                "%d rooms, %zu partitions, seed %llu",
+                slab.width, slab.depth, columns, facade, rooms, partitions.size(),
+                (unsigned long long)spec.seed);
+  bim::Plan plan;
+  plan.name = title;
+  plan.levels.push_back(std::move(level));
+  out.plan = json::parse(
+      bim::planToJson(plan, {.every_wall_height = false, .inferred_door_rooms = false}).dump());
+
+  // As built: a façade wall or two and maybe a partition not built yet; pallets on the floor,
+  // clear of everything.
+  json as_built = json::object();
+  json missing = json::array();
+  std::vector<std::string> open = facade_walls;
+  std::shuffle(open.begin(), open.end(), built_rng);
+  const int unbuilt = std::min<int>(int(open.size()) / 4, 1 + int(built_rng() % 2));
+  for (int k = 0; k < unbuilt; ++k) missing.push_back(open[std::size_t(k)]);
+  if (!partitions.empty() && built_rng() % 3 == 0) missing.push_back(partitions.back());
+  if (!missing.empty()) as_built["missing_walls"] = missing;
+  json clutter = json::array();
+  std::uniform_real_distribution<double> built_unit(0.0, 1.0);
+  const int pallets = 3 + int(built_rng() % 4);
+  for (int attempt = 0; attempt < 400 && int(clutter.size()) < pallets; ++attempt) {
+    const Eigen::Vector2d c(slab.width * built_unit(built_rng), slab.depth * built_unit(built_rng));
+    if (!slab.inside(c, 2.0)) continue;
+    const Eigen::Vector2d p = slab.place(c);
+    const Segment dot{p, p + Eigen::Vector2d(1e-3, 0), 0.0};
+    bool clear = true;
+    for (const auto& s : solids) {
+      if (segmentDistance(dot, s) < kPassage + 0.8 + 0.5 * s.thickness) clear = false;
+    }
+    for (const auto& other : clutter) {
+      const Eigen::Vector2d q(other["center"][0].get<double>(), other["center"][1].get<double>());
+      if ((q - p).norm() < 2.5) clear = false;
+    }
+    if (!clear) continue;
+    const double height = mm(0.4 + 1.0 * built_unit(built_rng));
+    clutter.push_back({{"shape", "box"},
+                       {"center", {mm(p.x()), mm(p.y()), mm(0.5 * height)}},
+                       {"size", {1.2, 1.0, height}},
+                       {"yaw", mm(3.14159 * built_unit(built_rng))}});
+  }
+  if (!clutter.empty()) as_built["clutter"] = clutter;
+  out.scenario = {{"format", "isg.scenario"},
+                  {"version", 1},
+                  {"plan", out.name + ".json"},
+                  {"seed", spec.seed},
+                  {"robot", {{"level", "L0"}, {"route", "tour"}}},
+                  {"as_built", as_built}};
+  return out;
+}
+
+}  // namespace isg::worlds
