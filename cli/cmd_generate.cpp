@@ -141,6 +141,22 @@ int GenerateCommand::run() {
   // anything but generated buildings.
   common::checkCanCreateFolder(output_, common::OutputKind::kBuildings, force_);
   spec_.asymmetry = !symmetric_;
+  // A site is drawn from its seed alone (docs/sweeps.md): an office parameter given for one is
+  // said, not silently dropped.
+  if (std::find(families.begin(), families.end(), "site") != families.end()) {
+    for (const char* option :
+         {"--rooms",          "--room-width",     "--room-depth",       "--size-spread",
+          "--corridor-width", "--doors",          "--connecting-doors", "--symmetric",
+          "--partitions",     "--wall-thickness", "--clutter-per-room", "--shifted-walls",
+          "--shift-min",      "--shift-max",      "--rotated-walls",    "--rotation-min",
+          "--rotation-max",   "--missing-walls",  "--extra-walls",      "--closed-doors"}) {
+      if (app_->count(option) == 0) continue;
+      std::fprintf(stderr,
+                   "isg generate: warning: %s does not apply to the site family (a site takes "
+                   "its seed, --count and --height only); its sites are made without it\n",
+                   option);
+    }
+  }
   // Bad parameters fail before anything is written, naming the option.
   std::vector<worlds::GeneratedBuilding> buildings;
   for (const auto& family : families) {

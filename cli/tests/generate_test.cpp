@@ -33,6 +33,17 @@ TEST(Generate, EveryFamilyPassesCheckAndIsReproducible) {
   EXPECT_NE(sandbox.read("a/office-5.json"), sandbox.read("a/office-6.json"));
 }
 
+TEST(Generate, AnOfficeParameterGivenForASiteIsSaid) {
+  testing::Sandbox sandbox("generate_site");
+  const auto made = sandbox.run("generate site -o s --rooms 30 --height 4 -q");
+  ASSERT_EQ(made.exit_code, 0) << made.err;
+  EXPECT_EQ(made.err,
+            "isg generate: warning: --rooms does not apply to the site family (a site takes its "
+            "seed, --count and --height only); its sites are made without it\n");
+  EXPECT_THAT(made.out, HasSubstr("wrote s: 1 building"));
+  EXPECT_THAT(sandbox.read("s/site-1.json"), HasSubstr("\"height\": 4.0"));
+}
+
 TEST(Generate, BadParametersNameTheOptionAndWriteNothing) {
   testing::Sandbox sandbox("generate_bad");
   const auto narrow = sandbox.run("generate hotel -o g --corridor-width 0.5");
