@@ -73,10 +73,12 @@ void checkWalkClear(const bim::Scenario& scenario) {
       char where[96];
       std::snprintf(where, sizeof where, "the walk at (%.3f, %.3f) is inside ", pose.xy.x(),
                     pose.xy.y());
-      throw common::InputError(route.trajectory_file, "",
-                               "line " + std::to_string(pose.line) + ": " + where +
-                                   solids[std::size_t(k)].what + " on level \"" + level.id +
-                                   "\" as built (is the walk in the plan frame of robot.level?)");
+      throw common::InputError(
+          route.trajectory_file, "",
+          "line " + std::to_string(pose.line) + ": " + where + solids[std::size_t(k)].what +
+              " on level \"" + level.id +
+              "\" as built (is the walk in the plan frame of robot.level? a wall not built yet "
+              "goes in as_built.missing_walls)");
     }
   }
 }

@@ -108,7 +108,8 @@ TEST(WalkReplay, AWalkThatCannotBeWalkedIsRefusedNamingItsLine) {
   // D1's outer wall W1 runs from (0, 0) to (12, 0), 0.2 m thick: (3, 0.05) is inside it.
   EXPECT_EQ(refused("# a walk\n0 2 2 0 0 0 0 1\n1 2.5 1 0 0 0 0 1\n2 3 0.05 0 0 0 0 1\n"),
             "isg run: error: walk.tum: line 4: the walk at (3.000, 0.050) is inside wall \"W1\" "
-            "on level \"L0\" as built (is the walk in the plan frame of robot.level?)\n");
+            "on level \"L0\" as built (is the walk in the plan frame of robot.level? a wall not "
+            "built yet goes in as_built.missing_walls)\n");
   EXPECT_EQ(refused("0 2 2 0 0 0 0 1\n0.1 2.5 2 0 0 0 0 1\n"),
             "isg run: error: walk.tum: line 2: the walk moves 0.500 m in 0.100 s since line 1 "
             "(5.0 m/s; at most 3 m/s is walked)\n");
@@ -126,6 +127,25 @@ TEST(WalkReplay, AWalkThatCannotBeWalkedIsRefusedNamingItsLine) {
                     "{\"trajectory\": \"walk.tum\", \"orientation\": \"ahead\"}"),
             "isg run: error: s.json: /robot/route/orientation: unknown orientation \"ahead\" "
             "(expected \"travel\" or \"file\")\n");
+}
+
+TEST(WalkReplay, AWallNotBuiltYetIsWalkedThrough) {
+  testing::Sandbox sandbox("walk_replay_missing");
+  // From D1's corridor (y 1.1) north through W5 (y 2.2, no door at x = 3) into office R1.
+  sandbox.write("walk.tum", "0 3 1.1 0 0 0 0 1\n2 3 2.2 0 0 0 0 1\n4 3 3.3 0 0 0 0 1\n");
+  std::string scenario = scenarioWith("d1", "handheld", "{\"trajectory\": \"walk.tum\"}");
+  scenario.pop_back();
+  scenario += ", \"as_built\": {\"missing_walls\": [\"W5\"]}}";
+  sandbox.write("s.json", scenario);
+  const auto run = sandbox.run("simulate s.json -q -o d");
+  EXPECT_EQ(run.exit_code, 0) << run.err;
+  // The same walk with W5 built is refused at the pose in it.
+  sandbox.write("built.json", scenarioWith("d1", "handheld", "{\"trajectory\": \"walk.tum\"}"));
+  const auto refused = sandbox.run("simulate built.json -q -o e");
+  EXPECT_EQ(refused.exit_code, 1);
+  EXPECT_NE(refused.err.find("walk.tum: line 2: the walk at (3.000, 2.200) is inside wall \"W5\""),
+            std::string::npos)
+      << refused.err;
 }
 
 TEST(WalkReplay, AGapInTimeIsSaidAndWalkedAcross) {
