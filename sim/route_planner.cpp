@@ -69,6 +69,30 @@ std::vector<Eigen::Vector2d> straighten(const OccupancyGrid& grid,
 }
 
 // The most open point of a room (ties: nearest its centroid); its centroid when that is open.
+// The most open cell of those in [a, b] that `keep` keeps, nearest `centroid` among equals (the
+// clearance in whole centimetres, so that a symmetric space picks the cell nearest its centre);
+// `centroid` when none is kept.
+template <typename Keep>
+Eigen::Vector2d mostOpenCell(const OccupancyGrid& grid, const Eigen::Vector2i& a,
+                             const Eigen::Vector2i& b, const Eigen::Vector2d& centroid, Keep keep) {
+  double best_clearance = -1.0, best_distance = 0.0;
+  Eigen::Vector2d best = centroid;
+  for (int y = a.y(); y <= b.y(); ++y) {
+    for (int x = a.x(); x <= b.x(); ++x) {
+      if (!keep(x, y)) continue;
+      const Eigen::Vector2d p = grid.centreOf({x, y});
+      const double rounded = std::floor(grid.clearance({x, y}) * 100.0);
+      const double d = (p - centroid).norm();
+      if (rounded > best_clearance || (rounded == best_clearance && d < best_distance)) {
+        best_clearance = rounded;
+        best_distance = d;
+        best = p;
+      }
+    }
+  }
+  return best;
+}
+
 Eigen::Vector2d roomCentre(const OccupancyGrid& grid, const bim::Room& room, bool prefer_centroid,
                            double clearance) {
   const Eigen::Vector2d centroid = bim::centroid(room.outline);
@@ -81,25 +105,9 @@ Eigen::Vector2d roomCentre(const OccupancyGrid& grid, const bim::Room& room, boo
     lo = lo.cwiseMin(p);
     hi = hi.cwiseMax(p);
   }
-  const Eigen::Vector2i a = grid.cellOf(lo), b = grid.cellOf(hi);
-  double best_clearance = -1.0, best_distance = 0.0;
-  Eigen::Vector2d best = centroid;
-  for (int y = a.y(); y <= b.y(); ++y) {
-    for (int x = a.x(); x <= b.x(); ++x) {
-      const Eigen::Vector2d p = grid.centreOf({x, y});
-      if (!bim::containsPoint(room.outline, p)) continue;
-      const double c = grid.clearance({x, y});
-      const double d = (p - centroid).norm();
-      // Clearance in whole centimetres so that a symmetric room picks the cell nearest its centre.
-      const double rounded = std::floor(c * 100.0);
-      if (rounded > best_clearance || (rounded == best_clearance && d < best_distance)) {
-        best_clearance = rounded;
-        best_distance = d;
-        best = p;
-      }
-    }
-  }
-  return best;
+  return mostOpenCell(grid, grid.cellOf(lo), grid.cellOf(hi), centroid, [&](int x, int y) {
+    return bim::containsPoint(room.outline, grid.centreOf({x, y}));
+  });
 }
 
 // Where the robot starts on an open floor: in the largest stretch of floor it can walk (cells
@@ -148,22 +156,8 @@ Eigen::Vector2d openFloorStart(const OccupancyGrid& grid, const bim::Room& insid
   if (grid.inside(at) && label[std::size_t(at.y()) * w + at.x()] == largest) {
     return roomCentre(grid, inside, true, clearance);
   }
-  double best_clearance = -1.0, best_distance = 0.0;
-  Eigen::Vector2d best = centroid;
-  for (int y = 0; y < h; ++y) {
-    for (int x = 0; x < w; ++x) {
-      if (label[std::size_t(y) * w + x] != largest) continue;
-      const Eigen::Vector2d p = grid.centreOf({x, y});
-      const double rounded = std::floor(grid.clearance({x, y}) * 100.0);
-      const double d = (p - centroid).norm();
-      if (rounded > best_clearance || (rounded == best_clearance && d < best_distance)) {
-        best_clearance = rounded;
-        best_distance = d;
-        best = p;
-      }
-    }
-  }
-  return best;
+  return mostOpenCell(grid, {0, 0}, {w - 1, h - 1}, centroid,
+                      [&](int x, int y) { return label[std::size_t(y) * w + x] == largest; });
 }
 
 }  // namespace

@@ -10,6 +10,7 @@
 
 #include "bim/plan.hpp"
 #include "bim/plan_json.hpp"
+#include "worlds/segment_distance.hpp"
 
 namespace isg::worlds {
 
@@ -31,23 +32,9 @@ struct Segment {
   double thickness;
 };
 
+// Between two walls' axes: 0 where they cross or touch.
 double segmentDistance(const Segment& s, const Segment& t) {
-  const auto pointToSegment = [](const Eigen::Vector2d& p, const Segment& q) {
-    const Eigen::Vector2d d = q.b - q.a;
-    const double u = std::clamp((p - q.a).dot(d) / d.squaredNorm(), 0.0, 1.0);
-    return (p - (q.a + u * d)).norm();
-  };
-  const auto cross = [](const Eigen::Vector2d& u, const Eigen::Vector2d& v) {
-    return u.x() * v.y() - u.y() * v.x();
-  };
-  const Eigen::Vector2d r = s.b - s.a, q = t.b - t.a;
-  const double den = cross(r, q);
-  if (std::abs(den) > 1e-12) {
-    const double u = cross(t.a - s.a, q) / den, v = cross(t.a - s.a, r) / den;
-    if (u >= 0 && u <= 1 && v >= 0 && v <= 1) return 0.0;
-  }
-  return std::min({pointToSegment(s.a, t), pointToSegment(s.b, t), pointToSegment(t.a, s),
-                   pointToSegment(t.b, s)});
+  return crosses(s.a, s.b, t.a, t.b) ? 0.0 : worlds::segmentDistance(s.a, s.b, t.a, t.b);
 }
 
 // The slab's outline, counter-clockwise: a rectangle W × D, or one with its corner `cut` cut from
