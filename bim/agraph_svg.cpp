@@ -40,6 +40,10 @@ std::string agraphToSvg(const Plan& plan, const AGraph& graph, const std::string
       view.hi = view.hi.cwiseMax(p);
     }
   }
+  for (const auto& c : level->columns) {
+    view.lo = view.lo.cwiseMin(c.center - Eigen::Vector2d::Constant(c.size.norm()));
+    view.hi = view.hi.cwiseMax(c.center + Eigen::Vector2d::Constant(c.size.norm()));
+  }
   const Eigen::Vector2d size = view.hi - view.lo;
   view.scale = std::clamp(1200.0 / std::max(size.x(), size.y()), 4.0, 80.0);
   const double width = size.x() * view.scale + 2 * view.margin;
@@ -64,11 +68,21 @@ std::string agraphToSvg(const Plan& plan, const AGraph& graph, const std::string
     for (const auto& p : r.outline) svg << view.x(p.x()) << ',' << view.y(p.y()) << ' ';
     svg << "\" fill=\"#f3efe4\" stroke=\"none\"/>\n";
   }
-  for (const auto& g : geometry.walls) {
+  for (std::size_t w = 0; w < geometry.walls.size(); ++w) {
+    const WallGeometry& g = geometry.walls[w];
+    const bool column = w >= level->walls.size();
     svg << "<polygon points=\"";
     for (const auto& p : g.footprint()) svg << view.x(p.x()) << ',' << view.y(p.y()) << ' ';
-    svg << "\" fill=\"#b9b4aa\" stroke=\"none\"><title>wall " << common::xmlEscape(g.wall->id)
+    svg << "\" fill=\"" << (column ? "#8c8579" : "#b9b4aa") << "\" stroke=\"none\"><title>"
+        << (column ? "column " : "wall ") << common::xmlEscape(g.wall->id)
         << "</title></polygon>\n";
+  }
+  for (const auto& c : level->columns) {
+    if (!c.round()) continue;
+    svg << "<circle cx=\"" << view.x(c.center.x()) << "\" cy=\"" << view.y(c.center.y())
+        << "\" r=\"" << View::fmt(c.radius() * view.scale)
+        << "\" fill=\"#8c8579\" stroke=\"none\"><title>column " << common::xmlEscape(c.id)
+        << "</title></circle>\n";
   }
   for (const auto& s : graph.surfaces) {
     if (s.level != level_id) continue;

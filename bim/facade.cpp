@@ -2,6 +2,7 @@
 
 #include <algorithm>
 
+#include "bim/column.hpp"
 #include "bim/plan_geometry.hpp"
 #include "bim/polygon.hpp"
 
@@ -11,6 +12,9 @@ Polygon2 facadeOutline(const Level& level) {
   std::vector<Eigen::Vector2d> points;
   for (const auto& wall : computeLevelGeometry(level).walls) {
     for (const auto& p : wall.footprint()) points.push_back(p);
+  }
+  for (const auto& column : level.columns) {
+    for (const auto& p : columnFootprint(column)) points.push_back(p);
   }
   std::sort(points.begin(), points.end(), [](const Eigen::Vector2d& a, const Eigen::Vector2d& b) {
     return a.x() < b.x() || (a.x() == b.x() && a.y() < b.y());
@@ -43,11 +47,17 @@ bool isOpenFloor(const Level& level) {
   // The hull lies within the walls' box: rooms covering a quarter of the box cover a quarter of
   // the hull, without computing it (a roomed building, the usual case, stops here).
   Eigen::Vector2d lo = level.walls.empty() ? Eigen::Vector2d::Zero() : level.walls[0].start;
+  if (level.walls.empty() && !level.columns.empty()) lo = level.columns[0].center;
   Eigen::Vector2d hi = lo;
   for (const auto& w : level.walls) {
     const double t = 0.5 * w.thickness;
     lo = lo.cwiseMin(w.start.cwiseMin(w.end) - Eigen::Vector2d::Constant(t));
     hi = hi.cwiseMax(w.start.cwiseMax(w.end) + Eigen::Vector2d::Constant(t));
+  }
+  for (const auto& c : level.columns) {
+    const Eigen::Vector2d reach = Eigen::Vector2d::Constant(0.5 * c.size.norm());
+    lo = lo.cwiseMin(c.center - reach);
+    hi = hi.cwiseMax(c.center + reach);
   }
   const Eigen::Vector2d box = hi - lo;
   if (rooms >= kOpenFloorRoomShare * box.x() * box.y()) return false;

@@ -6,6 +6,7 @@
 #include <deque>
 #include <map>
 
+#include "bim/column.hpp"
 #include "bim/plan_geometry.hpp"
 
 namespace isg::bim {
@@ -30,6 +31,11 @@ Grid drawWalls(const Level& level, const FreeSpaceOptions& options) {
   Eigen::Vector2d lo = Eigen::Vector2d::Constant(1e300), hi = -lo;
   for (const auto& wall : computeLevelGeometry(level).walls) {
     footprints.push_back(wall.footprint());
+    for (const auto& p : footprints.back()) lo = lo.cwiseMin(p), hi = hi.cwiseMax(p);
+  }
+  for (const auto& column : level.columns) {  // rectangular ones are among the walls already
+    if (!column.round()) continue;
+    footprints.push_back(columnFootprint(column));
     for (const auto& p : footprints.back()) lo = lo.cwiseMin(p), hi = hi.cwiseMax(p);
   }
   if (footprints.empty()) return grid;

@@ -32,6 +32,10 @@ const Stair* Level::findStair(const std::string& stair_id) const {
   return findById(stairs, stair_id);
 }
 
+const Column* Level::findColumn(const std::string& column_id) const {
+  return findById(columns, column_id);
+}
+
 const Level* Plan::findLevel(const std::string& level_id) const {
   return findById(levels, level_id);
 }

@@ -61,6 +61,25 @@ struct Stair {
   std::string name;  // free text from the file; "" when none
 };
 
+// A free-standing column (an optional extension of v1): rectangular, `size` = (width along its own
+// x axis, depth across it) turned by `yaw` about its centre, or round, `size` = (diameter,
+// diameter). Columns are solid from `base` to `height` above the level, as walls are; the geometry
+// (bim/plan_geometry.hpp) treats a rectangular column's faces as wall faces.
+struct Column {
+  enum class Shape { kRectangle, kRound };
+  std::string id;
+  Shape shape = Shape::kRectangle;
+  Eigen::Vector2d center = Eigen::Vector2d::Zero();
+  Eigen::Vector2d size = Eigen::Vector2d::Zero();
+  double yaw = 0.0;     // radians, counter-clockwise from the plan's x axis (rectangles only)
+  double height = 0.0;  // top above the level's elevation
+  double base = 0.0;    // bottom above the level's elevation
+  std::string name;     // free text from the file; "" when none
+
+  bool round() const { return shape == Shape::kRound; }
+  double radius() const { return 0.5 * size.x(); }
+};
+
 struct Room {
   std::string id;
   std::string name;
@@ -77,12 +96,14 @@ struct Level {
   std::vector<Window> windows;
   std::vector<Room> rooms;
   std::vector<Stair> stairs;
+  std::vector<Column> columns;
 
   const Wall* findWall(const std::string& wall_id) const;
   const Door* findDoor(const std::string& door_id) const;
   const Window* findWindow(const std::string& window_id) const;
   const Room* findRoom(const std::string& room_id) const;
   const Stair* findStair(const std::string& stair_id) const;
+  const Column* findColumn(const std::string& column_id) const;
 };
 
 // Where an imported plan came from (isg import): free text for the reader, "" where not given.

@@ -6,6 +6,7 @@
 #include <unordered_map>
 
 #include "bim/box_grid.hpp"
+#include "bim/column.hpp"
 #include "bim/polygon.hpp"
 
 namespace isg::bim {
@@ -196,6 +197,7 @@ void roomBoundaries(const Room& room, const BoxGrid& cutter_grid, const Geometry
     const Eigen::Vector2d& b = outline[(e + 1) % outline.size()];
     const Eigen::Vector2d inward = perpendicular((b - a).normalized());
     for (int j : cutter_grid.candidates(Box2::around(a, b).grown(options.boundary_distance))) {
+      if (std::size_t(j) >= geometry.walls.size()) continue;  // a round column: no face
       const WallGeometry& g = geometry.walls[std::size_t(j)];
       for (const WallFace* face : {&g.left, &g.right}) {
         const Eigen::Vector2d n2 = face->plane.normal.head<2>();
@@ -223,8 +225,17 @@ void roomBoundaries(const Room& room, const BoxGrid& cutter_grid, const Geometry
 
 LevelGeometry computeLevelGeometry(const Level& level, const GeometryOptions& options) {
   LevelGeometry geometry;
-  geometry.walls.reserve(level.walls.size());
-  for (const auto& wall : level.walls) {
+  auto column_walls = std::make_shared<std::vector<Wall>>();
+  for (const auto& column : level.columns) {
+    if (!column.round()) column_walls->push_back(columnWall(column));
+  }
+  geometry.column_walls = column_walls;
+  geometry.walls.reserve(level.walls.size() + column_walls->size());
+  std::vector<const Wall*> solids;
+  for (const auto& wall : level.walls) solids.push_back(&wall);
+  for (const auto& wall : *column_walls) solids.push_back(&wall);
+  for (const Wall* solid : solids) {
+    const Wall& wall = *solid;
     WallGeometry g;
     g.wall = &wall;
     const Eigen::Vector2d along = wall.end - wall.start;
@@ -239,6 +250,12 @@ LevelGeometry computeLevelGeometry(const Level& level, const GeometryOptions& op
   cutters.reserve(geometry.walls.size());
   for (const auto& g : geometry.walls) {
     cutters.push_back(g.footprint());
+    cutter_boxes.push_back(Box2::around(cutters.back()).grown(kJunctionTolerance));
+  }
+  // Round columns hide what is behind them too; they come after every wall in the grid.
+  for (const auto& column : level.columns) {
+    if (!column.round()) continue;
+    cutters.push_back(columnFootprint(column));
     cutter_boxes.push_back(Box2::around(cutters.back()).grown(kJunctionTolerance));
   }
   const BoxGrid cutter_grid(cutter_boxes);

@@ -2,6 +2,7 @@
 
 #include <Eigen/Core>
 #include <Eigen/Geometry>
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
@@ -71,7 +72,12 @@ struct RoomBoundary {
 };
 
 struct LevelGeometry {
-  std::vector<WallGeometry> walls;  // same order as Level::walls
+  // The level's walls in the order of Level::walls, then its rectangular columns as walls
+  // (columnWall, in the order of Level::columns; their WallGeometry::wall points into
+  // column_walls, which every copy shares). Round columns have no faces: they only cut the faces
+  // they hide.
+  std::vector<WallGeometry> walls;
+  std::shared_ptr<const std::vector<Wall>> column_walls;
   std::vector<RoomBoundary> boundaries;
 
   const WallGeometry* findWall(const std::string& wall_id) const;

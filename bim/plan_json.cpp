@@ -57,6 +57,20 @@ json stairJson(const Stair& s, const PlanJsonStyle& style) {
   return out;
 }
 
+json columnJson(const Column& c, const Level& level, const PlanJsonStyle& style) {
+  json out = {{"id", c.id}, {"center", point(c.center)}};
+  if (c.round()) {
+    out["diameter"] = c.size.x();
+  } else {
+    out["size"] = point(c.size);
+    if (c.yaw != 0.0) out["yaw"] = c.yaw;
+  }
+  if (style.every_wall_height || c.height != level.height) out["height"] = c.height;
+  if (style.every_wall_height || c.base != 0.0) out["base"] = c.base;
+  if (style.names && !c.name.empty()) out["name"] = c.name;
+  return out;
+}
+
 json levelJson(const Level& level, const PlanJsonStyle& style) {
   json out = {{"id", level.id}};
   if (style.names && !level.name.empty()) out["name"] = level.name;
@@ -80,6 +94,11 @@ json levelJson(const Level& level, const PlanJsonStyle& style) {
     json stairs = json::array();
     for (const auto& s : level.stairs) stairs.push_back(stairJson(s, style));
     out["stairs"] = stairs;
+  }
+  if (!level.columns.empty()) {
+    json columns = json::array();
+    for (const auto& c : level.columns) columns.push_back(columnJson(c, level, style));
+    out["columns"] = columns;
   }
   return out;
 }
@@ -127,9 +146,16 @@ json asBuiltToJson(const AsBuilt& a) {
                        {"level", c.level}});
   }
   json out = {{"missing_walls", a.missing_walls}, {"extra_walls", extra}, {"wall_shifts", shifts}};
-  // Turned walls came after the other deviations: written where there are some, so that a
-  // dataset without them records what it always did.
+  // Turned and shortened walls came after the other deviations: written where there are some, so
+  // that a dataset without them records what it always did.
   if (!rotations.empty()) out["wall_rotations"] = rotations;
+  json shortened = json::array();
+  for (const auto& w : a.shortened_walls) {
+    json built = json::array();
+    for (const auto& [from, to] : w.built) built.push_back({from, to});
+    shortened.push_back({{"wall", w.wall}, {"built", built}});
+  }
+  if (!shortened.empty()) out["shortened_walls"] = shortened;
   out["closed_doors"] = a.closed_doors;
   out["clutter"] = clutter;
   return out;

@@ -37,6 +37,29 @@ class IdRegistry {
   std::map<std::string, std::string> first_use_;
 };
 
+// The vertical extent of a wall or column: `height` (the level's height when absent) and `base`,
+// the base below the top. `what` names the element in the error ("wall", "column").
+struct VerticalExtent {
+  double height = 0.0;
+  double base = 0.0;
+};
+VerticalExtent parseVerticalExtent(const common::JsonNode& node, const Level& level,
+                                   const std::string& what) {
+  VerticalExtent extent;
+  extent.height = level.height;
+  if (auto h = node.optionalField("height")) {
+    extent.height = h->numberInRange(limits::kMinSize, limits::kMaxHeight);
+  }
+  if (auto b = node.optionalField("base")) {
+    extent.base = b->numberInRange(0.0, limits::kMaxHeight);
+    if (extent.base >= extent.height) {
+      b->fail("base " + common::formatNumber(extent.base) + " is not below the " + what +
+              "'s top at " + common::formatNumber(extent.height));
+    }
+  }
+  return extent;
+}
+
 Wall parseWall(const common::JsonNode& node, const Level& level, IdRegistry& ids) {
   node.expectObject({"id", "start", "end", "thickness", "height", "base", "name"});
   Wall wall;
@@ -50,17 +73,9 @@ Wall parseWall(const common::JsonNode& node, const Level& level, IdRegistry& ids
   }
   wall.thickness = node.field("thickness").numberInRange(limits::kMinSize, limits::kMaxThickness);
   if (auto name = node.optionalField("name")) wall.name = name->text();
-  wall.height = level.height;
-  if (auto h = node.optionalField("height")) {
-    wall.height = h->numberInRange(limits::kMinSize, limits::kMaxHeight);
-  }
-  if (auto b = node.optionalField("base")) {
-    wall.base = b->numberInRange(0.0, limits::kMaxHeight);
-    if (wall.base >= wall.height) {
-      b->fail("base " + common::formatNumber(wall.base) + " is not below the wall's top at " +
-              common::formatNumber(wall.height));
-    }
-  }
+  const VerticalExtent extent = parseVerticalExtent(node, level, "wall");
+  wall.height = extent.height;
+  wall.base = extent.base;
   return wall;
 }
 
@@ -103,6 +118,39 @@ Room parseRoom(const common::JsonNode& node, IdRegistry& ids) {
     std::reverse(room.outline.begin(), room.outline.end());
   }
   return room;
+}
+
+// A column: `size` [width, depth] (a rectangle turned by `yaw`) or `diameter` (round), exactly
+// one of them.
+Column parseColumn(const common::JsonNode& node, const Level& level, IdRegistry& ids) {
+  node.expectObject({"id", "center", "size", "diameter", "yaw", "height", "base", "name"});
+  Column column;
+  const common::JsonNode id = node.field("id");
+  column.id = id.identifier();
+  ids.add(id, column.id);
+  column.center = planPoint(node.field("center"));
+  const auto size = node.optionalField("size");
+  const auto diameter = node.optionalField("diameter");
+  if (size && diameter) diameter->fail("a column has a size or a diameter, not both");
+  if (!size && !diameter) {
+    node.fail("a column needs \"size\": [width, depth] (rectangular) or \"diameter\" (round)");
+  }
+  if (size) {
+    const auto extents = size->elements(2, 2, "extents");
+    column.size = {extents[0].numberInRange(limits::kMinSize, limits::kMaxThickness),
+                   extents[1].numberInRange(limits::kMinSize, limits::kMaxThickness)};
+    if (auto yaw = node.optionalField("yaw")) column.yaw = yaw->numberInRange(-100.0, 100.0);
+  } else {
+    column.shape = Column::Shape::kRound;
+    const double d = diameter->numberInRange(limits::kMinSize, limits::kMaxThickness);
+    column.size = {d, d};
+    if (auto yaw = node.optionalField("yaw")) yaw->fail("a round column has no yaw");
+  }
+  if (auto name = node.optionalField("name")) column.name = name->text();
+  const VerticalExtent extent = parseVerticalExtent(node, level, "column");
+  column.height = extent.height;
+  column.base = extent.base;
+  return column;
 }
 
 // Doors are parsed after walls and rooms, whose ids they reference.
@@ -297,6 +345,7 @@ void checkLevelExtent(const common::JsonNode& node, const Level& level) {
     points.push_back(w.end);
   }
   for (const auto& r : level.rooms) points.insert(points.end(), r.outline.begin(), r.outline.end());
+  for (const auto& c : level.columns) points.push_back(c.center);
   const Box2 box = Box2::around(points);
   const Eigen::Vector2d size = box.hi - box.lo;
   if (size.maxCoeff() > limits::kMaxLevelExtent) {
@@ -308,8 +357,8 @@ void checkLevelExtent(const common::JsonNode& node, const Level& level) {
 }
 
 Level parseLevel(const common::JsonNode& node, IdRegistry& ids) {
-  node.expectObject(
-      {"id", "name", "elevation", "height", "walls", "doors", "windows", "rooms", "stairs"});
+  node.expectObject({"id", "name", "elevation", "height", "walls", "doors", "windows", "rooms",
+                     "stairs", "columns"});
   Level level;
   const common::JsonNode id = node.field("id");
   level.id = id.identifier();
@@ -319,9 +368,16 @@ Level parseLevel(const common::JsonNode& node, IdRegistry& ids) {
     level.elevation = e->numberInRange(-limits::kMaxCoordinate, limits::kMaxCoordinate);
   }
   level.height = node.field("height").numberInRange(limits::kMinSize, limits::kMaxHeight);
-  for (const auto& w : node.field("walls").elements(1, limits::kMaxWallsPerLevel, "walls")) {
+  // A level of columns alone (an open floor's shell) needs no wall.
+  const auto columns = node.optionalField("columns");
+  std::vector<common::JsonNode> column_nodes;
+  if (columns) column_nodes = columns->elements(0, limits::kMaxWallsPerLevel, "columns");
+  const std::size_t min_walls = column_nodes.empty() ? 1 : 0;
+  for (const auto& w :
+       node.field("walls").elements(min_walls, limits::kMaxWallsPerLevel, "walls")) {
     level.walls.push_back(parseWall(w, level, ids));
   }
+  for (const auto& c : column_nodes) level.columns.push_back(parseColumn(c, level, ids));
   if (auto rooms = node.optionalField("rooms")) {
     std::size_t vertices = 0;
     for (const auto& r : rooms->elements(0, limits::kMaxRoomsPerLevel, "rooms")) {

@@ -6,9 +6,7 @@ namespace isg::bim {
 
 namespace {
 
-double yawOf(const Eigen::Isometry2d& T) {
-  return std::atan2(T.linear()(1, 0), T.linear()(0, 0));
-}
+double yawOf(const Eigen::Isometry2d& T) { return std::atan2(T.linear()(1, 0), T.linear()(0, 0)); }
 
 // A pose [x, y, yaw] moved by T.
 Eigen::Vector3d movedPose(const Eigen::Isometry2d& T, const Eigen::Vector3d& pose) {
@@ -39,6 +37,10 @@ Plan transformedPlan(const Plan& plan, const Eigen::Isometry2d& T) {
     for (Stair& stair : level.stairs) {
       stair.start = T * stair.start;
       stair.end = T * stair.end;
+    }
+    for (Column& column : level.columns) {
+      column.center = T * column.center;
+      if (!column.round()) column.yaw = common::wrapAngle(column.yaw + yawOf(T));
     }
   }
   return moved;

@@ -56,27 +56,36 @@ RasterPlanImport rasterPlanFromImage(const OccupancyImage& image, const std::str
   }
   for (std::size_t k = 0; k < traced.walls.size(); ++k) {
     const RasterWall& traced_wall = traced.walls[k];
+    const Eigen::Vector2d start = placed(traced_wall.start), end = placed(traced_wall.end);
+    const double thickness = std::clamp(traced_wall.thickness, 0.001, 10.0);
+    if (traced_wall.kind != RasterWall::Kind::kWall) {
+      // A compact blob: a column, rectangular along the traced axis or round (its diameter the
+      // traced thickness).
+      Column column;
+      column.id = id_of[k];
+      column.center = 0.5 * (start + end);
+      column.height = options.height;
+      if (traced_wall.kind == RasterWall::Kind::kRoundColumn) {
+        column.shape = Column::Shape::kRound;
+        column.size = {thickness, thickness};
+      } else {
+        const Eigen::Vector2d along = end - start;
+        column.size = {std::clamp(along.norm(), 0.001, 10.0), thickness};
+        column.yaw = std::atan2(along.y(), along.x());
+      }
+      level.columns.push_back(std::move(column));
+      continue;
+    }
     Wall wall;
     wall.id = id_of[k];
-    wall.start = placed(traced_wall.start);
-    wall.end = placed(traced_wall.end);
-    wall.thickness = std::clamp(traced_wall.thickness, 0.001, 10.0);
+    wall.start = start;
+    wall.end = end;
+    wall.thickness = thickness;
     wall.height = options.height;
-    if (traced_wall.kind == RasterWall::Kind::kColumn) wall.name = "column";
-    if (traced_wall.kind == RasterWall::Kind::kRoundColumn) {
-      wall.name = "round column";
-      char text[160];
-      std::snprintf(text, sizeof text,
-                    "%s: a round column %.2f m across at (%.2f, %.2f), written as a square of "
-                    "its diameter (the plan format has no columns yet)",
-                    wall.id.c_str(), wall.thickness, 0.5 * (wall.start.x() + wall.end.x()),
-                    0.5 * (wall.start.y() + wall.end.y()));
-      result.log.push_back(text);
-    }
     if ((wall.end - wall.start).norm() < 0.001) continue;
     level.walls.push_back(std::move(wall));
   }
-  if (level.walls.empty()) {
+  if (level.walls.empty() && level.columns.empty()) {
     throw common::InputError(file, "",
                              "no wall or column found in the image (" +
                                  std::to_string(traced.regions) +
@@ -92,6 +101,7 @@ RasterPlanImport rasterPlanFromImage(const OccupancyImage& image, const std::str
   const double door_height = std::min(options.door_height, 0.9 * options.height);
   int doors = 0;
   for (const RasterDoor& traced_door : traced.doors) {
+    if (traced.walls[traced_door.wall].kind != RasterWall::Kind::kWall) continue;  // no door
     Door door;
     door.id = "D" + std::to_string(++doors);
     door.wall = id_of[traced_door.wall];

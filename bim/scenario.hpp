@@ -6,6 +6,7 @@
 #include <functional>
 #include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "bim/plan.hpp"
@@ -195,6 +196,14 @@ inline const char* aboutName(WallRotation::About a) {
                                           : "centre";
 }
 
+// A wall built only in part (a site where it is still going up): the parts that stand, as
+// [from, to] metres along its axis from its start, ascending and apart, within its length. Doors
+// and windows in a part that stands stay; those in a part not built are gone with it.
+struct ShortenedWall {
+  std::string wall;
+  std::vector<std::pair<double, double>> built;
+};
+
 struct Clutter {
   std::string level;                                 // defaults to the robot's level
   Eigen::Vector3d center = Eigen::Vector3d::Zero();  // z above the level's elevation
@@ -207,12 +216,14 @@ struct AsBuilt {
   std::vector<ExtraWall> extra_walls;
   std::vector<WallShift> wall_shifts;
   std::vector<WallRotation> wall_rotations;
+  std::vector<ShortenedWall> shortened_walls;
   std::vector<std::string> closed_doors;
   std::vector<Clutter> clutter;
 
   bool empty() const {
     return missing_walls.empty() && extra_walls.empty() && wall_shifts.empty() &&
-           wall_rotations.empty() && closed_doors.empty() && clutter.empty();
+           wall_rotations.empty() && shortened_walls.empty() && closed_doors.empty() &&
+           clutter.empty();
   }
 };
 

@@ -48,7 +48,14 @@ Eigen::Vector3d poseOnLevel(const Level& level, const common::JsonNode& pose_nod
   const Eigen::Vector2d xy(pose[0], pose[1]);
   for (const auto& g : computeLevelGeometry(level).walls) {
     if (containsPoint(g.footprint(), xy)) {
-      pose_node.fail(std::string(what) + " is inside wall " + common::inQuotes(g.wall->id));
+      const bool column = level.findWall(g.wall->id) == nullptr;
+      pose_node.fail(std::string(what) + " is inside " + (column ? "column " : "wall ") +
+                     common::inQuotes(g.wall->id));
+    }
+  }
+  for (const auto& column : level.columns) {
+    if (column.round() && (xy - column.center).norm() < column.radius()) {
+      pose_node.fail(std::string(what) + " is inside column " + common::inQuotes(column.id));
     }
   }
   return Eigen::Vector3d(pose[0], pose[1], pose[2]);
@@ -424,6 +431,69 @@ WallRotation parseWallRotation(const common::JsonNode& item, const Plan& plan,
   return rotation;
 }
 
+// A wall built in part: the parts that stand, in order along it. A part may not end inside a door
+// or a window (where would the opening's frame be?); an opening wholly in a part not built goes
+// with it.
+ShortenedWall parseShortenedWall(const common::JsonNode& item, const Plan& plan,
+                                 const AsBuilt& as_built, std::set<std::string>& seen) {
+  item.expectObject({"wall", "built"});
+  ShortenedWall shortened;
+  shortened.wall = changedWall(item.field("wall"), plan, as_built, seen, "shortened");
+  const Level& level = *plan.levelOfWall(shortened.wall);
+  const Wall& wall = *level.findWall(shortened.wall);
+  const double length = (wall.end - wall.start).norm();
+  const std::string wall_length =
+      " (wall " + common::inQuotes(wall.id) + " is " + common::formatNumber(length) + " m long)";
+  const common::JsonNode built = item.field("built");
+  double previous_end = -1.0;
+  for (const auto& part : built.elements(1, limits::kMaxScenarioItems, "built parts")) {
+    const auto ends = part.elements(2, 2, "ends");
+    const double from = ends[0].number(), to = ends[1].number();
+    for (const auto& [end, value] : {std::pair{ends[0], from}, std::pair{ends[1], to}}) {
+      if (value < 0.0 || value > length) {
+        end.fail("must be in [0, " + common::formatNumber(length) + "], got " +
+                 common::formatNumber(value) + wall_length);
+      }
+    }
+    if (to - from < limits::kMinSize) {
+      part.fail("a part from " + common::formatNumber(from) + " to " + common::formatNumber(to) +
+                " m: its end must lie past its start");
+    }
+    if (from <= previous_end) {
+      ends[0].fail("the parts must be in order along the wall and apart: this one starts at " +
+                   common::formatNumber(from) + " m, where the one before ends at " +
+                   common::formatNumber(previous_end) + " m");
+    }
+    previous_end = to;
+    shortened.built.push_back({from, to});
+  }
+  if (shortened.built.size() == 1 && shortened.built[0].first < limits::kMinSize &&
+      shortened.built[0].second > length - limits::kMinSize) {
+    built.fail("the whole wall is built" + wall_length + ": nothing is shortened");
+  }
+  const auto checkOpening = [&](const std::string& kind, const std::string& id, double offset,
+                                double width) {
+    const double lo = offset - 0.5 * width, hi = offset + 0.5 * width;
+    for (std::size_t k = 0; k < shortened.built.size(); ++k) {
+      for (const double end : {shortened.built[k].first, shortened.built[k].second}) {
+        if (end > lo + limits::kMinSize && end < hi - limits::kMinSize) {
+          built.fail("part " + std::to_string(k) + " ends at " + common::formatNumber(end) +
+                     " m, inside " + kind + " " + common::inQuotes(id) + " (" +
+                     common::formatNumber(lo) + "–" + common::formatNumber(hi) +
+                     " m along the wall): end it beside the opening");
+        }
+      }
+    }
+  };
+  for (const auto& door : level.doors) {
+    if (door.wall == wall.id) checkOpening("door", door.id, door.offset, door.width);
+  }
+  for (const auto& window : level.windows) {
+    if (window.wall == wall.id) checkOpening("window", window.id, window.offset, window.width);
+  }
+  return shortened;
+}
+
 Clutter parseClutter(const common::JsonNode& item, const Plan& plan,
                      const std::string& robot_level) {
   item.expectObject({"shape", "center", "size", "yaw", "level"});
@@ -452,8 +522,8 @@ Clutter parseClutter(const common::JsonNode& item, const Plan& plan,
 
 AsBuilt parseAsBuilt(const common::JsonNode& node, const Plan& plan,
                      const std::string& robot_level) {
-  node.expectObject(
-      {"missing_walls", "extra_walls", "wall_shifts", "wall_rotations", "closed_doors", "clutter"});
+  node.expectObject({"missing_walls", "extra_walls", "wall_shifts", "wall_rotations",
+                     "shortened_walls", "closed_doors", "clutter"});
   AsBuilt as_built;
   auto is_wall = [&](const std::string& id) { return plan.levelOfWall(id) != nullptr; };
   auto is_door = [&](const std::string& id) { return plan.levelOfDoor(id) != nullptr; };
@@ -484,6 +554,12 @@ AsBuilt parseAsBuilt(const common::JsonNode& node, const Plan& plan,
     std::set<std::string> seen;
     for (const auto& item : v->elements()) {
       as_built.wall_rotations.push_back(parseWallRotation(item, plan, as_built, seen));
+    }
+  }
+  if (auto v = node.optionalField("shortened_walls")) {
+    std::set<std::string> seen;
+    for (const auto& item : v->elements(0, limits::kMaxScenarioItems, "shortened walls")) {
+      as_built.shortened_walls.push_back(parseShortenedWall(item, plan, as_built, seen));
     }
   }
   if (auto v = node.optionalField("clutter")) {

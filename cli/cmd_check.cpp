@@ -28,13 +28,15 @@ CheckCommand::CheckCommand(CLI::App& parent) {
 int CheckCommand::run() {
   const bim::Scenario scenario = loadInput(input_, "check");
   const bim::Plan& plan = scenario.plan;
-  std::size_t walls = 0, doors = 0, windows = 0, rooms = 0, stairs = 0;
+  std::size_t walls = 0, doors = 0, windows = 0, rooms = 0, stairs = 0, columns = 0, round = 0;
   for (const auto& level : plan.levels) {
     walls += level.walls.size();
     doors += level.doors.size();
     windows += level.windows.size();
     rooms += level.rooms.size();
     stairs += level.stairs.size();
+    columns += level.columns.size();
+    for (const auto& c : level.columns) round += c.round();
   }
   // Windows are an optional extension: a plan without them is summarised as before.
   const std::string window_count =
@@ -44,21 +46,31 @@ int CheckCommand::run() {
       stairs > 0
           ? ", " + std::to_string(stairs) + (stairs == 1 ? " flight" : " flights") + " of stairs"
           : "";
-  std::printf("%s: ok: plan \"%s\" (%s): %s, %s, %s%s, %s%s\n", input_.c_str(), plan.name.c_str(),
+  // And columns.
+  const std::string column_count =
+      columns == 0 ? ""
+                   : ", " + common::counted(columns, "column") +
+                         (round > 0 ? " (" + std::to_string(round) + " round)" : "");
+  std::printf("%s: ok: plan \"%s\" (%s): %s, %s%s, %s%s, %s%s\n", input_.c_str(), plan.name.c_str(),
               scenario.plan_file.c_str(), common::counted(plan.levels.size(), "level").c_str(),
-              common::counted(walls, "wall").c_str(), common::counted(doors, "door").c_str(),
-              window_count.c_str(), common::counted(rooms, "room").c_str(), stair_count.c_str());
+              common::counted(walls, "wall").c_str(), column_count.c_str(),
+              common::counted(doors, "door").c_str(), window_count.c_str(),
+              common::counted(rooms, "room").c_str(), stair_count.c_str());
   const auto& ab = scenario.as_built;
   if (!ab.empty()) {
     // Turned walls are named only when there are some: the line stays as it was for the rest.
     const std::string turned = ab.wall_rotations.empty()
                                    ? ""
                                    : std::to_string(ab.wall_rotations.size()) + " turned walls, ";
+    const std::string shortened =
+        ab.shortened_walls.empty()
+            ? ""
+            : std::to_string(ab.shortened_walls.size()) + " walls built in part, ";
     std::printf(
-        "  as built: %zu missing walls, %zu extra walls, %zu shifted walls, %s"
+        "  as built: %zu missing walls, %zu extra walls, %zu shifted walls, %s%s"
         "%zu closed doors, %zu clutter boxes\n",
         ab.missing_walls.size(), ab.extra_walls.size(), ab.wall_shifts.size(), turned.c_str(),
-        ab.closed_doors.size(), ab.clutter.size());
+        shortened.c_str(), ab.closed_doors.size(), ab.clutter.size());
   }
   if (!verbose_) return kExitOk;
   for (const auto& level : plan.levels) {

@@ -322,7 +322,7 @@ int ImportCommand::importIfc() {
       result.application.empty() ? "" : " from ", result.application.c_str(),
       result.metres_per_unit == 1.0 ? "metres"
                                     : (std::to_string(result.metres_per_unit) + " m").c_str());
-  int walls = 0, doors = 0, windows = 0, rooms = 0, levels = 0;
+  int walls = 0, doors = 0, windows = 0, rooms = 0, levels = 0, columns = 0;
   for (const auto& s : result.storeys) {
     if (s.level_id.empty()) {
       std::fprintf(stderr, "  storey \"%s\" (%.3f m): not imported: %s\n", s.name.c_str(),
@@ -331,19 +331,24 @@ int ImportCommand::importIfc() {
     }
     ++levels;
     walls += s.walls, doors += s.doors, windows += s.windows, rooms += s.rooms;
+    columns += s.columns;
+    const std::string column_count =
+        s.columns > 0 ? ", " + common::counted(s.columns, "column") : "";
     std::fprintf(
         stderr,
         "  storey \"%s\" (%.3f m) -> level %s: %s (%d of another storey standing on "
-        "it), %s, %s, %s of %s\n",
+        "it)%s, %s, %s, %s of %s\n",
         s.name.c_str(), s.elevation, s.level_id.c_str(), common::counted(s.walls, "wall").c_str(),
-        s.walls_from_other_storeys, common::counted(s.doors, "door").c_str(),
+        s.walls_from_other_storeys, column_count.c_str(), common::counted(s.doors, "door").c_str(),
         common::counted(s.windows, "window").c_str(), common::counted(s.rooms, "room").c_str(),
         common::counted(s.spaces, "space").c_str());
   }
-  std::fprintf(stderr, "isg import: wrote %s: %s, %s, %s, %s, %s; %s left out or simplified%s\n",
+  const std::string column_total = columns > 0 ? ", " + common::counted(columns, "column") : "";
+  std::fprintf(stderr, "isg import: wrote %s: %s, %s%s, %s, %s, %s; %s left out or simplified%s\n",
                output_.c_str(), common::counted(levels, "level").c_str(),
-               common::counted(walls, "wall").c_str(), common::counted(doors, "door").c_str(),
-               common::counted(windows, "window").c_str(), common::counted(rooms, "room").c_str(),
+               common::counted(walls, "wall").c_str(), column_total.c_str(),
+               common::counted(doors, "door").c_str(), common::counted(windows, "window").c_str(),
+               common::counted(rooms, "room").c_str(),
                common::counted(result.log.size(), "element").c_str(),
                quiet_ && !result.log.empty() ? " (run without -q to list them)" : "");
   if (!result.reader_errors.empty()) {

@@ -1,6 +1,7 @@
 #include "ifc/ifc_import.hpp"
 
 #include <ifcpp/IFC4/include/IfcBuildingStorey.h>
+#include <ifcpp/IFC4/include/IfcColumn.h>
 #include <ifcpp/IFC4/include/IfcCurtainWall.h>
 #include <ifcpp/IFC4/include/IfcDoor.h>
 #include <ifcpp/IFC4/include/IfcLengthMeasure.h>
@@ -153,6 +154,18 @@ struct WallRecord {
   WallFit fit;
 };
 
+// A free-standing column: its body seen from above as a rectangle or a circle.
+struct ColumnRecord {
+  shared_ptr<IfcElement> element;
+  std::string global_id, name;
+  int storey = -1;
+  bool round = false;
+  Eigen::Vector2d center = Eigen::Vector2d::Zero();
+  Eigen::Vector2d size = Eigen::Vector2d::Zero();  // width along yaw, depth; round: diameter
+  double yaw = 0.0;
+  WallFit fit;  // bottom and top as for walls
+};
+
 struct OpeningRecord {
   std::string kind;               // "door", "window", "doorway", "opening"
   shared_ptr<IfcRoot> described;  // the door / window, or the opening itself
@@ -246,6 +259,9 @@ class Importer {
  private:
   void readStoreys();
   void readWalls();
+  void readColumns();
+  // The columns standing on the level's floor, into `level`.
+  void levelColumns(int s, StoreySummary& summary, bim::Level& level);
   void readOpenings();
   void readFlights();
   void placeFlights(std::vector<bim::Level>& levels);
@@ -306,7 +322,9 @@ class Importer {
   BodyReader bodies_;
   double unit_ = 1.0;
   std::vector<StoreyRecord> storeys_;
+  std::map<BuildingEntity*, int> storey_of_;  // element → index in storeys_
   std::vector<WallRecord> walls_;
+  std::vector<ColumnRecord> columns_;
   std::vector<OpeningRecord> openings_;
   std::vector<FlightRecord> flights_;
   std::set<std::string> used_ids_;
@@ -398,6 +416,10 @@ void Importer::readStoreys() {
   std::stable_sort(
       storeys_.begin(), storeys_.end(),
       [](const StoreyRecord& a, const StoreyRecord& b) { return a.elevation < b.elevation; });
+  // The first storey that contains an element is its storey (walls and columns look it up).
+  for (int s = 0; s < int(storeys_.size()); ++s) {
+    for (const auto& e : storeys_[s].elements) storey_of_.emplace(e.get(), s);
+  }
 }
 
 std::optional<WallFit> Importer::wallFit(const shared_ptr<IfcElement>& element,
@@ -474,10 +496,6 @@ std::optional<WallFit> Importer::wallFit(const shared_ptr<IfcElement>& element,
 
 void Importer::readWalls() {
   std::map<int, std::size_t> walls_in_storey;
-  std::map<BuildingEntity*, int> storey_of;
-  for (int s = 0; s < int(storeys_.size()); ++s) {
-    for (const auto& e : storeys_[s].elements) storey_of.emplace(e.get(), s);
-  }
   for (const auto& [id, entity] : loaded_.model->getMapIfcEntities()) {
     auto element = dynamic_pointer_cast<IfcElement>(entity);
     if (!element) continue;
@@ -499,8 +517,8 @@ void Importer::readWalls() {
     });
     if (is_part) continue;
     const std::string what = describe(kind, element);
-    auto s = storey_of.find(entity.get());
-    if (s == storey_of.end()) {
+    auto s = storey_of_.find(entity.get());
+    if (s == storey_of_.end()) {
       dropped(what, "not contained in a building storey");
       continue;
     }
@@ -524,6 +542,81 @@ void Importer::readWalls() {
               " a level are supported (docs/formats.md, Limits)");
     }
     walls_.push_back(std::move(wall));
+  }
+}
+
+void Importer::readColumns() {
+  for (const auto& [id, entity] : loaded_.model->getMapIfcEntities()) {
+    auto element = dynamic_pointer_cast<IfcColumn>(entity);
+    if (!element) continue;
+    const std::string what = describe("column", element);
+    auto s = storey_of_.find(entity.get());
+    if (s == storey_of_.end()) {
+      dropped(what, "not contained in a building storey");
+      continue;
+    }
+    Eigen::Matrix4d placement;
+    const Mesh body = bodyWithParts(bodies_, element, &placement);
+    const auto fit = body.empty() ? std::nullopt : fitWall(body, placement.block<2, 1>(0, 0));
+    if (!fit || fit->thickness < bim::limits::kMinSize ||
+        (fit->end - fit->start).norm() < bim::limits::kMinSize) {
+      dropped(what, "no body geometry seen from above");
+      continue;
+    }
+    ColumnRecord column;
+    column.element = element;
+    column.global_id = globalIdOf(element);
+    column.name = labelText(element->m_Name);
+    column.storey = s->second;
+    column.fit = *fit;
+    const Eigen::Vector2d along = fit->end - fit->start;
+    const double length = along.norm();
+    if (length > kMaxWallThickness || fit->thickness > kMaxWallThickness) {
+      dropped(what, "wider than " + fmt(kMaxWallThickness) + " m seen from above (" + fmt(length) +
+                        " × " + fmt(fit->thickness) + " m): not a column");
+      continue;
+    }
+    if (fit->top - fit->bottom < bim::limits::kMinSize) {
+      dropped(what, "no height left between its highest bottom and lowest top");
+      continue;
+    }
+    column.center = 0.5 * (fit->start + fit->end);
+    // A circle fills π/4 of its square (a polygon of 16 or more sides between 0.77 and 0.80): a
+    // body whose rectangle is within 5 % of a square and which fills 0.74–0.82 of it is round.
+    const double aspect = std::max(length, fit->thickness) / std::min(length, fit->thickness);
+    if (aspect < 1.05 && fit->rectangle_fill > 0.74 && fit->rectangle_fill < 0.82) {
+      column.round = true;
+      const double d = 0.5 * (length + fit->thickness);
+      column.size = {d, d};
+    } else {
+      column.size = {length, fit->thickness};
+      column.yaw = std::atan2(along.y(), along.x());
+      if (fit->rectangle_fill < 0.9) {
+        simplified(what, "it fills " + std::to_string(int(std::round(fit->rectangle_fill * 100))) +
+                             " % of its rectangle seen from above (a steel section or an "
+                             "L-shaped column): taken as its rectangle, " +
+                             fmt(length) + " × " + fmt(fit->thickness) + " m");
+      }
+    }
+    columns_.push_back(std::move(column));
+  }
+}
+
+void Importer::levelColumns(int s, StoreySummary& summary, bim::Level& level) {
+  const double e = storeys_[s].elevation;
+  for (const ColumnRecord& record : columns_) {
+    if (!standsOn(record.fit, e)) continue;
+    bim::Column column;
+    column.id = uniqueId(record.global_id, summary.level_id);
+    column.shape = record.round ? bim::Column::Shape::kRound : bim::Column::Shape::kRectangle;
+    column.center = record.center;
+    column.size = record.size;
+    column.yaw = record.yaw;
+    column.base = std::max(0.0, record.fit.bottom - e);
+    column.height = std::min(record.fit.top - e, bim::limits::kMaxHeight);
+    if (!record.name.empty()) column.name = cleanText(record.name, common::limits::kMaxTextBytes);
+    level.columns.push_back(std::move(column));
+    ++summary.columns;
   }
 }
 
@@ -1003,6 +1096,7 @@ bim::Level Importer::level(int s, StoreySummary& summary) {
   if (!storey.name.empty()) level.name = cleanText(storey.name, common::limits::kMaxTextBytes);
   level.elevation = storey.elevation;
   const std::map<int, std::pair<double, double>> base_top = levelWalls(s, summary, level);
+  levelColumns(s, summary, level);
   // Openings on this level: in walls standing on it, whose home level (homeOf) is this one.
   std::map<int, std::vector<PlacedOpening>> along_wall;
   for (const auto& opening : openings_) {
@@ -1028,6 +1122,7 @@ ImportResult Importer::run() {
   result_.metres_per_unit = unit_;
   readStoreys();
   readWalls();
+  readColumns();
   readOpenings();
   readFlights();
   const std::vector<int> chosen = chooseLevels();
@@ -1127,13 +1222,14 @@ ImportResult importWithIfcpp(const std::string& file, std::string text,
 nlohmann::json resultToMessage(const ImportResult& r) {
   nlohmann::json storeys = nlohmann::json::array();
   for (const auto& s : r.storeys) {
-    storeys.push_back(
-        {{"name", s.name},
-         {"global_id", s.global_id},
-         {"elevation", s.elevation},
-         {"level_id", s.level_id},
-         {"why_not", s.why_not},
-         {"counts", {s.walls, s.walls_from_other_storeys, s.doors, s.windows, s.rooms, s.spaces}}});
+    storeys.push_back({{"name", s.name},
+                       {"global_id", s.global_id},
+                       {"elevation", s.elevation},
+                       {"level_id", s.level_id},
+                       {"why_not", s.why_not},
+                       {"counts",
+                        {s.walls, s.walls_from_other_storeys, s.doors, s.windows, s.rooms, s.spaces,
+                         s.columns}}});
   }
   return {{"ok", true},
           {"plan", r.plan_json.dump()},
@@ -1163,6 +1259,7 @@ ImportResult resultFromMessage(const nlohmann::json& m) {
     const auto& c = s.at("counts");
     summary.walls = c.at(0), summary.walls_from_other_storeys = c.at(1), summary.doors = c.at(2);
     summary.windows = c.at(3), summary.rooms = c.at(4), summary.spaces = c.at(5);
+    summary.columns = c.at(6);
     r.storeys.push_back(summary);
   }
   return r;

@@ -31,7 +31,8 @@ struct StoreySummary {
   std::string level_id;  // "" when not imported
   std::string why_not;   // why it is not a level
   int walls = 0, walls_from_other_storeys = 0, doors = 0, windows = 0, rooms = 0;
-  int spaces = 0;  // IfcSpace in the storey
+  int spaces = 0;   // IfcSpace in the storey
+  int columns = 0;  // IfcColumn standing on its floor
 };
 
 struct ImportResult {

@@ -34,6 +34,12 @@ DeviationGrade gradeDeviations(const slam::DeviationReport& report, const bim::P
     const bim::Level* level = plan.levelOfWall(wall.wall);
     const bim::Wall* planned = level != nullptr ? level->findWall(wall.wall) : nullptr;
     if (planned == nullptr) continue;
+    // A wall built in part is neither missing nor as planned, and the report has no status for
+    // it yet: it is not graded.
+    if (std::any_of(truth.shortened_walls.begin(), truth.shortened_walls.end(),
+                    [&](const bim::ShortenedWall& w) { return w.wall == wall.wall; })) {
+      continue;
+    }
     const bool truly_missing = std::find(truth.missing_walls.begin(), truth.missing_walls.end(),
                                          wall.wall) != truth.missing_walls.end();
     const bool reported_missing = wall.status == slam::WallStatus::kMissing;

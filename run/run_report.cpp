@@ -7,6 +7,7 @@
 #include <cstdio>
 #include <limits>
 
+#include "bim/column.hpp"
 #include "bim/plan_geometry.hpp"
 #include "eval/report_svg.hpp"
 #include "run/builtin_methods.hpp"
@@ -49,6 +50,22 @@ std::vector<eval::MapOverlay> asBuiltOverlays(const bim::Level& level,
   for (const auto& id : as_built.missing_walls) {
     if (const auto* wall = geometry.findWall(id))
       out.push_back({Kind::kMissingWall, wall->footprint()});
+  }
+  // The parts of a wall built only in part that are not there yet, drawn as missing.
+  for (const auto& shortened : as_built.shortened_walls) {
+    const auto* wall = geometry.findWall(shortened.wall);
+    if (wall == nullptr) continue;
+    double from = 0.0;
+    const auto gap = [&](double lo, double hi) {
+      if (hi - lo < 1e-6) return;
+      out.push_back({Kind::kMissingWall, rectangle(wall->pointAt(0.5 * (lo + hi)), wall->axis,
+                                                   0.5 * (hi - lo), 0.5 * wall->wall->thickness)});
+    };
+    for (const auto& [lo, hi] : shortened.built) {
+      gap(from, lo);
+      from = hi;
+    }
+    gap(from, wall->length);
   }
   for (const auto& shift : as_built.wall_shifts) {
     const auto* wall = geometry.findWall(shift.wall);
@@ -95,6 +112,9 @@ eval::StoreyPanel storeyPanel(const bim::Level& level, const RunSetup& setup) {
   const bim::LevelGeometry geometry = bim::computeLevelGeometry(level);
   for (const auto& wall : geometry.walls) {
     for (auto& piece : wall.footprintPieces()) panel.walls.push_back(std::move(piece));
+  }
+  for (const auto& column : level.columns) {  // rectangular ones are among the walls
+    if (column.round()) panel.walls.push_back(bim::columnFootprint(column));
   }
   if (setup.as_built != nullptr) panel.overlays = asBuiltOverlays(level, geometry, *setup.as_built);
   for (const auto& room : level.rooms) {

@@ -120,6 +120,14 @@ Eigen::Vector3d LidarSimulator::surfaceNormal(int geom, const Eigen::Vector3d& p
     }
     case mjGEOM_SPHERE:
       return (point - shape.pos).normalized();
+    case mjGEOM_CYLINDER: {
+      // On a cap (within a hair of its height) the axis, else the radial direction.
+      const Eigen::Vector3d local = shape.R.transpose() * (point - shape.pos);
+      if (std::abs(local.z()) * shape.inverse_half.y() > 1.0 - 1e-9) {
+        return local.z() >= 0 ? shape.R.col(2) : Eigen::Vector3d(-shape.R.col(2));
+      }
+      return (shape.R * Eigen::Vector3d(local.x(), local.y(), 0.0)).normalized();
+    }
     default:
       return -direction;  // unknown shape: as if hit head-on
   }

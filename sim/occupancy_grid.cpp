@@ -4,6 +4,7 @@
 #include <cmath>
 #include <limits>
 
+#include "bim/column.hpp"
 #include "bim/distance_transform.hpp"
 #include "bim/facade.hpp"
 #include "bim/plan_geometry.hpp"
@@ -117,6 +118,9 @@ OccupancyGrid::OccupancyGrid(const bim::Plan& plan, const bim::AsBuilt& as_built
     const auto footprint = g.footprint();
     paint(footprint, true);
   }
+  for (const auto& column : level.columns) {  // rectangular ones are among the walls already
+    if (column.round() && column.base <= kRobotHeight) paint(bim::columnFootprint(column), true);
+  }
   for (const auto& door : level.doors) {
     const bool closed = std::find(as_built.closed_doors.begin(), as_built.closed_doors.end(),
                                   door.id) != as_built.closed_doors.end();
@@ -161,6 +165,12 @@ void OccupancyGrid::frame(const bim::Level& level, const bim::LevelGeometry& geo
       hi = hi.cwiseMax(p);
     }
   }
+  for (const auto& column : level.columns) {
+    for (const auto& p : bim::columnFootprint(column)) {
+      lo = lo.cwiseMin(p);
+      hi = hi.cwiseMax(p);
+    }
+  }
   // A very large level gets coarser cells rather than gigabytes of grid (docs/simulation.md).
   const Eigen::Vector2d span = hi - lo;
   const double cells = (span.x() / resolution + 6) * (span.y() / resolution + 6);
@@ -173,9 +183,10 @@ void OccupancyGrid::frame(const bim::Level& level, const bim::LevelGeometry& geo
 
 void OccupancyGrid::clearPlannedWalls(const bim::Level& plan_level, const bim::AsBuilt& as_built) {
   // Where a wall of the plan is missing in the building, its footprint is floor: the rooms on
-  // either side join, as in the world. Where it is shifted or turned, the part of its planned
-  // footprint it left is floor too: left blocked, that strip would lie across each of its doorways
-  // and shut them. (Walls as they stand are painted over it.)
+  // either side join, as in the world (and so where it is built only in part, between its parts).
+  // Where it is shifted or turned, the part of its planned footprint it left is floor too: left
+  // blocked, that strip would lie across each of its doorways and shut them. (Walls as they stand
+  // are painted over it.)
   const bim::LevelGeometry plan_geometry = bim::computeLevelGeometry(plan_level);
   for (const auto& g : plan_geometry.walls) {
     const std::string& id = g.wall->id;
@@ -187,7 +198,10 @@ void OccupancyGrid::clearPlannedWalls(const bim::Level& plan_level, const bim::A
     const bool turned =
         std::any_of(as_built.wall_rotations.begin(), as_built.wall_rotations.end(),
                     [&](const bim::WallRotation& r) { return r.wall == id && r.angle_deg != 0; });
-    if (missing || shifted || turned) paint(g.footprint(), false);
+    const bool shortened =
+        std::any_of(as_built.shortened_walls.begin(), as_built.shortened_walls.end(),
+                    [&](const bim::ShortenedWall& w) { return w.wall == id; });
+    if (missing || shifted || turned || shortened) paint(g.footprint(), false);
   }
 }
 

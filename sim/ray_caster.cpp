@@ -55,7 +55,8 @@ RayCaster::RayCaster(const mjModel& model, const mjData& data, unsigned groups)
       moving_.push_back(g);
       continue;
     }
-    if (model.geom_type[g] != mjGEOM_BOX) {
+    const int type = model.geom_type[g];
+    if (type != mjGEOM_BOX && type != mjGEOM_CYLINDER) {
       others_.push_back(g);
       continue;
     }
@@ -65,7 +66,11 @@ RayCaster::RayCaster(const mjModel& model, const mjData& data, unsigned groups)
     // geom's axes in world coordinates.
     box.mat =
         Eigen::Map<const Eigen::Matrix<double, 3, 3, Eigen::RowMajor>>(data.geom_xmat + 9 * g);
-    box.half = Eigen::Map<const Eigen::Vector3d>(model.geom_size + 3 * g);
+    const double* size = model.geom_size + 3 * g;
+    // A cylinder (a round column) enters the hierarchy as the box around it, its own axis z.
+    box.cylinder = type == mjGEOM_CYLINDER;
+    box.half = box.cylinder ? Eigen::Vector3d(size[0], size[0], size[1])
+                            : Eigen::Vector3d(size[0], size[1], size[2]);
     box.geom = g;
     box.axis_aligned = box.mat == Eigen::Matrix3d::Identity();
     box.upright = box.mat(2, 2) == 1.0 && box.mat(2, 0) == 0.0 && box.mat(2, 1) == 0.0 &&
@@ -83,7 +88,8 @@ RayCaster::RayCaster(const mjModel& model, const mjData& data, unsigned groups)
   const Eigen::Vector3d scene = scene_hi - scene_lo;
   for (std::size_t i = 0; i < boxes.size();) {
     const Eigen::Vector3d size = hi[i] - lo[i];
-    if (boxes.size() > 8 && size.x() > 0.25 * scene.x() && size.y() > 0.25 * scene.y()) {
+    if (boxes.size() > 8 && !boxes[i].cylinder && size.x() > 0.25 * scene.x() &&
+        size.y() > 0.25 * scene.y()) {
       large_.push_back(boxes[i]);
       boxes.erase(boxes.begin() + i);
       lo.erase(lo.begin() + i);
@@ -226,7 +232,7 @@ std::optional<RayCaster::Hit> RayCaster::cast(const Eigen::Vector3d& origin,
       if (node.count > 0) {
         for (int i = node.first; i < node.first + node.count; ++i) {
           const Box& box = boxes_[fragment_box_[i]];
-          best.consider(intersectBox(box, origin, direction), box.geom);
+          best.consider(intersectSolid(box, origin, direction), box.geom);
         }
         continue;
       }

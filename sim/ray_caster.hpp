@@ -18,7 +18,9 @@ namespace isg::sim {
 // only the boxes along its way, nearest first, stopping as soon as nothing nearer can be hit.
 // Slabs that span the building are tested directly first: their hit bounds the search; long
 // walls enter the hierarchy as several short fragments.
-// Boxes are intersected in their own frame exactly as MuJoCo does (slab test); other geom types
+// Boxes are intersected in their own frame exactly as MuJoCo does (slab test), static cylinders
+// (round columns) go into the hierarchy by their bounding boxes and are tested by MuJoCo's own
+// cylinder test; other geom types
 // and geoms that move (the robot, if its group is asked for) are handed to mju_rayGeom /
 // mj_rayMesh. Ties are broken by the lower geom id, as mj_ray's loop does.
 class RayCaster {
@@ -54,8 +56,9 @@ class RayCaster {
     Eigen::Matrix3d mat;  // columns: the box's axes in world coordinates
     Eigen::Vector3d half;
     int geom;
-    bool axis_aligned;  // mat is the identity
-    bool upright;       // turned about z only (every wall): the z row of mat is (0, 0, 1)
+    bool axis_aligned;      // mat is the identity
+    bool upright;           // turned about z only (every wall): the z row of mat is (0, 0, 1)
+    bool cylinder = false;  // a cylinder of radius half.x and half-height half.z, not a box
   };
   struct Node {
     Eigen::Vector3d lo, hi;
@@ -77,6 +80,12 @@ class RayCaster {
                        const Eigen::Vector3d& direction) const;
   double intersectOther(int geom, const Eigen::Vector3d& origin,
                         const Eigen::Vector3d& direction) const;
+  // intersectBox, or for a cylinder MuJoCo's own cylinder test.
+  double intersectSolid(const Box& box, const Eigen::Vector3d& origin,
+                        const Eigen::Vector3d& direction) const {
+    return box.cylinder ? intersectOther(box.geom, origin, direction)
+                        : intersectBox(box, origin, direction);
+  }
   // The geoms every ray tests whatever its direction: building-wide slabs, non-box static geoms
   // and moving geoms.
   void castAlwaysTested(const Eigen::Vector3d& origin, const Eigen::Vector3d& direction,

@@ -134,14 +134,14 @@ std::optional<RayCaster::Hit> ScanCaster::cast(const Eigen::Vector3d& origin,
   caster_.castAlwaysTested(origin, direction, best);
   for (const auto& c : everywhere_) {
     const auto& box = caster_.boxes_[c.box];
-    best.consider(caster_.intersectBox(box, origin, direction), box.geom);
+    best.consider(caster_.intersectSolid(box, origin, direction), box.geom);
   }
   const int k = sectorOf(direction.x(), direction.y());
   for (int i = sector_begin_[k]; i < sector_begin_[k + 1]; ++i) {
     const Candidate& c = candidates_[i];
     if (best.distance >= 0 && c.min_distance > best.distance) break;
     const auto& box = caster_.boxes_[c.box];
-    best.consider(caster_.intersectBox(box, origin, direction), box.geom);
+    best.consider(caster_.intersectSolid(box, origin, direction), box.geom);
   }
   if (best.distance < 0) return std::nullopt;
   return best;

@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "bim/box_grid.hpp"
+#include "bim/column.hpp"
 #include "bim/plan_geometry.hpp"
 #include "common/input_error.hpp"
 #include "worlds/as_built.hpp"
@@ -45,12 +46,20 @@ void checkWalkClear(const bim::Scenario& scenario) {
   const bim::Level level = worlds::asBuiltLevel(plan_level, scenario.as_built);
   const bim::LevelGeometry geometry = bim::computeLevelGeometry(level);
   std::vector<Solid> solids;
-  for (const auto& g : geometry.walls) {
+  for (std::size_t w = 0; w < geometry.walls.size(); ++w) {
+    const bim::WallGeometry& g = geometry.walls[w];
     if (g.wall->base > kWalkerHeight) continue;
-    const std::string kind = g.wall->name.find("column") != std::string::npos ? "column" : "wall";
+    // Rectangular columns follow the level's walls; a wall named a column (a plan from before
+    // columns were their own element) is said to be one too.
+    const bool column = w >= level.walls.size() || g.wall->name.find("column") != std::string::npos;
+    const std::string kind = column ? "column" : "wall";
     for (auto& piece : g.footprintPieces()) {
       solids.push_back({std::move(piece), kind + " \"" + g.wall->id + "\""});
     }
+  }
+  for (const auto& column : level.columns) {
+    if (!column.round() || column.base > kWalkerHeight) continue;
+    solids.push_back({bim::columnFootprint(column), "round column \"" + column.id + "\""});
   }
   for (std::size_t i = 0; i < scenario.as_built.clutter.size(); ++i) {
     const auto& c = scenario.as_built.clutter[i];
@@ -78,7 +87,7 @@ void checkWalkClear(const bim::Scenario& scenario) {
           "line " + std::to_string(pose.line) + ": " + where + solids[std::size_t(k)].what +
               " on level \"" + level.id +
               "\" as built (is the walk in the plan frame of robot.level? a wall not built yet "
-              "goes in as_built.missing_walls)");
+              "goes in as_built.missing_walls, one built in part in as_built.shortened_walls)");
     }
   }
 }

@@ -7,6 +7,7 @@
 #include <numbers>
 #include <sstream>
 
+#include "bim/column.hpp"
 #include "bim/plan_geometry.hpp"
 #include "bim/polygon.hpp"
 #include "bim/stairs.hpp"
@@ -221,6 +222,9 @@ void writeLevel(std::ostringstream& out, const bim::Plan& plan, const bim::Level
   for (const auto& room : level.rooms) {
     for (const auto& p : room.outline) box.add(p);
   }
+  for (const auto& column : level.columns) {
+    for (const auto& p : bim::columnFootprint(column)) box.add(p);
+  }
   world_box.add(box.lo);
   world_box.add(box.hi);
 
@@ -238,8 +242,14 @@ void writeLevel(std::ostringstream& out, const bim::Plan& plan, const bim::Level
   }
   writeStairs(writer, plan, plan_level);
 
-  for (const auto& g : geometry.walls) {
+  for (std::size_t w = 0; w < geometry.walls.size(); ++w) {
+    const bim::WallGeometry& g = geometry.walls[w];
     const bim::Wall& wall = *g.wall;
+    if (w >= level.walls.size()) {  // a rectangular column: one box, no openings
+      writer.wallPiece("column/" + wall.id, "wall", g, -g.extend_start, g.length + g.extend_end,
+                       wall.thickness, level.elevation + wall.base, level.elevation + wall.height);
+      continue;
+    }
     const bool extra = wall.id.rfind("extra", 0) == 0 && plan_level.findWall(wall.id) == nullptr;
     const std::string material = extra ? "extra_wall" : "wall";
     const double z0 = level.elevation + wall.base;
@@ -269,6 +279,15 @@ void writeLevel(std::ostringstream& out, const bim::Plan& plan, const bim::Level
     }
     writer.wallPiece("wall/" + wall.id + "/" + std::to_string(piece), material, g, s,
                      g.length + g.extend_end, wall.thickness, z0, z1);
+  }
+
+  for (const auto& column : level.columns) {
+    if (!column.round()) continue;
+    const double z0 = level.elevation + column.base, z1 = level.elevation + column.height;
+    out << "    <geom name=\"column/" << common::xmlEscape(column.id)
+        << "\" class=\"building\" type=\"cylinder\" material=\"wall\" pos=\""
+        << vec({column.center.x(), column.center.y(), 0.5 * (z0 + z1)}) << "\" size=\""
+        << vec({column.radius(), 0.5 * (z1 - z0)}) << "\"/>\n";
   }
 
   for (std::size_t k = 0; k < as_built.clutter.size(); ++k) {

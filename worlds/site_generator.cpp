@@ -112,10 +112,21 @@ GeneratedBuilding generateSite(const GeneratorSpec& spec) {
     level.walls.push_back(wall);
     solids.push_back({wall.start, wall.end, thickness});
   };
+  // Square columns; inside, on some sites, round ones (decided last, below).
   int columns = 0;
-  const auto addColumn = [&](const Eigen::Vector2d& c) {
-    addWall("C" + std::to_string(++columns), c - Eigen::Vector2d(0.5 * column, 0),
-            c + Eigen::Vector2d(0.5 * column, 0), column, "column");
+  std::vector<std::size_t> inner_columns;
+  const auto addColumn = [&](const Eigen::Vector2d& c, bool inner) {
+    if (inner) inner_columns.push_back(level.columns.size());
+    const Eigen::Vector2d at = slab.place(c);
+    bim::Column pillar;
+    pillar.id = "C" + std::to_string(++columns);
+    pillar.center = {mm(at.x()), mm(at.y())};
+    pillar.size = {column, column};
+    pillar.height = level.height;
+    pillar.name = "column";
+    level.columns.push_back(pillar);
+    solids.push_back({pillar.center - Eigen::Vector2d(0.5 * column, 0),
+                      pillar.center + Eigen::Vector2d(0.5 * column, 0), column});
   };
 
   // The core: an off-centre block of small rooms, clear of the cut.
@@ -147,12 +158,12 @@ GeneratedBuilding generateSite(const GeneratorSpec& spec) {
     const int steps = std::max(1, int(std::round(length / bay)));
     for (int k = 0; k < steps; ++k) facade_columns.push_back(a + (b - a) * (double(k) / steps));
   }
-  for (const auto& c : facade_columns) addColumn(c);
+  for (const auto& c : facade_columns) addColumn(c, false);
   for (int i = 1; i < bays_x; ++i) {
     for (int j = 1; j < bays_y; ++j) {
       const Eigen::Vector2d c(i * slab.bay_x, j * slab.bay_y);
       if (!slab.inside(c, 1.5) || nearCore(c, kPassage + 0.5 * column)) continue;
-      addColumn(c);
+      addColumn(c, true);
     }
   }
 
@@ -235,6 +246,13 @@ GeneratedBuilding generateSite(const GeneratorSpec& spec) {
     partitions.push_back(id);
   }
 
+  // On some sites the columns inside are round (cast in tubes): they give the localizer no plane
+  // to hold on to. Drawn last, so that the rest of a site is the same either way.
+  const bool round_inside = unit(rng) < 0.3;
+  if (round_inside) {
+    for (std::size_t k : inner_columns) level.columns[k].shape = bim::Column::Shape::kRound;
+  }
+
   GeneratedBuilding out;
   out.name = spec.family + "-" + std::to_string(spec.seed);
   // The plan lists no rooms: the core's are walls only, the floor is open.
@@ -242,13 +260,15 @@ GeneratedBuilding generateSite(const GeneratorSpec& spec) {
   out.corridors = 0;
   char title[200];
   std::snprintf(title, sizeof title,
-                "generated site: %.0f × %.0f m open floor, %d columns, %d façade walls, a core of "
-                "%d rooms, %zu partitions, seed %llu",
-                slab.width, slab.depth, columns, facade, rooms, partitions.size(),
-                (unsigned long long)spec.seed);
+                "generated site: %.0f × %.0f m open floor, %d columns%s, %d façade walls, a core "
+                "of %d rooms, %zu partitions, seed %llu",
+                slab.width, slab.depth, columns,
+                round_inside && !inner_columns.empty() ? " (round inside)" : "", facade, rooms,
+                partitions.size(), (unsigned long long)spec.seed);
   bim::Plan plan;
   plan.name = title;
   plan.levels.push_back(std::move(level));
+  const bim::Level& level_ref = plan.levels.back();
   out.plan = json::parse(
       bim::planToJson(plan, {.every_wall_height = false, .inferred_door_rooms = false}).dump());
 
@@ -286,6 +306,40 @@ GeneratedBuilding generateSite(const GeneratorSpec& spec) {
                        {"yaw", mm(3.14159 * built_unit(built_rng))}});
   }
   if (!clutter.empty()) as_built["clutter"] = clutter;
+  // On 6 sites in 10 a wall is going up: a façade wall without a window or a partition, not
+  // missing, built from one end to 30–70 % of it, or (one in three) with a gap of 1–2 m in the
+  // middle. Drawn after the rest, so that the other deviations are the same either way.
+  std::vector<std::string> rising;
+  for (const auto& wall : level_ref.walls) {
+    const bool facade_or_partition = wall.name == "facade" || wall.name == "partition";
+    const bool has_window = std::any_of(level_ref.windows.begin(), level_ref.windows.end(),
+                                        [&](const bim::Window& w) { return w.wall == wall.id; });
+    const bool gone = std::find(missing.begin(), missing.end(), wall.id) != missing.end();
+    if (facade_or_partition && !has_window && !gone && (wall.end - wall.start).norm() >= 2.5) {
+      rising.push_back(wall.id);
+    }
+  }
+  if (!rising.empty() && built_unit(built_rng) < 0.6) {
+    const std::string id = rising[std::size_t(built_rng() % rising.size())];
+    const bim::Wall& wall = *level_ref.findWall(id);
+    // To the millimetre, never past the wall's end.
+    const double length = std::floor(1000.0 * (wall.end - wall.start).norm()) / 1000.0;
+    json built = json::array();
+    if (built_rng() % 3 == 0) {
+      const double gap = std::min(mm(1.0 + built_unit(built_rng)), length - 1.0);
+      const double from = mm(0.5 + (length - 1.0 - gap) * built_unit(built_rng));
+      built.push_back({0.0, from});
+      built.push_back({mm(from + gap), length});
+    } else {
+      const double part = mm(length * (0.3 + 0.4 * built_unit(built_rng)));
+      if (built_rng() % 2 == 0) {
+        built.push_back({0.0, part});
+      } else {
+        built.push_back({mm(length - part), length});
+      }
+    }
+    as_built["shortened_walls"] = json::array({{{"wall", id}, {"built", built}}});
+  }
   out.scenario = {{"format", "isg.scenario"},
                   {"version", 1},
                   {"plan", out.name + ".json"},

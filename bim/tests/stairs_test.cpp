@@ -13,6 +13,7 @@ namespace isg::bim {
 namespace {
 
 using testing::parsePlanJson;
+using testing::planErrorOf;
 using testing::twoRoomPlanJson;
 
 // The two-room box on L0 and the same box 3.2 m above it on L1 (ids suffixed "u"), joined by a
@@ -34,15 +35,6 @@ nlohmann::json twoStoreyPlanJson() {
   doc["levels"][0]["stairs"] = nlohmann::json::parse(
       R"([{"id": "S1", "start": [4.5, 0.2], "end": [4.5, 3.8], "width": 0.8, "to": "L1"}])");
   return doc;
-}
-
-std::string errorOf(const nlohmann::json& doc) {
-  try {
-    parsePlanJson(doc);
-  } catch (const common::InputError& e) {
-    return e.what();
-  }
-  return "(accepted)";
 }
 
 TEST(Stairs, StepsAreDerivedFromTheRiseByHand) {
@@ -120,7 +112,7 @@ TEST(Stairs, EachRuleHasItsExactError) {
   auto with = [](auto edit) {
     auto doc = twoStoreyPlanJson();
     edit(doc["levels"][0]["stairs"][0], doc);
-    return errorOf(doc);
+    return planErrorOf(doc);
   };
   EXPECT_EQ(with([](auto&, auto&) {}), "(accepted)");
   EXPECT_EQ(with([](auto& s, auto&) { s["to"] = "L9"; }), at + "/to: no level \"L9\"");
@@ -180,7 +172,7 @@ TEST(Stairs, EachRuleHasItsExactError) {
     auto doc = twoStoreyPlanJson();
     doc["levels"][0]["stairs"].push_back(nlohmann::json::parse(
         R"({"id": "S9", "start": [1.5, 0.5], "end": [1.5, 3.5], "width": 0.8, "to": "L9"})"));
-    EXPECT_EQ(errorOf(doc), "test.json: /levels/0/stairs/1/to: no level \"L9\"");
+    EXPECT_EQ(planErrorOf(doc), "test.json: /levels/0/stairs/1/to: no level \"L9\"");
   }
   // A third level between the two: flights join neighbours.
   EXPECT_EQ(

@@ -5,6 +5,7 @@
 
 #include "bim/plan.hpp"
 #include "bim/plan_parser.hpp"
+#include "common/input_error.hpp"
 #include "common/json_reader.hpp"
 
 namespace isg::bim::testing {
@@ -36,10 +37,46 @@ inline nlohmann::json twoRoomPlanJson() {
   })");
 }
 
+// A 12 m × 8 m hall of 0.2 m walls with columns: C1 a 0.4 m × 0.3 m rectangle at (3, 2), C2 the
+// same turned 90° at (9, 2), C3 a round one 0.4 m across at (3, 6), C4 round, 0.5 m across, at
+// (9, 6), 2.5 m tall on a 0.1 m plinth; C5 a round one touching the inner face of the south wall
+// (y = 0.1) from (6, 0.25). No rooms: an open floor.
+inline nlohmann::json columnHallPlanJson() {
+  return nlohmann::json::parse(R"({
+    "format": "isg.plan", "version": 1, "name": "column hall",
+    "levels": [{
+      "id": "L0", "height": 3.0,
+      "walls": [
+        {"id": "W1", "start": [0, 0], "end": [12, 0], "thickness": 0.2},
+        {"id": "W2", "start": [12, 0], "end": [12, 8], "thickness": 0.2},
+        {"id": "W3", "start": [12, 8], "end": [0, 8], "thickness": 0.2},
+        {"id": "W4", "start": [0, 8], "end": [0, 0], "thickness": 0.2}
+      ],
+      "columns": [
+        {"id": "C1", "center": [3, 2], "size": [0.4, 0.3]},
+        {"id": "C2", "center": [9, 2], "size": [0.4, 0.3], "yaw": 1.5707963267948966},
+        {"id": "C3", "center": [3, 6], "diameter": 0.4},
+        {"id": "C4", "center": [9, 6], "diameter": 0.5, "height": 2.6, "base": 0.1, "name": "tube"},
+        {"id": "C5", "center": [6, 0.25], "diameter": 0.4}
+      ]
+    }]
+  })");
+}
+
 inline Plan parsePlanJson(const nlohmann::json& document, common::Warnings* warnings = nullptr,
                           const std::string& file = "test.json") {
   const common::JsonSource source{file, warnings};
   return parsePlan(common::JsonNode(document, "", source));
+}
+
+// The message a plan is refused with, or "(accepted)".
+inline std::string planErrorOf(const nlohmann::json& document) {
+  try {
+    parsePlanJson(document);
+  } catch (const common::InputError& e) {
+    return e.what();
+  }
+  return "(accepted)";
 }
 
 }  // namespace isg::bim::testing

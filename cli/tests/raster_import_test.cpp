@@ -174,17 +174,17 @@ TEST(RasterImport, ARealNav2MapImportsWithItsPillars) {
   const bim::Plan plan = bim::loadPlan((sandbox.dir() / "sandbox.json").string());
   const auto& level = plan.levels.front();
   int pillars = 0;
-  for (const auto& wall : level.walls) {
-    if (wall.name != "round column") continue;
+  for (const auto& column : level.columns) {
+    if (!column.round()) continue;
     ++pillars;
-    const Eigen::Vector2d centre = 0.5 * (wall.start + wall.end);
     // The nearest grid point of {-1.1, 0, 1.1}², within the map's own 0.1 m.
-    const Eigen::Vector2d grid(1.1 * std::round(centre.x() / 1.1),
-                               1.1 * std::round(centre.y() / 1.1));
-    EXPECT_LT((centre - grid).norm(), 0.12) << wall.id;
-    EXPECT_NEAR(wall.thickness, 0.36, 0.05) << wall.id;
+    const Eigen::Vector2d grid(1.1 * std::round(column.center.x() / 1.1),
+                               1.1 * std::round(column.center.y() / 1.1));
+    EXPECT_LT((column.center - grid).norm(), 0.12) << column.id;
+    EXPECT_NEAR(column.size.x(), 0.36, 0.05) << column.id;
   }
   EXPECT_EQ(pillars, 9);
+  for (const auto& wall : level.walls) EXPECT_EQ(wall.name.find("column"), std::string::npos);
   EXPECT_EQ(level.rooms.size(), 1u);
   EXPECT_EQ(plan.imported_from->schema, "ROS map");
 }

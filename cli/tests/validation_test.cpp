@@ -382,6 +382,53 @@ std::vector<Case> cases() {
          s["as_built"]["wall_rotations"] = {{{"wall", "W3"}, {"angle_deg", 5}}};
        },
        "scenario.json: /as_built/wall_rotations/0/wall: \"W3\" is also in missing_walls"},
+      {"ShortenedUnknownWall", "scenario.json",
+       [](json&, json& s) {
+         s["as_built"]["shortened_walls"] = {{{"wall", "W9"}, {"built", {{0, 1}}}}};
+       },
+       "scenario.json: /as_built/shortened_walls/0/wall: no wall \"W9\" in the plan"},
+      {"ShortenedPastItsEnd", "scenario.json",
+       [](json&, json& s) {
+         s["as_built"]["shortened_walls"] = {{{"wall", "W3"}, {"built", {{0, 7}}}}};
+       },
+       "scenario.json: /as_built/shortened_walls/0/built/0/1: must be in [0, 6], got 7 (wall "
+       "\"W3\" is 6 m long)"},
+      {"ShortenedEmptyPart", "scenario.json",
+       [](json&, json& s) {
+         s["as_built"]["shortened_walls"] = {{{"wall", "W3"}, {"built", {{2, 2}}}}};
+       },
+       "scenario.json: /as_built/shortened_walls/0/built/0: a part from 2 to 2 m: its end must lie "
+       "past its start"},
+      {"ShortenedOutOfOrder", "scenario.json",
+       [](json&, json& s) {
+         s["as_built"]["shortened_walls"] = {{{"wall", "W3"}, {"built", {{2, 4}, {1, 1.5}}}}};
+       },
+       "scenario.json: /as_built/shortened_walls/0/built/1/0: the parts must be in order along "
+       "the wall and apart: this one starts at 1 m, where the one before ends at 4 m"},
+      {"ShortenedNotAtAll", "scenario.json",
+       [](json&, json& s) {
+         s["as_built"]["shortened_walls"] = {{{"wall", "W3"}, {"built", {{0, 6}}}}};
+       },
+       "scenario.json: /as_built/shortened_walls/0/built: the whole wall is built (wall \"W3\" "
+       "is 6 m long): nothing is shortened"},
+      {"ShortenedThroughADoor", "scenario.json",
+       [](json&, json& s) {
+         s["as_built"]["shortened_walls"] = {{{"wall", "W1"}, {"built", {{0, 4.5}}}}};
+       },
+       "scenario.json: /as_built/shortened_walls/0/built: part 0 ends at 4.5 m, inside door "
+       "\"D2\" (4–5 m along the wall): end it beside the opening"},
+      {"ShortenedTwice", "scenario.json",
+       [](json&, json& s) {
+         s["as_built"]["shortened_walls"] = {{{"wall", "W3"}, {"built", {{0, 1}}}},
+                                             {{"wall", "W3"}, {"built", {{2, 3}}}}};
+       },
+       "scenario.json: /as_built/shortened_walls/1/wall: \"W3\" is shortened twice"},
+      {"ShortenedMissingWall", "scenario.json",
+       [](json&, json& s) {
+         s["as_built"]["missing_walls"] = {"W3"};
+         s["as_built"]["shortened_walls"] = {{{"wall", "W3"}, {"built", {{0, 1}}}}};
+       },
+       "scenario.json: /as_built/shortened_walls/0/wall: \"W3\" is also in missing_walls"},
       {"ClosedUnknownDoor", "scenario.json",
        [](json&, json& s) {
          s["as_built"]["closed_doors"] = {"D1", "D9"};

@@ -109,7 +109,8 @@ TEST(WalkReplay, AWalkThatCannotBeWalkedIsRefusedNamingItsLine) {
   EXPECT_EQ(refused("# a walk\n0 2 2 0 0 0 0 1\n1 2.5 1 0 0 0 0 1\n2 3 0.05 0 0 0 0 1\n"),
             "isg run: error: walk.tum: line 4: the walk at (3.000, 0.050) is inside wall \"W1\" "
             "on level \"L0\" as built (is the walk in the plan frame of robot.level? a wall not "
-            "built yet goes in as_built.missing_walls)\n");
+            "built yet goes in as_built.missing_walls, one built in part in "
+            "as_built.shortened_walls)\n");
   EXPECT_EQ(refused("0 2 2 0 0 0 0 1\n0.1 2.5 2 0 0 0 0 1\n"),
             "isg run: error: walk.tum: line 2: the walk moves 0.500 m in 0.100 s since line 1 "
             "(5.0 m/s; at most 3 m/s is walked)\n");
@@ -146,6 +147,23 @@ TEST(WalkReplay, AWallNotBuiltYetIsWalkedThrough) {
   EXPECT_NE(refused.err.find("walk.tum: line 2: the walk at (3.000, 2.200) is inside wall \"W5\""),
             std::string::npos)
       << refused.err;
+  // Built in part (W5 runs (0, 2.2) → (12, 2.2)): through its gap from 2.6 to 3.6 m the walk
+  // passes; with the gap from 1.5 to 2.5 m it meets the second part.
+  const auto shortened = [&](const std::string& built) {
+    std::string text = scenarioWith("d1", "handheld", "{\"trajectory\": \"walk.tum\"}");
+    text.pop_back();
+    return text + ", \"as_built\": {\"shortened_walls\": [{\"wall\": \"W5\", \"built\": " + built +
+           "}]}}";
+  };
+  sandbox.write("gap.json", shortened("[[0, 2.6], [3.6, 12]]"));
+  const auto through = sandbox.run("simulate gap.json -q -o f");
+  EXPECT_EQ(through.exit_code, 0) << through.err;
+  sandbox.write("beside.json", shortened("[[0, 1.5], [2.5, 12]]"));
+  const auto beside = sandbox.run("simulate beside.json -q -o g");
+  EXPECT_EQ(beside.exit_code, 1);
+  EXPECT_NE(beside.err.find("walk.tum: line 2: the walk at (3.000, 2.200) is inside wall \"W5#2\""),
+            std::string::npos)
+      << beside.err;
 }
 
 TEST(WalkReplay, AGapInTimeIsSaidAndWalkedAcross) {

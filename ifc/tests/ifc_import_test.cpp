@@ -130,6 +130,30 @@ TEST(ImportIfc, RengaInMillimetres) {
   EXPECT_THAT(r.log, testing::Contains(testing::HasSubstr("(a gable or a sloped top)")));
 }
 
+TEST(ImportIfc, ColumnsAreReadAsColumns) {
+  // The Renga house's five IfcColumn ("Колонна - прямоугольная: 200x200 мм"): square 0.2 m
+  // columns, each on the level it stands on, standing from its floor.
+  const ImportResult r = importIfc(modelPath("xbim-House.ifc"), {});
+  int columns = 0;
+  for (const auto& level : r.plan.levels) {
+    for (const auto& column : level.columns) {
+      ++columns;
+      EXPECT_FALSE(column.round()) << column.id;
+      EXPECT_NEAR(column.size.x(), 0.2, 1e-6) << column.id;
+      EXPECT_NEAR(column.size.y(), 0.2, 1e-6) << column.id;
+      EXPECT_GT(column.height - column.base, 1.5) << column.id;
+      EXPECT_NE(column.name.find("200x200"), std::string::npos) << column.name;
+    }
+  }
+  EXPECT_EQ(columns, 5);
+  // Every other model has none.
+  for (const char* file : {"duplex.ifc", "IfcOpenHouse_IFC4.ifc", "xbim-SampleHouse4.ifc"}) {
+    for (const auto& level : importIfc(modelPath(file), {}).plan.levels) {
+      EXPECT_TRUE(level.columns.empty()) << file;
+    }
+  }
+}
+
 TEST(ImportIfc, EveryModelGivesAPlanTheParserAccepts) {
   struct Expected {
     const char* file;

@@ -62,6 +62,21 @@ LikelihoodField::LikelihoodField(const bim::Plan& plan, const std::string& level
       }
     }
   }
+  // Round columns: the cells whose centre lies within the circle (at least the nearest one).
+  for (const auto& column : level->columns) {
+    if (!column.round()) continue;
+    const double reach = std::max(column.radius(), 0.5 * resolution_);
+    const Eigen::Vector2i lo =
+        ((column.center.array() - reach - origin_.array()) / resolution_).floor().cast<int>();
+    const Eigen::Vector2i hi =
+        ((column.center.array() + reach - origin_.array()) / resolution_).ceil().cast<int>();
+    for (int r = std::max(0, lo.y()); r <= std::min(height_ - 1, hi.y()); ++r) {
+      for (int c = std::max(0, lo.x()); c <= std::min(width_ - 1, hi.x()); ++c) {
+        if ((centre(c, r) - column.center).norm() <= reach)
+          occupied[std::size_t(r) * width_ + c] = 1;
+      }
+    }
+  }
   const bim::RoomLocator rooms(*level);
   for (int r = 0; r < height_; ++r) {
     for (int c = 0; c < width_; ++c) {

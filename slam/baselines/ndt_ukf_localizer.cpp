@@ -5,6 +5,8 @@
 #include <pcl/point_types.h>
 #include <pcl/registration/ndt.h>
 
+#include <cmath>
+#include <numbers>
 #include <stdexcept>
 
 #include "bim/plan_geometry.hpp"
@@ -60,6 +62,20 @@ Cloud::Ptr planCloud(const bim::Plan& plan, const std::string& level_id, double 
             cloud->push_back(pcl::PointXYZ(float(xy.x()), float(xy.y()), float(z)));
           }
         }
+      }
+    }
+  }
+  // Round columns: points round their surface at the same spacing.
+  for (const auto& column : level->columns) {
+    if (!column.round()) continue;
+    const int steps = std::max(8, int(std::ceil(2 * std::numbers::pi * column.radius() / spacing)));
+    for (int k = 0; k < steps; ++k) {
+      const double a = 2 * std::numbers::pi * k / steps;
+      const Eigen::Vector2d xy =
+          column.center + column.radius() * Eigen::Vector2d(std::cos(a), std::sin(a)) - origin;
+      for (double z = level->elevation + column.base; z <= level->elevation + column.height + 1e-9;
+           z += spacing) {
+        cloud->push_back(pcl::PointXYZ(float(xy.x()), float(xy.y()), float(z)));
       }
     }
   }

@@ -62,6 +62,34 @@ TEST(AsBuiltLevel, TurnsAWallAboutItsStartCentreOrEnd) {
       asBuiltLevel(plan_level, both).findWall("W5")->start.isApprox(Eigen::Vector2d(0, 4.5)));
 }
 
+// D3's W6 runs (0, 6) → (20, 6) with doors D1–D4 at 2, 7, 12.5 and 17.5 m along it.
+TEST(AsBuiltLevel, AWallBuiltInPartStandsAsItsPartsWithTheirDoors) {
+  const bim::Scenario s = loadScenarioOrBuiltin("builtin:d3", nullptr);
+  const bim::Level& plan_level = s.plan.levels[0];
+  bim::AsBuilt as_built;
+  as_built.shortened_walls = {{"W6", {{0.0, 9.0}, {14.0, 20.0}}}};
+  const bim::Level built = asBuiltLevel(plan_level, as_built);
+  EXPECT_EQ(built.findWall("W6"), nullptr);
+  ASSERT_NE(built.findWall("W6#1"), nullptr);
+  ASSERT_NE(built.findWall("W6#2"), nullptr);
+  EXPECT_EQ(built.walls.size(), plan_level.walls.size() + 1);
+  EXPECT_EQ(built.findWall("W6#1")->start, Eigen::Vector2d(0, 6));
+  EXPECT_EQ(built.findWall("W6#1")->end, Eigen::Vector2d(9, 6));
+  EXPECT_EQ(built.findWall("W6#2")->start, Eigen::Vector2d(14, 6));
+  EXPECT_EQ(built.findWall("W6#2")->end, Eigen::Vector2d(20, 6));
+  EXPECT_DOUBLE_EQ(built.findWall("W6#2")->thickness, 0.2);
+  // D1 and D2 in the first part where they were, D4 3.5 m along the second, D3 gone with the gap.
+  EXPECT_EQ(built.findDoor("D1")->wall, "W6#1");
+  EXPECT_DOUBLE_EQ(built.findDoor("D2")->offset, 7.0);
+  EXPECT_EQ(built.findDoor("D4")->wall, "W6#2");
+  EXPECT_DOUBLE_EQ(built.findDoor("D4")->offset, 3.5);
+  EXPECT_EQ(built.findDoor("D3"), nullptr);
+  EXPECT_EQ(built.doors.size(), plan_level.doors.size() - 1);
+  // Shifted as well: the parts stand along the wall as built.
+  as_built.wall_shifts = {{"W6", 0.5}};
+  EXPECT_EQ(asBuiltLevel(plan_level, as_built).findWall("W6#2")->start, Eigen::Vector2d(14, 6.5));
+}
+
 // The deviation of a built axis, as the deviation report measures it, by hand.
 TEST(AsBuiltLevel, AxisDeviationAtThePlannedCentre) {
   bim::Wall planned;

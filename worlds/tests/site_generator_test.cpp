@@ -20,6 +20,7 @@ bim::Plan parsed(const GeneratedBuilding& b, common::Warnings& warnings) {
 }
 
 TEST(SiteGenerator, AnOpenFloorOfColumnsFacadeCoreAndPartitions) {
+  int shortened_sites = 0;
   for (std::uint64_t seed = 1; seed <= 12; ++seed) {
     GeneratorSpec spec;
     spec.family = "site";
@@ -35,14 +36,17 @@ TEST(SiteGenerator, AnOpenFloorOfColumnsFacadeCoreAndPartitions) {
     EXPECT_TRUE(level.rooms.empty());
     EXPECT_TRUE(level.doors.empty());
     int columns = 0, facade = 0, core = 0, partitions = 0;
+    for (const auto& c : level.columns) {
+      ++columns;
+      // Square or round, 0.4–0.6 m across.
+      EXPECT_EQ(c.size.x(), c.size.y()) << c.id;
+      EXPECT_GE(c.size.x(), 0.4);
+      EXPECT_LE(c.size.x(), 0.6);
+      EXPECT_EQ(c.yaw, 0.0);
+      EXPECT_EQ(c.height, level.height);
+    }
     for (const auto& w : level.walls) {
-      if (w.name == "column") {
-        ++columns;
-        // A square column: a wall as long as it is thick.
-        EXPECT_NEAR((w.end - w.start).norm(), w.thickness, 1.5e-3) << w.id;
-        EXPECT_GE(w.thickness, 0.4);
-        EXPECT_LE(w.thickness, 0.6);
-      }
+      EXPECT_NE(w.name, "column") << w.id;
       facade += w.name == "facade";
       core += w.name == "core";
       partitions += w.name == "partition";
@@ -67,9 +71,28 @@ TEST(SiteGenerator, AnOpenFloorOfColumnsFacadeCoreAndPartitions) {
       EXPECT_TRUE(ids.count(name)) << name;
       EXPECT_TRUE(name[0] == 'F' || name[0] == 'P') << name;
     }
+    // A wall going up: a façade wall or a partition, built from one end or with a gap, its
+    // parts within it.
+    for (const auto& w : b.scenario["as_built"].value("shortened_walls", nlohmann::json::array())) {
+      ++shortened_sites;
+      const bim::Wall* wall = level.findWall(w["wall"].get<std::string>());
+      ASSERT_NE(wall, nullptr) << seed;
+      EXPECT_TRUE(wall->name == "facade" || wall->name == "partition") << wall->id;
+      const double length = (wall->end - wall->start).norm();
+      double built = 0.0;
+      for (const auto& part : w["built"]) {
+        EXPECT_GE(part[0].get<double>(), 0.0);
+        EXPECT_LE(part[1].get<double>(), length);
+        built += part[1].get<double>() - part[0].get<double>();
+      }
+      EXPECT_GT(built, 0.25 * length) << seed;
+      EXPECT_LT(built, 0.95 * length) << seed;
+    }
     EXPECT_EQ(b.scenario["robot"]["route"], "tour");
     EXPECT_FALSE(b.scenario["robot"].contains("start"));
   }
+  EXPECT_GE(shortened_sites, 3);  // about 6 in 10
+  EXPECT_LE(shortened_sites, 10);
 }
 
 TEST(SiteGenerator, TheSameSeedGivesTheSameSite) {
