@@ -70,7 +70,7 @@ std::string agraphToSvg(const Plan& plan, const AGraph& graph, const std::string
   }
   for (std::size_t w = 0; w < geometry.walls.size(); ++w) {
     const WallGeometry& g = geometry.walls[w];
-    const bool column = w >= level->walls.size();
+    const bool column = g.column;
     svg << "<polygon points=\"";
     for (const auto& p : g.footprint()) svg << view.x(p.x()) << ',' << view.y(p.y()) << ' ';
     svg << "\" fill=\"" << (column ? "#8c8579" : "#b9b4aa") << "\" stroke=\"none\"><title>"

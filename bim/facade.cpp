@@ -13,7 +13,8 @@ Polygon2 facadeOutline(const Level& level) {
   for (const auto& wall : computeLevelGeometry(level).walls) {
     for (const auto& p : wall.footprint()) points.push_back(p);
   }
-  for (const auto& column : level.columns) {
+  for (const auto& column : level.columns) {  // rectangular ones are among the walls already
+    if (!column.round()) continue;
     for (const auto& p : columnFootprint(column)) points.push_back(p);
   }
   std::sort(points.begin(), points.end(), [](const Eigen::Vector2d& a, const Eigen::Vector2d& b) {

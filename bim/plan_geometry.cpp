@@ -238,6 +238,7 @@ LevelGeometry computeLevelGeometry(const Level& level, const GeometryOptions& op
     const Wall& wall = *solid;
     WallGeometry g;
     g.wall = &wall;
+    g.column = geometry.walls.size() >= level.walls.size();
     const Eigen::Vector2d along = wall.end - wall.start;
     g.length = along.norm();
     g.axis = along / g.length;

@@ -37,6 +37,7 @@ struct WallFace {
 
 struct WallGeometry {
   const Wall* wall = nullptr;
+  bool column = false;  // a rectangular column taken as a wall (LevelGeometry::column_walls)
   Eigen::Vector2d axis = Eigen::Vector2d::UnitX();         // unit, start → end
   Eigen::Vector2d left_normal = Eigen::Vector2d::UnitY();  // axis turned +90°
   double length = 0.0;

@@ -7,6 +7,7 @@
 
 #include "bim/as_built_wall.hpp"
 #include "bim/box_grid.hpp"
+#include "bim/column.hpp"
 #include "bim/facade.hpp"
 #include "bim/limits.hpp"
 #include "bim/plan_geometry.hpp"
@@ -48,13 +49,12 @@ Eigen::Vector3d poseOnLevel(const Level& level, const common::JsonNode& pose_nod
   const Eigen::Vector2d xy(pose[0], pose[1]);
   for (const auto& g : computeLevelGeometry(level).walls) {
     if (containsPoint(g.footprint(), xy)) {
-      const bool column = level.findWall(g.wall->id) == nullptr;
-      pose_node.fail(std::string(what) + " is inside " + (column ? "column " : "wall ") +
+      pose_node.fail(std::string(what) + " is inside " + (g.column ? "column " : "wall ") +
                      common::inQuotes(g.wall->id));
     }
   }
   for (const auto& column : level.columns) {
-    if (column.round() && (xy - column.center).norm() < column.radius()) {
+    if (column.round() && containsPoint(columnFootprint(column), xy)) {
       pose_node.fail(std::string(what) + " is inside column " + common::inQuotes(column.id));
     }
   }

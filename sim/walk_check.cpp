@@ -51,7 +51,7 @@ void checkWalkClear(const bim::Scenario& scenario) {
     if (g.wall->base > kWalkerHeight) continue;
     // Rectangular columns follow the level's walls; a wall named a column (a plan from before
     // columns were their own element) is said to be one too.
-    const bool column = w >= level.walls.size() || g.wall->name.find("column") != std::string::npos;
+    const bool column = g.column || g.wall->name.find("column") != std::string::npos;
     const std::string kind = column ? "column" : "wall";
     for (auto& piece : g.footprintPieces()) {
       solids.push_back({std::move(piece), kind + " \"" + g.wall->id + "\""});

@@ -245,7 +245,7 @@ void writeLevel(std::ostringstream& out, const bim::Plan& plan, const bim::Level
   for (std::size_t w = 0; w < geometry.walls.size(); ++w) {
     const bim::WallGeometry& g = geometry.walls[w];
     const bim::Wall& wall = *g.wall;
-    if (w >= level.walls.size()) {  // a rectangular column: one box, no openings
+    if (g.column) {  // a rectangular column: one box, no openings
       writer.wallPiece("column/" + wall.id, "wall", g, -g.extend_start, g.length + g.extend_end,
                        wall.thickness, level.elevation + wall.base, level.elevation + wall.height);
       continue;
