@@ -14,6 +14,7 @@
 #include "common/plural.hpp"
 #include "formats/map_yaml.hpp"
 #include "formats/raster_image.hpp"
+#include "formats/recording.hpp"
 #include "ifc/ifc_import.hpp"
 #include "recordings/bag_import.hpp"
 #include "run/interrupt.hpp"
@@ -37,7 +38,7 @@ std::string lowerExtension(const std::string& path) {
   return extension;
 }
 
-bool isBag(const std::string& path) { return lowerExtension(path) == ".bag"; }
+bool isRecording(const std::string& path) { return formats::isRecordingPath(path); }
 bool isRasterImage(const std::string& path) {
   const std::string extension = lowerExtension(path);
   return extension == ".png" || extension == ".pgm";
@@ -58,7 +59,8 @@ ImportCommand::ImportCommand(CLI::App& parent) {
   app_ = parent.add_subcommand(
       "import",
       "Import an IFC building model (IFC2X3, IFC4) or a raster floor plan (PNG, PGM, a ROS map's "
-      "YAML) as a plan, or a ROS 1 recording (.bag) as a dataset");
+      "YAML) as a plan, or a robot's recording (a ROS 1 .bag; a ROS 2 bag: its folder, a .db3 or "
+      "an .mcap) as a dataset");
   app_->footer(
       "Storeys become levels (by default every storey with walls standing on it and rooms), "
       "walls straight prismatic walls fitted to their bodies, doors and windows their openings "
@@ -72,9 +74,13 @@ ImportCommand::ImportCommand(CLI::App& parent) {
       "Example (ifc/tests/models holds five public models):\n"
       "  isg import Office_A_20110811.ifc -o office.json\n  isg check office.json -v\n"
       "  isg run office.json -o runs/office\n\n"
-      "A ROS 1 bag (format 2.0; chunks plain, bz2 or lz4) becomes a dataset folder that isg slam "
-      "replays: the point clouds (sensor_msgs/PointCloud2: the Velodyne driver's layout, Ouster's, "
-      "or any cloud with x y z) as scans, sensor_msgs/Imu as imu.csv, nav_msgs/Odometry (or the "
+      "A recording — a ROS 1 bag (format 2.0; chunks plain, bz2 or lz4), a ROS 2 bag (rosbag2's "
+      "folder with its metadata.yaml, split files in order, in the sqlite3 or the MCAP storage; "
+      "or one .db3), or an MCAP file (CDR with ros2msg schemas, or ROS 1 messages; chunks plain, "
+      "zstd or lz4) — becomes a dataset folder that isg slam replays: the point clouds "
+      "(sensor_msgs/PointCloud2: the Velodyne driver's layout, Ouster's, "
+      "or any cloud with x y z; Hesai's and Livox's times since the epoch too) as scans, "
+      "sensor_msgs/Imu as imu.csv, nav_msgs/Odometry (or the "
       "transforms on /tf from a frame named odom down to the base) as odometry.tum, a ground-truth "
       "nav_msgs/Odometry or geometry_msgs/PoseStamped as "
       "groundtruth.tum; the sensors' mounts from /tf_static (or --lidar-extrinsic, "
@@ -93,16 +99,17 @@ ImportCommand::ImportCommand(CLI::App& parent) {
       "raster floor plans\".\n\n"
       "Example:\n  isg import floor2.png --resolution 0.01 -o floor2.json\n"
       "  isg import map.yaml -o lab.json --height 2.8\n\n"
-      "Example:\n  isg import walk.bag -o datasets/walk\n"
+      "Example:\n  isg import walk.bag -o datasets/walk\n  isg import rosbag2_walk/ -o "
+      "datasets/walk2\n"
       "  isg import walk.bag -o datasets/walk --lidar-topic /os_cloud_node/points --start 20 "
       "--duration 60\n  isg slam datasets/walk --plan lab.json -o runs/walk");
   app_->add_option("model", input_,
-                   "IFC file (STEP, .ifc), floor plan image (.png, .pgm), ROS map (.yaml) or ROS 1 "
-                   "bag (.bag) to read")
-      ->option_text("MODEL.ifc|FLOOR.png|MAP.yaml|RECORDING.bag")
+                   "IFC file (STEP, .ifc), floor plan image (.png, .pgm), ROS map (.yaml) or a "
+                   "recording (.bag, .db3, .mcap, a rosbag2 folder) to read")
+      ->option_text("MODEL.ifc|FLOOR.png|MAP.yaml|RECORDING.bag|.db3|.mcap|BAG_DIR")
       ->required();
   app_->add_option("-o,--output", output_,
-                   "plan file (from IFC or a floor plan) or dataset folder (from a bag)")
+                   "plan file (from IFC or a floor plan) or dataset folder (from a recording)")
       ->option_text("PLAN.json|DATASET_DIR")
       ->required();
   auto* raster = "Raster floor plans (.png, .pgm, .yaml)";
@@ -145,7 +152,8 @@ ImportCommand::ImportCommand(CLI::App& parent) {
                    "(none: leave it out)")
       ->option_text("TOPIC")
       ->group(bag);
-  app_->add_option("--start", start_, "import from this many seconds after the bag's first message")
+  app_->add_option("--start", start_,
+                   "import from this many seconds after the recording's first message")
       ->check(CLI::Range(0.0, 1e7))
       ->option_text("S")
       ->group(bag);
@@ -183,7 +191,7 @@ ImportCommand::ImportCommand(CLI::App& parent) {
 }
 
 int ImportCommand::run() {
-  if (isBag(input_)) return importBag();
+  if (isRecording(input_)) return importBag();
   if (isRasterImage(input_) || isMapYaml(input_)) return importRaster();
   return importIfc();
 }

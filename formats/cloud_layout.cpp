@@ -92,6 +92,11 @@ std::string CloudLayout::describe() const {
   if (time) out += " " + time->name;
   if (time && time->name == "time" && ring) out += " (the Velodyne driver's layout)";
   if (time && time->name == "t") out += " (Ouster's layout)";
+  if (time && time->name == "timestamp" && ring && ring->name == "ring") out += " (Hesai's layout)";
+  if (time && (time->name == "offset_time" ||
+               (time->name == "timestamp" && ring && ring->name == "line"))) {
+    out += " (Livox's layout)";
+  }
   if (!time) out += " (no per-point time: the scans are not deskewed)";
   return out;
 }
@@ -131,6 +136,22 @@ std::vector<sensors::ScanPoint> cloudPoints(const ros1::PointCloud2& cloud,
   }
   const double stamp = double(cloud.header.stamp.sec) + 1e-9 * cloud.header.stamp.nsec;
   const double time_scale = layout.time && isInteger(layout.time->datatype) ? 1e-9 : 1.0;
+  // A floating time since the epoch is in seconds (Hesai) or, as Livox's PointCloud2 `timestamp`,
+  // in nanoseconds (or ms, µs): the unit is the one that puts the cloud's first such time within
+  // 1 s of its stamp, and holds for the whole cloud.
+  double epoch_unit = 0.0;
+  const auto sinceEpoch = [&](double raw) {
+    if (epoch_unit == 0.0) {
+      epoch_unit = 1.0;
+      for (const double unit : {1.0, 1e-3, 1e-6, 1e-9}) {
+        if (std::abs(raw * unit - stamp) <= 1.0) {
+          epoch_unit = unit;
+          break;
+        }
+      }
+    }
+    return raw * epoch_unit - stamp;
+  };
   std::vector<sensors::ScanPoint> points;
   points.reserve(std::size_t(count));
   for (std::uint32_t row = 0; row < cloud.height; ++row) {
@@ -139,9 +160,10 @@ std::vector<sensors::ScanPoint> cloudPoints(const ros1::PointCloud2& cloud,
       const double x = valueAt(p, *layout.x), y = valueAt(p, *layout.y), z = valueAt(p, *layout.z);
       if (!std::isfinite(x) || !std::isfinite(y) || !std::isfinite(z)) continue;
       if (x == 0.0 && y == 0.0 && z == 0.0) continue;
-      double time = layout.time ? valueAt(p, *layout.time) * time_scale : 0.0;
+      const double raw = layout.time ? valueAt(p, *layout.time) : 0.0;
+      double time = raw * time_scale;
       if (!std::isfinite(time)) continue;
-      if (std::abs(time) > 1e6) time -= stamp;  // since the epoch
+      if (std::abs(time) > 1e6) time = time_scale == 1.0 ? sinceEpoch(raw) : time - stamp;
       if (std::abs(time) > 1.0) {
         throw ros1::MessageError("a point's `" + layout.time->name + "` is " +
                                  std::to_string(time) +

@@ -17,8 +17,10 @@ namespace isg::formats {
 //     localizer then fits planes without the range image);
 //   per-point time: `time` (Velodyne: float seconds from the stamp), `t` (Ouster: uint32
 //     nanoseconds from the stamp), `offset_time` (Livox: nanoseconds), `timestamp` (Hesai:
-//     float64 seconds since the epoch), `time_offset`; integer fields are nanoseconds, floating
-//     ones seconds, and a time over 1e6 s is since the epoch (the stamp is subtracted).
+//     float64 seconds since the epoch; Livox's PointCloud2 `timestamp`, float64 nanoseconds
+//     since the epoch), `time_offset`; integer fields are nanoseconds, floating ones seconds, and
+//     a time over 1e6 s is since the epoch (the stamp is subtracted; a floating one in the unit,
+//     s, ms, µs or ns, that puts the cloud's first time within 1 s of its stamp).
 struct CloudLayout {
   std::optional<ros1::PointField> x, y, z, intensity, ring, time;
   // "x y z intensity ring time (Velodyne)", …: what the import summary says.

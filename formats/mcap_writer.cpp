@@ -12,6 +12,7 @@
 
 #include "common/input_error.hpp"
 #include "common/output_path.hpp"
+#include "formats/mcap_format.hpp"
 
 namespace isg::formats {
 
@@ -20,21 +21,10 @@ namespace {
 static_assert(std::endian::native == std::endian::little,
               "MCAP here is written as the host lays it");
 
-const std::string kMagic("\x89MCAP0\r\n", 8);
-
-enum Opcode : std::uint8_t {
-  kHeader = 0x01,
-  kFooter = 0x02,
-  kSchema = 0x03,
-  kChannel = 0x04,
-  kMessage = 0x05,
-  kChunk = 0x06,
-  kMessageIndex = 0x07,
-  kChunkIndex = 0x08,
-  kStatistics = 0x0b,
-  kSummaryOffset = 0x0e,
-  kDataEnd = 0x0f,
-};
+using mcap::kChannel, mcap::kChunk, mcap::kChunkIndex, mcap::kDataEnd, mcap::kFooter, mcap::kHeader,
+    mcap::kMessage, mcap::kMessageIndex, mcap::kSchema, mcap::kStatistics, mcap::kSummaryOffset;
+using mcap::Opcode;
+const std::string kMagic(mcap::kMagic);
 
 // Little-endian fields, strings and maps as the MCAP specification lays them out.
 class Fields {

@@ -1,6 +1,7 @@
 #include "formats/ros2_bag.hpp"
 
 #include <sqlite3.h>
+#include <yaml-cpp/yaml.h>
 
 #include <algorithm>
 #include <filesystem>
@@ -63,10 +64,82 @@ std::string textColumn(sqlite3_stmt* statement, int column) {
 
 }  // namespace
 
+Rosbag2Storage readRosbag2Metadata(const std::string& metadata_file) {
+  namespace fs = std::filesystem;
+  YAML::Node root;
+  try {
+    root = YAML::LoadFile(metadata_file);
+  } catch (const YAML::Exception& e) {
+    throw common::InputError(metadata_file, "", std::string("not YAML: ") + e.what());
+  }
+  const YAML::Node info = root.IsMap() ? root["rosbag2_bagfile_information"] : YAML::Node();
+  if (!info || !info.IsMap()) {
+    throw common::InputError(metadata_file, "",
+                             "no rosbag2_bagfile_information: not a rosbag2 bag's metadata");
+  }
+  const auto text = [&](const char* key) -> std::string {
+    const YAML::Node node = info[key];
+    if (!node) return "";
+    if (!node.IsScalar()) {
+      throw common::InputError(
+          metadata_file, "",
+          std::string("rosbag2_bagfile_information.") + key + " is not a single value");
+    }
+    return node.as<std::string>();
+  };
+  Rosbag2Storage out;
+  out.storage = text("storage_identifier");
+  if (out.storage.empty()) out.storage = "sqlite3";  // the only storage before Humble
+  if (out.storage != "sqlite3" && out.storage != "mcap") {
+    throw common::InputError(metadata_file, "",
+                             "unknown storage \"" + out.storage +
+                                 "\" (rosbag2 writes \"sqlite3\" or "
+                                 "\"mcap\")");
+  }
+  const std::string compression_mode = text("compression_mode");
+  if (!compression_mode.empty()) {
+    throw common::InputError(metadata_file, "",
+                             "a compressed bag (compression_mode " + compression_mode +
+                                 ", format " + text("compression_format") +
+                                 ") is not read; write it uncompressed (ros2 bag convert)");
+  }
+  const YAML::Node paths = info["relative_file_paths"];
+  if (!paths || !paths.IsSequence() || paths.size() == 0) {
+    throw common::InputError(metadata_file, "",
+                             "rosbag2_bagfile_information.relative_file_paths lists no file");
+  }
+  const fs::path folder = fs::path(metadata_file).parent_path();
+  for (std::size_t k = 0; k < paths.size(); ++k) {
+    if (!paths[k].IsScalar()) {
+      throw common::InputError(metadata_file, "",
+                               "relative_file_paths[" + std::to_string(k) + "] is not a file name");
+    }
+    const fs::path file = folder / paths[k].as<std::string>();
+    std::error_code error;
+    if (!fs::is_regular_file(file, error)) {
+      throw common::InputError(metadata_file, "",
+                               "relative_file_paths[" + std::to_string(k) + "] names " +
+                                   file.filename().string() + ", which is not in the folder");
+    }
+    out.files.push_back(file.string());
+  }
+  return out;
+}
+
 Ros2Bag::Ros2Bag(const std::string& path) : path_(path) {
   namespace fs = std::filesystem;
   std::error_code error;
-  if (fs::is_directory(path, error)) {
+  const fs::path metadata = fs::path(path) / "metadata.yaml";
+  if (fs::is_directory(path, error) && fs::is_regular_file(metadata, error)) {
+    Rosbag2Storage storage = readRosbag2Metadata(metadata.string());
+    if (storage.storage != "sqlite3") {
+      throw common::InputError(metadata.string(), "",
+                               "storage \"" + storage.storage +
+                                   "\": not the sqlite3 storage (.db3) this reader reads; read "
+                                   "its files as MCAP");
+    }
+    files_ = std::move(storage.files);
+  } else if (fs::is_directory(path, error)) {
     for (const auto& entry : fs::directory_iterator(path, error)) {
       if (entry.path().extension() == ".db3") files_.push_back(entry.path().string());
     }
@@ -94,10 +167,17 @@ Ros2Bag::Ros2Bag(const std::string& path) : path_(path) {
               same->messages += topic.messages;
             }
           });
+    bool first = start_ns_ == 0;
+    query(file, "SELECT MIN(timestamp) FROM messages", nullptr, [&](sqlite3_stmt* row) {
+      if (sqlite3_column_type(row, 0) == SQLITE_NULL) return;  // no message in this file
+      const std::int64_t stamp = sqlite3_column_int64(row, 0);
+      if (first || stamp < start_ns_) start_ns_ = stamp;
+      first = false;
+    });
   }
 }
 
-std::vector<Ros2Message> Ros2Bag::messages(const std::string& topic) const {
+void Ros2Bag::expectTopic(const std::string& topic) const {
   const bool known = std::any_of(topics_.begin(), topics_.end(),
                                  [&](const Ros2Topic& t) { return t.name == topic; });
   if (!known) {
@@ -107,6 +187,73 @@ std::vector<Ros2Message> Ros2Bag::messages(const std::string& topic) const {
         path_, "",
         "no topic " + topic + " (the bag has: " + (names.empty() ? "no topics" : names) + ")");
   }
+}
+
+void Ros2Bag::read(const std::vector<std::string>& topics,
+                   const std::function<bool(const Ros2MessageView&)>& visit) const {
+  for (const auto& topic : topics) expectTopic(topic);
+  // One statement a file, each stepping through its rows of the topics asked for in stamp order
+  // (the others are never read: a bag's camera images stay on disk); the next message is the
+  // earliest of their current rows (a k-way merge: split bags' files may overlap in time).
+  std::string sql =
+      "SELECT m.timestamp, m.data, t.name, m.id FROM messages m JOIN topics t ON m.topic_id = t.id";
+  for (std::size_t k = 0; k < topics.size(); ++k) {
+    sql += (k == 0 ? " WHERE t.name IN (?" : ", ?") + std::to_string(k + 1);
+  }
+  sql += std::string(topics.empty() ? "" : ")") + " ORDER BY m.timestamp, m.id";
+  struct Cursor {
+    std::string file;
+    Database db;
+    Statement statement;
+    bool row = false;
+  };
+  std::vector<Cursor> cursors;
+  for (const auto& file : files_) {
+    Cursor cursor{file, open(file), nullptr, false};
+    cursor.statement = prepare(cursor.db.get(), file, sql.c_str());
+    for (std::size_t k = 0; k < topics.size(); ++k) {
+      sqlite3_bind_text(cursor.statement.get(), int(k + 1), topics[k].c_str(), -1,
+                        SQLITE_TRANSIENT);
+    }
+    cursors.push_back(std::move(cursor));
+  }
+  const auto step = [](Cursor& c) {
+    const int status = sqlite3_step(c.statement.get());
+    c.row = status == SQLITE_ROW;
+    if (!c.row && status != SQLITE_DONE) {
+      throw common::InputError(c.file, "",
+                               std::string("reading the bag: ") + sqlite3_errmsg(c.db.get()));
+    }
+  };
+  for (Cursor& c : cursors) step(c);
+  std::uint64_t index = 0;
+  while (true) {
+    Cursor* next = nullptr;
+    for (Cursor& c : cursors) {
+      if (c.row && (next == nullptr || sqlite3_column_int64(c.statement.get(), 0) <
+                                           sqlite3_column_int64(next->statement.get(), 0))) {
+        next = &c;
+      }
+    }
+    if (next == nullptr) return;
+    sqlite3_stmt* row = next->statement.get();
+    const std::string name = textColumn(row, 2);
+    Ros2MessageView view;
+    view.topic = &*std::find_if(topics_.begin(), topics_.end(),
+                                [&](const Ros2Topic& t) { return t.name == name; });
+    view.stamp_ns = sqlite3_column_int64(row, 0);
+    const auto* blob = static_cast<const char*>(sqlite3_column_blob(row, 1));
+    view.data = std::string_view(blob ? blob : "", std::size_t(sqlite3_column_bytes(row, 1)));
+    view.index = index++;
+    view.file = &next->file;
+    view.row = sqlite3_column_int64(row, 3);
+    if (!visit(view)) return;
+    step(*next);
+  }
+}
+
+std::vector<Ros2Message> Ros2Bag::messages(const std::string& topic) const {
+  expectTopic(topic);
   std::vector<Ros2Message> out;
   for (const auto& file : files_) {
     query(file,

@@ -74,26 +74,11 @@ Header header(Cursor& in) {
   return h;
 }
 
-// A unit quaternion within 1e-3 (what drivers write in float64), normalised; anything else is
-// not a rotation and would skew every pose composed with it.
-Eigen::Quaterniond rotation(Cursor& in, const char* field) {
-  Eigen::Quaterniond q = in.quaternion(field);
-  const double norm = q.norm();
-  if (!std::isfinite(norm) || std::abs(norm - 1.0) > 1e-3) {
-    throw MessageError(std::string("the field `") + field + "` is not a unit quaternion (norm " +
-                       std::to_string(norm) + ")");
-  }
-  q.normalize();
-  return q;
-}
-
 Eigen::Isometry3d pose(Cursor& in, const char* position, const char* orientation) {
   const Eigen::Vector3d t = in.vector(position);
+  // Said before the rotation is read, as it always was.
   if (!t.allFinite()) throw MessageError(std::string("the field `") + position + "` is not finite");
-  Eigen::Isometry3d out = Eigen::Isometry3d::Identity();
-  out.linear() = rotation(in, orientation).toRotationMatrix();
-  out.translation() = t;
-  return out;
+  return checkedPose(t, in.quaternion(orientation), position, orientation);
 }
 
 template <std::size_t N>
@@ -104,6 +89,25 @@ std::array<double, N> reals(Cursor& in, const char* field) {
 }
 
 }  // namespace
+
+Eigen::Quaterniond unitRotation(Eigen::Quaterniond q, const char* field) {
+  const double norm = q.norm();
+  if (!std::isfinite(norm) || std::abs(norm - 1.0) > 1e-3) {
+    throw MessageError(std::string("the field `") + field + "` is not a unit quaternion (norm " +
+                       std::to_string(norm) + ")");
+  }
+  q.normalize();
+  return q;
+}
+
+Eigen::Isometry3d checkedPose(const Eigen::Vector3d& t, const Eigen::Quaterniond& q,
+                              const char* position, const char* orientation) {
+  if (!t.allFinite()) throw MessageError(std::string("the field `") + position + "` is not finite");
+  Eigen::Isometry3d out = Eigen::Isometry3d::Identity();
+  out.linear() = unitRotation(q, orientation).toRotationMatrix();
+  out.translation() = t;
+  return out;
+}
 
 PointCloud2 decodePointCloud2(std::string_view bytes) {
   Cursor in(bytes);
@@ -191,6 +195,29 @@ std::string decodeString(std::string_view bytes) {
   std::string out = in.string("data");
   in.finish("std_msgs/String");
   return out;
+}
+
+VelodyneScan decodeVelodyneScan(std::string_view bytes) {
+  Cursor in(bytes);
+  VelodyneScan scan;
+  scan.header = header(in);
+  // Each packet is its stamp (8 bytes) and a fixed uint8[1206]: the count is checked against
+  // that before anything is allocated.
+  const std::uint32_t count = in.length("packets", 8 + kVelodynePacketBytes);
+  scan.packets.reserve(count);
+  for (std::uint32_t i = 0; i < count; ++i) {
+    VelodynePacket packet;
+    packet.stamp.sec = in.number<std::uint32_t>("packets[].stamp");
+    packet.stamp.nsec = in.number<std::uint32_t>("packets[].stamp");
+    if (packet.stamp.nsec >= 1000000000u) {
+      throw MessageError("packets[" + std::to_string(i) + "].stamp has " +
+                         std::to_string(packet.stamp.nsec) + " nanoseconds (at most 999999999)");
+    }
+    packet.data = std::string(in.take(kVelodynePacketBytes, "packets[].data"));
+    scan.packets.push_back(std::move(packet));
+  }
+  in.finish("velodyne_msgs/VelodyneScan");
+  return scan;
 }
 
 }  // namespace isg::formats::ros1

@@ -71,11 +71,32 @@ struct TransformStamped {
   Eigen::Isometry3d parent_T_child = Eigen::Isometry3d::Identity();
 };
 
+// A unit quaternion within 1e-3 (what drivers write in float64), normalised; anything else is
+// not a rotation and would skew every pose composed with it (MessageError naming `field`).
+Eigen::Quaterniond unitRotation(Eigen::Quaterniond q, const char* field);
+// A finite translation and a unit rotation as a pose, checked as unitRotation does.
+Eigen::Isometry3d checkedPose(const Eigen::Vector3d& t, const Eigen::Quaterniond& q,
+                              const char* position, const char* orientation);
+
 PointCloud2 decodePointCloud2(std::string_view bytes);
 Imu decodeImu(std::string_view bytes);
 StampedPose decodeOdometry(std::string_view bytes);
 StampedPose decodePoseStamped(std::string_view bytes);
 std::vector<TransformStamped> decodeTfMessage(std::string_view bytes);
 std::string decodeString(std::string_view bytes);
+
+// velodyne_msgs/VelodyneScan: the Velodyne driver's raw packets of one turn, each its receive
+// stamp and its 1206-byte UDP payload (a packet of another size is refused).
+// The payload of a Velodyne data packet (VLP-16, VLP-32C, HDL-32E: formats/vlp16_packet.hpp).
+inline constexpr std::size_t kVelodynePacketBytes = 1206;
+struct VelodynePacket {
+  RosTime stamp;
+  std::string data;
+};
+struct VelodyneScan {
+  Header header;
+  std::vector<VelodynePacket> packets;
+};
+VelodyneScan decodeVelodyneScan(std::string_view bytes);
 
 }  // namespace isg::formats::ros1

@@ -1,8 +1,5 @@
 #include "formats/rosbag_reader.hpp"
 
-#include <bzlib.h>
-#include <lz4frame.h>
-
 #include <algorithm>
 #include <bit>
 #include <cerrno>
@@ -12,6 +9,8 @@
 #include <sstream>
 
 #include "common/input_error.hpp"
+#include "formats/decompress.hpp"
+#include "formats/file_bytes.hpp"
 #include "formats/rosbag_format.hpp"
 
 namespace isg::formats {
@@ -143,14 +142,6 @@ bool recordIn(std::string_view bytes, std::uint64_t offset, RecordAt& record, st
 }
 
 // Reads `size` bytes at `offset` of the stream, or returns false.
-bool readAt(std::istream& in, std::uint64_t offset, std::size_t size, std::string& out) {
-  out.resize(size);
-  in.clear();
-  in.seekg(std::streamoff(offset));
-  in.read(out.data(), std::streamsize(size));
-  return in.gcount() == std::streamsize(size);
-}
-
 // Reads the header of the record at `offset` of a file of `file_size` bytes (not its data), or
 // fails with `error`.
 bool fileRecord(std::istream& in, std::uint64_t file_size, std::uint64_t offset, RecordAt& record,
@@ -177,11 +168,7 @@ bool fileRecord(std::istream& in, std::uint64_t file_size, std::uint64_t offset,
 
 }  // namespace
 
-RosbagReader::RosbagReader(const std::string& path) : name_(path) {
-  auto file = std::make_unique<std::ifstream>(path, std::ios::binary);
-  if (!*file)
-    throw common::InputError(path, "", std::string("cannot open: ") + std::strerror(errno));
-  in_ = std::move(file);
+RosbagReader::RosbagReader(const std::string& path) : name_(path), in_(openBinaryFile(path)) {
   open();
 }
 
@@ -426,100 +413,6 @@ void RosbagReader::readChunkIndex(std::uint32_t k, std::uint32_t index_records) 
     offset = record.end;
   }
 }
-
-namespace {
-
-// Decompresses `stored` (bz2 or lz4) into at most `size` bytes, growing the output as the data
-// really yields it (a chunk's claimed size is not trusted with an allocation); false with `error`
-// when the data is damaged or does not come to exactly `size` bytes.
-bool decompress(const std::string& compression, const std::string& stored, std::uint32_t size,
-                std::string& out, std::string& error) {
-  out.clear();
-  std::size_t written = 0;
-  bool too_long = false;  // the output is full and the data goes on
-  auto grow = [&] {
-    const std::size_t next =
-        std::min<std::size_t>(size, std::max<std::size_t>(4096, 2 * out.size()));
-    out.resize(next);
-  };
-  if (compression == "bz2") {
-    bz_stream stream{};
-    if (BZ2_bzDecompressInit(&stream, 0, 0) != BZ_OK) {
-      error = "cannot start bzip2";
-      return false;
-    }
-    stream.next_in = const_cast<char*>(stored.data());
-    stream.avail_in = unsigned(stored.size());
-    int status = BZ_OK;
-    while (status == BZ_OK) {
-      if (written == out.size()) {
-        if (out.size() == size) {
-          too_long = true;
-          break;
-        }
-        grow();
-      }
-      stream.next_out = out.data() + written;
-      stream.avail_out = unsigned(out.size() - written);
-      status = BZ2_bzDecompress(&stream);
-      written = out.size() - stream.avail_out;
-      if (status == BZ_OK && stream.avail_in == 0 && stream.avail_out > 0) break;  // cut short
-    }
-    BZ2_bzDecompressEnd(&stream);
-    if (too_long) {
-      error = "it holds more";
-      return false;
-    }
-    if (status != BZ_STREAM_END) {
-      error = "bzip2 status " + std::to_string(status);
-      return false;
-    }
-  } else {
-    LZ4F_dctx* context = nullptr;
-    if (LZ4F_isError(LZ4F_createDecompressionContext(&context, LZ4F_VERSION))) {
-      error = "cannot start LZ4";
-      return false;
-    }
-    std::size_t read = 0, status = 1;
-    while (status != 0 && read < stored.size()) {
-      if (written == out.size()) {
-        if (out.size() == size) {
-          too_long = true;
-          break;
-        }
-        grow();
-      }
-      std::size_t out_size = out.size() - written, in_size = stored.size() - read;
-      status = LZ4F_decompress(context, out.data() + written, &out_size, stored.data() + read,
-                               &in_size, nullptr);
-      if (LZ4F_isError(status)) break;
-      written += out_size;
-      read += in_size;
-      if (out_size == 0 && in_size == 0 && written < out.size()) break;  // no progress
-    }
-    LZ4F_freeDecompressionContext(context);
-    if (too_long) {
-      error = "it holds more";
-      return false;
-    }
-    if (LZ4F_isError(status)) {
-      error = LZ4F_getErrorName(status);
-      return false;
-    }
-    if (status != 0) {
-      error = "the LZ4 frame does not end";
-      return false;
-    }
-  }
-  if (written != size) {
-    error = "it holds " + std::to_string(written);
-    return false;
-  }
-  out.resize(written);
-  return true;
-}
-
-}  // namespace
 
 const std::string& RosbagReader::loadChunk(std::uint32_t k) {
   ++uses_;

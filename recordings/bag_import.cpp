@@ -15,9 +15,12 @@
 #include "formats/cloud_layout.hpp"
 #include "formats/dataset_format.hpp"
 #include "formats/dataset_metadata.hpp"
+#include "formats/recorded_message_decode.hpp"
+#include "formats/recording.hpp"
 #include "formats/ros_message_decode.hpp"
 #include "formats/ros_messages.hpp"
-#include "formats/rosbag_reader.hpp"
+#include "formats/vlp16_packet.hpp"
+#include "formats/vlp16_turns.hpp"
 #include "recordings/rosbag_export.hpp"
 #include "recordings/static_frames.hpp"
 #include "recordings/tf_odometry.hpp"
@@ -31,6 +34,7 @@ namespace {
 
 constexpr const char* kNone = "none";
 constexpr const char* kCloudType = "sensor_msgs/PointCloud2";
+constexpr const char* kVelodyneScanType = "velodyne_msgs/VelodyneScan";  // raw packets
 constexpr const char* kImuType = "sensor_msgs/Imu";
 constexpr const char* kOdometryType = "nav_msgs/Odometry";
 constexpr const char* kPoseType = "geometry_msgs/PoseStamped";
@@ -43,8 +47,11 @@ constexpr double kGravityInG = 0.2;
 constexpr double kStandardGravity = 9.80665;
 
 // A topic of the bag: its connections merged (one topic may have several publishers).
+// `datatype` is in ROS 1's spelling whichever ROS recorded it; `recorded_type` as recorded.
 struct Topic {
-  std::string name, datatype, md5sum;
+  std::string name, datatype, md5sum, recorded_type;
+  formats::MessageEncoding encoding = formats::MessageEncoding::kRos1;
+  std::string encoding_name;
   std::uint64_t messages = 0;
 };
 
@@ -107,7 +114,7 @@ std::string cycleMessage(const std::string& parent, const std::string& child,
 class Import {
  public:
   Import(const std::string& bag_path, const BagImportOptions& options)
-      : bag_path_(bag_path), options_(options), bag_(bag_path) {}
+      : bag_path_(bag_path), options_(options), bag_(formats::openRecording(bag_path)) {}
 
   BagImportSummary run(const fs::path& folder,
                        const std::function<void(std::uint64_t, std::uint64_t)>& progress);
@@ -116,9 +123,14 @@ class Import {
   [[noreturn]] void fail(const std::string& what) const {
     throw common::InputError(bag_path_, "", what);
   }
+  // A message's error: its topic, its index on it, and where the recording keeps it when it
+  // says (an SQLite row, an MCAP record's byte: formats::placeOf).
   [[noreturn]] void failMessage(const std::string& topic, std::uint64_t index,
-                                const std::string& what) const {
-    fail("topic " + topic + ", message " + std::to_string(index) + ": " + what);
+                                const std::string& what,
+                                const formats::RecordedMessage* message = nullptr) const {
+    const std::string place = message ? formats::placeOf(*message) : "";
+    fail("topic " + topic + ", message " + std::to_string(index) +
+         (place.empty() ? "" : " (" + place + ")") + ": " + what);
   }
   void collectTopics();
   std::string listing(const std::vector<const Topic*>& topics) const;
@@ -128,8 +140,10 @@ class Import {
                           const std::function<bool(const Topic&)>& preferred, bool required);
   void chooseTopics();
   void readStatic();
-  // The first message on `topic` (any time), for its frames before the long read.
-  std::string firstMessage(const std::string& topic);
+  // The first message on `topic` (any time) decoded, for its frames before the long read; a
+  // message error names the message.
+  template <class Decode>
+  auto decodeFirst(const std::string& topic, Decode decode);
   void resolveFrames();
   // The odometry as a chain of /tf: its frames from the whole topic; false (and the odometry left
   // out) when the topic was not asked for and no frame above the LiDAR is named as odometry.
@@ -150,9 +164,15 @@ class Import {
   void writeFiles(const fs::path& folder);
   // One message of each stream, checked against the stream's first (frame, layout, stamps in
   // order); a bad one throws formats::ros1::MessageError. A cloud is written as its scan file.
-  void readCloud(const fs::path& folder, const formats::BagMessageView& m);
-  void readImu(const formats::BagMessageView& m);
-  void readPose(const formats::BagMessageView& m);
+  void readCloud(const fs::path& folder, const formats::RecordedMessage& m);
+  // A VelodyneScan's packets decoded (formats/vlp16_packet.hpp) and cut into turns at azimuth 0;
+  // each turn the packets complete is written as a scan stamped at its first firing.
+  void readPackets(const fs::path& folder, const formats::RecordedMessage& m, std::uint64_t index);
+  // One scan file, its stamp and its points' times (`timed`: the points carry them).
+  void writeScan(const fs::path& folder, formats::RosTime stamp,
+                 const std::vector<sensors::ScanPoint>& points, bool timed);
+  void readImu(const formats::RecordedMessage& m);
+  void readPose(const formats::RecordedMessage& m);
   // The odometry the transforms on /tf make, when the bag's odometry is that.
   void takeTfOdometry();
   // The IMU's samples in dataset time, in m/s² (a driver's g converted, and said).
@@ -177,7 +197,7 @@ class Import {
 
   std::string bag_path_;
   BagImportOptions options_;
-  formats::RosbagReader bag_;
+  std::unique_ptr<formats::Recording> bag_;
   std::vector<Topic> topics_;
   BagImportSummary summary_;
   StaticFrames frames_;
@@ -192,6 +212,14 @@ class Import {
   std::vector<formats::RosTime> scan_stamps_;
   std::string lidar_frame_, imu_frame_, base_frame_, odometry_frame_, truth_frame_;
   formats::CloudLayout layout_;
+  // Raw packets: the returns of the turn under way (times from packet_origin_ s), and how many
+  // turns were cut short or echoes left out.
+  bool packets_ = false;
+  std::vector<formats::Vlp16Point> turn_points_;
+  std::uint32_t packet_origin_ = 0;
+  bool packet_turns_started_ = false;
+  std::uint64_t packet_count_ = 0, weak_echoes_ = 0;
+  formats::Vlp16ReturnMode packet_mode_ = formats::Vlp16ReturnMode::kStrongest;
   struct TimedSample {
     formats::RosTime stamp;
     sensors::ImuSample sample;
@@ -213,17 +241,19 @@ class Import {
 };
 
 void Import::collectTopics() {
-  for (const auto& connection : bag_.connections()) {
+  for (const auto& recorded : bag_->topics()) {
     auto it = std::find_if(topics_.begin(), topics_.end(),
-                           [&](const Topic& t) { return t.name == connection.topic; });
+                           [&](const Topic& t) { return t.name == recorded.name; });
     if (it == topics_.end()) {
-      topics_.push_back({connection.topic, connection.type.datatype, connection.type.md5sum, 0});
+      topics_.push_back({recorded.name, recorded.type, recorded.md5sum, recorded.recorded_type,
+                         recorded.encoding, recorded.encoding_name, 0});
       it = topics_.end() - 1;
-    } else if (it->datatype != connection.type.datatype) {
-      fail("topic " + connection.topic + " carries both " + it->datatype + " and " +
-           connection.type.datatype + " (two publishers disagree)");
+    } else if (it->datatype != recorded.type || it->encoding != recorded.encoding) {
+      fail("topic " + recorded.name + " carries both " + it->recorded_type + " (" +
+           it->encoding_name + ") and " + recorded.recorded_type + " (" + recorded.encoding_name +
+           ") (two publishers disagree)");
     }
-    it->messages += connection.messages;
+    it->messages += recorded.messages;
   }
   std::sort(topics_.begin(), topics_.end(),
             [](const Topic& a, const Topic& b) { return a.name < b.name; });
@@ -232,7 +262,7 @@ void Import::collectTopics() {
 std::string Import::listing(const std::vector<const Topic*>& topics) const {
   std::string out;
   for (const Topic* t : topics) {
-    out += std::string(out.empty() ? "" : ", ") + t->name + " (" + t->datatype + ", " +
+    out += std::string(out.empty() ? "" : ", ") + t->name + " (" + t->recorded_type + ", " +
            common::counted(t->messages, "message") + ")";
   }
   return out.empty() ? "none" : out;
@@ -263,8 +293,8 @@ std::string Import::chooseTopic(const char* role, const char* flag, const std::s
            ": the bag has no such topic (its topics: " + listing(all) + ")");
     }
     if (std::find(types.begin(), types.end(), topic->datatype) == types.end()) {
-      fail(std::string(flag) + " " + option + ": the topic carries " + topic->datatype + ", the " +
-           role + " must be " + type_list +
+      fail(std::string(flag) + " " + option + ": the topic carries " + topic->recorded_type +
+           ", the " + role + " must be " + type_list +
            (isRawLidarType(topic->datatype)
                 ? " (a LiDAR's raw packets, which the import does not decode: record the "
                   "driver's point-cloud topic)"
@@ -297,9 +327,9 @@ std::string Import::chooseTopic(const char* role, const char* flag, const std::s
     }
     if (std::string(role) == "LiDAR" && !packets.empty()) {
       fail("the bag has no point clouds (" + type_list + "), only a LiDAR's raw packets: " +
-           listing(packets) + "; the import reads point clouds and decodes no packet type: " +
-           "record the driver's point-cloud topic, or play the bag through the driver and " +
-           "record its clouds");
+           listing(packets) + "; the import reads point clouds and decodes no packet type " +
+           "but Velodyne's VLP-16 packets (velodyne_msgs/VelodyneScan): record the driver's " +
+           "point-cloud topic, or play the bag through the driver and record its clouds");
     }
     fail(std::string("the bag has no ") + type_list + " topic for the " + role +
          " (its topics: " + listing(all) + ")");
@@ -309,8 +339,21 @@ std::string Import::chooseTopic(const char* role, const char* flag, const std::s
 
 void Import::chooseTopics() {
   const auto anything = [](const Topic&) { return true; };
-  summary_.lidar.topic =
-      chooseTopic("LiDAR", "--lidar-topic", options_.lidar_topic, {kCloudType}, anything, true);
+  // The LiDAR: a point-cloud topic; else the Velodyne driver's raw packets, decoded here.
+  if (!options_.lidar_topic.empty()) {
+    summary_.lidar.topic = chooseTopic("LiDAR", "--lidar-topic", options_.lidar_topic,
+                                       {kCloudType, kVelodyneScanType}, anything, true);
+  } else {
+    for (const char* type : {kCloudType, kVelodyneScanType}) {
+      if (summary_.lidar.topic.empty()) {
+        summary_.lidar.topic = chooseTopic("LiDAR", "--lidar-topic", "", {type}, anything, false);
+      }
+    }
+    if (summary_.lidar.topic.empty()) {  // says why none could be
+      chooseTopic("LiDAR", "--lidar-topic", "", {kCloudType}, anything, true);
+    }
+  }
+  packets_ = findTopic(summary_.lidar.topic)->datatype == kVelodyneScanType;
   summary_.imu.topic =
       chooseTopic("IMU", "--imu-topic", options_.imu_topic, {kImuType}, anything, false);
   // Odometry and ground truth may both be nav_msgs/Odometry: told apart by name, and a topic
@@ -378,9 +421,15 @@ void Import::chooseTopics() {
        {&summary_.lidar, &summary_.imu, &summary_.odometry, &summary_.ground_truth, &tf}) {
     if (stream->topic.empty()) continue;
     const Topic* topic = findTopic(stream->topic);
-    stream->type = topic->datatype;
+    stream->type = topic->recorded_type;
+    if (topic->encoding == formats::MessageEncoding::kOther) {
+      fail("topic " + topic->name + " is encoded as \"" + topic->encoding_name +
+           "\": the import reads ROS messages (ros1, or ROS 2's cdr)");
+    }
+    // ROS 2 and MCAP give no MD5 (md5sum ""): their definitions are taken as the standard ones.
     for (const auto& [name, type] : standard) {
-      if (topic->datatype == name && topic->md5sum != type.md5sum && topic->md5sum != "*") {
+      if (topic->datatype == name && !topic->md5sum.empty() && topic->md5sum != type.md5sum &&
+          topic->md5sum != "*") {
         fail("topic " + topic->name + ": its " + name + " has the MD5 sum " + topic->md5sum +
              ", not the standard definition's " + type.md5sum);
       }
@@ -399,10 +448,10 @@ void Import::readStatic() {
   }
   std::map<std::string, std::uint64_t> counts;
   if (!static_topics.empty()) {
-    bag_.read(static_topics, [&](const formats::BagMessageView& m) {
-      const std::uint64_t index = counts[m.connection->topic]++;
+    bag_->read(static_topics, [&](const formats::RecordedMessage& m) {
+      const std::uint64_t index = counts[m.topic->name]++;
       try {
-        for (const auto& t : formats::ros1::decodeTfMessage(m.data)) {
+        for (const auto& t : formats::recorded::decodeTfMessage(m)) {
           if (const auto cycle = frames_.cycleIfAdded(t.header.frame_id, t.child_frame_id)) {
             throw formats::ros1::MessageError(
                 cycleMessage(t.header.frame_id, t.child_frame_id, *cycle));
@@ -410,16 +459,16 @@ void Import::readStatic() {
           frames_.add(t.header.frame_id, t.child_frame_id, t.parent_T_child);
         }
       } catch (const formats::ros1::MessageError& e) {
-        failMessage(m.connection->topic, index, e.what());
+        failMessage(m.topic->name, index, e.what(), &m);
       }
       return true;
     });
   }
   const Topic* made = findTopic(rosbag_names::kMetadataTopic);
   if (made && made->datatype == kStringType) {
-    bag_.read({made->name}, [&](const formats::BagMessageView& m) {
+    bag_->read({made->name}, [&](const formats::RecordedMessage& m) {
       try {
-        isg_metadata_ = nlohmann::json::parse(formats::ros1::decodeString(m.data));
+        isg_metadata_ = nlohmann::json::parse(formats::recorded::decodeString(m));
       } catch (const formats::ros1::MessageError& e) {
         failMessage(made->name, 0, e.what());
       } catch (const nlohmann::json::exception& e) {
@@ -450,21 +499,27 @@ Eigen::Isometry3d Import::childToBase(const std::string& topic, const std::strin
        "from it to the base frame \"" + base_frame_ + "\"");
 }
 
-std::string Import::firstMessage(const std::string& topic) {
-  std::string data;
-  bag_.read({topic}, [&](const formats::BagMessageView& m) {
-    data = std::string(m.data);
+template <class Decode>
+auto Import::decodeFirst(const std::string& topic, Decode decode) {
+  std::optional<decltype(decode(std::declval<const formats::RecordedMessage&>()))> first;
+  bag_->read({topic}, [&](const formats::RecordedMessage& m) {
+    try {
+      first = decode(m);
+    } catch (const formats::ros1::MessageError& e) {
+      failMessage(topic, 0, e.what(), &m);
+    }
     return false;
   });
-  return data;
+  if (!first) failMessage(topic, 0, "the topic has no message");
+  return std::move(*first);
 }
 
 MovingFrameTree Import::readTfTree() {
   MovingFrameTree tree;
   std::uint64_t index = 0;
-  bag_.read({tf_topic_}, [&](const formats::BagMessageView& m) {
+  bag_->read({tf_topic_}, [&](const formats::RecordedMessage& m) {
     try {
-      for (const auto& t : formats::ros1::decodeTfMessage(m.data)) {
+      for (const auto& t : formats::recorded::decodeTfMessage(m)) {
         if (const auto cycle = tree.cycleIfAdded(t.header.frame_id, t.child_frame_id, frames_)) {
           throw formats::ros1::MessageError(
               cycleMessage(t.header.frame_id, t.child_frame_id, *cycle) +
@@ -478,7 +533,7 @@ MovingFrameTree Import::readTfTree() {
         }
       }
     } catch (const formats::ros1::MessageError& e) {
-      failMessage(tf_topic_, index, e.what());
+      failMessage(tf_topic_, index, e.what(), &m);
     }
     ++index;
     return true;
@@ -569,7 +624,7 @@ bool Import::resolveTfOdometry() {
     return give_up("odometry from " + tf_topic_ + ": " + e.what() + " (" + chain + ")");
   }
   summary_.odometry.topic = tf_topic_;
-  summary_.odometry.type = findTopic(tf_topic_)->datatype;
+  summary_.odometry.type = findTopic(tf_topic_)->recorded_type;
   summary_.odometry_chain = tf_odometry_->describe();
   odometry_frame_ = top;
   odometry_child_ = base;
@@ -581,20 +636,14 @@ bool Import::resolveTfOdometry() {
 // The frames, from each stream's first message, and the mounts between them: a recording that
 // lacks a mount fails here, before its clouds are read.
 void Import::resolveFrames() {
-  try {
-    lidar_frame_ =
-        formats::ros1::decodePointCloud2(firstMessage(summary_.lidar.topic)).header.frame_id;
-  } catch (const formats::ros1::MessageError& e) {
-    failMessage(summary_.lidar.topic, 0, e.what());
-  }
+  lidar_frame_ =
+      packets_
+          ? decodeFirst(summary_.lidar.topic, formats::recorded::decodeVelodyneScan).header.frame_id
+          : decodeFirst(summary_.lidar.topic, formats::recorded::decodePointCloud2).header.frame_id;
   const auto poseOf = [&](const BagImportSummary::Stream& stream) {
-    const std::string data = firstMessage(stream.topic);
-    try {
-      return stream.type == kPoseType ? formats::ros1::decodePoseStamped(data)
-                                      : formats::ros1::decodeOdometry(data);
-    } catch (const formats::ros1::MessageError& e) {
-      failMessage(stream.topic, 0, e.what());
-    }
+    const bool pose = findTopic(stream.topic)->datatype == kPoseType;
+    return decodeFirst(stream.topic, pose ? formats::recorded::decodePoseStamped
+                                          : formats::recorded::decodeOdometry);
   };
   if (!tf_topic_.empty() && !resolveTfOdometry()) tf_topic_.clear();
   if (!summary_.odometry.topic.empty() && !tf_odometry_) {
@@ -606,17 +655,13 @@ void Import::resolveFrames() {
     const formats::ros1::StampedPose first = poseOf(summary_.ground_truth);
     truth_frame_ = first.header.frame_id;
     truth_child_ = first.child_frame_id;
-    if (summary_.ground_truth.type == kPoseType) {
+    if (findTopic(summary_.ground_truth.topic)->datatype == kPoseType) {
       summary_.notes.push_back("the ground truth (" + summary_.ground_truth.topic +
                                ", geometry_msgs/PoseStamped) is taken as the base frame's pose");
     }
   }
   if (!summary_.imu.topic.empty()) {
-    try {
-      imu_frame_ = formats::ros1::decodeImu(firstMessage(summary_.imu.topic)).header.frame_id;
-    } catch (const formats::ros1::MessageError& e) {
-      failMessage(summary_.imu.topic, 0, e.what());
-    }
+    imu_frame_ = decodeFirst(summary_.imu.topic, formats::recorded::decodeImu).header.frame_id;
   }
   // The base is the odometry's child (or as told). Without odometry, the ground truth's child
   // when the fixed frames join it to the LiDAR (a rig whose truth is of its base, as our own bags
@@ -639,8 +684,8 @@ void Import::resolveFrames() {
   truth_C_T_R_ = childToBase(summary_.ground_truth.topic, truth_child_);
 }
 
-void Import::readCloud(const fs::path& folder, const formats::BagMessageView& m) {
-  const formats::ros1::PointCloud2 cloud = formats::ros1::decodePointCloud2(m.data);
+void Import::readCloud(const fs::path& folder, const formats::RecordedMessage& m) {
+  const formats::ros1::PointCloud2 cloud = formats::recorded::decodePointCloud2(m);
   const formats::CloudLayout layout = formats::cloudLayout(cloud);
   if (scan_stamps_.empty()) {
     layout_ = layout;
@@ -655,8 +700,13 @@ void Import::readCloud(const fs::path& folder, const formats::BagMessageView& m)
   if (!scan_stamps_.empty() && !(scan_stamps_.back() < cloud.header.stamp)) {
     throw formats::ros1::MessageError("its stamp is not after the previous cloud's");
   }
-  const std::vector<sensors::ScanPoint> points = formats::cloudPoints(cloud, layout);
-  if (layout.time && !points.empty()) {
+  writeScan(folder, cloud.header.stamp, formats::cloudPoints(cloud, layout),
+            layout.time.has_value());
+}
+
+void Import::writeScan(const fs::path& folder, formats::RosTime stamp,
+                       const std::vector<sensors::ScanPoint>& points, bool timed) {
+  if (timed && !points.empty()) {
     const auto [lo, hi] = std::minmax_element(
         points.begin(), points.end(),
         [](const sensors::ScanPoint& a, const sensors::ScanPoint& b) { return a.time < b.time; });
@@ -672,11 +722,71 @@ void Import::readCloud(const fs::path& folder, const formats::BagMessageView& m)
   common::writeFile(
       folder / formats::dataset::kScans / formats::dataset::scanFileName(int(scan_stamps_.size())),
       formats::dataset::pcdBytes(points, formats::dataset::kDefaultPcdData));
-  scan_stamps_.push_back(cloud.header.stamp);
+  scan_stamps_.push_back(stamp);
 }
 
-void Import::readImu(const formats::BagMessageView& m) {
-  const formats::ros1::Imu imu = formats::ros1::decodeImu(m.data);
+void Import::readPackets(const fs::path& folder, const formats::RecordedMessage& m,
+                         std::uint64_t index) {
+  const formats::ros1::VelodyneScan scan = formats::recorded::decodeVelodyneScan(m);
+  if (scan.header.frame_id != lidar_frame_) {
+    throw formats::ros1::MessageError("its frame \"" + scan.header.frame_id +
+                                      "\" is not the first scan's \"" + lidar_frame_ + "\"");
+  }
+  formats::Vlp16DecodeOptions options;  // the ROS driver's range limits
+  for (std::size_t p = 0; p < scan.packets.size(); ++p) {
+    const auto& packet = scan.packets[p];
+    if (packet_count_ == 0) packet_origin_ = packet.stamp.sec;
+    const double stamp = double(std::int64_t(packet.stamp.sec) - std::int64_t(packet_origin_)) +
+                         1e-9 * packet.stamp.nsec;
+    const auto* bytes = reinterpret_cast<const std::uint8_t*>(packet.data.data());
+    const std::size_t before = turn_points_.size();
+    const formats::Vlp16PacketHeader header = formats::decodeVlp16Packet(
+        std::span(bytes, packet.data.size()), stamp, options, bag_path_,
+        "topic " + summary_.lidar.topic + ", message " + std::to_string(index) + " (" +
+            formats::placeOf(m) + "), packet " + std::to_string(p),
+        turn_points_);
+    packet_mode_ = header.mode;
+    ++packet_count_;
+    // Dual-return packets give each shot's last and strongest echo: the strongest is kept, so a
+    // scan has one return a shot as a single-return recording's.
+    const auto weak = [](const formats::Vlp16Point& q) {
+      return q.echo == formats::Vlp16Echo::kNearWeak || q.echo == formats::Vlp16Echo::kFarWeak;
+    };
+    const auto kept =
+        std::remove_if(turn_points_.begin() + std::ptrdiff_t(before), turn_points_.end(), weak);
+    weak_echoes_ += std::uint64_t(turn_points_.end() - kept);
+    turn_points_.erase(kept, turn_points_.end());
+  }
+  // Every turn but the one under way is done; the recording's first is cut short (left out).
+  std::vector<formats::Vlp16Turn> turns = formats::cutIntoTurns(turn_points_);
+  if (turns.size() < 2) return;
+  for (std::size_t t = 0; t + 1 < turns.size(); ++t) {
+    if (!packet_turns_started_) {
+      packet_turns_started_ = true;
+      continue;
+    }
+    const auto& points = turns[t].points;
+    if (points.empty()) continue;
+    const double first = points.front().time;
+    std::vector<sensors::ScanPoint> out;
+    out.reserve(points.size());
+    for (const auto& q : points) {
+      out.push_back({q.x, q.y, q.z, float(q.intensity), q.ring, float(q.time - first)});
+    }
+    const double whole = std::floor(first);
+    formats::RosTime turn_stamp{packet_origin_ + std::uint32_t(whole),
+                                std::uint32_t(std::llround((first - whole) * 1e9))};
+    if (turn_stamp.nsec >= 1000000000u) {
+      turn_stamp.sec += 1;
+      turn_stamp.nsec -= 1000000000u;
+    }
+    writeScan(folder, turn_stamp, out, true);
+  }
+  turn_points_ = std::move(turns.back().points);
+}
+
+void Import::readImu(const formats::RecordedMessage& m) {
+  const formats::ros1::Imu imu = formats::recorded::decodeImu(m);
   if (imu.header.frame_id != imu_frame_) {
     throw formats::ros1::MessageError("its frame \"" + imu.header.frame_id +
                                       "\" is not the first sample's \"" + imu_frame_ + "\"");
@@ -693,12 +803,12 @@ void Import::readImu(const formats::BagMessageView& m) {
   imu_.push_back({imu.header.stamp, sample});
 }
 
-void Import::readPose(const formats::BagMessageView& m) {
-  const std::string& topic = m.connection->topic;
+void Import::readPose(const formats::RecordedMessage& m) {
+  const std::string& topic = m.topic->name;
   const bool odometry = topic == summary_.odometry.topic;
   const formats::ros1::StampedPose pose = findTopic(topic)->datatype == kPoseType
-                                              ? formats::ros1::decodePoseStamped(m.data)
-                                              : formats::ros1::decodeOdometry(m.data);
+                                              ? formats::recorded::decodePoseStamped(m)
+                                              : formats::recorded::decodeOdometry(m);
   auto& poses = odometry ? odometry_ : truth_;
   if (pose.child_frame_id != (odometry ? odometry_child_ : truth_child_)) {
     throw formats::ros1::MessageError("its child frame \"" + pose.child_frame_id +
@@ -718,26 +828,30 @@ void Import::readStreams(const fs::path& folder,
     if (!stream->topic.empty()) topics.push_back(stream->topic);
   }
   // The window, in the bag's record times.
-  const formats::RosTime first = bag_.startTime();
+  const formats::RosTime first = bag_->startTime();
   const double begin = double(first.sec) + 1e-9 * first.nsec + options_.start;
   const double end = options_.duration ? begin + *options_.duration : INFINITY;
   const std::uint64_t total = findTopic(summary_.lidar.topic)->messages;
   std::map<std::string, std::uint64_t> index;  // per topic: the message's place on it
   fs::create_directories(folder / formats::dataset::kScans);
-  bag_.read(topics, [&](const formats::BagMessageView& m) {
-    const std::string& topic = m.connection->topic;
+  bag_->read(topics, [&](const formats::RecordedMessage& m) {
+    const std::string& topic = m.topic->name;
     const std::uint64_t k = index[topic]++;
     const double time = double(m.time.sec) + 1e-9 * m.time.nsec;
     if (time < begin) return true;
     if (time > end) return false;
     try {
       if (topic == summary_.lidar.topic) {
-        readCloud(folder, m);
+        if (packets_) {
+          readPackets(folder, m, k);
+        } else {
+          readCloud(folder, m);
+        }
         if (progress) progress(k + 1, total);
       } else if (topic == summary_.imu.topic) {
         readImu(m);
       } else if (tf_odometry_ && topic == summary_.odometry.topic) {
-        for (const auto& t : formats::ros1::decodeTfMessage(m.data)) {
+        for (const auto& t : formats::recorded::decodeTfMessage(m)) {
           try {
             tf_odometry_->offer(t.header.frame_id, t.child_frame_id, t.header.stamp,
                                 t.parent_T_child);
@@ -749,7 +863,7 @@ void Import::readStreams(const fs::path& folder,
         readPose(m);
       }
     } catch (const formats::ros1::MessageError& e) {
-      failMessage(topic, k, e.what());
+      failMessage(topic, k, e.what(), &m);
     }
     return true;
   });
@@ -879,7 +993,20 @@ void Import::writeFiles(const fs::path& folder) {
                             ? std::array<double, 2>{time_min_, time_max_}
                             : std::array<double, 2>{0.0, summary_.scan_period};
   summary_.stamp = 2 * clouds_stamped_at_end_ > clouds_with_time_ ? "last_packet" : "first_firing";
-  summary_.cloud_layout = layout_.describe();
+  summary_.cloud_layout =
+      packets_ ? "x y z intensity ring time (VLP-16 packets decoded)" : layout_.describe();
+  if (packets_) {
+    const char* mode = packet_mode_ == formats::Vlp16ReturnMode::kDual   ? "dual"
+                       : packet_mode_ == formats::Vlp16ReturnMode::kLast ? "last"
+                                                                         : "strongest";
+    summary_.notes.push_back(common::counted(packet_count_, "VLP-16 packet") + " decoded (" + mode +
+                             " return) into " + common::counted(scan_stamps_.size(), "turn") +
+                             " cut at azimuth 0; the first and the last turn, cut short, left out" +
+                             (weak_echoes_ > 0 ? "; the weaker echo of " +
+                                                     common::counted(weak_echoes_, "shot") +
+                                                     " left out (one return a shot)"
+                                               : ""));
+  }
   summary_.seconds = stamps.back() + summary_.point_time[1];
 
   writeScanTimes(folder, stamps, truth);

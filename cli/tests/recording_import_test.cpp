@@ -8,6 +8,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <filesystem>
 #include <nlohmann/json.hpp>
 #include <sstream>
 #include <vector>
@@ -16,6 +17,8 @@
 
 namespace isg::cli {
 namespace {
+
+namespace fs = std::filesystem;
 
 using ::testing::HasSubstr;
 using ::testing::StartsWith;
@@ -74,6 +77,19 @@ int shell(const testing::Sandbox& sandbox, const std::string& command) {
 double apeRmse(const testing::Sandbox& sandbox, const std::string& run) {
   const auto metrics = nlohmann::json::parse(sandbox.read(run + "/metrics.json"));
   return metrics["ape_B"]["rmse"].get<double>();
+}
+
+// The mount `name` (R_T_L, R_T_I) of the dataset ds as --lidar-extrinsic / --imu-extrinsic take it.
+std::string mountText(const testing::Sandbox& sandbox, const char* name) {
+  const auto metadata = nlohmann::json::parse(sandbox.read("ds/metadata.json"));
+  std::string out;
+  for (const auto& v : metadata["extrinsics"][name]["xyz_rpy"]) {
+    std::ostringstream text;
+    text.precision(17);
+    text << v.get<double>();
+    out += (out.empty() ? "" : ",") + text.str();
+  }
+  return out;
 }
 
 // `imported` (from a recording of the dataset `ds` in builtin:d1) localizes, within 1 cm of APE
@@ -226,17 +242,7 @@ TEST(ImportRecording, AnOusterBagLocalizesWithTheMountsGiven) {
       "LiDAR's frame \"os_sensor\" in /tf_static: give --lidar-extrinsic X,Y,Z,ROLL,PITCH,YAW "
       "(the LiDAR's pose on the base, metres and radians)\n");
   EXPECT_FALSE(sandbox.exists("imported"));
-  const auto original = nlohmann::json::parse(sandbox.read("ds/metadata.json"));
-  const auto mount = [&](const char* name) {
-    std::string out;
-    for (const auto& v : original["extrinsics"][name]["xyz_rpy"]) {
-      std::ostringstream text;
-      text.precision(17);
-      text << v.get<double>();
-      out += (out.empty() ? "" : ",") + text.str();
-    }
-    return out;
-  };
+  const auto mount = [&](const char* name) { return mountText(sandbox, name); };
   result = sandbox.run("import ouster.bag -o imported -q --lidar-extrinsic " + mount("R_T_L") +
                        " --imu-extrinsic " + mount("R_T_I"));
   ASSERT_EQ(result.exit_code, 0) << result.err;
@@ -248,6 +254,153 @@ TEST(ImportRecording, AnOusterBagLocalizesWithTheMountsGiven) {
   EXPECT_EQ(ds["lidar"]["scans"], 200);
   EXPECT_EQ(scanSizes(sandbox, "imported", 200), scanSizes(sandbox, "ds", 200));
   expectLocalizedAsTheOriginal(sandbox);
+}
+
+// isg export --mcap → import: the dataset back, as from the ROS 1 bag.
+TEST(ImportRecording, OurOwnMcapImportsBackToTheDataset) {
+  testing::Sandbox sandbox("import_mcap_round_trip");
+  ASSERT_EQ(sandbox.run("simulate builtin:d1 -o ds --duration 5 -q").exit_code, 0);
+  ASSERT_EQ(sandbox.run("export ds --mcap ds.mcap -q").exit_code, 0);
+  const auto result = sandbox.run("import ds.mcap -o imported -q");
+  ASSERT_EQ(result.exit_code, 0) << result.err;
+  EXPECT_THAT(result.out,
+              StartsWith("isg import: ds.mcap -> imported (a bag of an isg dataset: its metadata "
+                         "restored)\n  LiDAR         /velodyne_points "
+                         "(sensor_msgs/msg/PointCloud2): 50 messages\n  IMU           /imu/data "
+                         "(sensor_msgs/msg/Imu): 1001 messages\n  odometry      /odom "
+                         "(nav_msgs/msg/Odometry): 251 messages\n  ground truth  /ground_truth "
+                         "(nav_msgs/msg/Odometry): 501 messages\n"));
+  EXPECT_EQ(sandbox.read("imported/imu.csv"), sandbox.read("ds/imu.csv"));
+  EXPECT_EQ(sandbox.read("imported/scans/000037.pcd"), sandbox.read("ds/scans/000037.pcd"));
+  EXPECT_EQ(largestDifference(sandbox.read("imported/odometry.tum"),
+                              sandbox.read("ds/odometry.tum"), 0, 4),
+            0.0);
+  EXPECT_LE(largestDifference(sandbox.read("imported/odometry.tum"),
+                              sandbox.read("ds/odometry.tum"), 4, 8),
+            2e-9);
+  EXPECT_EQ(sandbox.read("imported/scans.tum").substr(0, 200),
+            sandbox.read("ds/scans.tum").substr(0, 200));
+  auto original = nlohmann::json::parse(sandbox.read("ds/metadata.json"));
+  auto imported = nlohmann::json::parse(sandbox.read("imported/metadata.json"));
+  imported.erase("imported_from");
+  EXPECT_EQ(imported, original);
+}
+
+std::string pythonRos2(const std::string& arguments) {
+  return "/usr/bin/python3 '" + std::string(ISG_SOURCE_DIR) +
+         "/cli/tests/python_ros2_recording.py' " + arguments;
+}
+
+// A ROS 2 recording in the Hesai driver's conventions from Python's sqlite3, CDR encoded by hand
+// (cli/tests/python_ros2_recording.py), with no odometry: the LiDAR and the IMU make it, and the
+// rig is localized in the plan. The same recording split in two files with its metadata.yaml, or
+// in big-endian CDR, imports to the same dataset.
+TEST(ImportRecording, ARos2Db3FromAnotherWriterLocalizesWithoutOdometry) {
+  testing::Sandbox sandbox("import_ros2_db3");
+  ASSERT_EQ(sandbox.run("simulate builtin:d1 -o ds --duration 20 -q --pcd binary").exit_code, 0);
+  ASSERT_EQ(shell(sandbox, pythonRos2("ds hesai.db3")), 0);
+  auto result = sandbox.run("import hesai.db3 -o imported -q");
+  ASSERT_EQ(result.exit_code, 0) << result.err;
+  EXPECT_THAT(result.out,
+              StartsWith("isg import: hesai.db3 -> imported\n  LiDAR         /hesai/pandar "
+                         "(sensor_msgs/msg/PointCloud2): 200 messages\n  IMU           "
+                         "/alphasense/imu (sensor_msgs/msg/Imu): 4001 messages\n  odometry      "
+                         "none\n  ground truth  /ground_truth (nav_msgs/msg/Odometry): 2001 "
+                         "messages\n"));
+  EXPECT_THAT(result.out, HasSubstr("clouds: x y z intensity ring timestamp (Hesai's layout); "
+                                    "stamped at the start (point times 0.0000 to 0.1000 s"));
+  const auto ds = nlohmann::json::parse(sandbox.read("imported/metadata.json"));
+  EXPECT_EQ(ds["lidar"]["scans"], 200);
+  EXPECT_EQ(scanSizes(sandbox, "imported", 200), scanSizes(sandbox, "ds", 200));
+  EXPECT_FALSE(sandbox.exists("imported/odometry.tum"));
+  result = sandbox.run("slam imported --plan builtin:d1 -o b");
+  ASSERT_EQ(result.exit_code, 0) << result.err;
+  EXPECT_THAT(result.out, HasSubstr("localized at t = "));
+  EXPECT_LE(apeRmse(sandbox, "b"), 0.05);
+
+  // A cloud shorter than it says: its index on the topic and its row in the database.
+  ASSERT_EQ(shell(sandbox, pythonRos2("ds short.db3 --short-cloud 3")), 0);
+  result = sandbox.run("import short.db3 -o short -q");
+  EXPECT_EQ(result.exit_code, 1);
+  EXPECT_THAT(result.err, StartsWith("isg import: error: short.db3: topic /hesai/pandar, message 3 "
+                                     "(row 106): 1 × "));
+  EXPECT_FALSE(sandbox.exists("short"));
+
+  ASSERT_EQ(shell(sandbox, pythonRos2("ds split --split --big-endian")), 0);
+  result = sandbox.run("import split -o from_split -q");
+  ASSERT_EQ(result.exit_code, 0) << result.err;
+  for (const char* file : {"imu.csv", "groundtruth.tum", "scans.tum", "scans/000000.pcd",
+                           "scans/000100.pcd", "scans/000199.pcd"}) {
+    EXPECT_EQ(sandbox.read(std::string("from_split/") + file),
+              sandbox.read(std::string("imported/") + file))
+        << file;
+  }
+}
+
+// The same rig's recording as MCAP from npm's writers (cli/tests/npm_ros2_recording.js: @mcap/core,
+// zstd chunks, CDR from @foxglove/rosmsg2-serialization, a JSON channel beside), without
+// /tf_static: the mounts are given.
+TEST(ImportRecording, AnNpmMcapFromAnotherWriterLocalizesWithoutOdometry) {
+  const fs::path modules = fs::path(ISG_SOURCE_DIR) / "ci/oracles/node_modules";
+  if (!fs::is_directory(modules / "@mcap/core") || std::system("node --version >/dev/null 2>&1")) {
+    GTEST_SKIP() << "node or the npm oracles are not installed (ci/install-deps)";
+  }
+  testing::Sandbox sandbox("import_ros2_mcap");
+  ASSERT_EQ(sandbox.run("simulate builtin:d1 -o ds --duration 20 -q --pcd binary").exit_code, 0);
+  ASSERT_EQ(shell(sandbox, "node '" + std::string(ISG_SOURCE_DIR) +
+                               "/cli/tests/npm_ros2_recording.js' ds hesai.mcap '" +
+                               modules.string() + "'"),
+            0);
+  auto result = sandbox.run("import hesai.mcap -o imported -q");
+  EXPECT_EQ(result.exit_code, 1);
+  EXPECT_EQ(result.err,
+            "isg import: error: hesai.mcap: no transform from the base frame \"PandarXT-32\" to "
+            "the IMU's frame \"imu_sensor_frame\" in /tf_static: give --imu-extrinsic "
+            "X,Y,Z,ROLL,PITCH,YAW (the IMU's pose on the base, metres and radians)\n");
+  const auto mount = [&](const char* name) { return mountText(sandbox, name); };
+  result =
+      sandbox.run("import hesai.mcap -o imported -q --base-frame base_link --lidar-extrinsic " +
+                  mount("R_T_L") + " --imu-extrinsic " + mount("R_T_I"));
+  ASSERT_EQ(result.exit_code, 0) << result.err;
+  EXPECT_THAT(result.out, HasSubstr("  LiDAR         /hesai/pandar (sensor_msgs/msg/PointCloud2): "
+                                    "200 messages\n"));
+  EXPECT_THAT(result.out, HasSubstr("  odometry      none\n"));
+  EXPECT_EQ(scanSizes(sandbox, "imported", 200), scanSizes(sandbox, "ds", 200));
+  result = sandbox.run("slam imported --plan builtin:d1 -o b");
+  ASSERT_EQ(result.exit_code, 0) << result.err;
+  EXPECT_THAT(result.out, HasSubstr("localized at t = "));
+  EXPECT_LE(apeRmse(sandbox, "b"), 0.05);
+  // The JSON channel is no ROS message: named when asked for.
+  result = sandbox.run("import hesai.mcap -o other -q --imu-topic /diagnostics");
+  EXPECT_EQ(result.exit_code, 1);
+  EXPECT_EQ(result.err,
+            "isg import: error: hesai.mcap: --imu-topic /diagnostics: the topic carries json "
+            "without a schema, the IMU must be sensor_msgs/Imu\n");
+  EXPECT_FALSE(sandbox.exists("other"));
+}
+
+// The real VLP-16 packet fixture (a ROS 2 bag of velodyne_msgs/msg/VelodyneScan, copied with its
+// licence into formats/tests/data/vlp16-real): a short dataset of the turns it holds whole.
+TEST(ImportRecording, TheRealVlp16PacketFixtureImportsAsAShortDataset) {
+  testing::Sandbox sandbox("import_vlp16_packets");
+  const std::string fixture =
+      std::string(ISG_SOURCE_DIR) + "/formats/tests/data/vlp16-real/nebula-vlp16-indoor.db3";
+  auto result = sandbox.run("import '" + fixture + "' -o real");
+  ASSERT_EQ(result.exit_code, 0) << result.err;
+  EXPECT_THAT(result.out, HasSubstr("  LiDAR         /velodyne_packets "
+                                    "(velodyne_msgs/msg/VelodyneScan): "));
+  EXPECT_THAT(result.out, HasSubstr("  IMU           none\n  odometry      none\n"));
+  EXPECT_THAT(result.out, HasSubstr("clouds: x y z intensity ring time (VLP-16 packets decoded); "
+                                    "stamped at the start"));
+  EXPECT_THAT(result.out, HasSubstr("note: 603 VLP-16 packets decoded (dual return) into "));
+  const auto ds = nlohmann::json::parse(sandbox.read("real/metadata.json"));
+  EXPECT_GE(ds["lidar"]["scans"].get<int>(), 2);
+  EXPECT_TRUE(sandbox.exists("real/scans/000001.pcd"));
+  EXPECT_TRUE(sandbox.exists("real/scans.txt"));
+  // A dataset as any other: isg reads it back (its files checked against its metadata) to export
+  // it.
+  result = sandbox.run("export real --mcap real.mcap -q");
+  EXPECT_EQ(result.exit_code, 0) << result.err;
 }
 
 TEST(ImportRecording, BadRecordingsAreExactErrorsAndLeaveNothing) {
@@ -278,9 +431,10 @@ TEST(ImportRecording, BadRecordingsAreExactErrorsAndLeaveNothing) {
             "(nav_msgs/Odometry); --odom-frame names the odometry's frame on /tf\n");
   result = sandbox.run("import two.bag -o imported -q --lidar-topic /imu/data");
   EXPECT_EQ(result.exit_code, 1);
-  EXPECT_EQ(result.err,
-            "isg import: error: two.bag: --lidar-topic /imu/data: the topic carries "
-            "sensor_msgs/Imu, the LiDAR must be sensor_msgs/PointCloud2\n");
+  EXPECT_EQ(
+      result.err,
+      "isg import: error: two.bag: --lidar-topic /imu/data: the topic carries "
+      "sensor_msgs/Imu, the LiDAR must be sensor_msgs/PointCloud2 or velodyne_msgs/VelodyneScan\n");
   // A cloud shorter than it says: the topic, its index, the reason.
   result = sandbox.run("import two.bag -o imported -q --lidar-topic /velodyne_points");
   EXPECT_EQ(result.exit_code, 1);

@@ -10,12 +10,16 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <iterator>
 #include <nlohmann/json.hpp>
 
 #include "common/input_error.hpp"
 #include "common/tum.hpp"
+#include "formats/dataset_format.hpp"
 #include "formats/imu_file.hpp"
 #include "formats/pcd_reader.hpp"
+#include "formats/ros2_bag.hpp"
+#include "formats/ros2_message_decode.hpp"
 #include "formats/ros_messages.hpp"
 #include "formats/rosbag_writer.hpp"
 #include "formats/tests/scratch_files.hpp"
@@ -266,8 +270,9 @@ TEST_F(BagImport, PacketsWithoutCloudsAreNamedForWhatTheyAre) {
               "the bag has no point clouds (sensor_msgs/PointCloud2), only a LiDAR's raw packets: "
               "/os_node/imu_packets (ouster_ros/PacketMsg, 1 message), /os_node/lidar_packets "
               "(ouster_ros/PacketMsg, 3 messages); the import reads point clouds and decodes no "
-              "packet type: record the driver's point-cloud topic, or play the bag through the "
-              "driver and record its clouds");
+              "packet type but Velodyne's VLP-16 packets (velodyne_msgs/VelodyneScan): record the "
+              "driver's point-cloud topic, or play the bag through the driver and record its "
+              "clouds");
     EXPECT_EQ(e.reason().find("--lidar-topic"), std::string::npos);
   }
   BagImportOptions named;
@@ -278,10 +283,82 @@ TEST_F(BagImport, PacketsWithoutCloudsAreNamedForWhatTheyAre) {
   } catch (const common::InputError& e) {
     EXPECT_EQ(e.reason(),
               "--lidar-topic /os_node/lidar_packets: the topic carries ouster_ros/PacketMsg, the "
-              "LiDAR must be sensor_msgs/PointCloud2 (a LiDAR's raw packets, which the import does "
-              "not decode: record the driver's point-cloud topic)");
+              "LiDAR must be sensor_msgs/PointCloud2 or velodyne_msgs/VelodyneScan (a LiDAR's raw "
+              "packets, which the import does not decode: record the driver's point-cloud topic)");
   }
   EXPECT_FALSE(fs::exists(dir_ / "ds"));
+}
+
+// The real VLP-16 packets of formats/tests/data/vlp16-real (a ROS 2 bag of 4 VelodyneScan messages,
+// 603 packets, dual return): decoded and cut into turns, the turns the recording holds whole
+// become scans; the same packets in a ROS 1 bag (serialised here: Header, then each packet's
+// time and uint8[1206]) give the same scans, byte for byte.
+TEST_F(BagImport, VelodynePacketsOfEitherRosBecomeScans) {
+  const std::string db3 =
+      std::string(ISG_SOURCE_DIR) + "/formats/tests/data/vlp16-real/nebula-vlp16-indoor.db3";
+  const BagImportSummary summary = importRosbag(db3, (dir_ / "ros2").string(), {}, nullptr);
+  EXPECT_EQ(summary.lidar.topic, "/velodyne_packets");
+  EXPECT_EQ(summary.lidar.type, "velodyne_msgs/msg/VelodyneScan");
+  EXPECT_EQ(summary.cloud_layout, "x y z intensity ring time (VLP-16 packets decoded)");
+  EXPECT_EQ(summary.stamp, "first_firing");
+  ASSERT_FALSE(summary.notes.empty());
+  EXPECT_EQ(summary.notes[0].rfind("603 VLP-16 packets decoded (dual return) into ", 0), 0u)
+      << summary.notes[0];
+  // 0.4 s of a head turning at 10 Hz: whole turns between the first and the last crossing.
+  ASSERT_GE(summary.lidar.messages, 2u);
+  ASSERT_LE(summary.lidar.messages, 3u);
+  EXPECT_NEAR(summary.scan_period, 0.1, 0.005);
+  EXPECT_GE(summary.point_time[0], 0.0);
+  EXPECT_NEAR(summary.point_time[1], 0.1, 0.005);
+  // One echo a shot: about as many points a turn as tier4/nebula's decoder gives for one of these
+  // turns (formats/tests/data/vlp16-real: 14 831 points, both echoes where they differ, cut at
+  // another azimuth), and never more than the 16 × ~1800 shots of a turn at 10 Hz.
+  for (std::uint64_t k = 0; k < summary.lidar.messages; ++k) {
+    const auto scan =
+        formats::readPcd((dir_ / "ros2/scans" / formats::dataset::scanFileName(int(k))).string());
+    EXPECT_NEAR(double(scan.size()), 14831.0, 0.05 * 14831.0);
+    EXPECT_LT(scan.size(), 16u * 1850u);
+  }
+
+  // The same packets as ROS 1 messages.
+  const std::string bag_path = (dir_ / "packets.bag").string();
+  {
+    formats::RosbagWriter bag(bag_path, true);
+    const formats::RosMessageType type{"velodyne_msgs/VelodyneScan",
+                                       "50804fc9533a0e579e6322c04ae70566", "Header header\n"};
+    const int topic = bag.connect("/velodyne_packets", type);
+    formats::Ros2Bag ros2(db3);
+    ros2.read({"/velodyne_packets"}, [&](const formats::Ros2MessageView& m) {
+      const auto scan = formats::ros2::decodeVelodyneScan(m.data);
+      std::string out;
+      const auto put = [&](std::uint32_t v) { out.append(reinterpret_cast<const char*>(&v), 4); };
+      put(0);
+      put(scan.header.stamp.sec);
+      put(scan.header.stamp.nsec);
+      put(std::uint32_t(scan.header.frame_id.size()));
+      out += scan.header.frame_id;
+      put(std::uint32_t(scan.packets.size()));
+      for (const auto& packet : scan.packets) {
+        put(packet.stamp.sec);
+        put(packet.stamp.nsec);
+        out += packet.data;
+      }
+      const auto ns = std::uint64_t(m.stamp_ns);
+      bag.write(topic, {std::uint32_t(ns / 1000000000u), std::uint32_t(ns % 1000000000u)}, out);
+      return true;
+    });
+    bag.close();
+  }
+  const BagImportSummary ros1 = importRosbag(bag_path, (dir_ / "ros1").string(), {}, nullptr);
+  EXPECT_EQ(ros1.lidar.type, "velodyne_msgs/VelodyneScan");
+  ASSERT_EQ(ros1.lidar.messages, summary.lidar.messages);
+  for (const char* file : {"scans.txt", "scans/000000.pcd", "scans/000001.pcd"}) {
+    std::ifstream a(dir_ / "ros1" / file, std::ios::binary),
+        b(dir_ / "ros2" / file, std::ios::binary);
+    EXPECT_EQ(std::string(std::istreambuf_iterator<char>(a), {}),
+              std::string(std::istreambuf_iterator<char>(b), {}))
+        << file;
+  }
 }
 
 }  // namespace

@@ -178,6 +178,19 @@ TEST(RecordingDecode, OtherDriversLayoutsAndTimes) {
   const auto hp = formats::cloudPoints(h, formats::cloudLayout(h));
   ASSERT_EQ(hp.size(), 1u);
   EXPECT_NEAR(hp[0].time, 0.05, 1e-6);
+  // Livox's PointCloud2: float64 `timestamp` in nanoseconds since the epoch, `line` its ring.
+  std::string livox(26, '\0');
+  put(livox, 0, 4.0f);
+  put(livox, 16, std::uint8_t(3));
+  put(livox, 18, 1600000000.0625e9);
+  const auto l = cloudOf(
+      {{"x", 0, 7, 1}, {"y", 4, 7, 1}, {"z", 8, 7, 1}, {"line", 16, 2, 1}, {"timestamp", 18, 8, 1}},
+      26, livox, {1600000000, 12500000});
+  const auto lp = formats::cloudPoints(l, formats::cloudLayout(l));
+  ASSERT_EQ(lp.size(), 1u);
+  EXPECT_NEAR(lp[0].time, 0.05, 1e-6);
+  EXPECT_EQ(lp[0].ring, 3);
+  EXPECT_EQ(formats::cloudLayout(l).describe(), "x y z line timestamp (Livox's layout)");
   // x y z only: said, and every time 0.
   std::string plain(12, '\0');
   put(plain, 0, 3.0f);
