@@ -122,6 +122,9 @@ inline const char* lidarReturnsName(LidarReturns r) {
 }
 
 struct LidarConfig {
+  // The sensor (bim/lidar_models.hpp, sensors/lidar_model.hpp): its beams and timing, and the
+  // defaults of the figures below.
+  std::string model = "vlp16";
   double rate_hz = 10.0;
   double range_noise_m = 0.007;
   double min_range_m = 0.4;

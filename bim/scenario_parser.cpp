@@ -9,6 +9,7 @@
 #include "bim/box_grid.hpp"
 #include "bim/column.hpp"
 #include "bim/facade.hpp"
+#include "bim/lidar_models.hpp"
 #include "bim/limits.hpp"
 #include "bim/plan_geometry.hpp"
 #include "bim/plan_parser.hpp"
@@ -268,10 +269,21 @@ SurfaceReflectivity parseReflectivity(const common::JsonNode& node) {
 }
 
 LidarConfig parseLidar(const common::JsonNode& node) {
-  node.expectObject({"rate_hz", "range_noise_m", "min_range_m", "max_range_m", "dropout",
+  node.expectObject({"model", "rate_hz", "range_noise_m", "min_range_m", "max_range_m", "dropout",
                      "grazing_cutoff_deg", "detection_range_m", "body_occlusion", "reflectivity",
                      "mount", "stamp", "cut", "cut_angle_deg", "azimuth_jitter_deg", "returns"});
   LidarConfig lidar;
+  // The model first: its figures are the defaults the fields below may change.
+  if (auto v = node.optionalField("model")) {
+    const std::string name = v->string();
+    const LidarModelDefaults* model = findLidarModelDefaults(name);
+    if (!model) {
+      std::string names;
+      for (const auto& m : lidarModelDefaults()) names += (names.empty() ? "" : ", ") + m.name;
+      v->fail("unknown LiDAR model " + common::inQuotes(name) + " (known: " + names + ")");
+    }
+    useLidarModel(lidar, *model);
+  }
   if (auto v = node.optionalField("rate_hz")) lidar.rate_hz = v->numberInRange(5.0, 20.0);
   if (auto v = node.optionalField("range_noise_m"))
     lidar.range_noise_m = v->numberInRange(0.0, 1.0);

@@ -40,6 +40,7 @@ RunCommand::RunCommand(CLI::App& parent) {
   app_->add_option("--seed", seed_, "seed for every random draw")
       ->check(seedNumber())
       ->default_str("the scenario's");
+  addLidarModelOption(*app_, lidar_model_);
   app_->add_option("--duration", duration_, "seconds of robot time")
       ->check(positiveNumber())
       ->default_str("the whole route");
@@ -65,6 +66,7 @@ int RunCommand::run() {
   const std::map<std::string, double> effective = checkMethodOptions(methods_, method_, options);
   bim::Scenario scenario = loadInput(input, "run");
   if (seed_) scenario.seed = *seed_;
+  useLidarModelOption(scenario, lidar_model_);
   // The seed is in the default name, so that the seeds of one world and method do not collide.
   if (output_.empty()) {
     output_ = "runs/" + worlds::worldName(input) + "-" + method_ + "-seed-" +
@@ -96,10 +98,16 @@ int RunCommand::run() {
   const auto localizer =
       withOdometry("isg run", makeMethod(methods_, method_, context), streams, quiet_);
 
-  run::RunSetup setup{
-      input,          localizer->name(), scenario.seed,        worlds::worldHash(scenario),
-      &scenario.plan, &agraph,           scenario.robot.level, &scenario.as_built,
-      effective};
+  run::RunSetup setup{input,
+                      localizer->name(),
+                      scenario.seed,
+                      worlds::worldHash(scenario),
+                      &scenario.plan,
+                      &agraph,
+                      scenario.robot.level,
+                      &scenario.as_built,
+                      effective,
+                      scenario.lidar.model};
   const auto mcap = openRunMcap(mcap_, force_, {inputFile(input)}, output_, setup, streams);
   ProgressBar bar("isg run", quiet_);
   const double period = streams.scan_period;

@@ -22,6 +22,7 @@ class RunCommand : public Command {
   std::vector<std::string> method_options_;
   std::string method_ = "is-graphs";
   std::optional<std::uint64_t> seed_;
+  std::string lidar_model_;
   double duration_ = -1.0;
   int threads_ = 2;
   RunMcapArguments mcap_;

@@ -34,6 +34,7 @@ SimulateCommand::SimulateCommand(CLI::App& parent) {
   app_->add_option("--seed", seed_, "seed for every random draw")
       ->check(seedNumber())
       ->default_str("the scenario's");
+  addLidarModelOption(*app_, lidar_model_);
   app_->add_option("--duration", duration_, "seconds to simulate")
       ->default_str("the whole route")
       ->check(positiveNumber());
@@ -65,6 +66,7 @@ SimulateCommand::SimulateCommand(CLI::App& parent) {
 int SimulateCommand::run() {
   bim::Scenario scenario = loadInput(input_, "simulate");
   if (seed_) scenario.seed = *seed_;
+  useLidarModelOption(scenario, lidar_model_);
   sim::Simulation simulation(scenario);
   checkRoute("isg simulate", scenario, simulation, duration_);
   common::checkCanCreateFolder(output_, common::OutputKind::kDataset, force_, {inputFile(input_)});

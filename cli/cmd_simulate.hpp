@@ -19,6 +19,7 @@ class SimulateCommand : public Command {
   std::string input_;
   std::string output_;
   std::optional<std::uint64_t> seed_;
+  std::string lidar_model_;
   double duration_ = -1.0;
   int threads_ = 2;
   std::string pcd_ = "binary_compressed";

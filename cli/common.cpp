@@ -7,6 +7,7 @@
 #include <filesystem>
 #include <iostream>
 
+#include "bim/lidar_models.hpp"
 #include "worlds/reference_plans.hpp"
 
 namespace isg::cli {
@@ -52,6 +53,22 @@ CLI::Validator numberCheck(bool allow_zero) {
 }
 
 }  // namespace
+
+void addLidarModelOption(CLI::App& app, std::string& model) {
+  std::vector<std::string> names;
+  for (const auto& m : bim::lidarModelDefaults()) names.push_back(m.name);
+  app.add_option("--lidar", model,
+                 "the LiDAR model instead of the scenario's, with its range gate, noise and "
+                 "detection range (docs/simulation.md, \"LiDAR models\")")
+      ->check(CLI::IsMember(names))
+      ->option_text("MODEL")
+      ->default_str("the scenario's (vlp16 unless it says)");
+}
+
+void useLidarModelOption(bim::Scenario& scenario, const std::string& model) {
+  if (model.empty()) return;
+  bim::useLidarModel(scenario.lidar, *bim::findLidarModelDefaults(model));
+}
 
 CLI::Validator seedNumber() {
   return CLI::Validator(

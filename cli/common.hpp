@@ -28,6 +28,12 @@ CLI::Validator nonNegativeNumber();
 // wrap "-1" and 2^64 silently).
 CLI::Validator seedNumber();
 
+// --lidar MODEL (isg simulate, isg run): the scenario's LiDAR replaced by another model, with that
+// model's range gate, noise and detection range (bim/lidar_models.hpp).
+void addLidarModelOption(CLI::App& app, std::string& model);
+// The option's effect on a loaded scenario (nothing when `model` is empty).
+void useLidarModelOption(bim::Scenario& scenario, const std::string& model);
+
 // The file a PLAN|SCENARIO argument names ("" for a built-in world), for the output rule's inputs.
 std::string inputFile(const std::string& argument);
 

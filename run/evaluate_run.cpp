@@ -48,6 +48,9 @@ void identify(const RunRecord& run, RunMetrics& m) {
   m.world = run.setup.world;
   m.method = run.setup.method;
   m.seed = run.setup.seed;
+  if (!run.setup.lidar_model.empty() && run.setup.lidar_model != "vlp16") {
+    m.lidar_model = run.setup.lidar_model;
+  }
   if (!run.setup.world_hash.empty()) m.world_hash = run.setup.world_hash;
   m.method_options = run.setup.method_options;
   m.build_version = common::buildVersion();

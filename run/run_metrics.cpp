@@ -69,6 +69,7 @@ nlohmann::json metricsToJson(const RunMetrics& m) {
   j["method"] = m.method;
   j["seed"] = m.seed;
   if (m.world_hash) j["world_hash"] = *m.world_hash;
+  if (m.lidar_model) j["lidar_model"] = *m.lidar_model;
   if (m.method_options) {
     j["method_options"] = nlohmann::json::object();
     for (const auto& [key, value] : *m.method_options) j["method_options"][key] = value;
@@ -216,6 +217,7 @@ void identityFrom(const common::JsonNode& root, RunMetrics& m) {
     m.world_hash = hash->string();
     if (!isContentHash(*m.world_hash)) hash->fail("expected \"sha256:\" and 64 hex digits");
   }
+  if (const auto model = root.optionalField("lidar_model")) m.lidar_model = model->identifier();
   if (const auto options = root.optionalField("method_options")) {
     m.method_options = methodOptionsFrom(*options);
   }

@@ -50,6 +50,8 @@ struct RunMetrics {
   // The content hash of the world (worlds::worldHash), when the run had one: isg table and
   // isg sweep never mix runs of different worlds that share a name.
   std::optional<std::string> world_hash;
+  // The simulated LiDAR when it is not the VLP-16 (absent: a VLP-16, or a replayed dataset).
+  std::optional<std::string> lidar_model;
   // What made the run: the method's options with the values it used (given or default; empty
   // for a method without options), and the build of isg (common::buildVersion). Absent from
   // metrics written before they were recorded.

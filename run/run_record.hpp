@@ -35,6 +35,8 @@ struct RunSetup {
   // The method's options with the values it ran with, given or default
   // (LocalizerRegistry::checkOptions); empty for a method without options.
   std::map<std::string, double> method_options;
+  // The simulated LiDAR's model (bim::LidarConfig::model); empty for a replayed dataset.
+  std::string lidar_model;
 };
 
 // A thinned copy of a scan the localizer read, kept for the map-to-plan error

@@ -17,6 +17,7 @@
 #include "bim/plan_json.hpp"
 #include "common/atomic_folder.hpp"
 #include "common/input_error.hpp"
+#include "common/json_reader.hpp"
 #include "common/version.hpp"
 #include "formats/dataset_format.hpp"
 #include "formats/dataset_metadata.hpp"
@@ -35,43 +36,65 @@ namespace {
 nlohmann::ordered_json lidarModel(const Simulation& sim) {
   const auto& l = sim.scenario().lidar;
   const LidarSimulator& lidar = sim.lidar();
-  return {{"sequences_per_turn", Vlp16::sequencesPerTurn(l.rate_hz)},
-          {"sequences_per_cloud", lidar.sequencesPerCloud()},
-          {"cut", bim::lidarCutName(l.cut)},
-          {"cut_angle_deg", l.cut_angle_deg},
-          {"azimuth_jitter_deg", l.azimuth_jitter_deg},
-          {"returns", bim::lidarReturnsName(l.returns)},
-          {"firing_interval_s", Vlp16::kFiringInterval},
-          {"sequence_duration_s", Vlp16::kSequenceDuration},
-          {"elevation_deg_by_laser", Vlp16::kElevationDeg},
-          {"vertical_offset_mm_by_laser", Vlp16::kVerticalOffsetMm},
-          {"ring", "laser index by elevation: ring 0 = -15 deg"},
-          {"rotation", "clockwise seen from above"},
-          {"range_noise_m", l.range_noise_m},
-          {"range_quantum_m", 0.002},
-          {"min_range_m", l.min_range_m},
-          {"max_range_m", l.max_range_m},
-          {"dropout", l.dropout},
-          {"grazing_cutoff_deg", l.grazing_cutoff_deg},
-          {"detection_range_m", l.detection_range_m},
-          {"body_occlusion", l.body_occlusion},
-          {"reflectivity",
-           {{"wall", l.reflectivity.wall},
-            {"floor", l.reflectivity.floor},
-            {"ceiling", l.reflectivity.ceiling},
-            {"door", l.reflectivity.door},
-            {"clutter", l.reflectivity.clutter},
-            {"stair", l.reflectivity.stair}}},
-          {"intensity",
-           "calibrated reflectivity: round(100 * reflectivity * |cos(incidence)|), the surface's "
-           "reflectivity by kind"},
-          {"lost_returns",
-           "rays that meet the robot's body (body_occlusion); returns weaker than a 10 % surface "
-           "head-on at detection_range_m (reflectivity * cos(incidence) / range^2); beyond "
-           "grazing_cutoff_deg kept with probability cos(incidence) / cos(cutoff); dropout"},
-          {"pcd_fields",
-           "x y z intensity ring time (float32 ×4, uint16, float32), time from the scan stamp "
-           "(within point_time_s)"}};
+  const sensors::LidarModel& model = lidar.model();
+  std::vector<double> elevation, vertical_offset, firing_offset, azimuth_offset;
+  double lowest = 90.0;
+  for (const auto& beam : model.beams) {
+    elevation.push_back(beam.elevation_deg);
+    vertical_offset.push_back(beam.vertical_offset_mm);
+    firing_offset.push_back(beam.firing_offset_s);
+    azimuth_offset.push_back(beam.azimuth_offset_deg);
+    lowest = std::min(lowest, beam.elevation_deg);
+  }
+  // lidar.model is the dataset format's (the title, "Velodyne VLP-16"); the scenario's name too.
+  nlohmann::ordered_json out = {{"scenario_model", model.name},
+                                {"sequences_per_turn", model.sequencesPerTurn(l.rate_hz)},
+                                {"sequences_per_cloud", lidar.sequencesPerCloud()},
+                                {"cut", bim::lidarCutName(l.cut)},
+                                {"cut_angle_deg", l.cut_angle_deg},
+                                {"azimuth_jitter_deg", l.azimuth_jitter_deg},
+                                {"returns", bim::lidarReturnsName(l.returns)}};
+  // The VLP-16 fires its lasers at a fixed interval; the others' offsets are listed per laser.
+  if (model.name == "vlp16") {
+    out["firing_interval_s"] = Vlp16::kFiringInterval;
+  } else {
+    out["firing_offset_s_by_laser"] = firing_offset;
+    out["azimuth_offset_deg_by_laser"] = azimuth_offset;
+    out["beam_origin_radius_mm"] = model.beam_origin_radius_mm;
+  }
+  out["sequence_duration_s"] = model.sequenceDuration(l.rate_hz);
+  out["elevation_deg_by_laser"] = elevation;
+  out["vertical_offset_mm_by_laser"] = vertical_offset;
+  out["ring"] = "laser index by elevation: ring 0 = " + common::formatNumber(lowest) + " deg";
+  const nlohmann::ordered_json rest = {
+      {"rotation", "clockwise seen from above"},
+      {"range_noise_m", l.range_noise_m},
+      {"range_quantum_m", model.range_resolution_m},
+      {"min_range_m", l.min_range_m},
+      {"max_range_m", l.max_range_m},
+      {"dropout", l.dropout},
+      {"grazing_cutoff_deg", l.grazing_cutoff_deg},
+      {"detection_range_m", l.detection_range_m},
+      {"body_occlusion", l.body_occlusion},
+      {"reflectivity",
+       {{"wall", l.reflectivity.wall},
+        {"floor", l.reflectivity.floor},
+        {"ceiling", l.reflectivity.ceiling},
+        {"door", l.reflectivity.door},
+        {"clutter", l.reflectivity.clutter},
+        {"stair", l.reflectivity.stair}}},
+      {"intensity",
+       "calibrated reflectivity: round(100 * reflectivity * |cos(incidence)|), the surface's "
+       "reflectivity by kind"},
+      {"lost_returns",
+       "rays that meet the robot's body (body_occlusion); returns weaker than a 10 % surface "
+       "head-on at detection_range_m (reflectivity * cos(incidence) / range^2); beyond "
+       "grazing_cutoff_deg kept with probability cos(incidence) / cos(cutoff); dropout"},
+      {"pcd_fields",
+       "x y z intensity ring time (float32 ×4, uint16, float32), time from the scan stamp "
+       "(within point_time_s)"}};
+  for (const auto& [key, value] : rest.items()) out[key] = value;
+  return out;
 }
 
 // The robot: carrier, gait, route, rooms and kidnaps (where each put the robot down, the planned
@@ -156,10 +179,11 @@ nlohmann::ordered_json metadata(const Simulation& sim, double duration,
   m.lidar_mount = l.mount;
   m.R_T_L = sim.R_T_L();
   m.imu_mount = {imu.mount, sim.R_T_I()};
-  m.lidar = {"Velodyne VLP-16",  l.rate_hz,
-             std::size_t(scans), bim::lidarStampName(l.stamp),
-             lidar.scanPeriod(), {-lidar.stampOffset(), lidar.turnDuration() - lidar.stampOffset()},
-             options.pcd};
+  m.lidar = {
+      lidar.model().title, l.rate_hz,
+      std::size_t(scans),  bim::lidarStampName(l.stamp),
+      lidar.scanPeriod(),  {-lidar.stampOffset(), lidar.turnDuration() - lidar.stampOffset()},
+      options.pcd};
   m.imu =
       formats::dataset::Metadata::Imu{imu.rate_hz, std::size_t(imu_samples),
                                       imu.gyroscope_noise_density, imu.accelerometer_noise_density};

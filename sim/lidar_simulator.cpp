@@ -18,14 +18,13 @@ namespace isg::sim {
 
 namespace {
 
-constexpr double kQuantum = 0.002;  // the VLP-16 reports ranges in 2 mm steps
 constexpr std::uint64_t kNoiseStream = 1;
 constexpr std::uint64_t kJitterStream = 2;
-// The VLP-16's beam diverges by 3.0 mrad horizontally (its manual): last and dual returns cast
-// the beam's centre and its two horizontal edges, 1.5 mrad either side, weighted 1/4, 1/2, 1/4
-// (a beam brighter at its centre). Vertical divergence (1.5 mrad) is left out: edges across the
-// beam's height (lintels, tops of clutter) are rarer indoors than wall ends and door jambs.
-constexpr double kHalfDivergence = 1.5e-3;
+// A beam diverges horizontally (the VLP-16's by 3.0 mrad, its manual; each model's in
+// sensors/lidar_model.cpp): last and dual returns cast the beam's centre and its two horizontal
+// edges, half the divergence either side, weighted 1/4, 1/2, 1/4 (a beam brighter at its centre).
+// Vertical divergence is left out: edges across the beam's height (lintels, tops of clutter) are
+// rarer indoors than wall ends and door jambs.
 constexpr double kEdgeWeight = 0.25, kCentreWeight = 0.5;
 // Two parts of a beam closer than this in range make one echo: the detector cannot separate
 // pulses that overlap (an assumption of about the pulse's length; the manual gives no figure).
@@ -34,10 +33,19 @@ constexpr double kEchoSeparation = 1.0;
 // std::round for x ≥ 0 without a library call (ties go up; they have probability zero here).
 inline double roundHalfUp(double x) { return double(std::int64_t(x + 0.5)); }
 
-// A range in the sensor's 2 mm steps.
-inline double quantise(double range) {
-  if (range < 0) return std::round(range / kQuantum) * kQuantum;  // discarded by the range gate
-  return roundHalfUp(range / kQuantum) * kQuantum;
+// A range in the sensor's steps (the VLP-16's 2 mm).
+inline double quantise(double range, double quantum) {
+  if (range < 0) return std::round(range / quantum) * quantum;  // discarded by the range gate
+  return roundHalfUp(range / quantum) * quantum;
+}
+
+const sensors::LidarModel& modelNamed(const std::string& name) {
+  const sensors::LidarModel* model = sensors::findLidarModel(name);
+  if (!model) {
+    throw std::invalid_argument("unknown LiDAR model \"" + name +
+                                "\" (known: " + sensors::lidarModelList() + ")");
+  }
+  return *model;
 }
 
 }  // namespace
@@ -56,21 +64,26 @@ LidarSimulator::LidarSimulator(const MujocoWorld& world, const bim::LidarConfig&
                                unsigned groups)
     : world_(world),
       config_(config),
+      model_(modelNamed(config.model)),
+      lasers_(model_.lasers()),
+      sequence_s_(model_.sequenceDuration(config.rate_hz)),
+      quantum_(model_.range_resolution_m),
+      half_divergence_(model_.half_divergence_rad),
       caster_(world.model(), world.data(), groups),
       scan_caster_(caster_),
-      sequences_(Vlp16::sequencesPerTurn(config.rate_hz)),
+      sequences_(model_.sequencesPerTurn(config.rate_hz)),
       period_(1.0 / config.rate_hz),
       stamp_offset_(0.0),
       body_(robotBodyBox(), sensors::mountTransform(config.mount)) {
   const int per_packet = sequencesPerPacket();
   if (config.cut == bim::LidarCut::kPackets) {
     // The ROS 1 driver publishes ceil(packet rate / rotation rate) packets per cloud.
-    const double packet_rate = 1.0 / (per_packet * kSequence);
+    const double packet_rate = 1.0 / (per_packet * sequence_s_);
     sequences_ = int(std::ceil(packet_rate / config.rate_hz)) * per_packet;
-    period_ = sequences_ * kSequence;
+    period_ = sequences_ * sequence_s_;
   }
   if (config.stamp == bim::LidarStamp::kLastPacket) {
-    stamp_offset_ = ((sequences_ - 1) / per_packet) * per_packet * kSequence;
+    stamp_offset_ = ((sequences_ - 1) / per_packet) * per_packet * sequence_s_;
   }
   const mjModel& m = world.model();
   reflectivity_.resize(m.ngeom);
@@ -94,16 +107,30 @@ LidarSimulator::LidarSimulator(const MujocoWorld& world, const bim::LidarConfig&
     shape.R = Eigen::Map<const Eigen::Matrix<double, 3, 3, Eigen::RowMajor>>(d.geom_xmat + 9 * g);
     shape.inverse_half = Eigen::Map<const Eigen::Vector3d>(m.geom_size + 3 * g).cwiseInverse();
   }
-  firings_.reserve(std::size_t(sequences_) * Vlp16::kLasers);
+  firings_.reserve(std::size_t(sequences_) * lasers_);
   for (int s = 0; s < sequences_; ++s) {
-    for (int l = 0; l < Vlp16::kLasers; ++l) {
-      const double t = Vlp16::firingTime(s, l);
-      const Eigen::Vector3d direction = Vlp16::direction(l, Vlp16::azimuth(t, config.rate_hz));
+    for (int l = 0; l < lasers_; ++l) {
+      const sensors::LidarBeam& beam = model_.beams[std::size_t(l)];
+      const double t = sequence_s_ * s + beam.firing_offset_s;
+      const double head = Vlp16::azimuth(t, config.rate_hz);
+      const double el = beam.elevation_deg * std::numbers::pi / 180.0;
+      const double az = head + beam.azimuth_offset_deg * std::numbers::pi / 180.0;
+      const Eigen::Vector3d direction(std::cos(el) * std::cos(az), std::cos(el) * std::sin(az),
+                                      std::sin(el));
+      // Ouster's beams leave from a circle about the axis, at the column's (the head's) azimuth.
+      const double radius = model_.beam_origin_radius_mm * 1e-3;
+      const Eigen::Vector3d radial =
+          radius > 0.0 ? Eigen::Vector3d(radius * std::cos(head), radius * std::sin(head), 0.0)
+                       : Eigen::Vector3d::Zero();
       const bool blocked =
-          config.body_occlusion && body_.distance(Vlp16::origin(l), direction) >= 0;
-      firings_.push_back({direction, t, blocked});
+          config.body_occlusion && body_.distance(laserOrigin(l) + radial, direction) >= 0;
+      firings_.push_back({direction, t, blocked, radial});
     }
   }
+}
+
+Eigen::Vector3d LidarSimulator::laserOrigin(int laser) const {
+  return {0.0, 0.0, model_.beams[std::size_t(laser)].vertical_offset_mm * 1e-3};
 }
 
 Eigen::Vector3d LidarSimulator::surfaceNormal(int geom, const Eigen::Vector3d& point,
@@ -138,7 +165,8 @@ int LidarSimulator::blockCount() const {
 }
 
 int LidarSimulator::sequencesPerPacket() const {
-  return config_.returns == bim::LidarReturns::kDual ? 12 : 24;
+  return config_.returns == bim::LidarReturns::kDual ? model_.sequences_per_packet_dual
+                                                     : model_.sequences_per_packet_single;
 }
 
 double LidarSimulator::startAzimuth(double start) const {
@@ -209,7 +237,7 @@ void LidarSimulator::samplePoses(double start, const PoseAt& B_T_L, int first_se
   Eigen::Vector2d lo = Eigen::Vector2d::Constant(1e300), hi = -lo;
   for (int j = first_sample; j <= last_sample; ++j) {
     const int s = std::min(sequences_, j * kPoseStride);
-    const Eigen::Isometry3d T = B_T_L(start + s * kSequence);
+    const Eigen::Isometry3d T = B_T_L(start + s * sequence_s_);
     positions_[j] = T.translation();
     rotations_[j] = turned ? Eigen::Matrix3d(T.linear() * L_R_table) : T.linear();
     lo = lo.cwiseMin(positions_[j].head<2>());
@@ -221,31 +249,34 @@ void LidarSimulator::samplePoses(double start, const PoseAt& B_T_L, int first_se
 
 void LidarSimulator::blockRays(int first, int last, const Eigen::Matrix3d& L_R_table, bool turned,
                                bool beam) {
-  std::array<double, Vlp16::kLasers> offset{};
-  for (int l = 0; l < Vlp16::kLasers; ++l) offset[l] = Vlp16::origin(l).z();
+  std::array<double, 128> offset{};
+  for (int l = 0; l < lasers_; ++l) offset[std::size_t(l)] = laserOrigin(l).z();
+  const bool radial = model_.beam_origin_radius_mm > 0.0;
   for (int s = first; s < last; ++s) {
     const int j = s / kPoseStride;
     const int from = j * kPoseStride, to = std::min(sequences_, from + kPoseStride);
     const Eigen::Matrix3d& R = rotations_[j];
     const Eigen::Matrix3d dR = rotations_[j + 1] - R;
     const Eigen::Vector3d dP = positions_[j + 1] - positions_[j];
-    const double span = (to - from) * kSequence;
-    for (int l = 0; l < Vlp16::kLasers; ++l) {
-      const int i = (s - first) * Vlp16::kLasers + l;
-      const Firing& firing = firings_[s * Vlp16::kLasers + l];
-      const double a = (firing.time - from * kSequence) / span;
+    const double span = (to - from) * sequence_s_;
+    for (int l = 0; l < lasers_; ++l) {
+      const int i = (s - first) * lasers_ + l;
+      const Firing& firing = firings_[std::size_t(s) * lasers_ + l];
+      const double a = (firing.time - from * sequence_s_) / span;
       const Eigen::Vector3d v = R * firing.direction + a * (dR * firing.direction);
       // |v| departs from 1 by ~1e-8 (the rotations differ by < 1e-3 rad): one Newton step
       // for 1/|v| makes it unit to ~1e-16 without a square root or a division.
       directions_[i] = (1.5 - 0.5 * v.squaredNorm()) * v;
       const Eigen::Vector3d axis = R.col(2) + a * dR.col(2);
-      origins_[i] = positions_[j] + a * dP + offset[l] * axis;
+      origins_[i] = positions_[j] + a * dP + offset[std::size_t(l)] * axis;
+      if (radial) origins_[i] += R * firing.radial + a * (dR * firing.radial);
       // The body is rigid with the mount: only a turn off the table's azimuths asks anew.
       blocked_[i] = turned && config_.body_occlusion
-                        ? body_.distance(Vlp16::origin(l), L_R_table * firing.direction) >= 0
+                        ? body_.distance(laserOrigin(l) + L_R_table * firing.radial,
+                                         L_R_table * firing.direction) >= 0
                         : firing.blocked;
       if (beam) {
-        const Eigen::Vector3d side = kHalfDivergence * axis.cross(directions_[i]).normalized();
+        const Eigen::Vector3d side = half_divergence_ * axis.cross(directions_[i]).normalized();
         edge_directions_[0][i] = (directions_[i] + side).normalized();
         edge_directions_[1][i] = (directions_[i] - side).normalized();
       }
@@ -272,19 +303,24 @@ void LidarSimulator::castRays(int rays, bool beam) {
 
 void LidarSimulator::BlockReport::point(const LidarSimulator& lidar, int s, int l, double range,
                                         double lit, std::vector<LidarPoint>& points) const {
-  const Firing& firing = lidar.firings_[s * Vlp16::kLasers + l];
+  const Firing& firing = lidar.firings_[std::size_t(s) * lidar.lasers_ + l];
   Eigen::Vector3d direction = firing.direction;
+  Eigen::Vector3d radial = firing.radial;
   if (reported_turn) {
-    const int b = (s - first) / 2;
-    direction.head<2>() = Eigen::Vector2d(
-        report_cos[b] * firing.direction.x() - report_sin[b] * firing.direction.y(),
-        report_sin[b] * firing.direction.x() + report_cos[b] * firing.direction.y());
+    const int b = (s - first) / sequences_per_data_block;
+    const auto turn = [&](const Eigen::Vector3d& v) {
+      return Eigen::Vector2d(report_cos[b] * v.x() - report_sin[b] * v.y(),
+                             report_sin[b] * v.x() + report_cos[b] * v.y());
+    };
+    direction.head<2>() = turn(firing.direction);
+    radial.head<2>() = turn(firing.radial);
   }
-  const Eigen::Vector3d p = Vlp16::origin(l) + range * direction;
+  const Eigen::Vector3d p = lidar.laserOrigin(l) + radial + range * direction;
   // The VLP-16's calibrated reflectivity: 0–100 for diffuse surfaces (100: a perfect white one
-  // met head-on).
+  // met head-on); every model reports on that scale (docs/simulation.md, "LiDAR models").
   points.push_back({float(p.x()), float(p.y()), float(p.z()), float(roundHalfUp(100.0 * lit)),
-                    std::uint16_t(Vlp16::ring(l)), float(firing.time - lidar.stamp_offset_)});
+                    std::uint16_t(lidar.model_.beams[std::size_t(l)].ring),
+                    float(firing.time - lidar.stamp_offset_)});
 }
 
 double LidarSimulator::keptProbability(double cos_incidence) const {
@@ -297,7 +333,7 @@ double LidarSimulator::keptProbability(double cos_incidence) const {
 
 void LidarSimulator::beamReturns(const BlockReport& block, int i, const double n[2],
                                  const double u[2], std::vector<LidarPoint>& points) const {
-  const int s = block.first + i / Vlp16::kLasers, l = i % Vlp16::kLasers;
+  const int s = block.first + i / lasers_, l = i % lasers_;
   if (hits_[i].distance < 0 && edge_hits_[0][i].distance < 0 && edge_hits_[1][i].distance < 0) {
     return;
   }
@@ -325,7 +361,7 @@ void LidarSimulator::beamReturns(const BlockReport& block, int i, const double n
   }
   for (int r = 0; r < 2 && reported[r] >= 0; ++r) {
     const Echo& e = detected[reported[r]];
-    const double range = quantise(e.distance + config_.range_noise_m * n[r]);
+    const double range = quantise(e.distance + config_.range_noise_m * n[r], quantum_);
     if (range < config_.min_range_m || range > config_.max_range_m) continue;
     if (u[r] >= keptProbability(e.cos_incidence)) continue;
     block.point(*this, s, l, range, e.lit, points);
@@ -345,12 +381,12 @@ void LidarSimulator::blockReturns(const BlockReport& block, int rays, std::uint6
       beamReturns(block, i, n, u, points);
       continue;
     }
-    const int s = block.first + i / Vlp16::kLasers, l = i % Vlp16::kLasers;
+    const int s = block.first + i / lasers_, l = i % lasers_;
     const double n = noise(rng);
     const double u = rng.uniform01();
     const RayCaster::Hit& hit = hits_[i];
     if (hit.distance < 0) continue;
-    const double range = quantise(hit.distance + config_.range_noise_m * n);
+    const double range = quantise(hit.distance + config_.range_noise_m * n, quantum_);
     if (range < config_.min_range_m || range > config_.max_range_m) continue;
     const SubHit whole = subHit(hit, origins_[i], directions_[i], 1.0);
     // Too weak to detect: the LiDAR equation's power below the sensor's threshold.
@@ -372,7 +408,7 @@ LidarScan LidarSimulator::scanBlocks(double start, const PoseAt& B_T_L, std::uin
   const int last_sequence = std::min(sequences_, last_block * kBlockSequences);
   if (first_sequence >= last_sequence) return out;
   const bool beam = config_.returns != bim::LidarReturns::kStrongest;
-  out.points.reserve(std::size_t(last_sequence - first_sequence) * Vlp16::kLasers * (beam ? 2 : 1));
+  out.points.reserve(std::size_t(last_sequence - first_sequence) * lasers_ * (beam ? 2 : 1));
   auto mark = Clock::now();
   // The firing table starts at azimuth 0: a turn starting elsewhere turns it about L's z axis
   // (folded into the sensor's rotation, so it costs nothing per ray).
@@ -385,7 +421,7 @@ LidarScan LidarSimulator::scanBlocks(double start, const PoseAt& B_T_L, std::uin
   out.timing.poses_s += seconds(mark, now);
   mark = now;
 
-  const int per_block = kBlockSequences * Vlp16::kLasers;
+  const int per_block = kBlockSequences * lasers_;
   origins_.resize(per_block);
   directions_.resize(per_block);
   hits_.resize(per_block);
@@ -399,11 +435,13 @@ LidarScan LidarSimulator::scanBlocks(double start, const PoseAt& B_T_L, std::uin
   const bool jitter = config_.azimuth_jitter_deg > 0.0;
   BlockReport report;
   report.reported_turn = turned || jitter;
+  report.sequences_per_data_block = model_.sequences_per_data_block;
+  report.data_blocks = kBlockSequences / model_.sequences_per_data_block;
   for (int block = first_block; block < last_block; ++block) {
     const int first = block * kBlockSequences;
     const int last = std::min(sequences_, first + kBlockSequences);
     blockRays(first, last, L_R_table, turned, beam);  // the block's rays in B
-    const int rays = (last - first) * Vlp16::kLasers;
+    const int rays = (last - first) * lasers_;
     now = Clock::now();
     out.timing.poses_s += seconds(mark, now);
     mark = now;
@@ -417,7 +455,7 @@ LidarScan LidarSimulator::scanBlocks(double start, const PoseAt& B_T_L, std::uin
       Xoshiro256 jitter_rng(deriveSeed(seed, kJitterStream, std::uint64_t(block)));
       boost::random::normal_distribution<double> jitter_noise(0.0, 1.0);
       const double sigma = config_.azimuth_jitter_deg * std::numbers::pi / 180.0;
-      for (int b = 0; b < BlockReport::kDataBlocks; ++b) {
+      for (int b = 0; b < report.data_blocks; ++b) {
         const double angle = start_azimuth + (jitter ? sigma * jitter_noise(jitter_rng) : 0.0);
         report.report_cos[b] = std::cos(angle);
         report.report_sin[b] = std::sin(angle);

@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "bim/scenario.hpp"
+#include "sensors/lidar_model.hpp"
 #include "sensors/messages.hpp"
 #include "sim/body_shadow.hpp"
 #include "sim/mujoco_world.hpp"
@@ -47,13 +48,16 @@ struct LidarScan {
 // and geoms without one, count as clutter.
 double surfaceReflectivity(const bim::SurfaceReflectivity& reflectivity, std::string_view material);
 
-// The VLP-16 of docs/simulation.md in a MuJoCo world. Each laser fires from the sensor's pose at
-// its own instant, so a scan taken while moving carries real motion distortion.
+// The LiDAR of docs/simulation.md in a MuJoCo world: the scenario's model (sensors/lidar_model.hpp;
+// the VLP-16 unless it says otherwise). Each laser fires from the sensor's pose at its own
+// instant, so a scan taken while moving carries real motion distortion.
 class LidarSimulator {
  public:
   // `groups`: the geom groups the sensor sees (the building's; never the robot's: its body
-  // stops the rays it meets through `config.body_occlusion`, computed from the mount).
+  // stops the rays it meets through `config.body_occlusion`, computed from the mount). An
+  // unknown `config.model` is an std::invalid_argument (the scenario parser refuses it first).
   LidarSimulator(const MujocoWorld& world, const bim::LidarConfig& config, unsigned groups);
+  const sensors::LidarModel& model() const { return model_; }
 
   // B_T_L(t) for t in [stamp, stamp + 1/rate]: the sensor pose in the plan frame.
   using PoseAt = std::function<Eigen::Isometry3d(double t)>;
@@ -77,16 +81,16 @@ class LidarSimulator {
   // The head's azimuth (counter-clockwise from L's x axis, as Vlp16::azimuth) at a turn's first
   // firing: −cut_angle for an angle cut; where the spinning head is at `start` otherwise.
   double startAzimuth(double start) const;
-  // Firing sequences in one cloud, and in one packet (24; 12 in dual-return mode, where each
-  // firing fills two data blocks).
+  // Firing sequences in one cloud, and in one packet (the model's: a VLP-16's 24, or 12 in
+  // dual-return mode, where each firing fills two data blocks).
   int sequencesPerCloud() const { return sequences_; }
   int sequencesPerPacket() const;
 
   static constexpr int kBlockSequences = 64;
   static constexpr int kPoseStride = 8;  // sequences between two exact poses of the sensor
 
-  double turnDuration() const { return sequences_ * kSequence; }
-  int raysPerTurn() const { return sequences_ * 16; }
+  double turnDuration() const { return sequences_ * sequence_s_; }
+  int raysPerTurn() const { return sequences_ * lasers_; }
 
   // The unit normal of the geom's surface at a point on it (boxes: the face the point lies on),
   // with the geoms where they stood when the sensor was made (the building is static).
@@ -94,7 +98,6 @@ class LidarSimulator {
                                 const Eigen::Vector3d& direction) const;
 
  private:
-  static constexpr double kSequence = 55.296e-6;
   // One sub-ray of a beam (last and dual returns cast the beam's centre and its two edges).
   struct SubHit {
     double distance = -1.0;  // < 0: no hit
@@ -116,6 +119,7 @@ class LidarSimulator {
     Eigen::Vector3d direction;  // unit, in L
     double time;                // from the turn's start
     bool blocked;               // by the robot's own body
+    Eigen::Vector3d radial;     // the beam's origin off the axis, in L (Ouster's; else zero)
   };
   // The stages of scanBlocks. The sensor's pose sampled along the turn (positions_, rotations_)
   // and the caster prepared around it.
@@ -125,13 +129,16 @@ class LidarSimulator {
   void blockRays(int first, int last, const Eigen::Matrix3d& L_R_table, bool turned, bool beam);
   // Their hits (hits_, edge_hits_).
   void castRays(int rays, bool beam);
-  // How a block's returns are reported: the azimuth each data block (two sequences) reports, as
-  // cos and sin of its turn from the firing table's (the turn's start and the block's jitter).
+  // How a block's returns are reported: the azimuth each data block (the model's sequences per
+  // block: two on a VLP-16) reports, as cos and sin of its turn from the firing table's (the
+  // turn's start and the block's jitter).
   struct BlockReport {
-    static constexpr int kDataBlocks = kBlockSequences / 2;
+    static constexpr int kMaxDataBlocks = kBlockSequences;
     int first = 0;  // the block's first sequence
+    int sequences_per_data_block = 2;
+    int data_blocks = kBlockSequences / 2;
     bool reported_turn = false;
-    std::array<double, kDataBlocks> report_cos{}, report_sin{};
+    std::array<double, kMaxDataBlocks> report_cos{}, report_sin{};
     // A return at `range` of sequence s, laser l as the sensor reports it.
     void point(const LidarSimulator& lidar, int s, int l, double range, double lit,
                std::vector<LidarPoint>& points) const;
@@ -145,8 +152,15 @@ class LidarSimulator {
   // Ray i's beam echoes, then the ones the mode reports (last; dual: and the strongest other).
   void beamReturns(const BlockReport& block, int i, const double n[2], const double u[2],
                    std::vector<LidarPoint>& points) const;
+  // A laser's origin in L (off the optical centre: the VLP-16's vertical offsets).
+  Eigen::Vector3d laserOrigin(int laser) const;
   const MujocoWorld& world_;
   bim::LidarConfig config_;
+  const sensors::LidarModel& model_;
+  int lasers_;
+  double sequence_s_;  // one firing sequence at the scenario's rate
+  double quantum_;     // the model's range steps
+  double half_divergence_;
   RayCaster caster_;
   ScanCaster scan_caster_;
   int sequences_;

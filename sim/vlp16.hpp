@@ -13,10 +13,6 @@ namespace isg::sim {
 // lasers, elevations and firing times of sensors::Vlp16Layout, which the packet decoder shares, and
 // what only the simulator needs. The head spins clockwise seen from above, as the real one does.
 struct Vlp16 : sensors::Vlp16Layout {
-  // Each laser's origin sits this far above (+) or below the optical centre.
-  static constexpr std::array<double, kLasers> kVerticalOffsetMm = {
-      11.2, -0.7, 9.7, -2.2, 8.1, -3.7, 6.6, -5.1, 5.1, -6.6, 3.7, -8.1, 2.2, -9.7, 0.7, -11.2};
-
   // Firing sequences in one turn at `rate_hz` (1808 at 10 Hz: a 0.199° azimuth step).
   static int sequencesPerTurn(double rate_hz) {
     return int(std::floor(1.0 / (rate_hz * kSequenceDuration)));

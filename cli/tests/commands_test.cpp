@@ -279,6 +279,31 @@ TEST(Simulate, TheRos1DriversConventionsReachTheDatasetAndTheBag) {
   EXPECT_TRUE(sandbox.exists("ds.bag"));
 }
 
+// --lidar: another sensor for the scenario's, named in the dataset and the run; an unknown one is
+// a usage error listing the models.
+TEST(Simulate, AnotherLidarModelIsNamedInTheDatasetAndTheRun) {
+  testing::Sandbox sandbox("simulate_lidar_model");
+  auto result = sandbox.run("simulate builtin:d1 -o ds --duration 1 --lidar os1-64 -q");
+  ASSERT_EQ(result.exit_code, 0) << result.err;
+  const auto lidar = nlohmann::json::parse(sandbox.read("ds/metadata.json"))["lidar"];
+  EXPECT_EQ(lidar["model"], "Ouster OS1-64");
+  EXPECT_EQ(lidar["scenario_model"], "os1-64");
+  EXPECT_EQ(lidar["sequences_per_turn"], 1024);
+  EXPECT_EQ(lidar["elevation_deg_by_laser"].size(), 64u);
+  EXPECT_EQ(lidar["max_range_m"], 120.0);
+  result = sandbox.run("run builtin:d1 --lidar vlp32c --duration 5 -o run -q");
+  ASSERT_EQ(result.exit_code, 0) << result.err;
+  EXPECT_EQ(nlohmann::json::parse(sandbox.read("run/metrics.json"))["lidar_model"], "vlp32c");
+  result = sandbox.run("run builtin:d1 --duration 5 -o plain -q");
+  ASSERT_EQ(result.exit_code, 0) << result.err;
+  EXPECT_FALSE(nlohmann::json::parse(sandbox.read("plain/metrics.json")).contains("lidar_model"));
+  result = sandbox.run("simulate builtin:d1 -o other --lidar hdl64 -q");
+  EXPECT_EQ(result.exit_code, 2);
+  EXPECT_THAT(result.err, HasSubstr("hdl64"));
+  EXPECT_THAT(result.err, HasSubstr("os1-128"));
+  EXPECT_FALSE(sandbox.exists("other"));
+}
+
 // Kidnaps the parser cannot judge: the simulator knows when the route ends and where the robot
 // can stand.
 TEST(Simulate, KidnapsTheRouteCannotHaveAreClearErrors) {
