@@ -43,6 +43,7 @@ void printExportSummary(const std::string& command, const std::string& path,
               summary.wall_seconds,
               summary.wall_seconds > 0 ? summary.bytes / 1e6 / summary.wall_seconds : 0.0,
               counts.c_str());
+  std::printf("%s: clouds in %s layout\n", command.c_str(), summary.cloud_layout.c_str());
 }
 
 }  // namespace
@@ -56,8 +57,11 @@ ExportCommand::ExportCommand(CLI::App& parent) {
       "The bag (format 2.0, uncompressed; rosbag, rqt_bag and every ROS 1 tool read it) and the "
       "MCAP file (ROS 2 messages in CDR with their ros2msg schemas, chunked and indexed; ros2 bag, "
       "Foxglove and the mcap tools read it) hold "
-      "/velodyne_points (sensor_msgs/PointCloud2: x y z intensity ring time, as the Velodyne "
-      "driver publishes them, frame velodyne, stamp = the scan's first firing), /imu/data "
+      "/velodyne_points (sensor_msgs/PointCloud2 in the layout the LiDAR model's ROS driver "
+      "publishes: x y z intensity ring time for the VLP models, Hesai's x y z intensity timestamp "
+      "ring for pandar-xt32, ouster-ros's x y z intensity t reflectivity ring ambient range for "
+      "the OS models, or Velodyne's for every model with --cloud-layout velodyne; frame "
+      "velodyne, stamp = the scan's first firing), /imu/data "
       "(sensor_msgs/Imu, frame imu), /odom (nav_msgs/Odometry, odom → base_link), /tf "
       "(odom → base_link), /tf_static (base_link → velodyne, base_link → imu) and /ground_truth "
       "(nav_msgs/Odometry of base_link in the plan frame). Stamps are the dataset's times plus "
@@ -78,6 +82,7 @@ ExportCommand::ExportCommand(CLI::App& parent) {
                    "whole seconds added to every dataset time (ROS reads a zero stamp as no time)")
       ->check(CLI::Range(0u, 4000000000u))
       ->capture_default_str();
+  addCloudLayoutOption(*app_, cloud_layout_);
   app_->add_flag("--force", force_, "replace OUT.bag / OUT.mcap if it exists");
   app_->add_flag("-q,--quiet", quiet_, "no progress bar");
 }
@@ -97,10 +102,11 @@ int ExportCommand::run() {
     common::checkOutputPath(mcap_, {common::OutputKind::kMcap, inputs, force_});
   }
   if (!rosbag_.empty()) {
-    exportRosbagWithProgress("isg export", input_, rosbag_, stamp_offset_, force_, quiet_);
+    exportRosbagWithProgress("isg export", input_, rosbag_, stamp_offset_,
+                             cloud_layout_ == "velodyne", force_, quiet_);
   }
   if (!mcap_.empty()) {
-    exportMcapWithProgress("isg export", input_, mcap_, stamp_offset_,
+    exportMcapWithProgress("isg export", input_, mcap_, stamp_offset_, cloud_layout_ == "velodyne",
                            mcapCompression(compression_), force_, quiet_);
   }
   return kExitOk;
@@ -147,11 +153,21 @@ void addMcapCompressionOption(CLI::App& app, std::string& compression, CLI::Opti
       ->capture_default_str();
 }
 
+void addCloudLayoutOption(CLI::App& app, std::string& layout) {
+  app.add_option("--cloud-layout", layout,
+                 "the clouds' point layout: driver (the ROS driver's of the dataset's LiDAR "
+                 "model: Velodyne's, Hesai's or ouster-ros's) or velodyne (the Velodyne driver's "
+                 "whatever the model)")
+      ->check(CLI::IsMember({"driver", "velodyne"}))
+      ->capture_default_str();
+}
+
 void exportRosbagWithProgress(const std::string& command, const std::string& dataset_dir,
                               const std::string& bag_path, std::uint32_t stamp_offset,
-                              bool overwrite, bool quiet) {
+                              bool velodyne_layout, bool overwrite, bool quiet) {
   recordings::RosbagExportOptions options;
   options.stamp_offset = stamp_offset;
+  options.velodyne_layout = velodyne_layout;
   options.overwrite = overwrite;
   ProgressBar bar(command, quiet);
   const auto summary = recordings::exportRosbag(dataset_dir, bag_path, options, scansTo(bar));
@@ -161,9 +177,11 @@ void exportRosbagWithProgress(const std::string& command, const std::string& dat
 
 void exportMcapWithProgress(const std::string& command, const std::string& dataset_dir,
                             const std::string& mcap_path, std::uint32_t stamp_offset,
-                            formats::McapCompression compression, bool overwrite, bool quiet) {
+                            bool velodyne_layout, formats::McapCompression compression,
+                            bool overwrite, bool quiet) {
   recordings::McapExportOptions options;
   options.stamp_offset = stamp_offset;
+  options.velodyne_layout = velodyne_layout;
   options.compression = compression;
   options.overwrite = overwrite;
   ProgressBar bar(command, quiet);

@@ -25,6 +25,7 @@ class ExportCommand : public Command {
   std::string rosbag_;
   std::string mcap_;
   std::string compression_ = "zstd";
+  std::string cloud_layout_ = "driver";
   std::uint32_t stamp_offset_ = 1000000000;
   bool force_ = false;
   bool quiet_ = false;
@@ -34,11 +35,15 @@ class ExportCommand : public Command {
 // `isg export` and `isg simulate --rosbag`).
 void exportRosbagWithProgress(const std::string& command, const std::string& dataset_dir,
                               const std::string& bag_path, std::uint32_t stamp_offset,
-                              bool overwrite, bool quiet);
+                              bool velodyne_layout, bool overwrite, bool quiet);
 // The same as an MCAP file (shared by `isg export --mcap` and `isg simulate --mcap`).
 void exportMcapWithProgress(const std::string& command, const std::string& dataset_dir,
                             const std::string& mcap_path, std::uint32_t stamp_offset,
-                            formats::McapCompression compression, bool overwrite, bool quiet);
+                            bool velodyne_layout, formats::McapCompression compression,
+                            bool overwrite, bool quiet);
+// --cloud-layout driver|velodyne: which layout the exported clouds take (`layout` keeps the
+// choice; "velodyne" is velodyne_layout above).
+void addCloudLayoutOption(CLI::App& app, std::string& layout);
 // Prints what a run's MCAP file holds: its size and the messages per topic.
 void printRunMcapSummary(const std::string& command, const std::string& path,
                          const std::vector<std::pair<std::string, std::uint64_t>>& counts);

@@ -59,6 +59,7 @@ SimulateCommand::SimulateCommand(CLI::App& parent) {
                    "with --rosbag / --mcap: whole seconds added to every dataset time there")
       ->check(CLI::Range(0u, 4000000000u))
       ->capture_default_str();
+  addCloudLayoutOption(*app_, cloud_layout_);
   app_->add_flag("--force", force_, "replace DATASET_DIR (and OUT.bag, OUT.mcap) if it exists");
   app_->add_flag("-q,--quiet", quiet_, "no progress bar");
 }
@@ -110,11 +111,13 @@ int SimulateCommand::run() {
       summary.wall_seconds > 0 ? summary.sim_seconds / summary.wall_seconds : 0.0,
       common::counted(simulation.route().visited_rooms.size(), "room").c_str());
   if (!rosbag_.empty()) {
-    exportRosbagWithProgress("isg simulate", output_, rosbag_, stamp_offset_, force_, quiet_);
+    exportRosbagWithProgress("isg simulate", output_, rosbag_, stamp_offset_,
+                             cloud_layout_ == "velodyne", force_, quiet_);
   }
   if (!mcap_.empty()) {
     exportMcapWithProgress("isg simulate", output_, mcap_, stamp_offset_,
-                           mcapCompression(compression_), force_, quiet_);
+                           cloud_layout_ == "velodyne", mcapCompression(compression_), force_,
+                           quiet_);
   }
   return kExitOk;
 }

@@ -26,6 +26,7 @@ class SimulateCommand : public Command {
   std::string rosbag_;  // also write the dataset as this bag
   std::string mcap_;    // and as this MCAP file
   std::string compression_ = "zstd";
+  std::string cloud_layout_ = "driver";
   std::uint32_t stamp_offset_ = 1000000000;
   bool force_ = false;
   bool quiet_ = false;

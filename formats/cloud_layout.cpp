@@ -180,4 +180,33 @@ std::vector<sensors::ScanPoint> cloudPoints(const ros1::PointCloud2& cloud,
   return points;
 }
 
+std::vector<std::uint16_t> ringsByElevation(const std::vector<sensors::ScanPoint>& points) {
+  std::vector<double> sine_sum;
+  std::vector<std::size_t> count;
+  for (const sensors::ScanPoint& p : points) {
+    const double r = std::sqrt(double(p.x) * p.x + double(p.y) * p.y + double(p.z) * p.z);
+    if (!(r > 0.0)) continue;
+    if (p.ring >= count.size()) {
+      count.resize(std::size_t(p.ring) + 1, 0);
+      sine_sum.resize(std::size_t(p.ring) + 1, 0.0);
+    }
+    sine_sum[p.ring] += double(p.z) / r;
+    ++count[p.ring];
+  }
+  std::vector<std::uint16_t> rings;  // seen, by number
+  for (std::size_t r = 0; r < count.size(); ++r) {
+    if (count[r] > 0) rings.push_back(std::uint16_t(r));
+  }
+  if (rings.size() < 2) return {};
+  std::vector<std::uint16_t> by_elevation = rings;
+  std::stable_sort(by_elevation.begin(), by_elevation.end(), [&](std::uint16_t a, std::uint16_t b) {
+    return sine_sum[a] / double(count[a]) < sine_sum[b] / double(count[b]);
+  });
+  if (by_elevation == rings) return {};
+  std::vector<std::uint16_t> renumbered(count.size());
+  for (std::size_t r = 0; r < count.size(); ++r) renumbered[r] = std::uint16_t(r);
+  for (std::size_t i = 0; i < rings.size(); ++i) renumbered[by_elevation[i]] = rings[i];
+  return renumbered;
+}
+
 }  // namespace isg::formats

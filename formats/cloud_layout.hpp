@@ -38,4 +38,11 @@ CloudLayout cloudLayout(const ros1::PointCloud2& cloud);
 std::vector<sensors::ScanPoint> cloudPoints(const ros1::PointCloud2& cloud,
                                             const CloudLayout& layout);
 
+// A renumbering of a cloud's rings by elevation, as datasets number them (0 = lowest): entry r is
+// ring r's new number. Drivers number rings otherwise (Ouster's and Hesai's from the top beam, raw
+// laser ids in firing order); the rings the cloud has are ranked by their points' mean elevation
+// and take the numbers they have among them in that order (a ring it lacks keeps its own, so the
+// renumbering is one to one). Empty when the rings are in that order already or fewer than two.
+std::vector<std::uint16_t> ringsByElevation(const std::vector<sensors::ScanPoint>& points);
+
 }  // namespace isg::formats

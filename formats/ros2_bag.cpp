@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <filesystem>
 #include <memory>
+#include <utility>
 
 #include "common/input_error.hpp"
 
@@ -43,18 +44,25 @@ Statement prepare(sqlite3* db, const std::string& file, const char* sql) {
   return Statement(raw);
 }
 
-// Runs `sql` (with ?1 bound to `parameter` when given) on one database file and calls
+// Runs `sql` (with ?1 bound to `parameter` when given) on the open database of `file` and calls
 // row(statement) for each row.
 template <class Row>
-void query(const std::string& file, const char* sql, const std::string* parameter, Row&& row) {
-  const Database db = open(file);
-  const Statement statement = prepare(db.get(), file, sql);
+void query(sqlite3* db, const std::string& file, const char* sql, const std::string* parameter,
+           Row&& row) {
+  const Statement statement = prepare(db, file, sql);
   if (parameter) sqlite3_bind_text(statement.get(), 1, parameter->c_str(), -1, SQLITE_TRANSIENT);
   int status;
   while ((status = sqlite3_step(statement.get())) == SQLITE_ROW) row(statement.get());
   if (status != SQLITE_DONE) {
-    throw common::InputError(file, "", std::string("reading the bag: ") + sqlite3_errmsg(db.get()));
+    throw common::InputError(file, "", std::string("reading the bag: ") + sqlite3_errmsg(db));
   }
+}
+
+// The same on the database file `file`, opened for the query.
+template <class Row>
+void query(const std::string& file, const char* sql, const std::string* parameter, Row&& row) {
+  const Database db = open(file);
+  query(db.get(), file, sql, parameter, std::forward<Row>(row));
 }
 
 std::string textColumn(sqlite3_stmt* statement, int column) {
@@ -153,7 +161,8 @@ Ros2Bag::Ros2Bag(const std::string& path) : path_(path) {
     throw common::InputError(path, "", "no such file or folder");
   }
   for (const auto& file : files_) {
-    query(file,
+    const Database db = open(file);  // both queries on one connection
+    query(db.get(), file,
           "SELECT t.name, t.type, t.serialization_format, COUNT(m.id) FROM topics t "
           "LEFT JOIN messages m ON m.topic_id = t.id GROUP BY t.id ORDER BY t.name",
           nullptr, [this](sqlite3_stmt* row) {
@@ -168,7 +177,7 @@ Ros2Bag::Ros2Bag(const std::string& path) : path_(path) {
             }
           });
     bool first = start_ns_ == 0;
-    query(file, "SELECT MIN(timestamp) FROM messages", nullptr, [&](sqlite3_stmt* row) {
+    query(db.get(), file, "SELECT MIN(timestamp) FROM messages", nullptr, [&](sqlite3_stmt* row) {
       if (sqlite3_column_type(row, 0) == SQLITE_NULL) return;  // no message in this file
       const std::int64_t stamp = sqlite3_column_int64(row, 0);
       if (first || stamp < start_ns_) start_ns_ = stamp;

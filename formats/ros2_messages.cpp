@@ -5,7 +5,6 @@
 #include <utility>
 
 #include "formats/cdr_writer.hpp"
-#include "formats/velodyne_point_layout.hpp"
 
 namespace isg::formats::ros2 {
 
@@ -116,29 +115,23 @@ MessageType tfMessageType() {
 MessageType stringType() { return messageType("std_msgs/String", {}); }
 
 std::string pointCloud2(const std::vector<sensors::ScanPoint>& points, Time stamp,
-                        const std::string& frame) {
-  constexpr std::uint32_t kPointStep = kVelodynePointStep;
-  constexpr std::uint8_t kUint16 = 4, kFloat32 = 7;
+                        const std::string& frame, const CloudConvention& convention) {
+  const PackedCloud packed = packCloud(points, convention, std::uint32_t(stamp.sec), stamp.nanosec);
   CdrWriter out;
   header(out, stamp, frame);
   out.u32(1);                             // height
   out.u32(std::uint32_t(points.size()));  // width
-  const std::tuple<const char*, std::uint32_t, std::uint8_t> fields[] = {
-      {"x", 0, kFloat32},          {"y", 4, kFloat32},    {"z", 8, kFloat32},
-      {"intensity", 12, kFloat32}, {"ring", 16, kUint16}, {"time", 18, kFloat32}};
-  out.u32(6);
-  for (const auto& [name, offset, type] : fields) {
-    out.string(name);
-    out.u32(offset);
-    out.u8(type);
+  out.u32(std::uint32_t(packed.fields.size()));
+  for (const CloudField& f : packed.fields) {
+    out.string(f.name);
+    out.u32(f.offset);
+    out.u8(f.datatype);
     out.u32(1);
   }
   out.boolean(false);  // is_bigendian
-  out.u32(kPointStep);
-  out.u32(kPointStep * std::uint32_t(points.size()));
-  std::string data(std::size_t(kPointStep) * points.size(), '\0');
-  packVelodynePoints(points, data.data());
-  out.bytes(data);
+  out.u32(packed.point_step);
+  out.u32(packed.point_step * std::uint32_t(points.size()));
+  out.bytes(packed.data);
   out.boolean(true);  // is_dense: misses are left out, never NaN
   return out.data();
 }

@@ -5,6 +5,7 @@
 #include <string>
 #include <vector>
 
+#include "formats/driver_point_cloud.hpp"
 #include "sensors/messages.hpp"
 
 namespace isg::formats::ros2 {
@@ -33,10 +34,10 @@ MessageType odometryType();
 MessageType tfMessageType();
 MessageType stringType();
 
-// sensor_msgs/msg/PointCloud2 with the Velodyne driver's point layout (x y z intensity float32,
-// ring uint16, time float32; point_step 22, height 1, dense).
+// sensor_msgs/msg/PointCloud2 in `convention`'s driver layout (formats/driver_point_cloud.hpp;
+// the Velodyne driver's by default: x y z intensity ring time, point_step 22), height 1, dense.
 std::string pointCloud2(const std::vector<sensors::ScanPoint>& points, Time stamp,
-                        const std::string& frame);
+                        const std::string& frame, const CloudConvention& convention = {});
 // sensor_msgs/msg/Imu: no orientation (orientation_covariance[0] = -1), diagonal covariances.
 std::string imu(const sensors::ImuSample& sample, Time stamp, const std::string& frame,
                 double gyroscope_variance, double accelerometer_variance);

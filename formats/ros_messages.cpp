@@ -10,8 +10,6 @@
 
 #include <cstring>
 
-#include "formats/velodyne_point_layout.hpp"
-
 namespace isg::formats::ros1 {
 
 namespace {
@@ -87,22 +85,19 @@ std::string stringMessage(const std::string& text) {
 }
 
 std::string pointCloud2(const std::vector<sensors::ScanPoint>& points, RosTime stamp,
-                        std::uint32_t seq, const std::string& frame) {
-  using sensor_msgs::PointField;
-  constexpr std::uint32_t kPointStep = kVelodynePointStep;
+                        std::uint32_t seq, const std::string& frame,
+                        const CloudConvention& convention) {
+  PackedCloud packed = packCloud(points, convention, stamp.sec, stamp.nsec);
   sensor_msgs::PointCloud2 cloud;
   cloud.header = header(stamp, seq, frame);
   cloud.height = 1;
   cloud.width = std::uint32_t(points.size());
-  cloud.fields = {
-      pointField("x", 0, PointField::FLOAT32),    pointField("y", 4, PointField::FLOAT32),
-      pointField("z", 8, PointField::FLOAT32),    pointField("intensity", 12, PointField::FLOAT32),
-      pointField("ring", 16, PointField::UINT16), pointField("time", 18, PointField::FLOAT32)};
+  for (const CloudField& f : packed.fields)
+    cloud.fields.push_back(pointField(f.name, f.offset, f.datatype));
   cloud.is_bigendian = false;
-  cloud.point_step = kPointStep;
-  cloud.row_step = kPointStep * cloud.width;
-  cloud.data.resize(std::size_t(cloud.row_step));
-  packVelodynePoints(points, cloud.data.data());
+  cloud.point_step = packed.point_step;
+  cloud.row_step = packed.point_step * cloud.width;
+  cloud.data.assign(packed.data.begin(), packed.data.end());
   cloud.is_dense = true;  // every point is a return: misses are left out, never NaN
   return serialise(cloud);
 }

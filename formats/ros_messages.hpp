@@ -5,6 +5,7 @@
 #include <string>
 #include <vector>
 
+#include "formats/driver_point_cloud.hpp"
 #include "formats/rosbag_writer.hpp"
 #include "sensors/messages.hpp"
 
@@ -21,11 +22,11 @@ RosMessageType tfMessageType();
 RosMessageType stringType();
 RosMessageType poseStampedType();  // read from recordings, never written
 
-// sensor_msgs/PointCloud2 with the Velodyne driver's point layout: x y z intensity (float32 at 0,
-// 4, 8, 12), ring (uint16 at 16), time (float32 at 18, seconds from the stamp); point_step 22,
-// height 1, dense.
+// sensor_msgs/PointCloud2 in `convention`'s driver layout (formats/driver_point_cloud.hpp; the
+// Velodyne driver's by default: x y z intensity ring time, point_step 22), height 1, dense.
 std::string pointCloud2(const std::vector<sensors::ScanPoint>& points, RosTime stamp,
-                        std::uint32_t seq, const std::string& frame);
+                        std::uint32_t seq, const std::string& frame,
+                        const CloudConvention& convention = {});
 
 // sensor_msgs/Imu: no orientation (orientation_covariance[0] = -1, as the message documents for
 // a unit without one), rates and specific force with diagonal covariances (per-axis variances).

@@ -234,6 +234,8 @@ class Import {
   std::string odometry_child_, truth_child_;
   double time_min_ = 0.0, time_max_ = 0.0;
   std::uint64_t clouds_with_time_ = 0, clouds_stamped_at_end_ = 0;
+  std::vector<std::uint16_t> ring_order_;  // the recording's ring → the dataset's (empty: as is)
+  bool ring_order_decided_ = false;
   std::uint32_t origin_ = 0;
   Eigen::Isometry3d R_T_L_ = Eigen::Isometry3d::Identity(), R_T_I_ = Eigen::Isometry3d::Identity();
   Eigen::Isometry3d odometry_C_T_R_ = Eigen::Isometry3d::Identity(),
@@ -719,9 +721,34 @@ void Import::writeScan(const fs::path& folder, formats::RosTime stamp,
     if (2 * std::size_t(before) > points.size()) ++clouds_stamped_at_end_;
   }
   summary_.points += points.size();
+  // Rings are numbered by elevation in a dataset: the first cloud with points decides the
+  // recording's renumbering, which every cloud then takes.
+  if (!ring_order_decided_ && !points.empty()) {
+    ring_order_ = formats::ringsByElevation(points);
+    ring_order_decided_ = true;
+    if (!ring_order_.empty()) {
+      std::size_t top = 0;
+      for (std::size_t r = 0; r < ring_order_.size(); ++r) {
+        if (ring_order_[r] > ring_order_[top]) top = r;
+      }
+      summary_.notes.push_back(
+          "rings renumbered by elevation, 0 = lowest, as datasets number them (the recording's "
+          "ring " +
+          std::to_string(top) + " is the top beam, now ring " + std::to_string(ring_order_[top]) +
+          ")");
+    }
+  }
+  std::vector<sensors::ScanPoint> renumbered;
+  if (!ring_order_.empty()) {
+    renumbered = points;
+    for (auto& p : renumbered) {
+      if (p.ring < ring_order_.size()) p.ring = ring_order_[p.ring];
+    }
+  }
   common::writeFile(
       folder / formats::dataset::kScans / formats::dataset::scanFileName(int(scan_stamps_.size())),
-      formats::dataset::pcdBytes(points, formats::dataset::kDefaultPcdData));
+      formats::dataset::pcdBytes(ring_order_.empty() ? points : renumbered,
+                                 formats::dataset::kDefaultPcdData));
   scan_stamps_.push_back(stamp);
 }
 

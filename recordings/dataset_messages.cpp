@@ -29,6 +29,31 @@ struct Entry {
 
 }  // namespace
 
+formats::CloudConvention exportCloudConvention(const formats::DatasetReader& dataset,
+                                               bool velodyne_layout) {
+  if (velodyne_layout) return {};
+  const nlohmann::json& metadata = dataset.metadata();
+  const auto lidar = metadata.find("lidar");
+  if (lidar == metadata.end() || !lidar->is_object()) return {};
+  const auto name = lidar->find("scenario_model");
+  if (name == lidar->end() || !name->is_string()) return {};
+  const sensors::LidarModel* model = sensors::findLidarModel(name->get<std::string>());
+  return model ? formats::CloudConvention::of(*model) : formats::CloudConvention{};
+}
+
+std::string describeCloudConvention(const formats::CloudConvention& convention) {
+  switch (convention.layout) {
+    case sensors::DriverCloudLayout::kHesai:
+      return "Hesai's (x y z intensity timestamp ring; ring = channel, 0 = top)";
+    case sensors::DriverCloudLayout::kOuster:
+      return "Ouster's (ouster-ros: x y z intensity t reflectivity ring ambient range; ring = "
+             "beam, 0 = top)";
+    case sensors::DriverCloudLayout::kVelodyne:
+      break;
+  }
+  return "the Velodyne driver's (x y z intensity ring time; ring 0 = lowest)";
+}
+
 void visitDatasetMessages(formats::DatasetReader& dataset, DatasetMessageVisitor& visitor,
                           const std::function<void(int, int)>& progress) {
   std::vector<Entry> entries;

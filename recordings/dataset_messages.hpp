@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "formats/dataset_reader.hpp"
+#include "formats/driver_point_cloud.hpp"
 
 namespace isg::recordings {
 
@@ -68,10 +69,21 @@ class DatasetMessageVisitor {
 // What an export wrote.
 struct ExportSummary {
   std::map<std::string, std::uint64_t> messages;  // per topic
+  std::string cloud_layout;                       // "the Velodyne driver's (x y z …)"
   std::uint64_t bytes = 0;
   double dataset_seconds = 0.0;  // robot time covered
   double wall_seconds = 0.0;
 };
+
+// The layout an export writes the clouds in (docs/formats.md, "ROS bags"): the ROS
+// driver's of the dataset's LiDAR model (metadata.json lidar.scenario_model: Hesai's for
+// pandar-xt32, ouster-ros's for the OS models, Velodyne's for the VLP models), the Velodyne
+// driver's when the model is none the simulator knows (an imported recording's, whose rings are
+// already by elevation) or `velodyne_layout` asks for it.
+formats::CloudConvention exportCloudConvention(const formats::DatasetReader& dataset,
+                                               bool velodyne_layout);
+// "Ouster's (ouster-ros: x y z intensity t reflectivity ring ambient range, ring 0 = top)", …
+std::string describeCloudConvention(const formats::CloudConvention& convention);
 
 // Walks the dataset's messages in time order through `visitor`; `progress(done, total)` (if set)
 // after each scan.

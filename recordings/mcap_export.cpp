@@ -30,8 +30,9 @@ class McapVisitor : public DatasetMessageVisitor {
  public:
   McapVisitor(const formats::DatasetReader& dataset, const std::string& path,
               const formats::McapWriterOptions& options,
-              const std::function<formats::ros2::Time(double)>& stamp)
-      : mcap(path, options), stamp_(stamp) {
+              const std::function<formats::ros2::Time(double)>& stamp,
+              const formats::CloudConvention& convention)
+      : mcap(path, options), stamp_(stamp), convention_(convention) {
     auto schemaOf = [&](const formats::ros2::MessageType& type) {
       return mcap.addSchema(type.name, "ros2msg", type.definition);
     };
@@ -80,7 +81,8 @@ class McapVisitor : public DatasetMessageVisitor {
   }
   void cloud(int, double t, const sensors::Scan& scan) override {
     const formats::ros2::Time time = stamp_(t);
-    write(kCloudTopic, time, formats::ros2::pointCloud2(scan.points, time, kLidarFrame));
+    write(kCloudTopic, time,
+          formats::ros2::pointCloud2(scan.points, time, kLidarFrame, convention_));
   }
   void groundTruth(int, double t, const Eigen::Isometry3d& pose, const BodyTwist& twist) override {
     const formats::ros2::Time time = stamp_(t);
@@ -96,6 +98,7 @@ class McapVisitor : public DatasetMessageVisitor {
     mcap.write(topics.at(topic), time.nanoseconds(), data);
   }
   std::function<formats::ros2::Time(double)> stamp_;
+  formats::CloudConvention convention_;
 };
 
 }  // namespace
@@ -125,11 +128,14 @@ ExportSummary exportMcap(const std::string& dataset_dir, const std::string& mcap
   formats::McapWriterOptions writer;
   writer.compression = options.compression;
   writer.overwrite = options.overwrite;
-  McapVisitor visitor(dataset, mcap_path, writer, stamp);
+  const formats::CloudConvention convention =
+      exportCloudConvention(dataset, options.velodyne_layout);
+  McapVisitor visitor(dataset, mcap_path, writer, stamp, convention);
   visitDatasetMessages(dataset, visitor, progress);
   visitor.mcap.close();
 
   ExportSummary summary;
+  summary.cloud_layout = describeCloudConvention(convention);
   for (const auto& [topic, channel] : visitor.topics) {
     summary.messages[topic] = visitor.mcap.counts()[channel];
   }

@@ -15,6 +15,9 @@ struct McapExportOptions {
   std::uint32_t stamp_offset = 1000000000;
   formats::McapCompression compression = formats::McapCompression::kZstd;
   bool overwrite = false;
+  // Clouds in the Velodyne driver's layout whatever the model (else the model's driver's:
+  // exportCloudConvention).
+  bool velodyne_layout = false;
 };
 
 // Writes a dataset folder (docs/formats.md, "Datasets") as an MCAP file of ROS 2 messages (CDR,

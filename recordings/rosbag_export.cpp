@@ -21,8 +21,9 @@ using namespace rosbag_names;
 class RosbagVisitor : public DatasetMessageVisitor {
  public:
   RosbagVisitor(const formats::DatasetReader& dataset, const std::string& bag_path, bool overwrite,
-                const std::function<formats::RosTime(double)>& stamp)
-      : bag(bag_path, overwrite), stamp_(stamp) {
+                const std::function<formats::RosTime(double)>& stamp,
+                const formats::CloudConvention& convention)
+      : bag(bag_path, overwrite), stamp_(stamp), convention_(convention) {
     tf_static_topic = bag.connect(kTfStaticTopic, formats::ros1::tfMessageType(), true);
     metadata_topic = bag.connect(kMetadataTopic, formats::ros1::stringType(), true);
     // A dataset without odometry (a handheld carrier) has no odom → base_link transforms either.
@@ -60,8 +61,9 @@ class RosbagVisitor : public DatasetMessageVisitor {
   }
   void cloud(int i, double t, const sensors::Scan& scan) override {
     const formats::RosTime time = stamp_(t);
-    bag.write(cloud_topic, time,
-              formats::ros1::pointCloud2(scan.points, time, std::uint32_t(i), kLidarFrame));
+    bag.write(
+        cloud_topic, time,
+        formats::ros1::pointCloud2(scan.points, time, std::uint32_t(i), kLidarFrame, convention_));
   }
   void groundTruth(int i, double t, const Eigen::Isometry3d& pose,
                    const BodyTwist& twist) override {
@@ -77,6 +79,7 @@ class RosbagVisitor : public DatasetMessageVisitor {
 
  private:
   std::function<formats::RosTime(double)> stamp_;
+  formats::CloudConvention convention_;
 };
 
 }  // namespace
@@ -99,12 +102,15 @@ ExportSummary exportRosbag(const std::string& dataset_dir, const std::string& ba
                                    " s is not a ROS time (0 to 2^32 s)");
     }
   };
-  RosbagVisitor visitor(dataset, bag_path, options.overwrite, stamp);
+  const formats::CloudConvention convention =
+      exportCloudConvention(dataset, options.velodyne_layout);
+  RosbagVisitor visitor(dataset, bag_path, options.overwrite, stamp, convention);
   visitDatasetMessages(dataset, visitor, progress);
   formats::RosbagWriter& bag = visitor.bag;
   bag.close();
 
   ExportSummary summary;
+  summary.cloud_layout = describeCloudConvention(convention);
   const char* topics[] = {kTfStaticTopic, kOdometryTopic,    kTfTopic,      kImuTopic,
                           kCloudTopic,    kGroundTruthTopic, kMetadataTopic};
   const int connections[] = {

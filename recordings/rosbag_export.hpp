@@ -15,6 +15,9 @@ struct RosbagExportOptions {
   // time T − 1e9.
   std::uint32_t stamp_offset = 1000000000;
   bool overwrite = false;
+  // Clouds in the Velodyne driver's layout whatever the model (else the model's driver's:
+  // exportCloudConvention).
+  bool velodyne_layout = false;
 };
 
 // Writes a dataset folder (docs/formats.md, "Datasets") as a ROS 1 bag: every scan, IMU sample,

@@ -84,6 +84,7 @@ LidarModel pandarXt32() {
   m.sequences_per_packet_dual = 4;
   m.range_resolution_m = 0.004;
   m.half_divergence_rad = 1.0e-3;  // assumed
+  m.driver_layout = DriverCloudLayout::kHesai;
   return m;
 }
 
@@ -107,6 +108,7 @@ LidarModel ouster(const char* name, const char* title, int beams, double half_fo
   m.sequences_per_packet_dual = 16;
   m.range_resolution_m = 0.001;
   m.beam_origin_radius_mm = origin_radius_mm;
+  m.driver_layout = DriverCloudLayout::kOuster;
   m.half_divergence_rad = 0.5 * divergence_deg * 3.14159265358979323846 / 180.0;
   return m;
 }
@@ -128,6 +130,15 @@ std::vector<LidarModel> makeModels() {
 }
 
 }  // namespace
+
+std::vector<std::uint16_t> LidarModel::driverRings() const {
+  std::vector<std::uint16_t> out(beams.size());
+  for (std::size_t b = 0; b < beams.size(); ++b) {
+    out[std::size_t(beams[b].ring)] =
+        std::uint16_t(driver_layout == DriverCloudLayout::kVelodyne ? beams[b].ring : int(b));
+  }
+  return out;
+}
 
 int LidarModel::sequencesPerTurn(double rate_hz) const {
   if (columns_per_turn > 0) return columns_per_turn;

@@ -1,5 +1,6 @@
 #pragma once
 
+#include <cstdint>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -15,6 +16,14 @@ struct LidarBeam {
   double vertical_offset_mm = 0.0;  // the beam's origin above (+) the optical centre (VLP-16)
   double firing_offset_s = 0.0;     // from the start of its firing sequence (column)
   int ring = 0;                     // by elevation, 0 = lowest (the localizer's convention)
+};
+
+// The point layout and ring numbering of a model's ROS driver (docs/formats.md, "Exporting
+// recordings"), which exported clouds follow.
+enum class DriverCloudLayout {
+  kVelodyne,  // velodyne_pointcloud: x y z intensity ring time; rings by elevation, 0 = lowest
+  kHesai,     // Hesai's driver: x y z intensity timestamp ring; ring = channel, 0 = top
+  kOuster,    // ouster-ros: x y z intensity t reflectivity ring ambient range; ring = beam, 0 = top
 };
 
 // A spinning LiDAR as the simulator fires it and the localizer reads it (docs/simulation.md,
@@ -35,8 +44,12 @@ struct LidarModel {
   double range_resolution_m = 0.002;    // ranges are reported in steps of this
   double half_divergence_rad = 1.5e-3;  // half the beam's horizontal divergence
   double beam_origin_radius_mm = 0.0;   // beams leave from a circle this wide about the axis
+  DriverCloudLayout driver_layout = DriverCloudLayout::kVelodyne;
 
   int lasers() const { return int(beams.size()); }
+  // The driver's ring number of each ring by elevation: the ring itself for Velodyne's driver, the
+  // beam's channel (its index in firing order) for Hesai's and Ouster's.
+  std::vector<std::uint16_t> driverRings() const;
   // Firing sequences in one turn at `rate_hz`, and how long each lasts.
   int sequencesPerTurn(double rate_hz) const;
   double sequenceDuration(double rate_hz) const;

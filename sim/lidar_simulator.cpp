@@ -107,6 +107,8 @@ LidarSimulator::LidarSimulator(const MujocoWorld& world, const bim::LidarConfig&
     shape.R = Eigen::Map<const Eigen::Matrix<double, 3, 3, Eigen::RowMajor>>(d.geom_xmat + 9 * g);
     shape.inverse_half = Eigen::Map<const Eigen::Vector3d>(m.geom_size + 3 * g).cwiseInverse();
   }
+  laser_height_.resize(std::size_t(lasers_));
+  for (int l = 0; l < lasers_; ++l) laser_height_[std::size_t(l)] = laserOrigin(l).z();
   firings_.reserve(std::size_t(sequences_) * lasers_);
   for (int s = 0; s < sequences_; ++s) {
     for (int l = 0; l < lasers_; ++l) {
@@ -249,8 +251,6 @@ void LidarSimulator::samplePoses(double start, const PoseAt& B_T_L, int first_se
 
 void LidarSimulator::blockRays(int first, int last, const Eigen::Matrix3d& L_R_table, bool turned,
                                bool beam) {
-  std::array<double, 128> offset{};
-  for (int l = 0; l < lasers_; ++l) offset[std::size_t(l)] = laserOrigin(l).z();
   const bool radial = model_.beam_origin_radius_mm > 0.0;
   for (int s = first; s < last; ++s) {
     const int j = s / kPoseStride;
@@ -268,7 +268,7 @@ void LidarSimulator::blockRays(int first, int last, const Eigen::Matrix3d& L_R_t
       // for 1/|v| makes it unit to ~1e-16 without a square root or a division.
       directions_[i] = (1.5 - 0.5 * v.squaredNorm()) * v;
       const Eigen::Vector3d axis = R.col(2) + a * dR.col(2);
-      origins_[i] = positions_[j] + a * dP + offset[std::size_t(l)] * axis;
+      origins_[i] = positions_[j] + a * dP + laser_height_[std::size_t(l)] * axis;
       if (radial) origins_[i] += R * firing.radial + a * (dR * firing.radial);
       // The body is rigid with the mount: only a turn off the table's azimuths asks anew.
       blocked_[i] = turned && config_.body_occlusion

@@ -158,8 +158,9 @@ class LidarSimulator {
   bim::LidarConfig config_;
   const sensors::LidarModel& model_;
   int lasers_;
-  double sequence_s_;  // one firing sequence at the scenario's rate
-  double quantum_;     // the model's range steps
+  std::vector<double> laser_height_;  // each laser's origin above the optical centre, m
+  double sequence_s_;                 // one firing sequence at the scenario's rate
+  double quantum_;                    // the model's range steps
   double half_divergence_;
   RayCaster caster_;
   ScanCaster scan_caster_;

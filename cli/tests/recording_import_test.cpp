@@ -14,6 +14,7 @@
 #include <vector>
 
 #include "cli/tests/cli_runner.hpp"
+#include "formats/pcd_reader.hpp"
 
 namespace isg::cli {
 namespace {
@@ -21,6 +22,7 @@ namespace {
 namespace fs = std::filesystem;
 
 using ::testing::HasSubstr;
+using ::testing::Not;
 using ::testing::StartsWith;
 
 std::vector<std::vector<double>> numberRows(const std::string& text) {
@@ -284,6 +286,68 @@ TEST(ImportRecording, OurOwnMcapImportsBackToTheDataset) {
   auto imported = nlohmann::json::parse(sandbox.read("imported/metadata.json"));
   imported.erase("imported_from");
   EXPECT_EQ(imported, original);
+}
+
+// Scan `k` of two datasets: the same points, rings and intensities, times to the nanosecond.
+void expectSameScan(const testing::Sandbox& sandbox, const std::string& a, const std::string& b,
+                    int k) {
+  char name[32];
+  std::snprintf(name, sizeof name, "/scans/%06d.pcd", k);
+  const auto pa = formats::readPcd((sandbox.dir() / (a + name)).string());
+  const auto pb = formats::readPcd((sandbox.dir() / (b + name)).string());
+  ASSERT_EQ(pa.size(), pb.size());
+  ASSERT_GT(pa.size(), 1000u);
+  for (std::size_t i = 0; i < pa.size(); ++i) {
+    ASSERT_EQ(pa[i].x, pb[i].x) << i;
+    ASSERT_EQ(pa[i].z, pb[i].z) << i;
+    ASSERT_EQ(pa[i].intensity, pb[i].intensity) << i;
+    ASSERT_EQ(pa[i].ring, pb[i].ring) << i;
+    ASSERT_NEAR(pa[i].time, pb[i].time, 1e-6) << i;
+  }
+}
+
+// A simulated Ouster's and Hesai's clouds are exported as their ROS drivers publish them (ring 0
+// the top beam, Ouster's nanosecond t and range, Hesai's epoch seconds) and import back to the
+// dataset, rings renumbered by elevation; --cloud-layout velodyne keeps the Velodyne driver's.
+TEST(ImportRecording, AModelsDriverLayoutImportsBackToItsDataset) {
+  testing::Sandbox sandbox("import_driver_layouts");
+  auto result =
+      sandbox.run("simulate builtin:d1 --lidar os1-64 --duration 2 -o os -q --mcap os.mcap");
+  ASSERT_EQ(result.exit_code, 0) << result.err;
+  EXPECT_THAT(result.out, HasSubstr("isg simulate: clouds in Ouster's (ouster-ros: x y z intensity "
+                                    "t reflectivity ring ambient range; ring = beam, 0 = top) "
+                                    "layout\n"));
+  result = sandbox.run("import os.mcap -o os-back -q");
+  ASSERT_EQ(result.exit_code, 0) << result.err;
+  EXPECT_THAT(result.out, HasSubstr("clouds: x y z intensity ring t (Ouster's layout)"));
+  EXPECT_THAT(result.out,
+              HasSubstr("  note: rings renumbered by elevation, 0 = lowest, as datasets "
+                        "number them (the recording's ring 0 is the top beam, now "
+                        "ring 63)\n"));
+  expectSameScan(sandbox, "os", "os-back", 7);
+  EXPECT_EQ(nlohmann::json::parse(sandbox.read("os-back/metadata.json"))["lidar"]["scenario_model"],
+            "os1-64");
+
+  result = sandbox.run("simulate builtin:d1 --lidar pandar-xt32 --duration 2 -o xt -q");
+  ASSERT_EQ(result.exit_code, 0) << result.err;
+  result = sandbox.run("export xt --rosbag xt.bag -q");
+  ASSERT_EQ(result.exit_code, 0) << result.err;
+  EXPECT_THAT(result.out, HasSubstr("isg export: clouds in Hesai's (x y z intensity timestamp "
+                                    "ring; ring = channel, 0 = top) layout\n"));
+  result = sandbox.run("import xt.bag -o xt-back -q");
+  ASSERT_EQ(result.exit_code, 0) << result.err;
+  EXPECT_THAT(result.out, HasSubstr("clouds: x y z intensity ring timestamp (Hesai's layout)"));
+  EXPECT_THAT(result.out, HasSubstr("(the recording's ring 0 is the top beam, now ring 31)"));
+  expectSameScan(sandbox, "xt", "xt-back", 12);
+
+  result = sandbox.run("export xt --rosbag velodyne.bag --cloud-layout velodyne -q");
+  ASSERT_EQ(result.exit_code, 0) << result.err;
+  EXPECT_THAT(result.out, HasSubstr("isg export: clouds in the Velodyne driver's (x y z intensity "
+                                    "ring time; ring 0 = lowest) layout\n"));
+  result = sandbox.run("import velodyne.bag -o velodyne-back -q");
+  ASSERT_EQ(result.exit_code, 0) << result.err;
+  EXPECT_THAT(result.out, Not(HasSubstr("renumbered")));
+  EXPECT_EQ(sandbox.read("velodyne-back/scans/000012.pcd"), sandbox.read("xt/scans/000012.pcd"));
 }
 
 std::string pythonRos2(const std::string& arguments) {

@@ -31,6 +31,29 @@ struct RangeImage {
   bool valid(int k) const { return first[k + 1] > first[k]; }
 };
 
+// Rows must follow elevation for the image's up and down neighbours to be the beams above and
+// below. Drivers number rings differently (Velodyne's from the lowest beam, Ouster's and Hesai's
+// from the top, raw laser ids in firing order), so the rings seen are ranked by their points' mean
+// elevation and take the seen rows in that order; rings already in order keep their rows.
+void reorderRowsByElevation(const std::vector<int>& ring_points,
+                            const std::vector<double>& sine_sum, int cols,
+                            std::vector<int>& cell_of) {
+  std::vector<int> rings;  // seen, by number
+  std::vector<double> mean(ring_points.size(), 0.0);
+  for (int r = 0; r < int(ring_points.size()); ++r) {
+    if (ring_points[std::size_t(r)] == 0) continue;
+    rings.push_back(r);
+    mean[std::size_t(r)] = sine_sum[std::size_t(r)] / ring_points[std::size_t(r)];
+  }
+  std::vector<int> by_elevation = rings;
+  std::stable_sort(by_elevation.begin(), by_elevation.end(),
+                   [&](int a, int b) { return mean[std::size_t(a)] < mean[std::size_t(b)]; });
+  if (by_elevation == rings) return;
+  std::vector<int> row_of(ring_points.size(), 0);
+  for (std::size_t i = 0; i < rings.size(); ++i) row_of[std::size_t(by_elevation[i])] = rings[i];
+  for (int& k : cell_of) k = row_of[std::size_t(k / cols)] * cols + k % cols;
+}
+
 std::optional<RangeImage> buildImage(const sensors::Scan& scan,
                                      const PlaneExtractionOptions& options) {
   RangeImage image;
@@ -39,6 +62,8 @@ std::optional<RangeImage> buildImage(const sensors::Scan& scan,
   std::vector<int> cell_of;
   int max_ring = -1;
   std::vector<char> seen(kMaxRings, 0);
+  std::vector<double> sine_sum(kMaxRings, 0.0);  // of the points' elevations, per ring
+  std::vector<int> ring_points(kMaxRings, 0);
   image.cols = std::max(8, int(std::lround(360.0 / options.image_column_deg)));
   image.points.reserve(scan.points.size());
   cell_of.reserve(scan.points.size());
@@ -53,9 +78,12 @@ std::optional<RangeImage> buildImage(const sensors::Scan& scan,
     cell_of.push_back(int(p.ring) * image.cols + c);
     max_ring = std::max(max_ring, int(p.ring));
     seen[p.ring] = 1;
+    sine_sum[p.ring] += double(p.z) / std::sqrt(r2);
+    ++ring_points[p.ring];
   }
   if (std::count(seen.begin(), seen.end(), 1) < kMinRings) return std::nullopt;
   image.rows = max_ring + 1;
+  reorderRowsByElevation(ring_points, sine_sum, image.cols, cell_of);
   const int cells = image.rows * image.cols;
   image.first.assign(cells + 1, 0);
   for (int k : cell_of) ++image.first[k + 1];

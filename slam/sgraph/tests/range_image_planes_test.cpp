@@ -225,6 +225,34 @@ TEST(RangeImagePlanes, AWallUnderALowCeilingHasItsTopBeyondView) {
   EXPECT_NEAR(west->z_max, 3.0 * std::tan(11.0 * std::numbers::pi / 180.0), 0.05);
 }
 
+// Drivers number rings from the lowest beam (Velodyne), from the top (Ouster, Hesai) or in firing
+// order (raw laser ids): the image's rows follow elevation whatever the numbering, so each gives
+// the planes, their support and their top edges the rings by elevation give.
+TEST(RangeImagePlanes, RingsNumberedFromTheTopOrInFiringOrderGiveTheSamePlanes) {
+  const sensors::Scan by_elevation = castScan(room(), Eigen::Vector3d(2.0, 1.5, 0.7), 0.4);
+  const auto reference = extractPlanesOnRangeImage(by_elevation, PlaneExtractionOptions());
+  ASSERT_TRUE(reference.has_value());
+  ASSERT_GE(reference->size(), 5u);
+  // The VLP-16's laser ids by ring: −15° is laser 0, −13° laser 2, …, +15° laser 15.
+  const int laser_of_ring[16] = {0, 2, 4, 6, 8, 10, 12, 14, 1, 3, 5, 7, 9, 11, 13, 15};
+  for (const bool firing_order : {false, true}) {
+    SCOPED_TRACE(firing_order ? "laser ids in firing order" : "ring 0 at the top");
+    sensors::Scan renumbered = by_elevation;
+    for (auto& p : renumbered.points) {
+      p.ring = std::uint16_t(firing_order ? laser_of_ring[p.ring] : 15 - p.ring);
+    }
+    const auto planes = extractPlanesOnRangeImage(renumbered, PlaneExtractionOptions());
+    ASSERT_TRUE(planes.has_value());
+    ASSERT_EQ(planes->size(), reference->size());
+    for (std::size_t i = 0; i < planes->size(); ++i) {
+      EXPECT_EQ((*planes)[i].points, (*reference)[i].points);
+      EXPECT_EQ((*planes)[i].top, (*reference)[i].top);
+      EXPECT_LT(((*planes)[i].plane.normal - (*reference)[i].plane.normal).norm(), 1e-12);
+      EXPECT_NEAR((*planes)[i].plane.d, (*reference)[i].plane.d, 1e-12);
+    }
+  }
+}
+
 TEST(RangeImagePlanes, AScanWithoutRingsIsLeftToRansac) {
   sensors::Scan scan = castScan(room(), Eigen::Vector3d(2.0, 1.5, 0.7), 0.3);
   for (auto& p : scan.points) p.ring = 0;
