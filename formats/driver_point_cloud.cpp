@@ -18,6 +18,15 @@ void put(unsigned char* at, T value) {
   std::memcpy(at, &value, sizeof(T));
 }
 
+// x y z at 0/4/8 and intensity at 16: the 16-byte-aligned PCL points both Hesai's and Ouster's
+// drivers publish.
+void putAlignedXyzIntensity(unsigned char* at, const sensors::ScanPoint& p) {
+  put(at + 0, p.x);
+  put(at + 4, p.y);
+  put(at + 8, p.z);
+  put(at + 16, p.intensity);
+}
+
 std::uint16_t driverRing(const CloudConvention& convention, std::uint16_t ring) {
   return ring < convention.driver_rings.size() ? convention.driver_rings[ring] : ring;
 }
@@ -61,10 +70,7 @@ PackedCloud packCloud(const std::vector<sensors::ScanPoint>& points,
       const double stamp = double(stamp_sec) + 1e-9 * double(stamp_nsec);
       auto* at = reinterpret_cast<unsigned char*>(cloud.data.data());
       for (const sensors::ScanPoint& p : points) {
-        put(at + 0, p.x);
-        put(at + 4, p.y);
-        put(at + 8, p.z);
-        put(at + 16, p.intensity);
+        putAlignedXyzIntensity(at, p);
         put(at + 24, stamp + double(p.time));
         put(at + 32, driverRing(convention, p.ring));
         at += cloud.point_step;
@@ -80,10 +86,7 @@ PackedCloud packCloud(const std::vector<sensors::ScanPoint>& points,
       cloud.data.assign(std::size_t(cloud.point_step) * points.size(), '\0');
       auto* at = reinterpret_cast<unsigned char*>(cloud.data.data());
       for (const sensors::ScanPoint& p : points) {
-        put(at + 0, p.x);
-        put(at + 4, p.y);
-        put(at + 8, p.z);
-        put(at + 16, p.intensity);
+        putAlignedXyzIntensity(at, p);
         // Ouster's t counts from the turn's first column: a time before the stamp is clamped.
         put(at + 20, std::uint32_t(std::clamp(std::llround(double(p.time) * 1e9), 0LL,
                                               (long long)UINT32_MAX)));
