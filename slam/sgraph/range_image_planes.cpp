@@ -207,11 +207,36 @@ struct Neighbours {
     if (!image.valid(a) || !image.valid(b)) return false;
     double limit = options.cluster_tolerance;
     if (across_rings) {
-      const int r = std::min(a / image.cols, b / image.cols);
-      limit = std::max(limit, options.ring_gap_factor * std::min(image.range[a], image.range[b]) *
-                                  image.ring_step[r]);
+      const int r0 = std::min(a / image.cols, b / image.cols);
+      const int r1 = std::max(a / image.cols, b / image.cols);
+      double step = 0.0;
+      for (int r = r0; r < r1; ++r) step += image.ring_step[r];
+      limit = std::max(limit,
+                       options.ring_gap_factor * std::min(image.range[a], image.range[b]) * step);
     }
     return (image.mean[a] - image.mean[b]).squaredNorm() <= limit * limit;
+  }
+  // The cell across the rings (`direction` +1 up, −1 down) a cell's normal is taken to: in the
+  // nearest row at least an image column's width of elevation away, so that the normal's two
+  // baselines are alike. Rings 0.35° apart (an OS1-128) next to columns 0.8° wide would give a
+  // baseline across a fifth of the one along, and a normal that the range noise turns by tens of
+  // degrees: the regions would break into thousands. Where that row's cell is missing or not
+  // close, the nearest nearer one that is; -1 for none. Rings 2° apart (a VLP-16): the next row.
+  int acrossForNormal(int k, int direction) const {
+    const int r = k / image.cols, c = k % image.cols;
+    const double wanted = options.image_column_deg * std::numbers::pi / 180.0;
+    double step = 0.0;
+    int far = r;
+    while (step < wanted) {
+      const int next = far + direction;
+      if (next < 0 || next >= image.rows) break;
+      step += image.ring_step[std::min(far, next)];
+      far = next;
+    }
+    for (int q = far; q != r; q -= direction) {
+      if (close(k, image.cell(q, c), true)) return image.cell(q, c);
+    }
+    return -1;
   }
   int left(int k) const { return k % image.cols == 0 ? k + image.cols - 1 : k - 1; }
   int right(int k) const { return k % image.cols == image.cols - 1 ? k - image.cols + 1 : k + 1; }
@@ -227,12 +252,10 @@ void cellNormals(const Neighbours& near, std::vector<Eigen::Vector3d>& normal,
   has_normal.assign(cells, 0);
   for (int k = 0; k < cells; ++k) {
     if (!image.valid(k)) continue;
-    const int r = k / cols;
     const int l = near.left(k), rr = near.right(k);
-    const int down = r > 0 ? k - cols : -1, up = r + 1 < rows ? k + cols : -1;
+    const int down = near.acrossForNormal(k, -1), up = near.acrossForNormal(k, +1);
     const bool has_l = near.close(k, l, false), has_r = near.close(k, rr, false);
-    const bool has_d = down >= 0 && near.close(k, down, true);
-    const bool has_u = up >= 0 && near.close(k, up, true);
+    const bool has_d = down >= 0, has_u = up >= 0;
     if ((!has_l && !has_r) || (!has_d && !has_u)) continue;
     const Eigen::Vector3d along = image.mean[has_r ? rr : k] - image.mean[has_l ? l : k];
     const Eigen::Vector3d across = image.mean[has_u ? up : k] - image.mean[has_d ? down : k];
