@@ -14,16 +14,28 @@ double cross(const Eigen::Vector2d& a, const Eigen::Vector2d& b) {
 
 }  // namespace
 
+double rotationPivotAlong(const Wall& planned, const WallRotation& rotation) {
+  const double length = (planned.end - planned.start).norm();
+  switch (rotation.about) {
+    case WallRotation::About::kStart:
+      return 0.0;
+    case WallRotation::About::kEnd:
+      return length;
+    case WallRotation::About::kAlong:
+      return rotation.along_m;
+    case WallRotation::About::kCentre:
+      break;
+  }
+  return 0.5 * length;
+}
+
 Wall builtWall(const Wall& planned, const AsBuilt& as_built) {
   Wall built = planned;
   const Eigen::Vector2d axis = (planned.end - planned.start).normalized();
   const Eigen::Vector2d left(-axis.y(), axis.x());
   for (const auto& rotation : as_built.wall_rotations) {
     if (rotation.wall != planned.id) continue;
-    const Eigen::Vector2d pivot = rotation.about == WallRotation::About::kStart ? planned.start
-                                  : rotation.about == WallRotation::About::kEnd
-                                      ? planned.end
-                                      : Eigen::Vector2d(0.5 * (planned.start + planned.end));
+    const Eigen::Vector2d pivot = planned.start + rotationPivotAlong(planned, rotation) * axis;
     const Eigen::Rotation2Dd turn(rotation.angle_deg * std::numbers::pi / 180.0);
     built.start = pivot + turn * (planned.start - pivot);
     built.end = pivot + turn * (planned.end - pivot);

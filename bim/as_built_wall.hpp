@@ -5,11 +5,15 @@
 
 namespace isg::bim {
 
-// Where a wall of the plan was built (docs/formats.md, `as_built`): turned about its start, centre
-// or end by its `wall_rotations` entry, then moved along its planned left normal by its
-// `wall_shifts` entry. A wall with neither comes back as planned. Whether the wall was built at all
+// Where a wall of the plan was built (docs/formats.md, `as_built`): turned about its start, centre,
+// end or a point along it by its `wall_rotations` entry, then moved along its planned left normal
+// by its `wall_shifts` entry. A wall with neither comes back as planned. Whether the wall was built
+// at all
 // (`missing_walls`) is the caller's to ask.
 Wall builtWall(const Wall& planned, const AsBuilt& as_built);
+
+// Where along the planned axis (metres from its start) a rotation turns the wall.
+double rotationPivotAlong(const Wall& planned, const WallRotation& rotation);
 
 // How far a built wall's axis lies from the planned one, measured as the deviation report measures
 // an observed wall (docs/deviations.md): `offset_m` along the planned left normal, at the planned

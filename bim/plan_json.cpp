@@ -135,8 +135,9 @@ json asBuiltToJson(const AsBuilt& a) {
   for (const auto& s : a.wall_shifts) shifts.push_back({{"wall", s.wall}, {"offset", s.offset}});
   json rotations = json::array();
   for (const auto& r : a.wall_rotations) {
-    rotations.push_back(
-        {{"wall", r.wall}, {"angle_deg", r.angle_deg}, {"about", aboutName(r.about)}});
+    json about = aboutName(r.about);
+    if (r.about == WallRotation::About::kAlong) about = r.along_m;
+    rotations.push_back({{"wall", r.wall}, {"angle_deg", r.angle_deg}, {"about", about}});
   }
   for (const auto& c : a.clutter) {
     clutter.push_back({{"shape", "box"},

@@ -186,17 +186,21 @@ struct WallShift {
 };
 
 // A wall built turned by `angle_deg` (counter-clockwise seen from above) about a point of its
-// axis: its start, its centre or its end. Its doors and windows turn with it.
+// axis: its start, its centre, its end, or the point `along_m` metres from its start (kAlong).
+// Its doors and windows turn with it.
 struct WallRotation {
-  enum class About { kStart, kCentre, kEnd };
+  enum class About { kStart, kCentre, kEnd, kAlong };
   std::string wall;
   double angle_deg = 0.0;
   About about = About::kCentre;
+  double along_m = 0.0;  // kAlong only
 };
+// "start", "centre", "end"; "along" for a point given in metres.
 inline const char* aboutName(WallRotation::About a) {
-  return a == WallRotation::About::kStart ? "start"
-         : a == WallRotation::About::kEnd ? "end"
-                                          : "centre";
+  return a == WallRotation::About::kStart   ? "start"
+         : a == WallRotation::About::kEnd   ? "end"
+         : a == WallRotation::About::kAlong ? "along"
+                                            : "centre";
 }
 
 // A wall built only in part (a site where it is still going up): the parts that stand, as

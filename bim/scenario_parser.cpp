@@ -430,14 +430,23 @@ WallRotation parseWallRotation(const common::JsonNode& item, const Plan& plan,
       item.field("angle_deg")
           .numberInRange(-limits::kMaxWallRotationDeg, limits::kMaxWallRotationDeg);
   if (auto about = item.optionalField("about")) {
+    if (!about->isString()) {
+      // A point of the axis in metres from its start.
+      const Level* level = plan.levelOfWall(rotation.wall);
+      const Wall* wall = level != nullptr ? level->findWall(rotation.wall) : nullptr;
+      rotation.about = WallRotation::About::kAlong;
+      rotation.along_m = about->numberInRange(0.0, wall ? (wall->end - wall->start).norm() : 0.0);
+      return rotation;
+    }
     const std::string name = about->string();
     if (name == "start") {
       rotation.about = WallRotation::About::kStart;
     } else if (name == "end") {
       rotation.about = WallRotation::About::kEnd;
     } else if (name != "centre") {
-      about->fail("unknown point " + common::inQuotes(name) +
-                  " (expected \"start\", \"centre\" or \"end\")");
+      about->fail(
+          "unknown point " + common::inQuotes(name) +
+          " (expected \"start\", \"centre\", \"end\" or metres along the wall from its start)");
     }
   }
   return rotation;

@@ -23,23 +23,46 @@ bool onClutter(const Eigen::Vector2d& p, const bim::Clutter& box) {
          std::abs(local.y()) <= 0.5 * box.size.y() + 0.3;
 }
 
+// A wall's progress against the truth (DeviationGrade, "Progress"): judged when built or not
+// built was seen over min_share of its exposed length. A missing wall is graded as missing.
+void gradeProgress(const slam::WallProgress& progress, const bim::ShortenedWall* shortened,
+                   bool truly_missing, DeviationGrade& grade, double& length_error, int& measured) {
+  if (truly_missing || progress.planned_m <= 0.0) return;
+  if (progress.built_m + progress.not_built_m < grade.min_share * progress.planned_m) return;
+  const bool reported = progress.status == slam::ProgressStatus::kPartlyBuilt ||
+                        progress.status == slam::ProgressStatus::kNotBuilt;
+  grade.partly_found += shortened != nullptr && reported;
+  grade.partly_false_reports += shortened == nullptr && reported;
+  grade.partly_missed += shortened != nullptr && !reported;
+  if (shortened != nullptr && progress.status == slam::ProgressStatus::kPartlyBuilt) {
+    const double truly_built = slam::overlapLength(progress.exposed, shortened->built);
+    length_error += std::abs(progress.built_m - truly_built);
+    ++measured;
+  }
+}
+
 }  // namespace
 
 DeviationGrade gradeDeviations(const slam::DeviationReport& report, const bim::Plan& plan,
                                const bim::AsBuilt& truth) {
   DeviationGrade grade;
-  double offset_error = 0.0, angle_error = 0.0;
-  int measured = 0;
+  double offset_error = 0.0, angle_error = 0.0, pivot_error = 0.0, partly_error = 0.0;
+  int measured = 0, pivots = 0, partly_measured = 0;
   for (const slam::WallDeviation& wall : report.walls) {
     const bim::Level* level = plan.levelOfWall(wall.wall);
     const bim::Wall* planned = level != nullptr ? level->findWall(wall.wall) : nullptr;
     if (planned == nullptr) continue;
-    // A wall built in part is neither missing nor as planned, and the report has no status for
-    // it yet: it is not graded.
-    if (std::any_of(truth.shortened_walls.begin(), truth.shortened_walls.end(),
-                    [&](const bim::ShortenedWall& w) { return w.wall == wall.wall; })) {
-      continue;
-    }
+    const auto shortened =
+        std::find_if(truth.shortened_walls.begin(), truth.shortened_walls.end(),
+                     [&](const bim::ShortenedWall& w) { return w.wall == wall.wall; });
+    const bool truly_missing_here =
+        std::find(truth.missing_walls.begin(), truth.missing_walls.end(), wall.wall) !=
+        truth.missing_walls.end();
+    gradeProgress(wall.progress, shortened != truth.shortened_walls.end() ? &*shortened : nullptr,
+                  truly_missing_here, grade, partly_error, partly_measured);
+    // A wall built in part is graded by its progress only: where it stands it may be as planned
+    // or not, but not over its planned length.
+    if (shortened != truth.shortened_walls.end()) continue;
     const bool truly_missing = std::find(truth.missing_walls.begin(), truth.missing_walls.end(),
                                          wall.wall) != truth.missing_walls.end();
     const bool reported_missing = wall.status == slam::WallStatus::kMissing;
@@ -63,6 +86,14 @@ DeviationGrade gradeDeviations(const slam::DeviationReport& report, const bim::P
       angle_error += std::abs(*wall.angle_deg - true_deviation.angle_deg);
       ++measured;
     }
+    const double length = (planned->end - planned->start).norm();
+    const auto true_pivot =
+        slam::crossingAlong(length, true_deviation.offset_m, true_deviation.angle_deg);
+    if (std::abs(true_deviation.angle_deg) >= report.options.angle_deg && wall.pivot_along_m &&
+        true_pivot) {
+      pivot_error += std::abs(*wall.pivot_along_m - *true_pivot);
+      ++pivots;
+    }
   }
   grade.precision = share(grade.found, grade.found + grade.false_reports);
   grade.recall = share(grade.found, grade.found + grade.missed);
@@ -70,6 +101,11 @@ DeviationGrade gradeDeviations(const slam::DeviationReport& report, const bim::P
     grade.offset_error_m = offset_error / measured;
     grade.angle_error_deg = angle_error / measured;
   }
+  if (pivots > 0) grade.pivot_error_m = pivot_error / pivots;
+  grade.partly_precision =
+      share(grade.partly_found, grade.partly_found + grade.partly_false_reports);
+  grade.partly_recall = share(grade.partly_found, grade.partly_found + grade.partly_missed);
+  if (partly_measured > 0) grade.built_length_error_m = partly_error / partly_measured;
   // Extra walls of the levels walked.
   const double parallel = std::cos(common::radians(10.0));
   std::vector<bool> matched(truth.extra_walls.size(), false);
@@ -120,6 +156,22 @@ DeviationMetrics deviationMetrics(const slam::DeviationReport& report, const bim
   m.missing = report.count(slam::WallStatus::kMissing);
   m.not_seen = report.count(slam::WallStatus::kNotSeen);
   m.extra_walls = int(report.extra_walls.size());
+  for (const auto& w : report.walls) {
+    switch (w.progress.status) {
+      case slam::ProgressStatus::kBuilt:
+        ++m.built;
+        break;
+      case slam::ProgressStatus::kPartlyBuilt:
+        ++m.partly_built;
+        break;
+      case slam::ProgressStatus::kNotBuilt:
+        ++m.not_built;
+        break;
+      case slam::ProgressStatus::kNotSeen:
+        ++m.progress_not_seen;
+        break;
+    }
+  }
   if (plan != nullptr && truth != nullptr) m.grade = gradeDeviations(report, *plan, *truth);
   return m;
 }
@@ -177,7 +229,21 @@ constexpr Optional kGradedOptionals[] = {
     {"precision", &DeviationGrade::precision, true},
     {"recall", &DeviationGrade::recall, true},
     {"offset_error_m", &DeviationGrade::offset_error_m, false},
-    {"angle_error_deg", &DeviationGrade::angle_error_deg, false}};
+    {"angle_error_deg", &DeviationGrade::angle_error_deg, false},
+    {"pivot_error_m", &DeviationGrade::pivot_error_m, false}};
+constexpr Count<DeviationMetrics> kProgressCounts[] = {
+    {"built", &DeviationMetrics::built},
+    {"partly_built", &DeviationMetrics::partly_built},
+    {"not_built", &DeviationMetrics::not_built},
+    {"not_seen", &DeviationMetrics::progress_not_seen}};
+constexpr Count<DeviationGrade> kPartlyCounts[] = {
+    {"found", &DeviationGrade::partly_found},
+    {"false_reports", &DeviationGrade::partly_false_reports},
+    {"missed", &DeviationGrade::partly_missed}};
+constexpr Optional kPartlyOptionals[] = {
+    {"precision", &DeviationGrade::partly_precision, true},
+    {"recall", &DeviationGrade::partly_recall, true},
+    {"built_length_error_m", &DeviationGrade::built_length_error_m, false}};
 constexpr Count<DeviationGrade> kMissingCounts[] = {
     {"found", &DeviationGrade::missing_found},
     {"false_reports", &DeviationGrade::missing_false_reports},
@@ -214,7 +280,9 @@ void readOptionals(const common::JsonNode& node, DeviationGrade& to, const Optio
 nlohmann::json deviationMetricsJson(const DeviationMetrics& m) {
   nlohmann::json walls = nlohmann::json::object();
   putCounts(walls, m, kWallCounts);
-  nlohmann::json j = {{"walls", walls}, {"extra_walls", m.extra_walls}};
+  nlohmann::json progress = nlohmann::json::object();
+  putCounts(progress, m, kProgressCounts);
+  nlohmann::json j = {{"walls", walls}, {"extra_walls", m.extra_walls}, {"progress", progress}};
   if (m.grade) {
     const DeviationGrade& g = *m.grade;
     nlohmann::json graded = {{"min_share", g.min_share}};
@@ -224,8 +292,12 @@ nlohmann::json deviationMetricsJson(const DeviationMetrics& m) {
     putCounts(missing, g, kMissingCounts);
     putCounts(extra, g, kExtraCounts);
     putOptionals(extra, g, kExtraOptionals);
+    nlohmann::json partly = nlohmann::json::object();
+    putCounts(partly, g, kPartlyCounts);
+    putOptionals(partly, g, kPartlyOptionals);
     graded["missing"] = missing;
     graded["extra"] = extra;
+    graded["partly_built"] = partly;
     j["graded"] = graded;
   }
   return j;
@@ -235,6 +307,10 @@ DeviationMetrics deviationMetricsFromJson(const common::JsonNode& node) {
   DeviationMetrics m;
   readCounts(node.field("walls"), m, kWallCounts);
   m.extra_walls = readCount(node, "extra_walls");
+  // Written since the progress report came in; a metrics.json from before has none.
+  if (const auto progress = node.optionalField("progress")) {
+    readCounts(*progress, m, kProgressCounts);
+  }
   if (const auto graded = node.optionalField("graded")) {
     DeviationGrade g;
     g.min_share = graded->field("min_share").numberInRange(0.0, 1.0);
@@ -243,6 +319,10 @@ DeviationMetrics deviationMetricsFromJson(const common::JsonNode& node) {
     readCounts(graded->field("missing"), g, kMissingCounts);
     readCounts(graded->field("extra"), g, kExtraCounts);
     readOptionals(graded->field("extra"), g, kExtraOptionals);
+    if (const auto partly = graded->optionalField("partly_built")) {
+      readCounts(*partly, g, kPartlyCounts);
+      readOptionals(*partly, g, kPartlyOptionals);
+    }
     m.grade = g;
   }
   return m;

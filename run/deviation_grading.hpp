@@ -24,6 +24,16 @@ struct DeviationGrade {
   std::optional<double> precision, recall;  // none when there is nothing to divide by
   // Over the truly deviating walls among those: mean |measured − true|.
   std::optional<double> offset_error_m, angle_error_deg;
+  // Over the truly turned walls (by the angle threshold) reported rotated: mean |measured − true|
+  // of the point along the wall its line crosses the planned axis (slam::crossingAlong), metres.
+  std::optional<double> pivot_error_m;
+  // Progress, over the plan walls the report saw built or not over at least `min_share` of their
+  // exposed length: walls built in part (as_built.shortened_walls) reported partly built or not
+  // built (found), whole walls reported so (false reports), walls built in part reported built
+  // (missed); over those found partly built, mean |built length − true| (the true one on the same
+  // exposed parts).
+  int partly_found = 0, partly_false_reports = 0, partly_missed = 0;
+  std::optional<double> partly_precision, partly_recall, built_length_error_m;
   // Missing walls: reported missing and truly missing, reported but built, missing and not said.
   int missing_found = 0, missing_false_reports = 0, missing_missed = 0;
   // Extra walls: a reported one matches a true one within 10° and 0.3 m of its axis; one that lies
@@ -40,6 +50,7 @@ DeviationGrade gradeDeviations(const slam::DeviationReport& report, const bim::P
 // and the grade when the building's truth is known.
 struct DeviationMetrics {
   int as_planned = 0, shifted = 0, rotated = 0, missing = 0, not_seen = 0, extra_walls = 0;
+  int built = 0, partly_built = 0, not_built = 0, progress_not_seen = 0;  // by progress
   std::optional<DeviationGrade> grade;
 };
 

@@ -56,7 +56,10 @@ nlohmann::json deviationReportJson(const slam::DeviationReport& report) {
       {"view_range_m", o.view_range},
       {"max_incidence_deg", o.max_incidence_deg},
       {"min_views", o.min_views},
-      {"extra_pair_distance_m", o.extra_pair_distance}};
+      {"extra_pair_distance_m", o.extra_pair_distance},
+      {"pivot_name_distance_m", o.pivot_name_distance},
+      {"progress_step_m", o.progress_step},
+      {"progress_gap_m", o.progress_gap_m}};
   nlohmann::json walls = nlohmann::json::array();
   for (const auto& w : report.walls) {
     nlohmann::json evidence = nlohmann::json::array();
@@ -81,6 +84,23 @@ nlohmann::json deviationReportJson(const slam::DeviationReport& report) {
         {"planned", {{"start", point(w.planned_start)}, {"end", point(w.planned_end)}}},
         {"evidence", evidence}};
     if (w.in_view_share) wall["in_view_share"] = *w.in_view_share;
+    {
+      const slam::WallProgress& p = w.progress;
+      nlohmann::json built = nlohmann::json::array();
+      for (const auto& [a, b] : p.built) built.push_back({a, b});
+      wall["progress"] = {{"status", slam::toString(p.status)},
+                          {"planned_m", p.planned_m},
+                          {"built_m", p.built_m},
+                          {"not_built_m", p.not_built_m},
+                          {"not_seen_m", p.not_seen_m},
+                          {"built", built}};
+    }
+    if (w.pivot_along_m) {
+      const Eigen::Vector2d axis = (w.planned_end - w.planned_start).normalized();
+      wall["turned_about"] = {{"along_m", *w.pivot_along_m},
+                              {"point", point(w.planned_start + *w.pivot_along_m * axis)},
+                              {"name", w.turned_about}};
+    }
     walls.push_back(wall);
   }
   nlohmann::json extra = nlohmann::json::array();
@@ -173,6 +193,11 @@ std::string wallLabel(const slam::WallDeviation& w) {
   if ((w.status == slam::WallStatus::kShifted || w.status == slam::WallStatus::kRotated) &&
       w.offset_m && w.angle_deg) {
     label += format(" %+.2f m %+.1f&#176;", *w.offset_m, *w.angle_deg);
+    if (w.pivot_along_m) {
+      label += w.turned_about == "along" || w.turned_about == "beyond"
+                   ? format(" about %.1f m along", *w.pivot_along_m)
+                   : " about its " + w.turned_about;
+    }
   } else if (w.status == slam::WallStatus::kMissing) {
     label += " missing";
   }
@@ -248,6 +273,24 @@ std::string deviationSvg(const slam::DeviationReport& report) {
   return svg + "</svg>\n";
 }
 
+std::string progressSummaryLine(const DeviationMetrics& m) {
+  std::string line = format("progress: %s built, %d partly built, %d not built, %d not seen",
+                            common::counted(m.built, "wall").c_str(), m.partly_built, m.not_built,
+                            m.progress_not_seen);
+  if (m.grade && m.grade->built_length_error_m) {
+    line += format(
+        "; against the truth: %d of %d walls built in part found, %d falsely (built "
+        "lengths off by %.2f m)",
+        m.grade->partly_found, m.grade->partly_found + m.grade->partly_missed,
+        m.grade->partly_false_reports, *m.grade->built_length_error_m);
+  } else if (m.grade) {
+    line += format("; against the truth: %d of %d walls built in part found, %d falsely",
+                   m.grade->partly_found, m.grade->partly_found + m.grade->partly_missed,
+                   m.grade->partly_false_reports);
+  }
+  return line;
+}
+
 std::string deviationSummaryLine(const DeviationMetrics& m) {
   std::string line = format(
       "as built against the plan: %s as planned, %d shifted, %d rotated, %d missing, %d "
@@ -259,8 +302,10 @@ std::string deviationSummaryLine(const DeviationMetrics& m) {
     line += format("; against the truth: %d of %d deviating walls found, %d falsely", g.found,
                    g.found + g.missed, g.false_reports);
     if (g.offset_error_m && g.angle_error_deg) {
-      line += format(" (offsets off by %.3f m, angles by %.2f°)", *g.offset_error_m,
-                     *g.angle_error_deg);
+      line +=
+          format(" (offsets off by %.3f m, angles by %.2f°", *g.offset_error_m, *g.angle_error_deg);
+      if (g.pivot_error_m) line += format(", the turns' pivots by %.2f m", *g.pivot_error_m);
+      line += ")";
     }
   }
   return line;

@@ -19,6 +19,9 @@ std::string deviationSvg(const slam::DeviationReport& report);
 
 // The run summary's line: "as built: 5 walls as planned, 1 shifted, ..." and, graded, how many
 // deviating walls were found.
+// The summary's line of how much of each wall is built (and, graded, the walls built in part
+// found).
+std::string progressSummaryLine(const DeviationMetrics& m);
 std::string deviationSummaryLine(const DeviationMetrics& metrics);
 
 }  // namespace isg::run

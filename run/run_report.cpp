@@ -333,7 +333,10 @@ std::string runSummary(const std::string& command, const std::string& dir, const
     out += "  lost at " + times + "\n";
   }
   if (m.map_to_plan) out += "  " + mapToPlanLine(*m.map_to_plan) + "\n";
-  if (m.deviations) out += "  " + deviationSummaryLine(*m.deviations) + "\n";
+  if (m.deviations) {
+    out += "  " + deviationSummaryLine(*m.deviations) + "\n";
+    out += "  " + progressSummaryLine(*m.deviations) + "\n";
+  }
   if (m.ape_M_se3) {
     out += format("  APE in M after SE(3) alignment: rmse %.3f m\n", m.ape_M_se3->rmse);
   }

@@ -47,6 +47,9 @@ struct MapWall {
   double z_min = 0.0, z_max = 0.0;                                                 // in M
   int observations = 0;
   std::vector<int> keyframes;  // that observed it: indices into MapDiagnostics::keyframes
+  // Where along it, in metres from `start`, enough of its observations saw it (the S-Graph's:
+  // at least two of them); empty when the map does not say (then start…end).
+  std::vector<std::pair<double, double>> confirmed;
 };
 
 struct MapDiagnostics {

@@ -4,6 +4,10 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
+#include <numbers>
+
+#include "bim/as_built_wall.hpp"
 #include "bim/scenario.hpp"
 #include "bim/tests/test_plans.hpp"
 
@@ -100,6 +104,13 @@ TEST(PlanJson, AControlCharacterInAWallNameIsRefused) {
   }
 }
 
+// An as-built object written, read back as a dataset's metadata.json is read.
+AsBuilt readBack(const nlohmann::ordered_json& written, const Plan& plan) {
+  const nlohmann::json document = nlohmann::json::parse(written.dump());
+  const common::JsonSource source{"metadata.json", nullptr};
+  return parseAsBuiltJson(common::JsonNode(document, "/as_built", source), plan, "L0");
+}
+
 TEST(AsBuiltJson, TurnedWallsAreRecordedOnlyWhereThereAreSome) {
   AsBuilt as_built;
   as_built.wall_shifts.push_back({"W5", 0.1});
@@ -110,15 +121,33 @@ TEST(AsBuiltJson, TurnedWallsAreRecordedOnlyWhereThereAreSome) {
       written["wall_rotations"],
       nlohmann::ordered_json::array({{{"wall", "W2"}, {"angle_deg", 3.5}, {"about", "start"}}}));
   // And the scenario reader takes it back.
-  const Plan plan = parsePlanJson(twoRoomPlanJson());
-  const nlohmann::json document = nlohmann::json::parse(written.dump());
-  const common::JsonSource source{"metadata.json", nullptr};
-  const AsBuilt again =
-      parseAsBuiltJson(common::JsonNode(document, "/as_built", source), plan, "L0");
+  const AsBuilt again = readBack(written, parsePlanJson(twoRoomPlanJson()));
   ASSERT_EQ(again.wall_rotations.size(), 1u);
   EXPECT_EQ(again.wall_rotations[0].wall, "W2");
   EXPECT_EQ(again.wall_rotations[0].angle_deg, 3.5);
   EXPECT_EQ(again.wall_rotations[0].about, WallRotation::About::kStart);
+}
+
+// A turn about a point along the wall is written as its metres from the wall's start, and read
+// back as such.
+TEST(AsBuiltJson, ATurnAboutAPointAlongTheWallIsWrittenInMetres) {
+  AsBuilt as_built;
+  as_built.wall_rotations.push_back({"W2", -2.0, WallRotation::About::kAlong, 1.25});
+  const nlohmann::ordered_json written = asBuiltToJson(as_built);
+  EXPECT_EQ(written["wall_rotations"][0]["about"], 1.25);
+  const Plan plan = parsePlanJson(twoRoomPlanJson());
+  const AsBuilt again = readBack(written, plan);
+  ASSERT_EQ(again.wall_rotations.size(), 1u);
+  EXPECT_EQ(again.wall_rotations[0].about, WallRotation::About::kAlong);
+  EXPECT_EQ(again.wall_rotations[0].along_m, 1.25);
+  // W2 runs (6, 0) → (6, 4): turned −2° about (6, 1.25).
+  const Wall* planned = plan.levels[0].findWall("W2");
+  ASSERT_NE(planned, nullptr);
+  const Wall built = builtWall(*planned, again);
+  const double s = std::sin(2.0 * std::numbers::pi / 180.0);
+  EXPECT_NEAR(built.start.x(), 6.0 - 1.25 * s, 1e-12);
+  EXPECT_NEAR(built.end.x(), 6.0 + 2.75 * s, 1e-12);
+  EXPECT_NEAR(rotationPivotAlong(*planned, again.wall_rotations[0]), 1.25, 1e-12);
 }
 
 }  // namespace

@@ -55,6 +55,10 @@ TEST(Deviations, ARunFindsTheShiftedTurnedAndExtraWallsOfD1) {
   EXPECT_NEAR(turned["angle_deg"].get<double>(), 4.0, 1.0);
   EXPECT_NEAR(turned["offset_m"].get<double>(), 2.9 * std::tan(4.0 * std::numbers::pi / 180.0),
               0.02);
+  // The point it turned about: where its line crosses the planned axis, its start (4, 2.2).
+  EXPECT_EQ(turned["turned_about"]["name"], "start");
+  EXPECT_NEAR(turned["turned_about"]["along_m"].get<double>(), 0.0, 0.3);
+  EXPECT_FALSE(shifted.contains("turned_about"));
   ASSERT_EQ(report["extra_walls"].size(), 1u);
   EXPECT_NEAR(report["extra_walls"][0]["start"][0].get<double>(), 10.0, 0.1);
 
@@ -65,6 +69,7 @@ TEST(Deviations, ARunFindsTheShiftedTurnedAndExtraWallsOfD1) {
   EXPECT_EQ(graded["missed"], 0);
   EXPECT_LT(graded["offset_error_m"].get<double>(), 0.02);
   EXPECT_LT(graded["angle_error_deg"].get<double>(), 1.0);
+  EXPECT_LT(graded["pivot_error_m"].get<double>(), 0.3);
   EXPECT_EQ(graded["extra"]["found"], 1);
   EXPECT_EQ(graded["extra"]["false_reports"], 0);
 
@@ -94,9 +99,45 @@ TEST(Deviations, D1AsPlannedHasNoWallDeviating) {
   EXPECT_EQ(walls["rotated"], 0);
   EXPECT_EQ(walls["missing"], 0);
   EXPECT_EQ(walls["as_planned"], 7);
+  // And every wall built whole.
+  const json progress = json::parse(sandbox.read("r/metrics.json"))["deviations"]["progress"];
+  EXPECT_EQ(progress["built"], 7) << progress;
+  EXPECT_EQ(progress["partly_built"], 0) << progress;
   // Nor is any released from the merge.
   const json graph = json::parse(sandbox.read("r/sgraph.json"));
   EXPECT_TRUE(graph["matching"]["released_walls"].empty()) << graph["matching"]["released_walls"];
+}
+
+// W6 ((4, 2.2) → (4, 8)) built only over its first 3 m: reported partly built, built from
+// where it leaves W5's face (0.1 m along) to 3.0 m, in view and not built beyond; its built
+// length, on the same exposed parts, within 10 cm; the summary says so, graded.
+TEST(Deviations, AWallBuiltInPartIsFoundWithItsBuiltLength) {
+  const testing::Sandbox sandbox("deviations_partly_built");
+  sandbox.write(
+      "d1.w6.json",
+      json{{"format", "isg.scenario"},
+           {"version", 1},
+           {"plan", std::string(ISG_SOURCE_DIR) + "/worlds/plans/d1.json"},
+           {"seed", 1},
+           {"as_built", {{"shortened_walls", {{{"wall", "W6"}, {"built", {{0.0, 3.0}}}}}}}}}
+          .dump());
+  const auto run = sandbox.run("run d1.w6.json -o r");
+  ASSERT_EQ(run.exit_code, 0) << run.err;
+  EXPECT_NE(run.out.find("progress: 6 walls built, 1 partly built, 0 not built, 0 not seen; "
+                         "against the truth: 1 of 1 walls built in part found, 0 falsely"),
+            std::string::npos)
+      << run.out;
+  const json w6 = wallOf(json::parse(sandbox.read("r/deviations.json")), "W6");
+  EXPECT_EQ(w6["progress"]["status"], "partly_built");
+  ASSERT_EQ(w6["progress"]["built"].size(), 1u) << w6["progress"];
+  EXPECT_NEAR(w6["progress"]["built"][0][0].get<double>(), 0.1, 0.1);
+  EXPECT_NEAR(w6["progress"]["built"][0][1].get<double>(), 3.0, 0.1);
+  EXPECT_GT(w6["progress"]["not_built_m"].get<double>(), 2.0);  // 3.0–5.7, in view from both rooms
+  const json partly =
+      json::parse(sandbox.read("r/metrics.json"))["deviations"]["graded"]["partly_built"];
+  EXPECT_EQ(partly["found"], 1);
+  EXPECT_EQ(partly["false_reports"], 0);
+  EXPECT_LT(partly["built_length_error_m"].get<double>(), 0.1);
 }
 
 // A wall built 12 cm off lies within the matcher's gate (0.15 m): it is matched, judged against

@@ -369,7 +369,12 @@ std::vector<Case> cases() {
              {{"wall", "W3"}, {"angle_deg", 5}, {"about", "middle"}}};
        },
        "scenario.json: /as_built/wall_rotations/0/about: unknown point \"middle\" (expected "
-       "\"start\", \"centre\" or \"end\")"},
+       "\"start\", \"centre\", \"end\" or metres along the wall from its start)"},
+      {"RotationAboutAPointOffTheWall", "scenario.json",
+       [](json&, json& s) {
+         s["as_built"]["wall_rotations"] = {{{"wall", "W3"}, {"angle_deg", 5}, {"about", 7}}};
+       },
+       "scenario.json: /as_built/wall_rotations/0/about: must be in [0, 6], got 7"},
       {"RotationTwice", "scenario.json",
        [](json&, json& s) {
          s["as_built"]["wall_rotations"] = {{{"wall", "W3"}, {"angle_deg", 5}},

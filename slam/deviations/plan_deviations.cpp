@@ -9,6 +9,7 @@
 
 #include "bim/polygon.hpp"
 #include "common/angles.hpp"
+#include "slam/deviations/face_views.hpp"
 
 namespace isg::slam {
 
@@ -49,6 +50,8 @@ struct WallInB {
   Eigen::Vector2d normal, start, end;
   double z_min = 0.0, z_max = 0.0;
   int observations = 0;
+  // MapWall::confirmed as shares of start → end (a placement keeps them); empty: all of it.
+  std::vector<std::pair<double, double>> confirmed;
   double length() const { return (end - start).norm(); }
   Eigen::Vector2d middle() const { return 0.5 * (start + end); }
 };
@@ -65,6 +68,10 @@ WallInB toB(const MapWall& wall, const Eigen::Isometry3d& B_T_M) {
   out.z_min = wall.z_min + B_T_M.translation().z();
   out.z_max = wall.z_max + B_T_M.translation().z();
   out.observations = wall.observations;
+  const double length = (wall.end - wall.start).norm();
+  if (length > 0.0) {
+    for (const auto& [a, b] : wall.confirmed) out.confirmed.push_back({a / length, b / length});
+  }
   return out;
 }
 
@@ -105,28 +112,11 @@ double unionLength(std::vector<std::pair<double, double>> spans) {
   return total;
 }
 
-// Whether the open segments cross (bim::segmentsIntersect takes closed ones): a sight line that
-// only grazes the end of a face, where faces meet at a corner, is not blocked by it.
-bool segmentsCross(const Eigen::Vector2d& p, const Eigen::Vector2d& q, const Eigen::Vector2d& a,
-                   const Eigen::Vector2d& b) {
-  const double d1 = cross(q - p, a - p), d2 = cross(q - p, b - p);
-  const double d3 = cross(b - a, p - a), d4 = cross(b - a, q - a);
-  return ((d1 > 0) != (d2 > 0)) && ((d3 > 0) != (d4 > 0));
-}
-
 // The share of a plan wall's exposed faces in the sensor's view from the keyframes
 // (DeviationOptions, "In view"): sampled every 0.25 m, 0.1 m clear of each segment's ends.
 double inViewShare(const bim::AGraph& plan, const bim::WallNode& wall,
                    const std::vector<Eigen::Vector2d>& keyframes, const DeviationOptions& options) {
-  struct Occluder {
-    Eigen::Vector2d a, b;
-  };
-  std::vector<Occluder> occluders;
-  for (const auto& s : plan.surfaces) {
-    if (s.level != wall.level || s.wall == wall.id) continue;
-    for (const auto& [a, b] : s.segments) occluders.push_back({a, b});
-  }
-  const double min_cos = std::cos(common::radians(options.max_incidence_deg));
+  const FaceViews views(plan, wall, keyframes, options);
   double exposed = 0.0, in_view = 0.0;
   for (int surface : {wall.left_surface, wall.right_surface}) {
     const bim::WallSurfaceNode& face = plan.surfaces[surface];
@@ -137,22 +127,9 @@ double inViewShare(const bim::AGraph& plan, const bim::WallNode& wall,
       const int samples = std::max(1, int((length - 0.2) / 0.25));
       const double step = (length - 0.2) / samples;
       for (int i = 0; i < samples; ++i) {
-        // Just in front of the face, so that the face itself is not met.
-        const Eigen::Vector2d p = a + (0.1 + (i + 0.5) * step) / length * (b - a) + 0.01 * n;
-        int views = 0;
-        for (const auto& k : keyframes) {
-          const Eigen::Vector2d ray = k - p;
-          const double range = ray.norm();
-          if (range > options.view_range || range < 1e-6 || n.dot(ray) < min_cos * range) {
-            continue;
-          }
-          const bool blocked = std::any_of(occluders.begin(), occluders.end(), [&](const auto& o) {
-            return segmentsCross(p, k, o.a, o.b);
-          });
-          if (!blocked && ++views >= options.min_views) break;
-        }
+        const Eigen::Vector2d p = a + (0.1 + (i + 0.5) * step) / length * (b - a);
         exposed += step;
-        if (views >= options.min_views) in_view += step;
+        if (views.inView(p, n)) in_view += step;
       }
     }
   }
@@ -352,6 +329,13 @@ void judge(WallDeviation& wall, const PlannedWall& planned, const DeviationOptio
   wall.status = turned    ? WallStatus::kRotated
                 : shifted ? WallStatus::kShifted
                           : WallStatus::kAsPlanned;
+  if (wall.status == WallStatus::kRotated) {
+    wall.pivot_along_m = crossingAlong(planned.length, *wall.offset_m, *wall.angle_deg);
+    if (wall.pivot_along_m) {
+      wall.turned_about =
+          pivotName(*wall.pivot_along_m, planned.length, options.pivot_name_distance);
+    }
+  }
 }
 
 // Between two planned axes (that do not cross: walls meet at their ends or along a side).
@@ -428,6 +412,27 @@ std::optional<Eigen::Isometry3d> placementOf(
 }
 
 }  // namespace
+
+std::optional<double> crossingAlong(double length, double offset_m, double angle_deg) {
+  const double slope = std::tan(common::radians(angle_deg));
+  if (std::abs(slope) < 1e-9) return std::nullopt;
+  return 0.5 * length - offset_m / slope;
+}
+
+std::string pivotName(double along_m, double length, double name_distance) {
+  const std::pair<const char*, double> named[] = {
+      {"start", 0.0}, {"centre", 0.5 * length}, {"end", length}};
+  const char* nearest = nullptr;
+  double nearest_distance = name_distance;
+  for (const auto& [name, at] : named) {
+    if (std::abs(along_m - at) <= nearest_distance) {
+      nearest = name;
+      nearest_distance = std::abs(along_m - at);
+    }
+  }
+  if (nearest != nullptr) return nearest;
+  return along_m >= 0.0 && along_m <= length ? "along" : "beyond";
+}
 
 const char* toString(WallStatus status) {
   switch (status) {
@@ -557,6 +562,7 @@ LevelWalls levelWalls(const bim::AGraph& plan, const std::string& level,
         e.observations = m->observations;
         e.start_B = m->start;
         e.end_B = m->end;
+        e.confirmed = m->confirmed;
         measurePiece(e, planned);
         wall.evidence.push_back(e);
         spans.push_back(spanAlong(planned, m->start, m->end));
@@ -586,6 +592,37 @@ LevelWalls placedLocally(const LevelWalls& level_walls, const DeviationOptions& 
     for (auto& e : judged[i].first.evidence) local.apply(e, judged[i].second);
   }
   return judged;
+}
+
+// How much of a judged wall is built. A wall without evidence is not sampled (its views were
+// counted for `missing` already): not built when missing, else not seen.
+WallProgress progressOf(const bim::AGraph& plan, const WallDeviation& wall,
+                        const PlannedWall& planned, const std::vector<Eigen::Vector2d>& keyframes,
+                        const DeviationOptions& options) {
+  Intervals evidence;
+  for (const auto& e : wall.evidence) {
+    if (e.confirmed.empty()) {
+      evidence.push_back(spanAlong(planned, e.start_B, e.end_B));
+      continue;
+    }
+    for (const auto& [a, b] : e.confirmed) {
+      evidence.push_back(spanAlong(planned, e.start_B + a * (e.end_B - e.start_B),
+                                   e.start_B + b * (e.end_B - e.start_B)));
+    }
+  }
+  if (!evidence.empty()) {
+    return measureProgress(plan, plan.walls[planned.index], planned.start, planned.axis,
+                           planned.length, evidence, keyframes, options);
+  }
+  WallProgress progress = measureProgress(plan, plan.walls[planned.index], planned.start,
+                                          planned.axis, planned.length, {}, {}, options);
+  progress.not_seen_m = progress.planned_m;
+  if (wall.status == WallStatus::kMissing) {
+    progress.status = ProgressStatus::kNotBuilt;
+    progress.not_built_m = wall.in_view_share.value_or(0.0) * progress.planned_m;
+    progress.not_seen_m = progress.planned_m - progress.not_built_m;
+  }
+  return progress;
 }
 
 // One level of the report: its walls judged, its placement, the walls the plan lacks.
@@ -624,6 +661,7 @@ void measureLevel(const bim::AGraph& plan, int f, const std::vector<WallInB>& wa
                         ? WallStatus::kMissing
                         : WallStatus::kNotSeen;
     }
+    wall.progress = progressOf(plan, wall, planned, keyframes, options);
     report.walls.push_back(wall);
   }
   for (auto& m : unexplained) {

@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "bim/agraph.hpp"
+#include "slam/deviations/wall_progress.hpp"
 #include "slam/map_diagnostics.hpp"
 
 namespace isg::slam {
@@ -58,6 +59,18 @@ struct DeviationOptions {
   double local_radius = 6.0;  // m
   // Two opposite faces of extra walls at most this far apart are one wall.
   double extra_pair_distance = 0.4;  // m
+  // A turned wall's pivot (where its line crosses the planned axis) is named its start, centre or
+  // end within this distance of it; elsewhere on the wall it is "along", off it "beyond" (a turn
+  // and a shift together). The pivot is as loose as the offset over tan(angle): 1 cm of offset
+  // at 2° moves it 0.29 m.
+  double pivot_name_distance = 0.3;  // m
+  // Progress (docs/deviations.md, "Progress"): each wall's exposed length sampled every
+  // `progress_step`; a part in view with no map wall on it is not built when at least
+  // `progress_gap_m` long. Shorter, the map cannot tell: a plane needs 100 voxels of 10 cm
+  // (PlaneExtractionOptions::min_inliers), 0.4 m of a wall seen 2.5 m high, and a stretch between
+  // a door and a wall meeting this one is found as a piece of its own or not at all.
+  double progress_step = 0.05;  // m
+  double progress_gap_m = 0.6;  // m
 };
 
 enum class WallStatus { kAsPlanned, kShifted, kRotated, kMissing, kNotSeen };
@@ -76,6 +89,9 @@ struct WallEvidence {
   double angle_deg = 0.0;
   bool consistent = true;  // with the line the wall's pieces fit
   Eigen::Vector2d start_B = Eigen::Vector2d::Zero(), end_B = Eigen::Vector2d::Zero();
+  // The parts of it its observations confirm (MapWall::confirmed), as shares of start → end;
+  // empty: all of it. What progress counts as built.
+  std::vector<std::pair<double, double>> confirmed;
 };
 
 struct WallDeviation {
@@ -85,11 +101,17 @@ struct WallDeviation {
   // Of the line the consistent evidence fits (DeviationOptions::consistent_tolerance); none
   // without evidence.
   std::optional<double> offset_m, angle_deg;
+  // Rotated walls: where along the planned axis (metres from its start) the wall's fitted line
+  // crosses it, the point the wall turned about, and that point's name (start, centre, end,
+  // along; beyond when it lies off the wall).
+  std::optional<double> pivot_along_m;
+  std::string turned_about;
   double observed_share = 0.0;          // of the planned length, covered by the evidence
   std::optional<double> in_view_share;  // measured only for walls seen too little to judge
   Eigen::Vector2d planned_start = Eigen::Vector2d::Zero(), planned_end = Eigen::Vector2d::Zero();
   double thickness = 0.0;
   std::vector<WallEvidence> evidence;
+  WallProgress progress;  // how much of it is built
 };
 
 // A wall the map has and the plan lacks: one face, or two opposite faces paired, in B.
@@ -118,6 +140,15 @@ struct DeviationReport {
   std::vector<ExtraWall> extra_walls;
   int count(WallStatus status) const;
 };
+
+// Where the line o(s) = offset + tan(angle)·s (s along a wall of `length` from its centre, o along
+// its left normal) crosses the wall's axis, in metres from its start; none when it is parallel to
+// within 1e-9 rad.
+std::optional<double> crossingAlong(double length, double offset_m, double angle_deg);
+
+// The name of a turned wall's pivot `along_m` from its start
+// (DeviationOptions::pivot_name_distance).
+std::string pivotName(double along_m, double length, double name_distance);
 
 // The report of a map placed in the plan by B_T_M. Levels: those where a keyframe of the map
 // stood. Walls of the plan only (a flight of stairs' faces explain map walls but are not judged).

@@ -37,6 +37,44 @@ void extend(MapPlane& m, const PlaneObservation& o) {
   m.end = origin + hi * along;
 }
 
+// The parts of a map wall that at least two of its observations saw, along it from its start:
+// the extent is the union of every observation's, and one observation that ran past a wall's free
+// end (a ragged region at its edge) stretches it. A share of the observations would not do: each
+// part of a 30 m wall is seen by a few of its hundred. A wall seen once is confirmed where that
+// once saw it.
+std::vector<std::pair<double, double>> confirmedSpans(
+    const MapPlane& m, const std::vector<std::pair<Eigen::Vector2d, Eigen::Vector2d>>& spans) {
+  std::vector<std::pair<double, double>> out;
+  const Eigen::Vector2d direction = m.end - m.start;
+  const double length = direction.norm();
+  if (length < 1e-9 || spans.empty()) return out;
+  const Eigen::Vector2d axis = direction / length;
+  std::vector<std::pair<double, int>> events;  // (position along, +1 a span opens / −1 closes)
+  for (const auto& [a, b] : spans) {
+    double s0 = (a - m.start).dot(axis), s1 = (b - m.start).dot(axis);
+    if (s0 > s1) std::swap(s0, s1);
+    events.push_back({std::clamp(s0, 0.0, length), +1});
+    events.push_back({std::clamp(s1, 0.0, length), -1});
+  }
+  std::sort(events.begin(), events.end());
+  const int needed = spans.size() == 1 ? 1 : 2;
+  int covering = 0;
+  double opened = 0.0;
+  for (const auto& [at, change] : events) {
+    const int before = covering;
+    covering += change;
+    if (before < needed && covering >= needed) opened = at;
+    if (before >= needed && covering < needed && at > opened) {
+      if (!out.empty() && opened <= out.back().second) {
+        out.back().second = at;
+      } else {
+        out.push_back({opened, at});
+      }
+    }
+  }
+  return out;
+}
+
 }  // namespace
 
 Eigen::Isometry3d SGraph::Keyframe::pose() const {
@@ -164,6 +202,7 @@ void SGraph::observeWall(const PlaneObservation& observation, int floor, int ind
     plane = int(planes_.size()) - 1;
   }
   Plane& p = planes_[plane];
+  p.spans.emplace_back(in_map.start.head<2>(), in_map.end.head<2>());
   extend(p.map, in_map);
   addHeights(p.map, in_map);
   ++p.map.observations;
@@ -639,6 +678,8 @@ void SGraph::mergeDuplicatePlanes(const std::set<int>& recent, int floor) {
     extent.start = Eigen::Vector3d(dropped.map.start.x(), dropped.map.start.y(), 0.0);
     extent.end = Eigen::Vector3d(dropped.map.end.x(), dropped.map.end.y(), 0.0);
     extend(kept.map, extent);
+    kept.spans.insert(kept.spans.end(), dropped.spans.begin(), dropped.spans.end());
+    std::vector<std::pair<Eigen::Vector2d, Eigen::Vector2d>>().swap(dropped.spans);
     kept.map.observations += dropped.map.observations;
     mergeHeights(kept.map, dropped.map);
     dropped.merged_into = keep;
@@ -789,6 +830,7 @@ MapDiagnostics SGraph::diagnostics() const {
     if (planes_[i].merged_into >= 0 || !seenAsWall(p, options_.rooms.min_wall_height)) continue;
     MapWall wall{int(i),  p.plane.normal, p.plane.d,      p.start, p.end,
                  p.z_min, p.z_max,        p.observations, {}};
+    wall.confirmed = confirmedSpans(p, planes_[i].spans);
     for (int k : planes_[i].observed_by) wall.keyframes.push_back(int(past_keyframes_.size()) + k);
     out.walls.push_back(std::move(wall));
   }

@@ -142,6 +142,9 @@ class SGraph {
     std::vector<int> observed_by;  // keyframe indices
     int merged_into = -1;          // >= 0: found to be the same surface as that plane
     int floor = 0;                 // the floor it was seen from; never merged across floors
+    // Each observation's extent in M as it was taken (its two ends): where the wall was seen, for
+    // what the map confirms of it (MapWall::confirmed). Not optimised: a few cm as the map moves.
+    std::vector<std::pair<Eigen::Vector2d, Eigen::Vector2d>> spans;
   };
 
   struct Room {

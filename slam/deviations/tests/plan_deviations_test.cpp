@@ -125,6 +125,10 @@ TEST(PlanDeviations, FindsTheShiftedTurnedMissingAndExtraWallsByHand) {
   EXPECT_EQ(turned.status, WallStatus::kRotated);
   EXPECT_NEAR(*turned.angle_deg, 4.0, 0.02);
   EXPECT_NEAR(*turned.offset_m, 2.0 * std::tan(4.0 * std::numbers::pi / 180.0), 0.002);
+  ASSERT_TRUE(turned.pivot_along_m);
+  EXPECT_NEAR(*turned.pivot_along_m, 0.0, 0.03);
+  EXPECT_EQ(turned.turned_about, "start");
+  EXPECT_FALSE(shifted.pivot_along_m);
   // Nothing of W6 in the map, though the keyframes east of W5 saw all of it.
   const WallDeviation& missing = wallOf(report, "W6");
   EXPECT_EQ(missing.status, WallStatus::kMissing);
@@ -142,6 +146,90 @@ TEST(PlanDeviations, FindsTheShiftedTurnedMissingAndExtraWallsByHand) {
   ASSERT_EQ(report.placements.size(), 1u);
   EXPECT_NEAR(report.placements[0].correction.z() * 180.0 / std::numbers::pi, -0.3, 0.005);
   EXPECT_EQ(report.placements[0].walls_used, 3);
+}
+
+// W5 (4 m, (3, 0) → (3, 4)) turned 2° (its ends swing up to 14 cm) about its start, its centre,
+// its end or a point 1.2 m along it: the report finds it turned, by 2°, and the point it turned
+// about, where its line crosses the planned axis. A turn about the centre moves no point of the
+// wall's middle, and a wall measured by its offset alone would pass as planned.
+TEST(PlanDeviations, ATurnIsFoundAboutWhicheverPointOfTheWallItWasTurned) {
+  const bim::Plan plan = threeRooms();
+  const bim::AGraph planned = bim::buildAGraph(plan);
+  using About = bim::WallRotation::About;
+  const struct {
+    About about;
+    double along_m, pivot_m;
+    const char* name;
+  } cases[] = {{About::kStart, 0.0, 0.0, "start"},
+               {About::kCentre, 0.0, 2.0, "centre"},
+               {About::kEnd, 0.0, 4.0, "end"},
+               {About::kAlong, 1.2, 1.2, "along"}};
+  for (const auto& c : cases) {
+    SCOPED_TRACE(c.name);
+    bim::AsBuilt as_built = deviations();
+    as_built.wall_rotations = {{"W5", 2.0, c.about, c.along_m}};
+    const bim::AGraph built = bim::buildAGraph(builtPlan(plan, as_built));
+    const DeviationReport report =
+        measureDeviations(planned, mapOf(built), Eigen::Isometry3d::Identity());
+    const WallDeviation& turned = wallOf(report, "W5");
+    EXPECT_EQ(turned.status, WallStatus::kRotated);
+    EXPECT_NEAR(*turned.angle_deg, 2.0, 0.02);
+    // At the planned centre, (2 − pivot)·tan 2° along the left normal (−x).
+    EXPECT_NEAR(*turned.offset_m, (2.0 - c.pivot_m) * std::tan(2.0 * std::numbers::pi / 180.0),
+                0.002);
+    ASSERT_TRUE(turned.pivot_along_m);
+    EXPECT_NEAR(*turned.pivot_along_m, c.pivot_m, 0.06);
+    EXPECT_EQ(turned.turned_about, c.name);
+  }
+}
+
+TEST(PlanDeviations, APivotIsNamedWithinItsDistanceAndBeyondOffTheWall) {
+  EXPECT_EQ(pivotName(0.25, 5.0, 0.3), "start");
+  EXPECT_EQ(pivotName(2.3, 5.0, 0.3), "centre");
+  EXPECT_EQ(pivotName(5.2, 5.0, 0.3), "end");
+  EXPECT_EQ(pivotName(1.0, 5.0, 0.3), "along");
+  EXPECT_EQ(pivotName(-0.5, 5.0, 0.3), "beyond");
+  EXPECT_EQ(pivotName(0.5, 0.6, 0.3), "end");  // nearer the end than the centre
+  // offset 0.1 m at the centre of a 5 m wall turned atan(0.05): its line crosses 2 m before it.
+  EXPECT_NEAR(*crossingAlong(5.0, 0.1, std::atan(0.05) * 180.0 / std::numbers::pi), 0.5, 1e-12);
+  EXPECT_FALSE(crossingAlong(5.0, 0.1, 0.0));
+}
+
+// W1 (9 m, (0, 0) → (9, 0)) built only over its first 5 m. Its outer face runs its whole length
+// and is in the map up to x = 5 (the map here has every face of the building as built), never in
+// view beyond; its inner face, exposed from x = 0.1 to 8.9 but where W5 and W6 meet it
+// (2.95–3.05, 5.95–6.05), is built up to 5.0 and in view, not built, beyond: 0.95 + 2.85 m. W5,
+// turned about (3, 0), cuts a few centimetres out of both faces there: not in view, bridged.
+// W6 not built at all; the other walls whole.
+TEST(PlanDeviations, AWallBuiltInPartHasItsBuiltLengthAndIntervals) {
+  const bim::Plan plan = threeRooms();
+  const bim::AGraph planned = bim::buildAGraph(plan);
+  bim::Plan built_plan = builtPlan(plan, deviations());
+  for (auto& wall : built_plan.levels[0].walls) {
+    if (wall.id == "W1") wall.end = {5.0, 0.0};
+  }
+  const DeviationReport report = measureDeviations(planned, mapOf(bim::buildAGraph(built_plan)),
+                                                   Eigen::Isometry3d::Identity());
+  const WallProgress& cut = wallOf(report, "W1").progress;
+  EXPECT_EQ(cut.status, ProgressStatus::kPartlyBuilt);
+  EXPECT_NEAR(cut.planned_m, 9.0, 1e-9);
+  EXPECT_NEAR(cut.built_m, 5.0, 0.06);
+  EXPECT_NEAR(cut.not_built_m, 0.95 + 2.85, 0.06);
+  for (auto& [a, b] : cut.exposed) printf("exposed %.3f %.3f\n", a, b);
+  for (auto& e : wallOf(report, "W1").evidence)
+    printf("ev side %d %.3f,%.3f -> %.3f,%.3f\n", e.side, e.start_B.x(), e.start_B.y(), e.end_B.x(),
+           e.end_B.y());
+  ASSERT_EQ(cut.built.size(), 1u);
+  EXPECT_NEAR(cut.built[0].first, 0.0, 0.03);
+  EXPECT_NEAR(cut.built[0].second, 5.0, 0.03);
+  EXPECT_EQ(wallOf(report, "W1").status, WallStatus::kAsPlanned);  // where it stands, as planned
+  EXPECT_EQ(wallOf(report, "W6").progress.status, ProgressStatus::kNotBuilt);
+  for (const char* id : {"W2", "W3", "W4"}) {
+    const WallProgress& whole = wallOf(report, id).progress;
+    EXPECT_EQ(whole.status, ProgressStatus::kBuilt) << id;
+    EXPECT_NEAR(whole.built_m, whole.planned_m - whole.not_seen_m, 1e-9) << id;
+  }
+  EXPECT_NEAR(overlapLength({{0.0, 2.0}, {3.0, 5.0}}, {{1.0, 4.0}}), 2.0, 1e-12);
 }
 
 // The same map, seen only from R1: walls beyond R1 were never in view and are not seen, not

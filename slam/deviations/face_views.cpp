@@ -1,0 +1,55 @@
+#include "slam/deviations/face_views.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include "common/angles.hpp"
+
+namespace isg::slam {
+
+namespace {
+
+double cross(const Eigen::Vector2d& a, const Eigen::Vector2d& b) {
+  return a.x() * b.y() - a.y() * b.x();
+}
+
+// Whether the open segments cross (bim::segmentsIntersect takes closed ones): a sight line that
+// only grazes the end of a face, where faces meet at a corner, is not blocked by it.
+bool segmentsCross(const Eigen::Vector2d& p, const Eigen::Vector2d& q, const Eigen::Vector2d& a,
+                   const Eigen::Vector2d& b) {
+  const double d1 = cross(q - p, a - p), d2 = cross(q - p, b - p);
+  const double d3 = cross(b - a, p - a), d4 = cross(b - a, q - a);
+  return ((d1 > 0) != (d2 > 0)) && ((d3 > 0) != (d4 > 0));
+}
+
+}  // namespace
+
+FaceViews::FaceViews(const bim::AGraph& plan, const bim::WallNode& wall,
+                     const std::vector<Eigen::Vector2d>& keyframes, const DeviationOptions& options)
+    : keyframes_(keyframes),
+      options_(options),
+      min_cos_(std::cos(common::radians(options.max_incidence_deg))) {
+  for (const auto& s : plan.surfaces) {
+    if (s.level != wall.level || s.wall == wall.id) continue;
+    for (const auto& [a, b] : s.segments) occluders_.push_back({a, b});
+  }
+}
+
+bool FaceViews::inView(const Eigen::Vector2d& point, const Eigen::Vector2d& normal) const {
+  // Just in front of the face, so that the face itself is not met.
+  const Eigen::Vector2d p = point + 0.01 * normal;
+  int views = 0;
+  for (const auto& k : keyframes_) {
+    const Eigen::Vector2d ray = k - p;
+    const double range = ray.norm();
+    if (range > options_.view_range || range < 1e-6 || normal.dot(ray) < min_cos_ * range) {
+      continue;
+    }
+    const bool blocked = std::any_of(occluders_.begin(), occluders_.end(),
+                                     [&](const auto& o) { return segmentsCross(p, k, o.a, o.b); });
+    if (!blocked && ++views >= options_.min_views) return true;
+  }
+  return false;
+}
+
+}  // namespace isg::slam

@@ -1,0 +1,201 @@
+#include "slam/deviations/wall_progress.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include "slam/deviations/face_views.hpp"
+#include "slam/deviations/plan_deviations.hpp"
+
+namespace isg::slam {
+
+namespace {
+
+// Intervals in order with the overlapping and touching ones joined.
+Intervals joined(Intervals spans) {
+  std::sort(spans.begin(), spans.end());
+  Intervals out;
+  for (const auto& [a, b] : spans) {
+    if (b <= a) continue;
+    if (!out.empty() && a <= out.back().second) {
+      out.back().second = std::max(out.back().second, b);
+    } else {
+      out.push_back({a, b});
+    }
+  }
+  return out;
+}
+
+// `spans` less `holes` (both in order).
+Intervals without(const Intervals& spans, const Intervals& holes) {
+  Intervals out;
+  for (auto [a, b] : spans) {
+    for (const auto& [h0, h1] : holes) {
+      if (h1 <= a || h0 >= b) continue;
+      if (h0 > a) out.push_back({a, h0});
+      a = std::max(a, h1);
+      if (a >= b) break;
+    }
+    if (a < b) out.push_back({a, b});
+  }
+  return out;
+}
+
+bool inside(const Intervals& spans, double s) {
+  return std::any_of(spans.begin(), spans.end(),
+                     [&](const auto& span) { return s >= span.first && s <= span.second; });
+}
+
+enum class Sample { kBuilt, kNotBuilt, kNotSeen };
+
+}  // namespace
+
+const char* toString(ProgressStatus status) {
+  switch (status) {
+    case ProgressStatus::kBuilt:
+      return "built";
+    case ProgressStatus::kPartlyBuilt:
+      return "partly_built";
+    case ProgressStatus::kNotBuilt:
+      return "not_built";
+    case ProgressStatus::kNotSeen:
+      break;
+  }
+  return "not_seen";
+}
+
+double overlapLength(const Intervals& a, const Intervals& b) {
+  double total = 0.0;
+  for (const auto& [a0, a1] : a) {
+    for (const auto& [b0, b1] : b) total += std::max(0.0, std::min(a1, b1) - std::max(a0, b0));
+  }
+  return total;
+}
+
+WallProgress measureProgress(const bim::AGraph& plan, const bim::WallNode& wall,
+                             const Eigen::Vector2d& start, const Eigen::Vector2d& axis,
+                             double length, const Intervals& evidence,
+                             const std::vector<Eigen::Vector2d>& keyframes,
+                             const DeviationOptions& options) {
+  WallProgress progress;
+  // Each face's exposed parts along the axis.
+  struct Face {
+    Intervals exposed;
+    Eigen::Vector2d normal, offset;  // the face's outward normal; the face from the axis
+  };
+  std::vector<Face> faces;
+  Intervals all_exposed;
+  for (int surface : {wall.left_surface, wall.right_surface}) {
+    const bim::WallSurfaceNode& node = plan.surfaces[surface];
+    Face face;
+    face.normal = node.plane.normal.head<2>().normalized();
+    face.offset = 0.5 * wall.thickness * face.normal;
+    for (const auto& [a, b] : node.segments) {
+      double s0 = (a - start).dot(axis), s1 = (b - start).dot(axis);
+      if (s0 > s1) std::swap(s0, s1);
+      face.exposed.push_back({std::clamp(s0, 0.0, length), std::clamp(s1, 0.0, length)});
+    }
+    face.exposed = joined(face.exposed);
+    all_exposed.insert(all_exposed.end(), face.exposed.begin(), face.exposed.end());
+    faces.push_back(face);
+  }
+  // Door openings are not wall: nothing is built there as planned.
+  Intervals doors;
+  for (const auto& door : plan.doorways) {
+    if (door.wall != wall.id) continue;
+    const double c = (door.position.head<2>() - start).dot(axis);
+    doors.push_back({c - 0.5 * door.width, c + 0.5 * door.width});
+  }
+  doors = joined(doors);
+  for (Face& face : faces) face.exposed = without(face.exposed, doors);
+  progress.exposed = without(joined(all_exposed), doors);
+  const Intervals built_evidence = joined(evidence);
+  // Each sample of the exposed length: built where the evidence covers it; else not built where a
+  // face of it was in view; else not seen. Views are asked only where nothing stands.
+  const double step = options.progress_step;
+  const FaceViews views(plan, wall, keyframes, options);
+  std::vector<std::pair<double, Sample>> samples;
+  for (const auto& [a, b] : progress.exposed) {
+    const int n = std::max(1, int(std::lround((b - a) / step)));
+    for (int i = 0; i < n; ++i) {
+      const double s = a + (i + 0.5) * (b - a) / n;
+      Sample kind = Sample::kNotSeen;
+      if (inside(built_evidence, s)) {
+        kind = Sample::kBuilt;
+      } else {
+        for (const Face& face : faces) {
+          if (inside(face.exposed, s) &&
+              views.inView(start + s * axis + face.offset, face.normal)) {
+            kind = Sample::kNotBuilt;
+            break;
+          }
+        }
+      }
+      samples.push_back({s, kind});
+    }
+    progress.planned_m += b - a;
+  }
+  if (samples.empty()) return progress;
+  const double weight = progress.planned_m / double(samples.size());
+  // A run not built shorter than progress_gap_m between built parts is the map's own ragged
+  // edge, not a gap: built.
+  for (std::size_t i = 0; i < samples.size();) {
+    if (samples[i].second != Sample::kNotBuilt) {
+      ++i;
+      continue;
+    }
+    std::size_t j = i;
+    while (j < samples.size() && samples[j].second == Sample::kNotBuilt) ++j;
+    const bool between = i > 0 && j < samples.size() && samples[i - 1].second == Sample::kBuilt &&
+                         samples[j].second == Sample::kBuilt;
+    if (between && samples[j].first - samples[i - 1].first - step < options.progress_gap_m) {
+      for (std::size_t k = i; k < j; ++k) samples[k].second = Sample::kBuilt;
+    }
+    i = j;
+  }
+  double longest_gap = 0.0, run = 0.0;
+  bool not_built_between = false;  // since the last built sample
+  double unseen_between = 0.0;
+  for (std::size_t i = 0; i < samples.size(); ++i) {
+    const Sample kind = samples[i].second;
+    not_built_between = not_built_between || kind == Sample::kNotBuilt;
+    if (kind == Sample::kNotSeen) unseen_between += weight;
+    (kind == Sample::kBuilt      ? progress.built_m
+     : kind == Sample::kNotBuilt ? progress.not_built_m
+                                 : progress.not_seen_m) += weight;
+    // A run not built ends at a door opening (not sampled): the stretches either side of a door
+    // are each as short as they are.
+    const bool after_opening = i > 0 && samples[i].first - samples[i - 1].first > 1.5 * step;
+    run = kind == Sample::kNotBuilt ? (after_opening ? 0.0 : run) + weight : 0.0;
+    longest_gap = std::max(longest_gap, run);
+    if (kind != Sample::kBuilt) continue;
+    // Built runs, bridged across what lies between two built parts shorter than progress_gap_m
+    // and not in view (a door opening, not exposed and not sampled; the end of a wall meeting
+    // this one): the wall goes on there.
+    const double from = std::max(0.0, samples[i].first - 0.5 * step);
+    const double to = std::min(length, samples[i].first + 0.5 * step);
+    if (!progress.built.empty() && unseen_between < options.progress_gap_m && !not_built_between) {
+      progress.built.back().second = to;
+    } else {
+      progress.built.push_back({from, to});
+    }
+    not_built_between = false;
+    unseen_between = 0.0;
+  }
+  // Built: the built parts over the exposed length, the junctions and short stretches out of view
+  // they bridge included; not seen: the rest that is neither.
+  progress.built_m = overlapLength(progress.built, progress.exposed);
+  progress.not_seen_m = std::max(0.0, progress.planned_m - progress.built_m - progress.not_built_m);
+  const double seen = progress.built_m + progress.not_built_m;
+  if (seen < options.judged_share * progress.planned_m) {
+    progress.status = ProgressStatus::kNotSeen;
+  } else if (longest_gap < options.progress_gap_m) {
+    progress.status = ProgressStatus::kBuilt;
+  } else if (progress.built_m < options.missing_seen_share * progress.planned_m) {
+    progress.status = ProgressStatus::kNotBuilt;
+  } else {
+    progress.status = ProgressStatus::kPartlyBuilt;
+  }
+  return progress;
+}
+
+}  // namespace isg::slam
