@@ -55,16 +55,13 @@ DeviationGrade gradeDeviations(const slam::DeviationReport& report, const bim::P
     const auto shortened =
         std::find_if(truth.shortened_walls.begin(), truth.shortened_walls.end(),
                      [&](const bim::ShortenedWall& w) { return w.wall == wall.wall; });
-    const bool truly_missing_here =
-        std::find(truth.missing_walls.begin(), truth.missing_walls.end(), wall.wall) !=
-        truth.missing_walls.end();
+    const bool truly_missing = std::find(truth.missing_walls.begin(), truth.missing_walls.end(),
+                                         wall.wall) != truth.missing_walls.end();
     gradeProgress(wall.progress, shortened != truth.shortened_walls.end() ? &*shortened : nullptr,
-                  truly_missing_here, grade, partly_error, partly_measured);
+                  truly_missing, grade, partly_error, partly_measured);
     // A wall built in part is graded by its progress only: where it stands it may be as planned
     // or not, but not over its planned length.
     if (shortened != truth.shortened_walls.end()) continue;
-    const bool truly_missing = std::find(truth.missing_walls.begin(), truth.missing_walls.end(),
-                                         wall.wall) != truth.missing_walls.end();
     const bool reported_missing = wall.status == slam::WallStatus::kMissing;
     grade.missing_found += truly_missing && reported_missing;
     grade.missing_false_reports += !truly_missing && reported_missing;

@@ -159,9 +159,7 @@ WallProgress measureProgress(const bim::AGraph& plan, const bim::WallNode& wall,
     const Sample kind = samples[i].second;
     not_built_between = not_built_between || kind == Sample::kNotBuilt;
     if (kind == Sample::kNotSeen) unseen_between += weight;
-    (kind == Sample::kBuilt      ? progress.built_m
-     : kind == Sample::kNotBuilt ? progress.not_built_m
-                                 : progress.not_seen_m) += weight;
+    if (kind == Sample::kNotBuilt) progress.not_built_m += weight;
     // A run not built ends at a door opening (not sampled): the stretches either side of a door
     // are each as short as they are.
     const bool after_opening = i > 0 && samples[i].first - samples[i - 1].first > 1.5 * step;
