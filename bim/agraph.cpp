@@ -115,6 +115,7 @@ AGraph AGraph::translated(const Eigen::Vector2d& shift) const {
     for (auto& vertex : room.outline) vertex += shift;
   }
   for (auto& doorway : moved.doorways) doorway.position += shift3;
+  for (auto& window : moved.windows) window.position += shift3;
   for (auto& floor : moved.floors) floor.centre += shift;
   return moved;
 }
@@ -264,6 +265,14 @@ AGraph buildAGraph(const Plan& plan, const AGraphOptions& options) {
         }
       }
       graph.doorways.push_back(std::move(node));
+    }
+    for (const auto& window : level.windows) {
+      const Wall* wall = level.findWall(window.wall);
+      const Eigen::Vector2d c =
+          wall->start + window.offset * (wall->end - wall->start).normalized();
+      graph.windows.push_back({window.id, window.wall, level.id,
+                               Eigen::Vector3d(c.x(), c.y(), level.elevation + wall->base),
+                               window.width, window.sill, window.height});
     }
     addFlightFaces(plan, level, graph);
     graph.floors.push_back(std::move(floor));

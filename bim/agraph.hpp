@@ -78,6 +78,17 @@ struct DoorwayNode {
   std::vector<int> rooms;  // indices of the rooms it joins (one when it leads outside)
 };
 
+// A window of a wall: not a node of the paper's graph (nothing walks through it), but the sensor
+// sees through it, which whoever judges a wall by what was seen past it must know.
+struct WindowNode {
+  std::string id;  // the plan's window id
+  std::string wall;
+  std::string level;
+  Eigen::Vector3d position = Eigen::Vector3d::Zero();  // window centre on the wall axis, at floor z
+  double width = 0.0;
+  double sill = 0.0, height = 0.0;  // the opening from `sill` to `sill + height` above position.z
+};
+
 struct FloorNode {
   std::string id;  // the level id
   double elevation = 0.0;
@@ -91,6 +102,7 @@ struct AGraph {
   std::vector<WallNode> walls;
   std::vector<RoomNode> rooms;
   std::vector<DoorwayNode> doorways;
+  std::vector<WindowNode> windows;
   std::vector<FloorNode> floors;
 
   int findSurface(const std::string& id) const;

@@ -102,6 +102,15 @@ GenerateCommand::GenerateCommand(CLI::App& parent) {
   app_->add_option("--rotation-max", spec_.rotation_max_deg,
                    "as built: largest turn of a rotated wall [degrees]")
       ->capture_default_str();
+  app_->add_option("--rotation-about", spec_.rotation_about,
+                   "as built: what a rotated wall turns about: named (its start, centre or end) "
+                   "or any (a point anywhere along it, written in metres from its start)")
+      ->check(CLI::IsMember({"named", "any"}))
+      ->capture_default_str();
+  app_->add_option("--shortened-walls", spec_.shortened_walls,
+                   "as built: share of door-less inner walls (2.5 m or longer) built in part: a "
+                   "start or end cut back or a middle gap, 0.8 m to half the wall")
+      ->capture_default_str();
   app_->add_option("--missing-walls", spec_.missing_walls,
                    "as built: share of door-less walls between offices left unbuilt")
       ->capture_default_str();
@@ -150,7 +159,8 @@ int GenerateCommand::run() {
           "--corridor-width", "--doors",          "--connecting-doors", "--symmetric",
           "--partitions",     "--wall-thickness", "--clutter-per-room", "--shifted-walls",
           "--shift-min",      "--shift-max",      "--rotated-walls",    "--rotation-min",
-          "--rotation-max",   "--missing-walls",  "--extra-walls",      "--closed-doors"}) {
+          "--rotation-max",   "--rotation-about", "--shortened-walls",  "--missing-walls",
+          "--extra-walls",    "--closed-doors"}) {
       if (app_->count(option) == 0) continue;
       std::fprintf(stderr,
                    "isg generate: warning: %s does not apply to the site family (a site takes "

@@ -31,13 +31,16 @@ TableCommand::TableCommand(CLI::App& parent) {
       "the plan rooms the robot had stood in by then, --measure deviation-recall the share of "
       "the walls built shifted or turned that deviations.json found (among those seen over half "
       "their length) and --measure deviation-offset-error the mean error of their measured "
-      "offsets (docs/deviations.md; simulated runs, whose scenario knows the truth), "
+      "offsets; the other graded measures likewise: deviation-precision, deviation-angle-error "
+      "[°], deviation-pivot-error [m], progress-recall and progress-precision (walls built in "
+      "part), built-length-error [m], missing-recall, missing-precision, extra-recall, "
+      "extra-precision (docs/deviations.md; simulated runs, whose scenario knows the truth), "
       "--measure floor-plan-score the Hilti × Trimble 2026 floor-plan localization score (0 … "
       "100, docs/evaluation.md). "
       "With --baseline, compares each cell of the baseline table (CSV, as --format csv writes "
       "it) with the runs and exits with code 4, naming every cell that is worse by more than "
-      "--tolerance (in the measure's unit; for deviation-recall and floor-plan-score, lower by "
-      "more), failed, was "
+      "--tolerance (in the measure's unit; for the recalls, precisions and floor-plan-score, "
+      "lower by more), failed, was "
       "wrongly localized, or has no run.\n\n"
       "Runs of one world and method with different seeds make one cell: mean ± sample standard "
       "deviation over the seeds that localized correctly, k/n seeds localized correctly, w✗ "
@@ -64,7 +67,8 @@ TableCommand::TableCommand(CLI::App& parent) {
                    "metres walked by then; rooms-to-localize: plan rooms stood in by then; "
                    "deviation-recall: share of the walls built shifted or turned that the "
                    "deviation report found; deviation-offset-error: their offsets' mean error "
-                   "[m]; floor-plan-score: the floor-plan localization score, 0 … 100")
+                   "[m]; the other graded deviation measures (see below); floor-plan-score: the "
+                   "floor-plan localization score, 0 … 100")
       ->check(CLI::IsMember(sweep::kRunTableMeasures))
       ->capture_default_str();
   app_->add_option("--baseline", baseline_, "baseline table (CSV) to check the runs against");

@@ -56,6 +56,8 @@ nlohmann::json deviationReportJson(const slam::DeviationReport& report) {
       {"view_range_m", o.view_range},
       {"max_incidence_deg", o.max_incidence_deg},
       {"min_views", o.min_views},
+      {"see_through_margin_m", o.see_through_margin},
+      {"window_margin_m", o.window_margin},
       {"extra_pair_distance_m", o.extra_pair_distance},
       {"pivot_name_distance_m", o.pivot_name_distance},
       {"progress_step_m", o.progress_step},

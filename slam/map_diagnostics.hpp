@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "slam/match_status.hpp"
+#include "slam/sight_profile.hpp"
 
 namespace isg::slam {
 
@@ -28,6 +29,8 @@ struct MapKeyframe {
   double stamp = 0.0;
   Eigen::Isometry3d estimate = Eigen::Isometry3d::Identity();  // M_T_R, optimised
   Eigen::Isometry3d odometry = Eigen::Isometry3d::Identity();  // M_T_R by odometry alone
+  // How far it saw around (empty on the stairs, and from localizers that do not record it).
+  SightProfile sight;
 };
 
 struct MapRoom {

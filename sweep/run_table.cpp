@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <map>
 #include <set>
+#include <stdexcept>
 
 #include "common/input_error.hpp"
 #include "common/json_reader.hpp"
@@ -10,6 +11,58 @@
 namespace isg::sweep {
 
 namespace {
+
+// Of counts found, missed or falsely reported: found over the two; none without either.
+std::optional<double> share(int found, int other) {
+  if (found + other == 0) return std::nullopt;
+  return double(found) / double(found + other);
+}
+
+// A graded deviation measure: its number in a grade and what the table's caption says it is.
+struct GradedMeasure {
+  const char* name;
+  std::optional<double> (*of)(const run::DeviationGrade&);
+  const char* caption;
+};
+
+const GradedMeasure kGradedMeasures[] = {
+    {"deviation-recall", [](const run::DeviationGrade& g) { return g.recall; },
+     "Recall of the walls built shifted or turned, among those seen over half their length"},
+    {"deviation-precision", [](const run::DeviationGrade& g) { return g.precision; },
+     "Precision of the walls reported shifted or turned, among those seen over half their "
+     "length"},
+    {"deviation-offset-error", [](const run::DeviationGrade& g) { return g.offset_error_m; },
+     "Mean error [m] of the offsets measured for the walls built shifted or turned"},
+    {"deviation-angle-error", [](const run::DeviationGrade& g) { return g.angle_error_deg; },
+     "Mean error [°] of the angles measured for the walls built shifted or turned"},
+    {"deviation-pivot-error", [](const run::DeviationGrade& g) { return g.pivot_error_m; },
+     "Mean error [m] of the point along the wall each wall turned as built was found turned "
+     "about"},
+    {"progress-recall", [](const run::DeviationGrade& g) { return g.partly_recall; },
+     "Recall of the walls built in part, reported partly built or not built"},
+    {"progress-precision", [](const run::DeviationGrade& g) { return g.partly_precision; },
+     "Precision of the walls reported partly built or not built, among the walls built in part "
+     "and whole"},
+    {"built-length-error", [](const run::DeviationGrade& g) { return g.built_length_error_m; },
+     "Mean error [m] of the built length of the walls built in part found partly built"},
+    {"missing-recall",
+     [](const run::DeviationGrade& g) { return share(g.missing_found, g.missing_missed); },
+     "Recall of the walls not built, reported missing"},
+    {"missing-precision",
+     [](const run::DeviationGrade& g) { return share(g.missing_found, g.missing_false_reports); },
+     "Precision of the walls reported missing"},
+    {"extra-recall", [](const run::DeviationGrade& g) { return g.extra_recall; },
+     "Recall of the walls built that the plan lacks, reported extra"},
+    {"extra-precision", [](const run::DeviationGrade& g) { return g.extra_precision; },
+     "Precision of the walls reported extra (those on a clutter box not counted)"},
+};
+
+const GradedMeasure& gradedMeasure(const std::string& name) {
+  for (const auto& m : kGradedMeasures) {
+    if (name == m.name) return m;
+  }
+  throw std::logic_error("not a graded measure: " + name);
+}
 
 using Runs = std::vector<std::pair<std::string, run::RunMetrics>>;
 
@@ -97,10 +150,6 @@ std::vector<std::string> columnNames(const Runs& runs, const run::LocalizerRegis
   return columns;
 }
 
-bool isGraded(const std::string& measure) {
-  return measure == "deviation-recall" || measure == "deviation-offset-error";
-}
-
 // The run's number for the measure; nullopt where it has none (never localized, no grade).
 std::optional<double> measureOf(const run::RunMetrics& metrics, const std::string& measure,
                                 bool slam_only) {
@@ -124,8 +173,7 @@ std::optional<double> measureOf(const run::RunMetrics& metrics, const std::strin
   } else if (isGraded(measure)) {
     // Graded deviation reports only (a simulated building with its truth).
     if (metrics.deviations && metrics.deviations->grade) {
-      const run::DeviationGrade& grade = *metrics.deviations->grade;
-      return measure == "deviation-recall" ? grade.recall : grade.offset_error_m;
+      return gradedMeasure(measure).of(*metrics.deviations->grade);
     }
   } else if (metrics.localized) {
     return metrics.time_to_localize;
@@ -169,15 +217,10 @@ std::string measureCaption(const std::string& measure) {
            "on of 100·e^(−0.4605·e), e the 2D error in B in metres; 0 when under 99 % of them "
            "are estimated); - no ground truth";
   }
-  if (measure == "deviation-recall") {
-    return "Recall of the walls built shifted or turned, among those seen over half their "
-           "length (deviations.json against the scenario's as_built); - no graded report, or no "
-           "such wall to find";
-  }
-  if (measure == "deviation-offset-error") {
-    return "Mean error [m] of the offsets measured for the walls built shifted or turned "
-           "(deviations.json against the scenario's as_built); - no graded report, or no such "
-           "wall found";
+  if (isGraded(measure)) {
+    return std::string(gradedMeasure(measure).caption) +
+           " (deviations.json against the scenario's as_built, docs/deviations.md); - no graded "
+           "report, or nothing to divide by";
   }
   return "APE RMSE in B [m] (2D, no alignment, from the first localized pose on); - never "
          "localized, ✗ wrongly localized (more than 1 m off for more than 5 s)";
@@ -328,6 +371,11 @@ RunTable tabulateRuns(Runs runs, const std::string& measure, const run::Localize
   table.uncounted = uncounted;
   if (facts.graded) table.count_label = eval::kGradedCountRowLabel;
   return {table, caption(measure, facts, table, methods)};
+}
+
+bool isGraded(const std::string& measure) {
+  return std::any_of(std::begin(kGradedMeasures), std::end(kGradedMeasures),
+                     [&](const GradedMeasure& m) { return measure == m.name; });
 }
 
 }  // namespace isg::sweep

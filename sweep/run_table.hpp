@@ -14,25 +14,42 @@ namespace isg::sweep {
 std::string shortWorld(const std::string& world);
 
 // Every measure a run table can show, as --measure spells them.
+// The graded deviation measures (a simulated building's deviations.json against its truth,
+// run::DeviationGrade) are the ones from deviation-recall on, before floor-plan-score.
 inline const std::vector<std::string> kRunTableMeasures = {"ape",
                                                            "time-wrong",
                                                            "time-to-localize",
                                                            "distance-to-localize",
                                                            "rooms-to-localize",
                                                            "deviation-recall",
+                                                           "deviation-precision",
                                                            "deviation-offset-error",
+                                                           "deviation-angle-error",
+                                                           "deviation-pivot-error",
+                                                           "progress-recall",
+                                                           "progress-precision",
+                                                           "built-length-error",
+                                                           "missing-recall",
+                                                           "missing-precision",
+                                                           "extra-recall",
+                                                           "extra-precision",
                                                            "floor-plan-score"};
 
-// Measures whose larger values are better (a regression is a drop).
+// Whether the measure is one of a graded deviation report (run::DeviationGrade).
+bool isGraded(const std::string& measure);
+
+// Measures whose larger values are better (a regression is a drop): the score, and the graded
+// recalls and precisions.
 inline bool higherIsBetter(const std::string& measure) {
-  return measure == "deviation-recall" || measure == "floor-plan-score";
+  return measure == "floor-plan-score" || measure.ends_with("-recall") ||
+         measure.ends_with("-precision");
 }
 
 // The table of `isg table` and `isg sweep --collect`: rows worlds, columns methods in the
 // registry's order, cells aggregated over seeds (docs/evaluation.md), with a caption that says
 // what the cells are. `runs` are (run folder, its metrics) pairs; `measure` is one of ape,
-// time-wrong, time-to-localize, distance-to-localize, rooms-to-localize, deviation-recall,
-// deviation-offset-error, floor-plan-score (kRunTableMeasures). Two runs of one world,
+// time-wrong, time-to-localize, distance-to-localize, rooms-to-localize, the graded deviation
+// measures, floor-plan-score (kRunTableMeasures). Two runs of one world,
 // method and seed are bad input naming the second folder. Runs of one world name whose world
 // hashes differ are different buildings: their rows are told apart by the hash ("w [1a2b3c4d]").
 // `absent` are the seeds a sweep asked for that have no run (failed, or not run): their cells

@@ -36,6 +36,8 @@ worlds::GeneratorSpec generatorSpec(const common::JsonNode& node) {
                      "rotated_walls",
                      "rotation_min_deg",
                      "rotation_max_deg",
+                     "rotation_about",
+                     "shortened_walls",
                      "missing_walls",
                      "extra_walls",
                      "closed_doors",
@@ -77,6 +79,8 @@ worlds::GeneratorSpec generatorSpec(const common::JsonNode& node) {
   number("rotated_walls", spec.rotated_walls);
   number("rotation_min_deg", spec.rotation_min_deg);
   number("rotation_max_deg", spec.rotation_max_deg);
+  if (auto v = node.optionalField("rotation_about")) spec.rotation_about = v->string();
+  number("shortened_walls", spec.shortened_walls);
   number("missing_walls", spec.missing_walls);
   number("extra_walls", spec.extra_walls);
   number("closed_doors", spec.closed_doors);
@@ -372,6 +376,8 @@ nlohmann::json generatorSpecJson(const worlds::GeneratorSpec& s) {
           {"rotated_walls", s.rotated_walls},
           {"rotation_min_deg", s.rotation_min_deg},
           {"rotation_max_deg", s.rotation_max_deg},
+          {"rotation_about", s.rotation_about},
+          {"shortened_walls", s.shortened_walls},
           {"missing_walls", s.missing_walls},
           {"extra_walls", s.extra_walls},
           {"closed_doors", s.closed_doors}};

@@ -440,6 +440,7 @@ void checkSpec(const GeneratorSpec& spec) {
        {std::pair{spec.connecting_doors, "connecting doors"},
         std::pair{spec.shifted_walls, "shifted walls"},
         std::pair{spec.rotated_walls, "rotated walls"},
+        std::pair{spec.shortened_walls, "shortened walls"},
         std::pair{spec.missing_walls, "missing walls"}, std::pair{spec.extra_walls, "extra walls"},
         std::pair{spec.closed_doors, "closed doors"}}) {
     require(value >= 0.0 && value <= 1.0, std::string(name) + ": must be a share in [0, 1]");
@@ -449,6 +450,8 @@ void checkSpec(const GeneratorSpec& spec) {
   require(spec.rotation_min_deg >= 0.0 && spec.rotation_min_deg <= spec.rotation_max_deg &&
               spec.rotation_max_deg <= 45.0,
           "rotation range: must satisfy 0 <= rotation min <= rotation max <= 45 degrees");
+  require(spec.rotation_about == "named" || spec.rotation_about == "any",
+          "rotation about: must be named or any");
   require(spec.clutter_per_room >= 0.0 && spec.clutter_per_room <= 4.0,
           "clutter per room: must be in [0, 4]");
 }
@@ -734,8 +737,9 @@ void drawWallChanges(const GeneratorSpec& s, const Layout& layout, std::mt19937_
 }
 
 // As built, turned walls: door-less inner walls not missing, each with probability
-// rotated_walls, turned about its start, centre or end. The angle is capped so that no point of
-// the wall swings more than 1.2 m (a third of an office): a long wall turns less.
+// rotated_walls, turned about its start, centre or end (or any point along it). The angle is capped
+// so that no point of the wall swings more than 1.2 m (a third of an office): a long wall turns
+// less.
 void drawWallRotations(const GeneratorSpec& s, const Layout& layout, std::mt19937_64& turn_rng,
                        json& as_built) {
   if (s.rotated_walls <= 0.0) return;
@@ -752,18 +756,67 @@ void drawWallRotations(const GeneratorSpec& s, const Layout& layout, std::mt1993
     const Wall& wall = layout.walls[w];
     const std::string id = "W" + std::to_string(w + 1);
     const double draw = unit(turn_rng), size = unit(turn_rng), sign = unit(turn_rng);
-    const int about = std::min(2, int(3.0 * unit(turn_rng)));
+    const double about_draw = unit(turn_rng);
+    const int about = std::min(2, int(3.0 * about_draw));
     if (wall.outer || has_door[w] || missing.count(id) || draw >= s.rotated_walls) continue;
     const double length = std::abs(wall.end() - wall.start());
-    const double reach = about == 1 ? 0.5 * length : length;
-    const double cap_deg = std::asin(std::min(1.0, 1.2 / reach)) * 180.0 / std::numbers::pi;
+    // About its start, centre or end, or (rotation_about "any") the point the same draw places
+    // along it, in metres from its start: the farther end swings the most.
+    const bool anywhere = s.rotation_about == "any";
+    const double along = mm(about_draw * length);
+    const double reach =
+        anywhere ? std::max(along, length - along) : (about == 1 ? 0.5 * length : length);
+    const double cap_deg =
+        std::asin(std::min(1.0, 1.2 / std::max(reach, 1e-9))) * 180.0 / std::numbers::pi;
     const double angle =
         std::min(s.rotation_min_deg + (s.rotation_max_deg - s.rotation_min_deg) * size, cap_deg);
     turns.push_back({{"wall", id},
                      {"angle_deg", std::round(angle * 10.0) / 10.0 * (sign < 0.5 ? -1 : 1)},
-                     {"about", abouts[about]}});
+                     {"about", anywhere ? json(along) : json(abouts[about])}});
   }
   if (!turns.empty()) as_built["wall_rotations"] = turns;
+}
+
+// As built, walls built in part: door-less inner walls at least 2.5 m long, not missing, each
+// with probability shortened_walls: a start or an end cut back, or a gap in the middle, of 0.8 m
+// to half the wall, each part that stands at least 0.5 m. Four draws a wall, whatever it is.
+void drawShortenedWalls(const GeneratorSpec& s, const Layout& layout, std::mt19937_64& cut_rng,
+                        json& as_built) {
+  if (s.shortened_walls <= 0.0) return;
+  std::uniform_real_distribution<double> unit(0.0, 1.0);
+  std::vector<bool> has_door(layout.walls.size(), false);
+  for (const Door& d : layout.doors) has_door[d.wall] = true;
+  std::set<std::string> missing;
+  if (as_built.contains("missing_walls")) {
+    for (const auto& id : as_built["missing_walls"]) missing.insert(id.get<std::string>());
+  }
+  json shortened = json::array();
+  for (std::size_t w = 0; w < layout.walls.size(); ++w) {
+    const Wall& wall = layout.walls[w];
+    const std::string id = "W" + std::to_string(w + 1);
+    const double draw = unit(cut_rng), kind = unit(cut_rng), size = unit(cut_rng),
+                 where = unit(cut_rng);
+    const double length = std::abs(mm(wall.end()) - mm(wall.start()));  // as the plan has it
+    if (wall.outer || has_door[w] || missing.count(id) || length < 2.5 ||
+        draw >= s.shortened_walls) {
+      continue;
+    }
+    const double cut = mm(0.8 + (0.5 * length - 0.8) * size);
+    // The end to the millimetre below the wall's length as the plan's rounded ends give it: a
+    // part may not run past the wall.
+    const double end = std::floor(length * 1000.0 - 1e-6) / 1000.0;
+    json built;
+    if (kind < 1.0 / 3.0) {
+      built = json::array({json::array({cut, end})});
+    } else if (kind < 2.0 / 3.0) {
+      built = json::array({json::array({0.0, mm(length - cut)})});
+    } else {
+      const double from = mm(0.5 + (length - 1.0 - cut) * where);
+      built = json::array({json::array({0.0, from}), json::array({mm(from + cut), end})});
+    }
+    shortened.push_back({{"wall", id}, {"built", built}});
+  }
+  if (!shortened.empty()) as_built["shortened_walls"] = shortened;
 }
 
 // As built, doors: closed where closing keeps every space reached. Every space is reached through
@@ -885,6 +938,8 @@ GeneratedBuilding generateUnchecked(const GeneratorSpec& spec) {
   drawWallChanges(s, layout, built_rng, as_built);
   std::mt19937_64 turn_rng(spec.seed * 0xA0761D6478BD642FULL + 11);
   drawWallRotations(s, layout, turn_rng, as_built);
+  std::mt19937_64 cut_rng(spec.seed * 0xE7037ED1A0B428DBULL + 13);
+  drawShortenedWalls(s, layout, cut_rng, as_built);
   drawClosedDoors(s, layout, built_rng, as_built);
   drawOfficeContents(s, layout, built_rng, as_built);
   // The robot starts in an office drawn from the seed and tours every room.

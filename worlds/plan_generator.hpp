@@ -46,6 +46,13 @@ struct GeneratorSpec {
   double rotated_walls = 0.0;
   double rotation_min_deg = 3.0;
   double rotation_max_deg = 15.0;
+  // What a rotated wall turns about: "named" its start, centre or end; "any" a point drawn
+  // anywhere along it (written as metres from its start).
+  std::string rotation_about = "named";
+  // Share of door-less inner walls at least 2.5 m long, not missing, built in part: a start or
+  // an end cut back, or a gap in the middle, of 0.8 m to half the wall (each part left at least
+  // 0.5 m); drawn from a stream of their own.
+  double shortened_walls = 0.0;
   double missing_walls = 0.0;  // share of office–office walls without doors left unbuilt
   double extra_walls = 0.0;    // share of offices with an unplanned partition
   double closed_doors = 0.0;   // share of doors closed among those that can be (the rooms

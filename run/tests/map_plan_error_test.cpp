@@ -67,7 +67,7 @@ TEST_F(MapPlanErrorTest, PlacedByTheOptimisedKeyframesCarriedByOdometry) {
   // The keyframe at 0.2 s was optimised 5 cm to -y of its odometry: every later point follows it,
   // whatever the online estimate said.
   slam::MapDiagnostics map;
-  map.keyframes.push_back({0.2, shifted(0.0, -0.05), Eigen::Isometry3d::Identity()});
+  map.keyframes.push_back({0.2, shifted(0.0, -0.05), Eigen::Isometry3d::Identity(), {}});
   run_.map = map;
   const auto error = mapPlanError(run_);
   ASSERT_TRUE(error);

@@ -25,10 +25,11 @@ bool segmentsCross(const Eigen::Vector2d& p, const Eigen::Vector2d& q, const Eig
 }  // namespace
 
 FaceViews::FaceViews(const bim::AGraph& plan, const bim::WallNode& wall,
-                     const std::vector<Eigen::Vector2d>& keyframes, const DeviationOptions& options)
-    : keyframes_(keyframes),
+                     const std::vector<Viewpoint>& viewpoints, const DeviationOptions& options)
+    : viewpoints_(viewpoints),
       options_(options),
-      min_cos_(std::cos(common::radians(options.max_incidence_deg))) {
+      min_cos_(std::cos(common::radians(options.max_incidence_deg))),
+      through_(wall.thickness + options.see_through_margin) {
   for (const auto& s : plan.surfaces) {
     if (s.level != wall.level || s.wall == wall.id) continue;
     for (const auto& [a, b] : s.segments) occluders_.push_back({a, b});
@@ -39,17 +40,38 @@ bool FaceViews::inView(const Eigen::Vector2d& point, const Eigen::Vector2d& norm
   // Just in front of the face, so that the face itself is not met.
   const Eigen::Vector2d p = point + 0.01 * normal;
   int views = 0;
-  for (const auto& k : keyframes_) {
-    const Eigen::Vector2d ray = k - p;
+  for (const auto& k : viewpoints_) {
+    const Eigen::Vector2d ray = k.position - p;
     const double range = ray.norm();
     if (range > options_.view_range || range < 1e-6 || normal.dot(ray) < min_cos_ * range) {
       continue;
     }
-    const bool blocked = std::any_of(occluders_.begin(), occluders_.end(),
-                                     [&](const auto& o) { return segmentsCross(p, k, o.a, o.b); });
-    if (!blocked && ++views >= options_.min_views) return true;
+    bool seen = false;
+    if (k.sight && !k.sight->empty()) {
+      // The azimuth from the sensor toward the point, in the base's frame.
+      const double azimuth = std::atan2(-ray.y(), -ray.x()) - k.yaw;
+      seen = k.sight->rangeToward(azimuth) > range + through_;
+    } else {
+      seen = std::none_of(occluders_.begin(), occluders_.end(),
+                          [&](const auto& o) { return segmentsCross(p, k.position, o.a, o.b); });
+    }
+    if (seen && ++views >= options_.min_views) return true;
   }
   return false;
+}
+
+std::vector<std::pair<double, double>> windowSpans(const bim::AGraph& plan,
+                                                   const bim::WallNode& wall,
+                                                   const Eigen::Vector2d& start,
+                                                   const Eigen::Vector2d& axis, double margin) {
+  std::vector<std::pair<double, double>> spans;
+  for (const auto& window : plan.windows) {
+    if (window.wall != wall.id || window.level != wall.level) continue;
+    const double c = (window.position.head<2>() - start).dot(axis);
+    spans.push_back({c - 0.5 * window.width - margin, c + 0.5 * window.width + margin});
+  }
+  std::sort(spans.begin(), spans.end());
+  return spans;
 }
 
 }  // namespace isg::slam

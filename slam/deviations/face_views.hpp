@@ -5,17 +5,20 @@
 
 #include "bim/agraph.hpp"
 #include "slam/deviations/plan_deviations.hpp"
+#include "slam/deviations/viewpoint.hpp"
 
 namespace isg::slam {
 
-// Whether the sensor had a point of a plan wall's face in view (docs/deviations.md, "In view"):
-// at least `min_views` keyframes stand in front of it within `view_range`, at most
-// `max_incidence_deg` off the face's normal, with no other plan wall's face between them. The
-// wall's own faces do not hide it: a part of a wall not built is seen through.
+// Whether the sensor saw where a point of a plan wall's face stands (docs/deviations.md, "In
+// view"): at least `min_views` keyframes stand in front of it within `view_range`, at most
+// `max_incidence_deg` off the face's normal, and each saw past it — its farthest return toward
+// the point lies beyond the wall by `see_through_margin` (SightProfile). A keyframe that did not
+// record how far it saw counts when no other plan wall's face lies between it and the point.
+// Either way the wall's own faces do not hide it: what is asked is whether it stands there.
 class FaceViews {
  public:
   FaceViews(const bim::AGraph& plan, const bim::WallNode& wall,
-            const std::vector<Eigen::Vector2d>& keyframes, const DeviationOptions& options);
+            const std::vector<Viewpoint>& viewpoints, const DeviationOptions& options);
   // `point` on the face, `normal` its outward normal (unit, in the plane).
   bool inView(const Eigen::Vector2d& point, const Eigen::Vector2d& normal) const;
 
@@ -24,9 +27,18 @@ class FaceViews {
     Eigen::Vector2d a, b;
   };
   std::vector<Occluder> occluders_;
-  const std::vector<Eigen::Vector2d>& keyframes_;
+  const std::vector<Viewpoint>& viewpoints_;
   const DeviationOptions& options_;
   double min_cos_ = 0.0;
+  double through_ = 0.0;  // how far past the face a sight line must reach
 };
+
+// The stretches along a wall's axis (metres from `start` along `axis`) of its windows, widened by
+// `margin` each side: the sensor sees through them, so what is seen past there says nothing of
+// whether the wall is built.
+std::vector<std::pair<double, double>> windowSpans(const bim::AGraph& plan,
+                                                   const bim::WallNode& wall,
+                                                   const Eigen::Vector2d& start,
+                                                   const Eigen::Vector2d& axis, double margin);
 
 }  // namespace isg::slam

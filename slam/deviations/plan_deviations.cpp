@@ -113,10 +113,11 @@ double unionLength(std::vector<std::pair<double, double>> spans) {
 }
 
 // The share of a plan wall's exposed faces in the sensor's view from the keyframes
-// (DeviationOptions, "In view"): sampled every 0.25 m, 0.1 m clear of each segment's ends.
+// (DeviationOptions, "In view"): sampled every 0.25 m, 0.1 m clear of each segment's ends. Its
+// windows count as not in view: they are seen through whether the wall stands or not.
 double inViewShare(const bim::AGraph& plan, const bim::WallNode& wall,
-                   const std::vector<Eigen::Vector2d>& keyframes, const DeviationOptions& options) {
-  const FaceViews views(plan, wall, keyframes, options);
+                   const std::vector<Viewpoint>& viewpoints, const DeviationOptions& options) {
+  const FaceViews views(plan, wall, viewpoints, options);
   double exposed = 0.0, in_view = 0.0;
   for (int surface : {wall.left_surface, wall.right_surface}) {
     const bim::WallSurfaceNode& face = plan.surfaces[surface];
@@ -126,10 +127,15 @@ double inViewShare(const bim::AGraph& plan, const bim::WallNode& wall,
       if (length < 0.2) continue;
       const int samples = std::max(1, int((length - 0.2) / 0.25));
       const double step = (length - 0.2) / samples;
+      const Eigen::Vector2d along = (b - a) / length;
+      const auto windows = windowSpans(plan, wall, a, along, options.window_margin);
       for (int i = 0; i < samples; ++i) {
-        const Eigen::Vector2d p = a + (0.1 + (i + 0.5) * step) / length * (b - a);
+        const double s = 0.1 + (i + 0.5) * step;
         exposed += step;
-        if (views.inView(p, n)) in_view += step;
+        const bool at_window = std::any_of(windows.begin(), windows.end(), [&](const auto& w) {
+          return s >= w.first && s <= w.second;
+        });
+        if (!at_window && views.inView(a + s * along, n)) in_view += step;
       }
     }
   }
@@ -459,21 +465,24 @@ namespace {
 
 using LevelWalls = std::vector<std::pair<WallDeviation, PlannedWall>>;
 
-// The levels walked, and the keyframes' places on each: views from places 0.5 m apart (nearer
-// ones add little to what is in view).
-std::map<int, std::vector<Eigen::Vector2d>> keyframesOnLevels(const bim::AGraph& plan,
-                                                              const MapDiagnostics& map,
-                                                              const Eigen::Isometry3d& B_T_M) {
-  std::map<int, std::vector<Eigen::Vector2d>> keyframes_on;
+// The levels walked, and the sensor's places on each with what it saw past: views from places
+// 0.5 m apart (nearer ones add little to what is in view).
+std::map<int, std::vector<Viewpoint>> viewpointsOnLevels(const bim::AGraph& plan,
+                                                         const MapDiagnostics& map,
+                                                         const Eigen::Isometry3d& B_T_M) {
+  std::map<int, std::vector<Viewpoint>> viewpoints_on;
   Eigen::Vector2d last(std::nan(""), std::nan(""));
   for (const auto& kf : map.keyframes) {
-    const Eigen::Vector3d p = B_T_M * kf.estimate.translation();
+    const Eigen::Isometry3d B_T_R = B_T_M * kf.estimate;
+    const Eigen::Vector3d p = B_T_R.translation();
     if ((p.head<2>() - last).norm() < 0.5) continue;
     last = p.head<2>();
     const int level = levelAt(plan, p.z());
-    if (level >= 0) keyframes_on[level].push_back(p.head<2>());
+    if (level < 0) continue;
+    viewpoints_on[level].push_back(
+        {(B_T_R * kf.sight.sensor_R).head<2>(), common::yawOf(B_T_R.linear()), &kf.sight});
   }
-  return keyframes_on;
+  return viewpoints_on;
 }
 
 // The map's walls in B, long enough to judge: placed by the final B_T_M, unless the robot's
@@ -597,7 +606,7 @@ LevelWalls placedLocally(const LevelWalls& level_walls, const DeviationOptions& 
 // How much of a judged wall is built. A wall without evidence is not sampled (its views were
 // counted for `missing` already): not built when missing, else not seen.
 WallProgress progressOf(const bim::AGraph& plan, const WallDeviation& wall,
-                        const PlannedWall& planned, const std::vector<Eigen::Vector2d>& keyframes,
+                        const PlannedWall& planned, const std::vector<Viewpoint>& viewpoints,
                         const DeviationOptions& options) {
   Intervals evidence;
   for (const auto& e : wall.evidence) {
@@ -612,7 +621,7 @@ WallProgress progressOf(const bim::AGraph& plan, const WallDeviation& wall,
   }
   if (!evidence.empty()) {
     return measureProgress(plan, plan.walls[planned.index], planned.start, planned.axis,
-                           planned.length, evidence, keyframes, options);
+                           planned.length, evidence, viewpoints, options);
   }
   WallProgress progress = measureProgress(plan, plan.walls[planned.index], planned.start,
                                           planned.axis, planned.length, {}, {}, options);
@@ -627,7 +636,7 @@ WallProgress progressOf(const bim::AGraph& plan, const WallDeviation& wall,
 
 // One level of the report: its walls judged, its placement, the walls the plan lacks.
 void measureLevel(const bim::AGraph& plan, int f, const std::vector<WallInB>& walls_in_B,
-                  const std::vector<Eigen::Vector2d>& keyframes, const DeviationOptions& options,
+                  const std::vector<Viewpoint>& viewpoints, const DeviationOptions& options,
                   DeviationReport& report) {
   const std::string& level = plan.floors[f].id;
   report.levels.push_back(level);
@@ -654,14 +663,14 @@ void measureLevel(const bim::AGraph& plan, int f, const std::vector<WallInB>& wa
   for (auto& [wall, planned] : placedLocally(level_walls, options)) {
     judge(wall, planned, options);
     if (wall.observed_share < options.judged_share) {
-      wall.in_view_share = inViewShare(plan, plan.walls[planned.index], keyframes, options);
+      wall.in_view_share = inViewShare(plan, plan.walls[planned.index], viewpoints, options);
       wall.status = wall.observed_share < options.missing_seen_share &&
                             *wall.in_view_share >= options.missing_view_share &&
                             planned.length >= options.min_missing_length
                         ? WallStatus::kMissing
                         : WallStatus::kNotSeen;
     }
-    wall.progress = progressOf(plan, wall, planned, keyframes, options);
+    wall.progress = progressOf(plan, wall, planned, viewpoints, options);
     report.walls.push_back(wall);
   }
   for (auto& m : unexplained) {
@@ -682,11 +691,11 @@ DeviationReport measureDeviations(
     const std::vector<std::optional<Eigen::Isometry3d>>& keyframe_B_T_M) {
   DeviationReport report;
   report.options = options;
-  std::map<int, std::vector<Eigen::Vector2d>> keyframes_on = keyframesOnLevels(plan, map, B_T_M);
+  std::map<int, std::vector<Viewpoint>> viewpoints_on = viewpointsOnLevels(plan, map, B_T_M);
   const std::vector<WallInB> walls_in_B = wallsInB(map, B_T_M, options, keyframe_B_T_M);
   for (int f = 0; f < int(plan.floors.size()); ++f) {
-    if (!keyframes_on.count(f)) continue;
-    measureLevel(plan, f, walls_in_B, keyframes_on[f], options, report);
+    if (!viewpoints_on.count(f)) continue;
+    measureLevel(plan, f, walls_in_B, viewpoints_on[f], options, report);
   }
   return report;
 }

@@ -46,10 +46,17 @@ struct DeviationOptions {
   double missing_view_share = 0.6;
   double min_missing_length = 1.0;  // m: a shorter wall is never called missing
   // In view: a point of a face within `view_range` of at least `min_views` keyframes standing in
-  // front of it, at most `max_incidence_deg` off its normal, with no other plan wall between.
+  // front of it, at most `max_incidence_deg` off its normal, that saw past it: their farthest
+  // return toward it lies beyond the wall's far face by `see_through_margin` (the map's place in
+  // the plan to a few cm, a return's degree of azimuth 14 cm wide at view_range). Keyframes that
+  // did not record how far they saw count when no other plan wall lies between.
   double view_range = 8.0;  // m
   double max_incidence_deg = 60.0;
   int min_views = 3;
+  double see_through_margin = 0.2;  // m
+  // A wall's windows, widened by this each side (a degree of azimuth at view_range), are seen
+  // through whether the wall stands or not: there only the map's walls say it is built.
+  double window_margin = 0.15;  // m
   // A wall is placed by the final B_T_M unless the robot's poses in B when it saw the wall put
   // it farther than this from there (the map has bent since): then by those poses.
   double bend_distance = 0.05;  // m

@@ -74,7 +74,7 @@ double overlapLength(const Intervals& a, const Intervals& b) {
 WallProgress measureProgress(const bim::AGraph& plan, const bim::WallNode& wall,
                              const Eigen::Vector2d& start, const Eigen::Vector2d& axis,
                              double length, const Intervals& evidence,
-                             const std::vector<Eigen::Vector2d>& keyframes,
+                             const std::vector<Viewpoint>& viewpoints,
                              const DeviationOptions& options) {
   WallProgress progress;
   // Each face's exposed parts along the axis.
@@ -110,9 +110,11 @@ WallProgress measureProgress(const bim::AGraph& plan, const bim::WallNode& wall,
   progress.exposed = without(joined(all_exposed), doors);
   const Intervals built_evidence = joined(evidence);
   // Each sample of the exposed length: built where the evidence covers it; else not built where a
-  // face of it was in view; else not seen. Views are asked only where nothing stands.
+  // face of it was in view (seen past); else not seen. Views are asked only where nothing stands,
+  // and not at windows (seen through, built or not).
   const double step = options.progress_step;
-  const FaceViews views(plan, wall, keyframes, options);
+  const FaceViews views(plan, wall, viewpoints, options);
+  const Intervals windows = joined(windowSpans(plan, wall, start, axis, options.window_margin));
   std::vector<std::pair<double, Sample>> samples;
   for (const auto& [a, b] : progress.exposed) {
     const int n = std::max(1, int(std::lround((b - a) / step)));
@@ -121,7 +123,7 @@ WallProgress measureProgress(const bim::AGraph& plan, const bim::WallNode& wall,
       Sample kind = Sample::kNotSeen;
       if (inside(built_evidence, s)) {
         kind = Sample::kBuilt;
-      } else {
+      } else if (!inside(windows, s)) {
         for (const Face& face : faces) {
           if (inside(face.exposed, s) &&
               views.inView(start + s * axis + face.offset, face.normal)) {
@@ -178,6 +180,24 @@ WallProgress measureProgress(const bim::AGraph& plan, const bim::WallNode& wall,
     }
     not_built_between = false;
     unseen_between = 0.0;
+  }
+  // A built part stands to the wall's end when only a stretch out of view, shorter than
+  // progress_gap_m, lies between (the end inside a wall meeting this one, its outer face never in
+  // view): nothing says it stops short.
+  if (!progress.built.empty()) {
+    const auto first_built = std::find_if(samples.begin(), samples.end(),
+                                          [](const auto& x) { return x.second == Sample::kBuilt; });
+    const auto last_built = std::find_if(samples.rbegin(), samples.rend(),
+                                         [](const auto& x) { return x.second == Sample::kBuilt; });
+    const auto not_built = [](const auto& x) { return x.second == Sample::kNotBuilt; };
+    if (progress.built.front().first < options.progress_gap_m &&
+        std::none_of(samples.begin(), first_built, not_built)) {
+      progress.built.front().first = 0.0;
+    }
+    if (length - progress.built.back().second < options.progress_gap_m &&
+        std::none_of(samples.rbegin(), last_built, not_built)) {
+      progress.built.back().second = length;
+    }
   }
   // Built: the built parts over the exposed length, the junctions and short stretches out of view
   // they bridge included; not seen: the rest that is neither.

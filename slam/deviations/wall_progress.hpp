@@ -5,6 +5,7 @@
 #include <vector>
 
 #include "bim/agraph.hpp"
+#include "slam/deviations/viewpoint.hpp"
 
 namespace isg::slam {
 
@@ -29,12 +30,12 @@ struct WallProgress {
 };
 
 // A plan wall's axis from `start` along `axis` (unit) over `length`; `evidence` the spans along it
-// (metres from its start) of the map walls taken as its faces. `keyframes`: where the sensor
-// stood on the wall's level (for what was in view, as for a missing wall).
+// (metres from its start) of the map walls taken as its faces. `viewpoints`: where the sensor
+// stood on the wall's level and what it saw past (for what was in view, as for a missing wall).
 WallProgress measureProgress(const bim::AGraph& plan, const bim::WallNode& wall,
                              const Eigen::Vector2d& start, const Eigen::Vector2d& axis,
                              double length, const Intervals& evidence,
-                             const std::vector<Eigen::Vector2d>& keyframes,
+                             const std::vector<Viewpoint>& viewpoints,
                              const DeviationOptions& options);
 
 // The length of the intersection of two sets of intervals, each in order and apart.

@@ -147,6 +147,16 @@ int SGraph::floorOfKeyframe(double stamp, const Eigen::Isometry3d& odometry_at_s
   return floor;
 }
 
+SightProfile SGraph::sightOf(const sensors::Scan& scan, int floor,
+                             const Eigen::Isometry3d& M_T_R) const {
+  if (const auto floor_z = floorHeight(floor)) {
+    const double floor_R = *floor_z - M_T_R.translation().z();
+    return sightProfile(scan, R_T_L_, floor_R - 0.1, floor_R + 2.0);
+  }
+  const double sensor_z = R_T_L_.translation().z();
+  return sightProfile(scan, R_T_L_, sensor_z - 0.3, sensor_z + 0.3);
+}
+
 void SGraph::noteLowestSeen(const sensors::Scan& scan, int floor, const Eigen::Isometry3d& M_T_L) {
   // The scan's low points: its 0.5 % quantile of height in M (a few stray points lower still,
   // noise or a reflection, do not count).
@@ -264,7 +274,10 @@ bool SGraph::addScan(sensors::Scan scan) {
   const int index = int(keyframes_.size());
   const int floor = floorOfKeyframe(scan.stamp, odometry_at_scan, initial, keyframe);
   const Eigen::Isometry3d M_T_L = initial * R_T_L_;
-  if (floor >= 0 && !keyframe.climbing && !scan.points.empty()) noteLowestSeen(scan, floor, M_T_L);
+  if (floor >= 0 && !keyframe.climbing && !scan.points.empty()) {
+    noteLowestSeen(scan, floor, M_T_L);
+    keyframe.sight = sightOf(scan, floor, initial);
+  }
   // The map as association sees it, kept in step as this keyframe's observations change it: the
   // walls of its own floor only.
   std::vector<MapPlane> walls = activeWalls(floor);
@@ -377,7 +390,9 @@ void SGraph::startNewSegment(double stamp, const std::string& reason) {
   ended.rooms = int(confirmedRooms().size());
   ended.reason = reason;
   segments_.push_back(ended);
-  for (const auto& kf : keyframes_) past_keyframes_.push_back({kf.stamp, kf.pose(), kf.odometry});
+  for (const auto& kf : keyframes_) {
+    past_keyframes_.push_back({kf.stamp, kf.pose(), kf.odometry, kf.sight});
+  }
   // M continues: the new segment's first keyframe at the latest estimate.
   const Keyframe& last = keyframes_.back();
   start_correction_ = last.pose() * last.odometry.inverse();
@@ -823,7 +838,9 @@ std::optional<Eigen::Vector2d> SGraph::floorCentre(int floor) const {
 MapDiagnostics SGraph::diagnostics() const {
   MapDiagnostics out;
   out.keyframes = past_keyframes_;
-  for (const auto& kf : keyframes_) out.keyframes.push_back({kf.stamp, kf.pose(), kf.odometry});
+  for (const auto& kf : keyframes_) {
+    out.keyframes.push_back({kf.stamp, kf.pose(), kf.odometry, kf.sight});
+  }
   out.planes = planes_.size();
   for (std::size_t i = 0; i < planes_.size(); ++i) {
     const MapPlane& p = planes_[i].map;

@@ -134,6 +134,7 @@ class SGraph {
     KeyframeRegistration registration;
     std::optional<Eigen::Vector3d> up;   // gravity's up in R by the IMU, when there is one
     std::vector<Eigen::Vector3f> cloud;  // downsampled scan in L; kept for the local map only
+    SightProfile sight;                  // standing on a floor: how far it saw (MapKeyframe)
     Eigen::Isometry3d pose() const;
   };
   struct Plane {
@@ -272,6 +273,10 @@ class SGraph {
   // (Keyframe::climbing), from its height and the one before's.
   int floorOfKeyframe(double stamp, const Eigen::Isometry3d& odometry_at_scan,
                       const Eigen::Isometry3d& initial, Keyframe& keyframe);
+  // How far the keyframe's scan saw: its returns from 0.1 m below its floor (the floor itself
+  // beyond an opening) to 2 m above it, or, before the floor's height is known, within 0.3 m of
+  // the sensor's height: sight lines that cross any wall at a height it stands at.
+  SightProfile sightOf(const sensors::Scan& scan, int floor, const Eigen::Isometry3d& M_T_R) const;
   // The scan's low points bound its floor's height (Floor::lowest_seen).
   void noteLowestSeen(const sensors::Scan& scan, int floor, const Eigen::Isometry3d& M_T_L);
   // A horizontal plane below the sensor: the floor's height, well supported or sparse.

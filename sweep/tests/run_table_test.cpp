@@ -1,5 +1,8 @@
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <map>
+
 #include "run/builtin_methods.hpp"
 #include "sweep/run_table.hpp"
 
@@ -79,6 +82,68 @@ TEST(RunTableOptions, AMethodRunWithOtherOptionsIsAColumnOfItsOwn) {
       tabulateRuns({{"a", amcl(1, more)}, {"b", amcl(2, more)}, {"c", amcl(3, std::nullopt)}},
                    "ape", run::builtinMethods());
   EXPECT_EQ(same.table.columns, (std::vector<std::string>{"amcl"}));
+}
+
+// Each graded measure tabulates its number of the grade, mean over the seeds that have one; a
+// recall or a precision is better higher, an error lower.
+TEST(RunTableGraded, EachGradedMeasureTabulatesItsNumberOfTheGrade) {
+  auto graded = [](std::uint64_t seed, int missing_found, int missing_missed) {
+    run::RunMetrics m = twoStoreyRun(seed, 0.02, 0.04);
+    m.world = "generated";
+    m.levels.clear();
+    run::DeviationGrade g;
+    g.recall = 0.8 + 0.1 * double(seed);
+    g.precision = 1.0;
+    g.offset_error_m = 0.01 * double(seed);
+    g.angle_error_deg = 0.2;
+    g.pivot_error_m = 0.1;
+    g.partly_recall = 1.0;
+    g.partly_precision = 0.5;
+    g.built_length_error_m = 0.04;
+    g.missing_found = missing_found;
+    g.missing_missed = missing_missed;
+    g.extra_precision = 0.75;
+    run::DeviationMetrics d;
+    d.grade = g;
+    m.deviations = d;
+    return m;
+  };
+  std::vector<std::pair<std::string, run::RunMetrics>> runs = {{"a", graded(1, 3, 1)},
+                                                               {"b", graded(2, 0, 0)}};
+  const std::map<std::string, double> expected = {
+      {"deviation-recall", 0.95},        {"deviation-precision", 1.0},
+      {"deviation-offset-error", 0.015}, {"deviation-angle-error", 0.2},
+      {"deviation-pivot-error", 0.1},    {"progress-recall", 1.0},
+      {"progress-precision", 0.5},       {"built-length-error", 0.04},
+      {"extra-precision", 0.75}};
+  for (const auto& [measure, value] : expected) {
+    EXPECT_TRUE(isGraded(measure)) << measure;
+    const RunTable table = tabulateRuns(runs, measure, run::builtinMethods());
+    const auto cell = table.table.find("generated", "is-graphs");
+    ASSERT_TRUE(cell && cell->has_value()) << measure;
+    EXPECT_NEAR(**cell, value, 1e-12) << measure;
+    EXPECT_EQ(higherIsBetter(measure),
+              measure.ends_with("recall") || measure.ends_with("precision"))
+        << measure;
+  }
+  // The second run found and missed no missing wall: no recall, and so no mean for the cell (a
+  // mean only when every seed gave a number); the first alone has its 3 of 4.
+  const RunTable both = tabulateRuns(runs, "missing-recall", run::builtinMethods());
+  const auto none = both.table.find("generated", "is-graphs");
+  EXPECT_TRUE(!none || !none->has_value());
+  runs.pop_back();
+  const RunTable one = tabulateRuns(runs, "missing-recall", run::builtinMethods());
+  const auto first = one.table.find("generated", "is-graphs");
+  ASSERT_TRUE(first && first->has_value());
+  EXPECT_NEAR(**first, 0.75, 1e-12);
+  for (const auto& measure : kRunTableMeasures) {
+    const bool graded_measure =
+        measure != "floor-plan-score" &&
+        std::find(kRunTableMeasures.begin(), kRunTableMeasures.end(), measure) >=
+            std::find(kRunTableMeasures.begin(), kRunTableMeasures.end(), "deviation-recall");
+    EXPECT_EQ(isGraded(measure), graded_measure) << measure;
+  }
+  EXPECT_FALSE(isGraded("ape"));
 }
 
 }  // namespace

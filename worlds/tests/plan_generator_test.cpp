@@ -2,6 +2,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <filesystem>
 #include <fstream>
 #include <map>
@@ -85,6 +86,63 @@ TEST(PlanGenerator, EveryFamilyReadsWithoutWarningAndEveryRoomIsReachable) {
   EXPECT_GT(missing, 5u);
   EXPECT_GT(extra, 5u);
   EXPECT_GT(clutter, 50u);
+}
+
+// Walls built in part and turns about any point: every office family reads them without warning;
+// each shortened wall is a door-less inner wall of 2.5 m or more, cut 0.8 m to half its length,
+// each part at least 0.5 m; each turn's point lies on its wall. Neither changes the plan or any
+// other as-built draw.
+TEST(PlanGenerator, WallsBuiltInPartAndTurnsAboutAnyPointAreDrawnWithinTheirBounds) {
+  std::size_t shortened = 0, along = 0;
+  for (const auto& family : generatorFamilies()) {
+    if (family == "site") continue;
+    for (std::uint64_t seed : {1, 2}) {
+      GeneratorSpec spec;
+      spec.family = family;
+      spec.seed = seed;
+      spec.rotated_walls = 0.3;
+      spec.missing_walls = 0.2;
+      const GeneratedBuilding plain = generateBuilding(spec);
+      spec.shortened_walls = 0.5;
+      spec.rotation_about = "any";
+      const GeneratedBuilding b = generateBuilding(spec);
+      EXPECT_EQ(b.plan, plain.plan) << b.name;
+      for (const char* key : {"wall_shifts", "missing_walls", "clutter", "extra_walls"}) {
+        EXPECT_EQ(b.scenario["as_built"].value(key, nlohmann::json()),
+                  plain.scenario["as_built"].value(key, nlohmann::json()))
+            << b.name << " " << key;
+      }
+      common::Warnings warnings;
+      const bim::Scenario s = load(b, &warnings);
+      EXPECT_TRUE(warnings.empty()) << b.name << ": " << warnings.front().str();
+      const bim::Level& level = s.plan.levels.at(0);
+      for (const auto& cut : s.as_built.shortened_walls) {
+        const bim::Wall* wall = level.findWall(cut.wall);
+        ASSERT_NE(wall, nullptr) << b.name << " " << cut.wall;
+        const double length = (wall->end - wall->start).norm();
+        EXPECT_GE(length, 2.5) << b.name << " " << cut.wall;
+        EXPECT_TRUE(std::none_of(level.doors.begin(), level.doors.end(),
+                                 [&](const bim::Door& d) { return d.wall == cut.wall; }));
+        double standing = 0.0;
+        for (const auto& [from, to] : cut.built) {
+          EXPECT_GE(to - from, 0.5 - 1e-9) << b.name << " " << cut.wall;
+          standing += to - from;
+        }
+        EXPECT_GE(length - standing, 0.8 - 2e-3) << b.name << " " << cut.wall;
+        EXPECT_LE(length - standing, 0.5 * length + 2e-3) << b.name << " " << cut.wall;
+        ++shortened;
+      }
+      for (const auto& turn : s.as_built.wall_rotations) {
+        ASSERT_EQ(turn.about, bim::WallRotation::About::kAlong) << b.name << " " << turn.wall;
+        const bim::Wall* wall = level.findWall(turn.wall);
+        EXPECT_GE(turn.along_m, 0.0);
+        EXPECT_LE(turn.along_m, (wall->end - wall->start).norm() + 1e-9);
+        ++along;
+      }
+    }
+  }
+  EXPECT_GT(shortened, 5u);
+  EXPECT_GT(along, 5u);
 }
 
 TEST(PlanGenerator, SameSeedSameBuildingOtherSeedOtherBuilding) {
@@ -220,6 +278,20 @@ TEST(PlanGenerator, ImpossibleParametersNameTheParameter) {
   } catch (const std::invalid_argument& e) {
     EXPECT_STREQ(e.what(), "corridor width: must be in [1.2, 6] m (a robot and a door must fit)");
   }
+  const auto message = [](const GeneratorSpec& bad) {
+    try {
+      generateBuilding(bad);
+    } catch (const std::invalid_argument& e) {
+      return std::string(e.what());
+    }
+    return std::string("no error");
+  };
+  spec = {};
+  spec.shortened_walls = 1.5;
+  EXPECT_EQ(message(spec), "shortened walls: must be a share in [0, 1]");
+  spec = {};
+  spec.rotation_about = "middle";
+  EXPECT_EQ(message(spec), "rotation about: must be named or any");
   spec = {};
   spec.family = "castle";
   EXPECT_THROW(generateBuilding(spec), std::invalid_argument);
