@@ -46,6 +46,7 @@ nlohmann::json deviationReportJson(const slam::DeviationReport& report) {
       {"judged_share", o.judged_share},
       {"missing_seen_share", o.missing_seen_share},
       {"missing_view_share", o.missing_view_share},
+      {"missing_sight_share", o.missing_sight_share},
       {"min_missing_length_m", o.min_missing_length},
       {"search_distance_m", o.search_distance},
       {"search_angle_deg", o.search_angle_deg},

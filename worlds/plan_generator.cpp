@@ -704,6 +704,22 @@ std::vector<std::string> writePlan(const GeneratorSpec& spec, const GeneratorSpe
   return ids;
 }
 
+// Which of the layout's walls carry a door.
+std::vector<bool> wallsWithDoors(const Layout& layout) {
+  std::vector<bool> has_door(layout.walls.size(), false);
+  for (const Door& d : layout.doors) has_door[d.wall] = true;
+  return has_door;
+}
+
+// The walls the as-built changes drawn so far left unbuilt.
+std::set<std::string> missingWalls(const json& as_built) {
+  std::set<std::string> missing;
+  if (as_built.contains("missing_walls")) {
+    for (const auto& id : as_built["missing_walls"]) missing.insert(id.get<std::string>());
+  }
+  return missing;
+}
+
 // As built, walls: inner walls shifted, walls between two offices (no door) missing. Three draws
 // a wall, whatever it is.
 void drawWallChanges(const GeneratorSpec& s, const Layout& layout, std::mt19937_64& built_rng,
@@ -715,8 +731,7 @@ void drawWallChanges(const GeneratorSpec& s, const Layout& layout, std::mt19937_
   for (int a = 0; a < layout.size(); ++a) {
     for (const auto& [b, side] : layout.touching[a]) bounds[side.wall].insert({a, b});
   }
-  std::vector<bool> has_door(walls.size(), false);
-  for (const Door& d : layout.doors) has_door[d.wall] = true;
+  const std::vector<bool> has_door = wallsWithDoors(layout);
   json shifts = json::array(), missing = json::array();
   for (std::size_t w = 0; w < walls.size(); ++w) {
     const bool between_offices = !walls[w].outer && !has_door[w] && !bounds[w].empty() &&
@@ -744,12 +759,8 @@ void drawWallRotations(const GeneratorSpec& s, const Layout& layout, std::mt1993
                        json& as_built) {
   if (s.rotated_walls <= 0.0) return;
   std::uniform_real_distribution<double> unit(0.0, 1.0);
-  std::vector<bool> has_door(layout.walls.size(), false);
-  for (const Door& d : layout.doors) has_door[d.wall] = true;
-  std::set<std::string> missing;
-  if (as_built.contains("missing_walls")) {
-    for (const auto& id : as_built["missing_walls"]) missing.insert(id.get<std::string>());
-  }
+  const std::vector<bool> has_door = wallsWithDoors(layout);
+  const std::set<std::string> missing = missingWalls(as_built);
   const char* abouts[] = {"start", "centre", "end"};
   json turns = json::array();
   for (std::size_t w = 0; w < layout.walls.size(); ++w) {
@@ -784,12 +795,8 @@ void drawShortenedWalls(const GeneratorSpec& s, const Layout& layout, std::mt199
                         json& as_built) {
   if (s.shortened_walls <= 0.0) return;
   std::uniform_real_distribution<double> unit(0.0, 1.0);
-  std::vector<bool> has_door(layout.walls.size(), false);
-  for (const Door& d : layout.doors) has_door[d.wall] = true;
-  std::set<std::string> missing;
-  if (as_built.contains("missing_walls")) {
-    for (const auto& id : as_built["missing_walls"]) missing.insert(id.get<std::string>());
-  }
+  const std::vector<bool> has_door = wallsWithDoors(layout);
+  const std::set<std::string> missing = missingWalls(as_built);
   json shortened = json::array();
   for (std::size_t w = 0; w < layout.walls.size(); ++w) {
     const Wall& wall = layout.walls[w];

@@ -25,11 +25,12 @@ bool segmentsCross(const Eigen::Vector2d& p, const Eigen::Vector2d& q, const Eig
 }  // namespace
 
 FaceViews::FaceViews(const bim::AGraph& plan, const bim::WallNode& wall,
-                     const std::vector<Viewpoint>& viewpoints, const DeviationOptions& options)
+                     const std::vector<Viewpoint>& viewpoints, const DeviationOptions& options,
+                     double built_offset)
     : viewpoints_(viewpoints),
       options_(options),
       min_cos_(std::cos(common::radians(options.max_incidence_deg))),
-      through_(wall.thickness + options.see_through_margin) {
+      through_(wall.thickness + std::abs(built_offset) + options.see_through_margin) {
   for (const auto& s : plan.surfaces) {
     if (s.level != wall.level || s.wall == wall.id) continue;
     for (const auto& [a, b] : s.segments) occluders_.push_back({a, b});
@@ -50,7 +51,8 @@ bool FaceViews::inView(const Eigen::Vector2d& point, const Eigen::Vector2d& norm
     if (k.sight && !k.sight->empty()) {
       // The azimuth from the sensor toward the point, in the base's frame.
       const double azimuth = std::atan2(-ray.y(), -ray.x()) - k.yaw;
-      seen = k.sight->rangeToward(azimuth) > range + through_;
+      const double incidence_cos = normal.dot(ray) / range;
+      seen = k.sight->rangeToward(azimuth) > range + through_ / incidence_cos;
     } else {
       seen = std::none_of(occluders_.begin(), occluders_.end(),
                           [&](const auto& o) { return segmentsCross(p, k.position, o.a, o.b); });

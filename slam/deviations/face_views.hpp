@@ -12,13 +12,19 @@ namespace isg::slam {
 // Whether the sensor saw where a point of a plan wall's face stands (docs/deviations.md, "In
 // view"): at least `min_views` keyframes stand in front of it within `view_range`, at most
 // `max_incidence_deg` off the face's normal, and each saw past it — its farthest return toward
-// the point lies beyond the wall by `see_through_margin` (SightProfile). A keyframe that did not
-// record how far it saw counts when no other plan wall's face lies between it and the point.
-// Either way the wall's own faces do not hide it: what is asked is whether it stands there.
+// the point lies beyond the wall's far face, as built, by `see_through_margin` (SightProfile):
+// along the sight line, (thickness + |built_offset| + margin) / cos(incidence) past the point. A
+// keyframe that did not record how far it saw counts when no other plan wall's face lies between it
+// and the point. Either way the wall's own faces do not hide it: what is asked is whether it stands
+// there.
 class FaceViews {
  public:
+  // `built_offset`: how far the wall stands off its planned axis where it was seen (its measured
+  // offset, the turn's swing included), so that a sight line stopped by a wall built 0.3 m off
+  // does not read as past the planned one.
   FaceViews(const bim::AGraph& plan, const bim::WallNode& wall,
-            const std::vector<Viewpoint>& viewpoints, const DeviationOptions& options);
+            const std::vector<Viewpoint>& viewpoints, const DeviationOptions& options,
+            double built_offset = 0.0);
   // `point` on the face, `normal` its outward normal (unit, in the plane).
   bool inView(const Eigen::Vector2d& point, const Eigen::Vector2d& normal) const;
 
@@ -30,7 +36,7 @@ class FaceViews {
   const std::vector<Viewpoint>& viewpoints_;
   const DeviationOptions& options_;
   double min_cos_ = 0.0;
-  double through_ = 0.0;  // how far past the face a sight line must reach
+  double through_ = 0.0;  // how far past the face, along its normal, a sight line must reach
 };
 
 // The stretches along a wall's axis (metres from `start` along `axis`) of its windows, widened by

@@ -142,6 +142,12 @@ double inViewShare(const bim::AGraph& plan, const bim::WallNode& wall,
   return exposed > 0.0 ? in_view / exposed : 0.0;
 }
 
+// Whether any keyframe recorded how far it saw: "in view" is then "seen past" (FaceViews).
+bool withSight(const std::vector<Viewpoint>& viewpoints) {
+  return std::any_of(viewpoints.begin(), viewpoints.end(),
+                     [](const Viewpoint& v) { return v.sight && !v.sight->empty(); });
+}
+
 // A piece of evidence measured from its ends: its line's offset at the planned centre along the
 // planned left normal, and its direction against the planned one.
 void measurePiece(WallEvidence& e, const PlannedWall& planned) {
@@ -620,8 +626,13 @@ WallProgress progressOf(const bim::AGraph& plan, const WallDeviation& wall,
     }
   }
   if (!evidence.empty()) {
+    // The most the wall stands off its axis: the fitted offset at the centre and a turn's swing
+    // to either end.
+    const double built_offset =
+        std::abs(wall.offset_m.value_or(0.0)) +
+        0.5 * planned.length * std::abs(std::tan(common::radians(wall.angle_deg.value_or(0.0))));
     return measureProgress(plan, plan.walls[planned.index], planned.start, planned.axis,
-                           planned.length, evidence, viewpoints, options);
+                           planned.length, evidence, viewpoints, options, built_offset);
   }
   WallProgress progress = measureProgress(plan, plan.walls[planned.index], planned.start,
                                           planned.axis, planned.length, {}, {}, options);
@@ -664,11 +675,13 @@ void measureLevel(const bim::AGraph& plan, int f, const std::vector<WallInB>& wa
     judge(wall, planned, options);
     if (wall.observed_share < options.judged_share) {
       wall.in_view_share = inViewShare(plan, plan.walls[planned.index], viewpoints, options);
-      wall.status = wall.observed_share < options.missing_seen_share &&
-                            *wall.in_view_share >= options.missing_view_share &&
-                            planned.length >= options.min_missing_length
-                        ? WallStatus::kMissing
-                        : WallStatus::kNotSeen;
+      wall.status =
+          wall.observed_share < options.missing_seen_share &&
+                  *wall.in_view_share >= (withSight(viewpoints) ? options.missing_sight_share
+                                                                : options.missing_view_share) &&
+                  planned.length >= options.min_missing_length
+              ? WallStatus::kMissing
+              : WallStatus::kNotSeen;
     }
     wall.progress = progressOf(plan, wall, planned, viewpoints, options);
     report.walls.push_back(wall);

@@ -44,6 +44,12 @@ struct DeviationOptions {
   double judged_share = 0.2;
   double missing_seen_share = 0.05;
   double missing_view_share = 0.6;
+  // When the keyframes recorded how far they saw (SightProfile), "in view" is "seen past": the
+  // evidence of absence itself, which a wall standing there denies along every sight line it
+  // stops. Near the wall's ends the sight lines past it meet the walls it joins within the margin,
+  // so a missing wall between two offices is seen past over 55–60 % of its faces where geometry
+  // had 60–70 % in view: this share stands for missing_view_share then.
+  double missing_sight_share = 0.4;
   double min_missing_length = 1.0;  // m: a shorter wall is never called missing
   // In view: a point of a face within `view_range` of at least `min_views` keyframes standing in
   // front of it, at most `max_incidence_deg` off its normal, that saw past it: their farthest

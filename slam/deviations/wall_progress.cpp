@@ -75,7 +75,7 @@ WallProgress measureProgress(const bim::AGraph& plan, const bim::WallNode& wall,
                              const Eigen::Vector2d& start, const Eigen::Vector2d& axis,
                              double length, const Intervals& evidence,
                              const std::vector<Viewpoint>& viewpoints,
-                             const DeviationOptions& options) {
+                             const DeviationOptions& options, double built_offset) {
   WallProgress progress;
   // Each face's exposed parts along the axis.
   struct Face {
@@ -113,7 +113,7 @@ WallProgress measureProgress(const bim::AGraph& plan, const bim::WallNode& wall,
   // face of it was in view (seen past); else not seen. Views are asked only where nothing stands,
   // and not at windows (seen through, built or not).
   const double step = options.progress_step;
-  const FaceViews views(plan, wall, viewpoints, options);
+  const FaceViews views(plan, wall, viewpoints, options, built_offset);
   const Intervals windows = joined(windowSpans(plan, wall, start, axis, options.window_margin));
   std::vector<std::pair<double, Sample>> samples;
   for (const auto& [a, b] : progress.exposed) {
