@@ -40,6 +40,8 @@ nlohmann::json deviationReportJson(const slam::DeviationReport& report) {
   nlohmann::json thresholds = {
       {"shift_m", o.shift_m},
       {"angle_deg", o.angle_deg},
+      {"noise_factor", o.noise_factor},
+      {"min_noise_walls", o.min_noise_walls},
       {"min_angle_length_m", o.min_angle_length},
       {"consistent_tolerance_m", o.consistent_tolerance},
       {"contradiction_observation_share", o.contradiction_observation_share},
@@ -87,6 +89,15 @@ nlohmann::json deviationReportJson(const slam::DeviationReport& report) {
         {"planned", {{"start", point(w.planned_start)}, {"end", point(w.planned_end)}}},
         {"evidence", evidence}};
     if (w.in_view_share) wall["in_view_share"] = *w.in_view_share;
+    if (!w.evidence.empty()) {
+      auto optional = [](const std::optional<double>& v) {
+        return v ? nlohmann::json(*v) : nlohmann::json(nullptr);
+      };
+      wall["judged_against"] = {{"shift_m", w.shift_threshold_m},
+                                {"angle_deg", w.angle_threshold_deg},
+                                {"local_offset_noise_m", optional(w.local_offset_noise_m)},
+                                {"local_angle_noise_deg", optional(w.local_angle_noise_deg)}};
+    }
     {
       const slam::WallProgress& p = w.progress;
       nlohmann::json built = nlohmann::json::array();
@@ -122,14 +133,37 @@ nlohmann::json deviationReportJson(const slam::DeviationReport& report) {
                           {"yaw_deg", common::degrees(p.correction.z())},
                           {"walls_used", p.walls_used}});
   }
-  return {{"format", "isg.deviations"},
-          {"version", 1},
-          {"frame", "B"},
-          {"levels", report.levels},
-          {"thresholds", thresholds},
-          {"placement_correction", placements},
-          {"walls", walls},
-          {"extra_walls", extra}};
+  nlohmann::json out = {{"format", "isg.deviations"},
+                        {"version", 1},
+                        {"frame", "B"},
+                        {"levels", report.levels},
+                        {"thresholds", thresholds},
+                        {"placement_correction", placements},
+                        {"walls", walls},
+                        {"extra_walls", extra}};
+  if (!report.against_plan.empty()) {
+    nlohmann::json levels = nlohmann::json::array();
+    for (const auto& level : report.against_plan) {
+      nlohmann::json stretches = nlohmann::json::array();
+      for (const auto& s : level.stretches) {
+        stretches.push_back({{"surface", s.surface},
+                             {"start", point(s.start)},
+                             {"end", point(s.end)},
+                             {"points", s.points},
+                             {"mean_m", s.mean_m},
+                             {"rms_m", s.rms_m}});
+      }
+      levels.push_back({{"level", level.level},
+                        {"points", level.points},
+                        {"near_share", level.near_share},
+                        {"cutoff_m", level.cutoff_m},
+                        {"median_m", level.median_m},
+                        {"p95_m", level.p95_m},
+                        {"stretches", stretches}});
+    }
+    out["map_against_plan"] = levels;
+  }
+  return out;
 }
 
 namespace {
@@ -165,8 +199,9 @@ std::vector<DeviationPanel> deviationPanels(const slam::DeviationReport& report)
 std::string deviationLegend(const slam::DeviationOptions& o) {
   std::string svg = format(
       "<text x=\"10\" y=\"18\" font-size=\"13\">As built against the plan (frame B): shifted "
-      "at |offset| &#8805; %.2f m, rotated at |angle| &#8805; %.1f&#176;</text>\n",
-      o.shift_m, o.angle_deg);
+      "at |offset| &#8805; %.2f m, rotated at |angle| &#8805; %.1f&#176; (or %.0f&#215; the "
+      "map's own error around the wall, where larger)</text>\n",
+      o.shift_m, o.angle_deg, o.noise_factor);
   const std::pair<slam::WallStatus, const char*> legend[] = {
       {slam::WallStatus::kAsPlanned, "as planned"},
       {slam::WallStatus::kShifted, "shifted"},
@@ -253,15 +288,82 @@ std::string deviationPanel(const slam::DeviationReport& report, const DeviationP
   return svg;
 }
 
+// The colours of slam::offClass, from within the localizer's accuracy to a wall built off.
+constexpr const char* kOffColours[4] = {"#1a9850", "#d9b800", "#f46d43", "#c01818"};
+
+// One level's map against the plan, its top at `top`: the plan's walls in grey, each face's
+// stretches coloured by how far the map's points lie off it, the five farthest labelled.
+std::string againstPlanPanel(const slam::DeviationReport& report,
+                             const slam::LevelAgainstPlan& level, const DeviationPanel& panel,
+                             double top) {
+  auto X = [&](const Eigen::Vector2d& p) {
+    return kSvgMargin + (p.x() - panel.box.min().x()) * kSvgScale;
+  };
+  auto Y = [&](const Eigen::Vector2d& p) {
+    return top + kSvgTitle + kSvgMargin + (panel.box.max().y() - p.y()) * kSvgScale;
+  };
+  std::string svg = format(
+      "<text x=\"10\" y=\"%.0f\" font-size=\"12\">Level %s, the map against the plan: "
+      "median %.3f m, 95 %% within %.3f m, %.0f %% of the map's wall points within %.2f m of "
+      "a face</text>\n",
+      top + 16, common::xmlEscape(level.level).c_str(), level.median_m, level.p95_m,
+      100.0 * level.near_share, level.cutoff_m);
+  double x = 10.0;
+  const char* names[4] = {"within 2 cm", "2-4 cm", "4-8 cm", "8 cm and more"};
+  for (int c = 0; c < 4; ++c) {
+    svg += format(
+        "<line x1=\"%.0f\" y1=\"%.0f\" x2=\"%.0f\" y2=\"%.0f\" stroke=\"%s\" "
+        "stroke-width=\"4\"/><text x=\"%.0f\" y=\"%.0f\">%s</text>\n",
+        x, top + 30, x + 20, top + 30, kOffColours[c], x + 25, top + 34, names[c]);
+    x += 110.0;
+  }
+  for (const auto& w : report.walls) {
+    if (w.level != panel.level) continue;
+    svg += format(
+        "<line x1=\"%.1f\" y1=\"%.1f\" x2=\"%.1f\" y2=\"%.1f\" stroke=\"#d8d8d8\" "
+        "stroke-width=\"%.1f\"/>\n",
+        X(w.planned_start), Y(w.planned_start), X(w.planned_end), Y(w.planned_end),
+        std::max(2.0, w.thickness * kSvgScale));
+  }
+  for (const auto& s : level.stretches) {
+    svg += format(
+        "<line x1=\"%.1f\" y1=\"%.1f\" x2=\"%.1f\" y2=\"%.1f\" stroke=\"%s\" "
+        "stroke-width=\"3\"/>\n",
+        X(s.start), Y(s.start), X(s.end), Y(s.end), kOffColours[slam::offClass(s.mean_m)]);
+  }
+  std::vector<const slam::FaceStretch*> farthest;
+  for (const auto& s : level.stretches) {
+    if (slam::offClass(s.mean_m) >= 2) farthest.push_back(&s);
+  }
+  std::sort(farthest.begin(), farthest.end(),
+            [](const auto* a, const auto* b) { return std::abs(a->mean_m) > std::abs(b->mean_m); });
+  if (farthest.size() > 5) farthest.resize(5);
+  for (const auto* s : farthest) {
+    const Eigen::Vector2d middle = 0.5 * (s->start + s->end);
+    svg += format("<text x=\"%.1f\" y=\"%.1f\" fill=\"%s\">%s %+.2f m</text>\n", X(middle) + 4,
+                  Y(middle) - 4, kOffColours[slam::offClass(s->mean_m)],
+                  common::xmlEscape(s->surface).c_str(), s->mean_m);
+  }
+  return svg;
+}
+
 }  // namespace
 
 std::string deviationSvg(const slam::DeviationReport& report) {
   const std::vector<DeviationPanel> panels = deviationPanels(report);
   double width = 400.0, height = kSvgLegend;
+  auto againstPlanOf = [&](const std::string& level) -> const slam::LevelAgainstPlan* {
+    for (const auto& on : report.against_plan) {
+      if (on.level == level) return &on;
+    }
+    return nullptr;
+  };
   for (const auto& p : panels) {
     width = std::max(width, p.box.sizes().x() * kSvgScale + 2 * kSvgMargin);
-    height += p.box.sizes().y() * kSvgScale + 2 * kSvgMargin + kSvgTitle;
+    const double panel_height = p.box.sizes().y() * kSvgScale + 2 * kSvgMargin + kSvgTitle;
+    height += againstPlanOf(p.level) ? 2 * panel_height : panel_height;
   }
+  if (!report.against_plan.empty()) width = std::max(width, 820.0);
   std::string svg = format(
       "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"%.0f\" height=\"%.0f\" "
       "viewBox=\"0 0 %.0f %.0f\" font-family=\"sans-serif\" font-size=\"11\">\n"
@@ -270,8 +372,13 @@ std::string deviationSvg(const slam::DeviationReport& report) {
   svg += deviationLegend(report.options);
   double top = kSvgLegend;
   for (const auto& panel : panels) {
+    const double panel_height = panel.box.sizes().y() * kSvgScale + 2 * kSvgMargin + kSvgTitle;
     svg += deviationPanel(report, panel, top);
-    top += panel.box.sizes().y() * kSvgScale + 2 * kSvgMargin + kSvgTitle;
+    top += panel_height;
+    if (const slam::LevelAgainstPlan* against = againstPlanOf(panel.level)) {
+      svg += againstPlanPanel(report, *against, panel, top);
+      top += panel_height;
+    }
   }
   return svg + "</svg>\n";
 }

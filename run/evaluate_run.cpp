@@ -12,6 +12,7 @@
 #include "eval/coverage.hpp"
 #include "eval/wrong_localization.hpp"
 #include "run/level_metrics.hpp"
+#include "run/map_against_plan.hpp"
 #include "run/map_plan_error.hpp"
 
 namespace isg::run {
@@ -127,6 +128,7 @@ void deviations(const RunRecord& run, RunEvaluation& evaluation) {
   }
   evaluation.deviations =
       slam::measureDeviations(*run.setup.agraph, *run.map, *run.final_B_T_M, {}, keyframe_B_T_M);
+  evaluation.deviations->against_plan = mapAgainstPlan(run, evaluation.deviations->levels);
   evaluation.metrics.deviations =
       deviationMetrics(*evaluation.deviations, run.setup.plan, run.setup.as_built);
 }

@@ -5,76 +5,12 @@
 #include <functional>
 #include <utility>
 
-#include "bim/polygon.hpp"
 #include "common/pose_interpolation.hpp"
+#include "run/plan_segment_grid.hpp"
 
 namespace isg::run {
 
 namespace {
-
-// The plan's exposed wall segments, bucketed on a grid of 1 m cells: a segment is listed in every
-// cell within the cutoff of its box, so that one cell's list holds every segment near its points.
-class SegmentGrid {
- public:
-  struct Segment {
-    Eigen::Vector2d a, b;
-    double z_lo, z_hi;  // the band a point must lie in
-  };
-
-  SegmentGrid(const bim::AGraph& plan, double cutoff, double margin) {
-    const Eigen::AlignedBox2d bounds = plan.surfaceBounds();
-    if (bounds.isEmpty()) return;
-    origin_ = bounds.min() - Eigen::Vector2d::Constant(cutoff + kCell);
-    columns_ = int(std::ceil((bounds.sizes().x() + 2 * (cutoff + kCell)) / kCell)) + 1;
-    rows_ = int(std::ceil((bounds.sizes().y() + 2 * (cutoff + kCell)) / kCell)) + 1;
-    cells_.resize(std::size_t(columns_) * rows_);
-    for (const auto& surface : plan.surfaces) {
-      const double lo = surface.z_min + margin, hi = surface.z_max - margin;
-      if (!(lo < hi)) continue;
-      bands_.push_back({lo, hi});
-      for (const auto& [a, b] : surface.segments) {
-        const int index = int(segments_.size());
-        segments_.push_back({a, b, lo, hi});
-        const Eigen::Vector2d box_lo = a.cwiseMin(b) - Eigen::Vector2d::Constant(cutoff) - origin_;
-        const Eigen::Vector2d box_hi = a.cwiseMax(b) + Eigen::Vector2d::Constant(cutoff) - origin_;
-        for (int r = int(box_lo.y() / kCell); r <= int(box_hi.y() / kCell); ++r) {
-          for (int c = int(box_lo.x() / kCell); c <= int(box_hi.x() / kCell); ++c) {
-            cells_[std::size_t(r) * columns_ + c].push_back(index);
-          }
-        }
-      }
-    }
-  }
-
-  // Whether `z` lies in some surface's band.
-  bool inBand(double z) const {
-    return std::any_of(bands_.begin(), bands_.end(),
-                       [&](const auto& band) { return z >= band[0] && z <= band[1]; });
-  }
-
-  // The distance in the plane to the nearest segment whose band holds `p`'s height, if any lies
-  // in `p`'s cell (every segment within the cutoff does).
-  std::optional<double> nearest(const Eigen::Vector3d& p) const {
-    const Eigen::Vector2d q = (p.head<2>() - origin_) / kCell;
-    if (!(q.x() >= 0 && q.y() >= 0 && q.x() < columns_ && q.y() < rows_)) return std::nullopt;
-    std::optional<double> best;
-    for (int index : cells_[std::size_t(q.y()) * columns_ + std::size_t(q.x())]) {
-      const Segment& s = segments_[std::size_t(index)];
-      if (p.z() < s.z_lo || p.z() > s.z_hi) continue;
-      const double d = bim::distanceToSegment(p.head<2>(), s.a, s.b);
-      if (!best || d < *best) best = d;
-    }
-    return best;
-  }
-
- private:
-  static constexpr double kCell = 1.0;
-  Eigen::Vector2d origin_ = Eigen::Vector2d::Zero();
-  int columns_ = 0, rows_ = 0;
-  std::vector<Segment> segments_;
-  std::vector<std::array<double, 2>> bands_;
-  std::vector<std::vector<int>> cells_;
-};
 
 // The run's final M_T_R at any time: from the keyframe at or before it (the first for earlier
 // times), carried by odometry; without keyframes or without an odometry stream (the method made
@@ -130,7 +66,7 @@ void forEachPlacedMapPoint(const RunRecord& run,
 void forEachWallBandMapPoint(const RunRecord& run, const MapPlanErrorOptions& options,
                              const std::function<void(const Eigen::Vector3d&)>& visit) {
   if (!run.setup.agraph) return;
-  const SegmentGrid grid(*run.setup.agraph, options.cutoff, options.margin);
+  const PlanSegmentGrid grid(*run.setup.agraph, options.cutoff, options.margin);
   forEachPlacedMapPoint(run, [&](const Eigen::Vector3d& p) {
     if (grid.inBand(p.z())) visit(p);
   });
@@ -138,7 +74,7 @@ void forEachWallBandMapPoint(const RunRecord& run, const MapPlanErrorOptions& op
 
 std::optional<MapPlanError> mapPlanError(const RunRecord& run, const MapPlanErrorOptions& options) {
   if (!run.setup.agraph) return std::nullopt;
-  const SegmentGrid grid(*run.setup.agraph, options.cutoff, options.margin);
+  const PlanSegmentGrid grid(*run.setup.agraph, options.cutoff, options.margin);
   MapPlanError out;
   // Two passes, the first counting: the distances are the evaluation's largest array (1.8 M at
   // two hours), and a vector grown by doubling would hold up to three times their size while it
@@ -146,16 +82,16 @@ std::optional<MapPlanError> mapPlanError(const RunRecord& run, const MapPlanErro
   std::size_t near = 0;
   forEachPlacedMapPoint(run, [&](const Eigen::Vector3d& in_B) {
     if (!grid.inBand(in_B.z())) return;
-    const auto d = grid.nearest(in_B);
-    if (d && *d <= options.cutoff) ++near;
+    const auto nearest = grid.nearest(in_B);
+    if (nearest && nearest->distance <= options.cutoff) ++near;
   });
   std::vector<double> distances;
   distances.reserve(near);
   forEachPlacedMapPoint(run, [&](const Eigen::Vector3d& in_B) {
     if (!grid.inBand(in_B.z())) return;
     ++out.points;
-    const auto d = grid.nearest(in_B);
-    if (d && *d <= options.cutoff) distances.push_back(*d);
+    const auto nearest = grid.nearest(in_B);
+    if (nearest && nearest->distance <= options.cutoff) distances.push_back(nearest->distance);
   });
   if (out.points == 0) return std::nullopt;
   out.near_share = double(distances.size()) / double(out.points);

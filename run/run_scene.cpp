@@ -6,6 +6,7 @@
 #include <string>
 
 #include "formats/foxglove_json.hpp"
+#include "slam/deviations/map_against_plan.hpp"
 
 namespace isg::run {
 
@@ -314,6 +315,41 @@ std::vector<Json> candidateEntities(const Json& sgraph, const Json& agraph,
   return {entity};
 }
 
+namespace {
+
+// Where the map lies off the plan (deviations.json's map_against_plan): each face's stretches at
+// a metre above its floor, one line list per class of slam::offClass, the farther ones labelled
+// with their mean offset.
+Json againstPlanEntity(const Json& levels, const std::map<std::string, double>& by_level,
+                       formats::RosTime stamp) {
+  Json entity = fx::sceneEntity(stamp, "plan", "deviations/map-against-plan");
+  constexpr fx::Rgba kClass[4] = {{0.10, 0.60, 0.31, 1.0},
+                                  {0.85, 0.72, 0.0, 1.0},
+                                  {0.96, 0.43, 0.26, 1.0},
+                                  {0.75, 0.09, 0.09, 1.0}};
+  std::vector<Vector3d> lines[4];
+  for (const Json& level : levels) {
+    const double z = elevationOf(by_level, level) + 1.0;
+    for (const Json& stretch : level.at("stretches")) {
+      const double mean = stretch.at("mean_m").get<double>();
+      const int c = slam::offClass(mean);
+      const Vector3d a = at(stretch.at("start"), z), b = at(stretch.at("end"), z);
+      lines[c].push_back(a);
+      lines[c].push_back(b);
+      if (c >= 2) {
+        entity["texts"].push_back(fx::text((a + b) / 2.0 + Vector3d(0, 0, 0.2),
+                                           fixed(mean, 2) + " m", kFontSize, kClass[c]));
+      }
+    }
+  }
+  for (int c = 0; c < 4; ++c) {
+    if (!lines[c].empty()) entity["lines"].push_back(fx::lineList(lines[c], 0.06, kClass[c]));
+  }
+  return entity;
+}
+
+}  // namespace
+
 std::vector<Json> deviationEntities(const Json& deviations, const Json& agraph,
                                     formats::RosTime stamp) {
   const auto by_level = elevations(agraph);
@@ -347,7 +383,11 @@ std::vector<Json> deviationEntities(const Json& deviations, const Json& agraph,
     entity["lines"].push_back(
         fx::lineList({at(extra.at("start"), z), at(extra.at("end"), z)}, 0.12, kExtraWall));
   }
-  return {entity};
+  std::vector<Json> entities = {entity};
+  if (deviations.contains("map_against_plan")) {
+    entities.push_back(againstPlanEntity(deviations.at("map_against_plan"), by_level, stamp));
+  }
+  return entities;
 }
 
 }  // namespace isg::run

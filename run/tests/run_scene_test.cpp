@@ -157,5 +157,25 @@ TEST(RunScene, DeviationsAreColouredAndTheDeviatingOnesLabelled) {
   EXPECT_EQ(point(walls["lines"][3]["points"][1]), Eigen::Vector3d(1, 3, 3.05));
 }
 
+TEST(RunScene, TheMapAgainstThePlanIsDrawnByHowFarOffEachStretchLies) {
+  const Json deviations = Json::parse(R"({
+    "walls": [], "extra_walls": [],
+    "map_against_plan": [{"level": "L1", "stretches": [
+      {"start": [0, 0], "end": [1, 0], "mean_m": 0.004},
+      {"start": [1, 0], "end": [2, 0], "mean_m": -0.031},
+      {"start": [2, 0], "end": [3, 0], "mean_m": 0.12}]}]
+  })");
+  const auto drawn = deviationEntities(deviations, handAGraph(), formats::RosTime{});
+  ASSERT_EQ(drawn.size(), 2u);
+  const Json& against = drawn[1];
+  EXPECT_EQ(against["id"], "deviations/map-against-plan");
+  // One line list per class met (within 2 cm, 2–4 cm, beyond 8 cm), a metre above L1's floor.
+  ASSERT_EQ(against["lines"].size(), 3u);
+  EXPECT_EQ(point(against["lines"][0]["points"][1]), Eigen::Vector3d(1, 0, 4.0));
+  EXPECT_EQ(point(against["lines"][2]["points"][0]), Eigen::Vector3d(2, 0, 4.0));
+  ASSERT_EQ(against["texts"].size(), 1u);  // only the far one is labelled
+  EXPECT_EQ(against["texts"][0]["text"], "0.12 m");
+}
+
 }  // namespace
 }  // namespace isg::run

@@ -48,7 +48,7 @@ bool FaceViews::inView(const Eigen::Vector2d& point, const Eigen::Vector2d& norm
       continue;
     }
     bool seen = false;
-    if (k.sight && !k.sight->empty()) {
+    if (k.hasSight()) {
       // The azimuth from the sensor toward the point, in the base's frame.
       const double azimuth = std::atan2(-ray.y(), -ray.x()) - k.yaw;
       const double incidence_cos = normal.dot(ray) / range;

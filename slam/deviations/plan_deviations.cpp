@@ -145,7 +145,7 @@ double inViewShare(const bim::AGraph& plan, const bim::WallNode& wall,
 // Whether any keyframe recorded how far it saw: "in view" is then "seen past" (FaceViews).
 bool withSight(const std::vector<Viewpoint>& viewpoints) {
   return std::any_of(viewpoints.begin(), viewpoints.end(),
-                     [](const Viewpoint& v) { return v.sight && !v.sight->empty(); });
+                     [](const Viewpoint& v) { return v.hasSight(); });
 }
 
 // A piece of evidence measured from its ends: its line's offset at the planned centre along the
@@ -322,9 +322,11 @@ void judge(WallDeviation& wall, const PlannedWall& planned, const DeviationOptio
       return std::abs(value_of(*e)) >= threshold && (value_of(*e) > 0) == (first > 0);
     });
   };
+  const double shift_threshold = std::max(options.shift_m, wall.shift_threshold_m);
+  const double angle_threshold = std::max(options.angle_deg, wall.angle_threshold_deg);
   bool turned =
-      std::abs(fit.angle_deg) >= options.angle_deg && fit.longest >= options.min_angle_length;
-  bool shifted = std::abs(fit.offset_m) >= options.shift_m;
+      std::abs(fit.angle_deg) >= angle_threshold && fit.longest >= options.min_angle_length;
+  bool shifted = std::abs(fit.offset_m) >= shift_threshold;
   if (contradicted) {
     double length = 0.0, offset = 0.0, angle = 0.0;
     for (const WallEvidence* e : long_pieces) {
@@ -334,8 +336,8 @@ void judge(WallDeviation& wall, const PlannedWall& planned, const DeviationOptio
     }
     wall.offset_m = offset / length;
     wall.angle_deg = angle / length;
-    turned = turned && beyond([](const WallEvidence& e) { return e.angle_deg; }, options.angle_deg);
-    shifted = shifted && beyond([](const WallEvidence& e) { return e.offset_m; }, options.shift_m);
+    turned = turned && beyond([](const WallEvidence& e) { return e.angle_deg; }, angle_threshold);
+    shifted = shifted && beyond([](const WallEvidence& e) { return e.offset_m; }, shift_threshold);
   }
   if (wall.observed_share < options.judged_share) return;
   wall.status = turned    ? WallStatus::kRotated
@@ -491,31 +493,6 @@ std::map<int, std::vector<Viewpoint>> viewpointsOnLevels(const bim::AGraph& plan
   return viewpoints_on;
 }
 
-// The map's walls in B, long enough to judge: placed by the final B_T_M, unless the robot's
-// poses of the time put the wall farther from it than their own noise: there the map has bent
-// since, and those poses place it.
-std::vector<WallInB> wallsInB(const MapDiagnostics& map, const Eigen::Isometry3d& B_T_M,
-                              const DeviationOptions& options,
-                              const std::vector<std::optional<Eigen::Isometry3d>>& keyframe_B_T_M) {
-  std::vector<WallInB> walls_in_B;
-  for (const auto& w : map.walls) {
-    Eigen::Isometry3d placement = B_T_M;
-    if (const auto of_its_keyframes = placementOf(w, B_T_M, keyframe_B_T_M)) {
-      const Eigen::Vector3d middle(0.5 * (w.start.x() + w.end.x()), 0.5 * (w.start.y() + w.end.y()),
-                                   0.0);
-      const double moved = ((*of_its_keyframes * middle) - (B_T_M * middle)).head<2>().norm();
-      const double turned =
-          Eigen::AngleAxisd(of_its_keyframes->linear() * B_T_M.linear().transpose()).angle();
-      if (moved > options.bend_distance || turned > common::radians(options.bend_angle_deg)) {
-        placement = *of_its_keyframes;
-      }
-    }
-    WallInB in_B = toB(w, placement);
-    if (in_B.length() >= options.min_wall_length) walls_in_B.push_back(in_B);
-  }
-  return walls_in_B;
-}
-
 // The plan surface of `level` a map wall is evidence for: turned within the search angle, within
 // the search distance, over a third of its length along the surface's extent; the nearest on
 // average. -1 for none.
@@ -547,6 +524,66 @@ int surfaceOf(const bim::AGraph& plan, const std::string& level, const WallInB& 
     if (best < 0 || mean < best_distance) best = s, best_distance = mean;
   }
   return best;
+}
+
+// How well a placement lays the map's walls around `wall` (their middles within local_radius of
+// its own, in M; not itself) on the plan: the length of those whose ends and middle all lie
+// within consistent_tolerance of the faces they would be evidence for. A count of agreement, not
+// a mean distance: on a site where half the walls are built off, those are off under either
+// placement, and only the walls as planned can tell the placements apart.
+double agreementAround(const bim::AGraph& plan, const MapDiagnostics& map, const MapWall& wall,
+                       const Eigen::Isometry3d& placement, const DeviationOptions& options) {
+  const Eigen::Vector2d middle = 0.5 * (wall.start + wall.end);
+  double agreeing = 0.0;
+  for (const MapWall& other : map.walls) {
+    if (other.id == wall.id ||
+        (0.5 * (other.start + other.end) - middle).norm() > options.local_radius) {
+      continue;
+    }
+    const WallInB in_B = toB(other, placement);
+    if (in_B.length() < options.min_wall_length) continue;
+    const int level = levelAt(plan, 0.5 * (in_B.z_min + in_B.z_max));
+    if (level < 0) continue;
+    const int s = surfaceOf(plan, plan.floors[level].id, in_B, options);
+    if (s < 0) continue;
+    const bim::Plane& face = plan.surfaces[s].plane;
+    const Eigen::Vector2d n = face.normal.head<2>().normalized();
+    const bool agrees =
+        std::max({std::abs(n.dot(in_B.start) + face.d), std::abs(n.dot(in_B.middle()) + face.d),
+                  std::abs(n.dot(in_B.end) + face.d)}) <= options.consistent_tolerance;
+    if (agrees) agreeing += in_B.length();
+  }
+  return agreeing;
+}
+
+// The map's walls in B, long enough to judge: placed by the final B_T_M, unless the robot's
+// poses of the time put the wall farther from it than their own noise: there either the map has
+// bent since (a long run: the final B_T_M puts walls seen long ago off) or the robot was
+// localized worse then than the final map is (an answer held off for a while): of the two
+// placements, the one that lays more of the map's walls around it on the plan (agreementAround)
+// places it; the poses of the time when neither does better.
+std::vector<WallInB> wallsInB(const bim::AGraph& plan, const MapDiagnostics& map,
+                              const Eigen::Isometry3d& B_T_M, const DeviationOptions& options,
+                              const std::vector<std::optional<Eigen::Isometry3d>>& keyframe_B_T_M) {
+  std::vector<WallInB> walls_in_B;
+  for (const auto& w : map.walls) {
+    Eigen::Isometry3d placement = B_T_M;
+    if (const auto of_its_keyframes = placementOf(w, B_T_M, keyframe_B_T_M)) {
+      const Eigen::Vector3d middle(0.5 * (w.start.x() + w.end.x()), 0.5 * (w.start.y() + w.end.y()),
+                                   0.0);
+      const double moved = ((*of_its_keyframes * middle) - (B_T_M * middle)).head<2>().norm();
+      const double turned =
+          Eigen::AngleAxisd(of_its_keyframes->linear() * B_T_M.linear().transpose()).angle();
+      if (moved > options.bend_distance || turned > common::radians(options.bend_angle_deg)) {
+        const double by_final = agreementAround(plan, map, w, B_T_M, options);
+        const double by_keyframes = agreementAround(plan, map, w, *of_its_keyframes, options);
+        if (by_keyframes >= by_final) placement = *of_its_keyframes;
+      }
+    }
+    WallInB in_B = toB(w, placement);
+    if (in_B.length() >= options.min_wall_length) walls_in_B.push_back(in_B);
+  }
+  return walls_in_B;
 }
 
 // Each planned wall of `level` with the map's evidence for its two faces, measured piece by
@@ -589,11 +626,52 @@ LevelWalls levelWalls(const bim::AGraph& plan, const std::string& level,
   return level_walls;
 }
 
+// The map's own error around a wall (DeviationOptions::noise_factor): what the walls around it
+// found as planned keep of offset and angle once the local placement is applied.
+void setLocalThresholds(WallDeviation& wall, const LevelWalls& around, const Placement& local,
+                        const DeviationOptions& options) {
+  double offset_weight = 0.0, offset_sum = 0.0, angle_weight = 0.0, angle_sum = 0.0;
+  int offset_walls = 0, angle_walls = 0;
+  for (const auto& [neighbour, planned] : around) {
+    if (neighbour.evidence.empty() || neighbour.observed_share < options.judged_share) continue;
+    WallDeviation moved = neighbour;
+    for (auto& e : moved.evidence) local.apply(e, planned);
+    const WallFit fit = fitWall(moved, planned, options.consistent_tolerance);
+    if (std::abs(fit.offset_m) >= options.shift_m || std::abs(fit.angle_deg) >= options.angle_deg) {
+      continue;  // deviating: not the map's error
+    }
+    offset_weight += fit.length;
+    offset_sum += fit.length * fit.offset_m * fit.offset_m;
+    ++offset_walls;
+    if (fit.longest >= options.min_angle_length) {
+      angle_weight += fit.length;
+      angle_sum += fit.length * fit.angle_deg * fit.angle_deg;
+      ++angle_walls;
+    }
+  }
+  // The placement fitted three numbers on these walls: their residuals understate the error.
+  auto noise = [&](double sum, double weight, int n) -> std::optional<double> {
+    if (n < std::max(options.min_noise_walls, 4) || weight <= 0.0) return std::nullopt;
+    return std::sqrt(sum / weight * double(n) / double(n - 3));
+  };
+  wall.local_offset_noise_m = noise(offset_sum, offset_weight, offset_walls);
+  wall.local_angle_noise_deg = noise(angle_sum, angle_weight, angle_walls);
+  wall.shift_threshold_m =
+      std::max(options.shift_m, options.noise_factor * wall.local_offset_noise_m.value_or(0.0));
+  wall.angle_threshold_deg =
+      std::max(options.angle_deg, options.noise_factor * wall.local_angle_noise_deg.value_or(0.0));
+}
+
 // Each wall against its neighbours alone (DeviationOptions::local_radius): a long map bends a
 // little, and a wall is measured against the walls around it, not against the far end of the
-// building. Its own evidence stays out of its placement.
+// building. Its own evidence stays out of its placement. Its thresholds follow the error those
+// neighbours leave (setLocalThresholds).
 LevelWalls placedLocally(const LevelWalls& level_walls, const DeviationOptions& options) {
   LevelWalls judged = level_walls;
+  for (auto& [wall, planned] : judged) {
+    wall.shift_threshold_m = options.shift_m;
+    wall.angle_threshold_deg = options.angle_deg;
+  }
   for (std::size_t i = 0; i < level_walls.size(); ++i) {
     if (level_walls[i].first.evidence.empty()) continue;
     LevelWalls around;
@@ -605,6 +683,7 @@ LevelWalls placedLocally(const LevelWalls& level_walls, const DeviationOptions& 
     }
     const Placement local = refinePlacement(around, options);
     for (auto& e : judged[i].first.evidence) local.apply(e, judged[i].second);
+    setLocalThresholds(judged[i].first, around, local, options);
   }
   return judged;
 }
@@ -705,7 +784,7 @@ DeviationReport measureDeviations(
   DeviationReport report;
   report.options = options;
   std::map<int, std::vector<Viewpoint>> viewpoints_on = viewpointsOnLevels(plan, map, B_T_M);
-  const std::vector<WallInB> walls_in_B = wallsInB(map, B_T_M, options, keyframe_B_T_M);
+  const std::vector<WallInB> walls_in_B = wallsInB(plan, map, B_T_M, options, keyframe_B_T_M);
   for (int f = 0; f < int(plan.floors.size()); ++f) {
     if (!viewpoints_on.count(f)) continue;
     measureLevel(plan, f, walls_in_B, viewpoints_on[f], options, report);

@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "bim/agraph.hpp"
+#include "slam/deviations/map_against_plan.hpp"
 #include "slam/deviations/wall_progress.hpp"
 #include "slam/map_diagnostics.hpp"
 
@@ -26,6 +27,14 @@ struct DeviationOptions {
   // the plan to 1–3 cm (docs/deviations.md, "Thresholds").
   double shift_m = 0.06;
   double angle_deg = 1.5;
+  // Where the map is worse, so is the evidence: a wall is judged against the larger of those and
+  // `noise_factor` times the map's own error around it — the length-weighted RMS of the offsets
+  // (and, over walls at least min_angle_length long, the angles) the walls found as planned
+  // within local_radius keep once the local placement is applied, scaled by √(n/(n−3)) for the
+  // three numbers that placement fitted on their n walls (none with fewer than `min_noise_walls`).
+  // Three times a normal error is passed by chance once in 370 walls.
+  double noise_factor = 3.0;
+  int min_noise_walls = 5;
   // A wall's evidence is consistent when both ends of a piece lie within this of the line its
   // pieces fit (the longest first); the others (a plane fitted across a corner, a door leaf)
   // are kept as evidence and not believed.
@@ -119,7 +128,11 @@ struct WallDeviation {
   // along; beyond when it lies off the wall).
   std::optional<double> pivot_along_m;
   std::string turned_about;
-  double observed_share = 0.0;          // of the planned length, covered by the evidence
+  double observed_share = 0.0;  // of the planned length, covered by the evidence
+  // What it was judged against (DeviationOptions::noise_factor), and the map's error around it
+  // those follow (none where too few walls around were found as planned to tell).
+  double shift_threshold_m = 0.0, angle_threshold_deg = 0.0;
+  std::optional<double> local_offset_noise_m, local_angle_noise_deg;
   std::optional<double> in_view_share;  // measured only for walls seen too little to judge
   Eigen::Vector2d planned_start = Eigen::Vector2d::Zero(), planned_end = Eigen::Vector2d::Zero();
   double thickness = 0.0;
@@ -151,6 +164,9 @@ struct DeviationReport {
   std::vector<PlacementCorrection> placements;  // one per level walked
   std::vector<WallDeviation> walls;
   std::vector<ExtraWall> extra_walls;
+  // Where the map's points lie off the plan, per level walked (none when the points were not
+  // measured: measureDeviations sees only the map's walls).
+  std::vector<LevelAgainstPlan> against_plan;
   int count(WallStatus status) const;
 };
 
@@ -168,10 +184,12 @@ std::string pivotName(double along_m, double length, double name_distance);
 // `keyframe_B_T_M`, when given (one per map keyframe, none where the robot was not localized):
 // where the map lay in the plan as each keyframe was taken, i.e. the localizer's pose in B then
 // composed with the keyframe's final pose in M. A long map bends, and the final B_T_M may put a
-// wall seen long ago 10–30 cm off where the robot, localized then, had it right: a wall whose
-// keyframes (up to the last 20 that saw it, their planar mean) place it more than bend_distance
-// or bend_angle_deg from where B_T_M does is placed by them. Otherwise, and without them, B_T_M
-// places it (it is the less noisy of the two where the map has not bent).
+// wall seen long ago 10–30 cm off where the robot, localized then, had it right; or the robot
+// was localized worse then than the final map is. A wall whose keyframes (up to the last 20 that
+// saw it, their planar mean) place it more than bend_distance or bend_angle_deg from where B_T_M
+// does is placed by whichever of the two lays the map's walls around it closer to the plan (the
+// keyframes' when that cannot be told). Otherwise, and without them, B_T_M places it (it is the
+// less noisy of the two where the map has not bent).
 DeviationReport measureDeviations(
     const bim::AGraph& plan, const MapDiagnostics& map, const Eigen::Isometry3d& B_T_M,
     const DeviationOptions& options = {},

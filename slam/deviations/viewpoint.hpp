@@ -12,6 +12,7 @@ struct Viewpoint {
   Eigen::Vector2d position = Eigen::Vector2d::Zero();  // the sensor's, in B
   double yaw = 0.0;                                    // the base's heading in B (rad)
   const SightProfile* sight = nullptr;                 // null or empty: not recorded
+  bool hasSight() const { return sight != nullptr && !sight->empty(); }
 };
 
 }  // namespace isg::slam
