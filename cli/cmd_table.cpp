@@ -36,7 +36,10 @@ TableCommand::TableCommand(CLI::App& parent) {
       "part), built-length-error [m], missing-recall, missing-precision, extra-recall, "
       "extra-precision (docs/deviations.md; simulated runs, whose scenario knows the truth), "
       "--measure floor-plan-score the Hilti × Trimble 2026 floor-plan localization score (0 … "
-      "100, docs/evaluation.md). "
+      "100, docs/evaluation.md), --measure map-to-plan-median the median distance of the map's "
+      "points to the plan's wall faces and --measure map-to-plan-off-length the metres of faces "
+      "along which the map lies 4 cm off or more (any method whose map was placed in the plan, "
+      "with or without ground truth; docs/deviations.md). "
       "With --baseline, compares each cell of the baseline table (CSV, as --format csv writes "
       "it) with the runs and exits with code 4, naming every cell that is worse by more than "
       "--tolerance (in the measure's unit; for the recalls, precisions and floor-plan-score, "
@@ -51,7 +54,8 @@ TableCommand::TableCommand(CLI::App& parent) {
       "Runs in a plan of several levels add a row per level under their world's (\"WORLD / "
       "LEVEL\", docs/evaluation.md): with --measure ape the APE in B taken while on that level, "
       "with --measure time-to-localize the seconds from first arriving there to the first pose in "
-      "B there (0 when it arrived localized).\n\n"
+      "B there (0 when it arrived localized), with the map-to-plan measures the map's points on "
+      "that level.\n\n"
       "Example: for m in is-graphs amcl odometry; do for s in 1 2 3; do isg run builtin:d1 "
       "--method $m --seed $s -o runs/d1-$m-$s; done; done; isg table runs/* --format csv > "
       "baseline.csv");
@@ -68,7 +72,8 @@ TableCommand::TableCommand(CLI::App& parent) {
                    "deviation-recall: share of the walls built shifted or turned that the "
                    "deviation report found; deviation-offset-error: their offsets' mean error "
                    "[m]; the other graded deviation measures (see below); floor-plan-score: the "
-                   "floor-plan localization score, 0 … 100")
+                   "floor-plan localization score, 0 … 100; map-to-plan-median [m] and "
+                   "map-to-plan-off-length [m]: the map against the plan's walls")
       ->check(CLI::IsMember(sweep::kRunTableMeasures))
       ->capture_default_str();
   app_->add_option("--baseline", baseline_, "baseline table (CSV) to check the runs against");

@@ -9,6 +9,7 @@
 #include "common/angles.hpp"
 #include "common/plural.hpp"
 #include "common/xml_escape.hpp"
+#include "run/off_class_colours.hpp"
 #include "run/text_format.hpp"
 
 namespace isg::run {
@@ -288,9 +289,6 @@ std::string deviationPanel(const slam::DeviationReport& report, const DeviationP
   return svg;
 }
 
-// The colours of slam::offClass, from within the localizer's accuracy to a wall built off.
-constexpr const char* kOffColours[4] = {"#1a9850", "#d9b800", "#f46d43", "#c01818"};
-
 // One level's map against the plan, its top at `top`: the plan's walls in grey, each face's
 // stretches coloured by how far the map's points lie off it, the five farthest labelled.
 std::string againstPlanPanel(const slam::DeviationReport& report,
@@ -314,7 +312,7 @@ std::string againstPlanPanel(const slam::DeviationReport& report,
     svg += format(
         "<line x1=\"%.0f\" y1=\"%.0f\" x2=\"%.0f\" y2=\"%.0f\" stroke=\"%s\" "
         "stroke-width=\"4\"/><text x=\"%.0f\" y=\"%.0f\">%s</text>\n",
-        x, top + 30, x + 20, top + 30, kOffColours[c], x + 25, top + 34, names[c]);
+        x, top + 30, x + 20, top + 30, offClassHex(c).c_str(), x + 25, top + 34, names[c]);
     x += 110.0;
   }
   for (const auto& w : report.walls) {
@@ -329,7 +327,7 @@ std::string againstPlanPanel(const slam::DeviationReport& report,
     svg += format(
         "<line x1=\"%.1f\" y1=\"%.1f\" x2=\"%.1f\" y2=\"%.1f\" stroke=\"%s\" "
         "stroke-width=\"3\"/>\n",
-        X(s.start), Y(s.start), X(s.end), Y(s.end), kOffColours[slam::offClass(s.mean_m)]);
+        X(s.start), Y(s.start), X(s.end), Y(s.end), offClassHex(slam::offClass(s.mean_m)).c_str());
   }
   std::vector<const slam::FaceStretch*> farthest;
   for (const auto& s : level.stretches) {
@@ -341,7 +339,7 @@ std::string againstPlanPanel(const slam::DeviationReport& report,
   for (const auto* s : farthest) {
     const Eigen::Vector2d middle = 0.5 * (s->start + s->end);
     svg += format("<text x=\"%.1f\" y=\"%.1f\" fill=\"%s\">%s %+.2f m</text>\n", X(middle) + 4,
-                  Y(middle) - 4, kOffColours[slam::offClass(s->mean_m)],
+                  Y(middle) - 4, offClassHex(slam::offClass(s->mean_m)).c_str(),
                   common::xmlEscape(s->surface).c_str(), s->mean_m);
   }
   return svg;

@@ -117,7 +117,8 @@ void poseErrors(const RunRecord& run, RunEvaluation& evaluation) {
 // The walls as built against the plan, from the map placed in it: where the map lay in the plan
 // at each keyframe is the pose in B the localizer reported for that very scan (none while it was
 // not localized: never interpolated across a gap), over the keyframe's final pose in M.
-void deviations(const RunRecord& run, RunEvaluation& evaluation) {
+void deviations(const RunRecord& run, const std::vector<slam::LevelAgainstPlan>& against_plan,
+                RunEvaluation& evaluation) {
   std::vector<std::optional<Eigen::Isometry3d>> keyframe_B_T_M;
   for (const auto& kf : run.map->keyframes) {
     const auto row = std::lower_bound(run.estimate.begin(), run.estimate.end(), kf.stamp - 1e-3,
@@ -128,7 +129,11 @@ void deviations(const RunRecord& run, RunEvaluation& evaluation) {
   }
   evaluation.deviations =
       slam::measureDeviations(*run.setup.agraph, *run.map, *run.final_B_T_M, {}, keyframe_B_T_M);
-  evaluation.deviations->against_plan = mapAgainstPlan(run, evaluation.deviations->levels);
+  for (const std::string& level : evaluation.deviations->levels) {
+    for (const auto& on : against_plan) {
+      if (on.level == level) evaluation.deviations->against_plan.push_back(on);
+    }
+  }
   evaluation.metrics.deviations =
       deviationMetrics(*evaluation.deviations, run.setup.plan, run.setup.as_built);
 }
@@ -207,15 +212,25 @@ RunEvaluation evaluateRun(const RunRecord& run) {
     m.max_height_error_B = wrong.max_height_error;
   }
   // The map against the plan's walls: with or without ground truth, once the map was placed.
+  // And where on each level the map lies off the plan (docs/deviations.md, "Where the map
+  // disagrees with the plan"): every level of the plan measured, those with points reported.
+  std::vector<slam::LevelAgainstPlan> against_plan;
   if (map) {
     m.map_to_plan = RunMetrics::MapToPlan{map->distance, std::int64_t(map->points), map->near_share,
                                           map_options.cutoff};
+    std::vector<std::string> plan_levels;
+    for (const auto& floor : run.setup.agraph->floors) plan_levels.push_back(floor.id);
+    against_plan = mapAgainstPlan(run, plan_levels);
+    for (const auto& level : against_plan) {
+      if (level.points > 0) m.map_to_plan->levels.push_back(levelSummary(level));
+    }
   } else if (run.setup.agraph) {
     m.notes.push_back(run.final_B_T_M
                           ? "no map-to-plan error: no scan point in a wall's height band"
                           : "no map-to-plan error: the map was never placed in the plan");
   }
-  if (run.map && run.final_B_T_M && run.setup.agraph != nullptr) deviations(run, evaluation);
+  if (run.map && run.final_B_T_M && run.setup.agraph != nullptr)
+    deviations(run, against_plan, evaluation);
   matchingHistory(run, m);
   return evaluation;
 }

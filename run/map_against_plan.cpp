@@ -122,4 +122,27 @@ std::vector<slam::LevelAgainstPlan> mapAgainstPlan(const RunRecord& run,
   return out;
 }
 
+RunMetrics::MapToPlan::Level levelSummary(const slam::LevelAgainstPlan& level, double off_m) {
+  RunMetrics::MapToPlan::Level out;
+  out.level = level.level;
+  out.points = std::int64_t(level.points);
+  out.near_share = level.near_share;
+  out.median_m = level.median_m;
+  out.p95_m = level.p95_m;
+  out.stretches = int(level.stretches.size());
+  const slam::FaceStretch* farthest = nullptr;
+  for (const auto& s : level.stretches) {
+    if (std::abs(s.mean_m) >= off_m) {
+      ++out.off_stretches;
+      out.off_length_m += (s.end - s.start).norm();
+    }
+    if (farthest == nullptr || std::abs(s.mean_m) > std::abs(farthest->mean_m)) farthest = &s;
+  }
+  if (farthest != nullptr) {
+    out.farthest = RunMetrics::MapToPlan::Level::Farthest{farthest->surface, farthest->mean_m,
+                                                          farthest->start, farthest->end};
+  }
+  return out;
+}
+
 }  // namespace isg::run

@@ -3,6 +3,7 @@
 #include <vector>
 
 #include "run/map_plan_error.hpp"
+#include "run/run_metrics.hpp"
 #include "run/run_record.hpp"
 #include "slam/deviations/map_against_plan.hpp"
 
@@ -25,5 +26,11 @@ struct MapAgainstPlanOptions {
 std::vector<slam::LevelAgainstPlan> mapAgainstPlan(const RunRecord& run,
                                                    const std::vector<std::string>& levels,
                                                    const MapAgainstPlanOptions& options = {});
+
+// metrics.json's map_to_plan.levels entry of a level: its numbers, the stretches lying off by
+// `off_m` or more (by default 4 cm, twice the localizer's own accuracy: slam::kOffClassBounds[1])
+// with their length, and the farthest stretch.
+RunMetrics::MapToPlan::Level levelSummary(const slam::LevelAgainstPlan& level,
+                                          double off_m = slam::kOffClassBounds[1]);
 
 }  // namespace isg::run

@@ -55,6 +55,25 @@ std::vector<double> optionalNumbers(const common::JsonNode& object, std::string_
   return out;
 }
 
+nlohmann::json mapToPlanLevelJson(const RunMetrics::MapToPlan::Level& level) {
+  nlohmann::json out = {{"level", level.level},
+                        {"points", level.points},
+                        {"near_share", level.near_share},
+                        {"median_m", level.median_m},
+                        {"p95_m", level.p95_m},
+                        {"stretches", level.stretches},
+                        {"off_stretches", level.off_stretches},
+                        {"off_length_m", level.off_length_m}};
+  if (level.farthest) {
+    const auto& f = *level.farthest;
+    out["farthest"] = {{"surface", f.surface},
+                       {"mean_m", f.mean_m},
+                       {"start", {f.start.x(), f.start.y()}},
+                       {"end", {f.end.x(), f.end.y()}}};
+  }
+  return out;
+}
+
 bool isContentHash(const std::string& text) {
   const std::string prefix = "sha256:";
   return text.size() == prefix.size() + 64 && text.rfind(prefix, 0) == 0 &&
@@ -104,6 +123,11 @@ nlohmann::json metricsToJson(const RunMetrics& m) {
     map["points"] = m.map_to_plan->points;
     map["near_share"] = m.map_to_plan->near_share;
     map["cutoff_m"] = m.map_to_plan->cutoff;
+    if (!m.map_to_plan->levels.empty()) {
+      nlohmann::json levels = nlohmann::json::array();
+      for (const auto& level : m.map_to_plan->levels) levels.push_back(mapToPlanLevelJson(level));
+      map["levels"] = levels;
+    }
     j["map_to_plan"] = map;
   }
   if (m.deviations) j["deviations"] = deviationMetricsJson(*m.deviations);
@@ -159,6 +183,30 @@ std::map<std::string, double> methodOptionsFrom(const common::JsonNode& options)
   return out;
 }
 
+RunMetrics::MapToPlan::Level mapToPlanLevelFrom(const common::JsonNode& l) {
+  RunMetrics::MapToPlan::Level level;
+  level.level = l.field("level").string();
+  level.points = l.field("points").integer();
+  if (level.points < 0) l.field("points").fail("must be >= 0");
+  level.near_share = l.field("near_share").numberInRange(0.0, 1.0);
+  level.median_m = l.field("median_m").nonNegativeNumber();
+  level.p95_m = l.field("p95_m").nonNegativeNumber();
+  level.stretches = countOf(l.field("stretches"));
+  level.off_stretches = countOf(l.field("off_stretches"));
+  if (level.off_stretches > level.stretches) {
+    l.field("off_stretches").fail("must be at most stretches");
+  }
+  level.off_length_m = l.field("off_length_m").nonNegativeNumber();
+  if (const auto farthest = l.optionalField("farthest")) {
+    auto& out = level.farthest.emplace();
+    out.surface = farthest->field("surface").string();
+    out.mean_m = farthest->field("mean_m").number();
+    out.start = farthest->field("start").point2();
+    out.end = farthest->field("end").point2();
+  }
+  return level;
+}
+
 RunMetrics::MapToPlan mapToPlanFrom(const common::JsonNode& map, const eval::Statistics& distance) {
   RunMetrics::MapToPlan out;
   out.distance = distance;
@@ -166,6 +214,9 @@ RunMetrics::MapToPlan mapToPlanFrom(const common::JsonNode& map, const eval::Sta
   if (out.points < 0) map.field("points").fail("must be >= 0");
   out.near_share = map.field("near_share").numberInRange(0.0, 1.0);
   out.cutoff = map.field("cutoff_m").nonNegativeNumber();
+  if (const auto levels = map.optionalField("levels")) {
+    for (const auto& l : levels->elements()) out.levels.push_back(mapToPlanLevelFrom(l));
+  }
   return out;
 }
 

@@ -1,5 +1,6 @@
 #pragma once
 
+#include <Eigen/Core>
 #include <cstdint>
 #include <map>
 #include <nlohmann/json.hpp>
@@ -89,6 +90,27 @@ struct RunMetrics {
     std::int64_t points = 0;
     double near_share = 0.0;
     double cutoff = 0.0;
+    // The same per level the map has points on (docs/deviations.md, "Where the map disagrees
+    // with the plan"), so that a floor that localizes worse says where: its near points' median
+    // and 95th percentile distance (to the millimetre), the face stretches measured, those lying
+    // off (|signed mean| of 4 cm or more: run/map_against_plan.hpp) and their length, and the
+    // farthest stretch.
+    struct Level {
+      std::string level;
+      std::int64_t points = 0;
+      double near_share = 0.0;
+      double median_m = 0.0, p95_m = 0.0;
+      int stretches = 0;
+      int off_stretches = 0;
+      double off_length_m = 0.0;
+      struct Farthest {
+        std::string surface;
+        double mean_m = 0.0;
+        Eigen::Vector2d start = Eigen::Vector2d::Zero(), end = Eigen::Vector2d::Zero();
+      };
+      std::optional<Farthest> farthest;
+    };
+    std::vector<Level> levels;
   };
   std::optional<MapToPlan> map_to_plan;
   // As built against as planned (deviations.json), graded when the building's truth is known.

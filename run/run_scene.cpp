@@ -6,6 +6,7 @@
 #include <string>
 
 #include "formats/foxglove_json.hpp"
+#include "run/off_class_colours.hpp"
 #include "slam/deviations/map_against_plan.hpp"
 
 namespace isg::run {
@@ -323,10 +324,11 @@ namespace {
 Json againstPlanEntity(const Json& levels, const std::map<std::string, double>& by_level,
                        formats::RosTime stamp) {
   Json entity = fx::sceneEntity(stamp, "plan", "deviations/map-against-plan");
-  constexpr fx::Rgba kClass[4] = {{0.10, 0.60, 0.31, 1.0},
-                                  {0.85, 0.72, 0.0, 1.0},
-                                  {0.96, 0.43, 0.26, 1.0},
-                                  {0.75, 0.09, 0.09, 1.0}};
+  fx::Rgba colour[4];
+  for (int c = 0; c < 4; ++c) {
+    const auto& rgb = kOffClassRgb[std::size_t(c)];
+    colour[c] = {rgb[0] / 255.0, rgb[1] / 255.0, rgb[2] / 255.0, 1.0};
+  }
   std::vector<Vector3d> lines[4];
   for (const Json& level : levels) {
     const double z = elevationOf(by_level, level) + 1.0;
@@ -338,12 +340,12 @@ Json againstPlanEntity(const Json& levels, const std::map<std::string, double>& 
       lines[c].push_back(b);
       if (c >= 2) {
         entity["texts"].push_back(fx::text((a + b) / 2.0 + Vector3d(0, 0, 0.2),
-                                           fixed(mean, 2) + " m", kFontSize, kClass[c]));
+                                           fixed(mean, 2) + " m", kFontSize, colour[c]));
       }
     }
   }
   for (int c = 0; c < 4; ++c) {
-    if (!lines[c].empty()) entity["lines"].push_back(fx::lineList(lines[c], 0.06, kClass[c]));
+    if (!lines[c].empty()) entity["lines"].push_back(fx::lineList(lines[c], 0.06, colour[c]));
   }
   return entity;
 }

@@ -170,6 +170,15 @@ std::optional<double> measureOf(const run::RunMetrics& metrics, const std::strin
   } else if (measure == "floor-plan-score") {
     // Scored with ground truth, localized or not (a run never localized scores 0).
     if (metrics.floor_plan_score) return metrics.floor_plan_score->score;
+  } else if (measure == "map-to-plan-median") {
+    // With or without ground truth, wherever the map was placed in the plan.
+    if (metrics.map_to_plan) return metrics.map_to_plan->distance.median;
+  } else if (measure == "map-to-plan-off-length") {
+    if (metrics.map_to_plan) {
+      double length = 0.0;
+      for (const auto& level : metrics.map_to_plan->levels) length += level.off_length_m;
+      return length;
+    }
   } else if (isGraded(measure)) {
     // Graded deviation reports only (a simulated building with its truth).
     if (metrics.deviations && metrics.deviations->grade) {
@@ -216,6 +225,16 @@ std::string measureCaption(const std::string& measure) {
     return "Floor-plan localization score (Hilti × Trimble 2026: the mean over the poses from 5 s "
            "on of 100·e^(−0.4605·e), e the 2D error in B in metres; 0 when under 99 % of them "
            "are estimated); - no ground truth";
+  }
+  if (measure == "map-to-plan-median") {
+    return "Median distance [m] of the map's points near the plan (within its cutoff, 0.3 m) to "
+           "the plan's wall faces, the map placed by the run's final B_T_M (docs/evaluation.md, "
+           "\"Map against the plan\"); - map never placed in the plan";
+  }
+  if (measure == "map-to-plan-off-length") {
+    return "Metres of the plan's faces along which the map lies 4 cm off or more (stretches of "
+           "at most 1 m with 30 points or more, docs/deviations.md, \"Where the map disagrees "
+           "with the plan\"); - map never placed in the plan";
   }
   if (isGraded(measure)) {
     return std::string(gradedMeasure(measure).caption) +
@@ -329,7 +348,8 @@ RunTable tabulateRuns(Runs runs, const std::string& measure, const run::Localize
   CaptionFacts facts;
   // A deviation measure is missing from a run localized correctly on a building built as planned:
   // its table counts the runs with a number.
-  facts.graded = isGraded(measure);
+  // Likewise the map against the plan, missing where the map was never placed in the plan.
+  facts.graded = isGraded(measure) || measure.starts_with("map-to-plan-");
   // Cells in first-seen order; several seeds of a world and method make one cell.
   Cells cells;
   std::vector<std::string> uncounted;
@@ -351,6 +371,15 @@ RunTable tabulateRuns(Runs runs, const std::string& measure, const run::Localize
     addRun(cells, world, column, dir, metrics, measureOf(metrics, measure, slam_only), wrong);
     // Several storeys: a row per level under the world's (a wrong run is wrong on each): the APE
     // taken there, or the seconds from arriving there to the first pose in B there.
+    if (metrics.map_to_plan && metrics.map_to_plan->levels.size() > 1 &&
+        measure.starts_with("map-to-plan-")) {
+      // The map against the plan per level it has points on, whatever the method.
+      for (const auto& level : metrics.map_to_plan->levels) {
+        const double number = measure == "map-to-plan-median" ? level.median_m : level.off_length_m;
+        addRun(cells, world + " / " + level.level, column, dir, metrics, number, false);
+      }
+      continue;
+    }
     if (slam_only || (measure != "ape" && measure != "time-to-localize")) continue;
     for (const run::LevelMetrics& level : metrics.levels) {
       std::optional<double> number;

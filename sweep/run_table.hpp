@@ -15,7 +15,8 @@ std::string shortWorld(const std::string& world);
 
 // Every measure a run table can show, as --measure spells them.
 // The graded deviation measures (a simulated building's deviations.json against its truth,
-// run::DeviationGrade) are the ones from deviation-recall on, before floor-plan-score.
+// run::DeviationGrade) are the ones from deviation-recall on, before floor-plan-score; the
+// map-to-plan measures (metrics.json's map_to_plan, with a row per level) come last.
 inline const std::vector<std::string> kRunTableMeasures = {"ape",
                                                            "time-wrong",
                                                            "time-to-localize",
@@ -33,7 +34,9 @@ inline const std::vector<std::string> kRunTableMeasures = {"ape",
                                                            "missing-precision",
                                                            "extra-recall",
                                                            "extra-precision",
-                                                           "floor-plan-score"};
+                                                           "floor-plan-score",
+                                                           "map-to-plan-median",
+                                                           "map-to-plan-off-length"};
 
 // Whether the measure is one of a graded deviation report (run::DeviationGrade).
 bool isGraded(const std::string& measure);
@@ -49,11 +52,11 @@ inline bool higherIsBetter(const std::string& measure) {
 // registry's order, cells aggregated over seeds (docs/evaluation.md), with a caption that says
 // what the cells are. `runs` are (run folder, its metrics) pairs; `measure` is one of ape,
 // time-wrong, time-to-localize, distance-to-localize, rooms-to-localize, the graded deviation
-// measures, floor-plan-score (kRunTableMeasures). Two runs of one world,
-// method and seed are bad input naming the second folder. Runs of one world name whose world
-// hashes differ are different buildings: their rows are told apart by the hash ("w [1a2b3c4d]").
-// `absent` are the seeds a sweep asked for that have no run (failed, or not run): their cells
-// count them, so a table never looks complete when it is not.
+// measures, floor-plan-score, map-to-plan-median, map-to-plan-off-length (kRunTableMeasures). Two
+// runs of one world, method and seed are bad input naming the second folder. Runs of one world name
+// whose world hashes differ are different buildings: their rows are told apart by the hash ("w
+// [1a2b3c4d]"). `absent` are the seeds a sweep asked for that have no run (failed, or not run):
+// their cells count them, so a table never looks complete when it is not.
 struct RunTable {
   eval::ResultTable table;
   std::string caption;

@@ -72,12 +72,26 @@ TEST(Deviations, ARunFindsTheShiftedTurnedAndExtraWallsOfD1) {
   EXPECT_LT(graded["pivot_error_m"].get<double>(), 0.3);
   EXPECT_EQ(graded["extra"]["found"], 1);
   EXPECT_EQ(graded["extra"]["false_reports"], 0);
+  // Where the map lies off the plan, in metrics.json and the summary: along the walls built off.
+  const json& level = metrics["map_to_plan"]["levels"][0];
+  EXPECT_EQ(level["level"], "L0");
+  EXPECT_GE(level["off_stretches"].get<int>(), 1);
+  EXPECT_GE(std::abs(level["farthest"]["mean_m"].get<double>()), 0.08) << level;
+  const std::string farthest = level["farthest"]["surface"];
+  EXPECT_TRUE(farthest.starts_with("W6:") || farthest.starts_with("W7:")) << farthest;
+  EXPECT_NE(run.out.find("    on L0: median "), std::string::npos) << run.out;
+  EXPECT_NE(run.out.find("face stretches 4 cm off or more"), std::string::npos) << run.out;
 
   const auto table = sandbox.run("table r --measure deviation-offset-error --format csv");
   ASSERT_EQ(table.exit_code, 0) << table.err;
   EXPECT_NE(table.out.find("d1.deviations.json"), std::string::npos) << table.out;
   // The last row counts the graded runs (a run localized on a building as planned has no grade).
   EXPECT_NE(table.out.find("\nwith a number,1/1\n"), std::string::npos) << table.out;
+  const auto off = sandbox.run("table r --measure map-to-plan-off-length");
+  ASSERT_EQ(off.exit_code, 0) << off.err;
+  EXPECT_NE(off.out.find("Metres of the plan's faces along which the map lies 4 cm off"),
+            std::string::npos)
+      << off.out;
 
   // Replayed from a dataset, the run is graded against the same truth: the dataset records the
   // turned wall (it once left wall_rotations out, and the replay counted W6 as a false report).

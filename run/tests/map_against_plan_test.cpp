@@ -81,6 +81,28 @@ TEST_F(MapAgainstPlanTest, EachFaceStretchHoldsTheSignedMeanOfItsPoints) {
   EXPECT_EQ(slam::offClass(-0.2), 3);
 }
 
+// metrics.json's line of the level: W2's front stretch (+5 cm) lies off by 4 cm or more, the one
+// behind (-3 cm) does not; each is 3.8 m / 4 = 0.95 m long.
+TEST_F(MapAgainstPlanTest, ALevelsSummaryCountsTheStretchesLyingOffAndNamesTheFarthest) {
+  const RunMetrics::MapToPlan::Level level = levelSummary(mapAgainstPlan(run_, {"L0"})[0]);
+  EXPECT_EQ(level.level, "L0");
+  EXPECT_EQ(level.points, 95);
+  EXPECT_NEAR(level.median_m, 0.05, 1e-3);
+  EXPECT_EQ(level.stretches, 2);
+  EXPECT_EQ(level.off_stretches, 1);
+  EXPECT_NEAR(level.off_length_m, 0.95, 1e-9);
+  ASSERT_TRUE(level.farthest);
+  EXPECT_EQ(level.farthest->surface, "W2:left");
+  EXPECT_NEAR(level.farthest->mean_m, 0.05, 1e-5);
+  // With a threshold of 2 cm both lie off; with none measured, none is the farthest.
+  EXPECT_EQ(levelSummary(mapAgainstPlan(run_, {"L0"})[0], 0.02).off_stretches, 2);
+  MapAgainstPlanOptions options;
+  options.min_points = 41;
+  const RunMetrics::MapToPlan::Level bare = levelSummary(mapAgainstPlan(run_, {"L0"}, options)[0]);
+  EXPECT_EQ(bare.stretches, 0);
+  EXPECT_FALSE(bare.farthest);
+}
+
 TEST_F(MapAgainstPlanTest, AStretchNeedsItsPointsAndALevelWalked) {
   MapAgainstPlanOptions options;
   options.min_points = 41;

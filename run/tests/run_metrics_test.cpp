@@ -70,6 +70,10 @@ TEST(RunMetrics, JsonRoundTripOfARunWithEveryFieldSet) {
   m.max_error_B = 3.25;
   m.max_height_error_B = 0.125;
   m.map_to_plan = RunMetrics::MapToPlan{*m.ape_B, 56176, 0.875, 0.3};
+  RunMetrics::MapToPlan::Level off_level{"L1", 30000, 0.75, 0.0165, 0.0565, 85, 6, 5.25};
+  off_level.farthest = {"W4:left", -0.071, Eigen::Vector2d(0.15, 1.1375),
+                        Eigen::Vector2d(0.15, 0.15)};
+  m.map_to_plan->levels = {off_level, {"L0", 26176, 1.0, 0.0, 0.0, 0, 0, 0.0}};
   m.levels.push_back({"L1", 42.5, 3.25, 7.5, m.ape_B});
   m.levels.push_back({"L0", 10.0, 0.0, std::nullopt, std::nullopt});
   m.matching_events.push_back(
@@ -107,6 +111,17 @@ TEST(RunMetrics, JsonRoundTripOfARunWithEveryFieldSet) {
   EXPECT_EQ(back.map_to_plan->points, 56176);
   EXPECT_EQ(back.map_to_plan->near_share, 0.875);
   EXPECT_EQ(back.map_to_plan->cutoff, 0.3);
+  ASSERT_EQ(back.map_to_plan->levels.size(), 2u);
+  const auto& level = back.map_to_plan->levels[0];
+  EXPECT_EQ(level.level, "L1");
+  EXPECT_EQ(level.points, 30000);
+  EXPECT_EQ(level.p95_m, 0.0565);
+  EXPECT_EQ(level.off_stretches, 6);
+  EXPECT_EQ(level.off_length_m, 5.25);
+  ASSERT_TRUE(level.farthest);
+  EXPECT_EQ(level.farthest->surface, "W4:left");
+  EXPECT_EQ(level.farthest->end, Eigen::Vector2d(0.15, 0.15));
+  EXPECT_FALSE(back.map_to_plan->levels[1].farthest);
   ASSERT_EQ(back.levels.size(), 2u);
   EXPECT_EQ(back.levels[0].level, "L1");
   EXPECT_EQ(back.levels[0].seconds, 42.5);
@@ -176,6 +191,27 @@ TEST(RunMetrics, BadFieldsAreNamedByPointer) {
   j = metricsToJson(localizedRun());
   j["notes"] = {"no ground truth", 3};
   EXPECT_EQ(message(j), "runs/x/metrics.json: /notes/1: expected a string, got a number");
+  j = metricsToJson(localizedRun());
+  j["map_to_plan"] = {{"count", 1},  {"rmse", 0.1},       {"mean", 0.1},    {"median", 0.1},
+                      {"std", 0.0},  {"min", 0.1},        {"max", 0.1},     {"sse", 0.01},
+                      {"points", 1}, {"near_share", 1.0}, {"cutoff_m", 0.3}};
+  j["map_to_plan"]["levels"] = {{{"level", "L0"},
+                                 {"points", 1},
+                                 {"near_share", 1.0},
+                                 {"median_m", 0.1},
+                                 {"p95_m", 0.1},
+                                 {"stretches", 2},
+                                 {"off_stretches", 3},
+                                 {"off_length_m", 2.0}}};
+  EXPECT_EQ(message(j),
+            "runs/x/metrics.json: /map_to_plan/levels/0/off_stretches: must be at most "
+            "stretches");
+  j["map_to_plan"]["levels"][0]["off_stretches"] = 1;
+  j["map_to_plan"]["levels"][0]["farthest"] = {
+      {"surface", "W1:left"}, {"mean_m", 0.05}, {"start", {0.0, 1.0}}};
+  EXPECT_EQ(message(j),
+            "runs/x/metrics.json: /map_to_plan/levels/0/farthest/end: missing "
+            "required field");
   EXPECT_EQ(message(nlohmann::json::array()),
             "runs/x/metrics.json: expected an object, got an array");
 }

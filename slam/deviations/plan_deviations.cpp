@@ -322,8 +322,9 @@ void judge(WallDeviation& wall, const PlannedWall& planned, const DeviationOptio
       return std::abs(value_of(*e)) >= threshold && (value_of(*e) > 0) == (first > 0);
     });
   };
-  const double shift_threshold = std::max(options.shift_m, wall.shift_threshold_m);
-  const double angle_threshold = std::max(options.angle_deg, wall.angle_threshold_deg);
+  // Set by placedLocally, never under options.shift_m and options.angle_deg.
+  const double shift_threshold = wall.shift_threshold_m;
+  const double angle_threshold = wall.angle_threshold_deg;
   bool turned =
       std::abs(fit.angle_deg) >= angle_threshold && fit.longest >= options.min_angle_length;
   bool shifted = std::abs(fit.offset_m) >= shift_threshold;

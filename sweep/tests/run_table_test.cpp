@@ -136,14 +136,49 @@ TEST(RunTableGraded, EachGradedMeasureTabulatesItsNumberOfTheGrade) {
   const auto first = one.table.find("generated", "is-graphs");
   ASSERT_TRUE(first && first->has_value());
   EXPECT_NEAR(**first, 0.75, 1e-12);
+  const auto position = [](const std::string& name) {
+    return std::find(kRunTableMeasures.begin(), kRunTableMeasures.end(), name);
+  };
   for (const auto& measure : kRunTableMeasures) {
-    const bool graded_measure =
-        measure != "floor-plan-score" &&
-        std::find(kRunTableMeasures.begin(), kRunTableMeasures.end(), measure) >=
-            std::find(kRunTableMeasures.begin(), kRunTableMeasures.end(), "deviation-recall");
+    const bool graded_measure = position(measure) >= position("deviation-recall") &&
+                                position(measure) < position("floor-plan-score");
     EXPECT_EQ(isGraded(measure), graded_measure) << measure;
   }
   EXPECT_FALSE(isGraded("ape"));
+}
+
+// The map against the plan: the world's row the run's median (or the length off summed over its
+// levels), a row per level when there are several, whatever the method, localized or not.
+TEST(RunTableMapToPlan, TheMapAgainstThePlanHasARowPerLevel) {
+  auto placed = [](std::uint64_t seed, double median, double off_l0, double off_l1) {
+    run::RunMetrics m = twoStoreyRun(seed, 0.02, 0.04);
+    m.localized = false;
+    run::RunMetrics::MapToPlan map;
+    map.distance.median = median;
+    map.levels = {{"L0", 100, 0.9, median - 0.005, 0.05, 10, 2, off_l0},
+                  {"L1", 100, 0.9, median + 0.005, 0.06, 12, 3, off_l1}};
+    m.map_to_plan = map;
+    return m;
+  };
+  const std::vector<std::pair<std::string, run::RunMetrics>> runs = {
+      {"a", placed(1, 0.02, 1.5, 2.0)}, {"b", placed(2, 0.03, 0.5, 1.0)}};
+  const RunTable median = tabulateRuns(runs, "map-to-plan-median", run::builtinMethods());
+  ASSERT_EQ(median.table.rows,
+            (std::vector<std::string>{"storeys", "storeys / L0", "storeys / L1"}));
+  EXPECT_NEAR(**median.table.find("storeys", "is-graphs"), 0.025, 1e-12);
+  EXPECT_NEAR(**median.table.find("storeys / L0", "is-graphs"), 0.02, 1e-12);
+  EXPECT_NEAR(**median.table.find("storeys / L1", "is-graphs"), 0.03, 1e-12);
+  const RunTable off = tabulateRuns(runs, "map-to-plan-off-length", run::builtinMethods());
+  EXPECT_NEAR(**off.table.find("storeys", "is-graphs"), 2.5, 1e-12);  // (3.5 + 1.5) / 2
+  EXPECT_NEAR(**off.table.find("storeys / L1", "is-graphs"), 1.5, 1e-12);
+  EXPECT_FALSE(higherIsBetter("map-to-plan-median"));
+  EXPECT_FALSE(isGraded("map-to-plan-off-length"));
+  // A run whose map was never placed has no number, and its cell no mean.
+  std::vector<std::pair<std::string, run::RunMetrics>> unplaced = runs;
+  unplaced[1].second.map_to_plan.reset();
+  const auto cell = tabulateRuns(unplaced, "map-to-plan-median", run::builtinMethods())
+                        .table.find("storeys", "is-graphs");
+  EXPECT_TRUE(!cell || !cell->has_value());
 }
 
 }  // namespace
