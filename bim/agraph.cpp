@@ -204,6 +204,7 @@ AGraph buildAGraph(const Plan& plan, const AGraphOptions& options) {
       wall.level = level.id;
       wall.thickness = g.wall->thickness;
       wall.length = g.length;
+      wall.column = g.column;
       for (int side : {+1, -1}) {
         const WallFace& face = g.face(side);
         WallSurfaceNode surface;

@@ -43,6 +43,9 @@ struct WallNode {
   Eigen::Vector3d centre = Eigen::Vector3d::Zero();  // ω = f(π_left, π_right, s)
   double thickness = 0.0;
   double length = 0.0;
+  // A rectangular column taken as a wall (bim::columnWall): its faces bound space as walls do,
+  // but the deviation report judges it as a column (docs/deviations.md, "Columns").
+  bool column = false;
 };
 
 enum class RoomKind {

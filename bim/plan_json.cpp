@@ -159,6 +159,13 @@ json asBuiltToJson(const AsBuilt& a) {
   if (!shortened.empty()) out["shortened_walls"] = shortened;
   out["closed_doors"] = a.closed_doors;
   out["clutter"] = clutter;
+  // Columns as built came later still: written where there are some.
+  if (!a.missing_columns.empty()) out["missing_columns"] = a.missing_columns;
+  json moved = json::array();
+  for (const auto& m : a.moved_columns) {
+    moved.push_back({{"column", m.column}, {"offset", {m.offset.x(), m.offset.y()}}});
+  }
+  if (!moved.empty()) out["moved_columns"] = moved;
   return out;
 }
 

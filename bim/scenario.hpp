@@ -180,6 +180,13 @@ struct ExtraWall {
   double base = 0.0;
 };
 
+// A column built elsewhere than planned: its centre moved by `offset` (metres, in the plan's
+// frame), its shape, size and turn as planned.
+struct ColumnMove {
+  std::string column;
+  Eigen::Vector2d offset = Eigen::Vector2d::Zero();
+};
+
 struct WallShift {
   std::string wall;
   double offset = 0.0;  // metres along the wall's left normal
@@ -226,11 +233,13 @@ struct AsBuilt {
   std::vector<ShortenedWall> shortened_walls;
   std::vector<std::string> closed_doors;
   std::vector<Clutter> clutter;
+  std::vector<std::string> missing_columns;  // columns not built (yet)
+  std::vector<ColumnMove> moved_columns;
 
   bool empty() const {
     return missing_walls.empty() && extra_walls.empty() && wall_shifts.empty() &&
            wall_rotations.empty() && shortened_walls.empty() && closed_doors.empty() &&
-           clutter.empty();
+           clutter.empty() && missing_columns.empty() && moved_columns.empty();
   }
 };
 

@@ -544,9 +544,42 @@ Clutter parseClutter(const common::JsonNode& item, const Plan& plan,
 AsBuilt parseAsBuilt(const common::JsonNode& node, const Plan& plan,
                      const std::string& robot_level) {
   node.expectObject({"missing_walls", "extra_walls", "wall_shifts", "wall_rotations",
-                     "shortened_walls", "closed_doors", "clutter"});
+                     "shortened_walls", "closed_doors", "clutter", "missing_columns",
+                     "moved_columns"});
   AsBuilt as_built;
   auto is_wall = [&](const std::string& id) { return plan.levelOfWall(id) != nullptr; };
+  auto is_column = [&](const std::string& id) {
+    return std::any_of(plan.levels.begin(), plan.levels.end(),
+                       [&](const Level& level) { return level.findColumn(id) != nullptr; });
+  };
+  if (auto v = node.optionalField("missing_columns")) {
+    as_built.missing_columns = parseIdList(*v, "column", is_column);
+  }
+  if (auto v = node.optionalField("moved_columns")) {
+    std::set<std::string> seen;
+    for (const auto& item : v->elements(0, limits::kMaxScenarioItems, "moved columns")) {
+      item.expectObject({"column", "offset"});
+      ColumnMove move;
+      const common::JsonNode column = item.field("column");
+      move.column = column.identifier();
+      if (!is_column(move.column)) {
+        column.fail("no column " + common::inQuotes(move.column) + " in the plan");
+      }
+      if (!seen.insert(move.column).second) {
+        column.fail(common::inQuotes(move.column) + " is moved twice");
+      }
+      if (std::find(as_built.missing_columns.begin(), as_built.missing_columns.end(),
+                    move.column) != as_built.missing_columns.end()) {
+        column.fail(common::inQuotes(move.column) + " is also in missing_columns");
+      }
+      const common::JsonNode offset = item.field("offset");
+      move.offset = offset.point2();
+      if (move.offset.norm() > limits::kMaxWallShift) {
+        offset.fail("a column moves at most " + common::formatNumber(limits::kMaxWallShift) + " m");
+      }
+      as_built.moved_columns.push_back(move);
+    }
+  }
   auto is_door = [&](const std::string& id) { return plan.levelOfDoor(id) != nullptr; };
   if (auto v = node.optionalField("missing_walls")) {
     as_built.missing_walls = parseIdList(*v, "wall", is_wall);
@@ -621,6 +654,9 @@ void checkAsBuiltExtent(const common::JsonNode& node, const Plan& plan, const As
     double shift = 0.0;
     for (const auto& s : as_built.wall_shifts) {
       if (plan.levelOfWall(s.wall) == &level) shift = std::max(shift, std::abs(s.offset));
+    }
+    for (const auto& m : as_built.moved_columns) {
+      if (level.findColumn(m.column) != nullptr) shift = std::max(shift, m.offset.norm());
     }
     const Box2 box = Box2::around(points).grown(shift);
     const Eigen::Vector2d size = box.hi - box.lo;

@@ -66,11 +66,16 @@ int CheckCommand::run() {
         ab.shortened_walls.empty()
             ? ""
             : std::to_string(ab.shortened_walls.size()) + " walls built in part, ";
+    const std::string columns =
+        ab.missing_columns.empty() && ab.moved_columns.empty()
+            ? ""
+            : ", " + std::to_string(ab.missing_columns.size()) + " missing columns, " +
+                  std::to_string(ab.moved_columns.size()) + " moved columns";
     std::printf(
         "  as built: %zu missing walls, %zu extra walls, %zu shifted walls, %s%s"
-        "%zu closed doors, %zu clutter boxes\n",
+        "%zu closed doors, %zu clutter boxes%s\n",
         ab.missing_walls.size(), ab.extra_walls.size(), ab.wall_shifts.size(), turned.c_str(),
-        shortened.c_str(), ab.closed_doors.size(), ab.clutter.size());
+        shortened.c_str(), ab.closed_doors.size(), ab.clutter.size(), columns.c_str());
   }
   if (!verbose_) return kExitOk;
   for (const auto& level : plan.levels) {

@@ -111,6 +111,13 @@ GenerateCommand::GenerateCommand(CLI::App& parent) {
                    "as built: share of door-less inner walls (2.5 m or longer) built in part: a "
                    "start or end cut back or a middle gap, 0.8 m to half the wall")
       ->capture_default_str();
+  app_->add_option("--missing-columns", spec_.missing_columns,
+                   "as built, site family: share of the columns inside the façade not built yet")
+      ->capture_default_str();
+  app_->add_option("--moved-columns", spec_.moved_columns,
+                   "as built, site family: share of the columns inside the façade built 0.1–0.25 "
+                   "m off their planned centre")
+      ->capture_default_str();
   app_->add_option("--missing-walls", spec_.missing_walls,
                    "as built: share of door-less walls between offices left unbuilt")
       ->capture_default_str();
@@ -164,8 +171,20 @@ int GenerateCommand::run() {
       if (app_->count(option) == 0) continue;
       std::fprintf(stderr,
                    "isg generate: warning: %s does not apply to the site family (a site takes "
-                   "its seed, --count and --height only); its sites are made without it\n",
+                   "its seed, --count, --height, --missing-columns and --moved-columns only); "
+                   "its sites are made without it\n",
                    option);
+    }
+  }
+  // Columns as built are the site family's: said for the others.
+  for (const auto& family : families) {
+    if (family == "site") continue;
+    for (const char* option : {"--missing-columns", "--moved-columns"}) {
+      if (app_->count(option) == 0) continue;
+      std::fprintf(stderr,
+                   "isg generate: warning: %s applies to the site family only (the other "
+                   "families' plans have no columns); %s buildings are made without it\n",
+                   option, family.c_str());
     }
   }
   // Bad parameters fail before anything is written, naming the option.

@@ -41,6 +41,40 @@ void gradeProgress(const slam::WallProgress& progress, const bim::ShortenedWall*
   }
 }
 
+// The columns against the truth (DeviationGrade, "Columns").
+void gradeColumns(const slam::DeviationReport& report, const bim::AsBuilt& truth,
+                  DeviationGrade& grade) {
+  const double moved_m = slam::ColumnOptions{}.moved_m;
+  double offset_error = 0.0;
+  int offsets = 0;
+  for (const slam::ColumnDeviation& column : report.columns) {
+    if (column.status == slam::ColumnStatus::kNotSeen) continue;
+    const bool truly_missing = std::find(truth.missing_columns.begin(), truth.missing_columns.end(),
+                                         column.column) != truth.missing_columns.end();
+    const auto move =
+        std::find_if(truth.moved_columns.begin(), truth.moved_columns.end(),
+                     [&](const bim::ColumnMove& m) { return m.column == column.column; });
+    const bool truly_moved = move != truth.moved_columns.end() && move->offset.norm() >= moved_m;
+    const bool reported = column.status == slam::ColumnStatus::kMissing ||
+                          column.status == slam::ColumnStatus::kMoved;
+    if (truly_missing || truly_moved) {
+      const bool right = truly_missing ? column.status == slam::ColumnStatus::kMissing
+                                       : column.status == slam::ColumnStatus::kMoved;
+      ++(right ? grade.column_found : grade.column_missed);
+      if (right && truly_moved && column.offset_m) {
+        offset_error += (*column.offset_m - move->offset).norm();
+        ++offsets;
+      }
+    } else if (reported) {
+      ++grade.column_false_reports;
+    }
+  }
+  grade.column_precision =
+      share(grade.column_found, grade.column_found + grade.column_false_reports);
+  grade.column_recall = share(grade.column_found, grade.column_found + grade.column_missed);
+  if (offsets > 0) grade.column_offset_error_m = offset_error / offsets;
+}
+
 }  // namespace
 
 DeviationGrade gradeDeviations(const slam::DeviationReport& report, const bim::Plan& plan,
@@ -141,6 +175,7 @@ DeviationGrade gradeDeviations(const slam::DeviationReport& report, const bim::P
   grade.extra_missed = true_extra - true_found;
   grade.extra_precision = share(grade.extra_found, grade.extra_found + grade.extra_false_reports);
   grade.extra_recall = share(true_found, true_extra);
+  gradeColumns(report, truth, grade);
   return grade;
 }
 
@@ -166,6 +201,23 @@ DeviationMetrics deviationMetrics(const slam::DeviationReport& report, const bim
         break;
       case slam::ProgressStatus::kNotSeen:
         ++m.progress_not_seen;
+        break;
+    }
+  }
+  m.has_columns = !report.columns.empty();
+  for (const auto& c : report.columns) {
+    switch (c.status) {
+      case slam::ColumnStatus::kAsPlanned:
+        ++m.columns_as_planned;
+        break;
+      case slam::ColumnStatus::kMoved:
+        ++m.columns_moved;
+        break;
+      case slam::ColumnStatus::kMissing:
+        ++m.columns_missing;
+        break;
+      case slam::ColumnStatus::kNotSeen:
+        ++m.columns_not_seen;
         break;
     }
   }
@@ -252,6 +304,19 @@ constexpr Count<DeviationGrade> kExtraCounts[] = {
     {"on_clutter", &DeviationGrade::extra_on_clutter}};
 constexpr Optional kExtraOptionals[] = {{"precision", &DeviationGrade::extra_precision, true},
                                         {"recall", &DeviationGrade::extra_recall, true}};
+constexpr Count<DeviationMetrics> kColumnCounts[] = {
+    {"as_planned", &DeviationMetrics::columns_as_planned},
+    {"moved", &DeviationMetrics::columns_moved},
+    {"missing", &DeviationMetrics::columns_missing},
+    {"not_seen", &DeviationMetrics::columns_not_seen}};
+constexpr Count<DeviationGrade> kGradedColumnCounts[] = {
+    {"found", &DeviationGrade::column_found},
+    {"false_reports", &DeviationGrade::column_false_reports},
+    {"missed", &DeviationGrade::column_missed}};
+constexpr Optional kGradedColumnOptionals[] = {
+    {"precision", &DeviationGrade::column_precision, true},
+    {"recall", &DeviationGrade::column_recall, true},
+    {"offset_error_m", &DeviationGrade::column_offset_error_m, false}};
 
 template <typename T, std::size_t N>
 void putCounts(nlohmann::json& j, const T& from, const Count<T> (&fields)[N]) {
@@ -280,6 +345,11 @@ nlohmann::json deviationMetricsJson(const DeviationMetrics& m) {
   nlohmann::json progress = nlohmann::json::object();
   putCounts(progress, m, kProgressCounts);
   nlohmann::json j = {{"walls", walls}, {"extra_walls", m.extra_walls}, {"progress", progress}};
+  if (m.has_columns) {
+    nlohmann::json columns = nlohmann::json::object();
+    putCounts(columns, m, kColumnCounts);
+    j["columns"] = columns;
+  }
   if (m.grade) {
     const DeviationGrade& g = *m.grade;
     nlohmann::json graded = {{"min_share", g.min_share}};
@@ -295,6 +365,12 @@ nlohmann::json deviationMetricsJson(const DeviationMetrics& m) {
     graded["missing"] = missing;
     graded["extra"] = extra;
     graded["partly_built"] = partly;
+    if (m.has_columns) {
+      nlohmann::json columns = nlohmann::json::object();
+      putCounts(columns, g, kGradedColumnCounts);
+      putOptionals(columns, g, kGradedColumnOptionals);
+      graded["columns"] = columns;
+    }
     j["graded"] = graded;
   }
   return j;
@@ -308,6 +384,11 @@ DeviationMetrics deviationMetricsFromJson(const common::JsonNode& node) {
   if (const auto progress = node.optionalField("progress")) {
     readCounts(*progress, m, kProgressCounts);
   }
+  // Written since columns are judged, on plans with columns on the levels walked.
+  if (const auto columns = node.optionalField("columns")) {
+    m.has_columns = true;
+    readCounts(*columns, m, kColumnCounts);
+  }
   if (const auto graded = node.optionalField("graded")) {
     DeviationGrade g;
     g.min_share = graded->field("min_share").numberInRange(0.0, 1.0);
@@ -319,6 +400,10 @@ DeviationMetrics deviationMetricsFromJson(const common::JsonNode& node) {
     if (const auto partly = graded->optionalField("partly_built")) {
       readCounts(*partly, g, kPartlyCounts);
       readOptionals(*partly, g, kPartlyOptionals);
+    }
+    if (const auto columns = graded->optionalField("columns")) {
+      readCounts(*columns, g, kGradedColumnCounts);
+      readOptionals(*columns, g, kGradedColumnOptionals);
     }
     m.grade = g;
   }

@@ -41,6 +41,13 @@ struct DeviationGrade {
   // apart. Precision over reports, recall over the true extra walls of the levels walked.
   int extra_found = 0, extra_false_reports = 0, extra_missed = 0, extra_on_clutter = 0;
   std::optional<double> extra_precision, extra_recall;
+  // Columns, among those the report judged (not not_seen): a column truly missing
+  // (as_built.missing_columns) or moved by the report's threshold or more (moved_columns)
+  // reported so, with the right status (found); reported missing or moved but built as planned
+  // (false reports); truly deviating and reported otherwise (missed). Over those found moved, the
+  // mean distance between the measured and the true offset.
+  int column_found = 0, column_false_reports = 0, column_missed = 0;
+  std::optional<double> column_precision, column_recall, column_offset_error_m;
 };
 
 DeviationGrade gradeDeviations(const slam::DeviationReport& report, const bim::Plan& plan,
@@ -51,6 +58,10 @@ DeviationGrade gradeDeviations(const slam::DeviationReport& report, const bim::P
 struct DeviationMetrics {
   int as_planned = 0, shifted = 0, rotated = 0, missing = 0, not_seen = 0, extra_walls = 0;
   int built = 0, partly_built = 0, not_built = 0, progress_not_seen = 0;  // by progress
+  // The plan's columns on the levels walked, by status (metrics.json `deviations.columns`, there
+  // when the levels walked have columns).
+  bool has_columns = false;
+  int columns_as_planned = 0, columns_moved = 0, columns_missing = 0, columns_not_seen = 0;
   std::optional<DeviationGrade> grade;
 };
 

@@ -142,6 +142,21 @@ nlohmann::json deviationReportJson(const slam::DeviationReport& report) {
                         {"placement_correction", placements},
                         {"walls", walls},
                         {"extra_walls", extra}};
+  if (!report.columns.empty()) {
+    nlohmann::json columns = nlohmann::json::array();
+    for (const auto& c : report.columns) {
+      columns.push_back({{"column", c.column},
+                         {"level", c.level},
+                         {"shape", c.round ? "round" : "rectangle"},
+                         {"status", slam::toString(c.status)},
+                         {"planned_centre", point(c.planned_centre)},
+                         {"points", c.points},
+                         {"offset_m", c.offset_m ? point(*c.offset_m) : nlohmann::json()},
+                         {"directions_measured", c.directions_measured},
+                         {"seen_past", c.seen_past}});
+    }
+    out["columns"] = columns;
+  }
   if (!report.against_plan.empty()) {
     nlohmann::json levels = nlohmann::json::array();
     for (const auto& level : report.against_plan) {
@@ -395,6 +410,21 @@ std::string progressSummaryLine(const DeviationMetrics& m) {
     line += format("; against the truth: %d of %d walls built in part found, %d falsely",
                    m.grade->partly_found, m.grade->partly_found + m.grade->partly_missed,
                    m.grade->partly_false_reports);
+  }
+  return line;
+}
+
+std::string columnSummaryLine(const DeviationMetrics& m) {
+  std::string line =
+      format("columns: %d as planned, %d moved, %d missing, %d not seen", m.columns_as_planned,
+             m.columns_moved, m.columns_missing, m.columns_not_seen);
+  if (m.grade) {
+    const DeviationGrade& g = *m.grade;
+    line += format("; against the truth: %d of %d deviating columns found, %d falsely",
+                   g.column_found, g.column_found + g.column_missed, g.column_false_reports);
+    if (g.column_offset_error_m) {
+      line += format(" (offsets off by %.3f m)", *g.column_offset_error_m);
+    }
   }
   return line;
 }

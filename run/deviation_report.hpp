@@ -9,7 +9,8 @@
 namespace isg::run {
 
 // deviations.json (docs/deviations.md): the thresholds, then per plan wall of the levels walked
-// its status, measured offset and angle, observed share and evidence, and the extra walls.
+// its status, measured offset and angle, observed share and evidence, the extra walls, and per
+// column of the levels walked its status and offset.
 nlohmann::json deviationReportJson(const slam::DeviationReport& report);
 
 // deviations.svg: each level walked, the plan's walls in grey, the map's walls that were evidence
@@ -19,9 +20,12 @@ std::string deviationSvg(const slam::DeviationReport& report);
 
 // The run summary's line: "as built: 5 walls as planned, 1 shifted, ..." and, graded, how many
 // deviating walls were found.
+std::string deviationSummaryLine(const DeviationMetrics& metrics);
 // The summary's line of how much of each wall is built (and, graded, the walls built in part
 // found).
 std::string progressSummaryLine(const DeviationMetrics& m);
-std::string deviationSummaryLine(const DeviationMetrics& metrics);
+// The summary's line of the columns, for levels walked that have some: "columns: 24 as planned,
+// 1 moved, 1 missing, 2 not seen" and, graded, how many deviating columns were found.
+std::string columnSummaryLine(const DeviationMetrics& m);
 
 }  // namespace isg::run

@@ -134,6 +134,17 @@ void deviations(const RunRecord& run, const std::vector<slam::LevelAgainstPlan>&
       if (on.level == level) evaluation.deviations->against_plan.push_back(on);
     }
   }
+  // The columns, from the map's points around them (one more pass over the points, on plans with
+  // columns only) and the sight lines of the keyframes.
+  if (run.setup.plan != nullptr) {
+    slam::ColumnEvidence columns(*run.setup.plan, evaluation.deviations->levels);
+    if (columns.any()) {
+      forEachPlacedMapPoint(run, [&](const Eigen::Vector3d& p) { columns.add(p); });
+      evaluation.deviations->columns =
+          columns.judge(*run.setup.agraph,
+                        slam::viewpointsOnLevels(*run.setup.agraph, *run.map, *run.final_B_T_M));
+    }
+  }
   evaluation.metrics.deviations =
       deviationMetrics(*evaluation.deviations, run.setup.plan, run.setup.as_built);
 }

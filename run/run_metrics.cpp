@@ -198,11 +198,12 @@ RunMetrics::MapToPlan::Level mapToPlanLevelFrom(const common::JsonNode& l) {
   }
   level.off_length_m = l.field("off_length_m").nonNegativeNumber();
   if (const auto farthest = l.optionalField("farthest")) {
-    auto& out = level.farthest.emplace();
+    RunMetrics::MapToPlan::Level::Farthest out;
     out.surface = farthest->field("surface").string();
     out.mean_m = farthest->field("mean_m").number();
     out.start = farthest->field("start").point2();
     out.end = farthest->field("end").point2();
+    level.farthest = out;
   }
   return level;
 }

@@ -55,6 +55,12 @@ const GradedMeasure kGradedMeasures[] = {
      "Recall of the walls built that the plan lacks, reported extra"},
     {"extra-precision", [](const run::DeviationGrade& g) { return g.extra_precision; },
      "Precision of the walls reported extra (those on a clutter box not counted)"},
+    {"column-recall", [](const run::DeviationGrade& g) { return g.column_recall; },
+     "Recall of the columns built moved or not built, reported moved or missing"},
+    {"column-precision", [](const run::DeviationGrade& g) { return g.column_precision; },
+     "Precision of the columns reported moved or missing"},
+    {"column-offset-error", [](const run::DeviationGrade& g) { return g.column_offset_error_m; },
+     "Mean distance [m] between the measured and the true offset of the moved columns found"},
 };
 
 const GradedMeasure& gradedMeasure(const std::string& name) {

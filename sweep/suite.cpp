@@ -41,7 +41,9 @@ worlds::GeneratorSpec generatorSpec(const common::JsonNode& node) {
                      "missing_walls",
                      "extra_walls",
                      "closed_doors",
-                     "connecting_doors"});
+                     "connecting_doors",
+                     "missing_columns",
+                     "moved_columns"});
   worlds::GeneratorSpec spec;
   spec.family = node.field("family").identifier();
   const auto& families = worlds::generatorFamilies();
@@ -85,6 +87,8 @@ worlds::GeneratorSpec generatorSpec(const common::JsonNode& node) {
   number("extra_walls", spec.extra_walls);
   number("closed_doors", spec.closed_doors);
   number("connecting_doors", spec.connecting_doors);
+  number("missing_columns", spec.missing_columns);
+  number("moved_columns", spec.moved_columns);
   // The generator's own checks, reported at this node.
   try {
     (void)worlds::generateBuilding(spec);
@@ -356,31 +360,36 @@ std::string sweepPlanJson(const Suite& suite, const std::vector<SweepCell>& cell
 }
 
 nlohmann::json generatorSpecJson(const worlds::GeneratorSpec& s) {
-  return {{"family", s.family},
-          {"seed", s.seed},
-          {"rooms", s.rooms},
-          {"room_width", s.room_width},
-          {"room_depth", s.room_depth},
-          {"size_spread", s.size_spread},
-          {"corridor_width", s.corridor_width},
-          {"doors", s.doors},
-          {"connecting_doors", s.connecting_doors},
-          {"symmetric", !s.asymmetry},
-          {"partitions", s.partitions},
-          {"wall_thickness", s.wall_thickness},
-          {"height", s.height},
-          {"clutter_per_room", s.clutter_per_room},
-          {"shifted_walls", s.shifted_walls},
-          {"shift_min", s.shift_min},
-          {"shift_max", s.shift_max},
-          {"rotated_walls", s.rotated_walls},
-          {"rotation_min_deg", s.rotation_min_deg},
-          {"rotation_max_deg", s.rotation_max_deg},
-          {"rotation_about", s.rotation_about},
-          {"shortened_walls", s.shortened_walls},
-          {"missing_walls", s.missing_walls},
-          {"extra_walls", s.extra_walls},
-          {"closed_doors", s.closed_doors}};
+  nlohmann::json j = {{"family", s.family},
+                      {"seed", s.seed},
+                      {"rooms", s.rooms},
+                      {"room_width", s.room_width},
+                      {"room_depth", s.room_depth},
+                      {"size_spread", s.size_spread},
+                      {"corridor_width", s.corridor_width},
+                      {"doors", s.doors},
+                      {"connecting_doors", s.connecting_doors},
+                      {"symmetric", !s.asymmetry},
+                      {"partitions", s.partitions},
+                      {"wall_thickness", s.wall_thickness},
+                      {"height", s.height},
+                      {"clutter_per_room", s.clutter_per_room},
+                      {"shifted_walls", s.shifted_walls},
+                      {"shift_min", s.shift_min},
+                      {"shift_max", s.shift_max},
+                      {"rotated_walls", s.rotated_walls},
+                      {"rotation_min_deg", s.rotation_min_deg},
+                      {"rotation_max_deg", s.rotation_max_deg},
+                      {"rotation_about", s.rotation_about},
+                      {"shortened_walls", s.shortened_walls},
+                      {"missing_walls", s.missing_walls},
+                      {"extra_walls", s.extra_walls},
+                      {"closed_doors", s.closed_doors}};
+  // Columns as built came later: written where asked for, so that earlier sweep plans read the
+  // same.
+  if (s.missing_columns > 0.0) j["missing_columns"] = s.missing_columns;
+  if (s.moved_columns > 0.0) j["moved_columns"] = s.moved_columns;
+  return j;
 }
 
 SweepPlan readSweepPlan(const std::string& sweep_dir) {

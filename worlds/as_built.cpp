@@ -68,6 +68,15 @@ bim::Level asBuiltLevel(const bim::Level& level, const bim::AsBuilt& as_built) {
   std::erase_if(built.doors, [&](const bim::Door& d) { return is_missing(d.wall); });
   std::erase_if(built.windows, [&](const bim::Window& w) { return is_missing(w.wall); });
   for (auto& wall : built.walls) wall = bim::builtWall(wall, as_built);
+  std::erase_if(built.columns, [&](const bim::Column& c) {
+    return std::find(as_built.missing_columns.begin(), as_built.missing_columns.end(), c.id) !=
+           as_built.missing_columns.end();
+  });
+  for (auto& column : built.columns) {
+    for (const auto& move : as_built.moved_columns) {
+      if (move.column == column.id) column.center += move.offset;
+    }
+  }
   for (const auto& shortened : as_built.shortened_walls) shortenWall(built, shortened);
   for (const auto& extra : as_built.extra_walls) {
     if (extra.level != level.id) continue;

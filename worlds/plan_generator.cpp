@@ -442,7 +442,9 @@ void checkSpec(const GeneratorSpec& spec) {
         std::pair{spec.rotated_walls, "rotated walls"},
         std::pair{spec.shortened_walls, "shortened walls"},
         std::pair{spec.missing_walls, "missing walls"}, std::pair{spec.extra_walls, "extra walls"},
-        std::pair{spec.closed_doors, "closed doors"}}) {
+        std::pair{spec.closed_doors, "closed doors"},
+        std::pair{spec.missing_columns, "missing columns"},
+        std::pair{spec.moved_columns, "moved columns"}}) {
     require(value >= 0.0 && value <= 1.0, std::string(name) + ": must be a share in [0, 1]");
   }
   require(spec.shift_min >= 0.0 && spec.shift_min <= spec.shift_max && spec.shift_max <= 1.0,

@@ -57,6 +57,10 @@ struct GeneratorSpec {
   double extra_walls = 0.0;    // share of offices with an unplanned partition
   double closed_doors = 0.0;   // share of doors closed among those that can be (the rooms
                                // stay connected)
+  // Site family: shares of the columns inside the façade left unbuilt, and moved 0.1–0.25 m in
+  // a direction of their own; drawn from a stream of their own, after every other draw.
+  double missing_columns = 0.0;
+  double moved_columns = 0.0;
 };
 
 struct GeneratedBuilding {

@@ -340,6 +340,30 @@ GeneratedBuilding generateSite(const GeneratorSpec& spec) {
     }
     as_built["shortened_walls"] = json::array({{{"wall", id}, {"built", built}}});
   }
+  // Columns inside the façade not built yet or built off their place, on request
+  // (--missing-columns, --moved-columns): from a stream of their own, so that the rest of a site
+  // is the same bytes either way. A column moves 0.1–0.25 m, clear of the 6 cm a report calls
+  // moved, never onto a wall or another column (the grid is 6–8 m).
+  if (spec.missing_columns > 0.0 || spec.moved_columns > 0.0) {
+    std::mt19937_64 column_rng(spec.seed * 0xA24BAED4963EE407ULL + 29);
+    std::uniform_real_distribution<double> column_unit(0.0, 1.0);
+    json missing_columns = json::array(), moved_columns = json::array();
+    for (std::size_t k : inner_columns) {
+      const double draw = column_unit(column_rng);
+      const double distance = mm(0.1 + 0.15 * column_unit(column_rng));
+      const double direction = 2.0 * 3.14159265358979 * column_unit(column_rng);
+      const std::string& id = level_ref.columns[k].id;
+      if (draw < spec.missing_columns) {
+        missing_columns.push_back(id);
+      } else if (draw < spec.missing_columns + spec.moved_columns) {
+        moved_columns.push_back(
+            {{"column", id},
+             {"offset", {mm(distance * std::cos(direction)), mm(distance * std::sin(direction))}}});
+      }
+    }
+    if (!missing_columns.empty()) as_built["missing_columns"] = missing_columns;
+    if (!moved_columns.empty()) as_built["moved_columns"] = moved_columns;
+  }
   out.scenario = {{"format", "isg.scenario"},
                   {"version", 1},
                   {"plan", out.name + ".json"},

@@ -39,9 +39,16 @@ TEST(Generate, AnOfficeParameterGivenForASiteIsSaid) {
   ASSERT_EQ(made.exit_code, 0) << made.err;
   EXPECT_EQ(made.err,
             "isg generate: warning: --rooms does not apply to the site family (a site takes its "
-            "seed, --count and --height only); its sites are made without it\n");
+            "seed, --count, --height, --missing-columns and --moved-columns only); its sites are "
+            "made without it\n");
   EXPECT_THAT(made.out, HasSubstr("wrote s: 1 building"));
   EXPECT_THAT(sandbox.read("s/site-1.json"), HasSubstr("\"height\": 4.0"));
+  // And the other way round: columns as built are the site family's.
+  const auto office = sandbox.run("generate office -o o --missing-columns 0.2 -q");
+  ASSERT_EQ(office.exit_code, 0) << office.err;
+  EXPECT_EQ(office.err,
+            "isg generate: warning: --missing-columns applies to the site family only (the other "
+            "families' plans have no columns); office buildings are made without it\n");
 }
 
 TEST(Generate, BadParametersNameTheOptionAndWriteNothing) {

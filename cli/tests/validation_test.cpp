@@ -347,6 +347,29 @@ std::vector<Case> cases() {
       {"MissingWallUnknown", "scenario.json",
        [](json&, json& s) { s["as_built"]["missing_walls"] = {"W8"}; },
        "scenario.json: /as_built/missing_walls/0: no wall \"W8\" in the plan"},
+      {"MissingColumnUnknown", "scenario.json",
+       [](json&, json& s) { s["as_built"]["missing_columns"] = {"C9"}; },
+       "scenario.json: /as_built/missing_columns/0: no column \"C9\" in the plan"},
+      {"MovedColumnTwice", "scenario.json",
+       [](json& p, json& s) {
+         p["levels"][0]["columns"] = {{{"id", "C1"}, {"center", {2, 2}}, {"size", {0.3, 0.3}}}};
+         s["as_built"]["moved_columns"] = {{{"column", "C1"}, {"offset", {0.1, 0}}},
+                                           {{"column", "C1"}, {"offset", {0, 0.1}}}};
+       },
+       "scenario.json: /as_built/moved_columns/1/column: \"C1\" is moved twice"},
+      {"MovedColumnMissing", "scenario.json",
+       [](json& p, json& s) {
+         p["levels"][0]["columns"] = {{{"id", "C1"}, {"center", {2, 2}}, {"size", {0.3, 0.3}}}};
+         s["as_built"]["missing_columns"] = {"C1"};
+         s["as_built"]["moved_columns"] = {{{"column", "C1"}, {"offset", {0.1, 0}}}};
+       },
+       "scenario.json: /as_built/moved_columns/0/column: \"C1\" is also in missing_columns"},
+      {"MovedColumnTooFar", "scenario.json",
+       [](json& p, json& s) {
+         p["levels"][0]["columns"] = {{{"id", "C1"}, {"center", {2, 2}}, {"size", {0.3, 0.3}}}};
+         s["as_built"]["moved_columns"] = {{{"column", "C1"}, {"offset", {11, 0}}}};
+       },
+       "scenario.json: /as_built/moved_columns/0/offset: a column moves at most 10 m"},
       {"ShiftOfUnknownWall", "scenario.json",
        [](json&, json& s) { s["as_built"]["wall_shifts"][0]["wall"] = "W0"; },
        "scenario.json: /as_built/wall_shifts/0/wall: no wall \"W0\" in the plan"},

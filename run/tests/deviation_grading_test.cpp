@@ -88,5 +88,54 @@ TEST(DeviationGrading, CountsFoundFalseAndMissedWallsAndTheirErrors) {
   EXPECT_EQ(deviationMetricsJson(back), json);
 }
 
+// Columns on the column hall: C1 truly moved 10 cm and found moved 2 cm off that; C2 truly moved
+// 3 cm (under the 6 cm a report calls moved) and reported moved: a false report; C3 truly missing
+// and reported as planned: missed; C4 truly missing and found; C5 not seen: not graded.
+TEST(DeviationGrading, ColumnsFoundFalseAndMissed) {
+  const bim::Plan plan = bim::testing::parsePlanJson(bim::testing::columnHallPlanJson());
+  bim::AsBuilt truth;
+  truth.missing_columns = {"C3", "C4", "C5"};
+  truth.moved_columns = {{"C1", Eigen::Vector2d(0.1, 0.0)}, {"C2", Eigen::Vector2d(0.0, 0.03)}};
+  slam::DeviationReport report;
+  report.levels = {"L0"};
+  auto column = [](const std::string& id, slam::ColumnStatus status,
+                   std::optional<Eigen::Vector2d> offset) {
+    slam::ColumnDeviation c;
+    c.column = id;
+    c.level = "L0";
+    c.status = status;
+    c.offset_m = offset;
+    return c;
+  };
+  report.columns = {column("C1", slam::ColumnStatus::kMoved, Eigen::Vector2d(0.1, 0.02)),
+                    column("C2", slam::ColumnStatus::kMoved, Eigen::Vector2d(0.0, 0.07)),
+                    column("C3", slam::ColumnStatus::kAsPlanned, Eigen::Vector2d::Zero()),
+                    column("C4", slam::ColumnStatus::kMissing, std::nullopt),
+                    column("C5", slam::ColumnStatus::kNotSeen, std::nullopt)};
+  const DeviationGrade g = gradeDeviations(report, plan, truth);
+  EXPECT_EQ(g.column_found, 2);
+  EXPECT_EQ(g.column_false_reports, 1);
+  EXPECT_EQ(g.column_missed, 1);
+  EXPECT_DOUBLE_EQ(*g.column_precision, 2.0 / 3.0);
+  EXPECT_DOUBLE_EQ(*g.column_recall, 2.0 / 3.0);
+  EXPECT_NEAR(*g.column_offset_error_m, 0.02, 1e-12);
+
+  const DeviationMetrics metrics = deviationMetrics(report, &plan, &truth);
+  EXPECT_TRUE(metrics.has_columns);
+  EXPECT_EQ(metrics.columns_moved, 2);
+  EXPECT_EQ(metrics.columns_missing, 1);
+  EXPECT_EQ(metrics.columns_not_seen, 1);
+  const nlohmann::json json = deviationMetricsJson(metrics);
+  EXPECT_EQ(json["columns"]["as_planned"], 1);
+  EXPECT_EQ(json["graded"]["columns"]["found"], 2);
+  const common::JsonSource source{"metrics.json", nullptr};
+  const DeviationMetrics back =
+      deviationMetricsFromJson(common::JsonNode(json, "/deviations", source));
+  EXPECT_EQ(deviationMetricsJson(back), json);
+  // A report without columns writes none.
+  report.columns.clear();
+  EXPECT_FALSE(deviationMetricsJson(deviationMetrics(report, &plan, &truth)).contains("columns"));
+}
+
 }  // namespace
 }  // namespace isg::run

@@ -474,26 +474,6 @@ namespace {
 
 using LevelWalls = std::vector<std::pair<WallDeviation, PlannedWall>>;
 
-// The levels walked, and the sensor's places on each with what it saw past: views from places
-// 0.5 m apart (nearer ones add little to what is in view).
-std::map<int, std::vector<Viewpoint>> viewpointsOnLevels(const bim::AGraph& plan,
-                                                         const MapDiagnostics& map,
-                                                         const Eigen::Isometry3d& B_T_M) {
-  std::map<int, std::vector<Viewpoint>> viewpoints_on;
-  Eigen::Vector2d last(std::nan(""), std::nan(""));
-  for (const auto& kf : map.keyframes) {
-    const Eigen::Isometry3d B_T_R = B_T_M * kf.estimate;
-    const Eigen::Vector3d p = B_T_R.translation();
-    if ((p.head<2>() - last).norm() < 0.5) continue;
-    last = p.head<2>();
-    const int level = levelAt(plan, p.z());
-    if (level < 0) continue;
-    viewpoints_on[level].push_back(
-        {(B_T_R * kf.sight.sensor_R).head<2>(), common::yawOf(B_T_R.linear()), &kf.sight});
-  }
-  return viewpoints_on;
-}
-
 // The plan surface of `level` a map wall is evidence for: turned within the search angle, within
 // the search distance, over a third of its length along the surface's extent; the nearest on
 // average. -1 for none.
@@ -594,7 +574,9 @@ LevelWalls levelWalls(const bim::AGraph& plan, const std::string& level,
   LevelWalls level_walls;
   for (int w = 0; w < int(plan.walls.size()); ++w) {
     const bim::WallNode& node = plan.walls[w];
-    if (node.level != level) continue;
+    // A rectangular column is judged as a column, from the map's points (its faces are shorter
+    // than a map wall needs to be evidence): docs/deviations.md, "Columns".
+    if (node.level != level || node.column) continue;
     const PlannedWall planned = plannedWall(plan, w);
     WallDeviation wall;
     wall.wall = node.id;
@@ -777,6 +759,24 @@ void measureLevel(const bim::AGraph& plan, int f, const std::vector<WallInB>& wa
 }
 
 }  // namespace
+
+std::map<int, std::vector<Viewpoint>> viewpointsOnLevels(const bim::AGraph& plan,
+                                                         const MapDiagnostics& map,
+                                                         const Eigen::Isometry3d& B_T_M) {
+  std::map<int, std::vector<Viewpoint>> viewpoints_on;
+  Eigen::Vector2d last(std::nan(""), std::nan(""));
+  for (const auto& kf : map.keyframes) {
+    const Eigen::Isometry3d B_T_R = B_T_M * kf.estimate;
+    const Eigen::Vector3d p = B_T_R.translation();
+    if ((p.head<2>() - last).norm() < 0.5) continue;
+    last = p.head<2>();
+    const int level = levelAt(plan, p.z());
+    if (level < 0) continue;
+    viewpoints_on[level].push_back(
+        {(B_T_R * kf.sight.sensor_R).head<2>(), common::yawOf(B_T_R.linear()), &kf.sight});
+  }
+  return viewpoints_on;
+}
 
 DeviationReport measureDeviations(
     const bim::AGraph& plan, const MapDiagnostics& map, const Eigen::Isometry3d& B_T_M,

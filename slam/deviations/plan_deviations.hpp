@@ -1,11 +1,13 @@
 #pragma once
 
 #include <Eigen/Geometry>
+#include <map>
 #include <optional>
 #include <string>
 #include <vector>
 
 #include "bim/agraph.hpp"
+#include "slam/deviations/column_deviations.hpp"
 #include "slam/deviations/map_against_plan.hpp"
 #include "slam/deviations/wall_progress.hpp"
 #include "slam/map_diagnostics.hpp"
@@ -167,6 +169,9 @@ struct DeviationReport {
   // Where the map's points lie off the plan, per level walked (none when the points were not
   // measured: measureDeviations sees only the map's walls).
   std::vector<LevelAgainstPlan> against_plan;
+  // The plan's columns on the levels walked, judged from the map's points (none when the points
+  // were not given: measureDeviations sees only the map's walls; run/evaluate_run.cpp adds them).
+  std::vector<ColumnDeviation> columns;
   int count(WallStatus status) const;
 };
 
@@ -190,6 +195,13 @@ std::string pivotName(double along_m, double length, double name_distance);
 // does is placed by whichever of the two lays the map's walls around it closer to the plan (the
 // keyframes' when that cannot be told). Otherwise, and without them, B_T_M places it (it is the
 // less noisy of the two where the map has not bent).
+// The levels walked, and the sensor's places on each with what it saw past (keyed by the index of
+// the floor in plan.floors): views from places 0.5 m apart (nearer ones add little to what is in
+// view).
+std::map<int, std::vector<Viewpoint>> viewpointsOnLevels(const bim::AGraph& plan,
+                                                         const MapDiagnostics& map,
+                                                         const Eigen::Isometry3d& B_T_M);
+
 DeviationReport measureDeviations(
     const bim::AGraph& plan, const MapDiagnostics& map, const Eigen::Isometry3d& B_T_M,
     const DeviationOptions& options = {},

@@ -5,6 +5,7 @@
 #include <cmath>
 
 #include "bim/as_built_wall.hpp"
+#include "bim/tests/test_plans.hpp"
 
 #include "worlds/reference_plans.hpp"
 
@@ -34,6 +35,20 @@ TEST(AsBuiltLevel, AppliesEveryDeviation) {
 
   as_built.missing_walls = {"W6"};  // the corridor's north wall, with four doors
   EXPECT_EQ(asBuiltLevel(plan_level, as_built).doors.size(), plan_level.doors.size() - 4);
+}
+
+// Columns as built: one not built, one moved; the rest as planned.
+TEST(AsBuiltLevel, ColumnsMissingOrMoved) {
+  const bim::Plan plan = bim::testing::parsePlanJson(bim::testing::columnHallPlanJson());
+  bim::AsBuilt as_built;
+  as_built.missing_columns = {"C4"};
+  as_built.moved_columns = {{"C1", Eigen::Vector2d(0.15, -0.1)}};
+  const bim::Level built = asBuiltLevel(plan.levels[0], as_built);
+  EXPECT_EQ(built.columns.size(), plan.levels[0].columns.size() - 1);
+  EXPECT_EQ(built.findColumn("C4"), nullptr);
+  EXPECT_EQ(built.findColumn("C1")->center, Eigen::Vector2d(3.15, 1.9));
+  EXPECT_EQ(built.findColumn("C2")->center, Eigen::Vector2d(9, 2));
+  EXPECT_FALSE(as_built.empty());
 }
 
 // Turned by hand: W5 runs (0, 4) → (20, 4) with door(s) placed along it from its start.
