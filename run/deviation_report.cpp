@@ -54,6 +54,7 @@ nlohmann::json deviationReportJson(const slam::DeviationReport& report) {
       {"search_distance_m", o.search_distance},
       {"search_angle_deg", o.search_angle_deg},
       {"min_wall_length_m", o.min_wall_length},
+      {"column_margin_m", o.column_margin},
       {"bend_distance_m", o.bend_distance},
       {"bend_angle_deg", o.bend_angle_deg},
       {"local_radius_m", o.local_radius},
@@ -206,6 +207,10 @@ std::vector<DeviationPanel> deviationPanels(const slam::DeviationReport& report)
     for (const auto& e : report.extra_walls) {
       if (e.level == level) panel.box.extend(e.start), panel.box.extend(e.end);
     }
+    for (const auto& c : report.columns) {
+      if (c.level != level) continue;
+      for (const auto& p : c.planned_outline) panel.box.extend(p);
+    }
     if (!panel.box.isEmpty()) panels.push_back(panel);
   }
   return panels;
@@ -238,7 +243,23 @@ std::string deviationLegend(const slam::DeviationOptions& o) {
       x, x + 20, x + 25);
   return svg +
          "<text x=\"10\" y=\"60\" fill=\"#555\">grey: the plan's walls; coloured: the map's "
-         "walls seen as each plan wall, by its status</text>\n";
+         "walls seen as each plan wall, by its status; columns: outlined in their status's "
+         "colour, a moved one filled where it stands, a missing one dashed</text>\n";
+}
+
+// A column's status drawn in the colour of the wall status it is like: moved as shifted.
+slam::WallStatus columnColourStatus(slam::ColumnStatus status) {
+  switch (status) {
+    case slam::ColumnStatus::kAsPlanned:
+      return slam::WallStatus::kAsPlanned;
+    case slam::ColumnStatus::kMoved:
+      return slam::WallStatus::kShifted;
+    case slam::ColumnStatus::kMissing:
+      return slam::WallStatus::kMissing;
+    case slam::ColumnStatus::kNotSeen:
+      break;
+  }
+  return slam::WallStatus::kNotSeen;
 }
 
 // A wall's label: its id, and its offset and angle when it deviates.
@@ -290,6 +311,35 @@ std::string deviationPanel(const slam::DeviationReport& report, const DeviationP
         format("<text x=\"%.1f\" y=\"%.1f\" fill=\"%s\">%s</text>\n", X(middle) + 4, Y(middle) - 4,
                w.status == slam::WallStatus::kAsPlanned ? "#777" : colourOf(w.status),
                wallLabel(w).c_str());
+  }
+  // The columns: the planned outline in its status's colour (dashed when missing), a moved one
+  // filled where it was found, labelled with its offset.
+  for (const auto& c : report.columns) {
+    if (c.level != panel.level || c.planned_outline.empty()) continue;
+    const slam::WallStatus as_wall = columnColourStatus(c.status);
+    auto outline = [&](const Eigen::Vector2d& offset) {
+      std::string points;
+      for (const auto& p : c.planned_outline) {
+        points += format("%.1f,%.1f ", X(p + offset), Y(p + offset));
+      }
+      return points;
+    };
+    const bool missing = c.status == slam::ColumnStatus::kMissing;
+    svg += format("<polygon points=\"%s\" fill=\"%s\" stroke=\"%s\" stroke-width=\"1.5\"%s/>\n",
+                  outline(Eigen::Vector2d::Zero()).c_str(),
+                  c.status == slam::ColumnStatus::kAsPlanned ? "#c8c8c8" : "none",
+                  colourOf(as_wall), missing ? " stroke-dasharray=\"3 2\"" : "");
+    if (c.status == slam::ColumnStatus::kMoved && c.offset_m) {
+      svg += format("<polygon points=\"%s\" fill=\"%s\" fill-opacity=\"0.7\"/>\n",
+                    outline(*c.offset_m).c_str(), colourOf(as_wall));
+    }
+    if (c.status == slam::ColumnStatus::kMoved || missing) {
+      std::string label = common::xmlEscape(c.column);
+      label += missing ? std::string(" missing")
+                       : format(" moved %+.2f, %+.2f m", c.offset_m->x(), c.offset_m->y());
+      svg += format("<text x=\"%.1f\" y=\"%.1f\" fill=\"%s\">%s</text>\n", X(c.planned_centre) + 10,
+                    Y(c.planned_centre) - 8, colourOf(as_wall), label.c_str());
+    }
   }
   for (const auto& e : report.extra_walls) {
     if (e.level != panel.level) continue;

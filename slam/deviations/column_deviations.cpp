@@ -218,6 +218,7 @@ std::vector<ColumnDeviation> ColumnEvidence::judge(
     judged.level = candidate.level;
     judged.round = column.round();
     judged.planned_centre = column.center;
+    judged.planned_outline = bim::columnFootprint(column);
     const ColumnFit fit = fitColumn(column, candidate.points, options_);
     judged.points = fit.on;
     if (fit.on >= options_.min_points) {

@@ -50,6 +50,8 @@ struct ColumnDeviation {
   std::string level;
   bool round = false;
   Eigen::Vector2d planned_centre = Eigen::Vector2d::Zero();  // in B
+  std::vector<Eigen::Vector2d>
+      planned_outline;  // its footprint (bim::columnFootprint), for pictures
   ColumnStatus status = ColumnStatus::kNotSeen;
   std::size_t points = 0;  // the map's points on its fitted outline
   // Where it stands against where it is planned (B, metres), along the directions measured; none

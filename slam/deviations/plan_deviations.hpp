@@ -24,6 +24,9 @@ struct DeviationOptions {
   double search_distance = 0.5;  // m
   double search_angle_deg = 20.0;
   double min_wall_length = 0.5;  // m: shorter map walls are not evidence
+  // A map wall within this of a rectangular column's outline, all along, is a face of the column
+  // (judged with the columns, slam::ColumnOptions::search_m alike), not an extra wall.
+  double column_margin = 0.35;  // m
   // Judged deviating at or beyond these. Below them lies what the map's own noise explains: a
   // plane's offset to about 1 cm, its direction to a few tenths of a degree, the map's place in
   // the plan to 1–3 cm (docs/deviations.md, "Thresholds").

@@ -356,3 +356,88 @@ TEST(PlanDeviations, AWallIsNotBuiltOnlyWhereTheSensorSawPastIt) {
 
 }  // namespace
 }  // namespace isg::slam
+
+namespace isg::slam {
+namespace {
+
+// A façade of three bays in line (F1, F2, F3 from x = 0 to 19 along y = 0, between two columns
+// in the façade) and a square column C1 standing free at (6.25, 4), 0.6 m across.
+bim::Plan facadeOfBays() {
+  const nlohmann::json document = nlohmann::json::parse(R"({
+    "format": "isg.plan", "version": 1, "name": "bays",
+    "levels": [{
+      "id": "L0", "elevation": 0.0, "height": 3.0,
+      "walls": [
+        {"id": "F1", "start": [0, 0], "end": [6, 0], "thickness": 0.2},
+        {"id": "F2", "start": [6.5, 0], "end": [12.5, 0], "thickness": 0.2},
+        {"id": "F3", "start": [13, 0], "end": [19, 0], "thickness": 0.2},
+        {"id": "W4", "start": [19, 0], "end": [19, 8], "thickness": 0.2},
+        {"id": "W5", "start": [19, 8], "end": [0, 8], "thickness": 0.2},
+        {"id": "W6", "start": [0, 8], "end": [0, 0], "thickness": 0.2}
+      ],
+      "columns": [{"id": "C1", "center": [6.25, 4], "size": [0.6, 0.6]}]
+    }]
+  })");
+  const common::JsonSource source{"bays.json", nullptr};
+  return bim::parsePlan(common::JsonNode(document, "", source));
+}
+
+// The S-Graph sees the façade's inner face y = 0.1 as one plane 18.8 m long, a third along none
+// of its three bays: it is evidence for each bay along its length, not an extra wall. The
+// column's end face x = 5.95 (the A-Graph keeps only a column's two long faces, y = 3.7 and 4.3,
+// as surfaces) is the column's, not an extra wall either. Before, both were extra walls.
+TEST(PlanDeviations, APlaneAlongBaysInLineIsEachBaysAndAColumnsFaceIsNoExtraWall) {
+  const bim::Plan plan = facadeOfBays();
+  const bim::AGraph graph = bim::buildAGraph(plan);
+  MapDiagnostics map;
+  map.walls.push_back({0,
+                       Eigen::Vector3d::UnitY(),
+                       -0.1,
+                       {0.1, 0.1},
+                       {18.9, 0.1},
+                       0.2,
+                       2.6,
+                       20,
+                       std::vector<int>()});
+  map.walls.push_back({1,
+                       -Eigen::Vector3d::UnitX(),
+                       5.95,
+                       {5.95, 3.7},
+                       {5.95, 4.3},
+                       0.2,
+                       2.6,
+                       20,
+                       std::vector<int>()});
+  // A free-standing partition the plan lacks, in the open (2 m long at x = 12): an extra wall.
+  map.walls.push_back({2,
+                       Eigen::Vector3d::UnitX(),
+                       -12.0,
+                       {12.0, 3.0},
+                       {12.0, 5.0},
+                       0.2,
+                       2.6,
+                       20,
+                       std::vector<int>()});
+  for (double x = 1.0; x <= 18.0; x += 1.0) {
+    MapKeyframe keyframe;
+    keyframe.estimate.translation() = Eigen::Vector3d(x, 2.0, 0.5);
+    map.keyframes.push_back(keyframe);
+  }
+  const DeviationReport report = measureDeviations(graph, map, Eigen::Isometry3d::Identity());
+  for (const char* bay : {"F1", "F2", "F3"}) {
+    const WallDeviation& wall = wallOf(report, bay);
+    EXPECT_EQ(wall.status, WallStatus::kAsPlanned) << bay;
+    EXPECT_GT(wall.observed_share, 0.95) << bay;
+    ASSERT_EQ(wall.evidence.size(), 1u) << bay;
+    EXPECT_NEAR(*wall.offset_m, 0.0, 1e-9) << bay;
+  }
+  // F1's piece runs from the plane's start to the bay's end (its face's exposed extent).
+  EXPECT_NEAR(wallOf(report, "F1").evidence[0].start_B.x(), 0.1, 1e-9);
+  ASSERT_EQ(report.extra_walls.size(), 1u);
+  EXPECT_NEAR(report.extra_walls[0].start.x(), 12.0, 1e-9);
+  // The column is not among the walls.
+  for (const auto& wall : report.walls) EXPECT_NE(wall.wall, "C1");
+}
+
+}  // namespace
+}  // namespace isg::slam
