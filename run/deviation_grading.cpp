@@ -44,7 +44,7 @@ void gradeProgress(const slam::WallProgress& progress, const bim::ShortenedWall*
 // The columns against the truth (DeviationGrade, "Columns").
 void gradeColumns(const slam::DeviationReport& report, const bim::AsBuilt& truth,
                   DeviationGrade& grade) {
-  const double moved_m = slam::ColumnOptions{}.moved_m;
+  const double moved_m = report.column_options.moved_m;
   double offset_error = 0.0;
   int offsets = 0;
   for (const slam::ColumnDeviation& column : report.columns) {
@@ -204,7 +204,6 @@ DeviationMetrics deviationMetrics(const slam::DeviationReport& report, const bim
         break;
     }
   }
-  m.has_columns = !report.columns.empty();
   for (const auto& c : report.columns) {
     switch (c.status) {
       case slam::ColumnStatus::kAsPlanned:
@@ -345,7 +344,7 @@ nlohmann::json deviationMetricsJson(const DeviationMetrics& m) {
   nlohmann::json progress = nlohmann::json::object();
   putCounts(progress, m, kProgressCounts);
   nlohmann::json j = {{"walls", walls}, {"extra_walls", m.extra_walls}, {"progress", progress}};
-  if (m.has_columns) {
+  if (m.hasColumns()) {
     nlohmann::json columns = nlohmann::json::object();
     putCounts(columns, m, kColumnCounts);
     j["columns"] = columns;
@@ -365,7 +364,7 @@ nlohmann::json deviationMetricsJson(const DeviationMetrics& m) {
     graded["missing"] = missing;
     graded["extra"] = extra;
     graded["partly_built"] = partly;
-    if (m.has_columns) {
+    if (m.hasColumns()) {
       nlohmann::json columns = nlohmann::json::object();
       putCounts(columns, g, kGradedColumnCounts);
       putOptionals(columns, g, kGradedColumnOptionals);
@@ -386,7 +385,6 @@ DeviationMetrics deviationMetricsFromJson(const common::JsonNode& node) {
   }
   // Written since columns are judged, on plans with columns on the levels walked.
   if (const auto columns = node.optionalField("columns")) {
-    m.has_columns = true;
     readCounts(*columns, m, kColumnCounts);
   }
   if (const auto graded = node.optionalField("graded")) {

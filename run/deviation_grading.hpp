@@ -60,8 +60,10 @@ struct DeviationMetrics {
   int built = 0, partly_built = 0, not_built = 0, progress_not_seen = 0;  // by progress
   // The plan's columns on the levels walked, by status (metrics.json `deviations.columns`, there
   // when the levels walked have columns).
-  bool has_columns = false;
   int columns_as_planned = 0, columns_moved = 0, columns_missing = 0, columns_not_seen = 0;
+  bool hasColumns() const {
+    return columns_as_planned + columns_moved + columns_missing + columns_not_seen > 0;
+  }
   std::optional<DeviationGrade> grade;
 };
 

@@ -157,6 +157,17 @@ nlohmann::json deviationReportJson(const slam::DeviationReport& report) {
                          {"seen_past", c.seen_past}});
     }
     out["columns"] = columns;
+    const slam::ColumnOptions& c = report.column_options;
+    out["thresholds"]["columns"] = {{"search_m", c.search_m},
+                                    {"band_margin_m", c.band_margin_m},
+                                    {"wall_clearance_m", c.wall_clearance_m},
+                                    {"inlier_m", c.inlier_m},
+                                    {"min_points", c.min_points},
+                                    {"min_direction_weight", c.min_direction_weight},
+                                    {"moved_m", c.moved_m},
+                                    {"view_range_m", c.view_range_m},
+                                    {"see_past_margin_m", c.see_past_margin_m},
+                                    {"min_views", c.min_views}};
   }
   if (!report.against_plan.empty()) {
     nlohmann::json levels = nlohmann::json::array();

@@ -137,7 +137,8 @@ void deviations(const RunRecord& run, const std::vector<slam::LevelAgainstPlan>&
   // The columns, from the map's points around them (one more pass over the points, on plans with
   // columns only) and the sight lines of the keyframes.
   if (run.setup.plan != nullptr) {
-    slam::ColumnEvidence columns(*run.setup.plan, evaluation.deviations->levels);
+    slam::ColumnEvidence columns(*run.setup.plan, evaluation.deviations->levels,
+                                 evaluation.deviations->column_options);
     if (columns.any()) {
       forEachPlacedMapPoint(run, [&](const Eigen::Vector3d& p) { columns.add(p); });
       evaluation.deviations->columns =

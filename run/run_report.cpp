@@ -364,7 +364,7 @@ std::string runSummary(const std::string& command, const std::string& dir, const
   if (m.deviations) {
     out += "  " + deviationSummaryLine(*m.deviations) + "\n";
     out += "  " + progressSummaryLine(*m.deviations) + "\n";
-    if (m.deviations->has_columns) out += "  " + columnSummaryLine(*m.deviations) + "\n";
+    if (m.deviations->hasColumns()) out += "  " + columnSummaryLine(*m.deviations) + "\n";
   }
   if (m.ape_M_se3) {
     out += format("  APE in M after SE(3) alignment: rmse %.3f m\n", m.ape_M_se3->rmse);

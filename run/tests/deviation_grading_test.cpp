@@ -121,7 +121,7 @@ TEST(DeviationGrading, ColumnsFoundFalseAndMissed) {
   EXPECT_NEAR(*g.column_offset_error_m, 0.02, 1e-12);
 
   const DeviationMetrics metrics = deviationMetrics(report, &plan, &truth);
-  EXPECT_TRUE(metrics.has_columns);
+  EXPECT_TRUE(metrics.hasColumns());
   EXPECT_EQ(metrics.columns_moved, 2);
   EXPECT_EQ(metrics.columns_missing, 1);
   EXPECT_EQ(metrics.columns_not_seen, 1);

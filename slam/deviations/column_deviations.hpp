@@ -75,6 +75,7 @@ class ColumnEvidence {
   std::vector<ColumnDeviation> judge(const bim::AGraph& graph,
                                      const std::map<int, std::vector<Viewpoint>>& viewpoints) const;
 
+ private:
   struct Candidate {
     const bim::Column* column = nullptr;
     std::string level;
@@ -83,8 +84,6 @@ class ColumnEvidence {
     std::vector<std::vector<Eigen::Vector2d>> others;  // the footprints of what stands near it
     std::vector<Eigen::Vector2d> points;
   };
-
- private:
   ColumnOptions options_;
   std::vector<Candidate> candidates_;
 };

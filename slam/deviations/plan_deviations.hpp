@@ -175,6 +175,7 @@ struct DeviationReport {
   // The plan's columns on the levels walked, judged from the map's points (none when the points
   // were not given: measureDeviations sees only the map's walls; run/evaluate_run.cpp adds them).
   std::vector<ColumnDeviation> columns;
+  ColumnOptions column_options;  // what they were judged by
   int count(WallStatus status) const;
 };
 
