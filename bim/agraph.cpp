@@ -22,6 +22,19 @@ bool isRectangle(const std::vector<Eigen::Vector2d>& outline, double tolerance_d
   return true;
 }
 
+// A quadrilateral whose opposite edges are parallel within `tolerance_deg` (a rectangle is one):
+// a room of a sheared, non-Manhattan plan.
+bool isParallelogram(const std::vector<Eigen::Vector2d>& outline, double tolerance_deg) {
+  if (outline.size() != 4) return false;
+  const double max_sin = std::sin(tolerance_deg * std::numbers::pi / 180.0);
+  for (std::size_t i = 0; i < 2; ++i) {
+    const Eigen::Vector2d a = (outline[i + 1] - outline[i]).normalized();
+    const Eigen::Vector2d b = (outline[(i + 3) % 4] - outline[i + 2]).normalized();
+    if (std::abs(a.x() * b.y() - a.y() * b.x()) > max_sin || a.dot(b) > 0.0) return false;
+  }
+  return true;
+}
+
 double pairWidth(const Plane& a, const Plane& b) {
   return std::abs(a.signedDistance(b.closestPoint()));
 }
@@ -39,12 +52,39 @@ std::vector<int> edgeSurfaces(const Room& room, const LevelGeometry& geometry,
   return out;
 }
 
+// A parallelogram that is not a rectangle (a corridor of a sheared plan) is a two-wall room when
+// one pair of opposite edges bounds a long narrow band: the distance between them at most
+// corridor_width, their length at least corridor_aspect times it. Its ends lean, so it cannot be
+// the rectangle of a four-wall room; other parallelograms stay polygons.
+void classifySlantedCorridor(RoomNode& node, const AGraph& graph, const AGraphOptions& options) {
+  if (!isParallelogram(node.outline, options.rectangle_angle_tolerance_deg)) return;
+  const auto& s = node.surfaces;
+  for (int first : {0, 1}) {
+    if (s[first] < 0 || s[first + 2] < 0) continue;
+    const Plane& a = graph.surfaces[s[first]].plane;
+    const Plane& b = graph.surfaces[s[first + 2]].plane;
+    const double width = pairWidth(a, b);
+    const double length =
+        std::min((node.outline[first + 1] - node.outline[first]).norm(),
+                 (node.outline[(first + 3) % 4] - node.outline[first + 2]).norm());
+    if (width > options.corridor_width || length < options.corridor_aspect * width) continue;
+    node.kind = RoomKind::kTwoWall;
+    node.pairs = {{s[first], s[first + 2]}};
+    node.widths = {width};
+    node.centre = twoWallRoomCentre(a, b, node.axis_point);
+    return;
+  }
+}
+
 void classifyRoom(RoomNode& node, const AGraph& graph, const AGraphOptions& options) {
   const auto& s = node.surfaces;
   node.kind = RoomKind::kPolygon;
   node.centre = centroid(node.outline);
   node.axis_point = node.centre;
-  if (!isRectangle(node.outline, options.rectangle_angle_tolerance_deg)) return;
+  if (!isRectangle(node.outline, options.rectangle_angle_tolerance_deg)) {
+    classifySlantedCorridor(node, graph, options);
+    return;
+  }
   const double length0 = (node.outline[1] - node.outline[0]).norm();
   const double length1 = (node.outline[2] - node.outline[1]).norm();
   const bool pair0 = s[0] >= 0 && s[2] >= 0;  // edges 0 and 2 face each other

@@ -118,6 +118,15 @@ GenerateCommand::GenerateCommand(CLI::App& parent) {
                    "as built, site family: share of the columns inside the façade built 0.1–0.25 "
                    "m off their planned centre")
       ->capture_default_str();
+  app_->add_option("--shear", spec_.shear_deg,
+                   "non-Manhattan: the building sheared along x so that the walls across its "
+                   "corridors lean DEG from square and its rooms are parallelograms, -40 … 40 "
+                   "[degrees]; not the site family's")
+      ->capture_default_str();
+  app_->add_option("--turn", spec_.turn_deg,
+                   "the whole building turned about B's origin, -180 … 180 [degrees] (after "
+                   "--shear); not the site family's")
+      ->capture_default_str();
   app_->add_option("--missing-walls", spec_.missing_walls,
                    "as built: share of door-less walls between offices left unbuilt")
       ->capture_default_str();
@@ -161,13 +170,30 @@ int GenerateCommand::run() {
   // A site is drawn from its seed alone (docs/sweeps.md): an office parameter given for one is
   // said, not silently dropped.
   if (std::find(families.begin(), families.end(), "site") != families.end()) {
-    for (const char* option :
-         {"--rooms",          "--room-width",     "--room-depth",       "--size-spread",
-          "--corridor-width", "--doors",          "--connecting-doors", "--symmetric",
-          "--partitions",     "--wall-thickness", "--clutter-per-room", "--shifted-walls",
-          "--shift-min",      "--shift-max",      "--rotated-walls",    "--rotation-min",
-          "--rotation-max",   "--rotation-about", "--shortened-walls",  "--missing-walls",
-          "--extra-walls",    "--closed-doors"}) {
+    for (const char* option : {"--rooms",
+                               "--room-width",
+                               "--room-depth",
+                               "--size-spread",
+                               "--corridor-width",
+                               "--doors",
+                               "--connecting-doors",
+                               "--symmetric",
+                               "--partitions",
+                               "--wall-thickness",
+                               "--clutter-per-room",
+                               "--shifted-walls",
+                               "--shift-min",
+                               "--shift-max",
+                               "--rotated-walls",
+                               "--rotation-min",
+                               "--rotation-max",
+                               "--rotation-about",
+                               "--shortened-walls",
+                               "--missing-walls",
+                               "--extra-walls",
+                               "--closed-doors",
+                               "--shear",
+                               "--turn"}) {
       if (app_->count(option) == 0) continue;
       std::fprintf(stderr,
                    "isg generate: warning: %s does not apply to the site family (a site takes "

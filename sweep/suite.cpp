@@ -43,7 +43,9 @@ worlds::GeneratorSpec generatorSpec(const common::JsonNode& node) {
                      "closed_doors",
                      "connecting_doors",
                      "missing_columns",
-                     "moved_columns"});
+                     "moved_columns",
+                     "shear_deg",
+                     "turn_deg"});
   worlds::GeneratorSpec spec;
   spec.family = node.field("family").identifier();
   const auto& families = worlds::generatorFamilies();
@@ -89,6 +91,8 @@ worlds::GeneratorSpec generatorSpec(const common::JsonNode& node) {
   number("connecting_doors", spec.connecting_doors);
   number("missing_columns", spec.missing_columns);
   number("moved_columns", spec.moved_columns);
+  number("shear_deg", spec.shear_deg);
+  number("turn_deg", spec.turn_deg);
   // The generator's own checks, reported at this node.
   try {
     (void)worlds::generateBuilding(spec);
@@ -389,6 +393,8 @@ nlohmann::json generatorSpecJson(const worlds::GeneratorSpec& s) {
   // same.
   if (s.missing_columns > 0.0) j["missing_columns"] = s.missing_columns;
   if (s.moved_columns > 0.0) j["moved_columns"] = s.moved_columns;
+  if (s.shear_deg != 0.0) j["shear_deg"] = s.shear_deg;
+  if (s.turn_deg != 0.0) j["turn_deg"] = s.turn_deg;
   return j;
 }
 

@@ -17,6 +17,7 @@
 #include "bim/scenario.hpp"
 #include "common/input_error.hpp"
 #include "common/json_reader.hpp"
+#include "worlds/plan_lean.hpp"
 #include "worlds/segment_distance.hpp"
 #include "worlds/site_generator.hpp"
 
@@ -456,6 +457,10 @@ void checkSpec(const GeneratorSpec& spec) {
           "rotation about: must be named or any");
   require(spec.clutter_per_room >= 0.0 && spec.clutter_per_room <= 4.0,
           "clutter per room: must be in [0, 4]");
+  // Walls meeting at less than 50° make rooms whose acute corners the robot cannot turn in, and
+  // corners the matcher does not seed from (docs/matching.md).
+  require(std::abs(spec.shear_deg) <= 40.0, "shear: must be in [-40, 40] degrees");
+  require(std::abs(spec.turn_deg) <= 180.0, "turn: must be in [-180, 180] degrees");
 }
 
 // The floor as the stages below build it up: its spaces (corridors and halls first), the walls
@@ -966,6 +971,7 @@ GeneratedBuilding generateUnchecked(const GeneratorSpec& spec) {
       {"seed", spec.seed},
       {"robot", {{"level", "L0"}, {"start", {{"room", ids[start]}}}, {"route", "tour"}}},
       {"as_built", as_built}};
+  leanBuilding(out, s.shear_deg, s.turn_deg);
   return out;
 }
 

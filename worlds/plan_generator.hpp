@@ -61,6 +61,11 @@ struct GeneratorSpec {
   // a direction of their own; drawn from a stream of their own, after every other draw.
   double missing_columns = 0.0;
   double moved_columns = 0.0;
+  // Non-Manhattan (worlds/plan_lean.hpp): the whole building sheared along x by shear_deg (the
+  // walls across its corridors lean that far from square), then turned by turn_deg about B's
+  // origin. Not the site family's.
+  double shear_deg = 0.0;
+  double turn_deg = 0.0;
 };
 
 struct GeneratedBuilding {

@@ -2,8 +2,12 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
+#include <numbers>
+
 #include "bim/plan_parser.hpp"
 #include "bim/plan_transform.hpp"
+#include "bim/polygon.hpp"
 #include "bim/synthetic_plan.hpp"
 #include "bim/tests/test_plans.hpp"
 
@@ -159,6 +163,43 @@ TEST(AGraph, CorridorIsATwoWallRoom) {
   EXPECT_NEAR((corridor.centre - Eigen::Vector2d(6.0, 1.1375)).norm(), 0.0, 1e-9);
   for (const char* office : {"R1", "R2", "R3"}) {
     EXPECT_EQ(graph.rooms[graph.findRoom(office)].kind, RoomKind::kFourWall) << office;
+  }
+}
+
+// D1 sheared along x by 30° (x += y·tan 30°): its corridor along x becomes a parallelogram with
+// leaning ends, still a corridor between the same two faces 1.975 m apart; its offices become
+// parallelograms, polygons (no four-wall room factor holds for them).
+TEST(AGraph, AShearedCorridorIsStillATwoWallRoom) {
+  Plan plan = loadPlan(kPlans + "d1.json");
+  const double lean = std::tan(30.0 * std::numbers::pi / 180.0);
+  const auto shear = [&](const Eigen::Vector2d& p) {
+    return Eigen::Vector2d(p.x() + lean * p.y(), p.y());
+  };
+  for (Wall& wall : plan.levels[0].walls) {
+    const double before = (wall.end - wall.start).norm();
+    wall.start = shear(wall.start);
+    wall.end = shear(wall.end);
+    const double stretch = (wall.end - wall.start).norm() / before;
+    wall.thickness /= stretch;  // the shear keeps areas: the faces stay on the outlines
+    for (Door& door : plan.levels[0].doors) {
+      if (door.wall == wall.id) door.offset *= stretch, door.width *= stretch;
+    }
+  }
+  for (Room& room : plan.levels[0].rooms) {
+    for (Eigen::Vector2d& vertex : room.outline) vertex = shear(vertex);
+  }
+  const AGraph graph = buildAGraph(plan);
+  const RoomNode& corridor = graph.rooms[graph.findRoom("R4")];
+  EXPECT_EQ(corridor.kind, RoomKind::kTwoWall);
+  ASSERT_EQ(corridor.pairs.size(), 1u);
+  EXPECT_EQ(graph.surfaces[corridor.pairs[0][0]].id, "W1:left");
+  EXPECT_EQ(graph.surfaces[corridor.pairs[0][1]].id, "W5:right");
+  EXPECT_NEAR(corridor.widths[0], 1.975, 1e-9);
+  // On the corridor's mid-plane y = 1.1375, at the sheared outline's centroid.
+  EXPECT_NEAR(corridor.centre.y(), 1.1375, 1e-9);
+  EXPECT_NEAR(corridor.centre.x(), centroid(corridor.outline).x(), 1e-9);
+  for (const char* office : {"R1", "R2", "R3"}) {
+    EXPECT_EQ(graph.rooms[graph.findRoom(office)].kind, RoomKind::kPolygon) << office;
   }
 }
 

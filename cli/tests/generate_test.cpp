@@ -43,6 +43,12 @@ TEST(Generate, AnOfficeParameterGivenForASiteIsSaid) {
             "made without it\n");
   EXPECT_THAT(made.out, HasSubstr("wrote s: 1 building"));
   EXPECT_THAT(sandbox.read("s/site-1.json"), HasSubstr("\"height\": 4.0"));
+  // A site has its own slanted corner: it is not sheared.
+  const auto sheared = sandbox.run("generate site -o t --shear 20 -q");
+  ASSERT_EQ(sheared.exit_code, 0) << sheared.err;
+  EXPECT_THAT(sheared.err, HasSubstr("warning: --shear does not apply to the site family"));
+  ASSERT_EQ(sandbox.run("generate site -o u -q").exit_code, 0);
+  EXPECT_EQ(sandbox.read("t/site-1.json"), sandbox.read("u/site-1.json"));
   // And the other way round: columns as built are the site family's.
   const auto office = sandbox.run("generate office -o o --missing-columns 0.2 -q");
   ASSERT_EQ(office.exit_code, 0) << office.err;
@@ -58,6 +64,11 @@ TEST(Generate, BadParametersNameTheOptionAndWriteNothing) {
   EXPECT_EQ(narrow.err,
             "isg generate: error: --corridor-width: must be in [1.2, 6] m (a robot and a door must "
             "fit) (hotel, seed 1)\n");
+  EXPECT_FALSE(sandbox.exists("g"));
+  const auto shear = sandbox.run("generate office -o g --shear 41");
+  EXPECT_EQ(shear.exit_code, 1);
+  EXPECT_EQ(shear.err,
+            "isg generate: error: --shear: must be in [-40, 40] degrees (office, seed 1)\n");
   EXPECT_FALSE(sandbox.exists("g"));
   const auto family = sandbox.run("generate castle -o g");
   EXPECT_EQ(family.exit_code, 2);

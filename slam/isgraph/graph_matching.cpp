@@ -242,7 +242,8 @@ GraphMatcher::GraphMatcher(const bim::AGraph& graph, const MatchingOptions& opti
             if (!paired.insert({i, a, j, b}).second) continue;
             auto corner =
                 cornerOf(si.plane, si.segments[a].first, si.segments[a].second, sj.plane,
-                         sj.segments[b].first, sj.segments[b].second, options_.corner_gap);
+                         sj.segments[b].first, sj.segments[b].second, options_.corner_gap,
+                         std::sin(options_.min_corner_angle_deg * std::numbers::pi / 180.0));
             if (!corner) continue;
             for (int k = 0; k < 2; ++k) {
               const int surface = k == 0 ? i : j;

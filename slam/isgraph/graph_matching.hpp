@@ -149,6 +149,11 @@ struct MatchingOptions {
   // that lies on its surface, a coincidence by few.
   int max_corridor_slides = 512;
   double corner_gap = 0.6;  // m, between two walls' ends to make a corner
+  // Two walls make a corner when their normals are at least this far apart (and at most 180° less
+  // it): a non-Manhattan plan's walls meet at 50° or 65° as well as 90°. Below it the crossing of
+  // their lines is too ill-conditioned to place a seed (1 cm across the walls moves it 2 cm along
+  // them at 30°).
+  double min_corner_angle_deg = 30.0;
 };
 
 // One B_T_M checked against the S-Graph: what it explains.
@@ -264,10 +269,12 @@ class GraphMatcher {
     std::array<double, 2> arm{};                      // m of wall along each arm
   };
   // The corners two walls (S-planes or A-surface segments) make: their ends within corner_gap
-  // of the crossing of their lines, normals at least 60° apart.
+  // of the crossing of their lines, normals at least min_corner_angle_deg apart (`min_sine`
+  // is its sine).
   static std::optional<Corner> cornerOf(const bim::Plane& p, Eigen::Vector2d p_start,
                                         Eigen::Vector2d p_end, const bim::Plane& q,
-                                        Eigen::Vector2d q_start, Eigen::Vector2d q_end, double gap);
+                                        Eigen::Vector2d q_start, Eigen::Vector2d q_end, double gap,
+                                        double min_sine);
   const Cell* cellAt(const Eigen::Vector2d& p) const;
   int matchRoom(const MatchRoom& room, const Placement& placed, double* distance) const;
   int matchPlane(const MatchPlane& plane, const Placement& placed, double* overlap,

@@ -43,10 +43,10 @@ class UniqueTransforms {
 
 std::optional<GraphMatcher::Corner> GraphMatcher::cornerOf(
     const bim::Plane& p, Eigen::Vector2d p_start, Eigen::Vector2d p_end, const bim::Plane& q,
-    Eigen::Vector2d q_start, Eigen::Vector2d q_end, double gap) {
+    Eigen::Vector2d q_start, Eigen::Vector2d q_end, double gap, double min_sine) {
   const Eigen::Vector2d np = normal2(p), nq = normal2(q);
   const double det = np.x() * nq.y() - np.y() * nq.x();
-  if (std::abs(det) < std::sin(60.0 * std::numbers::pi / 180.0)) return std::nullopt;
+  if (std::abs(det) < min_sine) return std::nullopt;
   Eigen::Matrix2d A;
   A << np.x(), np.y(), nq.x(), nq.y();
   const double dp = p.d / p.normal.head<2>().norm(), dq = q.d / q.normal.head<2>().norm();
@@ -175,7 +175,8 @@ void GraphMatcher::seedFromCorners(const MatchInput& input,
       const MatchPlane& q = input.planes[j];
       if (q.length() < options_.min_corner_arm || room_corners.count({p.id, q.id})) continue;
       const auto corner =
-          cornerOf(p.plane, p.start, p.end, q.plane, q.start, q.end, options_.corner_gap);
+          cornerOf(p.plane, p.start, p.end, q.plane, q.start, q.end, options_.corner_gap,
+                   std::sin(options_.min_corner_angle_deg * std::numbers::pi / 180.0));
       if (corner && std::min(corner->arm[0], corner->arm[1]) >= options_.min_corner_arm) {
         s_corners.push_back(*corner);
       }

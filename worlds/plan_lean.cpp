@@ -1,0 +1,161 @@
+#include "worlds/plan_lean.hpp"
+
+#include <Eigen/Geometry>
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstdio>
+#include <map>
+#include <numbers>
+#include <string>
+#include <vector>
+
+#include "worlds/segment_distance.hpp"
+
+namespace isg::worlds {
+
+namespace {
+
+using nlohmann::json;
+
+double mm(double v) { return std::round(v * 1000.0) / 1000.0; }
+double tenthMm(double v) { return std::round(v * 10000.0) / 10000.0; }
+// The millimetre just below `length`: a part of a wall may not run past its rounded end.
+double below(double length) { return std::floor(length * 1000.0 - 1e-6) / 1000.0; }
+
+Eigen::Vector2d vec(const json& p) { return {p[0].get<double>(), p[1].get<double>()}; }
+
+// A plan wall as the lean found it, and what the lean makes of it.
+struct LeanedWall {
+  Eigen::Vector2d start, end;  // after the lean, in B
+  double stretch = 1.0;        // how much longer the lean made it
+  double half_thickness = 0.0;
+};
+
+bool boxMeetsWall(const Eigen::Vector2d& centre, const Eigen::Vector2d& size, double yaw,
+                  const LeanedWall& wall, double clearance) {
+  const Eigen::Rotation2Dd turn(yaw);
+  std::array<Eigen::Vector2d, 4> corners;
+  const double hx = 0.5 * size.x(), hy = 0.5 * size.y();
+  corners[0] = centre + turn * Eigen::Vector2d(-hx, -hy);
+  corners[1] = centre + turn * Eigen::Vector2d(hx, -hy);
+  corners[2] = centre + turn * Eigen::Vector2d(hx, hy);
+  corners[3] = centre + turn * Eigen::Vector2d(-hx, hy);
+  for (int k = 0; k < 4; ++k) {
+    const Eigen::Vector2d& a = corners[k];
+    const Eigen::Vector2d& b = corners[(k + 1) % 4];
+    if (crosses(a, b, wall.start, wall.end)) return true;
+    if (segmentDistance(a, b, wall.start, wall.end) < wall.half_thickness + clearance) return true;
+  }
+  // A wall whose axis lies wholly inside the box crosses none of its sides.
+  const Eigen::Vector2d local = turn.inverse() * (wall.start - centre);
+  return std::abs(local.x()) <= hx && std::abs(local.y()) <= hy;
+}
+
+}  // namespace
+
+void leanBuilding(GeneratedBuilding& building, double shear_deg, double turn_deg) {
+  if (shear_deg == 0.0 && turn_deg == 0.0) return;
+  const double shear = shear_deg * std::numbers::pi / 180.0;
+  const double turn = turn_deg * std::numbers::pi / 180.0;
+  Eigen::Matrix2d lean;
+  lean << 1.0, std::tan(shear), 0.0, 1.0;
+  const Eigen::Matrix2d A = Eigen::Rotation2Dd(turn).toRotationMatrix() * lean;
+  const auto map = [&](const json& p) {
+    const Eigen::Vector2d q = A * vec(p);
+    return json::array({mm(q.x()), mm(q.y())});
+  };
+
+  std::map<std::string, LeanedWall> walls;
+  for (json& level : building.plan["levels"]) {
+    for (json& wall : level["walls"]) {
+      const Eigen::Vector2d start = vec(wall["start"]), end = vec(wall["end"]);
+      LeanedWall leaned;
+      leaned.stretch = (A * (end - start)).norm() / (end - start).norm();
+      wall["start"] = map(wall["start"]);
+      wall["end"] = map(wall["end"]);
+      leaned.start = vec(wall["start"]);
+      leaned.end = vec(wall["end"]);
+      // A shear keeps areas: a wall's length times its thickness stays.
+      const double thickness = tenthMm(wall["thickness"].get<double>() / leaned.stretch);
+      wall["thickness"] = thickness;
+      leaned.half_thickness = 0.5 * thickness;
+      walls[wall["id"].get<std::string>()] = leaned;
+    }
+    if (level.contains("doors")) {
+      for (json& door : level["doors"]) {
+        const double stretch = walls.at(door["wall"].get<std::string>()).stretch;
+        door["offset"] = mm(door["offset"].get<double>() * stretch);
+        door["width"] = mm(door["width"].get<double>() * stretch);
+      }
+    }
+    if (level.contains("rooms")) {
+      for (json& room : level["rooms"]) {
+        for (json& vertex : room["outline"]) vertex = map(vertex);
+      }
+    }
+  }
+  char title[96];
+  std::snprintf(title, sizeof title, ", sheared %g°, turned %g°", shear_deg, turn_deg);
+  building.plan["name"] = building.plan["name"].get<std::string>() + title;
+
+  json& as_built = building.scenario["as_built"];
+  const auto length = [&](const std::string& id) {
+    const LeanedWall& w = walls.at(id);
+    return (w.end - w.start).norm();
+  };
+  if (as_built.contains("wall_rotations")) {
+    for (json& rotation : as_built["wall_rotations"]) {
+      if (!rotation["about"].is_number()) continue;  // start, centre or end stay where they were
+      const std::string id = rotation["wall"].get<std::string>();
+      rotation["about"] =
+          std::min(mm(rotation["about"].get<double>() * walls.at(id).stretch), below(length(id)));
+    }
+  }
+  if (as_built.contains("shortened_walls")) {
+    for (json& shortened : as_built["shortened_walls"]) {
+      const std::string id = shortened["wall"].get<std::string>();
+      const double stretch = walls.at(id).stretch;
+      for (json& part : shortened["built"]) {
+        part[0] = mm(part[0].get<double>() * stretch);
+        part[1] = std::min(mm(part[1].get<double>() * stretch), below(length(id)));
+      }
+    }
+  }
+  std::vector<LeanedWall> obstacles;
+  for (const auto& [id, wall] : walls) obstacles.push_back(wall);
+  if (as_built.contains("extra_walls")) {
+    for (json& extra : as_built["extra_walls"]) {
+      extra["start"] = map(extra["start"]);
+      extra["end"] = map(extra["end"]);
+      LeanedWall leaned;
+      leaned.start = vec(extra["start"]);
+      leaned.end = vec(extra["end"]);
+      leaned.half_thickness = 0.5 * extra.value("thickness", 0.1);
+      obstacles.push_back(leaned);
+    }
+  }
+  if (as_built.contains("clutter")) {
+    json kept = json::array();
+    for (json box : as_built["clutter"]) {
+      const json xy = map(json::array({box["center"][0], box["center"][1]}));
+      box["center"][0] = xy[0];
+      box["center"][1] = xy[1];
+      box["yaw"] = mm(box["yaw"].get<double>() + turn);
+      const Eigen::Vector2d centre = vec(xy);
+      const Eigen::Vector2d size = vec(box["size"]);
+      const double yaw = box["yaw"].get<double>();
+      const bool in_wall = std::any_of(obstacles.begin(), obstacles.end(), [&](const auto& w) {
+        return boxMeetsWall(centre, size, yaw, w, 0.05);
+      });
+      if (!in_wall) kept.push_back(std::move(box));
+    }
+    if (kept.empty()) {
+      as_built.erase("clutter");
+    } else {
+      as_built["clutter"] = std::move(kept);
+    }
+  }
+}
+
+}  // namespace isg::worlds
