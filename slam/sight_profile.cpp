@@ -29,6 +29,12 @@ SightProfile sightProfile(const sensors::Scan& scan, const Eigen::Isometry3d& R_
   // The farthest squared horizontal range per degree (the root taken once a degree, not once a
   // return: this runs over every return of every keyframe).
   std::vector<float> farthest_sq(SightProfile::kBins, -1.0f);
+  // Whether a near-level beam returned in the degree. A degree whose returns all come from beams
+  // pointing down (the floor short of an opening to the outside) saw no vertical surface ahead
+  // within range: its near-level beams went out. Near-level is within kLevel of horizontal: a
+  // LiDAR whose rings are at most 2·kLevel apart always has one there, whatever its tilt.
+  constexpr float kLevel = 0.0349f;  // tan 2°
+  std::vector<char> level_return(SightProfile::kBins, 0);
   const Eigen::Matrix3f R_R_L = R_T_L.linear().cast<float>();
   const float z_lo = float(z_min_R - profile.sensor_R.z());
   const float z_hi = float(z_max_R - profile.sensor_R.z());
@@ -41,15 +47,21 @@ SightProfile sightProfile(const sensors::Scan& scan, const Eigen::Isometry3d& R_
     if (turn < 0.0f) turn += float(SightProfile::kBins);
     const int bin = std::min(SightProfile::kBins - 1, int(turn));
     float& bin_sq = farthest_sq[bin];
-    bin_sq = std::max(bin_sq, v.x() * v.x() + v.y() * v.y());
+    const float horizontal_sq = v.x() * v.x() + v.y() * v.y();
+    bin_sq = std::max(bin_sq, horizontal_sq);
+    if (v.z() * v.z() <= kLevel * kLevel * horizontal_sq) level_return[bin] = 1;
   }
   const auto seen =
       std::count_if(farthest_sq.begin(), farthest_sq.end(), [](float sq) { return sq >= 0.0f; });
   profile.range_cm.assign(SightProfile::kBins, 0);
   // A scan that saw too little sees past nothing.
   if (2 * seen < SightProfile::kBins) return profile;
+  // Only a scan whose near-level beams returned in most degrees tells a degree where they did not
+  // (a LiDAR with no ring near level, or one tilted far, keeps the farthest return alone).
+  const bool level_rings =
+      2 * std::count(level_return.begin(), level_return.end(), char(1)) >= SightProfile::kBins;
   for (int bin = 0; bin < SightProfile::kBins; ++bin) {
-    const float sq = farthest_sq[bin];
+    const float sq = level_rings && !level_return[bin] ? -1.0f : farthest_sq[bin];
     // At least 1 cm, so that a return marks its degree seen.
     profile.range_cm[bin] =
         sq < 0.0f ? SightProfile::kOutOfRange

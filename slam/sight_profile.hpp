@@ -17,8 +17,10 @@ namespace isg::slam {
 // through an opening does not count.
 struct SightProfile {
   static constexpr int kBins = 360;
-  // A degree with no return in the band, in a scan that had returns in most: its near-level sight
-  // lines met nothing in the sensor's range (out of an opening, into the open).
+  // A degree with no return in the band, in a scan that had returns in most, or with returns only
+  // from beams pointing down (more than 2° below level: the floor short of an opening) where the
+  // scan's near-level beams returned in most degrees: its near-level sight lines met nothing in
+  // the sensor's range (out of an opening, into the open).
   static constexpr std::uint16_t kOutOfRange = 0xFFFF;
   Eigen::Vector3d sensor_R = Eigen::Vector3d::Zero();  // the sensor's origin in R
   // kBins ranges, or kOutOfRange; all 0 for a scan with returns in the band in fewer than half

@@ -27,6 +27,9 @@ class FaceViews {
             double built_offset = 0.0);
   // `point` on the face, `normal` its outward normal (unit, in the plane).
   bool inView(const Eigen::Vector2d& point, const Eigen::Vector2d& normal) const;
+  // Whether any keyframe stood in front of the point within view_range and max_incidence_deg:
+  // whether it could have been in view at all (the outer face of an outer wall never is).
+  bool faced(const Eigen::Vector2d& point, const Eigen::Vector2d& normal) const;
 
  private:
   struct Occluder {
@@ -37,6 +40,11 @@ class FaceViews {
   const DeviationOptions& options_;
   double min_cos_ = 0.0;
   double through_ = 0.0;  // how far past the face, along its normal, a sight line must reach
+
+  // Whether keyframe `k` stands in front of the point p (just off the face) within range and
+  // incidence; its distance to p in `range`.
+  bool inFront(const Viewpoint& k, const Eigen::Vector2d& p, const Eigen::Vector2d& normal,
+               double& range) const;
 };
 
 // The stretches along a wall's axis (metres from `start` along `axis`) of its windows, widened by

@@ -114,8 +114,11 @@ double unionLength(std::vector<std::pair<double, double>> spans) {
 }
 
 // The share of a plan wall's exposed faces in the sensor's view from the keyframes
-// (DeviationOptions, "In view"): sampled every 0.25 m, 0.1 m clear of each segment's ends. Its
-// windows count as not in view: they are seen through whether the wall stands or not.
+// (DeviationOptions, "In view"): sampled every 0.25 m, 0.1 m clear of each segment's ends. Only
+// what could have been in view counts: not its windows (seen through whether the wall stands or
+// not), nor a face no keyframe stood in front of (an outer wall's outer face). Until 2026-12-04
+// both counted as not in view, and a façade bay not built, with a window 0.6 m short of each end,
+// could never reach the missing share.
 double inViewShare(const bim::AGraph& plan, const bim::WallNode& wall,
                    const std::vector<Viewpoint>& viewpoints, const DeviationOptions& options) {
   const FaceViews views(plan, wall, viewpoints, options);
@@ -123,6 +126,8 @@ double inViewShare(const bim::AGraph& plan, const bim::WallNode& wall,
   for (int surface : {wall.left_surface, wall.right_surface}) {
     const bim::WallSurfaceNode& face = plan.surfaces[surface];
     const Eigen::Vector2d n = face.plane.normal.head<2>().normalized();
+    double face_exposed = 0.0, face_in_view = 0.0;
+    bool faced = false;
     for (const auto& [a, b] : face.segments) {
       const double length = (b - a).norm();
       if (length < 0.2) continue;
@@ -132,13 +137,18 @@ double inViewShare(const bim::AGraph& plan, const bim::WallNode& wall,
       const auto windows = windowSpans(plan, wall, a, along, options.window_margin);
       for (int i = 0; i < samples; ++i) {
         const double s = 0.1 + (i + 0.5) * step;
-        exposed += step;
         const bool at_window = std::any_of(windows.begin(), windows.end(), [&](const auto& w) {
           return s >= w.first && s <= w.second;
         });
-        if (!at_window && views.inView(a + s * along, n)) in_view += step;
+        if (at_window) continue;
+        face_exposed += step;
+        faced = faced || views.faced(a + s * along, n);
+        if (views.inView(a + s * along, n)) face_in_view += step;
       }
     }
+    if (!faced) continue;
+    exposed += face_exposed;
+    in_view += face_in_view;
   }
   return exposed > 0.0 ? in_view / exposed : 0.0;
 }

@@ -61,6 +61,33 @@ TEST(SightProfile, ADegreeWithNoReturnInAScanThatSawMostIsOutOfRange) {
   EXPECT_DOUBLE_EQ(profile.rangeToward(radians(180.5)), 5.0);
 }
 
+// Out through an opening to the outside: the near-level beams meet nothing, the ones pointing down
+// meet the floor short of the opening. The farthest return there is the floor's; the degree is
+// out of range all the same.
+TEST(SightProfile, ADegreeWhoseOnlyReturnsAreTheFloorShortOfAnOpeningIsOutOfRange) {
+  sensors::Scan scan;
+  for (int d = 0; d < 360; ++d) {
+    // The floor 0.6 m below the sensor, met 2.2 and 3.8 m off by beams 15° and 9° down.
+    scan.points.push_back(pointAt(d + 0.5, 2.2, -0.6));
+    scan.points.push_back(pointAt(d + 0.5, 3.8, -0.6));
+    // The walls 5 m round, but for L's 100°–119°, an opening; a beam 1.5° down still returns.
+    if (d < 100 || d >= 120) scan.points.push_back(pointAt(d + 0.5, 5.0, d == 130 ? -0.13 : 0.0));
+  }
+  const SightProfile profile = sightProfile(scan, mount(), -0.05, 2.05);
+  // L's azimuth a is R's a + 90°: the opening is R's 190°–209°.
+  EXPECT_EQ(profile.rangeToward(radians(195.5)), std::numeric_limits<double>::infinity());
+  EXPECT_DOUBLE_EQ(profile.rangeToward(radians(185.5)), 5.0);
+  EXPECT_DOUBLE_EQ(profile.rangeToward(radians(220.5)), 5.0);  // 1.5° down is near level
+  // A scan whose near-level beams returned in fewer than half its degrees (no ring near level)
+  // keeps the floor's range: it cannot tell.
+  sensors::Scan floor_only;
+  for (const auto& p : scan.points) {
+    if (p.z < -0.5f) floor_only.points.push_back(p);
+  }
+  const SightProfile floor_profile = sightProfile(floor_only, mount(), -0.05, 2.05);
+  EXPECT_DOUBLE_EQ(floor_profile.rangeToward(radians(195.5)), 3.8);
+}
+
 TEST(SightProfile, AScanThatSawTooLittleSeesPastNothing) {
   // Returns in 170 of 360 degrees: fewer than half.
   const SightProfile profile = sightProfile(ring(170), mount(), -0.05, 2.05);
