@@ -46,6 +46,7 @@ nlohmann::json deviationReportJson(const slam::DeviationReport& report) {
       {"min_angle_length_m", o.min_angle_length},
       {"consistent_tolerance_m", o.consistent_tolerance},
       {"contradiction_observation_share", o.contradiction_observation_share},
+      {"min_deviation_observations", o.min_deviation_observations},
       {"judged_share", o.judged_share},
       {"missing_seen_share", o.missing_seen_share},
       {"missing_view_share", o.missing_view_share},

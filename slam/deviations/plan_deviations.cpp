@@ -355,6 +355,11 @@ void judge(WallDeviation& wall, const PlannedWall& planned, const DeviationOptio
   wall.status = turned    ? WallStatus::kRotated
                 : shifted ? WallStatus::kShifted
                           : WallStatus::kAsPlanned;
+  // A deviation is believed only when seen often enough; the wall stays not seen otherwise.
+  if (wall.status != WallStatus::kAsPlanned && most_observed < options.min_deviation_observations) {
+    wall.status = WallStatus::kNotSeen;
+    return;
+  }
   if (wall.status == WallStatus::kRotated) {
     wall.pivot_along_m = crossingAlong(planned.length, *wall.offset_m, *wall.angle_deg);
     if (wall.pivot_along_m) {

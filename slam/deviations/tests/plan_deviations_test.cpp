@@ -149,6 +149,28 @@ TEST(PlanDeviations, FindsTheShiftedTurnedMissingAndExtraWallsByHand) {
   EXPECT_EQ(report.placements[0].walls_used, 3);
 }
 
+// The same building, its map's walls each seen from 2 keyframes: too few to believe a deviation
+// (min_deviation_observations, 3). W3 (shifted 0.15 m) and W5 (turned 4°) are not seen rather
+// than off, the walls as planned stay as planned; seen from 3, both are found again.
+TEST(PlanDeviations, ADeviationSeenFromFewerThanThreeKeyframesIsNotBelieved) {
+  const bim::Plan plan = threeRooms();
+  const bim::AGraph planned = bim::buildAGraph(plan);
+  const bim::AGraph built = bim::buildAGraph(builtPlan(plan, deviations()));
+  for (int observations : {2, 3}) {
+    MapDiagnostics map = mapOf(built);
+    for (auto& wall : map.walls) wall.observations = observations;
+    const DeviationReport report = measureDeviations(planned, map, Eigen::Isometry3d::Identity());
+    for (const char* id : {"W1", "W2", "W4"}) {
+      EXPECT_EQ(wallOf(report, id).status, WallStatus::kAsPlanned) << id << " " << observations;
+    }
+    const bool believed = observations >= 3;
+    EXPECT_EQ(wallOf(report, "W3").status, believed ? WallStatus::kShifted : WallStatus::kNotSeen);
+    EXPECT_EQ(wallOf(report, "W5").status, believed ? WallStatus::kRotated : WallStatus::kNotSeen);
+    // What was measured is still said.
+    EXPECT_NEAR(*wallOf(report, "W3").offset_m, 0.15, 0.002) << observations;
+  }
+}
+
 // W5 (4 m, (3, 0) → (3, 4)) turned 2° (its ends swing up to 14 cm) about its start, its centre,
 // its end or a point 1.2 m along it: the report finds it turned, by 2°, and the point it turned
 // about, where its line crosses the planned axis. A turn about the centre moves no point of the
