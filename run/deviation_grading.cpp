@@ -25,8 +25,14 @@ bool onClutter(const Eigen::Vector2d& p, const bim::Clutter& box) {
 
 // A wall's progress against the truth (DeviationGrade, "Progress"): judged when built or not
 // built was seen over min_share of its exposed length. A missing wall is graded as missing.
+// Built-length errors summed: over the walls found partly built, and over those seen end to end.
+struct LengthErrors {
+  double all = 0.0, seen = 0.0;
+  int measured = 0, measured_seen = 0;
+};
+
 void gradeProgress(const slam::WallProgress& progress, const bim::ShortenedWall* shortened,
-                   bool truly_missing, DeviationGrade& grade, double& length_error, int& measured) {
+                   bool truly_missing, DeviationGrade& grade, LengthErrors& errors) {
   if (truly_missing || progress.planned_m <= 0.0) return;
   if (progress.built_m + progress.not_built_m < grade.min_share * progress.planned_m) return;
   const bool reported = progress.status == slam::ProgressStatus::kPartlyBuilt ||
@@ -36,8 +42,13 @@ void gradeProgress(const slam::WallProgress& progress, const bim::ShortenedWall*
   grade.partly_missed += shortened != nullptr && !reported;
   if (shortened != nullptr && progress.status == slam::ProgressStatus::kPartlyBuilt) {
     const double truly_built = slam::overlapLength(progress.exposed, shortened->built);
-    length_error += std::abs(progress.built_m - truly_built);
-    ++measured;
+    const double error = std::abs(progress.built_m - truly_built);
+    errors.all += error;
+    ++errors.measured;
+    if (progress.not_seen_m < DeviationGrade::kSeenEndToEnd) {
+      errors.seen += error;
+      ++errors.measured_seen;
+    }
   }
 }
 
@@ -80,8 +91,9 @@ void gradeColumns(const slam::DeviationReport& report, const bim::AsBuilt& truth
 DeviationGrade gradeDeviations(const slam::DeviationReport& report, const bim::Plan& plan,
                                const bim::AsBuilt& truth) {
   DeviationGrade grade;
-  double offset_error = 0.0, angle_error = 0.0, pivot_error = 0.0, partly_error = 0.0;
-  int measured = 0, pivots = 0, partly_measured = 0;
+  double offset_error = 0.0, angle_error = 0.0, pivot_error = 0.0;
+  int measured = 0, pivots = 0;
+  LengthErrors partly_errors;
   for (const slam::WallDeviation& wall : report.walls) {
     const bim::Level* level = plan.levelOfWall(wall.wall);
     const bim::Wall* planned = level != nullptr ? level->findWall(wall.wall) : nullptr;
@@ -92,7 +104,7 @@ DeviationGrade gradeDeviations(const slam::DeviationReport& report, const bim::P
     const bool truly_missing = std::find(truth.missing_walls.begin(), truth.missing_walls.end(),
                                          wall.wall) != truth.missing_walls.end();
     gradeProgress(wall.progress, shortened != truth.shortened_walls.end() ? &*shortened : nullptr,
-                  truly_missing, grade, partly_error, partly_measured);
+                  truly_missing, grade, partly_errors);
     // A wall built in part is graded by its progress only: where it stands it may be as planned
     // or not, but not over its planned length.
     if (shortened != truth.shortened_walls.end()) continue;
@@ -136,7 +148,12 @@ DeviationGrade gradeDeviations(const slam::DeviationReport& report, const bim::P
   grade.partly_precision =
       share(grade.partly_found, grade.partly_found + grade.partly_false_reports);
   grade.partly_recall = share(grade.partly_found, grade.partly_found + grade.partly_missed);
-  if (partly_measured > 0) grade.built_length_error_m = partly_error / partly_measured;
+  if (partly_errors.measured > 0) {
+    grade.built_length_error_m = partly_errors.all / partly_errors.measured;
+  }
+  if (partly_errors.measured_seen > 0) {
+    grade.built_length_error_seen_m = partly_errors.seen / partly_errors.measured_seen;
+  }
   // Extra walls of the levels walked.
   const double parallel = std::cos(common::radians(10.0));
   std::vector<bool> matched(truth.extra_walls.size(), false);
@@ -291,7 +308,8 @@ constexpr Count<DeviationGrade> kPartlyCounts[] = {
 constexpr Optional kPartlyOptionals[] = {
     {"precision", &DeviationGrade::partly_precision, true},
     {"recall", &DeviationGrade::partly_recall, true},
-    {"built_length_error_m", &DeviationGrade::built_length_error_m, false}};
+    {"built_length_error_m", &DeviationGrade::built_length_error_m, false},
+    {"built_length_error_seen_end_to_end_m", &DeviationGrade::built_length_error_seen_m, false}};
 constexpr Count<DeviationGrade> kMissingCounts[] = {
     {"found", &DeviationGrade::missing_found},
     {"false_reports", &DeviationGrade::missing_false_reports},

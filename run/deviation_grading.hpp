@@ -34,6 +34,10 @@ struct DeviationGrade {
   // exposed parts).
   int partly_found = 0, partly_false_reports = 0, partly_missed = 0;
   std::optional<double> partly_precision, partly_recall, built_length_error_m;
+  // The same mean over those of them seen end to end: less than kSeenEndToEnd of their exposed
+  // length not seen (two progress samples), as the acceptance of a built length asks.
+  static constexpr double kSeenEndToEnd = 0.1;  // m
+  std::optional<double> built_length_error_seen_m;
   // Missing walls: reported missing and truly missing, reported but built, missing and not said.
   int missing_found = 0, missing_false_reports = 0, missing_missed = 0;
   // Extra walls: a reported one matches a true one within 10° and 0.3 m of its axis; one that lies

@@ -88,6 +88,36 @@ TEST(DeviationGrading, CountsFoundFalseAndMissedWallsAndTheirErrors) {
   EXPECT_EQ(deviationMetricsJson(back), json);
 }
 
+// Walls built in part: W1 built over [0, 3] m and reported partly built 3.0 m on its exposed
+// [0.1, 5.9] (truly 2.9 there: 0.1 m off), seen end to end; W2 built over [0, 1] m and reported
+// 1.2 m on [0.1, 3.9] (truly 0.9: 0.3 m off), 1 m of it not seen. The built-length error is
+// their mean, 0.2 m; over the walls seen end to end, W1's 0.1 m alone.
+TEST(DeviationGrading, BuiltLengthErrorsOverAllAndOverTheWallsSeenEndToEnd) {
+  const bim::Plan plan = bim::testing::parsePlanJson(bim::testing::twoRoomPlanJson());
+  bim::AsBuilt truth;
+  truth.shortened_walls = {{"W1", {{0.0, 3.0}}}, {"W2", {{0.0, 1.0}}}};
+  slam::DeviationReport report;
+  report.levels = {"L0"};
+  auto partly = [](const std::string& id, double from, double to, double built, double unseen) {
+    slam::WallDeviation w = reported(id, slam::WallStatus::kAsPlanned, 0.5, 0.0, 0.0);
+    w.progress.status = slam::ProgressStatus::kPartlyBuilt;
+    w.progress.exposed = {{from, to}};
+    w.progress.planned_m = to - from;
+    w.progress.built_m = built;
+    w.progress.not_seen_m = unseen;
+    w.progress.not_built_m = to - from - built - unseen;
+    return w;
+  };
+  report.walls = {partly("W1", 0.1, 5.9, 3.0, 0.0), partly("W2", 0.1, 3.9, 1.2, 1.0)};
+  const DeviationGrade g = gradeDeviations(report, plan, truth);
+  EXPECT_EQ(g.partly_found, 2);
+  EXPECT_NEAR(*g.built_length_error_m, 0.2, 1e-9);
+  EXPECT_NEAR(*g.built_length_error_seen_m, 0.1, 1e-9);
+  const nlohmann::json json = deviationMetricsJson(deviationMetrics(report, &plan, &truth));
+  EXPECT_NEAR(json["graded"]["partly_built"]["built_length_error_seen_end_to_end_m"].get<double>(),
+              0.1, 1e-9);
+}
+
 // Columns on the column hall: C1 truly moved 10 cm and found moved 2 cm off that; C2 truly moved
 // 3 cm (under the 6 cm a report calls moved) and reported moved: a false report; C3 truly missing
 // and reported as planned: missed; C4 truly missing and found; C5 not seen: not graded.
