@@ -71,9 +71,9 @@ bim::Plan builtPlan(const bim::Plan& plan, const bim::AsBuilt& as_built) {
   return built;
 }
 
-// Every face of the built walls as a map wall, in a map frame M = B; and keyframes along the
-// rooms' middle.
-MapDiagnostics mapOf(const bim::AGraph& built) {
+// Every face of the built walls as a map wall, in a map frame M = B; and keyframes along y = `y`
+// from `x0` to `x1` every `step`.
+MapDiagnostics facesAndWalk(const bim::AGraph& built, double y, double x0, double x1, double step) {
   MapDiagnostics map;
   int id = 0;
   for (const auto& surface : built.surfaces) {
@@ -82,13 +82,16 @@ MapDiagnostics mapOf(const bim::AGraph& built) {
           {id++, surface.plane.normal, surface.plane.d, a, b, 0.2, 2.6, 20, std::vector<int>()});
     }
   }
-  for (double x = 0.5; x <= 8.5; x += 0.25) {
+  for (double x = x0; x <= x1; x += step) {
     MapKeyframe keyframe;
-    keyframe.estimate.translation() = Eigen::Vector3d(x, 1.0, 0.5);
+    keyframe.estimate.translation() = Eigen::Vector3d(x, y, 0.5);
     map.keyframes.push_back(keyframe);
   }
   return map;
 }
+
+// The three rooms' map: their faces, and keyframes along the rooms' middle.
+MapDiagnostics mapOf(const bim::AGraph& built) { return facesAndWalk(built, 1.0, 0.5, 8.5, 0.25); }
 
 const WallDeviation& wallOf(const DeviationReport& report, const std::string& id) {
   for (const auto& w : report.walls) {
@@ -481,19 +484,7 @@ TEST(PlanDeviations, AFacadeBayNotBuiltIsMissingThoughOnlyItsInnerFaceBesideItsW
   std::erase_if(built_plan.levels[0].walls, [](const bim::Wall& w) { return w.id == "F2"; });
   built_plan.levels[0].windows.clear();
   const bim::AGraph built = bim::buildAGraph(built_plan);
-  MapDiagnostics map;
-  int id = 0;
-  for (const auto& surface : built.surfaces) {
-    for (const auto& [a, b] : surface.segments) {
-      map.walls.push_back(
-          {id++, surface.plane.normal, surface.plane.d, a, b, 0.2, 2.6, 20, std::vector<int>()});
-    }
-  }
-  for (double x = 1.0; x <= 18.0; x += 0.5) {
-    MapKeyframe keyframe;
-    keyframe.estimate.translation() = Eigen::Vector3d(x, 2.5, 0.5);
-    map.keyframes.push_back(keyframe);
-  }
+  MapDiagnostics map = facesAndWalk(built, 2.5, 1.0, 18.0, 0.5);
   castSight(map, built, {});
   const DeviationReport report = measureDeviations(graph, map, Eigen::Isometry3d::Identity());
   const WallDeviation& bay = wallOf(report, "F2");
