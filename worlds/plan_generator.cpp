@@ -971,7 +971,7 @@ GeneratedBuilding generateUnchecked(const GeneratorSpec& spec) {
       {"seed", spec.seed},
       {"robot", {{"level", "L0"}, {"start", {{"room", ids[start]}}}, {"route", "tour"}}},
       {"as_built", as_built}};
-  leanBuilding(out, s.shear_deg, s.turn_deg);
+  leanBuilding(out.plan, out.scenario, s.shear_deg, s.turn_deg);
   return out;
 }
 

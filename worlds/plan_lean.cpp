@@ -54,7 +54,8 @@ bool boxMeetsWall(const Eigen::Vector2d& centre, const Eigen::Vector2d& size, do
 
 }  // namespace
 
-void leanBuilding(GeneratedBuilding& building, double shear_deg, double turn_deg) {
+void leanBuilding(nlohmann::json& plan, nlohmann::json& scenario, double shear_deg,
+                  double turn_deg) {
   if (shear_deg == 0.0 && turn_deg == 0.0) return;
   const double shear = shear_deg * std::numbers::pi / 180.0;
   const double turn = turn_deg * std::numbers::pi / 180.0;
@@ -67,7 +68,7 @@ void leanBuilding(GeneratedBuilding& building, double shear_deg, double turn_deg
   };
 
   std::map<std::string, LeanedWall> walls;
-  for (json& level : building.plan["levels"]) {
+  for (json& level : plan["levels"]) {
     for (json& wall : level["walls"]) {
       const Eigen::Vector2d start = vec(wall["start"]), end = vec(wall["end"]);
       LeanedWall leaned;
@@ -97,9 +98,9 @@ void leanBuilding(GeneratedBuilding& building, double shear_deg, double turn_deg
   }
   char title[96];
   std::snprintf(title, sizeof title, ", sheared %g°, turned %g°", shear_deg, turn_deg);
-  building.plan["name"] = building.plan["name"].get<std::string>() + title;
+  plan["name"] = plan["name"].get<std::string>() + title;
 
-  json& as_built = building.scenario["as_built"];
+  json& as_built = scenario["as_built"];
   const auto length = [&](const std::string& id) {
     const LeanedWall& w = walls.at(id);
     return (w.end - w.start).norm();

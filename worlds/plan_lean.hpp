@@ -1,6 +1,6 @@
 #pragma once
 
-#include "worlds/plan_generator.hpp"
+#include <nlohmann/json.hpp>
 
 namespace isg::worlds {
 
@@ -16,7 +16,9 @@ namespace isg::worlds {
 // - a wall shift stays what it is, metres along the wall's own normal; a turn stays its angle;
 // - clutter boxes keep their shape and turn with the building; a box the shear would push into
 //   a wall (within 0.05 m of its faces) is left out.
-// Shear 0 and turn 0 leave the building as it was, byte for byte.
-void leanBuilding(GeneratedBuilding& building, double shear_deg, double turn_deg);
+// Shear 0 and turn 0 leave the building as it was, byte for byte. `plan` is an "isg.plan" and
+// `scenario` its "isg.scenario" (its as_built changed with it).
+void leanBuilding(nlohmann::json& plan, nlohmann::json& scenario, double shear_deg,
+                  double turn_deg);
 
 }  // namespace isg::worlds

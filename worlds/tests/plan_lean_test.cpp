@@ -154,7 +154,7 @@ TEST(PlanLean, ALeanedBuildingIsThePlainOneMappedWithEveryChangeOnItsWall) {
 TEST(PlanLean, NoShearAndNoTurnChangeNothing) {
   const GeneratedBuilding plain = generateBuilding(specOf("office"));
   GeneratedBuilding same = plain;
-  leanBuilding(same, 0.0, 0.0);
+  leanBuilding(same.plan, same.scenario, 0.0, 0.0);
   EXPECT_EQ(same.plan.dump(), plain.plan.dump());
   EXPECT_EQ(same.scenario.dump(), plain.scenario.dump());
 }
