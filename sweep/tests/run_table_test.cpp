@@ -100,6 +100,7 @@ TEST(RunTableGraded, EachGradedMeasureTabulatesItsNumberOfTheGrade) {
     g.partly_recall = 1.0;
     g.partly_precision = 0.5;
     g.built_length_error_m = 0.04;
+    g.built_length_error_seen_m = 0.03;
     g.missing_found = missing_found;
     g.missing_missed = missing_missed;
     g.extra_precision = 0.75;
@@ -115,7 +116,7 @@ TEST(RunTableGraded, EachGradedMeasureTabulatesItsNumberOfTheGrade) {
       {"deviation-offset-error", 0.015}, {"deviation-angle-error", 0.2},
       {"deviation-pivot-error", 0.1},    {"progress-recall", 1.0},
       {"progress-precision", 0.5},       {"built-length-error", 0.04},
-      {"extra-precision", 0.75}};
+      {"built-length-error-seen", 0.03}, {"extra-precision", 0.75}};
   for (const auto& [measure, value] : expected) {
     EXPECT_TRUE(isGraded(measure)) << measure;
     const RunTable table = tabulateRuns(runs, measure, run::builtinMethods());
