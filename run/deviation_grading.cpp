@@ -23,14 +23,14 @@ bool onClutter(const Eigen::Vector2d& p, const bim::Clutter& box) {
          std::abs(local.y()) <= 0.5 * box.size.y() + 0.3;
 }
 
-// A wall's progress against the truth (DeviationGrade, "Progress"): judged when built or not
-// built was seen over min_share of its exposed length. A missing wall is graded as missing.
 // Built-length errors summed: over the walls found partly built, and over those seen end to end.
 struct LengthErrors {
   double all = 0.0, seen = 0.0;
   int measured = 0, measured_seen = 0;
 };
 
+// A wall's progress against the truth (DeviationGrade, "Progress"): judged when built or not
+// built was seen over min_share of its exposed length. A missing wall is graded as missing.
 void gradeProgress(const slam::WallProgress& progress, const bim::ShortenedWall* shortened,
                    bool truly_missing, DeviationGrade& grade, LengthErrors& errors) {
   if (truly_missing || progress.planned_m <= 0.0) return;

@@ -47,6 +47,7 @@ nlohmann::json deviationReportJson(const slam::DeviationReport& report) {
       {"consistent_tolerance_m", o.consistent_tolerance},
       {"contradiction_observation_share", o.contradiction_observation_share},
       {"min_deviation_observations", o.min_deviation_observations},
+      {"max_stray_lean_deg", o.max_stray_lean_deg},
       {"judged_share", o.judged_share},
       {"missing_seen_share", o.missing_seen_share},
       {"missing_view_share", o.missing_view_share},

@@ -17,6 +17,7 @@
 #include "bim/scenario.hpp"
 #include "common/input_error.hpp"
 #include "common/json_reader.hpp"
+#include "worlds/millimetres.hpp"
 #include "worlds/plan_lean.hpp"
 #include "worlds/segment_distance.hpp"
 #include "worlds/site_generator.hpp"
@@ -38,9 +39,6 @@ struct Space {
   double x0 = 0, y0 = 0, x1 = 0, y1 = 0;
   double door_fraction = -1.0;  // where along its corridor side the door sits; < 0: by the rule
 };
-
-// Coordinates on a millimetre grid, so that sides meant to coincide do.
-double mm(double v) { return std::round(v * 1000.0) / 1000.0; }
 
 class Floor {
  public:

@@ -6,10 +6,11 @@
 #include <cmath>
 #include <cstdio>
 #include <map>
-#include <numbers>
 #include <string>
 #include <vector>
 
+#include "common/angles.hpp"
+#include "worlds/millimetres.hpp"
 #include "worlds/segment_distance.hpp"
 
 namespace isg::worlds {
@@ -18,7 +19,6 @@ namespace {
 
 using nlohmann::json;
 
-double mm(double v) { return std::round(v * 1000.0) / 1000.0; }
 double tenthMm(double v) { return std::round(v * 10000.0) / 10000.0; }
 // The millimetre just below `length`: a part of a wall may not run past its rounded end.
 double below(double length) { return std::floor(length * 1000.0 - 1e-6) / 1000.0; }
@@ -57,8 +57,8 @@ bool boxMeetsWall(const Eigen::Vector2d& centre, const Eigen::Vector2d& size, do
 void leanBuilding(nlohmann::json& plan, nlohmann::json& scenario, double shear_deg,
                   double turn_deg) {
   if (shear_deg == 0.0 && turn_deg == 0.0) return;
-  const double shear = shear_deg * std::numbers::pi / 180.0;
-  const double turn = turn_deg * std::numbers::pi / 180.0;
+  const double shear = common::radians(shear_deg);
+  const double turn = common::radians(turn_deg);
   Eigen::Matrix2d lean;
   lean << 1.0, std::tan(shear), 0.0, 1.0;
   const Eigen::Matrix2d A = Eigen::Rotation2Dd(turn).toRotationMatrix() * lean;

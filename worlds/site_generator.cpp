@@ -10,6 +10,7 @@
 
 #include "bim/plan.hpp"
 #include "bim/plan_json.hpp"
+#include "worlds/millimetres.hpp"
 #include "worlds/segment_distance.hpp"
 
 namespace isg::worlds {
@@ -17,8 +18,6 @@ namespace isg::worlds {
 namespace {
 
 using json = nlohmann::json;
-
-double mm(double v) { return std::round(v * 1000.0) / 1000.0; }
 
 // How far apart things stand on the floor, so that the robot (0.35 m clearance) passes between
 // any two of them and the tour reaches every part of the slab.

@@ -37,18 +37,20 @@ FaceViews::FaceViews(const bim::AGraph& plan, const bim::WallNode& wall,
   }
 }
 
-bool FaceViews::inFront(const Viewpoint& k, const Eigen::Vector2d& p, const Eigen::Vector2d& normal,
-                        double& range) const {
+std::optional<FaceViews::Sightline> FaceViews::inFront(const Viewpoint& k, const Eigen::Vector2d& p,
+                                                       const Eigen::Vector2d& normal) const {
   const Eigen::Vector2d ray = k.position - p;
-  range = ray.norm();
-  return range <= options_.view_range && range >= 1e-6 && normal.dot(ray) >= min_cos_ * range;
+  const double range = ray.norm();
+  if (range > options_.view_range || range < 1e-6 || normal.dot(ray) < min_cos_ * range) {
+    return std::nullopt;
+  }
+  return Sightline{ray, range};
 }
 
 bool FaceViews::faced(const Eigen::Vector2d& point, const Eigen::Vector2d& normal) const {
   const Eigen::Vector2d p = point + 0.01 * normal;
-  double range = 0.0;
   return std::any_of(viewpoints_.begin(), viewpoints_.end(),
-                     [&](const Viewpoint& k) { return inFront(k, p, normal, range); });
+                     [&](const Viewpoint& k) { return inFront(k, p, normal).has_value(); });
 }
 
 bool FaceViews::inView(const Eigen::Vector2d& point, const Eigen::Vector2d& normal) const {
@@ -56,9 +58,9 @@ bool FaceViews::inView(const Eigen::Vector2d& point, const Eigen::Vector2d& norm
   const Eigen::Vector2d p = point + 0.01 * normal;
   int views = 0;
   for (const auto& k : viewpoints_) {
-    double range = 0.0;
-    if (!inFront(k, p, normal, range)) continue;
-    const Eigen::Vector2d ray = k.position - p;
+    const auto line = inFront(k, p, normal);
+    if (!line) continue;
+    const auto& [ray, range] = *line;
     bool seen = false;
     if (k.hasSight()) {
       // The azimuth from the sensor toward the point, in the base's frame.

@@ -1,6 +1,7 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <optional>
 #include <vector>
 
 #include "bim/agraph.hpp"
@@ -41,10 +42,14 @@ class FaceViews {
   double min_cos_ = 0.0;
   double through_ = 0.0;  // how far past the face, along its normal, a sight line must reach
 
-  // Whether keyframe `k` stands in front of the point p (just off the face) within range and
-  // incidence; its distance to p in `range`.
-  bool inFront(const Viewpoint& k, const Eigen::Vector2d& p, const Eigen::Vector2d& normal,
-               double& range) const;
+  // The line from the point p (just off the face) to keyframe `k`, when `k` stands in front of p
+  // within range and incidence.
+  struct Sightline {
+    Eigen::Vector2d ray;  // p → k
+    double range = 0.0;   // its length
+  };
+  std::optional<Sightline> inFront(const Viewpoint& k, const Eigen::Vector2d& p,
+                                   const Eigen::Vector2d& normal) const;
 };
 
 // The stretches along a wall's axis (metres from `start` along `axis`) of its windows, widened by

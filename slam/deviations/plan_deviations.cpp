@@ -51,6 +51,7 @@ struct WallInB {
   Eigen::Vector2d normal, start, end;
   double z_min = 0.0, z_max = 0.0;
   int observations = 0;
+  double lean_deg = 0.0;  // of its plane off vertical
   // MapWall::confirmed as shares of start → end (a placement keeps them); empty: all of it.
   std::vector<std::pair<double, double>> confirmed;
   double length() const { return (end - start).norm(); }
@@ -69,6 +70,7 @@ WallInB toB(const MapWall& wall, const Eigen::Isometry3d& B_T_M) {
   out.z_min = wall.z_min + B_T_M.translation().z();
   out.z_max = wall.z_max + B_T_M.translation().z();
   out.observations = wall.observations;
+  out.lean_deg = common::degrees(std::asin(std::min(1.0, std::abs(wall.normal.normalized().z()))));
   const double length = (wall.end - wall.start).norm();
   if (length > 0.0) {
     for (const auto& [a, b] : wall.confirmed) out.confirmed.push_back({a / length, b / length});
@@ -819,7 +821,9 @@ void measureLevel(const bim::AGraph& plan, int f, const std::vector<WallInB>& wa
       continue;
     }
     const auto along = piecesAlongFaces(plan, level, m, options);
-    if (along.empty() && !onColumn(plan, level, m, options)) unexplained.push_back(m);
+    const bool stray = m.observations < options.min_deviation_observations &&
+                       m.lean_deg > options.max_stray_lean_deg;
+    if (along.empty() && !onColumn(plan, level, m, options) && !stray) unexplained.push_back(m);
     for (const auto& [surface, piece] : along) {
       pieces.push_back(piece);
       evidence_of_surface[surface].push_back(&pieces.back());

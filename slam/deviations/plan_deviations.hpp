@@ -94,6 +94,12 @@ struct DeviationOptions {
   double local_radius = 6.0;  // m
   // Two opposite faces of extra walls at most this far apart are one wall.
   double extra_pair_distance = 0.4;  // m
+  // A map wall seen from fewer than min_deviation_observations keyframes whose plane leans more
+  // than this off vertical is a stray fit, not an extra wall: walls stand plumb, and a plane
+  // fitted once from a keyframe whose attitude was off leans with it. On the four suites every
+  // extra wall seen 3 times or more leaned at most 0.46°; the six seen once that leaned 1.0–2.7°
+  // stood where nothing is (docs/deviations.md, "Extra walls").
+  double max_stray_lean_deg = 1.0;
   // A turned wall's pivot (where its line crosses the planned axis) is named its start, centre or
   // end within this distance of it; elsewhere on the wall it is "along", off it "beyond" (a turn
   // and a shift together). The pivot is as loose as the offset over tan(angle): 1 cm of offset

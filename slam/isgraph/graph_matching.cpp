@@ -34,7 +34,7 @@ double yawOfNormal(const bim::Plane& plane) {
 // Surfaces in line with one another — on one plane, facing the same way, within kInLineAngle and
 // kInLineOffset: a façade's bays between its columns, a wall's pieces either side of an opening
 // the plan draws as a gap. An S-plane may span the gaps between them.
-constexpr double kInLineAngle = 1.0 * std::numbers::pi / 180.0;
+constexpr double kInLineAngle = common::radians(1.0);
 constexpr double kInLineOffset = 0.03;  // m
 template <typename Surfaces>
 std::vector<std::vector<int>> surfacesInLine(const Surfaces& surfaces) {
@@ -188,7 +188,7 @@ GraphMatcher::GraphMatcher(const bim::AGraph& graph, const MatchingOptions& opti
     }
   };
   if (options_.plane_angle_deg < 90.0) {
-    plane_angle_screen_ = std::cos(options_.plane_angle_deg * std::numbers::pi / 180.0) - 1e-9;
+    plane_angle_screen_ = std::cos(common::radians(options_.plane_angle_deg)) - 1e-9;
   }
   // A surface is found from any S-plane whose middle could lie within the tolerances of it.
   const double surface_pad = options_.plane_distance + options_.plane_gap + 0.5;
@@ -240,10 +240,9 @@ GraphMatcher::GraphMatcher(const bim::AGraph& graph, const MatchingOptions& opti
           const auto& sj = graph.surfaces[j];
           for (int b = 0; b < int(sj.segments.size()); ++b) {
             if (!paired.insert({i, a, j, b}).second) continue;
-            auto corner =
-                cornerOf(si.plane, si.segments[a].first, si.segments[a].second, sj.plane,
-                         sj.segments[b].first, sj.segments[b].second, options_.corner_gap,
-                         std::sin(options_.min_corner_angle_deg * std::numbers::pi / 180.0));
+            auto corner = cornerOf(si.plane, si.segments[a].first, si.segments[a].second, sj.plane,
+                                   sj.segments[b].first, sj.segments[b].second, options_.corner_gap,
+                                   options_.minCornerSine());
             if (!corner) continue;
             for (int k = 0; k < 2; ++k) {
               const int surface = k == 0 ? i : j;
@@ -289,7 +288,7 @@ int GraphMatcher::matchRoom(const MatchRoom& room, const Placement& placed,
   const Cell* cell = cellAt(centre);
   if (!cell) return -1;
   const double axis = room.axis_yaw + placed.yaw();
-  const double axis_tolerance = 20.0 * std::numbers::pi / 180.0;
+  const double axis_tolerance = common::radians(20.0);
   int best = -1;
   double best_distance = 1e300;
   for (int i : cell->rooms) {
@@ -343,7 +342,7 @@ int GraphMatcher::matchPlane(const MatchPlane& plane, const Placement& placed, d
   const Cell* cell = cellAt(middle);
   if (!cell) return -1;
   const double yaw = plane.normalYaw() + placed.yaw();
-  const double angle_tolerance = options_.plane_angle_deg * std::numbers::pi / 180.0;
+  const double angle_tolerance = common::radians(options_.plane_angle_deg);
   // The S-plane's normal in B as a unit vector: a dot product screens out the surfaces facing
   // clearly elsewhere (most of a cell's) before the exact test, which decides.
   const Eigen::Vector2d direction(std::cos(yaw), std::sin(yaw));
@@ -374,7 +373,7 @@ bool GraphMatcher::nearAsBuiltOff(const MatchPlane& plane, const Placement& plac
   const Cell* cell = cellAt(0.5 * (a + b));
   if (!cell) return false;
   const double yaw = plane.normalYaw() + placed.yaw();
-  const double angle_tolerance = options_.deviation_angle_deg * std::numbers::pi / 180.0;
+  const double angle_tolerance = common::radians(options_.deviation_angle_deg);
   for (int i : cell->surfaces) {
     const auto& s = graph_->surfaces[i];
     if (std::abs(common::wrapAngle(yaw - surface_yaw_[i])) > angle_tolerance) continue;
@@ -409,8 +408,7 @@ bool GraphMatcher::planeAgrees(const MatchPlane& plane, int surface, const Place
                                double angle_deg, double distance) const {
   const auto& s = graph_->surfaces[surface];
   const double yaw = plane.normalYaw() + placed.yaw();
-  if (std::abs(common::wrapAngle(yaw - surface_yaw_[surface])) >
-      angle_deg * std::numbers::pi / 180.0) {
+  if (std::abs(common::wrapAngle(yaw - surface_yaw_[surface])) > common::radians(angle_deg)) {
     return false;
   }
   const Eigen::Vector2d middle = placed(0.5 * (plane.start + plane.end));
@@ -568,7 +566,7 @@ bool GraphMatcher::sameAnswer(const Eigen::Vector3d& a, const Eigen::Vector3d& b
                               const Eigen::Vector2d& middle, double scale) const {
   return (apply(a, middle) - apply(b, middle)).norm() < scale * options_.cluster_distance &&
          std::abs(common::wrapAngle(a.z() - b.z())) <
-             scale * options_.cluster_yaw_deg * std::numbers::pi / 180.0;
+             common::radians(scale * options_.cluster_yaw_deg);
 }
 
 MatchResult GraphMatcher::match(const MatchInput& input, ThreadPool* pool) const {
@@ -616,7 +614,7 @@ MatchResult GraphMatcher::evaluate(const MatchInput& input,
   // 3. Clusters: the same answer proposed by several seeds. Two transforms are the same answer
   // when they put the S-Graph in the same place (sameAnswer; its images computed once each).
   const Eigen::Vector2d middle = middleOf(input);
-  const double yaw_tolerance = options_.cluster_yaw_deg * std::numbers::pi / 180.0;
+  const double yaw_tolerance = common::radians(options_.cluster_yaw_deg);
   std::vector<const Verification*> representatives;
   std::vector<Eigen::Vector2d> placed;  // where each representative puts the middle
   // The representatives by the cluster_distance cell their image falls in: a hypothesis can only

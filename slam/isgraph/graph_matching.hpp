@@ -14,6 +14,7 @@
 
 #include "bim/agraph.hpp"
 #include "bim/plane.hpp"
+#include "common/angles.hpp"
 #include "slam/match_status.hpp"
 #include "slam/thread_pool.hpp"
 
@@ -154,6 +155,8 @@ struct MatchingOptions {
   // their lines is too ill-conditioned to place a seed (1 cm across the walls moves it 2 cm along
   // them at 30°).
   double min_corner_angle_deg = 30.0;
+  // The sine of min_corner_angle_deg: the least |n₁ × n₂| of two walls that make a corner.
+  double minCornerSine() const { return std::sin(common::radians(min_corner_angle_deg)); }
 };
 
 // One B_T_M checked against the S-Graph: what it explains.

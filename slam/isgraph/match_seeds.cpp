@@ -26,9 +26,8 @@ class UniqueTransforms {
   explicit UniqueTransforms(std::vector<Eigen::Vector3d>& out) : out_(out) {}
   // Whether `h` was new (and so added).
   bool add(const Eigen::Vector3d& h) {
-    const std::array<long, 3> key{
-        std::lround(h.x() / 0.02), std::lround(h.y() / 0.02),
-        std::lround(common::wrapAngle(h.z()) / (0.2 * std::numbers::pi / 180))};
+    const std::array<long, 3> key{std::lround(h.x() / 0.02), std::lround(h.y() / 0.02),
+                                  std::lround(common::wrapAngle(h.z()) / common::radians(0.2))};
     if (!seen_.insert(key).second) return false;
     out_.push_back(h);
     return true;
@@ -100,7 +99,7 @@ void GraphMatcher::seedFromCorridors(const MatchInput& input,
   // An S-corridor on an A-corridor of its width: yaw (two ways round) and the offset across are
   // fixed; along the axis, each S-plane across the corridor (its normal along the axis) put on an
   // A-surface facing the same way that spans the same band across the axis gives one slide.
-  const double angle = options_.plane_angle_deg * std::numbers::pi / 180.0;
+  const double angle = common::radians(options_.plane_angle_deg);
   for (const MatchRoom& s : input.rooms) {
     if (s.four_wall) continue;
     for (int i = 0; i < int(graph_->rooms.size()); ++i) {
@@ -174,9 +173,8 @@ void GraphMatcher::seedFromCorners(const MatchInput& input,
     for (std::size_t j = i + 1; j < input.planes.size(); ++j) {
       const MatchPlane& q = input.planes[j];
       if (q.length() < options_.min_corner_arm || room_corners.count({p.id, q.id})) continue;
-      const auto corner =
-          cornerOf(p.plane, p.start, p.end, q.plane, q.start, q.end, options_.corner_gap,
-                   std::sin(options_.min_corner_angle_deg * std::numbers::pi / 180.0));
+      const auto corner = cornerOf(p.plane, p.start, p.end, q.plane, q.start, q.end,
+                                   options_.corner_gap, options_.minCornerSine());
       if (corner && std::min(corner->arm[0], corner->arm[1]) >= options_.min_corner_arm) {
         s_corners.push_back(*corner);
       }
@@ -196,7 +194,7 @@ void GraphMatcher::seedFromCorners(const MatchInput& input,
   if (screen.size() > 6) screen.resize(6);
   double screen_length = 0.0;
   for (const auto* p : screen) screen_length += p->length();
-  const double angle = options_.plane_angle_deg * std::numbers::pi / 180.0;
+  const double angle = common::radians(options_.plane_angle_deg);
   UniqueTransforms unique(out);
   for (const Corner& s : s_corners) {
     for (const Corner& a : corners_) {

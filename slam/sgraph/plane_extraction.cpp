@@ -13,10 +13,64 @@
 #include <numbers>
 
 #include <Eigen/Eigenvalues>
+#include <algorithm>
 #include <array>
 #include <cmath>
 
 namespace isg::slam {
+
+namespace {
+
+// Where along a wall its inliers stand (PlaneExtractionOptions::wall_column_height), apart where
+// they leave a hole (hole_columns): shares of out.start → out.end; empty when they stand over all
+// of it, or nowhere. Sensor at the origin: a wall h off it is sampled, at horizontal range ρ,
+// every ρ²·Δ/h along it for an azimuth step Δ.
+std::vector<std::pair<double, double>> piecesAlong(const std::vector<Eigen::Vector3d>& points,
+                                                   const Eigen::Vector3d& along,
+                                                   const PlaneObservation& out,
+                                                   const PlaneExtractionOptions& options) {
+  std::vector<std::pair<double, double>> pieces;
+  const double h = std::abs(out.plane.d);
+  const double length = along.dot(out.end - out.start);
+  if (h < 1e-3 || length <= options.cluster_tolerance) return pieces;
+  struct Column {
+    double z_min = 1e300, z_max = -1e300, s_min = 1e300, s_max = -1e300, range = 0.0;
+  };
+  const double width = options.wall_column_width;
+  std::vector<Column> columns(std::size_t(length / width) + 1);
+  for (const auto& p : points) {
+    const double s = std::clamp(along.dot(p - out.start), 0.0, length);
+    Column& c = columns[std::min(columns.size() - 1, std::size_t(s / width))];
+    c.z_min = std::min(c.z_min, p.z());
+    c.z_max = std::max(c.z_max, p.z());
+    c.s_min = std::min(c.s_min, s);
+    c.s_max = std::max(c.s_max, s);
+    c.range = std::max(c.range, p.head<2>().norm());
+  }
+  const double step = common::radians(options.image_column_deg);
+  const Column* last = nullptr;  // the last column the wall stands in
+  for (const Column& c : columns) {
+    if (c.z_max - c.z_min < options.wall_column_height) continue;
+    const double gap = last ? c.s_min - last->s_max : 0.0;
+    const double range = last ? std::max(c.range, last->range) : 0.0;
+    if (!last || (gap > options.cluster_tolerance &&
+                  gap > options.hole_columns * step * range * range / h)) {
+      if (last) pieces.back().second = last->s_max;
+      pieces.emplace_back(c.s_min, c.s_max);
+    }
+    last = &c;
+  }
+  if (pieces.empty()) return pieces;
+  pieces.back().second = last->s_max;
+  if (pieces.size() == 1 && pieces[0].first <= 0.0 && pieces[0].second >= length) return {};
+  for (auto& [a, b] : pieces) {
+    a /= length;
+    b /= length;
+  }
+  return pieces;
+}
+
+}  // namespace
 
 PlaneObservation observePlane(const std::vector<Eigen::Vector3d>& points, int support,
                               const PlaneExtractionOptions& options) {
@@ -57,6 +111,8 @@ PlaneObservation observePlane(const std::vector<Eigen::Vector3d>& points, int su
   out.start = mean + lo * along;
   out.end = mean + hi * along;
   out.rms = std::sqrt(sum2 / double(points.size()));
+  if (out.orientation == PlaneOrientation::kVertical)
+    out.pieces = piecesAlong(points, along, out, options);
   return out;
 }
 

@@ -2,6 +2,7 @@
 
 #include <Eigen/Core>
 #include <numbers>
+#include <utility>
 #include <vector>
 
 #include "bim/plane.hpp"
@@ -36,6 +37,16 @@ struct PlaneExtractionOptions {
   double normal_angle_deg = 15.0;
   double merge_angle_deg = 5.0;
   double ring_gap_factor = 4.0;
+  // A wall's inliers leave a hole (a gap in a wall built in part, seen through) where, along the
+  // wall, none lies over more than cluster_tolerance and over more than hole_columns azimuth bins
+  // of image_column_deg at that range and angle: the sampling alone leaves gaps that wide on a
+  // wall seen far off at a grazing angle.
+  double hole_columns = 2.0;
+  // Where along a wall its inliers stand: in each wall_column_width along it, over at least
+  // wall_column_height. A ring's arc across the floor or the ceiling, tangent to the wall's line
+  // where nothing stands (a gap in a wall built in part), lies in the wall's plane at one height.
+  double wall_column_width = 0.05;
+  double wall_column_height = 0.15;
   double vertical_max_normal_z = 0.2;    // |n_z| below this: a wall
   double horizontal_min_normal_z = 0.9;  // above this: a floor or a ceiling
 };
@@ -55,6 +66,10 @@ struct PlaneObservation {
   PlaneOrientation orientation = PlaneOrientation::kOblique;
   // Walls: the inliers' extent along the wall (the horizontal direction in the plane) and in z.
   Eigen::Vector3d start = Eigen::Vector3d::Zero(), end = Eigen::Vector3d::Zero();
+  // Walls: the parts of start → end its inliers stand on, as shares (0 at start, 1 at end), apart
+  // where they leave a hole (PlaneExtractionOptions::hole_columns, wall_column_height); empty
+  // when all of it. Only what the map confirms of a wall reads them (SGraph::Plane::spans).
+  std::vector<std::pair<double, double>> pieces;
   double z_min = 0.0, z_max = 0.0;
   double rms = 0.0;  // inliers' RMS distance from the plane
   TopEdge top = TopEdge::kUnknown;

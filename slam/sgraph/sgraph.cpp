@@ -12,6 +12,7 @@
 #include "bim/agraph_factors.hpp"
 #include "bim/plane_manifold.hpp"
 #include "common/angles.hpp"
+#include "slam/sgraph/confirmed_spans.hpp"
 #include "slam/sgraph/sgraph_factors.hpp"
 
 namespace isg::slam {
@@ -35,44 +36,6 @@ void extend(MapPlane& m, const PlaneObservation& o) {
   const Eigen::Vector2d origin = base - along.dot(base) * along;
   m.start = origin + lo * along;
   m.end = origin + hi * along;
-}
-
-// The parts of a map wall that at least two of its observations saw, along it from its start:
-// the extent is the union of every observation's, and one observation that ran past a wall's free
-// end (a ragged region at its edge) stretches it. A share of the observations would not do: each
-// part of a 30 m wall is seen by a few of its hundred. A wall seen once is confirmed where that
-// once saw it.
-std::vector<std::pair<double, double>> confirmedSpans(
-    const MapPlane& m, const std::vector<std::pair<Eigen::Vector2d, Eigen::Vector2d>>& spans) {
-  std::vector<std::pair<double, double>> out;
-  const Eigen::Vector2d direction = m.end - m.start;
-  const double length = direction.norm();
-  if (length < 1e-9 || spans.empty()) return out;
-  const Eigen::Vector2d axis = direction / length;
-  std::vector<std::pair<double, int>> events;  // (position along, +1 a span opens / −1 closes)
-  for (const auto& [a, b] : spans) {
-    double s0 = (a - m.start).dot(axis), s1 = (b - m.start).dot(axis);
-    if (s0 > s1) std::swap(s0, s1);
-    events.push_back({std::clamp(s0, 0.0, length), +1});
-    events.push_back({std::clamp(s1, 0.0, length), -1});
-  }
-  std::sort(events.begin(), events.end());
-  const int needed = spans.size() == 1 ? 1 : 2;
-  int covering = 0;
-  double opened = 0.0;
-  for (const auto& [at, change] : events) {
-    const int before = covering;
-    covering += change;
-    if (before < needed && covering >= needed) opened = at;
-    if (before >= needed && covering < needed && at > opened) {
-      if (!out.empty() && opened <= out.back().second) {
-        out.back().second = at;
-      } else {
-        out.push_back({opened, at});
-      }
-    }
-  }
-  return out;
 }
 
 }  // namespace
@@ -212,7 +175,6 @@ void SGraph::observeWall(const PlaneObservation& observation, int floor, int ind
     plane = int(planes_.size()) - 1;
   }
   Plane& p = planes_[plane];
-  p.spans.emplace_back(in_map.start.head<2>(), in_map.end.head<2>());
   extend(p.map, in_map);
   addHeights(p.map, in_map);
   ++p.map.observations;
@@ -693,8 +655,6 @@ void SGraph::mergeDuplicatePlanes(const std::set<int>& recent, int floor) {
     extent.start = Eigen::Vector3d(dropped.map.start.x(), dropped.map.start.y(), 0.0);
     extent.end = Eigen::Vector3d(dropped.map.end.x(), dropped.map.end.y(), 0.0);
     extend(kept.map, extent);
-    kept.spans.insert(kept.spans.end(), dropped.spans.begin(), dropped.spans.end());
-    std::vector<std::pair<Eigen::Vector2d, Eigen::Vector2d>>().swap(dropped.spans);
     kept.map.observations += dropped.map.observations;
     mergeHeights(kept.map, dropped.map);
     dropped.merged_into = keep;
@@ -835,6 +795,26 @@ std::optional<Eigen::Vector2d> SGraph::floorCentre(int floor) const {
   return floors_[floor].centre;
 }
 
+std::vector<std::pair<Eigen::Vector2d, Eigen::Vector2d>> SGraph::spansOf(int plane) const {
+  std::vector<std::pair<Eigen::Vector2d, Eigen::Vector2d>> spans;
+  std::vector<int> keyframes = planes_[plane].observed_by;  // once each: all of theirs are taken
+  std::sort(keyframes.begin(), keyframes.end());
+  keyframes.erase(std::unique(keyframes.begin(), keyframes.end()), keyframes.end());
+  for (int k : keyframes) {
+    const Eigen::Isometry3d M_T_L = keyframes_[k].pose() * R_T_L_;
+    for (const auto& [observed, observation] : keyframes_[k].observations) {
+      if (observed != plane) continue;
+      const Eigen::Vector2d from = (M_T_L * observation.start).head<2>();
+      const Eigen::Vector2d to = (M_T_L * observation.end).head<2>();
+      if (observation.pieces.empty()) spans.emplace_back(from, to);
+      for (const auto& [a, b] : observation.pieces) {
+        spans.emplace_back(from + a * (to - from), from + b * (to - from));
+      }
+    }
+  }
+  return spans;
+}
+
 MapDiagnostics SGraph::diagnostics() const {
   MapDiagnostics out;
   out.keyframes = past_keyframes_;
@@ -847,7 +827,7 @@ MapDiagnostics SGraph::diagnostics() const {
     if (planes_[i].merged_into >= 0 || !seenAsWall(p, options_.rooms.min_wall_height)) continue;
     MapWall wall{int(i),  p.plane.normal, p.plane.d,      p.start, p.end,
                  p.z_min, p.z_max,        p.observations, {}};
-    wall.confirmed = confirmedSpans(p, planes_[i].spans);
+    wall.confirmed = confirmedSpans(p, spansOf(int(i)));
     for (int k : planes_[i].observed_by) wall.keyframes.push_back(int(past_keyframes_.size()) + k);
     out.walls.push_back(std::move(wall));
   }

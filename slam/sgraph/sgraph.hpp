@@ -143,9 +143,6 @@ class SGraph {
     std::vector<int> observed_by;  // keyframe indices
     int merged_into = -1;          // >= 0: found to be the same surface as that plane
     int floor = 0;                 // the floor it was seen from; never merged across floors
-    // Each observation's extent in M as it was taken (its two ends): where the wall was seen, for
-    // what the map confirms of it (MapWall::confirmed). Not optimised: a few cm as the map moves.
-    std::vector<std::pair<Eigen::Vector2d, Eigen::Vector2d>> spans;
   };
 
   struct Room {
@@ -286,6 +283,10 @@ class SGraph {
   void observeWall(const PlaneObservation& observation, int floor, int index,
                    const Eigen::Isometry3d& M_T_L, std::vector<MapPlane>& walls,
                    Keyframe& keyframe);
+  // Where each of a wall plane's observations saw it, in M as its keyframe is now estimated (a
+  // piece each where its inliers left a hole): for MapWall::confirmed. Taken as the keyframe then
+  // stood, a span would keep the drift the map has since corrected, decimetres along a wall.
+  std::vector<std::pair<Eigen::Vector2d, Eigen::Vector2d>> spansOf(int plane) const;
   // Rooms looked for again from every keyframe of the window ending at `index`.
   void detectRoomsInWindow(int index);
   // The floor a keyframe at height z (in M), level or not (climbing), stands on, made when it is

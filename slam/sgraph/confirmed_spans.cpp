@@ -1,0 +1,71 @@
+#include "slam/sgraph/confirmed_spans.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+namespace isg::slam {
+
+// Where the wall ends, the dozens of observations that saw it up to there end together; one or
+// two that ran past it (a ragged region at a free end, a keyframe a few degrees off) are strays
+// beside them, and would stretch a union or a count of two. A share of all the observations would
+// not do: each part of a 30 m wall is seen by a few of its hundred. So the share is of the most
+// nearby, and near is kept below DeviationOptions::progress_gap_m: where a part seen by few abuts
+// one seen by many (an occluder's shadow), the stretch left unconfirmed is shorter than a gap the
+// progress report believes, and is bridged as not seen.
+std::vector<std::pair<double, double>> confirmedSpans(
+    const MapPlane& m, const std::vector<std::pair<Eigen::Vector2d, Eigen::Vector2d>>& spans) {
+  constexpr double kConfirmNear = 0.5;   // m along the wall
+  constexpr double kConfirmShare = 0.2;  // of the most observations nearby
+  std::vector<std::pair<double, double>> out;
+  const Eigen::Vector2d direction = m.end - m.start;
+  const double length = direction.norm();
+  if (length < 1e-9 || spans.empty()) return out;
+  const Eigen::Vector2d axis = direction / length;
+  std::vector<std::pair<double, int>> events;  // (position along, +1 a span opens / −1 closes)
+  for (const auto& [a, b] : spans) {
+    double s0 = (a - m.start).dot(axis), s1 = (b - m.start).dot(axis);
+    if (s0 > s1) std::swap(s0, s1);
+    events.push_back({std::clamp(s0, 0.0, length), +1});
+    events.push_back({std::clamp(s1, 0.0, length), -1});
+  }
+  std::sort(events.begin(), events.end());
+  // How many spans cover each stretch between consecutive ends.
+  struct Stretch {
+    double from, to;
+    int covering;
+  };
+  std::vector<Stretch> stretches;
+  int covering = 0;
+  for (std::size_t i = 0; i < events.size(); ++i) {
+    covering += events[i].second;
+    if (i + 1 < events.size() && events[i + 1].first > events[i].first) {
+      stretches.push_back({events[i].first, events[i + 1].first, covering});
+    }
+  }
+  const int least = m.observations <= 1 ? 1 : 2;  // a span each, or one each of its pieces
+  for (std::size_t i = 0; i < stretches.size(); ++i) {
+    const Stretch& here = stretches[i];
+    if (here.covering < least) continue;
+    // Not within kConfirmNear of a stretch seen by so many more that this one's are a few strays.
+    const auto outnumbers = [&](const Stretch& other) {
+      return here.covering < int(std::ceil(kConfirmShare * other.covering));
+    };
+    double from = here.from, to = here.to;
+    for (std::size_t j = i; j-- > 0 && stretches[j].to >= here.from - kConfirmNear;) {
+      if (outnumbers(stretches[j])) from = std::max(from, stretches[j].to + kConfirmNear);
+    }
+    for (std::size_t j = i + 1; j < stretches.size() && stretches[j].from <= here.to + kConfirmNear;
+         ++j) {
+      if (outnumbers(stretches[j])) to = std::min(to, stretches[j].from - kConfirmNear);
+    }
+    if (to <= from) continue;
+    if (!out.empty() && out.back().second >= from) {
+      out.back().second = to;
+    } else {
+      out.push_back({from, to});
+    }
+  }
+  return out;
+}
+
+}  // namespace isg::slam
