@@ -11,6 +11,7 @@
 #include "bim/polygon.hpp"
 #include "common/angles.hpp"
 #include "slam/deviations/face_views.hpp"
+#include "slam/deviations/seen_through.hpp"
 
 namespace isg::slam {
 
@@ -51,7 +52,8 @@ struct WallInB {
   Eigen::Vector2d normal, start, end;
   double z_min = 0.0, z_max = 0.0;
   int observations = 0;
-  double lean_deg = 0.0;  // of its plane off vertical
+  double lean_deg = 0.0;      // of its plane off vertical
+  bool behind_walls = false;  // seen only through other map walls (seenOnlyThroughWalls)
   // MapWall::confirmed as shares of start → end (a placement keeps them); empty: all of it.
   std::vector<std::pair<double, double>> confirmed;
   double length() const { return (end - start).norm(); }
@@ -174,25 +176,35 @@ void measurePiece(WallEvidence& e, const PlannedWall& planned) {
 
 // A wall's line as its consistent evidence lays it: o(s) = offset + tan(angle)·s, s along the
 // planned axis from its centre, o along the left normal from each piece's planned face. Starting
-// from the longest piece's line, the pieces whose both ends lie within `tolerance` of it are
-// consistent, the line is fitted to their ends (weighted by length), three times over. The others
-// (a plane fitted across a corner or a door leaf) are kept as evidence but not believed.
+// from the line of the longest piece seen often enough (observed at least `start_share` as often
+// as the most observed piece: a long plane fitted on a keyframe or four, a few degrees off across
+// a façade, is not where to start when a piece beside it was seen a hundred times), the pieces
+// whose both ends lie within `tolerance` of it are consistent, the line is fitted to their ends
+// (weighted by length), three times over. The others (a plane fitted across a corner or a door
+// leaf) are kept as evidence but not believed.
 struct WallFit {
   double offset_m = 0.0, angle_deg = 0.0;
   double length = 0.0;   // of the consistent pieces
   double longest = 0.0;  // the longest consistent piece
 };
 
-WallFit fitWall(WallDeviation& wall, const PlannedWall& planned, double tolerance) {
+WallFit fitWall(WallDeviation& wall, const PlannedWall& planned, double tolerance,
+                double start_share) {
   WallFit fit;
   if (wall.evidence.empty()) return fit;
   auto along = [&](const WallEvidence& e, const Eigen::Vector2d& p) {
     const Eigen::Vector2d q = p - planned.faceCentre(e.side);
     return Eigen::Vector2d(q.dot(planned.axis), q.dot(planned.left));
   };
-  const auto longest =
-      std::max_element(wall.evidence.begin(), wall.evidence.end(),
-                       [](const auto& a, const auto& b) { return a.length_m < b.length_m; });
+  int most_observed = 0;
+  for (const auto& e : wall.evidence) most_observed = std::max(most_observed, e.observations);
+  const auto seen_often = [&](const WallEvidence& e) {
+    return e.observations >= start_share * most_observed;
+  };
+  const auto longest = std::max_element(
+      wall.evidence.begin(), wall.evidence.end(), [&](const auto& a, const auto& b) {
+        return std::pair(seen_often(a), a.length_m) < std::pair(seen_often(b), b.length_m);
+      });
   const Eigen::Vector2d a0 = along(*longest, longest->start_B);
   const Eigen::Vector2d a1 = along(*longest, longest->end_B);
   double slope = (a1.y() - a0.y()) / (a1.x() - a0.x());
@@ -269,7 +281,8 @@ Placement refinePlacement(const std::vector<std::pair<WallDeviation, PlannedWall
       if (wall.evidence.empty() || wall.observed_share < options.judged_share) continue;
       WallDeviation moved = wall;
       for (auto& e : moved.evidence) placement.apply(e, walls[i].second);
-      fits[i] = fitWall(moved, walls[i].second, options.consistent_tolerance);
+      fits[i] = fitWall(moved, walls[i].second, options.consistent_tolerance,
+                        options.contradiction_observation_share);
       now[i] = std::abs(fits[i].offset_m) < options.shift_m &&
                std::abs(fits[i].angle_deg) < options.angle_deg;
     }
@@ -312,7 +325,8 @@ Placement refinePlacement(const std::vector<std::pair<WallDeviation, PlannedWall
 // make a deviation.
 void judge(WallDeviation& wall, const PlannedWall& planned, const DeviationOptions& options) {
   if (wall.evidence.empty()) return;
-  const WallFit fit = fitWall(wall, planned, options.consistent_tolerance);
+  const WallFit fit =
+      fitWall(wall, planned, options.consistent_tolerance, options.contradiction_observation_share);
   wall.offset_m = fit.offset_m;
   wall.angle_deg = fit.angle_deg;
   int most_observed = 0;  // of the pieces kept
@@ -552,10 +566,11 @@ bool onColumn(const bim::AGraph& plan, const std::string& level, const WallInB& 
 }
 
 // A map wall along several plan faces in line (a façade of bays between columns, a corridor's
-// wall broken by a junction) that is a third along none of them (surfaceOf) is evidence for each
-// it runs along over at least half the face's extent: the piece of it along that face, when that
-// is at least min_wall_length long. Together the pieces must cover two thirds of it, or it is
-// not along the plan but past it (an extra wall in line with a face). None: it is unexplained.
+// wall broken by a junction), whether or not it is a third along one of them (surfaceOf), is
+// evidence for each it runs along over at least half the face's extent: the piece of it along that
+// face, when that is at least min_wall_length long. Together the pieces must cover two thirds of
+// it, or it is not along the plan but past it (an extra wall in line with a face). None: it is
+// unexplained.
 std::vector<std::pair<int, WallInB>> piecesAlongFaces(const bim::AGraph& plan,
                                                       const std::string& level, const WallInB& m,
                                                       const DeviationOptions& options) {
@@ -658,6 +673,9 @@ std::vector<WallInB> wallsInB(const bim::AGraph& plan, const MapDiagnostics& map
       }
     }
     WallInB in_B = toB(w, placement);
+    in_B.behind_walls = w.observations < options.min_deviation_observations &&
+                        seenOnlyThroughWalls(map, w, options.min_deviation_observations,
+                                             options.see_through_margin);
     if (in_B.length() >= options.min_wall_length) walls_in_B.push_back(in_B);
   }
   return walls_in_B;
@@ -715,7 +733,8 @@ void setLocalThresholds(WallDeviation& wall, const LevelWalls& around, const Pla
     if (neighbour.evidence.empty() || neighbour.observed_share < options.judged_share) continue;
     WallDeviation moved = neighbour;
     for (auto& e : moved.evidence) local.apply(e, planned);
-    const WallFit fit = fitWall(moved, planned, options.consistent_tolerance);
+    const WallFit fit = fitWall(moved, planned, options.consistent_tolerance,
+                                options.contradiction_observation_share);
     if (std::abs(fit.offset_m) >= options.shift_m || std::abs(fit.angle_deg) >= options.angle_deg) {
       continue;  // deviating: not the map's error
     }
@@ -816,13 +835,17 @@ void measureLevel(const bim::AGraph& plan, int f, const std::vector<WallInB>& wa
   for (const auto& m : walls_in_B) {
     if (levelAt(plan, 0.5 * (m.z_min + m.z_max)) != f) continue;
     const int best = surfaceOf(plan, level, m, options);
-    if (best >= 0) {
+    const auto along = piecesAlongFaces(plan, level, m, options);
+    // Along several faces in line, its own among them: evidence for each, by the piece along it
+    // (a façade's bays between columns, seen as one plane, are each judged on that plane).
+    const bool along_its_own =
+        std::any_of(along.begin(), along.end(), [&](const auto& p) { return p.first == best; });
+    if (best >= 0 && !(along.size() >= 2 && along_its_own)) {
       evidence_of_surface[best].push_back(&m);
       continue;
     }
-    const auto along = piecesAlongFaces(plan, level, m, options);
     const bool stray = m.observations < options.min_deviation_observations &&
-                       m.lean_deg > options.max_stray_lean_deg;
+                       (m.lean_deg > options.max_stray_lean_deg || m.behind_walls);
     if (along.empty() && !onColumn(plan, level, m, options) && !stray) unexplained.push_back(m);
     for (const auto& [surface, piece] : along) {
       pieces.push_back(piece);
@@ -837,8 +860,21 @@ void measureLevel(const bim::AGraph& plan, int f, const std::vector<WallInB>& wa
   for (auto& [wall, planned] : level_walls) {
     for (auto& e : wall.evidence) placement.apply(e, planned);
   }
-  for (auto& [wall, planned] : placedLocally(level_walls, options)) {
+  LevelWalls judged = placedLocally(level_walls, options);
+  for (std::size_t i = 0; i < judged.size(); ++i) {
+    auto& [wall, planned] = judged[i];
     judge(wall, planned, options);
+    // Too few walls around as planned to tell the map's error there (no local noise): the local
+    // placement rests on one or two walls, and their own error moves it. A deviation is then
+    // believed only when the level's placement, fitted on all its walls, finds it too.
+    if (!wall.local_offset_noise_m &&
+        (wall.status == WallStatus::kShifted || wall.status == WallStatus::kRotated)) {
+      WallDeviation by_level = level_walls[i].first;
+      by_level.shift_threshold_m = options.shift_m;
+      by_level.angle_threshold_deg = options.angle_deg;
+      judge(by_level, planned, options);
+      if (by_level.status == WallStatus::kAsPlanned) wall = by_level;
+    }
     if (wall.observed_share < options.judged_share) {
       wall.in_view_share = inViewShare(plan, plan.walls[planned.index], viewpoints, options);
       wall.status =

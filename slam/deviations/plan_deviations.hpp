@@ -37,7 +37,9 @@ struct DeviationOptions {
   // (and, over walls at least min_angle_length long, the angles) the walls found as planned
   // within local_radius keep once the local placement is applied, scaled by √(n/(n−3)) for the
   // three numbers that placement fitted on their n walls (none with fewer than `min_noise_walls`).
-  // Three times a normal error is passed by chance once in 370 walls.
+  // Three times a normal error is passed by chance once in 370 walls. With fewer walls around,
+  // the local placement rests on one or two of them and their own error moves it: a deviation
+  // is then believed only when the level's placement (on all its walls) finds it too.
   double noise_factor = 3.0;
   int min_noise_walls = 5;
   // A wall's evidence is consistent when both ends of a piece lie within this of the line its
@@ -81,6 +83,8 @@ struct DeviationOptions {
   double view_range = 8.0;  // m
   double max_incidence_deg = 60.0;
   int min_views = 3;
+  // The same margin tells a sight line blocked by a map wall (seenOnlyThroughWalls, for extra
+  // walls seen from fewer than min_deviation_observations keyframes).
   double see_through_margin = 0.2;  // m
   // A wall's windows, widened by this each side (a degree of azimuth at view_range), are seen
   // through whether the wall stands or not: there only the map's walls say it is built.
@@ -109,7 +113,8 @@ struct DeviationOptions {
   // `progress_step`; a part in view with no map wall on it is not built when at least
   // `progress_gap_m` long. Shorter, the map cannot tell: a plane needs 100 voxels of 10 cm
   // (PlaneExtractionOptions::min_inliers), 0.4 m of a wall seen 2.5 m high, and a stretch between
-  // a door and a wall meeting this one is found as a piece of its own or not at all.
+  // a door and a wall meeting this one is found as a piece of its own or not at all. It stays
+  // above the map's unconfirmed edge (ConfirmationOptions::near_m).
   double progress_step = 0.05;  // m
   double progress_gap_m = 0.6;  // m
 };

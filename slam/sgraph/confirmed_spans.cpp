@@ -9,13 +9,10 @@ namespace isg::slam {
 // two that ran past it (a ragged region at a free end, a keyframe a few degrees off) are strays
 // beside them, and would stretch a union or a count of two. A share of all the observations would
 // not do: each part of a 30 m wall is seen by a few of its hundred. So the share is of the most
-// nearby, and near is kept below DeviationOptions::progress_gap_m: where a part seen by few abuts
-// one seen by many (an occluder's shadow), the stretch left unconfirmed is shorter than a gap the
-// progress report believes, and is bridged as not seen.
+// nearby (ConfirmationOptions says how near, and why no nearer than the progress report's gap).
 std::vector<std::pair<double, double>> confirmedSpans(
-    const MapPlane& m, const std::vector<std::pair<Eigen::Vector2d, Eigen::Vector2d>>& spans) {
-  constexpr double kConfirmNear = 0.5;   // m along the wall
-  constexpr double kConfirmShare = 0.2;  // of the most observations nearby
+    const MapPlane& m, const std::vector<std::pair<Eigen::Vector2d, Eigen::Vector2d>>& spans,
+    const ConfirmationOptions& options) {
   std::vector<std::pair<double, double>> out;
   const Eigen::Vector2d direction = m.end - m.start;
   const double length = direction.norm();
@@ -46,17 +43,17 @@ std::vector<std::pair<double, double>> confirmedSpans(
   for (std::size_t i = 0; i < stretches.size(); ++i) {
     const Stretch& here = stretches[i];
     if (here.covering < least) continue;
-    // Not within kConfirmNear of a stretch seen by so many more that this one's are a few strays.
+    // Not within near_m of a stretch seen by so many more that this one's are a few strays.
     const auto outnumbers = [&](const Stretch& other) {
-      return here.covering < int(std::ceil(kConfirmShare * other.covering));
+      return here.covering < int(std::ceil(options.share * other.covering));
     };
     double from = here.from, to = here.to;
-    for (std::size_t j = i; j-- > 0 && stretches[j].to >= here.from - kConfirmNear;) {
-      if (outnumbers(stretches[j])) from = std::max(from, stretches[j].to + kConfirmNear);
+    for (std::size_t j = i; j-- > 0 && stretches[j].to >= here.from - options.near_m;) {
+      if (outnumbers(stretches[j])) from = std::max(from, stretches[j].to + options.near_m);
     }
-    for (std::size_t j = i + 1; j < stretches.size() && stretches[j].from <= here.to + kConfirmNear;
-         ++j) {
-      if (outnumbers(stretches[j])) to = std::min(to, stretches[j].from - kConfirmNear);
+    for (std::size_t j = i + 1;
+         j < stretches.size() && stretches[j].from <= here.to + options.near_m; ++j) {
+      if (outnumbers(stretches[j])) to = std::min(to, stretches[j].from - options.near_m);
     }
     if (to <= from) continue;
     if (!out.empty() && out.back().second >= from) {

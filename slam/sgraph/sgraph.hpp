@@ -16,6 +16,7 @@
 #include "slam/map_diagnostics.hpp"
 #include "slam/odometry_buffer.hpp"
 #include "slam/sgraph/attitude_filter.hpp"
+#include "slam/sgraph/confirmed_spans.hpp"
 #include "slam/sgraph/plane_extraction.hpp"
 #include "slam/sgraph/plane_map.hpp"
 #include "slam/sgraph/room_detection.hpp"
@@ -83,6 +84,7 @@ struct SGraphOptions {
   double sigma_room = 0.05;              // m, room-centre factors
   ScanRegistrationOptions registration;  // LiDAR odometry between keyframes
   FloorOptions floors;                   // the floors layer
+  ConfirmationOptions confirmation;      // which parts of a wall the map confirms built
 };
 
 // What LiDAR odometry made of one keyframe (slam/sgraph/scan_registration.hpp).
