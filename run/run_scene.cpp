@@ -95,7 +95,7 @@ std::string fixed(double value, int decimals) {
 
 fx::Rgba statusColour(const std::string& status) {
   if (status == "as_planned") return {0.18, 0.55, 0.34, 1.0};
-  if (status == "shifted") return {0.90, 0.49, 0.0, 1.0};
+  if (status == "shifted" || status == "moved") return {0.90, 0.49, 0.0, 1.0};
   if (status == "rotated") return {0.61, 0.19, 0.78, 1.0};
   if (status == "missing") return {0.82, 0.01, 0.11, 1.0};
   return {0.6, 0.6, 0.6, 1.0};  // not seen
@@ -352,6 +352,43 @@ Json againstPlanEntity(const Json& levels, const std::map<std::string, double>& 
 
 }  // namespace
 
+namespace {
+
+// The columns judged (deviations.json `columns`): a square mark at each planned centre coloured by
+// its status (the column's own outline is among the plan's walls, drawn under it); a moved one
+// also a line to where the map found it, and the moved and missing ones labelled.
+Json columnEntity(const Json& columns, const std::map<std::string, double>& by_level,
+                  formats::RosTime stamp) {
+  Json entity = fx::sceneEntity(stamp, "plan", "deviations/columns");
+  entity["lines"] = Json::array();
+  entity["texts"] = Json::array();
+  constexpr double kLift = 0.07;  // m above the floor, over the walls' layer
+  constexpr double kHalf = 0.25;  // m: half the mark's side
+  for (const Json& column : columns) {
+    const double z = elevationOf(by_level, column) + kLift;
+    const std::string status = column.at("status").get<std::string>();
+    const Vector3d c = at(column.at("planned_centre"), z);
+    entity["lines"].push_back(
+        fx::lineLoop({c + Vector3d(-kHalf, -kHalf, 0), c + Vector3d(kHalf, -kHalf, 0),
+                      c + Vector3d(kHalf, kHalf, 0), c + Vector3d(-kHalf, kHalf, 0)},
+                     0.06, statusColour(status)));
+    std::string label = column.at("column").get<std::string>() + " " + status;
+    if (status == "moved" && column.at("offset_m").is_array()) {
+      const Vector3d offset(column.at("offset_m")[0].get<double>(),
+                            column.at("offset_m")[1].get<double>(), 0.0);
+      entity["lines"].push_back(fx::lineList({c, c + offset}, 0.04, statusColour(status)));
+      label += " " + fixed(offset.norm(), 2) + " m";
+    }
+    if (status == "moved" || status == "missing") {
+      entity["texts"].push_back(
+          fx::text(c + Vector3d(0, 0, 0.4), label, kFontSize, statusColour(status)));
+    }
+  }
+  return entity;
+}
+
+}  // namespace
+
 std::vector<Json> deviationEntities(const Json& deviations, const Json& agraph,
                                     formats::RosTime stamp) {
   const auto by_level = elevations(agraph);
@@ -386,6 +423,9 @@ std::vector<Json> deviationEntities(const Json& deviations, const Json& agraph,
         fx::lineList({at(extra.at("start"), z), at(extra.at("end"), z)}, 0.12, kExtraWall));
   }
   std::vector<Json> entities = {entity};
+  if (deviations.contains("columns") && !deviations.at("columns").empty()) {
+    entities.push_back(columnEntity(deviations.at("columns"), by_level, stamp));
+  }
   if (deviations.contains("map_against_plan")) {
     entities.push_back(againstPlanEntity(deviations.at("map_against_plan"), by_level, stamp));
   }

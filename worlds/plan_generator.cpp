@@ -4,7 +4,6 @@
 #include <algorithm>
 #include <cmath>
 #include <map>
-#include <numbers>
 #include <optional>
 #include <queue>
 #include <random>
@@ -15,6 +14,7 @@
 #include "bim/plan_json.hpp"
 #include "bim/plan_parser.hpp"
 #include "bim/scenario.hpp"
+#include "common/angles.hpp"
 #include "common/input_error.hpp"
 #include "common/json_reader.hpp"
 #include "worlds/millimetres.hpp"
@@ -782,8 +782,7 @@ void drawWallRotations(const GeneratorSpec& s, const Layout& layout, std::mt1993
     const double along = mm(about_draw * length);
     const double reach =
         anywhere ? std::max(along, length - along) : (about == 1 ? 0.5 * length : length);
-    const double cap_deg =
-        std::asin(std::min(1.0, 1.2 / std::max(reach, 1e-9))) * 180.0 / std::numbers::pi;
+    const double cap_deg = common::degrees(std::asin(std::min(1.0, 1.2 / std::max(reach, 1e-9))));
     const double angle =
         std::min(s.rotation_min_deg + (s.rotation_max_deg - s.rotation_min_deg) * size, cap_deg);
     turns.push_back({{"wall", id},

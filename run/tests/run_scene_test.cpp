@@ -157,6 +157,34 @@ TEST(RunScene, DeviationsAreColouredAndTheDeviatingOnesLabelled) {
   EXPECT_EQ(point(walls["lines"][3]["points"][1]), Eigen::Vector3d(1, 3, 3.05));
 }
 
+TEST(RunScene, ColumnsAreMarkedByStatusAndTheMovedOnesShowWhereTheyStand) {
+  const Json deviations = Json::parse(R"({
+    "walls": [], "extra_walls": [],
+    "columns": [
+      {"column": "C1", "level": "L1", "status": "as_planned", "planned_centre": [2, 2],
+       "offset_m": [0.004, 0.0]},
+      {"column": "C2", "level": "L1", "status": "moved", "planned_centre": [6, 2],
+       "offset_m": [-0.12, 0.05]},
+      {"column": "C3", "level": "L1", "status": "missing", "planned_centre": [10, 2],
+       "offset_m": null}]
+  })");
+  const auto drawn = deviationEntities(deviations, handAGraph(), formats::RosTime{});
+  ASSERT_EQ(drawn.size(), 2u);
+  const Json& columns = drawn[1];
+  EXPECT_EQ(columns["id"], "deviations/columns");
+  // A mark each, and the moved one's line to where the map found it: 0.13 m off.
+  ASSERT_EQ(columns["lines"].size(), 4u);
+  EXPECT_TRUE(
+      point(columns["lines"][0]["points"][0]).isApprox(Eigen::Vector3d(1.75, 1.75, 3.07), 1e-12));
+  EXPECT_GT(columns["lines"][0]["color"]["g"].get<double>(), 0.5);  // as planned: green
+  EXPECT_TRUE(
+      point(columns["lines"][2]["points"][1]).isApprox(Eigen::Vector3d(5.88, 2.05, 3.07), 1e-12));
+  EXPECT_GT(columns["lines"][3]["color"]["r"].get<double>(), 0.8);  // missing: red
+  ASSERT_EQ(columns["texts"].size(), 2u);                           // the moved and the missing one
+  EXPECT_EQ(columns["texts"][0]["text"], "C2 moved 0.13 m");
+  EXPECT_EQ(columns["texts"][1]["text"], "C3 missing");
+}
+
 TEST(RunScene, TheMapAgainstThePlanIsDrawnByHowFarOffEachStretchLies) {
   const Json deviations = Json::parse(R"({
     "walls": [], "extra_walls": [],
