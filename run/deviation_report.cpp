@@ -100,7 +100,8 @@ nlohmann::json deviationReportJson(const slam::DeviationReport& report) {
       wall["judged_against"] = {{"shift_m", w.shift_threshold_m},
                                 {"angle_deg", w.angle_threshold_deg},
                                 {"local_offset_noise_m", optional(w.local_offset_noise_m)},
-                                {"local_angle_noise_deg", optional(w.local_angle_noise_deg)}};
+                                {"local_angle_noise_deg", optional(w.local_angle_noise_deg)},
+                                {"placement_sigma_m", w.placement_sigma_m}};
     }
     {
       const slam::WallProgress& p = w.progress;

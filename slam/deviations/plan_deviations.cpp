@@ -238,12 +238,28 @@ WallFit fitWall(WallDeviation& wall, const PlannedWall& planned, double toleranc
   return fit;
 }
 
+// The placements' prior (below), standard deviations: 5 cm, 1°.
+constexpr double kPriorT = 0.05, kPriorYaw = common::radians(1.0);
+Eigen::Matrix3d priorCovariance() {
+  return Eigen::Vector3d(kPriorT * kPriorT, kPriorT * kPriorT, kPriorYaw * kPriorYaw).asDiagonal();
+}
+
 // A small correction of the map's place in the plan: p ↦ p + t + θ·perp(p − origin), to first
 // order. Applied exactly (a rotation about the origin, then t) to what the report draws.
 struct Placement {
   Eigen::Vector3d correction = Eigen::Vector3d::Zero();  // t.x, t.y, θ (rad)
   Eigen::Vector2d origin = Eigen::Vector2d::Zero();
   int walls_used = 0;
+  // Of the correction (m², rad²): the inverse of the fit's information, its prior included. Where
+  // no wall constrains a direction, the prior's 5 cm and 1° stand for the localizer's placement.
+  Eigen::Matrix3d covariance = priorCovariance();
+  // The standard deviation of where it places a wall's face along the wall's normal.
+  double sigmaAcross(const PlannedWall& planned) const {
+    const Eigen::Vector2d c = 0.5 * (planned.start + planned.end) - origin;
+    const Eigen::Vector3d J(planned.left.x(), planned.left.y(),
+                            planned.left.dot(Eigen::Vector2d(-c.y(), c.x())));
+    return std::sqrt(std::max(0.0, J.dot(covariance * J)));
+  }
   Eigen::Vector2d move(const Eigen::Vector2d& p) const {
     return origin + Eigen::Rotation2Dd(correction.z()) * (p - origin) + correction.head<2>();
   }
@@ -269,9 +285,12 @@ Placement refinePlacement(const std::vector<std::pair<WallDeviation, PlannedWall
       total += e.length_m;
     }
   }
-  if (total <= 0.0) return placement;
+  if (total <= 0.0) {
+    placement.covariance.setZero();  // no wall around: no correction, and nothing it adds
+    return placement;
+  }
   placement.origin /= total;
-  constexpr double kSigmaOffset = 0.02, kPriorT = 0.05, kPriorYaw = common::radians(1.0);
+  constexpr double kSigmaOffset = 0.02;
   std::vector<bool> used(walls.size(), false);
   for (int round = 0; round < 5; ++round) {
     std::vector<bool> now(walls.size(), false);
@@ -312,6 +331,7 @@ Placement refinePlacement(const std::vector<std::pair<WallDeviation, PlannedWall
       g(2) += w_angle * common::radians(fits[i].angle_deg);
     }
     placement.correction -= H.ldlt().solve(g);
+    placement.covariance = H.inverse();
   }
   return placement;
 }
@@ -725,8 +745,8 @@ LevelWalls levelWalls(const bim::AGraph& plan, const std::string& level,
 
 // The map's own error around a wall (DeviationOptions::noise_factor): what the walls around it
 // found as planned keep of offset and angle once the local placement is applied.
-void setLocalThresholds(WallDeviation& wall, const LevelWalls& around, const Placement& local,
-                        const DeviationOptions& options) {
+void setLocalThresholds(WallDeviation& wall, const PlannedWall& its_plan, const LevelWalls& around,
+                        const Placement& local, const DeviationOptions& options) {
   double offset_weight = 0.0, offset_sum = 0.0, angle_weight = 0.0, angle_sum = 0.0;
   int offset_walls = 0, angle_walls = 0;
   for (const auto& [neighbour, planned] : around) {
@@ -754,8 +774,13 @@ void setLocalThresholds(WallDeviation& wall, const LevelWalls& around, const Pla
   };
   wall.local_offset_noise_m = noise(offset_sum, offset_weight, offset_walls);
   wall.local_angle_noise_deg = noise(angle_sum, angle_weight, angle_walls);
+  // And how well those walls fix where the map lies across this one: along a direction none of
+  // them constrains (the walls around all run across it, or are all built off), the placement's
+  // prior stands for the localizer's, and the wall's own offset cannot be told from the map's.
+  wall.placement_sigma_m = local.sigmaAcross(its_plan);
   wall.shift_threshold_m =
-      std::max(options.shift_m, options.noise_factor * wall.local_offset_noise_m.value_or(0.0));
+      std::max({options.shift_m, options.noise_factor * wall.local_offset_noise_m.value_or(0.0),
+                options.noise_factor * wall.placement_sigma_m});
   wall.angle_threshold_deg =
       std::max(options.angle_deg, options.noise_factor * wall.local_angle_noise_deg.value_or(0.0));
 }
@@ -781,7 +806,7 @@ LevelWalls placedLocally(const LevelWalls& level_walls, const DeviationOptions& 
     }
     const Placement local = refinePlacement(around, options);
     for (auto& e : judged[i].first.evidence) local.apply(e, judged[i].second);
-    setLocalThresholds(judged[i].first, around, local, options);
+    setLocalThresholds(judged[i].first, judged[i].second, around, local, options);
   }
   return judged;
 }

@@ -39,7 +39,10 @@ struct DeviationOptions {
   // three numbers that placement fitted on their n walls (none with fewer than `min_noise_walls`).
   // Three times a normal error is passed by chance once in 370 walls. With fewer walls around,
   // the local placement rests on one or two of them and their own error moves it: a deviation
-  // is then believed only when the level's placement (on all its walls) finds it too.
+  // is then believed only when the level's placement (on all its walls) finds it too. The shift
+  // threshold is also at least `noise_factor` times how well those walls fix the map across the
+  // wall (the local placement's standard deviation along its normal: WallDeviation::
+  // placement_sigma_m; the placement's 5 cm prior where none of them does).
   double noise_factor = 3.0;
   int min_noise_walls = 5;
   // A wall's evidence is consistent when both ends of a piece lie within this of the line its
@@ -157,6 +160,9 @@ struct WallDeviation {
   // those follow (none where too few walls around were found as planned to tell).
   double shift_threshold_m = 0.0, angle_threshold_deg = 0.0;
   std::optional<double> local_offset_noise_m, local_angle_noise_deg;
+  // How well the walls around fix where the map lies across this one (the standard deviation of
+  // its local placement along the wall's normal, DeviationOptions::noise_factor).
+  double placement_sigma_m = 0.0;
   std::optional<double> in_view_share;  // measured only for walls seen too little to judge
   Eigen::Vector2d planned_start = Eigen::Vector2d::Zero(), planned_end = Eigen::Vector2d::Zero();
   double thickness = 0.0;

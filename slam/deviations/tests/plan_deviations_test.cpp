@@ -591,6 +591,49 @@ TEST(PlanDeviations, APlaneSeenOnceOnlyThroughAWallIsNoExtraWall) {
   }
 }
 
+// A long room, 20 m × 4 m: the end wall X (x = 0) has only S and N around it (E is 20 m off), and
+// they run across it: nothing around tells where the map lies along x there, so the placement's
+// prior (5 cm) stands for it and X is judged against three times that. Built 8 cm off, X is not
+// called shifted (its offset cannot be told from the map's own error there); built 20 cm off, it
+// is, by 0.20 m.
+TEST(PlanDeviations, AWallIsJudgedAgainstHowWellTheWallsAroundFixTheMapAcrossIt) {
+  const nlohmann::json document = nlohmann::json::parse(R"({
+    "format": "isg.plan", "version": 1, "name": "long room",
+    "levels": [{
+      "id": "L0", "elevation": 0.0, "height": 3.0,
+      "walls": [
+        {"id": "S", "start": [0, 0], "end": [20, 0], "thickness": 0.2},
+        {"id": "E", "start": [20, 0], "end": [20, 4], "thickness": 0.2},
+        {"id": "N", "start": [20, 4], "end": [0, 4], "thickness": 0.2},
+        {"id": "X", "start": [0, 4], "end": [0, 0], "thickness": 0.2}
+      ]
+    }]
+  })");
+  const common::JsonSource source{"long-room.json", nullptr};
+  const bim::AGraph graph =
+      bim::buildAGraph(bim::parsePlan(common::JsonNode(document, "", source)));
+  for (const double built_off : {0.08, 0.20}) {
+    MapDiagnostics map = facesAndWalk(graph, 2.0, 1.0, 19.0, 0.5);
+    for (auto& wall : map.walls) {
+      if (std::abs(wall.start.x()) > 0.2 || std::abs(wall.end.x()) > 0.2) continue;  // X's faces
+      wall.d -= wall.normal.x() * built_off;
+      wall.start.x() += built_off;
+      wall.end.x() += built_off;
+    }
+    const DeviationReport report = measureDeviations(graph, map, Eigen::Isometry3d::Identity());
+    const WallDeviation& x = wallOf(report, "X");
+    EXPECT_NEAR(x.placement_sigma_m, 0.05, 0.005) << built_off;
+    EXPECT_GE(x.shift_threshold_m, 0.15) << built_off;
+    EXPECT_EQ(x.status, built_off < 0.1 ? WallStatus::kAsPlanned : WallStatus::kShifted)
+        << built_off;
+    ASSERT_TRUE(x.offset_m.has_value());
+    EXPECT_NEAR(std::abs(*x.offset_m), built_off, 0.005) << built_off;
+    // S, fixed across it by N (4 m off), keeps the fixed threshold.
+    EXPECT_LT(wallOf(report, "S").placement_sigma_m, 0.02) << built_off;
+    EXPECT_DOUBLE_EQ(wallOf(report, "S").shift_threshold_m, 0.06) << built_off;
+  }
+}
+
 // A room with its north-west corner cut by a diagonal wall D. X (x = 0, y 0 → 5) has three walls
 // around it (S, D, N: fewer than min_noise_walls, so the map's error there is not known), and
 // only D, built 5.5 cm into the room (under the 6 cm threshold: as planned), says where the map
