@@ -536,6 +536,16 @@ TEST(PlanDeviations, AFacadeBayNotBuiltIsMissingThoughOnlyItsInnerFaceBesideItsW
 namespace isg::slam {
 namespace {
 
+// The A-Graph of a plan by hand: one level L0, 3 m high, of `walls` (a JSON array).
+bim::AGraph graphOfWalls(const std::string& walls) {
+  const nlohmann::json document = nlohmann::json::parse(
+      R"({"format": "isg.plan", "version": 1, "name": "by hand",
+          "levels": [{"id": "L0", "elevation": 0.0, "height": 3.0, "walls": )" +
+      walls + "}]}");
+  const common::JsonSource source{"by-hand.json", nullptr};
+  return bim::buildAGraph(bim::parsePlan(common::JsonNode(document, "", source)));
+}
+
 // The S-Graph sees the façade's first two bays (F1, x 0 → 6, and F2, x 6.5 → 12.5) as one plane,
 // y = 0.1 from x = 0.1 to 12.4, seen from 100 keyframes: a third along each, and so, before,
 // evidence for the first of them alone. F2 was then judged on a plane fitted 3° off across it
@@ -597,21 +607,11 @@ TEST(PlanDeviations, APlaneSeenOnceOnlyThroughAWallIsNoExtraWall) {
 // called shifted (its offset cannot be told from the map's own error there); built 20 cm off, it
 // is, by 0.20 m.
 TEST(PlanDeviations, AWallIsJudgedAgainstHowWellTheWallsAroundFixTheMapAcrossIt) {
-  const nlohmann::json document = nlohmann::json::parse(R"({
-    "format": "isg.plan", "version": 1, "name": "long room",
-    "levels": [{
-      "id": "L0", "elevation": 0.0, "height": 3.0,
-      "walls": [
-        {"id": "S", "start": [0, 0], "end": [20, 0], "thickness": 0.2},
-        {"id": "E", "start": [20, 0], "end": [20, 4], "thickness": 0.2},
-        {"id": "N", "start": [20, 4], "end": [0, 4], "thickness": 0.2},
-        {"id": "X", "start": [0, 4], "end": [0, 0], "thickness": 0.2}
-      ]
-    }]
-  })");
-  const common::JsonSource source{"long-room.json", nullptr};
-  const bim::AGraph graph =
-      bim::buildAGraph(bim::parsePlan(common::JsonNode(document, "", source)));
+  const bim::AGraph graph = graphOfWalls(R"([
+    {"id": "S", "start": [0, 0], "end": [20, 0], "thickness": 0.2},
+    {"id": "E", "start": [20, 0], "end": [20, 4], "thickness": 0.2},
+    {"id": "N", "start": [20, 4], "end": [0, 4], "thickness": 0.2},
+    {"id": "X", "start": [0, 4], "end": [0, 0], "thickness": 0.2}])");
   for (const double built_off : {0.08, 0.20}) {
     MapDiagnostics map = facesAndWalk(graph, 2.0, 1.0, 19.0, 0.5);
     for (auto& wall : map.walls) {
@@ -641,22 +641,12 @@ TEST(PlanDeviations, AWallIsJudgedAgainstHowWellTheWallsAroundFixTheMapAcrossIt)
 // the placement's 5 cm prior holds back) and reported shifted; the level's placement, on all five
 // walls, finds it as planned, and a deviation the local placement alone finds is not believed.
 TEST(PlanDeviations, WithTooFewWallsAroundADeviationMustHoldUnderTheLevelsPlacementToo) {
-  const nlohmann::json document = nlohmann::json::parse(R"({
-    "format": "isg.plan", "version": 1, "name": "cut corner",
-    "levels": [{
-      "id": "L0", "elevation": 0.0, "height": 3.0,
-      "walls": [
-        {"id": "S", "start": [0, 0], "end": [14, 0], "thickness": 0.2},
-        {"id": "E", "start": [14, 0], "end": [14, 9], "thickness": 0.2},
-        {"id": "N", "start": [14, 9], "end": [4, 9], "thickness": 0.2},
-        {"id": "D", "start": [4, 9], "end": [0, 5], "thickness": 0.2},
-        {"id": "X", "start": [0, 5], "end": [0, 0], "thickness": 0.2}
-      ]
-    }]
-  })");
-  const common::JsonSource source{"cut-corner.json", nullptr};
-  const bim::AGraph graph =
-      bim::buildAGraph(bim::parsePlan(common::JsonNode(document, "", source)));
+  const bim::AGraph graph = graphOfWalls(R"([
+    {"id": "S", "start": [0, 0], "end": [14, 0], "thickness": 0.2},
+    {"id": "E", "start": [14, 0], "end": [14, 9], "thickness": 0.2},
+    {"id": "N", "start": [14, 9], "end": [4, 9], "thickness": 0.2},
+    {"id": "D", "start": [4, 9], "end": [0, 5], "thickness": 0.2},
+    {"id": "X", "start": [0, 5], "end": [0, 0], "thickness": 0.2}])");
   MapDiagnostics map = facesAndWalk(graph, 3.0, 1.0, 13.0, 0.5);
   const Eigen::Vector2d into_room = 0.055 * Eigen::Vector2d(1.0, -1.0).normalized();
   int moved = 0;
