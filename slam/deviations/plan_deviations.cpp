@@ -188,8 +188,9 @@ struct WallFit {
   double longest = 0.0;  // the longest consistent piece
 };
 
-WallFit fitWall(WallDeviation& wall, const PlannedWall& planned, double tolerance,
-                double start_share) {
+WallFit fitWall(WallDeviation& wall, const PlannedWall& planned, const DeviationOptions& options) {
+  const double tolerance = options.consistent_tolerance;
+  const double start_share = options.contradiction_observation_share;
   WallFit fit;
   if (wall.evidence.empty()) return fit;
   auto along = [&](const WallEvidence& e, const Eigen::Vector2d& p) {
@@ -253,11 +254,15 @@ struct Placement {
   // Of the correction (m², rad²): the inverse of the fit's information, its prior included. Where
   // no wall constrains a direction, the prior's 5 cm and 1° stand for the localizer's placement.
   Eigen::Matrix3d covariance = priorCovariance();
+  // How a change of the correction moves a wall's face along its left normal, at its centre:
+  // J = [l.x, l.y, l·perp(c − origin)].
+  Eigen::Vector3d across(const PlannedWall& planned) const {
+    const Eigen::Vector2d c = 0.5 * (planned.start + planned.end) - origin;
+    return {planned.left.x(), planned.left.y(), planned.left.dot(Eigen::Vector2d(-c.y(), c.x()))};
+  }
   // The standard deviation of where it places a wall's face along the wall's normal.
   double sigmaAcross(const PlannedWall& planned) const {
-    const Eigen::Vector2d c = 0.5 * (planned.start + planned.end) - origin;
-    const Eigen::Vector3d J(planned.left.x(), planned.left.y(),
-                            planned.left.dot(Eigen::Vector2d(-c.y(), c.x())));
+    const Eigen::Vector3d J = across(planned);
     return std::sqrt(std::max(0.0, J.dot(covariance * J)));
   }
   Eigen::Vector2d move(const Eigen::Vector2d& p) const {
@@ -300,8 +305,7 @@ Placement refinePlacement(const std::vector<std::pair<WallDeviation, PlannedWall
       if (wall.evidence.empty() || wall.observed_share < options.judged_share) continue;
       WallDeviation moved = wall;
       for (auto& e : moved.evidence) placement.apply(e, walls[i].second);
-      fits[i] = fitWall(moved, walls[i].second, options.consistent_tolerance,
-                        options.contradiction_observation_share);
+      fits[i] = fitWall(moved, walls[i].second, options);
       now[i] = std::abs(fits[i].offset_m) < options.shift_m &&
                std::abs(fits[i].angle_deg) < options.angle_deg;
     }
@@ -318,10 +322,7 @@ Placement refinePlacement(const std::vector<std::pair<WallDeviation, PlannedWall
     for (std::size_t i = 0; i < walls.size(); ++i) {
       if (!used[i]) continue;
       ++placement.walls_used;
-      const PlannedWall& planned = walls[i].second;
-      const Eigen::Vector2d c = 0.5 * (planned.start + planned.end) - placement.origin;
-      const Eigen::Vector3d J(planned.left.x(), planned.left.y(),
-                              planned.left.dot(Eigen::Vector2d(-c.y(), c.x())));
+      const Eigen::Vector3d J = placement.across(walls[i].second);
       const double length = fits[i].length;
       const double w = length / (kSigmaOffset * kSigmaOffset);
       H += w * J * J.transpose();
@@ -345,8 +346,7 @@ Placement refinePlacement(const std::vector<std::pair<WallDeviation, PlannedWall
 // make a deviation.
 void judge(WallDeviation& wall, const PlannedWall& planned, const DeviationOptions& options) {
   if (wall.evidence.empty()) return;
-  const WallFit fit =
-      fitWall(wall, planned, options.consistent_tolerance, options.contradiction_observation_share);
+  const WallFit fit = fitWall(wall, planned, options);
   wall.offset_m = fit.offset_m;
   wall.angle_deg = fit.angle_deg;
   int most_observed = 0;  // of the pieces kept
@@ -753,8 +753,7 @@ void setLocalThresholds(WallDeviation& wall, const PlannedWall& its_plan, const 
     if (neighbour.evidence.empty() || neighbour.observed_share < options.judged_share) continue;
     WallDeviation moved = neighbour;
     for (auto& e : moved.evidence) local.apply(e, planned);
-    const WallFit fit = fitWall(moved, planned, options.consistent_tolerance,
-                                options.contradiction_observation_share);
+    const WallFit fit = fitWall(moved, planned, options);
     if (std::abs(fit.offset_m) >= options.shift_m || std::abs(fit.angle_deg) >= options.angle_deg) {
       continue;  // deviating: not the map's error
     }
