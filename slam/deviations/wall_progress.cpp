@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <optional>
 
 #include "slam/deviations/face_views.hpp"
 #include "slam/deviations/plan_deviations.hpp"
@@ -43,6 +44,14 @@ Intervals without(const Intervals& spans, const Intervals& holes) {
 bool inside(const Intervals& spans, double s) {
   return std::any_of(spans.begin(), spans.end(),
                      [&](const auto& span) { return s >= span.first && s <= span.second; });
+}
+
+// The interval of `spans` that holds s, if one does.
+std::optional<std::pair<double, double>> within(const Intervals& spans, double s) {
+  for (const auto& span : spans) {
+    if (s >= span.first && s <= span.second) return span;
+  }
+  return std::nullopt;
 }
 
 enum class Sample { kBuilt, kNotBuilt, kNotSeen };
@@ -171,8 +180,20 @@ WallProgress measureProgress(const bim::AGraph& plan, const bim::WallNode& wall,
     // Built runs, bridged across what lies between two built parts shorter than progress_gap_m
     // and not in view (a door opening, not exposed and not sampled; the end of a wall meeting
     // this one): the wall goes on there.
-    const double from = std::max(0.0, samples[i].first - 0.5 * step);
-    const double to = std::min(length, samples[i].first + 0.5 * step);
+    double from = std::max(0.0, samples[i].first - 0.5 * step);
+    double to = std::min(length, samples[i].first + 0.5 * step);
+    // Beside a sample that is not built, the part ends where the evidence does, somewhere between
+    // the two samples, not at the boundary between their steps: that would put each edge of a
+    // gap up to half a step off, and a wall's built length a step off.
+    const std::optional<std::pair<double, double>> covering =
+        within(built_evidence, samples[i].first);
+    if (covering && i > 0 && !after_opening && samples[i - 1].second != Sample::kBuilt) {
+      from = std::clamp(covering->first, samples[i - 1].first, samples[i].first);
+    }
+    if (covering && i + 1 < samples.size() && samples[i + 1].second != Sample::kBuilt &&
+        samples[i + 1].first - samples[i].first <= 1.5 * step) {
+      to = std::clamp(covering->second, samples[i].first, samples[i + 1].first);
+    }
     if (!progress.built.empty() && unseen_between < options.progress_gap_m && !not_built_between) {
       progress.built.back().second = to;
     } else {

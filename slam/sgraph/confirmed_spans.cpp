@@ -19,11 +19,14 @@ std::vector<std::pair<double, double>> confirmedSpans(
   if (length < 1e-9 || spans.empty()) return out;
   const Eigen::Vector2d axis = direction / length;
   std::vector<std::pair<double, int>> events;  // (position along, +1 a span opens / −1 closes)
+  std::vector<double> opens, closes;
   for (const auto& [a, b] : spans) {
     double s0 = (a - m.start).dot(axis), s1 = (b - m.start).dot(axis);
     if (s0 > s1) std::swap(s0, s1);
-    events.push_back({std::clamp(s0, 0.0, length), +1});
-    events.push_back({std::clamp(s1, 0.0, length), -1});
+    opens.push_back(std::clamp(s0, 0.0, length));
+    closes.push_back(std::clamp(s1, 0.0, length));
+    events.push_back({opens.back(), +1});
+    events.push_back({closes.back(), -1});
   }
   std::sort(events.begin(), events.end());
   // How many spans cover each stretch between consecutive ends.
@@ -61,6 +64,25 @@ std::vector<std::pair<double, double>> confirmedSpans(
     } else {
       out.push_back({from, to});
     }
+  }
+  // The share above puts an end where only a fifth of the observations that saw the part to its
+  // end still reach: an outer quantile of their ends, which their keyframes' errors spread by a
+  // few centimetres, so each edge of a gap lay that much into it. The end is the median of the
+  // ends within near_m of it (the strays past it among them), never further out than the share.
+  std::sort(opens.begin(), opens.end());
+  std::sort(closes.begin(), closes.end());
+  const auto medianNear = [&](const std::vector<double>& ends, double at) {
+    const auto first = std::lower_bound(ends.begin(), ends.end(), at - options.near_m);
+    const auto last = std::upper_bound(ends.begin(), ends.end(), at + options.near_m);
+    const auto n = last - first;
+    if (n == 0) return at;
+    return 0.5 * (*(first + (n - 1) / 2) + *(first + n / 2));
+  };
+  for (auto& [from, to] : out) {
+    const double inner_from = std::clamp(medianNear(opens, from), from, to);
+    const double inner_to = std::clamp(medianNear(closes, to), inner_from, to);
+    from = inner_from;
+    to = inner_to;
   }
   return out;
 }

@@ -20,8 +20,9 @@ struct ConfirmationOptions {
 // The parts of a map wall its observations confirm (MapWall::confirmed), in metres along it from
 // m.start: where at least two of `spans` saw it (each an observation's ends in M, or one of its
 // pieces: PlaneObservation::pieces), and at least options.share of the most that saw any part
-// within options.near_m of it. In order and apart. A wall seen once is confirmed where that once
-// saw it. docs/deviations.md, "Progress".
+// within options.near_m of it. In order and apart; each edge at the median of the observations'
+// ends within options.near_m of it, never further out. A wall seen once is confirmed where that
+// once saw it. docs/deviations.md, "Progress".
 std::vector<std::pair<double, double>> confirmedSpans(
     const MapPlane& m, const std::vector<std::pair<Eigen::Vector2d, Eigen::Vector2d>>& spans,
     const ConfirmationOptions& options = {});

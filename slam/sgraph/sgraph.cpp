@@ -826,7 +826,7 @@ MapDiagnostics SGraph::diagnostics() const {
     const MapPlane& p = planes_[i].map;
     if (planes_[i].merged_into >= 0 || !seenAsWall(p, options_.rooms.min_wall_height)) continue;
     MapWall wall{int(i),  p.plane.normal, p.plane.d,      p.start, p.end,
-                 p.z_min, p.z_max,        p.observations, {}};
+                 p.z_min, p.z_max,        p.observations, {},      {}};
     wall.confirmed = confirmedSpans(p, spansOf(int(i)), options_.confirmation);
     for (int k : planes_[i].observed_by) wall.keyframes.push_back(int(past_keyframes_.size()) + k);
     out.walls.push_back(std::move(wall));

@@ -289,6 +289,25 @@ TEST(PlanDeviations, AWallBuiltInPartHasItsBuiltLengthAndIntervals) {
   EXPECT_NEAR(overlapLength({{0.0, 2.0}, {3.0, 5.0}}, {{1.0, 4.0}}), 2.0, 1e-12);
 }
 
+// W1 cut at x = 5.02, between two of the report's 5 cm samples (their steps meet at 5.00 and
+// 5.05): the built part ends where the map's wall does, not at the boundary of a step, and the
+// built length is 5.02 m, not 5.00.
+TEST(PlanDeviations, ABuiltPartEndsWhereTheMapsWallDoesNotAtTheStepOfASample) {
+  const bim::Plan plan = threeRooms();
+  const bim::AGraph planned = bim::buildAGraph(plan);
+  bim::Plan built_plan = builtPlan(plan, deviations());
+  for (auto& wall : built_plan.levels[0].walls) {
+    if (wall.id == "W1") wall.end = {5.02, 0.0};
+  }
+  const DeviationReport report = measureDeviations(planned, mapOf(bim::buildAGraph(built_plan)),
+                                                   Eigen::Isometry3d::Identity());
+  const WallProgress& cut = wallOf(report, "W1").progress;
+  EXPECT_EQ(cut.status, ProgressStatus::kPartlyBuilt);
+  ASSERT_EQ(cut.built.size(), 1u);
+  EXPECT_NEAR(cut.built[0].second, 5.02, 0.002);
+  EXPECT_NEAR(cut.built_m, 5.02, 0.002);
+}
+
 // The same map, seen only from R1: walls beyond R1 were never in view and are not seen, not
 // missing; W5 (R1's east wall, turned) is still judged.
 TEST(PlanDeviations, WallsOutOfViewAreNotSeenRatherThanMissing) {

@@ -30,9 +30,29 @@ TEST(ConfirmedSpans, TwoStraysPastAWallsEndDoNotStretchIt) {
   addSpan(spans, 0.2, 2.37);
   const auto confirmed = confirmedSpans(wallAlongX(5.0, 32), spans);
   ASSERT_EQ(confirmed.size(), 1u);
-  EXPECT_NEAR(confirmed[0].first, 0.02, 1e-9);  // where the second observation starts
+  EXPECT_NEAR(confirmed[0].first, 0.04, 1e-9);  // the median of where they start
   EXPECT_GE(confirmed[0].second, 2.13);
   EXPECT_LE(confirmed[0].second, 2.16);
+}
+
+TEST(ConfirmedSpans, AGapsEdgesAreWhereHalfTheObservationsEndNotAFifth) {
+  // A wall with a gap from 2 to 3 m. 49 observations see each part to the gap, their ends spread
+  // evenly over ±3 cm (their keyframes' errors); 10 more stop 0.3 m short of the first edge (an
+  // occluder). Where a fifth of them still reach, the edges would lie 1.8 cm into the gap; the
+  // median of the ends near each is where the gap is, the occluded ten pulling the first in 6 mm.
+  Spans spans;
+  for (int k = 0; k < 49; ++k) {
+    const double spread = -0.03 + 0.06 * k / 48.0;
+    addSpan(spans, 0.0, 2.0 + spread);
+    addSpan(spans, 3.0 + spread, 6.0);
+  }
+  for (int k = 0; k < 10; ++k) addSpan(spans, 0.0, 1.7);
+  const auto confirmed = confirmedSpans(wallAlongX(6.0, 108), spans);
+  ASSERT_EQ(confirmed.size(), 2u);
+  EXPECT_NEAR(confirmed[0].first, 0.0, 1e-9);
+  EXPECT_NEAR(confirmed[0].second, 2.0 - 0.006, 0.001);
+  EXPECT_NEAR(confirmed[1].first, 3.0, 1e-6);
+  EXPECT_NEAR(confirmed[1].second, 6.0, 1e-9);
 }
 
 TEST(ConfirmedSpans, APartSeenByFewBesideOneSeenByManyLosesOnlyHalfAMetre) {
