@@ -11,6 +11,7 @@
 #include "eval/ape.hpp"
 #include "eval/coverage.hpp"
 #include "eval/wrong_localization.hpp"
+#include "run/keyframe_placements.hpp"
 #include "run/level_metrics.hpp"
 #include "run/map_against_plan.hpp"
 #include "run/map_plan_error.hpp"
@@ -119,14 +120,7 @@ void poseErrors(const RunRecord& run, RunEvaluation& evaluation) {
 // not localized: never interpolated across a gap), over the keyframe's final pose in M.
 void deviations(const RunRecord& run, const std::vector<slam::LevelAgainstPlan>& against_plan,
                 RunEvaluation& evaluation) {
-  std::vector<std::optional<Eigen::Isometry3d>> keyframe_B_T_M;
-  for (const auto& kf : run.map->keyframes) {
-    const auto row = std::lower_bound(run.estimate.begin(), run.estimate.end(), kf.stamp - 1e-3,
-                                      [](const StampedPose& pose, double t) { return pose.t < t; });
-    const bool same_scan = row != run.estimate.end() && std::abs(row->t - kf.stamp) <= 1e-3;
-    keyframe_B_T_M.push_back(same_scan ? std::optional(row->pose * kf.estimate.inverse())
-                                       : std::nullopt);
-  }
+  const std::vector<std::optional<Eigen::Isometry3d>> keyframe_B_T_M = keyframePlacements(run);
   evaluation.deviations =
       slam::measureDeviations(*run.setup.agraph, *run.map, *run.final_B_T_M, {}, keyframe_B_T_M);
   for (const std::string& level : evaluation.deviations->levels) {
@@ -143,7 +137,8 @@ void deviations(const RunRecord& run, const std::vector<slam::LevelAgainstPlan>&
       forEachPlacedMapPoint(run, [&](const Eigen::Vector3d& p) { columns.add(p); });
       evaluation.deviations->columns =
           columns.judge(*run.setup.agraph,
-                        slam::viewpointsOnLevels(*run.setup.agraph, *run.map, *run.final_B_T_M));
+                        slam::viewpointsOnLevels(*run.setup.agraph, *run.map, *run.final_B_T_M,
+                                                 evaluation.deviations->options, keyframe_B_T_M));
     }
   }
   evaluation.metrics.deviations =

@@ -31,6 +31,8 @@ struct MapKeyframe {
   Eigen::Isometry3d odometry = Eigen::Isometry3d::Identity();  // M_T_R by odometry alone
   // How far it saw around (empty on the stairs, and from localizers that do not record it).
   SightProfile sight;
+  // Which of the map's segments it belongs to, 0 the first (MapDiagnostics::current_segment).
+  int segment = 0;
 };
 
 struct MapRoom {
@@ -57,6 +59,11 @@ struct MapWall {
 
 struct MapDiagnostics {
   std::vector<MapKeyframe> keyframes;
+  // keyframes[current_segment..] are the current segment's, in M with its walls. Those before it
+  // are of segments that ended (the map was restarted where the scans disagreed with it): each
+  // segment only continues M from the pose it ended at, so they may lie decimetres off the
+  // current segment's keyframes of the same places.
+  std::size_t current_segment = 0;
   std::size_t planes = 0;
   std::vector<MapWall> walls;
   std::vector<MapRoom> rooms;  // confirmed rooms

@@ -9,6 +9,7 @@
 
 #include "bim/agraph.hpp"
 #include "bim/tests/test_plans.hpp"
+#include "run/keyframe_placements.hpp"
 
 namespace isg::run {
 namespace {
@@ -72,6 +73,40 @@ TEST_F(MapPlanErrorTest, PlacedByTheOptimisedKeyframesCarriedByOdometry) {
   const auto error = mapPlanError(run_);
   ASSERT_TRUE(error);
   EXPECT_NEAR(error->distance.rmse, std::sqrt((0.05 * 0.05 + 0.15 * 0.15) / 2), 1e-6);
+}
+
+TEST_F(MapPlanErrorTest, ASegmentThatEndedIsPlacedWhereTheLocalizerHadItsMapThen) {
+  // The map was restarted at 0.9 s. The ended segment's keyframes at 0.2 s (not localized then)
+  // and 0.3 s (localized, the map 5 cm to -y of where the final B_T_M, identity, has it): its
+  // scan at 0.25 s lies where the localizer had that segment, as the keyframe nearest in time of
+  // it says; the final B_T_M places only the current segment.
+  slam::MapDiagnostics map;
+  map.keyframes.push_back({0.2, Eigen::Isometry3d::Identity(), Eigen::Isometry3d::Identity(), {}});
+  map.keyframes.push_back({0.3, Eigen::Isometry3d::Identity(), Eigen::Isometry3d::Identity(), {}});
+  map.keyframes.push_back(
+      {0.9, Eigen::Isometry3d::Identity(), Eigen::Isometry3d::Identity(), {}, 1});
+  map.current_segment = 2;
+  run_.map = map;
+  run_.estimate = {{0.3, shifted(0.0, -0.05)}, {0.9, Eigen::Isometry3d::Identity()}};
+  run_.map_samples[0].stamp = 0.25;
+  const auto placements = keyframePlacements(run_);
+  ASSERT_EQ(placements.size(), 3u);
+  ASSERT_TRUE(placements[0]);  // from the keyframe at 0.3 s, of the same segment
+  EXPECT_NEAR(placements[0]->translation().y(), -0.05, 1e-12);
+  const auto error = mapPlanError(run_);
+  ASSERT_TRUE(error);
+  EXPECT_NEAR(error->distance.rmse, std::sqrt((0.05 * 0.05 + 0.15 * 0.15) / 2), 1e-6);
+  // The same scan in the current segment: the final B_T_M places it.
+  run_.map_samples[0].stamp = 0.95;
+  const auto current = mapPlanError(run_);
+  ASSERT_TRUE(current);
+  EXPECT_NEAR(current->distance.rmse, std::sqrt((0.05 * 0.05 + 0.1 * 0.1) / 2), 1e-6);
+  // A segment never localized is not placed at all.
+  run_.estimate = {{0.9, Eigen::Isometry3d::Identity()}};
+  run_.map_samples[0].stamp = 0.25;
+  int placed = 0;
+  forEachPlacedMapPoint(run_, [&](const Eigen::Vector3d&) { ++placed; });
+  EXPECT_EQ(placed, 0);
 }
 
 TEST_F(MapPlanErrorTest, NothingWithoutAPlaceInThePlanOrAPlan) {

@@ -456,26 +456,37 @@ std::vector<ExtraWall> extraWalls(const std::vector<WallInB>& unexplained, const
   return out;
 }
 
+// Placements summed in the plane, to average: their translations and headings.
+struct PlanarMean {
+  Eigen::Vector2d t = Eigen::Vector2d::Zero(), heading = Eigen::Vector2d::Zero();
+  int n = 0;
+  void add(const Eigen::Isometry3d& T) {
+    t += T.translation().head<2>();
+    heading += T.linear().col(0).head<2>().normalized();
+    ++n;
+  }
+  // At height z; none when none was added.
+  std::optional<Eigen::Isometry3d> mean(double z) const {
+    if (n == 0) return std::nullopt;
+    Eigen::Isometry3d out = Eigen::Isometry3d::Identity();
+    out.linear() =
+        Eigen::AngleAxisd(common::headingOf(heading), Eigen::Vector3d::UnitZ()).toRotationMatrix();
+    out.translation() << t / n, z;
+    return out;
+  }
+};
+
 // The planar mean of the placements of the last (up to 20) keyframes that saw a wall, with the
 // height of B_T_M; none when none of them has one.
 std::optional<Eigen::Isometry3d> placementOf(
     const MapWall& wall, const Eigen::Isometry3d& B_T_M,
     const std::vector<std::optional<Eigen::Isometry3d>>& keyframe_B_T_M) {
-  Eigen::Vector2d t = Eigen::Vector2d::Zero(), heading = Eigen::Vector2d::Zero();
-  int n = 0;
-  for (auto it = wall.keyframes.rbegin(); it != wall.keyframes.rend() && n < 20; ++it) {
+  PlanarMean sum;
+  for (auto it = wall.keyframes.rbegin(); it != wall.keyframes.rend() && sum.n < 20; ++it) {
     if (*it < 0 || *it >= int(keyframe_B_T_M.size()) || !keyframe_B_T_M[*it]) continue;
-    const Eigen::Isometry3d& T = *keyframe_B_T_M[*it];
-    t += T.translation().head<2>();
-    heading += T.linear().col(0).head<2>().normalized();
-    ++n;
+    sum.add(*keyframe_B_T_M[*it]);
   }
-  if (n == 0) return std::nullopt;
-  Eigen::Isometry3d out = Eigen::Isometry3d::Identity();
-  out.linear() =
-      Eigen::AngleAxisd(common::headingOf(heading), Eigen::Vector3d::UnitZ()).toRotationMatrix();
-  out.translation() << t / n, B_T_M.translation().z();
-  return out;
+  return sum.mean(B_T_M.translation().z());
 }
 
 }  // namespace
@@ -674,10 +685,15 @@ double agreementAround(const bim::AGraph& plan, const MapDiagnostics& map, const
 // localized worse then than the final map is (an answer held off for a while): of the two
 // placements, the one that lays more of the map's walls around it on the plan (agreementAround)
 // places it; the poses of the time when neither does better.
-std::vector<WallInB> wallsInB(const bim::AGraph& plan, const MapDiagnostics& map,
-                              const Eigen::Isometry3d& B_T_M, const DeviationOptions& options,
-                              const std::vector<std::optional<Eigen::Isometry3d>>& keyframe_B_T_M) {
+// `placed_by_keyframes`, when given, gets for each of map.walls the placement of its keyframes when
+// that placed it.
+std::vector<WallInB> wallsInB(
+    const bim::AGraph& plan, const MapDiagnostics& map, const Eigen::Isometry3d& B_T_M,
+    const DeviationOptions& options,
+    const std::vector<std::optional<Eigen::Isometry3d>>& keyframe_B_T_M,
+    std::vector<std::optional<Eigen::Isometry3d>>* placed_by_keyframes = nullptr) {
   std::vector<WallInB> walls_in_B;
+  if (placed_by_keyframes) placed_by_keyframes->assign(map.walls.size(), std::nullopt);
   for (const auto& w : map.walls) {
     Eigen::Isometry3d placement = B_T_M;
     if (const auto of_its_keyframes = placementOf(w, B_T_M, keyframe_B_T_M)) {
@@ -689,7 +705,11 @@ std::vector<WallInB> wallsInB(const bim::AGraph& plan, const MapDiagnostics& map
       if (moved > options.bend_distance || turned > common::radians(options.bend_angle_deg)) {
         const double by_final = agreementAround(plan, map, w, B_T_M, options);
         const double by_keyframes = agreementAround(plan, map, w, *of_its_keyframes, options);
-        if (by_keyframes >= by_final) placement = *of_its_keyframes;
+        if (by_keyframes >= by_final) {
+          placement = *of_its_keyframes;
+          if (placed_by_keyframes)
+            (*placed_by_keyframes)[std::size_t(&w - map.walls.data())] = placement;
+        }
       }
     }
     WallInB in_B = toB(w, placement);
@@ -924,13 +944,50 @@ void measureLevel(const bim::AGraph& plan, int f, const std::vector<WallInB>& wa
 
 }  // namespace
 
-std::map<int, std::vector<Viewpoint>> viewpointsOnLevels(const bim::AGraph& plan,
-                                                         const MapDiagnostics& map,
-                                                         const Eigen::Isometry3d& B_T_M) {
+namespace {
+
+// Where each map keyframe stood in B, for its sight lines (none: left out). In the current
+// segment, B_T_M places it, unless most of the walls it saw were placed by their keyframes
+// (wallsInB: the final B_T_M put them off where the map had bent): then the mean of those walls'
+// placements does, so that its sight lines meet the walls where the report has them. A keyframe of
+// a segment that ended is placed where the localizer had it then, or not at all.
+std::vector<std::optional<Eigen::Isometry3d>> keyframesInB(
+    const MapDiagnostics& map, const Eigen::Isometry3d& B_T_M,
+    const std::vector<std::optional<Eigen::Isometry3d>>& keyframe_B_T_M,
+    const std::vector<std::optional<Eigen::Isometry3d>>& placed_by_keyframes) {
+  std::vector<int> walls_seen(map.keyframes.size(), 0);
+  std::vector<PlanarMean> bent(map.keyframes.size());
+  for (std::size_t w = 0; w < map.walls.size(); ++w) {
+    for (int k : map.walls[w].keyframes) {
+      if (k < 0 || k >= int(map.keyframes.size())) continue;
+      ++walls_seen[std::size_t(k)];
+      if (w < placed_by_keyframes.size() && placed_by_keyframes[w]) {
+        bent[std::size_t(k)].add(*placed_by_keyframes[w]);
+      }
+    }
+  }
+  std::vector<std::optional<Eigen::Isometry3d>> placements(map.keyframes.size());
+  for (std::size_t i = 0; i < map.keyframes.size(); ++i) {
+    if (i < map.current_segment) {
+      if (i < keyframe_B_T_M.size()) placements[i] = keyframe_B_T_M[i];
+    } else if (2 * bent[i].n > walls_seen[i]) {
+      placements[i] = bent[i].mean(B_T_M.translation().z());
+    } else {
+      placements[i] = B_T_M;
+    }
+  }
+  return placements;
+}
+
+std::map<int, std::vector<Viewpoint>> viewpointsPlaced(
+    const bim::AGraph& plan, const MapDiagnostics& map,
+    const std::vector<std::optional<Eigen::Isometry3d>>& keyframes_in_B) {
   std::map<int, std::vector<Viewpoint>> viewpoints_on;
   Eigen::Vector2d last(std::nan(""), std::nan(""));
-  for (const auto& kf : map.keyframes) {
-    const Eigen::Isometry3d B_T_R = B_T_M * kf.estimate;
+  for (std::size_t i = 0; i < map.keyframes.size(); ++i) {
+    if (!keyframes_in_B[i]) continue;
+    const MapKeyframe& kf = map.keyframes[i];
+    const Eigen::Isometry3d B_T_R = *keyframes_in_B[i] * kf.estimate;
     const Eigen::Vector3d p = B_T_R.translation();
     if ((p.head<2>() - last).norm() < 0.5) continue;
     last = p.head<2>();
@@ -942,14 +999,28 @@ std::map<int, std::vector<Viewpoint>> viewpointsOnLevels(const bim::AGraph& plan
   return viewpoints_on;
 }
 
+}  // namespace
+
+std::map<int, std::vector<Viewpoint>> viewpointsOnLevels(
+    const bim::AGraph& plan, const MapDiagnostics& map, const Eigen::Isometry3d& B_T_M,
+    const DeviationOptions& options,
+    const std::vector<std::optional<Eigen::Isometry3d>>& keyframe_B_T_M) {
+  std::vector<std::optional<Eigen::Isometry3d>> placed_by_keyframes;
+  wallsInB(plan, map, B_T_M, options, keyframe_B_T_M, &placed_by_keyframes);
+  return viewpointsPlaced(plan, map, keyframesInB(map, B_T_M, keyframe_B_T_M, placed_by_keyframes));
+}
+
 DeviationReport measureDeviations(
     const bim::AGraph& plan, const MapDiagnostics& map, const Eigen::Isometry3d& B_T_M,
     const DeviationOptions& options,
     const std::vector<std::optional<Eigen::Isometry3d>>& keyframe_B_T_M) {
   DeviationReport report;
   report.options = options;
-  std::map<int, std::vector<Viewpoint>> viewpoints_on = viewpointsOnLevels(plan, map, B_T_M);
-  const std::vector<WallInB> walls_in_B = wallsInB(plan, map, B_T_M, options, keyframe_B_T_M);
+  std::vector<std::optional<Eigen::Isometry3d>> placed_by_keyframes;
+  const std::vector<WallInB> walls_in_B =
+      wallsInB(plan, map, B_T_M, options, keyframe_B_T_M, &placed_by_keyframes);
+  std::map<int, std::vector<Viewpoint>> viewpoints_on =
+      viewpointsPlaced(plan, map, keyframesInB(map, B_T_M, keyframe_B_T_M, placed_by_keyframes));
   for (int f = 0; f < int(plan.floors.size()); ++f) {
     if (!viewpoints_on.count(f)) continue;
     measureLevel(plan, f, walls_in_B, viewpoints_on[f], options, report);

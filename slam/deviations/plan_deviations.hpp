@@ -226,10 +226,16 @@ std::string pivotName(double along_m, double length, double name_distance);
 // less noisy of the two where the map has not bent).
 // The levels walked, and the sensor's places on each with what it saw past (keyed by the index of
 // the floor in plan.floors): views from places 0.5 m apart (nearer ones add little to what is in
-// view).
-std::map<int, std::vector<Viewpoint>> viewpointsOnLevels(const bim::AGraph& plan,
-                                                         const MapDiagnostics& map,
-                                                         const Eigen::Isometry3d& B_T_M);
+// view). A keyframe stands where the report places the walls it saw: by B_T_M, or where most of
+// them were placed by their keyframes (`keyframe_B_T_M`, as above) by the mean of those
+// placements. A keyframe of a segment that ended (MapDiagnostics::current_segment) stands where
+// the localizer had it then (`keyframe_B_T_M`), or is left out where it had none: B_T_M places the
+// current segment's map. Either way, a sight line of a keyframe placed decimetres off would see
+// past walls that stand.
+std::map<int, std::vector<Viewpoint>> viewpointsOnLevels(
+    const bim::AGraph& plan, const MapDiagnostics& map, const Eigen::Isometry3d& B_T_M,
+    const DeviationOptions& options = {},
+    const std::vector<std::optional<Eigen::Isometry3d>>& keyframe_B_T_M = {});
 
 DeviationReport measureDeviations(
     const bim::AGraph& plan, const MapDiagnostics& map, const Eigen::Isometry3d& B_T_M,

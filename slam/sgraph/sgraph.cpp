@@ -353,7 +353,8 @@ void SGraph::startNewSegment(double stamp, const std::string& reason) {
   ended.reason = reason;
   segments_.push_back(ended);
   for (const auto& kf : keyframes_) {
-    past_keyframes_.push_back({kf.stamp, kf.pose(), kf.odometry, kf.sight});
+    past_keyframes_.push_back(
+        {kf.stamp, kf.pose(), kf.odometry, kf.sight, int(segments_.size()) - 1});
   }
   // M continues: the new segment's first keyframe at the latest estimate.
   const Keyframe& last = keyframes_.back();
@@ -818,8 +819,9 @@ std::vector<std::pair<Eigen::Vector2d, Eigen::Vector2d>> SGraph::spansOf(int pla
 MapDiagnostics SGraph::diagnostics() const {
   MapDiagnostics out;
   out.keyframes = past_keyframes_;
+  out.current_segment = past_keyframes_.size();
   for (const auto& kf : keyframes_) {
-    out.keyframes.push_back({kf.stamp, kf.pose(), kf.odometry, kf.sight});
+    out.keyframes.push_back({kf.stamp, kf.pose(), kf.odometry, kf.sight, int(segments_.size())});
   }
   out.planes = planes_.size();
   for (std::size_t i = 0; i < planes_.size(); ++i) {

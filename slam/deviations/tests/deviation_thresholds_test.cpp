@@ -126,5 +126,43 @@ TEST(DeviationThresholds, AWallIsPlacedAsTheMapAroundItAgreesWithThePlan) {
   }
 }
 
+// Where the sight lines start. The final B_T_M 8 cm off and the keyframes' own placements right:
+// the walls are placed by the keyframes', and so are the keyframes that saw them (a sight line from
+// 8 cm off sees past the end of a wall that stands). A segment that ended is placed by the
+// keyframes' own placements alone, and left out without them.
+TEST(DeviationThresholds, AKeyframeSeesFromWhereTheReportPlacesTheWallsItSaw) {
+  const bim::Plan plan = fiveRooms();
+  const bim::AGraph planned = bim::buildAGraph(plan);
+  MapDiagnostics map = builtMap(plan, {});
+  Eigen::Isometry3d off = Eigen::Isometry3d::Identity();
+  off.translation() = Eigen::Vector3d(0.08, 0.08, 0.0);
+  const Eigen::Isometry3d right = Eigen::Isometry3d::Identity();
+  // The viewpoints' places (x, y), one per keyframe 0.5 m apart (the keyframes stand at x = 0.5,
+  // 1.0, … 14.5, y = 2).
+  const auto places = [](const std::map<int, std::vector<Viewpoint>>& on) {
+    std::vector<Eigen::Vector2d> out;
+    for (const auto& [level, viewpoints] : on) {
+      for (const auto& v : viewpoints) out.push_back(v.position);
+    }
+    return out;
+  };
+  const std::vector<std::optional<Eigen::Isometry3d>> placed_right(map.keyframes.size(), right);
+  const auto bent = places(viewpointsOnLevels(planned, map, off, {}, placed_right));
+  EXPECT_GE(bent.size(), map.keyframes.size() - 1);
+  for (const auto& p : bent) EXPECT_NEAR(p.y(), 2.0, 1e-9);
+  const std::vector<std::optional<Eigen::Isometry3d>> placed_off(map.keyframes.size(), off);
+  for (const auto& p : places(viewpointsOnLevels(planned, map, right, {}, placed_off))) {
+    EXPECT_NEAR(p.y(), 2.0, 1e-9);  // B_T_M lays the walls on the plan: it places them all
+  }
+  // The first 10 keyframes (x ≤ 5) of a segment that ended: where the localizer had them, or
+  // nowhere.
+  map.current_segment = 10;
+  const auto ended = places(viewpointsOnLevels(planned, map, right, {}, placed_off));
+  EXPECT_GE(ended.size(), map.keyframes.size() - 1);
+  for (const auto& p : ended) EXPECT_NEAR(p.y(), p.x() < 5.25 ? 2.08 : 2.0, 1e-9) << p.x();
+  for (const auto& p : places(viewpointsOnLevels(planned, map, right))) EXPECT_GT(p.x(), 5.25);
+  EXPECT_GE(places(viewpointsOnLevels(planned, map, right)).size(), map.keyframes.size() - 11);
+}
+
 }  // namespace
 }  // namespace isg::slam
