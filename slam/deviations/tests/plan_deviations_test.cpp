@@ -262,15 +262,19 @@ TEST(PlanDeviations, APivotIsNamedWithinItsDistanceAndBeyondOffTheWall) {
 // (2.95–3.05, 5.95–6.05), is built up to 5.0 and in view, not built, beyond: 0.95 + 2.85 m. W5,
 // turned about (3, 0), cuts a few centimetres out of both faces there: not in view, bridged.
 // W6 not built at all; the other walls whole.
-TEST(PlanDeviations, AWallBuiltInPartHasItsBuiltLengthAndIntervals) {
+// The three rooms as built (deviations()) with W1 built from its start to x = `end_x` only.
+DeviationReport withW1BuiltTo(double end_x) {
   const bim::Plan plan = threeRooms();
-  const bim::AGraph planned = bim::buildAGraph(plan);
   bim::Plan built_plan = builtPlan(plan, deviations());
   for (auto& wall : built_plan.levels[0].walls) {
-    if (wall.id == "W1") wall.end = {5.0, 0.0};
+    if (wall.id == "W1") wall.end = {end_x, 0.0};
   }
-  const DeviationReport report = measureDeviations(planned, mapOf(bim::buildAGraph(built_plan)),
-                                                   Eigen::Isometry3d::Identity());
+  return measureDeviations(bim::buildAGraph(plan), mapOf(bim::buildAGraph(built_plan)),
+                           Eigen::Isometry3d::Identity());
+}
+
+TEST(PlanDeviations, AWallBuiltInPartHasItsBuiltLengthAndIntervals) {
+  const DeviationReport report = withW1BuiltTo(5.0);
   const WallProgress& cut = wallOf(report, "W1").progress;
   EXPECT_EQ(cut.status, ProgressStatus::kPartlyBuilt);
   EXPECT_NEAR(cut.planned_m, 9.0, 1e-9);
@@ -293,14 +297,7 @@ TEST(PlanDeviations, AWallBuiltInPartHasItsBuiltLengthAndIntervals) {
 // 5.05): the built part ends where the map's wall does, not at the boundary of a step, and the
 // built length is 5.02 m, not 5.00.
 TEST(PlanDeviations, ABuiltPartEndsWhereTheMapsWallDoesNotAtTheStepOfASample) {
-  const bim::Plan plan = threeRooms();
-  const bim::AGraph planned = bim::buildAGraph(plan);
-  bim::Plan built_plan = builtPlan(plan, deviations());
-  for (auto& wall : built_plan.levels[0].walls) {
-    if (wall.id == "W1") wall.end = {5.02, 0.0};
-  }
-  const DeviationReport report = measureDeviations(planned, mapOf(bim::buildAGraph(built_plan)),
-                                                   Eigen::Isometry3d::Identity());
+  const DeviationReport report = withW1BuiltTo(5.02);
   const WallProgress& cut = wallOf(report, "W1").progress;
   EXPECT_EQ(cut.status, ProgressStatus::kPartlyBuilt);
   ASSERT_EQ(cut.built.size(), 1u);
