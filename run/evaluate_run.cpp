@@ -135,10 +135,9 @@ void deviations(const RunRecord& run, const std::vector<slam::LevelAgainstPlan>&
                                  evaluation.deviations->column_options);
     if (columns.any()) {
       forEachPlacedMapPoint(run, [&](const Eigen::Vector3d& p) { columns.add(p); });
-      evaluation.deviations->columns =
-          columns.judge(*run.setup.agraph,
-                        slam::viewpointsOnLevels(*run.setup.agraph, *run.map, *run.final_B_T_M,
-                                                 evaluation.deviations->options, keyframe_B_T_M));
+      evaluation.deviations->columns = columns.judge(
+          *run.setup.agraph, slam::viewpointsOnLevels(*run.setup.agraph, *run.map,
+                                                      evaluation.deviations->keyframes_in_B));
     }
   }
   evaluation.metrics.deviations =

@@ -17,19 +17,34 @@ std::vector<std::optional<Eigen::Isometry3d>> keyframePlacements(const RunRecord
                                    : std::nullopt);
   }
   // A segment that ended is one map, as the current one is: where the robot was not localized in
-  // it, the placement of its keyframe nearest in time that was places it.
+  // it, the placement of its keyframe nearest in time that was places it. The keyframes are in
+  // time order: the nearest is the last localized before or the first after, in its segment.
   const auto& keyframes = run.map->keyframes;
-  const std::vector<std::optional<Eigen::Isometry3d>> own = placements;
-  for (std::size_t i = 0; i < run.map->current_segment && i < keyframes.size(); ++i) {
-    if (own[i]) continue;
-    double nearest = std::numeric_limits<double>::infinity();
-    for (std::size_t j = 0; j < run.map->current_segment && j < keyframes.size(); ++j) {
-      const double apart = std::abs(keyframes[j].stamp - keyframes[i].stamp);
-      if (own[j] && keyframes[j].segment == keyframes[i].segment && apart < nearest) {
-        nearest = apart;
-        placements[i] = own[j];
-      }
+  const std::size_t ended = std::min(run.map->current_segment, keyframes.size());
+  std::vector<std::optional<std::size_t>> before(ended), after(ended);
+  for (std::size_t i = 0; i < ended; ++i) {
+    if (placements[i]) {
+      before[i] = i;
+    } else if (i > 0 && keyframes[i - 1].segment == keyframes[i].segment) {
+      before[i] = before[i - 1];
     }
+  }
+  for (std::size_t i = ended; i-- > 0;) {
+    if (placements[i]) {
+      after[i] = i;
+    } else if (i + 1 < ended && keyframes[i + 1].segment == keyframes[i].segment) {
+      after[i] = after[i + 1];
+    }
+  }
+  for (std::size_t i = 0; i < ended; ++i) {
+    if (placements[i]) continue;
+    const auto apart = [&](const std::optional<std::size_t>& j) {
+      return j ? std::abs(keyframes[*j].stamp - keyframes[i].stamp)
+               : std::numeric_limits<double>::infinity();
+    };
+    const std::optional<std::size_t> nearest =
+        apart(before[i]) <= apart(after[i]) ? before[i] : after[i];
+    if (nearest) placements[i] = placements[*nearest];
   }
   return placements;
 }

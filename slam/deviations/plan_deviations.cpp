@@ -979,13 +979,15 @@ std::vector<std::optional<Eigen::Isometry3d>> keyframesInB(
   return placements;
 }
 
-std::map<int, std::vector<Viewpoint>> viewpointsPlaced(
+}  // namespace
+
+std::map<int, std::vector<Viewpoint>> viewpointsOnLevels(
     const bim::AGraph& plan, const MapDiagnostics& map,
     const std::vector<std::optional<Eigen::Isometry3d>>& keyframes_in_B) {
   std::map<int, std::vector<Viewpoint>> viewpoints_on;
   Eigen::Vector2d last(std::nan(""), std::nan(""));
   for (std::size_t i = 0; i < map.keyframes.size(); ++i) {
-    if (!keyframes_in_B[i]) continue;
+    if (i >= keyframes_in_B.size() || !keyframes_in_B[i]) continue;
     const MapKeyframe& kf = map.keyframes[i];
     const Eigen::Isometry3d B_T_R = *keyframes_in_B[i] * kf.estimate;
     const Eigen::Vector3d p = B_T_R.translation();
@@ -999,17 +1001,6 @@ std::map<int, std::vector<Viewpoint>> viewpointsPlaced(
   return viewpoints_on;
 }
 
-}  // namespace
-
-std::map<int, std::vector<Viewpoint>> viewpointsOnLevels(
-    const bim::AGraph& plan, const MapDiagnostics& map, const Eigen::Isometry3d& B_T_M,
-    const DeviationOptions& options,
-    const std::vector<std::optional<Eigen::Isometry3d>>& keyframe_B_T_M) {
-  std::vector<std::optional<Eigen::Isometry3d>> placed_by_keyframes;
-  wallsInB(plan, map, B_T_M, options, keyframe_B_T_M, &placed_by_keyframes);
-  return viewpointsPlaced(plan, map, keyframesInB(map, B_T_M, keyframe_B_T_M, placed_by_keyframes));
-}
-
 DeviationReport measureDeviations(
     const bim::AGraph& plan, const MapDiagnostics& map, const Eigen::Isometry3d& B_T_M,
     const DeviationOptions& options,
@@ -1019,8 +1010,9 @@ DeviationReport measureDeviations(
   std::vector<std::optional<Eigen::Isometry3d>> placed_by_keyframes;
   const std::vector<WallInB> walls_in_B =
       wallsInB(plan, map, B_T_M, options, keyframe_B_T_M, &placed_by_keyframes);
+  report.keyframes_in_B = keyframesInB(map, B_T_M, keyframe_B_T_M, placed_by_keyframes);
   std::map<int, std::vector<Viewpoint>> viewpoints_on =
-      viewpointsPlaced(plan, map, keyframesInB(map, B_T_M, keyframe_B_T_M, placed_by_keyframes));
+      viewpointsOnLevels(plan, map, report.keyframes_in_B);
   for (int f = 0; f < int(plan.floors.size()); ++f) {
     if (!viewpoints_on.count(f)) continue;
     measureLevel(plan, f, walls_in_B, viewpoints_on[f], options, report);

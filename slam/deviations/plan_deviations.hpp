@@ -201,6 +201,9 @@ struct DeviationReport {
   // were not given: measureDeviations sees only the map's walls; run/evaluate_run.cpp adds them).
   std::vector<ColumnDeviation> columns;
   ColumnOptions column_options;  // what they were judged by
+  // Where each map keyframe stood in B for its sight lines ("seen past"; none: left out), as
+  // viewpointsOnLevels takes them, so that the columns are judged from the same places.
+  std::vector<std::optional<Eigen::Isometry3d>> keyframes_in_B;
   int count(WallStatus status) const;
 };
 
@@ -226,16 +229,16 @@ std::string pivotName(double along_m, double length, double name_distance);
 // less noisy of the two where the map has not bent).
 // The levels walked, and the sensor's places on each with what it saw past (keyed by the index of
 // the floor in plan.floors): views from places 0.5 m apart (nearer ones add little to what is in
-// view). A keyframe stands where the report places the walls it saw: by B_T_M, or where most of
-// them were placed by their keyframes (`keyframe_B_T_M`, as above) by the mean of those
-// placements. A keyframe of a segment that ended (MapDiagnostics::current_segment) stands where
-// the localizer had it then (`keyframe_B_T_M`), or is left out where it had none: B_T_M places the
-// current segment's map. Either way, a sight line of a keyframe placed decimetres off would see
-// past walls that stand.
+// view), each keyframe placed by `keyframes_in_B` (DeviationReport::keyframes_in_B; one per
+// map.keyframes, none: left out). measureDeviations places a keyframe where it places the walls
+// the keyframe saw: by B_T_M, or where most of them were placed by their keyframes
+// (`keyframe_B_T_M`, as above) by the mean of those placements. A keyframe of a segment that
+// ended (MapDiagnostics::current_segment) stands where the localizer had it then
+// (`keyframe_B_T_M`), or is left out where it had none: B_T_M places the current segment's map.
+// Either way, a sight line of a keyframe placed decimetres off would see past walls that stand.
 std::map<int, std::vector<Viewpoint>> viewpointsOnLevels(
-    const bim::AGraph& plan, const MapDiagnostics& map, const Eigen::Isometry3d& B_T_M,
-    const DeviationOptions& options = {},
-    const std::vector<std::optional<Eigen::Isometry3d>>& keyframe_B_T_M = {});
+    const bim::AGraph& plan, const MapDiagnostics& map,
+    const std::vector<std::optional<Eigen::Isometry3d>>& keyframes_in_B);
 
 DeviationReport measureDeviations(
     const bim::AGraph& plan, const MapDiagnostics& map, const Eigen::Isometry3d& B_T_M,

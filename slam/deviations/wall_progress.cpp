@@ -41,11 +41,6 @@ Intervals without(const Intervals& spans, const Intervals& holes) {
   return out;
 }
 
-bool inside(const Intervals& spans, double s) {
-  return std::any_of(spans.begin(), spans.end(),
-                     [&](const auto& span) { return s >= span.first && s <= span.second; });
-}
-
 // The interval of `spans` that holds s, if one does.
 std::optional<std::pair<double, double>> within(const Intervals& spans, double s) {
   for (const auto& span : spans) {
@@ -53,6 +48,8 @@ std::optional<std::pair<double, double>> within(const Intervals& spans, double s
   }
   return std::nullopt;
 }
+
+bool inside(const Intervals& spans, double s) { return within(spans, s).has_value(); }
 
 enum class Sample { kBuilt, kNotBuilt, kNotSeen };
 

@@ -139,29 +139,32 @@ TEST(DeviationThresholds, AKeyframeSeesFromWhereTheReportPlacesTheWallsItSaw) {
   const Eigen::Isometry3d right = Eigen::Isometry3d::Identity();
   // The viewpoints' places (x, y), one per keyframe 0.5 m apart (the keyframes stand at x = 0.5,
   // 1.0, … 14.5, y = 2).
-  const auto places = [](const std::map<int, std::vector<Viewpoint>>& on) {
+  const auto places = [&](const Eigen::Isometry3d& B_T_M,
+                          const std::vector<std::optional<Eigen::Isometry3d>>& keyframe_B_T_M) {
+    const DeviationReport report = measureDeviations(planned, map, B_T_M, {}, keyframe_B_T_M);
     std::vector<Eigen::Vector2d> out;
-    for (const auto& [level, viewpoints] : on) {
+    for (const auto& [level, viewpoints] :
+         viewpointsOnLevels(planned, map, report.keyframes_in_B)) {
       for (const auto& v : viewpoints) out.push_back(v.position);
     }
     return out;
   };
   const std::vector<std::optional<Eigen::Isometry3d>> placed_right(map.keyframes.size(), right);
-  const auto bent = places(viewpointsOnLevels(planned, map, off, {}, placed_right));
+  const auto bent = places(off, placed_right);
   EXPECT_GE(bent.size(), map.keyframes.size() - 1);
   for (const auto& p : bent) EXPECT_NEAR(p.y(), 2.0, 1e-9);
   const std::vector<std::optional<Eigen::Isometry3d>> placed_off(map.keyframes.size(), off);
-  for (const auto& p : places(viewpointsOnLevels(planned, map, right, {}, placed_off))) {
+  for (const auto& p : places(right, placed_off)) {
     EXPECT_NEAR(p.y(), 2.0, 1e-9);  // B_T_M lays the walls on the plan: it places them all
   }
   // The first 10 keyframes (x ≤ 5) of a segment that ended: where the localizer had them, or
   // nowhere.
   map.current_segment = 10;
-  const auto ended = places(viewpointsOnLevels(planned, map, right, {}, placed_off));
+  const auto ended = places(right, placed_off);
   EXPECT_GE(ended.size(), map.keyframes.size() - 1);
   for (const auto& p : ended) EXPECT_NEAR(p.y(), p.x() < 5.25 ? 2.08 : 2.0, 1e-9) << p.x();
-  for (const auto& p : places(viewpointsOnLevels(planned, map, right))) EXPECT_GT(p.x(), 5.25);
-  EXPECT_GE(places(viewpointsOnLevels(planned, map, right)).size(), map.keyframes.size() - 11);
+  for (const auto& p : places(right, {})) EXPECT_GT(p.x(), 5.25);
+  EXPECT_GE(places(right, {}).size(), map.keyframes.size() - 11);
 }
 
 }  // namespace
