@@ -26,11 +26,8 @@ struct View {
   }
 };
 
-}  // namespace
-
-std::string agraphToSvg(const Plan& plan, const AGraph& graph, const std::string& level_id) {
-  const Level* level = plan.findLevel(level_id);
-  const LevelGeometry geometry = computeLevelGeometry(*level);
+// The view around the level's walls and columns, at most 1200 pixels across.
+View viewOf(const Level& level, const LevelGeometry& geometry) {
   View view;
   view.lo = Eigen::Vector2d::Constant(std::numeric_limits<double>::infinity());
   view.hi = -view.lo;
@@ -40,30 +37,20 @@ std::string agraphToSvg(const Plan& plan, const AGraph& graph, const std::string
       view.hi = view.hi.cwiseMax(p);
     }
   }
-  for (const auto& c : level->columns) {
+  for (const auto& c : level.columns) {
     view.lo = view.lo.cwiseMin(c.center - Eigen::Vector2d::Constant(c.size.norm()));
     view.hi = view.hi.cwiseMax(c.center + Eigen::Vector2d::Constant(c.size.norm()));
   }
   const Eigen::Vector2d size = view.hi - view.lo;
   view.scale = std::clamp(1200.0 / std::max(size.x(), size.y()), 4.0, 80.0);
-  const double width = size.x() * view.scale + 2 * view.margin;
-  const double height = size.y() * view.scale + 2 * view.margin + 40;
+  return view;
+}
 
-  std::ostringstream svg;
-  svg << "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"" << View::fmt(width) << "\" height=\""
-      << View::fmt(height) << "\" viewBox=\"0 0 " << View::fmt(width) << ' ' << View::fmt(height)
-      << "\" font-family=\"sans-serif\">\n"
-      << "<rect width=\"100%\" height=\"100%\" fill=\"white\"/>\n"
-      << "<text x=\"" << view.margin << "\" y=\"" << View::fmt(height - 34)
-      << "\" font-size=\"15\">" << common::xmlEscape(plan.name) << " — level "
-      << common::xmlEscape(level_id) << " — A-Graph</text>\n"
-      << "<text x=\"" << view.margin << "\" y=\"" << View::fmt(height - 14)
-      << "\" font-size=\"12\">x-surfaces red, y-surfaces blue, wall centres black; rooms: "
-         "four-wall ■, two-wall ◆, other ●; doorways green; floor ★</text>\n";
-
-  // Rooms first, under everything.
+// The plan under the graph: rooms first, then walls and columns.
+void drawPlan(std::ostream& svg, const View& view, const Level& level,
+              const LevelGeometry& geometry, const AGraph& graph) {
   for (const auto& r : graph.rooms) {
-    if (r.level != level_id) continue;
+    if (r.level != level.id) continue;
     svg << "<polygon points=\"";
     for (const auto& p : r.outline) svg << view.x(p.x()) << ',' << view.y(p.y()) << ' ';
     svg << "\" fill=\"#f3efe4\" stroke=\"none\"/>\n";
@@ -77,13 +64,18 @@ std::string agraphToSvg(const Plan& plan, const AGraph& graph, const std::string
         << (column ? "column " : "wall ") << common::xmlEscape(g.wall->id)
         << "</title></polygon>\n";
   }
-  for (const auto& c : level->columns) {
+  for (const auto& c : level.columns) {
     if (!c.round()) continue;
     svg << "<circle cx=\"" << view.x(c.center.x()) << "\" cy=\"" << view.y(c.center.y())
         << "\" r=\"" << View::fmt(c.radius() * view.scale)
         << "\" fill=\"#8c8579\" stroke=\"none\"><title>column " << common::xmlEscape(c.id)
         << "</title></circle>\n";
   }
+}
+
+// Surfaces, wall centres and doorways with their rooms.
+void drawSurfacesWallsDoorways(std::ostream& svg, const View& view, const AGraph& graph,
+                               const std::string& level_id) {
   for (const auto& s : graph.surfaces) {
     if (s.level != level_id) continue;
     const char* colour = s.axis == SurfaceAxis::kX ? "#d62728" : "#1f77b4";
@@ -111,6 +103,11 @@ std::string agraphToSvg(const Plan& plan, const AGraph& graph, const std::string
         << "\" r=\"5\" fill=\"#2ca02c\"><title>doorway " << common::xmlEscape(d.id)
         << "</title></circle>\n";
   }
+}
+
+// Rooms by kind (four-wall ■, two-wall ◆, other ●) with their names, and the floor ★.
+void drawRoomsAndFloor(std::ostream& svg, const View& view, const AGraph& graph,
+                       const std::string& level_id) {
   for (const auto& r : graph.rooms) {
     if (r.level != level_id) continue;
     const std::string cx = view.x(r.centre.x()), cy = view.y(r.centre.y());
@@ -136,6 +133,32 @@ std::string agraphToSvg(const Plan& plan, const AGraph& graph, const std::string
            "fill=\"#ff7f0e\">★<title>floor "
         << common::xmlEscape(f.id) << "</title></text>\n";
   }
+}
+
+}  // namespace
+
+std::string agraphToSvg(const Plan& plan, const AGraph& graph, const std::string& level_id) {
+  const Level* level = plan.findLevel(level_id);
+  const LevelGeometry geometry = computeLevelGeometry(*level);
+  const View view = viewOf(*level, geometry);
+  const Eigen::Vector2d size = view.hi - view.lo;
+  const double width = size.x() * view.scale + 2 * view.margin;
+  const double height = size.y() * view.scale + 2 * view.margin + 40;
+
+  std::ostringstream svg;
+  svg << "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"" << View::fmt(width) << "\" height=\""
+      << View::fmt(height) << "\" viewBox=\"0 0 " << View::fmt(width) << ' ' << View::fmt(height)
+      << "\" font-family=\"sans-serif\">\n"
+      << "<rect width=\"100%\" height=\"100%\" fill=\"white\"/>\n"
+      << "<text x=\"" << view.margin << "\" y=\"" << View::fmt(height - 34)
+      << "\" font-size=\"15\">" << common::xmlEscape(plan.name) << " — level "
+      << common::xmlEscape(level_id) << " — A-Graph</text>\n"
+      << "<text x=\"" << view.margin << "\" y=\"" << View::fmt(height - 14)
+      << "\" font-size=\"12\">x-surfaces red, y-surfaces blue, wall centres black; rooms: "
+         "four-wall ■, two-wall ◆, other ●; doorways green; floor ★</text>\n";
+  drawPlan(svg, view, *level, geometry, graph);
+  drawSurfacesWallsDoorways(svg, view, graph, level_id);
+  drawRoomsAndFloor(svg, view, graph, level_id);
   svg << "</svg>\n";
   return svg.str();
 }

@@ -100,16 +100,115 @@ std::vector<Kidnap> parseKidnaps(const common::JsonNode& node, const Plan& plan,
   return out;
 }
 
+// robot.route: "tour", or an object with rooms, waypoints or a recorded walk's trajectory file.
+void parseRoute(const common::JsonNode& route_node, const Plan& plan, const Level& level,
+                const WalkLoader& load_walk, Route& route) {
+  if (route_node.isString()) {
+    const std::string kind = route_node.string();
+    if (kind != "tour")
+      route_node.fail("unknown route " + common::inQuotes(kind) + " (expected \"tour\")");
+    return;
+  }
+  route_node.expectObject({"rooms", "waypoints", "trajectory", "orientation"});
+  if (int(route_node.has("rooms")) + int(route_node.has("waypoints")) +
+          int(route_node.has("trajectory")) !=
+      1) {
+    route_node.fail(
+        "give \"tour\", {\"rooms\": [...]}, {\"waypoints\": [...]} or "
+        "{\"trajectory\": \"WALK.tum\"}");
+  }
+  if (route_node.has("orientation") && !route_node.has("trajectory")) {
+    route_node.field("orientation").fail("\"orientation\" goes with \"trajectory\" only");
+  }
+  if (auto trajectory = route_node.optionalField("trajectory")) {
+    route.kind = Route::Kind::kTrajectory;
+    trajectory->nonEmptyString();
+    if (auto orientation = route_node.optionalField("orientation")) {
+      const std::string mode = orientation->string();
+      if (mode != "travel" && mode != "file") {
+        orientation->fail("unknown orientation " + common::inQuotes(mode) +
+                          " (expected \"travel\" or \"file\")");
+      }
+      route.file_orientation = mode == "file";
+    }
+    if (!load_walk) {
+      trajectory->fail(
+          "a trajectory route is read from a file beside its scenario's file; "
+          "this scenario is not read from one");
+    }
+    LoadedWalk loaded = load_walk(*trajectory, level);
+    route.trajectory_file = std::move(loaded.file);
+    route.walk = std::move(loaded.walk);
+  } else if (auto rooms = route_node.optionalField("rooms")) {
+    route.kind = Route::Kind::kRooms;
+    for (const auto& r : rooms->elements(1, limits::kMaxScenarioItems, "rooms"))
+      // A route may go to rooms on other levels, by stairs (sim/route_planner.hpp).
+      route.rooms.push_back(plan.levelOfRoom(r.identifier()) != nullptr ? r.identifier()
+                                                                        : roomOnLevel(level, r));
+  } else {
+    route.kind = Route::Kind::kWaypoints;
+    const common::JsonNode waypoints = route_node.field("waypoints");
+    for (const auto& w : waypoints.elements(1, limits::kMaxScenarioItems, "waypoints")) {
+      route.waypoints.push_back(planPoint(w));
+    }
+  }
+}
+
+// robot.gait: each field of the walker's (or the legged base's) gait within its range.
+void parseGait(const common::JsonNode& gait, GaitSettings& g) {
+  gait.expectObject({"frequency_hz", "bob_m", "roll_deg", "pitch_deg", "sway_m", "head_turn_deg"});
+  if (auto v = gait.optionalField("frequency_hz")) g.frequency_hz = v->numberInRange(0.1, 10.0);
+  if (auto v = gait.optionalField("bob_m")) g.bob_m = v->numberInRange(0.0, 0.2);
+  if (auto v = gait.optionalField("roll_deg")) g.roll_deg = v->numberInRange(0.0, 20.0);
+  if (auto v = gait.optionalField("pitch_deg")) g.pitch_deg = v->numberInRange(0.0, 20.0);
+  if (auto v = gait.optionalField("sway_m")) g.sway_m = v->numberInRange(0.0, 0.2);
+  if (auto v = gait.optionalField("head_turn_deg")) g.head_turn_deg = v->numberInRange(0.0, 60.0);
+}
+
+// An open floor (bim/facade.hpp) starts at the most open point of its inside
+// (sim/route_planner.hpp) unless robot.start gives one; a roomed level in its first room.
+std::optional<std::string> defaultStart(const Level& level) {
+  if (isOpenFloor(level)) return std::nullopt;
+  return level.rooms.front().id;
+}
+
+// robot.start: a room or a pose on the robot's level, exactly one of them.
+void parseStart(const std::optional<common::JsonNode>& start, const Level& level,
+                RobotConfig& robot) {
+  if (!start) {
+    robot.start_room = defaultStart(level);
+    return;
+  }
+  start->expectObject({"room", "pose"});
+  const bool has_room = start->has("room");
+  const bool has_pose = start->has("pose");
+  if (has_room == has_pose) start->fail("give exactly one of \"room\" and \"pose\"");
+  if (has_room) {
+    robot.start_room = roomOnLevel(level, start->field("room"));
+  } else {
+    robot.start_pose = poseOnLevel(level, start->field("pose"), "start position");
+  }
+}
+
+// A replayed walk is where and when its file says: nothing else may place, pace or break it.
+void checkTrajectoryAlone(const common::JsonNode& node, RobotConfig& robot) {
+  const std::pair<const char*, const char*> others[] = {
+      {"start", "it starts at its file's first pose"},
+      {"speed", "its file's times pace it"},
+      {"kidnap", "it is one unbroken walk"}};
+  for (const auto& [key, why] : others) {
+    if (node.has(key)) {
+      node.field(key).fail(std::string("robot.") + key +
+                           " does not go with a trajectory route: " + why);
+    }
+  }
+  robot.start_room.reset();
+}
+
 RobotConfig parseRobot(const std::optional<common::JsonNode>& node, const Plan& plan,
                        const WalkLoader& load_walk) {
   RobotConfig robot;
   robot.level = plan.levels.front().id;
-  // An open floor (bim/facade.hpp) starts at the most open point of its inside
-  // (sim/route_planner.hpp) unless robot.start gives one; a roomed level in its first room.
-  const auto defaultStart = [](const Level& level) -> std::optional<std::string> {
-    if (isOpenFloor(level)) return std::nullopt;
-    return level.rooms.front().id;
-  };
   if (!node) {
     robot.start_room = defaultStart(plan.levels.front());
     return robot;
@@ -132,102 +231,17 @@ RobotConfig parseRobot(const std::optional<common::JsonNode>& node, const Plan& 
     level = &levelNamed(plan, *l);
     robot.level = level->id;
   }
-  if (auto start = node->optionalField("start")) {
-    start->expectObject({"room", "pose"});
-    const bool has_room = start->has("room");
-    const bool has_pose = start->has("pose");
-    if (has_room == has_pose) start->fail("give exactly one of \"room\" and \"pose\"");
-    if (has_room) {
-      robot.start_room = roomOnLevel(*level, start->field("room"));
-    } else {
-      robot.start_pose = poseOnLevel(*level, start->field("pose"), "start position");
-    }
-  } else {
-    robot.start_room = defaultStart(*level);
-  }
-  if (auto route = node->optionalField("route")) {
-    if (route->isString()) {
-      const std::string kind = route->string();
-      if (kind != "tour")
-        route->fail("unknown route " + common::inQuotes(kind) + " (expected \"tour\")");
-    } else {
-      route->expectObject({"rooms", "waypoints", "trajectory", "orientation"});
-      if (int(route->has("rooms")) + int(route->has("waypoints")) + int(route->has("trajectory")) !=
-          1) {
-        route->fail(
-            "give \"tour\", {\"rooms\": [...]}, {\"waypoints\": [...]} or "
-            "{\"trajectory\": \"WALK.tum\"}");
-      }
-      if (route->has("orientation") && !route->has("trajectory")) {
-        route->field("orientation").fail("\"orientation\" goes with \"trajectory\" only");
-      }
-      if (auto trajectory = route->optionalField("trajectory")) {
-        robot.route.kind = Route::Kind::kTrajectory;
-        trajectory->nonEmptyString();
-        if (auto orientation = route->optionalField("orientation")) {
-          const std::string mode = orientation->string();
-          if (mode != "travel" && mode != "file") {
-            orientation->fail("unknown orientation " + common::inQuotes(mode) +
-                              " (expected \"travel\" or \"file\")");
-          }
-          robot.route.file_orientation = mode == "file";
-        }
-        if (!load_walk) {
-          trajectory->fail(
-              "a trajectory route is read from a file beside its scenario's file; "
-              "this scenario is not read from one");
-        }
-        LoadedWalk loaded = load_walk(*trajectory, *level);
-        robot.route.trajectory_file = std::move(loaded.file);
-        robot.route.walk = std::move(loaded.walk);
-      } else if (auto rooms = route->optionalField("rooms")) {
-        robot.route.kind = Route::Kind::kRooms;
-        for (const auto& r : rooms->elements(1, limits::kMaxScenarioItems, "rooms"))
-          // A route may go to rooms on other levels, by stairs (sim/route_planner.hpp).
-          robot.route.rooms.push_back(plan.levelOfRoom(r.identifier()) != nullptr
-                                          ? r.identifier()
-                                          : roomOnLevel(*level, r));
-      } else {
-        robot.route.kind = Route::Kind::kWaypoints;
-        const common::JsonNode waypoints = route->field("waypoints");
-        for (const auto& w : waypoints.elements(1, limits::kMaxScenarioItems, "waypoints")) {
-          robot.route.waypoints.push_back(planPoint(w));
-        }
-      }
-    }
-  }
+  parseStart(node->optionalField("start"), *level, robot);
+  if (auto route = node->optionalField("route"))
+    parseRoute(*route, plan, *level, load_walk, robot.route);
   if (auto speed = node->optionalField("speed")) robot.speed = speed->numberInRange(0.01, 3.0);
   if (auto clearance = node->optionalField("clearance")) {
     robot.clearance = clearance->numberInRange(0.2, 2.0);
   }
-  if (auto gait = node->optionalField("gait")) {
-    gait->expectObject(
-        {"frequency_hz", "bob_m", "roll_deg", "pitch_deg", "sway_m", "head_turn_deg"});
-    auto& g = robot.gait;
-    if (auto v = gait->optionalField("frequency_hz")) g.frequency_hz = v->numberInRange(0.1, 10.0);
-    if (auto v = gait->optionalField("bob_m")) g.bob_m = v->numberInRange(0.0, 0.2);
-    if (auto v = gait->optionalField("roll_deg")) g.roll_deg = v->numberInRange(0.0, 20.0);
-    if (auto v = gait->optionalField("pitch_deg")) g.pitch_deg = v->numberInRange(0.0, 20.0);
-    if (auto v = gait->optionalField("sway_m")) g.sway_m = v->numberInRange(0.0, 0.2);
-    if (auto v = gait->optionalField("head_turn_deg"))
-      g.head_turn_deg = v->numberInRange(0.0, 60.0);
-  }
+  if (auto gait = node->optionalField("gait")) parseGait(*gait, robot.gait);
   if (auto kidnap = node->optionalField("kidnap"))
     robot.kidnap = parseKidnaps(*kidnap, plan, *level);
-  if (robot.route.kind == Route::Kind::kTrajectory) {
-    // A replayed walk is where and when its file says: nothing else may place, pace or break it.
-    const std::pair<const char*, const char*> others[] = {
-        {"start", "it starts at its file's first pose"},
-        {"speed", "its file's times pace it"},
-        {"kidnap", "it is one unbroken walk"}};
-    for (const auto& [key, why] : others) {
-      if (node->has(key)) {
-        node->field(key).fail(std::string("robot.") + key +
-                              " does not go with a trajectory route: " + why);
-      }
-    }
-    robot.start_room.reset();
-  }
+  if (robot.route.kind == Route::Kind::kTrajectory) checkTrajectoryAlone(*node, robot);
   return robot;
 }
 

@@ -143,8 +143,8 @@ GenerateCommand::GenerateCommand(CLI::App& parent) {
   app_->add_flag("-q,--quiet", quiet_, "no progress bar");
 }
 
-int GenerateCommand::run() {
-  // Each family once ("hall hall" is one family: its buildings would have the same names).
+// Each family once ("hall hall" is one family: its buildings would have the same names).
+std::vector<std::string> GenerateCommand::familiesAsked() const {
   std::vector<std::string> families;
   const auto add = [&](const std::string& family) {
     if (std::find(families.begin(), families.end(), family) == families.end()) {
@@ -158,15 +158,10 @@ int GenerateCommand::run() {
       add(f);
     }
   }
-  if (seed_ > std::numeric_limits<std::uint64_t>::max() - std::uint64_t(count_ - 1)) {
-    throw common::InputError("--seed", "",
-                             "seeds " + std::to_string(seed_) + " and the " +
-                                 std::to_string(count_ - 1) + " after it pass 2^64 - 1");
-  }
-  // The output rule before any work: not the working directory, nor an earlier folder of
-  // anything but generated buildings.
-  common::checkCanCreateFolder(output_, common::OutputKind::kBuildings, force_);
-  spec_.asymmetry = !symmetric_;
+  return families;
+}
+
+void GenerateCommand::warnOfOptionsThatDoNotApply(const std::vector<std::string>& families) const {
   // A site is drawn from its seed alone (docs/sweeps.md): an office parameter given for one is
   // said, not silently dropped.
   if (std::find(families.begin(), families.end(), "site") != families.end()) {
@@ -213,7 +208,11 @@ int GenerateCommand::run() {
                    option, family.c_str());
     }
   }
-  // Bad parameters fail before anything is written, naming the option.
+}
+
+// Bad parameters fail before anything is written, naming the option.
+std::vector<worlds::GeneratedBuilding> GenerateCommand::makeBuildings(
+    const std::vector<std::string>& families) const {
   std::vector<worlds::GeneratedBuilding> buildings;
   for (const auto& family : families) {
     for (int i = 0; i < count_; ++i) {
@@ -234,40 +233,61 @@ int GenerateCommand::run() {
       }
     }
   }
+  return buildings;
+}
+
+void GenerateCommand::writeAndCheck(const worlds::GeneratedBuilding& b,
+                                    const std::filesystem::path& dir) const {
+  common::writeFile(dir / (b.name + ".json"), b.plan.dump(2) + "\n");
+  const std::string scenario_path = (dir / (b.name + ".asbuilt.json")).string();
+  common::writeFile(scenario_path, b.scenario.dump(2) + "\n");
+  if (no_verify_) return;
+  // As isg check and isg run would read it: a warning is a generator bug too.
+  common::Warnings warnings;
+  const bim::Scenario scenario = bim::loadScenario(scenario_path, &warnings);
+  if (!warnings.empty()) {
+    throw std::logic_error("generated " + b.name +
+                           " reads with a warning: " + warnings.front().str());
+  }
+  const sim::Simulation simulation(scenario);
+  // Never written: a building the robot cannot tour would give a table number for part of it.
+  // Bad input for the parameters that made it, naming the rooms (or levels).
+  if (const std::string part = sim::unreachedPart(simulation.route()); !part.empty()) {
+    throw common::InputError(b.name, "",
+                             "the tour cannot reach " + part +
+                                 " of the generated building; nothing was written: "
+                                 "change the generator's parameters");
+  }
+}
+
+int GenerateCommand::run() {
+  const std::vector<std::string> families = familiesAsked();
+  if (seed_ > std::numeric_limits<std::uint64_t>::max() - std::uint64_t(count_ - 1)) {
+    throw common::InputError("--seed", "",
+                             "seeds " + std::to_string(seed_) + " and the " +
+                                 std::to_string(count_ - 1) + " after it pass 2^64 - 1");
+  }
+  // The output rule before any work: not the working directory, nor an earlier folder of
+  // anything but generated buildings.
+  common::checkCanCreateFolder(output_, common::OutputKind::kBuildings, force_);
+  spec_.asymmetry = !symmetric_;
+  warnOfOptionsThatDoNotApply(families);
+  const std::vector<worlds::GeneratedBuilding> buildings = makeBuildings(families);
   ProgressBar bar("isg generate", quiet_);
   std::size_t offices = 0, largest = 0;
-  common::writeFolderAtomically(
-      output_, common::OutputKind::kBuildings, force_, [&](const std::filesystem::path& dir) {
-        for (std::size_t k = 0; k < buildings.size(); ++k) {
-          const auto& b = buildings[k];
-          common::writeFile(dir / (b.name + ".json"), b.plan.dump(2) + "\n");
-          const std::string scenario_path = (dir / (b.name + ".asbuilt.json")).string();
-          common::writeFile(scenario_path, b.scenario.dump(2) + "\n");
-          offices += std::size_t(b.offices);
-          largest = std::max(largest, std::size_t(b.offices));
-          bar.update(double(k + 1) / double(buildings.size()), b.name);
-          if (no_verify_) continue;
-          // As isg check and isg run would read it: a warning is a generator bug too.
-          common::Warnings warnings;
-          const bim::Scenario scenario = bim::loadScenario(scenario_path, &warnings);
-          if (!warnings.empty()) {
-            throw std::logic_error("generated " + b.name +
-                                   " reads with a warning: " + warnings.front().str());
-          }
-          const sim::Simulation simulation(scenario);
-          // Never written: a building the robot cannot tour would give a table number for part
-          // of it. Bad input for the parameters that made it, naming the rooms (or levels).
-          if (const std::string part = sim::unreachedPart(simulation.route()); !part.empty()) {
-            throw common::InputError(b.name, "",
-                                     "the tour cannot reach " + part +
-                                         " of the generated building; nothing was written: "
-                                         "change the generator's parameters");
-          }
-        }
-        // The last building's checks may have taken a while: an interrupt then still means nothing
-        // is written.
-        run::throwIfInterrupted();
-      });
+  common::writeFolderAtomically(output_, common::OutputKind::kBuildings, force_,
+                                [&](const std::filesystem::path& dir) {
+                                  for (std::size_t k = 0; k < buildings.size(); ++k) {
+                                    const auto& b = buildings[k];
+                                    offices += std::size_t(b.offices);
+                                    largest = std::max(largest, std::size_t(b.offices));
+                                    bar.update(double(k + 1) / double(buildings.size()), b.name);
+                                    writeAndCheck(b, dir);
+                                  }
+                                  // The last building's checks may have taken a while: an interrupt
+                                  // then still means nothing is written.
+                                  run::throwIfInterrupted();
+                                });
   bar.finish();
   std::printf("isg generate: wrote %s: %s (%s and %s), %s in all, up to %zu in one%s\n",
               output_.c_str(), common::counted(buildings.size(), "building").c_str(),

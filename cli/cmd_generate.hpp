@@ -1,6 +1,7 @@
 #pragma once
 
 #include <cstdint>
+#include <filesystem>
 #include <string>
 #include <vector>
 
@@ -16,6 +17,15 @@ class GenerateCommand : public Command {
   int run() override;
 
  private:
+  // The steps of run(): the families asked for (each once), the options that do not apply to
+  // them said, the buildings made, and each written (and checked, unless --no-verify).
+  std::vector<std::string> familiesAsked() const;
+  void warnOfOptionsThatDoNotApply(const std::vector<std::string>& families) const;
+  std::vector<worlds::GeneratedBuilding> makeBuildings(
+      const std::vector<std::string>& families) const;
+  void writeAndCheck(const worlds::GeneratedBuilding& building,
+                     const std::filesystem::path& dir) const;
+
   std::vector<std::string> families_;
   std::string output_;
   int count_ = 1;

@@ -7,7 +7,6 @@
 #include <filesystem>
 #include <optional>
 
-#include "bim/raster_plan.hpp"
 #include "cli/progress_bar.hpp"
 #include "common/atomic_folder.hpp"
 #include "common/output_path.hpp"
@@ -16,6 +15,7 @@
 #include "formats/raster_image.hpp"
 #include "formats/recording.hpp"
 #include "ifc/ifc_import.hpp"
+#include "raster/raster_plan.hpp"
 #include "recordings/bag_import.hpp"
 #include "run/interrupt.hpp"
 
@@ -209,7 +209,7 @@ int ImportCommand::importRaster() {
                              "pixel; 0.01 for a plan drawn at 1 cm a pixel)");
   }
   common::checkOutputPath(output_, {common::OutputKind::kImportedPlan, {input_}, force_, true});
-  bim::RasterPlanOptions options;
+  raster::RasterPlanOptions options;
   options.height = wall_height_;
   std::string image = input_;
   // A plain image: a pixel darker than mid-grey is occupied, else free.
@@ -228,8 +228,8 @@ int ImportCommand::importRaster() {
     if (!origin_.empty()) options.origin = Eigen::Vector2d(origin_[0], origin_[1]);
     options.source_kind = lowerExtension(input_) == ".png" ? "PNG image" : "PGM image";
   }
-  const bim::RasterPlanImport result =
-      bim::rasterPlanFromImage(formats::readOccupancyImage(image, rule), image, options);
+  const raster::RasterPlanImport result =
+      raster::rasterPlanFromImage(formats::readOccupancyImage(image, rule), image, options);
   nlohmann::ordered_json document = result.plan_json;
   roundNumbers(document);
   run::throwIfInterrupted();

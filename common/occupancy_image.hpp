@@ -6,7 +6,7 @@
 namespace isg::common {
 
 // A floor plan image read into one class per pixel (formats/raster_image.hpp reads PNG, PGM and
-// ROS maps into it; bim/raster_walls.hpp traces walls in it). Row 0 is the image's top row.
+// ROS maps into it; raster/raster_walls.hpp traces walls in it). Row 0 is the image's top row.
 enum class PixelClass : std::uint8_t { kFree = 0, kOccupied = 1, kUnknown = 2 };
 
 struct OccupancyImage {

@@ -88,73 +88,54 @@ void gradeColumns(const slam::DeviationReport& report, const bim::AsBuilt& truth
 
 }  // namespace
 
-DeviationGrade gradeDeviations(const slam::DeviationReport& report, const bim::Plan& plan,
-                               const bim::AsBuilt& truth) {
-  DeviationGrade grade;
+namespace {
+
+// Sums over the walls graded for what deviates, to be turned into means.
+struct DeviationSums {
   double offset_error = 0.0, angle_error = 0.0, pivot_error = 0.0;
   int measured = 0, pivots = 0;
-  LengthErrors partly_errors;
-  for (const slam::WallDeviation& wall : report.walls) {
-    const bim::Level* level = plan.levelOfWall(wall.wall);
-    const bim::Wall* planned = level != nullptr ? level->findWall(wall.wall) : nullptr;
-    if (planned == nullptr) continue;
-    const auto shortened =
-        std::find_if(truth.shortened_walls.begin(), truth.shortened_walls.end(),
-                     [&](const bim::ShortenedWall& w) { return w.wall == wall.wall; });
-    const bool truly_missing = std::find(truth.missing_walls.begin(), truth.missing_walls.end(),
-                                         wall.wall) != truth.missing_walls.end();
-    gradeProgress(wall.progress, shortened != truth.shortened_walls.end() ? &*shortened : nullptr,
-                  truly_missing, grade, partly_errors);
-    // A wall built in part is graded by its progress only: where it stands it may be as planned
-    // or not, but not over its planned length.
-    if (shortened != truth.shortened_walls.end()) continue;
-    const bool reported_missing = wall.status == slam::WallStatus::kMissing;
-    grade.missing_found += truly_missing && reported_missing;
-    grade.missing_false_reports += !truly_missing && reported_missing;
-    grade.missing_missed += truly_missing && !reported_missing;
-    if (truly_missing || wall.observed_share < grade.min_share || !wall.offset_m) continue;
-    const bim::Wall built = bim::builtWall(*planned, truth);
-    const bim::AxisDeviation true_deviation =
-        bim::axisDeviation(*planned, built.start, built.end - built.start);
-    const bool truly_deviating = std::abs(true_deviation.offset_m) >= report.options.shift_m ||
-                                 std::abs(true_deviation.angle_deg) >= report.options.angle_deg;
-    const bool reported =
-        wall.status == slam::WallStatus::kShifted || wall.status == slam::WallStatus::kRotated;
-    ++grade.judged;
-    grade.found += truly_deviating && reported;
-    grade.false_reports += !truly_deviating && reported;
-    grade.missed += truly_deviating && !reported;
-    if (truly_deviating) {
-      offset_error += std::abs(*wall.offset_m - true_deviation.offset_m);
-      angle_error += std::abs(*wall.angle_deg - true_deviation.angle_deg);
-      ++measured;
-    }
-    const double length = (planned->end - planned->start).norm();
-    const auto true_pivot =
-        slam::crossingAlong(length, true_deviation.offset_m, true_deviation.angle_deg);
-    if (std::abs(true_deviation.angle_deg) >= report.options.angle_deg && wall.pivot_along_m &&
-        true_pivot) {
-      pivot_error += std::abs(*wall.pivot_along_m - *true_pivot);
-      ++pivots;
-    }
+};
+
+// A wall built over its planned length against the truth: missing or not, and off the plan or
+// not (with the errors of its offset, angle and pivot where it truly is off).
+void gradeWallDeviation(const slam::WallDeviation& wall, const bim::Wall& planned,
+                        const bim::AsBuilt& truth, bool truly_missing,
+                        const slam::DeviationOptions& options, DeviationGrade& grade,
+                        DeviationSums& sums) {
+  const bool reported_missing = wall.status == slam::WallStatus::kMissing;
+  grade.missing_found += truly_missing && reported_missing;
+  grade.missing_false_reports += !truly_missing && reported_missing;
+  grade.missing_missed += truly_missing && !reported_missing;
+  if (truly_missing || wall.observed_share < grade.min_share || !wall.offset_m) return;
+  const bim::Wall built = bim::builtWall(planned, truth);
+  const bim::AxisDeviation true_deviation =
+      bim::axisDeviation(planned, built.start, built.end - built.start);
+  const bool truly_deviating = std::abs(true_deviation.offset_m) >= options.shift_m ||
+                               std::abs(true_deviation.angle_deg) >= options.angle_deg;
+  const bool reported =
+      wall.status == slam::WallStatus::kShifted || wall.status == slam::WallStatus::kRotated;
+  ++grade.judged;
+  grade.found += truly_deviating && reported;
+  grade.false_reports += !truly_deviating && reported;
+  grade.missed += truly_deviating && !reported;
+  if (truly_deviating) {
+    sums.offset_error += std::abs(*wall.offset_m - true_deviation.offset_m);
+    sums.angle_error += std::abs(*wall.angle_deg - true_deviation.angle_deg);
+    ++sums.measured;
   }
-  grade.precision = share(grade.found, grade.found + grade.false_reports);
-  grade.recall = share(grade.found, grade.found + grade.missed);
-  if (measured > 0) {
-    grade.offset_error_m = offset_error / measured;
-    grade.angle_error_deg = angle_error / measured;
+  const double length = (planned.end - planned.start).norm();
+  const auto true_pivot =
+      slam::crossingAlong(length, true_deviation.offset_m, true_deviation.angle_deg);
+  if (std::abs(true_deviation.angle_deg) >= options.angle_deg && wall.pivot_along_m && true_pivot) {
+    sums.pivot_error += std::abs(*wall.pivot_along_m - *true_pivot);
+    ++sums.pivots;
   }
-  if (pivots > 0) grade.pivot_error_m = pivot_error / pivots;
-  grade.partly_precision =
-      share(grade.partly_found, grade.partly_found + grade.partly_false_reports);
-  grade.partly_recall = share(grade.partly_found, grade.partly_found + grade.partly_missed);
-  if (partly_errors.measured > 0) {
-    grade.built_length_error_m = partly_errors.all / partly_errors.measured;
-  }
-  if (partly_errors.measured_seen > 0) {
-    grade.built_length_error_seen_m = partly_errors.seen / partly_errors.measured_seen;
-  }
-  // Extra walls of the levels walked.
+}
+
+// Extra walls of the levels walked: each reported one found (along a true one), on clutter, or
+// false; each true one found or missed.
+void gradeExtraWalls(const slam::DeviationReport& report, const bim::AsBuilt& truth,
+                     DeviationGrade& grade) {
   const double parallel = std::cos(common::radians(10.0));
   std::vector<bool> matched(truth.extra_walls.size(), false);
   for (const slam::ExtraWall& extra : report.extra_walls) {
@@ -192,6 +173,48 @@ DeviationGrade gradeDeviations(const slam::DeviationReport& report, const bim::P
   grade.extra_missed = true_extra - true_found;
   grade.extra_precision = share(grade.extra_found, grade.extra_found + grade.extra_false_reports);
   grade.extra_recall = share(true_found, true_extra);
+}
+
+}  // namespace
+
+DeviationGrade gradeDeviations(const slam::DeviationReport& report, const bim::Plan& plan,
+                               const bim::AsBuilt& truth) {
+  DeviationGrade grade;
+  DeviationSums sums;
+  LengthErrors partly_errors;
+  for (const slam::WallDeviation& wall : report.walls) {
+    const bim::Level* level = plan.levelOfWall(wall.wall);
+    const bim::Wall* planned = level != nullptr ? level->findWall(wall.wall) : nullptr;
+    if (planned == nullptr) continue;
+    const auto shortened =
+        std::find_if(truth.shortened_walls.begin(), truth.shortened_walls.end(),
+                     [&](const bim::ShortenedWall& w) { return w.wall == wall.wall; });
+    const bool truly_missing = std::find(truth.missing_walls.begin(), truth.missing_walls.end(),
+                                         wall.wall) != truth.missing_walls.end();
+    gradeProgress(wall.progress, shortened != truth.shortened_walls.end() ? &*shortened : nullptr,
+                  truly_missing, grade, partly_errors);
+    // A wall built in part is graded by its progress only: where it stands it may be as planned
+    // or not, but not over its planned length.
+    if (shortened != truth.shortened_walls.end()) continue;
+    gradeWallDeviation(wall, *planned, truth, truly_missing, report.options, grade, sums);
+  }
+  grade.precision = share(grade.found, grade.found + grade.false_reports);
+  grade.recall = share(grade.found, grade.found + grade.missed);
+  if (sums.measured > 0) {
+    grade.offset_error_m = sums.offset_error / sums.measured;
+    grade.angle_error_deg = sums.angle_error / sums.measured;
+  }
+  if (sums.pivots > 0) grade.pivot_error_m = sums.pivot_error / sums.pivots;
+  grade.partly_precision =
+      share(grade.partly_found, grade.partly_found + grade.partly_false_reports);
+  grade.partly_recall = share(grade.partly_found, grade.partly_found + grade.partly_missed);
+  if (partly_errors.measured > 0) {
+    grade.built_length_error_m = partly_errors.all / partly_errors.measured;
+  }
+  if (partly_errors.measured_seen > 0) {
+    grade.built_length_error_seen_m = partly_errors.seen / partly_errors.measured_seen;
+  }
+  gradeExtraWalls(report, truth, grade);
   gradeColumns(report, truth, grade);
   return grade;
 }

@@ -34,94 +34,106 @@ const char* colourOf(slam::WallStatus status) {
   return "#b0b0b0";
 }
 
-}  // namespace
+// Every threshold the report judged by, under the names deviations.json gives them.
+nlohmann::json thresholdsJson(const slam::DeviationOptions& o) {
+  return {{"shift_m", o.shift_m},
+          {"angle_deg", o.angle_deg},
+          {"noise_factor", o.noise_factor},
+          {"min_noise_walls", o.min_noise_walls},
+          {"min_angle_length_m", o.min_angle_length},
+          {"consistent_tolerance_m", o.consistent_tolerance},
+          {"contradiction_observation_share", o.contradiction_observation_share},
+          {"min_deviation_observations", o.min_deviation_observations},
+          {"max_stray_lean_deg", o.max_stray_lean_deg},
+          {"judged_share", o.judged_share},
+          {"missing_seen_share", o.missing_seen_share},
+          {"missing_view_share", o.missing_view_share},
+          {"missing_sight_share", o.missing_sight_share},
+          {"min_missing_length_m", o.min_missing_length},
+          {"search_distance_m", o.search_distance},
+          {"search_angle_deg", o.search_angle_deg},
+          {"min_wall_length_m", o.min_wall_length},
+          {"column_margin_m", o.column_margin},
+          {"bend_distance_m", o.bend_distance},
+          {"bend_angle_deg", o.bend_angle_deg},
+          {"local_radius_m", o.local_radius},
+          {"view_range_m", o.view_range},
+          {"max_incidence_deg", o.max_incidence_deg},
+          {"min_views", o.min_views},
+          {"see_through_margin_m", o.see_through_margin},
+          {"window_margin_m", o.window_margin},
+          {"extra_pair_distance_m", o.extra_pair_distance},
+          {"pivot_name_distance_m", o.pivot_name_distance},
+          {"progress_step_m", o.progress_step},
+          {"progress_gap_m", o.progress_gap_m}};
+}
 
-nlohmann::json deviationReportJson(const slam::DeviationReport& report) {
-  const slam::DeviationOptions& o = report.options;
-  nlohmann::json thresholds = {
-      {"shift_m", o.shift_m},
-      {"angle_deg", o.angle_deg},
-      {"noise_factor", o.noise_factor},
-      {"min_noise_walls", o.min_noise_walls},
-      {"min_angle_length_m", o.min_angle_length},
-      {"consistent_tolerance_m", o.consistent_tolerance},
-      {"contradiction_observation_share", o.contradiction_observation_share},
-      {"min_deviation_observations", o.min_deviation_observations},
-      {"max_stray_lean_deg", o.max_stray_lean_deg},
-      {"judged_share", o.judged_share},
-      {"missing_seen_share", o.missing_seen_share},
-      {"missing_view_share", o.missing_view_share},
-      {"missing_sight_share", o.missing_sight_share},
-      {"min_missing_length_m", o.min_missing_length},
-      {"search_distance_m", o.search_distance},
-      {"search_angle_deg", o.search_angle_deg},
-      {"min_wall_length_m", o.min_wall_length},
-      {"column_margin_m", o.column_margin},
-      {"bend_distance_m", o.bend_distance},
-      {"bend_angle_deg", o.bend_angle_deg},
-      {"local_radius_m", o.local_radius},
-      {"view_range_m", o.view_range},
-      {"max_incidence_deg", o.max_incidence_deg},
-      {"min_views", o.min_views},
-      {"see_through_margin_m", o.see_through_margin},
-      {"window_margin_m", o.window_margin},
-      {"extra_pair_distance_m", o.extra_pair_distance},
-      {"pivot_name_distance_m", o.pivot_name_distance},
-      {"progress_step_m", o.progress_step},
-      {"progress_gap_m", o.progress_gap_m}};
-  nlohmann::json walls = nlohmann::json::array();
-  for (const auto& w : report.walls) {
-    nlohmann::json evidence = nlohmann::json::array();
-    for (const auto& e : w.evidence) {
-      evidence.push_back({{"plane", e.plane},
-                          {"face", e.side > 0 ? "left" : "right"},
-                          {"length_m", e.length_m},
-                          {"observations", e.observations},
-                          {"offset_m", e.offset_m},
-                          {"angle_deg", e.angle_deg},
-                          {"consistent", e.consistent},
-                          {"start", point(e.start_B)},
-                          {"end", point(e.end_B)}});
-    }
-    nlohmann::json wall = {
-        {"wall", w.wall},
-        {"level", w.level},
-        {"status", slam::toString(w.status)},
-        {"offset_m", w.offset_m ? nlohmann::json(*w.offset_m) : nullptr},
-        {"angle_deg", w.angle_deg ? nlohmann::json(*w.angle_deg) : nullptr},
-        {"observed_share", w.observed_share},
-        {"planned", {{"start", point(w.planned_start)}, {"end", point(w.planned_end)}}},
-        {"evidence", evidence}};
-    if (w.in_view_share) wall["in_view_share"] = *w.in_view_share;
-    if (!w.evidence.empty()) {
-      auto optional = [](const std::optional<double>& v) {
-        return v ? nlohmann::json(*v) : nlohmann::json(nullptr);
-      };
-      wall["judged_against"] = {{"shift_m", w.shift_threshold_m},
-                                {"angle_deg", w.angle_threshold_deg},
-                                {"local_offset_noise_m", optional(w.local_offset_noise_m)},
-                                {"local_angle_noise_deg", optional(w.local_angle_noise_deg)},
-                                {"placement_sigma_m", w.placement_sigma_m}};
-    }
-    {
-      const slam::WallProgress& p = w.progress;
-      nlohmann::json built = nlohmann::json::array();
-      for (const auto& [a, b] : p.built) built.push_back({a, b});
-      wall["progress"] = {{"status", slam::toString(p.status)},
-                          {"planned_m", p.planned_m},
-                          {"built_m", p.built_m},
-                          {"not_built_m", p.not_built_m},
-                          {"not_seen_m", p.not_seen_m},
-                          {"built", built}};
-    }
-    if (w.pivot_along_m) {
-      const Eigen::Vector2d axis = (w.planned_end - w.planned_start).normalized();
-      wall["turned_about"] = {{"along_m", *w.pivot_along_m},
-                              {"point", point(w.planned_start + *w.pivot_along_m * axis)},
-                              {"name", w.turned_about}};
-    }
-    walls.push_back(wall);
+// The columns' thresholds (thresholds.columns).
+nlohmann::json columnThresholdsJson(const slam::ColumnOptions& c) {
+  return {{"search_m", c.search_m},
+          {"band_margin_m", c.band_margin_m},
+          {"wall_clearance_m", c.wall_clearance_m},
+          {"inlier_m", c.inlier_m},
+          {"min_points", c.min_points},
+          {"min_direction_weight", c.min_direction_weight},
+          {"moved_m", c.moved_m},
+          {"view_range_m", c.view_range_m},
+          {"see_past_margin_m", c.see_past_margin_m},
+          {"min_views", c.min_views}};
+}
+
+// One wall's entry: its status, measures, evidence, thresholds, progress and pivot.
+nlohmann::json wallJson(const slam::WallDeviation& w) {
+  nlohmann::json evidence = nlohmann::json::array();
+  for (const auto& e : w.evidence) {
+    evidence.push_back({{"plane", e.plane},
+                        {"face", e.side > 0 ? "left" : "right"},
+                        {"length_m", e.length_m},
+                        {"observations", e.observations},
+                        {"offset_m", e.offset_m},
+                        {"angle_deg", e.angle_deg},
+                        {"consistent", e.consistent},
+                        {"start", point(e.start_B)},
+                        {"end", point(e.end_B)}});
   }
+  nlohmann::json wall = {
+      {"wall", w.wall},
+      {"level", w.level},
+      {"status", slam::toString(w.status)},
+      {"offset_m", w.offset_m ? nlohmann::json(*w.offset_m) : nullptr},
+      {"angle_deg", w.angle_deg ? nlohmann::json(*w.angle_deg) : nullptr},
+      {"observed_share", w.observed_share},
+      {"planned", {{"start", point(w.planned_start)}, {"end", point(w.planned_end)}}},
+      {"evidence", evidence}};
+  if (w.in_view_share) wall["in_view_share"] = *w.in_view_share;
+  if (!w.evidence.empty()) {
+    auto optional = [](const std::optional<double>& v) {
+      return v ? nlohmann::json(*v) : nlohmann::json(nullptr);
+    };
+    wall["judged_against"] = {{"shift_m", w.shift_threshold_m},
+                              {"angle_deg", w.angle_threshold_deg},
+                              {"local_offset_noise_m", optional(w.local_offset_noise_m)},
+                              {"local_angle_noise_deg", optional(w.local_angle_noise_deg)},
+                              {"placement_sigma_m", w.placement_sigma_m}};
+  }
+  {
+    const slam::WallProgress& p = w.progress;
+    nlohmann::json built = nlohmann::json::array();
+    for (const auto& [a, b] : p.built) built.push_back({a, b});
+    wall["progress"] = {
+        {"status", slam::toString(p.status)}, {"planned_m", p.planned_m},   {"built_m", p.built_m},
+        {"not_built_m", p.not_built_m},       {"not_seen_m", p.not_seen_m}, {"built", built}};
+  }
+  if (w.pivot_along_m) {
+    const Eigen::Vector2d axis = (w.planned_end - w.planned_start).normalized();
+    wall["turned_about"] = {{"along_m", *w.pivot_along_m},
+                            {"point", point(w.planned_start + *w.pivot_along_m * axis)},
+                            {"name", w.turned_about}};
+  }
+  return wall;
+}
+
+nlohmann::json extraWallsJson(const slam::DeviationReport& report) {
   nlohmann::json extra = nlohmann::json::array();
   for (const auto& e : report.extra_walls) {
     extra.push_back({{"level", e.level},
@@ -130,6 +142,10 @@ nlohmann::json deviationReportJson(const slam::DeviationReport& report) {
                      {"length_m", e.length()},
                      {"planes", e.planes}});
   }
+  return extra;
+}
+
+nlohmann::json placementsJson(const slam::DeviationReport& report) {
   nlohmann::json placements = nlohmann::json::array();
   for (const auto& p : report.placements) {
     placements.push_back({{"level", p.level},
@@ -138,62 +154,67 @@ nlohmann::json deviationReportJson(const slam::DeviationReport& report) {
                           {"yaw_deg", common::degrees(p.correction.z())},
                           {"walls_used", p.walls_used}});
   }
+  return placements;
+}
+
+nlohmann::json columnsJson(const slam::DeviationReport& report) {
+  nlohmann::json columns = nlohmann::json::array();
+  for (const auto& c : report.columns) {
+    columns.push_back({{"column", c.column},
+                       {"level", c.level},
+                       {"shape", c.round ? "round" : "rectangle"},
+                       {"status", slam::toString(c.status)},
+                       {"planned_centre", point(c.planned_centre)},
+                       {"points", c.points},
+                       {"offset_m", c.offset_m ? point(*c.offset_m) : nlohmann::json()},
+                       {"directions_measured", c.directions_measured},
+                       {"seen_past", c.seen_past}});
+  }
+  return columns;
+}
+
+// The map against the plan, level by level, with its face stretches.
+nlohmann::json againstPlanJson(const slam::DeviationReport& report) {
+  nlohmann::json levels = nlohmann::json::array();
+  for (const auto& level : report.against_plan) {
+    nlohmann::json stretches = nlohmann::json::array();
+    for (const auto& s : level.stretches) {
+      stretches.push_back({{"surface", s.surface},
+                           {"start", point(s.start)},
+                           {"end", point(s.end)},
+                           {"points", s.points},
+                           {"mean_m", s.mean_m},
+                           {"rms_m", s.rms_m}});
+    }
+    levels.push_back({{"level", level.level},
+                      {"points", level.points},
+                      {"near_share", level.near_share},
+                      {"cutoff_m", level.cutoff_m},
+                      {"median_m", level.median_m},
+                      {"p95_m", level.p95_m},
+                      {"stretches", stretches}});
+  }
+  return levels;
+}
+
+}  // namespace
+
+nlohmann::json deviationReportJson(const slam::DeviationReport& report) {
+  nlohmann::json walls = nlohmann::json::array();
+  for (const auto& w : report.walls) walls.push_back(wallJson(w));
   nlohmann::json out = {{"format", "isg.deviations"},
                         {"version", 1},
                         {"frame", "B"},
                         {"levels", report.levels},
-                        {"thresholds", thresholds},
-                        {"placement_correction", placements},
+                        {"thresholds", thresholdsJson(report.options)},
+                        {"placement_correction", placementsJson(report)},
                         {"walls", walls},
-                        {"extra_walls", extra}};
+                        {"extra_walls", extraWallsJson(report)}};
   if (!report.columns.empty()) {
-    nlohmann::json columns = nlohmann::json::array();
-    for (const auto& c : report.columns) {
-      columns.push_back({{"column", c.column},
-                         {"level", c.level},
-                         {"shape", c.round ? "round" : "rectangle"},
-                         {"status", slam::toString(c.status)},
-                         {"planned_centre", point(c.planned_centre)},
-                         {"points", c.points},
-                         {"offset_m", c.offset_m ? point(*c.offset_m) : nlohmann::json()},
-                         {"directions_measured", c.directions_measured},
-                         {"seen_past", c.seen_past}});
-    }
-    out["columns"] = columns;
-    const slam::ColumnOptions& c = report.column_options;
-    out["thresholds"]["columns"] = {{"search_m", c.search_m},
-                                    {"band_margin_m", c.band_margin_m},
-                                    {"wall_clearance_m", c.wall_clearance_m},
-                                    {"inlier_m", c.inlier_m},
-                                    {"min_points", c.min_points},
-                                    {"min_direction_weight", c.min_direction_weight},
-                                    {"moved_m", c.moved_m},
-                                    {"view_range_m", c.view_range_m},
-                                    {"see_past_margin_m", c.see_past_margin_m},
-                                    {"min_views", c.min_views}};
+    out["columns"] = columnsJson(report);
+    out["thresholds"]["columns"] = columnThresholdsJson(report.column_options);
   }
-  if (!report.against_plan.empty()) {
-    nlohmann::json levels = nlohmann::json::array();
-    for (const auto& level : report.against_plan) {
-      nlohmann::json stretches = nlohmann::json::array();
-      for (const auto& s : level.stretches) {
-        stretches.push_back({{"surface", s.surface},
-                             {"start", point(s.start)},
-                             {"end", point(s.end)},
-                             {"points", s.points},
-                             {"mean_m", s.mean_m},
-                             {"rms_m", s.rms_m}});
-      }
-      levels.push_back({{"level", level.level},
-                        {"points", level.points},
-                        {"near_share", level.near_share},
-                        {"cutoff_m", level.cutoff_m},
-                        {"median_m", level.median_m},
-                        {"p95_m", level.p95_m},
-                        {"stretches", stretches}});
-    }
-    out["map_against_plan"] = levels;
-  }
+  if (!report.against_plan.empty()) out["map_against_plan"] = againstPlanJson(report);
   return out;
 }
 

@@ -356,17 +356,15 @@ std::string unreachedPart(const PlannedRoute& route) {
   return text;
 }
 
-PlannedRoute planRoute(const bim::Scenario& scenario, const OccupancyGrid& grid,
-                       std::mt19937_64& rng) {
-  const bim::Level& level = *scenario.plan.findLevel(scenario.robot.level);
-  const std::string& file = scenario.source;
-  PlannedRoute route;
-  RouteBuilder builder(scenario, grid, route);
-  const double clearance = scenario.robot.clearance;
+namespace {
 
-  // Start.
+// Where the walk starts: the given pose, the most open point of an open floor, or the start
+// room's centre; `start_room` is the room it stands in ("" outside any).
+Eigen::Vector2d routeStart(const bim::Scenario& scenario, const OccupancyGrid& grid,
+                           std::mt19937_64& rng, PlannedRoute& route, std::string& start_room) {
+  const bim::Level& level = *scenario.plan.findLevel(scenario.robot.level);
+  const double clearance = scenario.robot.clearance;
   Eigen::Vector2d start;
-  std::string start_room;
   if (scenario.robot.start_pose) {
     start = scenario.robot.start_pose->head<2>();
     route.start_yaw = scenario.robot.start_pose->z();
@@ -378,7 +376,7 @@ PlannedRoute planRoute(const bim::Scenario& scenario, const OccupancyGrid& grid,
     inside.outline = bim::facadeOutline(level);
     if (inside.outline.empty()) {
       throw common::InputError(
-          file, "/robot/start",
+          scenario.source, "/robot/start",
           "level \"" + level.id + "\" has neither rooms nor walls to stand in");
     }
     start = openFloorStart(grid, inside, clearance);
@@ -390,64 +388,67 @@ PlannedRoute planRoute(const bim::Scenario& scenario, const OccupancyGrid& grid,
     route.start_yaw =
         std::uniform_real_distribution<double>(-std::numbers::pi, std::numbers::pi)(rng);
   }
-  const double start_clearance = grid.clearanceAt(start);
-  if (start_clearance < clearance) {
-    throw common::InputError(file, "/robot/start", tooCloseReason(start, "stand", clearance));
-  }
-  builder.start(start);
-  if (!start_room.empty()) {
-    route.visited_rooms.push_back(start_room);
-    route.targets.push_back({start_room, start_room, 0, start, level.id});
-  }
+  return start;
+}
 
+// The route through the given waypoints, in order.
+void throughWaypoints(const bim::Scenario& scenario, RouteBuilder& builder, PlannedRoute& route) {
   const bim::Route& plan = scenario.robot.route;
-  if (plan.kind == bim::Route::Kind::kWaypoints) {
-    for (std::size_t i = 0; i < plan.waypoints.size(); ++i) {
-      if (!builder.goTo(plan.waypoints[i])) {
-        throw common::InputError(file, "/robot/route/waypoints/" + std::to_string(i),
-                                 "no path from " + formatPoint(route.waypoints.back()) + " to " +
-                                     formatPoint(plan.waypoints[i]) + " keeps " +
-                                     formatMetres(clearance) + " from walls and clutter");
-      }
-      route.targets.push_back({"", "waypoint " + std::to_string(i), int(route.waypoints.size()) - 1,
-                               plan.waypoints[i], level.id});
+  const double clearance = scenario.robot.clearance;
+  for (std::size_t i = 0; i < plan.waypoints.size(); ++i) {
+    if (!builder.goTo(plan.waypoints[i])) {
+      throw common::InputError(scenario.source, "/robot/route/waypoints/" + std::to_string(i),
+                               "no path from " + formatPoint(route.waypoints.back()) + " to " +
+                                   formatPoint(plan.waypoints[i]) + " keeps " +
+                                   formatMetres(clearance) + " from walls and clutter");
     }
-    return route;
+    route.targets.push_back({"", "waypoint " + std::to_string(i), int(route.waypoints.size()) - 1,
+                             plan.waypoints[i], scenario.robot.level});
   }
-  if (plan.kind == bim::Route::Kind::kRooms) {
-    for (std::size_t i = 0; i < plan.rooms.size(); ++i) {
-      const bim::Level& room_level = *scenario.plan.levelOfRoom(plan.rooms[i]);
-      const std::string pointer = "/robot/route/rooms/" + std::to_string(i);
-      if (&room_level != &builder.level()) {
-        const auto flights = builder.flightsTo(room_level);
-        if (flights.empty()) {
-          throw common::InputError(file, pointer,
-                                   "room \"" + plan.rooms[i] + "\" is on level \"" + room_level.id +
-                                       "\", which no flight of stairs leads to from level \"" +
-                                       builder.level().id + "\"");
-        }
-        for (const Flight& flight : flights) {
-          if (!builder.climb(flight)) {
-            throw common::InputError(file, pointer,
-                                     "room \"" + plan.rooms[i] + "\" on level \"" + room_level.id +
-                                         "\" cannot be reached: " +
-                                         flightBlocked(flight, route.waypoints.back(), clearance));
-          }
-        }
-      }
-      if (!builder.goTo(
-              roomCentre(builder.grid(), *room_level.findRoom(plan.rooms[i]), true, clearance))) {
-        throw common::InputError(file, pointer,
-                                 "room \"" + plan.rooms[i] + "\" cannot be reached from " +
-                                     formatPoint(route.waypoints.back()) +
-                                     " through open doors, keeping " + formatMetres(clearance) +
-                                     " from walls and clutter");
-      }
-      builder.reached(plan.rooms[i]);
-    }
-    return route;
-  }
+}
 
+// The route through the given rooms, in order, up and down the flights to rooms on other levels.
+void throughRooms(const bim::Scenario& scenario, RouteBuilder& builder, PlannedRoute& route) {
+  const bim::Route& plan = scenario.robot.route;
+  const std::string& file = scenario.source;
+  const double clearance = scenario.robot.clearance;
+  for (std::size_t i = 0; i < plan.rooms.size(); ++i) {
+    const bim::Level& room_level = *scenario.plan.levelOfRoom(plan.rooms[i]);
+    const std::string pointer = "/robot/route/rooms/" + std::to_string(i);
+    if (&room_level != &builder.level()) {
+      const auto flights = builder.flightsTo(room_level);
+      if (flights.empty()) {
+        throw common::InputError(file, pointer,
+                                 "room \"" + plan.rooms[i] + "\" is on level \"" + room_level.id +
+                                     "\", which no flight of stairs leads to from level \"" +
+                                     builder.level().id + "\"");
+      }
+      for (const Flight& flight : flights) {
+        if (!builder.climb(flight)) {
+          throw common::InputError(file, pointer,
+                                   "room \"" + plan.rooms[i] + "\" on level \"" + room_level.id +
+                                       "\" cannot be reached: " +
+                                       flightBlocked(flight, route.waypoints.back(), clearance));
+        }
+      }
+    }
+    if (!builder.goTo(
+            roomCentre(builder.grid(), *room_level.findRoom(plan.rooms[i]), true, clearance))) {
+      throw common::InputError(file, pointer,
+                               "room \"" + plan.rooms[i] + "\" cannot be reached from " +
+                                   formatPoint(route.waypoints.back()) +
+                                   " through open doors, keeping " + formatMetres(clearance) +
+                                   " from walls and clutter");
+    }
+    builder.reached(plan.rooms[i]);
+  }
+}
+
+// The tour: every room reachable on the start's level, then the levels the stairs lead to; what
+// it could not reach is listed with why.
+void tour(const bim::Scenario& scenario, RouteBuilder& builder, const std::string& start_room,
+          PlannedRoute& route) {
+  const bim::Level& level = *scenario.plan.findLevel(scenario.robot.level);
   std::set<std::string> seen{start_room};
   tourLevel(builder, scenario, seen, start_room);
   std::set<std::string> toured_levels{level.id};
@@ -463,6 +464,38 @@ PlannedRoute planRoute(const bim::Scenario& scenario, const OccupancyGrid& grid,
     for (const auto& room : l.rooms) {
       if (!seen.count(room.id)) route.skipped_rooms.push_back(room.id);
     }
+  }
+}
+
+}  // namespace
+
+PlannedRoute planRoute(const bim::Scenario& scenario, const OccupancyGrid& grid,
+                       std::mt19937_64& rng) {
+  const bim::Level& level = *scenario.plan.findLevel(scenario.robot.level);
+  const double clearance = scenario.robot.clearance;
+  PlannedRoute route;
+  RouteBuilder builder(scenario, grid, route);
+  std::string start_room;
+  const Eigen::Vector2d start = routeStart(scenario, grid, rng, route, start_room);
+  const double start_clearance = grid.clearanceAt(start);
+  if (start_clearance < clearance) {
+    throw common::InputError(scenario.source, "/robot/start",
+                             tooCloseReason(start, "stand", clearance));
+  }
+  builder.start(start);
+  if (!start_room.empty()) {
+    route.visited_rooms.push_back(start_room);
+    route.targets.push_back({start_room, start_room, 0, start, level.id});
+  }
+  switch (scenario.robot.route.kind) {
+    case bim::Route::Kind::kWaypoints:
+      throughWaypoints(scenario, builder, route);
+      break;
+    case bim::Route::Kind::kRooms:
+      throughRooms(scenario, builder, route);
+      break;
+    default:
+      tour(scenario, builder, start_room, route);
   }
   return route;
 }

@@ -52,29 +52,26 @@ bool boxMeetsWall(const Eigen::Vector2d& centre, const Eigen::Vector2d& size, do
   return std::abs(local.x()) <= hx && std::abs(local.y()) <= hy;
 }
 
-}  // namespace
-
-void leanBuilding(nlohmann::json& plan, nlohmann::json& scenario, double shear_deg,
-                  double turn_deg) {
-  if (shear_deg == 0.0 && turn_deg == 0.0) return;
-  const double shear = common::radians(shear_deg);
-  const double turn = common::radians(turn_deg);
-  Eigen::Matrix2d lean;
-  lean << 1.0, std::tan(shear), 0.0, 1.0;
-  const Eigen::Matrix2d A = Eigen::Rotation2Dd(turn).toRotationMatrix() * lean;
-  const auto map = [&](const json& p) {
+// The lean as a map of the plan: sheared, then turned about the origin.
+struct Lean {
+  Eigen::Matrix2d A;
+  double turn = 0.0;
+  json map(const json& p) const {
     const Eigen::Vector2d q = A * vec(p);
     return json::array({mm(q.x()), mm(q.y())});
-  };
+  }
+};
 
+// The plan's walls, doors and rooms leaned; returns each wall as leaned, by id.
+std::map<std::string, LeanedWall> leanPlan(json& plan, const Lean& lean) {
   std::map<std::string, LeanedWall> walls;
   for (json& level : plan["levels"]) {
     for (json& wall : level["walls"]) {
       const Eigen::Vector2d start = vec(wall["start"]), end = vec(wall["end"]);
       LeanedWall leaned;
-      leaned.stretch = (A * (end - start)).norm() / (end - start).norm();
-      wall["start"] = map(wall["start"]);
-      wall["end"] = map(wall["end"]);
+      leaned.stretch = (lean.A * (end - start)).norm() / (end - start).norm();
+      wall["start"] = lean.map(wall["start"]);
+      wall["end"] = lean.map(wall["end"]);
       leaned.start = vec(wall["start"]);
       leaned.end = vec(wall["end"]);
       // A shear keeps areas: a wall's length times its thickness stays.
@@ -92,15 +89,16 @@ void leanBuilding(nlohmann::json& plan, nlohmann::json& scenario, double shear_d
     }
     if (level.contains("rooms")) {
       for (json& room : level["rooms"]) {
-        for (json& vertex : room["outline"]) vertex = map(vertex);
+        for (json& vertex : room["outline"]) vertex = lean.map(vertex);
       }
     }
   }
-  char title[96];
-  std::snprintf(title, sizeof title, ", sheared %g°, turned %g°", shear_deg, turn_deg);
-  plan["name"] = plan["name"].get<std::string>() + title;
+  return walls;
+}
 
-  json& as_built = scenario["as_built"];
+// Places along walls (a rotation's pivot, a shortened wall's built parts) stretched with them,
+// never past the leaned wall's end.
+void leanAlongWalls(json& as_built, const std::map<std::string, LeanedWall>& walls) {
   const auto length = [&](const std::string& id) {
     const LeanedWall& w = walls.at(id);
     return (w.end - w.start).norm();
@@ -123,12 +121,17 @@ void leanBuilding(nlohmann::json& plan, nlohmann::json& scenario, double shear_d
       }
     }
   }
+}
+
+// Extra walls leaned; clutter leaned and turned, a box that now meets a wall left out.
+void leanExtraWallsAndClutter(json& as_built, const Lean& lean,
+                              const std::map<std::string, LeanedWall>& walls) {
   std::vector<LeanedWall> obstacles;
   for (const auto& [id, wall] : walls) obstacles.push_back(wall);
   if (as_built.contains("extra_walls")) {
     for (json& extra : as_built["extra_walls"]) {
-      extra["start"] = map(extra["start"]);
-      extra["end"] = map(extra["end"]);
+      extra["start"] = lean.map(extra["start"]);
+      extra["end"] = lean.map(extra["end"]);
       LeanedWall leaned;
       leaned.start = vec(extra["start"]);
       leaned.end = vec(extra["end"]);
@@ -136,27 +139,46 @@ void leanBuilding(nlohmann::json& plan, nlohmann::json& scenario, double shear_d
       obstacles.push_back(leaned);
     }
   }
-  if (as_built.contains("clutter")) {
-    json kept = json::array();
-    for (json box : as_built["clutter"]) {
-      const json xy = map(json::array({box["center"][0], box["center"][1]}));
-      box["center"][0] = xy[0];
-      box["center"][1] = xy[1];
-      box["yaw"] = mm(box["yaw"].get<double>() + turn);
-      const Eigen::Vector2d centre = vec(xy);
-      const Eigen::Vector2d size = vec(box["size"]);
-      const double yaw = box["yaw"].get<double>();
-      const bool in_wall = std::any_of(obstacles.begin(), obstacles.end(), [&](const auto& w) {
-        return boxMeetsWall(centre, size, yaw, w, 0.05);
-      });
-      if (!in_wall) kept.push_back(std::move(box));
-    }
-    if (kept.empty()) {
-      as_built.erase("clutter");
-    } else {
-      as_built["clutter"] = std::move(kept);
-    }
+  if (!as_built.contains("clutter")) return;
+  json kept = json::array();
+  for (json box : as_built["clutter"]) {
+    const json xy = lean.map(json::array({box["center"][0], box["center"][1]}));
+    box["center"][0] = xy[0];
+    box["center"][1] = xy[1];
+    box["yaw"] = mm(box["yaw"].get<double>() + lean.turn);
+    const Eigen::Vector2d centre = vec(xy);
+    const Eigen::Vector2d size = vec(box["size"]);
+    const double yaw = box["yaw"].get<double>();
+    const bool in_wall = std::any_of(obstacles.begin(), obstacles.end(), [&](const auto& w) {
+      return boxMeetsWall(centre, size, yaw, w, 0.05);
+    });
+    if (!in_wall) kept.push_back(std::move(box));
   }
+  if (kept.empty()) {
+    as_built.erase("clutter");
+  } else {
+    as_built["clutter"] = std::move(kept);
+  }
+}
+
+}  // namespace
+
+void leanBuilding(nlohmann::json& plan, nlohmann::json& scenario, double shear_deg,
+                  double turn_deg) {
+  if (shear_deg == 0.0 && turn_deg == 0.0) return;
+  const double shear = common::radians(shear_deg);
+  Lean lean;
+  lean.turn = common::radians(turn_deg);
+  Eigen::Matrix2d shear_matrix;
+  shear_matrix << 1.0, std::tan(shear), 0.0, 1.0;
+  lean.A = Eigen::Rotation2Dd(lean.turn).toRotationMatrix() * shear_matrix;
+  const std::map<std::string, LeanedWall> walls = leanPlan(plan, lean);
+  char title[96];
+  std::snprintf(title, sizeof title, ", sheared %g°, turned %g°", shear_deg, turn_deg);
+  plan["name"] = plan["name"].get<std::string>() + title;
+  json& as_built = scenario["as_built"];
+  leanAlongWalls(as_built, walls);
+  leanExtraWallsAndClutter(as_built, lean, walls);
 }
 
 }  // namespace isg::worlds

@@ -2,7 +2,6 @@
 #include <benchmark/benchmark.h>
 
 #include "bim/agraph.hpp"
-#include "bim/agraph_optimizer.hpp"
 #include "bim/plan_geometry.hpp"
 #include "bim/plan_parser.hpp"
 #include "bim/synthetic_plan.hpp"
@@ -59,21 +58,6 @@ void BM_BuildAGraph(benchmark::State& state) {
   state.counters["rooms"] = double(state.range(0));
 }
 BENCHMARK(BM_BuildAGraph)->Arg(50)->Arg(200)->Arg(1000)->Unit(benchmark::kMillisecond);
-
-// One optimisation of the whole A-Graph from perturbed values, for scale.
-void BM_OptimizeAGraph(benchmark::State& state) {
-  const common::JsonSource source{"grid.json", nullptr};
-  const nlohmann::json document = makeGridPlan(gridOf(int(state.range(0))));
-  const Plan plan = parsePlan(common::JsonNode(document, "", source));
-  const AGraph graph = buildAGraph(plan);
-  for (auto _ : state) {
-    AGraphState graph_state(graph);
-    for (auto& r : graph_state.rooms) r.x() += 0.1;
-    benchmark::DoNotOptimize(graph_state.optimize());
-  }
-  state.counters["rooms"] = double(state.range(0));
-}
-BENCHMARK(BM_OptimizeAGraph)->Arg(50)->Arg(200)->Unit(benchmark::kMillisecond);
 
 }  // namespace
 }  // namespace isg::bim

@@ -23,15 +23,17 @@ inline const std::map<std::string, std::set<std::string>>& allowedModules() {
   static const std::map<std::string, std::set<std::string>> allowed{
       {"common", {}},
       {"bim", {"common"}},
+      {"bim/optimizer", {"common", "bim"}},
       {"worlds", {"common", "bim"}},
       {"ifc", {"common", "bim"}},
+      {"raster", {"common", "bim"}},
       {"eval", {"common"}},
       {"sensors", {"common"}},
       {"formats", {"common", "sensors"}},
       {"recordings", {"common", "sensors", "formats"}},
       {"slam", {"common", "bim", "sensors"}},
-      {"slam/sgraph", {"common", "bim", "sensors", "slam"}},
-      {"slam/isgraph", {"common", "bim", "sensors", "slam", "slam/sgraph"}},
+      {"slam/sgraph", {"common", "bim", "bim/optimizer", "sensors", "slam"}},
+      {"slam/isgraph", {"common", "bim", "bim/optimizer", "sensors", "slam", "slam/sgraph"}},
       {"slam/baselines", {"common", "bim", "sensors", "slam"}},
       {"slam/deviations", {"common", "bim", "slam"}},
       {"run",
@@ -40,9 +42,9 @@ inline const std::map<std::string, std::set<std::string>>& allowedModules() {
       {"sim", {"common", "bim", "worlds", "sensors", "formats"}},
       {"sweep", {"common", "bim", "worlds", "eval", "run", "sim"}},
       {"cli",
-       {"common", "bim", "worlds", "ifc", "eval", "sensors", "formats", "recordings", "slam",
-        "slam/sgraph", "slam/isgraph", "slam/baselines", "slam/deviations", "run", "sim",
-        "sweep"}},
+       {"common", "bim", "bim/optimizer", "worlds", "ifc", "raster", "eval", "sensors", "formats",
+        "recordings", "slam", "slam/sgraph", "slam/isgraph", "slam/baselines", "slam/deviations",
+        "run", "sim", "sweep"}},
   };
   return allowed;
 }

@@ -163,7 +163,18 @@ nlohmann::json MatchResult::candidatesJson() const {
 
 GraphMatcher::GraphMatcher(const bim::AGraph& graph, const MatchingOptions& options)
     : graph_(&graph), options_(options) {
-  // The grid's extent: every surface segment and room outline.
+  layGrid();
+  if (options_.plane_angle_deg < 90.0) {
+    plane_angle_screen_ = std::cos(common::radians(options_.plane_angle_deg)) - 1e-9;
+  }
+  indexSurfaces();
+  indexRoomsAndDoors();
+  findCorners();
+}
+
+// The grid's extent: every surface segment and room outline, with a margin.
+void GraphMatcher::layGrid() {
+  const bim::AGraph& graph = *graph_;
   Eigen::AlignedBox2d bounds = graph.surfaceBounds();
   for (const auto& r : graph.rooms) {
     for (const auto& p : r.outline) bounds.extend(p);
@@ -176,21 +187,27 @@ GraphMatcher::GraphMatcher(const bim::AGraph& graph, const MatchingOptions& opti
   columns_ = int(std::ceil((hi.x() - lo.x() + 2 * margin) / cell_)) + 1;
   rows_ = int(std::ceil((hi.y() - lo.y() + 2 * margin) / cell_)) + 1;
   cells_.resize(std::size_t(columns_) * rows_);
-  auto insert_box = [&](Eigen::Vector2d a, Eigen::Vector2d b, double pad, auto&& add) {
-    const Eigen::Vector2d box_lo = a.cwiseMin(b) - Eigen::Vector2d::Constant(pad);
-    const Eigen::Vector2d box_hi = a.cwiseMax(b) + Eigen::Vector2d::Constant(pad);
-    const int c0 = std::max(0, int((box_lo.x() - origin_.x()) / cell_));
-    const int c1 = std::min(columns_ - 1, int((box_hi.x() - origin_.x()) / cell_));
-    const int r0 = std::max(0, int((box_lo.y() - origin_.y()) / cell_));
-    const int r1 = std::min(rows_ - 1, int((box_hi.y() - origin_.y()) / cell_));
-    for (int r = r0; r <= r1; ++r) {
-      for (int c = c0; c <= c1; ++c) add(cells_[std::size_t(r) * columns_ + c]);
-    }
-  };
-  if (options_.plane_angle_deg < 90.0) {
-    plane_angle_screen_ = std::cos(common::radians(options_.plane_angle_deg)) - 1e-9;
+}
+
+std::vector<GraphMatcher::Cell*> GraphMatcher::cellsNear(const Eigen::Vector2d& a,
+                                                         const Eigen::Vector2d& b, double pad) {
+  const Eigen::Vector2d box_lo = a.cwiseMin(b) - Eigen::Vector2d::Constant(pad);
+  const Eigen::Vector2d box_hi = a.cwiseMax(b) + Eigen::Vector2d::Constant(pad);
+  const int c0 = std::max(0, int((box_lo.x() - origin_.x()) / cell_));
+  const int c1 = std::min(columns_ - 1, int((box_hi.x() - origin_.x()) / cell_));
+  const int r0 = std::max(0, int((box_lo.y() - origin_.y()) / cell_));
+  const int r1 = std::min(rows_ - 1, int((box_hi.y() - origin_.y()) / cell_));
+  std::vector<Cell*> out;
+  for (int r = r0; r <= r1; ++r) {
+    for (int c = c0; c <= c1; ++c) out.push_back(&cells_[std::size_t(r) * columns_ + c]);
   }
-  // A surface is found from any S-plane whose middle could lie within the tolerances of it.
+  return out;
+}
+
+// Each surface's normal and wall, entered in every cell from which an S-plane's middle could lie
+// within the tolerances of it.
+void GraphMatcher::indexSurfaces() {
+  const bim::AGraph& graph = *graph_;
   const double surface_pad = options_.plane_distance + options_.plane_gap + 0.5;
   for (int i = 0; i < int(graph.surfaces.size()); ++i) {
     const auto& s = graph.surfaces[i];
@@ -205,18 +222,23 @@ GraphMatcher::GraphMatcher(const bim::AGraph& graph, const MatchingOptions& opti
     }
     wall_of_surface_.push_back(first_face);
     for (const auto& [a, b] : s.segments) {
-      insert_box(a, b, surface_pad, [&](Cell& cell) {
-        if (cell.surfaces.empty() || cell.surfaces.back() != i) cell.surfaces.push_back(i);
-      });
+      for (Cell* cell : cellsNear(a, b, surface_pad)) {
+        if (cell->surfaces.empty() || cell->surfaces.back() != i) cell->surfaces.push_back(i);
+      }
     }
   }
+}
+
+// Each room's yaw and outline's box in the grid; each room's doorways.
+void GraphMatcher::indexRoomsAndDoors() {
+  const bim::AGraph& graph = *graph_;
   for (int i = 0; i < int(graph.rooms.size()); ++i) {
     const auto& r = graph.rooms[i];
     room_yaw_.push_back(r.pairs.empty() ? 0.0 : yawOfNormal(graph.surfaces[r.pairs[0][0]].plane));
     if (r.outline.empty()) continue;
     Eigen::Vector2d a = r.outline[0], b = r.outline[0];
     for (const auto& p : r.outline) a = a.cwiseMin(p), b = b.cwiseMax(p);
-    insert_box(a, b, options_.centre_tolerance, [&](Cell& cell) { cell.rooms.push_back(i); });
+    for (Cell* cell : cellsNear(a, b, options_.centre_tolerance)) cell->rooms.push_back(i);
   }
   doors_of_room_.resize(graph.rooms.size());
   for (int d = 0; d < int(graph.doorways.size()); ++d) {
@@ -224,9 +246,13 @@ GraphMatcher::GraphMatcher(const bim::AGraph& graph, const MatchingOptions& opti
       if (r >= 0 && r < int(graph.rooms.size())) doors_of_room_[r].push_back(d);
     }
   }
-  // The plan's wall corners (seeds, slam/isgraph/match_seeds.cpp): segment ends that meet. Each arm
-  // is as long as its surface, and the surfaces in line with it, reach from the corner, across
-  // doorways and gaps: an S-plane spans them.
+}
+
+// The plan's wall corners (seeds, slam/isgraph/match_seeds.cpp): segment ends that meet. Each arm
+// is as long as its surface, and the surfaces in line with it, reach from the corner, across
+// doorways and gaps: an S-plane spans them.
+void GraphMatcher::findCorners() {
+  const bim::AGraph& graph = *graph_;
   const std::vector<std::vector<int>> in_line = surfacesInLine(graph.surfaces);
   std::set<std::array<int, 4>> paired;
   for (int i = 0; i < int(graph.surfaces.size()); ++i) {

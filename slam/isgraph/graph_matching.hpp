@@ -279,6 +279,14 @@ class GraphMatcher {
                                         Eigen::Vector2d q_start, Eigen::Vector2d q_end, double gap,
                                         double min_sine);
   const Cell* cellAt(const Eigen::Vector2d& p) const;
+  // Construction, step by step: the grid over the plan's surfaces and rooms, the cells a box
+  // (a–b grown by `pad`) covers, the surfaces and the rooms entered in the grid, the plan's
+  // wall corners.
+  void layGrid();
+  std::vector<Cell*> cellsNear(const Eigen::Vector2d& a, const Eigen::Vector2d& b, double pad);
+  void indexSurfaces();
+  void indexRoomsAndDoors();
+  void findCorners();
   int matchRoom(const MatchRoom& room, const Placement& placed, double* distance) const;
   int matchPlane(const MatchPlane& plane, const Placement& placed, double* overlap,
                  double* distance) const;

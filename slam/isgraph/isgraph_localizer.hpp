@@ -7,7 +7,7 @@
 #include <vector>
 
 #include "bim/agraph.hpp"
-#include "bim/agraph_optimizer.hpp"
+#include "bim/optimizer/agraph_optimizer.hpp"
 #include "slam/isgraph/compiled_plan.hpp"
 #include "slam/isgraph/floor_following.hpp"
 #include "slam/isgraph/graph_matching.hpp"

@@ -5,7 +5,7 @@
 #include <Eigen/Core>
 #include <Eigen/Geometry>
 
-#include "bim/plane_manifold.hpp"
+#include "bim/optimizer/plane_manifold.hpp"
 
 namespace isg::slam {
 

@@ -3,7 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
-#include "bim/agraph_factors.hpp"
+#include "bim/optimizer/agraph_factors.hpp"
 #include "slam/isgraph/merging_factors.hpp"
 #include "slam/isgraph/room_hold.hpp"
 

@@ -9,8 +9,8 @@
 #include <set>
 #include <vector>
 
-#include "bim/agraph_optimizer.hpp"
-#include "bim/plane_manifold.hpp"
+#include "bim/optimizer/agraph_optimizer.hpp"
+#include "bim/optimizer/plane_manifold.hpp"
 #include "slam/isgraph/compiled_plan.hpp"
 #include "slam/isgraph/door_jambs.hpp"
 #include "slam/isgraph/held_answer.hpp"

@@ -9,8 +9,8 @@
 #include <map>
 #include <set>
 
-#include "bim/agraph_factors.hpp"
-#include "bim/plane_manifold.hpp"
+#include "bim/optimizer/agraph_factors.hpp"
+#include "bim/optimizer/plane_manifold.hpp"
 #include "common/angles.hpp"
 #include "slam/sgraph/confirmed_spans.hpp"
 #include "slam/sgraph/sgraph_factors.hpp"

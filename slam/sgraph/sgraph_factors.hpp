@@ -6,7 +6,7 @@
 
 #include <Eigen/Geometry>
 
-#include "bim/plane_manifold.hpp"
+#include "bim/optimizer/plane_manifold.hpp"
 
 namespace isg::slam {
 
@@ -14,7 +14,8 @@ namespace isg::slam {
 // plane observation, whose Jacobians are written by hand. A keyframe pose M_T_R is two parameter
 // blocks: its position (3) and its orientation as an Eigen quaternion [x, y, z, w] (4, on
 // ceres::EigenQuaternionManifold). Planes are [n, d] on bim::PlaneManifold.
-// The room factors are the A-Graph's (bim/agraph_factors.hpp): the same maths, written once.
+// The room factors are the A-Graph's (bim/optimizer/agraph_factors.hpp): the same maths, written
+// once.
 
 // A plane observed in the LiDAR frame of a keyframe: e = (M_T_L⁻¹ · π_M) ⊖ z in the minimal
 // (azimuth, elevation, distance) form, whitened. M_T_L = M_T_R · R_T_L.

@@ -9,9 +9,9 @@
 #include <memory>
 #include <numbers>
 
+#include "bim/optimizer/plane_manifold.hpp"
+#include "bim/optimizer/tests/jacobian_check.hpp"
 #include "bim/plane.hpp"
-#include "bim/plane_manifold.hpp"
-#include "bim/tests/jacobian_check.hpp"
 #include "slam/sgraph/sgraph_factors.hpp"
 #include "slam/sgraph/tests/test_poses.hpp"
 

@@ -6,7 +6,7 @@
 #include <gtest/gtest.h>
 #include <numbers>
 
-#include "bim/tests/jacobian_check.hpp"
+#include "bim/optimizer/tests/jacobian_check.hpp"
 #include "slam/sgraph/tests/test_poses.hpp"
 
 #include <cmath>

@@ -1,4 +1,4 @@
-#include "bim/raster_plan.hpp"
+#include "raster/raster_plan.hpp"
 
 #include <gtest/gtest.h>
 
@@ -9,10 +9,10 @@
 #include "bim/plan_parser.hpp"
 #include "bim/plan_transform.hpp"
 #include "bim/synthetic_plan.hpp"
-#include "bim/tests/raster_drawing.hpp"
 #include "common/json_reader.hpp"
+#include "raster/tests/raster_drawing.hpp"
 
-namespace isg::bim {
+namespace isg::raster {
 namespace {
 
 constexpr double kPi = 3.14159265358979323846;
@@ -187,9 +187,9 @@ TEST(RasterPlan, APlanTurnedToAnyAngleImportsBackItsWalls) {
 }
 
 }  // namespace
-}  // namespace isg::bim
+}  // namespace isg::raster
 
-namespace isg::bim {
+namespace isg::raster {
 namespace {
 
 // An image of `width` × `height` pixels at 1 cm, light, with the pixels inside `dark` occupied.
@@ -309,4 +309,4 @@ TEST(RasterWalls, TextAndCurvesAreSaidNotTurnedIntoWalls) {
 }
 
 }  // namespace
-}  // namespace isg::bim
+}  // namespace isg::raster

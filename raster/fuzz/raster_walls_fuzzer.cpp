@@ -1,12 +1,12 @@
 // libFuzzer harness: bytes → a small occupancy image (two bytes its width and height, 1–128
 // pixels each, then one bit a pixel: 1 occupied) → the walls, columns and doorways traced in it
-// and the plan they make (bim/raster_plan.hpp). Any InputError is the expected answer (an image
+// and the plan they make (raster/raster_plan.hpp). Any InputError is the expected answer (an image
 // with no wall); anything else (a crash, a sanitizer report, another exception) is a bug.
 #include <cstdint>
 #include <string>
 
-#include "bim/raster_plan.hpp"
 #include "common/input_error.hpp"
+#include "raster/raster_plan.hpp"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   if (size < 2) return 0;
@@ -21,9 +21,9 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     }
   }
   try {
-    isg::bim::RasterPlanOptions options;
+    isg::raster::RasterPlanOptions options;
     options.resolution = 0.02;
-    isg::bim::rasterPlanFromImage(image, "fuzz.png", options);
+    isg::raster::rasterPlanFromImage(image, "fuzz.png", options);
   } catch (const isg::common::InputError&) {
   }
   return 0;

@@ -1,14 +1,14 @@
-#include "bim/agraph_factors.hpp"
+#include "bim/optimizer/agraph_factors.hpp"
 
 #include <ceres/gradient_checker.h>
 #include <gtest/gtest.h>
 
-#include "bim/tests/jacobian_check.hpp"
+#include "bim/optimizer/tests/jacobian_check.hpp"
 
 #include <random>
 
 #include "bim/agraph.hpp"
-#include "bim/plane_manifold.hpp"
+#include "bim/optimizer/plane_manifold.hpp"
 
 namespace isg::bim {
 namespace {

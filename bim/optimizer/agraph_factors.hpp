@@ -4,7 +4,7 @@
 
 #include <Eigen/Core>
 
-#include "bim/plane_manifold.hpp"
+#include "bim/optimizer/plane_manifold.hpp"
 
 namespace isg::bim {
 

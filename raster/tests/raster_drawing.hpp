@@ -10,15 +10,15 @@
 #include "bim/polygon.hpp"
 #include "common/occupancy_image.hpp"
 
-namespace isg::bim::testing {
+namespace isg::raster::testing {
 
 // A level drawn as a floor plan image is drawn: every wall's solid pieces (footprintPieces: its
 // end extensions included, its door openings cut out) dark, the rest light; `margin` metres of
 // light ground around the walls. `origin` receives the plan coordinates of the image's
 // bottom-left corner.
-inline common::OccupancyImage drawLevel(const Level& level, double resolution, double margin,
+inline common::OccupancyImage drawLevel(const bim::Level& level, double resolution, double margin,
                                         Eigen::Vector2d* origin) {
-  const LevelGeometry geometry = computeLevelGeometry(level);
+  const bim::LevelGeometry geometry = bim::computeLevelGeometry(level);
   std::vector<std::vector<Eigen::Vector2d>> pieces;
   Eigen::Vector2d lo(1e300, 1e300), hi(-1e300, -1e300);
   for (const auto& wall : geometry.walls) {
@@ -44,7 +44,7 @@ inline common::OccupancyImage drawLevel(const Level& level, double resolution, d
     for (int u = u0; u <= u1; ++u) {
       for (int c = c0; c <= c1; ++c) {
         const Eigen::Vector2d centre = lo + resolution * Eigen::Vector2d(c + 0.5, u + 0.5);
-        if (containsPoint(piece, centre)) {
+        if (bim::containsPoint(piece, centre)) {
           image.pixels[std::size_t(image.height - 1 - u) * image.width + c] =
               common::PixelClass::kOccupied;
         }
@@ -54,4 +54,4 @@ inline common::OccupancyImage drawLevel(const Level& level, double resolution, d
   return image;
 }
 
-}  // namespace isg::bim::testing
+}  // namespace isg::raster::testing

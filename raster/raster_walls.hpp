@@ -6,7 +6,7 @@
 
 #include "common/occupancy_image.hpp"
 
-namespace isg::bim {
+namespace isg::raster {
 
 using common::OccupancyImage;
 using common::PixelClass;
@@ -66,4 +66,4 @@ struct RasterWalls {
 
 RasterWalls traceRasterWalls(const OccupancyImage& image, const RasterWallOptions& options);
 
-}  // namespace isg::bim
+}  // namespace isg::raster

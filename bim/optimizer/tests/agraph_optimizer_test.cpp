@@ -1,4 +1,4 @@
-#include "bim/agraph_optimizer.hpp"
+#include "bim/optimizer/agraph_optimizer.hpp"
 
 #include <gtest/gtest.h>
 

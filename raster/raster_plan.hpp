@@ -6,12 +6,12 @@
 #include <vector>
 
 #include "bim/plan.hpp"
-#include "bim/raster_walls.hpp"
+#include "raster/raster_walls.hpp"
 
-namespace isg::bim {
+namespace isg::raster {
 
 // A floor plan image as a one-level plan (docs/formats.md, "Importing raster floor plans"): the
-// walls and columns traced in it (bim/raster_walls.hpp), its doorways, and as rooms the free
+// walls and columns traced in it (raster/raster_walls.hpp), its doorways, and as rooms the free
 // regions the walls enclose with the doors closed (bim/free_space_rooms.hpp). Columns are written
 // as walls of their own footprint (named "column", "round column") until the plan format has
 // columns. The image's bottom-left corner lies at `origin`, the image turned by `yaw` about it.
@@ -26,7 +26,7 @@ struct RasterPlanOptions {
 };
 
 struct RasterPlanImport {
-  Plan plan;
+  bim::Plan plan;
   nlohmann::ordered_json plan_json;
   std::vector<std::string> log;  // regions left out or simplified, one line each
   int width = 0, height = 0;     // the image's pixels
@@ -39,4 +39,4 @@ struct RasterPlanImport {
 RasterPlanImport rasterPlanFromImage(const OccupancyImage& image, const std::string& image_path,
                                      const RasterPlanOptions& options);
 
-}  // namespace isg::bim
+}  // namespace isg::raster

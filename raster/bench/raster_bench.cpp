@@ -6,13 +6,13 @@
 
 #include "bim/free_space_rooms.hpp"
 #include "bim/plan_parser.hpp"
-#include "bim/raster_plan.hpp"
-#include "bim/raster_walls.hpp"
 #include "bim/synthetic_plan.hpp"
-#include "bim/tests/raster_drawing.hpp"
 #include "common/json_reader.hpp"
+#include "raster/raster_plan.hpp"
+#include "raster/raster_walls.hpp"
+#include "raster/tests/raster_drawing.hpp"
 
-namespace isg::bim {
+namespace isg::raster {
 namespace {
 
 struct DrawnFloor {
@@ -68,4 +68,4 @@ void BM_FreeSpaceRooms_Grid200(benchmark::State& state) {
 BENCHMARK(BM_FreeSpaceRooms_Grid200)->Unit(benchmark::kMillisecond);
 
 }  // namespace
-}  // namespace isg::bim
+}  // namespace isg::raster

@@ -8,7 +8,7 @@
 #include <vector>
 
 #include "bim/agraph.hpp"
-#include "bim/plane_manifold.hpp"
+#include "bim/optimizer/plane_manifold.hpp"
 
 namespace isg::bim {
 

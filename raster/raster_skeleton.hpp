@@ -5,7 +5,7 @@
 
 #include "common/occupancy_image.hpp"
 
-namespace isg::bim {
+namespace isg::raster {
 
 using common::OccupancyImage;
 
@@ -29,4 +29,4 @@ struct Skeleton {
 Skeleton thinRegion(const OccupancyImage& image, const std::vector<std::uint32_t>& pixels,
                     int min_column, int max_column, int min_row, int max_row);
 
-}  // namespace isg::bim
+}  // namespace isg::raster

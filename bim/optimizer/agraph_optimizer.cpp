@@ -1,6 +1,6 @@
-#include "bim/agraph_optimizer.hpp"
+#include "bim/optimizer/agraph_optimizer.hpp"
 
-#include "bim/agraph_factors.hpp"
+#include "bim/optimizer/agraph_factors.hpp"
 
 namespace isg::bim {
 

@@ -1,4 +1,4 @@
-#include "bim/plane_manifold.hpp"
+#include "bim/optimizer/plane_manifold.hpp"
 
 namespace isg::bim {
 

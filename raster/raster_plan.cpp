@@ -1,0 +1,214 @@
+#include "raster/raster_plan.hpp"
+
+#include <cmath>
+#include <filesystem>
+
+#include "bim/free_space_rooms.hpp"
+#include "bim/limits.hpp"
+#include "bim/plan_json.hpp"
+#include "bim/plan_parser.hpp"
+#include "common/input_error.hpp"
+#include "common/json_reader.hpp"
+
+namespace isg::raster {
+namespace {
+
+using bim::Column;
+using bim::Door;
+using bim::Level;
+using bim::Plan;
+using bim::Room;
+using bim::Wall;
+
+// The options a user gives, held to what a level can be before any pixel is traced.
+void checkOptions(const OccupancyImage& image, const std::string& file,
+                  const RasterPlanOptions& options) {
+  if (!(options.resolution > 0.0) || options.resolution > 10.0) {
+    throw common::InputError(file, "", "the resolution must be above 0 and at most 10 m a pixel");
+  }
+  const double width_m = image.width * options.resolution,
+               height_m = image.height * options.resolution;
+  if (std::max(width_m, height_m) > 1000.0) {
+    throw common::InputError(
+        file, "",
+        "the image covers " + std::to_string(int(std::round(width_m))) + " m × " +
+            std::to_string(int(std::round(height_m))) +
+            " m at this resolution; a level fits in 1000 m × 1000 m (docs/formats.md, Limits): "
+            "is the resolution in metres a pixel?");
+  }
+  if (!(options.height > 0.0) || options.height > 100.0) {
+    throw common::InputError(file, "", "the wall height must lie in (0, 100] m");
+  }
+}
+
+// Walls W1 …, columns C1 …, in the order traced.
+std::vector<std::string> tracedIds(const RasterWalls& traced, int& walls, int& columns) {
+  std::vector<std::string> id_of(traced.walls.size());
+  walls = 0, columns = 0;
+  for (std::size_t k = 0; k < traced.walls.size(); ++k) {
+    id_of[k] = traced.walls[k].kind != RasterWall::Kind::kWall ? "C" + std::to_string(++columns)
+                                                               : "W" + std::to_string(++walls);
+  }
+  return id_of;
+}
+
+// A compact blob: a column, rectangular along the traced axis or round (its diameter the traced
+// thickness).
+Column tracedColumn(const RasterWall& traced_wall, const std::string& id,
+                    const Eigen::Vector2d& start, const Eigen::Vector2d& end, double thickness,
+                    double height) {
+  Column column;
+  column.id = id;
+  column.center = 0.5 * (start + end);
+  column.height = height;
+  if (traced_wall.kind == RasterWall::Kind::kRoundColumn) {
+    column.shape = Column::Shape::kRound;
+    column.size = {thickness, thickness};
+  } else {
+    const Eigen::Vector2d along = end - start;
+    column.size = {std::clamp(along.norm(), 0.001, 10.0), thickness};
+    column.yaw = std::atan2(along.y(), along.x());
+  }
+  return column;
+}
+
+// The traced walls and columns placed in the plan: the image's bottom-left corner at `origin`,
+// turned by `yaw` about it.
+void addWallsAndColumns(const RasterWalls& traced, const std::vector<std::string>& id_of,
+                        const RasterPlanOptions& options, Level& level) {
+  const Eigen::Rotation2Dd turn(options.yaw);
+  const auto placed = [&](const Eigen::Vector2d& p) -> Eigen::Vector2d {
+    return options.origin + turn * p;
+  };
+  for (std::size_t k = 0; k < traced.walls.size(); ++k) {
+    const RasterWall& traced_wall = traced.walls[k];
+    const Eigen::Vector2d start = placed(traced_wall.start), end = placed(traced_wall.end);
+    const double thickness = std::clamp(traced_wall.thickness, 0.001, 10.0);
+    if (traced_wall.kind != RasterWall::Kind::kWall) {
+      level.columns.push_back(
+          tracedColumn(traced_wall, id_of[k], start, end, thickness, options.height));
+      continue;
+    }
+    Wall wall;
+    wall.id = id_of[k];
+    wall.start = start;
+    wall.end = end;
+    wall.thickness = thickness;
+    wall.height = options.height;
+    if ((wall.end - wall.start).norm() < 0.001) continue;
+    level.walls.push_back(std::move(wall));
+  }
+}
+
+// A level with nothing on it, or more walls than a plan may hold, is no plan.
+void checkLevel(const Level& level, const RasterWalls& traced, const std::string& file) {
+  if (level.walls.empty() && level.columns.empty()) {
+    throw common::InputError(file, "",
+                             "no wall or column found in the image (" +
+                                 std::to_string(traced.regions) +
+                                 " dark regions): is it a floor plan with dark walls on a light "
+                                 "ground (or is negate needed)?");
+  }
+  if (level.walls.size() > bim::limits::kMaxWallsPerLevel) {
+    throw common::InputError(file, "",
+                             std::to_string(level.walls.size()) + " walls traced; at most " +
+                                 std::to_string(bim::limits::kMaxWallsPerLevel) +
+                                 " a level are supported (docs/formats.md, Limits)");
+  }
+}
+
+// The traced doorways of walls (a column has none); the rooms either side are left to the parser.
+int addDoors(const RasterWalls& traced, const std::vector<std::string>& id_of,
+             const RasterPlanOptions& options, Level& level) {
+  const double door_height = std::min(options.door_height, 0.9 * options.height);
+  int doors = 0;
+  for (const RasterDoor& traced_door : traced.doors) {
+    if (traced.walls[traced_door.wall].kind != RasterWall::Kind::kWall) continue;  // no door
+    Door door;
+    door.id = "D" + std::to_string(++doors);
+    door.wall = id_of[traced_door.wall];
+    door.offset = traced_door.offset;
+    door.width = traced_door.width;
+    door.height = door_height;
+    door.rooms_inferred = true;  // the image says none: the parser finds them from the outlines
+    level.doors.push_back(std::move(door));
+  }
+  return doors;
+}
+
+// What the trace and the rooms left out, one line each.
+void logLeftOut(const RasterWalls& traced, const bim::FreeSpaceRooms& rooms,
+                std::vector<std::string>& log) {
+  for (const auto& line : traced.left_out) log.push_back(line);
+  if (traced.specks > 0) {
+    log.push_back(std::to_string(traced.specks) +
+                  " specks (dark regions under 0.0025 m²): left out as noise");
+  }
+  if (rooms.pockets > 0) {
+    log.push_back(std::to_string(rooms.pockets) +
+                  " enclosed pockets under 1 m² (shafts drawn open, gaps): no rooms");
+  }
+}
+
+// The level as a plan, written by the plan's one writer and read back by its own parser: what is
+// written is a plan isg accepts.
+void writeAndReadBack(Level level, const std::string& file, const RasterPlanOptions& options,
+                      RasterPlanImport& result) {
+  Plan plan;
+  plan.name = std::filesystem::path(file).stem().string();
+  bim::ImportedFrom& from = plan.imported_from.emplace();
+  from.file = std::filesystem::path(file).filename().string();
+  from.schema = options.source_kind;
+  plan.levels.push_back(std::move(level));
+  result.plan_json = bim::planToJson(
+      plan, {.every_wall_height = false, .inferred_door_rooms = false, .names = true});
+  const nlohmann::json document = nlohmann::json::parse(result.plan_json.dump());
+  common::Warnings warnings;
+  const common::JsonSource source{file, &warnings};
+  try {
+    result.plan = bim::parsePlan(common::JsonNode(document, "", source));
+  } catch (const common::InputError& e) {
+    throw common::InputError(file, "",
+                             "the plan traced from it breaks a rule of the plan format at " +
+                                 e.pointer() + ": " + e.reason());
+  }
+}
+
+}  // namespace
+
+RasterPlanImport rasterPlanFromImage(const OccupancyImage& image, const std::string& image_path,
+                                     const RasterPlanOptions& options) {
+  const std::string& file = options.from_file.empty() ? image_path : options.from_file;
+  checkOptions(image, file, options);
+  RasterWallOptions trace;
+  trace.resolution = options.resolution;
+  trace.origin = options.origin;
+  trace.yaw = options.yaw;
+  const RasterWalls traced = traceRasterWalls(image, trace);
+
+  RasterPlanImport result;
+  result.width = image.width, result.height = image.height;
+  result.specks = traced.specks;
+  Level level;
+  level.id = "L0";
+  level.height = options.height;
+  int walls = 0, columns = 0;
+  const std::vector<std::string> id_of = tracedIds(traced, walls, columns);
+  addWallsAndColumns(traced, id_of, options, level);
+  checkLevel(level, traced, file);
+  const int doors = addDoors(traced, id_of, options, level);
+  const bim::FreeSpaceRooms rooms = bim::enclosedFreeSpaces(level);
+  for (std::size_t k = 0; k < rooms.outlines.size(); ++k) {
+    Room room;
+    room.id = "R" + std::to_string(k + 1);
+    room.outline = rooms.outlines[k];
+    level.rooms.push_back(std::move(room));
+  }
+  logLeftOut(traced, rooms, result.log);
+  result.walls = walls, result.columns = columns, result.doors = doors;
+  result.rooms = int(level.rooms.size()), result.pockets = rooms.pockets;
+  writeAndReadBack(std::move(level), file, options, result);
+  return result;
+}
+
+}  // namespace isg::raster
