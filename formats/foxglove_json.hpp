@@ -5,7 +5,7 @@
 #include <string>
 #include <vector>
 
-#include "formats/rosbag_writer.hpp"
+#include "formats/ros_time.hpp"
 
 namespace isg::formats::foxglove {
 

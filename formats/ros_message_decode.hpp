@@ -8,7 +8,7 @@
 #include <string_view>
 #include <vector>
 
-#include "formats/rosbag_writer.hpp"
+#include "formats/ros_time.hpp"
 
 namespace isg::formats::ros1 {
 

@@ -60,18 +60,6 @@ std::string bagHeaderRecord(std::uint64_t index_position, std::uint32_t connecti
 
 }  // namespace
 
-RosTime RosTime::fromSeconds(double seconds, std::uint32_t offset) {
-  const double limit = 4294967296.0 - double(offset);
-  if (!(seconds >= 0.0) || seconds >= limit) {
-    throw std::invalid_argument("ROS time out of range: " + std::to_string(seconds) + " s + " +
-                                std::to_string(offset) + " s");
-  }
-  const auto total = std::uint64_t(std::llround(seconds * 1e9));
-  const std::uint64_t sec = total / 1000000000u + offset;
-  if (sec > 0xffffffffu) throw std::invalid_argument("ROS time out of range");
-  return {std::uint32_t(sec), std::uint32_t(total % 1000000000u)};
-}
-
 RosbagWriter::RosbagWriter(const std::string& path, bool overwrite)
     : file_(path, common::OutputKind::kBag, overwrite) {
   out_.open(file_.temporary(), std::ios::binary | std::ios::trunc);

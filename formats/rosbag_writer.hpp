@@ -7,18 +7,9 @@
 #include <vector>
 
 #include "common/atomic_folder.hpp"
+#include "formats/ros_time.hpp"
 
 namespace isg::formats {
-
-// ROS 1 time: seconds and nanoseconds since the epoch.
-struct RosTime {
-  std::uint32_t sec = 0;
-  std::uint32_t nsec = 0;
-  // `seconds` ≥ 0, rounded to the nanosecond, plus `offset` whole seconds (added as an integer:
-  // a double near 1e9 s holds time only to ~0.1 µs).
-  static RosTime fromSeconds(double seconds, std::uint32_t offset = 0);
-  bool operator<(const RosTime& o) const { return sec != o.sec ? sec < o.sec : nsec < o.nsec; }
-};
 
 // What a bag records of a message type: its name, MD5 and full definition (as gencpp emits them).
 struct RosMessageType {

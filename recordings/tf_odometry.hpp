@@ -7,7 +7,7 @@
 #include <string>
 #include <vector>
 
-#include "formats/rosbag_writer.hpp"
+#include "formats/ros_time.hpp"
 #include "recordings/static_frames.hpp"
 
 namespace isg::recordings {

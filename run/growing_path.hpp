@@ -4,7 +4,7 @@
 #include <optional>
 #include <string>
 
-#include "formats/rosbag_writer.hpp"
+#include "formats/ros_time.hpp"
 
 namespace isg::run {
 

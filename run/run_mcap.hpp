@@ -10,7 +10,7 @@
 #include "common/pose_track.hpp"
 #include "common/tum.hpp"
 #include "formats/mcap_writer.hpp"
-#include "formats/rosbag_writer.hpp"
+#include "formats/ros_time.hpp"
 #include "run/growing_path.hpp"
 #include "sensors/messages.hpp"
 

@@ -3,7 +3,7 @@
 #include <nlohmann/json.hpp>
 #include <vector>
 
-#include "formats/rosbag_writer.hpp"
+#include "formats/ros_time.hpp"
 
 namespace isg::run {
 
