@@ -15,6 +15,11 @@
 namespace isg::raster {
 namespace {
 
+using bim::FreeSpaceRooms;
+using bim::GridPlanSpec;
+using bim::Plan;
+using bim::parsePlan;
+
 struct DrawnFloor {
   Plan plan;
   OccupancyImage image;

@@ -15,6 +15,15 @@
 namespace isg::raster {
 namespace {
 
+using bim::GridPlanSpec;
+using bim::Level;
+using bim::LevelGeometry;
+using bim::Plan;
+using bim::Wall;
+using bim::loadPlan;
+using bim::parsePlan;
+using bim::planarMotion;
+
 constexpr double kPi = 3.14159265358979323846;
 
 std::string planPath(const std::string& name) {
