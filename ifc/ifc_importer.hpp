@@ -6,6 +6,8 @@
 // (ifc/ifcpp_model.hpp), whose names are global.
 
 #include <ifcpp/IFC4/include/IfcBuildingStorey.h>
+#include <ifcpp/IFC4/include/IfcElement.h>
+#include <ifcpp/IFC4/include/IfcObjectDefinition.h>
 #include <ifcpp/IFC4/include/IfcSpace.h>
 
 #include <map>
