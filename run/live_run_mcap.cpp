@@ -3,7 +3,6 @@
 #include <utility>
 
 #include "bim/agraph_json.hpp"
-#include "run/deviation_report.hpp"
 #include "slam/match_status.hpp"
 
 namespace isg::run {
@@ -114,10 +113,10 @@ void LiveRunMcap::observe(const sensors::Scan* scan, const slam::Localizer& loca
 }
 
 void LiveRunMcap::finish(const RunRecord& record, const RunEvaluation& evaluation) {
-  std::optional<nlohmann::json> deviations;
-  if (evaluation.deviations) deviations = deviationReportJson(*evaluation.deviations);
-  // The last task: the thread is joined before `record` and `deviations` go.
-  post([&] { writer_.finish(record.graph, deviations ? &*deviations : nullptr); });
+  // The last task: the thread is joined before `record` and `evaluation` go.
+  post([&] {
+    writer_.finish(record.graph, evaluation.deviations ? &*evaluation.deviations : nullptr);
+  });
   stop();
   rethrow();
 }

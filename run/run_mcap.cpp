@@ -8,6 +8,7 @@
 #include "formats/foxglove_json.hpp"
 #include "formats/ros2_messages.hpp"
 #include "formats/trajectory_file.hpp"
+#include "run/deviation_report_reader.hpp"
 #include "run/run_scene.hpp"
 
 namespace isg::run {
@@ -229,7 +230,7 @@ void RunMcapWriter::writePaths(double stamp) {
   writeText(kRunEstimateMapPathTopic, stamp, estimate_map_path_.message(t, kMapFrame));
 }
 
-void RunMcapWriter::finish(const Json& final_graph, const Json* deviations) {
+void RunMcapWriter::finish(const Json& final_graph, const slam::DeviationReport* deviations) {
   if (!started_) start(0.0);
   writeSnapshot(last_stamp_, final_graph);
   writePaths(last_stamp_);
@@ -268,7 +269,10 @@ RunExportSummary exportRunFolder(const std::string& run_dir, const std::string& 
   const Json metrics = common::readJsonFile(file("metrics.json"));
   const Json graph = common::readJsonFile(file("sgraph.json"));
   const std::optional<Json> agraph = optionalJson("agraph.json");
-  const std::optional<Json> deviations = optionalJson("deviations.json");
+  const std::optional<slam::DeviationReport> deviations =
+      fs::exists(file("deviations.json"))
+          ? std::optional<slam::DeviationReport>(loadDeviationReport(file("deviations.json")))
+          : std::nullopt;
   const common::Trajectory estimate_map = formats::readTrajectoryFile(file("estimate_map.tum"));
   const common::Trajectory estimate =
       formats::readTrajectoryFile(file("estimate.tum"), /*require_poses=*/false);

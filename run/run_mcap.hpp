@@ -13,6 +13,7 @@
 #include "formats/ros_time.hpp"
 #include "run/growing_path.hpp"
 #include "sensors/messages.hpp"
+#include "slam/deviations/plan_deviations.hpp"
 
 namespace isg::run {
 
@@ -85,9 +86,9 @@ class RunMcapWriter {
   void add(const RunMoment& moment);
   // A scan the localizer read, in the LiDAR's frame at its own stamp (the turn's first firing).
   void addScan(const sensors::Scan& scan);
-  // The final graph (sgraph.json) and deviations.json's document (or null), at the last moment's
+  // The final graph (sgraph.json) and the deviation report (or null), at the last moment's
   // stamp; closes the file.
-  void finish(const nlohmann::json& final_graph, const nlohmann::json* deviations);
+  void finish(const nlohmann::json& final_graph, const slam::DeviationReport* deviations);
 
   // Messages per topic so far.
   std::vector<std::pair<std::string, std::uint64_t>> counts() const;

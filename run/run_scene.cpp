@@ -318,11 +318,19 @@ std::vector<Json> candidateEntities(const Json& sgraph, const Json& agraph,
 
 namespace {
 
+// A point of the report (B, metres) at height z.
+Vector3d at(const Eigen::Vector2d& xy, double z) { return {xy.x(), xy.y(), z}; }
+
+double elevationOf(const std::map<std::string, double>& by_level, const std::string& level) {
+  const auto it = by_level.find(level);
+  return it == by_level.end() ? 0.0 : it->second;
+}
+
 // Where the map lies off the plan (deviations.json's map_against_plan): each face's stretches at
 // a metre above its floor, one line list per class of slam::offClass, the farther ones labelled
 // with their mean offset.
-Json againstPlanEntity(const Json& levels, const std::map<std::string, double>& by_level,
-                       formats::RosTime stamp) {
+Json againstPlanEntity(const std::vector<slam::LevelAgainstPlan>& levels,
+                       const std::map<std::string, double>& by_level, formats::RosTime stamp) {
   Json entity = fx::sceneEntity(stamp, "plan", "deviations/map-against-plan");
   fx::Rgba colour[4];
   for (int c = 0; c < 4; ++c) {
@@ -330,12 +338,12 @@ Json againstPlanEntity(const Json& levels, const std::map<std::string, double>& 
     colour[c] = {rgb[0] / 255.0, rgb[1] / 255.0, rgb[2] / 255.0, 1.0};
   }
   std::vector<Vector3d> lines[4];
-  for (const Json& level : levels) {
-    const double z = elevationOf(by_level, level) + 1.0;
-    for (const Json& stretch : level.at("stretches")) {
-      const double mean = stretch.at("mean_m").get<double>();
+  for (const slam::LevelAgainstPlan& level : levels) {
+    const double z = elevationOf(by_level, level.level) + 1.0;
+    for (const slam::FaceStretch& stretch : level.stretches) {
+      const double mean = stretch.mean_m;
       const int c = slam::offClass(mean);
-      const Vector3d a = at(stretch.at("start"), z), b = at(stretch.at("end"), z);
+      const Vector3d a = at(stretch.start, z), b = at(stretch.end, z);
       lines[c].push_back(a);
       lines[c].push_back(b);
       if (c >= 2) {
@@ -350,32 +358,27 @@ Json againstPlanEntity(const Json& levels, const std::map<std::string, double>& 
   return entity;
 }
 
-}  // namespace
-
-namespace {
-
 // The columns judged (deviations.json `columns`): a square mark at each planned centre coloured by
 // its status (the column's own outline is among the plan's walls, drawn under it); a moved one
 // also a line to where the map found it, and the moved and missing ones labelled.
-Json columnEntity(const Json& columns, const std::map<std::string, double>& by_level,
-                  formats::RosTime stamp) {
+Json columnEntity(const std::vector<slam::ColumnDeviation>& columns,
+                  const std::map<std::string, double>& by_level, formats::RosTime stamp) {
   Json entity = fx::sceneEntity(stamp, "plan", "deviations/columns");
   entity["lines"] = Json::array();
   entity["texts"] = Json::array();
   constexpr double kLift = 0.07;  // m above the floor, over the walls' layer
   constexpr double kHalf = 0.25;  // m: half the mark's side
-  for (const Json& column : columns) {
-    const double z = elevationOf(by_level, column) + kLift;
-    const std::string status = column.at("status").get<std::string>();
-    const Vector3d c = at(column.at("planned_centre"), z);
+  for (const slam::ColumnDeviation& column : columns) {
+    const double z = elevationOf(by_level, column.level) + kLift;
+    const std::string status = slam::toString(column.status);
+    const Vector3d c = at(column.planned_centre, z);
     entity["lines"].push_back(
         fx::lineLoop({c + Vector3d(-kHalf, -kHalf, 0), c + Vector3d(kHalf, -kHalf, 0),
                       c + Vector3d(kHalf, kHalf, 0), c + Vector3d(-kHalf, kHalf, 0)},
                      0.06, statusColour(status)));
-    std::string label = column.at("column").get<std::string>() + " " + status;
-    if (status == "moved" && column.at("offset_m").is_array()) {
-      const Vector3d offset(column.at("offset_m")[0].get<double>(),
-                            column.at("offset_m")[1].get<double>(), 0.0);
+    std::string label = column.column + " " + status;
+    if (status == "moved" && column.offset_m) {
+      const Vector3d offset(column.offset_m->x(), column.offset_m->y(), 0.0);
       entity["lines"].push_back(fx::lineList({c, c + offset}, 0.04, statusColour(status)));
       label += " " + fixed(offset.norm(), 2) + " m";
     }
@@ -387,47 +390,48 @@ Json columnEntity(const Json& columns, const std::map<std::string, double>& by_l
   return entity;
 }
 
-}  // namespace
-
-std::vector<Json> deviationEntities(const Json& deviations, const Json& agraph,
-                                    formats::RosTime stamp) {
-  const auto by_level = elevations(agraph);
+// Each judged wall at its planned place, coloured by status, with the map's evidence along it;
+// the deviating ones labelled with their offset and angle; the extra walls.
+Json wallEntity(const slam::DeviationReport& report, const std::map<std::string, double>& by_level,
+                formats::RosTime stamp) {
   Json entity = fx::sceneEntity(stamp, "plan", "deviations/walls");
   constexpr double kLift = 0.05;  // m above the floor, over the room outlines
-  for (const Json& wall : deviations.at("walls")) {
-    const double z = elevationOf(by_level, wall) + kLift;
-    const std::string status = wall.at("status").get<std::string>();
-    const Vector3d a = at(wall.at("planned").at("start"), z);
-    const Vector3d b = at(wall.at("planned").at("end"), z);
+  for (const slam::WallDeviation& wall : report.walls) {
+    const double z = elevationOf(by_level, wall.level) + kLift;
+    const std::string status = slam::toString(wall.status);
+    const Vector3d a = at(wall.planned_start, z);
+    const Vector3d b = at(wall.planned_end, z);
     entity["lines"].push_back(fx::lineList({a, b}, 0.12, statusColour(status)));
     std::vector<Vector3d> built;
-    for (const Json& evidence : wall.at("evidence")) {
-      built.push_back(at(evidence.at("start"), z + 0.02));
-      built.push_back(at(evidence.at("end"), z + 0.02));
+    for (const slam::WallEvidence& evidence : wall.evidence) {
+      built.push_back(at(evidence.start_B, z + 0.02));
+      built.push_back(at(evidence.end_B, z + 0.02));
     }
     if (!built.empty()) entity["lines"].push_back(fx::lineList(built, 0.04, kAsBuilt));
     if (status == "as_planned" || status == "not_seen") continue;
-    std::string label = wall.at("wall").get<std::string>() + " " + status;
-    if (wall.at("offset_m").is_number()) {
-      label += " " + fixed(wall.at("offset_m").get<double>(), 2) + " m";
-    }
-    if (wall.at("angle_deg").is_number()) {
-      label += " " + fixed(wall.at("angle_deg").get<double>(), 1) + " deg";
-    }
+    std::string label = wall.wall + " " + status;
+    if (wall.offset_m) label += " " + fixed(*wall.offset_m, 2) + " m";
+    if (wall.angle_deg) label += " " + fixed(*wall.angle_deg, 1) + " deg";
     entity["texts"].push_back(
         fx::text((a + b) / 2.0 + Vector3d(0, 0, 0.4), label, kFontSize, statusColour(status)));
   }
-  for (const Json& extra : deviations.at("extra_walls")) {
-    const double z = elevationOf(by_level, extra) + kLift;
+  for (const slam::ExtraWall& extra : report.extra_walls) {
+    const double z = elevationOf(by_level, extra.level) + kLift;
     entity["lines"].push_back(
-        fx::lineList({at(extra.at("start"), z), at(extra.at("end"), z)}, 0.12, kExtraWall));
+        fx::lineList({at(extra.start, z), at(extra.end, z)}, 0.12, kExtraWall));
   }
-  std::vector<Json> entities = {entity};
-  if (deviations.contains("columns") && !deviations.at("columns").empty()) {
-    entities.push_back(columnEntity(deviations.at("columns"), by_level, stamp));
-  }
-  if (deviations.contains("map_against_plan")) {
-    entities.push_back(againstPlanEntity(deviations.at("map_against_plan"), by_level, stamp));
+  return entity;
+}
+
+}  // namespace
+
+std::vector<Json> deviationEntities(const slam::DeviationReport& report, const Json& agraph,
+                                    formats::RosTime stamp) {
+  const auto by_level = elevations(agraph);
+  std::vector<Json> entities = {wallEntity(report, by_level, stamp)};
+  if (!report.columns.empty()) entities.push_back(columnEntity(report.columns, by_level, stamp));
+  if (!report.against_plan.empty()) {
+    entities.push_back(againstPlanEntity(report.against_plan, by_level, stamp));
   }
   return entities;
 }

@@ -4,6 +4,7 @@
 #include <vector>
 
 #include "formats/ros_time.hpp"
+#include "slam/deviations/plan_deviations.hpp"
 
 namespace isg::run {
 
@@ -43,10 +44,12 @@ std::vector<nlohmann::json> sgraphEntities(const nlohmann::json& sgraph, formats
 std::vector<nlohmann::json> candidateEntities(const nlohmann::json& sgraph,
                                               const nlohmann::json& agraph, formats::RosTime stamp);
 
-// The deviations of deviations.json, in frame "plan": "deviations/walls" — each judged wall's
-// planned line coloured by its status, the as-built segments that judged it, and a label for each
-// deviating wall — and the extra walls; each level at its elevation in `agraph`.
-std::vector<nlohmann::json> deviationEntities(const nlohmann::json& deviations,
+// The deviation report (a run's, or deviations.json read by run::readDeviationReport), in frame
+// "plan": "deviations/walls" — each judged wall's planned line coloured by its status, the
+// as-built segments that judged it, and a label for each deviating wall — and the extra walls;
+// "deviations/columns" and "deviations/map-against-plan" when it has them; each level at its
+// elevation in `agraph`.
+std::vector<nlohmann::json> deviationEntities(const slam::DeviationReport& report,
                                               const nlohmann::json& agraph, formats::RosTime stamp);
 
 }  // namespace isg::run

@@ -4,6 +4,9 @@
 
 #include <Eigen/Core>
 #include <cmath>
+#include <optional>
+#include <utility>
+#include <vector>
 
 namespace isg::run {
 namespace {
@@ -135,16 +138,33 @@ TEST(RunScene, EachCandidatePlacesTheMapsWallsOnTheMatchedLevel) {
       candidateEntities(Json::object(), handAGraph(), formats::RosTime{})[0]["lines"].empty());
 }
 
+// A wall of the report by hand: planned from a to b on L1.
+slam::WallDeviation wallOf(const std::string& id, slam::WallStatus status, double offset_m,
+                           double angle_deg, Eigen::Vector2d a, Eigen::Vector2d b) {
+  slam::WallDeviation wall;
+  wall.wall = id;
+  wall.level = "L1";
+  wall.status = status;
+  wall.offset_m = offset_m;
+  wall.angle_deg = angle_deg;
+  wall.planned_start = a;
+  wall.planned_end = b;
+  return wall;
+}
+
 TEST(RunScene, DeviationsAreColouredAndTheDeviatingOnesLabelled) {
-  const Json deviations = Json::parse(R"({
-    "walls": [
-      {"wall": "W1", "level": "L1", "status": "shifted", "offset_m": 0.312, "angle_deg": 0.44,
-       "planned": {"start": [0, 0], "end": [4, 0]},
-       "evidence": [{"start": [0, 0.3], "end": [4, 0.3]}]},
-      {"wall": "W2", "level": "L1", "status": "as_planned", "offset_m": 0.01, "angle_deg": 0.1,
-       "planned": {"start": [4, 0], "end": [4, 4]}, "evidence": []}],
-    "extra_walls": [{"level": "L1", "start": [1, 1], "end": [1, 3]}]
-  })");
+  slam::DeviationReport deviations;
+  deviations.walls.push_back(wallOf("W1", slam::WallStatus::kShifted, 0.312, 0.44, {0, 0}, {4, 0}));
+  slam::WallEvidence evidence;
+  evidence.start_B = {0, 0.3};
+  evidence.end_B = {4, 0.3};
+  deviations.walls.back().evidence.push_back(evidence);
+  deviations.walls.push_back(wallOf("W2", slam::WallStatus::kAsPlanned, 0.01, 0.1, {4, 0}, {4, 4}));
+  slam::ExtraWall extra;
+  extra.level = "L1";
+  extra.start = {1, 1};
+  extra.end = {1, 3};
+  deviations.extra_walls.push_back(extra);
   const auto drawn = deviationEntities(deviations, handAGraph(), formats::RosTime{});
   ASSERT_EQ(drawn.size(), 1u);
   const Json& walls = drawn[0];
@@ -157,17 +177,24 @@ TEST(RunScene, DeviationsAreColouredAndTheDeviatingOnesLabelled) {
   EXPECT_EQ(point(walls["lines"][3]["points"][1]), Eigen::Vector3d(1, 3, 3.05));
 }
 
+// A column of the report by hand, on L1.
+slam::ColumnDeviation columnOf(const std::string& id, slam::ColumnStatus status,
+                               Eigen::Vector2d centre, std::optional<Eigen::Vector2d> offset) {
+  slam::ColumnDeviation column;
+  column.column = id;
+  column.level = "L1";
+  column.status = status;
+  column.planned_centre = centre;
+  column.offset_m = offset;
+  return column;
+}
+
 TEST(RunScene, ColumnsAreMarkedByStatusAndTheMovedOnesShowWhereTheyStand) {
-  const Json deviations = Json::parse(R"({
-    "walls": [], "extra_walls": [],
-    "columns": [
-      {"column": "C1", "level": "L1", "status": "as_planned", "planned_centre": [2, 2],
-       "offset_m": [0.004, 0.0]},
-      {"column": "C2", "level": "L1", "status": "moved", "planned_centre": [6, 2],
-       "offset_m": [-0.12, 0.05]},
-      {"column": "C3", "level": "L1", "status": "missing", "planned_centre": [10, 2],
-       "offset_m": null}]
-  })");
+  slam::DeviationReport deviations;
+  deviations.columns = {
+      columnOf("C1", slam::ColumnStatus::kAsPlanned, {2, 2}, Eigen::Vector2d(0.004, 0.0)),
+      columnOf("C2", slam::ColumnStatus::kMoved, {6, 2}, Eigen::Vector2d(-0.12, 0.05)),
+      columnOf("C3", slam::ColumnStatus::kMissing, {10, 2}, std::nullopt)};
   const auto drawn = deviationEntities(deviations, handAGraph(), formats::RosTime{});
   ASSERT_EQ(drawn.size(), 2u);
   const Json& columns = drawn[1];
@@ -186,13 +213,18 @@ TEST(RunScene, ColumnsAreMarkedByStatusAndTheMovedOnesShowWhereTheyStand) {
 }
 
 TEST(RunScene, TheMapAgainstThePlanIsDrawnByHowFarOffEachStretchLies) {
-  const Json deviations = Json::parse(R"({
-    "walls": [], "extra_walls": [],
-    "map_against_plan": [{"level": "L1", "stretches": [
-      {"start": [0, 0], "end": [1, 0], "mean_m": 0.004},
-      {"start": [1, 0], "end": [2, 0], "mean_m": -0.031},
-      {"start": [2, 0], "end": [3, 0], "mean_m": 0.12}]}]
-  })");
+  slam::DeviationReport deviations;
+  slam::LevelAgainstPlan level;
+  level.level = "L1";
+  for (const auto& [from, mean] :
+       std::vector<std::pair<double, double>>{{0.0, 0.004}, {1.0, -0.031}, {2.0, 0.12}}) {
+    slam::FaceStretch stretch;
+    stretch.start = {from, 0};
+    stretch.end = {from + 1.0, 0};
+    stretch.mean_m = mean;
+    level.stretches.push_back(stretch);
+  }
+  deviations.against_plan.push_back(level);
   const auto drawn = deviationEntities(deviations, handAGraph(), formats::RosTime{});
   ASSERT_EQ(drawn.size(), 2u);
   const Json& against = drawn[1];
