@@ -6,6 +6,7 @@
 #include <deque>
 #include <map>
 #include <numbers>
+#include <stdexcept>
 #include <tuple>
 
 #include "bim/polygon.hpp"
@@ -1005,6 +1006,9 @@ DeviationReport measureDeviations(
     const bim::AGraph& plan, const MapDiagnostics& map, const Eigen::Isometry3d& B_T_M,
     const DeviationOptions& options,
     const std::vector<std::optional<Eigen::Isometry3d>>& keyframe_B_T_M) {
+  if (const auto invalid = options.invalidField()) {
+    throw std::invalid_argument("deviation options: " + *invalid);
+  }
   DeviationReport report;
   report.options = options;
   std::vector<std::optional<Eigen::Isometry3d>> placed_by_keyframes;
