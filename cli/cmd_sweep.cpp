@@ -15,6 +15,7 @@
 #include "sweep/run_table.hpp"
 #include "sweep/slurm_backend.hpp"
 #include "sweep/suite.hpp"
+#include "sweep/sweep_folder.hpp"
 #include "worlds/reference_plans.hpp"
 
 namespace isg::cli {
@@ -22,23 +23,6 @@ namespace isg::cli {
 namespace {
 
 namespace fs = std::filesystem;
-
-// Moves the finished (or damaged) cells of `worlds` aside, with their failure records: they ran
-// on a world that has changed since.
-void moveWorldCellsAside(const std::string& sweep_dir, const std::vector<sweep::SweepCell>& cells,
-                         const std::vector<sweep::ChangedWorld>& worlds) {
-  for (const auto& cell : cells) {
-    bool changed = false;
-    for (const auto& w : worlds) changed = changed || w.name == cell.world;
-    if (!changed) continue;
-    std::error_code ignored;
-    fs::remove(sweep::failureRecordPath(sweep_dir, cell), ignored);
-    if (!fs::exists(fs::symlink_status(fs::path(sweep_dir) / cell.dir))) continue;
-    const std::string aside = sweep::moveCellAside(sweep_dir, cell);
-    std::fprintf(stderr, "isg sweep: %s ran on the world before it changed; moved to %s\n",
-                 cell.dir.c_str(), aside.c_str());
-  }
-}
 
 }  // namespace
 
@@ -114,55 +98,6 @@ int SweepCommand::collect(const std::string& sweep_dir) const {
       sweep_dir.c_str(), c.finished, common::counted(plan.cells.size(), "cell").c_str(),
       c.failed.size(), c.missing.size(), sweep_dir.c_str());
   return c.failed.empty() && c.missing.empty() ? kExitOk : kExitIncomplete;
-}
-
-void SweepCommand::startFolder(const sweep::Suite& suite) const {
-  // The output rule: not the working directory or what holds it, not the suite or its world
-  // files, and an existing folder only if it is a sweep's (or empty).
-  std::vector<std::string> inputs = {input_};
-  for (const auto& world : suite.worlds) {
-    if (!world.generate && !worlds::isBuiltin(world.input)) inputs.push_back(world.input);
-  }
-  common::checkOutputPath(output_, {common::OutputKind::kSweep, inputs});
-  std::error_code made;
-  fs::create_directories(output_, made);
-  if (made)
-    throw common::InputError(output_, "", "cannot make the sweep folder: " + made.message());
-}
-
-void SweepCommand::checkAgainstEarlierStart(const sweep::Suite& suite,
-                                            const std::vector<sweep::SweepCell>& cells) const {
-  const fs::path plan_path = fs::path(output_) / sweep::kSweepPlanFile;
-  if (!fs::exists(plan_path)) return;
-  // A sweep folder holds one suite's cells: starting it again with other cells would mix them.
-  const sweep::SweepPlan before = sweep::readSweepPlan(output_);
-  bool same = before.cells.size() == cells.size();
-  for (std::size_t i = 0; same && i < cells.size(); ++i) {
-    same = before.cells[i].dir == cells[i].dir && before.cells[i].arguments == cells[i].arguments;
-  }
-  if (!same) {
-    throw common::InputError(plan_path.string(), "",
-                             "this sweep folder holds another suite's cells (" +
-                                 std::to_string(before.cells.size()) + " cells of " +
-                                 before.suite_file + "); give another -o or remove it");
-  }
-  // The same cells of a changed world would mix two buildings in one row.
-  const std::vector<sweep::ChangedWorld> changed = sweep::changedWorlds(suite, before);
-  if (!changed.empty() && !rerun_changed_) {
-    std::string list;
-    for (const auto& w : changed) {
-      list += (list.empty() ? "" : "; ") + w.name + " (" + w.before.substr(0, 19) + "… then, " +
-              w.now.substr(0, 19) + "… now)";
-    }
-    throw common::InputError(input_, "",
-                             "world" + std::string(changed.size() > 1 ? "s" : "") +
-                                 " changed since this sweep ran in " + output_ + ": " + list +
-                                 "; --rerun-changed runs their cells again on the world as it is "
-                                 "now (the old runs are moved to " +
-                                 output_ + "/" + sweep::kSweepAsideFolder +
-                                 "), or give another -o");
-  }
-  moveWorldCellsAside(output_, before.cells, changed);
 }
 
 int SweepCommand::runOnSlurm(const sweep::Suite& suite,
@@ -244,7 +179,7 @@ int SweepCommand::run() {
   }
   if (output_.empty()) return usage("isg sweep SUITE.json needs -o SWEEP_DIR");
   sweep::Suite suite = sweep::loadSuite(input_, run::builtinMethods());
-  startFolder(suite);
+  sweep::startSweepFolder(output_, input_, suite);
   // One sweep at a time in a folder, from here to the end (the lock goes with the process). Taken
   // before anything is written in the folder, its marker included: of two sweeps started at the
   // same instant into a new folder, the second is told that the first runs.
@@ -255,7 +190,7 @@ int SweepCommand::run() {
   sweep::prepareSweepWorlds(suite, output_);
   const std::vector<sweep::SweepCell> cells = sweep::sweepCells(suite);
   const std::string plan_text = sweep::sweepPlanJson(suite, cells);
-  checkAgainstEarlierStart(suite, cells);
+  sweep::checkAgainstEarlierStart(output_, input_, suite, cells, rerun_changed_);
   common::writeFileAtomically((fs::path(output_) / sweep::kSweepPlanFile).string(), plan_text);
   return backend_ == "slurm" ? runOnSlurm(suite, cells) : runLocally(cells);
 }

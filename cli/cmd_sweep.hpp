@@ -17,12 +17,6 @@ class SweepCommand : public Command {
 
  private:
   int collect(const std::string& sweep_dir) const;
-  // The output folder checked (the output rule) and made, with its marker.
-  void startFolder(const sweep::Suite& suite) const;
-  // A folder started before must hold the same cells, of the same worlds (unless
-  // --rerun-changed: their cells are moved aside).
-  void checkAgainstEarlierStart(const sweep::Suite& suite,
-                                const std::vector<sweep::SweepCell>& cells) const;
   // The cells not finished as Slurm job arrays (--dry-run: the script only; --wait: collected).
   int runOnSlurm(const sweep::Suite& suite, const std::vector<sweep::SweepCell>& cells) const;
   // Every cell on the local pool, then the table.
