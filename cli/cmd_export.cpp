@@ -10,7 +10,7 @@
 #include "common/output_path.hpp"
 #include "recordings/mcap_export.hpp"
 #include "recordings/rosbag_export.hpp"
-#include "run/run_mcap.hpp"
+#include "run/foxglove/run_mcap.hpp"
 
 namespace isg::cli {
 

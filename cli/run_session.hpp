@@ -9,7 +9,7 @@
 #include "cli/progress_bar.hpp"
 #include "run/driver.hpp"
 #include "run/evaluate_run.hpp"
-#include "run/live_run_mcap.hpp"
+#include "run/foxglove/live_run_mcap.hpp"
 #include "run/localizer_registry.hpp"
 #include "run/run_record.hpp"
 

@@ -73,7 +73,7 @@ class LocalizerDriver {
 using RunProgress = std::function<void(int done, int total, const slam::Localizer& localizer)>;
 
 // Called after each scan, read or skipped, with the scan when it was read (else null): what a
-// run's MCAP file records as the run goes (run/live_run_mcap.hpp).
+// run's MCAP file records as the run goes (run/foxglove/live_run_mcap.hpp).
 using RunObserver = std::function<void(const sensors::Scan* scan, const slam::Localizer& localizer,
                                        const LocalizerDriver& driver)>;
 

@@ -1,4 +1,4 @@
-#include "run/run_mcap.hpp"
+#include "run/foxglove/run_mcap.hpp"
 
 #include <filesystem>
 #include <set>
@@ -9,7 +9,7 @@
 #include "formats/ros2_messages.hpp"
 #include "formats/trajectory_file.hpp"
 #include "run/deviation_report_reader.hpp"
-#include "run/run_scene.hpp"
+#include "run/foxglove/run_scene.hpp"
 
 namespace isg::run {
 

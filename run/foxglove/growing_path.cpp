@@ -1,4 +1,4 @@
-#include "run/growing_path.hpp"
+#include "run/foxglove/growing_path.hpp"
 
 #include "formats/foxglove_json.hpp"
 

@@ -13,7 +13,7 @@
 
 #include "run/driver.hpp"
 #include "run/evaluate_run.hpp"
-#include "run/run_mcap.hpp"
+#include "run/foxglove/run_mcap.hpp"
 #include "run/run_record.hpp"
 
 namespace isg::run {

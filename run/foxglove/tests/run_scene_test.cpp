@@ -1,4 +1,4 @@
-#include "run/run_scene.hpp"
+#include "run/foxglove/run_scene.hpp"
 
 #include <gtest/gtest.h>
 

@@ -1,4 +1,4 @@
-#include "run/live_run_mcap.hpp"
+#include "run/foxglove/live_run_mcap.hpp"
 
 #include <utility>
 

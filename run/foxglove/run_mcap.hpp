@@ -11,7 +11,7 @@
 #include "common/tum.hpp"
 #include "formats/mcap_writer.hpp"
 #include "formats/ros_time.hpp"
-#include "run/growing_path.hpp"
+#include "run/foxglove/growing_path.hpp"
 #include "sensors/messages.hpp"
 #include "slam/deviations/plan_deviations.hpp"
 

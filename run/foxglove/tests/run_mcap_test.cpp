@@ -1,4 +1,4 @@
-#include "run/run_mcap.hpp"
+#include "run/foxglove/run_mcap.hpp"
 
 #include <gtest/gtest.h>
 #include <unistd.h>
@@ -9,8 +9,8 @@
 
 #include "common/input_error.hpp"
 #include "formats/foxglove_json.hpp"
-#include "run/growing_path.hpp"
-#include "run/live_run_mcap.hpp"
+#include "run/foxglove/growing_path.hpp"
+#include "run/foxglove/live_run_mcap.hpp"
 
 namespace isg::run {
 namespace {
