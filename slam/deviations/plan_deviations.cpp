@@ -345,8 +345,18 @@ Placement refinePlacement(const std::vector<std::pair<WallDeviation, PlannedWall
 // length-weighted mean of all such long pieces, and called shifted (rotated) only when every one
 // of them is beyond the threshold on the same side — the noise the contradiction shows must not
 // make a deviation.
-void judge(WallDeviation& wall, const PlannedWall& planned, const DeviationOptions& options) {
-  if (wall.evidence.empty()) return;
+// What a wall's evidence says beyond its measures (judge() sets those): whether it lies off the
+// plan beyond the thresholds, and how often its most observed consistent piece was seen.
+struct Judged {
+  bool has_evidence = false;
+  bool turned = false, shifted = false;
+  int most_observed = 0;
+};
+
+Judged judge(WallDeviation& wall, const PlannedWall& planned, const DeviationOptions& options) {
+  Judged judged;
+  if (wall.evidence.empty()) return judged;
+  judged.has_evidence = true;
   const WallFit fit = fitWall(wall, planned, options);
   wall.offset_m = fit.offset_m;
   wall.angle_deg = fit.angle_deg;
@@ -354,6 +364,7 @@ void judge(WallDeviation& wall, const PlannedWall& planned, const DeviationOptio
   for (const auto& e : wall.evidence) {
     if (e.consistent) most_observed = std::max(most_observed, e.observations);
   }
+  judged.most_observed = most_observed;
   std::vector<const WallEvidence*> long_pieces;
   bool contradicted = false;
   for (const auto& e : wall.evidence) {
@@ -388,21 +399,16 @@ void judge(WallDeviation& wall, const PlannedWall& planned, const DeviationOptio
     turned = turned && beyond([](const WallEvidence& e) { return e.angle_deg; }, angle_threshold);
     shifted = shifted && beyond([](const WallEvidence& e) { return e.offset_m; }, shift_threshold);
   }
-  if (wall.observed_share < options.judged_share) return;
-  wall.status = turned    ? WallStatus::kRotated
-                : shifted ? WallStatus::kShifted
-                          : WallStatus::kAsPlanned;
-  // A deviation is believed only when seen often enough; the wall stays not seen otherwise.
-  if (wall.status != WallStatus::kAsPlanned && most_observed < options.min_deviation_observations) {
-    wall.status = WallStatus::kNotSeen;
-    return;
-  }
-  if (wall.status == WallStatus::kRotated) {
-    wall.pivot_along_m = crossingAlong(planned.length, *wall.offset_m, *wall.angle_deg);
-    if (wall.pivot_along_m) {
-      wall.turned_about =
-          pivotName(*wall.pivot_along_m, planned.length, options.pivot_name_distance);
-    }
+  judged.turned = turned;
+  judged.shifted = shifted;
+  return judged;
+}
+
+// A rotated wall's pivot: where its line crosses the planned axis, and its name.
+void setPivot(WallDeviation& wall, const PlannedWall& planned, const DeviationOptions& options) {
+  wall.pivot_along_m = crossingAlong(planned.length, *wall.offset_m, *wall.angle_deg);
+  if (wall.pivot_along_m) {
+    wall.turned_about = pivotName(*wall.pivot_along_m, planned.length, options.pivot_name_distance);
   }
 }
 
@@ -511,22 +517,6 @@ std::string pivotName(double along_m, double length, double name_distance) {
   }
   if (nearest != nullptr) return nearest;
   return along_m >= 0.0 && along_m <= length ? "along" : "beyond";
-}
-
-const char* toString(WallStatus status) {
-  switch (status) {
-    case WallStatus::kAsPlanned:
-      return "as_planned";
-    case WallStatus::kShifted:
-      return "shifted";
-    case WallStatus::kRotated:
-      return "rotated";
-    case WallStatus::kMissing:
-      return "missing";
-    case WallStatus::kNotSeen:
-      break;
-  }
-  return "not_seen";
 }
 
 int DeviationReport::count(WallStatus status) const {
@@ -906,30 +896,36 @@ void measureLevel(const bim::AGraph& plan, int f, const std::vector<WallInB>& wa
     for (auto& e : wall.evidence) placement.apply(e, planned);
   }
   LevelWalls judged = placedLocally(level_walls, options);
+  const bool with_sight = withSight(viewpoints);
   for (std::size_t i = 0; i < judged.size(); ++i) {
     auto& [wall, planned] = judged[i];
-    judge(wall, planned, options);
+    const auto evidenceOf = [&](const WallDeviation& w, const Judged& j) {
+      return StatusEvidence{j.has_evidence,  w.observed_share, j.turned,   j.shifted,
+                            j.most_observed, w.in_view_share,  with_sight, planned.length};
+    };
+    Judged judged_wall = judge(wall, planned, options);
     // Too few walls around as planned to tell the map's error there (no local noise): the local
     // placement rests on one or two walls, and their own error moves it. A deviation is then
     // believed only when the level's placement, fitted on all its walls, finds it too.
+    const WallStatus locally = decideWallStatus(evidenceOf(wall, judged_wall), options);
     if (!wall.local_offset_noise_m &&
-        (wall.status == WallStatus::kShifted || wall.status == WallStatus::kRotated)) {
+        (locally == WallStatus::kShifted || locally == WallStatus::kRotated)) {
       WallDeviation by_level = level_walls[i].first;
       by_level.shift_threshold_m = options.shift_m;
       by_level.angle_threshold_deg = options.angle_deg;
-      judge(by_level, planned, options);
-      if (by_level.status == WallStatus::kAsPlanned) wall = by_level;
+      const Judged judged_by_level = judge(by_level, planned, options);
+      if (decideWallStatus(evidenceOf(by_level, judged_by_level), options) ==
+          WallStatus::kAsPlanned) {
+        wall = by_level;
+        judged_wall = judged_by_level;
+      }
     }
+    // Seen too little to judge: how much of it was in view says whether it is missing.
     if (wall.observed_share < options.judged_share) {
       wall.in_view_share = inViewShare(plan, plan.walls[planned.index], viewpoints, options);
-      wall.status =
-          wall.observed_share < options.missing_seen_share &&
-                  *wall.in_view_share >= (withSight(viewpoints) ? options.missing_sight_share
-                                                                : options.missing_view_share) &&
-                  planned.length >= options.min_missing_length
-              ? WallStatus::kMissing
-              : WallStatus::kNotSeen;
     }
+    wall.status = decideWallStatus(evidenceOf(wall, judged_wall), options);
+    if (wall.status == WallStatus::kRotated) setPivot(wall, planned, options);
     wall.progress = progressOf(plan, wall, planned, viewpoints, options);
     report.walls.push_back(wall);
   }

@@ -11,15 +11,10 @@
 #include "slam/deviations/deviation_options.hpp"
 #include "slam/deviations/map_against_plan.hpp"
 #include "slam/deviations/wall_progress.hpp"
+#include "slam/deviations/wall_status.hpp"
 #include "slam/map_diagnostics.hpp"
 
 namespace isg::slam {
-
-enum class WallStatus { kAsPlanned, kShifted, kRotated, kMissing, kNotSeen };
-const char* toString(WallStatus status);
-inline bool deviates(WallStatus s) {
-  return s == WallStatus::kShifted || s == WallStatus::kRotated || s == WallStatus::kMissing;
-}
 
 // One map wall taken as evidence for a plan wall, measured against the face it was seen as.
 struct WallEvidence {
