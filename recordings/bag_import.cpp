@@ -25,7 +25,7 @@ BagImportSummary importRosbag(const std::string& bag_path, const std::string& da
   BagImportSummary summary;
   common::writeFolderAtomically(
       dataset_dir, common::OutputKind::kDataset, options.overwrite,
-      [&](const fs::path& folder) { summary = import.run(folder, progress); });
+      [&](const std::filesystem::path& folder) { summary = import.run(folder, progress); });
   return summary;
 }
 
