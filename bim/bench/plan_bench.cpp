@@ -2,6 +2,7 @@
 #include <benchmark/benchmark.h>
 
 #include "bim/agraph.hpp"
+#include "bim/bench/grid_of.hpp"
 #include "bim/plan_geometry.hpp"
 #include "bim/plan_parser.hpp"
 #include "bim/synthetic_plan.hpp"
@@ -10,12 +11,7 @@
 namespace isg::bim {
 namespace {
 
-GridPlanSpec gridOf(int rooms) {
-  GridPlanSpec spec;
-  spec.rows = rooms >= 1000 ? 20 : (rooms >= 200 ? 10 : 5);
-  spec.cols = rooms / spec.rows;
-  return spec;
-}
+using bench::gridOf;
 
 void BM_ParseAndValidatePlan(benchmark::State& state) {
   const nlohmann::json document = makeGridPlan(gridOf(int(state.range(0))));

@@ -3,6 +3,7 @@
 #include <benchmark/benchmark.h>
 
 #include "bim/agraph.hpp"
+#include "bim/bench/grid_of.hpp"
 #include "bim/optimizer/agraph_optimizer.hpp"
 #include "bim/plan_parser.hpp"
 #include "bim/synthetic_plan.hpp"
@@ -11,12 +12,7 @@
 namespace isg::bim {
 namespace {
 
-GridPlanSpec gridOf(int rooms) {
-  GridPlanSpec spec;
-  spec.rows = rooms >= 1000 ? 20 : (rooms >= 200 ? 10 : 5);
-  spec.cols = rooms / spec.rows;
-  return spec;
-}
+using bench::gridOf;
 
 // One optimisation of the whole A-Graph from perturbed values, for scale.
 void BM_OptimizeAGraph(benchmark::State& state) {
