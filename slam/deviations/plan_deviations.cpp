@@ -338,13 +338,6 @@ Placement refinePlacement(const std::vector<std::pair<WallDeviation, PlannedWall
   return placement;
 }
 
-// A wall's evidence can contradict itself: its two faces, seen from two rooms, laid by the map a
-// few centimetres apart. A piece left out of the fit that is at least half as long as the longest
-// one it kept, and observed at least contradiction_observation_share as often as the most
-// observed one kept, is such a contradiction, not an artefact; the wall is then measured by the
-// length-weighted mean of all such long pieces, and called shifted (rotated) only when every one
-// of them is beyond the threshold on the same side — the noise the contradiction shows must not
-// make a deviation.
 // What a wall's evidence says beyond its measures (judge() sets those): whether it lies off the
 // plan beyond the thresholds, and how often its most observed consistent piece was seen.
 struct Judged {
@@ -353,6 +346,13 @@ struct Judged {
   int most_observed = 0;
 };
 
+// A wall's evidence can contradict itself: its two faces, seen from two rooms, laid by the map a
+// few centimetres apart. A piece left out of the fit that is at least half as long as the longest
+// one it kept, and observed at least contradiction_observation_share as often as the most
+// observed one kept, is such a contradiction, not an artefact; the wall is then measured by the
+// length-weighted mean of all such long pieces, and called shifted (rotated) only when every one
+// of them is beyond the threshold on the same side — the noise the contradiction shows must not
+// make a deviation. Its status is decided apart, from what this returns (decideWallStatus).
 Judged judge(WallDeviation& wall, const PlannedWall& planned, const DeviationOptions& options) {
   Judged judged;
   if (wall.evidence.empty()) return judged;
