@@ -899,9 +899,10 @@ void measureLevel(const bim::AGraph& plan, int f, const std::vector<WallInB>& wa
   const bool with_sight = withSight(viewpoints);
   for (std::size_t i = 0; i < judged.size(); ++i) {
     auto& [wall, planned] = judged[i];
+    const double planned_length = planned.length;  // a lambda may not capture a binding (clang)
     const auto evidenceOf = [&](const WallDeviation& w, const Judged& j) {
       return StatusEvidence{j.has_evidence,  w.observed_share, j.turned,   j.shifted,
-                            j.most_observed, w.in_view_share,  with_sight, planned.length};
+                            j.most_observed, w.in_view_share,  with_sight, planned_length};
     };
     Judged judged_wall = judge(wall, planned, options);
     // Too few walls around as planned to tell the map's error there (no local noise): the local
