@@ -1,5 +1,6 @@
 #include "raster/raster_plan.hpp"
 
+#include <Eigen/Geometry>
 #include <cmath>
 #include <filesystem>
 

@@ -1,5 +1,6 @@
 #include "raster/raster_walls.hpp"
 
+#include <Eigen/Geometry>
 #include <algorithm>
 #include <array>
 #include <cmath>
