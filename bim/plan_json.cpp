@@ -121,14 +121,12 @@ json planToJson(const Plan& plan, const PlanJsonStyle& style) {
   return out;
 }
 
-json asBuiltToJson(const AsBuilt& a) {
+json asBuiltToJson(const AsBuilt& a, const AsBuiltJsonStyle& style) {
   json extra = json::array(), shifts = json::array(), clutter = json::array();
   for (const auto& w : a.extra_walls) {
-    json wall = {{"start", point(w.start)},
-                 {"end", point(w.end)},
-                 {"thickness", w.thickness},
-                 {"base", w.base},
-                 {"level", w.level}};
+    json wall = {{"start", point(w.start)}, {"end", point(w.end)}, {"thickness", w.thickness}};
+    if (style.default_fields || w.base != 0.0) wall["base"] = w.base;
+    if (style.default_fields || !w.level.empty()) wall["level"] = w.level;
     if (w.height) wall["height"] = *w.height;
     extra.push_back(wall);
   }
@@ -140,32 +138,36 @@ json asBuiltToJson(const AsBuilt& a) {
     rotations.push_back({{"wall", r.wall}, {"angle_deg", r.angle_deg}, {"about", about}});
   }
   for (const auto& c : a.clutter) {
-    clutter.push_back({{"shape", "box"},
-                       {"center", point(c.center)},
-                       {"size", point(c.size)},
-                       {"yaw", c.yaw},
-                       {"level", c.level}});
+    json box = {
+        {"shape", "box"}, {"center", point(c.center)}, {"size", point(c.size)}, {"yaw", c.yaw}};
+    if (style.default_fields || !c.level.empty()) box["level"] = c.level;
+    clutter.push_back(box);
   }
-  json out = {{"missing_walls", a.missing_walls}, {"extra_walls", extra}, {"wall_shifts", shifts}};
-  // Turned and shortened walls came after the other deviations: written where there are some, so
-  // that a dataset without them records what it always did.
-  if (!rotations.empty()) out["wall_rotations"] = rotations;
   json shortened = json::array();
   for (const auto& w : a.shortened_walls) {
     json built = json::array();
     for (const auto& [from, to] : w.built) built.push_back({from, to});
     shortened.push_back({{"wall", w.wall}, {"built", built}});
   }
-  if (!shortened.empty()) out["shortened_walls"] = shortened;
-  out["closed_doors"] = a.closed_doors;
-  out["clutter"] = clutter;
-  // Columns as built came later still: written where there are some.
-  if (!a.missing_columns.empty()) out["missing_columns"] = a.missing_columns;
   json moved = json::array();
   for (const auto& m : a.moved_columns) {
     moved.push_back({{"column", m.column}, {"offset", {m.offset.x(), m.offset.y()}}});
   }
-  if (!moved.empty()) out["moved_columns"] = moved;
+  json out = json::object();
+  const auto list = [&](const char* key, json value, bool always) {
+    if (!value.empty() || (always && style.empty_lists)) out[key] = std::move(value);
+  };
+  list("missing_walls", a.missing_walls, true);
+  list("extra_walls", std::move(extra), true);
+  list("wall_shifts", std::move(shifts), true);
+  // Turned and shortened walls came after the other deviations, columns as built later still:
+  // written where there are some, so that a dataset without them records what it always did.
+  list("wall_rotations", std::move(rotations), false);
+  list("shortened_walls", std::move(shortened), false);
+  list("closed_doors", a.closed_doors, true);
+  list("clutter", std::move(clutter), true);
+  list("missing_columns", a.missing_columns, false);
+  list("moved_columns", std::move(moved), false);
   return out;
 }
 

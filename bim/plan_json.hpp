@@ -28,7 +28,17 @@ struct PlanJsonStyle {
 // level's windows and stairs only where there are some. Parsing the result gives the same plan.
 nlohmann::ordered_json planToJson(const Plan& plan, const PlanJsonStyle& style = {});
 
-// The as-built deviations as in a scenario's "as_built" object.
-nlohmann::ordered_json asBuiltToJson(const AsBuilt& as_built);
+// What asBuiltToJson writes beyond what an author must. A dataset records every list and every
+// field (what its run used); a scenario written for people (isg generate) gives only the lists
+// that hold something, and an extra wall's base and level and a box's level only where they are
+// not their defaults (0 m, the robot's level).
+struct AsBuiltJsonStyle {
+  bool empty_lists = true;
+  bool default_fields = true;
+};
+
+// The as-built deviations as in a scenario's "as_built" object: the one writer of it (datasets,
+// isg generate). Parsing the result (parseAsBuiltJson) gives the same deviations.
+nlohmann::ordered_json asBuiltToJson(const AsBuilt& as_built, const AsBuiltJsonStyle& style = {});
 
 }  // namespace isg::bim

@@ -397,8 +397,6 @@ bool allTrue(const std::vector<bool>& v) {
   return std::all_of(v.begin(), v.end(), [](bool b) { return b; });
 }
 
-json point(double x, double y) { return json::array({mm(x), mm(y)}); }
-
 }  // namespace
 
 const std::vector<std::string>& generatorFamilies() {
@@ -709,6 +707,14 @@ std::vector<std::string> writePlan(const GeneratorSpec& spec, const GeneratorSpe
   return ids;
 }
 
+}  // namespace
+
+json generatedAsBuiltJson(const bim::AsBuilt& as_built) {
+  return json(bim::asBuiltToJson(as_built, {.empty_lists = false, .default_fields = false}));
+}
+
+namespace {
+
 // Which of the layout's walls carry a door.
 std::vector<bool> wallsWithDoors(const Layout& layout) {
   std::vector<bool> has_door(layout.walls.size(), false);
@@ -717,18 +723,14 @@ std::vector<bool> wallsWithDoors(const Layout& layout) {
 }
 
 // The walls the as-built changes drawn so far left unbuilt.
-std::set<std::string> missingWalls(const json& as_built) {
-  std::set<std::string> missing;
-  if (as_built.contains("missing_walls")) {
-    for (const auto& id : as_built["missing_walls"]) missing.insert(id.get<std::string>());
-  }
-  return missing;
+std::set<std::string> missingWalls(const bim::AsBuilt& as_built) {
+  return {as_built.missing_walls.begin(), as_built.missing_walls.end()};
 }
 
 // As built, walls: inner walls shifted, walls between two offices (no door) missing. Three draws
 // a wall, whatever it is.
 void drawWallChanges(const GeneratorSpec& s, const Layout& layout, std::mt19937_64& built_rng,
-                     json& as_built) {
+                     bim::AsBuilt& as_built) {
   std::uniform_real_distribution<double> unit(0.0, 1.0);
   const auto& walls = layout.walls;
   // Which spaces each wall bounds, and which walls carry doors.
@@ -737,7 +739,6 @@ void drawWallChanges(const GeneratorSpec& s, const Layout& layout, std::mt19937_
     for (const auto& [b, side] : layout.touching[a]) bounds[side.wall].insert({a, b});
   }
   const std::vector<bool> has_door = wallsWithDoors(layout);
-  json shifts = json::array(), missing = json::array();
   for (std::size_t w = 0; w < walls.size(); ++w) {
     const bool between_offices = !walls[w].outer && !has_door[w] && !bounds[w].empty() &&
                                  std::all_of(bounds[w].begin(), bounds[w].end(), [&](int k) {
@@ -747,13 +748,11 @@ void drawWallChanges(const GeneratorSpec& s, const Layout& layout, std::mt19937_
     const double offset = (s.shift_min + (s.shift_max - s.shift_min) * unit(built_rng)) *
                           (unit(built_rng) < 0.5 ? -1 : 1);
     if (between_offices && draw_missing < s.missing_walls) {
-      missing.push_back("W" + std::to_string(w + 1));
+      as_built.missing_walls.push_back("W" + std::to_string(w + 1));
     } else if (!walls[w].outer && draw_shift < s.shifted_walls) {
-      shifts.push_back({{"wall", "W" + std::to_string(w + 1)}, {"offset", mm(offset)}});
+      as_built.wall_shifts.push_back({"W" + std::to_string(w + 1), mm(offset)});
     }
   }
-  if (!missing.empty()) as_built["missing_walls"] = missing;
-  if (!shifts.empty()) as_built["wall_shifts"] = shifts;
 }
 
 // As built, turned walls: door-less inner walls not missing, each with probability
@@ -761,13 +760,14 @@ void drawWallChanges(const GeneratorSpec& s, const Layout& layout, std::mt19937_
 // so that no point of the wall swings more than 1.2 m (a third of an office): a long wall turns
 // less.
 void drawWallRotations(const GeneratorSpec& s, const Layout& layout, std::mt19937_64& turn_rng,
-                       json& as_built) {
+                       bim::AsBuilt& as_built) {
   if (s.rotated_walls <= 0.0) return;
   std::uniform_real_distribution<double> unit(0.0, 1.0);
   const std::vector<bool> has_door = wallsWithDoors(layout);
   const std::set<std::string> missing = missingWalls(as_built);
-  const char* abouts[] = {"start", "centre", "end"};
-  json turns = json::array();
+  const bim::WallRotation::About abouts[] = {bim::WallRotation::About::kStart,
+                                             bim::WallRotation::About::kCentre,
+                                             bim::WallRotation::About::kEnd};
   for (std::size_t w = 0; w < layout.walls.size(); ++w) {
     const Wall& wall = layout.walls[w];
     const std::string id = "W" + std::to_string(w + 1);
@@ -785,23 +785,24 @@ void drawWallRotations(const GeneratorSpec& s, const Layout& layout, std::mt1993
     const double cap_deg = common::degrees(std::asin(std::min(1.0, 1.2 / std::max(reach, 1e-9))));
     const double angle =
         std::min(s.rotation_min_deg + (s.rotation_max_deg - s.rotation_min_deg) * size, cap_deg);
-    turns.push_back({{"wall", id},
-                     {"angle_deg", std::round(angle * 10.0) / 10.0 * (sign < 0.5 ? -1 : 1)},
-                     {"about", anywhere ? json(along) : json(abouts[about])}});
+    bim::WallRotation turn;
+    turn.wall = id;
+    turn.angle_deg = std::round(angle * 10.0) / 10.0 * (sign < 0.5 ? -1 : 1);
+    turn.about = anywhere ? bim::WallRotation::About::kAlong : abouts[about];
+    if (anywhere) turn.along_m = along;
+    as_built.wall_rotations.push_back(turn);
   }
-  if (!turns.empty()) as_built["wall_rotations"] = turns;
 }
 
 // As built, walls built in part: door-less inner walls at least 2.5 m long, not missing, each
 // with probability shortened_walls: a start or an end cut back, or a gap in the middle, of 0.8 m
 // to half the wall, each part that stands at least 0.5 m. Four draws a wall, whatever it is.
 void drawShortenedWalls(const GeneratorSpec& s, const Layout& layout, std::mt19937_64& cut_rng,
-                        json& as_built) {
+                        bim::AsBuilt& as_built) {
   if (s.shortened_walls <= 0.0) return;
   std::uniform_real_distribution<double> unit(0.0, 1.0);
   const std::vector<bool> has_door = wallsWithDoors(layout);
   const std::set<std::string> missing = missingWalls(as_built);
-  json shortened = json::array();
   for (std::size_t w = 0; w < layout.walls.size(); ++w) {
     const Wall& wall = layout.walls[w];
     const std::string id = "W" + std::to_string(w + 1);
@@ -816,25 +817,24 @@ void drawShortenedWalls(const GeneratorSpec& s, const Layout& layout, std::mt199
     // The end to the millimetre below the wall's length as the plan's rounded ends give it: a
     // part may not run past the wall.
     const double end = std::floor(length * 1000.0 - 1e-6) / 1000.0;
-    json built;
+    bim::ShortenedWall shortened{id, {}};
     if (kind < 1.0 / 3.0) {
-      built = json::array({json::array({cut, end})});
+      shortened.built = {{cut, end}};
     } else if (kind < 2.0 / 3.0) {
-      built = json::array({json::array({0.0, mm(length - cut)})});
+      shortened.built = {{0.0, mm(length - cut)}};
     } else {
       const double from = mm(0.5 + (length - 1.0 - cut) * where);
-      built = json::array({json::array({0.0, from}), json::array({mm(from + cut), end})});
+      shortened.built = {{0.0, from}, {mm(from + cut), end}};
     }
-    shortened.push_back({{"wall", id}, {"built", built}});
+    as_built.shortened_walls.push_back(std::move(shortened));
   }
-  if (!shortened.empty()) as_built["shortened_walls"] = shortened;
 }
 
 // As built, doors: closed where closing keeps every space reached. Every space is reached through
 // the open doors (placeDoors checked it); closing a door keeps it so exactly when its two sides
 // stay joined without it.
 void drawClosedDoors(const GeneratorSpec& s, const Layout& layout, std::mt19937_64& built_rng,
-                     json& as_built) {
+                     bim::AsBuilt& as_built) {
   std::uniform_real_distribution<double> unit(0.0, 1.0);
   const auto& doors = layout.doors;
   std::vector<std::vector<int>> doors_of(static_cast<std::size_t>(layout.size()));
@@ -843,27 +843,34 @@ void drawClosedDoors(const GeneratorSpec& s, const Layout& layout, std::mt19937_
     doors_of[std::size_t(doors[d].b)].push_back(int(d));
   }
   std::vector<bool> closed(doors.size(), false);
-  json closed_list = json::array();
   for (std::size_t d = 0; d < doors.size(); ++d) {
     if (unit(built_rng) >= s.closed_doors) continue;
     closed[d] = true;
     if (stillJoined(doors[d].a, doors[d].b, doors, doors_of, closed)) {
-      closed_list.push_back("D" + std::to_string(d + 1));
+      as_built.closed_doors.push_back("D" + std::to_string(d + 1));
     } else {
       closed[d] = false;  // would cut a room off
     }
   }
-  if (!closed_list.empty()) as_built["closed_doors"] = closed_list;
+}
+
+// An unplanned partition 0.1 m thick from `start` to `end` (to the millimetre), on the robot's
+// level, as high as the level.
+bim::ExtraWall extraWall(const Eigen::Vector2d& start, const Eigen::Vector2d& end) {
+  bim::ExtraWall wall;
+  wall.start = {mm(start.x()), mm(start.y())};
+  wall.end = {mm(end.x()), mm(end.y())};
+  wall.thickness = 0.1;
+  return wall;
 }
 
 // As built, offices: clutter boxes in their corners, clear of the doors, and an unplanned
 // partition. The draws of each corner are made whether or not a box is placed there.
 void drawOfficeContents(const GeneratorSpec& s, const Layout& layout, std::mt19937_64& built_rng,
-                        json& as_built) {
+                        bim::AsBuilt& as_built) {
   std::uniform_real_distribution<double> unit(0.0, 1.0);
   const double t = s.wall_thickness;
   const auto& walls = layout.walls;
-  json clutter = json::array(), extra = json::array();
   for (int k = 0; k < layout.size(); ++k) {
     const Space& sp = layout.spaces[k];
     if (sp.kind != Kind::kOffice) continue;
@@ -895,10 +902,11 @@ void drawOfficeContents(const GeneratorSpec& s, const Layout& layout, std::mt199
       for (const auto& c : door_centres)
         clear = clear && (c - Eigen::Vector2d(cx, cy)).norm() >= 1.8;
       if (!clear) continue;
-      clutter.push_back({{"shape", "box"},
-                         {"center", {mm(cx), mm(cy), mm(0.5 * size.z())}},
-                         {"size", {size.x(), size.y(), size.z()}},
-                         {"yaw", yaw}});
+      bim::Clutter box;
+      box.center = {mm(cx), mm(cy), mm(0.5 * size.z())};
+      box.size = size;
+      box.yaw = yaw;
+      as_built.clutter.push_back(box);
       ++placed;
     }
     // An unplanned partition: parallel to the door's wall, 1 m before the far side, 40 % long.
@@ -908,18 +916,14 @@ void drawOfficeContents(const GeneratorSpec& s, const Layout& layout, std::mt199
       if (door_wall_vertical && ix1 - ix0 >= 3.0) {
         const double x = door.x() < 0.5 * (sp.x0 + sp.x1) ? ix1 - 1.0 : ix0 + 1.0;
         const double mid = 0.5 * (iy0 + iy1), half = 0.2 * (iy1 - iy0);
-        extra.push_back(
-            {{"start", point(x, mid - half)}, {"end", point(x, mid + half)}, {"thickness", 0.1}});
+        as_built.extra_walls.push_back(extraWall({x, mid - half}, {x, mid + half}));
       } else if (!door_wall_vertical && iy1 - iy0 >= 3.0) {
         const double y = door.y() < 0.5 * (sp.y0 + sp.y1) ? iy1 - 1.0 : iy0 + 1.0;
         const double mid = 0.5 * (ix0 + ix1), half = 0.2 * (ix1 - ix0);
-        extra.push_back(
-            {{"start", point(mid - half, y)}, {"end", point(mid + half, y)}, {"thickness", 0.1}});
+        as_built.extra_walls.push_back(extraWall({mid - half, y}, {mid + half, y}));
       }
     }
   }
-  if (!clutter.empty()) as_built["clutter"] = clutter;
-  if (!extra.empty()) as_built["extra_walls"] = extra;
 }
 
 // The building, before it is read as isg check reads it: the spec checked, the floor laid out,
@@ -945,7 +949,7 @@ GeneratedBuilding generateUnchecked(const GeneratorSpec& spec) {
   out.name = spec.family + "-" + std::to_string(spec.seed);
   const std::vector<std::string> ids = writePlan(spec, s, layout, out);
 
-  json as_built = json::object();
+  bim::AsBuilt& as_built = out.as_built;
   drawWallChanges(s, layout, built_rng, as_built);
   std::mt19937_64 turn_rng(spec.seed * 0xA0761D6478BD642FULL + 11);
   drawWallRotations(s, layout, turn_rng, as_built);
@@ -966,9 +970,9 @@ GeneratedBuilding generateUnchecked(const GeneratorSpec& spec) {
       {"version", 1},
       {"plan", out.name + ".json"},
       {"seed", spec.seed},
-      {"robot", {{"level", "L0"}, {"start", {{"room", ids[start]}}}, {"route", "tour"}}},
-      {"as_built", as_built}};
-  leanBuilding(out.plan, out.scenario, s.shear_deg, s.turn_deg);
+      {"robot", {{"level", "L0"}, {"start", {{"room", ids[start]}}}, {"route", "tour"}}}};
+  leanBuilding(out.plan, as_built, s.shear_deg, s.turn_deg);
+  out.scenario["as_built"] = generatedAsBuiltJson(as_built);
   return out;
 }
 

@@ -5,6 +5,8 @@
 #include <string>
 #include <vector>
 
+#include "bim/scenario.hpp"
+
 namespace isg::worlds {
 
 // Procedural buildings (docs/sweeps.md, "Generated buildings"): a plan in the "isg.plan" v1
@@ -72,9 +74,14 @@ struct GeneratedBuilding {
   std::string name;         // "<family>-<seed>"
   nlohmann::json plan;      // "isg.plan" v1
   nlohmann::json scenario;  // "isg.scenario" v1, "plan": "<name>.json", as-built deviations
+  bim::AsBuilt as_built;    // the scenario's "as_built", which is written from it
   int offices = 0;
   int corridors = 0;
 };
+
+// A generated scenario's "as_built" as people write one (bim::asBuiltToJson: the lists that hold
+// something, no field at its default), its keys sorted as generated files always had them.
+nlohmann::json generatedAsBuiltJson(const bim::AsBuilt& as_built);
 
 // The building of `spec`. Throws std::invalid_argument naming the parameter for a family it does
 // not know or parameters that cannot make a building (e.g. a corridor too narrow for a door).

@@ -56,9 +56,13 @@ bool boxMeetsWall(const Eigen::Vector2d& centre, const Eigen::Vector2d& size, do
 struct Lean {
   Eigen::Matrix2d A;
   double turn = 0.0;
+  Eigen::Vector2d map(const Eigen::Vector2d& p) const {
+    const Eigen::Vector2d q = A * p;
+    return {mm(q.x()), mm(q.y())};
+  }
   json map(const json& p) const {
-    const Eigen::Vector2d q = A * vec(p);
-    return json::array({mm(q.x()), mm(q.y())});
+    const Eigen::Vector2d q = map(vec(p));
+    return json::array({q.x(), q.y()});
   }
 };
 
@@ -98,73 +102,56 @@ std::map<std::string, LeanedWall> leanPlan(json& plan, const Lean& lean) {
 
 // Places along walls (a rotation's pivot, a shortened wall's built parts) stretched with them,
 // never past the leaned wall's end.
-void leanAlongWalls(json& as_built, const std::map<std::string, LeanedWall>& walls) {
+void leanAlongWalls(bim::AsBuilt& as_built, const std::map<std::string, LeanedWall>& walls) {
   const auto length = [&](const std::string& id) {
     const LeanedWall& w = walls.at(id);
     return (w.end - w.start).norm();
   };
-  if (as_built.contains("wall_rotations")) {
-    for (json& rotation : as_built["wall_rotations"]) {
-      if (!rotation["about"].is_number()) continue;  // start, centre or end stay where they were
-      const std::string id = rotation["wall"].get<std::string>();
-      rotation["about"] =
-          std::min(mm(rotation["about"].get<double>() * walls.at(id).stretch), below(length(id)));
-    }
+  for (bim::WallRotation& rotation : as_built.wall_rotations) {
+    // About its start, centre or end, a wall turns about where it did.
+    if (rotation.about != bim::WallRotation::About::kAlong) continue;
+    rotation.along_m = std::min(mm(rotation.along_m * walls.at(rotation.wall).stretch),
+                                below(length(rotation.wall)));
   }
-  if (as_built.contains("shortened_walls")) {
-    for (json& shortened : as_built["shortened_walls"]) {
-      const std::string id = shortened["wall"].get<std::string>();
-      const double stretch = walls.at(id).stretch;
-      for (json& part : shortened["built"]) {
-        part[0] = mm(part[0].get<double>() * stretch);
-        part[1] = std::min(mm(part[1].get<double>() * stretch), below(length(id)));
-      }
+  for (bim::ShortenedWall& shortened : as_built.shortened_walls) {
+    const double stretch = walls.at(shortened.wall).stretch;
+    for (auto& [from, to] : shortened.built) {
+      from = mm(from * stretch);
+      to = std::min(mm(to * stretch), below(length(shortened.wall)));
     }
   }
 }
 
 // Extra walls leaned; clutter leaned and turned, a box that now meets a wall left out.
-void leanExtraWallsAndClutter(json& as_built, const Lean& lean,
+void leanExtraWallsAndClutter(bim::AsBuilt& as_built, const Lean& lean,
                               const std::map<std::string, LeanedWall>& walls) {
   std::vector<LeanedWall> obstacles;
   for (const auto& [id, wall] : walls) obstacles.push_back(wall);
-  if (as_built.contains("extra_walls")) {
-    for (json& extra : as_built["extra_walls"]) {
-      extra["start"] = lean.map(extra["start"]);
-      extra["end"] = lean.map(extra["end"]);
-      LeanedWall leaned;
-      leaned.start = vec(extra["start"]);
-      leaned.end = vec(extra["end"]);
-      leaned.half_thickness = 0.5 * extra.value("thickness", 0.1);
-      obstacles.push_back(leaned);
-    }
+  for (bim::ExtraWall& extra : as_built.extra_walls) {
+    extra.start = lean.map(extra.start);
+    extra.end = lean.map(extra.end);
+    LeanedWall leaned;
+    leaned.start = extra.start;
+    leaned.end = extra.end;
+    leaned.half_thickness = 0.5 * extra.thickness;
+    obstacles.push_back(leaned);
   }
-  if (!as_built.contains("clutter")) return;
-  json kept = json::array();
-  for (json box : as_built["clutter"]) {
-    const json xy = lean.map(json::array({box["center"][0], box["center"][1]}));
-    box["center"][0] = xy[0];
-    box["center"][1] = xy[1];
-    box["yaw"] = mm(box["yaw"].get<double>() + lean.turn);
-    const Eigen::Vector2d centre = vec(xy);
-    const Eigen::Vector2d size = vec(box["size"]);
-    const double yaw = box["yaw"].get<double>();
+  std::vector<bim::Clutter> kept;
+  for (bim::Clutter box : as_built.clutter) {
+    box.center.head<2>() = lean.map(Eigen::Vector2d(box.center.head<2>()));
+    box.yaw = mm(box.yaw + lean.turn);
+    const Eigen::Vector2d centre = box.center.head<2>(), size = box.size.head<2>();
     const bool in_wall = std::any_of(obstacles.begin(), obstacles.end(), [&](const auto& w) {
-      return boxMeetsWall(centre, size, yaw, w, 0.05);
+      return boxMeetsWall(centre, size, box.yaw, w, 0.05);
     });
     if (!in_wall) kept.push_back(std::move(box));
   }
-  if (kept.empty()) {
-    as_built.erase("clutter");
-  } else {
-    as_built["clutter"] = std::move(kept);
-  }
+  as_built.clutter = std::move(kept);
 }
 
 }  // namespace
 
-void leanBuilding(nlohmann::json& plan, nlohmann::json& scenario, double shear_deg,
-                  double turn_deg) {
+void leanBuilding(nlohmann::json& plan, bim::AsBuilt& as_built, double shear_deg, double turn_deg) {
   if (shear_deg == 0.0 && turn_deg == 0.0) return;
   const double shear = common::radians(shear_deg);
   Lean lean;
@@ -176,7 +163,6 @@ void leanBuilding(nlohmann::json& plan, nlohmann::json& scenario, double shear_d
   char title[96];
   std::snprintf(title, sizeof title, ", sheared %g°, turned %g°", shear_deg, turn_deg);
   plan["name"] = plan["name"].get<std::string>() + title;
-  json& as_built = scenario["as_built"];
   leanAlongWalls(as_built, walls);
   leanExtraWallsAndClutter(as_built, lean, walls);
 }

@@ -2,6 +2,8 @@
 
 #include <nlohmann/json.hpp>
 
+#include "bim/scenario.hpp"
+
 namespace isg::worlds {
 
 // A generated building made non-Manhattan (docs/sweeps.md, "Non-Manhattan buildings"): sheared by
@@ -17,8 +19,7 @@ namespace isg::worlds {
 // - clutter boxes keep their shape and turn with the building; a box the shear would push into
 //   a wall (within 0.05 m of its faces) is left out.
 // Shear 0 and turn 0 leave the building as it was, byte for byte. `plan` is an "isg.plan" and
-// `scenario` its "isg.scenario" (its as_built changed with it).
-void leanBuilding(nlohmann::json& plan, nlohmann::json& scenario, double shear_deg,
-                  double turn_deg);
+// `as_built` what its scenario says was built otherwise.
+void leanBuilding(nlohmann::json& plan, bim::AsBuilt& as_built, double shear_deg, double turn_deg);
 
 }  // namespace isg::worlds

@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <optional>
 #include <random>
 #include <string>
 #include <vector>
@@ -281,8 +282,8 @@ class SiteDrawing {
 
 // As built, from a stream of its own (built_rng): a façade wall or two and maybe a partition not
 // built yet.
-json missingWalls(const SiteDrawing& site, std::mt19937_64& built_rng) {
-  json missing = json::array();
+std::vector<std::string> missingWalls(const SiteDrawing& site, std::mt19937_64& built_rng) {
+  std::vector<std::string> missing;
   std::vector<std::string> open = site.facade_walls;
   std::shuffle(open.begin(), open.end(), built_rng);
   const int unbuilt = std::min<int>(int(open.size()) / 4, 1 + int(built_rng() % 2));
@@ -292,10 +293,10 @@ json missingWalls(const SiteDrawing& site, std::mt19937_64& built_rng) {
 }
 
 // Pallets on the floor, clear of everything and of each other.
-json pallets(const SiteDrawing& site, std::mt19937_64& built_rng,
-             std::uniform_real_distribution<double>& built_unit) {
+std::vector<bim::Clutter> pallets(const SiteDrawing& site, std::mt19937_64& built_rng,
+                                  std::uniform_real_distribution<double>& built_unit) {
   const Slab& slab = site.slab;
-  json clutter = json::array();
+  std::vector<bim::Clutter> clutter;
   const int wanted = 3 + int(built_rng() % 4);
   for (int attempt = 0; attempt < 400 && int(clutter.size()) < wanted; ++attempt) {
     const Eigen::Vector2d c(slab.width * built_unit(built_rng), slab.depth * built_unit(built_rng));
@@ -307,25 +308,27 @@ json pallets(const SiteDrawing& site, std::mt19937_64& built_rng,
       if (segmentDistance(dot, s) < kPassage + 0.8 + 0.5 * s.thickness) clear = false;
     }
     for (const auto& other : clutter) {
-      const Eigen::Vector2d q(other["center"][0].get<double>(), other["center"][1].get<double>());
-      if ((q - p).norm() < 2.5) clear = false;
+      if ((other.center.head<2>() - p).norm() < 2.5) clear = false;
     }
     if (!clear) continue;
     const double height = mm(0.4 + 1.0 * built_unit(built_rng));
-    clutter.push_back({{"shape", "box"},
-                       {"center", {mm(p.x()), mm(p.y()), mm(0.5 * height)}},
-                       {"size", {1.2, 1.0, height}},
-                       {"yaw", mm(3.14159 * built_unit(built_rng))}});
+    bim::Clutter box;
+    box.center = {mm(p.x()), mm(p.y()), mm(0.5 * height)};
+    box.size = {1.2, 1.0, height};
+    box.yaw = mm(3.14159 * built_unit(built_rng));
+    clutter.push_back(box);
   }
   return clutter;
 }
 
 // On 6 sites in 10 a wall is going up: a façade wall without a window or a partition, not
 // missing, built from one end to 30–70 % of it, or (one in three) with a gap of 1–2 m in the
-// middle. Drawn after the rest, so that the other deviations are the same either way. Null when
+// middle. Drawn after the rest, so that the other deviations are the same either way. None when
 // none is.
-json risingWall(const bim::Level& level, const json& missing, std::mt19937_64& built_rng,
-                std::uniform_real_distribution<double>& built_unit) {
+std::optional<bim::ShortenedWall> risingWall(const bim::Level& level,
+                                             const std::vector<std::string>& missing,
+                                             std::mt19937_64& built_rng,
+                                             std::uniform_real_distribution<double>& built_unit) {
   std::vector<std::string> rising;
   for (const auto& wall : level.walls) {
     const bool facade_or_partition = wall.name == "facade" || wall.name == "partition";
@@ -336,26 +339,26 @@ json risingWall(const bim::Level& level, const json& missing, std::mt19937_64& b
       rising.push_back(wall.id);
     }
   }
-  if (rising.empty() || !(built_unit(built_rng) < 0.6)) return nullptr;
+  if (rising.empty() || !(built_unit(built_rng) < 0.6)) return std::nullopt;
   const std::string id = rising[std::size_t(built_rng() % rising.size())];
   const bim::Wall& wall = *level.findWall(id);
   // To the millimetre, never past the wall's end.
   const double length = std::floor(1000.0 * (wall.end - wall.start).norm()) / 1000.0;
-  json built = json::array();
+  bim::ShortenedWall out{id, {}};
   if (built_rng() % 3 == 0) {
     const double gap = std::min(mm(1.0 + built_unit(built_rng)), length - 1.0);
     const double from = mm(0.5 + (length - 1.0 - gap) * built_unit(built_rng));
-    built.push_back({0.0, from});
-    built.push_back({mm(from + gap), length});
+    out.built.push_back({0.0, from});
+    out.built.push_back({mm(from + gap), length});
   } else {
     const double part = mm(length * (0.3 + 0.4 * built_unit(built_rng)));
     if (built_rng() % 2 == 0) {
-      built.push_back({0.0, part});
+      out.built.push_back({0.0, part});
     } else {
-      built.push_back({mm(length - part), length});
+      out.built.push_back({mm(length - part), length});
     }
   }
-  return json::array({{{"wall", id}, {"built", built}}});
+  return out;
 }
 
 // Columns inside the façade not built yet or built off their place, on request
@@ -363,39 +366,35 @@ json risingWall(const bim::Level& level, const json& missing, std::mt19937_64& b
 // the same bytes either way. A column moves 0.1–0.25 m, clear of the 6 cm a report calls moved,
 // never onto a wall or another column (the grid is 6–8 m).
 void columnsAsBuilt(const GeneratorSpec& spec, const SiteDrawing& site, const bim::Level& level,
-                    json& as_built) {
+                    bim::AsBuilt& as_built) {
   if (!(spec.missing_columns > 0.0 || spec.moved_columns > 0.0)) return;
   std::mt19937_64 column_rng(spec.seed * 0xA24BAED4963EE407ULL + 29);
   std::uniform_real_distribution<double> column_unit(0.0, 1.0);
-  json missing_columns = json::array(), moved_columns = json::array();
   for (std::size_t k : site.inner_columns) {
     const double draw = column_unit(column_rng);
     const double distance = mm(0.1 + 0.15 * column_unit(column_rng));
     const double direction = 2.0 * 3.14159265358979 * column_unit(column_rng);
     const std::string& id = level.columns[k].id;
     if (draw < spec.missing_columns) {
-      missing_columns.push_back(id);
+      as_built.missing_columns.push_back(id);
     } else if (draw < spec.missing_columns + spec.moved_columns) {
-      moved_columns.push_back(
-          {{"column", id},
-           {"offset", {mm(distance * std::cos(direction)), mm(distance * std::sin(direction))}}});
+      as_built.moved_columns.push_back(
+          {id, {mm(distance * std::cos(direction)), mm(distance * std::sin(direction))}});
     }
   }
-  if (!missing_columns.empty()) as_built["missing_columns"] = missing_columns;
-  if (!moved_columns.empty()) as_built["moved_columns"] = moved_columns;
 }
 
 // The site as built against its plan (the plan's level, as written).
-json siteAsBuilt(const GeneratorSpec& spec, const SiteDrawing& site, const bim::Level& level) {
+bim::AsBuilt siteAsBuilt(const GeneratorSpec& spec, const SiteDrawing& site,
+                         const bim::Level& level) {
   std::mt19937_64 built_rng(spec.seed * 0xD1B54A32D192ED03ULL + 13);
-  json as_built = json::object();
-  const json missing = missingWalls(site, built_rng);
-  if (!missing.empty()) as_built["missing_walls"] = missing;
+  bim::AsBuilt as_built;
+  as_built.missing_walls = missingWalls(site, built_rng);
   std::uniform_real_distribution<double> built_unit(0.0, 1.0);
-  const json clutter = pallets(site, built_rng, built_unit);
-  if (!clutter.empty()) as_built["clutter"] = clutter;
-  const json rising = risingWall(level, missing, built_rng, built_unit);
-  if (!rising.is_null()) as_built["shortened_walls"] = rising;
+  as_built.clutter = pallets(site, built_rng, built_unit);
+  if (auto rising = risingWall(level, as_built.missing_walls, built_rng, built_unit)) {
+    as_built.shortened_walls.push_back(std::move(*rising));
+  }
   columnsAsBuilt(spec, site, level, as_built);
   return as_built;
 }
@@ -415,6 +414,7 @@ GeneratedBuilding generateSite(const GeneratorSpec& spec) {
 
   GeneratedBuilding out;
   out.name = spec.family + "-" + std::to_string(spec.seed);
+  out.as_built = siteAsBuilt(spec, site, site.level);
   // The plan lists no rooms: the core's are walls only, the floor is open.
   out.offices = 0;
   out.corridors = 0;
@@ -435,7 +435,7 @@ GeneratedBuilding generateSite(const GeneratorSpec& spec) {
                   {"plan", out.name + ".json"},
                   {"seed", spec.seed},
                   {"robot", {{"level", "L0"}, {"route", "tour"}}},
-                  {"as_built", siteAsBuilt(spec, site, plan.levels.back())}};
+                  {"as_built", generatedAsBuiltJson(out.as_built)}};
   return out;
 }
 

@@ -150,5 +150,53 @@ TEST(AsBuiltJson, ATurnAboutAPointAlongTheWallIsWrittenInMetres) {
   EXPECT_NEAR(rotationPivotAlong(*planned, again.wall_rotations[0]), 1.25, 1e-12);
 }
 
+// Written as a person writes a scenario (isg generate): only the lists that hold something, an
+// extra wall's base and level and a box's level only where not their defaults; read back the same.
+TEST(AsBuiltJson, WrittenForPeopleItLeavesOutEmptyListsAndDefaultsAndReadsBackTheSame) {
+  AsBuilt as_built;
+  as_built.closed_doors = {"D1"};
+  ExtraWall partition;
+  partition.start = {1.0, 1.0};
+  partition.end = {1.0, 3.0};
+  as_built.extra_walls.push_back(partition);
+  Clutter box;
+  box.center = {2.0, 2.0, 0.25};
+  box.size = {0.5, 0.5, 0.5};
+  box.yaw = 0.1;
+  as_built.clutter.push_back(box);
+  const AsBuiltJsonStyle for_people{.empty_lists = false, .default_fields = false};
+  const nlohmann::ordered_json written = asBuiltToJson(as_built, for_people);
+  std::vector<std::string> keys;
+  for (const auto& [key, value] : written.items()) keys.push_back(key);
+  EXPECT_EQ(keys, (std::vector<std::string>{"extra_walls", "closed_doors", "clutter"}));
+  EXPECT_EQ(written["extra_walls"][0].dump(),
+            R"({"start":[1.0,1.0],"end":[1.0,3.0],"thickness":0.1})");
+  EXPECT_EQ(written["clutter"][0].dump(),
+            R"({"shape":"box","center":[2.0,2.0,0.25],"size":[0.5,0.5,0.5],"yaw":0.1})");
+  // Where they differ from their defaults, they are written.
+  as_built.extra_walls[0].base = 0.5;
+  as_built.extra_walls[0].level = "L0";
+  as_built.clutter[0].level = "L0";
+  const nlohmann::ordered_json spelt = asBuiltToJson(as_built, for_people);
+  EXPECT_EQ(spelt["extra_walls"][0]["base"], 0.5);
+  EXPECT_EQ(spelt["extra_walls"][0]["level"], "L0");
+  EXPECT_EQ(spelt["clutter"][0]["level"], "L0");
+  // A dataset's style writes every list it always did, empty or not.
+  keys.clear();
+  const nlohmann::ordered_json for_a_dataset = asBuiltToJson(as_built);
+  for (const auto& [key, value] : for_a_dataset.items()) keys.push_back(key);
+  EXPECT_EQ(keys, (std::vector<std::string>{"missing_walls", "extra_walls", "wall_shifts",
+                                            "closed_doors", "clutter"}));
+  // Read back, the people's file gives the same deviations.
+  const AsBuilt again = readBack(written, parsePlanJson(twoRoomPlanJson()));
+  EXPECT_EQ(again.closed_doors, as_built.closed_doors);
+  ASSERT_EQ(again.extra_walls.size(), 1u);
+  EXPECT_EQ(again.extra_walls[0].end, partition.end);
+  EXPECT_EQ(again.extra_walls[0].base, 0.0);
+  ASSERT_EQ(again.clutter.size(), 1u);
+  EXPECT_EQ(again.clutter[0].center, box.center);
+  EXPECT_TRUE(again.wall_shifts.empty() && again.missing_walls.empty());
+}
+
 }  // namespace
 }  // namespace isg::bim

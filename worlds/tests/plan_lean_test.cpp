@@ -154,9 +154,9 @@ TEST(PlanLean, ALeanedBuildingIsThePlainOneMappedWithEveryChangeOnItsWall) {
 TEST(PlanLean, NoShearAndNoTurnChangeNothing) {
   const GeneratedBuilding plain = generateBuilding(specOf("office"));
   GeneratedBuilding same = plain;
-  leanBuilding(same.plan, same.scenario, 0.0, 0.0);
+  leanBuilding(same.plan, same.as_built, 0.0, 0.0);
   EXPECT_EQ(same.plan.dump(), plain.plan.dump());
-  EXPECT_EQ(same.scenario.dump(), plain.scenario.dump());
+  EXPECT_EQ(generatedAsBuiltJson(same.as_built).dump(), plain.scenario["as_built"].dump());
 }
 
 TEST(PlanLean, AShearBeyondFortyDegreesIsRefused) {
