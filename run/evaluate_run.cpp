@@ -6,6 +6,7 @@
 #include <stdexcept>
 #include <string>
 
+#include "bim/floor_at.hpp"
 #include "bim/polygon.hpp"
 #include "common/version.hpp"
 #include "eval/ape.hpp"
@@ -13,8 +14,8 @@
 #include "eval/wrong_localization.hpp"
 #include "run/keyframe_placements.hpp"
 #include "run/level_metrics.hpp"
-#include "run/map_against_plan.hpp"
 #include "run/map_plan_error.hpp"
+#include "run/map_to_plan_levels.hpp"
 
 namespace isg::run {
 
@@ -32,7 +33,7 @@ std::pair<double, int> walkedUntil(const common::PoseTrack& truth, double until,
     if (i > 0) distance += (p - truth.position(i - 1).head<2>()).norm();
     if (plan == nullptr) continue;
     // The level stood on: the start level in a plan of one, the ground truth's in one of several.
-    const int floor = plan->floors.size() > 1 ? floorAt(*plan, position.z()) : -1;
+    const int floor = plan->floors.size() > 1 ? bim::floorAt(*plan, position.z()) : -1;
     for (int r = 0; r < int(plan->rooms.size()); ++r) {
       const auto& room = plan->rooms[r];
       const bool on_level =
@@ -226,7 +227,8 @@ RunEvaluation evaluateRun(const RunRecord& run) {
                                           map_options.cutoff};
     std::vector<std::string> plan_levels;
     for (const auto& floor : run.setup.agraph->floors) plan_levels.push_back(floor.id);
-    against_plan = mapAgainstPlan(run, plan_levels);
+    against_plan = mapAgainstPlan(run, plan_levels,
+                                  {.cutoff_m = map_options.cutoff, .margin_m = map_options.margin});
     for (const auto& level : against_plan) {
       if (level.points > 0) m.map_to_plan->levels.push_back(levelSummary(level));
     }

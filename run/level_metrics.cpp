@@ -3,17 +3,9 @@
 #include <algorithm>
 #include <map>
 
-namespace isg::run {
+#include "bim/floor_at.hpp"
 
-int floorAt(const bim::AGraph& graph, double z) {
-  int best = -1, lowest = -1;
-  for (int f = 0; f < int(graph.floors.size()); ++f) {
-    const double elevation = graph.floors[f].elevation;
-    if (lowest < 0 || elevation < graph.floors[lowest].elevation) lowest = f;
-    if (elevation <= z && (best < 0 || elevation > graph.floors[best].elevation)) best = f;
-  }
-  return best >= 0 ? best : lowest;
-}
+namespace isg::run {
 
 std::vector<LevelMetrics> levelMetrics(const bim::AGraph& graph, common::PoseSequence ground_truth,
                                        const Trajectory& estimate,
@@ -35,7 +27,7 @@ std::vector<LevelMetrics> levelMetrics(const bim::AGraph& graph, common::PoseSeq
     return out[it->second];
   };
   for (std::size_t i = 0; i < ground_truth.size(); ++i) {
-    const int floor = floorAt(graph, ground_truth.position(i).z());
+    const int floor = bim::floorAt(graph, ground_truth.position(i).z());
     floor_of_row.push_back(floor);
     LevelMetrics& level = entry(floor, ground_truth.time(i));
     if (i + 1 < ground_truth.size())
@@ -53,7 +45,7 @@ std::vector<LevelMetrics> levelMetrics(const bim::AGraph& graph, common::PoseSeq
     const auto at = std::lower_bound(estimate.begin(), estimate.end(), t - 1e-9,
                                      [](const StampedPose& p, double s) { return p.t < s; });
     const bool on_level =
-        at == estimate.end() || floorAt(graph, at->pose.translation().z()) == floor;
+        at == estimate.end() || bim::floorAt(graph, at->pose.translation().z()) == floor;
     if (!level.first_estimate_at && on_level) level.first_estimate_at = t - t0;
     errors[floor].push_back(error);
   }

@@ -9,11 +9,6 @@
 
 namespace isg::run {
 
-// The floor (index into graph.floors) a robot whose base is at height z in B stands on: the one
-// with the highest elevation at or below z (the lowest when z is below all); -1 without floors.
-// On a flight that is the level it climbs from until its base passes the next level's floor.
-int floorAt(const bim::AGraph& graph, double z);
-
 // metrics.json `levels` (run/run_metrics.hpp): for each level the ground truth stood on, in the
 // order first reached, its time there, the first estimate (in B) that put the robot on it while
 // it was there, and the APE in B rows (t, error) taken while there. Empty for a plan of one level.

@@ -7,7 +7,7 @@
 
 #include "common/pose_interpolation.hpp"
 #include "run/keyframe_placements.hpp"
-#include "run/plan_segment_grid.hpp"
+#include "slam/deviations/plan_segment_grid.hpp"
 
 namespace isg::run {
 
@@ -74,7 +74,7 @@ void forEachPlacedMapPoint(const RunRecord& run,
 void forEachWallBandMapPoint(const RunRecord& run, const MapPlanErrorOptions& options,
                              const std::function<void(const Eigen::Vector3d&)>& visit) {
   if (!run.setup.agraph) return;
-  const PlanSegmentGrid grid(*run.setup.agraph, options.cutoff, options.margin);
+  const slam::PlanSegmentGrid grid(*run.setup.agraph, options.cutoff, options.margin);
   forEachPlacedMapPoint(run, [&](const Eigen::Vector3d& p) {
     if (grid.inBand(p.z())) visit(p);
   });
@@ -82,7 +82,7 @@ void forEachWallBandMapPoint(const RunRecord& run, const MapPlanErrorOptions& op
 
 std::optional<MapPlanError> mapPlanError(const RunRecord& run, const MapPlanErrorOptions& options) {
   if (!run.setup.agraph) return std::nullopt;
-  const PlanSegmentGrid grid(*run.setup.agraph, options.cutoff, options.margin);
+  const slam::PlanSegmentGrid grid(*run.setup.agraph, options.cutoff, options.margin);
   MapPlanError out;
   // Two passes, the first counting: the distances are the evaluation's largest array (1.8 M at
   // two hours), and a vector grown by doubling would hold up to three times their size while it

@@ -93,7 +93,7 @@ struct RunMetrics {
     // The same per level the map has points on (docs/deviations.md, "Where the map disagrees
     // with the plan"), so that a floor that localizes worse says where: its near points' median
     // and 95th percentile distance (to the millimetre), the face stretches measured, those lying
-    // off (|signed mean| of 4 cm or more: run/map_against_plan.hpp) and their length, and the
+    // off (|signed mean| of 4 cm or more: run/map_to_plan_levels.hpp) and their length, and the
     // farthest stretch.
     struct Level {
       std::string level;

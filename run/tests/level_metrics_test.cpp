@@ -18,16 +18,6 @@ bim::AGraph twoStoreys() {
   return graph;
 }
 
-TEST(LevelMetrics, FloorAtTakesTheHighestLevelAtOrBelowTheBase) {
-  const bim::AGraph graph = twoStoreys();
-  EXPECT_EQ(floorAt(graph, 0.45), 0);
-  EXPECT_EQ(floorAt(graph, 3.19), 0);  // on the flight, its base below the upper floor
-  EXPECT_EQ(floorAt(graph, 3.2), 1);
-  EXPECT_EQ(floorAt(graph, 3.65), 1);
-  EXPECT_EQ(floorAt(graph, -1.0), 0);  // below every level: the lowest
-  EXPECT_EQ(floorAt(bim::AGraph{}, 1.0), -1);
-}
-
 // 10 s on L0, 10 s on L1 (rows every 0.5 s); the APE rows of the second half are on L1.
 // The estimate reaches L1 later than the truth (as after a kidnap up a storey).
 TEST(LevelMetrics, TimeAndErrorsPerLevelInTheOrderReached) {

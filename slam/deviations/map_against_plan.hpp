@@ -3,15 +3,19 @@
 #include <Eigen/Core>
 #include <cmath>
 #include <cstddef>
+#include <functional>
 #include <string>
 #include <vector>
+
+#include "bim/agraph.hpp"
 
 namespace isg::slam {
 
 // Where the map's points lie off the plan's faces, per level (docs/deviations.md, "Where the map
-// disagrees with the plan"): the map-against-plan measure placed. Filled by whoever holds the
-// map's points (the run's thinned scans, run/map_against_plan.cpp); the deviation report carries
-// it into deviations.json, deviations.svg and the run's MCAP.
+// disagrees with the plan"): the map-against-plan measure placed. Measured here
+// (measureMapAgainstPlan) from the map's points as whoever holds them gives them (a run: its
+// thinned scans placed by its final trajectory, run/map_to_plan_levels.cpp); the deviation report
+// carries it into deviations.json, deviations.svg and the run's MCAP.
 struct FaceStretch {
   std::string surface;  // the plan face's id ("W3:left")
   Eigen::Vector2d start = Eigen::Vector2d::Zero(), end = Eigen::Vector2d::Zero();  // in B
@@ -32,6 +36,32 @@ struct LevelAgainstPlan {
   // Stretches of each exposed face that enough near points fell on, along the faces.
   std::vector<FaceStretch> stretches;
 };
+
+// A point counts when it lies in some wall surface's height band, `margin_m` clear of the
+// surface's bottom and top (floor and ceiling are not walls); it is near the plan when an exposed
+// face segment of a surface whose band holds it lies within `cutoff_m` in the plane. A face is
+// cut into equal stretches of at most `stretch_m`; a stretch is reported when at least
+// `min_points` near points fell on it: fewer say little of where a face lies (a ring crossing it
+// once leaves 10–20 points a metre).
+struct MapAgainstPlanOptions {
+  double cutoff_m = 0.3;
+  double margin_m = 0.2;
+  double stretch_m = 1.0;
+  std::size_t min_points = 30;
+};
+
+// Gives each of the map's points, in the plan frame B, to `visit`, one at a time (a long run's
+// map is never held placed as a whole).
+using MapPointSource =
+    std::function<void(const std::function<void(const Eigen::Vector3d&)>& visit)>;
+
+// One per level of `levels` (the levels the report judges), in their order. A point belongs to
+// the level of the face nearest to it, or, near none, of the highest floor at or below it
+// (bim::floorAt); a point of a level not listed is nobody's. None when the source gave no point.
+std::vector<LevelAgainstPlan> measureMapAgainstPlan(const bim::AGraph& plan,
+                                                    const std::vector<std::string>& levels,
+                                                    const MapPointSource& map_points,
+                                                    const MapAgainstPlanOptions& options = {});
 
 // How far off a stretch lies, |mean_m|, in four classes for the pictures: 0 within 2 cm (the
 // localizer's own accuracy), 1 to 4 cm, 2 to 8 cm (beyond the report's shift threshold of 6 cm

@@ -2,7 +2,7 @@
 // from y = 0.1 to 3.9 (looking to −x, into the East room), cut in four stretches of 0.95 m;
 // W3's inner face is y = 3.9. Walls 3 m high, so with the 0.2 m margin a point counts between
 // z = 0.2 and 2.8.
-#include "run/map_against_plan.hpp"
+#include "run/map_to_plan_levels.hpp"
 
 #include <gtest/gtest.h>
 
@@ -96,7 +96,7 @@ TEST_F(MapAgainstPlanTest, ALevelsSummaryCountsTheStretchesLyingOffAndNamesTheFa
   EXPECT_NEAR(level.farthest->mean_m, 0.05, 1e-5);
   // With a threshold of 2 cm both lie off; with none measured, none is the farthest.
   EXPECT_EQ(levelSummary(mapAgainstPlan(run_, {"L0"})[0], 0.02).off_stretches, 2);
-  MapAgainstPlanOptions options;
+  slam::MapAgainstPlanOptions options;
   options.min_points = 41;
   const RunMetrics::MapToPlan::Level bare = levelSummary(mapAgainstPlan(run_, {"L0"}, options)[0]);
   EXPECT_EQ(bare.stretches, 0);
@@ -104,7 +104,7 @@ TEST_F(MapAgainstPlanTest, ALevelsSummaryCountsTheStretchesLyingOffAndNamesTheFa
 }
 
 TEST_F(MapAgainstPlanTest, AStretchNeedsItsPointsAndALevelWalked) {
-  MapAgainstPlanOptions options;
+  slam::MapAgainstPlanOptions options;
   options.min_points = 41;
   EXPECT_TRUE(mapAgainstPlan(run_, {"L0"}, options)[0].stretches.empty());
   // A level not walked is not reported, and its points are nobody's.

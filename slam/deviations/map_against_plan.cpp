@@ -1,13 +1,13 @@
-#include "run/map_against_plan.hpp"
+#include "slam/deviations/map_against_plan.hpp"
 
 #include <algorithm>
 #include <cmath>
 #include <map>
 
-#include "run/level_metrics.hpp"
-#include "run/plan_segment_grid.hpp"
+#include "bim/floor_at.hpp"
+#include "slam/deviations/plan_segment_grid.hpp"
 
-namespace isg::run {
+namespace isg::slam {
 
 namespace {
 
@@ -34,12 +34,12 @@ struct StretchSums {
 
 }  // namespace
 
-std::vector<slam::LevelAgainstPlan> mapAgainstPlan(const RunRecord& run,
-                                                   const std::vector<std::string>& levels,
-                                                   const MapAgainstPlanOptions& options) {
-  if (!run.setup.agraph || !run.final_B_T_M || levels.empty()) return {};
-  const bim::AGraph& plan = *run.setup.agraph;
-  const PlanSegmentGrid grid(plan, options.error.cutoff, options.error.margin);
+std::vector<LevelAgainstPlan> measureMapAgainstPlan(const bim::AGraph& plan,
+                                                    const std::vector<std::string>& levels,
+                                                    const MapPointSource& map_points,
+                                                    const MapAgainstPlanOptions& options) {
+  if (levels.empty()) return {};
+  const PlanSegmentGrid grid(plan, options.cutoff_m, options.margin_m);
   const auto& segments = grid.segments();
   // Each segment cut into equal stretches of at most stretch_m.
   std::vector<std::size_t> first_stretch(segments.size() + 1, 0);
@@ -52,27 +52,27 @@ std::vector<slam::LevelAgainstPlan> mapAgainstPlan(const RunRecord& run,
   std::vector<StretchSums> sums(first_stretch.back());
   std::map<std::string, std::size_t> index_of;
   for (std::size_t l = 0; l < levels.size(); ++l) index_of[levels[l]] = l;
-  std::vector<slam::LevelAgainstPlan> out(levels.size());
+  std::vector<LevelAgainstPlan> out(levels.size());
   std::vector<DistanceHistogram> histograms(levels.size());
-  const std::size_t bins = std::size_t(std::ceil(options.error.cutoff * 1e3)) + 1;
+  const std::size_t bins = std::size_t(std::ceil(options.cutoff_m * 1e3)) + 1;
   for (std::size_t l = 0; l < levels.size(); ++l) {
     out[l].level = levels[l];
-    out[l].cutoff_m = options.error.cutoff;
+    out[l].cutoff_m = options.cutoff_m;
     histograms[l].bins.assign(bins, 0);
   }
   std::size_t placed = 0;
-  forEachPlacedMapPoint(run, [&](const Eigen::Vector3d& p) {
+  map_points([&](const Eigen::Vector3d& p) {
     ++placed;
     if (!grid.inBand(p.z())) return;
     const auto nearest = grid.nearest(p);
-    const bool near = nearest && nearest->distance <= options.error.cutoff;
-    const int floor = near ? -1 : floorAt(plan, p.z());
+    const bool near = nearest && nearest->distance <= options.cutoff_m;
+    const int floor = near ? -1 : bim::floorAt(plan, p.z());
     if (!near && floor < 0) return;
     const std::string& level =
         near ? plan.surfaces[segments[nearest->segment].surface].level : plan.floors[floor].id;
     const auto it = index_of.find(level);
     if (it == index_of.end()) return;
-    slam::LevelAgainstPlan& on = out[it->second];
+    LevelAgainstPlan& on = out[it->second];
     ++on.points;
     if (!near) return;
     DistanceHistogram& histogram = histograms[it->second];
@@ -93,7 +93,7 @@ std::vector<slam::LevelAgainstPlan> mapAgainstPlan(const RunRecord& run,
   });
   if (placed == 0) return {};
   for (std::size_t l = 0; l < levels.size(); ++l) {
-    slam::LevelAgainstPlan& on = out[l];
+    LevelAgainstPlan& on = out[l];
     if (on.points > 0) on.near_share = double(histograms[l].count) / double(on.points);
     if (histograms[l].count > 0) {
       on.median_m = histograms[l].quantile(0.5);
@@ -109,7 +109,7 @@ std::vector<slam::LevelAgainstPlan> mapAgainstPlan(const RunRecord& run,
     for (std::size_t k = 0; k < count; ++k) {
       const StretchSums& stretch = sums[first_stretch[i] + k];
       if (stretch.points < options.min_points) continue;
-      slam::FaceStretch face;
+      FaceStretch face;
       face.surface = surface.id;
       face.start = s.a + (s.b - s.a) * (double(k) / double(count));
       face.end = s.a + (s.b - s.a) * (double(k + 1) / double(count));
@@ -122,27 +122,4 @@ std::vector<slam::LevelAgainstPlan> mapAgainstPlan(const RunRecord& run,
   return out;
 }
 
-RunMetrics::MapToPlan::Level levelSummary(const slam::LevelAgainstPlan& level, double off_m) {
-  RunMetrics::MapToPlan::Level out;
-  out.level = level.level;
-  out.points = std::int64_t(level.points);
-  out.near_share = level.near_share;
-  out.median_m = level.median_m;
-  out.p95_m = level.p95_m;
-  out.stretches = int(level.stretches.size());
-  const slam::FaceStretch* farthest = nullptr;
-  for (const auto& s : level.stretches) {
-    if (std::abs(s.mean_m) >= off_m) {
-      ++out.off_stretches;
-      out.off_length_m += (s.end - s.start).norm();
-    }
-    if (farthest == nullptr || std::abs(s.mean_m) > std::abs(farthest->mean_m)) farthest = &s;
-  }
-  if (farthest != nullptr) {
-    out.farthest = RunMetrics::MapToPlan::Level::Farthest{farthest->surface, farthest->mean_m,
-                                                          farthest->start, farthest->end};
-  }
-  return out;
-}
-
-}  // namespace isg::run
+}  // namespace isg::slam

@@ -7,7 +7,7 @@
 
 #include "bim/agraph.hpp"
 
-namespace isg::run {
+namespace isg::slam {
 
 // The plan's exposed wall segments, bucketed on a grid of 1 m cells: a segment is listed in every
 // cell within the cutoff of its box, so that one cell's list holds every segment near its points.
@@ -45,4 +45,4 @@ class PlanSegmentGrid {
   std::vector<std::vector<int>> cells_;
 };
 
-}  // namespace isg::run
+}  // namespace isg::slam

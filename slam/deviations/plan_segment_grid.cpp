@@ -1,4 +1,4 @@
-#include "run/plan_segment_grid.hpp"
+#include "slam/deviations/plan_segment_grid.hpp"
 
 #include <Eigen/Geometry>
 #include <algorithm>
@@ -6,7 +6,7 @@
 
 #include "bim/polygon.hpp"
 
-namespace isg::run {
+namespace isg::slam {
 
 PlanSegmentGrid::PlanSegmentGrid(const bim::AGraph& plan, double cutoff, double margin) {
   const Eigen::AlignedBox2d bounds = plan.surfaceBounds();
@@ -52,4 +52,4 @@ std::optional<PlanSegmentGrid::Nearest> PlanSegmentGrid::nearest(const Eigen::Ve
   return best;
 }
 
-}  // namespace isg::run
+}  // namespace isg::slam
