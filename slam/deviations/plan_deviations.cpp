@@ -11,6 +11,7 @@
 
 #include "bim/polygon.hpp"
 #include "common/angles.hpp"
+#include "slam/deviations/deviation_threshold.hpp"
 #include "slam/deviations/face_views.hpp"
 #include "slam/deviations/seen_through.hpp"
 
@@ -183,6 +184,11 @@ void measurePiece(WallEvidence& e, const PlannedWall& planned) {
 // whose both ends lie within `tolerance` of it are consistent, the line is fitted to their ends
 // (weighted by length), three times over. The others (a plane fitted across a corner or a door
 // leaf) are kept as evidence but not believed.
+void setThresholds(WallDeviation& wall, const WallThresholds& thresholds) {
+  wall.shift_threshold_m = thresholds.shift_m;
+  wall.angle_threshold_deg = thresholds.angle_deg;
+}
+
 struct WallFit {
   double offset_m = 0.0, angle_deg = 0.0;
   double length = 0.0;   // of the consistent pieces
@@ -754,45 +760,25 @@ LevelWalls levelWalls(const bim::AGraph& plan, const std::string& level,
   return level_walls;
 }
 
-// The map's own error around a wall (DeviationOptions::noise_factor): what the walls around it
-// found as planned keep of offset and angle once the local placement is applied.
+// The map's own error around a wall (DeviationThreshold): what the walls around it found as
+// planned keep of offset and angle once the local placement is applied.
 void setLocalThresholds(WallDeviation& wall, const PlannedWall& its_plan, const LevelWalls& around,
                         const Placement& local, const DeviationOptions& options) {
-  double offset_weight = 0.0, offset_sum = 0.0, angle_weight = 0.0, angle_sum = 0.0;
-  int offset_walls = 0, angle_walls = 0;
+  DeviationThreshold threshold(options);
   for (const auto& [neighbour, planned] : around) {
     if (neighbour.evidence.empty() || neighbour.observed_share < options.judged_share) continue;
     WallDeviation moved = neighbour;
     for (auto& e : moved.evidence) local.apply(e, planned);
     const WallFit fit = fitWall(moved, planned, options);
-    if (std::abs(fit.offset_m) >= options.shift_m || std::abs(fit.angle_deg) >= options.angle_deg) {
-      continue;  // deviating: not the map's error
-    }
-    offset_weight += fit.length;
-    offset_sum += fit.length * fit.offset_m * fit.offset_m;
-    ++offset_walls;
-    if (fit.longest >= options.min_angle_length) {
-      angle_weight += fit.length;
-      angle_sum += fit.length * fit.angle_deg * fit.angle_deg;
-      ++angle_walls;
-    }
+    threshold.addNeighbour(fit.length, fit.longest, fit.offset_m, fit.angle_deg);
   }
-  // The placement fitted three numbers on these walls: their residuals understate the error.
-  auto noise = [&](double sum, double weight, int n) -> std::optional<double> {
-    if (n < std::max(options.min_noise_walls, 4) || weight <= 0.0) return std::nullopt;
-    return std::sqrt(sum / weight * double(n) / double(n - 3));
-  };
-  wall.local_offset_noise_m = noise(offset_sum, offset_weight, offset_walls);
-  wall.local_angle_noise_deg = noise(angle_sum, angle_weight, angle_walls);
+  wall.local_offset_noise_m = threshold.offsetNoise();
+  wall.local_angle_noise_deg = threshold.angleNoise();
   // And how well those walls fix where the map lies across this one: along a direction none of
   // them constrains (the walls around all run across it, or are all built off), the placement's
   // prior stands for the localizer's, and the wall's own offset cannot be told from the map's.
   wall.placement_sigma_m = local.sigmaAcross(its_plan);
-  wall.shift_threshold_m =
-      std::max({options.shift_m, options.noise_factor * wall.local_offset_noise_m.value_or(0.0),
-                options.noise_factor * wall.placement_sigma_m});
-  wall.angle_threshold_deg =
-      std::max(options.angle_deg, options.noise_factor * wall.local_angle_noise_deg.value_or(0.0));
+  setThresholds(wall, threshold.thresholds(wall.placement_sigma_m));
 }
 
 // Each wall against its neighbours alone (DeviationOptions::local_radius): a long map bends a
@@ -801,10 +787,7 @@ void setLocalThresholds(WallDeviation& wall, const PlannedWall& its_plan, const 
 // neighbours leave (setLocalThresholds).
 LevelWalls placedLocally(const LevelWalls& level_walls, const DeviationOptions& options) {
   LevelWalls judged = level_walls;
-  for (auto& [wall, planned] : judged) {
-    wall.shift_threshold_m = options.shift_m;
-    wall.angle_threshold_deg = options.angle_deg;
-  }
+  for (auto& [wall, planned] : judged) setThresholds(wall, DeviationThreshold::fixed(options));
   for (std::size_t i = 0; i < level_walls.size(); ++i) {
     if (level_walls[i].first.evidence.empty()) continue;
     LevelWalls around;
@@ -912,8 +895,7 @@ void measureLevel(const bim::AGraph& plan, int f, const std::vector<WallInB>& wa
     if (!wall.local_offset_noise_m &&
         (locally == WallStatus::kShifted || locally == WallStatus::kRotated)) {
       WallDeviation by_level = level_walls[i].first;
-      by_level.shift_threshold_m = options.shift_m;
-      by_level.angle_threshold_deg = options.angle_deg;
+      setThresholds(by_level, DeviationThreshold::fixed(options));
       const Judged judged_by_level = judge(by_level, planned, options);
       if (decideWallStatus(evidenceOf(by_level, judged_by_level), options) ==
           WallStatus::kAsPlanned) {
