@@ -9,6 +9,7 @@
 #include <stdexcept>
 #include <tuple>
 
+#include "bim/floor_at.hpp"
 #include "bim/polygon.hpp"
 #include "common/angles.hpp"
 #include "slam/deviations/deviation_threshold.hpp"
@@ -69,19 +70,9 @@ WallInB toB(const MapWall& wall, const Eigen::Isometry3d& B_T_M) {
   return out;
 }
 
-// The level a height in B stands on: the highest floor at or below it (the lowest, below all).
-int levelAt(const bim::AGraph& plan, double z) {
-  int best = -1;
-  for (int f = 0; f < int(plan.floors.size()); ++f) {
-    const double e = plan.floors[f].elevation;
-    if (e <= z + 1e-6 && (best < 0 || e > plan.floors[best].elevation)) best = f;
-  }
-  if (best >= 0 || plan.floors.empty()) return best;
-  for (int f = 0; f < int(plan.floors.size()); ++f) {
-    if (best < 0 || plan.floors[f].elevation < plan.floors[best].elevation) best = f;
-  }
-  return best;
-}
+// The level a height in B stands on: the highest floor at or below it (the lowest, below all),
+// a micrometre's rounding allowed (a wall's bottom is its floor's elevation).
+int levelAt(const bim::AGraph& plan, double z) { return bim::floorAt(plan, z + 1e-6); }
 
 // How far along a planned wall (metres from its start, clipped to it) a segment reaches.
 std::pair<double, double> spanAlong(const PlannedWall& w, const Eigen::Vector2d& a,
