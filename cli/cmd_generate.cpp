@@ -50,6 +50,17 @@ GenerateCommand::GenerateCommand(CLI::App& parent) {
   app_->add_option("--seed", seed_, "seed of the first building; the next ones count up")
       ->check(seedNumber())
       ->capture_default_str();
+  addLayoutOptions();
+  addAsBuiltOptions();
+  app_->add_flag("--no-verify", no_verify_,
+                 "skip building each world and planning its tour (large batches, trusted "
+                 "parameters); plans and scenarios are still checked as isg check checks them");
+  app_->add_flag("--force", force_, "replace DIR if it exists");
+  app_->add_flag("-q,--quiet", quiet_, "no progress bar");
+}
+
+// The building as planned: its offices, corridors, doors, walls and storey.
+void GenerateCommand::addLayoutOptions() {
   app_->add_option("--rooms", spec_.rooms,
                    "offices per building, up to 5000 where the plan's limits allow: corridors are "
                    "rooms too (5000 a level) and a level is at most 1 km long (a hotel is one "
@@ -81,6 +92,10 @@ GenerateCommand::GenerateCommand(CLI::App& parent) {
       ->default_str("one per 40 m² of hall");
   app_->add_option("--wall-thickness", spec_.wall_thickness, "[m]")->capture_default_str();
   app_->add_option("--height", spec_.height, "storey height [m]")->capture_default_str();
+}
+
+// The building as built (what differs from its plan), and the lean that makes it non-Manhattan.
+void GenerateCommand::addAsBuiltOptions() {
   app_->add_option(
           "--clutter-per-room", spec_.clutter_per_room,
           "as built: mean clutter boxes per office, 0 … 4 (in its corners, clear of doors)")
@@ -136,11 +151,6 @@ GenerateCommand::GenerateCommand(CLI::App& parent) {
   app_->add_option("--closed-doors", spec_.closed_doors,
                    "as built: share of doors closed, among those whose closing cuts no room off")
       ->capture_default_str();
-  app_->add_flag("--no-verify", no_verify_,
-                 "skip building each world and planning its tour (large batches, trusted "
-                 "parameters); plans and scenarios are still checked as isg check checks them");
-  app_->add_flag("--force", force_, "replace DIR if it exists");
-  app_->add_flag("-q,--quiet", quiet_, "no progress bar");
 }
 
 // Each family once ("hall hall" is one family: its buildings would have the same names).

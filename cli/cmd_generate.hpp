@@ -17,6 +17,9 @@ class GenerateCommand : public Command {
   int run() override;
 
  private:
+  // The option table, by group (the constructor adds the rest).
+  void addLayoutOptions();
+  void addAsBuiltOptions();
   // The steps of run(): the families asked for (each once), the options that do not apply to
   // them said, the buildings made, and each written (and checked, unless --no-verify).
   std::vector<std::string> familiesAsked() const;

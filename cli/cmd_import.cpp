@@ -112,6 +112,18 @@ ImportCommand::ImportCommand(CLI::App& parent) {
                    "plan file (from IFC or a floor plan) or dataset folder (from a recording)")
       ->option_text("PLAN.json|DATASET_DIR")
       ->required();
+  addRasterOptions();
+  addRecordingOptions();
+  app_->add_option("--storey", storeys_,
+                   "import this storey (its IFC name; repeat for several) instead of choosing")
+      ->option_text("NAME");
+  app_->add_flag("--force", force_, "replace the output if isg wrote it before");
+  app_->add_flag("-q,--quiet", quiet_,
+                 "print only the summary (no element left out of an IFC model, no progress bar)");
+}
+
+// Raster floor plans: the image's scale, origin and the walls' height.
+void ImportCommand::addRasterOptions() {
   auto* raster = "Raster floor plans (.png, .pgm, .yaml)";
   app_->add_option("--resolution", resolution_,
                    "metres a pixel of a floor plan image (a map's YAML gives its own)")
@@ -130,6 +142,10 @@ ImportCommand::ImportCommand(CLI::App& parent) {
       ->capture_default_str()
       ->option_text("H")
       ->group(raster);
+}
+
+// Recordings: which topics and frames, which stretch of time, the sensors' mounts.
+void ImportCommand::addRecordingOptions() {
   auto* bag = "Recordings (.bag)";
   app_->add_option("--lidar-topic", lidar_topic_, "the point clouds' topic")
       ->option_text("TOPIC")
@@ -182,12 +198,6 @@ ImportCommand::ImportCommand(CLI::App& parent) {
       ->expected(6)
       ->option_text("X,Y,Z,R,P,Y")
       ->group(bag);
-  app_->add_option("--storey", storeys_,
-                   "import this storey (its IFC name; repeat for several) instead of choosing")
-      ->option_text("NAME");
-  app_->add_flag("--force", force_, "replace the output if isg wrote it before");
-  app_->add_flag("-q,--quiet", quiet_,
-                 "print only the summary (no element left out of an IFC model, no progress bar)");
 }
 
 int ImportCommand::run() {

@@ -17,6 +17,9 @@ class ImportCommand : public Command {
   int run() override;
 
  private:
+  // The option table, by group (the constructor adds the rest).
+  void addRasterOptions();
+  void addRecordingOptions();
   int importIfc();
   int importBag();
   int importRaster();

@@ -33,14 +33,9 @@ struct LongFunction {
 };
 
 inline const std::vector<LongFunction>& allowedLongFunctions() {
-  static const std::vector<LongFunction> allowed{
-      {"cli/cmd_import.cpp", "ImportCommand",
-       "the command's option table: one CLI11 declaration an option, with its help text; split, "
-       "its groups would be read apart from each other"},
-      {"cli/cmd_generate.cpp", "GenerateCommand",
-       "the command's option table: one CLI11 declaration an option, with its help text and "
-       "range"},
-  };
+  // None now: the two command option tables it held (ImportCommand, GenerateCommand) are split
+  // by option group. An entry needs a reason of its own.
+  static const std::vector<LongFunction> allowed{};
   return allowed;
 }
 
