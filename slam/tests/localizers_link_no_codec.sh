@@ -6,7 +6,8 @@
 # carries none of them. PCL, which the plane extraction and NDT use, loads VTK's CMake
 # configuration, whose link interface names LZ4: what a link line of PCL's alone holds (PROBE_TXT,
 # pcl_link_probe's) is PCL's, reported and not counted.
-#   localizers_link_no_codec.sh PROBE_TXT LINK_TXT...   check these link lines
+#   localizers_link_no_codec.sh PROBE LINK...   check these link lines (each a link.txt file or
+#                                               ninja:BUILD_DIR:TARGET, common/tests/link_line.sh)
 #   localizers_link_no_codec.sh --self-test             check that a codec on a link line is caught
 set -euo pipefail
 # The libraries of formats/: LZF (PCD), bz2 and lz4 (ROS 1 bags' chunks), zstd and zlib (MCAP),
@@ -58,13 +59,16 @@ if [[ ${1:-} == --self-test ]]; then
   exit 0
 fi
 
-probe=$1
+source "$(dirname "$0")/../../common/tests/link_line.sh"
+lines=$(mktemp -d)
+trap 'rm -rf "$lines"' EXIT
+linkLineTo "$1" "$lines/probe.txt" || { echo "FAIL: no link line $1"; exit 1; }
 shift
-[[ -f $probe ]] || { echo "FAIL: no link line $probe"; exit 1; }
 status=0
-for link_line in "$@"; do
-  [[ -f $link_line ]] || { echo "FAIL: no link line $link_line"; exit 1; }
-  check "$link_line" "$probe" || status=1
+for spec in "$@"; do
+  link_line=$lines/$(basename "${spec//[:\/]/_}")
+  linkLineTo "$spec" "$link_line" || { echo "FAIL: no link line $spec"; exit 1; }
+  check "$link_line" "$lines/probe.txt" || status=1
 done
 [[ $status == 0 ]] && echo "ok: $# localizer link lines name no codec of ours"
 exit $status
