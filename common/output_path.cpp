@@ -64,16 +64,23 @@ std::string currentDirectory() {
 
 // A sweep folder made before the marker existed holds sweep.json; an empty folder is free, and so
 // is one that a sweep starting this instant has locked but not yet marked (only its ".lock", or
-// the marker being written).
+// the marker being written). The listing is read before the marker: a sweep writes its marker
+// before anything else, so when the listing shows any other file, the marker is there by the time
+// it is read. Read the other way round, a sweep started beside this one could mark its folder
+// and write its worlds between the two reads, and its folder would be taken for a stranger's.
 bool mayHoldSweep(const fs::path& folder) {
-  if (folderOutputKind(folder) == OutputKind::kSweep) return true;
-  if (fs::is_regular_file(folder / "sweep.json")) return true;
   std::error_code error;
+  bool only_lock_and_marker = true;
   for (const auto& entry : fs::directory_iterator(folder, error)) {
     const std::string name = entry.path().filename().string();
-    if (name != ".lock" && name.rfind(kOutputMarkerFile, 0) != 0) return false;
+    if (name != ".lock" && name.rfind(kOutputMarkerFile, 0) != 0) {
+      only_lock_and_marker = false;
+      break;
+    }
   }
-  return !error;
+  if (!error && only_lock_and_marker) return true;
+  if (folderOutputKind(folder) == OutputKind::kSweep) return true;
+  return fs::is_regular_file(folder / "sweep.json");
 }
 
 // isg writes no symbolic links, so one where the output goes is the user's: replacing it (a
