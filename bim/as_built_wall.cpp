@@ -4,15 +4,9 @@
 #include <cmath>
 #include <numbers>
 
+#include "bim/polygon.hpp"
+
 namespace isg::bim {
-
-namespace {
-
-double cross(const Eigen::Vector2d& a, const Eigen::Vector2d& b) {
-  return a.x() * b.y() - a.y() * b.x();
-}
-
-}  // namespace
 
 double rotationPivotAlong(const Wall& planned, const WallRotation& rotation) {
   const double length = (planned.end - planned.start).norm();

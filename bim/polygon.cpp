@@ -9,10 +9,6 @@ namespace isg::bim {
 
 namespace {
 
-double cross(const Eigen::Vector2d& a, const Eigen::Vector2d& b) {
-  return a.x() * b.y() - a.y() * b.x();
-}
-
 // Orientation of c relative to the directed line a → b, with a tolerance scaled to the segment.
 int orientation(const Eigen::Vector2d& a, const Eigen::Vector2d& b, const Eigen::Vector2d& c) {
   const double value = cross(b - a, c - a);

@@ -9,6 +9,11 @@ namespace isg::bim {
 
 using Polygon2 = std::vector<Eigen::Vector2d>;
 
+// The z of the 3-D cross product of a and b: positive when b turns counter-clockwise from a.
+inline double cross(const Eigen::Vector2d& a, const Eigen::Vector2d& b) {
+  return a.x() * b.y() - a.y() * b.x();
+}
+
 // Signed area (shoelace): positive for counter-clockwise vertex order.
 double signedArea(const Polygon2& polygon);
 

@@ -13,7 +13,7 @@ namespace {
 
 namespace fs = std::filesystem;
 
-std::string number(double value) {
+std::string formatNumber(double value) {
   char text[48];
   std::snprintf(text, sizeof text, "%.9g", value);
   return text;
@@ -58,7 +58,7 @@ void checkDatasetAgainstMetadata(const DatasetReader& dataset) {
   // The LiDAR: scan count, rate and the duration they cover.
   const int scans = dataset.scanCount();
   if (const auto declared = numberAt(m, {"lidar", "scans"}); declared && *declared != scans) {
-    disagree("/lidar/scans", "says " + number(*declared) + " scans, the dataset has " +
+    disagree("/lidar/scans", "says " + formatNumber(*declared) + " scans, the dataset has " +
                                  std::to_string(scans) + " (scans/ and scans.tum)");
   }
   std::vector<double> stamps;
@@ -66,8 +66,9 @@ void checkDatasetAgainstMetadata(const DatasetReader& dataset) {
   if (const auto declared = numberAt(m, {"lidar", "scan_period_s"})) {
     if (const auto period = dataset::meanPeriod(stamps);
         period && std::abs(*period / *declared - 1.0) > 0.01) {
-      disagree("/lidar/scan_period_s", "says " + number(*declared) + " s, scans.tum's stamps are " +
-                                           number(*period) + " s apart on average");
+      disagree("/lidar/scan_period_s", "says " + formatNumber(*declared) +
+                                           " s, scans.tum's stamps are " + formatNumber(*period) +
+                                           " s apart on average");
     }
   }
   // A cloud a turn (the default angle cut): the stamps come at the rotation rate.
@@ -76,8 +77,8 @@ void checkDatasetAgainstMetadata(const DatasetReader& dataset) {
   if (const auto rate = numberAt(m, {"lidar", "rate_hz"}); rate && cut_by_angle) {
     if (const auto period = dataset::meanPeriod(stamps);
         period && std::abs(*period * *rate - 1.0) > 0.01) {
-      disagree("/lidar/rate_hz", "says " + number(*rate) + " Hz, scans.tum's stamps are " +
-                                     number(1.0 / *period) + " Hz apart on average");
+      disagree("/lidar/rate_hz", "says " + formatNumber(*rate) + " Hz, scans.tum's stamps are " +
+                                     formatNumber(1.0 / *period) + " Hz apart on average");
     }
   }
   // scans.tum: the LiDAR's pose at each stamp, which the ground truth and the mount also give.
@@ -88,7 +89,7 @@ void checkDatasetAgainstMetadata(const DatasetReader& dataset) {
     const std::string file = (dir / dataset::kScanPoses).string();
     if (!B_p_R) {
       throw common::InputError(file, "",
-                               "scan " + std::to_string(i) + " at " + number(poses[i].t) +
+                               "scan " + std::to_string(i) + " at " + formatNumber(poses[i].t) +
                                    " s lies outside the ground truth's time span");
     }
     // The mount's offset turned by the base's orientation at that time: from the nearest row.
@@ -99,8 +100,8 @@ void checkDatasetAgainstMetadata(const DatasetReader& dataset) {
     const double off = (poses[i].pose.translation() - expected).norm();
     if (off > 0.01) {
       throw common::InputError(file, "",
-                               "scan " + std::to_string(i) + " at " + number(poses[i].t) +
-                                   " s: the LiDAR pose is " + number(off) +
+                               "scan " + std::to_string(i) + " at " + formatNumber(poses[i].t) +
+                                   " s: the LiDAR pose is " + formatNumber(off) +
                                    " m from the ground truth's (" + dataset::kGroundTruth +
                                    " and the mount in metadata.json): the files do not belong "
                                    "together");
@@ -112,8 +113,9 @@ void checkDatasetAgainstMetadata(const DatasetReader& dataset) {
     const double period = dataset.scanPeriod();
     const double last_end = stamps.back() + dataset.turnEndFromStamp();
     if (last_end > *duration + 1e-6 || last_end + period <= *duration - 1e-6) {
-      disagree("/duration_s", "says " + number(*duration) + " s, the last scan's turn ends at " +
-                                  number(last_end) + " s");
+      disagree("/duration_s", "says " + formatNumber(*duration) +
+                                  " s, the last scan's turn ends at " + formatNumber(last_end) +
+                                  " s");
     }
   }
 
@@ -123,12 +125,12 @@ void checkDatasetAgainstMetadata(const DatasetReader& dataset) {
     const std::string imu_file = (dir / dataset::kImu).string();
     if (const auto samples = numberAt(m, {"imu", "samples"})) {
       if (*samples > 0 && imu.empty()) {
-        disagree("/imu/samples", "says " + number(*samples) + " samples, " + imu_file +
+        disagree("/imu/samples", "says " + formatNumber(*samples) + " samples, " + imu_file +
                                      (fs::exists(imu_file) ? " has none" : " does not exist"));
       }
       if (*samples != double(imu.size())) {
-        disagree("/imu/samples", "says " + number(*samples) + " samples, " + imu_file + " has " +
-                                     std::to_string(imu.size()));
+        disagree("/imu/samples", "says " + formatNumber(*samples) + " samples, " + imu_file +
+                                     " has " + std::to_string(imu.size()));
       }
     }
     if (const auto rate = numberAt(m, {"imu", "rate_hz"})) {
@@ -136,8 +138,9 @@ void checkDatasetAgainstMetadata(const DatasetReader& dataset) {
       for (const auto& s : imu) imu_stamps.push_back(s.t);
       if (const auto period = dataset::meanPeriod(imu_stamps);
           period && std::abs(*period * *rate - 1.0) > 0.01) {
-        disagree("/imu/rate_hz", "says " + number(*rate) + " Hz, " + imu_file + "'s samples are " +
-                                     number(1.0 / *period) + " Hz apart on average");
+        disagree("/imu/rate_hz", "says " + formatNumber(*rate) + " Hz, " + imu_file +
+                                     "'s samples are " + formatNumber(1.0 / *period) +
+                                     " Hz apart on average");
       }
     }
   }

@@ -34,7 +34,7 @@ Json object(Json properties, const std::vector<std::string>& required, const std
   if (!title.empty()) schema["title"] = title;
   return schema;
 }
-Json number() { return {{"type", "number"}}; }
+Json numberSchema() { return {{"type", "number"}}; }
 Json boolean() { return {{"type", "boolean"}}; }
 Json string() { return {{"type", "string"}}; }
 Json integer(int minimum, int maximum) {
@@ -46,20 +46,22 @@ Json timeSchema() {
                 {"sec", "nsec"}, "time");
 }
 Json vector3Schema() {
-  return object({{"x", number()}, {"y", number()}, {"z", number()}}, {"x", "y", "z"},
-                "foxglove.Vector3");
+  return object({{"x", numberSchema()}, {"y", numberSchema()}, {"z", numberSchema()}},
+                {"x", "y", "z"}, "foxglove.Vector3");
 }
 Json quaternionSchema() {
-  return object({{"x", number()}, {"y", number()}, {"z", number()}, {"w", number()}},
-                {"x", "y", "z", "w"}, "foxglove.Quaternion");
+  return object(
+      {{"x", numberSchema()}, {"y", numberSchema()}, {"z", numberSchema()}, {"w", numberSchema()}},
+      {"x", "y", "z", "w"}, "foxglove.Quaternion");
 }
 Json poseSchema() {
   return object({{"position", vector3Schema()}, {"orientation", quaternionSchema()}},
                 {"position", "orientation"}, "foxglove.Pose");
 }
 Json colorSchema() {
-  return object({{"r", number()}, {"g", number()}, {"b", number()}, {"a", number()}},
-                {"r", "g", "b", "a"}, "foxglove.Color");
+  return object(
+      {{"r", numberSchema()}, {"g", numberSchema()}, {"b", numberSchema()}, {"a", numberSchema()}},
+      {"r", "g", "b", "a"}, "foxglove.Color");
 }
 SchemaText schema(const std::string& name, Json body) {
   body["title"] = name;
@@ -214,7 +216,7 @@ SchemaText sceneUpdateSchema() {
              {"pose", "points", "color", "colors", "indices"}, "foxglove.TriangleListPrimitive");
   const Json text = object({{"pose", poseSchema()},
                             {"billboard", boolean()},
-                            {"font_size", number()},
+                            {"font_size", numberSchema()},
                             {"scale_invariant", boolean()},
                             {"color", colorSchema()},
                             {"text", string()}},

@@ -27,9 +27,9 @@ using mcap::kChannel, mcap::kChunk, mcap::kDataEnd, mcap::kFooter, mcap::kHeader
 constexpr std::uint64_t kMaxChunkBytes = 1ull << 31;
 
 // Reads the fields of one record's content, each checked against what is left.
-class Fields {
+class ReadFields {
  public:
-  Fields(std::string_view content, const char* record) : content_(content), record_(record) {}
+  ReadFields(std::string_view content, const char* record) : content_(content), record_(record) {}
 
   template <typename T>
   T number(const char* field) {
@@ -51,7 +51,7 @@ class Fields {
     return std::string(take(number<std::uint32_t>(field), field));
   }
   std::map<std::string, std::string> map(const char* field) {
-    Fields entries(take(number<std::uint32_t>(field), field), record_);
+    ReadFields entries(take(number<std::uint32_t>(field), field), record_);
     std::map<std::string, std::string> out;
     while (!entries.done()) {
       std::string key = entries.string(field);
@@ -126,7 +126,7 @@ void McapReader::open() {
       try {
         if (opcode == kHeader) {
           if (!first) fail(at, "a second Header");
-          Fields fields(content, "Header");
+          ReadFields fields(content, "Header");
           profile_ = fields.string("profile");
           library_ = fields.string("library");
         } else if (opcode == kChunk) {
@@ -167,7 +167,7 @@ void McapReader::open() {
 void McapReader::readRecord(std::uint8_t opcode, std::string_view content, std::uint64_t offset,
                             std::uint32_t chunk) {
   if (opcode == kSchema) {
-    Fields fields(content, "Schema");
+    ReadFields fields(content, "Schema");
     const auto id = fields.number<std::uint16_t>("id");
     SchemaRecord schema;
     schema.name = fields.string("name");
@@ -179,7 +179,7 @@ void McapReader::readRecord(std::uint8_t opcode, std::string_view content, std::
       throw std::runtime_error("schema " + std::to_string(id) + " is defined twice, differently");
     }
   } else if (opcode == kChannel) {
-    Fields fields(content, "Channel");
+    ReadFields fields(content, "Channel");
     McapChannel channel;
     channel.id = fields.number<std::uint16_t>("id");
     const auto schema_id = fields.number<std::uint16_t>("schema_id");
@@ -211,7 +211,7 @@ void McapReader::readRecord(std::uint8_t opcode, std::string_view content, std::
     channel_index_.emplace(channel.id, std::uint32_t(channels_.size()));
     channels_.push_back(std::move(channel));
   } else if (opcode == kMessage) {
-    Fields fields(content, "Message");
+    ReadFields fields(content, "Message");
     Entry entry;
     entry.channel = fields.number<std::uint16_t>("channel_id");
     fields.number<std::uint32_t>("sequence");
@@ -223,7 +223,7 @@ void McapReader::readRecord(std::uint8_t opcode, std::string_view content, std::
 }
 
 void McapReader::readChunk(std::string_view content, std::uint64_t position) {
-  Fields fields(content, "Chunk");
+  ReadFields fields(content, "Chunk");
   fields.number<std::uint64_t>("message_start_time");
   fields.number<std::uint64_t>("message_end_time");
   Chunk chunk;

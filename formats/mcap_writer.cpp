@@ -27,19 +27,19 @@ using mcap::Opcode;
 const std::string kMagic(mcap::kMagic);
 
 // Little-endian fields, strings and maps as the MCAP specification lays them out.
-class Fields {
+class WriteFields {
  public:
   template <typename T>
-  Fields& number(T v) {
+  WriteFields& number(T v) {
     bytes_.append(reinterpret_cast<const char*>(&v), sizeof v);
     return *this;
   }
-  Fields& string(const std::string& s) {
+  WriteFields& string(const std::string& s) {
     number(std::uint32_t(s.size()));
     bytes_.append(s);
     return *this;
   }
-  Fields& raw(const std::string& s) {
+  WriteFields& raw(const std::string& s) {
     bytes_.append(s);
     return *this;
   }
@@ -49,17 +49,17 @@ class Fields {
   std::string bytes_;
 };
 
-std::string record(Opcode opcode, const std::string& content) {
-  Fields r;
+std::string mcapRecord(Opcode opcode, const std::string& content) {
+  WriteFields r;
   r.number(std::uint8_t(opcode)).number(std::uint64_t(content.size())).raw(content);
   return r.bytes();
 }
 
 std::string schemaRecord(std::uint16_t id, const std::string& name, const std::string& encoding,
                          const std::string& data) {
-  Fields f;
+  WriteFields f;
   f.number(id).string(name).string(encoding).string(data);
-  return record(kSchema, f.bytes());
+  return mcapRecord(kSchema, f.bytes());
 }
 
 std::string compress(McapCompression compression, const std::string& data,
@@ -109,10 +109,10 @@ McapWriter::McapWriter(const std::string& path, const McapWriterOptions& options
   out_.open(file_.temporary(), std::ios::binary | std::ios::trunc);
   if (!out_)
     throw common::InputError(path, "", std::string("cannot write: ") + std::strerror(errno));
-  Fields header;
+  WriteFields header;
   header.string(options_.profile).string(std::string("isg (") + common::kWrittenByIsg + ")");
   put(kMagic);
-  put(record(kHeader, header.bytes()));
+  put(mcapRecord(kHeader, header.bytes()));
 }
 
 std::uint16_t McapWriter::addSchema(const std::string& name, const std::string& encoding,
@@ -136,11 +136,11 @@ namespace {
 std::string channelRecord(std::uint16_t id, std::uint16_t schema, const std::string& topic,
                           const std::string& encoding,
                           const std::map<std::string, std::string>& metadata) {
-  Fields map;
+  WriteFields map;
   for (const auto& [key, value] : metadata) map.string(key).string(value);
-  Fields f;
+  WriteFields f;
   f.number(id).number(schema).string(topic).string(encoding).string(map.bytes());
-  return record(kChannel, f.bytes());
+  return mcapRecord(kChannel, f.bytes());
 }
 
 }  // namespace
@@ -161,7 +161,7 @@ void McapWriter::write(std::uint16_t channel, std::uint64_t log_time_ns, const s
   const bool first_in_chunk = chunk_messages_.empty();
   chunk_messages_[channel].emplace_back(log_time_ns, chunk_.size());
   // The record's head, then the data as it is (a cloud is most of the file: copied once).
-  Fields head;
+  WriteFields head;
   head.number(std::uint8_t(kMessage))
       .number(std::uint64_t(2 + 4 + 8 + 8 + data.size()))
       .number(channel)
@@ -197,14 +197,14 @@ void McapWriter::flushChunk() {
           : compress(options_.compression, chunk_, file_.path().string());
   const std::string& records = options_.compression == McapCompression::kNone ? chunk_ : compressed;
   index.compressed_size = records.size();
-  Fields head;
+  WriteFields head;
   head.number(chunk_start_)
       .number(chunk_end_)
       .number(std::uint64_t(chunk_.size()))
       .number(crc32(chunk_))
       .string(chunkCompression())
       .number(std::uint64_t(records.size()));
-  Fields opcode;
+  WriteFields opcode;
   opcode.number(std::uint8_t(kChunk)).number(std::uint64_t(head.bytes().size() + records.size()));
   put(opcode.bytes() + head.bytes());
   put(records);
@@ -215,12 +215,12 @@ void McapWriter::flushChunk() {
     // among equal times.
     std::stable_sort(entries.begin(), entries.end(),
                      [](const auto& a, const auto& b) { return a.first < b.first; });
-    Fields entries_bytes;
+    WriteFields entries_bytes;
     for (const auto& [time, offset] : entries) entries_bytes.number(time).number(offset);
-    Fields m;
+    WriteFields m;
     m.number(channel).string(entries_bytes.bytes());
     index.message_index_offsets[channel] = position_;
-    put(record(kMessageIndex, m.bytes()));
+    put(mcapRecord(kMessageIndex, m.bytes()));
   }
   index.message_index_length = position_ - indexes_start;
   chunks_.push_back(index);
@@ -233,10 +233,10 @@ void McapWriter::flushChunk() {
 void McapWriter::close() {
   if (closed_) return;
   flushChunk();
-  Fields data_end;
+  WriteFields data_end;
   data_end.number(data_crc_);
   data_ended_ = true;
-  put(record(kDataEnd, data_end.bytes()));
+  put(mcapRecord(kDataEnd, data_end.bytes()));
 
   // The summary: one group per record kind, each found by its Summary Offset.
   const std::uint64_t summary_start = position_;
@@ -269,11 +269,11 @@ void McapWriter::close() {
         channelRecord(std::uint16_t(i), c.schema, c.topic, c.message_encoding, c.metadata));
   }
   putGroup(kChannel, records);
-  Fields counts;
+  WriteFields counts;
   for (std::size_t i = 0; i < channels_.size(); ++i) {
     counts.number(std::uint16_t(i)).number(counts_[i]);
   }
-  Fields statistics;
+  WriteFields statistics;
   statistics.number(messages_)
       .number(std::uint16_t(schemas_.size()))
       .number(std::uint32_t(channels_.size()))
@@ -283,14 +283,14 @@ void McapWriter::close() {
       .number(message_start_)
       .number(message_end_)
       .string(counts.bytes());
-  putGroup(kStatistics, {record(kStatistics, statistics.bytes())});
+  putGroup(kStatistics, {mcapRecord(kStatistics, statistics.bytes())});
   records.clear();
   for (const ChunkIndex& c : chunks_) {
-    Fields offsets;
+    WriteFields offsets;
     for (const auto& [channel, offset] : c.message_index_offsets) {
       offsets.number(channel).number(offset);
     }
-    Fields f;
+    WriteFields f;
     f.number(c.start)
         .number(c.end)
         .number(c.offset)
@@ -300,25 +300,25 @@ void McapWriter::close() {
         .string(chunkCompression())
         .number(c.compressed_size)
         .number(c.uncompressed_size);
-    records.push_back(record(kChunkIndex, f.bytes()));
+    records.push_back(mcapRecord(kChunkIndex, f.bytes()));
   }
   putGroup(kChunkIndex, records);
   const std::uint64_t summary_offset_start = position_;
   for (const Group& g : groups) {
-    Fields f;
+    WriteFields f;
     f.number(std::uint8_t(g.opcode)).number(g.start).number(g.length);
-    const std::string r = record(kSummaryOffset, f.bytes());
+    const std::string r = mcapRecord(kSummaryOffset, f.bytes());
     summary_crc = crc32(r, summary_crc);
     put(r);
   }
   // The footer's CRC covers the summary through the footer's own two offsets.
-  Fields footer_prefix;
+  WriteFields footer_prefix;
   footer_prefix.number(std::uint8_t(kFooter))
       .number(std::uint64_t(8 + 8 + 4))
       .number(summary_start)
       .number(summary_offset_start);
   summary_crc = crc32(footer_prefix.bytes(), summary_crc);
-  Fields footer_crc;
+  WriteFields footer_crc;
   footer_crc.number(summary_crc);
   put(footer_prefix.bytes() + footer_crc.bytes());
   put(kMagic);

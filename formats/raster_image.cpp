@@ -29,7 +29,8 @@ void checkSize(long long width, long long height, const std::string& file) {
 }
 
 // A pixel's class from its colour channels and alpha on [0, 1] (alpha 1 when the image has none).
-PixelClass classify(double mean_colour, double alpha, bool has_alpha, const OccupancyRule& rule) {
+PixelClass classifyPixel(double mean_colour, double alpha, bool has_alpha,
+                         const OccupancyRule& rule) {
   using Mode = OccupancyRule::Mode;
   if (rule.mode == Mode::kRaw) {
     const double percent = std::round(mean_colour * 255.0);
@@ -126,7 +127,7 @@ OccupancyImage decodePgm(const std::string& text, const std::string& file,
         in.fail("a grey value (" + std::to_string(v) + ") above the maximum " +
                 std::to_string(maxval));
       }
-      image.pixels[i] = classify(double(v) / double(maxval), 1.0, false, rule);
+      image.pixels[i] = classifyPixel(double(v) / double(maxval), 1.0, false, rule);
     }
   } else {
     for (std::size_t i = 0; i < count; ++i) {
@@ -135,7 +136,7 @@ OccupancyImage decodePgm(const std::string& text, const std::string& file,
         in.fail("a grey value (" + std::to_string(v) + ") above the maximum " +
                 std::to_string(maxval));
       }
-      image.pixels[i] = classify(double(v) / double(maxval), 1.0, false, rule);
+      image.pixels[i] = classifyPixel(double(v) / double(maxval), 1.0, false, rule);
     }
   }
   return image;
@@ -219,7 +220,7 @@ bool decodePngRows(PngHandles& handles, PngError& error, PngSource& source, cons
       for (int k = 0; k < colours; ++k) sum += p[k];
       const double mean = sum / double(colours) / 255.0;
       const double alpha = has_alpha ? p[channels - 1] / 255.0 : 1.0;
-      image.pixels[std::size_t(r) * width + c] = classify(mean, alpha, has_alpha, rule);
+      image.pixels[std::size_t(r) * width + c] = classifyPixel(mean, alpha, has_alpha, rule);
     }
   };
   if (passes == 1) {

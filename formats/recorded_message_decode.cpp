@@ -8,7 +8,7 @@ namespace {
 
 // The decoder of the message's encoding.
 template <class Ros1, class Ros2>
-auto decoded(const RecordedMessage& m, Ros1 ros1, Ros2 ros2) {
+auto decodedRecorded(const RecordedMessage& m, Ros1 ros1, Ros2 ros2) {
   switch (m.topic->encoding) {
     case MessageEncoding::kRos1:
       return ros1(m.data);
@@ -24,26 +24,26 @@ auto decoded(const RecordedMessage& m, Ros1 ros1, Ros2 ros2) {
 }  // namespace
 
 ros1::PointCloud2 decodePointCloud2(const RecordedMessage& m) {
-  return decoded(m, ros1::decodePointCloud2, ros2::decodePointCloud2);
+  return decodedRecorded(m, ros1::decodePointCloud2, ros2::decodePointCloud2);
 }
 ros1::Imu decodeImu(const RecordedMessage& m) {
-  return decoded(m, ros1::decodeImu, ros2::decodeImu);
+  return decodedRecorded(m, ros1::decodeImu, ros2::decodeImu);
 }
 ros1::StampedPose decodeOdometry(const RecordedMessage& m) {
-  return decoded(m, ros1::decodeOdometry, ros2::decodeOdometry);
+  return decodedRecorded(m, ros1::decodeOdometry, ros2::decodeOdometry);
 }
 ros1::StampedPose decodePoseStamped(const RecordedMessage& m) {
-  return decoded(m, ros1::decodePoseStamped, ros2::decodePoseStamped);
+  return decodedRecorded(m, ros1::decodePoseStamped, ros2::decodePoseStamped);
 }
 std::vector<ros1::TransformStamped> decodeTfMessage(const RecordedMessage& m) {
-  return decoded(m, ros1::decodeTfMessage, ros2::decodeTfMessage);
+  return decodedRecorded(m, ros1::decodeTfMessage, ros2::decodeTfMessage);
 }
 std::string decodeString(const RecordedMessage& m) {
-  return decoded(m, ros1::decodeString, ros2::decodeString);
+  return decodedRecorded(m, ros1::decodeString, ros2::decodeString);
 }
 
 ros1::VelodyneScan decodeVelodyneScan(const RecordedMessage& m) {
-  return decoded(m, ros1::decodeVelodyneScan, ros2::decodeVelodyneScan);
+  return decodedRecorded(m, ros1::decodeVelodyneScan, ros2::decodeVelodyneScan);
 }
 
 }  // namespace isg::formats::recorded

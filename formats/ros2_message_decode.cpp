@@ -11,7 +11,7 @@ namespace {
 
 using ros1::MessageError;
 
-ros1::Header header(CdrReader& in) {
+ros1::Header cdrHeader(CdrReader& in) {
   ros1::Header h;
   const std::int32_t sec = in.i32("header.stamp");
   const std::uint32_t nanosec = in.u32("header.stamp");
@@ -26,24 +26,24 @@ ros1::Header header(CdrReader& in) {
   return h;
 }
 
-Eigen::Vector3d vector(CdrReader& in, const char* field) {
+Eigen::Vector3d cdrVector(CdrReader& in, const char* field) {
   const double x = in.f64(field), y = in.f64(field), z = in.f64(field);
   return {x, y, z};
 }
 
-Eigen::Quaterniond quaternion(CdrReader& in, const char* field) {
+Eigen::Quaterniond cdrQuaternion(CdrReader& in, const char* field) {
   const double x = in.f64(field), y = in.f64(field), z = in.f64(field), w = in.f64(field);
   return Eigen::Quaterniond(w, x, y, z);
 }
 
-Eigen::Isometry3d pose(CdrReader& in, const char* position, const char* orientation) {
-  const Eigen::Vector3d t = vector(in, position);
+Eigen::Isometry3d cdrPose(CdrReader& in, const char* position, const char* orientation) {
+  const Eigen::Vector3d t = cdrVector(in, position);
   if (!t.allFinite()) throw MessageError(std::string("the field `") + position + "` is not finite");
-  return ros1::checkedPose(t, quaternion(in, orientation), position, orientation);
+  return ros1::checkedPose(t, cdrQuaternion(in, orientation), position, orientation);
 }
 
 template <std::size_t N>
-std::array<double, N> reals(CdrReader& in, const char* field) {
+std::array<double, N> cdrReals(CdrReader& in, const char* field) {
   std::array<double, N> out;
   for (auto& value : out) value = in.f64(field);
   return out;
@@ -51,7 +51,7 @@ std::array<double, N> reals(CdrReader& in, const char* field) {
 
 // Runs `decode` over a reader of `bytes`, CDR's complaints as MessageErrors.
 template <typename Decode>
-auto decoded(std::string_view bytes, Decode decode) {
+auto decodedCdr(std::string_view bytes, Decode decode) {
   try {
     CdrReader in(bytes);
     return decode(in);
@@ -63,9 +63,9 @@ auto decoded(std::string_view bytes, Decode decode) {
 }  // namespace
 
 ros1::PointCloud2 decodePointCloud2(std::string_view bytes) {
-  return decoded(bytes, [](CdrReader& in) {
+  return decodedCdr(bytes, [](CdrReader& in) {
     ros1::PointCloud2 cloud;
-    cloud.header = header(in);
+    cloud.header = cdrHeader(in);
     cloud.height = in.u32("height");
     cloud.width = in.u32("width");
     // A field takes at least its name's count and NUL, offset, datatype and count: 13 bytes.
@@ -89,16 +89,16 @@ ros1::PointCloud2 decodePointCloud2(std::string_view bytes) {
 }
 
 ros1::Imu decodeImu(std::string_view bytes) {
-  return decoded(bytes, [](CdrReader& in) {
+  return decodedCdr(bytes, [](CdrReader& in) {
     ros1::Imu imu;
-    imu.header = header(in);
+    imu.header = cdrHeader(in);
     // An IMU without orientation may write zeros there (the message says: covariance[0] = -1).
-    imu.orientation = quaternion(in, "orientation");
-    imu.orientation_covariance = reals<9>(in, "orientation_covariance");
-    imu.angular_velocity = vector(in, "angular_velocity");
-    imu.angular_velocity_covariance = reals<9>(in, "angular_velocity_covariance");
-    imu.linear_acceleration = vector(in, "linear_acceleration");
-    imu.linear_acceleration_covariance = reals<9>(in, "linear_acceleration_covariance");
+    imu.orientation = cdrQuaternion(in, "orientation");
+    imu.orientation_covariance = cdrReals<9>(in, "orientation_covariance");
+    imu.angular_velocity = cdrVector(in, "angular_velocity");
+    imu.angular_velocity_covariance = cdrReals<9>(in, "angular_velocity_covariance");
+    imu.linear_acceleration = cdrVector(in, "linear_acceleration");
+    imu.linear_acceleration_covariance = cdrReals<9>(in, "linear_acceleration_covariance");
     in.expectEnd("a sensor_msgs/msg/Imu");
     if (!imu.angular_velocity.allFinite() || !imu.linear_acceleration.allFinite()) {
       throw MessageError("a rate or an acceleration is not finite");
@@ -108,40 +108,40 @@ ros1::Imu decodeImu(std::string_view bytes) {
 }
 
 ros1::StampedPose decodeOdometry(std::string_view bytes) {
-  return decoded(bytes, [](CdrReader& in) {
+  return decodedCdr(bytes, [](CdrReader& in) {
     ros1::StampedPose out;
-    out.header = header(in);
+    out.header = cdrHeader(in);
     out.child_frame_id = in.string("child_frame_id");
-    out.pose = pose(in, "pose.pose.position", "pose.pose.orientation");
-    reals<36>(in, "pose.covariance");
-    reals<6>(in, "twist.twist");
-    reals<36>(in, "twist.covariance");
+    out.pose = cdrPose(in, "pose.pose.position", "pose.pose.orientation");
+    cdrReals<36>(in, "pose.covariance");
+    cdrReals<6>(in, "twist.twist");
+    cdrReals<36>(in, "twist.covariance");
     in.expectEnd("a nav_msgs/msg/Odometry");
     return out;
   });
 }
 
 ros1::StampedPose decodePoseStamped(std::string_view bytes) {
-  return decoded(bytes, [](CdrReader& in) {
+  return decodedCdr(bytes, [](CdrReader& in) {
     ros1::StampedPose out;
-    out.header = header(in);
-    out.pose = pose(in, "pose.position", "pose.orientation");
+    out.header = cdrHeader(in);
+    out.pose = cdrPose(in, "pose.position", "pose.orientation");
     in.expectEnd("a geometry_msgs/msg/PoseStamped");
     return out;
   });
 }
 
 std::vector<ros1::TransformStamped> decodeTfMessage(std::string_view bytes) {
-  return decoded(bytes, [](CdrReader& in) {
+  return decodedCdr(bytes, [](CdrReader& in) {
     std::vector<ros1::TransformStamped> out;
     // Each transform has at least a stamp (8 bytes), a frame (4), a child frame (4) and 7 float64.
     const std::uint32_t count = in.count(8 + 4 + 4 + 56, "transforms");
     for (std::uint32_t i = 0; i < count; ++i) {
       ros1::TransformStamped t;
-      t.header = header(in);
+      t.header = cdrHeader(in);
       t.child_frame_id = in.string("transforms.child_frame_id");
       t.parent_T_child =
-          pose(in, "transforms.transform.translation", "transforms.transform.rotation");
+          cdrPose(in, "transforms.transform.translation", "transforms.transform.rotation");
       out.push_back(std::move(t));
     }
     in.expectEnd("a tf2_msgs/msg/TFMessage");
@@ -150,7 +150,7 @@ std::vector<ros1::TransformStamped> decodeTfMessage(std::string_view bytes) {
 }
 
 std::string decodeString(std::string_view bytes) {
-  return decoded(bytes, [](CdrReader& in) {
+  return decodedCdr(bytes, [](CdrReader& in) {
     std::string out = in.string("data");
     in.expectEnd("a std_msgs/msg/String");
     return out;
@@ -158,9 +158,9 @@ std::string decodeString(std::string_view bytes) {
 }
 
 ros1::VelodyneScan decodeVelodyneScan(std::string_view bytes) {
-  return decoded(bytes, [](CdrReader& in) {
+  return decodedCdr(bytes, [](CdrReader& in) {
     ros1::VelodyneScan scan;
-    scan.header = header(in);
+    scan.header = cdrHeader(in);
     const std::uint32_t count = in.u32("packets");
     // Each packet takes at least its stamp and data: a count beyond that is damage, not memory.
     const std::size_t most = in.remaining() / (8 + ros1::kVelodynePacketBytes);

@@ -63,19 +63,19 @@ MessageType messageType(const std::string& top, std::initializer_list<const char
   return type;
 }
 
-void header(CdrWriter& out, Time stamp, const std::string& frame) {
+void writeHeader(CdrWriter& out, Time stamp, const std::string& frame) {
   out.i32(stamp.sec);
   out.u32(stamp.nanosec);
   out.string(frame);
 }
 
-void vector(CdrWriter& out, const Eigen::Vector3d& v) {
+void writeVector(CdrWriter& out, const Eigen::Vector3d& v) {
   out.f64(v.x());
   out.f64(v.y());
   out.f64(v.z());
 }
 
-void quaternion(CdrWriter& out, const Eigen::Matrix3d& R) {
+void writeQuaternion(CdrWriter& out, const Eigen::Matrix3d& R) {
   Eigen::Quaterniond q(R);
   q.normalize();
   if (q.w() < 0) q.coeffs() = -q.coeffs();  // one of the two, always the same (as the ROS 1 bag)
@@ -118,7 +118,7 @@ std::string pointCloud2(const std::vector<sensors::ScanPoint>& points, Time stam
                         const std::string& frame, const CloudConvention& convention) {
   const PackedCloud packed = packCloud(points, convention, std::uint32_t(stamp.sec), stamp.nanosec);
   CdrWriter out;
-  header(out, stamp, frame);
+  writeHeader(out, stamp, frame);
   out.u32(1);                             // height
   out.u32(std::uint32_t(points.size()));  // width
   out.u32(std::uint32_t(packed.fields.size()));
@@ -139,15 +139,15 @@ std::string pointCloud2(const std::vector<sensors::ScanPoint>& points, Time stam
 std::string imu(const sensors::ImuSample& sample, Time stamp, const std::string& frame,
                 double gyroscope_variance, double accelerometer_variance) {
   CdrWriter out;
-  header(out, stamp, frame);
-  quaternion(out, Eigen::Matrix3d::Identity());
+  writeHeader(out, stamp, frame);
+  writeQuaternion(out, Eigen::Matrix3d::Identity());
   std::array<double, 9> covariance{};
   covariance[0] = -1.0;  // no orientation estimate
   doubles(out, covariance);
-  vector(out, sample.gyroscope);
+  writeVector(out, sample.gyroscope);
   covariance = {gyroscope_variance, 0, 0, 0, gyroscope_variance, 0, 0, 0, gyroscope_variance};
   doubles(out, covariance);
-  vector(out, sample.accelerometer);
+  writeVector(out, sample.accelerometer);
   covariance = {accelerometer_variance, 0, 0, 0, accelerometer_variance, 0, 0, 0,
                 accelerometer_variance};
   doubles(out, covariance);
@@ -158,13 +158,13 @@ std::string odometry(const Eigen::Isometry3d& pose, const Eigen::Vector3d& linea
                      const Eigen::Vector3d& angular_velocity, Time stamp, const std::string& frame,
                      const std::string& child) {
   CdrWriter out;
-  header(out, stamp, frame);
+  writeHeader(out, stamp, frame);
   out.string(child);
-  vector(out, pose.translation());
-  quaternion(out, pose.linear());
+  writeVector(out, pose.translation());
+  writeQuaternion(out, pose.linear());
   doubles(out, std::array<double, 36>{});
-  vector(out, linear_velocity);
-  vector(out, angular_velocity);
+  writeVector(out, linear_velocity);
+  writeVector(out, angular_velocity);
   doubles(out, std::array<double, 36>{});
   return out.data();
 }
@@ -173,10 +173,10 @@ std::string tfMessage(const std::vector<StampedTransform>& transforms) {
   CdrWriter out;
   out.u32(std::uint32_t(transforms.size()));
   for (const StampedTransform& t : transforms) {
-    header(out, t.stamp, t.parent);
+    writeHeader(out, t.stamp, t.parent);
     out.string(t.child);
-    vector(out, t.parent_T_child.translation());
-    quaternion(out, t.parent_T_child.linear());
+    writeVector(out, t.parent_T_child.translation());
+    writeQuaternion(out, t.parent_T_child.linear());
   }
   return out.data();
 }

@@ -61,7 +61,7 @@ class Cursor {
   std::size_t position_ = 0;
 };
 
-Header header(Cursor& in) {
+Header rosHeader(Cursor& in) {
   Header h;
   h.seq = in.number<std::uint32_t>("header.seq");
   h.stamp.sec = in.number<std::uint32_t>("header.stamp");
@@ -74,7 +74,7 @@ Header header(Cursor& in) {
   return h;
 }
 
-Eigen::Isometry3d pose(Cursor& in, const char* position, const char* orientation) {
+Eigen::Isometry3d rosPose(Cursor& in, const char* position, const char* orientation) {
   const Eigen::Vector3d t = in.vector(position);
   // Said before the rotation is read, as it always was.
   if (!t.allFinite()) throw MessageError(std::string("the field `") + position + "` is not finite");
@@ -82,7 +82,7 @@ Eigen::Isometry3d pose(Cursor& in, const char* position, const char* orientation
 }
 
 template <std::size_t N>
-std::array<double, N> reals(Cursor& in, const char* field) {
+std::array<double, N> rosReals(Cursor& in, const char* field) {
   std::array<double, N> out;
   for (auto& value : out) value = in.real(field);
   return out;
@@ -112,7 +112,7 @@ Eigen::Isometry3d checkedPose(const Eigen::Vector3d& t, const Eigen::Quaterniond
 PointCloud2 decodePointCloud2(std::string_view bytes) {
   Cursor in(bytes);
   PointCloud2 cloud;
-  cloud.header = header(in);
+  cloud.header = rosHeader(in);
   cloud.height = in.number<std::uint32_t>("height");
   cloud.width = in.number<std::uint32_t>("width");
   const std::uint32_t fields = in.length("fields", 13);
@@ -136,14 +136,14 @@ PointCloud2 decodePointCloud2(std::string_view bytes) {
 Imu decodeImu(std::string_view bytes) {
   Cursor in(bytes);
   Imu imu;
-  imu.header = header(in);
+  imu.header = rosHeader(in);
   // An IMU without orientation may write zeros there (the message says: covariance[0] = -1).
   imu.orientation = in.quaternion("orientation");
-  imu.orientation_covariance = reals<9>(in, "orientation_covariance");
+  imu.orientation_covariance = rosReals<9>(in, "orientation_covariance");
   imu.angular_velocity = in.vector("angular_velocity");
-  imu.angular_velocity_covariance = reals<9>(in, "angular_velocity_covariance");
+  imu.angular_velocity_covariance = rosReals<9>(in, "angular_velocity_covariance");
   imu.linear_acceleration = in.vector("linear_acceleration");
-  imu.linear_acceleration_covariance = reals<9>(in, "linear_acceleration_covariance");
+  imu.linear_acceleration_covariance = rosReals<9>(in, "linear_acceleration_covariance");
   in.finish("sensor_msgs/Imu");
   if (!imu.angular_velocity.allFinite() || !imu.linear_acceleration.allFinite()) {
     throw MessageError("a rate or an acceleration is not finite");
@@ -154,12 +154,12 @@ Imu decodeImu(std::string_view bytes) {
 StampedPose decodeOdometry(std::string_view bytes) {
   Cursor in(bytes);
   StampedPose out;
-  out.header = header(in);
+  out.header = rosHeader(in);
   out.child_frame_id = in.string("child_frame_id");
-  out.pose = pose(in, "pose.pose.position", "pose.pose.orientation");
-  reals<36>(in, "pose.covariance");
-  reals<6>(in, "twist.twist");
-  reals<36>(in, "twist.covariance");
+  out.pose = rosPose(in, "pose.pose.position", "pose.pose.orientation");
+  rosReals<36>(in, "pose.covariance");
+  rosReals<6>(in, "twist.twist");
+  rosReals<36>(in, "twist.covariance");
   in.finish("nav_msgs/Odometry");
   return out;
 }
@@ -167,8 +167,8 @@ StampedPose decodeOdometry(std::string_view bytes) {
 StampedPose decodePoseStamped(std::string_view bytes) {
   Cursor in(bytes);
   StampedPose out;
-  out.header = header(in);
-  out.pose = pose(in, "pose.position", "pose.orientation");
+  out.header = rosHeader(in);
+  out.pose = rosPose(in, "pose.position", "pose.orientation");
   in.finish("geometry_msgs/PoseStamped");
   return out;
 }
@@ -176,14 +176,14 @@ StampedPose decodePoseStamped(std::string_view bytes) {
 std::vector<TransformStamped> decodeTfMessage(std::string_view bytes) {
   Cursor in(bytes);
   std::vector<TransformStamped> out;
-  // Each transform has at least a header (16 bytes), a child frame (4) and 7 float64.
+  // Each transform has at least a rosHeader (16 bytes), a child frame (4) and 7 float64.
   const std::uint32_t count = in.length("transforms", 16 + 4 + 56);
   for (std::uint32_t i = 0; i < count; ++i) {
     TransformStamped t;
-    t.header = header(in);
+    t.header = rosHeader(in);
     t.child_frame_id = in.string("transforms.child_frame_id");
     t.parent_T_child =
-        pose(in, "transforms.transform.translation", "transforms.transform.rotation");
+        rosPose(in, "transforms.transform.translation", "transforms.transform.rotation");
     out.push_back(std::move(t));
   }
   in.finish("tf2_msgs/TFMessage");
@@ -200,7 +200,7 @@ std::string decodeString(std::string_view bytes) {
 VelodyneScan decodeVelodyneScan(std::string_view bytes) {
   Cursor in(bytes);
   VelodyneScan scan;
-  scan.header = header(in);
+  scan.header = rosHeader(in);
   // Each packet is its stamp (8 bytes) and a fixed uint8[1206]: the count is checked against
   // that before anything is allocated.
   const std::uint32_t count = in.length("packets", 8 + kVelodynePacketBytes);

@@ -20,11 +20,11 @@ namespace {
 static_assert(std::endian::native == std::endian::little, "the format is little-endian");
 
 // A record's header: its fields by name (values are bytes).
-using Fields = std::map<std::string, std::string, std::less<>>;
+using HeaderFields = std::map<std::string, std::string, std::less<>>;
 
 // The fields of a header block; nullopt-like empty name on a malformed block is reported by the
 // caller through `error`.
-bool parseFields(std::string_view block, Fields& fields, std::string& error) {
+bool parseFields(std::string_view block, HeaderFields& fields, std::string& error) {
   std::size_t at = 0;
   while (at < block.size()) {
     if (block.size() - at < 4) {
@@ -51,14 +51,14 @@ bool parseFields(std::string_view block, Fields& fields, std::string& error) {
 }
 
 template <typename T>
-bool fieldValue(const Fields& fields, std::string_view name, T& value) {
+bool fieldValue(const HeaderFields& fields, std::string_view name, T& value) {
   const auto it = fields.find(name);
   if (it == fields.end() || it->second.size() != sizeof(T)) return false;
   std::memcpy(&value, it->second.data(), sizeof(T));
   return true;
 }
 
-bool timeValue(const Fields& fields, std::string_view name, RosTime& time) {
+bool timeValue(const HeaderFields& fields, std::string_view name, RosTime& time) {
   std::uint64_t both;
   if (!fieldValue(fields, name, both)) return false;
   time.sec = std::uint32_t(both & 0xffffffffu);
@@ -92,7 +92,7 @@ std::string hexOp(std::uint8_t op) {
 
 // A record read from the file or from a chunk: its header's fields and where its data lies.
 struct RecordAt {
-  Fields fields;
+  HeaderFields fields;
   std::uint8_t op = 0;
   std::uint64_t data_offset = 0;
   std::uint32_t data_size = 0;
@@ -242,7 +242,7 @@ BagConnection connectionOf(const RecordAt& record, const std::string& bytes, std
                            const Fail& fail) {
   BagConnection c;
   if (!fieldValue(record.fields, "conn", c.id)) fail(offset, "a connection without conn");
-  Fields data;
+  HeaderFields data;
   std::string error;
   if (!parseFields(std::string_view(bytes).substr(record.data_offset, record.data_size), data,
                    error))

@@ -26,36 +26,37 @@ using rosbag::kMessageData;
 
 // Little-endian integers, as the format has them (and as this machine stores them).
 template <typename T>
-std::string bytesOf(T value) {
+std::string littleEndianBytes(T value) {
   static_assert(std::endian::native == std::endian::little);
   std::string out(sizeof(T), '\0');
   std::memcpy(out.data(), &value, sizeof(T));
   return out;
 }
 
-std::string timeBytes(RosTime t) { return bytesOf(t.sec) + bytesOf(t.nsec); }
+std::string timeBytes(RosTime t) { return littleEndianBytes(t.sec) + littleEndianBytes(t.nsec); }
 
 // A header field: its length, then "name=value".
 std::string field(const std::string& name, const std::string& value) {
-  return bytesOf(std::uint32_t(name.size() + 1 + value.size())) + name + "=" + value;
+  return littleEndianBytes(std::uint32_t(name.size() + 1 + value.size())) + name + "=" + value;
 }
 
-std::string record(const std::string& header, const std::string& data) {
-  return bytesOf(std::uint32_t(header.size())) + header + bytesOf(std::uint32_t(data.size())) +
-         data;
+std::string bagRecord(const std::string& header, const std::string& data) {
+  return littleEndianBytes(std::uint32_t(header.size())) + header +
+         littleEndianBytes(std::uint32_t(data.size())) + data;
 }
 
 std::string bagHeaderRecord(std::uint64_t index_position, std::uint32_t connections,
                             std::uint32_t chunks) {
-  const std::string header =
-      field("op", bytesOf(std::uint8_t(kBagHeader))) + field("index_pos", bytesOf(index_position)) +
-      field("conn_count", bytesOf(connections)) + field("chunk_count", bytesOf(chunks));
+  const std::string header = field("op", littleEndianBytes(std::uint8_t(kBagHeader))) +
+                             field("index_pos", littleEndianBytes(index_position)) +
+                             field("conn_count", littleEndianBytes(connections)) +
+                             field("chunk_count", littleEndianBytes(chunks));
   // Padded with spaces so that the record can be rewritten in place when the bag is closed; the
   // padding starts with our mark, which readers skip and --force looks for
   // (sensors/output_path.hpp).
   std::string padding(kBagHeaderRecordSize - header.size() - 8, ' ');
   padding.replace(0, std::strlen(common::kWrittenByIsg), common::kWrittenByIsg);
-  return record(header, padding);
+  return bagRecord(header, padding);
 }
 
 }  // namespace
@@ -78,13 +79,14 @@ int RosbagWriter::connect(const std::string& topic, const RosMessageType& type, 
 
 std::string RosbagWriter::connectionRecord(int id) const {
   const Connection& c = connections_[id];
-  const std::string header = field("op", bytesOf(std::uint8_t(kConnection))) +
-                             field("conn", bytesOf(std::uint32_t(id))) + field("topic", c.topic);
+  const std::string header = field("op", littleEndianBytes(std::uint8_t(kConnection))) +
+                             field("conn", littleEndianBytes(std::uint32_t(id))) +
+                             field("topic", c.topic);
   std::string data =
       field("topic", c.topic) + field("type", c.type.datatype) + field("md5sum", c.type.md5sum) +
       field("message_definition", c.type.definition) + field("callerid", "/isg_export");
   if (c.latching) data += field("latching", "1");
-  return record(header, data);
+  return bagRecord(header, data);
 }
 
 void RosbagWriter::write(int connection, RosTime time, const std::string& serialised) {
@@ -97,10 +99,10 @@ void RosbagWriter::write(int connection, RosTime time, const std::string& serial
     connection_written_[connection] = true;
   }
   chunk_index_[connection].push_back({time, std::uint32_t(chunk_.size())});
-  const std::string header = field("op", bytesOf(std::uint8_t(kMessageData))) +
-                             field("conn", bytesOf(std::uint32_t(connection))) +
+  const std::string header = field("op", littleEndianBytes(std::uint8_t(kMessageData))) +
+                             field("conn", littleEndianBytes(std::uint32_t(connection))) +
                              field("time", timeBytes(time));
-  chunk_ += record(header, serialised);
+  chunk_ += bagRecord(header, serialised);
   if (time < chunk_info_.start) chunk_info_.start = time;
   if (chunk_info_.end < time) chunk_info_.end = time;
   ++chunk_info_.counts[connection];
@@ -110,19 +112,20 @@ void RosbagWriter::write(int connection, RosTime time, const std::string& serial
 
 void RosbagWriter::flushChunk() {
   if (chunk_.empty()) return;
-  const std::string header = field("op", bytesOf(std::uint8_t(kChunk))) +
+  const std::string header = field("op", littleEndianBytes(std::uint8_t(kChunk))) +
                              field("compression", "none") +
-                             field("size", bytesOf(std::uint32_t(chunk_.size())));
-  put(record(header, chunk_));
+                             field("size", littleEndianBytes(std::uint32_t(chunk_.size())));
+  put(bagRecord(header, chunk_));
   for (const auto& [connection, entries] : chunk_index_) {
-    const std::string index_header = field("op", bytesOf(std::uint8_t(kIndexData))) +
-                                     field("ver", bytesOf(std::uint32_t(1))) +
-                                     field("conn", bytesOf(std::uint32_t(connection))) +
-                                     field("count", bytesOf(std::uint32_t(entries.size())));
+    const std::string index_header =
+        field("op", littleEndianBytes(std::uint8_t(kIndexData))) +
+        field("ver", littleEndianBytes(std::uint32_t(1))) +
+        field("conn", littleEndianBytes(std::uint32_t(connection))) +
+        field("count", littleEndianBytes(std::uint32_t(entries.size())));
     std::string data;
     data.reserve(entries.size() * 12);
-    for (const IndexEntry& e : entries) data += timeBytes(e.time) + bytesOf(e.offset);
-    put(record(index_header, data));
+    for (const IndexEntry& e : entries) data += timeBytes(e.time) + littleEndianBytes(e.offset);
+    put(bagRecord(index_header, data));
   }
   chunks_.push_back(chunk_info_);
   chunk_.clear();
@@ -136,15 +139,16 @@ void RosbagWriter::close() {
   for (int id = 0; id < int(connections_.size()); ++id) put(connectionRecord(id));
   for (const ChunkInfo& chunk : chunks_) {
     const std::string header =
-        field("op", bytesOf(std::uint8_t(kChunkInfo))) + field("ver", bytesOf(std::uint32_t(1))) +
-        field("chunk_pos", bytesOf(chunk.position)) + field("start_time", timeBytes(chunk.start)) +
-        field("end_time", timeBytes(chunk.end)) +
-        field("count", bytesOf(std::uint32_t(chunk.counts.size())));
+        field("op", littleEndianBytes(std::uint8_t(kChunkInfo))) +
+        field("ver", littleEndianBytes(std::uint32_t(1))) +
+        field("chunk_pos", littleEndianBytes(chunk.position)) +
+        field("start_time", timeBytes(chunk.start)) + field("end_time", timeBytes(chunk.end)) +
+        field("count", littleEndianBytes(std::uint32_t(chunk.counts.size())));
     std::string data;
     for (const auto& [connection, count] : chunk.counts) {
-      data += bytesOf(std::uint32_t(connection)) + bytesOf(count);
+      data += littleEndianBytes(std::uint32_t(connection)) + littleEndianBytes(count);
     }
-    put(record(header, data));
+    put(bagRecord(header, data));
   }
   out_.seekp(std::streamoff(std::strlen(kVersionLine)));
   out_ << bagHeaderRecord(index_position, std::uint32_t(connections_.size()),

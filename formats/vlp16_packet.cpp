@@ -77,7 +77,7 @@ std::array<BlockTurn, kVlp16Blocks> blockTurns(const Vlp16PacketHeader& header, 
   return turns;
 }
 
-Vlp16Echo classify(RawEcho own, RawEcho other, Vlp16ReturnMode mode) {
+Vlp16Echo classifyEcho(RawEcho own, RawEcho other, Vlp16ReturnMode mode) {
   if (mode == Vlp16ReturnMode::kStrongest) return Vlp16Echo::kStrongest;
   if (mode == Vlp16ReturnMode::kLast) return Vlp16Echo::kLast;
   if (other.count == 0 || other.count == own.count) return Vlp16Echo::kIdentical;
@@ -179,7 +179,7 @@ Vlp16PacketHeader decodeVlp16Packet(std::span<const std::uint8_t> packet, double
         point.intensity = own.reflectivity;
         point.laser = std::uint8_t(laser);
         point.ring = std::uint8_t(ring);
-        point.echo = classify(own, other, header.mode);
+        point.echo = classifyEcho(own, other, header.mode);
         point.time = stamp + sequence_index * sensors::Vlp16Layout::kSequenceDuration +
                      laser * sensors::Vlp16Layout::kFiringInterval;
         points.push_back(point);

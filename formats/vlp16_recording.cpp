@@ -15,7 +15,7 @@ namespace {
 constexpr std::size_t kPositionPacketBytes = 512;
 constexpr const char* kScanType = "velodyne_msgs/msg/VelodyneScan";
 
-std::span<const std::uint8_t> bytesOf(const std::string& data) {
+std::span<const std::uint8_t> byteSpan(const std::string& data) {
   return {reinterpret_cast<const std::uint8_t*>(data.data()), data.size()};
 }
 
@@ -23,7 +23,7 @@ void decodeInto(Vlp16Recording& recording, const std::string& data, double stamp
                 const Vlp16DecodeOptions& options, const std::string& file,
                 const std::string& where) {
   // A packet of another mode throws with the recording half-decoded: the caller never sees it.
-  const Vlp16PacketHeader header = decodeVlp16Packet(bytesOf(data), stamp, options, file, where,
+  const Vlp16PacketHeader header = decodeVlp16Packet(byteSpan(data), stamp, options, file, where,
                                                      recording.points, &recording.tally);
   if (recording.data_packets > 0 && header.mode != recording.mode) {
     throw common::InputError(file, "", where + ": the return mode changes within the recording");

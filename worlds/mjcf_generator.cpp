@@ -26,7 +26,7 @@ std::string num(double v) {
   return buffer;
 }
 
-std::string vec(std::initializer_list<double> values) {
+std::string mjcfVector(std::initializer_list<double> values) {
   std::string out;
   for (double v : values) {
     if (!out.empty()) out += ' ';
@@ -62,10 +62,12 @@ class BoxWriter {
   void box(const std::string& name, const std::string& cls, const std::string& material,
            const Eigen::Vector3d& centre, const Eigen::Vector3d& half, double yaw) {
     out_ << "    <geom name=\"" << common::xmlEscape(name) << "\" class=\"" << cls
-         << "\" material=\"" << material << "\" pos=\"" << vec({centre.x(), centre.y(), centre.z()})
-         << "\" size=\"" << vec({half.x(), half.y(), half.z()}) << "\"";
+         << "\" material=\"" << material << "\" pos=\""
+         << mjcfVector({centre.x(), centre.y(), centre.z()}) << "\" size=\""
+         << mjcfVector({half.x(), half.y(), half.z()}) << "\"";
     if (std::abs(yaw) > 0.0) {
-      out_ << " quat=\"" << vec({std::cos(0.5 * yaw), 0.0, 0.0, std::sin(0.5 * yaw)}) << "\"";
+      out_ << " quat=\"" << mjcfVector({std::cos(0.5 * yaw), 0.0, 0.0, std::sin(0.5 * yaw)})
+           << "\"";
     }
     out_ << "/>\n";
   }
@@ -286,8 +288,8 @@ void writeLevel(std::ostringstream& out, const bim::Plan& plan, const bim::Level
     const double z0 = level.elevation + column.base, z1 = level.elevation + column.height;
     out << "    <geom name=\"column/" << common::xmlEscape(column.id)
         << "\" class=\"building\" type=\"cylinder\" material=\"wall\" pos=\""
-        << vec({column.center.x(), column.center.y(), 0.5 * (z0 + z1)}) << "\" size=\""
-        << vec({column.radius(), 0.5 * (z1 - z0)}) << "\"/>\n";
+        << mjcfVector({column.center.x(), column.center.y(), 0.5 * (z0 + z1)}) << "\" size=\""
+        << mjcfVector({column.radius(), 0.5 * (z1 - z0)}) << "\"/>\n";
   }
 
   for (std::size_t k = 0; k < as_built.clutter.size(); ++k) {
@@ -301,7 +303,7 @@ void writeLevel(std::ostringstream& out, const bim::Plan& plan, const bim::Level
   for (const auto& room : level.rooms) {
     const Eigen::Vector2d c = bim::centroid(room.outline);
     out << "    <site name=\"room/" << common::xmlEscape(room.id) << "\" pos=\""
-        << vec({c.x(), c.y(), level.elevation + 0.01}) << "\" size=\"0.08\" group=\""
+        << mjcfVector({c.x(), c.y(), level.elevation + 0.01}) << "\" size=\"0.08\" group=\""
         << kBuildingGroup << "\" rgba=\".2 .5 .9 .6\"/>\n";
   }
 }
@@ -336,7 +338,7 @@ std::string generateMjcf(const bim::Plan& plan, const bim::AsBuilt& as_built,
   out << "<mujoco model=\"" << common::xmlEscape(plan.name) << "\">\n"
       << "  <compiler autolimits=\"true\" angle=\"radian\"/>\n"
       << "  <option timestep=\"0.002\"/>\n"
-      << "  <statistic center=\"" << vec({centre.x(), centre.y(), 0.5 * (z_lo + z_hi)})
+      << "  <statistic center=\"" << mjcfVector({centre.x(), centre.y(), 0.5 * (z_lo + z_hi)})
       << "\" extent=\"" << num(extent) << "\"/>\n"
       << "  <visual>\n"
       << "    <global offwidth=\"1920\" offheight=\"1080\"/>\n"
@@ -365,9 +367,9 @@ std::string generateMjcf(const bim::Plan& plan, const bim::AsBuilt& as_built,
       << "  </default>\n"
       << "  <worldbody>\n"
       << "    <light name=\"sun\" directional=\"true\" castshadow=\"false\" pos=\""
-      << vec({centre.x(), centre.y(), z_hi + 10.0})
+      << mjcfVector({centre.x(), centre.y(), z_hi + 10.0})
       << "\" dir=\"0.3 0.2 -1\" diffuse=\".5 .5 .5\"/>\n"
-      << "    <camera name=\"top\" pos=\"" << vec({centre.x(), centre.y(), top_height})
+      << "    <camera name=\"top\" pos=\"" << mjcfVector({centre.x(), centre.y(), top_height})
       << "\" xyaxes=\"1 0 0 0 1 0\" fovy=\"45\"/>\n"
       << body.str() << options.extra_worldbody << "  </worldbody>\n"
       << "</mujoco>\n";

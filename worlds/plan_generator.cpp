@@ -723,7 +723,7 @@ std::vector<bool> wallsWithDoors(const Layout& layout) {
 }
 
 // The walls the as-built changes drawn so far left unbuilt.
-std::set<std::string> missingWalls(const bim::AsBuilt& as_built) {
+std::set<std::string> missingWallIds(const bim::AsBuilt& as_built) {
   return {as_built.missing_walls.begin(), as_built.missing_walls.end()};
 }
 
@@ -764,7 +764,7 @@ void drawWallRotations(const GeneratorSpec& s, const Layout& layout, std::mt1993
   if (s.rotated_walls <= 0.0) return;
   std::uniform_real_distribution<double> unit(0.0, 1.0);
   const std::vector<bool> has_door = wallsWithDoors(layout);
-  const std::set<std::string> missing = missingWalls(as_built);
+  const std::set<std::string> missing = missingWallIds(as_built);
   const bim::WallRotation::About abouts[] = {bim::WallRotation::About::kStart,
                                              bim::WallRotation::About::kCentre,
                                              bim::WallRotation::About::kEnd};
@@ -802,7 +802,7 @@ void drawShortenedWalls(const GeneratorSpec& s, const Layout& layout, std::mt199
   if (s.shortened_walls <= 0.0) return;
   std::uniform_real_distribution<double> unit(0.0, 1.0);
   const std::vector<bool> has_door = wallsWithDoors(layout);
-  const std::set<std::string> missing = missingWalls(as_built);
+  const std::set<std::string> missing = missingWallIds(as_built);
   for (std::size_t w = 0; w < layout.walls.size(); ++w) {
     const Wall& wall = layout.walls[w];
     const std::string id = "W" + std::to_string(w + 1);

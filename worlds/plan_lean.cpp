@@ -23,7 +23,7 @@ double tenthMm(double v) { return std::round(v * 10000.0) / 10000.0; }
 // The millimetre just below `length`: a part of a wall may not run past its rounded end.
 double below(double length) { return std::floor(length * 1000.0 - 1e-6) / 1000.0; }
 
-Eigen::Vector2d vec(const json& p) { return {p[0].get<double>(), p[1].get<double>()}; }
+Eigen::Vector2d point2(const json& p) { return {p[0].get<double>(), p[1].get<double>()}; }
 
 // A plan wall as the lean found it, and what the lean makes of it.
 struct LeanedWall {
@@ -61,7 +61,7 @@ struct Lean {
     return {mm(q.x()), mm(q.y())};
   }
   json map(const json& p) const {
-    const Eigen::Vector2d q = map(vec(p));
+    const Eigen::Vector2d q = map(point2(p));
     return json::array({q.x(), q.y()});
   }
 };
@@ -71,13 +71,13 @@ std::map<std::string, LeanedWall> leanPlan(json& plan, const Lean& lean) {
   std::map<std::string, LeanedWall> walls;
   for (json& level : plan["levels"]) {
     for (json& wall : level["walls"]) {
-      const Eigen::Vector2d start = vec(wall["start"]), end = vec(wall["end"]);
+      const Eigen::Vector2d start = point2(wall["start"]), end = point2(wall["end"]);
       LeanedWall leaned;
       leaned.stretch = (lean.A * (end - start)).norm() / (end - start).norm();
       wall["start"] = lean.map(wall["start"]);
       wall["end"] = lean.map(wall["end"]);
-      leaned.start = vec(wall["start"]);
-      leaned.end = vec(wall["end"]);
+      leaned.start = point2(wall["start"]);
+      leaned.end = point2(wall["end"]);
       // A shear keeps areas: a wall's length times its thickness stays.
       const double thickness = tenthMm(wall["thickness"].get<double>() / leaned.stretch);
       wall["thickness"] = thickness;

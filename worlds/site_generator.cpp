@@ -282,7 +282,7 @@ class SiteDrawing {
 
 // As built, from a stream of its own (built_rng): a façade wall or two and maybe a partition not
 // built yet.
-std::vector<std::string> missingWalls(const SiteDrawing& site, std::mt19937_64& built_rng) {
+std::vector<std::string> chooseMissingWalls(const SiteDrawing& site, std::mt19937_64& built_rng) {
   std::vector<std::string> missing;
   std::vector<std::string> open = site.facade_walls;
   std::shuffle(open.begin(), open.end(), built_rng);
@@ -389,7 +389,7 @@ bim::AsBuilt siteAsBuilt(const GeneratorSpec& spec, const SiteDrawing& site,
                          const bim::Level& level) {
   std::mt19937_64 built_rng(spec.seed * 0xD1B54A32D192ED03ULL + 13);
   bim::AsBuilt as_built;
-  as_built.missing_walls = missingWalls(site, built_rng);
+  as_built.missing_walls = chooseMissingWalls(site, built_rng);
   std::uniform_real_distribution<double> built_unit(0.0, 1.0);
   as_built.clutter = pallets(site, built_rng, built_unit);
   if (auto rising = risingWall(level, as_built.missing_walls, built_rng, built_unit)) {

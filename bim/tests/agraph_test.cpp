@@ -14,7 +14,7 @@
 namespace isg::bim {
 namespace {
 
-const std::string kPlans = std::string(ISG_SOURCE_DIR) + "/worlds/plans/";
+const std::string kAGraphPlans = std::string(ISG_SOURCE_DIR) + "/worlds/plans/";
 
 class TwoRoomAGraph : public ::testing::Test {
  protected:
@@ -152,7 +152,7 @@ TEST_F(TwoRoomAGraph, DoorwaysAndFloor) {
 }
 
 TEST(AGraph, CorridorIsATwoWallRoom) {
-  const AGraph graph = buildAGraph(loadPlan(kPlans + "d1.json"));
+  const AGraph graph = buildAGraph(loadPlan(kAGraphPlans + "d1.json"));
   const RoomNode& corridor = graph.rooms[graph.findRoom("R4")];
   EXPECT_EQ(corridor.kind, RoomKind::kTwoWall);
   ASSERT_EQ(corridor.pairs.size(), 1u);
@@ -170,7 +170,7 @@ TEST(AGraph, CorridorIsATwoWallRoom) {
 // leaning ends, still a corridor between the same two faces 1.975 m apart; its offices become
 // parallelograms, polygons (no four-wall room factor holds for them).
 TEST(AGraph, AShearedCorridorIsStillATwoWallRoom) {
-  Plan plan = loadPlan(kPlans + "d1.json");
+  Plan plan = loadPlan(kAGraphPlans + "d1.json");
   const double lean = std::tan(30.0 * std::numbers::pi / 180.0);
   const auto shear = [&](const Eigen::Vector2d& p) {
     return Eigen::Vector2d(p.x() + lean * p.y(), p.y());
@@ -204,7 +204,7 @@ TEST(AGraph, AShearedCorridorIsStillATwoWallRoom) {
 }
 
 TEST(AGraph, EllShapedHallKeepsItsSixSurfaces) {
-  const AGraph graph = buildAGraph(loadPlan(kPlans + "d5.json"));
+  const AGraph graph = buildAGraph(loadPlan(kAGraphPlans + "d5.json"));
   const RoomNode& hall = graph.rooms[graph.findRoom("R1")];
   EXPECT_EQ(hall.kind, RoomKind::kPolygon);
   ASSERT_EQ(hall.surfaces.size(), 6u);
@@ -221,7 +221,7 @@ TEST(AGraph, EveryReferencePlanHasItsRoomsAndDoorways) {
   for (const auto& e : {Expected{"d1", 4, 3, 1, 0, 5}, Expected{"d2", 3, 3, 0, 0, 3},
                         Expected{"d3", 8, 7, 1, 0, 8}, Expected{"d4", 8, 7, 1, 0, 9},
                         Expected{"d5", 6, 4, 1, 1, 7}, Expected{"d6", 17, 15, 2, 0, 20}}) {
-    const Plan plan = loadPlan(kPlans + e.plan + ".json");
+    const Plan plan = loadPlan(kAGraphPlans + e.plan + ".json");
     const AGraph graph = buildAGraph(plan);
     int counts[3] = {0, 0, 0};
     for (const auto& r : graph.rooms) ++counts[int(r.kind)];
@@ -260,7 +260,7 @@ namespace {
 // 3.2 m) stands on L0 like a wall: its two sides and its high end are L0 surfaces, facing away
 // from it, as high as it rises; L1, which it opens into, has none.
 TEST(FlightFaces, AFlightIsSeenOnTheLevelItRisesFrom) {
-  const AGraph graph = buildAGraph(loadPlan(kPlans + "storeys.json"));
+  const AGraph graph = buildAGraph(loadPlan(kAGraphPlans + "storeys.json"));
   const int left = graph.findSurface("S1:stair-left");
   const int right = graph.findSurface("S1:stair-right");
   const int end = graph.findSurface("S1:stair-end");

@@ -9,10 +9,10 @@
 namespace isg::bim {
 namespace {
 
-const std::string kPlans = std::string(ISG_SOURCE_DIR) + "/worlds/plans/";
+const std::string kScenarioPlans = std::string(ISG_SOURCE_DIR) + "/worlds/plans/";
 
 TEST(ScenarioParser, BarePlanGetsEveryDefault) {
-  const Scenario s = loadScenario(kPlans + "d1.json");
+  const Scenario s = loadScenario(kScenarioPlans + "d1.json");
   EXPECT_EQ(s.seed, 0u);
   EXPECT_EQ(s.robot.level, "L0");
   EXPECT_EQ(s.robot.start_room, "R1");  // the level's first room
@@ -46,7 +46,7 @@ TEST(ScenarioParser, BarePlanGetsEveryDefault) {
 }
 
 TEST(ScenarioParser, HandheldCarrierGetsAWalkersDefaults) {
-  const Scenario s = loadScenario(kPlans + "d2.handheld.json");
+  const Scenario s = loadScenario(kScenarioPlans + "d2.handheld.json");
   EXPECT_EQ(s.robot.carrier, Carrier::kHandheld);
   EXPECT_DOUBLE_EQ(s.robot.speed, kHandheldSpeed);
   EXPECT_DOUBLE_EQ(s.robot.gait.bob_m, 0.025);
@@ -54,7 +54,7 @@ TEST(ScenarioParser, HandheldCarrierGetsAWalkersDefaults) {
   EXPECT_DOUBLE_EQ(s.robot.gait.head_turn_deg, 15.0);
   EXPECT_FALSE(s.lidar.body_occlusion);  // no robot body to shadow the sensor
   // The legged base keeps its trot: no sideways sway, no head turns.
-  const Scenario legged = loadScenario(kPlans + "d2.asbuilt.json");
+  const Scenario legged = loadScenario(kScenarioPlans + "d2.asbuilt.json");
   EXPECT_EQ(legged.robot.carrier, Carrier::kLegged);
   EXPECT_DOUBLE_EQ(legged.robot.gait.sway_m, 0.0);
   EXPECT_DOUBLE_EQ(legged.robot.gait.head_turn_deg, 0.0);
@@ -64,7 +64,7 @@ TEST(ScenarioParser, HandheldCarrierGetsAWalkersDefaults) {
 }
 
 TEST(ScenarioParser, ReferenceScenarioResolvesItsPlanRelativeToItself) {
-  const Scenario s = loadScenario(kPlans + "d1.asbuilt.json");
+  const Scenario s = loadScenario(kScenarioPlans + "d1.asbuilt.json");
   EXPECT_EQ(s.plan.name, "D1 three offices and a corridor");
   EXPECT_EQ(std::filesystem::path(s.plan_file).filename(), "d1.json");
   EXPECT_EQ(s.seed, 1u);

@@ -19,7 +19,7 @@ namespace isg::formats {
 namespace {
 
 template <typename T>
-T at(const std::string& data, std::size_t offset) {
+T fieldAt(const std::string& data, std::size_t offset) {
   T value;
   std::memcpy(&value, data.data() + offset, sizeof(T));
   return value;
@@ -63,12 +63,12 @@ TEST(DriverPointCloud, HesaisLayoutHasSecondsSinceTheEpochAndChannels) {
   EXPECT_STREQ(cloud.fields[4].name, "timestamp");
   EXPECT_EQ(cloud.fields[4].offset, 24u);
   EXPECT_EQ(cloud.fields[4].datatype, 8);  // float64
-  EXPECT_EQ(at<float>(cloud.data, 48 + 4), 2.0f);
-  EXPECT_EQ(at<float>(cloud.data, 48 + 16), 7.4f);
-  EXPECT_NEAR(at<double>(cloud.data, 48 + 24), 1700000000.25 + 0.0123456, 1e-6);
-  EXPECT_EQ(at<std::uint16_t>(cloud.data, 0 * 48 + 32), 15);  // ring 16 by elevation: +0°
-  EXPECT_EQ(at<std::uint16_t>(cloud.data, 1 * 48 + 32), 0);   // the top
-  EXPECT_EQ(at<std::uint16_t>(cloud.data, 2 * 48 + 32), 31);  // the lowest
+  EXPECT_EQ(fieldAt<float>(cloud.data, 48 + 4), 2.0f);
+  EXPECT_EQ(fieldAt<float>(cloud.data, 48 + 16), 7.4f);
+  EXPECT_NEAR(fieldAt<double>(cloud.data, 48 + 24), 1700000000.25 + 0.0123456, 1e-6);
+  EXPECT_EQ(fieldAt<std::uint16_t>(cloud.data, 0 * 48 + 32), 15);  // ring 16 by elevation: +0°
+  EXPECT_EQ(fieldAt<std::uint16_t>(cloud.data, 1 * 48 + 32), 0);   // the top
+  EXPECT_EQ(fieldAt<std::uint16_t>(cloud.data, 2 * 48 + 32), 31);  // the lowest
 }
 
 TEST(DriverPointCloud, OustersLayoutHasNanosecondsRangeAndBeams) {
@@ -87,14 +87,14 @@ TEST(DriverPointCloud, OustersLayoutHasNanosecondsRangeAndBeams) {
     EXPECT_EQ(cloud.fields[i].offset, offsets[i]);
     EXPECT_EQ(cloud.fields[i].datatype, types[i]);
   }
-  EXPECT_EQ(at<std::uint32_t>(cloud.data, 0 + 20), 0u);
-  EXPECT_EQ(at<std::uint32_t>(cloud.data, 48 + 20), 12345600u);  // 0.0123456 s in ns
-  EXPECT_EQ(at<std::uint32_t>(cloud.data, 0 + 32), 5000u);       // |(3, 4, 0)| = 5 m in mm
-  EXPECT_EQ(at<std::uint32_t>(cloud.data, 48 + 32), 3000u);      // |(−1, 2, 2)| = 3 m
-  EXPECT_EQ(at<std::uint16_t>(cloud.data, 48 + 24), 7);          // reflectivity: 7.4 rounded
-  EXPECT_EQ(at<std::uint16_t>(cloud.data, 96 + 24), 250);
-  EXPECT_EQ(at<std::uint16_t>(cloud.data, 48 + 26), 0);  // the top beam
-  EXPECT_EQ(at<std::uint16_t>(cloud.data, 96 + 28), 0);  // ambient: not simulated
+  EXPECT_EQ(fieldAt<std::uint32_t>(cloud.data, 0 + 20), 0u);
+  EXPECT_EQ(fieldAt<std::uint32_t>(cloud.data, 48 + 20), 12345600u);  // 0.0123456 s in ns
+  EXPECT_EQ(fieldAt<std::uint32_t>(cloud.data, 0 + 32), 5000u);       // |(3, 4, 0)| = 5 m in mm
+  EXPECT_EQ(fieldAt<std::uint32_t>(cloud.data, 48 + 32), 3000u);      // |(−1, 2, 2)| = 3 m
+  EXPECT_EQ(fieldAt<std::uint16_t>(cloud.data, 48 + 24), 7);          // reflectivity: 7.4 rounded
+  EXPECT_EQ(fieldAt<std::uint16_t>(cloud.data, 96 + 24), 250);
+  EXPECT_EQ(fieldAt<std::uint16_t>(cloud.data, 48 + 26), 0);  // the top beam
+  EXPECT_EQ(fieldAt<std::uint16_t>(cloud.data, 96 + 28), 0);  // ambient: not simulated
 }
 
 // The import reads each layout back to the points (times to the nanosecond Ouster keeps, Hesai's

@@ -47,7 +47,7 @@ std::vector<std::string> texts(McapReader& reader, const std::vector<std::string
   return out;
 }
 
-std::string errorOf(const std::string& bytes) {
+std::string mcapErrorOf(const std::string& bytes) {
   try {
     McapReader reader(bytes, "t.mcap");
   } catch (const common::InputError& e) {
@@ -119,31 +119,31 @@ TEST(McapReader, ReadsTopLevelMessagesAndSkipsUnknownRecords) {
 }
 
 TEST(McapReader, DamageIsAnErrorNamingItsByte) {
-  EXPECT_EQ(errorOf("#ROSBAG V2.0\n"),
+  EXPECT_EQ(mcapErrorOf("#ROSBAG V2.0\n"),
             "t.mcap: byte 0: not an MCAP file (it does not begin with MCAP's magic)");
   const std::string good = handMade(message(7, 5, ros2::stringMessage("x")));
-  EXPECT_EQ(errorOf(good.substr(0, good.size() - 3)),
+  EXPECT_EQ(mcapErrorOf(good.substr(0, good.size() - 3)),
             "t.mcap: byte " + std::to_string(good.size() - 3) +
                 ": cut short: the file does not end with MCAP's magic (a recording that was not "
                 "closed; `mcap recover` mends it)");
   // A message on a channel nobody defined; a record longer than the file.
   const std::string stray = handMade(message(9, 5, ros2::stringMessage("x")));
   const std::size_t at = stray.find(std::string(1, '\x05') + num(std::uint64_t(32)));
-  EXPECT_EQ(errorOf(stray), "t.mcap: byte " + std::to_string(at) +
-                                ": a message on channel 9, which no Channel record defines");
+  EXPECT_EQ(mcapErrorOf(stray), "t.mcap: byte " + std::to_string(at) +
+                                    ": a message on channel 9, which no Channel record defines");
   std::string long_record = good;
   long_record[at + 1] = '\x7f';
-  EXPECT_NE(errorOf(long_record)
+  EXPECT_NE(mcapErrorOf(long_record)
                 .find("t.mcap: byte " + std::to_string(at) +
                       ": a record (opcode 0x05) of 127 bytes, where "),
             std::string::npos)
-      << errorOf(long_record);
+      << mcapErrorOf(long_record);
   // A chunk whose CRC does not hold.
   std::string chunked = writtenFile("mcap_crc", McapCompression::kNone);
   const std::size_t text = chunked.find("three");
   chunked[text] = 'T';
-  EXPECT_NE(errorOf(chunked).find("the chunk's records fail their CRC-32"), std::string::npos)
-      << errorOf(chunked);
+  EXPECT_NE(mcapErrorOf(chunked).find("the chunk's records fail their CRC-32"), std::string::npos)
+      << mcapErrorOf(chunked);
 }
 
 // The oracle: a file that npm's @mcap/core wrote (zstd chunks, CDR from

@@ -19,7 +19,7 @@ namespace fs = std::filesystem;
 using test_files::slurp;
 
 template <typename T>
-T at(const std::string& bytes, std::size_t offset) {
+T recordAt(const std::string& bytes, std::size_t offset) {
   T value;
   std::memcpy(&value, bytes.data() + offset, sizeof(T));
   return value;
@@ -40,10 +40,10 @@ TEST(CdrWriter, AlignsEachPrimitiveToItsSizeAfterTheEncapsulationHeader) {
   ASSERT_EQ(bytes.size(), 4u + 26u);
   EXPECT_EQ(bytes.substr(0, 4), std::string("\x00\x01\x00\x00", 4));
   EXPECT_EQ(bytes[4], 7);
-  EXPECT_EQ(at<double>(bytes, 4 + 8), 1.5);
-  EXPECT_EQ(at<std::uint32_t>(bytes, 4 + 16), 3u);
+  EXPECT_EQ(recordAt<double>(bytes, 4 + 8), 1.5);
+  EXPECT_EQ(recordAt<std::uint32_t>(bytes, 4 + 16), 3u);
   EXPECT_EQ(bytes.substr(4 + 20, 3), std::string("ab\0", 3));
-  EXPECT_EQ(at<std::uint16_t>(bytes, 4 + 24), 9u);
+  EXPECT_EQ(recordAt<std::uint16_t>(bytes, 4 + 24), 9u);
 }
 
 TEST(Ros2Messages, TfMessageLaidOutByHand) {
@@ -57,20 +57,20 @@ TEST(Ros2Messages, TfMessageLaidOutByHand) {
   // Body: count (0), sec (4), nanosec (8), "a" (12: 4 + 2), "b" (20: 4 + 2), translation (32),
   // rotation (56), end 88.
   ASSERT_EQ(bytes.size(), 4u + 88u);
-  EXPECT_EQ(at<std::uint32_t>(bytes, 4), 1u);
-  EXPECT_EQ(at<std::int32_t>(bytes, 8), 1000000001);
-  EXPECT_EQ(at<std::uint32_t>(bytes, 12), 5u);
+  EXPECT_EQ(recordAt<std::uint32_t>(bytes, 4), 1u);
+  EXPECT_EQ(recordAt<std::int32_t>(bytes, 8), 1000000001);
+  EXPECT_EQ(recordAt<std::uint32_t>(bytes, 12), 5u);
   EXPECT_EQ(bytes.substr(16, 6), std::string("\x02\x00\x00\x00"
                                              "a\0",
                                              6));
   EXPECT_EQ(bytes.substr(24, 6), std::string("\x02\x00\x00\x00"
                                              "b\0",
                                              6));
-  EXPECT_EQ(at<double>(bytes, 36), 1.0);
-  EXPECT_EQ(at<double>(bytes, 52), 3.0);
+  EXPECT_EQ(recordAt<double>(bytes, 36), 1.0);
+  EXPECT_EQ(recordAt<double>(bytes, 52), 3.0);
   // −0.5 rad about z, w kept positive: (0, 0, −sin 0.25, cos 0.25).
-  EXPECT_NEAR(at<double>(bytes, 76), -std::sin(0.25), 1e-15);
-  EXPECT_NEAR(at<double>(bytes, 84), std::cos(0.25), 1e-15);
+  EXPECT_NEAR(recordAt<double>(bytes, 76), -std::sin(0.25), 1e-15);
+  EXPECT_NEAR(recordAt<double>(bytes, 84), std::cos(0.25), 1e-15);
 }
 
 TEST(Ros2Messages, DefinitionsNameEveryTypeTheyUse) {
@@ -119,15 +119,15 @@ TEST(McapWriter, LaysOutAnIndexedFileWithItsCrcs) {
   // Footer: opcode, length 20, summary start, summary offset start, summary CRC.
   const std::size_t footer = file.size() - 8 - 29;
   EXPECT_EQ(file[footer], 0x02);
-  EXPECT_EQ(at<std::uint64_t>(file, footer + 1), 20u);
-  const auto summary_start = at<std::uint64_t>(file, footer + 9);
-  const auto summary_offset_start = at<std::uint64_t>(file, footer + 17);
-  EXPECT_EQ(at<std::uint32_t>(file, footer + 25),
+  EXPECT_EQ(recordAt<std::uint64_t>(file, footer + 1), 20u);
+  const auto summary_start = recordAt<std::uint64_t>(file, footer + 9);
+  const auto summary_offset_start = recordAt<std::uint64_t>(file, footer + 17);
+  EXPECT_EQ(recordAt<std::uint32_t>(file, footer + 25),
             crc32(file.substr(summary_start, footer + 25 - summary_start)));
   // Data End right before the summary, with the CRC of everything before it.
   const std::size_t data_end = summary_start - 13;
   EXPECT_EQ(file[data_end], 0x0f);
-  EXPECT_EQ(at<std::uint32_t>(file, data_end + 9), crc32(file.substr(0, data_end)));
+  EXPECT_EQ(recordAt<std::uint32_t>(file, data_end + 9), crc32(file.substr(0, data_end)));
   // The summary starts with the schema, then the two channels; a Summary Offset per group
   // (schemas, channels, statistics, chunk indexes).
   EXPECT_EQ(file[summary_start], 0x03);
@@ -135,13 +135,13 @@ TEST(McapWriter, LaysOutAnIndexedFileWithItsCrcs) {
   EXPECT_EQ((footer - summary_offset_start) / 26, 4u);
   // Statistics: 3 messages, 1 schema, 2 channels, 3 chunks, from 10 to 30 ns.
   std::size_t offset = summary_start;
-  while (file[offset] != 0x0b) offset += 9 + at<std::uint64_t>(file, offset + 1);
-  EXPECT_EQ(at<std::uint64_t>(file, offset + 9), 3u);
-  EXPECT_EQ(at<std::uint16_t>(file, offset + 17), 1u);
-  EXPECT_EQ(at<std::uint32_t>(file, offset + 19), 2u);
-  EXPECT_EQ(at<std::uint32_t>(file, offset + 31), 3u);
-  EXPECT_EQ(at<std::uint64_t>(file, offset + 35), 10u);
-  EXPECT_EQ(at<std::uint64_t>(file, offset + 43), 30u);
+  while (file[offset] != 0x0b) offset += 9 + recordAt<std::uint64_t>(file, offset + 1);
+  EXPECT_EQ(recordAt<std::uint64_t>(file, offset + 9), 3u);
+  EXPECT_EQ(recordAt<std::uint16_t>(file, offset + 17), 1u);
+  EXPECT_EQ(recordAt<std::uint32_t>(file, offset + 19), 2u);
+  EXPECT_EQ(recordAt<std::uint32_t>(file, offset + 31), 3u);
+  EXPECT_EQ(recordAt<std::uint64_t>(file, offset + 35), 10u);
+  EXPECT_EQ(recordAt<std::uint64_t>(file, offset + 43), 30u);
   fs::remove_all(dir);
 }
 

@@ -43,7 +43,7 @@ void expectSamePoints(const std::vector<sensors::ScanPoint>& a,
   }
 }
 
-std::string errorOf(const std::string& bytes) {
+std::string pcdErrorOf(const std::string& bytes) {
   try {
     parsePcd(bytes, "s.pcd");
   } catch (const common::InputError& e) {
@@ -92,29 +92,30 @@ TEST(PcdFormat, DamagedCompressedDataIsNamed) {
   std::uint32_t sizes[2];
   std::memcpy(sizes, good.data() + header, sizeof sizes);
 
-  EXPECT_EQ(errorOf(good.substr(0, header + 5)),
+  EXPECT_EQ(pcdErrorOf(good.substr(0, header + 5)),
             "s.pcd: data: binary_compressed needs 8 bytes of sizes, the file holds 5");
-  EXPECT_EQ(errorOf(good.substr(0, good.size() - 10)),
+  EXPECT_EQ(pcdErrorOf(good.substr(0, good.size() - 10)),
             "s.pcd: data: " + std::to_string(sizes[0]) +
                 " compressed bytes announced, the file holds " + std::to_string(sizes[0] - 10));
-  EXPECT_EQ(errorOf(with_sizes(sizes[0], 1400)),
+  EXPECT_EQ(pcdErrorOf(with_sizes(sizes[0], 1400)),
             "s.pcd: data: 64 points need 1408 bytes, the file unpacks to 1400");
   // Fewer compressed bytes than written: the stream ends inside a token or short of 1408 bytes.
   EXPECT_EQ(
-      errorOf(with_sizes(sizes[0] / 2, 1408)).rfind("s.pcd: data: the LZF data is damaged", 0), 0u);
+      pcdErrorOf(with_sizes(sizes[0] / 2, 1408)).rfind("s.pcd: data: the LZF data is damaged", 0),
+      0u);
   // A back reference before the start of the output (control byte 0xe0: length 7+, offset
   // from the next byte) is refused by LZF, not followed.
   std::string reference = good;
   reference[header + 8] = char(0xff);
   reference[header + 9] = char(0xff);
   reference[header + 10] = char(0xff);
-  EXPECT_EQ(errorOf(reference).rfind("s.pcd: data: the LZF data is damaged", 0), 0u);
+  EXPECT_EQ(pcdErrorOf(reference).rfind("s.pcd: data: the LZF data is damaged", 0), 0u);
   // A point count whose unpacked size would be absurd is refused before any allocation.
   std::string huge = good;
   const std::string width = "WIDTH 64\n", points_line = "POINTS 64\n";
   huge.replace(huge.find(width), width.size(), "WIDTH 900000000\n");
   huge.replace(huge.find(points_line), points_line.size(), "POINTS 900000000\n");
-  EXPECT_EQ(errorOf(huge).rfind("s.pcd: data: 900000000 points need", 0), 0u);
+  EXPECT_EQ(pcdErrorOf(huge).rfind("s.pcd: data: 900000000 points need", 0), 0u);
 }
 
 }  // namespace

@@ -14,7 +14,7 @@ namespace {
 
 using Class = PixelClass;
 
-std::string errorOf(const std::string& bytes, const OccupancyRule& rule = {}) {
+std::string imageErrorOf(const std::string& bytes, const OccupancyRule& rule = {}) {
   try {
     decodeOccupancyImage(bytes, "floor.pgm", rule);
   } catch (const common::InputError& e) {
@@ -71,22 +71,22 @@ TEST(RasterImage, BinaryPgmRowsFromTheTop) {
 }
 
 TEST(RasterImage, BadImagesSayWhatIsWrong) {
-  EXPECT_EQ(errorOf("P5 3 2 255\n" + std::string(4, '\0')),
+  EXPECT_EQ(imageErrorOf("P5 3 2 255\n" + std::string(4, '\0')),
             "floor.pgm: at byte 11: the raster holds 4 of 6 pixels: the file is truncated");
-  EXPECT_EQ(errorOf("P2 2 1 255\n0 300\n"),
+  EXPECT_EQ(imageErrorOf("P2 2 1 255\n0 300\n"),
             "floor.pgm: at byte 16: a grey value (300) above the maximum 255");
-  EXPECT_EQ(errorOf("P2 2 x"),
+  EXPECT_EQ(imageErrorOf("P2 2 x"),
             "floor.pgm: at byte 5: expected the height (a decimal number), found 'x'");
-  EXPECT_EQ(errorOf("P5 0 4 255\n"), "floor.pgm: the image has no pixels (0 × 4)");
-  EXPECT_EQ(errorOf("P5 20000 20000 255\n"),
+  EXPECT_EQ(imageErrorOf("P5 0 4 255\n"), "floor.pgm: the image has no pixels (0 × 4)");
+  EXPECT_EQ(imageErrorOf("P5 20000 20000 255\n"),
             "floor.pgm: the image has 400000000 pixels (20000 × 20000); at most 120000000 are "
             "read (docs/formats.md, \"Importing raster floor plans\")");
-  EXPECT_EQ(errorOf("GIF89a"),
+  EXPECT_EQ(imageErrorOf("GIF89a"),
             "floor.pgm: neither a PNG image nor a PGM image (P2 or P5): a floor plan image must "
             "be one of them");
   const std::string png = pngOf(2, 1, PNG_FORMAT_GRAY, {0, 255});
-  EXPECT_EQ(errorOf(png.substr(0, 40)).rfind("floor.pgm: not a readable PNG image: ", 0), 0u)
-      << errorOf(png.substr(0, 40));
+  EXPECT_EQ(imageErrorOf(png.substr(0, 40)).rfind("floor.pgm: not a readable PNG image: ", 0), 0u)
+      << imageErrorOf(png.substr(0, 40));
 }
 
 TEST(RasterImage, PngChannelsAveragedAsMapServerDoes) {

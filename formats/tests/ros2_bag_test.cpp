@@ -15,14 +15,14 @@ namespace {
 
 namespace fs = std::filesystem;
 
-const fs::path kIndoorBag =
+const fs::path kIndoorRos2Bag =
     fs::path(ISG_SOURCE_DIR) / "formats/tests/data/vlp16-real/nebula-vlp16-indoor.db3";
 
 // A rosbag2 folder as `ros2 bag record` leaves it: the database under another name and the
 // metadata.yaml naming it, with `info` as its rosbag2_bagfile_information's last lines.
 fs::path bagFolder(const std::string& test, const std::string& info) {
   const fs::path dir = test_files::scratchFolder(test);
-  fs::copy_file(kIndoorBag, dir / "run_0.db3");
+  fs::copy_file(kIndoorRos2Bag, dir / "run_0.db3");
   std::ofstream(dir / "metadata.yaml") << "rosbag2_bagfile_information:\n"
                                           "  version: 5\n"
                                           "  message_count: 4\n"
@@ -30,7 +30,7 @@ fs::path bagFolder(const std::string& test, const std::string& info) {
   return dir;
 }
 
-std::string errorOf(const fs::path& dir) {
+std::string ros2BagErrorOf(const fs::path& dir) {
   try {
     Ros2Bag bag(dir.string());
   } catch (const common::InputError& e) {
@@ -47,7 +47,7 @@ TEST(Ros2Bag, AFolderIsReadAsItsMetadataNamesItsFiles) {
                                  "  relative_file_paths:\n"
                                  "    - run_0.db3\n");
   // A stray database beside it is not part of the bag.
-  fs::copy_file(kIndoorBag, dir / "old.db3");
+  fs::copy_file(kIndoorRos2Bag, dir / "old.db3");
   const Ros2Bag bag(dir.string());
   ASSERT_EQ(bag.topics().size(), 1u);
   EXPECT_EQ(bag.topics()[0].name, "/velodyne_packets");
@@ -62,7 +62,7 @@ TEST(Ros2Bag, ASplitBagIsReadInStampOrderAcrossItsFiles) {
   const fs::path dir = bagFolder("ros2_bag_split_read",
                                  "  storage_identifier: sqlite3\n"
                                  "  relative_file_paths: [run_0.db3, run_1.db3]\n");
-  fs::copy_file(kIndoorBag, dir / "run_1.db3");
+  fs::copy_file(kIndoorRos2Bag, dir / "run_1.db3");
   const Ros2Bag bag(dir.string());
   EXPECT_EQ(bag.topics()[0].messages, 8u);
   const std::vector<Ros2Message> listed = bag.messages("/velodyne_packets");
@@ -95,7 +95,7 @@ TEST(Ros2Bag, ASplitBagIsReadInStampOrderAcrossItsFiles) {
 TEST(Ros2Bag, WhatItCannotReadIsSaid) {
   const auto refused = [](const std::string& test, const std::string& info) {
     const fs::path dir = bagFolder(test, info);
-    std::string error = errorOf(dir);
+    std::string error = ros2BagErrorOf(dir);
     const std::string prefix = (dir / "metadata.yaml").string() + ": ";
     if (error.rfind(prefix, 0) == 0) error = error.substr(prefix.size());
     fs::remove_all(dir);
@@ -121,8 +121,9 @@ TEST(Ros2Bag, WhatItCannotReadIsSaid) {
   // Some other program's metadata.yaml.
   const fs::path dir = test_files::scratchFolder("ros2_bag_other");
   std::ofstream(dir / "metadata.yaml") << "camera: {fps: 30}\n";
-  EXPECT_EQ(errorOf(dir), (dir / "metadata.yaml").string() +
-                              ": no rosbag2_bagfile_information: not a rosbag2 bag's metadata");
+  EXPECT_EQ(ros2BagErrorOf(dir),
+            (dir / "metadata.yaml").string() +
+                ": no rosbag2_bagfile_information: not a rosbag2 bag's metadata");
   fs::remove_all(dir);
 }
 

@@ -13,7 +13,7 @@
 namespace isg::formats {
 namespace {
 
-std::string errorOf(const std::function<void()>& decode) {
+std::string decodeErrorOf(const std::function<void()>& decode) {
   try {
     decode();
   } catch (const ros1::MessageError& e) {
@@ -102,18 +102,18 @@ TEST(Ros2Decode, BigEndianCdrByHand) {
   EXPECT_EQ(pose.pose.translation(), Eigen::Vector3d(1.5, -2.0, 0.25));
   EXPECT_NEAR(Eigen::AngleAxisd(pose.pose.linear()).angle(), 0.5, 1e-12);
   // Cut short inside the rotation, and with a frame id that claims more than is there.
-  EXPECT_EQ(errorOf([&] { ros2::decodePoseStamped(b.substr(0, b.size() - 4)); }),
+  EXPECT_EQ(decodeErrorOf([&] { ros2::decodePoseStamped(b.substr(0, b.size() - 4)); }),
             "ends inside pose.orientation (byte 68 of 72)");
   std::string long_frame = b;
   long_frame[4 + 8 + 3] = 100;
-  EXPECT_EQ(errorOf([&] { ros2::decodePoseStamped(long_frame); }),
+  EXPECT_EQ(decodeErrorOf([&] { ros2::decodePoseStamped(long_frame); }),
             "ends inside header.frame_id (byte 16 of 76)");
 }
 
 TEST(Ros2Decode, DamageIsSaidNeverAllocated) {
-  EXPECT_EQ(errorOf([] { ros2::decodeString(std::string("\x00\x01", 2)); }),
+  EXPECT_EQ(decodeErrorOf([] { ros2::decodeString(std::string("\x00\x01", 2)); }),
             "holds 2 bytes, no CDR header");
-  EXPECT_EQ(errorOf([] { ros2::decodeString(std::string("\x00\x02\x00\x00", 4)); }),
+  EXPECT_EQ(decodeErrorOf([] { ros2::decodeString(std::string("\x00\x02\x00\x00", 4)); }),
             "encapsulation 0,2 is not plain CDR (0,0 big-endian or 0,1 little-endian)");
   // A cloud whose fields claim four billion elements.
   CdrWriter w;
@@ -123,18 +123,18 @@ TEST(Ros2Decode, DamageIsSaidNeverAllocated) {
   w.u32(1);
   w.u32(10);
   w.u32(0xffffffffu);
-  EXPECT_EQ(errorOf([&] { ros2::decodePointCloud2(w.data()); }),
+  EXPECT_EQ(decodeErrorOf([&] { ros2::decodePointCloud2(w.data()); }),
             "fields: 4294967295 elements announced, the message holds at most 0");
   // Bytes left over after a whole message, and a stamp before 1970.
   std::string text = ros2::stringMessage("ok");
   text.append(8, '\0');
-  EXPECT_EQ(errorOf([&] { ros2::decodeString(text); }),
+  EXPECT_EQ(decodeErrorOf([&] { ros2::decodeString(text); }),
             "8 bytes after a std_msgs/msg/String (byte 11 of 19)");
   CdrWriter quaternion;
   quaternion.i32(-5);
   quaternion.u32(0);
   quaternion.string("map");
-  EXPECT_EQ(errorOf([&] { ros2::decodePoseStamped(quaternion.data()); }),
+  EXPECT_EQ(decodeErrorOf([&] { ros2::decodePoseStamped(quaternion.data()); }),
             "header.stamp is -5 s, before 1970");
 }
 

@@ -23,7 +23,7 @@ namespace {
 namespace fs = std::filesystem;
 using test_files::slurp;
 
-fs::path scratch(const std::string& name) {
+fs::path readerScratch(const std::string& name) {
   return test_files::scratchFolder("rosbag_reader_" + name);
 }
 
@@ -91,7 +91,7 @@ WrittenBag writeOurs(const fs::path& dir) {
 }
 
 TEST(RosbagReader, ReadsOurOwnBagsBackInTimeOrder) {
-  const fs::path dir = scratch("ours");
+  const fs::path dir = readerScratch("ours");
   const WrittenBag bag = writeOurs(dir);
   RosbagReader reader(bag.path.string());
   ASSERT_EQ(reader.connections().size(), 3u);
@@ -129,7 +129,7 @@ TEST(RosbagReader, ReadsOurOwnBagsBackInTimeOrder) {
 }
 
 TEST(RosbagReader, ReadsPythonRosbagsPlainBz2AndLz4AsRosbagDoes) {
-  const fs::path dir = scratch("python");
+  const fs::path dir = readerScratch("python");
   for (const std::string compression : {"none", "bz2", "lz4"}) {
     SCOPED_TRACE(compression);
     const fs::path bag = dir / (compression + ".bag"), expected = dir / (compression + ".txt");
@@ -158,7 +158,7 @@ std::string patched(std::string bytes, const std::string& field, const std::stri
   return bytes;
 }
 
-std::string errorOf(std::string bytes) {
+std::string bagErrorOf(std::string bytes) {
   try {
     RosbagReader reader(std::move(bytes), "x.bag");
     reader.read({}, [](const BagMessageView&) { return true; });
@@ -169,25 +169,25 @@ std::string errorOf(std::string bytes) {
 }
 
 TEST(RosbagReader, RefusesDamagedBagsWithTheReason) {
-  const fs::path dir = scratch("damaged");
+  const fs::path dir = readerScratch("damaged");
   const std::string bag = slurp(writeOurs(dir).path);
-  EXPECT_EQ(errorOf("hello"), "x.bag: not a ROS 1 bag: it does not start with \"#ROSBAG V2.0\"");
-  EXPECT_EQ(errorOf("#ROSBAG V1.2\n" + std::string(100, '\0')),
+  EXPECT_EQ(bagErrorOf("hello"), "x.bag: not a ROS 1 bag: it does not start with \"#ROSBAG V2.0\"");
+  EXPECT_EQ(bagErrorOf("#ROSBAG V1.2\n" + std::string(100, '\0')),
             "x.bag: a ROS bag of version 1.2: only version 2.0 is read (rosbag fix converts older "
             "bags)");
-  EXPECT_EQ(errorOf(patched(bag, "index_pos", std::string(8, '\0'))),
+  EXPECT_EQ(bagErrorOf(patched(bag, "index_pos", std::string(8, '\0'))),
             "x.bag: the bag is not indexed (its recording was cut short): `rosbag reindex` mends "
             "it");
   // Cut in half: the index the header points at is gone.
   const std::string half = bag.substr(0, bag.size() / 2);
   std::uint64_t index_position;
   std::memcpy(&index_position, bag.data() + bag.find("index_pos=") + 10, 8);
-  EXPECT_EQ(errorOf(half), "x.bag: byte 13: the bag header's index position " +
-                               std::to_string(index_position) +
-                               " lies outside the file (truncated?)");
+  EXPECT_EQ(bagErrorOf(half), "x.bag: byte 13: the bag header's index position " +
+                                  std::to_string(index_position) +
+                                  " lies outside the file (truncated?)");
   // An unknown compression, named with where its chunk is.
   const std::size_t chunk = 13 + 4096;  // the first chunk: after the version line and the header
-  EXPECT_EQ(errorOf(patched(bag, "compression", "zstd")),
+  EXPECT_EQ(bagErrorOf(patched(bag, "compression", "zstd")),
             "x.bag: byte " + std::to_string(chunk) +
                 ": chunk compression \"zstd\" is not supported (none, bz2 and lz4 are)");
   // A message's bytes changed under its index: the record is no longer a message.
@@ -195,9 +195,9 @@ TEST(RosbagReader, RefusesDamagedBagsWithTheReason) {
   const std::size_t first_message = moved.find("op=\x02");
   ASSERT_NE(first_message, std::string::npos);
   moved[first_message + 3] = '\x07';
-  EXPECT_NE(errorOf(moved).find("the index points at a record that is not a message"),
+  EXPECT_NE(bagErrorOf(moved).find("the index points at a record that is not a message"),
             std::string::npos)
-      << errorOf(moved);
+      << bagErrorOf(moved);
   EXPECT_THROW(RosbagReader((dir / "missing.bag").string()), common::InputError);
   // A compressed chunk that claims one byte more, or one less, than its data holds.
   for (const std::string compression : {"bz2", "lz4"}) {
@@ -210,7 +210,7 @@ TEST(RosbagReader, RefusesDamagedBagsWithTheReason) {
     for (const std::uint32_t claimed : {size + 1, size - 1}) {
       std::string lying = python;
       std::memcpy(lying.data() + size_at, &claimed, 4);
-      const std::string error = errorOf(lying);
+      const std::string error = bagErrorOf(lying);
       const std::string expected =
           "chunk does not decompress to its " + std::to_string(claimed) + " bytes (" +
           (claimed > size ? "it holds " + std::to_string(size) : std::string("it holds more")) +

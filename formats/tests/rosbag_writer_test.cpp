@@ -20,7 +20,9 @@ namespace {
 namespace fs = std::filesystem;
 using test_files::slurp;
 
-fs::path scratch(const std::string& name) { return test_files::scratchFolder("rosbag_" + name); }
+fs::path writerScratch(const std::string& name) {
+  return test_files::scratchFolder("rosbag_" + name);
+}
 
 // One record of a bag: its header fields and its data.
 struct Record {
@@ -64,7 +66,7 @@ TEST(RosTime, FromSecondsRoundsToTheNanosecond) {
 }
 
 TEST(RosbagWriter, WritesTheVersionHeaderChunksAndIndex) {
-  const fs::path dir = scratch("writer");
+  const fs::path dir = writerScratch("writer");
   const formats::RosMessageType type{"std_msgs/String", "992ce8a1687cec8c8bd883ec73ca41d1",
                                      "string data\n"};
   {
@@ -120,7 +122,7 @@ TEST(RosbagWriter, WritesTheVersionHeaderChunksAndIndex) {
 }
 
 TEST(RosbagWriter, LeavesNothingUnlessClosedAndKeepsAnExistingBag) {
-  const fs::path dir = scratch("atomic");
+  const fs::path dir = writerScratch("atomic");
   const std::string path = (dir / "b.bag").string();
   {
     formats::RosbagWriter bag(path, false);

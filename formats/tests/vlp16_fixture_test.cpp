@@ -21,7 +21,7 @@ namespace isg::formats {
 namespace {
 
 const std::string kData = std::string(ISG_SOURCE_DIR) + "/formats/tests/data/vlp16-real/";
-const std::string kIndoorBag = kData + "nebula-vlp16-indoor.db3";
+const std::string kIndoorVlp16Bag = kData + "nebula-vlp16-indoor.db3";
 const std::string kOutdoorPcap = kData + "rust-lidar-utils-vlp16-outdoor.pcap";
 
 std::span<const std::uint8_t> bytesOf(const std::string& data) {
@@ -51,7 +51,7 @@ int nebulaReturnType(Vlp16Echo echo) {
 }
 
 TEST(Vlp16Fixture, TheIndoorBagHoldsFourScansOfRawPackets) {
-  const Ros2Bag bag(kIndoorBag);
+  const Ros2Bag bag(kIndoorVlp16Bag);
   ASSERT_EQ(bag.topics().size(), 1u);
   EXPECT_EQ(bag.topics()[0].name, "/velodyne_packets");
   EXPECT_EQ(bag.topics()[0].type, "velodyne_msgs/msg/VelodyneScan");
@@ -61,7 +61,7 @@ TEST(Vlp16Fixture, TheIndoorBagHoldsFourScansOfRawPackets) {
   EXPECT_EQ(messages[3].stamp_ns, 1673400472138016708);
   std::vector<std::size_t> packets;
   for (std::size_t m = 0; m < messages.size(); ++m) {
-    const auto scan = decodeVelodyneScanCdr(messages[m].data, kIndoorBag, "message");
+    const auto scan = decodeVelodyneScanCdr(messages[m].data, kIndoorVlp16Bag, "message");
     EXPECT_EQ(scan.frame_id, "velodyne");
     packets.push_back(scan.packets.size());
     if (m == 0) {
@@ -84,11 +84,12 @@ TEST(Vlp16Fixture, NebulasDecodedCloudIsReproduced) {
   options.min_range = 0.3;
   options.max_range = 300.0;
   options.convention = Vlp16Convention::kNebula;
-  const Ros2Bag bag(kIndoorBag);
+  const Ros2Bag bag(kIndoorVlp16Bag);
   std::vector<Vlp16Point> points;
   for (const auto& message : bag.messages("/velodyne_packets")) {
-    for (const auto& packet : decodeVelodyneScanCdr(message.data, kIndoorBag, "message").packets) {
-      decodeVlp16Packet(bytesOf(packet.data), 0.0, options, kIndoorBag, "packet", points);
+    for (const auto& packet :
+         decodeVelodyneScanCdr(message.data, kIndoorVlp16Bag, "message").packets) {
+      decodeVlp16Packet(bytesOf(packet.data), 0.0, options, kIndoorVlp16Bag, "packet", points);
     }
   }
   const auto turns = cutIntoTurns(points, 0.0);
@@ -139,8 +140,8 @@ TEST(Vlp16Fixture, NebulasDecodedCloudIsReproduced) {
 TEST(Vlp16Fixture, ThePerSequenceInterpolationKeepsEveryEchoAndMovesItsAzimuthAtMostOnePair) {
   Vlp16DecodeOptions nebula;
   nebula.convention = Vlp16Convention::kNebula;
-  const auto a = readVlp16Recording(kIndoorBag, {});
-  const auto b = readVlp16Recording(kIndoorBag, nebula);
+  const auto a = readVlp16Recording(kIndoorVlp16Bag, {});
+  const auto b = readVlp16Recording(kIndoorVlp16Bag, nebula);
   ASSERT_EQ(a.points.size(), b.points.size());
   std::size_t moved = 0;
   for (std::size_t i = 0; i < a.points.size(); ++i) {
@@ -158,7 +159,7 @@ TEST(Vlp16Fixture, ThePerSequenceInterpolationKeepsEveryEchoAndMovesItsAzimuthAt
 }
 
 TEST(Vlp16Fixture, TheIndoorSensorLosesHalfItsShotsMostlyTheLowLasersBlockedByTheMount) {
-  const auto recording = readVlp16Recording(kIndoorBag, {});
+  const auto recording = readVlp16Recording(kIndoorVlp16Bag, {});
   EXPECT_EQ(recording.data_packets, 603u);
   EXPECT_EQ(recording.mode, Vlp16ReturnMode::kDual);
   const auto stats = vlp16Statistics(recording.tally, cutIntoTurns(recording.points, 0.0));
@@ -229,7 +230,7 @@ TEST(Vlp16Fixture, DamagedCapturesAndBagsAreNamedErrors) {
             "lab.pcap: not a pcap file (magic 0x0A0D0D0A; pcapng is not read: save as pcap, e.g. "
             "editcap -F pcap)");
 
-  const auto message = Ros2Bag(kIndoorBag).messages("/velodyne_packets")[0];
+  const auto message = Ros2Bag(kIndoorVlp16Bag).messages("/velodyne_packets")[0];
   try {
     decodeVelodyneScanCdr(std::string_view(message.data).substr(0, 5000), "b.db3", "message 0");
     ADD_FAILURE() << "no error";
@@ -237,11 +238,11 @@ TEST(Vlp16Fixture, DamagedCapturesAndBagsAreNamedErrors) {
     EXPECT_STREQ(e.what(), "b.db3: message 0: 151 packets announced, the message holds at most 4");
   }
   try {
-    Ros2Bag(kIndoorBag).messages("/points");
+    Ros2Bag(kIndoorVlp16Bag).messages("/points");
     ADD_FAILURE() << "no error";
   } catch (const common::InputError& e) {
     EXPECT_EQ(std::string(e.what()),
-              kIndoorBag + ": no topic /points (the bag has: /velodyne_packets)");
+              kIndoorVlp16Bag + ": no topic /points (the bag has: /velodyne_packets)");
   }
   try {
     Ros2Bag bag(kOutdoorPcap);

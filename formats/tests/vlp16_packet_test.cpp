@@ -154,7 +154,7 @@ TEST(Vlp16Packet, AzimuthsWrapThroughZero) {
   EXPECT_EQ(at_one_degree[0].points.size(), 5u);
 }
 
-std::string errorOf(const std::vector<std::uint8_t>& bytes) {
+std::string packetErrorOf(const std::vector<std::uint8_t>& bytes) {
   try {
     std::vector<Vlp16Point> points;
     decodeVlp16Packet(bytes, 0.0, {}, "lab.pcap", "UDP datagram 7", points);
@@ -168,27 +168,27 @@ TEST(Vlp16Packet, AMalformedPacketIsANamedError) {
   HandMadePacket packet;
   auto bytes = packet.raw();
   bytes.resize(1000);
-  EXPECT_EQ(errorOf(bytes),
+  EXPECT_EQ(packetErrorOf(bytes),
             "lab.pcap: UDP datagram 7: has 1000 bytes, a VLP-16 data packet has 1206");
   bytes = packet.raw();
   bytes[300] = 0xDD;
-  EXPECT_EQ(errorOf(bytes),
+  EXPECT_EQ(packetErrorOf(bytes),
             "lab.pcap: UDP datagram 7: block 3 starts 0xDD 0xEE, not FF EE (not a VLP-16 data "
             "packet)");
   bytes = packet.raw();
   bytes[1204] = 0x3B;
-  EXPECT_EQ(errorOf(bytes),
+  EXPECT_EQ(packetErrorOf(bytes),
             "lab.pcap: UDP datagram 7: return mode byte 0x3B is none of 0x37 (strongest), 0x38 "
             "(last), 0x39 (dual)");
   bytes = packet.raw();
   bytes[1205] = 0x28;
-  EXPECT_EQ(errorOf(bytes),
+  EXPECT_EQ(packetErrorOf(bytes),
             "lab.pcap: UDP datagram 7: product byte 0x28 is not a VLP-16's (0x22, or 0x21 as some "
             "VLP-16 captures hold)");
   bytes = packet.raw();
   bytes[2] = 0xA0;
   bytes[3] = 0x8C;  // 36000
-  EXPECT_EQ(errorOf(bytes),
+  EXPECT_EQ(packetErrorOf(bytes),
             "lab.pcap: UDP datagram 7: block 0 has azimuth 36000 (0.01° units), beyond 35999");
 }
 

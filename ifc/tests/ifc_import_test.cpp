@@ -31,7 +31,7 @@ const bim::Wall* wallWithId(const bim::Plan& plan, const std::string& id) {
   return nullptr;
 }
 
-std::string errorOf(const std::string& text, const ImportOptions& options = {}) {
+std::string importErrorOf(const std::string& text, const ImportOptions& options = {}) {
   try {
     importIfcText("t.ifc", text, options);
   } catch (const common::InputError& e) {
@@ -110,11 +110,11 @@ TEST(ImportIfc, StoreysChosenByName) {
   ASSERT_EQ(r.plan.levels.size(), 1u);
   EXPECT_EQ(r.plan.levels[0].id, "Level 2");
   options.storeys = {"Level 3"};
-  EXPECT_EQ(errorOf(common::readCheckedFile(modelPath("duplex.ifc"), kMaxIfcBytes), options),
+  EXPECT_EQ(importErrorOf(common::readCheckedFile(modelPath("duplex.ifc"), kMaxIfcBytes), options),
             "t.ifc: no storey named \"Level 3\" (--storey); its storeys: \"T/FDN\", \"Level 1\", "
             "\"Level 2\", \"Roof\"");
   options.storeys = {"Roof"};
-  EXPECT_EQ(errorOf(common::readCheckedFile(modelPath("duplex.ifc"), kMaxIfcBytes), options),
+  EXPECT_EQ(importErrorOf(common::readCheckedFile(modelPath("duplex.ifc"), kMaxIfcBytes), options),
             "t.ifc: storey \"Roof\" has no wall rising 1.500 m above its floor: nothing to import");
 }
 
@@ -181,18 +181,18 @@ TEST(ImportIfc, EveryModelGivesAPlanTheParserAccepts) {
 }
 
 TEST(ImportIfc, BadModels) {
-  EXPECT_EQ(errorOf(stepFile("#1=IFCBUILDINGSTOREY('1YvctVUKr0kugbFTf53O9L',$,'G',$,$,$,$,$,"
-                             ".ELEMENT.,0.);\n")),
+  EXPECT_EQ(importErrorOf(stepFile("#1=IFCBUILDINGSTOREY('1YvctVUKr0kugbFTf53O9L',$,'G',$,$,$,$,$,"
+                                   ".ELEMENT.,0.);\n")),
             "t.ifc: no IfcProject: not a readable IFC model");
-  EXPECT_EQ(errorOf(stepFile("#1=IFCPROJECT('0YvctVUKr0kugbFTf53O9L',$,'P',$,$,$,$,$,$);\n")),
+  EXPECT_EQ(importErrorOf(stepFile("#1=IFCPROJECT('0YvctVUKr0kugbFTf53O9L',$,'P',$,$,$,$,$,$);\n")),
             "t.ifc: no IfcBuildingStorey: the model has no storey to import");
-  EXPECT_EQ(errorOf(stepFile("#1=IFCPROJECT('0YvctVUKr0kugbFTf53O9L',$,'P',$,$,$,$,$,$);\n"
-                             "#2=IFCBUILDINGSTOREY('1YvctVUKr0kugbFTf53O9L',$,'G',$,$,$,$,$,"
-                             ".ELEMENT.,0.);\n")),
+  EXPECT_EQ(importErrorOf(stepFile("#1=IFCPROJECT('0YvctVUKr0kugbFTf53O9L',$,'P',$,$,$,$,$,$);\n"
+                                   "#2=IFCBUILDINGSTOREY('1YvctVUKr0kugbFTf53O9L',$,'G',$,$,$,$,$,"
+                                   ".ELEMENT.,0.);\n")),
             "t.ifc: no wall the import could read: nothing to import");
   const std::string house =
       common::readCheckedFile(modelPath("IfcOpenHouse_IFC4.ifc"), kMaxIfcBytes);
-  EXPECT_EQ(errorOf(house.substr(0, house.size() / 2)),
+  EXPECT_EQ(importErrorOf(house.substr(0, house.size() / 2)),
             "t.ifc: truncated: the file does not end with \"END-ISO-10303-21;\"");
 }
 
@@ -201,7 +201,7 @@ TEST(ImportIfc, AModelThatCrashesIfcppIsABadModel) {
   // process, and the crash is reported as what is wrong with the file.
   const std::string text =
       common::readCheckedFile(modelPath("bad/ifcpp_null_polyline_point.ifc"), kMaxIfcBytes);
-  EXPECT_THAT(errorOf(text), testing::StartsWith("t.ifc: IFC++ stopped with signal "));
+  EXPECT_THAT(importErrorOf(text), testing::StartsWith("t.ifc: IFC++ stopped with signal "));
 }
 
 TEST(ImportIfc, AModelInSurveyCoordinatesIsNamed) {
@@ -212,7 +212,7 @@ TEST(ImportIfc, AModelInSurveyCoordinatesIsNamed) {
   text.replace(text.find(site), site.size(),
                "#31=IFCLOCALPLACEMENT($,#24);\n#24=IFCAXIS2PLACEMENT3D(#23,$,$);\n"
                "#23=IFCCARTESIANPOINT((20000.,500.,0.));");
-  EXPECT_EQ(errorOf(text),
+  EXPECT_EQ(importErrorOf(text),
             "t.ifc: wall 7YvctVUKr0kugbFTf53O9L \"Wall A\" lies 20.005 km from the model's origin, "
             "beyond the plan's ±10.000 km: the model is placed in site or survey coordinates (its "
             "IfcSite's placement); move its site's placement near the origin in the authoring "

@@ -17,7 +17,7 @@ std::string fileWithSchema(const std::string& schema) {
   return kHeader + "FILE_SCHEMA(('" + schema + "'));\nENDSEC;\nDATA;\nENDSEC;\nEND-ISO-10303-21;\n";
 }
 
-std::string errorOf(const std::string& text) {
+std::string headerErrorOf(const std::string& text) {
   try {
     readStepHeader("m.ifc", text);
   } catch (const common::InputError& e) {
@@ -34,28 +34,28 @@ TEST(StepHeader, ReadsTheSchemaAndTheTool) {
 }
 
 TEST(StepHeader, NotIfc) {
-  EXPECT_EQ(errorOf("{\"format\": \"isg.plan\"}"),
+  EXPECT_EQ(headerErrorOf("{\"format\": \"isg.plan\"}"),
             "m.ifc: not an IFC file: an IFC (STEP, ISO 10303-21) file starts with "
             "\"ISO-10303-21;\"");
-  EXPECT_EQ(errorOf(""), errorOf("PK\x03\x04 a zip"));
+  EXPECT_EQ(headerErrorOf(""), headerErrorOf("PK\x03\x04 a zip"));
 }
 
 TEST(StepHeader, OtherSchemas) {
-  EXPECT_EQ(errorOf(fileWithSchema("IFC4X3_ADD2")),
+  EXPECT_EQ(headerErrorOf(fileWithSchema("IFC4X3_ADD2")),
             "m.ifc: schema IFC4X3_ADD2 is not supported: the import reads IFC2X3 and IFC4 "
             "(export the model as one of them)");
-  EXPECT_THAT(errorOf(fileWithSchema("IFC2X2_FINAL")), testing::HasSubstr("IFC2X2_FINAL"));
-  EXPECT_THAT(errorOf(fileWithSchema("IFC4X1")), testing::HasSubstr("not supported"));
+  EXPECT_THAT(headerErrorOf(fileWithSchema("IFC2X2_FINAL")), testing::HasSubstr("IFC2X2_FINAL"));
+  EXPECT_THAT(headerErrorOf(fileWithSchema("IFC4X1")), testing::HasSubstr("not supported"));
 }
 
 TEST(StepHeader, NoSchema) {
-  EXPECT_EQ(errorOf(kHeader + "ENDSEC;\nDATA;\nENDSEC;\nEND-ISO-10303-21;\n"),
+  EXPECT_EQ(headerErrorOf(kHeader + "ENDSEC;\nDATA;\nENDSEC;\nEND-ISO-10303-21;\n"),
             "m.ifc: no FILE_SCHEMA in the file's header: which IFC schema it follows is unknown");
 }
 
 TEST(StepHeader, Truncated) {
   const std::string whole = fileWithSchema("IFC4");
-  EXPECT_EQ(errorOf(whole.substr(0, whole.size() - 12)),
+  EXPECT_EQ(headerErrorOf(whole.substr(0, whole.size() - 12)),
             "m.ifc: truncated: the file does not end with \"END-ISO-10303-21;\"");
 }
 

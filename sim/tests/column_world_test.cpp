@@ -13,7 +13,7 @@
 namespace isg::sim {
 namespace {
 
-constexpr unsigned kGroups = (1u << worlds::kBuildingGroup) | (1u << worlds::kCeilingGroup);
+constexpr unsigned kColumnGroups = (1u << worlds::kBuildingGroup) | (1u << worlds::kCeilingGroup);
 
 const bim::Plan& columnHall() {
   static const bim::Plan plan = bim::testing::parsePlanJson(bim::testing::columnHallPlanJson());
@@ -45,7 +45,7 @@ TEST(ColumnWorld, RectangularColumnsAreBoxesAndRoundOnesCylinders) {
 TEST(ColumnWorld, TheCasterSeesColumnsExactlyAsMjRay) {
   const MujocoWorld world = MujocoWorld::fromXml(worlds::generateMjcf(columnHall()));
   const mjModel& m = world.model();
-  const RayCaster caster(m, world.data(), kGroups);
+  const RayCaster caster(m, world.data(), kColumnGroups);
   // By hand: from (3, 4) at 1 m, north onto C3 (r 0.2 about (3, 6)) after 1.8 m, south onto C1's
   // north face (y = 2.15) after 1.85 m; from (9, 6 − 1) north-east grazing nothing but C4.
   auto hit = caster.cast({3, 4, 1}, {0, 1, 0});
@@ -61,7 +61,7 @@ TEST(ColumnWorld, TheCasterSeesColumnsExactlyAsMjRay) {
   ASSERT_TRUE(hit);
   EXPECT_NE(world.geomName(hit->geom), "column/C4");
   // And every random ray, from anywhere, as mj_ray: the hierarchy and the per-turn sectors.
-  const auto mask = groupArray(kGroups);
+  const auto mask = groupArray(kColumnGroups);
   ScanCaster scan(caster);
   std::mt19937 rng(11);
   std::uniform_real_distribution<double> u(0.0, 1.0);

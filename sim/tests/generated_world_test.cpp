@@ -19,9 +19,9 @@ namespace isg::worlds {
 namespace {
 
 constexpr double kMillimetre = 1e-3;
-constexpr unsigned kBuilding = 1u << kBuildingGroup;
+constexpr unsigned kGeneratedBuilding = 1u << kBuildingGroup;
 
-bim::Scenario builtin(const std::string& name) {
+bim::Scenario generatedBuiltin(const std::string& name) {
   return loadScenarioOrBuiltin(std::string(kBuiltinPrefix) + name, nullptr);
 }
 
@@ -71,7 +71,7 @@ int checkRoomFaces(const bim::Plan& plan, const sim::MujocoWorld& world) {
         if (onAFlight(plan, level, inside)) continue;  // inside the steps: no ray to cast
         const Eigen::Vector3d origin(inside.x(), inside.y(), level.elevation + 1.0);
         const double expected = face.plane.signedDistance(origin);
-        const auto hit = world.ray(origin, -face.plane.normal, kBuilding);
+        const auto hit = world.ray(origin, -face.plane.normal, kGeneratedBuilding);
         ++rays;
         if (!hit) {
           ADD_FAILURE() << "no hit from room " << b.room << " towards " << b.wall;
@@ -89,7 +89,7 @@ int checkRoomFaces(const bim::Plan& plan, const sim::MujocoWorld& world) {
 class ReferenceWorld : public ::testing::TestWithParam<std::string> {};
 
 TEST_P(ReferenceWorld, RaysFromInsideRoomsHitTheExpectedInnerFaces) {
-  const bim::Scenario scenario = builtin(GetParam());
+  const bim::Scenario scenario = generatedBuiltin(GetParam());
   const sim::MujocoWorld world = sim::MujocoWorld::fromXml(generateMjcf(scenario));
   const int rays = checkRoomFaces(scenario.plan, world);
   // Every room has four or more faces, most sampled at three points.
@@ -97,7 +97,7 @@ TEST_P(ReferenceWorld, RaysFromInsideRoomsHitTheExpectedInnerFaces) {
 }
 
 TEST_P(ReferenceWorld, EveryOpenDoorLetsARayThroughIntoTheNextRoom) {
-  const bim::Scenario scenario = builtin(GetParam());
+  const bim::Scenario scenario = generatedBuiltin(GetParam());
   const sim::MujocoWorld world = sim::MujocoWorld::fromXml(generateMjcf(scenario));
   const bim::Level& level = scenario.plan.levels[0];
   for (const auto& door : level.doors) {
@@ -109,8 +109,8 @@ TEST_P(ReferenceWorld, EveryOpenDoorLetsARayThroughIntoTheNextRoom) {
       if (door.rooms[side > 0 ? 0 : 1] == bim::kOutside) continue;  // start inside the building
       const Eigen::Vector2d from = centre + side * (0.5 * wall.thickness + 0.4) * left;
       const Eigen::Vector3d origin(from.x(), from.y(), level.elevation + 1.0);
-      const auto hit =
-          world.ray(origin, Eigen::Vector3d(-side * left.x(), -side * left.y(), 0), kBuilding);
+      const auto hit = world.ray(origin, Eigen::Vector3d(-side * left.x(), -side * left.y(), 0),
+                                 kGeneratedBuilding);
       const double beyond_wall = 0.4 + wall.thickness + 0.05;
       if (hit) {
         EXPECT_GT(hit->distance, beyond_wall)
@@ -120,8 +120,8 @@ TEST_P(ReferenceWorld, EveryOpenDoorLetsARayThroughIntoTheNextRoom) {
       // Just above the opening the lintel is in the way.
       const Eigen::Vector3d high(from.x(), from.y(),
                                  level.elevation + wall.base + door.height + 0.1);
-      const auto lintel =
-          world.ray(high, Eigen::Vector3d(-side * left.x(), -side * left.y(), 0), kBuilding);
+      const auto lintel = world.ray(high, Eigen::Vector3d(-side * left.x(), -side * left.y(), 0),
+                                    kGeneratedBuilding);
       if (door.height + 0.1 < wall.height - wall.base) {
         ASSERT_TRUE(lintel);
         EXPECT_EQ(world.geomName(lintel->geom), "wall/" + wall.id + "/lintel/" + door.id);
@@ -135,48 +135,49 @@ INSTANTIATE_TEST_SUITE_P(Plans, ReferenceWorld,
                          ::testing::Values("d1", "d2", "d3", "d4", "d5", "d6"));
 
 TEST(AsBuiltWorld, ClosedDoorStopsTheRayAtItsLeaf) {
-  const bim::Scenario scenario = builtin("d1.asbuilt");  // D5, the entrance in W4 (x = 0), closed
+  const bim::Scenario scenario =
+      generatedBuiltin("d1.asbuilt");  // D5, the entrance in W4 (x = 0), closed
   const sim::MujocoWorld world = sim::MujocoWorld::fromXml(generateMjcf(scenario));
   // D5 is centred at y = 8 - 6.9 = 1.1 on the wall x = 0; its 4 cm leaf spans x in [-0.02, 0.02].
-  const auto hit = world.ray({1.0, 1.1, 1.0}, {-1, 0, 0}, kBuilding);
+  const auto hit = world.ray({1.0, 1.1, 1.0}, {-1, 0, 0}, kGeneratedBuilding);
   ASSERT_TRUE(hit);
   EXPECT_EQ(world.geomName(hit->geom), "door/D5");
   EXPECT_NEAR(hit->distance, 1.0 - 0.02, kMillimetre);
   // The same opening in the plan's own world lets the ray out of the building.
   const sim::MujocoWorld plan_world = sim::MujocoWorld::fromXml(generateMjcf(scenario.plan));
-  EXPECT_FALSE(plan_world.ray({1.0, 1.1, 1.0}, {-1, 0, 0}, kBuilding));
+  EXPECT_FALSE(plan_world.ray({1.0, 1.1, 1.0}, {-1, 0, 0}, kGeneratedBuilding));
 }
 
 TEST(PlanWorld, AWindowLetsTheRayOutBetweenItsSillAndItsHead) {
-  bim::Scenario scenario = builtin("d1");
+  bim::Scenario scenario = generatedBuiltin("d1");
   // W1 runs (0, 0) → (12, 0), 0.3 m thick (faces at y = ±0.15); the window spans x in [8.4, 9.6]
   // and z in [0.9, 2.1].
   bim::Level& level = scenario.plan.levels[0];
   level.windows.push_back({"V1", "W1", 9.0, 1.2, 0.9, 1.2, ""});
   const sim::MujocoWorld world = sim::MujocoWorld::fromXml(generateMjcf(scenario.plan));
-  EXPECT_FALSE(world.ray({9.0, 1.0, 1.5}, {0, -1, 0}, kBuilding));  // through the glass
-  auto hit = world.ray({9.0, 1.0, 0.5}, {0, -1, 0}, kBuilding);     // below the sill
+  EXPECT_FALSE(world.ray({9.0, 1.0, 1.5}, {0, -1, 0}, kGeneratedBuilding));  // through the glass
+  auto hit = world.ray({9.0, 1.0, 0.5}, {0, -1, 0}, kGeneratedBuilding);     // below the sill
   ASSERT_TRUE(hit);
   EXPECT_EQ(world.geomName(hit->geom), "wall/W1/sill/V1");
   EXPECT_NEAR(hit->distance, 0.85, kMillimetre);
-  hit = world.ray({9.0, 1.0, 2.5}, {0, -1, 0}, kBuilding);  // above the head
+  hit = world.ray({9.0, 1.0, 2.5}, {0, -1, 0}, kGeneratedBuilding);  // above the head
   ASSERT_TRUE(hit);
   EXPECT_EQ(world.geomName(hit->geom), "wall/W1/lintel/V1");
-  hit = world.ray({8.3, 1.0, 1.5}, {0, -1, 0}, kBuilding);  // beside it
+  hit = world.ray({8.3, 1.0, 1.5}, {0, -1, 0}, kGeneratedBuilding);  // beside it
   ASSERT_TRUE(hit);
   EXPECT_EQ(world.geomName(hit->geom), "wall/W1/0");
   EXPECT_NEAR(hit->distance, 0.85, kMillimetre);
 }
 
 TEST(AsBuiltWorld, ShiftedWallMovesAlongItsLeftNormal) {
-  const bim::Scenario scenario = builtin("d1.asbuilt");
+  const bim::Scenario scenario = generatedBuiltin("d1.asbuilt");
   // W6 runs (4, 2.2) → (4, 8): its left is -x, so +0.05 moves it to x = 3.95 and its west face
   // from 3.925 to 3.875.
   const sim::MujocoWorld built = sim::MujocoWorld::fromXml(generateMjcf(scenario));
   const sim::MujocoWorld planned = sim::MujocoWorld::fromXml(generateMjcf(scenario.plan));
   const Eigen::Vector3d origin(2.0, 5.0, 1.0);
-  const auto as_built = built.ray(origin, {1, 0, 0}, kBuilding);
-  const auto as_planned = planned.ray(origin, {1, 0, 0}, kBuilding);
+  const auto as_built = built.ray(origin, {1, 0, 0}, kGeneratedBuilding);
+  const auto as_planned = planned.ray(origin, {1, 0, 0}, kGeneratedBuilding);
   ASSERT_TRUE(as_built && as_planned);
   EXPECT_NEAR(as_planned->distance, 1.925, kMillimetre);
   EXPECT_NEAR(as_built->distance, 1.875, kMillimetre);
@@ -184,68 +185,69 @@ TEST(AsBuiltWorld, ShiftedWallMovesAlongItsLeftNormal) {
 }
 
 TEST(AsBuiltWorld, ClutterIsWhereTheScenarioSays) {
-  const bim::Scenario scenario = builtin("d1.asbuilt");
+  const bim::Scenario scenario = generatedBuiltin("d1.asbuilt");
   const sim::MujocoWorld world = sim::MujocoWorld::fromXml(generateMjcf(scenario));
   // clutter/0: centre (1.0, 7.2, 0.4), size (1.2, 0.8, 0.8): its south face is y = 6.8.
-  auto hit = world.ray({1.0, 5.0, 0.4}, {0, 1, 0}, kBuilding);
+  auto hit = world.ray({1.0, 5.0, 0.4}, {0, 1, 0}, kGeneratedBuilding);
   ASSERT_TRUE(hit);
   EXPECT_EQ(world.geomName(hit->geom), "clutter/0");
   EXPECT_NEAR(hit->distance, 1.8, kMillimetre);
   // Its top is z = 0.8: a ray down from 2 m above its centre stops 1.2 m down.
-  hit = world.ray({1.0, 7.2, 2.0}, {0, 0, -1}, kBuilding);
+  hit = world.ray({1.0, 7.2, 2.0}, {0, 0, -1}, kGeneratedBuilding);
   ASSERT_TRUE(hit);
   EXPECT_NEAR(hit->distance, 1.2, kMillimetre);
   // clutter/1: centre (10.8, 4.0), size (0.6, 1.6), yawed 0.2 rad. Coming back towards its centre
   // along its own x axis from 2 m away, the face is met after 2 - 0.3 m.
   const Eigen::Vector3d dir(std::cos(0.2), std::sin(0.2), 0.0);
   const Eigen::Vector3d from = Eigen::Vector3d(10.8, 4.0, 0.5) - 2.0 * dir;
-  hit = world.ray(from, dir, kBuilding);
+  hit = world.ray(from, dir, kGeneratedBuilding);
   ASSERT_TRUE(hit);
   EXPECT_EQ(world.geomName(hit->geom), "clutter/1");
   EXPECT_NEAR(hit->distance, 1.7, kMillimetre);
 }
 
 TEST(AsBuiltWorld, ExtraWallStandsWhereTheScenarioSays) {
-  const bim::Scenario scenario = builtin("d3.asbuilt");  // 0.1 m wall at x = 17, y in [0.1, 1.8]
+  const bim::Scenario scenario =
+      generatedBuiltin("d3.asbuilt");  // 0.1 m wall at x = 17, y in [0.1, 1.8]
   const sim::MujocoWorld world = sim::MujocoWorld::fromXml(generateMjcf(scenario));
-  const auto hit = world.ray({15.0, 1.0, 1.0}, {1, 0, 0}, kBuilding);
+  const auto hit = world.ray({15.0, 1.0, 1.0}, {1, 0, 0}, kGeneratedBuilding);
   ASSERT_TRUE(hit);
   EXPECT_EQ(world.geomName(hit->geom), "wall/extra0/0");
   EXPECT_NEAR(hit->distance, 1.95, kMillimetre);
 }
 
 TEST(AsBuiltWorld, MissingWallIsGoneWithItsDoors) {
-  bim::Scenario scenario = builtin("d1");
+  bim::Scenario scenario = generatedBuiltin("d1");
   scenario.as_built.missing_walls = {"W6"};  // the wall between offices 1 and 2
   const sim::MujocoWorld world = sim::MujocoWorld::fromXml(generateMjcf(scenario));
   EXPECT_EQ(world.geomId("wall/W6/0"), -1);
   // From office 1 towards office 2 the ray now reaches W7's west face at x = 7.925.
-  const auto hit = world.ray({2.0, 5.0, 1.0}, {1, 0, 0}, kBuilding);
+  const auto hit = world.ray({2.0, 5.0, 1.0}, {1, 0, 0}, kGeneratedBuilding);
   ASSERT_TRUE(hit);
   EXPECT_NEAR(hit->distance, 5.925, kMillimetre);
 }
 
 TEST(GeneratedWorld, CeilingAndFloorAreAtTheLevelsHeights) {
-  const bim::Scenario scenario = builtin("d2");
+  const bim::Scenario scenario = generatedBuiltin("d2");
   const sim::MujocoWorld world = sim::MujocoWorld::fromXml(generateMjcf(scenario));
   const auto up = world.ray({3, 3, 1}, {0, 0, 1}, 1u << kCeilingGroup);
   ASSERT_TRUE(up);
   EXPECT_EQ(world.geomName(up->geom), "ceiling/L0");
   EXPECT_NEAR(up->distance, 2.0, kMillimetre);
-  const auto down = world.ray({3, 3, 1}, {0, 0, -1}, kBuilding);
+  const auto down = world.ray({3, 3, 1}, {0, 0, -1}, kGeneratedBuilding);
   ASSERT_TRUE(down);
   EXPECT_EQ(world.geomName(down->geom), "floor/L0");
   EXPECT_NEAR(down->distance, 1.0, kMillimetre);
   // The ceiling is in its own group: the building group alone does not see it.
-  EXPECT_FALSE(world.ray({3, 3, 1}, {0, 0, 1}, kBuilding));
+  EXPECT_FALSE(world.ray({3, 3, 1}, {0, 0, 1}, kGeneratedBuilding));
 }
 
 TEST(StairsWorld, StepsStandBelowAndTheUpperFloorIsOpenOverTheFlight) {
   // builtin:storeys: S1 runs from (9, 0.85) on L0 (z = 0) to (13.5, 0.85) on L1 (z = 3.2), 1 m
   // wide: 16 steps of 0.2 m, each 4.5 / 16 = 0.28125 m deep.
-  const bim::Scenario scenario = builtin("storeys");
+  const bim::Scenario scenario = generatedBuiltin("storeys");
   const sim::MujocoWorld world = sim::MujocoWorld::fromXml(generateMjcf(scenario));
-  const unsigned everything = kBuilding | (1u << kCeilingGroup);
+  const unsigned everything = kGeneratedBuilding | (1u << kCeilingGroup);
   // Straight down from 1 m above L1's floor over the flight at x = 11 (s = 2.0: step 7, whose
   // tread is 8 × 0.2 = 1.6 m high): through both slabs onto the step.
   auto hit = world.ray({11.0, 0.85, 4.2}, {0, 0, -1}, everything);
@@ -276,7 +278,7 @@ TEST(StairsWorld, StepsStandBelowAndTheUpperFloorIsOpenOverTheFlight) {
 }
 
 TEST(StairsWorld, APlanWithoutStairsKeepsItsSlabsWhole) {
-  bim::Scenario scenario = builtin("storeys");
+  bim::Scenario scenario = generatedBuiltin("storeys");
   scenario.plan.levels[0].stairs.clear();
   const sim::MujocoWorld world = sim::MujocoWorld::fromXml(generateMjcf(scenario));
   EXPECT_GE(world.geomId("floor/L1"), 0);
@@ -288,7 +290,7 @@ TEST(StairsWorld, APlanWithoutStairsKeepsItsSlabsWhole) {
 }
 
 TEST(GeneratedWorld, NamesFollowThePlanIds) {
-  const bim::Scenario scenario = builtin("d1");
+  const bim::Scenario scenario = generatedBuiltin("d1");
   const sim::MujocoWorld world = sim::MujocoWorld::fromXml(generateMjcf(scenario));
   // W5 holds three doors: four solid pieces and three lintels.
   for (const char* name : {"wall/W5/0", "wall/W5/1", "wall/W5/2", "wall/W5/3", "wall/W5/lintel/D1",
@@ -304,7 +306,7 @@ TEST(GeneratedWorld, NamesFollowThePlanIds) {
 }
 
 TEST(GeneratedWorld, MjcfSetsAutolimits) {
-  const std::string mjcf = generateMjcf(builtin("d1").plan);
+  const std::string mjcf = generateMjcf(generatedBuiltin("d1").plan);
   EXPECT_THAT(mjcf, ::testing::HasSubstr("<compiler autolimits=\"true\""));
 }
 
@@ -345,15 +347,15 @@ TEST(AnyPlan, SlantedWallsAndTwoLevels) {
   // From (1, 1) the slanted face x + y = 6 - 0.1·√2 is at (6 - 0.1·√2 - 2)/√2 along the normal.
   const Eigen::Vector3d diagonal(1.0 / std::sqrt(2.0), 1.0 / std::sqrt(2.0), 0.0);
   for (double z : {1.0, 4.0}) {
-    const auto hit = world.ray({1, 1, z}, diagonal, kBuilding);
+    const auto hit = world.ray({1, 1, z}, diagonal, kGeneratedBuilding);
     ASSERT_TRUE(hit);
     EXPECT_NEAR(hit->distance, (4.0 - 0.1 * std::sqrt(2.0)) / std::sqrt(2.0), kMillimetre);
   }
   // Up from level 0 the ceiling is at 3 m; down from level 1 the floor is at 3 m too.
-  const auto up = world.ray({1, 1, 1}, {0, 0, 1}, kBuilding | (1u << kCeilingGroup));
+  const auto up = world.ray({1, 1, 1}, {0, 0, 1}, kGeneratedBuilding | (1u << kCeilingGroup));
   ASSERT_TRUE(up);
   EXPECT_NEAR(up->distance, 2.0, kMillimetre);
-  const auto down = world.ray({1, 1, 4}, {0, 0, -1}, kBuilding);
+  const auto down = world.ray({1, 1, 4}, {0, 0, -1}, kGeneratedBuilding);
   ASSERT_TRUE(down);
   EXPECT_EQ(world.geomName(down->geom), "floor/L1");
   EXPECT_NEAR(down->distance, 1.0, kMillimetre);

@@ -20,10 +20,11 @@
 namespace isg::sim {
 namespace {
 
-constexpr unsigned kSensorGroups = (1u << worlds::kBuildingGroup) | (1u << worlds::kCeilingGroup);
+constexpr unsigned kConventionGroups =
+    (1u << worlds::kBuildingGroup) | (1u << worlds::kCeilingGroup);
 constexpr double kSequence = Vlp16::kSequenceDuration;
 
-Eigen::Isometry3d at(double x, double y, double z) {
+Eigen::Isometry3d conventionAt(double x, double y, double z) {
   Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
   T.translation() = Eigen::Vector3d(x, y, z);
   return T;
@@ -33,7 +34,7 @@ Eigen::Isometry3d at(double x, double y, double z) {
 struct Room {
   MujocoWorld world = MujocoWorld::fromXml(
       worlds::generateMjcf(worlds::loadScenarioOrBuiltin("builtin:d2", nullptr)));
-  LidarSimulator::PoseAt pose = [](double) { return at(3, 3, 0.71); };
+  LidarSimulator::PoseAt pose = [](double) { return conventionAt(3, 3, 0.71); };
 };
 
 std::pair<float, float> timeSpan(const LidarScan& scan) {
@@ -47,7 +48,7 @@ std::pair<float, float> timeSpan(const LidarScan& scan) {
 
 TEST(LidarConventions, ByDefaultACloudIsOneTurnFromAzimuthZeroStampedAtItsFirstFiring) {
   Room room;
-  LidarSimulator lidar(room.world, bim::LidarConfig{}, kSensorGroups);
+  LidarSimulator lidar(room.world, bim::LidarConfig{}, kConventionGroups);
   EXPECT_EQ(lidar.sequencesPerCloud(), 1808);
   EXPECT_DOUBLE_EQ(lidar.scanPeriod(), 0.1);
   EXPECT_EQ(lidar.stampOffset(), 0.0);
@@ -65,9 +66,9 @@ TEST(LidarConventions, TheRos1DriversCutAndStampGiveItsTimes) {
   Room room;
   bim::LidarConfig config;
   config.cut = bim::LidarCut::kPackets;
-  LidarSimulator first_firing(room.world, config, kSensorGroups);
+  LidarSimulator first_firing(room.world, config, kConventionGroups);
   config.stamp = bim::LidarStamp::kLastPacket;
-  LidarSimulator last_packet(room.world, config, kSensorGroups);
+  LidarSimulator last_packet(room.world, config, kConventionGroups);
   EXPECT_EQ(last_packet.sequencesPerCloud(), 1824);
   EXPECT_EQ(last_packet.sequencesPerPacket(), 24);
   EXPECT_DOUBLE_EQ(last_packet.scanPeriod(), 1824 * kSequence);   // 0.10086 s: 9.91 clouds a second
@@ -90,7 +91,7 @@ TEST(LidarConventions, TheRos1DriversCutAndStampGiveItsTimes) {
   // In dual-return mode a packet holds 12 sequences (each firing fills two data blocks):
   // ceil(1507.2 / 10) = 151 packets, 1812 sequences.
   config.returns = bim::LidarReturns::kDual;
-  LidarSimulator dual(room.world, config, kSensorGroups);
+  LidarSimulator dual(room.world, config, kConventionGroups);
   EXPECT_EQ(dual.sequencesPerPacket(), 12);
   EXPECT_EQ(dual.sequencesPerCloud(), 1812);
   EXPECT_DOUBLE_EQ(dual.stampOffset(), 1800 * kSequence);
@@ -111,7 +112,7 @@ TEST(LidarConventions, ACutByPacketsStartsEachCloudWhereTheLastEnded) {
   Room room;
   bim::LidarConfig config;
   config.cut = bim::LidarCut::kPackets;
-  LidarSimulator lidar(room.world, config, kSensorGroups);
+  LidarSimulator lidar(room.world, config, kConventionGroups);
   const double period = lidar.scanPeriod();
   const double step = 2 * std::numbers::pi * (10.0 * period - 1.0);
   EXPECT_NEAR(step * 180 / std::numbers::pi, 3.0957, 1e-3);
@@ -130,7 +131,7 @@ TEST(LidarConventions, ACutByPacketsStartsEachCloudWhereTheLastEnded) {
   // An angle cut starts every turn at its angle.
   config = bim::LidarConfig{};
   config.cut_angle_deg = 90.0;
-  LidarSimulator cut(room.world, config, kSensorGroups);
+  LidarSimulator cut(room.world, config, kConventionGroups);
   for (double start : {0.0, 0.1, 0.7}) {
     EXPECT_DOUBLE_EQ(cut.startAzimuth(start), -std::numbers::pi / 2);
     const double behind = std::remainder(
@@ -174,9 +175,9 @@ TEST(LidarConventions, ATurnedCloudStillLosesWhatTheBodyShadows) {
 TEST(LidarConventions, AzimuthJitterMovesEachDataBlocksReportedAzimuth) {
   Room room;
   bim::LidarConfig config;
-  LidarSimulator exact(room.world, config, kSensorGroups);
+  LidarSimulator exact(room.world, config, kConventionGroups);
   config.azimuth_jitter_deg = 0.006;  // a real VLP-16's (docs/simulation.md)
-  LidarSimulator jittered(room.world, config, kSensorGroups);
+  LidarSimulator jittered(room.world, config, kConventionGroups);
   const LidarScan a = exact.scan(0.0, room.pose, 11);
   const LidarScan b = jittered.scan(0.0, room.pose, 11);
   // The same rays, ranges and noise: only where the points are reported turns.
@@ -228,15 +229,15 @@ double rangeOf(const LidarPoint& p) {
 
 TEST(LidarConventions, ABeamAcrossAWallsEndHasTwoEchoes) {
   const MujocoWorld world = wallEndBeforeAWall();
-  const auto pose = [](double) { return at(0, 0, 0); };
+  const auto pose = [](double) { return conventionAt(0, 0, 0); };
   bim::LidarConfig config;
   config.range_noise_m = 0.0;
   config.returns = bim::LidarReturns::kDual;
-  LidarSimulator dual(world, config, kSensorGroups);
+  LidarSimulator dual(world, config, kConventionGroups);
   config.returns = bim::LidarReturns::kLast;
-  LidarSimulator last(world, config, kSensorGroups);
+  LidarSimulator last(world, config, kConventionGroups);
   config.returns = bim::LidarReturns::kStrongest;
-  LidarSimulator strongest(world, config, kSensorGroups);
+  LidarSimulator strongest(world, config, kConventionGroups);
   const LidarScan d = dual.scan(0.0, pose, 9);
   const LidarScan l = last.scan(0.0, pose, 9);
   const LidarScan s = strongest.scan(0.0, pose, 9);

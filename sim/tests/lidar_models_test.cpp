@@ -23,7 +23,7 @@
 namespace isg::sim {
 namespace {
 
-constexpr unsigned kSensorGroups = (1u << worlds::kBuildingGroup) | (1u << worlds::kCeilingGroup);
+constexpr unsigned kModelGroups = (1u << worlds::kBuildingGroup) | (1u << worlds::kCeilingGroup);
 
 const sensors::LidarModel& model(const char* name) {
   const sensors::LidarModel* m = sensors::findLidarModel(name);
@@ -99,7 +99,7 @@ TEST(LidarModels, TablesAsTheirSourcesGiveThem) {
 TEST(LidarModels, EveryModelsPointsAreWhereItsBeamsMeetTheBuilding) {
   const auto scenario = worlds::loadScenarioOrBuiltin("builtin:d2", nullptr);
   const MujocoWorld world = MujocoWorld::fromXml(worlds::generateMjcf(scenario));
-  const auto mask = groupArray(kSensorGroups);
+  const auto mask = groupArray(kModelGroups);
   const Eigen::Vector3d position(3.0, 3.0, 0.71);
   for (const auto& m : sensors::lidarModels()) {
     bim::LidarConfig config;
@@ -107,7 +107,7 @@ TEST(LidarModels, EveryModelsPointsAreWhereItsBeamsMeetTheBuilding) {
     config.range_noise_m = 0.0;
     config.body_occlusion = false;
     config.min_range_m = 0.05;
-    LidarSimulator lidar(world, config, kSensorGroups);
+    LidarSimulator lidar(world, config, kModelGroups);
     const LidarScan scan = lidar.scan(
         0.0,
         [&](double) {

@@ -16,13 +16,14 @@
 namespace isg::sim {
 namespace {
 
-constexpr unsigned kSensorGroups = (1u << worlds::kBuildingGroup) | (1u << worlds::kCeilingGroup);
+constexpr unsigned kSimulatorGroups =
+    (1u << worlds::kBuildingGroup) | (1u << worlds::kCeilingGroup);
 
-bim::Scenario builtin(const std::string& name) {
+bim::Scenario lidarBuiltin(const std::string& name) {
   return worlds::loadScenarioOrBuiltin("builtin:" + name, nullptr);
 }
 
-Eigen::Isometry3d at(double x, double y, double z, double yaw = 0.0) {
+Eigen::Isometry3d simulatedAt(double x, double y, double z, double yaw = 0.0) {
   Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
   T.translation() = Eigen::Vector3d(x, y, z);
   T.linear() = Eigen::AngleAxisd(yaw, Eigen::Vector3d::UnitZ()).toRotationMatrix();
@@ -41,14 +42,14 @@ TEST(Vlp16, RingsNumberLasersByElevation) {
 }
 
 TEST(LidarSimulator, PointsCarryTheirRingElevationAndFiringTime) {
-  const auto scenario = builtin("d2");
+  const auto scenario = lidarBuiltin("d2");
   const MujocoWorld world = MujocoWorld::fromXml(worlds::generateMjcf(scenario));
   bim::LidarConfig config;
   config.range_noise_m = 0.0;
-  LidarSimulator lidar(world, config, kSensorGroups);
+  LidarSimulator lidar(world, config, kSimulatorGroups);
   const std::uint64_t seed = 1;
   const LidarScan scan = lidar.scan(
-      0.0, [](double) { return at(3, 3, 0.71); }, seed);
+      0.0, [](double) { return simulatedAt(3, 3, 0.71); }, seed);
   EXPECT_EQ(scan.rays, 1808 * 16);
   ASSERT_GT(scan.points.size(), 25000u);  // a closed room: nearly every ray returns
   for (const auto& p : scan.points) {
@@ -95,13 +96,13 @@ double wallResidualRms(const std::vector<Eigen::Vector3d>& points, const bim::AG
 }
 
 TEST(LidarSimulator, StaticScanLiesOnTheRoomsWallsWithTheConfiguredNoise) {
-  const auto scenario = builtin("d2");  // the plan itself: no clutter in the way
+  const auto scenario = lidarBuiltin("d2");  // the plan itself: no clutter in the way
   const MujocoWorld world = MujocoWorld::fromXml(worlds::generateMjcf(scenario));
   const bim::AGraph graph = bim::buildAGraph(scenario.plan);
   bim::LidarConfig config;  // 7 mm noise, 2 mm quantum
-  LidarSimulator lidar(world, config, kSensorGroups);
+  LidarSimulator lidar(world, config, kSimulatorGroups);
   const std::uint64_t seed = 2;
-  const Eigen::Isometry3d pose = at(2.5, 3.0, 0.71, 0.4);
+  const Eigen::Isometry3d pose = simulatedAt(2.5, 3.0, 0.71, 0.4);
   const LidarScan scan = lidar.scan(
       0.0, [&](double) { return pose; }, seed);
   std::vector<Eigen::Vector3d> points;
@@ -115,15 +116,15 @@ TEST(LidarSimulator, StaticScanLiesOnTheRoomsWallsWithTheConfiguredNoise) {
 }
 
 TEST(LidarSimulator, MotionDistortsAScanAndDeskewingRemovesIt) {
-  const auto scenario = builtin("d2");
+  const auto scenario = lidarBuiltin("d2");
   const MujocoWorld world = MujocoWorld::fromXml(worlds::generateMjcf(scenario));
   const bim::AGraph graph = bim::buildAGraph(scenario.plan);
   bim::LidarConfig config;
   config.range_noise_m = 0.002;
-  LidarSimulator lidar(world, config, kSensorGroups);
+  LidarSimulator lidar(world, config, kSimulatorGroups);
   const std::uint64_t seed = 3;
   // Walking at 1.5 m/s while turning at 1 rad/s: 15 cm and 5.7° during one turn.
-  auto pose = [](double t) { return at(1.8 + 1.5 * t, 2.5, 0.71, 0.2 + 1.0 * t); };
+  auto pose = [](double t) { return simulatedAt(1.8 + 1.5 * t, 2.5, 0.71, 0.2 + 1.0 * t); };
   const LidarScan scan = lidar.scan(0.0, pose, seed);
   std::vector<Eigen::Vector3d> skewed, deskewed;
   for (const auto& p : scan.points) {
@@ -147,7 +148,7 @@ TEST(LidarSimulator, MotionDistortsAScanAndDeskewingRemovesIt) {
 }
 
 TEST(LidarSimulator, RobotNeverSeesItself) {
-  Simulation sim(builtin("d1.asbuilt"));
+  Simulation sim(lidarBuiltin("d1.asbuilt"));
   const Eigen::Isometry3d B_T_R = sim.baseMotion().pose(3.0);
   poseRobot(sim.world().model(), sim.world().data(), B_T_R, 0.0, 0.0);
   // The robot is there for rays that look for it: straight down from the sensor onto its back.
@@ -181,17 +182,17 @@ TEST(LidarSimulator, RangeLimitsAndDropout) {
     return T;
   };
   bim::LidarConfig config;
-  LidarSimulator all(world, config, kSensorGroups);
+  LidarSimulator all(world, config, kSimulatorGroups);
   const std::uint64_t seed = 4;
   const std::size_t full = all.scan(0.0, pose, seed).points.size();
   config.dropout = 0.5;
-  LidarSimulator half(world, config, kSensorGroups);
+  LidarSimulator half(world, config, kSimulatorGroups);
   const double kept = double(half.scan(0.0, pose, seed).points.size()) / full;
   EXPECT_NEAR(kept, 0.5, 0.02);
   config.dropout = 0.0;
   config.min_range_m = 2.0;
   config.max_range_m = 3.0;
-  LidarSimulator banded(world, config, kSensorGroups);
+  LidarSimulator banded(world, config, kSimulatorGroups);
   const LidarScan scan = banded.scan(0.0, pose, seed);
   ASSERT_FALSE(scan.points.empty());
   for (const auto& p : scan.points) {

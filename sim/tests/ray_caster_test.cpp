@@ -14,8 +14,8 @@
 namespace isg::sim {
 namespace {
 
-constexpr unsigned kBuilding = 1u << worlds::kBuildingGroup;
-constexpr unsigned kBuildingAndCeilings = kBuilding | (1u << worlds::kCeilingGroup);
+constexpr unsigned kCasterBuilding = 1u << worlds::kBuildingGroup;
+constexpr unsigned kBuildingAndCeilings = kCasterBuilding | (1u << worlds::kCeilingGroup);
 
 // Casts `count` random rays from random points above the floor inside the building's footprint
 // (including points inside walls) with both mj_ray and the caster; they must agree exactly.
@@ -57,7 +57,7 @@ class CasterOnReferenceWorld : public ::testing::TestWithParam<std::string> {};
 TEST_P(CasterOnReferenceWorld, SameGeomAndDistanceAsMjRay) {
   const bim::Scenario s = worlds::loadScenarioOrBuiltin("builtin:" + GetParam(), nullptr);
   const MujocoWorld world = MujocoWorld::fromXml(worlds::generateMjcf(s));
-  expectSameAsMjRay(world, kBuilding, 4000, 1);
+  expectSameAsMjRay(world, kCasterBuilding, 4000, 1);
   expectSameAsMjRay(world, kBuildingAndCeilings, 2000, 2);
 }
 
@@ -69,7 +69,7 @@ TEST(RayCaster, TwoHundredRoomGrid) {
   const nlohmann::json doc = bim::makeGridPlan({});
   const MujocoWorld world =
       MujocoWorld::fromXml(worlds::generateMjcf(bim::parsePlan(common::JsonNode(doc, "", source))));
-  expectSameAsMjRay(world, kBuilding, 3000, 3);
+  expectSameAsMjRay(world, kCasterBuilding, 3000, 3);
 }
 
 TEST(RayCaster, TiesGoToTheLowerGeomIdAndOtherTypesAreHandled) {
@@ -82,7 +82,7 @@ TEST(RayCaster, TiesGoToTheLowerGeomIdAndOtherTypesAreHandled) {
       <geom name="hidden" type="box" pos="-3 0 0" size="0.5 1 1" group="1" rgba="1 1 1 0"/>
       <body pos="0 0 3"><freejoint/><geom name="m" type="box" size="0.5 0.5 0.5" group="1"/></body>
     </worldbody></mujoco>)");
-  const RayCaster caster(world.model(), world.data(), kBuilding);
+  const RayCaster caster(world.model(), world.data(), kCasterBuilding);
   auto hit = caster.cast({0, 0, 0}, {1, 0, 0});
   ASSERT_TRUE(hit);
   EXPECT_EQ(world.geomName(hit->geom), "b");
@@ -101,7 +101,7 @@ TEST(RayCaster, TiesGoToTheLowerGeomIdAndOtherTypesAreHandled) {
   EXPECT_EQ(world.geomName(hit->geom), "m");
   EXPECT_NEAR(hit->distance, 2.5, 1e-12);
   EXPECT_EQ(caster.staticGeomCount(), 4);
-  expectSameAsMjRay(world, kBuilding, 500, 4, 20);
+  expectSameAsMjRay(world, kCasterBuilding, 500, 4, 20);
 }
 
 TEST(RayCaster, ARayLandingBesideASlabStillFindsItsSide) {
@@ -116,7 +116,7 @@ TEST(RayCaster, ARayLandingBesideASlabStillFindsItsSide) {
   }
   xml += "</worldbody></mujoco>";
   const MujocoWorld world = MujocoWorld::fromXml(xml);
-  const RayCaster caster(world.model(), world.data(), kBuilding);
+  const RayCaster caster(world.model(), world.data(), kCasterBuilding);
   ASSERT_EQ(caster.largeCount(), 1);
   // From (6, 0, 1) down at 45° towards −x: the top plane z = 0.1 is crossed at x = 5.1, beside
   // the slab; the side x = 5 is met at z = 0, after √2 m.
@@ -132,7 +132,7 @@ TEST(RayCaster, ARayLandingBesideASlabStillFindsItsSide) {
   ASSERT_TRUE(hit);
   EXPECT_EQ(world.geomName(hit->geom), "slab");
   EXPECT_NEAR(hit->distance, 0.08 * std::sqrt(2.0), 1e-12);
-  expectSameAsMjRay(world, kBuilding, 3000, 8, 100);
+  expectSameAsMjRay(world, kCasterBuilding, 3000, 8, 100);
 }
 
 }  // namespace

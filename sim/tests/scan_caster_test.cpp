@@ -16,16 +16,16 @@
 namespace isg::sim {
 namespace {
 
-constexpr unsigned kGroups = (1u << worlds::kBuildingGroup) | (1u << worlds::kCeilingGroup);
+constexpr unsigned kCasterGroups = (1u << worlds::kBuildingGroup) | (1u << worlds::kCeilingGroup);
 
 // Full VLP-16 turns from every room, with the sensor wandering inside the prepared disc, and a
 // few rays from outside it (the fallback): every ray must give exactly what mj_ray gives.
 void expectScansMatchMjRay(const bim::Scenario& scenario, int sequence_step) {
   const MujocoWorld world = MujocoWorld::fromXml(worlds::generateMjcf(scenario));
   const mjModel& m = world.model();
-  const RayCaster caster(m, world.data(), kGroups);
+  const RayCaster caster(m, world.data(), kCasterGroups);
   ScanCaster scan(caster);
-  const auto mask = groupArray(kGroups);
+  const auto mask = groupArray(kCasterGroups);
   std::mt19937 rng(5);
   std::uniform_real_distribution<double> u(-1.0, 1.0);
   const double radius = 0.08;

@@ -23,7 +23,7 @@ namespace {
 
 namespace fs = std::filesystem;
 
-bim::Scenario builtin(const std::string& name) {
+bim::Scenario simulationBuiltin(const std::string& name) {
   return worlds::loadScenarioOrBuiltin("builtin:" + name, nullptr);
 }
 
@@ -37,7 +37,7 @@ std::string slurp(const fs::path& p) {
 class TourOfEveryReferencePlan : public ::testing::TestWithParam<std::string> {};
 
 TEST_P(TourOfEveryReferencePlan, VisitsEveryRoomKeepingClearOfWallsAndClutter) {
-  Simulation sim(builtin(GetParam()));
+  Simulation sim(simulationBuiltin(GetParam()));
   const auto& rooms = sim.scenario().plan.levels[0].rooms;
   EXPECT_EQ(sim.route().visited_rooms.size(), rooms.size());
   EXPECT_TRUE(sim.route().skipped_rooms.empty());
@@ -107,7 +107,7 @@ TEST(BaseMotion, AKidnapStartsANewLegAtItsTime) {
 // ground truth jumps into that room, the odometry goes on as if nothing happened, and the tour
 // goes on with the rooms not yet visited.
 TEST(Simulation, KidnappedRobotJumpsUnseenByOdometry) {
-  bim::Scenario scenario = builtin("d1.asbuilt");
+  bim::Scenario scenario = simulationBuiltin("d1.asbuilt");
   const Simulation plain(scenario);
   const double when = std::round(plain.duration() / 2.0);
   const Eigen::Vector2d then = plain.baseMotion().planar(when).xy;
@@ -165,7 +165,7 @@ TEST(Odometry, ErrorGrowsAsTheConfiguredRandomWalk) {
 TEST(Dataset, WritesEveryFileAndPclReadsTheScans) {
   const fs::path dir = fs::temp_directory_path() / "isg_dataset_test";
   fs::remove_all(dir);
-  Simulation sim(builtin("d1.asbuilt"));
+  Simulation sim(simulationBuiltin("d1.asbuilt"));
   DatasetOptions options;
   options.duration = 2.0;
   const DatasetSummary s = writeDataset(sim, dir.string(), options, nullptr);
@@ -218,7 +218,7 @@ TEST(Dataset, SameSeedSameBytesOtherSeedOtherBytes) {
   fs::remove_all(root);
   fs::create_directories(root);
   auto make = [&](const std::string& name, std::uint64_t seed, int threads) {
-    bim::Scenario s = builtin("d2.asbuilt");
+    bim::Scenario s = simulationBuiltin("d2.asbuilt");
     s.seed = seed;
     Simulation sim(s);
     DatasetOptions options;

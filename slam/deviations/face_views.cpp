@@ -3,15 +3,14 @@
 #include <algorithm>
 #include <cmath>
 
+#include "bim/polygon.hpp"
 #include "common/angles.hpp"
 
 namespace isg::slam {
 
 namespace {
 
-double cross(const Eigen::Vector2d& a, const Eigen::Vector2d& b) {
-  return a.x() * b.y() - a.y() * b.x();
-}
+using bim::cross;
 
 // Whether the open segments cross (bim::segmentsIntersect takes closed ones): a sight line that
 // only grazes the end of a face, where faces meet at a corner, is not blocked by it.

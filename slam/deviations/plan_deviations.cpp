@@ -21,9 +21,7 @@ namespace isg::slam {
 
 namespace {
 
-double cross(const Eigen::Vector2d& a, const Eigen::Vector2d& b) {
-  return a.x() * b.y() - a.y() * b.x();
-}
+using bim::cross;
 
 // A plan wall's axis, from its node: the anchor is the axis's middle, the left face's normal its
 // left normal.

@@ -4,12 +4,12 @@
 #include <utility>
 #include <vector>
 
+#include "bim/polygon.hpp"
+
 namespace isg::slam {
 namespace {
 
-double cross(const Eigen::Vector2d& a, const Eigen::Vector2d& b) {
-  return a.x() * b.y() - a.y() * b.x();
-}
+using bim::cross;
 
 // Whether the sight line from `eye` to `target` crosses `occluder` at a confirmed part, `margin`
 // inside it and more than `margin` short of the target.

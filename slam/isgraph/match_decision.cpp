@@ -17,7 +17,7 @@ namespace isg::slam {
 
 namespace {
 
-Eigen::Vector2d apply(const Eigen::Vector3d& x_y_yaw, const Eigen::Vector2d& p) {
+Eigen::Vector2d applyPlanar(const Eigen::Vector3d& x_y_yaw, const Eigen::Vector2d& p) {
   return Eigen::Rotation2Dd(x_y_yaw.z()) * p + x_y_yaw.head<2>();
 }
 
@@ -125,7 +125,7 @@ std::vector<std::string> GraphMatcher::separatingRooms(const Eigen::Vector3d& be
       if (a.kind == bim::RoomKind::kPolygon) {
         // No room factor: alike is a polygon room of the same area and corners at the image of
         // its centroid.
-        const Eigen::Vector2d image = apply(T, a.centre);
+        const Eigen::Vector2d image = applyPlanar(T, a.centre);
         const double area = polygonArea(a.outline);
         bool alike = false;
         for (const auto& b : graph_->rooms) {

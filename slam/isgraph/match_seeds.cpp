@@ -17,7 +17,7 @@ namespace {
 
 Eigen::Vector2d normal2(const bim::Plane& plane) { return plane.normal.head<2>().normalized(); }
 
-Eigen::Matrix2d rotation(double yaw) { return Eigen::Rotation2Dd(yaw).toRotationMatrix(); }
+Eigen::Matrix2d yawRotation(double yaw) { return Eigen::Rotation2Dd(yaw).toRotationMatrix(); }
 
 // Collects transforms, skipping one equal (within 2 cm and 0.2°, on a grid of those) to one already
 // there: the same room pair or corner pair seen through two of its walls proposes it twice.
@@ -87,7 +87,7 @@ void GraphMatcher::seedFromFourWallRooms(const MatchInput& input,
           continue;
         }
         const double yaw = common::wrapAngle(room_yaw_[i] + k * std::numbers::pi / 2 - s.axis_yaw);
-        const Eigen::Vector2d t = a.centre - rotation(yaw) * s.centre;
+        const Eigen::Vector2d t = a.centre - yawRotation(yaw) * s.centre;
         out.emplace_back(t.x(), t.y(), yaw);
       }
     }
@@ -114,7 +114,7 @@ void GraphMatcher::seedFromCorridors(const MatchInput& input,
       UniqueTransforms unique(group);
       for (int turn = 0; turn < 2; ++turn) {
         const double yaw = common::wrapAngle(room_yaw_[i] + turn * std::numbers::pi - s.axis_yaw);
-        const Eigen::Matrix2d R = rotation(yaw);
+        const Eigen::Matrix2d R = yawRotation(yaw);
         // Across the axis: the S-centre on the A-centre's line.
         const Eigen::Vector2d centre = R * s.centre;
         const double across = a_normal.dot(a.centre - centre);
@@ -203,7 +203,7 @@ void GraphMatcher::seedFromCorners(const MatchInput& input,
         const int k0 = order, k1 = 1 - order;
         const double yaw = common::wrapAngle(a.normal_yaw[k0] - s.normal_yaw[0]);
         if (std::abs(common::wrapAngle(s.normal_yaw[1] + yaw - a.normal_yaw[k1])) > angle) continue;
-        const Eigen::Matrix2d R = rotation(yaw);
+        const Eigen::Matrix2d R = yawRotation(yaw);
         if ((R * s.arm_direction[0]).dot(a.arm_direction[k0]) < 0.9 ||
             (R * s.arm_direction[1]).dot(a.arm_direction[k1]) < 0.9) {
           continue;

@@ -32,7 +32,7 @@ struct Building {
   bool symmetric = false;                         // a 180° turn maps the plan onto itself
 };
 
-struct Outcome {
+struct RepetitiveOutcome {
   double worst_error = 0.0;            // m, of every pose reported in B
   std::optional<int> matched_at;       // keyframe of the first match
   std::optional<int> feature_held_at;  // first keyframe whose S-Graph holds a distinguishing room
@@ -40,7 +40,7 @@ struct Outcome {
   std::optional<slam::MatchResult> last;  // the last matching attempt
 };
 
-Outcome runBuilding(const Building& building, std::uint64_t seed) {
+RepetitiveOutcome runBuilding(const Building& building, std::uint64_t seed) {
   bim::Scenario scenario =
       worlds::loadScenarioOrBuiltin("builtin:" + building.name + ".asbuilt", nullptr);
   scenario.seed = seed;
@@ -72,7 +72,7 @@ Outcome runBuilding(const Building& building, std::uint64_t seed) {
   }
   LookaheadScans scans(simulation, int(streams.scan_stamps.size()), 1);
   run::LocalizerDriver driver(localizer, streams.odometry, streams.scan_period);
-  Outcome outcome;
+  RepetitiveOutcome outcome;
   std::size_t keyframes = 0;
   std::string status = "not yet";
   for (int k = 0; k < int(streams.scan_stamps.size()); ++k) {
@@ -107,18 +107,20 @@ Outcome runBuilding(const Building& building, std::uint64_t seed) {
   return outcome;
 }
 
-struct Case {
+struct RepetitiveCase {
   Building building;
   std::uint64_t seed;
 };
 
-void PrintTo(const Case& c, std::ostream* out) { *out << c.building.name << " seed " << c.seed; }
+void PrintTo(const RepetitiveCase& c, std::ostream* out) {
+  *out << c.building.name << " seed " << c.seed;
+}
 
-class RepetitiveBuildings : public ::testing::TestWithParam<Case> {};
+class RepetitiveBuildings : public ::testing::TestWithParam<RepetitiveCase> {};
 
 TEST_P(RepetitiveBuildings, NeverWrongAndMatchedOnlyOnWhatSeparatesTheAnswers) {
   const auto& [building, seed] = GetParam();
-  const Outcome outcome = runBuilding(building, seed);
+  const RepetitiveOutcome outcome = runBuilding(building, seed);
   const std::string last = outcome.last ? outcome.last->reason : "no attempt";
   // Never wrong: no pose reported in B more than 1 m off.
   EXPECT_LT(outcome.worst_error, 1.0) << last;
@@ -142,14 +144,14 @@ TEST_P(RepetitiveBuildings, NeverWrongAndMatchedOnlyOnWhatSeparatesTheAnswers) {
   EXPECT_EQ(outcome.status_before_match, "ambiguous");
 }
 
-std::vector<Case> cases() {
+std::vector<RepetitiveCase> cases() {
   const std::vector<Building> buildings{
       {"twin-wings", {"S5a", "S5b"}, false},
       {"hotel", {"S11"}, false},
       {"halls", {}, false},
       {"twin-wings-symmetric", {}, true},
   };
-  std::vector<Case> out;
+  std::vector<RepetitiveCase> out;
   for (const auto& b : buildings) {
     for (std::uint64_t seed = 1; seed <= 5; ++seed) out.push_back({b, seed});
   }

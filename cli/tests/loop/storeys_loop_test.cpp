@@ -18,12 +18,12 @@
 namespace isg::sim {
 namespace {
 
-struct Case {
+struct StoreysCase {
   std::string world;
   std::uint64_t seed;
 };
 
-void PrintTo(const Case& c, std::ostream* out) { *out << c.world << " seed " << c.seed; }
+void PrintTo(const StoreysCase& c, std::ostream* out) { *out << c.world << " seed " << c.seed; }
 
 // "twin_storeys_asbuilt_seed2": a test name of a world and a seed.
 template <class Param>
@@ -35,10 +35,10 @@ std::string testName(const Param& param) {
   return name;
 }
 
-class StoreysInTheLoop : public ::testing::TestWithParam<Case> {};
+class StoreysInTheLoop : public ::testing::TestWithParam<StoreysCase> {};
 
 TEST_P(StoreysInTheLoop, EveryFloorToursNeverWrongAlikeFloorsAmbiguous) {
-  const Case c = GetParam();
+  const StoreysCase c = GetParam();
   bim::Scenario scenario = worlds::loadScenarioOrBuiltin("builtin:" + c.world, nullptr);
   scenario.seed = c.seed;
   const run::RunRecord record = testing::runIsGraphInTheLoop(scenario);
@@ -98,16 +98,17 @@ TEST_P(StoreysInTheLoop, EveryFloorToursNeverWrongAlikeFloorsAmbiguous) {
 }
 
 INSTANTIATE_TEST_SUITE_P(MultiStoreyWorlds, StoreysInTheLoop,
-                         ::testing::Values(Case{"storeys.asbuilt", 1}, Case{"storeys.asbuilt", 2},
-                                           Case{"twin-storeys.asbuilt", 1},
-                                           Case{"twin-storeys.asbuilt", 2},
+                         ::testing::Values(StoreysCase{"storeys.asbuilt", 1},
+                                           StoreysCase{"storeys.asbuilt", 2},
+                                           StoreysCase{"twin-storeys.asbuilt", 1},
+                                           StoreysCase{"twin-storeys.asbuilt", 2},
                                            // By hand: the LiDAR-inertial odometry's height climbs.
-                                           Case{"storeys.handheld", 1},
-                                           Case{"twin-storeys.handheld", 1},
+                                           StoreysCase{"storeys.handheld", 1},
+                                           StoreysCase{"twin-storeys.handheld", 1},
                                            // Its L0 first seen from the flight's foot: the treads
                                            // outweighed the floor (1 m high) before
                                            // FloorOptions::carried_tolerance.
-                                           Case{"twin-storeys.handheld", 4}),
+                                           StoreysCase{"twin-storeys.handheld", 4}),
                          [](const auto& param_info) { return testName(param_info.param); });
 
 // A kidnap to a room on another storey (docs/matching.md, "Several storeys"): the odometry does

@@ -22,13 +22,13 @@
 namespace isg::sim {
 namespace {
 
-struct Outcome {
+struct UnexplainedOutcome {
   double worst_error = 0.0;                 // m, of every pose reported in B
   std::optional<double> matched_yaw_error;  // rad, of the first answer matched
   bool adopted_turned = false;              // B_T_M turned by about 90° at some time
 };
 
-Outcome runD3WithoutW6(const slam::MatchingOptions& matching) {
+UnexplainedOutcome runD3WithoutW6(const slam::MatchingOptions& matching) {
   bim::Scenario scenario = worlds::loadScenarioOrBuiltin("builtin:d3.asbuilt", nullptr);
   scenario.seed = 1;
   scenario.as_built.missing_walls.push_back("W6");
@@ -42,7 +42,7 @@ Outcome runD3WithoutW6(const slam::MatchingOptions& matching) {
   const double true_yaw = std::atan2(B_T_M.linear()(1, 0), B_T_M.linear()(0, 0));
   LookaheadScans scans(simulation, int(streams.scan_stamps.size()), 1);
   run::LocalizerDriver driver(localizer, streams.odometry, streams.scan_period);
-  Outcome outcome;
+  UnexplainedOutcome outcome;
   auto yaw_error = [&](double yaw) {
     return std::abs(std::remainder(yaw - true_yaw, 2.0 * std::numbers::pi));
   };
@@ -63,7 +63,7 @@ Outcome runD3WithoutW6(const slam::MatchingOptions& matching) {
 }
 
 TEST(UnexplainedWalls, ARoomThatFitsTurnedBy90DegreesIsNotMatched) {
-  const Outcome outcome = runD3WithoutW6(slam::MatchingOptions{});
+  const UnexplainedOutcome outcome = runD3WithoutW6(slam::MatchingOptions{});
   // The right answer was matched, and the turned one never adopted...
   ASSERT_TRUE(outcome.matched_yaw_error);
   EXPECT_LT(*outcome.matched_yaw_error, 0.05);
@@ -78,7 +78,7 @@ TEST(UnexplainedWalls, WithoutTheBoundTheTurnedAnswerIsAdopted) {
   slam::MatchingOptions matching;
   matching.max_unexplained_share = 1.0;
   matching.max_corners = 0;
-  const Outcome outcome = runD3WithoutW6(matching);
+  const UnexplainedOutcome outcome = runD3WithoutW6(matching);
   EXPECT_TRUE(outcome.adopted_turned);
   EXPECT_GT(outcome.worst_error, 3.0);
 }

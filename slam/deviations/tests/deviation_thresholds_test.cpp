@@ -60,7 +60,7 @@ MapDiagnostics builtMap(const bim::Plan& plan, const bim::AsBuilt& as_built) {
   return map;
 }
 
-const WallDeviation& wallOf(const DeviationReport& report, const std::string& id) {
+const WallDeviation& thresholdWallOf(const DeviationReport& report, const std::string& id) {
   for (const auto& w : report.walls) {
     if (w.wall == id) return w;
   }
@@ -80,7 +80,7 @@ TEST(DeviationThresholds, AWallIsJudgedAgainstTheMapsOwnErrorAroundIt) {
   clean.wall_shifts = {{"P6", -0.08}};  // the left normal of a wall drawn +y is −x
   const DeviationReport true_around =
       measureDeviations(planned, builtMap(plan, clean), Eigen::Isometry3d::Identity());
-  const WallDeviation& found = wallOf(true_around, "P6");
+  const WallDeviation& found = thresholdWallOf(true_around, "P6");
   EXPECT_EQ(found.status, WallStatus::kShifted);
   EXPECT_NEAR(*found.offset_m, -0.08, 0.002);
   EXPECT_NEAR(found.shift_threshold_m, 0.06, 1e-12);
@@ -95,7 +95,7 @@ TEST(DeviationThresholds, AWallIsJudgedAgainstTheMapsOwnErrorAroundIt) {
   noisy.wall_shifts.push_back({"P12", 0.04});
   const DeviationReport noisy_around =
       measureDeviations(planned, builtMap(plan, noisy), Eigen::Isometry3d::Identity());
-  const WallDeviation& told = wallOf(noisy_around, "P6");
+  const WallDeviation& told = thresholdWallOf(noisy_around, "P6");
   EXPECT_EQ(told.status, WallStatus::kAsPlanned);
   EXPECT_NEAR(*told.offset_m, -0.08, 0.02);
   ASSERT_TRUE(told.local_offset_noise_m);

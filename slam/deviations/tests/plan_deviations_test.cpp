@@ -99,7 +99,7 @@ MapDiagnostics facesAndWalk(const bim::AGraph& built, double y, double x0, doubl
 // The three rooms' map: their faces, and keyframes along the rooms' middle.
 MapDiagnostics mapOf(const bim::AGraph& built) { return facesAndWalk(built, 1.0, 0.5, 8.5, 0.25); }
 
-const WallDeviation& wallOf(const DeviationReport& report, const std::string& id) {
+const WallDeviation& deviationWallOf(const DeviationReport& report, const std::string& id) {
   for (const auto& w : report.walls) {
     if (w.wall == id) return w;
   }
@@ -120,18 +120,18 @@ TEST(PlanDeviations, FindsTheShiftedTurnedMissingAndExtraWallsByHand) {
   ASSERT_EQ(report.levels, std::vector<std::string>{"L0"});
   ASSERT_EQ(report.walls.size(), 6u);
   for (const char* id : {"W1", "W2", "W4"}) {
-    const WallDeviation& w = wallOf(report, id);
+    const WallDeviation& w = deviationWallOf(report, id);
     EXPECT_EQ(w.status, WallStatus::kAsPlanned) << id;
     EXPECT_NEAR(*w.offset_m, 0.0, 0.002) << id;
     EXPECT_NEAR(*w.angle_deg, 0.0, 0.02) << id;
   }
-  const WallDeviation& shifted = wallOf(report, "W3");
+  const WallDeviation& shifted = deviationWallOf(report, "W3");
   EXPECT_EQ(shifted.status, WallStatus::kShifted);
   EXPECT_NEAR(*shifted.offset_m, 0.15, 0.002);
   EXPECT_NEAR(*shifted.angle_deg, 0.0, 0.02);
   EXPECT_GT(shifted.observed_share, 0.9);
   // Turned 4° about (3, 0): at the planned centre, 2·tan 4° along the left normal (−x).
-  const WallDeviation& turned = wallOf(report, "W5");
+  const WallDeviation& turned = deviationWallOf(report, "W5");
   EXPECT_EQ(turned.status, WallStatus::kRotated);
   EXPECT_NEAR(*turned.angle_deg, 4.0, 0.02);
   EXPECT_NEAR(*turned.offset_m, 2.0 * std::tan(4.0 * std::numbers::pi / 180.0), 0.002);
@@ -140,7 +140,7 @@ TEST(PlanDeviations, FindsTheShiftedTurnedMissingAndExtraWallsByHand) {
   EXPECT_EQ(turned.turned_about, "start");
   EXPECT_FALSE(shifted.pivot_along_m);
   // Nothing of W6 in the map, though the keyframes east of W5 saw all of it.
-  const WallDeviation& missing = wallOf(report, "W6");
+  const WallDeviation& missing = deviationWallOf(report, "W6");
   EXPECT_EQ(missing.status, WallStatus::kMissing);
   EXPECT_TRUE(missing.evidence.empty());
   ASSERT_TRUE(missing.in_view_share);
@@ -170,13 +170,16 @@ TEST(PlanDeviations, ADeviationSeenFromFewerThanThreeKeyframesIsNotBelieved) {
     for (auto& wall : map.walls) wall.observations = observations;
     const DeviationReport report = measureDeviations(planned, map, Eigen::Isometry3d::Identity());
     for (const char* id : {"W1", "W2", "W4"}) {
-      EXPECT_EQ(wallOf(report, id).status, WallStatus::kAsPlanned) << id << " " << observations;
+      EXPECT_EQ(deviationWallOf(report, id).status, WallStatus::kAsPlanned)
+          << id << " " << observations;
     }
     const bool believed = observations >= 3;
-    EXPECT_EQ(wallOf(report, "W3").status, believed ? WallStatus::kShifted : WallStatus::kNotSeen);
-    EXPECT_EQ(wallOf(report, "W5").status, believed ? WallStatus::kRotated : WallStatus::kNotSeen);
+    EXPECT_EQ(deviationWallOf(report, "W3").status,
+              believed ? WallStatus::kShifted : WallStatus::kNotSeen);
+    EXPECT_EQ(deviationWallOf(report, "W5").status,
+              believed ? WallStatus::kRotated : WallStatus::kNotSeen);
     // What was measured is still said.
-    EXPECT_NEAR(*wallOf(report, "W3").offset_m, 0.15, 0.002) << observations;
+    EXPECT_NEAR(*deviationWallOf(report, "W3").offset_m, 0.15, 0.002) << observations;
   }
 }
 
@@ -232,7 +235,7 @@ TEST(PlanDeviations, ATurnIsFoundAboutWhicheverPointOfTheWallItWasTurned) {
     const bim::AGraph built = bim::buildAGraph(builtPlan(plan, as_built));
     const DeviationReport report =
         measureDeviations(planned, mapOf(built), Eigen::Isometry3d::Identity());
-    const WallDeviation& turned = wallOf(report, "W5");
+    const WallDeviation& turned = deviationWallOf(report, "W5");
     EXPECT_EQ(turned.status, WallStatus::kRotated);
     EXPECT_NEAR(*turned.angle_deg, 2.0, 0.02);
     // At the planned centre, (2 − pivot)·tan 2° along the left normal (−x).
@@ -275,7 +278,7 @@ DeviationReport withW1BuiltTo(double end_x) {
 
 TEST(PlanDeviations, AWallBuiltInPartHasItsBuiltLengthAndIntervals) {
   const DeviationReport report = withW1BuiltTo(5.0);
-  const WallProgress& cut = wallOf(report, "W1").progress;
+  const WallProgress& cut = deviationWallOf(report, "W1").progress;
   EXPECT_EQ(cut.status, ProgressStatus::kPartlyBuilt);
   EXPECT_NEAR(cut.planned_m, 9.0, 1e-9);
   EXPECT_NEAR(cut.built_m, 5.0, 0.06);
@@ -283,10 +286,11 @@ TEST(PlanDeviations, AWallBuiltInPartHasItsBuiltLengthAndIntervals) {
   ASSERT_EQ(cut.built.size(), 1u);
   EXPECT_NEAR(cut.built[0].first, 0.0, 0.03);
   EXPECT_NEAR(cut.built[0].second, 5.0, 0.03);
-  EXPECT_EQ(wallOf(report, "W1").status, WallStatus::kAsPlanned);  // where it stands, as planned
-  EXPECT_EQ(wallOf(report, "W6").progress.status, ProgressStatus::kNotBuilt);
+  EXPECT_EQ(deviationWallOf(report, "W1").status,
+            WallStatus::kAsPlanned);  // where it stands, as planned
+  EXPECT_EQ(deviationWallOf(report, "W6").progress.status, ProgressStatus::kNotBuilt);
   for (const char* id : {"W2", "W3", "W4"}) {
-    const WallProgress& whole = wallOf(report, id).progress;
+    const WallProgress& whole = deviationWallOf(report, id).progress;
     EXPECT_EQ(whole.status, ProgressStatus::kBuilt) << id;
     EXPECT_NEAR(whole.built_m, whole.planned_m - whole.not_seen_m, 1e-9) << id;
   }
@@ -298,7 +302,7 @@ TEST(PlanDeviations, AWallBuiltInPartHasItsBuiltLengthAndIntervals) {
 // built length is 5.02 m, not 5.00.
 TEST(PlanDeviations, ABuiltPartEndsWhereTheMapsWallDoesNotAtTheStepOfASample) {
   const DeviationReport report = withW1BuiltTo(5.02);
-  const WallProgress& cut = wallOf(report, "W1").progress;
+  const WallProgress& cut = deviationWallOf(report, "W1").progress;
   EXPECT_EQ(cut.status, ProgressStatus::kPartlyBuilt);
   ASSERT_EQ(cut.built.size(), 1u);
   EXPECT_NEAR(cut.built[0].second, 5.02, 0.002);
@@ -317,9 +321,9 @@ TEST(PlanDeviations, WallsOutOfViewAreNotSeenRatherThanMissing) {
   // What R1 sees: the faces facing into it (x < 3).
   std::erase_if(map.walls, [](const MapWall& w) { return std::min(w.start.x(), w.end.x()) > 3.1; });
   const DeviationReport report = measureDeviations(planned, map, Eigen::Isometry3d::Identity());
-  EXPECT_EQ(wallOf(report, "W6").status, WallStatus::kNotSeen);
-  EXPECT_EQ(wallOf(report, "W2").status, WallStatus::kNotSeen);
-  EXPECT_EQ(wallOf(report, "W5").status, WallStatus::kRotated);
+  EXPECT_EQ(deviationWallOf(report, "W6").status, WallStatus::kNotSeen);
+  EXPECT_EQ(deviationWallOf(report, "W2").status, WallStatus::kNotSeen);
+  EXPECT_EQ(deviationWallOf(report, "W5").status, WallStatus::kRotated);
 }
 
 // A 2.4 m plane standing 12 cm east of W5's planned east face (x = 3.05), unlike the turned
@@ -336,7 +340,7 @@ TEST(PlanDeviations, AStrayPlaneSeenOnAKeyframeOrTwoDoesNotContradictAWall) {
                          Eigen::Vector2d(3.17, 0.8), Eigen::Vector2d(3.17, 3.2), 0.2, 2.6,
                          stray_observations, std::vector<int>()});
     const DeviationReport report = measureDeviations(planned, map, Eigen::Isometry3d::Identity());
-    const WallDeviation& w5 = wallOf(report, "W5");
+    const WallDeviation& w5 = deviationWallOf(report, "W5");
     const auto stray = std::find_if(w5.evidence.begin(), w5.evidence.end(),
                                     [&](const auto& e) { return e.plane == map.walls.back().id; });
     EXPECT_NE(stray, w5.evidence.end());
@@ -406,14 +410,15 @@ TEST(PlanDeviations, AWallIsNotBuiltOnlyWhereTheSensorSawPastIt) {
   MapDiagnostics open = mapOf(built);
   castSight(open, built, {});
   const DeviationReport seen_past = measureDeviations(planned, open, Eigen::Isometry3d::Identity());
-  const WallProgress& cut = wallOf(seen_past, "W1").progress;
+  const WallProgress& cut = deviationWallOf(seen_past, "W1").progress;
   EXPECT_EQ(cut.status, ProgressStatus::kPartlyBuilt);
   EXPECT_NEAR(cut.built_m, 5.0, 0.06);
   // In view as without sight lines (0.95 + 2.85 m), less the last 0.1–0.2 m before W2: the sight
   // lines past it meet the end of W2's outer face within the wall's 0.2 m and the margin's 0.2 m.
   EXPECT_GE(cut.not_built_m, 0.95 + 2.85 - 0.25);
   EXPECT_LE(cut.not_built_m, 0.95 + 2.85 + 1e-9);
-  EXPECT_EQ(wallOf(seen_past, "W6").status, WallStatus::kMissing);  // seen through from R2, R3
+  EXPECT_EQ(deviationWallOf(seen_past, "W6").status,
+            WallStatus::kMissing);  // seen through from R2, R3
 
   const Eigen::Vector2d lo(4.9, 0.15), hi(8.9, 0.9);
   MapDiagnostics boxed = mapOf(built);
@@ -423,7 +428,7 @@ TEST(PlanDeviations, AWallIsNotBuiltOnlyWhereTheSensorSawPastIt) {
              {hi, {lo.x(), hi.y()}},
              {{lo.x(), hi.y()}, lo}});
   const DeviationReport hidden = measureDeviations(planned, boxed, Eigen::Isometry3d::Identity());
-  const WallProgress& behind = wallOf(hidden, "W1").progress;
+  const WallProgress& behind = deviationWallOf(hidden, "W1").progress;
   EXPECT_NE(behind.status, ProgressStatus::kPartlyBuilt);
   EXPECT_NEAR(behind.built_m, 5.0, 0.06);
   EXPECT_LT(behind.not_built_m, 0.3);
@@ -497,14 +502,14 @@ TEST(PlanDeviations, APlaneAlongBaysInLineIsEachBaysAndAColumnsFaceIsNoExtraWall
   walkAlong(map, 2.0, 1.0, 18.0, 1.0);
   const DeviationReport report = measureDeviations(graph, map, Eigen::Isometry3d::Identity());
   for (const char* bay : {"F1", "F2", "F3"}) {
-    const WallDeviation& wall = wallOf(report, bay);
+    const WallDeviation& wall = deviationWallOf(report, bay);
     EXPECT_EQ(wall.status, WallStatus::kAsPlanned) << bay;
     EXPECT_GT(wall.observed_share, 0.95) << bay;
     ASSERT_EQ(wall.evidence.size(), 1u) << bay;
     EXPECT_NEAR(*wall.offset_m, 0.0, 1e-9) << bay;
   }
   // F1's piece runs from the plane's start to the bay's end (its face's exposed extent).
-  EXPECT_NEAR(wallOf(report, "F1").evidence[0].start_B.x(), 0.1, 1e-9);
+  EXPECT_NEAR(deviationWallOf(report, "F1").evidence[0].start_B.x(), 0.1, 1e-9);
   ASSERT_EQ(report.extra_walls.size(), 1u);
   EXPECT_NEAR(report.extra_walls[0].start.x(), 12.0, 1e-9);
   // The column is not among the walls.
@@ -534,7 +539,7 @@ TEST(PlanDeviations, AFacadeBayNotBuiltIsMissingThoughOnlyItsInnerFaceBesideItsW
   MapDiagnostics map = facesAndWalk(built, 2.5, 1.0, 18.0, 0.5);
   castSight(map, built, {});
   const DeviationReport report = measureDeviations(graph, map, Eigen::Isometry3d::Identity());
-  const WallDeviation& bay = wallOf(report, "F2");
+  const WallDeviation& bay = deviationWallOf(report, "F2");
   EXPECT_EQ(bay.status, WallStatus::kMissing);
   // Its inner face beside the window, 0.6 − 0.15 (the window's margin) m at each end, less the
   // 0.1 m left clear at each end of the face: seen past over nearly all of it.
@@ -542,7 +547,7 @@ TEST(PlanDeviations, AFacadeBayNotBuiltIsMissingThoughOnlyItsInnerFaceBesideItsW
   EXPECT_GT(*bay.in_view_share, 0.9);
   EXPECT_EQ(bay.progress.status, ProgressStatus::kNotBuilt);
   for (const char* standing : {"F1", "F3", "W4", "W5", "W6"}) {
-    EXPECT_EQ(wallOf(report, standing).status, WallStatus::kAsPlanned) << standing;
+    EXPECT_EQ(deviationWallOf(report, standing).status, WallStatus::kAsPlanned) << standing;
   }
 }
 
@@ -589,14 +594,14 @@ TEST(PlanDeviations, APlaneAlongTwoBaysIsEvidenceForBothAndTheFitStartsFromTheOf
   walkAlong(map, 2.0, 1.0, 18.0, 1.0);
   const DeviationReport report = measureDeviations(graph, map, Eigen::Isometry3d::Identity());
   for (const char* bay : {"F1", "F2"}) {
-    const WallDeviation& wall = wallOf(report, bay);
+    const WallDeviation& wall = deviationWallOf(report, bay);
     EXPECT_EQ(wall.status, WallStatus::kAsPlanned) << bay;
     EXPECT_GT(wall.observed_share, 0.95) << bay;
     ASSERT_TRUE(wall.offset_m && wall.angle_deg) << bay;
     EXPECT_NEAR(*wall.offset_m, 0.0, 1e-6) << bay;
     EXPECT_NEAR(*wall.angle_deg, 0.0, 1e-6) << bay;
   }
-  EXPECT_EQ(wallOf(report, "F2").evidence.size(), 2u);
+  EXPECT_EQ(deviationWallOf(report, "F2").evidence.size(), 2u);
 }
 
 // A plane 0.7 m outside the façade, seen once from a keyframe inside: the sight lines to it cross
@@ -637,7 +642,7 @@ TEST(PlanDeviations, AWallIsJudgedAgainstHowWellTheWallsAroundFixTheMapAcrossIt)
       wall.end.x() += built_off;
     }
     const DeviationReport report = measureDeviations(graph, map, Eigen::Isometry3d::Identity());
-    const WallDeviation& x = wallOf(report, "X");
+    const WallDeviation& x = deviationWallOf(report, "X");
     EXPECT_NEAR(x.placement_sigma_m, 0.05, 0.005) << built_off;
     EXPECT_GE(x.shift_threshold_m, 0.15) << built_off;
     EXPECT_EQ(x.status, built_off < 0.1 ? WallStatus::kAsPlanned : WallStatus::kShifted)
@@ -645,8 +650,8 @@ TEST(PlanDeviations, AWallIsJudgedAgainstHowWellTheWallsAroundFixTheMapAcrossIt)
     ASSERT_TRUE(x.offset_m.has_value());
     EXPECT_NEAR(std::abs(*x.offset_m), built_off, 0.005) << built_off;
     // S, fixed across it by N (4 m off), keeps the fixed threshold.
-    EXPECT_LT(wallOf(report, "S").placement_sigma_m, 0.02) << built_off;
-    EXPECT_DOUBLE_EQ(wallOf(report, "S").shift_threshold_m, 0.06) << built_off;
+    EXPECT_LT(deviationWallOf(report, "S").placement_sigma_m, 0.02) << built_off;
+    EXPECT_DOUBLE_EQ(deviationWallOf(report, "S").shift_threshold_m, 0.06) << built_off;
   }
 }
 
@@ -676,12 +681,12 @@ TEST(PlanDeviations, WithTooFewWallsAroundADeviationMustHoldUnderTheLevelsPlacem
   }
   ASSERT_GE(moved, 2);
   const DeviationReport report = measureDeviations(graph, map, Eigen::Isometry3d::Identity());
-  const WallDeviation& x = wallOf(report, "X");
+  const WallDeviation& x = deviationWallOf(report, "X");
   EXPECT_FALSE(x.local_offset_noise_m.has_value());
   EXPECT_EQ(x.status, WallStatus::kAsPlanned);
   ASSERT_TRUE(x.offset_m.has_value());
   EXPECT_LT(std::abs(*x.offset_m), 0.06);
-  EXPECT_EQ(wallOf(report, "D").status, WallStatus::kAsPlanned);
+  EXPECT_EQ(deviationWallOf(report, "D").status, WallStatus::kAsPlanned);
 }
 
 }  // namespace

@@ -18,7 +18,7 @@
 namespace isg::slam {
 namespace {
 
-bim::AGraph gridAGraph(int rows, int cols, std::uint64_t size_seed) {
+bim::AGraph matchingGrid(int rows, int cols, std::uint64_t size_seed) {
   bim::GridPlanSpec spec;
   spec.rows = rows;
   spec.cols = cols;
@@ -72,7 +72,7 @@ class MatchingOnGrids : public ::testing::TestWithParam<GridCase> {};
 // matched.
 TEST_P(MatchingOnGrids, NeverWrongAndMostlyMatchedAfterEightRooms) {
   const auto [rows, cols] = GetParam();
-  const bim::AGraph graph = gridAGraph(rows, cols, 17);
+  const bim::AGraph graph = matchingGrid(rows, cols, 17);
   const GraphMatcher matcher(graph);
   std::mt19937_64 rng(rows * 1000 + cols);
   int matched_after_eight = 0;
@@ -107,7 +107,7 @@ INSTANTIATE_TEST_SUITE_P(Plans, MatchingOnGrids,
 // A grid whose sizes repeat every 8 columns and rows is translation-symmetric in places: the
 // matcher must say so rather than pick one.
 TEST(Matching, RepeatingGridIsNeverMatchedWrong) {
-  const bim::AGraph graph = gridAGraph(10, 20, 0);
+  const bim::AGraph graph = matchingGrid(10, 20, 0);
   const GraphMatcher matcher(graph);
   std::mt19937_64 rng(5);
   int ambiguous = 0;
@@ -125,7 +125,7 @@ TEST(Matching, RepeatingGridIsNeverMatchedWrong) {
 
 // The hypotheses verified on a pool's threads: the very same result, whatever the threads.
 TEST(Matching, TheSameOnAnyNumberOfThreads) {
-  const bim::AGraph graph = gridAGraph(8, 12, 3);
+  const bim::AGraph graph = matchingGrid(8, 12, 3);
   const GraphMatcher matcher(graph);
   ThreadPool two(2), three(3);
   std::mt19937_64 rng(11);

@@ -23,7 +23,7 @@ bim::AGraph d1AGraph() {
 }
 
 // A 3 × 6 grid of rooms: many walls facing each way.
-bim::AGraph gridAGraph() {
+bim::AGraph consensusGrid() {
   bim::GridPlanSpec spec;
   spec.rows = 3;
   spec.cols = 6;
@@ -83,7 +83,7 @@ TEST(Consensus, AdequacyReadsAWallNearItsSurfaceAsBuiltOff) {
 // normal puts them on their surfaces and leaves every other wall facing that way off by 0.25 m; the
 // walls' vote moves it back to the truth. At the truth the two are outvoted: it stays.
 TEST(Consensus, TheWallsVoteAnAnswerOnWallsBuiltOffBackToTheTruth) {
-  const bim::AGraph graph = gridAGraph();
+  const bim::AGraph graph = consensusGrid();
   const GraphMatcher matcher(graph);
   std::mt19937_64 rng(5);
   const Eigen::Vector3d truth(-4.0, 6.0, -1.1);

@@ -104,7 +104,7 @@ TEST(PlanarPriorFactor, ZeroAtItsValueAndTheYawWrapped) {
   isg::testing::expectJacobiansMatchNumeric(*cost, {nullptr}, {x.data()});
 }
 
-using isg::slam::testing::pose;
+using isg::testing::pose;
 
 TEST(ScanMatchFactor, ZeroAtThePlanarMeasurementAndJacobians) {
   // Keyframe j seen from keyframe i in the plane: (Δx, Δy) turned into i's heading, and the turn.

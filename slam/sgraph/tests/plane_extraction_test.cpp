@@ -36,7 +36,7 @@ sensors::Scan sampleScan(const std::vector<Patch>& patches, const Eigen::Vector3
 }
 
 // The room [0, 6] × [0, 4] × [0, 3].
-std::vector<Patch> room() {
+std::vector<Patch> patchRoom() {
   return {{{0, 0, 0}, {6, 0, 0}, {0, 0, 3}},   // y = 0
           {{0, 4, 0}, {6, 0, 0}, {0, 0, 3}},   // y = 4
           {{0, 0, 0}, {0, 4, 0}, {0, 0, 3}},   // x = 0
@@ -49,7 +49,7 @@ TEST(PlaneExtraction, RecoversTheRoomsSixPlanesWhateverTheHeading) {
   const Eigen::Vector3d sensor(2.0, 1.5, 0.7);
   for (double yaw : {0.0, 0.5, 2.3}) {
     SCOPED_TRACE(yaw);
-    const sensors::Scan scan = sampleScan(room(), sensor, yaw);
+    const sensors::Scan scan = sampleScan(patchRoom(), sensor, yaw);
     PlaneExtractionOptions options;
     const auto cloud = preprocess(scan, options);
     const auto planes = extractPlanes(*cloud, options);

@@ -12,7 +12,7 @@ namespace isg::slam {
 namespace {
 
 // A wall x = 2.1 (in M) sampled every 5 cm over y ∈ [0, 1), z ∈ [0, 1).
-std::vector<Eigen::Vector3f> wallAt(float x) {
+std::vector<Eigen::Vector3f> voxelWallAt(float x) {
   std::vector<Eigen::Vector3f> out;
   for (int i = 0; i < 20; ++i) {
     for (int k = 0; k < 20; ++k) out.emplace_back(x, 0.05f * i + 0.025f, 0.05f * k + 0.025f);
@@ -53,7 +53,7 @@ TEST(VoxelKey, ACellsKeyGivesTheCellBackAndAPointsKeyIsItsCells) {
 
 TEST(PlaneVoxelMap, AWallsVoxelsHoldItsPlane) {
   PlaneVoxelMap map;  // 0.5 m voxels
-  map.add(map.contributionOf(wallAt(2.1f), Eigen::Isometry3d::Identity()));
+  map.add(map.contributionOf(voxelWallAt(2.1f), Eigen::Isometry3d::Identity()));
   // 20 × 20 points over 1 m × 1 m: four voxels of 10 × 10 (x = 2.1 lies in the cells 2.0–2.5).
   EXPECT_EQ(map.size(), 4u);
   // A point 7 cm in front of the wall: its own voxel's plane, 7 cm along the normal.
@@ -75,11 +75,11 @@ TEST(PlaneVoxelMap, AWallsVoxelsHoldItsPlane) {
 
 TEST(PlaneVoxelMap, AKeyframeTakenBackLeavesTheMapAsBefore) {
   PlaneVoxelMap map;
-  const auto wall = map.contributionOf(wallAt(2.1f), Eigen::Isometry3d::Identity());
+  const auto wall = map.contributionOf(voxelWallAt(2.1f), Eigen::Isometry3d::Identity());
   // The same wall seen from elsewhere 4 cm further: both together, a 4 cm thick slab.
   Eigen::Isometry3d moved = Eigen::Isometry3d::Identity();
   moved.translation().x() = 0.04;
-  const auto later = map.contributionOf(wallAt(2.1f), moved);
+  const auto later = map.contributionOf(voxelWallAt(2.1f), moved);
   map.add(wall);
   map.add(later);
   EXPECT_NEAR(map.match({2.3, 0.3, 0.3}, 0.25).voxel->mean.x(), 2.12, 1e-6);
@@ -116,8 +116,8 @@ TEST(PlaneVoxelMap, ALookupKeptOverPassesAnswersAsAFreshOne) {
   // registration's passes do), the second time a centimetre off, mostly in the cells the first
   // pass met: the lookup kept over both gives what match() (a lookup used once) gives, exactly.
   PlaneVoxelMap map;
-  std::vector<Eigen::Vector3f> corner = wallAt(2.1f);
-  for (const auto& p : wallAt(0.3f)) corner.emplace_back(p.y() + 1.3f, p.x() + 0.7f, p.z());
+  std::vector<Eigen::Vector3f> corner = voxelWallAt(2.1f);
+  for (const auto& p : voxelWallAt(0.3f)) corner.emplace_back(p.y() + 1.3f, p.x() + 0.7f, p.z());
   for (int i = 0; i < 20; ++i) {
     for (int k = 0; k < 20; ++k) corner.emplace_back(1.1f + 0.05f * i, 0.05f * k, 0.02f);
   }
@@ -126,7 +126,7 @@ TEST(PlaneVoxelMap, ALookupKeptOverPassesAnswersAsAFreshOne) {
   turned.pretranslate(Eigen::Vector3d(0.04, -0.03, 0.0));
   const auto first = map.contributionOf(corner, Eigen::Isometry3d::Identity());
   const auto second = map.contributionOf(corner, turned);
-  const auto third = map.contributionOf(wallAt(3.4f), Eigen::Isometry3d::Identity());
+  const auto third = map.contributionOf(voxelWallAt(3.4f), Eigen::Isometry3d::Identity());
   map.add(first);
   map.add(second);
   map.add(third);

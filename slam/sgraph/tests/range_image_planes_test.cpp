@@ -62,7 +62,7 @@ sensors::Scan castScan(const std::vector<Rectangle>& scene, const Eigen::Vector3
 }
 
 // The room [0, 6] × [0, 4] × [0, 3], walls floor and ceiling.
-std::vector<Rectangle> room() {
+std::vector<Rectangle> rectangleRoom() {
   return {{{0, 0, 0}, {6, 0, 0}, {0, 0, 3}}, {{0, 4, 0}, {6, 0, 0}, {0, 0, 3}},
           {{0, 0, 0}, {0, 4, 0}, {0, 0, 3}}, {{6, 0, 0}, {0, 4, 0}, {0, 0, 3}},
           {{0, 0, 0}, {6, 0, 0}, {0, 4, 0}}, {{0, 0, 3}, {6, 0, 0}, {0, 4, 0}}};
@@ -104,7 +104,7 @@ TEST(RangeImagePlanes, RecoversTheRoomsWallsAndFloorToHalfADegreeAndACentimetre)
   const Eigen::Vector3d sensor(2.0, 1.5, 0.7);
   for (double yaw : {0.0, 0.5, 2.3}) {
     SCOPED_TRACE(yaw);
-    const sensors::Scan scan = castScan(room(), sensor, yaw);
+    const sensors::Scan scan = castScan(rectangleRoom(), sensor, yaw);
     const auto planes = extractPlanesOnRangeImage(scan, PlaneExtractionOptions());
     ASSERT_TRUE(planes.has_value());
     int vertical = 0, horizontal = 0;
@@ -172,8 +172,8 @@ TEST(RangeImagePlanes, AGapSplitsAWallAndAWallThirtyCentimetresBehindIsItsOwn) {
 }
 
 // The vertical observation facing the sensor along `normal` (in the scan's frame) at distance d.
-const PlaneObservation* wallAt(const std::vector<PlaneObservation>& planes,
-                               const Eigen::Vector3d& normal, double d) {
+const PlaneObservation* rectangleWallAt(const std::vector<PlaneObservation>& planes,
+                                        const Eigen::Vector3d& normal, double d) {
   for (const auto& p : planes) {
     if (p.orientation == PlaneOrientation::kVertical && p.plane.normal.dot(normal) > 0.99 &&
         std::abs(p.plane.d - d) < 0.02)
@@ -201,13 +201,13 @@ TEST(RangeImagePlanes, AWallsTopIsBeyondViewWhereABoxIsOverTopped) {
   options.min_inliers = 30;
   const auto planes = extractPlanesOnRangeImage(scan, options);
   ASSERT_TRUE(planes.has_value());
-  const PlaneObservation* box = wallAt(*planes, -Eigen::Vector3d::UnitX(), 0.8);
+  const PlaneObservation* box = rectangleWallAt(*planes, -Eigen::Vector3d::UnitX(), 0.8);
   ASSERT_NE(box, nullptr);
   EXPECT_EQ(box->top, TopEdge::kSeen);
   EXPECT_NEAR(box->z_max, 0.7 - 0.6, 0.03);
-  const PlaneObservation* west = wallAt(*planes, Eigen::Vector3d::UnitX(), 1.6);
-  const PlaneObservation* south = wallAt(*planes, Eigen::Vector3d::UnitY(), 1.2);
-  const PlaneObservation* north = wallAt(*planes, -Eigen::Vector3d::UnitY(), 1.2);
+  const PlaneObservation* west = rectangleWallAt(*planes, Eigen::Vector3d::UnitX(), 1.6);
+  const PlaneObservation* south = rectangleWallAt(*planes, Eigen::Vector3d::UnitY(), 1.2);
+  const PlaneObservation* north = rectangleWallAt(*planes, -Eigen::Vector3d::UnitY(), 1.2);
   for (const PlaneObservation* wall : {west, south, north}) {
     ASSERT_NE(wall, nullptr);
     EXPECT_EQ(wall->top, TopEdge::kBeyondView);
@@ -220,14 +220,14 @@ TEST(RangeImagePlanes, AWallUnderALowCeilingHasItsTopBeyondView) {
   // The ceiling at 1.2 m, the sensor 0.6 m up, the wall x = 0 3 m away: the rings above
   // atan(0.6 / 3) = 11.3° meet the ceiling before the wall, nearer than the wall: what is above
   // the wall's highest point is not the wall's end.
-  std::vector<Rectangle> scene = room();
+  std::vector<Rectangle> scene = rectangleRoom();
   scene.back() = {{0, 0, 1.2}, {6, 0, 0}, {0, 4, 0}};
   const sensors::Scan scan = castScan(scene, Eigen::Vector3d(3.0, 2.0, 0.6), 0.0, 0.005);
   PlaneExtractionOptions options;
   options.min_inliers = 30;
   const auto planes = extractPlanesOnRangeImage(scan, options);
   ASSERT_TRUE(planes.has_value());
-  const PlaneObservation* west = wallAt(*planes, Eigen::Vector3d::UnitX(), 3.0);
+  const PlaneObservation* west = rectangleWallAt(*planes, Eigen::Vector3d::UnitX(), 3.0);
   ASSERT_NE(west, nullptr);
   EXPECT_EQ(west->top, TopEdge::kBeyondView);
   EXPECT_NEAR(west->z_max, 3.0 * std::tan(11.0 * std::numbers::pi / 180.0), 0.05);
@@ -237,7 +237,7 @@ TEST(RangeImagePlanes, AWallUnderALowCeilingHasItsTopBeyondView) {
 // order (raw laser ids): the image's rows follow elevation whatever the numbering, so each gives
 // the planes, their support and their top edges the rings by elevation give.
 TEST(RangeImagePlanes, RingsNumberedFromTheTopOrInFiringOrderGiveTheSamePlanes) {
-  const sensors::Scan by_elevation = castScan(room(), Eigen::Vector3d(2.0, 1.5, 0.7), 0.4);
+  const sensors::Scan by_elevation = castScan(rectangleRoom(), Eigen::Vector3d(2.0, 1.5, 0.7), 0.4);
   const auto reference = extractPlanesOnRangeImage(by_elevation, PlaneExtractionOptions());
   ASSERT_TRUE(reference.has_value());
   ASSERT_GE(reference->size(), 5u);
@@ -274,7 +274,7 @@ TEST(RangeImagePlanes, ADenseSensorsWallsAreFoundAsWholeAsAVlp16s) {
   const double lengths[4] = {6.0, 6.0, 4.0, 4.0};
   // Each wall's pieces: their summed length along it and their summed support.
   auto wallsOf = [&](const std::vector<double>& beams) {
-    const sensors::Scan scan = castScan(room(), sensor, 0.4, 0.015, 1024, beams);
+    const sensors::Scan scan = castScan(rectangleRoom(), sensor, 0.4, 0.015, 1024, beams);
     const auto planes = extractPlanesOnRangeImage(scan, PlaneExtractionOptions());
     std::vector<std::pair<double, int>> out(truths.size(), {0.0, 0});
     if (!planes) return out;
@@ -306,7 +306,7 @@ TEST(RangeImagePlanes, ADenseSensorsWallsAreFoundAsWholeAsAVlp16s) {
 }
 
 TEST(RangeImagePlanes, AScanWithoutRingsIsLeftToRansac) {
-  sensors::Scan scan = castScan(room(), Eigen::Vector3d(2.0, 1.5, 0.7), 0.3);
+  sensors::Scan scan = castScan(rectangleRoom(), Eigen::Vector3d(2.0, 1.5, 0.7), 0.3);
   for (auto& p : scan.points) p.ring = 0;
   EXPECT_FALSE(extractPlanesOnRangeImage(scan, PlaneExtractionOptions()).has_value());
   // extractPlanes falls back to RANSAC and still finds the four walls.
@@ -320,7 +320,7 @@ TEST(RangeImagePlanes, AScanWithoutRingsIsLeftToRansac) {
 
 TEST(RangeImagePlanes, AgreesWithRansacOnEveryPlaneBothFind) {
   const Eigen::Vector3d sensor(1.2, 2.9, 0.7);
-  const sensors::Scan scan = castScan(room(), sensor, 1.1);
+  const sensors::Scan scan = castScan(rectangleRoom(), sensor, 1.1);
   PlaneExtractionOptions options;
   const auto image = extractPlanesOnRangeImage(scan, options);
   ASSERT_TRUE(image.has_value());

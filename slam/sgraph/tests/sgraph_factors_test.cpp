@@ -16,7 +16,7 @@
 namespace isg::slam {
 namespace {
 
-using isg::slam::testing::pose;
+using isg::testing::pose;
 
 TEST(PosePlaneFactor, ResidualByHandAndJacobians) {
   // The wall x = 5 in M (normal -x, facing the robot), the robot at (1, 2) turned by 90°, the

@@ -5,7 +5,7 @@
 
 #include <Eigen/Geometry>
 
-namespace isg::slam::testing {
+namespace isg::testing {
 
 inline Eigen::Isometry3d pose(double x, double y, double z, double yaw, double pitch = 0.0) {
   Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
@@ -16,4 +16,4 @@ inline Eigen::Isometry3d pose(double x, double y, double z, double yaw, double p
   return T;
 }
 
-}  // namespace isg::slam::testing
+}  // namespace isg::testing
