@@ -1,5 +1,7 @@
 #include "bim/recorded_walk.hpp"
 
+#include <filesystem>
+
 #include <cmath>
 #include <cstdio>
 
@@ -28,6 +30,17 @@ std::string fixed(double value, int decimals) {
 
 std::vector<WalkPose> readRecordedWalk(const std::string& path, const Level& level,
                                        const common::JsonNode& node) {
+  // Every pose of a walk is held while the run goes (its route, its ground truth): the file is
+  // held to a size whose poses fit in memory before any of it is read.
+  std::error_code error;
+  const std::uintmax_t bytes = std::filesystem::file_size(path, error);
+  if (!error && bytes > kMaxWalkFileBytes) {
+    throw common::InputError(path, "",
+                             "the walk's file is " + std::to_string(bytes) + " bytes; at most " +
+                                 std::to_string(kMaxWalkFileBytes) +
+                                 " are read (docs/simulation.md, \"Replayed walks\"): thin it out "
+                                 "(a pose every 0.01 s is plenty) or cut it");
+  }
   std::vector<int> lines;
   common::Trajectory poses;
   try {

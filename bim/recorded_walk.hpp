@@ -1,5 +1,6 @@
 #pragma once
 
+#include <cstdint>
 #include <string>
 #include <vector>
 
@@ -18,6 +19,10 @@ namespace isg::bim {
 inline constexpr double kMaxWalkSpeed = 3.0;       // m/s, over any 0.05 s or more
 inline constexpr double kWalkGapWarning = 1.0;     // s without a pose
 inline constexpr double kWalkOutsideWarning = 20;  // m beyond the box of the level's walls
+// The walk's file, before it is read: each pose costs about 600 bytes while a run holds it (the
+// text, the pose, the route and the truth made of it), so 64 MiB — some 750 000 poses, two hours
+// at 100 Hz — is at most about half a GiB.
+inline constexpr std::uintmax_t kMaxWalkFileBytes = 64ull << 20;
 
 std::vector<WalkPose> readRecordedWalk(const std::string& path, const Level& level,
                                        const common::JsonNode& node);

@@ -7,6 +7,7 @@
 #include <filesystem>
 #include <optional>
 
+#include "bim/limits.hpp"
 #include "cli/progress_bar.hpp"
 #include "common/atomic_folder.hpp"
 #include "common/output_path.hpp"
@@ -127,7 +128,7 @@ void ImportCommand::addRasterOptions() {
   auto* raster = "Raster floor plans (.png, .pgm, .yaml)";
   app_->add_option("--resolution", resolution_,
                    "metres a pixel of a floor plan image (a map's YAML gives its own)")
-      ->check(CLI::Range(1e-4, 10.0))
+      ->check(numberIn(1e-4, 10.0))
       ->option_text("M")
       ->group(raster);
   app_->add_option("--origin", origin_,
@@ -135,10 +136,11 @@ void ImportCommand::addRasterOptions() {
                    "0,0; a map's YAML gives its own)")
       ->delimiter(',')
       ->expected(2)
+      ->check(numberIn(-bim::limits::kMaxCoordinate, bim::limits::kMaxCoordinate))
       ->option_text("X,Y")
       ->group(raster);
   app_->add_option("--height", wall_height_, "the walls' height, floor to ceiling, m")
-      ->check(CLI::Range(0.1, 100.0))
+      ->check(numberIn(0.1, 100.0))
       ->capture_default_str()
       ->option_text("H")
       ->group(raster);
@@ -170,11 +172,11 @@ void ImportCommand::addRecordingOptions() {
       ->group(bag);
   app_->add_option("--start", start_,
                    "import from this many seconds after the recording's first message")
-      ->check(CLI::Range(0.0, 1e7))
+      ->check(numberIn(0.0, 1e7))
       ->option_text("S")
       ->group(bag);
   app_->add_option("--duration", duration_, "import this many seconds (default: to the end)")
-      ->check(CLI::Range(0.001, 1e7))
+      ->check(numberIn(0.001, 1e7))
       ->option_text("S")
       ->group(bag);
   app_->add_option("--base-frame", base_frame_,
@@ -200,7 +202,26 @@ void ImportCommand::addRecordingOptions() {
       ->group(bag);
 }
 
+namespace {
+
+// Images of kinds the raster import does not read: said as such, not handed to the IFC reader.
+void refuseOtherImages(const std::string& path) {
+  const std::string extension = lowerExtension(path);
+  for (const char* other : {".jpg", ".jpeg", ".bmp", ".tif", ".tiff", ".gif", ".webp"}) {
+    if (extension == other) {
+      throw common::InputError(path, "",
+                               "a " + extension.substr(1) +
+                                   " image: floor plan images are read as PNG or PGM (convert "
+                                   "it losslessly, e.g. `convert FLOOR" +
+                                   extension + " FLOOR.png`)");
+    }
+  }
+}
+
+}  // namespace
+
 int ImportCommand::run() {
+  refuseOtherImages(input_);
   if (isRecording(input_)) return importBag();
   if (isRasterImage(input_) || isMapYaml(input_)) return importRaster();
   return importIfc();
@@ -238,8 +259,13 @@ int ImportCommand::importRaster() {
     if (!origin_.empty()) options.origin = Eigen::Vector2d(origin_[0], origin_[1]);
     options.source_kind = lowerExtension(input_) == ".png" ? "PNG image" : "PGM image";
   }
-  const raster::RasterPlanImport result =
-      raster::rasterPlanFromImage(formats::readOccupancyImage(image, rule), image, options);
+  options.check_interrupt = run::throwIfInterrupted;
+  // The image's size is held to a level's extent on its header, before any pixel is decoded.
+  const auto check_size = [&](long long width, long long height) {
+    raster::checkImageExtent(width, height, image, options);
+  };
+  const raster::RasterPlanImport result = raster::rasterPlanFromImage(
+      formats::readOccupancyImage(image, rule, check_size), image, options);
   nlohmann::ordered_json document = result.plan_json;
   roundNumbers(document);
   run::throwIfInterrupted();

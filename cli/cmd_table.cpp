@@ -135,6 +135,7 @@ int TableCommand::run() {
     writeFileAtomically(output_, common::outputMark(outputKind, text));
   }
   if (baseline_.empty()) return kExitOk;
+  common::checkRegularFile(baseline_);
   std::ifstream in(baseline_);
   if (!in) throw common::InputError(baseline_, "", "cannot read (no such file?)");
   std::stringstream content;

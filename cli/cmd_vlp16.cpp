@@ -41,7 +41,7 @@ Vlp16Command::Vlp16Command(CLI::App& parent) {
   app_->add_option("--topic", topic_,
                    "the bag's VelodyneScan topic (default: the only topic of that type)");
   app_->add_option("--cut-deg", cut_deg_, "azimuth where a turn begins, degrees [0, 360)")
-      ->check(CLI::Range(0.0, 359.99))
+      ->check(numberIn(0.0, 359.99))
       ->capture_default_str();
   app_->add_option("--min-range", min_range_, "returns nearer than this are dropped, m")
       ->check(nonNegativeNumber())

@@ -8,6 +8,7 @@
 #include <iostream>
 
 #include "bim/lidar_models.hpp"
+#include "common/decimal_number.hpp"
 #include "worlds/reference_plans.hpp"
 
 namespace isg::cli {
@@ -36,14 +37,9 @@ namespace {
 CLI::Validator numberCheck(bool allow_zero) {
   return CLI::Validator(
       [allow_zero](std::string& text) -> std::string {
-        double value = 0.0;
-        std::size_t used = 0;
-        try {
-          value = std::stod(text, &used);
-        } catch (const std::exception&) {
-          return "expected a number, got " + text;
-        }
-        if (used != text.size() || !std::isfinite(value)) return "expected a number, got " + text;
+        const std::optional<double> number = common::parseDecimal(text);
+        if (!number) return "expected a number, got " + text;
+        const double value = *number;
         if (allow_zero ? value < 0.0 : value <= 0.0) {
           return std::string(allow_zero ? "must be >= 0" : "must be > 0") + ", got " + text;
         }
@@ -52,7 +48,27 @@ CLI::Validator numberCheck(bool allow_zero) {
       allow_zero ? "NUMBER >= 0" : "NUMBER > 0", allow_zero ? "non-negative" : "positive");
 }
 
+// A number as %g writes it: "0.0001", "10", "1e+07".
+std::string shortNumber(double value) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%g", value);
+  return text;
+}
+
 }  // namespace
+
+CLI::Validator numberIn(double min, double max) {
+  const std::string range = shortNumber(min) + " … " + shortNumber(max);
+  return CLI::Validator(
+      [min, max, range](std::string& text) -> std::string {
+        const std::optional<double> value = common::parseDecimal(text);
+        if (!value || *value < min || *value > max) {
+          return "expected a number " + range + ", got " + text;
+        }
+        return "";
+      },
+      "NUMBER in [" + range + "]", "number in range");
+}
 
 void addLidarModelOption(CLI::App& app, std::string& model) {
   std::vector<std::string> names;

@@ -24,6 +24,9 @@ inline constexpr int kExitIncomplete = 5;
 // Option checks with plain messages ("--duration: must be > 0, got -1"), for finite numbers.
 CLI::Validator positiveNumber();
 CLI::Validator nonNegativeNumber();
+// A decimal number within [min, max] ("--resolution: expected a number 0.0001 … 10, got nan"):
+// CLI::Range alone lets NaN through, and CLI11 reads "0x10" as sixteen.
+CLI::Validator numberIn(double min, double max);
 // A seed as the suite reader takes it: a decimal integer 0 … 2^64 − 1, no sign (CLI11 alone would
 // wrap "-1" and 2^64 silently).
 CLI::Validator seedNumber();

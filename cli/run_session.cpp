@@ -9,7 +9,10 @@
 #include <filesystem>
 #include <optional>
 
+#include "bim/agraph.hpp"
+#include "bim/limits.hpp"
 #include "cli/cmd_export.hpp"
+#include "common/decimal_number.hpp"
 #include "common/input_error.hpp"
 #include "common/output_path.hpp"
 #include "run/odometry_source.hpp"
@@ -59,24 +62,55 @@ std::unique_ptr<slam::Localizer> makeMethod(const run::LocalizerRegistry& regist
 
 namespace {
 
-// "X,Y,YAW": three finite numbers; "" when the text is not that.
+// "X,Y,YAW": three decimal numbers (common::parseDecimal); empty when the text is not that.
 std::optional<Eigen::Vector3d> startPoseNumbers(const std::string& text) {
   Eigen::Vector3d out;
   std::size_t at = 0;
   for (int k = 0; k < 3; ++k) {
     const std::size_t comma = k < 2 ? text.find(',', at) : text.size();
     if (comma == std::string::npos) return std::nullopt;
-    const std::string field = text.substr(at, comma - at);
-    std::size_t used = 0;
-    try {
-      out[k] = std::stod(field, &used);
-    } catch (const std::exception&) {
-      return std::nullopt;
-    }
-    if (used != field.size() || !std::isfinite(out[k])) return std::nullopt;
+    const std::optional<double> number =
+        common::parseDecimal(std::string_view(text).substr(at, comma - at));
+    if (!number) return std::nullopt;
+    out[k] = *number;
     at = comma + 1;
   }
   return out;
+}
+
+// How far outside the plan's walls a start pose may lie: a walk may begin in a yard or a street
+// the plan does not draw, never kilometres away (a typo, or a pose in another frame).
+constexpr double kStartPoseMarginM = 100.0;
+
+// Refuses a start pose no walk through the plan could begin at, before any localizer sees it: a
+// number like 4e38 would otherwise reach the scan matchers' grids and trees.
+void checkStartPose(const Eigen::Vector3d& xyyaw, const std::string& value,
+                    const run::LocalizerContext& context) {
+  constexpr double kTwoPi = 2.0 * 3.14159265358979323846;
+  if (std::abs(xyyaw.z()) > kTwoPi) {
+    throw common::InputError(
+        "--start-pose", "",
+        "yaw " + value.substr(value.rfind(',') + 1) + " is not within ±2π: the yaw is in radians");
+  }
+  Eigen::AlignedBox2d allowed(Eigen::Vector2d::Constant(-bim::limits::kMaxCoordinate),
+                              Eigen::Vector2d::Constant(bim::limits::kMaxCoordinate));
+  std::string where = "within ±" + std::to_string(int(bim::limits::kMaxCoordinate)) + " m";
+  const Eigen::AlignedBox2d walls =
+      context.agraph ? context.agraph->surfaceBounds() : Eigen::AlignedBox2d();
+  if (!walls.isEmpty()) {
+    const Eigen::Vector2d margin = Eigen::Vector2d::Constant(kStartPoseMarginM);
+    allowed = allowed.intersection(Eigen::AlignedBox2d(walls.min() - margin, walls.max() + margin));
+    char text[160];
+    std::snprintf(
+        text, sizeof text, "within %g m of the plan's walls (x %.3f … %.3f, y %.3f … %.3f)",
+        kStartPoseMarginM, walls.min().x(), walls.max().x(), walls.min().y(), walls.max().y());
+    where = text;
+  }
+  if (!allowed.contains(xyyaw.head<2>())) {
+    throw common::InputError("--start-pose", "",
+                             "the position " + value.substr(0, value.rfind(',')) + " is not " +
+                                 where + ": the start pose is in the plan's frame");
+  }
 }
 
 }  // namespace
@@ -116,6 +150,7 @@ std::string applyStartPose(const std::string& value, const sensors::SensorStream
     words = "the true start pose";
   } else {
     const Eigen::Vector3d xyyaw = *startPoseNumbers(value);
+    checkStartPose(xyyaw, value, context);
     B_T_R0.linear() = Eigen::AngleAxisd(xyyaw.z(), Eigen::Vector3d::UnitZ()).toRotationMatrix();
     // The height is the level's (walls do not observe it): the truth's when there is one.
     const double z =

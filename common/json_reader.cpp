@@ -390,7 +390,7 @@ nlohmann::json parseJsonText(const std::string& text, const std::string& file) {
   throw InputError(file, "", "invalid JSON " + where + ": " + what);
 }
 
-void checkReadableFile(const std::string& path, std::uintmax_t max_bytes) {
+void checkRegularFile(const std::string& path) {
   std::error_code error;
   const auto status = std::filesystem::status(path, error);
   if (error || !std::filesystem::exists(status)) {
@@ -398,10 +398,21 @@ void checkReadableFile(const std::string& path, std::uintmax_t max_bytes) {
         path, "",
         "cannot open file: " + (error ? error.message() : std::string(std::strerror(ENOENT))));
   }
-  // Devices and pipes (/dev/zero, a FIFO) could be read forever: only regular files are read.
+  // Devices and pipes (/dev/zero, a FIFO) could be read, or waited on, forever: only regular
+  // files are read.
   if (std::filesystem::is_directory(status))
     throw InputError(path, "", "is a directory, not a file");
-  if (!std::filesystem::is_regular_file(status)) throw InputError(path, "", "not a regular file");
+  if (!std::filesystem::is_regular_file(status)) {
+    throw InputError(path, "",
+                     std::filesystem::is_fifo(status)
+                         ? "not a regular file but a FIFO (a named pipe): only files are read"
+                         : "not a regular file");
+  }
+}
+
+void checkReadableFile(const std::string& path, std::uintmax_t max_bytes) {
+  checkRegularFile(path);
+  std::error_code error;
   const std::uintmax_t bytes = std::filesystem::file_size(path, error);
   if (error) throw InputError(path, "", "cannot read file: " + error.message());
   if (bytes > max_bytes) {

@@ -101,6 +101,10 @@ void checkFormatAndVersion(const JsonNode& root, const std::string& format, int 
 // Reads and parses a JSON file; a missing file or a syntax error is an InputError naming the
 // file (and the line and column of a syntax error).
 nlohmann::json readJsonFile(const std::string& path);
+// Fails unless `path` names a regular file, before anything opens it: opening a FIFO waits for a
+// writer that may never come, and a device (/dev/zero) never ends. Readers that open a file
+// themselves (the bag and MCAP readers, SQLite) call it first.
+void checkRegularFile(const std::string& path);
 // Fails unless `path` is a regular file of at most `max_bytes` bytes: a device such as /dev/zero
 // or a FIFO is never read, and no file is read past a stated limit.
 void checkReadableFile(const std::string& path, std::uintmax_t max_bytes);

@@ -18,9 +18,19 @@ std::string toTumText(std::span<const StampedPose> trajectory) {
     q.normalize();
     if (q.w() < 0) q.coeffs() *= -1.0;
     const Eigen::Vector3d t = p.pose.translation();
-    std::snprintf(line, sizeof line, "%.9f %.6f %.6f %.6f %.9f %.9f %.9f %.9f\n", p.t, t.x(), t.y(),
-                  t.z(), q.x(), q.y(), q.z(), q.w());
-    out += line;
+    const auto row = [&](char* text, std::size_t size) {
+      return std::snprintf(text, size, "%.9f %.6f %.6f %.6f %.9f %.9f %.9f %.9f\n", p.t, t.x(),
+                           t.y(), t.z(), q.x(), q.y(), q.z(), q.w());
+    };
+    const int length = row(line, sizeof line);
+    if (length < int(sizeof line)) {
+      out += line;
+    } else {  // a number of hundreds of digits: the row whole, never cut at the buffer's end
+      std::string long_row(std::size_t(length) + 1, '\0');
+      row(long_row.data(), long_row.size());
+      long_row.pop_back();
+      out += long_row;
+    }
   }
   return out;
 }

@@ -5,10 +5,12 @@
 #include <fstream>
 
 #include "common/input_error.hpp"
+#include "common/json_reader.hpp"
 
 namespace isg::formats {
 
 std::unique_ptr<std::istream> openBinaryFile(const std::string& path) {
+  common::checkRegularFile(path);
   auto file = std::make_unique<std::ifstream>(path, std::ios::binary);
   if (!*file)
     throw common::InputError(path, "", std::string("cannot open: ") + std::strerror(errno));

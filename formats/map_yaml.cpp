@@ -201,10 +201,18 @@ void readOccupancyRule(const MapYamlEntries& entries, OccupancyRule& rule) {
 
 }  // namespace
 
-MapYaml parseMapYaml(const std::string& text, const std::string& path) {
+MapYaml parseMapYaml(const std::string& text_in, const std::string& path) {
+  // A UTF-8 byte order mark (some editors write one) is no part of the first key.
+  const std::string text = text_in.rfind("\xEF\xBB\xBF", 0) == 0 ? text_in.substr(3) : text_in;
   const MapYamlEntries entries(text, path);
   MapYaml map;
-  const std::filesystem::path image_path(unquote(entries.required("image").value));
+  const Entry& image = entries.required("image");
+  if (unquote(image.value).empty()) {
+    throw common::InputError(path, "/image",
+                             "line " + std::to_string(image.line) +
+                                 ": the image is empty: name the map's PNG or PGM file");
+  }
+  const std::filesystem::path image_path(unquote(image.value));
   map.image = image_path.is_absolute()
                   ? image_path.string()
                   : (std::filesystem::path(path).parent_path() / image_path).string();

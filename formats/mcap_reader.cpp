@@ -22,10 +22,6 @@ static_assert(std::endian::native == std::endian::little, "MCAP is little-endian
 using mcap::kChannel, mcap::kChunk, mcap::kDataEnd, mcap::kFooter, mcap::kHeader, mcap::kMagic,
     mcap::kMessage, mcap::kRecordHead, mcap::kSchema;
 
-// A chunk bigger than this uncompressed is refused rather than held (writers close chunks at a
-// few MiB).
-constexpr std::uint64_t kMaxChunkBytes = 1ull << 31;
-
 // Reads the fields of one record's content, each checked against what is left.
 class ReadFields {
  public:
@@ -243,7 +239,7 @@ void McapReader::readChunk(std::string_view content, std::uint64_t position) {
   if (chunk.size > kMaxChunkBytes) {
     throw std::runtime_error("a chunk of " + std::to_string(chunk.size) +
                              " bytes uncompressed; at most " + std::to_string(kMaxChunkBytes) +
-                             " are read");
+                             " are read (docs/formats.md, \"Limits of recordings\")");
   }
   if (std::find(compressions_.begin(), compressions_.end(), chunk.compression) ==
       compressions_.end()) {
@@ -281,14 +277,9 @@ void McapReader::readChunk(std::string_view content, std::uint64_t position) {
 }
 
 const std::string& McapReader::loadChunk(std::uint32_t k) {
-  ++uses_;
-  for (CachedChunk& cached : cache_) {
-    if (cached.chunk == k) {
-      cached.used = uses_;
-      return cached.bytes;
-    }
-  }
+  if (const std::string* held = cache_.find(k)) return *held;
   const Chunk& chunk = chunks_[k];
+  cache_.makeRoom(chunk.size);
   std::string stored;
   if (!readAt(*in_, chunk.data_offset, chunk.data_size, stored)) {
     fail(chunk.position, "cannot read the chunk's records");
@@ -310,18 +301,7 @@ const std::string& McapReader::loadChunk(std::uint32_t k) {
   if (chunk.crc != 0 && crc32(bytes) != chunk.crc) {
     fail(chunk.position, "the chunk's records fail their CRC-32");
   }
-  CachedChunk* slot = nullptr;
-  if (cache_.size() < kCachedChunks) {
-    slot = &cache_.emplace_back();
-  } else {
-    slot = &*std::min_element(
-        cache_.begin(), cache_.end(),
-        [](const CachedChunk& a, const CachedChunk& b) { return a.used < b.used; });
-  }
-  slot->chunk = k;
-  slot->used = uses_;
-  slot->bytes = std::move(bytes);
-  return slot->bytes;
+  return cache_.insert(k, std::move(bytes));
 }
 
 void McapReader::read(const std::vector<std::string>& topics,

@@ -9,6 +9,8 @@
 #include <string_view>
 #include <vector>
 
+#include "formats/chunk_cache.hpp"
+
 namespace isg::formats {
 
 // A channel of an MCAP file with its schema (name, encoding and text; all "" when it has none).
@@ -109,14 +111,7 @@ class McapReader {
   std::vector<Chunk> chunks_;
   std::vector<Entry> entries_;  // sorted by log time, then file order (after open)
   std::vector<std::string> compressions_;
-  struct CachedChunk {
-    std::uint32_t chunk = 0;
-    std::uint64_t used = 0;
-    std::string bytes;
-  };
-  static constexpr std::size_t kCachedChunks = 4;
-  std::vector<CachedChunk> cache_;
-  std::uint64_t uses_ = 0;
+  ChunkCache cache_{4};  // the last chunks read, uncompressed
 };
 
 }  // namespace isg::formats

@@ -3,6 +3,7 @@
 #include <png.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <csetjmp>
 #include <cstring>
@@ -90,7 +91,7 @@ struct PgmReader {
 };
 
 OccupancyImage decodePgm(const std::string& text, const std::string& file,
-                         const OccupancyRule& rule) {
+                         const OccupancyRule& rule, const ImageSizeCheck& check_size) {
   PgmReader in{text, file};
   const bool binary = text[1] == '5';
   in.at = 2;
@@ -99,6 +100,7 @@ OccupancyImage decodePgm(const std::string& text, const std::string& file,
   const long long maxval = in.number("maximum grey value");
   if (maxval < 1 || maxval > 65535) in.fail("the maximum grey value must be 1–65535");
   checkSize(width, height, file);
+  if (check_size) check_size(width, height);
   const std::size_t count = std::size_t(width * height);
   const std::size_t sample = maxval < 256 ? 1 : 2;
   // The raster's length is checked before anything is held for it.
@@ -180,9 +182,9 @@ struct PngHandles {
 // Everything between setjmp and the end lives in `image` and `row`, owned outside, so that a
 // longjmp out of libpng skips no destructor.
 bool decodePngRows(PngHandles& handles, PngError& error, PngSource& source, const std::string& file,
-                   const OccupancyRule& rule, OccupancyImage& image,
-                   std::vector<unsigned char>& row, std::vector<unsigned char>& whole,
-                   std::vector<png_bytep>& rows) {
+                   const OccupancyRule& rule, const ImageSizeCheck& check_size,
+                   OccupancyImage& image, std::vector<unsigned char>& row,
+                   std::vector<unsigned char>& whole, std::vector<png_bytep>& rows) {
   if (setjmp(error.jump)) return false;
   png_structp png = handles.png;
   png_infop info = handles.info;
@@ -193,28 +195,66 @@ bool decodePngRows(PngHandles& handles, PngError& error, PngSource& source, cons
   const long long width = png_get_image_width(png, info);
   const long long height = png_get_image_height(png, info);
   checkSize(width, height, file);  // throws: nothing of libpng's is live here but the handles
-  const int colour = png_get_color_type(png, info);
-  if (colour == PNG_COLOR_TYPE_PALETTE) png_set_palette_to_rgb(png);
-  if (colour == PNG_COLOR_TYPE_GRAY && png_get_bit_depth(png, info) < 8) {
-    png_set_expand_gray_1_2_4_to_8(png);
+  if (check_size) check_size(width, height);  // so may the caller's check
+  // Deflate packs at most about 1032 bytes into one: a file far shorter than its rows could be is
+  // truncated, and is refused before its pixels are held. The rows as stored count here (before
+  // 1-, 2- and 4-bit samples are widened to bytes): a well-compressed 1-bit plan is no truncated
+  // 8-bit one.
+  const double stored_stride = double(png_get_rowbytes(png, info));
+  if ((stored_stride + 1.0) * double(height) > 1032.0 * double(source.bytes->size()) + 4096.0) {
+    png_error(png, "the file is far too short for its image: truncated");
   }
-  if (png_get_valid(png, info, PNG_INFO_tRNS)) png_set_tRNS_to_alpha(png);
-  png_set_strip_16(png);
+  const int colour = png_get_color_type(png, info);
+  const bool indexed = colour == PNG_COLOR_TYPE_PALETTE;
+  // A palette image is read as its indices (one byte each), each checked against the palette and
+  // classed by its colour: libpng's own expansion reads an index past the palette as black.
+  std::array<PixelClass, 256> palette_class{};
+  int palette_size = 0;
+  if (indexed) {
+    png_colorp palette = nullptr;
+    if (png_get_PLTE(png, info, &palette, &palette_size) != PNG_INFO_PLTE) {
+      png_error(png, "a palette image without its palette (PLTE)");
+    }
+    png_bytep trans = nullptr;
+    int trans_count = 0;
+    png_get_tRNS(png, info, &trans, &trans_count, nullptr);
+    for (int k = 0; k < palette_size; ++k) {
+      const double mean = (palette[k].red + palette[k].green + palette[k].blue) / 3.0 / 255.0;
+      const bool has_alpha = trans != nullptr && trans_count > 0;
+      const double alpha = has_alpha && k < trans_count ? trans[k] / 255.0 : 1.0;
+      palette_class[std::size_t(k)] = classifyPixel(mean, alpha, has_alpha, rule);
+    }
+    png_set_packing(png);
+  } else {
+    if (colour == PNG_COLOR_TYPE_GRAY && png_get_bit_depth(png, info) < 8) {
+      png_set_expand_gray_1_2_4_to_8(png);
+    }
+    if (png_get_valid(png, info, PNG_INFO_tRNS)) png_set_tRNS_to_alpha(png);
+    png_set_strip_16(png);
+  }
   const int passes = png_set_interlace_handling(png);
   png_read_update_info(png, info);
   const int channels = png_get_channels(png, info);
   const bool has_alpha = channels == 2 || channels == 4;
   const int colours = has_alpha ? channels - 1 : channels;
   const std::size_t stride = png_get_rowbytes(png, info);
-  // Deflate packs at most about 1032 bytes into one: a file far shorter than its rows could be is
-  // truncated, and is refused before its pixels are held.
-  if ((double(stride) + 1.0) * double(height) > 1032.0 * double(source.bytes->size()) + 4096.0) {
-    png_error(png, "the file is far too short for its image: truncated");
-  }
   image.width = int(width);
   image.height = int(height);
   image.pixels.resize(std::size_t(width * height));
   auto classifyRow = [&](const unsigned char* p, int r) {
+    if (indexed) {
+      for (long long c = 0; c < width; ++c) {
+        if (p[c] >= palette_size) {
+          std::snprintf(error.message, sizeof error.message,
+                        "the pixel at column %lld, row %d has palette index %d; the palette holds "
+                        "%d colours",
+                        c, r, int(p[c]), palette_size);
+          return false;
+        }
+        image.pixels[std::size_t(r) * width + c] = palette_class[p[c]];
+      }
+      return true;
+    }
     for (long long c = 0; c < width; ++c, p += channels) {
       double sum = 0.0;
       for (int k = 0; k < colours; ++k) sum += p[k];
@@ -222,12 +262,13 @@ bool decodePngRows(PngHandles& handles, PngError& error, PngSource& source, cons
       const double alpha = has_alpha ? p[channels - 1] / 255.0 : 1.0;
       image.pixels[std::size_t(r) * width + c] = classifyPixel(mean, alpha, has_alpha, rule);
     }
+    return true;
   };
   if (passes == 1) {
     row.resize(stride);
     for (long long r = 0; r < height; ++r) {
       png_read_row(png, row.data(), nullptr);
-      classifyRow(row.data(), int(r));
+      if (!classifyRow(row.data(), int(r))) return false;
     }
   } else {
     // Interlaced: the passes fill the whole image before any row is final.
@@ -235,13 +276,15 @@ bool decodePngRows(PngHandles& handles, PngError& error, PngSource& source, cons
     rows.resize(static_cast<std::size_t>(height));
     for (long long r = 0; r < height; ++r) rows[r] = whole.data() + stride * r;
     png_read_image(png, rows.data());
-    for (long long r = 0; r < height; ++r) classifyRow(rows[r], int(r));
+    for (long long r = 0; r < height; ++r) {
+      if (!classifyRow(rows[r], int(r))) return false;
+    }
   }
   return true;
 }
 
 OccupancyImage decodePng(const std::string& bytes_in, const std::string& file,
-                         const OccupancyRule& rule) {
+                         const OccupancyRule& rule, const ImageSizeCheck& check_size) {
   PngError error;
   PngHandles handles;
   handles.png = png_create_read_struct(PNG_LIBPNG_VER_STRING, &error, pngFailure, pngWarning);
@@ -252,7 +295,7 @@ OccupancyImage decodePng(const std::string& bytes_in, const std::string& file,
   OccupancyImage image;
   std::vector<unsigned char> row, whole;
   std::vector<png_bytep> rows;
-  if (!decodePngRows(handles, error, source, file, rule, image, row, whole, rows)) {
+  if (!decodePngRows(handles, error, source, file, rule, check_size, image, row, whole, rows)) {
     throw common::InputError(file, "",
                              std::string("not a readable PNG image: ") + error.message +
                                  " (near byte " + std::to_string(source.at) + ")");
@@ -263,21 +306,23 @@ OccupancyImage decodePng(const std::string& bytes_in, const std::string& file,
 }  // namespace
 
 OccupancyImage decodeOccupancyImage(const std::string& bytes_in, const std::string& file,
-                                    const OccupancyRule& rule) {
+                                    const OccupancyRule& rule, const ImageSizeCheck& check_size) {
   static constexpr unsigned char kPngSignature[8] = {0x89, 'P', 'N', 'G', '\r', '\n', 0x1a, '\n'};
   if (bytes_in.size() >= 8 && std::memcmp(bytes_in.data(), kPngSignature, 8) == 0) {
-    return decodePng(bytes_in, file, rule);
+    return decodePng(bytes_in, file, rule, check_size);
   }
   if (bytes_in.size() >= 2 && bytes_in[0] == 'P' && (bytes_in[1] == '2' || bytes_in[1] == '5')) {
-    return decodePgm(bytes_in, file, rule);
+    return decodePgm(bytes_in, file, rule, check_size);
   }
   throw common::InputError(file, "",
                            "neither a PNG image nor a PGM image (P2 or P5): a floor plan image "
                            "must be one of them");
 }
 
-OccupancyImage readOccupancyImage(const std::string& path, const OccupancyRule& rule) {
-  return decodeOccupancyImage(common::readCheckedFile(path, kMaxRasterFileBytes), path, rule);
+OccupancyImage readOccupancyImage(const std::string& path, const OccupancyRule& rule,
+                                  const ImageSizeCheck& check_size) {
+  return decodeOccupancyImage(common::readCheckedFile(path, kMaxRasterFileBytes), path, rule,
+                              check_size);
 }
 
 }  // namespace isg::formats

@@ -1,6 +1,7 @@
 #pragma once
 
 #include <cstdint>
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -36,13 +37,20 @@ inline constexpr long long kMaxRasterPixels = 120'000'000;
 // The image file itself (compressed): at most this many bytes.
 inline constexpr std::uintmax_t kMaxRasterFileBytes = 512ull << 20;
 
+// Called with the image's width and height (pixels) as soon as its header is read, before any
+// pixel is decoded or held: the caller's own limits (a plan's extent at its resolution) throw
+// there, so that a small file declaring a huge image costs nothing.
+using ImageSizeCheck = std::function<void(long long width, long long height)>;
+
 // Reads PATH (PNG by its signature, else PGM by its magic number) and classifies every pixel.
 // A file that is neither, is truncated or malformed, or exceeds the limits above: an InputError
 // naming the file and what is wrong (with the byte offset for PGM).
-OccupancyImage readOccupancyImage(const std::string& path, const OccupancyRule& rule);
+OccupancyImage readOccupancyImage(const std::string& path, const OccupancyRule& rule,
+                                  const ImageSizeCheck& check_size = {});
 
 // The same from the file's bytes (what readOccupancyImage reads; the fuzzer's entry).
 OccupancyImage decodeOccupancyImage(const std::string& bytes, const std::string& file,
-                                    const OccupancyRule& rule);
+                                    const OccupancyRule& rule,
+                                    const ImageSizeCheck& check_size = {});
 
 }  // namespace isg::formats

@@ -9,6 +9,7 @@
 #include <utility>
 
 #include "common/input_error.hpp"
+#include "common/json_reader.hpp"
 
 namespace isg::formats {
 
@@ -24,6 +25,7 @@ using Database = std::unique_ptr<sqlite3, DatabaseCloser>;
 using Statement = std::unique_ptr<sqlite3_stmt, StatementFinalizer>;
 
 Database open(const std::string& file) {
+  common::checkRegularFile(file);
   sqlite3* raw = nullptr;
   const int status = sqlite3_open_v2(file.c_str(), &raw, SQLITE_OPEN_READONLY, nullptr);
   Database db(raw);
@@ -74,9 +76,11 @@ std::string textColumn(sqlite3_stmt* statement, int column) {
 
 Rosbag2Storage readRosbag2Metadata(const std::string& metadata_file) {
   namespace fs = std::filesystem;
+  // A bag's metadata is a few kB: 16 MiB is far beyond any, and keeps yaml-cpp's tree small.
+  const std::string text_of_file = common::readCheckedFile(metadata_file, 16u << 20);
   YAML::Node root;
   try {
-    root = YAML::LoadFile(metadata_file);
+    root = YAML::Load(text_of_file);
   } catch (const YAML::Exception& e) {
     throw common::InputError(metadata_file, "", std::string("not YAML: ") + e.what());
   }
@@ -155,8 +159,8 @@ Ros2Bag::Ros2Bag(const std::string& path) : path_(path) {
     if (files_.empty()) {
       throw common::InputError(path, "", "a folder without .db3 files, not a ROS 2 bag");
     }
-  } else if (fs::is_regular_file(path, error)) {
-    files_.push_back(path);
+  } else if (fs::exists(path, error)) {
+    files_.push_back(path);  // a file: open() refuses anything but a regular one, unopened
   } else {
     throw common::InputError(path, "", "no such file or folder");
   }

@@ -368,6 +368,10 @@ void RosbagReader::readChunkRecord(std::uint32_t k, std::uint64_t index_position
   const auto compression = record.fields.find(std::string_view("compression"));
   if (compression == record.fields.end() || !fieldValue(record.fields, "size", chunk.size))
     fail(position, "a chunk without compression or size");
+  if (chunk.size > kMaxChunkBytes)
+    fail(position, "a chunk of " + std::to_string(chunk.size) + " bytes uncompressed; at most " +
+                       std::to_string(kMaxChunkBytes) +
+                       " are read (docs/formats.md, \"Limits of recordings\")");
   chunk.compression = compression->second;
   if (chunk.compression != "none" && chunk.compression != "bz2" && chunk.compression != "lz4")
     fail(position, "chunk compression \"" + chunk.compression +
@@ -415,14 +419,9 @@ void RosbagReader::readChunkIndex(std::uint32_t k, std::uint32_t index_records) 
 }
 
 const std::string& RosbagReader::loadChunk(std::uint32_t k) {
-  ++uses_;
-  for (CachedChunk& cached : cache_) {
-    if (cached.chunk == k) {
-      cached.used = uses_;
-      return cached.bytes;
-    }
-  }
+  if (const std::string* held = cache_.find(k)) return *held;
   const Chunk& chunk = chunks_[k];
+  cache_.makeRoom(chunk.size);
   std::string stored;
   if (!readAt(*in_, chunk.data_offset, chunk.data_size, stored))
     fail(chunk.position, "cannot read the chunk's data");
@@ -438,15 +437,7 @@ const std::string& RosbagReader::loadChunk(std::uint32_t k) {
       fail(chunk.position, "the " + chunk.compression + " chunk does not decompress to its " +
                                std::to_string(chunk.size) + " bytes (" + error + ")");
   }
-  if (cache_.size() < kCachedChunks) {
-    cache_.push_back({k, uses_, std::move(bytes)});
-    return cache_.back().bytes;
-  }
-  CachedChunk& oldest =
-      *std::min_element(cache_.begin(), cache_.end(),
-                        [](const CachedChunk& a, const CachedChunk& b) { return a.used < b.used; });
-  oldest = {k, uses_, std::move(bytes)};
-  return oldest.bytes;
+  return cache_.insert(k, std::move(bytes));
 }
 
 RosTime RosbagReader::startTime() const {

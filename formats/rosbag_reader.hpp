@@ -8,6 +8,8 @@
 #include <string_view>
 #include <vector>
 
+#include "formats/chunk_cache.hpp"
+
 #include "formats/rosbag_writer.hpp"
 
 namespace isg::formats {
@@ -93,16 +95,9 @@ class RosbagReader {
   std::vector<Chunk> chunks_;
   std::vector<Entry> entries_;  // sorted by time, then file order
   std::vector<std::string> compressions_;
-  // The last few chunks read, uncompressed: topics recorded with different delays interleave
+  // The last chunks read, uncompressed: topics recorded with different delays interleave
   // neighbouring chunks in time, and each would otherwise be decompressed again and again.
-  struct CachedChunk {
-    std::uint32_t chunk = 0;
-    std::uint64_t used = 0;
-    std::string bytes;
-  };
-  static constexpr std::size_t kCachedChunks = 8;
-  std::vector<CachedChunk> cache_;
-  std::uint64_t uses_ = 0;
+  ChunkCache cache_{8};
 };
 
 }  // namespace isg::formats

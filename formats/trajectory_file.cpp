@@ -6,6 +6,7 @@
 #include <fstream>
 
 #include "common/input_error.hpp"
+#include "common/json_reader.hpp"
 #include "common/tum.hpp"
 
 namespace isg::formats {
@@ -24,6 +25,7 @@ common::Trajectory readTrajectoryFile(const std::string& path, bool require_pose
 }
 
 std::vector<double> readStampsFile(const std::string& path) {
+  common::checkRegularFile(path);
   std::ifstream in(path);
   if (!in) throw common::InputError(path, "", "cannot be read (no such file, or no permission)");
   std::vector<double> stamps;

@@ -21,19 +21,21 @@ using bim::Plan;
 using bim::Room;
 using bim::Wall;
 
-// The options a user gives, held to what a level can be before any pixel is traced.
-void checkOptions(const OccupancyImage& image, const std::string& file,
-                  const RasterPlanOptions& options) {
+}  // namespace
+
+void checkImageExtent(long long width, long long height, const std::string& file,
+                      const RasterPlanOptions& options) {
   if (!(options.resolution > 0.0) || options.resolution > 10.0) {
     throw common::InputError(file, "", "the resolution must be above 0 and at most 10 m a pixel");
   }
-  const double width_m = image.width * options.resolution,
-               height_m = image.height * options.resolution;
-  if (std::max(width_m, height_m) > 1000.0) {
+  const double width_m = double(width) * options.resolution,
+               height_m = double(height) * options.resolution;
+  if (std::max(width_m, height_m) > bim::limits::kMaxLevelExtent) {
     throw common::InputError(
         file, "",
-        "the image covers " + std::to_string(int(std::round(width_m))) + " m × " +
-            std::to_string(int(std::round(height_m))) +
+        "the image (" + std::to_string(width) + " × " + std::to_string(height) +
+            " pixels) covers " + std::to_string(std::llround(width_m)) + " m × " +
+            std::to_string(std::llround(height_m)) +
             " m at this resolution; a level fits in 1000 m × 1000 m (docs/formats.md, Limits): "
             "is the resolution in metres a pixel?");
   }
@@ -41,6 +43,8 @@ void checkOptions(const OccupancyImage& image, const std::string& file,
     throw common::InputError(file, "", "the wall height must lie in (0, 100] m");
   }
 }
+
+namespace {
 
 // Walls W1 …, columns C1 …, in the order traced.
 std::vector<std::string> tracedIds(const RasterWalls& traced, int& walls, int& columns) {
@@ -180,11 +184,12 @@ void writeAndReadBack(Level level, const std::string& file, const RasterPlanOpti
 RasterPlanImport rasterPlanFromImage(const OccupancyImage& image, const std::string& image_path,
                                      const RasterPlanOptions& options) {
   const std::string& file = options.from_file.empty() ? image_path : options.from_file;
-  checkOptions(image, file, options);
+  checkImageExtent(image.width, image.height, file, options);
   RasterWallOptions trace;
   trace.resolution = options.resolution;
   trace.origin = options.origin;
   trace.yaw = options.yaw;
+  trace.check_interrupt = options.check_interrupt;
   const RasterWalls traced = traceRasterWalls(image, trace);
 
   RasterPlanImport result;

@@ -1,6 +1,7 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <functional>
 #include <nlohmann/json.hpp>
 #include <string>
 #include <vector>
@@ -19,10 +20,11 @@ struct RasterPlanOptions {
   double resolution = 0.0;  // metres a pixel; required
   Eigen::Vector2d origin = Eigen::Vector2d::Zero();
   double yaw = 0.0;
-  double height = 3.0;                // the level's wall height
-  double door_height = 2.1;           // at most 90 % of the wall height
-  std::string source_kind = "image";  // for imported_from: "PNG image", "nav2 map", …
-  std::string from_file;              // the file named in imported_from (the YAML for a map)
+  double height = 3.0;                    // the level's wall height
+  double door_height = 2.1;               // at most 90 % of the wall height
+  std::string source_kind = "image";      // for imported_from: "PNG image", "nav2 map", …
+  std::string from_file;                  // the file named in imported_from (the YAML for a map)
+  std::function<void()> check_interrupt;  // RasterWallOptions::check_interrupt
 };
 
 struct RasterPlanImport {
@@ -32,6 +34,13 @@ struct RasterPlanImport {
   int width = 0, height = 0;     // the image's pixels
   int walls = 0, columns = 0, doors = 0, rooms = 0, pockets = 0, specks = 0;
 };
+
+// Fails unless an image of `width` × `height` pixels at the options' resolution fits a level
+// (docs/formats.md, Limits) and the options are in range: an InputError naming `file`. Checked on
+// the image's header, before its pixels are decoded (formats::ImageSizeCheck), and again on the
+// image given.
+void checkImageExtent(long long width, long long height, const std::string& file,
+                      const RasterPlanOptions& options);
 
 // The plan from an image read by formats/raster_image.hpp (the round-trip tests draw one); the
 // plan is read back by the plan's own parser before it is returned. Bad input (a floor beyond the

@@ -7,6 +7,7 @@
 #include <cstdint>
 #include <cstdio>
 #include <numeric>
+#include <unordered_map>
 
 #include "raster/raster_skeleton.hpp"
 
@@ -423,6 +424,12 @@ void addPiecesOfRegion(Trace& trace, const Region& region, int g) {
   }
 }
 
+// A junction of walls joins a handful of runs; a node of hundreds is a tangle (noise, hatching)
+// where comparing every run there with every other would cost their square (a 9 Mpx noise image:
+// minutes). At a node of more runs than this, each run is compared with the longest this many
+// only: exact wherever walls meet, bounded where they do not.
+constexpr std::size_t kMaxRunsAtJunction = 64;
+
 // The pieces as a graph of skeleton nodes: which pieces meet at each node, and nodes merged into
 // one where a run between them goes.
 class PieceGraph {
@@ -443,6 +450,14 @@ class PieceGraph {
     for (int i = 0; i < int(pieces_.size()); ++i) {
       if (pieces_[i].node_lo >= 0) pieces_at_[pieces_[i].node_lo].push_back(i);
       if (pieces_[i].node_hi >= 0) pieces_at_[pieces_[i].node_hi].push_back(i);
+    }
+    // Only the longest kMaxRunsAtJunction runs of a tangle are neighbours (see there).
+    for (auto& at : pieces_at_) {
+      if (at.size() <= kMaxRunsAtJunction) continue;
+      std::stable_sort(at.begin(), at.end(), [&](int a, int b) {
+        return pieces_[a].hi - pieces_[a].lo > pieces_[b].hi - pieces_[b].lo;
+      });
+      at.resize(kMaxRunsAtJunction);
     }
   }
 
@@ -590,12 +605,22 @@ void closeEnds(std::vector<Piece>& pieces,
                const PixelGrid& grid) {
   const double min_sine = std::sin(20.0 * kPi / 180.0);
   std::vector<Piece> before = pieces;  // ends set from the fitted lines, not from moved ends
+  std::vector<std::pair<int, int>> longest;
   for (const auto& group : at_node) {
+    const std::vector<std::pair<int, int>>* others = &group;
+    if (group.size() > kMaxRunsAtJunction) {  // a tangle: its longest runs only
+      longest = group;
+      std::stable_sort(longest.begin(), longest.end(), [&](const auto& a, const auto& b) {
+        return before[a.first].hi - before[a.first].lo > before[b.first].hi - before[b.first].lo;
+      });
+      longest.resize(kMaxRunsAtJunction);
+      others = &longest;
+    }
     for (const auto& [i, end] : group) {
       const Piece& mine = before[i];
       const double s_end = end == 0 ? mine.lo : mine.hi;
       double best_sine = 0.0, best_s = s_end;
-      for (const auto& [j, other_end] : group) {
+      for (const auto& [j, other_end] : *others) {
         if (j == i) continue;
         double s = 0.0;
         if (!crossing(mine, before[j], min_sine, &s)) continue;
@@ -616,14 +641,92 @@ void closeEnds(std::vector<Piece>& pieces,
   }
 }
 
+// The cells of a square grid each run's footprint (insideFootprint with `margin`) touches: the
+// footprint is an oriented rectangle, and each row of cells gets the span of columns the rectangle
+// crosses in that row, so a long diagonal run costs its cells, not its bounding box.
+class FootprintGrid {
+ public:
+  static constexpr double kCell = 16.0;  // pixels
+
+  // Each live run's footprint grown by margin(run) pixels.
+  template <typename Margin>
+  FootprintGrid(const std::vector<Piece>& pieces, const Margin& margin) {
+    for (int i = 0; i < int(pieces.size()); ++i) {
+      if (!pieces[i].alive) continue;
+      forEachCell(pieces[i], 0.5 * pieces[i].thickness + margin(pieces[i]),
+                  [&](std::int64_t cell) { cells_[cell].push_back(i); });
+    }
+  }
+
+  // The runs whose grown footprint may hold `p`.
+  const std::vector<int>& piecesNear(const Vec2& p) const {
+    const auto found = cells_.find(key(cellOf(p.x()), cellOf(p.y())));
+    return found == cells_.end() ? none_ : found->second;
+  }
+
+  // Every run whose grown footprint may meet `piece`'s axis (a run may come more than once).
+  template <typename Visit>
+  void forEachNearSegment(const Piece& piece, const Visit& visit) const {
+    forEachCell(piece, 0.5, [&](std::int64_t cell) {
+      const auto found = cells_.find(cell);
+      if (found == cells_.end()) return;
+      for (const int j : found->second) visit(j);
+    });
+  }
+
+ private:
+  // The cells an oriented rectangle meets: the axis from lo − half to hi + half, `half` either
+  // side; each row of cells gets the span of columns the rectangle's edges cross in that row.
+  template <typename Visit>
+  static void forEachCell(const Piece& piece, double half, const Visit& visit) {
+    const Vec2 a = piece.at(piece.lo - half), b = piece.at(piece.hi + half);
+    const Vec2 side = half * piece.normal();
+    const std::array<Vec2, 4> corner = {a - side, b - side, b + side, a + side};
+    double y_min = corner[0].y(), y_max = y_min;
+    for (const Vec2& c : corner) y_min = std::min(y_min, c.y()), y_max = std::max(y_max, c.y());
+    for (long row = cellOf(y_min); row <= cellOf(y_max); ++row) {
+      const double lo = std::max(y_min, double(row) * kCell);
+      const double hi = std::min(y_max, double(row + 1) * kCell);
+      double x_min = 1e300, x_max = -1e300;
+      for (int k = 0; k < 4; ++k) {  // the rectangle's edges clipped to the row's band
+        const Vec2& p = corner[k];
+        const Vec2& q = corner[(k + 1) % 4];
+        const double y0 = std::max(lo, std::min(p.y(), q.y()));
+        const double y1 = std::min(hi, std::max(p.y(), q.y()));
+        if (y0 > y1) continue;
+        if (q.y() == p.y()) {
+          x_min = std::min({x_min, p.x(), q.x()}), x_max = std::max({x_max, p.x(), q.x()});
+          continue;
+        }
+        for (const double y : {y0, y1}) {
+          const double x = p.x() + (q.x() - p.x()) * (y - p.y()) / (q.y() - p.y());
+          x_min = std::min(x_min, x), x_max = std::max(x_max, x);
+        }
+      }
+      for (long column = cellOf(x_min); column <= cellOf(x_max); ++column) {
+        visit(key(column, row));
+      }
+    }
+  }
+  static long cellOf(double v) { return long(std::floor(v / kCell)); }
+  static std::int64_t key(long column, long row) {
+    return (std::int64_t(row) << 32) ^ std::int64_t(std::uint32_t(column));
+  }
+  std::unordered_map<std::int64_t, std::vector<int>> cells_;
+  std::vector<int> none_;
+};
+
 // The runs that are walls: not inside another wall's solid (the skeleton's spurs at corners, its
 // bends at junctions), long enough, and not thicker than twice their length (thinning's tangle
 // where short walls and openings meet; what it leaves uncovered is said later).
 std::vector<Piece> wallRuns(std::vector<Piece>& pieces, const RasterWallOptions& options,
                             double r) {
+  // Which runs could hold a point: each run's footprint (margin included) in the cells of a
+  // grid it covers, so that a run is compared with the runs around its end, not with every run.
+  const FootprintGrid grid(pieces, [](const Piece&) { return 2.0; });
   for (int i = 0; i < int(pieces.size()); ++i) {
     if (!pieces[i].alive) continue;
-    for (int j = 0; j < int(pieces.size()); ++j) {
+    for (const int j : grid.piecesNear(pieces[i].at(pieces[i].lo))) {
       if (i == j || !pieces[j].alive || pieces[j].region != pieces[i].region) continue;
       if (pieces[j].hi - pieces[j].lo < pieces[i].hi - pieces[i].lo) continue;
       if (insideFootprint(pieces[j], pieces[i].at(pieces[i].lo), 2.0) &&
@@ -705,18 +808,58 @@ std::vector<std::vector<int>> collinearGroups(const std::vector<Piece>& kept, co
   };
   const double window = max_angle;
   const std::size_t n_angle = by_angle.size();
-  for (std::size_t a = 0; a < n_angle; ++a) {
-    for (std::size_t step = 1; step < n_angle; ++step) {
-      const std::size_t b = (a + step) % n_angle;
-      double difference = by_angle[b].first - by_angle[a].first;
+  // Each run is compared with the runs after it in angle order, up to the first beyond the
+  // window (cyclically: past π the angles start again). Comparing every such pair costs the
+  // square of the runs on a noisy image; only runs near each other can be one wall (their gap at
+  // most a door, their offset a few pixels), so the pairs are taken from a grid of the runs'
+  // footprints grown by that reach, and each is kept when the angle order would have reached it.
+  std::vector<std::size_t> position(n_angle);
+  std::vector<double> angles(n_angle);
+  for (std::size_t k = 0; k < n_angle; ++k) {
+    position[by_angle[k].second] = k;
+    angles[k] = by_angle[k].first;
+  }
+  // How many steps from position a the angle order goes before an angle beyond the window.
+  const auto reach = [&](std::size_t a) -> std::size_t {
+    const double angle = angles[a];
+    const auto first_beyond = std::size_t(
+        std::upper_bound(angles.begin() + a + 1, angles.end(), angle + window) - angles.begin());
+    if (first_beyond < n_angle) return first_beyond - a - 1;
+    // Past π: the angles below this one come round at angle + π, then those equal to it at 0.
+    const auto first_equal =
+        std::size_t(std::lower_bound(angles.begin(), angles.begin() + a, angle) - angles.begin());
+    const auto wrapped_beyond = std::size_t(
+        std::upper_bound(angles.begin(), angles.begin() + first_equal, angle + window - kPi) -
+        angles.begin());
+    if (wrapped_beyond < first_equal) return n_angle - 1 - a + wrapped_beyond;
+    return n_angle - 1;
+  };
+  const FootprintGrid near(kept, [&](const Piece& piece) {
+    return std::max(2.0, door_max) + std::max(2.0, 0.2 * piece.thickness) + 4.0;
+  });
+  std::vector<std::size_t> last_seen(kept.size(), kept.size());
+  for (std::size_t i = 0; i < kept.size(); ++i) {
+    const std::size_t a = position[i];
+    const std::size_t a_reach = reach(a);
+    const auto compare = [&](std::size_t from, std::size_t to) {  // positions, as the order goes
+      double difference = angles[to] - angles[from];
       if (difference < 0) difference += kPi;
-      if (difference > window) break;
-      const Piece& p = kept[by_angle[a].second];
-      const Piece& q = kept[by_angle[b].second];
-      if (difference > allowedTurn(p, q)) continue;
+      const Piece& p = kept[by_angle[from].second];
+      const Piece& q = kept[by_angle[to].second];
+      if (difference > allowedTurn(p, q)) return;
       if (oneWall(grid, p, q, door_min, door_max))
-        parent[root(by_angle[a].second)] = root(by_angle[b].second);
-    }
+        parent[root(by_angle[from].second)] = root(by_angle[to].second);
+    };
+    near.forEachNearSegment(kept[i], [&](int j) {
+      if (std::size_t(j) == i || last_seen[j] == i) return;
+      last_seen[j] = i;
+      // Compared in each direction the angle order goes from one to the other.
+      const std::size_t b = position[j];
+      const std::size_t steps = (b + n_angle - a) % n_angle;
+      if (steps <= a_reach) compare(a, b);
+      const std::size_t back = (a + n_angle - b) % n_angle;
+      if (back <= reach(b)) compare(b, a);  // a pair met twice is joined twice: no matter
+    });
   }
   std::vector<std::vector<int>> groups(kept.size());
   for (int i = 0; i < int(kept.size()); ++i) groups[root(i)].push_back(i);
@@ -873,20 +1016,31 @@ void reportUncovered(Trace& trace, const std::vector<Region>& regions) {
 // Regions → skeleton → pieces → joints → walls along collinear runs → what is left out; columns
 // and symbols are settled with their regions.
 RasterWalls traceRasterWalls(const OccupancyImage& image, const RasterWallOptions& options) {
+  const auto checkInterrupt = [&] {
+    if (options.check_interrupt) options.check_interrupt();
+  };
   Trace trace{image, options, options.resolution, PixelGrid{image}, {}, 0, {}, {}};
   const std::vector<Region> regions = occupiedRegions(image);
   trace.out.regions = int(regions.size());
   for (int g = 0; g < int(regions.size()); ++g) {
+    if (g % 64 == 0) checkInterrupt();
     if (!settledAsSpeckColumnOrSymbol(trace, regions[g])) addPiecesOfRegion(trace, regions[g], g);
   }
+  checkInterrupt();
   dropSpursAndBends(trace.pieces, trace.next_node);
   const auto at_node = endsByNode(trace.pieces);
   reportBends(trace, at_node);
+  checkInterrupt();
   closeEnds(trace.pieces, at_node, trace.grid);
+  checkInterrupt();
   const std::vector<Piece> kept = wallRuns(trace.pieces, options, trace.r);
-  for (const auto& group : collinearGroups(kept, trace.grid, options, trace.r)) {
+  checkInterrupt();
+  const auto groups = collinearGroups(kept, trace.grid, options, trace.r);
+  checkInterrupt();
+  for (const auto& group : groups) {
     if (!group.empty()) addWallsOfGroup(trace, kept, group);
   }
+  checkInterrupt();
   reportUncovered(trace, regions);
   return std::move(trace.out);
 }

@@ -1,6 +1,7 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -43,6 +44,9 @@ struct RasterWallOptions {
   // the image turned by `yaw` about it. The walls themselves stay in the image's own metres.
   Eigen::Vector2d origin = Eigen::Vector2d::Zero();
   double yaw = 0.0;
+  // Called between regions and between the passes: a command stops the trace there by throwing
+  // (its Ctrl-C), so no long image holds a user waiting. Nothing when empty.
+  std::function<void()> check_interrupt;
 };
 
 struct RasterWall {

@@ -11,7 +11,17 @@ namespace {
 // process-wide state the C signal interface forces on us.
 volatile std::sig_atomic_t received_signal = 0;
 
-extern "C" void raiseInterruptFlag(int signal_number) { received_signal = signal_number; }
+// The first signal raises the flag; a second one, while the command is still unwinding or is held
+// in a wait no check reaches (a system call that does not return), ends the process at once, as
+// the signal's default does: no wait outlasts a second Ctrl-C. Only async-signal-safe calls.
+extern "C" void raiseInterruptFlag(int signal_number) {
+  if (received_signal != 0) {
+    std::signal(signal_number, SIG_DFL);
+    std::raise(signal_number);
+    return;
+  }
+  received_signal = signal_number;
+}
 
 }  // namespace
 

@@ -76,6 +76,40 @@ TEST(StartPose, AMethodThatTakesNoneRefusesItAndABadPoseIsBadUsage) {
       << malformed.err;
 }
 
+// A pose no walk through the plan could start at is refused before any localizer sees it: 4e38
+// aborted ndt-ukf inside PCL, 1e300 wrote rows cut short and metrics of nulls; strtod's
+// hexadecimal and a yaw in degrees are no start pose either.
+TEST(StartPose, APoseOffThePlanOrNotWrittenInDecimalIsRefused) {
+  testing::Sandbox sandbox("start_pose_range");
+  for (const char* method : {"is-graphs", "ndt-ukf"}) {
+    for (const char* pose : {"4e38,0,0", "1e300,0,0"}) {
+      const auto far = sandbox.run(std::string("run builtin:d1 --method ") + method +
+                                   " --start-pose " + pose + " --duration 5 -q -o r");
+      EXPECT_EQ(far.exit_code, 1) << method << " " << pose;
+      EXPECT_EQ(far.err, std::string("isg run: error: --start-pose: the position ") +
+                             std::string(pose).substr(0, std::string(pose).rfind(',')) +
+                             " is not within 100 m of the plan's walls (x -0.150 … 12.150, y "
+                             "-0.150 … 8.150): the start pose is in the plan's frame\n");
+      EXPECT_FALSE(sandbox.exists("r"));
+    }
+  }
+  const auto degrees = sandbox.run("run builtin:d1 --start-pose 1,2,90 --duration 5 -q -o r");
+  EXPECT_EQ(degrees.exit_code, 1);
+  EXPECT_EQ(degrees.err,
+            "isg run: error: --start-pose: yaw 90 is not within ±2π: the yaw is in radians\n");
+  for (const char* text : {"0x10,0,0", "nan,0,0", "1,inf,0", " 1,2,0"}) {
+    const auto hex =
+        sandbox.run(std::string("run builtin:d1 --start-pose '") + text + "' --duration 5 -q -o r");
+    EXPECT_EQ(hex.exit_code, 2) << text;
+    EXPECT_NE(hex.err.find(std::string("--start-pose: expected X,Y,YAW (three numbers) or "
+                                       "'truth', not '") +
+                           text + "'"),
+              std::string::npos)
+        << hex.err;
+  }
+  EXPECT_FALSE(sandbox.exists("r"));
+}
+
 TEST(StartPose, ADatasetReplayedStartsWhereItIsTold) {
   testing::Sandbox sandbox("start_pose_slam");
   ASSERT_EQ(sandbox.run("simulate builtin:d1.asbuilt --duration 20 -q -o data").exit_code, 0);

@@ -2,6 +2,7 @@
 
 #include <cmath>
 #include <cstdio>
+#include <filesystem>
 #include <nlohmann/json.hpp>
 #include <numbers>
 #include <string>
@@ -128,6 +129,18 @@ TEST(WalkReplay, AWalkThatCannotBeWalkedIsRefusedNamingItsLine) {
                     "{\"trajectory\": \"walk.tum\", \"orientation\": \"ahead\"}"),
             "isg run: error: s.json: /robot/route/orientation: unknown orientation \"ahead\" "
             "(expected \"travel\" or \"file\")\n");
+  // Every pose is held while the run goes: a file beyond 64 MiB is refused before it is read (a
+  // sparse file here: its size is all that is looked at).
+  sandbox.write("s.json", scenarioWith("d1", "handheld", "{\"trajectory\": \"walk.tum\"}"));
+  sandbox.write("walk.tum", "0 2 2 0 0 0 0 1\n");
+  std::filesystem::resize_file(sandbox.dir() / "walk.tum", 65ull << 20);
+  const auto huge = sandbox.run("run s.json -q -o r");
+  EXPECT_EQ(huge.exit_code, 1);
+  EXPECT_EQ(huge.err,
+            "isg run: error: walk.tum: the walk's file is 68157440 bytes; at most 67108864 are "
+            "read (docs/simulation.md, \"Replayed walks\"): thin it out (a pose every 0.01 s is "
+            "plenty) or cut it\n");
+  EXPECT_FALSE(sandbox.exists("r"));
 }
 
 TEST(WalkReplay, AWallNotBuiltYetIsWalkedThrough) {

@@ -146,6 +146,20 @@ TEST(McapReader, DamageIsAnErrorNamingItsByte) {
       << mcapErrorOf(chunked);
 }
 
+// A chunk's declared size is checked before anything is allocated for it: a few bytes that say
+// they hold 1 GiB (a decompression bomb) are refused at once, naming the chunk's byte.
+TEST(McapReader, AChunkDeclaringMoreThanTheLimitIsRefusedBeforeItIsRead) {
+  const std::string chunk = num(std::uint64_t(0)) + num(std::uint64_t(0)) +
+                            num(std::uint64_t(kMaxChunkBytes + 1)) + num(std::uint32_t(0)) +
+                            str("zstd") + num(std::uint64_t(4)) + "zstd";
+  const std::string bytes = handMade(record(0x06, chunk));
+  const std::size_t at = bytes.find(std::string(1, '\x06') + num(std::uint64_t(chunk.size())));
+  EXPECT_EQ(mcapErrorOf(bytes), "t.mcap: byte " + std::to_string(at) + ": a chunk of " +
+                                    std::to_string(kMaxChunkBytes + 1) +
+                                    " bytes uncompressed; at most 268435456 are read "
+                                    "(docs/formats.md, \"Limits of recordings\")");
+}
+
 // The oracle: a file that npm's @mcap/core wrote (zstd chunks, CDR from
 // @foxglove/rosmsg2-serialization, channel ids from 0), through formats/tests/npm_mcap_writer.js.
 // Skipped where node or the npm oracles (ci/install-deps) are not installed.

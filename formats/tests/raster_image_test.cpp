@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 #include <png.h>
 
+#include <algorithm>
 #include <string>
 #include <vector>
 
@@ -120,6 +121,91 @@ TEST(RasterImage, PngChannelsAveragedAsMapServerDoes) {
   EXPECT_EQ(raws.at(0, 0), Class::kOccupied);
   EXPECT_EQ(raws.at(1, 0), Class::kFree);
   EXPECT_EQ(raws.at(2, 0), Class::kUnknown);
+}
+
+// A PNG of `depth` bits a sample (grey, or palette indices when `palette` is given), written with
+// libpng's full interface: the simplified one writes 8 bits only. Samples row by row from the top.
+std::string packedPngOf(int width, int height, int depth, const std::vector<png_color>& palette,
+                        const std::vector<unsigned char>& samples) {
+  std::string out;
+  png_structp png = png_create_write_struct(PNG_LIBPNG_VER_STRING, nullptr, nullptr, nullptr);
+  png_infop info = png_create_info_struct(png);
+  png_set_write_fn(
+      png, &out,
+      [](png_structp p, png_bytep data, png_size_t n) {
+        static_cast<std::string*>(png_get_io_ptr(p))->append(reinterpret_cast<char*>(data), n);
+      },
+      nullptr);
+  png_set_IHDR(png, info, png_uint_32(width), png_uint_32(height), depth,
+               palette.empty() ? PNG_COLOR_TYPE_GRAY : PNG_COLOR_TYPE_PALETTE, PNG_INTERLACE_NONE,
+               PNG_COMPRESSION_TYPE_DEFAULT, PNG_FILTER_TYPE_DEFAULT);
+  if (!palette.empty()) png_set_PLTE(png, info, palette.data(), int(palette.size()));
+  png_set_check_for_invalid_index(png, 0);  // the bad palette index below is written as asked
+  png_set_compression_level(png, 9);
+  png_write_info(png, info);
+  png_set_packing(png);  // one sample a byte in, `depth` bits a sample out
+  std::vector<unsigned char> row(static_cast<std::size_t>(width));
+  for (int r = 0; r < height; ++r) {
+    std::copy_n(samples.begin() + std::ptrdiff_t(r) * width, width, row.begin());
+    png_write_row(png, row.data());
+  }
+  png_write_end(png, nullptr);
+  png_destroy_write_struct(&png, &info);
+  return out;
+}
+
+// Plans drawn at 1, 2 or 4 bits compress far better than at 8: they were refused as truncated,
+// judged on their rows widened to bytes. Each decodes as the same plan at 8 bits does; an index
+// past the palette is an error naming the pixel, not a black one.
+TEST(RasterImage, LowBitDepthAndPalettePngsReadAsTheirEightBitPlan) {
+  const int width = 2000, height = 2000;  // a dark frame 10 px wide round a light floor
+  const auto dark = [&](int c, int r) {
+    return c < 10 || r < 10 || c >= width - 10 || r >= height - 10;
+  };
+  std::vector<unsigned char> grey8(std::size_t(width) * height);
+  for (int r = 0; r < height; ++r) {
+    for (int c = 0; c < width; ++c) grey8[std::size_t(r) * width + c] = dark(c, r) ? 0 : 255;
+  }
+  const OccupancyImage expected =
+      decodeOccupancyImage(pngOf(width, height, PNG_FORMAT_GRAY, grey8), "floor.png", {});
+  const std::vector<png_color> black_white = {{0, 0, 0}, {255, 255, 255}};
+  for (const int depth : {1, 2, 4}) {
+    std::vector<unsigned char> grey(grey8.size()), index(grey8.size());
+    for (std::size_t k = 0; k < grey8.size(); ++k) {
+      grey[k] = grey8[k] ? (1 << depth) - 1 : 0;
+      index[k] = grey8[k] ? 1 : 0;
+    }
+    const std::string grey_png = packedPngOf(width, height, depth, {}, grey);
+    const std::string palette_png = packedPngOf(width, height, depth, black_white, index);
+    EXPECT_LT(grey_png.size(), 5000u);  // compressed past what an 8-bit row could be
+    EXPECT_EQ(decodeOccupancyImage(grey_png, "floor.png", {}).pixels, expected.pixels) << depth;
+    EXPECT_EQ(decodeOccupancyImage(palette_png, "floor.png", {}).pixels, expected.pixels) << depth;
+  }
+  std::vector<unsigned char> beyond = {1, 0, 1, 5, 0, 1};  // index 5 of a palette of 2
+  const std::string bad = packedPngOf(3, 2, 8, black_white, beyond);
+  const std::string error = imageErrorOf(bad);
+  EXPECT_EQ(error.substr(0, error.find(" (near byte")),
+            "floor.pgm: not a readable PNG image: the pixel at column 0, row 1 has palette index "
+            "5; the palette holds 2 colours");
+}
+
+// The caller's size check sees the header's width and height before any pixel is decoded: a
+// small file declaring a huge image costs nothing.
+TEST(RasterImage, TheCallersSizeCheckRunsOnTheHeader) {
+  const auto refuseAll = [](long long width, long long height) {
+    throw common::InputError("floor.png", "",
+                             std::to_string(width) + " × " + std::to_string(height));
+  };
+  std::vector<unsigned char> grey(12, 0);
+  for (const std::string& image :
+       {pngOf(4, 3, PNG_FORMAT_GRAY, grey), std::string("P5 4 3 255\n") + std::string(12, '\0')}) {
+    try {
+      decodeOccupancyImage(image, "floor.png", {}, refuseAll);
+      ADD_FAILURE() << "decoded";
+    } catch (const common::InputError& e) {
+      EXPECT_EQ(std::string(e.what()), "floor.png: 4 × 3");
+    }
+  }
 }
 
 std::string yamlError(const std::string& text) {

@@ -199,6 +199,14 @@ TEST(RosbagReader, RefusesDamagedBagsWithTheReason) {
             std::string::npos)
       << bagErrorOf(moved);
   EXPECT_THROW(RosbagReader((dir / "missing.bag").string()), common::InputError);
+  // A chunk that declares more than a chunk may hold is refused before it is read (ROS 1 chunk
+  // sizes had no cap: a 17.5 kB bag of bz2 zeros cost gigabytes).
+  const std::uint32_t too_large = std::uint32_t(kMaxChunkBytes + 1);
+  EXPECT_EQ(
+      bagErrorOf(patched(bag, "size", std::string(reinterpret_cast<const char*>(&too_large), 4))),
+      "x.bag: byte " + std::to_string(chunk) + ": a chunk of " + std::to_string(too_large) +
+          " bytes uncompressed; at most 268435456 are read (docs/formats.md, \"Limits of "
+          "recordings\")");
   // A compressed chunk that claims one byte more, or one less, than its data holds.
   for (const std::string compression : {"bz2", "lz4"}) {
     const std::string python =
