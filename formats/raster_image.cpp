@@ -179,6 +179,27 @@ struct PngHandles {
   ~PngHandles() { png_destroy_read_struct(&png, info ? &info : nullptr, nullptr); }
 };
 
+// A palette image's colours classed once each (the tRNS alpha with them); its palette's size.
+// Called between setjmp and the end: it owns nothing a longjmp could skip.
+int paletteClasses(png_structp png, png_infop info, const OccupancyRule& rule,
+                   std::array<PixelClass, 256>& palette_class) {
+  png_colorp palette = nullptr;
+  int palette_size = 0;
+  if (png_get_PLTE(png, info, &palette, &palette_size) != PNG_INFO_PLTE) {
+    png_error(png, "a palette image without its palette (PLTE)");
+  }
+  png_bytep trans = nullptr;
+  int trans_count = 0;
+  png_get_tRNS(png, info, &trans, &trans_count, nullptr);
+  const bool has_alpha = trans != nullptr && trans_count > 0;
+  for (int k = 0; k < palette_size; ++k) {
+    const double mean = (palette[k].red + palette[k].green + palette[k].blue) / 3.0 / 255.0;
+    const double alpha = has_alpha && k < trans_count ? trans[k] / 255.0 : 1.0;
+    palette_class[std::size_t(k)] = classifyPixel(mean, alpha, has_alpha, rule);
+  }
+  return palette_size;
+}
+
 // Everything between setjmp and the end lives in `image` and `row`, owned outside, so that a
 // longjmp out of libpng skips no destructor.
 bool decodePngRows(PngHandles& handles, PngError& error, PngSource& source, const std::string& file,
@@ -211,19 +232,7 @@ bool decodePngRows(PngHandles& handles, PngError& error, PngSource& source, cons
   std::array<PixelClass, 256> palette_class{};
   int palette_size = 0;
   if (indexed) {
-    png_colorp palette = nullptr;
-    if (png_get_PLTE(png, info, &palette, &palette_size) != PNG_INFO_PLTE) {
-      png_error(png, "a palette image without its palette (PLTE)");
-    }
-    png_bytep trans = nullptr;
-    int trans_count = 0;
-    png_get_tRNS(png, info, &trans, &trans_count, nullptr);
-    for (int k = 0; k < palette_size; ++k) {
-      const double mean = (palette[k].red + palette[k].green + palette[k].blue) / 3.0 / 255.0;
-      const bool has_alpha = trans != nullptr && trans_count > 0;
-      const double alpha = has_alpha && k < trans_count ? trans[k] / 255.0 : 1.0;
-      palette_class[std::size_t(k)] = classifyPixel(mean, alpha, has_alpha, rule);
-    }
+    palette_size = paletteClasses(png, info, rule, palette_class);
     png_set_packing(png);
   } else {
     if (colour == PNG_COLOR_TYPE_GRAY && png_get_bit_depth(png, info) < 8) {
