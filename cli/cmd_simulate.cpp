@@ -2,6 +2,7 @@
 
 #include <chrono>
 #include <cstdio>
+#include <filesystem>
 #include <iostream>
 #include <vector>
 
@@ -110,14 +111,26 @@ int SimulateCommand::run() {
       summary.scan_bytes / 1e6, pcd_.c_str(), summary.sim_seconds, summary.wall_seconds,
       summary.wall_seconds > 0 ? summary.sim_seconds / summary.wall_seconds : 0.0,
       common::counted(simulation.route().visited_rooms.size(), "room").c_str());
-  if (!rosbag_.empty()) {
-    exportRosbagWithProgress("isg simulate", output_, rosbag_, stamp_offset_,
-                             cloud_layout_ == "velodyne", force_, quiet_);
-  }
-  if (!mcap_.empty()) {
-    exportMcapWithProgress("isg simulate", output_, mcap_, stamp_offset_,
-                           cloud_layout_ == "velodyne", mcapCompression(compression_), force_,
-                           quiet_);
+  // The command writes the dataset and its recordings, or nothing: when a recording cannot be
+  // written (a full disk, Ctrl-C), what this run wrote before it goes again.
+  std::vector<std::string> written = {output_};
+  try {
+    if (!rosbag_.empty()) {
+      exportRosbagWithProgress("isg simulate", output_, rosbag_, stamp_offset_,
+                               cloud_layout_ == "velodyne", force_, quiet_);
+      written.push_back(rosbag_);
+    }
+    if (!mcap_.empty()) {
+      exportMcapWithProgress("isg simulate", output_, mcap_, stamp_offset_,
+                             cloud_layout_ == "velodyne", mcapCompression(compression_), force_,
+                             quiet_);
+    }
+  } catch (...) {
+    for (const auto& path : written) {
+      std::error_code ignored;
+      std::filesystem::remove_all(path, ignored);
+    }
+    throw;
   }
   return kExitOk;
 }

@@ -270,12 +270,15 @@ void writeFileAtomically(const std::string& path, const std::string& content) {
     if (!out) {
       throw common::InputError(path, "", std::string("cannot write: ") + std::strerror(errno));
     }
+    errno = 0;
     out << content;
     out.flush();
     if (!out) {
+      // The stream keeps no reason; the failed write(2) left it in errno (a full disk, a quota).
+      const std::string reason = errno != 0 ? std::strerror(errno) : "write failed";
       std::error_code ignored;
       fs::remove(temporary, ignored);
-      throw common::InputError(path, "", "cannot write: write failed");
+      throw common::InputError(path, "", "cannot write: " + reason);
     }
   }
   std::error_code error;

@@ -4,8 +4,12 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <optional>
 #include <sstream>
 #include <stdexcept>
+#include <string_view>
+
+#include "common/decimal_number.hpp"
 
 namespace isg::common {
 
@@ -116,15 +120,28 @@ Trajectory parseTum(const std::string& text, const std::string& file, std::vecto
     ++number;
     const auto first = line.find_first_not_of(" \t\r");
     if (first == std::string::npos || line[first] == '#') continue;
-    std::istringstream fields(line);
     double v[8];
-    for (double& x : v) {
-      if (!(fields >> x) || !std::isfinite(x)) {
-        throw TumError(file, number, "expected 8 numbers: t tx ty tz qx qy qz qw");
+    std::size_t at = first;
+    const auto nextField = [&]() -> std::string_view {
+      while (at < line.size() && (line[at] == ' ' || line[at] == '\t' || line[at] == '\r')) ++at;
+      const std::size_t from = at;
+      while (at < line.size() && line[at] != ' ' && line[at] != '\t' && line[at] != '\r') ++at;
+      return std::string_view(line).substr(from, at - from);
+    };
+    for (int k = 0; k < 8; ++k) {
+      const std::string_view field = nextField();
+      if (field.empty()) throw TumError(file, number, "expected 8 numbers: t tx ty tz qx qy qz qw");
+      const std::optional<double> value = parseDecimal(field);
+      if (!value) {
+        const std::string shown(field.substr(0, 40));
+        throw TumError(file, number,
+                       "field " + std::to_string(k + 1) + " (\"" + shown +
+                           "\") is not a finite decimal number; expected 8 numbers: t tx ty tz "
+                           "qx qy qz qw");
       }
+      v[k] = *value;
     }
-    std::string extra;
-    if (fields >> extra) throw TumError(file, number, "more than 8 fields");
+    if (!nextField().empty()) throw TumError(file, number, "more than 8 fields");
     const auto outOfRange = [&](const char* what, double value, const char* limit) {
       char message[160];
       std::snprintf(message, sizeof message, "%s %g is out of range (%s)", what, value, limit);

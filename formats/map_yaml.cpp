@@ -5,6 +5,7 @@
 #include <map>
 #include <vector>
 
+#include "common/decimal_number.hpp"
 #include "common/input_error.hpp"
 #include "common/json_reader.hpp"
 
@@ -96,14 +97,10 @@ class MapYamlEntries {
   }
 
   double number(const std::string& key, const std::string& text_value, int line) const {
-    std::size_t used = 0;
-    double value = 0.0;
-    try {
-      value = std::stod(text_value, &used);
-    } catch (const std::exception&) {
-      used = 0;
-    }
-    if (used != text_value.size() || !std::isfinite(value)) {
+    // Decimal only: an empty element ("origin: [, , ]") is no zero, and "0x10" no sixteen.
+    const std::optional<double> number = common::parseDecimal(text_value);
+    const double value = number.value_or(0.0);
+    if (!number) {
       throw common::InputError(
           path_, "/" + key,
           "line " + std::to_string(line) + ": \"" + text_value + "\" is not a finite number");

@@ -323,7 +323,11 @@ void McapWriter::close() {
   put(footer_prefix.bytes() + footer_crc.bytes());
   put(kMagic);
   out_.close();
-  if (!out_) throw common::InputError(file_.path().string(), "", "cannot write: write failed");
+  if (!out_) {  // the failed write(2) left its reason in errno (a full disk, a quota)
+    throw common::InputError(
+        file_.path().string(), "",
+        std::string("cannot write: ") + (errno != 0 ? std::strerror(errno) : "write failed"));
+  }
   file_.commit();
   closed_ = true;
 }

@@ -1,6 +1,7 @@
 #include "formats/rosbag_writer.hpp"
 
 #include <bit>
+#include <cerrno>
 #include <cmath>
 #include <cstring>
 #include <stdexcept>
@@ -154,7 +155,11 @@ void RosbagWriter::close() {
   out_ << bagHeaderRecord(index_position, std::uint32_t(connections_.size()),
                           std::uint32_t(chunks_.size()));
   out_.close();
-  if (!out_) throw common::InputError(file_.path().string(), "", "cannot write: write failed");
+  if (!out_) {  // the failed write(2) left its reason in errno (a full disk, a quota)
+    throw common::InputError(
+        file_.path().string(), "",
+        std::string("cannot write: ") + (errno != 0 ? std::strerror(errno) : "write failed"));
+  }
   file_.commit();
   closed_ = true;
 }

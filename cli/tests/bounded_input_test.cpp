@@ -131,6 +131,13 @@ TEST(BoundedInput, OtherImagesAndOddMapYamlsAreSaidAsTheyAre) {
   EXPECT_EQ(result.err,
             "isg import: error: empty.yaml: /image: line 1: the image is empty: name the map's "
             "PNG or PGM file\n");
+  sandbox.write("blank.yaml",
+                "image: floor.pgm\nresolution: 0.05\norigin: [, , ]\noccupied_thresh: 0.65\n"
+                "free_thresh: 0.25\nnegate: 0\n");
+  result = sandbox.run("import blank.yaml -o plan.json");
+  EXPECT_EQ(result.exit_code, 1);
+  EXPECT_EQ(result.err,
+            "isg import: error: blank.yaml: /origin/0: line 3: \"\" is not a finite number\n");
   EXPECT_FALSE(sandbox.exists("plan.json"));
 }
 

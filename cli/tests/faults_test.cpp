@@ -290,6 +290,19 @@ TEST_F(FullDisk, SimulateOnAFullDiskIsAnErrorAndLeavesNothing) {
   EXPECT_TRUE(entries(mount_point_).empty());
 }
 
+// The bag cannot be written: the dataset written before it goes too, and the message says why.
+TEST_F(FullDisk, SimulateWhoseBagFillsTheDiskLeavesNeitherBagNorDataset) {
+  if (!mount("size=1m")) GTEST_SKIP() << "cannot mount tmpfs here";
+  testing::Sandbox sandbox("faults_full_disk_bag");
+  const auto result = sandbox.run("simulate builtin:d1 --duration 5 -q -o ds --rosbag " +
+                                  (mount_point_ / "ds.bag").string());
+  EXPECT_EQ(result.exit_code, 1);
+  EXPECT_NE(result.err.find(": cannot write: No space left on device\n"), std::string::npos)
+      << result.err;
+  EXPECT_FALSE(sandbox.exists("ds"));
+  EXPECT_TRUE(entries(mount_point_).empty());
+}
+
 TEST_F(FullDisk, ReadOnlyOutputIsAnErrorBeforeTheRun) {
   if (!mount("ro,size=1m")) GTEST_SKIP() << "cannot mount tmpfs here";
   testing::Sandbox sandbox("faults_read_only");

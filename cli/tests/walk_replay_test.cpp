@@ -118,7 +118,11 @@ TEST(WalkReplay, AWalkThatCannotBeWalkedIsRefusedNamingItsLine) {
   EXPECT_EQ(refused("0 2 2 0 0 0 0 1\n"),
             "isg run: error: walk.tum: one pose only: a walk needs two or more\n");
   EXPECT_EQ(refused("0 2 2 0 0 0 0 1\n1 2 x 0 0 0 0 1\n"),
-            "isg run: error: walk.tum: line 2: expected 8 numbers: t tx ty tz qx qy qz qw\n");
+            "isg run: error: walk.tum: line 2: field 3 (\"x\") is not a finite decimal number; "
+            "expected 8 numbers: t tx ty tz qx qy qz qw\n");
+  EXPECT_EQ(refused("0 2 2 0 0 0 0 1\n1 nan 2 0 0 0 0 1\n"),
+            "isg run: error: walk.tum: line 2: field 2 (\"nan\") is not a finite decimal "
+            "number; expected 8 numbers: t tx ty tz qx qy qz qw\n");
   EXPECT_EQ(refused("0 2 2 0 0 0 0 1\n1 2.5 2 0 0 0 0 1\n", ", \"start\": {\"room\": \"R1\"}"),
             "isg run: error: s.json: /robot/start: robot.start does not go with a trajectory "
             "route: it starts at its file's first pose\n");
