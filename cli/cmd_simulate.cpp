@@ -66,6 +66,16 @@ SimulateCommand::SimulateCommand(CLI::App& parent) {
 }
 
 int SimulateCommand::run() {
+  // Options about the recordings do nothing without one: said, as CLI11 says --compression's.
+  for (const char* option : {"--cloud-layout", "--stamp-offset"}) {
+    if (app_->count(option) > 0 && rosbag_.empty() && mcap_.empty()) {
+      std::fprintf(stderr,
+                   "isg: %s requires --rosbag or --mcap (it lays out their messages)\nRun 'isg "
+                   "--help' (or 'isg COMMAND --help') for usage.\n",
+                   option);
+      return kExitUsage;
+    }
+  }
   bim::Scenario scenario = loadInput(input_, "simulate");
   if (seed_) scenario.seed = *seed_;
   useLidarModelOption(scenario, lidar_model_);

@@ -2,6 +2,7 @@
 
 #include <Eigen/Geometry>
 #include <cmath>
+#include <cstdio>
 #include <filesystem>
 
 #include "bim/free_space_rooms.hpp"
@@ -88,7 +89,8 @@ void addWallsAndColumns(const RasterWalls& traced, const std::vector<std::string
   for (std::size_t k = 0; k < traced.walls.size(); ++k) {
     const RasterWall& traced_wall = traced.walls[k];
     const Eigen::Vector2d start = placed(traced_wall.start), end = placed(traced_wall.end);
-    const double thickness = std::clamp(traced_wall.thickness, 0.001, 10.0);
+    // Clamped to what a plan holds; a wall clamped is said (rasterPlanFromImage).
+    const double thickness = std::clamp(traced_wall.thickness, 0.001, bim::limits::kMaxThickness);
     if (traced_wall.kind != RasterWall::Kind::kWall) {
       level.columns.push_back(
           tracedColumn(traced_wall, id_of[k], start, end, thickness, options.height));
@@ -211,6 +213,16 @@ RasterPlanImport rasterPlanFromImage(const OccupancyImage& image, const std::str
     level.rooms.push_back(std::move(room));
   }
   logLeftOut(traced, rooms, result.log);
+  for (std::size_t k = 0; k < traced.walls.size(); ++k) {
+    if (traced.walls[k].thickness <= bim::limits::kMaxThickness) continue;
+    char text[200];
+    std::snprintf(text, sizeof text,
+                  "%s is traced %.2f m thick: a plan's walls and columns are at most %.0f m, so it "
+                  "is written %.0f m thick (a filled area drawn dark?)",
+                  id_of[k].c_str(), traced.walls[k].thickness, bim::limits::kMaxThickness,
+                  bim::limits::kMaxThickness);
+    result.log.push_back(text);
+  }
   result.walls = walls, result.columns = columns, result.doors = doors;
   result.rooms = int(level.rooms.size()), result.pockets = rooms.pockets;
   writeAndReadBack(std::move(level), file, options, result);

@@ -141,5 +141,39 @@ TEST(BoundedInput, OtherImagesAndOddMapYamlsAreSaidAsTheyAre) {
   EXPECT_FALSE(sandbox.exists("plan.json"));
 }
 
+// A dark region thicker than a plan's walls may be is written at the limit, and said.
+TEST(BoundedInput, ARegionThickerThanAWallMayBeIsSaid) {
+  testing::Sandbox sandbox("bounded_thick");
+  const int width = 400, height = 300;  // at 0.1 m: a dark band 30 m × 12 m
+  std::string pgm = "P5\n" + std::to_string(width) + " " + std::to_string(height) + "\n255\n";
+  for (int r = 0; r < height; ++r) {
+    for (int c = 0; c < width; ++c) {
+      pgm += (c >= 50 && c < 350 && r >= 90 && r < 210) ? '\0' : '\xff';
+    }
+  }
+  sandbox.write("thick.pgm", pgm);
+  const auto result = sandbox.run("import thick.pgm --resolution 0.1 -o plan.json");
+  ASSERT_EQ(result.exit_code, 0) << result.err;
+  EXPECT_NE(result.err.find("  W1 is traced 12.00 m thick: a plan's walls and columns are at "
+                            "most 10 m, so it is written 10 m thick (a filled area drawn dark?)\n"),
+            std::string::npos)
+      << result.err;
+}
+
+// Options that do nothing where they are given are said, not ignored.
+TEST(BoundedInput, ARecordingsOptionWithoutARecordingIsBadUsage) {
+  testing::Sandbox sandbox("bounded_unused_options");
+  for (const char* option : {"--cloud-layout velodyne", "--stamp-offset 5"}) {
+    const auto result =
+        sandbox.run(std::string("simulate builtin:d1 --duration 1 -q -o ds ") + option);
+    EXPECT_EQ(result.exit_code, 2) << option;
+    const std::string name = std::string(option).substr(0, std::string(option).find(' '));
+    EXPECT_EQ(result.err, "isg: " + name +
+                              " requires --rosbag or --mcap (it lays out their messages)\nRun "
+                              "'isg --help' (or 'isg COMMAND --help') for usage.\n");
+    EXPECT_FALSE(sandbox.exists("ds"));
+  }
+}
+
 }  // namespace
 }  // namespace isg::cli
