@@ -18,6 +18,13 @@ namespace isg::formats {
 
 namespace {
 
+// A write that failed, with the reason the failed write(2) left in errno (a full disk, a quota).
+common::InputError writeFailure(const std::string& path) {
+  return common::InputError(
+      path, "",
+      std::string("cannot write: ") + (errno != 0 ? std::strerror(errno) : "write failed"));
+}
+
 static_assert(std::endian::native == std::endian::little,
               "MCAP here is written as the host lays it");
 
@@ -323,11 +330,7 @@ void McapWriter::close() {
   put(footer_prefix.bytes() + footer_crc.bytes());
   put(kMagic);
   out_.close();
-  if (!out_) {  // the failed write(2) left its reason in errno (a full disk, a quota)
-    throw common::InputError(
-        file_.path().string(), "",
-        std::string("cannot write: ") + (errno != 0 ? std::strerror(errno) : "write failed"));
-  }
+  if (!out_) throw writeFailure(file_.path().string());
   file_.commit();
   closed_ = true;
 }
