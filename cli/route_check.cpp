@@ -5,6 +5,7 @@
 
 #include "common/input_error.hpp"
 #include "common/json_reader.hpp"
+#include "common/plural.hpp"
 
 namespace isg::cli {
 
@@ -18,9 +19,13 @@ constexpr double kWalkDeviationWarning = 0.05;  // m
 double checkRoute(const std::string& command, const bim::Scenario& scenario,
                   const sim::Simulation& simulation, double duration) {
   const auto& route = simulation.route();
-  for (const auto& room : route.skipped_rooms) {
+  // One line however many: the first ten by name and the count.
+  if (route.skipped_rooms.size() == 1) {
     std::fprintf(stderr, "%s: warning: room %s cannot be reached; the tour skips it\n",
-                 command.c_str(), room.c_str());
+                 command.c_str(), route.skipped_rooms.front().c_str());
+  } else if (!route.skipped_rooms.empty()) {
+    std::fprintf(stderr, "%s: warning: rooms %s cannot be reached; the tour skips them\n",
+                 command.c_str(), common::namedList(route.skipped_rooms).c_str());
   }
   for (const auto& level : route.skipped_levels) {
     const auto why = route.why_levels_skipped.find(level);

@@ -61,11 +61,18 @@ void LocalizerDriver::record() {
   if (!pose) return;
   if (!estimate_map_.empty() && estimate_map_.back().t >= pose->stamp) return;
   estimate_map_.push_back({pose->stamp, pose->M_T_R});
+  PoseState state = PoseState::kLost;
   if (const auto B_T_M = localizer_.mapInPlan()) {
     if (!localized_at_) localized_at_ = pose->stamp;
     B_T_M_ = *B_T_M;
-    estimate_.push_back({pose->stamp, *B_T_M * pose->M_T_R});
+    state = localizer_.planConfirms() ? PoseState::kLocalized : PoseState::kTracking;
+  } else if (!B_T_M_) {
+    return;  // never localized yet: no pose in B
   }
+  // Lost: the last B_T_M over the map that carries on (M continues across the localizer's
+  // restarts), flagged, so that the estimate never goes silent once it has spoken.
+  estimate_.push_back({pose->stamp, *B_T_M_ * pose->M_T_R});
+  estimate_states_.push_back(state_track_.next(state, pose->M_T_R.translation()));
 }
 
 RunRecord runLocalizer(RunSetup setup, slam::Localizer& localizer, sensors::SensorStreams streams,
@@ -115,6 +122,7 @@ RunRecord runLocalizer(RunSetup setup, slam::Localizer& localizer, sensors::Sens
   record.streams.imu_more = nullptr;
   record.estimate_map = driver.takeEstimateMap();
   record.estimate = driver.takeEstimate();
+  record.estimate_states = driver.takeEstimateStates();
   record.localized_at = driver.localizedAt();
   record.scans = total;
   record.scans_read = read;

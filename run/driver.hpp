@@ -4,6 +4,7 @@
 #include <optional>
 #include <utility>
 
+#include "run/estimate_states.hpp"
 #include "run/run_record.hpp"
 #include "sensors/scan_source.hpp"
 #include "sensors/sensor_streams.hpp"
@@ -40,15 +41,20 @@ class LocalizerDriver {
   void reserve(std::size_t scans) {
     estimate_map_.reserve(scans);
     estimate_.reserve(scans);
+    estimate_states_.reserve(scans);
   }
 
-  // The pose in M after each scan (stamped at the latest odometry), and in B once localized.
+  // The pose in M after each scan (stamped at the latest odometry), and in B from the first
+  // localization on: by the localizer's B_T_M while it places its map, by the last one it gave
+  // while it does not (lost); each pose's state beside it (run/estimate_states.hpp).
   const Trajectory& estimateMap() const { return estimate_map_; }
   const Trajectory& estimate() const { return estimate_; }
+  const std::vector<EstimateState>& estimateStates() const { return estimate_states_; }
   std::optional<double> localizedAt() const { return localized_at_; }
   // The estimates moved out, once the run is over (a copy would hold them twice).
   Trajectory takeEstimateMap() { return std::move(estimate_map_); }
   Trajectory takeEstimate() { return std::move(estimate_); }
+  std::vector<EstimateState> takeEstimateStates() { return std::move(estimate_states_); }
   // The localizer's last word on where its map lies in the plan.
   const std::optional<Eigen::Isometry3d>& mapInPlan() const { return B_T_M_; }
 
@@ -65,6 +71,8 @@ class LocalizerDriver {
   double scan_period_;
   std::size_t next_odometry_ = 0, next_imu_ = 0;
   Trajectory estimate_map_, estimate_;
+  std::vector<EstimateState> estimate_states_;
+  EstimateStateTrack state_track_;
   std::optional<double> localized_at_;
   std::optional<Eigen::Isometry3d> B_T_M_;
 };

@@ -82,19 +82,19 @@ void attempt(RunMetrics& m, const char* what, const Compute& compute) {
 }
 
 // APE in B (2D, no alignment) and in M (SE(3)-aligned), with their errors over time.
-void poseErrors(const RunRecord& run, RunEvaluation& evaluation) {
+void poseErrors(const RunRecord& run, const Trajectory& placed, RunEvaluation& evaluation) {
   RunMetrics& m = evaluation.metrics;
   const sensors::SensorStreams& streams = run.streams;
   eval::ErrorOptions planar;
   planar.align = eval::Alignment::kNone;
   planar.project_xy = true;
-  if (!run.estimate.empty()) {
+  if (!placed.empty()) {
     attempt(m, "APE in B", [&] {
-      const auto ape = eval::absolutePoseError(streams.ground_truth, run.estimate, planar);
+      const auto ape = eval::absolutePoseError(streams.ground_truth, placed, planar);
       m.ape_B = ape.translation_stats;
       m.ape_B_rotation_deg = ape.rotation_stats;
       for (std::size_t i = 0; i < ape.translation.size(); ++i) {
-        const double t = run.estimate[ape.association.estimate[i]].t;
+        const double t = placed[ape.association.estimate[i]].t;
         evaluation.error_over_time.emplace_back(t, ape.translation[i]);
         evaluation.heading_error_over_time.emplace_back(t, ape.rotation_deg[i]);
       }
@@ -145,6 +145,60 @@ void deviations(const RunRecord& run, const std::vector<slam::LevelAgainstPlan>&
       deviationMetrics(*evaluation.deviations, run.setup.plan, run.setup.as_built);
 }
 
+// estimate.tum by state: its coverage, and per state its poses, APE in B and largest sigma; the
+// keyframes keyframePlacements leaves unplaced because the plan did not confirm their pose.
+RunMetrics::EstimateStates estimateStateMetrics(const RunRecord& run, bool has_truth) {
+  RunMetrics::EstimateStates out;
+  const sensors::SensorStreams& streams = run.streams;
+  const common::PoseTrack& walk = has_truth ? streams.ground_truth : streams.odometry;
+  const eval::Coverage coverage = eval::localizationCoverage(walk, run.estimate);
+  out.coverage = coverage.share;
+  if (coverage.localized && !walk.empty()) {
+    const double span = walk.time(walk.size() - 1) - walk.time(0) - coverage.time_to_first;
+    out.coverage_from_first =
+        span > 0
+            ? std::min(1.0, coverage.share * (walk.time(walk.size() - 1) - walk.time(0)) / span)
+            : 1.0;
+  }
+  eval::ErrorOptions planar;
+  planar.align = eval::Alignment::kNone;
+  planar.project_xy = true;
+  for (PoseState state : {PoseState::kLocalized, PoseState::kTracking, PoseState::kLost}) {
+    const Trajectory poses = posesIn(run.estimate, run.estimate_states, {state});
+    if (poses.empty()) continue;
+    RunMetrics::EstimateStates::State& s = out.states.emplace_back();
+    s.state = toString(state);
+    s.poses = std::int64_t(poses.size());
+    for (std::size_t i = 0; i < run.estimate_states.size(); ++i) {
+      if (run.estimate_states[i].state == state) {
+        s.max_sigma_xy = std::max(s.max_sigma_xy, run.estimate_states[i].sigma_xy);
+      }
+    }
+    if (has_truth) {
+      try {
+        s.ape_B = eval::absolutePoseError(walk, poses, planar).translation_stats;
+      } catch (const std::invalid_argument&) {
+        // No pose of this state near a ground-truth stamp: no APE for it.
+      }
+    }
+  }
+  if (run.map) {
+    // Of the segments that ended: the current one is placed by the final B_T_M.
+    const auto placements = keyframePlacements(run);
+    const std::size_t ended = std::min(run.map->current_segment, placements.size());
+    for (std::size_t i = 0; i < ended; ++i) {
+      if (placements[i]) continue;
+      const auto row = std::lower_bound(
+          run.estimate.begin(), run.estimate.end(), run.map->keyframes[i].stamp - 1e-3,
+          [](const StampedPose& pose, double t) { return pose.t < t; });
+      const bool had_pose =
+          row != run.estimate.end() && std::abs(row->t - run.map->keyframes[i].stamp) <= 1e-3;
+      if (had_pose) ++out.keyframes_left_out;
+    }
+  }
+  return out;
+}
+
 // The matching's log: its status changes, and when it was lost and found again.
 void matchingHistory(const RunRecord& run, RunMetrics& m) {
   m.matching_status = run.search_status;
@@ -174,9 +228,14 @@ RunEvaluation evaluateRun(const RunRecord& run) {
   const std::optional<MapPlanError> map = mapPlanError(run, map_options);
   const bool has_truth = !streams.ground_truth.empty();
   if (!has_truth) m.notes.push_back("no ground truth: no APE (a dataset without groundtruth.tum)");
+  // The poses the localizer placed (localized or tracking); the lost ones only count towards the
+  // coverage of the estimate and the floor-plan score, which score whatever a run writes.
+  const Trajectory placed =
+      posesIn(run.estimate, run.estimate_states, {PoseState::kLocalized, PoseState::kTracking});
+  m.estimate_states = estimateStateMetrics(run, has_truth);
   // Without ground truth, when the localizer first answered is still known from the odometry.
   const eval::Coverage coverage =
-      eval::localizationCoverage(has_truth ? streams.ground_truth : streams.odometry, run.estimate);
+      eval::localizationCoverage(has_truth ? streams.ground_truth : streams.odometry, placed);
   m.localized = coverage.localized;
   if (coverage.localized) {
     m.time_to_localize = coverage.time_to_first;
@@ -189,10 +248,10 @@ RunEvaluation evaluateRun(const RunRecord& run) {
       if (run.setup.agraph != nullptr) m.rooms_visited_to_localize = rooms;
     }
   }
-  if (has_truth) poseErrors(run, evaluation);
+  if (has_truth) poseErrors(run, placed, evaluation);
   if (has_truth && run.setup.agraph != nullptr) {
-    m.levels = levelMetrics(*run.setup.agraph, streams.ground_truth, run.estimate,
-                            evaluation.error_over_time);
+    m.levels =
+        levelMetrics(*run.setup.agraph, streams.ground_truth, placed, evaluation.error_over_time);
   }
   // Dead reckoning: the odometry with its frame M placed at the true start pose.
   if (has_truth && !streams.odometry.empty()) {
@@ -211,8 +270,7 @@ RunEvaluation evaluateRun(const RunRecord& run) {
     m.floor_plan_score = eval::floorPlanScore(streams.ground_truth, run.estimate);
   }
   if (has_truth && coverage.localized) {
-    const eval::WrongLocalization wrong =
-        eval::wrongLocalization(streams.ground_truth, run.estimate);
+    const eval::WrongLocalization wrong = eval::wrongLocalization(streams.ground_truth, placed);
     m.wrongly_localized = wrong.wrong;
     m.time_wrongly_localized = wrong.seconds;
     m.max_error_B = wrong.max_error;

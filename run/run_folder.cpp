@@ -42,6 +42,8 @@ void writeRunFolder(const std::string& dir, const RunRecord& run, const RunEvalu
           writeTumFile(temporary / "odometry.tum", run.streams.odometry);
         }
         writeTumFile(temporary / "estimate.tum", run.estimate);
+        common::writeFile(temporary / "estimate_states.txt",
+                          estimateStatesText(run.estimate, run.estimate_states));
         writeTumFile(temporary / "estimate_map.tum", run.estimate_map);
         common::writeFile(temporary / kMetricsFile,
                           metricsToJson(evaluation.metrics).dump(2) + "\n");

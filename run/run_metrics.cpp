@@ -7,6 +7,7 @@
 
 #include "common/input_error.hpp"
 #include "common/json_reader.hpp"
+#include "run/estimate_states.hpp"
 
 namespace isg::run {
 
@@ -80,6 +81,19 @@ bool isContentHash(const std::string& text) {
          text.find_first_not_of("0123456789abcdef", prefix.size()) == std::string::npos;
 }
 
+nlohmann::json estimateStatesJson(const RunMetrics::EstimateStates& e) {
+  nlohmann::json states = nlohmann::json::array();
+  for (const auto& s : e.states) {
+    nlohmann::json one = {{"state", s.state}, {"poses", s.poses}, {"max_sigma_xy", s.max_sigma_xy}};
+    if (s.ape_B) one["ape_B"] = statisticsJson(*s.ape_B);
+    states.push_back(one);
+  }
+  return {{"coverage", e.coverage},
+          {"coverage_from_first", e.coverage_from_first},
+          {"states", states},
+          {"keyframes_left_out", e.keyframes_left_out}};
+}
+
 }  // namespace
 
 nlohmann::json metricsToJson(const RunMetrics& m) {
@@ -118,6 +132,7 @@ nlohmann::json metricsToJson(const RunMetrics& m) {
                              {"coverage", m.floor_plan_score->coverage},
                              {"poses", m.floor_plan_score->poses}};
   }
+  if (m.estimate_states) j["estimate_states"] = estimateStatesJson(*m.estimate_states);
   if (m.map_to_plan) {
     nlohmann::json map = statisticsJson(m.map_to_plan->distance);
     map["points"] = m.map_to_plan->points;
@@ -311,6 +326,23 @@ RunMetrics metricsFromJson(const nlohmann::json& document, const std::string& fi
     out.score = score->field("score").numberInRange(0.0, 100.0);
     out.coverage = score->field("coverage").numberInRange(0.0, 1.0);
     out.poses = countOf(score->field("poses"));
+  }
+  if (const auto states = root.optionalField("estimate_states")) {
+    RunMetrics::EstimateStates& out = m.estimate_states.emplace();
+    out.coverage = states->field("coverage").numberInRange(0.0, 1.0);
+    out.coverage_from_first = states->field("coverage_from_first").numberInRange(0.0, 1.0);
+    for (const auto& s : states->field("states").elements()) {
+      RunMetrics::EstimateStates::State& state = out.states.emplace_back();
+      state.state = s.field("state").string();
+      if (!poseStateFromString(state.state)) {
+        s.field("state").fail("unknown state \"" + state.state +
+                              "\" (one of \"localized\", \"tracking\", \"lost\")");
+      }
+      state.poses = countOf(s.field("poses"));
+      state.ape_B = optionalStatistics(s, "ape_B");
+      state.max_sigma_xy = s.field("max_sigma_xy").nonNegativeNumber();
+    }
+    out.keyframes_left_out = countOf(states->field("keyframes_left_out"));
   }
   if (const auto distance = optionalStatistics(root, "map_to_plan")) {
     m.map_to_plan = mapToPlanFrom(root.field("map_to_plan"), *distance);

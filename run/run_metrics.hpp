@@ -82,6 +82,25 @@ struct RunMetrics {
   // The Hilti × Trimble challenge's floor-plan localization score (eval/floor_plan_score.hpp),
   // with ground truth only: 0 … 100, its coverage and the poses it scored.
   std::optional<eval::FloorPlanScore> floor_plan_score;
+  // estimate.tum by its poses' states (run/estimate_states.hpp; docs/evaluation.md, "An estimate
+  // for every scan"): the share of the walk's span (ground truth, else odometry) with a pose of
+  // any state, and of the span from the first pose on (gaps over 1 s are uncovered); per state
+  // with poses, how many, their APE in B (with ground truth) and their largest stated sigma; and
+  // how many of the map's keyframes the as-built report and the map-to-plan measure left out
+  // because the plan did not confirm their pose.
+  struct EstimateStates {
+    double coverage = 0.0;
+    double coverage_from_first = 0.0;
+    struct State {
+      std::string state;  // "localized", "tracking", "lost"
+      std::int64_t poses = 0;
+      std::optional<Statistics> ape_B;
+      double max_sigma_xy = 0.0;
+    };
+    std::vector<State> states;
+    std::int64_t keyframes_left_out = 0;
+  };
+  std::optional<EstimateStates> estimate_states;
   // The map against the plan's walls (run/map_plan_error.hpp), with or without ground truth: the
   // distances of the points near the plan, how many points lay in a wall's height band, the share
   // of them near the plan, and the cutoff that "near" means.

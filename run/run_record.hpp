@@ -12,6 +12,7 @@
 #include "bim/agraph.hpp"
 #include "bim/plan.hpp"
 #include "bim/scenario.hpp"
+#include "run/estimate_states.hpp"
 #include "sensors/sensor_streams.hpp"
 #include "sensors/stage_times.hpp"
 #include "slam/map_diagnostics.hpp"
@@ -63,9 +64,10 @@ struct RunRecord {
   // All but the IMU's samples: nothing after the loop reads them, so the loop lets them go once
   // fed (two hours at 200 Hz are 81 MB).
   sensors::SensorStreams streams;
-  Trajectory estimate_map;             // M, after each scan
-  Trajectory estimate;                 // B, from the first localized pose on
-  std::optional<double> localized_at;  // stamp of the first pose in B
+  Trajectory estimate_map;                     // M, after each scan
+  Trajectory estimate;                         // B, from the first localized pose on, one per scan
+  std::vector<EstimateState> estimate_states;  // one per pose of `estimate`
+  std::optional<double> localized_at;          // stamp of the first pose in B
   int scans = 0;
   int scans_read = 0;  // by the localizer; the others were skipped (never made or read)
   double wall_seconds = 0.0;

@@ -321,6 +321,34 @@ std::string timingTable(const RunMetrics& m, double writing_seconds) {
   return out;
 }
 
+namespace {
+
+// Said only when the plan did not confirm every pose: the share of poses in each state, their APE
+// in B, and the keyframes the as-built report left out.
+std::string estimateStatesLine(const RunMetrics& m) {
+  if (!m.estimate_states) return "";
+  const RunMetrics::EstimateStates& e = *m.estimate_states;
+  std::int64_t poses = 0;
+  for (const auto& s : e.states) poses += s.poses;
+  if (poses == 0 || (e.states.size() == 1 && e.states[0].state == "localized")) return "";
+  std::string out =
+      format("  an estimate for %.1f %% of the walk from then on:", 100.0 * e.coverage_from_first);
+  for (std::size_t i = 0; i < e.states.size(); ++i) {
+    const auto& s = e.states[i];
+    out += format("%s %s %.1f %%", i > 0 ? "," : "", s.state.c_str(), 100.0 * s.poses / poses);
+    if (s.ape_B) out += format(" (APE rmse %.3f m, max %.3f m)", s.ape_B->rmse, s.ape_B->max);
+  }
+  out += "\n";
+  if (e.keyframes_left_out > 0) {
+    out +=
+        format("  %lld keyframes placed without the plan's confirmation left out of the report\n",
+               static_cast<long long>(e.keyframes_left_out));
+  }
+  return out;
+}
+
+}  // namespace
+
 std::string runSummary(const std::string& command, const std::string& dir, const RunMetrics& m) {
   std::string out =
       format("%s: wrote %s (%s on %s, seed %llu)\n", command.c_str(), dir.c_str(), m.method.c_str(),
@@ -334,6 +362,7 @@ std::string runSummary(const std::string& command, const std::string& dir, const
           "over %d poses\n",
           m.ape_B->rmse, m.ape_B->median, m.ape_B->max, m.ape_B->count);
     }
+    out += estimateStatesLine(m);
     if (m.wrongly_localized && *m.wrongly_localized) {
       out += format("  WRONGLY LOCALIZED: %.1f s with the pose more than 1 m off (max %.2f m)\n",
                     *m.time_wrongly_localized, *m.max_error_B);

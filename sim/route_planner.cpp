@@ -1,6 +1,7 @@
 #include "sim/route_planner.hpp"
 
 #include "bim/facade.hpp"
+#include "common/plural.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -351,9 +352,8 @@ std::string unreachedPart(const PlannedRoute& route) {
   const bool rooms = !route.skipped_rooms.empty();
   const auto& ids = rooms ? route.skipped_rooms : route.skipped_levels;
   if (ids.empty()) return "";
-  std::string text = std::string(rooms ? "room" : "level") + (ids.size() > 1 ? "s " : " ");
-  for (std::size_t i = 0; i < ids.size(); ++i) text += (i > 0 ? ", " : "") + ids[i];
-  return text;
+  return std::string(rooms ? "room" : "level") + (ids.size() > 1 ? "s " : " ") +
+         common::namedList(ids);
 }
 
 namespace {

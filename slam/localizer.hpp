@@ -35,6 +35,11 @@ class Localizer {
   virtual std::optional<sensors::Odometry> poseInMap() const = 0;
   // B_T_M, once the method knows where its map lies in the plan frame B.
   virtual std::optional<Eigen::Isometry3d> mapInPlan() const = 0;
+  // Once mapInPlan() has a value: whether the plan confirms the latest pose — what placed it is
+  // still tied to the plan's walls here — or only the method's map and odometry carry it (the
+  // run's "tracking" state, docs/evaluation.md "An estimate for every scan"). Methods that do
+  // not tell keep the default: placed is confirmed.
+  virtual bool planConfirms() const { return true; }
   // The method's graph (or state) for the run folder's sgraph.json.
   virtual nlohmann::json graph() const = 0;
 

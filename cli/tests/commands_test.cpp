@@ -474,9 +474,9 @@ TEST(Run, LoopAndReplayAgreeAndTheRunFolderIsComplete) {
   EXPECT_THAT(loop.out, StartsWith("isg run: wrote loop (is-graphs on builtin:d1.asbuilt, seed 1)\n"
                                    "  localized at t = "));
   EXPECT_THAT(loop.out, HasSubstr("x real time\n"));
-  for (const char* f :
-       {"groundtruth.tum", "odometry.tum", "estimate.tum", "estimate_map.tum", "metrics.json",
-        "agraph.json", "sgraph.json", "report.svg", "deviations.json", "deviations.svg"}) {
+  for (const char* f : {"groundtruth.tum", "odometry.tum", "estimate.tum", "estimate_states.txt",
+                        "estimate_map.tum", "metrics.json", "agraph.json", "sgraph.json",
+                        "report.svg", "deviations.json", "deviations.svg"}) {
     EXPECT_TRUE(sandbox.exists(std::string("loop/") + f)) << f;
   }
   const auto metrics = nlohmann::json::parse(sandbox.read("loop/metrics.json"));
@@ -493,7 +493,16 @@ TEST(Run, LoopAndReplayAgreeAndTheRunFolderIsComplete) {
   ASSERT_EQ(replay.exit_code, 0) << replay.err;
   EXPECT_EQ(sandbox.read("replay/estimate.tum"), sandbox.read("loop/estimate.tum"));
   EXPECT_EQ(sandbox.read("replay/estimate_map.tum"), sandbox.read("loop/estimate_map.tum"));
+  EXPECT_EQ(sandbox.read("replay/estimate_states.txt"), sandbox.read("loop/estimate_states.txt"));
   EXPECT_FALSE(sandbox.read("loop/estimate.tum").empty());
+  // A state for each pose of estimate.tum, at its stamp (D1 is confirmed by its walls throughout).
+  const std::string estimate = sandbox.read("loop/estimate.tum");
+  const std::string states = sandbox.read("loop/estimate_states.txt");
+  EXPECT_EQ(std::count(states.begin(), states.end(), '\n'),
+            std::count(estimate.begin(), estimate.end(), '\n') + 1);
+  EXPECT_EQ(states.substr(states.find('\n') + 1, 12), estimate.substr(0, 12));
+  EXPECT_THAT(states, Not(HasSubstr(" lost ")));
+  EXPECT_EQ(metrics["estimate_states"]["coverage_from_first"].get<double>(), 1.0);
   // The replay places the same map in the plan: the same deviation report, wall by wall.
   EXPECT_TRUE(sandbox.exists("replay/deviations.svg"));
   const auto loop_walls = nlohmann::json::parse(sandbox.read("loop/deviations.json"))["walls"];

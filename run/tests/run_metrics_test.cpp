@@ -1,5 +1,6 @@
 #include "run/run_metrics.hpp"
 
+#include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
 #include "common/input_error.hpp"
@@ -69,6 +70,13 @@ TEST(RunMetrics, JsonRoundTripOfARunWithEveryFieldSet) {
   m.time_wrongly_localized = 6.5;
   m.max_error_B = 3.25;
   m.max_height_error_B = 0.125;
+  RunMetrics::EstimateStates states;
+  states.coverage = 0.75;
+  states.coverage_from_first = 0.96875;
+  states.states.push_back({"localized", 300, *m.ape_B, 0.03});
+  states.states.push_back({"lost", 12, std::nullopt, 0.5});
+  states.keyframes_left_out = 7;
+  m.estimate_states = states;
   m.map_to_plan = RunMetrics::MapToPlan{*m.ape_B, 56176, 0.875, 0.3};
   RunMetrics::MapToPlan::Level off_level{"L1", 30000, 0.75, 0.0165, 0.0565, 85, 6, 5.25};
   off_level.farthest = {"W4:left", -0.071, Eigen::Vector2d(0.15, 1.1375),
@@ -146,6 +154,18 @@ TEST(RunMetrics, JsonRoundTripOfARunWithEveryFieldSet) {
   EXPECT_EQ(back.timing->scan_wait_seconds, 0.125);
   EXPECT_EQ(back.timing->peak_memory_mb, 96.5);
   EXPECT_EQ(back.notes, m.notes);
+  ASSERT_TRUE(back.estimate_states);
+  EXPECT_EQ(back.estimate_states->coverage, 0.75);
+  EXPECT_EQ(back.estimate_states->coverage_from_first, 0.96875);
+  EXPECT_EQ(back.estimate_states->keyframes_left_out, 7);
+  ASSERT_EQ(back.estimate_states->states.size(), 2u);
+  EXPECT_EQ(back.estimate_states->states[0].state, "localized");
+  EXPECT_EQ(back.estimate_states->states[0].poses, 300);
+  ASSERT_TRUE(back.estimate_states->states[0].ape_B);
+  EXPECT_EQ(back.estimate_states->states[0].ape_B->rmse, m.ape_B->rmse);
+  EXPECT_EQ(back.estimate_states->states[1].state, "lost");
+  EXPECT_FALSE(back.estimate_states->states[1].ape_B);
+  EXPECT_EQ(back.estimate_states->states[1].max_sigma_xy, 0.5);
   // The derived rate is written from the stage and the robot time: 0.5 s over 40 s.
   EXPECT_EQ(j["timing"]["stages"][1]["ms_per_robot_second"].get<double>(), 12.5);
 }
@@ -212,6 +232,18 @@ TEST(RunMetrics, BadFieldsAreNamedByPointer) {
   EXPECT_EQ(message(j),
             "runs/x/metrics.json: /map_to_plan/levels/0/farthest/end: missing "
             "required field");
+  j = metricsToJson(localizedRun());
+  j["estimate_states"] = {{"coverage", 1.0},
+                          {"coverage_from_first", 1.0},
+                          {"keyframes_left_out", 0},
+                          {"states", {{{"state", "sure"}, {"poses", 1}, {"max_sigma_xy", 0.03}}}}};
+  EXPECT_EQ(message(j),
+            "runs/x/metrics.json: /estimate_states/states/0/state: unknown state \"sure\" (one "
+            "of \"localized\", \"tracking\", \"lost\")");
+  j["estimate_states"]["states"][0]["state"] = "lost";
+  j["estimate_states"]["coverage"] = 1.5;
+  EXPECT_THAT(message(j),
+              ::testing::StartsWith("runs/x/metrics.json: /estimate_states/coverage: "));
   EXPECT_EQ(message(nlohmann::json::array()),
             "runs/x/metrics.json: expected an object, got an array");
 }

@@ -98,6 +98,19 @@ std::optional<Eigen::Isometry3d> ISGraphLocalizer::mapInPlan() const {
   return T;
 }
 
+bool ISGraphLocalizer::planConfirms() const {
+  if (!answer_.localized) return false;
+  const auto& keyframes = graph_.keyframes();
+  const std::size_t window = std::size_t(std::max(1, options_.sgraph.window));
+  for (std::size_t i = keyframes.size() > window ? keyframes.size() - window : 0;
+       i < keyframes.size(); ++i) {
+    for (const auto& [plane, observation] : keyframes[i].observations) {
+      if (answer_.plane_matches.count(plane)) return true;
+    }
+  }
+  return false;
+}
+
 void ISGraphLocalizer::record(double stamp, MatchStatus status, const std::string& reason) {
   log_.record(stamp, int(graph_.keyframes().size()) - 1, status, reason);
 }
