@@ -129,31 +129,84 @@ void bandedFloor(const GeneratorSpec& s, Floor& floor, Kind middle, int default_
   }
 }
 
-// L, T or U: a band of offices on both sides of a corridor, with one or two arms (offices on both
-// sides of a corridor) rising from its corridor.
+// How many bands of offices (two rows and a corridor) an L, T or U's base and each of its arms
+// are wide. One up to kSingleBandRooms offices (every such floor as it always was); beyond, about
+// as many as make each arm as wide as it is long (0.85 of that: the corner blocks hold offices
+// too), so that the floor fills much of its bounding box. A single corridor of 300 offices is a
+// wing 300 m long, and the route grid covers such a box only with cells too coarse for a doorway
+// (sim/occupancy_grid.hpp, kMaxCells).
+int armBands(int rooms, int arms, const GeneratorSpec& s) {
+  constexpr int kSingleBandRooms = 200;
+  if (rooms <= kSingleBandRooms) return 1;
+  const double band = 2 * s.room_depth + s.corridor_width;
+  const double square = std::sqrt(rooms * s.room_width / (2.0 * (arms + 1) * band));
+  return std::max(2, int(std::lround(0.85 * square)));
+}
+
+// L, T or U: a base of offices on both sides of a corridor, with one or two arms (offices on both
+// sides of a corridor) rising from its corridor. Large floors stack `bands` of them: the base's
+// bands joined by a spine corridor across them (as bandedFloor's), each arm `bands` side by side,
+// each of their corridors opening onto the base's top corridor.
 void armedFloor(const GeneratorSpec& s, Floor& floor, char shape) {
   const int n = roomsOr(s.rooms, 24);
   const int arms = shape == 'U' ? 2 : 1;
-  const int per_arm_side = std::max(2, int(std::lround(n / (2.0 * (arms + 1)))));
-  const int per_band_row = std::max(2, (n - 2 * arms * per_arm_side + 1) / 2);
-  const double d = s.room_depth, c = s.corridor_width, arm = 2 * d + c;
+  const int bands = armBands(n, arms, s);
+  const double d = s.room_depth, c = s.corridor_width, band = 2 * d + c, arm = bands * band;
+  int per_arm_side = std::max(2, int(std::lround(n / (2.0 * (arms + 1)))));
+  int per_band_row = std::max(2, (n - 2 * arms * per_arm_side + 1) / 2);
+  if (bands > 1) {
+    // The base's rows under each arm (all but the top one) hold offices too; what is left is
+    // shared by the arms and the base beside them, each as long as an arm rises.
+    const double corners = arms * (2 * bands - 1) * std::round(arm / s.room_width);
+    per_arm_side = std::max(2, int(std::lround((n - corners) / (2.0 * bands * (arms + 1)))));
+    per_band_row = per_arm_side;
+  }
   const double length = mm(per_band_row * s.room_width + arms * arm);
   const double rise = mm(per_arm_side * s.room_width);
   std::vector<double> arm_at;
   if (shape == 'L') arm_at = {0.0};
   if (shape == 'T') arm_at = {mm(0.5 * (length - arm))};
   if (shape == 'U') arm_at = {0.0, mm(length - arm)};
-  floor.officesAlongX(0, length, 0, d);
-  floor.add(Kind::kCorridor, 0, d, length, d + c);
+  const double spine = mm(0.5 * (length - c));
+  // The base's bands below the top one, each joined to the next by the spine.
+  for (int b = 0; b + 1 < bands; ++b) {
+    const double y = b * band;
+    auto row = [&](double y0, double y1) {
+      floor.officesAlongX(0, spine, y0, y1);
+      floor.officesAlongX(spine + c, length, y0, y1);
+    };
+    if (b == 0) {
+      floor.officesAlongX(0, length, y, y + d);
+    } else {
+      row(y, y + d);
+    }
+    floor.add(Kind::kCorridor, 0, y + d, length, y + d + c);
+    row(y + d + c, y + band);
+    floor.add(Kind::kCorridor, spine, y + d + c, spine + c, y + band + d);
+  }
+  // The top band: its south row (cut by the spine when there are bands below), its corridor, and
+  // its north row between the arms.
+  const double y = (bands - 1) * band;
+  if (bands == 1) {
+    floor.officesAlongX(0, length, 0, d);
+  } else {
+    floor.officesAlongX(0, spine, y, y + d);
+    floor.officesAlongX(spine + c, length, y, y + d);
+  }
+  const double top = y + d + c;
+  floor.add(Kind::kCorridor, 0, y + d, length, top);
   double x = 0.0;
   for (double a : arm_at) {
-    floor.officesAlongX(x, a, d + c, 2 * d + c);
+    floor.officesAlongX(x, a, top, top + d);
     x = a + arm;
-    floor.officesAlongY(d + c, d + c + rise, a, a + d);
-    floor.add(Kind::kCorridor, a + d, d + c, a + d + c, d + c + rise);
-    floor.officesAlongY(d + c, d + c + rise, a + d + c, a + arm);
+    for (int k = 0; k < bands; ++k) {
+      const double x0 = a + k * band;
+      floor.officesAlongY(top, top + rise, x0, x0 + d);
+      floor.add(Kind::kCorridor, x0 + d, top, x0 + d + c, top + rise);
+      floor.officesAlongY(top, top + rise, x0 + d + c, x0 + band);
+    }
   }
-  floor.officesAlongX(x, length, d + c, 2 * d + c);
+  floor.officesAlongX(x, length, top, top + d);
 }
 
 // A hotel floor: identical rooms on both sides of one corridor. The seed draws the room size

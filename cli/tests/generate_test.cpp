@@ -1,6 +1,10 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <cmath>
+#include <nlohmann/json.hpp>
+
 #include "cli/tests/cli_runner.hpp"
 
 namespace isg::cli {
@@ -31,6 +35,38 @@ TEST(Generate, EveryFamilyPassesCheckAndIsReproducible) {
   EXPECT_EQ(sandbox.read("b/office-6.json"), sandbox.read("a/office-6.json"));
   EXPECT_EQ(sandbox.read("b/office-6.asbuilt.json"), sandbox.read("a/office-6.asbuilt.json"));
   EXPECT_NE(sandbox.read("a/office-5.json"), sandbox.read("a/office-6.json"));
+}
+
+// Past 200 offices an L, T or U is several bands wide (worlds/plan_generator.cpp, armBands): 300
+// offices tour (a single corridor of them did not: "the tour cannot reach rooms C1, C2, …"), with
+// about the offices asked for, in a floor that fills much of its bounding box.
+TEST(Generate, ArmedFloorsOfThreeHundredOfficesTour) {
+  testing::Sandbox sandbox("generate_armed");
+  for (const char* family : {"l-shape", "u-shape"}) {
+    const auto made =
+        sandbox.run(std::string("generate ") + family + " -o " + family + " --rooms 300 -q");
+    ASSERT_EQ(made.exit_code, 0) << made.err;
+    const auto plan =
+        nlohmann::json::parse(sandbox.read(std::string(family) + "/" + family + "-1.json"));
+    int offices = 0;
+    double x0 = 1e9, y0 = 1e9, x1 = -1e9, y1 = -1e9, area = 0.0;
+    for (const auto& room : plan["levels"][0]["rooms"]) {
+      if (room["id"].get<std::string>()[0] != 'R') continue;  // corridors are C…
+      ++offices;
+      const auto& o = room["outline"];
+      for (std::size_t i = 0; i < o.size(); ++i) {
+        const auto& p = o[i];
+        const auto& q = o[(i + 1) % o.size()];
+        area += 0.5 *
+                (p[0].get<double>() * q[1].get<double>() - q[0].get<double>() * p[1].get<double>());
+        x0 = std::min(x0, p[0].get<double>()), x1 = std::max(x1, p[0].get<double>());
+        y0 = std::min(y0, p[1].get<double>()), y1 = std::max(y1, p[1].get<double>());
+      }
+    }
+    EXPECT_NEAR(offices, 300, 15) << family;
+    // Offices cover over 40 % of the box (a single-corridor L of 300: under 10 %).
+    EXPECT_GT(std::abs(area) / ((x1 - x0) * (y1 - y0)), 0.4) << family;
+  }
 }
 
 TEST(Generate, AnOfficeParameterGivenForASiteIsSaid) {

@@ -99,7 +99,7 @@ std::optional<Eigen::Isometry3d> ISGraphLocalizer::mapInPlan() const {
 }
 
 bool ISGraphLocalizer::planConfirms() const {
-  if (!answer_.localized) return false;
+  if (!answer_.localized || !agreement_.unconfirmed().empty()) return false;
   const auto& keyframes = graph_.keyframes();
   const std::size_t window = std::size_t(std::max(1, options_.sgraph.window));
   for (std::size_t i = keyframes.size() > window ? keyframes.size() - window : 0;

@@ -132,8 +132,9 @@ class ISGraphLocalizer : public Localizer {
   bool wantsScan(double stamp) const override;
   std::optional<sensors::Odometry> poseInMap() const override { return graph_.latestPose(); }
   std::optional<Eigen::Isometry3d> mapInPlan() const override;
-  // Whether a keyframe of the window the merge optimises (the latest SGraphOptions::window) sees
-  // a wall tied to a plan surface: without one, nothing holds the recent map to the plan.
+  // Whether the latest keyframe agreed with the plan (PlanAgreement::unconfirmed) and a keyframe
+  // of the window the merge optimises (the latest SGraphOptions::window) sees a wall tied to a
+  // plan surface: without one, nothing holds the recent map to the plan.
   bool planConfirms() const override;
   nlohmann::json graph() const override;
   std::optional<std::string> searchStatus() const override { return toString(log_.status()); }

@@ -27,6 +27,8 @@ double PlanAgreement::planShare(const SGraph& graph, const HeldAnswer& answer) c
 void PlanAgreement::clear() {
   plan_shares_.clear();
   plan_collapsed_ = 0;
+  dropped_disagreeing_ = 0;
+  unconfirmed_.clear();
 }
 
 std::string PlanAgreement::scanDisagreement(const SGraph& graph, const HeldAnswer& answer) {
@@ -63,6 +65,8 @@ std::string PlanAgreement::scanDisagreement(const SGraph& graph, const HeldAnswe
                   "the scans no longer agree with the plan (%.0f %% of the wall points on a plan "
                   "wall, %.0f %% before)",
                   100.0 * plan_share, 100.0 * median);
+    // A loss even when the scan still agrees with the recent map: a kidnap to a place that looks
+    // like the last one registers on it (the kidnap suite's D5, seed 2), and only the plan tells.
     return text;
   }
   plan_shares_.push_back(plan_share);
@@ -101,6 +105,7 @@ std::string PlanAgreement::heldDisagreement(const MatchInput& input, const SGrap
       ++seen_matched;
       seen_disagreeing += agrees ? 0 : 1;
     }
+    if (!agrees) ++dropped_disagreeing_;
     it = agrees ? std::next(it) : matches.erase(it);
   }
   char text[256];
@@ -110,15 +115,19 @@ std::string PlanAgreement::heldDisagreement(const MatchInput& input, const SGrap
                   seen_disagreeing, seen_matched);
     return text;
   }
+  // Too few walls of the plan held: lost when walls left the hold gate under this answer (the
+  // plan disagreed with them), else thin evidence, not evidence against: unconfirmed.
   if (int(matches.size()) < options_.lost_min_held) {
     std::snprintf(text, sizeof text, "only %zu plan correspondences left", matches.size());
-    return text;
+    if (dropped_disagreeing_ > 0) return text;
+    unconfirmed_ = text;
   }
   return "";
 }
 
 std::string PlanAgreement::update(const MatchInput& input, const SGraph& graph,
                                   HeldAnswer& answer) {
+  unconfirmed_.clear();
   // The scan against the recent map and against the plan: the robot is not where the graph
   // thinks when both disagree, or when the plan disagrees more and more.
   if (std::string why = scanDisagreement(graph, answer); !why.empty()) return why;

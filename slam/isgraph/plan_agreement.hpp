@@ -19,7 +19,8 @@ class PlanAgreement {
     double hold_angle_deg = 20.0;
     double hold_distance = 0.5;  // m
     // Lost: of the held correspondences the latest keyframe observes (at least min_planes),
-    // more than this share disagree; or fewer than min_held remain.
+    // more than this share disagree; or fewer than min_held remain after any left the gate
+    // (unconfirmed when none did: too little evidence, not evidence against).
     int lost_min_planes = 3;
     double lost_disagreeing_share = 0.5;
     int lost_min_held = 3;
@@ -39,8 +40,13 @@ class PlanAgreement {
 
   // Takes the latest keyframe into the agreement (its plan share into the history; held
   // correspondences that left the gate are dropped from `answer`) and says why the graph no
-  // longer agrees with the world or the plan; empty while it does.
+  // longer agrees with the world or the plan (the evidence contradicts the answer: lost); empty
+  // while it does. Where the plan merely cannot confirm the answer — fewer than lost_min_held
+  // correspondences held, none of them ever dropped for leaving the gate — the answer holds and
+  // unconfirmed() says why.
   std::string update(const MatchInput& input, const SGraph& graph, HeldAnswer& answer);
+  // Why the plan did not confirm the latest keyframe update() took; empty when it did.
+  const std::string& unconfirmed() const { return unconfirmed_; }
   // Measured under another answer, or none: the history starts again.
   void clear();
   // The latest keyframe's plan share at the answer's pose, or -1 without a cloud.
@@ -57,6 +63,8 @@ class PlanAgreement {
   Options options_;
   std::deque<double> plan_shares_;  // of the latest localized keyframes
   int plan_collapsed_ = 0;          // keyframes in a row with a collapsed plan share
+  int dropped_disagreeing_ = 0;     // held walls that left the gate since the last clear()
+  std::string unconfirmed_;
 };
 
 }  // namespace isg::slam

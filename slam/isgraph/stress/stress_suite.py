@@ -139,6 +139,18 @@ def read_tum(path):
     return rows
 
 
+def placed_rows(run_dir):
+    """estimate.tum's rows the localizer placed: not those written while lost (estimate_states.txt,
+    docs/formats.md); every row for runs written before the states were kept."""
+    rows = read_tum(os.path.join(run_dir, "estimate.tum"))
+    states_path = os.path.join(run_dir, "estimate_states.txt")
+    if not os.path.exists(states_path):
+        return rows
+    states = [line.split()[1] for line in open(states_path)
+              if line.strip() and not line.startswith("#")]
+    return [r for r, s in zip(rows, states) if s != "lost"]
+
+
 def nearest(rows, t):
     import bisect
     i = bisect.bisect_left([r[0] for r in rows], t)
@@ -185,7 +197,7 @@ def kidnap_suite(args):
                             "--threads", args.threads], check=True, capture_output=True)
             m = json.load(open(os.path.join(run_dir, "metrics.json")))
             truth = read_tum(os.path.join(run_dir, "groundtruth.tum"))
-            after = [r for r in read_tum(os.path.join(run_dir, "estimate.tum")) if r[0] >= when]
+            after = [r for r in placed_rows(run_dir) if r[0] >= when]
             errors = [((r[1] - g[1]) ** 2 + (r[2] - g[2]) ** 2) ** 0.5
                       for r in after for g in [nearest(truth, r[0])]]
             lost = [t for t in m.get("lost_at", []) if t >= when]

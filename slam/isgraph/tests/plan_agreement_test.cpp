@@ -1,6 +1,7 @@
 // Whether the answer still holds (PlanAgreement), on the box room mapped by a walk along x: its
-// scans agree with the plan under the right answer, a pose outside the building and a plan that
-// no longer explains the walls lose it, with their messages.
+// scans agree with the plan under the right answer; a pose outside the building, walls that
+// disagree and a plan that no longer explains the scan lose it, with their messages; too few walls
+// held, none of them for disagreeing, leave it unconfirmed, not lost (docs/matching.md, "Lost").
 #include "slam/isgraph/plan_agreement.hpp"
 
 #include <gtest/gtest.h>
@@ -48,6 +49,17 @@ TEST_F(BoxAgreement, APoseOutsideTheBuildingIsLost) {
             "the pose (13.0, 0.0) is outside the building");
 }
 
+// A wrong answer slid 0.6 m along x: the north and south walls stay in the gate (it slid along
+// them), the east and west ones leave it (0.5 m) — two of four, not more than half, so not lost
+// for that — and the two left are too few after walls disagreed: lost, not unconfirmed.
+TEST_F(BoxAgreement, TooFewLeftAfterWallsDisagreedIsLost) {
+  PlanAgreement agreement(plan_, Eigen::Isometry3d::Identity(),
+                          {.plan_share_distance = 100.0});  // the scan check passes
+  answer_.P_T_M_x_y_yaw.x() += 0.6;
+  EXPECT_EQ(agreement.update(input_, graph_, answer_), "only 2 plan correspondences left");
+  EXPECT_EQ(answer_.plane_matches.size(), 2u);
+}
+
 TEST_F(BoxAgreement, WallsThatLeaveTheHoldGateAreDroppedThenTheAnswerIsLost) {
   // Turned 30° (beyond the 20° gate), every held wall disagrees: dropped, and all four the
   // keyframe sees disagree.
@@ -59,11 +71,14 @@ TEST_F(BoxAgreement, WallsThatLeaveTheHoldGateAreDroppedThenTheAnswerIsLost) {
   EXPECT_TRUE(answer_.plane_matches.empty());
 }
 
-TEST_F(BoxAgreement, TooFewCorrespondencesLeftIsLost) {
+TEST_F(BoxAgreement, TooFewCorrespondencesLeftIsUnconfirmedNotLost) {
   PlanAgreement agreement(plan_, Eigen::Isometry3d::Identity(), {});
   answer_.plane_matches.erase(answer_.plane_matches.begin());
   answer_.plane_matches.erase(answer_.plane_matches.begin());
-  EXPECT_EQ(agreement.update(input_, graph_, answer_), "only 2 plan correspondences left");
+  EXPECT_EQ(agreement.update(input_, graph_, answer_), "");
+  EXPECT_EQ(agreement.unconfirmed(), "only 2 plan correspondences left");
+  agreement.clear();
+  EXPECT_EQ(agreement.unconfirmed(), "");
 }
 
 TEST_F(BoxAgreement, AScanThePlanNoLongerExplainsIsLostOnTheSecondKeyframe) {
