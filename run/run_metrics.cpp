@@ -328,11 +328,14 @@ RunMetrics metricsFromJson(const nlohmann::json& document, const std::string& fi
     out.poses = countOf(score->field("poses"));
   }
   if (const auto states = root.optionalField("estimate_states")) {
-    RunMetrics::EstimateStates& out = m.estimate_states.emplace();
+    // Assigned, not emplace()d: clang 14 does not see the nested struct as default-constructible.
+    m.estimate_states = RunMetrics::EstimateStates{};
+    RunMetrics::EstimateStates& out = *m.estimate_states;
     out.coverage = states->field("coverage").numberInRange(0.0, 1.0);
     out.coverage_from_first = states->field("coverage_from_first").numberInRange(0.0, 1.0);
     for (const auto& s : states->field("states").elements()) {
-      RunMetrics::EstimateStates::State& state = out.states.emplace_back();
+      out.states.push_back(RunMetrics::EstimateStates::State{});
+      RunMetrics::EstimateStates::State& state = out.states.back();
       state.state = s.field("state").string();
       if (!poseStateFromString(state.state)) {
         s.field("state").fail("unknown state \"" + state.state +
