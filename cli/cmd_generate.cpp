@@ -29,7 +29,10 @@ GenerateCommand::GenerateCommand(CLI::App& parent) {
       "columns, round inside on some sites, a façade of columns with walled and open bays, one "
       "corner often cut on a slant, a core of small rooms, free-standing partitions, no rooms in "
       "the plan; as built, façade walls not built yet, often a wall built only in part, and "
-      "pallets; the robot tours the open floor); 'all' is every family. "
+      "pallets; the robot tours the open floor), parking (an underground car park: a grid of "
+      "identical columns, square or round, 7.5–8.5 m apart, retaining walls round it, a ramp's "
+      "walls, a stair core and a lift core; as built, perimeter walls not built yet, parked "
+      "vehicles and pallets; the robot tours the open floor); 'all' is every family. "
       "Every building is checked "
       "as isg check and isg run would check it (the plan and scenario parse with no warning, the "
       "MuJoCo world builds, the tour reaches every room) before DIR is written, all at once. "
@@ -92,6 +95,11 @@ void GenerateCommand::addLayoutOptions() {
       ->default_str("one per 40 m² of hall");
   app_->add_option("--wall-thickness", spec_.wall_thickness, "[m]")->capture_default_str();
   app_->add_option("--height", spec_.height, "storey height [m]")->capture_default_str();
+  app_->add_option("--carrier", spec_.carrier,
+                   "who carries the sensors on the tour: legged (the legged base) or handheld (a "
+                   "person walking; written as the scenario's robot.carrier)")
+      ->check(CLI::IsMember({"legged", "handheld"}))
+      ->capture_default_str();
 }
 
 // The building as built (what differs from its plan), and the lean that makes it non-Manhattan.
@@ -127,20 +135,21 @@ void GenerateCommand::addAsBuiltOptions() {
                    "start or end cut back or a middle gap, 0.8 m to half the wall")
       ->capture_default_str();
   app_->add_option("--missing-columns", spec_.missing_columns,
-                   "as built, site family: share of the columns inside the façade not built yet")
+                   "as built, site and parking families: share of the columns inside the façade "
+                   "(the perimeter) not built yet")
       ->capture_default_str();
   app_->add_option("--moved-columns", spec_.moved_columns,
-                   "as built, site family: share of the columns inside the façade built 0.1–0.25 "
-                   "m off their planned centre")
+                   "as built, site and parking families: share of the columns inside the façade "
+                   "(the perimeter) built 0.1–0.25 m off their planned centre")
       ->capture_default_str();
   app_->add_option("--shear", spec_.shear_deg,
                    "non-Manhattan: the building sheared along x so that the walls across its "
                    "corridors lean DEG from square and its rooms are parallelograms, -40 … 40 "
-                   "[degrees]; not the site family's")
+                   "[degrees]; not the site and parking families'")
       ->capture_default_str();
   app_->add_option("--turn", spec_.turn_deg,
                    "the whole building turned about B's origin, -180 … 180 [degrees] (after "
-                   "--shear); not the site family's")
+                   "--shear); not the site and parking families'")
       ->capture_default_str();
   app_->add_option("--missing-walls", spec_.missing_walls,
                    "as built: share of door-less walls between offices left unbuilt")
@@ -172,9 +181,10 @@ std::vector<std::string> GenerateCommand::familiesAsked() const {
 }
 
 void GenerateCommand::warnOfOptionsThatDoNotApply(const std::vector<std::string>& families) const {
-  // A site is drawn from its seed alone (docs/sweeps.md): an office parameter given for one is
-  // said, not silently dropped.
-  if (std::find(families.begin(), families.end(), "site") != families.end()) {
+  // A site or a car park is drawn from its seed alone (docs/sweeps.md): an office parameter given
+  // for one is said, not silently dropped.
+  for (const char* grid_family : {"site", "parking"}) {
+    if (std::find(families.begin(), families.end(), grid_family) == families.end()) continue;
     for (const char* option : {"--rooms",
                                "--room-width",
                                "--room-depth",
@@ -201,20 +211,21 @@ void GenerateCommand::warnOfOptionsThatDoNotApply(const std::vector<std::string>
                                "--turn"}) {
       if (app_->count(option) == 0) continue;
       std::fprintf(stderr,
-                   "isg generate: warning: %s does not apply to the site family (a site takes "
-                   "its seed, --count, --height, --missing-columns and --moved-columns only); "
-                   "its sites are made without it\n",
-                   option);
+                   "isg generate: warning: %s does not apply to the %s family (it takes its "
+                   "seed, --count, --height, --carrier, --missing-columns and --moved-columns "
+                   "only); its buildings are made without it\n",
+                   option, grid_family);
     }
   }
-  // Columns as built are the site family's: said for the others.
+  // Columns as built are the column-grid families': said for the others.
   for (const auto& family : families) {
-    if (family == "site") continue;
+    if (family == "site" || family == "parking") continue;
     for (const char* option : {"--missing-columns", "--moved-columns"}) {
       if (app_->count(option) == 0) continue;
       std::fprintf(stderr,
-                   "isg generate: warning: %s applies to the site family only (the other "
-                   "families' plans have no columns); %s buildings are made without it\n",
+                   "isg generate: warning: %s applies to the site and parking families only "
+                   "(the other families' plans have no columns); %s buildings are made without "
+                   "it\n",
                    option, family.c_str());
     }
   }

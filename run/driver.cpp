@@ -73,6 +73,19 @@ void LocalizerDriver::record() {
   // restarts), flagged, so that the estimate never goes silent once it has spoken.
   estimate_.push_back({pose->stamp, *B_T_M_ * pose->M_T_R});
   estimate_states_.push_back(state_track_.next(state, pose->M_T_R.translation()));
+  last_state_ = state;
+  if (state == PoseState::kLocalized) {
+    confirmed_B_T_M_ = B_T_M_;
+  } else if (state == PoseState::kLost) {
+    confirmed_B_T_M_.reset();
+  }
+}
+
+std::optional<Eigen::Isometry3d> LocalizerDriver::confirmedMapInPlan() const {
+  // A localizer that states no confirmation (every pose localized) and a run before any pose
+  // agree with the last word.
+  if (!last_state_ || *last_state_ == PoseState::kLocalized) return B_T_M_;
+  return confirmed_B_T_M_;
 }
 
 RunRecord runLocalizer(RunSetup setup, slam::Localizer& localizer, sensors::SensorStreams streams,
@@ -137,7 +150,7 @@ RunRecord runLocalizer(RunSetup setup, slam::Localizer& localizer, sensors::Sens
   record.search_status = localizer.searchStatus();
   record.status_changes = localizer.statusChanges();
   record.map = localizer.mapDiagnostics();
-  record.final_B_T_M = driver.mapInPlan();
+  record.final_B_T_M = driver.confirmedMapInPlan();
   record.wall_seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return record;

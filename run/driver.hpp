@@ -57,6 +57,11 @@ class LocalizerDriver {
   std::vector<EstimateState> takeEstimateStates() { return std::move(estimate_states_); }
   // The localizer's last word on where its map lies in the plan.
   const std::optional<Eigen::Isometry3d>& mapInPlan() const { return B_T_M_; }
+  // Where the plan last placed the map, as far as it still holds: the last word when the last
+  // pose was localized; the word at the last localized pose when the estimate has only been
+  // tracking since (the same map, carried without the plan's confirmation); none when it ended
+  // lost (or never localized). What the run's report judges the map by (RunRecord::final_B_T_M).
+  std::optional<Eigen::Isometry3d> confirmedMapInPlan() const;
 
  private:
   void pushOdometryUntil(double t);
@@ -75,6 +80,9 @@ class LocalizerDriver {
   EstimateStateTrack state_track_;
   std::optional<double> localized_at_;
   std::optional<Eigen::Isometry3d> B_T_M_;
+  // B_T_M_ at the last localized pose, kept until a loss (confirmedMapInPlan).
+  std::optional<Eigen::Isometry3d> confirmed_B_T_M_;
+  std::optional<PoseState> last_state_;  // of the last pose in B
 };
 
 // Called after each scan: (scans fed, scans in all, the localizer).

@@ -291,9 +291,11 @@ RunEvaluation evaluateRun(const RunRecord& run) {
       if (level.points > 0) m.map_to_plan->levels.push_back(levelSummary(level));
     }
   } else if (run.setup.agraph) {
-    m.notes.push_back(run.final_B_T_M
-                          ? "no map-to-plan error: no scan point in a wall's height band"
-                          : "no map-to-plan error: the map was never placed in the plan");
+    m.notes.push_back(
+        run.final_B_T_M    ? "no map-to-plan error: no scan point in a wall's height band"
+        : run.localized_at ? "no map-to-plan error, no as-built report: the run ended lost, and "
+                             "a map the plan no longer places is not judged"
+                           : "no map-to-plan error: the map was never placed in the plan");
   }
   if (run.map && run.final_B_T_M && run.setup.agraph != nullptr)
     deviations(run, against_plan, evaluation);

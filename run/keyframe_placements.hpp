@@ -12,7 +12,8 @@ namespace isg::run {
 // the keyframe's scan composed with the keyframe's final pose in M (B_T_M then), one per
 // run.map->keyframes; none where the pose at that scan was not confirmed by the plan (its state
 // tracking or lost, run/estimate_states.hpp), nor where there was no pose in B. The final B_T_M
-// places the current segment's map; a segment that ended (MapDiagnostics::current_segment) is
+// (as the plan last confirmed it, LocalizerDriver::confirmedMapInPlan) places the current
+// segment's map; a segment that ended (MapDiagnostics::current_segment) is
 // placed only by these, since each segment merely continues M from where the last one ended: there,
 // a keyframe taken while the robot was not localized (no pose in B, or lost) gets the placement of
 // the one nearest in time of its segment that was (none when none was); one taken while tracking

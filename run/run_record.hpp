@@ -84,7 +84,9 @@ struct RunRecord {
   std::optional<slam::MapDiagnostics> map;
   std::vector<MapScanSample> map_samples;
   double map_sample_seconds = kMapSampleSeconds;  // the samples' spacing now (doubles when full)
-  std::optional<Eigen::Isometry3d> final_B_T_M;   // where the map lies in the plan at the end
+  // Where the map lies in the plan at the end, as the plan last confirmed it
+  // (LocalizerDriver::confirmedMapInPlan): none when the run ended lost.
+  std::optional<Eigen::Isometry3d> final_B_T_M;
 };
 
 }  // namespace isg::run

@@ -45,7 +45,8 @@ worlds::GeneratorSpec generatorSpec(const common::JsonNode& node) {
                      "missing_columns",
                      "moved_columns",
                      "shear_deg",
-                     "turn_deg"});
+                     "turn_deg",
+                     "carrier"});
   worlds::GeneratorSpec spec;
   spec.family = node.field("family").identifier();
   const auto& families = worlds::generatorFamilies();
@@ -84,6 +85,7 @@ worlds::GeneratorSpec generatorSpec(const common::JsonNode& node) {
   number("rotation_min_deg", spec.rotation_min_deg);
   number("rotation_max_deg", spec.rotation_max_deg);
   if (auto v = node.optionalField("rotation_about")) spec.rotation_about = v->string();
+  if (auto v = node.optionalField("carrier")) spec.carrier = v->string();
   number("shortened_walls", spec.shortened_walls);
   number("missing_walls", spec.missing_walls);
   number("extra_walls", spec.extra_walls);
@@ -281,8 +283,15 @@ Suite parseSuite(const common::JsonNode& root, const std::string& path,
   parseWorlds(root, path, suite);
   parseSeedsAndMethods(root, methods, suite);
   if (auto run = root.optionalField("run")) {
-    run->expectObject({"duration", "threads", "method_options"});
+    run->expectObject({"duration", "threads", "start_pose", "method_options"});
     if (auto d = run->optionalField("duration")) suite.duration = d->positiveNumber();
+    // A pose in numbers would be one building's: across a suite's worlds only the truth's is.
+    if (auto p = run->optionalField("start_pose")) {
+      if (p->string() != "truth") {
+        p->fail("must be \"truth\" (isg run --start-pose truth: each world's own first pose)");
+      }
+      suite.start_pose_truth = true;
+    }
     if (auto t = run->optionalField("threads")) suite.threads = int(t->numberInRange(1, 64));
     if (auto options = run->optionalField("method_options")) {
       parseMethodOptions(*options, methods, suite);
@@ -313,6 +322,10 @@ std::vector<SweepCell> sweepCells(const Suite& suite) {
                           "-o",        cell.dir,
                           "--threads", std::to_string(suite.threads),
                           "-q"};
+        if (suite.start_pose_truth) {
+          cell.arguments.push_back("--start-pose");
+          cell.arguments.push_back("truth");
+        }
         if (suite.duration) {
           cell.arguments.push_back("--duration");
           cell.arguments.push_back(common::formatNumber(*suite.duration));
@@ -395,6 +408,7 @@ nlohmann::json generatorSpecJson(const worlds::GeneratorSpec& s) {
   if (s.moved_columns > 0.0) j["moved_columns"] = s.moved_columns;
   if (s.shear_deg != 0.0) j["shear_deg"] = s.shear_deg;
   if (s.turn_deg != 0.0) j["turn_deg"] = s.turn_deg;
+  if (s.carrier != "legged") j["carrier"] = s.carrier;
   return j;
 }
 

@@ -38,9 +38,10 @@ struct Suite {
   std::string name;
   std::vector<SuiteWorld> worlds;
   std::vector<std::uint64_t> seeds;
-  std::vector<std::string> methods;                                          // canonical names
-  std::optional<double> duration;                                            // isg run --duration
-  int threads = 1;                                                           // isg run --threads
+  std::vector<std::string> methods;  // canonical names
+  std::optional<double> duration;    // isg run --duration
+  int threads = 1;                   // isg run --threads
+  bool start_pose_truth = false;     // isg run --start-pose truth
   std::map<std::string, std::map<std::string, std::string>> method_options;  // method → KEY → VALUE
   // Every method's options with the values its runs use, given or default (what sweep.json
   // records): method → KEY → value.

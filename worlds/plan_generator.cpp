@@ -18,6 +18,7 @@
 #include "common/input_error.hpp"
 #include "common/json_reader.hpp"
 #include "worlds/millimetres.hpp"
+#include "worlds/parking_generator.hpp"
 #include "worlds/plan_lean.hpp"
 #include "worlds/segment_distance.hpp"
 #include "worlds/site_generator.hpp"
@@ -453,8 +454,8 @@ bool allTrue(const std::vector<bool>& v) {
 }  // namespace
 
 const std::vector<std::string>& generatorFamilies() {
-  static const std::vector<std::string> kFamilies = {"office", "l-shape",    "t-shape", "u-shape",
-                                                     "hotel",  "twin-wings", "hall",    "site"};
+  static const std::vector<std::string> kFamilies = {
+      "office", "l-shape", "t-shape", "u-shape", "hotel", "twin-wings", "hall", "site", "parking"};
   return kFamilies;
 }
 
@@ -486,6 +487,8 @@ void checkSpec(const GeneratorSpec& spec) {
   require(spec.doors == "center" || spec.doors == "random" || spec.doors == "corner",
           "doors: must be center, random or corner");
   require(spec.height >= 2.4 && spec.height <= 10.0, "height: must be in [2.4, 10] m");
+  require(spec.carrier == "legged" || spec.carrier == "handheld",
+          "carrier: must be legged or handheld");
   for (const auto& [value, name] :
        {std::pair{spec.connecting_doors, "connecting doors"},
         std::pair{spec.shifted_walls, "shifted walls"},
@@ -982,9 +985,10 @@ void drawOfficeContents(const GeneratorSpec& s, const Layout& layout, std::mt199
 // The building, before it is read as isg check reads it: the spec checked, the floor laid out,
 // doors and partitions placed (the plan's stream), then what was built otherwise (the as-built
 // stream) and where the robot starts. The stages draw in this order, always.
-GeneratedBuilding generateUnchecked(const GeneratorSpec& spec) {
+GeneratedBuilding generateFamily(const GeneratorSpec& spec) {
   checkSpec(spec);
   if (spec.family == "site") return generateSite(spec);
+  if (spec.family == "parking") return generateParking(spec);
   // Separate streams for the plan and for the as-built changes, so that a denser clutter does
   // not move the walls.
   std::mt19937_64 rng(spec.seed * 0x9E3779B97F4A7C15ULL + 1);
@@ -1027,6 +1031,14 @@ GeneratedBuilding generateUnchecked(const GeneratorSpec& spec) {
   leanBuilding(out.plan, as_built, s.shear_deg, s.turn_deg);
   out.scenario["as_built"] = generatedAsBuiltJson(as_built);
   return out;
+}
+
+// The family's building, carried as the spec says (legged, the scenario's default, is not
+// written: a legged building is the same bytes as before the option was).
+GeneratedBuilding generateUnchecked(const GeneratorSpec& spec) {
+  GeneratedBuilding building = generateFamily(spec);
+  if (spec.carrier != "legged") building.scenario["robot"]["carrier"] = spec.carrier;
+  return building;
 }
 
 // Why the building's plan or scenario is refused, as isg check would refuse it (a plan limit:

@@ -36,6 +36,9 @@ struct GeneratorSpec {
   bool asymmetry = true;           // twin-wings and hotel: one change that breaks the symmetry
   int partitions = -1;             // hall: free-standing partitions (-1: one per 40 m² of hall)
   double wall_thickness = 0.2;
+  // Who carries the sensors on the tour: "legged" (the legged base, the scenario's default) or
+  // "handheld" (a person walking; docs/simulation.md, "Carriers").
+  std::string carrier = "legged";
   double height = 3.0;
   // As-built deviations, by density.
   double clutter_per_room = 1.0;  // mean clutter boxes per office

@@ -11,6 +11,7 @@
 
 #include "bim/plan.hpp"
 #include "bim/plan_json.hpp"
+#include "worlds/columns_as_built.hpp"
 #include "worlds/millimetres.hpp"
 #include "worlds/segment_distance.hpp"
 
@@ -361,29 +362,6 @@ std::optional<bim::ShortenedWall> risingWall(const bim::Level& level,
   return out;
 }
 
-// Columns inside the façade not built yet or built off their place, on request
-// (--missing-columns, --moved-columns): from a stream of their own, so that the rest of a site is
-// the same bytes either way. A column moves 0.1–0.25 m, clear of the 6 cm a report calls moved,
-// never onto a wall or another column (the grid is 6–8 m).
-void columnsAsBuilt(const GeneratorSpec& spec, const SiteDrawing& site, const bim::Level& level,
-                    bim::AsBuilt& as_built) {
-  if (!(spec.missing_columns > 0.0 || spec.moved_columns > 0.0)) return;
-  std::mt19937_64 column_rng(spec.seed * 0xA24BAED4963EE407ULL + 29);
-  std::uniform_real_distribution<double> column_unit(0.0, 1.0);
-  for (std::size_t k : site.inner_columns) {
-    const double draw = column_unit(column_rng);
-    const double distance = mm(0.1 + 0.15 * column_unit(column_rng));
-    const double direction = 2.0 * 3.14159265358979 * column_unit(column_rng);
-    const std::string& id = level.columns[k].id;
-    if (draw < spec.missing_columns) {
-      as_built.missing_columns.push_back(id);
-    } else if (draw < spec.missing_columns + spec.moved_columns) {
-      as_built.moved_columns.push_back(
-          {id, {mm(distance * std::cos(direction)), mm(distance * std::sin(direction))}});
-    }
-  }
-}
-
 // The site as built against its plan (the plan's level, as written).
 bim::AsBuilt siteAsBuilt(const GeneratorSpec& spec, const SiteDrawing& site,
                          const bim::Level& level) {
@@ -395,7 +373,7 @@ bim::AsBuilt siteAsBuilt(const GeneratorSpec& spec, const SiteDrawing& site,
   if (auto rising = risingWall(level, as_built.missing_walls, built_rng, built_unit)) {
     as_built.shortened_walls.push_back(std::move(*rising));
   }
-  columnsAsBuilt(spec, site, level, as_built);
+  columnsAsBuilt(spec, site.inner_columns, level, as_built);
   return as_built;
 }
 

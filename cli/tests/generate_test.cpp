@@ -18,9 +18,9 @@ TEST(Generate, EveryFamilyPassesCheckAndIsReproducible) {
   testing::Sandbox sandbox("generate_all");
   const auto made = sandbox.run("generate all -o a --count 2 --seed 5 -q");
   ASSERT_EQ(made.exit_code, 0) << made.err;
-  EXPECT_THAT(made.out, HasSubstr("wrote a: 16 buildings (16 plans and 16 as-built scenarios)"));
-  for (const char* family :
-       {"office", "l-shape", "t-shape", "u-shape", "hotel", "twin-wings", "hall", "site"}) {
+  EXPECT_THAT(made.out, HasSubstr("wrote a: 18 buildings (18 plans and 18 as-built scenarios)"));
+  for (const char* family : {"office", "l-shape", "t-shape", "u-shape", "hotel", "twin-wings",
+                             "hall", "site", "parking"}) {
     for (const char* seed : {"5", "6"}) {
       const std::string name = std::string(family) + "-" + seed;
       for (const std::string& file : {name + ".json", name + ".asbuilt.json"}) {
@@ -74,9 +74,9 @@ TEST(Generate, AnOfficeParameterGivenForASiteIsSaid) {
   const auto made = sandbox.run("generate site -o s --rooms 30 --height 4 -q");
   ASSERT_EQ(made.exit_code, 0) << made.err;
   EXPECT_EQ(made.err,
-            "isg generate: warning: --rooms does not apply to the site family (a site takes its "
-            "seed, --count, --height, --missing-columns and --moved-columns only); its sites are "
-            "made without it\n");
+            "isg generate: warning: --rooms does not apply to the site family (it takes its seed, "
+            "--count, --height, --carrier, --missing-columns and --moved-columns only); its "
+            "buildings are made without it\n");
   EXPECT_THAT(made.out, HasSubstr("wrote s: 1 building"));
   EXPECT_THAT(sandbox.read("s/site-1.json"), HasSubstr("\"height\": 4.0"));
   // A site has its own slanted corner: it is not sheared.
@@ -89,8 +89,9 @@ TEST(Generate, AnOfficeParameterGivenForASiteIsSaid) {
   const auto office = sandbox.run("generate office -o o --missing-columns 0.2 -q");
   ASSERT_EQ(office.exit_code, 0) << office.err;
   EXPECT_EQ(office.err,
-            "isg generate: warning: --missing-columns applies to the site family only (the other "
-            "families' plans have no columns); office buildings are made without it\n");
+            "isg generate: warning: --missing-columns applies to the site and parking families "
+            "only (the other families' plans have no columns); office buildings are made without "
+            "it\n");
 }
 
 TEST(Generate, BadParametersNameTheOptionAndWriteNothing) {

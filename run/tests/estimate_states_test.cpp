@@ -114,5 +114,37 @@ TEST(LocalizerDriver, OncePlacedTheEstimateNeverGoesSilent) {
   EXPECT_EQ(driver.mapInPlan()->translation(), Eigen::Vector3d(100, 51, 0));
 }
 
+// What the report judges the map by at the end: the last word while localized; the word at the
+// last localized pose while only tracking since; nothing once lost, until localized again.
+TEST(LocalizerDriver, TheMapIsJudgedWhereThePlanLastConfirmedIt) {
+  ScriptedLocalizer localizer;
+  const common::Trajectory no_odometry;
+  LocalizerDriver driver(localizer, no_odometry, 0.1);
+  const auto scanAt = [&](double t) {
+    localizer.pose = sensors::Odometry{t, at(t, 0)};
+    driver.skip(t);
+  };
+  scanAt(0.0);
+  EXPECT_FALSE(driver.confirmedMapInPlan());  // never localized
+  localizer.B_T_M = at(100, 50);
+  scanAt(0.1);
+  EXPECT_EQ(driver.confirmedMapInPlan()->translation(), Eigen::Vector3d(100, 50, 0));
+  localizer.B_T_M = at(100.4, 50);  // the answer slides where the plan does not confirm it
+  localizer.confirms = false;
+  scanAt(0.2);
+  EXPECT_EQ(driver.mapInPlan()->translation(), Eigen::Vector3d(100.4, 50, 0));
+  EXPECT_EQ(driver.confirmedMapInPlan()->translation(), Eigen::Vector3d(100, 50, 0));
+  localizer.B_T_M.reset();  // lost
+  scanAt(0.3);
+  EXPECT_TRUE(driver.mapInPlan());
+  EXPECT_FALSE(driver.confirmedMapInPlan());
+  localizer.B_T_M = at(100, 52);  // found again, not yet confirmed
+  scanAt(0.4);
+  EXPECT_FALSE(driver.confirmedMapInPlan());
+  localizer.confirms = true;
+  scanAt(0.5);
+  EXPECT_EQ(driver.confirmedMapInPlan()->translation(), Eigen::Vector3d(100, 52, 0));
+}
+
 }  // namespace
 }  // namespace isg::run

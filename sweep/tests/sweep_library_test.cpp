@@ -39,6 +39,25 @@ TEST(SweepLibrary, ASuiteIsItsCellsInWorldMethodSeedOrder) {
                                               "--threads", "1", "-q", "--duration", "2.5"));
 }
 
+// Cells from the true start: every world's own first pose, given to isg run as "truth"; a pose in
+// numbers is refused (it would be one building's).
+TEST(SweepLibrary, AStartPoseIsEachWorldsTruth) {
+  const Suite suite = suiteOf(R"({"format": "isg.suite", "version": 1, "name": "s",
+      "worlds": ["builtin:d1"], "methods": ["is-graphs"], "seeds": [1],
+      "run": {"start_pose": "truth"}})");
+  EXPECT_THAT(sweepCells(suite)[0].arguments,
+              ElementsAre("run", "builtin:d1", "--method", "is-graphs", "--seed", "1", "-o",
+                          "d1/is-graphs/seed-1", "--threads", "1", "-q", "--start-pose", "truth"));
+  try {
+    suiteOf(R"({"format": "isg.suite", "version": 1, "worlds": ["builtin:d1"],
+        "methods": ["is-graphs"], "seeds": [1], "run": {"start_pose": "1,2,0"}})");
+    FAIL() << "a start pose in numbers was taken";
+  } catch (const common::InputError& e) {
+    EXPECT_THAT(e.what(), HasSubstr("/run/start_pose: must be \"truth\" (isg run --start-pose "
+                                    "truth: each world's own first pose)"));
+  }
+}
+
 TEST(SweepLibrary, SweepJsonReadsBackItsCells) {
   const Suite suite = suiteOf(R"({"format": "isg.suite", "version": 1, "name": "s",
       "worlds": ["builtin:d1"], "methods": ["odometry"], "seeds": [1, 2]})");
