@@ -194,15 +194,39 @@ std::string flightBlocked(const Flight& flight, const Eigen::Vector2d& from, dou
 }
 
 // An open floor's tour (a level without rooms, docs/simulation.md "Open floors"): the points of a
-// square lattice `kOpenFloorSpacing` apart inside the façade's outline, each moved to the most
-// open cell within half a spacing, visited nearest first from where the robot is; a point no
-// path reaches is left out.
+// square lattice `kOpenFloorSpacing` apart inside the façade's outline (touredOutline), each moved
+// to the most open cell within half a spacing, visited nearest first from where the robot is; a
+// point no path reaches is left out.
 constexpr double kOpenFloorSpacing = 5.0;  // m: a VLP-16 sees every wall of a 5 m cell around it
 
-void tourOpenFloor(RouteBuilder& builder) {
+// The outline an open floor's tour covers: the plan's façade, grown to take in the unplanned
+// walls built beyond it (a part of the site the plan does not show, reached through a gap): the
+// walk leaves the drawn outline there for a while, as walks on sites do. Without such walls it
+// is the plan's façade, bit for bit.
+bim::Polygon2 touredOutline(const bim::Level& level, const bim::AsBuilt& as_built) {
+  std::vector<const bim::ExtraWall*> here;
+  for (const auto& extra : as_built.extra_walls) {
+    if (extra.level == level.id) here.push_back(&extra);
+  }
+  if (here.empty()) return bim::facadeOutline(level);
+  bim::Level grown = level;
+  for (const bim::ExtraWall* extra : here) {
+    bim::Wall wall;
+    wall.id = extra->id;
+    wall.start = extra->start;
+    wall.end = extra->end;
+    wall.thickness = extra->thickness;
+    wall.height = extra->height.value_or(level.height);
+    wall.base = extra->base;
+    grown.walls.push_back(wall);
+  }
+  return bim::facadeOutline(grown);
+}
+
+void tourOpenFloor(RouteBuilder& builder, const bim::AsBuilt& as_built) {
   const bim::Level& level = builder.level();
   const OccupancyGrid& grid = builder.grid();
-  const bim::Polygon2 outline = bim::facadeOutline(level);
+  const bim::Polygon2 outline = touredOutline(level, as_built);
   if (outline.empty()) return;
   Eigen::Vector2d lo = outline[0], hi = outline[0];
   for (const auto& p : outline) lo = lo.cwiseMin(p), hi = hi.cwiseMax(p);
@@ -259,7 +283,7 @@ void tourLevel(RouteBuilder& builder, const bim::Scenario& scenario, std::set<st
                const std::string& entry_room) {
   const bim::Level& level = builder.level();
   if (bim::isOpenFloor(level)) {
-    tourOpenFloor(builder);
+    tourOpenFloor(builder, scenario.as_built);
     // Then its few rooms (a core's toilets and stairs), through their doors or the free space.
     if (level.rooms.empty()) return;
   }

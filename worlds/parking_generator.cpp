@@ -70,6 +70,8 @@ class ParkingDrawing {
     mirror_y_ = unit() < 0.5;
     round_columns = unit() < 0.5;
     column_ = mm(uniform(0.5, 0.7));
+    column_half_width = 0.5 * column_;
+    ramp_edge_y = place({0.0, 0.0}).y();
   }
 
   // The ramp's lane: centred in a bay of the south edge (before mirroring), 3.5–4 m wide.
@@ -175,6 +177,8 @@ class ParkingDrawing {
 
   double bay_x = 0, bay_y = 0, width = 0, depth = 0;
   int bays_x = 0, bays_y = 0;
+  double ramp_edge_y = 0;  // the edge the ramp leaves from, as placed (mirrored)
+  double column_half_width = 0;
   bool round_columns = false;
   bim::Level level;
   std::vector<Solid> solids;  // every wall and column as placed, for the clutter's spacing
@@ -323,6 +327,51 @@ std::vector<bim::Clutter> parkedThings(const ParkingDrawing& park, std::mt19937_
   return clutter;
 }
 
+// A part of the site the plan does not show, on 7 car parks in 10: beyond a perimeter bay left
+// open (not on the ramp's edge), a bay built outside the slab, 0.6–1 bay deep, walled on three
+// sides (as_built.extra_walls, 0.2 m), which the tour walks into (sim/route_planner.cpp,
+// touredOutline): the walk leaves the drawn outline there for a while.
+constexpr double kAnnexShare = 0.7;
+
+void addAnnex(const ParkingDrawing& park, std::mt19937_64& built_rng, bim::AsBuilt& as_built) {
+  std::vector<const bim::Wall*> bays;
+  for (const auto& wall : park.level.walls) {
+    const bool on_ramp_edge = std::abs(wall.start.y() - park.ramp_edge_y) < 1e-6 &&
+                              std::abs(wall.end.y() - park.ramp_edge_y) < 1e-6;
+    const double bay = std::abs(wall.end.x() - wall.start.x()) > 1e-6 ? park.bay_x : park.bay_y;
+    if (wall.name == "perimeter" && !on_ramp_edge && (wall.end - wall.start).norm() > bay - 1.0) {
+      bays.push_back(&wall);
+    }
+  }
+  if (bays.empty()) return;
+  const bim::Wall& gap = *bays[std::size_t(built_rng() % bays.size())];
+  std::uniform_real_distribution<double> unit(0.0, 1.0);
+  const Eigen::Vector2d along = (gap.end - gap.start).normalized();
+  Eigen::Vector2d out(along.y(), -along.x());
+  const Eigen::Vector2d middle(0.5 * park.width, 0.5 * park.depth);
+  if (out.dot(0.5 * (gap.start + gap.end) - middle) < 0) out = -out;
+  const double bay = std::abs(along.x()) > 0.5 ? park.bay_x : park.bay_y;
+  const double deep = mm(bay * (0.6 + 0.4 * unit(built_rng)));
+  // From the outer faces of the bay's two columns (the gap's ends are their inner faces).
+  const double half = park.column_half_width;
+  const Eigen::Vector2d a = gap.start - half * along + (half + 0.1) * out;
+  const Eigen::Vector2d b = gap.end + half * along + (half + 0.1) * out;
+  const auto wall = [&](const Eigen::Vector2d& from, const Eigen::Vector2d& to) {
+    bim::ExtraWall extra;
+    extra.start = {mm(from.x()), mm(from.y())};
+    extra.end = {mm(to.x()), mm(to.y())};
+    extra.thickness = 0.2;
+    as_built.extra_walls.push_back(extra);
+  };
+  wall(a, a + deep * out);
+  wall(a + deep * out, b + deep * out);
+  wall(b + deep * out, b);
+  if (std::find(as_built.missing_walls.begin(), as_built.missing_walls.end(), gap.id) ==
+      as_built.missing_walls.end()) {
+    as_built.missing_walls.push_back(gap.id);
+  }
+}
+
 // The car park as built against its plan: perimeter walls not built yet, the parked things, and
 // on request columns missing or moved.
 bim::AsBuilt parkingAsBuilt(const GeneratorSpec& spec, const ParkingDrawing& park) {
@@ -332,6 +381,8 @@ bim::AsBuilt parkingAsBuilt(const GeneratorSpec& spec, const ParkingDrawing& par
   std::shuffle(open.begin(), open.end(), built_rng);
   const int unbuilt = std::min<int>(int(open.size()) / 4, 1 + int(built_rng() % 3));
   for (int k = 0; k < unbuilt; ++k) as_built.missing_walls.push_back(open[std::size_t(k)]);
+  std::uniform_real_distribution<double> unit(0.0, 1.0);
+  if (unit(built_rng) < kAnnexShare) addAnnex(park, built_rng, as_built);
   as_built.clutter = parkedThings(park, built_rng);
   columnsAsBuilt(spec, park.inner_columns, park.level, as_built);
   return as_built;

@@ -11,7 +11,8 @@ namespace isg::worlds {
 // two walls reaching 1.3–1.8 bays into the floor; a stair core and a lift core, each a lobby
 // opening onto the floor and a stair or a shaft behind it. The plan has no rooms: the floor's
 // inside is its perimeter (docs/simulation.md, "Open floors"). As built: one to three perimeter
-// walls not built yet, vehicles parked between the columns and pallets of material. The robot
+// walls not built yet, on most a bay built beyond one of them that the plan does not show (the
+// tour walks into it), vehicles parked between the columns and pallets of material. The robot
 // tours the open floor; `spec.carrier` says whether it is legged or carried by hand.
 GeneratedBuilding generateParking(const GeneratorSpec& spec);
 

@@ -85,7 +85,7 @@ namespace {
 // An open floor: a 20 m × 10 m façade of walls with a 3 m gap in its east side, two columns and
 // no rooms at all (a site plan, a raster plan whose walls enclose nothing).
 PlannedRoute openFloorTour(const nlohmann::json& robot, const nlohmann::json& more_walls = {},
-                           const nlohmann::json& rooms = {}) {
+                           const nlohmann::json& rooms = {}, const nlohmann::json& as_built = {}) {
   nlohmann::json document = {
       {"format", "isg.scenario"},
       {"version", 1},
@@ -106,6 +106,7 @@ PlannedRoute openFloorTour(const nlohmann::json& robot, const nlohmann::json& mo
   if (!robot.is_null()) document["robot"] = robot;
   for (const auto& wall : more_walls) document["plan"]["levels"][0]["walls"].push_back(wall);
   if (!rooms.empty()) document["plan"]["levels"][0]["rooms"] = rooms;
+  if (!as_built.is_null()) document["as_built"] = as_built;
   const common::JsonSource source{"scenario.json", nullptr};
   const bim::Scenario scenario = bim::parseScenario(
       common::JsonNode(document, "", source),
@@ -137,6 +138,34 @@ TEST(Tour, AnOpenFloorIsWalkedOverAFiveMetreLatticeFromItsMostOpenPoint) {
     EXPECT_GT(p.y(), 0.15);
     EXPECT_LT(p.y(), 9.85);
   }
+}
+
+// A part of the site the plan does not show: a 5.85 m × 5 m bay built beyond the east gap
+// (as_built.extra_walls). The tour walks into it, out of the drawn outline and back, and nowhere
+// else outside the façade.
+TEST(Tour, AnOpenFloorsTourWalksIntoWhatWasBuiltBeyondItsFacade) {
+  const nlohmann::json annex = {
+      {"extra_walls",
+       {{{"start", {20.15, 2.5}}, {"end", {26, 2.5}}, {"thickness", 0.2}},
+        {{"start", {26, 2.5}}, {"end", {26, 7.5}}, {"thickness", 0.2}},
+        {{"start", {26, 7.5}}, {"end", {20.15, 7.5}}, {"thickness", 0.2}}}}};
+  const PlannedRoute route = openFloorTour(nullptr, {}, {}, annex);
+  double farthest = 0.0;
+  for (const auto& p : route.waypoints) {
+    farthest = std::max(farthest, p.x());
+    if (p.x() > 20.15) {  // outside the façade: only in the bay built beyond it
+      EXPECT_GT(p.y(), 2.6 + 0.3) << p.transpose();
+      EXPECT_LT(p.y(), 7.4 - 0.3) << p.transpose();
+      EXPECT_LT(p.x(), 25.9 - 0.3) << p.transpose();
+    }
+  }
+  EXPECT_GT(farthest, 22.0);
+  // The drawn floor is toured as well: its lattice points, now spread over the grown outline.
+  int open_floor_targets = 0;
+  for (const auto& target : route.targets) {
+    if (target.label.rfind("open floor ", 0) == 0) ++open_floor_targets;
+  }
+  EXPECT_GE(open_floor_targets, 8);
 }
 
 TEST(Tour, AnOpenFloorWhoseMiddleIsAClosedShaftStartsOnTheFloorOutsideIt) {

@@ -29,6 +29,7 @@ class ScanOdometryLocalizer : public Localizer {
   bool wantsScan(double) const override { return true; }
   std::optional<sensors::Odometry> poseInMap() const override { return inner_->poseInMap(); }
   std::optional<Eigen::Isometry3d> mapInPlan() const override { return inner_->mapInPlan(); }
+  bool planConfirms() const override { return inner_->planConfirms(); }
   nlohmann::json graph() const override;
   std::optional<std::string> searchStatus() const override { return inner_->searchStatus(); }
   std::vector<StatusChange> statusChanges() const override { return inner_->statusChanges(); }

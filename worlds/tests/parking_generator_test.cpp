@@ -26,7 +26,7 @@ double toSegment(const Eigen::Vector2d& p, const Eigen::Vector2d& a, const Eigen
 }
 
 TEST(ParkingGenerator, AColumnGridRetainingWallsARampAndTwoCores) {
-  int round_floors = 0;
+  int round_floors = 0, annexes = 0;
   for (std::uint64_t seed = 1; seed <= 10; ++seed) {
     GeneratorSpec spec;
     spec.family = "parking";
@@ -107,11 +107,23 @@ TEST(ParkingGenerator, AColumnGridRetainingWallsARampAndTwoCores) {
       }
     }
     EXPECT_GE(vehicles, 4) << seed;
+    // A bay built beyond the perimeter, the plan not showing it: three walls outside the slab,
+    // behind a perimeter wall not built.
+    if (!b.as_built.extra_walls.empty()) {
+      ++annexes;
+      ASSERT_EQ(b.as_built.extra_walls.size(), 3u) << seed;
+      const Eigen::Vector2d far = b.as_built.extra_walls[1].start;
+      const bool outside =
+          far.x() < x0 - 1.0 || far.x() > x1 + 1.0 || far.y() < y0 - 1.0 || far.y() > y1 + 1.0;
+      EXPECT_TRUE(outside) << seed << " " << far.transpose();
+    }
     EXPECT_EQ(b.scenario["robot"]["route"], "tour");
     EXPECT_FALSE(b.scenario["robot"].contains("carrier"));  // legged, the default
   }
   EXPECT_GE(round_floors, 2);  // about half
   EXPECT_LE(round_floors, 8);
+  EXPECT_GE(annexes, 4);  // 7 in 10
+  EXPECT_LE(annexes, 10);
 }
 
 TEST(ParkingGenerator, TheSameSeedGivesTheSameCarParkCarriedAsAsked) {
