@@ -117,6 +117,7 @@ void ISGraphLocalizer::record(double stamp, MatchStatus status, const std::strin
 
 void ISGraphLocalizer::adopt(const Verification& answer, int level) {
   answer_.take(answer);
+  outside_answer_.reset();
   released_.clear();
   merger_.forgetKeyframes();  // gathered under another answer
   // The floor of the answer's level, or of the first matched room's.
@@ -140,15 +141,39 @@ void ISGraphLocalizer::assumeMatch(double stamp, const Eigen::Vector3d& x_y_yaw,
   keyframes_at_last_attempt_ = int(graph_.keyframes().size());
 }
 
-void ISGraphLocalizer::lose(double stamp, const std::string& reason) {
+bool ISGraphLocalizer::waitingOutside() {
+  // About 60 m of walk at a keyframe a metre: a part of a site beyond its plan is walked back out
+  // of within that; an answer that slid out and stays out is matched anew after it.
+  constexpr int kOutsideWaitKeyframes = 60;
+  if (!outside_answer_) return false;
+  const auto pose = graph_.latestPose();
+  const bool outside = pose && !plan_.building().contains(HeldAnswer::applyPlanar(
+                                   *outside_answer_, pose->M_T_R.translation().head<2>()));
+  if (outside && ++outside_keyframes_ <= kOutsideWaitKeyframes) return true;
+  outside_answer_.reset();
+  // Back within the plan: match now, on the whole map.
+  rooms_at_last_attempt_ = 0;
+  keyframes_at_last_attempt_ = 0;
+  return false;
+}
+
+void ISGraphLocalizer::lose(double stamp, const std::string& reason, bool keep_map) {
   record(stamp, MatchStatus::kLost, reason);
   log_.lost();
+  outside_answer_.reset();
+  if (keep_map) {
+    outside_answer_ = answer_.P_T_M_x_y_yaw;
+    outside_keyframes_ = 0;
+  }
   answer_.clear();
   released_.clear();
   merger_.forgetKeyframes();
   floors_.clear();
   agreement_.clear();
-  graph_.startNewSegment(stamp, reason);
+  // A map that still agrees with every scan is kept: the matcher finds the answer again on all
+  // of it once the robot is back within the plan, rather than on a fresh segment that holds only
+  // what lay beyond the plan.
+  if (!keep_map) graph_.startNewSegment(stamp, reason);
   rooms_at_last_attempt_ = 0;
   rooms_at_last_check_ = 0;
   keyframes_at_last_attempt_ = 0;
@@ -193,9 +218,13 @@ void ISGraphLocalizer::checkForContradiction(double stamp) {
 
 bool ISGraphLocalizer::keepAnswer(const MatchInput& input, double stamp) {
   std::string why = floors_.follow(stamp, graph_, answer_);
-  if (why.empty()) why = agreement_.update(input, graph_, answer_);
+  bool left_outline = false;
+  if (why.empty()) {
+    why = agreement_.update(input, graph_, answer_);
+    left_outline = agreement_.leftTheOutline();
+  }
   if (!why.empty()) {
-    lose(stamp, why);
+    lose(stamp, why, left_outline);
     return false;
   }
   releaseDeviatingWalls(input, stamp, options_.release.strikes);
@@ -252,10 +281,12 @@ void ISGraphLocalizer::onKeyframe(double stamp) {
     // Not localized, and the world stopped agreeing with the map: the map so far would mislead
     // the matcher. Start again from here.
     graph_.startNewSegment(stamp, "the scan does not agree with the recent map");
+    outside_answer_.reset();
     rooms_at_last_attempt_ = 0;
     keyframes_at_last_attempt_ = 0;
     return;
   }
+  if (!answer_.localized && waitingOutside()) return;
   const bool new_rooms = input.rooms.size() != rooms_at_last_attempt_;
   const bool due =
       !answer_.localized && keyframes - keyframes_at_last_attempt_ >= options_.retry_keyframes;

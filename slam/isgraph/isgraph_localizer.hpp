@@ -195,7 +195,13 @@ class ISGraphLocalizer : public Localizer {
   // Where the planes' vote on the level's matcher puts P_T_M (GraphMatcher::consensus), if that
   // moves the planes' middle by min_answer_move or more; `apart` gets the move.
   std::optional<Eigen::Vector3d> votedMove(const MatchInput& planes, double* apart) const;
-  void lose(double stamp, const std::string& reason);
+  // Lets the answer go; the S-Graph starts a fresh segment unless `keep_map` (the map is intact:
+  // the pose left the drawn building while the scan agreed with the recent map).
+  void lose(double stamp, const std::string& reason, bool keep_map = false);
+  // While the answer let go on leaving the drawn building would still put the robot outside it
+  // (up to kOutsideWaitKeyframes): no match is tried, so that none is adopted and lost again at
+  // every keyframe beyond the plan.
+  bool waitingOutside();
   // A full match while localized, judged on the S-Graph optimised without the plan.
   void checkForContradiction(double stamp);
 
@@ -214,6 +220,10 @@ class ISGraphLocalizer : public Localizer {
   std::size_t rooms_at_last_check_ = 0;  // S-rooms at the last contradiction check
   int keyframes_at_last_attempt_ = 0;
   std::optional<Eigen::Vector3d> given_start_;  // until the first keyframe takes it
+  // P_T_M of the answer let go when the pose left the drawn building with the map intact, and
+  // the keyframes since (waitingOutside).
+  std::optional<Eigen::Vector3d> outside_answer_;
+  int outside_keyframes_ = 0;
   std::size_t planes_at_last_vote_ = 0;
   double matching_s_ = 0.0;       // onKeyframe in all: matching, verification, contradictions
   double contradiction_s_ = 0.0;  // of which the contradiction checks

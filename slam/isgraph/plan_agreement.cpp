@@ -128,6 +128,7 @@ std::string PlanAgreement::heldDisagreement(const MatchInput& input, const SGrap
 std::string PlanAgreement::update(const MatchInput& input, const SGraph& graph,
                                   HeldAnswer& answer) {
   unconfirmed_.clear();
+  left_outline_ = false;
   // The scan against the recent map and against the plan: the robot is not where the graph
   // thinks when both disagree, or when the plan disagrees more and more.
   if (std::string why = scanDisagreement(graph, answer); !why.empty()) return why;
@@ -139,6 +140,8 @@ std::string PlanAgreement::update(const MatchInput& input, const SGraph& graph,
       char text[128];
       std::snprintf(text, sizeof text, "the pose (%.1f, %.1f) is outside the building", in_B.x(),
                     in_B.y());
+      const auto& registration = graph.keyframes().back().registration;
+      left_outline_ = registration.attempted && registration.inlier_share >= options_.suspect_share;
       return text;
     }
   }

@@ -47,6 +47,10 @@ class PlanAgreement {
   std::string update(const MatchInput& input, const SGraph& graph, HeldAnswer& answer);
   // Why the plan did not confirm the latest keyframe update() took; empty when it did.
   const std::string& unconfirmed() const { return unconfirmed_; }
+  // Whether the latest update() lost the answer because the pose left the drawn building while
+  // the scan still agreed with the recent map: the map is intact, only the answer is in question
+  // (a walk out of what the plan shows, or an answer slid out along a corridor).
+  bool leftTheOutline() const { return left_outline_; }
   // Measured under another answer, or none: the history starts again.
   void clear();
   // The latest keyframe's plan share at the answer's pose, or -1 without a cloud.
@@ -65,6 +69,7 @@ class PlanAgreement {
   int plan_collapsed_ = 0;          // keyframes in a row with a collapsed plan share
   int dropped_disagreeing_ = 0;     // held walls that left the gate since the last clear()
   std::string unconfirmed_;
+  bool left_outline_ = false;
 };
 
 }  // namespace isg::slam

@@ -47,6 +47,10 @@ TEST_F(BoxAgreement, APoseOutsideTheBuildingIsLost) {
   answer_.P_T_M_x_y_yaw.x() += 9.0;
   EXPECT_EQ(agreement.update(input_, graph_, answer_),
             "the pose (13.0, 0.0) is outside the building");
+  // The scan registered on the recent map: the map is intact, only the answer is let go (the
+  // localizer keeps the map and matches on it again once the pose is back within the plan).
+  ASSERT_TRUE(graph_.keyframes().back().registration.attempted);
+  EXPECT_TRUE(agreement.leftTheOutline());
 }
 
 // A wrong answer slid 0.6 m along x: the north and south walls stay in the gate (it slid along
@@ -68,6 +72,7 @@ TEST_F(BoxAgreement, WallsThatLeaveTheHoldGateAreDroppedThenTheAnswerIsLost) {
   answer_.P_T_M_x_y_yaw.z() = 30.0 * std::numbers::pi / 180.0;
   EXPECT_EQ(agreement.update(input_, graph_, answer_),
             "4 of the 4 matched walls seen now disagree with the plan");
+  EXPECT_FALSE(agreement.leftTheOutline());
   EXPECT_TRUE(answer_.plane_matches.empty());
 }
 
