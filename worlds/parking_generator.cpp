@@ -11,6 +11,7 @@
 #include "bim/plan.hpp"
 #include "bim/plan_json.hpp"
 #include "worlds/columns_as_built.hpp"
+#include "worlds/grid_floor_drawing.hpp"
 #include "worlds/millimetres.hpp"
 #include "worlds/segment_distance.hpp"
 
@@ -28,10 +29,7 @@ constexpr double kParkingCoreThickness = 0.2;
 constexpr double kRampThickness = 0.2;
 
 // A wall's or a column's axis and thickness, or an edge of a parked thing (thickness 0).
-struct Solid {
-  Eigen::Vector2d a, b;
-  double thickness;
-};
+using Solid = GridFloorDrawing::Solid;
 
 // Free space between two solids' faces; 0 or less where they cross or touch.
 double clearanceBetween(const Solid& s, const Solid& t) {
@@ -51,13 +49,10 @@ struct Core {
 
 // The car park's plan as drawn, step by step from one stream: slab → ramp → cores → columns →
 // perimeter → ramp walls → cores' walls. The order of the steps is the order of the draws.
-class ParkingDrawing {
+class ParkingDrawing : public GridFloorDrawing {
  public:
   explicit ParkingDrawing(const GeneratorSpec& spec)
-      : rng_(spec.seed * 0x9E3779B97F4A7C15ULL + 17) {
-    level.id = "L0";
-    level.height = spec.height;
-  }
+      : GridFloorDrawing(spec.seed * 0x9E3779B97F4A7C15ULL + 17, spec.height) {}
 
   void drawSlab() {
     bay_x = mm(uniform(7.5, 8.5));
@@ -180,17 +175,11 @@ class ParkingDrawing {
   double ramp_edge_y = 0;  // the edge the ramp leaves from, as placed (mirrored)
   double column_half_width = 0;
   bool round_columns = false;
-  bim::Level level;
-  std::vector<Solid> solids;  // every wall and column as placed, for the clutter's spacing
   std::vector<Core> cores;
   std::vector<std::string> perimeter_walls;
   std::vector<std::size_t> inner_columns;
 
  private:
-  double unit() { return unit_(rng_); }
-  double uniform(double lo, double hi) { return lo + (hi - lo) * unit_(rng_); }
-  int count(int lo, int hi) { return std::uniform_int_distribution<int>(lo, hi)(rng_); }
-
   bool nearACore(const Eigen::Vector2d& p, double margin) const {
     return std::any_of(cores.begin(), cores.end(), [&](const Core& c) {
       return p.x() > c.lo.x() - margin && p.x() < c.hi().x() + margin &&
@@ -223,19 +212,9 @@ class ParkingDrawing {
     });
   }
 
-  void addWall(const std::string& id, Eigen::Vector2d a, Eigen::Vector2d b, double thickness,
-               const std::string& name) {
-    a = place(a);
-    b = place(b);
-    bim::Wall wall;
-    wall.id = id;
-    wall.start = {mm(a.x()), mm(a.y())};
-    wall.end = {mm(b.x()), mm(b.y())};
-    wall.thickness = thickness;
-    wall.height = level.height;
-    wall.name = name;
-    level.walls.push_back(wall);
-    solids.push_back({wall.start, wall.end, thickness});
+  void addWall(const std::string& id, const Eigen::Vector2d& a, const Eigen::Vector2d& b,
+               double thickness, const std::string& name) {
+    addPlacedWall(id, place(a), place(b), thickness, name);
   }
   void coreWall(Eigen::Vector2d a, Eigen::Vector2d b) {
     addWall("K" + std::to_string(++core_walls_), a, b, kParkingCoreThickness, "core");
@@ -250,22 +229,10 @@ class ParkingDrawing {
   }
 
   void addColumn(const Eigen::Vector2d& c, bool inner) {
-    if (inner) inner_columns.push_back(level.columns.size());
-    const Eigen::Vector2d at = place(c);
-    bim::Column pillar;
-    pillar.id = "C" + std::to_string(level.columns.size() + 1);
-    pillar.center = {mm(at.x()), mm(at.y())};
-    pillar.size = {column_, column_};
-    if (inner && round_columns) pillar.shape = bim::Column::Shape::kRound;
-    pillar.height = level.height;
-    pillar.name = "column";
-    level.columns.push_back(pillar);
-    solids.push_back({pillar.center - Eigen::Vector2d(0.5 * column_, 0),
-                      pillar.center + Eigen::Vector2d(0.5 * column_, 0), column_});
+    const std::size_t index = addPlacedColumn(place(c), column_, inner && round_columns);
+    if (inner) inner_columns.push_back(index);
   }
 
-  std::mt19937_64 rng_;
-  std::uniform_real_distribution<double> unit_{0.0, 1.0};
   bool mirror_x_ = false, mirror_y_ = false;
   double column_ = 0.0;
   double ramp_lane_ = 0.0, ramp_x0_ = 0.0, ramp_length_ = 0.0;

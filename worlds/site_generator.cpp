@@ -12,6 +12,7 @@
 #include "bim/plan.hpp"
 #include "bim/plan_json.hpp"
 #include "worlds/columns_as_built.hpp"
+#include "worlds/grid_floor_drawing.hpp"
 #include "worlds/millimetres.hpp"
 #include "worlds/segment_distance.hpp"
 
@@ -28,10 +29,7 @@ constexpr double kFacadeThickness = 0.25;
 constexpr double kCoreThickness = 0.2;
 constexpr double kPartitionThickness = 0.1;
 
-struct Segment {
-  Eigen::Vector2d a, b;
-  double thickness;
-};
+using Segment = GridFloorDrawing::Solid;
 
 // Between two walls' axes: 0 where they cross or touch.
 double segmentDistance(const Segment& s, const Segment& t) {
@@ -71,12 +69,10 @@ struct Slab {
 // The site's plan as it is drawn, step by step from one random stream: slab → columns →
 // façade → core → partitions. The order of the steps is the order of the draws: a site is the
 // same bytes for a seed as long as it is kept.
-class SiteDrawing {
+class SiteDrawing : public GridFloorDrawing {
  public:
-  explicit SiteDrawing(const GeneratorSpec& spec) : rng_(spec.seed * 0x9E3779B97F4A7C15ULL + 3) {
-    level.id = "L0";
-    level.height = spec.height;
-  }
+  explicit SiteDrawing(const GeneratorSpec& spec)
+      : GridFloorDrawing(spec.seed * 0x9E3779B97F4A7C15ULL + 3, spec.height) {}
 
   void drawSlab() {
     slab.bay_x = mm(uniform(6.0, 8.0));
@@ -220,36 +216,20 @@ class SiteDrawing {
   }
 
   Slab slab;
-  bim::Level level;
-  std::vector<Segment> solids;  // every wall and column, for the partitions' spacing
   std::vector<std::string> facade_walls, partitions;
   std::vector<std::size_t> inner_columns;
   int columns = 0, facade = 0, rooms = 0;
   bool round_inside = false;
 
  private:
-  double unit() { return unit_(rng_); }
-  double uniform(double lo, double hi) { return lo + (hi - lo) * unit_(rng_); }
-  int count(int lo, int hi) { return std::uniform_int_distribution<int>(lo, hi)(rng_); }
-
   bool nearCore(const Eigen::Vector2d& p, double margin) const {
     return p.x() > core_lo_.x() - margin && p.x() < core_hi_.x() + margin &&
            p.y() > core_lo_.y() - margin && p.y() < core_hi_.y() + margin;
   }
 
-  void addWall(const std::string& id, Eigen::Vector2d a, Eigen::Vector2d b, double thickness,
-               const std::string& name) {
-    a = slab.place(a);
-    b = slab.place(b);
-    bim::Wall wall;
-    wall.id = id;
-    wall.start = {mm(a.x()), mm(a.y())};
-    wall.end = {mm(b.x()), mm(b.y())};
-    wall.thickness = thickness;
-    wall.height = level.height;
-    wall.name = name;
-    level.walls.push_back(wall);
-    solids.push_back({wall.start, wall.end, thickness});
+  void addWall(const std::string& id, const Eigen::Vector2d& a, const Eigen::Vector2d& b,
+               double thickness, const std::string& name) {
+    addPlacedWall(id, slab.place(a), slab.place(b), thickness, name);
   }
 
   void coreWall(Eigen::Vector2d a, Eigen::Vector2d b) {
@@ -258,21 +238,11 @@ class SiteDrawing {
 
   // Square columns; inside, on some sites, round ones (roundSomeInnerColumns).
   void addColumn(const Eigen::Vector2d& c, bool inner) {
-    if (inner) inner_columns.push_back(level.columns.size());
-    const Eigen::Vector2d at = slab.place(c);
-    bim::Column pillar;
-    pillar.id = "C" + std::to_string(++columns);
-    pillar.center = {mm(at.x()), mm(at.y())};
-    pillar.size = {column_, column_};
-    pillar.height = level.height;
-    pillar.name = "column";
-    level.columns.push_back(pillar);
-    solids.push_back({pillar.center - Eigen::Vector2d(0.5 * column_, 0),
-                      pillar.center + Eigen::Vector2d(0.5 * column_, 0), column_});
+    ++columns;
+    const std::size_t index = addPlacedColumn(slab.place(c), column_, false);
+    if (inner) inner_columns.push_back(index);
   }
 
-  std::mt19937_64 rng_;
-  std::uniform_real_distribution<double> unit_{0.0, 1.0};
   int bays_x_ = 0, bays_y_ = 0;
   double column_ = 0.0;
   double core_w_ = 0.0, core_d_ = 0.0;
