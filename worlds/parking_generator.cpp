@@ -34,7 +34,7 @@ using Solid = GridFloorDrawing::Solid;
 // Free space between two solids' faces; 0 or less where they cross or touch.
 double clearanceBetween(const Solid& s, const Solid& t) {
   if (crosses(s.a, s.b, t.a, t.b)) return 0.0;
-  return segmentDistance(s.a, s.b, t.a, t.b) - 0.5 * (s.thickness + t.thickness);
+  return worlds::segmentDistance(s.a, s.b, t.a, t.b) - 0.5 * (s.thickness + t.thickness);
 }
 
 // A core: a lobby opening onto the floor through a doorway in its outer wall, and behind a cross
