@@ -57,5 +57,44 @@ TEST(OccupancyGrid, AShiftedWallKeepsItsDoorwaysOpen) {
   }
 }
 
+// A level as large as an L of 1000 offices (175 × 175 m: 12.3 M cells of 5 cm) keeps 5 cm cells,
+// and its doorways keep the robot's clearance; only a level past OccupancyGrid::kMaxCells cells
+// gets coarser ones, exactly as many as the budget allows. (At 8 M cells such an L got 6.1 cm
+// cells, which shut 167 of its doorways.)
+TEST(OccupancyGrid, ALargeLevelKeepsFiveCentimetreCellsUpToItsBudget) {
+  bim::Scenario scenario = worlds::loadScenarioOrBuiltin("builtin:d1", nullptr);
+  bim::Level& level = scenario.plan.levels.at(0);
+  const bim::Door* door = nullptr;
+  for (const auto& d : level.doors) {
+    if (d.rooms[0] != bim::kOutside && d.rooms[1] != bim::kOutside) door = &d;
+  }
+  ASSERT_NE(door, nullptr);
+  const bim::Door inner = *door;
+  const bim::WallGeometry wall = *bim::computeLevelGeometry(level).findWall(inner.wall);
+  Eigen::Vector2d lo = level.walls.at(0).start;  // the level's walls' lowest corner
+  for (const auto& w : level.walls) lo = lo.cwiseMin(w.start).cwiseMin(w.end);
+  for (const double side : {175.0, 300.0}) {
+    bim::Level large = level;
+    // A short wall far off stretches the level's box to side × side metres.
+    const Eigen::Vector2d far = lo + Eigen::Vector2d::Constant(side);
+    large.walls.push_back({"far", far - Eigen::Vector2d(1, 0), far, 0.2, 3.0, 0.0, ""});
+    bim::Plan plan = scenario.plan;
+    plan.levels.at(0) = large;
+    const OccupancyGrid grid(plan, scenario.as_built, large.id);
+    const double cells = double(grid.width()) * grid.height();
+    if (side == 175.0) {
+      EXPECT_DOUBLE_EQ(grid.resolution(), 0.05);
+      EXPECT_GT(cells, 8e6);  // past the old budget
+      const Eigen::Vector2d centre = wall.pointAt(inner.offset);
+      for (double s = -0.3; s <= 0.3; s += 0.01) {
+        EXPECT_GE(grid.clearanceAt(centre + s * wall.left_normal), kMinClearance) << s;
+      }
+    } else {
+      EXPECT_GT(grid.resolution(), 0.05);
+      EXPECT_NEAR(cells, OccupancyGrid::kMaxCells, 0.01 * OccupancyGrid::kMaxCells);
+    }
+  }
+}
+
 }  // namespace
 }  // namespace isg::sim
