@@ -275,9 +275,9 @@ void GenerateCommand::writeAndCheck(const worlds::GeneratedBuilding& b,
   // Bad input for the parameters that made it, naming the rooms (or levels).
   if (const std::string part = sim::unreachedPart(simulation.route()); !part.empty()) {
     throw common::InputError(b.name, "",
-                             "the tour cannot reach " + part +
-                                 " of the generated building; nothing was written: "
-                                 "change the generator's parameters");
+                             "the tour cannot reach " + part + " of the generated building" +
+                                 sim::coarseCellsNote(simulation.route()) +
+                                 "; nothing was written: change the generator's parameters");
   }
 }
 

@@ -99,7 +99,7 @@ void OccupancyGrid::paint(const std::vector<Eigen::Vector2d>& polygon, bool bloc
 
 OccupancyGrid::OccupancyGrid(const bim::Plan& plan, const bim::AsBuilt& as_built,
                              const std::string& level_id, double resolution)
-    : resolution_(resolution) {
+    : resolution_(resolution), asked_resolution_(resolution) {
   const bim::Level& plan_level = *plan.findLevel(level_id);
   const bim::Level level = worlds::asBuiltLevel(plan_level, as_built);
   const bim::LevelGeometry geometry = bim::computeLevelGeometry(level);

@@ -30,6 +30,8 @@ class OccupancyGrid {
   int width() const { return width_; }
   int height() const { return height_; }
   double resolution() const { return resolution_; }
+  // The cell size asked for; resolution() is larger when the level is past kMaxCells such cells.
+  double askedResolution() const { return asked_resolution_; }
 
   Eigen::Vector2i cellOf(const Eigen::Vector2d& p) const;
   Eigen::Vector2d centreOf(const Eigen::Vector2i& c) const;
@@ -56,6 +58,7 @@ class OccupancyGrid {
   void paintFlights(const bim::Plan& plan, const bim::Level& plan_level);
 
   double resolution_;
+  double asked_resolution_;
   Eigen::Vector2d origin_;  // xy of cell (0, 0)'s corner
   int width_ = 0;
   int height_ = 0;

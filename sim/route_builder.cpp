@@ -9,6 +9,11 @@ RouteBuilder::RouteBuilder(const bim::Scenario& scenario, const OccupancyGrid& r
     : scenario_(scenario), route_(&route), clearance_(scenario.robot.clearance) {
   level_ = scenario.plan.findLevel(scenario.robot.level);
   grids_.emplace(level_->id, &robot_grid);
+  noteCoarseCells(level_->id, robot_grid);
+}
+
+void RouteBuilder::noteCoarseCells(const std::string& level, const OccupancyGrid& grid) {
+  if (grid.resolution() > grid.askedResolution()) route_->coarse_cells[level] = grid.resolution();
 }
 
 void RouteBuilder::restart(PlannedRoute& route, const bim::Level& level) {
@@ -20,6 +25,7 @@ const OccupancyGrid& RouteBuilder::gridOf(const bim::Level& level) {
   auto found = grids_.find(level.id);
   if (found != grids_.end()) return *found->second;
   owned_.push_back(std::make_unique<OccupancyGrid>(scenario_.plan, scenario_.as_built, level.id));
+  noteCoarseCells(level.id, *owned_.back());
   return *grids_.emplace(level.id, owned_.back().get()).first->second;
 }
 

@@ -78,6 +78,8 @@ class RouteBuilder {
   std::optional<FlightEnd> flightEnd(const Flight& flight, const bim::Level& level);
 
   void push(const Eigen::Vector2d& p);
+  // Writes the level's cell size into the route's coarse_cells when coarser than asked for.
+  void noteCoarseCells(const std::string& level, const OccupancyGrid& grid);
 
   const bim::Scenario& scenario_;
   PlannedRoute* route_;

@@ -380,6 +380,21 @@ std::string unreachedPart(const PlannedRoute& route) {
          common::namedList(ids);
 }
 
+std::string coarseCellsNote(const PlannedRoute& route) {
+  if (route.skipped_rooms.empty() || route.coarse_cells.empty()) return "";
+  std::vector<std::string> levels;
+  for (const auto& [level, cell] : route.coarse_cells) {
+    char size[32];
+    std::snprintf(size, sizeof size, "%.1f cm", 100.0 * cell);
+    levels.push_back("\"" + level + "\" (" + size + ")");
+  }
+  return " (the route grid of level" + std::string(levels.size() > 1 ? "s " : " ") +
+         common::namedList(levels) +
+         " has coarser cells than asked, the level being too large for " +
+         std::to_string(int(OccupancyGrid::kMaxCells / 1e6)) +
+         " M of them: a doorway much under 1 m wide can be shut at that size)";
+}
+
 namespace {
 
 // Where the walk starts: the given pose, the most open point of an open floor, or the start

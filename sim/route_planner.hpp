@@ -50,6 +50,10 @@ struct PlannedRoute {
   // Why each of skipped_levels was (a flight that cannot be reached or stepped off, or none
   // leading there), by level id: what the warning says.
   std::map<std::string, std::string> why_levels_skipped;
+  // The levels whose route grid has coarser cells than asked for (too large for
+  // OccupancyGrid::kMaxCells of them): their cell size, by level id. Narrow doorways can be shut
+  // at that size, which a message about rooms not reached says.
+  std::map<std::string, double> coarse_cells;
 };
 
 // Plans the scenario's route from its robot level as built (docs/simulation.md):
@@ -69,6 +73,10 @@ PlannedRoute planRoute(const bim::Scenario& scenario, const OccupancyGrid& grid,
 // What a tour could not reach, for the messages that refuse a generated building: "room R3",
 // "rooms R3, R4", else "level L1", "levels L1, L2"; empty when it reached everything.
 std::string unreachedPart(const PlannedRoute& route);
+// When rooms were not reached and a level's route grid has coarser cells than asked for, the
+// likely cause, to end that message: " (the route grid of level "L0" (6.1 cm) has coarser cells
+// …)"; else empty.
+std::string coarseCellsNote(const PlannedRoute& route);
 
 // "(x, y)" with 3 significant digits, as error messages name points.
 std::string formatPoint(const Eigen::Vector2d& p);

@@ -67,6 +67,7 @@ void prepareSweepWorlds(Suite& suite, const std::string& sweep_dir) {
     if (const std::string part = sim::unreachedPart(simulation.route()); !part.empty()) {
       throw common::InputError(suite.file, "/worlds",
                                "generated world " + world.name + ": its tour cannot reach " + part +
+                                   sim::coarseCellsNote(simulation.route()) +
                                    "; change the generator's parameters");
     }
     world.hash = worlds::worldHash(scenario);

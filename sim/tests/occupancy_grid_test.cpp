@@ -2,6 +2,9 @@
 
 #include <gtest/gtest.h>
 
+#include <map>
+#include <random>
+
 #include "bim/plan_geometry.hpp"
 #include "sim/route_planner.hpp"
 #include "worlds/reference_plans.hpp"
@@ -92,6 +95,12 @@ TEST(OccupancyGrid, ALargeLevelKeepsFiveCentimetreCellsUpToItsBudget) {
     } else {
       EXPECT_GT(grid.resolution(), 0.05);
       EXPECT_NEAR(cells, OccupancyGrid::kMaxCells, 0.01 * OccupancyGrid::kMaxCells);
+      // The route keeps the coarse level's cell size, for a message about rooms it cannot reach.
+      bim::Scenario large_scenario = scenario;
+      large_scenario.plan = plan;
+      std::mt19937_64 rng(1);
+      const PlannedRoute route = planRoute(large_scenario, grid, rng);
+      EXPECT_EQ(route.coarse_cells, (std::map<std::string, double>{{large.id, grid.resolution()}}));
     }
   }
 }

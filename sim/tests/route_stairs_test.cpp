@@ -83,6 +83,19 @@ TEST(StairsRoute, NoPathOnOneLevelCrossesAFlightOrItsStairwell) {
   }
 }
 
+// Rooms left out on a level whose route grid is coarser than asked are said with its cell size,
+// the likely cause (a level past OccupancyGrid::kMaxCells cells of 5 cm).
+TEST(StairsRoute, RoomsLeftOutOnACoarseGridSayItsCellSize) {
+  PlannedRoute route;
+  route.coarse_cells = {{"L0", 0.0608}};
+  EXPECT_EQ(coarseCellsNote(route), "");  // every room reached
+  route.skipped_rooms = {"R4", "R13"};
+  EXPECT_EQ(unreachedPart(route) + coarseCellsNote(route),
+            "rooms R4, R13 (the route grid of level \"L0\" (6.1 cm) has coarser cells than asked, "
+            "the level being too large for 24 M of them: a doorway much under 1 m wide can be shut "
+            "at that size)");
+}
+
 // A flight the tour cannot take (a crate across the corridor before its foot) leaves its level
 // out: listed in skipped_levels with the reason, never toured-around in silence.
 TEST(StairsRoute, ALevelTheTourCannotReachIsSkippedAndSaysWhy) {
@@ -97,6 +110,7 @@ TEST(StairsRoute, ALevelTheTourCannotReachIsSkippedAndSaysWhy) {
   EXPECT_EQ(route.skipped_levels, (std::vector<std::string>{"L1"}));
   EXPECT_EQ(unreachedPart(route), "level L1");
   EXPECT_EQ(unreachedPart(plan(storeys())), "");
+  EXPECT_EQ(coarseCellsNote(route), "");  // no room left out, and no coarse grid
   ASSERT_EQ(route.why_levels_skipped.count("L1"), 1u);
   EXPECT_EQ(route.why_levels_skipped.at("L1").rfind("flight \"S1\" cannot be reached from (", 0),
             0u)
