@@ -41,6 +41,7 @@ nlohmann::json matchingJson(const ISGraphView& view) {
   nlohmann::json matching = {{"localized", view.answer.localized},
                              {"windows_with_B_T_M_held", view.windows_with_answer_held},
                              {"jamb_factors", view.jamb_factors},
+                             {"map_bends", view.map_bends},
                              {"plane_matches", planes},
                              {"released_walls", released},
                              {"room_matches", rooms}};

@@ -21,6 +21,7 @@ struct ISGraphView {
   const FloorFollower& floors;
   int windows_with_answer_held = 0;
   long jamb_factors = 0;  // door jambs tied to keyframes, over every window
+  int map_bends = 0;      // whole-map optimisations with the plan (bend_keyframes)
 };
 
 // sgraph.json's "matching" object of the iS-Graph.

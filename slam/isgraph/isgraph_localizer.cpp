@@ -2,7 +2,10 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cstdio>
+#include <optional>
 #include <set>
+#include <string>
 
 #include "slam/isgraph/isgraph_json.hpp"
 
@@ -72,9 +75,10 @@ void ISGraphLocalizer::pushScan(const sensors::Scan& scan) {
 
 sensors::StageTimes ISGraphLocalizer::stageTimes() const {
   sensors::StageTimes times = graph_.stageTimes();
-  times.add("matching", matching_s_ - contradiction_s_);
+  times.add("matching", matching_s_ - contradiction_s_ - bend_s_);
   times.add("contradiction checks", contradiction_s_);
   times.add("door jambs", jambs_s_);
+  times.add("whole-map bends", bend_s_);
   return times;
 }
 
@@ -201,11 +205,20 @@ void ISGraphLocalizer::checkForContradiction(double stamp) {
           input, result.best, held_matcher.verify(input, held), &held_matcher))) {
     return;
   }
-  // A unique answer elsewhere: the first match was wrong.
   const double apart =
       (HeldAnswer::applyPlanar(result.best.x_y_yaw, middle) - answer_.inP(middle)).norm();
+  const auto recent = recentLeadForHeld(result.best.x_y_yaw, level);
+  if (recent && recent->decisive) {
+    log_.refused({stamp, apart, recent->describe()});
+    // The whole map preferred a rigid answer elsewhere: it bent. Bent onto the plan at the next
+    // keyframe.
+    keyframes_at_last_bend_ = -options_.bend_keyframes;
+    return;
+  }
+  // A unique answer elsewhere: the first match was wrong.
   record(stamp, MatchStatus::kContradicted,
-         "a new unique answer " + std::to_string(apart) + " m away: " + result.reason);
+         "a new unique answer " + std::to_string(apart) + " m away: " + result.reason +
+             (recent ? "; " + recent->describe() : ""));
   log_.contradicted();
   // Adopt the new one on the unmerged graph, and re-optimise every keyframe under it, so that
   // nothing stays where the old B_T_M pulled it.
@@ -214,6 +227,39 @@ void ISGraphLocalizer::checkForContradiction(double stamp) {
   refineAnswer(input, stamp);  // as a first answer is (onKeyframe)
   graph_.optimiseAll(true);
   record(stamp, MatchStatus::kMatched, result.reason);
+}
+
+void ISGraphLocalizer::bendMapOntoPlan(double stamp) {
+  const auto start = std::chrono::steady_clock::now();
+  keyframes_at_last_bend_ = int(graph_.keyframes().size());
+  graph_.optimiseAll(true);
+  const double seconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  bend_s_ += seconds;
+  bends_.push_back({stamp, keyframes_at_last_bend_, int(graph_.confirmedRooms().size()), seconds});
+}
+
+std::optional<ISGraphLocalizer::RecentLead> ISGraphLocalizer::recentLeadForHeld(
+    const Eigen::Vector3d& other, int other_level) const {
+  if (options_.contradiction_recent_keyframes <= 0) return std::nullopt;
+  const MatchInput recent =
+      recentSightingsOf(graph_, R_T_L_, options_.contradiction_recent_keyframes,
+                        options_.sgraph.rooms.min_wall_height);
+  if (recent.planes.empty()) return std::nullopt;
+  const GraphMatcher& held_matcher = plan_.matcherOf(floors_.level());
+  const GraphMatcher& other_matcher = plan_.matcherOf(other_level);
+  RecentLead lead;
+  lead.distinction =
+      held_matcher.distinguish(recent, held_matcher.verify(recent, answer_.P_T_M_x_y_yaw),
+                               other_matcher.verify(recent, other), &other_matcher);
+  lead.decisive = held_matcher.decisive(lead.distinction, &lead.needed);
+  return lead;
+}
+
+std::string ISGraphLocalizer::RecentLead::describe() const {
+  char need[48];
+  std::snprintf(need, sizeof need, ", %.1f m needed", needed);
+  return "the recent walls lead for the answer held by " + distinction.describe() + need;
 }
 
 bool ISGraphLocalizer::keepAnswer(const MatchInput& input, double stamp) {
@@ -242,18 +288,7 @@ bool ISGraphLocalizer::keepAnswer(const MatchInput& input, double stamp) {
 
 void ISGraphLocalizer::recaptureRecentWalls(const MatchInput& input) {
   if (options_.recapture_keyframes <= 0 || graph_.keyframes().back().floor < 0) return;
-  const auto& keyframes = graph_.keyframes();
-  std::set<int> recent;
-  for (std::size_t i = keyframes.size() > std::size_t(options_.recapture_keyframes)
-                           ? keyframes.size() - options_.recapture_keyframes
-                           : 0;
-       i < keyframes.size(); ++i) {
-    for (const auto& [plane, observation] : keyframes[i].observations) recent.insert(plane);
-  }
-  MatchInput local;
-  for (const MatchPlane& plane : input.planes) {
-    if (recent.count(plane.id)) local.planes.push_back(plane);
-  }
+  const MatchInput local = recentPlanesOf(input, graph_, options_.recapture_keyframes);
   if (local.planes.empty()) return;
   double apart = 0.0;
   const std::optional<Eigen::Vector3d> voted = votedMove(local, &apart);
@@ -272,6 +307,12 @@ void ISGraphLocalizer::onKeyframe(double stamp) {
     return;
   }
   const int keyframes = int(graph_.keyframes().size());
+  // A new segment starts counting again.
+  if (keyframes < keyframes_at_last_bend_) keyframes_at_last_bend_ = 0;
+  if (answer_.localized && options_.bend_keyframes > 0 &&
+      keyframes - keyframes_at_last_bend_ >= options_.bend_keyframes) {
+    bendMapOntoPlan(stamp);
+  }
   MatchInput input = matchInput();
   if (answer_.localized) {
     if (!keepAnswer(input, stamp)) return;
@@ -336,6 +377,18 @@ bool ISGraphLocalizer::moveToConsensus(const MatchInput& input, double stamp) {
   if (!voted) return false;
   const Verification moved = plan_.verify(input, *voted, floors_.level());
   const GraphMatcher& matcher = plan_.matcherOf(floors_.level());
+  if (options_.move_hold_share > 0.0) {
+    // A floor-wide move must not lose where the robot is (move_hold_share).
+    const MatchInput recent =
+        recentSightingsOf(graph_, R_T_L_, options_.contradiction_recent_keyframes,
+                          options_.sgraph.rooms.min_wall_height);
+    const double held_here = matcher.wallsAgreeing(recent, answer_.P_T_M_x_y_yaw);
+    const double moved_here = matcher.wallsAgreeing(recent, moved.x_y_yaw);
+    if (moved_here < options_.move_hold_share * held_here && held_here - moved_here >= 1.0) {
+      log_.moveRefused();
+      return false;
+    }
+  }
   log_.moved({stamp, apart, matcher.wallsAgreeing(input, answer_.P_T_M_x_y_yaw),
               matcher.wallsAgreeing(input, *voted)});
   // The vote was taken on the S-Graph as merged, so the move is made on it; every keyframe is
@@ -394,8 +447,9 @@ void ISGraphLocalizer::refitAnswer(const MatchInput& input) {
 nlohmann::json ISGraphLocalizer::graph() const {
   nlohmann::json out = graph_.toJson();
   out["method"] = name();
-  out["matching"] = matchingJson({plan_, answer_, log_, released_, floors_,
-                                  merger_.windowsWithAnswerHeld(), merger_.jambFactors()});
+  out["matching"] =
+      matchingJson({plan_, answer_, log_, released_, floors_, merger_.windowsWithAnswerHeld(),
+                    merger_.jambFactors(), int(bends_.size())});
   return out;
 }
 

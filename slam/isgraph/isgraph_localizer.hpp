@@ -44,6 +44,28 @@ struct ISGraphOptions {
   int retry_keyframes = 1;
   int contradiction_every_room = 20;
   double contradiction_growth = 0.1;
+  // A contradiction must hold where the robot is: the walls the latest
+  // `contradiction_recent_keyframes` keyframes saw are matched under both answers, and when they
+  // lead for the answer held as decisively as a match must lead, the new answer is refused. On a
+  // floor of a hundred metres the map bends with the odometry's drift (a metre and more), and the
+  // one rigid transform that fits the most of it is a compromise that fits where the robot is
+  // worst; a first match made wrong by symmetry is alike or worse on the recent walls, and still
+  // contradicted (docs/matching.md, "Contradictions on a bent map"). 0 leaves it out.
+  int contradiction_recent_keyframes = 25;
+  // The merged graph bends (docs/matching.md, "The merged graph bends"): while localized, every
+  // `bend_keyframes` keyframes — and at the next keyframe after a contradiction was refused —
+  // every keyframe, wall and room of the segment is optimised at once with the plan's
+  // correspondences held (SGraph::optimiseAll with the merge), so that the map mapped long before
+  // follows the plan rather than the drift it was mapped with; the window moves only the latest
+  // keyframes. 0 leaves it out.
+  int bend_keyframes = 25;
+  // A floor-wide move of the answer (min_answer_move) is refused when the walls the latest
+  // `contradiction_recent_keyframes` keyframes saw (recentSightingsOf) agree with it less than
+  // this share as well as with the answer held, and by a wall or more
+  // (GraphMatcher::wallsAgreeing): the whole bent map's vote must not take the answer from where
+  // the robot is. Not tighter: the sightings were placed under the answer held, so a right move
+  // loses a little of their agreement too. 0 leaves it out.
+  double move_hold_share = 0.5;
   // Once localized, whenever new S-planes are mapped the plan walls are asked whether the answer
   // should move (GraphMatcher::consensus): a move of at least this much is taken; smaller ones
   // are the merge's to make.
@@ -168,6 +190,14 @@ class ISGraphLocalizer : public Localizer {
   }
   // Seconds spent in full matching attempts, one entry per attempt.
   const std::vector<double>& matchingTimes() const { return log_.matchingTimes(); }
+  // Each whole-map bend (ISGraphOptions::bend_keyframes): when, on how large a map, how long.
+  struct MapBend {
+    double stamp = 0.0;
+    int keyframes = 0;  // of the segment
+    int rooms = 0;      // confirmed S-rooms
+    double seconds = 0.0;
+  };
+  const std::vector<MapBend>& bends() const { return bends_; }
 
  private:
   void onKeyframe(double stamp);
@@ -204,6 +234,18 @@ class ISGraphLocalizer : public Localizer {
   bool waitingOutside();
   // A full match while localized, judged on the S-Graph optimised without the plan.
   void checkForContradiction(double stamp);
+  // Every keyframe, wall and room of the segment optimised at once with the merge (bend_keyframes).
+  void bendMapOntoPlan(double stamp);
+  // What the latest keyframes' sightings of walls, as the robot holds them (recentSightingsOf),
+  // say for the answer held against `other` (on `other_level`); none when there are none
+  // (contradiction_recent_keyframes).
+  struct RecentLead {
+    Distinction distinction;  // the answer held's lead (negative: the other's)
+    double needed = 0.0;      // m of evidence a decisive lead needs
+    bool decisive = false;
+    std::string describe() const;
+  };
+  std::optional<RecentLead> recentLeadForHeld(const Eigen::Vector3d& other, int other_level) const;
 
   ISGraphOptions options_;
   Eigen::Isometry3d R_T_L_;
@@ -219,6 +261,9 @@ class ISGraphLocalizer : public Localizer {
   std::size_t rooms_at_last_attempt_ = 0;
   std::size_t rooms_at_last_check_ = 0;  // S-rooms at the last contradiction check
   int keyframes_at_last_attempt_ = 0;
+  int keyframes_at_last_bend_ = 0;
+  std::vector<MapBend> bends_;
+  double bend_s_ = 0.0;                         // of matching_s_, the whole-map bends
   std::optional<Eigen::Vector3d> given_start_;  // until the first keyframe takes it
   // P_T_M of the answer let go when the pose left the drawn building with the map intact, and
   // the keyframes since (waitingOutside).

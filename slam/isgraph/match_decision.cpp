@@ -11,6 +11,7 @@
 
 #include "bim/polygon.hpp"
 #include "common/angles.hpp"
+#include "common/plural.hpp"
 #include "slam/isgraph/graph_matching.hpp"
 
 namespace isg::slam {
@@ -270,14 +271,19 @@ void GraphMatcher::decide(const MatchInput& input, MatchResult& result) const {
   } else if (!result.candidates.empty() && !decisive(result.candidates.front().from_best)) {
     result.status = MatchStatus::kAmbiguous;
     // Where to look: the plan rooms that would separate the answers not yet separated.
-    std::set<std::string> where;
+    // In the plan's order, the first ten named: on a floor of a thousand alike offices every
+    // room may separate them, and the reason is a line a person reads.
+    std::set<std::string> named;
     for (Candidate& c : result.candidates) {
       if (decisive(c.from_best)) continue;
       c.from_best.separating_rooms = separatingRooms(best.x_y_yaw, c.answer.x_y_yaw);
-      where.insert(c.from_best.separating_rooms.begin(), c.from_best.separating_rooms.end());
+      named.insert(c.from_best.separating_rooms.begin(), c.from_best.separating_rooms.end());
     }
-    std::string look;
-    for (const auto& id : where) look += (look.empty() ? "" : ", ") + id;
+    std::vector<std::string> where;
+    for (const auto& room : graph_->rooms) {
+      if (named.count(room.id)) where.push_back(room.id);
+    }
+    const std::string look = common::namedList(where);
     result.reason = "two answers explain the map alike: " + text + evidence +
                     (look.empty() ? "; nothing in the plan separates them"
                                   : "; seeing " + look + " would separate them");

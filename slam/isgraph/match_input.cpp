@@ -50,4 +50,51 @@ MatchInput matchInputOf(const SGraph& graph, double min_wall_height) {
   return input;
 }
 
+MatchInput recentPlanesOf(const MatchInput& input, const SGraph& graph, int keyframes) {
+  const auto& all = graph.keyframes();
+  std::set<int> recent;
+  const std::size_t first =
+      all.size() > std::size_t(keyframes) ? all.size() - std::size_t(keyframes) : 0;
+  for (std::size_t i = first; i < all.size(); ++i) {
+    for (const auto& [plane, observation] : all[i].observations) recent.insert(plane);
+  }
+  MatchInput local;
+  for (const MatchPlane& plane : input.planes) {
+    if (recent.count(plane.id)) local.planes.push_back(plane);
+  }
+  return local;
+}
+
+MatchInput recentSightingsOf(const SGraph& graph, const Eigen::Isometry3d& R_T_L, int keyframes,
+                             double min_wall_height) {
+  const auto& all = graph.keyframes();
+  const auto& planes = graph.planes();
+  const int floor = graph.currentFloor();
+  const std::size_t first =
+      all.size() > std::size_t(keyframes) ? all.size() - std::size_t(keyframes) : 0;
+  std::map<int, MatchPlane> newest;  // by the wall's plane index
+  for (std::size_t k = first; k < all.size(); ++k) {
+    const auto& keyframe = all[k];
+    if (!keyframe.onFloor() || keyframe.floor != floor) continue;
+    const Eigen::Isometry3d M_T_L = keyframe.pose() * R_T_L;
+    for (const auto& [seen, observation] : keyframe.observations) {
+      int plane = seen;
+      while (planes[plane].merged_into >= 0) plane = planes[plane].merged_into;
+      if (planes[plane].floor != floor || !seenAsWall(planes[plane].map, min_wall_height)) {
+        continue;
+      }
+      MatchPlane m;
+      m.id = plane;
+      m.plane = observation.plane.transformed(M_T_L);
+      m.start = (M_T_L * observation.start).head<2>();
+      m.end = (M_T_L * observation.end).head<2>();
+      m.normal_yaw = std::atan2(m.plane.normal.y(), m.plane.normal.x());
+      newest[plane] = m;  // later keyframes replace earlier sightings
+    }
+  }
+  MatchInput input;
+  for (const auto& [plane, m] : newest) input.planes.push_back(m);
+  return input;
+}
+
 }  // namespace isg::slam

@@ -9,4 +9,15 @@ namespace isg::slam {
 // of the floor the robot stands on (the latest one it stood on, while on the stairs).
 MatchInput matchInputOf(const SGraph& graph, double min_wall_height);
 
+// The planes of `input` that the latest `keyframes` keyframes of `graph` observed (no rooms).
+MatchInput recentPlanesOf(const MatchInput& input, const SGraph& graph, int keyframes);
+
+// What the latest `keyframes` keyframes of `graph` saw of the walls of its current floor, each
+// wall once, as its newest sighting placed by the keyframe's estimate (R_T_L: the sensor's
+// mount): the part of the map about the robot as the robot holds it. A wall mapped long before
+// and seen again keeps its old plane and extent in the map, bent with the odometry's drift since;
+// its sighting now does not. Identified by the wall's plane index; no rooms.
+MatchInput recentSightingsOf(const SGraph& graph, const Eigen::Isometry3d& R_T_L, int keyframes,
+                             double min_wall_height);
+
 }  // namespace isg::slam

@@ -28,9 +28,15 @@ void MatchLog::addTo(nlohmann::json& matching) const {
                      {"walls_agreeing_before", m.walls_before},
                      {"walls_agreeing_after", m.walls_after}});
   }
+  nlohmann::json refused = nlohmann::json::array();
+  for (const auto& r : refusals_) {
+    refused.push_back({{"stamp", r.stamp}, {"apart_m", r.distance}, {"reason", r.reason}});
+  }
   matching["status"] = toString(status_);
   matching["contradictions"] = contradictions_;
+  matching["contradictions_refused"] = refused;
   matching["answer_moves"] = moves;
+  matching["answer_moves_refused"] = moves_refused_;
   matching["times_lost"] = losses_;
   matching["events"] = events;
   if (last_match_) matching["last_match"] = last_match_->toJson();

@@ -22,6 +22,13 @@ class MatchLog {
     double distance = 0.0;                         // m, at the middle of the map
     double walls_before = 0.0, walls_after = 0.0;  // GraphMatcher::wallsAgreeing
   };
+  // A unique answer elsewhere on the whole map that the recent walls refused: the map bent, the
+  // answer held where the robot is (the localizer's checkForContradiction).
+  struct RefusedContradiction {
+    double stamp = 0.0;
+    double distance = 0.0;  // m, between the answers at the middle of the map
+    std::string reason;     // the recent walls' lead for the answer held
+  };
 
   // A status at a keyframe, with why; a repeat of the status now is not a change.
   void record(double stamp, int keyframe, MatchStatus status, const std::string& reason);
@@ -30,14 +37,17 @@ class MatchLog {
   void contradicted() { ++contradictions_; }
   void lost() { ++losses_; }
   void moved(const AnswerMove& move) { answer_moves_.push_back(move); }
+  void refused(const RefusedContradiction& refusal) { refusals_.push_back(refusal); }
+  // A floor-wide move the recent walls disagreed with (ISGraphOptions::move_hold_walls).
+  void moveRefused() { ++moves_refused_; }
 
   MatchStatus status() const { return status_; }
   const std::vector<StatusChange>& events() const { return events_; }
   const std::optional<MatchResult>& lastMatch() const { return last_match_; }
   const std::vector<double>& matchingTimes() const { return matching_times_; }
 
-  // Its part of sgraph.json's "matching": status, contradictions, answer_moves, times_lost,
-  // events and last_match.
+  // Its part of sgraph.json's "matching": status, contradictions, contradictions_refused,
+  // answer_moves, answer_moves_refused, times_lost, events and last_match.
   void addTo(nlohmann::json& matching) const;
 
  private:
@@ -48,6 +58,8 @@ class MatchLog {
   int contradictions_ = 0;
   int losses_ = 0;
   std::vector<AnswerMove> answer_moves_;
+  std::vector<RefusedContradiction> refusals_;
+  int moves_refused_ = 0;
 };
 
 }  // namespace isg::slam

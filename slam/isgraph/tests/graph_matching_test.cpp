@@ -8,6 +8,7 @@
 #include <cstdio>
 #include <limits>
 #include <random>
+#include <set>
 
 #include "bim/agraph.hpp"
 #include "bim/plan_parser.hpp"
@@ -121,6 +122,40 @@ TEST(Matching, RepeatingGridIsNeverMatchedWrong) {
     if (result.status == MatchStatus::kAmbiguous) ++ambiguous;
   }
   EXPECT_GT(ambiguous, 0);
+}
+
+// Where to look, on a grid of many alike rooms: the rooms that would separate the answers are
+// named in the plan's order, the first ten and how many more — one line a person reads, not
+// every room of the floor.
+TEST(Matching, AnAmbiguousReasonNamesTheFirstTenRoomsToLookAt) {
+  const bim::AGraph graph = matchingGrid(10, 20, 0);
+  const GraphMatcher matcher(graph);
+  std::mt19937_64 rng(5);
+  int long_lists = 0;
+  for (int trial = 0; trial < 40; ++trial) {
+    const Eigen::Vector3d truth = testing::randomPlanarTransform(rng);
+    const int start = std::uniform_int_distribution<int>(0, int(graph.rooms.size()) - 1)(rng);
+    const auto cut =
+        testing::cutSGraph(graph, testing::walkRooms(graph, start, 3, rng), truth, rng);
+    const MatchResult result = matcher.match(cut.input);
+    if (result.status != MatchStatus::kAmbiguous) continue;
+    std::set<std::string> separating;
+    for (const auto& c : result.candidates) {
+      separating.insert(c.from_best.separating_rooms.begin(), c.from_best.separating_rooms.end());
+    }
+    std::vector<std::string> named;  // in the plan's order
+    for (const auto& room : graph.rooms) {
+      if (separating.count(room.id)) named.push_back(room.id);
+    }
+    if (named.size() <= 10) continue;
+    ++long_lists;
+    std::string expected = "; seeing ";
+    for (int i = 0; i < 10; ++i) expected += (i ? ", " : "") + named[i];
+    expected += " and " + std::to_string(named.size() - 10) + " more (" +
+                std::to_string(named.size()) + " in all) would separate them";
+    EXPECT_NE(result.reason.find(expected), std::string::npos) << result.reason;
+  }
+  EXPECT_GT(long_lists, 0);
 }
 
 // The hypotheses verified on a pool's threads: the very same result, whatever the threads.
