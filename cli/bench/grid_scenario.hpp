@@ -8,6 +8,8 @@
 #include "bim/scenario.hpp"
 #include "bim/synthetic_plan.hpp"
 #include "common/json_reader.hpp"
+#include "run/driver.hpp"
+#include "sim/scan_pipeline.hpp"
 
 namespace isg::sim {
 
@@ -24,6 +26,23 @@ inline bim::Scenario gridScenario(int rows, int cols) {
   scenario.robot.start_room = "R1";
   scenario.seed = 1;
   return scenario;
+}
+
+// Feeds the walk's scans to `driver` as the loop does (scans the localizer will not read are
+// skipped, never made) until `done(k)` before scan k, or the walk's end.
+template <typename Done>
+void feedScans(const sensors::SensorStreams& streams, LookaheadScans& scans,
+               run::LocalizerDriver& driver, Done done) {
+  for (int k = 0; k < int(streams.scan_stamps.size()) && !done(k); ++k) {
+    if (driver.wants(streams.scan_stamps[k])) {
+      sensors::Scan scan = scans.scan(k);
+      scan.stamp = streams.scan_stamps[k];
+      driver.feed(scan);
+    } else {
+      scans.skip(k);
+      driver.skip(streams.scan_stamps[k]);
+    }
+  }
 }
 
 }  // namespace isg::sim

@@ -35,17 +35,8 @@ void BM_MapBendAgainstKeyframes(benchmark::State& state) {
     slam::ISGraphLocalizer localizer(sim.R_T_L(), plan);
     run::LocalizerDriver driver(localizer, streams.odometry, streams.scan_period);
     LookaheadScans scans(sim, int(streams.scan_stamps.size()), 1);
-    for (int k = 0;
-         k < int(streams.scan_stamps.size()) && localizer.sgraph().keyframes().size() < 600; ++k) {
-      if (driver.wants(streams.scan_stamps[k])) {
-        sensors::Scan scan = scans.scan(k);
-        scan.stamp = streams.scan_stamps[k];
-        driver.feed(scan);
-      } else {
-        scans.skip(k);
-        driver.skip(streams.scan_stamps[k]);
-      }
-    }
+    feedScans(streams, scans, driver,
+              [&](int) { return localizer.sgraph().keyframes().size() >= 600; });
     const auto& timings = localizer.sgraph().timings();
     for (int at : {100, 200, 400, 550}) {
       // The bends nearest `at` keyframes (within ±50), and the window's solves there.

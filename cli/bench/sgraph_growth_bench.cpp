@@ -28,18 +28,10 @@ void BM_SGraphGrowth(benchmark::State& state) {
     run::LocalizerDriver driver(*localizer, streams.odometry, streams.scan_period);
     LookaheadScans scans(sim, int(streams.scan_stamps.size()), 1);
     std::size_t keyframes = 0;
-    for (int k = 0; k < int(streams.scan_stamps.size()) && keyframes < 560; ++k) {
-      // As the loop does: scans the S-Graph will not read are skipped, never made.
-      if (driver.wants(streams.scan_stamps[k])) {
-        sensors::Scan scan = scans.scan(k);
-        scan.stamp = streams.scan_stamps[k];
-        driver.feed(scan);
-      } else {
-        scans.skip(k);
-        driver.skip(streams.scan_stamps[k]);
-      }
+    feedScans(streams, scans, driver, [&](int k) {
       if (k % 50 == 0) keyframes = localizer->mapDiagnostics()->keyframes.size();
-    }
+      return keyframes >= 560;
+    });
     const auto map = *localizer->mapDiagnostics();
     // The solve and merging alone, without room detection, over the same keyframes as the rows
     // below: [n - 50, n + 50).

@@ -105,22 +105,31 @@ INSTANTIATE_TEST_SUITE_P(Plans, MatchingOnGrids,
                                   "Rooms";
                          });
 
-// A grid whose sizes repeat every 8 columns and rows is translation-symmetric in places: the
-// matcher must say so rather than pick one.
-TEST(Matching, RepeatingGridIsNeverMatchedWrong) {
-  const bim::AGraph graph = matchingGrid(10, 20, 0);
+// Forty walks of three rooms from random starts under random B_T_M (seed 5), each matched on a
+// grid whose sizes repeat every 8 columns and rows: `check(cut, truth, result)` for each.
+template <typename Check>
+void forEachShortWalkOnARepeatingGrid(const bim::AGraph& graph, Check check) {
   const GraphMatcher matcher(graph);
   std::mt19937_64 rng(5);
-  int ambiguous = 0;
   for (int trial = 0; trial < 40; ++trial) {
     const Eigen::Vector3d truth = testing::randomPlanarTransform(rng);
     const int start = std::uniform_int_distribution<int>(0, int(graph.rooms.size()) - 1)(rng);
     const auto cut =
         testing::cutSGraph(graph, testing::walkRooms(graph, start, 3, rng), truth, rng);
-    const MatchResult result = matcher.match(cut.input);
-    if (result.status == MatchStatus::kMatched) expectRight(result, cut, truth, result.reason);
-    if (result.status == MatchStatus::kAmbiguous) ++ambiguous;
+    check(cut, truth, matcher.match(cut.input));
   }
+}
+
+// A grid whose sizes repeat every 8 columns and rows is translation-symmetric in places: the
+// matcher must say so rather than pick one.
+TEST(Matching, RepeatingGridIsNeverMatchedWrong) {
+  const bim::AGraph graph = matchingGrid(10, 20, 0);
+  int ambiguous = 0;
+  forEachShortWalkOnARepeatingGrid(
+      graph, [&](const auto& cut, const Eigen::Vector3d& truth, const MatchResult& result) {
+        if (result.status == MatchStatus::kMatched) expectRight(result, cut, truth, result.reason);
+        if (result.status == MatchStatus::kAmbiguous) ++ambiguous;
+      });
   EXPECT_GT(ambiguous, 0);
 }
 
@@ -129,16 +138,10 @@ TEST(Matching, RepeatingGridIsNeverMatchedWrong) {
 // every room of the floor.
 TEST(Matching, AnAmbiguousReasonNamesTheFirstTenRoomsToLookAt) {
   const bim::AGraph graph = matchingGrid(10, 20, 0);
-  const GraphMatcher matcher(graph);
-  std::mt19937_64 rng(5);
   int long_lists = 0;
-  for (int trial = 0; trial < 40; ++trial) {
-    const Eigen::Vector3d truth = testing::randomPlanarTransform(rng);
-    const int start = std::uniform_int_distribution<int>(0, int(graph.rooms.size()) - 1)(rng);
-    const auto cut =
-        testing::cutSGraph(graph, testing::walkRooms(graph, start, 3, rng), truth, rng);
-    const MatchResult result = matcher.match(cut.input);
-    if (result.status != MatchStatus::kAmbiguous) continue;
+  forEachShortWalkOnARepeatingGrid(graph, [&](const auto&, const Eigen::Vector3d&,
+                                              const MatchResult& result) {
+    if (result.status != MatchStatus::kAmbiguous) return;
     std::set<std::string> separating;
     for (const auto& c : result.candidates) {
       separating.insert(c.from_best.separating_rooms.begin(), c.from_best.separating_rooms.end());
@@ -147,14 +150,14 @@ TEST(Matching, AnAmbiguousReasonNamesTheFirstTenRoomsToLookAt) {
     for (const auto& room : graph.rooms) {
       if (separating.count(room.id)) named.push_back(room.id);
     }
-    if (named.size() <= 10) continue;
+    if (named.size() <= 10) return;
     ++long_lists;
     std::string expected = "; seeing ";
     for (int i = 0; i < 10; ++i) expected += (i ? ", " : "") + named[i];
     expected += " and " + std::to_string(named.size() - 10) + " more (" +
                 std::to_string(named.size()) + " in all) would separate them";
     EXPECT_NE(result.reason.find(expected), std::string::npos) << result.reason;
-  }
+  });
   EXPECT_GT(long_lists, 0);
 }
 
