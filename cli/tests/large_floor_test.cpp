@@ -1,9 +1,9 @@
-// A floor of a thousand offices as built (docs/matching.md, "Contradictions on a bent map" and
-// "The merged graph bends"): over a 20-minute walk the map bends with the odometry's drift by a
-// metre and more, and the one rigid answer that fits most of a bent map is a compromise. Before the
-// map bent onto the plan, a full match on this floor at 877 s found "a new unique answer 1.45 m
-// away" while the estimate was 1–2 cm from the truth; adopted, it put the robot 1.2–1.5 m off for
-// the rest of the walk (APE in B 0.64 m over 1200 s).
+// A floor of a thousand offices as built (docs/matching.md, "A contradiction must hold where the
+// robot is" and "The merged graph bends"): over a 20-minute walk the map bends with the odometry's
+// drift by a metre and more, and the one rigid answer that fits most of a bent map is a compromise.
+// Before the map bent onto the plan, a full match on this floor at 877 s found "a new unique
+// answer 1.45 m away" while the estimate was 1–2 cm from the truth; adopted, it put the
+// robot 1.2–1.5 m off for the rest of the walk (APE in B 0.64 m over 1200 s).
 #include <gtest/gtest.h>
 
 #include <nlohmann/json.hpp>

@@ -50,7 +50,8 @@ struct ISGraphOptions {
   // floor of a hundred metres the map bends with the odometry's drift (a metre and more), and the
   // one rigid transform that fits the most of it is a compromise that fits where the robot is
   // worst; a first match made wrong by symmetry is alike or worse on the recent walls, and still
-  // contradicted (docs/matching.md, "Contradictions on a bent map"). 0 leaves it out.
+  // contradicted (docs/matching.md, "A contradiction must hold where the robot is"). 0 leaves it
+  // out.
   int contradiction_recent_keyframes = 25;
   // The merged graph bends (docs/matching.md, "The merged graph bends"): while localized, every
   // `bend_keyframes` keyframes — and at the next keyframe after a contradiction was refused —
