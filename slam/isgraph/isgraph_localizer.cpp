@@ -273,7 +273,10 @@ bool ISGraphLocalizer::keepAnswer(const MatchInput& input, double stamp) {
     lose(stamp, why, left_outline);
     return false;
   }
-  releaseDeviatingWalls(input, stamp, options_.release.strikes);
+  releaseDeviatingWalls(options_.release_recent_keyframes > 0
+                            ? recentPlanesOf(input, graph_, options_.release_recent_keyframes)
+                            : input,
+                        stamp, options_.release.strikes);
   if (moveToConsensus(input, stamp)) return false;
   // New S-planes gain correspondences at the current P_T_M; held ones stay as they are, and
   // released ones stay released.
@@ -287,7 +290,10 @@ bool ISGraphLocalizer::keepAnswer(const MatchInput& input, double stamp) {
 }
 
 void ISGraphLocalizer::recaptureRecentWalls(const MatchInput& input) {
-  if (options_.recapture_keyframes <= 0 || graph_.keyframes().back().floor < 0) return;
+  if (options_.recapture_keyframes <= 0 || options_.bend_keyframes > 0 ||
+      graph_.keyframes().back().floor < 0) {
+    return;
+  }
   const MatchInput local = recentPlanesOf(input, graph_, options_.recapture_keyframes);
   if (local.planes.empty()) return;
   double apart = 0.0;
@@ -369,6 +375,7 @@ bool ISGraphLocalizer::moveToConsensus(const MatchInput& input, double stamp) {
   if (input.planes.size() == planes_at_last_vote_ || graph_.keyframes().back().floor < 0) {
     return false;
   }
+  if (options_.bend_keyframes > 0) return false;  // the bends move B_T_M (bend_keyframes)
   planes_at_last_vote_ = input.planes.size();
   // The vote on the level's own matcher; the answers verified again with their indices into the
   // whole A-Graph (CompiledPlan::verify), which the correspondences hold.

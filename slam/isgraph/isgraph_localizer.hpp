@@ -58,25 +58,32 @@ struct ISGraphOptions {
   // every keyframe, wall and room of the segment is optimised at once with the plan's
   // correspondences held (SGraph::optimiseAll with the merge), so that the map mapped long before
   // follows the plan rather than the drift it was mapped with; the window moves only the latest
-  // keyframes. 0 leaves it out.
+  // keyframes. While the map bends, `B_T_M` moves with the bends and the windows only: neither the
+  // floor-wide vote (min_answer_move) nor the recent walls' vote (recapture_keyframes) runs. On
+  // floors of 1000 offices the first moved the answer toward a rigid compromise of the bent map,
+  // 0.3–1.5 m off, and the second, its correspondences made at its own answer, let a map slide
+  // 1.5 m along a corridor (docs/matching.md, "The merged graph bends"). 0 leaves the bends out,
+  // and the votes run.
   int bend_keyframes = 25;
-  // A floor-wide move of the answer (min_answer_move) is refused when the walls the latest
+  // Without the bends (bend_keyframes 0): a floor-wide move of the answer (min_answer_move) is
+  // refused when the walls the latest
   // `contradiction_recent_keyframes` keyframes saw (recentSightingsOf) agree with it less than
   // this share as well as with the answer held, and by a wall or more
   // (GraphMatcher::wallsAgreeing): the whole bent map's vote must not take the answer from where
   // the robot is. Not tighter: the sightings were placed under the answer held, so a right move
   // loses a little of their agreement too. 0 leaves it out.
   double move_hold_share = 0.5;
-  // Once localized, whenever new S-planes are mapped the plan walls are asked whether the answer
-  // should move (GraphMatcher::consensus): a move of at least this much is taken; smaller ones
-  // are the merge's to make.
+  // Without the bends (bend_keyframes 0), once localized, whenever new S-planes are mapped the
+  // plan walls are asked whether the answer should move (GraphMatcher::consensus): a move of at
+  // least this much is taken; smaller ones are the merge's to make.
   double min_answer_move = 0.05;  // m
   // Along a corridor the window's walls may all face one way, and the merge then cannot hold the
   // map along it: drift moves the recent map past the matcher's distance from the walls that
   // would (a partition seen through a door), and they are never matched. So the walls the latest
   // `recapture_keyframes` keyframes saw vote among themselves too (GraphMatcher::consensus on
   // them alone), and those the local vote puts on a surface gain that correspondence; the merge
-  // then pulls the map there. 0 leaves it out.
+  // then pulls the map there. 0 leaves it out; so do the bends (bend_keyframes), whose door jambs
+  // and whole-map optimisation hold the map along the corridor instead.
   int recapture_keyframes = 25;
   // Door jambs seen from keyframes tie them to the plan along the wall (docs/matching.md).
   JambOptions jambs;
@@ -89,6 +96,14 @@ struct ISGraphOptions {
   // more than the others explain is released from the merge and not matched again under this
   // answer.
   WallReleaseOptions release;
+  // Once localized, the walls the latest `release_recent_keyframes` keyframes saw are judged for
+  // release, each against the correction of the others among them: on a floor whose map bends,
+  // one rigid correction of every wall of the floor leaves the far walls' bend as their
+  // "deviation" (1000-office floors as built logged 520–2342 releases in 20 minutes; judged among
+  // the recent walls, 101–235), and a wall released is no longer bent back onto the plan. A new
+  // answer's first judgement (refineAnswer) takes every wall. 0 judges every wall of the floor
+  // each time.
+  int release_recent_keyframes = 25;
   // Lost: of the held correspondences the latest keyframe observes (at least lost_min_planes),
   // more than this share disagree; or fewer than lost_min_held remain in the segment.
   int lost_min_planes = 3;

@@ -1,9 +1,10 @@
 // Long corridors (docs/matching.md, "Holding the map along a corridor"): on a generated floor of
 // 195 offices along corridors up to 100 m long, walked for 20 minutes with the legged base's
-// drifting odometry, the walls the recent keyframes saw vote among themselves, so that a partition
-// seen through a door is matched even when the map has drifted past the matcher's 0.15 m along the
-// corridor; without it the estimate slid half a metre along the corridor for minutes (APE in B
-// here 0.234 m, with it 0.171 m; `isg run` with two threads: 0.295 and 0.111 m).
+// drifting odometry, the map must be held along the corridors where the window's walls all face
+// one way. First the recent walls' own vote did it (without it the estimate slid half a metre
+// along the corridor for minutes: APE in B 0.234 m here, with it 0.171 m); now the door jambs and
+// the whole-map bends do, and that vote is off while the map bends (`isg run` with two threads:
+// 0.295 m with neither, 0.025 m now).
 #include <gtest/gtest.h>
 
 #include "bim/plan_parser.hpp"
