@@ -273,17 +273,16 @@ bool ISGraphLocalizer::keepAnswer(const MatchInput& input, double stamp) {
     lose(stamp, why, left_outline);
     return false;
   }
-  releaseDeviatingWalls(options_.release_recent_keyframes > 0
-                            ? recentPlanesOf(input, graph_, options_.release_recent_keyframes)
-                            : input,
-                        stamp, options_.release.strikes);
+  releaseDeviatingWalls(
+      options_.release_recent_keyframes > 0
+          ? recentStretchesOf(input, graph_, R_T_L_, options_.release_recent_keyframes)
+          : input,
+      stamp, options_.release.strikes);
   if (moveToConsensus(input, stamp)) return false;
   // New S-planes gain correspondences at the current P_T_M; held ones stay as they are, and
   // released ones stay released.
   const Verification now = plan_.verify(input, answer_.P_T_M_x_y_yaw, floors_.level());
-  for (const auto& [plane, surface] : now.planes) {
-    if (released_.allows(plane, surface)) answer_.plane_matches.emplace(plane, surface);
-  }
+  holdWhereAllowed(input, now.planes, false);
   for (const auto& [s, a] : now.rooms) answer_.room_matches.emplace(s, a);
   recaptureRecentWalls(input);
   return true;
@@ -300,9 +299,7 @@ void ISGraphLocalizer::recaptureRecentWalls(const MatchInput& input) {
   const std::optional<Eigen::Vector3d> voted = votedMove(local, &apart);
   if (!voted) return;
   const Verification there = plan_.verify(local, *voted, floors_.level());
-  for (const auto& [plane, surface] : there.planes) {
-    if (released_.allows(plane, surface)) answer_.plane_matches.emplace(plane, surface);
-  }
+  holdWhereAllowed(local, there.planes, false);
 }
 
 void ISGraphLocalizer::onKeyframe(double stamp) {
@@ -363,6 +360,24 @@ void ISGraphLocalizer::onKeyframe(double stamp) {
   refineAnswer(input, stamp);
 }
 
+void ISGraphLocalizer::holdWhereAllowed(const MatchInput& input,
+                                        const std::vector<std::pair<int, int>>& found,
+                                        bool replace) {
+  std::map<int, const MatchPlane*> by_id;
+  for (const MatchPlane& plane : input.planes) by_id[plane.id] = &plane;
+  for (const auto& [plane, surface] : found) {
+    const auto seen = by_id.find(plane);
+    if (seen == by_id.end()) continue;  // verified on `input`: not reached
+    const MatchPlane& p = *seen->second;
+    if (!released_.allows(plane, surface, answer_.inP(p.start), answer_.inP(p.end))) continue;
+    if (replace) {
+      answer_.plane_matches[plane] = surface;
+    } else {
+      answer_.plane_matches.emplace(plane, surface);
+    }
+  }
+}
+
 void ISGraphLocalizer::releaseDeviatingWalls(const MatchInput& input, double stamp, int strikes) {
   std::vector<std::pair<int, int>> held;  // (S-plane, A-surface) of each of the walls
   const std::vector<HeldWall> walls = heldWalls(answer_, input, graph_, plan_.agraph(), &held);
@@ -407,9 +422,7 @@ bool ISGraphLocalizer::moveToConsensus(const MatchInput& input, double stamp) {
   answer_.P_T_M_x_y_yaw = moved.x_y_yaw;
   for (const MatchPlane& plane : input.planes) answer_.plane_matches.erase(plane.id);
   for (const MatchRoom& room : input.rooms) answer_.room_matches.erase(room.id);
-  for (const auto& [plane, surface] : moved.planes) {
-    if (released_.allows(plane, surface)) answer_.plane_matches[plane] = surface;
-  }
+  holdWhereAllowed(input, moved.planes, true);
   for (const auto& [s, a] : moved.rooms) answer_.room_matches[s] = a;
   // Not judged again at once, as a new answer's walls are (refineAnswer): the map was merged under
   // the old answer, and in a long building it bent with it; the walls it left off their surfaces

@@ -229,6 +229,10 @@ class ISGraphLocalizer : public Localizer {
   void refineAnswer(const MatchInput& input, double stamp);
   // P_T_M refitted to the held walls, robustly (correctionOfAll).
   void refitAnswer(const MatchInput& input);
+  // Adds the correspondences `found` (S-planes of `input`) to the answer where the releases allow
+  // them, each S-plane placed in P by the answer held; `replace`: over a correspondence held.
+  void holdWhereAllowed(const MatchInput& input, const std::vector<std::pair<int, int>>& found,
+                        bool replace);
   // The held walls of the current floor judged against each other (ReleasedWalls).
   void releaseDeviatingWalls(const MatchInput& input, double stamp, int strikes);
   // When new S-planes were mapped since the last vote: the answer moved to where more plan walls

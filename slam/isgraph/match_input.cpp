@@ -50,12 +50,20 @@ MatchInput matchInputOf(const SGraph& graph, double min_wall_height) {
   return input;
 }
 
+namespace {
+
+// The index of the first of the latest `keyframes` keyframes of `graph`.
+std::size_t firstOfLatest(const SGraph& graph, int keyframes) {
+  const std::size_t all = graph.keyframes().size();
+  return all > std::size_t(keyframes) ? all - std::size_t(keyframes) : 0;
+}
+
+}  // namespace
+
 MatchInput recentPlanesOf(const MatchInput& input, const SGraph& graph, int keyframes) {
   const auto& all = graph.keyframes();
   std::set<int> recent;
-  const std::size_t first =
-      all.size() > std::size_t(keyframes) ? all.size() - std::size_t(keyframes) : 0;
-  for (std::size_t i = first; i < all.size(); ++i) {
+  for (std::size_t i = firstOfLatest(graph, keyframes); i < all.size(); ++i) {
     for (const auto& [plane, observation] : all[i].observations) recent.insert(plane);
   }
   MatchInput local;
@@ -65,15 +73,48 @@ MatchInput recentPlanesOf(const MatchInput& input, const SGraph& graph, int keyf
   return local;
 }
 
+MatchInput recentStretchesOf(const MatchInput& input, const SGraph& graph,
+                             const Eigen::Isometry3d& R_T_L, int keyframes) {
+  std::map<int, const MatchPlane*> by_id;
+  for (const MatchPlane& plane : input.planes) by_id[plane.id] = &plane;
+  std::map<int, std::pair<double, double>> stretch;  // plane → [lo, hi] along it
+  const auto& all = graph.keyframes();
+  for (std::size_t k = firstOfLatest(graph, keyframes); k < all.size(); ++k) {
+    const Eigen::Isometry3d M_T_L = all[k].pose() * R_T_L;
+    for (const auto& [plane, observation] : all[k].observations) {
+      const auto it = by_id.find(plane);
+      if (it == by_id.end()) continue;
+      const Eigen::Vector2d along = alongWall(it->second->plane);
+      const double a = along.dot((M_T_L * observation.start).head<2>());
+      const double b = along.dot((M_T_L * observation.end).head<2>());
+      auto [entry, added] = stretch.try_emplace(plane, std::min(a, b), std::max(a, b));
+      if (!added) {
+        entry->second.first = std::min({entry->second.first, a, b});
+        entry->second.second = std::max({entry->second.second, a, b});
+      }
+    }
+  }
+  MatchInput local;
+  for (const auto& [plane, range] : stretch) {
+    MatchPlane cut = *by_id.at(plane);
+    const Eigen::Vector2d along = alongWall(cut.plane);
+    const Eigen::Vector2d n = cut.plane.normal.head<2>();
+    // The point of the plane's horizontal line nearest M's origin, then along it.
+    const Eigen::Vector2d origin = -cut.plane.d * n / n.squaredNorm();
+    cut.start = origin + (range.first - along.dot(origin)) * along;
+    cut.end = origin + (range.second - along.dot(origin)) * along;
+    local.planes.push_back(cut);
+  }
+  return local;
+}
+
 MatchInput recentSightingsOf(const SGraph& graph, const Eigen::Isometry3d& R_T_L, int keyframes,
                              double min_wall_height) {
   const auto& all = graph.keyframes();
   const auto& planes = graph.planes();
   const int floor = graph.currentFloor();
-  const std::size_t first =
-      all.size() > std::size_t(keyframes) ? all.size() - std::size_t(keyframes) : 0;
   std::map<int, MatchPlane> newest;  // by the wall's plane index
-  for (std::size_t k = first; k < all.size(); ++k) {
+  for (std::size_t k = firstOfLatest(graph, keyframes); k < all.size(); ++k) {
     const auto& keyframe = all[k];
     if (!keyframe.onFloor() || keyframe.floor != floor) continue;
     const Eigen::Isometry3d M_T_L = keyframe.pose() * R_T_L;

@@ -14,7 +14,9 @@ namespace isg::slam {
 // The plan walls released from the merge under the answer held now (docs/matching.md, "An
 // imprecise plan"): each held wall judged against the others on every keyframe, released after
 // `strikes` judgements in a row beyond the thresholds, and never matched again under that
-// answer. A new answer starts with none.
+// answer where it was seen off: its S-plane, and its surface along the stretch that S-plane
+// covered (a plane of the S-Graph reaches at most AssociationOptions::max_length along its wall;
+// a long wall is judged and released a stretch at a time). A new answer starts with none.
 class ReleasedWalls {
  public:
   struct Release {
@@ -22,6 +24,8 @@ class ReleasedWalls {
     int plane = -1;                    // S-plane
     int surface = -1;                  // A-surface
     double offset = 0.0, angle = 0.0;  // the residual that released it (m, rad)
+    // The stretch of the surface released: the S-plane's seen segment, in P.
+    Eigen::Vector2d start = Eigen::Vector2d::Zero(), end = Eigen::Vector2d::Zero();
   };
 
   explicit ReleasedWalls(const WallReleaseOptions& options) : options_(options) {}
@@ -32,10 +36,11 @@ class ReleasedWalls {
   // off its plan, and for the hold gate and the contradiction check to settle.
   void judge(const std::vector<HeldWall>& walls, const std::vector<std::pair<int, int>>& held,
              double stamp, int strikes_needed, std::map<int, int>& plane_matches);
-  // Whether a correspondence may be made: neither its S-plane nor its surface was released.
-  bool allows(int plane, int surface) const {
-    return !planes_.count(plane) && !surfaces_.count(surface);
-  }
+  // Whether a correspondence may be made: its S-plane was not released, nor its surface along
+  // the S-plane's seen segment (ends in P, under the answer held), within
+  // WallReleaseOptions::stretch_margin.
+  bool allows(int plane, int surface, const Eigen::Vector2d& start_in_P,
+              const Eigen::Vector2d& end_in_P) const;
   // The offset that released a surface (the latest), along its normal: how far the wall stands off
   // the plan, which moves its rooms' centres by half as much. None when it is held.
   std::optional<double> offsetOf(int surface) const;
@@ -50,9 +55,10 @@ class ReleasedWalls {
  private:
   WallReleaseOptions options_;
   std::vector<Release> log_;
-  std::set<int> planes_;            // released S-planes
-  std::map<int, double> surfaces_;  // released A-surface → the offset that released it
-  std::map<int, int> strikes_;      // S-plane → judgements in a row beyond a threshold
+  std::set<int> planes_;                   // released S-planes
+  std::map<int, double> surfaces_;         // released A-surface → the offset that released it
+  std::multimap<int, Release> stretches_;  // released A-surface → each stretch released
+  std::map<int, int> strikes_;             // S-plane → judgements in a row beyond a threshold
 };
 
 }  // namespace isg::slam

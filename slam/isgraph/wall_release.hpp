@@ -25,6 +25,9 @@ struct WallReleaseOptions {
   // wall built off.
   int min_others = 3;
   int strikes = 3;  // keyframes in a row beyond a threshold before it is released
+  // A release holds on the stretch of the surface its S-plane was seen on and this far beyond
+  // its ends (m: the gap of a doorway, across which association joins a wall's pieces).
+  double stretch_margin = 1.0;
   // Residual scales of the correction's robust fit (Huber, then Cauchy, at 1 in these units).
   double sigma_distance = 0.03;  // m
   double sigma_angle_deg = 1.0;

@@ -20,6 +20,12 @@ double gapAlong(const Eigen::Vector2d& direction, const Eigen::Vector2d& a0,
 
 }  // namespace
 
+Eigen::Vector2d alongWall(const bim::Plane& plane) {
+  Eigen::Vector2d along(-plane.normal.y(), plane.normal.x());
+  if (along.norm() < 1e-6) return Eigen::Vector2d::UnitX();
+  return along.normalized();
+}
+
 PlaneObservation toMap(const PlaneObservation& o, const Eigen::Isometry3d& M_T_L) {
   PlaneObservation out = o;
   out.plane = o.plane.transformed(M_T_L);
@@ -53,6 +59,64 @@ bool seenAsWall(const MapPlane& plane, double min_height) {
   return plane.tops_beyond_view > 0 && plane.top_seen_z - plane.z_min >= min_height;
 }
 
+namespace {
+
+// Whether an observation may join a map plane under its length bound: together they reach no
+// farther than max_length, or the observation is centred on the plane's extent (it adds at most
+// its own half beyond, which extend() does not take).
+bool withinBound(const Eigen::Vector2d& along, const MapPlane& m, const PlaneObservation& o,
+                 double max_length) {
+  const double m_lo = std::min(along.dot(m.start), along.dot(m.end));
+  const double m_hi = std::max(along.dot(m.start), along.dot(m.end));
+  const double o_a = along.dot(o.start.head<2>()), o_b = along.dot(o.end.head<2>());
+  const double reach = std::max({m_hi, o_a, o_b}) - std::min({m_lo, o_a, o_b});
+  if (reach <= max_length) return true;
+  const double centre = along.dot(o.centroid.head<2>());
+  return centre >= m_lo && centre <= m_hi;
+}
+
+}  // namespace
+
+void extend(MapPlane& m, const PlaneObservation& o, double max_length) {
+  if (Eigen::Vector2d(m.plane.normal.y(), m.plane.normal.x()).norm() < 1e-6) return;
+  const Eigen::Vector2d along = alongWall(m.plane);
+  const double m_lo = std::min(along.dot(m.start), along.dot(m.end));
+  const double m_hi = std::max(along.dot(m.start), along.dot(m.end));
+  double lo = std::min({m_lo, along.dot(o.start.head<2>()), along.dot(o.end.head<2>())});
+  double hi = std::max({m_hi, along.dot(o.start.head<2>()), along.dot(o.end.head<2>())});
+  const double added = (m_lo - lo) + (hi - m_hi);
+  if (max_length > 0.0 && hi - lo > max_length && added > 0.0) {
+    const double room = std::max(0.0, max_length - (m_hi - m_lo));
+    const double share = room / added;
+    lo = m_lo - share * (m_lo - lo);
+    hi = m_hi + share * (hi - m_hi);
+  }
+  const Eigen::Vector2d base = -m.plane.d * m.plane.normal.head<2>();
+  const Eigen::Vector2d origin = base - along.dot(base) * along;
+  m.start = origin + lo * along;
+  m.end = origin + hi * along;
+}
+
+MapPlane newMapPlane(const PlaneObservation& o, double max_length) {
+  MapPlane m;
+  m.plane = o.plane;
+  m.start = o.start.head<2>();
+  m.end = o.end.head<2>();
+  m.z_min = o.z_min;
+  m.z_max = o.z_max;
+  const double length = (m.end - m.start).norm();
+  if (max_length > 0.0 && length > max_length) {
+    const Eigen::Vector2d unit = (m.end - m.start) / length;
+    // The centroid's place along the segment, kept within it.
+    const double at = std::clamp(unit.dot(o.centroid.head<2>() - m.start), 0.5 * max_length,
+                                 length - 0.5 * max_length);
+    const Eigen::Vector2d centre = m.start + at * unit;
+    m.start = centre - 0.5 * max_length * unit;
+    m.end = centre + 0.5 * max_length * unit;
+  }
+  return m;
+}
+
 int associate(const PlaneObservation& o, const std::vector<MapPlane>& map,
               const AssociationOptions& options) {
   const double min_cos = std::cos(options.max_angle_deg * std::numbers::pi / 180.0);
@@ -63,11 +127,10 @@ int associate(const PlaneObservation& o, const std::vector<MapPlane>& map,
     if (m.plane.normal.dot(o.plane.normal) < min_cos) continue;
     const double distance = std::abs(m.plane.signedDistance(o.centroid));
     if (distance > best_distance) continue;
-    Eigen::Vector2d along(-m.plane.normal.y(), m.plane.normal.x());
-    if (along.norm() < 1e-6) along = Eigen::Vector2d::UnitX();
-    along.normalize();
+    const Eigen::Vector2d along = alongWall(m.plane);
     const double gap = gapAlong(along, m.start, m.end, o.start.head<2>(), o.end.head<2>());
     if (gap > options.max_gap) continue;
+    if (options.max_length > 0.0 && !withinBound(along, m, o, options.max_length)) continue;
     best = i;
     best_distance = distance;
   }

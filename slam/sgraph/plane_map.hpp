@@ -42,13 +42,37 @@ struct AssociationOptions {
   // Observed extent and map extent may be this far apart along the wall and still be one surface
   // (the gap a doorway leaves); farther, they are coplanar but separate walls.
   double max_gap = 1.0;
+  // A map plane reaches at most this far along its wall (m; 0: without bound). The map bends
+  // with the drift it was made with, and one plane cannot: a corridor wall two hundred metres
+  // long kept as one plane is fitted to keyframes of very different drift, sits off the plan
+  // where the robot is and is released from the merge as "built off" (docs/slam.md, "Wall planes
+  // in pieces"). Beyond the bound a wall goes on as a new plane, tied to the plan on its own. The
+  // bound is about the walk of the merge's window (25 keyframes a couple of metres apart), so a
+  // plane is fitted to keyframes of about one drift.
+  double max_length = 40.0;
 };
 
 // The map plane that an observation (already expressed in M) belongs to, or -1 for a new one:
 // normals within max_angle_deg, the observation's centroid within max_distance of the map plane,
-// extents overlapping or at most max_gap apart; among several, the nearest.
+// extents overlapping or at most max_gap apart, and — where together they would reach beyond
+// max_length — the observation's centroid within the map plane's extent; among several, the
+// nearest.
 int associate(const PlaneObservation& observation_in_M, const std::vector<MapPlane>& map,
               const AssociationOptions& options = {});
+
+// The map plane's extent grown to take in an observation (in M) associated with it, along the
+// plane: by at most what max_length leaves (0: without bound), shared between the two ends in
+// proportion to what the observation adds at each. A plane that already reaches max_length keeps
+// its extent, so a wall walked along goes on as a new plane rather than moving this one.
+void extend(MapPlane& plane, const PlaneObservation& observation_in_M, double max_length);
+
+// A new map plane from an observation (in M) that no map plane took: its extent is the
+// observation's, at most max_length (0: without bound) about the observation's centroid.
+MapPlane newMapPlane(const PlaneObservation& observation_in_M, double max_length);
+
+// The unit direction along a wall plane: horizontal, across its normal (x when the plane is
+// horizontal).
+Eigen::Vector2d alongWall(const bim::Plane& plane);
 
 // An observation (in the LiDAR frame) expressed in M, given M_T_L.
 PlaneObservation toMap(const PlaneObservation& observation, const Eigen::Isometry3d& M_T_L);

@@ -23,21 +23,6 @@ double seconds(std::chrono::steady_clock::time_point since) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - since).count();
 }
 
-// Extends a map plane's extent with an observation already in M.
-void extend(MapPlane& m, const PlaneObservation& o) {
-  Eigen::Vector2d along(-m.plane.normal.y(), m.plane.normal.x());
-  if (along.norm() < 1e-6) return;
-  along.normalize();
-  double lo = std::min(along.dot(m.start), along.dot(m.end));
-  double hi = std::max(along.dot(m.start), along.dot(m.end));
-  lo = std::min({lo, along.dot(o.start.head<2>()), along.dot(o.end.head<2>())});
-  hi = std::max({hi, along.dot(o.start.head<2>()), along.dot(o.end.head<2>())});
-  const Eigen::Vector2d base = -m.plane.d * m.plane.normal.head<2>();
-  const Eigen::Vector2d origin = base - along.dot(base) * along;
-  m.start = origin + lo * along;
-  m.end = origin + hi * along;
-}
-
 }  // namespace
 
 Eigen::Isometry3d SGraph::Keyframe::pose() const {
@@ -163,11 +148,7 @@ void SGraph::observeWall(const PlaneObservation& observation, int floor, int ind
   int plane = associate(in_map, walls, options_.association);
   if (plane < 0) {
     Plane created;
-    created.map.plane = in_map.plane;
-    created.map.start = in_map.start.head<2>();
-    created.map.end = in_map.end.head<2>();
-    created.map.z_min = in_map.z_min;
-    created.map.z_max = in_map.z_max;
+    created.map = newMapPlane(in_map, options_.association.max_length);
     created.parameters = bim::toVector(in_map.plane);
     created.floor = floor;
     planes_.push_back(created);
@@ -175,7 +156,7 @@ void SGraph::observeWall(const PlaneObservation& observation, int floor, int ind
     plane = int(planes_.size()) - 1;
   }
   Plane& p = planes_[plane];
-  extend(p.map, in_map);
+  extend(p.map, in_map, options_.association.max_length);
   addHeights(p.map, in_map);
   ++p.map.observations;
   p.observed_by.push_back(index);
@@ -655,7 +636,7 @@ void SGraph::mergeDuplicatePlanes(const std::set<int>& recent, int floor) {
     PlaneObservation extent;
     extent.start = Eigen::Vector3d(dropped.map.start.x(), dropped.map.start.y(), 0.0);
     extent.end = Eigen::Vector3d(dropped.map.end.x(), dropped.map.end.y(), 0.0);
-    extend(kept.map, extent);
+    extend(kept.map, extent, options_.association.max_length);
     kept.map.observations += dropped.map.observations;
     mergeHeights(kept.map, dropped.map);
     dropped.merged_into = keep;

@@ -72,6 +72,87 @@ TEST(PlaneAssociation, OppositeFacesAndFarCoplanarPiecesAreSeparate) {
   EXPECT_EQ(associate(observe({0, 1, 0}, {6, 0}, {8, 0}), map), -1);
 }
 
+// The ends of a map plane along x (the order of start and end follows its normal).
+double lowX(const MapPlane& m) { return std::min(m.start.x(), m.end.x()); }
+double highX(const MapPlane& m) { return std::max(m.start.x(), m.end.x()); }
+
+TEST(PlaneAssociation, AWallWalkedAlongGoesOnAsNewPlanesOfBoundedLength) {
+  // A corridor wall y = 0 seen 6 m at a time by a robot walking +x, a metre a step: with the
+  // 40 m bound, the first plane grows to exactly 40 m and stops; what lies beyond starts a new
+  // plane, which then grows in turn.
+  AssociationOptions options;
+  ASSERT_DOUBLE_EQ(options.max_length, 40.0);
+  std::vector<MapPlane> map;
+  std::vector<int> plane_of_step;
+  for (int step = 0; step < 100; ++step) {
+    const PlaneObservation o = observe({0, 1, 0}, {double(step), 0}, {step + 6.0, 0});
+    int i = associate(o, map, options);
+    if (i < 0) {
+      map.push_back(mapPlane(o));
+      i = int(map.size()) - 1;
+    } else {
+      extend(map[i], o, options.max_length);
+    }
+    plane_of_step.push_back(i);
+  }
+  // Plane 0 reaches x = 0..40 at step 34; steps 35..37 see beyond it but are centred on it, so
+  // they join it without growing it; step 38 (38..44) is centred beyond, and starts plane 1.
+  EXPECT_NEAR(lowX(map[0]), 0.0, 1e-9);
+  EXPECT_NEAR(highX(map[0]), 40.0, 1e-9);
+  EXPECT_EQ(plane_of_step[34], 0);  // 34..40: within 40 m
+  EXPECT_EQ(plane_of_step[35], 0);  // 35..41: beyond 40 m, centred inside
+  EXPECT_EQ(plane_of_step[37], 0);  // 37..43: centred at 40, the plane's end
+  EXPECT_EQ(plane_of_step[38], 1);  // 38..44: centred at 41, beyond
+  EXPECT_NEAR(lowX(map[1]), 38.0, 1e-9);
+  EXPECT_NEAR(highX(map[1]), 78.0, 1e-9);
+  ASSERT_EQ(map.size(), 3u);  // 0..40, 38..78, 76..105
+  EXPECT_NEAR(lowX(map[2]), 76.0, 1e-9);
+  EXPECT_NEAR(highX(map[2]), 105.0, 1e-9);
+  for (const MapPlane& m : map) EXPECT_LE((m.end - m.start).norm(), 40.0 + 1e-9);
+
+  // Without the bound, one plane of 105 m.
+  options.max_length = 0.0;
+  std::vector<MapPlane> unbounded = {mapPlane(observe({0, 1, 0}, {0, 0}, {6, 0}))};
+  for (int step = 1; step < 100; ++step) {
+    const PlaneObservation o = observe({0, 1, 0}, {double(step), 0}, {step + 6.0, 0});
+    ASSERT_EQ(associate(o, unbounded, options), 0);
+    extend(unbounded[0], o, options.max_length);
+  }
+  EXPECT_NEAR((unbounded[0].end - unbounded[0].start).norm(), 105.0, 1e-9);
+}
+
+TEST(PlaneAssociation, AnExtentGrowsToTheBoundSharedBetweenItsEnds) {
+  // A 36 m plane (x = 2..38) and an observation adding 3 m before it and 1 m after it: the 4 m
+  // the bound leaves, all taken. Then 2 m before and 2 m after: none left, the extent stays.
+  MapPlane m = mapPlane(observe({0, 1, 0}, {2, 0}, {38, 0}));
+  extend(m, observe({0, 1, 0}, {-1, 0}, {39, 0}), 40.0);
+  EXPECT_NEAR(lowX(m), -1.0, 1e-9);
+  EXPECT_NEAR(highX(m), 39.0, 1e-9);
+  extend(m, observe({0, 1, 0}, {-3, 0}, {41, 0}), 40.0);
+  EXPECT_NEAR(lowX(m), -1.0, 1e-9);
+  EXPECT_NEAR(highX(m), 39.0, 1e-9);
+  // A 30 m plane offered 15 m before and 5 m after, 10 m left: half of each, 7.5 m and 2.5 m.
+  MapPlane n = mapPlane(observe({0, 1, 0}, {0, 0}, {30, 0}));
+  extend(n, observe({0, 1, 0}, {-15, 0}, {35, 0}), 40.0);
+  EXPECT_NEAR(lowX(n), -7.5, 1e-9);
+  EXPECT_NEAR(highX(n), 32.5, 1e-9);
+}
+
+TEST(PlaneAssociation, ANewPlaneSeenLongerThanTheBoundKeepsItsMiddle) {
+  // A 60 m observation of y = 0 (x = -30 .. 30), its centroid at x = 5: the new plane keeps
+  // the 40 m about x = 5; one centred near an end keeps the 40 m at that end.
+  PlaneObservation o = observe({0, 1, 0}, {-30, 0}, {30, 0});
+  o.centroid.x() = 5.0;
+  const MapPlane bounded = newMapPlane(o, 40.0);
+  EXPECT_NEAR(lowX(bounded), -15.0, 1e-9);
+  EXPECT_NEAR(highX(bounded), 25.0, 1e-9);
+  o.centroid.x() = 28.0;
+  EXPECT_NEAR(lowX(newMapPlane(o, 40.0)), -10.0, 1e-9);
+  EXPECT_NEAR(highX(newMapPlane(o, 40.0)), 30.0, 1e-9);
+  EXPECT_NEAR(lowX(newMapPlane(o, 0.0)), -30.0, 1e-9);  // without bound
+  EXPECT_EQ(newMapPlane(o, 40.0).observations, 0);      // counted when associated
+}
+
 TEST(PlaneAssociation, ObservationsMoveIntoTheMapFrame) {
   PlaneObservation o = observe({1, 0, 0}, {-2, -1}, {-2, 1});  // x = -2 in L, facing +x
   Eigen::Isometry3d M_T_L = Eigen::Isometry3d::Identity();
