@@ -93,16 +93,17 @@ struct ISGraphOptions {
   double hold_angle_deg = 20.0;
   double hold_distance = 0.5;  // m
   // An imprecise plan (docs/matching.md): a held wall that disagrees with its planned surface by
-  // more than the others explain is released from the merge and not matched again under this
-  // answer.
+  // more than the others explain is released from the merge, and its surface is not matched
+  // again under this answer along the stretch it was seen off (ReleasedWalls).
   WallReleaseOptions release;
   // Once localized, the walls the latest `release_recent_keyframes` keyframes saw are judged for
-  // release, each against the correction of the others among them: on a floor whose map bends,
-  // one rigid correction of every wall of the floor leaves the far walls' bend as their
-  // "deviation" (1000-office floors as built logged 520–2342 releases in 20 minutes; judged among
-  // the recent walls, 101–235), and a wall released is no longer bent back onto the plan. A new
-  // answer's first judgement (refineAnswer) takes every wall. 0 judges every wall of the floor
-  // each time.
+  // release where they saw them (recentStretchesOf), each against the correction of the others
+  // among them: on a floor whose map bends, one rigid correction of every wall of the floor
+  // leaves the far walls' bend as their "deviation" (1000-office floors as built logged 520–2342
+  // releases in 20 minutes; judged among the recent walls, 101–235; judged where they were seen,
+  // with the S-Graph's walls in pieces of at most 40 m, 12–57), and a wall released is no longer
+  // bent back onto the plan. A new answer's first judgement (refineAnswer) takes every wall
+  // whole. 0 judges every wall of the floor, whole, each time.
   int release_recent_keyframes = 25;
   // Lost: of the held correspondences the latest keyframe observes (at least lost_min_planes),
   // more than this share disagree; or fewer than lost_min_held remain in the segment.
