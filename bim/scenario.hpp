@@ -28,6 +28,22 @@ struct WalkPose {
   int line = 0;
 };
 
+// What a replayed walk does with a planned wall or column it passes through (robot.route
+// "crossed"): a site had not built it yet on the day (the default), it had left a door-wide
+// opening where the walk went, or the walk is refused as today (docs/simulation.md, "Replayed
+// walks").
+enum class CrossedSolids { kNotBuilt, kOpening, kRefuse };
+
+// One pass of a replayed walk through a planned wall or column, and what was taken of it.
+struct WalkCrossing {
+  std::string element;  // the plan's wall or column id
+  bool column = false;
+  Eigen::Vector2d at = Eigen::Vector2d::Zero();  // the middle of the pass, in the plan frame
+  int first_line = 0;                            // the walk file's lines of the pass
+  int last_line = 0;
+  bool opening = false;  // taken as an opening in the wall (else: as not built)
+};
+
 struct Route {
   enum class Kind { kTour, kRooms, kWaypoints, kTrajectory };
   Kind kind = Kind::kTour;
@@ -38,6 +54,10 @@ struct Route {
   std::string trajectory_file;
   std::vector<WalkPose> walk;
   bool file_orientation = false;
+  CrossedSolids crossed = CrossedSolids::kNotBuilt;
+  // Filled when the scenario is read (worlds::takeCrossedSolids): every pass through a planned
+  // wall or column, in the walk's order; the scenario's as_built already holds what they took.
+  std::vector<WalkCrossing> crossings;
 };
 
 // What carries the sensors (docs/simulation.md, "Carriers"): a legged base with leg odometry, or a

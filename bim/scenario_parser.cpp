@@ -109,7 +109,7 @@ void parseRoute(const common::JsonNode& route_node, const Plan& plan, const Leve
       route_node.fail("unknown route " + common::inQuotes(kind) + " (expected \"tour\")");
     return;
   }
-  route_node.expectObject({"rooms", "waypoints", "trajectory", "orientation"});
+  route_node.expectObject({"rooms", "waypoints", "trajectory", "orientation", "crossed"});
   if (int(route_node.has("rooms")) + int(route_node.has("waypoints")) +
           int(route_node.has("trajectory")) !=
       1) {
@@ -117,8 +117,10 @@ void parseRoute(const common::JsonNode& route_node, const Plan& plan, const Leve
         "give \"tour\", {\"rooms\": [...]}, {\"waypoints\": [...]} or "
         "{\"trajectory\": \"WALK.tum\"}");
   }
-  if (route_node.has("orientation") && !route_node.has("trajectory")) {
-    route_node.field("orientation").fail("\"orientation\" goes with \"trajectory\" only");
+  for (const char* key : {"orientation", "crossed"}) {
+    if (route_node.has(key) && !route_node.has("trajectory")) {
+      route_node.field(key).fail(common::inQuotes(key) + " goes with \"trajectory\" only");
+    }
   }
   if (auto trajectory = route_node.optionalField("trajectory")) {
     route.kind = Route::Kind::kTrajectory;
@@ -130,6 +132,19 @@ void parseRoute(const common::JsonNode& route_node, const Plan& plan, const Leve
                           " (expected \"travel\" or \"file\")");
       }
       route.file_orientation = mode == "file";
+    }
+    if (auto crossed = route_node.optionalField("crossed")) {
+      const std::string mode = crossed->string();
+      if (mode == "not_built") {
+        route.crossed = CrossedSolids::kNotBuilt;
+      } else if (mode == "opening") {
+        route.crossed = CrossedSolids::kOpening;
+      } else if (mode == "refuse") {
+        route.crossed = CrossedSolids::kRefuse;
+      } else {
+        crossed->fail("unknown value " + common::inQuotes(mode) +
+                      " (expected \"not_built\", \"opening\" or \"refuse\")");
+      }
     }
     if (!load_walk) {
       trajectory->fail(

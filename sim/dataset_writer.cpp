@@ -99,6 +99,21 @@ nlohmann::ordered_json lidarModel(const Simulation& sim) {
 
 // The robot: carrier, gait, route, rooms and kidnaps (where each put the robot down, the planned
 // pose in B, and on which level when the plan has several).
+// What a replayed walk went through (worlds::takeCrossedSolids): its mode, and each pass with the
+// element, what it was taken as, where and on which lines of the walk's file.
+nlohmann::ordered_json crossingsJson(const bim::Route& route) {
+  static constexpr const char* kModes[] = {"not_built", "opening", "refuse"};
+  nlohmann::ordered_json passes = nlohmann::ordered_json::array();
+  for (const auto& c : route.crossings) {
+    passes.push_back({{"element", c.element},
+                      {"kind", c.column ? "column" : "wall"},
+                      {"taken_as", c.opening ? "opening" : "not_built"},
+                      {"at", {c.at.x(), c.at.y()}},
+                      {"lines", {c.first_line, c.last_line}}});
+  }
+  return {{"mode", kModes[int(route.crossed)]}, {"passes", std::move(passes)}};
+}
+
 nlohmann::ordered_json robotDescription(const Simulation& sim) {
   using json = nlohmann::ordered_json;
   const bim::Scenario& s = sim.scenario();
@@ -147,6 +162,7 @@ nlohmann::ordered_json robotDescription(const Simulation& sim) {
                            {"deviation_median_m", walk->medianDeviation()},
                            {"deviation_max_m", walk->maxDeviation()},
                            {"deviation_max_line", walk->maxDeviationLine()}};
+    robot["trajectory"]["crossed"] = crossingsJson(s.robot.route);
   }
   // Which level each waypoint is on, written only when the route changes level (a route on one
   // level writes the metadata it always did); the levels the tour skipped whenever there are any.

@@ -4,6 +4,7 @@
 
 #include "bim/plan_parser.hpp"
 #include "common/json_reader.hpp"
+#include "worlds/walk_crossings.hpp"
 
 namespace isg::worlds {
 
@@ -37,7 +38,9 @@ std::optional<std::string_view> builtinText(std::string_view name) {
 
 bool isBuiltin(std::string_view argument) { return argument.starts_with(kBuiltinPrefix); }
 
-bim::Scenario loadScenarioOrBuiltin(const std::string& argument, common::Warnings* warnings) {
+namespace {
+
+bim::Scenario readScenarioOrBuiltin(const std::string& argument, common::Warnings* warnings) {
   if (!isBuiltin(argument)) return bim::loadScenario(argument, warnings);
   const std::string name = argument.substr(kBuiltinPrefix.size());
   const auto text = builtinText(name);
@@ -59,6 +62,14 @@ bim::Scenario loadScenarioOrBuiltin(const std::string& argument, common::Warning
         return bim::LoadedPlan{bim::parsePlan(common::JsonNode(plan_document, "", plan_source)),
                                plan_name};
       });
+}
+
+}  // namespace
+
+bim::Scenario loadScenarioOrBuiltin(const std::string& argument, common::Warnings* warnings) {
+  bim::Scenario scenario = readScenarioOrBuiltin(argument, warnings);
+  takeCrossedSolids(scenario, warnings);
+  return scenario;
 }
 
 std::string worldName(const std::string& argument) {

@@ -30,7 +30,8 @@ bool isBuiltin(std::string_view argument);
 std::string worldName(const std::string& argument);
 
 // Loads a scenario (or bare plan) from a file path, or from a built-in ("builtin:NAME"), whose
-// plan reference resolves among the built-ins. Errors are InputErrors as for files.
+// plan reference resolves among the built-ins. Errors are InputErrors as for files. A replayed
+// walk's crossed walls and columns are taken as the route says (worlds::takeCrossedSolids).
 bim::Scenario loadScenarioOrBuiltin(const std::string& argument, common::Warnings* warnings);
 
 }  // namespace isg::worlds

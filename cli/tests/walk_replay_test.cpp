@@ -106,12 +106,21 @@ TEST(WalkReplay, AWalkThatCannotBeWalkedIsRefusedNamingItsLine) {
     EXPECT_FALSE(sandbox.exists("r"));
     return run.err;
   };
-  // D1's outer wall W1 runs from (0, 0) to (12, 0), 0.2 m thick: (3, 0.05) is inside it.
-  EXPECT_EQ(refused("# a walk\n0 2 2 0 0 0 0 1\n1 2.5 1 0 0 0 0 1\n2 3 0.05 0 0 0 0 1\n"),
-            "isg run: error: walk.tum: line 4: the walk at (3.000, 0.050) is inside wall \"W1\" "
+  // D1's outer wall W1 runs from (0, 0) to (12, 0), 0.3 m thick: the step from (2.5, 1) to
+  // (3, 0.05) enters it 2 cm deep at y = 0.13 (the first point of the step 2 cm apart inside).
+  EXPECT_EQ(refused("# a walk\n0 2 2 0 0 0 0 1\n1 2.5 1 0 0 0 0 1\n2 3 0.05 0 0 0 0 1\n", "",
+                    "{\"trajectory\": \"walk.tum\", \"crossed\": \"refuse\"}"),
+            "isg run: error: walk.tum: line 4: the walk at (2.963, 0.120) is inside wall \"W1\" "
             "on level \"L0\" as built (is the walk in the plan frame of robot.level? a wall not "
             "built yet goes in as_built.missing_walls, one built in part in "
             "as_built.shortened_walls)\n");
+  EXPECT_EQ(refused("0 2 2 0 0 0 0 1\n1 2.5 2 0 0 0 0 1\n", "",
+                    "{\"trajectory\": \"walk.tum\", \"crossed\": \"through\"}"),
+            "isg run: error: s.json: /robot/route/crossed: unknown value \"through\" (expected "
+            "\"not_built\", \"opening\" or \"refuse\")\n");
+  EXPECT_EQ(refused("", "", "{\"rooms\": [\"R1\"], \"crossed\": \"opening\"}"),
+            "isg run: error: s.json: /robot/route/crossed: \"crossed\" goes with \"trajectory\" "
+            "only\n");
   EXPECT_EQ(refused("0 2 2 0 0 0 0 1\n0.1 2.5 2 0 0 0 0 1\n"),
             "isg run: error: walk.tum: line 2: the walk moves 0.500 m in 0.100 s since line 1 "
             "(5.0 m/s; at most 3 m/s is walked)\n");
@@ -150,27 +159,61 @@ TEST(WalkReplay, AWalkThatCannotBeWalkedIsRefusedNamingItsLine) {
 TEST(WalkReplay, AWallNotBuiltYetIsWalkedThrough) {
   testing::Sandbox sandbox("walk_replay_missing");
   // From D1's corridor (y 1.1) north through W5 (y 2.2, no door at x = 3) into office R1.
-  sandbox.write("walk.tum", "0 3 1.1 0 0 0 0 1\n2 3 2.2 0 0 0 0 1\n4 3 3.3 0 0 0 0 1\n");
-  std::string scenario = scenarioWith("d1", "handheld", "{\"trajectory\": \"walk.tum\"}");
-  scenario.pop_back();
-  scenario += ", \"as_built\": {\"missing_walls\": [\"W5\"]}}";
-  sandbox.write("s.json", scenario);
-  const auto run = sandbox.run("simulate s.json -q -o d");
-  EXPECT_EQ(run.exit_code, 0) << run.err;
-  // The same walk with W5 built is refused at the pose in it.
-  sandbox.write("built.json", scenarioWith("d1", "handheld", "{\"trajectory\": \"walk.tum\"}"));
+  sandbox.write("walk.tum", "0 3 1.1 0 0 0 0 1\n1 3 2.2 0 0 0 0 1\n2 3 3.3 0 0 0 0 1\n");
+  const auto scenario = [](const std::string& crossed, const std::string& as_built = "") {
+    std::string text = scenarioWith(
+        "d1", "handheld",
+        "{\"trajectory\": \"walk.tum\"" +
+            (crossed.empty() ? std::string() : ", \"crossed\": \"" + crossed + "\"") + "}");
+    if (as_built.empty()) return text;
+    text.pop_back();
+    return text + ", \"as_built\": " + as_built + "}";
+  };
+  // Listed as missing, it is walked through whatever the route says.
+  sandbox.write("missing.json", scenario("refuse", "{\"missing_walls\": [\"W5\"]}"));
+  const auto listed = sandbox.run("simulate missing.json -q -o d");
+  EXPECT_EQ(listed.exit_code, 0) << listed.err;
+  EXPECT_EQ(listed.err.find("crosses"), std::string::npos) << listed.err;
+
+  // By default a planned wall the walk crosses was not built on the day: said, and in the truth.
+  sandbox.write("default.json", scenario(""));
+  const auto taken = sandbox.run("simulate default.json -q -o n");
+  ASSERT_EQ(taken.exit_code, 0) << taken.err;
+  EXPECT_EQ(taken.err,
+            "isg simulate: warning: default.json: /robot/route/trajectory: walk.tum: the walk "
+            "crosses wall \"W5\" at (3.000, 2.200) (lines 2–3): taken as not built yet on the "
+            "day of the walk\n");
+  const auto metadata = nlohmann::json::parse(sandbox.read("n/metadata.json"));
+  EXPECT_EQ(metadata["as_built"]["missing_walls"], nlohmann::json::array({"W5"}));
+  EXPECT_EQ(metadata["robot"]["trajectory"]["crossed"],
+            nlohmann::json::parse(R"({"mode": "not_built", "passes": [{"element": "W5",
+                "kind": "wall", "taken_as": "not_built", "at": [3.0, 2.2], "lines": [2, 3]}]})"));
+
+  // As an opening: a door-wide gap (0.9 m) about where it crossed, the rest of W5 standing.
+  sandbox.write("opening.json", scenario("opening"));
+  const auto opened = sandbox.run("simulate opening.json -q -o o");
+  ASSERT_EQ(opened.exit_code, 0) << opened.err;
+  EXPECT_NE(opened.err.find("taken as built with a door-wide opening where it was crossed"),
+            std::string::npos);
+  const auto opened_metadata = nlohmann::json::parse(sandbox.read("o/metadata.json"));
+  const auto& parts = opened_metadata["as_built"]["shortened_walls"][0];
+  EXPECT_EQ(parts["wall"], "W5");
+  ASSERT_EQ(parts["built"].size(), 2u);
+  EXPECT_NEAR(parts["built"][0][1].get<double>(), 2.55, 1e-9);
+  EXPECT_NEAR(parts["built"][1][0].get<double>(), 3.45, 1e-9);
+
+  // Refused, as before the walk crossed walls: at the first point of its step 2 cm inside.
+  sandbox.write("built.json", scenario("refuse"));
   const auto refused = sandbox.run("simulate built.json -q -o e");
   EXPECT_EQ(refused.exit_code, 1);
-  EXPECT_NE(refused.err.find("walk.tum: line 2: the walk at (3.000, 2.200) is inside wall \"W5\""),
+  EXPECT_NE(refused.err.find("walk.tum: line 2: the walk at (3.000, 2.160) is inside wall \"W5\""),
             std::string::npos)
       << refused.err;
   // Built in part (W5 runs (0, 2.2) → (12, 2.2)): through its gap from 2.6 to 3.6 m the walk
   // passes; with the gap from 1.5 to 2.5 m it meets the second part.
   const auto shortened = [&](const std::string& built) {
-    std::string text = scenarioWith("d1", "handheld", "{\"trajectory\": \"walk.tum\"}");
-    text.pop_back();
-    return text + ", \"as_built\": {\"shortened_walls\": [{\"wall\": \"W5\", \"built\": " + built +
-           "}]}}";
+    return scenario("refuse",
+                    "{\"shortened_walls\": [{\"wall\": \"W5\", \"built\": " + built + "}]}");
   };
   sandbox.write("gap.json", shortened("[[0, 2.6], [3.6, 12]]"));
   const auto through = sandbox.run("simulate gap.json -q -o f");
@@ -178,9 +221,50 @@ TEST(WalkReplay, AWallNotBuiltYetIsWalkedThrough) {
   sandbox.write("beside.json", shortened("[[0, 1.5], [2.5, 12]]"));
   const auto beside = sandbox.run("simulate beside.json -q -o g");
   EXPECT_EQ(beside.exit_code, 1);
-  EXPECT_NE(beside.err.find("walk.tum: line 2: the walk at (3.000, 2.200) is inside wall \"W5#2\""),
+  EXPECT_NE(beside.err.find("walk.tum: line 2: the walk at (3.000, 2.160) is inside wall \"W5#2\""),
             std::string::npos)
       << beside.err;
+}
+
+TEST(WalkReplay, AColumnInTheWayWasNotBuiltYet) {
+  testing::Sandbox sandbox("walk_replay_columns");
+  // A 10 × 6 m hall with a round column at (3, 3) and a square one at (6, 3), walked along y = 3.
+  sandbox.write("hall.json", R"({"format": "isg.plan", "version": 1, "levels": [{"id": "L0",
+      "elevation": 0, "height": 3, "walls": [
+      {"id": "S", "start": [0, 0], "end": [10, 0], "thickness": 0.2},
+      {"id": "E", "start": [10, 0], "end": [10, 6], "thickness": 0.2},
+      {"id": "N", "start": [10, 6], "end": [0, 6], "thickness": 0.2},
+      {"id": "W", "start": [0, 6], "end": [0, 0], "thickness": 0.2}],
+      "columns": [{"id": "C1", "center": [3, 3], "diameter": 0.4},
+                  {"id": "C2", "center": [6, 3], "size": [0.4, 0.4]}],
+      "rooms": [{"id": "H", "outline": [[0.1, 0.1], [9.9, 0.1], [9.9, 5.9], [0.1, 5.9]]}]}]})");
+  std::string walk;
+  for (int i = 0; i <= 16; ++i)
+    walk += std::to_string(0.5 * i) + " " + std::to_string(1 + 0.5 * i) + " 3 0 0 0 0 1\n";
+  sandbox.write("walk.tum", walk);
+  for (const std::string mode : {"not_built", "opening"}) {
+    sandbox.write("s.json",
+                  "{\"format\": \"isg.scenario\", \"version\": 1, \"plan\": "
+                  "\"hall.json\", \"robot\": {\"carrier\": \"handheld\", \"route\": "
+                  "{\"trajectory\": \"walk.tum\", \"crossed\": \"" +
+                      mode + "\"}}}");
+    const auto run = sandbox.run("simulate s.json -q --force -o d");
+    ASSERT_EQ(run.exit_code, 0) << run.err;
+    // A column has no opening: in either mode it was not built.
+    EXPECT_EQ(run.err,
+              "isg simulate: warning: s.json: /robot/route/trajectory: walk.tum: the walk crosses "
+              "column \"C1\" at (3.000, 3.000) (lines 5–6): taken as not built yet on the day of "
+              "the walk\n"
+              "isg simulate: warning: s.json: /robot/route/trajectory: walk.tum: the walk crosses "
+              "column \"C2\" at (6.000, 3.000) (lines 11–12): taken as not built yet on the day "
+              "of the walk\n");
+    const auto metadata = nlohmann::json::parse(sandbox.read("d/metadata.json"));
+    EXPECT_EQ(metadata["as_built"]["missing_columns"], nlohmann::json::array({"C1", "C2"}));
+    const auto& passes = metadata["robot"]["trajectory"]["crossed"]["passes"];
+    ASSERT_EQ(passes.size(), 2u);
+    EXPECT_EQ(passes[0]["kind"], "column");
+    EXPECT_EQ(passes[1]["taken_as"], "not_built");
+  }
 }
 
 TEST(WalkReplay, AGapInTimeIsSaidAndWalkedAcross) {
