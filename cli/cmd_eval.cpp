@@ -9,6 +9,7 @@
 #include "eval/ape.hpp"
 #include "eval/coverage.hpp"
 #include "eval/floor_plan_score.hpp"
+#include "eval/floor_plan_score_svg.hpp"
 #include "eval/report_svg.hpp"
 #include "formats/trajectory_file.hpp"
 
@@ -58,8 +59,21 @@ EvalCommand::EvalCommand(CLI::App& parent) {
       ->check(CLI::Range(1, 1000000));
   app_->add_flag("--json", json_, "print JSON instead of evo's text layout");
   app_->add_option("--plot", plot_,
-                   "also draw both trajectories from above and the APE over time (as evo's --plot)")
+                   "also draw both trajectories from above and the APE over time (as evo's "
+                   "--plot); with --floor-plan-score, each pose's score and error over time")
       ->option_text("OUT.svg");
+  auto* score =
+      app_->add_flag("--floor-plan-score", floor_plan_score_,
+                     "score EST.txt as the Hilti x Trimble 2026 floor-plan localization benchmark "
+                     "scores a submission: the file as given, from 5 s after the run's start, "
+                     "evo's association within 10 ms, 2D error, 100*e^(-0.4605*error) averaged, "
+                     "0 below 99 % coverage (docs/evaluation.md, \"The floor-plan score\")");
+  app_->add_option("--run-start", run_start_,
+                   "with --floor-plan-score: when the run started, in the reference's clock "
+                   "(default: 10000 s for a reference in the benchmark's clock, whose stamps "
+                   "start within a minute after it; else the reference's first stamp)")
+      ->option_text("SECONDS")
+      ->needs(score);
 }
 
 std::string EvalCommand::rpeNotComputable(std::size_t associated) const {
@@ -105,6 +119,55 @@ void EvalCommand::writePlot(const common::Trajectory& reference, const common::T
                               common::outputMark(common::OutputKind::kSvg, eval::reportSvg(input)));
 }
 
+int EvalCommand::scoreFloorPlan(const common::Trajectory& reference,
+                                const common::Trajectory& estimate) const {
+  eval::FloorPlanScoreOptions options;
+  options.run_start = run_start_;
+  const eval::FloorPlanScore score = eval::floorPlanScore(reference, estimate, options);
+  std::vector<double> errors;
+  for (const auto& pose : score.per_pose) errors.push_back(pose.error);
+  const eval::Statistics error = eval::statistics(errors);
+  const double from = score.run_start + options.skip;
+  char line[320];
+  std::vector<std::string> summary;
+  std::snprintf(line, sizeof line, "floor-plan score %.2f of 100%s", score.score,
+                score.coverage < options.min_coverage ? " (coverage under 99 %: scored 0)" : "");
+  summary.push_back(line);
+  std::snprintf(line, sizeof line,
+                "%d reference poses from %.3f s on (the run's start %.3f s + %.0f s), %d "
+                "associated within %.0f ms: coverage %.2f %%",
+                score.poses, from, score.run_start, options.skip, score.associated,
+                1e3 * options.max_diff, 100.0 * score.coverage);
+  summary.push_back(line);
+  if (error.count > 0) {
+    std::snprintf(line, sizeof line,
+                  "error in the plane: mean %.3f m, median %.3f m, max %.3f m (z not scored)",
+                  error.mean, error.median, error.max);
+    summary.push_back(line);
+  }
+  if (!plot_.empty()) {
+    const std::string svg = eval::floorPlanScoreSvg(
+        score, "isg eval --floor-plan-score: " + estimate_ + " against " + reference_, summary);
+    common::writeFileAtomically(plot_, common::outputMark(common::OutputKind::kSvg, svg));
+  }
+  if (json_) {
+    const nlohmann::ordered_json out = {{"reference", reference_},
+                                        {"estimate", estimate_},
+                                        {"floor_plan_score",
+                                         {{"score", score.score},
+                                          {"coverage", score.coverage},
+                                          {"poses", score.poses},
+                                          {"associated", score.associated},
+                                          {"run_start", score.run_start},
+                                          {"scored_from", from}}},
+                                        {"error", toJson(error)}};
+    std::cout << out.dump(2) << "\n";
+    return kExitOk;
+  }
+  for (const auto& text : summary) std::printf("%s\n", text.c_str());
+  return kExitOk;
+}
+
 int EvalCommand::run() {
   if (!plot_.empty()) {
     common::checkOutputPath(plot_,
@@ -112,6 +175,7 @@ int EvalCommand::run() {
   }
   const common::Trajectory reference = formats::readTrajectoryFile(reference_);
   const common::Trajectory estimate = formats::readTrajectoryFile(estimate_);
+  if (floor_plan_score_) return scoreFloorPlan(reference, estimate);
   eval::ErrorOptions options;
   options.align = align_ == "se3"
                       ? eval::Alignment::kSE3
@@ -136,7 +200,8 @@ int EvalCommand::run() {
                                                     : "with Sim(3) Umeyama alignment");
   const std::string how = alignment + (options.project_xy ? ", projected to xy" : "");
   const eval::Coverage coverage = eval::localizationCoverage(reference, estimate);
-  const eval::FloorPlanScore score = eval::floorPlanScore(reference, estimate);
+  // As a run scores itself: the estimate at the reference's stamps (--floor-plan-score: as is).
+  const eval::FloorPlanScore score = eval::runFloorPlanScore(reference, estimate);
   if (!plot_.empty()) writePlot(reference, estimate, ape, how, coverage);
   if (json_) {
     nlohmann::ordered_json out = {
@@ -176,8 +241,10 @@ int EvalCommand::run() {
       reference_.c_str(), estimate_.c_str(), options.max_diff);
   std::printf("localized after %.2f s, for %.1f %% of the run\n", coverage.time_to_first,
               100.0 * coverage.share);
-  std::printf("floor-plan score %.1f (%d poses from 5 s on, %.1f %% of them estimated)\n\n",
-              score.score, score.poses, 100.0 * score.coverage);
+  std::printf(
+      "floor-plan score %.1f (%d poses from 5 s on, %.1f %% of them estimated; the estimate "
+      "resampled at the reference's stamps, as isg run scores itself)\n\n",
+      score.score, score.poses, 100.0 * score.coverage);
   printStatistics("APE w.r.t. translation part (m)", how, ape.translation_stats);
   printStatistics("APE w.r.t. rotation angle in degrees (deg)", how, ape.rotation_stats);
   if (rpe) {

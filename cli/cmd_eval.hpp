@@ -1,5 +1,7 @@
 #pragma once
 
+#include <optional>
+
 #include "cli/common.hpp"
 #include "eval/ape.hpp"
 #include "eval/coverage.hpp"
@@ -7,7 +9,8 @@
 namespace isg::cli {
 
 // isg eval GT.tum EST.tum [--align none|se3|sim3] [--project xy] [--json] [--plot OUT.svg]: APE
-// (and RPE) as evo.
+// (and RPE) as evo; with --floor-plan-score [--run-start S], the floor-plan benchmark's score of
+// the estimate file as given.
 class EvalCommand : public Command {
  public:
   explicit EvalCommand(CLI::App& parent);
@@ -22,7 +25,10 @@ class EvalCommand : public Command {
   int rpe_delta_ = 0;
   bool json_ = false;
   std::string plot_;
+  bool floor_plan_score_ = false;
+  std::optional<double> run_start_;
 
+  int scoreFloorPlan(const common::Trajectory& reference, const common::Trajectory& estimate) const;
   std::string rpeNotComputable(std::size_t associated) const;
   void writePlot(const common::Trajectory& reference, const common::Trajectory& estimate,
                  const eval::ErrorResult& ape, const std::string& how,

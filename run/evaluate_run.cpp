@@ -267,7 +267,7 @@ RunEvaluation evaluateRun(const RunRecord& run) {
     });
   }
   if (has_truth) {
-    m.floor_plan_score = eval::floorPlanScore(streams.ground_truth, run.estimate);
+    m.floor_plan_score = eval::runFloorPlanScore(streams.ground_truth, run.estimate);
   }
   if (has_truth && coverage.localized) {
     const eval::WrongLocalization wrong = eval::wrongLocalization(streams.ground_truth, placed);
