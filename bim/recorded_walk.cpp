@@ -29,7 +29,7 @@ std::string fixed(double value, int decimals) {
 }  // namespace
 
 std::vector<WalkPose> readRecordedWalk(const std::string& path, const Level& level,
-                                       const common::JsonNode& node) {
+                                       const common::JsonNode& node, double* recording_start) {
   // Every pose of a walk is held while the run goes (its route, its ground truth): the file is
   // held to a size whose poses fit in memory before any of it is read.
   std::error_code error;
@@ -55,6 +55,7 @@ std::vector<WalkPose> readRecordedWalk(const std::string& path, const Level& lev
   }
   const auto at = [&](std::size_t i) { return "line " + std::to_string(lines[i]) + ": "; };
   const double t0 = poses.front().t;
+  if (recording_start != nullptr) *recording_start = t0;
   const double length = poses.back().t - t0;
   if (length > limits::kMaxRobotSeconds) {
     throw common::InputError(path, "",

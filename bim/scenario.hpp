@@ -53,6 +53,7 @@ struct Route {
   // carrier faces the file's yaw ("orientation": "file") or its direction of travel (default).
   std::string trajectory_file;
   std::vector<WalkPose> walk;
+  double recording_start = 0.0;  // the file's first stamp: its clock at the walk's t = 0
   bool file_orientation = false;
   CrossedSolids crossed = CrossedSolids::kNotBuilt;
   // Filled when the scenario is read (worlds::takeCrossedSolids): every pass through a planned
@@ -303,6 +304,7 @@ using PlanLoader = std::function<LoadedPlan(const common::JsonNode& plan_name)>;
 struct LoadedWalk {
   std::string file;
   std::vector<WalkPose> walk;
+  double recording_start = 0.0;
 };
 using WalkLoader = std::function<LoadedWalk(const common::JsonNode& file_name, const Level& level)>;
 

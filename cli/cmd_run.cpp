@@ -7,6 +7,7 @@
 #include "cli/progress_bar.hpp"
 #include "cli/route_check.hpp"
 #include "cli/run_session.hpp"
+#include "cli/submission.hpp"
 #include "common/atomic_folder.hpp"
 #include "sim/scan_pipeline.hpp"
 #include "sim/simulation.hpp"
@@ -53,7 +54,13 @@ RunCommand::RunCommand(CLI::App& parent) {
       ->option_text("KEY=VALUE");
   addRunMcapOptions(*app_, mcap_);
   addStartPoseOption(*app_, start_pose_);
-  app_->add_flag("--force", force_, "replace RUN_DIR (and RUN.mcap) if it exists");
+  app_->add_option("--submission", submission_,
+                   "also write the estimate as the floor-plan benchmark takes a submission: "
+                   "DIR/SEQUENCE.txt, TUM, a pose at each stamp of the recording (a replayed "
+                   "walk's, in its clock, SEQUENCE its file's name; else the ground truth's)")
+      ->option_text("DIR");
+  app_->add_flag("--force", force_,
+                 "replace RUN_DIR (and RUN.mcap, and the submission's file) if it exists");
   app_->add_flag("-q,--quiet", quiet_, "no progress bar");
   app_->add_flag("--timing", timing_,
                  "print where the time went, by stage (also in metrics.json; docs/performance.md)");
@@ -75,6 +82,10 @@ int RunCommand::run() {
   // Before the run, not after it: a folder that cannot be written fails at once. Nothing is made
   // yet (missing parent folders are made when the run folder is written).
   common::checkCanCreateFolder(output_, common::OutputKind::kRunFolder, force_, {inputFile(input)});
+  std::optional<SubmissionTarget> submission;
+  if (!submission_.empty()) {
+    submission = planSubmission(submission_, scenario, input, force_, {inputFile(input)});
+  }
   const sim::Simulation simulation(scenario);
   checkRoute("isg run", scenario, simulation, duration_);
   const bim::AGraph agraph = bim::buildAGraph(scenario.plan);
@@ -119,6 +130,11 @@ int RunCommand::run() {
   bar.finish();
   const run::RunEvaluation evaluation = finishRun("isg run", output_, force_, record, timing_);
   finishRunMcap("isg run", mcap_, mcap.get(), record, evaluation);
+  if (submission) {
+    const auto [written, stamps] = writeSubmission(*submission, scenario, record);
+    std::printf("  submission: %s, %zu poses for the %zu stamps of the recording\n",
+                submission->file.string().c_str(), written, stamps);
+  }
   return kExitOk;
 }
 

@@ -28,6 +28,7 @@ class RunCommand : public Command {
   RunMcapArguments mcap_;
   bool force_ = false;
   std::string start_pose_;  // --start-pose: X,Y,YAW or truth; empty: global localization
+  std::string submission_;  // --submission DIR: the estimate as the floor-plan benchmark takes it
   bool quiet_ = false;
   bool timing_ = false;
 };

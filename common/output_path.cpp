@@ -38,6 +38,7 @@ constexpr KindInfo kKinds[] = {
     {OutputKind::kTableCsv, "table", "a CSV table", false},
     {OutputKind::kTableLatex, "table", "a LaTeX table", false},
     {OutputKind::kImportedPlan, "plan", "an imported plan", false},
+    {OutputKind::kSubmission, "submission", "a floor-plan benchmark submission", false},
 };
 
 const KindInfo& infoOf(OutputKind kind) {
@@ -252,6 +253,8 @@ bool isOurFile(const fs::path& path, OutputKind kind) {
       return text.find("<!-- " + mark) != std::string::npos;
     case OutputKind::kTableLatex:
       return text.rfind("% " + mark, 0) == 0;
+    case OutputKind::kSubmission:
+      return text.rfind("# " + mark, 0) == 0;
     case OutputKind::kTableCsv:
       return text.rfind("world,", 0) == 0;
     case OutputKind::kAgraphJson:
@@ -281,6 +284,8 @@ std::string outputMark(OutputKind kind, const std::string& text) {
       return "<!-- " + mark + " -->\n" + text;
     case OutputKind::kTableLatex:
       return "% " + mark + "\n" + text;
+    case OutputKind::kSubmission:  // TUM readers (evo's too) skip lines starting with '#'
+      return "# " + mark + "\n" + text;
     default:
       return text;
   }

@@ -27,6 +27,7 @@ enum class OutputKind {
   kTableCsv,
   kTableLatex,    // isg table -o
   kImportedPlan,  // isg import MODEL.ifc -o
+  kSubmission,    // isg run --submission: a TUM file, marked by its first comment line
 };
 
 // "a run folder", "a ROS bag", ...: what the messages call it.

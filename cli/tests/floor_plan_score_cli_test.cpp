@@ -2,6 +2,7 @@
 
 #include <cmath>
 #include <cstdio>
+#include <filesystem>
 #include <nlohmann/json.hpp>
 #include <string>
 
@@ -61,6 +62,29 @@ TEST(FloorPlanScoreCommand, ScoresAFileAsTheBenchmarkDoes) {
   const auto alone = sandbox.run("eval floor_1_2025-05-05_run_1.txt est.txt --run-start 10030");
   EXPECT_NE(alone.exit_code, 0);
   EXPECT_NE(alone.err.find("--run-start requires --floor-plan-score"), std::string::npos);
+}
+
+TEST(FloorPlanScoreCommand, ASubmissionNeverReplacesAFileIsgDidNotWrite) {
+  testing::Sandbox sandbox("floor_plan_submission");
+  sandbox.write("floor_1_2025-05-05_run_1.txt", "0 2 1.1 0 0 0 0 1\n1 2.5 1.1 0 0 0 0 1\n");
+  sandbox.write("walk.json", "{\"format\": \"isg.scenario\", \"version\": 1, \"plan\": \"" +
+                                 std::string(ISG_SOURCE_DIR) +
+                                 "/worlds/plans/d1.json\", \"robot\": {\"carrier\": "
+                                 "\"handheld\", \"route\": {\"trajectory\": "
+                                 "\"floor_1_2025-05-05_run_1.txt\"}}}");
+  std::filesystem::create_directories(sandbox.dir() / "sub");
+  sandbox.write("sub/floor_1_2025-05-05_run_1.txt", "a participant's\n");
+  for (const char* force : {"", " --force"}) {
+    const auto run = sandbox.run(std::string("run walk.json -q -o r --submission sub") + force);
+    EXPECT_EQ(run.exit_code, 1);
+    EXPECT_FALSE(sandbox.exists("r"));
+  }
+  const auto forced = sandbox.run("run walk.json -q -o r --submission sub --force");
+  EXPECT_EQ(forced.err,
+            "isg run: error: sub/floor_1_2025-05-05_run_1.txt: not replaced: it is not a "
+            "floor-plan benchmark submission that isg wrote (--force replaces only those); remove "
+            "it yourself or give another path\n");
+  EXPECT_EQ(sandbox.read("sub/floor_1_2025-05-05_run_1.txt"), "a participant's\n");
 }
 
 }  // namespace

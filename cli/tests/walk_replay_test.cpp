@@ -66,10 +66,24 @@ TEST(WalkReplay, ARecordedWalkIsFollowedAndLocalizedOn) {
   EXPECT_GT(worst, 0.0);
 
   // Given its first pose, the challenge's score is above 95.
-  const auto given = sandbox.run("run walk.json --threads 2 --start-pose truth -q -o g");
+  const auto given =
+      sandbox.run("run walk.json --threads 2 --start-pose truth -q -o g --submission sub");
   ASSERT_EQ(given.exit_code, 0) << given.err;
   const auto scored = nlohmann::json::parse(sandbox.read("g/metrics.json"));
-  EXPECT_GT(scored["floor_plan_score"]["score"].get<double>(), 95.0);
+  const double run_score = scored["floor_plan_score"]["score"].get<double>();
+  EXPECT_GT(run_score, 95.0);
+  // The submission: the estimate at the walk's own stamps, in its clock, named after its file;
+  // scored by isg eval --floor-plan-score as the run scored itself, give or take the walk's
+  // smoothing (the run is scored against the path walked, the file against the file).
+  const common::Trajectory submitted = common::parseTum(sandbox.read("sub/walk.txt"), "walk.txt");
+  EXPECT_EQ(sandbox.read("sub/walk.txt").rfind("# written by isg\n# timestamp tx ty tz", 0), 0u);
+  EXPECT_GE(submitted.size(), file.size() - 2);
+  EXPECT_NEAR(submitted.back().t, file.back().t, 1e-6);
+  const auto score = sandbox.run("eval --floor-plan-score walk.tum sub/walk.txt --json");
+  ASSERT_EQ(score.exit_code, 0) << score.err;
+  const auto benchmark = nlohmann::json::parse(score.out)["floor_plan_score"];
+  EXPECT_GE(benchmark["coverage"].get<double>(), 0.99);
+  EXPECT_NEAR(benchmark["score"].get<double>(), run_score, 1.0);
 
   // A legged base facing the file's yaw: its heading is the file's, give or take the smoothing.
   sandbox.write("legged.json", scenarioWith("d3", "legged",
