@@ -4,9 +4,11 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
+#include <set>
 
 #include "bim/free_space_rooms.hpp"
 #include "bim/limits.hpp"
+#include "bim/plan_geometry.hpp"
 #include "bim/plan_json.hpp"
 #include "bim/plan_parser.hpp"
 #include "common/input_error.hpp"
@@ -143,6 +145,59 @@ int addDoors(const RasterWalls& traced, const std::vector<std::string>& id_of,
   return doors;
 }
 
+// A doorway with no room on either side, or the same room on both (a gap in a façade of an open
+// floor, in a wall standing free in a hall), joins nothing a plan's door could name: its wall is
+// written in parts either side of it instead, the gap open to full height (the image cannot tell
+// a lintel). Other doors of the wall move to the part they are in. Returns how many doorways
+// became gaps; new parts are numbered on from `wall_count`, which counts them.
+int doorwaysToGaps(Level& level, int& wall_count) {
+  const bim::RoomLocator rooms(level);
+  std::set<std::string> gap_ids;
+  for (const Door& door : level.doors) {
+    const auto sides = bim::inferDoorRooms(level, door, rooms);
+    if (sides[0] == sides[1]) gap_ids.insert(door.id);
+  }
+  if (gap_ids.empty()) return 0;
+  std::vector<Wall> walls;
+  std::vector<Door> doors;
+  for (const Wall& wall : level.walls) {
+    std::vector<const Door*> on_wall;
+    for (const Door& door : level.doors) {
+      if (door.wall == wall.id) on_wall.push_back(&door);
+    }
+    std::sort(on_wall.begin(), on_wall.end(),
+              [](const Door* a, const Door* b) { return a->offset < b->offset; });
+    const Eigen::Vector2d axis = (wall.end - wall.start).normalized();
+    const double length = (wall.end - wall.start).norm();
+    Wall part = wall;
+    double part_start = 0.0;
+    for (const Door* door : on_wall) {
+      if (gap_ids.count(door->id) == 0) {
+        Door moved = *door;
+        moved.wall = part.id;
+        moved.offset -= part_start;
+        doors.push_back(std::move(moved));
+        continue;
+      }
+      const double lo = door->offset - 0.5 * door->width, hi = door->offset + 0.5 * door->width;
+      if (lo - part_start >= 0.001) {
+        part.end = wall.start + lo * axis;
+        walls.push_back(part);
+        part.id = "W" + std::to_string(++wall_count);
+      }
+      part.start = wall.start + hi * axis;
+      part_start = hi;
+    }
+    if (length - part_start >= 0.001) {
+      part.end = wall.end;
+      walls.push_back(part);
+    }
+  }
+  level.walls = std::move(walls);
+  level.doors = std::move(doors);
+  return int(gap_ids.size());
+}
+
 // What the trace and the rooms left out, one line each.
 void logLeftOut(const RasterWalls& traced, const bim::FreeSpaceRooms& rooms,
                 std::vector<std::string>& log) {
@@ -204,13 +259,18 @@ RasterPlanImport rasterPlanFromImage(const OccupancyImage& image, const std::str
   const std::vector<std::string> id_of = tracedIds(traced, walls, columns);
   addWallsAndColumns(traced, id_of, options, level);
   checkLevel(level, traced, file);
-  const int doors = addDoors(traced, id_of, options, level);
+  addDoors(traced, id_of, options, level);
   const bim::FreeSpaceRooms rooms = bim::enclosedFreeSpaces(level);
   for (std::size_t k = 0; k < rooms.outlines.size(); ++k) {
     Room room;
     room.id = "R" + std::to_string(k + 1);
     room.outline = rooms.outlines[k];
     level.rooms.push_back(std::move(room));
+  }
+  if (const int gaps = doorwaysToGaps(level, walls); gaps > 0) {
+    result.log.push_back(std::to_string(gaps) +
+                         " doorways with no room on either side (or one room on both): written "
+                         "as gaps between wall parts, not as doors");
   }
   logLeftOut(traced, rooms, result.log);
   for (std::size_t k = 0; k < traced.walls.size(); ++k) {
@@ -223,7 +283,8 @@ RasterPlanImport rasterPlanFromImage(const OccupancyImage& image, const std::str
                   bim::limits::kMaxThickness);
     result.log.push_back(text);
   }
-  result.walls = walls, result.columns = columns, result.doors = doors;
+  result.walls = walls, result.columns = columns;
+  result.doors = int(level.doors.size());
   result.rooms = int(level.rooms.size()), result.pockets = rooms.pockets;
   writeAndReadBack(std::move(level), file, options, result);
   return result;

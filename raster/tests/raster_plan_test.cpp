@@ -18,11 +18,11 @@ namespace {
 using bim::GridPlanSpec;
 using bim::Level;
 using bim::LevelGeometry;
-using bim::Plan;
-using bim::Wall;
 using bim::loadPlan;
 using bim::parsePlan;
+using bim::Plan;
 using bim::planarMotion;
+using bim::Wall;
 
 constexpr double kPi = 3.14159265358979323846;
 
@@ -281,6 +281,48 @@ TEST(RasterWalls, APillarSeenAsItsOutlineIsARoundColumn) {
   }
   EXPECT_EQ(round, 1);
   EXPECT_EQ(traced.symbols, 0);
+}
+
+TEST(RasterPlan, ADoorwayThatJoinsNoRoomsIsAGapBetweenWallParts) {
+  // A 4 × 3 m room (walls 0.2 m thick) with a 0.9 m doorway to the outside in its south wall, and
+  // a free-standing wall from x 5 to 9 at y 5 with a 1 m gap from 6.5 to 7.5: outside both sides.
+  const OccupancyImage image = imageOf(1000, 700, [&](const Eigen::Vector2d& p) {
+    const bool band_x = p.x() >= 0.9 && p.x() <= 5.1, band_y = p.y() >= 0.9 && p.y() <= 4.1;
+    const bool room = band_x && band_y &&
+                      (p.x() <= 1.1 || p.x() >= 4.9 || p.y() <= 1.1 || p.y() >= 3.9) &&
+                      !(p.y() <= 1.1 && p.x() >= 2.55 && p.x() <= 3.45);
+    const bool free_wall = std::abs(p.y() - 5.5) <= 0.1 && p.x() >= 6.0 && p.x() <= 9.5 &&
+                           !(p.x() >= 7.0 && p.x() <= 8.0);
+    return room || free_wall;
+  });
+  RasterPlanOptions options;
+  options.resolution = 0.01;
+  const RasterPlanImport imported = rasterPlanFromImage(image, "gaps.png", options);
+  const Level& level = imported.plan.levels.at(0);
+  ASSERT_EQ(level.rooms.size(), 1u);
+  ASSERT_EQ(level.doors.size(), 1u);  // the room's, to the outside
+  EXPECT_NE(level.doors[0].rooms[0], level.doors[0].rooms[1]);
+  int free_parts = 0;
+  for (const auto& wall : level.walls) {
+    if (std::abs(wall.start.y() - 5.5) > 0.02) continue;
+    ++free_parts;
+    const double lo = std::min(wall.start.x(), wall.end.x()),
+                 hi = std::max(wall.start.x(), wall.end.x());
+    EXPECT_TRUE(hi <= 7.0 + 0.02 || lo >= 8.0 - 0.02) << lo << " … " << hi;
+  }
+  EXPECT_EQ(free_parts, 2);
+  EXPECT_EQ(imported.doors, 1);
+  bool said = false;
+  for (const auto& line : imported.log) {
+    if (line.find("1 doorways with no room on either side") != std::string::npos) said = true;
+  }
+  EXPECT_TRUE(said);
+  // The plan as written reads back without a warning.
+  common::Warnings warnings;
+  const nlohmann::json document = nlohmann::json::parse(imported.plan_json.dump());
+  const common::JsonSource source{"gaps.json", &warnings};
+  bim::parsePlan(common::JsonNode(document, "", source));
+  EXPECT_TRUE(warnings.empty()) << warnings.front().str();
 }
 
 TEST(RasterWalls, TextAndCurvesAreSaidNotTurnedIntoWalls) {
