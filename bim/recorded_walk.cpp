@@ -1,9 +1,9 @@
 #include "bim/recorded_walk.hpp"
 
-#include <filesystem>
-
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <filesystem>
 
 #include "bim/box_grid.hpp"
 #include "bim/limits.hpp"
@@ -24,6 +24,42 @@ std::string fixed(double value, int decimals) {
   char text[64];
   std::snprintf(text, sizeof text, "%.*f", decimals, value);
   return text;
+}
+
+// Whether going from a to b is faster than a carrier walks, over at least kSpeedWindow.
+bool tooFast(const WalkPose& a, const WalkPose& b) {
+  return (b.xy - a.xy).norm() > kMaxWalkSpeed * std::max(b.t - a.t, kSpeedWindow);
+}
+
+// A single pose off the walk — too far from both its neighbours, which agree with each other (a
+// tracking glitch, one frame's wrong pose) — is left out and said; the walk is bridged across it.
+// Two or more in a row are a jump, refused by the speed check.
+void bridgeSingleGlitches(std::vector<WalkPose>& walk, const std::string& path,
+                          const common::JsonNode& node) {
+  std::vector<WalkPose> kept;
+  kept.reserve(walk.size());
+  int glitches = 0;
+  for (std::size_t i = 0; i < walk.size(); ++i) {
+    const bool glitch = i > 0 && i + 1 < walk.size() && !kept.empty() &&
+                        tooFast(kept.back(), walk[i]) && tooFast(walk[i], walk[i + 1]) &&
+                        !tooFast(kept.back(), walk[i + 1]);
+    if (!glitch) {
+      kept.push_back(walk[i]);
+      continue;
+    }
+    if (++glitches <= kNamedGaps) {
+      const double off = (walk[i].xy - 0.5 * (kept.back().xy + walk[i + 1].xy)).norm();
+      node.warn(path + ": line " + std::to_string(walk[i].line) + ": a single pose " +
+                fixed(off, 3) + " m off the walk (lines " + std::to_string(kept.back().line) +
+                " and " + std::to_string(walk[i + 1].line) +
+                " agree): left out, the walk bridged across it");
+    }
+  }
+  if (glitches > kNamedGaps) {
+    node.warn(path + ": " + std::to_string(glitches - kNamedGaps) +
+              " more single poses off the walk left out");
+  }
+  walk = std::move(kept);
 }
 
 }  // namespace
@@ -71,6 +107,7 @@ std::vector<WalkPose> readRecordedWalk(const std::string& path, const Level& lev
                     std::atan2(R(1, 0), R(0, 0)), lines[i]});
   }
 
+  bridgeSingleGlitches(walk, path, node);
   // Faster than a carrier walks: a jump in the file (a relocalization, a wrong frame), which no
   // carrier could follow and no IMU could feel sensibly.
   std::size_t back = 0;

@@ -14,8 +14,10 @@ namespace isg::bim {
 // plan frame of the robot's level (z is not used: the carrier's own height is), its stamps made
 // relative to the first. It is refused (InputError naming the file and the line) when it cannot
 // be read, holds fewer than two poses, is longer than limits::kMaxRobotSeconds, or moves faster
-// than kMaxWalkSpeed; a gap in time beyond kWalkGapWarning is said as a warning on `node` (the
-// scenario's "trajectory" field), as is a pose far outside the level's walls.
+// than kMaxWalkSpeed; a single pose off the walk (too fast to reach and to leave, its neighbours
+// agreeing: a tracking glitch) is left out and said, a gap in time beyond kWalkGapWarning is said
+// — both as warnings on `node` (the scenario's "trajectory" field) —, as is a pose far outside
+// the level's walls.
 inline constexpr double kMaxWalkSpeed = 3.0;       // m/s, over any 0.05 s or more
 inline constexpr double kWalkGapWarning = 1.0;     // s without a pose
 inline constexpr double kWalkOutsideWarning = 20;  // m beyond the box of the level's walls

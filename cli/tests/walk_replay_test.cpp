@@ -1,5 +1,6 @@
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -279,6 +280,39 @@ TEST(WalkReplay, AColumnInTheWayWasNotBuiltYet) {
     EXPECT_EQ(passes[0]["kind"], "column");
     EXPECT_EQ(passes[1]["taken_as"], "not_built");
   }
+}
+
+TEST(WalkReplay, ASingleGlitchIsBridgedAndSaidAJumpRefused) {
+  testing::Sandbox sandbox("walk_replay_glitch");
+  // Along D1's corridor (y 1.1) at 0.5 m/s, 10 Hz; line 12 (t 1.0) is 3 m off: a glitch.
+  const auto walkWith = [](const std::vector<int>& off_lines) {
+    std::string walk;
+    char line[96];
+    for (int i = 0; i <= 60; ++i) {
+      const bool off = std::find(off_lines.begin(), off_lines.end(), i + 2) != off_lines.end();
+      std::snprintf(line, sizeof line, "%.1f %.3f %.3f 0 0 0 0 1\n", 0.1 * i, 1.0 + 0.05 * i,
+                    off ? 4.1 : 1.1);
+      walk += line;
+    }
+    return "# a walk\n" + walk;
+  };
+  sandbox.write("s.json", scenarioWith("d1", "handheld", "{\"trajectory\": \"walk.tum\"}"));
+  sandbox.write("walk.tum", walkWith({12}));
+  const auto bridged = sandbox.run("simulate s.json -q -o d");
+  ASSERT_EQ(bridged.exit_code, 0) << bridged.err;
+  EXPECT_EQ(bridged.err,
+            "isg simulate: warning: s.json: /robot/route/trajectory: walk.tum: line 12: a single "
+            "pose 3.000 m off the walk (lines 11 and 13 agree): left out, the walk bridged across "
+            "it\n");
+  EXPECT_EQ(nlohmann::json::parse(sandbox.read("d/metadata.json"))["robot"]["trajectory"]["poses"],
+            60);
+  // Two in a row are a jump: refused, naming the first.
+  sandbox.write("walk.tum", walkWith({12, 13}));
+  const auto jump = sandbox.run("simulate s.json -q -o e");
+  EXPECT_EQ(jump.exit_code, 1);
+  EXPECT_EQ(jump.err,
+            "isg simulate: error: walk.tum: line 12: the walk moves 3.000 m in 0.100 s since line "
+            "11 (30.0 m/s; at most 3 m/s is walked)\n");
 }
 
 TEST(WalkReplay, AGapInTimeIsSaidAndWalkedAcross) {
