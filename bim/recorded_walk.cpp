@@ -34,9 +34,11 @@ bool tooFast(const WalkPose& a, const WalkPose& b) {
 // A single pose off the walk — too far from both its neighbours, which agree with each other (a
 // tracking glitch, one frame's wrong pose) — is left out and said; the walk is bridged across it.
 // Two or more in a row are a jump, refused by the speed check.
-void bridgeSingleGlitches(std::vector<WalkPose>& walk, const std::string& path,
-                          const common::JsonNode& node) {
+// Returns the times of the poses left out.
+std::vector<double> bridgeSingleGlitches(std::vector<WalkPose>& walk, const std::string& path,
+                                         const common::JsonNode& node) {
   std::vector<WalkPose> kept;
+  std::vector<double> left_out;
   kept.reserve(walk.size());
   int glitches = 0;
   for (std::size_t i = 0; i < walk.size(); ++i) {
@@ -47,6 +49,7 @@ void bridgeSingleGlitches(std::vector<WalkPose>& walk, const std::string& path,
       kept.push_back(walk[i]);
       continue;
     }
+    left_out.push_back(walk[i].t);
     if (++glitches <= kNamedGaps) {
       const double off = (walk[i].xy - 0.5 * (kept.back().xy + walk[i + 1].xy)).norm();
       node.warn(path + ": line " + std::to_string(walk[i].line) + ": a single pose " +
@@ -60,12 +63,14 @@ void bridgeSingleGlitches(std::vector<WalkPose>& walk, const std::string& path,
               " more single poses off the walk left out");
   }
   walk = std::move(kept);
+  return left_out;
 }
 
 }  // namespace
 
-std::vector<WalkPose> readRecordedWalk(const std::string& path, const Level& level,
-                                       const common::JsonNode& node, double* recording_start) {
+LoadedWalk readRecordedWalk(const std::string& path, const Level& level,
+                            const common::JsonNode& node) {
+  LoadedWalk loaded;
   // Every pose of a walk is held while the run goes (its route, its ground truth): the file is
   // held to a size whose poses fit in memory before any of it is read.
   std::error_code error;
@@ -91,7 +96,7 @@ std::vector<WalkPose> readRecordedWalk(const std::string& path, const Level& lev
   }
   const auto at = [&](std::size_t i) { return "line " + std::to_string(lines[i]) + ": "; };
   const double t0 = poses.front().t;
-  if (recording_start != nullptr) *recording_start = t0;
+  loaded.recording_start = t0;
   const double length = poses.back().t - t0;
   if (length > limits::kMaxRobotSeconds) {
     throw common::InputError(path, "",
@@ -107,7 +112,7 @@ std::vector<WalkPose> readRecordedWalk(const std::string& path, const Level& lev
                     std::atan2(R(1, 0), R(0, 0)), lines[i]});
   }
 
-  bridgeSingleGlitches(walk, path, node);
+  loaded.bridged = bridgeSingleGlitches(walk, path, node);
   // Faster than a carrier walks: a jump in the file (a relocalization, a wrong frame), which no
   // carrier could follow and no IMU could feel sensibly.
   std::size_t back = 0;
@@ -156,7 +161,8 @@ std::vector<WalkPose> readRecordedWalk(const std::string& path, const Level& lev
       break;
     }
   }
-  return walk;
+  loaded.walk = std::move(walk);
+  return loaded;
 }
 
 }  // namespace isg::bim

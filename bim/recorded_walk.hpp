@@ -26,9 +26,9 @@ inline constexpr double kWalkOutsideWarning = 20;  // m beyond the box of the le
 // at 100 Hz — is at most about half a GiB.
 inline constexpr std::uintmax_t kMaxWalkFileBytes = 64ull << 20;
 
-// `recording_start`, when given, gets the file's first stamp (the walk's t = 0 in its own clock).
-std::vector<WalkPose> readRecordedWalk(const std::string& path, const Level& level,
-                                       const common::JsonNode& node,
-                                       double* recording_start = nullptr);
+// `walk` of the result holds its poses, `recording_start` the file's first stamp (the walk's t = 0
+// in its own clock), `bridged` the times of the glitches left out; `file` is left to the caller.
+LoadedWalk readRecordedWalk(const std::string& path, const Level& level,
+                            const common::JsonNode& node);
 
 }  // namespace isg::bim

@@ -54,6 +54,7 @@ struct Route {
   std::string trajectory_file;
   std::vector<WalkPose> walk;
   double recording_start = 0.0;  // the file's first stamp: its clock at the walk's t = 0
+  std::vector<double> bridged;   // the stamps (as `walk`'s) of single glitches left out
   bool file_orientation = false;
   CrossedSolids crossed = CrossedSolids::kNotBuilt;
   // Filled when the scenario is read (worlds::takeCrossedSolids): every pass through a planned
@@ -305,6 +306,7 @@ struct LoadedWalk {
   std::string file;
   std::vector<WalkPose> walk;
   double recording_start = 0.0;
+  std::vector<double> bridged;
 };
 using WalkLoader = std::function<LoadedWalk(const common::JsonNode& file_name, const Level& level)>;
 

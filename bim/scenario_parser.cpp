@@ -155,6 +155,7 @@ void parseRoute(const common::JsonNode& route_node, const Plan& plan, const Leve
     route.trajectory_file = std::move(loaded.file);
     route.walk = std::move(loaded.walk);
     route.recording_start = loaded.recording_start;
+    route.bridged = std::move(loaded.bridged);
   } else if (auto rooms = route_node.optionalField("rooms")) {
     route.kind = Route::Kind::kRooms;
     for (const auto& r : rooms->elements(1, limits::kMaxScenarioItems, "rooms"))
@@ -795,9 +796,8 @@ Scenario loadScenario(const std::string& path, common::Warnings* warnings) {
           walk_name.fail("trajectory file " + common::inQuotes(walk_path.string()) +
                          " does not exist");
         }
-        LoadedWalk loaded{walk_path.string(), {}, 0.0};
-        loaded.walk =
-            readRecordedWalk(walk_path.string(), level, walk_name, &loaded.recording_start);
+        LoadedWalk loaded = readRecordedWalk(walk_path.string(), level, walk_name);
+        loaded.file = walk_path.string();
         return loaded;
       });
 }

@@ -1,5 +1,7 @@
 #include "cli/submission.hpp"
 
+#include <algorithm>
+
 #include "common/atomic_folder.hpp"
 #include "common/output_path.hpp"
 #include "common/tum.hpp"
@@ -30,10 +32,14 @@ std::pair<std::size_t, std::size_t> writeSubmission(const SubmissionTarget& targ
   common::Trajectory poses;
   std::size_t stamps = 0;
   if (route.kind == bim::Route::Kind::kTrajectory) {
+    // Every stamp of the file, the glitches left out of the walk too.
     common::Trajectory walk_stamps;
     for (const bim::WalkPose& pose : route.walk) {
       walk_stamps.push_back({pose.t, Eigen::Isometry3d::Identity()});
     }
+    for (const double t : route.bridged) walk_stamps.push_back({t, Eigen::Isometry3d::Identity()});
+    std::sort(walk_stamps.begin(), walk_stamps.end(),
+              [](const auto& a, const auto& b) { return a.t < b.t; });
     poses = eval::estimateAtStamps(walk_stamps, record.estimate);
     for (auto& pose : poses) pose.t += route.recording_start;
     stamps = walk_stamps.size();

@@ -315,6 +315,63 @@ TEST(WalkReplay, ASingleGlitchIsBridgedAndSaidAJumpRefused) {
             "11 (30.0 m/s; at most 3 m/s is walked)\n");
 }
 
+// A walk as the floor-plan benchmark gives one: a camera's path at 33 Hz in the benchmark's clock
+// (from 10 003.2 s), named after its run, with one glitched pose, through a partition the plan
+// has and the site had not built yet (WX across D3's corridor, which the walk crosses 3 times).
+TEST(WalkReplay, ARecordedLookingWalkThroughAPlannedWallReplaysAndScores) {
+  testing::Sandbox sandbox("walk_replay_site");
+  const auto made = sandbox.run("simulate builtin:d3.handheld --duration 90 -q -o tour");
+  ASSERT_EQ(made.exit_code, 0) << made.err;
+  nlohmann::json plan =
+      nlohmann::json::parse(sandbox.read(std::string(ISG_SOURCE_DIR) + "/worlds/plans/d3.json"));
+  plan.erase("$schema");
+  plan["levels"][0]["walls"].push_back(
+      {{"id", "WX"}, {"start", {9.5, 4}}, {"end", {9.5, 6}}, {"thickness", 0.15}});
+  sandbox.write("d3x.json", plan.dump());
+  const common::Trajectory truth =
+      common::readTum((sandbox.dir() / "tour/groundtruth.tum").string());
+  common::Trajectory walk, glitched;
+  for (std::size_t i = 0; i < truth.size(); i += 3) {
+    walk.push_back(truth[i]);
+    walk.back().t += 10003.2;
+  }
+  glitched = walk;
+  glitched[1500].pose.translation().x() += 2.0;
+  sandbox.write("clean.txt", common::toTumText(walk));
+  sandbox.write("floor_8_2026-01-01_run_1.txt", common::toTumText(glitched));
+  sandbox.write("x.json",
+                "{\"format\": \"isg.scenario\", \"version\": 1, \"plan\": \"d3x.json\", "
+                "\"robot\": {\"carrier\": \"handheld\", \"route\": {\"trajectory\": "
+                "\"floor_8_2026-01-01_run_1.txt\"}}}");
+  const auto run =
+      sandbox.run("run x.json --start-pose truth --threads 2 -q -o r --submission entry");
+  ASSERT_EQ(run.exit_code, 0) << run.err;
+  EXPECT_NE(run.err.find("line 1501: a single pose 2.000 m off the walk"), std::string::npos)
+      << run.err;
+  EXPECT_NE(run.err.find("the walk crosses wall \"WX\" at (9.50"), std::string::npos) << run.err;
+  EXPECT_NE(run.err.find("taken as not built yet on the day of the walk"), std::string::npos);
+  // The run's truth has WX as not built (the report draws it so), and its as-built report finds
+  // it missing: graded found against that truth.
+  EXPECT_NE(sandbox.read("r/report.svg").find("wall not built"), std::string::npos);
+  const auto metrics = nlohmann::json::parse(sandbox.read("r/metrics.json"));
+  EXPECT_EQ(metrics["deviations"]["graded"]["missing"]["found"].get<int>(), 1);
+  EXPECT_EQ(metrics["deviations"]["graded"]["false_reports"].get<int>(), 0);
+  const auto deviations = nlohmann::json::parse(sandbox.read("r/deviations.json"));
+  bool found_missing = false;
+  for (const auto& wall : deviations["walls"]) {
+    if (wall["wall"] == "WX") found_missing = wall["status"] == "missing";
+  }
+  EXPECT_TRUE(found_missing);
+  // Given its start: every stamp of the recording estimated, the glitch's too; score ≥ 97.
+  EXPECT_EQ(metrics["time_wrongly_localized"].get<double>(), 0.0);
+  const auto score =
+      sandbox.run("eval --floor-plan-score clean.txt entry/floor_8_2026-01-01_run_1.txt --json");
+  ASSERT_EQ(score.exit_code, 0) << score.err;
+  const auto scored = nlohmann::json::parse(score.out)["floor_plan_score"];
+  EXPECT_DOUBLE_EQ(scored["coverage"].get<double>(), 1.0);
+  EXPECT_GE(scored["score"].get<double>(), 97.0);
+}
+
 TEST(WalkReplay, AGapInTimeIsSaidAndWalkedAcross) {
   testing::Sandbox sandbox("walk_replay_gap");
   // Through D1's corridor at 0.5 m/s, with 3 s missing in the middle.
