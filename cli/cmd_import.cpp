@@ -277,11 +277,15 @@ int ImportCommand::importRaster() {
                image.c_str(), result.width, result.height, options.resolution,
                result.width * options.resolution, result.height * options.resolution);
   std::fprintf(stderr,
-               "isg import: wrote %s: 1 level, %s, %s, %s, %s; %s left out or "
+               "isg import: wrote %s: 1 level, %s, %s, %s%s, %s; %s left out or "
                "simplified%s\n",
                output_.c_str(), common::counted(result.walls, "wall").c_str(),
                common::counted(result.columns, "column").c_str(),
                common::counted(result.doors, "doorway").c_str(),
+               result.doorway_gaps > 0 ? (" (and " + std::to_string(result.doorway_gaps) +
+                                          " between no rooms, written as gaps in their walls)")
+                                             .c_str()
+                                       : "",
                common::counted(result.rooms, "room").c_str(),
                common::counted(result.log.size(), "region").c_str(),
                quiet_ && !result.log.empty() ? " (run without -q to list them)" : "");

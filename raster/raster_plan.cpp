@@ -267,11 +267,7 @@ RasterPlanImport rasterPlanFromImage(const OccupancyImage& image, const std::str
     room.outline = rooms.outlines[k];
     level.rooms.push_back(std::move(room));
   }
-  if (const int gaps = doorwaysToGaps(level, walls); gaps > 0) {
-    result.log.push_back(std::to_string(gaps) +
-                         " doorways with no room on either side (or one room on both): written "
-                         "as gaps between wall parts, not as doors");
-  }
+  result.doorway_gaps = doorwaysToGaps(level, walls);
   logLeftOut(traced, rooms, result.log);
   for (std::size_t k = 0; k < traced.walls.size(); ++k) {
     if (traced.walls[k].thickness <= bim::limits::kMaxThickness) continue;

@@ -33,6 +33,8 @@ struct RasterPlanImport {
   std::vector<std::string> log;  // regions left out or simplified, one line each
   int width = 0, height = 0;     // the image's pixels
   int walls = 0, columns = 0, doors = 0, rooms = 0, pockets = 0, specks = 0;
+  // Doorways that join no rooms, written as gaps between wall parts instead of doors.
+  int doorway_gaps = 0;
 };
 
 // Fails unless an image of `width` × `height` pixels at the options' resolution fits a level
