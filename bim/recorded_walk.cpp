@@ -26,25 +26,25 @@ std::string fixed(double value, int decimals) {
   return text;
 }
 
-// Whether going from a to b is faster than a carrier walks, over at least kSpeedWindow.
-bool tooFast(const WalkPose& a, const WalkPose& b) {
-  return (b.xy - a.xy).norm() > kMaxWalkSpeed * std::max(b.t - a.t, kSpeedWindow);
+// Whether going from a to b is faster than `max_speed`, over at least kSpeedWindow.
+bool tooFast(const WalkPose& a, const WalkPose& b, double max_speed) {
+  return (b.xy - a.xy).norm() > max_speed * std::max(b.t - a.t, kSpeedWindow);
 }
 
 // A single pose off the walk — too far from both its neighbours, which agree with each other (a
 // tracking glitch, one frame's wrong pose) — is left out and said; the walk is bridged across it.
 // Two or more in a row are a jump, refused by the speed check.
 // Returns the times of the poses left out.
-std::vector<double> bridgeSingleGlitches(std::vector<WalkPose>& walk, const std::string& path,
-                                         const common::JsonNode& node) {
+std::vector<double> bridgeSingleGlitches(std::vector<WalkPose>& walk, double max_speed,
+                                         const std::string& path, const common::JsonNode& node) {
   std::vector<WalkPose> kept;
   std::vector<double> left_out;
   kept.reserve(walk.size());
   int glitches = 0;
   for (std::size_t i = 0; i < walk.size(); ++i) {
-    const bool glitch = i > 0 && i + 1 < walk.size() && !kept.empty() &&
-                        tooFast(kept.back(), walk[i]) && tooFast(walk[i], walk[i + 1]) &&
-                        !tooFast(kept.back(), walk[i + 1]);
+    const bool glitch =
+        i > 0 && i + 1 < walk.size() && !kept.empty() && tooFast(kept.back(), walk[i], max_speed) &&
+        tooFast(walk[i], walk[i + 1], max_speed) && !tooFast(kept.back(), walk[i + 1], max_speed);
     if (!glitch) {
       kept.push_back(walk[i]);
       continue;
@@ -108,11 +108,14 @@ LoadedWalk readRecordedWalk(const std::string& path, const Level& level,
   walk.reserve(poses.size());
   for (std::size_t i = 0; i < poses.size(); ++i) {
     const auto& R = poses[i].pose.linear();
+    // Rz(yaw)·Ry(pitch)·Rx(roll), pitch within ±90°.
     walk.push_back({poses[i].t - t0, poses[i].pose.translation().head<2>(),
-                    std::atan2(R(1, 0), R(0, 0)), lines[i]});
+                    std::atan2(R(1, 0), R(0, 0)), lines[i], poses[i].pose.translation().z(),
+                    std::atan2(R(2, 1), R(2, 2)), std::asin(std::clamp(-R(2, 0), -1.0, 1.0))});
   }
 
-  loaded.bridged = bridgeSingleGlitches(walk, path, node);
+  const double max_speed = kMaxCarriedSpeed;
+  loaded.bridged = bridgeSingleGlitches(walk, max_speed, path, node);
   // Faster than a carrier walks: a jump in the file (a relocalization, a wrong frame), which no
   // carrier could follow and no IMU could feel sensibly.
   std::size_t back = 0;
@@ -120,13 +123,15 @@ LoadedWalk readRecordedWalk(const std::string& path, const Level& level,
     while (back + 1 < i && walk[i].t - walk[back + 1].t >= kSpeedWindow) ++back;
     const std::size_t from = walk[i].t - walk[back].t >= kSpeedWindow ? back : i - 1;
     const double speed = (walk[i].xy - walk[from].xy).norm() / (walk[i].t - walk[from].t);
-    if (speed > kMaxWalkSpeed) {
-      throw common::InputError(path, "",
-                               at(i) + "the walk moves " +
-                                   fixed((walk[i].xy - walk[from].xy).norm(), 3) + " m in " +
-                                   fixed(walk[i].t - walk[from].t, 3) + " s since line " +
-                                   std::to_string(walk[from].line) + " (" + fixed(speed, 1) +
-                                   " m/s; at most " + fixed(kMaxWalkSpeed, 0) + " m/s is walked)");
+    if (speed > max_speed) {
+      throw common::InputError(
+          path, "",
+          at(i) + "the walk moves " + fixed((walk[i].xy - walk[from].xy).norm(), 3) + " m in " +
+              fixed(walk[i].t - walk[from].t, 3) + " s since line " +
+              std::to_string(walk[from].line) + " (" + fixed(speed, 1) +
+              " m/s; nobody carries a sensor faster than " + fixed(max_speed, 0) +
+              " m/s: a jump, or a pose in another "
+              "frame?)");
     }
   }
 

@@ -26,6 +26,9 @@ struct WalkPose {
   Eigen::Vector2d xy = Eigen::Vector2d::Zero();
   double yaw = 0.0;
   int line = 0;
+  // The rest of the file's pose: its height above the level's floor, its roll and pitch (the
+  // rotation is Rz(yaw)·Ry(pitch)·Rx(roll)). Used when the walk is a sensor's path.
+  double z = 0.0, roll = 0.0, pitch = 0.0;
 };
 
 // What a replayed walk does with a planned wall or column it passes through (robot.route
@@ -56,6 +59,13 @@ struct Route {
   double recording_start = 0.0;  // the file's first stamp: its clock at the walk's t = 0
   std::vector<double> bridged;   // the stamps (as `walk`'s) of single glitches left out
   bool file_orientation = false;
+  // Whose path the file is (robot.route "path_of"): a sensor's — a camera's, a LiDAR's: the
+  // LiDAR follows the file's pose through `rig` exactly, the carrier rigid with it — or the
+  // carrier body's (followed with the gait's sway). A sensor's by default with "orientation":
+  // "file".
+  bool sensor_path = false;
+  // The simulated LiDAR in the frame of the sensor the file tracks, [x, y, z, roll, pitch, yaw].
+  std::array<double, 6> rig = {0.0, 0.0, 0.0, 0.0, 0.0, 0.0};
   CrossedSolids crossed = CrossedSolids::kNotBuilt;
   // Filled when the scenario is read (worlds::takeCrossedSolids): every pass through a planned
   // wall or column, in the walk's order; the scenario's as_built already holds what they took.

@@ -100,6 +100,71 @@ std::vector<Kidnap> parseKidnaps(const common::JsonNode& node, const Plan& plan,
   return out;
 }
 
+std::array<double, 6> parseMount(const common::JsonNode& node, const std::string& sensor);
+
+// One of the names of `values` (in order: value i is named names[i]); anything else fails
+// naming them all.
+template <typename Value>
+Value namedValue(const common::JsonNode& node, std::initializer_list<const char*> names,
+                 std::initializer_list<Value> values) {
+  const std::string text = node.string();
+  std::string expected;
+  auto value = values.begin();
+  std::size_t i = 0;
+  for (const char* name : names) {
+    if (text == name) return *value;
+    ++value;
+    const char* separator = i == 0 ? "" : i + 1 == names.size() ? " or " : ", ";
+    expected += separator + common::inQuotes(name);
+    ++i;
+  }
+  node.fail("unknown value " + common::inQuotes(text) + " (expected " + expected + ")");
+}
+
+// {"trajectory": FILE, "orientation", "path_of", "rig", "crossed"}: a recorded walk replayed.
+void parseTrajectoryRoute(const common::JsonNode& route_node, const Level& level,
+                          const WalkLoader& load_walk, Route& route) {
+  const common::JsonNode trajectory = route_node.field("trajectory");
+  route.kind = Route::Kind::kTrajectory;
+  trajectory.nonEmptyString();
+  if (auto orientation = route_node.optionalField("orientation")) {
+    const std::string mode = orientation->string();
+    if (mode != "travel" && mode != "file") {
+      orientation->fail("unknown orientation " + common::inQuotes(mode) +
+                        " (expected \"travel\" or \"file\")");
+    }
+    route.file_orientation = mode == "file";
+  }
+  route.sensor_path = route.file_orientation;
+  if (auto path_of = route_node.optionalField("path_of")) {
+    route.sensor_path = namedValue(*path_of, {"body", "sensor"}, {false, true});
+    if (route.sensor_path && !route.file_orientation) {
+      path_of->fail(
+          "a sensor's path carries its orientation: give \"orientation\": \"file\" with it");
+    }
+  }
+  if (auto rig = route_node.optionalField("rig")) {
+    if (!route.sensor_path)
+      rig->fail("\"rig\" goes with a sensor's path (\"path_of\": \"sensor\")");
+    route.rig = parseMount(*rig, "LiDAR");
+  }
+  if (auto crossed = route_node.optionalField("crossed")) {
+    route.crossed =
+        namedValue(*crossed, {"not_built", "opening", "refuse"},
+                   {CrossedSolids::kNotBuilt, CrossedSolids::kOpening, CrossedSolids::kRefuse});
+  }
+  if (!load_walk) {
+    trajectory.fail(
+        "a trajectory route is read from a file beside its scenario's file; "
+        "this scenario is not read from one");
+  }
+  LoadedWalk loaded = load_walk(trajectory, level);
+  route.trajectory_file = std::move(loaded.file);
+  route.walk = std::move(loaded.walk);
+  route.recording_start = loaded.recording_start;
+  route.bridged = std::move(loaded.bridged);
+}
+
 // robot.route: "tour", or an object with rooms, waypoints or a recorded walk's trajectory file.
 void parseRoute(const common::JsonNode& route_node, const Plan& plan, const Level& level,
                 const WalkLoader& load_walk, Route& route) {
@@ -109,7 +174,8 @@ void parseRoute(const common::JsonNode& route_node, const Plan& plan, const Leve
       route_node.fail("unknown route " + common::inQuotes(kind) + " (expected \"tour\")");
     return;
   }
-  route_node.expectObject({"rooms", "waypoints", "trajectory", "orientation", "crossed"});
+  route_node.expectObject(
+      {"rooms", "waypoints", "trajectory", "orientation", "path_of", "rig", "crossed"});
   if (int(route_node.has("rooms")) + int(route_node.has("waypoints")) +
           int(route_node.has("trajectory")) !=
       1) {
@@ -117,45 +183,13 @@ void parseRoute(const common::JsonNode& route_node, const Plan& plan, const Leve
         "give \"tour\", {\"rooms\": [...]}, {\"waypoints\": [...]} or "
         "{\"trajectory\": \"WALK.tum\"}");
   }
-  for (const char* key : {"orientation", "crossed"}) {
+  for (const char* key : {"orientation", "path_of", "rig", "crossed"}) {
     if (route_node.has(key) && !route_node.has("trajectory")) {
       route_node.field(key).fail(common::inQuotes(key) + " goes with \"trajectory\" only");
     }
   }
-  if (auto trajectory = route_node.optionalField("trajectory")) {
-    route.kind = Route::Kind::kTrajectory;
-    trajectory->nonEmptyString();
-    if (auto orientation = route_node.optionalField("orientation")) {
-      const std::string mode = orientation->string();
-      if (mode != "travel" && mode != "file") {
-        orientation->fail("unknown orientation " + common::inQuotes(mode) +
-                          " (expected \"travel\" or \"file\")");
-      }
-      route.file_orientation = mode == "file";
-    }
-    if (auto crossed = route_node.optionalField("crossed")) {
-      const std::string mode = crossed->string();
-      if (mode == "not_built") {
-        route.crossed = CrossedSolids::kNotBuilt;
-      } else if (mode == "opening") {
-        route.crossed = CrossedSolids::kOpening;
-      } else if (mode == "refuse") {
-        route.crossed = CrossedSolids::kRefuse;
-      } else {
-        crossed->fail("unknown value " + common::inQuotes(mode) +
-                      " (expected \"not_built\", \"opening\" or \"refuse\")");
-      }
-    }
-    if (!load_walk) {
-      trajectory->fail(
-          "a trajectory route is read from a file beside its scenario's file; "
-          "this scenario is not read from one");
-    }
-    LoadedWalk loaded = load_walk(*trajectory, level);
-    route.trajectory_file = std::move(loaded.file);
-    route.walk = std::move(loaded.walk);
-    route.recording_start = loaded.recording_start;
-    route.bridged = std::move(loaded.bridged);
+  if (route_node.has("trajectory")) {
+    parseTrajectoryRoute(route_node, level, load_walk, route);
   } else if (auto rooms = route_node.optionalField("rooms")) {
     route.kind = Route::Kind::kRooms;
     for (const auto& r : rooms->elements(1, limits::kMaxScenarioItems, "rooms"))

@@ -6,6 +6,7 @@
 #include "common/output_path.hpp"
 #include "common/tum.hpp"
 #include "eval/floor_plan_score.hpp"
+#include "sensors/mount_transform.hpp"
 #include "worlds/reference_plans.hpp"
 
 namespace isg::cli {
@@ -41,7 +42,15 @@ std::pair<std::size_t, std::size_t> writeSubmission(const SubmissionTarget& targ
     std::sort(walk_stamps.begin(), walk_stamps.end(),
               [](const auto& a, const auto& b) { return a.t < b.t; });
     poses = eval::estimateAtStamps(walk_stamps, record.estimate);
-    for (auto& pose : poses) pose.t += route.recording_start;
+    // A sensor's path: the entry is that sensor's, R_T_S = R_T_L · (S_T_L)⁻¹ from the base's.
+    const Eigen::Isometry3d R_T_S = route.sensor_path
+                                        ? sensors::mountTransform(scenario.lidar.mount) *
+                                              sensors::mountTransform(route.rig).inverse()
+                                        : Eigen::Isometry3d::Identity();
+    for (auto& pose : poses) {
+      pose.t += route.recording_start;
+      pose.pose = pose.pose * R_T_S;
+    }
     stamps = walk_stamps.size();
   } else {
     poses = eval::estimateAtStamps(record.streams.ground_truth, record.estimate);

@@ -58,8 +58,9 @@ BaseMotion::BaseMotion(const std::vector<Eigen::Vector3d>& waypoints, double sta
   legs_.push_back(makeLeg(0.0, waypoints, start_yaw));
 }
 
-BaseMotion::BaseMotion(std::shared_ptr<const WalkPath> walk, double floor_z, const GaitConfig& gait)
-    : gait_(gait), speed_(0.0), walk_(std::move(walk)) {
+BaseMotion::BaseMotion(std::shared_ptr<const WalkPath> walk, double floor_z, const GaitConfig& gait,
+                       const Eigen::Isometry3d& S_T_R)
+    : gait_(gait), speed_(0.0), walk_(std::move(walk)), S_T_R_(S_T_R) {
   const WalkPath::State start = walk_->at(0.0);
   Leg leg;
   leg.from = start.xy;
@@ -225,6 +226,7 @@ Eigen::Isometry3d BaseMotion::poseBefore(double t) const {
 }
 
 BaseKinematics BaseMotion::kinematicsOf(const PlanarState& p, double t) const {
+  if (walk_ && walk_->sensorPath()) return sensorPathKinematics(p, t);
   const Eased w = sway(t);
   const double omega = 2.0 * std::numbers::pi * gait_.frequency_hz;
   const double phase = gaitPhase(t);
@@ -285,6 +287,30 @@ BaseKinematics BaseMotion::withWalkersSway(PlanarState p, double t, const Eased&
     p.yaw_acceleration += turn.acceleration;
   }
   return bodyKinematics(p, bob, roll, pitch);
+}
+
+BaseKinematics BaseMotion::sensorPathKinematics(const PlanarState& p, double t) const {
+  const WalkPath::State s = walk_->at(t);
+  // The sensor S as bodyKinematics poses a body: at floor + standing height + "bob", so the bob
+  // is the file's height less the standing height.
+  const Eased height{s.z.value - gait_.standing_height, s.z.rate, s.z.acceleration};
+  const BaseKinematics S =
+      bodyKinematics(p, height, {s.roll.value, s.roll.rate, s.roll.acceleration},
+                     {s.pitch.value, s.pitch.rate, s.pitch.acceleration});
+  // R rigid with S: p_R = p_S + R_S·c, v_R = v_S + R_S·(ω×c), a_R = a_S + R_S·(α×c + ω×(ω×c)),
+  // with ω, α S's body rates; R's are the same rotated into R (Q = S_R_R).
+  const Eigen::Vector3d c = S_T_R_.translation();
+  const Eigen::Matrix3d Q = S_T_R_.linear();
+  const Eigen::Matrix3d& R_S = S.B_T_R.linear();
+  const Eigen::Vector3d& w = S.angular_velocity;
+  const Eigen::Vector3d& a = S.angular_acceleration;
+  BaseKinematics k;
+  k.B_T_R = S.B_T_R * S_T_R_;
+  k.velocity = S.velocity + R_S * w.cross(c);
+  k.acceleration = S.acceleration + R_S * (a.cross(c) + w.cross(w.cross(c)));
+  k.angular_velocity = Q.transpose() * w;
+  k.angular_acceleration = Q.transpose() * a;
+  return k;
 }
 
 BaseKinematics BaseMotion::bodyKinematics(const PlanarState& p, const Eased& bob, const Eased& roll,

@@ -72,8 +72,12 @@ class BaseMotion {
   BaseMotion(const std::vector<Eigen::Vector3d>& waypoints, double start_yaw, double speed,
              const GaitConfig& gait);
   // A recorded walk replayed on one floor at height floor_z: the base follows `walk` (its
-  // position, heading and pace), swaying with the gait as far as the walk's pace has it.
-  BaseMotion(std::shared_ptr<const WalkPath> walk, double floor_z, const GaitConfig& gait);
+  // position, heading and pace), swaying with the gait as far as the walk's pace has it. When the
+  // walk is a sensor's path (WalkPath::sensorPath), the tracked sensor S follows it — its
+  // position above the floor and its attitude — and the base is rigid with it: B_T_R = B_T_S ·
+  // `S_T_R`, no sway added.
+  BaseMotion(std::shared_ptr<const WalkPath> walk, double floor_z, const GaitConfig& gait,
+             const Eigen::Isometry3d& S_T_R = Eigen::Isometry3d::Identity());
 
   // Continues with a new leg from `time` on (after the current leg's start, before its end).
   // Its waypoints are as the constructor over floors takes them: a kidnap may put the robot down
@@ -153,11 +157,14 @@ class BaseMotion {
   // The pose and its derivatives from the planar state and the body's bob, roll and pitch.
   BaseKinematics bodyKinematics(const PlanarState& p, const Eased& bob, const Eased& roll,
                                 const Eased& pitch) const;
+  // A sensor's path: the tracked sensor's kinematics carried to R through S_T_R_.
+  BaseKinematics sensorPathKinematics(const PlanarState& p, double t) const;
 
   std::vector<Leg> legs_;
   GaitConfig gait_;
   double speed_;
   std::shared_ptr<const WalkPath> walk_;
+  Eigen::Isometry3d S_T_R_ = Eigen::Isometry3d::Identity();
 };
 
 }  // namespace isg::sim

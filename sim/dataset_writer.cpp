@@ -162,6 +162,8 @@ nlohmann::ordered_json robotDescription(const Simulation& sim) {
                            {"deviation_median_m", walk->medianDeviation()},
                            {"deviation_max_m", walk->maxDeviation()},
                            {"deviation_max_line", walk->maxDeviationLine()}};
+    robot["trajectory"]["path_of"] = s.robot.route.sensor_path ? "sensor" : "body";
+    if (s.robot.route.sensor_path) robot["trajectory"]["rig"] = s.robot.route.rig;
     robot["trajectory"]["crossed"] = crossingsJson(s.robot.route);
   }
   // Which level each waypoint is on, written only when the route changes level (a route on one

@@ -102,12 +102,15 @@ Simulation::Simulation(const bim::Scenario& scenario)
       std::make_unique<OccupancyGrid>(scenario_.plan, scenario_.as_built, scenario_.robot.level);
   if (scenario_.robot.route.kind == bim::Route::Kind::kTrajectory) {
     checkWalkClear(scenario_);
+    const bim::Route& replayed = scenario_.robot.route;
     const GaitConfig gait = gaitOf(scenario_.robot, generator(kGaitStream));
-    auto walk = std::make_shared<const WalkPath>(
-        scenario_.robot.route.walk, scenario_.robot.route.file_orientation, gait.turn_rate);
+    auto walk = std::make_shared<const WalkPath>(replayed.walk, replayed.file_orientation,
+                                                 gait.turn_rate, replayed.sensor_path);
     route_ = replayedRoute(scenario_, *walk);
+    // A sensor's path: the LiDAR is `rig` in the tracked sensor's frame, the base rigid with it.
+    const Eigen::Isometry3d S_T_R = sensors::mountTransform(replayed.rig) * R_T_L_.inverse();
     base_motion_ = std::make_unique<BaseMotion>(
-        std::move(walk), scenario_.plan.findLevel(scenario_.robot.level)->elevation, gait);
+        std::move(walk), scenario_.plan.findLevel(scenario_.robot.level)->elevation, gait, S_T_R);
   } else {
     auto rng = generator(kRouteStream);
     route_ = planRoute(scenario_, *grid_, rng);

@@ -16,8 +16,9 @@ constexpr double kSmoothness = 1e-3;
 
 }  // namespace
 
-WalkPath::WalkPath(const std::vector<bim::WalkPose>& walk, bool file_orientation,
-                   double turn_rate) {
+WalkPath::WalkPath(const std::vector<bim::WalkPose>& walk, bool file_orientation, double turn_rate,
+                   bool sensor_path)
+    : sensor_path_(sensor_path) {
   std::vector<double> times, xs, ys;
   times.reserve(walk.size());
   for (const auto& pose : walk) {
@@ -26,9 +27,11 @@ WalkPath::WalkPath(const std::vector<bim::WalkPose>& walk, bool file_orientation
     ys.push_back(pose.xy.y());
   }
   duration_ = times.back();
-  const SmoothingSplineFit fit(times, kWalkKnotSpacing, kSmoothness);
+  const SmoothingSplineFit fit(times, sensor_path ? kSensorKnotSpacing : kWalkKnotSpacing,
+                               kSmoothness);
   x_ = fit.fit(xs);
   y_ = fit.fit(ys);
+  if (sensor_path) fitAttitude(walk, fit);
 
   std::vector<double> speeds(walk.size());
   for (std::size_t i = 0; i < walk.size(); ++i) {
@@ -62,7 +65,8 @@ WalkPath::WalkPath(const std::vector<bim::WalkPose>& walk, bool file_orientation
     gaits[i] =
         std::clamp((speeds[i] - kStandingSpeed) / (kFullGaitSpeed - kStandingSpeed), 0.0, 1.0);
   }
-  gait_ = fit.fit(gaits);
+  // A sensor's path carries the walker's own sway: none is added.
+  gait_ = fit.fit(sensor_path ? std::vector<double>(walk.size(), 0.0) : gaits);
 
   std::vector<double> deviations(walk.size());
   for (std::size_t i = 0; i < walk.size(); ++i) {
@@ -77,6 +81,20 @@ WalkPath::WalkPath(const std::vector<bim::WalkPose>& walk, bool file_orientation
   median_deviation_ = *middle;
 }
 
+void WalkPath::fitAttitude(const std::vector<bim::WalkPose>& walk, const SmoothingSplineFit& fit) {
+  std::vector<double> zs(walk.size()), rolls(walk.size()), pitches(walk.size());
+  for (std::size_t i = 0; i < walk.size(); ++i) {
+    zs[i] = walk[i].z;
+    pitches[i] = walk[i].pitch;
+    // Unwrapped, so that a roll through ±180° is a turn, not a jump.
+    rolls[i] =
+        i == 0 ? walk[0].roll : rolls[i - 1] + common::wrapAngle(walk[i].roll - walk[i - 1].roll);
+  }
+  z_ = fit.fit(zs);
+  roll_ = fit.fit(rolls);
+  pitch_ = fit.fit(pitches);
+}
+
 WalkPath::State WalkPath::at(double t) const {
   const auto x = x_.at(t), y = y_.at(t), yaw = yaw_.at(t), gait = gait_.at(t);
   State s;
@@ -86,6 +104,11 @@ WalkPath::State WalkPath::at(double t) const {
   s.yaw = yaw.value;
   s.yaw_rate = yaw.rate;
   s.yaw_acceleration = yaw.acceleration;
+  if (sensor_path_) {
+    s.z = z_.at(t);
+    s.roll = roll_.at(t);
+    s.pitch = pitch_.at(t);
+  }
   // The fit may overshoot [0, 1] a little where the pace changes; the sway's weight stays in it.
   if (gait.value <= 0.0 || gait.value >= 1.0) {
     s.gait = std::clamp(gait.value, 0.0, 1.0);

@@ -19,10 +19,15 @@ inline constexpr double kWalkKnotSpacing = 0.5;  // s
 inline constexpr double kHeadingSpeed = 0.2;     // m/s
 inline constexpr double kStandingSpeed = 0.05;   // m/s
 inline constexpr double kFullGaitSpeed = 0.3;    // m/s
+// A sensor's path (bim::Route::sensor_path) is followed closer: its height, roll and pitch too,
+// with knots every kSensorKnotSpacing (a walker's steps sway a hand-held camera at about 2 Hz),
+// and no sway of the carrier's own is added.
+inline constexpr double kSensorKnotSpacing = 0.1;  // s
 
 class WalkPath {
  public:
-  WalkPath(const std::vector<bim::WalkPose>& walk, bool file_orientation, double turn_rate);
+  WalkPath(const std::vector<bim::WalkPose>& walk, bool file_orientation, double turn_rate,
+           bool sensor_path = false);
 
   struct State {
     Eigen::Vector2d xy = Eigen::Vector2d::Zero();
@@ -31,9 +36,12 @@ class WalkPath {
     double yaw = 0.0, yaw_rate = 0.0, yaw_acceleration = 0.0;
     // How much of the gait's sway there is: 0 standing, 1 walking, with its derivatives.
     double gait = 0.0, gait_rate = 0.0, gait_acceleration = 0.0;
+    // A sensor's path: its height above the floor, roll and pitch, each with two derivatives.
+    UniformCubicSpline::Sample z, roll, pitch;
   };
   State at(double t) const;
   double duration() const { return duration_; }
+  bool sensorPath() const { return sensor_path_; }
 
   // How far the path passes from the file's positions: the largest distance and its pose's line,
   // and the median.
@@ -42,8 +50,11 @@ class WalkPath {
   double medianDeviation() const { return median_deviation_; }
 
  private:
+  void fitAttitude(const std::vector<bim::WalkPose>& walk, const SmoothingSplineFit& fit);
+
   double duration_ = 0.0;
-  UniformCubicSpline x_, y_, yaw_, gait_;
+  bool sensor_path_ = false;
+  UniformCubicSpline x_, y_, yaw_, gait_, z_, roll_, pitch_;
   double max_deviation_ = 0.0;
   int max_deviation_line_ = 0;
   double median_deviation_ = 0.0;

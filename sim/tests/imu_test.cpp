@@ -110,6 +110,43 @@ TEST(BaseKinematics, AReplayedWalkToo) {
   EXPECT_LT(t.kinematics(7.5).velocity.norm(), 0.03);
 }
 
+TEST(BaseKinematics, ASensorsPathTooWithTheBaseRigidWithTheSensor) {
+  // A hand-held camera's path at 30 Hz: an S at 0.8 m/s, the camera 1.3 m up and bobbing, looking
+  // ahead as cameras do (rolled −90° about its x, so that its z looks along the walk), its yaw
+  // swinging ±20° about the way ahead; the base 0.1 m behind and 0.2 m below it, turned.
+  std::vector<bim::WalkPose> walk;
+  for (int i = 0; i <= 300; ++i) {
+    const double t = i / 30.0, s = 0.8 * t;
+    const double heading = std::atan2(1.5 * 0.5 * std::cos(0.5 * s), 1.0);
+    bim::WalkPose pose{t, {s, 1.5 * std::sin(0.5 * s)}, heading + 0.35 * std::sin(1.3 * t), i + 1};
+    pose.z = 1.3 + 0.02 * std::sin(2.0 * std::numbers::pi * 1.8 * t);
+    pose.roll = -0.5 * std::numbers::pi + 0.05 * std::sin(0.9 * t);
+    pose.pitch = 0.1 * std::sin(0.7 * t);
+    walk.push_back(pose);
+  }
+  Eigen::Isometry3d S_T_R = Eigen::Isometry3d::Identity();
+  S_T_R.translation() = Eigen::Vector3d(-0.1, 0.2, 0.05);
+  S_T_R.linear() = Eigen::AngleAxisd(0.4, Eigen::Vector3d(1, 2, 3).normalized()).toRotationMatrix();
+  const BaseMotion t(std::make_shared<const WalkPath>(walk, true, kHandheldTurnRate, true), 0.5,
+                     walkersGait(), S_T_R);
+  expectDerivativesOfThePose(t);
+  // The sensor (B_T_R · R_T_S) is where the file says, within the fit's millimetres.
+  double worst = 0.0, worst_angle = 0.0;
+  for (const auto& pose : walk) {
+    if (pose.t < 0.2 || pose.t > 9.8) continue;
+    const Eigen::Isometry3d B_T_S = t.pose(pose.t) * S_T_R.inverse();
+    const Eigen::Vector3d file(pose.xy.x(), pose.xy.y(), 0.5 + pose.z);
+    worst = std::max(worst, (B_T_S.translation() - file).norm());
+    const Eigen::Matrix3d R = (Eigen::AngleAxisd(pose.yaw, Eigen::Vector3d::UnitZ()) *
+                               Eigen::AngleAxisd(pose.pitch, Eigen::Vector3d::UnitY()) *
+                               Eigen::AngleAxisd(pose.roll, Eigen::Vector3d::UnitX()))
+                                  .toRotationMatrix();
+    worst_angle = std::max(worst_angle, Eigen::AngleAxisd(R.transpose() * B_T_S.linear()).angle());
+  }
+  EXPECT_LT(worst, 0.002);
+  EXPECT_LT(worst_angle * 180 / std::numbers::pi, 0.1);
+}
+
 TEST(BaseKinematics, OnAFlightOfStairsTooWithTheBodyTiltedToTheSlope) {
   // Up a 3.2 m flight over 4.5 m, along the landing, and down a steeper one over 3.6 m.
   const BaseMotion t({{0, 0, 0}, {1, 0, 0}, {5.5, 0, 3.2}, {6.5, 0, 3.2}, {6.5, 3.6, 0}}, 0.0, 0.5,
