@@ -66,6 +66,27 @@ std::vector<double> bridgeSingleGlitches(std::vector<WalkPose>& walk, double max
   return left_out;
 }
 
+// Faster than anybody carries a sensor: a jump in the file (a relocalization, a wrong frame),
+// which no carrier could follow and no IMU could feel sensibly. Judged over kSpeedWindow or more,
+// so that a high-rate file's millimetre jitter between consecutive poses is not read as running.
+void checkCarriedSpeed(const std::vector<WalkPose>& walk, const std::string& path) {
+  std::size_t back = 0;
+  for (std::size_t i = 1; i < walk.size(); ++i) {
+    while (back + 1 < i && walk[i].t - walk[back + 1].t >= kSpeedWindow) ++back;
+    const std::size_t from = walk[i].t - walk[back].t >= kSpeedWindow ? back : i - 1;
+    const double distance = (walk[i].xy - walk[from].xy).norm();
+    const double speed = distance / (walk[i].t - walk[from].t);
+    if (speed <= kMaxCarriedSpeed) continue;
+    throw common::InputError(
+        path, "",
+        "line " + std::to_string(walk[i].line) + ": the walk moves " + fixed(distance, 3) +
+            " m in " + fixed(walk[i].t - walk[from].t, 3) + " s since line " +
+            std::to_string(walk[from].line) + " (" + fixed(speed, 1) +
+            " m/s; nobody carries a sensor faster than " + fixed(kMaxCarriedSpeed, 0) +
+            " m/s: a jump, or a pose in another frame?)");
+  }
+}
+
 }  // namespace
 
 LoadedWalk readRecordedWalk(const std::string& path, const Level& level,
@@ -114,26 +135,8 @@ LoadedWalk readRecordedWalk(const std::string& path, const Level& level,
                     std::atan2(R(2, 1), R(2, 2)), std::asin(std::clamp(-R(2, 0), -1.0, 1.0))});
   }
 
-  const double max_speed = kMaxCarriedSpeed;
-  loaded.bridged = bridgeSingleGlitches(walk, max_speed, path, node);
-  // Faster than a carrier walks: a jump in the file (a relocalization, a wrong frame), which no
-  // carrier could follow and no IMU could feel sensibly.
-  std::size_t back = 0;
-  for (std::size_t i = 1; i < walk.size(); ++i) {
-    while (back + 1 < i && walk[i].t - walk[back + 1].t >= kSpeedWindow) ++back;
-    const std::size_t from = walk[i].t - walk[back].t >= kSpeedWindow ? back : i - 1;
-    const double speed = (walk[i].xy - walk[from].xy).norm() / (walk[i].t - walk[from].t);
-    if (speed > max_speed) {
-      throw common::InputError(
-          path, "",
-          at(i) + "the walk moves " + fixed((walk[i].xy - walk[from].xy).norm(), 3) + " m in " +
-              fixed(walk[i].t - walk[from].t, 3) + " s since line " +
-              std::to_string(walk[from].line) + " (" + fixed(speed, 1) +
-              " m/s; nobody carries a sensor faster than " + fixed(max_speed, 0) +
-              " m/s: a jump, or a pose in another "
-              "frame?)");
-    }
-  }
+  loaded.bridged = bridgeSingleGlitches(walk, kMaxCarriedSpeed, path, node);
+  checkCarriedSpeed(walk, path);
 
   int gaps = 0;
   for (std::size_t i = 1; i < walk.size(); ++i) {
