@@ -139,7 +139,9 @@ void take(const std::vector<Pass>& passes, const bim::Level& level, bim::Crossed
   std::map<std::pair<bool, std::string>, std::vector<const Pass*>> by_element;
   for (const Pass& pass : passes) by_element[{pass.column, pass.element}].push_back(&pass);
   for (const auto& [key, element_passes] : by_element) {
-    const auto& [column, id] = key;
+    // Named, not bound: a lambda may not capture a structured binding (before C++20's clang 16).
+    const bool column = key.first;
+    const std::string& id = key.second;
     bool opening = false;
     if (column) {
       as_built.missing_columns.push_back(id);
