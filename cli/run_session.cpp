@@ -11,10 +11,13 @@
 
 #include "bim/agraph.hpp"
 #include "bim/limits.hpp"
+#include "bim/recorded_start_pose.hpp"
 #include "cli/cmd_export.hpp"
+#include "common/angles.hpp"
 #include "common/decimal_number.hpp"
 #include "common/input_error.hpp"
 #include "common/output_path.hpp"
+#include "common/pose_interpolation.hpp"
 #include "run/odometry_source.hpp"
 #include "run/run_folder.hpp"
 #include "run/run_report.hpp"
@@ -113,23 +116,90 @@ void checkStartPose(const Eigen::Vector3d& xyyaw, const std::string& value,
   }
 }
 
+// "FILE.csv:SEQUENCE" or "FILE.csv": a start pose table's row (the sequence empty: the walk's).
+struct StartPoseTable {
+  std::string file;
+  std::string sequence;
+};
+
+std::optional<StartPoseTable> startPoseTable(const std::string& text) {
+  constexpr std::string_view kCsv = ".csv";
+  if (text.size() > kCsv.size() && text.ends_with(kCsv)) return StartPoseTable{text, ""};
+  const std::size_t at = text.rfind(".csv:");
+  if (at == std::string::npos || at == 0 || at + 5 == text.size()) return std::nullopt;
+  return StartPoseTable{text.substr(0, at + 4), text.substr(at + 5)};
+}
+
+std::string numbersText(const Eigen::Vector3d& xyyaw) {
+  char text[96];
+  std::snprintf(text, sizeof text, "%.3f,%.3f,%.4f", xyyaw.x(), xyyaw.y(), xyyaw.z());
+  return text;
+}
+
+// The table's row for this run: the base's pose in B at the run's clock, or an InputError.
+run::LocalizerContext::StampedStart startFromTable(const StartPoseTable& table,
+                                                   const sensors::SensorStreams& streams,
+                                                   const std::optional<RecordingFrame>& recording,
+                                                   const run::LocalizerContext& context,
+                                                   std::string& words) {
+  if (!recording) {
+    throw common::InputError("--start-pose", "",
+                             "a start pose table (" + table.file +
+                                 ") is read for a replayed walk (a scenario whose route is a "
+                                 "\"trajectory\"): its stamps are in the walk's own clock");
+  }
+  const std::string sequence = table.sequence.empty() ? recording->sequence : table.sequence;
+  const bim::RecordedStartPose row = bim::readRecordedStartPose(table.file, sequence);
+  const double t = row.stamp - recording->clock_start;
+  const double end = streams.scan_stamps.empty() ? 0.0 : streams.scan_stamps.back();
+  if (t < 0.0 || t > end) {
+    char text[200];
+    std::snprintf(text, sizeof text,
+                  "line %d: the start pose's stamp %.6f is not within the run (the walk's clock "
+                  "%.6f … %.6f s): a row of another run, or another clock?",
+                  row.line, row.stamp, recording->clock_start, recording->clock_start + end);
+    throw common::InputError(table.file, "", text);
+  }
+  Eigen::Isometry3d B_T_R = row.pose * recording->R_T_S.inverse();
+  if (recording->body_path) {
+    const std::optional<Eigen::Isometry3d> body =
+        common::interpolatePose(streams.ground_truth, t);
+    if (body) {
+      B_T_R.linear() = Eigen::AngleAxisd(common::yawOf(body->linear()), Eigen::Vector3d::UnitZ())
+                           .toRotationMatrix();
+    }
+  }
+  const Eigen::Vector3d xyyaw(B_T_R.translation().x(), B_T_R.translation().y(),
+                              common::yawOf(B_T_R.linear()));
+  checkStartPose(xyyaw, numbersText(xyyaw), context);
+  char text[160];
+  std::snprintf(text, sizeof text, " (%s line %d) at %.3f s, the base at %s", table.file.c_str(),
+                row.line, t, numbersText(xyyaw).c_str());
+  words = "the start pose of " + row.sequence + text;
+  return {t, B_T_R};
+}
+
 }  // namespace
 
 void addStartPoseOption(CLI::App& app, std::string& value) {
   app.add_option("--start-pose", value,
                  "start localized: the base's first pose in the plan frame, X,Y,YAW (m, m, rad), "
-                 "or 'truth' for the ground truth's; the localizer still checks it (default: "
-                 "global localization)")
-      ->option_text("X,Y,YAW|truth")
+                 "'truth' for the ground truth's, or a replayed walk's row of a start pose table "
+                 "as the floor-plan benchmark gives it, FILE.csv:SEQUENCE (the sequence: the "
+                 "walk file's name by default; docs/benchmark.md); the localizer still checks it "
+                 "(default: global localization)")
+      ->option_text("X,Y,YAW|truth|FILE.csv[:SEQUENCE]")
       ->check([](const std::string& text) -> std::string {
-        if (text == "truth" || startPoseNumbers(text)) return "";
-        return "expected X,Y,YAW (three numbers) or 'truth', not '" + text + "'";
+        if (text == "truth" || startPoseNumbers(text) || startPoseTable(text)) return "";
+        return "expected X,Y,YAW (three numbers), 'truth' or FILE.csv[:SEQUENCE], not '" + text +
+               "'";
       });
 }
 
 std::string applyStartPose(const std::string& value, const sensors::SensorStreams& streams,
                            const run::LocalizerRegistry& registry, const std::string& method,
-                           run::LocalizerContext& context) {
+                           run::LocalizerContext& context,
+                           const std::optional<RecordingFrame>& recording) {
   if (value.empty()) return "";
   const run::MethodInfo* info = registry.find(method);
   if (info == nullptr || (!info->takes_start_pose && !info->given_start)) {
@@ -140,6 +210,24 @@ std::string applyStartPose(const std::string& value, const sensors::SensorStream
   }
   Eigen::Isometry3d B_T_R0 = Eigen::Isometry3d::Identity();
   std::string words;
+  if (const std::optional<StartPoseTable> table = startPoseTable(value)) {
+    const run::LocalizerContext::StampedStart start =
+        startFromTable(*table, streams, recording, context, words);
+    if (info->takes_start_pose) context.given_start_at = start;
+    if (info->given_start) {
+      const std::optional<Eigen::Isometry3d> M_T_R =
+          common::interpolatePose(streams.odometry, start.stamp);
+      if (!M_T_R) {
+        throw common::InputError("--start-pose", "",
+                                 "method " + method +
+                                     " starts from its first pose, and this run has no odometry "
+                                     "to carry a later start pose back there (is-graphs takes it "
+                                     "at its stamp)");
+      }
+      context.start_B_T_M = start.B_T_R * M_T_R->inverse();
+    }
+    return words;
+  }
   if (value == "truth") {
     if (streams.ground_truth.empty()) {
       throw common::InputError("--start-pose", "",

@@ -2,10 +2,12 @@
 
 #include <map>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
 #include "cli/common.hpp"
+#include "cli/recording_frame.hpp"
 #include "cli/progress_bar.hpp"
 #include "run/driver.hpp"
 #include "run/evaluate_run.hpp"
@@ -43,10 +45,18 @@ std::unique_ptr<slam::Localizer> makeMethod(const run::LocalizerRegistry& regist
 // localized there (and checks it as any match); a method that is given its start anyway
 // (trackers, dead reckoning) starts from this one instead of the truth; any other method refuses
 // it (bad input). Returns the start's words for the summary ("" when none).
+//
+// Or "FILE.csv:SEQUENCE" (FILE.csv alone: the replayed walk's own sequence): the row of a start
+// pose table as the floor-plan benchmark gives it (bim::readRecordedStartPose), the tracked
+// sensor's pose at a stamp of the recording's clock. It needs `recording` (a replayed walk): the
+// pose is made the base's through R_T_S and its stamp the run's; a method that takes a start pose
+// takes it at that stamp (LocalizerContext::given_start_at), one given its start takes B_T_M from
+// the streams' odometry there (none: refused).
 void addStartPoseOption(CLI::App& app, std::string& value);
 std::string applyStartPose(const std::string& value, const sensors::SensorStreams& streams,
                            const run::LocalizerRegistry& registry, const std::string& method,
-                           run::LocalizerContext& context);
+                           run::LocalizerContext& context,
+                           const std::optional<RecordingFrame>& recording = std::nullopt);
 
 // The method behind the odometry it is given: the streams' own, or, when they have none (a
 // handheld carrier, a recording without it), the one the LiDAR and the IMU make

@@ -2,11 +2,11 @@
 
 #include <algorithm>
 
+#include "cli/recording_frame.hpp"
 #include "common/atomic_folder.hpp"
 #include "common/output_path.hpp"
 #include "common/tum.hpp"
 #include "eval/floor_plan_score.hpp"
-#include "sensors/mount_transform.hpp"
 #include "worlds/reference_plans.hpp"
 
 namespace isg::cli {
@@ -15,10 +15,8 @@ SubmissionTarget planSubmission(const std::string& dir, const bim::Scenario& sce
                                 const std::string& input, bool force,
                                 const std::vector<std::string>& inputs) {
   SubmissionTarget target;
-  const bim::Route& route = scenario.robot.route;
-  target.sequence = route.kind == bim::Route::Kind::kTrajectory
-                        ? std::filesystem::path(route.trajectory_file).stem().string()
-                        : worlds::worldName(input);
+  const std::optional<RecordingFrame> recording = recordingFrameOf(scenario);
+  target.sequence = recording ? recording->sequence : worlds::worldName(input);
   const std::filesystem::path file = std::filesystem::path(dir) / (target.sequence + ".txt");
   target.file = common::checkOutputPath(file.string(),
                                         {common::OutputKind::kSubmission, inputs, force, true});
@@ -32,7 +30,7 @@ std::pair<std::size_t, std::size_t> writeSubmission(const SubmissionTarget& targ
   // The recording's stamps, in the run's clock, and the offset back to the recording's own.
   common::Trajectory poses;
   std::size_t stamps = 0;
-  if (route.kind == bim::Route::Kind::kTrajectory) {
+  if (const std::optional<RecordingFrame> recording = recordingFrameOf(scenario)) {
     // Every stamp of the file, the glitches left out of the walk too.
     common::Trajectory walk_stamps;
     for (const bim::WalkPose& pose : route.walk) {
@@ -42,14 +40,10 @@ std::pair<std::size_t, std::size_t> writeSubmission(const SubmissionTarget& targ
     std::sort(walk_stamps.begin(), walk_stamps.end(),
               [](const auto& a, const auto& b) { return a.t < b.t; });
     poses = eval::estimateAtStamps(walk_stamps, record.estimate);
-    // A sensor's path: the entry is that sensor's, R_T_S = R_T_L · (S_T_L)⁻¹ from the base's.
-    const Eigen::Isometry3d R_T_S = route.sensor_path
-                                        ? sensors::mountTransform(scenario.lidar.mount) *
-                                              sensors::mountTransform(route.rig).inverse()
-                                        : Eigen::Isometry3d::Identity();
+    // A sensor's path: the entry is that sensor's.
     for (auto& pose : poses) {
-      pose.t += route.recording_start;
-      pose.pose = pose.pose * R_T_S;
+      pose.t += recording->clock_start;
+      pose.pose = pose.pose * recording->R_T_S;
     }
     stamps = walk_stamps.size();
   } else {

@@ -29,6 +29,13 @@ struct LocalizerContext {
   // an operator (or a benchmark's first pose) gives it. Methods that take one (MethodInfo::
   // takes_start_pose) start localized there and check it as they check any match.
   std::optional<Eigen::Isometry3d> given_start_B_T_M;
+  // ... or given at a later instant (a benchmark's start pose, about 5 s into the run): the base's
+  // pose in B at `stamp` (the run's clock); the method makes it B_T_M with its own odometry there.
+  struct StampedStart {
+    double stamp = 0.0;
+    Eigen::Isometry3d B_T_R = Eigen::Isometry3d::Identity();
+  };
+  std::optional<StampedStart> given_start_at;
   // The run's seed: methods that draw at random (particle filters, a perturbed start) draw from
   // a generator seeded with it, so a run is reproducible.
   std::uint64_t seed = 0;
@@ -45,7 +52,7 @@ struct MethodInfo {
   std::string summary = {};  // one line for --help
   bool needs_plan = false;
   bool given_start = false;       // reads LocalizerContext::start_B_T_M
-  bool takes_start_pose = false;  // reads LocalizerContext::given_start_B_T_M when there is one
+  bool takes_start_pose = false;  // reads LocalizerContext::given_start_B_T_M / _at if given
   // SLAM only: never localizes in B; tables show its map-frame APE after SE(3) alignment.
   bool slam_only = false;
   std::function<std::unique_ptr<slam::Localizer>(const LocalizerContext&)> make = {};

@@ -21,6 +21,12 @@ void addISGraphs(LocalizerRegistry& registry) {
            localizer->giveStart(Eigen::Vector3d(B_T_M.translation().x(), B_T_M.translation().y(),
                                                 common::yawOf(B_T_M.linear())));
          }
+         if (c.given_start_at) {
+           const Eigen::Isometry3d& B_T_R = c.given_start_at->B_T_R;
+           localizer->giveStartAt(c.given_start_at->stamp,
+                                  Eigen::Vector3d(B_T_R.translation().x(), B_T_R.translation().y(),
+                                                  common::yawOf(B_T_R.linear())));
+         }
          return localizer;
        }});
 }
