@@ -29,8 +29,8 @@ std::vector<std::string_view> csvFields(std::string_view line) {
   std::size_t at = 0;
   while (true) {
     const std::size_t comma = line.find(',', at);
-    fields.push_back(trimmed(line.substr(at, comma == std::string_view::npos ? line.npos
-                                                                              : comma - at)));
+    fields.push_back(
+        trimmed(line.substr(at, comma == std::string_view::npos ? line.npos : comma - at)));
     if (comma == std::string_view::npos) return fields;
     at = comma + 1;
   }

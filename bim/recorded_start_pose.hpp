@@ -12,8 +12,8 @@ namespace isg::bim {
 // the recording's own clock (about 5 s after its start).
 struct RecordedStartPose {
   std::string sequence;
-  std::string plan_file;  // the second column, as written
-  double stamp = 0.0;     // in the recording's clock
+  std::string plan_file;                                   // the second column, as written
+  double stamp = 0.0;                                      // in the recording's clock
   Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();  // the sensor's, in the plan frame
   int line = 0;                                            // in the table, from 1
 };

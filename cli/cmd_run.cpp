@@ -102,8 +102,8 @@ int RunCommand::run() {
   context.seed = scenario.seed;
   context.options = options;
   context.threads = threads_;
-  const std::string start_words = applyStartPose(start_pose_, streams, methods_, method_, context,
-                                                 recordingFrameOf(scenario));
+  const std::string start_words =
+      applyStartPose(start_pose_, streams, methods_, method_, context, recordingFrameOf(scenario));
   if (!start_words.empty() && !quiet_) {
     std::fprintf(stderr, "isg run: starting localized at %s\n", start_words.c_str());
   }

@@ -162,8 +162,7 @@ run::LocalizerContext::StampedStart startFromTable(const StartPoseTable& table,
   }
   Eigen::Isometry3d B_T_R = row.pose * recording->R_T_S.inverse();
   if (recording->body_path) {
-    const std::optional<Eigen::Isometry3d> body =
-        common::interpolatePose(streams.ground_truth, t);
+    const std::optional<Eigen::Isometry3d> body = common::interpolatePose(streams.ground_truth, t);
     if (body) {
       B_T_R.linear() = Eigen::AngleAxisd(common::yawOf(body->linear()), Eigen::Vector3d::UnitZ())
                            .toRotationMatrix();

@@ -7,8 +7,8 @@
 #include <vector>
 
 #include "cli/common.hpp"
-#include "cli/recording_frame.hpp"
 #include "cli/progress_bar.hpp"
+#include "cli/recording_frame.hpp"
 #include "run/driver.hpp"
 #include "run/evaluate_run.hpp"
 #include "run/foxglove/live_run_mcap.hpp"

@@ -75,8 +75,8 @@ void ISGraphLocalizer::pushOdometry(const sensors::Odometry& odometry) {
       if (odometry_before_) {
         const sensors::Odometry& a = *odometry_before_;
         const double s = (stamped_start_->stamp - a.stamp) / (odometry.stamp - a.stamp);
-        M_T_R.translation() = a.M_T_R.translation() +
-                              s * (odometry.M_T_R.translation() - a.M_T_R.translation());
+        M_T_R.translation() =
+            a.M_T_R.translation() + s * (odometry.M_T_R.translation() - a.M_T_R.translation());
         M_T_R.linear() = Eigen::Quaterniond(a.M_T_R.linear())
                              .slerp(s, Eigen::Quaterniond(odometry.M_T_R.linear()))
                              .toRotationMatrix();

@@ -297,7 +297,7 @@ class ISGraphLocalizer : public Localizer {
     double stamp = 0.0;
     Eigen::Vector3d B_T_R = Eigen::Vector3d::Zero();  // x, y, yaw
   };
-  std::optional<StampedStart> stamped_start_;       // until the odometry reaches its stamp
+  std::optional<StampedStart> stamped_start_;         // until the odometry reaches its stamp
   std::optional<sensors::Odometry> odometry_before_;  // the latest before it
   // P_T_M of the answer let go when the pose left the drawn building with the map intact, and
   // the keyframes since (waitingOutside).
