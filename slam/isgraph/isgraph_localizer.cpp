@@ -64,38 +64,6 @@ ISGraphLocalizer::ISGraphLocalizer(const Eigen::Isometry3d& R_T_L, const bim::AG
       });
 }
 
-void ISGraphLocalizer::pushOdometry(const sensors::Odometry& odometry) {
-  if (stamped_start_) {
-    if (odometry.stamp < stamped_start_->stamp) {
-      odometry_before_ = odometry;
-    } else {
-      // M_T_R at the stamp, between the odometry's poses about it (the later one alone when the
-      // stamp is before the first), levelled as B_T_M is.
-      Eigen::Isometry3d M_T_R = odometry.M_T_R;
-      if (odometry_before_) {
-        const sensors::Odometry& a = *odometry_before_;
-        const double s = (stamped_start_->stamp - a.stamp) / (odometry.stamp - a.stamp);
-        M_T_R.translation() =
-            a.M_T_R.translation() + s * (odometry.M_T_R.translation() - a.M_T_R.translation());
-        M_T_R.linear() = Eigen::Quaterniond(a.M_T_R.linear())
-                             .slerp(s, Eigen::Quaterniond(odometry.M_T_R.linear()))
-                             .toRotationMatrix();
-      }
-      const Eigen::Vector3d& B_T_R = stamped_start_->B_T_R;
-      const Eigen::Isometry2d B_T_R2 =
-          Eigen::Translation2d(B_T_R.head<2>()) * Eigen::Rotation2Dd(B_T_R.z());
-      const Eigen::Isometry2d M_T_R2 = Eigen::Translation2d(M_T_R.translation().head<2>()) *
-                                       Eigen::Rotation2Dd(common::yawOf(M_T_R.linear()));
-      const Eigen::Isometry2d B_T_M2 = B_T_R2 * M_T_R2.inverse();
-      given_start_ = Eigen::Vector3d(B_T_M2.translation().x(), B_T_M2.translation().y(),
-                                     Eigen::Rotation2Dd(B_T_M2.linear()).angle());
-      stamped_start_.reset();
-      odometry_before_.reset();
-    }
-  }
-  graph_.addOdometry(odometry);
-}
-
 void ISGraphLocalizer::pushScan(const sensors::Scan& scan) {
   if (!graph_.addScan(scan)) return;
   const auto start = std::chrono::steady_clock::now();
@@ -335,8 +303,30 @@ void ISGraphLocalizer::recaptureRecentWalls(const MatchInput& input) {
   holdWhereAllowed(local, there.planes, false);
 }
 
+void ISGraphLocalizer::takeStampedStart() {
+  // B_T_M from the base's pose at the stamp and the graph's own pose there (the odometry
+  // corrected by the last keyframe before it), levelled: the frame the keyframes live in, not the
+  // raw odometry's, which the graph may have moved by then.
+  const std::optional<Eigen::Isometry3d> M_T_R = graph_.poseAt(stamped_start_->stamp);
+  const std::optional<sensors::Odometry> latest = graph_.latestPose();
+  if (!M_T_R && !latest) return;
+  const Eigen::Isometry3d& at = M_T_R ? *M_T_R : latest->M_T_R;
+  const Eigen::Vector3d& B_T_R = stamped_start_->B_T_R;
+  const Eigen::Isometry2d B_T_R2 =
+      Eigen::Translation2d(B_T_R.head<2>()) * Eigen::Rotation2Dd(B_T_R.z());
+  const Eigen::Isometry2d M_T_R2 = Eigen::Translation2d(at.translation().head<2>()) *
+                                   Eigen::Rotation2Dd(common::yawOf(at.linear()));
+  const Eigen::Isometry2d B_T_M2 = B_T_R2 * M_T_R2.inverse();
+  given_start_ = Eigen::Vector3d(B_T_M2.translation().x(), B_T_M2.translation().y(),
+                                 Eigen::Rotation2Dd(B_T_M2.linear()).angle());
+  stamped_start_.reset();
+}
+
 void ISGraphLocalizer::onKeyframe(double stamp) {
-  if (stamped_start_) return;  // the start is given later: nothing to match before it
+  if (stamped_start_) {
+    if (stamp < stamped_start_->stamp) return;  // the start is given later: no match before it
+    takeStampedStart();
+  }
   if (given_start_) {
     const Eigen::Vector3d start = *given_start_;
     given_start_.reset();

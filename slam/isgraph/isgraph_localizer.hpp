@@ -164,7 +164,7 @@ class ISGraphLocalizer : public Localizer {
   ISGraphLocalizer& operator=(const ISGraphLocalizer&) = delete;
 
   std::string name() const override { return "is-graphs"; }
-  void pushOdometry(const sensors::Odometry& odometry) override;
+  void pushOdometry(const sensors::Odometry& odometry) override { graph_.addOdometry(odometry); }
   void pushImu(const sensors::ImuSample& sample) override { graph_.addImu(sample); }
   void setImuMount(const Eigen::Isometry3d& R_T_I) { graph_.setImuMount(R_T_I); }
   void pushScan(const sensors::Scan& scan) override;
@@ -190,9 +190,9 @@ class ISGraphLocalizer : public Localizer {
   // takes a hint, and checked like any match from then on.
   void giveStart(const Eigen::Vector3d& B_T_M_x_y_yaw) { given_start_ = B_T_M_x_y_yaw; }
   // The start pose given as the base's pose in B at a later `stamp` (the floor-plan benchmark gives
-  // each run's pose about 5 s after it starts): its own odometry at that instant (interpolated
-  // between the two poses around it) makes it B_T_M, taken at the next keyframe as giveStart's.
-  // Until then no match is tried: the run starts localized there, as asked.
+  // each run's pose about 5 s after it starts): at the first keyframe from that stamp on, the
+  // graph's own pose at the stamp makes it B_T_M, taken as giveStart's. Until then no match is
+  // tried: the run starts localized there, as asked.
   void giveStartAt(double stamp, const Eigen::Vector3d& B_T_R_x_y_yaw) {
     stamped_start_ = StampedStart{stamp, B_T_R_x_y_yaw};
   }
@@ -297,8 +297,8 @@ class ISGraphLocalizer : public Localizer {
     double stamp = 0.0;
     Eigen::Vector3d B_T_R = Eigen::Vector3d::Zero();  // x, y, yaw
   };
-  std::optional<StampedStart> stamped_start_;         // until the odometry reaches its stamp
-  std::optional<sensors::Odometry> odometry_before_;  // the latest before it
+  std::optional<StampedStart> stamped_start_;  // until a keyframe reaches its stamp
+  void takeStampedStart();                     // makes it given_start_
   // P_T_M of the answer let go when the pose left the drawn building with the map intact, and
   // the keyframes since (waitingOutside).
   std::optional<Eigen::Vector3d> outside_answer_;

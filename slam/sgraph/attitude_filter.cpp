@@ -58,9 +58,12 @@ Eigen::Matrix3d AttitudeFilter::M_R_I_at(double t) const {
 }
 
 void AttitudeFilter::turnYaw(double angle) {
-  const Eigen::Quaterniond turn(Eigen::AngleAxisd(angle, Eigen::Vector3d::UnitZ()));
-  M_q_I_ = turn * M_q_I_;
-  for (auto& [time, q] : history_) q = turn * q;
+  turnFrame(Eigen::Quaterniond(Eigen::AngleAxisd(angle, Eigen::Vector3d::UnitZ())));
+}
+
+void AttitudeFilter::turnFrame(const Eigen::Quaterniond& turn) {
+  M_q_I_ = (turn * M_q_I_).normalized();
+  for (auto& [time, q] : history_) q = (turn * q).normalized();
 }
 
 }  // namespace isg::slam

@@ -32,6 +32,9 @@ class AttitudeFilter {
   Eigen::Matrix3d M_R_I_at(double t) const;
   // Turns the estimate and its history about M's z (a correction of yaw from elsewhere).
   void turnYaw(double angle);
+  // Turns M under the estimate and its history: M_q_I becomes turn · M_q_I (a correction of the
+  // attitude from elsewhere: the start levelled by the scan's structure).
+  void turnFrame(const Eigen::Quaterniond& turn);
   // The estimated gyroscope bias (I, rad/s), when estimated.
   const Eigen::Vector3d& gyroscopeBias() const { return bias_; }
 

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <numbers>
 
 #include "common/angles.hpp"
 #include "slam/sgraph/voxel_key.hpp"
@@ -95,6 +96,26 @@ Eigen::Isometry3d ScanOdometry::predict(double t) const {
 
 void ScanOdometry::turnYaw(double angle) { attitude_.turnYaw(angle); }
 
+void ScanOdometry::levelByStructure(const std::vector<Eigen::Vector3f>& cloud,
+                                    Eigen::Isometry3d& predicted) {
+  const Eigen::Matrix3d M_R_L = predicted.linear() * R_T_L_.linear();
+  const std::optional<Eigen::Vector3d> up_in_L =
+      structuralUp(cloud, M_R_L.transpose() * Eigen::Vector3d::UnitZ(), options_.structural_up);
+  if (!up_in_L) return;
+  const Eigen::Vector3d up_in_M = M_R_L * *up_in_L;
+  const double turn = std::acos(std::clamp(up_in_M.z(), -1.0, 1.0));
+  if (turn < options_.structural_up_min_turn_deg * std::numbers::pi / 180.0) return;
+  const Eigen::Quaterniond level =
+      Eigen::Quaterniond::FromTwoVectors(up_in_M, Eigen::Vector3d::UnitZ());
+  attitude_.turnFrame(level);
+  predicted.linear() = level * predicted.linear();
+  // M's heading stays the base's.
+  const double yaw = common::yawOf(predicted.linear());
+  turnYaw(-yaw);
+  predicted.linear() = yawRotation(-yaw) * predicted.linear();
+  start_levelled_ = turn;
+}
+
 double ScanOdometry::heightCorrection(const std::vector<Eigen::Vector3f>& cloud,
                                       const Eigen::Isometry3d& pose) const {
   const ScanRegistrationOptions& r = options_.registration;
@@ -131,6 +152,7 @@ Eigen::Isometry3d ScanOdometry::addScan(const sensors::Scan& scan) {
   }
   std::vector<Eigen::Vector3f> cloud =
       deskewedCloud(scan, L0_T_L, first, kStep, options_.registration, index_);
+  if (!last_stamp_ && hasImu()) levelByStructure(cloud, predicted);
 
   Eigen::Isometry3d pose = predicted;
   if (!map_.empty() && !cloud.empty()) {

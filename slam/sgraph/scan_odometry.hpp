@@ -11,6 +11,7 @@
 #include "slam/sgraph/odometry_registration.hpp"
 #include "slam/sgraph/plane_voxel_map.hpp"
 #include "slam/sgraph/scan_registration.hpp"
+#include "slam/sgraph/structural_up.hpp"
 
 namespace isg::slam {
 
@@ -59,6 +60,12 @@ struct ScanOdometryOptions {
   // pitch 0.8° off in a hand-held walk, which a floor 5 m away turns into 7 cm of height); the
   // gyroscope's bias is estimated, else a long time constant multiplies it.
   double attitude_time_constant = 30.0;  // s
+  // With an IMU, the first scan's walls and floors level M (structuralUp): gravity alone levels
+  // a start only at rest, and a recorded walk may start mid-stride.
+  // Gravity is kept where the two agree within structural_up_min_turn_deg: at rest it is exact,
+  // and the structure's answer good to a few tenths of a degree.
+  StructuralUpOptions structural_up;
+  double structural_up_min_turn_deg = 2.0;
   // The velocity of the prediction: the mean over this much of the latest poses.
   double velocity_window = 0.5;  // s
   double gravity = 9.81;
@@ -81,6 +88,9 @@ class ScanOdometry {
   // Scans whose registration agreed with the local map, of those registered.
   int registered() const { return registered_; }
   int agreed() const { return agreed_; }
+  // How far the first scan's structure turned the start's up from gravity's (rad), when it did
+  // (an IMU, a scan of walls and floors, and the two apart by structural_up_min_turn_deg).
+  std::optional<double> startLevelled() const { return start_levelled_; }
 
  private:
   struct Keyframe {
@@ -89,6 +99,9 @@ class ScanOdometry {
   };
   // Turns the attitude filter (and its history) about M's z: the registration's yaw correction.
   void turnYaw(double angle);
+  // At the first scan: M levelled by the scan's walls and floors where they tell up
+  // (structuralUp), the filter and `predicted` turned with it, M's heading kept the base's.
+  void levelByStructure(const std::vector<Eigen::Vector3f>& cloud, Eigen::Isometry3d& predicted);
   // The change of height that the scan's points on the map's level planes ask of `pose` (the
   // registered pose), weighed against the prior: 0 with too few of them.
   double heightCorrection(const std::vector<Eigen::Vector3f>& cloud,
@@ -108,6 +121,7 @@ class ScanOdometry {
   PlaneVoxelMap map_;  // of keyframes_
   VoxelIndex index_;   // the scan's voxels, reused from scan to scan
   int registered_ = 0, agreed_ = 0;
+  std::optional<double> start_levelled_;
 };
 
 }  // namespace isg::slam

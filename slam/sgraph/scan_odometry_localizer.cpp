@@ -37,6 +37,12 @@ nlohmann::json ScanOdometryLocalizer::graph() const {
     out["odometry"] = {{"source", odometry_.hasImu() ? "LiDAR and IMU" : "LiDAR"},
                        {"scans_registered", odometry_.registered()},
                        {"scans_agreeing", odometry_.agreed()}};
+    // The start's up turned from gravity's by the first scan's walls and floors (null: kept).
+    if (const auto turned = odometry_.startLevelled()) {
+      out["odometry"]["start_levelled_deg"] = *turned * 180.0 / 3.14159265358979323846;
+    } else {
+      out["odometry"]["start_levelled_deg"] = nullptr;
+    }
   }
   return out;
 }
