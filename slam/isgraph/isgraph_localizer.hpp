@@ -190,9 +190,9 @@ class ISGraphLocalizer : public Localizer {
   // takes a hint, and checked like any match from then on.
   void giveStart(const Eigen::Vector3d& B_T_M_x_y_yaw) { given_start_ = B_T_M_x_y_yaw; }
   // The start pose given as the base's pose in B at a later `stamp` (the floor-plan benchmark gives
-  // each run's pose about 5 s after it starts): at the first keyframe from that stamp on, the
-  // graph's own pose at the stamp makes it B_T_M, taken as giveStart's. Until then no match is
-  // tried: the run starts localized there, as asked.
+  // each run's pose about 5 s after it starts): at the first scan from that stamp on, the graph's
+  // own pose at the stamp makes it B_T_M, taken as giveStart's. Until then no match is tried: the
+  // run starts localized there, as asked.
   void giveStartAt(double stamp, const Eigen::Vector3d& B_T_R_x_y_yaw) {
     stamped_start_ = StampedStart{stamp, B_T_R_x_y_yaw};
   }
@@ -297,7 +297,7 @@ class ISGraphLocalizer : public Localizer {
     double stamp = 0.0;
     Eigen::Vector3d B_T_R = Eigen::Vector3d::Zero();  // x, y, yaw
   };
-  std::optional<StampedStart> stamped_start_;  // until a keyframe reaches its stamp
+  std::optional<StampedStart> stamped_start_;  // until a scan reaches its stamp
   void takeStampedStart();                     // makes it given_start_
   // P_T_M of the answer let go when the pose left the drawn building with the map intact, and
   // the keyframes since (waitingOutside).
