@@ -70,8 +70,8 @@ TEST(StartPose, AMethodThatTakesNoneRefusesItAndABadPoseIsBadUsage) {
   EXPECT_FALSE(sandbox.exists("r"));
   const auto malformed = sandbox.run("run builtin:d1 --start-pose 1,2 -q -o r");
   EXPECT_EQ(malformed.exit_code, 2);
-  EXPECT_NE(malformed.err.find("--start-pose: expected X,Y,YAW (three numbers) or 'truth', not "
-                               "'1,2'"),
+  EXPECT_NE(malformed.err.find("--start-pose: expected X,Y,YAW (three numbers), 'truth' or "
+                               "FILE.csv[:SEQUENCE], not '1,2'"),
             std::string::npos)
       << malformed.err;
 }
@@ -101,8 +101,8 @@ TEST(StartPose, APoseOffThePlanOrNotWrittenInDecimalIsRefused) {
     const auto hex =
         sandbox.run(std::string("run builtin:d1 --start-pose '") + text + "' --duration 5 -q -o r");
     EXPECT_EQ(hex.exit_code, 2) << text;
-    EXPECT_NE(hex.err.find(std::string("--start-pose: expected X,Y,YAW (three numbers) or "
-                                       "'truth', not '") +
+    EXPECT_NE(hex.err.find(std::string("--start-pose: expected X,Y,YAW (three numbers), "
+                                       "'truth' or FILE.csv[:SEQUENCE], not '") +
                            text + "'"),
               std::string::npos)
         << hex.err;

@@ -375,6 +375,58 @@ TEST(WalkReplay, ARecordedLookingWalkThroughAPlannedWallReplaysAndScores) {
   EXPECT_GE(scored["score"].get<double>(), 97.0);
 }
 
+// Started as the benchmark starts a run: the camera's pose at about 10 005 s from its start pose
+// table (another run's row first, written as the benchmark writes some: blanks after commas).
+void startsFromItsTableRow(testing::Sandbox& sandbox, const common::Trajectory& camera) {
+  const auto at = std::find_if(camera.begin(), camera.end(),
+                               [](const common::StampedPose& p) { return p.t >= 10005.0; });
+  ASSERT_NE(at, camera.end());
+  const Eigen::Quaterniond q(at->pose.linear());
+  char row[300];
+  std::snprintf(
+      row, sizeof row,
+      "floor_7_2026-01-01_run_1,floor_7.png,%.9f,%.9f,%.9f,%.9f,%.12f,%.12f,%.12f,%.12f\n", at->t,
+      at->pose.translation().x(), at->pose.translation().y(), at->pose.translation().z(), q.x(),
+      q.y(), q.z(), q.w());
+  sandbox.write("starts.csv",
+                "#Sequence Name,Floor Plan,timestamp,tx,ty,tz,qx,qy,qz,qw\n"
+                "floor_6_2026-01-01_run_1,floor_6.png,10005.0, 1, 2, 1, 0, 0, 0, 1\n" +
+                    std::string(row));
+  const auto given =
+      sandbox.run("run c.json --start-pose starts.csv --threads 2 -o r2 --submission e2");
+  ASSERT_EQ(given.exit_code, 0) << given.err;
+  char words[160];
+  std::snprintf(words, sizeof words,
+                "starting localized at the start pose of floor_7_2026-01-01_run_1 (starts.csv line "
+                "3) at %.3f s",
+                at->t - camera.front().t);
+  EXPECT_NE(given.err.find(words), std::string::npos) << given.err;
+  const auto started = nlohmann::json::parse(sandbox.read("r2/metrics.json"));
+  // Taken at the first keyframe from its stamp on, matched nowhere before it.
+  const auto& first = started["matching_events"][0];
+  EXPECT_EQ(first["reason"], "the start pose given");
+  EXPECT_GE(first["stamp"].get<double>(), at->t - camera.front().t - 0.1);
+  EXPECT_LT(first["stamp"].get<double>(), at->t - camera.front().t + 1.0);
+  EXPECT_EQ(started["time_wrongly_localized"].get<double>(), 0.0);
+  EXPECT_LT(started["ape_B"]["rmse"].get<double>(), 0.03);
+  const auto rescored = sandbox.run(
+      "eval --floor-plan-score floor_7_2026-01-01_run_1.txt e2/floor_7_2026-01-01_run_1.txt "
+      "--json");
+  ASSERT_EQ(rescored.exit_code, 0) << rescored.err;
+  const auto entry = nlohmann::json::parse(rescored.out)["floor_plan_score"];
+  EXPECT_GE(entry["coverage"].get<double>(), 0.99);
+  EXPECT_GE(entry["score"].get<double>(), 97.0);
+  // A row of another clock: said, nothing run.
+  sandbox.write("late.csv", "floor_7_2026-01-01_run_1,floor_7.png,20005,1,2,1,0,0,0,1\n");
+  const auto late = sandbox.run("run c.json --start-pose late.csv -q -o r3");
+  EXPECT_EQ(late.exit_code, 1);
+  EXPECT_NE(late.err.find("late.csv: line 1: the start pose's stamp 20005.000000 is not within "
+                          "the run (the walk's clock 10003.200000 … "),
+            std::string::npos)
+      << late.err;
+  EXPECT_FALSE(std::filesystem::exists(sandbox.dir() / "r3"));
+}
+
 // A camera's path (the benchmark's references are cam0's): the camera 10 cm ahead of the tour's
 // base R, 15 cm up, a camera's frame (x left, y up, z ahead). Replayed with the LiDAR stated on its
 // rig, the LiDAR goes where it went on the tour, and the entry is the camera's.
@@ -430,55 +482,7 @@ TEST(WalkReplay, ACameraPathIsFollowedExactlyWithTheLidarOnItsRig) {
   EXPECT_GE(scored["coverage"].get<double>(), 0.99);
   EXPECT_GE(scored["score"].get<double>(), 97.0);
 
-  // Started as the benchmark starts a run: the camera's pose at about 10 005 s from its start pose
-  // table (another run's row first, written as the benchmark writes some: blanks after commas).
-  const auto at = std::find_if(camera.begin(), camera.end(),
-                               [](const common::StampedPose& p) { return p.t >= 10005.0; });
-  ASSERT_NE(at, camera.end());
-  const Eigen::Quaterniond q(at->pose.linear());
-  char row[300];
-  std::snprintf(
-      row, sizeof row,
-      "floor_7_2026-01-01_run_1,floor_7.png,%.9f,%.9f,%.9f,%.9f,%.12f,%.12f,%.12f,%.12f\n", at->t,
-      at->pose.translation().x(), at->pose.translation().y(), at->pose.translation().z(), q.x(),
-      q.y(), q.z(), q.w());
-  sandbox.write("starts.csv",
-                "#Sequence Name,Floor Plan,timestamp,tx,ty,tz,qx,qy,qz,qw\n"
-                "floor_6_2026-01-01_run_1,floor_6.png,10005.0, 1, 2, 1, 0, 0, 0, 1\n" +
-                    std::string(row));
-  const auto given =
-      sandbox.run("run c.json --start-pose starts.csv --threads 2 -o r2 --submission e2");
-  ASSERT_EQ(given.exit_code, 0) << given.err;
-  char words[160];
-  std::snprintf(words, sizeof words,
-                "starting localized at the start pose of floor_7_2026-01-01_run_1 (starts.csv line "
-                "3) at %.3f s",
-                at->t - camera.front().t);
-  EXPECT_NE(given.err.find(words), std::string::npos) << given.err;
-  const auto started = nlohmann::json::parse(sandbox.read("r2/metrics.json"));
-  // Taken at the first keyframe from its stamp on, matched nowhere before it.
-  const auto& first = started["matching_events"][0];
-  EXPECT_EQ(first["reason"], "the start pose given");
-  EXPECT_GE(first["stamp"].get<double>(), at->t - camera.front().t - 0.1);
-  EXPECT_LT(first["stamp"].get<double>(), at->t - camera.front().t + 1.0);
-  EXPECT_EQ(started["time_wrongly_localized"].get<double>(), 0.0);
-  EXPECT_LT(started["ape_B"]["rmse"].get<double>(), 0.03);
-  const auto rescored = sandbox.run(
-      "eval --floor-plan-score floor_7_2026-01-01_run_1.txt e2/floor_7_2026-01-01_run_1.txt "
-      "--json");
-  ASSERT_EQ(rescored.exit_code, 0) << rescored.err;
-  const auto entry = nlohmann::json::parse(rescored.out)["floor_plan_score"];
-  EXPECT_GE(entry["coverage"].get<double>(), 0.99);
-  EXPECT_GE(entry["score"].get<double>(), 97.0);
-  // A row of another clock: said, nothing run.
-  sandbox.write("late.csv", "floor_7_2026-01-01_run_1,floor_7.png,20005,1,2,1,0,0,0,1\n");
-  const auto late = sandbox.run("run c.json --start-pose late.csv -q -o r3");
-  EXPECT_EQ(late.exit_code, 1);
-  EXPECT_NE(late.err.find("late.csv: line 1: the start pose's stamp 20005.000000 is not within "
-                          "the run (the walk's clock 10003.200000 … "),
-            std::string::npos)
-      << late.err;
-  EXPECT_FALSE(std::filesystem::exists(sandbox.dir() / "r3"));
+  startsFromItsTableRow(sandbox, camera);
 }
 
 // A start pose table needs a replayed walk (its stamps are a recording's); a method given its
