@@ -22,6 +22,13 @@ const Level* findLevelWith(const std::vector<Level>& levels, Finder finder) {
 
 }  // namespace
 
+bool isIfcGlobalId(std::string_view text) {
+  constexpr std::string_view kAlphabet =
+      "0123456789ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz_$";
+  return text.size() == 22 && text[0] >= '0' && text[0] <= '3' &&
+         text.find_first_not_of(kAlphabet) == std::string_view::npos;
+}
+
 const Wall* Level::findWall(const std::string& wall_id) const { return findById(walls, wall_id); }
 const Door* Level::findDoor(const std::string& door_id) const { return findById(doors, door_id); }
 const Window* Level::findWindow(const std::string& window_id) const {

@@ -4,6 +4,7 @@
 #include <array>
 #include <optional>
 #include <string>
+#include <string_view>
 #include <vector>
 
 namespace isg::bim {
@@ -23,6 +24,7 @@ struct Wall {
   double height = 0.0;     // top of the wall above the level's elevation
   double base = 0.0;       // bottom of the wall above the level's elevation
   std::string name;        // free text from the file (an imported element's name); "" when none
+  std::string ifc_guid;    // the IFC GlobalId it was imported from (22 characters); "" when none
 };
 
 struct Door {
@@ -34,6 +36,7 @@ struct Door {
   std::array<std::string, 2> rooms;  // the two rooms it joins (or kOutside)
   bool rooms_inferred = false;       // true when `rooms` came from the outlines, not the file
   std::string name;                  // free text from the file; "" when none
+  std::string ifc_guid;  // the IFC GlobalId it was imported from (22 characters); "" when none
 };
 
 // A window: an opening in a wall from `sill` to `sill + height` above the wall's base, which the
@@ -43,9 +46,10 @@ struct Window {
   std::string wall;     // id of the wall the opening is in
   double offset = 0.0;  // centre of the opening, metres from the wall's start along its axis
   double width = 0.0;
-  double sill = 0.0;    // bottom of the opening above the wall's base
-  double height = 0.0;  // of the opening, sill to head
-  std::string name;     // free text from the file; "" when none
+  double sill = 0.0;     // bottom of the opening above the wall's base
+  double height = 0.0;   // of the opening, sill to head
+  std::string name;      // free text from the file; "" when none
+  std::string ifc_guid;  // the IFC GlobalId it was imported from (22 characters); "" when none
 };
 
 // A straight flight of stairs (an optional extension of v1): its bottom edge is centred at
@@ -71,10 +75,11 @@ struct Column {
   Shape shape = Shape::kRectangle;
   Eigen::Vector2d center = Eigen::Vector2d::Zero();
   Eigen::Vector2d size = Eigen::Vector2d::Zero();
-  double yaw = 0.0;     // radians, counter-clockwise from the plan's x axis (rectangles only)
-  double height = 0.0;  // top above the level's elevation
-  double base = 0.0;    // bottom above the level's elevation
-  std::string name;     // free text from the file; "" when none
+  double yaw = 0.0;      // radians, counter-clockwise from the plan's x axis (rectangles only)
+  double height = 0.0;   // top above the level's elevation
+  double base = 0.0;     // bottom above the level's elevation
+  std::string name;      // free text from the file; "" when none
+  std::string ifc_guid;  // the IFC GlobalId it was imported from (22 characters); "" when none
 
   bool round() const { return shape == Shape::kRound; }
   double radius() const { return 0.5 * size.x(); }
@@ -84,6 +89,7 @@ struct Room {
   std::string id;
   std::string name;
   std::vector<Eigen::Vector2d> outline;  // simple polygon along the inner wall faces, CCW
+  std::string ifc_guid;  // the IFC GlobalId it was imported from (22 characters); "" when none
 };
 
 struct Level {
@@ -91,6 +97,7 @@ struct Level {
   std::string name;        // free text from the file (an imported storey's name); "" when none
   double elevation = 0.0;  // top of the floor
   double height = 0.0;     // default wall height, floor to ceiling
+  std::string ifc_guid;    // the IFC GlobalId it was imported from (22 characters); "" when none
   std::vector<Wall> walls;
   std::vector<Door> doors;
   std::vector<Window> windows;
@@ -105,6 +112,10 @@ struct Level {
   const Stair* findStair(const std::string& stair_id) const;
   const Column* findColumn(const std::string& column_id) const;
 };
+
+// An IFC GlobalId as IFC writes one (IfcGloballyUniqueId): a 128-bit GUID in 22 characters of
+// 0-9, A-Z, a-z, _ and $, the first 0-3 (it carries the top 2 bits). What `ifc_guid` holds.
+bool isIfcGlobalId(std::string_view text);
 
 // Where an imported plan came from (isg import): free text for the reader, "" where not given.
 struct ImportedFrom {

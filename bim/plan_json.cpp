@@ -17,6 +17,7 @@ json wallJson(const Wall& w, const Level& level, const PlanJsonStyle& style) {
   if (style.every_wall_height || w.height != level.height) out["height"] = w.height;
   if (style.every_wall_height || w.base != 0.0) out["base"] = w.base;
   if (style.names && !w.name.empty()) out["name"] = w.name;
+  if (!w.ifc_guid.empty()) out["ifc_guid"] = w.ifc_guid;
   return out;
 }
 
@@ -28,6 +29,7 @@ json doorJson(const Door& d, const PlanJsonStyle& style) {
               {"height", d.height}};
   if (style.inferred_door_rooms || !d.rooms_inferred) out["rooms"] = {d.rooms[0], d.rooms[1]};
   if (style.names && !d.name.empty()) out["name"] = d.name;
+  if (!d.ifc_guid.empty()) out["ifc_guid"] = d.ifc_guid;
   return out;
 }
 
@@ -35,6 +37,7 @@ json windowJson(const Window& w, const PlanJsonStyle& style) {
   json out = {{"id", w.id},       {"wall", w.wall}, {"offset", w.offset},
               {"width", w.width}, {"sill", w.sill}, {"height", w.height}};
   if (style.names && !w.name.empty()) out["name"] = w.name;
+  if (!w.ifc_guid.empty()) out["ifc_guid"] = w.ifc_guid;
   return out;
 }
 
@@ -44,6 +47,7 @@ json roomJson(const Room& r) {
   json outline = json::array();
   for (const auto& p : r.outline) outline.push_back(point(p));
   out["outline"] = outline;
+  if (!r.ifc_guid.empty()) out["ifc_guid"] = r.ifc_guid;
   return out;
 }
 
@@ -68,12 +72,14 @@ json columnJson(const Column& c, const Level& level, const PlanJsonStyle& style)
   if (style.every_wall_height || c.height != level.height) out["height"] = c.height;
   if (style.every_wall_height || c.base != 0.0) out["base"] = c.base;
   if (style.names && !c.name.empty()) out["name"] = c.name;
+  if (!c.ifc_guid.empty()) out["ifc_guid"] = c.ifc_guid;
   return out;
 }
 
 json levelJson(const Level& level, const PlanJsonStyle& style) {
   json out = {{"id", level.id}};
   if (style.names && !level.name.empty()) out["name"] = level.name;
+  if (!level.ifc_guid.empty()) out["ifc_guid"] = level.ifc_guid;
   out["elevation"] = level.elevation;
   out["height"] = level.height;
   json walls = json::array(), doors = json::array();

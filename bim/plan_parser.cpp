@@ -60,8 +60,24 @@ VerticalExtent parseVerticalExtent(const common::JsonNode& node, const Level& le
   return extent;
 }
 
+// An element's "ifc_guid": the IFC GlobalId it was imported from, as IFC writes one
+// (IfcGloballyUniqueId: a 128-bit GUID in 22 characters of 0-9, A-Z, a-z, _ and $, the first 0-3);
+// "" when not given.
+std::string ifcGuidOf(const common::JsonNode& node) {
+  const std::optional<common::JsonNode> field = node.optionalField("ifc_guid");
+  if (!field) return "";
+  const std::string guid = field->string();
+  if (!isIfcGlobalId(guid)) {
+    field->fail(
+        "expected an IFC GlobalId: 22 characters of 0-9, A-Z, a-z, _ and $, the first "
+        "0-3, not " +
+        common::inQuotes(guid.substr(0, 40)));
+  }
+  return guid;
+}
+
 Wall parseWall(const common::JsonNode& node, const Level& level, IdRegistry& ids) {
-  node.expectObject({"id", "start", "end", "thickness", "height", "base", "name"});
+  node.expectObject({"id", "start", "end", "thickness", "height", "base", "name", "ifc_guid"});
   Wall wall;
   const common::JsonNode id = node.field("id");
   wall.id = id.identifier();
@@ -73,6 +89,7 @@ Wall parseWall(const common::JsonNode& node, const Level& level, IdRegistry& ids
   }
   wall.thickness = node.field("thickness").numberInRange(limits::kMinSize, limits::kMaxThickness);
   if (auto name = node.optionalField("name")) wall.name = name->text();
+  wall.ifc_guid = ifcGuidOf(node);
   const VerticalExtent extent = parseVerticalExtent(node, level, "wall");
   wall.height = extent.height;
   wall.base = extent.base;
@@ -80,7 +97,7 @@ Wall parseWall(const common::JsonNode& node, const Level& level, IdRegistry& ids
 }
 
 Room parseRoom(const common::JsonNode& node, IdRegistry& ids) {
-  node.expectObject({"id", "name", "outline"});
+  node.expectObject({"id", "name", "outline", "ifc_guid"});
   Room room;
   const common::JsonNode id = node.field("id");
   room.id = id.identifier();
@@ -89,6 +106,7 @@ Room parseRoom(const common::JsonNode& node, IdRegistry& ids) {
   ids.add(id, room.id);
   room.name = room.id;
   if (auto name = node.optionalField("name")) room.name = name->text();
+  room.ifc_guid = ifcGuidOf(node);
   const common::JsonNode outline = node.field("outline");
   const auto vertices = outline.elements(0, limits::kMaxOutlineVertices, "vertices");
   if (vertices.size() < 3) {
@@ -123,7 +141,8 @@ Room parseRoom(const common::JsonNode& node, IdRegistry& ids) {
 // A column: `size` [width, depth] (a rectangle turned by `yaw`) or `diameter` (round), exactly
 // one of them.
 Column parseColumn(const common::JsonNode& node, const Level& level, IdRegistry& ids) {
-  node.expectObject({"id", "center", "size", "diameter", "yaw", "height", "base", "name"});
+  node.expectObject(
+      {"id", "center", "size", "diameter", "yaw", "height", "base", "name", "ifc_guid"});
   Column column;
   const common::JsonNode id = node.field("id");
   column.id = id.identifier();
@@ -147,6 +166,7 @@ Column parseColumn(const common::JsonNode& node, const Level& level, IdRegistry&
     if (auto yaw = node.optionalField("yaw")) yaw->fail("a round column has no yaw");
   }
   if (auto name = node.optionalField("name")) column.name = name->text();
+  column.ifc_guid = ifcGuidOf(node);
   const VerticalExtent extent = parseVerticalExtent(node, level, "column");
   column.height = extent.height;
   column.base = extent.base;
@@ -193,12 +213,13 @@ void checkOpeningFits(const common::JsonNode& offset_node, double offset, double
 
 Window parseWindow(const common::JsonNode& node, const Level& level, const LevelIndex& index,
                    IdRegistry& ids) {
-  node.expectObject({"id", "wall", "offset", "width", "sill", "height", "name"});
+  node.expectObject({"id", "wall", "offset", "width", "sill", "height", "name", "ifc_guid"});
   Window window;
   const common::JsonNode id = node.field("id");
   window.id = id.identifier();
   ids.add(id, window.id);
   if (auto name = node.optionalField("name")) window.name = name->text();
+  window.ifc_guid = ifcGuidOf(node);
   const common::JsonNode wall_node = node.field("wall");
   window.wall = wall_node.nonEmptyString();
   const Wall& wall = openingWall(wall_node, window.wall, level, index);
@@ -220,12 +241,13 @@ Window parseWindow(const common::JsonNode& node, const Level& level, const Level
 
 Door parseDoor(const common::JsonNode& node, const Level& level, const LevelIndex& index,
                IdRegistry& ids) {
-  node.expectObject({"id", "wall", "offset", "width", "height", "rooms", "name"});
+  node.expectObject({"id", "wall", "offset", "width", "height", "rooms", "name", "ifc_guid"});
   Door door;
   const common::JsonNode id = node.field("id");
   door.id = id.identifier();
   ids.add(id, door.id);
   if (auto name = node.optionalField("name")) door.name = name->text();
+  door.ifc_guid = ifcGuidOf(node);
   const common::JsonNode wall_node = node.field("wall");
   door.wall = wall_node.nonEmptyString();
   const Wall& wall = openingWall(wall_node, door.wall, level, index);
@@ -357,13 +379,14 @@ void checkLevelExtent(const common::JsonNode& node, const Level& level) {
 }
 
 Level parseLevel(const common::JsonNode& node, IdRegistry& ids) {
-  node.expectObject({"id", "name", "elevation", "height", "walls", "doors", "windows", "rooms",
-                     "stairs", "columns"});
+  node.expectObject({"id", "name", "ifc_guid", "elevation", "height", "walls", "doors", "windows",
+                     "rooms", "stairs", "columns"});
   Level level;
   const common::JsonNode id = node.field("id");
   level.id = id.identifier();
   ids.add(id, level.id);
   if (auto name = node.optionalField("name")) level.name = name->text();
+  level.ifc_guid = ifcGuidOf(node);
   if (auto e = node.optionalField("elevation")) {
     level.elevation = e->numberInRange(-limits::kMaxCoordinate, limits::kMaxCoordinate);
   }

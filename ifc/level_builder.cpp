@@ -48,6 +48,12 @@
 
 namespace isg::ifc::importer {
 
+// The element's GlobalId as the plan keeps it (`ifc_guid`): "" unless it is one as IFC writes
+// them (a damaged file's may be anything).
+static std::string keptGlobalId(const std::string& global_id) {
+  return bim::isIfcGlobalId(global_id) ? global_id : "";
+}
+
 void Importer::levelColumns(int s, StoreySummary& summary, bim::Level& level) {
   const double e = storeys_[s].elevation;
   for (const ColumnRecord& record : columns_) {
@@ -61,6 +67,7 @@ void Importer::levelColumns(int s, StoreySummary& summary, bim::Level& level) {
     column.base = std::max(0.0, record.fit.bottom - e);
     column.height = std::min(record.fit.top - e, bim::limits::kMaxHeight);
     if (!record.name.empty()) column.name = cleanText(record.name, common::limits::kMaxTextBytes);
+    column.ifc_guid = keptGlobalId(record.global_id);
     level.columns.push_back(std::move(column));
     ++summary.columns;
   }
@@ -246,6 +253,7 @@ std::map<int, std::pair<double, double>> Importer::levelWalls(int s, StoreySumma
     out.height = top;
     out.base = base;
     if (!wall.name.empty()) out.name = cleanText(wall.name, common::limits::kMaxTextBytes);
+    out.ifc_guid = keptGlobalId(wall.global_id);
     level.walls.push_back(std::move(out));
     ++summary.walls;
     if (wall.storey != s) ++summary.walls_from_other_storeys;
@@ -348,6 +356,7 @@ void Importer::placeOpening(const OpeningRecord& opening, int s,
   if (!opening.name.empty()) {
     door.name = window.name = cleanText(opening.name, common::limits::kMaxTextBytes);
   }
+  door.ifc_guid = window.ifc_guid = keptGlobalId(opening.global_id);
   if (is_door) {
     level.doors.push_back(std::move(door));
   } else {
@@ -391,6 +400,7 @@ void Importer::levelRooms(const StoreyRecord& storey, StoreySummary& summary, bi
     room.id = uniqueId(globalIdOf(space), summary.level_id);
     if (!name.empty()) room.name = cleanText(name, common::limits::kMaxTextBytes);
     room.outline = footprint->outline;
+    room.ifc_guid = keptGlobalId(globalIdOf(space));
     level.rooms.push_back(std::move(room));
     ++summary.rooms;
   }
@@ -419,6 +429,7 @@ bim::Level Importer::level(int s, StoreySummary& summary) {
   bim::Level level;
   level.id = summary.level_id;
   if (!storey.name.empty()) level.name = cleanText(storey.name, common::limits::kMaxTextBytes);
+  level.ifc_guid = keptGlobalId(storey.global_id);
   level.elevation = storey.elevation;
   const std::map<int, std::pair<double, double>> base_top = levelWalls(s, summary, level);
   levelColumns(s, summary, level);

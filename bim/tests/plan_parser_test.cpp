@@ -114,6 +114,39 @@ TEST(PlanParser, ErrorCarriesFilePointerAndReason) {
   }
 }
 
+TEST(PlanParser, IfcGlobalIdsAreReadCheckedAndWrittenBack) {
+  auto doc = twoRoomPlanJson();
+  doc["levels"][0]["ifc_guid"] = "2O2Fr$t4X7Zf8NOew3FLOH";
+  doc["levels"][0]["walls"][0]["ifc_guid"] = "3vB2YO$MX4xv5uCqZZG05x";
+  doc["levels"][0]["doors"][0]["ifc_guid"] = "0Tif_$wI1FwAwq$OJt24I8";
+  doc["levels"][0]["rooms"][1]["ifc_guid"] = "1mhmzb7$56gQVyIFfXmT4K";
+  const Plan plan = parsePlanJson(doc);
+  EXPECT_EQ(plan.levels[0].ifc_guid, "2O2Fr$t4X7Zf8NOew3FLOH");
+  EXPECT_EQ(plan.levels[0].walls[0].ifc_guid, "3vB2YO$MX4xv5uCqZZG05x");
+  EXPECT_EQ(plan.levels[0].walls[1].ifc_guid, "");
+  const auto written = planToJson(plan);
+  EXPECT_EQ(written["levels"][0]["doors"][0]["ifc_guid"], "0Tif_$wI1FwAwq$OJt24I8");
+  EXPECT_EQ(written["levels"][0]["rooms"][1]["ifc_guid"], "1mhmzb7$56gQVyIFfXmT4K");
+  EXPECT_FALSE(written["levels"][0]["walls"][1].contains("ifc_guid"));
+  EXPECT_EQ(parsePlanJson(nlohmann::json::parse(written.dump())).levels[0].walls[0].ifc_guid,
+            "3vB2YO$MX4xv5uCqZZG05x");
+  // 22 characters of IFC's base64, the first 0-3: a UUID as text, a short one, a first 4 are not.
+  for (const char* bad : {"3f2504e0-4f89-11d3-9a0c-0305e82c3301", "3vB2YO$MX4xv5uCqZZG05",
+                          "4vB2YO$MX4xv5uCqZZG05x", "3vB2YO$MX4xv5uCqZZG05-"}) {
+    doc["levels"][0]["walls"][0]["ifc_guid"] = bad;
+    try {
+      parsePlanJson(doc, nullptr, "plans/guid.json");
+      FAIL() << "expected an InputError for " << bad;
+    } catch (const common::InputError& e) {
+      EXPECT_EQ(e.pointer(), "/levels/0/walls/0/ifc_guid");
+      EXPECT_EQ(e.reason(),
+                std::string("expected an IFC GlobalId: 22 characters of 0-9, A-Z, a-z, _ and $, "
+                            "the first 0-3, not \"") +
+                    bad + "\"");
+    }
+  }
+}
+
 TEST(PlanParser, SyntaxErrorNamesLineAndColumn) {
   try {
     common::parseJsonText("{\n  \"format\": \"isg.plan\",\n  \"version\": 1,,\n}", "bad.json");

@@ -180,6 +180,29 @@ TEST(ImportIfc, EveryModelGivesAPlanTheParserAccepts) {
   }
 }
 
+// Every element keeps the GlobalId of what it was made from, as the model's own text has it.
+TEST(ImportIfc, EveryElementKeepsItsGlobalId) {
+  const std::string text = common::readCheckedFile(modelPath("duplex.ifc"), kMaxIfcBytes);
+  const auto inModel = [&](const std::string& guid) {
+    return bim::isIfcGlobalId(guid) && text.find("('" + guid + "'") != std::string::npos;
+  };
+  const ImportResult r = importIfc(modelPath("duplex.ifc"), {});
+  std::size_t rooms_kept = 0;
+  for (const auto& level : r.plan.levels) {
+    EXPECT_TRUE(inModel(level.ifc_guid)) << level.id;
+    for (const auto& wall : level.walls) EXPECT_TRUE(inModel(wall.ifc_guid)) << wall.id;
+    for (const auto& door : level.doors) EXPECT_TRUE(inModel(door.ifc_guid)) << door.id;
+    for (const auto& window : level.windows) EXPECT_TRUE(inModel(window.ifc_guid)) << window.id;
+    for (const auto& room : level.rooms) rooms_kept += inModel(room.ifc_guid);
+  }
+  // Its 20 rooms are its IfcSpaces.
+  EXPECT_EQ(rooms_kept, 20u);
+  // A room the import finds itself (IfcOpenHouse has no IfcSpace) has none.
+  const ImportResult house = importIfc(modelPath("IfcOpenHouse_IFC4.ifc"), {});
+  EXPECT_EQ(house.plan.levels[0].rooms[0].ifc_guid, "");
+  EXPECT_EQ(house.plan.levels[0].walls[0].ifc_guid, "3g46_woBL6sugXeY5_WP6n");
+}
+
 TEST(ImportIfc, BadModels) {
   EXPECT_EQ(importErrorOf(stepFile("#1=IFCBUILDINGSTOREY('1YvctVUKr0kugbFTf53O9L',$,'G',$,$,$,$,$,"
                                    ".ELEMENT.,0.);\n")),
