@@ -39,6 +39,7 @@ constexpr KindInfo kKinds[] = {
     {OutputKind::kTableLatex, "table", "a LaTeX table", false},
     {OutputKind::kImportedPlan, "plan", "an imported plan", false},
     {OutputKind::kSubmission, "submission", "a floor-plan benchmark submission", false},
+    {OutputKind::kBcf, "bcf", "a BCF archive", false},
 };
 
 const KindInfo& infoOf(OutputKind kind) {
@@ -255,6 +256,8 @@ bool isOurFile(const fs::path& path, OutputKind kind) {
       return text.rfind("% " + mark, 0) == 0;
     case OutputKind::kSubmission:
       return text.rfind("# " + mark, 0) == 0;
+    case OutputKind::kBcf:  // the mark is in extensions.xml, the archive's second entry, stored
+      return text.rfind("PK\x03\x04", 0) == 0 && text.find("<!-- " + mark) != std::string::npos;
     case OutputKind::kTableCsv:
       return text.rfind("world,", 0) == 0;
     case OutputKind::kAgraphJson:
@@ -272,7 +275,8 @@ std::string outputMark(OutputKind kind, const std::string& text) {
   const std::string mark = kWrittenByIsg;
   switch (kind) {
     case OutputKind::kSvg:
-    case OutputKind::kMjcf: {
+    case OutputKind::kMjcf:
+    case OutputKind::kBcf: {
       // Inside the root element, after its start tag: the file still starts as its kind does
       // (tools that sniff "<svg" or "<mujoco" see it), and an XML declaration stays first.
       const std::size_t root = text.find_first_of('<', text.rfind("<?xml", 0) == 0 ? 2 : 0);

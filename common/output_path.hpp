@@ -28,6 +28,7 @@ enum class OutputKind {
   kTableLatex,    // isg table -o
   kImportedPlan,  // isg import MODEL.ifc -o
   kSubmission,    // isg run --submission: a TUM file, marked by its first comment line
+  kBcf,           // deviations.bcf (isg run, isg slam, isg bcf): a zip, marked in extensions.xml
 };
 
 // "a run folder", "a ROS bag", ...: what the messages call it.
