@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "cli/cmd_agraph.hpp"
+#include "cli/cmd_bcf.hpp"
 #include "cli/cmd_check.hpp"
 #include "cli/cmd_eval.hpp"
 #include "cli/cmd_export.hpp"
@@ -50,6 +51,7 @@ int main(int argc, char** argv) {
   commands.push_back(std::make_unique<RunCommand>(app));
   commands.push_back(std::make_unique<EvalCommand>(app));
   commands.push_back(std::make_unique<TableCommand>(app));
+  commands.push_back(std::make_unique<BcfCommand>(app));
   commands.push_back(std::make_unique<SweepCommand>(app));
   commands.push_back(std::make_unique<Vlp16Command>(app));
 

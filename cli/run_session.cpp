@@ -11,12 +11,16 @@
 
 #include "bim/agraph.hpp"
 #include "bim/limits.hpp"
+#include "bim/plan_json.hpp"
 #include "bim/recorded_start_pose.hpp"
+#include "cli/bcf_report.hpp"
 #include "cli/cmd_export.hpp"
 #include "common/angles.hpp"
+#include "common/content_hash.hpp"
 #include "common/decimal_number.hpp"
 #include "common/input_error.hpp"
 #include "common/output_path.hpp"
+#include "common/plural.hpp"
 #include "common/pose_interpolation.hpp"
 #include "run/odometry_source.hpp"
 #include "run/run_folder.hpp"
@@ -278,6 +282,18 @@ run::RunProgress progressOn(ProgressBar& bar, double scan_period) {
   };
 }
 
+BcfSources bcfSourcesOf(const run::RunRecord& record, const run::RunEvaluation& evaluation) {
+  const run::RunSetup& setup = record.setup;
+  // A replay has no world hash: the plan's content names its elements' topics instead.
+  const std::string world = setup.world_hash.empty()
+                                ? common::contentHash(bim::planToJson(*setup.plan).dump())
+                                : setup.world_hash;
+  return {&*evaluation.deviations,
+          setup.plan,
+          setup.as_built,
+          {world, setup.method + " seed " + std::to_string(setup.seed)}};
+}
+
 run::RunEvaluation finishRun(const std::string& command, const std::string& dir, bool force,
                              const run::RunRecord& record, bool print_timing) {
   using Clock = std::chrono::steady_clock;
@@ -293,9 +309,18 @@ run::RunEvaluation finishRun(const std::string& command, const std::string& dir,
   struct rusage usage {};
   if (getrusage(RUSAGE_SELF, &usage) == 0) timing.peak_memory_mb = usage.ru_maxrss / 1024.0;
   start = Clock::now();
-  run::writeRunFolder(dir, record, evaluation, force);
+  std::optional<std::size_t> bcf_topics;
+  const auto write_bcf = [&](const std::filesystem::path& folder) {
+    if (!evaluation.deviations || record.setup.plan == nullptr) return;
+    bcf_topics = writeDeviationBcf(folder / "deviations.bcf", bcfSourcesOf(record, evaluation));
+  };
+  run::writeRunFolder(dir, record, evaluation, force, write_bcf);
   const double writing = std::chrono::duration<double>(Clock::now() - start).count();
   std::printf("%s", run::runSummary(command, dir, evaluation.metrics).c_str());
+  if (bcf_topics) {
+    std::printf("  deviations.bcf: %s for BIM tools (BCF 3.0, docs/deviations.md)\n",
+                common::counted(*bcf_topics, "topic").c_str());
+  }
   if (print_timing) std::printf("%s", run::timingTable(evaluation.metrics, writing).c_str());
   return evaluation;
 }

@@ -6,6 +6,7 @@
 #include <string>
 #include <vector>
 
+#include "cli/bcf_report.hpp"
 #include "cli/common.hpp"
 #include "cli/progress_bar.hpp"
 #include "cli/recording_frame.hpp"
@@ -67,6 +68,11 @@ std::unique_ptr<slam::Localizer> withOdometry(const char* command,
 
 // A progress callback drawing `bar`: robot time so far and the localizer's state.
 run::RunProgress progressOn(ProgressBar& bar, double scan_period);
+
+// What a run's deviations.bcf is made from (the report of `evaluation`, which has one, and the
+// run's plan, which it has): its topics named by the run's world, or the plan's content for a
+// replay.
+BcfSources bcfSourcesOf(const run::RunRecord& record, const run::RunEvaluation& evaluation);
 
 // Evaluates the run, writes its folder (run::writeRunFolder) and prints the summary (and, with
 // `print_timing`, the stage timing); returns the evaluation.

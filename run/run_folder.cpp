@@ -33,7 +33,7 @@ void writeTumFile(const fs::path& path, common::PoseSequence trajectory) {
 }  // namespace
 
 void writeRunFolder(const std::string& dir, const RunRecord& run, const RunEvaluation& evaluation,
-                    bool force) {
+                    bool force, const std::function<void(const fs::path& folder)>& more_files) {
   common::writeFolderAtomically(
       dir, common::OutputKind::kRunFolder, force, [&](const fs::path& temporary) {
         writeTumFile(temporary / "groundtruth.tum", run.streams.ground_truth);
@@ -63,6 +63,7 @@ void writeRunFolder(const std::string& dir, const RunRecord& run, const RunEvalu
                             deviationReportJson(*evaluation.deviations).dump(1) + "\n");
           common::writeFile(temporary / "deviations.svg", deviationSvg(*evaluation.deviations));
         }
+        if (more_files) more_files(temporary);
       });
 }
 

@@ -1,5 +1,8 @@
 #pragma once
 
+#include <filesystem>
+#include <functional>
+
 #include <string>
 
 #include "run/evaluate_run.hpp"
@@ -13,7 +16,10 @@ namespace isg::run {
 // run has a plan; keyframes.tum when the method builds a map; deviations.json and deviations.svg
 // when the map was placed in a plan. An existing folder is an
 // InputError unless `force`.
-void writeRunFolder(const std::string& dir, const RunRecord& run, const RunEvaluation& evaluation,
-                    bool force);
+// `more_files`, when given, writes further files into the folder being made (its temporary path),
+// such as deviations.bcf, whose snapshots need the renderer this module never sees.
+void writeRunFolder(
+    const std::string& dir, const RunRecord& run, const RunEvaluation& evaluation, bool force,
+    const std::function<void(const std::filesystem::path& folder)>& more_files = {});
 
 }  // namespace isg::run

@@ -28,6 +28,35 @@ namespace {
 // them) is not tracked under LeakSanitizer, and nothing else is exempted.
 using UntrackedMesaAllocations = common::UntrackedAllocations;
 
+// A bar from `from` to `to` (B) drawn over the scene, when it has room for one more geom.
+void addBar(mjvScene& scene, const Eigen::Vector3d& from, const Eigen::Vector3d& to, double radius,
+            const float rgba[4]) {
+  if (scene.ngeom >= scene.maxgeom) return;
+  mjvGeom& g = scene.geoms[scene.ngeom++];
+  const mjtNum size3[3] = {0, 0, 0};
+  mjv_initGeom(&g, mjGEOM_CAPSULE, size3, nullptr, nullptr, rgba);
+  mjv_makeConnector(&g, mjGEOM_CAPSULE, radius, from.x(), from.y(), from.z(), to.x(), to.y(),
+                    to.z());
+  g.category = mjCAT_DECOR;
+}
+
+// The picture's header, text, rows and end, written to whatever output `png` was given.
+void encodePng(png_structp png, png_infop info, const Image& image) {
+  png_set_IHDR(png, info, image.width, image.height, 8, PNG_COLOR_TYPE_RGB, PNG_INTERLACE_NONE,
+               PNG_COMPRESSION_TYPE_DEFAULT, PNG_FILTER_TYPE_DEFAULT);
+  // The mark that lets isg render replace this picture, and nothing else (sensors/output_path.hpp).
+  png_text software{};
+  software.compression = PNG_TEXT_COMPRESSION_NONE;
+  software.key = const_cast<char*>("Software");
+  software.text = const_cast<char*>(common::kWrittenByIsg);
+  png_set_text(png, info, &software, 1);
+  png_write_info(png, info);
+  for (int y = 0; y < image.height; ++y) {
+    png_write_row(png, const_cast<png_bytep>(image.rgb.data() + std::size_t(3) * image.width * y));
+  }
+  png_write_end(png, nullptr);
+}
+
 }  // namespace
 
 struct Renderer::Egl {
@@ -197,17 +226,38 @@ Image Renderer::planView(mjData& data, const Eigen::Vector2d& lo, const Eigen::V
     }
     scene.ngeom = kept;
     // The route as a red line just above the floor.
-    for (std::size_t i = 1; i < route.size() && scene.ngeom < scene.maxgeom; ++i) {
-      mjvGeom& g = scene.geoms[scene.ngeom++];
-      const mjtNum size3[3] = {0, 0, 0};
-      const float red[4] = {0.85f, 0.1f, 0.1f, 1.0f};
-      mjv_initGeom(&g, mjGEOM_CAPSULE, size3, nullptr, nullptr, red);
-      mjtNum from[3] = {route[i - 1].x(), route[i - 1].y(), route[i - 1].z()};
-      mjtNum to[3] = {route[i].x(), route[i].y(), route[i].z()};
-      mjv_makeConnector(&g, mjGEOM_CAPSULE, std::max(0.02, 0.004 * size.x()), from[0], from[1],
-                        from[2], to[0], to[1], to[2]);
-      g.category = mjCAT_DECOR;
+    const float red[4] = {0.85f, 0.1f, 0.1f, 1.0f};
+    for (std::size_t i = 1; i < route.size(); ++i) {
+      addBar(scene, route[i - 1], route[i], std::max(0.02, 0.004 * size.x()), red);
     }
+  });
+}
+
+Image Renderer::lookAt(mjData& data, const Eigen::Vector3d& eye, const Eigen::Vector3d& target,
+                       double vertical_fov_deg, const std::vector<Line>& lines) {
+  mjvCamera camera;
+  mjv_defaultCamera(&camera);
+  camera.type = mjCAMERA_FREE;
+  return render(data, camera, false, [&](mjvScene& scene) {
+    const Eigen::Vector3d forward = (target - eye).normalized();
+    Eigen::Vector3d up = forward.cross(Eigen::Vector3d::UnitZ()).cross(forward);
+    up = up.norm() < 1e-9 ? Eigen::Vector3d::UnitY() : up.normalized();
+    for (int e = 0; e < 2; ++e) {
+      mjvGLCamera& c = scene.camera[e];
+      for (int k = 0; k < 3; ++k) {
+        c.pos[k] = float(eye[k]);
+        c.forward[k] = float(forward[k]);
+        c.up[k] = float(up[k]);
+      }
+      c.frustum_near = 0.05f;
+      c.frustum_far = 500.0f;
+      c.frustum_center = 0.0f;
+      c.frustum_top =
+          float(c.frustum_near * std::tan(0.5 * vertical_fov_deg * std::numbers::pi / 180.0));
+      c.frustum_bottom = -c.frustum_top;
+    }
+    const float red[4] = {0.9f, 0.1f, 0.1f, 1.0f};
+    for (const Line& line : lines) addBar(scene, line.from, line.to, 0.025, red);
   });
 }
 
@@ -226,24 +276,31 @@ void writePng(const std::string& path, const Image& image) {
     throw common::InputError(path, "", "cannot write PNG");
   }
   png_init_io(png, file);
-  png_set_IHDR(png, info, image.width, image.height, 8, PNG_COLOR_TYPE_RGB, PNG_INTERLACE_NONE,
-               PNG_COMPRESSION_TYPE_DEFAULT, PNG_FILTER_TYPE_DEFAULT);
-  // The mark that lets isg render replace this picture, and nothing else (sensors/output_path.hpp).
-  png_text software{};
-  software.compression = PNG_TEXT_COMPRESSION_NONE;
-  software.key = const_cast<char*>("Software");
-  software.text = const_cast<char*>(common::kWrittenByIsg);
-  png_set_text(png, info, &software, 1);
-  png_write_info(png, info);
-  for (int y = 0; y < image.height; ++y) {
-    png_write_row(png, const_cast<png_bytep>(image.rgb.data() + std::size_t(3) * image.width * y));
-  }
-  png_write_end(png, nullptr);
+  encodePng(png, info, image);
   png_destroy_write_struct(&png, &info);
   if (std::fclose(file) != 0) {
     throw common::InputError(path, "", std::string("cannot write: ") + std::strerror(errno));
   }
   atomic.commit();
+}
+
+std::string pngBytes(const Image& image) {
+  std::string bytes;
+  png_structp png = png_create_write_struct(PNG_LIBPNG_VER_STRING, nullptr, nullptr, nullptr);
+  png_infop info = png ? png_create_info_struct(png) : nullptr;
+  if (png == nullptr || info == nullptr || setjmp(png_jmpbuf(png))) {
+    png_destroy_write_struct(&png, &info);
+    throw std::runtime_error("cannot encode a PNG picture");
+  }
+  png_set_write_fn(
+      png, &bytes,
+      [](png_structp p, png_bytep data, png_size_t length) {
+        static_cast<std::string*>(png_get_io_ptr(p))->append(reinterpret_cast<char*>(data), length);
+      },
+      nullptr);
+  encodePng(png, info, image);
+  png_destroy_write_struct(&png, &info);
+  return bytes;
 }
 
 }  // namespace isg::sim

@@ -35,6 +35,14 @@ class Renderer {
                  const std::vector<Eigen::Vector3d>& route);
   // Behind and above the robot at B_T_R, looking at it.
   Image chase(mjData& data, const Eigen::Isometry3d& B_T_R);
+  // A perspective view from `eye` towards `target` (B) with a vertical field of view of
+  // `vertical_fov_deg`, ceilings hidden, `lines` (pairs of points in B) drawn over it as red
+  // bars: a BCF topic's snapshot with the element's outline.
+  struct Line {
+    Eigen::Vector3d from, to;
+  };
+  Image lookAt(mjData& data, const Eigen::Vector3d& eye, const Eigen::Vector3d& target,
+               double vertical_fov_deg, const std::vector<Line>& lines);
 
   const std::string& glRenderer() const { return gl_renderer_; }
 
@@ -55,5 +63,7 @@ class Renderer {
 
 // Writes an 8-bit RGB PNG; throws std::runtime_error naming the path on failure.
 void writePng(const std::string& path, const Image& image);
+// The same PNG as bytes (a picture put into an archive).
+std::string pngBytes(const Image& image);
 
 }  // namespace isg::sim

@@ -38,7 +38,7 @@ std::vector<Eigen::Vector2d> segmentFootprint(const Eigen::Vector2d& start,
   return {start - half, end - half, end + half, start + half};
 }
 
-// Above and in front of the element (`towards`: the side to look from, in the plane), 45° down at
+// Above and in front of the element (`towards`: the side to look from, in the plane), 60° down at
 // its middle one metre above the floor, far enough for the whole footprint to be in view.
 TopicCamera cameraAt(const TopicOutline& outline, Eigen::Vector2d towards) {
   Eigen::AlignedBox2d box;
@@ -47,12 +47,13 @@ TopicCamera cameraAt(const TopicOutline& outline, Eigen::Vector2d towards) {
   TopicCamera camera;
   const double half_width_fov =
       std::atan(std::tan(0.5 * camera.vertical_fov_deg * std::numbers::pi / 180.0) * camera.aspect);
-  const double distance = std::max(4.0, 0.75 * box.diagonal().norm() / std::tan(half_width_fov));
+  const double distance = std::max(6.0, 0.75 * box.diagonal().norm() / std::tan(half_width_fov));
   if (towards.norm() < 1e-9) towards = Eigen::Vector2d(0.0, -1.0);
   towards.normalize();
-  const double reach = distance * std::sqrt(0.5);
+  // 60° down: the footprint on the floor shows beside the wall that stands off it.
+  const double across = distance * 0.5, up = distance * std::sqrt(0.75);
   camera.target = Eigen::Vector3d(centre.x(), centre.y(), outline.floor_z + 1.0);
-  camera.eye = camera.target + Eigen::Vector3d(towards.x() * reach, towards.y() * reach, reach);
+  camera.eye = camera.target + Eigen::Vector3d(towards.x() * across, towards.y() * across, up);
   return camera;
 }
 

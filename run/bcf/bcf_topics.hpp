@@ -10,8 +10,8 @@
 namespace isg::run::bcf {
 
 // Where a topic's viewpoint looks from, in B (the plan's frame, which an IFC import keeps as the
-// model's): a perspective camera above and in front of the element, looking down at it with the
-// ceilings off, so that the element and what stands around it are in view.
+// model's): a perspective camera above and in front of the element, looking 60° down at it with
+// the ceilings off, so that the element and what stands around it are in view.
 struct TopicCamera {
   Eigen::Vector3d eye = Eigen::Vector3d::Zero();
   Eigen::Vector3d target = Eigen::Vector3d::Zero();

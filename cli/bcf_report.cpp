@@ -1,0 +1,68 @@
+#include "cli/bcf_report.hpp"
+
+#include <memory>
+
+#include "run/bcf/bcf_archive.hpp"
+#include "sim/mujoco_world.hpp"
+#include "sim/renderer.hpp"
+#include "worlds/mjcf_generator.hpp"
+
+namespace isg::cli {
+
+namespace {
+
+constexpr int kSnapshotWidth = 800;
+constexpr int kSnapshotHeight = 600;  // 4:3, TopicCamera::aspect
+
+std::vector<sim::Renderer::Line> outlineLines(const run::bcf::TopicOutline& outline) {
+  std::vector<sim::Renderer::Line> lines;
+  const std::size_t n = outline.footprint.size();
+  for (std::size_t i = 0; i < n; ++i) {
+    const Eigen::Vector2d& p = outline.footprint[i];
+    const Eigen::Vector2d& q = outline.footprint[(i + 1) % n];
+    for (const double z : {outline.floor_z, outline.top_z}) {
+      lines.push_back({{p.x(), p.y(), z}, {q.x(), q.y(), z}});
+    }
+    lines.push_back({{p.x(), p.y(), outline.floor_z}, {p.x(), p.y(), outline.top_z}});
+  }
+  return lines;
+}
+
+// The building and a renderer, made at the first snapshot: a report without topics costs nothing.
+class Snapshots {
+ public:
+  Snapshots(const bim::Plan& plan, const bim::AsBuilt* as_built)
+      : plan_(plan), as_built_(as_built) {}
+
+  std::string operator()(const run::bcf::Topic& topic) {
+    if (!renderer_) {
+      world_ = std::make_unique<sim::MujocoWorld>(sim::MujocoWorld::fromXml(
+          worlds::generateMjcf(plan_, as_built_ ? *as_built_ : bim::AsBuilt{})));
+      renderer_ = std::make_unique<sim::Renderer>(world_->model(), kSnapshotWidth, kSnapshotHeight);
+    }
+    const run::bcf::TopicCamera& camera = topic.camera;
+    return sim::pngBytes(renderer_->lookAt(world_->data(), camera.eye, camera.target,
+                                           camera.vertical_fov_deg, outlineLines(topic.outline)));
+  }
+
+ private:
+  const bim::Plan& plan_;
+  const bim::AsBuilt* as_built_;
+  std::unique_ptr<sim::MujocoWorld> world_;
+  std::unique_ptr<sim::Renderer> renderer_;
+};
+
+}  // namespace
+
+std::size_t writeDeviationBcf(const std::filesystem::path& file, const BcfSources& sources) {
+  const std::vector<run::bcf::Topic> topics =
+      run::bcf::deviationTopics(*sources.report, *sources.plan, sources.names);
+  run::bcf::ArchiveOptions options;
+  options.created = run::bcf::creationTime();
+  auto snapshots = std::make_shared<Snapshots>(*sources.plan, sources.as_built);
+  if (sources.snapshots) options.snapshot = [snapshots](const auto& t) { return (*snapshots)(t); };
+  run::bcf::writeArchive(file, topics, options);
+  return topics.size();
+}
+
+}  // namespace isg::cli
