@@ -65,7 +65,9 @@ nlohmann::json thresholdsJson(const slam::DeviationOptions& o) {
           {"extra_pair_distance_m", o.extra_pair_distance},
           {"pivot_name_distance_m", o.pivot_name_distance},
           {"progress_step_m", o.progress_step},
-          {"progress_gap_m", o.progress_gap_m}};
+          {"progress_gap_m", o.progress_gap_m},
+          {"end_sigma_m", o.end_sigma_m},
+          {"clear_factor", o.clear_factor}};
 }
 
 // The columns' thresholds (thresholds.columns).
@@ -102,6 +104,8 @@ nlohmann::json wallJson(const slam::WallDeviation& w) {
       {"status", slam::toString(w.status)},
       {"offset_m", w.offset_m ? nlohmann::json(*w.offset_m) : nullptr},
       {"angle_deg", w.angle_deg ? nlohmann::json(*w.angle_deg) : nullptr},
+      {"offset_sigma_m", w.offset_sigma_m ? nlohmann::json(*w.offset_sigma_m) : nullptr},
+      {"angle_sigma_deg", w.angle_sigma_deg ? nlohmann::json(*w.angle_sigma_deg) : nullptr},
       {"observed_share", w.observed_share},
       {"planned", {{"start", point(w.planned_start)}, {"end", point(w.planned_end)}}},
       {"evidence", evidence}};
@@ -114,7 +118,8 @@ nlohmann::json wallJson(const slam::WallDeviation& w) {
                               {"angle_deg", w.angle_threshold_deg},
                               {"local_offset_noise_m", optional(w.local_offset_noise_m)},
                               {"local_angle_noise_deg", optional(w.local_angle_noise_deg)},
-                              {"placement_sigma_m", w.placement_sigma_m}};
+                              {"placement_sigma_m", w.placement_sigma_m},
+                              {"placement_angle_sigma_deg", w.placement_angle_sigma_deg}};
   }
   {
     const slam::WallProgress& p = w.progress;
@@ -126,9 +131,11 @@ nlohmann::json wallJson(const slam::WallDeviation& w) {
   }
   if (w.pivot_along_m) {
     const Eigen::Vector2d axis = (w.planned_end - w.planned_start).normalized();
-    wall["turned_about"] = {{"along_m", *w.pivot_along_m},
-                            {"point", point(w.planned_start + *w.pivot_along_m * axis)},
-                            {"name", w.turned_about}};
+    wall["turned_about"] = {
+        {"along_m", *w.pivot_along_m},
+        {"sigma_m", w.pivot_sigma_m ? nlohmann::json(*w.pivot_sigma_m) : nullptr},
+        {"point", point(w.planned_start + *w.pivot_along_m * axis)},
+        {"name", w.turned_about}};
   }
   return wall;
 }

@@ -58,6 +58,9 @@ slam::DeviationOptions readThresholds(const JsonNode& t) {
   o.extra_pair_distance = t.field("extra_pair_distance_m").number();
   o.pivot_name_distance = t.field("pivot_name_distance_m").number();
   o.progress_step = t.field("progress_step_m").number();
+  // Reports written before verdicts carried their uncertainty have neither: the defaults.
+  if (auto v = t.optionalField("end_sigma_m")) o.end_sigma_m = v->number();
+  if (auto v = t.optionalField("clear_factor")) o.clear_factor = v->number();
   o.progress_gap_m = t.field("progress_gap_m").number();
   return o;
 }
@@ -120,6 +123,8 @@ slam::WallDeviation readWall(const JsonNode& w) {
                              WallStatus::kMissing, WallStatus::kNotSeen});
   wall.offset_m = optionalNumber(w.field("offset_m"));
   wall.angle_deg = optionalNumber(w.field("angle_deg"));
+  if (auto v = w.optionalField("offset_sigma_m")) wall.offset_sigma_m = optionalNumber(*v);
+  if (auto v = w.optionalField("angle_sigma_deg")) wall.angle_sigma_deg = optionalNumber(*v);
   wall.observed_share = w.field("observed_share").number();
   wall.planned_start = w.field("planned").field("start").point2();
   wall.planned_end = w.field("planned").field("end").point2();
@@ -131,10 +136,14 @@ slam::WallDeviation readWall(const JsonNode& w) {
     wall.local_offset_noise_m = optionalNumber(judged->field("local_offset_noise_m"));
     wall.local_angle_noise_deg = optionalNumber(judged->field("local_angle_noise_deg"));
     wall.placement_sigma_m = judged->field("placement_sigma_m").number();
+    if (auto v = judged->optionalField("placement_angle_sigma_deg")) {
+      wall.placement_angle_sigma_deg = v->number();
+    }
   }
   wall.progress = readProgress(w.field("progress"));
   if (auto turned = w.optionalField("turned_about")) {
     wall.pivot_along_m = turned->field("along_m").number();
+    if (auto v = turned->optionalField("sigma_m")) wall.pivot_sigma_m = optionalNumber(*v);
     wall.turned_about = turned->field("name").string();
   }
   return wall;

@@ -59,21 +59,24 @@ TopicCamera cameraAt(const TopicOutline& outline, Eigen::Vector2d towards) {
 
 std::string levelWords(const std::string& level) { return " on level " + level; }
 
-// The numbers of a wall seen off the plan: the offset and angle with what they are judged by.
+// The numbers of a wall seen off the plan: the offset and angle with their standard deviations
+// (the placement's included) and the thresholds they were judged by.
 std::string offPlanWords(const slam::WallDeviation& wall) {
   std::string words;
   if (wall.offset_m) {
     words += format(
-        "Measured %+.3f m off its planned place (along its left normal, positive to the left of "
-        "start to end, at its centre; the map's placement there is known to %.3f m, one standard "
-        "deviation), threshold %.3f m. ",
-        *wall.offset_m, wall.placement_sigma_m, wall.shift_threshold_m);
+        "Offset %+.3f m ± %.3f m (one standard deviation, the map's placement there included: "
+        "%.3f m) from its planned place, along its left normal (positive to the left of start to "
+        "end) at its centre; threshold %.3f m. ",
+        *wall.offset_m, wall.offset_sigma_m.value_or(0.0), wall.placement_sigma_m,
+        wall.shift_threshold_m);
   }
   if (wall.angle_deg) {
-    words += format("Turned %+.2f° (counter-clockwise positive), threshold %.2f°", *wall.angle_deg,
-                    wall.angle_threshold_deg);
+    words += format("Angle %+.2f° ± %.2f° (counter-clockwise positive), threshold %.2f°",
+                    *wall.angle_deg, wall.angle_sigma_deg.value_or(0.0), wall.angle_threshold_deg);
     if (wall.pivot_along_m) {
-      words += format(", about a point %.2f m from its start (", *wall.pivot_along_m) +
+      words += format(", turned about a point %.2f m ± %.2f m from its start (",
+                      *wall.pivot_along_m, wall.pivot_sigma_m.value_or(0.0)) +
                wall.turned_about + ")";
     }
     words += ". ";

@@ -52,6 +52,8 @@ std::optional<std::string> DeviationOptions::invalidField() const {
       {"max_stray_lean_deg", nonNegative(max_stray_lean_deg) && max_stray_lean_deg <= 90.0,
        "must lie in [0, 90]"},
       {"pivot_name_distance_m", nonNegative(pivot_name_distance), "must be 0 or more"},
+      {"end_sigma_m", positive(end_sigma_m), "must be above 0"},
+      {"clear_factor", nonNegative(clear_factor), "must be 0 or more"},
       {"progress_step_m", positive(progress_step), "must be above 0"},
       {"progress_gap_m", positive(progress_gap_m) && progress_gap_m >= progress_step,
        "must be at least progress_step_m"},

@@ -103,6 +103,17 @@ struct DeviationOptions {
   // and a shift together). The pivot is as loose as the offset over tan(angle): 1 cm of offset
   // at 2° moves it 0.29 m.
   double pivot_name_distance = 0.3;  // m
+  // Each verdict carries its uncertainty (docs/deviations.md, "Uncertainty"): the fitted line's
+  // offset and direction from the ends of its consistent pieces, each end taken to lie on the
+  // wall's face to `end_sigma_m` (or to how far the ends scatter about the line, when they scatter
+  // more), weighted by length as the fit weights them, with the local placement's own standard
+  // deviations. A map wall's plane is fitted from hundreds of points to millimetres; its ends sit
+  // where the keyframes that saw it put them, to about a centimetre. A wall is shifted (turned)
+  // only when its offset (angle) lies `clear_factor` standard deviations from zero as well as at
+  // or beyond its threshold; beyond the threshold but not clear of its uncertainty, the evidence
+  // cannot tell, and the wall is `not_seen` (the scan-vs-BIM tools' "not enough data").
+  double end_sigma_m = 0.01;
+  double clear_factor = 2.0;
   // Progress (docs/deviations.md, "Progress"): each wall's exposed length sampled every
   // `progress_step`; a part in view with no map wall on it is not built when at least
   // `progress_gap_m` long. Shorter, the map cannot tell: a plane needs 100 voxels of 10 cm

@@ -14,6 +14,7 @@
 #include "common/angles.hpp"
 #include "slam/deviations/deviation_threshold.hpp"
 #include "slam/deviations/face_views.hpp"
+#include "slam/deviations/line_uncertainty.hpp"
 #include "slam/deviations/map_wall_sorting.hpp"
 #include "slam/deviations/seen_through.hpp"
 
@@ -169,6 +170,9 @@ struct WallFit {
   double offset_m = 0.0, angle_deg = 0.0;
   double length = 0.0;   // of the consistent pieces
   double longest = 0.0;  // the longest consistent piece
+  // Of (offset, slope), from the consistent ends (DeviationOptions::end_sigma_m); the placement's
+  // uncertainty is not in it.
+  Eigen::Matrix2d covariance = Eigen::Matrix2d::Zero();
 };
 
 WallFit fitWall(WallDeviation& wall, const PlannedWall& planned, const DeviationOptions& options) {
@@ -214,11 +218,15 @@ WallFit fitWall(WallDeviation& wall, const PlannedWall& planned, const Deviation
   }
   fit.offset_m = offset;
   fit.angle_deg = common::degrees(std::atan(slope));
+  std::vector<std::pair<Eigen::Vector2d, double>> ends;
   for (const auto& e : wall.evidence) {
     if (!e.consistent) continue;
     fit.length += e.length_m;
     fit.longest = std::max(fit.longest, e.length_m);
+    ends.push_back({along(e, e.start_B), 0.5 * e.length_m});
+    ends.push_back({along(e, e.end_B), 0.5 * e.length_m});
   }
+  fit.covariance = lineCovariance(ends, offset, slope, options.end_sigma_m);
   return fit;
 }
 
@@ -325,8 +333,35 @@ Placement refinePlacement(const std::vector<std::pair<WallDeviation, PlannedWall
 struct Judged {
   bool has_evidence = false;
   bool turned = false, shifted = false;
+  // Beyond a threshold but not clear of the measure's uncertainty (DeviationOptions::
+  // clear_factor): the evidence cannot tell.
+  bool undecided = false;
   int most_observed = 0;
 };
+
+// The offset's and angle's standard deviations: the fit's, the placement's, and (evidence that
+// contradicts itself, measured by the mean of its long pieces) how far those pieces spread.
+void setUncertainty(WallDeviation& wall, const WallFit& fit,
+                    const std::vector<const WallEvidence*>& spread_over) {
+  const double slope = std::tan(common::radians(fit.angle_deg));
+  // d(angle)/d(slope) = 1 / (1 + slope²).
+  const double angle_fit = common::degrees(std::sqrt(fit.covariance(1, 1)) / (1.0 + slope * slope));
+  double offset_var = fit.covariance(0, 0) + wall.placement_sigma_m * wall.placement_sigma_m;
+  double angle_var =
+      angle_fit * angle_fit + wall.placement_angle_sigma_deg * wall.placement_angle_sigma_deg;
+  if (spread_over.size() > 1) {
+    double length = 0.0, offset_sq = 0.0, angle_sq = 0.0;
+    for (const WallEvidence* e : spread_over) {
+      length += e->length_m;
+      offset_sq += e->length_m * (e->offset_m - *wall.offset_m) * (e->offset_m - *wall.offset_m);
+      angle_sq += e->length_m * (e->angle_deg - *wall.angle_deg) * (e->angle_deg - *wall.angle_deg);
+    }
+    offset_var += offset_sq / length;
+    angle_var += angle_sq / length;
+  }
+  wall.offset_sigma_m = std::sqrt(offset_var);
+  wall.angle_sigma_deg = std::sqrt(angle_var);
+}
 
 // A wall's evidence can contradict itself: its two faces, seen from two rooms, laid by the map a
 // few centimetres apart. A piece left out of the fit that is at least half as long as the longest
@@ -381,16 +416,33 @@ Judged judge(WallDeviation& wall, const PlannedWall& planned, const DeviationOpt
     turned = turned && beyond([](const WallEvidence& e) { return e.angle_deg; }, angle_threshold);
     shifted = shifted && beyond([](const WallEvidence& e) { return e.offset_m; }, shift_threshold);
   }
-  judged.turned = turned;
-  judged.shifted = shifted;
+  setUncertainty(wall, fit, contradicted ? long_pieces : std::vector<const WallEvidence*>{});
+  wall.fit_covariance = fit.covariance;
+  // Off the plan beyond the threshold, and clear of the measure's own uncertainty.
+  const double clear = options.clear_factor;
+  const bool turn_clear = std::abs(*wall.angle_deg) >= clear * *wall.angle_sigma_deg;
+  const bool shift_clear = std::abs(*wall.offset_m) >= clear * *wall.offset_sigma_m;
+  judged.undecided = (turned && !turn_clear) || (shifted && !shift_clear);
+  judged.turned = turned && turn_clear;
+  judged.shifted = shifted && shift_clear;
   return judged;
 }
 
 // A rotated wall's pivot: where its line crosses the planned axis, and its name.
+// Its standard deviation along the wall: the pivot is s* = −offset / slope from the centre, as
+// loose as the offset over the slope, and the slope's own error moves it by s*/slope.
 void setPivot(WallDeviation& wall, const PlannedWall& planned, const DeviationOptions& options) {
   wall.pivot_along_m = crossingAlong(planned.length, *wall.offset_m, *wall.angle_deg);
   if (wall.pivot_along_m) {
     wall.turned_about = pivotName(*wall.pivot_along_m, planned.length, options.pivot_name_distance);
+    const double slope = std::tan(common::radians(*wall.angle_deg));
+    const double slope_sigma =
+        common::radians(wall.angle_sigma_deg.value_or(0.0)) * (1.0 + slope * slope);
+    Eigen::Matrix2d covariance = wall.fit_covariance;
+    covariance(0, 0) = std::pow(wall.offset_sigma_m.value_or(0.0), 2);
+    covariance(1, 1) = slope_sigma * slope_sigma;
+    const Eigen::Vector2d J(-1.0 / slope, *wall.offset_m / (slope * slope));
+    wall.pivot_sigma_m = std::sqrt(std::max(0.0, J.dot(covariance * J)));
   }
 }
 
@@ -642,6 +694,8 @@ void setLocalThresholds(WallDeviation& wall, const PlannedWall& its_plan, const 
   // them constrains (the walls around all run across it, or are all built off), the placement's
   // prior stands for the localizer's, and the wall's own offset cannot be told from the map's.
   wall.placement_sigma_m = local.sigmaAcross(its_plan);
+  wall.placement_angle_sigma_deg =
+      common::degrees(std::sqrt(std::max(0.0, local.covariance(2, 2))));
   setThresholds(wall, threshold.thresholds(wall.placement_sigma_m));
 }
 
@@ -749,8 +803,9 @@ void measureLevel(const bim::AGraph& plan, int f, const std::vector<WallInB>& wa
     auto& [wall, planned] = judged[i];
     const double planned_length = planned.length;  // a lambda may not capture a binding (clang)
     const auto evidenceOf = [&](const WallDeviation& w, const Judged& j) {
-      return StatusEvidence{j.has_evidence,  w.observed_share, j.turned,   j.shifted,
-                            j.most_observed, w.in_view_share,  with_sight, planned_length};
+      return StatusEvidence{j.has_evidence, w.observed_share, j.turned,
+                            j.shifted,      j.most_observed,  w.in_view_share,
+                            with_sight,     planned_length,   j.undecided};
     };
     Judged judged_wall = judge(wall, planned, options);
     // Too few walls around as planned to tell the map's error there (no local noise): the local

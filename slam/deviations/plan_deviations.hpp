@@ -51,6 +51,14 @@ struct WallDeviation {
   // How well the walls around fix where the map lies across this one (the standard deviation of
   // its local placement along the wall's normal, DeviationOptions::noise_factor).
   double placement_sigma_m = 0.0;
+  // And how well they fix its direction (the local placement's yaw, standard deviation).
+  double placement_angle_sigma_deg = 0.0;
+  // The uncertainty of each measure (DeviationOptions::end_sigma_m): standard deviations of the
+  // offset and angle (the fitted line's from its evidence, with the placement's), and of a
+  // turned wall's pivot along the wall. None without evidence (or without a pivot).
+  std::optional<double> offset_sigma_m, angle_sigma_deg, pivot_sigma_m;
+  // The fitted line's own covariance of (offset, slope) (not in deviations.json; for the pivot's).
+  Eigen::Matrix2d fit_covariance = Eigen::Matrix2d::Zero();
   std::optional<double> in_view_share;  // measured only for walls seen too little to judge
   Eigen::Vector2d planned_start = Eigen::Vector2d::Zero(), planned_end = Eigen::Vector2d::Zero();
   double thickness = 0.0;

@@ -27,7 +27,7 @@ WallStatus decideWallStatus(const StatusEvidence& e, const DeviationOptions& opt
                          e.planned_length >= options.min_missing_length;
     return missing ? WallStatus::kMissing : WallStatus::kNotSeen;
   }
-  if (!e.turned && !e.shifted) return WallStatus::kAsPlanned;
+  if (!e.turned && !e.shifted) return e.undecided ? WallStatus::kNotSeen : WallStatus::kAsPlanned;
   if (e.most_observed < options.min_deviation_observations) return WallStatus::kNotSeen;
   return e.turned ? WallStatus::kRotated : WallStatus::kShifted;
 }

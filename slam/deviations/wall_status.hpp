@@ -26,13 +26,17 @@ struct StatusEvidence {
   std::optional<double> in_view_share;  // measured only for walls seen too little to judge
   bool with_sight = false;      // the keyframes recorded how far they saw (missing_sight_share)
   double planned_length = 0.0;  // m
+  // Beyond a threshold, but not clear of the measure's uncertainty (DeviationOptions::
+  // clear_factor): not enough data to tell.
+  bool undecided = false;
 };
 
 // The one place a wall's status is decided, row by row as the status table says:
 //   - seen over less than judged_share (or no evidence): missing when seen over less than
 //     missing_seen_share, at least min_missing_length long, and in view over missing_view_share
 //     (missing_sight_share with sight lines); else not_seen;
-//   - neither turned nor shifted: as_planned;
+//   - neither turned nor shifted: as_planned, or not_seen when a deviation beyond its threshold
+//     was not clear of its uncertainty (undecided: not enough data);
 //   - off the plan on evidence seen from fewer than min_deviation_observations keyframes:
 //     not_seen (not believed);
 //   - turned: rotated; else shifted.

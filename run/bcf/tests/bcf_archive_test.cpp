@@ -77,6 +77,7 @@ slam::DeviationReport report(const bim::Plan& plan) {
   r.levels = {"L1"};
   r.walls.push_back(wallDeviation(plan, "W1", slam::WallStatus::kShifted));
   r.walls.back().offset_m = 0.2;
+  r.walls.back().offset_sigma_m = 0.009;
   r.walls.back().angle_deg = 0.1;
   r.walls.back().observed_share = 0.9;
   r.walls.back().evidence.push_back({.plane = 3, .side = -1, .length_m = 7.2, .observations = 12});
@@ -147,8 +148,9 @@ TEST(BcfTopics, OneTopicPerElementOffThePlanUnderItsGlobalId) {
   EXPECT_EQ(topics[0].ifc_guid, kW1Guid);
   EXPECT_EQ(topics[0].labels,
             (std::vector<std::string>{"Shifted", "Installed, out of tolerance", "Wall"}));
-  EXPECT_NE(topics[0].description.find("+0.200 m"), std::string::npos) << topics[0].description;
-  EXPECT_NE(topics[0].description.find("known to 0.008 m"), std::string::npos);
+  EXPECT_NE(topics[0].description.find("Offset +0.200 m ± 0.009 m"), std::string::npos)
+      << topics[0].description;
+  EXPECT_NE(topics[0].description.find("placement there included: 0.008 m"), std::string::npos);
   EXPECT_EQ(topics[1].title, "Wall W2 missing");
   EXPECT_EQ(topics[1].ifc_guid, "");  // the plan has none: selected by its plan id
   EXPECT_EQ(topics[2].title, "Wall W4 built in part");

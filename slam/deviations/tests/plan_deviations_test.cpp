@@ -158,6 +158,42 @@ TEST(PlanDeviations, FindsTheShiftedTurnedMissingAndExtraWallsByHand) {
   EXPECT_EQ(report.placements[0].walls_used, 3);
 }
 
+// Each verdict carries its uncertainty: the fitted line's from its ends (1 cm each, as the map's
+// walls here lie exactly on the faces) with the local placement's; a pivot's along the wall. With
+// ends taken to lie on their faces only to 20 cm, a 0.15 m shift is no longer clear of its
+// uncertainty (2 σ): not enough data, not_seen.
+TEST(PlanDeviations, EachVerdictCarriesItsUncertainty) {
+  const bim::Plan plan = threeRooms();
+  const bim::AGraph planned = bim::buildAGraph(plan);
+  const bim::AGraph built = bim::buildAGraph(builtPlan(plan, deviations()));
+  const DeviationReport report =
+      measureDeviations(planned, mapOf(built), Eigen::Isometry3d::Identity());
+  const WallDeviation& shifted = deviationWallOf(report, "W3");
+  ASSERT_TRUE(shifted.offset_sigma_m && shifted.angle_sigma_deg);
+  // At least the placement's, at most it with one end's 1 cm.
+  EXPECT_GE(*shifted.offset_sigma_m, shifted.placement_sigma_m);
+  EXPECT_LE(*shifted.offset_sigma_m, std::hypot(shifted.placement_sigma_m, 0.01) + 1e-12);
+  EXPECT_GT(*shifted.offset_sigma_m, 0.0);
+  // A 9 m wall's direction to a few hundredths of a degree from its ends, with the placement's.
+  EXPECT_LT(*shifted.angle_sigma_deg, 0.3);
+  const WallDeviation& turned = deviationWallOf(report, "W5");
+  ASSERT_TRUE(turned.pivot_sigma_m);
+  // σ_pivot ≈ σ_offset / tan 4° (the slope's share is small at a pivot near the start).
+  EXPECT_GT(*turned.pivot_sigma_m,
+            0.8 * *turned.offset_sigma_m / std::tan(4.0 * std::numbers::pi / 180.0));
+  EXPECT_LT(*turned.pivot_sigma_m, 0.3);
+  EXPECT_FALSE(shifted.pivot_sigma_m);
+
+  DeviationOptions loose;
+  loose.end_sigma_m = 0.2;
+  const DeviationReport unclear =
+      measureDeviations(planned, mapOf(built), Eigen::Isometry3d::Identity(), loose);
+  const WallDeviation& w3 = deviationWallOf(unclear, "W3");
+  EXPECT_GT(2.0 * *w3.offset_sigma_m, 0.15);
+  EXPECT_EQ(w3.status, WallStatus::kNotSeen);
+  EXPECT_NEAR(*w3.offset_m, 0.15, 0.002);  // measured all the same
+}
+
 // The same building, its map's walls each seen from 2 keyframes: too few to believe a deviation
 // (min_deviation_observations, 3). W3 (shifted 0.15 m) and W5 (turned 4°) are not seen rather
 // than off, the walls as planned stay as planned; seen from 3, both are found again.

@@ -37,6 +37,14 @@ TEST(WallStatusDecision, ADeviationSeenFromTooFewKeyframesIsNotBelieved) {
   EXPECT_EQ(decideWallStatus(e, {}), WallStatus::kAsPlanned);
 }
 
+TEST(WallStatusDecision, ADeviationNotClearOfItsUncertaintyIsNotEnoughData) {
+  StatusEvidence e = seenWell();
+  e.undecided = true;  // beyond its threshold, within clear_factor σ of zero
+  EXPECT_EQ(decideWallStatus(e, {}), WallStatus::kNotSeen);
+  e.shifted = true;  // the other measure is clear: judged by it
+  EXPECT_EQ(decideWallStatus(e, {}), WallStatus::kShifted);
+}
+
 TEST(WallStatusDecision, SeenTooLittleIsMissingOnlyWhenInViewAndLongEnough) {
   StatusEvidence e = seenWell();
   e.observed_share = 0.19;  // under judged_share (0.2): not judged, whatever the offset
