@@ -40,12 +40,13 @@ inline const std::map<std::string, std::set<std::string>>& allowedModules() {
        {"common", "bim", "eval", "sensors", "formats", "slam", "slam/sgraph", "slam/isgraph",
         "slam/baselines", "slam/deviations"}},
       {"run/foxglove", {"common", "bim", "sensors", "formats", "slam", "slam/deviations", "run"}},
+      {"run/bcf", {"common", "bim", "slam", "slam/deviations"}},
       {"sim", {"common", "bim", "worlds", "sensors", "formats"}},
       {"sweep", {"common", "bim", "worlds", "eval", "run", "sim"}},
       {"cli",
        {"common", "bim", "bim/optimizer", "worlds", "ifc", "raster", "eval", "sensors", "formats",
         "recordings", "slam", "slam/sgraph", "slam/isgraph", "slam/baselines", "slam/deviations",
-        "run", "run/foxglove", "sim", "sweep"}},
+        "run", "run/foxglove", "run/bcf", "sim", "sweep"}},
   };
   return allowed;
 }

@@ -133,17 +133,24 @@ void nameTopic(Topic& topic, const TopicNames& names, const std::string& element
   topic.viewpoint_guid = common::nameUuid(kBcfNamespace, key + "/viewpoint/" + names.run);
 }
 
+// A topic about the plan's element `id` of `kind` on `level`, selected by its GlobalId (if any).
+Topic elementTopic(const char* kind, const std::string& id, const std::string& ifc_guid,
+                   const std::string& level) {
+  Topic topic;
+  topic.element_kind = kind;
+  topic.element_id = id;
+  topic.ifc_guid = ifc_guid;
+  topic.level = level;
+  return topic;
+}
+
 std::optional<Topic> wallTopic(const slam::WallDeviation& wall, const bim::Plan& plan,
                                const TopicNames& names) {
   const auto verdict = wallVerdict(wall);
   if (!verdict) return std::nullopt;
   const bim::Level* level = plan.findLevel(wall.level);
   const bim::Wall* planned = level ? level->findWall(wall.wall) : nullptr;
-  Topic topic;
-  topic.element_kind = "wall";
-  topic.element_id = wall.wall;
-  topic.ifc_guid = planned ? planned->ifc_guid : "";
-  topic.level = wall.level;
+  Topic topic = elementTopic("wall", wall.wall, planned ? planned->ifc_guid : "", wall.level);
   topic.title = verdict->title;
   topic.labels = verdict->labels;
   topic.description = topic.title + levelWords(wall.level) + ". ";
@@ -171,11 +178,8 @@ std::optional<Topic> columnTopic(const slam::ColumnDeviation& column, const bim:
   }
   const bim::Level* level = plan.findLevel(column.level);
   const bim::Column* planned = level ? level->findColumn(column.column) : nullptr;
-  Topic topic;
-  topic.element_kind = "column";
-  topic.element_id = column.column;
-  topic.ifc_guid = planned ? planned->ifc_guid : "";
-  topic.level = column.level;
+  Topic topic =
+      elementTopic("column", column.column, planned ? planned->ifc_guid : "", column.level);
   const bool moved = column.status == slam::ColumnStatus::kMoved;
   topic.title = "Column " + column.column + (moved ? " moved" : " missing");
   topic.labels = {moved ? "Moved" : "Missing", moved ? kOutOfTolerance : kNotFound, "Column"};
@@ -205,9 +209,7 @@ std::optional<Topic> columnTopic(const slam::ColumnDeviation& column, const bim:
 Topic extraTopic(const slam::ExtraWall& extra, int index, const bim::Plan& plan,
                  const TopicNames& names) {
   const bim::Level* level = plan.findLevel(extra.level);
-  Topic topic;
-  topic.element_kind = "extra wall";
-  topic.level = extra.level;
+  Topic topic = elementTopic("extra wall", "", "", extra.level);
   topic.title = format("Extra wall %.0f, %.2f m long", double(index + 1), extra.length());
   topic.labels = {"Extra", kNotInModel, "Extra wall"};
   topic.description = "A wall the map has and the plan lacks" + levelWords(extra.level) +
