@@ -110,6 +110,7 @@ nlohmann::json wallJson(const slam::WallDeviation& w) {
       {"planned", {{"start", point(w.planned_start)}, {"end", point(w.planned_end)}}},
       {"evidence", evidence}};
   if (w.in_view_share) wall["in_view_share"] = *w.in_view_share;
+  if (!w.ifc_guid.empty()) wall["ifc_guid"] = w.ifc_guid;
   if (!w.evidence.empty()) {
     auto optional = [](const std::optional<double>& v) {
       return v ? nlohmann::json(*v) : nlohmann::json(nullptr);
@@ -176,6 +177,7 @@ nlohmann::json columnsJson(const slam::DeviationReport& report) {
                        {"offset_m", c.offset_m ? point(*c.offset_m) : nlohmann::json()},
                        {"directions_measured", c.directions_measured},
                        {"seen_past", c.seen_past}});
+    if (!c.ifc_guid.empty()) columns.back()["ifc_guid"] = c.ifc_guid;
   }
   return columns;
 }

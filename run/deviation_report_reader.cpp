@@ -130,6 +130,7 @@ slam::WallDeviation readWall(const JsonNode& w) {
   wall.planned_end = w.field("planned").field("end").point2();
   for (const JsonNode& e : w.field("evidence").elements()) wall.evidence.push_back(readEvidence(e));
   if (auto share = w.optionalField("in_view_share")) wall.in_view_share = share->number();
+  if (auto guid = w.optionalField("ifc_guid")) wall.ifc_guid = guid->string();
   if (auto judged = w.optionalField("judged_against")) {
     wall.shift_threshold_m = judged->field("shift_m").number();
     wall.angle_threshold_deg = judged->field("angle_deg").number();
@@ -166,6 +167,7 @@ slam::ColumnDeviation readColumn(const JsonNode& c) {
   if (!c.field("offset_m").raw().is_null()) column.offset_m = c.field("offset_m").point2();
   column.directions_measured = integer(c.field("directions_measured"));
   column.seen_past = integer(c.field("seen_past"));
+  if (auto guid = c.optionalField("ifc_guid")) column.ifc_guid = guid->string();
   return column;
 }
 

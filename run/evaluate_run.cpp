@@ -116,6 +116,21 @@ void poseErrors(const RunRecord& run, const Trajectory& placed, RunEvaluation& e
   }
 }
 
+// Each judged wall and column keeps the IFC GlobalId its plan element has, so that deviations.json
+// and deviations.bcf name it as the model it was imported from does.
+void keepGlobalIds(const bim::Plan& plan, slam::DeviationReport& report) {
+  for (slam::WallDeviation& wall : report.walls) {
+    const bim::Level* level = plan.findLevel(wall.level);
+    const bim::Wall* planned = level ? level->findWall(wall.wall) : nullptr;
+    if (planned) wall.ifc_guid = planned->ifc_guid;
+  }
+  for (slam::ColumnDeviation& column : report.columns) {
+    const bim::Level* level = plan.findLevel(column.level);
+    const bim::Column* planned = level ? level->findColumn(column.column) : nullptr;
+    if (planned) column.ifc_guid = planned->ifc_guid;
+  }
+}
+
 // The walls as built against the plan, from the map placed in it: where the map lay in the plan
 // at each keyframe is the pose in B the localizer reported for that very scan (none while it was
 // not localized: never interpolated across a gap), over the keyframe's final pose in M.
@@ -141,6 +156,7 @@ void deviations(const RunRecord& run, const std::vector<slam::LevelAgainstPlan>&
                                                       evaluation.deviations->keyframes_in_B));
     }
   }
+  if (run.setup.plan != nullptr) keepGlobalIds(*run.setup.plan, *evaluation.deviations);
   evaluation.metrics.deviations =
       deviationMetrics(*evaluation.deviations, run.setup.plan, run.setup.as_built);
 }

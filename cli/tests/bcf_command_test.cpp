@@ -170,6 +170,13 @@ TEST(BcfReport, APlanImportedFromIfcReportsAShiftedWallUnderItsGlobalId) {
     EXPECT_NEAR(std::stod(shift[1]), 0.2, 0.03) << markup;
   }
   EXPECT_TRUE(found) << "no topic selects " << kWall;
+  // deviations.json names each wall's GlobalId too.
+  bool in_report = false;
+  const json report = json::parse(sandbox.read("r/deviations.json"));
+  for (const auto& wall : report["walls"]) {
+    if (wall["wall"] == kWall) in_report = wall.value("ifc_guid", "") == kWall;
+  }
+  EXPECT_TRUE(in_report);
 }
 
 }  // namespace

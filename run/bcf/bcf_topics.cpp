@@ -150,7 +150,8 @@ std::optional<Topic> wallTopic(const slam::WallDeviation& wall, const bim::Plan&
   if (!verdict) return std::nullopt;
   const bim::Level* level = plan.findLevel(wall.level);
   const bim::Wall* planned = level ? level->findWall(wall.wall) : nullptr;
-  Topic topic = elementTopic("wall", wall.wall, planned ? planned->ifc_guid : "", wall.level);
+  Topic topic =
+      elementTopic("wall", wall.wall, planned ? planned->ifc_guid : wall.ifc_guid, wall.level);
   topic.title = verdict->title;
   topic.labels = verdict->labels;
   topic.description = topic.title + levelWords(wall.level) + ". ";
@@ -178,8 +179,8 @@ std::optional<Topic> columnTopic(const slam::ColumnDeviation& column, const bim:
   }
   const bim::Level* level = plan.findLevel(column.level);
   const bim::Column* planned = level ? level->findColumn(column.column) : nullptr;
-  Topic topic =
-      elementTopic("column", column.column, planned ? planned->ifc_guid : "", column.level);
+  Topic topic = elementTopic("column", column.column, planned ? planned->ifc_guid : column.ifc_guid,
+                             column.level);
   const bool moved = column.status == slam::ColumnStatus::kMoved;
   topic.title = "Column " + column.column + (moved ? " moved" : " missing");
   topic.labels = {moved ? "Moved" : "Missing", moved ? kOutOfTolerance : kNotFound, "Column"};

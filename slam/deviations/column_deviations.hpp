@@ -48,6 +48,7 @@ struct ColumnOptions {
 struct ColumnDeviation {
   std::string column;
   std::string level;
+  std::string ifc_guid;  // the plan column's IFC GlobalId (bim::Column::ifc_guid); "" when none
   bool round = false;
   Eigen::Vector2d planned_centre = Eigen::Vector2d::Zero();  // in B
   std::vector<Eigen::Vector2d>

@@ -34,6 +34,7 @@ struct WallEvidence {
 struct WallDeviation {
   std::string wall;
   std::string level;
+  std::string ifc_guid;  // the plan wall's IFC GlobalId (bim::Wall::ifc_guid); "" when none
   WallStatus status = WallStatus::kNotSeen;
   // Of the line the consistent evidence fits (DeviationOptions::consistent_tolerance); none
   // without evidence.
