@@ -16,20 +16,6 @@ namespace {
 constexpr int kSnapshotWidth = 800;
 constexpr int kSnapshotHeight = 600;  // 4:3, TopicCamera::aspect
 
-std::vector<sim::Renderer::Line> outlineLines(const run::bcf::TopicOutline& outline) {
-  std::vector<sim::Renderer::Line> lines;
-  const std::size_t n = outline.footprint.size();
-  for (std::size_t i = 0; i < n; ++i) {
-    const Eigen::Vector2d& p = outline.footprint[i];
-    const Eigen::Vector2d& q = outline.footprint[(i + 1) % n];
-    for (const double z : {outline.floor_z, outline.top_z}) {
-      lines.push_back({{p.x(), p.y(), z}, {q.x(), q.y(), z}});
-    }
-    lines.push_back({{p.x(), p.y(), outline.floor_z}, {p.x(), p.y(), outline.top_z}});
-  }
-  return lines;
-}
-
 // The building and a renderer, made at the first snapshot: a report without topics costs nothing.
 class Snapshots {
  public:
@@ -52,9 +38,11 @@ class Snapshots {
         return "";
       }
     }
+    std::vector<sim::Renderer::Line> lines;
+    for (const auto& [from, to] : topic.outline.edges()) lines.push_back({from, to});
     const run::bcf::TopicCamera& camera = topic.camera;
     return sim::pngBytes(renderer_->lookAt(world_->data(), camera.eye, camera.target,
-                                           camera.vertical_fov_deg, outlineLines(topic.outline)));
+                                           camera.vertical_fov_deg, lines));
   }
 
  private:

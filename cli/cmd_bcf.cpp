@@ -3,10 +3,8 @@
 #include <cstdio>
 #include <filesystem>
 
-#include "bim/plan_json.hpp"
 #include "cli/bcf_report.hpp"
 #include "common/atomic_folder.hpp"
-#include "common/content_hash.hpp"
 #include "common/input_error.hpp"
 #include "common/plural.hpp"
 #include "run/deviation_report_reader.hpp"
@@ -64,13 +62,10 @@ int BcfCommand::run() {
                                  "world_hash (the file changed since the run)");
   }
   const slam::DeviationReport report = run::loadDeviationReport(report_file.string());
-  BcfSources sources{
-      &report,
-      &scenario.plan,
-      replay ? nullptr : &scenario.as_built,
-      {replay ? common::contentHash(bim::planToJson(scenario.plan).dump()) : *metrics.world_hash,
-       metrics.method + " seed " + std::to_string(metrics.seed)},
-      !no_snapshots_};
+  BcfSources sources{&report, &scenario.plan, replay ? nullptr : &scenario.as_built,
+                     run::bcf::topicNames(replay ? "" : *metrics.world_hash, scenario.plan,
+                                          metrics.method, metrics.seed),
+                     !no_snapshots_};
   const fs::path file = dir / "deviations.bcf";
   common::AtomicFile atomic(file.string(), common::OutputKind::kBcf, true);
   const std::size_t topics = writeDeviationBcf(atomic.temporary(), sources);

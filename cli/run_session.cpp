@@ -11,12 +11,10 @@
 
 #include "bim/agraph.hpp"
 #include "bim/limits.hpp"
-#include "bim/plan_json.hpp"
 #include "bim/recorded_start_pose.hpp"
 #include "cli/bcf_report.hpp"
 #include "cli/cmd_export.hpp"
 #include "common/angles.hpp"
-#include "common/content_hash.hpp"
 #include "common/decimal_number.hpp"
 #include "common/input_error.hpp"
 #include "common/output_path.hpp"
@@ -284,14 +282,8 @@ run::RunProgress progressOn(ProgressBar& bar, double scan_period) {
 
 BcfSources bcfSourcesOf(const run::RunRecord& record, const run::RunEvaluation& evaluation) {
   const run::RunSetup& setup = record.setup;
-  // A replay has no world hash: the plan's content names its elements' topics instead.
-  const std::string world = setup.world_hash.empty()
-                                ? common::contentHash(bim::planToJson(*setup.plan).dump())
-                                : setup.world_hash;
-  return {&*evaluation.deviations,
-          setup.plan,
-          setup.as_built,
-          {world, setup.method + " seed " + std::to_string(setup.seed)}};
+  return {&*evaluation.deviations, setup.plan, setup.as_built,
+          run::bcf::topicNames(setup.world_hash, *setup.plan, setup.method, setup.seed)};
 }
 
 run::RunEvaluation finishRun(const std::string& command, const std::string& dir, bool force,

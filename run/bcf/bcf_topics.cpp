@@ -7,6 +7,7 @@
 #include <set>
 
 #include "bim/column.hpp"
+#include "bim/plan_json.hpp"
 #include "common/content_hash.hpp"
 
 namespace isg::run::bcf {
@@ -231,6 +232,24 @@ Topic extraTopic(const slam::ExtraWall& extra, int index, const bim::Plan& plan,
 }
 
 }  // namespace
+
+std::vector<std::pair<Eigen::Vector3d, Eigen::Vector3d>> TopicOutline::edges() const {
+  std::vector<std::pair<Eigen::Vector3d, Eigen::Vector3d>> edges;
+  const std::size_t n = footprint.size();
+  for (std::size_t i = 0; i < n; ++i) {
+    const Eigen::Vector2d& p = footprint[i];
+    const Eigen::Vector2d& q = footprint[(i + 1) % n];
+    for (const double z : {floor_z, top_z}) edges.push_back({{p.x(), p.y(), z}, {q.x(), q.y(), z}});
+    edges.push_back({{p.x(), p.y(), floor_z}, {p.x(), p.y(), top_z}});
+  }
+  return edges;
+}
+
+TopicNames topicNames(const std::string& world_hash, const bim::Plan& plan,
+                      const std::string& method, std::uint64_t seed) {
+  return {world_hash.empty() ? common::contentHash(bim::planToJson(plan).dump()) : world_hash,
+          method + " seed " + std::to_string(seed)};
+}
 
 Eigen::Vector3d TopicCamera::up() const {
   const Eigen::Vector3d forward = direction();

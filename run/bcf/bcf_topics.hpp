@@ -1,7 +1,9 @@
 #pragma once
 
 #include <Eigen/Geometry>
+#include <cstdint>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "bim/plan.hpp"
@@ -27,6 +29,9 @@ struct TopicCamera {
 struct TopicOutline {
   std::vector<Eigen::Vector2d> footprint;  // in order, closed
   double floor_z = 0.0, top_z = 0.0;
+  // Its edges as segments (from, to): the footprint's at the floor and at the top, and an upright
+  // at each corner.
+  std::vector<std::pair<Eigen::Vector3d, Eigen::Vector3d>> edges() const;
 };
 
 // One BCF topic (docs/deviations.md, "BCF"): an element off the plan.
@@ -54,6 +59,10 @@ struct TopicNames {
   std::string world_hash;
   std::string run;  // e.g. "is_graphs seed 1"
 };
+// A run's names: its world's content hash, or, for a replay (which has none), the plan's content
+// hash; the run as method and seed.
+TopicNames topicNames(const std::string& world_hash, const bim::Plan& plan,
+                      const std::string& method, std::uint64_t seed);
 
 // The report's topics in order: the plan's walls off the plan, missing, not built or built in
 // part (one topic per wall, its worst verdict first), the columns moved or missing, then the

@@ -33,24 +33,6 @@ std::string list(const std::string& outer, const std::string& inner,
   return xml + "  </" + outer + ">\n";
 }
 
-// The outline's edges at the floor and the top, and its corners' uprights.
-std::string outlineLines(const TopicOutline& outline) {
-  std::string xml;
-  const auto line = [&](const Eigen::Vector3d& a, const Eigen::Vector3d& b) {
-    xml += "    <Line>" + xyz("StartPoint", a) + xyz("EndPoint", b) + "</Line>\n";
-  };
-  const std::size_t n = outline.footprint.size();
-  for (std::size_t i = 0; i < n; ++i) {
-    const Eigen::Vector2d& p = outline.footprint[i];
-    const Eigen::Vector2d& q = outline.footprint[(i + 1) % n];
-    for (const double z : {outline.floor_z, outline.top_z}) {
-      line({p.x(), p.y(), z}, {q.x(), q.y(), z});
-    }
-    line({p.x(), p.y(), outline.floor_z}, {p.x(), p.y(), outline.top_z});
-  }
-  return xml;
-}
-
 }  // namespace
 
 std::string isoDateTime(std::time_t when) {
@@ -110,7 +92,11 @@ std::string viewpointXml(const Topic& topic) {
          xyz("CameraUpVector", camera.up()) + "\n    " +
          element("FieldOfView", number(camera.vertical_fov_deg)) + "\n    " +
          element("AspectRatio", number(camera.aspect)) + "\n  </PerspectiveCamera>\n";
-  xml += "  <Lines>\n" + outlineLines(topic.outline) + "  </Lines>\n";
+  xml += "  <Lines>\n";
+  for (const auto& [from, to] : topic.outline.edges()) {
+    xml += "    <Line>" + xyz("StartPoint", from) + xyz("EndPoint", to) + "</Line>\n";
+  }
+  xml += "  </Lines>\n";
   return xml + "</VisualizationInfo>\n";
 }
 

@@ -175,6 +175,14 @@ TEST(BcfTopics, OneTopicPerElementOffThePlanUnderItsGlobalId) {
   EXPECT_NE(again[0].viewpoint_guid, topics[0].viewpoint_guid);
   const auto other = deviationTopics(report(plan), plan, {"sha256:abd", "is_graphs seed 1"});
   EXPECT_NE(other[0].guid, topics[0].guid);
+  // A replay has no world hash: its plan's content names its topics.
+  const TopicNames replay = topicNames("", plan, "is_graphs", 1);
+  EXPECT_EQ(replay.world_hash.rfind("sha256:", 0), 0u);
+  EXPECT_EQ(replay.run, "is_graphs seed 1");
+  bim::Plan moved = plan;
+  moved.levels[0].walls[1].end.x() += 0.1;
+  EXPECT_NE(topicNames("", moved, "is_graphs", 1).world_hash, replay.world_hash);
+  EXPECT_EQ(topicNames("sha256:abc", plan, "is_graphs", 1).world_hash, "sha256:abc");
 }
 
 TEST_F(BcfArchive, EveryDocumentValidatesAgainstBuildingSmartsSchemas) {
