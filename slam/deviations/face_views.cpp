@@ -25,15 +25,24 @@ bool segmentsCross(const Eigen::Vector2d& p, const Eigen::Vector2d& q, const Eig
 
 FaceViews::FaceViews(const bim::AGraph& plan, const bim::WallNode& wall,
                      const std::vector<Viewpoint>& viewpoints, const DeviationOptions& options,
-                     double built_offset)
+                     const BuiltLine& built)
     : viewpoints_(viewpoints),
       options_(options),
-      min_cos_(std::cos(common::radians(options.max_incidence_deg))),
-      through_(wall.thickness + std::abs(built_offset) + options.see_through_margin) {
+      built_(built),
+      thickness_(wall.thickness),
+      min_cos_(std::cos(common::radians(options.max_incidence_deg))) {
   for (const auto& s : plan.surfaces) {
     if (s.level != wall.level || s.wall == wall.id) continue;
     for (const auto& [a, b] : s.segments) occluders_.push_back({a, b});
   }
+}
+
+double FaceViews::through(const Eigen::Vector2d& point, const Eigen::Vector2d& normal) const {
+  // The built wall's far face from this side lies thickness − o past the planned face, o how far
+  // the built line stands toward this side; moved toward the keyframe by more than the
+  // thickness, the whole built wall stands before the point, and any return past it says so.
+  const double toward = built_.offsetAt(point) * built_.left().dot(normal);
+  return std::max(0.0, thickness_ - toward) + options_.see_through_margin;
 }
 
 std::optional<FaceViews::Sightline> FaceViews::inFront(const Viewpoint& k, const Eigen::Vector2d& p,
@@ -55,6 +64,7 @@ bool FaceViews::faced(const Eigen::Vector2d& point, const Eigen::Vector2d& norma
 bool FaceViews::inView(const Eigen::Vector2d& point, const Eigen::Vector2d& normal) const {
   // Just in front of the face, so that the face itself is not met.
   const Eigen::Vector2d p = point + 0.01 * normal;
+  const double past = through(point, normal);
   int views = 0;
   for (const auto& k : viewpoints_) {
     const auto line = inFront(k, p, normal);
@@ -65,7 +75,7 @@ bool FaceViews::inView(const Eigen::Vector2d& point, const Eigen::Vector2d& norm
       // The azimuth from the sensor toward the point, in the base's frame.
       const double azimuth = std::atan2(-ray.y(), -ray.x()) - k.yaw;
       const double incidence_cos = normal.dot(ray) / range;
-      seen = k.sight->rangeToward(azimuth) > range + through_ / incidence_cos;
+      seen = k.sight->rangeToward(azimuth) > range + past / incidence_cos;
     } else {
       seen = std::none_of(occluders_.begin(), occluders_.end(),
                           [&](const auto& o) { return segmentsCross(p, k.position, o.a, o.b); });

@@ -739,13 +739,15 @@ WallProgress progressOf(const bim::AGraph& plan, const WallDeviation& wall,
     }
   }
   if (!evidence.empty()) {
-    // The most the wall stands off its axis: the fitted offset at the centre and a turn's swing
-    // to either end.
-    const double built_offset =
-        std::abs(wall.offset_m.value_or(0.0)) +
-        0.5 * planned.length * std::abs(std::tan(common::radians(wall.angle_deg.value_or(0.0))));
+    // Where the wall stands off its axis at each place along it: its fitted line, a turn's swing
+    // included.
+    BuiltLine built;
+    built.centre = planned.start + 0.5 * planned.length * planned.axis;
+    built.axis = planned.axis;
+    built.offset_m = wall.offset_m.value_or(0.0);
+    built.slope = std::tan(common::radians(wall.angle_deg.value_or(0.0)));
     return measureProgress(plan, plan.walls[planned.index], planned.start, planned.axis,
-                           planned.length, evidence, viewpoints, options, built_offset);
+                           planned.length, evidence, viewpoints, options, built);
   }
   WallProgress progress = measureProgress(plan, plan.walls[planned.index], planned.start,
                                           planned.axis, planned.length, {}, {}, options);

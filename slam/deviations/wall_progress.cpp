@@ -225,7 +225,7 @@ WallProgress measureProgress(const bim::AGraph& plan, const bim::WallNode& wall,
                              const Eigen::Vector2d& start, const Eigen::Vector2d& axis,
                              double length, const Intervals& evidence,
                              const std::vector<Viewpoint>& viewpoints,
-                             const DeviationOptions& options, double built_offset) {
+                             const DeviationOptions& options, const BuiltLine& built) {
   WallProgress progress;
   const std::vector<Face> faces = exposedFaces(plan, wall, start, axis, length, progress.exposed);
   const Intervals built_evidence = joined(evidence);
@@ -233,7 +233,7 @@ WallProgress measureProgress(const bim::AGraph& plan, const bim::WallNode& wall,
   // face of it was in view (seen past); else not seen. Views are asked only where nothing stands,
   // and not at windows (seen through, built or not).
   const double step = options.progress_step;
-  const FaceViews views(plan, wall, viewpoints, options, built_offset);
+  const FaceViews views(plan, wall, viewpoints, options, built);
   const Intervals windows = joined(windowSpans(plan, wall, start, axis, options.window_margin));
   Samples samples;
   for (const auto& [a, b] : progress.exposed) {

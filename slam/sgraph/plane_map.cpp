@@ -26,6 +26,16 @@ Eigen::Vector2d alongWall(const bim::Plane& plane) {
   return along.normalized();
 }
 
+std::pair<Eigen::Vector2d, Eigen::Vector2d> endsOnPlane(const MapPlane& plane) {
+  const Eigen::Vector2d n = plane.plane.normal.head<2>();
+  const double n2 = n.squaredNorm();
+  if (n2 < 1e-12) return {plane.start, plane.end};  // a horizontal plane: no wall to lay them on
+  const auto laid = [&](const Eigen::Vector2d& p) -> Eigen::Vector2d {
+    return p - (n.dot(p) + plane.plane.d) / n2 * n;
+  };
+  return {laid(plane.start), laid(plane.end)};
+}
+
 PlaneObservation toMap(const PlaneObservation& o, const Eigen::Isometry3d& M_T_L) {
   PlaneObservation out = o;
   out.plane = o.plane.transformed(M_T_L);

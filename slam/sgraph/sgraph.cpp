@@ -808,8 +808,9 @@ MapDiagnostics SGraph::diagnostics() const {
   for (std::size_t i = 0; i < planes_.size(); ++i) {
     const MapPlane& p = planes_[i].map;
     if (planes_[i].merged_into >= 0 || !seenAsWall(p, options_.rooms.min_wall_height)) continue;
-    MapWall wall{int(i),  p.plane.normal, p.plane.d,      p.start, p.end,
-                 p.z_min, p.z_max,        p.observations, {},      {}};
+    const auto [start, end] = endsOnPlane(p);
+    MapWall wall{int(i),  p.plane.normal, p.plane.d,      start, end,
+                 p.z_min, p.z_max,        p.observations, {},    {}};
     wall.confirmed = confirmedSpans(p, spansOf(int(i)), options_.confirmation);
     for (int k : planes_[i].observed_by) wall.keyframes.push_back(int(past_keyframes_.size()) + k);
     out.walls.push_back(std::move(wall));
@@ -842,12 +843,13 @@ nlohmann::json SGraph::toJson() const {
   }
   for (std::size_t i = 0; i < planes_.size(); ++i) {
     const auto& p = planes_[i];
+    const auto [start, end] = endsOnPlane(p.map);
     planes.push_back(
         {{"id", i},
          {"n", {p.map.plane.normal.x(), p.map.plane.normal.y(), p.map.plane.normal.z()}},
          {"d", p.map.plane.d},
-         {"start", {p.map.start.x(), p.map.start.y()}},
-         {"end", {p.map.end.x(), p.map.end.y()}},
+         {"start", {start.x(), start.y()}},
+         {"end", {end.x(), end.y()}},
          {"floor", p.floor},
          {"observations", p.map.observations}});
   }

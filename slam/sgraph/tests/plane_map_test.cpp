@@ -153,6 +153,23 @@ TEST(PlaneAssociation, ANewPlaneSeenLongerThanTheBoundKeepsItsMiddle) {
   EXPECT_EQ(newMapPlane(o, 40.0).observations, 0);      // counted when associated
 }
 
+// The optimizer moved the plane x = 2 (its ends laid there when it was last extended) to
+// x = 2.05: its ends go across onto it, their places along it kept; onto a plane turned 45° they
+// move along its normal alone.
+TEST(PlaneAssociation, AWallsEndsLieOnItsPlaneAsItStandsNow) {
+  MapPlane m = mapPlane(observe({1, 0, 0}, {2, -1}, {2, 4}));
+  m.plane = bim::Plane::throughPoint({1, 0, 0}, {2.05, 0.0, 1.5});
+  const auto [start, end] = endsOnPlane(m);
+  EXPECT_NEAR((start - Eigen::Vector2d(2.05, -1)).norm(), 0.0, 1e-12);
+  EXPECT_NEAR((end - Eigen::Vector2d(2.05, 4)).norm(), 0.0, 1e-12);
+  // The line x + y = 1 (normal (1, 1)/√2): (2, -1) is on it; (2, 4) lies 5/√2 off it and goes
+  // to (-0.5, 1.5), the foot of its perpendicular.
+  m.plane = bim::Plane::throughPoint(Eigen::Vector3d(1, 1, 0).normalized(), {1.0, 0.0, 0.0});
+  const auto [on_start, on_end] = endsOnPlane(m);
+  EXPECT_NEAR((on_start - Eigen::Vector2d(2, -1)).norm(), 0.0, 1e-12);
+  EXPECT_NEAR((on_end - Eigen::Vector2d(-0.5, 1.5)).norm(), 0.0, 1e-12);
+}
+
 TEST(PlaneAssociation, ObservationsMoveIntoTheMapFrame) {
   PlaneObservation o = observe({1, 0, 0}, {-2, -1}, {-2, 1});  // x = -2 in L, facing +x
   Eigen::Isometry3d M_T_L = Eigen::Isometry3d::Identity();
