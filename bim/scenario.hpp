@@ -9,6 +9,7 @@
 #include <utility>
 #include <vector>
 
+#include "bim/camera_models.hpp"
 #include "bim/plan.hpp"
 #include "common/input_error.hpp"
 #include "common/json_reader.hpp"
@@ -202,6 +203,22 @@ struct ImuConfig {
   double gravity = 9.81;  // m/s², along −z of the plan frame
 };
 
+// A camera the robot carries (scenario "cameras"): a model of bim/camera_models.hpp, resolved
+// when the scenario is read, under a name unique in the scenario ("cam0", …) that names its
+// folder in an EuRoC dataset.
+struct CameraConfig {
+  std::string name;
+  CameraModel model;
+  // x y z roll pitch yaw on R of the camera's optical frame (z forward, x right, y down). The
+  // default looks straight ahead from the front of the body: the optical frame turned from R's
+  // (x forward, z up) by roll −90° and yaw −90°.
+  std::array<double, 6> mount = {0.35, 0.0, 0.1, -1.5707963267948966, 0.0, -1.5707963267948966};
+  // A rig's lens: the rig's name, and the lens in the IMU's frame from the rig's calibration
+  // (then R_T_C is R_T_I · I_T_C and `mount` is not used).
+  std::string rig;
+  std::optional<Eigen::Isometry3d> I_T_C;
+};
+
 struct ExtraWall {
   std::string id;     // generated: "extra0", "extra1", ... (unique in the file)
   std::string level;  // defaults to the robot's level
@@ -284,6 +301,7 @@ struct Scenario {
   LidarConfig lidar;
   OdometryConfig odometry;
   ImuConfig imu;
+  std::vector<CameraConfig> cameras;
   AsBuilt as_built;
 };
 
@@ -299,6 +317,10 @@ Scenario loadScenario(const std::string& path, common::Warnings* warnings = null
 // against `plan` as loadScenario checks it; errors name the node's file and JSON pointer.
 AsBuilt parseAsBuiltJson(const common::JsonNode& node, const Plan& plan,
                          const std::string& robot_level);
+
+// The scenario's "cameras" array: each entry's model, name, rate, mount and (a pinhole's)
+// resolution and field of view, checked; errors name the entry's JSON pointer.
+std::vector<CameraConfig> parseCameras(const common::JsonNode& node);
 
 // Loads the plan a scenario names by file ("plan": "d1.json"): gets the string node, returns the
 // plan and where it came from. loadScenario resolves the name relative to the scenario's file;

@@ -411,10 +411,10 @@ OdometryConfig parseOdometry(const common::JsonNode& node) {
   return odometry;
 }
 
-ImuConfig parseImu(const common::JsonNode& node) {
+// `imu` holds the defaults (EuRoC's, or a camera rig's IMU); what the node says replaces them.
+ImuConfig parseImu(const common::JsonNode& node, ImuConfig imu) {
   node.expectObject({"rate_hz", "mount", "gyroscope_noise_density", "gyroscope_random_walk",
                      "accelerometer_noise_density", "accelerometer_random_walk", "gravity"});
-  ImuConfig imu;
   if (auto v = node.optionalField("rate_hz")) imu.rate_hz = v->numberInRange(10.0, 2000.0);
   if (auto v = node.optionalField("mount")) imu.mount = parseMount(*v, "IMU");
   if (auto v = node.optionalField("gyroscope_noise_density"))
@@ -758,7 +758,7 @@ Scenario parseScenario(const common::JsonNode& root, const PlanLoader& load_plan
     return scenarioFromPlan(parsePlan(root), path);
   }
   root.expectObject({"$schema", "format", "version", "name", "plan", "seed", "robot", "lidar",
-                     "odometry", "imu", "as_built"});
+                     "odometry", "imu", "cameras", "as_built"});
   if (root.has("format") && root.field("format").isString() &&
       root.field("format").string() != kScenarioFormat) {
     root.field("format").fail("unknown format " + common::inQuotes(root.field("format").string()) +
@@ -802,7 +802,19 @@ Scenario parseScenario(const common::JsonNode& root, const PlanLoader& load_plan
     }
     scenario.lidar.body_occlusion = false;
   }
-  if (auto imu = root.optionalField("imu")) scenario.imu = parseImu(*imu);
+  if (auto cameras = root.optionalField("cameras")) scenario.cameras = parseCameras(*cameras);
+  // A camera rig brings its IMU: its rate and noise are the defaults.
+  for (const CameraConfig& camera : scenario.cameras) {
+    if (camera.rig.empty()) continue;
+    const RigImu rig_imu = cameraRig(camera.rig)->imu;
+    scenario.imu.rate_hz = rig_imu.rate_hz;
+    scenario.imu.gyroscope_noise_density = rig_imu.gyroscope_noise_density;
+    scenario.imu.gyroscope_random_walk = rig_imu.gyroscope_random_walk;
+    scenario.imu.accelerometer_noise_density = rig_imu.accelerometer_noise_density;
+    scenario.imu.accelerometer_random_walk = rig_imu.accelerometer_random_walk;
+    scenario.imu.mount = rig_imu.mount;
+  }
+  if (auto imu = root.optionalField("imu")) scenario.imu = parseImu(*imu, scenario.imu);
   if (auto as_built = root.optionalField("as_built")) {
     scenario.as_built = parseAsBuilt(*as_built, scenario.plan, scenario.robot.level);
     checkAsBuiltExtent(*as_built, scenario.plan, scenario.as_built);

@@ -12,6 +12,7 @@
 #include "common/atomic_folder.hpp"
 #include "common/plural.hpp"
 #include "sim/dataset_writer.hpp"
+#include "sim/euroc_writer.hpp"
 #include "sim/simulation.hpp"
 
 namespace isg::cli {
@@ -24,7 +25,8 @@ SimulateCommand::SimulateCommand(CLI::App& parent) {
       "open doors) in the building as built; its VLP-16 scans, its IMU, its odometry and the "
       "ground truth are written to DATASET_DIR: scans/NNNNNN.pcd, imu.csv, groundtruth.tum, "
       "odometry.tum, scans.tum, metadata.json (docs/formats.md). The same seed gives a "
-      "byte-identical dataset.\n\n" +
+      "byte-identical dataset. With --euroc the scenario's cameras are rendered along the walk "
+      "(RGB, and depth where the model has it) into DATASET_DIR/mav0/ in the EuRoC layout.\n\n" +
       builtinWorldsHelp());
   app_->add_option("input", input_, "plan or scenario file, or builtin:NAME")
       ->option_text("PLAN|SCENARIO")
@@ -61,24 +63,37 @@ SimulateCommand::SimulateCommand(CLI::App& parent) {
       ->check(CLI::Range(0u, 4000000000u))
       ->capture_default_str();
   addCloudLayoutOption(*app_, cloud_layout_);
+  app_->add_flag(
+      "--euroc", euroc_,
+      "also render the scenario's cameras (\"cameras\") and write them, the IMU and the "
+      "ground truth in the EuRoC layout: DATASET_DIR/mav0/ (docs/formats.md, \"EuRoC\")");
   app_->add_flag("--force", force_, "replace DATASET_DIR (and OUT.bag, OUT.mcap) if it exists");
   app_->add_flag("-q,--quiet", quiet_, "no progress bar");
 }
 
 int SimulateCommand::run() {
   // Options about the recordings do nothing without one: said, as CLI11 says --compression's.
-  for (const char* option : {"--cloud-layout", "--stamp-offset"}) {
-    if (app_->count(option) > 0 && rosbag_.empty() && mcap_.empty()) {
-      std::fprintf(stderr,
-                   "isg: %s requires --rosbag or --mcap (it lays out their messages)\nRun 'isg "
-                   "--help' (or 'isg COMMAND --help') for usage.\n",
-                   option);
-      return kExitUsage;
-    }
+  const bool stamped = !rosbag_.empty() || !mcap_.empty() || euroc_;
+  if (app_->count("--cloud-layout") > 0 && rosbag_.empty() && mcap_.empty()) {
+    std::fprintf(stderr,
+                 "isg: --cloud-layout requires --rosbag or --mcap (it lays out their "
+                 "messages)\nRun 'isg --help' (or 'isg COMMAND --help') for usage.\n");
+    return kExitUsage;
+  }
+  if (app_->count("--stamp-offset") > 0 && !stamped) {
+    std::fprintf(stderr,
+                 "isg: --stamp-offset requires --rosbag, --mcap or --euroc (it stamps their "
+                 "messages)\nRun 'isg --help' (or 'isg COMMAND --help') for usage.\n");
+    return kExitUsage;
   }
   bim::Scenario scenario = loadInput(input_, "simulate");
   if (seed_) scenario.seed = *seed_;
   useLidarModelOption(scenario, lidar_model_);
+  if (euroc_ && scenario.cameras.empty()) {
+    throw common::InputError(inputFile(input_), "/cameras",
+                             "--euroc renders the scenario's cameras, and it has none (add "
+                             "\"cameras\": [{\"model\": \"realsense-d435\"}], docs/formats.md)");
+  }
   sim::Simulation simulation(scenario);
   checkRoute("isg simulate", scenario, simulation, duration_);
   common::checkCanCreateFolder(output_, common::OutputKind::kDataset, force_, {inputFile(input_)});
@@ -125,6 +140,7 @@ int SimulateCommand::run() {
   // written (a full disk, Ctrl-C), what this run wrote before it goes again.
   std::vector<std::string> written = {output_};
   try {
+    if (euroc_) writeEurocWithProgress(simulation);
     if (!rosbag_.empty()) {
       exportRosbagWithProgress("isg simulate", output_, rosbag_, stamp_offset_,
                                cloud_layout_ == "velodyne", force_, quiet_);
@@ -143,6 +159,29 @@ int SimulateCommand::run() {
     throw;
   }
   return kExitOk;
+}
+
+void SimulateCommand::writeEurocWithProgress(sim::Simulation& simulation) {
+  sim::EurocOptions options;
+  options.duration = duration_;
+  options.stamp_offset_s = stamp_offset_;
+  ProgressBar bar("isg simulate --euroc", quiet_);
+  const auto start = std::chrono::steady_clock::now();
+  const auto summary = sim::writeEuroc(simulation, output_, options, [&](int done, int total) {
+    const double wall =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    char detail[96];
+    std::snprintf(detail, sizeof detail, "%d/%d frames, %.1f frames/s", done, total,
+                  wall > 0 ? done / wall : 0.0);
+    bar.update(total > 0 ? double(done) / total : 1.0, detail);
+  });
+  bar.finish();
+  std::printf(
+      "isg simulate: wrote %s/mav0 (EuRoC): %s (%d with depth), %zu IMU samples, in %.1f s "
+      "(%.1f frames/s)\n",
+      output_.c_str(), common::counted(summary.frames, "frame").c_str(), summary.depth_frames,
+      summary.imu_samples, summary.wall_seconds,
+      summary.wall_seconds > 0 ? summary.frames / summary.wall_seconds : 0.0);
 }
 
 }  // namespace isg::cli

@@ -6,10 +6,15 @@
 
 #include "cli/common.hpp"
 
+namespace isg::sim {
+class Simulation;
+}
+
 namespace isg::cli {
 
 // isg simulate PLAN|SCENARIO -o DATASET_DIR [--seed N] [--duration S] [--pcd DATA]
-// [--rosbag OUT.bag] [--mcap OUT.mcap]: synthesise a dataset (and a bag, an MCAP file of it).
+// [--rosbag OUT.bag] [--mcap OUT.mcap] [--euroc]: synthesise a dataset (and a bag, an MCAP file,
+// the cameras in the EuRoC layout).
 class SimulateCommand : public Command {
  public:
   explicit SimulateCommand(CLI::App& parent);
@@ -28,8 +33,11 @@ class SimulateCommand : public Command {
   std::string compression_ = "zstd";
   std::string cloud_layout_ = "driver";
   std::uint32_t stamp_offset_ = 1000000000;
+  bool euroc_ = false;  // also render the cameras into DATASET_DIR/mav0 (EuRoC)
   bool force_ = false;
   bool quiet_ = false;
+
+  void writeEurocWithProgress(sim::Simulation& simulation);
 };
 
 }  // namespace isg::cli

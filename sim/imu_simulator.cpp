@@ -49,7 +49,7 @@ Eigen::Vector3d ImuStream::draw() {
   return v;
 }
 
-std::vector<ImuSample> ImuStream::next(std::size_t count) {
+std::vector<ImuSample> ImuStream::next(std::size_t count, std::vector<Bias>* biases) {
   std::vector<ImuSample> samples;
   const int end = int(std::min<std::size_t>(std::size_t(last_ + 1), std::size_t(next_) + count));
   if (end <= next_) return samples;
@@ -58,6 +58,7 @@ std::vector<ImuSample> ImuStream::next(std::size_t count) {
     ImuSample s = idealImuSample(trajectory_, R_T_I_, gravity_, next_ * dt_);
     // The draws in a fixed order (gyroscope, accelerometer, then the two bias steps), so the
     // stream depends on the seed alone.
+    if (biases) biases->push_back({gyro_bias_, accel_bias_});
     s.gyroscope += gyro_bias_ + gyro_white_ * draw();
     s.accelerometer += accel_bias_ + accel_white_ * draw();
     gyro_bias_ += gyro_step_ * draw();

@@ -34,8 +34,14 @@ class ImuStream {
  public:
   ImuStream(const BaseMotion& trajectory, const bim::ImuConfig& config, double duration,
             std::uint64_t seed);
-  // The next samples, at most `count`; none once the stream is over.
-  std::vector<ImuSample> next(std::size_t count);
+  // The biases a sample was read with (what EuRoC's ground truth states give).
+  struct Bias {
+    Eigen::Vector3d gyroscope = Eigen::Vector3d::Zero();
+    Eigen::Vector3d accelerometer = Eigen::Vector3d::Zero();
+  };
+  // The next samples, at most `count`; none once the stream is over. `biases`, when given,
+  // receives each sample's biases.
+  std::vector<ImuSample> next(std::size_t count, std::vector<Bias>* biases = nullptr);
   std::size_t size() const { return std::size_t(last_) + 1; }  // samples in the whole stream
 
  private:

@@ -7,6 +7,7 @@
 #include <numbers>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdio>
 #include <cstring>
@@ -114,8 +115,12 @@ struct Renderer::Egl {
   }
 };
 
-Renderer::Renderer(const mjModel& model, int width, int height)
-    : egl_(std::make_unique<Egl>()), model_(model), width_(width), height_(height) {
+Renderer::Renderer(const mjModel& model, int width, int height, Sampling sampling)
+    : egl_(std::make_unique<Egl>()),
+      model_(model),
+      width_(width),
+      height_(height),
+      sampling_(sampling) {
   if (width > model.vis.global.offwidth || height > model.vis.global.offheight) {
     throw std::runtime_error("picture larger than the world's offscreen buffer (" +
                              std::to_string(model.vis.global.offwidth) + "x" +
@@ -129,32 +134,55 @@ Renderer::Renderer(const mjModel& model, int width, int height)
     // Mesa's GL driver sets itself up on the first context (see UntrackedMesaAllocations).
     const UntrackedMesaAllocations untracked;
     mjr_defaultContext(&context_);
-    mjr_makeContext(&model, &context_, mjFONTSCALE_100);
+    // mjr_makeContext reads the samples per pixel from the model's visual options: a copy of
+    // the model's struct (its arrays shared, only read) says one sample where pixels are sampled
+    // at their centres.
+    mjModel sampled = model;
+    if (sampling == Sampling::kPixelCentres) sampled.vis.quality.offsamples = 0;
+    mjr_makeContext(&sampled, &context_, mjFONTSCALE_100);
     mjr_setBuffer(mjFB_OFFSCREEN, &context_);
   }
   mjv_defaultOption(&option_);
   option_.geomgroup[worlds::kRobotGroup] = 1;
 }
 
+void Renderer::enableSurfaceTextures(std::uint64_t seed) {
+  overlay_ = std::make_unique<TextureOverlay>(model_, seed);
+}
+
 Renderer::~Renderer() {
+  overlay_.reset();  // its GL textures go while the context is there
   mjr_freeContext(&context_);
   mjv_freeScene(&scene_);
 }
 
 Image Renderer::render(mjData& data, mjvCamera& camera, bool ceilings,
-                       const std::function<void(mjvScene&)>& adjust) {
+                       const std::function<void(mjvScene&)>& adjust, std::vector<float>* depth,
+                       const std::function<void()>& after_draw) {
   option_.geomgroup[worlds::kCeilingGroup] = ceilings;
   mjv_updateScene(&model_, &data, &option_, nullptr, &camera, mjCAT_ALL, &scene_);
   if (adjust) adjust(scene_);
   const mjrRect viewport = {0, 0, width_, height_};
   mjr_render(viewport, &scene_, &context_);
+  if (after_draw) {
+    mjr_setBuffer(mjFB_OFFSCREEN, &context_);
+    after_draw();
+  }
   Image image{width_, height_, std::vector<unsigned char>(std::size_t(3) * width_ * height_)};
   std::vector<unsigned char> flipped(image.rgb.size());
-  mjr_readPixels(flipped.data(), nullptr, viewport, &context_);
+  std::vector<float> depth_flipped(depth ? std::size_t(width_) * height_ : 0);
+  mjr_readPixels(flipped.data(), depth ? depth_flipped.data() : nullptr, viewport, &context_);
   // OpenGL's rows start at the bottom; pictures start at the top.
   for (int y = 0; y < height_; ++y) {
     std::copy_n(flipped.begin() + std::size_t(3) * width_ * (height_ - 1 - y), 3 * width_,
                 image.rgb.begin() + std::size_t(3) * width_ * y);
+  }
+  if (depth) {
+    depth->resize(depth_flipped.size());
+    for (int y = 0; y < height_; ++y) {
+      std::copy_n(depth_flipped.begin() + std::size_t(width_) * (height_ - 1 - y), width_,
+                  depth->begin() + std::size_t(width_) * y);
+    }
   }
   return image;
 }
@@ -259,6 +287,78 @@ Image Renderer::lookAt(mjData& data, const Eigen::Vector3d& eye, const Eigen::Ve
     const float red[4] = {0.9f, 0.1f, 0.1f, 1.0f};
     for (const Line& line : lines) addBar(scene, line.from, line.to, 0.025, red);
   });
+}
+
+Image Renderer::camera(mjData& data, const Eigen::Isometry3d& B_T_C,
+                       const bim::PinholeIntrinsics& k, double far_m, std::vector<float>* depth) {
+  if (sampling_ != Sampling::kPixelCentres) {
+    throw std::logic_error("Renderer::camera needs a renderer that samples pixel centres");
+  }
+  if (k.width != width_ || k.height != height_) {
+    throw std::logic_error("Renderer::camera: the renderer is " + std::to_string(width_) + "x" +
+                           std::to_string(height_) + ", the camera " + std::to_string(k.width) +
+                           "x" + std::to_string(k.height));
+  }
+  // Near enough for a camera against a wall, far enough from 0 that the 24-bit depth buffer
+  // resolves 10 m to a tenth of a millimetre (its step is about z² / near × 2⁻²⁴).
+  constexpr double kNear = 0.05;
+  mjvCamera free_camera;
+  mjv_defaultCamera(&free_camera);
+  free_camera.type = mjCAMERA_FREE;
+  const bool robot_shown = option_.geomgroup[worlds::kRobotGroup];
+  option_.geomgroup[worlds::kRobotGroup] = 0;
+  // Sites (the rooms' markers) are for people's pictures; a camera sees the building.
+  std::array<mjtByte, mjNGROUP> site_groups;
+  std::copy_n(option_.sitegroup, mjNGROUP, site_groups.begin());
+  std::fill_n(option_.sitegroup, mjNGROUP, mjtByte(0));
+  Image image = render(
+      data, free_camera, true,
+      [&](mjvScene& scene) {
+        // The optical frame's axes in B: forward is its z, up is its −y.
+        const Eigen::Vector3d eye = B_T_C.translation();
+        const Eigen::Vector3d forward = B_T_C.linear().col(2);
+        const Eigen::Vector3d up = -B_T_C.linear().col(1);
+        // The frustum through the image's outer pixel edges (u = −½ … width − ½): MuJoCo makes
+        // its half-width from the viewport's aspect and the height, which holds for square
+        // pixels; its centre is offset when the principal point is off the image's centre.
+        const double top = (k.cy + 0.5) / k.fy * kNear;
+        const double bottom = -(k.height - 0.5 - k.cy) / k.fy * kNear;
+        const double centre = (k.width - 1.0 - 2.0 * k.cx) / (2.0 * k.fx) * kNear;
+        // Ceilings are see-through in pictures from above (the world's ceiling material); to a
+        // camera inside the building they are solid, and drawn into the depth buffer.
+        for (int i = 0; i < scene.ngeom; ++i) {
+          mjvGeom& g = scene.geoms[i];
+          if (g.objtype == mjOBJ_GEOM && model_.geom_group[g.objid] == worlds::kCeilingGroup) {
+            g.rgba[3] = 1.0f;
+            g.transparent = 0;
+          }
+        }
+        for (int e = 0; e < 2; ++e) {
+          mjvGLCamera& c = scene.camera[e];
+          for (int i = 0; i < 3; ++i) {
+            c.pos[i] = float(eye[i]);
+            c.forward[i] = float(forward[i]);
+            c.up[i] = float(up[i]);
+          }
+          c.frustum_near = float(kNear);
+          c.frustum_far = float(far_m);
+          c.frustum_center = float(centre);
+          c.frustum_top = float(top);
+          c.frustum_bottom = float(bottom);
+        }
+      },
+      depth,
+      overlay_ ? std::function<void()>([&] { overlay_->draw(data, B_T_C, k, kNear, far_m); })
+               : std::function<void()>());
+  option_.geomgroup[worlds::kRobotGroup] = robot_shown;
+  std::copy(site_groups.begin(), site_groups.end(), option_.sitegroup);
+  if (depth) {
+    // The buffer's d in [0, 1] back to the distance along the axis: OpenGL's perspective maps
+    // z in [near, far] to d = (1/near − 1/z) / (1/near − 1/far).
+    const double a = 1.0 / kNear, b = 1.0 / kNear - 1.0 / far_m;
+    for (float& d : *depth) d = d >= 1.0f ? 0.0f : float(1.0 / (a - double(d) * b));
+  }
+  return image;
 }
 
 void writePng(const std::string& path, const Image& image) {

@@ -27,6 +27,7 @@ enum Stream : std::uint64_t {
   kImuStream = 4,
   kGaitStream = 5
 };
+static_assert(kCameraNoiseStream > kGaitStream, "the cameras' stream is a stream of its own");
 
 GaitConfig gaitOf(const bim::RobotConfig& robot, std::mt19937_64 rng) {
   GaitConfig gait;

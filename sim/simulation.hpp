@@ -22,6 +22,10 @@ namespace isg::sim {
 // trajectory, the VLP-16 and the odometry. Everything random is drawn from generators derived
 // from the scenario's seed and what is being drawn (the route, the odometry, scan k), so any
 // scan can be made on its own and the same seed always gives the same data.
+// The generator stream of the cameras' noise (Simulation::generator; the others are the
+// simulation's own).
+inline constexpr std::uint64_t kCameraNoiseStream = 6;
+
 class Simulation {
  public:
   explicit Simulation(const bim::Scenario& scenario);

@@ -163,16 +163,31 @@ TEST(BoundedInput, ARegionThickerThanAWallMayBeIsSaid) {
 // Options that do nothing where they are given are said, not ignored.
 TEST(BoundedInput, ARecordingsOptionWithoutARecordingIsBadUsage) {
   testing::Sandbox sandbox("bounded_unused_options");
-  for (const char* option : {"--cloud-layout velodyne", "--stamp-offset 5"}) {
+  const std::pair<const char*, const char*> cases[] = {
+      {"--cloud-layout velodyne",
+       "isg: --cloud-layout requires --rosbag or --mcap (it lays out their messages)\n"},
+      {"--stamp-offset 5",
+       "isg: --stamp-offset requires --rosbag, --mcap or --euroc (it stamps their messages)\n"}};
+  for (const auto& [option, message] : cases) {
     const auto result =
         sandbox.run(std::string("simulate builtin:d1 --duration 1 -q -o ds ") + option);
     EXPECT_EQ(result.exit_code, 2) << option;
-    const std::string name = std::string(option).substr(0, std::string(option).find(' '));
-    EXPECT_EQ(result.err, "isg: " + name +
-                              " requires --rosbag or --mcap (it lays out their messages)\nRun "
-                              "'isg --help' (or 'isg COMMAND --help') for usage.\n");
+    EXPECT_EQ(result.err,
+              std::string(message) + "Run 'isg --help' (or 'isg COMMAND --help') for usage.\n");
     EXPECT_FALSE(sandbox.exists("ds"));
   }
+}
+
+// --euroc renders the scenario's cameras: a scenario without any is refused before anything is
+// simulated or written.
+TEST(BoundedInput, EurocWithoutCamerasIsRefused) {
+  testing::Sandbox sandbox("bounded_euroc_no_cameras");
+  const auto result = sandbox.run("simulate builtin:d1 --duration 1 -q -o ds --euroc");
+  EXPECT_EQ(result.exit_code, 1);
+  EXPECT_NE(result.err.find("/cameras: --euroc renders the scenario's cameras, and it has none"),
+            std::string::npos)
+      << result.err;
+  EXPECT_FALSE(sandbox.exists("ds"));
 }
 
 }  // namespace
