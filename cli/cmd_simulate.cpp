@@ -4,6 +4,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <iostream>
+#include <optional>
 #include <vector>
 
 #include "cli/cmd_export.hpp"
@@ -117,6 +118,15 @@ int SimulateCommand::run() {
   options.pcd = pcd_ == "binary" ? formats::dataset::PcdData::kBinary
                                  : formats::dataset::PcdData::kBinaryCompressed;
   ProgressBar bar("isg simulate", quiet_);
+  std::optional<sim::EurocSummary> euroc;
+  if (euroc_) {
+    // Rendered into the dataset's folder before it is renamed into place: the cameras land
+    // with the scans, or nothing does.
+    options.also_write = [&](const std::filesystem::path& folder) {
+      bar.finish();
+      euroc = writeEurocWithProgress(simulation, folder.string());
+    };
+  }
   const auto start = std::chrono::steady_clock::now();
   const double period = simulation.scanPeriod();
   const auto summary = sim::writeDataset(simulation, output_, options, [&](int done, int total) {
@@ -136,11 +146,18 @@ int SimulateCommand::run() {
       summary.scan_bytes / 1e6, pcd_.c_str(), summary.sim_seconds, summary.wall_seconds,
       summary.wall_seconds > 0 ? summary.sim_seconds / summary.wall_seconds : 0.0,
       common::counted(simulation.route().visited_rooms.size(), "room").c_str());
+  if (euroc) {
+    std::printf(
+        "isg simulate: wrote %s/mav0 (EuRoC): %s (%d with depth), %zu IMU samples, in %.1f s "
+        "(%.1f frames/s)\n",
+        output_.c_str(), common::counted(euroc->frames, "frame").c_str(), euroc->depth_frames,
+        euroc->imu_samples, euroc->wall_seconds,
+        euroc->wall_seconds > 0 ? euroc->frames / euroc->wall_seconds : 0.0);
+  }
   // The command writes the dataset and its recordings, or nothing: when a recording cannot be
   // written (a full disk, Ctrl-C), what this run wrote before it goes again.
   std::vector<std::string> written = {output_};
   try {
-    if (euroc_) writeEurocWithProgress(simulation);
     if (!rosbag_.empty()) {
       exportRosbagWithProgress("isg simulate", output_, rosbag_, stamp_offset_,
                                cloud_layout_ == "velodyne", force_, quiet_);
@@ -161,13 +178,14 @@ int SimulateCommand::run() {
   return kExitOk;
 }
 
-void SimulateCommand::writeEurocWithProgress(sim::Simulation& simulation) {
+sim::EurocSummary SimulateCommand::writeEurocWithProgress(sim::Simulation& simulation,
+                                                          const std::string& folder) {
   sim::EurocOptions options;
   options.duration = duration_;
   options.stamp_offset_s = stamp_offset_;
   ProgressBar bar("isg simulate --euroc", quiet_);
   const auto start = std::chrono::steady_clock::now();
-  const auto summary = sim::writeEuroc(simulation, output_, options, [&](int done, int total) {
+  const auto summary = sim::writeEuroc(simulation, folder, options, [&](int done, int total) {
     const double wall =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     char detail[96];
@@ -176,12 +194,7 @@ void SimulateCommand::writeEurocWithProgress(sim::Simulation& simulation) {
     bar.update(total > 0 ? double(done) / total : 1.0, detail);
   });
   bar.finish();
-  std::printf(
-      "isg simulate: wrote %s/mav0 (EuRoC): %s (%d with depth), %zu IMU samples, in %.1f s "
-      "(%.1f frames/s)\n",
-      output_.c_str(), common::counted(summary.frames, "frame").c_str(), summary.depth_frames,
-      summary.imu_samples, summary.wall_seconds,
-      summary.wall_seconds > 0 ? summary.frames / summary.wall_seconds : 0.0);
+  return summary;
 }
 
 }  // namespace isg::cli

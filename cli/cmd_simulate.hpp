@@ -6,9 +6,7 @@
 
 #include "cli/common.hpp"
 
-namespace isg::sim {
-class Simulation;
-}
+#include "sim/euroc_writer.hpp"
 
 namespace isg::cli {
 
@@ -37,7 +35,9 @@ class SimulateCommand : public Command {
   bool force_ = false;
   bool quiet_ = false;
 
-  void writeEurocWithProgress(sim::Simulation& simulation);
+  // The cameras into `folder`/mav0 (the dataset's folder while it is written), with a progress
+  // bar of frames per second.
+  sim::EurocSummary writeEurocWithProgress(sim::Simulation& simulation, const std::string& folder);
 };
 
 }  // namespace isg::cli

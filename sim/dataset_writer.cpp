@@ -298,9 +298,10 @@ DatasetSummary writeDataset(Simulation& sim, const std::string& dir, const Datas
         writeFile(temporary / kImu, imuText(imu));
         writeFile(temporary / kMetadata,
                   metadata(sim, duration, options, scans, int(imu.size())).dump(2) + "\n");
+        summary.wall_seconds =
+            std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+        if (options.also_write) options.also_write(temporary);
       });
-  summary.wall_seconds =
-      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return summary;
 }
 

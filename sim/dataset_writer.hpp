@@ -1,5 +1,6 @@
 #pragma once
 
+#include <filesystem>
 #include <functional>
 #include <string>
 
@@ -15,6 +16,9 @@ struct DatasetOptions {
   bool overwrite = false;  // replace an existing dataset folder
   int threads = 2;
   formats::dataset::PcdData pcd = formats::dataset::kDefaultPcdData;
+  // Writes more into the dataset's folder while it is still the temporary one (the cameras'
+  // EuRoC files): it lands with the rest or not at all.
+  std::function<void(const std::filesystem::path& folder)> also_write;
 };
 
 struct DatasetSummary {
@@ -32,9 +36,9 @@ using ProgressCallback = std::function<void(int done, int total)>;
 // Writes the dataset folder (sensors/dataset_format.hpp, docs/formats.md): scans/NNNNNN.pcd (PCD,
 // DATA as options.pcd, fields x y z intensity ring time, LiDAR frame, not deskewed),
 // groundtruth.tum (B_T_R), odometry.tum (M_T_R), scans.tum (B_T_L at each scan stamp) and
-// metadata.json. Everything is written into a temporary folder beside `dir` and renamed into place
-// at the end: a failed run leaves nothing behind. Errors about the folder are InputErrors naming
-// it.
+// metadata.json (and what options.also_write adds). Everything is written into a temporary folder
+// beside `dir` and renamed into place at the end: a failed run leaves nothing behind. Errors about
+// the folder are InputErrors naming it.
 DatasetSummary writeDataset(Simulation& simulation, const std::string& dir,
                             const DatasetOptions& options, const ProgressCallback& progress);
 
