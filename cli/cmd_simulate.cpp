@@ -72,32 +72,25 @@ SimulateCommand::SimulateCommand(CLI::App& parent) {
   app_->add_flag("-q,--quiet", quiet_, "no progress bar");
 }
 
-int SimulateCommand::run() {
+bool SimulateCommand::optionsAgree() const {
   // Options about the recordings do nothing without one: said, as CLI11 says --compression's.
   const bool stamped = !rosbag_.empty() || !mcap_.empty() || euroc_;
   if (app_->count("--cloud-layout") > 0 && rosbag_.empty() && mcap_.empty()) {
     std::fprintf(stderr,
                  "isg: --cloud-layout requires --rosbag or --mcap (it lays out their "
                  "messages)\nRun 'isg --help' (or 'isg COMMAND --help') for usage.\n");
-    return kExitUsage;
+    return false;
   }
   if (app_->count("--stamp-offset") > 0 && !stamped) {
     std::fprintf(stderr,
                  "isg: --stamp-offset requires --rosbag, --mcap or --euroc (it stamps their "
                  "messages)\nRun 'isg --help' (or 'isg COMMAND --help') for usage.\n");
-    return kExitUsage;
+    return false;
   }
-  bim::Scenario scenario = loadInput(input_, "simulate");
-  if (seed_) scenario.seed = *seed_;
-  useLidarModelOption(scenario, lidar_model_);
-  if (euroc_ && scenario.cameras.empty()) {
-    throw common::InputError(inputFile(input_), "/cameras",
-                             "--euroc renders the scenario's cameras, and it has none (add "
-                             "\"cameras\": [{\"model\": \"realsense-d435\"}], docs/formats.md)");
-  }
-  sim::Simulation simulation(scenario);
-  checkRoute("isg simulate", scenario, simulation, duration_);
-  common::checkCanCreateFolder(output_, common::OutputKind::kDataset, force_, {inputFile(input_)});
+  return true;
+}
+
+void SimulateCommand::checkRecordingPaths() const {
   if (!rosbag_.empty()) {
     // Checked before hours of simulation, as the folder is: the bag may not be the scenario, nor
     // lie in the dataset it is made from.
@@ -111,6 +104,22 @@ int SimulateCommand::run() {
     common::checkOutputPath(mcap_, {common::OutputKind::kMcap, inputs, force_});
     common::AtomicFile probe(mcap_, common::OutputKind::kMcap, force_);
   }
+}
+
+int SimulateCommand::run() {
+  if (!optionsAgree()) return kExitUsage;
+  bim::Scenario scenario = loadInput(input_, "simulate");
+  if (seed_) scenario.seed = *seed_;
+  useLidarModelOption(scenario, lidar_model_);
+  if (euroc_ && scenario.cameras.empty()) {
+    throw common::InputError(inputFile(input_), "/cameras",
+                             "--euroc renders the scenario's cameras, and it has none (add "
+                             "\"cameras\": [{\"model\": \"realsense-d435\"}], docs/formats.md)");
+  }
+  sim::Simulation simulation(scenario);
+  checkRoute("isg simulate", scenario, simulation, duration_);
+  common::checkCanCreateFolder(output_, common::OutputKind::kDataset, force_, {inputFile(input_)});
+  checkRecordingPaths();
   sim::DatasetOptions options;
   options.duration = duration_;
   options.overwrite = force_;

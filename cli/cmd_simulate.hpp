@@ -35,6 +35,11 @@ class SimulateCommand : public Command {
   bool force_ = false;
   bool quiet_ = false;
 
+  // Options about the recordings do nothing without one: false, said as CLI11 says
+  // --compression's, when one is given without them.
+  bool optionsAgree() const;
+  // The bag and MCAP file may be written (checked before hours of simulation).
+  void checkRecordingPaths() const;
   // The cameras into `folder`/mav0 (the dataset's folder while it is written), with a progress
   // bar of frames per second.
   sim::EurocSummary writeEurocWithProgress(sim::Simulation& simulation, const std::string& folder);

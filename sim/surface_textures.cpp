@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <random>
+#include <utility>
 
 #include "sim/fast_random.hpp"
 
@@ -104,6 +105,19 @@ void blotches(Field& f, Xoshiro256& rng, int count, double radius, double lo, do
   }
 }
 
+// Strokes: `count` straight marks anywhere on the tile, in any direction, their length (pixels),
+// width (pixels) and darkening drawn from the ranges given.
+void strokes(Field& f, Xoshiro256& rng, int count, std::pair<double, double> length,
+             std::pair<double, double> width, std::pair<double, double> factor) {
+  for (int i = 0; i < count; ++i) {
+    const double x = draw(rng, 0, f.size()), y = draw(rng, 0, f.size());
+    const double angle = draw(rng, 0, 6.2832), l = draw(rng, length.first, length.second);
+    const double w = draw(rng, width.first, width.second);
+    f.line(x, y, x + l * std::cos(angle), y + l * std::sin(angle), w,
+           draw(rng, factor.first, factor.second));
+  }
+}
+
 // Cast concrete on a 2.4 m tile: panels of 1.2 m × 2.4 m between formwork joints, tie holes on
 // a 0.6 m grid, mottle and stains.
 SurfaceTexture concrete(Xoshiro256& rng, int size) {
@@ -136,11 +150,7 @@ SurfaceTexture plasterboard(Xoshiro256& rng, int size) {
   for (double x = 0.0; x < t.metres; x += 0.6) {
     for (double y = 0.15; y < t.metres; y += 0.3) f.disc(x * px + 0.02 * px, y * px, 2.0, 0.55);
   }
-  for (int i = 0; i < 12; ++i) {
-    const double x = draw(rng, 0, size), y = draw(rng, 0, size);
-    const double angle = draw(rng, 0, 6.2832), length = draw(rng, 0.05, 0.25) * px;
-    f.line(x, y, x + length * std::cos(angle), y + length * std::sin(angle), 1.5, 0.5);
-  }
+  strokes(f, rng, 12, {0.05 * px, 0.25 * px}, {1.5, 1.5}, {0.5, 0.5});
   blotches(f, rng, 30, 0.03 * px, 0.85, 0.97);
   t.rgb = f.rgb({0.95, 0.94, 0.91});
   return t;
@@ -153,12 +163,7 @@ SurfaceTexture paint(Xoshiro256& rng, int size) {
   f.addNoise(rng, 16, 0.04);
   f.addNoise(rng, 96, 0.03);
   const double px = size / t.metres;
-  for (int i = 0; i < 25; ++i) {
-    const double x = draw(rng, 0, size), y = draw(rng, 0, size);
-    const double angle = draw(rng, 0, 6.2832), length = draw(rng, 0.03, 0.2) * px;
-    f.line(x, y, x + length * std::cos(angle), y + length * std::sin(angle), draw(rng, 1.5, 4.0),
-           draw(rng, 0.55, 0.8));
-  }
+  strokes(f, rng, 25, {0.03 * px, 0.2 * px}, {1.5, 4.0}, {0.55, 0.8});
   blotches(f, rng, 60, 0.015 * px, 0.5, 0.8);
   const std::array<double, 3> colour = {draw(rng, 0.6, 0.95), draw(rng, 0.6, 0.95),
                                         draw(rng, 0.6, 0.95)};
