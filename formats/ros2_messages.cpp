@@ -42,6 +42,13 @@ const std::pair<const char*, const char*> kDefinitions[] = {
      "std_msgs/Header header\nstring child_frame_id\ngeometry_msgs/Transform transform\n"},
     {"tf2_msgs/TFMessage", "geometry_msgs/TransformStamped[] transforms\n"},
     {"std_msgs/String", "string data\n"},
+    {"sensor_msgs/CompressedImage", "std_msgs/Header header\nstring format\nuint8[] data\n"},
+    {"sensor_msgs/RegionOfInterest",
+     "uint32 x_offset\nuint32 y_offset\nuint32 height\nuint32 width\nbool do_rectify\n"},
+    {"sensor_msgs/CameraInfo",
+     "std_msgs/Header header\nuint32 height\nuint32 width\nstring distortion_model\n"
+     "float64[] d\nfloat64[9] k\nfloat64[9] r\nfloat64[12] p\nuint32 binning_x\n"
+     "uint32 binning_y\nsensor_msgs/RegionOfInterest roi\n"},
 };
 
 const char* definitionOf(const std::string& name) {
@@ -113,6 +120,13 @@ MessageType tfMessageType() {
                                             "geometry_msgs/Vector3", "geometry_msgs/Quaternion"});
 }
 MessageType stringType() { return messageType("std_msgs/String", {}); }
+MessageType compressedImageType() {
+  return messageType("sensor_msgs/CompressedImage", {"std_msgs/Header", "builtin_interfaces/Time"});
+}
+MessageType cameraInfoType() {
+  return messageType("sensor_msgs/CameraInfo", {"std_msgs/Header", "builtin_interfaces/Time",
+                                                "sensor_msgs/RegionOfInterest"});
+}
 
 std::string pointCloud2(const std::vector<sensors::ScanPoint>& points, Time stamp,
                         const std::string& frame, const CloudConvention& convention) {
@@ -184,6 +198,33 @@ std::string tfMessage(const std::vector<StampedTransform>& transforms) {
 std::string stringMessage(const std::string& text) {
   CdrWriter out;
   out.string(text);
+  return out.data();
+}
+
+std::string compressedImage(const std::string& format, const std::string& data, Time stamp,
+                            const std::string& frame) {
+  CdrWriter out;
+  writeHeader(out, stamp, frame);
+  out.string(format);
+  out.bytes(data);
+  return out.data();
+}
+
+std::string cameraInfo(const CameraCalibration& calibration, Time stamp, const std::string& frame) {
+  CdrWriter out;
+  writeHeader(out, stamp, frame);
+  out.u32(std::uint32_t(calibration.height));
+  out.u32(std::uint32_t(calibration.width));
+  out.string(calibration.distortion_model);
+  out.u32(std::uint32_t(calibration.distortion.size()));
+  for (double d : calibration.distortion) out.f64(d);
+  doubles(out, calibration.K());
+  doubles(out, calibration.R());
+  doubles(out, calibration.P());
+  out.u32(0);                              // binning_x
+  out.u32(0);                              // binning_y
+  for (int i = 0; i < 4; ++i) out.u32(0);  // roi: x_offset, y_offset, height, width
+  out.boolean(false);                      // roi.do_rectify
   return out.data();
 }
 

@@ -5,6 +5,7 @@
 #include <string>
 #include <vector>
 
+#include "formats/camera_calibration.hpp"
 #include "formats/driver_point_cloud.hpp"
 #include "sensors/messages.hpp"
 
@@ -33,6 +34,8 @@ MessageType imuType();
 MessageType odometryType();
 MessageType tfMessageType();
 MessageType stringType();
+MessageType compressedImageType();
+MessageType cameraInfoType();
 
 // sensor_msgs/msg/PointCloud2 in `convention`'s driver layout (formats/driver_point_cloud.hpp;
 // the Velodyne driver's by default: x y z intensity ring time, point_step 22), height 1, dense.
@@ -54,5 +57,12 @@ struct StampedTransform {
 std::string tfMessage(const std::vector<StampedTransform>& transforms);
 // std_msgs/msg/String.
 std::string stringMessage(const std::string& text);
+
+// sensor_msgs/msg/CompressedImage, as the ROS 1 bag's (formats/ros_messages.hpp).
+std::string compressedImage(const std::string& format, const std::string& data, Time stamp,
+                            const std::string& frame);
+
+// sensor_msgs/msg/CameraInfo of an unrectified camera, as the ROS 1 bag's.
+std::string cameraInfo(const CameraCalibration& calibration, Time stamp, const std::string& frame);
 
 }  // namespace isg::formats::ros2

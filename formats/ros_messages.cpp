@@ -3,11 +3,14 @@
 #include <geometry_msgs/PoseStamped.h>
 #include <nav_msgs/Odometry.h>
 #include <ros/serialization.h>
+#include <sensor_msgs/CameraInfo.h>
+#include <sensor_msgs/CompressedImage.h>
 #include <sensor_msgs/Imu.h>
 #include <sensor_msgs/PointCloud2.h>
 #include <std_msgs/String.h>
 #include <tf2_msgs/TFMessage.h>
 
+#include <algorithm>
 #include <cstring>
 
 namespace isg::formats::ros1 {
@@ -77,6 +80,33 @@ RosMessageType odometryType() { return typeOf<nav_msgs::Odometry>(); }
 RosMessageType tfMessageType() { return typeOf<tf2_msgs::TFMessage>(); }
 RosMessageType stringType() { return typeOf<std_msgs::String>(); }
 RosMessageType poseStampedType() { return typeOf<geometry_msgs::PoseStamped>(); }
+RosMessageType compressedImageType() { return typeOf<sensor_msgs::CompressedImage>(); }
+RosMessageType cameraInfoType() { return typeOf<sensor_msgs::CameraInfo>(); }
+
+std::string compressedImage(const std::string& format, const std::string& data, RosTime stamp,
+                            std::uint32_t seq, const std::string& frame) {
+  sensor_msgs::CompressedImage message;
+  message.header = header(stamp, seq, frame);
+  message.format = format;
+  message.data.assign(data.begin(), data.end());
+  return serialise(message);
+}
+
+std::string cameraInfo(const CameraCalibration& calibration, RosTime stamp, std::uint32_t seq,
+                       const std::string& frame) {
+  sensor_msgs::CameraInfo message;
+  message.header = header(stamp, seq, frame);
+  message.width = std::uint32_t(calibration.width);
+  message.height = std::uint32_t(calibration.height);
+  message.distortion_model = calibration.distortion_model;
+  message.D = calibration.distortion;
+  const auto K = calibration.K(), R = calibration.R();
+  const auto P = calibration.P();
+  std::copy(K.begin(), K.end(), message.K.begin());
+  std::copy(R.begin(), R.end(), message.R.begin());
+  std::copy(P.begin(), P.end(), message.P.begin());
+  return serialise(message);
+}
 
 std::string stringMessage(const std::string& text) {
   std_msgs::String message;

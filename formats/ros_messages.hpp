@@ -5,6 +5,7 @@
 #include <string>
 #include <vector>
 
+#include "formats/camera_calibration.hpp"
 #include "formats/driver_point_cloud.hpp"
 #include "formats/rosbag_writer.hpp"
 #include "sensors/messages.hpp"
@@ -21,6 +22,8 @@ RosMessageType odometryType();
 RosMessageType tfMessageType();
 RosMessageType stringType();
 RosMessageType poseStampedType();  // read from recordings, never written
+RosMessageType compressedImageType();
+RosMessageType cameraInfoType();
 
 // sensor_msgs/PointCloud2 in `convention`'s driver layout (formats/driver_point_cloud.hpp; the
 // Velodyne driver's by default: x y z intensity ring time, point_step 22), height 1, dense.
@@ -48,5 +51,14 @@ std::string tfMessage(const std::vector<StampedTransform>& transforms);
 
 // std_msgs/String.
 std::string stringMessage(const std::string& text);
+
+// sensor_msgs/CompressedImage: `data` as it is, `format` in image_transport's words ("rgb8; jpeg
+// compressed bgr8", "16UC1; png compressed ").
+std::string compressedImage(const std::string& format, const std::string& data, RosTime stamp,
+                            std::uint32_t seq, const std::string& frame);
+
+// sensor_msgs/CameraInfo of an unrectified camera (R the identity, no binning, no region).
+std::string cameraInfo(const CameraCalibration& calibration, RosTime stamp, std::uint32_t seq,
+                       const std::string& frame);
 
 }  // namespace isg::formats::ros1

@@ -2,6 +2,11 @@
 
 #include <algorithm>
 #include <cmath>
+#include <fstream>
+#include <iterator>
+
+#include "common/input_error.hpp"
+#include "formats/jpeg_frame.hpp"
 
 namespace isg::recordings {
 
@@ -20,12 +25,27 @@ BodyTwist twistBetween(const common::StampedPose& before, const common::StampedP
 }
 
 // One entry per message, in the order ties are broken.
-enum class Kind { kMounts, kOdometry, kImu, kCloud, kGroundTruth };
+enum class Kind { kMounts, kOdometry, kImu, kCloud, kImage, kGroundTruth };
 struct Entry {
   double t;
   Kind kind;
   int index;
+  int camera = 0;  // for kImage
 };
+
+std::string fileBytes(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  if (!in.good() && !in.eof()) throw common::InputError(path, "", "cannot be read");
+  if (bytes.empty()) throw common::InputError(path, "", "is empty");
+  return bytes;
+}
+
+CameraImage imageOf(const formats::EurocCamera& camera, int i) {
+  const std::string& path = camera.frames[i].path;
+  if (camera.depth) return {&camera, rosbag_names::kDepthPngFormat, fileBytes(path)};
+  return {&camera, rosbag_names::kJpegFormat, formats::rgbPngFileToJpeg(path)};
+}
 
 }  // namespace
 
@@ -54,7 +74,9 @@ std::string describeCloudConvention(const formats::CloudConvention& convention) 
   return "the Velodyne driver's (x y z intensity ring time; ring 0 = lowest)";
 }
 
-void visitDatasetMessages(formats::DatasetReader& dataset, DatasetMessageVisitor& visitor,
+void visitDatasetMessages(formats::DatasetReader& dataset,
+                          const std::vector<formats::EurocCamera>& cameras,
+                          DatasetMessageVisitor& visitor,
                           const std::function<void(int, int)>& progress) {
   std::vector<Entry> entries;
   for (int i = 0; i < int(dataset.odometry().size()); ++i)
@@ -63,6 +85,12 @@ void visitDatasetMessages(formats::DatasetReader& dataset, DatasetMessageVisitor
     entries.push_back({dataset.imu()[i].t, Kind::kImu, i});
   for (int i = 0; i < dataset.scanCount(); ++i)
     entries.push_back({dataset.scanStamp(i), Kind::kCloud, i});
+  int items = dataset.scanCount();
+  for (int c = 0; c < int(cameras.size()); ++c) {
+    for (int i = 0; i < int(cameras[c].frames.size()); ++i, ++items) {
+      entries.push_back({cameras[c].frames[i].t, Kind::kImage, i, c});
+    }
+  }
   for (int i = 0; i < int(dataset.groundTruth().size()); ++i)
     entries.push_back({dataset.groundTruth()[i].t, Kind::kGroundTruth, i});
   // The mounts come first, at the first message's time.
@@ -72,7 +100,8 @@ void visitDatasetMessages(formats::DatasetReader& dataset, DatasetMessageVisitor
   }
   entries.push_back({earliest, Kind::kMounts, 0});
   std::stable_sort(entries.begin(), entries.end(), [](const Entry& a, const Entry& b) {
-    return a.t != b.t ? a.t < b.t : a.kind < b.kind;
+    if (a.t != b.t) return a.t < b.t;
+    return a.kind != b.kind ? a.kind < b.kind : a.camera < b.camera;
   });
 
   ImuVariances variances;
@@ -80,7 +109,7 @@ void visitDatasetMessages(formats::DatasetReader& dataset, DatasetMessageVisitor
     variances.gyroscope = std::pow(noise->gyroscope_noise_density, 2) * noise->rate_hz;
     variances.accelerometer = std::pow(noise->accelerometer_noise_density, 2) * noise->rate_hz;
   }
-  int scans_done = 0;
+  int items_done = 0;
   auto twistOf = [](const common::Trajectory& poses, int i) {
     return i > 0 ? twistBetween(poses[i - 1], poses[i]) : BodyTwist{};
   };
@@ -90,6 +119,9 @@ void visitDatasetMessages(formats::DatasetReader& dataset, DatasetMessageVisitor
         std::vector<std::pair<std::string, Eigen::Isometry3d>> mounts = {
             {rosbag_names::kLidarFrame, dataset.R_T_L()}};
         if (!dataset.imu().empty()) mounts.emplace_back(rosbag_names::kImuFrame, dataset.R_T_I());
+        for (const formats::EurocCamera& camera : cameras) {
+          mounts.emplace_back(camera.name, dataset.R_T_I() * camera.I_T_C);
+        }
         nlohmann::json made = dataset.metadata();
         if (made.is_object() && made.contains("lidar") && made["lidar"].is_object()) {
           made["lidar"].erase("pcd_data");
@@ -106,7 +138,11 @@ void visitDatasetMessages(formats::DatasetReader& dataset, DatasetMessageVisitor
         break;
       case Kind::kCloud:
         visitor.cloud(e.index, e.t, dataset.scan(e.index));
-        if (progress) progress(++scans_done, dataset.scanCount());
+        if (progress) progress(++items_done, items);
+        break;
+      case Kind::kImage:
+        visitor.image(e.camera, e.index, e.t, imageOf(cameras[e.camera], e.index));
+        if (progress) progress(++items_done, items);
         break;
       case Kind::kGroundTruth:
         visitor.groundTruth(e.index, e.t, dataset.groundTruth()[e.index].pose,

@@ -9,6 +9,7 @@
 
 #include "formats/dataset_reader.hpp"
 #include "formats/driver_point_cloud.hpp"
+#include "formats/euroc_cameras.hpp"
 
 namespace isg::recordings {
 
@@ -30,6 +31,20 @@ inline constexpr const char* kOdometryFrame = "odom";   // M
 inline constexpr const char* kBaseFrame = "base_link";  // R
 inline constexpr const char* kLidarFrame = "velodyne";  // L
 inline constexpr const char* kImuFrame = "imu";         // I
+// A camera of the dataset's EuRoC folder (docs/formats.md, "Cameras in bags"): its frame is
+// its folder's name ("cam0", "depth0"; optical: z forward, x right, y down), its images on
+// /<name>/image_raw/compressed with the calibration on /<name>/camera_info, as the floor-plan
+// benchmark's bags and image_transport name them.
+inline std::string imageTopic(const std::string& camera) {
+  return "/" + camera + "/image_raw/compressed";
+}
+inline std::string cameraInfoTopic(const std::string& camera) {
+  return "/" + camera + "/camera_info";
+}
+// CompressedImage.format as image_transport's compressed plugin writes it: RGB frames as JPEG
+// (decoded to bgr8 by OpenCV), depth as the 16-bit PNG it is stored in (lossless).
+inline constexpr const char* kJpegFormat = "rgb8; jpeg compressed bgr8";
+inline constexpr const char* kDepthPngFormat = "16UC1; png compressed ";
 }  // namespace rosbag_names
 
 // The twist of a body between two poses of it, in the body's frame: the backward difference,
@@ -46,8 +61,15 @@ struct ImuVariances {
   double accelerometer = 0.0;  // (m/s²)²
 };
 
+// One camera frame as it goes into a bag: the compressed image (format as image_transport's).
+struct CameraImage {
+  const formats::EurocCamera* camera = nullptr;
+  std::string format;
+  std::string data;
+};
+
 // What an exporter writes of a dataset, called in time order (ties: mounts and metadata, then
-// odometry, IMU, scans, ground truth).
+// odometry, IMU, scans, camera frames, ground truth).
 class DatasetMessageVisitor {
  public:
   virtual ~DatasetMessageVisitor() = default;
@@ -61,6 +83,8 @@ class DatasetMessageVisitor {
   virtual void imu(int i, double t, const sensors::ImuSample& sample,
                    const ImuVariances& variances) = 0;
   virtual void cloud(int i, double t, const sensors::Scan& scan) = 0;
+  // Frame i of a camera, `camera_index` into the cameras given to visitDatasetMessages.
+  virtual void image(int camera_index, int i, double t, const CameraImage& image) = 0;
   // Ground-truth pose i of base_link in the plan frame, with its twist.
   virtual void groundTruth(int i, double t, const Eigen::Isometry3d& pose,
                            const BodyTwist& twist) = 0;
@@ -85,9 +109,12 @@ formats::CloudConvention exportCloudConvention(const formats::DatasetReader& dat
 // "Ouster's (ouster-ros: x y z intensity t reflectivity ring ambient range, ring 0 = top)", …
 std::string describeCloudConvention(const formats::CloudConvention& convention);
 
-// Walks the dataset's messages in time order through `visitor`; `progress(done, total)` (if set)
-// after each scan.
-void visitDatasetMessages(formats::DatasetReader& dataset, DatasetMessageVisitor& visitor,
+// Walks the dataset's messages in time order through `visitor`, with the frames of `cameras`
+// (formats::readEurocCameras: RGB frames encoded as JPEG one at a time, depth PNG files as they
+// are) and their mounts on base_link; `progress(done, total)` (if set) after each scan and frame.
+void visitDatasetMessages(formats::DatasetReader& dataset,
+                          const std::vector<formats::EurocCamera>& cameras,
+                          DatasetMessageVisitor& visitor,
                           const std::function<void(int, int)>& progress);
 
 }  // namespace isg::recordings

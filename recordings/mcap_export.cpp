@@ -28,7 +28,8 @@ const char* kLatchedQos =
 // The dataset's messages as ROS 2 messages in the MCAP file.
 class McapVisitor : public DatasetMessageVisitor {
  public:
-  McapVisitor(const formats::DatasetReader& dataset, const std::string& path,
+  McapVisitor(const formats::DatasetReader& dataset,
+              const std::vector<formats::EurocCamera>& cameras, const std::string& path,
               const formats::McapWriterOptions& options,
               const std::function<formats::ros2::Time(double)>& stamp,
               const formats::CloudConvention& convention)
@@ -52,6 +53,16 @@ class McapVisitor : public DatasetMessageVisitor {
     }
     topics[kCloudTopic] =
         mcap.addChannel(schemaOf(formats::ros2::pointCloud2Type()), kCloudTopic, "cdr");
+    if (!cameras.empty()) {
+      const std::uint16_t image_schema = schemaOf(formats::ros2::compressedImageType());
+      const std::uint16_t info_schema = schemaOf(formats::ros2::cameraInfoType());
+      for (const formats::EurocCamera& camera : cameras) {
+        topics[imageTopic(camera.name)] =
+            mcap.addChannel(image_schema, imageTopic(camera.name), "cdr");
+        topics[cameraInfoTopic(camera.name)] =
+            mcap.addChannel(info_schema, cameraInfoTopic(camera.name), "cdr");
+      }
+    }
     if (!dataset.groundTruth().empty()) {
       topics[kGroundTruthTopic] = mcap.addChannel(odometry_schema, kGroundTruthTopic, "cdr");
     }
@@ -84,6 +95,14 @@ class McapVisitor : public DatasetMessageVisitor {
     write(kCloudTopic, time,
           formats::ros2::pointCloud2(scan.points, time, kLidarFrame, convention_));
   }
+  void image(int, int, double t, const CameraImage& image) override {
+    const formats::ros2::Time time = stamp_(t);
+    const std::string& name = image.camera->name;
+    write(imageTopic(name), time,
+          formats::ros2::compressedImage(image.format, image.data, time, name));
+    write(cameraInfoTopic(name), time,
+          formats::ros2::cameraInfo(image.camera->calibration, time, name));
+  }
   void groundTruth(int, double t, const Eigen::Isometry3d& pose, const BodyTwist& twist) override {
     const formats::ros2::Time time = stamp_(t);
     write(kGroundTruthTopic, time,
@@ -94,7 +113,7 @@ class McapVisitor : public DatasetMessageVisitor {
   std::map<std::string, std::uint16_t> topics;  // → channel
 
  private:
-  void write(const char* topic, formats::ros2::Time time, const std::string& data) {
+  void write(const std::string& topic, formats::ros2::Time time, const std::string& data) {
     mcap.write(topics.at(topic), time.nanoseconds(), data);
   }
   std::function<formats::ros2::Time(double)> stamp_;
@@ -130,8 +149,9 @@ ExportSummary exportMcap(const std::string& dataset_dir, const std::string& mcap
   writer.overwrite = options.overwrite;
   const formats::CloudConvention convention =
       exportCloudConvention(dataset, options.velodyne_layout);
-  McapVisitor visitor(dataset, mcap_path, writer, stamp, convention);
-  visitDatasetMessages(dataset, visitor, progress);
+  const std::vector<formats::EurocCamera> cameras = formats::readEurocCameras(dataset_dir);
+  McapVisitor visitor(dataset, cameras, mcap_path, writer, stamp, convention);
+  visitDatasetMessages(dataset, cameras, visitor, progress);
   visitor.mcap.close();
 
   ExportSummary summary;

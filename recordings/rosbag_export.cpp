@@ -20,21 +20,25 @@ using namespace rosbag_names;
 // The dataset's messages as ROS 1 messages in the bag.
 class RosbagVisitor : public DatasetMessageVisitor {
  public:
-  RosbagVisitor(const formats::DatasetReader& dataset, const std::string& bag_path, bool overwrite,
-                const std::function<formats::RosTime(double)>& stamp,
+  RosbagVisitor(const formats::DatasetReader& dataset,
+                const std::vector<formats::EurocCamera>& cameras, const std::string& bag_path,
+                bool overwrite, const std::function<formats::RosTime(double)>& stamp,
                 const formats::CloudConvention& convention)
       : bag(bag_path, overwrite), stamp_(stamp), convention_(convention) {
-    tf_static_topic = bag.connect(kTfStaticTopic, formats::ros1::tfMessageType(), true);
-    metadata_topic = bag.connect(kMetadataTopic, formats::ros1::stringType(), true);
+    connect(kTfStaticTopic, formats::ros1::tfMessageType(), true);
+    connect(kMetadataTopic, formats::ros1::stringType(), true);
     // A dataset without odometry (a handheld carrier) has no odom → base_link transforms either.
-    const bool has_odometry = !dataset.odometry().empty();
-    odometry_topic = has_odometry ? bag.connect(kOdometryTopic, formats::ros1::odometryType()) : -1;
-    tf_topic = has_odometry ? bag.connect(kTfTopic, formats::ros1::tfMessageType()) : -1;
-    imu_topic = dataset.imu().empty() ? -1 : bag.connect(kImuTopic, formats::ros1::imuType());
-    cloud_topic = bag.connect(kCloudTopic, formats::ros1::pointCloud2Type());
-    ground_truth_topic = dataset.groundTruth().empty()
-                             ? -1
-                             : bag.connect(kGroundTruthTopic, formats::ros1::odometryType());
+    if (!dataset.odometry().empty()) {
+      connect(kOdometryTopic, formats::ros1::odometryType());
+      connect(kTfTopic, formats::ros1::tfMessageType());
+    }
+    if (!dataset.imu().empty()) connect(kImuTopic, formats::ros1::imuType());
+    connect(kCloudTopic, formats::ros1::pointCloud2Type());
+    for (const formats::EurocCamera& camera : cameras) {
+      connect(imageTopic(camera.name), formats::ros1::compressedImageType());
+      connect(cameraInfoTopic(camera.name), formats::ros1::cameraInfoType());
+    }
+    if (!dataset.groundTruth().empty()) connect(kGroundTruthTopic, formats::ros1::odometryType());
   }
 
   void mounts(double t, const std::vector<std::pair<std::string, Eigen::Isometry3d>>& mounts,
@@ -42,42 +46,56 @@ class RosbagVisitor : public DatasetMessageVisitor {
     const formats::RosTime time = stamp_(t);
     std::vector<formats::ros1::StampedTransform> transforms;
     for (const auto& [frame, pose] : mounts) transforms.push_back({time, kBaseFrame, frame, pose});
-    bag.write(tf_static_topic, time, formats::ros1::tfMessage(transforms));
-    bag.write(metadata_topic, time, formats::ros1::stringMessage(made));
+    write(kTfStaticTopic, time, formats::ros1::tfMessage(transforms));
+    write(kMetadataTopic, time, formats::ros1::stringMessage(made));
   }
   void odometry(int i, double t, const Eigen::Isometry3d& pose, const BodyTwist& twist) override {
     const formats::RosTime time = stamp_(t);
-    bag.write(odometry_topic, time,
-              formats::ros1::odometry(pose, twist.linear, twist.angular, time, std::uint32_t(i),
-                                      kOdometryFrame, kBaseFrame));
-    bag.write(tf_topic, time, formats::ros1::tfMessage({{time, kOdometryFrame, kBaseFrame, pose}}));
+    write(kOdometryTopic, time,
+          formats::ros1::odometry(pose, twist.linear, twist.angular, time, std::uint32_t(i),
+                                  kOdometryFrame, kBaseFrame));
+    write(kTfTopic, time, formats::ros1::tfMessage({{time, kOdometryFrame, kBaseFrame, pose}}));
   }
   void imu(int i, double t, const sensors::ImuSample& sample,
            const ImuVariances& variances) override {
     const formats::RosTime time = stamp_(t);
-    bag.write(imu_topic, time,
-              formats::ros1::imu(sample, time, std::uint32_t(i), kImuFrame, variances.gyroscope,
-                                 variances.accelerometer));
+    write(kImuTopic, time,
+          formats::ros1::imu(sample, time, std::uint32_t(i), kImuFrame, variances.gyroscope,
+                             variances.accelerometer));
   }
   void cloud(int i, double t, const sensors::Scan& scan) override {
     const formats::RosTime time = stamp_(t);
-    bag.write(
-        cloud_topic, time,
+    write(
+        kCloudTopic, time,
         formats::ros1::pointCloud2(scan.points, time, std::uint32_t(i), kLidarFrame, convention_));
+  }
+  void image(int, int i, double t, const CameraImage& image) override {
+    const formats::RosTime time = stamp_(t);
+    const std::string& name = image.camera->name;
+    write(imageTopic(name), time,
+          formats::ros1::compressedImage(image.format, image.data, time, std::uint32_t(i), name));
+    write(cameraInfoTopic(name), time,
+          formats::ros1::cameraInfo(image.camera->calibration, time, std::uint32_t(i), name));
   }
   void groundTruth(int i, double t, const Eigen::Isometry3d& pose,
                    const BodyTwist& twist) override {
     const formats::RosTime time = stamp_(t);
-    bag.write(ground_truth_topic, time,
-              formats::ros1::odometry(pose, twist.linear, twist.angular, time, std::uint32_t(i),
-                                      kPlanFrame, kBaseFrame));
+    write(kGroundTruthTopic, time,
+          formats::ros1::odometry(pose, twist.linear, twist.angular, time, std::uint32_t(i),
+                                  kPlanFrame, kBaseFrame));
   }
 
   formats::RosbagWriter bag;
-  int tf_static_topic = -1, metadata_topic = -1, odometry_topic = -1, tf_topic = -1, imu_topic = -1,
-      cloud_topic = -1, ground_truth_topic = -1;
+  std::map<std::string, int> topics;  // → connection
 
  private:
+  void connect(const std::string& topic, const formats::RosMessageType& type,
+               bool latched = false) {
+    topics[topic] = bag.connect(topic, type, latched);
+  }
+  void write(const std::string& topic, formats::RosTime time, const std::string& data) {
+    bag.write(topics.at(topic), time, data);
+  }
   std::function<formats::RosTime(double)> stamp_;
   formats::CloudConvention convention_;
 };
@@ -104,20 +122,16 @@ ExportSummary exportRosbag(const std::string& dataset_dir, const std::string& ba
   };
   const formats::CloudConvention convention =
       exportCloudConvention(dataset, options.velodyne_layout);
-  RosbagVisitor visitor(dataset, bag_path, options.overwrite, stamp, convention);
-  visitDatasetMessages(dataset, visitor, progress);
+  const std::vector<formats::EurocCamera> cameras = formats::readEurocCameras(dataset_dir);
+  RosbagVisitor visitor(dataset, cameras, bag_path, options.overwrite, stamp, convention);
+  visitDatasetMessages(dataset, cameras, visitor, progress);
   formats::RosbagWriter& bag = visitor.bag;
   bag.close();
 
   ExportSummary summary;
   summary.cloud_layout = describeCloudConvention(convention);
-  const char* topics[] = {kTfStaticTopic, kOdometryTopic,    kTfTopic,      kImuTopic,
-                          kCloudTopic,    kGroundTruthTopic, kMetadataTopic};
-  const int connections[] = {
-      visitor.tf_static_topic, visitor.odometry_topic,     visitor.tf_topic,      visitor.imu_topic,
-      visitor.cloud_topic,     visitor.ground_truth_topic, visitor.metadata_topic};
-  for (int i = 0; i < 7; ++i) {
-    if (connections[i] >= 0) summary.messages[topics[i]] = bag.counts()[connections[i]];
+  for (const auto& [topic, connection] : visitor.topics) {
+    summary.messages[topic] = bag.counts()[connection];
   }
   summary.bytes = bag.bytesWritten();
   summary.dataset_seconds = dataset.duration();

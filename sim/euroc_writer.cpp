@@ -7,7 +7,6 @@
 #include <fstream>
 #include <iomanip>
 #include <memory>
-#include <random>
 #include <sstream>
 #include <stdexcept>
 
@@ -207,12 +206,12 @@ double nearNormal(Xoshiro256& rng) {
   const std::uint64_t bits = rng();
   const double sum = double(bits & 0xffffu) + double((bits >> 16) & 0xffffu) +
                      double((bits >> 32) & 0xffffu) + double(bits >> 48);
-  constexpr double kMean = 2.0 * 65535.0;        // 4 × 65535 / 2
-  constexpr double kSigma = 37837.22723720648;   // √(4 × (65536² − 1) / 12)
+  constexpr double kMean = 2.0 * 65535.0;       // 4 × 65535 / 2
+  constexpr double kSigma = 37837.22723720648;  // √(4 × (65536² − 1) / 12)
   return (sum - kMean) / kSigma;
 }
 
-void addNoise(std::vector<unsigned char>& rgb, std::vector<float>& depth,
+void addNoise(std::vector<unsigned char>& rgb, const std::vector<float>& depth,
               const std::optional<bim::DepthModel>& model, Xoshiro256& rng,
               std::vector<std::uint16_t>* depth_mm) {
   const auto normal = [](Xoshiro256& r) { return nearNormal(r); };
@@ -259,22 +258,10 @@ class CameraImages {
   std::unique_ptr<FisheyeCamera> fisheye_;
 };
 
-}  // namespace
-
-EurocSummary writeEuroc(Simulation& simulation, const std::string& dataset_dir,
-                        const EurocOptions& options, const FrameProgress& progress) {
+// Everything writeEuroc writes, into `root`.
+EurocSummary writeMav0(Simulation& simulation, const fs::path& root, double duration,
+                       const EurocOptions& options, const FrameProgress& progress) {
   const bim::Scenario& scenario = simulation.scenario();
-  if (scenario.cameras.empty()) {
-    throw std::invalid_argument("the scenario has no camera (\"cameras\", docs/formats.md)");
-  }
-  const auto started = std::chrono::steady_clock::now();
-  const double duration = options.duration < 0.0
-                              ? simulation.duration()
-                              : std::min(options.duration, simulation.duration());
-  const fs::path final_root = fs::path(dataset_dir) / "mav0";
-  const fs::path root = fs::path(dataset_dir) / "mav0.partial";
-  fs::remove_all(root);
-  fs::create_directories(root);
   EurocSummary summary;
 
   std::vector<CameraStream> cameras;
@@ -345,11 +332,33 @@ EurocSummary writeEuroc(Simulation& simulation, const std::string& dataset_dir,
         << common::toTumText(poses);
   }
   writeCamchain(root / "camchain.yaml", cameras);
-  fs::remove_all(final_root);
-  fs::rename(root, final_root);
-  summary.wall_seconds =
-      std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
   return summary;
+}
+
+}  // namespace
+
+EurocSummary writeEuroc(Simulation& simulation, const std::string& dataset_dir,
+                        const EurocOptions& options, const FrameProgress& progress) {
+  if (simulation.scenario().cameras.empty()) {
+    throw std::invalid_argument("the scenario has no camera (\"cameras\", docs/formats.md)");
+  }
+  const auto started = std::chrono::steady_clock::now();
+  const double duration = options.duration < 0.0
+                              ? simulation.duration()
+                              : std::min(options.duration, simulation.duration());
+  const fs::path root = fs::path(dataset_dir) / "mav0";
+  fs::remove_all(root);
+  fs::create_directories(root);
+  try {
+    EurocSummary summary = writeMav0(simulation, root, duration, options, progress);
+    summary.wall_seconds =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
+    return summary;
+  } catch (...) {
+    std::error_code ignored;
+    fs::remove_all(root, ignored);
+    throw;
+  }
 }
 
 }  // namespace isg::sim

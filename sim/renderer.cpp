@@ -18,6 +18,7 @@
 #include "common/input_error.hpp"
 #include "common/untracked_allocations.hpp"
 #include "sim/odometry_model.hpp"
+#include "sim/pinhole_frustum.hpp"
 #include "worlds/mjcf_generator.hpp"
 
 namespace isg::sim {
@@ -56,6 +57,24 @@ void encodePng(png_structp png, png_infop info, const Image& image) {
     png_write_row(png, const_cast<png_bytep>(image.rgb.data() + std::size_t(3) * image.width * y));
   }
   png_write_end(png, nullptr);
+}
+
+// Both of MuJoCo's eyes (one is used without stereo) at `eye`, looking along `forward` with
+// `up`, through `frustum`.
+void setGlCameras(mjvScene& scene, const Eigen::Vector3d& eye, const Eigen::Vector3d& forward,
+                  const Eigen::Vector3d& up, const PinholeFrustum& frustum) {
+  for (mjvGLCamera& c : scene.camera) {
+    for (int i = 0; i < 3; ++i) {
+      c.pos[i] = float(eye[i]);
+      c.forward[i] = float(forward[i]);
+      c.up[i] = float(up[i]);
+    }
+    c.frustum_near = float(frustum.near);
+    c.frustum_far = float(frustum.far);
+    c.frustum_center = float(frustum.centre);
+    c.frustum_top = float(frustum.top);
+    c.frustum_bottom = float(frustum.bottom);
+  }
 }
 
 }  // namespace
@@ -270,20 +289,12 @@ Image Renderer::lookAt(mjData& data, const Eigen::Vector3d& eye, const Eigen::Ve
     const Eigen::Vector3d forward = (target - eye).normalized();
     Eigen::Vector3d up = forward.cross(Eigen::Vector3d::UnitZ()).cross(forward);
     up = up.norm() < 1e-9 ? Eigen::Vector3d::UnitY() : up.normalized();
-    for (int e = 0; e < 2; ++e) {
-      mjvGLCamera& c = scene.camera[e];
-      for (int k = 0; k < 3; ++k) {
-        c.pos[k] = float(eye[k]);
-        c.forward[k] = float(forward[k]);
-        c.up[k] = float(up[k]);
-      }
-      c.frustum_near = 0.05f;
-      c.frustum_far = 500.0f;
-      c.frustum_center = 0.0f;
-      c.frustum_top =
-          float(c.frustum_near * std::tan(0.5 * vertical_fov_deg * std::numbers::pi / 180.0));
-      c.frustum_bottom = -c.frustum_top;
-    }
+    PinholeFrustum frustum;
+    frustum.near = 0.05;
+    frustum.far = 500.0;
+    frustum.top = frustum.near * std::tan(0.5 * vertical_fov_deg * std::numbers::pi / 180.0);
+    frustum.bottom = -frustum.top;
+    setGlCameras(scene, eye, forward, up, frustum);
     const float red[4] = {0.9f, 0.1f, 0.1f, 1.0f};
     for (const Line& line : lines) addBar(scene, line.from, line.to, 0.025, red);
   });
@@ -318,12 +329,6 @@ Image Renderer::camera(mjData& data, const Eigen::Isometry3d& B_T_C,
         const Eigen::Vector3d eye = B_T_C.translation();
         const Eigen::Vector3d forward = B_T_C.linear().col(2);
         const Eigen::Vector3d up = -B_T_C.linear().col(1);
-        // The frustum through the image's outer pixel edges (u = −½ … width − ½): MuJoCo makes
-        // its half-width from the viewport's aspect and the height, which holds for square
-        // pixels; its centre is offset when the principal point is off the image's centre.
-        const double top = (k.cy + 0.5) / k.fy * kNear;
-        const double bottom = -(k.height - 0.5 - k.cy) / k.fy * kNear;
-        const double centre = (k.width - 1.0 - 2.0 * k.cx) / (2.0 * k.fx) * kNear;
         // Ceilings are see-through in pictures from above (the world's ceiling material); to a
         // camera inside the building they are solid, and drawn into the depth buffer.
         for (int i = 0; i < scene.ngeom; ++i) {
@@ -333,19 +338,7 @@ Image Renderer::camera(mjData& data, const Eigen::Isometry3d& B_T_C,
             g.transparent = 0;
           }
         }
-        for (int e = 0; e < 2; ++e) {
-          mjvGLCamera& c = scene.camera[e];
-          for (int i = 0; i < 3; ++i) {
-            c.pos[i] = float(eye[i]);
-            c.forward[i] = float(forward[i]);
-            c.up[i] = float(up[i]);
-          }
-          c.frustum_near = float(kNear);
-          c.frustum_far = float(far_m);
-          c.frustum_center = float(centre);
-          c.frustum_top = float(top);
-          c.frustum_bottom = float(bottom);
-        }
+        setGlCameras(scene, eye, forward, up, PinholeFrustum::of(k, kNear, far_m));
       },
       depth,
       overlay_ ? std::function<void()>([&] { overlay_->draw(data, B_T_C, k, kNear, far_m); })

@@ -10,6 +10,7 @@
 
 #include "common/untracked_allocations.hpp"
 #include "sim/fast_random.hpp"
+#include "sim/pinhole_frustum.hpp"
 #include "worlds/mjcf_generator.hpp"
 
 namespace isg::sim {
@@ -85,11 +86,8 @@ void TextureOverlay::draw(const mjData& data, const Eigen::Isometry3d& B_T_C,
   glPushMatrix();
   glLoadIdentity();
   // The frustum Renderer::camera gives MuJoCo, so the quads land on MuJoCo's pixels.
-  const double top = (k.cy + 0.5) / k.fy * near;
-  const double bottom = -(k.height - 0.5 - k.cy) / k.fy * near;
-  const double centre = (k.width - 1.0 - 2.0 * k.cx) / (2.0 * k.fx) * near;
-  const double half_width = 0.5 * double(k.width) / k.height * (top - bottom);
-  glFrustum(centre - half_width, centre + half_width, bottom, top, near, far);
+  const PinholeFrustum f = PinholeFrustum::of(k, near, far);
+  glFrustum(f.centre - f.half_width, f.centre + f.half_width, f.bottom, f.top, f.near, f.far);
   glMatrixMode(GL_MODELVIEW);
   glPushMatrix();
   // B to OpenGL's eye frame (x right, y up, looking along −z): the optical frame with y and z

@@ -78,8 +78,8 @@ inline bool headerAllowed(const std::string& from, const std::string& header) {
 // The headers of the codecs and message libraries that only formats/ uses (compression, SQLite,
 // Debian's ROS 1 message headers): the localizers must not carry them.
 inline bool isCodecHeader(const std::string& header) {
-  static const std::set<std::string> codecs{"lzf.h",  "bzlib.h", "lz4.h",    "lz4frame.h",
-                                            "zstd.h", "zlib.h",  "sqlite3.h"};
+  static const std::set<std::string> codecs{"lzf.h",  "bzlib.h", "lz4.h",     "lz4frame.h",
+                                            "zstd.h", "zlib.h",  "sqlite3.h", "jpeglib.h"};
   if (codecs.count(header)) return true;
   for (const char* ros :
        {"ros/", "sensor_msgs/", "nav_msgs/", "geometry_msgs/", "tf2_msgs/", "std_msgs/"}) {

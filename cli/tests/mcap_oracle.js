@@ -3,7 +3,7 @@
 // record in file order), @foxglove/rosmsg's ros2msg parser and @foxglove/rosmsg2-serialization's
 // CDR reader. Prints one JSON document: the header, statistics, schemas, channels, whether the
 // data section's CRC and the stream reader agree, and every message decoded (a cloud's point
-// bytes as their SHA-256).
+// bytes as their SHA-256, an image's bytes in base64).
 // usage: node mcap_oracle.js FILE.mcap NODE_MODULES_DIR
 "use strict";
 const path = require("path");
@@ -72,6 +72,27 @@ function summarise(type, m) {
       }));
     case "std_msgs/msg/String":
       return m.data;
+    case "sensor_msgs/msg/CompressedImage":
+      return {
+        stamp: stampOf(m.header),
+        frame: m.header.frame_id,
+        format: m.format,
+        data_base64: Buffer.from(m.data).toString("base64"),
+      };
+    case "sensor_msgs/msg/CameraInfo":
+      return {
+        stamp: stampOf(m.header),
+        frame: m.header.frame_id,
+        height: m.height,
+        width: m.width,
+        distortion_model: m.distortion_model,
+        d: Array.from(m.d),
+        k: Array.from(m.k),
+        r: Array.from(m.r),
+        p: Array.from(m.p),
+        binning: [m.binning_x, m.binning_y],
+        roi: [m.roi.x_offset, m.roi.y_offset, m.roi.height, m.roi.width, m.roi.do_rectify],
+      };
     default:
       throw new Error(`unexpected type ${type}`);
   }

@@ -7,6 +7,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <optional>
 #include <sstream>
 
 #include "bim/camera_projection.hpp"
@@ -168,6 +169,75 @@ TEST(CameraRender, AFisheyePixelSeesAlongItsLensModelsRay) {
   }
   EXPECT_GT(compared, 2000);
   EXPECT_GT(outside, 100);  // the corners of the image
+}
+
+// Where the rendered range image jumps along row `v` near column `u`: the sub-pixel column at
+// which the range crosses halfway between the plateaus 6 px to either side; nullopt when they
+// differ by less than 0.5 m (no edge there).
+std::optional<double> rangeEdgeInRow(const std::vector<float>& range, int width, int v, double u) {
+  const int u0 = int(std::lround(u));
+  const auto at = [&](int c) { return double(range[std::size_t(v) * width + c]); };
+  const double left = at(u0 - 6), right = at(u0 + 6);
+  if (std::abs(left - right) < 0.5) return std::nullopt;
+  const double mid = 0.5 * (left + right);
+  for (int c = u0 - 6; c < u0 + 6; ++c) {
+    if ((at(c) - mid) * (at(c + 1) - mid) <= 0.0 && at(c) != at(c + 1)) {
+      return c + (mid - at(c)) / (at(c + 1) - at(c));
+    }
+  }
+  return std::nullopt;
+}
+
+// A plan corner through the fisheye model against the rendered edge: D1's door D1 (in wall W5
+// at y = 2.2 m, 0.15 m thick; its opening x = 1.55 … 2.45 m, 2.1 m high) seen from the corridor
+// by the rig's front lens looking along the corridor (+x), the jambs 35° and 50° off its axis.
+// From x = 0.55 m the silhouettes are the left jamb's corridor-side corner (1.55, 2.125) and the
+// right jamb's office-side corner (2.45, 2.275), each a vertical line of the plan. Row by row,
+// the line's projection (bim::projectToPixel) and the column where the rendered range jumps
+// (the office behind the doorway) agree within 1 px.
+TEST(CameraRender, APlanCornerThroughTheFisheyeModelLiesOnTheRenderedEdge) {
+  bim::Scenario scenario = worlds::loadScenarioOrBuiltin("builtin:d1", nullptr);
+  const nlohmann::json document =
+      common::parseJsonText(R"([{"model": "insta360-one-rs"}])", "cameras.json");
+  const common::JsonSource source{"cameras.json", nullptr};
+  scenario.cameras = bim::parseCameras(common::JsonNode(document, "", source));
+  Simulation sim(scenario);
+  const bim::CameraModel& lens = sim.scenario().cameras[0].model;
+  FisheyeCamera camera(sim.world().model(), lens, 1);
+  Eigen::Isometry3d B_T_C = Eigen::Isometry3d::Identity();
+  B_T_C.translation() = Eigen::Vector3d(0.55, 1.0, 1.2);
+  B_T_C.linear() << 0, 0, 1, -1, 0, 0, 0, -1, 0;  // z along +x, x along −y, y down
+  std::vector<float> range;
+  camera.render(sim.world().data(), B_T_C, 50.0, &range);
+  const int width = lens.intrinsics.width;
+  const auto pixelOf = [&](const Eigen::Vector2d& xy, double z) {
+    return *bim::projectToPixel(lens, B_T_C.inverse() * Eigen::Vector3d(xy.x(), xy.y(), z));
+  };
+  double worst = 0.0;
+  int rows = 0;
+  for (const Eigen::Vector2d corner :
+       {Eigen::Vector2d(1.55, 2.125), Eigen::Vector2d(2.45, 2.275)}) {
+    // Image rows the edge crosses between 0.3 m and 1.9 m above the floor (below the lintel).
+    const int v_top = int(std::ceil(pixelOf(corner, 1.9).y()));
+    const int v_bottom = int(std::floor(pixelOf(corner, 0.3).y()));
+    ASSERT_GT(v_bottom - v_top, 100);
+    for (int v = v_top; v <= v_bottom; v += 7) {
+      // The height at which the corner's line meets row v exactly (v falls as z rises).
+      double lo = 0.3, hi = 1.9;
+      for (int i = 0; i < 60; ++i) {
+        const double z = 0.5 * (lo + hi);
+        (pixelOf(corner, z).y() > v ? lo : hi) = z;
+      }
+      const double u = pixelOf(corner, 0.5 * (lo + hi)).x();
+      const auto edge = rangeEdgeInRow(range, width, v, u);
+      ASSERT_TRUE(edge.has_value()) << "no edge near u = " << u << " in row " << v;
+      EXPECT_NEAR(*edge, u, 1.0) << "row " << v << " of the corner at " << corner.transpose();
+      worst = std::max(worst, std::abs(*edge - u));
+      ++rows;
+    }
+  }
+  EXPECT_GT(rows, 30);
+  std::printf("a plan corner against the rendered edge: %d rows, worst %.2f px\n", rows, worst);
 }
 
 // Reads a PNG with libpng's decoder: its size, bit depth and colour type, and its samples.

@@ -12,7 +12,7 @@
 set -euo pipefail
 # The libraries of formats/: LZF (PCD), bz2 and lz4 (ROS 1 bags' chunks), zstd and zlib (MCAP),
 # SQLite (rosbag2), and the ROS 1 message serialisation (roscpp_serialization, rostime, cpp_common).
-codecs='(^|[/ ])(lib)?(lzf|bz2|lz4|zstd|z|sqlite3|roscpp_serialization|rostime|cpp_common)(\.so|\.a|[ .]|$)|(^| )-l(lzf|bz2|lz4|zstd|z|sqlite3|roscpp_serialization|rostime|cpp_common)( |$)'
+codecs='(^|[/ ])(lib)?(lzf|bz2|lz4|zstd|z|sqlite3|jpeg|roscpp_serialization|rostime|cpp_common)(\.so|\.a|[ .]|$)|(^| )-l(lzf|bz2|lz4|zstd|z|sqlite3|jpeg|roscpp_serialization|rostime|cpp_common)( |$)'
 
 codecsOf() { tr ' ' '\n' <"$1" | grep -E "$codecs" | sort -u || true; }
 

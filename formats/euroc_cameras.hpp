@@ -1,0 +1,38 @@
+#pragma once
+
+#include <Eigen/Geometry>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "formats/camera_calibration.hpp"
+
+namespace isg::formats {
+
+// The camera streams of a dataset's EuRoC folder (DATASET/mav0, written by isg simulate --euroc;
+// docs/formats.md, "EuRoC (cameras)"), read back for the ROS 1 bag and MCAP exports.
+
+struct EurocFrame {
+  std::int64_t stamp_ns = 0;  // EuRoC's stamp (the simulation's time plus a whole-second offset)
+  double t = 0.0;             // seconds of the simulation, the dataset's clock
+  std::string path;           // the image file
+};
+
+struct EurocCamera {
+  std::string name;    // its folder under mav0: "cam0", "depth0", …
+  bool depth = false;  // 16-bit PNG in millimetres (sensor.yaml has depth_scale_m), else RGB
+  double rate_hz = 0.0;
+  Eigen::Isometry3d I_T_C = Eigen::Isometry3d::Identity();  // sensor.yaml's T_BS
+  CameraCalibration calibration;
+  std::vector<EurocFrame> frames;
+};
+
+// Every folder under DATASET/mav0 whose sensor.yaml says `sensor_type: camera`, by name, with its
+// frames from data.csv. The EuRoC stamps carry a whole-second offset (isg simulate
+// --stamp-offset); it is found from the RGB cameras' <name>.tum (the same frames in seconds of
+// the simulation) and taken off every stamp, so that the frames share the dataset's clock.
+// Empty when the dataset has no mav0 folder. Malformed files, frames without their image, or a
+// depth folder alone: a common::InputError naming the file and what is wrong.
+std::vector<EurocCamera> readEurocCameras(const std::string& dataset_dir);
+
+}  // namespace isg::formats
