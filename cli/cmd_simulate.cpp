@@ -27,7 +27,9 @@ SimulateCommand::SimulateCommand(CLI::App& parent) {
       "ground truth are written to DATASET_DIR: scans/NNNNNN.pcd, imu.csv, groundtruth.tum, "
       "odometry.tum, scans.tum, metadata.json (docs/formats.md). The same seed gives a "
       "byte-identical dataset. With --euroc the scenario's cameras are rendered along the walk "
-      "(RGB, and depth where the model has it) into DATASET_DIR/mav0/ in the EuRoC layout.\n\n" +
+      "(RGB, and depth where the model has it) into DATASET_DIR/mav0/ in the EuRoC layout, "
+      "with each camera's ground truth (mav0/<camera>.tum, stamped as its images); --rosbag "
+      "and --mcap then carry the images too.\n\n" +
       builtinWorldsHelp());
   app_->add_option("input", input_, "plan or scenario file, or builtin:NAME")
       ->option_text("PLAN|SCENARIO")

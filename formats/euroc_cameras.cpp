@@ -10,7 +10,6 @@
 #include <sstream>
 
 #include "common/input_error.hpp"
-#include "common/tum.hpp"
 
 namespace isg::formats {
 
@@ -137,38 +136,44 @@ void readFrameList(EurocCamera& camera, const fs::path& folder) {
   }
 }
 
-// The whole seconds the EuRoC stamps are ahead of the simulation's clock, from an RGB camera's
-// frames in seconds (<name>.tum, written with them).
-std::int64_t stampOffsetSeconds(const EurocCamera& camera, const fs::path& mav0) {
-  const fs::path file = mav0 / (camera.name + ".tum");
-  if (!fs::is_regular_file(file)) {
-    throw common::InputError(
-        file.string(), "",
-        "missing: it gives the frames of " + camera.name + " in seconds of the simulation");
-  }
-  const common::Trajectory poses = common::readTum(file.string());
-  if (poses.size() != camera.frames.size()) {
+// The whole seconds the EuRoC stamps are ahead of the simulation's clock: mav0/imu0 holds the
+// dataset's IMU samples (imu.csv) stamped as EuRoC stamps, so its first stamp less the dataset's
+// first IMU time is the offset.
+std::int64_t stampOffsetSeconds(const fs::path& mav0, double first_imu_t) {
+  const fs::path file = mav0 / "imu0" / "data.csv";
+  std::ifstream in(file);
+  if (!in) {
     throw common::InputError(file.string(), "",
-                             "has " + std::to_string(poses.size()) + " poses for " +
-                                 std::to_string(camera.frames.size()) + " frames in data.csv");
+                             "cannot be read: it ties the cameras' stamps to the dataset's clock");
   }
-  if (poses.empty()) return 0;
-  const double offset = double(camera.frames[0].stamp_ns) * 1e-9 - poses[0].t;
-  const std::int64_t whole = std::llround(offset);
-  for (std::size_t i = 0; i < poses.size(); ++i) {
-    const double t = double(camera.frames[i].stamp_ns - whole * 1000000000LL) * 1e-9;
-    if (std::abs(t - poses[i].t) > 1e-6) {
-      throw common::InputError(file.string(), "line " + std::to_string(i + 2),
-                               "its time is not the frame's in data.csv less a whole number of "
-                               "seconds");
+  std::string line;
+  int row = 0;
+  while (std::getline(in, line)) {
+    ++row;
+    if (line.empty() || line[0] == '#') continue;
+    std::int64_t ns = 0;
+    try {
+      ns = std::stoll(line.substr(0, line.find(',')));
+    } catch (const std::exception&) {
+      throw common::InputError(file.string(), "line " + std::to_string(row),
+                               "does not start with a timestamp in nanoseconds");
     }
+    const double offset = double(ns) * 1e-9 - first_imu_t;
+    const std::int64_t whole = std::llround(offset);
+    if (std::abs(offset - double(whole)) > 1e-3) {
+      throw common::InputError(file.string(), "line " + std::to_string(row),
+                               "its first stamp is not the dataset's first IMU time (" +
+                                   std::to_string(first_imu_t) +
+                                   " s) plus whole seconds: is mav0 from another run?");
+    }
+    return whole;
   }
-  return whole;
+  throw common::InputError(file.string(), "", "has no IMU sample");
 }
 
 }  // namespace
 
-std::vector<EurocCamera> readEurocCameras(const std::string& dataset_dir) {
+std::vector<EurocCamera> readEurocCameras(const std::string& dataset_dir, double first_imu_t) {
   const fs::path mav0 = fs::path(dataset_dir) / "mav0";
   if (!fs::is_directory(mav0)) return {};
   std::map<std::string, fs::path> folders;  // by name: the order is the same everywhere
@@ -190,14 +195,12 @@ std::vector<EurocCamera> readEurocCameras(const std::string& dataset_dir) {
     cameras.push_back(readSensorYaml(name, folder / "sensor.yaml"));
     readFrameList(cameras.back(), folder);
   }
-  const auto rgb =
-      std::find_if(cameras.begin(), cameras.end(), [](const EurocCamera& c) { return !c.depth; });
-  if (rgb == cameras.end()) {
-    if (cameras.empty()) return cameras;
+  if (cameras.empty()) return cameras;
+  if (std::all_of(cameras.begin(), cameras.end(), [](const EurocCamera& c) { return c.depth; })) {
     throw common::InputError(mav0.string(), "",
                              "has depth images but no camera they are registered to");
   }
-  const std::int64_t offset_ns = stampOffsetSeconds(*rgb, mav0) * 1000000000LL;
+  const std::int64_t offset_ns = stampOffsetSeconds(mav0, first_imu_t) * 1000000000LL;
   for (EurocCamera& camera : cameras) {
     for (EurocFrame& frame : camera.frames) frame.t = double(frame.stamp_ns - offset_ns) * 1e-9;
   }

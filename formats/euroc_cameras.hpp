@@ -29,10 +29,11 @@ struct EurocCamera {
 
 // Every folder under DATASET/mav0 whose sensor.yaml says `sensor_type: camera`, by name, with its
 // frames from data.csv. The EuRoC stamps carry a whole-second offset (isg simulate
-// --stamp-offset); it is found from the RGB cameras' <name>.tum (the same frames in seconds of
-// the simulation) and taken off every stamp, so that the frames share the dataset's clock.
-// Empty when the dataset has no mav0 folder. Malformed files, frames without their image, or a
-// depth folder alone: a common::InputError naming the file and what is wrong.
-std::vector<EurocCamera> readEurocCameras(const std::string& dataset_dir);
+// --stamp-offset); it is found from mav0/imu0 (the dataset's IMU samples with EuRoC stamps)
+// against `first_imu_t`, the dataset's first IMU time, and taken off every stamp, so that the
+// frames share the dataset's clock. Empty when the dataset has no mav0 folder or no camera in
+// it. Malformed files, frames without their image, an IMU folder that does not match, or depth
+// folders alone: a common::InputError naming the file and what is wrong.
+std::vector<EurocCamera> readEurocCameras(const std::string& dataset_dir, double first_imu_t);
 
 }  // namespace isg::formats

@@ -149,7 +149,8 @@ ExportSummary exportMcap(const std::string& dataset_dir, const std::string& mcap
   writer.overwrite = options.overwrite;
   const formats::CloudConvention convention =
       exportCloudConvention(dataset, options.velodyne_layout);
-  const std::vector<formats::EurocCamera> cameras = formats::readEurocCameras(dataset_dir);
+  const std::vector<formats::EurocCamera> cameras =
+      formats::readEurocCameras(dataset_dir, dataset.imu().empty() ? 0.0 : dataset.imu().front().t);
   McapVisitor visitor(dataset, cameras, mcap_path, writer, stamp, convention);
   visitDatasetMessages(dataset, cameras, visitor, progress);
   visitor.mcap.close();

@@ -122,7 +122,8 @@ ExportSummary exportRosbag(const std::string& dataset_dir, const std::string& ba
   };
   const formats::CloudConvention convention =
       exportCloudConvention(dataset, options.velodyne_layout);
-  const std::vector<formats::EurocCamera> cameras = formats::readEurocCameras(dataset_dir);
+  const std::vector<formats::EurocCamera> cameras =
+      formats::readEurocCameras(dataset_dir, dataset.imu().empty() ? 0.0 : dataset.imu().front().t);
   RosbagVisitor visitor(dataset, cameras, bag_path, options.overwrite, stamp, convention);
   visitDatasetMessages(dataset, cameras, visitor, progress);
   formats::RosbagWriter& bag = visitor.bag;

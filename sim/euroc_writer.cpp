@@ -3,10 +3,12 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <iomanip>
 #include <memory>
+#include <span>
 #include <sstream>
 #include <stdexcept>
 
@@ -133,6 +135,17 @@ void writeCamchain(const fs::path& path, const std::vector<CameraStream>& camera
 // Nanoseconds of the dataset clock at simulated time t.
 std::int64_t stampNs(std::uint64_t offset_s, double t) {
   return std::int64_t(offset_s) * 1000000000LL + std::llround(t * 1e9);
+}
+
+// A TUM row of `pose` stamped `ns` nanoseconds, the seconds written exactly from the integer (a
+// double would lose the nanoseconds of a stamp near 10⁹ s).
+std::string tumRow(std::int64_t ns, const Eigen::Isometry3d& pose) {
+  const common::StampedPose stamped{0.0, pose};
+  const std::string row = common::toTumText(std::span<const common::StampedPose>(&stamped, 1));
+  char seconds[40];
+  std::snprintf(seconds, sizeof seconds, "%lld.%09lld", static_cast<long long>(ns / 1000000000),
+                static_cast<long long>(ns % 1000000000));
+  return seconds + row.substr(row.find(' '));
 }
 
 void writeImu(Simulation& simulation, const fs::path& root, double duration,
@@ -299,7 +312,9 @@ EurocSummary writeMav0(Simulation& simulation, const fs::path& root, double dura
       depth_csv = openText(root / camera.depth_folder / "data.csv");
       depth_csv << "#timestamp [ns],filename\n";
     }
-    common::Trajectory poses;
+    std::ofstream tum = openText(root / (config.name + ".tum"));
+    tum << "# B_T_C of " << config.name << " (optical frame: z forward, x right, y down) at each "
+        << "frame, stamped as its image (seconds)\n";
     const CameraImages images(simulation.world().model(), config.model, scenario.seed);
     const double far = config.model.depth ? config.model.depth->max_m * 1.5 : kFarM;
     std::vector<float> depth;
@@ -307,7 +322,7 @@ EurocSummary writeMav0(Simulation& simulation, const fs::path& root, double dura
     for (int f = 0; f < camera.frames; ++f) {
       const double t = f / config.model.rate_hz;
       const Eigen::Isometry3d B_T_C = motion.pose(t) * camera.R_T_C;
-      poses.push_back({t, B_T_C});
+      tum << tumRow(stampNs(options.stamp_offset_s, t), B_T_C);
       Image image = images.render(data, B_T_C, far, config.model.depth ? &depth : nullptr);
       Xoshiro256 rng(deriveSeed(scenario.seed, kCameraNoiseStream, (std::uint64_t(ci) << 32) | f));
       addNoise(image.rgb, depth, config.model.depth, rng,
@@ -323,13 +338,9 @@ EurocSummary writeMav0(Simulation& simulation, const fs::path& root, double dura
       ++summary.frames;
       if (progress) progress(summary.frames, total);
     }
-    if (!csv || (depth_csv.is_open() && !depth_csv)) {
+    if (!csv || !tum || (depth_csv.is_open() && !depth_csv)) {
       throw common::InputError(folder.string(), "", "cannot write");
     }
-    std::ofstream tum = openText(root / (config.name + ".tum"));
-    tum << "# B_T_C of " << config.name << " (optical frame: z forward, x right, y down) at each "
-        << "frame, seconds of the simulation\n"
-        << common::toTumText(poses);
   }
   writeCamchain(root / "camchain.yaml", cameras);
   return summary;

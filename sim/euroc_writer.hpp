@@ -30,10 +30,10 @@ using FrameProgress = std::function<void(int done, int total)>;
 // mav0/<camera>/data/<ns>.png with data.csv and sensor.yaml, mav0/depth<k>/ (16-bit PNG in
 // millimetres, registered to the camera), mav0/imu0/, mav0/state_groundtruth_estimate0/ (the IMU
 // in B), mav0/camchain.yaml (Kalibr's camera chain) and mav0/<camera>.tum (B_T_C at each frame,
-// simulated seconds). mav0 is written in place and removed again if writing fails: the caller
-// gives a folder that appears only when complete (isg simulate gives the dataset's temporary
-// folder, DatasetOptions::also_write). Frames go to disk as they are made: memory does not grow
-// with the walk. Throws std::invalid_argument when the scenario has no camera.
+// stamped as its image, in seconds). mav0 is written in place and removed again if writing fails:
+// the caller gives a folder that appears only when complete (isg simulate gives the dataset's
+// temporary folder, DatasetOptions::also_write). Frames go to disk as they are made: memory does
+// not grow with the walk. Throws std::invalid_argument when the scenario has no camera.
 EurocSummary writeEuroc(Simulation& simulation, const std::string& dataset_dir,
                         const EurocOptions& options, const FrameProgress& progress);
 

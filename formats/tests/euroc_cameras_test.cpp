@@ -60,16 +60,19 @@ fs::path writeMav0(const std::string& name) {
       writePng(folder / "data" / (std::string(stamp) + ".png"), depth);
     }
   }
-  std::ofstream(dataset / "mav0" / "cam0.tum") << "# B_T_C\n0.500000000 1 2 3 0 0 0 1\n"
-                                               << "0.533333333 1 2 3 0 0 0 1\n";
+  // The dataset's IMU starts at 0 s (the readers are given it): its EuRoC stamp says 7 s.
   fs::create_directories(dataset / "mav0" / "imu0");
   std::ofstream(dataset / "mav0" / "imu0" / "sensor.yaml") << "sensor_type: imu\nrate_hz: 200\n";
+  std::ofstream(dataset / "mav0" / "imu0" / "data.csv")
+      << "#timestamp [ns],w_RS_S_x [rad s^-1],w_RS_S_y [rad s^-1],w_RS_S_z [rad s^-1],"
+         "a_RS_S_x [m s^-2],a_RS_S_y [m s^-2],a_RS_S_z [m s^-2]\n"
+      << "7000000000,0,0,0,0,0,9.81\n7005000000,0,0,0,0,0,9.81\n";
   return dataset;
 }
 
 std::string errorOf(const fs::path& dataset) {
   try {
-    readEurocCameras(dataset.string());
+    readEurocCameras(dataset.string(), 0.0);
   } catch (const common::InputError& e) {
     return e.what();
   }
@@ -78,7 +81,7 @@ std::string errorOf(const fs::path& dataset) {
 
 TEST(EurocCameras, ReadsCalibrationMountsAndFramesOnTheDatasetClock) {
   const fs::path dataset = writeMav0("euroc_cameras");
-  const std::vector<EurocCamera> cameras = readEurocCameras(dataset.string());
+  const std::vector<EurocCamera> cameras = readEurocCameras(dataset.string(), 0.0);
   ASSERT_EQ(cameras.size(), 2u);  // imu0 is not a camera
   const EurocCamera& cam0 = cameras[0];
   const EurocCamera& depth0 = cameras[1];
@@ -99,7 +102,7 @@ TEST(EurocCameras, ReadsCalibrationMountsAndFramesOnTheDatasetClock) {
   // EuRoC's radial-tangential k1 k2 p1 p2 become ROS's plumb_bob with k3 = 0.
   EXPECT_EQ(depth0.calibration.distortion_model, "plumb_bob");
   EXPECT_EQ(depth0.calibration.distortion.size(), 5u);
-  // The 7 s offset found from cam0.tum comes off every camera's stamps, depth0's too.
+  // The 7 s offset found from imu0 comes off every camera's stamps, depth0's too.
   for (const EurocCamera& camera : cameras) {
     ASSERT_EQ(camera.frames.size(), 2u);
     EXPECT_EQ(camera.frames[0].stamp_ns, 7500000000);
@@ -111,7 +114,7 @@ TEST(EurocCameras, ReadsCalibrationMountsAndFramesOnTheDatasetClock) {
 }
 
 TEST(EurocCameras, NoMav0FolderIsNoCamera) {
-  EXPECT_TRUE(readEurocCameras(test_files::scratchFolder("euroc_none").string()).empty());
+  EXPECT_TRUE(readEurocCameras(test_files::scratchFolder("euroc_none").string(), 0.0).empty());
 }
 
 TEST(EurocCameras, BadFilesAreNamedWithWhatIsWrong) {
@@ -138,21 +141,17 @@ TEST(EurocCameras, BadFilesAreNamedWithWhatIsWrong) {
             (mav0 / "cam0" / "data.csv").string() + ": line 4: \"../x.png\" is not a file name");
 
   dataset = writeMav0("euroc_bad");
-  fs::remove(mav0 / "cam0.tum");
-  EXPECT_EQ(errorOf(dataset), (mav0 / "cam0.tum").string() +
-                                  ": missing: it gives the frames of cam0 in seconds of the "
-                                  "simulation");
+  fs::remove(mav0 / "imu0" / "data.csv");
+  EXPECT_EQ(errorOf(dataset), (mav0 / "imu0" / "data.csv").string() +
+                                  ": cannot be read: it ties the cameras' stamps to the "
+                                  "dataset's clock");
 
+  // An IMU 2 ms off a whole second from the dataset's: not the same run.
   dataset = writeMav0("euroc_bad");
-  std::ofstream(mav0 / "cam0.tum") << "0.5 1 2 3 0 0 0 1\n0.55 1 2 3 0 0 0 1\n";
-  EXPECT_EQ(errorOf(dataset), (mav0 / "cam0.tum").string() +
-                                  ": line 3: its time is not the frame's in data.csv less a "
-                                  "whole number of seconds");
-
-  dataset = writeMav0("euroc_bad");
-  std::ofstream(mav0 / "cam0.tum") << "0.5 1 2 3 0 0 0 1\n";
-  EXPECT_EQ(errorOf(dataset),
-            (mav0 / "cam0.tum").string() + ": has 1 poses for 2 frames in data.csv");
+  std::ofstream(mav0 / "imu0" / "data.csv") << "#timestamp [ns],...\n7002000000,0,0,0,0,0,9.81\n";
+  EXPECT_EQ(errorOf(dataset), (mav0 / "imu0" / "data.csv").string() +
+                                  ": line 2: its first stamp is not the dataset's first IMU time "
+                                  "(0.000000 s) plus whole seconds: is mav0 from another run?");
 
   dataset = writeMav0("euroc_bad");
   std::ofstream(mav0 / "cam0" / "sensor.yaml")
