@@ -27,7 +27,6 @@ import json
 import os
 import pathlib
 import shutil
-import subprocess
 import sys
 import tempfile
 
@@ -35,7 +34,7 @@ import cv2
 import numpy as np
 import yaml
 
-from oracle_checks import check, run, verdict
+from oracle_checks import check, read_mcap_with_npm, run, verdict
 
 MCAP_MODULES = ["@mcap/core", "@mcap/nodejs", "@foxglove/rosmsg",
                 "@foxglove/rosmsg2-serialization", "@foxglove/crc", "@foxglove/wasm-zstd"]
@@ -93,12 +92,7 @@ def read_rosbag(path):
 
 def read_mcap(path, oracles):
     """The same from an MCAP file, through the npm readers (mcap_oracle.js)."""
-    script = pathlib.Path(__file__).with_name("mcap_oracle.js")
-    done = subprocess.run(["node", str(script), str(path), oracles], capture_output=True,
-                          text=True)
-    if done.returncode != 0:
-        sys.exit(f"the npm readers could not read {path}:\n{done.stderr}")
-    got = json.loads(done.stdout)
+    got = read_mcap_with_npm(path, oracles)
     out = {}
     for topic, channel in got["channels"].items():
         messages = got["messages"][topic]

@@ -24,11 +24,10 @@ import math
 import os
 import pathlib
 import shutil
-import subprocess
 import sys
 import tempfile
 
-from oracle_checks import check, run, verdict
+from oracle_checks import check, read_mcap_with_npm, run, verdict
 
 OFFSET = 1000000000  # isg export's default --stamp-offset, whole seconds
 MODULES = ["@mcap/core", "@mcap/nodejs", "@foxglove/rosmsg", "@foxglove/rosmsg2-serialization",
@@ -59,15 +58,6 @@ def same_quaternion(got, row):
     if q[3] < 0:
         q = [-v for v in q]
     return all(abs(a - b) < 1e-12 for a, b in zip(got, q))
-
-
-def read(mcap, oracles):
-    script = pathlib.Path(__file__).with_name("mcap_oracle.js")
-    done = subprocess.run(["node", str(script), str(mcap), oracles], capture_output=True,
-                          text=True)
-    if done.returncode != 0:
-        sys.exit(f"the npm readers could not read {mcap}:\n{done.stderr}")
-    return json.loads(done.stdout)
 
 
 def check_file(name, got, ds, compression):
@@ -173,7 +163,7 @@ def main():
             out = run([args.isg, "export", str(ds), "--mcap", str(mcap), "--compression",
                        compression, "-q"])
             check("wrote" in out and "/velodyne_points" in out, f"export summary: {out}")
-            got = read(mcap, args.oracles)
+            got = read_mcap_with_npm(mcap, args.oracles)
             check_file(mcap.name, got, ds, "" if compression == "none" else compression)
             decoded[compression] = got["messages"]
         check(decoded["none"] == decoded["zstd"] == decoded["lz4"],

@@ -1,5 +1,8 @@
-"""What the oracle scripts (rosbag_oracle.py, mcap_oracle.py) share: checks that are counted
-rather than stopping at the first, and running isg."""
+"""What the oracle scripts (rosbag_oracle.py, mcap_oracle.py, camera_bag_oracle.py) share: checks
+that are counted rather than stopping at the first, running isg, and reading an MCAP file with
+npm's readers."""
+import json
+import pathlib
 import subprocess
 import sys
 
@@ -28,3 +31,14 @@ def verdict():
         return 1
     print("every check passed")
     return 0
+
+
+def read_mcap_with_npm(mcap, oracles):
+    """An MCAP file as mcap_oracle.js reads it with npm's readers (its JSON document), or the
+    script ends with their error."""
+    script = pathlib.Path(__file__).with_name("mcap_oracle.js")
+    done = subprocess.run(["node", str(script), str(mcap), oracles], capture_output=True,
+                          text=True)
+    if done.returncode != 0:
+        sys.exit(f"the npm readers could not read {mcap}:\n{done.stderr}")
+    return json.loads(done.stdout)

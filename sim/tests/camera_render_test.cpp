@@ -123,12 +123,7 @@ TEST(CameraRender, AnOffCentrePrincipalPointShiftsTheImage) {
 // The 360° rig's front lens through its cube map: each pixel's range against mj_ray along the
 // ray the lens model gives that pixel (bim::pixelRay), so the remap follows the lens model.
 TEST(CameraRender, AFisheyePixelSeesAlongItsLensModelsRay) {
-  bim::Scenario scenario = worlds::loadScenarioOrBuiltin("builtin:d1", nullptr);
-  const nlohmann::json document =
-      common::parseJsonText(R"([{"model": "insta360-one-rs"}])", "cameras.json");
-  const common::JsonSource source{"cameras.json", nullptr};
-  scenario.cameras = bim::parseCameras(common::JsonNode(document, "", source));
-  Simulation sim(scenario);
+  Simulation sim(d1WithCamera("insta360-one-rs"));
   const bim::CameraModel& lens = sim.scenario().cameras[0].model;
   FisheyeCamera camera(sim.world().model(), lens, 1);
   EXPECT_EQ(camera.faceSize(), 924);  // twice the focal length, 461.6 px
@@ -196,12 +191,7 @@ std::optional<double> rangeEdgeInRow(const std::vector<float>& range, int width,
 // the line's projection (bim::projectToPixel) and the column where the rendered range jumps
 // (the office behind the doorway) agree within 1 px.
 TEST(CameraRender, APlanCornerThroughTheFisheyeModelLiesOnTheRenderedEdge) {
-  bim::Scenario scenario = worlds::loadScenarioOrBuiltin("builtin:d1", nullptr);
-  const nlohmann::json document =
-      common::parseJsonText(R"([{"model": "insta360-one-rs"}])", "cameras.json");
-  const common::JsonSource source{"cameras.json", nullptr};
-  scenario.cameras = bim::parseCameras(common::JsonNode(document, "", source));
-  Simulation sim(scenario);
+  Simulation sim(d1WithCamera("insta360-one-rs"));
   const bim::CameraModel& lens = sim.scenario().cameras[0].model;
   FisheyeCamera camera(sim.world().model(), lens, 1);
   Eigen::Isometry3d B_T_C = Eigen::Isometry3d::Identity();
