@@ -16,11 +16,15 @@ namespace isg::cli {
 
 namespace {
 
-// The progress bar's update after each scan.
-std::function<void(int, int)> scansTo(ProgressBar& bar) {
-  return [&bar](int done, int total) {
-    char detail[64];
-    std::snprintf(detail, sizeof detail, "%d/%d scans", done, total);
+// The progress bar's update after each scan, and after each camera image when the dataset has
+// them (its mav0 folder, isg simulate --euroc: the exports carry its frames).
+std::function<void(int, int)> scansTo(ProgressBar& bar, const std::string& dataset_dir) {
+  const char* what = std::filesystem::is_directory(std::filesystem::path(dataset_dir) / "mav0")
+                         ? "scans and images"
+                         : "scans";
+  return [&bar, what](int done, int total) {
+    char detail[80];
+    std::snprintf(detail, sizeof detail, "%d/%d %s", done, total, what);
     bar.update(total > 0 ? double(done) / total : 1.0, detail);
   };
 }
@@ -173,7 +177,8 @@ void exportRosbagWithProgress(const std::string& command, const std::string& dat
   options.velodyne_layout = velodyne_layout;
   options.overwrite = overwrite;
   ProgressBar bar(command, quiet);
-  const auto summary = recordings::exportRosbag(dataset_dir, bag_path, options, scansTo(bar));
+  const auto summary =
+      recordings::exportRosbag(dataset_dir, bag_path, options, scansTo(bar, dataset_dir));
   bar.finish();
   printExportSummary(command, bag_path, summary);
 }
@@ -188,7 +193,8 @@ void exportMcapWithProgress(const std::string& command, const std::string& datas
   options.compression = compression;
   options.overwrite = overwrite;
   ProgressBar bar(command, quiet);
-  const auto summary = recordings::exportMcap(dataset_dir, mcap_path, options, scansTo(bar));
+  const auto summary =
+      recordings::exportMcap(dataset_dir, mcap_path, options, scansTo(bar, dataset_dir));
   bar.finish();
   printExportSummary(command, mcap_path, summary);
 }
