@@ -6,6 +6,7 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <iterator>
 #include <map>
 #include <sstream>
 
@@ -205,6 +206,34 @@ std::vector<EurocCamera> readEurocCameras(const std::string& dataset_dir, double
     for (EurocFrame& frame : camera.frames) frame.t = double(frame.stamp_ns - offset_ns) * 1e-9;
   }
   return cameras;
+}
+
+std::string readDepthPng(const std::string& path, int width, int height) {
+  std::ifstream in(path, std::ios::binary);
+  std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  if (!in.good() && !in.eof()) throw common::InputError(path, "", "cannot be read");
+  // The signature, then the IHDR chunk: length 13, "IHDR", width, height (big-endian), bit depth,
+  // colour type (0: grey).
+  const auto u32 = [&](std::size_t at) {
+    return std::uint32_t(std::uint8_t(bytes[at])) << 24 |
+           std::uint32_t(std::uint8_t(bytes[at + 1])) << 16 |
+           std::uint32_t(std::uint8_t(bytes[at + 2])) << 8 |
+           std::uint32_t(std::uint8_t(bytes[at + 3]));
+  };
+  if (bytes.size() < 33 || bytes.compare(0, 8, "\x89PNG\r\n\x1a\n") != 0 ||
+      bytes.compare(12, 4, "IHDR") != 0) {
+    throw common::InputError(path, "", "not a PNG image");
+  }
+  if (bytes[24] != 16 || bytes[25] != 0) {
+    throw common::InputError(path, "", "not a 16-bit grey depth image");
+  }
+  if (u32(16) != std::uint32_t(width) || u32(20) != std::uint32_t(height)) {
+    throw common::InputError(path, "",
+                             "is " + std::to_string(u32(16)) + " x " + std::to_string(u32(20)) +
+                                 " pixels, its camera " + std::to_string(width) + " x " +
+                                 std::to_string(height));
+  }
+  return bytes;
 }
 
 }  // namespace isg::formats

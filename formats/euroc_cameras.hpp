@@ -36,4 +36,8 @@ struct EurocCamera {
 // folders alone: a common::InputError naming the file and what is wrong.
 std::vector<EurocCamera> readEurocCameras(const std::string& dataset_dir, double first_imu_t);
 
+// A depth frame's file as it goes into a bag (lossless): its bytes, checked to be a PNG of 16-bit
+// grey of `width` × `height` (its signature and header), else a common::InputError naming it.
+std::string readDepthPng(const std::string& path, int width, int height);
+
 }  // namespace isg::formats

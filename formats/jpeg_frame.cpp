@@ -54,9 +54,16 @@ void jpegFailure(j_common_ptr info) {
 
 }  // namespace
 
-std::string rgbPngFileToJpeg(const std::string& png_path, int quality) {
+std::string rgbPngFileToJpeg(const std::string& png_path, int expected_width, int expected_height,
+                             int quality) {
   int width = 0, height = 0;
   const std::vector<unsigned char> rgb = readRgbPng(png_path, width, height);
+  if (width != expected_width || height != expected_height) {
+    throw common::InputError(png_path, "",
+                             "is " + std::to_string(width) + " x " + std::to_string(height) +
+                                 " pixels, its camera " + std::to_string(expected_width) + " x " +
+                                 std::to_string(expected_height));
+  }
   jpeg_compress_struct info;
   JpegError error;
   info.err = jpeg_std_error(&error.manager);

@@ -9,9 +9,10 @@ namespace isg::formats {
 // exports' oracle counts them).
 inline constexpr int kJpegQuality = 90;
 
-// An 8-bit RGB PNG file (an EuRoC frame) as JPEG (libjpeg-turbo, 4:2:0, baseline): what
-// sensor_msgs/CompressedImage carries. A file that is not such a PNG: a common::InputError naming
-// it.
-std::string rgbPngFileToJpeg(const std::string& png_path, int quality = kJpegQuality);
+// An 8-bit RGB PNG file (an EuRoC frame) of `width` × `height` as JPEG (libjpeg-turbo, 4:2:0,
+// baseline): what sensor_msgs/CompressedImage carries. A file that is not such a PNG, or of
+// another size than its camera's: a common::InputError naming it.
+std::string rgbPngFileToJpeg(const std::string& png_path, int width, int height,
+                             int quality = kJpegQuality);
 
 }  // namespace isg::formats

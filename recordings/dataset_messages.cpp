@@ -2,10 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
-#include <fstream>
-#include <iterator>
 
-#include "common/input_error.hpp"
 #include "formats/jpeg_frame.hpp"
 
 namespace isg::recordings {
@@ -33,18 +30,13 @@ struct Entry {
   int camera = 0;  // for kImage
 };
 
-std::string fileBytes(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-  if (!in.good() && !in.eof()) throw common::InputError(path, "", "cannot be read");
-  if (bytes.empty()) throw common::InputError(path, "", "is empty");
-  return bytes;
-}
-
 CameraImage imageOf(const formats::EurocCamera& camera, int i) {
   const std::string& path = camera.frames[i].path;
-  if (camera.depth) return {&camera, rosbag_names::kDepthPngFormat, fileBytes(path)};
-  return {&camera, rosbag_names::kJpegFormat, formats::rgbPngFileToJpeg(path)};
+  const int width = camera.calibration.width, height = camera.calibration.height;
+  if (camera.depth) {
+    return {&camera, rosbag_names::kDepthPngFormat, formats::readDepthPng(path, width, height)};
+  }
+  return {&camera, rosbag_names::kJpegFormat, formats::rgbPngFileToJpeg(path, width, height)};
 }
 
 }  // namespace

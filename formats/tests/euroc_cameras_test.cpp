@@ -175,7 +175,7 @@ TEST(EurocCameras, BadFilesAreNamedWithWhatIsWrong) {
 TEST(JpegFrame, EncodesAnRgbPngAndRefusesOtherFiles) {
   const fs::path dir = test_files::scratchFolder("jpeg_frame");
   writePng(dir / "rgb.png", false);
-  const std::string jpeg = rgbPngFileToJpeg((dir / "rgb.png").string());
+  const std::string jpeg = rgbPngFileToJpeg((dir / "rgb.png").string(), kWidth, kHeight);
   ASSERT_GT(jpeg.size(), 4u);
   EXPECT_EQ(jpeg.substr(0, 2), "\xff\xd8");             // start of image
   EXPECT_EQ(jpeg.substr(jpeg.size() - 2), "\xff\xd9");  // end of image
@@ -184,19 +184,45 @@ TEST(JpegFrame, EncodesAnRgbPngAndRefusesOtherFiles) {
   ASSERT_NE(sof, std::string::npos);
   EXPECT_EQ(jpeg.substr(sof + 5, 4), std::string("\x00\x06\x00\x08", 4));
 
-  auto errorFor = [](const fs::path& path) {
+  auto errorFor = [](const fs::path& path, int width = kWidth) {
     try {
-      rgbPngFileToJpeg(path.string());
+      rgbPngFileToJpeg(path.string(), width, kHeight);
     } catch (const common::InputError& e) {
       return std::string(e.what());
     }
     return std::string("no error");
   };
+  EXPECT_EQ(errorFor(dir / "rgb.png", 9),
+            (dir / "rgb.png").string() + ": is 8 x 6 pixels, its camera 9 x 6");
   writePng(dir / "depth.png", true);
   EXPECT_EQ(errorFor(dir / "depth.png"), (dir / "depth.png").string() + ": not an 8-bit RGB image");
   std::ofstream(dir / "text.png") << "not a picture";
   EXPECT_EQ(
       errorFor(dir / "text.png").rfind((dir / "text.png").string() + ": not a PNG image: ", 0), 0u);
+}
+
+// A depth frame goes into a bag as its PNG bytes, once they are seen to be a 16-bit grey PNG of
+// the camera's size.
+TEST(EurocCameras, ADepthFrameIsCarriedAsItsPngOnceChecked) {
+  const fs::path dir = test_files::scratchFolder("depth_png");
+  writePng(dir / "depth.png", true);
+  writePng(dir / "rgb.png", false);
+  std::ofstream(dir / "text.png") << "not a picture at all, but long enough to hold a header";
+  EXPECT_EQ(readDepthPng((dir / "depth.png").string(), kWidth, kHeight),
+            test_files::slurp(dir / "depth.png"));
+  auto errorFor = [](const fs::path& path, int width) {
+    try {
+      readDepthPng(path.string(), width, kHeight);
+    } catch (const common::InputError& e) {
+      return std::string(e.what());
+    }
+    return std::string("no error");
+  };
+  EXPECT_EQ(errorFor(dir / "depth.png", 640),
+            (dir / "depth.png").string() + ": is 8 x 6 pixels, its camera 640 x 6");
+  EXPECT_EQ(errorFor(dir / "rgb.png", kWidth),
+            (dir / "rgb.png").string() + ": not a 16-bit grey depth image");
+  EXPECT_EQ(errorFor(dir / "text.png", kWidth), (dir / "text.png").string() + ": not a PNG image");
 }
 
 }  // namespace
