@@ -6,6 +6,7 @@
 #include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <functional>
 #include <vector>
 
 #include "common/input_error.hpp"
@@ -70,13 +71,18 @@ fs::path writeMav0(const std::string& name) {
   return dataset;
 }
 
-std::string errorOf(const fs::path& dataset) {
+// The message of the InputError `call` throws, or "no error".
+std::string inputErrorOf(const std::function<void()>& call) {
   try {
-    readEurocCameras(dataset.string(), 0.0);
+    call();
   } catch (const common::InputError& e) {
     return e.what();
   }
   return "no error";
+}
+
+std::string errorOf(const fs::path& dataset) {
+  return inputErrorOf([&] { readEurocCameras(dataset.string(), 0.0); });
 }
 
 TEST(EurocCameras, ReadsCalibrationMountsAndFramesOnTheDatasetClock) {
@@ -185,12 +191,7 @@ TEST(JpegFrame, EncodesAnRgbPngAndRefusesOtherFiles) {
   EXPECT_EQ(jpeg.substr(sof + 5, 4), std::string("\x00\x06\x00\x08", 4));
 
   auto errorFor = [](const fs::path& path, int width = kWidth) {
-    try {
-      rgbPngFileToJpeg(path.string(), width, kHeight);
-    } catch (const common::InputError& e) {
-      return std::string(e.what());
-    }
-    return std::string("no error");
+    return inputErrorOf([&] { rgbPngFileToJpeg(path.string(), width, kHeight); });
   };
   EXPECT_EQ(errorFor(dir / "rgb.png", 9),
             (dir / "rgb.png").string() + ": is 8 x 6 pixels, its camera 9 x 6");
@@ -211,12 +212,7 @@ TEST(EurocCameras, ADepthFrameIsCarriedAsItsPngOnceChecked) {
   EXPECT_EQ(readDepthPng((dir / "depth.png").string(), kWidth, kHeight),
             test_files::slurp(dir / "depth.png"));
   auto errorFor = [](const fs::path& path, int width) {
-    try {
-      readDepthPng(path.string(), width, kHeight);
-    } catch (const common::InputError& e) {
-      return std::string(e.what());
-    }
-    return std::string("no error");
+    return inputErrorOf([&] { readDepthPng(path.string(), width, kHeight); });
   };
   EXPECT_EQ(errorFor(dir / "depth.png", 640),
             (dir / "depth.png").string() + ": is 8 x 6 pixels, its camera 640 x 6");
