@@ -209,8 +209,6 @@ void writeImu(Simulation& simulation, const fs::path& root, double duration,
   if (!data || !states) throw common::InputError((root / "imu0").string(), "", "cannot write");
 }
 
-// The RGB image with its noise, and the depth image in millimetres: the rendered depth with the
-// model's error drawn per pixel, 0 outside its range.
 // A draw of unit variance about 0, near-Gaussian: the sum of the four 16-bit words of one 64-bit
 // draw (Irwin–Hall with n = 4, its tails ending at ±3.46 σ), scaled. Image noise needs the
 // shape and the spread, not the far tails, and a frame needs a million of them: one draw each
@@ -224,12 +222,13 @@ double nearNormal(Xoshiro256& rng) {
   return (sum - kMean) / kSigma;
 }
 
+// The RGB image with its noise, and the depth image in millimetres: the rendered depth with the
+// model's error drawn per pixel, 0 outside its range.
 void addNoise(std::vector<unsigned char>& rgb, const std::vector<float>& depth,
               const std::optional<bim::DepthModel>& model, Xoshiro256& rng,
               std::vector<std::uint16_t>* depth_mm) {
-  const auto normal = [](Xoshiro256& r) { return nearNormal(r); };
   for (unsigned char& c : rgb) {
-    const double value = c + kRgbNoiseLevels * normal(rng);
+    const double value = c + kRgbNoiseLevels * nearNormal(rng);
     c = static_cast<unsigned char>(std::clamp(std::lround(value), 0L, 255L));
   }
   if (!model || depth_mm == nullptr) return;
@@ -240,7 +239,7 @@ void addNoise(std::vector<unsigned char>& rgb, const std::vector<float>& depth,
       (*depth_mm)[i] = 0;
       continue;
     }
-    const double measured = z + model->sigma(z) * normal(rng);
+    const double measured = z + model->sigma(z) * nearNormal(rng);
     (*depth_mm)[i] =
         static_cast<std::uint16_t>(std::clamp(std::lround(measured * 1000.0), 1L, 65535L));
   }
