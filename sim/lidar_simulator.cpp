@@ -106,6 +106,8 @@ LidarSimulator::LidarSimulator(const MujocoWorld& world, const bim::LidarConfig&
     shape.pos = Eigen::Map<const Eigen::Vector3d>(d.geom_xpos + 3 * g);
     shape.R = Eigen::Map<const Eigen::Matrix<double, 3, 3, Eigen::RowMajor>>(d.geom_xmat + 9 * g);
     shape.inverse_half = Eigen::Map<const Eigen::Vector3d>(m.geom_size + 3 * g).cwiseInverse();
+    shape.upright = shape.type == mjGEOM_BOX && shape.R(2, 0) == 0.0 && shape.R(2, 1) == 0.0 &&
+                    shape.R(0, 2) == 0.0 && shape.R(1, 2) == 0.0 && shape.R(2, 2) == 1.0;
   }
   laser_height_.resize(std::size_t(lasers_));
   for (int l = 0; l < lasers_; ++l) laser_height_[std::size_t(l)] = laserOrigin(l).z();
@@ -162,6 +164,30 @@ Eigen::Vector3d LidarSimulator::surfaceNormal(int geom, const Eigen::Vector3d& p
   }
 }
 
+double LidarSimulator::cosIncidence(int geom, const Eigen::Vector3d& point,
+                                    const Eigen::Vector3d& direction) const {
+  const GeomShape& shape = shapes_[geom];
+  if (shape.type != mjGEOM_BOX)
+    return std::abs(surfaceNormal(geom, point, direction).dot(direction));
+  // surfaceNormal's face, chosen by selects rather than branches (which face a ray meets changes
+  // from laser to laser: floor, wall, ceiling). The normal's sign drops out of |n · direction|.
+  // An upright box's z row and column are zeros and a one, whose products add nothing: the local
+  // point is the same bits from the 2-D rotation.
+  const Eigen::Vector3d d = point - shape.pos;
+  const Eigen::Matrix3d& R = shape.R;
+  Eigen::Vector3d local;
+  if (shape.upright) {
+    local << R(0, 0) * d.x() + R(1, 0) * d.y(), R(0, 1) * d.x() + R(1, 1) * d.y(), d.z();
+  } else {
+    local = R.transpose() * d;
+  }
+  const Eigen::Vector3d out = local.cwiseAbs().cwiseProduct(shape.inverse_half);
+  const bool x_over_y = out.x() >= out.y();
+  const double larger = x_over_y ? out.x() : out.y();
+  const int axis = larger >= out.z() ? (x_over_y ? 0 : 1) : 2;
+  return std::abs(R.col(axis).dot(direction));
+}
+
 int LidarSimulator::blockCount() const {
   return (sequences_ + kBlockSequences - 1) / kBlockSequences;
 }
@@ -183,10 +209,8 @@ LidarSimulator::SubHit LidarSimulator::subHit(const RayCaster::Hit& hit,
                                               double weight) const {
   SubHit out;
   if (hit.distance < 0) return out;
-  const Eigen::Vector3d normal =
-      surfaceNormal(hit.geom, origin + hit.distance * direction, direction);
   out.distance = hit.distance;
-  out.cos_incidence = std::abs(normal.dot(direction));
+  out.cos_incidence = cosIncidence(hit.geom, origin + hit.distance * direction, direction);
   out.lit = weight * reflectivity_[hit.geom] * out.cos_incidence;
   out.power = out.lit / (hit.distance * hit.distance);
   return out;

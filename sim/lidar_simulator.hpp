@@ -96,6 +96,10 @@ class LidarSimulator {
   // with the geoms where they stood when the sensor was made (the building is static).
   Eigen::Vector3d surfaceNormal(int geom, const Eigen::Vector3d& point,
                                 const Eigen::Vector3d& direction) const;
+  // |surfaceNormal(geom, point, direction) · direction|, the cosine of the incidence: the same
+  // number, without a branch on the face for a box (every ray of every turn asks it).
+  double cosIncidence(int geom, const Eigen::Vector3d& point,
+                      const Eigen::Vector3d& direction) const;
 
  private:
   // One sub-ray of a beam (last and dual returns cast the beam's centre and its two edges).
@@ -173,6 +177,7 @@ class LidarSimulator {
   double full_return_cos_;  // cos(grazing cutoff): returns at least this square all come
   struct GeomShape {
     int type = 0;
+    bool upright = false;  // a box turned about z only: R's z row and column are exactly (0, 0, 1)
     Eigen::Vector3d pos = Eigen::Vector3d::Zero();
     Eigen::Matrix3d R = Eigen::Matrix3d::Identity();  // columns: the geom's axes in B
     Eigen::Vector3d inverse_half = Eigen::Vector3d::Zero();

@@ -10,9 +10,9 @@ namespace isg::slam {
 PlaneVoxelMap::PlaneVoxelMap(const PlaneVoxelMapOptions& options) : options_(options) {}
 
 Eigen::Vector3i PlaneVoxelMap::cellOf(const Eigen::Vector3d& p) const {
-  return Eigen::Vector3i(int(std::floor(p.x() / options_.voxel)),
-                         int(std::floor(p.y() / options_.voxel)),
-                         int(std::floor(p.z() / options_.voxel)));
+  return Eigen::Vector3i(int(floorToInt(p.x() / options_.voxel)),
+                         int(floorToInt(p.y() / options_.voxel)),
+                         int(floorToInt(p.z() / options_.voxel)));
 }
 
 PlaneVoxelMap::Contribution PlaneVoxelMap::contributionOf(const std::vector<Eigen::Vector3f>& cloud,

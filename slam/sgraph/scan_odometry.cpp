@@ -1,6 +1,7 @@
 #include "slam/sgraph/scan_odometry.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdint>
 #include <numbers>
@@ -11,6 +12,9 @@
 namespace isg::slam {
 
 namespace {
+
+// Rings whose latest voxel deskewedCloud keeps (every LiDAR model's: at most 128 lasers).
+constexpr std::uint16_t kCachedRings = 128;
 
 // std::lround for x ≥ 0 (ties away from zero), inline: glibc's lround is a library call, and it
 // ran once per scan point. x - trunc(x) is exact below 2^52.
@@ -36,12 +40,24 @@ std::vector<Eigen::Vector3f> deskewedCloud(const sensors::Scan& scan,
   std::vector<std::pair<Eigen::Vector3d, int>> sums;  // per voxel: sum, count
   const double min2 = options.min_range * options.min_range;
   const double max2 = options.max_range * options.max_range;
+  // Each ring's latest voxel: a laser's next return, a fraction of a degree further round, mostly
+  // falls in the same voxel, and then the index (a random access into a table larger than the
+  // cache) is not asked. The same voxels, met in the same order.
+  struct RingVoxel {
+    std::uint64_t key = VoxelIndex::kEmpty;
+    int at = -1;
+  };
+  std::array<RingVoxel, kCachedRings> ring_voxel{};
   for (const auto& point : scan.points) {
     const Eigen::Isometry3d& T = L0_T_L[roundNonNegative((point.time - first) / step)];
     const Eigen::Vector3d q = T * Eigen::Vector3d(point.x, point.y, point.z);
     const double range2 = q.squaredNorm();
     if (!std::isfinite(range2) || range2 < min2 || range2 > max2) continue;
-    const int at = index.insert(voxelKey(q, options.voxel), int(sums.size()));
+    const std::uint64_t key = voxelKey(q, options.voxel);
+    RingVoxel unused;
+    RingVoxel& last = point.ring < kCachedRings ? ring_voxel[point.ring] : unused;
+    if (last.key != key) last = {key, index.insert(key, int(sums.size()))};
+    const int at = last.at;
     if (at == int(sums.size())) sums.push_back({Eigen::Vector3d::Zero(), 0});
     sums[at].first += q;
     ++sums[at].second;

@@ -88,12 +88,18 @@ LocalMap::~LocalMap() = default;
 LocalMap::LocalMap(LocalMap&& other) noexcept
     : points_(std::move(other.points_)),
       normals_(std::move(other.normals_)),
+      normal_known_(std::move(other.normal_known_)),
+      options_(other.options_),
+      pool_(other.pool_),
       index_(std::move(other.index_)) {
   if (index_) index_->cloud.points = &points_;
 }
 LocalMap& LocalMap::operator=(LocalMap&& other) noexcept {
   points_ = std::move(other.points_);
   normals_ = std::move(other.normals_);
+  normal_known_ = std::move(other.normal_known_);
+  options_ = other.options_;
+  pool_ = other.pool_;
   index_ = std::move(other.index_);
   if (index_) index_->cloud.points = &points_;
   return *this;
@@ -101,7 +107,7 @@ LocalMap& LocalMap::operator=(LocalMap&& other) noexcept {
 
 LocalMap::LocalMap(const std::vector<Part>& parts, const ScanRegistrationOptions& options,
                    ThreadPool* pool)
-    : index_(std::make_unique<Index>()) {
+    : options_(options), pool_(pool), index_(std::make_unique<Index>()) {
   std::size_t expected = 0;
   for (const auto& part : parts) expected += part.cloud->size();
   VoxelCentroids voxels(options.voxel, expected);
@@ -113,39 +119,54 @@ LocalMap::LocalMap(const std::vector<Part>& parts, const ScanRegistrationOptions
   if (points_.empty()) return;
   index_->tree = std::make_unique<Index::Tree>(3, index_->cloud,
                                                nanoflann::KDTreeSingleIndexAdaptorParams(10));
-  // Normals by PCA of each point's neighbourhood; none where it is not a plane.
   normals_.assign(points_.size(), Eigen::Vector3d::Zero());
-  const int k_max = std::max(1, options.normal_neighbours);
+  normal_known_.assign(points_.size(), 0);
+}
+
+void LocalMap::computeNormal(std::size_t i, std::vector<int>& indices,
+                             std::vector<double>& squared) const {
+  // By PCA of the point's neighbourhood; none where it is not a plane.
+  const int found = int(
+      index_->tree->knnSearch(points_[i].data(), indices.size(), indices.data(), squared.data()));
+  int used = 0;
+  Eigen::Vector3d mean = Eigen::Vector3d::Zero();
+  for (int k = 0; k < found; ++k) {
+    if (squared[k] > options_.normal_radius * options_.normal_radius) break;
+    mean += points_[indices[k]];
+    ++used;
+  }
+  if (used < 5) return;
+  mean /= double(used);
+  Eigen::Matrix3d covariance = Eigen::Matrix3d::Zero();
+  for (int k = 0; k < used; ++k) {
+    const Eigen::Vector3d d = points_[indices[k]] - mean;
+    covariance += d * d.transpose();
+  }
+  normals_[i] = planeNormalOf(covariance, options_.max_planarity, options_.min_spread);
+}
+
+void LocalMap::prepareNormals(const std::vector<int>& indices) const {
+  wanted_.clear();
+  for (const int i : indices) {
+    if (i < 0 || normal_known_[i]) continue;
+    normal_known_[i] = 1;
+    wanted_.push_back(i);
+  }
+  if (wanted_.empty()) return;
+  const int k_max = std::max(1, options_.normal_neighbours);
   // Each point's normal on its own: items of points on the pool's threads, if any.
-  auto normal = [&](std::size_t i, std::vector<int>& indices, std::vector<double>& squared) {
-    const int found =
-        int(index_->tree->knnSearch(points_[i].data(), k_max, indices.data(), squared.data()));
-    int used = 0;
-    Eigen::Vector3d mean = Eigen::Vector3d::Zero();
-    for (int k = 0; k < found; ++k) {
-      if (squared[k] > options.normal_radius * options.normal_radius) break;
-      mean += points_[indices[k]];
-      ++used;
-    }
-    if (used < 5) return;
-    mean /= double(used);
-    Eigen::Matrix3d covariance = Eigen::Matrix3d::Zero();
-    for (int k = 0; k < used; ++k) {
-      const Eigen::Vector3d d = points_[indices[k]] - mean;
-      covariance += d * d.transpose();
-    }
-    normals_[i] = planeNormalOf(covariance, options.max_planarity, options.min_spread);
-  };
-  constexpr int kItem = 512;
-  const int items = itemCount(int(points_.size()), kItem);
+  constexpr int kItem = 256;
+  const int items = itemCount(int(wanted_.size()), kItem);
   const std::function<void(int)> item_normals = [&](int item) {
-    std::vector<int> indices(k_max);
+    std::vector<int> neighbours(k_max);
     std::vector<double> squared(k_max);
-    const std::size_t end = std::min(points_.size(), std::size_t(item + 1) * kItem);
-    for (std::size_t i = std::size_t(item) * kItem; i < end; ++i) normal(i, indices, squared);
+    const std::size_t end = std::min(wanted_.size(), std::size_t(item + 1) * kItem);
+    for (std::size_t w = std::size_t(item) * kItem; w < end; ++w) {
+      computeNormal(std::size_t(wanted_[w]), neighbours, squared);
+    }
   };
-  if (pool != nullptr) {
-    pool->run(items, item_normals);
+  if (pool_ != nullptr && items > 1) {
+    pool_->run(items, item_normals);
   } else {
     for (int i = 0; i < items; ++i) item_normals(i);
   }
@@ -225,17 +246,27 @@ class ScanAlignment {
   // One pass at correction x: each point's nearest map point within max_distance, a robust
   // point-to-plane row where the map point has a wall's normal; `near` counts those within
   // near_distance.
+  // The nearest map points first, then the normals of those met for the first time, then the
+  // rows: a normal is computed once per map point and registration.
   Sums pass(const Eigen::Vector3d& x, double max_distance, double near_distance) {
+    nearest_.resize(points_.size());
+    distance_.resize(points_.size());
+    forItems([&](int item) {
+      const int end = std::min(int(points_.size()), (item + 1) * kItem);
+      for (int i = item * kItem; i < end; ++i) {
+        nearest_[i] = map_.nearest(transformed(x, points_[i]), max_distance, &distance_[i]);
+      }
+    });
+    map_.prepareNormals(nearest_);
     forItems([&](int item) {
       Sums& s = sums_[item];
       s = Sums();
       const int end = std::min(int(points_.size()), (item + 1) * kItem);
       for (int i = item * kItem; i < end; ++i) {
-        const Eigen::Vector3d p = transformed(x, points_[i]);
-        double d = 0.0;
-        const int m = map_.nearest(p, max_distance, &d);
+        const int m = nearest_[i];
         if (m < 0) continue;
-        if (d <= near_distance) ++s.near;
+        const Eigen::Vector3d p = transformed(x, points_[i]);
+        if (distance_[i] <= near_distance) ++s.near;
         const Eigen::Vector3d& n = map_.normal(m);
         if (n.isZero() || std::abs(n.z()) > options_.max_normal_z) continue;
         const double r = n.dot(p - map_.point(m));
@@ -274,6 +305,9 @@ class ScanAlignment {
   ThreadPool* pool_;
   int items_ = 0;
   std::vector<Sums> sums_;
+  // A pass's nearest map point per scan point (−1: none within reach), and its distance.
+  std::vector<int> nearest_;
+  std::vector<double> distance_;
 };
 
 }  // namespace

@@ -100,7 +100,10 @@ std::vector<Eigen::Vector3f> downsampleScan(const sensors::Scan& scan,
                                             const ScanRegistrationOptions& options);
 
 // The recent map: points in M with normals, searchable (a nanoflann k-d tree). Built from
-// keyframe clouds and poses.
+// keyframe clouds and poses. A point's normal is computed when first asked for (prepareNormals):
+// a registration meets a part of the map only, and the normal (a PCA of the point's
+// neighbourhood, the dearest part of the map) of a point it never meets would be wasted. A
+// normal does not depend on when it is computed, so the registration is the same.
 class LocalMap {
  public:
   struct Part {
@@ -120,13 +123,22 @@ class LocalMap {
   // several threads at once.
   int nearest(const Eigen::Vector3d& q, double max_distance, double* distance) const;
   const Eigen::Vector3d& point(int i) const { return points_[i]; }
-  // Unit normal, or zero where the neighbourhood is not planar.
+  // Computes the normals of `indices` (map points, repeats allowed) not computed yet, on the
+  // pool's threads if any. Not safe beside other calls on the same map; normal() afterwards is.
+  void prepareNormals(const std::vector<int>& indices) const;
+  // Unit normal, or zero where the neighbourhood is not planar; prepareNormals({i}) first.
   const Eigen::Vector3d& normal(int i) const { return normals_[i]; }
 
  private:
   struct Index;
+  void computeNormal(std::size_t i, std::vector<int>& indices, std::vector<double>& squared) const;
   std::vector<Eigen::Vector3d> points_;
-  std::vector<Eigen::Vector3d> normals_;
+  // Normals as they are asked for; normal_known_[i] says whether normals_[i] is computed.
+  mutable std::vector<Eigen::Vector3d> normals_;
+  mutable std::vector<char> normal_known_;
+  mutable std::vector<int> wanted_;  // prepareNormals' scratch space
+  ScanRegistrationOptions options_;
+  ThreadPool* pool_ = nullptr;
   std::unique_ptr<Index> index_;
 };
 
