@@ -393,29 +393,38 @@ void LidarSimulator::beamReturns(const BlockReport& block, int i, const double n
 }
 
 void LidarSimulator::blockReturns(const BlockReport& block, int rays, std::uint64_t seed, int index,
-                                  bool beam, std::vector<LidarPoint>& points) const {
-  // Every ray draws its noise and whether its return is lost, whether or not it hit.
+                                  bool beam, std::vector<LidarPoint>& points) {
+  // Every ray draws its noise and whether its return is lost, whether or not it hit: the block's
+  // draws first, in ray order, then the returns. Drawn ray by ray between the returns, each ray's
+  // chain (draw, range, incidence, threshold) waited for the one before; apart, the returns of
+  // neighbouring rays overlap in the processor. The same draws, so the same points.
   Xoshiro256 rng(deriveSeed(seed, kNoiseStream, std::uint64_t(index)));
   boost::random::normal_distribution<double> noise(0.0, 1.0);
+  const int per_ray = beam ? 2 : 1;
+  draws_normal_.resize(std::size_t(rays) * per_ray);
+  draws_uniform_.resize(std::size_t(rays) * per_ray);
+  for (int i = 0; i < rays; ++i) {
+    for (int k = 0; k < per_ray; ++k) draws_normal_[std::size_t(i) * per_ray + k] = noise(rng);
+    for (int k = 0; k < per_ray; ++k)
+      draws_uniform_[std::size_t(i) * per_ray + k] = rng.uniform01();
+  }
   for (int i = 0; i < rays; ++i) {
     if (beam) {
       // Last and dual returns: the beam's echoes, then the ones the mode reports.
-      const double n[2] = {noise(rng), noise(rng)};
-      const double u[2] = {rng.uniform01(), rng.uniform01()};
-      beamReturns(block, i, n, u, points);
+      beamReturns(block, i, &draws_normal_[2 * std::size_t(i)], &draws_uniform_[2 * std::size_t(i)],
+                  points);
       continue;
     }
-    const int s = block.first + i / lasers_, l = i % lasers_;
-    const double n = noise(rng);
-    const double u = rng.uniform01();
     const RayCaster::Hit& hit = hits_[i];
     if (hit.distance < 0) continue;
-    const double range = quantise(hit.distance + config_.range_noise_m * n, quantum_);
+    const int s = block.first + i / lasers_, l = i % lasers_;
+    const double range =
+        quantise(hit.distance + config_.range_noise_m * draws_normal_[i], quantum_);
     if (range < config_.min_range_m || range > config_.max_range_m) continue;
     const SubHit whole = subHit(hit, origins_[i], directions_[i], 1.0);
     // Too weak to detect: the LiDAR equation's power below the sensor's threshold.
     if (whole.power < min_signal_) continue;
-    if (u >= keptProbability(whole.cos_incidence)) continue;
+    if (draws_uniform_[i] >= keptProbability(whole.cos_incidence)) continue;
     block.point(*this, s, l, range, whole.lit, points);
   }
 }

@@ -152,7 +152,7 @@ class LidarSimulator {
   double keptProbability(double cos_incidence) const;
   // The block's returns: noise and losses drawn from the block's own stream.
   void blockReturns(const BlockReport& block, int rays, std::uint64_t seed, int index, bool beam,
-                    std::vector<LidarPoint>& points) const;
+                    std::vector<LidarPoint>& points);
   // Ray i's beam echoes, then the ones the mode reports (last; dual: and the strongest other).
   void beamReturns(const BlockReport& block, int i, const double n[2], const double u[2],
                    std::vector<LidarPoint>& points) const;
@@ -195,6 +195,9 @@ class LidarSimulator {
   std::vector<Eigen::Vector3d> edge_directions_[2];
   std::vector<RayCaster::Hit> edge_hits_[2];
   std::vector<char> blocked_;  // per ray of a block, when the turn starts off azimuth 0
+  // A block's draws, in ray order: each ray's normal noise and uniform loss draws (two of each
+  // for last and dual returns).
+  std::vector<double> draws_normal_, draws_uniform_;
 };
 
 }  // namespace isg::sim
