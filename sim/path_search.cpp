@@ -5,7 +5,6 @@
 #include <functional>
 #include <limits>
 #include <numbers>
-#include <queue>
 #include <utility>
 
 namespace isg::sim {
@@ -33,8 +32,8 @@ std::vector<Eigen::Vector2d> PathSearch::find(const Eigen::Vector2d& from,
     if (std::isinf(cost_[std::size_t(cell)])) touched_.push_back(cell);
     cost_[std::size_t(cell)] = g;
   };
-  using Entry = std::pair<double, int>;
-  std::priority_queue<Entry, std::vector<Entry>, std::greater<>> open;
+  FourAryHeap& open = open_;
+  open.clear();
   const double r = grid.resolution();
   auto heuristic = [&](const Eigen::Vector2i& c) { return r * (c - goal).cast<double>().norm(); };
   setCost(id(start), 0.0);

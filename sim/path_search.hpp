@@ -3,6 +3,7 @@
 #include <Eigen/Core>
 #include <vector>
 
+#include "sim/four_ary_heap.hpp"
 #include "sim/occupancy_grid.hpp"
 
 namespace isg::sim {
@@ -12,7 +13,8 @@ namespace isg::sim {
 // room; a search that made and filled its cost and parent arrays anew spent most of its time on
 // them (a 1000-room floor: 96 MB a search, allocated, zeroed by the kernel and filled), not on the
 // cells it visits. A search now resets only the cells it touched. The paths are the same: the
-// same costs, the same order of expansion.
+// same costs, the same order of expansion. The open set is a four-ary heap (sim/four_ary_heap.hpp):
+// its pops were half of a large floor's searching with std::priority_queue.
 class PathSearch {
  public:
   explicit PathSearch(const OccupancyGrid& grid);
@@ -28,6 +30,7 @@ class PathSearch {
   std::vector<double> cost_;  // infinity where untouched since the last search
   std::vector<int> parent_;   // -1 where untouched
   std::vector<int> touched_;  // cells whose cost this search set
+  FourAryHeap open_;          // the open (f, cell) entries, kept to reuse their memory
 };
 
 }  // namespace isg::sim

@@ -4,8 +4,11 @@
 
 #include <gtest/gtest.h>
 
+#include <functional>
+#include <queue>
 #include <random>
 
+#include "sim/four_ary_heap.hpp"
 #include "sim/route_planner.hpp"
 #include "worlds/reference_plans.hpp"
 
@@ -61,6 +64,33 @@ TEST(PathSearch, APathRunsFromItsStartToItsGoalThroughNeighbouringCells) {
       EXPECT_EQ(step.cwiseAbs().maxCoeff(), 1) << k;
     }
   }
+}
+
+// The search's open set pops distinct (f, cell) pairs in the order std::priority_queue did, pushes
+// and pops interleaved as A* interleaves them, ties in f broken by the cell.
+TEST(FourAryHeap, PopsInTheStandardPriorityQueuesOrder) {
+  FourAryHeap heap;
+  std::priority_queue<FourAryHeap::Entry, std::vector<FourAryHeap::Entry>, std::greater<>> queue;
+  std::mt19937 rng(11);
+  std::uniform_int_distribution<int> key(0, 50);  // few keys: many ties in f
+  std::uniform_int_distribution<int> action(0, 2);
+  int next_value = 0, popped = 0;
+  for (int step = 0; step < 20000; ++step) {
+    if (action(rng) > 0 || queue.empty()) {
+      const FourAryHeap::Entry entry{0.25 * key(rng), (next_value++ * 7919) % 100003};
+      heap.push(entry);
+      queue.push(entry);
+    } else {
+      ASSERT_EQ(heap.top(), queue.top()) << step;
+      heap.pop();
+      queue.pop();
+      ++popped;
+    }
+    ASSERT_EQ(heap.size(), queue.size());
+  }
+  for (; !queue.empty(); queue.pop(), heap.pop(), ++popped) ASSERT_EQ(heap.top(), queue.top());
+  EXPECT_TRUE(heap.empty());
+  EXPECT_GT(popped, 10000);
 }
 
 }  // namespace
