@@ -4,6 +4,7 @@
 #include <numbers>
 
 #include <cmath>
+#include <random>
 #include <set>
 
 #include "bim/agraph.hpp"
@@ -39,6 +40,47 @@ TEST(Vlp16, RingsNumberLasersByElevation) {
   EXPECT_EQ(rings.size(), 16u);
   EXPECT_EQ(Vlp16::sequencesPerTurn(10.0), 1808);
   EXPECT_NEAR(Vlp16::firingTime(1, 15), 55.296e-6 + 15 * 2.304e-6, 1e-15);
+}
+
+// The incidence every return's intensity, detection and loss are drawn from: the branch-free
+// form the rays use against the surface normal's own, bit for bit, on every box of a world whose
+// clutter stands turned (upright boxes off the axes) — points on faces, along edges, at corners.
+TEST(LidarSimulator, IncidenceIsTheSurfaceNormalsBitForBit) {
+  const auto scenario = lidarBuiltin("d1.asbuilt");
+  const MujocoWorld world = MujocoWorld::fromXml(worlds::generateMjcf(scenario));
+  const LidarSimulator lidar(world, bim::LidarConfig{}, kSimulatorGroups);
+  const mjModel& m = world.model();
+  const mjData& d = world.data();
+  std::mt19937 rng(5);
+  std::uniform_real_distribution<double> unit(-1.0, 1.0);
+  std::uniform_int_distribution<int> pick(0, 2);
+  int boxes = 0, turned = 0, compared = 0;
+  for (int g = 0; g < m.ngeom; ++g) {
+    if (m.geom_type[g] != mjGEOM_BOX) continue;
+    ++boxes;
+    const Eigen::Vector3d pos = Eigen::Map<const Eigen::Vector3d>(d.geom_xpos + 3 * g);
+    const Eigen::Matrix3d R =
+        Eigen::Map<const Eigen::Matrix<double, 3, 3, Eigen::RowMajor>>(d.geom_xmat + 9 * g);
+    const Eigen::Vector3d half = Eigen::Map<const Eigen::Vector3d>(m.geom_size + 3 * g);
+    if (std::abs(R(0, 1)) > 1e-6) ++turned;
+    for (int k = 0; k < 200; ++k) {
+      Eigen::Vector3d local(unit(rng) * half.x(), unit(rng) * half.y(), unit(rng) * half.z());
+      // On a face; every 4th on an edge (two coordinates at their faces), every 8th at a corner.
+      const int axis = pick(rng);
+      local[axis] = (unit(rng) < 0 ? -1 : 1) * half[axis];
+      if (k % 4 == 0) local[(axis + 1) % 3] = half[(axis + 1) % 3];
+      if (k % 8 == 0) local[(axis + 2) % 3] = -half[(axis + 2) % 3];
+      const Eigen::Vector3d point = pos + R * local;
+      const Eigen::Vector3d direction =
+          Eigen::Vector3d(unit(rng), unit(rng), unit(rng)).normalized();
+      const double expected = std::abs(lidar.surfaceNormal(g, point, direction).dot(direction));
+      ASSERT_EQ(lidar.cosIncidence(g, point, direction), expected) << g << " " << k;
+      ++compared;
+    }
+  }
+  EXPECT_GT(boxes, 20);
+  EXPECT_GE(turned, 1);  // the clutter turned by 0.2 rad
+  EXPECT_EQ(compared, 200 * boxes);
 }
 
 TEST(LidarSimulator, PointsCarryTheirRingElevationAndFiringTime) {
