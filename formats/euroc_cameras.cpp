@@ -1,16 +1,21 @@
 #include "formats/euroc_cameras.hpp"
 
+#include <png.h>
 #include <yaml-cpp/yaml.h>
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <iterator>
 #include <map>
+#include <memory>
 #include <sstream>
 
 #include "common/input_error.hpp"
+#include "formats/file_bytes.hpp"
+#include "formats/frame_size.hpp"
 
 namespace isg::formats {
 
@@ -209,30 +214,23 @@ std::vector<EurocCamera> readEurocCameras(const std::string& dataset_dir, double
 }
 
 std::string readDepthPng(const std::string& path, int width, int height) {
-  std::ifstream in(path, std::ios::binary);
-  std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-  if (!in.good() && !in.eof()) throw common::InputError(path, "", "cannot be read");
-  // The signature, then the IHDR chunk: length 13, "IHDR", width, height (big-endian), bit depth,
-  // colour type (0: grey).
-  const auto u32 = [&](std::size_t at) {
-    return std::uint32_t(std::uint8_t(bytes[at])) << 24 |
-           std::uint32_t(std::uint8_t(bytes[at + 1])) << 16 |
-           std::uint32_t(std::uint8_t(bytes[at + 2])) << 8 |
-           std::uint32_t(std::uint8_t(bytes[at + 3]));
-  };
-  if (bytes.size() < 33 || bytes.compare(0, 8, "\x89PNG\r\n\x1a\n") != 0 ||
-      bytes.compare(12, 4, "IHDR") != 0) {
-    throw common::InputError(path, "", "not a PNG image");
+  const std::unique_ptr<std::istream> in = openBinaryFile(path);
+  std::string bytes((std::istreambuf_iterator<char>(*in)), std::istreambuf_iterator<char>());
+  if (in->bad()) throw common::InputError(path, "", "cannot be read");
+  // libpng's simplified reader, as for the colour frames: its header only (signature, IHDR);
+  // a 16-bit grey file without transparency is its linear Y format.
+  png_image image;
+  std::memset(&image, 0, sizeof image);
+  image.version = PNG_IMAGE_VERSION;
+  if (!png_image_begin_read_from_memory(&image, bytes.data(), bytes.size())) {
+    throw common::InputError(path, "", std::string("not a PNG image: ") + image.message);
   }
-  if (bytes[24] != 16 || bytes[25] != 0) {
+  const png_uint_32 format = image.format, image_width = image.width, image_height = image.height;
+  png_image_free(&image);
+  if (format != PNG_FORMAT_LINEAR_Y) {
     throw common::InputError(path, "", "not a 16-bit grey depth image");
   }
-  if (u32(16) != std::uint32_t(width) || u32(20) != std::uint32_t(height)) {
-    throw common::InputError(path, "",
-                             "is " + std::to_string(u32(16)) + " x " + std::to_string(u32(20)) +
-                                 " pixels, its camera " + std::to_string(width) + " x " +
-                                 std::to_string(height));
-  }
+  requireFrameSize(path, long(image_width), long(image_height), width, height);
   return bytes;
 }
 

@@ -37,7 +37,7 @@ struct EurocCamera {
 std::vector<EurocCamera> readEurocCameras(const std::string& dataset_dir, double first_imu_t);
 
 // A depth frame's file as it goes into a bag (lossless): its bytes, checked to be a PNG of 16-bit
-// grey of `width` × `height` (its signature and header), else a common::InputError naming it.
+// grey of `width` × `height` (its header, read by libpng), else a common::InputError naming it.
 std::string readDepthPng(const std::string& path, int width, int height);
 
 }  // namespace isg::formats

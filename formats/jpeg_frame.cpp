@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "common/input_error.hpp"
+#include "formats/frame_size.hpp"
 
 namespace isg::formats {
 
@@ -58,12 +59,7 @@ std::string rgbPngFileToJpeg(const std::string& png_path, int expected_width, in
                              int quality) {
   int width = 0, height = 0;
   const std::vector<unsigned char> rgb = readRgbPng(png_path, width, height);
-  if (width != expected_width || height != expected_height) {
-    throw common::InputError(png_path, "",
-                             "is " + std::to_string(width) + " x " + std::to_string(height) +
-                                 " pixels, its camera " + std::to_string(expected_width) + " x " +
-                                 std::to_string(expected_height));
-  }
+  requireFrameSize(png_path, width, height, expected_width, expected_height);
   jpeg_compress_struct info;
   JpegError error;
   info.err = jpeg_std_error(&error.manager);

@@ -77,6 +77,27 @@ void setGlCameras(mjvScene& scene, const Eigen::Vector3d& eye, const Eigen::Vect
   }
 }
 
+// The option's geom and site groups as they were, put back however the render ends (a throw
+// from MuJoCo's or the overlay's drawing included): the next picture shows what it showed.
+class GroupsRestored {
+ public:
+  explicit GroupsRestored(mjvOption& option) : option_(option) {
+    std::copy_n(option.geomgroup, mjNGROUP, geom_groups_.begin());
+    std::copy_n(option.sitegroup, mjNGROUP, site_groups_.begin());
+  }
+  ~GroupsRestored() {
+    std::copy(geom_groups_.begin(), geom_groups_.end(), option_.geomgroup);
+    std::copy(site_groups_.begin(), site_groups_.end(), option_.sitegroup);
+  }
+  GroupsRestored(const GroupsRestored&) = delete;
+  GroupsRestored& operator=(const GroupsRestored&) = delete;
+
+ private:
+  mjvOption& option_;
+  std::array<mjtByte, mjNGROUP> geom_groups_;
+  std::array<mjtByte, mjNGROUP> site_groups_;
+};
+
 }  // namespace
 
 struct Renderer::Egl {
@@ -316,11 +337,9 @@ Image Renderer::camera(mjData& data, const Eigen::Isometry3d& B_T_C,
   mjvCamera free_camera;
   mjv_defaultCamera(&free_camera);
   free_camera.type = mjCAMERA_FREE;
-  const bool robot_shown = option_.geomgroup[worlds::kRobotGroup];
+  const GroupsRestored restored(option_);
   option_.geomgroup[worlds::kRobotGroup] = 0;
   // Sites (the rooms' markers) are for people's pictures; a camera sees the building.
-  std::array<mjtByte, mjNGROUP> site_groups;
-  std::copy_n(option_.sitegroup, mjNGROUP, site_groups.begin());
   std::fill_n(option_.sitegroup, mjNGROUP, mjtByte(0));
   Image image = render(
       data, free_camera, true,
@@ -343,8 +362,6 @@ Image Renderer::camera(mjData& data, const Eigen::Isometry3d& B_T_C,
       depth,
       overlay_ ? std::function<void()>([&] { overlay_->draw(data, B_T_C, k, kNear, far_m); })
                : std::function<void()>());
-  option_.geomgroup[worlds::kRobotGroup] = robot_shown;
-  std::copy(site_groups.begin(), site_groups.end(), option_.sitegroup);
   if (depth) {
     // The buffer's d in [0, 1] back to the distance along the axis: OpenGL's perspective maps
     // z in [near, far] to d = (1/near − 1/z) / (1/near − 1/far).
