@@ -245,9 +245,8 @@ class ScanAlignment {
 
   // One pass at correction x: each point's nearest map point within max_distance, a robust
   // point-to-plane row where the map point has a wall's normal; `near` counts those within
-  // near_distance.
-  // The nearest map points first, then the normals of those met for the first time, then the
-  // rows: a normal is computed once per map point and registration.
+  // near_distance. In three steps: the nearest map points, then the normals of those met for the
+  // first time (each computed once per map point and registration), then the rows.
   Sums pass(const Eigen::Vector3d& x, double max_distance, double near_distance) {
     nearest_.resize(points_.size());
     distance_.resize(points_.size());

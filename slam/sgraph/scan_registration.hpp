@@ -2,6 +2,7 @@
 
 #include <Eigen/Geometry>
 #include <algorithm>
+#include <cassert>
 #include <cmath>
 #include <memory>
 #include <vector>
@@ -102,7 +103,7 @@ std::vector<Eigen::Vector3f> downsampleScan(const sensors::Scan& scan,
 // The recent map: points in M with normals, searchable (a nanoflann k-d tree). Built from
 // keyframe clouds and poses. A point's normal is computed when first asked for (prepareNormals):
 // a registration meets a part of the map only, and the normal (a PCA of the point's
-// neighbourhood, the dearest part of the map) of a point it never meets would be wasted. A
+// neighbourhood, the costliest part of the map) of a point it never meets would be wasted. A
 // normal does not depend on when it is computed, so the registration is the same.
 class LocalMap {
  public:
@@ -126,8 +127,12 @@ class LocalMap {
   // Computes the normals of `indices` (map points, repeats allowed) not computed yet, on the
   // pool's threads if any. Not safe beside other calls on the same map; normal() afterwards is.
   void prepareNormals(const std::vector<int>& indices) const;
-  // Unit normal, or zero where the neighbourhood is not planar; prepareNormals({i}) first.
-  const Eigen::Vector3d& normal(int i) const { return normals_[i]; }
+  // Unit normal, or zero where the neighbourhood is not planar; prepareNormals({i}) first (a
+  // debug build stops here when it was not).
+  const Eigen::Vector3d& normal(int i) const {
+    assert(normal_known_[i] && "LocalMap::normal before prepareNormals");
+    return normals_[i];
+  }
 
  private:
   struct Index;
