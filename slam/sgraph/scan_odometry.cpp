@@ -5,6 +5,7 @@
 #include <cmath>
 #include <cstdint>
 #include <numbers>
+#include <stdexcept>
 
 #include "common/angles.hpp"
 #include "slam/sgraph/voxel_key.hpp"
@@ -29,11 +30,12 @@ Eigen::Matrix3d yawRotation(double yaw) {
 
 // The scan's points moved into L at the stamp by `L0_T_L` (one transform each `step` seconds of
 // the turn from `first`), within the range limits, as voxel centroids (options.voxel) in the
-// order each voxel was first met. One pass over the points, no sort: the scan of every 0.1 s goes
-// through here. `index`: the caller's, reused from scan to scan.
+// order each voxel was first met; of each laser's returns, every `stride`-th from its first.
+// One pass over the points, no sort: the scan of every 0.1 s goes through here. `index`: the
+// caller's, reused from scan to scan.
 std::vector<Eigen::Vector3f> deskewedCloud(const sensors::Scan& scan,
                                            const std::vector<Eigen::Isometry3d>& L0_T_L,
-                                           float first, double step,
+                                           float first, double step, int stride,
                                            const ScanRegistrationOptions& options,
                                            VoxelIndex& index) {
   index.clear(scan.points.size() / 8 + 16);
@@ -48,7 +50,10 @@ std::vector<Eigen::Vector3f> deskewedCloud(const sensors::Scan& scan,
     int at = -1;
   };
   std::array<RingVoxel, kCachedRings> ring_voxel{};
+  // Each ring's returns met so far (rings past kCachedRings share the last counter).
+  std::array<int, kCachedRings + 1> ring_returns{};
   for (const auto& point : scan.points) {
+    if (ring_returns[std::min(point.ring, kCachedRings)]++ % stride != 0) continue;
     const Eigen::Isometry3d& T = L0_T_L[roundNonNegative((point.time - first) / step)];
     const Eigen::Vector3d q = T * Eigen::Vector3d(point.x, point.y, point.z);
     const double range2 = q.squaredNorm();
@@ -94,6 +99,9 @@ ScanOdometry::ScanOdometry(const Eigen::Isometry3d& R_T_L, const Eigen::Isometry
       attitude_(options.attitude_time_constant, options.gravity, /*estimate_bias=*/true),
       map_(options.map) {
   wall_registration_.max_normal_z = options.wall_max_normal_z;
+  if (options.return_stride < 1) {
+    throw std::invalid_argument("scan odometry: return_stride must be at least 1");
+  }
 }
 
 void ScanOdometry::addImu(const sensors::ImuSample& sample) { attitude_.add(sample); }
@@ -160,14 +168,15 @@ Eigen::Isometry3d ScanOdometry::addScan(const sensors::Scan& scan) {
   const Eigen::Isometry3d L0_T_M = (predicted * R_T_L_).inverse();
   float first = 0.0f, last = 0.0f;
   for (const auto& p : scan.points) first = std::min(first, p.time), last = std::max(last, p.time);
+  last_span_ = last;
   constexpr double kStep = 0.005;  // s: the predicted motion is smooth within a turn
   std::vector<Eigen::Isometry3d> L0_T_L;
   for (int i = 0; i <= int(std::ceil((last - first) / kStep)); ++i) {
     L0_T_L.push_back(last_stamp_ ? L0_T_M * predict(s + first + i * kStep) * R_T_L_
                                  : Eigen::Isometry3d::Identity());
   }
-  std::vector<Eigen::Vector3f> cloud =
-      deskewedCloud(scan, L0_T_L, first, kStep, options_.registration, index_);
+  std::vector<Eigen::Vector3f> cloud = deskewedCloud(
+      scan, L0_T_L, first, kStep, options_.return_stride, options_.registration, index_);
   if (!last_stamp_ && hasImu()) levelByStructure(cloud, predicted);
 
   Eigen::Isometry3d pose = predicted;

@@ -43,6 +43,11 @@ struct ScanOdometryOptions {
   // odometry alone drifted twice as far on D3 by hand.
   double wall_max_normal_z = 0.1;
   PlaneVoxelMapOptions map;
+  // Of each laser's returns, the odometry reads every return_stride-th (the first, the third, ...
+  // at 2): a VLP-16's lasers fire 0.2° apart at 10 Hz, far finer than the registration's voxels,
+  // and half the returns gave the same APE over the reference walks by hand (docs/performance.md)
+  // at 0.8x the odometry's time. The S-Graph still reads every return of its keyframes' scans.
+  int return_stride = 2;
   // The scan's points registered: one per this voxel (the map takes all at registration.voxel).
   double registration_voxel = 0.3;  // m
   double keyframe_distance = 0.3;   // m
@@ -85,6 +90,8 @@ class ScanOdometry {
   // the gyroscope (or the last turn rate). Also the pose across the turn the latest scan spans.
   Eigen::Isometry3d predict(double t) const;
   bool hasImu() const { return !attitude_.empty(); }
+  // The latest scan's last point's time after its stamp (0 for none later): the end of its turn.
+  double lastScanSpan() const { return last_span_; }
   // Scans whose registration agreed with the local map, of those registered.
   int registered() const { return registered_; }
   int agreed() const { return agreed_; }
@@ -120,6 +127,7 @@ class ScanOdometry {
   std::deque<Keyframe> keyframes_;
   PlaneVoxelMap map_;  // of keyframes_
   VoxelIndex index_;   // the scan's voxels, reused from scan to scan
+  double last_span_ = 0.0;
   int registered_ = 0, agreed_ = 0;
   std::optional<double> start_levelled_;
 };

@@ -9,6 +9,7 @@
 #include <algorithm>
 #include <cmath>
 #include <numbers>
+#include <stdexcept>
 #include <utility>
 
 #include "slam/sgraph/tests/box_world.hpp"
@@ -114,6 +115,49 @@ TEST(ScanOdometry, FollowsAWalkAcrossARoomFromTheScansAlone) {
   EXPECT_NEAR(estimate.translation().y(), truth.translation().y(), 0.03);
   EXPECT_NEAR(common::yawOf(estimate.linear()), 0.3, 0.01);
   EXPECT_GT(odometry.agreed(), 55);
+}
+
+// A box room's scan in a spinning LiDAR's order: firing by firing, each firing's 16 lasers.
+sensors::Scan firingOrder(const sensors::Scan& scan, int azimuths) {
+  sensors::Scan out = scan;
+  out.points.clear();
+  for (int a = 0; a < azimuths; ++a) {
+    for (int ring = 0; ring < 16; ++ring) out.points.push_back(scan.points[ring * azimuths + a]);
+  }
+  return out;
+}
+
+TEST(ScanOdometry, ReadsEverySecondReturnOfEachLaser) {
+  // The same walk twice: whole scans read at the default stride of 2, and scans that hold only
+  // each laser's first, third, ... returns read whole (stride 1). The odometry must not tell them
+  // apart, pose for pose, to the bit. In firing order, a stride over the scan's points instead of
+  // each laser's would drop every second laser.
+  ScanOdometryOptions every_return;
+  every_return.return_stride = 1;
+  ScanOdometry halved(Eigen::Isometry3d::Identity(), Eigen::Isometry3d::Identity());
+  ScanOdometry thinned(Eigen::Isometry3d::Identity(), Eigen::Isometry3d::Identity(), every_return);
+  constexpr int kAzimuths = 720;
+  for (int k = 0; k <= 30; ++k) {
+    Eigen::Isometry3d truth = Eigen::Isometry3d::Identity();
+    truth.translation() = Eigen::Vector3d(0.05 * k, 0.01 * k, 0.0);
+    truth.linear() = rollPitchYaw(0, 0, 0.005 * k);
+    const sensors::Scan scan = firingOrder(testing::boxScan(truth, 0.1 * k, kAzimuths), kAzimuths);
+    sensors::Scan odd_dropped = scan;
+    odd_dropped.points.clear();
+    for (std::size_t i = 0; i < scan.points.size(); ++i) {
+      if ((i / 16) % 2 == 0) odd_dropped.points.push_back(scan.points[i]);
+    }
+    const Eigen::Isometry3d a = halved.addScan(scan), b = thinned.addScan(odd_dropped);
+    ASSERT_TRUE(a.matrix() == b.matrix()) << "scan " << k;
+  }
+  EXPECT_GT(halved.agreed(), 25);
+  EXPECT_THROW(
+      {
+        ScanOdometryOptions none;
+        none.return_stride = 0;
+        ScanOdometry odometry(Eigen::Isometry3d::Identity(), Eigen::Isometry3d::Identity(), none);
+      },
+      std::invalid_argument);
 }
 
 // The box room's scans from a base that walks along x at 0.5 m/s and turns, level for 3 s (the
